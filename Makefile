@@ -1,0 +1,36 @@
+# symctl: `make paper` and `make test` do all the set-up themselves (a local .venv).
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+OUT ?= out/paper
+
+.PHONY: all paper test lint format bench clean
+
+all: test
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e ".[dev]"
+	touch $(STAMP)
+
+paper: $(STAMP)
+	$(BIN)/symctl paper --out $(OUT)
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -n 2 -q
+
+lint: $(STAMP)
+	$(BIN)/ruff check symctl tests benchmarks
+	$(BIN)/ruff format --check symctl tests benchmarks
+
+format: $(STAMP)
+	$(BIN)/ruff format symctl tests benchmarks
+	$(BIN)/ruff check --fix symctl tests benchmarks
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/core.py
+
+clean:
+	rm -rf $(VENV) out .pytest_cache .hypothesis

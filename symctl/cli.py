@@ -1,0 +1,161 @@
+"""The ``symctl`` command. Orchestration only: the math lives in the library.
+
+``symctl paper`` runs the paper's derivation and writes its outputs. Bad input
+prints one line (``symctl: error: ...``) and exits with code 2.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+from rich.console import Console
+from rich.table import Table
+
+from symctl.arguments import parse_matrix
+from symctl.errors import SymctlError, SymctlTypeError
+
+__all__ = ["main"]
+
+_console = Console()
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="symctl")
+def cli() -> None:
+    """Derive, check and simulate neural implementations of delayed optimal controllers."""
+
+
+@cli.command()
+@click.option(
+    "--tau", type=float, default=0.02, show_default=True, help="Muscle time constant [s]."
+)
+@click.option("--f-max", type=float, default=60.0, show_default=True, help="Maximum force [N].")
+@click.option(
+    "--r-bar",
+    type=float,
+    default=1.0,
+    show_default=True,
+    help="Equilibrium firing rate [spikes/s].",
+)
+@click.option("--ts", type=float, default=0.01, show_default=True, help="Sampling time [s].")
+@click.option(
+    "--sensor-delay", type=int, default=1, show_default=True, help="Sensor delay [steps]."
+)
+@click.option(
+    "--actuator-delay", type=int, default=1, show_default=True, help="Actuator delay [steps]."
+)
+@click.option(
+    "--q",
+    "q_text",
+    default="1",
+    show_default=True,
+    help="State penalty Q: a number or a matrix such as '[[1]]'.",
+)
+@click.option(
+    "--r", "r_text", default="1", show_default=True, help="Input penalty R: a number or a matrix."
+)
+@click.option(
+    "--seed", type=int, default=0, show_default=True, help="Seed for the random realizations."
+)
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("out/paper"),
+    show_default=True,
+    help="Output folder.",
+)
+def paper(tau, f_max, r_bar, ts, sensor_delay, actuator_delay, q_text, r_text, seed, out) -> None:
+    """Run the paper's derivation and write its results into OUT."""
+    from symctl.report import derive_paper  # imported here: keeps `symctl --help` fast
+
+    Q = parse_matrix(q_text, "--q")
+    R = parse_matrix(r_text, "--r")
+    with _console.status("deriving") as status:
+        res = derive_paper(
+            tau=tau,
+            f_max=f_max,
+            r_bar=r_bar,
+            Ts=ts,
+            sensor_delay=sensor_delay,
+            actuator_delay=actuator_delay,
+            Q=Q,
+            R=R,
+            seed=seed,
+            progress=lambda name: status.update(f"deriving: {name}"),
+        )
+        written = res.write(out)
+    _summary(res)
+    for path in written:
+        _console.print(f"wrote {path}", markup=False, soft_wrap=True, highlight=False)
+
+
+def _summary(res) -> None:
+    data = res.to_json()
+    p, aug, c = data["plant"], data["augmented"], data["controller"]
+
+    def out(text: str) -> None:
+        head, sep, rest = text.partition("|")
+        if sep:
+            _console.print(head, style="bold", end="", markup=False)
+            text = rest
+        _console.print(text, markup=False, soft_wrap=True)
+
+    out("Plant|  (linearized, zero-order hold)")
+    out(f"  f_bar = {p['symbolic']['f_bar']} = {p['f_bar']:.6g} N")
+    out(f"  A = {p['symbolic']['A']} = {_fmt(p['A'])}")
+    out(f"  B = {p['symbolic']['B']} = {_fmt(p['B'])}")
+    out(f"Augmented system|  (T = {aug['T']}): chi = [{', '.join(aug['state'])}]")
+    out(f"  A~ = {_fmt(aug['A'])}")
+    out(f"  B~ = {_fmt(aug['B'])}")
+    out(f"  Q~ = {_fmt(aug['Q'])}")
+    out("Gains|  mu = K chi, K = [" + ", ".join(data["gains"]["names"]) + "]")
+    out(f"  K = {_fmt(data['gains']['K'])}")
+    out("Controller|  G(z) = Delta_r / Delta_f")
+    out(f"  G(z) = {res.G_symbolic}")
+    out(f"  numerator {_fmt(c['numerator'])}, denominator {_fmt(c['denominator'])}")
+    out(f"  relative degree {c['relative_degree']}; derivation proved: {c['proved']}")
+
+    table = Table(title="summary")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_row("f_bar [N]", f"{p['f_bar']:.4f}")
+    table.add_row("A", f"{p['A'][0][0]:.6f}" if len(p["A"]) == 1 else _fmt(p["A"]))
+    table.add_row("B", f"{p['B'][0][0]:.6f}" if len(p["B"]) == 1 else _fmt(p["B"]))
+    for name, value in zip(data["gains"]["names"], data["gains"]["K"][0], strict=False):
+        table.add_row(name, f"{value:.6f}")
+    table.add_row("spectral radius", f"{data['closed_loop']['spectral_radius']:.6f}")
+    _console.print(table)
+
+
+def _fmt(values) -> str:
+    import numpy as np
+
+    arr = np.asarray(values, dtype=float)
+    return np.array2string(arr, precision=6, max_line_width=10_000).replace("\n", "")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the console script; returns the exit code."""
+    try:
+        cli.main(args=argv, prog_name="symctl", standalone_mode=False)
+    except click.exceptions.Abort:
+        click.echo("symctl: aborted", err=True)
+        return 1
+    except click.ClickException as exc:
+        click.echo(f"symctl: error: {exc.format_message()}".splitlines()[0], err=True)
+        return 2
+    except (SymctlError, SymctlTypeError) as exc:
+        click.echo(f"symctl: error: {exc}".splitlines()[0], err=True)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
+
+
+def run() -> None:  # pragma: no cover - console-script wrapper
+    """Console-script entry: exit with :func:`main`'s code."""
+    sys.exit(main())

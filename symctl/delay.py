@@ -1,0 +1,217 @@
+r"""Sensor and actuator delays built into an augmented state.
+
+With net delay :math:`T = d_s + d_a`, the intended actuation :math:`\mu` reaches
+the plant :math:`T` steps later through a chain of delayed copies
+(the paper's eqs. (augmented_states)–(augmented_cost), generalised to any
+:math:`T` and any plant size):
+
+.. math::
+    \gamma_1(t+1) = \mu(t),\quad \gamma_{k+1}(t+1) = \gamma_k(t),\quad
+    \delta_r(t) = \gamma_T(t) = \mu(t - T).
+
+State ordering: :math:`\chi = [x;\ \gamma_1;\ \dots;\ \gamma_{T-1};\ \delta_r]`
+(plant states first, then the copies of :math:`\mu` in order of increasing
+delay, each of the plant's input size ``m``). For the paper's scalar ``T = 2``
+this is :math:`\chi = [\delta_f, \gamma, \delta_r]` and
+
+.. math::
+    \tilde A = \begin{bmatrix} A & 0 & B \\ 0 & 0 & 0 \\ 0 & I & 0 \end{bmatrix},\quad
+    \tilde B = \begin{bmatrix} 0 \\ I \\ 0 \end{bmatrix},\quad
+    \tilde Q = \operatorname{diag}(Q, 0, R).
+
+Only the net delay enters the augmented system (for state feedback, a sensor
+delay can be moved to the actuator side without changing the closed loop); the
+split ``sensor_delay``/``actuator_delay`` is kept for the factorization
+:math:`G = G_3 G_2 G_1` of later steps. With ``T = 0`` the system is the plant
+itself and ``R`` penalizes :math:`\mu = u` directly.
+
+>>> from symctl import MuscleModel
+>>> aug = augment(MuscleModel().discrete_symbolic(), sensor_delay=1, actuator_delay=1)
+>>> aug.state_names
+('delta_f', 'gamma', 'delta_r')
+>>> aug.A.shape, aug.T
+((3, 3), 2)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from symctl.arguments import nonneg_int, psd_matrix, to_matrix
+from symctl.display import LatexMixin, latex
+from symctl.errors import DimensionError, SymctlTypeError
+from symctl.plant import DiscretePlant, MuscleModel
+
+__all__ = ["AugmentedSystem", "as_plant", "augment"]
+
+
+def as_plant(plant) -> DiscretePlant:
+    """Accept a :class:`DiscretePlant`, a :class:`MuscleModel` or a pair ``(A, B)``."""
+    if isinstance(plant, DiscretePlant):
+        return plant
+    if isinstance(plant, MuscleModel):
+        return plant.plant()
+    if isinstance(plant, tuple) and len(plant) == 2:
+        return DiscretePlant(*plant)
+    raise SymctlTypeError(
+        "plant: expected a DiscretePlant, a MuscleModel or a tuple (A, B), "
+        f"got {type(plant).__name__}"
+    )
+
+
+@dataclass(frozen=True)
+class AugmentedSystem(LatexMixin):
+    r"""The delay-augmented system :math:`\chi(t+1) = \tilde A \chi(t) + \tilde B \mu(t)`.
+
+    Attributes
+    ----------
+    plant : DiscretePlant
+    sensor_delay, actuator_delay, T : int
+        The delays in steps and their sum, the net delay.
+    A, B : sympy.ImmutableMatrix
+        :math:`\tilde A` (``n + T m`` square) and :math:`\tilde B` (``n + T m`` by ``m``).
+    Q : sympy.ImmutableMatrix
+        :math:`\tilde Q = \operatorname{diag}(Q, 0, \dots, 0, R)` (for ``T = 0``: ``Q``).
+    Q_plant, R : sympy.ImmutableMatrix
+        The plant's state and input penalties of eq. (cost).
+    state_names : tuple of str
+    """
+
+    plant: DiscretePlant
+    sensor_delay: int
+    actuator_delay: int
+    A: sp.ImmutableMatrix
+    B: sp.ImmutableMatrix
+    Q: sp.ImmutableMatrix
+    Q_plant: sp.ImmutableMatrix
+    R: sp.ImmutableMatrix
+    state_names: tuple[str, ...]
+
+    @property
+    def T(self) -> int:
+        """Net sensorimotor delay in steps."""
+        return self.sensor_delay + self.actuator_delay
+
+    @property
+    def n(self) -> int:
+        """Plant states."""
+        return self.plant.n
+
+    @property
+    def m(self) -> int:
+        """Plant inputs (size of each delayed copy of mu)."""
+        return self.plant.m
+
+    @property
+    def R_mu(self) -> sp.ImmutableMatrix:
+        """Penalty on the intended actuation mu: ``R`` when ``T = 0``, else zero (the paper's)."""
+        return self.R if self.T == 0 else sp.ImmutableMatrix(sp.zeros(self.m, self.m))
+
+    def latex(self) -> str:
+        chi = sp.Matrix([sp.Symbol(s) for s in self.state_names])
+        return (
+            rf"\chi = {latex(chi)},\quad \tilde A = {latex(self.A)},\quad "
+            rf"\tilde B = {latex(self.B)},\quad \tilde Q = {latex(self.Q)}"
+        )
+
+
+def _chain_names(plant: DiscretePlant, T: int) -> tuple[str, ...]:
+    if T == 0:
+        return plant.state_names
+    m = plant.m
+    copies = []
+    for k in range(1, T):
+        stem = "gamma" if T == 2 else f"gamma_{k}"
+        copies += [stem] if m == 1 else [f"{stem}[{i + 1}]" for i in range(m)]
+    return (*plant.state_names, *copies, *plant.input_names)
+
+
+def augment(
+    plant, sensor_delay: int = 1, actuator_delay: int = 1, Q=None, R=None
+) -> AugmentedSystem:
+    r"""Build the delay-augmented system and cost of the paper, for any delays and plant size.
+
+    Parameters
+    ----------
+    plant : DiscretePlant, MuscleModel or (A, B)
+        Numeric or symbolic.
+    sensor_delay, actuator_delay : int
+        Delays in steps, integers >= 0.
+    Q : matrix-like, optional
+        State penalty (``n x n``); identity by default.
+    R : matrix-like, optional
+        Input penalty (``m x m``); identity by default.
+
+    Returns
+    -------
+    AugmentedSystem
+
+    Raises
+    ------
+    ParameterError
+        Negative or non-integer delays; numeric ``Q`` or ``R`` not symmetric
+        positive semidefinite.
+    DimensionError
+        ``Q`` or ``R`` of the wrong shape.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> a, b = sp.symbols("A B")
+    >>> aug = augment(([[a]], [[b]]), 1, 1)
+    >>> aug.A
+    Matrix([
+    [A, 0, B],
+    [0, 0, 0],
+    [0, 1, 0]])
+    >>> aug.B.T, aug.Q
+    (Matrix([[0, 1, 0]]), Matrix([
+    [1, 0, 0],
+    [0, 0, 0],
+    [0, 0, 1]]))
+    """
+    p = as_plant(plant)
+    ds = nonneg_int(sensor_delay, "sensor_delay")
+    da = nonneg_int(actuator_delay, "actuator_delay")
+    n, m, T = p.n, p.m, ds + da
+    Qm = sp.eye(n) if Q is None else to_matrix(Q, "Q")
+    Rm = sp.eye(m) if R is None else to_matrix(R, "R")
+    if Qm.shape != (n, n):
+        raise DimensionError(
+            f"Q: expected shape {(n, n)} for a plant with {n} states, got {Qm.shape}"
+        )
+    if Rm.shape != (m, m):
+        raise DimensionError(
+            f"R: expected shape {(m, m)} for a plant with {m} inputs, got {Rm.shape}"
+        )
+    for value, name in ((Qm, "Q"), (Rm, "R")):
+        if not value.free_symbols:
+            psd_matrix(value, name, value.shape[0])
+    size = n + T * m
+    A = sp.zeros(size, size)
+    B = sp.zeros(size, m)
+    Qt = sp.zeros(size, size)
+    A[:n, :n] = p.A
+    Qt[:n, :n] = Qm
+    if T == 0:
+        B[:, :] = p.B
+    else:
+        A[:n, size - m :] = p.B  # delta_r = gamma_T drives the plant
+        B[n : n + m, :] = sp.eye(m)  # gamma_1(t+1) = mu(t)
+        for k in range(1, T):  # gamma_{k+1}(t+1) = gamma_k(t)
+            rows, cols = n + k * m, n + (k - 1) * m
+            A[rows : rows + m, cols : cols + m] = sp.eye(m)
+        Qt[size - m :, size - m :] = Rm
+    return AugmentedSystem(
+        p,
+        ds,
+        da,
+        sp.ImmutableMatrix(A),
+        sp.ImmutableMatrix(B),
+        sp.ImmutableMatrix(Qt),
+        sp.ImmutableMatrix(Qm),
+        sp.ImmutableMatrix(Rm),
+        _chain_names(p, T),
+    )

@@ -1,0 +1,174 @@
+r"""Optimal gains of the delay-augmented LQR problem.
+
+The paper minimizes :math:`J = \sum_t \chi^\top \tilde Q \chi` with
+:math:`\tilde Q = \operatorname{diag}(Q, 0, \dots, 0, R)` and no penalty on the
+intended actuation :math:`\mu` (eq. augmented_cost). For :math:`T \ge 1` we
+solve the equivalent problem with the penalty moved onto :math:`\mu`:
+
+**Equivalence.** Since :math:`\delta_r(t) = \mu(t - T)` for :math:`t \ge T`,
+
+.. math::
+    \sum_{t \ge 0} \delta_r(t)^\top R\, \delta_r(t)
+    = \sum_{k=1}^{T} \gamma_k(0)^\top R\, \gamma_k(0) + \sum_{t \ge 0} \mu(t)^\top R\, \mu(t),
+
+and the first sum is fixed by the initial state. So the paper's cost and
+:math:`\sum_t \chi^\top \operatorname{diag}(Q, 0, \dots, 0)\chi + \mu^\top R \mu`
+differ by a term no control can change: both have the same optimal feedback.
+The second is a standard DARE with :math:`R \succ 0` on the input, which is
+better conditioned than the paper's zero input penalty (scipy also accepts the
+latter; the tests cross-check both).
+
+Sign: the paper writes :math:`\mu(t) = K\chi(t)` with
+:math:`K = [K_0\ K_1 \dots K_T]`, i.e. minus the usual LQR gain.
+
+The DARE itself is SciPy's :func:`scipy.linalg.solve_discrete_are`.
+Stabilizability of :math:`(\tilde A, \tilde B)` and detectability of
+:math:`(\tilde Q^{1/2}, \tilde A)` are checked first with the PBH test, so that
+a problem without a stabilizing solution is reported as such.
+
+>>> from symctl import MuscleModel, augment
+>>> g = lqr_gains(augment(MuscleModel(), 1, 1))
+>>> [round(float(k), 6) for k in g.K[0]]
+[-0.045972, -0.580041, -0.351813]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+import sympy as sp
+
+from symctl.arguments import numeric_matrix, psd_matrix
+from symctl.delay import AugmentedSystem
+from symctl.display import LatexMixin, latex
+from symctl.errors import NotStabilizableError, SymctlTypeError
+from symctl.symbols import gain_matrix_symbols
+
+__all__ = ["Gains", "lqr_gains"]
+
+_TOL = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class Gains(LatexMixin):
+    r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
+
+    Attributes
+    ----------
+    system : AugmentedSystem
+    K : numpy.ndarray
+        ``m x (n + T m)``.
+    X : numpy.ndarray
+        Stabilizing DARE solution of the equivalent problem (see the module notes).
+    poles : numpy.ndarray
+        Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
+    """
+
+    system: AugmentedSystem
+    K: np.ndarray
+    X: np.ndarray
+    poles: np.ndarray
+
+    @property
+    def blocks(self) -> list[np.ndarray]:
+        """``[K_0, K_1, ..., K_T]``: ``K_0`` is ``m x n``, the others ``m x m``."""
+        n, m, T = self.system.n, self.system.m, self.system.T
+        return [self.K[:, :n]] + [self.K[:, n + k * m : n + (k + 1) * m] for k in range(T)]
+
+    def substitutions(self) -> dict[sp.Symbol, float]:
+        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values."""
+        s = self.system
+        out = {}
+        for sym, val in zip(gain_matrix_symbols(s.T, s.m, s.n), self.blocks, strict=True):
+            out.update(zip(sym, np.asarray(val).ravel(), strict=True))
+        return {k: float(v) for k, v in out.items()}
+
+    @property
+    def spectral_radius(self) -> float:
+        """Largest closed-loop pole modulus (< 1: Schur stable)."""
+        return float(np.max(np.abs(self.poles))) if self.poles.size else 0.0
+
+    def latex(self) -> str:
+        return rf"K = {latex(sp.Matrix(self.K).evalf(6))}"
+
+
+def _pbh_defect(A: np.ndarray, other: np.ndarray, *, stack: str) -> complex | None:
+    """An eigenvalue with ``|lambda| >= 1`` that fails the PBH rank test, or None."""
+    n = A.shape[0]
+    for lam in np.linalg.eigvals(A):
+        if abs(lam) < 1 - _TOL:
+            continue
+        shifted = A - lam * np.eye(n)
+        test = np.hstack([shifted, other]) if stack == "h" else np.vstack([shifted, other])
+        sv = np.linalg.svd(test, compute_uv=False)
+        scale = max(1.0, float(np.max(np.abs(test))))
+        if np.sum(sv > 1e-9 * scale) < n:
+            return complex(lam)
+    return None
+
+
+def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
+    r"""Solve the delayed LQR problem; gains in the paper's sign, :math:`\mu = K \chi`.
+
+    Parameters
+    ----------
+    system : AugmentedSystem
+        From :func:`symctl.augment`, with numbers (no free symbols).
+    Q, R : matrix-like, optional
+        Override the penalties stored in ``system``.
+
+    Returns
+    -------
+    Gains
+
+    Raises
+    ------
+    ParameterError
+        Free symbols left in the system, or Q/R not symmetric positive semidefinite.
+    NotStabilizableError
+        :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
+        detectable, or no stabilizing DARE solution (e.g. a singular ``R``).
+    """
+    if not isinstance(system, AugmentedSystem):
+        raise SymctlTypeError(
+            "system: expected an AugmentedSystem (from symctl.augment), "
+            f"got {type(system).__name__}"
+        )
+    n, m = system.n, system.m
+    Qp = psd_matrix(system.Q_plant if Q is None else Q, "Q", n)
+    Rm = psd_matrix(system.R if R is None else R, "R", m)
+    A = numeric_matrix(system.A, "plant")
+    B = numeric_matrix(system.B, "plant")
+    Qeq = np.zeros_like(A)
+    Qeq[:n, :n] = Qp
+
+    mode = _pbh_defect(A, B, stack="h")
+    if mode is not None:
+        raise NotStabilizableError(
+            f"plant: not stabilizable, the mode {mode:.6g} (|lambda| >= 1) "
+            "cannot be reached by the input"
+        )
+    w, v = np.linalg.eigh(Qeq)
+    q_half = (v * np.sqrt(np.clip(w, 0, None))) @ v.T
+    mode = _pbh_defect(A, q_half, stack="v")
+    if mode is not None:
+        raise NotStabilizableError(
+            f"Q: the cost is not detectable, the mode {mode:.6g} (|lambda| >= 1) "
+            "is invisible to Q; penalize it to get a stabilizing controller"
+        )
+    try:
+        X = scipy.linalg.solve_discrete_are(A, B, Qeq, Rm)
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise NotStabilizableError(
+            f"R: no stabilizing DARE solution ({exc}); is R singular?"
+        ) from None
+    K = -np.linalg.solve(Rm + B.T @ X @ B, B.T @ X @ A)
+    poles = np.linalg.eigvals(A + B @ K)
+    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    if not np.all(np.abs(poles) < 1):
+        raise NotStabilizableError(
+            f"plant: the DARE solution does not stabilize the loop (poles {poles}); check Q and R"
+        )
+    return Gains(system, K, X, poles)

@@ -1,0 +1,392 @@
+r"""The plant: linearization, exact zero-order-hold discretization, the muscle model.
+
+The paper's muscle (section "Problem setup") is
+
+.. math:: \frac{df}{dt} = \frac{f_\text{max}}{\tau (1 + e^{-r})} - \frac{f}{\tau},
+
+linearized about :math:`(\bar f, \bar r)` with :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`
+and discretized with a zero-order hold of sampling time :math:`T_s`, which gives
+the scalar system :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)` of eq. (system).
+
+:func:`linearize` and :func:`discretize` are general (any vector ODE, any
+number of states and inputs); :class:`MuscleModel` applies them to the paper's
+muscle and keeps every parameter symbolic until numbers are asked for.
+
+>>> m = MuscleModel()
+>>> m.discrete_symbolic().A[0, 0]
+exp(-T_s/tau)
+>>> p = m.plant()
+>>> round(float(p.A[0, 0]), 6), round(float(p.B[0, 0]), 6), round(m.f_bar, 4)
+(0.606531, 4.641646, 43.8635)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cache
+
+import numpy as np
+import sympy as sp
+
+from symctl import symbols as S
+from symctl.arguments import (
+    numeric_matrix,
+    positive_number,
+    real_number,
+    to_expr,
+    to_matrix,
+)
+from symctl.display import LatexMixin, latex
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+
+__all__ = ["DiscretePlant", "Linearization", "MuscleModel", "discretize", "linearize"]
+
+
+@dataclass(frozen=True)
+class Linearization(LatexMixin):
+    r"""Jacobians of :math:`\dot x = f(x, u)` at a point.
+
+    :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
+
+    Unpacks as ``a, b = linearize(...)``. ``residual`` is :math:`f(x_{eq}, u_{eq})`,
+    zero at an equilibrium.
+    """
+
+    a: sp.Matrix
+    b: sp.Matrix
+    residual: sp.Matrix
+
+    def __iter__(self):
+        return iter((self.a, self.b))
+
+    def latex(self) -> str:
+        return rf"a = {latex(self.a)},\quad b = {latex(self.b)}"
+
+
+def _symbol_list(value, argname: str) -> list[sp.Symbol]:
+    items = [value] if isinstance(value, sp.Symbol | str) else list(value)
+    out = []
+    for item in items:
+        if isinstance(item, str):
+            if not item.isidentifier():
+                raise ParameterError(f"{argname}: {item!r} is not a valid symbol name")
+            item = sp.Symbol(item, real=True)
+        if not isinstance(item, sp.Symbol):
+            raise SymctlTypeError(f"{argname}: expected symbols, got {item!r}")
+        out.append(item)
+    if len(set(out)) != len(out):
+        raise ParameterError(f"{argname}: symbols must be distinct, got {out}")
+    return out
+
+
+def _is_zero(expr: sp.Expr) -> bool | None:
+    """True/False when the zero test is decided, None when it is not."""
+    value = sp.cancel(sp.together(sp.expand(expr)))
+    return True if value == 0 else value.is_zero
+
+
+def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Linearization:
+    r"""Linearize a vector ODE :math:`\dot x = f(x, u)` at :math:`(x_{eq}, u_{eq})`.
+
+    Parameters
+    ----------
+    f : sequence of expressions (or one expression)
+        Right-hand side; text is parsed safely with the names in ``x`` and ``u``
+        and the paper's parameter symbols.
+    x, u : sequence of symbols (or names)
+        State and input variables.
+    x_eq, u_eq : sequence of values
+        The operating point; may be symbolic.
+    check_equilibrium : bool
+        Refuse a point where :math:`f \ne 0` provably (the linearization of an
+        ODE about a non-equilibrium point has a constant term this API drops).
+
+    Returns
+    -------
+    Linearization
+        With ``a = df/dx`` (n x n) and ``b = df/du`` (n x m) evaluated at the point.
+
+    Raises
+    ------
+    DimensionError, ParameterError
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, u = sp.symbols("x u")
+    >>> a, b = linearize([-x**3 + u], [x], [u], [1], [1])
+    >>> a, b
+    (Matrix([[-3]]), Matrix([[1]]))
+    """
+    xs, us = _symbol_list(x, "x"), _symbol_list(u, "u")
+    names = {s.name: s for s in (*xs, *us)}
+    names.update({s.name: s for s in (S.tau, S.f_max, S.r_bar, S.T_s)})
+    fv = to_matrix(f if not isinstance(f, str | sp.Basic) else [f], "f", names=names)
+    if fv.shape[1] != 1:
+        raise DimensionError(f"f: expected a vector, got shape {fv.shape}")
+    if fv.shape[0] != len(xs):
+        raise DimensionError(f"f: has {fv.shape[0]} entries but x has {len(xs)} states")
+    xe = to_matrix(x_eq, "x_eq", (len(xs), 1), names)
+    ue = to_matrix(u_eq, "u_eq", (len(us), 1), names)
+    point = dict(zip(xs + us, list(xe) + list(ue), strict=True))
+    a = fv.jacobian(xs).subs(point)
+    b = fv.jacobian(us).subs(point)
+    residual = fv.subs(point).applyfunc(lambda e: sp.cancel(sp.together(e)))
+    if check_equilibrium and any(_is_zero(e) is False for e in residual):
+        raise ParameterError(
+            f"x_eq, u_eq: not an equilibrium, f(x_eq, u_eq) = {list(residual)} != 0"
+        )
+    return Linearization(a, b, residual)
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Cheap canonical form for exponential expressions: common denominator, factored."""
+    return sp.factor(sp.cancel(sp.together(sp.powsimp(sp.expand(expr)))))
+
+
+def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
+    r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`.
+
+    .. math::
+        \exp\left(\begin{bmatrix} a & b \\ 0 & 0 \end{bmatrix} T_s\right)
+        = \begin{bmatrix} A & B \\ 0 & I \end{bmatrix},
+        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b .
+
+    Symbolic matrices give the closed form (sympy's matrix exponential);
+    numeric ones go through :func:`scipy.linalg.expm`.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.symbols import tau, T_s
+    >>> A, B = discretize(-1 / tau, 1 / tau, T_s)
+    >>> A[0, 0], sp.simplify(B[0, 0] - (1 - sp.exp(-T_s / tau)))
+    (exp(-T_s/tau), 0)
+    """
+    am = to_matrix(a, "a")
+    n = am.shape[0]
+    if am.shape != (n, n):
+        raise DimensionError(f"a: must be square, got shape {am.shape}")
+    bm = to_matrix(b, "b")
+    if bm.shape[0] != n:
+        raise DimensionError(f"b: must have {n} rows like a, got shape {bm.shape}")
+    ts = to_expr(Ts, "Ts")
+    if ts.is_number and not ts.is_positive:
+        raise ParameterError(f"Ts: must be > 0, got {Ts!r}")
+    m = bm.shape[1]
+    block = sp.zeros(n + m, n + m)
+    block[:n, :n] = am
+    block[:n, n:] = bm
+    if block.free_symbols or ts.free_symbols:
+        phi = (block * ts).exp().applyfunc(_tidy)
+    else:
+        from scipy.linalg import expm
+
+        phi = sp.Matrix(expm(numeric_matrix(block * ts, "a, b")))
+    return phi[:n, :n], phi[:n, n:]
+
+
+@dataclass(frozen=True)
+class DiscretePlant(LatexMixin):
+    r"""A discrete-time linear plant :math:`x(t+1) = A x(t) + B u(t)`.
+
+    ``A`` (n x n) and ``B`` (n x m) are sympy matrices, exact or symbolic.
+    ``Ts`` is the sampling time (a number, a symbol, or ``None`` when unknown).
+    ``state_names``/``input_names`` label the signals (the muscle's are
+    ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
+    of a linearized plant.
+
+    >>> p = DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
+    >>> p.n, p.m
+    (2, 1)
+    """
+
+    A: sp.Matrix
+    B: sp.Matrix
+    Ts: sp.Expr | None = None
+    state_names: tuple[str, ...] = ()
+    input_names: tuple[str, ...] = ()
+    x_eq: sp.Matrix | None = None
+    u_eq: sp.Matrix | None = None
+    params: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        A = to_matrix(self.A, "A")
+        if A.shape[0] != A.shape[1] or A.shape[0] == 0:
+            raise DimensionError(f"A: must be square and non-empty, got shape {A.shape}")
+        B = to_matrix(self.B, "B")
+        if B.shape[0] != A.shape[0] or B.shape[1] == 0:
+            raise DimensionError(f"B: must have {A.shape[0]} rows like A, got shape {B.shape}")
+        object.__setattr__(self, "A", sp.ImmutableMatrix(A))
+        object.__setattr__(self, "B", sp.ImmutableMatrix(B))
+        if self.Ts is not None:
+            ts = to_expr(self.Ts, "Ts")
+            if ts.is_number and not ts.is_positive:
+                raise ParameterError(f"Ts: must be > 0, got {self.Ts!r}")
+            object.__setattr__(self, "Ts", ts)
+        n, m = A.shape[0], B.shape[1]
+        object.__setattr__(self, "state_names", tuple(self.state_names) or _names("x", n))
+        object.__setattr__(self, "input_names", tuple(self.input_names) or _names("u", m))
+        if len(self.state_names) != n or len(self.input_names) != m:
+            raise DimensionError(
+                f"state_names/input_names: need {n} and {m} names, got "
+                f"{len(self.state_names)} and {len(self.input_names)}"
+            )
+
+    @property
+    def n(self) -> int:
+        """Number of states."""
+        return self.A.shape[0]
+
+    @property
+    def m(self) -> int:
+        """Number of inputs."""
+        return self.B.shape[1]
+
+    @property
+    def is_numeric(self) -> bool:
+        """True when A and B have no free symbols."""
+        return not (self.A.free_symbols or self.B.free_symbols)
+
+    def subs(self, *args, **kwargs) -> DiscretePlant:
+        """A new plant with symbols substituted (arguments as :meth:`sympy.Basic.subs`)."""
+        ts = self.Ts.subs(*args, **kwargs) if self.Ts is not None else None
+        return DiscretePlant(
+            self.A.subs(*args, **kwargs),
+            self.B.subs(*args, **kwargs),
+            ts,
+            self.state_names,
+            self.input_names,
+            None if self.x_eq is None else self.x_eq.subs(*args, **kwargs),
+            None if self.u_eq is None else self.u_eq.subs(*args, **kwargs),
+            self.params,
+        )
+
+    def numeric(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(A, B)`` as float arrays; refuses free symbols."""
+        return numeric_matrix(self.A, "A"), numeric_matrix(self.B, "B")
+
+    def to_control(self):
+        """The plant as a discrete ``control.StateSpace`` with full-state output."""
+        import control
+
+        A, B = self.numeric()
+        dt = True if self.Ts is None else float(self.Ts)
+        return control.ss(A, B, np.eye(self.n), np.zeros((self.n, self.m)), dt)
+
+    def latex(self) -> str:
+        return rf"A = {latex(self.A)},\quad B = {latex(self.B)}"
+
+
+def _names(stem: str, count: int) -> tuple[str, ...]:
+    return (stem,) if count == 1 else tuple(f"{stem}_{i + 1}" for i in range(count))
+
+
+def _muscle_ode() -> sp.Expr:
+    return S.f_max / (S.tau * (1 + sp.exp(-S.r))) - S.f / S.tau
+
+
+def _muscle_f_bar() -> sp.Expr:
+    return S.f_max / (1 + sp.exp(-S.r_bar))
+
+
+@cache
+def _muscle_linearization() -> Linearization:
+    lin = linearize(_muscle_ode(), [S.f], [S.r], [_muscle_f_bar()], [S.r_bar])
+    return Linearization(lin.a.applyfunc(_tidy), lin.b.applyfunc(_tidy), lin.residual)
+
+
+@cache
+def _muscle_discrete() -> DiscretePlant:
+    """The symbolic derivation does not depend on the numbers: made once per process."""
+    a, b = _muscle_linearization()
+    A, B = discretize(a, b, S.T_s)
+    return DiscretePlant(
+        A, B, S.T_s, ("delta_f",), ("delta_r",), sp.Matrix([_muscle_f_bar()]), sp.Matrix([S.r_bar])
+    )
+
+
+@dataclass(frozen=True)
+class MuscleModel(LatexMixin):
+    r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`.
+
+    Parameters default to the paper's (section "Simulations"): ``tau = 0.02`` s,
+    ``f_max = 60`` N, ``r_bar = 1`` spike/s, ``Ts = 0.01`` s.
+
+    The derivation is symbolic (:meth:`linearize_symbolic`, :meth:`discrete_symbolic`);
+    :meth:`plant` substitutes the numbers and returns an exact
+    :class:`DiscretePlant` (e.g. ``A = exp(-1/2)``).
+
+    Examples
+    --------
+    >>> MuscleModel().f_bar_symbolic
+    f_max/(1 + exp(-r_bar))
+    >>> MuscleModel(tau=-1)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: tau: must be a finite number > 0, got -1
+    """
+
+    tau: float = 0.02
+    f_max: float = 60.0
+    r_bar: float = 1.0
+    Ts: float = 0.01
+
+    def __post_init__(self):
+        for name in ("tau", "f_max", "Ts"):
+            positive_number(getattr(self, name), name)
+        real_number(self.r_bar, "r_bar")
+
+    @property
+    def ode(self) -> sp.Expr:
+        """Right-hand side of df/dt in the symbols ``f``, ``r``, ``tau``, ``f_max``."""
+        return _muscle_ode()
+
+    @property
+    def f_bar_symbolic(self) -> sp.Expr:
+        r"""Equilibrium force :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`."""
+        return _muscle_f_bar()
+
+    @property
+    def values(self) -> dict[sp.Symbol, sp.Expr]:
+        """The parameter values as exact sympy numbers, keyed by the paper's symbols."""
+        return {
+            S.tau: sp.nsimplify(self.tau, rational=True),
+            S.f_max: sp.nsimplify(self.f_max, rational=True),
+            S.r_bar: sp.nsimplify(self.r_bar, rational=True),
+            S.T_s: sp.nsimplify(self.Ts, rational=True),
+        }
+
+    @property
+    def f_bar(self) -> float:
+        """Equilibrium force in newtons (a float)."""
+        return float(self.f_bar_symbolic.subs(self.values))
+
+    def linearize_symbolic(self) -> Linearization:
+        r"""Continuous linearization of the muscle at its equilibrium.
+
+        :math:`a = -1/\tau`, :math:`b = f_\text{max} e^{-\bar r}/(\tau(1+e^{-\bar r})^2)`.
+        """
+        return _muscle_linearization()
+
+    def discrete_symbolic(self) -> DiscretePlant:
+        """The ZOH-discretized linear plant with every parameter a symbol."""
+        return _muscle_discrete()
+
+    def plant(self) -> DiscretePlant:
+        """The discrete plant with this model's numbers substituted (exact)."""
+        p = self.discrete_symbolic().subs(self.values)
+        return DiscretePlant(
+            p.A, p.B, p.Ts, p.state_names, p.input_names, p.x_eq, p.u_eq, self.as_dict()
+        )
+
+    def as_dict(self) -> dict[str, float]:
+        """The parameters as plain floats (for JSON)."""
+        return {"tau": self.tau, "f_max": self.f_max, "r_bar": self.r_bar, "Ts": self.Ts}
+
+    def rhs(self, f: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """The nonlinear ODE's right-hand side, evaluated with NumPy."""
+        return self.f_max / (self.tau * (1 + np.exp(-r))) - f / self.tau
+
+    def latex(self) -> str:
+        return rf"\frac{{df}}{{dt}} = {latex(self.ode)}"

@@ -1,0 +1,73 @@
+"""The `symctl` command: outputs, options and one-line errors with exit code 2."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from symctl.cli import main
+
+
+def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
+    assert main(["paper", "--out", str(tmp_path)]) == 0
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data["parameters"]["tau"] == 0.02 and data["parameters"]["seed"] == 0
+    assert round(data["plant"]["f_bar"], 4) == 43.8635
+    assert data["plant"]["A"] == [[pytest.approx(0.606531, abs=1e-6)]]
+    assert data["plant"]["B"] == [[pytest.approx(4.641646, abs=1e-6)]]
+    assert data["gains"]["K"][0] == pytest.approx([-0.0459719, -0.580041, -0.351813], abs=1e-6)
+    assert data["controller"]["numerator"] == pytest.approx([-0.0459719], abs=1e-6)
+    assert data["controller"]["denominator"] == pytest.approx([1, 0.580041, 0.351813], abs=1e-6)
+    assert data["controller"]["proved"] is True
+    assert len(data["closed_loop"]["poles"]) == 3
+    out = capsys.readouterr().out
+    assert "K_0" in out and "results.json" in out
+
+
+def test_paper_options_are_used(tmp_path):
+    args = ["paper", "--out", str(tmp_path), "--tau", "0.05", "--sensor-delay", "2"]
+    args += ["--actuator-delay", "3", "--q", "2", "--r", "[[0.5]]", "--seed", "7"]
+    args += ["--f-max", "80", "--r-bar", "0.5", "--ts", "0.005"]
+    assert main(args) == 0
+    data = json.loads((tmp_path / "results.json").read_text())
+    p = data["parameters"]
+    assert (p["tau"], p["f_max"], p["r_bar"], p["Ts"]) == (0.05, 80, 0.5, 0.005)
+    assert (p["sensor_delay"], p["actuator_delay"], p["seed"]) == (2, 3, 7)
+    assert p["Q"] == [[2.0]] and p["R"] == [[0.5]]
+    assert len(data["gains"]["K"][0]) == 6
+    assert len(data["controller"]["denominator"]) == 6
+
+
+@pytest.mark.parametrize(
+    "args, word",
+    [
+        (["--tau", "-1"], "tau"),
+        (["--f-max", "0"], "f_max"),
+        (["--ts", "0"], "Ts"),
+        (["--sensor-delay", "-2"], "sensor_delay"),
+        (["--actuator-delay", "1.5"], "actuator-delay"),
+        (["--q", "[[1, 0], [0, 1]]"], "Q"),
+        (["--r", "-3"], "R"),
+        (["--q", "__import__('os')"], "--q"),
+        (["--tau", "abc"], "tau"),
+        (["--no-such-option"], "no-such-option"),
+    ],
+)
+def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):
+    assert main(["paper", "--out", str(tmp_path), *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("symctl: error:") and word in err[0]
+
+
+def test_console_script_has_no_traceback_on_bad_input(tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-m", "symctl.cli", "paper", "--tau", "0", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1

@@ -1,0 +1,199 @@
+"""G(z) in closed form: paper's formula, proof, relative degree, impulse response, interop."""
+
+from __future__ import annotations
+
+import control
+import numpy as np
+import pytest
+import sympy as sp
+from helpers import random_plant
+from hypothesis import given
+from hypothesis import strategies as st
+
+from symctl import (
+    DiscreteTF,
+    MuscleModel,
+    ParameterError,
+    SymctlTypeError,
+    augment,
+    controller_tf,
+    lqr_gains,
+    prove_controller_tf,
+    z,
+)
+from symctl.symbols import gain_symbols
+
+
+def test_T2_controller_is_the_papers_transfer_function():
+    K0, K1, K2 = gain_symbols(2)
+    G = controller_tf(2)
+    assert sp.cancel(G.expr - K0 / (z**2 - K1 * z - K2)) == 0
+    assert G.num == K0 and sp.expand(G.den - (z**2 - K1 * z - K2)) == 0
+    assert G.relative_degree == 2
+    assert G.latex() == r"\frac{K_{0}}{z^{2} - K_{1} z - K_{2}}"
+
+
+@pytest.mark.parametrize("T", [0, 1, 3, 8, 20])
+def test_general_T_controller_formula_and_relative_degree(T):
+    K = gain_symbols(T)
+    G = controller_tf(T)
+    expected = K[0] / (z**T - sum(K[k] * z ** (T - k) for k in range(1, T + 1)))
+    assert sp.cancel(G.expr - expected) == 0
+    assert G.relative_degree == T
+    assert [str(s) for s in G.free_symbols_sorted()] == [f"K_{k}" for k in range(T + 1)]
+
+
+@pytest.mark.parametrize("ds, da", [(0, 0), (1, 1), (0, 3), (4, 2)])
+def test_derivation_is_proved_against_the_augmented_matrices(ds, da):
+    assert prove_controller_tf(augment(MuscleModel(), ds, da))
+
+
+def test_mimo_controller_is_proved_and_has_relative_degree_T():
+    aug = augment(([[1, 1], [0, 1]], [[0, 1], [1, 0]]), 1, 2)
+    G = controller_tf(aug)
+    assert G.shape == (2, 2)
+    assert G.relative_degree == 3
+    assert prove_controller_tf(aug)
+
+
+def test_a_wrong_controller_is_not_proved():
+    aug = augment(MuscleModel(), 1, 1)
+    K0, K1, K2 = gain_symbols(2)
+    wrong = DiscreteTF(K0, z**2 - K1 * z + K2)
+    assert not prove_controller_tf(aug, wrong)
+
+
+def test_markov_parameters_of_symbolic_G():
+    K0, K1, K2 = gain_symbols(2)
+    h = [m[0, 0] for m in controller_tf(2).markov(5)]
+    assert h[:3] == [0, 0, K0]
+    assert sp.expand(h[3] - K0 * K1) == 0
+    assert sp.expand(h[4] - K0 * (K1**2 + K2)) == 0
+
+
+def _controller_impulse_by_simulation(aug, K, steps):
+    """Drive the controller part of the augmented loop (mu = K chi) with x = impulse."""
+    n, m, T = aug.n, aug.m, aug.T
+    At, Bt = np.array(aug.A, float), np.array(aug.B, float)
+    out = np.zeros((steps, m, n))
+    for j in range(n):
+        chain = np.zeros(T * m)
+        for t in range(steps):
+            x = np.zeros(n)
+            x[j] = 1.0 if t == 0 else 0.0
+            chi = np.concatenate([x, chain])
+            mu = K @ chi
+            out[t, :, j] = mu if T == 0 else chain[-m:]
+            chain = (At @ chi + Bt @ mu)[n:]
+    return out
+
+
+@given(
+    n=st.integers(1, 2),
+    m=st.integers(1, 2),
+    ds=st.integers(0, 4),
+    da=st.integers(0, 4),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_random_plants_G_impulse_response_equals_augmented_loop(n, m, ds, da, seed):
+    rng = np.random.default_rng(seed)
+    aug = augment(random_plant(rng, n, m), ds, da)
+    g = lqr_gains(aug)
+    G = controller_tf(g)
+    T = ds + da
+    assert G.relative_degree == T
+    steps = T + 8
+    np.testing.assert_allclose(
+        G.impulse_response(steps), _controller_impulse_by_simulation(aug, g.K, steps), atol=1e-10
+    )
+
+
+@pytest.mark.parametrize("ds, da", [(1, 1), (0, 2), (3, 2)])
+def test_closed_loop_with_G_equals_augmented_closed_loop(ds, da):
+    aug = augment(MuscleModel(), ds, da)
+    g = lqr_gains(aug)
+    G = controller_tf(g)
+    A, B = (float(v) for v in (aug.plant.A[0, 0], aug.plant.B[0, 0]))
+    steps = 30
+    h = G.impulse_response(steps)[:, 0, 0]
+    # plant + convolution with G's impulse response, from delta_f(0) = 1
+    x = np.zeros(steps + 1)
+    x[0] = 1.0
+    for t in range(steps):
+        u = sum(h[k] * x[t - k] for k in range(t + 1))
+        x[t + 1] = A * x[t] + B * u
+    # augmented closed loop from chi(0) = e_1
+    Acl = np.array(aug.A, float) + np.array(aug.B, float) @ g.K
+    chi = np.zeros(aug.A.shape[0])
+    chi[0] = 1.0
+    traj = [chi[0]]
+    for _ in range(steps):
+        chi = Acl @ chi
+        traj.append(chi[0])
+    np.testing.assert_allclose(x, traj, atol=1e-12)
+    # python-control: positive feedback of plant and G has the augmented characteristic
+    # polynomial (compared by coefficients: the repeated poles at 0 are ill-conditioned)
+    loop = control.ss(control.feedback(aug.plant.to_control(), G.to_control(), sign=1))
+    np.testing.assert_allclose(np.poly(loop.A), np.poly(Acl), atol=1e-9)
+
+
+def test_control_roundtrip_keeps_dt_and_coefficients():
+    G = controller_tf(lqr_gains(augment(MuscleModel(), 1, 1)))
+    sys = G.to_control()
+    assert isinstance(sys, control.TransferFunction) and sys.dt == pytest.approx(0.01)
+    np.testing.assert_allclose(sys.den[0][0], [float(c) for c in G.den_coeffs()])
+    back = DiscreteTF.from_control(sys)
+    assert back.dt == pytest.approx(0.01)
+    np.testing.assert_allclose(back.impulse_response(10), G.impulse_response(10), atol=1e-14)
+
+
+def test_mimo_control_roundtrip():
+    aug = augment(([[1.1, 0.2], [0, 0.9]], [[0, 1], [1, 0]]), 1, 1)
+    G = controller_tf(lqr_gains(aug))
+    back = DiscreteTF.from_control(G.to_control())
+    assert back.shape == (2, 2)
+    np.testing.assert_allclose(back.impulse_response(12), G.impulse_response(12), atol=1e-10)
+
+
+def test_from_control_refuses_continuous_systems():
+    with pytest.raises(ParameterError, match="continuous"):
+        DiscreteTF.from_control(control.tf([1], [1, 1]))
+
+
+def test_symbolic_G_cannot_go_to_control():
+    with pytest.raises(ParameterError, match="free symbols"):
+        controller_tf(2).to_control()
+
+
+def test_discrete_tf_checks_its_input():
+    with pytest.raises(ParameterError, match="den"):
+        DiscreteTF(1, 0)
+    with pytest.raises(ParameterError, match="polynomial"):
+        DiscreteTF(sp.exp(z), z)
+    with pytest.raises(SymctlTypeError, match="G"):
+        DiscreteTF.from_expr("1/z")
+    with pytest.raises(ParameterError, match="T"):
+        controller_tf(-1)
+
+
+def test_series_and_equality():
+    a = DiscreteTF.from_expr(1 / (z - sp.Rational(1, 2)))
+    b = DiscreteTF.from_expr((z - sp.Rational(1, 2)) / (z - sp.Rational(1, 3)))
+    assert (a * b).equals(1 / (z - sp.Rational(1, 3)))
+    assert not a.equals(b)
+
+
+def test_lambdify_broadcasts_and_matches_sympy():
+    G = controller_tf(2)
+    K = gain_symbols(2)
+    f = G.lambdify(K)
+    zs = np.exp(1j * np.linspace(0, np.pi, 7))
+    vals = {K[0]: 0.3, K[1]: -0.2, K[2]: 0.1}
+    got = f(zs, 0.3, -0.2, 0.1)
+    want = [complex(G.expr.subs(vals).subs(z, zz)) for zz in zs]
+    np.testing.assert_allclose(got, want, rtol=1e-12)
+
+
+def test_repr_latex_in_jupyter():
+    assert controller_tf(2)._repr_latex_().startswith("$\\displaystyle \\frac{K_{0}}")
+    assert str(controller_tf(2)) == "(K_0)/(z**2 - K_1*z - K_2)"
