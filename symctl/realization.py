@@ -1,0 +1,340 @@
+r"""State-space realizations :math:`(F, H, M, N)` in closed form.
+
+A realization of :math:`G(z)` is :math:`(F, H, M, N)` with
+:math:`G(z) = M (zI - F)^{-1} H + N`; its state-space controller is
+:math:`x(t+1) = F x(t) + H u(t)`, :math:`y(t) = M x(t) + N u(t)` (the paper's
+section "Realizations"). :class:`Realization` is immutable and exact (numeric,
+rational or symbolic entries); operations return new objects.
+
+Constructors, for any proper SISO :math:`G_2` of order :math:`n`, written as
+:math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1} + \dots + a_0)`:
+
+* :func:`controllable_canonical`: :math:`F` companion with last row
+  :math:`[-a_0, \dots, -a_{n-1}]`, :math:`H = e_n`, :math:`M = [c_0, \dots, c_{n-1}]`;
+* :func:`observable_canonical`: its dual, :math:`(F^\top, M^\top, H^\top, N)`;
+* :func:`general_realization`: a similarity transform of a canonical one;
+* :func:`random_realization`: the paper's recipe for its figures.
+
+For the paper's :math:`G_2` these are exactly its matrices, e.g.
+:math:`F = [[0, 1], [K_2, K_1]]`, :math:`H = [0, 1]^\top`,
+:math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`.
+
+>>> from symctl import z
+>>> R = controllable_canonical((z + 2) / (z**2 - z / 2))
+>>> R.F, R.H.T, R.M, R.N
+(Matrix([
+[0,   1],
+[0, 1/2]]), Matrix([[0, 1]]), Matrix([[2, 1]]), Matrix([[0]]))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from symctl.arguments import to_expr, to_matrix
+from symctl.display import LatexMixin, latex
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.symbols import z
+from symctl.transfer import DiscreteTF
+
+__all__ = [
+    "Realization",
+    "controllable_canonical",
+    "observable_canonical",
+]
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Lowest terms with common factors pulled out (no blanket simplify)."""
+    return sp.factor_terms(sp.cancel(expr))
+
+
+@dataclass(frozen=True, eq=False)
+class Realization(LatexMixin):
+    r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
+
+    Parameters
+    ----------
+    F : (n, n) matrix-like
+    H : (n, q) matrix-like
+    M : (p, n) matrix-like
+    N : (p, q) matrix-like (a scalar for SISO)
+    dt : sampling time, optional
+    params : dict, optional
+        Values used to build it (e.g. the random epsilons and ``P``), for records.
+
+    ``F, H, M, N`` are stored as :class:`sympy.ImmutableMatrix`. ``n = 0`` (a
+    static gain) is allowed.
+
+    Examples
+    --------
+    >>> R = Realization([[sp.Rational(1, 2)]], [[1]], [[2]], 0)
+    >>> R.to_tf().expr
+    2/(z - 1/2)
+    """
+
+    F: sp.ImmutableMatrix
+    H: sp.ImmutableMatrix
+    M: sp.ImmutableMatrix
+    N: sp.ImmutableMatrix
+    dt: sp.Expr | None = None
+    params: dict = field(default_factory=dict)
+
+    def __init__(self, F, H, M, N, dt=None, params=None):
+        Fm = _matrix_or_empty(F, "F")
+        n = Fm.shape[0]
+        if Fm.shape != (n, n):
+            raise DimensionError(f"F: must be square, got shape {Fm.shape}")
+        Nm = to_matrix(N, "N")
+        p, q = Nm.shape
+        Hm = _matrix_or_empty(H, "H", (n, q))
+        Mm = _matrix_or_empty(M, "M", (p, n))
+        if Hm.shape != (n, q):
+            raise DimensionError(
+                f"H: expected shape {(n, q)} (F is {n}x{n}, N is {p}x{q}), got {Hm.shape}"
+            )
+        if Mm.shape != (p, n):
+            raise DimensionError(
+                f"M: expected shape {(p, n)} (F is {n}x{n}, N is {p}x{q}), got {Mm.shape}"
+            )
+        for name, mat in (("F", Fm), ("H", Hm), ("M", Mm), ("N", Nm)):
+            object.__setattr__(self, name, sp.ImmutableMatrix(mat))
+        object.__setattr__(self, "dt", None if dt is None else to_expr(dt, "dt"))
+        object.__setattr__(self, "params", dict(params or {}))
+
+    # ------------------------------------------------------------ sizes
+    @property
+    def n(self) -> int:
+        """Number of states."""
+        return self.F.shape[0]
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(outputs, inputs)``."""
+        return self.N.shape
+
+    @property
+    def free_symbols(self) -> set[sp.Symbol]:
+        return set().union(*(m.free_symbols for m in (self.F, self.H, self.M, self.N)))
+
+    # ------------------------------------------------------------ transfer function
+    def markov(self, count: int) -> list[sp.Matrix]:
+        r"""``[N, M H, M F H, ..., M F^{count-2} H]``, evaluated left to right with cancellation.
+
+        Row vectors :math:`M F^k` are carried and cancelled at each step, so
+        denominators of a similarity transform (``det P``) do not pile up.
+        """
+        out = [sp.Matrix(self.N)]
+        row = sp.Matrix(self.M)
+        for _ in range(count - 1):
+            out.append((row * self.H).applyfunc(sp.cancel))
+            row = (row * self.F).applyfunc(sp.cancel)
+        return out[:count]
+
+    def to_tf(self) -> DiscreteTF:
+        r"""The transfer function :math:`M \operatorname{adj}(zI-F) H / \det(zI-F) + N`.
+
+        Uses the characteristic polynomial :math:`\chi(z) = \sum_i c_i z^i` and
+        :math:`\operatorname{adj}(zI - F) = \sum_{j<n} z^j \sum_{i>j} c_i F^{i-j-1}`,
+        so only the Markov parameters :math:`M F^k H` are needed. The result is
+        not reduced: a non-minimal realization keeps its order.
+        """
+        n = self.n
+        chi = self.F.charpoly(z)
+        c = chi.all_coeffs()[::-1]  # c[i] multiplies z**i, c[n] = 1
+        m = self.markov(n + 1)[1:]  # m[k] = M F^k H
+        num = sp.Matrix(self.N) * chi.as_expr()
+        for j in range(n):
+            acc = sum((c[i] * m[i - j - 1] for i in range(j + 1, n + 1)), sp.zeros(*self.shape))
+            num = num + acc * z**j
+        return DiscreteTF(
+            num.applyfunc(lambda e: sp.expand(sp.together(e))), chi.as_expr(), self.dt
+        )
+
+    # ------------------------------------------------------------ transformations
+    def similar(self, P) -> Realization:
+        r"""The similar realization :math:`(P^{-1} F P,\ P^{-1} H,\ M P,\ N)`.
+
+        Raises
+        ------
+        ParameterError
+            When ``P`` is singular (its determinant cancels to zero).
+        """
+        Pm = to_matrix(P, "P")
+        if Pm.shape != (self.n, self.n):
+            raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
+        det = sp.cancel(Pm.det(method="berkowitz"))
+        if det == 0:
+            raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
+        Pinv = (Pm.adjugate(method="berkowitz") / det).applyfunc(sp.cancel)
+        return Realization(
+            (Pinv * self.F * Pm).applyfunc(_tidy),
+            (Pinv * self.H).applyfunc(_tidy),
+            (self.M * Pm).applyfunc(_tidy),
+            self.N,
+            self.dt,
+            {**self.params, "P": sp.ImmutableMatrix(Pm)},
+        )
+
+    def subs(self, *args, **kwargs) -> Realization:
+        """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`)."""
+        mats = [m.subs(*args, **kwargs) for m in (self.F, self.H, self.M, self.N)]
+        dt = None if self.dt is None else self.dt.subs(*args, **kwargs)
+        return Realization(*mats, dt, self.params)
+
+    def transpose(self) -> Realization:
+        """The dual realization :math:`(F^T, M^T, H^T, N^T)` (of :math:`G^T`)."""
+        return Realization(self.F.T, self.M.T, self.H.T, self.N.T, self.dt, self.params)
+
+    # ------------------------------------------------------------ properties
+    def controllability_matrix(self) -> sp.Matrix:
+        return (
+            sp.Matrix.hstack(*[self.F**k * self.H for k in range(self.n)])
+            if self.n
+            else sp.zeros(0, 0)
+        )
+
+    def observability_matrix(self) -> sp.Matrix:
+        return (
+            sp.Matrix.vstack(*[self.M * self.F**k for k in range(self.n)])
+            if self.n
+            else sp.zeros(0, 0)
+        )
+
+    def is_minimal(self) -> bool:
+        r"""Controllable and observable, i.e. every eigenvalue of :math:`F` is a pole of :math:`G`.
+
+        With symbols, the rank is the generic rank (for almost all values of
+        the symbols); numeric floats use a relative tolerance of 1e-10.
+        """
+        if self.n == 0:
+            return True
+        return all(
+            _rank(mat) == self.n
+            for mat in (self.controllability_matrix(), self.observability_matrix())
+        )
+
+    # ------------------------------------------------------------ numbers and interop
+    def numeric(self) -> tuple[np.ndarray, ...]:
+        """``(F, H, M, N)`` as float arrays; refuses free symbols."""
+        from symctl.arguments import numeric_matrix
+
+        return tuple(
+            numeric_matrix(m, name) if m.shape[0] * m.shape[1] else np.zeros(m.shape)
+            for name, m in zip("FHMN", (self.F, self.H, self.M, self.N), strict=True)
+        )
+
+    def to_control(self):
+        """As a discrete ``control.StateSpace`` (dt kept; ``True`` when unknown)."""
+        import control
+
+        F, H, M, N = self.numeric()
+        return control.ss(F, H, M, N, True if self.dt is None else float(self.dt))
+
+    @classmethod
+    def from_control(cls, sys) -> Realization:
+        """From a discrete python-control system (converted to state space)."""
+        import control
+
+        if not isinstance(sys, control.LTI):
+            raise SymctlTypeError(
+                f"sys: expected a python-control system, got {type(sys).__name__}"
+            )
+        if not sys.isdtime():
+            raise ParameterError("sys: a continuous-time system; discretize it first (control.c2d)")
+        ss = control.ss(sys)
+        dt = None if ss.dt is True else ss.dt
+        return cls(ss.A, ss.B, ss.C, ss.D, dt)
+
+    def latex(self) -> str:
+        return (
+            rf"F = {latex(self.F)},\quad H = {latex(self.H)},\quad "
+            rf"M = {latex(self.M)},\quad N = {latex(self.N)}"
+        )
+
+    def __repr__(self) -> str:
+        mats = ", ".join(f"{k}={getattr(self, k).tolist()}" for k in "FHMN")
+        return f"Realization({mats})"
+
+
+def _matrix_or_empty(value, name: str, shape: tuple[int, int] | None = None) -> sp.Matrix:
+    if isinstance(value, sp.MatrixBase | np.ndarray) and 0 in value.shape:
+        return sp.zeros(*value.shape)
+    if isinstance(value, list | tuple) and len(value) == 0:
+        return sp.zeros(*(shape or (0, 0)))
+    return to_matrix(value, name)
+
+
+def _rank(mat: sp.Matrix) -> int:
+    if not mat.free_symbols and any(isinstance(e, sp.Float) for e in mat):
+        arr = np.array(mat.evalf(), dtype=float)
+        return int(np.linalg.matrix_rank(arr, tol=1e-10 * max(1.0, np.abs(arr).max())))
+    return mat.rank(iszerofunc=lambda e: sp.cancel(e) == 0)
+
+
+# ---------------------------------------------------------------- constructors
+def _siso(G, argname: str = "G2") -> DiscreteTF:
+    tf = DiscreteTF.from_expr(G)
+    if not tf.is_siso:
+        raise DimensionError(
+            f"{argname}: canonical forms are built for SISO transfer functions, got {tf.shape}"
+        )
+    if tf.relative_degree < 0:
+        raise ParameterError(f"{argname}: improper (numerator degree above denominator degree)")
+    return tf
+
+
+def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
+    r"""Split a proper SISO ``G`` into feed-through and strictly proper part.
+
+    Returns ``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)`,
+    ``c`` and ``a`` in ascending powers (length ``n``).
+
+    >>> from symctl import z
+    >>> split_proper((2*z + 1) / (z - 3))
+    (2, [7], [-3])
+    """
+    tf = _siso(G, "G")
+    n = tf.order
+    den = sp.Poly(tf.den, z)
+    num = sp.Poly(tf.num, z)
+    N = num.coeff_monomial(z**n) if num.degree() == n else sp.Integer(0)
+    rem = (num - den * N) if N != 0 else num
+    c = [_tidy(rem.coeff_monomial(z**i)) for i in range(n)]
+    a = [den.coeff_monomial(z**i) for i in range(n)]
+    return _tidy(N), c, a
+
+
+def controllable_canonical(G2) -> Realization:
+    r"""The controllable canonical realization (the paper's, for :math:`n = 2`).
+
+    .. math::
+        F = \begin{bmatrix} 0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\
+            -a_0 & -a_1 & \cdots & -a_{n-1}\end{bmatrix},\quad
+        H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty).
+    """
+    tf = _siso(G2)
+    N, c, a = split_proper(tf)
+    n = len(a)
+    F = sp.zeros(n, n)
+    for i in range(n - 1):
+        F[i, i + 1] = 1
+    for j in range(n):
+        F[n - 1, j] = -a[j] if n else 0
+    H = sp.zeros(n, 1)
+    if n:
+        H[n - 1, 0] = 1
+    M = sp.Matrix([c]) if n else sp.zeros(1, 0)
+    return Realization(F, H, M, N, tf.dt)
+
+
+def observable_canonical(G2) -> Realization:
+    r"""The observable canonical realization, the dual of :func:`controllable_canonical`.
+
+    For the paper's :math:`G_2`: :math:`F = [[0, K_2], [1, K_1]]`, :math:`M = [0, 1]`,
+    :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
+    """
+    return controllable_canonical(G2).transpose()
