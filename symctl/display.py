@@ -27,9 +27,47 @@ _NAMES = {
 }
 
 
+_GREEK = {
+    "alpha",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "pi",
+    "rho",
+    "sigma",
+    "tau",
+    "phi",
+    "chi",
+    "psi",
+    "omega",
+}
+
+
+def _indexed_name(symbol: sp.Symbol) -> str | None:
+    """``epsilon_{3,1}`` -> ``\\epsilon_{3,1}`` (sympy leaves braced names alone)."""
+    stem, sep, rest = symbol.name.partition("_{")
+    if not sep:
+        return None
+    return ("\\" + stem if stem in _GREEK else stem) + "_{" + rest
+
+
 def latex(expr, **settings) -> str:
     """LaTeX of a sympy object with the paper's symbol names."""
     names = dict(_NAMES)
+    if isinstance(expr, sp.Basic | sp.MatrixBase):
+        for sym in expr.free_symbols:
+            tex = _indexed_name(sym) if isinstance(sym, sp.Symbol) else None
+            if tex:
+                names[sym] = tex
     names.update(settings.pop("symbol_names", {}))
     return sp.latex(expr, symbol_names=names, **settings)
 

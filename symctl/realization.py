@@ -43,7 +43,12 @@ from symctl.transfer import DiscreteTF
 __all__ = [
     "Realization",
     "controllable_canonical",
+    "controller_realization",
+    "first_order_realization",
+    "general_realization",
     "observable_canonical",
+    "random_realization",
+    "split_proper",
 ]
 
 
@@ -249,6 +254,46 @@ class Realization(LatexMixin):
         dt = None if ss.dt is True else ss.dt
         return cls(ss.A, ss.B, ss.C, ss.D, dt)
 
+    @classmethod
+    def series(cls, *parts: Realization) -> Realization:
+        r"""The series connection of ``parts`` in signal-flow order (the first acts first).
+
+        For two parts, :math:`F = [[F_1, 0], [H_2 M_1, F_2]]`, :math:`H = [H_1; H_2 N_1]`,
+        :math:`M = [N_2 M_1,\ M_2]`, :math:`N = N_2 N_1`: the transfer function is
+        :math:`G_k \cdots G_1`. State order: the first part's states first.
+        """
+        if not parts:
+            raise ParameterError("parts: give at least one realization")
+        for i, part in enumerate(parts):
+            if not isinstance(part, Realization):
+                raise SymctlTypeError(
+                    f"parts[{i}]: expected a Realization, got {type(part).__name__}"
+                )
+        out = parts[0]
+        for nxt in parts[1:]:
+            if nxt.shape[1] != out.shape[0]:
+                raise DimensionError(f"parts: {out.shape[0]} outputs feed {nxt.shape[1]} inputs")
+            n1, n2 = out.n, nxt.n
+            F = sp.zeros(n1 + n2, n1 + n2)
+            F[:n1, :n1] = out.F
+            F[n1:, :n1] = nxt.H * out.M
+            F[n1:, n1:] = nxt.F
+            H = sp.Matrix.vstack(sp.Matrix(out.H), nxt.H * out.N)
+            M = sp.Matrix.hstack(nxt.N * out.M, sp.Matrix(nxt.M))
+            dt = out.dt if out.dt is not None else nxt.dt
+            out = Realization(F, H, M, nxt.N * out.N, dt, {**out.params, **nxt.params})
+        return out
+
+    def lambdify(self, symbols):
+        r"""A NumPy function of the ``symbols`` returning ``(F, H, M, N)`` as arrays.
+
+        Vectorized: arrays of parameter values broadcast, and each returned
+        matrix has shape ``broadcast_shape + (rows, cols)``.
+        """
+        from symctl.evaluate import lambdify_matrices
+
+        return lambdify_matrices((self.F, self.H, self.M, self.N), symbols)
+
     def latex(self) -> str:
         return (
             rf"F = {latex(self.F)},\quad H = {latex(self.H)},\quad "
@@ -299,13 +344,12 @@ def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     """
     tf = _siso(G, "G")
     n = tf.order
-    den = sp.Poly(tf.den, z)
-    num = sp.Poly(tf.num, z)
-    N = num.coeff_monomial(z**n) if num.degree() == n else sp.Integer(0)
-    rem = (num - den * N) if N != 0 else num
-    c = [_tidy(rem.coeff_monomial(z**i)) for i in range(n)]
-    a = [den.coeff_monomial(z**i) for i in range(n)]
-    return _tidy(N), c, a
+    a = tf.den_coeffs()[::-1]  # ascending; a[n] = 1
+    b = tf.num_coeffs()[::-1]
+    b = b + [sp.Integer(0)] * (n + 1 - len(b))
+    N = b[n]
+    c = [_tidy(b[i] - N * a[i]) for i in range(n)]
+    return _tidy(N), c, a[:n]
 
 
 def controllable_canonical(G2) -> Realization:
@@ -338,3 +382,109 @@ def observable_canonical(G2) -> Realization:
     :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
     """
     return controllable_canonical(G2).transpose()
+
+
+def general_realization(G2, P, base: str = "controllable") -> Realization:
+    r"""A general realization: the similarity transform by ``P`` of a canonical one.
+
+    ``P`` may be symbolic (e.g. a matrix of fresh symbols) or numeric; ``base``
+    is ``"controllable"`` (default) or ``"observable"``.
+
+    >>> import sympy as sp
+    >>> from symctl import z
+    >>> R = general_realization(1 / (z - sp.Rational(1, 2)), [[2]])
+    >>> R.F, R.H, R.M
+    (Matrix([[1/2]]), Matrix([[1/2]]), Matrix([[2]]))
+    """
+    return _canonical(G2, base).similar(P)
+
+
+def _canonical(G2, base: str) -> Realization:
+    if base == "controllable":
+        return controllable_canonical(G2)
+    if base == "observable":
+        return observable_canonical(G2)
+    raise ParameterError(f"base: must be 'controllable' or 'observable', got {base!r}")
+
+
+def _rng(rng) -> np.random.Generator:
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if rng is None or (isinstance(rng, int) and not isinstance(rng, bool)):
+        return np.random.default_rng(rng)
+    raise SymctlTypeError(f"rng: expected a numpy Generator or an int seed, got {rng!r}")
+
+
+def _random_rational(
+    gen: np.random.Generator, low: float, high: float, grid: int = 1000
+) -> sp.Rational:
+    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
+
+
+def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 1e3) -> sp.Matrix:
+    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned."""
+    gen = _rng(rng)
+    for _ in range(100):
+        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
+        if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
+            return P
+    raise ParameterError(
+        f"n: no well-conditioned random matrix found for n = {n}"
+    )  # pragma: no cover
+
+
+def random_realization(
+    G2,
+    rng=None,
+    *,
+    base: str = "controllable",
+    eps_range: tuple[float, float] = (-0.9, 0.9),
+    values: dict | None = None,
+) -> Realization:
+    r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
+
+    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
+    exact rational, uniform in ``eps_range`` (stable sections by default); the
+    canonical realization (``base``) is then similarity-transformed by a random
+    full-rank rational ``P`` (entries about N(0, 1), condition number < 1e3).
+    Other symbols (gains K, C) stay symbolic unless given in ``values``.
+    The epsilons and ``P`` used are recorded in ``.params``. Seeded by ``rng``
+    (a NumPy ``Generator`` or an int).
+
+    >>> from symctl import controller_tf
+    >>> from symctl.factor import factor
+    >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
+    >>> sorted(str(k) for k in R.params)
+    ['P', 'epsilon_1', 'epsilon_3']
+    """
+    gen = _rng(rng)
+    tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
+    if values:
+        tf = tf.subs(values)
+    eps = sorted((s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name)
+    chosen = {s: _random_rational(gen, *eps_range) for s in eps}
+    base_R = _canonical(tf.subs(chosen), base)
+    R = base_R.similar(random_full_rank(base_R.n, gen))
+    return Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
+
+
+def first_order_realization(eps, C, dt=None) -> Realization:
+    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`."""
+    return Realization([[eps]], [[C]], [[1]], 0, dt)
+
+
+def controller_realization(factorization, R2: Realization) -> Realization:
+    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
+
+    State order: the sensor sections of :math:`G_1` (in signal-flow order),
+    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+    """
+    f = factorization
+    dt = f.G.dt
+    first = [
+        first_order_realization(e, c, dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
+    ]
+    last = [
+        first_order_realization(e, c, dt) for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
+    ]
+    return Realization.series(*first, R2, *last)

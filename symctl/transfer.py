@@ -31,10 +31,11 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import reduce
+from functools import lru_cache, reduce
 
 import numpy as np
 import sympy as sp
+from sympy.polys.rings import ring
 
 from symctl.arguments import nonneg_int, to_expr
 from symctl.delay import AugmentedSystem
@@ -46,8 +47,126 @@ from symctl.symbols import gain_matrix_symbols, z
 __all__ = ["DiscreteTF", "controller_tf", "descending_str", "prove_controller_tf"]
 
 
-def _poly(expr: sp.Expr) -> sp.Poly:
-    return sp.Poly(expr, z)
+class _ZPoly:
+    """A univariate polynomial in z read off a sparse ring element (the few views symctl needs)."""
+
+    __slots__ = ("_coeffs",)
+
+    def __init__(self, coeffs: dict[int, sp.Expr]):
+        self._coeffs = {k: c for k, c in coeffs.items() if c != 0}
+
+    @property
+    def is_zero(self) -> bool:
+        return not self._coeffs
+
+    def degree(self) -> int:
+        return max(self._coeffs) if self._coeffs else -1
+
+    def LC(self) -> sp.Expr:
+        return self._coeffs[self.degree()] if self._coeffs else sp.Integer(0)
+
+    def all_coeffs(self) -> list[sp.Expr]:
+        if not self._coeffs:
+            return [sp.Integer(0)]
+        return [self._coeffs.get(k, sp.Integer(0)) for k in range(self.degree(), -1, -1)]
+
+    def coeff_monomial(self, monomial: sp.Expr) -> sp.Expr:
+        power = 0 if monomial == 1 else sp.degree(monomial, z)
+        return self._coeffs.get(int(power), sp.Integer(0))
+
+    def terms(self) -> list[tuple[tuple[int], sp.Expr]]:
+        return [((k,), self._coeffs[k]) for k in sorted(self._coeffs, reverse=True)]
+
+
+@lru_cache(maxsize=4096)
+def _poly(expr: sp.Expr) -> _ZPoly:
+    """Coefficients of ``expr`` in z, computed with sparse ring arithmetic (no expression expansion)."""
+    pairs = _ring_fractions([expr])
+    if pairs is None:
+        poly = sp.Poly(expr, z)
+        return _ZPoly({k: c for (k,), c in poly.terms()})
+    num, den = pairs[0]
+    if den.degree(0) > 0:
+        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
+    den_expr = den.as_expr()
+    by_power: dict[int, dict] = {}
+    for monom, coeff in num.items():
+        by_power.setdefault(monom[0], {})[(0, *monom[1:])] = coeff
+    ring_ = num.ring
+    return _ZPoly(
+        {k: sp.cancel(ring_.from_dict(terms).as_expr() / den_expr) for k, terms in by_power.items()}
+    )
+
+
+def _generators(exprs) -> list[sp.Symbol] | None:
+    """z and the other symbols, or None when an expression holds floats or other atoms.
+
+    Transcendental constants such as ``exp(1/2)`` are algebraically related
+    (``exp(1/2) * exp(-1/2) = 1``); a polynomial ring would miss that, so such
+    expressions take the expression path instead.
+    """
+    syms: set[sp.Symbol] = set()
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, sp.Symbol):
+                syms.add(node)
+            elif isinstance(node, sp.Float) or not (
+                isinstance(node, sp.Add | sp.Mul | sp.Rational)
+                or (isinstance(node, sp.Pow) and node.exp.is_Integer)
+            ):
+                return None
+    return [z, *sorted(syms - {z}, key=str)]
+
+
+def _ring_fractions(exprs: list[sp.Expr]) -> list[tuple] | None:
+    """Each expression as a pair (numerator, denominator) of sparse polynomials over QQ.
+
+    The ring's generators are z and every other symbol; sums, products and
+    integer powers are carried out on the pairs with no gcd and no expansion
+    of expression trees, so the cost is that of sparse polynomial
+    multiplication. Returns None when :func:`_generators` does.
+    """
+    gens = _generators(exprs)
+    if gens is None:
+        return None
+    R, *_ = ring(gens, sp.QQ)
+    index = {g: i for i, g in enumerate(gens)}
+
+    def conv(e: sp.Expr) -> tuple:
+        if isinstance(e, sp.Symbol):
+            return R.gens[index[e]], R.one
+        if isinstance(e, sp.Rational):
+            return R(e.p), R(e.q)
+        if isinstance(e, sp.Add):
+            num, den = conv(e.args[0])
+            for arg in e.args[1:]:
+                n2, d2 = conv(arg)
+                num, den = (num + n2, den) if d2 == den else (num * d2 + n2 * den, den * d2)
+            return num, den
+        if isinstance(e, sp.Mul):
+            num, den = R.one, R.one
+            for arg in e.args:
+                n2, d2 = conv(arg)
+                num, den = num * n2, den * d2
+            return num, den
+        base_num, base_den = conv(e.base)  # Pow with an integer exponent
+        k = int(e.exp)
+        return (base_num**k, base_den**k) if k >= 0 else (base_den ** (-k), base_num ** (-k))
+
+    return [conv(e) for e in exprs]
+
+
+def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
+    """Exact test of prod(left) == prod(right) for rational expressions."""
+    pairs = _ring_fractions([*left, *right])
+    if pairs is None:
+        return sp.expand(sp.Mul(*left) - sp.Mul(*right)) == 0
+    num_l, den_l, num_r, den_r = (pairs[0][0].ring.one,) * 4
+    for n_, d_ in pairs[: len(left)]:
+        num_l, den_l = num_l * n_, den_l * d_
+    for n_, d_ in pairs[len(left) :]:
+        num_r, den_r = num_r * n_, den_r * d_
+    return num_l * den_r == num_r * den_l
 
 
 def _natural_key(symbol: sp.Symbol) -> list:
@@ -210,8 +329,10 @@ class DiscreteTF(LatexMixin):
         other = DiscreteTF.from_expr(other)
         if other.shape != self.shape:
             return False
-        diff = self._num * other.den - other.num_matrix * self.den
-        return all(sp.expand(e) == 0 for e in diff)
+        return all(
+            _products_equal([a, other.den], [b, self.den])
+            for a, b in zip(self._num, other.num_matrix, strict=True)
+        )
 
     def __mul__(self, other) -> DiscreteTF:
         """Series connection ``self * other`` (``other`` acts first)."""
@@ -219,11 +340,8 @@ class DiscreteTF(LatexMixin):
             if self.shape[1] != other.shape[0]:
                 raise DimensionError(f"other: cannot multiply {self.shape} by {other.shape}")
             dt = self.dt if self.dt is not None else other.dt
-            return DiscreteTF(
-                (self._num * other.num_matrix).applyfunc(sp.expand),
-                sp.expand(self.den * other.den),
-                dt,
-            )
+            num = self._num * other.num_matrix
+            return DiscreteTF(num, self.den * other.den, dt)
         if isinstance(other, sp.Basic | int | float):
             return DiscreteTF(self._num * other, self.den, self.dt)
         return NotImplemented
@@ -296,10 +414,17 @@ class DiscreteTF(LatexMixin):
 
     # ------------------------------------------------------------ display
     def latex(self) -> str:
+        """LaTeX in the paper's style: a constant factor pulled out, descending powers of z."""
         den = _descending_latex(self.den)
-        if self.is_siso:
-            return rf"\frac{{{_descending_latex(self._num[0, 0])}}}{{{den}}}"
-        return rf"\frac{{1}}{{{den}}} {latex(self._num)}"
+        if not self.is_siso:
+            return rf"\frac{{1}}{{{den}}} {latex(self._num)}"
+        gain, rest = sp.factor_terms(self._num[0, 0]).as_independent(z, as_Add=False)
+        prefix = "" if gain == 1 else ("-" if gain == -1 else latex(gain) + " ")
+        if rest == 1:
+            return latex(gain) if self.den == 1 else rf"\frac{{{latex(gain)}}}{{{den}}}"
+        if self.den == 1:
+            return prefix + _descending_latex(rest)
+        return rf"{prefix}\frac{{{_descending_latex(rest)}}}{{{den}}}"
 
     def __repr__(self) -> str:
         return f"DiscreteTF({self}, dt={self.dt})"
@@ -314,19 +439,35 @@ class DiscreteTF(LatexMixin):
         return f"[{rows}]/({den})"
 
 
-def _descending(expr: sp.Expr, printer=latex, plus: str = "+ ") -> str:
-    """A polynomial in z printed with its terms in descending powers, as papers write them."""
+def _descending(expr: sp.Expr, printer=latex, times: str = " ") -> str:
+    """A polynomial in z printed with its terms in descending powers, as papers write them.
+
+    Each term is ``sign coefficient z^k`` with a sum coefficient in parentheses:
+    ``z^2 - (epsilon_1 + epsilon_3) z + epsilon_1 epsilon_3``.
+    """
     poly = _poly(expr)
     if poly.is_zero:
         return "0"
     terms = []
     for (power,), coeff in poly.terms():
-        term = printer(coeff * z**power)
-        if terms and not term.startswith("-"):
-            term = plus + term
-        elif terms:
-            term = "- " + term[1:].lstrip()
-        terms.append(term)
+        coeff = sp.factor_terms(coeff)
+        negative = coeff.could_extract_minus_sign()
+        mag = -coeff if negative else coeff
+        if power == 0:
+            body = printer(mag)
+        else:
+            zpart = printer(z**power)
+            if mag == 1:
+                body = zpart
+            else:
+                ctext = printer(mag)
+                if isinstance(mag, sp.Add):
+                    ctext = rf"\left({ctext}\right)" if printer is latex else f"({ctext})"
+                body = f"{ctext}{times}{zpart}"
+        if terms:
+            terms.append(("- " if negative else "+ ") + body)
+        else:
+            terms.append(("-" if negative else "") + body)
     return " ".join(terms)
 
 
@@ -336,7 +477,7 @@ def _descending_latex(expr: sp.Expr) -> str:
 
 def descending_str(expr: sp.Expr) -> str:
     """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``."""
-    return _descending(expr, sp.sstr)
+    return _descending(expr, sp.sstr, "*")
 
 
 def _system_of(source) -> tuple[AugmentedSystem | None, int, int, int]:

@@ -1,0 +1,206 @@
+r"""The factorization :math:`G = G_3 G_2 G_1` that fits the controller to the delays.
+
+The paper's section "Creating a compatible delayed controller": the sensor side
+:math:`G_1` and the actuator side :math:`G_3` take the delays
+(relative degrees :math:`d_s` and :math:`d_a`), and :math:`G_2` keeps the rest.
+Each delay step is one first-order section with its own symbols,
+
+.. math::
+    G_1(z) = \prod_{i=1}^{d_s} \frac{C_{1,i}}{z - \epsilon_{1,i}},\qquad
+    G_3(z) = \prod_{i=1}^{d_a} \frac{C_{3,i}}{z - \epsilon_{3,i}},\qquad
+    G_2 = \frac{G}{G_1 G_3},
+
+named ``epsilon_1``, ``C_1`` (``epsilon_3``, ``C_3``) when a side has one
+section, as in the paper, and ``epsilon_{1,i}``, ``C_{1,i}`` otherwise. For the
+paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
+
+.. math::
+    G_2 = \frac{K_0}{C_1 C_3}\,\frac{z^2 - (\epsilon_1+\epsilon_3) z + \epsilon_1\epsilon_3}
+    {z^2 - K_1 z - K_2}
+    = \frac{K_0}{C_1 C_3} + \frac{K_0}{C_1 C_3}\,
+    \frac{(K_1 - \epsilon_1 - \epsilon_3) z + K_2 + \epsilon_1\epsilon_3}{z^2 - K_1 z - K_2}.
+
+>>> from symctl import controller_tf
+>>> f = factor(controller_tf(2))
+>>> f.N
+K_0/(C_1*C_3)
+>>> f.remainder_coeffs
+[K_1 - epsilon_1 - epsilon_3, K_2 + epsilon_1*epsilon_3]
+>>> f.verify()
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+
+import sympy as sp
+
+from symctl import symbols as S
+from symctl.arguments import nonneg_int
+from symctl.display import LatexMixin, latex
+from symctl.errors import DimensionError, ParameterError
+from symctl.symbols import z
+from symctl.transfer import DiscreteTF, _descending, _products_equal
+
+__all__ = ["Factorization", "factor", "section_symbols"]
+
+
+@cache
+def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
+
+    >>> section_symbols(1, 1)
+    ((epsilon_1,), (C_1,))
+    >>> section_symbols(3, 2)
+    ((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2}))
+    """
+    if side not in (1, 3):
+        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
+    if count == 1:
+        return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
+    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
+    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
+    return eps, cs
+
+
+def _sections(eps, cs, dt) -> DiscreteTF:
+    num = sp.Mul(*cs)
+    den = sp.Mul(*(z - e for e in eps))
+    return DiscreteTF(num, den, dt)
+
+
+@dataclass(frozen=True, eq=False)
+class Factorization(LatexMixin):
+    r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols.
+
+    Attributes
+    ----------
+    G, G1, G2, G3 : DiscreteTF
+    sensor_eps, sensor_C, actuator_eps, actuator_C : tuple of sympy expressions
+        Poles and gains of the first-order sections of ``G1`` and ``G3`` (symbols,
+        or values after :meth:`subs`).
+    """
+
+    G: DiscreteTF
+    G1: DiscreteTF
+    G2: DiscreteTF
+    G3: DiscreteTF
+    sensor_eps: tuple
+    sensor_C: tuple
+    actuator_eps: tuple
+    actuator_C: tuple
+
+    @property
+    def N(self) -> sp.Expr:
+        r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`)."""
+        from symctl.realization import split_proper
+
+        return split_proper(self.G2)[0]
+
+    @property
+    def strictly_proper(self) -> DiscreteTF:
+        """:math:`G_2 - N`."""
+        return DiscreteTF.from_expr(self.G2.expr - self.N, self.G2.dt)
+
+    @property
+    def remainder_coeffs(self) -> list[sp.Expr]:
+        r"""Numerator of :math:`(G_2 - N)/N` in descending powers of z.
+
+        The paper's :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`;
+        when :math:`N = 0` the numerator of :math:`G_2` itself.
+        """
+        from symctl.realization import split_proper
+
+        N, c, _ = split_proper(self.G2)
+        scale = N if N != 0 else 1
+        return [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
+
+    def verify(self) -> bool:
+        """Exact check that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication)."""
+        left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
+        right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
+        return _products_equal(left, right)
+
+    def subs(self, *args, **kwargs) -> Factorization:
+        """Substitute values (e.g. for the epsilons and Cs); a zero C is refused."""
+
+        def sub(values):
+            return tuple(sp.sympify(v).subs(*args, **kwargs) for v in values)
+
+        out = Factorization(
+            self.G.subs(*args, **kwargs),
+            self.G1.subs(*args, **kwargs),
+            self.G2.subs(*args, **kwargs),
+            self.G3.subs(*args, **kwargs),
+            sub(self.sensor_eps),
+            sub(self.sensor_C),
+            sub(self.actuator_eps),
+            sub(self.actuator_C),
+        )
+        _check_C(out.sensor_C + out.actuator_C)
+        return out
+
+    def latex(self) -> str:
+        r"""The three factors, :math:`G_2` written as the paper does (gain times zeros over poles)."""
+        zeros = sp.Mul(*(z - e for e in (*self.sensor_eps, *self.actuator_eps)))
+        zeros_tex = _descending(sp.collect(sp.expand(zeros), z, evaluate=True))
+        g2 = (
+            self.G2.latex()
+            if self.N == 0
+            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{_descending(self.G2.den)}}}")
+        )
+        return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
+
+
+def _check_C(values) -> None:
+    for c in values:
+        if sp.sympify(c) == 0:
+            raise ParameterError("C: the section gains C_1, C_3 must be nonzero, got C = 0")
+
+
+def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
+    r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``.
+
+    Parameters
+    ----------
+    G : DiscreteTF or sympy expression in ``z``
+        A proper SISO controller, e.g. :func:`symctl.controller_tf`.
+    sensor_delay, actuator_delay : int
+        Number of first-order sections in :math:`G_1` and :math:`G_3`.
+
+    Returns
+    -------
+    Factorization
+        :math:`G_2` has relative degree ``reldeg(G) - sensor_delay - actuator_delay``
+        (0 for the optimal delayed controller).
+
+    Raises
+    ------
+    ParameterError
+        Improper ``G``, or relative degree of ``G`` below ``sensor_delay + actuator_delay``.
+    DimensionError
+        A MIMO ``G``.
+    """
+    tf = DiscreteTF.from_expr(G)
+    ds = nonneg_int(sensor_delay, "sensor_delay")
+    da = nonneg_int(actuator_delay, "actuator_delay")
+    if not tf.is_siso:
+        raise DimensionError(f"G: factor() handles SISO controllers, got shape {tf.shape}")
+    rd = tf.relative_degree
+    if rd < 0:
+        raise ParameterError("G: improper (numerator degree above denominator degree)")
+    if rd < ds + da:
+        raise ParameterError(
+            f"G: relative degree {rd} is below sensor_delay + actuator_delay = {ds + da}; "
+            "no factorization puts the delays at the input and output"
+        )
+    eps1, c1 = section_symbols(1, ds) if ds else ((), ())
+    eps3, c3 = section_symbols(3, da) if da else ((), ())
+    G1 = _sections(eps1, c1, tf.dt)
+    G3 = _sections(eps3, c3, tf.dt)
+    scale = sp.Mul(*c1, *c3)
+    zeros = sp.Mul(*(z - e for e in (*eps1, *eps3)))
+    G2 = DiscreteTF(tf.num / scale * zeros, tf.den, tf.dt)
+    return Factorization(tf, G1, G2, G3, eps1, c1, eps3, c3)
