@@ -31,6 +31,8 @@ format: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/core.py
+	$(BIN)/python benchmarks/checker.py
+	$(BIN)/python benchmarks/compatibility.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -116,6 +116,19 @@ def _summary(res) -> None:
     out(f"  G(z) = {res.G_symbolic}")
     out(f"  numerator {_fmt(c['numerator'])}, denominator {_fmt(c['denominator'])}")
     out(f"  relative degree {c['relative_degree']}; derivation proved: {c['proved']}")
+    f = data["factorization"]
+    out("Factorization|  G = G3 G2 G1")
+    out(f"  G1 = {f['G1']},  G3 = {f['G3']}")
+    out(f"  G2 = {f['G2']}")
+    out(f"  N = {f['N']};  G3 G2 G1 == G proved: {f['verified']}")
+    for name, rec in f["realizations"].items():
+        sym, num = rec["check"]["symbolic"], rec["check"]["numeric"]
+        shown = rec["symbolic"]["F"] if name != "general" else "P^-1 F_c P, P symbolic"
+        out(
+            f"  {name:>12}: F = {shown}; F(seed {data['parameters']['seed']}) = "
+            f"{_fmt(rec['numeric']['F'])}; realizes G2, symbolic ({sym['method']}): {sym['ok']}, "
+            f"numeric ({num['method']}): {num['ok']}"
+        )
 
     table = Table(title="summary")
     table.add_column("quantity")

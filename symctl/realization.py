@@ -421,10 +421,10 @@ def _random_rational(
     return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
 
 
-def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 1e3) -> sp.Matrix:
+def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 10.0) -> sp.Matrix:
     """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned."""
     gen = _rng(rng)
-    for _ in range(100):
+    for _ in range(10_000):
         P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
         if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
             return P
@@ -446,7 +446,8 @@ def random_realization(
     Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
     exact rational, uniform in ``eps_range`` (stable sections by default); the
     canonical realization (``base``) is then similarity-transformed by a random
-    full-rank rational ``P`` (entries about N(0, 1), condition number < 1e3).
+    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
+    that no state is scaled out of proportion).
     Other symbols (gains K, C) stay symbolic unless given in ``values``.
     The epsilons and ``P`` used are recorded in ``.params``. Seeded by ``rng``
     (a NumPy ``Generator`` or an int).

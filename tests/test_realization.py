@@ -13,6 +13,7 @@ from symctl import (
     DimensionError,
     ParameterError,
     Realization,
+    check_realization,
     controllable_canonical,
     controller_tf,
     factor,
@@ -144,9 +145,31 @@ def test_whole_controller_series_realizes_G():
     f = factor(controller_tf(2))
     for R2 in (controllable_canonical(f.G2), observable_canonical(f.G2)):
         R = controller_realization(f, R2)
-        assert R.n == 4 and R.to_tf().equals(f.G)
+        assert R.n == 4 and check_realization(R, f.G).ok
     f5 = factor(controller_tf(5), 2, 3)
-    assert controller_realization(f5, controllable_canonical(f5.G2)).to_tf().equals(f5.G)
+    assert check_realization(controller_realization(f5, controllable_canonical(f5.G2)), f5.G).ok
+
+
+@given(
+    ds=st.integers(0, 3),
+    da=st.integers(0, 3),
+    extra=st.integers(0, 1),
+    seed=st.integers(0, 2**32 - 1),
+    base=st.sampled_from(["controllable", "observable"]),
+)
+def test_random_delays_every_constructor_passes_the_checker_and_perturbed_fail(
+    ds, da, extra, seed, base
+):
+    f = factor(controller_tf(ds + da + extra), ds, da)
+    R2 = random_realization(f.G2, rng=seed, base=base)
+    chosen = {k: v for k, v in R2.params.items() if k != "P"}
+    G2 = f.G2.subs(chosen)
+    assert check_realization(R2, G2).ok
+    whole = controller_realization(f.subs(chosen), R2)
+    assert check_realization(whole, f.G, method="randomized").ok
+    bad = Realization(R2.F, R2.H, R2.M, R2.N + sp.Matrix([[1]]))
+    result = check_realization(bad, G2)
+    assert not result.ok and result.counterexample is not None
 
 
 def test_first_order_sections():

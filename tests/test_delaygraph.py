@@ -1,0 +1,161 @@
+"""Delay graphs (closure, validation, chains) and delay assignments (both readings of Ẽ)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symctl import ParameterError, controllable_canonical, controller_tf, factor
+from symctl.delaygraph import DelayAssignment, DelayGraph
+from symctl.errors import DimensionError, SymctlTypeError
+from symctl.realization import first_order_realization
+from symctl.structure import Structure, ifp_structure
+
+INF = math.inf
+PAPER_E = [[0, 1, 2], [INF, 0, 1], [INF, INF, 0]]
+
+
+def paper_controller() -> Structure:
+    f = factor(controller_tf(2))
+    return Structure.series(
+        first_order_realization(f.sensor_eps[0], f.sensor_C[0]),
+        controllable_canonical(f.G2),
+        first_order_realization(f.actuator_eps[0], f.actuator_C[0]),
+    )
+
+
+def paper_assignment(S: Structure) -> dict[str, int]:
+    """x and alpha1 (= C1 x) at v1, G2's internals at v2, the output section at v3."""
+    vertex = {}
+    for name, block in S.blocks.items():
+        if name in S.inputs or name == "G1.H":
+            vertex[name] = 1
+        elif block.part == "G3" and name != "G3.H":
+            vertex[name] = 3
+        else:
+            vertex[name] = 2
+    return vertex
+
+
+def test_chain_is_the_papers_neuromuscular_graph():
+    g = DelayGraph.chain([1, 1])
+    assert g.E.tolist() == PAPER_E
+    assert g.n == 3 and g.is_chain and g.chain_delays == (1, 1)
+    assert g.edges == ((1, 2, 1), (2, 3, 1))
+    assert r"\infty" in g.latex()
+
+
+def test_matrix_and_edges_give_the_same_closure():
+    from_matrix = DelayGraph(PAPER_E)
+    assert from_matrix.edges == ((1, 2, 1), (2, 3, 1))
+    g = DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 5), (1, 2, 3)])
+    assert g.E.tolist() == PAPER_E
+    assert DelayGraph(np.array(PAPER_E)).E.tolist() == PAPER_E
+    assert DelayGraph([[0, 1], [sp.oo, 0]]).E.tolist() == [[0, 1], [INF, 0]]
+
+
+def test_chain_detection_allows_zero_steps_and_relabelled_vertices():
+    assert DelayGraph.chain([1, 0, 2]).chain_delays == (1, 0, 2)
+    g = DelayGraph.from_edges(4, [(1, 3, 1), (3, 2, 2), (2, 4, 1)])
+    assert g.chain_order == ((1, 3, 2, 4), (0, 1, 3, 4))
+    diamond = DelayGraph.from_edges(4, [(1, 2, 1), (1, 3, 1), (2, 4, 1), (3, 4, 1)])
+    assert not diamond.is_chain and diamond.chain_delays is None
+
+
+@pytest.mark.parametrize(
+    ("E", "match"),
+    [
+        ([[0, -1], [INF, 0]], "integers"),
+        ([[0, 1.5], [INF, 0]], "integers"),
+        ([[0, True], [INF, 0]], "integers"),
+        ([[1, 1], [INF, 0]], "diagonal"),
+        ([[0, 1, 5], [INF, 0, 1], [INF, INF, 0]], "closure"),
+        ([[0, INF, 1], [INF, 0, 1], [INF, INF, 0]], "source"),
+        ([[0, 1, 1], [INF, 0, INF], [INF, INF, 0]], "sink"),
+        ([[0]], "N >= 2"),
+    ],
+)
+def test_bad_matrices_are_refused_with_the_reason(E, match):
+    with pytest.raises(ParameterError, match=match):
+        DelayGraph(E)
+
+
+def test_bad_edges_and_shapes_are_refused():
+    with pytest.raises(DimensionError, match="square"):
+        DelayGraph([[0, 1], [0]])
+    with pytest.raises(ParameterError, match="self-loop"):
+        DelayGraph.from_edges(2, [(1, 1, 0), (1, 2, 1)])
+    with pytest.raises(ParameterError, match="vertex"):
+        DelayGraph.from_edges(2, [(1, 3, 1)])
+    with pytest.raises(ParameterError, match="delay"):
+        DelayGraph.from_edges(2, [(1, 2, -1)])
+    with pytest.raises(ParameterError, match="n"):
+        DelayGraph.from_edges(1, [])
+    with pytest.raises(ParameterError, match="delays"):
+        DelayGraph.chain([])
+    with pytest.raises(ParameterError, match="edges"):
+        DelayGraph.from_edges(2, [(1, 2)])
+
+
+def test_papers_assignment_by_the_definition_and_as_printed():
+    S = paper_controller()
+    a = DelayAssignment(S, DelayGraph.chain([1, 1]), paper_assignment(S))
+    assert a.E_tilde.tolist() == PAPER_E  # the definition's words: v1 -> v2 -> v3 takes 2
+    printed = [[0, 1, INF], [INF, 0, 1], [INF, INF, 0]]
+    assert a.e_tilde("direct").tolist() == printed  # the matrix printed in the paper
+    assert a.is_compatible() and a.is_compatible("direct")
+    assert "G1.u" in a.signals_at(1) and "G3.x1" in a.signals_at(3)
+    assert r"\tilde E" in a.latex() and "v2:" in repr(a)
+
+
+def test_ifp_assignment_shows_the_papers_violation():
+    S = ifp_structure(2)
+    vertex = {s: 3 for s in S.signals} | {"x": 1, "K0": 1}
+    a = DelayAssignment(S, DelayGraph.chain([1, 1]), vertex)
+    assert (1, 3, 0.0, 2.0) in a.violations()
+    assert not a.is_compatible()
+
+
+def test_assignment_validation():
+    S = ifp_structure(1)
+    g = DelayGraph.chain([1])
+    good = {"x": 1, "K0": 1, "mu": 2, "K1": 2, "u": 2}
+    DelayAssignment(S, g, good)
+    with pytest.raises(ParameterError, match="missing"):
+        DelayAssignment(S, g, {"x": 1})
+    with pytest.raises(ParameterError, match="not a signal"):
+        DelayAssignment(S, g, good | {"w": 1})
+    with pytest.raises(ParameterError, match="v1"):
+        DelayAssignment(S, g, good | {"x": 2})
+    with pytest.raises(ParameterError, match="v2"):
+        DelayAssignment(S, g, good | {"u": 1})
+    with pytest.raises(ParameterError, match="vertex"):
+        DelayAssignment(S, g, good | {"mu": 3})
+    with pytest.raises(SymctlTypeError, match="graph"):
+        DelayAssignment(S, [[0, 1], [0, 0]], good)
+    with pytest.raises(ParameterError, match="reading"):
+        DelayAssignment(S, g, good).e_tilde("slowest")
+
+
+def test_both_readings_give_the_same_verdict_on_shortest_path_closures():
+    """Thousands of random assignments of random structures on random closed graphs."""
+    from test_compatibility import random_graph, random_structure
+
+    rng = np.random.default_rng(7)
+    checked = differ = 0
+    while checked < 1500:
+        S = random_structure(rng)
+        g = random_graph(rng, chain=bool(rng.integers(2)))
+        vertex = {s: int(rng.integers(1, g.n + 1)) for s in S.signals}
+        vertex.update({s: 1 for s in S.inputs})
+        if set(S.inputs) & set(S.outputs):
+            continue
+        vertex.update({s: g.n for s in S.outputs})
+        a = DelayAssignment(S, g, vertex)
+        assert a.is_compatible("fastest") == a.is_compatible("direct")
+        differ += not np.array_equal(a.E_tilde, a.e_tilde("direct"))
+        checked += 1
+    assert differ > 0  # the readings do differ as matrices, only not in verdict
