@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import argparse
 import math
-import multiprocessing as mp
 import random
 import time
 
 import sympy as sp
+from capped import capped
 
 from symctl.check import check_realization
 from symctl.realization import controllable_canonical
@@ -66,26 +66,12 @@ def exact(R, G: DiscreteTF) -> bool:
     return check_realization(R, G, "exact").ok
 
 
-def _worker(job, args, queue) -> None:
-    start = time.perf_counter()
-    verdict = job(*args)
-    queue.put((time.perf_counter() - start, verdict))
-
-
-def capped(job, args: tuple, cap: float) -> float | None:
-    """Seconds of ``job(*args)`` run in a subprocess, or None when it exceeds ``cap``.
-
-    The job must confirm the realization (return True); the benchmark stops otherwise.
-    """
-    queue = mp.Queue()
-    proc = mp.Process(target=_worker, args=(job, args, queue))
-    proc.start()
-    proc.join(cap)
-    if proc.is_alive():
-        proc.terminate()
-        proc.join()
+def confirmed(job, args: tuple, cap: float) -> float | None:
+    """Seconds of ``job(*args)`` (capped), which must confirm the realization (return True)."""
+    got = capped(job, args, cap)
+    if got is None:
         return None
-    seconds, verdict = queue.get()
+    seconds, verdict = got
     if verdict is False:
         raise SystemExit(f"{job.__name__}: a correct realization was not confirmed")
     return seconds
@@ -103,8 +89,8 @@ def time_row(n: int, form: str, P: sp.Matrix, cap: float, baseline: bool) -> lis
     t_random = time.perf_counter() - start
     if not randomized:
         raise SystemExit(f"n = {n}: a correct realization was rejected: {randomized}")
-    t_exact = capped(exact, (R, tf), cap)
-    t_naive = capped(naive, (R, G), cap) if baseline else None
+    t_exact = confirmed(exact, (R, tf), cap)
+    t_naive = confirmed(naive, (R, G), cap) if baseline else None
     over = f"> {cap:g}"
     if not baseline:
         speed = "-"

@@ -20,17 +20,12 @@ from symctl import controllable_canonical, controller_tf, factor
 from symctl.compatibility import brute_force_compatibility, check_compatibility
 from symctl.delaygraph import DelayGraph
 from symctl.errors import ParameterError
-from symctl.realization import first_order_realization
 from symctl.structure import Structure, ifp_structure
 
 
 def paper_controller() -> Structure:
     f = factor(controller_tf(2))
-    return Structure.series(
-        first_order_realization(f.sensor_eps[0], f.sensor_C[0]),
-        controllable_canonical(f.G2),
-        first_order_realization(f.actuator_eps[0], f.actuator_C[0]),
-    )
+    return Structure.from_factorization(f, controllable_canonical(f.G2))
 
 
 def random_graph(rng: np.random.Generator, n: int = 6) -> DelayGraph:

@@ -9,10 +9,10 @@ Run:  python benchmarks/core.py [--cap SECONDS] [--max-T N]
 from __future__ import annotations
 
 import argparse
-import multiprocessing as mp
 import time
 
 import sympy as sp
+from capped import capped
 
 import symctl
 from symctl.symbols import gain_symbols
@@ -32,22 +32,9 @@ def naive_G(T: int) -> sp.Expr:
     return sp.cancel((M * (symctl.z * sp.eye(T) - F).inv() * H)[0, 0])
 
 
-def _naive_worker(T: int, queue) -> None:
-    start = time.perf_counter()
-    naive_G(T)
-    queue.put(time.perf_counter() - start)
-
-
 def time_naive(T: int, cap: float) -> float | None:
-    queue = mp.Queue()
-    proc = mp.Process(target=_naive_worker, args=(T, queue))
-    proc.start()
-    proc.join(cap)
-    if proc.is_alive():
-        proc.terminate()
-        proc.join()
-        return None
-    return queue.get()
+    got = capped(naive_G, (T,), cap)
+    return None if got is None else got[0]
 
 
 def time_symctl(T: int) -> tuple[float, float, float, float]:

@@ -123,7 +123,7 @@ def _summary(res) -> None:
     out(f"  N = {f['N']};  G3 G2 G1 == G proved: {f['verified']}")
     for name, rec in f["realizations"].items():
         sym, num = rec["check"]["symbolic"], rec["check"]["numeric"]
-        shown = rec["symbolic"]["F"] if name != "general" else "P^-1 F_c P, P symbolic"
+        shown = rec["symbolic"]["F"] if name != "general" else "P^-1 F_c P"
         out(
             f"  {name:>12}: F = {shown}; F(seed {data['parameters']['seed']}) = "
             f"{_fmt(rec['numeric']['F'])}; realizes G2, symbolic ({sym['method']}): {sym['ok']}, "

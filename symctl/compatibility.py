@@ -804,9 +804,8 @@ class ControllerCompatibility(LatexMixin):
 def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
     from symctl.factor import factor
     from symctl.realization import (
-        Realization,
         controllable_canonical,
-        first_order_realization,
+        controller_realization,
         general_realization,
         observable_canonical,
     )
@@ -823,18 +822,7 @@ def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
             if n
             else controllable_canonical(f.G2)
         )
-    first = [
-        first_order_realization(e, c, G.dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
-    ]
-    last = [
-        first_order_realization(e, c, G.dt)
-        for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
-    ]
-    parts = [*first, R2, *last]
-    names = [f"G1.{k + 1}" if ds > 1 else "G1" for k in range(ds)]
-    names += ["G2"] + [f"G3.{k + 1}" if da > 1 else "G3" for k in range(da)]
-    structures = [Structure.from_realization(p, delays if p is R2 else "branch") for p in parts]
-    return Realization.series(*parts), Structure.series(*structures, names=names)
+    return controller_realization(f, R2), Structure.from_factorization(f, R2, delays)
 
 
 def controller_compatibility(

@@ -426,6 +426,43 @@ class Structure(LatexMixin):
         return cls(blocks, inputs, previous)
 
     # ------------------------------------------------------------ display
+    @classmethod
+    def from_factorization(
+        cls, factorization, R2: Realization, delays: str = "branch"
+    ) -> Structure:
+        r"""The structure of the whole controller :math:`G_3 G_2 G_1` (the paper's Fig. g1g3).
+
+        The first-order sections of :math:`G_1` and :math:`G_3` take the
+        ``"branch"`` structure (the paper's choice, a unit delay on each branch
+        into the adder); ``R2``, a realization of ``factorization.G2``, takes
+        ``delays``. Parts are named ``G1``, ``G2``, ``G3`` (``G1.1``, ``G1.2``, ...
+        when a side has several sections).
+
+        >>> from symctl import controller_tf, controllable_canonical, factor
+        >>> f = factor(controller_tf(2))
+        >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
+        >>> S.count("sum"), S.count("delay")
+        (4, 8)
+        """
+        from symctl.realization import first_order_realization
+
+        f = factorization
+        dt = f.G.dt
+        first = [
+            first_order_realization(e, c, dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
+        ]
+        last = [
+            first_order_realization(e, c, dt)
+            for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
+        ]
+        ds, da = len(first), len(last)
+        names = [f"G1.{k + 1}" if ds > 1 else "G1" for k in range(ds)]
+        names += ["G2"] + [f"G3.{k + 1}" if da > 1 else "G3" for k in range(da)]
+        parts = [cls.from_realization(p, "branch") for p in first]
+        parts += [cls.from_realization(R2, delays)]
+        parts += [cls.from_realization(p, "branch") for p in last]
+        return cls.series(*parts, names=names)
+
     def equations(self) -> list[sp.Eq]:
         r"""One equation per adder and delay, with the gains written into them.
 

@@ -8,6 +8,7 @@ import time
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import paper_assignment
 
 from symctl import (
     ParameterError,
@@ -75,11 +76,7 @@ def random_graph(rng, chain: bool) -> DelayGraph:
 
 
 def paper_controller(R2, delays="branch") -> Structure:
-    return Structure.series(
-        first_order_realization(F.sensor_eps[0], F.sensor_C[0]),
-        Structure.from_realization(R2, delays),
-        first_order_realization(F.actuator_eps[0], F.actuator_C[0]),
-    )
+    return Structure.from_factorization(F, R2, delays)
 
 
 # ---------------------------------------------------------------- the paper
@@ -109,14 +106,7 @@ def test_G3_G2_G1_is_compatible_with_the_papers_assignment(R2):
     r = check_compatibility(S, NEUROMUSCULAR)
     assert r.ok and r.assignment.is_compatible()
     assert r.E_tilde.tolist() == NEUROMUSCULAR.E.tolist()
-    vertex = {}
-    for name, block in S.blocks.items():  # x, alpha1 at v1; G2 at v2; the output side at v3
-        if name in S.inputs or name == "G1.H":
-            vertex[name] = 1
-        elif block.part == "G3" and name != "G3.H":
-            vertex[name] = 3
-        else:
-            vertex[name] = 2
+    vertex = paper_assignment(S)  # x, alpha1 at v1; G2 at v2; the output side at v3
     paper = DelayAssignment(S, NEUROMUSCULAR, vertex)
     assert paper.is_compatible() and paper.is_compatible("direct")
     assert all(vertex[s] == 2 for s, b in S.blocks.items() if b.part == "G2")

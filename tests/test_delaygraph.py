@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import paper_assignment
 
 from symctl import ParameterError, controllable_canonical, controller_tf, factor
 from symctl.delaygraph import DelayAssignment, DelayGraph
 from symctl.errors import DimensionError, SymctlTypeError
-from symctl.realization import first_order_realization
 from symctl.structure import Structure, ifp_structure
 
 INF = math.inf
@@ -20,24 +20,7 @@ PAPER_E = [[0, 1, 2], [INF, 0, 1], [INF, INF, 0]]
 
 def paper_controller() -> Structure:
     f = factor(controller_tf(2))
-    return Structure.series(
-        first_order_realization(f.sensor_eps[0], f.sensor_C[0]),
-        controllable_canonical(f.G2),
-        first_order_realization(f.actuator_eps[0], f.actuator_C[0]),
-    )
-
-
-def paper_assignment(S: Structure) -> dict[str, int]:
-    """x and alpha1 (= C1 x) at v1, G2's internals at v2, the output section at v3."""
-    vertex = {}
-    for name, block in S.blocks.items():
-        if name in S.inputs or name == "G1.H":
-            vertex[name] = 1
-        elif block.part == "G3" and name != "G3.H":
-            vertex[name] = 3
-        else:
-            vertex[name] = 2
-    return vertex
+    return Structure.from_factorization(f, controllable_canonical(f.G2))
 
 
 def test_chain_is_the_papers_neuromuscular_graph():
