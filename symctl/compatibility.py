@@ -212,53 +212,43 @@ def _solve_chain(problem: _Problem, order: tuple[int, ...], D: tuple[int, ...]):
     for s in problem.pins:
         queued[s] = True
     succ, pred = problem.succ, problem.pred
+
+    def tighten(v: int, new_hi: int, new_lo: int, e: int, x: int) -> bool:
+        """Narrow v's interval to [new_lo, new_hi] (wire e, from x); True when it empties."""
+        changed = False
+        if new_hi < hi[v]:
+            hi[v] = new_hi
+            events.append((e, hi_ev[x]))
+            hi_ev[v] = len(events) - 1
+            changed = True
+        if new_lo > lo[v]:
+            lo[v] = new_lo
+            events.append((e, lo_ev[x]))
+            lo_ev[v] = len(events) - 1
+            changed = True
+        if not changed:
+            return False
+        if lo[v] > hi[v]:
+            return True
+        if not queued[v]:
+            queued[v] = True
+            queue.append(v)
+        return False
+
     failed = -1
     while queue and failed < 0:
         x = queue.popleft()
         queued[x] = False
         hx, lx = hi[x], lo[x]
-        for b, w, e in succ[x]:
-            f, _ = tables(w)
-            changed = False
-            if f[hx] < hi[b]:
-                hi[b] = f[hx]
-                events.append((e, hi_ev[x]))
-                hi_ev[b] = len(events) - 1
-                changed = True
-            if lx > lo[b]:
-                lo[b] = lx
-                events.append((e, lo_ev[x]))
-                lo_ev[b] = len(events) - 1
-                changed = True
-            if changed:
-                if lo[b] > hi[b]:
-                    failed = b
-                    break
-                if not queued[b]:
-                    queued[b] = True
-                    queue.append(b)
-        if failed >= 0:
-            break
-        for a, w, e in pred[x]:
-            _, g = tables(w)
-            changed = False
-            if hx < hi[a]:
-                hi[a] = hx
-                events.append((e, hi_ev[x]))
-                hi_ev[a] = len(events) - 1
-                changed = True
-            if g[lx] > lo[a]:
-                lo[a] = g[lx]
-                events.append((e, lo_ev[x]))
-                lo_ev[a] = len(events) - 1
-                changed = True
-            if changed:
-                if lo[a] > hi[a]:
+        for b, w, e in succ[x]:  # b after x: at most f_w(hi_x), at least lo_x
+            if tighten(b, tables(w)[0][hx], lx, e, x):
+                failed = b
+                break
+        else:
+            for a, w, e in pred[x]:  # a before x: at most hi_x, at least g_w(lo_x)
+                if tighten(a, hx, tables(w)[1][lx], e, x):
                     failed = a
                     break
-                if not queued[a]:
-                    queued[a] = True
-                    queue.append(a)
     if failed >= 0:
         core = set()
         for ev in (lo_ev[failed], hi_ev[failed]):
