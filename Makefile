@@ -33,6 +33,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/core.py
 	$(BIN)/python benchmarks/checker.py
 	$(BIN)/python benchmarks/compatibility.py
+	$(BIN)/python benchmarks/simulate.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

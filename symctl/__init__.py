@@ -4,6 +4,7 @@ The public names, in the order of the paper's pipeline.
 """
 
 from symctl.check import RealizationCheck, check_realization
+from symctl.circuit import Circuit, CircuitSystem, Neuron, Synapse
 from symctl.compatibility import (
     CompatibilityResult,
     ControllerCompatibility,
@@ -31,6 +32,18 @@ from symctl.realization import (
     observable_canonical,
     random_realization,
 )
+from symctl.simulate import (
+    BatchResponse,
+    NonlinearCheck,
+    Response,
+    closed_loop_response,
+    ifp_realization,
+    nonlinear_check,
+    open_loop_response,
+    pulse,
+    simulate_batch,
+    simulate_realization,
+)
 from symctl.structure import Block, Structure, ifp_structure, same_structure
 from symctl.symbols import z
 from symctl.transfer import DiscreteTF, controller_tf, prove_controller_tf
@@ -39,7 +52,10 @@ __version__ = "0.1.0"
 
 __all__ = [
     "AugmentedSystem",
+    "BatchResponse",
     "Block",
+    "Circuit",
+    "CircuitSystem",
     "CompatibilityResult",
     "ControllerCompatibility",
     "DelayAssignment",
@@ -51,30 +67,41 @@ __all__ = [
     "Gains",
     "Linearization",
     "MuscleModel",
+    "Neuron",
+    "NonlinearCheck",
     "NotStabilizableError",
     "ParameterError",
     "ParseError",
     "Realization",
     "RealizationCheck",
+    "Response",
     "Structure",
     "SymctlError",
     "SymctlTypeError",
+    "Synapse",
     "augment",
     "brute_force_compatibility",
     "check_compatibility",
     "check_realization",
+    "closed_loop_response",
     "controllable_canonical",
     "controller_compatibility",
     "controller_tf",
     "discretize",
     "factor",
     "general_realization",
+    "ifp_realization",
     "ifp_structure",
     "linearize",
     "lqr_gains",
+    "nonlinear_check",
     "observable_canonical",
+    "open_loop_response",
     "prove_controller_tf",
+    "pulse",
     "random_realization",
     "same_structure",
+    "simulate_batch",
+    "simulate_realization",
     "z",
 ]

@@ -1,0 +1,941 @@
+r"""Neural circuits of stylized linear neurons, read off controller structures.
+
+The paper's section "Neurons and microcircuits": a stylized *neuron* outputs on
+its axon a weighted sum of its synaptic inputs (the synaptic weights) and of its
+own past outputs (its *self-dynamics*), with no activation function; an axon may
+branch to several downstream neurons. :meth:`Circuit.from_structure` turns a
+:class:`~symctl.structure.Structure` into such a circuit.
+
+The counting rule
+-----------------
+A **term** is one input of an adder block of the structure: one nonzero entry
+of a row of :math:`[F\ H]` or :math:`[M\ N]`, i.e. a weighted signal
+:math:`w\,s(t-d)`; a weight 1 is a plain wire (still a term) and a zero entry is
+no term. Then
+
+* every adder that sums **two or more terms** is a neuron, the output sum
+  :math:`y = M x + N u` included (in :class:`~symctl.structure.Structure` a
+  one-input adder is no block, so the neurons are exactly the ``"sum"`` blocks
+  with at least two inputs);
+* a single term passing through gains and unit delays (e.g. the controllable
+  canonical :math:`x_1(t) = x_2(t-1)`) is an **axon**: the product of its gains
+  is a synaptic weight, its delays the synapse's delay;
+* a term whose axon path starts at the neuron's own output (directly, or
+  through axon delays and gains) is **self-dynamics**, :math:`\sum_k w_k z^{-d_k}`;
+  the other terms are **synapses** from another neuron or a circuit input.
+
+Under this one rule all of the paper's counts hold (the tests check each):
+
+* controllable canonical :math:`G_2`: 2 neurons. :math:`x_1 = x_2(t-1)` is one
+  term (an axon delay of :math:`x_2`), :math:`x_2 = K_2 x_1(t-1) + K_1 x_2(t-1) +
+  u(t-1)` is a neuron with self-dynamics :math:`K_1 z^{-1} + K_2 z^{-2}`, and
+  :math:`y = M_1 x_1 + M_2 x_2 + N u` is the second neuron;
+* observable canonical :math:`G_2`: 3 neurons, :math:`x_1 = K_2 x_2(t-1) +
+  H_1 u(t-1)`, :math:`x_2 = x_1(t-1) + K_1 x_2(t-1) + H_2 u(t-1)` and the output
+  sum :math:`y = x_2 + N u` (two terms, the first of weight 1). Counting the
+  output sum is what separates 2 from 3: without it the two would give 1 and 2;
+* a general (dense) realization: 3 neurons (:math:`x_1`, :math:`x_2`, :math:`y`);
+* :math:`G_1` and :math:`G_3` add one neuron each, :math:`x = \epsilon x(t-1) +
+  C u(t-1)`: self-dynamics :math:`\epsilon`, a synapse of weight :math:`C`;
+* with :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 - \epsilon_1 -
+  \epsilon_3 = 0` substituted into the controllable canonical realization (a
+  zero entry of :math:`M` is no block), the middle neuron :math:`x_2` has one
+  axon branch instead of two; the same holds for the observable canonical one
+  with :math:`K_2 + \epsilon_1\epsilon_3 = 0` (then :math:`x_1` is a single term,
+  an axon, and the circuit has the controllable canonical shape). The paper
+  states the simplification for "these circuits" without detail; under this
+  rule it does not reach every realization: the observable canonical one with
+  :math:`K_1 - \epsilon_1 - \epsilon_3 = 0` keeps 3 neurons (:math:`x_2` loses
+  its synapse from :math:`u`, but :math:`x_1` and :math:`x_2` still sum two
+  terms each), and a general realization (a dense similarity transform of
+  either) keeps 3 neurons and all its branches.
+
+The **axon branches** of a neuron are its outgoing synapses to other neurons
+plus the circuit outputs it drives (its self-dynamics loops are not branches);
+two synapses onto the same neuron along different paths (the controllable
+canonical :math:`x_2 \to y` through :math:`M_2`, and through the delay
+:math:`x_1` and :math:`M_1`) are two branches, as in the paper's figure.
+
+Where the neurons sit: given a compatible
+:class:`~symctl.delaygraph.DelayAssignment` (or a
+:class:`~symctl.compatibility.CompatibilityResult`), a neuron's vertex is the
+vertex of its adder's signal. In the paper's assignment for :math:`G_3 G_2 G_1`
+(:math:`x` and :math:`\alpha_1 = C_1 x` at :math:`v_1`, everything of
+:math:`G_2` at :math:`v_2`, :math:`u` at :math:`v_3`) the :math:`G_1` neuron is
+at :math:`v_2` (it receives the sensor's signal over the one-step synapse
+:math:`C_1 z^{-1}` from :math:`v_1`), the :math:`G_2` neurons at :math:`v_2` and
+the :math:`G_3` neuron at :math:`v_3`. No compatible assignment can put the
+:math:`G_1` adder at :math:`v_1`: its delay-free path through :math:`N` to the
+:math:`G_2` output would give :math:`\tilde E_{12} = 0 < 1` or
+:math:`\tilde E_{13} \le 1 < 2`.
+
+Firing traces: every neuron is named by its adder's signal
+(:attr:`Circuit.neuron_signals`), and :meth:`Circuit.as_linear_system` gives a
+state-space system whose outputs are the neurons' axon outputs (then the circuit
+outputs), so simulating it reproduces each neuron's firing trace.
+
+>>> from symctl import controller_tf, controllable_canonical, factor
+>>> from symctl.structure import Structure
+>>> f = factor(controller_tf(2))
+>>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
+>>> c.n_neurons, [n.name for n in c.neurons]
+(4, ['G1.x1', 'G2.x2', 'G2.y', 'G3.x1'])
+>>> c.neuron("G2.x2").self_dynamics
+K_1/z + K_2/z**2
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import networkx as nx
+import numpy as np
+import sympy as sp
+
+from symctl.compatibility import CompatibilityResult
+from symctl.delaygraph import DelayAssignment
+from symctl.display import LatexMixin, latex
+from symctl.errors import ParameterError, SymctlTypeError
+from symctl.structure import Block, Structure
+from symctl.symbols import z
+
+__all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
+
+
+def _sign(weight: sp.Expr) -> str:
+    if weight.is_zero:
+        return "0"
+    if weight.is_positive:
+        return "+"
+    if weight.is_negative:
+        return "-"
+    return "?"
+
+
+class Synapse(NamedTuple):
+    """One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
+
+    Attributes
+    ----------
+    source : str
+        The presynaptic neuron or circuit input (a structure signal name).
+    target : str
+        The postsynaptic neuron, or a circuit output (a structure output signal).
+    weight : sympy expression
+        The synaptic weight: the product of the gains on the path.
+    delay : int
+        The number of unit delays on the path (0 or 1 for a synapse of a
+        realization's structure; self-dynamics and axon delays may have more).
+    path : tuple of str
+        The structure signals strictly between ``source`` and ``target``.
+
+    >>> s = Synapse("u", "x", sp.Integer(-2), 1)
+    >>> s.sign, s.excitatory, s.inhibitory
+    ('-', False, True)
+    """
+
+    source: str
+    target: str
+    weight: sp.Expr
+    delay: int
+    path: tuple[str, ...] = ()
+
+    @property
+    def sign(self) -> str:
+        """``"+"`` (excitatory), ``"-"`` (inhibitory), ``"0"``, or ``"?"`` when symbolic."""
+        return _sign(sp.sympify(self.weight))
+
+    @property
+    def excitatory(self) -> bool:
+        """Whether the weight is known to be positive."""
+        return self.sign == "+"
+
+    @property
+    def inhibitory(self) -> bool:
+        """Whether the weight is known to be negative."""
+        return self.sign == "-"
+
+
+@dataclass(frozen=True, eq=False)
+class Neuron:
+    r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
+
+    Its axon output is
+    :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`: the
+    self-dynamics terms :math:`(w_k, d_k)` and the synapses from sources
+    :math:`s_j` with weights :math:`v_j` and delays :math:`e_j`.
+
+    Attributes
+    ----------
+    name : str
+        The adder's signal in the structure (e.g. ``"G2.x2"``).
+    part : str
+        The part of a series connection it belongs to (``"G1"``, ...; ``""`` if none).
+    synapses : tuple of Synapse
+        Its synaptic inputs from other neurons and from circuit inputs.
+    self_terms : tuple of Synapse
+        The terms fed back from its own output (``source == target == name``).
+    axon : tuple of Synapse
+        Its outgoing branches: synapses onto other neurons and circuit outputs.
+    vertex : int or None
+        The delay-graph vertex of its signal, when an assignment was given.
+
+    >>> from symctl.realization import first_order_realization
+    >>> from symctl.structure import Structure
+    >>> from symctl.symbols import epsilon_1, C_1
+    >>> c = Circuit.from_structure(Structure.from_realization(
+    ...     first_order_realization(epsilon_1, C_1)))
+    >>> n = c.neuron("x1")
+    >>> n.self_weight, n.self_dynamics, [(s.source, s.weight, s.delay) for s in n.synapses]
+    (epsilon_1, epsilon_1/z, [('u', C_1, 1)])
+    """
+
+    name: str
+    part: str
+    synapses: tuple[Synapse, ...]
+    self_terms: tuple[Synapse, ...]
+    axon: tuple[Synapse, ...]
+    vertex: int | None = None
+
+    @property
+    def self_weight(self) -> sp.Expr:
+        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics).
+
+        With one self term (e.g. :math:`\epsilon_1` for :math:`G_1`) this is its
+        weight; with several lags see :attr:`self_dynamics`.
+        """
+        return sp.Add(*(s.weight for s in self.self_terms))
+
+    @property
+    def self_dynamics(self) -> sp.Expr:
+        r"""The self-dynamics as a polynomial in :math:`z^{-1}`, :math:`\sum_k w_k z^{-d_k}`."""
+        return sp.Add(*(s.weight * z ** (-s.delay) for s in self.self_terms))
+
+    @property
+    def branches(self) -> int:
+        """The number of axon branches (outgoing synapses and circuit outputs, not self-loops)."""
+        return len(self.axon)
+
+
+class CircuitSystem(NamedTuple):
+    r"""A circuit as a state-space system :math:`s(t+1) = A s + B u`, :math:`o = C s + D u`.
+
+    The state is the circuit's delayed signals (the structure's unit delays);
+    the outputs are the neurons' axon outputs, in :attr:`Circuit.neurons` order,
+    then the circuit outputs. Matrices are sympy (or NumPy when ``numeric``).
+    """
+
+    A: object
+    B: object
+    C: object
+    D: object
+    states: tuple[str, ...]
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class Circuit(LatexMixin):
+    """A circuit of stylized neurons, built by :meth:`from_structure`.
+
+    Attributes
+    ----------
+    structure : Structure
+        The structure it was read from.
+    neurons : tuple of Neuron
+        In the structure's signal order.
+    inputs : tuple of str
+        The circuit inputs (the structure's inputs).
+    outputs : tuple of Synapse
+        For each structure output, the axon path reaching it (``target`` is the
+        output signal; ``source`` a neuron or an input; a neuron's own signal
+        when the output is the neuron).
+    input_axons : mapping of str to tuple of Synapse
+        The branches of each input's axon.
+
+    >>> from symctl import observable_canonical, controller_tf, factor
+    >>> from symctl.structure import Structure
+    >>> c = Circuit.from_structure(Structure.from_realization(
+    ...     observable_canonical(factor(controller_tf(2)).G2)))
+    >>> c.n_neurons, c.inputs, [o.source for o in c.outputs]
+    (3, ('u',), ['y'])
+    """
+
+    structure: Structure
+    neurons: tuple[Neuron, ...]
+    inputs: tuple[str, ...]
+    outputs: tuple[Synapse, ...]
+    input_axons: Mapping[str, tuple[Synapse, ...]]
+
+    # ------------------------------------------------------------ construction
+    @classmethod
+    def from_structure(
+        cls,
+        S: Structure,
+        assignment: DelayAssignment | CompatibilityResult | None = None,
+    ) -> Circuit:
+        r"""The circuit of a structure (see the module text for the rule).
+
+        Parameters
+        ----------
+        S : Structure
+            E.g. :meth:`Structure.from_realization` or
+            :meth:`Structure.from_factorization`; substitute values that make an
+            entry zero (e.g. :math:`\epsilon_3 = -K_2/\epsilon_1`) into the
+            realization *before* building the structure, so that the entry makes
+            no block.
+        assignment : DelayAssignment or CompatibilityResult, optional
+            A compatible assignment of ``S``'s signals to delay-graph vertices;
+            each neuron's :attr:`Neuron.vertex` is its signal's vertex.
+
+        Returns
+        -------
+        Circuit
+
+        Raises
+        ------
+        SymctlTypeError
+            ``S`` is not a Structure, or ``assignment`` is of another type.
+        ParameterError
+            ``assignment`` is for another structure, is not compatible (or a
+            failed compatibility check); a gain that is not finite; a loop of
+            gains and delays with no adder.
+
+        Examples
+        --------
+        >>> from symctl import controllable_canonical, controller_tf, factor
+        >>> f = factor(controller_tf(2))
+        >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
+        >>> c.n_neurons, c.neuron("x2").branches
+        (2, 2)
+        """
+        if not isinstance(S, Structure):
+            raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
+        return cls._build(S, _vertices(S, assignment))
+
+    @classmethod
+    def _build(cls, S: Structure, vertex_of: Mapping[str, int] | None) -> Circuit:
+        for name, block in S.blocks.items():
+            if block.kind == "gain" and block.gain is not None:
+                if block.gain.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+                    raise ParameterError(f"S: the gain {name!r} is not finite: {block.gain}")
+        names = {n for n, b in S.blocks.items() if _is_neuron(b)}
+        incoming: dict[str, list[Synapse]] = {n: [] for n in names}
+        for name in S.blocks:
+            if name in names:
+                for term in S.blocks[name].inputs:
+                    syn = _trace(S, term, name, names)
+                    if syn is not None:
+                        incoming[name].append(syn)
+        outputs = []
+        for out in S.outputs:
+            syn = _trace(S, out, out, names)
+            outputs.append(syn if syn is not None else Synapse("0", out, sp.Integer(0), 0))
+        outgoing: dict[str, list[Synapse]] = {}
+        for s in (*(s for v in incoming.values() for s in v if s.source != s.target), *outputs):
+            outgoing.setdefault(s.source, []).append(s)
+        neurons = []
+        for name, block in S.blocks.items():
+            if name not in names:
+                continue
+            neurons.append(
+                Neuron(
+                    name,
+                    block.part,
+                    tuple(s for s in incoming[name] if s.source != name),
+                    tuple(s for s in incoming[name] if s.source == name),
+                    tuple(outgoing.get(name, ())),
+                    None if vertex_of is None else vertex_of[name],
+                )
+            )
+        return cls(
+            S,
+            tuple(neurons),
+            S.inputs,
+            tuple(outputs),
+            {u: tuple(outgoing.get(u, ())) for u in S.inputs},
+        )
+
+    # ------------------------------------------------------------ views
+    @property
+    def n_neurons(self) -> int:
+        """The number of neurons."""
+        return len(self.neurons)
+
+    def neuron(self, name: str) -> Neuron:
+        """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
+
+        >>> from symctl.structure import ifp_structure
+        >>> Circuit.from_structure(ifp_structure(2)).neuron("mu").self_dynamics
+        K_1/z + K_2/z**2
+        """
+        for n in self.neurons:
+            if n.name == name:
+                return n
+        raise ParameterError(
+            f"name: {name!r} is not a neuron; the neurons are {[n.name for n in self.neurons]}"
+        )
+
+    @property
+    def neuron_signals(self) -> dict[str, str]:
+        """Each neuron's structure signal (its axon output), to read traces off a simulation."""
+        return {n.name: n.name for n in self.neurons}
+
+    @property
+    def synapses(self) -> tuple[Synapse, ...]:
+        """Every synapse onto a neuron (self-dynamics excluded), neuron by neuron."""
+        return tuple(s for n in self.neurons for s in n.synapses)
+
+    def branches(self) -> dict[str, int]:
+        """The number of axon branches of each neuron and input.
+
+        >>> from symctl.structure import ifp_structure
+        >>> Circuit.from_structure(ifp_structure(2)).branches()
+        {'mu': 1, 'x': 1}
+        """
+        out = {n.name: n.branches for n in self.neurons}
+        out.update({u: len(a) for u, a in self.input_axons.items()})
+        return out
+
+    @property
+    def vertices(self) -> dict[str, int | None]:
+        """The delay-graph vertex of each neuron (None without an assignment)."""
+        return {n.name: n.vertex for n in self.neurons}
+
+    # ------------------------------------------------------------ numbers
+    def subs(self, *args, **kwargs) -> Circuit:
+        """The same circuit with values substituted into every weight (``sympy`` ``subs``).
+
+        The circuit keeps its shape: a weight that becomes zero stays a synapse
+        of weight 0 (substitute into the realization to drop it). Vertices are kept.
+
+        >>> from symctl.realization import first_order_realization
+        >>> from symctl.symbols import epsilon_1, C_1
+        >>> c = Circuit.from_structure(Structure.from_realization(
+        ...     first_order_realization(epsilon_1, C_1)))
+        >>> c.subs({epsilon_1: sp.Rational(1, 2), C_1: -1}).neuron("x1").synapses[0].sign
+        '-'
+        """
+        blocks = {
+            name: Block(b.kind, b.inputs, b.gain.subs(*args, **kwargs), b.part)
+            if b.kind == "gain" and b.gain is not None
+            else b
+            for name, b in self.structure.blocks.items()
+        }
+        S = Structure(blocks, self.structure.inputs, self.structure.outputs)
+        vertex_of = None
+        if self.neurons and self.neurons[0].vertex is not None:
+            vertex_of = {n.name: n.vertex for n in self.neurons}
+        return self._build(S, vertex_of)
+
+    @property
+    def free_symbols(self) -> set[sp.Symbol]:
+        """The symbols left in the weights."""
+        out: set[sp.Symbol] = set()
+        for s in (*self.synapses, *(t for n in self.neurons for t in n.self_terms)):
+            out |= sp.sympify(s.weight).free_symbols
+        for s in self.outputs:
+            out |= sp.sympify(s.weight).free_symbols
+        return out
+
+    def as_linear_system(self, numeric: bool = False) -> CircuitSystem:
+        r"""The circuit as :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)`.
+
+        The state :math:`s` holds the structure's delayed signals; the outputs
+        :math:`o` are every neuron's axon output (in :attr:`neurons` order) and
+        then the circuit outputs, so one simulation gives every firing trace.
+
+        Parameters
+        ----------
+        numeric : bool
+            Return float NumPy arrays (every weight must be a number, e.g. after
+            :meth:`subs`) instead of sympy matrices.
+
+        Raises
+        ------
+        ParameterError
+            ``numeric=True`` with symbols left in the weights.
+
+        Examples
+        --------
+        >>> from symctl.realization import first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(
+        ...     first_order_realization(sp.Rational(1, 2), 3)))
+        >>> sys = c.as_linear_system()
+        >>> sys.states, sys.outputs, sys.A, sys.B
+        (('z^-1 F[1,1]', 'z^-1 H'), ('x1', 'x1'), Matrix([
+        [1/2, 1/2],
+        [  0,   0]]), Matrix([
+        [0],
+        [3]]))
+        """
+        S = self.structure
+        states = tuple(n for n, b in S.blocks.items() if b.kind == "delay")
+        k, m = len(states), len(S.inputs)
+        row: dict[str, sp.Matrix] = {}  # signal -> [coefficients on states | inputs]
+        for i, name in enumerate(states):
+            row[name] = sp.Matrix.hstack(sp.eye(k)[i, :], sp.zeros(1, m))
+        for j, name in enumerate(S.inputs):
+            row[name] = sp.Matrix.hstack(sp.zeros(1, k), sp.eye(m)[j, :])
+        free = nx.DiGraph()
+        free.add_nodes_from(S.blocks)
+        free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
+        for name in nx.topological_sort(free):
+            block = S.blocks[name]
+            if name in row:
+                continue
+            if block.kind == "gain":
+                row[name] = _gain(block, name) * row[block.inputs[0]]
+            else:
+                row[name] = sum((row[s] for s in block.inputs), sp.zeros(1, k + m))
+        nxt = sp.Matrix.vstack(*(row[S.blocks[s].inputs[0]] for s in states)) if k else None
+        out_names = tuple(n.name for n in self.neurons) + S.outputs
+        obs = sp.Matrix.vstack(*(row[s] for s in out_names)) if out_names else None
+        A = nxt[:, :k] if k else sp.zeros(0, 0)
+        B = nxt[:, k:] if k else sp.zeros(0, m)
+        C = obs[:, :k] if out_names else sp.zeros(0, k)
+        D = obs[:, k:] if out_names else sp.zeros(0, m)
+        mats = [A.applyfunc(sp.expand), B, C.applyfunc(sp.expand), D]
+        if numeric:
+            left = set().union(*(M.free_symbols for M in mats))
+            if left:
+                raise ParameterError(
+                    f"numeric: the weights still contain {sorted(map(str, left))}; subs() first"
+                )
+            mats = [np.array(M.tolist(), dtype=float).reshape(M.shape) for M in mats]
+        return CircuitSystem(*mats, states, S.inputs, out_names)
+
+    # ------------------------------------------------------------ display
+    def equations(self) -> list[str]:
+        r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
+
+        >>> from symctl.realization import first_order_realization
+        >>> from symctl.symbols import epsilon_1, C_1
+        >>> c = Circuit.from_structure(Structure.from_realization(
+        ...     first_order_realization(epsilon_1, C_1)))
+        >>> c.equations()
+        ['x_{1}(t) = \\epsilon_{1}\\, x_{1}(t-1) + C_{1}\\, u(t-1)']
+        """
+        out = []
+        for n in self.neurons:
+            terms = []
+            for s in (*n.self_terms, *n.synapses):
+                w = sp.sympify(s.weight)
+                tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
+                if isinstance(w, sp.Add):
+                    tex = rf"\left({latex(w)}\right)\,"
+                terms.append(rf"{tex} {_tex_name(s.source)}(t{_lag(s.delay)})".lstrip())
+            rhs = " + ".join(terms).replace("+ -", "- ") if terms else "0"
+            out.append(rf"{_tex_name(n.name)}(t) = {rhs}")
+        return out
+
+    def latex(self) -> str:
+        """The neurons' equations, one per line."""
+        return r"\begin{gathered}" + r" \\ ".join(self.equations()) + r"\end{gathered}"
+
+    def __str__(self) -> str:
+        lines = [
+            f"Circuit: {self.n_neurons} neuron{'s' if self.n_neurons != 1 else ''}; "
+            f"inputs {', '.join(self.inputs)}; "
+            f"outputs {', '.join(f'{o.target} <- {_syn_text(o, o.source)}' for o in self.outputs)}"
+        ]
+        for n in self.neurons:
+            where = f" [v{n.vertex}]" if n.vertex is not None else ""
+            lines.append(f"  neuron {n.name}{where}")
+            lines.append(f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}")
+            for s in n.synapses:
+                lines.append(f"    synapse from {_syn_text(s, s.source)}")
+            outs = {o.target for o in self.outputs}
+            targets = ", ".join(
+                f"output {s.target}" if s in self.outputs and s.target in outs else s.target
+                for s in n.axon
+            )
+            targets = targets or "none"
+            lines.append(
+                f"    axon: {n.branches} branch{'es' if n.branches != 1 else ''} -> {targets}"
+            )
+        for u, axon in self.input_axons.items():
+            word = "branch" if len(axon) == 1 else "branches"
+            targets = ", ".join(s.target for s in axon) or "none"
+            lines.append(f"  input {u}: axon {len(axon)} {word} -> {targets}")
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        names = ", ".join(n.name for n in self.neurons)
+        return f"Circuit({self.n_neurons} neurons: {names}; inputs={self.inputs})"
+
+    def draw(self, ax=None, *, title: str | None = None):
+        """Draw the circuit: neurons as circles, synapses as arrows, layered left to right.
+
+        Each circle holds the neuron's self-dynamics (:math:`\\sum_k w_k z^{-d_k}`,
+        ``0`` without), its name above it. Synapses carry their weights (long
+        ones as :math:`w_1, w_2, \\dots`, listed under the drawing); excitatory
+        (positive) ones are blue with an arrow head, inhibitory (negative) red
+        with a bar, symbolic sign grey; dashed arrows have a one-step delay
+        (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
+        right. Returns a :class:`matplotlib.figure.Figure`.
+
+        >>> from symctl.structure import ifp_structure
+        >>> type(Circuit.from_structure(ifp_structure(2)).draw()).__name__
+        'Figure'
+        """
+        return _draw(self, ax, title)
+
+
+# ---------------------------------------------------------------- helpers
+def _is_neuron(block: Block) -> bool:
+    return block.kind == "sum" and len(block.inputs) >= 2
+
+
+def _gain(block: Block, name: str) -> sp.Expr:
+    return block.gain if block.gain is not None else sp.Symbol(name)
+
+
+def _trace(S: Structure, start: str, target: str, neurons: set[str]):
+    """The axon path ending at ``start``, back to a neuron or an input, as a Synapse."""
+    node, weight, delay, path, seen = start, sp.Integer(1), 0, [], set()
+    while True:
+        block = S.blocks[node]
+        if node in neurons or block.kind == "input":
+            return Synapse(node, target, weight, delay, tuple(reversed(path)))
+        if node in seen:
+            raise ParameterError(
+                f"S: a loop of gains and delays with no adder through {node!r} is not a circuit"
+            )
+        seen.add(node)
+        path.append(node)
+        if block.kind == "gain":
+            weight = _gain(block, node) * weight
+        elif block.kind == "delay":
+            delay += 1
+        elif not block.inputs:  # an adder of nothing: the zero signal
+            return None
+        node = block.inputs[0]
+
+
+def _vertices(S: Structure, assignment) -> dict[str, int] | None:
+    if assignment is None:
+        return None
+    if isinstance(assignment, CompatibilityResult):
+        if not assignment.ok or assignment.assignment is None:
+            raise ParameterError(
+                "assignment: the compatibility check failed, so there is no assignment: "
+                + assignment.reason.splitlines()[0]
+            )
+        assignment = assignment.assignment
+    if not isinstance(assignment, DelayAssignment):
+        raise SymctlTypeError(
+            "assignment: expected a DelayAssignment or a CompatibilityResult, got "
+            f"{type(assignment).__name__}"
+        )
+    other = assignment.structure
+    if other is not S and {n: (b.kind, b.inputs) for n, b in other.blocks.items()} != {
+        n: (b.kind, b.inputs) for n, b in S.blocks.items()
+    }:
+        raise ParameterError("assignment: it assigns the signals of another structure than S")
+    bad = assignment.violations()
+    if bad:
+        i, j, et, e = bad[0]
+        raise ParameterError(
+            "assignment: not compatible with its delay graph "
+            f"(E~_{i}{j} = {et:g} < E_{i}{j} = {e:g})"
+        )
+    return dict(assignment.vertex_of)
+
+
+def _lag(d: int) -> str:
+    return f"-{d}" if d else ""
+
+
+def _tex_name(name: str) -> str:
+    """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
+    from symctl.structure import _signal_label
+
+    part, _, short = name.rpartition(".")
+    label = _signal_label(short).strip("$")
+    if label == short and not short.isalnum():
+        label = rf"\mathrm{{{short}}}"
+    return rf"{{{label}}}^{{\mathrm{{{part}}}}}" if part else label
+
+
+def _weight_tex(weight) -> str:
+    """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
+    w = sp.sympify(weight)
+    if w.is_number and w.is_real:
+        return f"{float(w):.3g}"
+    return latex(w)
+
+
+def _self_tex(n: Neuron) -> str:
+    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
+    if not n.self_terms:
+        return "0"
+    parts = []
+    for s in sorted(n.self_terms, key=lambda s: s.delay):
+        w = sp.sympify(s.weight)
+        tex = _weight_tex(w)
+        if isinstance(w, sp.Add):
+            tex = rf"\left({tex}\right)"
+        parts.append(tex + (rf"\,z^{{-{s.delay}}}" if s.delay else ""))
+    return " + ".join(parts).replace("+ -", "- ")
+
+
+def _syn_text(s: Synapse, source: str) -> str:
+    delay = f", delay {s.delay}" if s.delay else ""
+    return f"{source} (weight {s.weight}, sign {s.sign}{delay})"
+
+
+# ---------------------------------------------------------------- drawing
+_COLOURS = {"+": "#1f5fa8", "-": "#c0392b", "?": "0.55", "0": "0.75"}
+_FONT = 9
+_MAX_LABEL = 14  # weights with more visible characters are shown as w_k
+
+
+def _visible(tex: str) -> int:
+    import re
+
+    text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
+    text = re.sub(r"\\[a-zA-Z]+", "m", text)
+    return len(re.sub(r"[{}_^\s]", "", text))
+
+
+def _text_width(text: str, size: float) -> float:
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextPath
+
+    return (
+        TextPath((0, 0), text, size=size, prop=FontProperties(size=size)).get_extents().width / 72
+    )
+
+
+def _layout(c: Circuit):
+    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
+    g = nx.MultiDiGraph()
+    nodes = [*c.inputs, *(n.name for n in c.neurons)]
+    g.add_nodes_from(nodes)
+    edges = [s for n in c.neurons for s in n.synapses]
+    for s in edges:
+        g.add_edge(s.source, s.target)
+    dag = nx.DiGraph()
+    dag.add_nodes_from(nodes)
+    seen: set[str] = set()
+    for root in [*c.inputs, *nodes]:  # depth-first; back edges are feedback
+        if root in seen:
+            continue
+        for a, b, kind in nx.dfs_labeled_edges(g, root):
+            seen.add(b)
+            if kind == "forward" and a != b:
+                dag.add_edge(a, b)
+            elif kind == "nontree" and a != b and not nx.has_path(dag, b, a):
+                dag.add_edge(a, b)
+    col: dict[str, int] = {}
+    for node in nx.topological_sort(dag):
+        if node in c.inputs:
+            col[node] = 0
+        else:
+            col[node] = max((col[p] + 1 for p in dag.predecessors(node)), default=1)
+    last = max(col.values(), default=0) + 1
+    columns: dict[int, list[str]] = {}
+    for node in nodes:
+        columns.setdefault(col[node], []).append(node)
+    for o in c.outputs:
+        col[("out", o.target)] = last
+        columns.setdefault(last, []).append(("out", o.target))
+    # rows: barycenters of the already placed neighbours, two sweeps
+    preds: dict = {n: [] for n in col}
+    for s in edges:
+        preds[s.target].append(s.source)
+    for o in c.outputs:
+        preds[("out", o.target)].append(o.source)
+    row: dict = {}
+    for _ in range(2):
+        for k in sorted(columns):
+            items = columns[k]
+            want = {
+                n: (
+                    np.mean([row[p] for p in preds.get(n, []) if p in row and p != n])
+                    if any(p in row and p != n for p in preds.get(n, []))
+                    else row.get(n, 0.0)
+                )
+                for n in items
+            }
+            items.sort(key=lambda n, w=want: -w[n])
+            mean = np.mean(list(want.values()))
+            for i, n in enumerate(items):
+                row[n] = mean + (len(items) - 1) / 2 - i
+    return col, row
+
+
+def _draw(c: Circuit, ax, title):
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Circle, FancyArrowPatch
+
+    col, row = _layout(c)
+    xstep, ystep = 2.6, 1.5
+    pos = {n: (xstep * col[n], ystep * row[n]) for n in col}
+    legend: list[str] = []
+
+    def weight_label(s: Synapse) -> str:
+        tex = _weight_tex(s.weight)
+        if _visible(tex) > _MAX_LABEL:
+            legend.append(rf"$w_{{{len(legend) + 1}}} = {tex}$")
+            tex = rf"w_{{{len(legend)}}}"
+        if s.delay > 1:
+            tex += rf"\,z^{{-{s.delay}}}"
+        return f"${tex}$"
+
+    radius = {}
+    body = {}
+    for n in c.neurons:
+        tex = _self_tex(n)
+        if _visible(tex) > 2 * _MAX_LABEL:
+            legend.append(rf"$\mathrm{{self}}({_tex_name(n.name)}) = {tex}$")
+            tex = rf"\mathrm{{self}}_{{{len(legend)}}}"
+        body[n.name] = f"${tex}$"
+        radius[n.name] = max(0.32, _text_width(body[n.name], _FONT) / 2 + 0.1)
+
+    if ax is None:
+        fig = Figure()
+        ax = fig.add_axes((0, 0, 1, 1))
+        own = True
+    else:
+        fig, own = ax.figure, False
+
+    extra: list[tuple[float, float]] = []  # arc label positions, for the extent
+
+    def arrow(a, b, s: Synapse | None, h: float):
+        (x0, y0), (x1, y1) = pos[a], pos[b]
+        length = max(np.hypot(x1 - x0, y1 - y0), 1e-9)
+        rad = -2 * h / length * (1 if x1 >= x0 else -1)
+        sign = s.sign if s is not None else "+"
+        colour = _COLOURS[sign] if s is not None else "0.15"
+        style = "-[,widthB=0.7,lengthB=0" if sign == "-" else "-|>,head_length=0.5,head_width=0.25"
+        ra = radius.get(a, 0.06) * 72
+        rb = radius.get(b, 0.06) * 72
+        dashed = s is not None and s.delay > 0
+        ax.add_patch(
+            FancyArrowPatch(
+                pos[a],
+                pos[b],
+                connectionstyle=f"arc3,rad={rad}",
+                arrowstyle=style,
+                mutation_scale=12,
+                color=colour,
+                lw=1.3,
+                linestyle=(0, (4, 2.5)) if dashed else "-",
+                shrinkA=ra,
+                shrinkB=rb + 1,
+                zorder=1,
+            )
+        )
+        if s is None:
+            return
+        lx = (x0 + x1) / 2 + 0.5 * rad * (y1 - y0)
+        ly = (y0 + y1) / 2 - 0.5 * rad * (x1 - x0)
+        extra.append((lx, ly))
+        ax.text(
+            lx,
+            ly,
+            weight_label(s),
+            ha="center",
+            va="center",
+            fontsize=_FONT,
+            color=colour if sign != "?" else "0.25",
+            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.9},
+            zorder=3,
+        )
+
+    # group parallel synapses (same pair of ends) and give each its own curvature
+    pairs: dict[tuple, list[Synapse]] = {}
+    for n in c.neurons:
+        for s in n.synapses:
+            pairs.setdefault((s.source, s.target), []).append(s)
+    # each arc bulges by a height h (inches; > 0 above): skipping arcs alternate above and
+    # below, feedback arcs run below, parallel synapses fan out; longer arcs bulge more
+    up = 1
+    for (a, b), group in sorted(pairs.items(), key=lambda kv: abs(col[kv[0][1]] - col[kv[0][0]])):
+        span = abs(col[b] - col[a])
+        between = [
+            radius.get(n, 0.1)
+            for n in col
+            if min(col[a], col[b]) < col[n] < max(col[a], col[b]) and abs(row[n] - row[a]) < 1
+        ]
+        skips = bool(between)
+        if col[b] <= col[a]:
+            base = -(0.55 + 0.4 * max(span - 1, 0))
+        elif skips:
+            base, up = up * (max(between) + 0.5 + 0.4 * (span - 2)), -up
+        else:
+            base = 0.0
+        for k, s in enumerate(group):
+            h = base + (k - (len(group) - 1) / 2) * 0.4
+            arrow(a, b, s, h)
+    for o in c.outputs:
+        key = ("out", o.target)
+        if o.source in pos:
+            arrow(o.source, key, o if (o.weight != 1 or o.delay) else None, 0.0)
+
+    for n in c.neurons:
+        x, y = pos[n.name]
+        ax.add_patch(
+            Circle(
+                (x, y),
+                radius[n.name],
+                fc="#f3f3f3",
+                ec="black",
+                lw=1.2,
+                zorder=2,
+                gid=f"neuron:{n.name}",
+            )
+        )
+        ax.text(x, y, body[n.name], ha="center", va="center", fontsize=_FONT, zorder=3)
+        where = f"  (v{n.vertex})" if n.vertex is not None else ""
+        ax.text(
+            x,
+            y + radius[n.name] + 0.08,
+            f"${_tex_name(n.name)}${where}",
+            ha="center",
+            va="bottom",
+            fontsize=_FONT,
+            color="0.2",
+            zorder=3,
+        )
+    for u in c.inputs:
+        x, y = pos[u]
+        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
+        ax.text(x - 0.12, y, f"${_tex_name(u)}$", ha="right", va="center", fontsize=_FONT + 1)
+    for o in c.outputs:
+        x, y = pos[("out", o.target)]
+        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
+        name = "output" if o.target == o.source else f"${_tex_name(o.target)}$"
+        ax.text(x + 0.12, y, name, ha="left", va="center", fontsize=_FONT + 1)
+
+    xs = [p[0] for p in pos.values()]
+    ys = [p[1] for p in pos.values()]
+    big = max(radius.values(), default=0.3)
+    x_lo, x_hi = min(xs) - 0.9, max(xs) + 0.9
+    y_lo = min([min(ys) - big - 0.5] + [y - 0.35 for _, y in extra])
+    y_hi = max([max(ys) + big + 0.45] + [y + 0.35 for _, y in extra])
+    heading = title or (f"neural circuit: {c.n_neurons} neuron{'s' if c.n_neurons != 1 else ''}")
+    key = (
+        "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
+        "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
+    )
+    ax.text(x_lo + 0.1, y_hi + 0.3, heading, ha="left", va="bottom", fontsize=10)
+    ax.text(x_lo + 0.1, y_hi + 0.1, key, ha="left", va="bottom", fontsize=7.5, color="0.35")
+    width = max(_text_width(key, 7.5), _text_width(heading, 10)) + 0.3
+    for k, line in enumerate(legend):
+        ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)
+        width = max(width, _text_width(line, _FONT) + 0.3)
+    y_lo -= 0.28 * len(legend) + 0.15
+    x_hi = max(x_hi, x_lo + width)
+    y_hi += 0.65
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo, y_hi)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if own:
+        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
+    return fig
