@@ -98,7 +98,7 @@ from symctl.compatibility import CompatibilityResult
 from symctl.delaygraph import DelayAssignment
 from symctl.display import LatexMixin, latex
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.structure import Block, Structure
+from symctl.structure import Block, Structure, _finish_figure, _text_size
 from symctl.symbols import z
 
 __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
@@ -702,12 +702,7 @@ def _visible(tex: str) -> int:
 
 
 def _text_width(text: str, size: float) -> float:
-    from matplotlib.font_manager import FontProperties
-    from matplotlib.textpath import TextPath
-
-    return (
-        TextPath((0, 0), text, size=size, prop=FontProperties(size=size)).get_extents().width / 72
-    )
+    return _text_size(text, size)[0]
 
 
 def _layout(c: Circuit):
@@ -923,19 +918,10 @@ def _draw(c: Circuit, ax, title):
         "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
         "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
     )
-    ax.text(x_lo + 0.1, y_hi + 0.3, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(x_lo + 0.1, y_hi + 0.1, key, ha="left", va="bottom", fontsize=7.5, color="0.35")
-    width = max(_text_width(key, 7.5), _text_width(heading, 10)) + 0.3
+    width = 0.0
     for k, line in enumerate(legend):
         ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)
         width = max(width, _text_width(line, _FONT) + 0.3)
     y_lo -= 0.28 * len(legend) + 0.15
     x_hi = max(x_hi, x_lo + width)
-    y_hi += 0.65
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
-    return fig
+    return _finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)

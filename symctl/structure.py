@@ -1167,11 +1167,20 @@ def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
         "boxes: gains (their values; long ones by block name)   circles: adders   "
         "dashed arrows: one-step delays   dots: signals"
     )
+    return _finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, top=0.62)
+
+
+def _finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float):
+    """Heading and key above the drawing, equal axes without frame, size in inches.
+
+    Shared by structure and circuit drawings (one data unit is one inch).
+    """
+    x_lo, x_hi, y_lo, y_hi = bounds
     ax.text(x_lo + 0.1, y_hi + 0.3, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(x_lo + 0.1, y_hi + 0.1, legend, ha="left", va="bottom", fontsize=7.5, color="0.35")
-    width = max(_text_size(heading, 10)[0], _text_size(legend, 7.5)[0]) + 0.3
+    ax.text(x_lo + 0.1, y_hi + 0.1, key, ha="left", va="bottom", fontsize=7.5, color="0.35")
+    width = max(_text_size(heading, 10)[0], _text_size(key, 7.5)[0]) + 0.3
     x_hi = max(x_hi, x_lo + width)
-    y_hi += 0.62
+    y_hi += top
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(y_lo, y_hi)
     ax.set_aspect("equal")
