@@ -1,0 +1,505 @@
+r"""Firing patterns of the neurons of :math:`G_2` under a pulse disturbance.
+
+The paper's Figs. full_diagram, ccr_diagram and ocr_diagram.
+
+The paper's section "Simulations": the whole controller
+:math:`G = G_3 G_2 G_1` is realized in several ways, each closed around the
+linear muscle and hit by the same pulse disturbance on the force. By
+construction every realization gives the same force and motor-neuron traces
+(those of the optimal controller, Fig. cl_sims), while the neurons of
+:math:`G_2` fire differently.
+
+The recipe, per realization (seeded):
+
+1. draw :math:`\epsilon_1, \epsilon_3` uniformly in :math:`(-0.9, 0.9)` (exact
+   rationals on a grid of 1/1000), set :math:`C_1 = C_3 = 1`;
+2. realize :math:`G_2`: ``"controllable"`` and ``"observable"`` canonical
+   forms, or for ``"general"`` a random full-rank similarity transform ``P`` of
+   the controllable canonical one (:func:`~symctl.realization.random_realization`);
+3. close the loop with :math:`G_3 G_2 G_1`
+   (:func:`~symctl.realization.controller_realization`,
+   :func:`~symctl.simulate.simulate_realization`) and check that force and
+   rate equal the optimal controller's (:func:`~symctl.simulate.closed_loop_response`);
+4. read every neuron's axon output off the circuit
+   (:meth:`Circuit.as_linear_system <symctl.circuit.Circuit.as_linear_system>`
+   of :meth:`Circuit.from_structure <symctl.circuit.Circuit.from_structure>`
+   applied to :meth:`Structure.from_factorization
+   <symctl.structure.Structure.from_factorization>`), driven by the loop's
+   controller input :math:`\delta_f`, and keep the neurons of :math:`G_2`.
+
+The neurons are linear, so a neuron's output *is* its change in firing rate
+from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
+realization, no free parameters): its one neuron :math:`\mu` of
+:func:`~symctl.structure.ifp_structure` with the gains substituted.
+
+>>> from symctl import MuscleModel, augment, lqr_gains
+>>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+>>> fp = circuit_firing("controllable", gains, count=2)
+>>> fp.neurons, fp.firing["G2.y"].shape
+(('G2.x2', 'G2.y'), (2, 50))
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from symctl.circuit import Circuit
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.factor import factor
+from symctl.lqr import Gains
+from symctl.realization import (
+    Realization,
+    controllable_canonical,
+    controller_realization,
+    observable_canonical,
+    random_realization,
+)
+from symctl.simulate import (
+    DEFAULT_LENGTH,
+    DEFAULT_START,
+    Response,
+    closed_loop_response,
+    ifp_realization,
+    simulate_realization,
+)
+from symctl.structure import Structure, ifp_structure
+from symctl.symbols import gain_symbols
+from symctl.transfer import controller_tf
+
+__all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing"]
+
+KINDS = ("general", "controllable", "observable", "ifp")
+"""The circuits :func:`circuit_firing` simulates."""
+
+_TITLES = {
+    "general": "general realization (random P)",
+    "controllable": "controllable canonical realization",
+    "observable": "observable canonical realization",
+    "ifp": "IFP controller",
+}
+_EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
+_EPS_MAX = 899
+_RATE_LABEL = "change in firing rate [spikes/s]"
+
+
+# ---------------------------------------------------------------- results
+@dataclass(frozen=True, eq=False)
+class FiringSummary:
+    r"""How much the neurons' firing differs across realizations, and the behaviour does not.
+
+    Attributes
+    ----------
+    neurons : tuple of str
+    peak : (count, k) array
+        Each realization's signed peak firing per neuron (the value of largest
+        magnitude) [spikes/s]; NaN where the realization has no such neuron.
+    spread : (k,) array
+        ``max - min`` of ``peak`` over realizations, per neuron [spikes/s].
+    behaviour_spread : float
+        The largest difference between realizations of the force and rate traces
+        (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
+    """
+
+    neurons: tuple[str, ...]
+    peak: np.ndarray
+    spread: np.ndarray
+    behaviour_spread: float
+
+    def table(self) -> str:
+        """A plain-text table: neuron, peak firing of each realization, spread."""
+        count = self.peak.shape[0]
+        head = " neuron | " + " | ".join(f"peak #{i + 1:<3d}" for i in range(count))
+        lines = [head + " | spread", "-" * (len(head) + 9)]
+        for k, name in enumerate(self.neurons):
+            peaks = " | ".join(f"{v:9.4g}" for v in self.peak[:, k])
+            lines.append(f" {name:6s} | {peaks} | {self.spread[k]:.4g}")
+        lines.append(f"force/rate spread across realizations: {self.behaviour_spread:.2e}")
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True, eq=False)
+class FiringPatterns:
+    r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    t : (steps,) array
+        Time [s].
+    delta_f, delta_r : (count, steps) arrays
+        Force change [N] and motor-neuron rate change [spikes/s] of each
+        realization (all equal to the optimal controller's, checked).
+    f_bar : float
+        The force at the operating point [N] (``f = f_bar + delta_f``).
+    firing : mapping of str to (count, steps) array
+        Each neuron's change of axon output (firing rate) from equilibrium
+        [spikes/s], keyed by neuron name (``"G2.x1"``, ...); NaN rows for a
+        realization that lacks the neuron (a zero entry makes no adder).
+    params : tuple of dict
+        Per realization, the values drawn: :math:`\epsilon_1, \epsilon_3` (and
+        ``P`` for ``"general"``), exact.
+    realizations : tuple of Realization
+        Per realization, the :math:`G_2` used (the whole IFP controller for ``"ifp"``).
+    circuits : tuple of Circuit
+        Per realization, the numeric circuit of the whole controller.
+    reference : Response
+        The optimal controller's closed loop.
+    max_deviation : float
+        The largest relative departure of any realization's force or rate trace
+        from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
+    """
+
+    kind: str
+    t: np.ndarray
+    delta_f: np.ndarray
+    delta_r: np.ndarray
+    f_bar: float
+    firing: Mapping[str, np.ndarray]
+    params: tuple[dict, ...]
+    realizations: tuple[Realization, ...]
+    circuits: tuple[Circuit, ...]
+    reference: Response
+    max_deviation: float
+
+    @property
+    def neurons(self) -> tuple[str, ...]:
+        """The neuron names, in circuit order."""
+        return tuple(self.firing)
+
+    @property
+    def count(self) -> int:
+        """The number of realizations."""
+        return self.delta_f.shape[0]
+
+    def legend_label(self, i: int) -> str:
+        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based)."""
+        eps = [
+            f"{_tex(str(k))} = {float(v):.3g}"
+            for k, v in self.params[i].items()
+            if str(k).startswith("epsilon")
+        ]
+        return f"#{i + 1}" + (": " + ", ".join(eps) if eps else " (IFP)")
+
+    def summary(self) -> FiringSummary:
+        """Per neuron, the spread of peak firing across realizations (see :class:`FiringSummary`).
+
+        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=3)
+        >>> s = fp.summary()
+        >>> bool(s.spread.min() > 1e-3 > 1e-12 > s.behaviour_spread)
+        True
+        """
+        names = self.neurons
+        peak = np.full((self.count, len(names)), np.nan)
+        for k, name in enumerate(names):
+            tr = self.firing[name]
+            ok = ~np.isnan(tr).any(axis=1)
+            idx = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
+            vals = tr[np.arange(self.count), idx]
+            peak[ok, k] = vals[ok]
+        spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
+        behaviour = max(
+            float(np.max(np.abs(self.delta_f - self.delta_f[0]))),
+            float(np.max(np.abs(self.delta_r - self.delta_r[0]))),
+        )
+        return FiringSummary(names, peak, spread, behaviour)
+
+    def plot(self, ncols: int = 3):
+        """One panel per neuron of :math:`G_2` (one line per realization), the force on top.
+
+        Parameters
+        ----------
+        ncols : int
+            Neuron panels per row.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Examples
+        --------
+        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+        >>> fig = fp.plot()
+        >>> [ax.get_title() for ax in fig.axes][1:]
+        ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
+        """
+        from matplotlib.figure import Figure
+
+        names = self.neurons
+        cols = max(1, min(int(ncols), len(names)))
+        rows = -(-len(names) // cols)
+        fig = Figure(figsize=(max(3.6 * cols + 1.2, 8.0), 2.2 + 2.7 * rows), layout="constrained")
+        grid = fig.add_gridspec(1 + rows, cols, height_ratios=[0.55] + [1.0] * rows)
+        top = fig.add_subplot(grid[0, :])
+        for i in range(self.count):
+            top.plot(self.t, self.f_bar + self.delta_f[i], color=f"C{i % 10}", lw=1.2)
+        top.plot(self.t, self.f_bar + self.reference.delta_f[:, 0], "k:", lw=1.2,
+                 label="optimal controller (identical)")  # fmt: skip
+        top.set_ylabel("force f [N]")
+        top.set_title("force, every realization (identical)", fontsize="medium")
+        top.legend(loc="upper right", fontsize="small")
+        top.grid(alpha=0.3)
+        axes = []
+        for k, name in enumerate(names):
+            ax = fig.add_subplot(grid[1 + k // cols, k % cols], sharex=top)
+            for i in range(self.count):
+                ax.plot(self.t, self.firing[name][i], marker=".", ms=3, lw=1.3,
+                        color=f"C{i % 10}", label=self.legend_label(i))  # fmt: skip
+            ax.axhline(0, color="black", lw=0.5)
+            ax.set_title(f"neuron {_tex(name.rpartition('.')[2])}")
+            ax.set_xlabel("time [s]")
+            if k % cols == 0:
+                ax.set_ylabel(_RATE_LABEL)
+            ax.grid(alpha=0.3)
+            axes.append(ax)
+        if axes:
+            handles, labels = axes[0].get_legend_handles_labels()
+            fig.legend(handles, labels, loc="outside lower center", fontsize="small",
+                       ncols=min(self.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
+        what = "the neuron of the" if self.kind == "ifp" else "the neurons of $G_2$,"
+        fig.suptitle(
+            f"Firing of {what} {_TITLES[self.kind]}\n"
+            "same force and motor-neuron rate, different firing patterns"
+        )
+        return fig
+
+
+def _tex(name: str) -> str:
+    r"""``x1`` -> ``$x_{1}$``, ``mu`` -> ``$\mu$``, ``epsilon_{1,2}`` -> ``$\epsilon_{1,2}$``."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head) :]
+    if "_" in head:
+        head, _, tail = name.partition("_")
+        tail = tail.strip("{}")
+    head = rf"\{head}" if head in ("mu", "gamma", "epsilon") else head
+    return f"${head}_{{{tail}}}$" if tail else f"${head}$"
+
+
+# ---------------------------------------------------------------- arguments
+def _kind(kind) -> str:
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise ParameterError(f"kind: must be one of {KINDS}, got {kind!r}")
+    return kind
+
+
+def _count(count, kind: str) -> int:
+    if count is None:
+        return 1 if kind == "ifp" else 4
+    if isinstance(count, bool) or not isinstance(count, numbers.Integral) or count < 1:
+        raise ParameterError(f"count: must be an integer >= 1, got {count!r}")
+    if kind == "ifp" and count != 1:
+        raise ParameterError(
+            f"count: the IFP controller has a single realization, so count must be 1, got {count}"
+        )
+    return int(count)
+
+
+def _generator(seed) -> np.random.Generator:
+    if isinstance(seed, np.random.Generator):
+        return seed
+    if seed is None or (isinstance(seed, numbers.Integral) and not isinstance(seed, bool)):
+        return np.random.default_rng(seed)
+    raise SymctlTypeError(f"seed: expected an int or a numpy Generator, got {seed!r}")
+
+
+def _gains(gains) -> Gains:
+    if not isinstance(gains, Gains):
+        raise SymctlTypeError(
+            f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
+        )
+    s = gains.system
+    if (s.n, s.m) != (1, 1):
+        raise DimensionError(
+            f"gains: firing patterns are drawn for a scalar plant (n = m = 1), got n = {s.n}, "
+            f"m = {s.m}"
+        )
+    return gains
+
+
+# ---------------------------------------------------------------- the pieces
+def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator):
+    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric)."""
+    s = gains.system
+    if kind == "ifp":
+        K = np.asarray(gains.K, dtype=float).ravel()
+        circuit = Circuit.from_structure(ifp_structure(s.T))
+        circuit = circuit.subs(dict(zip(gain_symbols(s.T), map(sp.Float, K), strict=True)))
+        R = ifp_realization(gains)
+        yield {}, R, R, circuit
+        return
+    f = factor(controller_tf(gains), s.sensor_delay, s.actuator_delay)
+    eps = (*f.sensor_eps, *f.actuator_eps)
+    for _ in range(count):
+        drawn = {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
+        fs = f.subs({**drawn, **{c: 1 for c in (*f.sensor_C, *f.actuator_C)}})
+        if kind == "general":
+            R2 = random_realization(fs.G2, gen, base="controllable")
+        elif kind == "controllable":
+            R2 = controllable_canonical(fs.G2)
+        else:
+            R2 = observable_canonical(fs.G2)
+        params = {**drawn, **R2.params}
+        R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)
+        circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))
+        yield params, R2, controller_realization(fs, R2), circuit
+
+
+def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
+    r"""Every neuron's axon output and the circuit output, driven from rest by ``u`` ``(steps,)``.
+
+    :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)` of
+    :meth:`Circuit.as_linear_system`; keys are the output names (neurons, then
+    ``"output"``).
+    """
+    sys = circuit.as_linear_system(numeric=True)
+    s = np.zeros(sys.A.shape[0])
+    out = np.empty((u.size, len(sys.outputs)))
+    for k, uk in enumerate(u):
+        out[k] = sys.C @ s + sys.D[:, 0] * uk
+        s = sys.A @ s + sys.B[:, 0] * uk
+    traces = dict(zip(sys.outputs[: circuit.n_neurons], out.T[: circuit.n_neurons], strict=True))
+    traces["output"] = out[:, -1]
+    return traces
+
+
+def _deviation(a: np.ndarray, ref: np.ndarray) -> float:
+    """``max |a - ref| / max |ref|`` (absolute when ``ref`` is zero)."""
+    scale = float(np.max(np.abs(ref)))
+    return float(np.max(np.abs(a - ref))) / (scale if scale > 0 else 1.0)
+
+
+# ---------------------------------------------------------------- the function
+def circuit_firing(
+    kind: str,
+    gains: Gains,
+    plant=None,
+    *,
+    count: int | None = None,
+    seed=0,
+    disturbance=1.0,
+    steps: int | None = None,
+    start: int = DEFAULT_START,
+    length: int = DEFAULT_LENGTH,
+    rtol: float = 1e-9,
+) -> FiringPatterns:
+    r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
+
+    Each realization of :math:`G = G_3 G_2 G_1` (random :math:`\epsilon_1,
+    \epsilon_3 \in (-0.9, 0.9)`, :math:`C_1 = C_3 = 1`, and for ``"general"`` a
+    random full-rank ``P``) is closed around ``plant`` with the pulse
+    disturbance on the force, as in Fig. cl_sims:
+
+    .. math::
+        \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
+        \delta_r = G(z)\,\delta_f.
+
+    The force and rate traces must equal the optimal controller's
+    (:func:`~symctl.simulate.closed_loop_response` of ``gains``) to ``rtol``
+    (relative to their peak); the neurons' traces are read off the circuit
+    driven by the loop's :math:`\delta_f`, and the circuit's output must match
+    :math:`\delta_r` too.
+
+    Parameters
+    ----------
+    kind : {"general", "controllable", "observable", "ifp"}
+        The realization of :math:`G_2` (Figs. full_diagram, ccr_diagram,
+        ocr_diagram), or the IFP controller.
+    gains : Gains
+        E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
+    plant : DiscretePlant, MuscleModel or (A, B), optional
+        The linear plant; default the one ``gains`` were computed for.
+    count : int, optional
+        Number of realizations (default 4; the IFP controller has exactly 1).
+    seed : int or numpy Generator
+        Seeds the epsilons and ``P`` (default 0: reproducible).
+    disturbance, steps, start, length
+        As in :func:`~symctl.simulate.simulate_realization` (default a unit
+        pulse on steps 5..14 of 50).
+    rtol : float
+        Tolerance of the behaviour check (default 1e-9).
+
+    Returns
+    -------
+    FiringPatterns
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``kind``, ``count < 1`` (or ``!= 1`` for ``"ifp"``), an unstable
+        loop, or a realization whose force or rate departs from the optimal
+        controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains').
+    SymctlTypeError
+        ``gains`` not :class:`~symctl.lqr.Gains`, a bad ``seed``.
+    DimensionError
+        A plant with more than one state or input.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> fp = circuit_firing("general", gains, count=3, seed=1)
+    >>> fp.neurons
+    ('G2.x1', 'G2.x2', 'G2.y')
+    >>> bool(np.ptp(fp.delta_r, axis=0).max() < 1e-12)        # the same behaviour
+    True
+    >>> bool(np.ptp(fp.firing["G2.x1"], axis=0).max() > 1e-3)  # different firing
+    True
+    >>> circuit_firing("diagonal", gains)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: kind: must be one of ('general', 'controllable', ...
+    """
+    kind = _kind(kind)
+    gains = _gains(gains)
+    count = _count(count, kind)
+    gen = _generator(seed)
+    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not rtol > 0:
+        raise ParameterError(f"rtol: must be a positive number, got {rtol!r}")
+    plant = gains.system.plant if plant is None else plant
+    window = {"steps": steps, "start": start, "length": length}
+    ref = closed_loop_response(gains, disturbance=disturbance, **window)
+    rows: list[tuple] = []
+    worst = 0.0
+    for i, (params, R2, R, circuit) in enumerate(_realizations(kind, gains, count, gen)):
+        res = simulate_realization(plant, R, disturbance, **window)
+        traces = _drive(circuit, res.delta_f[:, 0])
+        dev = max(
+            _deviation(res.delta_f, ref.delta_f),
+            _deviation(res.delta_r, ref.delta_r),
+            _deviation(traces.pop("output"), ref.delta_r[:, 0]),
+        )
+        if not dev <= rtol:
+            raise ParameterError(
+                f"plant: realization {i} ({kind}) departs from the optimal controller's closed "
+                f"loop by {dev:.3g} (relative), above rtol = {rtol:g}; is plant the one the "
+                "gains were computed for?"
+            )
+        worst = max(worst, dev)
+        keep = {n.name for n in circuit.neurons if kind == "ifp" or n.part == "G2"}
+        rows.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
+    names: list[str] = []
+    for *_, traces in rows:
+        names += [n for n in traces if n not in names]
+    firing = {
+        n: np.array([tr.get(n, np.full(ref.t.size, np.nan)) for *_, tr in rows]) for n in names
+    }
+    return FiringPatterns(
+        kind,
+        ref.t,
+        np.array([r[3].delta_f[:, 0] for r in rows]),
+        np.array([r[3].delta_r[:, 0] for r in rows]),
+        float(ref.f_bar[0]),
+        firing,
+        tuple(r[0] for r in rows),
+        tuple(r[1] for r in rows),
+        tuple(r[2] for r in rows),
+        ref,
+        worst,
+    )

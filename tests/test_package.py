@@ -1,0 +1,28 @@
+"""The package's public surface: every name resolves, and importing symctl is cheap."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+import symctl
+
+
+def test_every_public_name_resolves():
+    for name in symctl.__all__:
+        assert getattr(symctl, name) is not None, name
+    assert set(symctl.__all__) <= set(dir(symctl))
+
+
+def test_unknown_names_raise_attribute_error():
+    with pytest.raises(AttributeError, match="no_such_name"):
+        symctl.no_such_name  # noqa: B018
+
+
+def test_import_symctl_loads_no_heavy_module():
+    heavy = ("sympy", "scipy", "networkx", "control", "matplotlib", "flint")
+    code = f"import sys, symctl; print(sorted(m for m in {heavy!r} if m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
