@@ -44,6 +44,9 @@ _LOCATIONS = {
     "SymctlTypeError": "symctl.errors",
     "Factorization": "symctl.factor",
     "factor": "symctl.factor",
+    "FiringPatterns": "symctl.firing",
+    "FiringSummary": "symctl.firing",
+    "circuit_firing": "symctl.firing",
     "Gains": "symctl.lqr",
     "lqr_gains": "symctl.lqr",
     "DiscretePlant": "symctl.plant",
@@ -90,6 +93,8 @@ __all__ = [
     "DiscretePlant",
     "DiscreteTF",
     "Factorization",
+    "FiringPatterns",
+    "FiringSummary",
     "Gains",
     "Linearization",
     "MuscleModel",
@@ -109,6 +114,7 @@ __all__ = [
     "brute_force_compatibility",
     "check_compatibility",
     "check_realization",
+    "circuit_firing",
     "closed_loop_response",
     "controllable_canonical",
     "controller_compatibility",
@@ -167,6 +173,7 @@ if TYPE_CHECKING:  # static tools see the eager imports
         SymctlTypeError,
     )
     from symctl.factor import Factorization, factor
+    from symctl.firing import FiringPatterns, FiringSummary, circuit_firing
     from symctl.lqr import Gains, lqr_gains
     from symctl.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize
     from symctl.realization import (
