@@ -42,8 +42,8 @@ _LOCATIONS = {
     "ParseError": "symctl.errors",
     "SymctlError": "symctl.errors",
     "SymctlTypeError": "symctl.errors",
-    "Factorization": "symctl.factor",
-    "factor": "symctl.factor",
+    "Factorization": "symctl.factorization",
+    "factor": "symctl.factorization",
     "FiringPatterns": "symctl.firing",
     "FiringSummary": "symctl.firing",
     "circuit_firing": "symctl.firing",
@@ -172,7 +172,7 @@ if TYPE_CHECKING:  # static tools see the eager imports
         SymctlError,
         SymctlTypeError,
     )
-    from symctl.factor import Factorization, factor
+    from symctl.factorization import Factorization, factor
     from symctl.firing import FiringPatterns, FiringSummary, circuit_firing
     from symctl.lqr import Gains, lqr_gains
     from symctl.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize

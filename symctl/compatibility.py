@@ -792,7 +792,7 @@ class ControllerCompatibility(LatexMixin):
 
 
 def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
-    from symctl.factor import factor
+    from symctl.factorization import factor
     from symctl.realization import (
         controllable_canonical,
         controller_realization,

@@ -50,7 +50,7 @@ import sympy as sp
 
 from symctl.circuit import Circuit
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.factor import factor
+from symctl.factorization import factor
 from symctl.lqr import Gains
 from symctl.realization import (
     Realization,

@@ -453,7 +453,7 @@ def random_realization(
     (a NumPy ``Generator`` or an int).
 
     >>> from symctl import controller_tf
-    >>> from symctl.factor import factor
+    >>> from symctl.factorization import factor
     >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
     >>> sorted(str(k) for k in R.params)
     ['P', 'epsilon_1', 'epsilon_3']

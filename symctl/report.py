@@ -22,7 +22,7 @@ import sympy as sp
 
 from symctl.check import RealizationCheck, check_realization
 from symctl.delay import AugmentedSystem, augment
-from symctl.factor import Factorization, factor
+from symctl.factorization import Factorization, factor
 from symctl.lqr import Gains, lqr_gains
 from symctl.plant import DiscretePlant, MuscleModel
 from symctl.realization import (

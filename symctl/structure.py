@@ -376,7 +376,7 @@ class Structure(LatexMixin):
         *are* the inputs of the next (no extra block).
 
         >>> from symctl import controller_tf
-        >>> from symctl.factor import factor
+        >>> from symctl.factorization import factor
         >>> from symctl.realization import controllable_canonical, first_order_realization
         >>> f = factor(controller_tf(2))
         >>> G1 = first_order_realization(f.sensor_eps[0], f.sensor_C[0])

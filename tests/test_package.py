@@ -26,3 +26,14 @@ def test_import_symctl_loads_no_heavy_module():
     code = f"import sys, symctl; print(sorted(m for m in {heavy!r} if m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_public_names_are_not_shadowed_by_submodules():
+    import importlib
+    import pkgutil
+    import types
+
+    for info in pkgutil.iter_modules(symctl.__path__):
+        importlib.import_module(f"symctl.{info.name}")
+    for name in symctl.__all__:
+        assert not isinstance(getattr(symctl, name), types.ModuleType), name
