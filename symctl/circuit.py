@@ -98,7 +98,7 @@ from symctl.compatibility import CompatibilityResult
 from symctl.delaygraph import DelayAssignment
 from symctl.display import LatexMixin, latex
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.structure import Block, Structure, _finish_figure, _text_size
+from symctl.structure import Block, Structure, _figure_and_axes, _finish_figure, _text_size
 from symctl.symbols import z
 
 __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
@@ -764,7 +764,6 @@ def _layout(c: Circuit):
 
 
 def _draw(c: Circuit, ax, title):
-    from matplotlib.figure import Figure
     from matplotlib.patches import Circle, FancyArrowPatch
 
     col, row = _layout(c)
@@ -791,12 +790,7 @@ def _draw(c: Circuit, ax, title):
         body[n.name] = f"${tex}$"
         radius[n.name] = max(0.32, _text_width(body[n.name], _FONT) / 2 + 0.1)
 
-    if ax is None:
-        fig = Figure()
-        ax = fig.add_axes((0, 0, 1, 1))
-        own = True
-    else:
-        fig, own = ax.figure, False
+    fig, ax, own = _figure_and_axes(ax)
 
     extra: list[tuple[float, float]] = []  # arc label positions, for the extent
 

@@ -314,32 +314,30 @@ def _solve_search(problem: _Problem, max_decisions: int | None = None):
     def propagate(start) -> bool:
         queue = list(start)
         queued = set(queue)
+
+        def narrow(v: int, allowed, e: int) -> bool:
+            """Intersect v's domain with ``allowed`` (wire e); False when it empties."""
+            new = doms[v] & allowed
+            if new == doms[v]:
+                return True
+            pruning.add(e)
+            trail.append((v, doms[v]))
+            doms[v] = new
+            if not new:
+                return False
+            if v not in queued:
+                queued.add(v)
+                queue.append(v)
+            return True
+
         while queue:
             x = queue.pop()
             queued.discard(x)
             dx = doms[x]
-            for b, w, e in succ[x]:
-                nb = doms[b] & fwd(w, dx)
-                if nb != doms[b]:
-                    pruning.add(e)
-                    trail.append((b, doms[b]))
-                    doms[b] = nb
-                    if not nb:
-                        return False
-                    if b not in queued:
-                        queued.add(b)
-                        queue.append(b)
-            for a, w, e in pred[x]:
-                na = doms[a] & bwd(w, dx)
-                if na != doms[a]:
-                    pruning.add(e)
-                    trail.append((a, doms[a]))
-                    doms[a] = na
-                    if not na:
-                        return False
-                    if a not in queued:
-                        queued.add(a)
-                        queue.append(a)
+            if not all(narrow(b, fwd(w, dx), e) for b, w, e in succ[x]):
+                return False
+            if not all(narrow(a, bwd(w, dx), e) for a, w, e in pred[x]):
+                return False
         return True
 
     for s, v in problem.pins.items():

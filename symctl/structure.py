@@ -920,7 +920,6 @@ def _spread(count: int, half: float) -> list[float]:
 
 
 def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
-    from matplotlib.figure import Figure
 
     if len(S) > max_signals:
         raise ParameterError(
@@ -1076,12 +1075,7 @@ def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
         for (_, k), off in zip(sorted(entries), _spread(len(entries), half)[::-1], strict=True):
             rise[k] = pos[b][0] + off
 
-    if ax is None:
-        fig = Figure()
-        ax = fig.add_axes((0, 0, 1, 1))
-        own = True
-    else:
-        fig, own = ax.figure, False
+    fig, ax, own = _figure_and_axes(ax)
     wires = []  # (points, dashed)
 
     def out_point(a):
@@ -1168,6 +1162,16 @@ def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
         "dashed arrows: one-step delays   dots: signals"
     )
     return _finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, top=0.62)
+
+
+def _figure_and_axes(ax):
+    """``(fig, ax, own)``: a new pyplot-free figure filling one axes, or the caller's axes."""
+    from matplotlib.figure import Figure
+
+    if ax is None:
+        fig = Figure()
+        return fig, fig.add_axes((0, 0, 1, 1)), True
+    return ax.figure, ax, False
 
 
 def _finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float):
