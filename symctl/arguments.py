@@ -31,6 +31,7 @@ import sympy as sp
 from symctl.errors import DimensionError, ParameterError, ParseError, SymctlTypeError
 
 __all__ = [
+    "as_generator",
     "nonneg_int",
     "numeric_matrix",
     "parse_expr",
@@ -274,3 +275,12 @@ def parse_matrix(text: str, argname: str) -> sp.Matrix:
         raise ParseError(f"{argname}: rows of different lengths in {text!r}")
     entries = [[parse_expr(e, None, argname=argname) for e in row] for row in rows]
     return sp.Matrix(entries)
+
+
+def as_generator(value, argname: str) -> np.random.Generator:
+    """A NumPy ``Generator`` from a Generator, an int seed or None (fresh entropy)."""
+    if isinstance(value, np.random.Generator):
+        return value
+    if value is None or (isinstance(value, numbers.Integral) and not isinstance(value, bool)):
+        return np.random.default_rng(value)
+    raise SymctlTypeError(f"{argname}: expected an int seed or a numpy Generator, got {value!r}")

@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from symctl.arguments import as_generator
 from symctl.circuit import Circuit
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.factorization import factor
@@ -305,14 +306,6 @@ def _count(count, kind: str) -> int:
     return int(count)
 
 
-def _generator(seed) -> np.random.Generator:
-    if isinstance(seed, np.random.Generator):
-        return seed
-    if seed is None or (isinstance(seed, numbers.Integral) and not isinstance(seed, bool)):
-        return np.random.default_rng(seed)
-    raise SymctlTypeError(f"seed: expected an int or a numpy Generator, got {seed!r}")
-
-
 def _gains(gains) -> Gains:
     if not isinstance(gains, Gains):
         raise SymctlTypeError(
@@ -463,7 +456,7 @@ def circuit_firing(
     kind = _kind(kind)
     gains = _gains(gains)
     count = _count(count, kind)
-    gen = _generator(seed)
+    gen = as_generator(seed, "seed")
     if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not rtol > 0:
         raise ParameterError(f"rtol: must be a positive number, got {rtol!r}")
     plant = gains.system.plant if plant is None else plant

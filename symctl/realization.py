@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from symctl.arguments import to_expr, to_matrix
+from symctl.arguments import as_generator, to_expr, to_matrix
 from symctl.display import LatexMixin, latex
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -407,14 +407,6 @@ def _canonical(G2, base: str) -> Realization:
     raise ParameterError(f"base: must be 'controllable' or 'observable', got {base!r}")
 
 
-def _rng(rng) -> np.random.Generator:
-    if isinstance(rng, np.random.Generator):
-        return rng
-    if rng is None or (isinstance(rng, int) and not isinstance(rng, bool)):
-        return np.random.default_rng(rng)
-    raise SymctlTypeError(f"rng: expected a numpy Generator or an int seed, got {rng!r}")
-
-
 def _random_rational(
     gen: np.random.Generator, low: float, high: float, grid: int = 1000
 ) -> sp.Rational:
@@ -423,7 +415,7 @@ def _random_rational(
 
 def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 10.0) -> sp.Matrix:
     """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned."""
-    gen = _rng(rng)
+    gen = as_generator(rng, "rng")
     for _ in range(10_000):
         P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
         if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
@@ -458,7 +450,7 @@ def random_realization(
     >>> sorted(str(k) for k in R.params)
     ['P', 'epsilon_1', 'epsilon_3']
     """
-    gen = _rng(rng)
+    gen = as_generator(rng, "rng")
     tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
     if values:
         tf = tf.subs(values)
