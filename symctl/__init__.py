@@ -139,7 +139,12 @@ __all__ = [
 ]
 
 
+_SUBMODULES = ("latex",)  # modules reached as attributes: ``symctl.latex.export(...)``
+
+
 def __getattr__(name: str):
+    if name in _SUBMODULES:
+        return importlib.import_module(f"symctl.{name}")
     module = _LOCATIONS.get(name)
     if module is None:
         raise AttributeError(f"module 'symctl' has no attribute {name!r}")
@@ -149,7 +154,7 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+    return sorted(set(globals()) | set(__all__) | set(_SUBMODULES))
 
 
 if TYPE_CHECKING:  # static tools see the eager imports

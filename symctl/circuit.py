@@ -508,8 +508,11 @@ class Circuit(LatexMixin):
         return CircuitSystem(*mats, states, S.inputs, out_names)
 
     # ------------------------------------------------------------ display
-    def equations(self) -> list[str]:
+    def equations(self, digits: int | None = None) -> list[str]:
         r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
+
+        ``digits``, when given, rounds the weights' numbers to that many
+        significant digits (exact fractions included).
 
         >>> from symctl.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
@@ -518,11 +521,17 @@ class Circuit(LatexMixin):
         >>> c.equations()
         ['x_{1}(t) = \\epsilon_{1}\\, x_{1}(t-1) + C_{1}\\, u(t-1)']
         """
+        if digits is not None and (
+            isinstance(digits, bool) or not isinstance(digits, int) or digits < 1
+        ):
+            raise ParameterError(f"digits: must be an integer >= 1 or None, got {digits!r}")
         out = []
         for n in self.neurons:
             terms = []
             for s in (*n.self_terms, *n.synapses):
                 w = sp.sympify(s.weight)
+                if digits is not None:
+                    w = _rounded(w, digits)
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
                 if isinstance(w, sp.Add):
                     tex = rf"\left({latex(w)}\right)\,"
@@ -585,6 +594,17 @@ class Circuit(LatexMixin):
 
 
 # ---------------------------------------------------------------- helpers
+def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
+    """``w`` with its numbers (floats and fractions) shown to ``digits`` significant digits."""
+
+    def short(a):
+        return sp.Integer(a) if a == int(a) else sp.Float(a, digits)
+
+    if w.is_number:
+        return short(w)
+    return w.xreplace({a: short(a) for a in w.atoms(sp.Float, sp.Rational) if not a.is_Integer})
+
+
 def _is_neuron(block: Block) -> bool:
     return block.kind == "sum" and len(block.inputs) >= 2
 

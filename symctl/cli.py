@@ -7,6 +7,7 @@ prints one line (``symctl: error: ...``) and exits with code 2.
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
 import click
@@ -60,19 +61,58 @@ def cli() -> None:
     "--seed", type=int, default=0, show_default=True, help="Seed for the random realizations."
 )
 @click.option(
+    "--realizations",
+    type=click.IntRange(min=1),
+    default=4,
+    show_default=True,
+    help="Random realizations simulated per circuit.",
+)
+@click.option(
     "--out",
     type=click.Path(file_okay=False, path_type=Path),
     default=Path("out/paper"),
     show_default=True,
     help="Output folder.",
 )
-def paper(tau, f_max, r_bar, ts, sensor_delay, actuator_delay, q_text, r_text, seed, out) -> None:
-    """Run the paper's derivation and write its results into OUT."""
+@click.option("--figures/--no-figures", default=True, show_default=True, help="Write the figures.")
+@click.option(
+    "--pdf/--no-pdf",
+    default=True,
+    show_default=True,
+    help="Compile derivation.pdf (when pdflatex is installed).",
+)
+@click.option(
+    "--jobs",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Processes drawing the figures [default: CPUs, at most 4].",
+)
+def paper(
+    tau,
+    f_max,
+    r_bar,
+    ts,
+    sensor_delay,
+    actuator_delay,
+    q_text,
+    r_text,
+    seed,
+    realizations,
+    out,
+    figures,
+    pdf,
+    jobs,
+) -> None:
+    """Run the paper's derivation and write it into OUT.
+
+    Writes results.json, derivation.tex (and derivation.pdf), report.md and the
+    figures (PNG and SVG).
+    """
     from symctl.report import derive_paper  # imported here: keeps `symctl --help` fast
 
     Q = parse_matrix(q_text, "--q")
     R = parse_matrix(r_text, "--r")
-    with _console.status("deriving") as status:
+    with _Steps() as steps:
         res = derive_paper(
             tau=tau,
             f_max=f_max,
@@ -83,12 +123,63 @@ def paper(tau, f_max, r_bar, ts, sensor_delay, actuator_delay, q_text, r_text, s
             Q=Q,
             R=R,
             seed=seed,
-            progress=lambda name: status.update(f"deriving: {name}"),
+            realizations=realizations,
+            progress=steps.start,
         )
-        written = res.write(out)
+        written = res.write(out, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start)
     _summary(res)
-    for path in written:
-        _console.print(f"wrote {path}", markup=False, soft_wrap=True, highlight=False)
+    _written(out, written, pdf)
+
+
+class _Steps:
+    """The progress display: a spinner on the running step, a line with its time when done."""
+
+    def __init__(self) -> None:
+        self._status = _console.status("starting")
+        self._name: str | None = None
+        self._t0 = 0.0
+        self._start = 0.0
+
+    def __enter__(self) -> _Steps:
+        self._start = time.perf_counter()
+        self._status.__enter__()
+        return self
+
+    def start(self, name: str) -> None:
+        self._done()
+        self._name, self._t0 = name, time.perf_counter()
+        self._status.update(f"{name} ...")
+
+    def _done(self) -> None:
+        if self._name is not None:
+            took = time.perf_counter() - self._t0
+            _console.print(f"  done  {self._name:<14} {took:6.2f} s", markup=False, highlight=False)
+            self._name = None
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        if exc_type is None:
+            self._done()
+            total = time.perf_counter() - self._start
+            _console.print(f"  total {'':<14} {total:6.2f} s", markup=False, highlight=False)
+        self._status.__exit__(exc_type, exc, tb)
+
+
+def _written(out: Path, written: list[Path], pdf: bool) -> None:
+    names = [p.name for p in written]
+    figures = sorted({p.stem for p in written if p.suffix == ".png"})
+    docs = [n for n in names if not n.endswith((".png", ".svg"))]
+    line = f"wrote {out}/: " + ", ".join(docs)
+    if figures:
+        line += f", {len(figures)} figures (PNG and SVG): " + ", ".join(figures)
+    _console.print(line, markup=False, soft_wrap=True, highlight=False)
+    if pdf and "derivation.pdf" not in names:
+        _console.print(
+            "note: pdflatex not found, derivation.pdf not compiled (install TeX Live's "
+            "texlive-latex-base)",
+            markup=False,
+            soft_wrap=True,
+            highlight=False,
+        )
 
 
 def _summary(res) -> None:
@@ -140,6 +231,21 @@ def _summary(res) -> None:
         table.add_row(name, f"{value:.6f}")
     table.add_row("spectral radius", f"{data['closed_loop']['spectral_radius']:.6f}")
     _console.print(table)
+
+    circuits = Table(title="circuits (closed loop against the optimal controller)")
+    for head in ("circuit", "neurons", "in G2", "compatible", "realizations", "max deviation"):
+        circuits.add_column(head, justify="left" if head == "circuit" else "right")
+    for name, c in data["circuits"].items():
+        g2 = c["neurons"]["G2"]
+        circuits.add_row(
+            name,
+            str(c["neurons"]["count"]),
+            "-" if g2 is None else str(g2),
+            "yes" if c["compatible"] else "no",
+            str(len(c["realizations"])),
+            f"{c['max_closed_loop_deviation']:.1e}",
+        )
+    _console.print(circuits)
 
 
 def _fmt(values) -> str:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 __all__ = [
     "DimensionError",
+    "LatexError",
     "NotStabilizableError",
     "ParameterError",
     "ParseError",
@@ -36,6 +37,10 @@ class NotStabilizableError(SymctlError):
 
 class ParseError(SymctlError):
     """User text that is not an admissible expression."""
+
+
+class LatexError(SymctlError):
+    """``pdflatex`` failed on a document symctl wrote (a bug in symctl: please report it)."""
 
 
 class SymctlTypeError(TypeError):

@@ -21,8 +21,12 @@ import numpy as np
 import sympy as sp
 
 from symctl.check import RealizationCheck, check_realization
+from symctl.circuit import Circuit
+from symctl.compatibility import CompatibilityResult, check_compatibility
 from symctl.delay import AugmentedSystem, augment
+from symctl.delaygraph import DelayGraph
 from symctl.factorization import Factorization, factor
+from symctl.firing import FiringPatterns, circuit_firing
 from symctl.lqr import Gains, lqr_gains
 from symctl.plant import DiscretePlant, MuscleModel
 from symctl.realization import (
@@ -30,14 +34,24 @@ from symctl.realization import (
     controllable_canonical,
     general_realization,
     observable_canonical,
-    random_realization,
 )
+from symctl.simulate import (
+    NonlinearCheck,
+    Response,
+    closed_loop_response,
+    nonlinear_check,
+    open_loop_response,
+)
+from symctl.structure import Structure, ifp_structure
 from symctl.transfer import DiscreteTF, controller_tf, descending_str, prove_controller_tf
 
-__all__ = ["PaperResults", "derive_paper"]
+__all__ = ["CIRCUITS", "CircuitRecord", "PaperResults", "RealizationRecord", "derive_paper"]
 
 SCHEMA_VERSION = 1
 SYMBOLIC_P_MAX_ORDER = 3  # the general realization keeps a fully symbolic P up to this order
+DEFAULT_REALIZATIONS = 4  # simulated realizations per circuit (the IFP controller has one)
+CIRCUITS = ("ifp", "general", "controllable", "observable")
+"""The circuits of the report: the IFP controller, and G3 G2 G1 with each realization of G2."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,6 +69,11 @@ class PaperResults:
     seed: int
     factors: Factorization
     realizations: dict
+    graph: DelayGraph
+    circuits: dict
+    open_loop: Response
+    closed_loop: Response
+    nonlinear: NonlinearCheck
 
     def to_json(self) -> dict:
         """A JSON-ready dictionary (plain lists and floats)."""
@@ -112,6 +131,33 @@ class PaperResults:
                 "poles": [[float(p.real), float(p.imag)] for p in self.gains.poles],
                 "spectral_radius": self.gains.spectral_radius,
             },
+            "delay_graph": {
+                "E": _delays(self.graph.E),
+                "vertices": self.graph.n,
+                "chain_delays": list(self.graph.chain_delays or ()),
+            },
+            "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
+            "simulation": self._simulation_json(),
+        }
+
+    def _simulation_json(self) -> dict:
+        ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
+        return {
+            "t": _floats(cl.t),
+            "open_loop": {
+                "pulse": _floats(ol.delta_r[:, 0]),
+                "delta_f": _floats(ol.delta_f[:, 0]),
+            },
+            "closed_loop": {
+                "disturbance": _floats(cl.w[:, 0]),
+                "delta_f": _floats(cl.delta_f[:, 0]),
+                "delta_r": _floats(cl.delta_r[:, 0]),
+            },
+            "nonlinear": {
+                "amplitudes": _floats(nl.amplitudes),
+                "max_deviation": _floats(nl.max_deviation),
+                "relative_deviation": _floats(nl.relative_deviation),
+            },
         }
 
     def _factorization_json(self) -> dict:
@@ -138,12 +184,54 @@ class PaperResults:
             "realizations": reals,
         }
 
-    def write(self, out: Path) -> list[Path]:
-        """Write the outputs into folder ``out``; returns the paths written."""
+    def write(
+        self,
+        out: Path,
+        *,
+        figures: bool = True,
+        pdf: bool = True,
+        jobs: int | None = None,
+        progress: Callable[[str], None] | None = None,
+    ) -> list[Path]:
+        """Write the outputs into folder ``out``; returns the paths written.
+
+        ``results.json``, ``derivation.tex`` and ``report.md``; with ``figures``
+        the figures as PNG and SVG (:func:`symctl.figures.paper_figures`); with
+        ``pdf`` also ``derivation.pdf`` when ``pdflatex`` is on the PATH. ``jobs``
+        is the number of processes drawing figures
+        (:func:`symctl.figures.write_figures`).
+        """
+        from symctl import derivation
+        from symctl import figures as figs
+
+        step = progress or (lambda _name: None)
+        out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
+        written = []
         path = out / "results.json"
-        path.write_text(json.dumps(self.to_json(), indent=2) + "\n")
-        return [path]
+        path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")
+        written.append(path)
+        names: list[str] = []
+        if figures:
+            step("figures")
+            paths = figs.write_figures(self, out, jobs=jobs)
+            names = [p.stem for p in paths if p.suffix == ".png"]
+            written += paths
+        step("documents")
+        story = derivation.story(self, figures=names)
+        written.append(derivation.write_tex(story, out / "derivation.tex"))
+        written.append(derivation.write_markdown(story, out / "report.md"))
+        if pdf:
+            step("pdflatex")
+            compiled = derivation.compile_pdf(out / "derivation.tex")
+            if compiled is not None:
+                written.append(compiled)
+        return written
+
+
+def _section_C(params: dict) -> list[str]:
+    """The C of each section drawn (all 1 in :func:`~symctl.firing.circuit_firing`)."""
+    return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
 
 
 def _poly_text(value) -> str | list:
@@ -164,6 +252,18 @@ def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
     return np.array(mat.evalf(), dtype=float).tolist()
 
 
+def _delays(E: np.ndarray) -> list[list[int | None]]:
+    """A delay matrix for JSON: integers, ``None`` for infinity (no path)."""
+    return [[None if np.isinf(v) else int(v) for v in row] for row in np.asarray(E)]
+
+
+def _value(v):
+    """An exact or numeric parameter value for JSON (a float, or nested lists for a matrix)."""
+    if isinstance(v, sp.MatrixBase | np.ndarray):
+        return np.array(sp.Matrix(v).evalf(), dtype=float).tolist()
+    return float(v)
+
+
 def derive_paper(
     tau: float = 0.02,
     f_max: float = 60.0,
@@ -174,11 +274,14 @@ def derive_paper(
     Q=None,
     R=None,
     seed: int = 0,
+    realizations: int = DEFAULT_REALIZATIONS,
     progress: Callable[[str], None] | None = None,
 ) -> PaperResults:
     """Run the derivation on the paper's muscle; every argument defaults to the paper's value.
 
-    ``progress`` is called with the name of each step before it runs.
+    ``realizations`` is the number of random realizations simulated per circuit
+    (the IFP controller has one). ``progress`` is called with the name of each
+    step before it runs.
     """
     step = progress or (lambda _name: None)
     step("plant")
@@ -195,7 +298,30 @@ def derive_paper(
     G = G_symbolic.subs(gains.substitutions())
     step("factorization")
     factors = factor(G_symbolic, sensor_delay, actuator_delay)
-    realizations = _realizations(factors, gains, seed)
+    step("simulation")
+    firing = {
+        k: circuit_firing(k, gains, count=1 if k == "ifp" else realizations, seed=seed)
+        for k in CIRCUITS
+    }
+    step("realizations")
+    records = _realizations(factors, gains, {k: firing[k].params[0] for k in CIRCUITS[1:]})
+    step("compatibility")
+    graph = DelayGraph.chain([1] * system.T)
+    structures = {"ifp": ifp_structure(system.T)}
+    structures.update(
+        {k: Structure.from_factorization(factors, records[k].symbolic) for k in CIRCUITS[1:]}
+    )
+    verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
+    circuits = {
+        k: CircuitRecord(
+            k,
+            structures[k],
+            verdicts[k],
+            Circuit.from_structure(structures[k], verdicts[k] if verdicts[k].ok else None),
+            firing[k],
+        )
+        for k in CIRCUITS
+    }
     return PaperResults(
         model,
         plant_symbolic,
@@ -207,8 +333,67 @@ def derive_paper(
         proved,
         seed,
         factors,
-        realizations,
+        records,
+        graph,
+        circuits,
+        open_loop_response(plant),
+        closed_loop_response(gains),
+        nonlinear_check(model, gains),
     )
+
+
+@dataclass(frozen=True, eq=False)
+class CircuitRecord:
+    """One circuit of the report: its structure, compatibility, neurons and simulations.
+
+    ``structure`` and ``circuit`` are symbolic (for ``"general"`` with the
+    symbolic or seeded ``P`` of :class:`RealizationRecord`); ``firing`` holds
+    the closed-loop simulations of the random realizations
+    (:func:`~symctl.firing.circuit_firing`).
+    """
+
+    name: str
+    structure: Structure
+    compatibility: CompatibilityResult
+    circuit: Circuit
+    firing: FiringPatterns
+
+    @property
+    def g2_neurons(self) -> int | None:
+        """The neurons of the G2 part (None for the IFP controller, which has no G2)."""
+        if self.name == "ifp":
+            return None
+        return sum(1 for n in self.circuit.neurons if n.part == "G2")
+
+    def to_json(self) -> dict:
+        c, fp, verdict = self.circuit, self.firing, self.compatibility
+        return {
+            "neurons": {
+                "count": c.n_neurons,
+                "G2": self.g2_neurons,
+                "names": [n.name for n in c.neurons],
+                "vertices": {n.name: n.vertex for n in c.neurons},
+                "branches": {n.name: n.branches for n in c.neurons},
+            },
+            "synapses": len(c.synapses),
+            "signals": len(self.structure.signals),
+            "compatible": verdict.ok,
+            "compatibility": {
+                "method": verdict.method,
+                "reason": verdict.reason,
+                "E_tilde": _delays(verdict.E_tilde) if verdict.ok else None,
+            },
+            "max_closed_loop_deviation": fp.max_deviation,
+            "realizations": [
+                {str(k): _value(v) for k, v in params.items()}
+                | {c: 1.0 for c in _section_C(params)}
+                for params in fp.params
+            ],
+            "peak_firing": {
+                name: [None if np.isnan(v) else float(v) for v in fp.summary().peak[:, i]]
+                for i, name in enumerate(fp.neurons)
+            },
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -223,39 +408,43 @@ class RealizationRecord:
     check_numeric: RealizationCheck
 
 
-def _realizations(factors: Factorization, gains: Gains, seed: int) -> dict[str, RealizationRecord]:
+def _realizations(
+    factors: Factorization, gains: Gains, drawn: dict[str, dict]
+) -> dict[str, RealizationRecord]:
     """The paper's three realizations of G2: controllable and observable canonical, general.
 
     Symbolic forms keep K, eps and C (and, up to order
     :data:`SYMBOLIC_P_MAX_ORDER`, a fully symbolic ``P`` for the general one;
     above it the seeded random ``P``); numeric ones use the optimal gains (as
     the exact rationals of their binary floats, so that the checks stay exact),
-    C = 1 on every section, and (general) random eps and a random full-rank P
-    drawn from ``seed`` as the paper describes.
+    C = 1 on every section and ``drawn[name]``, the epsilons (and for the
+    general one ``P``) of the first simulated realization of that circuit.
     """
-    rng = np.random.default_rng(seed)
     unit_C = {c: 1 for c in (*factors.sensor_C, *factors.actuator_C)}
     exact_gains = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
     G2_gains = factors.G2.subs(exact_gains).subs(unit_C)
-    general = random_realization(G2_gains, rng)
-    eps_values = {k: v for k, v in general.params.items() if isinstance(k, sp.Symbol)}
-    G2_num = G2_gains.subs(eps_values)
-    n = general.n
-    if n <= SYMBOLIC_P_MAX_ORDER:
-        P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})"))
-    else:  # a fully symbolic P costs minutes beyond order 3: use the seeded one
-        P = general.params["P"]
     out = {}
-    for name, symbolic, numeric in (
-        ("controllable", controllable_canonical(factors.G2), controllable_canonical(G2_num)),
-        ("observable", observable_canonical(factors.G2), observable_canonical(G2_num)),
-        ("general", general_realization(factors.G2, P), general),
-    ):
+    for name in ("controllable", "observable", "general"):
+        eps = {k: v for k, v in drawn[name].items() if isinstance(k, sp.Symbol)}
+        G2_num = G2_gains.subs(eps)
+        if name == "controllable":
+            symbolic, numeric = controllable_canonical(factors.G2), controllable_canonical(G2_num)
+        elif name == "observable":
+            symbolic, numeric = observable_canonical(factors.G2), observable_canonical(G2_num)
+        else:
+            P_num = drawn[name]["P"]
+            n = P_num.shape[0]
+            if n <= SYMBOLIC_P_MAX_ORDER:
+                P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})"))
+            else:  # a fully symbolic P costs minutes beyond order 3: use the drawn one
+                P = P_num
+            symbolic = general_realization(factors.G2, P)
+            numeric = general_realization(G2_num, P_num)
         out[name] = RealizationRecord(
             name,
             symbolic,
             numeric,
-            {**{str(k): v for k, v in eps_values.items()}, **{str(k): 1 for k in unit_C}},
+            {**{str(k): v for k, v in eps.items()}, **{str(k): 1 for k in unit_C}},
             check_realization(symbolic, factors.G2),
             check_realization(numeric, G2_num),
         )

@@ -1180,11 +1180,18 @@ def _finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: floa
     Shared by structure and circuit drawings (one data unit is one inch).
     """
     x_lo, x_hi, y_lo, y_hi = bounds
-    ax.text(x_lo + 0.1, y_hi + 0.3, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(x_lo + 0.1, y_hi + 0.1, key, ha="left", va="bottom", fontsize=7.5, color="0.35")
-    width = max(_text_size(heading, 10)[0], _text_size(key, 7.5)[0]) + 0.3
-    x_hi = max(x_hi, x_lo + width)
-    y_hi += top
+    # TextPath measures the glyph outlines; rendered text runs a few percent wider
+    room = max(x_hi - x_lo, 4.0) - 0.3
+    lines = _wrap_key(key.split("   "), room, 7.5)
+    extra = 0.14 * (len(lines) - 1)
+    ax.text(x_lo + 0.1, y_hi + 0.3 + extra, heading, ha="left", va="bottom", fontsize=10)
+    ax.text(x_lo + 0.1, y_hi + 0.1, "\n".join(lines), ha="left", va="bottom", fontsize=7.5,
+            color="0.35", linespacing=1.3)  # fmt: skip
+    width = 1.08 * max(
+        _text_size(t, s)[0] for t, s in [(heading, 10), *((ln, 7.5) for ln in lines)]
+    )
+    x_hi = max(x_hi, x_lo + width + 0.3)
+    y_hi += top + extra
     ax.set_xlim(x_lo, x_hi)
     ax.set_ylim(y_lo, y_hi)
     ax.set_aspect("equal")
@@ -1192,6 +1199,17 @@ def _finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: floa
     if own:
         fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
     return fig
+
+
+def _wrap_key(items: list[str], room: float, size: float) -> list[str]:
+    """Pack the key's items into lines no wider than ``room`` inches (one item may overflow)."""
+    lines: list[str] = []
+    for item in items:
+        if lines and 1.08 * _text_size(lines[-1] + "   " + item, size)[0] <= room:
+            lines[-1] += "   " + item
+        else:
+            lines.append(item)
+    return lines
 
 
 def _assign_lanes(side, drop, rise, boxes, span) -> dict[int, int]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 
 import numpy as np
 import pytest
@@ -22,3 +23,14 @@ settings.load_profile("symctl")
 @pytest.fixture
 def rng() -> np.random.Generator:
     return np.random.default_rng(12345)
+
+
+@pytest.fixture
+def pdflatex() -> str:
+    """The pdflatex executable; skips the test without it (fails where CI requires it)."""
+    exe = shutil.which("pdflatex")
+    if exe is None:
+        if os.environ.get("SYMCTL_REQUIRE_PDFLATEX"):
+            pytest.fail("pdflatex is required (SYMCTL_REQUIRE_PDFLATEX is set) but not installed")
+        pytest.skip("pdflatex is not installed (Debian: apt-get install texlive-latex-base)")
+    return exe

@@ -12,7 +12,7 @@ from symctl.cli import main
 
 
 def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
-    assert main(["paper", "--out", str(tmp_path)]) == 0
+    assert main(["paper", "--out", str(tmp_path), "--no-figures", "--no-pdf"]) == 0
     data = json.loads((tmp_path / "results.json").read_text())
     assert data["parameters"]["tau"] == 0.02 and data["parameters"]["seed"] == 0
     assert round(data["plant"]["f_bar"], 4) == 43.8635
@@ -30,8 +30,8 @@ def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
 def test_paper_options_are_used(tmp_path):
     args = ["paper", "--out", str(tmp_path), "--tau", "0.05", "--sensor-delay", "2"]
     args += ["--actuator-delay", "3", "--q", "2", "--r", "[[0.5]]", "--seed", "7"]
-    args += ["--f-max", "80", "--r-bar", "0.5", "--ts", "0.005"]
-    assert main(args) == 0
+    args += ["--f-max", "80", "--r-bar", "0.5", "--ts", "0.005", "--realizations", "2"]
+    assert main([*args, "--no-figures", "--no-pdf"]) == 0
     data = json.loads((tmp_path / "results.json").read_text())
     p = data["parameters"]
     assert (p["tau"], p["f_max"], p["r_bar"], p["Ts"]) == (0.05, 80, 0.5, 0.005)
@@ -39,6 +39,11 @@ def test_paper_options_are_used(tmp_path):
     assert p["Q"] == [[2.0]] and p["R"] == [[0.5]]
     assert len(data["gains"]["K"][0]) == 6
     assert len(data["controller"]["denominator"]) == 6
+    assert data["delay_graph"]["chain_delays"] == [1, 1, 1, 1, 1]
+    assert all(len(c["realizations"]) == (1 if k == "ifp" else 2)
+               for k, c in data["circuits"].items())  # fmt: skip
+    assert data["circuits"]["controllable"]["neurons"]["count"] == 2 + 2 + 3
+    assert (tmp_path / "derivation.tex").exists() and not (tmp_path / "open_loop.png").exists()
 
 
 @pytest.mark.parametrize(
@@ -54,6 +59,8 @@ def test_paper_options_are_used(tmp_path):
         (["--q", "__import__('os')"], "--q"),
         (["--tau", "abc"], "tau"),
         (["--no-such-option"], "no-such-option"),
+        (["--realizations", "0"], "realizations"),
+        (["--jobs", "0"], "jobs"),
     ],
 )
 def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):

@@ -37,3 +37,9 @@ def test_public_names_are_not_shadowed_by_submodules():
         importlib.import_module(f"symctl.{info.name}")
     for name in symctl.__all__:
         assert not isinstance(getattr(symctl, name), types.ModuleType), name
+
+
+def test_latex_module_is_reached_as_an_attribute():
+    code = "import symctl; print(symctl.latex.export.__module__)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "symctl.latex"

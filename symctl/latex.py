@@ -1,0 +1,348 @@
+r"""LaTeX export of derived objects and equations, for papers, Jupyter and scripts.
+
+Every derived object of symctl (plant, augmented system, gains, transfer
+function, factorization, realization, delay graph, delay assignment,
+compatibility verdict, circuit) and any sympy expression, matrix or equation
+can be written as LaTeX with the paper's symbol names (:math:`\delta_f`,
+:math:`\gamma`, :math:`\mu`, :math:`\epsilon_1`, :math:`\bar r`, ...):
+
+* :func:`to_latex` -- the math of one object (no environment);
+* :func:`equations` -- an object as ``(lhs, rhs)`` pairs of LaTeX;
+* :func:`equation` and :func:`align` -- ``equation`` / ``align`` environments
+  with labels (``equation*`` / ``align*`` when unnumbered);
+* :func:`export` -- any derived object, or a list of them, as one environment;
+* :func:`document` -- a standalone document that compiles with ``pdflatex``
+  (only packages of TeX Live's ``texlive-latex-base``).
+
+In Jupyter, ``IPython.display.Math(to_latex(obj))`` renders one object, and
+every derived object already shows itself as LaTeX (``_repr_latex_``).
+
+>>> from symctl import controller_tf, factor
+>>> print(export(factor(controller_tf(2)).G1, name="G_1(z)", label="eq:G1"))
+\begin{equation}
+  G_1(z) = \frac{C_{1}}{z - \epsilon_{1}}
+  \label{eq:G1}
+\end{equation}
+>>> import sympy as sp
+>>> from symctl.symbols import delta_f, delta_r
+>>> print(align([sp.Eq(delta_r, 2 * delta_f), ("y", 1.5e-7)], numbered=False))
+\begin{align*}
+  \delta_r &= 2 \delta_f \\
+  y &= 1.5 \times 10^{-7}
+\end{align*}
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+import sympy as sp
+
+from symctl.circuit import Circuit
+from symctl.compatibility import CompatibilityResult, ControllerCompatibility
+from symctl.delay import AugmentedSystem
+from symctl.delaygraph import DelayAssignment, DelayGraph
+from symctl.display import latex as _sympy_latex
+from symctl.errors import ParameterError, SymctlTypeError
+from symctl.factorization import Factorization
+from symctl.lqr import Gains
+from symctl.plant import DiscretePlant, Linearization, MuscleModel
+from symctl.realization import Realization
+from symctl.transfer import DiscreteTF
+
+__all__ = ["align", "document", "equation", "equations", "export", "number", "to_latex"]
+
+DIGITS = 6
+"""Significant digits of numbers written by :func:`to_latex`."""
+
+_LABEL = re.compile(r"[A-Za-z0-9:._\-]+")
+PACKAGES = ("amsmath", "amssymb", "graphicx")
+"""The packages :func:`document` loads (all in TeX Live's ``texlive-latex-base``)."""
+
+
+# ---------------------------------------------------------------- one object
+def number(value: float, digits: int = DIGITS) -> str:
+    r"""A real number in LaTeX: ``digits`` significant digits, powers of ten, :math:`\infty`.
+
+    >>> number(0.000123456789), number(float("inf")), number(-2.0), number(1e20)
+    ('0.000123457', '\\infty', '-2', '1 \\times 10^{20}')
+    """
+    x = float(value)
+    if math.isnan(x):
+        return r"\mathrm{NaN}"
+    if math.isinf(x):
+        return r"\infty" if x > 0 else r"-\infty"
+    text = f"{x:.{digits}g}"
+    mantissa, e, exponent = text.partition("e")
+    if not e:
+        return text
+    return rf"{mantissa} \times 10^{{{int(exponent)}}}"
+
+
+def _array_latex(arr: np.ndarray, digits: int) -> str:
+    if arr.ndim == 0:
+        return number(arr, digits)
+    rows = arr.reshape(arr.shape[0], -1) if arr.ndim == 2 else arr.reshape(-1, 1)
+    if arr.ndim > 2:
+        raise ParameterError(f"obj: arrays of at most 2 dimensions, got shape {arr.shape}")
+    body = r" \\ ".join(" & ".join(number(v, digits) for v in row) for row in rows)
+    return r"\begin{bmatrix}" + body + r"\end{bmatrix}"
+
+
+def _round_floats(expr, digits: int):
+    """``expr`` with its floats shortened to ``digits`` significant digits."""
+    floats = {f: sp.Float(f, digits) for f in expr.atoms(sp.Float)}
+    return expr.xreplace(floats) if floats else expr
+
+
+def to_latex(obj, *, digits: int = DIGITS) -> str:
+    r"""LaTeX of one object, without an environment.
+
+    ``obj`` may be a sympy expression, matrix or :class:`~sympy.core.relational.Eq`
+    (written with the paper's symbol names, floats to ``digits`` digits), a
+    number or NumPy array (a ``bmatrix``, :math:`\infty` for ``inf``), a string
+    (taken as LaTeX already), or any object with a ``latex()`` method (every
+    derived object of symctl).
+
+    >>> import numpy as np
+    >>> to_latex(np.array([[0.0, 1.0], [np.inf, 0.0]]))
+    '\\begin{bmatrix}0 & 1 \\\\ \\infty & 0\\end{bmatrix}'
+    >>> from symctl.symbols import epsilon_1, gain_symbols
+    >>> K0, K1, K2 = gain_symbols(2)
+    >>> to_latex(K1 - epsilon_1 + 0.123456789)
+    'K_{1} - \\epsilon_{1} + 0.123457'
+    """
+    if not isinstance(digits, int) or isinstance(digits, bool) or digits < 1:
+        raise ParameterError(f"digits: must be an integer >= 1, got {digits!r}")
+    if isinstance(obj, str):
+        return obj
+    if isinstance(obj, sp.Basic | sp.MatrixBase):
+        return _sympy_latex(_round_floats(obj, digits))
+    if isinstance(obj, numbers.Number) and not isinstance(obj, bool):
+        if isinstance(obj, numbers.Integral):
+            return str(int(obj))
+        return number(obj, digits)
+    if isinstance(obj, np.ndarray | list | tuple):
+        try:
+            arr = np.asarray(obj, dtype=float)
+        except (TypeError, ValueError):
+            arr = None
+        if arr is not None:
+            return _array_latex(arr, digits)
+        if isinstance(obj, list | tuple) and obj and all(isinstance(e, sp.Basic) for e in obj):
+            return _sympy_latex(sp.Matrix(obj))
+    method = getattr(obj, "latex", None)
+    if callable(method):
+        return method()
+    raise SymctlTypeError(
+        f"obj: cannot write a {type(obj).__name__} as LaTeX (expected a sympy object, a number, "
+        "an array, a string or a derived object of symctl)"
+    )
+
+
+# ---------------------------------------------------------------- objects as equations
+def _chi(system: AugmentedSystem) -> sp.Matrix:
+    return sp.Matrix([sp.Symbol(s) for s in system.state_names])
+
+
+def _pairs(obj, digits: int) -> list[tuple[str | None, str]]:
+    def tex(value) -> str:
+        return to_latex(value, digits=digits)
+
+    if isinstance(obj, sp.Eq):
+        return [(tex(obj.lhs), tex(obj.rhs))]
+    if isinstance(obj, MuscleModel):
+        return [(r"\frac{df}{dt}", tex(obj.ode)), (r"\bar f", tex(obj.f_bar_symbolic))]
+    if isinstance(obj, Linearization):
+        return [("a", tex(obj.a)), ("b", tex(obj.b))]
+    if isinstance(obj, DiscretePlant):
+        return [("A", tex(obj.A)), ("B", tex(obj.B))]
+    if isinstance(obj, AugmentedSystem):
+        return [
+            (r"\chi", tex(_chi(obj))),
+            (r"\tilde A", tex(obj.A)),
+            (r"\tilde B", tex(obj.B)),
+            (r"\tilde Q", tex(obj.Q)),
+        ]
+    if isinstance(obj, Gains):
+        return [("K", tex(np.asarray(obj.K, dtype=float)))]
+    if isinstance(obj, DiscreteTF):
+        return [("G(z)", obj.latex())]
+    if isinstance(obj, Factorization):
+        return [
+            ("G_1(z)", obj.G1.latex()),
+            ("G_2(z)", obj.G2.latex()),
+            ("G_3(z)", obj.G3.latex()),
+            ("N", tex(obj.N)),
+        ]
+    if isinstance(obj, Realization):
+        return [(k, tex(getattr(obj, k))) for k in "FHMN"]
+    if isinstance(obj, DelayGraph):
+        return [("E", _array_latex(obj.E, digits))]
+    if isinstance(obj, DelayAssignment):
+        return [(r"\tilde E", _array_latex(obj.E_tilde, digits))]
+    if isinstance(obj, CompatibilityResult):
+        if obj.ok:
+            return [(r"\tilde E", _array_latex(obj.E_tilde, digits) + r" \ge E")]
+        return [(None, r"\text{not compatible (" + obj.method + ")}")]
+    if isinstance(obj, ControllerCompatibility):
+        return [(None, obj.latex())]
+    if isinstance(obj, Circuit):
+        return [tuple(eq.split(" = ", 1)) for eq in obj.equations()]
+    if isinstance(obj, Mapping):
+        return [(tex(k), tex(v)) for k, v in obj.items()]
+    if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
+        return [(None if obj[0] is None else tex(obj[0]), tex(obj[1]))]
+    if isinstance(obj, list | tuple):
+        return [pair for item in obj for pair in _pairs(item, digits)]
+    return [(None, tex(obj))]
+
+
+def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
+    r"""An object as a list of ``(lhs, rhs)`` LaTeX pairs (``lhs`` None: a bare formula).
+
+    ``obj`` may be a derived object (a plant gives ``A`` and ``B``, a
+    realization ``F, H, M, N``, a factorization :math:`G_1, G_2, G_3, N`, a
+    circuit one equation per neuron, ...), a :class:`sympy.Eq`, a pair
+    ``(lhs, rhs)``, a mapping ``{lhs: rhs}``, or a list of any of these.
+
+    >>> from symctl import MuscleModel
+    >>> equations(MuscleModel().discrete_symbolic())
+    [('A', '\\left[\\begin{matrix}e^{- \\frac{T_{s}}{\\tau}}\\end{matrix}\\right]'), ...]
+    """
+    return _pairs(obj, digits)
+
+
+# ---------------------------------------------------------------- environments
+def _label(label) -> str:
+    if label is None:
+        return ""
+    if not isinstance(label, str) or not _LABEL.fullmatch(label):
+        raise ParameterError(
+            f"label: must be letters, digits and ':._-' only (a LaTeX label), got {label!r}"
+        )
+    return rf"\label{{{label}}}"
+
+
+def equation(lhs, rhs=None, *, label: str | None = None, numbered: bool = True) -> str:
+    r"""An ``equation`` environment: ``lhs = rhs`` (or ``lhs`` alone when ``rhs`` is None).
+
+    >>> from symctl.symbols import delta_f
+    >>> print(equation("A", 0.6065306597, label="eq:A"))
+    \begin{equation}
+      A = 0.606531
+      \label{eq:A}
+    \end{equation}
+    """
+    body = to_latex(lhs) if rhs is None else f"{to_latex(lhs)} = {to_latex(rhs)}"
+    env = "equation" if numbered else "equation*"
+    tag = _label(label) if numbered else ""
+    lines = [rf"\begin{{{env}}}", f"  {body}"] + ([f"  {tag}"] if tag else [])
+    return "\n".join([*lines, rf"\end{{{env}}}"])
+
+
+def align(
+    rows: Iterable,
+    *,
+    labels: Iterable[str | None] | None = None,
+    numbered: bool = True,
+) -> str:
+    r"""An ``align`` environment, one row per equation, aligned at the ``=`` signs.
+
+    ``rows`` is anything :func:`equations` accepts (a list of ``sp.Eq``, of
+    ``(lhs, rhs)`` pairs, derived objects, ...). ``labels``, when given, has one
+    label (or None) per row.
+
+    >>> print(align([("a", 1), ("b", 2)], labels=["eq:a", None]))
+    \begin{align}
+      a &= 1 \label{eq:a} \\
+      b &= 2
+    \end{align}
+    """
+    pairs = equations(list(rows) if not isinstance(rows, Mapping) else rows)
+    if not pairs:
+        raise ParameterError("rows: no equations to write")
+    tags = [None] * len(pairs) if labels is None else list(labels)
+    if len(tags) != len(pairs):
+        raise ParameterError(f"labels: expected {len(pairs)} labels (one per row), got {len(tags)}")
+    env = "align" if numbered else "align*"
+    lines = []
+    for (lhs, rhs), tag in zip(pairs, tags, strict=True):
+        row = f"{lhs} &= {rhs}" if lhs is not None else f"& {rhs}"
+        tex = _label(tag) if numbered else ""
+        lines.append(f"  {row} {tex}".rstrip())
+    return "\n".join([rf"\begin{{{env}}}", " \\\\\n".join(lines), rf"\end{{{env}}}"])
+
+
+def export(
+    obj,
+    *,
+    name: str | None = None,
+    label: str | None = None,
+    numbered: bool = True,
+    digits: int = DIGITS,
+) -> str:
+    r"""Any derived object (or list of them) as one ``equation`` or ``align`` environment.
+
+    One equation gives an ``equation`` (``name`` replaces its left-hand side,
+    e.g. ``"G_2(z)"``), several an ``align`` (``label`` goes on the first row).
+
+    >>> from symctl import controllable_canonical, controller_tf, factor
+    >>> print(export(controllable_canonical(factor(controller_tf(2)).G2), numbered=False))
+    \begin{align*}
+      F &= \left[\begin{matrix}0 & 1\\K_{2} & K_{1}\end{matrix}\right] \\
+      H &= \left[\begin{matrix}0\\1\end{matrix}\right] \\
+      M &= \left[...
+    """
+    pairs = equations(obj, digits=digits)
+    if not pairs:
+        raise ParameterError("obj: no equations to write")
+    if len(pairs) == 1:
+        lhs, rhs = pairs[0]
+        lhs = name if name is not None else lhs
+        return equation(rhs if lhs is None else lhs, None if lhs is None else rhs,
+                        label=label, numbered=numbered)  # fmt: skip
+    if name is not None:
+        raise ParameterError(f"name: only for a single equation; this object has {len(pairs)}")
+    return align(pairs, labels=[label] + [None] * (len(pairs) - 1), numbered=numbered)
+
+
+def document(
+    body: str | Iterable[str],
+    *,
+    title: str = "",
+    author: str = "",
+    packages: Iterable[str] = (),
+    preamble: str = "",
+) -> str:
+    r"""A standalone LaTeX document around ``body`` (a string or a list of parts).
+
+    Loads :data:`PACKAGES` (amsmath, amssymb, graphicx) and ``geometry`` with
+    narrow margins, and any extra ``packages``; ``preamble`` is LaTeX put before
+    ``\begin{document}`` (macros). Compiles with ``pdflatex``.
+
+    >>> text = document(equation("a", 1), title="Demo")
+    >>> text.splitlines()[0], text.rstrip().splitlines()[-1]
+    ('\\documentclass[11pt]{article}', '\\end{document}')
+    """
+    extra = list(packages)
+    for p in extra:
+        if not isinstance(p, str) or not re.fullmatch(r"[A-Za-z0-9\-]+", p):
+            raise ParameterError(f"packages: expected package names, got {p!r}")
+    parts = [body] if isinstance(body, str) else list(body)
+    head = [
+        r"\documentclass[11pt]{article}",
+        r"\usepackage[margin=2cm]{geometry}",
+        *(rf"\usepackage{{{p}}}" for p in (*PACKAGES, *extra)),
+        r"\allowdisplaybreaks",
+        r"\setcounter{MaxMatrixCols}{20}",
+        *([preamble] if preamble else []),
+    ]
+    if title:
+        head += [rf"\title{{{title}}}", rf"\author{{{author}}}", r"\date{}"]
+    start = [r"\begin{document}"] + ([r"\maketitle"] if title else [])
+    return "\n".join([*head, *start, "", "\n\n".join(parts), "", r"\end{document}", ""])

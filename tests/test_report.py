@@ -1,0 +1,148 @@
+"""`symctl paper` end to end: results.json, derivation.tex/.pdf, report.md and the figures."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import shutil
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from symctl import cli
+from symctl.cli import main
+from symctl.derivation import Heading, Math, Text, compile_pdf, to_markdown, to_tex
+from symctl.errors import LatexError
+from symctl.figures import FORMATS
+from symctl.report import CIRCUITS
+
+FIGURES = ["open_loop", "closed_loop", "nonlinear"] + [
+    f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")
+]
+
+
+@pytest.fixture(scope="module")
+def paper(tmp_path_factory):
+    """One full run of ``symctl paper`` (figures and PDF): its folder and its console output."""
+    out = tmp_path_factory.mktemp("paper")
+    capture = pytest.MonkeyPatch()
+    buffer = io.StringIO()
+    capture.setattr(cli._console, "file", buffer)
+    try:
+        assert main(["paper", "--out", str(out)]) == 0
+    finally:
+        capture.undo()
+    return out, buffer.getvalue()
+
+
+def test_results_json_has_a_circuits_entry_per_circuit(paper):
+    out, _ = paper
+    data = json.loads((out / "results.json").read_text())
+    circuits = data["circuits"]
+    assert list(circuits) == ["ifp", "general", "controllable", "observable"]
+    counts = {k: (c["neurons"]["count"], c["neurons"]["G2"]) for k, c in circuits.items()}
+    assert counts == {"ifp": (1, None), "general": (5, 3), "controllable": (4, 2),
+                      "observable": (5, 3)}  # fmt: skip
+    assert {k: c["compatible"] for k, c in circuits.items()} == {
+        "ifp": False,
+        "general": True,
+        "controllable": True,
+        "observable": True,
+    }
+    for name, c in circuits.items():
+        assert 0 <= c["max_closed_loop_deviation"] < 1e-9, name
+        assert len(c["realizations"]) == (1 if name == "ifp" else 4)
+        if c["compatible"]:
+            assert c["compatibility"]["E_tilde"] == [[0, 1, 2], [None, 0, 1], [None, None, 0]]
+        else:
+            assert (
+                c["compatibility"]["E_tilde"] is None
+                and "K0 -> mu" in (c["compatibility"]["reason"])
+            )
+    first = circuits["general"]["realizations"][0]
+    assert set(first) == {"epsilon_1", "epsilon_3", "C_1", "C_3", "P"}
+    assert -0.9 < first["epsilon_1"] < 0.9 and len(first["P"]) == 2
+    # the numeric realization of the factorization is the first simulated one
+    values = data["factorization"]["realizations"]["general"]["values"]
+    assert values["epsilon_1"] == first["epsilon_1"]
+    assert data["factorization"]["realizations"]["general"]["P"] == first["P"]
+    assert data["delay_graph"]["E"] == [[0, 1, 2], [None, 0, 1], [None, None, 0]]
+    sim = data["simulation"]
+    assert len(sim["t"]) == len(sim["closed_loop"]["delta_f"]) == 50
+    assert max(sim["closed_loop"]["disturbance"]) == 1.0
+
+
+def test_every_figure_is_written_as_png_and_svg(paper):
+    out, _ = paper
+    for name in FIGURES:
+        for ext in FORMATS:
+            path = out / f"{name}.{ext}"
+            assert path.stat().st_size > 5000, path
+        assert (out / f"{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        root = ET.parse(out / f"{name}.svg").getroot()
+        assert root.tag.endswith("svg")
+
+
+def test_derivation_tex_has_the_paper_order_and_numbers(paper):
+    out, _ = paper
+    tex = (out / "derivation.tex").read_text()
+    assert tex.startswith(r"\documentclass") and tex.rstrip().endswith(r"\end{document}")
+    labels = re.findall(r"\\label\{(eq:[^}]+)\}", tex)
+    order = ["eq:muscle", "eq:linear", "eq:discrete", "eq:augmented", "eq:gains", "eq:G",
+             "eq:factors", "eq:G2rewritten", "eq:controllable", "eq:observable", "eq:general",
+             "eq:E", "eq:Etilde-general", "eq:circuit-ifp"]  # fmt: skip
+    assert [lab for lab in labels if lab in order] == order
+    assert "43.8635" in tex and "0.606531" in tex and "4.64165" in tex
+    assert r"K_{0}" in tex and r"\epsilon_{1}" in tex
+    assert "Not compatible" in tex and tex.count(r"\includegraphics") == len(FIGURES)
+
+
+def test_derivation_pdf_is_compiled(paper, pdflatex):
+    out, _ = paper
+    pdf = out / "derivation.pdf"
+    assert pdf.read_bytes()[:5] == b"%PDF-" and pdf.stat().st_size > 100_000
+    assert not (out / "derivation.log").exists() and not (out / "derivation.aux").exists()
+
+
+def test_report_md_shows_the_figures_and_numbers_every_equation(paper):
+    out, _ = paper
+    md = (out / "report.md").read_text()
+    shown = re.findall(r"!\[[^\]]*\]\(([^)]+)\.png\)", md)
+    assert shown == [n for n in _reading_order(md) if n in FIGURES] and set(shown) == set(FIGURES)
+    tags = [int(t) for t in re.findall(r"\\tag\{(\d+)\}", md)]
+    assert tags == list(range(1, len(tags) + 1)) and len(tags) >= 20
+
+
+def _reading_order(md: str) -> list[str]:
+    return re.findall(r"\]\(([^)]+)\.png\)", md)
+
+
+def test_console_shows_progress_and_summary_tables(paper):
+    _, text = paper
+    for step in ("plant", "LQR", "simulation", "figures", "documents"):
+        assert re.search(rf"done\s+{step}\s+[\d.]+ s", text), step
+    assert "summary" in text and "circuits" in text and "max deviation" in text
+    assert "results.json" in text and "derivation.tex" in text and "15 figures" in text
+
+
+def test_prose_is_escaped_for_latex_and_math_kept():
+    blocks = [Heading("Gains"), Text("100% of x_1 & $K_0 + \\epsilon_1$"), Math((("a", "1"),),
+              "eq:a")]  # fmt: skip
+    tex = to_tex(blocks)
+    assert r"100\% of x\_1 \& $K_0 + \epsilon_1$" in tex
+    md = to_markdown(blocks)
+    assert "100% of x_1 & $K_0 + \\epsilon_1$" in md and r"\tag{1}" in md
+
+
+def test_a_latex_error_is_reported_with_its_first_line(tmp_path, pdflatex):
+    bad = tmp_path / "bad.tex"
+    bad.write_text("\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}\n")
+    with pytest.raises(LatexError, match="Undefined control sequence"):
+        compile_pdf(bad)
+
+
+def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
+    monkeypatch.setattr(shutil, "which", lambda _name: None)
+    (tmp_path / "a.tex").write_text("x")
+    assert compile_pdf(tmp_path / "a.tex") is None
