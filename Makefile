@@ -34,6 +34,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/checker.py
 	$(BIN)/python benchmarks/compatibility.py
 	$(BIN)/python benchmarks/simulate.py
+	$(BIN)/python benchmarks/paper.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

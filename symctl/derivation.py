@@ -438,7 +438,7 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
         placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        figure(f"circuit_{name}", f"Circuit, {_TITLES[name]}: neurons as circles "
+        figure(f"circuit_{name}", f"Circuit, {_TITLES[name]}{_WHICH.get(name, '')}: neurons as circles "
                                   "with their self-dynamics, synapses as arrows with weights.")  # fmt: skip
 
     # 10. simulations
@@ -492,6 +492,9 @@ _TITLES = {
     "controllable": "G3 G2 G1, controllable canonical G2",
     "observable": "G3 G2 G1, observable canonical G2",
 }
+
+
+_WHICH = {"general": " (its first simulated realization)"}
 
 
 def _count_text(res) -> str:

@@ -16,7 +16,8 @@ name                          content
 ``firing_<circuit>``          Figs. full_diagram, ccr_diagram, ocr_diagram: the
                               neurons' firing in several realizations
 ``structure_<circuit>``       the structure (gains, adders, unit delays)
-``circuit_<circuit>``         the circuit of stylized neurons
+``circuit_<circuit>``         the circuit of stylized neurons (for ``general``
+                              the first simulated realization, with numbers)
 ============================  ==================================================
 
 with ``<circuit>`` one of :data:`symctl.report.CIRCUITS` (``ifp``, ``general``,
@@ -85,8 +86,12 @@ def make_figure(res: PaperResults, name: str) -> Figure:
         raise ParameterError(f"name: no figure {name!r}; the figures are {figure_names(res)}")
     if kind == "firing":
         return rec.firing.plot()
-    draw = rec.structure.draw if kind == "structure" else rec.circuit.draw
-    return draw(title=f"{kind.capitalize()}: {TITLES[circuit]}")
+    if kind == "structure":
+        return rec.structure.draw(title=f"Structure: {TITLES[circuit]}")
+    if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
+        title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
+        return rec.firing.circuits[0].draw(title=title)
+    return rec.circuit.draw(title=f"Circuit: {TITLES[circuit]}")
 
 
 def paper_figures(res: PaperResults) -> dict[str, Figure]:
