@@ -25,6 +25,7 @@ from symctl.circuit import Circuit
 from symctl.compatibility import CompatibilityResult, check_compatibility
 from symctl.delay import AugmentedSystem, augment
 from symctl.delaygraph import DelayGraph
+from symctl.errors import ParameterError
 from symctl.factorization import Factorization, factor
 from symctl.firing import FiringPatterns, circuit_firing
 from symctl.lqr import Gains, lqr_gains
@@ -284,6 +285,12 @@ def derive_paper(
     step before it runs.
     """
     step = progress or (lambda _name: None)
+    if sensor_delay == 0 and actuator_delay == 0:  # other bad values: augment names them
+        raise ParameterError(
+            "sensor_delay, actuator_delay: the derivation needs a net delay "
+            "T = sensor_delay + actuator_delay >= 1 (the delay graph and the IFP controller "
+            "have T steps), got 0"
+        )
     step("plant")
     model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts)
     plant_symbolic = model.discrete_symbolic()

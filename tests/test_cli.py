@@ -60,6 +60,7 @@ def test_paper_options_are_used(tmp_path):
         (["--tau", "abc"], "tau"),
         (["--no-such-option"], "no-such-option"),
         (["--realizations", "0"], "realizations"),
+        (["--sensor-delay", "0", "--actuator-delay", "0"], "sensor_delay, actuator_delay"),
         (["--jobs", "0"], "jobs"),
     ],
 )
