@@ -245,7 +245,9 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
         Text(
             "The discrete algebraic Riccati equation gives the optimal feedback "
             "$\\mu(t) = K \\chi(t)$ (the paper's sign), "
-            f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles:"
+            f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
+            f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
+            "square root of the rounding error in floating point):"
         )
     )
     poles = ", ".join(_pole(p) for p in g.poles)
@@ -503,7 +505,14 @@ def _count_text(res) -> str:
     return f"{n} random realizations (the IFP controller has one)"
 
 
+POLE_ZERO_TOL = 1e-6
+"""Poles smaller than this are written as 0: a multiple pole at 0 splits by about the square
+root of the rounding error in floating point (e.g. +-3e-8)."""
+
+
 def _pole(p: complex) -> str:
+    if abs(p) < POLE_ZERO_TOL:
+        return "0"
     if abs(p.imag) < 1e-12:
         return L.number(p.real)
     sign = "+" if p.imag > 0 else "-"
