@@ -13,6 +13,7 @@ Run: ``python benchmarks/simulate.py`` (options: ``--count``, ``--steps``, ``--s
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
 import control
@@ -85,7 +86,10 @@ def main() -> None:
         ("simulate_batch, no stability check", batch_nocheck, f"{base / batch_nocheck:,.0f}x"),
         (f"python-control forced_response ({k} sampled, scaled)", base, "1x"),
     ]
-    print(f"{args.count:,} realizations x {args.steps} steps (controller order 4, loop order 5)")
+    print(
+        f"{args.count:,} realizations x {args.steps} steps (controller order 4, loop order 5), "
+        f"{os.cpu_count()} cores"
+    )
     print(f"{'':52} | {'time [s]':>9} | speed-up")
     print("-" * 76)
     for name, sec, speed in rows:

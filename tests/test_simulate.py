@@ -195,7 +195,8 @@ def test_schur_cohn_agrees_with_eigenvalues():
     radii = np.max(np.abs(np.linalg.eigvals(A)), axis=-1)
     clear = np.abs(radii - 1) > 1e-6
     assert 100 < np.sum(radii < 1) < 2900
-    np.testing.assert_array_equal(_schur_stable(A)[clear], (radii < 1)[clear])
+    stable = _schur_stable(np.moveaxis(A, 0, -1))  # stacks are realization-last
+    np.testing.assert_array_equal(stable[clear], (radii < 1)[clear])
 
 
 def test_batch_refuses_an_unstable_loop_among_many():
@@ -276,6 +277,35 @@ def test_a_run_that_blows_up_says_so():
         simulate_batch(MODEL, F, H, M, N, steps=2000, check_stability=False)
     with pytest.raises(ParameterError, match="blew up"):
         closed_loop_response(GAINS, disturbance=1e308)
+
+
+def test_a_rate_that_overflows_while_the_state_stays_finite_is_refused():
+    # delta_r = -1e10 delta_f overflows during the pulse; the stable loop (pole -0.5)
+    # has decayed to finite rates again by the last step.
+    from symctl.simulate import _CHUNK
+
+    plant = (np.array([[0.5]]), np.array([[1e-10]]))
+    zero = np.zeros((1, 1, 1))
+    with pytest.raises(ParameterError, match="blew up at step 6"):
+        simulate_batch(plant, zero, zero, zero, np.full((1, 1, 1), -1e10), 1e300)
+    N = np.zeros((_CHUNK + 1, 1, 1))
+    N[-1] = -1e10  # only the last loop, in the second chunk
+    zeros = np.zeros_like(N)
+    with pytest.raises(ParameterError, match="blew up at step 6"):
+        simulate_batch(plant, zeros, zeros, zeros, N, 1e300)
+
+
+def test_a_run_whose_returned_values_are_finite_is_not_refused():
+    # only the state after the horizon, which nobody sees, overflows
+    plant = (np.array([[1e200]]), np.array([[1.0]]))
+    zero = np.zeros((1, 1, 1))
+    out = simulate_batch(plant, zero, zero, zero, zero, [1.0, 0.0, 0.0], check_stability=False)
+    np.testing.assert_array_equal(out.delta_f[0, :, 0], [0.0, 1.0, 1e200])
+
+
+def test_a_ragged_batch_disturbance_is_refused_by_name():
+    with pytest.raises(SymctlTypeError, match="disturbance"):
+        simulate_batch(MODEL, *(np.zeros((2, 1, 1)),) * 4, [[1.0], [1.0, 2.0]])
 
 
 # ---------------------------------------------------------------- figures
