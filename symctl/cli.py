@@ -268,6 +268,9 @@ def main(argv: list[str] | None = None) -> int:
     except (SymctlError, SymctlTypeError) as exc:
         click.echo(f"symctl: error: {exc}".splitlines()[0], err=True)
         return 2
+    except OSError as exc:  # e.g. an --out folder that cannot be written
+        click.echo(f"symctl: error: --out: {exc}".splitlines()[0], err=True)
+        return 2
     return 0
 
 
