@@ -192,6 +192,8 @@ class Response:
         The operating point (zeros when the plant records none).
     kind : str
         ``"open loop"`` or ``"closed loop"``.
+    time_unit : str
+        ``"s"``, or ``"steps"`` when the plant has no sampling time.
     """
 
     t: np.ndarray
@@ -204,6 +206,7 @@ class Response:
     kind: str
     state_names: tuple[str, ...] = ("delta_f",)
     input_names: tuple[str, ...] = ("delta_r",)
+    time_unit: str = "s"
 
     @property
     def f(self) -> np.ndarray:
@@ -227,7 +230,6 @@ class Response:
         rows = 3 if states else 2
         fig = Figure(figsize=(7.5, 2.4 * rows + 0.6), layout="constrained")
         axes = fig.subplots(rows, 1, sharex=True)
-        unit_t = "s"
         panels = [
             (axes[0], self.delta_f, self.f_bar, self.state_names, "delta_f"),
             (axes[1], self.delta_r, self.r_bar, self.input_names, "delta_r"),
@@ -258,7 +260,7 @@ class Response:
             ax.set_ylabel("controller state\n(rate change) [spikes/s]")
             ax.legend(loc="best", fontsize="small", ncol=min(4, self.states.shape[1]))
             ax.grid(alpha=0.3)
-        axes[-1].set_xlabel(f"time [{unit_t}]")
+        axes[-1].set_xlabel(f"time [{self.time_unit}]")
         what = "pulse in firing rate" if self.kind == "open loop" else "pulse disturbance on force"
         fig.suptitle(f"{self.kind.capitalize()} response to a {what}")
         return fig
@@ -360,7 +362,13 @@ def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _run(
-    Acl: np.ndarray, Cr: np.ndarray, n: int, w: np.ndarray, *, states: bool = True
+    Acl: np.ndarray,
+    Cr: np.ndarray,
+    n: int,
+    w: np.ndarray,
+    *,
+    states: bool = True,
+    argname: str = "disturbance",
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Simulate ``xi(t+1) = A_cl xi + [I; 0] w`` from zero for a stack of ``R`` loops.
 
@@ -390,8 +398,8 @@ def _run(
             first_bad = min(pool.map(run, parts))
     if first_bad < steps:
         raise ParameterError(
-            f"disturbance: the simulation blew up at step {first_bad} (values overflowed to "
-            "inf/NaN); reduce the disturbance or the horizon, or check the controller's stability"
+            f"{argname}: the simulation blew up at step {first_bad} (values overflowed to "
+            f"inf/NaN); reduce the {argname} or the horizon, or check the controller's stability"
         )
     loops = np.moveaxis(out, -1, 0)
     return loops[..., :n], loops[..., n : n + m], loops[..., n + m :] if states else None
@@ -435,6 +443,7 @@ def _response(p, t, df, dr, w, xc, kind) -> Response:
         kind,
         p.state_names,
         p.input_names,
+        "s" if p.Ts is not None else "steps",
     )
 
 
@@ -484,7 +493,9 @@ def open_loop_response(
     u = _signal(
         real_number(pulse, "pulse"), "pulse", _positive_int(steps, "steps"), p.m, start, length
     )
-    df, _, _ = _run(A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False)
+    df, _, _ = _run(
+        A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False, argname="pulse"
+    )
     t = np.arange(u.shape[0]) * _ts(p)
     return _response(p, t, df[0], u, np.zeros_like(df[0]), np.zeros((len(t), 0)), "open loop")
 

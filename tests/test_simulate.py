@@ -323,3 +323,16 @@ def test_figures_have_units_and_legends(tmp_path):
         assert any(ax.get_legend() is not None for ax in fig.axes), name
         fig.savefig(tmp_path / f"{name}.png")
     assert any("spikes/s" in ax.get_ylabel() for ax in figs["closed"].axes)
+
+
+def test_an_open_loop_that_blows_up_names_the_pulse():
+    unstable = (np.array([[1e200]]), np.array([[1.0]]))
+    with pytest.raises(ParameterError, match=r"^pulse: the simulation blew up"):
+        open_loop_response(unstable, pulse=1e200, steps=20)
+
+
+def test_time_axis_is_in_steps_without_a_sampling_time():
+    res = open_loop_response((np.array([[0.5]]), np.array([[1.0]])), steps=10)
+    assert res.time_unit == "steps"
+    assert res.plot().axes[1].get_xlabel() == "time [steps]"
+    assert open_loop_response(MODEL, steps=10).time_unit == "s"
