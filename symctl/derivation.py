@@ -392,7 +392,8 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
                 f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
                 for v in range(1, res.graph.n + 1)
             )
-            add(Text(f"Signals per vertex: {where}."))
+            add(Text(f"Signals per vertex: {where}. The checker's witness:"))
+            add(Verbatim(_ascii(verdict.reason)))
         else:
             add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
             add(Verbatim(_ascii(verdict.reason)))
