@@ -73,6 +73,8 @@ _LOCATIONS = {
     "Structure": "symctl.structure",
     "ifp_structure": "symctl.structure",
     "same_structure": "symctl.structure",
+    "PaperResults": "symctl.report",
+    "derive_paper": "symctl.report",
     "z": "symctl.symbols",
     "DiscreteTF": "symctl.transfer",
     "controller_tf": "symctl.transfer",
@@ -101,6 +103,7 @@ __all__ = [
     "Neuron",
     "NonlinearCheck",
     "NotStabilizableError",
+    "PaperResults",
     "ParameterError",
     "ParseError",
     "Realization",
@@ -119,6 +122,7 @@ __all__ = [
     "controllable_canonical",
     "controller_compatibility",
     "controller_tf",
+    "derive_paper",
     "discretize",
     "factor",
     "general_realization",
@@ -188,6 +192,7 @@ if TYPE_CHECKING:  # static tools see the eager imports
         observable_canonical,
         random_realization,
     )
+    from symctl.report import PaperResults, derive_paper
     from symctl.simulate import (
         BatchResponse,
         NonlinearCheck,
