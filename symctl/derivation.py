@@ -29,6 +29,8 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl.errors import LatexError
+from symctl.symbols import z
+from symctl.transfer import _descending_latex
 
 if TYPE_CHECKING:
     from symctl.report import PaperResults
@@ -290,30 +292,31 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
             "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
         )
     )
+    den = _descending_latex(f.G2.den)
     add(
         _eq(
-            ("G_1(z)", f.G1.latex()),
-            ("G_3(z)", f.G3.latex()),
-            ("G_2(z)", f.G2.latex()),
+            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
+            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
+            ("G_2(z)", rf"N\,\frac{{{_zeros_tex((*f.sensor_eps, *f.actuator_eps))}}}{{{den}}}"),
             label="eq:factors",
         )
     )
-    rest = f.G2.expr - f.N
-    add(Text("Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ as"))
+    c = _remainder_symbols(f)
+    add(
+        Text(
+            "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
+            "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
+        )
+    )
     add(
         _eq(
             ("N", f.N),
-            ("G_2(z)", rf"N + {L.to_latex(sp.factor_terms(sp.cancel(rest)))}"),
+            ("G_2(z)", rf"N + N\,\frac{{{_descending_latex(_remainder_poly(c))}}}{{{den}}}"),
+            *zip(map(L.to_latex, c), f.remainder_coeffs, strict=True),
             label="eq:G2rewritten",
         )
     )
-    remainder = ", ".join(L.to_latex(c) for c in f.remainder_coeffs)
-    add(
-        Text(
-            f"The remainder's numerator coefficients (descending powers of $z$) are ${remainder}$. "
-            f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."
-        )
-    )
+    add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
 
     # 7. realizations
     add(Heading("Realizations of $G_2$"))
@@ -332,8 +335,10 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
     ):
         rec = res.realizations[name]
         add(Heading(title, 2))
-        add(_eq(*((k, getattr(rec.symbolic, k)) for k in "FHMN"), label=f"eq:{name}"))
-        add(Text(_check_text(rec)))
+        mats, short = _compact(rec.symbolic, f, c)
+        add(_eq(*mats, label=f"eq:{name}"))
+        where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
+        add(Text(_check_text(rec) + where))
     rec = res.realizations["general"]
     add(Heading("General realization", 2))
     P = rec.symbolic.params.get("P")
@@ -498,6 +503,50 @@ _TITLES = {
 
 
 _WHICH = {"general": " (its first simulated realization)"}
+COMPACT_LENGTH = 300
+"""A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
+
+
+def _sections_tex(cs, eps) -> str:
+    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections."""
+    if not cs:
+        return "1"
+    return rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
+
+
+def _zeros_tex(eps) -> str:
+    if len(eps) == 1:
+        return f"z - {L.to_latex(eps[0])}"
+    return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
+
+
+def _remainder_symbols(f) -> list[sp.Symbol]:
+    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(f.remainder_coeffs) + 1)]
+
+
+def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
+    return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
+
+
+def _compact(R, f, c) -> tuple[list[tuple[str, object]], bool]:
+    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols."""
+    N = sp.Symbol("N")
+    targets = [(f.N * coeff, N * ck) for coeff, ck in zip(f.remainder_coeffs, c, strict=True)]
+    rows, short = [], False
+    for k in "FHMN":
+        mat = getattr(R, k)
+        if k in "HM" and len(L.to_latex(mat)) > COMPACT_LENGTH:
+            mat = mat.applyfunc(lambda e: _match(e, targets))
+            short = True
+        rows.append((k, mat))
+    return rows, short
+
+
+def _match(entry: sp.Expr, targets) -> sp.Expr:
+    for value, symbol in targets:
+        if sp.cancel(entry - value) == 0:
+            return symbol
+    return entry
 
 
 def _count_text(res) -> str:

@@ -88,6 +88,7 @@ def test_derivation_tex_has_the_paper_order_and_numbers(paper):
     out, _ = paper
     tex = (out / "derivation.tex").read_text()
     assert tex.startswith(r"\documentclass") and tex.rstrip().endswith(r"\end{document}")
+    assert not re.search(r"[\x00-\x08\x0b-\x1f]", tex)  # no control characters (e.g. "\f")
     labels = re.findall(r"\\label\{(eq:[^}]+)\}", tex)
     order = ["eq:muscle", "eq:linear", "eq:discrete", "eq:augmented", "eq:gains", "eq:G",
              "eq:factors", "eq:G2rewritten", "eq:controllable", "eq:observable", "eq:general",
@@ -146,3 +147,22 @@ def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
     monkeypatch.setattr(shutil, "which", lambda _name: None)
     (tmp_path / "a.tex").write_text("x")
     assert compile_pdf(tmp_path / "a.tex") is None
+
+
+def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
+    import sympy as sp
+
+    from symctl import controllable_canonical, controller_tf, factor, observable_canonical
+    from symctl.derivation import _compact, _remainder_poly, _remainder_symbols
+
+    f = factor(controller_tf(4), 2, 2)
+    c = _remainder_symbols(f)
+    values = {sp.Symbol("N"): f.N, **dict(zip(c, f.remainder_coeffs, strict=True))}
+    rewritten = f.N + f.N * _remainder_poly(c) / f.G2.den
+    assert sp.cancel(rewritten.subs(values) - f.G2.expr) == 0
+    for R in (controllable_canonical(f.G2), observable_canonical(f.G2)):
+        rows, short = _compact(R, f, c)
+        assert short
+        for name, mat in rows:
+            assert (mat.subs(values) - getattr(R, name)).applyfunc(sp.cancel).is_zero_matrix
+        assert any(mat.has(sp.Symbol("N")) for _, mat in rows)
