@@ -115,7 +115,7 @@ def _sign(weight: sp.Expr) -> str:
 
 
 class Synapse(NamedTuple):
-    """One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
+    r"""One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
 
     Attributes
     ----------
@@ -126,10 +126,12 @@ class Synapse(NamedTuple):
     weight : sympy expression
         The synaptic weight: the product of the gains on the path.
     delay : int
-        The number of unit delays on the path (0 or 1 for a synapse of a
-        realization's structure; self-dynamics and axon delays may have more).
+        The number of unit delays on the path: the branch delay into the adder
+        plus any axon delays before it (e.g. 2 for :math:`x_3 \to y` through
+        :math:`x_2, x_1` in a third-order controllable canonical realization).
     path : tuple of str
-        The structure signals strictly between ``source`` and ``target``.
+        The structure signals strictly between ``source`` and ``target``, in
+        signal-flow order.
 
     >>> s = Synapse("u", "x", sp.Integer(-2), 1)
     >>> s.sign, s.excitatory, s.inhibitory
@@ -178,7 +180,8 @@ class Neuron:
     self_terms : tuple of Synapse
         The terms fed back from its own output (``source == target == name``).
     axon : tuple of Synapse
-        Its outgoing branches: synapses onto other neurons and circuit outputs.
+        Its outgoing branches: synapses onto other neurons (in :attr:`Circuit.neurons`
+        order), then the circuit outputs it drives.
     vertex : int or None
         The delay-graph vertex of its signal, when an assignment was given.
 
@@ -251,7 +254,8 @@ class Circuit(LatexMixin):
     outputs : tuple of Synapse
         For each structure output, the axon path reaching it (``target`` is the
         output signal; ``source`` a neuron or an input; a neuron's own signal
-        when the output is the neuron).
+        when the output is the neuron; ``"0"``, weight 0, for an output that is
+        the zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
@@ -316,43 +320,47 @@ class Circuit(LatexMixin):
         return cls._build(S, _vertices(S, assignment))
 
     @classmethod
-    def _build(cls, S: Structure, vertex_of: Mapping[str, int] | None) -> Circuit:
+    def _build(
+        cls, S: Structure, vertex_of: Mapping[str, int] | None, argname: str = "S"
+    ) -> Circuit:
         for name, block in S.blocks.items():
             if block.kind == "gain" and block.gain is not None:
                 if block.gain.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-                    raise ParameterError(f"S: the gain {name!r} is not finite: {block.gain}")
-        names = {n for n, b in S.blocks.items() if _is_neuron(b)}
-        incoming: dict[str, list[Synapse]] = {n: [] for n in names}
-        for name in S.blocks:
-            if name in names:
-                for term in S.blocks[name].inputs:
-                    syn = _trace(S, term, name, names)
-                    if syn is not None:
-                        incoming[name].append(syn)
+                    raise ParameterError(
+                        f"{argname}: the gain {name!r} is not finite: {block.gain}"
+                    )
+        names = [n for n, b in S.blocks.items() if _is_neuron(b)]  # the structure's order
+        is_neuron = set(names)
+        incoming = {
+            name: [
+                syn
+                for syn in (_trace(S, term, name, is_neuron) for term in S.blocks[name].inputs)
+                if syn is not None
+            ]
+            for name in names
+        }
         outputs = []
         for out in S.outputs:
-            syn = _trace(S, out, out, names)
+            syn = _trace(S, out, out, is_neuron)
             outputs.append(syn if syn is not None else Synapse("0", out, sp.Integer(0), 0))
+        # a source's branches: its synapses onto neurons in neuron order, then the outputs
         outgoing: dict[str, list[Synapse]] = {}
         for s in (*(s for v in incoming.values() for s in v if s.source != s.target), *outputs):
             outgoing.setdefault(s.source, []).append(s)
-        neurons = []
-        for name, block in S.blocks.items():
-            if name not in names:
-                continue
-            neurons.append(
-                Neuron(
-                    name,
-                    block.part,
-                    tuple(s for s in incoming[name] if s.source != name),
-                    tuple(s for s in incoming[name] if s.source == name),
-                    tuple(outgoing.get(name, ())),
-                    None if vertex_of is None else vertex_of[name],
-                )
+        neurons = tuple(
+            Neuron(
+                name,
+                S.blocks[name].part,
+                tuple(s for s in incoming[name] if s.source != name),
+                tuple(s for s in incoming[name] if s.source == name),
+                tuple(outgoing.get(name, ())),
+                None if vertex_of is None else vertex_of[name],
             )
+            for name in names
+        )
         return cls(
             S,
-            tuple(neurons),
+            neurons,
             S.inputs,
             tuple(outputs),
             {u: tuple(outgoing.get(u, ())) for u in S.inputs},
@@ -428,7 +436,7 @@ class Circuit(LatexMixin):
         vertex_of = None
         if self.neurons and self.neurons[0].vertex is not None:
             vertex_of = {n.name: n.vertex for n in self.neurons}
-        return self._build(S, vertex_of)
+        return self._build(S, vertex_of, "subs")
 
     @property
     def free_symbols(self) -> set[sp.Symbol]:
@@ -556,10 +564,8 @@ class Circuit(LatexMixin):
             lines.append(f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}")
             for s in n.synapses:
                 lines.append(f"    synapse from {_syn_text(s, s.source)}")
-            outs = {o.target for o in self.outputs}
             targets = ", ".join(
-                f"output {s.target}" if s in self.outputs and s.target in outs else s.target
-                for s in n.axon
+                f"output {s.target}" if s in self.outputs else s.target for s in n.axon
             )
             targets = targets or "none"
             lines.append(
@@ -595,14 +601,17 @@ class Circuit(LatexMixin):
 
 # ---------------------------------------------------------------- helpers
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
-    """``w`` with its numbers (floats and fractions) shown to ``digits`` significant digits."""
+    """``w`` with its numbers (floats, fractions) shown to ``digits`` significant digits.
 
-    def short(a):
-        return sp.Integer(a) if a == int(a) else sp.Float(a, digits)
-
+    Exponents stay exact (``sqrt(x)`` is not written ``x**0.500``).
+    """
     if w.is_number:
-        return short(w)
-    return w.xreplace({a: short(a) for a in w.atoms(sp.Float, sp.Rational) if not a.is_Integer})
+        return sp.Integer(w) if w == int(w) else sp.Float(w, digits)
+    if w.is_Pow:
+        return sp.Pow(_rounded(w.base, digits), w.exp)
+    if w.args:
+        return w.func(*(_rounded(a, digits) for a in w.args))
+    return w
 
 
 def _is_neuron(block: Block) -> bool:
@@ -613,13 +622,19 @@ def _gain(block: Block, name: str) -> sp.Expr:
     return block.gain if block.gain is not None else sp.Symbol(name)
 
 
-def _trace(S: Structure, start: str, target: str, neurons: set[str]):
-    """The axon path ending at ``start``, back to a neuron or an input, as a Synapse."""
+def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
+    """The axon path ending at ``start``, back to a neuron or an input, as a Synapse.
+
+    ``start`` is a term of the adder ``target``, or ``target`` itself for a
+    circuit output; None when the path starts at an adder of nothing (the zero
+    signal).
+    """
     node, weight, delay, path, seen = start, sp.Integer(1), 0, [], set()
     while True:
         block = S.blocks[node]
         if node in neurons or block.kind == "input":
-            return Synapse(node, target, weight, delay, tuple(reversed(path)))
+            between = path[1:] if start == target else path  # strictly inside the path
+            return Synapse(node, target, weight, delay, tuple(reversed(between)))
         if node in seen:
             raise ParameterError(
                 f"S: a loop of gains and delays with no adder through {node!r} is not a circuit"

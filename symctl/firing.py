@@ -50,9 +50,11 @@ import sympy as sp
 
 from symctl.arguments import as_generator
 from symctl.circuit import Circuit
+from symctl.delay import as_plant
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.factorization import factor
 from symctl.lqr import Gains
+from symctl.plant import DiscretePlant
 from symctl.realization import (
     Realization,
     controllable_canonical,
@@ -114,11 +116,12 @@ class FiringSummary:
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
         count = self.peak.shape[0]
-        head = " neuron | " + " | ".join(f"peak #{i + 1:<3d}" for i in range(count))
+        width = max([6, *map(len, self.neurons)])
+        head = f" {'neuron':<{width}} | " + " | ".join(f"peak #{i + 1:<3d}" for i in range(count))
         lines = [head + " | spread", "-" * (len(head) + 9)]
         for k, name in enumerate(self.neurons):
             peaks = " | ".join(f"{v:9.4g}" for v in self.peak[:, k])
-            lines.append(f" {name:6s} | {peaks} | {self.spread[k]:.4g}")
+            lines.append(f" {name:<{width}} | {peaks} | {self.spread[k]:.4g}")
         lines.append(f"force/rate spread across realizations: {self.behaviour_spread:.2e}")
         return "\n".join(lines)
 
@@ -132,7 +135,8 @@ class FiringPatterns:
     kind : str
         One of :data:`KINDS`.
     t : (steps,) array
-        Time [s].
+        Time, in ``reference.time_unit`` (seconds, or steps for a plant
+        without a sampling time).
     delta_f, delta_r : (count, steps) arrays
         Force change [N] and motor-neuron rate change [spikes/s] of each
         realization (all equal to the optimal controller's, checked).
@@ -233,6 +237,8 @@ class FiringPatterns:
         """
         from matplotlib.figure import Figure
 
+        if isinstance(ncols, bool) or not isinstance(ncols, numbers.Integral) or ncols < 1:
+            raise ParameterError(f"ncols: must be an integer >= 1, got {ncols!r}")
         names = self.neurons
         cols = max(1, min(int(ncols), len(names)))
         rows = -(-len(names) // cols)
@@ -255,7 +261,7 @@ class FiringPatterns:
                         color=f"C{i % 10}", label=self.legend_label(i))  # fmt: skip
             ax.axhline(0, color="black", lw=0.5)
             ax.set_title(f"neuron {_tex(name.rpartition('.')[2])}")
-            ax.set_xlabel("time [s]")
+            ax.set_xlabel(f"time [{self.reference.time_unit}]")
             if k % cols == 0:
                 ax.set_ylabel(_RATE_LABEL)
             ax.grid(alpha=0.3)
@@ -306,18 +312,35 @@ def _count(count, kind: str) -> int:
     return int(count)
 
 
-def _gains(gains) -> Gains:
+def _gains(gains, kind: str) -> Gains:
     if not isinstance(gains, Gains):
         raise SymctlTypeError(
             f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
         )
     s = gains.system
-    if (s.n, s.m) != (1, 1):
-        raise DimensionError(
-            f"gains: firing patterns are drawn for a scalar plant (n = m = 1), got n = {s.n}, "
-            f"m = {s.m}"
+    _scalar(s.n, s.m, "gains")
+    if kind == "ifp" and s.T < 1:
+        raise ParameterError(
+            "gains: the IFP controller has a neuron only for a net delay T >= 1 "
+            f"(mu sums K0 x and its own delayed copies), got T = {s.T}"
         )
     return gains
+
+
+def _plant(plant, gains: Gains) -> DiscretePlant:
+    if plant is None:
+        return gains.system.plant
+    p = as_plant(plant)
+    _scalar(p.n, p.m, "plant")
+    return p
+
+
+def _scalar(n: int, m: int, argname: str) -> None:
+    if (n, m) != (1, 1):
+        raise DimensionError(
+            f"{argname}: firing patterns are drawn for a scalar plant (n = m = 1), got n = {n}, "
+            f"m = {m}"
+        )
 
 
 # ---------------------------------------------------------------- the pieces
@@ -429,13 +452,14 @@ def circuit_firing(
     Raises
     ------
     ParameterError
-        Unknown ``kind``, ``count < 1`` (or ``!= 1`` for ``"ifp"``), an unstable
+        Unknown ``kind``, ``count < 1`` (or ``!= 1`` for ``"ifp"``), ``"ifp"``
+        with gains for a net delay ``T = 0`` (no neuron), an unstable
         loop, or a realization whose force or rate departs from the optimal
         controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains').
     SymctlTypeError
-        ``gains`` not :class:`~symctl.lqr.Gains`, a bad ``seed``.
+        ``gains`` not :class:`~symctl.lqr.Gains`, ``plant`` of another type, a bad ``seed``.
     DimensionError
-        A plant with more than one state or input.
+        ``gains`` or ``plant`` for a plant with more than one state or input.
 
     Examples
     --------
@@ -454,12 +478,12 @@ def circuit_firing(
     symctl.errors.ParameterError: kind: must be one of ('general', 'controllable', ...
     """
     kind = _kind(kind)
-    gains = _gains(gains)
+    gains = _gains(gains, kind)
+    plant = _plant(plant, gains)
     count = _count(count, kind)
     gen = as_generator(seed, "seed")
     if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not rtol > 0:
         raise ParameterError(f"rtol: must be a positive number, got {rtol!r}")
-    plant = gains.system.plant if plant is None else plant
     window = {"steps": steps, "start": start, "length": length}
     ref = closed_loop_response(gains, disturbance=disturbance, **window)
     rows: list[tuple] = []

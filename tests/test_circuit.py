@@ -22,6 +22,7 @@ from symctl import (
     z,
 )
 from symctl.circuit import Circuit, Synapse
+from symctl.realization import random_realization
 from symctl.structure import Structure, ifp_structure
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
@@ -235,3 +236,88 @@ def test_bad_input_names_the_argument():
     )
     with pytest.raises(ParameterError, match="not finite"):
         Circuit.from_structure(inf)
+
+
+def test_axon_branches_are_listed_in_neuron_order_whatever_the_hash_seed():
+    # the branches used to follow the iteration order of a set of names (hash-seed dependent)
+    f = factor(controller_tf(4), 0, 4)
+    c = Circuit.from_structure(Structure.from_realization(observable_canonical(f.G2)))
+    order = [n.name for n in c.neurons]
+    assert [s.target for s in c.input_axons["u"]] == order == ["x1", "x2", "x3", "x4", "y"]
+    rank = {
+        **{name: k for k, name in enumerate(order)},
+        **{o.target: len(order) for o in c.outputs},
+    }
+    for n in c.neurons:
+        ranks = [rank[s.target] for s in n.axon]
+        assert ranks == sorted(ranks), n.name
+
+
+@pytest.mark.parametrize(("T", "path"), [(1, ()), (2, ("gamma",)), (3, ("gamma1", "gamma2"))])
+def test_output_path_holds_only_the_signals_strictly_between_source_and_target(T, path):
+    out = Circuit.from_structure(ifp_structure(T)).outputs[0]
+    assert (out.source, out.target, out.delay, out.path) == ("mu", "u", T, path)
+
+
+def test_subs_that_makes_a_gain_infinite_names_subs():
+    c, _ = full_circuit("controllable")
+    with pytest.raises(ParameterError, match=r"^subs: the gain 'G2\.M\[1\]' is not finite"):
+        c.subs({C_1: 0})
+
+
+@pytest.mark.parametrize(("ds", "da"), [(0, 0), (1, 0), (0, 2), (2, 0), (1, 2), (3, 0), (0, 3)])
+@pytest.mark.parametrize("kind", ["controllable", "observable", "general"])
+@pytest.mark.parametrize("delays", ["branch", "state"])
+def test_linear_system_of_the_circuit_has_the_controllers_transfer_function(ds, da, kind, delays):
+    rng = np.random.default_rng(ds + 10 * da)
+    f = factor(controller_tf(ds + da), ds, da)
+
+    def draw(symbols, low, high):
+        return {s: sp.Rational(int(rng.integers(low, high)), 100) for s in symbols}
+
+    values = draw(gain_symbols(ds + da), -90, 90)
+    values |= draw((*f.sensor_eps, *f.actuator_eps), -90, 90)
+    values |= draw((*f.sensor_C, *f.actuator_C), 20, 300)
+    fs = f.subs(values)
+    if kind == "general":
+        R2 = random_realization(fs.G2, rng)
+    else:
+        R2 = (controllable_canonical if kind == "controllable" else observable_canonical)(fs.G2)
+    c = Circuit.from_structure(Structure.from_factorization(fs, R2, delays))
+    A, B, C, D, states, _, outputs = c.as_linear_system(numeric=True)
+    assert outputs[: c.n_neurons] == tuple(n.name for n in c.neurons)
+    G = sp.lambdify(z, controller_tf(ds + da).expr.subs(values))
+    for w in np.exp(1j * np.array([0.3, 1.1, 2.0])):
+        H = C @ np.linalg.solve(w * np.eye(len(states)) - A, B) + D
+        assert abs(H[-1, 0] - G(w)) < 1e-9 * max(1.0, abs(G(w)))
+
+
+def test_each_neuron_trace_obeys_its_self_dynamics_and_synapses():
+    values = {K0: -1, K1: sp.Rational(1, 2), K2: sp.Rational(-1, 4), C_1: 2, C_3: -1}
+    values |= {epsilon_1: sp.Rational(1, 5), epsilon_3: sp.Rational(-3, 7)}
+    fs = F.subs(values)
+    for R2 in (observable_canonical(fs.G2), general_realization(fs.G2, P)):
+        c = Circuit.from_structure(Structure.from_factorization(fs, R2, "state"))
+        A, B, C, D, *_, outputs = c.as_linear_system(numeric=True)
+        u = np.random.default_rng(1).normal(size=25)
+        s, rows = np.zeros(A.shape[0]), []
+        for uk in u:
+            rows.append(C @ s + D[:, 0] * uk)
+            s = A @ s + B[:, 0] * uk
+        trace = dict(zip(outputs, np.array(rows).T, strict=False)) | {c.inputs[0]: u}
+        for n in c.neurons:
+            want = np.zeros(u.size)
+            for syn in (*n.self_terms, *n.synapses):
+                d = syn.delay
+                want[d:] += float(syn.weight) * trace[syn.source][: u.size - d]
+            np.testing.assert_allclose(trace[n.name], want, atol=1e-12, err_msg=n.name)
+
+
+def test_equations_round_coefficients_but_keep_exponents_exact():
+    from symctl.realization import first_order_realization
+    from symctl.symbols import epsilon_1
+
+    x = sp.Symbol("x", positive=True)
+    R = first_order_realization(sp.Rational(1, 3) * sp.sqrt(x) + 0.123456789 * epsilon_1, 1)
+    (eq,) = Circuit.from_structure(Structure.from_realization(R)).equations(digits=3)
+    assert "0.333" in eq and "0.123" in eq and r"\sqrt{x}" in eq and "0.5" not in eq

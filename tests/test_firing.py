@@ -7,6 +7,7 @@ import pytest
 from matplotlib.figure import Figure
 
 from symctl import (
+    DimensionError,
     MuscleModel,
     ParameterError,
     SymctlTypeError,
@@ -22,6 +23,7 @@ from symctl.symbols import C_1, C_3
 
 MODEL = MuscleModel()
 GAINS = lqr_gains(augment(MODEL, 1, 1))
+NO_DELAY = lqr_gains(augment(MODEL, 0, 0))
 
 
 @pytest.fixture(scope="module")
@@ -117,6 +119,9 @@ def test_plot_returns_a_figure_with_one_panel_per_neuron_and_the_force(general):
         ({"seed": "x"}, SymctlTypeError, "seed:"),
         ({"rtol": 0}, ParameterError, "rtol:"),
         ({"plant": ([[0.5]], [[4.6]])}, ParameterError, "plant: realization 0"),
+        ({"plant": ([[0.5, 0], [0, 0.5]], [[1], [1]])}, DimensionError, "plant: firing patterns"),
+        ({"plant": "muscle"}, SymctlTypeError, "plant: expected"),
+        ({"kind": "ifp", "gains": NO_DELAY}, ParameterError, "gains: the IFP controller"),
     ],
 )
 def test_bad_arguments_are_refused_by_name(kwargs, error, match):
@@ -124,3 +129,31 @@ def test_bad_arguments_are_refused_by_name(kwargs, error, match):
     kind, gains = args.pop("kind"), args.pop("gains")
     with pytest.raises(error, match=match):
         circuit_firing(kind, gains, **args)
+
+
+def test_time_axis_is_labelled_in_the_plants_time_unit():
+    steps = circuit_firing("controllable", lqr_gains(augment(([[0.6]], [[4.6]]), 1, 1)), count=1)
+    assert steps.reference.time_unit == "steps"
+    assert steps.plot().axes[1].get_xlabel() == "time [steps]"
+
+
+def test_plot_refuses_a_bad_ncols_by_name(general):
+    for ncols in (0, 2.5, "3"):
+        with pytest.raises(ParameterError, match="ncols: must be an integer >= 1"):
+            general.plot(ncols)
+
+
+def test_circuits_without_neurons_give_empty_firing_and_summary():
+    fp = circuit_firing("controllable", NO_DELAY, count=2)
+    assert fp.neurons == () and fp.max_deviation <= 1e-9
+    s = fp.summary()
+    assert s.peak.shape == (2, 0) and s.spread.shape == (0,)
+
+
+def test_summary_table_columns_line_up_for_long_neuron_names():
+    from symctl.firing import FiringSummary
+
+    summary = FiringSummary(("G2.x1", "G2.x10_long_name"), np.ones((2, 2)), np.zeros(2), 0.0)
+    lines = summary.table().splitlines()
+    bars = {tuple(i for i, ch in enumerate(line) if ch == "|") for line in lines[:1] + lines[2:-1]}
+    assert len(bars) == 1  # every row has its bars in the same columns
