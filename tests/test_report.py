@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import io
 import json
 import re
 import shutil
@@ -26,14 +25,9 @@ FIGURES = ["open_loop", "closed_loop", "nonlinear"] + [
 def paper(tmp_path_factory):
     """One full run of ``symctl paper`` (figures and PDF): its folder and its console output."""
     out = tmp_path_factory.mktemp("paper")
-    capture = pytest.MonkeyPatch()
-    buffer = io.StringIO()
-    capture.setattr(cli._console, "file", buffer)
-    try:
+    with cli._console.capture() as captured:  # leaves the console's stream as it was
         assert main(["paper", "--out", str(out)]) == 0
-    finally:
-        capture.undo()
-    return out, buffer.getvalue()
+    return out, captured.get()
 
 
 def test_results_json_has_a_circuits_entry_per_circuit(paper):
