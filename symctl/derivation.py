@@ -98,7 +98,7 @@ class Verbatim:
 
 
 # ---------------------------------------------------------------- helpers
-def _num(value, digits: int = 6):
+def _num(value):
     """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
     if isinstance(value, sp.MatrixBase):
         return np.array(value.evalf(), dtype=float)
@@ -121,11 +121,6 @@ def _both(symbolic, numeric) -> str:
     return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"
 
 
-def _tf_with(tf, subs) -> str:
-    """A transfer function with numbers substituted, numbers shortened."""
-    return L.to_latex(tf.subs(subs).expr.evalf(6)) if subs else tf.latex()
-
-
 def _ascii(text: str) -> str:
     return text.replace("Ẽ", "E~").replace("→", "->").replace("≤", "<=").replace("≥", ">=")
 
@@ -141,7 +136,7 @@ def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
         if name in shown:
             add(Figure(name, caption))
 
-    params = res.to_json()["parameters"]
+    params = res.parameters()
     s, g, f = res.system, res.gains, res.factors
     add(
         Text(

@@ -76,6 +76,18 @@ class PaperResults:
     closed_loop: Response
     nonlinear: NonlinearCheck
 
+    def parameters(self) -> dict:
+        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`)."""
+        s = self.system
+        return {
+            **self.model.as_dict(),
+            "sensor_delay": s.sensor_delay,
+            "actuator_delay": s.actuator_delay,
+            "Q": _matrix(s.Q_plant),
+            "R": _matrix(s.R),
+            "seed": self.seed,
+        }
+
     def to_json(self) -> dict:
         """A JSON-ready dictionary (plain lists and floats)."""
         s = self.system
@@ -84,14 +96,7 @@ class PaperResults:
         numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
         return {
             "schema_version": SCHEMA_VERSION,
-            "parameters": {
-                **self.model.as_dict(),
-                "sensor_delay": s.sensor_delay,
-                "actuator_delay": s.actuator_delay,
-                "Q": _matrix(s.Q_plant),
-                "R": _matrix(s.R),
-                "seed": self.seed,
-            },
+            "parameters": self.parameters(),
             "plant": {
                 "f_bar": self.model.f_bar,
                 "r_bar": self.model.r_bar,
@@ -261,7 +266,7 @@ def _delays(E: np.ndarray) -> list[list[int | None]]:
 def _value(v):
     """An exact or numeric parameter value for JSON (a float, or nested lists for a matrix)."""
     if isinstance(v, sp.MatrixBase | np.ndarray):
-        return np.array(sp.Matrix(v).evalf(), dtype=float).tolist()
+        return _matrix(sp.Matrix(v))
     return float(v)
 
 
@@ -374,6 +379,7 @@ class CircuitRecord:
 
     def to_json(self) -> dict:
         c, fp, verdict = self.circuit, self.firing, self.compatibility
+        peak = fp.summary().peak
         return {
             "neurons": {
                 "count": c.n_neurons,
@@ -397,7 +403,7 @@ class CircuitRecord:
                 for params in fp.params
             ],
             "peak_firing": {
-                name: [None if np.isnan(v) else float(v) for v in fp.summary().peak[:, i]]
+                name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
                 for i, name in enumerate(fp.neurons)
             },
         }
