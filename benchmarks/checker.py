@@ -28,10 +28,10 @@ import time
 import sympy as sp
 from capped import capped
 
-from symctl.check import check_realization
-from symctl.realization import controllable_canonical
+from symctl.design.tf import DiscreteTF
+from symctl.realization.check import check_realization
+from symctl.realization.realization import controllable_canonical
 from symctl.symbols import C_1, C_3, gain_symbols, z
-from symctl.transfer import DiscreteTF
 
 
 def transfer_function(n: int, form: str) -> sp.Expr:

@@ -17,10 +17,10 @@ import time
 import numpy as np
 
 from symctl import controllable_canonical, controller_tf, factor
-from symctl.compatibility import brute_force_compatibility, check_compatibility
-from symctl.delaygraph import DelayGraph
+from symctl.compatibility.check import brute_force_compatibility, check_compatibility
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.errors import ParameterError
-from symctl.structure import Structure, ifp_structure
 
 
 def paper_controller() -> Structure:

@@ -21,64 +21,64 @@ from symctl.errors import (
 __version__ = "0.1.0"
 
 _LOCATIONS = {
-    "RealizationCheck": "symctl.check",
-    "check_realization": "symctl.check",
-    "Circuit": "symctl.circuit",
-    "CircuitSystem": "symctl.circuit",
-    "Neuron": "symctl.circuit",
-    "Synapse": "symctl.circuit",
-    "CompatibilityResult": "symctl.compatibility",
-    "ControllerCompatibility": "symctl.compatibility",
-    "brute_force_compatibility": "symctl.compatibility",
-    "check_compatibility": "symctl.compatibility",
-    "controller_compatibility": "symctl.compatibility",
-    "AugmentedSystem": "symctl.delay",
-    "augment": "symctl.delay",
-    "DelayAssignment": "symctl.delaygraph",
-    "DelayGraph": "symctl.delaygraph",
+    "RealizationCheck": "symctl.realization.check",
+    "check_realization": "symctl.realization.check",
+    "Circuit": "symctl.neural.circuit",
+    "CircuitSystem": "symctl.neural.circuit",
+    "Neuron": "symctl.neural.circuit",
+    "Synapse": "symctl.neural.circuit",
+    "CompatibilityResult": "symctl.compatibility.check",
+    "ControllerCompatibility": "symctl.compatibility.check",
+    "brute_force_compatibility": "symctl.compatibility.check",
+    "check_compatibility": "symctl.compatibility.check",
+    "controller_compatibility": "symctl.compatibility.check",
+    "AugmentedSystem": "symctl.design.augment",
+    "augment": "symctl.design.augment",
+    "DelayAssignment": "symctl.compatibility.delaygraph",
+    "DelayGraph": "symctl.compatibility.delaygraph",
     "DimensionError": "symctl.errors",
     "NotStabilizableError": "symctl.errors",
     "ParameterError": "symctl.errors",
     "ParseError": "symctl.errors",
     "SymctlError": "symctl.errors",
     "SymctlTypeError": "symctl.errors",
-    "Factorization": "symctl.factorization",
-    "factor": "symctl.factorization",
-    "FiringPatterns": "symctl.firing",
-    "FiringSummary": "symctl.firing",
-    "circuit_firing": "symctl.firing",
-    "Gains": "symctl.lqr",
-    "lqr_gains": "symctl.lqr",
-    "DiscretePlant": "symctl.plant",
-    "Linearization": "symctl.plant",
-    "MuscleModel": "symctl.plant",
-    "discretize": "symctl.plant",
-    "linearize": "symctl.plant",
-    "Realization": "symctl.realization",
-    "controllable_canonical": "symctl.realization",
-    "general_realization": "symctl.realization",
-    "observable_canonical": "symctl.realization",
-    "random_realization": "symctl.realization",
-    "BatchResponse": "symctl.simulate",
-    "NonlinearCheck": "symctl.simulate",
-    "Response": "symctl.simulate",
-    "closed_loop_response": "symctl.simulate",
-    "ifp_realization": "symctl.simulate",
-    "nonlinear_check": "symctl.simulate",
-    "open_loop_response": "symctl.simulate",
-    "pulse": "symctl.simulate",
-    "simulate_batch": "symctl.simulate",
-    "simulate_realization": "symctl.simulate",
-    "Block": "symctl.structure",
-    "Structure": "symctl.structure",
-    "ifp_structure": "symctl.structure",
-    "same_structure": "symctl.structure",
-    "PaperResults": "symctl.report",
-    "derive_paper": "symctl.report",
+    "Factorization": "symctl.realization.factorization",
+    "factor": "symctl.realization.factorization",
+    "FiringPatterns": "symctl.neural.firing",
+    "FiringSummary": "symctl.neural.firing",
+    "circuit_firing": "symctl.neural.firing",
+    "Gains": "symctl.design.lqr",
+    "lqr_gains": "symctl.design.lqr",
+    "DiscretePlant": "symctl.design.plant",
+    "Linearization": "symctl.design.plant",
+    "MuscleModel": "symctl.design.plant",
+    "discretize": "symctl.design.plant",
+    "linearize": "symctl.design.plant",
+    "Realization": "symctl.realization.realization",
+    "controllable_canonical": "symctl.realization.realization",
+    "general_realization": "symctl.realization.realization",
+    "observable_canonical": "symctl.realization.realization",
+    "random_realization": "symctl.realization.realization",
+    "BatchResponse": "symctl.neural.simulate",
+    "NonlinearCheck": "symctl.neural.simulate",
+    "Response": "symctl.neural.simulate",
+    "closed_loop_response": "symctl.neural.simulate",
+    "ifp_realization": "symctl.neural.simulate",
+    "nonlinear_check": "symctl.neural.simulate",
+    "open_loop_response": "symctl.neural.simulate",
+    "pulse": "symctl.neural.simulate",
+    "simulate_batch": "symctl.neural.simulate",
+    "simulate_realization": "symctl.neural.simulate",
+    "Block": "symctl.compatibility.structure",
+    "Structure": "symctl.compatibility.structure",
+    "ifp_structure": "symctl.compatibility.structure",
+    "same_structure": "symctl.compatibility.structure",
+    "PaperResults": "symctl.report.pipeline",
+    "derive_paper": "symctl.report.pipeline",
     "z": "symctl.symbols",
-    "DiscreteTF": "symctl.transfer",
-    "controller_tf": "symctl.transfer",
-    "prove_controller_tf": "symctl.transfer",
+    "DiscreteTF": "symctl.design.tf",
+    "controller_tf": "symctl.design.tf",
+    "prove_controller_tf": "symctl.design.tf",
 }
 
 __all__ = [
@@ -162,17 +162,19 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # static tools see the eager imports
-    from symctl.check import RealizationCheck, check_realization
-    from symctl.circuit import Circuit, CircuitSystem, Neuron, Synapse
-    from symctl.compatibility import (
+    from symctl.compatibility.check import (
         CompatibilityResult,
         ControllerCompatibility,
         brute_force_compatibility,
         check_compatibility,
         controller_compatibility,
     )
-    from symctl.delay import AugmentedSystem, augment
-    from symctl.delaygraph import DelayAssignment, DelayGraph
+    from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+    from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
+    from symctl.design.augment import AugmentedSystem, augment
+    from symctl.design.lqr import Gains, lqr_gains
+    from symctl.design.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize
+    from symctl.design.tf import DiscreteTF, controller_tf, prove_controller_tf
     from symctl.errors import (
         DimensionError,
         NotStabilizableError,
@@ -181,19 +183,9 @@ if TYPE_CHECKING:  # static tools see the eager imports
         SymctlError,
         SymctlTypeError,
     )
-    from symctl.factorization import Factorization, factor
-    from symctl.firing import FiringPatterns, FiringSummary, circuit_firing
-    from symctl.lqr import Gains, lqr_gains
-    from symctl.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize
-    from symctl.realization import (
-        Realization,
-        controllable_canonical,
-        general_realization,
-        observable_canonical,
-        random_realization,
-    )
-    from symctl.report import PaperResults, derive_paper
-    from symctl.simulate import (
+    from symctl.neural.circuit import Circuit, CircuitSystem, Neuron, Synapse
+    from symctl.neural.firing import FiringPatterns, FiringSummary, circuit_firing
+    from symctl.neural.simulate import (
         BatchResponse,
         NonlinearCheck,
         Response,
@@ -205,6 +197,14 @@ if TYPE_CHECKING:  # static tools see the eager imports
         simulate_batch,
         simulate_realization,
     )
-    from symctl.structure import Block, Structure, ifp_structure, same_structure
+    from symctl.realization.check import RealizationCheck, check_realization
+    from symctl.realization.factorization import Factorization, factor
+    from symctl.realization.realization import (
+        Realization,
+        controllable_canonical,
+        general_realization,
+        observable_canonical,
+        random_realization,
+    )
+    from symctl.report.pipeline import PaperResults, derive_paper
     from symctl.symbols import z
-    from symctl.transfer import DiscreteTF, controller_tf, prove_controller_tf

@@ -14,7 +14,7 @@ import click
 from rich.console import Console
 from rich.table import Table
 
-from symctl.arguments import parse_matrix
+from symctl._util.validate import parse_matrix
 from symctl.errors import SymctlError, SymctlTypeError
 
 __all__ = ["main"]
@@ -108,7 +108,7 @@ def paper(
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PNG and SVG).
     """
-    from symctl.report import derive_paper  # imported here: keeps `symctl --help` fast
+    from symctl.report.pipeline import derive_paper  # imported here: keeps `symctl --help` fast
 
     Q = parse_matrix(q_text, "--q")
     R = parse_matrix(r_text, "--r")

@@ -5,7 +5,7 @@ Kept in one small module (house style): :func:`tf_to_control` and
 over (``dt=True``, python-control's "discrete, unspecified", maps to ``None``).
 
 >>> from symctl import z
->>> from symctl.transfer import DiscreteTF
+>>> from symctl.design.tf import DiscreteTF
 >>> sys = tf_to_control(DiscreteTF.from_expr(2 / (z - 0.5), dt=0.01))
 >>> sys.dt
 0.01
@@ -19,9 +19,9 @@ import control
 import numpy as np
 import sympy as sp
 
+from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.symbols import z
-from symctl.transfer import DiscreteTF
 
 __all__ = ["tf_from_control", "tf_to_control"]
 

@@ -42,17 +42,17 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 import sympy as sp
 
-from symctl.circuit import Circuit
-from symctl.compatibility import CompatibilityResult, ControllerCompatibility
-from symctl.delay import AugmentedSystem
-from symctl.delaygraph import DelayAssignment, DelayGraph
-from symctl.display import latex as _sympy_latex
+from symctl._util.display import latex as _sympy_latex
+from symctl.compatibility.check import CompatibilityResult, ControllerCompatibility
+from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.design.augment import AugmentedSystem
+from symctl.design.lqr import Gains
+from symctl.design.plant import DiscretePlant, Linearization, MuscleModel
+from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.factorization import Factorization
-from symctl.lqr import Gains
-from symctl.plant import DiscretePlant, Linearization, MuscleModel
-from symctl.realization import Realization
-from symctl.transfer import DiscreteTF
+from symctl.neural.circuit import Circuit
+from symctl.realization.factorization import Factorization
+from symctl.realization.realization import Realization
 
 __all__ = ["align", "document", "equation", "equations", "export", "number", "to_latex"]
 

@@ -14,8 +14,8 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from symctl import DimensionError, DiscreteTF, ParameterError, SymctlTypeError, z
-from symctl.check import RealizationCheck, check_realization
-from symctl.realization import Realization, controllable_canonical, observable_canonical
+from symctl.realization.check import RealizationCheck, check_realization
+from symctl.realization.realization import Realization, controllable_canonical, observable_canonical
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
 METHODS = ("exact", "randomized")

@@ -21,9 +21,9 @@ from symctl import (
     observable_canonical,
     z,
 )
-from symctl.circuit import Circuit, Synapse
-from symctl.realization import random_realization
-from symctl.structure import Structure, ifp_structure
+from symctl.compatibility.structure import Structure, ifp_structure
+from symctl.neural.circuit import Circuit, Synapse
+from symctl.realization.realization import random_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
 matplotlib.use("Agg")
@@ -314,7 +314,7 @@ def test_each_neuron_trace_obeys_its_self_dynamics_and_synapses():
 
 
 def test_equations_round_coefficients_but_keep_exponents_exact():
-    from symctl.realization import first_order_realization
+    from symctl.realization.realization import first_order_realization
     from symctl.symbols import epsilon_1
 
     x = sp.Symbol("x", positive=True)

@@ -20,14 +20,14 @@ from symctl import (
     observable_canonical,
     z,
 )
-from symctl.compatibility import (
+from symctl.compatibility.check import (
     brute_force_compatibility,
     check_compatibility,
     controller_compatibility,
 )
-from symctl.delaygraph import DelayAssignment, DelayGraph
-from symctl.realization import first_order_realization
-from symctl.structure import Block, Structure, ifp_structure
+from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.structure import Block, Structure, ifp_structure
+from symctl.realization.realization import first_order_realization
 
 NEUROMUSCULAR = DelayGraph.chain([1, 1])
 F = factor(controller_tf(2))

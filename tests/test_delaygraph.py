@@ -10,9 +10,9 @@ import sympy as sp
 from helpers import paper_assignment
 
 from symctl import ParameterError, controllable_canonical, controller_tf, factor
-from symctl.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.errors import DimensionError, SymctlTypeError
-from symctl.structure import Structure, ifp_structure
 
 INF = math.inf
 PAPER_E = [[0, 1, 2], [INF, 0, 1], [INF, INF, 0]]

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from symctl import DimensionError, ParameterError, controller_tf, factor, z
-from symctl.factorization import section_symbols
+from symctl.realization.factorization import section_symbols
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
 K0, K1, K2 = gain_symbols(2)

@@ -16,9 +16,9 @@ from symctl import (
     factor,
     lqr_gains,
 )
-from symctl.firing import FiringPatterns, circuit_firing
-from symctl.realization import controller_realization
-from symctl.simulate import closed_loop_response, simulate_realization
+from symctl.neural.firing import FiringPatterns, circuit_firing
+from symctl.neural.simulate import closed_loop_response, simulate_realization
+from symctl.realization.realization import controller_realization
 from symctl.symbols import C_1, C_3
 
 MODEL = MuscleModel()
@@ -151,7 +151,7 @@ def test_circuits_without_neurons_give_empty_firing_and_summary():
 
 
 def test_summary_table_columns_line_up_for_long_neuron_names():
-    from symctl.firing import FiringSummary
+    from symctl.neural.firing import FiringSummary
 
     summary = FiringSummary(("G2.x1", "G2.x10_long_name"), np.ones((2, 2)), np.zeros(2), 0.0)
     lines = summary.table().splitlines()

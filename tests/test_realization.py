@@ -22,7 +22,11 @@ from symctl import (
     random_realization,
     z,
 )
-from symctl.realization import controller_realization, first_order_realization, split_proper
+from symctl.realization.realization import (
+    controller_realization,
+    first_order_realization,
+    split_proper,
+)
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
 K0, K1, K2 = gain_symbols(2)

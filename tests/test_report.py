@@ -11,10 +11,10 @@ import pytest
 
 from symctl import cli
 from symctl.cli import main
-from symctl.derivation import Heading, Math, Text, compile_pdf, to_markdown, to_tex
 from symctl.errors import LatexError
-from symctl.figures import FORMATS
-from symctl.report import CIRCUITS
+from symctl.report.document import Heading, Math, Text, compile_pdf, to_markdown, to_tex
+from symctl.report.figures import FORMATS
+from symctl.report.pipeline import CIRCUITS
 
 FIGURES = ["open_loop", "closed_loop", "nonlinear"] + [
     f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")
@@ -147,7 +147,7 @@ def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
     import sympy as sp
 
     from symctl import controllable_canonical, controller_tf, factor, observable_canonical
-    from symctl.derivation import _compact, _remainder_poly, _remainder_symbols
+    from symctl.report.document import _compact, _remainder_poly, _remainder_symbols
 
     f = factor(controller_tf(4), 2, 2)
     c = _remainder_symbols(f)

@@ -22,8 +22,7 @@ from symctl import (
     observable_canonical,
     random_realization,
 )
-from symctl.realization import controller_realization
-from symctl.simulate import (
+from symctl.neural.simulate import (
     _schur_stable,
     closed_loop_response,
     ifp_realization,
@@ -33,6 +32,7 @@ from symctl.simulate import (
     simulate_batch,
     simulate_realization,
 )
+from symctl.realization.realization import controller_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3
 
 MODEL = MuscleModel()
@@ -173,7 +173,7 @@ def test_batch_accepts_one_disturbance_per_realization():
 
 
 def test_batch_across_chunk_boundaries_equals_single_loops():
-    from symctl.simulate import _CHUNK
+    from symctl.neural.simulate import _CHUNK
 
     count = _CHUNK + 3
     gain = np.linspace(-0.02, -0.08, count).reshape(count, 1, 1)
@@ -282,7 +282,7 @@ def test_a_run_that_blows_up_says_so():
 def test_a_rate_that_overflows_while_the_state_stays_finite_is_refused():
     # delta_r = -1e10 delta_f overflows during the pulse; the stable loop (pole -0.5)
     # has decayed to finite rates again by the last step.
-    from symctl.simulate import _CHUNK
+    from symctl.neural.simulate import _CHUNK
 
     plant = (np.array([[0.5]]), np.array([[1e-10]]))
     zero = np.zeros((1, 1, 1))

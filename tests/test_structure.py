@@ -17,8 +17,8 @@ from symctl import (
     observable_canonical,
     z,
 )
-from symctl.realization import first_order_realization
-from symctl.structure import Block, Structure, ifp_structure, same_structure
+from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
+from symctl.realization.realization import first_order_realization
 from symctl.symbols import gain_symbols
 
 matplotlib.use("Agg")
@@ -210,7 +210,7 @@ def test_drawing_shows_each_gain_value_once_in_its_own_box_and_no_boxes_overlap(
 
     from matplotlib.figure import Figure
 
-    from symctl.display import latex
+    from symctl._util.display import latex
 
     fig, texts, boxes, renderer = _drawn(S)
     assert isinstance(fig, Figure)

@@ -34,11 +34,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from symctl.arguments import as_generator, to_expr, to_matrix
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import as_generator, to_expr, to_matrix
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
-from symctl.transfer import DiscreteTF
 
 __all__ = [
     "Realization",
@@ -225,7 +225,7 @@ class Realization(LatexMixin):
     # ------------------------------------------------------------ numbers and interop
     def numeric(self) -> tuple[np.ndarray, ...]:
         """``(F, H, M, N)`` as float arrays; refuses free symbols."""
-        from symctl.arguments import numeric_matrix
+        from symctl._util.validate import numeric_matrix
 
         return tuple(
             numeric_matrix(m, name) if m.shape[0] * m.shape[1] else np.zeros(m.shape)
@@ -290,7 +290,7 @@ class Realization(LatexMixin):
         Vectorized: arrays of parameter values broadcast, and each returned
         matrix has shape ``broadcast_shape + (rows, cols)``.
         """
-        from symctl.evaluate import lambdify_matrices
+        from symctl._util.evaluate import lambdify_matrices
 
         return lambdify_matrices((self.F, self.H, self.M, self.N), symbols)
 
@@ -445,7 +445,7 @@ def random_realization(
     (a NumPy ``Generator`` or an int).
 
     >>> from symctl import controller_tf
-    >>> from symctl.factorization import factor
+    >>> from symctl.realization.factorization import factor
     >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
     >>> sorted(str(k) for k in R.params)
     ['P', 'epsilon_1', 'epsilon_3']

@@ -15,22 +15,22 @@ The recipe, per realization (seeded):
    rationals on a grid of 1/1000), set :math:`C_1 = C_3 = 1`;
 2. realize :math:`G_2`: ``"controllable"`` and ``"observable"`` canonical
    forms, or for ``"general"`` a random full-rank similarity transform ``P`` of
-   the controllable canonical one (:func:`~symctl.realization.random_realization`);
+   the controllable canonical one (:func:`~symctl.realization.realization.random_realization`);
 3. close the loop with :math:`G_3 G_2 G_1`
-   (:func:`~symctl.realization.controller_realization`,
-   :func:`~symctl.simulate.simulate_realization`) and check that force and
-   rate equal the optimal controller's (:func:`~symctl.simulate.closed_loop_response`);
+   (:func:`~symctl.realization.realization.controller_realization`,
+   :func:`~symctl.neural.simulate.simulate_realization`) and check that force and
+   rate equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`);
 4. read every neuron's axon output off the circuit
-   (:meth:`Circuit.as_linear_system <symctl.circuit.Circuit.as_linear_system>`
-   of :meth:`Circuit.from_structure <symctl.circuit.Circuit.from_structure>`
+   (:meth:`Circuit.as_linear_system <symctl.neural.circuit.Circuit.as_linear_system>`
+   of :meth:`Circuit.from_structure <symctl.neural.circuit.Circuit.from_structure>`
    applied to :meth:`Structure.from_factorization
-   <symctl.structure.Structure.from_factorization>`), driven by the loop's
+   <symctl.compatibility.structure.Structure.from_factorization>`), driven by the loop's
    controller input :math:`\delta_f`, and keep the neurons of :math:`G_2`.
 
 The neurons are linear, so a neuron's output *is* its change in firing rate
 from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
 realization, no free parameters): its one neuron :math:`\mu` of
-:func:`~symctl.structure.ifp_structure` with the gains substituted.
+:func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
 
 >>> from symctl import MuscleModel, augment, lqr_gains
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
@@ -48,21 +48,15 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from symctl.arguments import as_generator
-from symctl.circuit import Circuit
-from symctl.delay import as_plant
+from symctl._util.validate import as_generator
+from symctl.compatibility.structure import Structure, ifp_structure
+from symctl.design.augment import as_plant
+from symctl.design.lqr import Gains
+from symctl.design.plant import DiscretePlant
+from symctl.design.tf import controller_tf
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.factorization import factor
-from symctl.lqr import Gains
-from symctl.plant import DiscretePlant
-from symctl.realization import (
-    Realization,
-    controllable_canonical,
-    controller_realization,
-    observable_canonical,
-    random_realization,
-)
-from symctl.simulate import (
+from symctl.neural.circuit import Circuit
+from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     Response,
@@ -70,9 +64,15 @@ from symctl.simulate import (
     ifp_realization,
     simulate_realization,
 )
-from symctl.structure import Structure, ifp_structure
+from symctl.realization.factorization import factor
+from symctl.realization.realization import (
+    Realization,
+    controllable_canonical,
+    controller_realization,
+    observable_canonical,
+    random_realization,
+)
 from symctl.symbols import gain_symbols
-from symctl.transfer import controller_tf
 
 __all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing"]
 
@@ -421,7 +421,7 @@ def circuit_firing(
         \delta_r = G(z)\,\delta_f.
 
     The force and rate traces must equal the optimal controller's
-    (:func:`~symctl.simulate.closed_loop_response` of ``gains``) to ``rtol``
+    (:func:`~symctl.neural.simulate.closed_loop_response` of ``gains``) to ``rtol``
     (relative to their peak); the neurons' traces are read off the circuit
     driven by the loop's :math:`\delta_f`, and the circuit's output must match
     :math:`\delta_r` too.
@@ -440,7 +440,7 @@ def circuit_firing(
     seed : int or numpy Generator
         Seeds the epsilons and ``P`` (default 0: reproducible).
     disturbance, steps, start, length
-        As in :func:`~symctl.simulate.simulate_realization` (default a unit
+        As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
         pulse on steps 5..14 of 50).
     rtol : float
         Tolerance of the behaviour check (default 1e-9).
@@ -457,7 +457,7 @@ def circuit_firing(
         loop, or a realization whose force or rate departs from the optimal
         controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains').
     SymctlTypeError
-        ``gains`` not :class:`~symctl.lqr.Gains`, ``plant`` of another type, a bad ``seed``.
+        ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``seed``.
     DimensionError
         ``gains`` or ``plant`` for a plant with more than one state or input.
 

@@ -20,31 +20,31 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from symctl.check import RealizationCheck, check_realization
-from symctl.circuit import Circuit
-from symctl.compatibility import CompatibilityResult, check_compatibility
-from symctl.delay import AugmentedSystem, augment
-from symctl.delaygraph import DelayGraph
+from symctl.compatibility.check import CompatibilityResult, check_compatibility
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure, ifp_structure
+from symctl.design.augment import AugmentedSystem, augment
+from symctl.design.lqr import Gains, lqr_gains
+from symctl.design.plant import DiscretePlant, MuscleModel
+from symctl.design.tf import DiscreteTF, controller_tf, descending_str, prove_controller_tf
 from symctl.errors import ParameterError
-from symctl.factorization import Factorization, factor
-from symctl.firing import FiringPatterns, circuit_firing
-from symctl.lqr import Gains, lqr_gains
-from symctl.plant import DiscretePlant, MuscleModel
-from symctl.realization import (
-    Realization,
-    controllable_canonical,
-    general_realization,
-    observable_canonical,
-)
-from symctl.simulate import (
+from symctl.neural.circuit import Circuit
+from symctl.neural.firing import FiringPatterns, circuit_firing
+from symctl.neural.simulate import (
     NonlinearCheck,
     Response,
     closed_loop_response,
     nonlinear_check,
     open_loop_response,
 )
-from symctl.structure import Structure, ifp_structure
-from symctl.transfer import DiscreteTF, controller_tf, descending_str, prove_controller_tf
+from symctl.realization.check import RealizationCheck, check_realization
+from symctl.realization.factorization import Factorization, factor
+from symctl.realization.realization import (
+    Realization,
+    controllable_canonical,
+    general_realization,
+    observable_canonical,
+)
 
 __all__ = ["CIRCUITS", "CircuitRecord", "PaperResults", "RealizationRecord", "derive_paper"]
 
@@ -202,13 +202,13 @@ class PaperResults:
         """Write the outputs into folder ``out``; returns the paths written.
 
         ``results.json``, ``derivation.tex`` and ``report.md``; with ``figures``
-        the figures as PNG and SVG (:func:`symctl.figures.paper_figures`); with
+        the figures as PNG and SVG (:func:`symctl.report.figures.paper_figures`); with
         ``pdf`` also ``derivation.pdf`` when ``pdflatex`` is on the PATH. ``jobs``
         is the number of processes drawing figures
-        (:func:`symctl.figures.write_figures`).
+        (:func:`symctl.report.figures.write_figures`).
         """
-        from symctl import derivation
-        from symctl import figures as figs
+        from symctl.report import document as derivation
+        from symctl.report import figures as figs
 
         step = progress or (lambda _name: None)
         out = Path(out)
@@ -236,7 +236,7 @@ class PaperResults:
 
 
 def _section_C(params: dict) -> list[str]:
-    """The C of each section drawn (all 1 in :func:`~symctl.firing.circuit_firing`)."""
+    """The C of each section drawn (all 1 in :func:`~symctl.neural.firing.circuit_firing`)."""
     return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
 
 
@@ -361,7 +361,7 @@ class CircuitRecord:
     ``structure`` and ``circuit`` are symbolic (for ``"general"`` with the
     symbolic or seeded ``P`` of :class:`RealizationRecord`); ``firing`` holds
     the closed-loop simulations of the random realizations
-    (:func:`~symctl.firing.circuit_firing`).
+    (:func:`~symctl.neural.firing.circuit_firing`).
     """
 
     name: str

@@ -11,7 +11,7 @@ delays on a path of the structure from signal :math:`a` to signal :math:`b`.
 By definition :math:`\tilde E \ge E` says :math:`d(a, b) \ge E_{v(a) v(b)}` for
 every pair of signals joined by a path. When :math:`E` is a shortest-path
 closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`; every
-:class:`~symctl.delaygraph.DelayGraph` is one) this holds iff
+:class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
 
 .. math:: E_{v(a) v(b)} \le w \quad \text{for every wire } a \xrightarrow{w} b.
 
@@ -65,8 +65,8 @@ paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`)
 and, for every placement of the signals where these paths meet, one path that
 the placement makes too fast.
 
->>> from symctl.structure import ifp_structure
->>> from symctl.delaygraph import DelayGraph
+>>> from symctl.compatibility.structure import ifp_structure
+>>> from symctl.compatibility.delaygraph import DelayGraph
 >>> result = check_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
 >>> result.ok
 False
@@ -92,11 +92,11 @@ from functools import cached_property
 import numpy as np
 import sympy as sp
 
-from symctl.delaygraph import DelayAssignment, DelayGraph
-from symctl.display import LatexMixin
+from symctl._util.display import LatexMixin
+from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.structure import Structure, _zero_one_bfs
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.structure import Structure, _zero_one_bfs
-from symctl.transfer import DiscreteTF
 
 __all__ = [
     "METHODS",
@@ -559,7 +559,7 @@ class CompatibilityResult(LatexMixin):
 
     Examples
     --------
-    >>> from symctl.structure import ifp_structure
+    >>> from symctl.compatibility.structure import ifp_structure
     >>> r = check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
     >>> r.ok, r.method, r.E_tilde.tolist()
     (True, 'chain: bounds arc consistency', [[0.0, 0.0], [inf, 0.0]])
@@ -650,8 +650,8 @@ def check_compatibility(
     neuromuscular graph:
 
     >>> from symctl import controller_tf, factor, controllable_canonical
-    >>> from symctl.realization import first_order_realization
-    >>> from symctl.structure import Structure
+    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl.compatibility.structure import Structure
     >>> f = factor(controller_tf(2))
     >>> S = Structure.series(first_order_realization(f.sensor_eps[0], f.sensor_C[0]),
     ...                      controllable_canonical(f.G2),
@@ -695,7 +695,7 @@ def brute_force_compatibility(
     ParameterError
         When more than ``limit`` assignments would be needed.
 
-    >>> from symctl.structure import ifp_structure
+    >>> from symctl.compatibility.structure import ifp_structure
     >>> r = brute_force_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
     >>> r.ok, r.stats["assignments"]
     (False, 243)
@@ -790,8 +790,8 @@ class ControllerCompatibility(LatexMixin):
 
 
 def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
-    from symctl.factorization import factor
-    from symctl.realization import (
+    from symctl.realization.factorization import factor
+    from symctl.realization.realization import (
         controllable_canonical,
         controller_realization,
         general_realization,

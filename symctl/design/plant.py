@@ -29,14 +29,14 @@ import numpy as np
 import sympy as sp
 
 from symctl import symbols as S
-from symctl.arguments import (
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import (
     numeric_matrix,
     positive_number,
     real_number,
     to_expr,
     to_matrix,
 )
-from symctl.display import LatexMixin, latex
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["DiscretePlant", "Linearization", "MuscleModel", "discretize", "linearize"]

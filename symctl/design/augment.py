@@ -39,10 +39,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symctl.arguments import nonneg_int, psd_matrix, to_matrix
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import nonneg_int, psd_matrix, to_matrix
+from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.errors import DimensionError, SymctlTypeError
-from symctl.plant import DiscretePlant, MuscleModel
 
 __all__ = ["AugmentedSystem", "as_plant", "augment"]
 

@@ -38,11 +38,11 @@ from functools import cache
 import sympy as sp
 
 from symctl import symbols as S
-from symctl.arguments import nonneg_int
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import nonneg_int
+from symctl.design.tf import DiscreteTF, _descending, _products_equal
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
-from symctl.transfer import DiscreteTF, _descending, _products_equal
 
 __all__ = ["Factorization", "factor", "section_symbols"]
 
@@ -95,7 +95,7 @@ class Factorization(LatexMixin):
     @property
     def N(self) -> sp.Expr:
         r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`)."""
-        from symctl.realization import split_proper
+        from symctl.realization.realization import split_proper
 
         return split_proper(self.G2)[0]
 
@@ -111,7 +111,7 @@ class Factorization(LatexMixin):
         The paper's :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`;
         when :math:`N = 0` the numerator of :math:`G_2` itself.
         """
-        from symctl.realization import split_proper
+        from symctl.realization.realization import split_proper
 
         N, c, _ = split_proper(self.G2)
         scale = N if N != 0 else 1

@@ -1,4 +1,4 @@
-r"""The report's figures, built from a :class:`~symctl.report.PaperResults`.
+r"""The report's figures, built from a :class:`~symctl.report.pipeline.PaperResults`.
 
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows; :func:`paper_figures` collects them under stable file
@@ -20,7 +20,7 @@ name                          content
                               the first simulated realization, with numbers)
 ============================  ==================================================
 
-with ``<circuit>`` one of :data:`symctl.report.CIRCUITS` (``ifp``, ``general``,
+with ``<circuit>`` one of :data:`symctl.report.pipeline.CIRCUITS` (``ifp``, ``general``,
 ``controllable``, ``observable``).
 """
 
@@ -38,7 +38,7 @@ from symctl.errors import ParameterError
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from symctl.report import PaperResults
+    from symctl.report.pipeline import PaperResults
 
 __all__ = [
     "DPI",

@@ -1,7 +1,7 @@
 r"""Check that a realization realizes a transfer function: a proof, or a randomized test.
 
 :func:`check_realization` decides whether a realization :math:`(F, H, M, N)`
-(:class:`~symctl.realization.Realization`) has the transfer function
+(:class:`~symctl.realization.realization.Realization`) has the transfer function
 :math:`G(z)`, i.e. whether :math:`M(zI - F)^{-1}H + N = G(z)` identically in
 :math:`z` and in every free symbol (gains :math:`K_i`, :math:`\epsilon_i`,
 :math:`C_i`, the entries of a similarity transform :math:`P`, ...). It returns
@@ -37,7 +37,7 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
   a gcd), so for a similarity transform, where :math:`M F^a = M_0 F_0^a P` and
   :math:`F^b H = P^{-1} F_0^b H_0`, :math:`\det P` never piles up.
   :math:`h_k` comes fraction-free from the recurrence of
-  :meth:`~symctl.transfer.DiscreteTF.markov`. Each :math:`e_k` is tested by
+  :meth:`~symctl.design.tf.DiscreteTF.markov`. Each :math:`e_k` is tested by
   cross-multiplication: a zero polynomial, or not.
 * ``method="randomized"`` evaluates every entry exactly (rationals, no floats)
   at a point :math:`x` drawn uniformly from :math:`S^v`,
@@ -58,7 +58,7 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
   symbols the randomized test is one exact evaluation, a proof already.)
 
 >>> from symctl import z
->>> from symctl.realization import controllable_canonical
+>>> from symctl.realization.realization import controllable_canonical
 >>> G = (z + 2) / (z**2 - z / 2)
 >>> check_realization(controllable_canonical(G), G).ok
 True
@@ -77,11 +77,11 @@ import sympy as sp
 from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
 from flint.utils.flint_exceptions import DomainError
 
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.realization import Realization
+from symctl.realization.realization import Realization
 from symctl.symbols import z
-from symctl.transfer import DiscreteTF
 
 __all__ = ["RealizationCheck", "check_realization"]
 
@@ -132,7 +132,7 @@ class RealizationCheck(LatexMixin):
     Examples
     --------
     >>> from symctl import z
-    >>> from symctl.realization import Realization
+    >>> from symctl.realization.realization import Realization
     >>> result = check_realization(Realization([[2]], [[1]], [[1]], 0), 1 / (z - 3))
     >>> bool(result), result.counterexample["values"][z] != 3
     (False, True)
@@ -800,7 +800,7 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     Examples
     --------
     >>> from symctl import z
-    >>> from symctl.realization import controllable_canonical
+    >>> from symctl.realization.realization import controllable_canonical
     >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
     >>> K0, K1, K2 = gain_symbols(2)
     >>> G2 = K0 / (C_1 * C_3) * (z - epsilon_1) * (z - epsilon_3) / (z**2 - K1 * z - K2)

@@ -47,13 +47,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
-from symctl.arguments import nonneg_int, numeric_matrix, real_number
-from symctl.delay import as_plant
+from symctl._util.validate import nonneg_int, numeric_matrix, real_number
+from symctl.design.augment import as_plant
+from symctl.design.lqr import Gains
+from symctl.design.plant import DiscretePlant, MuscleModel
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.lqr import Gains
-from symctl.plant import DiscretePlant, MuscleModel
-from symctl.realization import Realization, controllable_canonical
-from symctl.transfer import DiscreteTF
+from symctl.realization.realization import Realization, controllable_canonical
 
 __all__ = [
     "DEFAULT_LENGTH",
@@ -617,7 +617,7 @@ def closed_loop_response(
     Parameters
     ----------
     controller : Gains, DiscreteTF or Realization
-        :class:`~symctl.lqr.Gains` simulate the optimal controller on the augmented
+        :class:`~symctl.design.lqr.Gains` simulate the optimal controller on the augmented
         state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi + [I; 0] w` (the
         states reported are the delay chain :math:`\gamma_1 \dots \delta_r`); with a
         ``plant`` given, the gains' :func:`ifp_realization` is closed around that plant.
@@ -878,8 +878,8 @@ def nonlinear_check(
     >>> bool(chk.relative_deviation[0] < 1e-3 < chk.relative_deviation[1])
     True
     """
-    from symctl.delay import augment
-    from symctl.lqr import lqr_gains
+    from symctl.design.augment import augment
+    from symctl.design.lqr import lqr_gains
 
     model = MuscleModel() if model is None else model
     if not isinstance(model, MuscleModel):

@@ -37,11 +37,11 @@ import numpy as np
 import sympy as sp
 from sympy.polys.rings import ring
 
-from symctl.arguments import nonneg_int, to_expr
-from symctl.delay import AugmentedSystem
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import nonneg_int, to_expr
+from symctl.design.augment import AugmentedSystem
+from symctl.design.lqr import Gains
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.lqr import Gains
 from symctl.symbols import gain_matrix_symbols, z
 
 __all__ = ["DiscreteTF", "controller_tf", "descending_str", "prove_controller_tf"]

@@ -47,9 +47,9 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl.display import LatexMixin
+from symctl._util.display import LatexMixin
+from symctl.compatibility.structure import Structure, _zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.structure import Structure, _zero_one_bfs
 
 __all__ = ["READINGS", "DelayAssignment", "DelayGraph"]
 
@@ -342,7 +342,7 @@ class DelayAssignment(LatexMixin):
     --------
     The paper's attempt for the IFP structure: :math:`\mu` at :math:`v_3`.
 
-    >>> from symctl.structure import ifp_structure
+    >>> from symctl.compatibility.structure import ifp_structure
     >>> S = ifp_structure(2)
     >>> a = DelayAssignment(S, DelayGraph.chain([1, 1]),
     ...     {"x": 1, "K0": 1, "mu": 3, "gamma": 3, "u": 3, "K1": 3, "K2": 3})
@@ -404,7 +404,7 @@ class DelayAssignment(LatexMixin):
     def e_tilde(self, reading: str = "fastest") -> np.ndarray:
         r""":math:`\tilde E` in one of the :data:`READINGS` (read-only float array).
 
-        >>> from symctl.structure import ifp_structure
+        >>> from symctl.compatibility.structure import ifp_structure
         >>> S = ifp_structure(1)
         >>> a = DelayAssignment(S, DelayGraph.chain([1]),
         ...                     {"x": 1, "K0": 1, "mu": 1, "K1": 2, "u": 2})

@@ -61,10 +61,10 @@ from typing import NamedTuple
 import networkx as nx
 import sympy as sp
 
-from symctl.arguments import nonneg_int, to_expr
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import nonneg_int, to_expr
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.realization import Realization
+from symctl.realization.realization import Realization
 from symctl.symbols import gain_symbols
 
 __all__ = ["KINDS", "Block", "Structure", "ifp_structure", "same_structure"]
@@ -290,7 +290,7 @@ class Structure(LatexMixin):
         delays : {"branch", "state"}
             Where the unit delays sit relative to the adders (see the module text).
 
-        >>> from symctl.realization import first_order_realization
+        >>> from symctl.realization.realization import first_order_realization
         >>> import sympy as sp
         >>> eps, C = sp.symbols("epsilon C")
         >>> S = Structure.from_realization(first_order_realization(eps, C))
@@ -376,8 +376,8 @@ class Structure(LatexMixin):
         *are* the inputs of the next (no extra block).
 
         >>> from symctl import controller_tf
-        >>> from symctl.factorization import factor
-        >>> from symctl.realization import controllable_canonical, first_order_realization
+        >>> from symctl.realization.factorization import factor
+        >>> from symctl.realization.realization import controllable_canonical, first_order_realization
         >>> f = factor(controller_tf(2))
         >>> G1 = first_order_realization(f.sensor_eps[0], f.sensor_C[0])
         >>> G3 = first_order_realization(f.actuator_eps[0], f.actuator_C[0])
@@ -444,7 +444,7 @@ class Structure(LatexMixin):
         >>> S.count("sum"), S.count("delay")
         (4, 8)
         """
-        from symctl.realization import first_order_realization
+        from symctl.realization.realization import first_order_realization
 
         f = factorization
         dt = f.G.dt

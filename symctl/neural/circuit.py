@@ -4,7 +4,7 @@ The paper's section "Neurons and microcircuits": a stylized *neuron* outputs on
 its axon a weighted sum of its synaptic inputs (the synaptic weights) and of its
 own past outputs (its *self-dynamics*), with no activation function; an axon may
 branch to several downstream neurons. :meth:`Circuit.from_structure` turns a
-:class:`~symctl.structure.Structure` into such a circuit.
+:class:`~symctl.compatibility.structure.Structure` into such a circuit.
 
 The counting rule
 -----------------
@@ -14,7 +14,7 @@ of a row of :math:`[F\ H]` or :math:`[M\ N]`, i.e. a weighted signal
 no term. Then
 
 * every adder that sums **two or more terms** is a neuron, the output sum
-  :math:`y = M x + N u` included (in :class:`~symctl.structure.Structure` a
+  :math:`y = M x + N u` included (in :class:`~symctl.compatibility.structure.Structure` a
   one-input adder is no block, so the neurons are exactly the ``"sum"`` blocks
   with at least two inputs);
 * a single term passing through gains and unit delays (e.g. the controllable
@@ -57,8 +57,8 @@ canonical :math:`x_2 \to y` through :math:`M_2`, and through the delay
 :math:`x_1` and :math:`M_1`) are two branches, as in the paper's figure.
 
 Where the neurons sit: given a compatible
-:class:`~symctl.delaygraph.DelayAssignment` (or a
-:class:`~symctl.compatibility.CompatibilityResult`), a neuron's vertex is the
+:class:`~symctl.compatibility.delaygraph.DelayAssignment` (or a
+:class:`~symctl.compatibility.check.CompatibilityResult`), a neuron's vertex is the
 vertex of its adder's signal. In the paper's assignment for :math:`G_3 G_2 G_1`
 (:math:`x` and :math:`\alpha_1 = C_1 x` at :math:`v_1`, everything of
 :math:`G_2` at :math:`v_2`, :math:`u` at :math:`v_3`) the :math:`G_1` neuron is
@@ -75,7 +75,7 @@ state-space system whose outputs are the neurons' axon outputs (then the circuit
 outputs), so simulating it reproduces each neuron's firing trace.
 
 >>> from symctl import controller_tf, controllable_canonical, factor
->>> from symctl.structure import Structure
+>>> from symctl.compatibility.structure import Structure
 >>> f = factor(controller_tf(2))
 >>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
 >>> c.n_neurons, [n.name for n in c.neurons]
@@ -94,11 +94,17 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
-from symctl.compatibility import CompatibilityResult
-from symctl.delaygraph import DelayAssignment
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl.compatibility.check import CompatibilityResult
+from symctl.compatibility.delaygraph import DelayAssignment
+from symctl.compatibility.structure import (
+    Block,
+    Structure,
+    _figure_and_axes,
+    _finish_figure,
+    _text_size,
+)
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.structure import Block, Structure, _figure_and_axes, _finish_figure, _text_size
 from symctl.symbols import z
 
 __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
@@ -185,8 +191,8 @@ class Neuron:
     vertex : int or None
         The delay-graph vertex of its signal, when an assignment was given.
 
-    >>> from symctl.realization import first_order_realization
-    >>> from symctl.structure import Structure
+    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl.compatibility.structure import Structure
     >>> from symctl.symbols import epsilon_1, C_1
     >>> c = Circuit.from_structure(Structure.from_realization(
     ...     first_order_realization(epsilon_1, C_1)))
@@ -260,7 +266,7 @@ class Circuit(LatexMixin):
         The branches of each input's axon.
 
     >>> from symctl import observable_canonical, controller_tf, factor
-    >>> from symctl.structure import Structure
+    >>> from symctl.compatibility.structure import Structure
     >>> c = Circuit.from_structure(Structure.from_realization(
     ...     observable_canonical(factor(controller_tf(2)).G2)))
     >>> c.n_neurons, c.inputs, [o.source for o in c.outputs]
@@ -375,7 +381,7 @@ class Circuit(LatexMixin):
     def neuron(self, name: str) -> Neuron:
         """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
 
-        >>> from symctl.structure import ifp_structure
+        >>> from symctl.compatibility.structure import ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).neuron("mu").self_dynamics
         K_1/z + K_2/z**2
         """
@@ -399,7 +405,7 @@ class Circuit(LatexMixin):
     def branches(self) -> dict[str, int]:
         """The number of axon branches of each neuron and input.
 
-        >>> from symctl.structure import ifp_structure
+        >>> from symctl.compatibility.structure import ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).branches()
         {'mu': 1, 'x': 1}
         """
@@ -419,7 +425,7 @@ class Circuit(LatexMixin):
         The circuit keeps its shape: a weight that becomes zero stays a synapse
         of weight 0 (substitute into the realization to drop it). Vertices are kept.
 
-        >>> from symctl.realization import first_order_realization
+        >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))
@@ -468,7 +474,7 @@ class Circuit(LatexMixin):
 
         Examples
         --------
-        >>> from symctl.realization import first_order_realization
+        >>> from symctl.realization.realization import first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
         >>> sys = c.as_linear_system()
@@ -522,7 +528,7 @@ class Circuit(LatexMixin):
         ``digits``, when given, rounds the weights' numbers to that many
         significant digits (exact fractions included).
 
-        >>> from symctl.realization import first_order_realization
+        >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))
@@ -592,7 +598,7 @@ class Circuit(LatexMixin):
         (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
         right. Returns a :class:`matplotlib.figure.Figure`.
 
-        >>> from symctl.structure import ifp_structure
+        >>> from symctl.compatibility.structure import ifp_structure
         >>> type(Circuit.from_structure(ifp_structure(2)).draw()).__name__
         'Figure'
         """
@@ -686,7 +692,7 @@ def _lag(d: int) -> str:
 
 def _tex_name(name: str) -> str:
     """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
-    from symctl.structure import _signal_label
+    from symctl.compatibility.structure import _signal_label
 
     part, _, short = name.rpartition(".")
     label = _signal_label(short).strip("$")

@@ -40,9 +40,9 @@ import numpy as np
 import scipy.linalg
 import sympy as sp
 
-from symctl.arguments import numeric_matrix, psd_matrix
-from symctl.delay import AugmentedSystem
-from symctl.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import numeric_matrix, psd_matrix
+from symctl.design.augment import AugmentedSystem
 from symctl.errors import NotStabilizableError, SymctlTypeError
 from symctl.symbols import gain_matrix_symbols
 

@@ -1,6 +1,6 @@
 r"""The whole derivation as one story, written as LaTeX (``derivation.tex``) and Markdown.
 
-:func:`story` turns a :class:`~symctl.report.PaperResults` into a list of blocks
+:func:`story` turns a :class:`~symctl.report.pipeline.PaperResults` into a list of blocks
 (headings, prose, numbered equations, tables, figures, verbatim text) in the
 order of the paper: muscle model and linearization, discretization, delays and
 the augmented system, LQR gains, the controller :math:`G(z)`, the factors
@@ -28,12 +28,12 @@ import numpy as np
 import sympy as sp
 
 from symctl import latex as L
+from symctl.design.tf import _descending_latex
 from symctl.errors import LatexError
 from symctl.symbols import z
-from symctl.transfer import _descending_latex
 
 if TYPE_CHECKING:
-    from symctl.report import PaperResults
+    from symctl.report.pipeline import PaperResults
 
 __all__ = [
     "Figure",
