@@ -64,6 +64,11 @@ import sympy as sp
 from symctl._util.display import LatexMixin, latex
 from symctl._util.validate import nonneg_int, to_expr
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.plotting.common import (  # drawing moves out next
+    figure_and_axes,
+    finish_figure,
+    text_size,
+)
 from symctl.realization.realization import Realization
 from symctl.symbols import gain_symbols
 
@@ -736,7 +741,7 @@ def _gain_label(block: Block, name: str) -> str:
     if len(re.sub(r"[{}_^\s]", "", visible)) > _MAX_LABEL:
         return name
     try:
-        _text_size(f"${text}$", _FONT)
+        text_size(f"${text}$", _FONT)
     except ValueError:
         return name
     return f"${text}$"
@@ -753,15 +758,6 @@ def _signal_label(name: str) -> str:
     stem, digits = match.groups()
     stem = "\\" + stem if stem in greek_letters_set else stem
     return f"${stem}_{{{digits}}}$" if digits else f"${stem}$"
-
-
-def _text_size(text: str, size: float) -> tuple[float, float]:
-    """Width and height in inches of ``text`` set at ``size`` points (mathtext allowed)."""
-    from matplotlib.font_manager import FontProperties
-    from matplotlib.textpath import TextPath
-
-    box = TextPath((0, 0), text, size=size, prop=FontProperties(size=size)).get_extents()
-    return box.width / 72, box.height / 72
 
 
 def _feedback_edges(S: Structure, g: nx.DiGraph) -> list[tuple[str, str]]:
@@ -880,7 +876,7 @@ class _Geometry:
         for name, block in S.blocks.items():
             if block.kind == "gain":
                 label = _gain_label(block, name)
-                w, h = _text_size(label, _FONT)
+                w, h = text_size(label, _FONT)
                 self.label[name] = label
                 self.size[name] = (max(w + 2 * _PAD, 0.3), max(h + 2 * _PAD, 0.26))
             elif block.kind == "sum":
@@ -889,7 +885,7 @@ class _Geometry:
                 self.size[name] = (2 * _DOT_R, 2 * _DOT_R)
             if block.kind != "gain" and not name.rpartition(".")[2].startswith("z^-1"):
                 text = _signal_label(name)
-                self.name[name] = (text, _text_size(text, _NAME_FONT)[0])
+                self.name[name] = (text, text_size(text, _NAME_FONT)[0])
 
     def kind(self, name) -> str:
         return self.S.blocks[name].kind if name in self.S.blocks else "dummy"
@@ -1075,7 +1071,7 @@ def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
         for (_, k), off in zip(sorted(entries), _spread(len(entries), half)[::-1], strict=True):
             rise[k] = pos[b][0] + off
 
-    fig, ax, own = _figure_and_axes(ax)
+    fig, ax, own = figure_and_axes(ax)
     wires = []  # (points, dashed)
 
     def out_point(a):
@@ -1161,55 +1157,7 @@ def _draw(S: Structure, ax=None, *, title=None, max_signals=400):
         "boxes: gains (their values; long ones by block name)   circles: adders   "
         "dashed arrows: one-step delays   dots: signals"
     )
-    return _finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, top=0.62)
-
-
-def _figure_and_axes(ax):
-    """``(fig, ax, own)``: a new pyplot-free figure filling one axes, or the caller's axes."""
-    from matplotlib.figure import Figure
-
-    if ax is None:
-        fig = Figure()
-        return fig, fig.add_axes((0, 0, 1, 1)), True
-    return ax.figure, ax, False
-
-
-def _finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float):
-    """Heading and key above the drawing, equal axes without frame, size in inches.
-
-    Shared by structure and circuit drawings (one data unit is one inch).
-    """
-    x_lo, x_hi, y_lo, y_hi = bounds
-    # TextPath measures the glyph outlines; rendered text runs a few percent wider
-    room = max(x_hi - x_lo, 4.0) - 0.3
-    lines = _wrap_key(key.split("   "), room, 7.5)
-    extra = 0.14 * (len(lines) - 1)
-    ax.text(x_lo + 0.1, y_hi + 0.3 + extra, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(x_lo + 0.1, y_hi + 0.1, "\n".join(lines), ha="left", va="bottom", fontsize=7.5,
-            color="0.35", linespacing=1.3)  # fmt: skip
-    width = 1.08 * max(
-        _text_size(t, s)[0] for t, s in [(heading, 10), *((ln, 7.5) for ln in lines)]
-    )
-    x_hi = max(x_hi, x_lo + width + 0.3)
-    y_hi += top + extra
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
-    return fig
-
-
-def _wrap_key(items: list[str], room: float, size: float) -> list[str]:
-    """Pack the key's items into lines no wider than ``room`` inches (one item may overflow)."""
-    lines: list[str] = []
-    for item in items:
-        if lines and 1.08 * _text_size(lines[-1] + "   " + item, size)[0] <= room:
-            lines[-1] += "   " + item
-        else:
-            lines.append(item)
-    return lines
+    return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, top=0.62)
 
 
 def _assign_lanes(side, drop, rise, boxes, span) -> dict[int, int]:

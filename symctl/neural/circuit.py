@@ -97,13 +97,7 @@ import sympy as sp
 from symctl._util.display import LatexMixin, latex
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayAssignment
-from symctl.compatibility.structure import (
-    Block,
-    Structure,
-    _figure_and_axes,
-    _finish_figure,
-    _text_size,
-)
+from symctl.compatibility.structure import Block, Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.symbols import z
 
@@ -743,7 +737,9 @@ def _visible(tex: str) -> int:
 
 
 def _text_width(text: str, size: float) -> float:
-    return _text_size(text, size)[0]
+    from symctl.plotting.common import text_size
+
+    return text_size(text, size)[0]
 
 
 def _layout(c: Circuit):
@@ -807,6 +803,8 @@ def _layout(c: Circuit):
 def _draw(c: Circuit, ax, title):
     from matplotlib.patches import Circle, FancyArrowPatch
 
+    from symctl.plotting.common import figure_and_axes, finish_figure
+
     col, row = _layout(c)
     xstep, ystep = 2.6, 1.5
     pos = {n: (xstep * col[n], ystep * row[n]) for n in col}
@@ -831,7 +829,7 @@ def _draw(c: Circuit, ax, title):
         body[n.name] = f"${tex}$"
         radius[n.name] = max(0.32, _text_width(body[n.name], _FONT) / 2 + 0.1)
 
-    fig, ax, own = _figure_and_axes(ax)
+    fig, ax, own = figure_and_axes(ax)
 
     extra: list[tuple[float, float]] = []  # arc label positions, for the extent
 
@@ -959,4 +957,4 @@ def _draw(c: Circuit, ax, title):
         width = max(width, _text_width(line, _FONT) + 0.3)
     y_lo -= 0.28 * len(legend) + 0.15
     x_hi = max(x_hi, x_lo + width)
-    return _finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)
+    return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)

@@ -1,0 +1,66 @@
+r"""The one spelling of a signal name in LaTeX, for diagrams, tables and documents.
+
+>>> signal_tex("gamma2")
+'\\gamma_{2}'
+>>> signal_tex("G2.x1")
+'x_{1}^{\\mathrm{G2}}'
+>>> signal_tex("G2.x1", part=False)
+'x_{1}'
+>>> signal_tex("epsilon_{1,2}")
+'\\epsilon_{1,2}'
+>>> signal_tex("u")
+'u'
+"""
+
+from __future__ import annotations
+
+import re
+
+__all__ = ["GREEK", "signal_tex"]
+
+GREEK = frozenset(
+    "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
+    "tau upsilon phi chi psi omega".split()
+)
+
+_NAME = re.compile(r"([A-Za-z]+)(?:(\d+)|_\{([^{}]*)\}|_([A-Za-z0-9]+))?")
+
+
+def signal_tex(name: str, *, part: bool = True) -> str:
+    r"""LaTeX (without ``$``) of a signal or neuron name.
+
+    A stem and an index (``x1``, ``gamma2``, ``epsilon_{1,2}``, ``x_3``) become
+    a subscript, Greek stems a Greek letter; the part before a dot (``G2`` in
+    ``G2.x1``) becomes a roman superscript, or is dropped with ``part=False``.
+    Any other name is set in roman.
+
+    Parameters
+    ----------
+    name : str
+        The signal name, e.g. ``"G2.x1"``.
+    part : bool, default True
+        Keep the part (``G2``) as a superscript.
+
+    Returns
+    -------
+    str
+        The LaTeX, e.g. ``x_{1}^{\mathrm{G2}}``.
+
+    Examples
+    --------
+    >>> from symctl._util.texnames import signal_tex
+    >>> signal_tex("mu")
+    '\\mu'
+    """
+    prefix, _, short = name.rpartition(".")
+    match = _NAME.fullmatch(short)
+    if match:
+        stem, digits, braced, plain = match.groups()
+        index = digits or braced or plain
+        stem = "\\" + stem if stem in GREEK else stem
+        label = f"{stem}_{{{index}}}" if index else stem
+    else:
+        label = short if short.isalnum() else rf"\mathrm{{{short}}}"
+    if prefix and part:
+        return rf"{label}^{{\mathrm{{{prefix}}}}}"
+    return label
