@@ -109,10 +109,14 @@ class AugmentedSystem(LatexMixin):
         """Penalty on the intended actuation mu: ``R`` when ``T = 0``, else zero (the paper's)."""
         return self.R if self.T == 0 else sp.ImmutableMatrix(sp.zeros(self.m, self.m))
 
+    @property
+    def chi(self) -> sp.ImmutableMatrix:
+        r"""The augmented state :math:`\chi` as a column of symbols named after ``state_names``."""
+        return sp.ImmutableMatrix([sp.Symbol(s) for s in self.state_names])
+
     def latex(self) -> str:
-        chi = sp.Matrix([sp.Symbol(s) for s in self.state_names])
         return (
-            rf"\chi = {latex(chi)},\quad \tilde A = {latex(self.A)},\quad "
+            rf"\chi = {latex(self.chi)},\quad \tilde A = {latex(self.A)},\quad "
             rf"\tilde B = {latex(self.B)},\quad \tilde Q = {latex(self.Q)}"
         )
 
