@@ -22,12 +22,12 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -n 2 -q
 
 lint: $(STAMP)
-	$(BIN)/ruff check symctl tests benchmarks
-	$(BIN)/ruff format --check symctl tests benchmarks
+	$(BIN)/ruff check symctl tests benchmarks conftest.py
+	$(BIN)/ruff format --check symctl tests benchmarks conftest.py
 
 format: $(STAMP)
-	$(BIN)/ruff format symctl tests benchmarks
-	$(BIN)/ruff check --fix symctl tests benchmarks
+	$(BIN)/ruff format symctl tests benchmarks conftest.py
+	$(BIN)/ruff check --fix symctl tests benchmarks conftest.py
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/core.py

@@ -1,5 +1,6 @@
 r"""The one spelling of a signal name in LaTeX, for diagrams, tables and documents.
 
+>>> from symctl._util.texnames import signal_tex
 >>> signal_tex("gamma2")
 '\\gamma_{2}'
 >>> signal_tex("G2.x1")

@@ -1,0 +1,65 @@
+"""Public names loaded on first use (PEP 562), from one table.
+
+A package writes its public names once, as a table ``{name: module}``, and gets
+``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach` (the shape of
+``lazy_loader.attach`` and networkx's ``lazy_imports``, in twenty lines). A name
+is imported when it is first used, so ``import symctl`` stays quick and a
+script pays only for what it uses.
+
+Examples
+--------
+>>> from symctl._util.lazy import attach
+>>> getattr_, dir_, all_ = attach("symctl", {"z": "symctl.symbols"})
+>>> all_
+['z']
+>>> getattr_("z")
+z
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from collections.abc import Callable, Iterable, Mapping
+
+__all__ = ["attach"]
+
+
+def attach(
+    package: str, table: Mapping[str, str], submodules: Iterable[str] = ()
+) -> tuple[Callable[[str], object], Callable[[], list[str]], list[str]]:
+    """``(__getattr__, __dir__, __all__)`` for ``package`` from ``{name: module}``.
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__``.
+    table : mapping of str to str
+        Each public name and the module that defines it.
+    submodules : iterable of str, optional
+        Submodules reached as attributes (``symctl.latex``).
+
+    Returns
+    -------
+    tuple
+        ``__getattr__`` (imports on first use and caches in the package),
+        ``__dir__`` and the sorted ``__all__``.
+    """
+    table = dict(table)
+    subs = frozenset(submodules)
+    names = sorted(table)
+
+    def __getattr__(name: str):
+        if name in subs:
+            return importlib.import_module(f"{package}.{name}")
+        module = table.get(name)
+        if module is None:
+            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        value = getattr(importlib.import_module(module), name)
+        setattr(sys.modules[package], name, value)
+        return value
+
+    def __dir__() -> list[str]:
+        return sorted(set(vars(sys.modules[package])) | set(names) | subs)
+
+    return __getattr__, __dir__, names
