@@ -40,28 +40,90 @@ __all__ = [
 
 
 class SymctlError(Exception):
-    """Base class of every error symctl raises on bad input (values and types alike)."""
+    """Base class of every error symctl raises on bad input (values and types alike).
+
+    Examples
+    --------
+    >>> import symctl
+    >>> try:
+    ...     symctl.MuscleModel(tau="fast")
+    ... except symctl.SymctlError as err:
+    ...     print(type(err).__name__, err)
+    SymctlTypeError tau: expected a real number, got 'fast'
+    """
 
 
 class ParameterError(SymctlError, ValueError):
-    """An argument has a value outside its admissible range (e.g. ``tau <= 0``)."""
+    """An argument has a value outside its admissible range (e.g. ``tau <= 0``).
+
+    Examples
+    --------
+    >>> import symctl
+    >>> symctl.MuscleModel(Ts=0)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: Ts: must be a finite number > 0, got 0
+    """
 
 
 class DimensionError(SymctlError, ValueError):
-    """Matrices or signals whose shapes do not fit together."""
+    """Matrices or signals whose shapes do not fit together.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> symctl.DiscretePlant([[1, 0], [0, 1]], [[1]])
+    Traceback (most recent call last):
+    ...
+    symctl.errors.DimensionError: B: must have 2 rows like A, got shape (1, 1)
+    """
 
 
 class NotStabilizableError(SymctlError, ValueError):
-    """The LQR problem has no stabilizing solution (not stabilizable or not detectable)."""
+    """The LQR problem has no stabilizing solution (not stabilizable or not detectable).
+
+    Examples
+    --------
+    >>> import symctl
+    >>> symctl.lqr_gains(symctl.augment(([[2]], [[0]]), 0, 1))
+    Traceback (most recent call last):
+    ...
+    symctl.errors.NotStabilizableError: ...
+    """
 
 
 class ParseError(SymctlError, ValueError):
-    """User text that is not an admissible expression."""
+    """User text that is not an admissible expression.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> symctl.DiscretePlant([["__import__('os')"]], [[1]])
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParseError: A: function '__import__' is not allowed; use one of: ...
+    """
 
 
 class LatexError(SymctlError, RuntimeError):
-    """``pdflatex`` failed on a document symctl wrote (a bug in symctl: please report it)."""
+    """``pdflatex`` failed on a document symctl wrote (a bug in symctl: please report it).
+
+    Examples
+    --------
+    >>> from symctl import LatexError, SymctlError
+    >>> issubclass(LatexError, SymctlError)
+    True
+    """
 
 
 class SymctlTypeError(SymctlError, TypeError):
-    """An argument of the wrong type."""
+    """An argument of the wrong type.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> symctl.lqr_gains("not a system")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.SymctlTypeError: ...
+    """
