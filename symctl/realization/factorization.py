@@ -38,9 +38,10 @@ from functools import cache
 import sympy as sp
 
 from symctl import symbols as S
-from symctl._util.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, descending_latex, latex
+from symctl._util.exact import products_equal
 from symctl._util.validate import nonneg_int
-from symctl.design.tf import DiscreteTF, _descending, _products_equal
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
 
@@ -121,7 +122,7 @@ class Factorization(LatexMixin):
         """Exact check that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication)."""
         left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
         right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
-        return _products_equal(left, right)
+        return products_equal(left, right)
 
     def subs(self, *args, **kwargs) -> Factorization:
         """Substitute values (e.g. for the epsilons and Cs); a zero C is refused."""
@@ -145,11 +146,11 @@ class Factorization(LatexMixin):
     def latex(self) -> str:
         r"""The three factors, :math:`G_2` written as the paper does (gain times zeros over poles)."""
         zeros = sp.Mul(*(z - e for e in (*self.sensor_eps, *self.actuator_eps)))
-        zeros_tex = _descending(sp.collect(sp.expand(zeros), z, evaluate=True))
+        zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
         g2 = (
             self.G2.latex()
             if self.N == 0
-            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{_descending(self.G2.den)}}}")
+            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}")
         )
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
 

@@ -12,8 +12,10 @@ Constructors, for any proper SISO :math:`G_2` of order :math:`n`, written as
 * :func:`controllable_canonical`: :math:`F` companion with last row
   :math:`[-a_0, \dots, -a_{n-1}]`, :math:`H = e_n`, :math:`M = [c_0, \dots, c_{n-1}]`;
 * :func:`observable_canonical`: its dual, :math:`(F^\top, M^\top, H^\top, N)`;
-* :func:`general_realization`: a similarity transform of a canonical one;
-* :func:`random_realization`: the paper's recipe for its figures.
+* :func:`~symctl.general_realization` and :func:`~symctl.random_realization`
+  (in :mod:`symctl.realization.realizers`, the registry of the ways to
+  realize :math:`G_2`): a similarity transform of a canonical one, and the
+  paper's recipe for its figures.
 
 For the paper's :math:`G_2` these are exactly its matrices, e.g.
 :math:`F = [[0, 1], [K_2, K_1]]`, :math:`H = [0, 1]^\top`,
@@ -35,7 +37,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import as_generator, to_expr, to_matrix
+from symctl._util.validate import to_expr, to_matrix
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -45,9 +47,7 @@ __all__ = [
     "controllable_canonical",
     "controller_realization",
     "first_order_realization",
-    "general_realization",
     "observable_canonical",
-    "random_realization",
     "split_proper",
 ]
 
@@ -168,6 +168,10 @@ class Realization(LatexMixin):
         ParameterError
             When ``P`` is singular (its determinant cancels to zero).
         """
+        return self._similar(P)[0]
+
+    def _similar(self, P) -> tuple[Realization, sp.Matrix]:
+        """:meth:`similar` and the inverse of ``P`` it computed (adjugate over determinant)."""
         Pm = to_matrix(P, "P")
         if Pm.shape != (self.n, self.n):
             raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
@@ -175,7 +179,7 @@ class Realization(LatexMixin):
         if det == 0:
             raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
         Pinv = (Pm.adjugate(method="berkowitz") / det).applyfunc(sp.cancel)
-        return Realization(
+        R = Realization(
             (Pinv * self.F * Pm).applyfunc(_tidy),
             (Pinv * self.H).applyfunc(_tidy),
             (self.M * Pm).applyfunc(_tidy),
@@ -183,6 +187,7 @@ class Realization(LatexMixin):
             self.dt,
             {**self.params, "P": sp.ImmutableMatrix(Pm)},
         )
+        return R, sp.ImmutableMatrix(Pinv)
 
     def subs(self, *args, **kwargs) -> Realization:
         """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`)."""
@@ -382,83 +387,6 @@ def observable_canonical(G2) -> Realization:
     :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
     """
     return controllable_canonical(G2).transpose()
-
-
-def general_realization(G2, P, base: str = "controllable") -> Realization:
-    r"""A general realization: the similarity transform by ``P`` of a canonical one.
-
-    ``P`` may be symbolic (e.g. a matrix of fresh symbols) or numeric; ``base``
-    is ``"controllable"`` (default) or ``"observable"``.
-
-    >>> import sympy as sp
-    >>> from symctl import z
-    >>> R = general_realization(1 / (z - sp.Rational(1, 2)), [[2]])
-    >>> R.F, R.H, R.M
-    (Matrix([[1/2]]), Matrix([[1/2]]), Matrix([[2]]))
-    """
-    return _canonical(G2, base).similar(P)
-
-
-def _canonical(G2, base: str) -> Realization:
-    if base == "controllable":
-        return controllable_canonical(G2)
-    if base == "observable":
-        return observable_canonical(G2)
-    raise ParameterError(f"base: must be 'controllable' or 'observable', got {base!r}")
-
-
-def _random_rational(
-    gen: np.random.Generator, low: float, high: float, grid: int = 1000
-) -> sp.Rational:
-    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
-
-
-def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 10.0) -> sp.Matrix:
-    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned."""
-    gen = as_generator(rng, "rng")
-    for _ in range(10_000):
-        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
-        if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
-            return P
-    raise ParameterError(
-        f"n: no well-conditioned random matrix found for n = {n}"
-    )  # pragma: no cover
-
-
-def random_realization(
-    G2,
-    rng=None,
-    *,
-    base: str = "controllable",
-    eps_range: tuple[float, float] = (-0.9, 0.9),
-    values: dict | None = None,
-) -> Realization:
-    r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
-
-    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
-    exact rational, uniform in ``eps_range`` (stable sections by default); the
-    canonical realization (``base``) is then similarity-transformed by a random
-    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
-    that no state is scaled out of proportion).
-    Other symbols (gains K, C) stay symbolic unless given in ``values``.
-    The epsilons and ``P`` used are recorded in ``.params``. Seeded by ``rng``
-    (a NumPy ``Generator`` or an int).
-
-    >>> from symctl import controller_tf
-    >>> from symctl.realization.factorization import factor
-    >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
-    >>> sorted(str(k) for k in R.params)
-    ['P', 'epsilon_1', 'epsilon_3']
-    """
-    gen = as_generator(rng, "rng")
-    tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
-    if values:
-        tf = tf.subs(values)
-    eps = sorted((s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name)
-    chosen = {s: _random_rational(gen, *eps_range) for s in eps}
-    base_R = _canonical(tf.subs(chosen), base)
-    R = base_R.similar(random_full_rank(base_R.n, gen))
-    return Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
 
 
 def first_order_realization(eps, C, dt=None) -> Realization:
