@@ -284,3 +284,15 @@ def as_generator(value, argname: str) -> np.random.Generator:
     if value is None or (isinstance(value, numbers.Integral) and not isinstance(value, bool)):
         return np.random.default_rng(value)
     raise SymctlTypeError(f"{argname}: expected an int seed or a numpy Generator, got {value!r}")
+
+
+def read_only(value) -> np.ndarray:
+    """A read-only copy of an array (the insides of a value object never change).
+
+    >>> a = read_only([1.0, 2.0])
+    >>> a.flags.writeable
+    False
+    """
+    out = np.array(value, copy=True)
+    out.setflags(write=False)
+    return out

@@ -41,7 +41,7 @@ import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import numeric_matrix, psd_matrix
+from symctl._util.validate import numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
 from symctl.errors import NotStabilizableError, SymctlTypeError
 from symctl.symbols import gain_matrix_symbols
@@ -70,6 +70,27 @@ class Gains(LatexMixin):
     K: np.ndarray
     X: np.ndarray
     poles: np.ndarray
+
+    def __post_init__(self):
+        for name in ("K", "X", "poles"):
+            object.__setattr__(self, name, read_only(getattr(self, name)))
+
+    def _key(self) -> tuple:
+        return (self.system, *(a.shape for a in (self.K, self.X, self.poles)))
+
+    def __eq__(self, other) -> bool:
+        """Equal system and equal arrays (numpy arrays compare element by element)."""
+        if not isinstance(other, Gains):
+            return NotImplemented
+        return self._key() == other._key() and all(
+            np.array_equal(a, b)
+            for a, b in zip(
+                (self.K, self.X, self.poles), (other.K, other.X, other.poles), strict=True
+            )
+        )
+
+    def __hash__(self) -> int:
+        return hash((self._key(), self.K.tobytes(), self.X.tobytes(), self.poles.tobytes()))
 
     @property
     def blocks(self) -> list[np.ndarray]:

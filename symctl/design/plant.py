@@ -22,8 +22,10 @@ exp(-T_s/tau)
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cache
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
@@ -52,9 +54,13 @@ class Linearization(LatexMixin):
     zero at an equilibrium.
     """
 
-    a: sp.Matrix
-    b: sp.Matrix
-    residual: sp.Matrix
+    a: sp.ImmutableMatrix
+    b: sp.ImmutableMatrix
+    residual: sp.ImmutableMatrix
+
+    def __post_init__(self):
+        for name in ("a", "b", "residual"):
+            object.__setattr__(self, name, sp.ImmutableMatrix(getattr(self, name)))
 
     def __iter__(self):
         return iter((self.a, self.b))
@@ -208,7 +214,7 @@ class DiscretePlant(LatexMixin):
     input_names: tuple[str, ...] = ()
     x_eq: sp.Matrix | None = None
     u_eq: sp.Matrix | None = None
-    params: dict = field(default_factory=dict, compare=False)
+    params: Mapping = field(default_factory=dict, compare=False)
 
     def __post_init__(self):
         A = to_matrix(self.A, "A")
@@ -219,6 +225,11 @@ class DiscretePlant(LatexMixin):
             raise DimensionError(f"B: must have {A.shape[0]} rows like A, got shape {B.shape}")
         object.__setattr__(self, "A", sp.ImmutableMatrix(A))
         object.__setattr__(self, "B", sp.ImmutableMatrix(B))
+        for name in ("x_eq", "u_eq"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, sp.ImmutableMatrix(value))
+        object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
         if self.Ts is not None:
             ts = to_expr(self.Ts, "Ts")
             if ts.is_number and not ts.is_positive:
@@ -242,11 +253,6 @@ class DiscretePlant(LatexMixin):
     def m(self) -> int:
         """Number of inputs."""
         return self.B.shape[1]
-
-    @property
-    def is_numeric(self) -> bool:
-        """True when A and B have no free symbols."""
-        return not (self.A.free_symbols or self.B.free_symbols)
 
     def subs(self, *args, **kwargs) -> DiscretePlant:
         """A new plant with symbols substituted (arguments as :meth:`sympy.Basic.subs`)."""

@@ -69,7 +69,7 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
@@ -96,7 +96,7 @@ _TRIES = 6
 
 
 # ---------------------------------------------------------------- the result
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class RealizationCheck(LatexMixin):
     r"""The verdict of :func:`check_realization`, with its method and evidence.
 
@@ -144,7 +144,7 @@ class RealizationCheck(LatexMixin):
     ok: bool
     method: str
     error_bound: Fraction
-    counterexample: dict | None
+    counterexample: dict | None = field(hash=False)
     details: str
     markov_count: int
     rounds: int = 0

@@ -72,7 +72,7 @@ def _sections(eps, cs, dt) -> DiscreteTF:
     return DiscreteTF(num, den, dt)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Factorization(LatexMixin):
     r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols.
 

@@ -31,7 +31,9 @@ For the paper's :math:`G_2` these are exactly its matrices, e.g.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
@@ -48,6 +50,7 @@ __all__ = [
     "controller_realization",
     "first_order_realization",
     "observable_canonical",
+    "section_realizations",
     "split_proper",
 ]
 
@@ -57,7 +60,7 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor_terms(sp.cancel(expr))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Realization(LatexMixin):
     r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
 
@@ -86,17 +89,17 @@ class Realization(LatexMixin):
     M: sp.ImmutableMatrix
     N: sp.ImmutableMatrix
     dt: sp.Expr | None = None
-    params: dict = field(default_factory=dict)
+    params: Mapping = field(default=None, compare=False)
 
-    def __init__(self, F, H, M, N, dt=None, params=None):
-        Fm = _matrix_or_empty(F, "F")
+    def __post_init__(self):
+        Fm = _matrix_or_empty(self.F, "F")
         n = Fm.shape[0]
         if Fm.shape != (n, n):
             raise DimensionError(f"F: must be square, got shape {Fm.shape}")
-        Nm = to_matrix(N, "N")
+        Nm = to_matrix(self.N, "N")
         p, q = Nm.shape
-        Hm = _matrix_or_empty(H, "H", (n, q))
-        Mm = _matrix_or_empty(M, "M", (p, n))
+        Hm = _matrix_or_empty(self.H, "H", (n, q))
+        Mm = _matrix_or_empty(self.M, "M", (p, n))
         if Hm.shape != (n, q):
             raise DimensionError(
                 f"H: expected shape {(n, q)} (F is {n}x{n}, N is {p}x{q}), got {Hm.shape}"
@@ -107,8 +110,8 @@ class Realization(LatexMixin):
             )
         for name, mat in (("F", Fm), ("H", Hm), ("M", Mm), ("N", Nm)):
             object.__setattr__(self, name, sp.ImmutableMatrix(mat))
-        object.__setattr__(self, "dt", None if dt is None else to_expr(dt, "dt"))
-        object.__setattr__(self, "params", dict(params or {}))
+        object.__setattr__(self, "dt", None if self.dt is None else to_expr(self.dt, "dt"))
+        object.__setattr__(self, "params", MappingProxyType(dict(self.params or {})))
 
     # ------------------------------------------------------------ sizes
     @property
@@ -390,15 +393,23 @@ def observable_canonical(G2) -> Realization:
 
 
 def first_order_realization(eps, C, dt=None) -> Realization:
-    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`."""
+    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
+
+    >>> from symctl.realization.realization import first_order_realization
+    >>> first_order_realization(2, 3).to_tf().expr
+    3/(z - 2)
+    """
     return Realization([[eps]], [[C]], [[1]], 0, dt)
 
 
-def controller_realization(factorization, R2: Realization) -> Realization:
-    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
+def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
+    r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order.
 
-    State order: the sensor sections of :math:`G_1` (in signal-flow order),
-    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+    >>> from symctl import controller_tf, factor
+    >>> from symctl.realization.realization import section_realizations
+    >>> first, last = section_realizations(factor(controller_tf(2)))
+    >>> first[0].F, last[0].H
+    (Matrix([[epsilon_1]]), Matrix([[C_3]]))
     """
     f = factorization
     dt = f.G.dt
@@ -408,4 +419,21 @@ def controller_realization(factorization, R2: Realization) -> Realization:
     last = [
         first_order_realization(e, c, dt) for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
     ]
+    return first, last
+
+
+def controller_realization(factorization, R2: Realization) -> Realization:
+    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
+
+    State order: the sensor sections of :math:`G_1` (in signal-flow order),
+    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+
+    >>> from symctl import controller_tf, controllable_canonical, factor
+    >>> from symctl.realization.realization import controller_realization
+    >>> f = factor(controller_tf(2))
+    >>> R = controller_realization(f, controllable_canonical(f.G2))
+    >>> R.n, R.to_tf().equals(f.G)
+    (4, True)
+    """
+    first, last = section_realizations(factorization)
     return Realization.series(*first, R2, *last)
