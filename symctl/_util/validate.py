@@ -296,3 +296,19 @@ def read_only(value) -> np.ndarray:
     out = np.array(value, copy=True)
     out.setflags(write=False)
     return out
+
+
+def sampling_time(value, argname: str) -> sp.Expr:
+    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass).
+
+    >>> sampling_time(0.01, "Ts")
+    0.0100000000000000
+    >>> sampling_time(0, "dt")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: dt: must be > 0, got 0
+    """
+    ts = to_expr(value, argname)
+    if ts.is_number and not ts.is_positive:
+        raise ParameterError(f"{argname}: must be > 0, got {value!r}")
+    return ts

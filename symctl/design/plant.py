@@ -36,7 +36,7 @@ from symctl._util.validate import (
     numeric_matrix,
     positive_number,
     real_number,
-    to_expr,
+    sampling_time,
     to_matrix,
 )
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
@@ -176,9 +176,7 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     bm = to_matrix(b, "b")
     if bm.shape[0] != n:
         raise DimensionError(f"b: must have {n} rows like a, got shape {bm.shape}")
-    ts = to_expr(Ts, "Ts")
-    if ts.is_number and not ts.is_positive:
-        raise ParameterError(f"Ts: must be > 0, got {Ts!r}")
+    ts = sampling_time(Ts, "Ts")
     m = bm.shape[1]
     block = sp.zeros(n + m, n + m)
     block[:n, :n] = am
@@ -231,10 +229,7 @@ class DiscretePlant(LatexMixin):
                 object.__setattr__(self, name, sp.ImmutableMatrix(value))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
         if self.Ts is not None:
-            ts = to_expr(self.Ts, "Ts")
-            if ts.is_number and not ts.is_positive:
-                raise ParameterError(f"Ts: must be > 0, got {self.Ts!r}")
-            object.__setattr__(self, "Ts", ts)
+            object.__setattr__(self, "Ts", sampling_time(self.Ts, "Ts"))
         n, m = A.shape[0], B.shape[1]
         object.__setattr__(self, "state_names", tuple(self.state_names) or _names("x", n))
         object.__setattr__(self, "input_names", tuple(self.input_names) or _names("u", m))

@@ -26,7 +26,7 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
 from symctl._util.exact import products_equal, z_poly
-from symctl._util.validate import nonneg_int, to_expr
+from symctl._util.validate import nonneg_int, sampling_time, to_expr
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
@@ -91,9 +91,7 @@ class DiscreteTF(LatexMixin):
         poly = z_poly(den_e)  # a float leading 1.0 is written as the integer 1
         d = poly.degree()
         den_e = z**d + sp.Add(*(c * z**k for (k,), c in poly.terms() if k != d))
-        dt_e = None if dt is None else to_expr(dt, "dt")
-        if dt_e is not None and dt_e.is_number and not dt_e.is_positive:
-            raise ParameterError(f"dt: must be > 0, got {dt!r}")
+        dt_e = None if dt is None else sampling_time(dt, "dt")
         object.__setattr__(self, "_num", num_m)
         object.__setattr__(self, "den", den_e)
         object.__setattr__(self, "dt", dt_e)
