@@ -4,6 +4,7 @@ r"""LaTeX display shared by every derived object.
 (:math:`\bar r`, :math:`f_\text{max}`, :math:`\delta_f`, ...). Classes that
 define ``latex()`` get ``_repr_latex_`` for Jupyter from :class:`LatexMixin`.
 
+>>> from symctl._util.display import latex
 >>> from symctl.symbols import r_bar, f_max
 >>> latex(f_max / (1 + r_bar))
 '\\frac{f_\\text{max}}{\\bar{r} + 1}'
@@ -11,6 +12,7 @@ define ``latex()`` get ``_repr_latex_`` for Jupyter from :class:`LatexMixin`.
 Polynomials in :math:`z` print in descending powers, as papers write them:
 
 >>> from symctl import z
+>>> from symctl._util.display import descending_latex, descending_str
 >>> from symctl.symbols import epsilon_1, epsilon_3
 >>> descending_str(z**2 - (epsilon_1 + epsilon_3) * z + epsilon_1 * epsilon_3)
 'z**2 - (epsilon_1 + epsilon_3)*z + epsilon_1*epsilon_3'

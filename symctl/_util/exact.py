@@ -18,6 +18,7 @@ numerator/denominator pair in symctl goes through it:
 
 >>> import sympy as sp
 >>> from symctl import z
+>>> from symctl._util.exact import IntFractions, fold, z_poly
 >>> a = sp.Symbol("a")
 >>> fold((z + a) / (z - 1) + 1 / a, IntFractions({z: 3, a: 2}))  # 6/2, not reduced
 (6, 2)

@@ -26,7 +26,7 @@ Stabilizability of :math:`(\tilde A, \tilde B)` and detectability of
 :math:`(\tilde Q^{1/2}, \tilde A)` are checked first with the PBH test, so that
 a problem without a stabilizing solution is reported as such.
 
->>> from symctl import MuscleModel, augment
+>>> from symctl import MuscleModel, augment, lqr_gains
 >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> [round(float(k), 6) for k in g.K[0]]
 [-0.045972, -0.580041, -0.351813]
@@ -64,6 +64,18 @@ class Gains(LatexMixin):
         Stabilizing DARE solution of the equivalent problem (see the module notes).
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
+
+    Built by :func:`lqr_gains`. The arrays are read-only copies; gains compare
+    and hash by value (the system and the arrays).
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> g.K.shape, g.spectral_radius < 1, g.K.flags.writeable
+    ((1, 3), True, False)
+    >>> sorted(map(str, g.substitutions()))
+    ['K_0', 'K_1', 'K_2']
     """
 
     system: AugmentedSystem
@@ -146,11 +158,22 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
 
     Raises
     ------
+    SymctlTypeError
+        ``system`` is not an AugmentedSystem.
     ParameterError
         Free symbols left in the system, or Q/R not symmetric positive semidefinite.
     NotStabilizableError
         :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
         detectable, or no stabilizing DARE solution (e.g. a singular ``R``).
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> [round(float(k), 6) for k in g.K[0]]
+    [-0.045972, -0.580041, -0.351813]
+    >>> [round(float(k), 6) for k in lqr_gains(augment(MuscleModel(), 1, 1), R=10).K[0]]
+    [-0.033993, -0.428904, -0.260143]
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(

@@ -12,6 +12,7 @@ the scalar system :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)` of eq. (
 number of states and inputs); :class:`MuscleModel` applies them to the paper's
 muscle and keeps every parameter symbolic until numbers are asked for.
 
+>>> from symctl import MuscleModel
 >>> m = MuscleModel()
 >>> m.discrete_symbolic().A[0, 0]
 exp(-T_s/tau)
@@ -50,8 +51,25 @@ class Linearization(LatexMixin):
 
     :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
 
-    Unpacks as ``a, b = linearize(...)``. ``residual`` is :math:`f(x_{eq}, u_{eq})`,
-    zero at an equilibrium.
+    Unpacks as ``a, b = linearize(...)``. Compares and hashes by value.
+
+    Attributes
+    ----------
+    a : sympy.ImmutableMatrix
+        :math:`\partial f/\partial x` at the point (``n x n``).
+    b : sympy.ImmutableMatrix
+        :math:`\partial f/\partial u` at the point (``n x m``).
+    residual : sympy.ImmutableMatrix
+        :math:`f(x_{eq}, u_{eq})`, zero at an equilibrium.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import linearize
+    >>> x, u = sp.symbols("x u")
+    >>> lin = linearize([-x + 2 * u], [x], [u], [2], [1])
+    >>> lin.a, lin.b, lin.residual
+    (Matrix([[-1]]), Matrix([[2]]), Matrix([[0]]))
     """
 
     a: sp.ImmutableMatrix
@@ -114,11 +132,18 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
 
     Raises
     ------
-    DimensionError, ParameterError
+    DimensionError
+        ``f`` is not a vector with one entry per state, or a point of the wrong size.
+    ParameterError
+        Invalid or repeated symbol names, or (with ``check_equilibrium``) a
+        point that is provably not an equilibrium.
+    SymctlTypeError
+        ``x`` or ``u`` holds something other than symbols or names.
 
     Examples
     --------
     >>> import sympy as sp
+    >>> from symctl import linearize
     >>> x, u = sp.symbols("x u")
     >>> a, b = linearize([-x**3 + u], [x], [u], [1], [1])
     >>> a, b
@@ -161,9 +186,31 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     Symbolic matrices give the closed form (sympy's matrix exponential);
     numeric ones go through :func:`scipy.linalg.expm`.
 
+    Parameters
+    ----------
+    a : (n, n) matrix-like
+        The continuous state matrix (a scalar for ``n = 1``).
+    b : (n, m) matrix-like
+        The continuous input matrix.
+    Ts : number or symbol
+        The sampling time, > 0 when a number.
+
+    Returns
+    -------
+    (sympy.Matrix, sympy.Matrix)
+        :math:`(A, B)`.
+
+    Raises
+    ------
+    DimensionError
+        ``a`` not square, or ``b`` with another number of rows.
+    ParameterError
+        A numeric ``Ts <= 0``.
+
     Examples
     --------
     >>> import sympy as sp
+    >>> from symctl import discretize
     >>> from symctl.symbols import tau, T_s
     >>> A, B = discretize(-1 / tau, 1 / tau, T_s)
     >>> A[0, 0], sp.simplify(B[0, 0] - (1 - sp.exp(-T_s / tau)))
@@ -198,11 +245,36 @@ class DiscretePlant(LatexMixin):
     ``Ts`` is the sampling time (a number, a symbol, or ``None`` when unknown).
     ``state_names``/``input_names`` label the signals (the muscle's are
     ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
-    of a linearized plant.
+    of a linearized plant. It compares and hashes by value (``params`` aside).
 
+    Parameters
+    ----------
+    A : (n, n) matrix-like
+    B : (n, m) matrix-like
+    Ts : number, symbol or None
+        Sampling time, > 0 when a number.
+    state_names, input_names : tuple of str, optional
+        Default ``x`` (``x_1, x_2, ...``) and ``u``.
+    x_eq, u_eq : matrix-like, optional
+        The operating point of a linearized plant.
+    params : mapping, optional
+        The model parameters it came from, for records; kept as a read-only mapping.
+
+    Raises
+    ------
+    DimensionError
+        ``A`` not square or empty, ``B`` with other rows, or names of the wrong count.
+    ParameterError
+        A numeric ``Ts <= 0``.
+
+    Examples
+    --------
+    >>> from symctl import DiscretePlant
     >>> p = DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
     >>> p.n, p.m
     (2, 1)
+    >>> p == DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
+    True
     """
 
     A: sp.Matrix
@@ -318,8 +390,25 @@ class MuscleModel(LatexMixin):
     :meth:`plant` substitutes the numbers and returns an exact
     :class:`DiscretePlant` (e.g. ``A = exp(-1/2)``).
 
+    Parameters
+    ----------
+    tau : float
+        Muscle time constant [s], > 0.
+    f_max : float
+        Maximum force [N], > 0.
+    r_bar : float
+        Equilibrium firing rate [spikes/s].
+    Ts : float
+        Sampling time [s], > 0.
+
+    Raises
+    ------
+    ParameterError
+        A parameter that is not a finite number, or ``tau``, ``f_max``, ``Ts <= 0``.
+
     Examples
     --------
+    >>> from symctl import MuscleModel
     >>> MuscleModel().f_bar_symbolic
     f_max/(1 + exp(-r_bar))
     >>> MuscleModel(tau=-1)

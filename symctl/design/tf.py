@@ -59,16 +59,28 @@ class DiscreteTF(LatexMixin):
         Sampling time, kept for conversions (``None``: unspecified).
 
     Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
-    stored in lowest terms only when built by :meth:`from_expr`.
+    stored in lowest terms only when built by :meth:`from_expr`. Two objects
+    are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
+    structurally the same; :meth:`equals` decides equality as rational functions.
+
+    Raises
+    ------
+    ParameterError
+        ``den`` identically zero, an entry that is not a polynomial in ``z``,
+        or a numeric ``dt <= 0``.
+    SymctlTypeError
+        Entries that are not numbers or sympy expressions.
 
     Examples
     --------
-    >>> from symctl import z
+    >>> from symctl import DiscreteTF, z
     >>> G = DiscreteTF.from_expr(2 / (2*z**2 - 1), dt=0.01)
     >>> G.num, G.den
     (1, z**2 - 1/2)
     >>> G.den_coeffs()
     [1, 0, -1/2]
+    >>> G == DiscreteTF(1, z**2 - 0.5, dt=0.01), G.equals(1 / (z**2 - 0.5))
+    (False, True)
     """
 
     _num: sp.ImmutableMatrix
@@ -110,7 +122,7 @@ class DiscreteTF(LatexMixin):
     def from_expr(cls, expr, dt=None) -> DiscreteTF:
         """From a rational expression (or matrix of them) in ``z``, in lowest terms.
 
-        >>> from symctl import z
+        >>> from symctl import DiscreteTF, z
         >>> DiscreteTF.from_expr((z - 1) / (z**2 - 1)).expr
         1/(z + 1)
         """
@@ -227,7 +239,7 @@ class DiscreteTF(LatexMixin):
         these are the impulse response; :math:`h_0` is the feed-through.
         Requires a proper ``G``.
 
-        >>> from symctl import z
+        >>> from symctl import DiscreteTF, z
         >>> [h[0] for h in DiscreteTF.from_expr(1 / (z - 2)).markov(4)]
         [0, 1, 2, 4]
         """

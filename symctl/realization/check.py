@@ -57,8 +57,7 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
   problem is small (:math:`n + d \le 10`), the exact proof. (Without free
   symbols the randomized test is one exact evaluation, a proof already.)
 
->>> from symctl import z
->>> from symctl.realization.realization import controllable_canonical
+>>> from symctl import check_realization, controllable_canonical, z
 >>> G = (z + 2) / (z**2 - z / 2)
 >>> check_realization(controllable_canonical(G), G).ok
 True
@@ -132,8 +131,7 @@ class RealizationCheck(LatexMixin):
 
     Examples
     --------
-    >>> from symctl import z
-    >>> from symctl.realization.realization import Realization
+    >>> from symctl import Realization, check_realization, z
     >>> result = check_realization(Realization([[2]], [[1]], [[1]], 0), 1 / (z - 3))
     >>> bool(result), result.counterexample["values"][z] != 3
     (False, True)
@@ -633,8 +631,8 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
 
     Examples
     --------
-    >>> from symctl import z
-    >>> from symctl.realization.realization import controllable_canonical
+    >>> import sympy as sp
+    >>> from symctl import check_realization, controllable_canonical, z
     >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
     >>> K0, K1, K2 = gain_symbols(2)
     >>> G2 = K0 / (C_1 * C_3) * (z - epsilon_1) * (z - epsilon_3) / (z**2 - K1 * z - K2)

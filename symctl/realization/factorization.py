@@ -20,7 +20,7 @@ paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
     = \frac{K_0}{C_1 C_3} + \frac{K_0}{C_1 C_3}\,
     \frac{(K_1 - \epsilon_1 - \epsilon_3) z + K_2 + \epsilon_1\epsilon_3}{z^2 - K_1 z - K_2}.
 
->>> from symctl import controller_tf
+>>> from symctl import controller_tf, factor
 >>> f = factor(controller_tf(2))
 >>> f.N
 K_0/(C_1*C_3)
@@ -52,6 +52,7 @@ __all__ = ["Factorization", "factor", "section_symbols"]
 def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
     """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
 
+    >>> from symctl.realization.factorization import section_symbols
     >>> section_symbols(1, 1)
     ((epsilon_1,), (C_1,))
     >>> section_symbols(3, 2)
@@ -82,6 +83,19 @@ class Factorization(LatexMixin):
     sensor_eps, sensor_C, actuator_eps, actuator_C : tuple of sympy expressions
         Poles and gains of the first-order sections of ``G1`` and ``G3`` (symbols,
         or values after :meth:`subs`).
+
+    Built by :func:`factor`; compares and hashes by value.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor
+    >>> f = factor(controller_tf(2))
+    >>> f.sensor_eps, f.actuator_C
+    ((epsilon_1,), (C_3,))
+    >>> f.G2.expr
+    K_0*(-epsilon_1 + z)*(-epsilon_3 + z)/(C_1*C_3*(-K_1*z - K_2 + z**2))
+    >>> f == factor(controller_tf(2))
+    True
     """
 
     G: DiscreteTF
@@ -180,9 +194,19 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
     Raises
     ------
     ParameterError
-        Improper ``G``, or relative degree of ``G`` below ``sensor_delay + actuator_delay``.
+        Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
+        or negative delays.
     DimensionError
         A MIMO ``G``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor
+    >>> f = factor(controller_tf(3), sensor_delay=1, actuator_delay=2)
+    >>> f.G1.expr, f.G3.relative_degree, f.G2.relative_degree
+    (C_1/(-epsilon_1 + z), 2, 0)
+    >>> f.verify()
+    True
     """
     tf = DiscreteTF.from_expr(G)
     ds = nonneg_int(sensor_delay, "sensor_delay")

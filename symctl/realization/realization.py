@@ -21,7 +21,7 @@ For the paper's :math:`G_2` these are exactly its matrices, e.g.
 :math:`F = [[0, 1], [K_2, K_1]]`, :math:`H = [0, 1]^\top`,
 :math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`.
 
->>> from symctl import z
+>>> from symctl import controllable_canonical, z
 >>> R = controllable_canonical((z + 2) / (z**2 - z / 2))
 >>> R.F, R.H.T, R.M, R.N
 (Matrix([
@@ -71,17 +71,30 @@ class Realization(LatexMixin):
     M : (p, n) matrix-like
     N : (p, q) matrix-like (a scalar for SISO)
     dt : sampling time, optional
-    params : dict, optional
-        Values used to build it (e.g. the random epsilons and ``P``), for records.
+    params : mapping, optional
+        Values used to build it (e.g. the random epsilons and ``P``), for
+        records; kept as a read-only mapping and not compared.
 
     ``F, H, M, N`` are stored as :class:`sympy.ImmutableMatrix`. ``n = 0`` (a
-    static gain) is allowed.
+    static gain) is allowed. Realizations compare and hash by value: the
+    matrices and ``dt`` (structurally; similar realizations are not equal).
+
+    Raises
+    ------
+    DimensionError
+        ``F`` not square, or ``H``, ``M`` whose shapes do not fit ``F`` and ``N``.
+    ParameterError, SymctlTypeError
+        Entries that are not numbers or sympy expressions.
 
     Examples
     --------
+    >>> import sympy as sp
+    >>> from symctl import Realization
     >>> R = Realization([[sp.Rational(1, 2)]], [[1]], [[2]], 0)
     >>> R.to_tf().expr
     2/(z - 1/2)
+    >>> R == Realization([[sp.Rational(1, 2)]], [[1]], [[2]], 0), R == R.similar([[2]])
+    (True, False)
     """
 
     F: sp.ImmutableMatrix
@@ -242,25 +255,16 @@ class Realization(LatexMixin):
 
     def to_control(self):
         """As a discrete ``control.StateSpace`` (dt kept; ``True`` when unknown)."""
-        import control
+        from symctl.interop import ss_to_control
 
-        F, H, M, N = self.numeric()
-        return control.ss(F, H, M, N, True if self.dt is None else float(self.dt))
+        return ss_to_control(self)
 
     @classmethod
     def from_control(cls, sys) -> Realization:
         """From a discrete python-control system (converted to state space)."""
-        import control
+        from symctl.interop import ss_from_control
 
-        if not isinstance(sys, control.LTI):
-            raise SymctlTypeError(
-                f"sys: expected a python-control system, got {type(sys).__name__}"
-            )
-        if not sys.isdtime():
-            raise ParameterError("sys: a continuous-time system; discretize it first (control.c2d)")
-        ss = control.ss(sys)
-        dt = None if ss.dt is True else ss.dt
-        return cls(ss.A, ss.B, ss.C, ss.D, dt)
+        return ss_from_control(sys)
 
     @classmethod
     def series(cls, *parts: Realization) -> Realization:
@@ -347,6 +351,7 @@ def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     ``c`` and ``a`` in ascending powers (length ``n``).
 
     >>> from symctl import z
+    >>> from symctl.realization.realization import split_proper
     >>> split_proper((2*z + 1) / (z - 3))
     (2, [7], [-3])
     """
@@ -366,7 +371,37 @@ def controllable_canonical(G2) -> Realization:
     .. math::
         F = \begin{bmatrix} 0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\
             -a_0 & -a_1 & \cdots & -a_{n-1}\end{bmatrix},\quad
-        H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty).
+        H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty),
+
+    with :math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1}
+    + \dots + a_0)`. The ``"controllable"`` realizer of
+    :data:`symctl.realization.realizers.REALIZERS` returns it.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function, exact or symbolic.
+
+    Returns
+    -------
+    Realization
+        Of order :math:`n = \deg d`, with ``G2``'s ``dt``.
+
+    Raises
+    ------
+    DimensionError
+        A MIMO ``G2``.
+    ParameterError
+        An improper ``G2``, or one that is not rational in ``z``.
+
+    Examples
+    --------
+    >>> from symctl import controllable_canonical, controller_tf, factor
+    >>> R = controllable_canonical(factor(controller_tf(2)).G2)
+    >>> R.F, R.H.T
+    (Matrix([
+    [  0,   1],
+    [K_2, K_1]]), Matrix([[0, 1]]))
     """
     tf = _siso(G2)
     N, c, a = split_proper(tf)
@@ -388,6 +423,32 @@ def observable_canonical(G2) -> Realization:
 
     For the paper's :math:`G_2`: :math:`F = [[0, K_2], [1, K_1]]`, :math:`M = [0, 1]`,
     :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function, exact or symbolic.
+
+    Returns
+    -------
+    Realization
+        :math:`(F^\top, M^\top, H^\top, N)` of :func:`controllable_canonical`.
+
+    Raises
+    ------
+    DimensionError
+        A MIMO ``G2``.
+    ParameterError
+        An improper ``G2``, or one that is not rational in ``z``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor, observable_canonical
+    >>> R = observable_canonical(factor(controller_tf(2)).G2)
+    >>> R.F, R.M
+    (Matrix([
+    [0, K_2],
+    [1, K_1]]), Matrix([[0, 1]]))
     """
     return controllable_canonical(G2).transpose()
 
