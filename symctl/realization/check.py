@@ -71,13 +71,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-import numpy as np
 import sympy as sp
 from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
 from flint.utils.flint_exceptions import DomainError
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import Degrees, IntFractions, NotRational, PolyFractions, fold
+from symctl._util.validate import as_random
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization
@@ -441,20 +441,6 @@ def _degree_bound(problem: _Problem) -> tuple[int, int]:
 
 
 # ---------------------------------------------------------------- evaluation at points
-def _rng(rng) -> random.Random:
-    if rng is None:
-        return random.SystemRandom()
-    if isinstance(rng, random.Random):
-        return rng
-    if isinstance(rng, np.random.Generator):
-        return random.Random(int(rng.integers(0, 2**63)))
-    if isinstance(rng, int) and not isinstance(rng, bool):
-        return random.Random(rng)
-    raise SymctlTypeError(
-        f"rng: expected None, an int seed, random.Random or numpy Generator, got {rng!r}"
-    )
-
-
 def _sides_at(problem: _Problem, alg: _Entries, zval: Fraction):
     """Both sides as ``fmpq_mat`` at ``alg``'s point and ``z = zval``; ``None`` at a pole."""
     n, d, (p, q) = problem.n, problem.d, problem.shape
@@ -648,7 +634,7 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     """
     if not isinstance(method, str) or method not in METHODS:
         raise ParameterError(f"method: expected one of {', '.join(METHODS)}, got {method!r}")
-    source = _rng(rng)
+    source = as_random(rng, "rng")
     problem = _problem(R, G)
     degrees = _degree_bound(problem)  # also refuses entries that are not rational, naming them
     if method == "exact":
