@@ -57,14 +57,14 @@ _LOCATIONS = {
     "linearize": "symctl.design.plant",
     "Realization": "symctl.realization.realization",
     "controllable_canonical": "symctl.realization.realization",
-    "general_realization": "symctl.realization.realization",
+    "general_realization": "symctl.realization.realizers",
     "observable_canonical": "symctl.realization.realization",
-    "random_realization": "symctl.realization.realization",
+    "random_realization": "symctl.realization.realizers",
     "BatchResponse": "symctl.neural.simulate",
     "NonlinearCheck": "symctl.neural.simulate",
     "Response": "symctl.neural.simulate",
     "closed_loop_response": "symctl.neural.simulate",
-    "ifp_realization": "symctl.neural.simulate",
+    "ifp_realization": "symctl.realization.realizers",
     "nonlinear_check": "symctl.neural.simulate",
     "open_loop_response": "symctl.neural.simulate",
     "pulse": "symctl.neural.simulate",
@@ -78,8 +78,8 @@ _LOCATIONS = {
     "derive_paper": "symctl.report.pipeline",
     "z": "symctl.symbols",
     "DiscreteTF": "symctl.design.tf",
-    "controller_tf": "symctl.design.tf",
-    "prove_controller_tf": "symctl.design.tf",
+    "controller_tf": "symctl.design.controller",
+    "prove_controller_tf": "symctl.design.controller",
 }
 
 __all__ = [
@@ -174,9 +174,10 @@ if TYPE_CHECKING:  # static tools see the eager imports
     from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
     from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
     from symctl.design.augment import AugmentedSystem, augment
+    from symctl.design.controller import controller_tf, prove_controller_tf
     from symctl.design.lqr import Gains, lqr_gains
     from symctl.design.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize
-    from symctl.design.tf import DiscreteTF, controller_tf, prove_controller_tf
+    from symctl.design.tf import DiscreteTF
     from symctl.errors import (
         DimensionError,
         NotStabilizableError,
@@ -192,7 +193,6 @@ if TYPE_CHECKING:  # static tools see the eager imports
         NonlinearCheck,
         Response,
         closed_loop_response,
-        ifp_realization,
         nonlinear_check,
         open_loop_response,
         pulse,
@@ -204,8 +204,11 @@ if TYPE_CHECKING:  # static tools see the eager imports
     from symctl.realization.realization import (
         Realization,
         controllable_canonical,
-        general_realization,
         observable_canonical,
+    )
+    from symctl.realization.realizers import (
+        general_realization,
+        ifp_realization,
         random_realization,
     )
     from symctl.report.pipeline import PaperResults, derive_paper

@@ -23,7 +23,7 @@ from symctl import (
 )
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.neural.circuit import Circuit, Synapse
-from symctl.realization.realization import random_realization
+from symctl.realization.realizers import random_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
 matplotlib.use("Agg")

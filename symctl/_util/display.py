@@ -4,9 +4,20 @@ r"""LaTeX display shared by every derived object.
 (:math:`\bar r`, :math:`f_\text{max}`, :math:`\delta_f`, ...). Classes that
 define ``latex()`` get ``_repr_latex_`` for Jupyter from :class:`LatexMixin`.
 
+>>> from symctl._util.display import latex
 >>> from symctl.symbols import r_bar, f_max
 >>> latex(f_max / (1 + r_bar))
 '\\frac{f_\\text{max}}{\\bar{r} + 1}'
+
+Polynomials in :math:`z` print in descending powers, as papers write them:
+
+>>> from symctl import z
+>>> from symctl._util.display import descending_latex, descending_str
+>>> from symctl.symbols import epsilon_1, epsilon_3
+>>> descending_str(z**2 - (epsilon_1 + epsilon_3) * z + epsilon_1 * epsilon_3)
+'z**2 - (epsilon_1 + epsilon_3)*z + epsilon_1*epsilon_3'
+>>> descending_latex(1 - z**2 / 2)
+'-\\frac{1}{2} z^{2} + 1'
 """
 
 from __future__ import annotations
@@ -14,8 +25,10 @@ from __future__ import annotations
 import sympy as sp
 
 from symctl import symbols as S
+from symctl._util.exact import z_poly
+from symctl.symbols import z
 
-__all__ = ["LatexMixin", "latex"]
+__all__ = ["LatexMixin", "descending_latex", "descending_str", "latex"]
 
 _NAMES = {
     S.r_bar: r"\bar{r}",
@@ -80,3 +93,45 @@ class LatexMixin:
 
     def _repr_latex_(self) -> str:
         return f"$\\displaystyle {self.latex()}$"
+
+
+def _descending(expr: sp.Expr, printer, times: str) -> str:
+    """A polynomial in z printed with its terms in descending powers, as papers write them.
+
+    Each term is ``sign coefficient z^k`` with a sum coefficient in parentheses:
+    ``z^2 - (epsilon_1 + epsilon_3) z + epsilon_1 epsilon_3``.
+    """
+    poly = z_poly(expr)
+    if poly.is_zero:
+        return "0"
+    terms = []
+    for (power,), coeff in poly.terms():
+        coeff = sp.factor_terms(coeff)
+        negative = coeff.could_extract_minus_sign()
+        mag = -coeff if negative else coeff
+        if power == 0:
+            body = printer(mag)
+        else:
+            zpart = printer(z**power)
+            if mag == 1:
+                body = zpart
+            else:
+                ctext = printer(mag)
+                if isinstance(mag, sp.Add):
+                    ctext = rf"\left({ctext}\right)" if printer is latex else f"({ctext})"
+                body = f"{ctext}{times}{zpart}"
+        if terms:
+            terms.append(("- " if negative else "+ ") + body)
+        else:
+            terms.append(("-" if negative else "") + body)
+    return " ".join(terms)
+
+
+def descending_latex(expr: sp.Expr) -> str:
+    """LaTeX of a polynomial in z in descending powers: ``'z^{2} - K_{1} z - K_{2}'``."""
+    return _descending(expr, latex, " ")
+
+
+def descending_str(expr: sp.Expr) -> str:
+    """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``."""
+    return _descending(expr, sp.sstr, "*")

@@ -5,6 +5,7 @@ chosen symbols. Arguments broadcast like NumPy arrays, so 10^5 parameter sets
 evaluate in one call; each output has shape ``broadcast + (rows, cols)``.
 
 >>> import numpy as np, sympy as sp
+>>> from symctl._util.evaluate import lambdify_matrices
 >>> a, b = sp.symbols("a b")
 >>> f = lambdify_matrices([sp.Matrix([[a, 1], [0, a * b]])], [a, b])
 >>> f(np.array([1.0, 2.0]), 3.0)[0].shape

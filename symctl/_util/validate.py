@@ -284,3 +284,57 @@ def as_generator(value, argname: str) -> np.random.Generator:
     if value is None or (isinstance(value, numbers.Integral) and not isinstance(value, bool)):
         return np.random.default_rng(value)
     raise SymctlTypeError(f"{argname}: expected an int seed or a numpy Generator, got {value!r}")
+
+
+def read_only(value) -> np.ndarray:
+    """A read-only copy of an array (the insides of a value object never change).
+
+    >>> from symctl._util.validate import read_only
+    >>> a = read_only([1.0, 2.0])
+    >>> a.flags.writeable
+    False
+    """
+    out = np.array(value, copy=True)
+    out.setflags(write=False)
+    return out
+
+
+def sampling_time(value, argname: str) -> sp.Expr:
+    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass).
+
+    >>> from symctl._util.validate import sampling_time
+    >>> sampling_time(0.01, "Ts")
+    0.0100000000000000
+    >>> sampling_time(0, "dt")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: dt: must be > 0, got 0
+    """
+    ts = to_expr(value, argname)
+    if ts.is_number and not ts.is_positive:
+        raise ParameterError(f"{argname}: must be > 0, got {value!r}")
+    return ts
+
+
+def as_random(value, argname: str):
+    """A ``random.Random`` from None (the OS's entropy), an int seed, a Random or a NumPy Generator.
+
+    For exact sampling of big integers (``randrange`` beyond 2**63).
+
+    >>> from symctl._util.validate import as_random
+    >>> as_random(3, "rng").randrange(10) == as_random(3, "rng").randrange(10)
+    True
+    """
+    import random
+
+    if value is None:
+        return random.SystemRandom()
+    if isinstance(value, random.Random):
+        return value
+    if isinstance(value, np.random.Generator):
+        return random.Random(int(value.integers(0, 2**63)))
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return random.Random(int(value))
+    raise SymctlTypeError(
+        f"{argname}: expected None, an int seed, random.Random or numpy Generator, got {value!r}"
+    )

@@ -791,25 +791,14 @@ class ControllerCompatibility(LatexMixin):
 
 def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
     from symctl.realization.factorization import factor
-    from symctl.realization.realization import (
-        controllable_canonical,
-        controller_realization,
-        general_realization,
-        observable_canonical,
-    )
+    from symctl.realization.realization import controller_realization
+    from symctl.realization.realizers import get_realizer
 
     f = factor(G, ds, da)
-    if base == "controllable":
-        R2 = controllable_canonical(f.G2)
-    elif base == "observable":
-        R2 = observable_canonical(f.G2)
-    else:
-        n = f.G2.order
-        R2 = (
-            general_realization(f.G2, sp.eye(n) + sp.ones(n, n))
-            if n
-            else controllable_canonical(f.G2)
-        )
+    realizer = get_realizer(base, "base", where=lambda r: r.keeps_symbols)
+    n = f.G2.order  # a transform is dense and fixed: I + 1 1^T (det n + 1)
+    options = {"P": sp.eye(n) + sp.ones(n, n)} if realizer.takes_transform else {}
+    R2 = realizer(f.G2, **options).realization
     return controller_realization(f, R2), Structure.from_factorization(f, R2, delays)
 
 
@@ -879,10 +868,9 @@ def controller_compatibility(
         raise DimensionError(
             f"G: controller compatibility is decided for SISO G, got shape {tf.shape}"
         )
-    if base not in ("controllable", "observable", "general"):
-        raise ParameterError(
-            f"base: must be 'controllable', 'observable' or 'general', got {base!r}"
-        )
+    from symctl.realization.realizers import get_realizer
+
+    get_realizer(base, "base", where=lambda r: r.keeps_symbols)
     if delays not in ("branch", "state"):
         raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
     r = tf.relative_degree

@@ -25,7 +25,7 @@ split ``sensor_delay``/``actuator_delay`` is kept for the factorization
 :math:`G = G_3 G_2 G_1` of later steps. With ``T = 0`` the system is the plant
 itself and ``R`` penalizes :math:`\mu = u` directly.
 
->>> from symctl import MuscleModel
+>>> from symctl import MuscleModel, augment
 >>> aug = augment(MuscleModel().discrete_symbolic(), sensor_delay=1, actuator_delay=1)
 >>> aug.state_names
 ('delta_f', 'gamma', 'delta_r')
@@ -77,6 +77,18 @@ class AugmentedSystem(LatexMixin):
     Q_plant, R : sympy.ImmutableMatrix
         The plant's state and input penalties of eq. (cost).
     state_names : tuple of str
+        Names of the entries of :math:`\chi`.
+
+    Built by :func:`augment`; compares and hashes by value.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment
+    >>> s = augment(MuscleModel(), 1, 1)
+    >>> s.T, s.n, s.m, s.chi.T
+    (2, 1, 1, Matrix([[delta_f, gamma, delta_r]]))
+    >>> s == augment(MuscleModel(), 1, 1)
+    True
     """
 
     plant: DiscretePlant
@@ -163,6 +175,7 @@ def augment(
     Examples
     --------
     >>> import sympy as sp
+    >>> from symctl import augment
     >>> a, b = sp.symbols("A B")
     >>> aug = augment(([[a]], [[b]]), 1, 1)
     >>> aug.A

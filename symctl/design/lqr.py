@@ -26,7 +26,7 @@ Stabilizability of :math:`(\tilde A, \tilde B)` and detectability of
 :math:`(\tilde Q^{1/2}, \tilde A)` are checked first with the PBH test, so that
 a problem without a stabilizing solution is reported as such.
 
->>> from symctl import MuscleModel, augment
+>>> from symctl import MuscleModel, augment, lqr_gains
 >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> [round(float(k), 6) for k in g.K[0]]
 [-0.045972, -0.580041, -0.351813]
@@ -41,7 +41,7 @@ import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import numeric_matrix, psd_matrix
+from symctl._util.validate import numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
 from symctl.errors import NotStabilizableError, SymctlTypeError
 from symctl.symbols import gain_matrix_symbols
@@ -64,12 +64,45 @@ class Gains(LatexMixin):
         Stabilizing DARE solution of the equivalent problem (see the module notes).
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
+
+    Built by :func:`lqr_gains`. The arrays are read-only copies; gains compare
+    and hash by value (the system and the arrays).
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> g.K.shape, g.spectral_radius < 1, g.K.flags.writeable
+    ((1, 3), True, False)
+    >>> sorted(map(str, g.substitutions()))
+    ['K_0', 'K_1', 'K_2']
     """
 
     system: AugmentedSystem
     K: np.ndarray
     X: np.ndarray
     poles: np.ndarray
+
+    def __post_init__(self):
+        for name in ("K", "X", "poles"):
+            object.__setattr__(self, name, read_only(getattr(self, name)))
+
+    def _key(self) -> tuple:
+        return (self.system, *(a.shape for a in (self.K, self.X, self.poles)))
+
+    def __eq__(self, other) -> bool:
+        """Equal system and equal arrays (numpy arrays compare element by element)."""
+        if not isinstance(other, Gains):
+            return NotImplemented
+        return self._key() == other._key() and all(
+            np.array_equal(a, b)
+            for a, b in zip(
+                (self.K, self.X, self.poles), (other.K, other.X, other.poles), strict=True
+            )
+        )
+
+    def __hash__(self) -> int:
+        return hash((self._key(), self.K.tobytes(), self.X.tobytes(), self.poles.tobytes()))
 
     @property
     def blocks(self) -> list[np.ndarray]:
@@ -125,11 +158,22 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
 
     Raises
     ------
+    SymctlTypeError
+        ``system`` is not an AugmentedSystem.
     ParameterError
         Free symbols left in the system, or Q/R not symmetric positive semidefinite.
     NotStabilizableError
         :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
         detectable, or no stabilizing DARE solution (e.g. a singular ``R``).
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> [round(float(k), 6) for k in g.K[0]]
+    [-0.045972, -0.580041, -0.351813]
+    >>> [round(float(k), 6) for k in lqr_gains(augment(MuscleModel(), 1, 1), R=10).K[0]]
+    [-0.033993, -0.428904, -0.260143]
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(

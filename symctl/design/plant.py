@@ -12,6 +12,7 @@ the scalar system :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)` of eq. (
 number of states and inputs); :class:`MuscleModel` applies them to the paper's
 muscle and keeps every parameter symbolic until numbers are asked for.
 
+>>> from symctl import MuscleModel
 >>> m = MuscleModel()
 >>> m.discrete_symbolic().A[0, 0]
 exp(-T_s/tau)
@@ -22,8 +23,10 @@ exp(-T_s/tau)
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cache
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
@@ -34,7 +37,7 @@ from symctl._util.validate import (
     numeric_matrix,
     positive_number,
     real_number,
-    to_expr,
+    sampling_time,
     to_matrix,
 )
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
@@ -48,13 +51,34 @@ class Linearization(LatexMixin):
 
     :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
 
-    Unpacks as ``a, b = linearize(...)``. ``residual`` is :math:`f(x_{eq}, u_{eq})`,
-    zero at an equilibrium.
+    Unpacks as ``a, b = linearize(...)``. Compares and hashes by value.
+
+    Attributes
+    ----------
+    a : sympy.ImmutableMatrix
+        :math:`\partial f/\partial x` at the point (``n x n``).
+    b : sympy.ImmutableMatrix
+        :math:`\partial f/\partial u` at the point (``n x m``).
+    residual : sympy.ImmutableMatrix
+        :math:`f(x_{eq}, u_{eq})`, zero at an equilibrium.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import linearize
+    >>> x, u = sp.symbols("x u")
+    >>> lin = linearize([-x + 2 * u], [x], [u], [2], [1])
+    >>> lin.a, lin.b, lin.residual
+    (Matrix([[-1]]), Matrix([[2]]), Matrix([[0]]))
     """
 
-    a: sp.Matrix
-    b: sp.Matrix
-    residual: sp.Matrix
+    a: sp.ImmutableMatrix
+    b: sp.ImmutableMatrix
+    residual: sp.ImmutableMatrix
+
+    def __post_init__(self):
+        for name in ("a", "b", "residual"):
+            object.__setattr__(self, name, sp.ImmutableMatrix(getattr(self, name)))
 
     def __iter__(self):
         return iter((self.a, self.b))
@@ -108,11 +132,18 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
 
     Raises
     ------
-    DimensionError, ParameterError
+    DimensionError
+        ``f`` is not a vector with one entry per state, or a point of the wrong size.
+    ParameterError
+        Invalid or repeated symbol names, or (with ``check_equilibrium``) a
+        point that is provably not an equilibrium.
+    SymctlTypeError
+        ``x`` or ``u`` holds something other than symbols or names.
 
     Examples
     --------
     >>> import sympy as sp
+    >>> from symctl import linearize
     >>> x, u = sp.symbols("x u")
     >>> a, b = linearize([-x**3 + u], [x], [u], [1], [1])
     >>> a, b
@@ -155,9 +186,31 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     Symbolic matrices give the closed form (sympy's matrix exponential);
     numeric ones go through :func:`scipy.linalg.expm`.
 
+    Parameters
+    ----------
+    a : (n, n) matrix-like
+        The continuous state matrix (a scalar for ``n = 1``).
+    b : (n, m) matrix-like
+        The continuous input matrix.
+    Ts : number or symbol
+        The sampling time, > 0 when a number.
+
+    Returns
+    -------
+    (sympy.Matrix, sympy.Matrix)
+        :math:`(A, B)`.
+
+    Raises
+    ------
+    DimensionError
+        ``a`` not square, or ``b`` with another number of rows.
+    ParameterError
+        A numeric ``Ts <= 0``.
+
     Examples
     --------
     >>> import sympy as sp
+    >>> from symctl import discretize
     >>> from symctl.symbols import tau, T_s
     >>> A, B = discretize(-1 / tau, 1 / tau, T_s)
     >>> A[0, 0], sp.simplify(B[0, 0] - (1 - sp.exp(-T_s / tau)))
@@ -170,9 +223,7 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     bm = to_matrix(b, "b")
     if bm.shape[0] != n:
         raise DimensionError(f"b: must have {n} rows like a, got shape {bm.shape}")
-    ts = to_expr(Ts, "Ts")
-    if ts.is_number and not ts.is_positive:
-        raise ParameterError(f"Ts: must be > 0, got {Ts!r}")
+    ts = sampling_time(Ts, "Ts")
     m = bm.shape[1]
     block = sp.zeros(n + m, n + m)
     block[:n, :n] = am
@@ -194,11 +245,36 @@ class DiscretePlant(LatexMixin):
     ``Ts`` is the sampling time (a number, a symbol, or ``None`` when unknown).
     ``state_names``/``input_names`` label the signals (the muscle's are
     ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
-    of a linearized plant.
+    of a linearized plant. It compares and hashes by value (``params`` aside).
 
+    Parameters
+    ----------
+    A : (n, n) matrix-like
+    B : (n, m) matrix-like
+    Ts : number, symbol or None
+        Sampling time, > 0 when a number.
+    state_names, input_names : tuple of str, optional
+        Default ``x`` (``x_1, x_2, ...``) and ``u``.
+    x_eq, u_eq : matrix-like, optional
+        The operating point of a linearized plant.
+    params : mapping, optional
+        The model parameters it came from, for records; kept as a read-only mapping.
+
+    Raises
+    ------
+    DimensionError
+        ``A`` not square or empty, ``B`` with other rows, or names of the wrong count.
+    ParameterError
+        A numeric ``Ts <= 0``.
+
+    Examples
+    --------
+    >>> from symctl import DiscretePlant
     >>> p = DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
     >>> p.n, p.m
     (2, 1)
+    >>> p == DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
+    True
     """
 
     A: sp.Matrix
@@ -208,7 +284,7 @@ class DiscretePlant(LatexMixin):
     input_names: tuple[str, ...] = ()
     x_eq: sp.Matrix | None = None
     u_eq: sp.Matrix | None = None
-    params: dict = field(default_factory=dict, compare=False)
+    params: Mapping = field(default_factory=dict, compare=False)
 
     def __post_init__(self):
         A = to_matrix(self.A, "A")
@@ -219,11 +295,13 @@ class DiscretePlant(LatexMixin):
             raise DimensionError(f"B: must have {A.shape[0]} rows like A, got shape {B.shape}")
         object.__setattr__(self, "A", sp.ImmutableMatrix(A))
         object.__setattr__(self, "B", sp.ImmutableMatrix(B))
+        for name in ("x_eq", "u_eq"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, sp.ImmutableMatrix(value))
+        object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
         if self.Ts is not None:
-            ts = to_expr(self.Ts, "Ts")
-            if ts.is_number and not ts.is_positive:
-                raise ParameterError(f"Ts: must be > 0, got {self.Ts!r}")
-            object.__setattr__(self, "Ts", ts)
+            object.__setattr__(self, "Ts", sampling_time(self.Ts, "Ts"))
         n, m = A.shape[0], B.shape[1]
         object.__setattr__(self, "state_names", tuple(self.state_names) or _names("x", n))
         object.__setattr__(self, "input_names", tuple(self.input_names) or _names("u", m))
@@ -242,11 +320,6 @@ class DiscretePlant(LatexMixin):
     def m(self) -> int:
         """Number of inputs."""
         return self.B.shape[1]
-
-    @property
-    def is_numeric(self) -> bool:
-        """True when A and B have no free symbols."""
-        return not (self.A.free_symbols or self.B.free_symbols)
 
     def subs(self, *args, **kwargs) -> DiscretePlant:
         """A new plant with symbols substituted (arguments as :meth:`sympy.Basic.subs`)."""
@@ -317,8 +390,25 @@ class MuscleModel(LatexMixin):
     :meth:`plant` substitutes the numbers and returns an exact
     :class:`DiscretePlant` (e.g. ``A = exp(-1/2)``).
 
+    Parameters
+    ----------
+    tau : float
+        Muscle time constant [s], > 0.
+    f_max : float
+        Maximum force [N], > 0.
+    r_bar : float
+        Equilibrium firing rate [spikes/s].
+    Ts : float
+        Sampling time [s], > 0.
+
+    Raises
+    ------
+    ParameterError
+        A parameter that is not a finite number, or ``tau``, ``f_max``, ``Ts <= 0``.
+
     Examples
     --------
+    >>> from symctl import MuscleModel
     >>> MuscleModel().f_bar_symbolic
     f_max/(1 + exp(-r_bar))
     >>> MuscleModel(tau=-1)

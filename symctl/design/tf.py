@@ -1,172 +1,36 @@
-r"""Discrete transfer functions in closed form, and the optimal delayed controller :math:`G(z)`.
+r"""Discrete transfer functions in closed form: the type :class:`DiscreteTF`.
 
 :class:`DiscreteTF` is symctl's transfer-function type: an immutable pair of a
 numerator matrix of polynomials in :math:`z` and one common, monic denominator
-polynomial, exact or symbolic. SISO objects behave like a scalar.
+polynomial, exact or symbolic. SISO objects behave like a scalar. It compares
+and hashes by value (numerator, denominator and sampling time, structurally).
+The optimal delayed controller :math:`G(z)` built from it lives in
+:mod:`symctl.design.controller`.
 
-:func:`controller_tf` derives the controller of the paper's section
-"Optimal delayed controller" from the augmented system: with
-:math:`\mu(t) = K_0 x(t) + \sum_{k=1}^T K_k \gamma_k(t)` and
-:math:`\gamma_k = z^{-k} \mu`, eliminating the chain gives
-
-.. math::
-    G(z) = \frac{\Delta_r(z)}{X(z)} = D(z)^{-1} K_0,\qquad
-    D(z) = z^T I - K_1 z^{T-1} - \dots - K_T,
-
-which for a scalar plant is the paper's eq. (transfer_fn),
-:math:`K_0/(z^T - K_1 z^{T-1} - \dots - K_T)`. The derivation is proved, not
-trusted: :func:`prove_controller_tf` checks the polynomial identity
-:math:`(zI - F_c)\,W(z) = H_c \det D(z)` against the controller's own
-state-space matrices read off the augmented system.
-
->>> from symctl import z
->>> G = controller_tf(2)
+>>> from symctl import DiscreteTF, z
+>>> G = DiscreteTF.from_expr(3 / (z**2 - z / 2))
 >>> G.expr
-K_0/(-K_1*z - K_2 + z**2)
->>> G.relative_degree
-2
+3/(z**2 - z/2)
+>>> G.relative_degree, G == DiscreteTF.from_expr(6 / (2 * z**2 - z))
+(2, True)
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import lru_cache, reduce
+from functools import reduce
 
 import numpy as np
 import sympy as sp
-from sympy.polys.rings import ring
 
-from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import nonneg_int, to_expr
-from symctl.design.augment import AugmentedSystem
-from symctl.design.lqr import Gains
+from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
+from symctl._util.exact import products_equal, z_poly
+from symctl._util.validate import nonneg_int, sampling_time, to_expr
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.symbols import gain_matrix_symbols, z
+from symctl.symbols import z
 
-__all__ = ["DiscreteTF", "controller_tf", "descending_str", "prove_controller_tf"]
-
-
-class _ZPoly:
-    """A univariate polynomial in z read off a sparse ring element (the few views symctl needs)."""
-
-    __slots__ = ("_coeffs",)
-
-    def __init__(self, coeffs: dict[int, sp.Expr]):
-        self._coeffs = {k: c for k, c in coeffs.items() if c != 0}
-
-    @property
-    def is_zero(self) -> bool:
-        return not self._coeffs
-
-    def degree(self) -> int:
-        return max(self._coeffs) if self._coeffs else -1
-
-    def LC(self) -> sp.Expr:
-        return self._coeffs[self.degree()] if self._coeffs else sp.Integer(0)
-
-    def all_coeffs(self) -> list[sp.Expr]:
-        if not self._coeffs:
-            return [sp.Integer(0)]
-        return [self._coeffs.get(k, sp.Integer(0)) for k in range(self.degree(), -1, -1)]
-
-    def coeff_monomial(self, monomial: sp.Expr) -> sp.Expr:
-        power = 0 if monomial == 1 else sp.degree(monomial, z)
-        return self._coeffs.get(int(power), sp.Integer(0))
-
-    def terms(self) -> list[tuple[tuple[int], sp.Expr]]:
-        return [((k,), self._coeffs[k]) for k in sorted(self._coeffs, reverse=True)]
-
-
-@lru_cache(maxsize=4096)
-def _poly(expr: sp.Expr) -> _ZPoly:
-    """Coefficients of ``expr`` in z, computed with sparse ring arithmetic (no expression expansion)."""
-    pairs = _ring_fractions([expr])
-    if pairs is None:
-        poly = sp.Poly(expr, z)
-        return _ZPoly({k: c for (k,), c in poly.terms()})
-    num, den = pairs[0]
-    if den.degree(0) > 0:
-        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
-    den_expr = den.as_expr()
-    by_power: dict[int, dict] = {}
-    for monom, coeff in num.items():
-        by_power.setdefault(monom[0], {})[(0, *monom[1:])] = coeff
-    ring_ = num.ring
-    return _ZPoly(
-        {k: sp.cancel(ring_.from_dict(terms).as_expr() / den_expr) for k, terms in by_power.items()}
-    )
-
-
-def _generators(exprs) -> list[sp.Symbol] | None:
-    """z and the other symbols, or None when an expression holds floats or other atoms.
-
-    Transcendental constants such as ``exp(1/2)`` are algebraically related
-    (``exp(1/2) * exp(-1/2) = 1``); a polynomial ring would miss that, so such
-    expressions take the expression path instead.
-    """
-    syms: set[sp.Symbol] = set()
-    for e in exprs:
-        for node in sp.preorder_traversal(e):
-            if isinstance(node, sp.Symbol):
-                syms.add(node)
-            elif isinstance(node, sp.Float) or not (
-                isinstance(node, sp.Add | sp.Mul | sp.Rational)
-                or (isinstance(node, sp.Pow) and node.exp.is_Integer)
-            ):
-                return None
-    return [z, *sorted(syms - {z}, key=str)]
-
-
-def _ring_fractions(exprs: list[sp.Expr]) -> list[tuple] | None:
-    """Each expression as a pair (numerator, denominator) of sparse polynomials over QQ.
-
-    The ring's generators are z and every other symbol; sums, products and
-    integer powers are carried out on the pairs with no gcd and no expansion
-    of expression trees, so the cost is that of sparse polynomial
-    multiplication. Returns None when :func:`_generators` does.
-    """
-    gens = _generators(exprs)
-    if gens is None:
-        return None
-    R, *_ = ring(gens, sp.QQ)
-    index = {g: i for i, g in enumerate(gens)}
-
-    def conv(e: sp.Expr) -> tuple:
-        if isinstance(e, sp.Symbol):
-            return R.gens[index[e]], R.one
-        if isinstance(e, sp.Rational):
-            return R(e.p), R(e.q)
-        if isinstance(e, sp.Add):
-            num, den = conv(e.args[0])
-            for arg in e.args[1:]:
-                n2, d2 = conv(arg)
-                num, den = (num + n2, den) if d2 == den else (num * d2 + n2 * den, den * d2)
-            return num, den
-        if isinstance(e, sp.Mul):
-            num, den = R.one, R.one
-            for arg in e.args:
-                n2, d2 = conv(arg)
-                num, den = num * n2, den * d2
-            return num, den
-        base_num, base_den = conv(e.base)  # Pow with an integer exponent
-        k = int(e.exp)
-        return (base_num**k, base_den**k) if k >= 0 else (base_den ** (-k), base_num ** (-k))
-
-    return [conv(e) for e in exprs]
-
-
-def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
-    """Exact test of prod(left) == prod(right) for rational expressions."""
-    pairs = _ring_fractions([*left, *right])
-    if pairs is None:
-        return sp.expand(sp.Mul(*left) - sp.Mul(*right)) == 0
-    num_l, den_l, num_r, den_r = (pairs[0][0].ring.one,) * 4
-    for n_, d_ in pairs[: len(left)]:
-        num_l, den_l = num_l * n_, den_l * d_
-    for n_, d_ in pairs[len(left) :]:
-        num_r, den_r = num_r * n_, den_r * d_
-    return num_l * den_r == num_r * den_l
+__all__ = ["DiscreteTF"]
 
 
 def _natural_key(symbol: sp.Symbol) -> list:
@@ -195,16 +59,28 @@ class DiscreteTF(LatexMixin):
         Sampling time, kept for conversions (``None``: unspecified).
 
     Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
-    stored in lowest terms only when built by :meth:`from_expr`.
+    stored in lowest terms only when built by :meth:`from_expr`. Two objects
+    are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
+    structurally the same; :meth:`equals` decides equality as rational functions.
+
+    Raises
+    ------
+    ParameterError
+        ``den`` identically zero, an entry that is not a polynomial in ``z``,
+        or a numeric ``dt <= 0``.
+    SymctlTypeError
+        Entries that are not numbers or sympy expressions.
 
     Examples
     --------
-    >>> from symctl import z
+    >>> from symctl import DiscreteTF, z
     >>> G = DiscreteTF.from_expr(2 / (2*z**2 - 1), dt=0.01)
     >>> G.num, G.den
     (1, z**2 - 1/2)
     >>> G.den_coeffs()
     [1, 0, -1/2]
+    >>> G == DiscreteTF(1, z**2 - 0.5, dt=0.01), G.equals(1 / (z**2 - 0.5))
+    (False, True)
     """
 
     _num: sp.ImmutableMatrix
@@ -220,26 +96,33 @@ class DiscreteTF(LatexMixin):
         for e in (*num_m, den_e):
             if not e.is_polynomial(z):
                 raise ParameterError(f"num/den: {e} is not a polynomial in z")
-        lead = _poly(den_e).LC()
+        lead = z_poly(den_e).LC()
         if lead != 1:
             num_m = sp.ImmutableMatrix(num_m.applyfunc(lambda e: sp.expand(sp.cancel(e / lead))))
             den_e = sp.expand(sp.cancel(den_e / lead))
-        poly = _poly(den_e)  # a float leading 1.0 is written as the integer 1
+        poly = z_poly(den_e)  # a float leading 1.0 is written as the integer 1
         d = poly.degree()
         den_e = z**d + sp.Add(*(c * z**k for (k,), c in poly.terms() if k != d))
-        dt_e = None if dt is None else to_expr(dt, "dt")
-        if dt_e is not None and dt_e.is_number and not dt_e.is_positive:
-            raise ParameterError(f"dt: must be > 0, got {dt!r}")
+        dt_e = None if dt is None else sampling_time(dt, "dt")
         object.__setattr__(self, "_num", num_m)
         object.__setattr__(self, "den", den_e)
         object.__setattr__(self, "dt", dt_e)
+
+    def __eq__(self, other) -> bool:
+        """Structural equality of numerator, denominator and ``dt`` (see :meth:`equals`)."""
+        if not isinstance(other, DiscreteTF):
+            return NotImplemented
+        return (self._num, self.den, self.dt) == (other._num, other.den, other.dt)
+
+    def __hash__(self) -> int:
+        return hash((DiscreteTF, self._num, self.den, self.dt))
 
     # ------------------------------------------------------------ construction
     @classmethod
     def from_expr(cls, expr, dt=None) -> DiscreteTF:
         """From a rational expression (or matrix of them) in ``z``, in lowest terms.
 
-        >>> from symctl import z
+        >>> from symctl import DiscreteTF, z
         >>> DiscreteTF.from_expr((z - 1) / (z**2 - 1)).expr
         1/(z + 1)
         """
@@ -292,12 +175,12 @@ class DiscreteTF(LatexMixin):
     @property
     def order(self) -> int:
         """Degree of the common denominator."""
-        return _poly(self.den).degree()
+        return z_poly(self.den).degree()
 
     @property
     def relative_degree(self) -> int:
         """``deg d - max deg N_ij`` over the nonzero entries (``inf`` for G = 0)."""
-        degrees = [_poly(e).degree() for e in self._num if e != 0]
+        degrees = [z_poly(e).degree() for e in self._num if e != 0]
         return self.order - max(degrees) if degrees else int(1e9)
 
     @property
@@ -312,11 +195,11 @@ class DiscreteTF(LatexMixin):
 
     def num_coeffs(self, i: int = 0, j: int = 0) -> list[sp.Expr]:
         """Coefficients of numerator ``(i, j)`` in descending powers of ``z``."""
-        return _poly(self._num[i, j]).all_coeffs()
+        return z_poly(self._num[i, j]).all_coeffs()
 
     def den_coeffs(self) -> list[sp.Expr]:
         """Coefficients of the denominator in descending powers of ``z`` (monic)."""
-        return _poly(self.den).all_coeffs()
+        return z_poly(self.den).all_coeffs()
 
     # ------------------------------------------------------------ algebra
     def subs(self, *args, **kwargs) -> DiscreteTF:
@@ -330,7 +213,7 @@ class DiscreteTF(LatexMixin):
         if other.shape != self.shape:
             return False
         return all(
-            _products_equal([a, other.den], [b, self.den])
+            products_equal([a, other.den], [b, self.den])
             for a, b in zip(self._num, other.num_matrix, strict=True)
         )
 
@@ -356,7 +239,7 @@ class DiscreteTF(LatexMixin):
         these are the impulse response; :math:`h_0` is the feed-through.
         Requires a proper ``G``.
 
-        >>> from symctl import z
+        >>> from symctl import DiscreteTF, z
         >>> [h[0] for h in DiscreteTF.from_expr(1 / (z - 2)).markov(4)]
         [0, 1, 2, 4]
         """
@@ -378,7 +261,7 @@ class DiscreteTF(LatexMixin):
         return h
 
     def _coeff(self, i: int, j: int, power: int) -> sp.Expr:
-        return _poly(self._num[i, j]).coeff_monomial(z**power) if power >= 0 else sp.Integer(0)
+        return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)
 
     def impulse_response(self, steps: int) -> np.ndarray:
         """Numeric impulse response, shape ``(steps, outputs, inputs)``; needs numbers."""
@@ -415,7 +298,7 @@ class DiscreteTF(LatexMixin):
     # ------------------------------------------------------------ display
     def latex(self) -> str:
         """LaTeX in the paper's style: a constant factor pulled out, descending powers of z."""
-        den = _descending_latex(self.den)
+        den = descending_latex(self.den)
         if not self.is_siso:
             return rf"\frac{{1}}{{{den}}} {latex(self._num)}"
         gain, rest = sp.factor_terms(self._num[0, 0]).as_independent(z, as_Add=False)
@@ -423,8 +306,8 @@ class DiscreteTF(LatexMixin):
         if rest == 1:
             return latex(gain) if self.den == 1 else rf"\frac{{{latex(gain)}}}{{{den}}}"
         if self.den == 1:
-            return prefix + _descending_latex(rest)
-        return rf"{prefix}\frac{{{_descending_latex(rest)}}}{{{den}}}"
+            return prefix + descending_latex(rest)
+        return rf"{prefix}\frac{{{descending_latex(rest)}}}{{{den}}}"
 
     def __repr__(self) -> str:
         return f"DiscreteTF({self}, dt={self.dt})"
@@ -439,141 +322,6 @@ class DiscreteTF(LatexMixin):
         return f"[{rows}]/({den})"
 
 
-def _descending(expr: sp.Expr, printer=latex, times: str = " ") -> str:
-    """A polynomial in z printed with its terms in descending powers, as papers write them.
-
-    Each term is ``sign coefficient z^k`` with a sum coefficient in parentheses:
-    ``z^2 - (epsilon_1 + epsilon_3) z + epsilon_1 epsilon_3``.
-    """
-    poly = _poly(expr)
-    if poly.is_zero:
-        return "0"
-    terms = []
-    for (power,), coeff in poly.terms():
-        coeff = sp.factor_terms(coeff)
-        negative = coeff.could_extract_minus_sign()
-        mag = -coeff if negative else coeff
-        if power == 0:
-            body = printer(mag)
-        else:
-            zpart = printer(z**power)
-            if mag == 1:
-                body = zpart
-            else:
-                ctext = printer(mag)
-                if isinstance(mag, sp.Add):
-                    ctext = rf"\left({ctext}\right)" if printer is latex else f"({ctext})"
-                body = f"{ctext}{times}{zpart}"
-        if terms:
-            terms.append(("- " if negative else "+ ") + body)
-        else:
-            terms.append(("-" if negative else "") + body)
-    return " ".join(terms)
-
-
-def _descending_latex(expr: sp.Expr) -> str:
-    return _descending(expr)
-
-
-def descending_str(expr: sp.Expr) -> str:
-    """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``."""
-    return _descending(expr, sp.sstr, "*")
-
-
-def _system_of(source) -> tuple[AugmentedSystem | None, int, int, int]:
-    if isinstance(source, Gains):
-        source = source.system
-    if isinstance(source, AugmentedSystem):
-        return source, source.T, source.m, source.n
-    return None, nonneg_int(source, "T"), 1, 1
-
-
-def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
-    r"""The optimal delayed controller :math:`G(z) = \Delta_r(z)/X(z)` in closed form.
-
-    Parameters
-    ----------
-    source : int, AugmentedSystem or Gains
-        An integer ``T`` gives the scalar controller with symbolic gains
-        :math:`K_0 \dots K_T`; an :class:`AugmentedSystem` gives the
-        (possibly MIMO) controller for its sizes and delay with symbolic gain
-        blocks and the plant's ``Ts``; :class:`Gains` give the numeric controller.
-    gains : Gains, optional
-        Substitute these gain values.
-
-    Returns
-    -------
-    DiscreteTF
-        ``m x n`` (plant inputs by plant states), relative degree ``T``.
-
-    Examples
-    --------
-    >>> controller_tf(3).den
-    -K_1*z**2 - K_2*z - K_3 + z**3
-    >>> from symctl import MuscleModel, augment, lqr_gains
-    >>> G = controller_tf(lqr_gains(augment(MuscleModel(), 1, 1)))
-    >>> [round(float(c), 6) for c in G.den_coeffs()]
-    [1.0, 0.580041, 0.351813]
-    """
-    if isinstance(source, Gains) and gains is None:
-        gains = source
-    system, T, m, n = _system_of(source)
-    blocks = gain_matrix_symbols(T, m, n)
-    D = z**T * sp.eye(m)
-    for k in range(1, T + 1):
-        D = D - blocks[k] * z ** (T - k)
-    if m == 1:
-        num, den = blocks[0], D[0, 0]
-    else:
-        num, den = (D.adjugate() * blocks[0]).applyfunc(sp.expand), sp.expand(D.det())
-    dt = system.plant.Ts if system is not None else None
-    G = DiscreteTF(num, den, dt)
-    if G.relative_degree != T and any(e != 0 for e in num):
-        raise AssertionError(f"internal: relative degree {G.relative_degree} != T = {T}")
-    if gains is not None:
-        G = G.subs(gains.substitutions())
-    return G
-
-
-def _controller_state_space(system: AugmentedSystem):
-    """``(F_c, H_c, M_c)`` of the controller, read off the augmented matrices.
-
-    Controller state: the chain ``gamma_1 .. gamma_T`` (last block is delta_r);
-    input: the plant state x; output: delta_r.
-    """
-    n, m, T = system.n, system.m, system.T
-    blocks = gain_matrix_symbols(T, m, n)
-    K_chain = sp.Matrix.hstack(*blocks[1:])
-    A_c = sp.Matrix(system.A[n:, n:])
-    B_c = sp.Matrix(system.B[n:, :])
-    F = A_c + B_c * K_chain
-    H = B_c * blocks[0]
-    M = sp.zeros(m, T * m)
-    M[:, (T - 1) * m :] = sp.eye(m)
-    return F, H, M
-
-
-def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) -> bool:
-    r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
-
-    With the controller's state-space matrices :math:`(F_c, H_c, M_c)` read off
-    :math:`\tilde A, \tilde B` and symbolic gains, and the candidate state
-    numerators :math:`W = [z^{T-1}; \dots; 1] \otimes \operatorname{adj} D(z) K_0`,
-    checks the polynomial identities :math:`(zI - F_c) W = H_c \det D` and
-    :math:`M_c W = N_G` exactly. Together they give :math:`M_c (zI-F_c)^{-1} H_c = G`.
-
-    >>> from symctl import MuscleModel, augment
-    >>> prove_controller_tf(augment(MuscleModel(), 2, 3))
-    True
-    """
-    if not isinstance(system, AugmentedSystem):
-        raise SymctlTypeError(f"system: expected an AugmentedSystem, got {type(system).__name__}")
-    G = controller_tf(system) if G is None else G
-    T = system.T
-    if T == 0:
-        return G.equals(gain_matrix_symbols(0, system.m, system.n)[0])
-    F, H, M = _controller_state_space(system)
-    N = G.num_matrix
-    W = sp.Matrix.vstack(*(N * z ** (T - k) for k in range(1, T + 1)))
-    lhs = (z * sp.eye(F.shape[0]) - F) * W - H * G.den
-    return all(sp.expand(e) == 0 for e in lhs) and all(sp.expand(e) == 0 for e in (M * W - N))
+# report/document.py imports this name; at merge it should import
+# symctl._util.display.descending_latex instead, and this alias go.
+_descending_latex = descending_latex

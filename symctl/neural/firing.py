@@ -51,9 +51,9 @@ import sympy as sp
 from symctl._util.validate import as_generator
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
+from symctl.design.controller import controller_tf
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant
-from symctl.design.tf import controller_tf
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import (
@@ -61,17 +61,11 @@ from symctl.neural.simulate import (
     DEFAULT_START,
     Response,
     closed_loop_response,
-    ifp_realization,
     simulate_realization,
 )
 from symctl.realization.factorization import factor
-from symctl.realization.realization import (
-    Realization,
-    controllable_canonical,
-    controller_realization,
-    observable_canonical,
-    random_realization,
-)
+from symctl.realization.realization import Realization, controller_realization
+from symctl.realization.realizers import get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
 
 __all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing"]
@@ -354,17 +348,13 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
         R = ifp_realization(gains)
         yield {}, R, R, circuit
         return
+    realizer = get_realizer(kind, "kind")  # "general": a random P drawn from gen
     f = factor(controller_tf(gains), s.sensor_delay, s.actuator_delay)
     eps = (*f.sensor_eps, *f.actuator_eps)
     for _ in range(count):
         drawn = {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
         fs = f.subs({**drawn, **{c: 1 for c in (*f.sensor_C, *f.actuator_C)}})
-        if kind == "general":
-            R2 = random_realization(fs.G2, gen, base="controllable")
-        elif kind == "controllable":
-            R2 = controllable_canonical(fs.G2)
-        else:
-            R2 = observable_canonical(fs.G2)
+        R2 = realizer(fs.G2, rng=gen).realization
         params = {**drawn, **R2.params}
         R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)
         circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))

@@ -54,6 +54,7 @@ from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization, controllable_canonical
+from symctl.realization.realizers import ifp_realization
 
 __all__ = [
     "DEFAULT_LENGTH",
@@ -63,7 +64,6 @@ __all__ = [
     "NonlinearCheck",
     "Response",
     "closed_loop_response",
-    "ifp_realization",
     "nonlinear_check",
     "open_loop_response",
     "pulse",
@@ -498,40 +498,6 @@ def open_loop_response(
     )
     t = np.arange(u.shape[0]) * _ts(p)
     return _response(p, t, df[0], u, np.zeros_like(df[0]), np.zeros((len(t), 0)), "open loop")
-
-
-def ifp_realization(gains: Gains) -> Realization:
-    r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`.
-
-    Controller state :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input
-    :math:`\delta_f`, output :math:`\delta_r`:
-    :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde B_c K_0`,
-    :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (for :math:`T = 0`: a static gain
-    :math:`N = K_0`), with :math:`\tilde A_c, \tilde B_c` the chain's rows of the
-    augmented system (eqs. augmented_states, ifp_controller).
-
-    Examples
-    --------
-    >>> from symctl import MuscleModel, augment, lqr_gains
-    >>> R = ifp_realization(lqr_gains(augment(MuscleModel(), 1, 1)))
-    >>> [round(float(v), 4) for v in R.F], R.M
-    ([-0.58, -0.3518, 1.0, 0.0], Matrix([[0, 1]]))
-    """
-    if not isinstance(gains, Gains):
-        raise SymctlTypeError(
-            f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
-        )
-    s = gains.system
-    n, m, T = s.n, s.m, s.T
-    Aa, Ba = numeric_matrix(s.A, "gains"), numeric_matrix(s.B, "gains")
-    K = np.asarray(gains.K, dtype=float)
-    if T == 0:
-        return Realization(np.zeros((0, 0)), np.zeros((0, n)), np.zeros((m, 0)), K, s.plant.Ts)
-    F = Aa[n:, n:] + Ba[n:] @ K[:, n:]
-    H = Ba[n:] @ K[:, :n]
-    M = np.zeros((m, T * m), dtype=int)
-    M[:, -m:] = np.eye(m, dtype=int)
-    return Realization(F, H, M, np.zeros((m, n), dtype=int), s.plant.Ts)
 
 
 def _numeric_realization(R, p: DiscretePlant) -> tuple[np.ndarray, ...]:

@@ -48,7 +48,7 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
   total degree at most :math:`D_E = (L+1)A` (:math:`\Delta` a common
   denominator of all entries, :math:`A` a bound on the degrees of the entries'
   numerators over :math:`\Delta`; both read off the expression trees, see
-  ``_Degrees``). Points where a denominator vanishes are discarded and
+  :class:`~symctl._util.exact.Degrees`). Points where a denominator vanishes are discarded and
   resampled (such points lie in :math:`\{\Delta = 0\}`). By the
   Schwartz–Zippel lemma one round misses with probability at most
   :math:`\varepsilon = D_E / (|S| - \deg \Delta)`; rounds are repeated until
@@ -57,8 +57,7 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
   problem is small (:math:`n + d \le 10`), the exact proof. (Without free
   symbols the randomized test is one exact evaluation, a proof already.)
 
->>> from symctl import z
->>> from symctl.realization.realization import controllable_canonical
+>>> from symctl import check_realization, controllable_canonical, z
 >>> G = (z + 2) / (z**2 - z / 2)
 >>> check_realization(controllable_canonical(G), G).ok
 True
@@ -69,15 +68,16 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
-import numpy as np
 import sympy as sp
 from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
 from flint.utils.flint_exceptions import DomainError
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.exact import Degrees, IntFractions, NotRational, PolyFractions, fold
+from symctl._util.validate import as_random
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization
@@ -95,7 +95,7 @@ _TRIES = 6
 
 
 # ---------------------------------------------------------------- the result
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class RealizationCheck(LatexMixin):
     r"""The verdict of :func:`check_realization`, with its method and evidence.
 
@@ -131,8 +131,7 @@ class RealizationCheck(LatexMixin):
 
     Examples
     --------
-    >>> from symctl import z
-    >>> from symctl.realization.realization import Realization
+    >>> from symctl import Realization, check_realization, z
     >>> result = check_realization(Realization([[2]], [[1]], [[1]], 0), 1 / (z - 3))
     >>> bool(result), result.counterexample["values"][z] != 3
     (False, True)
@@ -143,7 +142,7 @@ class RealizationCheck(LatexMixin):
     ok: bool
     method: str
     error_bound: Fraction
-    counterexample: dict | None
+    counterexample: dict | None = field(hash=False)
     details: str
     markov_count: int
     rounds: int = 0
@@ -273,120 +272,6 @@ def _problem(R, G) -> _Problem:
 
 
 # ---------------------------------------------------------------- expression trees
-class _NotRational(Exception):
-    """An expression that is not a rational function of its symbols."""
-
-
-def _fold(expr: sp.Expr, algebra, memo: dict):
-    """Evaluate a rational sympy expression bottom-up in ``algebra`` (shared subtrees once)."""
-    got = memo.get(expr)
-    if got is not None:
-        return got
-    if expr.is_Rational or expr.is_Float:
-        value = sp.Rational(expr)
-        out = algebra.number(int(value.p), int(value.q))
-    elif expr.is_Symbol:
-        out = algebra.symbol(expr)
-    elif expr.is_Add:
-        out = algebra.add([_fold(a, algebra, memo) for a in expr.args])
-    elif expr.is_Mul:
-        out = algebra.mul([_fold(a, algebra, memo) for a in expr.args])
-    elif expr.is_Pow and expr.exp.is_Integer:
-        out = algebra.pow(expr.base, _fold(expr.base, algebra, memo), int(expr.exp))
-    else:
-        raise _NotRational(expr)
-    memo[expr] = out
-    return out
-
-
-class _PolyFractions:
-    """``_fold`` algebra: rational functions as pairs (numerator, denominator) of ``fmpz_mpoly``."""
-
-    def __init__(self, ctx, symbols):
-        one = ctx.constant(1)
-        self.ctx = ctx
-        self._leaves = {s: (g, one) for s, g in zip(symbols, ctx.gens(), strict=True)}
-
-    def number(self, p: int, q: int):
-        return self.ctx.constant(p), self.ctx.constant(q)
-
-    def symbol(self, s):
-        return self._leaves[s]
-
-    def add(self, parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            if d2 == den:
-                num = num + n2
-            elif d2.is_one():
-                num = num + n2 * den
-            elif den.is_one():
-                num, den = num * d2 + n2, d2
-            else:
-                g = den.gcd(d2)
-                c1, c2 = den / g, d2 / g
-                num, den = num * c2 + n2 * c1, c1 * d2
-        return num, den
-
-    def mul(self, parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            num, den = num * n2, den * d2
-        return num, den
-
-    def pow(self, base, value, k: int):
-        num, den = value
-        if k >= 0:
-            return num**k, den**k
-        if num.is_zero():
-            raise ZeroDivisionError(f"{base} vanishes")
-        return den**-k, num**-k
-
-
-class _IntFractions:
-    """``_fold`` algebra: the value at a point, as a pair of Python ints (fast for numbers)."""
-
-    def __init__(self, values: Mapping):
-        self._leaves = {s: (v.numerator, v.denominator) for s, v in values.items()}
-
-    @staticmethod
-    def number(p: int, q: int):
-        return p, q
-
-    def symbol(self, s):
-        return self._leaves[s]
-
-    @staticmethod
-    def add(parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            if d2 == den:
-                num += n2
-            else:
-                g = math.gcd(den, d2)
-                num, den = num * (d2 // g) + n2 * (den // g), den * (d2 // g)
-        return num, den
-
-    @staticmethod
-    def mul(parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            num, den = num * n2, den * d2
-        if den != 1:
-            g = math.gcd(num, den)
-            num, den = num // g, den // g
-        return num, den
-
-    @staticmethod
-    def pow(base, value, k: int):
-        num, den = value
-        if k >= 0:
-            return num**k, den**k
-        if num == 0:
-            raise ZeroDivisionError(f"{base} vanishes")
-        return den**-k, num**-k
-
-
 class _Entries:
     r"""The entries of a problem as reduced pairs (numerator, denominator) of ``fmpz_mpoly``.
 
@@ -401,15 +286,15 @@ class _Entries:
         nvars = len(symbols) if values is None else 0
         self.ctx = fmpz_mpoly_ctx.get(("x", nvars), "degrevlex")
         if values is None:
-            self._algebra = _PolyFractions(self.ctx, symbols)
+            self._algebra = PolyFractions(self.ctx, symbols)
         else:
-            self._algebra = _IntFractions(values)
+            self._algebra = IntFractions(values)
         self.zero, self.one = self.ctx.constant(0), self.ctx.constant(1)
         self._memo: dict = {}
 
     def entry(self, expr: sp.Expr):
         """A reduced pair (numerator, denominator)."""
-        num, den = _fold(expr, self._algebra, self._memo)
+        num, den = fold(expr, self._algebra, self._memo)
         if isinstance(num, int):
             g = math.gcd(num, den)
             return self.ctx.constant(num // g), self.ctx.constant(den // g)
@@ -532,59 +417,6 @@ def _describe(k: int, i: int, j: int) -> str:
 
 
 # ---------------------------------------------------------------- degree bounds
-class _Degrees:
-    r"""Degree bounds of an unreduced representation :math:`p/q` of each subtree (for ``_fold``).
-
-    A value is ``(pi, q)``: ``pi`` bounds :math:`\deg p`, and ``q`` is a dict
-    ``{base: m}`` meaning :math:`q = \prod p_\text{base}^m` (the numerators of
-    the bases of negative powers). Rules: a number or symbol has :math:`q = 1`;
-    a product multiplies; a sum puts its terms over the lcm of their ``q``
-    (maximum exponent per base); :math:`b^{-k} = q_b^{k+1}/(p_b^k q_b)`. By
-    induction, wherever :math:`q(x) \ne 0` the exact evaluation at :math:`x`
-    (``_Entries`` with values) succeeds and equals :math:`p(x)/q(x)`.
-    """
-
-    def __init__(self):
-        self.pi: dict = {}
-
-    def deg(self, q: dict) -> int:
-        return sum(m * self.pi[base] for base, m in q.items())
-
-    @staticmethod
-    def _merge(dicts, combine) -> dict:
-        out: dict = {}
-        for q in dicts:
-            for base, m in q.items():
-                out[base] = combine(out.get(base, 0), m)
-        return out
-
-    def number(self, p: int, q: int):
-        return 0, {}
-
-    def symbol(self, s):
-        return 1, {}
-
-    def add(self, parts):
-        if not any(qi for _, qi in parts):
-            return max(p for p, _ in parts), {}
-        q = self._merge((qi for _, qi in parts), max)
-        dq = self.deg(q)
-        return max(p + dq - self.deg(qi) for p, qi in parts), q
-
-    def mul(self, parts):
-        total = sum(p for p, _ in parts)
-        if not any(qi for _, qi in parts):
-            return total, {}
-        return total, self._merge((qi for _, qi in parts), int.__add__)
-
-    def pow(self, base, value, k: int):
-        p, q = value
-        if k >= 0:
-            return k * p, {b: k * m for b, m in q.items()}
-        self.pi[base] = p
-        return (1 - k) * self.deg(q), self._merge((q, {base: -k}), int.__add__)
-
-
 def _degree_bound(problem: _Problem) -> tuple[int, int]:
     r"""``(D_E, deg Delta)``: the Schwartz–Zippel degree and the degree of the bad set.
 
@@ -594,35 +426,21 @@ def _degree_bound(problem: _Problem) -> tuple[int, int]:
     products of at most :math:`k+1` coefficients) are then polynomials of degree
     :math:`\le (k+1)A` over :math:`\Delta^{k+1}`, so :math:`D_E = (n+d+1)A`.
     """
-    algebra, memo, values = _Degrees(), {}, []
+    algebra, memo, values = Degrees(), {}, []
     for where, e in problem.entries():
         try:
-            values.append(_fold(e, algebra, memo))
-        except _NotRational as exc:
+            values.append(fold(e, algebra, memo))
+        except NotRational as exc:
             raise ParameterError(
                 f"{where}: {exc.args[0]} is not a rational function of the symbols, in {e}"
             ) from None
-    delta = algebra._merge((q for _, q in values), max)
+    delta = algebra.merge((q for _, q in values), max)
     ddelta = algebra.deg(delta)
     A = max([ddelta, *(p + ddelta - algebra.deg(q) for p, q in values)])
     return (problem.n + problem.d + 1) * A, ddelta
 
 
 # ---------------------------------------------------------------- evaluation at points
-def _rng(rng) -> random.Random:
-    if rng is None:
-        return random.SystemRandom()
-    if isinstance(rng, random.Random):
-        return rng
-    if isinstance(rng, np.random.Generator):
-        return random.Random(int(rng.integers(0, 2**63)))
-    if isinstance(rng, int) and not isinstance(rng, bool):
-        return random.Random(rng)
-    raise SymctlTypeError(
-        f"rng: expected None, an int seed, random.Random or numpy Generator, got {rng!r}"
-    )
-
-
 def _sides_at(problem: _Problem, alg: _Entries, zval: Fraction):
     """Both sides as ``fmpq_mat`` at ``alg``'s point and ``z = zval``; ``None`` at a pole."""
     n, d, (p, q) = problem.n, problem.d, problem.shape
@@ -799,8 +617,8 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
 
     Examples
     --------
-    >>> from symctl import z
-    >>> from symctl.realization.realization import controllable_canonical
+    >>> import sympy as sp
+    >>> from symctl import check_realization, controllable_canonical, z
     >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
     >>> K0, K1, K2 = gain_symbols(2)
     >>> G2 = K0 / (C_1 * C_3) * (z - epsilon_1) * (z - epsilon_3) / (z**2 - K1 * z - K2)
@@ -816,7 +634,7 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     """
     if not isinstance(method, str) or method not in METHODS:
         raise ParameterError(f"method: expected one of {', '.join(METHODS)}, got {method!r}")
-    source = _rng(rng)
+    source = as_random(rng, "rng")
     problem = _problem(R, G)
     degrees = _degree_bound(problem)  # also refuses entries that are not rational, naming them
     if method == "exact":

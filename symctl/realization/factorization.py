@@ -20,7 +20,7 @@ paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
     = \frac{K_0}{C_1 C_3} + \frac{K_0}{C_1 C_3}\,
     \frac{(K_1 - \epsilon_1 - \epsilon_3) z + K_2 + \epsilon_1\epsilon_3}{z^2 - K_1 z - K_2}.
 
->>> from symctl import controller_tf
+>>> from symctl import controller_tf, factor
 >>> f = factor(controller_tf(2))
 >>> f.N
 K_0/(C_1*C_3)
@@ -38,9 +38,10 @@ from functools import cache
 import sympy as sp
 
 from symctl import symbols as S
-from symctl._util.display import LatexMixin, latex
+from symctl._util.display import LatexMixin, descending_latex, latex
+from symctl._util.exact import products_equal
 from symctl._util.validate import nonneg_int
-from symctl.design.tf import DiscreteTF, _descending, _products_equal
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
 
@@ -51,6 +52,7 @@ __all__ = ["Factorization", "factor", "section_symbols"]
 def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
     """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
 
+    >>> from symctl.realization.factorization import section_symbols
     >>> section_symbols(1, 1)
     ((epsilon_1,), (C_1,))
     >>> section_symbols(3, 2)
@@ -71,7 +73,7 @@ def _sections(eps, cs, dt) -> DiscreteTF:
     return DiscreteTF(num, den, dt)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Factorization(LatexMixin):
     r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols.
 
@@ -81,6 +83,19 @@ class Factorization(LatexMixin):
     sensor_eps, sensor_C, actuator_eps, actuator_C : tuple of sympy expressions
         Poles and gains of the first-order sections of ``G1`` and ``G3`` (symbols,
         or values after :meth:`subs`).
+
+    Built by :func:`factor`; compares and hashes by value.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor
+    >>> f = factor(controller_tf(2))
+    >>> f.sensor_eps, f.actuator_C
+    ((epsilon_1,), (C_3,))
+    >>> f.G2.expr
+    K_0*(-epsilon_1 + z)*(-epsilon_3 + z)/(C_1*C_3*(-K_1*z - K_2 + z**2))
+    >>> f == factor(controller_tf(2))
+    True
     """
 
     G: DiscreteTF
@@ -121,7 +136,7 @@ class Factorization(LatexMixin):
         """Exact check that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication)."""
         left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
         right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
-        return _products_equal(left, right)
+        return products_equal(left, right)
 
     def subs(self, *args, **kwargs) -> Factorization:
         """Substitute values (e.g. for the epsilons and Cs); a zero C is refused."""
@@ -145,11 +160,11 @@ class Factorization(LatexMixin):
     def latex(self) -> str:
         r"""The three factors, :math:`G_2` written as the paper does (gain times zeros over poles)."""
         zeros = sp.Mul(*(z - e for e in (*self.sensor_eps, *self.actuator_eps)))
-        zeros_tex = _descending(sp.collect(sp.expand(zeros), z, evaluate=True))
+        zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
         g2 = (
             self.G2.latex()
             if self.N == 0
-            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{_descending(self.G2.den)}}}")
+            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}")
         )
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
 
@@ -179,9 +194,19 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
     Raises
     ------
     ParameterError
-        Improper ``G``, or relative degree of ``G`` below ``sensor_delay + actuator_delay``.
+        Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
+        or negative delays.
     DimensionError
         A MIMO ``G``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor
+    >>> f = factor(controller_tf(3), sensor_delay=1, actuator_delay=2)
+    >>> f.G1.expr, f.G3.relative_degree, f.G2.relative_degree
+    (C_1/(-epsilon_1 + z), 2, 0)
+    >>> f.verify()
+    True
     """
     tf = DiscreteTF.from_expr(G)
     ds = nonneg_int(sensor_delay, "sensor_delay")

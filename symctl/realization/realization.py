@@ -12,14 +12,16 @@ Constructors, for any proper SISO :math:`G_2` of order :math:`n`, written as
 * :func:`controllable_canonical`: :math:`F` companion with last row
   :math:`[-a_0, \dots, -a_{n-1}]`, :math:`H = e_n`, :math:`M = [c_0, \dots, c_{n-1}]`;
 * :func:`observable_canonical`: its dual, :math:`(F^\top, M^\top, H^\top, N)`;
-* :func:`general_realization`: a similarity transform of a canonical one;
-* :func:`random_realization`: the paper's recipe for its figures.
+* :func:`~symctl.general_realization` and :func:`~symctl.random_realization`
+  (in :mod:`symctl.realization.realizers`, the registry of the ways to
+  realize :math:`G_2`): a similarity transform of a canonical one, and the
+  paper's recipe for its figures.
 
 For the paper's :math:`G_2` these are exactly its matrices, e.g.
 :math:`F = [[0, 1], [K_2, K_1]]`, :math:`H = [0, 1]^\top`,
 :math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`.
 
->>> from symctl import z
+>>> from symctl import controllable_canonical, z
 >>> R = controllable_canonical((z + 2) / (z**2 - z / 2))
 >>> R.F, R.H.T, R.M, R.N
 (Matrix([
@@ -29,13 +31,15 @@ For the paper's :math:`G_2` these are exactly its matrices, e.g.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import as_generator, to_expr, to_matrix
+from symctl._util.validate import to_expr, to_matrix
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -45,9 +49,8 @@ __all__ = [
     "controllable_canonical",
     "controller_realization",
     "first_order_realization",
-    "general_realization",
     "observable_canonical",
-    "random_realization",
+    "section_realizations",
     "split_proper",
 ]
 
@@ -57,7 +60,7 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor_terms(sp.cancel(expr))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Realization(LatexMixin):
     r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
 
@@ -68,17 +71,30 @@ class Realization(LatexMixin):
     M : (p, n) matrix-like
     N : (p, q) matrix-like (a scalar for SISO)
     dt : sampling time, optional
-    params : dict, optional
-        Values used to build it (e.g. the random epsilons and ``P``), for records.
+    params : mapping, optional
+        Values used to build it (e.g. the random epsilons and ``P``), for
+        records; kept as a read-only mapping and not compared.
 
     ``F, H, M, N`` are stored as :class:`sympy.ImmutableMatrix`. ``n = 0`` (a
-    static gain) is allowed.
+    static gain) is allowed. Realizations compare and hash by value: the
+    matrices and ``dt`` (structurally; similar realizations are not equal).
+
+    Raises
+    ------
+    DimensionError
+        ``F`` not square, or ``H``, ``M`` whose shapes do not fit ``F`` and ``N``.
+    ParameterError, SymctlTypeError
+        Entries that are not numbers or sympy expressions.
 
     Examples
     --------
+    >>> import sympy as sp
+    >>> from symctl import Realization
     >>> R = Realization([[sp.Rational(1, 2)]], [[1]], [[2]], 0)
     >>> R.to_tf().expr
     2/(z - 1/2)
+    >>> R == Realization([[sp.Rational(1, 2)]], [[1]], [[2]], 0), R == R.similar([[2]])
+    (True, False)
     """
 
     F: sp.ImmutableMatrix
@@ -86,17 +102,17 @@ class Realization(LatexMixin):
     M: sp.ImmutableMatrix
     N: sp.ImmutableMatrix
     dt: sp.Expr | None = None
-    params: dict = field(default_factory=dict)
+    params: Mapping = field(default=None, compare=False)
 
-    def __init__(self, F, H, M, N, dt=None, params=None):
-        Fm = _matrix_or_empty(F, "F")
+    def __post_init__(self):
+        Fm = _matrix_or_empty(self.F, "F")
         n = Fm.shape[0]
         if Fm.shape != (n, n):
             raise DimensionError(f"F: must be square, got shape {Fm.shape}")
-        Nm = to_matrix(N, "N")
+        Nm = to_matrix(self.N, "N")
         p, q = Nm.shape
-        Hm = _matrix_or_empty(H, "H", (n, q))
-        Mm = _matrix_or_empty(M, "M", (p, n))
+        Hm = _matrix_or_empty(self.H, "H", (n, q))
+        Mm = _matrix_or_empty(self.M, "M", (p, n))
         if Hm.shape != (n, q):
             raise DimensionError(
                 f"H: expected shape {(n, q)} (F is {n}x{n}, N is {p}x{q}), got {Hm.shape}"
@@ -107,8 +123,8 @@ class Realization(LatexMixin):
             )
         for name, mat in (("F", Fm), ("H", Hm), ("M", Mm), ("N", Nm)):
             object.__setattr__(self, name, sp.ImmutableMatrix(mat))
-        object.__setattr__(self, "dt", None if dt is None else to_expr(dt, "dt"))
-        object.__setattr__(self, "params", dict(params or {}))
+        object.__setattr__(self, "dt", None if self.dt is None else to_expr(self.dt, "dt"))
+        object.__setattr__(self, "params", MappingProxyType(dict(self.params or {})))
 
     # ------------------------------------------------------------ sizes
     @property
@@ -168,6 +184,10 @@ class Realization(LatexMixin):
         ParameterError
             When ``P`` is singular (its determinant cancels to zero).
         """
+        return self._similar(P)[0]
+
+    def _similar(self, P) -> tuple[Realization, sp.Matrix]:
+        """:meth:`similar` and the inverse of ``P`` it computed (adjugate over determinant)."""
         Pm = to_matrix(P, "P")
         if Pm.shape != (self.n, self.n):
             raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
@@ -175,7 +195,7 @@ class Realization(LatexMixin):
         if det == 0:
             raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
         Pinv = (Pm.adjugate(method="berkowitz") / det).applyfunc(sp.cancel)
-        return Realization(
+        R = Realization(
             (Pinv * self.F * Pm).applyfunc(_tidy),
             (Pinv * self.H).applyfunc(_tidy),
             (self.M * Pm).applyfunc(_tidy),
@@ -183,6 +203,7 @@ class Realization(LatexMixin):
             self.dt,
             {**self.params, "P": sp.ImmutableMatrix(Pm)},
         )
+        return R, sp.ImmutableMatrix(Pinv)
 
     def subs(self, *args, **kwargs) -> Realization:
         """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`)."""
@@ -234,25 +255,16 @@ class Realization(LatexMixin):
 
     def to_control(self):
         """As a discrete ``control.StateSpace`` (dt kept; ``True`` when unknown)."""
-        import control
+        from symctl.interop import ss_to_control
 
-        F, H, M, N = self.numeric()
-        return control.ss(F, H, M, N, True if self.dt is None else float(self.dt))
+        return ss_to_control(self)
 
     @classmethod
     def from_control(cls, sys) -> Realization:
         """From a discrete python-control system (converted to state space)."""
-        import control
+        from symctl.interop import ss_from_control
 
-        if not isinstance(sys, control.LTI):
-            raise SymctlTypeError(
-                f"sys: expected a python-control system, got {type(sys).__name__}"
-            )
-        if not sys.isdtime():
-            raise ParameterError("sys: a continuous-time system; discretize it first (control.c2d)")
-        ss = control.ss(sys)
-        dt = None if ss.dt is True else ss.dt
-        return cls(ss.A, ss.B, ss.C, ss.D, dt)
+        return ss_from_control(sys)
 
     @classmethod
     def series(cls, *parts: Realization) -> Realization:
@@ -339,6 +351,7 @@ def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     ``c`` and ``a`` in ascending powers (length ``n``).
 
     >>> from symctl import z
+    >>> from symctl.realization.realization import split_proper
     >>> split_proper((2*z + 1) / (z - 3))
     (2, [7], [-3])
     """
@@ -358,7 +371,37 @@ def controllable_canonical(G2) -> Realization:
     .. math::
         F = \begin{bmatrix} 0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\
             -a_0 & -a_1 & \cdots & -a_{n-1}\end{bmatrix},\quad
-        H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty).
+        H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty),
+
+    with :math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1}
+    + \dots + a_0)`. The ``"controllable"`` realizer of
+    :data:`symctl.realization.realizers.REALIZERS` returns it.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function, exact or symbolic.
+
+    Returns
+    -------
+    Realization
+        Of order :math:`n = \deg d`, with ``G2``'s ``dt``.
+
+    Raises
+    ------
+    DimensionError
+        A MIMO ``G2``.
+    ParameterError
+        An improper ``G2``, or one that is not rational in ``z``.
+
+    Examples
+    --------
+    >>> from symctl import controllable_canonical, controller_tf, factor
+    >>> R = controllable_canonical(factor(controller_tf(2)).G2)
+    >>> R.F, R.H.T
+    (Matrix([
+    [  0,   1],
+    [K_2, K_1]]), Matrix([[0, 1]]))
     """
     tf = _siso(G2)
     N, c, a = split_proper(tf)
@@ -380,97 +423,54 @@ def observable_canonical(G2) -> Realization:
 
     For the paper's :math:`G_2`: :math:`F = [[0, K_2], [1, K_1]]`, :math:`M = [0, 1]`,
     :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function, exact or symbolic.
+
+    Returns
+    -------
+    Realization
+        :math:`(F^\top, M^\top, H^\top, N)` of :func:`controllable_canonical`.
+
+    Raises
+    ------
+    DimensionError
+        A MIMO ``G2``.
+    ParameterError
+        An improper ``G2``, or one that is not rational in ``z``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor, observable_canonical
+    >>> R = observable_canonical(factor(controller_tf(2)).G2)
+    >>> R.F, R.M
+    (Matrix([
+    [0, K_2],
+    [1, K_1]]), Matrix([[0, 1]]))
     """
     return controllable_canonical(G2).transpose()
 
 
-def general_realization(G2, P, base: str = "controllable") -> Realization:
-    r"""A general realization: the similarity transform by ``P`` of a canonical one.
-
-    ``P`` may be symbolic (e.g. a matrix of fresh symbols) or numeric; ``base``
-    is ``"controllable"`` (default) or ``"observable"``.
-
-    >>> import sympy as sp
-    >>> from symctl import z
-    >>> R = general_realization(1 / (z - sp.Rational(1, 2)), [[2]])
-    >>> R.F, R.H, R.M
-    (Matrix([[1/2]]), Matrix([[1/2]]), Matrix([[2]]))
-    """
-    return _canonical(G2, base).similar(P)
-
-
-def _canonical(G2, base: str) -> Realization:
-    if base == "controllable":
-        return controllable_canonical(G2)
-    if base == "observable":
-        return observable_canonical(G2)
-    raise ParameterError(f"base: must be 'controllable' or 'observable', got {base!r}")
-
-
-def _random_rational(
-    gen: np.random.Generator, low: float, high: float, grid: int = 1000
-) -> sp.Rational:
-    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
-
-
-def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 10.0) -> sp.Matrix:
-    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned."""
-    gen = as_generator(rng, "rng")
-    for _ in range(10_000):
-        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
-        if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
-            return P
-    raise ParameterError(
-        f"n: no well-conditioned random matrix found for n = {n}"
-    )  # pragma: no cover
-
-
-def random_realization(
-    G2,
-    rng=None,
-    *,
-    base: str = "controllable",
-    eps_range: tuple[float, float] = (-0.9, 0.9),
-    values: dict | None = None,
-) -> Realization:
-    r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
-
-    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
-    exact rational, uniform in ``eps_range`` (stable sections by default); the
-    canonical realization (``base``) is then similarity-transformed by a random
-    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
-    that no state is scaled out of proportion).
-    Other symbols (gains K, C) stay symbolic unless given in ``values``.
-    The epsilons and ``P`` used are recorded in ``.params``. Seeded by ``rng``
-    (a NumPy ``Generator`` or an int).
-
-    >>> from symctl import controller_tf
-    >>> from symctl.realization.factorization import factor
-    >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
-    >>> sorted(str(k) for k in R.params)
-    ['P', 'epsilon_1', 'epsilon_3']
-    """
-    gen = as_generator(rng, "rng")
-    tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
-    if values:
-        tf = tf.subs(values)
-    eps = sorted((s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name)
-    chosen = {s: _random_rational(gen, *eps_range) for s in eps}
-    base_R = _canonical(tf.subs(chosen), base)
-    R = base_R.similar(random_full_rank(base_R.n, gen))
-    return Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
-
-
 def first_order_realization(eps, C, dt=None) -> Realization:
-    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`."""
+    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
+
+    >>> from symctl.realization.realization import first_order_realization
+    >>> first_order_realization(2, 3).to_tf().expr
+    3/(z - 2)
+    """
     return Realization([[eps]], [[C]], [[1]], 0, dt)
 
 
-def controller_realization(factorization, R2: Realization) -> Realization:
-    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
+def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
+    r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order.
 
-    State order: the sensor sections of :math:`G_1` (in signal-flow order),
-    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+    >>> from symctl import controller_tf, factor
+    >>> from symctl.realization.realization import section_realizations
+    >>> first, last = section_realizations(factor(controller_tf(2)))
+    >>> first[0].F, last[0].H
+    (Matrix([[epsilon_1]]), Matrix([[C_3]]))
     """
     f = factorization
     dt = f.G.dt
@@ -480,4 +480,21 @@ def controller_realization(factorization, R2: Realization) -> Realization:
     last = [
         first_order_realization(e, c, dt) for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
     ]
+    return first, last
+
+
+def controller_realization(factorization, R2: Realization) -> Realization:
+    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
+
+    State order: the sensor sections of :math:`G_1` (in signal-flow order),
+    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+
+    >>> from symctl import controller_tf, controllable_canonical, factor
+    >>> from symctl.realization.realization import controller_realization
+    >>> f = factor(controller_tf(2))
+    >>> R = controller_realization(f, controllable_canonical(f.G2))
+    >>> R.n, R.to_tf().equals(f.G)
+    (4, True)
+    """
+    first, last = section_realizations(factorization)
     return Realization.series(*first, R2, *last)

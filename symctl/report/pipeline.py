@@ -20,13 +20,15 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
+from symctl._util.display import descending_str
 from symctl.compatibility.check import CompatibilityResult, check_compatibility
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import AugmentedSystem, augment
+from symctl.design.controller import controller_tf, prove_controller_tf
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import DiscretePlant, MuscleModel
-from symctl.design.tf import DiscreteTF, controller_tf, descending_str, prove_controller_tf
+from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import FiringPatterns, circuit_firing
@@ -39,12 +41,8 @@ from symctl.neural.simulate import (
 )
 from symctl.realization.check import RealizationCheck, check_realization
 from symctl.realization.factorization import Factorization, factor
-from symctl.realization.realization import (
-    Realization,
-    controllable_canonical,
-    general_realization,
-    observable_canonical,
-)
+from symctl.realization.realization import Realization
+from symctl.realization.realizers import REALIZERS
 
 __all__ = ["CIRCUITS", "CircuitRecord", "PaperResults", "RealizationRecord", "derive_paper"]
 
@@ -440,19 +438,18 @@ def _realizations(
     for name in ("controllable", "observable", "general"):
         eps = {k: v for k, v in drawn[name].items() if isinstance(k, sp.Symbol)}
         G2_num = G2_gains.subs(eps)
-        if name == "controllable":
-            symbolic, numeric = controllable_canonical(factors.G2), controllable_canonical(G2_num)
-        elif name == "observable":
-            symbolic, numeric = observable_canonical(factors.G2), observable_canonical(G2_num)
-        else:
+        realizer = REALIZERS[name]
+        symbolic_options, numeric_options = {}, {}
+        if realizer.takes_transform:
             P_num = drawn[name]["P"]
             n = P_num.shape[0]
             if n <= SYMBOLIC_P_MAX_ORDER:
                 P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})"))
             else:  # a fully symbolic P costs minutes beyond order 3: use the drawn one
                 P = P_num
-            symbolic = general_realization(factors.G2, P)
-            numeric = general_realization(G2_num, P_num)
+            symbolic_options, numeric_options = {"P": P}, {"P": P_num}
+        symbolic = realizer(factors.G2, **symbolic_options).realization
+        numeric = realizer(G2_num, **numeric_options).realization
         out[name] = RealizationRecord(
             name,
             symbolic,

@@ -1,4 +1,4 @@
-"""G(z) in closed form: paper's formula, proof, relative degree, impulse response, interop."""
+"""The optimal delayed controller G(z): the paper's formula, its proof, the IFP state space."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from symctl import (
     DiscreteTF,
     MuscleModel,
-    ParameterError,
-    SymctlTypeError,
+    Realization,
     augment,
     controller_tf,
+    ifp_realization,
     lqr_gains,
     prove_controller_tf,
     z,
@@ -61,14 +61,6 @@ def test_a_wrong_controller_is_not_proved():
     K0, K1, K2 = gain_symbols(2)
     wrong = DiscreteTF(K0, z**2 - K1 * z + K2)
     assert not prove_controller_tf(aug, wrong)
-
-
-def test_markov_parameters_of_symbolic_G():
-    K0, K1, K2 = gain_symbols(2)
-    h = [m[0, 0] for m in controller_tf(2).markov(5)]
-    assert h[:3] == [0, 0, K0]
-    assert sp.expand(h[3] - K0 * K1) == 0
-    assert sp.expand(h[4] - K0 * (K1**2 + K2)) == 0
 
 
 def _controller_impulse_by_simulation(aug, K, steps):
@@ -137,63 +129,20 @@ def test_closed_loop_with_G_equals_augmented_closed_loop(ds, da):
     np.testing.assert_allclose(np.poly(loop.A), np.poly(Acl), atol=1e-9)
 
 
-def test_control_roundtrip_keeps_dt_and_coefficients():
-    G = controller_tf(lqr_gains(augment(MuscleModel(), 1, 1)))
-    sys = G.to_control()
-    assert isinstance(sys, control.TransferFunction) and sys.dt == pytest.approx(0.01)
-    np.testing.assert_allclose(sys.den[0][0], [float(c) for c in G.den_coeffs()])
-    back = DiscreteTF.from_control(sys)
-    assert back.dt == pytest.approx(0.01)
-    np.testing.assert_allclose(back.impulse_response(10), G.impulse_response(10), atol=1e-14)
+def test_controller_tf_equal_by_value():
+    assert controller_tf(2) == controller_tf(2)
+    assert hash(controller_tf(3)) == hash(controller_tf(3))
+    assert controller_tf(2) != controller_tf(3)
 
 
-def test_mimo_control_roundtrip():
-    aug = augment(([[1.1, 0.2], [0, 0.9]], [[0, 1], [1, 0]]), 1, 1)
-    G = controller_tf(lqr_gains(aug))
-    back = DiscreteTF.from_control(G.to_control())
-    assert back.shape == (2, 2)
-    np.testing.assert_allclose(back.impulse_response(12), G.impulse_response(12), atol=1e-10)
-
-
-def test_from_control_refuses_continuous_systems():
-    with pytest.raises(ParameterError, match="continuous"):
-        DiscreteTF.from_control(control.tf([1], [1, 1]))
-
-
-def test_symbolic_G_cannot_go_to_control():
-    with pytest.raises(ParameterError, match="free symbols"):
-        controller_tf(2).to_control()
-
-
-def test_discrete_tf_checks_its_input():
-    with pytest.raises(ParameterError, match="den"):
-        DiscreteTF(1, 0)
-    with pytest.raises(ParameterError, match="polynomial"):
-        DiscreteTF(sp.exp(z), z)
-    with pytest.raises(SymctlTypeError, match="G"):
-        DiscreteTF.from_expr("1/z")
-    with pytest.raises(ParameterError, match="T"):
-        controller_tf(-1)
-
-
-def test_series_and_equality():
-    a = DiscreteTF.from_expr(1 / (z - sp.Rational(1, 2)))
-    b = DiscreteTF.from_expr((z - sp.Rational(1, 2)) / (z - sp.Rational(1, 3)))
-    assert (a * b).equals(1 / (z - sp.Rational(1, 3)))
-    assert not a.equals(b)
-
-
-def test_lambdify_broadcasts_and_matches_sympy():
-    G = controller_tf(2)
-    K = gain_symbols(2)
-    f = G.lambdify(K)
-    zs = np.exp(1j * np.linspace(0, np.pi, 7))
-    vals = {K[0]: 0.3, K[1]: -0.2, K[2]: 0.1}
-    got = f(zs, 0.3, -0.2, 0.1)
-    want = [complex(G.expr.subs(vals).subs(z, zz)) for zz in zs]
-    np.testing.assert_allclose(got, want, rtol=1e-12)
-
-
-def test_repr_latex_in_jupyter():
-    assert controller_tf(2)._repr_latex_().startswith("$\\displaystyle \\frac{K_{0}}")
-    assert str(controller_tf(2)) == "(K_0)/(z**2 - K_1*z - K_2)"
+@pytest.mark.parametrize("ds, da", [(0, 0), (1, 1), (0, 2), (2, 1)])
+def test_ifp_realization_realizes_the_numeric_controller(ds, da):
+    gains = lqr_gains(augment(MuscleModel(), ds, da))
+    R = ifp_realization(gains)
+    assert isinstance(R, Realization) and R.n == ds + da
+    G = controller_tf(gains)
+    np.testing.assert_allclose(
+        np.array([np.array(h, dtype=float) for h in R.markov(8)]),
+        G.impulse_response(8),
+        atol=1e-12,
+    )

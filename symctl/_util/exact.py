@@ -1,0 +1,364 @@
+r"""The one exact expression fold: a SymPy expression tree evaluated in an algebra.
+
+:func:`fold` walks a rational SymPy expression bottom up (numbers, symbols,
+sums, products, integer powers; shared subtrees once) and hands each node to an
+*algebra*, an object with ``number(p, q)``, ``symbol(s)``, ``add(parts)``,
+``mul(parts)`` and ``pow(base, value, k)``. Every turn of an expression into a
+numerator/denominator pair in symctl goes through it:
+
+* :class:`RingFractions`: pairs of sparse SymPy polynomials over
+  :math:`\mathbb{Q}` (the coefficients of a transfer function in :math:`z`,
+  :func:`z_poly`, and :func:`products_equal`);
+* :class:`PolyFractions`: pairs of python-flint ``fmpz_mpoly`` (the exact
+  realization check);
+* :class:`IntFractions`: the value at a rational point, as a pair of ints
+  (the randomized check);
+* :class:`Degrees`: degree bounds of an unreduced representation (the
+  Schwartz–Zippel bound of the randomized check).
+
+>>> import sympy as sp
+>>> from symctl import z
+>>> from symctl._util.exact import IntFractions, fold, z_poly
+>>> a = sp.Symbol("a")
+>>> fold((z + a) / (z - 1) + 1 / a, IntFractions({z: 3, a: 2}))  # 6/2, not reduced
+(6, 2)
+>>> z_poly(a * z**2 / 2 - 1).all_coeffs()
+[a/2, 0, -1]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from functools import lru_cache
+
+import sympy as sp
+from sympy.polys.rings import ring
+
+from symctl.errors import ParameterError
+from symctl.symbols import z
+
+__all__ = [
+    "Degrees",
+    "IntFractions",
+    "NotRational",
+    "PolyFractions",
+    "RingFractions",
+    "ZPoly",
+    "fold",
+    "products_equal",
+    "ring_fractions",
+    "z_poly",
+]
+
+
+class NotRational(Exception):
+    """An expression that is not a rational function of its symbols (its first argument)."""
+
+
+def fold(expr: sp.Expr, algebra, memo: dict | None = None):
+    """Evaluate a rational sympy expression bottom-up in ``algebra`` (shared subtrees once).
+
+    Floats are taken as the exact binary rationals they are. Raises
+    :class:`NotRational` on any other node (a function, a symbolic exponent).
+    """
+    memo = {} if memo is None else memo
+    got = memo.get(expr)
+    if got is not None:
+        return got
+    if expr.is_Rational or expr.is_Float:
+        value = sp.Rational(expr)
+        out = algebra.number(int(value.p), int(value.q))
+    elif expr.is_Symbol:
+        out = algebra.symbol(expr)
+    elif expr.is_Add:
+        out = algebra.add([fold(a, algebra, memo) for a in expr.args])
+    elif expr.is_Mul:
+        out = algebra.mul([fold(a, algebra, memo) for a in expr.args])
+    elif expr.is_Pow and expr.exp.is_Integer:
+        out = algebra.pow(expr.base, fold(expr.base, algebra, memo), int(expr.exp))
+    else:
+        raise NotRational(expr)
+    memo[expr] = out
+    return out
+
+
+# ---------------------------------------------------------------- algebras
+class RingFractions:
+    """Algebra: pairs (numerator, denominator) in a sparse SymPy polynomial ring, no gcd."""
+
+    def __init__(self, ring_, generators):
+        self.ring = ring_
+        self._leaves = {g: (x, ring_.one) for g, x in zip(generators, ring_.gens, strict=True)}
+
+    def number(self, p: int, q: int):
+        return self.ring(p), self.ring(q)
+
+    def symbol(self, s):
+        return self._leaves[s]
+
+    @staticmethod
+    def add(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            num, den = (num + n2, den) if d2 == den else (num * d2 + n2 * den, den * d2)
+        return num, den
+
+    @staticmethod
+    def mul(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            num, den = num * n2, den * d2
+        return num, den
+
+    @staticmethod
+    def pow(base, value, k: int):
+        num, den = value
+        return (num**k, den**k) if k >= 0 else (den ** (-k), num ** (-k))
+
+
+class PolyFractions:
+    """Algebra: rational functions as pairs (numerator, denominator) of ``fmpz_mpoly``."""
+
+    def __init__(self, ctx, symbols):
+        one = ctx.constant(1)
+        self.ctx = ctx
+        self._leaves = {s: (g, one) for s, g in zip(symbols, ctx.gens(), strict=True)}
+
+    def number(self, p: int, q: int):
+        return self.ctx.constant(p), self.ctx.constant(q)
+
+    def symbol(self, s):
+        return self._leaves[s]
+
+    @staticmethod
+    def add(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            if d2 == den:
+                num = num + n2
+            elif d2.is_one():
+                num = num + n2 * den
+            elif den.is_one():
+                num, den = num * d2 + n2, d2
+            else:
+                g = den.gcd(d2)
+                c1, c2 = den / g, d2 / g
+                num, den = num * c2 + n2 * c1, c1 * d2
+        return num, den
+
+    @staticmethod
+    def mul(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            num, den = num * n2, den * d2
+        return num, den
+
+    @staticmethod
+    def pow(base, value, k: int):
+        num, den = value
+        if k >= 0:
+            return num**k, den**k
+        if num.is_zero():
+            raise ZeroDivisionError(f"{base} vanishes")
+        return den**-k, num**-k
+
+
+class IntFractions:
+    """Algebra: the value at a point, as a pair of Python ints (fast for numbers)."""
+
+    def __init__(self, values: Mapping):
+        self._leaves = {s: (v.numerator, v.denominator) for s, v in values.items()}
+
+    @staticmethod
+    def number(p: int, q: int):
+        return p, q
+
+    def symbol(self, s):
+        return self._leaves[s]
+
+    @staticmethod
+    def add(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            if d2 == den:
+                num += n2
+            else:
+                g = math.gcd(den, d2)
+                num, den = num * (d2 // g) + n2 * (den // g), den * (d2 // g)
+        return num, den
+
+    @staticmethod
+    def mul(parts):
+        num, den = parts[0]
+        for n2, d2 in parts[1:]:
+            num, den = num * n2, den * d2
+        if den != 1:
+            g = math.gcd(num, den)
+            num, den = num // g, den // g
+        return num, den
+
+    @staticmethod
+    def pow(base, value, k: int):
+        num, den = value
+        if k >= 0:
+            return num**k, den**k
+        if num == 0:
+            raise ZeroDivisionError(f"{base} vanishes")
+        return den**-k, num**-k
+
+
+class Degrees:
+    r"""Algebra: degree bounds of an unreduced representation :math:`p/q` of each subtree.
+
+    A value is ``(pi, q)``: ``pi`` bounds :math:`\deg p`, and ``q`` is a dict
+    ``{base: m}`` meaning :math:`q = \prod p_\text{base}^m` (the numerators of
+    the bases of negative powers). Rules: a number or symbol has :math:`q = 1`;
+    a product multiplies; a sum puts its terms over the lcm of their ``q``
+    (maximum exponent per base); :math:`b^{-k} = q_b^{k+1}/(p_b^k q_b)`. By
+    induction, wherever :math:`q(x) \ne 0` the exact evaluation at :math:`x`
+    (:class:`IntFractions`) succeeds and equals :math:`p(x)/q(x)`.
+    """
+
+    def __init__(self):
+        self.pi: dict = {}
+
+    def deg(self, q: dict) -> int:
+        return sum(m * self.pi[base] for base, m in q.items())
+
+    @staticmethod
+    def merge(dicts, combine) -> dict:
+        out: dict = {}
+        for q in dicts:
+            for base, m in q.items():
+                out[base] = combine(out.get(base, 0), m)
+        return out
+
+    @staticmethod
+    def number(p: int, q: int):
+        return 0, {}
+
+    @staticmethod
+    def symbol(s):
+        return 1, {}
+
+    def add(self, parts):
+        if not any(qi for _, qi in parts):
+            return max(p for p, _ in parts), {}
+        q = self.merge((qi for _, qi in parts), max)
+        dq = self.deg(q)
+        return max(p + dq - self.deg(qi) for p, qi in parts), q
+
+    def mul(self, parts):
+        total = sum(p for p, _ in parts)
+        if not any(qi for _, qi in parts):
+            return total, {}
+        return total, self.merge((qi for _, qi in parts), int.__add__)
+
+    def pow(self, base, value, k: int):
+        p, q = value
+        if k >= 0:
+            return k * p, {b: k * m for b, m in q.items()}
+        self.pi[base] = p
+        return (1 - k) * self.deg(q), self.merge((q, {base: -k}), int.__add__)
+
+
+# ---------------------------------------------------------------- polynomials in z
+def _generators(exprs) -> list[sp.Symbol] | None:
+    """z and the other symbols, or None when an expression holds floats or other atoms.
+
+    Transcendental constants such as ``exp(1/2)`` are algebraically related
+    (``exp(1/2) * exp(-1/2) = 1``); a polynomial ring would miss that, so such
+    expressions take the expression path instead.
+    """
+    syms: set[sp.Symbol] = set()
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, sp.Symbol):
+                syms.add(node)
+            elif isinstance(node, sp.Float) or not (
+                isinstance(node, sp.Add | sp.Mul | sp.Rational)
+                or (isinstance(node, sp.Pow) and node.exp.is_Integer)
+            ):
+                return None
+    return [z, *sorted(syms - {z}, key=str)]
+
+
+def ring_fractions(exprs: list[sp.Expr]) -> list[tuple] | None:
+    """Each expression as a pair (numerator, denominator) of sparse polynomials over QQ.
+
+    The ring's generators are z and every other symbol; sums, products and
+    integer powers are carried out on the pairs by :func:`fold` in
+    :class:`RingFractions`, with no gcd and no expansion of expression trees,
+    so the cost is that of sparse polynomial multiplication. Returns None when
+    an expression holds floats or atoms other than symbols and rationals.
+    """
+    gens = _generators(exprs)
+    if gens is None:
+        return None
+    R, *_ = ring(gens, sp.QQ)
+    algebra, memo = RingFractions(R, gens), {}
+    return [fold(e, algebra, memo) for e in exprs]
+
+
+def products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
+    """Exact test of ``prod(left) == prod(right)`` for rational expressions."""
+    pairs = ring_fractions([*left, *right])
+    if pairs is None:
+        return sp.expand(sp.Mul(*left) - sp.Mul(*right)) == 0
+    num_l, den_l, num_r, den_r = (pairs[0][0].ring.one,) * 4
+    for n_, d_ in pairs[: len(left)]:
+        num_l, den_l = num_l * n_, den_l * d_
+    for n_, d_ in pairs[len(left) :]:
+        num_r, den_r = num_r * n_, den_r * d_
+    return num_l * den_r == num_r * den_l
+
+
+class ZPoly:
+    """A univariate polynomial in z read off a sparse ring element (the few views symctl needs)."""
+
+    __slots__ = ("_coeffs",)
+
+    def __init__(self, coeffs: dict[int, sp.Expr]):
+        self._coeffs = {k: c for k, c in coeffs.items() if c != 0}
+
+    @property
+    def is_zero(self) -> bool:
+        return not self._coeffs
+
+    def degree(self) -> int:
+        return max(self._coeffs) if self._coeffs else -1
+
+    def LC(self) -> sp.Expr:
+        return self._coeffs[self.degree()] if self._coeffs else sp.Integer(0)
+
+    def all_coeffs(self) -> list[sp.Expr]:
+        if not self._coeffs:
+            return [sp.Integer(0)]
+        return [self._coeffs.get(k, sp.Integer(0)) for k in range(self.degree(), -1, -1)]
+
+    def coeff(self, power: int) -> sp.Expr:
+        return self._coeffs.get(power, sp.Integer(0))
+
+    def terms(self) -> list[tuple[tuple[int], sp.Expr]]:
+        return [((k,), self._coeffs[k]) for k in sorted(self._coeffs, reverse=True)]
+
+
+@lru_cache(maxsize=4096)
+def z_poly(expr: sp.Expr) -> ZPoly:
+    """Coefficients of ``expr`` in z, computed with sparse ring arithmetic (no expression expansion)."""
+    pairs = ring_fractions([expr])
+    if pairs is None:
+        poly = sp.Poly(expr, z)
+        return ZPoly({k: c for (k,), c in poly.terms()})
+    num, den = pairs[0]
+    if den.degree(0) > 0:
+        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
+    den_expr = den.as_expr()
+    by_power: dict[int, dict] = {}
+    for monom, coeff in num.items():
+        by_power.setdefault(monom[0], {})[(0, *monom[1:])] = coeff
+    ring_ = num.ring
+    return ZPoly(
+        {k: sp.cancel(ring_.from_dict(terms).as_expr() / den_expr) for k, terms in by_power.items()}
+    )

@@ -1,0 +1,404 @@
+r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
+
+A *realizer* turns a proper SISO transfer function into a
+:class:`~symctl.Realization` and says how: it returns a
+:class:`RealizerResult` with the realization, the canonical realization it
+was built from (its *base*) and the similarity transform :math:`P` relating
+them, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
+nengolib's ``signal/realizers.py``). The paper uses four, registered in
+:data:`REALIZERS` under their names:
+
+* ``"controllable"``: the controllable canonical form (:math:`P = I`);
+* ``"observable"``: the observable canonical form (:math:`P = I`);
+* ``"general"``: the similarity transform of a canonical base by a given
+  :math:`P` (or, given only ``rng``, a random well-conditioned rational one);
+* ``"random"``: the paper's recipe for its figures, random epsilons and then a
+  random :math:`P` (:func:`random_realization`).
+
+:func:`get_realizer` looks a name up (and names the argument when it is
+unknown). The optimal controller's own state space, the IFP structure, is
+:func:`ifp_realization`.
+
+>>> import sympy as sp
+>>> from symctl import z
+>>> from symctl.realization.realizers import REALIZERS, get_realizer
+>>> list(REALIZERS)
+['controllable', 'observable', 'general', 'random']
+>>> result = get_realizer("general")(1 / (z - sp.Rational(1, 2)), P=[[2]])
+>>> result.realization.H, result.P, result.base.H
+(Matrix([[1/2]]), Matrix([[2]]), Matrix([[1]]))
+>>> REALIZERS["observable"].title
+'observable canonical'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from symctl._util.validate import as_generator, numeric_matrix
+from symctl.design.controller import ifp_state_space
+from symctl.design.lqr import Gains
+from symctl.design.tf import DiscreteTF
+from symctl.errors import ParameterError, SymctlTypeError
+from symctl.realization.realization import (
+    Realization,
+    controllable_canonical,
+    observable_canonical,
+)
+
+__all__ = [
+    "REALIZERS",
+    "Realizer",
+    "RealizerResult",
+    "general_realization",
+    "get_realizer",
+    "ifp_realization",
+    "random_full_rank",
+    "random_realization",
+]
+
+
+@dataclass(frozen=True)
+class RealizerResult:
+    r"""What a realizer returns: the realization, its base and the transform between them.
+
+    Attributes
+    ----------
+    sys : DiscreteTF
+        The realized transfer function (after any substitution the realizer made).
+    base : Realization
+        The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
+    P : sympy.ImmutableMatrix
+        The transform, ``realization == base.similar(P)`` (:math:`I` for a
+        canonical form).
+    Pinv : sympy.ImmutableMatrix or None
+        :math:`P^{-1}` when it is cheap: for a numeric :math:`P` (the
+        similarity transform computes it anyway), ``None`` for a symbolic one
+        (never inverted explicitly).
+    realization : Realization
+        :math:`(F, H, M, N)`.
+
+    Examples
+    --------
+    >>> from symctl import z
+    >>> from symctl.realization.realizers import get_realizer
+    >>> result = get_realizer("controllable")(1 / (z - 2))
+    >>> result.realization == result.base, result.P, result.Pinv
+    (True, Matrix([[1]]), Matrix([[1]]))
+    """
+
+    sys: DiscreteTF
+    base: Realization
+    P: sp.ImmutableMatrix
+    Pinv: sp.ImmutableMatrix | None
+    realization: Realization
+
+
+@dataclass(frozen=True)
+class Realizer:
+    """A way of realizing a proper SISO :math:`G_2`; call it to get a :class:`RealizerResult`.
+
+    Attributes
+    ----------
+    name : str
+        Its key in :data:`REALIZERS`.
+    title : str
+        A human title, for reports ("controllable canonical").
+    canonical : bool
+        Whether it is a canonical form (a valid ``base`` of the others).
+    takes_transform : bool
+        Whether it accepts a transform ``P``.
+    keeps_symbols : bool
+        Whether it realizes :math:`G_2` as given, free symbols kept (the
+        random recipe draws values for the epsilons).
+    """
+
+    name: str
+    title: str
+    canonical: bool = False
+    takes_transform: bool = False
+    keeps_symbols: bool = True
+
+    def __call__(self, G2, **options) -> RealizerResult:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+
+def _identity(R: Realization, tf: DiscreteTF) -> RealizerResult:
+    eye = sp.ImmutableMatrix(sp.eye(R.n))
+    return RealizerResult(tf, R, eye, eye, R)
+
+
+@dataclass(frozen=True)
+class _Controllable(Realizer):
+    def __call__(self, G2, *, rng=None) -> RealizerResult:
+        """``rng`` is accepted, and unused: the canonical form is deterministic."""
+        return _identity(controllable_canonical(G2), DiscreteTF.from_expr(G2))
+
+
+@dataclass(frozen=True)
+class _Observable(Realizer):
+    def __call__(self, G2, *, rng=None) -> RealizerResult:
+        """``rng`` is accepted, and unused: the canonical form is deterministic."""
+        return _identity(observable_canonical(G2), DiscreteTF.from_expr(G2))
+
+
+def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
+    R, Pinv = base._similar(P)
+    P = R.params["P"]
+    return RealizerResult(tf, base, P, None if P.free_symbols else Pinv, R)
+
+
+@dataclass(frozen=True)
+class _General(Realizer):
+    def __call__(self, G2, P=None, *, base: str = "controllable", rng=None) -> RealizerResult:
+        """The transform of the ``base`` form by ``P``; ``P=None`` draws one from ``rng``.
+
+        Without states (``n = 0``) the base is returned as it is.
+        """
+        start = get_realizer(base, "base", where=_canonical)(G2).realization
+        tf = DiscreteTF.from_expr(G2)
+        if start.n == 0:
+            return _identity(start, tf)
+        if P is None:
+            P = random_full_rank(start.n, as_generator(rng, "rng"))
+        return _transformed(start, tf, P)
+
+
+@dataclass(frozen=True)
+class _Random(Realizer):
+    def __call__(
+        self,
+        G2,
+        rng=None,
+        *,
+        base: str = "controllable",
+        eps_range: tuple[float, float] = (-0.9, 0.9),
+        values: dict | None = None,
+    ) -> RealizerResult:
+        """The paper's recipe (:func:`random_realization`)."""
+        gen = as_generator(rng, "rng")
+        tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
+        if values:
+            tf = tf.subs(values)
+        eps = sorted(
+            (s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name
+        )
+        chosen = {s: _random_rational(gen, *eps_range) for s in eps}
+        tf = tf.subs(chosen)
+        start = get_realizer(base, "base", where=_canonical)(tf).realization
+        out = _transformed(start, tf, random_full_rank(start.n, gen))
+        R = out.realization
+        R = Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
+        return RealizerResult(out.sys, out.base, out.P, out.Pinv, R)
+
+
+REALIZERS: dict[str, Realizer] = {
+    r.name: r
+    for r in (
+        _Controllable("controllable", "controllable canonical", canonical=True),
+        _Observable("observable", "observable canonical", canonical=True),
+        _General("general", "general (similarity transform)", takes_transform=True),
+        _Random("random", "random (the paper's recipe)", keeps_symbols=False),
+    )
+}
+"""Every realizer, by name."""
+
+
+def _canonical(realizer: Realizer) -> bool:
+    return realizer.canonical
+
+
+def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
+    """The realizer registered as ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`REALIZERS`.
+    argname : str
+        The caller's argument, named in the error.
+    where : callable, optional
+        Admit only the realizers for which ``where(realizer)`` is true (e.g.
+        ``lambda r: r.canonical``).
+
+    Returns
+    -------
+    Realizer
+
+    Raises
+    ------
+    ParameterError
+        ``name`` is not an admitted realizer, naming ``argname``, the value and the choices.
+
+    Examples
+    --------
+    >>> from symctl.realization.realizers import get_realizer
+    >>> get_realizer("observable").title
+    'observable canonical'
+    >>> get_realizer("diagonal", "base")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: base: must be 'controllable', ... or 'random', got 'diagonal'
+    """
+    names = [k for k, r in REALIZERS.items() if where is None or where(r)]
+    if not isinstance(name, str) or name not in names:
+        choices = ", ".join(map(repr, names[:-1])) + f" or {names[-1]!r}"
+        raise ParameterError(f"{argname}: must be {choices}, got {name!r}")
+    return REALIZERS[name]
+
+
+# ---------------------------------------------------------------- public constructors
+def general_realization(G2, P, base: str = "controllable") -> Realization:
+    r"""A general realization: the similarity transform by ``P`` of a canonical one.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function.
+    P : (n, n) matrix-like
+        Invertible; symbolic (e.g. a matrix of fresh symbols) or numeric.
+    base : {"controllable", "observable"}
+        The canonical realization transformed.
+
+    Returns
+    -------
+    Realization
+        :math:`(P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P,\ N)`, with ``params == {"P": P}``.
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``base``; ``P`` singular; ``G2`` improper.
+    DimensionError
+        ``P`` not ``n x n``; ``G2`` not SISO.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import general_realization, z
+    >>> R = general_realization(1 / (z - sp.Rational(1, 2)), [[2]])
+    >>> R.F, R.H, R.M
+    (Matrix([[1/2]]), Matrix([[1/2]]), Matrix([[2]]))
+    """
+    start = get_realizer(base, "base", where=_canonical)(G2).realization
+    return start.similar(P)
+
+
+def _random_rational(
+    gen: np.random.Generator, low: float, high: float, grid: int = 1000
+) -> sp.Rational:
+    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
+
+
+def random_full_rank(n: int, rng=None, *, grid: int = 100, max_cond: float = 10.0) -> sp.Matrix:
+    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned.
+
+    >>> from symctl.realization.realizers import random_full_rank
+    >>> random_full_rank(2, rng=0).det() != 0
+    True
+    """
+    gen = as_generator(rng, "rng")
+    for _ in range(10_000):
+        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
+        if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
+            return P
+    raise ParameterError(
+        f"n: no well-conditioned random matrix found for n = {n}"
+    )  # pragma: no cover
+
+
+def random_realization(
+    G2,
+    rng=None,
+    *,
+    base: str = "controllable",
+    eps_range: tuple[float, float] = (-0.9, 0.9),
+    values: dict | None = None,
+) -> Realization:
+    r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
+
+    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
+    exact rational, uniform in ``eps_range`` (stable sections by default); the
+    canonical realization (``base``) is then similarity-transformed by a random
+    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
+    that no state is scaled out of proportion).
+    Other symbols (gains K, C) stay symbolic unless given in ``values``.
+
+    Parameters
+    ----------
+    G2 : DiscreteTF or sympy expression in z
+        A proper SISO transfer function.
+    rng : None, int or numpy.random.Generator, optional
+        The seed.
+    base : {"controllable", "observable"}
+        The canonical realization transformed.
+    eps_range : (float, float)
+        Interval of the epsilons.
+    values : dict, optional
+        Values substituted first.
+
+    Returns
+    -------
+    Realization
+        With the epsilons and ``P`` used in ``.params``.
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``base``; ``G2`` improper; a bad ``rng``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor, random_realization
+    >>> R = random_realization(factor(controller_tf(2)).G2, rng=1)
+    >>> sorted(str(k) for k in R.params)
+    ['P', 'epsilon_1', 'epsilon_3']
+    """
+    return REALIZERS["random"](G2, rng, base=base, eps_range=eps_range, values=values).realization
+
+
+def ifp_realization(gains: Gains) -> Realization:
+    r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`.
+
+    Controller state :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input
+    :math:`\delta_f`, output :math:`\delta_r`:
+    :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde B_c K_0`,
+    :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (for :math:`T = 0`: a static gain
+    :math:`N = K_0`), with :math:`\tilde A_c, \tilde B_c` the chain's rows of the
+    augmented system (eqs. augmented_states, ifp_controller). The matrices come
+    from :func:`symctl.design.controller.ifp_state_space`, the one construction
+    also used to prove :func:`symctl.controller_tf`.
+
+    Parameters
+    ----------
+    gains : Gains
+        The optimal gains (:func:`symctl.lqr_gains`) of a numeric system.
+
+    Returns
+    -------
+    Realization
+        Numeric, with the plant's sampling time.
+
+    Raises
+    ------
+    SymctlTypeError
+        ``gains`` is not a :class:`~symctl.Gains`.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, ifp_realization, lqr_gains
+    >>> R = ifp_realization(lqr_gains(augment(MuscleModel(), 1, 1)))
+    >>> [round(float(v), 4) for v in R.F], R.M
+    ([-0.58, -0.3518, 1.0, 0.0], Matrix([[0, 1]]))
+    """
+    if not isinstance(gains, Gains):
+        raise SymctlTypeError(
+            f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
+        )
+    s = gains.system
+    A, B = numeric_matrix(s.A, "gains"), numeric_matrix(s.B, "gains")
+    K = np.asarray(gains.K, dtype=float)
+    return Realization(*ifp_state_space(A, B, K, s.n, s.m, s.T), s.plant.Ts)
