@@ -94,7 +94,8 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin
 from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
-from symctl.compatibility.structure import Structure, _zero_one_bfs
+from symctl.compatibility.signalgraph import zero_one_bfs
+from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
@@ -158,7 +159,7 @@ class _Problem:
 
 
 def _problem(structure: Structure, graph: DelayGraph) -> _Problem | str:
-    cs = structure._compiled
+    cs = structure.signal_graph
     n = graph.n
     pins: dict[int, int] = {}
     for s in cs.inputs:
@@ -601,7 +602,7 @@ def _witness_text(assignment: DelayAssignment) -> str:
 
 def _result(structure, graph, place, method, stats, problem=None, core=None) -> CompatibilityResult:
     if place is not None:
-        names = structure._compiled.names
+        names = structure.signal_graph.names
         assignment = DelayAssignment(
             structure, graph, {n: v + 1 for n, v in zip(names, place, strict=True)}
         )
@@ -704,7 +705,7 @@ def brute_force_compatibility(
     problem = _problem(structure, graph)
     if isinstance(problem, str):
         return CompatibilityResult(False, None, problem, "input/output check", structure, graph)
-    cs = structure._compiled
+    cs = structure.signal_graph
     S = len(cs.names)
     N = graph.n
     free = [s for s in range(S) if s not in problem.pins]
@@ -716,7 +717,7 @@ def brute_force_compatibility(
     Ebig = np.where(np.isinf(graph.E), 10**9, graph.E)
     pairs = []
     for a in range(S):
-        for b, d in enumerate(_zero_one_bfs(cs, [a])):
+        for b, d in enumerate(zero_one_bfs(cs, [a])):
             if d is not None and a != b:
                 pairs.append((a, b, d))
     found = None

@@ -48,7 +48,8 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin
-from symctl.compatibility.structure import Structure, _zero_one_bfs
+from symctl.compatibility.signalgraph import zero_one_bfs
+from symctl.compatibility.structure import Structure
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["READINGS", "DelayAssignment", "DelayGraph"]
@@ -413,7 +414,7 @@ class DelayAssignment(LatexMixin):
         """
         if reading not in READINGS:
             raise ParameterError(f"reading: must be one of {READINGS}, got {reading!r}")
-        cs = self.structure._compiled
+        cs = self.structure.signal_graph
         n = self.graph.n
         where = [self.vertex_of[name] - 1 for name in cs.names]
         groups = [[s for s, v in enumerate(where) if v == i] for i in range(n)]
@@ -422,7 +423,7 @@ class DelayAssignment(LatexMixin):
             if not groups[i]:
                 continue
             if reading == "fastest":
-                dist = _zero_one_bfs(cs, groups[i])
+                dist = zero_one_bfs(cs, groups[i])
                 for s, d in enumerate(dist):
                     if d is not None:
                         out[i, where[s]] = min(out[i, where[s]], d)
@@ -431,7 +432,7 @@ class DelayAssignment(LatexMixin):
                     if j == i or not groups[j]:
                         continue
                     allowed = [v in (i, j) for v in where]
-                    dist = _zero_one_bfs(cs, groups[i], allowed)
+                    dist = zero_one_bfs(cs, groups[i], allowed)
                     found = [dist[s] for s in groups[j] if dist[s] is not None]
                     if found:
                         out[i, j] = min(found)

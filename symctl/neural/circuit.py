@@ -686,7 +686,7 @@ def _lag(d: int) -> str:
 
 def _tex_name(name: str) -> str:
     """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
-    from symctl.compatibility.structure import _signal_label
+    from symctl._util.texnames import signal_tex as _signal_label
 
     part, _, short = name.rpartition(".")
     label = _signal_label(short).strip("$")

@@ -247,3 +247,16 @@ def test_drawing_is_deterministic():
 
     S = Structure.series(G1, observable_canonical(G2), G3)
     assert layout(S.draw()) == layout(S.draw())
+
+
+def test_structure_module_loads_no_drawing_code():
+    """Drawing is a delegation: importing the structure module loads neither plotting nor matplotlib."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, symctl.compatibility.structure; "
+        "print(sorted(m for m in sys.modules if m.startswith(('matplotlib', 'symctl.plotting'))))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

@@ -125,7 +125,7 @@ def test_assignment_validation():
 
 def test_both_readings_give_the_same_verdict_on_shortest_path_closures():
     """Thousands of random assignments of random structures on random closed graphs."""
-    from test_compatibility import random_graph, random_structure
+    from compatibility.test_compatibility import random_graph, random_structure
 
     rng = np.random.default_rng(7)
     checked = differ = 0
