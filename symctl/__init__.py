@@ -34,7 +34,7 @@ _LOCATIONS = {
     "controller_compatibility": "symctl.compatibility.controller",
     "AugmentedSystem": "symctl.design.augment",
     "augment": "symctl.design.augment",
-    "DelayAssignment": "symctl.compatibility.delaygraph",
+    "DelayAssignment": "symctl.compatibility.assignment",
     "DelayGraph": "symctl.compatibility.delaygraph",
     "DimensionError": "symctl.errors",
     "LatexError": "symctl.errors",
@@ -164,13 +164,14 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # static tools see the eager imports
+    from symctl.compatibility.assignment import DelayAssignment
     from symctl.compatibility.check import (
         CompatibilityResult,
         brute_force_compatibility,
         check_compatibility,
     )
     from symctl.compatibility.controller import ControllerCompatibility, controller_compatibility
-    from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+    from symctl.compatibility.delaygraph import DelayGraph
     from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
     from symctl.design.augment import AugmentedSystem, augment
     from symctl.design.lqr import Gains, lqr_gains

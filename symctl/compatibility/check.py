@@ -35,8 +35,9 @@ from functools import cached_property
 import numpy as np
 
 from symctl._util.display import LatexMixin
+from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.csp import build_problem, explain, solve_chain, solve_search
-from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.signalgraph import zero_one_bfs
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError

@@ -96,7 +96,7 @@ class Block(NamedTuple):
     part: str = ""
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Structure(LatexMixin):
     r"""A controller structure: scalar signals produced by gains, adders and unit delays.
 
@@ -135,7 +135,8 @@ class Structure(LatexMixin):
     inputs: tuple[str, ...]
     outputs: tuple[str, ...]
 
-    def __init__(self, blocks, inputs, outputs):
+    def __post_init__(self):
+        blocks, inputs, outputs = self.blocks, self.inputs, self.outputs
         if not isinstance(blocks, Mapping):
             raise SymctlTypeError(
                 f"blocks: expected a mapping of signal names to blocks, got {type(blocks).__name__}"
@@ -172,6 +173,9 @@ class Structure(LatexMixin):
             raise ParameterError(
                 "blocks: algebraic loop (a cycle without delay) through " + " -> ".join(loop)
             )
+
+    def __hash__(self) -> int:
+        return hash((frozenset(self.blocks.items()), self.inputs, self.outputs))
 
     # ------------------------------------------------------------ views
     def __len__(self) -> int:

@@ -95,8 +95,8 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import CompatibilityResult
-from symctl.compatibility.delaygraph import DelayAssignment
 from symctl.compatibility.structure import Block, Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.symbols import z

@@ -20,9 +20,10 @@ from symctl import (
     observable_canonical,
     z,
 )
+from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import brute_force_compatibility, check_compatibility
 from symctl.compatibility.controller import controller_compatibility
-from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Block, Structure, ifp_structure
 from symctl.realization.realization import first_order_realization
 

@@ -260,3 +260,17 @@ def test_structure_module_loads_no_drawing_code():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_structures_are_values():
+    assert ifp_structure(2) == ifp_structure(2) and hash(ifp_structure(2)) == hash(ifp_structure(2))
+    assert ifp_structure(2) != ifp_structure(3)
+    a = Structure({"u": ("input",), "g": ("gain", ("u",), 2)}, "u", "g")
+    b = Structure({"g": Block("gain", ["u"], sp.Integer(2)), "u": Block("input")}, ["u"], ["g"])
+    assert a == b and hash(a) == hash(b)  # normalised: order, lists, gain values
+    assert a != Structure({"u": ("input",), "g": ("gain", ("u",), 3)}, "u", "g")
+    assert len({ifp_structure(2), ifp_structure(2), a, b}) == 2
+    with pytest.raises(TypeError):
+        a.blocks["h"] = Block("gain", ("u",), 1)
+    with pytest.raises(AttributeError):
+        a.inputs = ("v",)
