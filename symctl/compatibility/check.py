@@ -29,8 +29,10 @@ with x at v1 (input) and u at v3 (output). Every placement fails:
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
+from types import MappingProxyType
 
 import numpy as np
 
@@ -44,16 +46,22 @@ from symctl.errors import ParameterError, SymctlTypeError
 
 __all__ = ["METHODS", "CompatibilityResult", "brute_force_compatibility", "check_compatibility"]
 
-METHODS = ("auto", "chain", "search", "brute force")
+METHODS = ("auto", "chain", "search", "brute-force")
 """Methods of :func:`check_compatibility`."""
+
+_ALIASES = {"brute force": "brute-force"}
+"""Other spellings accepted for :data:`METHODS` (the first spelling symctl documented)."""
 
 
 # ---------------------------------------------------------------- results
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class CompatibilityResult(LatexMixin):
     r"""The verdict of :func:`check_compatibility`, with its evidence.
 
-    Attributes
+    Truthy exactly when the structure is compatible (``bool(r) == r.ok``). A
+    value: two results are equal when verdict, evidence and inputs are.
+
+    Parameters
     ----------
     ok : bool
         Whether a compatible delay assignment exists.
@@ -66,19 +74,30 @@ class CompatibilityResult(LatexMixin):
     method : str
         Which algorithm answered (``"chain: bounds arc consistency"``,
         ``"search: arc consistency + backtracking (...)"`` or ``"brute force (...)"``).
+    structure : Structure
+        The structure checked.
+    graph : DelayGraph
+        The delay graph checked against.
     paths : tuple
         The certificate's paths ``(signals, delay)`` when not ``ok``.
-    stats : dict
-        Search effort (decisions, backtracks, assignments enumerated).
+    stats : mapping
+        Search effort (decisions, backtracks, assignments enumerated); read-only.
+
+    Attributes
+    ----------
+    E_tilde : numpy.ndarray or None
+        The witness's :math:`\tilde E` (read-only), None when not ``ok``.
 
     Examples
     --------
-    >>> from symctl.compatibility.structure import ifp_structure
+    >>> from symctl import DelayGraph, check_compatibility, ifp_structure
     >>> r = check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
-    >>> r.ok, r.method, r.E_tilde.tolist()
+    >>> bool(r), r.method, r.E_tilde.tolist()
     (True, 'chain: bounds arc consistency', [[0.0, 0.0], [inf, 0.0]])
     >>> print(r.reason)
     Compatible; a witness assignment: v1: x; v2: gamma, u, K0, K1, K2, mu.
+    >>> r == check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
+    True
     """
 
     ok: bool
@@ -88,7 +107,19 @@ class CompatibilityResult(LatexMixin):
     structure: Structure
     graph: DelayGraph
     paths: tuple = ()
-    stats: dict = field(default_factory=dict)
+    stats: Mapping[str, int] = field(default_factory=dict)
+
+    def __post_init__(self):
+        object.__setattr__(self, "ok", bool(self.ok))
+        object.__setattr__(self, "paths", tuple(self.paths))
+        object.__setattr__(self, "stats", MappingProxyType(dict(self.stats)))
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+    def __hash__(self) -> int:
+        stats = frozenset(self.stats.items())
+        return hash((self.ok, self.assignment, self.reason, self.method, self.paths, stats))
 
     @cached_property
     def E_tilde(self) -> np.ndarray | None:
@@ -142,19 +173,22 @@ def check_compatibility(
     ----------
     structure : Structure
     graph : DelayGraph
-    method : {"auto", "chain", "search", "brute force"}
+    method : {"auto", "chain", "search", "brute-force"}
         ``"auto"``: bounds arc consistency when the graph is a chain (polynomial
         time), otherwise arc consistency + backtracking (exact, exponential in
-        the worst case). ``"brute force"`` enumerates every assignment (small
-        structures only).
+        the worst case). ``"brute-force"`` enumerates every assignment (small
+        structures only; ``"brute force"`` is accepted too).
 
     Returns
     -------
     CompatibilityResult
-        ``.ok``, ``.assignment`` (witness), ``.E_tilde``, ``.reason``, ``.method``.
+        Truthy when compatible: ``.ok``, ``.assignment`` (witness), ``.E_tilde``,
+        ``.reason`` (witness or certificate), ``.method``.
 
     Raises
     ------
+    SymctlTypeError
+        ``structure`` is not a Structure or ``graph`` not a DelayGraph.
     ParameterError
         ``method="chain"`` for a graph that is not a chain, or an unknown method.
 
@@ -163,21 +197,24 @@ def check_compatibility(
     The paper's controller :math:`G_3 G_2 G_1` is compatible with the
     neuromuscular graph:
 
-    >>> from symctl import controller_tf, factor, controllable_canonical
-    >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.compatibility.structure import Structure
+    >>> from symctl import (DelayGraph, Structure, check_compatibility, controllable_canonical,
+    ...                     controller_tf, factor)
     >>> f = factor(controller_tf(2))
-    >>> S = Structure.series(first_order_realization(f.sensor_eps[0], f.sensor_C[0]),
-    ...                      controllable_canonical(f.G2),
-    ...                      first_order_realization(f.actuator_eps[0], f.actuator_C[0]))
+    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
     >>> r = check_compatibility(S, DelayGraph.chain([1, 1]))
-    >>> r.ok, r.E_tilde.tolist()
+    >>> bool(r), r.E_tilde.tolist()
     (True, [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]])
+    >>> check_compatibility(S, DelayGraph.chain([1, 1]), method="brute-force").stats["assignments"]
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: limit: brute force needs 3^20 assignments, more than 2000000
     """
     _check_args(structure, graph)
+    if isinstance(method, str):
+        method = _ALIASES.get(method, method)
     if method not in METHODS:
         raise ParameterError(f"method: must be one of {METHODS}, got {method!r}")
-    if method == "brute force":
+    if method == "brute-force":
         return brute_force_compatibility(structure, graph)
     problem = build_problem(structure, graph)
     if isinstance(problem, str):
@@ -202,17 +239,35 @@ def brute_force_compatibility(
     r"""Enumerate every assignment and test :math:`\tilde E \ge E` by the definition's words.
 
     The reference for the tests: it compares the fastest-path delays between
-    *all* pairs of signals with :math:`E` (no reduction to wires).
+    *all* pairs of signals with :math:`E` (no reduction to wires). When no
+    assignment is compatible, the certificate comes from the search solver.
+
+    Parameters
+    ----------
+    structure : Structure
+    graph : DelayGraph
+    limit : int, default 2_000_000
+        The most assignments to enumerate.
+
+    Returns
+    -------
+    CompatibilityResult
+        Truthy when compatible; ``stats`` counts the assignments enumerated
+        and the compatible ones.
 
     Raises
     ------
+    SymctlTypeError
+        ``structure`` is not a Structure or ``graph`` not a DelayGraph.
     ParameterError
         When more than ``limit`` assignments would be needed.
 
-    >>> from symctl.compatibility.structure import ifp_structure
+    Examples
+    --------
+    >>> from symctl import DelayGraph, brute_force_compatibility, ifp_structure
     >>> r = brute_force_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
-    >>> r.ok, r.stats["assignments"]
-    (False, 243)
+    >>> bool(r), r.stats["assignments"], r.stats["compatible_assignments"]
+    (False, 243, 0)
     """
     _check_args(structure, graph)
     problem = build_problem(structure, graph)

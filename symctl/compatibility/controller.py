@@ -29,13 +29,17 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 __all__ = ["ControllerCompatibility", "controller_compatibility"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class ControllerCompatibility(LatexMixin):
     r"""Whether some realization of a controller has a structure compatible with a delay graph.
 
-    Attributes
+    The verdict of :func:`controller_compatibility`; truthy exactly when
+    compatible (``bool(r) == r.ok``), compared and hashed by its fields.
+
+    Parameters
     ----------
     ok : bool
+        Whether a compatible realization exists (within ``scope``).
     realization : Realization or None
         The whole controller's realization (series of the parts) when found.
     structure : Structure or None
@@ -43,15 +47,22 @@ class ControllerCompatibility(LatexMixin):
     check : CompatibilityResult or None
         The structure-level result with the witness assignment.
     reason : str
+        The argument: the theorem's condition that fails, or the construction.
     scope : str
         ``"all realizations"`` when the verdict is a theorem about every
         realization, ``"family"`` when it only covers the structures searched.
     method : str
+        ``"theorem (chain graphs)"``, ``"necessary condition"``, or the search.
 
-    >>> from symctl import controller_tf
+    Examples
+    --------
+    >>> from symctl import DelayGraph, controller_compatibility, controller_tf
     >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
-    >>> r.ok, r.scope
-    (True, 'all realizations')
+    >>> bool(r), r.scope, bool(r.check)
+    (True, 'all realizations', True)
+    >>> no = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    >>> bool(no), no.realization is None
+    (False, True)
     """
 
     ok: bool
@@ -61,6 +72,9 @@ class ControllerCompatibility(LatexMixin):
     reason: str
     scope: str
     method: str
+
+    def __bool__(self) -> bool:
+        return self.ok
 
     def latex(self) -> str:
         return (
@@ -141,15 +155,31 @@ def controller_compatibility(
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
+        The controller, SISO and proper.
     graph : DelayGraph
     base : {"controllable", "observable", "general"}
         The realization of :math:`G_2` in the chain construction.
     delays : {"branch", "state"}
         The structure of :math:`G_2` in the chain construction.
 
+    Returns
+    -------
+    ControllerCompatibility
+        Truthy when compatible, with the realization, its structure and the
+        witness, or the reason and its ``scope``.
+
+    Raises
+    ------
+    SymctlTypeError
+        ``graph`` is not a DelayGraph.
+    DimensionError
+        ``G`` is not SISO.
+    ParameterError
+        ``G`` is improper, or an unknown ``base`` or ``delays``.
+
     Examples
     --------
-    >>> from symctl import controller_tf
+    >>> from symctl import DelayGraph, controller_compatibility, controller_tf
     >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1, 1]))
     >>> r.ok, r.scope
     (False, 'all realizations')
