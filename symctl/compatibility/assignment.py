@@ -68,15 +68,23 @@ class DelayAssignment(LatexMixin):
 
     Raises
     ------
+    SymctlTypeError
+        ``structure``, ``graph`` or ``vertex_of`` of the wrong type.
     ParameterError
         A missing or unknown signal, a vertex out of range, an input not at
         :math:`v_1` or an output not at :math:`v_N`.
+
+    Notes
+    -----
+    A frozen value: equal (and hashing alike) when structure, graph and
+    vertices are; :attr:`vertex_of` is a read-only mapping in the structure's
+    signal order, :attr:`E_tilde` a read-only array.
 
     Examples
     --------
     The paper's attempt for the IFP structure: :math:`\mu` at :math:`v_3`.
 
-    >>> from symctl.compatibility.structure import ifp_structure
+    >>> from symctl import DelayAssignment, DelayGraph, ifp_structure
     >>> S = ifp_structure(2)
     >>> a = DelayAssignment(S, DelayGraph.chain([1, 1]),
     ...     {"x": 1, "K0": 1, "mu": 3, "gamma": 3, "u": 3, "K1": 3, "K2": 3})
@@ -138,7 +146,7 @@ class DelayAssignment(LatexMixin):
     def e_tilde(self, reading: str = "fastest") -> np.ndarray:
         r""":math:`\tilde E` in one of the :data:`READINGS` (read-only float array).
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        >>> from symctl import DelayAssignment, DelayGraph, ifp_structure
         >>> S = ifp_structure(1)
         >>> a = DelayAssignment(S, DelayGraph.chain([1]),
         ...                     {"x": 1, "K0": 1, "mu": 1, "K1": 2, "u": 2})

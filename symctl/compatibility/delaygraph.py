@@ -118,9 +118,18 @@ class DelayGraph:
         :math:`v_N` (no sink).
     DimensionError
         A matrix that is not square.
+    SymctlTypeError
+        ``E`` is not a matrix.
+
+    Notes
+    -----
+    A frozen value: equal (and hashing alike) when :attr:`E` and
+    :attr:`edges` are; :attr:`E` is read-only.
 
     Examples
     --------
+    >>> import math
+    >>> from symctl import DelayGraph
     >>> DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]]).chain_delays
     (1, 1)
     >>> DelayGraph([[0, 1, 5], [math.inf, 0, 1], [math.inf, math.inf, 0]])
@@ -203,6 +212,7 @@ class DelayGraph:
 
         Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure.
 
+        >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
         [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
         """
@@ -235,6 +245,7 @@ class DelayGraph:
     def chain(cls, delays: Iterable[int]) -> DelayGraph:
         """The chain :math:`v_1 \\to v_2 \\to \\dots \\to v_N` with the given step delays.
 
+        >>> from symctl import DelayGraph
         >>> DelayGraph.chain([1, 0, 2]).E[0].tolist()
         [0.0, 1.0, 1.0, 3.0]
         """

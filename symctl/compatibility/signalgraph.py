@@ -146,6 +146,7 @@ def back_edges(successors: Sequence[Sequence[int]], roots: Iterable[int]) -> lis
     Removing them leaves an acyclic graph. ``successors[a]`` lists the targets
     of the edges out of node ``a``.
 
+    >>> from symctl.compatibility.signalgraph import back_edges
     >>> back_edges([[1], [2], [0, 1]], [0])
     [(2, 0), (2, 1)]
     """

@@ -38,7 +38,7 @@ that the paper's Fig. g1g3 contrasts:
 
 and in both :math:`y = M x + N u`.
 
->>> from symctl import controllable_canonical, observable_canonical, z
+>>> from symctl import Structure, controllable_canonical, ifp_structure, same_structure, z
 >>> S = Structure.from_realization(controllable_canonical(1 / (z**2 - z / 2)))
 >>> S.inputs, S.outputs, S.count("delay")
 (('u',), ('x1',), 3)
@@ -74,7 +74,11 @@ KINDS = ("input", "gain", "sum", "delay")
 class Block(NamedTuple):
     """One block of a structure and the signal it produces.
 
-    Attributes
+    A named tuple, so a value (equal and hashing alike when the fields are);
+    :class:`Structure` checks and normalises its blocks (the gain to a SymPy
+    expression, the inputs to a tuple).
+
+    Parameters
     ----------
     kind : str
         One of :data:`KINDS`.
@@ -86,8 +90,13 @@ class Block(NamedTuple):
     part : str
         The part of a series connection it came from (``""`` if none).
 
+    Examples
+    --------
+    >>> from symctl import Block
     >>> Block("gain", ("u",), 2)
     Block(kind='gain', inputs=('u',), gain=2, part='')
+    >>> Block("delay", ("mu",)) == Block("delay", ("mu",))
+    True
     """
 
     kind: str
@@ -116,19 +125,28 @@ class Structure(LatexMixin):
         an algebraic loop (a cycle without delay), inputs that are not the
         input blocks.
     SymctlTypeError
-        ``blocks`` is not a mapping.
+        ``blocks`` is not a mapping, or a name is not a non-empty string.
+
+    Notes
+    -----
+    A structure is a frozen value: equal (and hashing alike) when it has the
+    same blocks (in any order; gains compared structurally), inputs and outputs.
+    :attr:`blocks` is a read-only mapping.
 
     Examples
     --------
     The paper's IFP controller for :math:`T = 1`, :math:`\mu = K_0 x + K_1 u`,
     :math:`u(t+1) = \mu(t)`:
 
+    >>> from symctl import Structure, ifp_structure
     >>> S = Structure(
     ...     {"x": ("input",), "K0": ("gain", ("x",), 3), "K1": ("gain", ("u",), 2),
     ...      "mu": ("sum", ("K0", "K1")), "u": ("delay", ("mu",))},
     ...     inputs="x", outputs="u")
     >>> len(S), S.count("gain"), sorted(S.wires())[:2]
     (5, 2, [('K0', 'mu', 0), ('K1', 'mu', 0)])
+    >>> S == ifp_structure(1), S == Structure(S.blocks, "x", "u")
+    (False, True)
     """
 
     blocks: Mapping[str, Block]
@@ -271,6 +289,7 @@ class Structure(LatexMixin):
         delays : {"branch", "state"}
             Where the unit delays sit relative to the adders (see the module text).
 
+        >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> import sympy as sp
         >>> eps, C = sp.symbols("epsilon C")
@@ -356,9 +375,8 @@ class Structure(LatexMixin):
         default) and recorded in :attr:`Block.part`; the outputs of one part
         *are* the inputs of the next (no extra block).
 
-        >>> from symctl import controller_tf
-        >>> from symctl.realization.factorization import factor
-        >>> from symctl.realization.realization import controllable_canonical, first_order_realization
+        >>> from symctl import Structure, controllable_canonical, controller_tf, factor
+        >>> from symctl.realization.realization import first_order_realization
         >>> f = factor(controller_tf(2))
         >>> G1 = first_order_realization(f.sensor_eps[0], f.sensor_C[0])
         >>> G3 = first_order_realization(f.actuator_eps[0], f.actuator_C[0])
@@ -419,7 +437,7 @@ class Structure(LatexMixin):
         ``delays``. Parts are named ``G1``, ``G2``, ``G3`` (``G1.1``, ``G1.2``, ...
         when a side has several sections).
 
-        >>> from symctl import controller_tf, controllable_canonical, factor
+        >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))
         >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
         >>> S.count("sum"), S.count("delay")
@@ -447,6 +465,7 @@ class Structure(LatexMixin):
     def equations(self) -> list[sp.Eq]:
         r"""One equation per adder and delay, with the gains written into them.
 
+        >>> from symctl import ifp_structure
         >>> ifp_structure(2).equations()[-1]
         Eq(mu(t), K_0*x(t) + K_1*gamma(t) + K_2*u(t))
         """
@@ -493,6 +512,7 @@ class Structure(LatexMixin):
         outputs on the right. Returns a :class:`matplotlib.figure.Figure`; the
         caller saves it (``fig.savefig("ifp.svg")`` or ``.png``).
 
+        >>> from symctl import ifp_structure
         >>> fig = ifp_structure(2).draw()
         >>> type(fig).__name__
         'Figure'
@@ -573,6 +593,25 @@ def ifp_structure(T: int = 2) -> Structure:
     Gain blocks are named ``K0 .. KT``; the delays are the broken lines of
     Fig. ifp_diagram.
 
+    Parameters
+    ----------
+    T : int, default 2
+        The total delay of the loop in steps, :math:`T \ge 1`.
+
+    Returns
+    -------
+    Structure
+        Input ``x``, output ``u``, :math:`T` delays and :math:`T + 1` gains
+        :math:`K_0 .. K_T` (symbols).
+
+    Raises
+    ------
+    ParameterError
+        ``T`` is not an integer :math:`\ge 1`.
+
+    Examples
+    --------
+    >>> from symctl import ifp_structure
     >>> S = ifp_structure(2)
     >>> S.signals
     ('x', 'gamma', 'u', 'K0', 'K1', 'K2', 'mu')
@@ -604,8 +643,25 @@ def same_structure(a: Structure, b: Structure) -> bool:
     paper's remark: swapping :math:`x_1, x_2` in the observable canonical
     realization changes the sparsity pattern but not the structure.
 
+    Parameters
+    ----------
+    a, b : Structure
+
+    Returns
+    -------
+    bool
+        Whether a kind- and role-preserving isomorphism maps ``a`` onto ``b``
+        (unlike ``a == b``, which also compares names and gain values).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``a`` or ``b`` is not a Structure.
+
+    Examples
+    --------
     >>> import sympy as sp
-    >>> from symctl import observable_canonical, controllable_canonical, z
+    >>> from symctl import Structure, controllable_canonical, observable_canonical, same_structure, z
     >>> G2 = (2*z**2 + z + 1) / (z**2 - z / 2 - sp.Rational(1, 8))
     >>> R = observable_canonical(G2)
     >>> swapped = R.similar([[0, 1], [1, 0]])
