@@ -28,7 +28,8 @@ The module is pure Python (no SymPy, NumPy or networkx).
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from types import MappingProxyType
 from typing import NamedTuple
 
 __all__ = ["SignalGraph", "back_edges", "delay_free_cycle", "zero_one_bfs"]
@@ -43,7 +44,7 @@ class SignalGraph(NamedTuple):
     """
 
     names: tuple[str, ...]
-    index: dict[str, int]
+    index: Mapping[str, int]
     kinds: tuple[str, ...]
     wires: tuple[tuple[int, int, int], ...]  # (source, target, delay)
     succ: tuple[tuple[tuple[int, int, int], ...], ...]  # per signal: (target, delay, wire id)
@@ -69,7 +70,7 @@ class SignalGraph(NamedTuple):
             pred[b].append((a, w, e))
         return cls(
             tuple(names),
-            {n: i for i, n in enumerate(names)},
+            MappingProxyType({n: i for i, n in enumerate(names)}),
             tuple(kinds),
             wires,
             tuple(map(tuple, succ)),

@@ -252,7 +252,8 @@ class Structure(LatexMixin):
         """The structure as a :class:`networkx.DiGraph`.
 
         Node attributes ``kind``, ``gain``, ``part`` and ``role`` (a tuple of
-        ``("in", k)`` / ``("out", k)`` marks); edge attribute ``delay``.
+        ``("in", k)`` / ``("out", k)`` marks); edge attribute ``delay``. Frozen
+        (:func:`networkx.freeze`): the structure's graph cannot be changed.
         """
         g = nx.DiGraph()
         for name, block in self.blocks.items():
@@ -262,7 +263,7 @@ class Structure(LatexMixin):
             g.add_node(name, kind=block.kind, gain=block.gain, part=block.part, role=role)
         for a, b, w in self.wires():
             g.add_edge(a, b, delay=w)
-        return g
+        return nx.freeze(g)
 
     def delay_distances(self, source: str) -> dict[str, int]:
         """Fewest delays on any path from ``source`` to each reachable signal (0-1 BFS)."""
@@ -509,9 +510,31 @@ class Structure(LatexMixin):
         Gains are boxes with their value, adders circles with a plus, one-step
         delays broken (dashed) lines into the delayed signal (a small dot, named
         when the paper names it, e.g. :math:`\\gamma`); inputs on the left,
-        outputs on the right. Returns a :class:`matplotlib.figure.Figure`; the
-        caller saves it (``fig.savefig("ifp.svg")`` or ``.png``).
+        outputs on the right. The layout is
+        :func:`symctl.plotting.structure_layout.structure_layout` (numbers), the
+        rendering :func:`symctl.plotting.structure.draw_structure`.
 
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw into these axes; by default a new figure sized to the drawing.
+        title : str, optional
+            The heading (default: the counts of gains, adders and delays).
+        max_signals : int, default 400
+            Refuse larger structures.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The caller saves it (``fig.savefig("ifp.svg")`` or ``.png``).
+
+        Raises
+        ------
+        ParameterError
+            More than ``max_signals`` signals.
+
+        Examples
+        --------
         >>> from symctl import ifp_structure
         >>> fig = ifp_structure(2).draw()
         >>> type(fig).__name__

@@ -274,3 +274,13 @@ def test_structures_are_values():
         a.blocks["h"] = Block("gain", ("u",), 1)
     with pytest.raises(AttributeError):
         a.inputs = ("v",)
+
+
+def test_the_structure_graph_is_frozen():
+    import networkx as nx
+
+    g = ifp_structure(2).graph
+    with pytest.raises(nx.NetworkXError):
+        g.add_edge("x", "u")
+    with pytest.raises(TypeError):
+        ifp_structure(2).signal_graph.index["x"] = 5

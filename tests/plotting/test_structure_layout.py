@@ -133,3 +133,17 @@ def test_layout_is_a_frozen_value():
     assert a == structure_layout(ifp_structure(2), crude)
     with pytest.raises(TypeError):
         a.positions["x"] = (0.0, 0.0)
+
+
+def test_layout_never_imports_matplotlib():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; from symctl.compatibility.structure import ifp_structure; "
+        "from symctl.plotting.structure_layout import structure_layout; "
+        "structure_layout(ifp_structure(3), lambda t, p: (0.01 * p * len(t) / 72, p / 72)); "
+        "print(sorted(m for m in sys.modules if m.startswith('matplotlib')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
