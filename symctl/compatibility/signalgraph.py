@@ -28,7 +28,7 @@ The module is pure Python (no SymPy, NumPy or networkx).
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Hashable, Iterable, Iterator, Mapping, Sequence
 from types import MappingProxyType
 from typing import NamedTuple
 
@@ -116,15 +116,19 @@ def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
     return dist
 
 
-def _closing(successors: Sequence[Sequence[int]], roots: Iterable[int]) -> Iterator[list[int]]:
+def _closing(successors, roots: Iterable[Hashable]) -> Iterator[list]:
     """Depth-first search from ``roots`` in order, then from every unvisited node.
 
-    Yields, for every edge that closes a cycle (its target is on the search
-    stack), the stack from the root to the edge's source followed by the target.
+    ``successors`` maps each node to the targets of its edges: a sequence
+    (nodes ``0 .. n-1``) or a mapping (any hashable nodes, in the mapping's
+    order). Yields, for every edge that closes a cycle (its target is on the
+    search stack), the stack from the root to the edge's source followed by the
+    target.
     """
-    state = [0] * len(successors)  # 0 new, 1 on the stack, 2 done
-    for root in (*roots, *range(len(successors))):
-        if state[root]:
+    nodes = successors.keys() if isinstance(successors, Mapping) else range(len(successors))
+    state: dict = {}  # absent new, 1 on the stack, 2 done
+    for root in (*roots, *nodes):
+        if root in state:
             continue
         stack = [(root, iter(successors[root]))]
         state[root] = 1
@@ -134,22 +138,29 @@ def _closing(successors: Sequence[Sequence[int]], roots: Iterable[int]) -> Itera
             if child is None:
                 state[node] = 2
                 stack.pop()
-            elif state[child] == 1:
+            elif state.get(child) == 1:
                 yield [n for n, _ in stack] + [child]
-            elif not state[child]:
+            elif child not in state:
                 state[child] = 1
                 stack.append((child, iter(successors[child])))
 
 
-def back_edges(successors: Sequence[Sequence[int]], roots: Iterable[int]) -> list[tuple[int, int]]:
+def back_edges(
+    successors: Sequence[Iterable[int]] | Mapping[Hashable, Iterable[Hashable]],
+    roots: Iterable[Hashable],
+) -> list[tuple]:
     """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots`` (in order).
 
     Removing them leaves an acyclic graph. ``successors[a]`` lists the targets
-    of the edges out of node ``a``.
+    of the edges out of node ``a``; ``successors`` is a sequence (nodes
+    ``0 .. n-1``) or a mapping (any hashable nodes). Nodes that the roots do not
+    reach are searched afterwards, in order.
 
     >>> from symctl.compatibility.signalgraph import back_edges
     >>> back_edges([[1], [2], [0, 1]], [0])
     [(2, 0), (2, 1)]
+    >>> back_edges({"u": ["s"], "s": ["d"], "d": ["s"]}, ["u"])
+    [('d', 's')]
     """
     return [(path[-2], path[-1]) for path in _closing(successors, roots)]
 

@@ -65,3 +65,13 @@ def test_zero_one_bfs_is_dijkstra_on_delays():
         expected = nx.single_source_dijkstra_path_length(G, 0, weight="w")
         dist = zero_one_bfs(g, [0])
         assert {k: d for k, d in enumerate(dist) if d is not None} == expected
+
+
+def test_back_edges_take_named_nodes_as_well_as_indices():
+    rng = np.random.default_rng(6)
+    for _ in range(100):
+        g = random_signal_graph(rng)
+        named = {g.names[a]: [g.names[b] for b in out] for a, out in enumerate(g.successors)}
+        by_index = back_edges(g.successors, g.inputs)
+        by_name = back_edges(named, [g.names[i] for i in g.inputs])
+        assert by_name == [(g.names[a], g.names[b]) for a, b in by_index]
