@@ -28,13 +28,13 @@ _LOCATIONS = {
     "Neuron": "symctl.neural.circuit",
     "Synapse": "symctl.neural.circuit",
     "CompatibilityResult": "symctl.compatibility.check",
-    "ControllerCompatibility": "symctl.compatibility.check",
+    "ControllerCompatibility": "symctl.compatibility.controller",
     "brute_force_compatibility": "symctl.compatibility.check",
     "check_compatibility": "symctl.compatibility.check",
-    "controller_compatibility": "symctl.compatibility.check",
+    "controller_compatibility": "symctl.compatibility.controller",
     "AugmentedSystem": "symctl.design.augment",
     "augment": "symctl.design.augment",
-    "DelayAssignment": "symctl.compatibility.delaygraph",
+    "DelayAssignment": "symctl.compatibility.assignment",
     "DelayGraph": "symctl.compatibility.delaygraph",
     "DimensionError": "symctl.errors",
     "LatexError": "symctl.errors",
@@ -164,14 +164,14 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # static tools see the eager imports
+    from symctl.compatibility.assignment import DelayAssignment
     from symctl.compatibility.check import (
         CompatibilityResult,
-        ControllerCompatibility,
         brute_force_compatibility,
         check_compatibility,
-        controller_compatibility,
     )
-    from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+    from symctl.compatibility.controller import ControllerCompatibility, controller_compatibility
+    from symctl.compatibility.delaygraph import DelayGraph
     from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
     from symctl.design.augment import AugmentedSystem, augment
     from symctl.design.controller import controller_tf, prove_controller_tf

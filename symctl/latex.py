@@ -43,8 +43,10 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import latex as _sympy_latex
-from symctl.compatibility.check import CompatibilityResult, ControllerCompatibility
-from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.assignment import DelayAssignment
+from symctl.compatibility.check import CompatibilityResult
+from symctl.compatibility.controller import ControllerCompatibility
+from symctl.compatibility.delaygraph import DelayGraph
 from symctl.design.augment import AugmentedSystem
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, Linearization, MuscleModel

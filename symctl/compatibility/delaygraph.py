@@ -1,4 +1,4 @@
-r"""Delay graphs and delay assignments (the paper's section "Structure, delay graphs, and compatibility").
+r"""Delay graphs (the paper's section "Structure, delay graphs, and compatibility").
 
 A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N`
 (the actuator, sink); :math:`E_{ij}` is the delay of the shortest path from
@@ -6,32 +6,20 @@ A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N`
 path exists. The paper's neuromuscular graph is the chain
 :math:`v_1 \to v_2 \to v_3` with one step per edge:
 
+>>> from symctl import DelayGraph
 >>> g = DelayGraph.chain([1, 1])
 >>> g.E.tolist()
 [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
 
-A **delay assignment** puts every signal of a structure at one vertex, the
-controller input at :math:`v_1` and the output at :math:`v_N`. Its matrix
-:math:`\tilde E_{ij}` is the delay of the fastest path from a signal at
-:math:`v_i` to a signal at :math:`v_j` (:math:`\infty` if none, 0 on the
-diagonal); the assignment is compatible when :math:`\tilde E \ge E`.
+A delay graph is a value: two graphs with the same matrix and the same direct
+edges are equal (and hash alike). The module needs only NumPy, so
+``import symctl.compatibility.delaygraph`` stays light (no SymPy, SciPy or
+networkx); delay assignments, which need a structure, are in
+:mod:`symctl.compatibility.assignment`.
 
-Two readings of "fastest path" (``reading=``):
+>>> DelayGraph.chain([1, 1]) == DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]])
+True
 
-``"fastest"`` (default, the definition's words)
-    any path of the structure, through signals at any vertices;
-``"direct"`` (the matrix printed in the paper for :math:`G_3 G_2 G_1`)
-    only paths whose signals all sit at :math:`v_i` or :math:`v_j`; the paper
-    prints :math:`\tilde E_{13} = \infty` although a path of delay 2 runs from
-    :math:`v_1` through :math:`v_2` to :math:`v_3`.
-
-Both readings give the same verdict whenever :math:`E` is a shortest-path
-closure (always, for a :class:`DelayGraph`): the fastest reading is entrywise
-at most the direct one, so compatible-by-fastest implies compatible-by-direct;
-conversely a direct-compatible assignment satisfies
-:math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w`
-(a wire is a direct path), and then, summing along any path and using the
-triangle inequality of :math:`E`, the fastest reading is compatible too.
 """
 
 from __future__ import annotations
@@ -39,32 +27,28 @@ from __future__ import annotations
 import itertools
 import math
 import numbers
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+import sys
+from collections.abc import Iterable
+from dataclasses import InitVar, dataclass, field
 from functools import cached_property
-from types import MappingProxyType
 
 import numpy as np
-import sympy as sp
 
-from symctl._util.display import LatexMixin
-from symctl.compatibility.structure import Structure, _zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
-__all__ = ["READINGS", "DelayAssignment", "DelayGraph"]
-
-READINGS = ("fastest", "direct")
-"""The two readings of the delay assignment matrix (see the module text)."""
+__all__ = ["DelayGraph", "matrix_latex"]
 
 INF = math.inf
+"""No path: the delay of an unreachable vertex."""
 
 
 def _delay(value, argname: str, *, allow_inf: bool) -> float:
     """A delay: an integer >= 0 (integral floats accepted), or infinity when allowed."""
     if isinstance(value, bool):
         raise ParameterError(f"{argname}: delays must be integers >= 0, got {value!r}")
-    if isinstance(value, sp.Basic):
-        if value in (sp.oo,) and allow_inf:
+    sp = sys.modules.get("sympy")  # a SymPy number exists only once SymPy is loaded
+    if sp is not None and isinstance(value, sp.Basic):
+        if value == sp.oo and allow_inf:
             return INF
         if value.is_Integer:
             value = int(value)
@@ -95,8 +79,16 @@ def _fmt(value: float) -> str:
     return "inf" if math.isinf(value) else str(int(value))
 
 
+def matrix_latex(name: str, E: np.ndarray) -> str:
+    r"""``name = [...]`` as a LaTeX ``bmatrix`` of delays (:math:`\infty` where no path)."""
+    rows = r" \\ ".join(
+        " & ".join(r"\infty" if math.isinf(v) else str(int(v)) for v in row) for row in E
+    )
+    return name + r" = \begin{bmatrix}" + rows + r"\end{bmatrix}"
+
+
 @dataclass(frozen=True, eq=False)
-class DelayGraph(LatexMixin):
+class DelayGraph:
     r"""A delay graph: vertices :math:`v_1` (sensor) .. :math:`v_N` (actuator), delays :math:`E`.
 
     Parameters
@@ -126,9 +118,18 @@ class DelayGraph(LatexMixin):
         :math:`v_N` (no sink).
     DimensionError
         A matrix that is not square.
+    SymctlTypeError
+        ``E`` is not a matrix.
+
+    Notes
+    -----
+    A frozen value: equal (and hashing alike) when :attr:`E` and
+    :attr:`edges` are; :attr:`E` is read-only.
 
     Examples
     --------
+    >>> import math
+    >>> from symctl import DelayGraph
     >>> DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]]).chain_delays
     (1, 1)
     >>> DelayGraph([[0, 1, 5], [math.inf, 0, 1], [math.inf, math.inf, 0]])
@@ -138,9 +139,11 @@ class DelayGraph(LatexMixin):
     """
 
     E: np.ndarray
-    edges: tuple[tuple[int, int, int], ...]
+    _edges: InitVar[tuple | None] = field(default=None, kw_only=True)
+    edges: tuple[tuple[int, int, int], ...] = field(init=False)
 
-    def __init__(self, E, *, _edges=None):
+    def __post_init__(self, _edges):
+        E = self.E
         if isinstance(E, DelayGraph):
             E = E.E
         try:
@@ -209,6 +212,7 @@ class DelayGraph(LatexMixin):
 
         Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure.
 
+        >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
         [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
         """
@@ -241,6 +245,7 @@ class DelayGraph(LatexMixin):
     def chain(cls, delays: Iterable[int]) -> DelayGraph:
         """The chain :math:`v_1 \\to v_2 \\to \\dots \\to v_N` with the given step delays.
 
+        >>> from symctl import DelayGraph
         >>> DelayGraph.chain([1, 0, 2]).E[0].tolist()
         [0.0, 1.0, 1.0, 3.0]
         """
@@ -303,164 +308,19 @@ class DelayGraph(LatexMixin):
         return tuple(b - a for a, b in itertools.pairwise(D))
 
     def latex(self) -> str:
-        rows = r" \\ ".join(
-            " & ".join(r"\infty" if math.isinf(v) else str(int(v)) for v in row) for row in self.E
-        )
-        return r"E = \begin{bmatrix}" + rows + r"\end{bmatrix}"
+        """The matrix :math:`E` in LaTeX."""
+        return matrix_latex("E", self.E)
 
-    def to_networkx(self):
-        """The direct edges as a :class:`networkx.DiGraph` (attribute ``delay``)."""
-        import networkx as nx
+    def _repr_latex_(self) -> str:  # LatexMixin's, without loading SymPy
+        return f"$\\displaystyle {self.latex()}$"
 
-        g = nx.DiGraph()
-        g.add_nodes_from(range(1, self.n + 1))
-        g.add_edges_from((i, j, {"delay": d}) for i, j, d in self.edges)
-        return g
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, DelayGraph):
+            return NotImplemented
+        return self.edges == other.edges and np.array_equal(self.E, other.E)
+
+    def __hash__(self) -> int:
+        return hash((self.E.shape, self.E.tobytes(), self.edges))
 
     def __repr__(self) -> str:
         return f"DelayGraph(n={self.n}, edges={list(self.edges)})"
-
-
-@dataclass(frozen=True, eq=False)
-class DelayAssignment(LatexMixin):
-    r"""Every signal of a structure at one vertex of a delay graph.
-
-    Parameters
-    ----------
-    structure : Structure
-    graph : DelayGraph
-    vertex_of : mapping of signal name to vertex (1..N)
-        Every signal exactly once; inputs at :math:`v_1`, outputs at :math:`v_N`.
-
-    Raises
-    ------
-    ParameterError
-        A missing or unknown signal, a vertex out of range, an input not at
-        :math:`v_1` or an output not at :math:`v_N`.
-
-    Examples
-    --------
-    The paper's attempt for the IFP structure: :math:`\mu` at :math:`v_3`.
-
-    >>> from symctl.compatibility.structure import ifp_structure
-    >>> S = ifp_structure(2)
-    >>> a = DelayAssignment(S, DelayGraph.chain([1, 1]),
-    ...     {"x": 1, "K0": 1, "mu": 3, "gamma": 3, "u": 3, "K1": 3, "K2": 3})
-    >>> a.E_tilde.tolist()
-    [[0.0, inf, 0.0], [inf, 0.0, inf], [inf, inf, 0.0]]
-    >>> a.is_compatible()
-    False
-    """
-
-    structure: Structure
-    graph: DelayGraph
-    vertex_of: Mapping[str, int]
-
-    def __init__(self, structure: Structure, graph: DelayGraph, vertex_of: Mapping[str, int]):
-        if not isinstance(structure, Structure):
-            raise SymctlTypeError(
-                f"structure: expected a Structure, got {type(structure).__name__}"
-            )
-        if not isinstance(graph, DelayGraph):
-            raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
-        if not isinstance(vertex_of, Mapping):
-            raise SymctlTypeError(
-                f"vertex_of: expected a mapping of signal names to vertices, got {vertex_of!r}"
-            )
-        n = graph.n
-        clean = {}
-        for name, v in vertex_of.items():
-            if name not in structure.blocks:
-                raise ParameterError(f"vertex_of: {name!r} is not a signal of the structure")
-            if isinstance(v, bool) or not isinstance(v, numbers.Integral) or not 1 <= v <= n:
-                raise ParameterError(f"vertex_of[{name!r}]: must be a vertex 1..{n}, got {v!r}")
-            clean[name] = int(v)
-        missing = [s for s in structure.blocks if s not in clean]
-        if missing:
-            raise ParameterError(f"vertex_of: every signal needs a vertex; missing {missing[:5]}")
-        for name in structure.inputs:
-            if clean[name] != 1:
-                raise ParameterError(
-                    f"vertex_of[{name!r}]: the input must be at v1, got v{clean[name]}"
-                )
-        for name in structure.outputs:
-            if clean[name] != n:
-                raise ParameterError(
-                    f"vertex_of[{name!r}]: the output must be at v{n}, got v{clean[name]}"
-                )
-        object.__setattr__(self, "structure", structure)
-        object.__setattr__(self, "graph", graph)
-        object.__setattr__(self, "vertex_of", MappingProxyType(clean))
-
-    def signals_at(self, vertex: int) -> tuple[str, ...]:
-        """The signals assigned to ``vertex``."""
-        return tuple(s for s, v in self.vertex_of.items() if v == vertex)
-
-    @cached_property
-    def E_tilde(self) -> np.ndarray:
-        """The delay assignment matrix by the definition's words (``reading="fastest"``)."""
-        return self.e_tilde("fastest")
-
-    def e_tilde(self, reading: str = "fastest") -> np.ndarray:
-        r""":math:`\tilde E` in one of the :data:`READINGS` (read-only float array).
-
-        >>> from symctl.compatibility.structure import ifp_structure
-        >>> S = ifp_structure(1)
-        >>> a = DelayAssignment(S, DelayGraph.chain([1]),
-        ...                     {"x": 1, "K0": 1, "mu": 1, "K1": 2, "u": 2})
-        >>> a.e_tilde("direct").tolist()
-        [[0.0, 1.0], [0.0, 0.0]]
-        """
-        if reading not in READINGS:
-            raise ParameterError(f"reading: must be one of {READINGS}, got {reading!r}")
-        cs = self.structure._compiled
-        n = self.graph.n
-        where = [self.vertex_of[name] - 1 for name in cs.names]
-        groups = [[s for s, v in enumerate(where) if v == i] for i in range(n)]
-        out = np.full((n, n), INF)
-        for i in range(n):
-            if not groups[i]:
-                continue
-            if reading == "fastest":
-                dist = _zero_one_bfs(cs, groups[i])
-                for s, d in enumerate(dist):
-                    if d is not None:
-                        out[i, where[s]] = min(out[i, where[s]], d)
-            else:
-                for j in range(n):
-                    if j == i or not groups[j]:
-                        continue
-                    allowed = [v in (i, j) for v in where]
-                    dist = _zero_one_bfs(cs, groups[i], allowed)
-                    found = [dist[s] for s in groups[j] if dist[s] is not None]
-                    if found:
-                        out[i, j] = min(found)
-        np.fill_diagonal(out, 0)
-        out.setflags(write=False)
-        return out
-
-    def violations(self, reading: str = "fastest") -> list[tuple[int, int, float, float]]:
-        r"""The entries with :math:`\tilde E_{ij} < E_{ij}`, as ``(i, j, Ẽ_ij, E_ij)`` (from 1)."""
-        Et = self.e_tilde(reading)
-        E = self.graph.E
-        return [
-            (int(i) + 1, int(j) + 1, float(Et[i, j]), float(E[i, j]))
-            for i, j in np.argwhere(Et < E)
-        ]
-
-    def is_compatible(self, reading: str = "fastest") -> bool:
-        r"""Whether :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`."""
-        return not self.violations(reading)
-
-    def latex(self) -> str:
-        rows = r" \\ ".join(
-            " & ".join(r"\infty" if math.isinf(v) else str(int(v)) for v in row)
-            for row in self.E_tilde
-        )
-        return r"\tilde E = \begin{bmatrix}" + rows + r"\end{bmatrix}"
-
-    def __repr__(self) -> str:
-        groups = "; ".join(
-            f"v{v}: {', '.join(self.signals_at(v))}" for v in range(1, self.graph.n + 1)
-        )
-        return f"DelayAssignment({groups})"

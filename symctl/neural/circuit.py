@@ -95,8 +95,8 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import CompatibilityResult
-from symctl.compatibility.delaygraph import DelayAssignment
 from symctl.compatibility.structure import Block, Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -686,7 +686,7 @@ def _lag(d: int) -> str:
 
 def _tex_name(name: str) -> str:
     """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
-    from symctl.compatibility.structure import _signal_label
+    from symctl._util.texnames import signal_tex as _signal_label
 
     part, _, short = name.rpartition(".")
     label = _signal_label(short).strip("$")

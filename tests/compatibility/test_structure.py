@@ -247,3 +247,40 @@ def test_drawing_is_deterministic():
 
     S = Structure.series(G1, observable_canonical(G2), G3)
     assert layout(S.draw()) == layout(S.draw())
+
+
+def test_structure_module_loads_no_drawing_code():
+    """Drawing is a delegation: importing the structure module loads neither plotting nor matplotlib."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, symctl.compatibility.structure; "
+        "print(sorted(m for m in sys.modules if m.startswith(('matplotlib', 'symctl.plotting'))))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_structures_are_values():
+    assert ifp_structure(2) == ifp_structure(2) and hash(ifp_structure(2)) == hash(ifp_structure(2))
+    assert ifp_structure(2) != ifp_structure(3)
+    a = Structure({"u": ("input",), "g": ("gain", ("u",), 2)}, "u", "g")
+    b = Structure({"g": Block("gain", ["u"], sp.Integer(2)), "u": Block("input")}, ["u"], ["g"])
+    assert a == b and hash(a) == hash(b)  # normalised: order, lists, gain values
+    assert a != Structure({"u": ("input",), "g": ("gain", ("u",), 3)}, "u", "g")
+    assert len({ifp_structure(2), ifp_structure(2), a, b}) == 2
+    with pytest.raises(TypeError):
+        a.blocks["h"] = Block("gain", ("u",), 1)
+    with pytest.raises(AttributeError):
+        a.inputs = ("v",)
+
+
+def test_the_structure_graph_is_frozen():
+    import networkx as nx
+
+    g = ifp_structure(2).graph
+    with pytest.raises(nx.NetworkXError):
+        g.add_edge("x", "u")
+    with pytest.raises(TypeError):
+        ifp_structure(2).signal_graph.index["x"] = 5

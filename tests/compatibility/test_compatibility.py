@@ -20,12 +20,10 @@ from symctl import (
     observable_canonical,
     z,
 )
-from symctl.compatibility.check import (
-    brute_force_compatibility,
-    check_compatibility,
-    controller_compatibility,
-)
-from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.assignment import DelayAssignment
+from symctl.compatibility.check import METHODS, brute_force_compatibility, check_compatibility
+from symctl.compatibility.controller import controller_compatibility
+from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Block, Structure, ifp_structure
 from symctl.realization.realization import first_order_realization
 
@@ -201,7 +199,15 @@ def test_method_arguments_are_checked():
         check_compatibility(S, [[0, 1], [0, 0]])
     with pytest.raises(ParameterError, match="limit"):
         brute_force_compatibility(paper_controller(controllable_canonical(F.G2)), NEUROMUSCULAR)
-    assert check_compatibility(S, NEUROMUSCULAR, method="brute force").method.startswith("brute")
+
+
+@pytest.mark.parametrize("spelling", ["brute-force", "brute force"])
+def test_brute_force_method_is_spelled_with_a_hyphen_and_the_old_spelling_still_works(spelling):
+    S = ifp_structure(2)
+    r = check_compatibility(S, NEUROMUSCULAR, method=spelling)
+    assert r == brute_force_compatibility(S, NEUROMUSCULAR)
+    assert r.method.startswith("brute") and r.stats["assignments"] == 243
+    assert "brute-force" in METHODS and "brute force" not in METHODS
 
 
 def test_long_cascades_on_chains_are_fast():
@@ -275,3 +281,32 @@ def test_controller_compatibility_checks_arguments():
         controller_compatibility(G, NEUROMUSCULAR, delays="middle")
     with pytest.raises(ParameterError, match="improper"):
         controller_compatibility(z**2 / (z - 1), NEUROMUSCULAR)
+
+
+def test_compatibility_results_are_truthy_values_with_their_evidence():
+    yes = check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
+    no = check_compatibility(ifp_structure(2), NEUROMUSCULAR)
+    assert yes and not no
+    assert yes == check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
+    assert hash(no) == hash(check_compatibility(ifp_structure(2), NEUROMUSCULAR))
+    assert yes != no and len({yes, no, no}) == 2
+    assert yes.assignment.is_compatible() and no.paths and not no.assignment
+    searched = check_compatibility(ifp_structure(2), NEUROMUSCULAR, method="search")
+    assert searched.stats["decisions"] >= 0
+    with pytest.raises(TypeError):
+        searched.stats["decisions"] = 0
+    with pytest.raises(ValueError, match="read-only"):
+        yes.E_tilde[0, 0] = 1
+    with pytest.raises(AttributeError):
+        yes.ok = False
+
+
+def test_controller_compatibility_is_a_truthy_value():
+    yes = controller_compatibility(controller_tf(2), NEUROMUSCULAR)
+    no = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    assert yes and not no and yes.check and yes.structure is not None
+    assert no == controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    assert hash(no) == hash(controller_compatibility(controller_tf(2), DelayGraph.chain([2])))
+    assert yes != no
+    with pytest.raises(AttributeError):
+        yes.ok = False

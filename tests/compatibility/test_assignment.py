@@ -1,4 +1,4 @@
-"""Delay graphs (closure, validation, chains) and delay assignments (both readings of Ẽ)."""
+"""Delay assignments: both readings of Ẽ, the paper's assignment and violation, values."""
 
 from __future__ import annotations
 
@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 import pytest
-import sympy as sp
 from helpers import paper_assignment
 
 from symctl import ParameterError, controllable_canonical, controller_tf, factor
-from symctl.compatibility.delaygraph import DelayAssignment, DelayGraph
+from symctl.compatibility.assignment import DelayAssignment
+from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure, ifp_structure
-from symctl.errors import DimensionError, SymctlTypeError
+from symctl.errors import SymctlTypeError
 
 INF = math.inf
 PAPER_E = [[0, 1, 2], [INF, 0, 1], [INF, INF, 0]]
@@ -21,66 +21,6 @@ PAPER_E = [[0, 1, 2], [INF, 0, 1], [INF, INF, 0]]
 def paper_controller() -> Structure:
     f = factor(controller_tf(2))
     return Structure.from_factorization(f, controllable_canonical(f.G2))
-
-
-def test_chain_is_the_papers_neuromuscular_graph():
-    g = DelayGraph.chain([1, 1])
-    assert g.E.tolist() == PAPER_E
-    assert g.n == 3 and g.is_chain and g.chain_delays == (1, 1)
-    assert g.edges == ((1, 2, 1), (2, 3, 1))
-    assert r"\infty" in g.latex()
-
-
-def test_matrix_and_edges_give_the_same_closure():
-    from_matrix = DelayGraph(PAPER_E)
-    assert from_matrix.edges == ((1, 2, 1), (2, 3, 1))
-    g = DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 5), (1, 2, 3)])
-    assert g.E.tolist() == PAPER_E
-    assert DelayGraph(np.array(PAPER_E)).E.tolist() == PAPER_E
-    assert DelayGraph([[0, 1], [sp.oo, 0]]).E.tolist() == [[0, 1], [INF, 0]]
-
-
-def test_chain_detection_allows_zero_steps_and_relabelled_vertices():
-    assert DelayGraph.chain([1, 0, 2]).chain_delays == (1, 0, 2)
-    g = DelayGraph.from_edges(4, [(1, 3, 1), (3, 2, 2), (2, 4, 1)])
-    assert g.chain_order == ((1, 3, 2, 4), (0, 1, 3, 4))
-    diamond = DelayGraph.from_edges(4, [(1, 2, 1), (1, 3, 1), (2, 4, 1), (3, 4, 1)])
-    assert not diamond.is_chain and diamond.chain_delays is None
-
-
-@pytest.mark.parametrize(
-    ("E", "match"),
-    [
-        ([[0, -1], [INF, 0]], "integers"),
-        ([[0, 1.5], [INF, 0]], "integers"),
-        ([[0, True], [INF, 0]], "integers"),
-        ([[1, 1], [INF, 0]], "diagonal"),
-        ([[0, 1, 5], [INF, 0, 1], [INF, INF, 0]], "closure"),
-        ([[0, INF, 1], [INF, 0, 1], [INF, INF, 0]], "source"),
-        ([[0, 1, 1], [INF, 0, INF], [INF, INF, 0]], "sink"),
-        ([[0]], "N >= 2"),
-    ],
-)
-def test_bad_matrices_are_refused_with_the_reason(E, match):
-    with pytest.raises(ParameterError, match=match):
-        DelayGraph(E)
-
-
-def test_bad_edges_and_shapes_are_refused():
-    with pytest.raises(DimensionError, match="square"):
-        DelayGraph([[0, 1], [0]])
-    with pytest.raises(ParameterError, match="self-loop"):
-        DelayGraph.from_edges(2, [(1, 1, 0), (1, 2, 1)])
-    with pytest.raises(ParameterError, match="vertex"):
-        DelayGraph.from_edges(2, [(1, 3, 1)])
-    with pytest.raises(ParameterError, match="delay"):
-        DelayGraph.from_edges(2, [(1, 2, -1)])
-    with pytest.raises(ParameterError, match="n"):
-        DelayGraph.from_edges(1, [])
-    with pytest.raises(ParameterError, match="delays"):
-        DelayGraph.chain([])
-    with pytest.raises(ParameterError, match="edges"):
-        DelayGraph.from_edges(2, [(1, 2)])
 
 
 def test_papers_assignment_by_the_definition_and_as_printed():
@@ -125,7 +65,7 @@ def test_assignment_validation():
 
 def test_both_readings_give_the_same_verdict_on_shortest_path_closures():
     """Thousands of random assignments of random structures on random closed graphs."""
-    from test_compatibility import random_graph, random_structure
+    from compatibility.test_compatibility import random_graph, random_structure
 
     rng = np.random.default_rng(7)
     checked = differ = 0
@@ -142,3 +82,17 @@ def test_both_readings_give_the_same_verdict_on_shortest_path_closures():
         differ += not np.array_equal(a.E_tilde, a.e_tilde("direct"))
         checked += 1
     assert differ > 0  # the readings do differ as matrices, only not in verdict
+
+
+def test_assignments_are_values():
+    S = ifp_structure(1)
+    good = {"x": 1, "K0": 1, "mu": 2, "K1": 2, "u": 2}
+    a = DelayAssignment(S, DelayGraph.chain([1]), good)
+    b = DelayAssignment(ifp_structure(1), DelayGraph.chain([1]), dict(reversed(good.items())))
+    assert a == b and hash(a) == hash(b)
+    assert a != DelayAssignment(S, DelayGraph.chain([1]), good | {"mu": 1})
+    assert a != DelayAssignment(S, DelayGraph.chain([2]), good)
+    with pytest.raises(TypeError):
+        a.vertex_of["mu"] = 1
+    with pytest.raises(ValueError, match="read-only"):
+        a.E_tilde[0, 1] = 0

@@ -1,0 +1,514 @@
+r"""Compatibility as a constraint satisfaction problem: the model, two exact solvers, certificates.
+
+The paper's definitions (section "Structure, delay graphs, and compatibility"):
+a structure is compatible with a delay graph when some delay assignment
+:math:`v` (signals to vertices, inputs at :math:`v_1`, outputs at :math:`v_N`)
+has :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`. This module decides
+it; :func:`symctl.check_compatibility` wraps the answer in a result.
+
+**Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest
+delays on a path of the structure from signal :math:`a` to signal :math:`b`.
+By definition :math:`\tilde E \ge E` says :math:`d(a, b) \ge E_{v(a) v(b)}` for
+every pair of signals joined by a path. When :math:`E` is a shortest-path
+closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`; every
+:class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
+
+.. math:: E_{v(a) v(b)} \le w \quad \text{for every wire } a \xrightarrow{w} b.
+
+*Proof.* A wire is a path, so :math:`E_{v(a)v(b)} \le d(a, b) \le w`.
+Conversely, along a fastest path :math:`a = s_0 \to \dots \to s_k = b` the
+triangle inequality gives
+:math:`E_{v(a)v(b)} \le \sum_l E_{v(s_{l-1}) v(s_l)} \le \sum_l w_l = d(a, b)`.
+:math:`\square`
+
+So compatibility is a binary constraint satisfaction problem: one variable per
+signal with domain :math:`\{v_1, \dots, v_N\}` and one constraint per wire.
+
+**Chain graphs in polynomial time.** For a chain
+:math:`v_1 \to \dots \to v_N` with step delays :math:`d_k \ge 0`, write
+:math:`D_j` for the delay from :math:`v_1` to :math:`v_j`. A wire of delay
+:math:`w` allows exactly the pairs :math:`R_w = \{(i, j) : i \le j,\
+D_j - D_i \le w\}`. :math:`R_w` is closed under the componentwise max of two
+of its pairs: for :math:`(i_1, j_1), (i_2, j_2) \in R_w` with
+:math:`j_1 \ge j_2`, either :math:`i_1 \ge i_2` (the max is :math:`(i_1, j_1)`)
+or :math:`i_2 > i_1` and :math:`D_{j_1} - D_{i_2} \le D_{j_1} - D_{i_1} \le w`
+(as :math:`D` is nondecreasing) with :math:`i_2 \le j_2 \le j_1`; likewise for
+the min. For max-closed constraints (Jeavons and Cooper 1995) arc consistency
+decides satisfiability, and the largest remaining value of every domain is a
+solution: for a wire :math:`(a, b)`, the max :math:`i^*` of :math:`a`'s domain
+has a support :math:`(i^*, j')` and the max :math:`j^*` of :math:`b`'s domain
+a support :math:`(i'', j^*)`; their max is :math:`(i^*, j^*) \in R_w`. Here the
+domains stay intervals (the supports of :math:`R_w` are intervals), so arc
+consistency is bounds propagation,
+
+.. math::
+    \mathrm{hi}_b \leftarrow \min(\mathrm{hi}_b, f_w(\mathrm{hi}_a)),\
+    \mathrm{lo}_b \leftarrow \max(\mathrm{lo}_b, \mathrm{lo}_a),\
+    \mathrm{hi}_a \leftarrow \min(\mathrm{hi}_a, \mathrm{hi}_b),\
+    \mathrm{lo}_a \leftarrow \max(\mathrm{lo}_a, g_w(\mathrm{lo}_b)),
+
+with :math:`f_w(i) = \max\{j : D_j \le D_i + w\}` and
+:math:`g_w(j) = \min\{i : D_i \ge D_j - w\}`: each bound moves at most
+:math:`N` times, so the work is :math:`O(N \cdot \text{wires})`. The witness
+(every signal at the top of its interval) is checked wire by wire before it is
+returned.
+
+**General graphs.** Delay graphs can encode inequalities over a poset (each
+wire asks :math:`E_{v(a) v(b)} \le w`), which is NP-complete for some posets,
+so no polynomial bound is promised: :func:`check_compatibility` decides them
+exactly by arc consistency followed by backtracking search that keeps arc
+consistency after every choice, and reports the method and the search effort.
+
+**Certificates.** On failure the result's ``reason`` is a proof a person can
+check: a minimal set of signal paths (delay-free or too-fast paths, as in the
+paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`)
+and, for every placement of the signals where these paths meet, one path that
+the placement makes too fast.
+
+>>> from symctl import DelayGraph, ifp_structure
+>>> from symctl.compatibility.csp import build_problem, solve_chain, solve_search
+>>> problem = build_problem(ifp_structure(2), DelayGraph.chain([1, 1]))
+>>> solve_chain(problem, *DelayGraph.chain([1, 1]).chain_order)[0] is None
+True
+>>> place, _, stats = solve_search(build_problem(ifp_structure(2), DelayGraph.chain([0])))
+>>> place
+[0, 1, 1, 1, 1, 1, 1]
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure
+from symctl.errors import ParameterError
+
+__all__ = ["Problem", "build_problem", "explain", "solve_chain", "solve_search"]
+
+_MINIMIZE_LIMIT = 80  # cores up to this many wires are minimized wire by wire
+_CASES_LIMIT = 243  # case analyses up to this many leaves are printed in full
+
+
+# ---------------------------------------------------------------- the constraint problem
+@dataclass
+class Problem:
+    """Signals ``0..S-1``, wires ``(a, b, w)``, pinned signals, the matrix E (0-based)."""
+
+    names: tuple[str, ...]
+    wires: list[tuple[int, int, int]]
+    pins: dict[int, int]
+    E: np.ndarray
+    succ: list = field(default_factory=list)
+    pred: list = field(default_factory=list)
+
+    def __post_init__(self):
+        if not self.succ:
+            self.succ = [[] for _ in self.names]
+            self.pred = [[] for _ in self.names]
+            for e, (a, b, w) in enumerate(self.wires):
+                self.succ[a].append((b, w, e))
+                self.pred[b].append((a, w, e))
+
+    def restrict(self, wire_ids) -> tuple[Problem, list[int]]:
+        """The problem with only some wires, on the signals they touch (plus pins among them)."""
+        wire_ids = sorted(wire_ids)
+        used = sorted({s for e in wire_ids for s in self.wires[e][:2]})
+        where = {s: k for k, s in enumerate(used)}
+        sub = Problem(
+            tuple(self.names[s] for s in used),
+            [
+                (where[self.wires[e][0]], where[self.wires[e][1]], self.wires[e][2])
+                for e in wire_ids
+            ],
+            {where[s]: v for s, v in self.pins.items() if s in where},
+            self.E,
+        )
+        return sub, wire_ids
+
+    def satisfied(self, place: list[int]) -> bool:
+        E = self.E
+        return all(place[s] == v for s, v in self.pins.items()) and all(
+            E[place[a], place[b]] <= w for a, b, w in self.wires
+        )
+
+
+def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
+    cs = structure.signal_graph
+    n = graph.n
+    pins: dict[int, int] = {}
+    for s in cs.inputs:
+        pins[s] = 0
+    for s in cs.outputs:
+        if pins.get(s, n - 1) != n - 1:
+            return (
+                f"The signal {cs.names[s]!r} is both an input (at v1) and an output (at v{n}); "
+                "no assignment can put it at two vertices."
+            )
+        pins[s] = n - 1
+    return Problem(
+        cs.names,
+        list(cs.wires),
+        pins,
+        graph.E,
+        [list(x) for x in cs.succ],
+        [list(x) for x in cs.pred],
+    )
+
+
+# ---------------------------------------------------------------- chain: bounds arc consistency
+def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
+    """Bounds arc consistency on chain positions; returns (placement | None, core wires)."""
+    N = len(D)
+    position = {v - 1: p for p, v in enumerate(order)}
+    S = len(problem.names)
+    f_table: dict[int, list[int]] = {}
+    g_table: dict[int, list[int]] = {}
+
+    def tables(w):
+        if w not in f_table:
+            f_table[w] = [bisect.bisect_right(D, D[p] + w) - 1 for p in range(N)]
+            g_table[w] = [bisect.bisect_left(D, D[q] - w) for q in range(N)]
+        return f_table[w], g_table[w]
+
+    lo = [0] * S
+    hi = [N - 1] * S
+    events: list[tuple[int, int]] = []  # (wire, parent event); pins have wire -1
+    lo_ev = [-1] * S
+    hi_ev = [-1] * S
+    for s, v in problem.pins.items():
+        p = position[v]
+        if p < lo[s] or p > hi[s]:  # pragma: no cover - pins are consistent by construction
+            return None, set()
+        lo[s] = hi[s] = p
+        events.append((-1, -1))
+        lo_ev[s] = hi_ev[s] = len(events) - 1
+    queue = deque(problem.pins)
+    queued = [False] * S
+    for s in problem.pins:
+        queued[s] = True
+    succ, pred = problem.succ, problem.pred
+
+    def tighten(v: int, new_hi: int, new_lo: int, e: int, x: int) -> bool:
+        """Narrow v's interval to [new_lo, new_hi] (wire e, from x); True when it empties."""
+        changed = False
+        if new_hi < hi[v]:
+            hi[v] = new_hi
+            events.append((e, hi_ev[x]))
+            hi_ev[v] = len(events) - 1
+            changed = True
+        if new_lo > lo[v]:
+            lo[v] = new_lo
+            events.append((e, lo_ev[x]))
+            lo_ev[v] = len(events) - 1
+            changed = True
+        if not changed:
+            return False
+        if lo[v] > hi[v]:
+            return True
+        if not queued[v]:
+            queued[v] = True
+            queue.append(v)
+        return False
+
+    failed = -1
+    while queue and failed < 0:
+        x = queue.popleft()
+        queued[x] = False
+        hx, lx = hi[x], lo[x]
+        for b, w, e in succ[x]:  # b after x: at most f_w(hi_x), at least lo_x
+            if tighten(b, tables(w)[0][hx], lx, e, x):
+                failed = b
+                break
+        else:
+            for a, w, e in pred[x]:  # a before x: at most hi_x, at least g_w(lo_x)
+                if tighten(a, hx, tables(w)[1][lx], e, x):
+                    failed = a
+                    break
+    if failed >= 0:
+        core = set()
+        for ev in (lo_ev[failed], hi_ev[failed]):
+            while ev >= 0:
+                wire, ev = events[ev]
+                if wire >= 0:
+                    core.add(wire)
+        return None, core
+    place = [order[p] - 1 for p in hi]
+    if not problem.satisfied(place):  # pragma: no cover - the max-closure theorem
+        raise RuntimeError("chain propagation produced a witness that violates a wire")
+    return place, set()
+
+
+# ---------------------------------------------------------------- general: MAC search
+def solve_search(problem: Problem, max_decisions: int | None = None):
+    """Arc consistency + backtracking (maintaining arc consistency).
+
+    Returns ``(placement | None, pruning wires, stats)``; the wires that ever
+    removed a value form an unsatisfiable core when there is no solution.
+    """
+    E = problem.E
+    N = E.shape[0]
+    S = len(problem.names)
+    full = (1 << N) - 1
+    allowed_fwd: dict[int, list[int]] = {}
+    allowed_bwd: dict[int, list[int]] = {}
+    cache_fwd: dict[tuple[int, int], int] = {}
+    cache_bwd: dict[tuple[int, int], int] = {}
+
+    def fwd(w, dom):  # targets supported by some value of dom
+        key = (w, dom)
+        out = cache_fwd.get(key)
+        if out is None:
+            if w not in allowed_fwd:
+                allowed_fwd[w] = [sum(1 << j for j in range(N) if E[i, j] <= w) for i in range(N)]
+                allowed_bwd[w] = [sum(1 << i for i in range(N) if E[i, j] <= w) for j in range(N)]
+            out = 0
+            for i in range(N):
+                if dom >> i & 1:
+                    out |= allowed_fwd[w][i]
+            cache_fwd[key] = out
+        return out
+
+    def bwd(w, dom):
+        key = (w, dom)
+        out = cache_bwd.get(key)
+        if out is None:
+            fwd(w, 1)
+            out = 0
+            for j in range(N):
+                if dom >> j & 1:
+                    out |= allowed_bwd[w][j]
+            cache_bwd[key] = out
+        return out
+
+    doms = [full] * S
+    trail: list[tuple[int, int]] = []
+    pruning: set[int] = set()
+    succ, pred = problem.succ, problem.pred
+    stats = {"decisions": 0, "backtracks": 0}
+
+    def propagate(start) -> bool:
+        queue = list(start)
+        queued = set(queue)
+
+        def narrow(v: int, allowed, e: int) -> bool:
+            """Intersect v's domain with ``allowed`` (wire e); False when it empties."""
+            new = doms[v] & allowed
+            if new == doms[v]:
+                return True
+            pruning.add(e)
+            trail.append((v, doms[v]))
+            doms[v] = new
+            if not new:
+                return False
+            if v not in queued:
+                queued.add(v)
+                queue.append(v)
+            return True
+
+        while queue:
+            x = queue.pop()
+            queued.discard(x)
+            dx = doms[x]
+            if not all(narrow(b, fwd(w, dx), e) for b, w, e in succ[x]):
+                return False
+            if not all(narrow(a, bwd(w, dx), e) for a, w, e in pred[x]):
+                return False
+        return True
+
+    for s, v in problem.pins.items():
+        doms[s] = 1 << v
+    if not propagate(list(problem.pins)):
+        return None, pruning, stats
+    # static order: breadth first from the pinned signals, so choices follow the wires
+    order: list[int] = []
+    seen = [False] * S
+    for root in [*problem.pins, *range(S)]:
+        if seen[root]:
+            continue
+        seen[root] = True
+        bfs = deque([root])
+        while bfs:
+            x = bfs.popleft()
+            order.append(x)
+            for y, _, _ in (*succ[x], *pred[x]):
+                if not seen[y]:
+                    seen[y] = True
+                    bfs.append(y)
+    stack: list[list] = []
+    pos = 0
+    while True:
+        while pos < S and doms[order[pos]] & (doms[order[pos]] - 1) == 0:
+            pos += 1
+        if pos == S:
+            place = [d.bit_length() - 1 for d in doms]
+            if not problem.satisfied(place):  # pragma: no cover - arc consistency
+                raise RuntimeError("search produced a witness that violates a wire")
+            return place, pruning, stats
+        values = [v for v in range(N - 1, -1, -1) if doms[order[pos]] >> v & 1]
+        stack.append([len(trail), pos, values])
+        while stack:
+            mark, p, values = stack[-1]
+            while len(trail) > mark:
+                x, old = trail.pop()
+                doms[x] = old
+            if not values:
+                stack.pop()
+                stats["backtracks"] += 1
+                continue
+            v = values.pop(0)
+            stats["decisions"] += 1
+            if max_decisions is not None and stats["decisions"] > max_decisions:
+                raise ParameterError(f"max_decisions: search exceeded {max_decisions} decisions")
+            x = order[p]
+            trail.append((x, doms[x]))
+            doms[x] = 1 << v
+            if propagate([x]):
+                pos = p
+                break
+        else:
+            return None, pruning, stats
+
+
+# ---------------------------------------------------------------- certificates
+def _minimal_core(problem: Problem, core: set[int]) -> list[int]:
+    """An unsatisfiable set of wires, minimized wire by wire when small."""
+
+    def unsat(ids):
+        sub, _ = problem.restrict(ids)
+        return solve_search(sub)[0] is None
+
+    core_list = sorted(core)
+    if not core_list or not unsat(core_list):
+        core_list = list(range(len(problem.wires)))
+    if len(core_list) <= _MINIMIZE_LIMIT:
+        k = 0
+        while k < len(core_list):
+            trial = core_list[:k] + core_list[k + 1 :]
+            if unsat(trial):
+                core_list = trial
+            else:
+                k += 1
+    return core_list
+
+
+def _paths(problem: Problem, core: list[int]) -> list[tuple[list[int], int]]:
+    """Merge wires through free signals with one wire in and one out, one of them delay-free.
+
+    Exact: such a signal can sit at the vertex of the neighbour across its
+    delay-free wire, so the merged path asks :math:`E \\le w_1 + w_2` and nothing else.
+    """
+    paths = {
+        k: ([problem.wires[e][0], problem.wires[e][1]], problem.wires[e][2])
+        for k, e in enumerate(core)
+    }
+    ins: dict[int, list[int]] = {}
+    outs: dict[int, list[int]] = {}
+    for k, (sig, _) in paths.items():
+        outs.setdefault(sig[0], []).append(k)
+        ins.setdefault(sig[-1], []).append(k)
+    changed = True
+    while changed:
+        changed = False
+        for m in list(ins):
+            if m in problem.pins or len(ins.get(m, ())) != 1 or len(outs.get(m, ())) != 1:
+                continue
+            k_in, k_out = ins[m][0], outs[m][0]
+            (s1, w1), (s2, w2) = paths[k_in], paths[k_out]
+            if k_in == k_out or (w1 and w2):
+                continue
+            paths[k_in] = (s1 + s2[1:], w1 + w2)
+            del paths[k_out]
+            ins[m], outs[m] = [], []
+            end = ins[s2[-1]]
+            end[end.index(k_out)] = k_in
+            changed = True
+    return sorted(paths.values(), key=lambda p: (p[0][0] not in problem.pins, p[0]))
+
+
+def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
+    E = problem.E
+    names = problem.names
+    N = E.shape[0]
+    core_list = _minimal_core(problem, core)
+    paths = _paths(problem, core_list)
+    letters = [_letter(k) for k in range(len(paths))]
+
+    def fmt(v):
+        return "inf" if math.isinf(v) else str(int(v))
+
+    lines = [
+        "No delay assignment of this structure is compatible with the delay graph "
+        f"(decided by {method}). These signal paths suffice for the contradiction:"
+    ]
+    for letter, (sig, w) in zip(letters, paths, strict=True):
+        lines.append(f"  ({letter}) {' -> '.join(names[s] for s in sig)}, delay {w}")
+    pinned = sorted({p for sig, _ in paths for p in (sig[0], sig[-1]) if p in problem.pins})
+    if pinned:
+        where = ", ".join(
+            f"{names[s]} at v{problem.pins[s] + 1} ({'input' if problem.pins[s] == 0 else 'output'})"
+            for s in pinned
+        )
+        lines.append(
+            f"with {where}.".replace(", ", " and ", 1) if len(pinned) == 2 else f"with {where}."
+        )
+    junctions = sorted(
+        {p for sig, _ in paths for p in (sig[0], sig[-1]) if p not in problem.pins},
+        key=lambda s: -sum(s in (sig[0], sig[-1]) for sig, _ in paths),
+    )
+
+    def violated(place):
+        """The path this placement makes too fast by the widest margin (None if none)."""
+        worst = None
+        for letter, (sig, w) in zip(letters, paths, strict=True):
+            a, b = sig[0], sig[-1]
+            if a in place and b in place and E[place[a], place[b]] > w:
+                if worst is None or E[place[a], place[b]] - w > worst[0]:
+                    worst = (E[place[a], place[b]] - w, letter, a, b, w)
+        if worst is None:
+            return None
+        _, letter, a, b, w = worst
+        i, j = place[a] + 1, place[b] + 1
+        return (
+            f"path ({letter}) runs from {names[a]} at v{i} to {names[b]} at v{j} with "
+            f"delay {w}, so Ẽ[{i},{j}] <= {w} < E[{i},{j}] = {fmt(E[i - 1, j - 1])}"
+        )
+
+    base = dict(problem.pins)
+    first = violated(base)
+    if first:
+        lines.append(f"Already {first}.")
+    elif N ** len(junctions) <= _CASES_LIMIT:
+        lines.append("Every placement fails:")
+
+        def tree(level, place, indent):
+            s = junctions[level]
+            for v in range(N):
+                here = {**place, s: v}
+                why = violated(here)
+                head = f"{indent}{names[s]} at v{v + 1}"
+                if why:
+                    lines.append(f"{head}: {why}")
+                elif level + 1 < len(junctions):
+                    lines.append(f"{head}:")
+                    tree(level + 1, here, indent + "  ")
+                else:  # pragma: no cover - the core is unsatisfiable
+                    lines.append(f"{head}: (no path violated; certificate incomplete)")
+
+        tree(0, base, "  ")
+    else:
+        lines.append(
+            f"No placement of the {len(junctions)} signals where these paths meet "
+            f"({', '.join(names[s] for s in junctions[:6])}{', ...' if len(junctions) > 6 else ''}) "
+            f"satisfies all of them ({N}^{len(junctions)} placements, excluded by {method})."
+        )
+    certificate = tuple((tuple(names[s] for s in sig), w) for sig, w in paths)
+    return "\n".join(lines), certificate
+
+
+def _letter(k: int) -> str:
+    return "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}"

@@ -1,0 +1,174 @@
+r"""The integer form of a structure's signal graph and the graph searches run on it.
+
+A :class:`~symctl.compatibility.structure.Structure` is compiled once into a
+:class:`SignalGraph`: signals ``0 .. S-1``, wires ``(source, target, delay)``
+and per-signal successor / predecessor lists. The searches every stage needs
+live here, once:
+
+* :func:`zero_one_bfs`, the fewest delays from some signals to every signal
+  (0-1 breadth-first search: a wire costs its delay, 0 or 1); the delay
+  assignment matrix :math:`\tilde E`, the compatibility checkers and
+  :meth:`Structure.delay_distances` all call it;
+* :func:`back_edges`, the wires that close a cycle in a depth-first search from
+  given roots (the feedback wires of a drawing);
+* :func:`delay_free_cycle`, a cycle of delay-free wires (an algebraic loop), found
+  by the same depth-first search.
+
+The module is pure Python (no SymPy, NumPy or networkx).
+
+>>> from symctl.compatibility.signalgraph import SignalGraph, back_edges, zero_one_bfs
+>>> g = SignalGraph.from_wires(("u", "s", "d"), ("input", "sum", "delay"),
+...                            [(0, 1, 0), (2, 1, 0), (1, 2, 1)], inputs=(0,), outputs=(1,))
+>>> zero_one_bfs(g, [0])
+[0, 0, 1]
+>>> back_edges(g.successors, [0])
+[(2, 1)]
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Hashable, Iterable, Iterator, Mapping, Sequence
+from types import MappingProxyType
+from typing import NamedTuple
+
+__all__ = ["SignalGraph", "back_edges", "delay_free_cycle", "zero_one_bfs"]
+
+
+class SignalGraph(NamedTuple):
+    """Integer form of a structure for the checkers: signals ``0..S-1``.
+
+    ``succ[a]`` lists ``(target, delay, wire id)`` for every wire out of ``a``,
+    ``pred[b]`` lists ``(source, delay, wire id)`` for every wire into ``b``, in
+    the order of :attr:`wires`.
+    """
+
+    names: tuple[str, ...]
+    index: Mapping[str, int]
+    kinds: tuple[str, ...]
+    wires: tuple[tuple[int, int, int], ...]  # (source, target, delay)
+    succ: tuple[tuple[tuple[int, int, int], ...], ...]  # per signal: (target, delay, wire id)
+    pred: tuple[tuple[tuple[int, int, int], ...], ...]  # per signal: (source, delay, wire id)
+    inputs: tuple[int, ...]
+    outputs: tuple[int, ...]
+
+    @classmethod
+    def from_wires(
+        cls,
+        names: Sequence[str],
+        kinds: Sequence[str],
+        wires: Iterable[tuple[int, int, int]],
+        inputs: Sequence[int],
+        outputs: Sequence[int],
+    ) -> SignalGraph:
+        """The signal graph of ``names`` joined by ``wires`` ``(source, target, delay)``."""
+        succ: list[list] = [[] for _ in names]
+        pred: list[list] = [[] for _ in names]
+        wires = tuple(wires)
+        for e, (a, b, w) in enumerate(wires):
+            succ[a].append((b, w, e))
+            pred[b].append((a, w, e))
+        return cls(
+            tuple(names),
+            MappingProxyType({n: i for i, n in enumerate(names)}),
+            tuple(kinds),
+            wires,
+            tuple(map(tuple, succ)),
+            tuple(map(tuple, pred)),
+            tuple(inputs),
+            tuple(outputs),
+        )
+
+    @property
+    def successors(self) -> tuple[tuple[int, ...], ...]:
+        """Per signal, the targets of its wires (in wire order)."""
+        return tuple(tuple(b for b, _, _ in out) for out in self.succ)
+
+
+def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
+    """Fewest delays from any of ``sources`` to every signal (None if unreachable).
+
+    ``allowed`` (a sequence of booleans, one per signal) restricts the paths to
+    the allowed signals.
+    """
+    dist: list[int | None] = [None] * len(graph.names)
+    queue = deque()
+    for s in sources:
+        dist[s] = 0
+        queue.append(s)
+    done = [False] * len(graph.names)
+    while queue:
+        a = queue.popleft()
+        if done[a]:
+            continue
+        done[a] = True
+        da = dist[a]
+        for b, w, _ in graph.succ[a]:
+            if allowed is not None and not allowed[b]:
+                continue
+            nd = da + w
+            if dist[b] is None or nd < dist[b]:
+                dist[b] = nd
+                if w:
+                    queue.append(b)
+                else:
+                    queue.appendleft(b)
+    return dist
+
+
+def _closing(successors, roots: Iterable[Hashable]) -> Iterator[list]:
+    """Depth-first search from ``roots`` in order, then from every unvisited node.
+
+    ``successors`` maps each node to the targets of its edges: a sequence
+    (nodes ``0 .. n-1``) or a mapping (any hashable nodes, in the mapping's
+    order). Yields, for every edge that closes a cycle (its target is on the
+    search stack), the stack from the root to the edge's source followed by the
+    target.
+    """
+    nodes = successors.keys() if isinstance(successors, Mapping) else range(len(successors))
+    state: dict = {}  # absent new, 1 on the stack, 2 done
+    for root in (*roots, *nodes):
+        if root in state:
+            continue
+        stack = [(root, iter(successors[root]))]
+        state[root] = 1
+        while stack:
+            node, children = stack[-1]
+            child = next(children, None)
+            if child is None:
+                state[node] = 2
+                stack.pop()
+            elif state.get(child) == 1:
+                yield [n for n, _ in stack] + [child]
+            elif child not in state:
+                state[child] = 1
+                stack.append((child, iter(successors[child])))
+
+
+def back_edges(
+    successors: Sequence[Iterable[int]] | Mapping[Hashable, Iterable[Hashable]],
+    roots: Iterable[Hashable],
+) -> list[tuple]:
+    """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots`` (in order).
+
+    Removing them leaves an acyclic graph. ``successors[a]`` lists the targets
+    of the edges out of node ``a``; ``successors`` is a sequence (nodes
+    ``0 .. n-1``) or a mapping (any hashable nodes). Nodes that the roots do not
+    reach are searched afterwards, in order.
+
+    >>> from symctl.compatibility.signalgraph import back_edges
+    >>> back_edges([[1], [2], [0, 1]], [0])
+    [(2, 0), (2, 1)]
+    >>> back_edges({"u": ["s"], "s": ["d"], "d": ["s"]}, ["u"])
+    [('d', 's')]
+    """
+    return [(path[-2], path[-1]) for path in _closing(successors, roots)]
+
+
+def delay_free_cycle(graph: SignalGraph) -> list[str] | None:
+    """A cycle of delay-free wires as signal names (first name repeated at the end), or None."""
+    instant = [[b for b, w, _ in out if w == 0] for out in graph.succ]
+    for path in _closing(instant, graph.inputs):
+        start = path.index(path[-1])
+        return [graph.names[i] for i in path[start:]]
+    return None
