@@ -60,15 +60,15 @@ _LOCATIONS = {
     "general_realization": "symctl.realization.realization",
     "observable_canonical": "symctl.realization.realization",
     "random_realization": "symctl.realization.realization",
-    "BatchResponse": "symctl.neural.simulate",
-    "NonlinearCheck": "symctl.neural.simulate",
+    "BatchResponse": "symctl.neural.batch",
+    "NonlinearCheck": "symctl.neural.nonlinear",
     "Response": "symctl.neural.simulate",
     "closed_loop_response": "symctl.neural.simulate",
     "ifp_realization": "symctl.neural.simulate",
-    "nonlinear_check": "symctl.neural.simulate",
+    "nonlinear_check": "symctl.neural.nonlinear",
     "open_loop_response": "symctl.neural.simulate",
     "pulse": "symctl.neural.simulate",
-    "simulate_batch": "symctl.neural.simulate",
+    "simulate_batch": "symctl.neural.batch",
     "simulate_realization": "symctl.neural.simulate",
     "Block": "symctl.compatibility.structure",
     "Structure": "symctl.compatibility.structure",
@@ -185,18 +185,16 @@ if TYPE_CHECKING:  # static tools see the eager imports
         SymctlError,
         SymctlTypeError,
     )
+    from symctl.neural.batch import BatchResponse, simulate_batch
     from symctl.neural.circuit import Circuit, CircuitSystem, Neuron, Synapse
     from symctl.neural.firing import FiringPatterns, FiringSummary, circuit_firing
+    from symctl.neural.nonlinear import NonlinearCheck, nonlinear_check
     from symctl.neural.simulate import (
-        BatchResponse,
-        NonlinearCheck,
         Response,
         closed_loop_response,
         ifp_realization,
-        nonlinear_check,
         open_loop_response,
         pulse,
-        simulate_batch,
         simulate_realization,
     )
     from symctl.realization.check import RealizationCheck, check_realization

@@ -22,14 +22,13 @@ from symctl import (
     observable_canonical,
     random_realization,
 )
+from symctl.neural.batch import _CHUNK, _schur_stable, simulate_batch
+from symctl.neural.nonlinear import nonlinear_check
 from symctl.neural.simulate import (
-    _schur_stable,
     closed_loop_response,
     ifp_realization,
-    nonlinear_check,
     open_loop_response,
     pulse,
-    simulate_batch,
     simulate_realization,
 )
 from symctl.realization.realization import controller_realization
@@ -173,8 +172,6 @@ def test_batch_accepts_one_disturbance_per_realization():
 
 
 def test_batch_across_chunk_boundaries_equals_single_loops():
-    from symctl.neural.simulate import _CHUNK
-
     count = _CHUNK + 3
     gain = np.linspace(-0.02, -0.08, count).reshape(count, 1, 1)
     F, H, M, N = np.zeros((count, 1, 1)), gain, np.ones((count, 1, 1)), np.zeros((count, 1, 1))
@@ -282,8 +279,6 @@ def test_a_run_that_blows_up_says_so():
 def test_a_rate_that_overflows_while_the_state_stays_finite_is_refused():
     # delta_r = -1e10 delta_f overflows during the pulse; the stable loop (pole -0.5)
     # has decayed to finite rates again by the last step.
-    from symctl.neural.simulate import _CHUNK
-
     plant = (np.array([[0.5]]), np.array([[1e-10]]))
     zero = np.zeros((1, 1, 1))
     with pytest.raises(ParameterError, match="blew up at step 6"):
