@@ -70,7 +70,7 @@ the :math:`G_3` neuron at :math:`v_3`. No compatible assignment can put the
 :math:`\tilde E_{13} \le 1 < 2`.
 
 Firing traces: every neuron is named by its adder's signal
-(:attr:`Circuit.neuron_signals`), and :meth:`Circuit.as_linear_system` gives a
+(:attr:`Neuron.name`), and :meth:`Circuit.as_linear_system` gives a
 state-space system whose outputs are the neurons' axon outputs (then the circuit
 outputs), so simulating it reproduces each neuron's firing trace.
 
@@ -95,6 +95,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.texnames import signal_tex
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayAssignment
 from symctl.compatibility.structure import Block, Structure
@@ -387,11 +388,6 @@ class Circuit(LatexMixin):
         )
 
     @property
-    def neuron_signals(self) -> dict[str, str]:
-        """Each neuron's structure signal (its axon output), to read traces off a simulation."""
-        return {n.name: n.name for n in self.neurons}
-
-    @property
     def synapses(self) -> tuple[Synapse, ...]:
         """Every synapse onto a neuron (self-dynamics excluded), neuron by neuron."""
         return tuple(s for n in self.neurons for s in n.synapses)
@@ -543,9 +539,9 @@ class Circuit(LatexMixin):
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
                 if isinstance(w, sp.Add):
                     tex = rf"\left({latex(w)}\right)\,"
-                terms.append(rf"{tex} {_tex_name(s.source)}(t{_lag(s.delay)})".lstrip())
+                terms.append(rf"{tex} {signal_tex(s.source)}(t{_lag(s.delay)})".lstrip())
             rhs = " + ".join(terms).replace("+ -", "- ") if terms else "0"
-            out.append(rf"{_tex_name(n.name)}(t) = {rhs}")
+            out.append(rf"{signal_tex(n.name)}(t) = {rhs}")
         return out
 
     def latex(self) -> str:
@@ -590,13 +586,30 @@ class Circuit(LatexMixin):
         (positive) ones are blue with an arrow head, inhibitory (negative) red
         with a bar, symbolic sign grey; dashed arrows have a one-step delay
         (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
-        right. Returns a :class:`matplotlib.figure.Figure`.
+        right.
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw into it; by default a new figure sized to the drawing.
+        title : str, optional
+            The heading (default ``"neural circuit: <n> neurons"``).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.circuit.draw_circuit` (positions from
+            :func:`symctl.plotting.circuit_layout.circuit_layout`).
+
+        Examples
+        --------
+        >>> from symctl import Circuit, ifp_structure
         >>> type(Circuit.from_structure(ifp_structure(2)).draw()).__name__
         'Figure'
         """
-        return _draw(self, ax, title)
+        from symctl.plotting.circuit import draw_circuit
+
+        return draw_circuit(self, ax, title=title)
 
 
 # ---------------------------------------------------------------- helpers
@@ -684,277 +697,6 @@ def _lag(d: int) -> str:
     return f"-{d}" if d else ""
 
 
-def _tex_name(name: str) -> str:
-    """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
-    from symctl.compatibility.structure import _signal_label
-
-    part, _, short = name.rpartition(".")
-    label = _signal_label(short).strip("$")
-    if label == short and not short.isalnum():
-        label = rf"\mathrm{{{short}}}"
-    return rf"{{{label}}}^{{\mathrm{{{part}}}}}" if part else label
-
-
-def _weight_tex(weight) -> str:
-    """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
-    w = sp.sympify(weight)
-    if w.is_number and w.is_real:
-        return f"{float(w):.3g}"
-    return latex(w)
-
-
-def _self_tex(n: Neuron) -> str:
-    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
-    if not n.self_terms:
-        return "0"
-    parts = []
-    for s in sorted(n.self_terms, key=lambda s: s.delay):
-        w = sp.sympify(s.weight)
-        tex = _weight_tex(w)
-        if isinstance(w, sp.Add):
-            tex = rf"\left({tex}\right)"
-        parts.append(tex + (rf"\,z^{{-{s.delay}}}" if s.delay else ""))
-    return " + ".join(parts).replace("+ -", "- ")
-
-
 def _syn_text(s: Synapse, source: str) -> str:
     delay = f", delay {s.delay}" if s.delay else ""
     return f"{source} (weight {s.weight}, sign {s.sign}{delay})"
-
-
-# ---------------------------------------------------------------- drawing
-_COLOURS = {"+": "#1f5fa8", "-": "#c0392b", "?": "0.55", "0": "0.75"}
-_FONT = 9
-_MAX_LABEL = 14  # weights with more visible characters are shown as w_k
-
-
-def _visible(tex: str) -> int:
-    import re
-
-    text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
-    text = re.sub(r"\\[a-zA-Z]+", "m", text)
-    return len(re.sub(r"[{}_^\s]", "", text))
-
-
-def _text_width(text: str, size: float) -> float:
-    from symctl.plotting.common import text_size
-
-    return text_size(text, size)[0]
-
-
-def _layout(c: Circuit):
-    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
-    g = nx.MultiDiGraph()
-    nodes = [*c.inputs, *(n.name for n in c.neurons)]
-    g.add_nodes_from(nodes)
-    edges = [s for n in c.neurons for s in n.synapses]
-    for s in edges:
-        g.add_edge(s.source, s.target)
-    dag = nx.DiGraph()
-    dag.add_nodes_from(nodes)
-    seen: set[str] = set()
-    for root in [*c.inputs, *nodes]:  # depth-first; back edges are feedback
-        if root in seen:
-            continue
-        for a, b, kind in nx.dfs_labeled_edges(g, root):
-            seen.add(b)
-            if kind == "forward" and a != b:
-                dag.add_edge(a, b)
-            elif kind == "nontree" and a != b and not nx.has_path(dag, b, a):
-                dag.add_edge(a, b)
-    col: dict[str, int] = {}
-    for node in nx.topological_sort(dag):
-        if node in c.inputs:
-            col[node] = 0
-        else:
-            col[node] = max((col[p] + 1 for p in dag.predecessors(node)), default=1)
-    last = max(col.values(), default=0) + 1
-    columns: dict[int, list[str]] = {}
-    for node in nodes:
-        columns.setdefault(col[node], []).append(node)
-    for o in c.outputs:
-        col[("out", o.target)] = last
-        columns.setdefault(last, []).append(("out", o.target))
-    # rows: barycenters of the already placed neighbours, two sweeps
-    preds: dict = {n: [] for n in col}
-    for s in edges:
-        preds[s.target].append(s.source)
-    for o in c.outputs:
-        preds[("out", o.target)].append(o.source)
-    row: dict = {}
-    for _ in range(2):
-        for k in sorted(columns):
-            items = columns[k]
-            want = {
-                n: (
-                    np.mean([row[p] for p in preds.get(n, []) if p in row and p != n])
-                    if any(p in row and p != n for p in preds.get(n, []))
-                    else row.get(n, 0.0)
-                )
-                for n in items
-            }
-            items.sort(key=lambda n, w=want: -w[n])
-            mean = np.mean(list(want.values()))
-            for i, n in enumerate(items):
-                row[n] = mean + (len(items) - 1) / 2 - i
-    return col, row
-
-
-def _draw(c: Circuit, ax, title):
-    from matplotlib.patches import Circle, FancyArrowPatch
-
-    from symctl.plotting.common import figure_and_axes, finish_figure
-
-    col, row = _layout(c)
-    xstep, ystep = 2.6, 1.5
-    pos = {n: (xstep * col[n], ystep * row[n]) for n in col}
-    legend: list[str] = []
-
-    def weight_label(s: Synapse) -> str:
-        tex = _weight_tex(s.weight)
-        if _visible(tex) > _MAX_LABEL:
-            legend.append(rf"$w_{{{len(legend) + 1}}} = {tex}$")
-            tex = rf"w_{{{len(legend)}}}"
-        if s.delay > 1:
-            tex += rf"\,z^{{-{s.delay}}}"
-        return f"${tex}$"
-
-    radius = {}
-    body = {}
-    for n in c.neurons:
-        tex = _self_tex(n)
-        if _visible(tex) > 2 * _MAX_LABEL:
-            legend.append(rf"$\mathrm{{self}}({_tex_name(n.name)}) = {tex}$")
-            tex = rf"\mathrm{{self}}_{{{len(legend)}}}"
-        body[n.name] = f"${tex}$"
-        radius[n.name] = max(0.32, _text_width(body[n.name], _FONT) / 2 + 0.1)
-
-    fig, ax, own = figure_and_axes(ax)
-
-    extra: list[tuple[float, float]] = []  # arc label positions, for the extent
-
-    def arrow(a, b, s: Synapse | None, h: float):
-        (x0, y0), (x1, y1) = pos[a], pos[b]
-        length = max(np.hypot(x1 - x0, y1 - y0), 1e-9)
-        rad = -2 * h / length * (1 if x1 >= x0 else -1)
-        sign = s.sign if s is not None else "+"
-        colour = _COLOURS[sign] if s is not None else "0.15"
-        style = "-[,widthB=0.7,lengthB=0" if sign == "-" else "-|>,head_length=0.5,head_width=0.25"
-        ra = radius.get(a, 0.06) * 72
-        rb = radius.get(b, 0.06) * 72
-        dashed = s is not None and s.delay > 0
-        ax.add_patch(
-            FancyArrowPatch(
-                pos[a],
-                pos[b],
-                connectionstyle=f"arc3,rad={rad}",
-                arrowstyle=style,
-                mutation_scale=12,
-                color=colour,
-                lw=1.3,
-                linestyle=(0, (4, 2.5)) if dashed else "-",
-                shrinkA=ra,
-                shrinkB=rb + 1,
-                zorder=1,
-            )
-        )
-        if s is None:
-            return
-        lx = (x0 + x1) / 2 + 0.5 * rad * (y1 - y0)
-        ly = (y0 + y1) / 2 - 0.5 * rad * (x1 - x0)
-        extra.append((lx, ly))
-        ax.text(
-            lx,
-            ly,
-            weight_label(s),
-            ha="center",
-            va="center",
-            fontsize=_FONT,
-            color=colour if sign != "?" else "0.25",
-            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.9},
-            zorder=3,
-        )
-
-    # group parallel synapses (same pair of ends) and give each its own curvature
-    pairs: dict[tuple, list[Synapse]] = {}
-    for n in c.neurons:
-        for s in n.synapses:
-            pairs.setdefault((s.source, s.target), []).append(s)
-    # each arc bulges by a height h (inches; > 0 above): skipping arcs alternate above and
-    # below, feedback arcs run below, parallel synapses fan out; longer arcs bulge more
-    up = 1
-    for (a, b), group in sorted(pairs.items(), key=lambda kv: abs(col[kv[0][1]] - col[kv[0][0]])):
-        span = abs(col[b] - col[a])
-        between = [
-            radius.get(n, 0.1)
-            for n in col
-            if min(col[a], col[b]) < col[n] < max(col[a], col[b]) and abs(row[n] - row[a]) < 1
-        ]
-        skips = bool(between)
-        if col[b] <= col[a]:
-            base = -(0.55 + 0.4 * max(span - 1, 0))
-        elif skips:
-            base, up = up * (max(between) + 0.5 + 0.4 * (span - 2)), -up
-        else:
-            base = 0.0
-        for k, s in enumerate(group):
-            h = base + (k - (len(group) - 1) / 2) * 0.4
-            arrow(a, b, s, h)
-    for o in c.outputs:
-        key = ("out", o.target)
-        if o.source in pos:
-            arrow(o.source, key, o if (o.weight != 1 or o.delay) else None, 0.0)
-
-    for n in c.neurons:
-        x, y = pos[n.name]
-        ax.add_patch(
-            Circle(
-                (x, y),
-                radius[n.name],
-                fc="#f3f3f3",
-                ec="black",
-                lw=1.2,
-                zorder=2,
-                gid=f"neuron:{n.name}",
-            )
-        )
-        ax.text(x, y, body[n.name], ha="center", va="center", fontsize=_FONT, zorder=3)
-        where = f"  (v{n.vertex})" if n.vertex is not None else ""
-        ax.text(
-            x,
-            y + radius[n.name] + 0.08,
-            f"${_tex_name(n.name)}${where}",
-            ha="center",
-            va="bottom",
-            fontsize=_FONT,
-            color="0.2",
-            zorder=3,
-        )
-    for u in c.inputs:
-        x, y = pos[u]
-        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
-        ax.text(x - 0.12, y, f"${_tex_name(u)}$", ha="right", va="center", fontsize=_FONT + 1)
-    for o in c.outputs:
-        x, y = pos[("out", o.target)]
-        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
-        name = "output" if o.target == o.source else f"${_tex_name(o.target)}$"
-        ax.text(x + 0.12, y, name, ha="left", va="center", fontsize=_FONT + 1)
-
-    xs = [p[0] for p in pos.values()]
-    ys = [p[1] for p in pos.values()]
-    big = max(radius.values(), default=0.3)
-    x_lo, x_hi = min(xs) - 0.9, max(xs) + 0.9
-    y_lo = min([min(ys) - big - 0.5] + [y - 0.35 for _, y in extra])
-    y_hi = max([max(ys) + big + 0.45] + [y + 0.35 for _, y in extra])
-    heading = title or (f"neural circuit: {c.n_neurons} neuron{'s' if c.n_neurons != 1 else ''}")
-    key = (
-        "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
-        "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
-    )
-    width = 0.0
-    for k, line in enumerate(legend):
-        ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)
-        width = max(width, _text_width(line, _FONT) + 0.3)
-    y_lo -= 0.28 * len(legend) + 0.15
-    x_hi = max(x_hi, x_lo + width)
-    return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)

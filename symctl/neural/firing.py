@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from symctl._util.texnames import signal_tex
 from symctl._util.validate import as_generator
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
@@ -87,7 +88,6 @@ _TITLES = {
 }
 _EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
 _EPS_MAX = 899
-_RATE_LABEL = "change in firing rate [spikes/s]"
 
 
 # ---------------------------------------------------------------- results
@@ -185,7 +185,7 @@ class FiringPatterns:
     def legend_label(self, i: int) -> str:
         r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based)."""
         eps = [
-            f"{_tex(str(k))} = {float(v):.3g}"
+            f"${signal_tex(str(k))}$ = {float(v):.3g}"
             for k, v in self.params[i].items()
             if str(k).startswith("epsilon")
         ]
@@ -226,71 +226,24 @@ class FiringPatterns:
         Returns
         -------
         matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.firing.firing_plot`.
+
+        Raises
+        ------
+        ParameterError
+            ``ncols`` is not an integer >= 1.
 
         Examples
         --------
-        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
         >>> fig = fp.plot()
         >>> [ax.get_title() for ax in fig.axes][1:]
         ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
         """
-        from matplotlib.figure import Figure
+        from symctl.plotting.firing import firing_plot
 
-        if isinstance(ncols, bool) or not isinstance(ncols, numbers.Integral) or ncols < 1:
-            raise ParameterError(f"ncols: must be an integer >= 1, got {ncols!r}")
-        names = self.neurons
-        cols = max(1, min(int(ncols), len(names)))
-        rows = -(-len(names) // cols)
-        fig = Figure(figsize=(max(3.6 * cols + 1.2, 8.0), 2.2 + 2.7 * rows), layout="constrained")
-        grid = fig.add_gridspec(1 + rows, cols, height_ratios=[0.55] + [1.0] * rows)
-        top = fig.add_subplot(grid[0, :])
-        for i in range(self.count):
-            top.plot(self.t, self.f_bar + self.delta_f[i], color=f"C{i % 10}", lw=1.2)
-        top.plot(self.t, self.f_bar + self.reference.delta_f[:, 0], "k:", lw=1.2,
-                 label="optimal controller (identical)")  # fmt: skip
-        top.set_ylabel("force f [N]")
-        top.set_title("force, every realization (identical)", fontsize="medium")
-        top.legend(loc="upper right", fontsize="small")
-        top.grid(alpha=0.3)
-        axes = []
-        for k, name in enumerate(names):
-            ax = fig.add_subplot(grid[1 + k // cols, k % cols], sharex=top)
-            for i in range(self.count):
-                ax.plot(self.t, self.firing[name][i], marker=".", ms=3, lw=1.3,
-                        color=f"C{i % 10}", label=self.legend_label(i))  # fmt: skip
-            ax.axhline(0, color="black", lw=0.5)
-            ax.set_title(f"neuron {_tex(name.rpartition('.')[2])}")
-            ax.set_xlabel(f"time [{self.reference.time_unit}]")
-            if k % cols == 0:
-                ax.set_ylabel(_RATE_LABEL)
-            ax.grid(alpha=0.3)
-            axes.append(ax)
-        if axes:
-            handles, labels = axes[0].get_legend_handles_labels()
-            fig.legend(handles, labels, loc="outside lower center", fontsize="small",
-                       ncols=min(self.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
-        what = "the neuron of the" if self.kind == "ifp" else "the neurons of $G_2$,"
-        fig.suptitle(
-            f"Firing of {what} {_TITLES[self.kind]}\n"
-            + (
-                "one realization: the optimal controller's delay chain"
-                if self.kind == "ifp"
-                else "same force and motor-neuron rate, different firing patterns"
-            )
-        )
-        return fig
-
-
-def _tex(name: str) -> str:
-    r"""``x1`` -> ``$x_{1}$``, ``mu`` -> ``$\mu$``, ``epsilon_{1,2}`` -> ``$\epsilon_{1,2}$``."""
-    head = name.rstrip("0123456789")
-    tail = name[len(head) :]
-    if "_" in head:
-        head, _, tail = name.partition("_")
-        tail = tail.strip("{}")
-    head = rf"\{head}" if head in ("mu", "gamma", "epsilon") else head
-    return f"${head}_{{{tail}}}$" if tail else f"${head}$"
+        return firing_plot(self, ncols)
 
 
 # ---------------------------------------------------------------- arguments

@@ -79,32 +79,23 @@ class NonlinearCheck:
         return "\n".join(lines)
 
     def plot(self):
-        """Force traces (nonlinear solid, linear dashed) and the deviation against amplitude."""
-        from matplotlib.figure import Figure
+        """Force traces (nonlinear solid, linear dashed) and the deviation against amplitude.
 
-        fig = Figure(figsize=(11, 4.2), layout="constrained")
-        ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.6, 1])
-        colors = [f"C{i % 10}" for i in range(len(self.amplitudes))]
-        for a, lin, nl, c in zip(
-            self.amplitudes, self.f_linear, self.f_nonlinear, colors, strict=True
-        ):
-            ax1.plot(self.t, nl, color=c, lw=1.6, label=f"w = {a:g} N per step")
-            ax1.plot(self.t, lin, color=c, lw=1.2, ls="--")
-        ax1.plot([], [], color="gray", lw=1.6, label="nonlinear muscle (solid)")
-        ax1.plot([], [], color="gray", lw=1.2, ls="--", label="linear model (dashed)")
-        ax1.set_xlabel("time [s]")
-        ax1.set_ylabel("force f [N]")
-        ax1.set_title("Linear controller around the nonlinear muscle")
-        ax1.legend(fontsize="small", loc="best")
-        ax1.grid(alpha=0.3)
-        ax2.loglog(self.amplitudes, self.max_deviation, "o-", label="max |f_nl - f_lin| [N]")
-        ax2.loglog(self.amplitudes, self.relative_deviation, "s--", label="relative to peak |δf|")
-        ax2.set_xlabel("disturbance pulse amplitude [N per step]")
-        ax2.set_ylabel("deviation [N] / relative [1]")
-        ax2.set_title("Departure from the linear prediction")
-        ax2.legend(fontsize="small")
-        ax2.grid(alpha=0.3, which="both")
-        return fig
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.response.nonlinear_plot`.
+
+        Examples
+        --------
+        >>> from symctl import nonlinear_check
+        >>> fig = nonlinear_check(amplitudes=[0.1, 1.0], steps=20).plot()
+        >>> fig.axes[0].get_ylabel()
+        'force f [N]'
+        """
+        from symctl.plotting.response import nonlinear_plot
+
+        return nonlinear_plot(self)
 
 
 def nonlinear_check(

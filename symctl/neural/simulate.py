@@ -151,15 +151,6 @@ def _ts(p: DiscretePlant) -> float:
 
 
 # ---------------------------------------------------------------- results
-def _labels(p_names: tuple[str, ...], kind: str) -> tuple[str, str, str]:
-    """(change label, absolute label, unit) for the muscle; neutral names otherwise."""
-    muscle = {"delta_f": ("force change δf", "force f", "N"),
-              "delta_r": ("rate change δr", "motor-neuron rate r", "spikes/s")}  # fmt: skip
-    if p_names == (kind,) and kind in muscle:
-        return muscle[kind]
-    return ("change from equilibrium", "absolute value", "units")
-
-
 @dataclass(frozen=True, eq=False)
 class Response:
     r"""Traces of one simulation (open or closed loop), all sampled at ``t = k Ts``.
@@ -212,49 +203,27 @@ class Response:
     def plot(self, states: bool | None = None):
         """Force and motor-neuron rate against time, absolute values on the right axes.
 
-        ``states`` adds a panel with the controller's internal states (default: when
-        there are any). Returns a :class:`matplotlib.figure.Figure`.
-        """
-        from matplotlib.figure import Figure
+        Parameters
+        ----------
+        states : bool, optional
+            Add a panel with the controller's internal states (default: when
+            there are any).
 
-        states = self.states.shape[1] > 0 if states is None else states
-        rows = 3 if states else 2
-        fig = Figure(figsize=(7.5, 2.4 * rows + 0.6), layout="constrained")
-        axes = fig.subplots(rows, 1, sharex=True)
-        panels = [
-            (axes[0], self.delta_f, self.f_bar, self.state_names, "delta_f"),
-            (axes[1], self.delta_r, self.r_bar, self.input_names, "delta_r"),
-        ]
-        for ax, trace, bar, names, kind in panels:
-            change, absolute, unit = _labels(names, kind)
-            for i in range(trace.shape[1]):
-                label = change if trace.shape[1] == 1 else f"{change} ({names[i]})"
-                ax.plot(self.t, trace[:, i], marker=".", lw=1.5, label=label)
-            if kind == "delta_f" and self.kind == "closed loop":
-                for i in range(self.w.shape[1]):
-                    ax.step(self.t, self.w[:, i], where="post", ls="--", color="gray",
-                            label=f"disturbance w [{unit}/step]")  # fmt: skip
-            ax.axhline(0, color="black", lw=0.5)
-            ax.set_ylabel(f"{change} [{unit}]")
-            if trace.shape[1] == 1:
-                offset = float(bar[0])
-                sec = ax.secondary_yaxis(
-                    "right", functions=(lambda x, o=offset: x + o, lambda x, o=offset: x - o)
-                )
-                sec.set_ylabel(f"{absolute} [{unit}]")
-            ax.legend(loc="best", fontsize="small")
-            ax.grid(alpha=0.3)
-        if states:
-            ax = axes[2]
-            for i in range(self.states.shape[1]):
-                ax.plot(self.t, self.states[:, i], marker=".", lw=1.2, label=f"x_{i + 1}")
-            ax.set_ylabel("controller state\n(rate change) [spikes/s]")
-            ax.legend(loc="best", fontsize="small", ncol=min(4, self.states.shape[1]))
-            ax.grid(alpha=0.3)
-        axes[-1].set_xlabel(f"time [{self.time_unit}]")
-        what = "pulse in firing rate" if self.kind == "open loop" else "pulse disturbance on force"
-        fig.suptitle(f"{self.kind.capitalize()} response to a {what}")
-        return fig
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.response.response_plot`.
+
+        Examples
+        --------
+        >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
+        >>> fig = closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))).plot()
+        >>> fig.axes[-1].get_xlabel()
+        'time [s]'
+        """
+        from symctl.plotting.response import response_plot
+
+        return response_plot(self, states)
 
 
 # ---------------------------------------------------------------- the core
