@@ -28,14 +28,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from symctl._util.validate import float_array, positive_int
 from symctl.errors import DimensionError
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     _closed_loop_matrices,
-    _float_array,
     _plant,
-    _positive_int,
     _refuse_unstable,
     _run,
     _signal,
@@ -196,7 +195,7 @@ def simulate_batch(
     True
     """
     p, A, B = _plant(plant)
-    mats = {k: _float_array(v, k) for k, v in zip("FHMN", (F, H, M, N), strict=True)}
+    mats = {k: float_array(v, k) for k, v in zip("FHMN", (F, H, M, N), strict=True)}
     if any(v.ndim != 3 for v in mats.values()):
         shapes = {k: v.shape for k, v in mats.items()}
         raise DimensionError(f"F, H, M, N: expected stacks of matrices (3 dims), got {shapes}")
@@ -208,7 +207,7 @@ def simulate_batch(
     if R == 0:
         raise DimensionError("F: no realizations (R = 0)")
     if not isinstance(disturbance, numbers.Real):
-        disturbance = _float_array(disturbance, "disturbance")
+        disturbance = float_array(disturbance, "disturbance")
     if np.ndim(disturbance) < 3:
         w = _signal(disturbance, "disturbance", steps, p.n, start, length)
     else:
@@ -217,7 +216,7 @@ def simulate_batch(
             raise DimensionError(
                 f"disturbance: expected shape (steps, {p.n}) or ({R}, steps, {p.n}), got {w.shape}"
             )
-        if steps is not None and _positive_int(steps, "steps") != w.shape[1]:
+        if steps is not None and positive_int(steps, "steps") != w.shape[1]:
             raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
     Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
     if check_stability:

@@ -41,7 +41,6 @@ realization, no free parameters): its one neuron :math:`\mu` of
 
 from __future__ import annotations
 
-import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -49,7 +48,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import as_generator
+from symctl._util.validate import as_generator, positive_int, positive_number
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
 from symctl.design.lqr import Gains
@@ -61,6 +60,7 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     Response,
+    _run,
     closed_loop_response,
     ifp_realization,
     simulate_realization,
@@ -256,13 +256,12 @@ def _kind(kind) -> str:
 def _count(count, kind: str) -> int:
     if count is None:
         return 1 if kind == "ifp" else 4
-    if isinstance(count, bool) or not isinstance(count, numbers.Integral) or count < 1:
-        raise ParameterError(f"count: must be an integer >= 1, got {count!r}")
+    count = positive_int(count, "count")
     if kind == "ifp" and count != 1:
         raise ParameterError(
             f"count: the IFP controller has a single realization, so count must be 1, got {count}"
         )
-    return int(count)
+    return count
 
 
 def _gains(gains, kind: str) -> Gains:
@@ -328,15 +327,16 @@ def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
     r"""Every neuron's axon output and the circuit output, driven from rest by ``u`` ``(steps,)``.
 
     :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)` of
-    :meth:`Circuit.as_linear_system`; keys are the output names (neurons, then
-    ``"output"``).
+    :meth:`Circuit.as_linear_system`, stepped by the simulations' one time loop
+    (the input enters every state through ``B``); keys are the output names
+    (neurons, then ``"output"``).
     """
     sys = circuit.as_linear_system(numeric=True)
-    s = np.zeros(sys.A.shape[0])
-    out = np.empty((u.size, len(sys.outputs)))
-    for k, uk in enumerate(u):
-        out[k] = sys.C @ s + sys.D[:, 0] * uk
-        s = sys.A @ s + sys.B[:, 0] * uk
+    k = sys.A.shape[0]
+    _, out, _ = _run(
+        sys.A[:, :, None], sys.C[:, :, None], k, u[:, None] * sys.B[:, 0], states=False
+    )
+    out = out[0] + u[:, None] * sys.D[:, 0]
     traces = dict(zip(sys.outputs[: circuit.n_neurons], out.T[: circuit.n_neurons], strict=True))
     traces["output"] = out[:, -1]
     return traces
@@ -435,8 +435,7 @@ def circuit_firing(
     plant = _plant(plant, gains)
     count = _count(count, kind)
     gen = as_generator(seed, "seed")
-    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not rtol > 0:
-        raise ParameterError(f"rtol: must be a positive number, got {rtol!r}")
+    rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}
     ref = closed_loop_response(gains, disturbance=disturbance, **window)
     rows: list[tuple] = []

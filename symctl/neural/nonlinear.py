@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
+from symctl._util.validate import float_array
 from symctl.design.augment import augment
 from symctl.design.lqr import lqr_gains
 from symctl.design.plant import MuscleModel
@@ -29,7 +30,6 @@ from symctl.neural.simulate import (
     DEFAULT_START,
     DEFAULT_STEPS,
     _as_realization,
-    _float_array,
     _numeric_realization,
     simulate_realization,
 )
@@ -143,7 +143,7 @@ def nonlinear_check(
     if controller is None:
         controller = lqr_gains(augment(model, 1, 1))
     R = _as_realization(controller)
-    amps = _float_array(amplitudes, "amplitudes").ravel()
+    amps = float_array(amplitudes, "amplitudes").ravel()
     if amps.size == 0:
         raise DimensionError("amplitudes: give at least one amplitude")
     linear = simulate_realization(model, R, 1.0, steps=steps, start=start, length=length)

@@ -46,7 +46,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from symctl._util.validate import nonneg_int, numeric_matrix, real_number
+from symctl._util.validate import (
+    float_array,
+    nonneg_int,
+    numeric_matrix,
+    positive_int,
+    real_number,
+)
 from symctl.design.augment import as_plant
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
@@ -75,26 +81,6 @@ DEFAULT_LENGTH = 10
 
 
 # ---------------------------------------------------------------- arguments
-def _positive_int(value, argname: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-        raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
-    return int(value)
-
-
-def _float_array(value, argname: str) -> np.ndarray:
-    if isinstance(value, str | bytes) or value is None:
-        raise SymctlTypeError(f"{argname}: expected an array of numbers, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise SymctlTypeError(
-            f"{argname}: expected an array of real numbers, got {type(value).__name__}"
-        ) from None
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(f"{argname}: entries must be finite (no NaN or inf)")
-    return arr
-
-
 def pulse(
     steps: int = DEFAULT_STEPS,
     amplitude: float = 1.0,
@@ -109,11 +95,11 @@ def pulse(
     >>> pulse(6, 2.0, start=1, length=3).ravel()
     array([0., 2., 2., 2., 0., 0.])
     """
-    steps = _positive_int(steps, "steps")
+    steps = positive_int(steps, "steps")
     amp = real_number(amplitude, "amplitude")
     start = nonneg_int(start, "start")
     length = nonneg_int(length, "length")
-    out = np.zeros((steps, _positive_int(size, "size")))
+    out = np.zeros((steps, positive_int(size, "size")))
     out[start : start + length] = amp
     return out
 
@@ -122,14 +108,14 @@ def _signal(value, argname: str, steps: int | None, size: int, start: int, lengt
     """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return pulse(DEFAULT_STEPS if steps is None else steps, value, start, length, size)
-    arr = _float_array(value, argname)
+    arr = float_array(value, argname)
     if arr.ndim == 1 and size == 1:
         arr = arr[:, None]
     if arr.ndim != 2 or arr.shape[1] != size or arr.shape[0] == 0:
         raise DimensionError(
             f"{argname}: expected shape (steps, {size}) with steps >= 1, got {arr.shape}"
         )
-    if steps is not None and _positive_int(steps, "steps") != arr.shape[0]:
+    if steps is not None and positive_int(steps, "steps") != arr.shape[0]:
         raise DimensionError(f"{argname}: has {arr.shape[0]} samples but steps = {steps}")
     return arr
 
@@ -388,7 +374,7 @@ def open_loop_response(
     """
     p, A, B = _plant(MuscleModel() if plant is None else plant)
     u = _signal(
-        real_number(pulse, "pulse"), "pulse", _positive_int(steps, "steps"), p.m, start, length
+        real_number(pulse, "pulse"), "pulse", positive_int(steps, "steps"), p.m, start, length
     )
     df, _, _ = _run(
         A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False, argname="pulse"
