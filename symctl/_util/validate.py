@@ -327,3 +327,22 @@ def float_array(value, argname: str) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"{argname}: entries must be finite (no NaN or inf)")
     return arr
+
+
+def readonly_array(value) -> np.ndarray:
+    """A read-only float array for a value object: a copy, unless it is read-only already.
+
+    The caller's array is never frozen in place (its flags stay as they were).
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import readonly_array
+    >>> a = np.zeros(2)
+    >>> b = readonly_array(a)
+    >>> b.flags.writeable, a.flags.writeable, readonly_array(b) is b
+    (False, True, True)
+    """
+    arr = np.asarray(value, dtype=float)
+    if arr.flags.writeable:
+        arr = np.array(arr, order="C")
+        arr.setflags(write=False)
+    return arr

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from symctl._util.validate import float_array, positive_int
+from symctl._util.validate import float_array, positive_int, readonly_array
 from symctl.errors import DimensionError
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
@@ -63,6 +63,11 @@ class BatchResponse:
     delta_r: np.ndarray
     states: np.ndarray | None
     stability_checked: bool
+
+    def __post_init__(self) -> None:  # read-only (views of simulate_batch's own buffer)
+        for name in ("t", "delta_f", "delta_r", "states"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, readonly_array(getattr(self, name)))
 
 
 # ---------------------------------------------------------------- chunks and stability
@@ -223,4 +228,6 @@ def simulate_batch(
         _batch_stability(Acl, "F, H, M, N")
     df, dr, xc = _run(Acl, Cr, p.n, w, states=states, schedule=_in_chunks)
     t = np.arange(w.shape[-2]) * _ts(p)
+    for arr in (df, dr) if xc is None else (df, dr, xc):
+        arr.setflags(write=False)  # no copy: the buffer is ours alone
     return BatchResponse(t, df, dr, xc, bool(check_stability))

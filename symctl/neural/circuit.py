@@ -88,6 +88,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import NamedTuple
 
 import networkx as nx
@@ -161,7 +162,7 @@ class Synapse(NamedTuple):
         return self.sign == "-"
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True)
 class Neuron:
     r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
 
@@ -273,6 +274,22 @@ class Circuit(LatexMixin):
     inputs: tuple[str, ...]
     outputs: tuple[Synapse, ...]
     input_axons: Mapping[str, tuple[Synapse, ...]]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "input_axons", MappingProxyType(dict(self.input_axons)))
+
+    def _key(self) -> tuple:
+        S = self.structure
+        return (tuple(S.blocks.items()), S.inputs, S.outputs, self.neurons)
+
+    def __eq__(self, other) -> bool:
+        """Equal when read off equal structures (SymPy-structural gains) with equal vertices."""
+        if not isinstance(other, Circuit):
+            return NotImplemented
+        return self is other or self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
 
     # ------------------------------------------------------------ construction
     @classmethod

@@ -43,12 +43,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import as_generator, positive_int, positive_number
+from symctl._util.validate import as_generator, positive_int, positive_number, readonly_array
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
 from symctl.design.lqr import Gains
@@ -113,6 +114,10 @@ class FiringSummary:
     spread: np.ndarray
     behaviour_spread: float
 
+    def __post_init__(self) -> None:  # the arrays are read-only copies
+        for name in ("peak", "spread"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
         count = self.peak.shape[0]
@@ -171,6 +176,14 @@ class FiringPatterns:
     circuits: tuple[Circuit, ...]
     reference: Response
     max_deviation: float
+
+    def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
+        for name in ("t", "delta_f", "delta_r"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+        firing = {k: readonly_array(v) for k, v in self.firing.items()}
+        object.__setattr__(self, "firing", MappingProxyType(firing))
+        params = tuple(MappingProxyType(dict(p)) for p in self.params)
+        object.__setattr__(self, "params", params)
 
     @property
     def neurons(self) -> tuple[str, ...]:

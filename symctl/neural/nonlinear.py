@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
-from symctl._util.validate import float_array
+from symctl._util.validate import float_array, readonly_array
 from symctl.design.augment import augment
 from symctl.design.lqr import lqr_gains
 from symctl.design.plant import MuscleModel
@@ -64,6 +64,18 @@ class NonlinearCheck:
     r_nonlinear: np.ndarray
     max_deviation: np.ndarray
     relative_deviation: np.ndarray
+
+    def __post_init__(self) -> None:  # the arrays are read-only copies
+        for name in (
+            "amplitudes",
+            "t",
+            "f_linear",
+            "f_nonlinear",
+            "r_nonlinear",
+            "max_deviation",
+            "relative_deviation",
+        ):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
 
     def table(self) -> str:
         """A plain-text table: amplitude, peak linear force change, max and relative deviation."""

@@ -51,6 +51,7 @@ from symctl._util.validate import (
     nonneg_int,
     numeric_matrix,
     positive_int,
+    readonly_array,
     real_number,
 )
 from symctl.design.augment import as_plant
@@ -175,6 +176,10 @@ class Response:
     state_names: tuple[str, ...] = ("delta_f",)
     input_names: tuple[str, ...] = ("delta_r",)
     time_unit: str = "s"
+
+    def __post_init__(self) -> None:  # the arrays are read-only copies
+        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
 
     @property
     def f(self) -> np.ndarray:
@@ -317,10 +322,10 @@ def _run_chunk(A: np.ndarray, Cr: np.ndarray, n: int, w: np.ndarray, out: np.nda
 def _response(p, t, df, dr, w, xc, kind) -> Response:
     return Response(
         t,
-        np.ascontiguousarray(df),
-        np.ascontiguousarray(dr),
+        df,
+        dr,
         w,
-        np.ascontiguousarray(xc),
+        xc,
         _equilibrium(p.x_eq, p.n, "x_eq"),
         _equilibrium(p.u_eq, p.m, "u_eq"),
         kind,

@@ -331,3 +331,37 @@ def test_time_axis_is_in_steps_without_a_sampling_time():
     assert res.time_unit == "steps"
     assert res.plot().axes[1].get_xlabel() == "time [steps]"
     assert open_loop_response(MODEL, steps=10).time_unit == "s"
+
+
+def test_response_arrays_read_only():
+    owned = np.zeros((50, 1))
+    res = simulate_realization(MODEL, Realization([[0]], [[-0.05]], [[1]], 0), owned + 1.0)
+    for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
+        arr = getattr(res, name)
+        assert not arr.flags.writeable, name
+        with pytest.raises(ValueError, match="read-only"):
+            arr[...] = 0.0
+    assert owned.flags.writeable  # the caller's array is copied, not frozen
+
+
+def test_batch_response_arrays_read_only():
+    F, H, M, N = (
+        np.zeros((2, 1, 1)),
+        np.full((2, 1, 1), -0.05),
+        np.ones((2, 1, 1)),
+        np.zeros((2, 1, 1)),
+    )
+    out = simulate_batch(MODEL, F, H, M, N, states=True)
+    for arr in (out.t, out.delta_f, out.delta_r, out.states):
+        assert not arr.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        out.delta_r[0, 0, 0] = 1.0
+    assert F.flags.writeable
+
+
+def test_nonlinear_check_arrays_read_only():
+    chk = nonlinear_check(amplitudes=[0.1, 1.0], steps=12)
+    for name in ("amplitudes", "t", "f_linear", "f_nonlinear", "r_nonlinear", "max_deviation"):
+        assert not getattr(chk, name).flags.writeable, name
+    with pytest.raises(ValueError, match="read-only"):
+        chk.relative_deviation[0] = 0.0
