@@ -53,9 +53,30 @@ _WORKERS = os.cpu_count() or 1  # threads that run the tasks
 class BatchResponse:
     """Traces of many closed loops at once (see :func:`simulate_batch`).
 
-    ``delta_f`` is ``(R, steps, n)``, ``delta_r`` ``(R, steps, m)``, ``states``
-    ``(R, steps, nc)`` or ``None`` (when not asked for); ``t`` is ``(steps,)`` in seconds.
-    The arrays may be non-contiguous views (time-major storage).
+    Attributes
+    ----------
+    t : (steps,) array
+        Time in seconds (in steps when the plant has no ``Ts``).
+    delta_f : (R, steps, n) array
+        Each loop's plant state change.
+    delta_r : (R, steps, m) array
+        Each loop's motor-neuron rate change.
+    states : (R, steps, nc) array or None
+        The controller states, when asked for.
+    stability_checked : bool
+        Whether every loop was checked to be stable before the run.
+
+    The arrays are read-only and may be non-contiguous views of one time-major
+    buffer (no copy is made).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symctl import MuscleModel, simulate_batch
+    >>> zero, one = np.zeros((2, 1, 1)), np.ones((2, 1, 1))
+    >>> out = simulate_batch(MuscleModel(), zero, -0.05 * one, one, zero, steps=20)
+    >>> out.delta_f.shape, out.states, out.stability_checked, out.delta_f.flags.writeable
+    ((2, 20, 1), None, True, False)
     """
 
     t: np.ndarray

@@ -74,8 +74,7 @@ Firing traces: every neuron is named by its adder's signal
 state-space system whose outputs are the neurons' axon outputs (then the circuit
 outputs), so simulating it reproduces each neuron's firing trace.
 
->>> from symctl import controller_tf, controllable_canonical, factor
->>> from symctl.compatibility.structure import Structure
+>>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
 >>> f = factor(controller_tf(2))
 >>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
 >>> c.n_neurons, [n.name for n in c.neurons]
@@ -135,9 +134,15 @@ class Synapse(NamedTuple):
         The structure signals strictly between ``source`` and ``target``, in
         signal-flow order.
 
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import Synapse
     >>> s = Synapse("u", "x", sp.Integer(-2), 1)
     >>> s.sign, s.excitatory, s.inhibitory
     ('-', False, True)
+    >>> s == Synapse("u", "x", -2, 1)   # a value: equal fields, equal synapses
+    True
     """
 
     source: str
@@ -187,8 +192,10 @@ class Neuron:
     vertex : int or None
         The delay-graph vertex of its signal, when an assignment was given.
 
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure
     >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.compatibility.structure import Structure
     >>> from symctl.symbols import epsilon_1, C_1
     >>> c = Circuit.from_structure(Structure.from_realization(
     ...     first_order_realization(epsilon_1, C_1)))
@@ -229,7 +236,29 @@ class CircuitSystem(NamedTuple):
 
     The state is the circuit's delayed signals (the structure's unit delays);
     the outputs are the neurons' axon outputs, in :attr:`Circuit.neurons` order,
-    then the circuit outputs. Matrices are sympy (or NumPy when ``numeric``).
+    then the circuit outputs. Made by :meth:`Circuit.as_linear_system`; it
+    unpacks as ``A, B, C, D, states, inputs, outputs``.
+
+    Attributes
+    ----------
+    A, B, C, D : sympy Matrix or NumPy array
+        The state-space matrices (NumPy when ``numeric=True``).
+    states : tuple of str
+        The structure's delay blocks, in order.
+    inputs : tuple of str
+        The circuit inputs.
+    outputs : tuple of str
+        The neurons (their axon outputs), then the circuit outputs.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, ifp_structure
+    >>> A, B, C, D, states, inputs, outputs = Circuit.from_structure(
+    ...     ifp_structure(1)).as_linear_system()
+    >>> states, inputs, outputs
+    (('u',), ('x',), ('mu', 'u'))
+    >>> A, B
+    (Matrix([[K_1]]), Matrix([[K_0]]))
     """
 
     A: object
@@ -261,12 +290,18 @@ class Circuit(LatexMixin):
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
-    >>> from symctl import observable_canonical, controller_tf, factor
-    >>> from symctl.compatibility.structure import Structure
-    >>> c = Circuit.from_structure(Structure.from_realization(
-    ...     observable_canonical(factor(controller_tf(2)).G2)))
+    Two circuits are equal when they are read off equal structures (SymPy-structural
+    gains) and place their neurons at the same vertices; a circuit hashes by value.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, controller_tf, factor, observable_canonical
+    >>> S = Structure.from_realization(observable_canonical(factor(controller_tf(2)).G2))
+    >>> c = Circuit.from_structure(S)
     >>> c.n_neurons, c.inputs, [o.source for o in c.outputs]
     (3, ('u',), ['y'])
+    >>> c == Circuit.from_structure(S)
+    True
     """
 
     structure: Structure
@@ -327,7 +362,7 @@ class Circuit(LatexMixin):
 
         Examples
         --------
-        >>> from symctl import controllable_canonical, controller_tf, factor
+        >>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))
         >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
         >>> c.n_neurons, c.neuron("x2").branches
@@ -393,7 +428,7 @@ class Circuit(LatexMixin):
     def neuron(self, name: str) -> Neuron:
         """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).neuron("mu").self_dynamics
         K_1/z + K_2/z**2
         """
@@ -412,7 +447,7 @@ class Circuit(LatexMixin):
     def branches(self) -> dict[str, int]:
         """The number of axon branches of each neuron and input.
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).branches()
         {'mu': 1, 'x': 1}
         """
@@ -432,6 +467,8 @@ class Circuit(LatexMixin):
         The circuit keeps its shape: a weight that becomes zero stays a synapse
         of weight 0 (substitute into the realization to drop it). Vertices are kept.
 
+        >>> import sympy as sp
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
@@ -481,6 +518,8 @@ class Circuit(LatexMixin):
 
         Examples
         --------
+        >>> import sympy as sp
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
@@ -535,6 +574,7 @@ class Circuit(LatexMixin):
         ``digits``, when given, rounds the weights' numbers to that many
         significant digits (exact fractions included).
 
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(

@@ -32,7 +32,7 @@ from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
 realization, no free parameters): its one neuron :math:`\mu` of
 :func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
 
->>> from symctl import MuscleModel, augment, lqr_gains
+>>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> fp = circuit_firing("controllable", gains, count=2)
 >>> fp.neurons, fp.firing["G2.y"].shape
@@ -107,6 +107,20 @@ class FiringSummary:
     behaviour_spread : float
         The largest difference between realizations of the force and rate traces
         (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
+
+    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symctl import FiringSummary
+    >>> s = FiringSummary(("x1", "x2"), np.array([[1.0, -2.0], [3.0, -2.5]]), np.array([2.0, 0.5]), 0.0)
+    >>> print(s.table())
+     neuron | peak #1   | peak #2   | spread
+    ----------------------------------------
+     x1     |         1 |         3 | 2
+     x2     |        -2 |      -2.5 | 0.5
+    force/rate spread across realizations: 0.00e+00
     """
 
     neurons: tuple[str, ...]
@@ -163,6 +177,18 @@ class FiringPatterns:
     max_deviation : float
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
+
+    Made by :func:`circuit_firing`; the arrays are read-only copies, ``firing``
+    and each of ``params`` read-only mappings.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
+    >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+    >>> fp.kind, fp.count, fp.neurons
+    ('observable', 2, ('G2.x1', 'G2.x2', 'G2.y'))
+    >>> fp.legend_label(0)
+    '#1: $\\epsilon_{1}$ = 0.631, $\\epsilon_{3}$ = 0.246'
     """
 
     kind: str
@@ -207,7 +233,7 @@ class FiringPatterns:
     def summary(self) -> FiringSummary:
         """Per neuron, the spread of peak firing across realizations (see :class:`FiringSummary`).
 
-        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=3)
         >>> s = fp.summary()
         >>> bool(s.spread[:2].min() > 1e-3 > 1e-12 > s.behaviour_spread)   # x1, x2 differ
@@ -429,7 +455,8 @@ def circuit_firing(
 
     Examples
     --------
-    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> import numpy as np
+    >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> fp = circuit_firing("general", gains, count=3, seed=1)
     >>> fp.neurons

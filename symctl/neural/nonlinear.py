@@ -55,6 +55,17 @@ class NonlinearCheck:
         :math:`\max_t |f_\text{nonlinear} - f_\text{linear}|` [N].
     relative_deviation : (k,) array
         ``max_deviation`` over :math:`\max_t |\delta_f^\text{linear}|`.
+
+    Made by :func:`nonlinear_check`; the arrays are read-only copies.
+
+    Examples
+    --------
+    >>> from symctl import nonlinear_check
+    >>> chk = nonlinear_check(amplitudes=[0.1, 1.0], steps=20)
+    >>> chk.f_nonlinear.shape, bool(chk.max_deviation[1] > chk.max_deviation[0])
+    ((2, 20), True)
+    >>> print(chk.table().splitlines()[0])
+     amplitude [N] | peak |δf| linear [N] | max |f_nl - f_lin| [N] | relative
     """
 
     amplitudes: np.ndarray
@@ -145,6 +156,7 @@ def nonlinear_check(
 
     Examples
     --------
+    >>> from symctl import nonlinear_check
     >>> chk = nonlinear_check(amplitudes=[0.01, 1.0], steps=30)
     >>> bool(chk.relative_deviation[0] < 1e-3 < chk.relative_deviation[1])
     True

@@ -91,8 +91,33 @@ def pulse(
 ) -> np.ndarray:
     r"""A pulse signal of shape ``(steps, size)``: ``amplitude`` for ``start <= k < start + length``.
 
+    Parameters
+    ----------
+    steps : int
+        The horizon, >= 1 (default 50).
+    amplitude : float
+        The value during the pulse (default 1).
+    start, length : int
+        First step of the pulse (default 5) and its length (default 10), >= 0;
+        a pulse running past the horizon is cut there.
+    size : int
+        The number of channels (columns), >= 1.
+
+    Returns
+    -------
+    (steps, size) array
+
+    Raises
+    ------
+    ParameterError
+        A non-integer or out-of-range ``steps``, ``start``, ``length`` or ``size``,
+        or a non-finite ``amplitude``.
+    SymctlTypeError
+        ``amplitude`` is not a real number.
+
     Examples
     --------
+    >>> from symctl import pulse
     >>> pulse(6, 2.0, start=1, length=3).ravel()
     array([0., 2., 2., 2., 0., 0.])
     """
@@ -161,8 +186,22 @@ class Response:
         The operating point (zeros when the plant records none).
     kind : str
         ``"open loop"`` or ``"closed loop"``.
+    state_names, input_names : tuple of str
+        The plant's names of its states and inputs.
     time_unit : str
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
+
+    The arrays are read-only copies; :func:`open_loop_response`,
+    :func:`closed_loop_response` and :func:`simulate_realization` make a Response.
+
+    Examples
+    --------
+    >>> from symctl import open_loop_response
+    >>> res = open_loop_response(steps=8, start=1, length=2)
+    >>> res.kind, res.t[:3], res.delta_r[:4, 0]
+    ('open loop', array([0.  , 0.01, 0.02]), array([0., 1., 1., 0.]))
+    >>> res.delta_f.flags.writeable
+    False
     """
 
     t: np.ndarray
@@ -369,6 +408,7 @@ def open_loop_response(
 
     Examples
     --------
+    >>> from symctl import open_loop_response
     >>> res = open_loop_response()
     >>> round(float(res.delta_f[6, 0]), 6)   # one step after the pulse starts: B
     4.641646
@@ -478,7 +518,7 @@ def simulate_realization(
 
     Examples
     --------
-    >>> from symctl import Realization
+    >>> from symctl import MuscleModel, Realization, simulate_realization
     >>> res = simulate_realization(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0))
     >>> res.states.shape
     (50, 1)
@@ -528,7 +568,8 @@ def closed_loop_response(
 
     Examples
     --------
-    >>> from symctl import MuscleModel, augment, lqr_gains, controller_tf
+    >>> import numpy as np
+    >>> from symctl import MuscleModel, augment, closed_loop_response, controller_tf, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> a = closed_loop_response(gains)
     >>> b = closed_loop_response(controller_tf(gains), MuscleModel())
