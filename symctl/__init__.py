@@ -25,8 +25,8 @@ _LOCATIONS = {
     "check_realization": "symctl.realization.check",
     "Circuit": "symctl.neural.circuit",
     "CircuitSystem": "symctl.neural.circuit",
-    "Neuron": "symctl.neural.circuit",
-    "Synapse": "symctl.neural.circuit",
+    "Neuron": "symctl.neural.neuron",
+    "Synapse": "symctl.neural.neuron",
     "CompatibilityResult": "symctl.compatibility.check",
     "ControllerCompatibility": "symctl.compatibility.check",
     "brute_force_compatibility": "symctl.compatibility.check",
@@ -186,8 +186,9 @@ if TYPE_CHECKING:  # static tools see the eager imports
         SymctlTypeError,
     )
     from symctl.neural.batch import BatchResponse, simulate_batch
-    from symctl.neural.circuit import Circuit, CircuitSystem, Neuron, Synapse
+    from symctl.neural.circuit import Circuit, CircuitSystem
     from symctl.neural.firing import FiringPatterns, FiringSummary, circuit_firing
+    from symctl.neural.neuron import Neuron, Synapse
     from symctl.neural.nonlinear import NonlinearCheck, nonlinear_check
     from symctl.neural.simulate import (
         Response,

@@ -22,7 +22,8 @@ from symctl import (
     z,
 )
 from symctl.compatibility.structure import Structure, ifp_structure
-from symctl.neural.circuit import Circuit, Synapse
+from symctl.neural.circuit import Circuit
+from symctl.neural.neuron import Synapse
 from symctl.realization.realization import random_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
