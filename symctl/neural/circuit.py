@@ -96,6 +96,7 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.texnames import signal_tex
+from symctl._util.validate import positive_int
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayAssignment
 from symctl.compatibility.structure import Block, Structure
@@ -302,6 +303,21 @@ class Circuit(LatexMixin):
     def neuron(self, name: str) -> Neuron:
         """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
 
+        Parameters
+        ----------
+        name : str
+
+        Returns
+        -------
+        Neuron
+
+        Raises
+        ------
+        ParameterError
+            No neuron has that name (the message lists the neurons).
+
+        Examples
+        --------
         >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).neuron("mu").self_dynamics
         K_1/z + K_2/z**2
@@ -321,6 +337,13 @@ class Circuit(LatexMixin):
     def branches(self) -> dict[str, int]:
         """The number of axon branches of each neuron and input.
 
+        Returns
+        -------
+        dict of str to int
+            Neurons in order, then the inputs.
+
+        Examples
+        --------
         >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).branches()
         {'mu': 1, 'x': 1}
@@ -341,6 +364,22 @@ class Circuit(LatexMixin):
         The circuit keeps its shape: a weight that becomes zero stays a synapse
         of weight 0 (substitute into the realization to drop it). Vertices are kept.
 
+        Parameters
+        ----------
+        *args, **kwargs
+            As for :meth:`sympy.core.basic.Basic.subs`, e.g. a dict of symbols to values.
+
+        Returns
+        -------
+        Circuit
+
+        Raises
+        ------
+        ParameterError
+            A gain becomes infinite (e.g. a division by a symbol set to 0).
+
+        Examples
+        --------
         >>> import sympy as sp
         >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -384,6 +423,11 @@ class Circuit(LatexMixin):
         numeric : bool
             Return float NumPy arrays (every weight must be a number, e.g. after
             :meth:`subs`) instead of sympy matrices.
+
+        Returns
+        -------
+        CircuitSystem
+            Unpacks as ``A, B, C, D, states, inputs, outputs``.
 
         Raises
         ------
@@ -445,9 +489,24 @@ class Circuit(LatexMixin):
     def equations(self, digits: int | None = None) -> list[str]:
         r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
 
-        ``digits``, when given, rounds the weights' numbers to that many
-        significant digits (exact fractions included).
+        Parameters
+        ----------
+        digits : int, optional
+            Round the weights' numbers to that many significant digits (exact
+            fractions included); exact by default.
 
+        Returns
+        -------
+        list of str
+            ``"<neuron>(t) = <weighted past outputs and synapses>"``, in neuron order.
+
+        Raises
+        ------
+        ParameterError
+            ``digits`` is not an integer >= 1.
+
+        Examples
+        --------
         >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
@@ -456,10 +515,8 @@ class Circuit(LatexMixin):
         >>> c.equations()
         ['x_{1}(t) = \\epsilon_{1}\\, x_{1}(t-1) + C_{1}\\, u(t-1)']
         """
-        if digits is not None and (
-            isinstance(digits, bool) or not isinstance(digits, int) or digits < 1
-        ):
-            raise ParameterError(f"digits: must be an integer >= 1 or None, got {digits!r}")
+        if digits is not None:
+            digits = positive_int(digits, "digits")
         out = []
         for n in self.neurons:
             terms = []

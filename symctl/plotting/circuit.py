@@ -28,7 +28,8 @@ from symctl.plotting.common import figure_and_axes, finish_figure, text_size
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from symctl.neural.circuit import Circuit, Neuron, Synapse
+    from symctl.neural.circuit import Circuit
+    from symctl.neural.neuron import Neuron, Synapse
 
 __all__ = ["draw_circuit"]
 

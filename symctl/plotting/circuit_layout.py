@@ -35,7 +35,8 @@ import networkx as nx
 import numpy as np
 
 if TYPE_CHECKING:
-    from symctl.neural.circuit import Circuit, Synapse
+    from symctl.neural.circuit import Circuit
+    from symctl.neural.neuron import Synapse
 
 __all__ = ["MIN_RADIUS", "XSTEP", "YSTEP", "Arc", "CircuitLayout", "circuit_layout", "grid"]
 
