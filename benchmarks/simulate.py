@@ -20,8 +20,16 @@ import control
 import numpy as np
 import sympy as sp
 
-from symctl import MuscleModel, augment, controller_tf, factor, general_realization, lqr_gains
-from symctl.neural.simulate import closed_loop_response, simulate_batch
+from symctl import (
+    MuscleModel,
+    augment,
+    closed_loop_response,
+    controller_tf,
+    factor,
+    general_realization,
+    lqr_gains,
+    simulate_batch,
+)
 from symctl.realization.realization import controller_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3
 

@@ -1,41 +1,29 @@
 """symctl: neural implementations of delayed optimal controllers, derived in closed form.
 
-The public names, in the order of the paper's pipeline. They are loaded on first use
-(PEP 562), so ``import symctl`` stays quick and a script pays only for what it uses.
+The public names, in the order of the paper's pipeline, are in ONE table below:
+a name is public if and only if it is listed there (``symctl.__all__``); every
+other name, in any module, is internal and may change. Names are loaded on first
+use (PEP 562, :func:`symctl._util.lazy.attach`), so ``import symctl`` stays quick
+and a script pays only for what it uses. ``symctl.latex`` is reached as an
+attribute too.
+
+Examples
+--------
+>>> import symctl
+>>> symctl.controller_tf(2)
+DiscreteTF((K_0)/(z**2 - K_1*z - K_2), dt=None)
+>>> symctl.controller_tf(2) == symctl.controller_tf(2)
+True
 """
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING
-
-from symctl.errors import (
-    DimensionError,
-    NotStabilizableError,
-    ParameterError,
-    ParseError,
-    SymctlError,
-    SymctlTypeError,
-)
+from symctl._util.lazy import attach
 
 __version__ = "0.1.0"
 
-_LOCATIONS = {
-    "RealizationCheck": "symctl.realization.check",
-    "check_realization": "symctl.realization.check",
-    "Circuit": "symctl.neural.circuit",
-    "CircuitSystem": "symctl.neural.circuit",
-    "Neuron": "symctl.neural.circuit",
-    "Synapse": "symctl.neural.circuit",
-    "CompatibilityResult": "symctl.compatibility.check",
-    "ControllerCompatibility": "symctl.compatibility.controller",
-    "brute_force_compatibility": "symctl.compatibility.check",
-    "check_compatibility": "symctl.compatibility.check",
-    "controller_compatibility": "symctl.compatibility.controller",
-    "AugmentedSystem": "symctl.design.augment",
-    "augment": "symctl.design.augment",
-    "DelayAssignment": "symctl.compatibility.assignment",
-    "DelayGraph": "symctl.compatibility.delaygraph",
+_PUBLIC = {
+    # errors
     "DimensionError": "symctl.errors",
     "LatexError": "symctl.errors",
     "NotStabilizableError": "symctl.errors",
@@ -43,11 +31,13 @@ _LOCATIONS = {
     "ParseError": "symctl.errors",
     "SymctlError": "symctl.errors",
     "SymctlTypeError": "symctl.errors",
-    "Factorization": "symctl.realization.factorization",
-    "factor": "symctl.realization.factorization",
-    "FiringPatterns": "symctl.neural.firing",
-    "FiringSummary": "symctl.neural.firing",
-    "circuit_firing": "symctl.neural.firing",
+    # symbols
+    "z": "symctl.symbols",
+    # 1-2. design: plant, delays, LQR, G(z)
+    "AugmentedSystem": "symctl.design.augment",
+    "augment": "symctl.design.augment",
+    "controller_tf": "symctl.design.controller",
+    "prove_controller_tf": "symctl.design.controller",
     "Gains": "symctl.design.lqr",
     "lqr_gains": "symctl.design.lqr",
     "DiscretePlant": "symctl.design.plant",
@@ -55,161 +45,54 @@ _LOCATIONS = {
     "MuscleModel": "symctl.design.plant",
     "discretize": "symctl.design.plant",
     "linearize": "symctl.design.plant",
+    "DiscreteTF": "symctl.design.tf",
+    # 3. realization: G = G3 G2 G1, realizations of G2, the exact checker
+    "RealizationCheck": "symctl.realization.check",
+    "check_realization": "symctl.realization.check",
+    "Factorization": "symctl.realization.factorization",
+    "factor": "symctl.realization.factorization",
     "Realization": "symctl.realization.realization",
     "controllable_canonical": "symctl.realization.realization",
-    "general_realization": "symctl.realization.realizers",
+    "controller_realization": "symctl.realization.realization",
+    "first_order_realization": "symctl.realization.realization",
     "observable_canonical": "symctl.realization.realization",
-    "random_realization": "symctl.realization.realizers",
-    "BatchResponse": "symctl.neural.simulate",
-    "NonlinearCheck": "symctl.neural.simulate",
-    "Response": "symctl.neural.simulate",
-    "closed_loop_response": "symctl.neural.simulate",
+    "RealizerResult": "symctl.realization.realizers",
+    "general_realization": "symctl.realization.realizers",
+    "get_realizer": "symctl.realization.realizers",
     "ifp_realization": "symctl.realization.realizers",
-    "nonlinear_check": "symctl.neural.simulate",
-    "open_loop_response": "symctl.neural.simulate",
-    "pulse": "symctl.neural.simulate",
-    "simulate_batch": "symctl.neural.simulate",
-    "simulate_realization": "symctl.neural.simulate",
+    "random_realization": "symctl.realization.realizers",
+    # 4. compatibility: structures, delay graphs, assignments
+    "DelayAssignment": "symctl.compatibility.assignment",
+    "CompatibilityResult": "symctl.compatibility.check",
+    "brute_force_compatibility": "symctl.compatibility.check",
+    "check_compatibility": "symctl.compatibility.check",
+    "ControllerCompatibility": "symctl.compatibility.controller",
+    "controller_compatibility": "symctl.compatibility.controller",
+    "DelayGraph": "symctl.compatibility.delaygraph",
     "Block": "symctl.compatibility.structure",
     "Structure": "symctl.compatibility.structure",
     "ifp_structure": "symctl.compatibility.structure",
     "same_structure": "symctl.compatibility.structure",
+    # 5. neural: circuits, simulation, firing
+    "BatchResponse": "symctl.neural.batch",
+    "simulate_batch": "symctl.neural.batch",
+    "Circuit": "symctl.neural.circuit",
+    "CircuitSystem": "symctl.neural.circuit",
+    "FiringPatterns": "symctl.neural.firing",
+    "FiringSummary": "symctl.neural.firing",
+    "circuit_firing": "symctl.neural.firing",
+    "Neuron": "symctl.neural.neuron",
+    "Synapse": "symctl.neural.neuron",
+    "NonlinearCheck": "symctl.neural.nonlinear",
+    "nonlinear_check": "symctl.neural.nonlinear",
+    "Response": "symctl.neural.simulate",
+    "closed_loop_response": "symctl.neural.simulate",
+    "open_loop_response": "symctl.neural.simulate",
+    "pulse": "symctl.neural.simulate",
+    "simulate_realization": "symctl.neural.simulate",
+    # 6. report: the whole derivation
     "PaperResults": "symctl.report.pipeline",
     "derive_paper": "symctl.report.pipeline",
-    "z": "symctl.symbols",
-    "DiscreteTF": "symctl.design.tf",
-    "controller_tf": "symctl.design.controller",
-    "prove_controller_tf": "symctl.design.controller",
 }
 
-__all__ = [
-    "AugmentedSystem",
-    "BatchResponse",
-    "Block",
-    "Circuit",
-    "CircuitSystem",
-    "CompatibilityResult",
-    "ControllerCompatibility",
-    "DelayAssignment",
-    "DelayGraph",
-    "DimensionError",
-    "DiscretePlant",
-    "DiscreteTF",
-    "Factorization",
-    "FiringPatterns",
-    "FiringSummary",
-    "Gains",
-    "LatexError",
-    "Linearization",
-    "MuscleModel",
-    "Neuron",
-    "NonlinearCheck",
-    "NotStabilizableError",
-    "PaperResults",
-    "ParameterError",
-    "ParseError",
-    "Realization",
-    "RealizationCheck",
-    "Response",
-    "Structure",
-    "SymctlError",
-    "SymctlTypeError",
-    "Synapse",
-    "augment",
-    "brute_force_compatibility",
-    "check_compatibility",
-    "check_realization",
-    "circuit_firing",
-    "closed_loop_response",
-    "controllable_canonical",
-    "controller_compatibility",
-    "controller_tf",
-    "derive_paper",
-    "discretize",
-    "factor",
-    "general_realization",
-    "ifp_realization",
-    "ifp_structure",
-    "linearize",
-    "lqr_gains",
-    "nonlinear_check",
-    "observable_canonical",
-    "open_loop_response",
-    "prove_controller_tf",
-    "pulse",
-    "random_realization",
-    "same_structure",
-    "simulate_batch",
-    "simulate_realization",
-    "z",
-]
-
-
-_SUBMODULES = ("latex",)  # modules reached as attributes: ``symctl.latex.export(...)``
-
-
-def __getattr__(name: str):
-    if name in _SUBMODULES:
-        return importlib.import_module(f"symctl.{name}")
-    module = _LOCATIONS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'symctl' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__) | set(_SUBMODULES))
-
-
-if TYPE_CHECKING:  # static tools see the eager imports
-    from symctl.compatibility.assignment import DelayAssignment
-    from symctl.compatibility.check import (
-        CompatibilityResult,
-        brute_force_compatibility,
-        check_compatibility,
-    )
-    from symctl.compatibility.controller import ControllerCompatibility, controller_compatibility
-    from symctl.compatibility.delaygraph import DelayGraph
-    from symctl.compatibility.structure import Block, Structure, ifp_structure, same_structure
-    from symctl.design.augment import AugmentedSystem, augment
-    from symctl.design.controller import controller_tf, prove_controller_tf
-    from symctl.design.lqr import Gains, lqr_gains
-    from symctl.design.plant import DiscretePlant, Linearization, MuscleModel, discretize, linearize
-    from symctl.design.tf import DiscreteTF
-    from symctl.errors import (
-        DimensionError,
-        NotStabilizableError,
-        ParameterError,
-        ParseError,
-        SymctlError,
-        SymctlTypeError,
-    )
-    from symctl.neural.circuit import Circuit, CircuitSystem, Neuron, Synapse
-    from symctl.neural.firing import FiringPatterns, FiringSummary, circuit_firing
-    from symctl.neural.simulate import (
-        BatchResponse,
-        NonlinearCheck,
-        Response,
-        closed_loop_response,
-        nonlinear_check,
-        open_loop_response,
-        pulse,
-        simulate_batch,
-        simulate_realization,
-    )
-    from symctl.realization.check import RealizationCheck, check_realization
-    from symctl.realization.factorization import Factorization, factor
-    from symctl.realization.realization import (
-        Realization,
-        controllable_canonical,
-        observable_canonical,
-    )
-    from symctl.realization.realizers import (
-        general_realization,
-        ifp_realization,
-        random_realization,
-    )
-    from symctl.report.pipeline import PaperResults, derive_paper
-    from symctl.symbols import z
+__getattr__, __dir__, __all__ = attach(__name__, _PUBLIC, submodules=("latex",))

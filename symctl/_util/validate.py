@@ -338,3 +338,65 @@ def as_random(value, argname: str):
     raise SymctlTypeError(
         f"{argname}: expected None, an int seed, random.Random or numpy Generator, got {value!r}"
     )
+
+
+def positive_int(value, argname: str) -> int:
+    """An integer >= 1 (bools and non-integral numbers are refused).
+
+    >>> from symctl._util.validate import positive_int
+    >>> positive_int(3, "steps")
+    3
+    >>> positive_int(0, "steps")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: steps: must be an integer >= 1, got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+        raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
+    return int(value)
+
+
+def float_array(value, argname: str) -> np.ndarray:
+    """A finite float64 NumPy array of any shape, without going through sympy.
+
+    Text, None and ragged or non-numeric sequences are a :class:`SymctlTypeError`;
+    NaN or inf entries a :class:`ParameterError`.
+
+    >>> from symctl._util.validate import float_array
+    >>> float_array([[1, 2]], "w")
+    array([[1., 2.]])
+    >>> float_array([1.0, float("nan")], "w")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: w: entries must be finite (no NaN or inf)
+    """
+    if isinstance(value, str | bytes) or value is None:
+        raise SymctlTypeError(f"{argname}: expected an array of numbers, got {value!r}")
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise SymctlTypeError(
+            f"{argname}: expected an array of real numbers, got {type(value).__name__}"
+        ) from None
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{argname}: entries must be finite (no NaN or inf)")
+    return arr
+
+
+def readonly_array(value) -> np.ndarray:
+    """A read-only float array for a value object: a copy, unless it is read-only already.
+
+    The caller's array is never frozen in place (its flags stay as they were).
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import readonly_array
+    >>> a = np.zeros(2)
+    >>> b = readonly_array(a)
+    >>> b.flags.writeable, a.flags.writeable, readonly_array(b) is b
+    (False, True, True)
+    """
+    arr = np.asarray(value, dtype=float)
+    if arr.flags.writeable:
+        arr = np.array(arr, order="C")
+        arr.setflags(write=False)
+    return arr

@@ -70,12 +70,11 @@ the :math:`G_3` neuron at :math:`v_3`. No compatible assignment can put the
 :math:`\tilde E_{13} \le 1 < 2`.
 
 Firing traces: every neuron is named by its adder's signal
-(:attr:`Circuit.neuron_signals`), and :meth:`Circuit.as_linear_system` gives a
+(:attr:`Neuron.name`), and :meth:`Circuit.as_linear_system` gives a
 state-space system whose outputs are the neurons' axon outputs (then the circuit
 outputs), so simulating it reproduces each neuron's firing trace.
 
->>> from symctl import controller_tf, controllable_canonical, factor
->>> from symctl.compatibility.structure import Structure
+>>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
 >>> f = factor(controller_tf(2))
 >>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
 >>> c.n_neurons, [n.name for n in c.neurons]
@@ -88,6 +87,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import NamedTuple
 
 import networkx as nx
@@ -95,131 +95,15 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.texnames import signal_tex
+from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.structure import Block, Structure
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.symbols import z
+from symctl.neural.neuron import Neuron, Synapse
 
 __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
-
-
-def _sign(weight: sp.Expr) -> str:
-    if weight.is_zero:
-        return "0"
-    if weight.is_positive:
-        return "+"
-    if weight.is_negative:
-        return "-"
-    return "?"
-
-
-class Synapse(NamedTuple):
-    r"""One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
-
-    Attributes
-    ----------
-    source : str
-        The presynaptic neuron or circuit input (a structure signal name).
-    target : str
-        The postsynaptic neuron, or a circuit output (a structure output signal).
-    weight : sympy expression
-        The synaptic weight: the product of the gains on the path.
-    delay : int
-        The number of unit delays on the path: the branch delay into the adder
-        plus any axon delays before it (e.g. 2 for :math:`x_3 \to y` through
-        :math:`x_2, x_1` in a third-order controllable canonical realization).
-    path : tuple of str
-        The structure signals strictly between ``source`` and ``target``, in
-        signal-flow order.
-
-    >>> s = Synapse("u", "x", sp.Integer(-2), 1)
-    >>> s.sign, s.excitatory, s.inhibitory
-    ('-', False, True)
-    """
-
-    source: str
-    target: str
-    weight: sp.Expr
-    delay: int
-    path: tuple[str, ...] = ()
-
-    @property
-    def sign(self) -> str:
-        """``"+"`` (excitatory), ``"-"`` (inhibitory), ``"0"``, or ``"?"`` when symbolic."""
-        return _sign(sp.sympify(self.weight))
-
-    @property
-    def excitatory(self) -> bool:
-        """Whether the weight is known to be positive."""
-        return self.sign == "+"
-
-    @property
-    def inhibitory(self) -> bool:
-        """Whether the weight is known to be negative."""
-        return self.sign == "-"
-
-
-@dataclass(frozen=True, eq=False)
-class Neuron:
-    r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
-
-    Its axon output is
-    :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`: the
-    self-dynamics terms :math:`(w_k, d_k)` and the synapses from sources
-    :math:`s_j` with weights :math:`v_j` and delays :math:`e_j`.
-
-    Attributes
-    ----------
-    name : str
-        The adder's signal in the structure (e.g. ``"G2.x2"``).
-    part : str
-        The part of a series connection it belongs to (``"G1"``, ...; ``""`` if none).
-    synapses : tuple of Synapse
-        Its synaptic inputs from other neurons and from circuit inputs.
-    self_terms : tuple of Synapse
-        The terms fed back from its own output (``source == target == name``).
-    axon : tuple of Synapse
-        Its outgoing branches: synapses onto other neurons (in :attr:`Circuit.neurons`
-        order), then the circuit outputs it drives.
-    vertex : int or None
-        The delay-graph vertex of its signal, when an assignment was given.
-
-    >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.compatibility.structure import Structure
-    >>> from symctl.symbols import epsilon_1, C_1
-    >>> c = Circuit.from_structure(Structure.from_realization(
-    ...     first_order_realization(epsilon_1, C_1)))
-    >>> n = c.neuron("x1")
-    >>> n.self_weight, n.self_dynamics, [(s.source, s.weight, s.delay) for s in n.synapses]
-    (epsilon_1, epsilon_1/z, [('u', C_1, 1)])
-    """
-
-    name: str
-    part: str
-    synapses: tuple[Synapse, ...]
-    self_terms: tuple[Synapse, ...]
-    axon: tuple[Synapse, ...]
-    vertex: int | None = None
-
-    @property
-    def self_weight(self) -> sp.Expr:
-        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics).
-
-        With one self term (e.g. :math:`\epsilon_1` for :math:`G_1`) this is its
-        weight; with several lags see :attr:`self_dynamics`.
-        """
-        return sp.Add(*(s.weight for s in self.self_terms))
-
-    @property
-    def self_dynamics(self) -> sp.Expr:
-        r"""The self-dynamics as a polynomial in :math:`z^{-1}`, :math:`\sum_k w_k z^{-d_k}`."""
-        return sp.Add(*(s.weight * z ** (-s.delay) for s in self.self_terms))
-
-    @property
-    def branches(self) -> int:
-        """The number of axon branches (outgoing synapses and circuit outputs, not self-loops)."""
-        return len(self.axon)
 
 
 class CircuitSystem(NamedTuple):
@@ -227,7 +111,29 @@ class CircuitSystem(NamedTuple):
 
     The state is the circuit's delayed signals (the structure's unit delays);
     the outputs are the neurons' axon outputs, in :attr:`Circuit.neurons` order,
-    then the circuit outputs. Matrices are sympy (or NumPy when ``numeric``).
+    then the circuit outputs. Made by :meth:`Circuit.as_linear_system`; it
+    unpacks as ``A, B, C, D, states, inputs, outputs``.
+
+    Attributes
+    ----------
+    A, B, C, D : sympy Matrix or NumPy array
+        The state-space matrices (NumPy when ``numeric=True``).
+    states : tuple of str
+        The structure's delay blocks, in order.
+    inputs : tuple of str
+        The circuit inputs.
+    outputs : tuple of str
+        The neurons (their axon outputs), then the circuit outputs.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, ifp_structure
+    >>> A, B, C, D, states, inputs, outputs = Circuit.from_structure(
+    ...     ifp_structure(1)).as_linear_system()
+    >>> states, inputs, outputs
+    (('u',), ('x',), ('mu', 'u'))
+    >>> A, B
+    (Matrix([[K_1]]), Matrix([[K_0]]))
     """
 
     A: object
@@ -259,12 +165,18 @@ class Circuit(LatexMixin):
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
-    >>> from symctl import observable_canonical, controller_tf, factor
-    >>> from symctl.compatibility.structure import Structure
-    >>> c = Circuit.from_structure(Structure.from_realization(
-    ...     observable_canonical(factor(controller_tf(2)).G2)))
+    Two circuits are equal when they are read off equal structures (SymPy-structural
+    gains) and place their neurons at the same vertices; a circuit hashes by value.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, controller_tf, factor, observable_canonical
+    >>> S = Structure.from_realization(observable_canonical(factor(controller_tf(2)).G2))
+    >>> c = Circuit.from_structure(S)
     >>> c.n_neurons, c.inputs, [o.source for o in c.outputs]
     (3, ('u',), ['y'])
+    >>> c == Circuit.from_structure(S)
+    True
     """
 
     structure: Structure
@@ -272,6 +184,22 @@ class Circuit(LatexMixin):
     inputs: tuple[str, ...]
     outputs: tuple[Synapse, ...]
     input_axons: Mapping[str, tuple[Synapse, ...]]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "input_axons", MappingProxyType(dict(self.input_axons)))
+
+    def _key(self) -> tuple:
+        S = self.structure
+        return (tuple(S.blocks.items()), S.inputs, S.outputs, self.neurons)
+
+    def __eq__(self, other) -> bool:
+        """Equal when read off equal structures (SymPy-structural gains) with equal vertices."""
+        if not isinstance(other, Circuit):
+            return NotImplemented
+        return self is other or self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
 
     # ------------------------------------------------------------ construction
     @classmethod
@@ -309,7 +237,7 @@ class Circuit(LatexMixin):
 
         Examples
         --------
-        >>> from symctl import controllable_canonical, controller_tf, factor
+        >>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))
         >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
         >>> c.n_neurons, c.neuron("x2").branches
@@ -375,7 +303,22 @@ class Circuit(LatexMixin):
     def neuron(self, name: str) -> Neuron:
         """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        Parameters
+        ----------
+        name : str
+
+        Returns
+        -------
+        Neuron
+
+        Raises
+        ------
+        ParameterError
+            No neuron has that name (the message lists the neurons).
+
+        Examples
+        --------
+        >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).neuron("mu").self_dynamics
         K_1/z + K_2/z**2
         """
@@ -387,11 +330,6 @@ class Circuit(LatexMixin):
         )
 
     @property
-    def neuron_signals(self) -> dict[str, str]:
-        """Each neuron's structure signal (its axon output), to read traces off a simulation."""
-        return {n.name: n.name for n in self.neurons}
-
-    @property
     def synapses(self) -> tuple[Synapse, ...]:
         """Every synapse onto a neuron (self-dynamics excluded), neuron by neuron."""
         return tuple(s for n in self.neurons for s in n.synapses)
@@ -399,7 +337,14 @@ class Circuit(LatexMixin):
     def branches(self) -> dict[str, int]:
         """The number of axon branches of each neuron and input.
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        Returns
+        -------
+        dict of str to int
+            Neurons in order, then the inputs.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, ifp_structure
         >>> Circuit.from_structure(ifp_structure(2)).branches()
         {'mu': 1, 'x': 1}
         """
@@ -419,6 +364,24 @@ class Circuit(LatexMixin):
         The circuit keeps its shape: a weight that becomes zero stays a synapse
         of weight 0 (substitute into the realization to drop it). Vertices are kept.
 
+        Parameters
+        ----------
+        *args, **kwargs
+            As for :meth:`sympy.core.basic.Basic.subs`, e.g. a dict of symbols to values.
+
+        Returns
+        -------
+        Circuit
+
+        Raises
+        ------
+        ParameterError
+            A gain becomes infinite (e.g. a division by a symbol set to 0).
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
@@ -461,6 +424,11 @@ class Circuit(LatexMixin):
             Return float NumPy arrays (every weight must be a number, e.g. after
             :meth:`subs`) instead of sympy matrices.
 
+        Returns
+        -------
+        CircuitSystem
+            Unpacks as ``A, B, C, D, states, inputs, outputs``.
+
         Raises
         ------
         ParameterError
@@ -468,6 +436,8 @@ class Circuit(LatexMixin):
 
         Examples
         --------
+        >>> import sympy as sp
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
@@ -519,9 +489,25 @@ class Circuit(LatexMixin):
     def equations(self, digits: int | None = None) -> list[str]:
         r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
 
-        ``digits``, when given, rounds the weights' numbers to that many
-        significant digits (exact fractions included).
+        Parameters
+        ----------
+        digits : int, optional
+            Round the weights' numbers to that many significant digits (exact
+            fractions included); exact by default.
 
+        Returns
+        -------
+        list of str
+            ``"<neuron>(t) = <weighted past outputs and synapses>"``, in neuron order.
+
+        Raises
+        ------
+        ParameterError
+            ``digits`` is not an integer >= 1.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure
         >>> from symctl.realization.realization import first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
@@ -529,10 +515,8 @@ class Circuit(LatexMixin):
         >>> c.equations()
         ['x_{1}(t) = \\epsilon_{1}\\, x_{1}(t-1) + C_{1}\\, u(t-1)']
         """
-        if digits is not None and (
-            isinstance(digits, bool) or not isinstance(digits, int) or digits < 1
-        ):
-            raise ParameterError(f"digits: must be an integer >= 1 or None, got {digits!r}")
+        if digits is not None:
+            digits = positive_int(digits, "digits")
         out = []
         for n in self.neurons:
             terms = []
@@ -543,9 +527,9 @@ class Circuit(LatexMixin):
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
                 if isinstance(w, sp.Add):
                     tex = rf"\left({latex(w)}\right)\,"
-                terms.append(rf"{tex} {_tex_name(s.source)}(t{_lag(s.delay)})".lstrip())
+                terms.append(rf"{tex} {signal_tex(s.source)}(t{_lag(s.delay)})".lstrip())
             rhs = " + ".join(terms).replace("+ -", "- ") if terms else "0"
-            out.append(rf"{_tex_name(n.name)}(t) = {rhs}")
+            out.append(rf"{signal_tex(n.name)}(t) = {rhs}")
         return out
 
     def latex(self) -> str:
@@ -590,13 +574,30 @@ class Circuit(LatexMixin):
         (positive) ones are blue with an arrow head, inhibitory (negative) red
         with a bar, symbolic sign grey; dashed arrows have a one-step delay
         (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
-        right. Returns a :class:`matplotlib.figure.Figure`.
+        right.
 
-        >>> from symctl.compatibility.structure import ifp_structure
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw into it; by default a new figure sized to the drawing.
+        title : str, optional
+            The heading (default ``"neural circuit: <n> neurons"``).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.circuit.draw_circuit` (positions from
+            :func:`symctl.plotting.circuit_layout.circuit_layout`).
+
+        Examples
+        --------
+        >>> from symctl import Circuit, ifp_structure
         >>> type(Circuit.from_structure(ifp_structure(2)).draw()).__name__
         'Figure'
         """
-        return _draw(self, ax, title)
+        from symctl.plotting.circuit import draw_circuit
+
+        return draw_circuit(self, ax, title=title)
 
 
 # ---------------------------------------------------------------- helpers
@@ -684,277 +685,6 @@ def _lag(d: int) -> str:
     return f"-{d}" if d else ""
 
 
-def _tex_name(name: str) -> str:
-    """``G2.x2`` -> ``x_{2}^{G2}``; ``mu`` -> ``\\mu``; other names in roman."""
-    from symctl._util.texnames import signal_tex as _signal_label
-
-    part, _, short = name.rpartition(".")
-    label = _signal_label(short).strip("$")
-    if label == short and not short.isalnum():
-        label = rf"\mathrm{{{short}}}"
-    return rf"{{{label}}}^{{\mathrm{{{part}}}}}" if part else label
-
-
-def _weight_tex(weight) -> str:
-    """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
-    w = sp.sympify(weight)
-    if w.is_number and w.is_real:
-        return f"{float(w):.3g}"
-    return latex(w)
-
-
-def _self_tex(n: Neuron) -> str:
-    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
-    if not n.self_terms:
-        return "0"
-    parts = []
-    for s in sorted(n.self_terms, key=lambda s: s.delay):
-        w = sp.sympify(s.weight)
-        tex = _weight_tex(w)
-        if isinstance(w, sp.Add):
-            tex = rf"\left({tex}\right)"
-        parts.append(tex + (rf"\,z^{{-{s.delay}}}" if s.delay else ""))
-    return " + ".join(parts).replace("+ -", "- ")
-
-
 def _syn_text(s: Synapse, source: str) -> str:
     delay = f", delay {s.delay}" if s.delay else ""
     return f"{source} (weight {s.weight}, sign {s.sign}{delay})"
-
-
-# ---------------------------------------------------------------- drawing
-_COLOURS = {"+": "#1f5fa8", "-": "#c0392b", "?": "0.55", "0": "0.75"}
-_FONT = 9
-_MAX_LABEL = 14  # weights with more visible characters are shown as w_k
-
-
-def _visible(tex: str) -> int:
-    import re
-
-    text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
-    text = re.sub(r"\\[a-zA-Z]+", "m", text)
-    return len(re.sub(r"[{}_^\s]", "", text))
-
-
-def _text_width(text: str, size: float) -> float:
-    from symctl.plotting.common import text_size
-
-    return text_size(text, size)[0]
-
-
-def _layout(c: Circuit):
-    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
-    g = nx.MultiDiGraph()
-    nodes = [*c.inputs, *(n.name for n in c.neurons)]
-    g.add_nodes_from(nodes)
-    edges = [s for n in c.neurons for s in n.synapses]
-    for s in edges:
-        g.add_edge(s.source, s.target)
-    dag = nx.DiGraph()
-    dag.add_nodes_from(nodes)
-    seen: set[str] = set()
-    for root in [*c.inputs, *nodes]:  # depth-first; back edges are feedback
-        if root in seen:
-            continue
-        for a, b, kind in nx.dfs_labeled_edges(g, root):
-            seen.add(b)
-            if kind == "forward" and a != b:
-                dag.add_edge(a, b)
-            elif kind == "nontree" and a != b and not nx.has_path(dag, b, a):
-                dag.add_edge(a, b)
-    col: dict[str, int] = {}
-    for node in nx.topological_sort(dag):
-        if node in c.inputs:
-            col[node] = 0
-        else:
-            col[node] = max((col[p] + 1 for p in dag.predecessors(node)), default=1)
-    last = max(col.values(), default=0) + 1
-    columns: dict[int, list[str]] = {}
-    for node in nodes:
-        columns.setdefault(col[node], []).append(node)
-    for o in c.outputs:
-        col[("out", o.target)] = last
-        columns.setdefault(last, []).append(("out", o.target))
-    # rows: barycenters of the already placed neighbours, two sweeps
-    preds: dict = {n: [] for n in col}
-    for s in edges:
-        preds[s.target].append(s.source)
-    for o in c.outputs:
-        preds[("out", o.target)].append(o.source)
-    row: dict = {}
-    for _ in range(2):
-        for k in sorted(columns):
-            items = columns[k]
-            want = {
-                n: (
-                    np.mean([row[p] for p in preds.get(n, []) if p in row and p != n])
-                    if any(p in row and p != n for p in preds.get(n, []))
-                    else row.get(n, 0.0)
-                )
-                for n in items
-            }
-            items.sort(key=lambda n, w=want: -w[n])
-            mean = np.mean(list(want.values()))
-            for i, n in enumerate(items):
-                row[n] = mean + (len(items) - 1) / 2 - i
-    return col, row
-
-
-def _draw(c: Circuit, ax, title):
-    from matplotlib.patches import Circle, FancyArrowPatch
-
-    from symctl.plotting.common import figure_and_axes, finish_figure
-
-    col, row = _layout(c)
-    xstep, ystep = 2.6, 1.5
-    pos = {n: (xstep * col[n], ystep * row[n]) for n in col}
-    legend: list[str] = []
-
-    def weight_label(s: Synapse) -> str:
-        tex = _weight_tex(s.weight)
-        if _visible(tex) > _MAX_LABEL:
-            legend.append(rf"$w_{{{len(legend) + 1}}} = {tex}$")
-            tex = rf"w_{{{len(legend)}}}"
-        if s.delay > 1:
-            tex += rf"\,z^{{-{s.delay}}}"
-        return f"${tex}$"
-
-    radius = {}
-    body = {}
-    for n in c.neurons:
-        tex = _self_tex(n)
-        if _visible(tex) > 2 * _MAX_LABEL:
-            legend.append(rf"$\mathrm{{self}}({_tex_name(n.name)}) = {tex}$")
-            tex = rf"\mathrm{{self}}_{{{len(legend)}}}"
-        body[n.name] = f"${tex}$"
-        radius[n.name] = max(0.32, _text_width(body[n.name], _FONT) / 2 + 0.1)
-
-    fig, ax, own = figure_and_axes(ax)
-
-    extra: list[tuple[float, float]] = []  # arc label positions, for the extent
-
-    def arrow(a, b, s: Synapse | None, h: float):
-        (x0, y0), (x1, y1) = pos[a], pos[b]
-        length = max(np.hypot(x1 - x0, y1 - y0), 1e-9)
-        rad = -2 * h / length * (1 if x1 >= x0 else -1)
-        sign = s.sign if s is not None else "+"
-        colour = _COLOURS[sign] if s is not None else "0.15"
-        style = "-[,widthB=0.7,lengthB=0" if sign == "-" else "-|>,head_length=0.5,head_width=0.25"
-        ra = radius.get(a, 0.06) * 72
-        rb = radius.get(b, 0.06) * 72
-        dashed = s is not None and s.delay > 0
-        ax.add_patch(
-            FancyArrowPatch(
-                pos[a],
-                pos[b],
-                connectionstyle=f"arc3,rad={rad}",
-                arrowstyle=style,
-                mutation_scale=12,
-                color=colour,
-                lw=1.3,
-                linestyle=(0, (4, 2.5)) if dashed else "-",
-                shrinkA=ra,
-                shrinkB=rb + 1,
-                zorder=1,
-            )
-        )
-        if s is None:
-            return
-        lx = (x0 + x1) / 2 + 0.5 * rad * (y1 - y0)
-        ly = (y0 + y1) / 2 - 0.5 * rad * (x1 - x0)
-        extra.append((lx, ly))
-        ax.text(
-            lx,
-            ly,
-            weight_label(s),
-            ha="center",
-            va="center",
-            fontsize=_FONT,
-            color=colour if sign != "?" else "0.25",
-            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.9},
-            zorder=3,
-        )
-
-    # group parallel synapses (same pair of ends) and give each its own curvature
-    pairs: dict[tuple, list[Synapse]] = {}
-    for n in c.neurons:
-        for s in n.synapses:
-            pairs.setdefault((s.source, s.target), []).append(s)
-    # each arc bulges by a height h (inches; > 0 above): skipping arcs alternate above and
-    # below, feedback arcs run below, parallel synapses fan out; longer arcs bulge more
-    up = 1
-    for (a, b), group in sorted(pairs.items(), key=lambda kv: abs(col[kv[0][1]] - col[kv[0][0]])):
-        span = abs(col[b] - col[a])
-        between = [
-            radius.get(n, 0.1)
-            for n in col
-            if min(col[a], col[b]) < col[n] < max(col[a], col[b]) and abs(row[n] - row[a]) < 1
-        ]
-        skips = bool(between)
-        if col[b] <= col[a]:
-            base = -(0.55 + 0.4 * max(span - 1, 0))
-        elif skips:
-            base, up = up * (max(between) + 0.5 + 0.4 * (span - 2)), -up
-        else:
-            base = 0.0
-        for k, s in enumerate(group):
-            h = base + (k - (len(group) - 1) / 2) * 0.4
-            arrow(a, b, s, h)
-    for o in c.outputs:
-        key = ("out", o.target)
-        if o.source in pos:
-            arrow(o.source, key, o if (o.weight != 1 or o.delay) else None, 0.0)
-
-    for n in c.neurons:
-        x, y = pos[n.name]
-        ax.add_patch(
-            Circle(
-                (x, y),
-                radius[n.name],
-                fc="#f3f3f3",
-                ec="black",
-                lw=1.2,
-                zorder=2,
-                gid=f"neuron:{n.name}",
-            )
-        )
-        ax.text(x, y, body[n.name], ha="center", va="center", fontsize=_FONT, zorder=3)
-        where = f"  (v{n.vertex})" if n.vertex is not None else ""
-        ax.text(
-            x,
-            y + radius[n.name] + 0.08,
-            f"${_tex_name(n.name)}${where}",
-            ha="center",
-            va="bottom",
-            fontsize=_FONT,
-            color="0.2",
-            zorder=3,
-        )
-    for u in c.inputs:
-        x, y = pos[u]
-        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
-        ax.text(x - 0.12, y, f"${_tex_name(u)}$", ha="right", va="center", fontsize=_FONT + 1)
-    for o in c.outputs:
-        x, y = pos[("out", o.target)]
-        ax.add_patch(Circle((x, y), 0.06, fc="black", zorder=2))
-        name = "output" if o.target == o.source else f"${_tex_name(o.target)}$"
-        ax.text(x + 0.12, y, name, ha="left", va="center", fontsize=_FONT + 1)
-
-    xs = [p[0] for p in pos.values()]
-    ys = [p[1] for p in pos.values()]
-    big = max(radius.values(), default=0.3)
-    x_lo, x_hi = min(xs) - 0.9, max(xs) + 0.9
-    y_lo = min([min(ys) - big - 0.5] + [y - 0.35 for _, y in extra])
-    y_hi = max([max(ys) + big + 0.45] + [y + 0.35 for _, y in extra])
-    heading = title or (f"neural circuit: {c.n_neurons} neuron{'s' if c.n_neurons != 1 else ''}")
-    key = (
-        "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
-        "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
-    )
-    width = 0.0
-    for k, line in enumerate(legend):
-        ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)
-        width = max(width, _text_width(line, _FONT) + 0.3)
-    y_lo -= 0.28 * len(legend) + 0.15
-    x_hi = max(x_hi, x_lo + width)
-    return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)

@@ -32,7 +32,7 @@ from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
 realization, no free parameters): its one neuron :math:`\mu` of
 :func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
 
->>> from symctl import MuscleModel, augment, lqr_gains
+>>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> fp = circuit_firing("controllable", gains, count=2)
 >>> fp.neurons, fp.firing["G2.y"].shape
@@ -41,14 +41,15 @@ realization, no free parameters): its one neuron :math:`\mu` of
 
 from __future__ import annotations
 
-import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
-from symctl._util.validate import as_generator
+from symctl._util.texnames import signal_tex
+from symctl._util.validate import as_generator, positive_int, positive_number, readonly_array
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
 from symctl.design.controller import controller_tf
@@ -60,6 +61,7 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     Response,
+    _run,
     closed_loop_response,
     simulate_realization,
 )
@@ -81,7 +83,6 @@ _TITLES = {
 }
 _EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
 _EPS_MAX = 899
-_RATE_LABEL = "change in firing rate [spikes/s]"
 
 
 # ---------------------------------------------------------------- results
@@ -100,12 +101,30 @@ class FiringSummary:
     behaviour_spread : float
         The largest difference between realizations of the force and rate traces
         (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
+
+    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symctl import FiringSummary
+    >>> s = FiringSummary(("x1", "x2"), np.array([[1.0, -2.0], [3.0, -2.5]]), np.array([2.0, 0.5]), 0.0)
+    >>> print(s.table())
+     neuron | peak #1   | peak #2   | spread
+    ----------------------------------------
+     x1     |         1 |         3 | 2
+     x2     |        -2 |      -2.5 | 0.5
+    force/rate spread across realizations: 0.00e+00
     """
 
     neurons: tuple[str, ...]
     peak: np.ndarray
     spread: np.ndarray
     behaviour_spread: float
+
+    def __post_init__(self) -> None:  # the arrays are read-only copies
+        for name in ("peak", "spread"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
 
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
@@ -152,6 +171,18 @@ class FiringPatterns:
     max_deviation : float
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
+
+    Made by :func:`circuit_firing`; the arrays are read-only copies, ``firing``
+    and each of ``params`` read-only mappings.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
+    >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+    >>> fp.kind, fp.count, fp.neurons
+    ('observable', 2, ('G2.x1', 'G2.x2', 'G2.y'))
+    >>> fp.legend_label(0)
+    '#1: $\\epsilon_{1}$ = 0.631, $\\epsilon_{3}$ = 0.246'
     """
 
     kind: str
@@ -166,6 +197,14 @@ class FiringPatterns:
     reference: Response
     max_deviation: float
 
+    def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
+        for name in ("t", "delta_f", "delta_r"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+        firing = {k: readonly_array(v) for k, v in self.firing.items()}
+        object.__setattr__(self, "firing", MappingProxyType(firing))
+        params = tuple(MappingProxyType(dict(p)) for p in self.params)
+        object.__setattr__(self, "params", params)
+
     @property
     def neurons(self) -> tuple[str, ...]:
         """The neuron names, in circuit order."""
@@ -179,7 +218,7 @@ class FiringPatterns:
     def legend_label(self, i: int) -> str:
         r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based)."""
         eps = [
-            f"{_tex(str(k))} = {float(v):.3g}"
+            f"${signal_tex(str(k))}$ = {float(v):.3g}"
             for k, v in self.params[i].items()
             if str(k).startswith("epsilon")
         ]
@@ -188,7 +227,7 @@ class FiringPatterns:
     def summary(self) -> FiringSummary:
         """Per neuron, the spread of peak firing across realizations (see :class:`FiringSummary`).
 
-        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=3)
         >>> s = fp.summary()
         >>> bool(s.spread[:2].min() > 1e-3 > 1e-12 > s.behaviour_spread)   # x1, x2 differ
@@ -220,71 +259,24 @@ class FiringPatterns:
         Returns
         -------
         matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.firing.firing_plot`.
+
+        Raises
+        ------
+        ParameterError
+            ``ncols`` is not an integer >= 1.
 
         Examples
         --------
-        >>> from symctl import MuscleModel, augment, lqr_gains
+        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
         >>> fig = fp.plot()
         >>> [ax.get_title() for ax in fig.axes][1:]
         ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
         """
-        from matplotlib.figure import Figure
+        from symctl.plotting.firing import firing_plot
 
-        if isinstance(ncols, bool) or not isinstance(ncols, numbers.Integral) or ncols < 1:
-            raise ParameterError(f"ncols: must be an integer >= 1, got {ncols!r}")
-        names = self.neurons
-        cols = max(1, min(int(ncols), len(names)))
-        rows = -(-len(names) // cols)
-        fig = Figure(figsize=(max(3.6 * cols + 1.2, 8.0), 2.2 + 2.7 * rows), layout="constrained")
-        grid = fig.add_gridspec(1 + rows, cols, height_ratios=[0.55] + [1.0] * rows)
-        top = fig.add_subplot(grid[0, :])
-        for i in range(self.count):
-            top.plot(self.t, self.f_bar + self.delta_f[i], color=f"C{i % 10}", lw=1.2)
-        top.plot(self.t, self.f_bar + self.reference.delta_f[:, 0], "k:", lw=1.2,
-                 label="optimal controller (identical)")  # fmt: skip
-        top.set_ylabel("force f [N]")
-        top.set_title("force, every realization (identical)", fontsize="medium")
-        top.legend(loc="upper right", fontsize="small")
-        top.grid(alpha=0.3)
-        axes = []
-        for k, name in enumerate(names):
-            ax = fig.add_subplot(grid[1 + k // cols, k % cols], sharex=top)
-            for i in range(self.count):
-                ax.plot(self.t, self.firing[name][i], marker=".", ms=3, lw=1.3,
-                        color=f"C{i % 10}", label=self.legend_label(i))  # fmt: skip
-            ax.axhline(0, color="black", lw=0.5)
-            ax.set_title(f"neuron {_tex(name.rpartition('.')[2])}")
-            ax.set_xlabel(f"time [{self.reference.time_unit}]")
-            if k % cols == 0:
-                ax.set_ylabel(_RATE_LABEL)
-            ax.grid(alpha=0.3)
-            axes.append(ax)
-        if axes:
-            handles, labels = axes[0].get_legend_handles_labels()
-            fig.legend(handles, labels, loc="outside lower center", fontsize="small",
-                       ncols=min(self.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
-        what = "the neuron of the" if self.kind == "ifp" else "the neurons of $G_2$,"
-        fig.suptitle(
-            f"Firing of {what} {_TITLES[self.kind]}\n"
-            + (
-                "one realization: the optimal controller's delay chain"
-                if self.kind == "ifp"
-                else "same force and motor-neuron rate, different firing patterns"
-            )
-        )
-        return fig
-
-
-def _tex(name: str) -> str:
-    r"""``x1`` -> ``$x_{1}$``, ``mu`` -> ``$\mu$``, ``epsilon_{1,2}`` -> ``$\epsilon_{1,2}$``."""
-    head = name.rstrip("0123456789")
-    tail = name[len(head) :]
-    if "_" in head:
-        head, _, tail = name.partition("_")
-        tail = tail.strip("{}")
-    head = rf"\{head}" if head in ("mu", "gamma", "epsilon") else head
-    return f"${head}_{{{tail}}}$" if tail else f"${head}$"
+        return firing_plot(self, ncols)
 
 
 # ---------------------------------------------------------------- arguments
@@ -297,13 +289,12 @@ def _kind(kind) -> str:
 def _count(count, kind: str) -> int:
     if count is None:
         return 1 if kind == "ifp" else 4
-    if isinstance(count, bool) or not isinstance(count, numbers.Integral) or count < 1:
-        raise ParameterError(f"count: must be an integer >= 1, got {count!r}")
+    count = positive_int(count, "count")
     if kind == "ifp" and count != 1:
         raise ParameterError(
             f"count: the IFP controller has a single realization, so count must be 1, got {count}"
         )
-    return int(count)
+    return count
 
 
 def _gains(gains, kind: str) -> Gains:
@@ -365,15 +356,16 @@ def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
     r"""Every neuron's axon output and the circuit output, driven from rest by ``u`` ``(steps,)``.
 
     :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)` of
-    :meth:`Circuit.as_linear_system`; keys are the output names (neurons, then
-    ``"output"``).
+    :meth:`Circuit.as_linear_system`, stepped by the simulations' one time loop
+    (the input enters every state through ``B``); keys are the output names
+    (neurons, then ``"output"``).
     """
     sys = circuit.as_linear_system(numeric=True)
-    s = np.zeros(sys.A.shape[0])
-    out = np.empty((u.size, len(sys.outputs)))
-    for k, uk in enumerate(u):
-        out[k] = sys.C @ s + sys.D[:, 0] * uk
-        s = sys.A @ s + sys.B[:, 0] * uk
+    k = sys.A.shape[0]
+    _, out, _ = _run(
+        sys.A[:, :, None], sys.C[:, :, None], k, u[:, None] * sys.B[:, 0], states=False
+    )
+    out = out[0] + u[:, None] * sys.D[:, 0]
     traces = dict(zip(sys.outputs[: circuit.n_neurons], out.T[: circuit.n_neurons], strict=True))
     traces["output"] = out[:, -1]
     return traces
@@ -453,7 +445,8 @@ def circuit_firing(
 
     Examples
     --------
-    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> import numpy as np
+    >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> fp = circuit_firing("general", gains, count=3, seed=1)
     >>> fp.neurons
@@ -472,8 +465,7 @@ def circuit_firing(
     plant = _plant(plant, gains)
     count = _count(count, kind)
     gen = as_generator(seed, "seed")
-    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not rtol > 0:
-        raise ParameterError(f"rtol: must be a positive number, got {rtol!r}")
+    rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}
     ref = closed_loop_response(gains, disturbance=disturbance, **window)
     rows: list[tuple] = []

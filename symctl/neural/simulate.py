@@ -5,8 +5,10 @@ pulse in firing rate (Fig. ol_sims); the loop closed with the optimal delayed
 controller and hit by a pulse disturbance on the force (Fig. cl_sims); the same
 loop closed with any realization of :math:`G = G_3 G_2 G_1` (Figs. full_diagram,
 ccr_diagram, ocr_diagram), whose outputs agree while the neurons' firing
-patterns differ; the linear controller around the original nonlinear muscle;
-and a batch simulator vectorized over realizations.
+patterns differ. Every simulation here, in :mod:`symctl.neural.batch` (many
+loops at once) and in :mod:`symctl.neural.firing` (the neurons' traces) runs
+through one time-stepping loop, ``_run``; the nonlinear muscle is in
+:mod:`symctl.neural.nonlinear`.
 
 The disturbance :math:`w` enters the state update (zero initial state),
 
@@ -28,7 +30,7 @@ Defaults (documented choices; the paper gives none): a pulse of amplitude 1
 ``t = k Ts`` in seconds; absolute force and rate add the plant's operating
 point :math:`(\bar f, \bar r)` back.
 
->>> from symctl import MuscleModel, augment, lqr_gains
+>>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> res = closed_loop_response(gains)
 >>> res.t.shape, res.delta_f.shape, round(float(res.f[0, 0]), 4)
@@ -40,14 +42,18 @@ point :math:`(\bar f, \bar r)` back.
 from __future__ import annotations
 
 import numbers
-import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.integrate
 
-from symctl._util.validate import nonneg_int, numeric_matrix, real_number
+from symctl._util.validate import (
+    float_array,
+    nonneg_int,
+    numeric_matrix,
+    positive_int,
+    readonly_array,
+    real_number,
+)
 from symctl.design.augment import as_plant
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
@@ -60,14 +66,10 @@ __all__ = [
     "DEFAULT_LENGTH",
     "DEFAULT_START",
     "DEFAULT_STEPS",
-    "BatchResponse",
-    "NonlinearCheck",
     "Response",
     "closed_loop_response",
-    "nonlinear_check",
     "open_loop_response",
     "pulse",
-    "simulate_batch",
     "simulate_realization",
 ]
 
@@ -78,32 +80,8 @@ DEFAULT_START = 5
 DEFAULT_LENGTH = 10
 """Default pulse length in steps."""
 
-_EIG_LIMIT = 2000  # above this many realizations, stability is decided by the Schur-Cohn test
-_CHUNK = 8192  # realizations per task of the time loop (their matrices stay in the CPU cache)
-_WORKERS = os.cpu_count() or 1  # threads that run the tasks
-
 
 # ---------------------------------------------------------------- arguments
-def _positive_int(value, argname: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-        raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
-    return int(value)
-
-
-def _float_array(value, argname: str) -> np.ndarray:
-    if isinstance(value, str | bytes) or value is None:
-        raise SymctlTypeError(f"{argname}: expected an array of numbers, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise SymctlTypeError(
-            f"{argname}: expected an array of real numbers, got {type(value).__name__}"
-        ) from None
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(f"{argname}: entries must be finite (no NaN or inf)")
-    return arr
-
-
 def pulse(
     steps: int = DEFAULT_STEPS,
     amplitude: float = 1.0,
@@ -113,16 +91,41 @@ def pulse(
 ) -> np.ndarray:
     r"""A pulse signal of shape ``(steps, size)``: ``amplitude`` for ``start <= k < start + length``.
 
+    Parameters
+    ----------
+    steps : int
+        The horizon, >= 1 (default 50).
+    amplitude : float
+        The value during the pulse (default 1).
+    start, length : int
+        First step of the pulse (default 5) and its length (default 10), >= 0;
+        a pulse running past the horizon is cut there.
+    size : int
+        The number of channels (columns), >= 1.
+
+    Returns
+    -------
+    (steps, size) array
+
+    Raises
+    ------
+    ParameterError
+        A non-integer or out-of-range ``steps``, ``start``, ``length`` or ``size``,
+        or a non-finite ``amplitude``.
+    SymctlTypeError
+        ``amplitude`` is not a real number.
+
     Examples
     --------
+    >>> from symctl import pulse
     >>> pulse(6, 2.0, start=1, length=3).ravel()
     array([0., 2., 2., 2., 0., 0.])
     """
-    steps = _positive_int(steps, "steps")
+    steps = positive_int(steps, "steps")
     amp = real_number(amplitude, "amplitude")
     start = nonneg_int(start, "start")
     length = nonneg_int(length, "length")
-    out = np.zeros((steps, _positive_int(size, "size")))
+    out = np.zeros((steps, positive_int(size, "size")))
     out[start : start + length] = amp
     return out
 
@@ -131,14 +134,14 @@ def _signal(value, argname: str, steps: int | None, size: int, start: int, lengt
     """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return pulse(DEFAULT_STEPS if steps is None else steps, value, start, length, size)
-    arr = _float_array(value, argname)
+    arr = float_array(value, argname)
     if arr.ndim == 1 and size == 1:
         arr = arr[:, None]
     if arr.ndim != 2 or arr.shape[1] != size or arr.shape[0] == 0:
         raise DimensionError(
             f"{argname}: expected shape (steps, {size}) with steps >= 1, got {arr.shape}"
         )
-    if steps is not None and _positive_int(steps, "steps") != arr.shape[0]:
+    if steps is not None and positive_int(steps, "steps") != arr.shape[0]:
         raise DimensionError(f"{argname}: has {arr.shape[0]} samples but steps = {steps}")
     return arr
 
@@ -160,15 +163,6 @@ def _ts(p: DiscretePlant) -> float:
 
 
 # ---------------------------------------------------------------- results
-def _labels(p_names: tuple[str, ...], kind: str) -> tuple[str, str, str]:
-    """(change label, absolute label, unit) for the muscle; neutral names otherwise."""
-    muscle = {"delta_f": ("force change δf", "force f", "N"),
-              "delta_r": ("rate change δr", "motor-neuron rate r", "spikes/s")}  # fmt: skip
-    if p_names == (kind,) and kind in muscle:
-        return muscle[kind]
-    return ("change from equilibrium", "absolute value", "units")
-
-
 @dataclass(frozen=True, eq=False)
 class Response:
     r"""Traces of one simulation (open or closed loop), all sampled at ``t = k Ts``.
@@ -192,8 +186,22 @@ class Response:
         The operating point (zeros when the plant records none).
     kind : str
         ``"open loop"`` or ``"closed loop"``.
+    state_names, input_names : tuple of str
+        The plant's names of its states and inputs.
     time_unit : str
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
+
+    The arrays are read-only copies; :func:`open_loop_response`,
+    :func:`closed_loop_response` and :func:`simulate_realization` make a Response.
+
+    Examples
+    --------
+    >>> from symctl import open_loop_response
+    >>> res = open_loop_response(steps=8, start=1, length=2)
+    >>> res.kind, res.t[:3], res.delta_r[:4, 0]
+    ('open loop', array([0.  , 0.01, 0.02]), array([0., 1., 1., 0.]))
+    >>> res.delta_f.flags.writeable
+    False
     """
 
     t: np.ndarray
@@ -208,6 +216,10 @@ class Response:
     input_names: tuple[str, ...] = ("delta_r",)
     time_unit: str = "s"
 
+    def __post_init__(self) -> None:  # the arrays are read-only copies
+        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
+            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+
     @property
     def f(self) -> np.ndarray:
         """Absolute force (state), :math:`\\bar f + \\delta_f`."""
@@ -221,123 +233,43 @@ class Response:
     def plot(self, states: bool | None = None):
         """Force and motor-neuron rate against time, absolute values on the right axes.
 
-        ``states`` adds a panel with the controller's internal states (default: when
-        there are any). Returns a :class:`matplotlib.figure.Figure`.
+        Parameters
+        ----------
+        states : bool, optional
+            Add a panel with the controller's internal states (default: when
+            there are any).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.response.response_plot`.
+
+        Examples
+        --------
+        >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
+        >>> fig = closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))).plot()
+        >>> fig.axes[-1].get_xlabel()
+        'time [s]'
         """
-        from matplotlib.figure import Figure
+        from symctl.plotting.response import response_plot
 
-        states = self.states.shape[1] > 0 if states is None else states
-        rows = 3 if states else 2
-        fig = Figure(figsize=(7.5, 2.4 * rows + 0.6), layout="constrained")
-        axes = fig.subplots(rows, 1, sharex=True)
-        panels = [
-            (axes[0], self.delta_f, self.f_bar, self.state_names, "delta_f"),
-            (axes[1], self.delta_r, self.r_bar, self.input_names, "delta_r"),
-        ]
-        for ax, trace, bar, names, kind in panels:
-            change, absolute, unit = _labels(names, kind)
-            for i in range(trace.shape[1]):
-                label = change if trace.shape[1] == 1 else f"{change} ({names[i]})"
-                ax.plot(self.t, trace[:, i], marker=".", lw=1.5, label=label)
-            if kind == "delta_f" and self.kind == "closed loop":
-                for i in range(self.w.shape[1]):
-                    ax.step(self.t, self.w[:, i], where="post", ls="--", color="gray",
-                            label=f"disturbance w [{unit}/step]")  # fmt: skip
-            ax.axhline(0, color="black", lw=0.5)
-            ax.set_ylabel(f"{change} [{unit}]")
-            if trace.shape[1] == 1:
-                offset = float(bar[0])
-                sec = ax.secondary_yaxis(
-                    "right", functions=(lambda x, o=offset: x + o, lambda x, o=offset: x - o)
-                )
-                sec.set_ylabel(f"{absolute} [{unit}]")
-            ax.legend(loc="best", fontsize="small")
-            ax.grid(alpha=0.3)
-        if states:
-            ax = axes[2]
-            for i in range(self.states.shape[1]):
-                ax.plot(self.t, self.states[:, i], marker=".", lw=1.2, label=f"x_{i + 1}")
-            ax.set_ylabel("controller state\n(rate change) [spikes/s]")
-            ax.legend(loc="best", fontsize="small", ncol=min(4, self.states.shape[1]))
-            ax.grid(alpha=0.3)
-        axes[-1].set_xlabel(f"time [{self.time_unit}]")
-        what = "pulse in firing rate" if self.kind == "open loop" else "pulse disturbance on force"
-        fig.suptitle(f"{self.kind.capitalize()} response to a {what}")
-        return fig
-
-
-@dataclass(frozen=True, eq=False)
-class BatchResponse:
-    """Traces of many closed loops at once (see :func:`simulate_batch`).
-
-    ``delta_f`` is ``(R, steps, n)``, ``delta_r`` ``(R, steps, m)``, ``states``
-    ``(R, steps, nc)`` or ``None`` (when not asked for); ``t`` is ``(steps,)`` in seconds.
-    The arrays may be non-contiguous views (time-major storage).
-    """
-
-    t: np.ndarray
-    delta_f: np.ndarray
-    delta_r: np.ndarray
-    states: np.ndarray | None
-    stability_checked: bool
+        return response_plot(self, states)
 
 
 # ---------------------------------------------------------------- the core
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation below then runs over contiguous memory, one realization per element.
-def _chunks(count: int) -> list[slice]:
-    """Consecutive slices of at most ``_CHUNK`` realizations covering ``range(count)``."""
-    return [slice(lo, min(count, lo + _CHUNK)) for lo in range(0, count, _CHUNK)]
-
-
-def _charpoly(A: np.ndarray) -> np.ndarray:
-    r"""Characteristic polynomials of a stack ``(N, N, R)``, ascending: ``(N + 1, R)``.
-
-    From the power sums :math:`p_k = \operatorname{tr} A^k = \operatorname{tr}(A^a A^b)`,
-    :math:`a + b = k`, which need the powers up to :math:`\lceil N/2 \rceil` only, and
-    Newton's identities :math:`k\,c_{N-k} = -\sum_{i=1}^{k} c_{N-k+i}\,p_i` with the
-    leading coefficient :math:`c_N = 1`.
-    """
-    N, R = A.shape[0], A.shape[-1]
-    powers = [np.broadcast_to(np.eye(N)[:, :, None], A.shape), A]
-    while len(powers) <= (N + 1) // 2:
-        powers.append(np.einsum("ijr,jkr->ikr", powers[-1], A))
-    p = np.stack(
-        [np.einsum("ijr,jir->r", powers[(k + 1) // 2], powers[k // 2]) for k in range(N + 1)]
-    )
-    c = np.zeros((N + 1, R))
-    c[N] = 1.0
-    for k in range(1, N + 1):
-        c[N - k] = -np.einsum("ir,ir->r", c[N - k + 1 :], p[1 : k + 1]) / k
-    return c
-
-
-def _schur_stable(A: np.ndarray) -> np.ndarray:
-    r"""Whether every eigenvalue of each ``A[:, :, r]`` is inside the unit circle (Schur-Cohn test).
-
-    Reduces :math:`p(z) = \sum a_i z^i` to :math:`(a_d p(z) - a_0 p^*(z))/z` while
-    :math:`|a_0| < |a_d|` (the reflection coefficient); vectorized over ``r``.
-    """
-    a = _charpoly(A)
-    ok = np.ones(a.shape[1], dtype=bool)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for d in range(a.shape[0] - 1, 0, -1):
-            lead, const = a[d], a[0]
-            ok &= np.abs(const) < np.abs(lead)
-            a = lead * a[1 : d + 1] - const * a[d - 1 :: -1]
-            a /= np.where(a[-1] == 0, 1.0, np.abs(a[-1]))  # keeps the numbers in range
-    return ok
-
-
 def _stability(Acl: np.ndarray, argname: str) -> None:
     """Refuse an unstable closed loop (spectral radius >= 1), naming the first bad realization."""
     count = Acl.shape[-1]
-    if count <= _EIG_LIMIT:
-        eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((count, 1))
-        bad = np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= 1)
-    else:  # in chunks, whose temporaries stay small
-        bad = np.flatnonzero(~np.concatenate([_schur_stable(Acl[..., c]) for c in _chunks(count)]))
+    eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((count, 1))
+    _refuse_unstable(Acl, np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= 1), argname)
+
+
+def _refuse_unstable(Acl: np.ndarray, bad: np.ndarray, argname: str) -> None:
+    """Raise for the unstable realizations ``bad`` (indices into the stack), if any."""
     if bad.size:
+        count = Acl.shape[-1]
         i = int(bad[0])
         rho = float(np.max(np.abs(np.linalg.eigvals(Acl[:, :, i]))))
         where = f" (realization {i} of {count}; {bad.size} unstable)" if count > 1 else ""
@@ -369,33 +301,28 @@ def _run(
     *,
     states: bool = True,
     argname: str = "disturbance",
+    schedule=None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Simulate ``xi(t+1) = A_cl xi + [I; 0] w`` from zero for a stack of ``R`` loops.
 
     ``Acl`` is ``(size, size, R)``, ``Cr`` ``(m, size, R)`` and ``w`` ``(steps, n)``
     (shared) or ``(R, steps, n)``. Returns ``(delta_f, delta_r, states)`` as
     ``(R, steps, .)`` views of one time-major buffer, so that every step writes
-    contiguous rows. The loops go in chunks of ``_CHUNK``, on ``_WORKERS`` threads. An
-    inf or NaN in the outputs (an overflow) is an error naming the first step it is at.
+    contiguous rows. ``schedule(run, R)``, when given, calls ``run`` on slices of
+    the loops and returns the smallest result (the batch's chunks and threads);
+    by default all loops run at once. An inf or NaN in the outputs (an overflow)
+    is an error naming the first step it is at.
     """
     size, _, R = Acl.shape
     m, steps = Cr.shape[0], w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
     out = np.empty((steps, n + m + (size - n if states else 0), R))  # delta_f, delta_r, states
-    parts = _chunks(R)
 
     def run(part: slice) -> int:
         w_part = wt if wt.shape[-1] == 1 else wt[..., part]
         return _run_chunk(Acl[..., part], Cr[..., part], n, w_part, out[..., part])
 
-    # NumPy releases the GIL in einsum: the chunks, and the page faults of the fresh
-    # output buffer (as costly as the arithmetic for 10^5 loops), share the cores.
-    workers = min(len(parts), _WORKERS)
-    if workers == 1:
-        first_bad = min(map(run, parts))
-    else:
-        with ThreadPoolExecutor(workers) as pool:
-            first_bad = min(pool.map(run, parts))
+    first_bad = run(slice(None)) if schedule is None else schedule(run, R)
     if first_bad < steps:
         raise ParameterError(
             f"{argname}: the simulation blew up at step {first_bad} (values overflowed to "
@@ -434,10 +361,10 @@ def _run_chunk(A: np.ndarray, Cr: np.ndarray, n: int, w: np.ndarray, out: np.nda
 def _response(p, t, df, dr, w, xc, kind) -> Response:
     return Response(
         t,
-        np.ascontiguousarray(df),
-        np.ascontiguousarray(dr),
+        df,
+        dr,
         w,
-        np.ascontiguousarray(xc),
+        xc,
         _equilibrium(p.x_eq, p.n, "x_eq"),
         _equilibrium(p.u_eq, p.m, "u_eq"),
         kind,
@@ -481,6 +408,7 @@ def open_loop_response(
 
     Examples
     --------
+    >>> from symctl import open_loop_response
     >>> res = open_loop_response()
     >>> round(float(res.delta_f[6, 0]), 6)   # one step after the pulse starts: B
     4.641646
@@ -491,7 +419,7 @@ def open_loop_response(
     """
     p, A, B = _plant(MuscleModel() if plant is None else plant)
     u = _signal(
-        real_number(pulse, "pulse"), "pulse", _positive_int(steps, "steps"), p.m, start, length
+        real_number(pulse, "pulse"), "pulse", positive_int(steps, "steps"), p.m, start, length
     )
     df, _, _ = _run(
         A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False, argname="pulse"
@@ -509,6 +437,11 @@ def _numeric_realization(R, p: DiscretePlant) -> tuple[np.ndarray, ...]:
             f"have shape (outputs, inputs) = {(p.m, p.n)}, got {R.shape}"
         )
     return tuple(a[None] for a in R.numeric())
+
+
+def _as_realization(controller) -> Realization:
+    """The controller to close around a plant: :func:`ifp_realization` of ``Gains``, else itself."""
+    return ifp_realization(controller) if isinstance(controller, Gains) else controller
 
 
 def simulate_realization(
@@ -551,7 +484,7 @@ def simulate_realization(
 
     Examples
     --------
-    >>> from symctl import Realization
+    >>> from symctl import MuscleModel, Realization, simulate_realization
     >>> res = simulate_realization(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0))
     >>> res.states.shape
     (50, 1)
@@ -601,7 +534,8 @@ def closed_loop_response(
 
     Examples
     --------
-    >>> from symctl import MuscleModel, augment, lqr_gains, controller_tf
+    >>> import numpy as np
+    >>> from symctl import MuscleModel, augment, closed_loop_response, controller_tf, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> a = closed_loop_response(gains)
     >>> b = closed_loop_response(controller_tf(gains), MuscleModel())
@@ -615,7 +549,7 @@ def closed_loop_response(
     if isinstance(controller, Gains):
         if plant is not None:
             return simulate_realization(
-                plant, ifp_realization(controller), disturbance,
+                plant, _as_realization(controller), disturbance,
                 steps=steps, start=start, length=length,
             )  # fmt: skip
         s = controller.system
@@ -645,239 +579,3 @@ def closed_loop_response(
             f"got {type(controller).__name__}"
         )
     return simulate_realization(plant, R, disturbance, steps=steps, start=start, length=length)
-
-
-# ---------------------------------------------------------------- batch
-def simulate_batch(
-    plant,
-    F,
-    H,
-    M,
-    N,
-    disturbance=1.0,
-    *,
-    steps: int | None = None,
-    start: int = DEFAULT_START,
-    length: int = DEFAULT_LENGTH,
-    states: bool = False,
-    check_stability: bool = True,
-) -> BatchResponse:
-    r"""Simulate the plant in closed loop with ``R`` realizations at once (vectorized in NumPy).
-
-    Parameters
-    ----------
-    plant : DiscretePlant, MuscleModel or (A, B)
-    F, H, M, N : arrays of shapes (R, nc, nc), (R, nc, n), (R, m, nc), (R, m, n)
-        E.g. ``Realization.lambdify(symbols)(*values)`` with arrays of values.
-    disturbance : float or array
-        A pulse amplitude (as in :func:`simulate_realization`), an array ``(steps, n)``
-        shared by every loop, or ``(R, steps, n)``.
-    states : bool
-        Also return the controller states ``(R, steps, nc)`` (memory: ``8 R steps nc`` bytes).
-    check_stability : bool
-        Refuse any unstable loop first (exact eigenvalues up to 2000 loops, the
-        vectorized Schur-Cohn test on the characteristic polynomial above).
-
-    Returns
-    -------
-    BatchResponse
-        ``delta_f`` ``(R, steps, n)`` and ``delta_r`` ``(R, steps, m)``.
-
-    Raises
-    ------
-    DimensionError, ParameterError, SymctlTypeError
-        Also a run whose outputs overflow to inf or NaN (a :class:`ParameterError`).
-
-    Notes
-    -----
-    Batches of more than 8192 loops run in chunks, on every core (threads: NumPy
-    releases the GIL in its products).
-
-    Examples
-    --------
-    >>> F = np.full((3, 1, 1), 0.0); H = np.array([-0.01, -0.03, -0.05]).reshape(3, 1, 1)
-    >>> out = simulate_batch(MuscleModel(), F, H, np.ones((3, 1, 1)), np.zeros((3, 1, 1)))
-    >>> out.delta_f.shape, out.delta_r.shape
-    ((3, 50, 1), (3, 50, 1))
-    >>> bool(np.all(np.diff(out.delta_r.min(axis=(1, 2))) < 0))   # stronger gain, larger answer
-    True
-    """
-    p, A, B = _plant(plant)
-    mats = {k: _float_array(v, k) for k, v in zip("FHMN", (F, H, M, N), strict=True)}
-    if any(v.ndim != 3 for v in mats.values()):
-        shapes = {k: v.shape for k, v in mats.items()}
-        raise DimensionError(f"F, H, M, N: expected stacks of matrices (3 dims), got {shapes}")
-    R, nc = mats["F"].shape[:2]
-    want = {"F": (R, nc, nc), "H": (R, nc, p.n), "M": (R, p.m, nc), "N": (R, p.m, p.n)}
-    for k, shape in want.items():
-        if mats[k].shape != shape:
-            raise DimensionError(f"{k}: expected shape {shape}, got {mats[k].shape}")
-    if R == 0:
-        raise DimensionError("F: no realizations (R = 0)")
-    if not isinstance(disturbance, numbers.Real):
-        disturbance = _float_array(disturbance, "disturbance")
-    if np.ndim(disturbance) < 3:
-        w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-    else:
-        w = disturbance
-        if w.ndim != 3 or w.shape[0] != R or w.shape[2] != p.n or w.shape[1] == 0:
-            raise DimensionError(
-                f"disturbance: expected shape (steps, {p.n}) or ({R}, steps, {p.n}), got {w.shape}"
-            )
-        if steps is not None and _positive_int(steps, "steps") != w.shape[1]:
-            raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
-    Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
-    if check_stability:
-        _stability(Acl, "F, H, M, N")
-    df, dr, xc = _run(Acl, Cr, p.n, w, states=states)
-    t = np.arange(w.shape[-2]) * _ts(p)
-    return BatchResponse(t, df, dr, xc, bool(check_stability))
-
-
-# ---------------------------------------------------------------- nonlinear muscle
-@dataclass(frozen=True, eq=False)
-class NonlinearCheck:
-    r"""The linear controller around the nonlinear muscle, against the linear prediction.
-
-    Attributes
-    ----------
-    amplitudes : (k,) array
-        Disturbance pulse amplitudes [N per step].
-    t : (steps,) array
-        Time [s].
-    f_linear, f_nonlinear : (k, steps) arrays
-        Absolute force [N] of the linear model and of the nonlinear ODE.
-    r_nonlinear : (k, steps) array
-        Absolute motor-neuron rate [spikes/s] driving the nonlinear muscle.
-    max_deviation : (k,) array
-        :math:`\max_t |f_\text{nonlinear} - f_\text{linear}|` [N].
-    relative_deviation : (k,) array
-        ``max_deviation`` over :math:`\max_t |\delta_f^\text{linear}|`.
-    """
-
-    amplitudes: np.ndarray
-    t: np.ndarray
-    f_linear: np.ndarray
-    f_nonlinear: np.ndarray
-    r_nonlinear: np.ndarray
-    max_deviation: np.ndarray
-    relative_deviation: np.ndarray
-
-    def table(self) -> str:
-        """A plain-text table: amplitude, peak linear force change, max and relative deviation."""
-        peak = np.max(np.abs(self.f_linear - self.f_linear[:, :1]), axis=1)  # f(0) = f_bar
-        lines = [
-            " amplitude [N] | peak |δf| linear [N] | max |f_nl - f_lin| [N] | relative",
-            "-" * 78,
-        ]
-        for a, pk, d, rel in zip(
-            self.amplitudes, peak, self.max_deviation, self.relative_deviation, strict=True
-        ):
-            lines.append(f" {a:13.4g} | {pk:20.4g} | {d:22.4g} | {rel:8.2e}")
-        return "\n".join(lines)
-
-    def plot(self):
-        """Force traces (nonlinear solid, linear dashed) and the deviation against amplitude."""
-        from matplotlib.figure import Figure
-
-        fig = Figure(figsize=(11, 4.2), layout="constrained")
-        ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.6, 1])
-        colors = [f"C{i % 10}" for i in range(len(self.amplitudes))]
-        for a, lin, nl, c in zip(
-            self.amplitudes, self.f_linear, self.f_nonlinear, colors, strict=True
-        ):
-            ax1.plot(self.t, nl, color=c, lw=1.6, label=f"w = {a:g} N per step")
-            ax1.plot(self.t, lin, color=c, lw=1.2, ls="--")
-        ax1.plot([], [], color="gray", lw=1.6, label="nonlinear muscle (solid)")
-        ax1.plot([], [], color="gray", lw=1.2, ls="--", label="linear model (dashed)")
-        ax1.set_xlabel("time [s]")
-        ax1.set_ylabel("force f [N]")
-        ax1.set_title("Linear controller around the nonlinear muscle")
-        ax1.legend(fontsize="small", loc="best")
-        ax1.grid(alpha=0.3)
-        ax2.loglog(self.amplitudes, self.max_deviation, "o-", label="max |f_nl - f_lin| [N]")
-        ax2.loglog(self.amplitudes, self.relative_deviation, "s--", label="relative to peak |δf|")
-        ax2.set_xlabel("disturbance pulse amplitude [N per step]")
-        ax2.set_ylabel("deviation [N] / relative [1]")
-        ax2.set_title("Departure from the linear prediction")
-        ax2.legend(fontsize="small")
-        ax2.grid(alpha=0.3, which="both")
-        return fig
-
-
-def nonlinear_check(
-    model: MuscleModel | None = None,
-    controller=None,
-    amplitudes=(0.1, 0.3, 1.0, 3.0, 10.0),
-    *,
-    steps: int = DEFAULT_STEPS,
-    start: int = DEFAULT_START,
-    length: int = DEFAULT_LENGTH,
-    rtol: float = 1e-10,
-) -> NonlinearCheck:
-    r"""Close the linear controller around the nonlinear muscle ODE and compare with the linear loop.
-
-    At each sample the controller reads :math:`\delta_f = f - \bar f`, its output
-    :math:`r = \bar r + \delta_r` is held constant over the step, and
-    :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau` (:meth:`MuscleModel.rhs`)
-    is integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (DOP853,
-    ``rtol``, all amplitudes as one vector ODE); the disturbance is added to the
-    force at the sample, as in the linear model.
-
-    Parameters
-    ----------
-    model : MuscleModel, optional
-        The paper's by default.
-    controller : Gains or Realization, optional
-        Default: the optimal delayed controller for ``Q = R = 1``, one step of delay
-        each way (as the IFP realization).
-    amplitudes : sequence of float
-        Disturbance pulse amplitudes [N per step]; default 0.1 .. 10.
-
-    Returns
-    -------
-    NonlinearCheck
-
-    Examples
-    --------
-    >>> chk = nonlinear_check(amplitudes=[0.01, 1.0], steps=30)
-    >>> bool(chk.relative_deviation[0] < 1e-3 < chk.relative_deviation[1])
-    True
-    """
-    from symctl.design.augment import augment
-    from symctl.design.lqr import lqr_gains
-
-    model = MuscleModel() if model is None else model
-    if not isinstance(model, MuscleModel):
-        raise SymctlTypeError(f"model: expected a MuscleModel, got {type(model).__name__}")
-    if controller is None:
-        controller = lqr_gains(augment(model, 1, 1))
-    R = ifp_realization(controller) if isinstance(controller, Gains) else controller
-    amps = _float_array(amplitudes, "amplitudes").ravel()
-    if amps.size == 0:
-        raise DimensionError("amplitudes: give at least one amplitude")
-    linear = simulate_realization(model, R, 1.0, steps=steps, start=start, length=length)
-    F, H, M, N = (a[0] for a in _numeric_realization(R, model.plant()))
-    w = linear.w[:, 0]
-    f_bar, r_bar, Ts = model.f_bar, model.r_bar, model.Ts
-    f = np.full(amps.size, f_bar)
-    xc = np.zeros((amps.size, F.shape[0]))
-    f_nl = np.empty((amps.size, linear.t.size))
-    r_nl = np.empty_like(f_nl)
-    for k in range(linear.t.size):
-        df = f - f_bar
-        r = r_bar + (xc @ M.T)[:, 0] + N[0, 0] * df
-        f_nl[:, k], r_nl[:, k] = f, r
-        sol = scipy.integrate.solve_ivp(
-            lambda _t, y, r=r: model.rhs(y, r), (0.0, Ts), f,
-            method="DOP853", rtol=rtol, atol=rtol * max(1.0, abs(f_bar)),
-        )  # fmt: skip
-        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            raise ParameterError(f"amplitudes: the nonlinear ODE failed at step {k}: {sol.message}")
-        f = sol.y[:, -1] + amps * w[k]
-        xc = xc @ F.T + df[:, None] @ H.T
-    f_lin = f_bar + amps[:, None] * linear.delta_f[:, 0]
-    dev = np.max(np.abs(f_nl - f_lin), axis=1)
-    peak = np.abs(amps) * np.max(np.abs(linear.delta_f))
-    rel = np.divide(dev, peak, out=np.zeros_like(dev), where=peak > 0)
-    return NonlinearCheck(amps, linear.t, f_lin, f_nl, r_nl, dev, rel)

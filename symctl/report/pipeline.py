@@ -32,13 +32,8 @@ from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import FiringPatterns, circuit_firing
-from symctl.neural.simulate import (
-    NonlinearCheck,
-    Response,
-    closed_loop_response,
-    nonlinear_check,
-    open_loop_response,
-)
+from symctl.neural.nonlinear import NonlinearCheck, nonlinear_check
+from symctl.neural.simulate import Response, closed_loop_response, open_loop_response
 from symctl.realization.check import RealizationCheck, check_realization
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realization import Realization

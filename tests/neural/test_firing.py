@@ -157,3 +157,16 @@ def test_summary_table_columns_line_up_for_long_neuron_names():
     lines = summary.table().splitlines()
     bars = {tuple(i for i, ch in enumerate(line) if ch == "|") for line in lines[:1] + lines[2:-1]}
     assert len(bars) == 1  # every row has its bars in the same columns
+
+
+def test_firing_patterns_and_summary_are_read_only(general):
+    for arr in (general.t, general.delta_f, general.delta_r, *general.firing.values()):
+        assert not arr.flags.writeable
+    with pytest.raises(TypeError):
+        general.firing["G2.x1"] = np.zeros((3, 50))
+    with pytest.raises(TypeError):
+        general.params[0]["epsilon_1"] = 0
+    s = general.summary()
+    with pytest.raises(ValueError, match="read-only"):
+        s.peak[0, 0] = 0.0
+    assert not s.spread.flags.writeable

@@ -22,7 +22,8 @@ from symctl import (
     z,
 )
 from symctl.compatibility.structure import Structure, ifp_structure
-from symctl.neural.circuit import Circuit, Synapse
+from symctl.neural.circuit import Circuit
+from symctl.neural.neuron import Synapse
 from symctl.realization.realizers import random_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
@@ -321,3 +322,32 @@ def test_equations_round_coefficients_but_keep_exponents_exact():
     R = first_order_realization(sp.Rational(1, 3) * sp.sqrt(x) + 0.123456789 * epsilon_1, 1)
     (eq,) = Circuit.from_structure(Structure.from_realization(R)).equations(digits=3)
     assert "0.333" in eq and "0.123" in eq and r"\sqrt{x}" in eq and "0.5" not in eq
+
+
+def test_circuit_equal_by_value():
+    a, b = full_circuit("controllable")[0], full_circuit("controllable")[0]
+    assert a is not b and a.structure is not b.structure
+    assert a == b and hash(a) == hash(b) and len({a, b}) == 1
+    assert a != full_circuit("observable")[0]
+    values = {epsilon_1: sp.Rational(1, 2)}
+    assert a.subs(values) == b.subs(values) != a
+    _, S = full_circuit("controllable")
+    placed = Circuit.from_structure(S, DelayAssignment(S, E, paper_assignment(S)))
+    assert placed != Circuit.from_structure(S)  # the vertices count
+
+
+def test_neurons_and_synapses_compare_and_hash_by_value():
+    a, b = full_circuit("general")[0], full_circuit("general")[0]
+    assert a.neurons == b.neurons and {*a.neurons} == {*b.neurons}
+    assert hash(a.neuron("G2.y")) == hash(b.neuron("G2.y"))
+    assert a.neuron("G2.x1") != a.neuron("G2.x2")
+    assert Synapse("u", "x", K1, 1) == Synapse("u", "x", K1, 1) != Synapse("u", "x", K2, 1)
+    assert len({Synapse("u", "x", K1, 1), Synapse("u", "x", K1, 1)}) == 1
+
+
+def test_circuit_insides_are_immutable():
+    c, _ = full_circuit("controllable")
+    with pytest.raises(TypeError):
+        c.input_axons["G1.u"] = ()
+    with pytest.raises(AttributeError):
+        c.neurons = ()

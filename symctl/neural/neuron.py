@@ -1,0 +1,154 @@
+r"""Stylized linear neurons and their synapses, the parts of a :class:`~symctl.neural.circuit.Circuit`.
+
+A **neuron** outputs on its axon a weighted sum of its synaptic inputs and of its
+own past outputs (its self-dynamics), with no activation function:
+:math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`. A **synapse**
+is one axon path, with the product of its gains as weight and its unit delays as
+delay; its sign says whether it excites or inhibits. Both are values: equal
+fields, equal objects, equal hashes.
+
+>>> import sympy as sp
+>>> from symctl import Neuron, Synapse
+>>> K1 = sp.Symbol("K_1")
+>>> mu = Neuron("mu", "", (Synapse("x", "mu", sp.Symbol("K_0"), 0),),
+...             (Synapse("mu", "mu", K1, 1),), ())
+>>> mu.self_dynamics, mu.synapses[0].sign
+(K_1/z, '?')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import sympy as sp
+
+from symctl.symbols import z
+
+__all__ = ["Neuron", "Synapse"]
+
+
+def _sign(weight: sp.Expr) -> str:
+    if weight.is_zero:
+        return "0"
+    if weight.is_positive:
+        return "+"
+    if weight.is_negative:
+        return "-"
+    return "?"
+
+
+class Synapse(NamedTuple):
+    r"""One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
+
+    Attributes
+    ----------
+    source : str
+        The presynaptic neuron or circuit input (a structure signal name).
+    target : str
+        The postsynaptic neuron, or a circuit output (a structure output signal).
+    weight : sympy expression
+        The synaptic weight: the product of the gains on the path.
+    delay : int
+        The number of unit delays on the path: the branch delay into the adder
+        plus any axon delays before it (e.g. 2 for :math:`x_3 \to y` through
+        :math:`x_2, x_1` in a third-order controllable canonical realization).
+    path : tuple of str
+        The structure signals strictly between ``source`` and ``target``, in
+        signal-flow order.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import Synapse
+    >>> s = Synapse("u", "x", sp.Integer(-2), 1)
+    >>> s.sign, s.excitatory, s.inhibitory
+    ('-', False, True)
+    >>> s == Synapse("u", "x", -2, 1)   # a value: equal fields, equal synapses
+    True
+    """
+
+    source: str
+    target: str
+    weight: sp.Expr
+    delay: int
+    path: tuple[str, ...] = ()
+
+    @property
+    def sign(self) -> str:
+        """``"+"`` (excitatory), ``"-"`` (inhibitory), ``"0"``, or ``"?"`` when symbolic."""
+        return _sign(sp.sympify(self.weight))
+
+    @property
+    def excitatory(self) -> bool:
+        """Whether the weight is known to be positive."""
+        return self.sign == "+"
+
+    @property
+    def inhibitory(self) -> bool:
+        """Whether the weight is known to be negative."""
+        return self.sign == "-"
+
+
+@dataclass(frozen=True)
+class Neuron:
+    r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
+
+    Its axon output is
+    :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`: the
+    self-dynamics terms :math:`(w_k, d_k)` and the synapses from sources
+    :math:`s_j` with weights :math:`v_j` and delays :math:`e_j`.
+
+    Attributes
+    ----------
+    name : str
+        The adder's signal in the structure (e.g. ``"G2.x2"``).
+    part : str
+        The part of a series connection it belongs to (``"G1"``, ...; ``""`` if none).
+    synapses : tuple of Synapse
+        Its synaptic inputs from other neurons and from circuit inputs.
+    self_terms : tuple of Synapse
+        The terms fed back from its own output (``source == target == name``).
+    axon : tuple of Synapse
+        Its outgoing branches: synapses onto other neurons (in :attr:`Circuit.neurons`
+        order), then the circuit outputs it drives.
+    vertex : int or None
+        The delay-graph vertex of its signal, when an assignment was given.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure
+    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl.symbols import epsilon_1, C_1
+    >>> c = Circuit.from_structure(Structure.from_realization(
+    ...     first_order_realization(epsilon_1, C_1)))
+    >>> n = c.neuron("x1")
+    >>> n.self_weight, n.self_dynamics, [(s.source, s.weight, s.delay) for s in n.synapses]
+    (epsilon_1, epsilon_1/z, [('u', C_1, 1)])
+    """
+
+    name: str
+    part: str
+    synapses: tuple[Synapse, ...]
+    self_terms: tuple[Synapse, ...]
+    axon: tuple[Synapse, ...]
+    vertex: int | None = None
+
+    @property
+    def self_weight(self) -> sp.Expr:
+        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics).
+
+        With one self term (e.g. :math:`\epsilon_1` for :math:`G_1`) this is its
+        weight; with several lags see :attr:`self_dynamics`.
+        """
+        return sp.Add(*(s.weight for s in self.self_terms))
+
+    @property
+    def self_dynamics(self) -> sp.Expr:
+        r"""The self-dynamics as a polynomial in :math:`z^{-1}`, :math:`\sum_k w_k z^{-d_k}`."""
+        return sp.Add(*(s.weight * z ** (-s.delay) for s in self.self_terms))
+
+    @property
+    def branches(self) -> int:
+        """The number of axon branches (outgoing synapses and circuit outputs, not self-loops)."""
+        return len(self.axon)

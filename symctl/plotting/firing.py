@@ -1,0 +1,104 @@
+r"""The firing-pattern figure: one panel per neuron of :math:`G_2`, one line per realization.
+
+The rendering of :meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>`
+(the paper's Figs. full_diagram, ccr_diagram, ocr_diagram): the force of every
+realization on top (identical), each neuron's change of firing rate below.
+
+>>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
+>>> from symctl.plotting.firing import firing_plot
+>>> fp = circuit_firing("controllable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+>>> [ax.get_title() for ax in firing_plot(fp).axes][1:]
+['neuron $x_{2}$', 'neuron $y$']
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from matplotlib.figure import Figure
+
+from symctl._util.texnames import signal_tex
+from symctl._util.validate import positive_int
+from symctl.neural.firing import _TITLES
+
+if TYPE_CHECKING:
+    from symctl.neural.firing import FiringPatterns
+
+__all__ = ["firing_plot"]
+
+_RATE_LABEL = "change in firing rate [spikes/s]"
+
+
+def _tex(name: str, *, part: bool = True) -> str:
+    return f"${signal_tex(name, part=part)}$"
+
+
+def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
+    """One panel per neuron of :math:`G_2` (one line per realization), the force on top.
+
+    Parameters
+    ----------
+    fp : FiringPatterns
+        The result of :func:`~symctl.neural.firing.circuit_firing`.
+    ncols : int
+        Neuron panels per row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ParameterError
+        ``ncols`` is not an integer >= 1.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
+    >>> from symctl.plotting.firing import firing_plot
+    >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+    >>> [ax.get_title() for ax in firing_plot(fp, ncols=2).axes][1:]
+    ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
+    """
+    ncols = positive_int(ncols, "ncols")
+    names = fp.neurons
+    cols = max(1, min(int(ncols), len(names)))
+    rows = -(-len(names) // cols)
+    fig = Figure(figsize=(max(3.6 * cols + 1.2, 8.0), 2.2 + 2.7 * rows), layout="constrained")
+    grid = fig.add_gridspec(1 + rows, cols, height_ratios=[0.55] + [1.0] * rows)
+    top = fig.add_subplot(grid[0, :])
+    for i in range(fp.count):
+        top.plot(fp.t, fp.f_bar + fp.delta_f[i], color=f"C{i % 10}", lw=1.2)
+    top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], "k:", lw=1.2,
+             label="optimal controller (identical)")  # fmt: skip
+    top.set_ylabel("force f [N]")
+    top.set_title("force, every realization (identical)", fontsize="medium")
+    top.legend(loc="upper right", fontsize="small")
+    top.grid(alpha=0.3)
+    axes = []
+    for k, name in enumerate(names):
+        ax = fig.add_subplot(grid[1 + k // cols, k % cols], sharex=top)
+        for i in range(fp.count):
+            ax.plot(fp.t, fp.firing[name][i], marker=".", ms=3, lw=1.3,
+                    color=f"C{i % 10}", label=fp.legend_label(i))  # fmt: skip
+        ax.axhline(0, color="black", lw=0.5)
+        ax.set_title(f"neuron {_tex(name, part=False)}")
+        ax.set_xlabel(f"time [{fp.reference.time_unit}]")
+        if k % cols == 0:
+            ax.set_ylabel(_RATE_LABEL)
+        ax.grid(alpha=0.3)
+        axes.append(ax)
+    if axes:
+        handles, labels = axes[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="outside lower center", fontsize="small",
+                   ncols=min(fp.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
+    what = "the neuron of the" if fp.kind == "ifp" else "the neurons of $G_2$,"
+    fig.suptitle(
+        f"Firing of {what} {_TITLES[fp.kind]}\n"
+        + (
+            "one realization: the optimal controller's delay chain"
+            if fp.kind == "ifp"
+            else "same force and motor-neuron rate, different firing patterns"
+        )
+    )
+    return fig
