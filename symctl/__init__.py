@@ -74,7 +74,7 @@ _LOCATIONS = {
     "Structure": "symctl.compatibility.structure",
     "ifp_structure": "symctl.compatibility.structure",
     "same_structure": "symctl.compatibility.structure",
-    "PaperResults": "symctl.report.pipeline",
+    "PaperResults": "symctl.report.results",
     "derive_paper": "symctl.report.pipeline",
     "z": "symctl.symbols",
     "DiscreteTF": "symctl.design.tf",
@@ -208,5 +208,6 @@ if TYPE_CHECKING:  # static tools see the eager imports
         observable_canonical,
         random_realization,
     )
-    from symctl.report.pipeline import PaperResults, derive_paper
+    from symctl.report.pipeline import derive_paper
+    from symctl.report.results import PaperResults
     from symctl.symbols import z

@@ -284,3 +284,10 @@ def as_generator(value, argname: str) -> np.random.Generator:
     if value is None or (isinstance(value, numbers.Integral) and not isinstance(value, bool)):
         return np.random.default_rng(value)
     raise SymctlTypeError(f"{argname}: expected an int seed or a numpy Generator, got {value!r}")
+
+
+def positive_int(value, argname: str) -> int:
+    """An integer >= 1 (bools and non-integral numbers are refused)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+        raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
+    return int(value)
