@@ -62,6 +62,7 @@ def test_paper_options_are_used(tmp_path):
         (["--realizations", "0"], "realizations"),
         (["--sensor-delay", "0", "--actuator-delay", "0"], "sensor_delay, actuator_delay"),
         (["--jobs", "0"], "jobs"),
+        (["--seed", "-1"], "seed"),
     ],
 )
 def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):

@@ -16,10 +16,12 @@ Examples
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Callable
 
 import sympy as sp
 
+from symctl._util.validate import nonneg_int, positive_int
 from symctl.compatibility.check import check_compatibility
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure, ifp_structure
@@ -27,7 +29,7 @@ from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.design.tf import controller_tf, prove_controller_tf
-from symctl.errors import ParameterError
+from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import circuit_firing
 from symctl.neural.simulate import closed_loop_response, nonlinear_check, open_loop_response
@@ -87,7 +89,10 @@ def derive_paper(
     ------
     ParameterError
         A parameter out of range (e.g. ``tau <= 0``, negative delays, both
-        delays 0, ``Q`` not positive semidefinite).
+        delays 0, ``Q`` not positive semidefinite, a negative ``seed``,
+        ``realizations < 1``).
+    SymctlTypeError
+        ``seed`` is not an integer.
     DimensionError
         ``Q`` or ``R`` of the wrong shape.
 
@@ -105,6 +110,10 @@ def derive_paper(
     symctl.errors.ParameterError: sensor_delay, actuator_delay: the derivation needs a net delay ...
     """
     step = progress or (lambda _name: None)
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
+        raise SymctlTypeError(f"seed: expected an integer, got {seed!r}")
+    seed = nonneg_int(seed, "seed")
+    realizations = positive_int(realizations, "realizations")
     if sensor_delay == 0 and actuator_delay == 0:  # other bad values: augment names them
         raise ParameterError(
             "sensor_delay, actuator_delay: the derivation needs a net delay "

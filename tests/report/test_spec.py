@@ -33,3 +33,16 @@ def test_the_circuits_are_the_specs_in_reading_order():
     assert CIRCUITS == ("ifp", "general", "controllable", "observable")
     assert all(CIRCUIT_SPECS[name].name == name for name in CIRCUITS)
     assert list(derive_paper(realizations=1).circuits) == list(CIRCUITS)
+
+
+def test_bad_seed_and_realizations_name_themselves_before_any_work():
+    import pytest
+
+    from symctl.errors import ParameterError, SymctlTypeError
+
+    with pytest.raises(ParameterError, match="seed: must be an integer >= 0, got -1"):
+        derive_paper(seed=-1)
+    with pytest.raises(SymctlTypeError, match=r"seed: expected an integer, got 1\.5"):
+        derive_paper(seed=1.5)
+    with pytest.raises(ParameterError, match="realizations: must be an integer >= 1, got 0"):
+        derive_paper(realizations=0)
