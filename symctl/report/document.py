@@ -36,6 +36,7 @@ import re
 import shutil
 import subprocess
 import textwrap
+import typing
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -47,6 +48,7 @@ __all__ = [
     "BLOCKS",
     "PDFLATEX_TIMEOUT",
     "TITLE",
+    "DocumentBlock",
     "Graphic",
     "Heading",
     "Math",
@@ -111,7 +113,9 @@ class Verbatim:
     text: str
 
 
-BLOCKS = (Heading, Text, Math, Table, Graphic, Verbatim)
+DocumentBlock = Heading | Text | Math | Table | Graphic | Verbatim
+"""Any block of a document (not a structure's :class:`~symctl.compatibility.structure.Block`)."""
+BLOCKS = typing.get_args(DocumentBlock)
 """The block types of a document."""
 
 
@@ -187,7 +191,7 @@ def _tex_block(b) -> str:
     return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *lines, r"\end{verbatim}", "}"])
 
 
-def to_tex(blocks: Sequence, *, title: str = TITLE) -> str:
+def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     r"""The blocks as a standalone LaTeX document (compiles with ``pdflatex``).
 
     Parameters
@@ -223,7 +227,7 @@ def _md_cell(text: str) -> str:
     return text.replace("|", r"\|")
 
 
-def to_markdown(blocks: Sequence, *, title: str = TITLE) -> str:
+def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     r"""The blocks as Markdown with ``$$`` math (GitHub, Jupyter) and the figures inline.
 
     Equations are numbered with ``\tag`` in the order of :func:`to_tex`.
@@ -278,7 +282,7 @@ def to_markdown(blocks: Sequence, *, title: str = TITLE) -> str:
     return "\n".join(out)
 
 
-def _checked(blocks: Sequence) -> Sequence:
+def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:
     for i, b in enumerate(blocks):
         if not isinstance(b, BLOCKS):
             raise SymctlTypeError(
@@ -289,7 +293,7 @@ def _checked(blocks: Sequence) -> Sequence:
 
 
 # ---------------------------------------------------------------- files
-def write_tex(blocks: Sequence, path: Path | str, *, title: str = TITLE) -> Path:
+def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE) -> Path:
     r"""Write :func:`to_tex` of ``blocks`` to ``path`` (UTF-8); returns the path.
 
     Parameters
@@ -325,7 +329,9 @@ def write_tex(blocks: Sequence, path: Path | str, *, title: str = TITLE) -> Path
     return path
 
 
-def write_markdown(blocks: Sequence, path: Path | str, *, title: str = TITLE) -> Path:
+def write_markdown(
+    blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE
+) -> Path:
     r"""Write :func:`to_markdown` of ``blocks`` to ``path`` (UTF-8); returns the path.
 
     Parameters

@@ -25,13 +25,11 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl.design.tf import _descending_latex
-from symctl.report.document import Graphic, Heading, Math, Table, Text, Verbatim
+from symctl.report.document import DocumentBlock, Graphic, Heading, Math, Table, Text, Verbatim
 from symctl.report.spec import CIRCUIT_SPECS
 from symctl.symbols import z
 
 __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
-
-Block = Heading | Text | Math | Table | Graphic | Verbatim
 
 
 def _num(value):
@@ -61,7 +59,7 @@ def _ascii(text: str) -> str:
     return text.replace("Ẽ", "E~").replace("→", "->").replace("≤", "<=").replace("≥", ">=")
 
 
-def story(res, figures: Iterable[str] = ()) -> list[Block]:
+def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     r"""The derivation as document blocks, in the paper's order.
 
     Parameters
@@ -92,7 +90,7 @@ def story(res, figures: Iterable[str] = ()) -> list[Block]:
     ['closed_loop']
     """
     shown = set(figures)
-    blocks: list = []
+    blocks: list[DocumentBlock] = []
     add = blocks.append
 
     def figure(name: str, caption: str) -> None:
