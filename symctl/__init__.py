@@ -91,7 +91,7 @@ _PUBLIC = {
     "pulse": "symctl.neural.simulate",
     "simulate_realization": "symctl.neural.simulate",
     # 6. report: the whole derivation
-    "PaperResults": "symctl.report.pipeline",
+    "PaperResults": "symctl.report.results",
     "derive_paper": "symctl.report.pipeline",
 }
 

@@ -1,7 +1,16 @@
 """The ``symctl`` command. Orchestration only: the math lives in the library.
 
-``symctl paper`` runs the paper's derivation and writes its outputs. Bad input
-prints one line (``symctl: error: ...``) and exits with code 2.
+``symctl paper`` runs the paper's derivation and writes its outputs; its
+defaults are the paper's parameters (:data:`symctl.report.spec.PAPER`). Bad
+input prints one line (``symctl: error: ...``) and exits with code 2. The
+console script calls :func:`run`; :func:`main` returns the exit code instead
+of exiting.
+
+Examples
+--------
+>>> from symctl.cli import main
+>>> main(["paper", "--tau", "-1", "--no-figures", "--no-pdf"])
+2
 """
 
 from __future__ import annotations
@@ -15,9 +24,10 @@ from rich.console import Console
 from rich.table import Table
 
 from symctl._util.validate import parse_matrix
-from symctl.errors import SymctlError, SymctlTypeError
+from symctl.errors import SymctlError
+from symctl.report.spec import PAPER
 
-__all__ = ["main"]
+__all__ = ["main", "run"]
 
 _console = Console()
 
@@ -30,22 +40,32 @@ def cli() -> None:
 
 @cli.command()
 @click.option(
-    "--tau", type=float, default=0.02, show_default=True, help="Muscle time constant [s]."
+    "--tau", type=float, default=PAPER.tau, show_default=True, help="Muscle time constant [s]."
 )
-@click.option("--f-max", type=float, default=60.0, show_default=True, help="Maximum force [N].")
+@click.option(
+    "--f-max", type=float, default=PAPER.f_max, show_default=True, help="Maximum force [N]."
+)
 @click.option(
     "--r-bar",
     type=float,
-    default=1.0,
+    default=PAPER.r_bar,
     show_default=True,
     help="Equilibrium firing rate [spikes/s].",
 )
-@click.option("--ts", type=float, default=0.01, show_default=True, help="Sampling time [s].")
+@click.option("--ts", type=float, default=PAPER.Ts, show_default=True, help="Sampling time [s].")
 @click.option(
-    "--sensor-delay", type=int, default=1, show_default=True, help="Sensor delay [steps]."
+    "--sensor-delay",
+    type=int,
+    default=PAPER.sensor_delay,
+    show_default=True,
+    help="Sensor delay [steps].",
 )
 @click.option(
-    "--actuator-delay", type=int, default=1, show_default=True, help="Actuator delay [steps]."
+    "--actuator-delay",
+    type=int,
+    default=PAPER.actuator_delay,
+    show_default=True,
+    help="Actuator delay [steps].",
 )
 @click.option(
     "--q",
@@ -58,12 +78,16 @@ def cli() -> None:
     "--r", "r_text", default="1", show_default=True, help="Input penalty R: a number or a matrix."
 )
 @click.option(
-    "--seed", type=int, default=0, show_default=True, help="Seed for the random realizations."
+    "--seed",
+    type=int,
+    default=PAPER.seed,
+    show_default=True,
+    help="Seed for the random realizations.",
 )
 @click.option(
     "--realizations",
     type=click.IntRange(min=1),
-    default=4,
+    default=PAPER.realizations,
     show_default=True,
     help="Random realizations simulated per circuit.",
 )
@@ -256,7 +280,25 @@ def _fmt(values) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the console script; returns the exit code."""
+    """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``symctl``; by default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0 on success, 2 on bad input (one line ``symctl: error: ...`` on
+        stderr), 1 when aborted.
+
+    Examples
+    --------
+    >>> from symctl.cli import main
+    >>> main(["paper", "--realizations", "0"])
+    2
+    """
     try:
         cli.main(args=argv, prog_name="symctl", standalone_mode=False)
     except click.exceptions.Abort:
@@ -265,7 +307,7 @@ def main(argv: list[str] | None = None) -> int:
     except click.ClickException as exc:
         click.echo(f"symctl: error: {exc.format_message()}".splitlines()[0], err=True)
         return 2
-    except (SymctlError, SymctlTypeError) as exc:
+    except SymctlError as exc:  # type errors included
         click.echo(f"symctl: error: {exc}".splitlines()[0], err=True)
         return 2
     except OSError as exc:  # e.g. an --out folder that cannot be written
@@ -274,10 +316,16 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
-
-
 def run() -> None:  # pragma: no cover - console-script wrapper
-    """Console-script entry: exit with :func:`main`'s code."""
+    """The console script ``symctl``: run :func:`main` on ``sys.argv`` and exit with its code.
+
+    Raises
+    ------
+    SystemExit
+        Always, with :func:`main`'s exit code.
+    """
     sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    run()

@@ -17,7 +17,13 @@ can be written as LaTeX with the paper's symbol names (:math:`\delta_f`,
 In Jupyter, ``IPython.display.Math(to_latex(obj))`` renders one object, and
 every derived object already shows itself as LaTeX (``_repr_latex_``).
 
+The equations of each derived type are one table (built on first use, so
+that importing this module loads none of the classes it writes).
+
+Examples
+--------
 >>> from symctl import controller_tf, factor
+>>> from symctl.latex import align, export
 >>> print(export(factor(controller_tf(2)).G1, name="G_1(z)", label="eq:G1"))
 \begin{equation}
   G_1(z) = \frac{C_{1}}{z - \epsilon_{1}}
@@ -34,27 +40,18 @@ every derived object already shows itself as LaTeX (``_repr_latex_``).
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 
 import numpy as np
 import sympy as sp
 
 from symctl._util.display import latex as _sympy_latex
-from symctl.compatibility.assignment import DelayAssignment
-from symctl.compatibility.check import CompatibilityResult
-from symctl.compatibility.controller import ControllerCompatibility
-from symctl.compatibility.delaygraph import DelayGraph
-from symctl.design.augment import AugmentedSystem
-from symctl.design.lqr import Gains
-from symctl.design.plant import DiscretePlant, Linearization, MuscleModel
-from symctl.design.tf import DiscreteTF
+from symctl._util.validate import positive_int
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.neural.circuit import Circuit
-from symctl.realization.factorization import Factorization
-from symctl.realization.realization import Realization
 
 __all__ = ["align", "document", "equation", "equations", "export", "number", "to_latex"]
 
@@ -70,6 +67,21 @@ PACKAGES = ("amsmath", "amssymb", "graphicx")
 def number(value: float, digits: int = DIGITS) -> str:
     r"""A real number in LaTeX: ``digits`` significant digits, powers of ten, :math:`\infty`.
 
+    Parameters
+    ----------
+    value : float
+        Any real number (also ``inf`` and ``nan``).
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+        E.g. ``'1.5 \times 10^{-7}'``, ``'\infty'``, ``'\mathrm{NaN}'``.
+
+    Examples
+    --------
+    >>> from symctl.latex import number
     >>> number(0.000123456789), number(float("inf")), number(-2.0), number(1e20)
     ('0.000123457', '\\infty', '-2', '1 \\times 10^{20}')
     """
@@ -110,7 +122,29 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
     (taken as LaTeX already), or any object with a ``latex()`` method (every
     derived object of symctl).
 
+    Parameters
+    ----------
+    obj : object
+        What to write.
+    digits : int
+        Significant digits of floats (an integer >= 1).
+
+    Returns
+    -------
+    str
+        The math, without an environment.
+
+    Raises
+    ------
+    ParameterError
+        ``digits`` is not an integer >= 1, or an array has more than 2 dimensions.
+    SymctlTypeError
+        ``obj`` cannot be written as LaTeX.
+
+    Examples
+    --------
     >>> import numpy as np
+    >>> from symctl.latex import to_latex
     >>> to_latex(np.array([[0.0, 1.0], [np.inf, 0.0]]))
     '\\begin{bmatrix}0 & 1 \\\\ \\infty & 0\\end{bmatrix}'
     >>> from symctl.symbols import epsilon_1, gain_symbols
@@ -118,8 +152,7 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
     >>> to_latex(K1 - epsilon_1 + 0.123456789)
     'K_{1} - \\epsilon_{1} + 0.123457'
     """
-    if not isinstance(digits, int) or isinstance(digits, bool) or digits < 1:
-        raise ParameterError(f"digits: must be an integer >= 1, got {digits!r}")
+    positive_int(digits, "digits")
     if isinstance(obj, str):
         return obj
     if isinstance(obj, sp.Basic | sp.MatrixBase):
@@ -147,54 +180,73 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
 
 
 # ---------------------------------------------------------------- objects as equations
-def _chi(system: AugmentedSystem) -> sp.Matrix:
-    return sp.Matrix([sp.Symbol(s) for s in system.state_names])
+Pairs = list[tuple[str | None, str]]
 
 
-def _pairs(obj, digits: int) -> list[tuple[str | None, str]]:
+@functools.cache
+def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
+    """The equations of each derived type: ``rule(obj, tex)`` with ``tex`` = :func:`to_latex`.
+
+    One table instead of an ``isinstance`` ladder; built on first use, so that
+    importing this module loads none of the classes it writes.
+    """
+    from symctl.compatibility.assignment import DelayAssignment
+    from symctl.compatibility.check import CompatibilityResult
+    from symctl.compatibility.controller import ControllerCompatibility
+    from symctl.compatibility.delaygraph import DelayGraph
+    from symctl.design.augment import AugmentedSystem
+    from symctl.design.lqr import Gains
+    from symctl.design.plant import DiscretePlant, Linearization, MuscleModel
+    from symctl.design.tf import DiscreteTF
+    from symctl.neural.circuit import Circuit
+    from symctl.realization.factorization import Factorization
+    from symctl.realization.realization import Realization
+
+    def compatibility(obj, tex) -> Pairs:
+        if obj.ok:
+            return [(r"\tilde E", tex(obj.E_tilde) + r" \ge E")]
+        return [(None, r"\text{not compatible (" + obj.method + ")}")]
+
+    return {
+        MuscleModel: lambda o, tex: [
+            (r"\frac{df}{dt}", tex(o.ode)),
+            (r"\bar f", tex(o.f_bar_symbolic)),
+        ],
+        Linearization: lambda o, tex: [("a", tex(o.a)), ("b", tex(o.b))],
+        DiscretePlant: lambda o, tex: [("A", tex(o.A)), ("B", tex(o.B))],
+        AugmentedSystem: lambda o, tex: [
+            (r"\chi", tex(o.chi)),
+            (r"\tilde A", tex(o.A)),
+            (r"\tilde B", tex(o.B)),
+            (r"\tilde Q", tex(o.Q)),
+        ],
+        Gains: lambda o, tex: [("K", tex(np.asarray(o.K, dtype=float)))],
+        DiscreteTF: lambda o, tex: [("G(z)", o.latex())],
+        Factorization: lambda o, tex: [
+            ("G_1(z)", o.G1.latex()),
+            ("G_2(z)", o.G2.latex()),
+            ("G_3(z)", o.G3.latex()),
+            ("N", tex(o.N)),
+        ],
+        Realization: lambda o, tex: [(k, tex(getattr(o, k))) for k in "FHMN"],
+        DelayGraph: lambda o, tex: [("E", tex(o.E))],
+        DelayAssignment: lambda o, tex: [(r"\tilde E", tex(o.E_tilde))],
+        CompatibilityResult: compatibility,
+        ControllerCompatibility: lambda o, tex: [(None, o.latex())],
+        Circuit: lambda o, tex: [tuple(eq.split(" = ", 1)) for eq in o.equations()],
+    }
+
+
+def _pairs(obj, digits: int) -> Pairs:
     def tex(value) -> str:
         return to_latex(value, digits=digits)
 
     if isinstance(obj, sp.Eq):
         return [(tex(obj.lhs), tex(obj.rhs))]
-    if isinstance(obj, MuscleModel):
-        return [(r"\frac{df}{dt}", tex(obj.ode)), (r"\bar f", tex(obj.f_bar_symbolic))]
-    if isinstance(obj, Linearization):
-        return [("a", tex(obj.a)), ("b", tex(obj.b))]
-    if isinstance(obj, DiscretePlant):
-        return [("A", tex(obj.A)), ("B", tex(obj.B))]
-    if isinstance(obj, AugmentedSystem):
-        return [
-            (r"\chi", tex(_chi(obj))),
-            (r"\tilde A", tex(obj.A)),
-            (r"\tilde B", tex(obj.B)),
-            (r"\tilde Q", tex(obj.Q)),
-        ]
-    if isinstance(obj, Gains):
-        return [("K", tex(np.asarray(obj.K, dtype=float)))]
-    if isinstance(obj, DiscreteTF):
-        return [("G(z)", obj.latex())]
-    if isinstance(obj, Factorization):
-        return [
-            ("G_1(z)", obj.G1.latex()),
-            ("G_2(z)", obj.G2.latex()),
-            ("G_3(z)", obj.G3.latex()),
-            ("N", tex(obj.N)),
-        ]
-    if isinstance(obj, Realization):
-        return [(k, tex(getattr(obj, k))) for k in "FHMN"]
-    if isinstance(obj, DelayGraph):
-        return [("E", _array_latex(obj.E, digits))]
-    if isinstance(obj, DelayAssignment):
-        return [(r"\tilde E", _array_latex(obj.E_tilde, digits))]
-    if isinstance(obj, CompatibilityResult):
-        if obj.ok:
-            return [(r"\tilde E", _array_latex(obj.E_tilde, digits) + r" \ge E")]
-        return [(None, r"\text{not compatible (" + obj.method + ")}")]
-    if isinstance(obj, ControllerCompatibility):
-        return [(None, obj.latex())]
-    if isinstance(obj, Circuit):
-        return [tuple(eq.split(" = ", 1)) for eq in obj.equations()]
+    rules = _rules()
+    for cls in type(obj).__mro__:
+        if cls in rules:
+            return rules[cls](obj, tex)
     if isinstance(obj, Mapping):
         return [(tex(k), tex(v)) for k, v in obj.items()]
     if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
@@ -211,8 +263,30 @@ def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     realization ``F, H, M, N``, a factorization :math:`G_1, G_2, G_3, N`, a
     circuit one equation per neuron, ...), a :class:`sympy.Eq`, a pair
     ``(lhs, rhs)``, a mapping ``{lhs: rhs}``, or a list of any of these.
+    Anything else is one bare formula, :func:`to_latex` of it.
 
+    Parameters
+    ----------
+    obj : object
+        What to write.
+    digits : int
+        Significant digits of floats.
+
+    Returns
+    -------
+    list of (str or None, str)
+
+    Raises
+    ------
+    ParameterError
+        ``digits`` is not an integer >= 1.
+    SymctlTypeError
+        A part of ``obj`` cannot be written as LaTeX.
+
+    Examples
+    --------
     >>> from symctl import MuscleModel
+    >>> from symctl.latex import equations
     >>> equations(MuscleModel().discrete_symbolic())
     [('A', '\\left[\\begin{matrix}e^{- \\frac{T_{s}}{\\tau}}\\end{matrix}\\right]'), ...]
     """
@@ -233,7 +307,29 @@ def _label(label) -> str:
 def equation(lhs, rhs=None, *, label: str | None = None, numbered: bool = True) -> str:
     r"""An ``equation`` environment: ``lhs = rhs`` (or ``lhs`` alone when ``rhs`` is None).
 
-    >>> from symctl.symbols import delta_f
+    Parameters
+    ----------
+    lhs, rhs : object
+        Anything :func:`to_latex` writes (a string is LaTeX already).
+    label : str, optional
+        A LaTeX label (letters, digits and ``:._-``); only when numbered.
+    numbered : bool
+        ``equation``, or ``equation*`` when False.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ParameterError
+        ``label`` is not a LaTeX label.
+    SymctlTypeError
+        ``lhs`` or ``rhs`` cannot be written as LaTeX.
+
+    Examples
+    --------
+    >>> from symctl.latex import equation
     >>> print(equation("A", 0.6065306597, label="eq:A"))
     \begin{equation}
       A = 0.606531
@@ -259,6 +355,27 @@ def align(
     ``(lhs, rhs)`` pairs, derived objects, ...). ``labels``, when given, has one
     label (or None) per row.
 
+    Parameters
+    ----------
+    rows : iterable
+        The equations, as for :func:`equations`.
+    labels : iterable of str or None, optional
+        One label (or None) per row.
+    numbered : bool
+        ``align``, or ``align*`` (no labels) when False.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ParameterError
+        No rows; as many labels as rows are needed; a label is not a LaTeX label.
+
+    Examples
+    --------
+    >>> from symctl.latex import align
     >>> print(align([("a", 1), ("b", 2)], labels=["eq:a", None]))
     \begin{align}
       a &= 1 \label{eq:a} \\
@@ -293,7 +410,32 @@ def export(
     One equation gives an ``equation`` (``name`` replaces its left-hand side,
     e.g. ``"G_2(z)"``), several an ``align`` (``label`` goes on the first row).
 
+    Parameters
+    ----------
+    obj : object
+        A derived object, or anything :func:`equations` accepts.
+    name : str, optional
+        The left-hand side of a single equation.
+    label : str, optional
+        A LaTeX label (on the first row of an ``align``).
+    numbered : bool
+        Numbered environments, or starred ones when False.
+    digits : int
+        Significant digits of floats.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ParameterError
+        No equations; ``name`` given for several equations; a bad ``label`` or ``digits``.
+
+    Examples
+    --------
     >>> from symctl import controllable_canonical, controller_tf, factor
+    >>> from symctl.latex import export
     >>> print(export(controllable_canonical(factor(controller_tf(2)).G2), numbered=False))
     \begin{align*}
       F &= \left[\begin{matrix}0 & 1\\K_{2} & K_{1}\end{matrix}\right] \\
@@ -327,6 +469,29 @@ def document(
     narrow margins, and any extra ``packages``; ``preamble`` is LaTeX put before
     ``\begin{document}`` (macros). Compiles with ``pdflatex``.
 
+    Parameters
+    ----------
+    body : str or iterable of str
+        The parts, separated by blank lines.
+    title, author : str
+        With a title, ``\maketitle`` (no date).
+    packages : iterable of str
+        Extra packages to load.
+    preamble : str
+        LaTeX before ``\begin{document}``.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ParameterError
+        A package name that is not a package name.
+
+    Examples
+    --------
+    >>> from symctl.latex import document, equation
     >>> text = document(equation("a", 1), title="Demo")
     >>> text.splitlines()[0], text.rstrip().splitlines()[-1]
     ('\\documentclass[11pt]{article}', '\\end{document}')

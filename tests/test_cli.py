@@ -62,6 +62,7 @@ def test_paper_options_are_used(tmp_path):
         (["--realizations", "0"], "realizations"),
         (["--sensor-delay", "0", "--actuator-delay", "0"], "sensor_delay, actuator_delay"),
         (["--jobs", "0"], "jobs"),
+        (["--seed", "-1"], "seed"),
     ],
 )
 def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):
@@ -88,3 +89,13 @@ def test_an_unwritable_output_folder_is_one_line_and_exit_2(tmp_path, capsys):
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("symctl: error: --out:")
+
+
+def test_the_console_script_run_is_public_and_exits_with_mains_code(monkeypatch):
+    from symctl import cli
+
+    assert set(cli.__all__) == {"main", "run"}
+    monkeypatch.setattr(sys, "argv", ["symctl", "paper", "--tau", "0"])
+    with pytest.raises(SystemExit) as exit_info:
+        cli.run()
+    assert exit_info.value.code == 2

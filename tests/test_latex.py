@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -135,3 +136,22 @@ def test_a_document_of_every_derived_object_compiles_with_pdflatex(tmp_path, pdf
     )
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / "all.pdf").stat().st_size > 1000
+
+
+def test_importing_latex_loads_no_derived_class():
+    code = (
+        "import sys, symctl.latex; "
+        "print(sorted(m for m in sys.modules if m.startswith('symctl.') "
+        "and m.split('.')[1] not in ('latex', 'errors', 'symbols', '_util')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_a_subclass_of_a_derived_type_exports_as_its_base():
+    class Named(DelayGraph):
+        pass
+
+    g = DelayGraph.chain([1, 1])
+    named = Named(g.E)
+    assert L.equations(named) == L.equations(g)

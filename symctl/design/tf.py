@@ -320,8 +320,3 @@ class DiscreteTF(LatexMixin):
             "[" + ", ".join(descending_str(e) for e in row) + "]" for row in self._num.tolist()
         )
         return f"[{rows}]/({den})"
-
-
-# report/document.py imports this name; at merge it should import
-# symctl._util.display.descending_latex instead, and this alias go.
-_descending_latex = descending_latex

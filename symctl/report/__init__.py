@@ -1,1 +1,21 @@
-"""report"""
+"""The paper's report: the whole derivation run once, and written as files.
+
+Modules, lowest first (each imports only those above it in this list):
+
+- ``spec``: the paper's parameters (defaults of ``MuscleModel`` and ``augment``)
+  and the report's circuits;
+- ``document``: blocks (headings, prose, equations, tables, graphics) written as
+  LaTeX, Markdown and PDF;
+- ``story``: the derivation told as blocks;
+- ``figures``: the report's figures by name, saved as PNG and SVG;
+- ``results``: ``PaperResults`` (with its records), ``results.json``, and
+  ``PaperResults.write`` / ``PaperResults.figure``;
+- ``pipeline``: ``derive_paper``, which runs the derivation and returns a
+  ``PaperResults``.
+
+Examples
+--------
+>>> from symctl import derive_paper
+>>> derive_paper().circuits["general"].compatibility.ok
+True
+"""

@@ -1,17 +1,33 @@
-r"""The whole derivation as one story, written as LaTeX (``derivation.tex``) and Markdown.
+r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 
-:func:`story` turns a :class:`~symctl.report.pipeline.PaperResults` into a list of blocks
-(headings, prose, numbered equations, tables, figures, verbatim text) in the
-order of the paper: muscle model and linearization, discretization, delays and
-the augmented system, LQR gains, the controller :math:`G(z)`, the factors
-:math:`G_1, G_2, G_3`, the realizations of :math:`G_2`, the delay graph and the
-compatibility of each structure, the circuits and their neurons, and the
-simulations. :func:`write_tex` and :func:`write_markdown` render the same blocks,
-so the two documents tell the same story with the same equation numbers;
-:func:`compile_pdf` runs ``pdflatex``.
+A block is one of :class:`Heading`, :class:`Text`, :class:`Math` (one numbered
+display), :class:`Table`, :class:`Graphic` (an image file with its caption) and
+:class:`Verbatim`. :func:`to_tex` and :func:`to_markdown` render the same
+blocks, so the two documents tell the same story with the same equation
+numbers; :func:`write_tex` and :func:`write_markdown` write them to files
+(``symctl paper`` writes ``derivation.tex`` and ``report.md``), and
+:func:`compile_pdf` runs ``pdflatex``. The paper's blocks are made by
+:func:`symctl.report.story.story`; this module knows nothing of the paper
+but its title.
 
 Prose may hold inline math between ``$`` signs; everything outside them is
 escaped for LaTeX.
+
+Examples
+--------
+>>> from symctl.report.document import Heading, Math, Text, to_markdown
+>>> blocks = [Heading("Gains"), Text("The gain $K_0$:"), Math((("K_0", "-0.046"),), "eq:K")]
+>>> print(to_markdown(blocks, title="Demo"))
+# Demo
+<BLANKLINE>
+## Gains
+<BLANKLINE>
+The gain $K_0$:
+<BLANKLINE>
+$$
+\begin{aligned}K_0 &= -0.046\end{aligned}\tag{1}
+$$
+<BLANKLINE>
 """
 
 from __future__ import annotations
@@ -20,30 +36,26 @@ import re
 import shutil
 import subprocess
 import textwrap
+import typing
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
-
-import numpy as np
-import sympy as sp
 
 from symctl import latex as L
-from symctl.design.tf import _descending_latex
-from symctl.errors import LatexError
-from symctl.symbols import z
-
-if TYPE_CHECKING:
-    from symctl.report.pipeline import PaperResults
+from symctl.errors import LatexError, SymctlTypeError
 
 __all__ = [
-    "Figure",
+    "BLOCKS",
+    "PDFLATEX_TIMEOUT",
+    "TITLE",
+    "DocumentBlock",
+    "Graphic",
     "Heading",
     "Math",
     "Table",
     "Text",
     "Verbatim",
     "compile_pdf",
-    "story",
     "to_markdown",
     "to_tex",
     "write_markdown",
@@ -51,12 +63,14 @@ __all__ = [
 ]
 
 TITLE = "Toward neuronal implementations of delayed optimal control: the derivation"
+"""The title of the paper's derivation (``derivation.tex`` and ``report.md``)."""
 PDFLATEX_TIMEOUT = 180  # seconds
 
 
-# ---------------------------------------------------------------- blocks
 @dataclass(frozen=True)
 class Heading:
+    """A section heading; ``level`` 1 is a section, 2 a subsection."""
+
     text: str
     level: int = 1
 
@@ -78,15 +92,15 @@ class Math:
 
 @dataclass(frozen=True)
 class Table:
-    """Cells are prose (inline math between ``$`` signs)."""
+    """A table; cells are prose (inline math between ``$`` signs)."""
 
     header: tuple
     rows: tuple
 
 
 @dataclass(frozen=True)
-class Figure:
-    """A figure file ``<name>.png`` (in the output folder) with its caption."""
+class Graphic:
+    """An image file ``<name>.png`` (next to the document) with its caption."""
 
     name: str
     caption: str
@@ -94,482 +108,15 @@ class Figure:
 
 @dataclass(frozen=True)
 class Verbatim:
+    """Preformatted text, shown as it is."""
+
     text: str
 
 
-# ---------------------------------------------------------------- helpers
-def _num(value):
-    """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
-    if isinstance(value, sp.MatrixBase):
-        return np.array(value.evalf(), dtype=float)
-    if isinstance(value, np.ndarray):
-        return value.astype(float)
-    return float(value)
-
-
-def _fmt(value: float) -> str:
-    """A number as inline math (for prose and table cells)."""
-    return f"${L.number(value, 6)}$"
-
-
-def _eq(*rows, label: str) -> Math:
-    return Math(tuple((lhs, L.to_latex(rhs)) for lhs, rhs in rows), label)
-
-
-def _both(symbolic, numeric) -> str:
-    """``symbolic = numeric`` as one right-hand side."""
-    return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"
-
-
-def _ascii(text: str) -> str:
-    return text.replace("Ẽ", "E~").replace("→", "->").replace("≤", "<=").replace("≥", ">=")
-
-
-# ---------------------------------------------------------------- the story
-def story(res: PaperResults, figures: list[str] | tuple[str, ...] = ()) -> list:
-    """The derivation as blocks, in the paper's order; ``figures`` are the figure files written."""
-    shown = set(figures)
-    blocks: list = []
-    add = blocks.append
-
-    def figure(name: str, caption: str) -> None:
-        if name in shown:
-            add(Figure(name, caption))
-
-    params = res.parameters()
-    s, g, f = res.system, res.gains, res.factors
-    add(
-        Text(
-            "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
-            "proved: an identity is shown by reducing a difference to the zero polynomial. "
-            "Numbers are the paper's parameters unless given otherwise, to 6 significant digits."
-        )
-    )
-    add(
-        Table(
-            ("parameter", "value"),
-            (
-                (r"muscle time constant $\tau$", f"{params['tau']:g} s"),
-                (r"maximum force $f_\text{max}$", f"{params['f_max']:g} N"),
-                (r"equilibrium firing rate $\bar r$", f"{params['r_bar']:g} spikes/s"),
-                ("sampling time $T_s$", f"{params['Ts']:g} s"),
-                ("sensor delay $d_s$, actuator delay $d_a$",
-                 f"{params['sensor_delay']}, {params['actuator_delay']} steps"),
-                ("cost weights $Q$, $R$", f"{params['Q']}, {params['R']}"),
-                ("seed of the random realizations", str(params["seed"])),
-            ),
-        )
-    )  # fmt: skip
-
-    # 1. muscle
-    model = res.model
-    lin = model.linearize_symbolic()
-    add(Heading("Muscle model and linearization"))
-    add(
-        Text(
-            "The muscle's force $f$ [N] follows the motor-neuron firing rate $r$ [spikes/s] through "
-            "a sigmoid and a first-order lag; at the equilibrium rate $\\bar r$ the force is "
-            "$\\bar f$."
-        )
-    )
-    add(
-        _eq(
-            (r"\frac{df}{dt}", model.ode),
-            (r"\bar f", _both(model.f_bar_symbolic, model.f_bar) + r"\ \text{N}"),
-            label="eq:muscle",
-        )
-    )
-    add(
-        Text(
-            "Linearized at $(\\bar f, \\bar r)$, with $\\delta_f = f - \\bar f$ and "
-            "$\\delta_r = r - \\bar r$, it is $\\dot\\delta_f = a\\,\\delta_f + b\\,\\delta_r$:"
-        )
-    )
-    values = model.values
-    add(
-        _eq(
-            ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
-            ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
-            label="eq:linear",
-        )
-    )
-
-    # 2. discretization
-    sym, num = res.plant_symbolic, res.plant
-    add(Heading("Discretization"))
-    add(
-        Text(
-            "A zero-order hold over the sampling time $T_s$ (the exact matrix exponential) gives "
-            "$\\delta_f(t+1) = A\\,\\delta_f(t) + B\\,\\delta_r(t)$ with"
-        )
-    )
-    add(
-        _eq(
-            ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
-            ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
-            label="eq:discrete",
-        )
-    )
-    figure("open_loop", "Open-loop response of the linear muscle to a pulse in firing rate "
-                        "(the paper's Fig. ol_sims).")  # fmt: skip
-
-    # 3. delays
-    add(Heading("Delays and the augmented system"))
-    add(
-        Text(
-            f"The sensor delays the force by $d_s = {s.sensor_delay}$ step(s) and the actuator "
-            f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
-            f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
-            "become states: the augmented state $\\chi$ evolves as "
-            "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
-            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
-        )
-    )
-    chi = sp.Matrix([sp.Symbol(n) for n in s.state_names])
-    add(
-        _eq(
-            (r"\chi", chi),
-            (r"\tilde A", _num(s.A)),
-            (r"\tilde B", _num(s.B)),
-            (r"\tilde Q", _num(s.Q)),
-            label="eq:augmented",
-        )
-    )
-
-    # 4. gains
-    add(Heading("Optimal gains"))
-    add(
-        Text(
-            "The discrete algebraic Riccati equation gives the optimal feedback "
-            "$\\mu(t) = K \\chi(t)$ (the paper's sign), "
-            f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
-            f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
-            "square root of the rounding error in floating point):"
-        )
-    )
-    poles = ", ".join(_pole(p) for p in g.poles)
-    add(
-        _eq(
-            ("K", np.asarray(g.K, dtype=float)),
-            (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
-            (r"\rho", _num(g.spectral_radius)),
-            label="eq:gains",
-        )
-    )
-
-    # 5. controller
-    G_num = res.G
-    add(Heading("The controller $G(z)$"))
-    add(
-        Text(
-            "Eliminating the delayed commands, the controller from $\\Delta_f$ to "
-            "$\\Delta_r$ is a transfer function of the gains, kept symbolic:"
-        )
-    )
-    add(_eq(("G(z)", _both(res.G_symbolic, G_num.expr.evalf(6))), label="eq:G"))
-    add(
-        Text(
-            "Proved: "
-            + ("yes" if res.proved else "NO")
-            + " (the derivation of $G$ checked against the controller's state-space matrices "
-            "read off $\\tilde A$ and $\\tilde B$, as a polynomial identity). Relative degree "
-            f"{G_num.relative_degree}."
-        )
-    )
-    figure("closed_loop", "Closed loop of the optimal delayed controller: response to a pulse "
-                          "disturbance on the force (the paper's Fig. cl_sims).")  # fmt: skip
-
-    # 6. factorization
-    add(Heading("Factorization $G = G_3 G_2 G_1$"))
-    add(
-        Text(
-            "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
-            "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
-        )
-    )
-    den = _descending_latex(f.G2.den)
-    add(
-        _eq(
-            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
-            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-            ("G_2(z)", rf"N\,\frac{{{_zeros_tex((*f.sensor_eps, *f.actuator_eps))}}}{{{den}}}"),
-            label="eq:factors",
-        )
-    )
-    c = _remainder_symbols(f)
-    add(
-        Text(
-            "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-            "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
-        )
-    )
-    add(
-        _eq(
-            ("N", f.N),
-            ("G_2(z)", rf"N + N\,\frac{{{_descending_latex(_remainder_poly(c))}}}{{{den}}}"),
-            *zip(map(L.to_latex, c), f.remainder_coeffs, strict=True),
-            label="eq:G2rewritten",
-        )
-    )
-    add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
-
-    # 7. realizations
-    add(Heading("Realizations of $G_2$"))
-    add(
-        Text(
-            "A realization $(F, H, M, N)$ of $G_2$ satisfies "
-            "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
-            "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
-            "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
-            f"from seed {res.seed})."
-        )
-    )
-    for name, title in (
-        ("controllable", "Controllable canonical form"),
-        ("observable", "Observable canonical form"),
-    ):
-        rec = res.realizations[name]
-        add(Heading(title, 2))
-        mats, short = _compact(rec.symbolic, f, c)
-        add(_eq(*mats, label=f"eq:{name}"))
-        where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
-        add(Text(_check_text(rec) + where))
-    rec = res.realizations["general"]
-    add(Heading("General realization", 2))
-    P = rec.symbolic.params.get("P")
-    add(
-        Text(
-            "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-            "into another realization of the same $G_2$:"
-        )
-    )
-    add(
-        _eq(
-            ("F", r"P^{-1} F_c P"),
-            ("H", r"P^{-1} H_c"),
-            ("M", r"M_c P"),
-            ("P", P if P is not None else "P"),
-            label="eq:general",
-        )
-    )
-    add(Text(_check_text(rec)))
-    values = ", ".join(
-        f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
-    )
-    add(Text(f"With the seeded numbers ({values}):"))
-    add(
-        _eq(
-            *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-            ("P", _num(rec.numeric.params["P"])),
-            label="eq:general-numeric",
-        )
-    )
-
-    # 8. delay graph and compatibility
-    add(Heading("Delay graph and compatibility"))
-    add(
-        Text(
-            f"The delay graph has one vertex per stage (sensor side, one relay per further unit "
-            f"delay, the muscle), {res.graph.n} in all; $E_{{ij}}$ is the smallest delay from "
-            "vertex $i$ to vertex $j$ ($\\infty$: no path). A structure is compatible when its "
-            "signals can be placed at vertices so that every path's delays $\\tilde E$ are at "
-            "least $E$."
-        )
-    )
-    add(_eq(("E", res.graph.E), label="eq:E"))
-    for name, crec in res.circuits.items():
-        verdict = crec.compatibility
-        add(Heading(_TITLES[name], 2))
-        if verdict.ok:
-            add(
-                Text(
-                    f"Compatible (decided by {verdict.method}); the delays between the vertices "
-                    "under the witness assignment:"
-                )
-            )
-            add(_eq((r"\tilde E", verdict.E_tilde), label=f"eq:Etilde-{name}"))
-            where = "; ".join(
-                f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
-                for v in range(1, res.graph.n + 1)
-            )
-            add(Text(f"Signals per vertex: {where}. The checker's witness:"))
-            add(Verbatim(_ascii(verdict.reason)))
-        else:
-            add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
-            add(Verbatim(_ascii(verdict.reason)))
-        figure(f"structure_{name}", f"Structure: {_TITLES[name]}.")
-
-    # 9. circuits
-    add(Heading("Neurons and circuits"))
-    add(
-        Text(
-            "A neuron is an adder that sums two or more terms (the output sum included); a "
-            "single term through delays is an axon with a synaptic weight; a loop through the "
-            "neuron's own output is its self-dynamics. The closed loop was simulated with "
-            f"{_count_text(res)} of each circuit; the largest relative departure of the force "
-            "and motor-neuron traces from the optimal controller's is in the last column."
-        )
-    )
-    add(
-        Table(
-            ("circuit", "neurons", "of them in $G_2$", "synapses", "compatible",
-             "realizations", "max. deviation"),
-            tuple(
-                (
-                    _TITLES[k],
-                    str(c.circuit.n_neurons),
-                    "-" if c.g2_neurons is None else str(c.g2_neurons),
-                    str(len(c.circuit.synapses)),
-                    "yes" if c.compatibility.ok else "no",
-                    str(c.firing.count),
-                    _fmt(c.firing.max_deviation),
-                )
-                for k, c in res.circuits.items()
-            ),
-        )
-    )  # fmt: skip
-    for name, crec in res.circuits.items():
-        add(Heading(_TITLES[name], 2))
-        if name == "general" and crec.circuit.free_symbols - set(f.G.free_symbols):
-            circuit, what = crec.firing.circuits[0], "its first simulated realization"
-            add(Text(f"The neurons of {what} (the symbolic weights are rational in $P$):"))
-        else:
-            circuit = crec.circuit
-            add(Text("The neurons, their self-dynamics and synapses:"))
-        rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
-        add(Math(tuple(rows), f"eq:circuit-{name}"))
-        placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
-        if placed:
-            add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        figure(f"circuit_{name}", f"Circuit, {_TITLES[name]}{_WHICH.get(name, '')}: neurons as circles "
-                                  "with their self-dynamics, synapses as arrows with weights.")  # fmt: skip
-
-    # 10. simulations
-    add(Heading("Simulations: the same behaviour, different firing"))
-    add(
-        Text(
-            "Every realization gives the force and motor-neuron traces of the optimal controller "
-            "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
-            "(change from equilibrium, spikes/s) per neuron and realization:"
-        )
-    )
-    for name, crec in res.circuits.items():
-        fp = crec.firing
-        summ = fp.summary()
-        rows = tuple(
-            (n, *(_fmt(v) for v in summ.peak[:, i]), _fmt(summ.spread[i]))
-            for i, n in enumerate(summ.neurons)
-        )
-        add(Heading(_TITLES[name], 2))
-        head = ("neuron", *(f"#{i + 1}" for i in range(fp.count)), "spread")
-        add(Table(head, rows))
-        figure(f"firing_{name}", f"Firing of the neurons, {_TITLES[name]}: "
-                                 f"{fp.count} realization(s), same force.")  # fmt: skip
-    nl = res.nonlinear
-    add(Heading("The nonlinear muscle", 2))
-    add(
-        Text(
-            "The linear controller closed around the nonlinear muscle (integrated between "
-            "samples, the rate held over each step): how far the force departs from the linear "
-            "prediction as the disturbance grows."
-        )
-    )
-    add(
-        Table(
-            ("pulse amplitude [N/step]", "max. deviation [N]", "relative"),
-            tuple(
-                (_fmt(a), _fmt(d), _fmt(r))
-                for a, d, r in zip(
-                    nl.amplitudes, nl.max_deviation, nl.relative_deviation, strict=True
-                )
-            ),
-        )
-    )
-    figure("nonlinear", "The linear controller around the nonlinear muscle.")
-    return blocks
-
-
-_TITLES = {
-    "ifp": "IFP controller",
-    "general": "G3 G2 G1, general G2",
-    "controllable": "G3 G2 G1, controllable canonical G2",
-    "observable": "G3 G2 G1, observable canonical G2",
-}
-
-
-_WHICH = {"general": " (its first simulated realization)"}
-COMPACT_LENGTH = 300
-"""A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
-
-
-def _sections_tex(cs, eps) -> str:
-    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections."""
-    if not cs:
-        return "1"
-    return rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
-
-
-def _zeros_tex(eps) -> str:
-    if len(eps) == 1:
-        return f"z - {L.to_latex(eps[0])}"
-    return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
-
-
-def _remainder_symbols(f) -> list[sp.Symbol]:
-    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(f.remainder_coeffs) + 1)]
-
-
-def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
-    return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
-
-
-def _compact(R, f, c) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols."""
-    N = sp.Symbol("N")
-    targets = [(f.N * coeff, N * ck) for coeff, ck in zip(f.remainder_coeffs, c, strict=True)]
-    rows, short = [], False
-    for k in "FHMN":
-        mat = getattr(R, k)
-        if k in "HM" and len(L.to_latex(mat)) > COMPACT_LENGTH:
-            mat = mat.applyfunc(lambda e: _match(e, targets))
-            short = True
-        rows.append((k, mat))
-    return rows, short
-
-
-def _match(entry: sp.Expr, targets) -> sp.Expr:
-    for value, symbol in targets:
-        if sp.cancel(entry - value) == 0:
-            return symbol
-    return entry
-
-
-def _count_text(res) -> str:
-    counts = {c.firing.count for c in res.circuits.values() if c.name != "ifp"}
-    n = max(counts) if counts else 1
-    return f"{n} random realizations (the IFP controller has one)"
-
-
-POLE_ZERO_TOL = 1e-6
-"""Poles smaller than this are written as 0: a multiple pole at 0 splits by about the square
-root of the rounding error in floating point (e.g. +-3e-8)."""
-
-
-def _pole(p: complex) -> str:
-    if abs(p) < POLE_ZERO_TOL:
-        return "0"
-    if abs(p.imag) < 1e-12:
-        return L.number(p.real)
-    sign = "+" if p.imag > 0 else "-"
-    return f"{L.number(p.real)} {sign} {L.number(abs(p.imag))}\\,i"
-
-
-def _check_text(rec) -> str:
-    sym, num = rec.check_symbolic, rec.check_numeric
-    return (
-        f"Realizes $G_2$, symbolically: {'yes' if sym.ok else 'NO'} ({sym.method}); "
-        f"with the numbers: {'yes' if num.ok else 'NO'} ({num.method})."
-    )
+DocumentBlock = Heading | Text | Math | Table | Graphic | Verbatim
+"""Any block of a document (not a structure's :class:`~symctl.compatibility.structure.Block`)."""
+BLOCKS = typing.get_args(DocumentBlock)
+"""The block types of a document."""
 
 
 # ---------------------------------------------------------------- LaTeX
@@ -630,7 +177,7 @@ def _tex_block(b) -> str:
                 r"\end{tabular}\end{center}",
             ]
         )
-    if isinstance(b, Figure):
+    if isinstance(b, Graphic):
         return "\n".join(
             [
                 r"\begin{figure}[htbp]\centering",
@@ -640,17 +187,39 @@ def _tex_block(b) -> str:
                 r"\end{figure}",
             ]
         )
-    if isinstance(b, Verbatim):
-        lines = [w for line in b.text.splitlines() for w in textwrap.wrap(line, 100) or [""]]
-        return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *lines, r"\end{verbatim}", "}"])
-    raise TypeError(f"unknown block {b!r}")  # pragma: no cover - blocks are built above
+    lines = [w for line in b.text.splitlines() for w in textwrap.wrap(line, 100) or [""]]
+    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *lines, r"\end{verbatim}", "}"])
 
 
-def to_tex(blocks: list) -> str:
-    """The blocks as a standalone LaTeX document (compiles with ``pdflatex``)."""
-    return L.document(
-        [_tex_block(b) for b in blocks], title=_tex_text(TITLE), author="symctl", preamble=_PREAMBLE
-    )
+def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
+    r"""The blocks as a standalone LaTeX document (compiles with ``pdflatex``).
+
+    Parameters
+    ----------
+    blocks : sequence of blocks
+        Instances of the types in :data:`BLOCKS`, in reading order.
+    title : str
+        The document's title (prose: escaped for LaTeX outside ``$...$``).
+
+    Returns
+    -------
+    str
+        The document, from ``\documentclass`` to ``\end{document}``.
+
+    Raises
+    ------
+    SymctlTypeError
+        An element of ``blocks`` is not a block.
+
+    Examples
+    --------
+    >>> from symctl.report.document import Math, Text, to_tex
+    >>> tex = to_tex([Text("100% sure: $a = 1$"), Math((("a", "1"),), "eq:a")], title="Demo")
+    >>> r"100\% sure: $a = 1$" in tex, r"\label{eq:a}" in tex
+    (True, True)
+    """
+    parts = [_tex_block(b) for b in _checked(blocks)]
+    return L.document(parts, title=_tex_text(title), author="symctl", preamble=_PREAMBLE)
 
 
 # ---------------------------------------------------------------- Markdown
@@ -658,11 +227,41 @@ def _md_cell(text: str) -> str:
     return text.replace("|", r"\|")
 
 
-def to_markdown(blocks: list) -> str:
-    """The blocks as Markdown with ``$$`` math (GitHub, Jupyter) and the figures inline."""
-    out = [f"# {TITLE}", ""]
+def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
+    r"""The blocks as Markdown with ``$$`` math (GitHub, Jupyter) and the figures inline.
+
+    Equations are numbered with ``\tag`` in the order of :func:`to_tex`.
+
+    Parameters
+    ----------
+    blocks : sequence of blocks
+        Instances of the types in :data:`BLOCKS`, in reading order.
+    title : str
+        The document's title (the first heading).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    SymctlTypeError
+        An element of ``blocks`` is not a block.
+
+    Examples
+    --------
+    >>> from symctl.report.document import Graphic, to_markdown
+    >>> print(to_markdown([Graphic("open_loop", "The open loop.")], title="Demo"))
+    # Demo
+    <BLANKLINE>
+    ![The open loop.](open_loop.png)
+    <BLANKLINE>
+    *The open loop.*
+    <BLANKLINE>
+    """
+    out = [f"# {title}", ""]
     number = 0
-    for b in blocks:
+    for b in _checked(blocks):
         if isinstance(b, Heading):
             out += [f"{'#' * (b.level + 1)} {b.text}", ""]
         elif isinstance(b, Text):
@@ -676,37 +275,129 @@ def to_markdown(blocks: list) -> str:
             out.append("|" + "---|" * len(b.header))
             out += ["| " + " | ".join(map(_md_cell, row)) + " |" for row in b.rows]
             out.append("")
-        elif isinstance(b, Figure):
+        elif isinstance(b, Graphic):
             out += [f"![{b.caption}]({b.name}.png)", "", f"*{b.caption}*", ""]
-        elif isinstance(b, Verbatim):
+        else:
             out += ["```", b.text, "```", ""]
     return "\n".join(out)
 
 
+def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:
+    for i, b in enumerate(blocks):
+        if not isinstance(b, BLOCKS):
+            raise SymctlTypeError(
+                f"blocks: element {i} is a {type(b).__name__}, not a block "
+                f"({', '.join(t.__name__ for t in BLOCKS)})"
+            )
+    return blocks
+
+
 # ---------------------------------------------------------------- files
-def write_tex(blocks: list, path: Path) -> Path:
-    """Write :func:`to_tex` of ``blocks`` to ``path``."""
+def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE) -> Path:
+    r"""Write :func:`to_tex` of ``blocks`` to ``path`` (UTF-8); returns the path.
+
+    Parameters
+    ----------
+    blocks : sequence of blocks
+        As for :func:`to_tex`.
+    path : path
+        The file to write (``derivation.tex`` for ``symctl paper``).
+    title : str
+        The document's title.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    SymctlTypeError
+        An element of ``blocks`` is not a block.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from symctl.report.document import Text, write_tex
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     path = write_tex([Text("Hello.")], Path(out) / "a.tex")
+    ...     path.read_text().startswith(r"\documentclass")
+    True
+    """
     path = Path(path)
-    path.write_text(to_tex(blocks), encoding="utf-8")
+    path.write_text(to_tex(blocks, title=title), encoding="utf-8")
     return path
 
 
-def write_markdown(blocks: list, path: Path) -> Path:
-    """Write :func:`to_markdown` of ``blocks`` to ``path``."""
+def write_markdown(
+    blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE
+) -> Path:
+    r"""Write :func:`to_markdown` of ``blocks`` to ``path`` (UTF-8); returns the path.
+
+    Parameters
+    ----------
+    blocks : sequence of blocks
+        As for :func:`to_markdown`.
+    path : path
+        The file to write (``report.md`` for ``symctl paper``).
+    title : str
+        The document's title.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    SymctlTypeError
+        An element of ``blocks`` is not a block.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from symctl.report.document import Text, write_markdown
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     write_markdown([Text("Hello.")], Path(out) / "a.md", title="Demo").read_text()
+    '# Demo\n\nHello.\n'
+    """
     path = Path(path)
-    path.write_text(to_markdown(blocks), encoding="utf-8")
+    path.write_text(to_markdown(blocks, title=title), encoding="utf-8")
     return path
 
 
-def compile_pdf(tex: Path, *, pdflatex: str | None = None) -> Path | None:
+def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
     """Compile ``tex`` with ``pdflatex`` next to it; None when ``pdflatex`` is not installed.
 
-    Runs twice when the log asks for it (cross-references); leaves only the PDF.
+    Runs twice when the document has cross-references and the log asks for it;
+    leaves only the PDF (no ``.aux``, ``.log``, ``.out``).
+
+    Parameters
+    ----------
+    tex : path
+        The LaTeX file.
+    pdflatex : str, optional
+        The ``pdflatex`` program; by default the one on the PATH.
+
+    Returns
+    -------
+    Path or None
+        The PDF, or None without ``pdflatex``.
 
     Raises
     ------
     LatexError
         ``pdflatex`` reported an error (its first error line is in the message).
+
+    Examples
+    --------
+    >>> import shutil, tempfile
+    >>> from pathlib import Path
+    >>> from symctl.report.document import Text, compile_pdf, write_tex
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     pdf = compile_pdf(write_tex([Text("Hello.")], Path(out) / "a.tex"))
+    ...     pdf is None if shutil.which("pdflatex") is None else pdf.name == "a.pdf"
+    True
     """
     tex = Path(tex)
     exe = pdflatex or shutil.which("pdflatex")

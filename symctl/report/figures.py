@@ -1,9 +1,11 @@
-r"""The report's figures, built from a :class:`~symctl.report.pipeline.PaperResults`.
+r"""The report's figures, built from a :class:`~symctl.report.results.PaperResults`.
 
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
-the object it shows; :func:`paper_figures` collects them under stable file
-names, :func:`save_all` writes each as PNG and SVG, and :func:`write_figures`
-makes and writes them all, in parallel processes. The figures of the paper:
+the object it shows (:func:`make_figure`, under the stable file names of
+:func:`figure_names`); :func:`save` writes one as PNG and SVG, and
+:func:`write_figures` makes and writes them all, in parallel processes. This
+module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
+themselves to :mod:`symctl.plotting`. The figures of the paper:
 
 ============================  ==================================================
 name                          content
@@ -20,60 +22,102 @@ name                          content
                               the first simulated realization, with numbers)
 ============================  ==================================================
 
-with ``<circuit>`` one of :data:`symctl.report.pipeline.CIRCUITS` (``ifp``, ``general``,
-``controllable``, ``observable``).
+with ``<circuit>`` one of :data:`symctl.report.spec.CIRCUITS` (``ifp``, ``general``,
+``controllable``, ``observable``). The functions read a ``PaperResults`` without
+importing it (:mod:`~symctl.report.results` sits above this module and offers
+them as :meth:`~symctl.report.results.PaperResults.figure` and
+:meth:`~symctl.report.results.PaperResults.figure_names`).
+
+Examples
+--------
+>>> import tempfile
+>>> from symctl import derive_paper
+>>> from symctl.report.figures import figure_names, save
+>>> res = derive_paper()
+>>> figure_names(res)[:2]
+['open_loop', 'closed_loop']
+>>> with tempfile.TemporaryDirectory() as out:
+...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
+['.png', '.svg']
 """
 
 from __future__ import annotations
 
 import multiprocessing
 import os
-from collections.abc import Mapping
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
-from typing import TYPE_CHECKING
 
+from symctl._util.validate import positive_int
 from symctl.errors import ParameterError
-
-if TYPE_CHECKING:
-    from matplotlib.figure import Figure
-
-    from symctl.report.pipeline import PaperResults
+from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
     "DPI",
     "FORMATS",
-    "TITLES",
     "figure_names",
     "make_figure",
-    "paper_figures",
     "save",
-    "save_all",
     "write_figures",
 ]
 
 DPI = 120
 """Resolution of the PNG files [dots per inch]."""
 FORMATS = ("png", "svg")
-TITLES = {
-    "ifp": "IFP controller",
-    "general": "G3 G2 G1, general realization of G2 (symbolic P)",
-    "controllable": "G3 G2 G1, controllable canonical G2",
-    "observable": "G3 G2 G1, observable canonical G2",
-}
-"""Titles of the structure and circuit diagrams, by circuit."""
+"""The formats every figure is saved in."""
 
 
-def figure_names(res: PaperResults) -> list[str]:
-    """The names of the report's figures, in reading order."""
+def figure_names(res) -> list[str]:
+    """The names of the report's figures, in reading order.
+
+    Parameters
+    ----------
+    res : PaperResults
+        The derivation (its ``circuits`` name the circuit figures).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> from symctl.report.figures import figure_names
+    >>> figure_names(derive_paper())[2:5]
+    ['structure_ifp', 'circuit_ifp', 'firing_ifp']
+    """
     names = ["open_loop", "closed_loop"]
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
     return [*names, "nonlinear"]
 
 
-def make_figure(res: PaperResults, name: str) -> Figure:
-    """The figure ``name`` (one of :func:`figure_names`)."""
+def make_figure(res, name: str):
+    """The figure ``name`` of the report, as a matplotlib ``Figure``.
+
+    Parameters
+    ----------
+    res : PaperResults
+        The derivation.
+    name : str
+        One of :func:`figure_names`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ParameterError
+        ``name`` is not one of :func:`figure_names`.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> from symctl.report.figures import make_figure
+    >>> type(make_figure(derive_paper(), "structure_observable")).__name__
+    'Figure'
+    """
     if name == "open_loop":
         return res.open_loop.plot()
     if name == "closed_loop":
@@ -87,26 +131,50 @@ def make_figure(res: PaperResults, name: str) -> Figure:
     if kind == "firing":
         return rec.firing.plot()
     if kind == "structure":
-        return rec.structure.draw(title=f"Structure: {TITLES[circuit]}")
+        return rec.structure.draw(title=f"Structure: {CIRCUIT_SPECS[circuit].diagram}")
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
         return rec.firing.circuits[0].draw(title=title)
-    return rec.circuit.draw(title=f"Circuit: {TITLES[circuit]}")
+    return rec.circuit.draw(title=f"Circuit: {CIRCUIT_SPECS[circuit].diagram}")
 
 
-def paper_figures(res: PaperResults) -> dict[str, Figure]:
-    """Every figure of the report, keyed by file name (without extension), in reading order."""
-    return {name: make_figure(res, name) for name in figure_names(res)}
-
-
-def save(fig: Figure, out: Path, name: str, *, dpi: int = DPI) -> list[Path]:
+def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     """Save ``fig`` as ``out/<name>.png`` and ``out/<name>.svg``; returns the paths.
 
-    The layout is computed once, for the first format.
+    The layout is computed once, for the first format; the files carry no date,
+    so the same figure writes the same bytes.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    out : path
+        An existing folder.
+    name : str
+        The file name without extension.
+    dpi : int
+        Resolution of the PNG.
+
+    Returns
+    -------
+    list of Path
+
+    Raises
+    ------
+    ParameterError
+        ``out`` is not a folder.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from symctl import MuscleModel, open_loop_response
+    >>> from symctl.report.figures import save
+    >>> fig = open_loop_response(MuscleModel().plant()).plot()
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     [p.name for p in save(fig, out, "open_loop")]
+    ['open_loop.png', 'open_loop.svg']
     """
-    out = Path(out)
-    if not out.is_dir():
-        raise ParameterError(f"out: {str(out)!r} is not a folder")
+    out = _folder(out)
     paths = []
     for ext in FORMATS:
         path = out / f"{name}.{ext}"
@@ -114,11 +182,6 @@ def save(fig: Figure, out: Path, name: str, *, dpi: int = DPI) -> list[Path]:
         fig.set_layout_engine("none")  # keep the layout of the first save
         paths.append(path)
     return paths
-
-
-def save_all(figs: Mapping[str, Figure], out: Path, *, dpi: int = DPI) -> list[Path]:
-    """Save each figure as ``out/<name>.png`` and ``out/<name>.svg``; returns the paths."""
-    return [path for name, fig in figs.items() for path in save(fig, out, name, dpi=dpi)]
 
 
 _SHARED: dict = {}  # the results a forked worker reads (set by write_figures)
@@ -129,23 +192,52 @@ def _worker(name: str) -> list[Path]:
     return save(make_figure(res, name), out, name, dpi=dpi)
 
 
-def write_figures(
-    res: PaperResults, out: Path, *, jobs: int | None = None, dpi: int = DPI
-) -> list[Path]:
+def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = DPI) -> list[Path]:
     """Make and save every figure of the report (PNG and SVG); returns the paths.
 
-    Figures are independent, so with ``jobs > 1`` (default: the number of CPUs,
-    at most 4) they are drawn in forked worker processes, which share ``res``
-    without copying it; ``jobs=1``, or a platform without ``fork``, draws them here.
+    Figures are independent, so with ``jobs > 1`` they are drawn in forked
+    worker processes, which share ``res`` without copying it; ``jobs=1``, or a
+    platform without ``fork``, draws them here.
+
+    Parameters
+    ----------
+    res : PaperResults
+        The derivation.
+    out : path
+        An existing folder.
+    jobs : int, optional
+        Processes drawing figures; default the number of CPUs, at most 4.
+    dpi : int
+        Resolution of the PNGs.
+
+    Returns
+    -------
+    list of Path
+        Two per figure, in the order of :func:`figure_names`.
+
+    Raises
+    ------
+    ParameterError
+        ``out`` is not a folder, or ``jobs`` is not an integer >= 1.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from symctl import derive_paper
+    >>> from symctl.report.figures import write_figures
+    >>> res = derive_paper()
+    >>> with tempfile.TemporaryDirectory() as out:  # 15 figures: about 15 s on 2 cores
+    ...     len(write_figures(res, out, jobs=2))  # doctest: +SKIP
+    30
+    >>> with tempfile.TemporaryDirectory() as out:
+    ...     write_figures(res, out, jobs=0)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
     """
     names = figure_names(res)
-    out = Path(out)
-    if not out.is_dir():
-        raise ParameterError(f"out: {str(out)!r} is not a folder")
-    if jobs is None:
-        jobs = min(4, os.cpu_count() or 1)
-    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
-        raise ParameterError(f"jobs: must be an integer >= 1, got {jobs!r}")
+    out = _folder(out)
+    jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
     if jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [p for name in names for p in save(make_figure(res, name), out, name, dpi=dpi)]
     _SHARED["job"] = (res, out, dpi)
@@ -155,6 +247,13 @@ def write_figures(
             return [p for paths in pool.map(_worker, names) for p in paths]
     finally:
         _SHARED.clear()
+
+
+def _folder(out: Path | str) -> Path:
+    out = Path(out)
+    if not out.is_dir():
+        raise ParameterError(f"out: {str(out)!r} is not a folder")
+    return out
 
 
 def _metadata(ext: str) -> dict:

@@ -4,17 +4,14 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
 import xml.etree.ElementTree as ET
 
 import pytest
 
 from symctl import cli
 from symctl.cli import main
-from symctl.errors import LatexError
-from symctl.report.document import Heading, Math, Text, compile_pdf, to_markdown, to_tex
 from symctl.report.figures import FORMATS
-from symctl.report.pipeline import CIRCUITS
+from symctl.report.spec import CIRCUITS
 
 FIGURES = ["open_loop", "closed_loop", "nonlinear"] + [
     f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")
@@ -119,44 +116,3 @@ def test_console_shows_progress_and_summary_tables(paper):
         assert re.search(rf"done\s+{step}\s+[\d.]+ s", text), step
     assert "summary" in text and "circuits" in text and "max deviation" in text
     assert "results.json" in text and "derivation.tex" in text and "15 figures" in text
-
-
-def test_prose_is_escaped_for_latex_and_math_kept():
-    blocks = [Heading("Gains"), Text("100% of x_1 & $K_0 + \\epsilon_1$"), Math((("a", "1"),),
-              "eq:a")]  # fmt: skip
-    tex = to_tex(blocks)
-    assert r"100\% of x\_1 \& $K_0 + \epsilon_1$" in tex
-    md = to_markdown(blocks)
-    assert "100% of x_1 & $K_0 + \\epsilon_1$" in md and r"\tag{1}" in md
-
-
-def test_a_latex_error_is_reported_with_its_first_line(tmp_path, pdflatex):
-    bad = tmp_path / "bad.tex"
-    bad.write_text("\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}\n")
-    with pytest.raises(LatexError, match="Undefined control sequence"):
-        compile_pdf(bad)
-
-
-def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
-    monkeypatch.setattr(shutil, "which", lambda _name: None)
-    (tmp_path / "a.tex").write_text("x")
-    assert compile_pdf(tmp_path / "a.tex") is None
-
-
-def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
-    import sympy as sp
-
-    from symctl import controllable_canonical, controller_tf, factor, observable_canonical
-    from symctl.report.document import _compact, _remainder_poly, _remainder_symbols
-
-    f = factor(controller_tf(4), 2, 2)
-    c = _remainder_symbols(f)
-    values = {sp.Symbol("N"): f.N, **dict(zip(c, f.remainder_coeffs, strict=True))}
-    rewritten = f.N + f.N * _remainder_poly(c) / f.G2.den
-    assert sp.cancel(rewritten.subs(values) - f.G2.expr) == 0
-    for R in (controllable_canonical(f.G2), observable_canonical(f.G2)):
-        rows, short = _compact(R, f, c)
-        assert short
-        for name, mat in rows:
-            assert (mat.subs(values) - getattr(R, name)).applyfunc(sp.cancel).is_zero_matrix
-        assert any(mat.has(sp.Symbol("N")) for _, mat in rows)

@@ -1,0 +1,551 @@
+r"""What the paper's derivation produced: :class:`PaperResults`, its records, and its files.
+
+:func:`~symctl.report.pipeline.derive_paper` returns a :class:`PaperResults`:
+every derived object, symbolic and numeric, with one :class:`RealizationRecord`
+per realization of :math:`G_2` and one :class:`CircuitRecord` per circuit.
+:meth:`PaperResults.to_json` is the ``results.json`` document (schema in the
+README); :meth:`PaperResults.figure` draws one of the report's figures and
+:meth:`PaperResults.write` writes every file of ``symctl paper``.
+
+This module sits above the modules that render the results
+(:mod:`~symctl.report.story`, :mod:`~symctl.report.document`,
+:mod:`~symctl.report.figures`), which read a :class:`PaperResults` without
+importing it, so that ``write`` and ``figure`` are plain methods and no import
+runs back up.
+
+Examples
+--------
+>>> from symctl import derive_paper
+>>> res = derive_paper()
+>>> round(res.to_json()["plant"]["f_bar"], 4)
+43.8635
+>>> res.circuits["controllable"].circuit.n_neurons
+4
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+
+from symctl._util.display import descending_str
+from symctl.compatibility.check import CompatibilityResult
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure
+from symctl.design.augment import AugmentedSystem
+from symctl.design.lqr import Gains
+from symctl.design.plant import DiscretePlant, MuscleModel
+from symctl.design.tf import DiscreteTF
+from symctl.neural.circuit import Circuit
+from symctl.neural.firing import FiringPatterns
+from symctl.neural.nonlinear import NonlinearCheck
+from symctl.neural.simulate import Response
+from symctl.realization.check import RealizationCheck
+from symctl.realization.factorization import Factorization
+from symctl.realization.realization import Realization
+from symctl.report import document, story
+from symctl.report import figures as _figures
+from symctl.report.spec import SCHEMA_VERSION
+
+__all__ = ["CircuitRecord", "PaperResults", "RealizationRecord"]
+
+
+def _hash_fields(obj) -> int:
+    """A hash of a frozen dataclass's fields, mappings hashed by their items."""
+    values = (getattr(obj, f.name) for f in dataclasses.fields(obj))
+    return hash(tuple(tuple(v.items()) if isinstance(v, Mapping) else v for v in values))
+
+
+@dataclass(frozen=True)
+class RealizationRecord:
+    """One realization of :math:`G_2` for the report: symbolic, numeric, and the checks of both.
+
+    Parameters
+    ----------
+    name : str
+        ``"controllable"``, ``"observable"`` or ``"general"``.
+    symbolic, numeric : Realization
+        The realization in the symbols of the factorization, and with the
+        numbers of the simulations.
+    values : mapping
+        The numbers substituted (``epsilon_1``, ``C_1``, ... by name); kept read-only.
+    check_symbolic, check_numeric : RealizationCheck
+        The exact checks that each realizes :math:`G_2`.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> rec = derive_paper().realizations["controllable"]
+    >>> rec.name, bool(rec.check_symbolic), bool(rec.check_numeric)
+    ('controllable', True, True)
+    >>> sorted(rec.values)
+    ['C_1', 'C_3', 'epsilon_1', 'epsilon_3']
+    """
+
+    name: str
+    symbolic: Realization
+    numeric: Realization
+    values: Mapping[str, object]
+    check_symbolic: RealizationCheck
+    check_numeric: RealizationCheck
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
+
+    __hash__ = _hash_fields
+
+    def to_json(self) -> dict:
+        """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
+        sym, num = self.check_symbolic, self.check_numeric
+        return {
+            "symbolic": {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"},
+            "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
+            "values": {k: float(v) for k, v in self.values.items()},
+            "P": _matrix(self.numeric.params["P"]) if "P" in self.numeric.params else None,
+            "check": {
+                "symbolic": {"ok": sym.ok, "method": sym.method},
+                "numeric": {"ok": num.ok, "method": num.method},
+            },
+        }
+
+
+@dataclass(frozen=True)
+class CircuitRecord:
+    """One circuit of the report: its structure, compatibility, neurons and simulations.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`~symctl.report.spec.CIRCUITS`.
+    structure : Structure
+        The structure (gains, adders, unit delays); symbolic, for ``"general"``
+        with the symbolic or seeded ``P`` of the :class:`RealizationRecord`.
+    compatibility : CompatibilityResult
+        Whether the structure fits the delay graph, with its evidence.
+    circuit : Circuit
+        The neurons of the structure (placed on the delay graph when compatible).
+    firing : FiringPatterns
+        The closed-loop simulations of the random realizations
+        (:func:`~symctl.neural.firing.circuit_firing`).
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> rec = derive_paper().circuits["observable"]
+    >>> rec.circuit.n_neurons, rec.g2_neurons, bool(rec.compatibility)
+    (5, 3, True)
+    """
+
+    name: str
+    structure: Structure
+    compatibility: CompatibilityResult
+    circuit: Circuit
+    firing: FiringPatterns
+
+    @property
+    def g2_neurons(self) -> int | None:
+        """The neurons of the G2 part (None for the IFP controller, which has no G2)."""
+        if self.name == "ifp":
+            return None
+        return sum(1 for n in self.circuit.neurons if n.part == "G2")
+
+    def to_json(self) -> dict:
+        """The entry of ``results.json``'s ``circuits`` for this circuit."""
+        c, fp, verdict = self.circuit, self.firing, self.compatibility
+        peak = fp.summary().peak
+        return {
+            "neurons": {
+                "count": c.n_neurons,
+                "G2": self.g2_neurons,
+                "names": [n.name for n in c.neurons],
+                "vertices": {n.name: n.vertex for n in c.neurons},
+                "branches": {n.name: n.branches for n in c.neurons},
+            },
+            "synapses": len(c.synapses),
+            "signals": len(self.structure.signals),
+            "compatible": verdict.ok,
+            "compatibility": {
+                "method": verdict.method,
+                "reason": verdict.reason,
+                "E_tilde": _delays(verdict.E_tilde) if verdict.ok else None,
+            },
+            "max_closed_loop_deviation": fp.max_deviation,
+            "realizations": [
+                {str(k): _value(v) for k, v in params.items()}
+                | {c: 1.0 for c in _section_C(params)}
+                for params in fp.params
+            ],
+            "peak_firing": {
+                name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
+                for i, name in enumerate(fp.neurons)
+            },
+        }
+
+
+@dataclass(frozen=True)
+class PaperResults:
+    r"""Everything the paper's derivation produced, symbolic and numeric.
+
+    Made by :func:`~symctl.report.pipeline.derive_paper`; the fields are in
+    the order of the pipeline.
+
+    Parameters
+    ----------
+    model : MuscleModel
+        The muscle and its parameters.
+    plant_symbolic, plant : DiscretePlant
+        The discretized linear muscle, in symbols and with the numbers.
+    system : AugmentedSystem
+        The delay-augmented system and cost.
+    gains : Gains
+        The optimal gains :math:`K_0, \dots, K_T` and the closed-loop poles.
+    G_symbolic, G : DiscreteTF
+        The controller :math:`G(z)` in the gains' symbols, and with the optimal gains.
+    proved : bool
+        Whether the derivation of :math:`G` was proved against the state-space matrices.
+    seed : int
+        The seed of the random realizations.
+    factors : Factorization
+        :math:`G = G_3 G_2 G_1`.
+    realizations : mapping of str to RealizationRecord
+        The realizations of :math:`G_2` (read-only).
+    graph : DelayGraph
+        The delay graph of the circuits.
+    circuits : mapping of str to CircuitRecord
+        The circuits, by name, in the order of :data:`~symctl.report.spec.CIRCUITS` (read-only).
+    open_loop, closed_loop : Response
+        The open-loop pulse response of the muscle and the optimal closed loop's.
+    nonlinear : NonlinearCheck
+        The linear controller around the nonlinear muscle.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> res = derive_paper()
+    >>> print(res.G_symbolic)
+    (K_0)/(z**2 - K_1*z - K_2)
+    >>> res.figure_names()[:3]
+    ['open_loop', 'closed_loop', 'structure_ifp']
+    >>> res.circuits["ifp"] = None
+    Traceback (most recent call last):
+    ...
+    TypeError: 'mappingproxy' object does not support item assignment
+    """
+
+    model: MuscleModel
+    plant_symbolic: DiscretePlant
+    plant: DiscretePlant
+    system: AugmentedSystem
+    gains: Gains
+    G_symbolic: DiscreteTF
+    G: DiscreteTF
+    proved: bool
+    seed: int
+    factors: Factorization
+    realizations: Mapping[str, RealizationRecord]
+    graph: DelayGraph
+    circuits: Mapping[str, CircuitRecord]
+    open_loop: Response
+    closed_loop: Response
+    nonlinear: NonlinearCheck
+
+    def __post_init__(self) -> None:
+        for name in ("realizations", "circuits"):
+            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+
+    __hash__ = _hash_fields
+
+    def parameters(self) -> dict:
+        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
+
+        Returns
+        -------
+        dict
+            ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
+            (nested lists of floats) and ``seed``.
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> derive_paper(tau=0.05).parameters()["tau"]
+        0.05
+        """
+        s = self.system
+        return {
+            **self.model.as_dict(),
+            "sensor_delay": s.sensor_delay,
+            "actuator_delay": s.actuator_delay,
+            "Q": _matrix(s.Q_plant),
+            "R": _matrix(s.R),
+            "seed": self.seed,
+        }
+
+    def to_json(self) -> dict:
+        """The ``results.json`` document: a dictionary of plain lists, floats and strings.
+
+        Returns
+        -------
+        dict
+            Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
+            ``gains``, ``controller``, ``factorization``, ``closed_loop``,
+            ``delay_graph``, ``circuits`` and ``simulation`` (README, "results.json").
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> data = derive_paper().to_json()
+        >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
+        (1, True, 3)
+        """
+        s = self.system
+        G = self.G
+        rows, cols = G.shape
+        numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+        return {
+            "schema_version": SCHEMA_VERSION,
+            "parameters": self.parameters(),
+            "plant": {
+                "f_bar": self.model.f_bar,
+                "r_bar": self.model.r_bar,
+                "A": _matrix(self.plant.A),
+                "B": _matrix(self.plant.B),
+                "Ts": self.model.Ts,
+                "symbolic": {
+                    "A": sp.sstr(self.plant_symbolic.A[0, 0]),
+                    "B": sp.sstr(self.plant_symbolic.B[0, 0]),
+                    "f_bar": sp.sstr(self.model.f_bar_symbolic),
+                },
+            },
+            "augmented": {
+                "T": s.T,
+                "state": list(s.state_names),
+                "A": _matrix(s.A),
+                "B": _matrix(s.B),
+                "Q": _matrix(s.Q),
+            },
+            "gains": {
+                "K": self.gains.K.tolist(),
+                "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
+            },
+            "controller": {
+                "numerator": numerator[0][0] if G.is_siso else numerator,
+                "denominator": _floats(G.den_coeffs()),
+                "relative_degree": G.relative_degree,
+                "dt": self.model.Ts,
+                "symbolic": {
+                    "numerator": _poly_text(self.G_symbolic.num),
+                    "denominator": descending_str(self.G_symbolic.den),
+                    "latex": self.G_symbolic.latex(),
+                },
+                "proved": self.proved,
+            },
+            "factorization": self._factorization_json(),
+            "closed_loop": {
+                "poles": [[float(p.real), float(p.imag)] for p in self.gains.poles],
+                "spectral_radius": self.gains.spectral_radius,
+            },
+            "delay_graph": {
+                "E": _delays(self.graph.E),
+                "vertices": self.graph.n,
+                "chain_delays": list(self.graph.chain_delays or ()),
+            },
+            "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
+            "simulation": self._simulation_json(),
+        }
+
+    def _simulation_json(self) -> dict:
+        ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
+        return {
+            "t": _floats(cl.t),
+            "open_loop": {
+                "pulse": _floats(ol.delta_r[:, 0]),
+                "delta_f": _floats(ol.delta_f[:, 0]),
+            },
+            "closed_loop": {
+                "disturbance": _floats(cl.w[:, 0]),
+                "delta_f": _floats(cl.delta_f[:, 0]),
+                "delta_r": _floats(cl.delta_r[:, 0]),
+            },
+            "nonlinear": {
+                "amplitudes": _floats(nl.amplitudes),
+                "max_deviation": _floats(nl.max_deviation),
+                "relative_deviation": _floats(nl.relative_deviation),
+            },
+        }
+
+    def _factorization_json(self) -> dict:
+        f = self.factors
+        return {
+            "G1": str(f.G1),
+            "G2": str(f.G2),
+            "G3": str(f.G3),
+            "N": sp.sstr(f.N),
+            "remainder_coeffs": [sp.sstr(c) for c in f.remainder_coeffs],
+            "verified": f.verify(),
+            "realizations": {name: rec.to_json() for name, rec in self.realizations.items()},
+        }
+
+    def figure_names(self) -> list[str]:
+        """The names of the report's figures, in reading order (the file names of :meth:`write`).
+
+        Returns
+        -------
+        list of str
+            ``open_loop``, ``closed_loop``, then ``structure_<c>``,
+            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, and ``nonlinear``
+            (table in :mod:`symctl.report.figures`).
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> names = derive_paper().figure_names()
+        >>> len(names), names[-1]
+        (15, 'nonlinear')
+        """
+        return _figures.figure_names(self)
+
+    def figure(self, name: str):  # -> matplotlib.figure.Figure (matplotlib: only in plotting)
+        """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
+
+        Parameters
+        ----------
+        name : str
+            One of :meth:`figure_names`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Raises
+        ------
+        ParameterError
+            ``name`` is not one of :meth:`figure_names`.
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> res = derive_paper()
+        >>> fig = res.figure("closed_loop")
+        >>> type(fig).__name__
+        'Figure'
+        >>> res.figure("no_such_figure")
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
+        """
+        return _figures.make_figure(self, name)
+
+    def write(
+        self,
+        out: Path | str,
+        *,
+        figures: bool = True,
+        pdf: bool = True,
+        jobs: int | None = None,
+        progress: Callable[[str], None] | None = None,
+    ) -> list[Path]:
+        """Write the outputs of ``symctl paper`` into folder ``out``.
+
+        Parameters
+        ----------
+        out : path
+            The folder (made when missing).
+        figures : bool
+            Also write the figures as PNG and SVG (:meth:`figure_names`).
+        pdf : bool
+            Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
+        jobs : int, optional
+            Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
+        progress : callable, optional
+            Called with the name of each step (``"figures"``, ``"documents"``,
+            ``"pdflatex"``) before it runs.
+
+        Returns
+        -------
+        list of Path
+            The files written: ``results.json``, the figures, ``derivation.tex``,
+            ``report.md`` and ``derivation.pdf``.
+
+        Raises
+        ------
+        ParameterError
+            ``jobs`` is not an integer >= 1.
+        LatexError
+            ``pdflatex`` failed on ``derivation.tex``.
+        OSError
+            ``out`` cannot be written.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from symctl import derive_paper
+        >>> with tempfile.TemporaryDirectory() as out:
+        ...     paths = derive_paper().write(out, figures=False, pdf=False)
+        ...     [p.name for p in paths]
+        ['results.json', 'derivation.tex', 'report.md']
+        """
+        step = progress or (lambda _name: None)
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        written = []
+        path = out / "results.json"
+        path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")
+        written.append(path)
+        names: list[str] = []
+        if figures:
+            step("figures")
+            paths = _figures.write_figures(self, out, jobs=jobs)
+            names = [p.stem for p in paths if p.suffix == ".png"]
+            written += paths
+        step("documents")
+        blocks = story.story(self, figures=names)
+        written.append(document.write_tex(blocks, out / "derivation.tex"))
+        written.append(document.write_markdown(blocks, out / "report.md"))
+        if pdf:
+            step("pdflatex")
+            compiled = document.compile_pdf(out / "derivation.tex")
+            if compiled is not None:
+                written.append(compiled)
+        return written
+
+
+def _section_C(params: dict) -> list[str]:
+    """The C of each section drawn (all 1 in :func:`~symctl.neural.firing.circuit_firing`)."""
+    return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
+
+
+def _poly_text(value) -> str | list:
+    if isinstance(value, sp.MatrixBase):
+        return [[descending_str(e) for e in row] for row in value.tolist()]
+    return descending_str(value)
+
+
+def _text_matrix(mat: sp.MatrixBase) -> list[list[str]]:
+    return [[sp.sstr(e) for e in row] for row in mat.tolist()]
+
+
+def _floats(values) -> list[float]:
+    return [float(v) for v in values]
+
+
+def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
+    return np.array(mat.evalf(), dtype=float).tolist()
+
+
+def _delays(E: np.ndarray) -> list[list[int | None]]:
+    """A delay matrix for JSON: integers, ``None`` for infinity (no path)."""
+    return [[None if np.isinf(v) else int(v) for v in row] for row in np.asarray(E)]
+
+
+def _value(v):
+    """An exact or numeric parameter value for JSON (a float, or nested lists for a matrix)."""
+    if isinstance(v, sp.MatrixBase | np.ndarray):
+        return _matrix(sp.Matrix(v))
+    return float(v)

@@ -1,0 +1,528 @@
+r"""The paper's derivation told as a document: :func:`story` turns results into blocks.
+
+The blocks (:mod:`symctl.report.document`) follow the paper: muscle model and
+linearization, discretization, delays and the augmented system, LQR gains,
+the controller :math:`G(z)`, the factors :math:`G_1, G_2, G_3`, the
+realizations of :math:`G_2`, the delay graph and the compatibility of each
+structure, the circuits and their neurons, and the simulations. Symbolic and
+numeric values stand side by side; numbers are written to 6 significant digits.
+
+Examples
+--------
+>>> from symctl import derive_paper
+>>> from symctl.report.story import story
+>>> blocks = story(derive_paper())
+>>> [b.text for b in blocks if type(b).__name__ == "Heading" and b.level == 1][:3]
+['Muscle model and linearization', 'Discretization', 'Delays and the augmented system']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+import sympy as sp
+
+from symctl import latex as L
+from symctl._util.display import descending_latex
+from symctl.report.document import DocumentBlock, Graphic, Heading, Math, Table, Text, Verbatim
+from symctl.report.spec import CIRCUIT_SPECS
+from symctl.symbols import z
+
+__all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
+
+
+def _num(value):
+    """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
+    if isinstance(value, sp.MatrixBase):
+        return np.array(value.evalf(), dtype=float)
+    if isinstance(value, np.ndarray):
+        return value.astype(float)
+    return float(value)
+
+
+def _fmt(value: float) -> str:
+    """A number as inline math (for prose and table cells)."""
+    return f"${L.number(value, 6)}$"
+
+
+def _eq(*rows, label: str) -> Math:
+    return Math(tuple((lhs, L.to_latex(rhs)) for lhs, rhs in rows), label)
+
+
+def _both(symbolic, numeric) -> str:
+    """``symbolic = numeric`` as one right-hand side."""
+    return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"
+
+
+def _ascii(text: str) -> str:
+    return text.replace("Ẽ", "E~").replace("→", "->").replace("≤", "<=").replace("≥", ">=")
+
+
+def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
+    r"""The derivation as document blocks, in the paper's order.
+
+    Parameters
+    ----------
+    res : PaperResults
+        What :func:`~symctl.report.pipeline.derive_paper` returned (read, not
+        imported: :mod:`~symctl.report.results` sits above this module).
+    figures : iterable of str
+        The figures written next to the document (names of
+        :meth:`PaperResults.figure_names`); each gets a
+        :class:`~symctl.report.document.Graphic` where it belongs, the others none.
+
+    Returns
+    -------
+    list of blocks
+        Headings, prose, numbered equations, tables, figures and verbatim text
+        for :func:`~symctl.report.document.to_tex` and
+        :func:`~symctl.report.document.to_markdown`.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> from symctl.report.story import story
+    >>> blocks = story(derive_paper(), figures=["closed_loop"])
+    >>> [b.label for b in blocks if type(b).__name__ == "Math"][:3]
+    ['eq:muscle', 'eq:linear', 'eq:discrete']
+    >>> [b.name for b in blocks if type(b).__name__ == "Graphic"]
+    ['closed_loop']
+    """
+    shown = set(figures)
+    blocks: list[DocumentBlock] = []
+    add = blocks.append
+
+    def figure(name: str, caption: str) -> None:
+        if name in shown:
+            add(Graphic(name, caption))
+
+    params = res.parameters()
+    s, g, f = res.system, res.gains, res.factors
+    add(
+        Text(
+            "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
+            "proved: an identity is shown by reducing a difference to the zero polynomial. "
+            "Numbers are the paper's parameters unless given otherwise, to 6 significant digits."
+        )
+    )
+    add(
+        Table(
+            ("parameter", "value"),
+            (
+                (r"muscle time constant $\tau$", f"{params['tau']:g} s"),
+                (r"maximum force $f_\text{max}$", f"{params['f_max']:g} N"),
+                (r"equilibrium firing rate $\bar r$", f"{params['r_bar']:g} spikes/s"),
+                ("sampling time $T_s$", f"{params['Ts']:g} s"),
+                ("sensor delay $d_s$, actuator delay $d_a$",
+                 f"{params['sensor_delay']}, {params['actuator_delay']} steps"),
+                ("cost weights $Q$, $R$", f"{params['Q']}, {params['R']}"),
+                ("seed of the random realizations", str(params["seed"])),
+            ),
+        )
+    )  # fmt: skip
+
+    # 1. muscle
+    model = res.model
+    lin = model.linearize_symbolic()
+    add(Heading("Muscle model and linearization"))
+    add(
+        Text(
+            "The muscle's force $f$ [N] follows the motor-neuron firing rate $r$ [spikes/s] through "
+            "a sigmoid and a first-order lag; at the equilibrium rate $\\bar r$ the force is "
+            "$\\bar f$."
+        )
+    )
+    add(
+        _eq(
+            (r"\frac{df}{dt}", model.ode),
+            (r"\bar f", _both(model.f_bar_symbolic, model.f_bar) + r"\ \text{N}"),
+            label="eq:muscle",
+        )
+    )
+    add(
+        Text(
+            "Linearized at $(\\bar f, \\bar r)$, with $\\delta_f = f - \\bar f$ and "
+            "$\\delta_r = r - \\bar r$, it is $\\dot\\delta_f = a\\,\\delta_f + b\\,\\delta_r$:"
+        )
+    )
+    values = model.values
+    add(
+        _eq(
+            ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
+            ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
+            label="eq:linear",
+        )
+    )
+
+    # 2. discretization
+    sym, num = res.plant_symbolic, res.plant
+    add(Heading("Discretization"))
+    add(
+        Text(
+            "A zero-order hold over the sampling time $T_s$ (the exact matrix exponential) gives "
+            "$\\delta_f(t+1) = A\\,\\delta_f(t) + B\\,\\delta_r(t)$ with"
+        )
+    )
+    add(
+        _eq(
+            ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
+            ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
+            label="eq:discrete",
+        )
+    )
+    figure("open_loop", "Open-loop response of the linear muscle to a pulse in firing rate "
+                        "(the paper's Fig. ol_sims).")  # fmt: skip
+
+    # 3. delays
+    add(Heading("Delays and the augmented system"))
+    add(
+        Text(
+            f"The sensor delays the force by $d_s = {s.sensor_delay}$ step(s) and the actuator "
+            f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
+            f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
+            "become states: the augmented state $\\chi$ evolves as "
+            "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
+            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
+        )
+    )
+    add(
+        _eq(
+            (r"\chi", s.chi),
+            (r"\tilde A", _num(s.A)),
+            (r"\tilde B", _num(s.B)),
+            (r"\tilde Q", _num(s.Q)),
+            label="eq:augmented",
+        )
+    )
+
+    # 4. gains
+    add(Heading("Optimal gains"))
+    add(
+        Text(
+            "The discrete algebraic Riccati equation gives the optimal feedback "
+            "$\\mu(t) = K \\chi(t)$ (the paper's sign), "
+            f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
+            f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
+            "square root of the rounding error in floating point):"
+        )
+    )
+    poles = ", ".join(_pole(p) for p in g.poles)
+    add(
+        _eq(
+            ("K", np.asarray(g.K, dtype=float)),
+            (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
+            (r"\rho", _num(g.spectral_radius)),
+            label="eq:gains",
+        )
+    )
+
+    # 5. controller
+    G_num = res.G
+    add(Heading("The controller $G(z)$"))
+    add(
+        Text(
+            "Eliminating the delayed commands, the controller from $\\Delta_f$ to "
+            "$\\Delta_r$ is a transfer function of the gains, kept symbolic:"
+        )
+    )
+    add(_eq(("G(z)", _both(res.G_symbolic, G_num.expr.evalf(6))), label="eq:G"))
+    add(
+        Text(
+            "Proved: "
+            + ("yes" if res.proved else "NO")
+            + " (the derivation of $G$ checked against the controller's state-space matrices "
+            "read off $\\tilde A$ and $\\tilde B$, as a polynomial identity). Relative degree "
+            f"{G_num.relative_degree}."
+        )
+    )
+    figure("closed_loop", "Closed loop of the optimal delayed controller: response to a pulse "
+                          "disturbance on the force (the paper's Fig. cl_sims).")  # fmt: skip
+
+    # 6. factorization
+    add(Heading("Factorization $G = G_3 G_2 G_1$"))
+    add(
+        Text(
+            "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
+            "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
+        )
+    )
+    den = descending_latex(f.G2.den)
+    add(
+        _eq(
+            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
+            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
+            ("G_2(z)", rf"N\,\frac{{{_zeros_tex((*f.sensor_eps, *f.actuator_eps))}}}{{{den}}}"),
+            label="eq:factors",
+        )
+    )
+    c = _remainder_symbols(f)
+    add(
+        Text(
+            "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
+            "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
+        )
+    )
+    add(
+        _eq(
+            ("N", f.N),
+            ("G_2(z)", rf"N + N\,\frac{{{descending_latex(_remainder_poly(c))}}}{{{den}}}"),
+            *zip(map(L.to_latex, c), f.remainder_coeffs, strict=True),
+            label="eq:G2rewritten",
+        )
+    )
+    add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
+
+    # 7. realizations
+    add(Heading("Realizations of $G_2$"))
+    add(
+        Text(
+            "A realization $(F, H, M, N)$ of $G_2$ satisfies "
+            "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
+            "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
+            "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
+            f"from seed {res.seed})."
+        )
+    )
+    for name, title in (
+        ("controllable", "Controllable canonical form"),
+        ("observable", "Observable canonical form"),
+    ):
+        rec = res.realizations[name]
+        add(Heading(title, 2))
+        mats, short = _compact(rec.symbolic, f, c)
+        add(_eq(*mats, label=f"eq:{name}"))
+        where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
+        add(Text(_check_text(rec) + where))
+    rec = res.realizations["general"]
+    add(Heading("General realization", 2))
+    P = rec.symbolic.params.get("P")
+    add(
+        Text(
+            "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
+            "into another realization of the same $G_2$:"
+        )
+    )
+    add(
+        _eq(
+            ("F", r"P^{-1} F_c P"),
+            ("H", r"P^{-1} H_c"),
+            ("M", r"M_c P"),
+            ("P", P if P is not None else "P"),
+            label="eq:general",
+        )
+    )
+    add(Text(_check_text(rec)))
+    values = ", ".join(
+        f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
+    )
+    add(Text(f"With the seeded numbers ({values}):"))
+    add(
+        _eq(
+            *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
+            ("P", _num(rec.numeric.params["P"])),
+            label="eq:general-numeric",
+        )
+    )
+
+    # 8. delay graph and compatibility
+    add(Heading("Delay graph and compatibility"))
+    add(
+        Text(
+            f"The delay graph has one vertex per stage (sensor side, one relay per further unit "
+            f"delay, the muscle), {res.graph.n} in all; $E_{{ij}}$ is the smallest delay from "
+            "vertex $i$ to vertex $j$ ($\\infty$: no path). A structure is compatible when its "
+            "signals can be placed at vertices so that every path's delays $\\tilde E$ are at "
+            "least $E$."
+        )
+    )
+    add(_eq(("E", res.graph.E), label="eq:E"))
+    for name, crec in res.circuits.items():
+        verdict = crec.compatibility
+        add(Heading(_title(name), 2))
+        if verdict.ok:
+            add(
+                Text(
+                    f"Compatible (decided by {verdict.method}); the delays between the vertices "
+                    "under the witness assignment:"
+                )
+            )
+            add(_eq((r"\tilde E", verdict.E_tilde), label=f"eq:Etilde-{name}"))
+            where = "; ".join(
+                f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
+                for v in range(1, res.graph.n + 1)
+            )
+            add(Text(f"Signals per vertex: {where}. The checker's witness:"))
+            add(Verbatim(_ascii(verdict.reason)))
+        else:
+            add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
+            add(Verbatim(_ascii(verdict.reason)))
+        figure(f"structure_{name}", f"Structure: {_title(name)}.")
+
+    # 9. circuits
+    add(Heading("Neurons and circuits"))
+    add(
+        Text(
+            "A neuron is an adder that sums two or more terms (the output sum included); a "
+            "single term through delays is an axon with a synaptic weight; a loop through the "
+            "neuron's own output is its self-dynamics. The closed loop was simulated with "
+            f"{_count_text(res)} of each circuit; the largest relative departure of the force "
+            "and motor-neuron traces from the optimal controller's is in the last column."
+        )
+    )
+    add(
+        Table(
+            ("circuit", "neurons", "of them in $G_2$", "synapses", "compatible",
+             "realizations", "max. deviation"),
+            tuple(
+                (
+                    _title(k),
+                    str(c.circuit.n_neurons),
+                    "-" if c.g2_neurons is None else str(c.g2_neurons),
+                    str(len(c.circuit.synapses)),
+                    "yes" if c.compatibility.ok else "no",
+                    str(c.firing.count),
+                    _fmt(c.firing.max_deviation),
+                )
+                for k, c in res.circuits.items()
+            ),
+        )
+    )  # fmt: skip
+    for name, crec in res.circuits.items():
+        add(Heading(_title(name), 2))
+        if name == "general" and crec.circuit.free_symbols - set(f.G.free_symbols):
+            circuit, what = crec.firing.circuits[0], "its first simulated realization"
+            add(Text(f"The neurons of {what} (the symbolic weights are rational in $P$):"))
+        else:
+            circuit = crec.circuit
+            add(Text("The neurons, their self-dynamics and synapses:"))
+        rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
+        add(Math(tuple(rows), f"eq:circuit-{name}"))
+        placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
+        if placed:
+            add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
+        figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as circles "
+                                  "with their self-dynamics, synapses as arrows with weights.")  # fmt: skip
+
+    # 10. simulations
+    add(Heading("Simulations: the same behaviour, different firing"))
+    add(
+        Text(
+            "Every realization gives the force and motor-neuron traces of the optimal controller "
+            "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
+            "(change from equilibrium, spikes/s) per neuron and realization:"
+        )
+    )
+    for name, crec in res.circuits.items():
+        fp = crec.firing
+        summ = fp.summary()
+        rows = tuple(
+            (n, *(_fmt(v) for v in summ.peak[:, i]), _fmt(summ.spread[i]))
+            for i, n in enumerate(summ.neurons)
+        )
+        add(Heading(_title(name), 2))
+        head = ("neuron", *(f"#{i + 1}" for i in range(fp.count)), "spread")
+        add(Table(head, rows))
+        figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
+                                 f"{fp.count} realization(s), same force.")  # fmt: skip
+    nl = res.nonlinear
+    add(Heading("The nonlinear muscle", 2))
+    add(
+        Text(
+            "The linear controller closed around the nonlinear muscle (integrated between "
+            "samples, the rate held over each step): how far the force departs from the linear "
+            "prediction as the disturbance grows."
+        )
+    )
+    add(
+        Table(
+            ("pulse amplitude [N/step]", "max. deviation [N]", "relative"),
+            tuple(
+                (_fmt(a), _fmt(d), _fmt(r))
+                for a, d, r in zip(
+                    nl.amplitudes, nl.max_deviation, nl.relative_deviation, strict=True
+                )
+            ),
+        )
+    )
+    figure("nonlinear", "The linear controller around the nonlinear muscle.")
+    return blocks
+
+
+def _title(circuit: str) -> str:
+    return CIRCUIT_SPECS[circuit].title
+
+
+_WHICH = {"general": " (its first simulated realization)"}
+COMPACT_LENGTH = 300
+"""A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
+
+
+def _sections_tex(cs, eps) -> str:
+    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections."""
+    if not cs:
+        return "1"
+    return rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
+
+
+def _zeros_tex(eps) -> str:
+    if len(eps) == 1:
+        return f"z - {L.to_latex(eps[0])}"
+    return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
+
+
+def _remainder_symbols(f) -> list[sp.Symbol]:
+    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(f.remainder_coeffs) + 1)]
+
+
+def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
+    return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
+
+
+def _compact(R, f, c) -> tuple[list[tuple[str, object]], bool]:
+    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols."""
+    N = sp.Symbol("N")
+    targets = [(f.N * coeff, N * ck) for coeff, ck in zip(f.remainder_coeffs, c, strict=True)]
+    rows, short = [], False
+    for k in "FHMN":
+        mat = getattr(R, k)
+        if k in "HM" and len(L.to_latex(mat)) > COMPACT_LENGTH:
+            mat = mat.applyfunc(lambda e: _match(e, targets))
+            short = True
+        rows.append((k, mat))
+    return rows, short
+
+
+def _match(entry: sp.Expr, targets) -> sp.Expr:
+    for value, symbol in targets:
+        if sp.cancel(entry - value) == 0:
+            return symbol
+    return entry
+
+
+def _count_text(res) -> str:
+    counts = {c.firing.count for c in res.circuits.values() if c.name != "ifp"}
+    n = max(counts) if counts else 1
+    return f"{n} random realizations (the IFP controller has one)"
+
+
+POLE_ZERO_TOL = 1e-6
+"""Poles smaller than this are written as 0: a multiple pole at 0 splits by about the square
+root of the rounding error in floating point (e.g. +-3e-8)."""
+
+
+def _pole(p: complex) -> str:
+    if abs(p) < POLE_ZERO_TOL:
+        return "0"
+    if abs(p.imag) < 1e-12:
+        return L.number(p.real)
+    sign = "+" if p.imag > 0 else "-"
+    return f"{L.number(p.real)} {sign} {L.number(abs(p.imag))}\\,i"
+
+
+def _check_text(rec) -> str:
+    sym, num = rec.check_symbolic, rec.check_numeric
+    return (
+        f"Realizes $G_2$, symbolically: {'yes' if sym.ok else 'NO'} ({sym.method}); "
+        f"with the numbers: {'yes' if num.ok else 'NO'} ({num.method})."
+    )

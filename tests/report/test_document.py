@@ -1,0 +1,76 @@
+"""report/document: blocks rendered as LaTeX and Markdown, and pdflatex."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from symctl.errors import LatexError, SymctlTypeError
+from symctl.report.document import (
+    BLOCKS,
+    Graphic,
+    Heading,
+    Math,
+    Table,
+    Text,
+    Verbatim,
+    compile_pdf,
+    to_markdown,
+    to_tex,
+)
+
+
+def test_prose_is_escaped_for_latex_and_math_kept():
+    blocks = [Heading("Gains"), Text("100% of x_1 & $K_0 + \\epsilon_1$"), Math((("a", "1"),),
+              "eq:a")]  # fmt: skip
+    tex = to_tex(blocks)
+    assert r"100\% of x\_1 \& $K_0 + \epsilon_1$" in tex
+    md = to_markdown(blocks)
+    assert "100% of x_1 & $K_0 + \\epsilon_1$" in md and r"\tag{1}" in md
+
+
+def test_a_latex_error_is_reported_with_its_first_line(tmp_path, pdflatex):
+    bad = tmp_path / "bad.tex"
+    bad.write_text("\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}\n")
+    with pytest.raises(LatexError, match="Undefined control sequence"):
+        compile_pdf(bad)
+
+
+def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
+    monkeypatch.setattr(shutil, "which", lambda _name: None)
+    (tmp_path / "a.tex").write_text("x")
+    assert compile_pdf(tmp_path / "a.tex") is None
+
+
+def test_tex_and_markdown_show_the_same_graphic_with_its_caption():
+    blocks = [Graphic("open_loop", "Open loop, 100%.")]
+    tex, md = to_tex(blocks), to_markdown(blocks)
+    assert r"{open_loop.png}" in tex and r"\caption{Open loop, 100\%.}\label{fig:open_loop}" in tex
+    assert "![Open loop, 100%.](open_loop.png)" in md
+
+
+def test_every_block_type_renders_in_both_formats():
+    blocks = [
+        Heading("A", 2),
+        Text("t"),
+        Math((("a", "1"), ("b", "2")), "eq:ab"),
+        Table(("h1", "h2"), (("1", "a|b"),)),
+        Graphic("g", "c"),
+        Verbatim("x -> y"),
+    ]
+    assert {type(b) for b in blocks} == set(BLOCKS)
+    tex, md = to_tex(blocks), to_markdown(blocks)
+    assert r"\subsection{A}" in tex and r"a &= 1 \\ b &= 2" in tex and r"\begin{verbatim}" in tex
+    assert "### A" in md and r"a\|b" in md and "```\nx -> y\n```" in md
+
+
+def test_the_title_is_a_parameter():
+    assert to_markdown([], title="My title").startswith("# My title\n")
+    assert r"\title{50\% done}" in to_tex([], title="50% done")
+
+
+@pytest.mark.parametrize("render", [to_tex, to_markdown])
+def test_a_non_block_is_a_type_error_naming_blocks(render):
+    with pytest.raises(SymctlTypeError, match=r"blocks: element 1 is a str"):
+        render([Text("a"), "not a block"])
