@@ -28,9 +28,7 @@ import time
 import sympy as sp
 from capped import capped
 
-from symctl.design.tf import DiscreteTF
-from symctl.realization.check import check_realization
-from symctl.realization.realization import controllable_canonical
+from symctl import DiscreteTF, check_realization, controllable_canonical
 from symctl.symbols import C_1, C_3, gain_symbols, z
 
 

@@ -16,11 +16,17 @@ import time
 
 import numpy as np
 
-from symctl import controllable_canonical, controller_tf, factor
-from symctl.compatibility.check import brute_force_compatibility, check_compatibility
-from symctl.compatibility.delaygraph import DelayGraph
-from symctl.compatibility.structure import Structure, ifp_structure
-from symctl.errors import ParameterError
+from symctl import (
+    DelayGraph,
+    ParameterError,
+    Structure,
+    brute_force_compatibility,
+    check_compatibility,
+    controllable_canonical,
+    controller_tf,
+    factor,
+    ifp_structure,
+)
 
 
 def paper_controller() -> Structure:

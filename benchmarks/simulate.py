@@ -24,13 +24,13 @@ from symctl import (
     MuscleModel,
     augment,
     closed_loop_response,
+    controller_realization,
     controller_tf,
     factor,
     general_realization,
     lqr_gains,
     simulate_batch,
 )
-from symctl.realization.realization import controller_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3
 
 

@@ -23,7 +23,7 @@ import click
 from rich.console import Console
 from rich.table import Table
 
-from symctl._util.validate import parse_matrix
+from symctl._util.parse import parse_matrix
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from symctl._util.validate import float_array, positive_int, readonly_array
+from symctl._util.validate import float_array, positive_int, read_only
 from symctl.errors import DimensionError
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
@@ -88,7 +88,7 @@ class BatchResponse:
     def __post_init__(self) -> None:  # read-only (views of simulate_batch's own buffer)
         for name in ("t", "delta_f", "delta_r", "states"):
             if getattr(self, name) is not None:
-                object.__setattr__(self, name, readonly_array(getattr(self, name)))
+                object.__setattr__(self, name, read_only(getattr(self, name), float))
 
 
 # ---------------------------------------------------------------- chunks and stability

@@ -49,7 +49,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import as_generator, positive_int, positive_number, readonly_array
+from symctl._util.validate import as_generator, positive_int, positive_number, read_only
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
 from symctl.design.controller import controller_tf
@@ -124,7 +124,7 @@ class FiringSummary:
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in ("peak", "spread"):
-            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+            object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
@@ -199,8 +199,8 @@ class FiringPatterns:
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
         for name in ("t", "delta_f", "delta_r"):
-            object.__setattr__(self, name, readonly_array(getattr(self, name)))
-        firing = {k: readonly_array(v) for k, v in self.firing.items()}
+            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        firing = {k: read_only(v, float) for k, v in self.firing.items()}
         object.__setattr__(self, "firing", MappingProxyType(firing))
         params = tuple(MappingProxyType(dict(p)) for p in self.params)
         object.__setattr__(self, "params", params)

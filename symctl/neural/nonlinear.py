@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
-from symctl._util.validate import float_array, readonly_array
+from symctl._util.validate import float_array, read_only
 from symctl.design.augment import augment
 from symctl.design.lqr import lqr_gains
 from symctl.design.plant import MuscleModel
@@ -86,7 +86,7 @@ class NonlinearCheck:
             "max_deviation",
             "relative_deviation",
         ):
-            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+            object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     def table(self) -> str:
         """A plain-text table: amplitude, peak linear force change, max and relative deviation."""

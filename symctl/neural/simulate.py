@@ -51,7 +51,7 @@ from symctl._util.validate import (
     nonneg_int,
     numeric_matrix,
     positive_int,
-    readonly_array,
+    read_only,
     real_number,
 )
 from symctl.design.augment import as_plant
@@ -218,7 +218,7 @@ class Response:
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
-            object.__setattr__(self, name, readonly_array(getattr(self, name)))
+            object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     @property
     def f(self) -> np.ndarray:

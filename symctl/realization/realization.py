@@ -456,7 +456,30 @@ def observable_canonical(G2) -> Realization:
 def first_order_realization(eps, C, dt=None) -> Realization:
     r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
 
-    >>> from symctl.realization.realization import first_order_realization
+    The building block of :math:`G_1` and :math:`G_3` (one section per delay step).
+
+    Parameters
+    ----------
+    eps : number, sympy expression or str
+        The pole :math:`\epsilon` (text goes through the safe parser).
+    C : number, sympy expression or str
+        The input gain :math:`C`.
+    dt : number, optional
+        Sampling time; ``None`` for a time axis in steps.
+
+    Returns
+    -------
+    Realization
+        ``F = [[eps]]``, ``H = [[C]]``, ``M = [[1]]``, ``N = 0``.
+
+    Raises
+    ------
+    ParseError, SymctlTypeError
+        ``eps`` or ``C`` not an admissible value.
+
+    Examples
+    --------
+    >>> from symctl import first_order_realization
     >>> first_order_realization(2, 3).to_tf().expr
     3/(z - 2)
     """
@@ -489,8 +512,22 @@ def controller_realization(factorization, R2: Realization) -> Realization:
     State order: the sensor sections of :math:`G_1` (in signal-flow order),
     then the states of ``R2``, then the actuator sections of :math:`G_3`.
 
-    >>> from symctl import controller_tf, controllable_canonical, factor
-    >>> from symctl.realization.realization import controller_realization
+    Parameters
+    ----------
+    factorization : Factorization
+        :math:`G = G_3 G_2 G_1` (:func:`symctl.factor`).
+    R2 : Realization
+        A realization of ``factorization.G2``.
+
+    Returns
+    -------
+    Realization
+        The series :math:`G_3 \cdot R_2 \cdot G_1`, of order
+        ``sensor_delay + R2.n + actuator_delay``.
+
+    Examples
+    --------
+    >>> from symctl import controller_realization, controller_tf, controllable_canonical, factor
     >>> f = factor(controller_tf(2))
     >>> R = controller_realization(f, controllable_canonical(f.G2))
     >>> R.n, R.to_tf().equals(f.G)

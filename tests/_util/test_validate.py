@@ -8,7 +8,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from symctl import ParseError, SymctlTypeError
-from symctl._util.validate import nonneg_int, parse_expr, parse_matrix, psd_matrix, to_matrix
+from symctl._util.parse import parse_expr, parse_matrix
+from symctl._util.validate import nonneg_int, psd_matrix, to_matrix
 
 x = sp.Symbol("x")
 
