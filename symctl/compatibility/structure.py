@@ -62,7 +62,7 @@ from symctl._util.display import LatexMixin, latex
 from symctl._util.validate import nonneg_int, to_expr
 from symctl.compatibility.signalgraph import SignalGraph, delay_free_cycle, zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.realization.realization import Realization
+from symctl.realization.realization import Realization, section_realizations
 from symctl.symbols import gain_symbols
 
 __all__ = ["KINDS", "Block", "Structure", "ifp_structure", "same_structure"]
@@ -444,17 +444,7 @@ class Structure(LatexMixin):
         >>> S.count("sum"), S.count("delay")
         (4, 8)
         """
-        from symctl.realization.realization import first_order_realization
-
-        f = factorization
-        dt = f.G.dt
-        first = [
-            first_order_realization(e, c, dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
-        ]
-        last = [
-            first_order_realization(e, c, dt)
-            for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
-        ]
+        first, last = section_realizations(factorization)
         ds, da = len(first), len(last)
         names = [f"G1.{k + 1}" if ds > 1 else "G1" for k in range(ds)]
         names += ["G2"] + [f"G3.{k + 1}" if da > 1 else "G3" for k in range(da)]

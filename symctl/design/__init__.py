@@ -1,1 +1,9 @@
-"""design"""
+"""Stages 1-2 of the paper: the plant, its delays, the optimal gains and the controller G(z).
+
+- ``plant``: ``linearize``, ``discretize`` (exact ZOH), ``DiscretePlant``, ``MuscleModel``;
+- ``augment``: sensor and actuator delays in the augmented state chi, the cost Q~;
+- ``lqr``: ``lqr_gains`` (the paper's sign, mu = K chi);
+- ``tf``: ``DiscreteTF``, the transfer-function type (no SciPy);
+- ``controller``: ``controller_tf`` (G(z) with K symbolic), ``prove_controller_tf`` and
+  the IFP controller's state space, built once.
+"""

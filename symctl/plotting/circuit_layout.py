@@ -34,6 +34,8 @@ from typing import TYPE_CHECKING
 import networkx as nx
 import numpy as np
 
+from symctl.compatibility.signalgraph import back_edges
+
 if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
     from symctl.neural.neuron import Synapse
@@ -114,24 +116,16 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     >>> col
     {'u': 0, 'x2': 1, 'y': 2, ('out', 'y'): 3}
     """
-    g = nx.MultiDiGraph()
     nodes = [*c.inputs, *(n.name for n in c.neurons)]
-    g.add_nodes_from(nodes)
     edges = [s for n in c.neurons for s in n.synapses]
+    successors: dict = {node: [] for node in nodes}
     for s in edges:
-        g.add_edge(s.source, s.target)
+        if s.source != s.target and s.target not in successors[s.source]:
+            successors[s.source].append(s.target)
+    feedback = set(back_edges(successors, [*c.inputs, *nodes]))  # the one DFS (signalgraph)
     dag = nx.DiGraph()
     dag.add_nodes_from(nodes)
-    seen: set[str] = set()
-    for root in [*c.inputs, *nodes]:  # depth-first; back edges are feedback
-        if root in seen:
-            continue
-        for a, b, kind in nx.dfs_labeled_edges(g, root):
-            seen.add(b)
-            if kind == "forward" and a != b:
-                dag.add_edge(a, b)
-            elif kind == "nontree" and a != b and not nx.has_path(dag, b, a):
-                dag.add_edge(a, b)
+    dag.add_edges_from((a, b) for a in nodes for b in successors[a] if (a, b) not in feedback)
     col: dict = {}
     for node in nx.topological_sort(dag):
         if node in c.inputs:

@@ -13,9 +13,24 @@ Modules, lowest first (each imports only those above it in this list):
 - ``pipeline``: ``derive_paper``, which runs the derivation and returns a
   ``PaperResults``.
 
+The names of the former module ``symctl.report`` stay importable from here.
+
 Examples
 --------
 >>> from symctl import derive_paper
 >>> derive_paper().circuits["general"].compatibility.ok
 True
 """
+
+from symctl._util.lazy import attach
+
+__getattr__, __dir__, __all__ = attach(
+    __name__,
+    {
+        "CIRCUITS": "symctl.report.spec",
+        "CircuitRecord": "symctl.report.results",
+        "PaperResults": "symctl.report.results",
+        "RealizationRecord": "symctl.report.results",
+        "derive_paper": "symctl.report.pipeline",
+    },
+)

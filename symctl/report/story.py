@@ -25,6 +25,7 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl.realization.realizers import REALIZERS
 from symctl.report.document import DocumentBlock, Graphic, Heading, Math, Table, Text, Verbatim
 from symctl.report.spec import CIRCUIT_SPECS
 from symctl.symbols import z
@@ -284,12 +285,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"from seed {res.seed})."
         )
     )
-    for name, title in (
-        ("controllable", "Controllable canonical form"),
-        ("observable", "Observable canonical form"),
-    ):
+    for name in ("controllable", "observable"):
         rec = res.realizations[name]
-        add(Heading(title, 2))
+        add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
         mats, short = _compact(rec.symbolic, f, c)
         add(_eq(*mats, label=f"eq:{name}"))
         where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
