@@ -4,7 +4,7 @@ r"""The one spelling of a signal name in LaTeX, for diagrams, tables and documen
 >>> signal_tex("gamma2")
 '\\gamma_{2}'
 >>> signal_tex("G2.x1")
-'x_{1}^{\\mathrm{G2}}'
+'{x_{1}}^{\\mathrm{G2}}'
 >>> signal_tex("G2.x1", part=False)
 'x_{1}'
 >>> signal_tex("epsilon_{1,2}")
@@ -45,7 +45,7 @@ def signal_tex(name: str, *, part: bool = True) -> str:
     Returns
     -------
     str
-        The LaTeX, e.g. ``x_{1}^{\mathrm{G2}}``.
+        The LaTeX, e.g. ``{x_{1}}^{\mathrm{G2}}``.
 
     Examples
     --------
@@ -63,5 +63,5 @@ def signal_tex(name: str, *, part: bool = True) -> str:
     else:
         label = short if short.isalnum() else rf"\mathrm{{{short}}}"
     if prefix and part:
-        return rf"{label}^{{\mathrm{{{prefix}}}}}"
+        return rf"{{{label}}}^{{\mathrm{{{prefix}}}}}"  # braced: the part follows the index
     return label
