@@ -52,6 +52,14 @@ __all__ = [
 ]
 
 
+def _mul_pairs(parts):
+    """The product of fractions given as ``(numerator, denominator)`` pairs (not reduced)."""
+    num, den = parts[0]
+    for n2, d2 in parts[1:]:
+        num, den = num * n2, den * d2
+    return num, den
+
+
 class NotRational(Exception):
     """An expression that is not a rational function of its symbols (its first argument)."""
 
@@ -106,10 +114,7 @@ class RingFractions:
 
     @staticmethod
     def mul(parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            num, den = num * n2, den * d2
-        return num, den
+        return _mul_pairs(parts)
 
     @staticmethod
     def pow(base, value, k: int):
@@ -149,10 +154,7 @@ class PolyFractions:
 
     @staticmethod
     def mul(parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            num, den = num * n2, den * d2
-        return num, den
+        return _mul_pairs(parts)
 
     @staticmethod
     def pow(base, value, k: int):
@@ -190,9 +192,7 @@ class IntFractions:
 
     @staticmethod
     def mul(parts):
-        num, den = parts[0]
-        for n2, d2 in parts[1:]:
-            num, den = num * n2, den * d2
+        num, den = _mul_pairs(parts)
         if den != 1:
             g = math.gcd(num, den)
             num, den = num // g, den // g
