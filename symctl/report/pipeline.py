@@ -204,14 +204,16 @@ def _realizations(
             else:  # a fully symbolic P costs minutes beyond order 3: use the drawn one
                 P = P_num
             symbolic_options, numeric_options = {"P": P}, {"P": P_num}
-        symbolic = realizer(factors.G2, **symbolic_options).realization
-        numeric = realizer(G2_num, **numeric_options).realization
+        symbolic = realizer(factors.G2, **symbolic_options)
+        numeric = realizer(G2_num, **numeric_options)
         out[name] = RealizationRecord(
             name,
-            symbolic,
-            numeric,
+            symbolic.realization,
+            numeric.realization,
             {**{str(k): v for k, v in eps.items()}, **{str(k): 1 for k in unit_C}},
-            check_realization(symbolic, factors.G2),
-            check_realization(numeric, G2_num),
+            check_realization(symbolic.realization, factors.G2),
+            check_realization(numeric.realization, G2_num),
+            symbolic.P if realizer.takes_transform else None,
+            numeric.P if realizer.takes_transform else None,
         )
     return out

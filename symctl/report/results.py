@@ -78,6 +78,10 @@ class RealizationRecord:
         The numbers substituted (``epsilon_1``, ``C_1``, ... by name); kept read-only.
     check_symbolic, check_numeric : RealizationCheck
         The exact checks that each realizes :math:`G_2`.
+    P, P_numeric : sympy Matrix or None
+        The similarity transforms of the two from their canonical base (the
+        realizer's :class:`~symctl.realization.realizers.RealizerResult`), or
+        None for a canonical form.
 
     Examples
     --------
@@ -95,6 +99,8 @@ class RealizationRecord:
     values: Mapping[str, object]
     check_symbolic: RealizationCheck
     check_numeric: RealizationCheck
+    P: sp.MatrixBase | None = None
+    P_numeric: sp.MatrixBase | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
@@ -108,7 +114,7 @@ class RealizationRecord:
             "symbolic": {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"},
             "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
             "values": {k: float(v) for k, v in self.values.items()},
-            "P": _matrix(self.numeric.params["P"]) if "P" in self.numeric.params else None,
+            "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
             "check": {
                 "symbolic": {"ok": sym.ok, "method": sym.method},
                 "numeric": {"ok": num.ok, "method": num.method},

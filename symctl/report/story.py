@@ -294,7 +294,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(Text(_check_text(rec) + where))
     rec = res.realizations["general"]
     add(Heading("General realization", 2))
-    P = rec.symbolic.params.get("P")
+    P = rec.P
     add(
         Text(
             "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
@@ -318,7 +318,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(
         _eq(
             *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-            ("P", _num(rec.numeric.params["P"])),
+            ("P", _num(rec.P_numeric)),
             label="eq:general-numeric",
         )
     )
