@@ -140,10 +140,23 @@ def real_number(value, argname: str) -> float:
     return out
 
 
-def nonneg_int(value, argname: str) -> int:
-    """An integer >= 0 (bools and non-integral numbers are refused)."""
+def _integer(value, argname: str) -> None:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise ParameterError(f"{argname}: must be an integer >= 0, got {value!r}")
+        raise SymctlTypeError(f"{argname}: expected an integer, got {value!r}")
+
+
+def nonneg_int(value, argname: str) -> int:
+    """An integer >= 0: a wrong type (bool, float, text) is a type error, a negative a value error.
+
+    >>> from symctl._util.validate import nonneg_int
+    >>> nonneg_int(2, "sensor_delay")
+    2
+    >>> nonneg_int(1.5, "sensor_delay")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.SymctlTypeError: sensor_delay: expected an integer, got 1.5
+    """
+    _integer(value, argname)
     if value < 0:
         raise ParameterError(f"{argname}: must be an integer >= 0, got {value!r}")
     return int(value)
@@ -221,7 +234,7 @@ def as_random(value, argname: str):
 
 
 def positive_int(value, argname: str) -> int:
-    """An integer >= 1 (bools and non-integral numbers are refused).
+    """An integer >= 1: a wrong type is a type error, a smaller integer a value error.
 
     >>> from symctl._util.validate import positive_int
     >>> positive_int(3, "steps")
@@ -231,7 +244,8 @@ def positive_int(value, argname: str) -> int:
     ...
     symctl.errors.ParameterError: steps: must be an integer >= 1, got 0
     """
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+    _integer(value, argname)
+    if value < 1:
         raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
     return int(value)
 

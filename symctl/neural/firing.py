@@ -281,7 +281,9 @@ class FiringPatterns:
 
 # ---------------------------------------------------------------- arguments
 def _kind(kind) -> str:
-    if not isinstance(kind, str) or kind not in KINDS:
+    if not isinstance(kind, str):
+        raise SymctlTypeError(f"kind: expected one of {KINDS}, got {kind!r}")
+    if kind not in KINDS:
         raise ParameterError(f"kind: must be one of {KINDS}, got {kind!r}")
     return kind
 
