@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from symctl._util.proof import Proof
 from symctl._util.validate import nonneg_int
 from symctl.design.augment import AugmentedSystem
 from symctl.design.lqr import Gains
@@ -143,7 +144,7 @@ def ifp_state_space(A, B, K, n: int, m: int, T: int):
     return F, H, M, np.zeros((m, n), dtype=int)
 
 
-def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) -> bool:
+def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) -> Proof:
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
     With the controller's state-space matrices :math:`(F_c, H_c, M_c)` of
@@ -161,8 +162,9 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
 
     Returns
     -------
-    bool
-        Whether both identities hold (``G`` is the controller).
+    Proof
+        Truthy when both identities hold (``G`` is the controller), with the
+        method and, when they do not, the first entry that is not zero.
 
     Raises
     ------
@@ -173,21 +175,29 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     --------
     >>> from symctl import MuscleModel, augment, controller_tf, prove_controller_tf
     >>> system = augment(MuscleModel(), 2, 3)
-    >>> prove_controller_tf(system)
+    >>> bool(prove_controller_tf(system))
     True
-    >>> prove_controller_tf(system, 2 * controller_tf(system))
-    False
+    >>> proof = prove_controller_tf(system, 2 * controller_tf(system))
+    >>> bool(proof), proof.method
+    (False, 'polynomial identities (zI - F_c) W = H_c det D and M_c W = N_G, expanded')
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(f"system: expected an AugmentedSystem, got {type(system).__name__}")
     G = controller_tf(system) if G is None else G
     T = system.T
+    claim = "G(z) is the transfer function of the delayed LQR controller"
     if T == 0:
-        return G.equals(gain_matrix_symbols(0, system.m, system.n)[0])
+        K0 = gain_matrix_symbols(0, system.m, system.n)[0]
+        return Proof(G.equals(K0), claim, "G == K_0 (no delay)", "" if G.equals(K0) else "G - K_0")
     K = sp.Matrix.hstack(*gain_matrix_symbols(T, system.m, system.n))
     F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, system.n, system.m, T)
     M = sp.Matrix(M)
     N = G.num_matrix
     W = sp.Matrix.vstack(*(N * z ** (T - k) for k in range(1, T + 1)))
     lhs = (z * sp.eye(F.shape[0]) - F) * W - H * G.den
-    return all(sp.expand(e) == 0 for e in lhs) and all(sp.expand(e) == 0 for e in (M * W - N))
+    method = "polynomial identities (zI - F_c) W = H_c det D and M_c W = N_G, expanded"
+    for e in (*lhs, *(M * W - N)):
+        e = sp.expand(e)
+        if e != 0:
+            return Proof(False, claim, method, str(e))
+    return Proof(True, claim, method)

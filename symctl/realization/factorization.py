@@ -26,7 +26,7 @@ paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
 K_0/(C_1*C_3)
 >>> f.remainder_coeffs
 [K_1 - epsilon_1 - epsilon_3, K_2 + epsilon_1*epsilon_3]
->>> f.verify()
+>>> bool(f.verify())
 True
 """
 
@@ -40,6 +40,7 @@ import sympy as sp
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
 from symctl._util.exact import products_equal
+from symctl._util.proof import Proof
 from symctl._util.validate import nonneg_int
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
@@ -132,11 +133,29 @@ class Factorization(LatexMixin):
         scale = N if N != 0 else 1
         return [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
 
-    def verify(self) -> bool:
-        """Exact check that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication)."""
+    def verify(self) -> Proof:
+        """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication).
+
+        Returns
+        -------
+        Proof
+            Truthy when the identity holds, with its method.
+
+        Examples
+        --------
+        >>> from symctl import controller_tf, factor
+        >>> bool(factor(controller_tf(3), 1, 2).verify())
+        True
+        """
         left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
         right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
-        return products_equal(left, right)
+        holds = products_equal(left, right)
+        return Proof(
+            holds,
+            "G3 G2 G1 = G",
+            "cross-multiplied numerators and denominators compared as polynomials",
+            "" if holds else "num(G3 G2 G1) den(G) - num(G) den(G3 G2 G1) is not zero",
+        )
 
     def subs(self, *args, **kwargs) -> Factorization:
         """Substitute values (e.g. for the epsilons and Cs); a zero C is refused."""
@@ -205,7 +224,7 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
     >>> f = factor(controller_tf(3), sensor_delay=1, actuator_delay=2)
     >>> f.G1.expr, f.G3.relative_degree, f.G2.relative_degree
     (C_1/(-epsilon_1 + z), 2, 0)
-    >>> f.verify()
+    >>> bool(f.verify())
     True
     """
     tf = DiscreteTF.from_expr(G)

@@ -127,7 +127,7 @@ def derive_paper(
     gains = lqr_gains(system)
     step("G(z)")
     G_symbolic = controller_tf(system)
-    proved = prove_controller_tf(system, G_symbolic)
+    proved = bool(prove_controller_tf(system, G_symbolic))
     G = G_symbolic.subs(gains.substitutions())
     step("factorization")
     factors = factor(G_symbolic, sensor_delay, actuator_delay)

@@ -350,7 +350,7 @@ class PaperResults:
                     "denominator": descending_str(self.G_symbolic.den),
                     "latex": self.G_symbolic.latex(),
                 },
-                "proved": self.proved,
+                "proved": bool(self.proved),
             },
             "factorization": self._factorization_json(),
             "closed_loop": {
@@ -394,7 +394,7 @@ class PaperResults:
             "G3": str(f.G3),
             "N": sp.sstr(f.N),
             "remainder_coeffs": [sp.sstr(c) for c in f.remainder_coeffs],
-            "verified": f.verify(),
+            "verified": bool(f.verify()),
             "realizations": {name: rec.to_json() for name, rec in self.realizations.items()},
         }
 

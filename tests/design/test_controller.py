@@ -146,3 +146,12 @@ def test_ifp_realization_realizes_the_numeric_controller(ds, da):
         G.impulse_response(8),
         atol=1e-12,
     )
+
+
+def test_proof_of_the_controller_is_a_result_with_its_evidence():
+    aug = augment(MuscleModel(), 1, 1)
+    proof = prove_controller_tf(aug)
+    assert proof and proof == True and "polynomial identities" in proof.method  # noqa: E712
+    refuted = prove_controller_tf(aug, 2 * controller_tf(aug))
+    assert not refuted and refuted == False  # noqa: E712
+    assert refuted.evidence and refuted.evidence != "0"
