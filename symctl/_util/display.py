@@ -26,6 +26,7 @@ import sympy as sp
 
 from symctl import symbols as S
 from symctl._util.exact import z_poly
+from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
 __all__ = ["LatexMixin", "descending_latex", "descending_str", "latex"]
@@ -40,37 +41,12 @@ _NAMES = {
 }
 
 
-_GREEK = {
-    "alpha",
-    "beta",
-    "gamma",
-    "delta",
-    "epsilon",
-    "zeta",
-    "eta",
-    "theta",
-    "kappa",
-    "lambda",
-    "mu",
-    "nu",
-    "xi",
-    "pi",
-    "rho",
-    "sigma",
-    "tau",
-    "phi",
-    "chi",
-    "psi",
-    "omega",
-}
-
-
 def _indexed_name(symbol: sp.Symbol) -> str | None:
     """``epsilon_{3,1}`` -> ``\\epsilon_{3,1}`` (sympy leaves braced names alone)."""
     stem, sep, rest = symbol.name.partition("_{")
     if not sep:
         return None
-    return ("\\" + stem if stem in _GREEK else stem) + "_{" + rest
+    return ("\\" + stem if stem in GREEK else stem) + "_{" + rest
 
 
 def latex(expr, **settings) -> str:
