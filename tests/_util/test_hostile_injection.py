@@ -329,3 +329,126 @@ def test_case_list_covers_every_public_subs():
     labels = " ".join(c[0] for c in CASES)
     assert with_subs == ["Circuit", "DiscretePlant", "DiscreteTF", "Factorization", "Realization"]
     assert all(f"{name}.subs" in labels for name in with_subs)
+
+
+# ---------------------------------------------------------------- lint: the eval sinks
+# Calls that run ``sympify`` (an ``eval``) on text, or turn names into code: each call site
+# below was audited; its argument is a sympy object symctl built, a value already checked by
+# symctl._util.validate (to_expr/to_matrix/subs_rule/symbol_tuple) or the safe parser's output.
+# A new call (or one more in an audited function) fails the test until it is audited here.
+SINKS = frozenset(
+    {
+        "sympify",
+        "S",
+        "Matrix",
+        "ImmutableMatrix",
+        "ImmutableDenseMatrix",
+        "MutableDenseMatrix",
+        "lambdify",
+        "subs",
+        "Poly",
+        "parse_expr",
+    }
+)
+AUDITED = {
+    # the checkers themselves: to_expr/to_matrix/parse_matrix only pass sympy objects on
+    ("symctl._util.evaluate", "lambdify_matrices", "lambdify"): 1,  # symbol_tuple
+    ("symctl._util.exact", "z_poly", "Poly"): 1,  # sympy expressions of a DiscreteTF
+    ("symctl._util.parse", "parse_matrix", "Matrix"): 1,  # parse_expr's output
+    ("symctl._util.parse", "parse_matrix", "parse_expr"): 1,  # symctl's own parser
+    ("symctl._util.validate", "to_expr", "parse_expr"): 1,  # symctl's own parser
+    ("symctl._util.validate", "to_matrix", "Matrix"): 3,  # a MatrixBase or to_expr entries
+    ("symctl.compatibility.structure", "_is_zero", "sympify"): 1,  # entries of a Realization
+    ("symctl.design.augment", "AugmentedSystem.R_mu", "ImmutableMatrix"): 1,  # sp.zeros
+    ("symctl.design.augment", "AugmentedSystem.chi", "ImmutableMatrix"): 1,  # sp.Symbols
+    ("symctl.design.augment", "augment", "ImmutableMatrix"): 5,  # to_matrix / psd_matrix
+    ("symctl.design.controller", "controller_tf", "subs"): 1,  # Gains.substitutions (floats)
+    ("symctl.design.controller", "prove_controller_tf", "Matrix"): 3,  # system matrices
+    ("symctl.design.lqr", "Gains.latex", "Matrix"): 1,  # float array K
+    ("symctl.design.plant", "DiscretePlant.__post_init__", "ImmutableMatrix"): 3,  # to_matrix
+    ("symctl.design.plant", "DiscretePlant.subs", "subs"): 5,  # subs_rule
+    ("symctl.design.plant", "Linearization.__post_init__", "ImmutableMatrix"): 1,  # internal
+    ("symctl.design.plant", "MuscleModel.f_bar", "subs"): 1,  # checked floats
+    ("symctl.design.plant", "MuscleModel.plant", "subs"): 1,  # checked floats
+    ("symctl.design.plant", "_muscle_discrete", "Matrix"): 2,  # symbols
+    ("symctl.design.plant", "discretize", "Matrix"): 1,  # expm of numeric_matrix
+    ("symctl.design.plant", "linearize", "subs"): 3,  # to_matrix of x_eq, u_eq
+    ("symctl.design.tf", "DiscreteTF.__init__", "ImmutableMatrix"): 3,  # to_expr entries
+    ("symctl.design.tf", "DiscreteTF.from_expr", "Matrix"): 3,  # sympy objects only
+    ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
+    ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
+    ("symctl.design.tf", "DiscreteTF.subs", "subs"): 3,  # subs_rule
+    ("symctl.interop", "tf_from_control", "Poly"): 2,  # python-control's float arrays
+    ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
+    ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
+    ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
+    ("symctl.realization.check", "_problem", "sympify"): 1,  # DiscreteTF coefficients
+    ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
+    ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
+    ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
+    ("symctl.realization.realization", "Realization.__post_init__", "ImmutableMatrix"): 1,
+    ("symctl.realization.realization", "Realization._similar", "ImmutableMatrix"): 2,
+    ("symctl.realization.realization", "Realization.markov", "Matrix"): 2,  # own matrices
+    ("symctl.realization.realization", "Realization.series", "Matrix"): 2,  # own matrices
+    ("symctl.realization.realization", "Realization.subs", "subs"): 2,  # subs_rule
+    ("symctl.realization.realization", "Realization.to_tf", "Matrix"): 1,  # own matrices
+    ("symctl.realization.realization", "controllable_canonical", "Matrix"): 1,  # coefficients
+    ("symctl.realization.realizers", "_Random.__call__", "subs"): 2,  # DiscreteTF.subs
+    ("symctl.realization.realizers", "_identity", "ImmutableMatrix"): 1,  # sp.eye
+    ("symctl.realization.realizers", "random_full_rank", "Matrix"): 1,  # Rationals
+    ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
+    ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
+    ("symctl.report.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
+    ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
+    ("symctl.report.story", "story", "subs"): 2,  # checked model values
+    ("symctl.symbols", "gain_matrix_symbols", "Matrix"): 2,  # symbols
+}
+
+
+def _sink_calls(root) -> dict:
+    """``(module, enclosing function, sink) -> count`` over symctl's source (doctests excluded)."""
+    import ast
+    import collections
+
+    out = collections.Counter()
+    for path in sorted((root / "symctl").rglob("*.py")):
+        module = ".".join(path.relative_to(root).with_suffix("").parts)
+
+        def visit(node, scope, module=module):
+            for child in ast.iter_child_nodes(node):
+                if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+                    visit(child, (*scope, child.name))
+                    continue
+                if isinstance(child, ast.Call):
+                    func = child.func
+                    name = getattr(func, "id", None) or getattr(func, "attr", None)
+                    if name in SINKS:
+                        out[(module, ".".join(scope) or "<module>", name)] += 1
+                visit(child, scope)
+
+        visit(ast.parse(path.read_text(encoding="utf-8")), ())
+    return out
+
+
+def test_every_sympify_matrix_subs_or_lambdify_call_is_audited():
+    import pathlib
+
+    import symctl as package
+
+    found = _sink_calls(pathlib.Path(package.__file__).parent.parent)
+    new = {k: v for k, v in found.items() if v > AUDITED.get(k, 0)}
+    assert not new, (
+        "calls that may hand user text to sympify/Matrix/subs/lambdify: route the value through "
+        f"symctl._util.validate (to_expr, to_matrix, subs_rule, symbol_tuple), then audit: {new}"
+    )
+
+
+def test_the_sink_lint_sees_a_new_unchecked_call(tmp_path):
+    (tmp_path / "symctl").mkdir()
+    (tmp_path / "symctl" / "bad.py").write_text(
+        "import sympy as sp\n\ndef f(text):\n    return sp.sympify(text) + sp.Matrix([[text]])\n"
+    )
+    assert _sink_calls(tmp_path) == {
+        ("symctl.bad", "f", "sympify"): 1,
+        ("symctl.bad", "f", "Matrix"): 1,
+    }
