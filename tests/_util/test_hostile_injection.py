@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 
+import numpy as np
 import pytest
 import sympy as sp
 
@@ -348,6 +349,14 @@ SINKS = frozenset(
         "subs",
         "Poly",
         "parse_expr",
+        # SymPy's algebra functions sympify a str argument too
+        "cancel",
+        "expand",
+        "factor",
+        "fraction",
+        "nsimplify",
+        "simplify",
+        "together",
     }
 )
 AUDITED = {
@@ -402,6 +411,40 @@ AUDITED = {
     ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
     ("symctl.report.story", "story", "subs"): 2,  # checked model values
     ("symctl.symbols", "gain_matrix_symbols", "Matrix"): 2,  # symbols
+    # algebra on sympy objects symctl built or checked (to_expr/to_matrix first; ``factor``
+    # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
+    ("symctl._util.exact", "products_equal", "expand"): 1,
+    ("symctl._util.exact", "z_poly", "cancel"): 1,
+    ("symctl.compatibility.controller", "_build", "factor"): 1,
+    ("symctl.compatibility.structure", "_is_zero", "cancel"): 1,
+    ("symctl.design.controller", "controller_tf", "expand"): 1,
+    ("symctl.design.controller", "prove_controller_tf", "expand"): 1,
+    ("symctl.design.plant", "MuscleModel.values", "nsimplify"): 4,
+    ("symctl.design.plant", "_is_zero", "cancel"): 1,
+    ("symctl.design.plant", "_is_zero", "expand"): 1,
+    ("symctl.design.plant", "_is_zero", "together"): 1,
+    ("symctl.design.plant", "_tidy", "cancel"): 1,
+    ("symctl.design.plant", "_tidy", "expand"): 1,
+    ("symctl.design.plant", "_tidy", "factor"): 1,
+    ("symctl.design.plant", "_tidy", "together"): 1,
+    ("symctl.design.plant", "linearize", "cancel"): 1,
+    ("symctl.design.plant", "linearize", "together"): 1,
+    ("symctl.design.tf", "DiscreteTF.__init__", "cancel"): 2,
+    ("symctl.design.tf", "DiscreteTF.__init__", "expand"): 3,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "cancel"): 1,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "fraction"): 1,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "together"): 1,
+    ("symctl.design.tf", "_lcm", "expand"): 2,
+    ("symctl.neural.firing", "_realizations", "factor"): 1,
+    ("symctl.realization.factorization", "Factorization.latex", "expand"): 1,
+    ("symctl.realization.factorization", "Factorization.remainder_coeffs", "cancel"): 1,
+    ("symctl.realization.realization", "Realization._similar", "cancel"): 1,
+    ("symctl.realization.realization", "Realization.to_tf", "expand"): 1,
+    ("symctl.realization.realization", "Realization.to_tf", "together"): 1,
+    ("symctl.realization.realization", "_rank", "cancel"): 1,
+    ("symctl.realization.realization", "_tidy", "cancel"): 1,
+    ("symctl.report.pipeline", "derive_paper", "factor"): 1,
+    ("symctl.report.story", "_match", "cancel"): 1,
 }
 
 
@@ -452,3 +495,34 @@ def test_the_sink_lint_sees_a_new_unchecked_call(tmp_path):
         ("symctl.bad", "f", "sympify"): 1,
         ("symctl.bad", "f", "Matrix"): 1,
     }
+
+
+SUBS_BAD = {
+    "unknown keyword": ((({K_0: 1},), {"evaluate": False}), symctl.SymctlTypeError),
+    "non-bool simultaneous": ((({K_0: 1},), {"simultaneous": "yes"}), symctl.SymctlTypeError),
+    "three arguments": (((K_0, 1, 2), {}), symctl.SymctlTypeError),
+    "no arguments": (((), {}), symctl.SymctlTypeError),
+    "a bare string": ((("K_0",), {}), symctl.SymctlTypeError),
+    "a pair of three": ((([(K_0, 1, 2)],), {}), symctl.SymctlTypeError),
+    "an integer key": ((({1: 2},), {}), symctl.SymctlTypeError),
+    "a list value": ((({K_0: [1]},), {}), symctl.SymctlTypeError),
+    "a nan value": ((({K_0: float("nan")},), {}), symctl.ParameterError),
+    "an unknown name": ((({"K_7": 1},), {}), symctl.ParameterError),
+    "a hostile value text": ((({K_0: "9**9**9"},), {}), symctl.ParseError),
+}
+
+
+@pytest.mark.parametrize(("call", "error"), SUBS_BAD.values(), ids=SUBS_BAD.keys())
+def test_subs_refuses_bad_arguments_with_symctl_errors(call, error):
+    args, kwargs = call
+    with pytest.raises(error, match="subs"):
+        controller_tf(2).subs(*args, **kwargs)
+
+
+def test_subs_keeps_sympy_semantics_for_valid_arguments():
+    G = controller_tf(2)
+    K_1, K_2 = gain_symbols(2)[1:]
+    assert G.subs({K_0: 1, K_1: 0}) == G.subs([(K_0, 1), (K_1, 0)]) == G.subs(K_0, 1).subs(K_1, 0)
+    swapped = G.subs({K_1: K_2, K_2: K_1}, simultaneous=True)
+    assert swapped.den == z**2 - K_2 * z - K_1
+    assert G.subs({K_0: np.float64(0.5)}).num == sp.Float(0.5)
