@@ -19,6 +19,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import sympy as sp
 
+from symctl._util.validate import symbol_tuple
 from symctl.errors import ParameterError
 
 __all__ = ["lambdify_matrices"]
@@ -28,7 +29,7 @@ def lambdify_matrices(
     matrices: Sequence[sp.MatrixBase], symbols: Sequence[sp.Symbol]
 ) -> Callable[..., tuple[np.ndarray, ...]]:
     """One vectorized NumPy function evaluating every matrix at the given symbol values."""
-    symbols = tuple(symbols)
+    symbols = symbol_tuple(symbols, "symbols")  # names become code in lambdify: no text
     free = set().union(*(m.free_symbols for m in matrices)) - set(symbols)
     if free:
         names = ", ".join(sorted(map(str, free)))

@@ -15,11 +15,39 @@ hands it user text.
 Traceback (most recent call last):
 ...
 symctl.errors.ParseError: expression: function '__import__' is not allowed; use one of: Abs, ...
+
+Bounded work
+------------
+Text is untrusted, so the parser bounds what it does before and while it
+builds the expression; any input past a limit is a
+:class:`~symctl.errors.ParseError` naming the argument, raised in well under a
+second (never a hang, a ``MemoryError``, a ``RecursionError`` or a foreign
+exception):
+
+=================================  ==========================================
+limit                              value
+=================================  ==========================================
+text length                        ``MAX_TEXT`` = 10,000 characters
+operator characters ``+-*/(``      ``MAX_OPERATORS`` = 400 (checked before Python parses)
+syntax-tree nodes                  ``MAX_NODES`` = 1,000
+nesting depth of the tree          ``MAX_DEPTH`` = 100
+a numeric exponent                 ``|e| <= MAX_EXPONENT`` = 1,000 (so ``9**9**9`` is refused)
+an exact number (literal or        ``MAX_BITS`` = 20,000 bits of numerator and denominator
+intermediate result)               (about 6,000 digits; the power's size is estimated first)
+float literals                     finite (``1e9999`` is refused)
+the result                         finite: no ``zoo``, ``oo`` or ``nan`` (``1/0`` is refused)
+=================================  ==========================================
+
+>>> parse_expr("9**9**9")
+Traceback (most recent call last):
+...
+symctl.errors.ParseError: expression: exponent 387420489 is too large (|exponent| <= 1000)
 """
 
 from __future__ import annotations
 
 import ast
+import math
 from collections.abc import Iterable, Mapping
 
 import sympy as sp
@@ -41,6 +69,7 @@ _FUNCTIONS = {
     "atan": sp.atan,
     "Abs": sp.Abs,
 }
+_ARITY = {name: (1, 1) for name in _FUNCTIONS} | {"log": (1, 2)}
 _CONSTANTS = {"pi": sp.pi, "E": sp.E}
 _BINOPS = {
     ast.Add: lambda a, b: a + b,
@@ -49,7 +78,14 @@ _BINOPS = {
     ast.Div: lambda a, b: a / b,
     ast.Pow: lambda a, b: a**b,
 }
-_MAX_TEXT = 10_000
+MAX_TEXT = 10_000
+MAX_OPERATORS = 400
+MAX_NODES = 1_000
+MAX_DEPTH = 100
+MAX_EXPONENT = 1_000
+MAX_BITS = 20_000
+_MAX_TEXT = MAX_TEXT  # the old private name
+_NON_FINITE = (sp.zoo, sp.oo, -sp.oo, sp.nan)
 
 
 def _names_of(names: Mapping[str, sp.Basic] | Iterable[sp.Symbol] | None) -> dict:
@@ -58,6 +94,94 @@ def _names_of(names: Mapping[str, sp.Basic] | Iterable[sp.Symbol] | None) -> dic
     if isinstance(names, Mapping):
         return dict(names)
     return {s.name: s for s in names}
+
+
+def _bits(value: sp.Rational) -> int:
+    return max(int(value.p).bit_length(), int(value.q).bit_length())
+
+
+def _check_size(value: sp.Expr, argname: str) -> sp.Expr:
+    """Refuse an exact number past :data:`MAX_BITS`."""
+    if isinstance(value, sp.Rational) and _bits(value) > MAX_BITS:
+        raise ParseError(f"{argname}: a number with more than {MAX_BITS} bits is too large")
+    return value
+
+
+def _power(base: sp.Expr, exponent: sp.Expr, argname: str) -> sp.Expr:
+    """``base**exponent`` after bounding the exponent and (for numbers) the result's size."""
+    if exponent.is_number:
+        try:
+            magnitude = abs(complex(exponent))
+        except (TypeError, ValueError, OverflowError):
+            magnitude = float("inf")
+        if not magnitude <= MAX_EXPONENT:
+            shown = str(exponent) if len(str(exponent)) < 40 else "of this size"
+            raise ParseError(
+                f"{argname}: exponent {shown} is too large (|exponent| <= {MAX_EXPONENT})"
+            )
+        if (
+            isinstance(base, sp.Rational)
+            and isinstance(exponent, sp.Integer)
+            and _bits(base) * abs(int(exponent)) > MAX_BITS
+        ):
+            raise ParseError(
+                f"{argname}: a power with a {_bits(base)}-bit base and exponent {exponent} "
+                f"would have more than {MAX_BITS} bits"
+            )
+    return base**exponent
+
+
+def _check_shape(tree: ast.AST, argname: str) -> None:
+    """Bound the number of nodes and the nesting depth (iteratively: no recursion)."""
+    count = 0
+    stack = [(tree, 1)]
+    while stack:
+        node, depth = stack.pop()
+        count += 1
+        if count > MAX_NODES:
+            raise ParseError(f"{argname}: expression too large (more than {MAX_NODES} parts)")
+        if depth > MAX_DEPTH:
+            raise ParseError(
+                f"{argname}: expression nested deeper than {MAX_DEPTH} levels "
+                f"(a chain of more than {MAX_DEPTH} terms or signs is that deep)"
+            )
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+
+
+def _syntax_tree(text: str, argname: str) -> ast.AST:
+    """Python's syntax tree of ``text``, after the cheap bounds that keep parsing itself small."""
+    if len(text) > MAX_TEXT:
+        raise ParseError(f"{argname}: text longer than {MAX_TEXT} characters")
+    operators = sum(text.count(c) for c in "+-*/(")
+    if operators > MAX_OPERATORS:
+        raise ParseError(
+            f"{argname}: too many operators ({operators} > {MAX_OPERATORS}) in the text"
+        )
+    try:
+        tree = ast.parse(text.strip(), mode="eval")
+    except SyntaxError as exc:
+        shown = text if len(text) <= 80 else text[:77] + "..."
+        raise ParseError(f"{argname}: cannot parse {shown!r}: {exc.msg}") from None
+    except (ValueError, RecursionError, MemoryError):  # null bytes; a parser out of stack
+        raise ParseError(f"{argname}: cannot parse the text (too complex)") from None
+    _check_shape(tree, argname)
+    return tree
+
+
+def _number(value, argname: str) -> sp.Expr:
+    if isinstance(value, bool):
+        raise ParseError(f"{argname}: booleans are not numbers")
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ParseError(
+                f"{argname}: numbers must be finite, got a float literal that is {value}"
+            )
+        return _check_size(sp.Rational(repr(value)), argname)
+    if value.bit_length() > MAX_BITS:
+        raise ParseError(
+            f"{argname}: an integer literal with more than {MAX_BITS} bits is too large"
+        )
+    return sp.Integer(value)
 
 
 def parse_expr(
@@ -81,27 +205,20 @@ def parse_expr(
     ------
     ParseError
         For syntax errors, unknown names, calls of other functions, attribute
-        access, subscripts and any other construct.
+        access, subscripts and any other construct; for text past the limits
+        in the module docstring (length, size, depth, exponents, number sizes)
+        and for non-finite numbers or results.
+    SymctlTypeError
+        ``text`` is not a string.
     """
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected a string, got {type(text).__name__}")
-    if len(text) > _MAX_TEXT:
-        raise ParseError(f"{argname}: text longer than {_MAX_TEXT} characters")
+    tree = _syntax_tree(text, argname)
     allowed = {**_CONSTANTS, **_names_of(names)}
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
-        raise ParseError(f"{argname}: cannot parse {text!r}: {exc.msg}") from None
 
     def walk(node: ast.AST) -> sp.Expr:
         if isinstance(node, ast.Constant) and isinstance(node.value, int | float):
-            if isinstance(node.value, bool):
-                raise ParseError(f"{argname}: booleans are not numbers")
-            return (
-                sp.Rational(repr(node.value))
-                if isinstance(node.value, float)
-                else sp.Integer(node.value)
-            )
+            return _number(node.value, argname)
         if isinstance(node, ast.Name):
             if node.id in allowed:
                 return allowed[node.id]
@@ -109,8 +226,11 @@ def parse_expr(
             raise ParseError(
                 f"{argname}: name {node.id!r} is not allowed; use one of: {choices}, ..."
             )
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
+            return _check_size(_power(walk(node.left), walk(node.right), argname), argname)
         if isinstance(node, ast.BinOp) and type(node.op) in _BINOPS:
-            return _BINOPS[type(node.op)](walk(node.left), walk(node.right))
+            value = _BINOPS[type(node.op)](walk(node.left), walk(node.right))
+            return _check_size(value, argname)
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
             value = walk(node.operand)
             return -value if isinstance(node.op, ast.USub) else value
@@ -120,15 +240,32 @@ def parse_expr(
             and node.func.id in _FUNCTIONS
             and not node.keywords
         ):
+            low, high = _ARITY[node.func.id]
+            if not low <= len(node.args) <= high or any(
+                isinstance(a, ast.Starred) for a in node.args
+            ):
+                raise ParseError(
+                    f"{argname}: {node.func.id} takes {low if low == high else f'{low} or {high}'}"
+                    f" argument(s), got {len(node.args)}"
+                )
             return _FUNCTIONS[node.func.id](*(walk(a) for a in node.args))
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
             choices = ", ".join(sorted(_FUNCTIONS)[:6])
             raise ParseError(
                 f"{argname}: function {node.func.id!r} is not allowed; use one of: {choices}, ..."
             )
-        raise ParseError(f"{argname}: {type(node).__name__} is not allowed in {text!r}")
+        shown = text if len(text) <= 80 else text[:77] + "..."
+        raise ParseError(f"{argname}: {type(node).__name__} is not allowed in {shown!r}")
 
-    return walk(tree.body)
+    try:
+        result = walk(tree.body)
+    except ParseError:
+        raise
+    except (ArithmeticError, ValueError, TypeError, RecursionError) as exc:
+        raise ParseError(f"{argname}: cannot evaluate the text: {type(exc).__name__}") from None
+    if isinstance(result, sp.Basic) and result.has(*_NON_FINITE):
+        raise ParseError(f"{argname}: the value is not finite ({result}) in {text!r}")
+    return result
 
 
 def parse_matrix(text: str, argname: str) -> sp.Matrix:
@@ -147,6 +284,8 @@ def parse_matrix(text: str, argname: str) -> sp.Matrix:
     """
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected text, got {type(text).__name__}")
+    if len(text) > MAX_TEXT:
+        raise ParseError(f"{argname}: text longer than {MAX_TEXT} characters")
     body = text.strip()
     if body.startswith("[[") and body.endswith("]]"):
         body = body[2:-2].replace("],", ";").replace("]", "").replace("[", "")

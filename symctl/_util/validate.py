@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Mapping
 
 import numpy as np
 import sympy as sp
@@ -40,6 +41,8 @@ __all__ = [
     "read_only",
     "real_number",
     "sampling_time",
+    "subs_rule",
+    "symbol_tuple",
     "to_expr",
     "to_matrix",
 ]
@@ -275,3 +278,103 @@ def float_array(value, argname: str) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"{argname}: entries must be finite (no NaN or inf)")
     return arr
+
+
+_SUBS_FLAGS = ("simultaneous",)
+
+
+def _subs_key(key, names: dict, argname: str) -> sp.Basic:
+    if isinstance(key, str):
+        if key in names:
+            return names[key]
+        choices = ", ".join(sorted(names)) or "none"
+        raise ParameterError(f"{argname}: no symbol named {key!r} (the symbols are: {choices})")
+    if isinstance(key, sp.Basic):
+        return key
+    raise SymctlTypeError(
+        f"{argname}: a key must be a sympy symbol (or expression) or a symbol's name, got {key!r}"
+    )
+
+
+def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
+    """The checked arguments of a ``subs`` method: ``(rule, flags)`` for :meth:`sympy.Basic.subs`.
+
+    Accepts what :meth:`sympy.Basic.subs` accepts from a user, and nothing that
+    SymPy would ``eval``: ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``.
+    A key is a sympy object or the name of one of ``symbols`` (the object's own
+    free symbols, so ``"K_0"`` finds the real symbol ``K_0``); a value goes
+    through :func:`to_expr` (numbers, sympy objects, or text read by the safe
+    parser with ``symbols`` as its names). The only keyword is ``simultaneous``.
+    A mapping stays a dict (SymPy orders it canonically), pairs stay in order.
+
+    Raises
+    ------
+    SymctlTypeError
+        Wrong argument count or types, an unknown keyword.
+    ParameterError
+        A key naming no symbol; a non-finite value.
+    ParseError
+        A value's text is not an admissible expression.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl._util.validate import subs_rule
+    >>> k = sp.Symbol("K_0", real=True)
+    >>> subs_rule(({"K_0": "1/2"},), {}, {k})
+    ({K_0: 1/2}, {})
+    >>> subs_rule(({"K_0": "__import__('os')"},), {}, {k})
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParseError: subs[K_0]: function '__import__' is not allowed; use one of: Abs, ...
+    """
+    flags = {}
+    for name, flag in kwargs.items():
+        if name not in _SUBS_FLAGS:
+            raise SymctlTypeError(f"{argname}: unexpected keyword argument {name!r}")
+        if not isinstance(flag, bool):
+            raise SymctlTypeError(f"{argname}: {name} must be True or False, got {flag!r}")
+        flags[name] = flag
+    ordered = True
+    if len(args) == 2:
+        pairs = [tuple(args)]
+    elif len(args) == 1 and isinstance(args[0], Mapping):
+        pairs, ordered = list(args[0].items()), False
+    elif len(args) == 1 and isinstance(args[0], set | frozenset):
+        pairs, ordered = list(args[0]), False
+    elif len(args) == 1 and isinstance(args[0], list | tuple):
+        pairs = list(args[0])
+    else:
+        raise SymctlTypeError(
+            f"{argname}: expected (old, new), a mapping or a list of (old, new) pairs, got {args!r}"
+        )
+    names = {s.name: s for s in symbols if isinstance(s, sp.Symbol)}
+    rule = []
+    for pair in pairs:
+        if not isinstance(pair, list | tuple) or len(pair) != 2:
+            raise SymctlTypeError(f"{argname}: expected an (old, new) pair, got {pair!r}")
+        key = _subs_key(pair[0], names, argname)
+        rule.append((key, to_expr(pair[1], f"{argname}[{key}]", names)))
+    return (rule if ordered else dict(rule)), flags
+
+
+def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
+    """A tuple of sympy Symbols (for ``lambdify``: a name there becomes Python code, so no text).
+
+    >>> import sympy as sp
+    >>> from symctl._util.validate import symbol_tuple
+    >>> symbol_tuple([sp.Symbol("a")], "symbols")
+    (a,)
+    >>> symbol_tuple("a", "symbols")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.SymctlTypeError: symbols: expected a sequence of sympy Symbols, got 'a'
+    """
+    if isinstance(value, sp.Symbol):
+        return (value,)
+    if isinstance(value, str | bytes) or not isinstance(value, list | tuple):
+        raise SymctlTypeError(f"{argname}: expected a sequence of sympy Symbols, got {value!r}")
+    for item in value:
+        if not isinstance(item, sp.Symbol):
+            raise SymctlTypeError(f"{argname}: expected sympy Symbols, got {item!r}")
+    return tuple(value)

@@ -38,6 +38,7 @@ from symctl._util.validate import (
     positive_number,
     real_number,
     sampling_time,
+    subs_rule,
     to_matrix,
 )
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
@@ -298,7 +299,7 @@ class DiscretePlant(LatexMixin):
         for name in ("x_eq", "u_eq"):
             value = getattr(self, name)
             if value is not None:
-                object.__setattr__(self, name, sp.ImmutableMatrix(value))
+                object.__setattr__(self, name, sp.ImmutableMatrix(to_matrix(value, name)))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
         if self.Ts is not None:
             object.__setattr__(self, "Ts", sampling_time(self.Ts, "Ts"))
@@ -323,15 +324,17 @@ class DiscretePlant(LatexMixin):
 
     def subs(self, *args, **kwargs) -> DiscretePlant:
         """A new plant with symbols substituted (arguments as :meth:`sympy.Basic.subs`)."""
-        ts = self.Ts.subs(*args, **kwargs) if self.Ts is not None else None
+        parts = [m for m in (self.A, self.B, self.Ts, self.x_eq, self.u_eq) if m is not None]
+        rule, flags = subs_rule(args, kwargs, set().union(*(m.free_symbols for m in parts)))
+        ts = self.Ts.subs(rule, **flags) if self.Ts is not None else None
         return DiscretePlant(
-            self.A.subs(*args, **kwargs),
-            self.B.subs(*args, **kwargs),
+            self.A.subs(rule, **flags),
+            self.B.subs(rule, **flags),
             ts,
             self.state_names,
             self.input_names,
-            None if self.x_eq is None else self.x_eq.subs(*args, **kwargs),
-            None if self.u_eq is None else self.u_eq.subs(*args, **kwargs),
+            None if self.x_eq is None else self.x_eq.subs(rule, **flags),
+            None if self.u_eq is None else self.u_eq.subs(rule, **flags),
             self.params,
         )
 

@@ -26,11 +26,13 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
 from symctl._util.exact import products_equal, z_poly
-from symctl._util.validate import nonneg_int, sampling_time, to_expr
+from symctl._util.validate import nonneg_int, sampling_time, subs_rule, symbol_tuple, to_expr
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
 __all__ = ["DiscreteTF"]
+
+_TEXT_NAMES = {"z": z}  # the names text for num/den may use (read by the safe parser)
 
 
 def _natural_key(symbol: sp.Symbol) -> list:
@@ -88,9 +90,11 @@ class DiscreteTF(LatexMixin):
     dt: sp.Expr | None = None
 
     def __init__(self, num, den, dt=None):
-        num_m = sp.ImmutableMatrix(num if isinstance(num, sp.MatrixBase) else [[num]])
-        num_m = sp.ImmutableMatrix(num_m.applyfunc(lambda e: to_expr(e, "num")))
-        den_e = sp.expand(to_expr(den, "den"))
+        if isinstance(num, sp.MatrixBase):
+            num_m = sp.ImmutableMatrix(num.applyfunc(lambda e: to_expr(e, "num")))
+        else:  # text never reaches ImmutableMatrix: it would be sympify'd (eval)
+            num_m = sp.ImmutableMatrix([[to_expr(num, "num", _TEXT_NAMES)]])
+        den_e = sp.expand(to_expr(den, "den", _TEXT_NAMES))
         if den_e == 0:
             raise ParameterError("den: the denominator is identically zero")
         for e in (*num_m, den_e):
@@ -203,9 +207,14 @@ class DiscreteTF(LatexMixin):
 
     # ------------------------------------------------------------ algebra
     def subs(self, *args, **kwargs) -> DiscreteTF:
-        """Substitute symbols (as :meth:`sympy.Basic.subs`); ``z`` must stay free."""
-        dt = None if self.dt is None else self.dt.subs(*args, **kwargs)
-        return DiscreteTF(self._num.subs(*args, **kwargs), self.den.subs(*args, **kwargs), dt)
+        """Substitute symbols (as :meth:`sympy.Basic.subs`); ``z`` must stay free.
+
+        Keys are symbols or their names, values numbers, sympy objects or text
+        (read by the safe parser): :func:`symctl._util.validate.subs_rule`.
+        """
+        rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
+        dt = None if self.dt is None else self.dt.subs(rule, **flags)
+        return DiscreteTF(self._num.subs(rule, **flags), self.den.subs(rule, **flags), dt)
 
     def equals(self, other) -> bool:
         """Exact equality as rational functions (a difference that cancels to zero)."""
@@ -273,6 +282,7 @@ class DiscreteTF(LatexMixin):
 
     def lambdify(self, symbols=(), modules="numpy"):
         """A NumPy function ``f(z, *symbols)`` evaluating G (broadcasts over arrays)."""
+        symbols = symbol_tuple(symbols, "symbols")  # names become code in lambdify: no text
         return sp.lambdify((z, *symbols), self.expr, modules=modules)
 
     def poles(self) -> np.ndarray:

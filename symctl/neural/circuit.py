@@ -96,7 +96,7 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import positive_int
+from symctl._util.validate import positive_int, subs_rule, to_expr
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.structure import Block, Structure
@@ -389,8 +389,10 @@ class Circuit(LatexMixin):
         >>> c.subs({epsilon_1: sp.Rational(1, 2), C_1: -1}).neuron("x1").synapses[0].sign
         '-'
         """
+        gains = [b.gain for b in self.structure.blocks.values() if b.gain is not None]
+        rule, flags = subs_rule(args, kwargs, set().union(*(g.free_symbols for g in gains)))
         blocks = {
-            name: Block(b.kind, b.inputs, b.gain.subs(*args, **kwargs), b.part)
+            name: Block(b.kind, b.inputs, b.gain.subs(rule, **flags), b.part)
             if b.kind == "gain" and b.gain is not None
             else b
             for name, b in self.structure.blocks.items()
@@ -406,9 +408,9 @@ class Circuit(LatexMixin):
         """The symbols left in the weights."""
         out: set[sp.Symbol] = set()
         for s in (*self.synapses, *(t for n in self.neurons for t in n.self_terms)):
-            out |= sp.sympify(s.weight).free_symbols
+            out |= to_expr(s.weight, "weight").free_symbols
         for s in self.outputs:
-            out |= sp.sympify(s.weight).free_symbols
+            out |= to_expr(s.weight, "weight").free_symbols
         return out
 
     def as_linear_system(self, numeric: bool = False) -> CircuitSystem:
@@ -521,7 +523,7 @@ class Circuit(LatexMixin):
         for n in self.neurons:
             terms = []
             for s in (*n.self_terms, *n.synapses):
-                w = sp.sympify(s.weight)
+                w = to_expr(s.weight, "weight")
                 if digits is not None:
                     w = _rounded(w, digits)
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"

@@ -23,6 +23,7 @@ from typing import NamedTuple
 
 import sympy as sp
 
+from symctl._util.validate import to_expr
 from symctl.symbols import z
 
 __all__ = ["Neuron", "Synapse"]
@@ -77,7 +78,7 @@ class Synapse(NamedTuple):
     @property
     def sign(self) -> str:
         """``"+"`` (excitatory), ``"-"`` (inhibitory), ``"0"``, or ``"?"`` when symbolic."""
-        return _sign(sp.sympify(self.weight))
+        return _sign(to_expr(self.weight, "weight"))
 
     @property
     def excitatory(self) -> bool:
@@ -141,12 +142,12 @@ class Neuron:
         With one self term (e.g. :math:`\epsilon_1` for :math:`G_1`) this is its
         weight; with several lags see :attr:`self_dynamics`.
         """
-        return sp.Add(*(s.weight for s in self.self_terms))
+        return sp.Add(*(to_expr(s.weight, "weight") for s in self.self_terms))
 
     @property
     def self_dynamics(self) -> sp.Expr:
         r"""The self-dynamics as a polynomial in :math:`z^{-1}`, :math:`\sum_k w_k z^{-d_k}`."""
-        return sp.Add(*(s.weight * z ** (-s.delay) for s in self.self_terms))
+        return sp.Add(*(to_expr(s.weight, "weight") * z ** (-s.delay) for s in self.self_terms))
 
     @property
     def branches(self) -> int:

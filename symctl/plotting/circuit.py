@@ -22,6 +22,7 @@ from matplotlib.patches import Circle, FancyArrowPatch
 
 from symctl._util.display import latex
 from symctl._util.texnames import signal_tex
+from symctl._util.validate import to_expr
 from symctl.plotting.circuit_layout import MIN_RADIUS, circuit_layout
 from symctl.plotting.common import figure_and_axes, finish_figure, text_size
 
@@ -48,7 +49,7 @@ def _visible(tex: str) -> int:
 
 def _weight_tex(weight) -> str:
     """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
-    w = sp.sympify(weight)
+    w = to_expr(weight, "weight")
     if w.is_number and w.is_real:
         return f"{float(w):.3g}"
     return latex(w)
@@ -60,7 +61,7 @@ def _self_tex(n: Neuron) -> str:
         return "0"
     parts = []
     for s in sorted(n.self_terms, key=lambda s: s.delay):
-        w = sp.sympify(s.weight)
+        w = to_expr(s.weight, "weight")
         tex = _weight_tex(w)
         if isinstance(w, sp.Add):
             tex = rf"\left({tex}\right)"

@@ -41,7 +41,7 @@ from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
 from symctl._util.exact import products_equal
 from symctl._util.proof import Proof
-from symctl._util.validate import nonneg_int
+from symctl._util.validate import nonneg_int, subs_rule, to_expr
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
@@ -158,16 +158,27 @@ class Factorization(LatexMixin):
         )
 
     def subs(self, *args, **kwargs) -> Factorization:
-        """Substitute values (e.g. for the epsilons and Cs); a zero C is refused."""
+        """Substitute values (e.g. for the epsilons and Cs); a zero C is refused.
+
+        Arguments are checked by :func:`symctl._util.validate.subs_rule` (text is
+        read by the safe parser, never by ``sympify``).
+        """
+        sections = (*self.sensor_eps, *self.sensor_C, *self.actuator_eps, *self.actuator_C)
+        sections = [to_expr(v, "sections") for v in sections]
+        symbols = set().union(
+            *(g.free_symbols for g in (self.G, self.G1, self.G2, self.G3)),
+            *(v.free_symbols for v in sections),
+        )
+        rule, flags = subs_rule(args, kwargs, symbols)
 
         def sub(values):
-            return tuple(sp.sympify(v).subs(*args, **kwargs) for v in values)
+            return tuple(to_expr(v, "sections").subs(rule, **flags) for v in values)
 
         out = Factorization(
-            self.G.subs(*args, **kwargs),
-            self.G1.subs(*args, **kwargs),
-            self.G2.subs(*args, **kwargs),
-            self.G3.subs(*args, **kwargs),
+            self.G.subs(rule, **flags),
+            self.G1.subs(rule, **flags),
+            self.G2.subs(rule, **flags),
+            self.G3.subs(rule, **flags),
             sub(self.sensor_eps),
             sub(self.sensor_C),
             sub(self.actuator_eps),
@@ -190,7 +201,7 @@ class Factorization(LatexMixin):
 
 def _check_C(values) -> None:
     for c in values:
-        if sp.sympify(c) == 0:
+        if to_expr(c, "C") == 0:
             raise ParameterError("C: the section gains C_1, C_3 must be nonzero, got C = 0")
 
 

@@ -39,7 +39,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import to_expr, to_matrix
+from symctl._util.validate import subs_rule, to_expr, to_matrix
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -206,9 +206,15 @@ class Realization(LatexMixin):
         return R, sp.ImmutableMatrix(Pinv)
 
     def subs(self, *args, **kwargs) -> Realization:
-        """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`)."""
-        mats = [m.subs(*args, **kwargs) for m in (self.F, self.H, self.M, self.N)]
-        dt = None if self.dt is None else self.dt.subs(*args, **kwargs)
+        """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`).
+
+        Arguments are checked by :func:`symctl._util.validate.subs_rule` (text is
+        read by the safe parser, never by ``sympify``).
+        """
+        dt_symbols = set() if self.dt is None else self.dt.free_symbols
+        rule, flags = subs_rule(args, kwargs, self.free_symbols | dt_symbols)
+        mats = [m.subs(rule, **flags) for m in (self.F, self.H, self.M, self.N)]
+        dt = None if self.dt is None else self.dt.subs(rule, **flags)
         return Realization(*mats, dt, self.params)
 
     def transpose(self) -> Realization:

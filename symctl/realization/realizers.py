@@ -33,12 +33,14 @@ unknown). The optimal controller's own state space, the IFP structure, is
 
 from __future__ import annotations
 
+import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
 
-from symctl._util.validate import as_generator, numeric_matrix
+from symctl._util.validate import as_generator, numeric_matrix, real_number
 from symctl.design.controller import ifp_state_space
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
@@ -163,7 +165,7 @@ class _General(Realizer):
         if start.n == 0:
             return _identity(start, tf)
         if P is None:
-            P = random_full_rank(start.n, as_generator(rng, "rng"))
+            P = random_full_rank(start.n, _generator(rng))
         return _transformed(start, tf, P)
 
 
@@ -179,20 +181,44 @@ class _Random(Realizer):
         values: dict | None = None,
     ) -> RealizerResult:
         """The paper's recipe (:func:`random_realization`)."""
-        gen = as_generator(rng, "rng")
+        gen = _generator(rng)
+        low, high = _eps_range(eps_range)
         tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
+        if values is not None and not isinstance(values, Mapping):
+            raise SymctlTypeError(
+                f"values: expected a mapping of symbols (or names) to values, got {values!r}"
+            )
         if values:
-            tf = tf.subs(values)
+            tf = tf.subs(values)  # checked by subs_rule: text goes to the safe parser
         eps = sorted(
             (s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name
         )
-        chosen = {s: _random_rational(gen, *eps_range) for s in eps}
+        chosen = {s: _random_rational(gen, low, high) for s in eps}
         tf = tf.subs(chosen)
         start = get_realizer(base, "base", where=_canonical)(tf).realization
         out = _transformed(start, tf, random_full_rank(start.n, gen))
         R = out.realization
         R = Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
         return RealizerResult(out.sys, out.base, out.P, out.Pinv, R)
+
+
+def _generator(rng) -> np.random.Generator:
+    """``rng`` as a Generator; a negative seed is a ParameterError (NumPy's would be a ValueError)."""
+    if isinstance(rng, numbers.Integral) and not isinstance(rng, bool) and rng < 0:
+        raise ParameterError(f"rng: a seed must be an integer >= 0, got {rng!r}")
+    return as_generator(rng, "rng")
+
+
+def _eps_range(value) -> tuple[float, float]:
+    """``eps_range`` as ``(low, high)``: two finite reals with ``low <= high``."""
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        raise SymctlTypeError(f"eps_range: expected a pair (low, high), got {value!r}")
+    low, high = (real_number(v, "eps_range") for v in value)
+    if low > high:
+        raise ParameterError(f"eps_range: needs low <= high, got {value!r}")
+    if max(abs(low), abs(high)) > 1e6:
+        raise ParameterError(f"eps_range: bounds must lie in [-1e6, 1e6], got {value!r}")
+    return low, high
 
 
 REALIZERS: dict[str, Realizer] = {

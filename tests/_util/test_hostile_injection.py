@@ -1,0 +1,528 @@
+"""Issue 12, class 1: no public function or method evaluates user text.
+
+SymPy's ``sympify`` (and so ``Matrix(str)``, ``ImmutableMatrix(str)``, ``expr.subs(str)``,
+``sp.S(str)``) runs ``eval``. Every entry point that takes a value is fed a string that,
+if evaluated, creates a marker file; each must refuse it with a symctl error, and the
+marker must never appear. Valid safe text is accepted (read by the safe parser).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import symctl
+from symctl import (
+    Block,
+    Circuit,
+    DelayGraph,
+    DiscretePlant,
+    DiscreteTF,
+    MuscleModel,
+    Neuron,
+    Realization,
+    Structure,
+    SymctlError,
+    Synapse,
+    augment,
+    check_compatibility,
+    check_realization,
+    controllable_canonical,
+    controller_compatibility,
+    controller_realization,
+    controller_tf,
+    discretize,
+    factor,
+    first_order_realization,
+    general_realization,
+    get_realizer,
+    ifp_realization,
+    ifp_structure,
+    linearize,
+    lqr_gains,
+    observable_canonical,
+    open_loop_response,
+    prove_controller_tf,
+    pulse,
+    random_realization,
+    same_structure,
+    simulate_batch,
+    simulate_realization,
+    z,
+)
+from symctl.symbols import C_1, epsilon_1, gain_symbols, tau
+
+K_0 = gain_symbols(2)[0]
+
+CLASS = "1"
+
+
+@functools.cache
+def _objects():
+    G = controller_tf(2)
+    f = factor(G)
+    R = controllable_canonical(f.G2)
+    plant = MuscleModel().plant()
+    aug = augment(plant, 1, 1)
+    gains = lqr_gains(aug)
+    circuit = Circuit.from_structure(
+        Structure.from_realization(first_order_realization(epsilon_1, C_1))
+    )
+    graph = DelayGraph([[0, 1], [1, 0]])
+    return {
+        "G": G,
+        "f": f,
+        "G2": f.G2,
+        "R": R,
+        "plant": plant,
+        "plant_sym": MuscleModel().discrete_symbolic(),
+        "aug": aug,
+        "gains": gains,
+        "circuit": circuit,
+        "graph": graph,
+        "S": Structure.from_realization(R),
+    }
+
+
+def _o(name):
+    return _objects()[name]
+
+
+def _structure(gain):
+    blocks = {"u": Block("input"), "g": Block("gain", ("u",), gain)}
+    return Structure(blocks, ("u",), ("g",))
+
+
+_R1 = first_order_realization(sp.Rational(1, 2), 1)
+_HALF = sp.Rational(1, 2)
+_K_1 = gain_symbols(2)[1]
+
+
+def _firing(**options):
+    return symctl.circuit_firing("controllable", _o("gains"), **options)
+
+
+def _neuron_weight(p):
+    n = Neuron("x", "", (Synapse("u", "x", p, 1),), (Synapse("x", "x", p, 1),), ())
+    return n.self_weight, n.self_dynamics
+
+
+# Each case: (label, callable of the payload). Every one takes a *value* from the user.
+CASES = [
+    # DiscreteTF: constructor, from_expr, subs (mapping / pair / pairs / name keys), algebra
+    ("DiscreteTF(num)", lambda p: DiscreteTF(p, z)),
+    ("DiscreteTF(den)", lambda p: DiscreteTF(1, p)),
+    ("DiscreteTF(dt)", lambda p: DiscreteTF(1, z, dt=p)),
+    ("DiscreteTF(num matrix)", lambda p: DiscreteTF([[p], [1]], z)),
+    ("DiscreteTF.from_expr", lambda p: DiscreteTF.from_expr(p)),
+    ("DiscreteTF.subs({name: p})", lambda p: _o("G").subs({"K_0": p})),
+    ("DiscreteTF.subs({symbol: p})", lambda p: _o("G").subs({K_0: p})),
+    ("DiscreteTF.subs(old, new)", lambda p: _o("G").subs(K_0, p)),
+    ("DiscreteTF.subs([(old, new)])", lambda p: _o("G").subs([(K_0, p)])),
+    ("DiscreteTF.subs({p: 1})", lambda p: _o("G").subs({p: 1})),
+    ("DiscreteTF.subs(p)", lambda p: _o("G").subs(p)),
+    ("DiscreteTF.subs(p, 1)", lambda p: _o("G").subs(p, 1)),
+    ("DiscreteTF.equals", lambda p: _o("G").equals(p)),
+    ("DiscreteTF * p", lambda p: _o("G") * p),
+    ("p * DiscreteTF", lambda p: p * _o("G")),
+    ("DiscreteTF.impulse_response", lambda p: _o("G").subs({K_0: 1}).impulse_response(p)),
+    ("DiscreteTF.markov", lambda p: _o("G").markov(p)),
+    ("DiscreteTF.lambdify(symbols)", lambda p: _o("G").lambdify(p)),
+    # design
+    ("controller_tf(source)", lambda p: controller_tf(p)),
+    ("controller_tf(gains)", lambda p: controller_tf(_o("aug"), gains=p)),
+    ("prove_controller_tf(G)", lambda p: prove_controller_tf(_o("aug"), p)),
+    ("DiscretePlant(A)", lambda p: DiscretePlant(p, [[1]])),
+    ("DiscretePlant(A entry)", lambda p: DiscretePlant([[p]], [[1]])),
+    ("DiscretePlant(B)", lambda p: DiscretePlant([[1]], [[p]])),
+    ("DiscretePlant(Ts)", lambda p: DiscretePlant([[1]], [[1]], p)),
+    ("DiscretePlant(x_eq)", lambda p: DiscretePlant([[1]], [[1]], x_eq=p)),
+    ("DiscretePlant(u_eq)", lambda p: DiscretePlant([[1]], [[1]], u_eq=[p])),
+    ("DiscretePlant.subs({name: p})", lambda p: _o("plant_sym").subs({"tau": p})),
+    ("DiscretePlant.subs({symbol: p})", lambda p: _o("plant_sym").subs({tau: p})),
+    ("DiscretePlant.subs({p: 1})", lambda p: _o("plant_sym").subs({p: 1})),
+    ("MuscleModel(tau)", lambda p: MuscleModel(tau=p)),
+    ("MuscleModel(f_max)", lambda p: MuscleModel(f_max=p)),
+    ("MuscleModel(r_bar)", lambda p: MuscleModel(r_bar=p)),
+    ("MuscleModel(Ts)", lambda p: MuscleModel(Ts=p)),
+    ("discretize(a)", lambda p: discretize(p, [[1]], 1)),
+    ("discretize(a entry)", lambda p: discretize([[p]], [[1]], 1)),
+    ("discretize(b)", lambda p: discretize([[1]], p, 1)),
+    ("discretize(Ts)", lambda p: discretize([[1]], [[1]], p)),
+    ("linearize(f)", lambda p: linearize(p, [sp.Symbol("x")], [sp.Symbol("u")], [0], [0])),
+    ("linearize(x_eq)", lambda p: linearize([sp.Symbol("x")], [sp.Symbol("x")], [], [p], [])),
+    ("augment(plant)", lambda p: augment(p)),
+    ("augment(Q)", lambda p: augment(_o("plant"), 1, 1, Q=p)),
+    ("augment(Q entry)", lambda p: augment(_o("plant"), 1, 1, Q=[[p]])),
+    ("augment(R)", lambda p: augment(_o("plant"), 1, 1, R=p)),
+    ("augment(sensor_delay)", lambda p: augment(_o("plant"), p, 1)),
+    ("lqr_gains(Q)", lambda p: lqr_gains(_o("aug"), Q=p)),
+    ("lqr_gains(R)", lambda p: lqr_gains(_o("aug"), R=p)),
+    ("lqr_gains(R entry)", lambda p: lqr_gains(_o("aug"), R=[[p]])),
+    ("lqr_gains(system)", lambda p: lqr_gains(p)),
+    # realization
+    ("factor(G)", lambda p: factor(p)),
+    ("factor(sensor_delay)", lambda p: factor(_o("G"), p)),
+    ("Factorization.subs({symbol: p})", lambda p: _o("f").subs({epsilon_1: p})),
+    ("Factorization.subs({name: p})", lambda p: _o("f").subs({"C_1": p})),
+    ("Factorization.subs({p: 1})", lambda p: _o("f").subs({p: 1})),
+    ("Realization(F)", lambda p: Realization(p, [[1]], [[1]], [[0]])),
+    ("Realization(H)", lambda p: Realization([[1]], [[p]], [[1]], [[0]])),
+    ("Realization(M)", lambda p: Realization([[1]], [[1]], p, [[0]])),
+    ("Realization(N)", lambda p: Realization([[1]], [[1]], [[1]], p)),
+    ("Realization(dt)", lambda p: Realization([[1]], [[1]], [[1]], [[0]], p)),
+    ("Realization.subs({symbol: p})", lambda p: _o("R").subs({K_0: p})),
+    ("Realization.subs({name: p})", lambda p: _o("R").subs({"K_1": p})),
+    ("Realization.subs(old, new)", lambda p: _o("R").subs(K_0, p)),
+    ("Realization.subs({p: 1})", lambda p: _o("R").subs({p: 1})),
+    ("Realization.similar(P)", lambda p: _o("R").similar(p)),
+    ("Realization.similar(P entry)", lambda p: _o("R").similar([[p, 0], [0, 1]])),
+    ("Realization.markov", lambda p: _o("R").markov(p)),
+    ("Realization.series", lambda p: Realization.series(_o("R"), p)),
+    ("Realization.lambdify", lambda p: _o("R").lambdify(p)),
+    ("controllable_canonical", lambda p: controllable_canonical(p)),
+    ("observable_canonical", lambda p: observable_canonical(p)),
+    ("first_order_realization(eps)", lambda p: first_order_realization(p, 1)),
+    ("first_order_realization(C)", lambda p: first_order_realization(sp.Rational(1, 2), p)),
+    ("first_order_realization(dt)", lambda p: first_order_realization(0, 1, p)),
+    ("general_realization(P)", lambda p: general_realization(_o("G2"), p)),
+    ("general_realization(G2)", lambda p: general_realization(p, [[1]])),
+    (
+        "random_realization(values {name: p})",
+        lambda p: random_realization(_o("G2"), 0, values={"K_0": p}),
+    ),
+    (
+        "random_realization(values {symbol: p})",
+        lambda p: random_realization(_o("G2"), 0, values={K_0: p}),
+    ),
+    ("random_realization(values {p: 1})", lambda p: random_realization(_o("G2"), 0, values={p: 1})),
+    ("random_realization(values=p)", lambda p: random_realization(_o("G2"), 0, values=p)),
+    ("random_realization(rng)", lambda p: random_realization(_o("G2"), p)),
+    ("random_realization(eps_range)", lambda p: random_realization(_o("G2"), 0, eps_range=(p, 1))),
+    ("random_realization(base)", lambda p: random_realization(_o("G2"), 0, base=p)),
+    ("random_realization(G2)", lambda p: random_realization(p, 0)),
+    ("get_realizer", lambda p: get_realizer(p)),
+    ("check_realization(G)", lambda p: check_realization(_o("R"), p)),
+    ("check_realization(R)", lambda p: check_realization(p, _o("G2"))),
+    ("check_realization(method)", lambda p: check_realization(_o("R"), _o("G2"), p)),
+    ("controller_realization", lambda p: controller_realization(_o("f"), p)),
+    ("ifp_realization", lambda p: ifp_realization(p)),
+    # compatibility
+    ("Structure(gain)", lambda p: _structure(p)),
+    ("Structure.from_realization", lambda p: Structure.from_realization(p)),
+    ("Structure.series", lambda p: Structure.series(p)),
+    ("Structure.from_factorization(R2)", lambda p: Structure.from_factorization(_o("f"), p)),
+    ("ifp_structure(T)", lambda p: ifp_structure(p)),
+    ("same_structure", lambda p: same_structure(_o("S"), p)),
+    ("DelayGraph(E)", lambda p: DelayGraph(p)),
+    ("DelayGraph(E entry)", lambda p: DelayGraph([[0, p], [1, 0]])),
+    ("DelayGraph.chain", lambda p: DelayGraph.chain([p])),
+    ("DelayGraph.from_edges", lambda p: DelayGraph.from_edges(2, [(0, 1, p)])),
+    ("check_compatibility(graph)", lambda p: check_compatibility(_o("S"), p)),
+    ("controller_compatibility(G)", lambda p: controller_compatibility(p, _o("graph"))),
+    # neural
+    ("Synapse(weight).sign", lambda p: Synapse("u", "x", p, 1).sign),
+    ("Synapse(weight).excitatory", lambda p: Synapse("u", "x", p, 1).excitatory),
+    ("Neuron self weights", _neuron_weight),
+    ("Circuit.subs({symbol: p})", lambda p: _o("circuit").subs({epsilon_1: p})),
+    ("Circuit.subs({name: p})", lambda p: _o("circuit").subs({"C_1": p})),
+    ("Circuit.subs({p: 1})", lambda p: _o("circuit").subs({p: 1})),
+    ("Circuit.from_structure", lambda p: Circuit.from_structure(p)),
+    ("Circuit.equations(digits)", lambda p: _o("circuit").equations(p)),
+    ("pulse(amplitude)", lambda p: pulse(amplitude=p)),
+    ("open_loop_response(pulse)", lambda p: open_loop_response(pulse=p)),
+    ("open_loop_response(plant)", lambda p: open_loop_response(p)),
+    ("simulate_realization(R)", lambda p: simulate_realization(_o("plant"), p)),
+    ("simulate_realization(disturbance)", lambda p: simulate_realization(_o("plant"), _R1, p)),
+    ("simulate_batch(F)", lambda p: simulate_batch(_o("plant"), p, [[1]], [[1]], [[0]])),
+    ("closed_loop_response(controller)", lambda p: symctl.closed_loop_response(p)),
+    ("nonlinear_check(amplitudes)", lambda p: symctl.nonlinear_check(amplitudes=p)),
+    ("nonlinear_check(model)", lambda p: symctl.nonlinear_check(p)),
+    ("circuit_firing(gains)", lambda p: symctl.circuit_firing("controllable", p)),
+    ("circuit_firing(disturbance)", lambda p: _firing(disturbance=p)),
+    # report
+    ("derive_paper(tau)", lambda p: symctl.derive_paper(tau=p)),
+    ("derive_paper(Q)", lambda p: symctl.derive_paper(Q=p)),
+    ("derive_paper(R)", lambda p: symctl.derive_paper(R=p)),
+    ("derive_paper(seed)", lambda p: symctl.derive_paper(seed=p)),
+    ("derive_paper(realizations)", lambda p: symctl.derive_paper(realizations=p)),
+]
+
+
+def _payloads(marker) -> list[str]:
+    path = str(marker)
+    return [
+        f"__import__('pathlib').Path({path!r}).touch()",
+        f"(lambda: __import__('pathlib').Path({path!r}).touch())()",
+    ]
+
+
+# Refused safely (never evaluated) but with a foreign exception, in code other helpers of
+# issue 12 own (class 5: wrong types are SymctlTypeError); the marker check still holds.
+FOREIGN = {
+    "DiscreteTF * p": "TypeError from DiscreteTF.__mul__ (class 5/6 helper)",
+    "p * DiscreteTF": "TypeError from DiscreteTF.__rmul__ (class 5/6 helper)",
+    "Realization.markov": "count is not type-checked (class 5 helper)",
+    "controller_tf(gains)": "AttributeError for gains='x' (class 5, named in the issue)",
+    "prove_controller_tf(G)": "AttributeError for G='x' (class 5 helper)",
+}
+
+
+@pytest.mark.parametrize("payload_kind", [0, 1], ids=["call", "lambda"])
+@pytest.mark.parametrize(("label", "call"), CASES, ids=[c[0] for c in CASES])
+def test_injection_string_is_refused_and_never_run(tmp_path, label, call, payload_kind):
+    marker = tmp_path / "RAN"
+    payload = _payloads(marker)[payload_kind]
+    error = None
+    try:
+        out = call(payload)
+        repr(out)  # lazy results are forced
+    except Exception as exc:
+        error = exc
+    assert not marker.exists(), f"{label}: the text was evaluated"
+    if label in FOREIGN and not isinstance(error, SymctlError):
+        pytest.xfail(FOREIGN[label])  # never evaluated (asserted above); the type is class 5's
+    assert isinstance(error, SymctlError), f"{label}: {type(error).__name__}: {error}"
+
+
+def _first_order_sym():
+    return first_order_realization(epsilon_1, C_1)
+
+
+SAFE = [
+    ("DiscreteTF text", lambda: DiscreteTF("1/2", "z - 1/2"), DiscreteTF(_HALF, z - _HALF)),
+    ("subs by name", lambda: controller_tf(1).subs({"K_0": "1/2"}).num, sp.Rational(1, 2)),
+    ("subs name keeps the real symbol", lambda: controller_tf(1).subs("K_1", 3).den, z - 3),
+    (
+        "subs value uses the object's names",
+        lambda: controller_tf(1).subs({"K_0": "2*K_1"}).num,
+        2 * _K_1,
+    ),
+    ("Synapse text weight", lambda: Synapse("u", "x", "-2", 1).sign, "-"),
+    (
+        "Realization.subs text",
+        lambda: _first_order_sym().subs({"epsilon_1": "1/4"}).F[0, 0],
+        _HALF**2,
+    ),
+]
+
+
+@pytest.mark.parametrize(("label", "call", "expected"), SAFE, ids=[c[0] for c in SAFE])
+def test_safe_text_is_read_by_the_safe_parser(label, call, expected):
+    assert call() == expected
+
+
+def test_subs_by_unknown_name_names_the_key():
+    with pytest.raises(symctl.ParameterError, match="no symbol named 'K_9'"):
+        controller_tf(1).subs({"K_9": 1})
+
+
+def test_case_list_covers_every_public_subs():
+    """A class with a public ``subs`` must appear above (so a new one is not forgotten)."""
+    with_subs = sorted(
+        name
+        for name in symctl.__all__
+        if isinstance(getattr(symctl, name), type) and hasattr(getattr(symctl, name), "subs")
+    )
+    labels = " ".join(c[0] for c in CASES)
+    assert with_subs == ["Circuit", "DiscretePlant", "DiscreteTF", "Factorization", "Realization"]
+    assert all(f"{name}.subs" in labels for name in with_subs)
+
+
+# ---------------------------------------------------------------- lint: the eval sinks
+# Calls that run ``sympify`` (an ``eval``) on text, or turn names into code: each call site
+# below was audited; its argument is a sympy object symctl built, a value already checked by
+# symctl._util.validate (to_expr/to_matrix/subs_rule/symbol_tuple) or the safe parser's output.
+# A new call (or one more in an audited function) fails the test until it is audited here.
+SINKS = frozenset(
+    {
+        "sympify",
+        "S",
+        "Matrix",
+        "ImmutableMatrix",
+        "ImmutableDenseMatrix",
+        "MutableDenseMatrix",
+        "lambdify",
+        "subs",
+        "Poly",
+        "parse_expr",
+        # SymPy's algebra functions sympify a str argument too
+        "cancel",
+        "expand",
+        "factor",
+        "fraction",
+        "nsimplify",
+        "simplify",
+        "together",
+    }
+)
+AUDITED = {
+    # the checkers themselves: to_expr/to_matrix/parse_matrix only pass sympy objects on
+    ("symctl._util.evaluate", "lambdify_matrices", "lambdify"): 1,  # symbol_tuple
+    ("symctl._util.exact", "z_poly", "Poly"): 1,  # sympy expressions of a DiscreteTF
+    ("symctl._util.parse", "parse_matrix", "Matrix"): 1,  # parse_expr's output
+    ("symctl._util.parse", "parse_matrix", "parse_expr"): 1,  # symctl's own parser
+    ("symctl._util.validate", "to_expr", "parse_expr"): 1,  # symctl's own parser
+    ("symctl._util.validate", "to_matrix", "Matrix"): 3,  # a MatrixBase or to_expr entries
+    ("symctl.compatibility.structure", "_is_zero", "sympify"): 1,  # entries of a Realization
+    ("symctl.design.augment", "AugmentedSystem.R_mu", "ImmutableMatrix"): 1,  # sp.zeros
+    ("symctl.design.augment", "AugmentedSystem.chi", "ImmutableMatrix"): 1,  # sp.Symbols
+    ("symctl.design.augment", "augment", "ImmutableMatrix"): 5,  # to_matrix / psd_matrix
+    ("symctl.design.controller", "controller_tf", "subs"): 1,  # Gains.substitutions (floats)
+    ("symctl.design.controller", "prove_controller_tf", "Matrix"): 3,  # system matrices
+    ("symctl.design.lqr", "Gains.latex", "Matrix"): 1,  # float array K
+    ("symctl.design.plant", "DiscretePlant.__post_init__", "ImmutableMatrix"): 3,  # to_matrix
+    ("symctl.design.plant", "DiscretePlant.subs", "subs"): 5,  # subs_rule
+    ("symctl.design.plant", "Linearization.__post_init__", "ImmutableMatrix"): 1,  # internal
+    ("symctl.design.plant", "MuscleModel.f_bar", "subs"): 1,  # checked floats
+    ("symctl.design.plant", "MuscleModel.plant", "subs"): 1,  # checked floats
+    ("symctl.design.plant", "_muscle_discrete", "Matrix"): 2,  # symbols
+    ("symctl.design.plant", "discretize", "Matrix"): 1,  # expm of numeric_matrix
+    ("symctl.design.plant", "linearize", "subs"): 3,  # to_matrix of x_eq, u_eq
+    ("symctl.design.tf", "DiscreteTF.__init__", "ImmutableMatrix"): 3,  # to_expr entries
+    ("symctl.design.tf", "DiscreteTF.from_expr", "Matrix"): 3,  # sympy objects only
+    ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
+    ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
+    ("symctl.design.tf", "DiscreteTF.subs", "subs"): 3,  # subs_rule
+    ("symctl.interop", "tf_from_control", "Poly"): 2,  # python-control's float arrays
+    ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
+    ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
+    ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
+    ("symctl.realization.check", "_problem", "sympify"): 1,  # DiscreteTF coefficients
+    ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
+    ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
+    ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
+    ("symctl.realization.realization", "Realization.__post_init__", "ImmutableMatrix"): 1,
+    ("symctl.realization.realization", "Realization._similar", "ImmutableMatrix"): 2,
+    ("symctl.realization.realization", "Realization.markov", "Matrix"): 2,  # own matrices
+    ("symctl.realization.realization", "Realization.series", "Matrix"): 2,  # own matrices
+    ("symctl.realization.realization", "Realization.subs", "subs"): 2,  # subs_rule
+    ("symctl.realization.realization", "Realization.to_tf", "Matrix"): 1,  # own matrices
+    ("symctl.realization.realization", "controllable_canonical", "Matrix"): 1,  # coefficients
+    ("symctl.realization.realizers", "_Random.__call__", "subs"): 2,  # DiscreteTF.subs
+    ("symctl.realization.realizers", "_identity", "ImmutableMatrix"): 1,  # sp.eye
+    ("symctl.realization.realizers", "random_full_rank", "Matrix"): 1,  # Rationals
+    ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
+    ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
+    ("symctl.report.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
+    ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
+    ("symctl.report.story", "story", "subs"): 2,  # checked model values
+    ("symctl.symbols", "gain_matrix_symbols", "Matrix"): 2,  # symbols
+    # algebra on sympy objects symctl built or checked (to_expr/to_matrix first; ``factor``
+    # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
+    ("symctl._util.exact", "products_equal", "expand"): 1,
+    ("symctl._util.exact", "z_poly", "cancel"): 1,
+    ("symctl.compatibility.controller", "_build", "factor"): 1,
+    ("symctl.compatibility.structure", "_is_zero", "cancel"): 1,
+    ("symctl.design.controller", "controller_tf", "expand"): 1,
+    ("symctl.design.controller", "prove_controller_tf", "expand"): 1,
+    ("symctl.design.plant", "MuscleModel.values", "nsimplify"): 4,
+    ("symctl.design.plant", "_is_zero", "cancel"): 1,
+    ("symctl.design.plant", "_is_zero", "expand"): 1,
+    ("symctl.design.plant", "_is_zero", "together"): 1,
+    ("symctl.design.plant", "_tidy", "cancel"): 1,
+    ("symctl.design.plant", "_tidy", "expand"): 1,
+    ("symctl.design.plant", "_tidy", "factor"): 1,
+    ("symctl.design.plant", "_tidy", "together"): 1,
+    ("symctl.design.plant", "linearize", "cancel"): 1,
+    ("symctl.design.plant", "linearize", "together"): 1,
+    ("symctl.design.tf", "DiscreteTF.__init__", "cancel"): 2,
+    ("symctl.design.tf", "DiscreteTF.__init__", "expand"): 3,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "cancel"): 1,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "fraction"): 1,
+    ("symctl.design.tf", "DiscreteTF.from_expr", "together"): 1,
+    ("symctl.design.tf", "_lcm", "expand"): 2,
+    ("symctl.neural.firing", "_realizations", "factor"): 1,
+    ("symctl.realization.factorization", "Factorization.latex", "expand"): 1,
+    ("symctl.realization.factorization", "Factorization.remainder_coeffs", "cancel"): 1,
+    ("symctl.realization.realization", "Realization._similar", "cancel"): 1,
+    ("symctl.realization.realization", "Realization.to_tf", "expand"): 1,
+    ("symctl.realization.realization", "Realization.to_tf", "together"): 1,
+    ("symctl.realization.realization", "_rank", "cancel"): 1,
+    ("symctl.realization.realization", "_tidy", "cancel"): 1,
+    ("symctl.report.pipeline", "derive_paper", "factor"): 1,
+    ("symctl.report.story", "_match", "cancel"): 1,
+}
+
+
+def _sink_calls(root) -> dict:
+    """``(module, enclosing function, sink) -> count`` over symctl's source (doctests excluded)."""
+    import ast
+    import collections
+
+    out = collections.Counter()
+    for path in sorted((root / "symctl").rglob("*.py")):
+        module = ".".join(path.relative_to(root).with_suffix("").parts)
+
+        def visit(node, scope, module=module):
+            for child in ast.iter_child_nodes(node):
+                if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+                    visit(child, (*scope, child.name))
+                    continue
+                if isinstance(child, ast.Call):
+                    func = child.func
+                    name = getattr(func, "id", None) or getattr(func, "attr", None)
+                    if name in SINKS:
+                        out[(module, ".".join(scope) or "<module>", name)] += 1
+                visit(child, scope)
+
+        visit(ast.parse(path.read_text(encoding="utf-8")), ())
+    return out
+
+
+def test_every_sympify_matrix_subs_or_lambdify_call_is_audited():
+    import pathlib
+
+    import symctl as package
+
+    found = _sink_calls(pathlib.Path(package.__file__).parent.parent)
+    new = {k: v for k, v in found.items() if v > AUDITED.get(k, 0)}
+    assert not new, (
+        "calls that may hand user text to sympify/Matrix/subs/lambdify: route the value through "
+        f"symctl._util.validate (to_expr, to_matrix, subs_rule, symbol_tuple), then audit: {new}"
+    )
+
+
+def test_the_sink_lint_sees_a_new_unchecked_call(tmp_path):
+    (tmp_path / "symctl").mkdir()
+    (tmp_path / "symctl" / "bad.py").write_text(
+        "import sympy as sp\n\ndef f(text):\n    return sp.sympify(text) + sp.Matrix([[text]])\n"
+    )
+    assert _sink_calls(tmp_path) == {
+        ("symctl.bad", "f", "sympify"): 1,
+        ("symctl.bad", "f", "Matrix"): 1,
+    }
+
+
+SUBS_BAD = {
+    "unknown keyword": ((({K_0: 1},), {"evaluate": False}), symctl.SymctlTypeError),
+    "non-bool simultaneous": ((({K_0: 1},), {"simultaneous": "yes"}), symctl.SymctlTypeError),
+    "three arguments": (((K_0, 1, 2), {}), symctl.SymctlTypeError),
+    "no arguments": (((), {}), symctl.SymctlTypeError),
+    "a bare string": ((("K_0",), {}), symctl.SymctlTypeError),
+    "a pair of three": ((([(K_0, 1, 2)],), {}), symctl.SymctlTypeError),
+    "an integer key": ((({1: 2},), {}), symctl.SymctlTypeError),
+    "a list value": ((({K_0: [1]},), {}), symctl.SymctlTypeError),
+    "a nan value": ((({K_0: float("nan")},), {}), symctl.ParameterError),
+    "an unknown name": ((({"K_7": 1},), {}), symctl.ParameterError),
+    "a hostile value text": ((({K_0: "9**9**9"},), {}), symctl.ParseError),
+}
+
+
+@pytest.mark.parametrize(("call", "error"), SUBS_BAD.values(), ids=SUBS_BAD.keys())
+def test_subs_refuses_bad_arguments_with_symctl_errors(call, error):
+    args, kwargs = call
+    with pytest.raises(error, match="subs"):
+        controller_tf(2).subs(*args, **kwargs)
+
+
+def test_subs_keeps_sympy_semantics_for_valid_arguments():
+    G = controller_tf(2)
+    K_1, K_2 = gain_symbols(2)[1:]
+    assert G.subs({K_0: 1, K_1: 0}) == G.subs([(K_0, 1), (K_1, 0)]) == G.subs(K_0, 1).subs(K_1, 0)
+    swapped = G.subs({K_1: K_2, K_2: K_1}, simultaneous=True)
+    assert swapped.den == z**2 - K_2 * z - K_1
+    assert G.subs({K_0: np.float64(0.5)}).num == sp.Float(0.5)
