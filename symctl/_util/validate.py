@@ -309,3 +309,20 @@ def common_dt(dt1, dt2, argname: str):
     elif sp.expand(a - b) == 0:
         return dt1
     raise ParameterError(f"{argname}: incompatible sampling times dt = {dt1} and dt = {dt2}")
+
+
+def relative_tolerance(value, argname: str) -> float:
+    """A relative tolerance: a real number with ``0 < value < 1``.
+
+    >>> from symctl._util.validate import relative_tolerance
+    >>> relative_tolerance(1e-9, "rtol")
+    1e-09
+    >>> relative_tolerance(0, "rtol")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: rtol: must be a number in (0, 1), got 0
+    """
+    out = positive_number(value, argname) if value != 0 else 0.0
+    if not 0 < out < 1:
+        raise ParameterError(f"{argname}: must be a number in (0, 1), got {value!r}")
+    return out
