@@ -77,7 +77,7 @@ from flint import fmpq, fmpq_mat
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import Degrees, NotRational, fold
-from symctl._util.validate import as_random, relative_tolerance
+from symctl._util.validate import as_random, relative_tolerance, to_expr
 from symctl.errors import ParameterError
 from symctl.realization._markov import (
     _Entries,
@@ -89,7 +89,7 @@ from symctl.realization._markov import (
 from symctl.realization.realization import Realization
 from symctl.symbols import z
 
-__all__ = ["RealizationCheck", "check_realization"]
+__all__ = ["RealizationCheck", "check_realization", "require_stable_sections"]
 
 METHODS = ("exact", "randomized", "auto")
 TARGET_ERROR = Fraction(1, 2**64)
@@ -557,3 +557,44 @@ def check_realization(
     if method == "randomized" or not result.ok or result.error_bound == 0 or not small:
         return _with_numeric(result, problem, source, rtol)
     return _with_numeric(_exact(problem, source), problem, source, rtol)
+
+
+def require_stable_sections(epsilons, argname: str) -> None:
+    r"""Refuse section poles :math:`|\epsilon| \ge 1`: they are hidden, unstable modes of the loop.
+
+    :math:`G = G_3 G_2 G_1` cancels the poles of the sections
+    :math:`C/(z - \epsilon)` with zeros of :math:`G_2`, so the transfer function
+    stays right for every :math:`\epsilon` while a realization with
+    :math:`|\epsilon| \ge 1` has an internally unstable circuit (its state grows
+    as :math:`\epsilon^t`, which no feedback can move). Symbols are let through
+    (checked when numbers are substituted).
+
+    Parameters
+    ----------
+    epsilons : iterable of numbers or sympy expressions
+        The section poles, or the ends of an interval they are drawn from.
+    argname : str
+        The argument named in the error.
+
+    Raises
+    ------
+    ParameterError
+        A number with :math:`|\epsilon| \ge 1`, naming ``argname`` and the value.
+
+    Examples
+    --------
+    >>> from symctl.realization.check import require_stable_sections
+    >>> require_stable_sections((-0.9, 0.9), "eps_range")
+    >>> require_stable_sections((0.5, 1.5), "eps_range")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: eps_range: 1.5 has |epsilon| >= 1: ...
+    """
+    for value in epsilons:
+        e = to_expr(value, argname)
+        if e.is_number and abs(complex(e)) >= 1:
+            raise ParameterError(
+                f"{argname}: {value!r} has |epsilon| >= 1: a section C/(z - epsilon) with it is "
+                "unstable, and G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit "
+                "would be internally unstable although its transfer function is right"
+            )
