@@ -378,3 +378,54 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
         if not isinstance(item, sp.Symbol):
             raise SymctlTypeError(f"{argname}: expected sympy Symbols, got {item!r}")
     return tuple(value)
+
+
+def common_dt(dt1, dt2, argname: str):
+    """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``.
+
+    ``None`` (unspecified, as python-control's ``dt=True``) combines with anything and
+    yields the other; two numbers must agree to a relative ``1e-12`` (so ``0.01`` and
+    ``1/100`` combine), two symbolic times must be the same expression. Anything else is
+    a :class:`ParameterError` naming ``argname`` (python-control's "incompatible timebases").
+    The first operand's ``dt`` is kept when both are given.
+
+    >>> import sympy as sp
+    >>> from symctl._util.validate import common_dt
+    >>> common_dt(None, sp.Rational(1, 10), "other")
+    1/10
+    >>> common_dt(sp.Float(0.1), sp.Rational(1, 2), "other")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: other: incompatible sampling times dt = 0.100000000000000 and dt = 1/2
+    """
+    if dt1 is None:
+        return dt2
+    if dt2 is None:
+        return dt1
+    a, b = dt1, dt2
+    if a == b:
+        return dt1
+    if a.is_number and b.is_number:
+        x, y = float(a), float(b)
+        if math.isclose(x, y, rel_tol=1e-12, abs_tol=0.0):
+            return dt1
+    elif sp.expand(a - b) == 0:
+        return dt1
+    raise ParameterError(f"{argname}: incompatible sampling times dt = {dt1} and dt = {dt2}")
+
+
+def relative_tolerance(value, argname: str) -> float:
+    """A relative tolerance: a real number with ``0 < value < 1``.
+
+    >>> from symctl._util.validate import relative_tolerance
+    >>> relative_tolerance(1e-9, "rtol")
+    1e-09
+    >>> relative_tolerance(0, "rtol")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: rtol: must be a number in (0, 1), got 0
+    """
+    out = positive_number(value, argname) if value != 0 else 0.0
+    if not 0 < out < 1:
+        raise ParameterError(f"{argname}: must be a number in (0, 1), got {value!r}")
+    return out

@@ -147,7 +147,8 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
         if pins.get(s, n - 1) != n - 1:
             return (
                 f"The signal {cs.names[s]!r} is both an input (at v1) and an output (at v{n}); "
-                "no assignment can put it at two vertices."
+                "no assignment can put it at two vertices (give the output a signal of its "
+                "own, e.g. a unit gain, and the delay graph decides)."
             )
         pins[s] = n - 1
     return Problem(

@@ -282,7 +282,7 @@ class Structure(LatexMixin):
         gain outputs named by their entry (``F[1,2]`` is :math:`F_{12} x_2`,
         ``H[1]``, ``M[2]``, ``N``), delayed branch terms ``z^-1 F[1,2]``, adders
         ``p1 ..`` (state delays) and the output ``y`` (unless the output is an
-        existing signal, e.g. ``y = x_2``).
+        existing signal, e.g. ``y = x_2``; a plain wire ``y = u`` is a unit gain ``y``).
 
         Parameters
         ----------
@@ -359,7 +359,11 @@ class Structure(LatexMixin):
         outputs = []
         for k in range(p):
             row = terms(k, ((R.M, "M", x), (R.N, "N", u)))
-            if len(row) == 1:
+            if len(row) == 1 and row[0][0] == 1 and row[0][1] in u:
+                # y = u gets its own signal, so the delay graph decides (E_1N = 0)
+                blocks[y[k]] = Block("gain", (row[0][1],), sp.Integer(1))
+                outputs.append(y[k])
+            elif len(row) == 1:
                 value, src, _ = row[0]
                 outputs.append(signal(value, src, y[k]))
             else:

@@ -26,7 +26,14 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
 from symctl._util.exact import products_equal, z_poly
-from symctl._util.validate import nonneg_int, sampling_time, subs_rule, symbol_tuple, to_expr
+from symctl._util.validate import (
+    common_dt,
+    nonneg_int,
+    sampling_time,
+    subs_rule,
+    symbol_tuple,
+    to_expr,
+)
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
@@ -231,7 +238,7 @@ class DiscreteTF(LatexMixin):
         if isinstance(other, DiscreteTF):
             if self.shape[1] != other.shape[0]:
                 raise DimensionError(f"other: cannot multiply {self.shape} by {other.shape}")
-            dt = self.dt if self.dt is not None else other.dt
+            dt = common_dt(self.dt, other.dt, "other")
             num = self._num * other.num_matrix
             return DiscreteTF(num, self.den * other.den, dt)
         if isinstance(other, sp.Basic | int | float):

@@ -257,26 +257,63 @@ class Response:
 
 
 # ---------------------------------------------------------------- the core
+UNIT_CIRCLE = 1 - 1e-9  # |eigenvalue| >= this is unstable (a marginal mode rounds inside)
+
+
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation below then runs over contiguous memory, one realization per element.
-def _stability(Acl: np.ndarray, argname: str) -> None:
-    """Refuse an unstable closed loop (spectral radius >= 1), naming the first bad realization."""
+def _stability(Acl: np.ndarray, argname: str, n: int | None = None) -> None:
+    """Refuse an unstable closed loop (spectral radius >= 1), naming the first bad realization.
+
+    ``n`` (the plant's states, optional) lets the message tell a hidden mode of the
+    controller (an eigenvalue of its own ``F`` that the loop cannot move) apart. A
+    modulus within 1e-9 of 1 counts as unstable (``UNIT_CIRCLE``): a marginal mode, such
+    as epsilon = 1, whose computed eigenvalue rounds just inside.
+    """
     count = Acl.shape[-1]
     eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((count, 1))
-    _refuse_unstable(Acl, np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= 1), argname)
+    _refuse_unstable(Acl, np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE), argname, n)
 
 
-def _refuse_unstable(Acl: np.ndarray, bad: np.ndarray, argname: str) -> None:
+def _refuse_unstable(Acl: np.ndarray, bad: np.ndarray, argname: str, n: int | None = None) -> None:
     """Raise for the unstable realizations ``bad`` (indices into the stack), if any."""
     if bad.size:
         count = Acl.shape[-1]
         i = int(bad[0])
-        rho = float(np.max(np.abs(np.linalg.eigvals(Acl[:, :, i]))))
+        eigs = np.linalg.eigvals(Acl[:, :, i])
+        lam = complex(eigs[np.argmax(np.abs(eigs))])
+        rho = abs(lam)
         where = f" (realization {i} of {count}; {bad.size} unstable)" if count > 1 else ""
         raise ParameterError(
             f"{argname}: the closed loop is unstable, spectral radius {rho:.6g} >= 1{where}; "
-            "the controller does not stabilize this plant"
+            f"unstable eigenvalue {_eig_text(lam)}; {_unstable_cause(Acl[:, :, i], lam, n, argname)}"
         )
+
+
+def _eig_text(lam: complex) -> str:
+    if abs(lam.imag) <= 1e-12 * max(1.0, abs(lam)):
+        return f"{lam.real:.6g}"
+    return f"{lam.real:.6g}{lam.imag:+.6g}j"
+
+
+def _unstable_cause(Acl: np.ndarray, lam: complex, n: int | None, argname: str) -> str:
+    """Why: a hidden mode of the controller's own states, or a controller that does not stabilize."""
+    if n is not None and _is_hidden(Acl, lam, n):
+        return (
+            f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
+            "hidden from the transfer function (a pole cancelled by a zero, e.g. "
+            "|epsilon| >= 1 in G3 G2 G1); realize the controller with every mode "
+            "inside the unit circle"
+        )
+    return "the controller does not stabilize this plant"
+
+
+def _is_hidden(Acl: np.ndarray, lam: complex, n: int) -> bool:
+    """Whether the loop eigenvalue ``lam`` is one of the controller's own ``F`` (rel. 1e-8)."""
+    if Acl.shape[0] <= n:
+        return False
+    own = np.linalg.eigvals(Acl[n:, n:])
+    return bool(np.min(np.abs(own - lam)) <= 1e-8 * max(1.0, abs(lam)))
 
 
 def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
@@ -477,8 +514,12 @@ def simulate_realization(
     Raises
     ------
     ParameterError
-        Unstable closed loop (spectral radius >= 1), non-finite values, bad horizon,
-        or a run that overflows.
+        Unstable closed loop (spectral radius >= 1, over every state of plant and
+        ``R``: the message names the eigenvalue, and says when it is a hidden mode of
+        ``R``'s own ``F``, e.g. :math:`|\epsilon| \ge 1` in :math:`G_3 G_2 G_1`, whose
+        transfer function is right; :func:`symctl.neural.stability.loop_stability`
+        gives the verdict without raising), non-finite values, bad horizon, or a run
+        that overflows.
     DimensionError
         ``R`` or ``disturbance`` of the wrong shape.
 
@@ -496,7 +537,7 @@ def simulate_realization(
     p, A, B = _plant(plant)
     w = _signal(disturbance, "disturbance", steps, p.n, start, length)
     Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p))
-    _stability(Acl, "R")
+    _stability(Acl, "R", p.n)
     df, dr, xc = _run(Acl, Cr, p.n, w)
     t = np.arange(w.shape[0]) * _ts(p)
     return _response(p, t, df[0], dr[0], w, xc[0], "closed loop")

@@ -65,6 +65,7 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import random
 from collections.abc import Mapping
@@ -72,18 +73,23 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 import sympy as sp
-from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
-from flint.utils.flint_exceptions import DomainError
+from flint import fmpq, fmpq_mat
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.exact import Degrees, IntFractions, NotRational, PolyFractions, fold
-from symctl._util.validate import as_random
-from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl._util.exact import Degrees, NotRational, fold
+from symctl._util.validate import as_random, relative_tolerance, to_expr
+from symctl.errors import ParameterError
+from symctl.realization._markov import (
+    _Entries,
+    _first_difference,
+    _markov_pairs,
+    _Problem,
+    _problem,
+)
 from symctl.realization.realization import Realization
 from symctl.symbols import z
 
-__all__ = ["RealizationCheck", "check_realization"]
+__all__ = ["RealizationCheck", "check_realization", "require_stable_sections"]
 
 METHODS = ("exact", "randomized", "auto")
 TARGET_ERROR = Fraction(1, 2**64)
@@ -92,6 +98,8 @@ _MAX_RESAMPLES = 64  # consecutive points on a pole before giving up
 _AUTO_EXACT_ORDER = 10  # "auto" proves exactly when n + d <= this
 _SPANS = (9, 99, 10**4, 10**9, 2**62)  # counterexample values: small ones first, for reading
 _TRIES = 6
+RTOL = 1e-9  # default tolerance of the numeric verdict for floating-point inputs
+_NUMERIC_POINTS = 8  # points of the symbols at which floating-point inputs are compared
 
 
 # ---------------------------------------------------------------- the result
@@ -128,6 +136,29 @@ class RealizationCheck(LatexMixin):
         :math:`D_E`, the degree bound used in :attr:`error_bound` (randomized).
     sample_bits : int or None
         :math:`b` with :math:`|S| = 2^b` (randomized).
+    floating : bool
+        Whether an entry of ``R`` or a coefficient of ``G`` holds a floating-point
+        number. The exact verdict :attr:`ok` then judges the binary rationals the
+        floats are, so a rounding difference of 1e-17 makes it ``False``; the
+        numeric verdict beside it is what a float computation can promise.
+    max_relative_difference : float or None
+        For floating-point inputs, the largest :math:`|e_k[i, j]|` of the
+        :attr:`markov_count` Markov parameters compared, relative to the largest
+        magnitude of a Markov parameter of either side (normwise, so an entry
+        that should be 0 is not divided by itself); with free symbols, the
+        largest over 8 random points with every symbol in :math:`\pm(0, 2]`.
+        ``0.0`` when the exact verdict holds; ``None`` for exact inputs.
+    rtol : float or None
+        The tolerance of :attr:`numeric_ok` (``None`` for exact inputs).
+    numeric_ok : bool or None
+        ``max_relative_difference <= rtol`` (``None`` for exact inputs).
+
+    Notes
+    -----
+    ``bool(result)`` is :attr:`ok` for exact inputs and :attr:`numeric_ok` for
+    floating-point ones: the verdict at the stated tolerance, printed beside
+    the exact one. Exact inputs (integers, rationals, symbols) keep the exact
+    proof, unchanged.
 
     Examples
     --------
@@ -149,9 +180,22 @@ class RealizationCheck(LatexMixin):
     resampled: int = 0
     degree_bound: int | None = None
     sample_bits: int | None = None
+    floating: bool = False
+    max_relative_difference: float | None = None
+    rtol: float | None = None
+    numeric_ok: bool | None = None
 
     def __bool__(self) -> bool:
-        return self.ok
+        return bool(self.numeric_ok) if self.floating else self.ok
+
+    def _numeric_text(self) -> str:
+        relation = "<=" if self.numeric_ok else ">"
+        verdict = "agree" if self.numeric_ok else "differ"
+        return (
+            f"floating-point inputs: numerically {verdict} at rtol = {self.rtol:g} "
+            f"(largest relative difference {self.max_relative_difference:.3g} {relation} "
+            f"{self.rtol:g})"
+        )
 
     def _log2_bound(self) -> float:
         r""":math:`\log_2` of :attr:`error_bound` (exact integers, so no underflow)."""
@@ -159,6 +203,13 @@ class RealizationCheck(LatexMixin):
         return math.log2(bound.numerator) - math.log2(bound.denominator)
 
     def __str__(self) -> str:
+        if self.floating and not self.ok:
+            return f"{self._numeric_text()}; exact: {self._exact_str()}"
+        if self.floating:
+            return f"{self._exact_str()}; {self._numeric_text()}"
+        return self._exact_str()
+
+    def _exact_str(self) -> str:
         if self.ok and self.error_bound == 0:
             return f"realizes G: proved exactly ({self.details})"
         if self.ok:
@@ -174,6 +225,16 @@ class RealizationCheck(LatexMixin):
         return text
 
     def latex(self) -> str:
+        if not self.floating or self.ok:
+            return self._exact_latex()
+        relation, rel = (r"\approx", r"\le") if self.numeric_ok else (r"\not\approx", ">")
+        return (
+            rf"M(zI-F)^{{-1}}H + N {relation} G(z)\quad \text{{(floating-point inputs: "
+            rf"largest relative difference }} {latex(sp.Float(self.max_relative_difference, 3))}"
+            rf" {rel} {latex(sp.Float(self.rtol, 3))}\text{{; not equal exactly)}}"
+        )
+
+    def _exact_latex(self) -> str:
         lhs = r"M(zI-F)^{-1}H + N"
         if self.ok and self.error_bound == 0:
             return rf"{lhs} = G(z)\quad \text{{(exact proof)}}"
@@ -188,221 +249,6 @@ class RealizationCheck(LatexMixin):
             rf"{lhs} \ne G(z):\quad \text{{at }} {values}:\quad "
             rf"{latex(cex['realization'])} \ne {latex(cex['G'])}"
         )
-
-
-# ---------------------------------------------------------------- the problem
-@dataclass(frozen=True)
-class _Problem:
-    """The entries of both sides as sympy expressions, ready to be evaluated."""
-
-    F: tuple
-    H: tuple
-    M: tuple
-    N: tuple
-    b: tuple  # b[k][i][j]: coefficient of z**(d-k) in G's numerator (i, j), k = 0..d
-    a: tuple  # a[i]: coefficient of z**(d-i) in G's monic denominator, a[0] = 1
-    symbols: tuple
-
-    @property
-    def n(self) -> int:
-        return len(self.F)
-
-    @property
-    def d(self) -> int:
-        return len(self.a) - 1
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        return len(self.N), len(self.N[0])
-
-    def entries(self):
-        """``(where, expression)`` for every entry of both sides."""
-        for name in "FHMN":
-            for i, row in enumerate(getattr(self, name)):
-                for j, e in enumerate(row):
-                    yield f"R: {name}[{i}, {j}]", e
-        for k, mat in enumerate(self.b):
-            for e in (e for row in mat for e in row):
-                yield f"G: numerator coefficient of z**{self.d - k}", e
-        for i, e in enumerate(self.a):
-            yield f"G: denominator coefficient of z**{self.d - i}", e
-
-
-def _rows(mat: sp.MatrixBase) -> tuple:
-    return tuple(tuple(mat.row(i)) for i in range(mat.shape[0]))
-
-
-def _problem(R, G) -> _Problem:
-    if not isinstance(R, Realization):
-        raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
-    if not isinstance(G, DiscreteTF | sp.Basic | sp.MatrixBase):
-        raise SymctlTypeError(
-            f"G: expected a DiscreteTF or a sympy expression in z, got {type(G).__name__}"
-        )
-    tf = DiscreteTF.from_expr(G)
-    if tf.shape != R.shape:
-        raise DimensionError(
-            f"G: shape {tf.shape} does not match the realization's (outputs, inputs) = {R.shape}"
-        )
-    if tf.relative_degree < 0:
-        raise ParameterError(f"G: improper (numerator degree above denominator degree): {tf}")
-    own = R.free_symbols
-    if z in own:
-        raise ParameterError("R: the entries of F, H, M, N must not depend on z")
-    d = tf.order
-    p, q = tf.shape
-    nums = [
-        [[0] * (d + 1 - len(c)) + c for c in (tf.num_coeffs(i, j) for j in range(q))]
-        for i in range(p)
-    ]
-    b = tuple(
-        tuple(tuple(sp.sympify(nums[i][j][k]) for j in range(q)) for i in range(p))
-        for k in range(d + 1)
-    )
-    symbols = sorted(own | tf.free_symbols, key=sp.default_sort_key)
-    return _Problem(
-        _rows(R.F),
-        _rows(R.H),
-        _rows(R.M),
-        _rows(R.N),
-        b,
-        tuple(tf.den_coeffs()),
-        tuple(symbols),
-    )
-
-
-# ---------------------------------------------------------------- expression trees
-class _Entries:
-    r"""The entries of a problem as reduced pairs (numerator, denominator) of ``fmpz_mpoly``.
-
-    Without ``values``: polynomials in the free symbols (the exact method).
-    With ``values`` (symbol -> Fraction): constants, the exact values at that
-    point (the ring has no variables); :class:`ZeroDivisionError` when a
-    denominator vanishes there. The code that compares Markov parameters is
-    the same for both.
-    """
-
-    def __init__(self, symbols, values: Mapping | None = None):
-        nvars = len(symbols) if values is None else 0
-        self.ctx = fmpz_mpoly_ctx.get(("x", nvars), "degrevlex")
-        if values is None:
-            self._algebra = PolyFractions(self.ctx, symbols)
-        else:
-            self._algebra = IntFractions(values)
-        self.zero, self.one = self.ctx.constant(0), self.ctx.constant(1)
-        self._memo: dict = {}
-
-    def entry(self, expr: sp.Expr):
-        """A reduced pair (numerator, denominator)."""
-        num, den = fold(expr, self._algebra, self._memo)
-        if isinstance(num, int):
-            g = math.gcd(num, den)
-            return self.ctx.constant(num // g), self.ctx.constant(den // g)
-        g = num.gcd(den)
-        return (num, den) if g.is_one() else (num / g, den / g)
-
-    def common(self, exprs) -> tuple[list, object]:
-        """Numerators over one common denominator (the lcm of the entries' ones)."""
-        pairs = [self.entry(e) for e in exprs]
-        den = self.one
-        for _, d in pairs:
-            if d != den and not d.is_one():
-                den = den * (d / den.gcd(d))
-        return [n * (den / d) for n, d in pairs], den
-
-
-def _cancel(nums: list, den, factor) -> tuple[list, object]:
-    """``nums / (den * factor)`` with common factors removed, dividing by ``factor`` first."""
-    if factor.is_one():
-        return nums, den
-    try:
-        return [x / factor for x in nums], den
-    except DomainError:
-        pass
-    g = den * factor
-    for x in nums:
-        if g.is_one():
-            break
-        g = g.gcd(x)
-    return [x / g for x in nums], den * factor / g
-
-
-def _markov_next(b: tuple, a: list, h: list, scale, zero) -> list:
-    r"""The next :math:`\hat h_k = \delta^{k+1} h_k` of :meth:`DiscreteTF.markov`'s recurrence.
-
-    :math:`h_k = b_k - \sum_{i=1}^{\min(k, d)} a_i h_{k-i}` over a common
-    denominator :math:`\delta` of the coefficients (``b``, ``a`` are their
-    numerators): :math:`\hat h_k = b_k \delta^k - \sum_i a_i \hat h_{k-i}
-    \delta^{i-1}`, fraction-free.
-    """
-    k, d = len(h), len(a) - 1
-    rows, cols = len(b[0]), len(b[0][0])
-    out = []
-    for i in range(rows):
-        row = []
-        for j in range(cols):
-            acc = b[k][i][j] * scale**k if k <= d else zero
-            for s in range(1, min(k, d) + 1):
-                acc = acc - a[s] * h[k - s][i][j] * scale ** (s - 1)
-            row.append(acc)
-        out.append(row)
-    return out
-
-
-def _first_difference(problem: _Problem, alg: _Entries) -> tuple[int, int, int] | None:
-    r"""The first :math:`(k, i, j)` with :math:`e_k[i, j] \ne 0`, or ``None`` (all agree).
-
-    ``k = 0`` is the feed-through, ``k >= 1`` compares :math:`M F^{k-1} H` with
-    :math:`h_k`; ``k`` runs to :math:`n + d` (the theorem of the module).
-    :math:`M F^{k-1} H` is met in the middle, :math:`(M F^a)(F^b H)` with
-    :math:`a + b = k - 1` and :math:`|a - b| \le 1`: rows of :math:`M F^a` and
-    columns of :math:`F^b H` are carried over common denominators and cancelled
-    at each step (``_cancel``), and their degrees grow only half as far.
-    """
-    n, (p, q) = problem.n, problem.shape
-    Fn, Fd = alg.common(e for row in problem.F for e in row)
-    Fn = [Fn[i * n : (i + 1) * n] for i in range(n)]
-    FnT = [list(col) for col in zip(*Fn, strict=True)]
-    N = [[alg.entry(e) for e in row] for row in problem.N]
-    coeffs, delta = alg.common([*(e for mat in problem.b for row in mat for e in row), *problem.a])
-    nb = (problem.d + 1) * p * q
-    b = [
-        [coeffs[k * p * q + i * q : k * p * q + (i + 1) * q] for i in range(p)]
-        for k in range(problem.d + 1)
-    ]
-    a = coeffs[nb:]
-    rows = [alg.common(row) for row in problem.M]  # M F^steps[0], one per output
-    cols = [alg.common(problem.H[m][j] for m in range(n)) for j in range(q)]  # F^steps[1] H
-    steps = [0, 0]
-    h: list = []
-    scale = delta  # delta**(k+1)
-    for k in range(n + problem.d + 1):
-        h.append(_markov_next(b, a, h, delta, alg.zero))
-        if k >= 2 and steps[0] <= steps[1]:
-            rows = [_step(FnT, vec, den, Fd, alg.zero) for vec, den in rows]
-            steps[0] += 1
-        elif k >= 2:
-            cols = [_step(Fn, vec, den, Fd, alg.zero) for vec, den in cols]
-            steps[1] += 1
-        for i, j in ((i, j) for i in range(p) for j in range(q)):
-            if k == 0:
-                num, den = N[i][j]
-            else:
-                (row, rden), (col, cden) = rows[i], cols[j]
-                num = sum((row[m] * col[m] for m in range(n)), alg.zero)
-                den = rden * cden
-            if num * scale != h[k][i][j] * den:
-                return k, i, j
-        scale = scale * delta
-    return None
-
-
-def _step(A: list, vec: list, den, Fd, zero) -> tuple[list, object]:
-    """``A vec / (den Fd)``, cancelled: one step of a row (``A = F^T``) or a column (``A = F``)."""
-    product = [
-        sum((Ai[m] * vec[m] for m in range(len(vec)) if not vec[m].is_zero()), zero) for Ai in A
-    ]
-    return _cancel(product, den, Fd)
 
 
 def _markov_names(count: int) -> str:
@@ -579,7 +425,58 @@ def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random)
     )
 
 
-def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> RealizationCheck:
+# ---------------------------------------------------------------- floating-point inputs
+def _floating(problem: _Problem) -> bool:
+    return any(e.has(sp.Float) for _, e in problem.entries())
+
+
+def _relative_difference(problem: _Problem, values: Mapping) -> Fraction:
+    """The normwise relative difference of the Markov parameters at ``values`` (exact)."""
+    alg = _Entries(problem.symbols, values)
+    worst, size = Fraction(0), Fraction(0)
+    for _, _, _, num, den, h, scale in _markov_pairs(problem, alg):
+        lhs = Fraction(_const(num), _const(den))
+        rhs = Fraction(_const(h), _const(scale))
+        worst = max(worst, abs(lhs - rhs))
+        size = max(size, abs(lhs), abs(rhs))
+    return worst / size if size else Fraction(0)
+
+
+def _numeric(problem: _Problem, rng: random.Random) -> Fraction:
+    """The largest relative difference over the points of :attr:`RealizationCheck.max_relative_difference`."""
+    if not problem.symbols:
+        return _relative_difference(problem, {})
+    worst, found = Fraction(0), 0
+    for _ in range(_NUMERIC_POINTS * _MAX_RESAMPLES):
+        values = {
+            s: Fraction(rng.choice((-1, 1)) * rng.randint(1, 2**10), 2**9) for s in problem.symbols
+        }
+        try:
+            worst = max(worst, _relative_difference(problem, values))
+        except ZeroDivisionError:
+            continue
+        found += 1
+        if found == _NUMERIC_POINTS:
+            break
+    return worst
+
+
+def _with_numeric(result: RealizationCheck, problem: _Problem, rng, rtol: float):
+    if not _floating(problem):
+        return result
+    worst = Fraction(0) if result.ok else _numeric(problem, rng)
+    return dataclasses.replace(
+        result,
+        floating=True,
+        max_relative_difference=float(worst),
+        rtol=rtol,
+        numeric_ok=worst <= Fraction(rtol),
+    )
+
+
+def check_realization(
+    R: Realization, G, method: str = "exact", *, rng=None, rtol: float = RTOL
+) -> RealizationCheck:
     r"""Decide whether :math:`M(zI - F)^{-1}H + N = G(z)`, exactly or by a randomized test.
 
     Parameters
@@ -598,11 +495,17 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     rng : None, int, random.Random or numpy.random.Generator, optional
         Source of the random points (and of the counterexample's values);
         ``None`` uses the operating system's entropy.
+    rtol : float, optional
+        Tolerance of the numeric verdict for floating-point inputs (default
+        ``1e-9``): they agree numerically when the largest relative difference
+        of the Markov parameters is at most ``rtol``. Unused for exact inputs.
 
     Returns
     -------
     RealizationCheck
-        Truthy when ``G`` is realized; with ``.counterexample`` when not.
+        Truthy when ``G`` is realized; with ``.counterexample`` when not. For
+        floating-point inputs, truthy when they agree to ``rtol``, with the exact
+        verdict in ``.ok`` and the largest relative difference beside it.
 
     Raises
     ------
@@ -612,7 +515,7 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     DimensionError
         ``G`` has another shape than ``R``.
     ParameterError
-        Unknown ``method``; ``G`` improper; entries that are not rational
+        Unknown ``method``; ``rtol`` not in (0, 1); ``G`` improper; entries that are not rational
         functions of their symbols, or that depend on ``z`` (in ``R``).
 
     Examples
@@ -631,16 +534,67 @@ def check_realization(R: Realization, G, method: str = "exact", *, rng=None) -> 
     >>> bad = check_realization(R, G2 + 1 / z)
     >>> bad.ok, sorted(bad.counterexample)
     (False, ['G', 'realization', 'values'])
+
+    Floating-point inputs are judged exactly and numerically, side by side:
+
+    >>> from symctl import Realization
+    >>> G = 0.1 / (z - 0.3)
+    >>> R = Realization([[0.3]], [[1]], [[0.1 * (1 + 2**-52)]], 0)
+    >>> result = check_realization(R, G)
+    >>> bool(result), result.ok, result.floating, result.max_relative_difference < 1e-15
+    (True, False, True, True)
     """
     if not isinstance(method, str) or method not in METHODS:
         raise ParameterError(f"method: expected one of {', '.join(METHODS)}, got {method!r}")
     source = as_random(rng, "rng")
+    rtol = relative_tolerance(rtol, "rtol")
     problem = _problem(R, G)
     degrees = _degree_bound(problem)  # also refuses entries that are not rational, naming them
     if method == "exact":
-        return _exact(problem, source)
+        return _with_numeric(_exact(problem, source), problem, source, rtol)
     result = _randomized(problem, degrees, source)
     small = problem.n + problem.d <= _AUTO_EXACT_ORDER
     if method == "randomized" or not result.ok or result.error_bound == 0 or not small:
-        return result
-    return _exact(problem, source)
+        return _with_numeric(result, problem, source, rtol)
+    return _with_numeric(_exact(problem, source), problem, source, rtol)
+
+
+def require_stable_sections(epsilons, argname: str) -> None:
+    r"""Refuse section poles :math:`|\epsilon| \ge 1`: they are hidden, unstable modes of the loop.
+
+    :math:`G = G_3 G_2 G_1` cancels the poles of the sections
+    :math:`C/(z - \epsilon)` with zeros of :math:`G_2`, so the transfer function
+    stays right for every :math:`\epsilon` while a realization with
+    :math:`|\epsilon| \ge 1` has an internally unstable circuit (its state grows
+    as :math:`\epsilon^t`, which no feedback can move). Symbols are let through
+    (checked when numbers are substituted).
+
+    Parameters
+    ----------
+    epsilons : iterable of numbers or sympy expressions
+        The section poles, or the ends of an interval they are drawn from.
+    argname : str
+        The argument named in the error.
+
+    Raises
+    ------
+    ParameterError
+        A number with :math:`|\epsilon| \ge 1`, naming ``argname`` and the value.
+
+    Examples
+    --------
+    >>> from symctl.realization.check import require_stable_sections
+    >>> require_stable_sections((-0.9, 0.9), "eps_range")
+    >>> require_stable_sections((0.5, 1.5), "eps_range")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: eps_range: 1.5 has |epsilon| >= 1: ...
+    """
+    for value in epsilons:
+        e = to_expr(value, argname)
+        if e.is_number and abs(complex(e)) >= 1:
+            raise ParameterError(
+                f"{argname}: {value!r} has |epsilon| >= 1: a section C/(z - epsilon) with it is "
+                "unstable, and G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit "
+                "would be internally unstable although its transfer function is right"
+            )

@@ -39,7 +39,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import subs_rule, to_expr, to_matrix
+from symctl._util.validate import common_dt, subs_rule, to_expr, to_matrix
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -288,7 +288,7 @@ class Realization(LatexMixin):
                     f"parts[{i}]: expected a Realization, got {type(part).__name__}"
                 )
         out = parts[0]
-        for nxt in parts[1:]:
+        for i, nxt in enumerate(parts[1:], start=1):
             if nxt.shape[1] != out.shape[0]:
                 raise DimensionError(f"parts: {out.shape[0]} outputs feed {nxt.shape[1]} inputs")
             n1, n2 = out.n, nxt.n
@@ -298,7 +298,7 @@ class Realization(LatexMixin):
             F[n1:, n1:] = nxt.F
             H = sp.Matrix.vstack(sp.Matrix(out.H), nxt.H * out.N)
             M = sp.Matrix.hstack(nxt.N * out.M, sp.Matrix(nxt.M))
-            dt = out.dt if out.dt is not None else nxt.dt
+            dt = common_dt(out.dt, nxt.dt, f"parts[{i}]")
             out = Realization(F, H, M, nxt.N * out.N, dt, {**out.params, **nxt.params})
         return out
 

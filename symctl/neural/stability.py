@@ -1,0 +1,168 @@
+r"""Internal stability of the whole loop: every state, not only the transfer function.
+
+A realization can have the right transfer function and still an unstable
+circuit: :math:`G = G_3 G_2 G_1` cancels the poles of the sections
+:math:`G_1, G_3` at :math:`\epsilon_1, \epsilon_3` with zeros of :math:`G_2`, so
+with :math:`|\epsilon| \ge 1` the controller's transfer function stabilizes the
+plant while a state of the loop grows as :math:`\epsilon^t` (a hidden mode: the
+loop cannot move an eigenvalue the controller's output does not show). The loop
+is internally stable when every eigenvalue of
+
+.. math::
+    A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}
+
+lies strictly inside the unit circle; :func:`loop_stability` says whether, and
+names the unstable eigenvalues and those that are modes of the controller's own
+:math:`F` (hidden). The simulations (:func:`~symctl.neural.simulate.simulate_realization`,
+:func:`~symctl.neural.simulate.closed_loop_response`) refuse such a loop with a
+:class:`~symctl.errors.ParameterError` that names the realization and the eigenvalue.
+
+>>> from symctl import MuscleModel, Realization
+>>> from symctl.neural.stability import loop_stability
+>>> bool(loop_stability(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0)))
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from symctl.design.lqr import Gains
+from symctl.design.tf import DiscreteTF
+from symctl.errors import SymctlTypeError
+from symctl.neural.circuit import Circuit
+from symctl.neural.simulate import (
+    UNIT_CIRCLE,
+    _as_realization,
+    _closed_loop_matrices,
+    _eig_text,
+    _is_hidden,
+    _numeric_realization,
+    _plant,
+)
+from symctl.realization.realization import Realization, controllable_canonical
+
+__all__ = ["LoopStability", "loop_stability"]
+
+
+@dataclass(frozen=True)
+class LoopStability:
+    """The verdict of :func:`loop_stability`: truthy when every state of the loop decays.
+
+    Attributes
+    ----------
+    stable : bool
+        Spectral radius of :math:`A_{cl}` below 1 (by more than 1e-9, so that a
+        marginal mode such as epsilon = 1 counts as unstable).
+    spectral_radius : float
+    eigenvalues : tuple of complex
+        All eigenvalues of :math:`A_{cl}` (plant states first, then the controller's).
+    unstable : tuple of complex
+        Those with :math:`|\\lambda| \\ge 1 - 10^{-9}`.
+    hidden : tuple of complex
+        The unstable ones that are also eigenvalues of the controller's own
+        :math:`F` (to a relative 1e-8): modes the loop cannot move, hidden from
+        the transfer function.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, Realization
+    >>> from symctl.neural.stability import loop_stability
+    >>> result = loop_stability(MuscleModel(), Realization([[0]], [[-1]], [[1]], 0))
+    >>> bool(result), result.hidden
+    (False, ())
+    """
+
+    stable: bool
+    spectral_radius: float
+    eigenvalues: tuple[complex, ...]
+    unstable: tuple[complex, ...]
+    hidden: tuple[complex, ...]
+
+    def __bool__(self) -> bool:
+        return self.stable
+
+    def __str__(self) -> str:
+        if self.stable:
+            return f"internally stable: spectral radius {self.spectral_radius:.6g} < 1"
+        text = (
+            f"internally unstable: spectral radius {self.spectral_radius:.6g} >= 1, "
+            f"unstable eigenvalues {', '.join(_eig_text(x) for x in self.unstable)}"
+        )
+        if self.hidden:
+            text += (
+                f"; hidden modes of the controller (its own F) at "
+                f"{', '.join(_eig_text(x) for x in self.hidden)}"
+            )
+        return text
+
+
+def _circuit_matrices(circuit: Circuit) -> tuple[np.ndarray, ...]:
+    """``(F, H, M, N)`` of a numeric circuit: its delayed signals in, its outputs out."""
+    sys = circuit.as_linear_system(numeric=True)
+    p = len(sys.outputs) - circuit.n_neurons
+    F, H = np.asarray(sys.A, float), np.asarray(sys.B, float)
+    M, N = np.asarray(sys.C, float)[-p:], np.asarray(sys.D, float)[-p:]
+    return F[None], H[None], M[None], N[None]
+
+
+def loop_stability(plant, controller) -> LoopStability:
+    r"""Whether every state of the plant in closed loop with ``controller`` decays.
+
+    Parameters
+    ----------
+    plant : DiscretePlant, MuscleModel or (A, B)
+    controller : Realization, DiscreteTF, Gains or Circuit
+        A numeric realization (e.g. ``controller_realization(factor(G).subs(values), R2)``),
+        a SISO transfer function (realized in controllable canonical form), gains
+        (their :func:`~symctl.realization.realizers.ifp_realization`) or a numeric
+        :class:`~symctl.neural.circuit.Circuit` (its delayed signals are the states).
+
+    Returns
+    -------
+    LoopStability
+        Truthy when internally stable, with the unstable and the hidden eigenvalues.
+
+    Raises
+    ------
+    SymctlTypeError
+        ``controller`` of another type.
+    DimensionError
+        ``controller`` of the wrong shape for ``plant``.
+    ParameterError
+        Symbols left in the controller.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import MuscleModel, Realization
+    >>> from symctl.neural.stability import loop_stability
+    >>> stable = Realization([[0]], [[-0.05]], [[1]], 0)
+    >>> hidden = Realization([[0, 0], [0, 1.5]], [[-0.05], [1]], [[1, 0]], 0)
+    >>> result = loop_stability(MuscleModel(), hidden)
+    >>> bool(result), result.hidden
+    (False, ((1.5+0j),))
+    """
+    p, A, B = _plant(plant)
+    if isinstance(controller, Circuit):
+        mats = _circuit_matrices(controller)
+    else:
+        if isinstance(controller, DiscreteTF):
+            controller = controllable_canonical(controller)
+        elif isinstance(controller, Gains):
+            controller = _as_realization(controller)
+        elif not isinstance(controller, Realization):
+            raise SymctlTypeError(
+                "controller: expected a Realization, a DiscreteTF, Gains or a Circuit, "
+                f"got {type(controller).__name__}"
+            )
+        mats = _numeric_realization(controller, p)
+    Acl, _ = _closed_loop_matrices(A, B, *mats)
+    Acl = Acl[:, :, 0]
+    eigs = np.linalg.eigvals(Acl) if Acl.shape[0] else np.zeros(0)
+    rho = float(np.max(np.abs(eigs))) if eigs.size else 0.0
+    unstable = tuple(complex(x) for x in eigs if abs(x) >= UNIT_CIRCLE)
+    hidden = tuple(x for x in unstable if _is_hidden(Acl, x, p.n))
+    return LoopStability(rho < UNIT_CIRCLE, rho, tuple(complex(x) for x in eigs), unstable, hidden)
