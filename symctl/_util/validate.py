@@ -289,6 +289,11 @@ and :func:`symctl.controller_tf` (``controller_tf(500)`` takes about a second)."
 MAX_STEPS = 10**6
 """Longest horizon (samples) of a simulation or an impulse response."""
 
+MAX_SYMBOLIC_BLOCK = 3
+"""Largest ``n + m`` (states plus inputs) of a symbolic zero-order-hold discretization:
+SymPy's closed-form matrix exponential of a generic 2-state, 1-input plant takes about
+30 s, a 3-state one does not finish (numbers go through SciPy instead, up to ``MAX_STATES``)."""
+
 MAX_COUNT = 10_000
 """Most numeric draws at once (realizations drawn, amplitudes of the nonlinear check)."""
 
@@ -448,3 +453,27 @@ def _to_float(value, argname: str) -> float:
         raise ParameterError(
             f"{argname}: must be finite, got a number too large for a float"
         ) from None
+
+
+def max_size(value, argname: str, limit: int) -> None:
+    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, cheaply.
+
+    Checked on the raw value (NumPy's shape) before SymPy converts every entry.
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import max_size
+    >>> max_size(np.zeros((2000, 2000)), "a", 1000)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.DimensionError: a: at most 1000 rows and columns, got shape (2000, 2000)
+    """
+    if isinstance(value, str):
+        return
+    try:
+        shape = value.shape if hasattr(value, "shape") else np.shape(value)
+    except (TypeError, ValueError):  # ragged: to_matrix names it
+        return
+    if any(int(d) > limit for d in shape):
+        raise DimensionError(
+            f"{argname}: at most {limit} rows and columns, got shape {tuple(shape)}"
+        )

@@ -42,6 +42,7 @@ import sympy as sp
 from symctl._util.display import LatexMixin, latex
 from symctl._util.validate import (
     MAX_DELAY,
+    MAX_STATES,
     check_magnitude,
     nonneg_int,
     psd_matrix,
@@ -177,7 +178,7 @@ def augment(
     ParameterError
         Negative delays or a net delay above ``MAX_DELAY``; numeric ``Q`` or ``R``
         not symmetric positive semidefinite, or with an entry above ``MAX_MAGNITUDE``
-        (1e100) in magnitude.
+        (1e100) in magnitude, or more than ``MAX_STATES`` (1000) augmented states.
     SymctlTypeError
         Non-integer delays.
     DimensionError
@@ -208,6 +209,11 @@ def augment(
         raise ParameterError(
             f"sensor_delay, actuator_delay: the net delay must be at most {MAX_DELAY} steps, "
             f"got {ds} + {da} = {T}"
+        )
+    if n + T * m > MAX_STATES:
+        raise ParameterError(
+            f"sensor_delay, actuator_delay: the augmented system would have n + T m = "
+            f"{n} + {T} * {m} = {n + T * m} states, more than {MAX_STATES}"
         )
     Qm = sp.eye(n) if Q is None else to_matrix(Q, "Q")
     Rm = sp.eye(m) if R is None else to_matrix(R, "R")

@@ -172,7 +172,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     Raises
     ------
     SymctlTypeError
-        ``system`` is not an AugmentedSystem.
+        ``system`` is not an AugmentedSystem, or ``G`` not a DiscreteTF.
 
     Examples
     --------
@@ -186,6 +186,8 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(f"system: expected an AugmentedSystem, got {type(system).__name__}")
+    if G is not None and not isinstance(G, DiscreteTF):
+        raise SymctlTypeError(f"G: expected a DiscreteTF, got {G!r}")
     G = controller_tf(system) if G is None else G
     T = system.T
     claim = "G(z) is the transfer function of the delayed LQR controller"

@@ -23,7 +23,8 @@ exp(-T_s/tau)
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import itertools
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cache
 from types import MappingProxyType
@@ -37,8 +38,10 @@ from symctl._util.validate import (
     MAX_EXPONENT,
     MAX_MAGNITUDE,
     MAX_STATES,
+    MAX_SYMBOLIC_BLOCK,
     TS_TAU_MIN,
     bounded_number,
+    max_size,
     numeric_matrix,
     positive_number,
     sampling_time,
@@ -92,7 +95,12 @@ class Linearization(LatexMixin):
 
 
 def _symbol_list(value, argname: str) -> list[sp.Symbol]:
-    items = [value] if isinstance(value, sp.Symbol | str) else list(value)
+    if isinstance(value, sp.Symbol | str):
+        items = [value]
+    elif isinstance(value, Iterable):
+        items = list(itertools.islice(value, MAX_STATES + 1))
+    else:
+        raise SymctlTypeError(f"{argname}: expected symbols or names, got {value!r}")
     out = []
     for item in items:
         if isinstance(item, str):
@@ -154,6 +162,8 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     >>> a, b
     (Matrix([[-3]]), Matrix([[1]]))
     """
+    if not isinstance(check_equilibrium, bool):
+        raise SymctlTypeError(f"check_equilibrium: expected a bool, got {check_equilibrium!r}")
     xs, us = _symbol_list(x, "x"), _symbol_list(u, "u")
     for syms, name in ((xs, "x"), (us, "u")):
         if not 1 <= len(syms) <= MAX_STATES:
@@ -213,8 +223,9 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        ``a`` not square or empty (or above ``MAX_STATES``, 1000, states), or ``b``
-        with another number of rows.
+        ``a`` not square or empty (or above ``MAX_STATES``, 1000, states), ``b``
+        with another number of rows, or a symbolic system with more than
+        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
     ParameterError
         A numeric ``Ts <= 0``, non-finite entries, or numeric ``a Ts`` whose
         exponential overflows (``discretize([[800]], [[1]], 1)``).
@@ -228,6 +239,8 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     >>> A[0, 0], sp.simplify(B[0, 0] - (1 - sp.exp(-T_s / tau)))
     (exp(-T_s/tau), 0)
     """
+    max_size(a, "a", MAX_STATES)
+    max_size(b, "b", MAX_STATES)
     am = to_matrix(a, "a")
     n = am.shape[0]
     if am.shape != (n, n) or n == 0:
@@ -243,6 +256,11 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     block[:n, :n] = am
     block[:n, n:] = bm
     if block.free_symbols or ts.free_symbols:
+        if n + m > MAX_SYMBOLIC_BLOCK:
+            raise DimensionError(
+                f"a, b: a symbolic discretization takes at most {MAX_SYMBOLIC_BLOCK} states "
+                f"plus inputs (SymPy's matrix exponential), got {n} + {m}; substitute numbers first"
+            )
         phi = (block * ts).exp().applyfunc(_tidy)
     else:
         from scipy.linalg import expm

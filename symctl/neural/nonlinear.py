@@ -28,7 +28,7 @@ from symctl._util.validate import (
     read_only,
 )
 from symctl.design.augment import augment
-from symctl.design.lqr import lqr_gains
+from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
@@ -39,6 +39,7 @@ from symctl.neural.simulate import (
     _numeric_realization,
     simulate_realization,
 )
+from symctl.realization.realization import Realization
 
 __all__ = ["NonlinearCheck", "nonlinear_check"]
 
@@ -202,6 +203,10 @@ def nonlinear_check(
         controller = lqr_gains(augment(model, 1, 1))
     bounded_int(steps, "steps", 1, MAX_STEPS)
     rtol = bounded_number(rtol, "rtol", *RTOL_RANGE)
+    if not isinstance(controller, Gains | Realization):
+        raise SymctlTypeError(
+            f"controller: expected Gains or a Realization, got {type(controller).__name__}"
+        )
     R = _as_realization(controller)
     amps = float_array(amplitudes, "amplitudes").ravel()
     if amps.size == 0:
