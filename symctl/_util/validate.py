@@ -127,7 +127,7 @@ def positive_number(value, argname: str) -> float:
     """A finite, strictly positive float."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise SymctlTypeError(f"{argname}: expected a real number, got {value!r}")
-    out = float(value)
+    out = _to_float(value, argname)
     if not math.isfinite(out) or out <= 0:
         raise ParameterError(f"{argname}: must be a finite number > 0, got {value!r}")
     return out
@@ -137,7 +137,7 @@ def real_number(value, argname: str) -> float:
     """A finite float."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise SymctlTypeError(f"{argname}: expected a real number, got {value!r}")
-    out = float(value)
+    out = _to_float(value, argname)
     if not math.isfinite(out):
         raise ParameterError(f"{argname}: must be finite, got {value!r}")
     return out
@@ -429,3 +429,205 @@ def relative_tolerance(value, argname: str) -> float:
     if not 0 < out < 1:
         raise ParameterError(f"{argname}: must be a number in (0, 1), got {value!r}")
     return out
+
+
+# ---------------------------------------------------------------- limits (issue 12)
+# Every size symctl accepts has a limit, checked before any work starts, so that a
+# typo such as a delay of 10**22 is a clear ParameterError instead of minutes of work
+# or a MemoryError. Each limit is defined here, once; docs/reliability.md tabulates them.
+
+MAX_DELAY = 500
+"""Largest net delay ``T = sensor_delay + actuator_delay`` (steps) of :func:`symctl.augment`
+and :func:`symctl.controller_tf` (``controller_tf(500)`` takes about a second)."""
+
+MAX_STEPS = 10**6
+"""Longest horizon (samples) of a simulation or an impulse response."""
+
+MAX_SYMBOLIC_BLOCK = 3
+"""Largest ``n + m`` (states plus inputs) of a symbolic zero-order-hold discretization:
+SymPy's closed-form matrix exponential of a generic 2-state, 1-input plant takes about
+30 s, a 3-state one does not finish (numbers go through SciPy instead, up to ``MAX_STATES``)."""
+
+MAX_COUNT = 10_000
+"""Most numeric draws at once (realizations drawn, amplitudes of the nonlinear check)."""
+
+MAX_CIRCUITS = 1000
+"""Most realizations built into circuits and simulated at once (``circuit_firing``'s
+``count``, ``derive_paper``'s ``realizations``): about 50 ms each, so under a minute."""
+
+PAPER_MAX_DELAY = 8
+"""Largest net delay of ``derive_paper`` (its symbolic factorization and realizations
+grow fast: measured on 2 cores, T = 6 takes 5 s, T = 8 16 s, T = 10 over 3 minutes)."""
+
+MAX_STATES = 1000
+"""Most states of a plant (``discretize``, ``linearize``) and of a delay-augmented system."""
+
+TS_TAU_MIN = 1e-6
+r"""Smallest admissible :math:`T_s/\tau` of the muscle (the muscle barely moves in a sample)."""
+
+MAX_EXPONENT = 700.0
+r"""Largest admissible argument of an exponential in the model: :math:`T_s/\tau` and
+:math:`|\bar r|` (:math:`e^{-x}` underflows, :math:`e^{x}` overflows, beyond about 709)."""
+
+MAX_MAGNITUDE = 1e100
+"""Largest magnitude of a model parameter or cost entry: the LQR squares them (1e200 < 1.8e308)."""
+
+
+def bounded_int(value, argname: str, low: int, high: int) -> int:
+    """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error.
+
+    >>> from symctl._util.validate import bounded_int
+    >>> bounded_int(3, "steps", 1, 10)
+    3
+    >>> bounded_int(10**12, "sensor_delay", 0, 500)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: sensor_delay: must be an integer <= 500 (the limit), got 1000000000000
+    """
+    _integer(value, argname)
+    if value < low:
+        raise ParameterError(f"{argname}: must be an integer >= {low}, got {value!r}")
+    if value > high:
+        raise ParameterError(f"{argname}: must be an integer <= {high} (the limit), got {value!r}")
+    return int(value)
+
+
+def bounded_number(value, argname: str, low: float, high: float) -> float:
+    """A finite float in ``[low, high]``.
+
+    >>> from symctl._util.validate import bounded_number
+    >>> bounded_number(1e308, "f_max", 0, 1e100)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: f_max: must be a number in [0, 1e+100], got 1e+308
+    """
+    out = real_number(value, argname)
+    if not low <= out <= high:
+        raise ParameterError(f"{argname}: must be a number in [{low:g}, {high:g}], got {value!r}")
+    return out
+
+
+_NON_FINITE = (sp.nan, sp.oo, -sp.oo, sp.zoo)
+
+
+def finite_expr(expr, argname: str):
+    """``expr`` unchanged, unless it holds NaN, an infinity or a non-finite float.
+
+    >>> import sympy as sp
+    >>> from symctl._util.validate import finite_expr
+    >>> from symctl.symbols import z
+    >>> finite_expr(z + 1, "den")
+    z + 1
+    >>> finite_expr(sp.nan * z + 1, "den")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: den: must be finite (no NaN or infinity), got nan
+    """
+    if isinstance(expr, sp.Basic):
+        bad = expr in _NON_FINITE or expr.has(*_NON_FINITE)
+        bad = bad or any(not math.isfinite(float(f)) for f in expr.atoms(sp.Float))
+    else:
+        bad = isinstance(expr, numbers.Number) and not cmath_isfinite(expr)
+    if bad:
+        raise ParameterError(f"{argname}: must be finite (no NaN or infinity), got {expr}")
+    return expr
+
+
+def cmath_isfinite(value) -> bool:
+    """``math.isfinite`` for real and complex numbers."""
+    import cmath
+
+    return cmath.isfinite(complex(value))
+
+
+def finite_matrix(mat, argname: str):
+    """``mat`` unchanged (a sympy matrix or a NumPy array), unless an entry is not finite.
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import finite_matrix
+    >>> finite_matrix(np.array([[np.inf]]), "A")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: A: entries must be finite (no NaN or infinity), got [[inf]]
+    """
+    if isinstance(mat, np.ndarray):
+        if mat.dtype.kind in "fc" and not np.all(np.isfinite(mat)):
+            raise ParameterError(
+                f"{argname}: entries must be finite (no NaN or infinity), got {mat.tolist()}"
+            )
+        return mat
+    for entry in mat:
+        try:
+            finite_expr(entry, argname)
+        except ParameterError:
+            raise ParameterError(
+                f"{argname}: entries must be finite (no NaN or infinity), got {mat.tolist()}"
+            ) from None
+    return mat
+
+
+def callable_or_none(value, argname: str):
+    """``value`` when it is callable or None, else a :class:`SymctlTypeError`.
+
+    >>> from symctl._util.validate import callable_or_none
+    >>> callable_or_none("x", "progress")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.SymctlTypeError: progress: expected a callable or None, got 'x'
+    """
+    if value is not None and not callable(value):
+        raise SymctlTypeError(f"{argname}: expected a callable or None, got {value!r}")
+    return value
+
+
+def check_magnitude(arr, argname: str):
+    """``arr`` (a float array) unless an entry exceeds ``MAX_MAGNITUDE`` in magnitude.
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import check_magnitude
+    >>> check_magnitude(np.array([[1e300]]), "Q")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: Q: entries must be at most 1e+100 in magnitude (...), got 1e+300
+    """
+    big = float(np.max(np.abs(arr))) if arr.size else 0.0
+    if big > MAX_MAGNITUDE:
+        raise ParameterError(
+            f"{argname}: entries must be at most {MAX_MAGNITUDE:g} in magnitude "
+            f"(the LQR squares them), got {big:g}"
+        )
+    return arr
+
+
+def _to_float(value, argname: str) -> float:
+    """``float(value)``, with an integer too large for a float a :class:`ParameterError`."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ParameterError(
+            f"{argname}: must be finite, got a number too large for a float"
+        ) from None
+
+
+def max_size(value, argname: str, limit: int) -> None:
+    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, cheaply.
+
+    Checked on the raw value (NumPy's shape) before SymPy converts every entry.
+
+    >>> import numpy as np
+    >>> from symctl._util.validate import max_size
+    >>> max_size(np.zeros((2000, 2000)), "a", 1000)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.DimensionError: a: at most 1000 rows and columns, got shape (2000, 2000)
+    """
+    if isinstance(value, str):
+        return
+    try:
+        shape = value.shape if hasattr(value, "shape") else np.shape(value)
+    except (TypeError, ValueError):  # ragged: to_matrix names it
+        return
+    if any(int(d) > limit for d in shape):
+        raise DimensionError(
+            f"{argname}: at most {limit} rows and columns, got shape {tuple(shape)}"
+        )

@@ -41,6 +41,19 @@ __all__ = ["DelayGraph", "matrix_latex"]
 INF = math.inf
 """No path: the delay of an unreachable vertex."""
 
+MAX_VERTICES = 1000
+"""Most vertices of a delay graph: its shortest-path closure is cubic (about 3 s at 1000)."""
+
+MAX_EDGE_DELAY = 10**12
+"""Largest finite delay (steps) of an entry or edge: sums along any path stay exact in a float."""
+
+
+def _vertex_count(n: int, argname: str) -> None:
+    if n > MAX_VERTICES:
+        raise ParameterError(
+            f"{argname}: a delay graph has at most {MAX_VERTICES} vertices, got {n}"
+        )
+
 
 def _delay(value, argname: str, *, allow_inf: bool) -> float:
     """A delay: an integer >= 0 (integral floats accepted), or infinity when allowed."""
@@ -58,12 +71,17 @@ def _delay(value, argname: str, *, allow_inf: bool) -> float:
         return INF
     if not isinstance(value, numbers.Real):
         raise ParameterError(f"{argname}: delays must be integers >= 0, got {value!r}")
-    out = float(value)
+    what = "integers >= 0" + (" or inf" if allow_inf else "")
+    try:
+        out = float(value)
+    except OverflowError:  # an integer beyond the float range
+        out = math.nan
     if math.isinf(out) and out > 0 and allow_inf:
         return INF
-    if math.isnan(out) or math.isinf(out) or out != int(out) or out < 0:
-        what = "integers >= 0" + (" or inf" if allow_inf else "")
-        raise ParameterError(f"{argname}: delays must be {what}, got {value!r}")
+    if math.isnan(out) or math.isinf(out) or out != int(out) or out < 0 or out > MAX_EDGE_DELAY:
+        raise ParameterError(
+            f"{argname}: delays must be {what} up to {MAX_EDGE_DELAY}, got {value!r}"
+        )
     return float(int(out))
 
 
@@ -73,6 +91,23 @@ def _closure(E: np.ndarray) -> np.ndarray:
     for k in range(E.shape[0]):
         np.minimum(E, E[:, k, None] + E[None, k, :], out=E)
     return E
+
+
+def _direct_edges(E: np.ndarray) -> tuple[tuple[int, int, int], ...]:
+    """The entries not explained by a two-step route ``i -> k -> j`` (``k`` not ``i``, ``j``)."""
+    n = E.shape[0]
+    out = []
+    for i in range(n):
+        via = E[i, :, None] + E  # via[k, j] = E[i, k] + E[k, j]
+        via[i, :] = INF
+        np.fill_diagonal(via, INF)
+        explained = np.any(via <= E[i][None, :], axis=0)
+        out += [
+            (i + 1, j + 1, int(E[i, j]))
+            for j in np.flatnonzero(~explained & np.isfinite(E[i]))
+            if j != i
+        ]
+    return tuple(out)
 
 
 def _fmt(value: float) -> str:
@@ -159,6 +194,7 @@ class DelayGraph:
             raise ParameterError(
                 f"E: a delay graph needs a source v1 and a sink vN (N >= 2), got N = {n}"
             )
+        _vertex_count(n, "E")
         arr = np.array(
             [
                 [_delay(v, f"E[{i + 1},{j + 1}]", allow_inf=True) for j, v in enumerate(r)]
@@ -192,16 +228,7 @@ class DelayGraph:
             )
         arr.setflags(write=False)
         if _edges is None:
-            _edges = tuple(
-                (i + 1, j + 1, int(arr[i, j]))
-                for i in range(n)
-                for j in range(n)
-                if i != j
-                and not math.isinf(arr[i, j])
-                and not any(
-                    k not in (i, j) and arr[i, k] + arr[k, j] <= arr[i, j] for k in range(n)
-                )
-            )
+            _edges = _direct_edges(arr)
         object.__setattr__(self, "E", arr)
         object.__setattr__(self, "edges", tuple(_edges))
 
@@ -219,12 +246,15 @@ class DelayGraph:
         if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 2:
             raise ParameterError(f"n: the number of vertices must be an integer >= 2, got {n!r}")
         n = int(n)
+        _vertex_count(n, "n")
         arr = np.full((n, n), INF)
         np.fill_diagonal(arr, 0)
         kept: dict[tuple[int, int], int] = {}
         if not isinstance(edges, Iterable):
             raise SymctlTypeError(f"edges: expected (i, j, delay) triples, got {edges!r}")
         for k, edge in enumerate(edges):
+            if k >= MAX_VERTICES**2:
+                raise ParameterError(f"edges: at most {MAX_VERTICES**2} edges, got more")
             if not isinstance(edge, tuple | list) or len(edge) != 3:
                 raise ParameterError(f"edges[{k}]: expected (i, j, delay), got {edge!r}")
             i, j, d = edge
@@ -251,9 +281,10 @@ class DelayGraph:
         """
         if isinstance(delays, str) or not isinstance(delays, Iterable):
             raise ParameterError(f"delays: expected a list of integers >= 0, got {delays!r}")
-        steps = list(delays)
+        steps = list(itertools.islice(delays, MAX_VERTICES))  # bounded: an endless iterable too
         if not steps:
             raise ParameterError("delays: a chain needs at least one step (two vertices)")
+        _vertex_count(len(steps) + 1, "delays")  # MAX_VERTICES - 1 steps at most
         D = np.concatenate(
             (
                 [0.0],

@@ -40,9 +40,16 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import nonneg_int, psd_matrix, to_matrix
+from symctl._util.validate import (
+    MAX_DELAY,
+    MAX_STATES,
+    check_magnitude,
+    nonneg_int,
+    psd_matrix,
+    to_matrix,
+)
 from symctl.design.plant import DiscretePlant, MuscleModel
-from symctl.errors import DimensionError, SymctlTypeError
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["AugmentedSystem", "as_plant", "augment"]
 
@@ -154,7 +161,9 @@ def augment(
     plant : DiscretePlant, MuscleModel or (A, B)
         Numeric or symbolic.
     sensor_delay, actuator_delay : int
-        Delays in steps, integers >= 0.
+        Delays in steps, integers >= 0 with a net delay
+        ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500; the augmented
+        system has ``n + T m`` states).
     Q : matrix-like, optional
         State penalty (``n x n``); identity by default.
     R : matrix-like, optional
@@ -167,8 +176,11 @@ def augment(
     Raises
     ------
     ParameterError
-        Negative or non-integer delays; numeric ``Q`` or ``R`` not symmetric
-        positive semidefinite.
+        Negative delays or a net delay above ``MAX_DELAY``; numeric ``Q`` or ``R``
+        not symmetric positive semidefinite, or with an entry above ``MAX_MAGNITUDE``
+        (1e100) in magnitude, or more than ``MAX_STATES`` (1000) augmented states.
+    SymctlTypeError
+        Non-integer delays.
     DimensionError
         ``Q`` or ``R`` of the wrong shape.
 
@@ -193,6 +205,16 @@ def augment(
     ds = nonneg_int(sensor_delay, "sensor_delay")
     da = nonneg_int(actuator_delay, "actuator_delay")
     n, m, T = p.n, p.m, ds + da
+    if T > MAX_DELAY:
+        raise ParameterError(
+            f"sensor_delay, actuator_delay: the net delay must be at most {MAX_DELAY} steps, "
+            f"got {ds} + {da} = {T}"
+        )
+    if n + T * m > MAX_STATES:
+        raise ParameterError(
+            f"sensor_delay, actuator_delay: the augmented system would have n + T m = "
+            f"{n} + {T} * {m} = {n + T * m} states, more than {MAX_STATES}"
+        )
     Qm = sp.eye(n) if Q is None else to_matrix(Q, "Q")
     Rm = sp.eye(m) if R is None else to_matrix(R, "R")
     if Qm.shape != (n, n):
@@ -205,7 +227,7 @@ def augment(
         )
     for value, name in ((Qm, "Q"), (Rm, "R")):
         if not value.free_symbols:
-            psd_matrix(value, name, value.shape[0])
+            check_magnitude(psd_matrix(value, name, value.shape[0]), name)
     size = n + T * m
     A = sp.zeros(size, size)
     B = sp.zeros(size, m)

@@ -34,7 +34,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.proof import Proof
-from symctl._util.validate import nonneg_int
+from symctl._util.validate import MAX_DELAY, bounded_int
 from symctl.design.augment import AugmentedSystem
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
@@ -49,7 +49,7 @@ def _system_of(source) -> tuple[AugmentedSystem | None, int, int, int]:
         source = source.system
     if isinstance(source, AugmentedSystem):
         return source, source.T, source.m, source.n
-    return None, nonneg_int(source, "T"), 1, 1
+    return None, bounded_int(source, "T", 0, MAX_DELAY), 1, 1
 
 
 def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
@@ -73,9 +73,10 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     Raises
     ------
     SymctlTypeError
-        ``source`` is neither an integer, an AugmentedSystem nor Gains.
+        ``source`` is neither an integer, an AugmentedSystem nor Gains, or
+        ``gains`` is not Gains.
     ParameterError
-        ``source`` is a negative integer.
+        ``source`` is an integer outside ``[0, MAX_DELAY]`` (500).
 
     Examples
     --------
@@ -89,6 +90,8 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     >>> [round(float(c), 6) for c in G.den_coeffs()]
     [1.0, 0.580041, 0.351813]
     """
+    if gains is not None and not isinstance(gains, Gains):
+        raise SymctlTypeError(f"gains: expected Gains (from symctl.lqr_gains), got {gains!r}")
     if isinstance(source, Gains) and gains is None:
         gains = source
     system, T, m, n = _system_of(source)
@@ -169,7 +172,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     Raises
     ------
     SymctlTypeError
-        ``system`` is not an AugmentedSystem.
+        ``system`` is not an AugmentedSystem, or ``G`` not a DiscreteTF.
 
     Examples
     --------
@@ -183,6 +186,8 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(f"system: expected an AugmentedSystem, got {type(system).__name__}")
+    if G is not None and not isinstance(G, DiscreteTF):
+        raise SymctlTypeError(f"G: expected a DiscreteTF, got {G!r}")
     G = controller_tf(system) if G is None else G
     T = system.T
     claim = "G(z) is the transfer function of the delayed LQR controller"

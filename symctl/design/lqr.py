@@ -41,9 +41,9 @@ import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import numeric_matrix, psd_matrix, read_only
+from symctl._util.validate import check_magnitude, numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
-from symctl.errors import NotStabilizableError, SymctlTypeError
+from symctl.errors import NotStabilizableError, ParameterError, SymctlTypeError
 from symctl.symbols import gain_matrix_symbols
 
 __all__ = ["Gains", "lqr_gains"]
@@ -161,10 +161,12 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     SymctlTypeError
         ``system`` is not an AugmentedSystem.
     ParameterError
-        Free symbols left in the system, or Q/R not symmetric positive semidefinite.
+        Free symbols left in the system, Q/R not symmetric positive semidefinite, an
+        entry of Q, R or the plant above ``MAX_MAGNITUDE`` (1e100), or an LQR that
+        overflows (a badly scaled problem).
     NotStabilizableError
         :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
-        detectable, or no stabilizing DARE solution (e.g. a singular ``R``).
+        detectable, or no stabilizing DARE solution or no unique gain (e.g. a singular ``R``).
 
     Examples
     --------
@@ -181,10 +183,23 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
             f"got {type(system).__name__}"
         )
     n, m = system.n, system.m
-    Qp = psd_matrix(system.Q_plant if Q is None else Q, "Q", n)
-    Rm = psd_matrix(system.R if R is None else R, "R", m)
-    A = numeric_matrix(system.A, "plant")
-    B = numeric_matrix(system.B, "plant")
+    Qp = check_magnitude(psd_matrix(system.Q_plant if Q is None else Q, "Q", n), "Q")
+    Rm = check_magnitude(psd_matrix(system.R if R is None else R, "R", m), "R")
+    A = check_magnitude(numeric_matrix(system.A, "plant"), "plant (A)")
+    B = check_magnitude(numeric_matrix(system.B, "plant"), "plant (B)")
+    with np.errstate(over="raise", invalid="raise", divide="raise", under="ignore"):
+        try:
+            return _solve(system, A, B, Qp, Rm)
+        except FloatingPointError as exc:
+            raise ParameterError(
+                f"Q, R, plant: the LQR overflowed ({exc}); the problem is badly scaled: "
+                f"Q up to {np.max(np.abs(Qp)):g}, R up to {np.max(np.abs(Rm)):g}, "
+                f"plant B up to {np.max(np.abs(B)):g}"
+            ) from None
+
+
+def _solve(system: AugmentedSystem, A, B, Qp, Rm) -> Gains:
+    n = system.n
     Qeq = np.zeros_like(A)
     Qeq[:n, :n] = Qp
 
@@ -208,7 +223,18 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
         raise NotStabilizableError(
             f"R: no stabilizing DARE solution ({exc}); is R singular?"
         ) from None
-    K = -np.linalg.solve(Rm + B.T @ X @ B, B.T @ X @ A)
+    try:
+        K = -np.linalg.solve(Rm + B.T @ X @ B, B.T @ X @ A)
+    except np.linalg.LinAlgError:
+        raise NotStabilizableError(
+            f"R: R + B' X B is singular, no unique optimal gain (R = {Rm.tolist()}); "
+            "penalize the input with R > 0"
+        ) from None
+    if not (np.all(np.isfinite(K)) and np.all(np.isfinite(X))):
+        raise ParameterError(
+            "Q, R: the DARE solution is not finite; the problem is badly scaled "
+            f"(Q up to {np.max(np.abs(Qp)):g}, R up to {np.max(np.abs(Rm)):g})"
+        )
     poles = np.linalg.eigvals(A + B @ K)
     poles = poles[np.argsort(-np.abs(poles), kind="stable")]
     if not np.all(np.abs(poles) < 1):

@@ -23,7 +23,8 @@ exp(-T_s/tau)
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import itertools
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cache
 from types import MappingProxyType
@@ -34,9 +35,15 @@ import sympy as sp
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, latex
 from symctl._util.validate import (
+    MAX_EXPONENT,
+    MAX_MAGNITUDE,
+    MAX_STATES,
+    MAX_SYMBOLIC_BLOCK,
+    TS_TAU_MIN,
+    bounded_number,
+    max_size,
     numeric_matrix,
     positive_number,
-    real_number,
     sampling_time,
     subs_rule,
     to_matrix,
@@ -89,7 +96,12 @@ class Linearization(LatexMixin):
 
 
 def _symbol_list(value, argname: str) -> list[sp.Symbol]:
-    items = [value] if isinstance(value, sp.Symbol | str) else list(value)
+    if isinstance(value, sp.Symbol | str):
+        items = [value]
+    elif isinstance(value, Iterable):
+        items = list(itertools.islice(value, MAX_STATES + 1))
+    else:
+        raise SymctlTypeError(f"{argname}: expected symbols or names, got {value!r}")
     out = []
     for item in items:
         if isinstance(item, str):
@@ -134,7 +146,8 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     Raises
     ------
     DimensionError
-        ``f`` is not a vector with one entry per state, or a point of the wrong size.
+        ``f`` is not a vector with one entry per state, a point of the wrong size, or
+        no (or more than ``MAX_STATES``, 1000) states or inputs.
     ParameterError
         Invalid or repeated symbol names, or (with ``check_equilibrium``) a
         point that is provably not an equilibrium.
@@ -150,7 +163,14 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     >>> a, b
     (Matrix([[-3]]), Matrix([[1]]))
     """
+    if not isinstance(check_equilibrium, bool):
+        raise SymctlTypeError(f"check_equilibrium: expected a bool, got {check_equilibrium!r}")
     xs, us = _symbol_list(x, "x"), _symbol_list(u, "u")
+    for syms, name in ((xs, "x"), (us, "u")):
+        if not 1 <= len(syms) <= MAX_STATES:
+            raise DimensionError(
+                f"{name}: needs between 1 and {MAX_STATES} variables, got {len(syms)}"
+            )
     names = {s.name: s for s in (*xs, *us)}
     names.update({s.name: s for s in (S.tau, S.f_max, S.r_bar, S.T_s)})
     fv = to_matrix(f if not isinstance(f, str | sp.Basic) else [f], "f", names=names)
@@ -204,9 +224,12 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        ``a`` not square, or ``b`` with another number of rows.
+        ``a`` not square or empty (or above ``MAX_STATES``, 1000, states), ``b``
+        with another number of rows, or a symbolic system with more than
+        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
     ParameterError
-        A numeric ``Ts <= 0``.
+        A numeric ``Ts <= 0``, non-finite entries, or numeric ``a Ts`` whose
+        exponential overflows (``discretize([[800]], [[1]], 1)``).
 
     Examples
     --------
@@ -217,10 +240,14 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     >>> A[0, 0], sp.simplify(B[0, 0] - (1 - sp.exp(-T_s / tau)))
     (exp(-T_s/tau), 0)
     """
+    max_size(a, "a", MAX_STATES)
+    max_size(b, "b", MAX_STATES)
     am = to_matrix(a, "a")
     n = am.shape[0]
-    if am.shape != (n, n):
-        raise DimensionError(f"a: must be square, got shape {am.shape}")
+    if am.shape != (n, n) or n == 0:
+        raise DimensionError(f"a: must be square and non-empty, got shape {am.shape}")
+    if n > MAX_STATES:
+        raise DimensionError(f"a: at most {MAX_STATES} states, got {n}")
     bm = to_matrix(b, "b")
     if bm.shape[0] != n:
         raise DimensionError(f"b: must have {n} rows like a, got shape {bm.shape}")
@@ -230,12 +257,29 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     block[:n, :n] = am
     block[:n, n:] = bm
     if block.free_symbols or ts.free_symbols:
+        if n + m > MAX_SYMBOLIC_BLOCK:
+            raise DimensionError(
+                f"a, b: a symbolic discretization takes at most {MAX_SYMBOLIC_BLOCK} states "
+                f"plus inputs (SymPy's matrix exponential), got {n} + {m}; substitute numbers first"
+            )
         phi = (block * ts).exp().applyfunc(_tidy)
     else:
         from scipy.linalg import expm
 
-        phi = sp.Matrix(expm(numeric_matrix(block * ts, "a, b")))
+        phi = sp.Matrix(_expm(numeric_matrix(block * ts, "a, b"), expm))
     return phi[:n, :n], phi[:n, n:]
+
+
+def _expm(block: np.ndarray, expm) -> np.ndarray:
+    """``expm(block)``, refusing an overflow (a NaN or inf result) with the size of ``a Ts``."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        phi = expm(block)
+    if not np.all(np.isfinite(phi)):
+        raise ParameterError(
+            "a, Ts: exp(a Ts) overflows (largest |a Ts| entry "
+            f"{float(np.max(np.abs(block))):g}); use a shorter Ts or rescale a"
+        )
+    return phi
 
 
 @dataclass(frozen=True)
@@ -404,10 +448,19 @@ class MuscleModel(LatexMixin):
     Ts : float
         Sampling time [s], > 0.
 
+    The admissible ranges keep every number of the derivation finite:
+    ``tau``, ``f_max`` and ``Ts`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
+    :math:`|\bar r| \le 700` and :math:`10^{-6} \le T_s/\tau \le 700`
+    (``TS_TAU_MIN``, ``MAX_EXPONENT``: beyond, :math:`e^{-T_s/\tau}` underflows
+    and the nonlinear check integrates an ODE over more than 700 time constants).
+
     Raises
     ------
     ParameterError
-        A parameter that is not a finite number, or ``tau``, ``f_max``, ``Ts <= 0``.
+        A parameter that is not a finite number, ``tau``, ``f_max``, ``Ts <= 0``, or
+        a parameter or :math:`T_s/\tau` outside its admissible range.
+    SymctlTypeError
+        A parameter that is not a real number.
 
     Examples
     --------
@@ -428,7 +481,14 @@ class MuscleModel(LatexMixin):
     def __post_init__(self):
         for name in ("tau", "f_max", "Ts"):
             positive_number(getattr(self, name), name)
-        real_number(self.r_bar, "r_bar")
+            bounded_number(getattr(self, name), name, 1 / MAX_MAGNITUDE, MAX_MAGNITUDE)
+        bounded_number(self.r_bar, "r_bar", -MAX_EXPONENT, MAX_EXPONENT)
+        ratio = float(self.Ts) / float(self.tau)
+        if not TS_TAU_MIN <= ratio <= MAX_EXPONENT:
+            raise ParameterError(
+                f"Ts, tau: Ts/tau must be in [{TS_TAU_MIN:g}, {MAX_EXPONENT:g}] "
+                f"(exp(-Ts/tau) is the plant's A), got Ts/tau = {self.Ts!r}/{self.tau!r} = {ratio:g}"
+            )
 
     @property
     def ode(self) -> sp.Expr:

@@ -27,7 +27,10 @@ import sympy as sp
 from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
 from symctl._util.exact import products_equal, z_poly
 from symctl._util.validate import (
+    MAX_STEPS,
+    bounded_int,
     common_dt,
+    finite_expr,
     nonneg_int,
     sampling_time,
     subs_rule,
@@ -40,6 +43,7 @@ from symctl.symbols import z
 __all__ = ["DiscreteTF"]
 
 _TEXT_NAMES = {"z": z}  # the names text for num/den may use (read by the safe parser)
+_LAMBDIFY_MODULES = ("numpy", "math", "mpmath", "scipy", "sympy")
 
 
 def _natural_key(symbol: sp.Symbol) -> list:
@@ -118,6 +122,8 @@ class DiscreteTF(LatexMixin):
         object.__setattr__(self, "_num", num_m)
         object.__setattr__(self, "den", den_e)
         object.__setattr__(self, "dt", dt_e)
+        for e in (*num_m, den_e):  # NaN or oo in a coefficient (issue 12)
+            finite_expr(e, "num/den")
 
     def __eq__(self, other) -> bool:
         """Structural equality of numerator, denominator and ``dt`` (see :meth:`equals`)."""
@@ -280,23 +286,92 @@ class DiscreteTF(LatexMixin):
         return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)
 
     def impulse_response(self, steps: int) -> np.ndarray:
-        """Numeric impulse response, shape ``(steps, outputs, inputs)``; needs numbers."""
+        """Numeric impulse response, shape ``(steps, outputs, inputs)``; needs numbers.
+
+        The Markov parameters (:meth:`markov`) in floating point, by the
+        denominator's recurrence, for at most ``MAX_STEPS`` (10**6) steps.
+
+        Raises
+        ------
+        ParameterError
+            Free symbols, an improper ``G``, ``steps`` outside ``[0, MAX_STEPS]``,
+            or a response that overflows (an unstable ``G`` over too many ``steps``).
+
+        >>> from symctl import DiscreteTF, z
+        >>> DiscreteTF.from_expr(1 / (z - 2)).impulse_response(4)[:, 0, 0]
+        array([0., 1., 2., 4.])
+        >>> DiscreteTF.from_expr(1 / (z - 10)).impulse_response(400)
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: steps: the impulse response overflows at step 310 ...
+        """
+        steps = bounded_int(steps, "steps", 0, MAX_STEPS)
         if self.free_symbols:
             raise ParameterError(
                 f"G: substitute values for {sorted(map(str, self.free_symbols))} first"
             )
-        return np.array([np.array(h.evalf(), dtype=float) for h in self.markov(steps)])
+        if self.relative_degree < 0:
+            raise ParameterError("G: improper transfer function has no Markov expansion")
+        from scipy.signal import lfilter
+
+        d = self.order
+        rows, cols = self.shape
+        a = self._floats(self.den_coeffs())
+        out = np.zeros((steps, rows, cols))
+        impulse = np.zeros(steps)
+        impulse[:1] = 1.0
+        with np.errstate(over="ignore", invalid="ignore"):
+            for i in range(rows):
+                for j in range(cols):
+                    b = self._floats([self._coeff(i, j, d - k) for k in range(d + 1)])
+                    out[:, i, j] = lfilter(b, a, impulse) if steps else impulse
+        bad = ~np.isfinite(out).reshape(steps, -1).all(axis=1)
+        if bad.any():
+            raise ParameterError(
+                f"steps: the impulse response overflows at step {int(np.argmax(bad))} "
+                f"(G has a pole of modulus {float(np.max(np.abs(self.poles()))):.4g}); "
+                f"ask for fewer steps, got {steps}"
+            )
+        return out
+
+    @staticmethod
+    def _floats(coeffs) -> np.ndarray:
+        try:
+            arr = np.array([float(c) for c in coeffs])
+        except (TypeError, OverflowError):
+            raise ParameterError(
+                f"G: coefficients must be real numbers a float can hold, got {coeffs}"
+            ) from None
+        if not np.all(np.isfinite(arr)):
+            raise ParameterError(f"G: coefficients too large for a float, got {coeffs}")
+        return arr
 
     def lambdify(self, symbols=(), modules="numpy"):
-        """A NumPy function ``f(z, *symbols)`` evaluating G (broadcasts over arrays)."""
+        """A NumPy function ``f(z, *symbols)`` evaluating G (broadcasts over arrays).
+
+        ``symbols`` must be sympy Symbols (names are written into generated code);
+        ``modules`` one of ``"numpy"``, ``"math"``, ``"mpmath"``, ``"scipy"``, ``"sympy"``.
+        """
         symbols = symbol_tuple(symbols, "symbols")  # names become code in lambdify: no text
+        if modules not in _LAMBDIFY_MODULES:
+            raise ParameterError(
+                f"modules: expected one of {', '.join(_LAMBDIFY_MODULES)}, got {modules!r}"
+            )
         return sp.lambdify((z, *symbols), self.expr, modules=modules)
 
     def poles(self) -> np.ndarray:
         """Numeric roots of the denominator."""
         if self.free_symbols:
             raise ParameterError("G: poles need numeric coefficients")
-        return np.roots([complex(c) for c in self.den_coeffs()])
+        try:
+            coeffs = np.array([complex(c) for c in self.den_coeffs()])
+        except (TypeError, OverflowError):
+            raise ParameterError(
+                f"G: poles need coefficients a float can hold, got {self.den_coeffs()}"
+            ) from None
+        if not np.all(np.isfinite(coeffs)):
+            raise ParameterError(f"G: poles need finite coefficients, got {self.den_coeffs()}")
+        return np.roots(coeffs)
 
     # ------------------------------------------------------------ interop
     def to_control(self):

@@ -41,6 +41,7 @@ realization, no free parameters): its one neuron :math:`\mu` of
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -49,7 +50,14 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import as_generator, positive_int, positive_number, read_only
+from symctl._util.validate import (
+    MAX_CIRCUITS,
+    as_generator,
+    bounded_int,
+    nonneg_int,
+    positive_number,
+    read_only,
+)
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant
 from symctl.design.controller import controller_tf
@@ -291,7 +299,7 @@ def _kind(kind) -> str:
 def _count(count, kind: str) -> int:
     if count is None:
         return 1 if kind == "ifp" else 4
-    count = positive_int(count, "count")
+    count = bounded_int(count, "count", 1, MAX_CIRCUITS)
     if kind == "ifp" and count != 1:
         raise ParameterError(
             f"count: the IFP controller has a single realization, so count must be 1, got {count}"
@@ -420,9 +428,10 @@ def circuit_firing(
     plant : DiscretePlant, MuscleModel or (A, B), optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
-        Number of realizations (default 4; the IFP controller has exactly 1).
+        Number of realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP
+        controller has exactly 1).
     seed : int or numpy Generator
-        Seeds the epsilons and ``P`` (default 0: reproducible).
+        Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is >= 0.
     disturbance, steps, start, length
         As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
         pulse on steps 5..14 of 50).
@@ -436,7 +445,8 @@ def circuit_firing(
     Raises
     ------
     ParameterError
-        Unknown ``kind``, ``count < 1`` (or ``!= 1`` for ``"ifp"``), ``"ifp"``
+        Unknown ``kind``, ``count`` outside ``[1, MAX_CIRCUITS]`` (or ``!= 1`` for
+        ``"ifp"``), a negative ``seed``, ``"ifp"``
         with gains for a net delay ``T = 0`` (no neuron), an unstable
         loop, or a realization whose force or rate departs from the optimal
         controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains').
@@ -466,6 +476,8 @@ def circuit_firing(
     gains = _gains(gains, kind)
     plant = _plant(plant, gains)
     count = _count(count, kind)
+    if not isinstance(seed, bool) and isinstance(seed, numbers.Integral):
+        nonneg_int(seed, "seed")  # NumPy refuses negative seeds with its own ValueError
     gen = as_generator(seed, "seed")
     rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}

@@ -20,9 +20,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
-from symctl._util.validate import float_array, read_only
+from symctl._util.validate import (
+    MAX_COUNT,
+    bounded_int,
+    bounded_number,
+    float_array,
+    read_only,
+)
 from symctl.design.augment import augment
-from symctl.design.lqr import lqr_gains
+from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
@@ -33,8 +39,18 @@ from symctl.neural.simulate import (
     _numeric_realization,
     simulate_realization,
 )
+from symctl.realization.realization import Realization
 
 __all__ = ["NonlinearCheck", "nonlinear_check"]
+
+MAX_STEPS = 5000
+"""Longest horizon of :func:`nonlinear_check` (one ODE solve per sample: about 10 s at 5000)."""
+
+RTOL_RANGE = (1e-13, 1e-2)
+"""Admissible ``rtol`` of the ODE solver (SciPy refuses below about 2.2e-14)."""
+
+STIFF_RATIO = 1.0
+r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Radau (implicit)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,9 +152,12 @@ def nonlinear_check(
     At each sample the controller reads :math:`\delta_f = f - \bar f`, its output
     :math:`r = \bar r + \delta_r` is held constant over the step, and
     :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau` (:meth:`MuscleModel.rhs`)
-    is integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (DOP853,
-    ``rtol``, all amplitudes as one vector ODE); the disturbance is added to the
-    force at the sample, as in the linear model.
+    is integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all
+    amplitudes as one vector ODE, relative tolerance ``rtol``); the disturbance is
+    added to the force at the sample, as in the linear model. The solver is
+    explicit (DOP853) while :math:`T_s/\tau \le` ``STIFF_RATIO`` (1, the paper's
+    is 0.5) and implicit beyond (Radau, with the exact Jacobian
+    :math:`-1/\tau`), so that a stiff muscle (a small ``tau``) takes seconds too.
 
     Parameters
     ----------
@@ -148,11 +167,27 @@ def nonlinear_check(
         Default: the optimal delayed controller for ``Q = R = 1``, one step of delay
         each way (as the IFP realization).
     amplitudes : sequence of float
-        Disturbance pulse amplitudes [N per step]; default 0.1 .. 10.
+        Disturbance pulse amplitudes [N per step]; default 0.1 .. 10; at most
+        ``MAX_COUNT`` (10,000) of them.
+    steps, start, length : int
+        Horizon (at most ``MAX_STEPS``, 5000) and disturbance pulse, as in
+        :func:`~symctl.simulate_realization`.
+    rtol : float
+        Relative tolerance of the ODE solver, in ``RTOL_RANGE`` ``[1e-13, 1e-2]``.
 
     Returns
     -------
     NonlinearCheck
+
+    Raises
+    ------
+    ParameterError
+        ``steps`` above ``MAX_STEPS``, ``rtol`` outside ``RTOL_RANGE``, non-finite
+        amplitudes, or an ODE that fails (naming the amplitudes).
+    SymctlTypeError
+        ``model`` not a MuscleModel, or arguments of the wrong type.
+    DimensionError
+        No amplitude.
 
     Examples
     --------
@@ -166,10 +201,18 @@ def nonlinear_check(
         raise SymctlTypeError(f"model: expected a MuscleModel, got {type(model).__name__}")
     if controller is None:
         controller = lqr_gains(augment(model, 1, 1))
+    bounded_int(steps, "steps", 1, MAX_STEPS)
+    rtol = bounded_number(rtol, "rtol", *RTOL_RANGE)
+    if not isinstance(controller, Gains | Realization):
+        raise SymctlTypeError(
+            f"controller: expected Gains or a Realization, got {type(controller).__name__}"
+        )
     R = _as_realization(controller)
     amps = float_array(amplitudes, "amplitudes").ravel()
     if amps.size == 0:
         raise DimensionError("amplitudes: give at least one amplitude")
+    if amps.size > MAX_COUNT:
+        raise DimensionError(f"amplitudes: at most {MAX_COUNT} amplitudes, got {amps.size}")
     linear = simulate_realization(model, R, 1.0, steps=steps, start=start, length=length)
     F, H, M, N = (a[0] for a in _numeric_realization(R, model.plant()))
     w = linear.w[:, 0]
@@ -178,16 +221,25 @@ def nonlinear_check(
     xc = np.zeros((amps.size, F.shape[0]))
     f_nl = np.empty((amps.size, linear.t.size))
     r_nl = np.empty_like(f_nl)
+    if Ts / model.tau <= STIFF_RATIO:
+        solver = {"method": "DOP853"}
+    else:  # stiff: implicit, with the exact (diagonal) Jacobian of rhs in f
+        jac = -np.eye(amps.size) / model.tau
+        solver = {"method": "Radau", "jac": lambda _t, _y: jac}
     for k in range(linear.t.size):
         df = f - f_bar
         r = r_bar + (xc @ M.T)[:, 0] + N[0, 0] * df
         f_nl[:, k], r_nl[:, k] = f, r
-        sol = scipy.integrate.solve_ivp(
-            lambda _t, y, r=r: model.rhs(y, r), (0.0, Ts), f,
-            method="DOP853", rtol=rtol, atol=rtol * max(1.0, abs(f_bar)),
-        )  # fmt: skip
+        with np.errstate(over="ignore", invalid="ignore"):  # checked just below
+            sol = scipy.integrate.solve_ivp(
+                lambda _t, y, r=r: model.rhs(y, r), (0.0, Ts), f,
+                rtol=rtol, atol=rtol * max(1.0, abs(f_bar)), **solver,
+            )  # fmt: skip
         if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            raise ParameterError(f"amplitudes: the nonlinear ODE failed at step {k}: {sol.message}")
+            raise ParameterError(
+                f"amplitudes: the nonlinear ODE failed at step {k} (amplitudes up to "
+                f"{float(np.max(np.abs(amps))):g}): {sol.message}"
+            )
         f = sol.y[:, -1] + amps * w[k]
         xc = xc @ F.T + df[:, None] @ H.T
     f_lin = f_bar + amps[:, None] * linear.delta_f[:, 0]

@@ -47,6 +47,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from symctl._util.validate import (
+    MAX_STATES,
+    MAX_STEPS,
+    bounded_int,
     float_array,
     nonneg_int,
     numeric_matrix,
@@ -94,7 +97,7 @@ def pulse(
     Parameters
     ----------
     steps : int
-        The horizon, >= 1 (default 50).
+        The horizon, from 1 to ``MAX_STEPS`` (10**6; default 50).
     amplitude : float
         The value during the pulse (default 1).
     start, length : int
@@ -121,11 +124,11 @@ def pulse(
     >>> pulse(6, 2.0, start=1, length=3).ravel()
     array([0., 2., 2., 2., 0., 0.])
     """
-    steps = positive_int(steps, "steps")
+    steps = bounded_int(steps, "steps", 1, MAX_STEPS)
     amp = real_number(amplitude, "amplitude")
-    start = nonneg_int(start, "start")
-    length = nonneg_int(length, "length")
-    out = np.zeros((steps, positive_int(size, "size")))
+    start = min(nonneg_int(start, "start"), steps)  # huge values: no index overflow
+    length = min(nonneg_int(length, "length"), steps)
+    out = np.zeros((steps, bounded_int(size, "size", 1, MAX_STATES)))
     out[start : start + length] = amp
     return out
 

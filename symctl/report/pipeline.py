@@ -21,7 +21,14 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from symctl._util.validate import nonneg_int, positive_int
+from symctl._util.validate import (
+    MAX_CIRCUITS,
+    MAX_DELAY,
+    PAPER_MAX_DELAY,
+    bounded_int,
+    callable_or_none,
+    nonneg_int,
+)
 from symctl.compatibility.check import check_compatibility
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure, ifp_structure
@@ -67,13 +74,15 @@ def derive_paper(
         The muscle's time constant [s], maximum force [N] and equilibrium
         firing rate [spikes/s], and the sampling time [s].
     sensor_delay, actuator_delay : int
-        Delays in steps (integers >= 0, not both 0).
+        Delays in steps (integers >= 0, not both 0), with a net delay of at most
+        :data:`~symctl._util.validate.PAPER_MAX_DELAY` (8; T = 8 takes about 16 s).
     Q, R : matrix-like, optional
         State and input penalties of the cost (identity by default).
     seed : int
         Seed of the random realizations (epsilons, and ``P`` of the general one).
     realizations : int
-        Random realizations simulated per circuit (the IFP controller has one).
+        Random realizations simulated per circuit (the IFP controller has one),
+        from 1 to :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
     progress : callable, optional
         Called with the name of each step (``"plant"``, ``"delays"``,
         ``"LQR"``, ...) before it runs.
@@ -86,10 +95,11 @@ def derive_paper(
     ------
     ParameterError
         A parameter out of range (e.g. ``tau <= 0``, negative delays, both
-        delays 0, ``Q`` not positive semidefinite, a negative ``seed``,
-        ``realizations < 1``).
+        delays 0, a net delay above ``PAPER_MAX_DELAY``, ``Q`` not positive
+        semidefinite, a negative ``seed``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
+        ``Ts/tau`` outside the muscle's admissible range).
     SymctlTypeError
-        ``seed`` is not an integer.
+        ``seed``, a delay or ``realizations`` not an integer, ``progress`` not callable.
     DimensionError
         ``Q`` or ``R`` of the wrong shape.
 
@@ -106,12 +116,19 @@ def derive_paper(
     ...
     symctl.errors.ParameterError: sensor_delay, actuator_delay: the derivation needs a net delay ...
     """
-    step = progress or (lambda _name: None)
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
         raise SymctlTypeError(f"seed: expected an integer, got {seed!r}")
     seed = nonneg_int(seed, "seed")
-    realizations = positive_int(realizations, "realizations")
-    if sensor_delay == 0 and actuator_delay == 0:  # other bad values: augment names them
+    realizations = bounded_int(realizations, "realizations", 1, MAX_CIRCUITS)
+    delays = nonneg_int(sensor_delay, "sensor_delay"), nonneg_int(actuator_delay, "actuator_delay")
+    if sum(delays) > PAPER_MAX_DELAY:
+        raise ParameterError(
+            f"sensor_delay, actuator_delay: derive_paper handles a net delay of at most "
+            f"{PAPER_MAX_DELAY} steps (the symbolic derivation grows fast; the design "
+            f"functions take up to {MAX_DELAY}), got {delays[0]} + {delays[1]} = {sum(delays)}"
+        )
+    if sensor_delay == 0 and actuator_delay == 0:
         raise ParameterError(
             "sensor_delay, actuator_delay: the derivation needs a net delay "
             "T = sensor_delay + actuator_delay >= 1 (the delay graph and the IFP controller "
