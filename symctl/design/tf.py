@@ -31,7 +31,6 @@ from symctl._util.validate import (
     bounded_int,
     common_dt,
     finite_expr,
-    nonneg_int,
     sampling_time,
     subs_rule,
     symbol_tuple,
@@ -249,6 +248,8 @@ class DiscreteTF(LatexMixin):
             return DiscreteTF(num, self.den * other.den, dt)
         if isinstance(other, sp.Basic | int | float):
             return DiscreteTF(self._num * other, self.den, self.dt)
+        if isinstance(other, str | bytes):  # text is never a factor (nor parsed here)
+            raise SymctlTypeError(f"other: expected a DiscreteTF or a number, got {other!r}")
         return NotImplemented
 
     __rmul__ = __mul__
@@ -265,7 +266,7 @@ class DiscreteTF(LatexMixin):
         >>> [h[0] for h in DiscreteTF.from_expr(1 / (z - 2)).markov(4)]
         [0, 1, 2, 4]
         """
-        count = nonneg_int(count, "count")
+        count = bounded_int(count, "count", 0, MAX_STEPS)
         d = self.order
         if self.relative_degree < 0:
             raise ParameterError("G: improper transfer function has no Markov expansion")

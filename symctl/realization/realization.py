@@ -39,7 +39,14 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import common_dt, subs_rule, to_expr, to_matrix
+from symctl._util.validate import (
+    MAX_STEPS,
+    bounded_int,
+    common_dt,
+    subs_rule,
+    to_expr,
+    to_matrix,
+)
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
@@ -147,7 +154,9 @@ class Realization(LatexMixin):
 
         Row vectors :math:`M F^k` are carried and cancelled at each step, so
         denominators of a similarity transform (``det P``) do not pile up.
+        ``count`` is an integer from 0 to :data:`~symctl._util.validate.MAX_STEPS`.
         """
+        count = bounded_int(count, "count", 0, MAX_STEPS)
         out = [sp.Matrix(self.N)]
         row = sp.Matrix(self.M)
         for _ in range(count - 1):

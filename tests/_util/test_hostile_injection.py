@@ -262,13 +262,7 @@ def _payloads(marker) -> list[str]:
 
 # Refused safely (never evaluated) but with a foreign exception, in code other helpers of
 # issue 12 own (class 5: wrong types are SymctlTypeError); the marker check still holds.
-FOREIGN = {
-    "DiscreteTF * p": "TypeError from DiscreteTF.__mul__ (class 5/6 helper)",
-    "p * DiscreteTF": "TypeError from DiscreteTF.__rmul__ (class 5/6 helper)",
-    "Realization.markov": "count is not type-checked (class 5 helper)",
-    "controller_tf(gains)": "AttributeError for gains='x' (class 5, named in the issue)",
-    "prove_controller_tf(G)": "AttributeError for G='x' (class 5 helper)",
-}
+FOREIGN: dict[str, str] = {}  # entry points that refuse text with a foreign exception: none left
 
 
 @pytest.mark.parametrize("payload_kind", [0, 1], ids=["call", "lambda"])
@@ -391,7 +385,10 @@ AUDITED = {
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
     ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
     ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
-    ("symctl.realization.check", "_problem", "sympify"): 1,  # DiscreteTF coefficients
+    ("symctl.realization._markov", "_problem", "sympify"): 1,  # DiscreteTF coefficients
+    ("symctl.realization.factorization", "_relative_difference", "Poly"): 2,  # parsed sides
+    ("symctl.realization.factorization", "_relative_difference", "cancel"): 2,  # parsed sides
+    ("symctl._util.validate", "common_dt", "expand"): 1,  # dt already through sampling_time
     ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
     ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
     ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
