@@ -411,3 +411,18 @@ def test_a_signal_stops_every_worker_and_leaves_the_old_folder(tmp_path, case):
     time.sleep(0.2)
     assert _in_group(proc.pid) == []  # no worker left running (and none holding the terminal)
     assert _contents(out) == old and _leftovers(tmp_path, "paper") == []
+
+
+# ---------------------------------------------------------------- pdflatex that misbehaves
+@pytest.mark.parametrize("kind", ["hangs", "not executable"])
+def test_a_misbehaving_pdflatex_is_a_latex_error(tmp_path, monkeypatch, kind):
+    exe = tmp_path / "pdflatex"
+    exe.write_text("#!/bin/sh\nexec sleep 30\n")
+    if kind == "hangs":
+        exe.chmod(0o755)
+        monkeypatch.setattr(document, "PDFLATEX_TIMEOUT", 0.5)
+    tex = document.write_tex([document.Text("Hello.")], tmp_path / "a.tex")
+    t0 = time.monotonic()
+    with pytest.raises(LatexError, match=r"pdflatex .*a\.tex"):
+        document.compile_pdf(tex, pdflatex=str(exe))
+    assert time.monotonic() - t0 < 10
