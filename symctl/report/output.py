@@ -299,16 +299,23 @@ class OutputFolder:
         """Remove the staging and backup folders of runs that were killed (we hold the lock)."""
         prefix = f".{self.out.name}."
         stale = sorted(
-            (p for p in self.out.parent.iterdir() if p.name.startswith(prefix)),
-            key=lambda p: p.stat().st_mtime,
+            (
+                p
+                for p in self.out.parent.iterdir()
+                if p.name.startswith(prefix)
+                and re.fullmatch(r"(tmp|old)-[0-9a-f]{8}", p.name[len(prefix) :])
+            ),
+            key=lambda p: p.lstat().st_mtime,
         )
-        stale = [p for p in stale if re.fullmatch(r"(tmp|old)-[0-9a-f]{8}", p.name[len(prefix) :])]
-        backups = [p for p in stale if p.name[len(prefix) :].startswith("old-")]
+        backups = [p for p in stale if p.name[len(prefix) :].startswith("old-") and p.is_dir()]
         if backups and not self.out.exists():  # killed between the two renames of a commit
             os.rename(backups[-1], self.out)
             stale.remove(backups[-1])
         for p in stale:
-            shutil.rmtree(p, ignore_errors=True)
+            if p.is_symlink() or not p.is_dir():
+                p.unlink(missing_ok=True)
+            else:
+                shutil.rmtree(p, ignore_errors=True)
 
     # --------------------------------------------------------------- lock
     def _lock(self) -> None:

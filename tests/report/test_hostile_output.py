@@ -426,3 +426,17 @@ def test_a_misbehaving_pdflatex_is_a_latex_error(tmp_path, monkeypatch, kind):
     with pytest.raises(LatexError, match=r"pdflatex .*a\.tex"):
         document.compile_pdf(tex, pdflatex=str(exe))
     assert time.monotonic() - t0 < 10
+
+
+def test_stale_leftovers_that_are_links_or_files_are_removed_without_following(res, tmp_path):
+    target = tmp_path / "elsewhere"
+    target.mkdir()
+    (target / "keep.txt").write_text("not ours")
+    parent = tmp_path / "p"
+    parent.mkdir()
+    (parent / ".paper.tmp-0000beef").symlink_to(target)
+    (parent / ".paper.old-1111beef").symlink_to(tmp_path / "missing")  # a broken link
+    (parent / ".paper.tmp-2222beef").write_text("a file")
+    res.write(parent / "paper", figures=False, pdf=False)
+    assert sorted(p.name for p in parent.iterdir()) == ["paper"]
+    assert (target / "keep.txt").read_text() == "not ours"
