@@ -2,9 +2,11 @@
 
 ``symctl paper`` runs the paper's derivation and writes its outputs; its
 defaults are the paper's parameters (:data:`symctl.report.spec.PAPER`). Bad
-input prints one line (``symctl: error: ...``) and exits with code 2. The
-console script calls :func:`run`; :func:`main` returns the exit code instead
-of exiting.
+input prints one line (``symctl: error: ...``) and exits with code 2; the
+output folder is written all at once or not at all
+(:class:`symctl.report.output.OutputFolder`); SIGINT and SIGTERM end a run
+cleanly with codes 130 and 143. The console script calls :func:`run`;
+:func:`main` returns the exit code instead of exiting.
 
 Examples
 --------
@@ -15,8 +17,13 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
+import os
+import signal
 import sys
+import threading
 import time
+import warnings
 from pathlib import Path
 
 import click
@@ -93,10 +100,9 @@ def cli() -> None:
 )
 @click.option(
     "--out",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("out/paper"),
+    default="out/paper",
     show_default=True,
-    help="Output folder.",
+    help="Output folder: new, empty, or an earlier run's (replaced when the run is complete).",
 )
 @click.option("--figures/--no-figures", default=True, show_default=True, help="Write the figures.")
 @click.option(
@@ -132,11 +138,17 @@ def paper(
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PNG and SVG).
     """
-    from symctl.report.pipeline import derive_paper  # imported here: keeps `symctl --help` fast
+    from symctl.report.output import OutputFolder  # imported here: keeps `symctl --help` fast
+    from symctl.report.pipeline import derive_paper
 
-    Q = parse_matrix(q_text, "--q")
-    R = parse_matrix(r_text, "--r")
-    with _Steps() as steps:
+    try:
+        Q = parse_matrix(q_text, "--q")
+        R = parse_matrix(r_text, "--r")
+    except _NUMERICAL as exc:
+        exc._symctl_step = "options"
+        raise
+    # --out is checked, locked and staged before any work; written into place at the end
+    with OutputFolder(out, "--out") as folder, _Steps() as steps:
         res = derive_paper(
             tau=tau,
             f_max=f_max,
@@ -150,9 +162,11 @@ def paper(
             realizations=realizations,
             progress=steps.start,
         )
-        written = res.write(out, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start)
+        written = res._write_files(
+            folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
+        )
     _summary(res)
-    _written(out, written, pdf)
+    _written(out, folder.final(written), pdf)
 
 
 class _Steps:
@@ -181,6 +195,9 @@ class _Steps:
             self._name = None
 
     def __exit__(self, exc_type, exc, tb) -> None:
+        if exc is not None and self._name is not None:
+            with contextlib.suppress(AttributeError):
+                exc._symctl_step = self._name  # for main's message on a foreign exception
         if exc_type is None:
             self._done()
             total = time.perf_counter() - self._start
@@ -279,8 +296,60 @@ def _fmt(values) -> str:
     return np.array2string(arr, precision=6, max_line_width=10_000).replace("\n", "")
 
 
+# the options each step of derive_paper depends on: named when NumPy or SciPy fails in it
+_STEP_OPTIONS = {
+    "options": "--q, --r",
+    "plant": "--tau, --f-max, --r-bar, --ts",
+    "delays": "--sensor-delay, --actuator-delay, --q, --r",
+    "LQR": "--q, --r, --tau, --f-max, --r-bar, --ts, --sensor-delay, --actuator-delay",
+    "G(z)": "--sensor-delay, --actuator-delay",
+    "factorization": "--sensor-delay, --actuator-delay",
+    "simulation": "--seed, --realizations, --sensor-delay, --actuator-delay",
+    "realizations": "--seed, --sensor-delay, --actuator-delay",
+    "compatibility": "--sensor-delay, --actuator-delay, --tau, --f-max",
+    "figures": "--jobs, --out",
+    "documents": "--out",
+    "pdflatex": "--pdf, --out",
+}
+# foreign exceptions that bad input values cause in NumPy, SciPy or SymPy: exit 2, as bad input
+_NUMERICAL = (ArithmeticError, MemoryError, RecursionError, TypeError, ValueError)
+
+
+class _Signalled(BaseException):
+    """SIGINT or SIGTERM, raised in the main thread so that every ``finally`` and ``with`` runs."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _on_signal(signum, _frame) -> None:
+    for sig in (signal.SIGINT, signal.SIGTERM):  # one is enough: the cleanup is not interrupted
+        signal.signal(sig, signal.SIG_IGN)
+    raise _Signalled(signum)
+
+
+def _error(text: str) -> None:
+    click.echo(text.splitlines()[0] if text.strip() else text, err=True)
+
+
+def _warned(caught: list) -> None:
+    """NumPy, SciPy and symctl warnings of a successful run as one line on stderr."""
+    seen = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+    if seen:
+        more = f" (and {len(seen) - 1} other warnings)" if len(seen) > 1 else ""
+        _error(f"symctl: warning: {seen[0]}{more}; check the results")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
+
+    Nothing but single lines reach stderr: ``symctl: error: ...`` for bad input,
+    one ``symctl: warning: ...`` line for the warnings of a successful run,
+    ``symctl: interrupted ...`` when stopped by a signal. SIGINT and SIGTERM
+    stop the run cleanly (figure workers killed, the staged output removed,
+    ``--out`` as it was). Set ``SYMCTL_TRACEBACK=1`` to see the traceback of an
+    unexpected exception instead of its one line.
 
     Parameters
     ----------
@@ -290,8 +359,12 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success, 2 on bad input (one line ``symctl: error: ...`` on
-        stderr), 1 when aborted.
+        0 on success; 2 on bad input: a symctl error naming the option, or a
+        NumPy/SciPy/SymPy failure (``ValueError``, ``TypeError``,
+        ``ArithmeticError``, ``MemoryError``, ``RecursionError``) named with
+        the step it stopped and the options that step depends on; 1 on an
+        internal error (any other exception: a bug) or when aborted; 130 on
+        SIGINT (Ctrl-C) and 143 on SIGTERM.
 
     Examples
     --------
@@ -299,21 +372,69 @@ def main(argv: list[str] | None = None) -> int:
     >>> main(["paper", "--realizations", "0"])
     2
     """
+    handlers = {}
+    if threading.current_thread() is threading.main_thread():
+        handlers = {sig: signal.signal(sig, _on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            code = _main(argv)
+        if code == 0:
+            _warned(caught)
+        return code
+    except _Signalled as sig:
+        name = signal.Signals(sig.signum).name
+        _error(f"symctl: interrupted by {name}; nothing written, --out left as it was")
+        return 128 + sig.signum
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
+
+
+def _main(argv: list[str] | None) -> int:
+    try:
+        return _run_cli(argv)
+    except Exception as exc:  # the last resort: one line, not a traceback
+        if os.environ.get("SYMCTL_TRACEBACK"):
+            raise
+        _error(
+            f"symctl: internal error: {type(exc).__name__}: {_first_line(exc)} (a bug in symctl: "
+            "please report it; SYMCTL_TRACEBACK=1 shows the traceback)"
+        )
+        return 1
+
+
+def _run_cli(argv: list[str] | None) -> int:
     try:
         cli.main(args=argv, prog_name="symctl", standalone_mode=False)
     except click.exceptions.Abort:
-        click.echo("symctl: aborted", err=True)
+        _error("symctl: aborted")
         return 1
     except click.ClickException as exc:
-        click.echo(f"symctl: error: {exc.format_message()}".splitlines()[0], err=True)
+        _error(f"symctl: error: {exc.format_message()}")
         return 2
     except SymctlError as exc:  # type errors included
-        click.echo(f"symctl: error: {exc}".splitlines()[0], err=True)
+        _error(f"symctl: error: {exc}")
         return 2
-    except OSError as exc:  # e.g. an --out folder that cannot be written
-        click.echo(f"symctl: error: --out: {exc}".splitlines()[0], err=True)
+    except OSError as exc:  # writing into --out failed (it is left as it was)
+        _error(f"symctl: error: --out: {exc}")
+        return 2
+    except _NUMERICAL as exc:
+        step = getattr(exc, "_symctl_step", None)
+        if step not in _STEP_OPTIONS or os.environ.get("SYMCTL_TRACEBACK"):
+            raise  # not in a step that user input drives: the last resort in _main
+        where = "reading" if step == "options" else f"the {step} step failed on"
+        _error(
+            f"symctl: error: {where} {_STEP_OPTIONS[step]}: {type(exc).__name__}: "
+            f"{_first_line(exc)}"
+        )
         return 2
     return 0
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else "(no message)"
 
 
 def run() -> None:  # pragma: no cover - console-script wrapper

@@ -8,6 +8,8 @@ Modules, lowest first (each imports only those above it in this list):
   LaTeX, Markdown and PDF;
 - ``story``: the derivation told as blocks;
 - ``figures``: the report's figures by name, saved as PNG and SVG;
+- ``output``: an output folder written all at once (checked, locked, staged
+  beside its place, renamed into it when complete);
 - ``results``: ``PaperResults`` (with its records), ``results.json``, and
   ``PaperResults.write`` / ``PaperResults.figure``;
 - ``pipeline``: ``derive_paper``, which runs the derivation and returns a

@@ -387,7 +387,8 @@ def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
     Raises
     ------
     LatexError
-        ``pdflatex`` reported an error (its first error line is in the message).
+        ``pdflatex`` reported an error (its first error line is in the message),
+        could not be run, or took longer than ``PDFLATEX_TIMEOUT`` seconds.
 
     Examples
     --------
@@ -407,10 +408,17 @@ def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
     log = tex.with_suffix(".log")
     passes = 2 if re.search(r"\\(eq)?ref\{", tex.read_text(errors="replace")) else 1
     for _ in range(passes):
-        run = subprocess.run(
-            cmd, cwd=tex.parent, capture_output=True, text=True, timeout=PDFLATEX_TIMEOUT,
-            errors="replace",
-        )  # fmt: skip
+        try:
+            run = subprocess.run(
+                cmd, cwd=tex.parent, capture_output=True, text=True, timeout=PDFLATEX_TIMEOUT,
+                errors="replace",
+            )  # fmt: skip
+        except subprocess.TimeoutExpired:
+            raise LatexError(
+                f"pdflatex did not finish {tex.name} within {PDFLATEX_TIMEOUT} s"
+            ) from None
+        except OSError as exc:  # not executable, vanished
+            raise LatexError(f"pdflatex could not run on {tex.name}: {exc}") from None
         text = log.read_text(errors="replace") if log.exists() else run.stdout
         if run.returncode != 0:
             first = next((ln for ln in text.splitlines() if ln.startswith("!")), "no error line")

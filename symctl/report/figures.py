@@ -43,6 +43,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -187,6 +188,21 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
 _SHARED: dict = {}  # the results a forked worker reads (set by write_figures)
 
 
+def _worker_init() -> None:
+    """A figure worker: Ctrl-C is the parent's to handle, SIGTERM kills, and so does its death."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the terminal sends it to the whole group
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's handler, inherited by fork
+    try:  # Linux: die with the parent even when it is killed outright (no orphans)
+        import ctypes
+
+        pr_set_pdeathsig = 1
+        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL)
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+
+
 def _worker(name: str) -> list[Path]:
     res, out, dpi = _SHARED["job"]
     return save(make_figure(res, name), out, name, dpi=dpi)
@@ -197,7 +213,11 @@ def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = D
 
     Figures are independent, so with ``jobs > 1`` they are drawn in forked
     worker processes, which share ``res`` without copying it; ``jobs=1``, or a
-    platform without ``fork``, draws them here.
+    platform without ``fork``, draws them here. When anything stops the
+    drawing (an error in one figure, ``KeyboardInterrupt``, a signal turned
+    into an exception), every worker is killed and reaped before the exception
+    goes on: none is left running. The workers ignore SIGINT (the parent
+    handles Ctrl-C for them) and, on Linux, die with the parent.
 
     Parameters
     ----------
@@ -243,10 +263,30 @@ def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = D
     _SHARED["job"] = (res, out, dpi)
     try:
         context = multiprocessing.get_context("fork")
-        with ProcessPoolExecutor(min(jobs, len(names)), mp_context=context) as pool:
-            return [p for paths in pool.map(_worker, names) for p in paths]
+        pool = ProcessPoolExecutor(
+            min(jobs, len(names)), mp_context=context, initializer=_worker_init
+        )
+        try:
+            paths = [p for paths in pool.map(_worker, names) for p in paths]
+        except BaseException:
+            _kill(pool)
+            raise
+        pool.shutdown()
+        return paths
     finally:
         _SHARED.clear()
+
+
+def _kill(pool: ProcessPoolExecutor) -> None:
+    """Kill every worker of ``pool`` now and reap it (no waiting for the figures they draw)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in procs:
+        with contextlib.suppress(OSError, ValueError):
+            proc.kill()
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in procs:
+        with contextlib.suppress(OSError, ValueError, AssertionError):
+            proc.join(timeout=5)
 
 
 def _folder(out: Path | str) -> Path:

@@ -36,6 +36,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import descending_str
+from symctl._util.validate import positive_int
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
@@ -52,6 +53,7 @@ from symctl.realization.factorization import Factorization
 from symctl.realization.realization import Realization
 from symctl.report import document, story
 from symctl.report import figures as _figures
+from symctl.report.output import OutputFolder
 from symctl.report.spec import SCHEMA_VERSION
 
 __all__ = ["CircuitRecord", "PaperResults", "RealizationRecord"]
@@ -457,12 +459,20 @@ class PaperResults:
         jobs: int | None = None,
         progress: Callable[[str], None] | None = None,
     ) -> list[Path]:
-        """Write the outputs of ``symctl paper`` into folder ``out``.
+        """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
+
+        The files are written into a fresh folder beside ``out`` and moved into
+        place only when all are written (:class:`~symctl.report.output.OutputFolder`):
+        ``out`` is always either the old complete folder or the new complete
+        one, and on any error it is left as it was. ``out`` is checked before
+        anything is written, and a second run on the same ``out`` is refused
+        while one is under way.
 
         Parameters
         ----------
         out : path
-            The folder (made when missing).
+            The folder: new (made, with its parents), empty, or the folder of
+            an earlier run (replaced).
         figures : bool
             Also write the figures as PNG and SVG (:meth:`figure_names`).
         pdf : bool
@@ -476,30 +486,55 @@ class PaperResults:
         Returns
         -------
         list of Path
-            The files written: ``results.json``, the figures, ``derivation.tex``,
-            ``report.md`` and ``derivation.pdf``.
+            The files written, inside ``out``: ``results.json``, the figures,
+            ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
 
         Raises
         ------
+        SymctlTypeError
+            ``out`` is not a path.
         ParameterError
-            ``jobs`` is not an integer >= 1.
+            ``out`` is empty, a file, a folder holding other files, cannot be
+            made, or is being written by another run; or ``jobs`` is not an
+            integer >= 1.
         LatexError
             ``pdflatex`` failed on ``derivation.tex``.
         OSError
-            ``out`` cannot be written.
+            Writing failed (``out`` is then as it was).
 
         Examples
         --------
         >>> import tempfile
+        >>> from pathlib import Path
         >>> from symctl import derive_paper
-        >>> with tempfile.TemporaryDirectory() as out:
-        ...     paths = derive_paper().write(out, figures=False, pdf=False)
-        ...     [p.name for p in paths]
-        ['results.json', 'derivation.tex', 'report.md']
+        >>> with tempfile.TemporaryDirectory() as parent:
+        ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
+        ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
+        (['results.json', 'derivation.tex', 'report.md'], ['paper'])
+        >>> derive_paper().write("")
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: out: must name a folder, got ''
         """
+        if jobs is not None:
+            positive_int(jobs, "jobs")
+        with OutputFolder(out, "out") as folder:
+            written = self._write_files(
+                folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=progress
+            )
+            return folder.final(written)
+
+    def _write_files(
+        self,
+        out: Path,
+        *,
+        figures: bool = True,
+        pdf: bool = True,
+        jobs: int | None = None,
+        progress: Callable[[str], None] | None = None,
+    ) -> list[Path]:
+        """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`)."""
         step = progress or (lambda _name: None)
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
         written = []
         path = out / "results.json"
         path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")

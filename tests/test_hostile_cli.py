@@ -1,0 +1,172 @@
+"""Hostile command lines: one line on stderr, never a traceback or a NumPy warning, exit 2.
+
+Issue 12, class 5 (and the CLI side of class 4). A symctl error names the option;
+a NumPy/SciPy/SymPy exception that bad input causes (``TypeError``,
+``LinAlgError``, ``MemoryError``, ``OverflowError``, ...) is one line naming the
+step it stopped and the options that step depends on, exit 2; any other exception
+is one line ``symctl: internal error: ...``, exit 1; warnings of a successful
+run are one line ``symctl: warning: ...``.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+from symctl.cli import main
+from symctl.errors import ParameterError
+
+CLASS = "5"
+
+HOSTILE = [
+    # (the options, a word the one line must hold)
+    (["--q", "1e9999"], "--q"),
+    (["--r", "1e9999"], "--r"),
+    (["--q", "0", "--r", "0"], ("--r", "R:")),
+    (["--seed", "-1"], "seed"),
+    (["--seed", "1e3"], "seed"),
+    (["--q", "nan"], "--q"),
+    (["--q", "inf"], "--q"),
+    (["--r", "-inf"], "--r"),
+    (["--q", "1/0"], ("Q", "--q")),
+    (["--q", "-1"], ("Q", "--q")),
+    (["--q", "[[1]"], "--q"),
+    (["--r", ""], "--r"),
+    (["--q", "[[1, 2]]"], ("Q", "--q")),
+    (["--tau", "nan"], "tau"),
+    (["--f-max", "nan"], "f_max"),
+    (["--ts", "inf"], "Ts"),
+    (["--ts", "1e-300"], ""),
+    (["--f-max", "1e308"], ""),  # ten NumPy warnings before the error: none may show
+    (["--q", "1e300"], ""),
+    (["--tau", "1e-300"], ""),
+    (["--actuator-delay", "-1"], "actuator_delay"),
+    (["--jobs", "-1"], "jobs"),
+    (["--out", ""], "--out"),
+    (["--realizations", "-5"], "realizations"),
+]
+
+
+def _one_line(err: str) -> str:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert "Traceback" not in err and ".py:" not in err, err  # no traceback, no shown warning
+    return lines[0]
+
+
+def _names(line: str, word: str | tuple) -> bool:
+    """The line names the option (any of several spellings: the CLI's or the library's)."""
+    return any(w in line for w in ((word,) if isinstance(word, str) else word))
+
+
+@pytest.mark.parametrize("args, word", HOSTILE, ids=[" ".join(a) for a, _ in HOSTILE])
+def test_hostile_options_give_one_line_and_exit_2(tmp_path, capfd, args, word):
+    code = main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf", *args])
+    line = _one_line(capfd.readouterr().err)
+    assert code == 2 and line.startswith("symctl: error:") and _names(line, word), line
+    assert not (tmp_path / "out").exists() and list(tmp_path.iterdir()) == []
+
+
+CONSOLE = [
+    (["--q", "0", "--r", "0"], ("--r", "R:")),
+    (["--q", "1e9999"], "--q"),
+    (["--f-max", "1e308"], ""),  # ten NumPy/SciPy warnings reached stderr before the error
+    (["--sensor-delay", "1000000"], "sensor"),  # a MemoryError today, a limit upstream
+]
+
+
+@pytest.mark.parametrize("args, word", CONSOLE, ids=[" ".join(a) for a, _ in CONSOLE])
+def test_the_console_script_prints_no_traceback(tmp_path, args, word):
+    cmd = [sys.executable, "-m", "symctl.cli", "paper", "--out", str(tmp_path / "out")]
+    proc = subprocess.run(
+        [*cmd, "--no-figures", "--no-pdf", *args],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    line = _one_line(proc.stderr)
+    assert proc.returncode == 2 and line.startswith("symctl: error:") and _names(line, word), line
+
+
+# ---------------------------------------------------------------- foreign exceptions
+def _raises(exc: BaseException, where: str = "symctl.report.pipeline.lqr_gains"):
+    def fake(*args, **kwargs):
+        raise exc
+
+    return where, fake
+
+
+FOREIGN = {
+    "LinAlgError in LQR": (np.linalg.LinAlgError("Singular matrix"), "lqr_gains", 2, "LQR"),
+    "OverflowError in G(z)": (OverflowError("int too large"), "controller_tf", 2, "G(z)"),
+    "MemoryError in the delays": (MemoryError(), "augment", 2, "--sensor-delay"),
+    "ValueError in the simulation": (ValueError("x"), "circuit_firing", 2, "--realizations"),
+    "RecursionError in the factors": (RecursionError("depth"), "factor", 2, "factorization"),
+    "ZeroDivisionError in the plant": (ZeroDivisionError("0"), "MuscleModel", 2, "--tau"),
+    "AttributeError (a bug)": (AttributeError("'NoneType' has no 'x'"), "lqr_gains", 1, "internal"),
+    "KeyError (a bug)": (KeyError("K_0"), "controller_tf", 1, "internal error: KeyError"),
+}
+
+
+@pytest.mark.parametrize("case", list(FOREIGN))
+def test_a_foreign_exception_is_one_line_naming_the_step(tmp_path, capfd, monkeypatch, case):
+    exc, name, code, word = FOREIGN[case]
+    monkeypatch.setattr(*_raises(exc, f"symctl.report.pipeline.{name}"))
+    assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]) == code
+    line = _one_line(capfd.readouterr().err)
+    assert line.startswith("symctl: error:" if code == 2 else "symctl: internal error:")
+    assert word in line and type(exc).__name__ in line, line
+    assert list(tmp_path.iterdir()) == []  # nothing staged, no lock left
+
+
+def test_symctl_traceback_shows_the_traceback_of_a_bug(tmp_path, monkeypatch):
+    monkeypatch.setenv("SYMCTL_TRACEBACK", "1")
+    monkeypatch.setattr(*_raises(AttributeError("a bug")))
+    with pytest.raises(AttributeError, match="a bug"):
+        main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"])
+
+
+# ---------------------------------------------------------------- warnings
+def _warning_derivation(fail: bool):
+    from symctl.report import pipeline
+
+    real = pipeline.derive_paper
+
+    def derive(**kwargs):
+        with np.errstate(over="warn", invalid="warn"):
+            np.exp(np.array([1000.0]))  # RuntimeWarning: overflow encountered in exp
+            np.array([np.inf]) - np.array([np.inf])  # RuntimeWarning: invalid value
+        warnings.warn("a SciPy-like warning", UserWarning, stacklevel=1)
+        if fail:
+            raise ParameterError("R: no stabilizing DARE solution")
+        return real(**kwargs)
+
+    return derive
+
+
+def test_warnings_of_a_successful_run_are_one_line(tmp_path, capfd, monkeypatch):
+    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _warning_derivation(False))
+    args = ["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]
+    assert main([*args, "--realizations", "1"]) == 0
+    line = _one_line(capfd.readouterr().err)
+    assert line.startswith("symctl: warning: RuntimeWarning: overflow encountered in exp")
+    assert "(and 2 other warnings)" in line
+
+
+def test_warnings_before_an_error_do_not_show(tmp_path, capfd, monkeypatch):
+    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _warning_derivation(True))
+    assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]) == 2
+    assert _one_line(capfd.readouterr().err) == "symctl: error: R: no stabilizing DARE solution"
+
+
+def test_main_restores_the_signal_handlers_it_installs(tmp_path):
+    import signal
+
+    before = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    main(["paper", "--out", str(tmp_path / "out"), "--tau", "0"])
+    assert {s: signal.getsignal(s) for s in before} == before
