@@ -90,6 +90,8 @@ _PUBLIC = {
     "open_loop_response": "symctl.neural.simulate",
     "pulse": "symctl.neural.simulate",
     "simulate_realization": "symctl.neural.simulate",
+    "LoopStability": "symctl.neural.stability",
+    "loop_stability": "symctl.neural.stability",
     # 6. report: the whole derivation
     "PaperResults": "symctl.report.results",
     "derive_paper": "symctl.report.pipeline",

@@ -45,6 +45,7 @@ from symctl.design.controller import ifp_state_space
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.realization.check import require_stable_sections
 from symctl.realization.realization import (
     Realization,
     controllable_canonical,
@@ -218,6 +219,7 @@ def _eps_range(value) -> tuple[float, float]:
         raise ParameterError(f"eps_range: needs low <= high, got {value!r}")
     if max(abs(low), abs(high)) > 1e6:
         raise ParameterError(f"eps_range: bounds must lie in [-1e6, 1e6], got {value!r}")
+    require_stable_sections((low, high), "eps_range")  # |eps| >= 1 is a hidden unstable mode
     return low, high
 
 
@@ -362,14 +364,20 @@ def random_realization(
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
-        Interval of the epsilons.
+        Interval of the epsilons: each is an exact multiple of 1/1000 drawn uniformly
+        from [low, high] (both ends included); default (-0.9, 0.9). Both ends must lie
+        in (-1, 1): a section C/(z - epsilon) with |epsilon| >= 1 is unstable and
+        G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit would be
+        internally unstable although its transfer function is right.
     values : dict, optional
         Values substituted first.
 
     Returns
     -------
     Realization
-        With the epsilons and ``P`` used in ``.params``.
+        With the epsilons and ``P`` used in ``.params``. ``P`` has entries
+        round(100 N(0, 1))/100 (exact rationals), redrawn until its condition
+        number is below 10.
 
     Raises
     ------

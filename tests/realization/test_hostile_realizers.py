@@ -59,3 +59,11 @@ def test_general_realization_refuses_a_negative_seed_through_its_realizer():
 def test_values_by_name_and_text_are_substituted():
     R = random_realization(G2, 0, values={"K_0": "1/2", "C_1": 1, "C_3": "1"})
     assert {s.name for s in R.free_symbols} == {"K_1", "K_2"}
+
+
+@pytest.mark.parametrize("eps_range", [(-1.5, 0.5), (-0.5, 1.0), (1.0, 2.0)])
+def test_random_realization_refuses_hidden_unstable_sections(eps_range):
+    from symctl import controller_tf, factor, random_realization
+
+    with pytest.raises(ParameterError, match=r"eps_range: .* has \|epsilon\| >= 1"):
+        random_realization(factor(controller_tf(2)).G2, rng=0, eps_range=eps_range)
