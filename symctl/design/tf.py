@@ -336,15 +336,14 @@ class DiscreteTF(LatexMixin):
         return out
 
     @staticmethod
-    def _floats(coeffs) -> np.ndarray:
+    def _floats(coeffs, kind=float, what: str = "coefficients must be real numbers") -> np.ndarray:
+        """``coeffs`` as a finite NumPy array of ``kind``; a ParameterError naming G otherwise."""
         try:
-            arr = np.array([float(c) for c in coeffs])
+            arr = np.array([kind(c) for c in coeffs])
         except (TypeError, OverflowError):
-            raise ParameterError(
-                f"G: coefficients must be real numbers a float can hold, got {coeffs}"
-            ) from None
+            raise ParameterError(f"G: {what} a float can hold, got {coeffs}") from None
         if not np.all(np.isfinite(arr)):
-            raise ParameterError(f"G: coefficients too large for a float, got {coeffs}")
+            raise ParameterError(f"G: {what} a float can hold (finite), got {coeffs}")
         return arr
 
     def lambdify(self, symbols=(), modules="numpy"):
@@ -364,14 +363,7 @@ class DiscreteTF(LatexMixin):
         """Numeric roots of the denominator."""
         if self.free_symbols:
             raise ParameterError("G: poles need numeric coefficients")
-        try:
-            coeffs = np.array([complex(c) for c in self.den_coeffs()])
-        except (TypeError, OverflowError):
-            raise ParameterError(
-                f"G: poles need coefficients a float can hold, got {self.den_coeffs()}"
-            ) from None
-        if not np.all(np.isfinite(coeffs)):
-            raise ParameterError(f"G: poles need finite coefficients, got {self.den_coeffs()}")
+        coeffs = self._floats(self.den_coeffs(), complex, "poles need coefficients")
         return np.roots(coeffs)
 
     # ------------------------------------------------------------ interop
