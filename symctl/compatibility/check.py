@@ -37,6 +37,7 @@ from types import MappingProxyType
 import numpy as np
 
 from symctl._util.display import LatexMixin
+from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.csp import build_problem, explain, solve_chain, solve_search
 from symctl.compatibility.delaygraph import DelayGraph
@@ -164,8 +165,16 @@ def _check_args(structure, graph):
         raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
 
 
+MAX_DECISIONS = 1_000_000
+"""Default bound on the backtracking search's decisions (:func:`check_compatibility`)."""
+
+
 def check_compatibility(
-    structure: Structure, graph: DelayGraph, *, method: str = "auto"
+    structure: Structure,
+    graph: DelayGraph,
+    *,
+    method: str = "auto",
+    max_decisions: int = MAX_DECISIONS,
 ) -> CompatibilityResult:
     r"""Decide whether a structure is compatible with a delay graph, with a witness or a proof.
 
@@ -178,6 +187,9 @@ def check_compatibility(
         time), otherwise arc consistency + backtracking (exact, exponential in
         the worst case). ``"brute-force"`` enumerates every assignment (small
         structures only; ``"brute force"`` is accepted too).
+    max_decisions : int, default :data:`MAX_DECISIONS`
+        Bound on the search's decisions (branchings), so that the work is
+        bounded; the chain method is polynomial and needs none.
 
     Returns
     -------
@@ -190,7 +202,8 @@ def check_compatibility(
     SymctlTypeError
         ``structure`` is not a Structure or ``graph`` not a DelayGraph.
     ParameterError
-        ``method="chain"`` for a graph that is not a chain, or an unknown method.
+        ``method="chain"`` for a graph that is not a chain, or an unknown method;
+        a search that needs more than ``max_decisions`` decisions (not decided).
 
     Examples
     --------
@@ -210,6 +223,7 @@ def check_compatibility(
     symctl.errors.ParameterError: limit: brute force needs 3^20 assignments, more than 2000000
     """
     _check_args(structure, graph)
+    max_decisions = positive_int(max_decisions, "max_decisions")
     if isinstance(method, str):
         method = _ALIASES.get(method, method)
     if method not in METHODS:
@@ -225,7 +239,7 @@ def check_compatibility(
     if chain is not None and method in ("auto", "chain"):
         place, core = solve_chain(problem, *chain)
         return _result(structure, graph, place, "chain: bounds arc consistency", {}, problem, core)
-    place, pruning, stats = solve_search(problem)
+    place, pruning, stats = solve_search(problem, max_decisions)
     name = (
         f"search: arc consistency + backtracking ({stats['decisions']} decisions, "
         f"{stats['backtracks']} backtracks)"

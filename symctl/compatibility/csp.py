@@ -364,7 +364,10 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
             v = values.pop(0)
             stats["decisions"] += 1
             if max_decisions is not None and stats["decisions"] > max_decisions:
-                raise ParameterError(f"max_decisions: search exceeded {max_decisions} decisions")
+                raise ParameterError(
+                    f"max_decisions: the search stopped after {max_decisions} decisions "
+                    "without a verdict (not decided); raise max_decisions to search further"
+                )
             x = order[p]
             trail.append((x, doms[x]))
             doms[x] = 1 << v

@@ -68,6 +68,8 @@ from symctl.symbols import gain_symbols
 __all__ = ["KINDS", "Block", "Structure", "ifp_structure", "same_structure"]
 
 KINDS = ("input", "gain", "sum", "delay")
+MAX_SIGNALS = 1_000_000
+"""Most signals (blocks) of one structure: every algorithm on it is then bounded."""
 """The block kinds of a structure."""
 
 
@@ -158,6 +160,10 @@ class Structure(LatexMixin):
         if not isinstance(blocks, Mapping):
             raise SymctlTypeError(
                 f"blocks: expected a mapping of signal names to blocks, got {type(blocks).__name__}"
+            )
+        if len(blocks) > MAX_SIGNALS:
+            raise ParameterError(
+                f"blocks: a structure has at most {MAX_SIGNALS} signals, got {len(blocks)}"
             )
         clean: dict[str, Block] = {}
         for name, value in blocks.items():

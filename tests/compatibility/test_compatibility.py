@@ -310,3 +310,19 @@ def test_controller_compatibility_is_a_truthy_value():
     assert yes != no
     with pytest.raises(AttributeError):
         yes.ok = False
+
+
+def test_search_work_is_bounded_by_max_decisions():
+    rng = np.random.default_rng(7)
+    for _ in range(200):  # a search that needs at least two decisions
+        S, E = random_structure(rng), random_graph(rng, chain=False)
+        r = check_compatibility(S, E, method="search")
+        if "search" in r.method and r.stats.get("decisions", 0) >= 2:
+            break
+    else:  # pragma: no cover - the seed gives one
+        pytest.fail("no instance needing two decisions")
+    with pytest.raises(ParameterError, match="max_decisions: the search stopped after 1 "):
+        check_compatibility(S, E, method="search", max_decisions=1)
+    assert bool(check_compatibility(S, E, method="search", max_decisions=10**6)) == bool(r)
+    with pytest.raises(SymctlTypeError, match="max_decisions"):
+        check_compatibility(S, E, max_decisions=1.5)

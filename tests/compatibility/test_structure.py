@@ -284,3 +284,12 @@ def test_the_structure_graph_is_frozen():
         g.add_edge("x", "u")
     with pytest.raises(TypeError):
         ifp_structure(2).signal_graph.index["x"] = 5
+
+
+def test_structure_size_is_bounded(monkeypatch):
+    import symctl.compatibility.structure as structure_module
+
+    monkeypatch.setattr(structure_module, "MAX_SIGNALS", 3)
+    blocks = {"u": Block("input"), **{f"g{k}": Block("gain", ("u",), 1) for k in range(3)}}
+    with pytest.raises(ParameterError, match="blocks: a structure has at most 3 signals, got 4"):
+        Structure(blocks, ["u"], ["g0"])
