@@ -281,6 +281,14 @@ def main() -> None:
         ".3f",
     )
     exponents(full, STEPS, "T")
+    last = max((T for T, got in full.items() if got), default=None)
+    if last is not None:
+        total = sum(v[0] for v in full[last].values())
+        ranked = sorted(full[last].items(), key=lambda kv: -kv[1][0])
+        print(
+            f"where the time goes at T = {last} ({total:.1f} s): "
+            + ", ".join(f"{s} {100 * v[0] / total:.0f}%" for s, v in ranked[:5])
+        )
     print()
     table("peak RSS [MB] during each step", full, STEPS, "T", 1, ".0f")
     print()
