@@ -35,6 +35,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/compatibility.py
 	$(BIN)/python benchmarks/simulate.py
 	$(BIN)/python benchmarks/paper.py
+	$(BIN)/python benchmarks/scaling.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis
