@@ -15,6 +15,12 @@ trusted: :func:`prove_controller_tf` checks the polynomial identity
 :math:`(zI - F_c)\,W(z) = H_c \det D(z)` against the controller's own
 state-space matrices read off the augmented system.
 
+For several inputs, :math:`\operatorname{adj} D` and :math:`\det D` are computed
+fraction-free (memoized Laplace minors, no division) in :math:`\mathbb{Z}[z, K]`
+for symbolic gains, or exactly in :math:`\mathbb{Q}[z]` from the floats of numeric
+gains (rounded once at the end), and the proof multiplies out in the same ring
+instead of inverting.
+
 Those matrices, the paper's IFP controller (eqs. augmented_states,
 ifp_controller), are built in ONE place, :func:`ifp_state_space`, for symbolic
 gain blocks (here) and for numeric gains
