@@ -21,6 +21,7 @@ from symctl import (
     prove_controller_tf,
     z,
 )
+from symctl.design.controller import ifp_state_space
 from symctl.symbols import gain_symbols
 
 
@@ -155,3 +156,67 @@ def test_proof_of_the_controller_is_a_result_with_its_evidence():
     refuted = prove_controller_tf(aug, 2 * controller_tf(aug))
     assert not refuted and refuted == False  # noqa: E712
     assert refuted.evidence and refuted.evidence != "0"
+
+
+# ---------------------------------------------------------------- MIMO (issue 13)
+def _generic_inverse_controller(T, m, n):
+    """Today's (before issue 13) MIMO controller: SymPy's adjugate of D(z), expanded."""
+    from symctl.symbols import gain_matrix_symbols
+
+    blocks = gain_matrix_symbols(T, m, n)
+    D = z**T * sp.eye(m)
+    for k in range(1, T + 1):
+        D = D - blocks[k] * z ** (T - k)
+    return (D.adjugate() * blocks[0]).applyfunc(sp.expand), sp.expand(D.det())
+
+
+@pytest.mark.parametrize("n, m, ds, da", [(2, 2, 1, 1), (1, 3, 0, 1), (2, 3, 1, 0)])
+def test_mimo_fraction_free_controller_equals_the_generic_inverse(n, m, ds, da):
+    rng = np.random.default_rng(n + 10 * m)
+    aug = augment(random_plant(rng, n, m), ds, da)
+    G = controller_tf(aug)
+    num, den = _generic_inverse_controller(aug.T, m, n)
+    assert sp.expand(G.den - den) == 0
+    assert all(sp.expand(a - b) == 0 for a, b in zip(G.num_matrix, num, strict=True))
+    assert G.equals(num / den)
+    assert G.relative_degree == aug.T
+    assert prove_controller_tf(aug, G)
+
+
+def test_mimo_ring_proof_rejects_a_wrong_controller():
+    aug = augment(random_plant(np.random.default_rng(1), 2, 2), 1, 1)
+    G = controller_tf(aug)
+    wrong = DiscreteTF(G.num_matrix.subs(z, z + 1), G.den)
+    proof = prove_controller_tf(aug, wrong)
+    assert not proof and "Z[z, K]" in proof.method and proof.evidence
+    assert not prove_controller_tf(aug, 2 * G)
+
+
+@pytest.mark.parametrize("n, m, ds, da", [(3, 4, 1, 1), (2, 3, 1, 2), (3, 6, 1, 2)])
+def test_mimo_numeric_controller_matches_the_state_space_of_python_control(n, m, ds, da):
+    rng = np.random.default_rng(7 * m + n)
+    aug = augment(random_plant(rng, n, m), ds, da)
+    gains = lqr_gains(aug)
+    G = controller_tf(gains)
+    assert G.shape == (m, n) and G.relative_degree == aug.T
+    F, H, M, N = ifp_state_space(
+        np.array(aug.A, float), np.array(aug.B, float), gains.K, n, m, aug.T
+    )
+    ss = control.ss(F, H, M, N, True)
+    for zk in (1.3 + 0.4j, -0.7 + 1.1j, 2.0):
+        want = ss(zk)
+        num = np.array(G.num_matrix.subs(z, zk).evalf(), dtype=complex)
+        got = num / complex(G.den.subs(z, zk))
+        assert np.allclose(got, want, rtol=1e-8, atol=1e-10)
+
+
+def test_mimo_numeric_controller_equals_substituting_the_symbolic_one():
+    aug = augment(random_plant(np.random.default_rng(3), 2, 2), 1, 1)
+    gains = lqr_gains(aug)
+    fast = controller_tf(gains)
+    slow_num, slow_den = _generic_inverse_controller(aug.T, 2, 2)
+    rule = gains.substitutions()
+    slow_den = sp.Poly(slow_den.subs(rule), z).all_coeffs()
+    assert np.allclose(np.array(fast.den_coeffs(), float), np.array(slow_den, float), atol=1e-12)
+    for a, b in zip(fast.num_matrix, slow_num.subs(rule), strict=True):
+        assert abs(float(sp.expand(a - b).subs(z, 0.9))) < 1e-12
