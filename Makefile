@@ -36,6 +36,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/simulate.py
 	$(BIN)/python benchmarks/paper.py
 	$(BIN)/python benchmarks/scaling.py
+	$(BIN)/python benchmarks/mimo.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis
