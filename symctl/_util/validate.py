@@ -19,6 +19,7 @@ symctl.errors.DimensionError: B: expected shape (2, 1), got (1, 2)
 
 from __future__ import annotations
 
+import cmath
 import math
 import numbers
 from collections.abc import Mapping
@@ -159,18 +160,20 @@ def nonneg_int(value, argname: str) -> int:
     ...
     symctl.errors.SymctlTypeError: sensor_delay: expected an integer, got 1.5
     """
-    _integer(value, argname)
-    if value < 0:
-        raise ParameterError(f"{argname}: must be an integer >= 0, got {value!r}")
-    return int(value)
+    return bounded_int(value, argname, 0, math.inf)
 
 
 def as_generator(value, argname: str) -> np.random.Generator:
-    """A NumPy ``Generator`` from a Generator, an int seed or None (fresh entropy)."""
+    """A NumPy ``Generator`` from a Generator, an int seed >= 0 or None (fresh entropy).
+
+    A negative seed is a :class:`ParameterError` (NumPy's own would be a ``ValueError``).
+    """
     if isinstance(value, np.random.Generator):
         return value
-    if value is None or (isinstance(value, numbers.Integral) and not isinstance(value, bool)):
-        return np.random.default_rng(value)
+    if value is None:
+        return np.random.default_rng()
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return np.random.default_rng(nonneg_int(value, argname))
     raise SymctlTypeError(f"{argname}: expected an int seed or a numpy Generator, got {value!r}")
 
 
@@ -247,10 +250,7 @@ def positive_int(value, argname: str) -> int:
     ...
     symctl.errors.ParameterError: steps: must be an integer >= 1, got 0
     """
-    _integer(value, argname)
-    if value < 1:
-        raise ParameterError(f"{argname}: must be an integer >= 1, got {value!r}")
-    return int(value)
+    return bounded_int(value, argname, 1, math.inf)
 
 
 def float_array(value, argname: str) -> np.ndarray:
@@ -535,8 +535,6 @@ def finite_expr(expr, argname: str):
 
 def cmath_isfinite(value) -> bool:
     """``math.isfinite`` for real and complex numbers."""
-    import cmath
-
     return cmath.isfinite(complex(value))
 
 

@@ -41,7 +41,6 @@ realization, no free parameters): its one neuron :math:`\mu` of
 
 from __future__ import annotations
 
-import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -54,7 +53,6 @@ from symctl._util.validate import (
     MAX_CIRCUITS,
     as_generator,
     bounded_int,
-    nonneg_int,
     positive_number,
     read_only,
 )
@@ -476,8 +474,6 @@ def circuit_firing(
     gains = _gains(gains, kind)
     plant = _plant(plant, gains)
     count = _count(count, kind)
-    if not isinstance(seed, bool) and isinstance(seed, numbers.Integral):
-        nonneg_int(seed, "seed")  # NumPy refuses negative seeds with its own ValueError
     gen = as_generator(seed, "seed")
     rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}

@@ -33,7 +33,6 @@ unknown). The optimal controller's own state space, the IFP structure, is
 
 from __future__ import annotations
 
-import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -166,7 +165,7 @@ class _General(Realizer):
         if start.n == 0:
             return _identity(start, tf)
         if P is None:
-            P = random_full_rank(start.n, _generator(rng))
+            P = random_full_rank(start.n, as_generator(rng, "rng"))
         return _transformed(start, tf, P)
 
 
@@ -182,7 +181,7 @@ class _Random(Realizer):
         values: dict | None = None,
     ) -> RealizerResult:
         """The paper's recipe (:func:`random_realization`)."""
-        gen = _generator(rng)
+        gen = as_generator(rng, "rng")
         low, high = _eps_range(eps_range)
         tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
         if values is not None and not isinstance(values, Mapping):
@@ -201,13 +200,6 @@ class _Random(Realizer):
         R = out.realization
         R = Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
         return RealizerResult(out.sys, out.base, out.P, out.Pinv, R)
-
-
-def _generator(rng) -> np.random.Generator:
-    """``rng`` as a Generator; a negative seed is a ParameterError (NumPy's would be a ValueError)."""
-    if isinstance(rng, numbers.Integral) and not isinstance(rng, bool) and rng < 0:
-        raise ParameterError(f"rng: a seed must be an integer >= 0, got {rng!r}")
-    return as_generator(rng, "rng")
 
 
 def _eps_range(value) -> tuple[float, float]:

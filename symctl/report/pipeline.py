@@ -16,7 +16,6 @@ Examples
 
 from __future__ import annotations
 
-import numbers
 from collections.abc import Callable
 
 import sympy as sp
@@ -36,7 +35,7 @@ from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
-from symctl.errors import ParameterError, SymctlTypeError
+from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import circuit_firing
 from symctl.neural.nonlinear import nonlinear_check
@@ -117,8 +116,6 @@ def derive_paper(
     symctl.errors.ParameterError: sensor_delay, actuator_delay: the derivation needs a net delay ...
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
-        raise SymctlTypeError(f"seed: expected an integer, got {seed!r}")
     seed = nonneg_int(seed, "seed")
     realizations = bounded_int(realizations, "realizations", 1, MAX_CIRCUITS)
     delays = nonneg_int(sensor_delay, "sensor_delay"), nonneg_int(actuator_delay, "actuator_delay")
