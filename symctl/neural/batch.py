@@ -33,6 +33,7 @@ from symctl.errors import DimensionError
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
+    UNIT_CIRCLE,
     _closed_loop_matrices,
     _plant,
     _refuse_unstable,
@@ -122,12 +123,15 @@ def _charpoly(A: np.ndarray) -> np.ndarray:
 
 
 def _schur_stable(A: np.ndarray) -> np.ndarray:
-    r"""Whether every eigenvalue of each ``A[:, :, r]`` is inside the unit circle (Schur-Cohn test).
+    r"""Whether every eigenvalue of each ``A[:, :, r]`` has modulus below ``UNIT_CIRCLE``.
 
-    Reduces :math:`p(z) = \sum a_i z^i` to :math:`(a_d p(z) - a_0 p^*(z))/z` while
-    :math:`|a_0| < |a_d|` (the reflection coefficient); vectorized over ``r``.
+    The Schur-Cohn test on :math:`p(\rho z)`, :math:`\rho` = ``UNIT_CIRCLE`` (so the
+    threshold is the eigenvalue path's): reduces :math:`p(z) = \sum a_i z^i` to
+    :math:`(a_d p(z) - a_0 p^*(z))/z` while :math:`|a_0| < |a_d|` (the reflection
+    coefficient); vectorized over ``r``.
     """
     a = _charpoly(A)
+    a = a * (UNIT_CIRCLE ** np.arange(a.shape[0]))[:, None]
     ok = np.ones(a.shape[1], dtype=bool)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for d in range(a.shape[0] - 1, 0, -1):
@@ -138,15 +142,18 @@ def _schur_stable(A: np.ndarray) -> np.ndarray:
     return ok
 
 
-def _batch_stability(Acl: np.ndarray, argname: str) -> None:
-    """Refuse an unstable loop among many: eigenvalues up to ``_EIG_LIMIT``, Schur-Cohn above."""
+def _batch_stability(Acl: np.ndarray, argname: str, n: int) -> None:
+    """Refuse an unstable loop among many: eigenvalues up to ``_EIG_LIMIT``, Schur-Cohn above.
+
+    ``n`` (the plant's states) lets the message name a hidden mode of the controller.
+    """
     count = Acl.shape[-1]
     if count <= _EIG_LIMIT:
-        _stability(Acl, argname)
+        _stability(Acl, argname, n)
         return
     # in chunks, whose temporaries stay small
     bad = np.flatnonzero(~np.concatenate([_schur_stable(Acl[..., c]) for c in _chunks(count)]))
-    _refuse_unstable(Acl, bad, argname)
+    _refuse_unstable(Acl, bad, argname, n)
 
 
 def _in_chunks(run, count: int) -> int:
@@ -246,7 +253,7 @@ def simulate_batch(
             raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
     Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
     if check_stability:
-        _batch_stability(Acl, "F, H, M, N")
+        _batch_stability(Acl, "F, H, M, N", p.n)
     df, dr, xc = _run(Acl, Cr, p.n, w, states=states, schedule=_in_chunks)
     t = np.arange(w.shape[-2]) * _ts(p)
     for arr in (df, dr) if xc is None else (df, dr, xc):

@@ -89,6 +89,12 @@ def test_schur_cohn_agrees_with_eigenvalues():
     np.testing.assert_array_equal(stable[clear], (radii < 1)[clear])
 
 
+def test_schur_cohn_has_the_eigenvalue_paths_margin():
+    # a marginal mode that rounds inside the unit circle is unstable on both paths
+    A = np.array([[[1 - 1e-11]], [[1 - 1e-6]]])
+    np.testing.assert_array_equal(_schur_stable(np.moveaxis(A, 0, -1)), [False, True])
+
+
 def test_batch_refuses_an_unstable_loop_among_many():
     F = np.zeros((3000, 1, 1))
     H = np.full((3000, 1, 1), -0.05)
