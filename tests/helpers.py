@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from symctl import Block, DelayGraph, ParameterError, Structure
+
 
 def random_plant(rng: np.random.Generator, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     """A random plant, controllable with probability one."""
@@ -23,3 +25,49 @@ def paper_assignment(S) -> dict[str, int]:
         else:
             vertex[name] = 2
     return vertex
+
+
+def rel_err(a: np.ndarray, b: np.ndarray) -> float:
+    """``max |a - b| / max |b|``."""
+    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+def random_structure(rng, max_signals: int = 7) -> Structure:
+    """A random well-posed SISO structure with up to ``max_signals`` signals besides u."""
+    while True:
+        k = int(rng.integers(1, max_signals))
+        names = ["u"] + [f"s{i}" for i in range(1, k + 1)]
+        kinds = ["input"] + [
+            str(rng.choice(["gain", "sum", "delay"], p=[0.35, 0.3, 0.35])) for _ in range(k)
+        ]
+        delays = [names[j] for j in range(1, k + 1) if kinds[j] == "delay"]
+        blocks = {"u": Block("input")}
+        for i in range(1, k + 1):
+            pool = names[:i] + [d for d in delays if d != names[i] or kinds[i] == "delay"]
+            if kinds[i] in ("gain", "delay"):
+                ins = (str(rng.choice(pool)),)
+            else:
+                ins = tuple(dict.fromkeys(str(rng.choice(pool)) for _ in range(rng.integers(4))))
+            blocks[names[i]] = Block(kinds[i], ins, 2 if kinds[i] == "gain" else None)
+        out = str(rng.choice(names[1:])) if rng.random() > 0.03 else "u"
+        try:
+            return Structure(blocks, "u", out)
+        except ParameterError:  # an algebraic loop: draw again
+            continue
+
+
+def random_graph(rng, chain: bool) -> DelayGraph:
+    n = int(rng.integers(2, 5))
+    if chain:
+        return DelayGraph.chain([int(d) for d in rng.integers(0, 3, n - 1)])
+    while True:
+        edges = [
+            (i, j, int(rng.integers(0, 3)))
+            for i in range(1, n + 1)
+            for j in range(1, n + 1)
+            if i != j and rng.random() < 0.4
+        ]
+        try:
+            return DelayGraph.from_edges(n, edges)
+        except ParameterError:  # no source or no sink: draw again
+            continue

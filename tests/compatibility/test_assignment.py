@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from helpers import paper_assignment
+from helpers import paper_assignment, random_graph, random_structure
 
 from symctl import ParameterError, controllable_canonical, controller_tf, factor
 from symctl.compatibility.assignment import DelayAssignment
@@ -65,8 +65,6 @@ def test_assignment_validation():
 
 def test_both_readings_give_the_same_verdict_on_shortest_path_closures():
     """Thousands of random assignments of random structures on random closed graphs."""
-    from compatibility.test_compatibility import random_graph, random_structure
-
     rng = np.random.default_rng(7)
     checked = differ = 0
     while checked < 1500:

@@ -8,7 +8,7 @@ import time
 import numpy as np
 import pytest
 import sympy as sp
-from helpers import paper_assignment
+from helpers import paper_assignment, random_graph, random_structure
 
 from symctl import (
     ParameterError,
@@ -24,53 +24,11 @@ from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import METHODS, brute_force_compatibility, check_compatibility
 from symctl.compatibility.controller import controller_compatibility
 from symctl.compatibility.delaygraph import DelayGraph
-from symctl.compatibility.structure import Block, Structure, ifp_structure
+from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.realization.realization import first_order_realization
 
 NEUROMUSCULAR = DelayGraph.chain([1, 1])
 F = factor(controller_tf(2))
-
-
-# ---------------------------------------------------------------- random instances
-def random_structure(rng, max_signals: int = 7) -> Structure:
-    """A random well-posed SISO structure with up to ``max_signals`` signals besides u."""
-    while True:
-        k = int(rng.integers(1, max_signals))
-        names = ["u"] + [f"s{i}" for i in range(1, k + 1)]
-        kinds = ["input"] + [
-            str(rng.choice(["gain", "sum", "delay"], p=[0.35, 0.3, 0.35])) for _ in range(k)
-        ]
-        delays = [names[j] for j in range(1, k + 1) if kinds[j] == "delay"]
-        blocks = {"u": Block("input")}
-        for i in range(1, k + 1):
-            pool = names[:i] + [d for d in delays if d != names[i] or kinds[i] == "delay"]
-            if kinds[i] in ("gain", "delay"):
-                ins = (str(rng.choice(pool)),)
-            else:
-                ins = tuple(dict.fromkeys(str(rng.choice(pool)) for _ in range(rng.integers(4))))
-            blocks[names[i]] = Block(kinds[i], ins, 2 if kinds[i] == "gain" else None)
-        out = str(rng.choice(names[1:])) if rng.random() > 0.03 else "u"
-        try:
-            return Structure(blocks, "u", out)
-        except ParameterError:  # an algebraic loop: draw again
-            continue
-
-
-def random_graph(rng, chain: bool) -> DelayGraph:
-    n = int(rng.integers(2, 5))
-    if chain:
-        return DelayGraph.chain([int(d) for d in rng.integers(0, 3, n - 1)])
-    while True:
-        edges = [
-            (i, j, int(rng.integers(0, 3)))
-            for i in range(1, n + 1)
-            for j in range(1, n + 1)
-            if i != j and rng.random() < 0.4
-        ]
-        try:
-            return DelayGraph.from_edges(n, edges)
-        except ParameterError:  # no source or no sink: draw again
-            continue
 
 
 def paper_controller(R2, delays="branch") -> Structure:

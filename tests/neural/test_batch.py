@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import rel_err
 
 from symctl import (
     MuscleModel,
@@ -28,10 +29,6 @@ GAINS = lqr_gains(augment(MODEL, 1, 1))
 REF = closed_loop_response(GAINS)
 FACT = factor(controller_tf(2))
 K_VALUES = GAINS.substitutions()
-
-
-def rel_err(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
 
 
 def test_batch_equals_single_runs_for_lambdified_realizations():

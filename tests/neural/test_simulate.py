@@ -7,6 +7,7 @@ import matplotlib
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import rel_err
 
 from symctl import (
     DimensionError,
@@ -38,10 +39,6 @@ GAINS = lqr_gains(augment(MODEL, 1, 1))
 REF = closed_loop_response(GAINS)
 FACT = factor(controller_tf(2))
 K_VALUES = GAINS.substitutions()
-
-
-def rel_err(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
 
 
 def paper_controllers(seed: int, count: int = 3) -> dict[str, list[Realization]]:
