@@ -42,7 +42,9 @@ def test_factor_at_values_equals_substituting_the_symbols(ds, da, data):
     symbols = (*sym.sensor_eps, *sym.actuator_eps, *sym.sensor_C, *sym.actuator_C)
     substituted = sym.subs(dict(zip(symbols, [*eps, *C], strict=True)))
     for a, b in zip(
-        (built.G1, built.G2, built.G3), (substituted.G1, substituted.G2, substituted.G3)
+        (built.G1, built.G2, built.G3),
+        (substituted.G1, substituted.G2, substituted.G3),
+        strict=True,
     ):
         assert a.equals(b)
     assert built.poles == tuple(eps)
