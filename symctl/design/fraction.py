@@ -40,7 +40,7 @@ from __future__ import annotations
 import sympy as sp
 from sympy.polys.rings import ring
 
-from symctl._util.display import descending_str, latex
+from symctl._util.display import descending_latex, descending_str
 from symctl._util.exact import RingFractions, fold, z_poly
 from symctl._util.validate import (
     MAX_EXPANDED_TERMS,
@@ -360,8 +360,20 @@ class MatrixFractionTF(DiscreteTF):
 
     # ------------------------------------------------------------ display
     def latex(self) -> str:
-        r"""``D(z)^{-1} N(z)``, unexpanded."""
-        return rf"{latex(self._D)}^{{-1}} {latex(self._N)}"
+        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
+
+        >>> import sympy as sp
+        >>> from symctl import z
+        >>> from symctl.design.fraction import MatrixFractionTF
+        >>> print(MatrixFractionTF(sp.Matrix([[1 + z]]), sp.Matrix([[2]])).latex())
+        \left[\begin{matrix}z + 1\end{matrix}\right]^{-1} \left[\begin{matrix}2\end{matrix}\right]
+        """
+
+        def matrix(M) -> str:  # entries in descending powers of z, as DiscreteTF prints them
+            rows = r" \\ ".join(" & ".join(descending_latex(e) for e in row) for row in M.tolist())
+            return rf"\left[\begin{{matrix}}{rows}\end{{matrix}}\right]"
+
+        return rf"{matrix(self._D)}^{{-1}} {matrix(self._N)}"
 
     def __repr__(self) -> str:
         return f"MatrixFractionTF({self}, dt={self.dt})"
