@@ -217,7 +217,9 @@ class MatrixFractionTF(DiscreteTF):
         For symbols that occur once each (generic gain blocks) the bound is the
         exact count: the permanent of the entries' term counts, by the same
         memoized Laplace expansion. With numbers only (``z`` the one symbol) it
-        is the count of coefficients, ``(d m + 1)(1 + m p)``.
+        is the count of coefficients, ``(d m + 1)(1 + m p)``. (Rows with
+        rational coefficients are scaled to polynomials before the expansion,
+        which this bound does not count.)
 
         >>> import sympy as sp
         >>> from symctl import z

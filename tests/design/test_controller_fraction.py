@@ -94,6 +94,17 @@ def test_exact_substitution_commutes_with_expansion():
     assert F.subs(values).expanded().equals(G.subs(values))
 
 
+def test_past_the_limit_controller_tf_returns_the_fraction_of_the_same_controller(monkeypatch):
+    import symctl.design.controller as controller
+
+    aug = _aug(2, 3, 1, 1)
+    G = controller_tf(aug)
+    monkeypatch.setattr(controller, "MAX_EXPANDED_TERMS", G.order)
+    F = controller_tf(aug)
+    assert isinstance(F, MatrixFractionTF) and F == _fraction(aug)
+    assert F.expanded() == G and prove_controller_tf(aug, F) and prove_controller_tf(aug, G)
+
+
 def test_a_large_fraction_refuses_to_expand_and_names_the_limit():
     aug = _aug(1, 6, 1, 2)
     G = controller_tf(aug)
