@@ -11,7 +11,7 @@ counts (:math:`T + 1` on the diagonal, :math:`T` off it): 633 for
 :math:`m = 4, T = 2`, but 732,529 for :math:`m = 6, T = 3`, and the 18 entries
 of :math:`\operatorname{adj} D\, K_0` about 4.2 million more: gigabytes in
 any representation (python-flint's ``fmpz_mpoly`` packs a monomial of 127
-variables into about 130 bytes; SymPy builds about 5,000 terms a second), and
+variables into about 130 bytes; SymPy builds a few thousand terms a second), and
 nothing needs them: the shape, order, relative degree, Markov parameters,
 substitution of numbers and the proof of the controller
 (:func:`symctl.prove_controller_tf`, which multiplies by :math:`D` instead of
