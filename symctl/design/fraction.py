@@ -255,12 +255,14 @@ class MatrixFractionTF(DiscreteTF):
         Parameters
         ----------
         max_terms : int
-            Refuse (before any work) when :meth:`terms_bound` exceeds it.
+            Refuse (before any work) when :meth:`terms_bound` exceeds it and
+            symbols other than ``z`` remain (with numbers only, the size is the
+            number of coefficients, linear in the degree, and never refused).
 
         Raises
         ------
         ParameterError
-            The bound exceeds ``max_terms``.
+            The bound of a symbolic fraction exceeds ``max_terms``.
 
         Examples
         --------
@@ -277,7 +279,7 @@ class MatrixFractionTF(DiscreteTF):
         if got is not None:
             return got
         bound = self.terms_bound()
-        if bound > max_terms:
+        if bound > max_terms and self.free_symbols:  # numbers: linear in the degree, never refused
             raise ParameterError(
                 f"max_terms: expanding this {self._D.rows}x{self._D.rows} D(z)^-1 N(z) into "
                 f"num/den would make up to {bound} polynomial terms, more than "

@@ -84,6 +84,7 @@ def test_substituted_numbers_expand_to_the_numeric_controller():
     numeric = G.subs(gains.substitutions())
     assert isinstance(numeric, MatrixFractionTF) and not numeric.free_symbols
     assert numeric.expanded() == controller_tf(gains)  # both exact from the floats, rounded once
+    assert G.subs(gains.substitutions()).expanded(max_terms=1) == numeric.expanded()  # numbers
 
 
 def test_exact_substitution_commutes_with_expansion():
