@@ -504,7 +504,9 @@ class Structure(LatexMixin):
         counts = ", ".join(f"{self.count(k)} {k}" for k in ("gain", "sum", "delay"))
         return f"Structure({len(self)} signals: {counts}; inputs={self.inputs}, outputs={self.outputs})"
 
-    def draw(self, ax=None, *, title: str | None = None, max_signals: int = 400):
+    def draw(
+        self, ax=None, *, title: str | None = None, max_signals: int = 400, overview: bool = False
+    ):
         """Draw the structure in the style of the paper's block diagrams.
 
         Gains are boxes with their value, adders circles with a plus, one-step
@@ -521,7 +523,11 @@ class Structure(LatexMixin):
         title : str, optional
             The heading (default: the counts of gains, adders and delays).
         max_signals : int, default 400
-            Refuse larger structures.
+            Refuse larger structures (unless ``overview``).
+        overview : bool, default False
+            Draw only the parts of the series connection, one box each with its
+            counts (:func:`symctl.plotting.structure_overview.draw_structure_overview`):
+            how the report shows a structure of a long delay.
 
         Returns
         -------
@@ -542,7 +548,7 @@ class Structure(LatexMixin):
         """
         from symctl.plotting.structure import draw_structure
 
-        return draw_structure(self, ax, title=title, max_signals=max_signals)
+        return draw_structure(self, ax, title=title, max_signals=max_signals, overview=overview)
 
 
 # ---------------------------------------------------------------- helpers

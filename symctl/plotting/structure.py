@@ -30,13 +30,21 @@ from symctl.plotting.structure_layout import (
     Wire,
     structure_layout,
 )
+from symctl.plotting.structure_overview import draw_structure_overview
 
 __all__ = ["draw_structure"]
 
 _INK = "0.15"
 
 
-def draw_structure(S: Structure, ax=None, *, title: str | None = None, max_signals: int = 400):
+def draw_structure(
+    S: Structure,
+    ax=None,
+    *,
+    title: str | None = None,
+    max_signals: int = 400,
+    overview: bool = False,
+):
     """Draw the structure ``S`` in the style of the paper's block diagrams.
 
     Parameters
@@ -48,6 +56,8 @@ def draw_structure(S: Structure, ax=None, *, title: str | None = None, max_signa
         The heading (default: the counts of gains, adders and delays).
     max_signals : int, default 400
         Refuse larger structures (their drawings are unreadable and slow).
+    overview : bool, default False
+        Draw the overview of the parts instead (:func:`draw_structure_overview`).
 
     Returns
     -------
@@ -69,6 +79,8 @@ def draw_structure(S: Structure, ax=None, *, title: str | None = None, max_signa
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
+    if overview:
+        return draw_structure_overview(S, ax, title=title)
     if len(S) > max_signals:
         raise ParameterError(
             f"max_signals: the structure has {len(S)} signals, more than {max_signals}; "

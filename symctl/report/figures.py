@@ -56,6 +56,7 @@ from symctl.report.spec import CIRCUIT_SPECS
 __all__ = [
     "DPI",
     "FORMATS",
+    "MAX_DRAWN_SIGNALS",
     "MAX_PIXELS",
     "figure_names",
     "make_figure",
@@ -67,6 +68,10 @@ DPI = 120
 """Resolution of the PNG files [dots per inch]."""
 FORMATS = ("png", "svg")
 """The formats every figure is saved in."""
+MAX_DRAWN_SIGNALS = 400
+"""Structures up to this many signals are drawn block by block; larger ones (a long delay's
+general realization) as the overview of their parts
+(:func:`symctl.plotting.structure_overview.draw_structure_overview`)."""
 MAX_PIXELS = 4000
 """Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
 long delay) is written at a lower resolution, so that its size and time stay bounded (the
@@ -137,7 +142,10 @@ def make_figure(res, name: str):
     if kind == "firing":
         return rec.firing.plot()
     if kind == "structure":
-        return rec.structure.draw(title=f"Structure: {CIRCUIT_SPECS[circuit].diagram}")
+        title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
+        if len(rec.structure) > MAX_DRAWN_SIGNALS:  # a block diagram over a hundred inches wide
+            return rec.structure.draw(title=title, overview=True)
+        return rec.structure.draw(title=title)
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
         return rec.firing.circuits[0].draw(title=title)

@@ -1,0 +1,43 @@
+"""The overview of a structure too large to draw block by block (issue 13)."""
+
+from __future__ import annotations
+
+import pytest
+
+from symctl import Structure, SymctlTypeError, controller_tf, factor, observable_canonical
+from symctl.plotting.structure_overview import draw_structure_overview, parts_in_order
+
+
+@pytest.mark.parametrize("ds, da", [(1, 1), (3, 4), (10, 10)])
+def test_overview_counts_every_block_of_every_part(ds, da):
+    f = factor(controller_tf(ds + da), ds, da)
+    S = Structure.from_factorization(f, observable_canonical(f.abbreviated()))
+    parts = parts_in_order(S)
+    assert parts[0][0].startswith("G1") and parts[-1][0].startswith("G3")
+    assert len(parts) == ds + da + 1
+    for kind in ("gain", "sum", "delay"):
+        assert sum(c[kind] for _, c in parts) == S.count(kind)
+    assert dict(parts)["G2"]["states"] == ds + da
+    fig = draw_structure_overview(S)
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert all(p in texts for p, _ in parts)
+    width, height = fig.get_size_inches()
+    assert width < 14 and height < 2 + 1.5 * (len(parts) // 6 + 1)  # page-shaped at any T
+    assert S.draw(overview=True).get_size_inches().tolist() == [width, height]
+
+
+def test_overview_refuses_other_objects():
+    with pytest.raises(SymctlTypeError, match="S: expected a Structure"):
+        draw_structure_overview("G2")
+
+
+def test_report_draws_large_structures_as_overview(monkeypatch):
+    from symctl import derive_paper
+    from symctl.report import figures
+
+    res = derive_paper()
+    full = figures.make_figure(res, "structure_general")
+    monkeypatch.setattr(figures, "MAX_DRAWN_SIGNALS", 10)
+    small = figures.make_figure(res, "structure_general")
+    assert any("overview" in t.get_text() for t in small.axes[0].texts)
+    assert not any("overview" in t.get_text() for t in full.axes[0].texts)
