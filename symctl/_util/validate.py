@@ -629,3 +629,9 @@ def max_size(value, argname: str, limit: int) -> None:
         raise DimensionError(
             f"{argname}: at most {limit} rows and columns, got shape {tuple(shape)}"
         )
+
+
+MAX_OUTPUT_BYTES = 4 * 2**30
+"""Most bytes of traces (float64) that one :func:`symctl.simulate_batch` result, or one of
+its chunks, holds: 4 GiB. Force and rate of 10**6 loops x 500 steps are 8 GB: stream them
+(``chunk=``) or keep fewer traces or only their peaks (``keep=``)."""
