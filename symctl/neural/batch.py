@@ -236,12 +236,13 @@ def _check_memory(count, steps, widths, traces, peaks, chunk) -> None:
         return
     fit = MAX_OUTPUT_BYTES // per_loop
     kept = ", ".join(traces + tuple("peak_" + t for t in peaks))
-    stream = f"stream them with chunk={fit} or less (an iterator of results), " if fit else ""
+    instead = "keep fewer traces, or only their peaks (e.g. keep=('peak_delta_r',))"
+    if fit:
+        instead = f"stream them with chunk={fit} or less (an iterator of results), or {instead}"
     raise ParameterError(
         f"{'keep' if chunk is None else 'chunk'}: keeping {kept} of {loops} realizations x "
         f"{steps} steps takes {per_loop * loops / 1e9:.3g} GB, over the limit of "
-        f"{MAX_OUTPUT_BYTES / 2**30:g} GiB (MAX_OUTPUT_BYTES); {stream}or keep fewer "
-        "traces, or only their peaks (e.g. keep=('peak_delta_r',))"
+        f"{MAX_OUTPUT_BYTES / 2**30:g} GiB (MAX_OUTPUT_BYTES); {instead}"
     )
 
 
