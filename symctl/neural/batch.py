@@ -174,18 +174,20 @@ def _schur_stable(A: np.ndarray) -> np.ndarray:
     return ok
 
 
-def _batch_stability(Acl: np.ndarray, argname: str, n: int) -> None:
+def _batch_stability(loops, count: int, argname: str, n: int) -> None:
     """Refuse an unstable loop among many: eigenvalues up to ``_EIG_LIMIT``, Schur-Cohn above.
 
+    ``loops(part)`` gives ``(A_cl, C_r)`` of the loops ``part`` of ``range(count)``;
     ``n`` (the plant's states) lets the message name a hidden mode of the controller.
     """
-    count = Acl.shape[-1]
     if count <= _EIG_LIMIT:
-        _stability(Acl, argname, n)
+        _stability(loops(slice(None))[0], argname, n)
         return
     # in chunks, whose temporaries stay small
-    bad = np.flatnonzero(~np.concatenate([_schur_stable(Acl[..., c]) for c in _chunks(count)]))
-    _refuse_unstable(Acl, bad, argname, n)
+    ok = [_schur_stable(loops(c)[0]) for c in _chunks(count)]
+    bad = np.flatnonzero(~np.concatenate(ok))
+    if bad.size:
+        _refuse_unstable(loops(slice(None))[0], bad, argname, n)
 
 
 def _in_chunks(run, count: int) -> int:
@@ -246,10 +248,9 @@ def _check_memory(count, steps, widths, traces, peaks, chunk) -> None:
     )
 
 
-def _simulate_part(loops, widths, traces, peaks, t, checked, part: slice) -> BatchResponse:
+def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) -> BatchResponse:
     """The loops ``part`` of the batch, their traces and peaks in fresh buffers."""
-    Acl, Cr, n, w = loops
-    Acl, Cr = Acl[..., part], Cr[..., part]
+    Acl, Cr = loops(part)
     w, count = w if w.ndim == 2 else w[part], Acl.shape[-1]
     first = {}  # each signal's first row (delta_f, delta_r, states)
     for name in TRACES:
@@ -335,7 +336,8 @@ def simulate_batch(
     streaming holds one chunk at a time, two when the caller keeps the last one while
     the next is computed, as ``for part in ...`` does until ``del part``). Besides,
     always: the closed-loop matrices, :math:`8 R (n + nc)(n + nc + m)` (240 bytes
-    per loop of the paper), and the time loop's rows, a few MB. The outputs of one
+    per loop of the paper; with ``chunk``, those of one chunk), and the time loop's
+    rows, a few MB. The outputs of one
     result or one chunk are limited to ``MAX_OUTPUT_BYTES`` (4 GiB,
     :mod:`symctl._util.validate`): a larger request is a :class:`ParameterError`
     naming ``keep`` (or ``chunk``) before any work, saying which ``chunk`` fits.
@@ -390,13 +392,21 @@ def simulate_batch(
             raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
     widths = {"delta_f": p.n, "delta_r": p.m, "states": nc}
     _check_memory(R, w.shape[-2], widths, traces, peaks, chunk)
-    Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
+    if chunk is None:  # the closed loops at once, else each chunk's when it runs
+        Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
+
+        def loops(part: slice) -> tuple[np.ndarray, np.ndarray]:
+            return Acl[..., part], Cr[..., part]
+    else:
+
+        def loops(part: slice) -> tuple[np.ndarray, np.ndarray]:
+            return _closed_loop_matrices(A, B, *(v[part] for v in mats.values()))
+
     if check_stability:
-        _batch_stability(Acl, "F, H, M, N", p.n)
+        _batch_stability(loops, R, "F, H, M, N", p.n)
     t = read_only(np.arange(w.shape[-2]) * _ts(p))
-    run = partial(
-        _simulate_part, (Acl, Cr, p.n, w), widths, traces, peaks, t, bool(check_stability)
-    )
+    checked = bool(check_stability)
+    run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked)
     if chunk is None:
         return run(slice(None))
     return (run(slice(lo, min(R, lo + chunk))) for lo in range(0, R, chunk))

@@ -450,13 +450,18 @@ def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
         row[...] = 0.0
     if peaks is not None:
         peaks[...] = 0.0
+    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
     for t in range(steps):
         rate = [out[t, slot[n + k]] if n + k in slot else rate_rows[k] for k in range(m)]
-        for k in rates:
-            _combine(c_terms[k], x, rate[k], tmp)
         nxt = at(t + 1)
-        for i in range(size):
-            _combine(a_terms[i], x, nxt[i], tmp)
+        if t <= rest:  # at rest: exact zeros (+0, as the dense sum 0 + a 0 gives)
+            for row in [rate[k] for k in rates] + nxt:
+                row[...] = 0.0
+        else:
+            for k in rates:
+                _combine(c_terms[k], x, rate[k], tmp)
+            for i in range(size):
+                _combine(a_terms[i], x, nxt[i], tmp)
         if not quiet[t]:
             for i in range(n):
                 nxt[i] += w[t, i]
