@@ -258,7 +258,7 @@ def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) 
     rows = [r for u in traces for r in range(first[u], first[u] + widths[u])]
     peak_rows = [r for u in peaks for r in range(first[u], first[u] + widths[u])]
     out = np.empty((len(t), len(rows), count))
-    top = np.empty((len(peak_rows), count)) if peak_rows else None
+    top = np.empty((len(peak_rows), count)) if peaks else None
     _steps(Acl, Cr, n, w, out, rows, top, peak_rows, argname="disturbance", schedule=_in_chunks)
     out.setflags(write=False)  # no copy: the buffers are ours alone
     loops, arrays, k = np.moveaxis(out, -1, 0), {}, 0

@@ -286,3 +286,24 @@ def test_a_million_loops_of_500_steps_are_refused_whole_and_run_streamed():
     peaks = simulate_batch(MODEL, *mats, steps=8, keep="peak_delta_r", check_stability=False)
     assert peaks.peaks["delta_r"].shape == (10**6, 1)
     np.testing.assert_array_equal(peaks.peaks["delta_r"][::99_999], peaks.peaks["delta_r"][:11])
+
+
+def test_a_static_controller_has_empty_states_and_empty_state_peaks():
+    F, H, M = np.zeros((3, 0, 0)), np.zeros((3, 0, 1)), np.zeros((3, 1, 0))
+    N = np.full((3, 1, 1), -0.05)
+    ref = simulate_batch(MODEL, F, H, M, N)
+    out = simulate_batch(MODEL, F, H, M, N, keep=("peak_states", "states", "delta_r"))
+    assert out.states.shape == (3, 50, 0) and out.peaks["states"].shape == (3, 0)
+    np.testing.assert_array_equal(out.delta_r, ref.delta_r)
+    only = simulate_batch(MODEL, F, H, M, N, keep="peak_states")
+    assert only.peaks["states"].shape == (3, 0)
+
+
+def test_chunks_of_a_per_loop_disturbance_concatenate_exactly():
+    mats = loops(23)
+    w = np.random.default_rng(2).normal(size=(23, 30, 2))
+    ref = full(*mats, w)
+    parts = list(full(*mats, w, chunk=5, keep=("delta_f", "peak_delta_r")))
+    np.testing.assert_array_equal(concatenated(parts, "delta_f"), ref.delta_f)
+    np.testing.assert_array_equal(concatenated(parts, "peak_delta_r"), np.abs(ref.delta_r).max(1))
+    np.testing.assert_array_equal(concatenated(parts, "states"), ref.states)
