@@ -638,3 +638,8 @@ MIMO transfer function :math:`D(z)^{-1} N(z)` is expanded into as ``num/den`` un
 for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`): SymPy builds a few
 thousand terms a second (50,000: about 15 s on 2 cores), and ``controller_tf`` of a plant
 with 6 inputs at T = 3 would be 5 million."""
+
+MAX_OUTPUT_BYTES = 4 * 2**30
+"""Most bytes of traces (float64) that one :func:`symctl.simulate_batch` result, or one of
+its chunks, holds: 4 GiB. Force and rate of 10**6 loops x 500 steps are 8 GB: stream them
+(``chunk=``) or keep fewer traces or only their peaks (``keep=``)."""

@@ -5,10 +5,12 @@ r"""Many closed loops at once: the plant around a stack of realizations, vectori
 :math:`G_3 G_2 G_1` for many random :math:`\epsilon_1, \epsilon_3` and similarity
 transforms (``benchmarks/simulate.py``: :math:`10^5` loops of 500 steps). The time
 steps are those of :mod:`symctl.neural.simulate` (one loop over time for every
-simulation); this module adds the chunking (blocks of 8192 loops, on every core)
-and the stability test of many loops: exact eigenvalues up to 2000 loops, the
-Schur-Cohn test on the characteristic polynomials (from Newton's identities)
-above.
+simulation); this module adds the chunking (blocks of at most 32768 loops, on
+every core), the stability test of many loops (exact eigenvalues up to 2000 loops,
+the Schur-Cohn test on the characteristic polynomials, from Newton's identities,
+above) and bounded memory: the caller chooses the traces to keep, or only their
+peaks (``keep=``), or streams the loops in chunks (``chunk=``), and outputs over
+``MAX_OUTPUT_BYTES`` in one piece are refused before any work.
 
 >>> import numpy as np
 >>> from symctl import MuscleModel, simulate_batch
@@ -23,13 +25,17 @@ from __future__ import annotations
 
 import numbers
 import os
+from collections.abc import Iterable, Iterator, Mapping
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import partial
+from itertools import pairwise
+from types import MappingProxyType
 
 import numpy as np
 
-from symctl._util.validate import float_array, positive_int, read_only
-from symctl.errors import DimensionError
+from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
@@ -37,17 +43,24 @@ from symctl.neural.simulate import (
     _closed_loop_matrices,
     _plant,
     _refuse_unstable,
-    _run,
     _signal,
     _stability,
+    _steps,
     _ts,
 )
 
 __all__ = ["BatchResponse", "simulate_batch"]
 
 _EIG_LIMIT = 2000  # above this many realizations, stability is decided by the Schur-Cohn test
-_CHUNK = 8192  # realizations per task of the time loop (their matrices stay in the CPU cache)
+_CHUNK = 32768  # most realizations per task of the time loop (their rows stay in the L3 cache)
+_MIN_CHUNK = 4096  # fewest realizations per task worth a thread of its own
 _WORKERS = os.cpu_count() or 1  # threads that run the tasks
+_MAX_KEEP = 64  # most names in ``keep`` (there are six; an endless iterator is refused)
+
+TRACES = ("delta_f", "delta_r", "states")
+"""The traces of a batch simulation, in the order of :class:`BatchResponse`."""
+KEEP = TRACES + tuple("peak_" + name for name in TRACES)
+"""What ``simulate_batch(keep=...)`` can keep: traces, and their peaks over the horizon."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,14 +71,19 @@ class BatchResponse:
     ----------
     t : (steps,) array
         Time in seconds (in steps when the plant has no ``Ts``).
-    delta_f : (R, steps, n) array
-        Each loop's plant state change.
-    delta_r : (R, steps, m) array
-        Each loop's motor-neuron rate change.
+    delta_f : (R, steps, n) array or None
+        Each loop's plant state change (None when not kept).
+    delta_r : (R, steps, m) array or None
+        Each loop's motor-neuron rate change (None when not kept).
     states : (R, steps, nc) array or None
         The controller states, when asked for.
     stability_checked : bool
         Whether every loop was checked to be stable before the run.
+    peaks : mapping of str to (R, channels) arrays
+        The largest magnitude over the horizon of each trace asked for with
+        ``keep=("peak_delta_r", ...)``, by trace name (``"delta_r"``); empty by default.
+    first : int
+        The index of the first loop here among all of them (``chunk=``; 0 otherwise).
 
     The arrays are read-only and may be non-contiguous views of one time-major
     buffer (no copy is made).
@@ -78,26 +96,40 @@ class BatchResponse:
     >>> out = simulate_batch(MuscleModel(), zero, -0.05 * one, one, zero, steps=20)
     >>> out.delta_f.shape, out.states, out.stability_checked, out.delta_f.flags.writeable
     ((2, 20, 1), None, True, False)
+    >>> dict(out.peaks), out.first
+    ({}, 0)
     """
 
     t: np.ndarray
-    delta_f: np.ndarray
-    delta_r: np.ndarray
+    delta_f: np.ndarray | None
+    delta_r: np.ndarray | None
     states: np.ndarray | None
     stability_checked: bool
+    peaks: Mapping[str, np.ndarray] = field(default_factory=dict)
+    first: int = 0
 
     def __post_init__(self) -> None:  # read-only (views of simulate_batch's own buffer)
-        for name in ("t", "delta_f", "delta_r", "states"):
+        for name in (*TRACES, "t"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, read_only(getattr(self, name), float))
+        peaks = {k: read_only(v, float) for k, v in self.peaks.items()}
+        object.__setattr__(self, "peaks", MappingProxyType(peaks))
 
 
 # ---------------------------------------------------------------- chunks and stability
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation then runs over contiguous memory, one realization per element.
 def _chunks(count: int) -> list[slice]:
-    """Consecutive slices of at most ``_CHUNK`` realizations covering ``range(count)``."""
-    return [slice(lo, min(count, lo + _CHUNK)) for lo in range(0, count, _CHUNK)]
+    """Consecutive slices of at most ``_CHUNK`` realizations covering ``range(count)``.
+
+    Of equal sizes, as many as a multiple of ``_WORKERS`` when each gets at least
+    ``_MIN_CHUNK`` (every core busy, and none waits for a short last chunk).
+    """
+    k = -(-count // _CHUNK)
+    if count >= _WORKERS * _MIN_CHUNK:
+        k = -(-k // _WORKERS) * _WORKERS
+    bounds = [count * i // k for i in range(k + 1)]
+    return [slice(lo, hi) for lo, hi in pairwise(bounds) if hi > lo]
 
 
 def _charpoly(A: np.ndarray) -> np.ndarray:
@@ -142,25 +174,27 @@ def _schur_stable(A: np.ndarray) -> np.ndarray:
     return ok
 
 
-def _batch_stability(Acl: np.ndarray, argname: str, n: int) -> None:
+def _batch_stability(loops, count: int, argname: str, n: int) -> None:
     """Refuse an unstable loop among many: eigenvalues up to ``_EIG_LIMIT``, Schur-Cohn above.
 
+    ``loops(part)`` gives ``(A_cl, C_r)`` of the loops ``part`` of ``range(count)``;
     ``n`` (the plant's states) lets the message name a hidden mode of the controller.
     """
-    count = Acl.shape[-1]
     if count <= _EIG_LIMIT:
-        _stability(Acl, argname, n)
+        _stability(loops(slice(None))[0], argname, n)
         return
     # in chunks, whose temporaries stay small
-    bad = np.flatnonzero(~np.concatenate([_schur_stable(Acl[..., c]) for c in _chunks(count)]))
-    _refuse_unstable(Acl, bad, argname, n)
+    ok = [_schur_stable(loops(c)[0]) for c in _chunks(count)]
+    bad = np.flatnonzero(~np.concatenate(ok))
+    if bad.size:
+        _refuse_unstable(loops(slice(None))[0], bad, argname, n)
 
 
 def _in_chunks(run, count: int) -> int:
     """``min(run(part))`` over the chunks of ``range(count)``, on ``_WORKERS`` threads.
 
-    NumPy releases the GIL in einsum: the chunks, and the page faults of the fresh
-    output buffer (as costly as the arithmetic for 10^5 loops), share the cores.
+    NumPy releases the GIL in its ufuncs: the chunks, and the page faults of the
+    fresh output buffer, share the cores.
     """
     parts = _chunks(count)
     workers = min(len(parts), _WORKERS)
@@ -168,6 +202,73 @@ def _in_chunks(run, count: int) -> int:
         return min(map(run, parts))
     with ThreadPoolExecutor(workers) as pool:
         return min(pool.map(run, parts))
+
+
+# ---------------------------------------------------------------- what to keep
+def _selection(keep, states: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The traces and the peaks to keep, each in the order of ``TRACES``."""
+    if keep is None:
+        names = {"delta_f", "delta_r"}
+    else:
+        if isinstance(keep, str):
+            keep = (keep,)
+        elif not isinstance(keep, Iterable) or isinstance(keep, bytes):
+            raise SymctlTypeError(f"keep: expected names among {KEEP}, got {keep!r}")
+        names = set()
+        for k, name in enumerate(keep):
+            if k >= _MAX_KEEP:
+                raise ParameterError(f"keep: at most {_MAX_KEEP} names, got more")
+            if not isinstance(name, str):
+                raise SymctlTypeError(f"keep: expected names among {KEEP}, got {name!r}")
+            if name not in KEEP:
+                raise ParameterError(f"keep: expected names among {KEEP}, got {name!r}")
+            names.add(name)
+        if not names:
+            raise ParameterError(f"keep: nothing to keep, got {keep!r}; name one of {KEEP}")
+    if states:
+        names.add("states")
+    return tuple(t for t in TRACES if t in names), tuple(t for t in TRACES if "peak_" + t in names)
+
+
+def _check_memory(count, steps, widths, traces, peaks, chunk) -> None:
+    """Refuse, before any work, outputs over ``MAX_OUTPUT_BYTES`` in one result or chunk."""
+    per_loop = 8 * (steps * sum(widths[t] for t in traces) + sum(widths[t] for t in peaks))
+    loops = count if chunk is None else min(chunk, count)
+    if per_loop * loops <= MAX_OUTPUT_BYTES:
+        return
+    fit = MAX_OUTPUT_BYTES // per_loop
+    kept = ", ".join(traces + tuple("peak_" + t for t in peaks))
+    instead = "keep fewer traces, or only their peaks (e.g. keep=('peak_delta_r',))"
+    if fit:
+        instead = f"stream them with chunk={fit} or less (an iterator of results), or {instead}"
+    raise ParameterError(
+        f"{'keep' if chunk is None else 'chunk'}: keeping {kept} of {loops} realizations x "
+        f"{steps} steps takes {per_loop * loops / 1e9:.3g} GB, over the limit of "
+        f"{MAX_OUTPUT_BYTES / 2**30:g} GiB (MAX_OUTPUT_BYTES); {instead}"
+    )
+
+
+def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) -> BatchResponse:
+    """The loops ``part`` of the batch, their traces and peaks in fresh buffers."""
+    Acl, Cr = loops(part)
+    w, count = w if w.ndim == 2 else w[part], Acl.shape[-1]
+    first = {}  # each signal's first row (delta_f, delta_r, states)
+    for name in TRACES:
+        first[name] = sum(widths[u] for u in TRACES[: TRACES.index(name)])
+    rows = [r for u in traces for r in range(first[u], first[u] + widths[u])]
+    peak_rows = [r for u in peaks for r in range(first[u], first[u] + widths[u])]
+    out = np.empty((len(t), len(rows), count))
+    top = np.empty((len(peak_rows), count)) if peaks else None
+    _steps(Acl, Cr, n, w, out, rows, top, peak_rows, argname="disturbance", schedule=_in_chunks)
+    out.setflags(write=False)  # no copy: the buffers are ours alone
+    loops, arrays, k = np.moveaxis(out, -1, 0), {}, 0
+    for name in traces:
+        arrays[name], k = loops[..., k : k + widths[name]], k + widths[name]
+    peak_map, k = {}, 0
+    for name in peaks:
+        peak_map[name], k = top[k : k + widths[name]].T, k + widths[name]
+    traced = [arrays.get(name) for name in TRACES]
+    return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
 
 # ---------------------------------------------------------------- the function
@@ -184,7 +285,9 @@ def simulate_batch(
     length: int = DEFAULT_LENGTH,
     states: bool = False,
     check_stability: bool = True,
-) -> BatchResponse:
+    keep=None,
+    chunk: int | None = None,
+) -> BatchResponse | Iterator[BatchResponse]:
     r"""Simulate the plant in closed loop with ``R`` realizations at once (vectorized in NumPy).
 
     Parameters
@@ -196,25 +299,51 @@ def simulate_batch(
         A pulse amplitude (as in :func:`simulate_realization`), an array ``(steps, n)``
         shared by every loop, or ``(R, steps, n)``.
     states : bool
-        Also return the controller states ``(R, steps, nc)`` (memory: ``8 R steps nc`` bytes).
+        Also return the controller states ``(R, steps, nc)`` (adds ``"states"`` to ``keep``).
     check_stability : bool
         Refuse any unstable loop first (exact eigenvalues up to 2000 loops, the
         vectorized Schur-Cohn test on the characteristic polynomial above).
+    keep : str or iterable of str, optional
+        The outputs to keep, among ``"delta_f"``, ``"delta_r"``, ``"states"`` (traces)
+        and ``"peak_delta_f"``, ``"peak_delta_r"``, ``"peak_states"`` (the largest
+        magnitude of a trace over the horizon, in ``.peaks``; the trace itself is
+        never stored). Default: ``("delta_f", "delta_r")``. A trace not kept is None.
+    chunk : int, optional
+        Stream the loops in chunks of ``chunk`` consecutive realizations: the call
+        returns an iterator of :class:`BatchResponse` (each with its ``first`` loop),
+        and each chunk is simulated when the iterator reaches it. The arguments and
+        the stability of every loop are checked before the iterator is returned.
 
     Returns
     -------
-    BatchResponse
-        ``delta_f`` ``(R, steps, n)`` and ``delta_r`` ``(R, steps, m)``.
+    BatchResponse or iterator of BatchResponse
+        ``delta_f`` ``(R, steps, n)`` and ``delta_r`` ``(R, steps, m)`` (by default);
+        an iterator when ``chunk`` is given.
 
     Raises
     ------
     DimensionError, ParameterError, SymctlTypeError
-        Also a run whose outputs overflow to inf or NaN (a :class:`ParameterError`).
+        Also a run whose kept outputs overflow to inf or NaN (a :class:`ParameterError`;
+        with ``chunk``, when its chunk is reached), and outputs over the memory limit.
 
     Notes
     -----
-    Batches of more than 8192 loops run in chunks, on every core (threads: NumPy
-    releases the GIL in its products).
+    Memory, in bytes (float64), with :math:`c` the channels kept (``n`` for
+    ``delta_f``, ``m`` for ``delta_r``, ``nc`` for the states; the paper's loop has
+    1, 1, 4): the traces kept take :math:`8 R\,\mathrm{steps}\,c` (10^5 loops x 500
+    steps of force and rate: 0.8 GB), the peaks :math:`8 R c`; with ``chunk`` the
+    same with ``chunk`` for ``R``, per chunk (a chunk no longer referenced is freed:
+    streaming holds one chunk at a time, two when the caller keeps the last one while
+    the next is computed, as ``for part in ...`` does until ``del part``). Besides,
+    always: the closed-loop matrices, :math:`8 R (n + nc)(n + nc + m)` (240 bytes
+    per loop of the paper; with ``chunk``, those of one chunk), and the time loop's
+    rows, a few MB. The outputs of one
+    result or one chunk are limited to ``MAX_OUTPUT_BYTES`` (4 GiB,
+    :mod:`symctl._util.validate`): a larger request is a :class:`ParameterError`
+    naming ``keep`` (or ``chunk``) before any work, saying which ``chunk`` fits.
+
+    The loops run in chunks of at most 32768, on every core (threads: NumPy
+    releases the GIL in its ufuncs), row by row in place into the output buffer.
 
     Examples
     --------
@@ -226,7 +355,17 @@ def simulate_batch(
     ((3, 50, 1), (3, 50, 1))
     >>> bool(np.all(np.diff(out.delta_r.min(axis=(1, 2))) < 0))   # stronger gain, larger answer
     True
+    >>> peaks = simulate_batch(MuscleModel(), F, H, np.ones((3, 1, 1)), np.zeros((3, 1, 1)),
+    ...                        keep="peak_delta_r")
+    >>> peaks.delta_r is None, bool(np.all(peaks.peaks["delta_r"] == abs(out.delta_r).max(1)))
+    (True, True)
+    >>> [part.first for part in simulate_batch(MuscleModel(), F, H, np.ones((3, 1, 1)),
+    ...                                        np.zeros((3, 1, 1)), chunk=2)]
+    [0, 2]
     """
+    traces, peaks = _selection(keep, bool(states))
+    if chunk is not None:
+        chunk = positive_int(chunk, "chunk")
     p, A, B = _plant(plant)
     mats = {k: float_array(v, k) for k, v in zip("FHMN", (F, H, M, N), strict=True)}
     if any(v.ndim != 3 for v in mats.values()):
@@ -251,11 +390,23 @@ def simulate_batch(
             )
         if steps is not None and positive_int(steps, "steps") != w.shape[1]:
             raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
-    Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
+    widths = {"delta_f": p.n, "delta_r": p.m, "states": nc}
+    _check_memory(R, w.shape[-2], widths, traces, peaks, chunk)
+    if chunk is None:  # the closed loops at once, else each chunk's when it runs
+        Acl, Cr = _closed_loop_matrices(A, B, *mats.values())
+
+        def loops(part: slice) -> tuple[np.ndarray, np.ndarray]:
+            return Acl[..., part], Cr[..., part]
+    else:
+
+        def loops(part: slice) -> tuple[np.ndarray, np.ndarray]:
+            return _closed_loop_matrices(A, B, *(v[part] for v in mats.values()))
+
     if check_stability:
-        _batch_stability(Acl, "F, H, M, N", p.n)
-    df, dr, xc = _run(Acl, Cr, p.n, w, states=states, schedule=_in_chunks)
-    t = np.arange(w.shape[-2]) * _ts(p)
-    for arr in (df, dr) if xc is None else (df, dr, xc):
-        arr.setflags(write=False)  # no copy: the buffer is ours alone
-    return BatchResponse(t, df, dr, xc, bool(check_stability))
+        _batch_stability(loops, R, "F, H, M, N", p.n)
+    t = read_only(np.arange(w.shape[-2]) * _ts(p))
+    checked = bool(check_stability)
+    run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked)
+    if chunk is None:
+        return run(slice(None))
+    return (run(slice(lo, min(R, lo + chunk))) for lo in range(0, R, chunk))

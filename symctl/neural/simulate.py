@@ -353,47 +353,124 @@ def _run(
     by default all loops run at once. An inf or NaN in the outputs (an overflow)
     is an error naming the first step it is at.
     """
-    size, _, R = Acl.shape
-    m, steps = Cr.shape[0], w.shape[-2]
+    size, m = Acl.shape[0], Cr.shape[0]
+    rows = range(n + m + (size - n if states else 0))  # delta_f, delta_r, states
+    out = np.empty((w.shape[-2], len(rows), Acl.shape[-1]))
+    _steps(Acl, Cr, n, w, out, rows, argname=argname, schedule=schedule)
+    loops = np.moveaxis(out, -1, 0)
+    return loops[..., :n], loops[..., n : n + m], loops[..., n + m :] if states else None
+
+
+def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, schedule=None):
+    """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` and ``peaks``.
+
+    The signals are numbered ``delta_f`` (``n``), ``delta_r`` (``m``), then the
+    controller states; ``peaks`` ``(len(peak_rows), R)`` receives the largest
+    ``|signal|`` over the horizon of the signals ``peak_rows`` (none is stored).
+    An inf or NaN in ``out`` or ``peaks`` is a :class:`ParameterError` naming a step.
+    """
+    steps, R = out.shape[0], Acl.shape[-1]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
-    out = np.empty((steps, n + m + (size - n if states else 0), R))  # delta_f, delta_r, states
+
+    def loops(part: slice) -> tuple:
+        return Acl[..., part], Cr[..., part], n, wt if wt.shape[-1] == 1 else wt[..., part]
 
     def run(part: slice) -> int:
-        w_part = wt if wt.shape[-1] == 1 else wt[..., part]
-        return _run_chunk(Acl[..., part], Cr[..., part], n, w_part, out[..., part])
+        peak_part = None if peaks is None else peaks[:, part]
+        return _run_chunk(*loops(part), out[..., part], rows, peak_part, peak_rows)
 
     first_bad = run(slice(None)) if schedule is None else schedule(run, R)
+    if first_bad == steps and peaks is not None and not np.all(np.isfinite(peaks)):
+        i = int(np.flatnonzero(~np.all(np.isfinite(peaks), axis=0))[0])  # its traces tell when
+        trace = np.empty((steps, len(peak_rows), 1))
+        first_bad = _run_chunk(*loops(slice(i, i + 1)), trace, peak_rows)
     if first_bad < steps:
         raise ParameterError(
             f"{argname}: the simulation blew up at step {first_bad} (values overflowed to "
             f"inf/NaN); reduce the {argname} or the horizon, or check the controller's stability"
         )
-    loops = np.moveaxis(out, -1, 0)
-    return loops[..., :n], loops[..., n : n + m], loops[..., n + m :] if states else None
+
+
+def _terms(mat: np.ndarray) -> list[list[tuple[int, float | np.ndarray]]]:
+    """Row ``i`` of a stack ``(rows, cols, R)`` as ``(j, coefficient)`` terms of ``sum_j``.
+
+    A coefficient equal in every loop is a float (no memory read), one zero in every
+    loop is left out (the paper's loops are sparse: 14 of 25 entries); the order of
+    the terms, hence of the rounding, is that of the dense sum over ``j``.
+    """
+    terms = []
+    for row in mat:
+        terms.append([])
+        for j, v in enumerate(row):
+            if np.all(v == v[0]):
+                if v[0] != 0:
+                    terms[-1].append((j, float(v[0])))
+            else:
+                terms[-1].append((j, np.ascontiguousarray(v)))
+    return terms
+
+
+def _combine(terms, x: list[np.ndarray], dst: np.ndarray, tmp: np.ndarray) -> None:
+    """``dst = sum_j a_j x_j`` over ``terms``, in place (the first product written directly)."""
+    if not terms:
+        dst[...] = 0.0
+        return
+    j, a = terms[0]
+    np.multiply(x[j], a, out=dst)
+    for j, a in terms[1:]:
+        np.multiply(x[j], a, out=tmp)
+        np.add(dst, tmp, out=dst)
 
 
 @np.errstate(over="ignore", invalid="ignore")
-def _run_chunk(A: np.ndarray, Cr: np.ndarray, n: int, w: np.ndarray, out: np.ndarray) -> int:
-    """All steps of one chunk of loops into ``out`` ``(steps, rows, chunk)``.
+def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
+    """All steps of one chunk of loops: the signals ``rows`` into ``out`` ``(steps, ., chunk)``.
 
-    Each step's rows are ``delta_f``, ``delta_r`` and, if there are more rows, the
-    controller states. Returns the first step with an inf or NaN output, or ``steps``.
+    Row by row in place: each state row of ``x(t+1)`` is computed straight into its
+    row of ``out`` (a state not kept lives in a two-step scratch), each rate row
+    likewise; only the rows asked for are computed (the states always are). Returns
+    the first step with an inf or NaN in ``out``, or ``steps``.
     """
-    steps, rows, _ = out.shape
-    m = Cr.shape[0]
-    states = rows > n + m
-    A, Cr = np.ascontiguousarray(A), np.ascontiguousarray(Cr)  # to stay in the cache
+    steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
+    slot = {signal: k for k, signal in enumerate(rows)}
+    state = [j if j < n else m + j for j in range(size)]  # signal number of each state
+    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
+    a_terms, c_terms = _terms(A), _terms(Cr)
+    scratch, rate_rows, tmp = np.empty((2, size, count)), np.empty((m, count)), np.empty(count)
     quiet = ~np.any(w, axis=(1, 2))  # the steps without input
-    x, nxt = np.zeros(A.shape[1:]), np.empty(A.shape[1:])
+
+    def at(t: int) -> list[np.ndarray]:  # the rows that hold x(t)
+        if t == steps:  # the state after the horizon, which nobody sees
+            return list(scratch[t % 2])
+        o = out[t]
+        return [o[slot[s]] if s in slot else scratch[t % 2, j] for j, s in enumerate(state)]
+
+    x = at(0)
+    for row in x:
+        row[...] = 0.0
+    if peaks is not None:
+        peaks[...] = 0.0
+    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
     for t in range(steps):
-        out[t, :n] = x[:n]
-        np.einsum("mjr,jr->mr", Cr, x, out=out[t, n : n + m])
-        if states:
-            out[t, n + m :] = x[n:]
-        np.einsum("ijr,jr->ir", A, x, out=nxt)
+        rate = [out[t, slot[n + k]] if n + k in slot else rate_rows[k] for k in range(m)]
+        nxt = at(t + 1)
+        if t <= rest:  # at rest: exact zeros (+0, as the dense sum 0 + a 0 gives)
+            for row in [rate[k] for k in rates] + nxt:
+                row[...] = 0.0
+        else:
+            for k in rates:
+                _combine(c_terms[k], x, rate[k], tmp)
+            for i in range(size):
+                _combine(a_terms[i], x, nxt[i], tmp)
         if not quiet[t]:
-            nxt[:n] += w[t]
-        x, nxt = nxt, x
+            for i in range(n):
+                nxt[i] += w[t, i]
+        for p, s in enumerate(peak_rows):
+            src = x[s] if s < n else rate[s - n] if s < n + m else x[s - m]
+            np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
+        x = nxt
+    if not len(rows):
+        return steps
     finite = np.all(np.isfinite(out), axis=(1, 2))
     return steps if finite.all() else int(np.argmin(finite))
 

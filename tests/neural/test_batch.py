@@ -7,6 +7,7 @@ import pytest
 import sympy as sp
 from helpers import rel_err
 
+import symctl.neural.batch as batch_module
 from symctl import (
     MuscleModel,
     ParameterError,
@@ -20,7 +21,7 @@ from symctl import (
     pulse,
     simulate_realization,
 )
-from symctl.neural.batch import _CHUNK, _schur_stable, simulate_batch
+from symctl.neural.batch import _schur_stable, simulate_batch
 from symctl.realization.realization import controller_realization
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3
 
@@ -61,14 +62,18 @@ def test_batch_accepts_one_disturbance_per_realization():
     np.testing.assert_allclose(out.delta_f[1], 2 * out.delta_f[0], rtol=1e-12)
 
 
-def test_batch_across_chunk_boundaries_equals_single_loops():
-    count = _CHUNK + 3
+def test_batch_across_chunk_boundaries_equals_single_loops(monkeypatch):
+    monkeypatch.setattr(batch_module, "_CHUNK", 64)  # the same code at a tenth of the cost
+    monkeypatch.setattr(batch_module, "_MIN_CHUNK", 16)
+    count = 2 * 64 + 3
     gain = np.linspace(-0.02, -0.08, count).reshape(count, 1, 1)
     F, H, M, N = np.zeros((count, 1, 1)), gain, np.ones((count, 1, 1)), np.zeros((count, 1, 1))
     scale = np.linspace(0.5, 2.0, count)
     w = scale[:, None, None] * pulse(12, 1.0)[None]
     out = simulate_batch(MODEL, F, H, M, N, w, states=True)
-    for i in (0, _CHUNK - 1, _CHUNK, count - 1):
+    parts = batch_module._chunks(count)
+    assert len(parts) == 4
+    for i in sorted({p.start for p in parts} | {p.stop - 1 for p in parts}):
         one = simulate_batch(
             MODEL, F[i : i + 1], H[i : i + 1], M[i : i + 1], N[i : i + 1], w[i][None]
         )
@@ -100,15 +105,18 @@ def test_batch_refuses_an_unstable_loop_among_many():
         simulate_batch(MODEL, F, H, np.ones((3000, 1, 1)), np.zeros((3000, 1, 1)), steps=5)
 
 
-def test_a_rate_that_overflows_while_the_state_stays_finite_is_refused():
+def test_a_rate_that_overflows_while_the_state_stays_finite_is_refused(monkeypatch):
+    monkeypatch.setattr(batch_module, "_CHUNK", 64)
+    monkeypatch.setattr(batch_module, "_MIN_CHUNK", 16)
     # delta_r = -1e10 delta_f overflows during the pulse; the stable loop (pole -0.5)
     # has decayed to finite rates again by the last step.
     plant = (np.array([[0.5]]), np.array([[1e-10]]))
     zero = np.zeros((1, 1, 1))
     with pytest.raises(ParameterError, match="blew up at step 6"):
         simulate_batch(plant, zero, zero, zero, np.full((1, 1, 1), -1e10), 1e300)
-    N = np.zeros((_CHUNK + 1, 1, 1))
+    N = np.zeros((64 + 1, 1, 1))
     N[-1] = -1e10  # only the last loop, in the second chunk
+    assert len(batch_module._chunks(65)) == 2
     zeros = np.zeros_like(N)
     with pytest.raises(ParameterError, match="blew up at step 6"):
         simulate_batch(plant, zeros, zeros, zeros, N, 1e300)
