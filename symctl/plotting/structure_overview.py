@@ -39,7 +39,7 @@ def parts_in_order(S: Structure) -> list[tuple[str, dict[str, int]]]:
         if block.kind in counts:
             counts[block.kind] += 1
         local = name[len(block.part) + 1 :] if block.part else name
-        if block.kind != "delay" and local.startswith("x") and local[1:].isdigit():
+        if local.startswith("x") and local[1:].isdigit():  # the states x1 .. xn
             counts["states"] += 1
     return list(parts.items())
 
