@@ -300,7 +300,7 @@ def _symbolic(F, H, M, P, ring: _Ring):
 
 # ---------------------------------------------------------------- numeric P
 def _fmpq_mat(mat: sp.MatrixBase) -> fmpq_mat:
-    return fmpq_mat(mat.rows, mat.cols, [fmpq(int(e.p), int(e.q)) for e in mat])
+    return fmpq_mat(mat.rows, mat.cols, [fmpq(int(e.p), int(e.q)) for e in mat.flat()])
 
 
 def _split(mat: sp.MatrixBase, ring: _Ring):
@@ -368,13 +368,36 @@ def _numeric(F, H, M, P, ring: _Ring):
     return (*out, pinv)
 
 
+def _sympy_mat(mat: fmpq_mat) -> sp.Matrix:
+    return sp.Matrix(
+        mat.nrows(), mat.ncols(), [sp.Rational(int(x.p), int(x.q)) for x in mat.entries()]
+    )
+
+
+def _rational(F, H, M, P):
+    """Rational entries only: ``fmpq_mat`` products, nothing else."""
+    Pq = _fmpq_mat(P)
+    if Pq.det() == 0:
+        return "singular"
+    Pinv = Pq.inv()
+    return (
+        _sympy_mat(Pinv * _fmpq_mat(F) * Pq),
+        _sympy_mat(Pinv * _fmpq_mat(H)),
+        _sympy_mat(_fmpq_mat(M) * Pq),
+        _sympy_mat(Pinv),
+    )
+
+
 def similar_exact(F, H, M, P):
     """``(F', H', M', P^{-1})`` as SymPy matrices; ``"singular"``; or None.
 
     ``None``: an entry is not a rational function with rational coefficients
     (the caller then takes the SymPy path).
     """
-    syms = _symbols([*F, *H, *M, *P])
+    entries = [*F.flat(), *H.flat(), *M.flat(), *P.flat()]
+    if all(e.is_Rational for e in entries):
+        return _rational(F, H, M, P)
+    syms = _symbols(entries)
     if syms is None:
         return None
     ring = _Ring(syms)

@@ -392,6 +392,7 @@ AUDITED = {
     ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
     ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
     ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
+    ("symctl.realization._similarity", "_sympy_mat", "Matrix"): 1,  # flint rationals
     ("symctl.realization._similarity", "similar_exact", "Matrix"): 1,  # SymPy entries built here
     ("symctl.realization.realization", "Realization.__post_init__", "ImmutableMatrix"): 1,
     ("symctl.realization.realization", "Realization._similar", "ImmutableMatrix"): 2,
