@@ -27,6 +27,8 @@ functions) return ``None`` here, and the caller takes the SymPy path.
 
 from __future__ import annotations
 
+from itertools import compress
+
 import sympy as sp
 from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
 from sympy.core.basic import _args_sortkey, ordering_of_classes
@@ -95,12 +97,12 @@ class _Ring:
             for k in range(1, top + 1):
                 if (i, k) not in self._powers:
                     base = self.symbols[i]
-                    self._powers[(i, k)] = [base if k == 1 else sp.Pow(base, k), 0]
+                    self._powers[(i, k)] = [base if k == 1 else sp.Pow(base, k), 0, None]
                     grew = True
         if grew:
             pool = sorted(self._powers.values(), key=lambda v: _args_sortkey(v[0]))
             for rank, entry in enumerate(pool):
-                entry[1] = rank
+                entry[1], entry[2] = rank, (_class_key(type(entry[0])), rank)
 
     def monomial(self, exps) -> sp.Expr:
         self._ensure(exps)
@@ -110,23 +112,24 @@ class _Ring:
         """The polynomial over ``q`` as a SymPy sum, built as ``Poly.as_expr`` would build it.
 
         Terms and sums are assembled from their arguments in SymPy's canonical
-        order (:func:`_term_key`), so they equal the evaluated ``Mul``/``Add``
-        without the cost of evaluating them.
+        order (keys that sort as ``Basic.compare`` does: the factors' ranks,
+        :func:`_class_key`, :func:`_number_key`), so they equal the evaluated
+        ``Mul``/``Add`` without the cost of evaluating them.
         """
-        const, terms, powers = None, [], self._powers
+        const, terms, powers, index = None, [], self._powers, range(len(self.symbols))
         self._ensure(poly.degrees())
         for exps, c in poly.terms():
-            factors = sorted((powers[(i, k)] for i, k in enumerate(exps) if k), key=lambda f: f[1])
+            factors = [powers[i, exps[i]] for i in compress(index, exps)]
+            factors.sort(key=_rank)
             coeff = sp.Integer(int(c)) if q == 1 else sp.Rational(int(c), q)
             if not factors:
                 const = coeff
                 continue
             if coeff is sp.S.One and len(factors) == 1:
-                term = factors[0][0]
-                key = (_class_key(type(term)), factors[0][1])
+                term, key = factors[0][0], factors[0][2]
             else:
                 args = [f[0] for f in factors]
-                keys = [(_class_key(type(a)), f[1]) for a, f in zip(args, factors, strict=True)]
+                keys = [f[2] for f in factors]
                 if coeff is not sp.S.One:
                     args.insert(0, coeff)
                     keys.insert(0, _number_key(coeff))
@@ -199,11 +202,20 @@ def _class_key(cls: type) -> tuple:
 
 
 _MUL = _class_key(sp.Mul)
+_NUMBER_KEYS: dict = {}
 
 
 def _number_key(c: sp.Rational) -> tuple:
     """Basic.compare on rationals: the class first (One, NegativeOne, Half, Integer...), then p, q."""
-    return (_class_key(type(c)), c._hashable_content())
+    cls = type(c)
+    got = _NUMBER_KEYS.get(cls)
+    if got is None:
+        got = _NUMBER_KEYS[cls] = _class_key(cls)
+    return (got, c._hashable_content())
+
+
+def _rank(entry) -> int:
+    return entry[1]
 
 
 def _reduce(num, den):
@@ -216,10 +228,8 @@ def _reduce(num, den):
 
 
 def _monomial_gcd(poly) -> tuple[int, ...]:
-    exps = None
-    for e in poly.monoms():
-        exps = list(e) if exps is None else [min(a, b) for a, b in zip(exps, e, strict=True)]
-    return tuple(exps)
+    """The exponents of the gcd of the monomials of a nonzero polynomial."""
+    return tuple(poly.term_content().monoms()[0])
 
 
 def _div_monomial(ctx, poly, exps):
