@@ -200,9 +200,10 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
     ``k = 0`` is the feed-through, ``k >= 1`` compares :math:`M F^{k-1} H` with
     :math:`h_k`; ``k`` runs to :math:`n + d` (the theorem of the module).
     :math:`M F^{k-1} H` is met in the middle, :math:`(M F^a)(F^b H)` with
-    :math:`a + b = k - 1` and :math:`|a - b| \le 1`: rows of :math:`M F^a` and
-    columns of :math:`F^b H` are carried over common denominators and cancelled
-    at each step (``_cancel``), and their degrees grow only half as far.
+    :math:`a + b = k - 1`: rows of :math:`M F^a` and columns of :math:`F^b H`
+    are carried over common denominators and cancelled at each step
+    (``_cancel``); each step advances the side with fewer terms
+    (:func:`_rows_first`), so neither grows further than it must.
     """
     n, (p, q) = problem.n, problem.shape
     Fn, Fd = alg.common(e for row in problem.F for e in row)
@@ -223,7 +224,7 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
     scale = delta  # delta**(k+1)
     for k in range(n + problem.d + 1):
         h.append(_markov_next(b, a, h, delta, alg.zero))
-        if k >= 2 and steps[0] <= steps[1]:
+        if k >= 2 and _rows_first(rows, cols, steps):
             rows = [_step(FnT, vec, den, Fd, alg.zero) for vec, den in rows]
             steps[0] += 1
         elif k >= 2:
@@ -238,6 +239,23 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
                 den = rden * cden
             yield k, i, j, num, den, h[k][i][j], scale
         scale = scale * delta
+
+
+def _rows_first(rows, cols, steps) -> bool:
+    r"""Whether the next step advances the rows :math:`M F^a` (else the columns :math:`F^b H`).
+
+    The side whose numerators have fewer terms: a step costs about their
+    terms times those of :math:`F`. For a similarity transform the rows
+    :math:`M_0 F_0^a P` stay small while the columns :math:`P^{-1} F_0^b H_0`
+    carry the adjugate of :math:`P`, so the rows take most steps; in general
+    both grow alike and the steps alternate (``steps`` counts them, unused).
+    """
+    return _size(rows) <= _size(cols)
+
+
+def _size(vectors) -> int:
+    """Terms in the numerators of ``vectors`` (the cost of one more step with them)."""
+    return sum(len(x) for vec, _ in vectors for x in vec)
 
 
 def _step(A: list, vec: list, den, Fd, zero) -> tuple[list, object]:

@@ -30,8 +30,8 @@ a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
 * ``method="exact"`` proves it. Entries become sparse multivariate
   polynomials over :math:`\mathbb{Z}` (python-flint's ``fmpz_mpoly``), each
   rational entry a pair (numerator, denominator). :math:`M F^{k-1} H` is met
-  in the middle as :math:`(M F^a)(F^b H)`, :math:`a + b = k - 1`,
-  :math:`|a - b| \le 1`; the rows of :math:`M F^a` and the columns of
+  in the middle as :math:`(M F^a)(F^b H)`, :math:`a + b = k - 1`, each step
+  advancing the side whose numerators have fewer terms; the rows of :math:`M F^a` and the columns of
   :math:`F^b H` are carried with one common denominator each and cancelled at
   every step (first by exact division by the denominator of :math:`F`, else by
   a gcd), so for a similarity transform, where :math:`M F^a = M_0 F_0^a P` and

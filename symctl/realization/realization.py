@@ -49,6 +49,7 @@ from symctl._util.validate import (
 )
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.realization._similarity import similar_exact
 from symctl.symbols import z
 
 __all__ = [
@@ -196,18 +197,28 @@ class Realization(LatexMixin):
         return self._similar(P)[0]
 
     def _similar(self, P) -> tuple[Realization, sp.Matrix]:
-        """:meth:`similar` and the inverse of ``P`` it computed (adjugate over determinant)."""
+        """:meth:`similar` and the inverse of ``P`` it computed (adjugate over determinant).
+
+        Fraction-free in python-flint (:mod:`symctl.realization._similarity`);
+        entries that are not rational functions with rational coefficients
+        (floats, ``pi``) take the SymPy path, :func:`_similar_sympy`.
+        """
         Pm = to_matrix(P, "P")
         if Pm.shape != (self.n, self.n):
             raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
-        det = sp.cancel(Pm.det(method="berkowitz"))
-        if det == 0:
+        got = similar_exact(self.F, self.H, self.M, Pm) if self.n else None
+        if got is None:
+            F, H, M, Pinv = _similar_sympy(self.F, self.H, self.M, Pm)
+        elif got == "singular":
+            F = None
+        else:
+            F, H, M, Pinv = got
+        if F is None:
             raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
-        Pinv = (Pm.adjugate(method="berkowitz") / det).applyfunc(sp.cancel)
         R = Realization(
-            (Pinv * self.F * Pm).applyfunc(_tidy),
-            (Pinv * self.H).applyfunc(_tidy),
-            (self.M * Pm).applyfunc(_tidy),
+            F,
+            H,
+            M,
             self.N,
             self.dt,
             {**self.params, "P": sp.ImmutableMatrix(Pm)},
@@ -330,6 +341,20 @@ class Realization(LatexMixin):
     def __repr__(self) -> str:
         mats = ", ".join(f"{k}={getattr(self, k).tolist()}" for k in "FHMN")
         return f"Realization({mats})"
+
+
+def _similar_sympy(F, H, M, P: sp.Matrix):
+    """``(P^-1 F P, P^-1 H, M P, P^-1)`` with SymPy's cancel (``F`` is None when ``P`` is singular)."""
+    det = sp.cancel(P.det(method="berkowitz"))
+    if det == 0:
+        return None, None, None, None
+    Pinv = (P.adjugate(method="berkowitz") / det).applyfunc(sp.cancel)
+    return (
+        (Pinv * F * P).applyfunc(_tidy),
+        (Pinv * H).applyfunc(_tidy),
+        (M * P).applyfunc(_tidy),
+        Pinv,
+    )
 
 
 def _matrix_or_empty(value, name: str, shape: tuple[int, int] | None = None) -> sp.Matrix:

@@ -396,6 +396,8 @@ AUDITED = {
     ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
     ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
     ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
+    ("symctl.realization._similarity", "_sympy_mat", "Matrix"): 1,  # flint rationals
+    ("symctl.realization._similarity", "similar_exact", "Matrix"): 1,  # SymPy entries built here
     ("symctl.realization.realization", "Realization.__post_init__", "ImmutableMatrix"): 1,
     ("symctl.realization.realization", "Realization._similar", "ImmutableMatrix"): 2,
     ("symctl.realization.realization", "Realization.markov", "Matrix"): 2,  # own matrices
@@ -446,7 +448,7 @@ AUDITED = {
     ("symctl.neural.firing", "_realizations", "factor"): 1,
     ("symctl.realization.factorization", "Factorization.latex", "expand"): 1,
     ("symctl.realization.factorization", "Factorization.remainder_coeffs", "cancel"): 1,
-    ("symctl.realization.realization", "Realization._similar", "cancel"): 1,
+    ("symctl.realization.realization", "_similar_sympy", "cancel"): 1,  # own matrices (det P)
     ("symctl.realization.realization", "Realization.to_tf", "expand"): 1,
     ("symctl.realization.realization", "Realization.to_tf", "together"): 1,
     ("symctl.realization.realization", "_rank", "cancel"): 1,
