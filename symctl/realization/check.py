@@ -77,8 +77,8 @@ from flint import fmpq, fmpq_mat
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import Degrees, NotRational, fold
-from symctl._util.validate import as_random, relative_tolerance, to_expr
-from symctl.errors import ParameterError
+from symctl._util.validate import as_random, relative_tolerance, to_expr, to_matrix
+from symctl.errors import ParameterError, SymctlTypeError
 from symctl.realization._markov import (
     _Entries,
     _first_difference,
@@ -474,8 +474,65 @@ def _with_numeric(result: RealizationCheck, problem: _Problem, rng, rtol: float)
     )
 
 
+def _similarity_holds(R: Realization, base: Realization, P) -> bool:
+    r"""Exactly :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N = N_0`, det P != 0.
+
+    Entries are folded into pairs of python-flint ``fmpz_mpoly`` (the products
+    multiplied out, never inverted); False when an entry is not rational.
+    """
+    from flint import fmpz_mpoly_ctx
+
+    from symctl._util.exact import PolyFractions
+
+    P = sp.Matrix(P)
+    if P.shape != (R.n, R.n) or base.shape != R.shape or base.n != R.n:
+        return False
+    mats = (P, R.F, R.H, R.M, R.N, base.F, base.H, base.M, base.N)
+    symbols = sorted(set().union(*(m.free_symbols for m in mats)), key=str) or [z]
+    ctx = fmpz_mpoly_ctx.get(("x", len(symbols)), "degrevlex")
+    alg, memo = PolyFractions(ctx, symbols), {}
+    try:
+        Pf, F, H, M, N, F0, H0, M0, N0 = (
+            [[fold(m[i, j], alg, memo) for j in range(m.cols)] for i in range(m.rows)] for m in mats
+        )
+    except (NotRational, ZeroDivisionError):
+        return False
+
+    def product(A, B):
+        rows, inner, cols = len(A), len(B), len(B[0]) if B else 0
+        return (
+            [
+                [alg.add([alg.mul([A[i][k], B[k][j]]) for k in range(inner)]) for j in range(cols)]
+                for i in range(rows)
+            ]
+            if inner
+            else [[(ctx.constant(0), ctx.constant(1))] * cols for _ in range(rows)]
+        )
+
+    def same(A, B):
+        return all(
+            a[0] * b[1] == b[0] * a[1] for ra, rb in zip(A, B, strict=True)
+            for a, b in zip(ra, rb, strict=True)
+        )  # fmt: skip
+
+    if R.n and sp.Matrix(P).det(method="bareiss") == 0:
+        return False
+    return (
+        same(product(Pf, F), product(F0, Pf))
+        and same(product(Pf, H), H0)
+        and same(M, product(M0, Pf))
+        and same(N, N0)
+    )
+
+
 def check_realization(
-    R: Realization, G, method: str = "exact", *, rng=None, rtol: float = RTOL
+    R: Realization,
+    G,
+    method: str = "exact",
+    *,
+    rng=None,
+    rtol: float = RTOL,
+    similar_to: tuple | None = None,
 ) -> RealizationCheck:
     r"""Decide whether :math:`M(zI - F)^{-1}H + N = G(z)`, exactly or by a randomized test.
 
@@ -499,6 +556,16 @@ def check_realization(
         Tolerance of the numeric verdict for floating-point inputs (default
         ``1e-9``): they agree numerically when the largest relative difference
         of the Markov parameters is at most ``rtol``. Unused for exact inputs.
+    similar_to : (Realization, matrix), optional
+        ``(base, P)`` with ``R`` claimed to be ``base.similar(P)``. The proof
+        then multiplies instead of raising :math:`F` to powers: it checks
+        :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N =
+        N_0` and :math:`\det P \ne 0` exactly (so ``R`` and ``base`` have the
+        same transfer function) and decides ``base`` against ``G`` by
+        ``method``; the verdict is the base's, its details say so. When the
+        identities fail, ``R`` is decided directly. A dense symbolic ``R`` of
+        order 20 (a general realization at T = 20) takes minutes through its
+        Markov parameters and seconds this way.
 
     Returns
     -------
@@ -546,6 +613,18 @@ def check_realization(
     """
     if not isinstance(method, str) or method not in METHODS:
         raise ParameterError(f"method: expected one of {', '.join(METHODS)}, got {method!r}")
+    if similar_to is not None:
+        base, P = _similar_to(similar_to)
+        if isinstance(R, Realization) and _similarity_holds(R, base, P):
+            result = check_realization(base, G, method, rng=rng, rtol=rtol)
+            return dataclasses.replace(
+                result,
+                details=(
+                    "similar to a realization (F0, H0, M0, N0) by P: P F = F0 P, P H = H0, "
+                    "M = M0 P, N = N0 and det P != 0 proved exactly, so both have one transfer "
+                    f"function; the base: {result.details}"
+                ),
+            )
     source = as_random(rng, "rng")
     rtol = relative_tolerance(rtol, "rtol")
     problem = _problem(R, G)
@@ -557,6 +636,14 @@ def check_realization(
     if method == "randomized" or not result.ok or result.error_bound == 0 or not small:
         return _with_numeric(result, problem, source, rtol)
     return _with_numeric(_exact(problem, source), problem, source, rtol)
+
+
+def _similar_to(value) -> tuple[Realization, sp.Matrix]:
+    if not (isinstance(value, tuple) and len(value) == 2 and isinstance(value[0], Realization)):
+        raise SymctlTypeError(
+            f"similar_to: expected a pair (Realization, P), got {type(value).__name__}"
+        )
+    return value[0], to_matrix(value[1], "similar_to[1]")
 
 
 def require_stable_sections(epsilons, argname: str) -> None:

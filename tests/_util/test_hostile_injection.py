@@ -412,6 +412,7 @@ AUDITED = {
     ("symctl.realization.factorization", "Factorization.sigma_values", "Poly"): 1,  # to_expr'd
     ("symctl.realization.factorization", "Factorization.sigma_values", "expand"): 1,  # its Poly
     ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
+    ("symctl.realization.check", "_similarity_holds", "Matrix"): 2,  # to_matrix'd P
     ("symctl.report.pipeline", "_realizations", "factor"): 1,  # symctl.factor, built values
     ("symctl.report.results", "PaperResults._factorization_json", "cancel"): 1,  # split_proper
     ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
