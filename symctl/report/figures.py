@@ -56,6 +56,7 @@ from symctl.report.spec import CIRCUIT_SPECS
 __all__ = [
     "DPI",
     "FORMATS",
+    "MAX_DRAWN_PARTS",
     "MAX_DRAWN_SIGNALS",
     "MAX_PIXELS",
     "figure_names",
@@ -69,9 +70,13 @@ DPI = 120
 FORMATS = ("png", "svg")
 """The formats every figure is saved in."""
 MAX_DRAWN_SIGNALS = 400
-"""Structures up to this many signals are drawn block by block; larger ones (a long delay's
-general realization) as the overview of their parts
+"""Structures up to this many signals (and :data:`MAX_DRAWN_PARTS` parts) are drawn block by
+block; larger ones (a long delay's general realization) as the overview of their parts
 (:func:`symctl.plotting.structure_overview.draw_structure_overview`)."""
+MAX_DRAWN_PARTS = 6
+"""Structures of up to this many parts in series (sections of G1 and G3, and G2) are drawn
+block by block; with more (T >= 6), the diagram is a strip over 30 inches wide, so the
+overview of the parts is drawn instead."""
 MAX_PIXELS = 4000
 """Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
 long delay) is written at a lower resolution, so that its size and time stay bounded (the
@@ -143,8 +148,10 @@ def make_figure(res, name: str):
         return rec.firing.plot()
     if kind == "structure":
         title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
-        if len(rec.structure) > MAX_DRAWN_SIGNALS:  # a block diagram over a hundred inches wide
-            return rec.structure.draw(title=title, overview=True)
+        S = rec.structure
+        parts = {b.part for b in S.blocks.values()}
+        if len(S) > MAX_DRAWN_SIGNALS or len(parts) > MAX_DRAWN_PARTS:  # a strip in print
+            return S.draw(title=title, overview=True)
         return rec.structure.draw(title=title)
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"

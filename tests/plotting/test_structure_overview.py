@@ -38,6 +38,12 @@ def test_report_draws_large_structures_as_overview(monkeypatch):
     res = derive_paper()
     full = figures.make_figure(res, "structure_general")
     monkeypatch.setattr(figures, "MAX_DRAWN_SIGNALS", 10)
+    assert any(
+        "overview" in t.get_text()
+        for t in figures.make_figure(res, "structure_general").axes[0].texts
+    )
+    monkeypatch.setattr(figures, "MAX_DRAWN_SIGNALS", 400)
+    monkeypatch.setattr(figures, "MAX_DRAWN_PARTS", 2)
     small = figures.make_figure(res, "structure_general")
     assert any("overview" in t.get_text() for t in small.axes[0].texts)
     assert not any("overview" in t.get_text() for t in full.axes[0].texts)
