@@ -87,6 +87,8 @@ _TITLES = {
     "observable": "observable canonical realization",
     "ifp": "IFP controller",
 }
+LEGEND_MAX_EPS = 4
+"""Most epsilons a realization's legend entry lists (beyond, their count)."""
 _EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
 _EPS_MAX = 899
 
@@ -222,12 +224,18 @@ class FiringPatterns:
         return self.delta_f.shape[0]
 
     def legend_label(self, i: int) -> str:
-        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based)."""
+        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based).
+
+        With more than :data:`LEGEND_MAX_EPS` epsilons (a long delay), only their
+        count: the values are in :attr:`params` (and ``results.json``).
+        """
         eps = [
             f"${signal_tex(str(k))}$ = {float(v):.3g}"
             for k, v in self.params[i].items()
             if str(k).startswith("epsilon")
         ]
+        if len(eps) > LEGEND_MAX_EPS:
+            return f"#{i + 1}: {len(eps)} random $\\epsilon$"
         return f"#{i + 1}" + (": " + ", ".join(eps) if eps else " (IFP)")
 
     def summary(self) -> FiringSummary:
