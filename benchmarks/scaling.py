@@ -100,8 +100,10 @@ def run(args: list[str], root: Path, cap: float) -> tuple[dict, float, bool]:
         finished = False
     else:
         finished = proc.returncode == 0
+        if not finished:
+            out += "\n" + json.dumps({"error": True})
     got: dict = {}
-    for line in out.splitlines():
+    for line in filter(None, out.splitlines()):
         item = json.loads(line)
         if "step" in item:
             got[item["step"]] = (item["s"], item["mb"])
@@ -143,8 +145,10 @@ def paper_table(rows: dict, before: dict) -> None:
             bm_value = max(v[1] for k, v in b[0].items() if k in STEPS)
             bt, bm = f"{b[1]:7.1f}", f"{bm_value:6.0f}"
         else:
-            bt, bm = f"{'> cap':>7}", f"{'-':>6}"
-        total = f"{wall:7.1f}" if ok else f"{'failed':>7}"
+            bm_value = max((v[1] for k, v in b[0].items() if k in STEPS), default=float("nan"))
+            bt = f"{'failed' if b[0].get('error') else '> cap':>7}"
+            bm = f"{bm_value:6.0f}"
+        total = f"{wall:7.1f}" if ok else f"{'failed' if got.get('error') else '> cap':>7}"
         pdf = "yes" if got.get("pdf") else "no"
         print(f"{T:>3} | {cells} | {total} | {bt} | {mb:5.0f} | {bm} | {pdf}", flush=True)
     fits = []
@@ -174,6 +178,19 @@ def paper_table(rows: dict, before: dict) -> None:
             good = ok and wall < target and mb < MEMORY_TARGET_MB and got.get("pdf")
             verdicts.append(f"T = {T}: {wall:.1f} s < {target:g} s {'met' if good else 'NOT met'}")
     print("targets (time, peak < 1 GB, PDF): " + "; ".join(verdicts))
+
+
+def before_table(before: dict, rev: str) -> None:
+    """The previous method's seconds per step, where its case ran (the steps it finished)."""
+    names = [SHORT.get(s, s) for s in STEPS]
+    w = 7
+    print(f"before ({rev}): seconds per step, and the peak RSS of the case")
+    print(f"{'T':>3} | " + " | ".join(f"{n:>{w}}" for n in names) + f" | {'MB':>5}")
+    print("-" * (6 + (w + 3) * len(names) + 8))
+    for T, (got, _, _) in before.items():
+        cells = " | ".join(f"{got[s][0]:{w}.2f}" if s in got else f"{'-':>{w}}" for s in STEPS)
+        mb = max((v[1] for k, v in got.items() if k in STEPS), default=float("nan"))
+        print(f"{T:>3} | {cells} | {mb:5.0f}")
 
 
 def checker_table(rows: dict, before: dict) -> None:
@@ -223,6 +240,9 @@ def main() -> None:
                 before[T] = run(["paper", str(T), str(tmp / f"old{T}")], old, args.baseline_cap)
         paper_table(rows, before)
         print()
+        if before:
+            before_table(before, args.baseline)
+            print()
         n_rows, n_before = {}, {}
         for n in range(2, args.max_n + 1):
             n_rows[n] = run(["checker", str(n)], REPO, args.cap)
@@ -232,7 +252,8 @@ def main() -> None:
     print(
         "\nwall time and peak RSS of a fresh process per case (imports included in 'total');\n"
         "a step's MB is the peak RSS while it ran; figures are drawn in worker processes,\n"
-        "whose memory is not counted; '> cap': stopped at the cap; 'before': the same case\n"
+        "whose memory is not counted; '> cap': stopped at the cap; 'failed': an error (the\n"
+        "baseline's pdflatex at T = 10: 'Dimension too large'); 'before': the same case\n"
         f"on revision {args.baseline}. exp: slope of log time against log T (or n).\n"
         f"total {time.perf_counter() - start:.0f} s"
     )
