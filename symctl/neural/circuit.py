@@ -457,22 +457,8 @@ class Circuit(LatexMixin):
         if numeric:
             return self._numeric_system(states, out_names)
         k, m = len(states), len(S.inputs)
-        row: dict[str, sp.Matrix] = {}  # signal -> [coefficients on states | inputs]
-        for i, name in enumerate(states):
-            row[name] = sp.Matrix.hstack(sp.eye(k)[i, :], sp.zeros(1, m))
-        for j, name in enumerate(S.inputs):
-            row[name] = sp.Matrix.hstack(sp.zeros(1, k), sp.eye(m)[j, :])
-        free = nx.DiGraph()
-        free.add_nodes_from(S.blocks)
-        free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
-        for name in nx.topological_sort(free):
-            block = S.blocks[name]
-            if name in row:
-                continue
-            if block.kind == "gain":
-                row[name] = _gain(block, name) * row[block.inputs[0]]
-            else:
-                row[name] = sum((row[s] for s in block.inputs), sp.zeros(1, k + m))
+        unit = [sp.eye(k + m)[i, :] for i in range(k + m)]
+        row = _signal_rows(S, states, unit, sp.zeros(1, k + m), lambda name, g: g)
         nxt = sp.Matrix.vstack(*(row[S.blocks[s].inputs[0]] for s in states)) if k else None
         obs = sp.Matrix.vstack(*(row[s] for s in out_names)) if out_names else None
         A = nxt[:, :k] if k else sp.zeros(0, 0)
@@ -489,24 +475,15 @@ class Circuit(LatexMixin):
             raise ParameterError(f"numeric: the weights still contain {left}; subs() first")
         S = self.structure
         k, m = len(states), len(S.inputs)
-        eye = np.eye(k + m)
-        row = {name: eye[i] for i, name in enumerate((*states, *S.inputs))}
-        free = nx.DiGraph()
-        free.add_nodes_from(S.blocks)
-        free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
-        for name in nx.topological_sort(free):
-            block = S.blocks[name]
-            if name in row:
-                continue
-            if block.kind == "gain":
-                gain = _gain(block, name)
-                if gain.free_symbols or not gain.is_real:
-                    raise ParameterError(
-                        f"numeric: the gain of {name!r} is {gain}, not a real number; subs() first"
-                    )
-                row[name] = float(gain) * row[block.inputs[0]]
-            else:
-                row[name] = sum((row[s] for s in block.inputs), np.zeros(k + m))
+
+        def real(name, gain):
+            if gain.free_symbols or not gain.is_real:
+                raise ParameterError(
+                    f"numeric: the gain of {name!r} is {gain}, not a real number; subs() first"
+                )
+            return float(gain)
+
+        row = _signal_rows(S, states, list(np.eye(k + m)), np.zeros(k + m), real)
         nxt = np.array([row[S.blocks[s].inputs[0]] for s in states]).reshape(k, k + m)
         obs = np.array([row[s] for s in out_names]).reshape(len(out_names), k + m)
         return CircuitSystem(
@@ -645,6 +622,28 @@ def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
 
 def _is_neuron(block: Block) -> bool:
     return block.kind == "sum" and len(block.inputs) >= 2
+
+
+def _signal_rows(S: Structure, states: tuple, unit: list, zero, gain_value) -> dict:
+    """Each signal as a row of coefficients on ``[states | inputs]``, in delay-free order.
+
+    ``unit`` holds the unit rows (states, then inputs) and ``zero`` the zero row,
+    as SymPy or NumPy rows; ``gain_value(name, gain)`` turns a gain into the
+    number type of the rows.
+    """
+    row = dict(zip((*states, *S.inputs), unit, strict=True))
+    free = nx.DiGraph()
+    free.add_nodes_from(S.blocks)
+    free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
+    for name in nx.topological_sort(free):
+        block = S.blocks[name]
+        if name in row:
+            continue
+        if block.kind == "gain":
+            row[name] = gain_value(name, _gain(block, name)) * row[block.inputs[0]]
+        else:
+            row[name] = sum((row[s] for s in block.inputs), zero)
+    return row
 
 
 def _gain(block: Block, name: str) -> sp.Expr:
