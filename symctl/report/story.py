@@ -18,14 +18,18 @@ Examples
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
+from fractions import Fraction
 
 import numpy as np
 import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl._util.exact import IntFractions, NotRational, fold, ring_fractions
 from symctl.realization.realizers import REALIZERS
+from symctl.report import longform as LF
 from symctl.report.document import DocumentBlock, Graphic, Heading, Math, Table, Text, Verbatim
 from symctl.report.spec import CIRCUIT_SPECS
 from symctl.symbols import z
@@ -47,8 +51,37 @@ def _fmt(value: float) -> str:
     return f"${L.number(value, 6)}$"
 
 
-def _eq(*rows, label: str) -> Math:
-    return Math(tuple((lhs, L.to_latex(rhs)) for lhs, rhs in rows), label)
+def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
+    """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
+
+    A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
+    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
+    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
+    header, rows)``), follow the display.
+    """
+    lead = max((LF.width(lhs) for lhs, _ in rows), default=0.0) + 3.0
+    shown, more = [], []
+    for lhs, rhs in rows:
+        if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
+            view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
+            shown += view.rows
+            more += view.tables
+        else:
+            shown.append((lhs, L.to_latex(rhs)))
+    return _display(shown, label, [*more, *tables])
+
+
+def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
+    fitted = LF.fit_rows(rows)
+    tall = sum(LF.height(rhs) for _, rhs in fitted) > LF.DISPLAY_MAX_LINES
+    out: list[DocumentBlock] = [Math(tuple(fitted), label, breakable=tall)]
+    for intro, header, body in tables:
+        out += [Text(intro), Table(header, body)]
+    return out
+
+
+def _fits(lhs: str, rhs: str) -> bool:
+    return LF.width(lhs) + 3.0 + LF.width(rhs) <= LF.LINE_WIDTH
 
 
 def _both(symbolic, numeric) -> str:
@@ -92,7 +125,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     """
     shown = set(figures)
     blocks: list[DocumentBlock] = []
-    add = blocks.append
+    add, put = blocks.append, blocks.extend
 
     def figure(name: str, caption: str) -> None:
         if name in shown:
@@ -134,7 +167,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\bar f$."
         )
     )
-    add(
+    put(
         _eq(
             (r"\frac{df}{dt}", model.ode),
             (r"\bar f", _both(model.f_bar_symbolic, model.f_bar) + r"\ \text{N}"),
@@ -148,7 +181,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     values = model.values
-    add(
+    put(
         _eq(
             ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
             ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
@@ -165,7 +198,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\delta_f(t+1) = A\\,\\delta_f(t) + B\\,\\delta_r(t)$ with"
         )
     )
-    add(
+    put(
         _eq(
             ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
             ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
@@ -187,7 +220,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
         )
     )
-    add(
+    put(
         _eq(
             (r"\chi", s.chi),
             (r"\tilde A", _num(s.A)),
@@ -209,7 +242,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     poles = ", ".join(_pole(p) for p in g.poles)
-    add(
+    put(
         _eq(
             ("K", np.asarray(g.K, dtype=float)),
             (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
@@ -227,7 +260,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\Delta_r$ is a transfer function of the gains, kept symbolic:"
         )
     )
-    add(_eq(("G(z)", _both(res.G_symbolic, G_num.expr.evalf(6))), label="eq:G"))
+    whole = _both(res.G_symbolic, G_num.expr.evalf(6))
+    long_G = not _fits("G(z)", whole)
+    put(_tf_long("G(z)", res.G_symbolic, G_num, label="eq:G") if long_G
+        else _eq(("G(z)", whole), label="eq:G"))  # fmt: skip
     add(
         Text(
             "Proved: "
@@ -249,26 +285,38 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     den = descending_latex(f.G2.den)
-    add(
+    if not _fits("G_2(z)", den) and f.G2.den_coeffs() == res.G_symbolic.den_coeffs():
+        den = "a(z)" if long_G else den
+    zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
+    if not _fits("G_2(z)", zeros):
+        zeros = (
+            _zeros_tex(f.sensor_eps, product=True) + " " + _zeros_tex(f.actuator_eps, product=True)
+        )
+    put(
         _eq(
             ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
             ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-            ("G_2(z)", rf"N\,\frac{{{_zeros_tex((*f.sensor_eps, *f.actuator_eps))}}}{{{den}}}"),
+            ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
             label="eq:factors",
         )
     )
-    c = _remainder_symbols(f)
+    f_N, f_coeffs = f.N, f.remainder_coeffs  # properties that compute: once
+    c = _remainder_symbols(f_coeffs)
     add(
         Text(
             "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
             "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
         )
     )
-    add(
+    remainder = descending_latex(_remainder_poly(c))
+    if not _fits("G_2(z)", remainder):
+        n = len(c)
+        remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
+    put(
         _eq(
-            ("N", f.N),
-            ("G_2(z)", rf"N + N\,\frac{{{descending_latex(_remainder_poly(c))}}}{{{den}}}"),
-            *zip(map(L.to_latex, c), f.remainder_coeffs, strict=True),
+            ("N", f_N if _fits("N", L.to_latex(f_N)) else _quotient_tex(f_N)),
+            ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
+            *zip(map(L.to_latex, c), f_coeffs, strict=True),
             label="eq:G2rewritten",
         )
     )
@@ -285,11 +333,14 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"from seed {res.seed})."
         )
     )
+    names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
     for name in ("controllable", "observable"):
         rec = res.realizations[name]
         add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
-        mats, short = _compact(rec.symbolic, f, c)
-        add(_eq(*mats, label=f"eq:{name}"))
+        mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
+        if short:
+            names[name] = _renamed(rec.symbolic, dict(mats))
+        put(_eq(*mats, label=f"eq:{name}"))
         where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
         add(Text(_check_text(rec) + where))
     rec = res.realizations["general"]
@@ -301,12 +352,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "into another realization of the same $G_2$:"
         )
     )
-    add(
+    put(
         _eq(
             ("F", r"P^{-1} F_c P"),
             ("H", r"P^{-1} H_c"),
             ("M", r"M_c P"),
-            ("P", P if P is not None else "P"),
+            ("P", "P" if P is None else P if P.free_symbols else _num(P)),
             label="eq:general",
         )
     )
@@ -315,7 +366,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
     )
     add(Text(f"With the seeded numbers ({values}):"))
-    add(
+    put(
         _eq(
             *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
             ("P", _num(rec.P_numeric)),
@@ -334,7 +385,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "least $E$."
         )
     )
-    add(_eq(("E", res.graph.E), label="eq:E"))
+    put(_eq(("E", res.graph.E), label="eq:E"))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
         add(Heading(_title(name), 2))
@@ -345,7 +396,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                     "under the witness assignment:"
                 )
             )
-            add(_eq((r"\tilde E", verdict.E_tilde), label=f"eq:Etilde-{name}"))
+            same = np.array_equal(verdict.E_tilde, res.graph.E)
+            big = not LF.show_matrix("E", res.graph.E).full
+            put(_eq((r"\tilde E", "E" if same and big else verdict.E_tilde),
+                    label=f"eq:Etilde-{name}"))  # fmt: skip
             where = "; ".join(
                 f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
                 for v in range(1, res.graph.n + 1)
@@ -395,7 +449,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             circuit = crec.circuit
             add(Text("The neurons, their self-dynamics and synapses:"))
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
-        add(Math(tuple(rows), f"eq:circuit-{name}"))
+        put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
         placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
@@ -457,45 +511,182 @@ COMPACT_LENGTH = 300
 
 
 def _sections_tex(cs, eps) -> str:
-    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections."""
+    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections.
+
+    Too wide for the line, the product over an index: ``prod_k C_{1,k}/(z - epsilon_{1,k})``.
+    """
     if not cs:
         return "1"
-    return rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
+    tex = rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
+    C, e = _indexed(cs), _indexed(eps)
+    if _fits("G_1(z)", tex) or C is None or e is None or C[1:] != e[1:]:
+        return tex
+    return rf"\prod_{{k={C[1]}}}^{{{C[2]}}} \frac{{{C[0]}}}{{z - {e[0]}}}"
 
 
-def _zeros_tex(eps) -> str:
+def _zeros_tex(eps, product: bool = False) -> str:
+    """``(z - epsilon_1)(z - epsilon_3)``; with ``product``, ``prod_k (z - epsilon_{1,k})``."""
+    e = _indexed(eps) if product else None
+    if e is not None:
+        return rf"\prod_{{k={e[1]}}}^{{{e[2]}}} \left(z - {e[0]}\right)"
     if len(eps) == 1:
         return f"z - {L.to_latex(eps[0])}"
     return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
 
 
+_INDEXED = re.compile(r"(?P<stem>[A-Za-z]+)_(?:\{(?P<pre>(?:\d+,)*)(?P<k>\d+)\}|(?P<k1>\d+))")
+
+
+def _indexed(symbols) -> tuple[str, int, int] | None:
+    """Symbols ``x_{a,lo}, ..., x_{a,hi}`` (or ``x_lo..x_hi``) as ``(LaTeX of x_{a,k}, lo, hi)``."""
+    found = [_INDEXED.fullmatch(getattr(x, "name", "")) for x in symbols]
+    if len(found) < 2 or not all(found):
+        return None
+    keys = {(m["stem"], m["pre"] or "") for m in found}
+    ks = [int(m["k"] or m["k1"]) for m in found]
+    if len(keys) != 1 or ks != list(range(ks[0], ks[0] + len(ks))):
+        return None
+    stem, pre = keys.pop()
+    return L.to_latex(sp.Symbol(f"{stem}_{{{pre}k}}")), ks[0], ks[-1]
+
+
+def _quotient_tex(expr) -> str:
+    """A quotient by a product of indexed symbols, the product written over its indices."""
+    num, den = expr.as_numer_denom()
+    groups: dict[tuple, list] = {}
+    rest = []
+    for factor in sp.Mul.make_args(den):
+        m = _INDEXED.fullmatch(getattr(factor, "name", ""))
+        if m is None:
+            rest.append(factor)
+        else:
+            groups.setdefault((m["stem"], m["pre"] or ""), []).append(factor)
+    parts = [L.to_latex(sp.Mul(*rest))] if rest else []
+    for group in groups.values():
+        ix = _indexed(sorted(group, key=lambda x: x.name))
+        if ix is None:
+            parts.append(L.to_latex(sp.Mul(*group)))
+        else:
+            parts.append(rf"\prod_{{k={ix[1]}}}^{{{ix[2]}}} {ix[0]}")
+    return rf"\frac{{{L.to_latex(num)}}}{{{' '.join(parts)}}}"
+
+
+def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
+    """A transfer function too wide for the line: ``b(z)/a(z)`` with a table of coefficients."""
+    a_s, a_n = symbolic.den_coeffs(), numeric.den_coeffs()
+    b_s, b_n = symbolic.num_coeffs(), numeric.num_coeffs()
+    n, m = len(a_s) - 1, len(b_s) - 1
+    rows = []
+    if m == 0:
+        rows.append((lhs, rf"\frac{{{L.to_latex(b_s[0])}}}{{a(z)}} = "
+                          rf"\frac{{{L.number(float(b_n[0]))}}}{{a(z)}}"))  # fmt: skip
+    else:
+        rows += [(lhs, r"\frac{b(z)}{a(z)}"), ("b(z)", rf"\sum_{{k=0}}^{{{m}}} b_k\, z^{{{m}-k}}")]
+    rows.append(("a(z)", rf"\sum_{{k=0}}^{{{n}}} a_k\, z^{{{n}-k}}"))
+
+    def table(name, sym, num):
+        body = tuple(
+            (f"${k}$", f"${L.to_latex(cs)}$", _fmt(float(cn)))
+            for k, (cs, cn) in enumerate(zip(sym, num, strict=True))
+        )
+        intro = f"The coefficients ${name}_k$ of ${name}(z)$ (descending powers of $z$):"
+        return intro, ("$k$", f"${name}_k$", "with the optimal gains"), body
+
+    tables = [table("a", a_s, a_n)] + ([table("b", b_s, b_n)] if m else [])
+    return _display(rows, label, tables)
+
+
 def _remainder_symbols(f) -> list[sp.Symbol]:
-    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(f.remainder_coeffs) + 1)]
+    """``c_1, ..., c_n``, one per remainder coefficient (of a factorization, or the list)."""
+    coeffs = f if isinstance(f, list | tuple) else f.remainder_coeffs
+    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(coeffs) + 1)]
 
 
 def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
     return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
 
 
-def _compact(R, f, c) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols."""
+def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
+    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols.
+
+    Long: LaTeX longer than :data:`COMPACT_LENGTH` or wider than a line. ``values`` is
+    ``(f.N, f.remainder_coeffs)`` when the caller has them (both are computed on access).
+    """
     N = sp.Symbol("N")
-    targets = [(f.N * coeff, N * ck) for coeff, ck in zip(f.remainder_coeffs, c, strict=True)]
+    f_N, f_coeffs = values if values is not None else (f.N, f.remainder_coeffs)
+    targets = [(f_N * coeff, N * ck) for coeff, ck in zip(f_coeffs, c, strict=True)]
     rows, short = [], False
     for k in "FHMN":
         mat = getattr(R, k)
-        if k in "HM" and len(L.to_latex(mat)) > COMPACT_LENGTH:
-            mat = mat.applyfunc(lambda e: _match(e, targets))
+        tex = L.to_latex(mat) if k in "HMN" else ""
+        if k in "HMN" and (len(tex) > COMPACT_LENGTH or LF.width(tex) > LF.LINE_WIDTH - 12):
+            mat = mat.applyfunc(_Matcher([*targets, (f_N, N)]))
             short = True
         rows.append((k, mat))
     return rows, short
 
 
-def _match(entry: sp.Expr, targets) -> sp.Expr:
-    for value, symbol in targets:
-        if sp.cancel(entry - value) == 0:
-            return symbol
-    return entry
+def _renamed(R, compact: dict) -> dict[str, str]:
+    """The LaTeX of each entry of ``R`` that :func:`_compact` renamed, to its new LaTeX."""
+    out = {}
+    for k, mat in compact.items():
+        for old, new in zip(getattr(R, k), mat, strict=True):
+            if old != new:
+                out[L.to_latex(old)] = L.to_latex(new)
+    return out
+
+
+def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
+    """Circuit equations with the long weights of ``names`` written as their short names."""
+    if not names:
+        return list(rows)
+    order = sorted(names, key=len, reverse=True)
+    out = []
+    for lhs, rhs in rows:
+        for old in order:
+            rhs = rhs.replace(old, names[old])
+        out.append((lhs, rhs))
+    return out
+
+
+class _Matcher:
+    """Entry -> the symbol of the target it equals (exactly), else the entry itself.
+
+    The targets are keyed by their value at a random rational point; an entry is
+    compared exactly (:func:`~symctl._util.exact.ring_fractions`, cross-multiplied)
+    only with the targets of its key, instead of a ``cancel`` per pair.
+    """
+
+    def __init__(self, targets) -> None:
+        self.targets = targets
+        syms = sorted(set().union(*(v.free_symbols for v, _ in targets)), key=str)
+        rng = np.random.default_rng(0)
+        self.point = {x: Fraction(int(rng.integers(10**6, 10**7)), int(rng.integers(1, 997)))
+                      for x in syms}  # fmt: skip
+        self.keys: dict[Fraction | None, list] = {}
+        for value, symbol in targets:
+            self.keys.setdefault(self._key(value), []).append((value, symbol))
+
+    def _key(self, e) -> Fraction | None:
+        if not e.free_symbols <= self.point.keys():
+            return None
+        try:
+            p, q = fold(e, IntFractions(self.point))
+        except (ZeroDivisionError, NotRational):
+            return None
+        return Fraction(p, q) if q else None
+
+    def __call__(self, entry: sp.Expr) -> sp.Expr:
+        key = self._key(entry)
+        candidates = self.keys.get(key, []) if key is not None else self.targets
+        for value, symbol in candidates:
+            pairs = ring_fractions([entry, value])
+            if pairs is None:
+                continue
+            (n1, d1), (n2, d2) = pairs
+            if n1 * d2 == n2 * d1:
+                return symbol
+        return entry
 
 
 def _count_text(res) -> str:
