@@ -15,10 +15,10 @@ that are the same background value (0, or :math:`\infty` for a delay matrix).
   a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
   (transposed for a column) broken over lines; a companion matrix (ones on the
   super- or sub-diagonal, one free row or column) is its dots picture with the
-  free row or column as a list; a sparse matrix (at least
-  :data:`SPARSE_MIN_BACKGROUND` of its entries the background value) is its
-  sparsity pattern (:math:`\ast` and :math:`\cdot`) with its other entries in a
-  table, runs along a diagonal in one row; a dense matrix is its corners with
+  free row or column as a list; a sparse or banded matrix (its entries other than
+  the background value fit a table of :data:`PATTERN_TABLE_ROWS` rows per row,
+  runs along a diagonal in one row) is its sparsity pattern (:math:`\ast` and
+  :math:`\cdot`) with that table; a dense matrix is its corners with
   dots, numbers to :data:`LARGE_DIGITS` digits (the exact values are in
   ``results.json``).
 * A display taller than :data:`DISPLAY_MAX_LINES` lines is breakable across pages.
@@ -51,7 +51,7 @@ __all__ = [
     "LINE_WIDTH",
     "MATRIX_MAX_COLUMNS",
     "MATRIX_MAX_ROWS",
-    "SPARSE_MIN_BACKGROUND",
+    "PATTERN_TABLE_ROWS",
     "TABLE_WIDTH",
     "TERM_MAX_LINES",
     "VECTOR_MAX_ENTRIES",
@@ -78,9 +78,10 @@ MATRIX_MAX_ROWS = 12
 """A matrix with more rows is never written in full (a display that tall reads badly)."""
 MATRIX_MAX_COLUMNS = 12
 """A matrix with more columns is never written in full."""
-SPARSE_MIN_BACKGROUND = 0.5
-"""A large matrix whose background value (its most common entry) fills at least this share
-is shown as a sparsity pattern with a table of its other entries."""
+PATTERN_TABLE_ROWS = 2.0
+"""A large matrix whose entries other than its background value (its most common entry) make a
+table of at most this many rows per row or column of the matrix (a run of equal entries along
+a diagonal is one row) is shown as its sparsity pattern with that table."""
 CORNER = 3
 """Leading rows and columns shown of a large dense matrix (then dots, then the last one)."""
 LARGE_DIGITS = 4
@@ -247,13 +248,13 @@ def width(tex: str) -> float:
             elif name in _WIDE:
                 total += _WIDE[name]
             elif name in _BINARY:
-                total += 2.5
+                total += 2.5 if total else 1.2  # a leading one is an ordinary symbol
             elif len(name) == 1 and not name.isalpha():
                 total += _SPACE.get(name, 0.8)  # \, \; \! \{ \} \| ...
             else:
                 total += 1.2  # a Greek letter, \partial, ...
         elif t in "+-=<>":
-            total += 2.5
+            total += 2.5 if total else 1.0  # a leading sign is unary
         elif t in ",;":
             total += 1.0
         elif t in "()[]|/":
@@ -310,8 +311,9 @@ def table_width(header, rows) -> float:
 
 
 # ---------------------------------------------------------------- breaking a line
-def _terms(tex: str) -> list[str]:
-    """``tex`` cut before each top-level `` + ``, `` - ``, `` = `` and after each top-level ``, ``."""
+def _terms(tex: str, ops: str = "+-=", commas: bool = True) -> list[str]:
+    """``tex`` cut before each top-level `` + ``, `` - ``, `` = `` (those in ``ops``) and after
+    each top-level ``, `` (when ``commas``)."""
     out, cur, depth = [], "", 0
     tokens = _TOKEN.findall(tex)
     for k, t in enumerate(tokens):
@@ -321,17 +323,25 @@ def _terms(tex: str) -> list[str]:
             depth -= 1
         at_top = depth == 0 and cur.strip()
         spaced = 0 < k < len(tokens) - 1 and tokens[k - 1].isspace() and tokens[k + 1].isspace()
-        if at_top and t in "+-=" and spaced:
+        if at_top and t in ops and spaced:
             out.append(cur.rstrip())
             cur = t
             continue
         cur += t
-        if at_top and t == "," and k + 1 < len(tokens) and tokens[k + 1].isspace():
+        if commas and at_top and t == "," and k + 1 < len(tokens) and tokens[k + 1].isspace():
             out.append(cur)
             cur = ""
     if cur.strip():
         out.append(cur.strip())
     return [p.strip() for p in out if p.strip()]
+
+
+def _pieces(tex: str, room: float) -> list[str]:
+    """The items of a list (cut after its commas), an item too wide cut at its ``+ - =``."""
+    items = _terms(tex, ops="")
+    if len(items) == 1:
+        return _terms(tex, commas=False)
+    return [p for item in items for p in ([item] if width(item) <= room else _terms(item))]
 
 
 def _elided(tex: str) -> str:
@@ -366,7 +376,7 @@ def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
     [('a', '1')]
     >>> rows = fit_rows([("s", " + ".join(["x"] * 60))], budget=20)
     >>> rows[0], rows[1]
-    (('s', 'x + x + x + x + x'), (None, '\\qquad + x + x + x + x'))
+    (('s', 'x + x + x + x + x'), (None, '\\qquad + x + x + x'))
     """
     rows = list(rows)
     lead = max((width(lhs) + 3.0 for lhs, _ in rows if lhs is not None), default=0.0)
@@ -375,12 +385,13 @@ def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
         if lead + width(rhs) <= budget:
             out.append((lhs, rhs))
             continue
-        room = budget - max(lead, width(INDENT))
+        room = budget - lead - width(INDENT)  # of a continuation line; the first has more
         lines: list[str] = []
-        for term in _terms(rhs):
+        for term in _pieces(rhs, room):
             if width(term) > room:
                 term = _elided(term)
-            if lines and width(lines[-1] + " " + term) <= room:
+            free = room + (width(INDENT) if len(lines) == 1 else 0.0)
+            if lines and width(lines[-1] + " " + term) <= free:
                 lines[-1] += " " + term
             else:
                 lines.append(term)
@@ -581,20 +592,15 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
             [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
         )
     counts = Counter(flat)
-    background, count = counts.most_common(1)[0]
-    if count >= SPARSE_MIN_BACKGROUND * len(flat):
+    background = counts.most_common(1)[0][0]
+    table = _sparse_table(lhs, E, background, tex)
+    if len(table) <= PATTERN_TABLE_ROWS * max(n, m):
         cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
         pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
-        rows = (
-            [(lhs, pattern + size)]
-            if width(pattern + size) <= room
-            else [(lhs, rf"\text{{sparse}}{size}")]
-        )
+        fits = width(pattern + size) <= room
+        rows = [(lhs, pattern + size if fits else rf"\text{{(its entries below)}}{size}")]
         intro = f"The entries $\\ast$ of ${lhs}$ (those marked $\\cdot$ are ${tex(background)}$):"
-        return MatrixView(
-            rows,
-            [(intro, ("entry", "for", "value"), tuple(_sparse_table(lhs, E, background, tex)))],
-        )
+        return MatrixView(rows, [(intro, ("entry", "for", "value"), tuple(table))])
 
     def short(e) -> str:
         return _entry_tex(e, numeric, LARGE_DIGITS)
