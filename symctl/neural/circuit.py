@@ -453,6 +453,9 @@ class Circuit(LatexMixin):
         """
         S = self.structure
         states = tuple(n for n, b in S.blocks.items() if b.kind == "delay")
+        out_names = tuple(n.name for n in self.neurons) + S.outputs
+        if numeric:
+            return self._numeric_system(states, out_names)
         k, m = len(states), len(S.inputs)
         row: dict[str, sp.Matrix] = {}  # signal -> [coefficients on states | inputs]
         for i, name in enumerate(states):
@@ -471,21 +474,44 @@ class Circuit(LatexMixin):
             else:
                 row[name] = sum((row[s] for s in block.inputs), sp.zeros(1, k + m))
         nxt = sp.Matrix.vstack(*(row[S.blocks[s].inputs[0]] for s in states)) if k else None
-        out_names = tuple(n.name for n in self.neurons) + S.outputs
         obs = sp.Matrix.vstack(*(row[s] for s in out_names)) if out_names else None
         A = nxt[:, :k] if k else sp.zeros(0, 0)
         B = nxt[:, k:] if k else sp.zeros(0, m)
         C = obs[:, :k] if out_names else sp.zeros(0, k)
         D = obs[:, k:] if out_names else sp.zeros(0, m)
         mats = [A.applyfunc(sp.expand), B, C.applyfunc(sp.expand), D]
-        if numeric:
-            left = set().union(*(M.free_symbols for M in mats))
-            if left:
-                raise ParameterError(
-                    f"numeric: the weights still contain {sorted(map(str, left))}; subs() first"
-                )
-            mats = [np.array(M.tolist(), dtype=float).reshape(M.shape) for M in mats]
         return CircuitSystem(*mats, states, S.inputs, out_names)
+
+    def _numeric_system(self, states: tuple, out_names: tuple) -> CircuitSystem:
+        """:meth:`as_linear_system` in floats: the same signal order, rows as NumPy vectors."""
+        left = sorted(map(str, self.free_symbols))
+        if left:
+            raise ParameterError(f"numeric: the weights still contain {left}; subs() first")
+        S = self.structure
+        k, m = len(states), len(S.inputs)
+        eye = np.eye(k + m)
+        row = {name: eye[i] for i, name in enumerate((*states, *S.inputs))}
+        free = nx.DiGraph()
+        free.add_nodes_from(S.blocks)
+        free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
+        for name in nx.topological_sort(free):
+            block = S.blocks[name]
+            if name in row:
+                continue
+            if block.kind == "gain":
+                gain = _gain(block, name)
+                if gain.free_symbols or not gain.is_real:
+                    raise ParameterError(
+                        f"numeric: the gain of {name!r} is {gain}, not a real number; subs() first"
+                    )
+                row[name] = float(gain) * row[block.inputs[0]]
+            else:
+                row[name] = sum((row[s] for s in block.inputs), np.zeros(k + m))
+        nxt = np.array([row[S.blocks[s].inputs[0]] for s in states]).reshape(k, k + m)
+        obs = np.array([row[s] for s in out_names]).reshape(len(out_names), k + m)
+        return CircuitSystem(
+            nxt[:, :k], nxt[:, k:], obs[:, :k], obs[:, k:], states, S.inputs, out_names
+        )
 
     # ------------------------------------------------------------ display
     def equations(self, digits: int | None = None) -> list[str]:

@@ -71,7 +71,7 @@ from symctl.neural.simulate import (
     closed_loop_response,
     simulate_realization,
 )
-from symctl.realization.factorization import factor
+from symctl.realization.factorization import factor, section_symbols
 from symctl.realization.realization import Realization, controller_realization
 from symctl.realization.realizers import get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
@@ -348,11 +348,16 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
         yield {}, R, R, circuit
         return
     realizer = get_realizer(kind, "kind")  # "general": a random P drawn from gen
-    f = factor(controller_tf(gains), s.sensor_delay, s.actuator_delay)
-    eps = (*f.sensor_eps, *f.actuator_eps)
+    # the optimal controller with the gains as the exact rationals of their floats: every
+    # realization below is then exact rational arithmetic (python-flint), never float SymPy
+    exact = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
+    G = controller_tf(s).subs(exact)
+    sides = [(1, s.sensor_delay), (3, s.actuator_delay)]
+    eps = tuple(e for side, d in sides if d for e in section_symbols(side, d)[0])
     for _ in range(count):
         drawn = {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
-        fs = f.subs({**drawn, **{c: 1 for c in (*f.sensor_C, *f.actuator_C)}})
+        # the factors built at the drawn values: exact and cheap (no substitution into G2)
+        fs = factor(G, s.sensor_delay, s.actuator_delay, eps=list(drawn.values()), C=1)
         R2 = realizer(fs.G2, rng=gen).realization
         params = {**drawn, **R2.params}
         R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)

@@ -33,21 +33,23 @@ True
 from __future__ import annotations
 
 import random
+from collections import Counter
 from dataclasses import dataclass
 from functools import cache
 
 import sympy as sp
+from flint import fmpq_poly, fmpz_mpoly_ctx
 
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
-from symctl._util.exact import products_equal
+from symctl._util.exact import NotRational, PolyFractions, fold, products_equal
 from symctl._util.proof import Proof
 from symctl._util.validate import nonneg_int, relative_tolerance, subs_rule, to_expr
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
 
-__all__ = ["Factorization", "factor", "section_symbols"]
+__all__ = ["Factorization", "factor", "section_symbols", "sigma_symbols"]
 
 
 @cache
@@ -67,6 +69,23 @@ def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple
     eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
     cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
     return eps, cs
+
+
+@cache
+def sigma_symbols(count: int) -> tuple[sp.Symbol, ...]:
+    r"""The abbreviations :math:`\sigma_1, \dots, \sigma_d` of the zeros' coefficients.
+
+    :math:`\prod_{i=1}^{d} (z - \epsilon_i) = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`
+    with :math:`\sigma_0 = 1`: :math:`\sigma_k = e_k(\epsilon)` is the k-th
+    elementary symmetric polynomial of the section poles (Vieta), which has
+    :math:`\binom{d}{k}` terms; :meth:`Factorization.abbreviated` writes
+    :math:`G_2` with them.
+
+    >>> from symctl.realization.factorization import sigma_symbols
+    >>> sigma_symbols(3)
+    (sigma_1, sigma_2, sigma_3)
+    """
+    return tuple(sp.Symbol(f"sigma_{k}", real=True) for k in range(1, count + 1))
 
 
 def _sections(eps, cs, dt) -> DiscreteTF:
@@ -134,6 +153,89 @@ class Factorization(LatexMixin):
         scale = N if N != 0 else 1
         return [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
 
+    @property
+    def poles(self) -> tuple:
+        """The section poles, sensor side first: the zeros :math:`G_2` takes over from G1 and G3."""
+        return (*self.sensor_eps, *self.actuator_eps)
+
+    @property
+    def sigma(self) -> tuple[sp.Symbol, ...]:
+        r"""The abbreviations :math:`\sigma_k` of :meth:`abbreviated` (:func:`sigma_symbols`)."""
+        return sigma_symbols(len(self.poles))
+
+    def abbreviated(self) -> DiscreteTF:
+        r""":math:`G_2` with the coefficients of its zeros written as :math:`\sigma_k`.
+
+        .. math::
+            G_2 = \frac{\operatorname{num} G}{\prod C}\,
+            \frac{\sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}}{\operatorname{den} G},
+            \qquad \sigma_0 = 1,\ \sigma_k = e_k(\epsilon_1, \dots, \epsilon_d),
+
+        for the :math:`d` section poles (:func:`sigma_symbols`). The expanded
+        :attr:`G2` has :math:`2^d` monomials in its zeros' coefficients; this
+        form has :math:`d`, so realizations of it stay small at any delay. A
+        realization of the abbreviated :math:`G_2` realizes :attr:`G2` at
+        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`): an identity in free
+        symbols :math:`\sigma_k` holds at any value of them.
+
+        Examples
+        --------
+        >>> from symctl import controller_tf, factor
+        >>> f = factor(controller_tf(2))
+        >>> f.abbreviated().expr
+        K_0*(-sigma_1*z + sigma_2 + z**2)/(C_1*C_3*(-K_1*z - K_2 + z**2))
+        >>> f.abbreviated().subs(f.sigma_values()).equals(f.G2)
+        True
+        """
+        d = len(self.poles)
+        zeros = sp.Add(
+            z**d, *((-1) ** k * s * z ** (d - k) for k, s in enumerate(self.sigma, start=1))
+        )
+        scale = sp.Mul(*self.sensor_C, *self.actuator_C)
+        return DiscreteTF(self.G.num / scale * zeros, self.G.den, self.G.dt)
+
+    def sigma_values(self, values=None) -> dict:
+        r""":math:`\sigma_k = e_k(\epsilon)` of the section poles, keyed by :attr:`sigma`.
+
+        Parameters
+        ----------
+        values : mapping, optional
+            Values of the pole symbols (e.g. drawn epsilons); by default the
+            poles as they are (symbols, or values after :meth:`subs`).
+
+        Returns
+        -------
+        dict
+            Exact numbers when every pole is a number (the coefficients of
+            :math:`\prod (z - \epsilon_i)`, expanded in python-flint); SymPy
+            polynomials otherwise (:math:`\binom{d}{k}` terms each: meant for
+            small :math:`d`).
+
+        Examples
+        --------
+        >>> from symctl import controller_tf, factor
+        >>> f = factor(controller_tf(2))
+        >>> f.sigma_values()
+        {sigma_1: epsilon_1 + epsilon_3, sigma_2: epsilon_1*epsilon_3}
+        >>> f.sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
+        {sigma_1: 5/6, sigma_2: 1/6}
+        """
+        poles = [to_expr(p, "poles") for p in self.poles]
+        if values is not None:
+            rule, flags = subs_rule((values,), {}, set().union(*(p.free_symbols for p in poles)))
+            poles = [p.subs(rule, **flags) for p in poles]
+        if all(p.is_Rational for p in poles):
+            poly = fmpq_poly([1])
+            for p in poles:
+                poly *= fmpq_poly([-sp_to_fmpq(p), 1])
+            coeffs = [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
+        else:
+            coeffs = sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()
+        return {
+            s: (-1) ** k * sp.expand(c)
+            for k, (s, c) in enumerate(zip(self.sigma, coeffs[1:], strict=True), start=1)
+        }
+
     def verify(self, rtol: float = 1e-9) -> Proof:
         """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication).
 
@@ -171,7 +273,7 @@ class Factorization(LatexMixin):
         rtol = relative_tolerance(rtol, "rtol")
         left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
         right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
-        holds = products_equal(left, right)
+        holds = _products_equal(left, right)
         claim = "G3 G2 G1 = G"
         method = "cross-multiplied numerators and denominators compared as polynomials"
         if holds or not any(e.has(sp.Float) for e in (*left, *right)):
@@ -236,7 +338,24 @@ def _check_C(values) -> None:
             raise ParameterError("C: the section gains C_1, C_3 must be nonzero, got C = 0")
 
 
-def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
+def _section_values(value, count: int, argname: str, default) -> tuple:
+    """``count`` section values: the symbols ``default``, one value for all, or one each."""
+    if value is None:
+        return default
+    if isinstance(value, str) or not hasattr(value, "__len__"):
+        value = [value] * count
+    if len(value) != count:
+        raise DimensionError(
+            f"{argname}: expected {count} values (sensor sections first), got {len(value)}"
+        )
+    out = tuple(to_expr(v, f"{argname}[{i}]") for i, v in enumerate(value))
+    for i, v in enumerate(out):
+        if v.has(z):
+            raise ParameterError(f"{argname}[{i}]: a section value cannot depend on z, got {v}")
+    return out
+
+
+def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=None) -> Factorization:
     r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``.
 
     Parameters
@@ -245,6 +364,13 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
         A proper SISO controller, e.g. :func:`symctl.controller_tf`.
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
+    eps, C : sequence or value, optional
+        Values of the section poles and gains, sensor sections first (one
+        value for all, or ``sensor_delay + actuator_delay`` of them; numbers,
+        SymPy expressions or text read by the safe parser). By default the
+        symbols of :func:`section_symbols`. Building the factors at given
+        values is exact and cheap; :meth:`Factorization.subs` afterwards
+        rewrites every expression.
 
     Returns
     -------
@@ -256,9 +382,9 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
     ------
     ParameterError
         Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
-        or negative delays.
+        negative delays, a zero ``C`` or a value in ``z``.
     DimensionError
-        A MIMO ``G``.
+        A MIMO ``G``, or ``eps``/``C`` of the wrong length.
 
     Examples
     --------
@@ -268,6 +394,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
     (C_1/(-epsilon_1 + z), 2, 0)
     >>> bool(f.verify())
     True
+    >>> factor(controller_tf(2), eps=["1/2", "-1/3"], C=1).G2.expr
+    K_0*(z - 1/2)*(z + 1/3)/(-K_1*z - K_2 + z**2)
     """
     tf = DiscreteTF.from_expr(G)
     ds = nonneg_int(sensor_delay, "sensor_delay")
@@ -284,12 +412,67 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1) -> Factorization:
         )
     eps1, c1 = section_symbols(1, ds) if ds else ((), ())
     eps3, c3 = section_symbols(3, da) if da else ((), ())
+    eps_all = _section_values(eps, ds + da, "eps", (*eps1, *eps3))
+    c_all = _section_values(C, ds + da, "C", (*c1, *c3))
+    _check_C(c_all)
+    eps1, eps3 = eps_all[:ds], eps_all[ds:]
+    c1, c3 = c_all[:ds], c_all[ds:]
     G1 = _sections(eps1, c1, tf.dt)
     G3 = _sections(eps3, c3, tf.dt)
     scale = sp.Mul(*c1, *c3)
     zeros = sp.Mul(*(z - e for e in (*eps1, *eps3)))
     G2 = DiscreteTF(tf.num / scale * zeros, tf.den, tf.dt)
     return Factorization(tf, G1, G2, G3, eps1, c1, eps3, c3)
+
+
+def sp_to_fmpq(value: sp.Rational):
+    """A SymPy rational as a python-flint ``fmpq``."""
+    from flint import fmpq
+
+    return fmpq(int(value.p), int(value.q))
+
+
+def _factors(exprs) -> Counter:
+    """The product of ``exprs`` as a multiset of bases with integer exponents (numbers folded)."""
+    out: Counter = Counter()
+    number = sp.Integer(1)
+    for e in exprs:
+        for f in sp.Mul.make_args(e):
+            if f.is_Number:
+                number *= f
+                continue
+            base, exp = f.as_base_exp()
+            if exp.is_Integer:
+                out[base] += int(exp)
+            else:
+                out[f] += 1
+    out[number] += 1
+    return out
+
+
+def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
+    """Exact ``prod(left) == prod(right)``: identical factors cancelled, the rest multiplied out.
+
+    The factorization's two sides share most factors (the gains, the section
+    gains, the denominator of G, the poles' linear factors); cancelling them
+    structurally first (as rational functions: the net exponent of each base)
+    leaves the sections' expanded denominators against the zeros' linear
+    factors, which python-flint multiplies out (sparse, exact).
+    """
+    lf, rf = _factors(left), _factors(right)
+    net = {b: lf.get(b, 0) - rf.get(b, 0) for b in {*lf, *rf}}
+    exprs = [
+        sp.Mul(*(b**k for b, k in net.items() if k > 0)),
+        sp.Mul(*(b ** (-k) for b, k in net.items() if k < 0)),
+    ]
+    symbols = sorted(set().union(*(e.free_symbols for e in exprs)), key=str) or [z]
+    try:
+        ctx = fmpz_mpoly_ctx.get(("x", len(symbols)), "degrevlex")
+        algebra, memo = PolyFractions(ctx, symbols), {}
+        (nl, dl), (nr, dr) = (fold(e, algebra, memo) for e in exprs)
+    except (NotRational, ZeroDivisionError):
+        return products_equal(left, right)
+    return nl * dr == nr * dl
 
 
 def _relative_difference(left: sp.Expr, right: sp.Expr, points: int = 8) -> float:

@@ -44,7 +44,7 @@ from symctl.realization.check import check_realization
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realizers import REALIZERS
 from symctl.report.results import CircuitRecord, PaperResults, RealizationRecord
-from symctl.report.spec import CIRCUITS, PAPER, SYMBOLIC_P_MAX_ORDER
+from symctl.report.spec import CIRCUITS, EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
 
 __all__ = ["derive_paper"]
 
@@ -151,7 +151,10 @@ def derive_paper(
         for k in CIRCUITS
     }
     step("realizations")
-    records = _realizations(factors, gains, {k: firing[k].params[0] for k in CIRCUITS[1:]})
+    G2_symbolic = factors.abbreviated() if len(factors.poles) > EXPANDED_ZEROS_MAX else factors.G2
+    records = _realizations(
+        factors, G2_symbolic, gains, {k: firing[k].params[0] for k in CIRCUITS[1:]}
+    )
     step("compatibility")
     graph = DelayGraph.chain([1] * system.T)
     structures = {"ifp": ifp_structure(system.T)}
@@ -186,28 +189,36 @@ def derive_paper(
         open_loop_response(plant),
         closed_loop_response(gains),
         nonlinear_check(model, gains),
+        G2_symbolic,
     )
 
 
 def _realizations(
-    factors: Factorization, gains: Gains, drawn: dict[str, dict]
+    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict]
 ) -> dict[str, RealizationRecord]:
     """The paper's three realizations of G2: controllable and observable canonical, general.
 
-    Symbolic forms keep K, eps and C (and, up to order
-    :data:`SYMBOLIC_P_MAX_ORDER`, a fully symbolic ``P`` for the general one;
-    above it the seeded random ``P``); numeric ones use the optimal gains (as
-    the exact rationals of their binary floats, so that the checks stay exact),
-    C = 1 on every section and ``drawn[name]``, the epsilons (and for the
-    general one ``P``) of the first simulated realization of that circuit.
+    Symbolic forms realize ``G2_symbolic`` (``factors.G2``, or its
+    :meth:`~symctl.realization.factorization.Factorization.abbreviated` form
+    beyond :data:`EXPANDED_ZEROS_MAX` sections), keeping K, eps (or sigma) and C
+    (and, up to order :data:`SYMBOLIC_P_MAX_ORDER`, a fully symbolic ``P`` for
+    the general one; above it the seeded random ``P``); numeric ones use the
+    optimal gains (as the exact rationals of their binary floats, so that the
+    checks stay exact), C = 1 on every section and ``drawn[name]``, the
+    epsilons (and for the general one ``P``) of the first simulated realization
+    of that circuit; their factors are built at those values
+    (:func:`~symctl.realization.factorization.factor` with ``eps`` and ``C``),
+    never substituted into the symbolic ones.
     """
-    unit_C = {c: 1 for c in (*factors.sensor_C, *factors.actuator_C)}
+    sections = (*factors.sensor_C, *factors.actuator_C)
+    unit_C = {c: 1 for c in sections}
     exact_gains = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
-    G2_gains = factors.G2.subs(exact_gains).subs(unit_C)
+    G_exact = factors.G.subs(exact_gains)
+    ds = len(factors.sensor_eps)
     out = {}
     for name in ("controllable", "observable", "general"):
-        eps = {k: v for k, v in drawn[name].items() if isinstance(k, sp.Symbol)}
-        G2_num = G2_gains.subs(eps)
+        eps = {k: drawn[name][k] for k in factors.poles}
+        G2_num = factor(G_exact, ds, len(factors.actuator_eps), eps=list(eps.values()), C=1).G2
         realizer = REALIZERS[name]
         symbolic_options, numeric_options = {}, {}
         if realizer.takes_transform:
@@ -218,14 +229,14 @@ def _realizations(
             else:  # a fully symbolic P costs minutes beyond order 3: use the drawn one
                 P = P_num
             symbolic_options, numeric_options = {"P": P}, {"P": P_num}
-        symbolic = realizer(factors.G2, **symbolic_options)
+        symbolic = realizer(G2_symbolic, **symbolic_options)
         numeric = realizer(G2_num, **numeric_options)
         out[name] = RealizationRecord(
             name,
             symbolic.realization,
             numeric.realization,
             {**{str(k): v for k, v in eps.items()}, **{str(k): 1 for k in unit_C}},
-            check_realization(symbolic.realization, factors.G2),
+            check_realization(symbolic.realization, G2_symbolic),
             check_realization(numeric.realization, G2_num),
             symbolic.P if realizer.takes_transform else None,
             numeric.P if realizer.takes_transform else None,

@@ -50,7 +50,7 @@ from symctl.neural.nonlinear import NonlinearCheck
 from symctl.neural.simulate import Response
 from symctl.realization.check import RealizationCheck
 from symctl.realization.factorization import Factorization
-from symctl.realization.realization import Realization
+from symctl.realization.realization import Realization, split_proper
 from symctl.report import document, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
@@ -232,6 +232,11 @@ class PaperResults:
         The open-loop pulse response of the muscle and the optimal closed loop's.
     nonlinear : NonlinearCheck
         The linear controller around the nonlinear muscle.
+    G2_symbolic : DiscreteTF, optional
+        The :math:`G_2` the symbolic realizations realize: ``factors.G2``
+        (the default), or beyond :data:`~symctl.report.spec.EXPANDED_ZEROS_MAX`
+        sections ``factors.abbreviated()``, its zeros' coefficients written
+        :math:`\sigma_k = e_k(\epsilon)`.
 
     Examples
     --------
@@ -263,10 +268,18 @@ class PaperResults:
     open_loop: Response
     closed_loop: Response
     nonlinear: NonlinearCheck
+    G2_symbolic: DiscreteTF | None = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+        if self.G2_symbolic is None:
+            object.__setattr__(self, "G2_symbolic", self.factors.G2)
+
+    @property
+    def abbreviated(self) -> bool:
+        r"""Whether the symbolic realizations write :math:`G_2`'s zeros as :math:`\sigma_k`."""
+        return self.G2_symbolic != self.factors.G2
 
     __hash__ = _hash_fields
 
@@ -390,12 +403,19 @@ class PaperResults:
 
     def _factorization_json(self) -> dict:
         f = self.factors
+        N, c, _ = split_proper(self.G2_symbolic)
+        scale = N if N != 0 else 1
+        remainder = [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
+        poles = ", ".join(map(str, f.poles))
         return {
             "G1": str(f.G1),
             "G2": str(f.G2),
             "G3": str(f.G3),
-            "N": sp.sstr(f.N),
-            "remainder_coeffs": [sp.sstr(c) for c in f.remainder_coeffs],
+            "N": sp.sstr(N),
+            "remainder_coeffs": [sp.sstr(c) for c in remainder],
+            "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
+            if self.abbreviated
+            else {},
             "verified": bool(f.verify()),
             "realizations": {name: rec.to_json() for name, rec in self.realizations.items()},
         }

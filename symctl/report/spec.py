@@ -34,6 +34,7 @@ from symctl.design.plant import MuscleModel
 __all__ = [
     "CIRCUITS",
     "CIRCUIT_SPECS",
+    "EXPANDED_ZEROS_MAX",
     "PAPER",
     "SCHEMA_VERSION",
     "SYMBOLIC_P_MAX_ORDER",
@@ -44,6 +45,17 @@ __all__ = [
 SCHEMA_VERSION = 1
 """Version of the ``results.json`` schema (README, section "results.json")."""
 SYMBOLIC_P_MAX_ORDER = 3  # the general realization keeps a fully symbolic P up to this order
+EXPANDED_ZEROS_MAX = 4
+r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out.
+
+The zeros :math:`\prod_i (z - \epsilon_i)` of :math:`d` sections have :math:`2^d`
+monomials (:math:`inom{d}{k}` in the k-th coefficient): up to this many
+sections the realizations show them, as the paper does (:math:`K_1 - \epsilon_1
+- \epsilon_3`); beyond, they realize
+:meth:`~symctl.realization.factorization.Factorization.abbreviated`, the
+coefficients written :math:`\sigma_k = e_k(\epsilon)`, so that every entry stays
+a few terms long at any delay.
+"""
 
 _MUSCLE = {f.name: f.default for f in dataclasses.fields(MuscleModel)}
 _DELAYS = {

@@ -402,7 +402,12 @@ AUDITED = {
     ("symctl.realization.realizers", "_Random.__call__", "subs"): 2,  # DiscreteTF.subs
     ("symctl.realization.realizers", "_identity", "ImmutableMatrix"): 1,  # sp.eye
     ("symctl.realization.realizers", "random_full_rank", "Matrix"): 1,  # Rationals
+    ("symctl.realization.factorization", "Factorization.sigma_values", "subs"): 1,  # subs_rule
+    ("symctl.realization.factorization", "Factorization.sigma_values", "Poly"): 1,  # to_expr'd
+    ("symctl.realization.factorization", "Factorization.sigma_values", "expand"): 1,  # its Poly
     ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
+    ("symctl.report.pipeline", "_realizations", "factor"): 1,  # symctl.factor, built values
+    ("symctl.report.results", "PaperResults._factorization_json", "cancel"): 1,  # split_proper
     ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
     ("symctl.report.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
     ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
