@@ -305,8 +305,9 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
             number += 1
             rows = [_row(lhs, rhs) for lhs, rhs in b.rows]
             one = r" \\ ".join(rows)
-            if len(one) <= MD_LINE:
-                out += ["$$", rf"\begin{{aligned}}{one}\end{{aligned}}\tag{{{number}}}", "$$", ""]
+            line = rf"\begin{{aligned}}{one}\end{{aligned}}\tag{{{number}}}"
+            if len(line) <= MD_LINE:
+                out += ["$$", line, "$$", ""]
             else:
                 body = [r + r" \\" for r in rows[:-1]] + rows[-1:]
                 body = [line for r in body for line in _md_math_lines(r)]

@@ -25,6 +25,7 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl.realization.realization import split_proper
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
 from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
@@ -34,6 +35,7 @@ from symctl.report.shorthand import (
     _display,
     _fits,
     _fmt,
+    _indexed,
     _named_weights,
     _quotient_tex,
     _remainder_poly,
@@ -65,7 +67,7 @@ def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
     tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
     header, rows)``), follow the display.
     """
-    lead = max((LF.width(lhs) for lhs, _ in rows), default=0.0) + 3.0
+    lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
     shown, more = [], []
     for lhs, rhs in rows:
         if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
@@ -283,7 +285,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         zeros = (
             _zeros_tex(f.sensor_eps, product=True) + " " + _zeros_tex(f.actuator_eps, product=True)
         )
-    f_N, f_coeffs = f.N, f.remainder_coeffs  # properties that compute: once
+    f_N, f_coeffs, sigma_rows = _remainder(res)
     c = _remainder_symbols(f_coeffs)
     remainder = descending_latex(_remainder_poly(c))
     named_den = []  # the row defining the denominator's name, where it is first used
@@ -301,6 +303,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
             ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
             *named_den,
+            *sigma_rows,
             label="eq:factors",
         )
     )
@@ -491,6 +494,36 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     figure("nonlinear", "The linear controller around the nonlinear muscle.")
     return blocks
+
+
+def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
+    r"""``N`` and the coefficients :math:`c_k` of the :math:`G_2` the realizations realize.
+
+    With the abbreviated :math:`G_2` (``res.G2_symbolic``, its zeros' coefficients written
+    :math:`\sigma_k`) also the rows that define the :math:`\sigma_k`; the expanded
+    coefficients (``factors.remainder_coeffs``) have :math:`2^d` terms.
+    """
+    f = res.factors
+    if not getattr(res, "abbreviated", False):
+        return f.N, f.remainder_coeffs, []
+    N, c, _ = split_proper(res.G2_symbolic)
+    d = len(f.poles)
+    groups = [f.sensor_eps, f.actuator_eps]
+    args = ", ".join(_range_tex(g) for g in groups if g)
+    rows = [
+        (r"\sigma_k", rf"e_k\left({args}\right),\ k = 1, \dots, {d}"),
+        (None, r"\qquad \text{(so that } \prod (z - \epsilon) = "
+               rf"\sum_{{k=0}}^{{{d}}} (-1)^k \sigma_k\, z^{{{d}-k}},\ \sigma_0 = 1)"),
+    ]  # fmt: skip
+    return N, [ci / N for ci in reversed(c)], rows
+
+
+def _range_tex(symbols) -> str:
+    """``epsilon_{1,1}, ..., epsilon_{1,5}`` (all of them when few or not consecutive)."""
+    ix = _indexed(symbols)
+    if ix is None or len(symbols) <= 3:
+        return ", ".join(L.to_latex(x) for x in symbols)
+    return rf"{L.to_latex(symbols[0])}, \dots, {L.to_latex(symbols[-1])}"
 
 
 def _firing_table(fp) -> list[DocumentBlock]:
