@@ -165,12 +165,18 @@ def test_the_papers_document_fits_and_keeps_its_matrices_in_full(paper_T2):
     assert not any(isinstance(b, Math) and b.breakable for b in paper_T2)
 
 
-def test_report_md_has_no_long_lines_at_T3():
-    blocks = story(derive_paper(sensor_delay=2, actuator_delay=1, realizations=1))
+def test_beyond_expanded_zeros_the_c_k_are_written_with_sigma_and_report_md_stays_short():
+    res = derive_paper(sensor_delay=3, actuator_delay=2, realizations=1)
+    assert res.abbreviated
+    blocks = story(res)
     _rows_fit(blocks)
+    (eq,) = [b for b in blocks if isinstance(b, Math) and b.label == "eq:G2rewritten"]
+    c = dict(eq.rows[2:])
+    assert c["c_{1}"] == r"K_{1} - \sigma_{1}" and c["c_{5}"] == r"K_{5} - \sigma_{5}"
+    (factors,) = [b for b in blocks if isinstance(b, Math) and b.label == "eq:factors"]
+    assert any(lhs == r"\sigma_k" for lhs, _ in factors.rows)
     md = to_markdown(blocks)
-    assert max(len(line) for line in md.splitlines()) <= 2 * 300
-    assert [b for b in blocks if isinstance(b, Text)]
+    assert max(len(line) for line in md.splitlines()) <= 300
 
 
 def test_a_firing_table_of_many_realizations_shows_as_many_as_fit():
