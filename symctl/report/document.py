@@ -44,6 +44,7 @@ from pathlib import Path
 from symctl import latex as L
 from symctl.errors import LatexError, SymctlTypeError
 from symctl.report import longform as LF
+from symctl.report.longform import MD_LINE, TABLE_MAX_ROWS
 
 __all__ = [
     "BLOCKS",
@@ -159,9 +160,9 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
       \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
     \else\usebox{\symctlbox}\fi
   \else\usebox{\symctlbox}\fi}
-\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}"""
-TABLE_MAX_ROWS = 30
-"""A table with more rows is a ``longtable``, which breaks across pages."""
+\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}""".replace(
+    "<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth"
+)
 
 
 def _row(lhs, rhs) -> str:
@@ -329,11 +330,6 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
         else:
             out += ["```", *_wrapped(b.text), "```", ""]
     return "\n".join(out)
-
-
-MD_LINE = 300
-"""A display whose rows joined are longer (characters) gets one Markdown line per row; prose is
-wrapped at 100 characters (outside inline math)."""
 
 
 def _md_math_lines(row: str) -> list[str]:

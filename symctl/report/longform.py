@@ -51,7 +51,10 @@ __all__ = [
     "LINE_WIDTH",
     "MATRIX_MAX_COLUMNS",
     "MATRIX_MAX_ROWS",
+    "MD_LINE",
     "PATTERN_TABLE_ROWS",
+    "SHRINK_MAX",
+    "TABLE_MAX_ROWS",
     "TABLE_WIDTH",
     "TERM_MAX_LINES",
     "VECTOR_MAX_ENTRIES",
@@ -94,6 +97,15 @@ DISPLAY_MAX_LINES = 24
 """A display taller than this (in lines) may break across pages."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""
+TABLE_MAX_ROWS = 30
+"""A table with more rows is a ``longtable``, which breaks across pages."""
+MD_LINE = 300
+"""A Markdown display whose one-line form is longer (characters) gets a line per row, a long
+row cut after its matrices' rows; prose is wrapped at 100 characters (outside inline math)."""
+SHRINK_MAX = 2
+"""The LaTeX safety net (``\\fitmath`` in :mod:`symctl.report.document`) shrinks a display up
+to this many times the line to fit it, and reports it in the log (``symctl: shrunk``); a
+wider one is left overfull. The layout above keeps every display within the line."""
 
 # ---------------------------------------------------------------- width of LaTeX
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
