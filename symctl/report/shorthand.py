@@ -95,6 +95,11 @@ def _indexed(symbols) -> tuple[str, int, int] | None:
     return L.to_latex(sp.Symbol(f"{stem}_{{{pre}k}}")), ks[0], ks[-1]
 
 
+def _index_of(symbol) -> int:
+    m = _INDEXED.fullmatch(symbol.name)
+    return int(m["k"] or m["k1"])
+
+
 def _quotient_tex(expr) -> str:
     """A quotient by a product of indexed symbols, the product written over its indices."""
     num, den = expr.as_numer_denom()
@@ -108,7 +113,7 @@ def _quotient_tex(expr) -> str:
             groups.setdefault((m["stem"], m["pre"] or ""), []).append(factor)
     parts = [L.to_latex(sp.Mul(*rest))] if rest else []
     for group in groups.values():
-        ix = _indexed(sorted(group, key=lambda x: x.name))
+        ix = _indexed(sorted(group, key=_index_of))
         if ix is None:
             parts.append(L.to_latex(sp.Mul(*group)))
         else:

@@ -315,7 +315,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     put(
         _eq(
-            ("N", f_N if _fits("N", L.to_latex(f_N)) else _quotient_tex(f_N)),
+            ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
             ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
             *zip(map(L.to_latex, c), f_coeffs, strict=True),
             label="eq:G2rewritten",

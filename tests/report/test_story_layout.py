@@ -177,6 +177,7 @@ def test_beyond_expanded_zeros_the_c_k_are_written_with_sigma_and_report_md_stay
     assert any(lhs == r"\sigma_k" for lhs, _ in factors.rows)
     md = to_markdown(blocks)
     assert max(len(line) for line in md.splitlines()) <= 300
+    assert "too long to print" not in md and "terms not shown" not in md
 
 
 def test_a_firing_table_of_many_realizations_shows_as_many_as_fit():
