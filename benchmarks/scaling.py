@@ -1,357 +1,244 @@
-"""Time and peak memory of every step of the paper's derivation against the net delay T.
+"""Time and peak memory of every step of ``symctl paper`` against the net delay T, beside the previous method.
 
-Steps, as ``derive_paper`` runs them (symctl/report/pipeline.py), with the net
-delay split sensor_delay = T // 2, actuator_delay = T - T // 2: augment, LQR
-gains, the symbolic G(z), its proof, the factorization G = G3 G2 G1, the
-firing of the four circuits (count=4), the three realizations of G2 (symbolic
-and numeric; the general one with a fully symbolic P up to order 3, the drawn
-numeric P beyond), check_realization of all six, the structures and
-check_compatibility on DelayGraph.chain, Circuit.from_structure, and the whole
-``derive_paper`` (no files written). T = 1..8 (derive_paper's limit,
-PAPER_MAX_DELAY); the design steps alone up to T = 20. Also: the exact checker
-against the order n of a general realization with a fully symbolic n x n P,
-building and proving separately. Last, the growth exponent of each step.
+Each case runs in its own process (benchmarks/_scaling_case.py): ``derive_paper``
+at net delay T (sensor_delay = T // 2, actuator_delay = T - T // 2), timed step
+by step through its ``progress`` callback (plant, delays, LQR, G(z),
+factorization, simulation, realizations, compatibility), then
+``PaperResults.write`` (results.json, figures, documents, pdflatex): exactly
+what ``symctl paper`` does. The same case runs on the previous method: the
+package as of revision ``--baseline`` (default the last commit before the
+derivation's scaling work), extracted from git into a temporary folder and put
+first on ``PYTHONPATH``, with its T <= 8 limit lifted; a baseline case past
+``--cap`` seconds is stopped and the larger T are not tried.
 
-Each case runs in its own forked process, one step after the other; before each
-step the process's peak RSS is reset (``/proc/self/clear_refs``), so a step's
-memory is the peak RSS of the process while it ran (baseline included: the
-interpreter with symctl and its imports). A step past ``--cap`` seconds stops
-its case; it and the rest of the case print "> cap".
+Also: the general realization of the order-n controller with a fully symbolic
+n x n P (build and exact proof) against n, new and previous; the MIMO
+controller against the number of inputs m is benchmarks/mimo.py (run last,
+unless --no-mimo). Last, the fitted growth exponent of each step (least-squares
+slope of log time against log T over the cases above 10 ms).
 
-Run:  python benchmarks/scaling.py [--cap SECONDS] [--max-T N] [--max-design-T N] [--max-n N]
+Run:  python benchmarks/scaling.py [--T 1-20] [--cap 300] [--max-n 6] [--baseline REV]
 """
 
 from __future__ import annotations
 
 import argparse
-import multiprocessing as mp
+import json
 import os
-import queue as queue_mod
+import subprocess
+import sys
+import tarfile
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
-import sympy as sp
 
-from symctl import (
-    Circuit,
-    DelayGraph,
-    MuscleModel,
-    Structure,
-    augment,
-    check_compatibility,
-    check_realization,
-    circuit_firing,
-    controllable_canonical,
-    controller_tf,
-    derive_paper,
-    factor,
-    general_realization,
-    ifp_structure,
-    lqr_gains,
-    observable_canonical,
-    prove_controller_tf,
-)
-
-CIRCUITS = ("ifp", "general", "controllable", "observable")  # symctl.report.spec.CIRCUITS
-SYMBOLIC_P_MAX_ORDER = 3  # symctl.report.spec.SYMBOLIC_P_MAX_ORDER
-PAPER_MAX_DELAY = 8  # symctl._util.validate.PAPER_MAX_DELAY
-DESIGN = ("augment", "LQR", "G(z)", "proof")
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parent
+BASELINE = "43dc9c6"  # main before issue 13's derivation work (T = 10: 106 s, 1.3 GB)
 STEPS = (
-    *DESIGN,
-    "factor",
-    "firing",
-    "ctrb",
-    "obsv",
-    "general",
-    "check",
-    "compat",
-    "circuit",
+    "plant",
+    "delays",
+    "LQR",
+    "G(z)",
+    "factorization",
+    "simulation",
+    "realizations",
+    "compatibility",
+    "json",
+    "figures",
+    "documents",
+    "pdflatex",
 )
+SHORT = {
+    "factorization": "factor",
+    "simulation": "simul",
+    "realizations": "realiz",
+    "compatibility": "compat",
+    "documents": "docs",
+    "pdflatex": "pdf",
+}
+TARGETS = {2: 8.0, 6: 15.0, 10: 30.0, 20: 120.0}  # issue 13: symctl paper, seconds
+MEMORY_TARGET_MB = 1024.0
 
 
-# --- measurement -------------------------------------------------------------------------------
-
-
-def _reset_peak() -> None:
-    """Reset the process's peak RSS (VmHWM) to its current RSS (Linux >= 4.0)."""
+def extract(rev: str, into: Path) -> Path | None:
+    """The ``symctl`` package of revision ``rev`` under ``into`` (None without git or the rev)."""
     try:
-        with open("/proc/self/clear_refs", "w") as f:
-            f.write("5")
-    except OSError:  # not Linux: the peak then stays the process's overall peak
-        pass
+        blob = subprocess.run(
+            ["git", "-C", str(REPO), "archive", "--format=tar", rev, "symctl"],
+            capture_output=True,
+            check=True,
+        ).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    into.mkdir(parents=True, exist_ok=True)
+    path = into / "tar"
+    path.write_bytes(blob)
+    with tarfile.open(path) as tar:
+        tar.extractall(into, filter="data")
+    return into
 
 
-def _peak_mb() -> float:
-    """The process's peak RSS since the last reset [MB]."""
+def run(args: list[str], root: Path, cap: float) -> tuple[dict, float, bool]:
+    """``({step: (s, MB)}, wall seconds, finished)`` of one case with ``root`` first on the path."""
+    env = {**os.environ, "PYTHONPATH": f"{root}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
+    start = time.perf_counter()
+    proc = subprocess.Popen(
+        [sys.executable, str(HERE / "_scaling_case.py"), *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        env=env,
+    )
     try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    import resource
-
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-
-
-def _worker(plan, args, queue) -> None:
-    def step(name, fn, *a, **kw):
-        _reset_peak()
-        start = time.perf_counter()
-        out = fn(*a, **kw)
-        queue.put((name, time.perf_counter() - start, _peak_mb()))
-        return out
-
-    plan(step, *args)
-    queue.put(None)
+        out, _ = proc.communicate(timeout=cap)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, _ = proc.communicate()
+        finished = False
+    else:
+        finished = proc.returncode == 0
+    got: dict = {}
+    for line in out.splitlines():
+        item = json.loads(line)
+        if "step" in item:
+            got[item["step"]] = (item["s"], item["mb"])
+        else:
+            got.update(item)
+    return got, time.perf_counter() - start, finished
 
 
-def run_case(plan, args: tuple, cap: float) -> dict[str, tuple[float, float]]:
-    """``{step: (seconds, peak MB)}`` of the steps of ``plan(step, *args)`` that finished.
-
-    The plan runs in a forked process; a step that takes more than ``cap``
-    seconds ends it (the steps it did not reach are missing from the result).
-    """
-    queue = mp.Queue()
-    proc = mp.Process(target=_worker, args=(plan, args, queue))
-    proc.start()
-    got = {}
-    while True:
-        try:
-            item = queue.get(timeout=cap)
-        except queue_mod.Empty:
-            proc.terminate()
-            break
-        if item is None:
-            break
-        got[item[0]] = item[1:]
-    proc.join()
-    return got
-
-
-# --- the plans -----------------------------------------------------------------------------------
-
-
-def derivation(step, T: int, full: bool) -> None:
-    """The steps of derive_paper at net delay T (only the design ones unless ``full``)."""
-    s, a = T // 2, T - T // 2
-    plant = MuscleModel().plant()
-    system = step("augment", augment, plant, s, a)
-    gains = step("LQR", lqr_gains, system)
-    G = step("G(z)", controller_tf, system)
-    assert step("proof", prove_controller_tf, system, G)
-    if not full:
-        return
-    f = step("factor", factor, G, s, a)
-    firing = step(
-        "firing",
-        lambda: {
-            k: circuit_firing(k, gains, count=1 if k == "ifp" else 4, seed=0) for k in CIRCUITS
-        },
-    )
-    # the numeric G2 of each circuit: exact gains, C = 1, the drawn epsilons
-    unit_C = {c: 1 for c in (*f.sensor_C, *f.actuator_C)}
-    exact = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
-    G2_gains = f.G2.subs(exact).subs(unit_C)
-
-    def numeric(name):
-        drawn = firing[name].params[0]
-        return G2_gains.subs({k: v for k, v in drawn.items() if isinstance(k, sp.Symbol)}), drawn
-
-    def canonical(realize, name):
-        G2_num, _ = numeric(name)
-        return (realize(f.G2), f.G2), (realize(G2_num), G2_num)
-
-    def general():
-        G2_num, drawn = numeric("general")
-        P_num = drawn["P"]
-        n = P_num.shape[0]
-        P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})")) if n <= 3 else P_num
-        return (general_realization(f.G2, P), f.G2), (general_realization(G2_num, P_num), G2_num)
-
-    pairs = {
-        "controllable": step("ctrb", canonical, controllable_canonical, "controllable"),
-        "observable": step("obsv", canonical, observable_canonical, "observable"),
-        "general": step("general", general),
-    }
-    step(
-        "check",
-        lambda: [bool(check_realization(R, G2)) for pair in pairs.values() for R, G2 in pair],
-    )
-    graph = DelayGraph.chain([1] * T)
-
-    def compat():
-        S = {"ifp": ifp_structure(T)}
-        S.update({k: Structure.from_factorization(f, pairs[k][0][0]) for k in CIRCUITS[1:]})
-        return S, {k: check_compatibility(v, graph) for k, v in S.items()}
-
-    structures, verdicts = step("compat", compat)
-    step(
-        "circuit",
-        lambda: [
-            Circuit.from_structure(structures[k], verdicts[k] if verdicts[k].ok else None)
-            for k in CIRCUITS
-        ],
-    )
-
-
-def baseline(step) -> None:
-    step("baseline", int)
-
-
-def whole(step, T: int) -> None:
-    step("derive_paper", derive_paper, sensor_delay=T // 2, actuator_delay=T - T // 2)
-
-
-def checker(step, n: int) -> None:
-    """A general realization of the order-n controller with a fully symbolic n x n P."""
-    G = controller_tf(n)
-    P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})"))
-    R = step("build", general_realization, G, P)
-    assert step("prove", check_realization, R, G)
-
-
-# --- the tables ----------------------------------------------------------------------------------
-
-
-def cell(got: dict, name: str, index: int, fmt: str, width: int) -> str:
-    if name in got:
-        return f"{got[name][index]:{width}{fmt}}"
-    return f"{'> cap':>{width}}"
-
-
-def slope(points: list[tuple[float, float]]) -> float | None:
-    """Least-squares slope of log t against log x over the points with t > 10 ms."""
+def slope(points) -> float | None:
     pts = [(x, t) for x, t in points if t > 0.01]
-    if len(pts) < 2 or len({x for x, _ in pts}) < 2:
+    if len({x for x, _ in pts}) < 2:
         return None
     xs, ts = zip(*pts, strict=True)
     return float(np.polyfit(np.log(xs), np.log(ts), 1)[0])
 
 
-def table(title: str, rows: dict[int, dict], steps: tuple, key: str, index: int, fmt: str):
-    w = max(8, *(len(s) for s in steps))
-    print(title)
-    print(f"{key:>3} | " + " | ".join(f"{s:>{w}}" for s in steps))
-    print("-" * (6 + (w + 3) * len(steps)))
-    for x, got in rows.items():
-        print(f"{x:>3} | " + " | ".join(cell(got, s, index, fmt, w) for s in steps), flush=True)
+def parse_range(text: str) -> list[int]:
+    out: list[int] = []
+    for part in text.split(","):
+        lo, _, hi = part.partition("-")
+        out += list(range(int(lo), int(hi or lo) + 1))
+    return out
 
 
-def exponents(rows: dict[int, dict], steps: tuple, key: str) -> None:
-    w = max(8, *(len(s) for s in steps))
+def paper_table(rows: dict, before: dict) -> None:
+    names = [SHORT.get(s, s) for s in STEPS]
+    w = 7
+    head = " | ".join(f"{n:>{w}}" for n in names)
+    print("symctl paper (derive_paper + write), seconds per step; total wall time and peak RSS")
+    print(f"{'T':>3} | {head} | {'total':>7} | {'before':>7} | {'MB':>5} | {'before':>6} | pdf")
+    print("-" * (6 + (w + 3) * len(names) + 46))
+    for T, (got, wall, ok) in rows.items():
+        cells = " | ".join(f"{got[s][0]:{w}.2f}" if s in got else f"{'-':>{w}}" for s in STEPS)
+        mb = max((v[1] for k, v in got.items() if k in STEPS), default=float("nan"))
+        b = before.get(T)
+        if b is None:
+            bt, bm = f"{'-':>7}", f"{'-':>6}"
+        elif b[2]:
+            bm_value = max(v[1] for k, v in b[0].items() if k in STEPS)
+            bt, bm = f"{b[1]:7.1f}", f"{bm_value:6.0f}"
+        else:
+            bt, bm = f"{'> cap':>7}", f"{'-':>6}"
+        total = f"{wall:7.1f}" if ok else f"{'failed':>7}"
+        pdf = "yes" if got.get("pdf") else "no"
+        print(f"{T:>3} | {cells} | {total} | {bt} | {mb:5.0f} | {bm} | {pdf}", flush=True)
     fits = []
-    for s in steps:
-        k = slope([(x, got[s][0]) for x, got in rows.items() if s in got])
+    for s in STEPS:
+        k = slope([(T, got[s][0]) for T, (got, _, _) in rows.items() if s in got])
         fits.append(f"{'-':>{w}}" if k is None else f"{k:{w}.2f}")
-    print(f"{'exp':>3} | " + " | ".join(fits))
+    k = slope([(T, wall) for T, (_, wall, ok) in rows.items() if ok])
+    kb = slope([(T, b[1]) for T, b in before.items() if b[2]])
+    print(
+        f"{'exp':>3} | {' | '.join(fits)} | {'-' if k is None else f'{k:7.2f}':>7} | "
+        f"{'-' if kb is None else f'{kb:7.2f}':>7}"
+    )
+    last = max((T for T, (_, _, ok) in rows.items() if ok), default=None)
+    if last is not None:
+        got = rows[last][0]
+        total = sum(got[s][0] for s in STEPS if s in got)
+        ranked = sorted((s for s in STEPS if s in got), key=lambda s: -got[s][0])
+        print(
+            f"where the time goes at T = {last} ({total:.1f} s in the steps): "
+            + ", ".join(f"{s} {100 * got[s][0] / total:.0f}%" for s in ranked[:5])
+        )
+    verdicts = []
+    for T, target in TARGETS.items():
+        if T in rows:
+            got, wall, ok = rows[T]
+            mb = max((v[1] for k, v in got.items() if k in STEPS), default=float("inf"))
+            good = ok and wall < target and mb < MEMORY_TARGET_MB and got.get("pdf")
+            verdicts.append(f"T = {T}: {wall:.1f} s < {target:g} s {'met' if good else 'NOT met'}")
+    print("targets (time, peak < 1 GB, PDF): " + "; ".join(verdicts))
+
+
+def checker_table(rows: dict, before: dict) -> None:
+    print("general realization of the order-n controller with a fully symbolic n x n P")
+    print(
+        f"{'n':>3} | {'build':>8} | {'prove':>8} | {'MB':>5} | {'before build':>12} | {'prove':>8}"
+    )
+    print("-" * 60)
+
+    def cells(entry, w1, w2):
+        if entry is None:
+            return f"{'-':>{w1}} | {'-':>{w2}}"
+        got, _, ok = entry
+        b = f"{got['build'][0]:{w1}.3f}" if "build" in got else f"{'> cap':>{w1}}"
+        p = f"{got['prove'][0]:{w2}.3f}" if ok and "prove" in got else f"{'> cap':>{w2}}"
+        return f"{b} | {p}"
+
+    for n, entry in rows.items():
+        mb = max((v[1] for v in entry[0].values() if isinstance(v, tuple)), default=float("nan"))
+        print(f"{n:>3} | {cells(entry, 8, 8)} | {mb:5.0f} | {cells(before.get(n), 12, 8)}")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cap", type=float, default=30.0, help="time cap of one step [s]")
-    parser.add_argument("--max-T", type=int, default=PAPER_MAX_DELAY, help="the full derivation")
-    parser.add_argument("--max-design-T", type=int, default=20, help="the design steps")
-    parser.add_argument("--max-n", type=int, default=5, help="the checker against n")
+    parser.add_argument("--T", default="1-20", help="net delays, e.g. 1-20 or 2,6,10,20")
+    parser.add_argument("--cap", type=float, default=300.0, help="time cap of one case [s]")
+    parser.add_argument("--baseline-cap", type=float, default=150.0, help="cap of a baseline case")
+    parser.add_argument("--max-n", type=int, default=6, help="the symbolic-P realization")
+    parser.add_argument("--baseline", default=BASELINE, help="git revision of the previous method")
+    parser.add_argument("--no-mimo", action="store_true", help="skip benchmarks/mimo.py")
     args = parser.parse_args()
-    controller_tf(augment(MuscleModel().plant(), 1, 1))  # warm the caches before forking
-    base = run_case(baseline, (), args.cap)["baseline"][1]
     load = os.getloadavg()
     start = time.perf_counter()
     print(
         f"{os.cpu_count()} cores, load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}; "
-        f"cap {args.cap:g} s per step; baseline RSS of a case {base:.0f} MB\n"
+        f"cap {args.cap:g} s per case (baseline {args.baseline_cap:g} s)\n"
     )
-
-    rows = {}
-    for T in range(1, max(args.max_T, args.max_design_T) + 1):
-        rows[T] = run_case(derivation, (T, T <= args.max_T), args.cap)
-        if "proof" not in rows[T]:  # the design steps hit the cap: larger T only gets worse
-            break
-    full = {T: got for T, got in rows.items() if T <= args.max_T}
-    design = {T: {s: got[s] for s in DESIGN if s in got} for T, got in rows.items()}
-
-    table(
-        "time [s] of each step of the derivation, against the net delay T",
-        full,
-        STEPS,
-        "T",
-        0,
-        ".3f",
-    )
-    exponents(full, STEPS, "T")
-    last = max((T for T, got in full.items() if got), default=None)
-    if last is not None:
-        total = sum(v[0] for v in full[last].values())
-        ranked = sorted(full[last].items(), key=lambda kv: -kv[1][0])
-        print(
-            f"where the time goes at T = {last} ({total:.1f} s): "
-            + ", ".join(f"{s} {100 * v[0] / total:.0f}%" for s, v in ranked[:5])
-        )
-    print()
-    table("peak RSS [MB] during each step", full, STEPS, "T", 1, ".0f")
-    print()
-
-    whole_rows = {}
-    for T in range(1, args.max_T + 1):
-        whole_rows[T] = run_case(whole, (T,), 4 * args.cap)
-        if "derive_paper" not in whole_rows[T]:
-            break
-    w = 12
-    print("the whole derive_paper(sensor_delay=T//2, actuator_delay=T-T//2), no files written")
-    print(f"{'T':>3} | {'time [s]':>{w}} | {'peak RSS [MB]':>{w}} | {'sum of steps':>{w}}")
-    print("-" * (6 + 3 * (w + 3)))
-    for T, got in whole_rows.items():
-        steps_sum = sum(v[0] for v in full.get(T, {}).values())
-        print(
-            f"{T:>3} | {cell(got, 'derive_paper', 0, '.3f', w)} | "
-            f"{cell(got, 'derive_paper', 1, '.0f', w)} | {steps_sum:{w}.3f}",
-            flush=True,
-        )
-    k = slope([(T, got["derive_paper"][0]) for T, got in whole_rows.items() if got])
-    print(f"exp | {'-' if k is None else f'{k:.2f}':>{w}}")
-    print()
-
-    table("time [s] of the design steps, T up to the design limit", design, DESIGN, "T", 0, ".4f")
-    exponents(design, DESIGN, "T")
-    print()
-
-    n_rows = {}
-    for n in range(2, args.max_n + 1):
-        n_rows[n] = run_case(checker, (n,), args.cap)
-        if "prove" not in n_rows[n]:
-            break
-    table(
-        "general realization of the order-n controller with a fully symbolic n x n P",
-        {n: {f"{s} [s]": v for s, v in got.items()} for n, got in n_rows.items()},
-        ("build [s]", "prove [s]"),
-        "n",
-        0,
-        ".3f",
-    )
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        old = extract(args.baseline, tmp / "before")
+        if old is None:
+            print(f"(no baseline: git revision {args.baseline} not available)\n")
+        rows, before = {}, {}
+        for T in parse_range(args.T):
+            rows[T] = run(["paper", str(T), str(tmp / f"new{T}")], REPO, args.cap)
+            if old is not None and (not before or all(b[2] for b in before.values())):
+                before[T] = run(["paper", str(T), str(tmp / f"old{T}")], old, args.baseline_cap)
+        paper_table(rows, before)
+        print()
+        n_rows, n_before = {}, {}
+        for n in range(2, args.max_n + 1):
+            n_rows[n] = run(["checker", str(n)], REPO, args.cap)
+            if old is not None and (not n_before or all(b[2] for b in n_before.values())):
+                n_before[n] = run(["checker", str(n)], old, args.baseline_cap)
+        checker_table(n_rows, n_before)
     print(
-        f"{'':>3}   peak RSS [MB]: "
-        + ", ".join(
-            f"n={n}: " + "/".join(f"{v[1]:.0f}" for v in got.values()) for n, got in n_rows.items()
-        )
-    )
-    exponents(
-        {n: {f"{s} [s]": v for s, v in got.items()} for n, got in n_rows.items()},
-        ("build [s]", "prove [s]"),
-        "n",
-    )
-    print()
-
-    print(
-        "wall time (perf_counter) and peak RSS of a forked process per case (one T or n), reset\n"
-        "before each step; '> cap': the step passed the cap (the rest of its case did not run).\n"
-        "exp: least-squares slope of log time against log T (or n), over the cases that finished\n"
-        "and took > 10 ms. firing: circuit_firing of the four circuits (count=4, ifp 1); ctrb,\n"
-        "obsv, general: symbolic + numeric realizations of G2; check: check_realization of the\n"
-        "six; compat: the four structures and check_compatibility on DelayGraph.chain.\n"
+        "\nwall time and peak RSS of a fresh process per case (imports included in 'total');\n"
+        "a step's MB is the peak RSS while it ran; figures are drawn in worker processes,\n"
+        "whose memory is not counted; '> cap': stopped at the cap; 'before': the same case\n"
+        f"on revision {args.baseline}. exp: slope of log time against log T (or n).\n"
         f"total {time.perf_counter() - start:.0f} s"
     )
+    if not args.no_mimo:
+        print()
+        subprocess.run([sys.executable, str(HERE / "mimo.py")], check=False)
 
 
 if __name__ == "__main__":

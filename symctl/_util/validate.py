@@ -455,9 +455,10 @@ MAX_CIRCUITS = 1000
 """Most realizations built into circuits and simulated at once (``circuit_firing``'s
 ``count``, ``derive_paper``'s ``realizations``): about 50 ms each, so under a minute."""
 
-PAPER_MAX_DELAY = 8
-"""Largest net delay of ``derive_paper`` (its symbolic factorization and realizations
-grow fast: measured on 2 cores, T = 6 takes 5 s, T = 8 16 s, T = 10 over 3 minutes)."""
+PAPER_MAX_DELAY = 20
+"""Largest net delay of ``derive_paper`` and ``symctl paper``: the range benchmarks/scaling.py
+measures and the documents are laid out for (T = 20 within two minutes on 2 cores, see the
+README's scaling table). The design functions take up to ``MAX_DELAY``."""
 
 MAX_STATES = 1000
 """Most states of a plant (``discretize``, ``linearize``) and of a delay-augmented system."""
@@ -629,3 +630,11 @@ def max_size(value, argname: str, limit: int) -> None:
         raise DimensionError(
             f"{argname}: at most {limit} rows and columns, got shape {tuple(shape)}"
         )
+
+
+MAX_EXPANDED_TERMS = 50_000
+r"""Most polynomial terms (numerators plus denominator, bounded before any work) that a
+MIMO transfer function :math:`D(z)^{-1} N(z)` is expanded into as ``num/den`` unless asked
+for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`): SymPy builds a few
+thousand terms a second (50,000: about 15 s on 2 cores), and ``controller_tf`` of a plant
+with 6 inputs at T = 3 would be 5 million."""

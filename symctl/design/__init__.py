@@ -4,6 +4,7 @@
 - ``augment``: sensor and actuator delays in the augmented state chi, the cost Q~;
 - ``lqr``: ``lqr_gains`` (the paper's sign, mu = K chi);
 - ``tf``: ``DiscreteTF``, the transfer-function type (no SciPy);
+- ``fraction``: ``MatrixFractionTF``, a MIMO DiscreteTF kept as D(z)^-1 N(z), expanded on request;
 - ``controller``: ``controller_tf`` (G(z) with K symbolic), ``prove_controller_tf`` and
   the IFP controller's state space, built once.
 """

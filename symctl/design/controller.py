@@ -10,16 +10,36 @@ r"""The optimal delayed controller :math:`G(z)` in closed form, its proof, and i
     D(z) = z^T I - K_1 z^{T-1} - \dots - K_T,
 
 which for a scalar plant is the paper's eq. (transfer_fn),
-:math:`K_0/(z^T - K_1 z^{T-1} - \dots - K_T)`. The derivation is proved, not
-trusted: :func:`prove_controller_tf` checks the polynomial identity
-:math:`(zI - F_c)\,W(z) = H_c \det D(z)` against the controller's own
-state-space matrices read off the augmented system.
+:math:`K_0/(z^T - K_1 z^{T-1} - \dots - K_T)`.
 
-For several inputs, :math:`\operatorname{adj} D` and :math:`\det D` are computed
-fraction-free (memoized Laplace minors, no division) in :math:`\mathbb{Z}[z, K]`
-for symbolic gains, or exactly in :math:`\mathbb{Q}[z]` from the floats of numeric
-gains (rounded once at the end), and the proof multiplies out in the same ring
-instead of inverting.
+For several inputs the controller is the left matrix fraction
+:math:`D(z)^{-1} K_0` (:class:`~symctl.design.fraction.MatrixFractionTF`), and
+it is expanded into :math:`\operatorname{adj} D(z) K_0 / \det D(z)` (fraction-free:
+memoized Laplace minors, no division, in :math:`\mathbb{Q}[z, K]` for symbolic
+gains, in :math:`\mathbb{Q}[z]` from the exact values of the floats of numeric
+gains, rounded once at the end) only when the expansion is small: at most
+``MAX_EXPANDED_TERMS`` (50,000) polynomial terms, a bound computed before any
+work that is exact for symbolic gains. Up to it ``controller_tf`` returns what it
+always did, an expanded :class:`~symctl.DiscreteTF` (a 3-state, 4-input plant at
+:math:`T = 2`: 4,000 terms); beyond it the fraction itself, whose ``num`` and
+``den`` refuse to expand (6 inputs at :math:`T = 3`: 4.9 million terms; see
+:mod:`symctl.design.fraction` for the count). Keeping :math:`\det D` and
+:math:`\operatorname{adj} D` in python-flint instead would only move the
+gigabytes: nothing downstream of a symbolic MIMO controller needs the expanded
+form, and numbers (:func:`symctl.lqr_gains`) make it small again.
+
+The derivation is proved, not trusted, and by multiplying, never by inverting.
+:func:`prove_controller_tf` reads :math:`D(z)` off the controller's own
+state-space matrices :math:`(F_c, H_c, M_c)` (those of the augmented system):
+with :math:`V = [z^{T-1} I; \dots; z I; I]`, the identities
+:math:`(zI - F_c) V = B_c D(z)`, :math:`H_c = B_c K_0` and :math:`M_c V = I` give
+:math:`(zI - F_c) V D^{-1} K_0 = B_c K_0 = H_c`, so
+:math:`M_c (zI - F_c)^{-1} H_c = M_c V D^{-1} K_0 = D(z)^{-1} K_0`; then :math:`G = D^{-1} K_0` is
+checked as :math:`D(z) N_G = K_0 d_G` for an expanded :math:`G = N_G/d_G`, or
+as :math:`D_G = D,\ N_G = K_0` for a fraction. Each is a polynomial identity
+checked exactly (a difference that is the zero polynomial); all but the last are
+of degree :math:`T` in :math:`z` and linear in the gains, so the proof of the
+6-input controller at :math:`T = 3` takes a fraction of a second.
 
 Those matrices, the paper's IFP controller (eqs. augmented_states,
 ifp_controller), are built in ONE place, :func:`ifp_state_space`, for symbolic
@@ -38,10 +58,13 @@ from __future__ import annotations
 
 import numpy as np
 import sympy as sp
+from sympy.polys.rings import ring
 
+from symctl._util.exact import NotRational, RingFractions, fold
 from symctl._util.proof import Proof
-from symctl._util.validate import MAX_DELAY, bounded_int
+from symctl._util.validate import MAX_DELAY, MAX_EXPANDED_TERMS, bounded_int
 from symctl.design.augment import AugmentedSystem
+from symctl.design.fraction import MatrixFractionTF
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
@@ -74,7 +97,10 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        ``m x n`` (plant inputs by plant states), relative degree ``T``.
+        ``m x n`` (plant inputs by plant states), relative degree ``T``. A
+        symbolic MIMO controller whose expansion would pass ``MAX_EXPANDED_TERMS``
+        (50,000) terms is the unexpanded left fraction :math:`D(z)^{-1} K_0`, a
+        :class:`~symctl.design.fraction.MatrixFractionTF` (a DiscreteTF).
 
     Raises
     ------
@@ -86,7 +112,7 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
 
     Examples
     --------
-    >>> from symctl import controller_tf
+    >>> from symctl import controller_tf, prove_controller_tf
     >>> controller_tf(3).den
     -K_1*z**2 - K_2*z - K_3 + z**3
     >>> controller_tf(2) == controller_tf(2)
@@ -95,6 +121,13 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     >>> G = controller_tf(lqr_gains(augment(MuscleModel(), 1, 1)))
     >>> [round(float(c), 6) for c in G.den_coeffs()]
     [1.0, 0.580041, 0.351813]
+    >>> import numpy as np
+    >>> six_inputs = augment((np.eye(2) / 2, np.ones((2, 6))), 1, 2)
+    >>> G = controller_tf(six_inputs)
+    >>> type(G).__name__, G.shape, G.order, G.relative_degree
+    ('MatrixFractionTF', (6, 2), 18, 3)
+    >>> bool(prove_controller_tf(six_inputs, G))
+    True
     """
     if gains is not None and not isinstance(gains, Gains):
         raise SymctlTypeError(f"gains: expected Gains (from symctl.lqr_gains), got {gains!r}")
@@ -102,25 +135,40 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
         gains = source
     system, T, m, n = _system_of(source)
     blocks = gain_matrix_symbols(T, m, n)
-    D = z**T * sp.eye(m)
-    for k in range(1, T + 1):
-        D = D - blocks[k] * z ** (T - k)
     dt = system.plant.Ts if system is not None else None
-    if m > 1 and gains is not None and _same_sizes(gains, T, m, n):
-        return _numeric_mimo(gains, T, m, n, dt)
-    if m == 1:
-        num, den = blocks[0], D[0, 0]
-        relative_degree = None
-    else:
-        num, den, relative_degree = _symbolic_mimo(blocks, T, m)
-    G = DiscreteTF(num, den, dt)
-    if relative_degree is None:
-        relative_degree = G.relative_degree
-    if relative_degree != T and any(e != 0 for e in num):
+    if m > 1:
+        return _mimo(blocks, gains, T, m, n, dt)
+    G = DiscreteTF(blocks[0], _chain(T, m, lambda k, i, j: blocks[k][i, j])[0, 0], dt)
+    if G.relative_degree != T and any(e != 0 for e in G.num_matrix):
         raise AssertionError(f"internal: relative degree {G.relative_degree} != T = {T}")
     if gains is not None:
         G = G.subs(gains.substitutions())
     return G
+
+
+def _chain(T: int, m: int, gain) -> sp.Matrix:
+    """``D(z) = z^T I - K_1 z^{T-1} - ... - K_T``, with ``gain(k, i, j)`` the entry of ``K_k``."""
+    D = z**T * sp.eye(m)
+    for k in range(1, T + 1):
+        for i in range(m):
+            for j in range(m):
+                D[i, j] -= gain(k, i, j) * z ** (T - k)
+    return D
+
+
+def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF:
+    """The MIMO controller as ``D(z)^-1 K_0``: expanded up to the size limit, or kept."""
+    if gains is not None and _same_sizes(gains, T, m, n):  # numbers: exact, rounded once
+        vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
+        D = _chain(T, m, lambda k, i, j: sp.Float(float(vals[k][i, j])))
+        K0 = _filled(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
+        return MatrixFractionTF(D, K0, dt).expanded()
+    G = MatrixFractionTF(_chain(T, m, lambda k, i, j: blocks[k][i, j]), blocks[0], dt)
+    if G.relative_degree != T:
+        raise AssertionError(f"internal: relative degree {G.relative_degree} != T = {T}")
+    if G.terms_bound() <= MAX_EXPANDED_TERMS:
+        G = G.expanded()
+    return G if gains is None else G.subs(gains.substitutions())
 
 
 def _same_sizes(gains: Gains, T: int, m: int, n: int) -> bool:
@@ -128,59 +176,8 @@ def _same_sizes(gains: Gains, T: int, m: int, n: int) -> bool:
     return (s.T, s.m, s.n) == (T, m, n)
 
 
-def _adj_det(D: list[list], zero) -> tuple[list[list], object]:
-    """Adjugate and determinant of a square matrix over a polynomial ring, fraction-free.
-
-    Laplace expansion with every minor memoized on its (rows, columns): no division,
-    so the entries stay polynomials; zero entries are skipped.
-    """
-    m = len(D)
-    memo: dict[tuple[tuple, tuple], object] = {}
-
-    def minor(rows: tuple, cols: tuple):
-        if not rows:
-            return zero + 1
-        key = (rows, cols)
-        if key not in memo:
-            r, rest = rows[0], rows[1:]
-            acc = zero
-            for idx, c in enumerate(cols):
-                if D[r][c]:
-                    term = D[r][c] * minor(rest, cols[:idx] + cols[idx + 1 :])
-                    acc = acc - term if idx % 2 else acc + term
-            memo[key] = acc
-        return memo[key]
-
-    every = tuple(range(m))
-    adj = [
-        [
-            (-1) ** (i + j) * minor(every[:j] + every[j + 1 :], every[:i] + every[i + 1 :])
-            for j in range(m)
-        ]
-        for i in range(m)
-    ]
-    det = zero
-    for c in range(m):  # first row against its cofactors (already in adj's column 0)
-        if D[0][c]:
-            det += D[0][c] * adj[c][0]
-    return adj, det
-
-
-def _chain_matrix(ring, blocks, T: int, m: int, convert) -> list[list]:
-    """``D(z) = z^T I - K_1 z^{T-1} - ... - K_T`` as a list of ring elements."""
-    zz = ring.gens[0]
-    return [
-        [
-            (zz**T if i == j else ring.zero)
-            - sum((convert(blocks[k][i, j]) * zz ** (T - k) for k in range(1, T + 1)), ring.zero)
-            for j in range(m)
-        ]
-        for i in range(m)
-    ]
-
-
 def _filled(rows: int, cols: int, entry) -> sp.Matrix:
-    """A matrix of ring results (SymPy expressions, never text: no sympify on the way)."""
+    """A matrix of SymPy numbers or ring results (never text: no sympify on the way)."""
     out = sp.zeros(rows, cols)
     for i in range(rows):
         for j in range(cols):
@@ -188,99 +185,100 @@ def _filled(rows: int, cols: int, entry) -> sp.Matrix:
     return out
 
 
-def _symbolic_mimo(blocks, T: int, m: int):
-    """``adj D(z) K_0`` and ``det D(z)`` for symbolic gain blocks, in ZZ[z, K]."""
-    gens = [z, *(s for b in blocks for s in b)]
-    R = sp.polys.rings.ring(gens, sp.ZZ)[0]
-    sym = dict(zip(gens, R.gens, strict=True))
-    D = _chain_matrix(R, blocks, T, m, sym.__getitem__)
-    adj, det = _adj_det(D, R.zero)
-    K0 = blocks[0]
-    num_r = [
-        [sum((adj[i][k] * sym[K0[k, j]] for k in range(m)), R.zero) for j in range(K0.shape[1])]
-        for i in range(m)
-    ]
-    top = max(
-        (p.degree(R.gens[0]) for row in num_r for p in row if p), default=det.degree(R.gens[0])
-    )
-    num = _filled(m, K0.shape[1], lambda i, j: num_r[i][j].as_expr())
-    return num, det.as_expr(), det.degree(R.gens[0]) - top
-
-
-def _numeric_mimo(gains: Gains, T: int, m: int, n: int, dt) -> DiscreteTF:
-    """The controller for numeric gains: exact in QQ[z] from the gains' floats, rounded once."""
-    R = sp.polys.rings.ring([z], sp.QQ)[0]
-    vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
-
-    def q(x):
-        return R(sp.QQ.from_sympy(sp.Rational(float(x))))
-
-    D = _chain_matrix(R, vals, T, m, q)
-    adj, det = _adj_det(D, R.zero)
-
-    def floats(p) -> sp.Expr:
-        return sp.Add(*(sp.Float(sp.QQ.to_sympy(c)) * z**k for (k,), c in p.terms()))
-
-    num = _filled(
-        m, n, lambda i, j: floats(sum((adj[i][k] * q(vals[0][k, j]) for k in range(m)), R.zero))
-    )
-    return DiscreteTF(num, floats(det), dt)
-
-
 _RING_METHOD = (
-    "polynomial identities (zI - F_c) W = H_c det D and M_c W = N_G, multiplied out in Z[z, K]"
+    "polynomial identities (zI - F_c) V = B_c D, H_c = B_c K_0, M_c V = I "
+    "(V = [z^(T-1) I; ...; I]) and {}, multiplied out in Q[z, K]"
 )
 
 
-def _prove_in_ring(F, H, M, N, den, T: int, K) -> tuple[bool, str] | None:
-    """Both identities of :func:`prove_controller_tf` in ``ZZ[z, K]``; None if not expressible.
-
-    ``W = [z^{T-1} N; ...; N]`` is never formed: block ``k`` of ``(zI - F) W`` is
-    ``z^{T-k} z N - sum_l F_{kl} z^{T-l} N`` with the sparse ``F`` (an entry at a time).
-    """
+def _ring_of(K) -> tuple[object, object]:
+    """``QQ[z, K]`` and an exact converter of SymPy expressions into it (floats exactly)."""
     gens = [z, *K]
-    R = sp.polys.rings.ring(gens, sp.ZZ)[0]
-    try:
-        Nr = [[R.from_expr(e) for e in N.row(i)] for i in range(N.rows)]
-        den_r = R.from_expr(den)
-        Fr = {
-            (i, j): R.from_expr(F[i, j])
-            for i in range(F.rows)
-            for j in range(F.cols)
-            if F[i, j] != 0
-        }
-        Hr = {
-            (i, j): R.from_expr(H[i, j])
-            for i in range(H.rows)
-            for j in range(H.cols)
-            if H[i, j] != 0
-        }
-    except (sp.polys.polyerrors.CoercionFailed, ValueError, TypeError):
-        return None
+    R = ring(gens, sp.QQ)[0]
+    algebra, memo = RingFractions(R, gens), {}
+
+    def convert(e):
+        num, den = fold(e, algebra, memo)
+        if not den.is_ground:
+            raise NotRational(e)
+        return num.quo(den)
+
+    return R, convert
+
+
+def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str, str] | None:
+    """The identities of :func:`prove_controller_tf` in ``QQ[z, K]``; None if not expressible.
+
+    Returns ``(holds, evidence, method)``. Every identity is a matrix of
+    polynomials of degree at most ``T`` in ``z`` and linear in the gains, except
+    ``D N_G = K_0 d_G`` for an expanded ``G`` (as large as ``G`` itself).
+    """
+    T, m, n = system.T, system.m, system.n
+    F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T)
+    B_c = sp.Matrix(system.B)[n:, :]
+    blocks = gain_matrix_symbols(T, m, n)
+    R, convert = _ring_of(K)
     zz = R.gens[0]
-    m, cols = N.rows, N.cols
-    zpow = [zz**p for p in range(T + 1)]
+    try:
+        Fr = {
+            (i, j): convert(F[i, j]) for i in range(F.rows) for j in range(F.cols) if F[i, j] != 0
+        }
+        Hr = [[convert(e) for e in H.row(i)] for i in range(H.rows)]
+        Br = [[convert(e) for e in B_c.row(i)] for i in range(B_c.rows)]
+        D = [
+            [convert(e) for e in _chain(T, m, lambda k, i, j: blocks[k][i, j]).row(i)]
+            for i in range(m)
+        ]
+        K0 = [[convert(e) for e in blocks[0].row(i)] for i in range(m)]
+        if isinstance(G, MatrixFractionTF):
+            D_G = [[convert(e) for e in G.D.row(i)] for i in range(m)]
+            N_G = [[convert(e) for e in G.N.row(i)] for i in range(m)]
+        else:
+            N_G = [[convert(e) for e in G.num_matrix.row(i)] for i in range(m)]
+            d_G = convert(G.den)
+    except (NotRational, KeyError):
+        return None
 
-    def w(row: int, col: int):  # entry of W: block row // m is z^{T-1-block} N
+    def v(row: int, col: int):  # V = [z^(T-1) I; ...; z I; I]
         block, r = divmod(row, m)
-        return Nr[r][col] * zpow[T - 1 - block]
+        return zz ** (T - 1 - block) if r == col else R.zero
 
-    by_row: dict[int, list[tuple[int, object]]] = {}
-    for (i, j), f in Fr.items():
-        by_row.setdefault(i, []).append((j, f))
-    for i in range(F.rows):
-        for c in range(cols):
-            e = zz * w(i, c) - sum((f * w(j, c) for j, f in by_row.get(i, ())), R.zero)
-            e -= Hr.get((i, c), R.zero) * den_r
-            if e:
-                return False, str(e.as_expr())
-    for i in range(M.rows):
-        for c in range(cols):
-            e = sum((int(M[i, j]) * w(j, c) for j in range(M.cols) if M[i, j]), R.zero)
-            e -= Nr[i][c]
-            if e:
-                return False, str(e.as_expr())
-    return True, ""
+    def first_nonzero(entries):
+        return next((str(e.as_expr()) for e in entries if e), "")
+
+    def lhs_rows():  # (zI - F) V - B_c D, H - B_c K_0 and M V - I, an entry at a time
+        for i in range(T * m):
+            for c in range(m):
+                e = zz * v(i, c) - sum(
+                    (Fr[i, j] * v(j, c) for j in range(c, T * m, m) if (i, j) in Fr), R.zero
+                )
+                yield e - sum((Br[i][k] * D[k][c] for k in range(m) if Br[i][k]), R.zero)
+            for c in range(n):
+                yield Hr[i][c] - sum((Br[i][k] * K0[k][c] for k in range(m) if Br[i][k]), R.zero)
+        for r in range(m):
+            for c in range(m):
+                e = sum((int(M[r, j]) * v(j, c) for j in range(T * m) if M[r, j]), R.zero)
+                yield e - (R.one if r == c else R.zero)
+
+    evidence = first_nonzero(lhs_rows())
+    if isinstance(G, MatrixFractionTF):
+        method = _RING_METHOD.format("D_G = D, N_G = K_0")
+        if evidence:
+            return False, evidence, method
+        if D_G != D:  # another left fraction: compared by expansion (within its size limit)
+            return _prove_in_ring(system, G.expanded(), K)
+        evidence = first_nonzero(
+            a - b for ra, rb in zip(N_G, K0, strict=True) for a, b in zip(ra, rb, strict=True)
+        )
+        return not evidence, evidence, method
+    method = _RING_METHOD.format("D N_G = K_0 d_G")
+    if not evidence:
+        evidence = first_nonzero(
+            sum((D[i][k] * N_G[k][j] for k in range(m) if N_G[k][j]), R.zero) - K0[i][j] * d_G
+            for i in range(m)
+            for j in range(n)
+        )
+    return not evidence, evidence, method
 
 
 def ifp_state_space(A, B, K, n: int, m: int, T: int):
@@ -322,10 +320,16 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
     With the controller's state-space matrices :math:`(F_c, H_c, M_c)` of
-    :func:`ifp_state_space` for symbolic gains, and the candidate state
-    numerators :math:`W = [z^{T-1}; \dots; 1] \otimes \operatorname{adj} D(z) K_0`,
-    checks the polynomial identities :math:`(zI - F_c) W = H_c \det D` and
-    :math:`M_c W = N_G` exactly. Together they give :math:`M_c (zI-F_c)^{-1} H_c = G`.
+    :func:`ifp_state_space` for symbolic gains: for a scalar plant, with the
+    candidate state numerators :math:`W = [z^{T-1}; \dots; 1] N_G`, the
+    polynomial identities :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G`,
+    expanded. For several inputs, by multiplying instead of inverting (see the
+    module docstring): :math:`(zI - F_c) V = B_c D(z)`, :math:`H_c = B_c K_0`,
+    :math:`M_c V = I` with :math:`V = [z^{T-1} I; \dots; I]`, and then
+    :math:`D(z) N_G = K_0 d_G` (an expanded ``G``) or :math:`D_G = D, N_G = K_0`
+    (a :class:`~symctl.design.fraction.MatrixFractionTF`; another left fraction
+    is expanded first, within its size limit), all in :math:`\mathbb{Q}[z, K]`.
+    Each is complete: it holds exactly when :math:`M_c (zI-F_c)^{-1} H_c = G`.
 
     Parameters
     ----------
@@ -344,6 +348,8 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     ------
     SymctlTypeError
         ``system`` is not an AugmentedSystem, or ``G`` not a DiscreteTF.
+    ParameterError
+        ``G`` is a left fraction with another ``D`` too large to expand.
 
     Examples
     --------
@@ -365,14 +371,17 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     if T == 0:
         K0 = gain_matrix_symbols(0, system.m, system.n)[0]
         return Proof(G.equals(K0), claim, "G == K_0 (no delay)", "" if G.equals(K0) else "G - K_0")
-    K = sp.Matrix.hstack(*gain_matrix_symbols(T, system.m, system.n))
-    F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, system.n, system.m, T)
+    m, n = system.m, system.n
+    if G.shape != (m, n):
+        return Proof(False, claim, "shapes", f"G has shape {G.shape}, the controller ({m}, {n})")
+    K = sp.Matrix.hstack(*gain_matrix_symbols(T, m, n))
+    ring_proof = _prove_in_ring(system, G, K) if m > 1 else None
+    if ring_proof is not None:
+        ok, first, method = ring_proof
+        return Proof(ok, claim, method, first)
+    F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T)
     M = sp.Matrix(M)
     N = G.num_matrix
-    ring_proof = _prove_in_ring(F, H, M, N, G.den, T, K) if system.m > 1 else None
-    if ring_proof is not None:
-        ok, first = ring_proof
-        return Proof(ok, claim, _RING_METHOD, first)
     W = sp.Matrix.vstack(*(N * z ** (T - k) for k in range(1, T + 1)))
     lhs = (z * sp.eye(F.shape[0]) - F) * W - H * G.den
     method = "polynomial identities (zI - F_c) W = H_c det D and M_c W = N_G, expanded"

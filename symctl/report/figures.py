@@ -56,6 +56,7 @@ from symctl.report.spec import CIRCUIT_SPECS
 __all__ = [
     "DPI",
     "FORMATS",
+    "MAX_PIXELS",
     "figure_names",
     "make_figure",
     "save",
@@ -66,6 +67,10 @@ DPI = 120
 """Resolution of the PNG files [dots per inch]."""
 FORMATS = ("png", "svg")
 """The formats every figure is saved in."""
+MAX_PIXELS = 4000
+"""Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
+long delay) is written at a lower resolution, so that its size and time stay bounded (the
+SVG keeps every detail)."""
 
 
 def figure_names(res) -> list[str]:
@@ -154,7 +159,8 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     name : str
         The file name without extension.
     dpi : int
-        Resolution of the PNG.
+        Resolution of the PNG, lowered for a figure whose longest side would
+        exceed :data:`MAX_PIXELS`.
 
     Returns
     -------
@@ -177,6 +183,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     """
     out = _folder(out)
     paths = []
+    dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
     for ext in FORMATS:
         path = out / f"{name}.{ext}"
         fig.savefig(path, dpi=dpi, metadata=_metadata(ext))

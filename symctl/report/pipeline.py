@@ -74,7 +74,8 @@ def derive_paper(
         firing rate [spikes/s], and the sampling time [s].
     sensor_delay, actuator_delay : int
         Delays in steps (integers >= 0, not both 0), with a net delay of at most
-        :data:`~symctl._util.validate.PAPER_MAX_DELAY` (8; T = 8 takes about 16 s).
+        :data:`~symctl._util.validate.PAPER_MAX_DELAY` (20; the README's scaling
+        table gives the time of each T).
     Q, R : matrix-like, optional
         State and input penalties of the cost (identity by default).
     seed : int
@@ -122,7 +123,8 @@ def derive_paper(
     if sum(delays) > PAPER_MAX_DELAY:
         raise ParameterError(
             f"sensor_delay, actuator_delay: derive_paper handles a net delay of at most "
-            f"{PAPER_MAX_DELAY} steps (the symbolic derivation grows fast; the design "
+            f"{PAPER_MAX_DELAY} steps (the range its derivation and documents are measured on; "
+            "the design "
             f"functions take up to {MAX_DELAY}), got {delays[0]} + {delays[1]} = {sum(delays)}"
         )
     if sensor_delay == 0 and actuator_delay == 0:

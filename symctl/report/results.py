@@ -407,10 +407,18 @@ class PaperResults:
         scale = N if N != 0 else 1
         remainder = [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
         poles = ", ".join(map(str, f.poles))
+        if self.abbreviated:  # the product forms: expanded, the zeros have 2^d terms
+            sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
+            G1, G3 = (_product_text(sp.Mul(*c), e, d) for c, e, d in sides)
+            G2 = _product_text(
+                f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C), f.poles, f.G.den, zeros=True
+            )
+        else:
+            G1, G2, G3 = str(f.G1), str(f.G2), str(f.G3)
         return {
-            "G1": str(f.G1),
-            "G2": str(f.G2),
-            "G3": str(f.G3),
+            "G1": G1,
+            "G2": G2,
+            "G3": G3,
             "N": sp.sstr(N),
             "remainder_coeffs": [sp.sstr(c) for c in remainder],
             "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
@@ -580,6 +588,17 @@ class PaperResults:
 def _section_C(params: dict) -> list[str]:
     """The C of each section drawn (all 1 in :func:`~symctl.neural.firing.circuit_firing`)."""
     return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
+
+
+def _product_text(gain, poles, den, *, zeros: bool = False) -> str:
+    """``gain*(z - p1)*.../(den)`` (zeros) or ``(gain)/((z - p1)*...)``, nothing multiplied out."""
+    factors = "*".join(
+        f"(z - {sp.sstr(p)})" if p.is_Atom else f"(z - ({sp.sstr(p)}))" for p in poles
+    )
+    factors = factors or "1"
+    if zeros:
+        return f"({sp.sstr(gain)})*{factors}/({descending_str(den)})"
+    return f"({sp.sstr(gain)})/({factors})"
 
 
 def _poly_text(value) -> str | list:

@@ -367,6 +367,10 @@ AUDITED = {
     ("symctl.design.augment", "augment", "ImmutableMatrix"): 5,  # to_matrix / psd_matrix
     ("symctl.design.controller", "controller_tf", "subs"): 1,  # Gains.substitutions (floats)
     ("symctl.design.controller", "prove_controller_tf", "Matrix"): 3,  # system matrices
+    ("symctl.design.controller", "_mimo", "subs"): 1,  # Gains.substitutions (floats)
+    ("symctl.design.controller", "_prove_in_ring", "Matrix"): 3,  # system matrices
+    ("symctl.design.fraction", "MatrixFractionTF.__init__", "ImmutableMatrix"): 2,  # to_expr
+    ("symctl.design.fraction", "MatrixFractionTF.subs", "subs"): 3,  # subs_rule
     ("symctl.design.lqr", "Gains.latex", "Matrix"): 1,  # float array K
     ("symctl.design.plant", "DiscretePlant.__post_init__", "ImmutableMatrix"): 3,  # to_matrix
     ("symctl.design.plant", "DiscretePlant.subs", "subs"): 5,  # subs_rule
@@ -421,6 +425,8 @@ AUDITED = {
     ("symctl.compatibility.structure", "_is_zero", "cancel"): 1,
     ("symctl.design.controller", "controller_tf", "expand"): 1,
     ("symctl.design.controller", "prove_controller_tf", "expand"): 1,
+    ("symctl.design.fraction", "MatrixFractionTF.terms_bound", "expand"): 2,  # own D, N
+    ("symctl.design.fraction", "MatrixFractionTF.equals", "expand"): 1,  # own N, other's N
     ("symctl.design.plant", "MuscleModel.values", "nsimplify"): 4,
     ("symctl.design.plant", "_is_zero", "cancel"): 1,
     ("symctl.design.plant", "_is_zero", "expand"): 1,

@@ -188,7 +188,7 @@ def test_mimo_ring_proof_rejects_a_wrong_controller():
     G = controller_tf(aug)
     wrong = DiscreteTF(G.num_matrix.subs(z, z + 1), G.den)
     proof = prove_controller_tf(aug, wrong)
-    assert not proof and "Z[z, K]" in proof.method and proof.evidence
+    assert not proof and "Q[z, K]" in proof.method and proof.evidence
     assert not prove_controller_tf(aug, 2 * G)
 
 

@@ -1,0 +1,439 @@
+r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
+
+Why a fraction: the common-denominator form of :class:`~symctl.DiscreteTF`,
+:math:`\operatorname{adj} D(z)\, N(z) / \det D(z)`, of a *symbolic* polynomial
+matrix :math:`D` is far larger than :math:`D` and :math:`N`. For the delayed
+controller :math:`D(z) = z^T I - \sum_k K_k z^{T-k}` of a plant with
+:math:`m` inputs and symbolic gain blocks, every choice of a permutation and
+of one term per entry gives a distinct monomial of :math:`\det D`, so it has
+exactly :math:`\operatorname{perm}(C)` terms, :math:`C` the matrix of term
+counts (:math:`T + 1` on the diagonal, :math:`T` off it): 633 for
+:math:`m = 4, T = 2`, but 732,529 for :math:`m = 6, T = 3`, and the 18 entries
+of :math:`\operatorname{adj} D\, K_0` about 4.2 million more: gigabytes in
+any representation (python-flint's ``fmpz_mpoly`` packs a monomial of 127
+variables into about 130 bytes; SymPy builds a few thousand terms a second), and
+nothing needs them: the shape, order, relative degree, Markov parameters,
+substitution of numbers and the proof of the controller
+(:func:`symctl.prove_controller_tf`, which multiplies by :math:`D` instead of
+inverting it) all work on :math:`D` and :math:`N`.
+
+:class:`MatrixFractionTF` is a :class:`~symctl.DiscreteTF` that keeps the two
+matrices and expands (fraction-free: memoized Laplace minors, no division, in a
+sparse polynomial ring over :math:`\mathbb{Q}`) only when ``num``/``den`` are
+asked for, after bounding the result's size by the same permanent, before any
+work; beyond ``MAX_EXPANDED_TERMS`` it refuses with a :class:`ParameterError`
+that says what to do instead. Numbers make the expansion small (at most
+:math:`dm + 1` coefficients an entry): with every symbol substituted, ``num``
+and ``den`` always work.
+
+>>> import sympy as sp
+>>> from symctl import z
+>>> from symctl.design.fraction import MatrixFractionTF
+>>> k = sp.Symbol("k")
+>>> G = MatrixFractionTF(sp.Matrix([[z - k, 0], [1, z]]), sp.Matrix([[1], [0]]))
+>>> G.relative_degree, G.expanded().num_matrix.T, G.expanded().den
+(1, Matrix([[z, -1]]), -k*z + z**2)
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.polys.rings import ring
+
+from symctl._util.display import descending_latex, descending_str
+from symctl._util.exact import RingFractions, fold, z_poly
+from symctl._util.validate import (
+    MAX_EXPANDED_TERMS,
+    MAX_STEPS,
+    bounded_int,
+    finite_expr,
+    sampling_time,
+    subs_rule,
+    to_expr,
+)
+from symctl.design.tf import DiscreteTF, _natural_key
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.symbols import z
+
+__all__ = ["MatrixFractionTF"]
+
+
+def _adj_det(D: list[list], zero, signed: bool = True) -> tuple[list[list], object]:
+    """Adjugate and determinant of a square matrix over a polynomial ring, fraction-free.
+
+    Laplace expansion with every minor memoized on its (rows, columns): no division,
+    so the entries stay polynomials; zero entries are skipped. With ``signed=False``
+    every sign is ``+`` (permanents: on term counts, bounds on the terms of each minor).
+    """
+    m = len(D)
+    memo: dict[tuple[tuple, tuple], object] = {}
+
+    def minor(rows: tuple, cols: tuple):
+        if not rows:
+            return zero + 1
+        key = (rows, cols)
+        if key not in memo:
+            r, rest = rows[0], rows[1:]
+            acc = zero
+            for idx, c in enumerate(cols):
+                if D[r][c]:
+                    term = D[r][c] * minor(rest, cols[:idx] + cols[idx + 1 :])
+                    acc = acc - term if idx % 2 and signed else acc + term
+            memo[key] = acc
+        return memo[key]
+
+    every = tuple(range(m))
+    adj = [
+        [
+            (-1 if (i + j) % 2 and signed else 1)
+            * minor(every[:j] + every[j + 1 :], every[:i] + every[i + 1 :])
+            for j in range(m)
+        ]
+        for i in range(m)
+    ]
+    det = zero
+    for c in range(m):  # first row against its cofactors (already in adj's column 0)
+        if D[0][c]:
+            det += D[0][c] * adj[c][0]
+    return adj, det
+
+
+def _z_degree(expr: sp.Expr) -> int:
+    return z_poly(expr).degree()
+
+
+class MatrixFractionTF(DiscreteTF):
+    r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
+
+    The common-denominator form :math:`\operatorname{adj} D(z)\, N(z) / \det D(z)`
+    of a symbolic :math:`D` can be far larger than :math:`D` and :math:`N`
+    (the 6-input controller at :math:`T = 3` has about 5 million terms), so
+    this form keeps the two polynomial matrices and expands only when ``num``,
+    ``den`` (or a method that needs them) is asked for, through :meth:`expanded`,
+    which refuses beyond ``MAX_EXPANDED_TERMS`` terms (50,000) before doing any
+    work. Shape, order, relative degree, free symbols, :meth:`subs`, products
+    with a scalar, :meth:`markov`, equality and display work on :math:`D, N`.
+
+    ``D`` is monic: its coefficient of :math:`z^d` (:math:`d` its largest
+    degree) is the identity, so :math:`\det D` is monic of degree :math:`d m`
+    and :math:`D^{-1} = z^{-d}(I + O(z^{-1}))`: the relative degree is
+    :math:`d - \max_{ij} \deg N_{ij}`. ``==`` and ``hash`` compare ``D``, ``N``
+    and ``dt`` structurally (a fraction is never ``==`` to an expanded
+    :class:`DiscreteTF`; :meth:`equals` decides equality as rational functions).
+
+    Parameters
+    ----------
+    D : sympy Matrix
+        Square ``m x m``, polynomial in ``z``, monic.
+    N : sympy Matrix
+        ``m x p``, polynomial in ``z``.
+    dt : number, symbol or None
+        Sampling time.
+
+    Raises
+    ------
+    SymctlTypeError
+        ``D`` or ``N`` not a sympy Matrix.
+    DimensionError
+        ``D`` not square, or ``N`` without ``D``'s number of rows.
+    ParameterError
+        An entry not polynomial in ``z``, or ``D`` not monic.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import z
+    >>> from symctl.design.fraction import MatrixFractionTF
+    >>> a = sp.Symbol("a")
+    >>> G = MatrixFractionTF(sp.Matrix([[z, -a], [0, z - 1]]), sp.Matrix([[1], [2]]))
+    >>> G.shape, G.order, G.relative_degree
+    ((2, 1), 2, 1)
+    >>> G.expanded().num_matrix.T, G.den
+    (Matrix([[2*a + z - 1, 2*z]]), z**2 - z)
+    >>> G.equals(sp.Matrix([(z - 1 + 2 * a) / (z**2 - z), 2 / (z - 1)]))
+    True
+    """
+
+    def __init__(self, D, N, dt=None):
+        for value, name in ((D, "D"), (N, "N")):
+            if not isinstance(value, sp.MatrixBase):
+                raise SymctlTypeError(f"{name}: expected a sympy Matrix, got {value!r}")
+        if D.rows != D.cols:
+            raise DimensionError(f"D: expected a square matrix, got shape {D.shape}")
+        if N.rows != D.rows:
+            raise DimensionError(f"N: expected {D.rows} rows (those of D), got shape {N.shape}")
+        D_m = sp.ImmutableMatrix(D.applyfunc(lambda e: to_expr(e, "D")))
+        N_m = sp.ImmutableMatrix(N.applyfunc(lambda e: to_expr(e, "N")))
+        for e in (*D_m, *N_m):
+            if not e.is_polynomial(z):
+                raise ParameterError(f"D/N: {e} is not a polynomial in z")
+            finite_expr(e, "D/N")
+        d = max(_z_degree(e) for e in D_m)
+        lead = D_m.applyfunc(lambda e: z_poly(e).coeff(d))
+        if d < 0 or not all(e.is_zero is True for e in lead - sp.eye(D.rows)):
+            raise ParameterError(
+                f"D: expected a monic polynomial matrix (coefficient of z**{d} the "
+                f"identity), got {lead.tolist()}"
+            )
+        object.__setattr__(self, "_D", D_m)
+        object.__setattr__(self, "_N", N_m)
+        object.__setattr__(self, "_degree", d)
+        object.__setattr__(self, "dt", None if dt is None else sampling_time(dt, "dt"))
+        object.__setattr__(self, "_cache", {})
+
+    # ------------------------------------------------------------ the fraction
+    @property
+    def D(self) -> sp.ImmutableMatrix:
+        """The left denominator :math:`D(z)`, ``m x m``, monic."""
+        return self._D
+
+    @property
+    def N(self) -> sp.ImmutableMatrix:
+        """The left numerator :math:`N(z)`, ``m x p``."""
+        return self._N
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self._N.shape
+
+    @property
+    def order(self) -> int:
+        """Degree of :math:`\\det D`: ``d m``."""
+        return self._degree * self._D.rows
+
+    @property
+    def relative_degree(self) -> int:
+        degrees = [_z_degree(e) for e in self._N if e != 0]
+        return self._degree - max(degrees) if degrees else int(1e9)
+
+    @property
+    def free_symbols(self) -> set[sp.Symbol]:
+        syms = set().union(*(e.free_symbols for e in (*self._D, *self._N)))
+        return syms - {z}
+
+    def terms_bound(self) -> int:
+        r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`.
+
+        For symbols that occur once each (generic gain blocks) the bound is the
+        exact count: the permanent of the entries' term counts, by the same
+        memoized Laplace expansion. With numbers only (``z`` the one symbol) it
+        is the count of coefficients, ``(d m + 1)(1 + m p)``. (Rows with
+        rational coefficients are scaled to polynomials before the expansion,
+        which this bound does not count.)
+
+        >>> import sympy as sp
+        >>> from symctl import z
+        >>> from symctl.design.fraction import MatrixFractionTF
+        >>> a, b = sp.symbols("a b")
+        >>> MatrixFractionTF(sp.Matrix([[z - a, 0], [b, z]]), sp.eye(2)).terms_bound()
+        6
+        """
+        m, p = self.shape
+        if not self.free_symbols:
+            return (self.order + 1) * (1 + m * p)
+        counts = [
+            [len(sp.Add.make_args(sp.expand(e))) if e != 0 else 0 for e in row]
+            for row in self._D.tolist()
+        ]
+        adj, det = _adj_det(counts, 0, signed=False)
+        n_counts = [
+            [len(sp.Add.make_args(sp.expand(e))) if e != 0 else 0 for e in row]
+            for row in self._N.tolist()
+        ]
+        return det + sum(
+            adj[i][k] * n_counts[k][j] for i in range(m) for j in range(p) for k in range(m)
+        )
+
+    def expanded(self, max_terms: int = MAX_EXPANDED_TERMS) -> DiscreteTF:
+        r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF` (fraction-free).
+
+        The adjugate and determinant come from memoized Laplace minors in a sparse
+        polynomial ring over :math:`\mathbb{Q}` in ``z`` and the free symbols (no
+        division; rows with rational coefficients are scaled to polynomials
+        first), floats taken exactly and rounded once at the end.
+
+        Parameters
+        ----------
+        max_terms : int
+            Refuse (before any work) when :meth:`terms_bound` exceeds it and
+            symbols other than ``z`` remain (with numbers only, the size is the
+            number of coefficients, linear in the degree, and never refused).
+
+        Raises
+        ------
+        ParameterError
+            The bound of a symbolic fraction exceeds ``max_terms``.
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> from symctl import z
+        >>> from symctl.design.fraction import MatrixFractionTF
+        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr
+        Matrix([
+        [1/z, -1/z**2],
+        [  0,     1/z]])
+        """
+        max_terms = bounded_int(max_terms, "max_terms", 1, 10**9)
+        got = self._cache.get("expanded")
+        if got is not None:
+            return got
+        bound = self.terms_bound()
+        if bound > max_terms and self.free_symbols:  # numbers: linear in the degree, never refused
+            raise ParameterError(
+                f"max_terms: expanding this {self._D.rows}x{self._D.rows} D(z)^-1 N(z) into "
+                f"num/den would make up to {bound} polynomial terms, more than "
+                f"max_terms = {max_terms}; work with G.D and G.N (the left fraction), "
+                "substitute numbers first, or pass a larger max_terms to G.expanded()"
+            )
+        out = DiscreteTF(*_fraction_free(self._D, self._N), self.dt)
+        self._cache["expanded"] = out
+        return out
+
+    @property
+    def _num(self) -> sp.ImmutableMatrix:  # what every inherited method reads
+        return self.expanded().num_matrix
+
+    @property
+    def den(self) -> sp.Expr:
+        return self.expanded().den
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, DiscreteTF):
+            return NotImplemented
+        if not isinstance(other, MatrixFractionTF):
+            return False
+        return (self._D, self._N, self.dt) == (other._D, other._N, other.dt)
+
+    def __hash__(self) -> int:
+        return hash((MatrixFractionTF, self._D, self._N, self.dt))
+
+    # ------------------------------------------------------------ algebra on D and N
+    def subs(self, *args, **kwargs) -> MatrixFractionTF:
+        """Substitute symbols into ``D`` and ``N`` (as :meth:`DiscreteTF.subs`); stays a fraction."""
+        rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
+        dt = None if self.dt is None else self.dt.subs(rule, **flags)
+        if _plain(rule, flags):  # the same result, without subs' search (70x faster for K)
+            return MatrixFractionTF(self._D.xreplace(rule), self._N.xreplace(rule), dt)
+        return MatrixFractionTF(self._D.subs(rule, **flags), self._N.subs(rule, **flags), dt)
+
+    def equals(self, other) -> bool:
+        """Equality as rational functions; with the same ``D``, exactly ``N == N'`` (no expansion)."""
+        if isinstance(other, MatrixFractionTF) and other.D == self._D:
+            return other.shape == self.shape and all(
+                sp.expand(a - b) == 0 for a, b in zip(self._N, other.N, strict=True)
+            )
+        return self.expanded().equals(other)
+
+    def __mul__(self, other) -> DiscreteTF:
+        """A scalar factor goes into ``N``; a product with a DiscreteTF is expanded."""
+        if isinstance(other, sp.Expr | int | float) and not isinstance(other, bool):
+            return MatrixFractionTF(self._D, self._N * other, self.dt)
+        return DiscreteTF.__mul__(self.expanded(), other)
+
+    __rmul__ = __mul__
+
+    def markov(self, count: int) -> list[sp.Matrix]:
+        r"""Markov parameters from :math:`D(z) G(z) = N(z)`, with no expansion.
+
+        With :math:`D = \sum_i D_i z^{d-i}` (:math:`D_0 = I`), matching powers of
+        :math:`z` gives :math:`h_j = N_{[d-j]} - \sum_{i=1}^{\min(j,d)} D_i h_{j-i}`.
+
+        >>> import sympy as sp
+        >>> from symctl import z
+        >>> from symctl.design.fraction import MatrixFractionTF
+        >>> [h[0, 0] for h in MatrixFractionTF(sp.Matrix([[z - 2]]), sp.eye(1)).markov(4)]
+        [0, 1, 2, 4]
+        """
+        count = bounded_int(count, "count", 0, MAX_STEPS)
+        if self.relative_degree < 0:
+            raise ParameterError("G: improper transfer function has no Markov expansion")
+        d = self._degree
+
+        def coeffs(M, power):
+            return M.applyfunc(lambda e: z_poly(e).coeff(power) if power >= 0 else 0)
+
+        Di = [coeffs(self._D, d - i) for i in range(d + 1)]
+        h: list[sp.Matrix] = []
+        for j in range(count):
+            acc = coeffs(self._N, d - j).as_mutable()
+            for i in range(1, min(j, d) + 1):
+                acc = acc - Di[i] * h[j - i]
+            h.append(acc.applyfunc(sp.expand))
+        return h
+
+    # ------------------------------------------------------------ display
+    def latex(self) -> str:
+        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
+
+        >>> import sympy as sp
+        >>> from symctl import z
+        >>> from symctl.design.fraction import MatrixFractionTF
+        >>> print(MatrixFractionTF(sp.Matrix([[1 + z]]), sp.Matrix([[2]])).latex())
+        \left[\begin{matrix}z + 1\end{matrix}\right]^{-1} \left[\begin{matrix}2\end{matrix}\right]
+        """
+
+        def matrix(M) -> str:  # entries in descending powers of z, as DiscreteTF prints them
+            rows = r" \\ ".join(" & ".join(descending_latex(e) for e in row) for row in M.tolist())
+            return rf"\left[\begin{{matrix}}{rows}\end{{matrix}}\right]"
+
+        return rf"{matrix(self._D)}^{{-1}} {matrix(self._N)}"
+
+    def __repr__(self) -> str:
+        return f"MatrixFractionTF({self}, dt={self.dt})"
+
+    def __str__(self) -> str:
+        def rows(M):
+            return ", ".join(
+                "[" + ", ".join(descending_str(e) for e in row) + "]" for row in M.tolist()
+            )
+
+        return f"([{rows(self._D)}])^-1 [{rows(self._N)}]"
+
+
+def _plain(rule, flags) -> bool:
+    """Symbols to values free of them: ``xreplace`` gives what ``subs`` gives."""
+    if flags or not isinstance(rule, dict):
+        return False
+    keys = set(rule)
+    return all(isinstance(k, sp.Symbol) for k in keys) and not any(
+        v.free_symbols & keys for v in rule.values()
+    )
+
+
+def _fraction_free(D: sp.MatrixBase, N: sp.MatrixBase) -> tuple[sp.Matrix, sp.Expr]:
+    """``adj D N`` and ``det D`` in ``QQ[z, symbols]`` (exact; floats rounded once at the end)."""
+    symbols = sorted(set().union(*(e.free_symbols for e in (*D, *N))) - {z}, key=_natural_key)
+    gens = [z, *symbols]
+    R = ring(gens, sp.QQ)[0]
+    algebra, memo = RingFractions(R, gens), {}
+    m, p = N.shape
+    rows = []
+    for i in range(m):  # one row of [D N], scaled by its denominators (none in z)
+        pairs = [fold(e, algebra, memo) for e in (*D.row(i), *N.row(i))]
+        scale = R.one
+        for _, den in pairs:
+            scale = scale if den.is_ground else scale.lcm(den)
+        rows.append([num * scale.quo(den) for num, den in pairs])
+    adj, det = _adj_det([row[:m] for row in rows], R.zero)
+    num = [
+        [sum((adj[i][k] * rows[k][m + j] for k in range(m)), R.zero) for j in range(p)]
+        for i in range(m)
+    ]
+    has_float = any(e.atoms(sp.Float) for e in (*D, *N))
+
+    def expr(poly) -> sp.Expr:
+        if not has_float:
+            return poly.as_expr()
+        return sp.Add(
+            *(
+                sp.Float(sp.QQ.to_sympy(c)) * R.from_dict({mon: 1}).as_expr()
+                for mon, c in poly.terms()
+            )
+        )
+
+    out = sp.zeros(m, p)
+    for i in range(m):
+        for j in range(p):
+            out[i, j] = expr(num[i][j])
+    return out, expr(det)
