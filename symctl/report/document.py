@@ -151,7 +151,9 @@ def _tex_text(text: str) -> str:
 
 # \fitmath is a safety net: a display a little wider than the line (the story keeps every line
 # within its width estimate, symctl.report.longform) is shrunk to fit and reported in the log as
-# "symctl: shrunk"; one far wider is left as it is (an overfull box, not "Dimension too large").
+# "symctl: shrunk"; one wider than SHRINK_MAX lines is left as it is (an overfull box that shows
+# in the log, not a page of unreadable type). The T = 8..10 reports failed with "Dimension too
+# large": displays wider than TeX's largest dimension (about 5.8 m); the layout prevents those.
 _PREAMBLE = r"""\newsavebox{\symctlbox}
 \newcommand{\fitmath}[1]{\sbox{\symctlbox}{$\displaystyle #1$}%
   \ifdim\wd\symctlbox>\linewidth

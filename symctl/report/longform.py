@@ -105,7 +105,9 @@ row cut after its matrices' rows; prose is wrapped at 100 characters (outside in
 SHRINK_MAX = 2
 """The LaTeX safety net (``\\fitmath`` in :mod:`symctl.report.document`) shrinks a display up
 to this many times the line to fit it, and reports it in the log (``symctl: shrunk``); a
-wider one is left overfull. The layout above keeps every display within the line."""
+wider one is left overfull. The layout above keeps every display within the line (it must:
+a display wider than TeX's largest dimension, as the T = 8 report's were, stops pdflatex with
+"Dimension too large")."""
 
 # ---------------------------------------------------------------- width of LaTeX
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
