@@ -43,6 +43,8 @@ from pathlib import Path
 
 from symctl import latex as L
 from symctl.errors import LatexError, SymctlTypeError
+from symctl.report import longform as LF
+from symctl.report.longform import MD_LINE, TABLE_MAX_ROWS
 
 __all__ = [
     "BLOCKS",
@@ -84,10 +86,16 @@ class Text:
 
 @dataclass(frozen=True)
 class Math:
-    """One numbered display: rows ``(lhs, rhs)`` of LaTeX, aligned at ``=``."""
+    """One numbered display: rows ``(lhs, rhs)`` of LaTeX, aligned at ``=``.
+
+    A row with ``lhs`` None continues the row above (a line of a broken
+    equation); a ``breakable`` display may break across pages (LaTeX ``align``,
+    the number on its first row).
+    """
 
     rows: tuple
     label: str
+    breakable: bool = False
 
 
 @dataclass(frozen=True)
@@ -141,11 +149,58 @@ def _tex_text(text: str) -> str:
     return "$".join(parts)
 
 
+# \fitmath is a safety net: a display a little wider than the line (the story keeps every line
+# within its width estimate, symctl.report.longform) is shrunk to fit and reported in the log as
+# "symctl: shrunk"; one wider than SHRINK_MAX lines is left as it is (an overfull box that shows
+# in the log, not a page of unreadable type). The T = 8..10 reports failed with "Dimension too
+# large": displays wider than TeX's largest dimension (about 5.8 m); the layout prevents those.
 _PREAMBLE = r"""\newsavebox{\symctlbox}
 \newcommand{\fitmath}[1]{\sbox{\symctlbox}{$\displaystyle #1$}%
-  \ifdim\wd\symctlbox>\linewidth\resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
+  \ifdim\wd\symctlbox>\linewidth
+    \ifdim\wd\symctlbox<2\linewidth
+      \typeout{symctl: shrunk a display on page \thepage}%
+      \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
+    \else\usebox{\symctlbox}\fi
   \else\usebox{\symctlbox}\fi}
-\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}"""
+\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}""".replace(
+    "<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth"
+)
+
+
+def _row(lhs, rhs) -> str:
+    """One row of an aligned display; ``lhs`` None: a continuation line."""
+    return f"& {rhs}" if lhs is None else f"{lhs} &= {rhs}"
+
+
+def _tex_math(b: Math) -> str:
+    if b.breakable:
+        rows = [_row(lhs, rhs) + ("" if k else rf" \label{{{b.label}}}") + (r" \notag" if k else "")
+                for k, (lhs, rhs) in enumerate(b.rows)]  # fmt: skip
+        return "\n".join([r"\begin{align}", "  " + " \\\\\n  ".join(rows), r"\end{align}"])
+    rows = r" \\ ".join(_row(lhs, rhs) for lhs, rhs in b.rows)
+    return "\n".join(
+        [
+            r"\begin{equation}",
+            rf"  \fitmath{{\begin{{aligned}}{rows}\end{{aligned}}}}",
+            rf"  \label{{{b.label}}}",
+            r"\end{equation}",
+        ]
+    )
+
+
+def _tex_table(b: Table) -> str:
+    cols = "l" * len(b.header)
+    body = [" & ".join(_tex_text(c) for c in b.header) + r" \\ \hline"]
+    body += [" & ".join(_tex_text(c) for c in row) + r" \\" for row in b.rows]
+    size = r"\small"
+    if LF.table_width(b.header, b.rows) > LF.TABLE_WIDTH:
+        size = r"\footnotesize\setlength{\tabcolsep}{3pt}"
+    if len(b.rows) <= TABLE_MAX_ROWS:
+        return "\n".join([rf"\begin{{center}}{size}", rf"\begin{{tabular}}{{{cols}}}", r"\hline",
+                          *body, r"\hline", r"\end{tabular}\end{center}"])  # fmt: skip
+    head = body[0]
+    return "\n".join([rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", r"\hline", head,
+                      r"\endhead", r"\hline", r"\endfoot", *body[1:], r"\end{longtable}}"])  # fmt: skip
 
 
 def _tex_block(b) -> str:
@@ -154,29 +209,9 @@ def _tex_block(b) -> str:
     if isinstance(b, Text):
         return _tex_text(b.text)
     if isinstance(b, Math):
-        rows = r" \\ ".join(f"{lhs} &= {rhs}" for lhs, rhs in b.rows)
-        return "\n".join(
-            [
-                r"\begin{equation}",
-                rf"  \fitmath{{\begin{{aligned}}{rows}\end{{aligned}}}}",
-                rf"  \label{{{b.label}}}",
-                r"\end{equation}",
-            ]
-        )
+        return _tex_math(b)
     if isinstance(b, Table):
-        cols = "l" * len(b.header)
-        body = [" & ".join(_tex_text(c) for c in b.header) + r" \\ \hline"]
-        body += [" & ".join(_tex_text(c) for c in row) + r" \\" for row in b.rows]
-        return "\n".join(
-            [
-                r"\begin{center}\small",
-                rf"\begin{{tabular}}{{{cols}}}",
-                r"\hline",
-                *body,
-                r"\hline",
-                r"\end{tabular}\end{center}",
-            ]
-        )
+        return _tex_table(b)
     if isinstance(b, Graphic):
         return "\n".join(
             [
@@ -187,8 +222,8 @@ def _tex_block(b) -> str:
                 r"\end{figure}",
             ]
         )
-    lines = [w for line in b.text.splitlines() for w in textwrap.wrap(line, 100) or [""]]
-    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *lines, r"\end{verbatim}", "}"])
+    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *_wrapped(b.text), r"\end{verbatim}",
+                      "}"])  # fmt: skip
 
 
 def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
@@ -219,7 +254,10 @@ def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     (True, True)
     """
     parts = [_tex_block(b) for b in _checked(blocks)]
-    return L.document(parts, title=_tex_text(title), author="symctl", preamble=_PREAMBLE)
+    packages = ["longtable"] if any(r"\begin{longtable}" in p for p in parts) else []
+    return L.document(
+        parts, title=_tex_text(title), author="symctl", packages=packages, preamble=_PREAMBLE
+    )
 
 
 # ---------------------------------------------------------------- Markdown
@@ -265,11 +303,25 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
         if isinstance(b, Heading):
             out += [f"{'#' * (b.level + 1)} {b.text}", ""]
         elif isinstance(b, Text):
-            out += [b.text, ""]
+            out += [*_md_wrap(b.text), ""]
         elif isinstance(b, Math):
             number += 1
-            rows = r" \\ ".join(f"{lhs} &= {rhs}" for lhs, rhs in b.rows)
-            out += ["$$", rf"\begin{{aligned}}{rows}\end{{aligned}}\tag{{{number}}}", "$$", ""]
+            rows = [_row(lhs, rhs) for lhs, rhs in b.rows]
+            one = r" \\ ".join(rows)
+            line = rf"\begin{{aligned}}{one}\end{{aligned}}\tag{{{number}}}"
+            if len(line) <= MD_LINE:
+                out += ["$$", line, "$$", ""]
+            else:
+                body = [r + r" \\" for r in rows[:-1]] + rows[-1:]
+                body = [line for r in body for line in _md_math_lines(r)]
+                out += [
+                    "$$",
+                    r"\begin{aligned}",
+                    *body,
+                    rf"\end{{aligned}}\tag{{{number}}}",
+                    "$$",
+                    "",
+                ]
         elif isinstance(b, Table):
             out.append("| " + " | ".join(map(_md_cell, b.header)) + " |")
             out.append("|" + "---|" * len(b.header))
@@ -278,8 +330,50 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
         elif isinstance(b, Graphic):
             out += [f"![{b.caption}]({b.name}.png)", "", f"*{b.caption}*", ""]
         else:
-            out += ["```", b.text, "```", ""]
+            out += ["```", *_wrapped(b.text), "```", ""]
     return "\n".join(out)
+
+
+def _md_math_lines(row: str) -> list[str]:
+    """A long row of display math as source lines of about :data:`MD_LINE` characters, cut after
+    the ``\\\\`` of its matrices' rows (TeX reads a line break in math as a space)."""
+    if len(row) <= MD_LINE:
+        return [row]
+    lines = [""]
+    for piece in re.split(r"(?<=\\\\)(?!\\)", row):
+        if lines[-1] and len(lines[-1]) + len(piece) > MD_LINE:
+            lines.append(piece)
+        else:
+            lines[-1] += piece
+    return lines
+
+
+def _wrapped(text: str) -> list[str]:
+    """Preformatted text with its lines wrapped at 100 characters (as in the LaTeX)."""
+    return [w for line in text.splitlines() for w in textwrap.wrap(line, 100) or [""]]
+
+
+def _md_wrap(text: str) -> list[str]:
+    """Prose as lines of at most about 100 characters, never breaking inside ``$...$``."""
+    if len(text) <= 100:
+        return [text]
+    words, cur, in_math = [], "", False
+    for ch in text:  # a word ends at a space outside math
+        if ch == "$":
+            in_math = not in_math
+        if ch == " " and not in_math:
+            words.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    words.append(cur)
+    lines = [""]
+    for w in words:
+        if lines[-1] and len(lines[-1]) + 1 + len(w) > 100:
+            lines.append(w)
+        else:
+            lines[-1] = f"{lines[-1]} {w}" if lines[-1] else w
+    return lines
 
 
 def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:

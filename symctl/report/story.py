@@ -25,10 +25,27 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl.realization.realization import split_proper
 from symctl.realization.realizers import REALIZERS
-from symctl.report.document import DocumentBlock, Graphic, Heading, Math, Table, Text, Verbatim
+from symctl.report import longform as LF
+from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
+from symctl.report.shorthand import (
+    COMPACT_LENGTH,
+    _compact,
+    _display,
+    _fits,
+    _fmt,
+    _indexed,
+    _named_weights,
+    _quotient_tex,
+    _remainder_poly,
+    _remainder_symbols,
+    _renamed,
+    _sections_tex,
+    _tf_long,
+    _zeros_tex,
+)
 from symctl.report.spec import CIRCUIT_SPECS
-from symctl.symbols import z
 
 __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
 
@@ -42,13 +59,24 @@ def _num(value):
     return float(value)
 
 
-def _fmt(value: float) -> str:
-    """A number as inline math (for prose and table cells)."""
-    return f"${L.number(value, 6)}$"
+def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
+    """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
 
-
-def _eq(*rows, label: str) -> Math:
-    return Math(tuple((lhs, L.to_latex(rhs)) for lhs, rhs in rows), label)
+    A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
+    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
+    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
+    header, rows)``), follow the display.
+    """
+    lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
+    shown, more = [], []
+    for lhs, rhs in rows:
+        if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
+            view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
+            shown += view.rows
+            more += view.tables
+        else:
+            shown.append((lhs, L.to_latex(rhs)))
+    return _display(shown, label, [*more, *tables])
 
 
 def _both(symbolic, numeric) -> str:
@@ -92,7 +120,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     """
     shown = set(figures)
     blocks: list[DocumentBlock] = []
-    add = blocks.append
+    add, put = blocks.append, blocks.extend
 
     def figure(name: str, caption: str) -> None:
         if name in shown:
@@ -134,7 +162,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\bar f$."
         )
     )
-    add(
+    put(
         _eq(
             (r"\frac{df}{dt}", model.ode),
             (r"\bar f", _both(model.f_bar_symbolic, model.f_bar) + r"\ \text{N}"),
@@ -148,7 +176,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     values = model.values
-    add(
+    put(
         _eq(
             ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
             ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
@@ -165,7 +193,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\delta_f(t+1) = A\\,\\delta_f(t) + B\\,\\delta_r(t)$ with"
         )
     )
-    add(
+    put(
         _eq(
             ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
             ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
@@ -187,7 +215,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
         )
     )
-    add(
+    put(
         _eq(
             (r"\chi", s.chi),
             (r"\tilde A", _num(s.A)),
@@ -209,7 +237,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     poles = ", ".join(_pole(p) for p in g.poles)
-    add(
+    put(
         _eq(
             ("K", np.asarray(g.K, dtype=float)),
             (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
@@ -227,7 +255,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "$\\Delta_r$ is a transfer function of the gains, kept symbolic:"
         )
     )
-    add(_eq(("G(z)", _both(res.G_symbolic, G_num.expr.evalf(6))), label="eq:G"))
+    whole = _both(res.G_symbolic, G_num.expr.evalf(6))
+    long_G = not _fits("G(z)", whole)
+    put(_tf_long("G(z)", res.G_symbolic, G_num, label="eq:G") if long_G
+        else _eq(("G(z)", whole), label="eq:G"))  # fmt: skip
     add(
         Text(
             "Proved: "
@@ -249,26 +280,44 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     den = descending_latex(f.G2.den)
-    add(
+    zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
+    if not _fits("G_2(z)", zeros):
+        zeros = (
+            _zeros_tex(f.sensor_eps, product=True) + " " + _zeros_tex(f.actuator_eps, product=True)
+        )
+    f_N, f_coeffs, sigma_rows = _remainder(res)
+    c = _remainder_symbols(f_coeffs)
+    remainder = descending_latex(_remainder_poly(c))
+    named_den = []  # the row defining the denominator's name, where it is first used
+    if not (_fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
+            and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")):  # fmt: skip
+        same = f.G2.den_coeffs() == res.G_symbolic.den_coeffs()
+        named_den = [] if long_G and same else [("a(z)" if same else "d(z)", den)]
+        den = "a(z)" if same else "d(z)"
+    if not _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
+        n = len(c)
+        remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
+    put(
         _eq(
             ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
             ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-            ("G_2(z)", rf"N\,\frac{{{_zeros_tex((*f.sensor_eps, *f.actuator_eps))}}}{{{den}}}"),
+            ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
+            *named_den,
+            *sigma_rows,
             label="eq:factors",
         )
     )
-    c = _remainder_symbols(f)
     add(
         Text(
             "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
             "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
         )
     )
-    add(
+    put(
         _eq(
-            ("N", f.N),
-            ("G_2(z)", rf"N + N\,\frac{{{descending_latex(_remainder_poly(c))}}}{{{den}}}"),
-            *zip(map(L.to_latex, c), f.remainder_coeffs, strict=True),
+            ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
+            ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
+            *zip(map(L.to_latex, c), f_coeffs, strict=True),
             label="eq:G2rewritten",
         )
     )
@@ -285,11 +334,14 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"from seed {res.seed})."
         )
     )
+    names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
     for name in ("controllable", "observable"):
         rec = res.realizations[name]
         add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
-        mats, short = _compact(rec.symbolic, f, c)
-        add(_eq(*mats, label=f"eq:{name}"))
+        mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
+        if short:
+            names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
+        put(_eq(*mats, label=f"eq:{name}"))
         where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
         add(Text(_check_text(rec) + where))
     rec = res.realizations["general"]
@@ -301,12 +353,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "into another realization of the same $G_2$:"
         )
     )
-    add(
+    put(
         _eq(
             ("F", r"P^{-1} F_c P"),
             ("H", r"P^{-1} H_c"),
             ("M", r"M_c P"),
-            ("P", P if P is not None else "P"),
+            ("P", "P" if P is None else P if P.free_symbols else _num(P)),
             label="eq:general",
         )
     )
@@ -315,7 +367,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
     )
     add(Text(f"With the seeded numbers ({values}):"))
-    add(
+    put(
         _eq(
             *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
             ("P", _num(rec.P_numeric)),
@@ -334,7 +386,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "least $E$."
         )
     )
-    add(_eq(("E", res.graph.E), label="eq:E"))
+    put(_eq(("E", res.graph.E), label="eq:E"))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
         add(Heading(_title(name), 2))
@@ -345,7 +397,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                     "under the witness assignment:"
                 )
             )
-            add(_eq((r"\tilde E", verdict.E_tilde), label=f"eq:Etilde-{name}"))
+            same = np.array_equal(verdict.E_tilde, res.graph.E)
+            big = not LF.show_matrix("E", res.graph.E).full
+            put(_eq((r"\tilde E", "E" if same and big else verdict.E_tilde),
+                    label=f"eq:Etilde-{name}"))  # fmt: skip
             where = "; ".join(
                 f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
                 for v in range(1, res.graph.n + 1)
@@ -395,7 +450,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             circuit = crec.circuit
             add(Text("The neurons, their self-dynamics and synapses:"))
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
-        add(Math(tuple(rows), f"eq:circuit-{name}"))
+        put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
         placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
@@ -413,14 +468,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     for name, crec in res.circuits.items():
         fp = crec.firing
-        summ = fp.summary()
-        rows = tuple(
-            (n, *(_fmt(v) for v in summ.peak[:, i]), _fmt(summ.spread[i]))
-            for i, n in enumerate(summ.neurons)
-        )
         add(Heading(_title(name), 2))
-        head = ("neuron", *(f"#{i + 1}" for i in range(fp.count)), "spread")
-        add(Table(head, rows))
+        put(_firing_table(fp))
         figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
                                  f"{fp.count} realization(s), same force.")  # fmt: skip
     nl = res.nonlinear
@@ -447,55 +496,58 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     return blocks
 
 
+def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
+    r"""``N`` and the coefficients :math:`c_k` of the :math:`G_2` the realizations realize.
+
+    With the abbreviated :math:`G_2` (``res.G2_symbolic``, its zeros' coefficients written
+    :math:`\sigma_k`) also the rows that define the :math:`\sigma_k`; the expanded
+    coefficients (``factors.remainder_coeffs``) have :math:`2^d` terms.
+    """
+    f = res.factors
+    if not getattr(res, "abbreviated", False):
+        return f.N, f.remainder_coeffs, []
+    N, c, _ = split_proper(res.G2_symbolic)
+    d = len(f.poles)
+    groups = [f.sensor_eps, f.actuator_eps]
+    args = ", ".join(_range_tex(g) for g in groups if g)
+    rows = [
+        (r"\sigma_k", rf"e_k\left({args}\right),\ k = 1, \dots, {d}"),
+        (None, r"\qquad \text{(so that } \prod (z - \epsilon) = "
+               rf"\sum_{{k=0}}^{{{d}}} (-1)^k \sigma_k\, z^{{{d}-k}},\ \sigma_0 = 1)"),
+    ]  # fmt: skip
+    return N, [ci / N for ci in reversed(c)], rows
+
+
+def _range_tex(symbols) -> str:
+    """``epsilon_{1,1}, ..., epsilon_{1,5}`` (all of them when few or not consecutive)."""
+    ix = _indexed(symbols)
+    if ix is None or len(symbols) <= 3:
+        return ", ".join(L.to_latex(x) for x in symbols)
+    return rf"{L.to_latex(symbols[0])}, \dots, {L.to_latex(symbols[-1])}"
+
+
+def _firing_table(fp) -> list[DocumentBlock]:
+    """Peak firing per neuron and realization: as many realizations as the page is wide."""
+    summ = fp.summary()
+    for shown in range(fp.count, 0, -1):
+        rows = tuple(
+            (n, *(_fmt(v) for v in summ.peak[:shown, i]), _fmt(summ.spread[i]))
+            for i, n in enumerate(summ.neurons)
+        )
+        head = ("neuron", *(f"#{i + 1}" for i in range(shown)), "spread")
+        if 0.75 * LF.table_width(head, rows) <= LF.TABLE_WIDTH or shown == 1:
+            break
+    note = [] if shown == fp.count else [Text(
+        f"The first {shown} of the {fp.count} realizations (all of them in results.json, "
+        "peak_firing); the spread is over all of them:")]  # fmt: skip
+    return [*note, Table(head, rows)]
+
+
 def _title(circuit: str) -> str:
     return CIRCUIT_SPECS[circuit].title
 
 
 _WHICH = {"general": " (its first simulated realization)"}
-COMPACT_LENGTH = 300
-"""A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
-
-
-def _sections_tex(cs, eps) -> str:
-    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections."""
-    if not cs:
-        return "1"
-    return rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
-
-
-def _zeros_tex(eps) -> str:
-    if len(eps) == 1:
-        return f"z - {L.to_latex(eps[0])}"
-    return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
-
-
-def _remainder_symbols(f) -> list[sp.Symbol]:
-    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(f.remainder_coeffs) + 1)]
-
-
-def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
-    return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
-
-
-def _compact(R, f, c) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols."""
-    N = sp.Symbol("N")
-    targets = [(f.N * coeff, N * ck) for coeff, ck in zip(f.remainder_coeffs, c, strict=True)]
-    rows, short = [], False
-    for k in "FHMN":
-        mat = getattr(R, k)
-        if k in "HM" and len(L.to_latex(mat)) > COMPACT_LENGTH:
-            mat = mat.applyfunc(lambda e: _match(e, targets))
-            short = True
-        rows.append((k, mat))
-    return rows, short
-
-
-def _match(entry: sp.Expr, targets) -> sp.Expr:
-    for value, symbol in targets:
-        if sp.cancel(entry - value) == 0:
-            return symbol
-    return entry
 
 
 def _count_text(res) -> str:

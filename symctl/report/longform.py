@@ -1,0 +1,626 @@
+r"""Long objects laid out the way a paper shows them, so that every line fits the page.
+
+The story (:mod:`symctl.report.story`) hands its equations to :func:`fit_rows`
+and its matrices to :func:`show_matrix`; both decide by SIZE, never by the
+delay: the estimated printed width of a line (:func:`width`, in glyphs of the
+11 pt math font), the rows and columns of a matrix, the share of its entries
+that are the same background value (0, or :math:`\infty` for a delay matrix).
+
+* An equation wider than :data:`LINE_WIDTH` is broken at its top-level ``+``,
+  ``-`` (sums) or ``,`` (lists) into continuation lines; one with more than
+  :data:`TERM_MAX_LINES` lines keeps its first and last lines and states how
+  many terms it leaves out.
+* A matrix that fits (at most :data:`MATRIX_MAX_ROWS` rows and its width within
+  the line) is written in full, as before. Beyond that, in this order:
+  a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
+  (transposed for a column) broken over lines; a companion matrix (ones on the
+  super- or sub-diagonal, one free row or column) is its dots picture with the
+  free row or column as a list; a sparse or banded matrix (its entries other than
+  the background value fit a table of :data:`PATTERN_TABLE_ROWS` rows per row,
+  runs along a diagonal in one row) is its sparsity pattern (:math:`\ast` and
+  :math:`\cdot`) with that table; a dense matrix is its corners with
+  dots, numbers to :data:`LARGE_DIGITS` digits (the exact values are in
+  ``results.json``).
+* A display taller than :data:`DISPLAY_MAX_LINES` lines is breakable across pages.
+
+Examples
+--------
+>>> from symctl.report.longform import LINE_WIDTH, fit_rows, width
+>>> long = " + ".join(f"K_{{{k}}} z^{{{k}}}" for k in range(40))
+>>> width(long) > LINE_WIDTH
+True
+>>> rows = fit_rows([("a(z)", long)])
+>>> len(rows) > 1 and all(width(r) <= LINE_WIDTH for _, r in rows)
+True
+"""
+
+from __future__ import annotations
+
+import re
+from collections import Counter
+
+import numpy as np
+import sympy as sp
+
+from symctl import latex as L
+
+__all__ = [
+    "CORNER",
+    "DISPLAY_MAX_LINES",
+    "LARGE_DIGITS",
+    "LINE_WIDTH",
+    "MATRIX_MAX_COLUMNS",
+    "MATRIX_MAX_ROWS",
+    "MD_LINE",
+    "PATTERN_TABLE_ROWS",
+    "SHRINK_MAX",
+    "TABLE_MAX_ROWS",
+    "TABLE_WIDTH",
+    "TERM_MAX_LINES",
+    "VECTOR_MAX_ENTRIES",
+    "MatrixView",
+    "cell_width",
+    "fit_rows",
+    "height",
+    "show_matrix",
+    "table_width",
+    "width",
+]
+
+# ---------------------------------------------------------------- the thresholds, in one place
+LINE_WIDTH = 72.0
+"""Glyphs of one display line, left-hand side included. The text is 17 cm wide (A4 or
+letter, 2 cm margins) and :func:`width` counts a lowercase italic letter as one glyph
+of about 5.5 pt, so the line holds about 88; the rest leaves room for the equation
+number, the alignment and the estimate's error (calibrated against pdflatex)."""
+TABLE_WIDTH = 100.0
+"""Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt of
+text each, so the 17 cm line holds about 110); a wider table is set in ``\\footnotesize``
+with less space between its columns (about 0.75 of the width)."""
+MATRIX_MAX_ROWS = 12
+"""A matrix with more rows is never written in full (a display that tall reads badly)."""
+MATRIX_MAX_COLUMNS = 12
+"""A matrix with more columns is never written in full."""
+PATTERN_TABLE_ROWS = 2.0
+"""A large matrix whose entries other than its background value (its most common entry) make a
+table of at most this many rows per row or column of the matrix (a run of equal entries along
+a diagonal is one row) is shown as its sparsity pattern with that table."""
+CORNER = 3
+"""Leading rows and columns shown of a large dense matrix (then dots, then the last one)."""
+LARGE_DIGITS = 4
+"""Significant digits of the numbers in a large matrix (the full values are in results.json)."""
+TERM_MAX_LINES = 12
+"""An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
+VECTOR_MAX_ENTRIES = 6
+"""A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
+DISPLAY_MAX_LINES = 24
+"""A display taller than this (in lines) may break across pages."""
+INDENT = r"\qquad "
+"""The indent of a continuation line."""
+TABLE_MAX_ROWS = 30
+"""A table with more rows is a ``longtable``, which breaks across pages."""
+MD_LINE = 300
+"""A Markdown display whose one-line form is longer (characters) gets a line per row, a long
+row cut after its matrices' rows; prose is wrapped at 100 characters (outside inline math)."""
+SHRINK_MAX = 2
+"""The LaTeX safety net (``\\fitmath`` in :mod:`symctl.report.document`) shrinks a display up
+to this many times the line to fit it, and reports it in the log (``symctl: shrunk``); a
+wider one is left overfull. The layout above keeps every display within the line (it must:
+a display wider than TeX's largest dimension, as the T = 8 report's were, stops pdflatex with
+"Dimension too large")."""
+
+# ---------------------------------------------------------------- width of LaTeX
+_TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
+_SPACE = {",": 0.35, ":": 0.45, ">": 0.45, ";": 0.55, "!": -0.35, " ": 0.6, "quad": 2.0,
+          "qquad": 4.0, "enspace": 1.0}  # fmt: skip
+_ARG1 = {"text", "textrm", "mathrm", "mathbf", "mathit", "mathcal", "mathbb", "operatorname",
+         "boldsymbol", "bar", "tilde", "hat", "dot", "ddot", "vec", "overline", "widetilde",
+         "sqrt", "textit", "textbf", "underline", "mathsf"}  # fmt: skip
+_TEXT = {"text", "textrm", "operatorname", "textit", "textbf"}
+_BINARY = {"times", "cdot", "ge", "geq", "le", "leq", "to", "in", "pm", "mp", "neq", "approx",
+           "equiv", "mapsto", "rightarrow", "leftarrow", "subset", "cup", "cap", "setminus"}  # fmt: skip
+_WIDE = {"cdots": 2.6, "ldots": 2.6, "dots": 2.6, "vdots": 1.0, "ddots": 2.6, "infty": 1.8,
+         "sum": 2.6, "prod": 2.6, "qquad": 4.0, "quad": 2.0}  # fmt: skip
+_MATRICES = {"matrix": 1.9, "bmatrix": 1.9, "pmatrix": 1.9, "vmatrix": 1.9, "array": 1.9,
+             "smallmatrix": 0.6, "cases": 2.0, "aligned": 0.0, "split": 0.0}  # fmt: skip
+_BRACKETS = {"bmatrix": 1.6, "pmatrix": 1.6, "vmatrix": 1.2, "cases": 1.6}
+
+
+class _Reader:
+    """A cursor over the tokens of a LaTeX string."""
+
+    def __init__(self, tex: str) -> None:
+        self.tokens = [t for t in _TOKEN.findall(tex)]
+        self.i = 0
+
+    def next(self) -> str | None:
+        while self.i < len(self.tokens):
+            t = self.tokens[self.i]
+            self.i += 1
+            if not t.isspace():
+                return t
+        return None
+
+    def group(self) -> str:
+        """The text of the next argument: a braced group or one token."""
+        t = self.next()
+        if t != "{":
+            return t or ""
+        depth, out = 1, []
+        while self.i < len(self.tokens):
+            t = self.tokens[self.i]
+            self.i += 1
+            depth += t == "{"
+            depth -= t == "}"
+            if depth == 0:
+                break
+            out.append(t)
+        return "".join(out)
+
+    def environment(self, name: str) -> str:
+        """The body up to the matching ``\\end{name}``."""
+        depth, out = 1, []
+        while self.i < len(self.tokens):
+            t = self.tokens[self.i]
+            self.i += 1
+            if t in (r"\begin", r"\end"):
+                j, arg = self.i, []
+                while j < len(self.tokens) and self.tokens[j] != "}":
+                    arg.append(self.tokens[j])
+                    j += 1
+                env = "".join(arg).lstrip("{")
+                if env == name:
+                    depth += 1 if t == r"\begin" else -1
+                if depth == 0:
+                    self.i = j + 1
+                    break
+            out.append(t)
+        return "".join(out)
+
+
+def _split_top(tex: str, sep: str) -> list[str]:
+    """``tex`` split at ``sep`` (``&`` or ``\\\\``) outside braces and environments."""
+    parts, cur, depth = [], [], 0
+    for t in _TOKEN.findall(tex):
+        if t == "{" or t == r"\begin":
+            depth += 1
+        elif t == "}" or t == r"\end":
+            depth -= 1
+        if depth == 0 and t == sep:
+            parts.append("".join(cur))
+            cur = []
+            continue
+        cur.append(t)
+    parts.append("".join(cur))
+    return parts
+
+
+def _table_width(body: str, colsep: float, scale: float) -> float:
+    rows = [_split_top(r, "&") for r in _split_top(body, "\\\\")]
+    cols = max(len(r) for r in rows)
+    widths = [max((width(r[j]) if j < len(r) else 0.0) for r in rows) for j in range(cols)]
+    return scale * sum(widths) + colsep * cols
+
+
+def width(tex: str) -> float:
+    r"""The estimated printed width of one line of display math, in glyphs (about 5.5 pt each).
+
+    A conservative estimate read off the LaTeX: letters and digits one glyph
+    (capitals 1.4), binary operators and relations with their spacing,
+    scripts at 0.7, a fraction as wide as its wider part, a matrix as the sum of
+    its widest entries per column and the space between them, ``\\left``/``\\right``
+    and braces nothing. With several lines (``\\\\`` at the top), the widest.
+
+    Parameters
+    ----------
+    tex : str
+        LaTeX math (no ``$``).
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from symctl.report.longform import width
+    >>> width("2"), width(r"\frac{a + b}{c}") == width("a + b") + 0.4
+    (1.0, True)
+    """
+    lines = _split_top(tex, "\\\\")
+    if len(lines) > 1:
+        return max(width(line) for line in lines)
+    r = _Reader(tex)
+    total = 0.0
+    while (t := r.next()) is not None:
+        if t in "{}&" or t == "$":
+            continue
+        if t in ("^", "_"):
+            total += 0.75 * width(r.group())
+        elif t.startswith("\\"):
+            name = t[1:]
+            if name in ("frac", "dfrac", "tfrac", "binom"):
+                total += max(width(r.group()), width(r.group())) + 0.4
+            elif name in _TEXT:
+                total += 0.95 * len(r.group())
+            elif name in _ARG1:
+                total += width(r.group()) + (0.9 if name == "sqrt" else 0.0)
+            elif name in ("left", "right", "bigl", "bigr", "Bigl", "Bigr"):
+                d = r.next() or ""
+                total += 0.0 if d == "." else 0.8
+            elif name == "begin":
+                env = r.group().rstrip("*")
+                body = r.environment(env)
+                if env == "array":  # its column spec is the first group of the body
+                    body = body.partition("}")[2]
+                scale = 0.7 if env == "smallmatrix" else 1.0
+                total += _table_width(body, _MATRICES.get(env, 1.9), scale)
+                total += _BRACKETS.get(env, 0.0)
+            elif name in ("displaystyle", "textstyle", "scriptstyle", "limits", "nolimits",
+                          "label", "notag", "nonumber", "tag"):  # fmt: skip
+                if name in ("label", "tag"):
+                    r.group()
+            elif name in _WIDE:
+                total += _WIDE[name]
+            elif name in _BINARY:
+                total += 2.5 if total else 1.2  # a leading one is an ordinary symbol
+            elif len(name) == 1 and not name.isalpha():
+                total += _SPACE.get(name, 0.8)  # \, \; \! \{ \} \| ...
+            else:
+                total += 1.2  # a Greek letter, \partial, ...
+        elif t in "+-=<>":
+            total += 2.5 if total else 1.0  # a leading sign is unary
+        elif t in ",;":
+            total += 1.0
+        elif t in "()[]|/":
+            total += 0.8
+        elif t in ".'":
+            total += 0.5
+        elif t.isupper():
+            total += 1.9
+        elif t.isdigit():
+            total += 1.0
+        else:
+            total += 1.15
+    return total
+
+
+def height(tex: str) -> int:
+    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly).
+
+    Examples
+    --------
+    >>> from symctl.report.longform import height
+    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}")
+    (1, 3)
+    """
+    return max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
+
+
+def cell_width(text: str) -> float:
+    """The width of a table cell (prose with inline math), in the units of :data:`TABLE_WIDTH`.
+
+    Examples
+    --------
+    >>> from symctl.report.longform import cell_width
+    >>> cell_width("abc"), cell_width("$x$")
+    (3, 1.15)
+    """
+    parts = text.split("$")
+    return sum(len(p) if k % 2 == 0 else width(p) for k, p in enumerate(parts))
+
+
+def table_width(header, rows) -> float:
+    """The width of a table: its widest cell per column plus the space between columns.
+
+    Examples
+    --------
+    >>> from symctl.report.longform import table_width
+    >>> table_width(("a", "bb"), (("ccc", "d"),))
+    9.8
+    """
+    table = [header, *rows]
+    columns = max(len(r) for r in table)
+    widest = [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
+    return sum(widest) + 2.4 * columns
+
+
+# ---------------------------------------------------------------- breaking a line
+def _terms(tex: str, ops: str = "+-=", commas: bool = True) -> list[str]:
+    """``tex`` cut before each top-level `` + ``, `` - ``, `` = `` (those in ``ops``) and after
+    each top-level ``, `` (when ``commas``)."""
+    out, cur, depth = [], "", 0
+    tokens = _TOKEN.findall(tex)
+    for k, t in enumerate(tokens):
+        if t in ("{", r"\begin", r"\left"):
+            depth += 1
+        elif t in ("}", r"\end", r"\right"):
+            depth -= 1
+        at_top = depth == 0 and cur.strip()
+        spaced = 0 < k < len(tokens) - 1 and tokens[k - 1].isspace() and tokens[k + 1].isspace()
+        if at_top and t in ops and spaced:
+            out.append(cur.rstrip())
+            cur = t
+            continue
+        cur += t
+        if commas and at_top and t == "," and k + 1 < len(tokens) and tokens[k + 1].isspace():
+            out.append(cur)
+            cur = ""
+    if cur.strip():
+        out.append(cur.strip())
+    return [p.strip() for p in out if p.strip()]
+
+
+def _pieces(tex: str, room: float) -> list[str]:
+    """The items of a list (cut after its commas), an item too wide cut at its ``+ - =``."""
+    items = _terms(tex, ops="")
+    if len(items) == 1:
+        return _terms(tex, commas=False)
+    return [p for item in items for p in ([item] if width(item) <= room else _terms(item))]
+
+
+def _elided(tex: str) -> str:
+    return rf"\cdots\ \text{{(a term too long to print, {len(tex)} characters)}}"
+
+
+def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
+    r"""Rows ``(lhs, rhs)`` of an aligned display, each broken to fit ``budget`` glyphs.
+
+    A row that fits is kept. Otherwise its right-hand side is cut into terms
+    at the top-level ``+``, ``-`` and ``,`` and packed greedily; continuation
+    rows have ``lhs`` None (rendered ``& \qquad \dots``). A single term wider
+    than a line is elided with its length stated; a row broken into more than
+    :data:`TERM_MAX_LINES` lines keeps its first and last lines and says how
+    many terms it leaves out.
+
+    Parameters
+    ----------
+    rows : iterable of (str or None, str)
+        LaTeX; ``lhs`` None marks a continuation already.
+    budget : float
+        Glyphs per line (:func:`width`).
+
+    Returns
+    -------
+    list of (str or None, str)
+
+    Examples
+    --------
+    >>> from symctl.report.longform import fit_rows
+    >>> fit_rows([("a", "1")])
+    [('a', '1')]
+    >>> rows = fit_rows([("s", " + ".join(["x"] * 60))], budget=20)
+    >>> rows[0], rows[1]
+    (('s', 'x + x + x + x + x'), (None, '\\qquad + x + x + x'))
+    """
+    rows = list(rows)
+    lead = max((width(lhs) + 3.0 for lhs, _ in rows if lhs is not None), default=0.0)
+    out: list[tuple[str | None, str]] = []
+    for lhs, rhs in rows:
+        if lead + width(rhs) <= budget:
+            out.append((lhs, rhs))
+            continue
+        room = budget - lead - width(INDENT)  # of a continuation line; the first has more
+        lines: list[str] = []
+        for term in _pieces(rhs, room):
+            if width(term) > room:
+                term = _elided(term)
+            free = room + (width(INDENT) if len(lines) == 1 else 0.0)
+            if lines and width(lines[-1] + " " + term) <= free:
+                lines[-1] += " " + term
+            else:
+                lines.append(term)
+        if len(lines) > TERM_MAX_LINES:
+            left = sum(len(_terms(x)) for x in lines[TERM_MAX_LINES - 2 : -1])
+            lines = [*lines[: TERM_MAX_LINES - 2], rf"\cdots\ \text{{({left} terms not shown)}}",
+                     lines[-1]]  # fmt: skip
+        out.append((lhs, lines[0]))
+        out += [(None, INDENT + line) for line in lines[1:]]
+    return out
+
+
+# ---------------------------------------------------------------- matrices
+class MatrixView:
+    r"""How :func:`show_matrix` shows a matrix: display rows, and tables to follow the display.
+
+    Attributes
+    ----------
+    rows : list of (str or None, str)
+        Rows of the display (``lhs`` None: a continuation).
+    tables : list of (str, tuple, tuple)
+        ``(intro, header, rows)`` of each table (prose, with inline math).
+    full : bool
+        Whether the matrix is written in full.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.report.longform import show_matrix
+    >>> show_matrix("H", sp.Matrix([0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1])).rows
+    [('H', 'e_{14}\\quad (14 \\times 1)')]
+    """
+
+    def __init__(self, rows, tables=(), full: bool = False) -> None:
+        self.rows, self.tables, self.full = list(rows), list(tables), full
+
+
+def _entries(M) -> tuple[list[list[object]], bool]:
+    """The entries of ``M`` as a list of rows, and whether they are plain floats."""
+    if isinstance(M, sp.MatrixBase):
+        return M.tolist(), False
+    arr = np.asarray(M, dtype=float)
+    return arr.reshape(arr.shape[0], -1).tolist() if arr.ndim else [[float(arr)]], True
+
+
+def _entry_tex(e, numeric: bool, digits: int) -> str:
+    if numeric:
+        return L.number(e, digits)
+    return L.to_latex(e, digits=digits)
+
+
+def _is(e, value) -> bool:
+    try:
+        return bool(e == value)
+    except TypeError:  # pragma: no cover - a relational entry
+        return False
+
+
+def _companion(E) -> str | None:
+    """``"row"`` (ones above the diagonal, a free last row), ``"column"`` (ones below it, a free
+    last column) or None."""
+    n = len(E)
+    if n < 3 or any(len(r) != n for r in E):
+        return None
+    if all(_is(E[i][j], 1 if j == i + 1 else 0) for i in range(n - 1) for j in range(n)):
+        return "row"
+    if all(_is(E[i][j], 1 if i == j + 1 else 0) for i in range(n) for j in range(n - 1)):
+        return "column"
+    return None
+
+
+def _index(base: str, i: str, j: str) -> str:
+    return f"{{{base}}}_{{{i},{j}}}"
+
+
+def _offset(k: int) -> str:
+    return "i" if k == 0 else (f"i+{k}" if k > 0 else f"i-{-k}")
+
+
+def _sparse_table(lhs: str, E, background, tex) -> list[tuple[str, str, str]]:
+    """The entries other than ``background``, a run of three or more along a diagonal in one row."""
+    n, m = len(E), len(E[0])
+    found: dict[tuple[int, int], tuple[str, str, str]] = {}
+    for k in range(-(n - 1), m):
+        cells = [(i, i + k) for i in range(n) if 0 <= i + k < m]
+        run: list[tuple[int, int]] = []
+        for cell in [*cells, None]:
+            same = (cell is not None and run and _is(E[cell[0]][cell[1]], E[run[0][0]][run[0][1]])
+                    and cell[0] == run[-1][0] + 1)  # fmt: skip
+            if same:
+                run.append(cell)
+                continue
+            if run and not _is(E[run[0][0]][run[0][1]], background):
+                value = f"${tex(E[run[0][0]][run[0][1]])}$"
+                if len(run) >= 3:
+                    lo, hi = run[0][0] + 1, run[-1][0] + 1
+                    found[run[0]] = (f"${_index(lhs, 'i', _offset(k))}$",
+                                     f"$i = {lo}, \\dots, {hi}$", value)  # fmt: skip
+                else:
+                    for i, j in run:
+                        found[(i, j)] = (f"${_index(lhs, i + 1, j + 1)}$", "", value)
+            run = [cell] if cell is not None else []
+    return [found[key] for key in sorted(found)]
+
+
+def _shown(count: int, corner: int) -> list[int | None]:
+    """The indices shown of ``count``: all when few, else the first ``corner``, a gap, the last."""
+    if count <= corner + 2:
+        return list(range(count))
+    return [*range(corner), None, count - 1]
+
+
+def _corners(E, tex, corner: int) -> str:
+    lines = []
+    for i in _shown(len(E), corner):
+        if i is None:
+            cells = [r"\vdots" if j is not None else r"\ddots" for j in _shown(len(E[0]), corner)]
+        else:
+            cells = [
+                tex(E[i][j]) if j is not None else r"\cdots" for j in _shown(len(E[0]), corner)
+            ]
+        lines.append(" & ".join(cells))
+    return r"\begin{bmatrix}" + r" \\ ".join(lines) + r"\end{bmatrix}"
+
+
+def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGITS) -> MatrixView:
+    r"""A matrix as it fits the page: in full, or as a formula, a pattern with a table, or corners.
+
+    Written in full (:func:`symctl.latex.to_latex`, as for a small matrix) when
+    it has at most :data:`MATRIX_MAX_ROWS` rows and :data:`MATRIX_MAX_COLUMNS`
+    columns and fits ``room`` glyphs; otherwise see the module's docstring for
+    the order of the other forms.
+
+    Parameters
+    ----------
+    lhs : str
+        The matrix's name in LaTeX (``"F"``, ``r"\tilde A"``).
+    M : sympy Matrix or array
+        The matrix (floats, ``inf`` allowed, when an array).
+    room : float, optional
+        Glyphs left on the line after ``lhs =`` (default: the line less 12).
+    digits : int
+        Significant digits of numbers written in full or in a table.
+
+    Returns
+    -------
+    MatrixView
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from symctl.report.longform import show_matrix
+    >>> view = show_matrix("D", 2 * np.eye(15))
+    >>> view.rows[0][1].startswith(r"\left[\begin{smallmatrix}")
+    True
+    >>> view.tables[0][2]
+    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'),)
+    """
+    room = LINE_WIDTH - 12.0 if room is None else room
+    E, numeric = _entries(M)
+    n, m = len(E), len(E[0]) if E else 0
+    full = L.to_latex(M if not numeric else np.asarray(M, dtype=float), digits=digits)
+    small = n <= MATRIX_MAX_ROWS and m <= MATRIX_MAX_COLUMNS
+    if min(n, m) == 1:
+        small = max(n, m) <= VECTOR_MAX_ENTRIES
+    if small and width(full) <= room:
+        return MatrixView([(lhs, full)], full=True)
+
+    def tex(e) -> str:
+        return _entry_tex(e, numeric, digits)
+
+    size = rf"\quad ({n} \times {m})"
+    flat = [e for row in E for e in row]
+    if n == 1 or m == 1:
+        ones = [k for k, e in enumerate(flat) if not _is(e, 0)]
+        if len(ones) == 1 and _is(flat[ones[0]], 1):
+            unit = f"e_{{{ones[0] + 1}}}" + (r"^{\top}" if n == 1 else "")
+            return MatrixView([(lhs, unit + size)])
+        items = ", ".join(tex(e) for e in flat)
+        return MatrixView([(lhs, f"({items})" + ("" if n == 1 else r"^{\top}"))])
+    kind = _companion(E)
+    if kind is not None:
+        last = f"{n}"
+        if kind == "row":
+            free = [E[n - 1][j] for j in range(n)]
+            picture = (r"\begin{bmatrix}0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\ "
+                       + " & ".join([_index(lhs, last, 1), _index(lhs, last, 2), r"\cdots",
+                                     _index(lhs, last, last)]) + r"\end{bmatrix}")  # fmt: skip
+            names = (_index(lhs, last, 1), _index(lhs, last, last))
+        else:
+            free = [E[i][n - 1] for i in range(n)]
+            picture = (r"\begin{bmatrix}0 & & & " + _index(lhs, 1, last) + r" \\ 1 & \ddots & & "
+                       r"\vdots \\ & \ddots & 0 & \vdots \\ & & 1 & " + _index(lhs, last, last)
+                       + r"\end{bmatrix}")  # fmt: skip
+            names = (_index(lhs, 1, last), _index(lhs, last, last))
+        items = ", ".join(tex(e) for e in free)
+        return MatrixView(
+            [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
+        )
+    counts = Counter(flat)
+    background = counts.most_common(1)[0][0]
+    table = _sparse_table(lhs, E, background, tex)
+    if len(table) <= PATTERN_TABLE_ROWS * max(n, m):
+        cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
+        pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
+        fits = width(pattern + size) <= room
+        rows = [(lhs, pattern + size if fits else rf"\text{{(its entries below)}}{size}")]
+        intro = f"The entries $\\ast$ of ${lhs}$ (those marked $\\cdot$ are ${tex(background)}$):"
+        return MatrixView(rows, [(intro, ("entry", "for", "value"), tuple(table))])
+
+    def short(e) -> str:
+        return _entry_tex(e, numeric, LARGE_DIGITS)
+
+    for corner in (CORNER, 1):
+        picture = _corners(E, short, corner)
+        if width(picture + size) <= room:
+            return MatrixView([(lhs, picture + size)])
+    return MatrixView([(lhs, rf"\text{{a dense matrix}}{size}")])

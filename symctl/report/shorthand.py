@@ -1,0 +1,239 @@
+r"""Short forms of the derivation's long objects, for :mod:`symctl.report.story`.
+
+What the story writes when the plain form is wider than the line
+(:mod:`symctl.report.longform` measures and breaks lines, and shows matrices): a product
+of first-order sections over an index (:math:`\prod_k C_{1,k}/(z - \epsilon_{1,k})`), a
+quotient by a product of indexed symbols, a transfer function as :math:`b(z)/a(z)` with a
+table of its coefficients, and the entries :math:`N c_k` of the realizations (matched
+exactly), also in the circuits' equations. Each is used only when the plain form does not
+fit, so the paper's T = 2 document keeps its plain forms.
+
+Examples
+--------
+>>> import sympy as sp
+>>> from symctl.report.shorthand import _indexed
+>>> _indexed([sp.Symbol(f"epsilon_{{1,{k}}}") for k in (1, 2, 3)])
+('\\epsilon_{1,k}', 1, 3)
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+
+import numpy as np
+import sympy as sp
+
+from symctl import latex as L
+from symctl._util.exact import IntFractions, NotRational, fold, ring_fractions
+from symctl.report import longform as LF
+from symctl.report.document import DocumentBlock, Math, Table, Text
+from symctl.symbols import z
+
+__all__ = ["COMPACT_LENGTH"]
+
+
+def _fmt(value: float) -> str:
+    """A number as inline math (for prose and table cells)."""
+    return f"${L.number(value, 6)}$"
+
+
+def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
+    fitted = LF.fit_rows(rows)
+    tall = sum(LF.height(rhs) for _, rhs in fitted) > LF.DISPLAY_MAX_LINES
+    out: list[DocumentBlock] = [Math(tuple(fitted), label, breakable=tall)]
+    for intro, header, body in tables:
+        out += [Text(intro), Table(header, body)]
+    return out
+
+
+def _fits(lhs: str, rhs: str) -> bool:
+    return LF.width(lhs) + 3.0 + LF.width(rhs) <= LF.LINE_WIDTH
+
+
+COMPACT_LENGTH = 300
+"""A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
+
+
+def _sections_tex(cs, eps) -> str:
+    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections.
+
+    Too wide for the line, the product over an index: ``prod_k C_{1,k}/(z - epsilon_{1,k})``.
+    """
+    if not cs:
+        return "1"
+    tex = rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
+    C, e = _indexed(cs), _indexed(eps)
+    if _fits("G_1(z)", tex) or C is None or e is None or C[1:] != e[1:]:
+        return tex
+    return rf"\prod_{{k={C[1]}}}^{{{C[2]}}} \frac{{{C[0]}}}{{z - {e[0]}}}"
+
+
+def _zeros_tex(eps, product: bool = False) -> str:
+    """``(z - epsilon_1)(z - epsilon_3)``; with ``product``, ``prod_k (z - epsilon_{1,k})``."""
+    e = _indexed(eps) if product else None
+    if e is not None:
+        return rf"\prod_{{k={e[1]}}}^{{{e[2]}}} \left(z - {e[0]}\right)"
+    if len(eps) == 1:
+        return f"z - {L.to_latex(eps[0])}"
+    return "".join(rf"\left(z - {L.to_latex(e)}\right)" for e in eps) or "1"
+
+
+_INDEXED = re.compile(r"(?P<stem>[A-Za-z]+)_(?:\{(?P<pre>(?:\d+,)*)(?P<k>\d+)\}|(?P<k1>\d+))")
+
+
+def _indexed(symbols) -> tuple[str, int, int] | None:
+    """Symbols ``x_{a,lo}, ..., x_{a,hi}`` (or ``x_lo..x_hi``) as ``(LaTeX of x_{a,k}, lo, hi)``."""
+    found = [_INDEXED.fullmatch(getattr(x, "name", "")) for x in symbols]
+    if len(found) < 2 or not all(found):
+        return None
+    keys = {(m["stem"], m["pre"] or "") for m in found}
+    ks = [int(m["k"] or m["k1"]) for m in found]
+    if len(keys) != 1 or ks != list(range(ks[0], ks[0] + len(ks))):
+        return None
+    stem, pre = keys.pop()
+    return L.to_latex(sp.Symbol(f"{stem}_{{{pre}k}}")), ks[0], ks[-1]
+
+
+def _index_of(symbol) -> int:
+    m = _INDEXED.fullmatch(symbol.name)
+    return int(m["k"] or m["k1"])
+
+
+def _quotient_tex(expr) -> str:
+    """A quotient by a product of indexed symbols, the product written over its indices."""
+    num, den = expr.as_numer_denom()
+    groups: dict[tuple, list] = {}
+    rest = []
+    for factor in sp.Mul.make_args(den):
+        m = _INDEXED.fullmatch(getattr(factor, "name", ""))
+        if m is None:
+            rest.append(factor)
+        else:
+            groups.setdefault((m["stem"], m["pre"] or ""), []).append(factor)
+    parts = [L.to_latex(sp.Mul(*rest))] if rest else []
+    for group in groups.values():
+        ix = _indexed(sorted(group, key=_index_of))
+        if ix is None:
+            parts.append(L.to_latex(sp.Mul(*group)))
+        else:
+            parts.append(rf"\prod_{{k={ix[1]}}}^{{{ix[2]}}} {ix[0]}")
+    return rf"\frac{{{L.to_latex(num)}}}{{{' '.join(parts)}}}"
+
+
+def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
+    """A transfer function too wide for the line: ``b(z)/a(z)`` with a table of coefficients."""
+    a_s, a_n = symbolic.den_coeffs(), numeric.den_coeffs()
+    b_s, b_n = symbolic.num_coeffs(), numeric.num_coeffs()
+    n, m = len(a_s) - 1, len(b_s) - 1
+    rows = []
+    if m == 0:
+        rows.append((lhs, rf"\frac{{{L.to_latex(b_s[0])}}}{{a(z)}} = "
+                          rf"\frac{{{L.number(float(b_n[0]))}}}{{a(z)}}"))  # fmt: skip
+    else:
+        rows += [(lhs, r"\frac{b(z)}{a(z)}"), ("b(z)", rf"\sum_{{k=0}}^{{{m}}} b_k\, z^{{{m}-k}}")]
+    rows.append(("a(z)", rf"\sum_{{k=0}}^{{{n}}} a_k\, z^{{{n}-k}}"))
+
+    def table(name, sym, num):
+        body = tuple(
+            (f"${k}$", f"${L.to_latex(cs)}$", _fmt(float(cn)))
+            for k, (cs, cn) in enumerate(zip(sym, num, strict=True))
+        )
+        intro = f"The coefficients ${name}_k$ of ${name}(z)$ (descending powers of $z$):"
+        return intro, ("$k$", f"${name}_k$", "with the optimal gains"), body
+
+    tables = [table("a", a_s, a_n)] + ([table("b", b_s, b_n)] if m else [])
+    return _display(rows, label, tables)
+
+
+def _remainder_symbols(f) -> list[sp.Symbol]:
+    """``c_1, ..., c_n``, one per remainder coefficient (of a factorization, or the list)."""
+    coeffs = f if isinstance(f, list | tuple) else f.remainder_coeffs
+    return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(coeffs) + 1)]
+
+
+def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
+    return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
+
+
+def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
+    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols.
+
+    Long: LaTeX longer than :data:`COMPACT_LENGTH` or wider than a line. ``values`` is
+    ``(f.N, f.remainder_coeffs)`` when the caller has them (both are computed on access).
+    """
+    N = sp.Symbol("N")
+    f_N, f_coeffs = values if values is not None else (f.N, f.remainder_coeffs)
+    targets = [(f_N * coeff, N * ck) for coeff, ck in zip(f_coeffs, c, strict=True)]
+    rows, short = [], False
+    for k in "FHMN":
+        mat = getattr(R, k)
+        tex = L.to_latex(mat) if k in "HMN" else ""
+        if k in "HMN" and (len(tex) > COMPACT_LENGTH or LF.width(tex) > LF.LINE_WIDTH - 12):
+            mat = mat.applyfunc(_Matcher([*targets, (f_N, N)]))
+            short = True
+        rows.append((k, mat))
+    return rows, short
+
+
+def _renamed(R, compact: dict) -> dict[str, str]:
+    """The LaTeX of each entry of ``R`` that :func:`_compact` renamed, to its new LaTeX."""
+    out = {}
+    for k, mat in compact.items():
+        for old, new in zip(getattr(R, k), mat, strict=True):
+            if old != new:
+                out[L.to_latex(old)] = L.to_latex(new)
+    return out
+
+
+def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
+    """Circuit equations with the long weights of ``names`` written as their short names."""
+    if not names:
+        return list(rows)
+    order = sorted(names, key=len, reverse=True)
+    out = []
+    for lhs, rhs in rows:
+        for old in order:
+            rhs = rhs.replace(old, names[old])
+        out.append((lhs, rhs))
+    return out
+
+
+class _Matcher:
+    """Entry -> the symbol of the target it equals (exactly), else the entry itself.
+
+    The targets are keyed by their value at a random rational point; an entry is
+    compared exactly (:func:`~symctl._util.exact.ring_fractions`, cross-multiplied)
+    only with the targets of its key, instead of a ``cancel`` per pair.
+    """
+
+    def __init__(self, targets) -> None:
+        self.targets = targets
+        syms = sorted(set().union(*(v.free_symbols for v, _ in targets)), key=str)
+        rng = np.random.default_rng(0)
+        self.point = {x: Fraction(int(rng.integers(10**6, 10**7)), int(rng.integers(1, 997)))
+                      for x in syms}  # fmt: skip
+        self.keys: dict[Fraction | None, list] = {}
+        for value, symbol in targets:
+            self.keys.setdefault(self._key(value), []).append((value, symbol))
+
+    def _key(self, e) -> Fraction | None:
+        if not e.free_symbols <= self.point.keys():
+            return None
+        try:
+            p, q = fold(e, IntFractions(self.point))
+        except (ZeroDivisionError, NotRational):
+            return None
+        return Fraction(p, q) if q else None
+
+    def __call__(self, entry: sp.Expr) -> sp.Expr:
+        key = self._key(entry)
+        candidates = self.keys.get(key, []) if key is not None else self.targets
+        for value, symbol in candidates:
+            pairs = ring_fractions([entry, value])
+            if pairs is None:
+                continue
+            (n1, d1), (n2, d2) = pairs
+            if n1 * d2 == n2 * d1:
+                return symbol
+        return entry
