@@ -6,6 +6,10 @@ Modules, lowest first (each imports only those above it in this list):
   and the report's circuits;
 - ``document``: blocks (headings, prose, equations, tables, graphics) written as
   LaTeX, Markdown and PDF;
+- ``longform``: the page layout of long objects at any size (line breaking,
+  patterns of large matrices, corners of dense ones), its thresholds named;
+- ``shorthand``: the indexed forms of long objects (products over sections,
+  G(z) as b(z)/a(z) with a coefficient table, entries as N c_k);
 - ``story``: the derivation told as blocks;
 - ``figures``: the report's figures by name, saved as PNG and SVG;
 - ``output``: an output folder written all at once (checked, locked, staged
