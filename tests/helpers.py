@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import signal
+from contextlib import contextmanager
+
 import numpy as np
 
 from symctl import Block, DelayGraph, ParameterError, Structure
@@ -71,3 +74,22 @@ def random_graph(rng, chain: bool) -> DelayGraph:
             return DelayGraph.from_edges(n, edges)
         except ParameterError:  # no source or no sink: draw again
             continue
+
+
+SECONDS = 10
+
+
+@contextmanager
+def bounded(seconds: int = SECONDS):
+    """Fail (instead of hanging) when the block runs longer than ``seconds``."""
+
+    def alarm(*_):
+        raise TimeoutError(f"still running after {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)

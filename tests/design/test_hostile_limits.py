@@ -6,12 +6,11 @@ in a MemoryError.
 """
 
 import itertools
-import signal
 import time
-from contextlib import contextmanager
 
 import numpy as np
 import pytest
+from helpers import SECONDS, bounded
 from sympy import Symbol
 
 from symctl import (
@@ -35,24 +34,6 @@ from symctl.design.plant import linearize
 from symctl.errors import DimensionError
 
 CLASS = "3"
-
-SECONDS = 10
-
-
-@contextmanager
-def bounded(seconds: int = SECONDS):
-    """Fail (instead of hanging) when the block runs longer than ``seconds``."""
-
-    def alarm(*_):
-        raise TimeoutError(f"still running after {seconds} s")
-
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
 
 
 GAINS = lqr_gains(augment(MuscleModel(), 1, 1))

@@ -7,11 +7,10 @@ Each case is a symctl error naming the argument, raised before any work starts
 from __future__ import annotations
 
 import itertools
-import signal
-from contextlib import contextmanager
 
 import numpy as np
 import pytest
+from helpers import bounded
 
 from symctl import MuscleModel, ParameterError, SymctlTypeError, simulate_batch
 from symctl._util.validate import MAX_OUTPUT_BYTES
@@ -19,24 +18,7 @@ from symctl.errors import SymctlError
 
 CLASS = "3"
 
-SECONDS = 10
 MODEL = MuscleModel()
-
-
-@contextmanager
-def bounded(seconds: int = SECONDS):
-    """Fail (instead of hanging) when the block runs longer than ``seconds``."""
-
-    def alarm(*_):
-        raise TimeoutError(f"still running after {seconds} s")
-
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
 
 
 def stacks(count: int, nc: int = 1):
