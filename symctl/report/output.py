@@ -251,7 +251,7 @@ class OutputFolder:
         finally:
             try:
                 if self.staging is not None:
-                    shutil.rmtree(self.staging, ignore_errors=True)
+                    _remove_tree(self.staging)
                     self.staging = None
             finally:
                 self._unlock()
@@ -268,7 +268,7 @@ class OutputFolder:
             self.staging = None
             return
         if _exchange(staging, out):  # staging now holds the old folder
-            shutil.rmtree(staging, ignore_errors=True)
+            _remove_tree(staging)
             self.staging = None
             return
         backup = self._fresh("old", make=False)
@@ -279,7 +279,7 @@ class OutputFolder:
             os.rename(backup, out)
             raise
         self.staging = None
-        shutil.rmtree(backup, ignore_errors=True)
+        _remove_tree(backup)
 
     def _fresh(self, kind: str, *, make: bool = True) -> Path:
         """A new name ``.<name>.<kind>-<hex>`` beside ``out`` (made as a folder when ``make``)."""
@@ -388,3 +388,19 @@ def _signals_held():
         yield
     finally:
         mask(signal.SIG_SETMASK, old)
+
+
+def _remove_tree(path: Path, tries: int = 20) -> None:
+    """Remove the folder ``path``, retrying while something still writes into it.
+
+    A figure worker killed by a signal may have a file half written when the
+    staging folder is removed (one pass of ``rmtree`` then meets a file it did
+    not list, "Directory not empty"); a few passes, 50 ms apart, remove it.
+    """
+    import time
+
+    for _ in range(tries):
+        shutil.rmtree(path, ignore_errors=True)
+        if not os.path.lexists(path):
+            return
+        time.sleep(0.05)
