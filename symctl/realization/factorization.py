@@ -38,7 +38,7 @@ from dataclasses import dataclass
 from functools import cache
 
 import sympy as sp
-from flint import fmpq_poly, fmpz_mpoly_ctx
+from flint import fmpq, fmpq_poly, fmpz_mpoly_ctx
 
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
@@ -49,7 +49,7 @@ from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
 
-__all__ = ["Factorization", "factor", "section_symbols", "sigma_symbols"]
+__all__ = ["Factorization", "factor", "remainder", "section_symbols", "sigma_symbols"]
 
 
 @cache
@@ -86,6 +86,26 @@ def sigma_symbols(count: int) -> tuple[sp.Symbol, ...]:
     (sigma_1, sigma_2, sigma_3)
     """
     return tuple(sp.Symbol(f"sigma_{k}", real=True) for k in range(1, count + 1))
+
+
+def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
+    r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N`.
+
+    ``c`` in descending powers of z, each in lowest terms; the numerator of
+    ``G2`` itself when :math:`N = 0`. :attr:`Factorization.remainder_coeffs`
+    is ``c`` of :attr:`Factorization.G2`; of the abbreviated :math:`G_2`
+    (:meth:`Factorization.abbreviated`) it is :math:`K_k \mp \sigma_k`.
+
+    >>> from symctl import controller_tf, factor
+    >>> from symctl.realization.factorization import remainder
+    >>> remainder(factor(controller_tf(2)).abbreviated())
+    (K_0/(C_1*C_3), [K_1 - sigma_1, K_2 + sigma_2])
+    """
+    from symctl.realization.realization import split_proper
+
+    N, c, _ = split_proper(G2)
+    scale = N if N != 0 else 1
+    return N, [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
 
 
 def _sections(eps, cs, dt) -> DiscreteTF:
@@ -147,11 +167,7 @@ class Factorization(LatexMixin):
         The paper's :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`;
         when :math:`N = 0` the numerator of :math:`G_2` itself.
         """
-        from symctl.realization.realization import split_proper
-
-        N, c, _ = split_proper(self.G2)
-        scale = N if N != 0 else 1
-        return [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
+        return remainder(self.G2)[1]
 
     @property
     def poles(self) -> tuple:
@@ -227,7 +243,7 @@ class Factorization(LatexMixin):
         if all(p.is_Rational for p in poles):
             poly = fmpq_poly([1])
             for p in poles:
-                poly *= fmpq_poly([-sp_to_fmpq(p), 1])
+                poly *= fmpq_poly([-_fmpq(p), 1])
             coeffs = [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
         else:
             coeffs = sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()
@@ -425,10 +441,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     return Factorization(tf, G1, G2, G3, eps1, c1, eps3, c3)
 
 
-def sp_to_fmpq(value: sp.Rational):
+def _fmpq(value: sp.Rational) -> fmpq:
     """A SymPy rational as a python-flint ``fmpq``."""
-    from flint import fmpq
-
     return fmpq(int(value.p), int(value.q))
 
 

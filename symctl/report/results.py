@@ -49,8 +49,8 @@ from symctl.neural.firing import FiringPatterns
 from symctl.neural.nonlinear import NonlinearCheck
 from symctl.neural.simulate import Response
 from symctl.realization.check import RealizationCheck
-from symctl.realization.factorization import Factorization
-from symctl.realization.realization import Realization, split_proper
+from symctl.realization.factorization import Factorization, remainder
+from symctl.realization.realization import Realization
 from symctl.report import document, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
@@ -403,9 +403,7 @@ class PaperResults:
 
     def _factorization_json(self) -> dict:
         f = self.factors
-        N, c, _ = split_proper(self.G2_symbolic)
-        scale = N if N != 0 else 1
-        remainder = [sp.factor_terms(sp.cancel(ci / scale)) for ci in reversed(c)]
+        N, coeffs = remainder(self.G2_symbolic)
         poles = ", ".join(map(str, f.poles))
         if self.abbreviated:  # the product forms: expanded, the zeros have 2^d terms
             sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
@@ -420,7 +418,7 @@ class PaperResults:
             "G2": G2,
             "G3": G3,
             "N": sp.sstr(N),
-            "remainder_coeffs": [sp.sstr(c) for c in remainder],
+            "remainder_coeffs": [sp.sstr(c) for c in coeffs],
             "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
             if self.abbreviated
             else {},

@@ -25,7 +25,7 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
-from symctl.realization.realization import split_proper
+from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
 from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
@@ -506,7 +506,7 @@ def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
     f = res.factors
     if not getattr(res, "abbreviated", False):
         return f.N, f.remainder_coeffs, []
-    N, c, _ = split_proper(res.G2_symbolic)
+    N, c = remainder(res.G2_symbolic)
     d = len(f.poles)
     groups = [f.sensor_eps, f.actuator_eps]
     args = ", ".join(_range_tex(g) for g in groups if g)
@@ -515,7 +515,7 @@ def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
         (None, r"\qquad \text{(so that } \prod (z - \epsilon) = "
                rf"\sum_{{k=0}}^{{{d}}} (-1)^k \sigma_k\, z^{{{d}-k}},\ \sigma_0 = 1)"),
     ]  # fmt: skip
-    return N, [ci / N for ci in reversed(c)], rows
+    return N, c, rows
 
 
 def _range_tex(symbols) -> str:

@@ -414,7 +414,6 @@ AUDITED = {
     ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
     ("symctl.realization.check", "_similarity_holds", "Matrix"): 2,  # to_matrix'd P
     ("symctl.report.pipeline", "_realizations", "factor"): 1,  # symctl.factor, built values
-    ("symctl.report.results", "PaperResults._factorization_json", "cancel"): 1,  # split_proper
     ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
     ("symctl.report.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
     ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
@@ -448,7 +447,7 @@ AUDITED = {
     ("symctl.design.tf", "_lcm", "expand"): 2,
     ("symctl.neural.firing", "_realizations", "factor"): 1,
     ("symctl.realization.factorization", "Factorization.latex", "expand"): 1,
-    ("symctl.realization.factorization", "Factorization.remainder_coeffs", "cancel"): 1,
+    ("symctl.realization.factorization", "remainder", "cancel"): 1,
     ("symctl.realization.realization", "_similar_sympy", "cancel"): 1,  # own matrices (det P)
     ("symctl.realization.realization", "Realization.to_tf", "expand"): 1,
     ("symctl.realization.realization", "Realization.to_tf", "together"): 1,
