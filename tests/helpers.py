@@ -93,3 +93,14 @@ def bounded(seconds: int = SECONDS):
     finally:
         signal.alarm(0)
         signal.signal(signal.SIGALRM, old)
+
+
+def muscle_loops(count: int, nc: int = 1):
+    """``count`` identical stable loops of the muscle, as broadcast views (no memory)."""
+    one = (
+        np.zeros((1, nc, nc)),
+        np.full((1, nc, 1), -0.05),
+        np.ones((1, 1, nc)),
+        np.zeros((1, 1, 1)),
+    )
+    return [np.broadcast_to(a, (count, *a.shape[1:])) for a in one]

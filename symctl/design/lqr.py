@@ -110,13 +110,18 @@ class Gains(LatexMixin):
         n, m, T = self.system.n, self.system.m, self.system.T
         return [self.K[:, :n]] + [self.K[:, n + k * m : n + (k + 1) * m] for k in range(T)]
 
-    def substitutions(self) -> dict[sp.Symbol, float]:
-        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values."""
+    def substitutions(self, exact: bool = False) -> dict:
+        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values.
+
+        With ``exact=True`` the values are the exact rationals of the binary
+        floats (``sympy.Rational``), so that what is built from them stays exact.
+        """
         s = self.system
         out = {}
         for sym, val in zip(gain_matrix_symbols(s.T, s.m, s.n), self.blocks, strict=True):
             out.update(zip(sym, np.asarray(val).ravel(), strict=True))
-        return {k: float(v) for k, v in out.items()}
+        value = (lambda v: sp.Rational(float(v))) if exact else float
+        return {k: value(v) for k, v in out.items()}
 
     @property
     def spectral_radius(self) -> float:

@@ -358,8 +358,7 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
     realizer = get_realizer(kind, "kind")  # "general": a random P drawn from gen
     # the optimal controller with the gains as the exact rationals of their floats: every
     # realization below is then exact rational arithmetic (python-flint), never float SymPy
-    exact = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
-    G = controller_tf(s).subs(exact)
+    G = controller_tf(s).subs(gains.substitutions(exact=True))
     sides = [(1, s.sensor_delay), (3, s.actuator_delay)]
     eps = tuple(e for side, d in sides if d for e in section_symbols(side, d)[0])
     for _ in range(count):

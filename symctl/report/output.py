@@ -63,6 +63,7 @@ import secrets
 import shutil
 import signal
 import stat
+import time
 from pathlib import Path
 from types import TracebackType
 
@@ -397,8 +398,6 @@ def _remove_tree(path: Path, tries: int = 20) -> None:
     staging folder is removed (one pass of ``rmtree`` then meets a file it did
     not list, "Directory not empty"); a few passes, 50 ms apart, remove it.
     """
-    import time
-
     for _ in range(tries):
         shutil.rmtree(path, ignore_errors=True)
         if not os.path.lexists(path):

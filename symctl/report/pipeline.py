@@ -214,8 +214,7 @@ def _realizations(
     """
     sections = (*factors.sensor_C, *factors.actuator_C)
     unit_C = {c: 1 for c in sections}
-    exact_gains = {k: sp.Rational(v) for k, v in gains.substitutions().items()}
-    G_exact = factors.G.subs(exact_gains)
+    G_exact = factors.G.subs(gains.substitutions(exact=True))
     ds = len(factors.sensor_eps)
     out = {}
     for name in ("controllable", "observable", "general"):

@@ -35,7 +35,6 @@ from symctl.errors import DimensionError
 
 CLASS = "3"
 
-
 GAINS = lqr_gains(augment(MuscleModel(), 1, 1))
 G = DiscreteTF.from_expr(1 / (z - 0.5))
 SQUARE = np.zeros((1001, 1001))

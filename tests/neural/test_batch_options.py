@@ -12,6 +12,7 @@ import itertools
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import muscle_loops
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -261,19 +262,10 @@ def test_an_overflow_seen_only_in_a_peak_names_its_step(keep):
 
 
 # ---------------------------------------------------------------- the memory limit
-def broadcast(count: int, nc: int = 1):
-    """``count`` identical stable loops of the muscle, as views (no memory)."""
-    one = (
-        np.zeros((1, nc, nc)),
-        np.full((1, nc, 1), -0.05),
-        np.ones((1, 1, nc)),
-        np.zeros((1, 1, 1)),
-    )
-    return [np.broadcast_to(a, (count, *a.shape[1:])) for a in one]
 
 
 def test_a_million_loops_of_500_steps_are_refused_whole_and_run_streamed():
-    mats = broadcast(10**6)
+    mats = muscle_loops(10**6)
     with pytest.raises(
         ParameterError, match=r"keep: keeping delta_f, delta_r of 1000000 .*chunk=536870"
     ):

@@ -10,7 +10,7 @@ import itertools
 
 import numpy as np
 import pytest
-from helpers import bounded
+from helpers import bounded, muscle_loops
 
 from symctl import MuscleModel, ParameterError, SymctlTypeError, simulate_batch
 from symctl._util.validate import MAX_OUTPUT_BYTES
@@ -21,18 +21,7 @@ CLASS = "3"
 MODEL = MuscleModel()
 
 
-def stacks(count: int, nc: int = 1):
-    """``count`` identical stable loops of the muscle, as broadcast views (no memory)."""
-    one = (
-        np.zeros((1, nc, nc)),
-        np.full((1, nc, 1), -0.05),
-        np.ones((1, 1, nc)),
-        np.zeros((1, 1, 1)),
-    )
-    return [np.broadcast_to(a, (count, *a.shape[1:])) for a in one]
-
-
-SMALL = stacks(3)
+SMALL = muscle_loops(3)
 
 CASES = [
     # keep
@@ -70,29 +59,34 @@ def test_hostile_keep_and_chunk_are_refused_by_name(kwargs, error, match):
 
 # outputs over MAX_OUTPUT_BYTES (4 GiB): refused before any work, saying what fits
 OVERSIZED = [
-    ("million_x_500", stacks(10**6), {"steps": 500}, r"keep: .*8 GB.*chunk=536870 or less"),
-    ("states_300k", stacks(300_000, nc=4), {"steps": 500, "states": True}, r"keep: .*7\.2 GB"),
+    ("million_x_500", muscle_loops(10**6), {"steps": 500}, r"keep: .*8 GB.*chunk=536870 or less"),
+    (
+        "states_300k",
+        muscle_loops(300_000, nc=4),
+        {"steps": 500, "states": True},
+        r"keep: .*7\.2 GB",
+    ),
     (
         "keep_states_300k",
-        stacks(300_000, nc=4),
+        muscle_loops(300_000, nc=4),
         {"steps": 500, "keep": ("states",)},
         r"keep: keeping states of 300000",
     ),
     (
         "chunk_too_big",
-        stacks(10**6),
+        muscle_loops(10**6),
         {"steps": 500, "chunk": 600_000},
         r"chunk: .*600000 realizations",
     ),
     (
         "chunk_1e100",
-        stacks(10**6),
+        muscle_loops(10**6),
         {"steps": 500, "chunk": 10**100},
         r"chunk: .*1000000 realizations",
     ),
     (
         "one_loop_too_large",
-        stacks(1, nc=1000),
+        muscle_loops(1, nc=1000),
         {"steps": 600_000, "states": True, "chunk": 1},
         r"chunk: .* 1 realizations x 600000 steps takes 4\.81 GB.*; keep fewer",
     ),
@@ -110,7 +104,7 @@ def test_outputs_over_the_memory_limit_are_refused_before_work(mats, kwargs, mat
 
 def test_the_one_loop_message_does_not_suggest_a_chunk_that_cannot_fit():
     with pytest.raises(ParameterError, match="keep: ") as info:
-        simulate_batch(MODEL, *stacks(1, nc=1000), steps=600_000, states=True)
+        simulate_batch(MODEL, *muscle_loops(1, nc=1000), steps=600_000, states=True)
     advice = str(info.value).split(";")[1]
     assert "chunk=" not in advice and "peak_delta_r" in advice
 
@@ -118,7 +112,7 @@ def test_the_one_loop_message_does_not_suggest_a_chunk_that_cannot_fit():
 def test_outputs_at_the_limit_are_accepted_and_the_check_is_per_chunk():
     per_loop = 8 * 500 * 2
     fit = MAX_OUTPUT_BYTES // per_loop
-    parts = simulate_batch(MODEL, *stacks(10**6), steps=500, chunk=fit, check_stability=False)
+    parts = simulate_batch(MODEL, *muscle_loops(10**6), steps=500, chunk=fit, check_stability=False)
     assert hasattr(parts, "__next__")  # nothing simulated yet
     del parts
 

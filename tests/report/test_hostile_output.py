@@ -57,32 +57,24 @@ def _one_error_line(err: str) -> str:
     return lines[0]
 
 
-def _children(pid: int) -> list[int]:
-    """The living processes whose parent is ``pid`` (read from /proc: psutil is no dependency)."""
-    found = []
+def _processes():
+    """``(pid, stat fields after the name)`` of every process (from /proc: psutil is no dependency)."""
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit():
             try:
-                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+                yield int(entry.name), (entry / "stat").read_text().rsplit(")", 1)[1].split()
             except OSError:
                 continue
-            if int(fields[1]) == pid and fields[0] != "Z":
-                found.append(int(entry.name))
-    return found
+
+
+def _children(pid: int) -> list[int]:
+    """The living processes whose parent is ``pid``."""
+    return [p for p, fields in _processes() if int(fields[1]) == pid and fields[0] != "Z"]
 
 
 def _in_group(pgid: int) -> list[int]:
     """The processes of process group ``pgid`` (zombies included: they are not reaped)."""
-    found = []
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            if int(fields[2]) == pgid:
-                found.append(int(entry.name))
-    return found
+    return [p for p, fields in _processes() if int(fields[2]) == pgid]
 
 
 # ---------------------------------------------------------------- refused before any work
