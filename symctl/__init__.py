@@ -26,6 +26,7 @@ _PUBLIC = {
     # errors
     "DimensionError": "symctl.errors",
     "LatexError": "symctl.errors",
+    "NotRealizableError": "symctl.errors",
     "NotStabilizableError": "symctl.errors",
     "ParameterError": "symctl.errors",
     "ParseError": "symctl.errors",
@@ -92,6 +93,12 @@ _PUBLIC = {
     "simulate_realization": "symctl.neural.simulate",
     "LoopStability": "symctl.neural.stability",
     "loop_stability": "symctl.neural.stability",
+    # discovery: the circuit atlas
+    "Atlas": "symctl.discovery.atlas",
+    "atlas": "symctl.discovery.atlas",
+    "CircuitClass": "symctl.discovery.circuitclass",
+    "Evidence": "symctl.discovery.universality",
+    "Pattern": "symctl.discovery.pattern",
     # 6. report: the whole derivation
     "PaperResults": "symctl.report.results",
     "derive_paper": "symctl.report.pipeline",

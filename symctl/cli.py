@@ -169,6 +169,118 @@ def paper(
     _written(out, folder.final(written), pdf)
 
 
+@cli.command("atlas")
+@click.option("--order", type=int, required=True, help="Order n of G2 (1 to 4; 1-3 exhaustive).")
+@click.option(
+    "--delays",
+    type=click.Choice(["branch", "state"]),
+    default="branch",
+    show_default=True,
+    help="Where the structure's unit delays sit.",
+)
+@click.option(
+    "--max-size",
+    type=int,
+    default=None,
+    help="Largest pattern size searched [default: all for orders 1-3, 3n for order 4].",
+)
+@click.option(
+    "--workers", type=int, default=None, help="Worker processes [default: every local core]."
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    help="Address of a running dask.distributed scheduler [default: a local cluster].",
+)
+@click.option(
+    "--drawings",
+    default="24",
+    show_default=True,
+    help="Classes drawn one by one (the sparsest first), or 'all'.",
+)
+@click.option("--out", default="out/atlas", show_default=True, help="Output folder.")
+@click.option("--pdf/--no-pdf", default=True, show_default=True, help="Compile atlas.pdf.")
+def atlas_command(order, delays, max_size, workers, scheduler, drawings, out, pdf) -> None:
+    """Find every minimal circuit class of order-N controllers and write the atlas into OUT.
+
+    Writes atlas.json, atlas.md, atlas.tex (and atlas.pdf), an overview figure and
+    one drawing per class. Finished patterns go to OUT.progress.jsonl as the
+    search runs, so an interrupted run resumes where it stopped.
+    """
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+
+    from symctl.discovery.atlas import atlas as find_atlas
+    from symctl.report.atlas import write_atlas
+    from symctl.report.output import OutputFolder
+
+    if drawings == "all":
+        count = None
+    else:
+        try:
+            count = int(drawings)
+        except ValueError:
+            raise click.BadParameter("must be a number or 'all'", param_hint="--drawings") from None
+        if count < 0:
+            raise click.BadParameter("must be at least 0", param_hint="--drawings")
+    checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
+    with OutputFolder(out, "--out") as folder:
+        with Progress(
+            "[progress.description]{task.description}",
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            console=_console,
+            transient=True,
+            disable=not _console.is_terminal,
+        ) as bar:
+            tasks: dict[int, int] = {}
+
+            def progress(size, done, total):
+                if size not in tasks:
+                    tasks[size] = bar.add_task(f"size {size:2d}", total=max(total, 1))
+                bar.update(tasks[size], completed=done)
+
+            A = find_atlas(
+                order,
+                delays=delays,
+                max_size=max_size,
+                workers=workers,
+                scheduler=scheduler,
+                checkpoint=checkpoint,
+                progress=progress,
+            )
+        written = write_atlas(A, folder.staging, drawings=count, pdf=pdf)
+    checkpoint.unlink(missing_ok=True)
+    _atlas_summary(A)
+    _written(Path(out), folder.final(written), pdf)
+
+
+def _atlas_summary(A) -> None:
+    s = A.stats
+    _console.print(
+        f"order {A.order}: {s['patterns']} patterns, {s['canonical']} up to permutation, "
+        f"{s['minimal']} minimal, {s['full_rank']} of full rank; {len(A.classes)} circuit classes, "
+        f"{len(A.universal_classes)} universal, {s['undecided']} undecided ({s['seconds']:g} s)"
+    )
+    table = Table(title=f"circuit classes of order {A.order} (the first 15)")
+    for col in (
+        "class",
+        "neurons",
+        "synapses",
+        "branches",
+        "pattern F | H | M",
+        "universal",
+        "method",
+    ):
+        table.add_column(col)
+    for row, c in zip(A.table()[:15], A.classes, strict=False):
+        table.add_row(
+            row["class"], str(row["neurons"]), str(row["synapses"]), str(row["branches"]),
+            c.representatives[0].text, row["universal"], row["method"],
+        )  # fmt: skip
+    _console.print(table)
+
+
 class _Steps:
     """The progress display: a spinner on the running step, a line with its time when done."""
 
@@ -213,9 +325,9 @@ def _written(out: Path, written: list[Path], pdf: bool) -> None:
     if figures:
         line += f", {len(figures)} figures (PNG and SVG): " + ", ".join(figures)
     _console.print(line, markup=False, soft_wrap=True, highlight=False)
-    if pdf and "derivation.pdf" not in names:
+    if pdf and not any(n.endswith(".pdf") for n in names):
         _console.print(
-            "note: pdflatex not found, derivation.pdf not compiled (install TeX Live's "
+            "note: pdflatex not found, the PDF was not compiled (install TeX Live's "
             "texlive-latex-base)",
             markup=False,
             soft_wrap=True,

@@ -9,7 +9,8 @@ ValueError`` and ``except TypeError`` keep working:
 - user text that is not an admissible expression: :class:`ParseError` (a ``ValueError``);
 - an argument of the wrong type: :class:`SymctlTypeError` (a ``TypeError``);
 - an LQR problem without a stabilizing solution: :class:`NotStabilizableError`;
-- ``pdflatex`` failing on a document symctl wrote: :class:`LatexError`.
+- ``pdflatex`` failing on a document symctl wrote: :class:`LatexError`;
+- a controller that a circuit class cannot realize: :class:`NotRealizableError`.
 
 Each message names the offending argument and its value. The command line
 turns them into a one-line message and exit code 2.
@@ -126,4 +127,18 @@ class SymctlTypeError(SymctlError, TypeError):
     Traceback (most recent call last):
     ...
     symctl.errors.SymctlTypeError: ...
+    """
+
+
+class NotRealizableError(SymctlError, ValueError):
+    """A controller that a circuit class (or every class of an atlas) cannot realize.
+
+    The message says which class and why (e.g. complex poles and a triangular
+    ``F``).
+
+    Examples
+    --------
+    >>> from symctl import NotRealizableError, ParameterError
+    >>> issubclass(NotRealizableError, ValueError), issubclass(NotRealizableError, ParameterError)
+    (True, False)
     """

@@ -26,6 +26,7 @@ STAGES = (
     ("symctl.realization",),
     ("symctl.compatibility",),
     ("symctl.neural",),
+    ("symctl.discovery",),
     ("symctl.latex", "symctl.interop"),
     ("symctl.plotting",),
     ("symctl.report",),

@@ -354,6 +354,29 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # discovery: every expression is built from a Pattern's own symbols and exact rationals;
+    # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
+    ("symctl.discovery.certify", "_Poly.__init__", "Poly"): 1,
+    ("symctl.discovery.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
+    ("symctl.discovery.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
+    ("symctl.discovery.solve", "_solved", "Poly"): 2,
+    ("symctl.discovery.solve", "_markov_equal", "expand"): 1,  # own entries and coefficients
+    ("symctl.discovery.universality", "_system", "Poly"): 2,
+    ("symctl.discovery.universality", "_system", "expand"): 1,
+    ("symctl.discovery.universality", "_equations", "expand"): 1,
+    ("symctl.discovery.universality", "closed_form", "Poly"): 1,
+    ("symctl.discovery.universality", "closed_form", "cancel"): 1,
+    ("symctl.discovery.universality", "closed_form", "together"): 1,
+    ("symctl.discovery.universality", "closed_form", "subs"): 1,  # symbol -> own expression
+    ("symctl.discovery.universality", "closed_form", "expand"): 1,
+    ("symctl.discovery.universality", "_standard_monomials", "Poly"): 1,
+    ("symctl.discovery.universality", "_normal_form", "expand"): 1,
+    ("symctl.discovery.universality", "_normal_form", "Poly"): 1,
+    ("symctl.discovery.universality", "solve_at", "expand"): 1,
+    ("symctl.discovery.universality", "solve_at", "Poly"): 2,
+    ("symctl.discovery.universality", "_poles", "expand"): 1,
+    ("symctl.discovery.universality", "_sample", "Poly"): 1,
+    ("symctl.discovery.universality", "_witness", "expand"): 1,
     # the checkers themselves: to_expr/to_matrix/parse_matrix only pass sympy objects on
     ("symctl._util.evaluate", "lambdify_matrices", "lambdify"): 1,  # symbol_tuple
     ("symctl._util.exact", "z_poly", "Poly"): 1,  # sympy expressions of a DiscreteTF

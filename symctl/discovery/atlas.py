@@ -1,0 +1,304 @@
+r"""The circuit atlas: every minimal circuit of an order-:math:`n` :math:`G_2`, found, proved and ranked.
+
+Definitions (the issue's, kept; :mod:`symctl.discovery.pattern`,
+:mod:`~symctl.discovery.universality`, :mod:`~symctl.discovery.circuitclass`):
+
+* a realization :math:`(F, H, M, N)` of an order-:math:`n` :math:`G_2` (proper,
+  :math:`N \ne 0`) has a **pattern**, the support of :math:`(F, H, M)`;
+* a pattern is **universal** if almost every real order-:math:`n` :math:`G_2`
+  (complex poles, real poles of either sign, any numerator) has a real
+  realization with exactly that support;
+* the **circuit** of a pattern is :meth:`Circuit.from_structure` of its
+  branch-delay structure; patterns whose circuits are isomorphic graphs
+  (neurons, synapses with their delays, self-dynamics, input and output;
+  weights ignored) form one **circuit class**;
+* every realization here has :math:`n` states, and the atlas keeps only the
+  patterns whose generic realization is minimal (controllable and
+  observable), so every circuit is minimal in the paper's sense. The
+  **sparsest** classes have the fewest neurons, then the fewest synapses.
+
+One refinement of the definition: a class is universal when *one* of its
+patterns is (the circuit then carries almost every :math:`G_2`); its other
+patterns may realize less.
+
+The search (:mod:`~symctl.discovery.search`) is exhaustive for orders 1 to
+:data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
+filtered by the exact generic-rank test, then decided. Order
+:data:`MAX_ATLAS_ORDER` searches the sparsest sizes (:math:`3n` nonzero
+entries and up, ``max_size``): a universal pattern needs at least :math:`3n`
+(:mod:`~symctl.discovery.rank`).
+
+>>> import symctl
+>>> A = symctl.atlas(2, workers=1)
+>>> len(A.classes), len(A.universal_classes)
+(37, 9)
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections import defaultdict
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import networkx as nx
+
+from symctl._util.validate import bounded_int
+from symctl.discovery.circuitclass import CircuitClass, circuit_key, same_circuit
+from symctl.discovery.pattern import Pattern
+from symctl.discovery.universality import Evidence
+from symctl.errors import ParameterError, SymctlTypeError
+
+__all__ = ["EXHAUSTIVE_MAX_ORDER", "MAX_ATLAS_ORDER", "Atlas", "atlas"]
+
+EXHAUSTIVE_MAX_ORDER = 3
+"""Highest order searched over every pattern."""
+
+MAX_ATLAS_ORDER = 4
+"""Highest order accepted (searched from the sparsest sizes up to ``max_size``)."""
+
+MAX_WORKERS = 512
+"""Most worker processes one search may ask for."""
+
+_RANK = {True: 0, None: 1, False: 2}
+
+
+@dataclass(frozen=True)
+class Atlas:
+    """The circuit classes of one order, ranked: universal first, then by neurons and synapses.
+
+    Attributes
+    ----------
+    order : int
+    delays : str
+    classes : tuple of CircuitClass
+    stats : mapping
+        ``patterns`` (all, before the symmetry reduction), ``canonical``,
+        ``minimal`` (generically minimal), ``full_rank``, ``universal``
+        (patterns), ``sizes`` searched, ``complete`` (exhaustive or not),
+        ``seconds``, ``workers``.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> A = symctl.atlas(2, workers=1)
+    >>> A.sparsest().n_neurons, A.stats["complete"]
+    (2, True)
+    """
+
+    order: int
+    delays: str
+    classes: tuple
+    stats: Mapping = field(compare=False)
+
+    @property
+    def universal_classes(self) -> tuple[CircuitClass, ...]:
+        """The classes that carry almost every order-``n`` G2."""
+        return tuple(c for c in self.classes if c.universal)
+
+    def sparsest(self) -> CircuitClass:
+        """The universal class with the fewest neurons, then synapses (the first of the atlas)."""
+        if not self.universal_classes:
+            raise ParameterError(f"atlas: no universal class was found at order {self.order}")
+        return self.universal_classes[0]
+
+    def find(self, pattern: Pattern) -> CircuitClass:
+        """The class of ``pattern`` (any state permutation of it).
+
+        Raises
+        ------
+        ParameterError
+            The pattern is not in the atlas (not generically minimal, or not searched).
+        """
+        if not isinstance(pattern, Pattern):
+            raise SymctlTypeError(f"pattern: expected a Pattern, got {type(pattern).__name__}")
+        key = pattern.canonical()
+        for c in self.classes:
+            if key in c.representatives:
+                return c
+        raise ParameterError(
+            f"pattern: {pattern.text} is not in the order-{self.order} atlas (not generically "
+            "minimal, or outside the sizes searched)"
+        )
+
+    def table(self) -> list[dict]:
+        """One row per class: label, neurons, synapses, branches, patterns, verdict, method."""
+        return [
+            {
+                "class": c.label,
+                "neurons": c.n_neurons,
+                "synapses": c.n_synapses,
+                "branches": c.n_branches,
+                "patterns": len(c.representatives),
+                "universal": {True: "yes", False: "no", None: "?"}[c.universal],
+                "method": c.evidence.method,
+                "proved": c.evidence.proved,
+            }
+            for c in self.classes
+        ]
+
+    def to_dict(self) -> dict:
+        """Plain data for ``atlas.json``."""
+        return {
+            "order": self.order,
+            "delays": self.delays,
+            "stats": dict(self.stats),
+            "classes": [c.to_dict() for c in self.classes],
+        }
+
+    def __repr__(self) -> str:
+        return (
+            f"Atlas(order={self.order}, {len(self.classes)} classes, "
+            f"{len(self.universal_classes)} universal, complete={self.stats.get('complete')})"
+        )
+
+    def draw(self, *, universal_only: bool = True, columns: int = 3):
+        """An overview figure: one circuit per class (the universal ones by default)."""
+        from symctl.plotting.atlas import draw_atlas
+
+        return draw_atlas(self, universal_only=universal_only, columns=columns)
+
+
+def atlas(
+    order: int,
+    *,
+    delays: str = "branch",
+    max_size: int | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    checkpoint=None,
+    progress: Callable[[int, int, int], None] | None = None,
+) -> Atlas:
+    r"""Every minimal circuit class of order-``order`` controllers :math:`G_2`, with its evidence.
+
+    Parameters
+    ----------
+    order : int
+        1 to :data:`MAX_ATLAS_ORDER`; orders up to :data:`EXHAUSTIVE_MAX_ORDER`
+        are searched over every pattern.
+    delays : {"branch", "state"}
+        The structure convention of the circuits (see
+        :meth:`Structure.from_realization`).
+    max_size : int, optional
+        Largest pattern size searched (default: every size for the exhaustive
+        orders, :math:`3n` for order 4, which gives its sparsest classes).
+    workers : int, optional
+        Worker processes (default: every local core; 1 runs in this process).
+    scheduler : str, optional
+        Address of a running dask.distributed scheduler to use instead of a
+        local cluster.
+    checkpoint : path, optional
+        A JSON-lines file where finished patterns are written as the search
+        proceeds; a rerun with the same file resumes.
+    progress : callable, optional
+        Called as ``progress(size, done, total)``.
+
+    Returns
+    -------
+    Atlas
+
+    Raises
+    ------
+    ParameterError
+        ``order`` outside 1..4, ``max_size`` out of range, ``workers`` below 1,
+        or a scheduler that cannot be reached.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> A = symctl.atlas(1, workers=1)
+    >>> [(c.n_neurons, c.universal) for c in A.classes]
+    [(2, True), (1, False)]
+    """
+    n = bounded_int(order, "order", 1, MAX_ATLAS_ORDER)
+    if delays not in ("branch", "state"):
+        raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
+    slots = n * n + 2 * n
+    if max_size is None:
+        top = slots if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
+    else:
+        top = bounded_int(max_size, "max_size", 0, slots)
+    low = 0 if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
+    if workers is None:
+        workers = 1 if n <= 2 else max(1, os.cpu_count() or 1)
+    workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
+    if scheduler is not None and not isinstance(scheduler, str):
+        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
+    from symctl.discovery.search import run
+
+    start = time.perf_counter()
+    records, counts = run(
+        n,
+        range(low, top + 1),
+        delays,
+        workers=workers,
+        scheduler=scheduler,
+        checkpoint=checkpoint,
+        progress=progress,
+    )
+    classes = _classes(n, delays, records)
+    minimal = [r for r in records if r["evidence"]["method"] != "not minimal"]
+    stats = {
+        **counts,
+        "minimal": len(minimal),
+        "full_rank": sum(r["evidence"]["method"] not in ("rank", "not minimal") for r in records),
+        "universal": sum(bool(r["evidence"]["universal"]) for r in records),
+        "undecided": sum(r["evidence"]["universal"] is None for r in records),
+        "sizes": [low, top],
+        "complete": low == 0 and top == slots,
+        "seconds": round(time.perf_counter() - start, 2),
+        "workers": workers if scheduler is None else scheduler,
+    }
+    return Atlas(n, delays, classes, MappingProxyType(stats))
+
+
+def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ...]:
+    buckets: dict[str, list[list]] = defaultdict(list)  # hash -> [[graph, records...], ...]
+    for rec in records:
+        if "graph" not in rec:
+            continue
+        graph = nx.node_link_graph(rec["graph"], edges="links")
+        groups = buckets[circuit_key(graph)]
+        for group in groups:
+            if same_circuit(group[0], graph):
+                group.append(rec)
+                break
+        else:
+            groups.append([graph, rec])
+    found = []
+    for groups in buckets.values():
+        for _graph, *recs in groups:
+            evidence = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
+            reps = sorted(
+                evidence,
+                key=lambda p: (
+                    _RANK[evidence[p].universal],
+                    not evidence[p].proved,
+                    p.size,
+                    p.mask,
+                ),
+            )
+            first = recs[0]
+            found.append(
+                dict(
+                    representatives=tuple(reps),
+                    evidence=evidence[reps[0]],
+                    pattern_evidence=MappingProxyType(evidence),
+                    n_neurons=first["neurons"],
+                    n_synapses=first["synapses"],
+                    n_branches=first["branches"],
+                )
+            )
+    found.sort(
+        key=lambda c: (
+            _RANK[c["evidence"].universal],
+            c["n_neurons"],
+            c["n_synapses"],
+            c["n_branches"],
+            c["representatives"][0].size,
+            c["representatives"][0].mask,
+        )
+    )
+    return tuple(CircuitClass(n, delays, label=f"A{i + 1}", **c) for i, c in enumerate(found))

@@ -1,0 +1,165 @@
+r"""The exact generic-rank test: how many of :math:`G_2`'s coefficients a pattern can move.
+
+A pattern with :math:`k` nonzero slots defines the polynomial map
+:math:`\varphi: \mathbb{R}^k \to \mathbb{R}^{2n}` from its entries to the
+coefficients of :math:`a(z) = \det(zI - F)` (monic, :math:`n` free) and of
+:math:`b(z) = M \operatorname{adj}(zI - F) H` (degree below :math:`n`). The
+pattern can be universal only if :math:`\varphi` is dominant, i.e. its
+Jacobian has generic rank :math:`2n`; otherwise its image is a set of
+dimension below :math:`2n`, of measure zero.
+
+**Evaluation at points.** The values :math:`a(z_l), b(z_l)` at :math:`n`
+distinct points determine the coefficients (a Vandermonde map), and
+:math:`(a, b) \mapsto (a, g = b/a)` is invertible where :math:`a(z_l) \ne 0`,
+so the Jacobian of :math:`(\log a(z_l), g(z_l))_l` has the same rank. With
+:math:`R = (z_l I - F)^{-1}` its rows are, column by column,
+:math:`\partial \log a / \partial F_{ij} = -R_{ji}` (zero for :math:`H, M`) and
+:math:`\partial g/\partial F_{ij} = (MR)_i (RH)_j`,
+:math:`\partial g/\partial H_i = (MR)_i`, :math:`\partial g/\partial M_j = (RH)_j`.
+
+**Exactness.** Everything is evaluated at random points modulo the prime
+:math:`p = 2^{61} - 1` (python-flint ``nmod_mat``). A rank of :math:`r` mod
+:math:`p` at an integer point is a lower bound of the rank over
+:math:`\mathbb{Q}` there, hence of the generic rank: **full rank mod p is a
+proof**. A smaller rank is confirmed at independent points; by
+Schwartz-Zippel one point misses a nonzero :math:`2n`-minor (a polynomial
+of degree at most :math:`2n^2` in the entries and the :math:`z_l`) with
+probability at most :math:`2n^2/p`. When :math:`k < 3n` the deficiency is
+exact anyway: the torus orbits (:mod:`symctl.discovery.pattern`) lie in the
+fibres and have dimension :math:`n` for a minimal realization, so the rank is
+at most :math:`k - n < 2n`.
+
+The same points decide **generic minimality**: the controllability and
+observability matrices of the pattern's generic realization have rank
+:math:`n` mod :math:`p` (a proof) or not at a few points (Schwartz-Zippel).
+
+>>> from symctl.discovery.pattern import Pattern
+>>> from symctl.discovery.rank import generic_rank
+>>> generic_rank(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
+GenericRank(rank=4, minimal=True, exact=True, points=1)
+"""
+
+from __future__ import annotations
+
+import random
+from typing import NamedTuple
+
+from flint import nmod_mat
+
+from symctl.discovery.pattern import Pattern
+
+__all__ = ["PRIME", "GenericRank", "generic_rank"]
+
+PRIME = 2**61 - 1
+"""The prime modulus of the rank test."""
+
+POINTS = 3
+"""Random points tried before a deficient rank is reported."""
+
+
+class GenericRank(NamedTuple):
+    """The generic rank of a pattern's coefficient map, and whether it is generically minimal.
+
+    ``exact`` is True when the rank is proved (full rank mod p, or the torus
+    bound ``k - n``); otherwise it holds with the Schwartz-Zippel probability
+    of the module text over ``points`` points.
+    """
+
+    rank: int
+    minimal: bool
+    exact: bool
+    points: int
+
+
+def _point(pattern: Pattern, rng: random.Random):
+    n = pattern.n
+    F = [[0] * n for _ in range(n)]
+    H = [0] * n
+    M = [0] * n
+    for k in pattern.indices:
+        kind, i, j = pattern.where(k)
+        v = rng.randrange(1, PRIME)
+        if kind == "F":
+            F[i][j] = v
+        elif kind == "H":
+            H[i] = v
+        else:
+            M[j] = v
+    return F, H, M
+
+
+def _minimal_at(n: int, F, H, M) -> bool:
+    Fm = nmod_mat(F, PRIME)
+    cols = [nmod_mat([[h] for h in H], PRIME)]
+    rows = [nmod_mat([M], PRIME)]
+    for _ in range(n - 1):
+        cols.append(Fm * cols[-1])
+        rows.append(rows[-1] * Fm)
+    W = nmod_mat([[int(c[i, 0]) for c in cols] for i in range(n)], PRIME)
+    Ob = nmod_mat([[int(r[0, j]) for j in range(n)] for r in rows], PRIME)
+    return W.rank() == n and Ob.rank() == n
+
+
+def _rank_at(pattern: Pattern, F, H, M, rng: random.Random) -> int:
+    n = pattern.n
+    rows = []
+    for _ in range(n):
+        zl = rng.randrange(1, PRIME)
+        A = nmod_mat([[(zl if i == j else 0) - F[i][j] for j in range(n)] for i in range(n)], PRIME)
+        try:
+            Rm = A.inv()
+        except ZeroDivisionError:  # z_l an eigenvalue mod p: a probability-1/p event
+            return -1
+        R = [[int(Rm[i, j]) for j in range(n)] for i in range(n)]
+        MR = [sum(M[a] * R[a][i] for a in range(n)) % PRIME for i in range(n)]
+        RH = [sum(R[j][a] * H[a] for a in range(n)) % PRIME for j in range(n)]
+        ra, rg = [], []
+        for k in pattern.indices:
+            kind, i, j = pattern.where(k)
+            if kind == "F":
+                ra.append(-R[j][i] % PRIME)
+                rg.append(MR[i] * RH[j] % PRIME)
+            elif kind == "H":
+                ra.append(0)
+                rg.append(MR[i])
+            else:
+                ra.append(0)
+                rg.append(RH[j])
+        rows += [ra, rg]
+    return nmod_mat(rows, PRIME).rank() if pattern.size else 0
+
+
+def generic_rank(pattern: Pattern, seed: int = 0) -> GenericRank:
+    """The generic rank of ``pattern``'s map to :math:`G_2`'s coefficients (see the module text).
+
+    Parameters
+    ----------
+    pattern : Pattern
+    seed : int
+        Seeds the random points (the verdict does not depend on it, except
+        with the Schwartz-Zippel probability).
+
+    Returns
+    -------
+    GenericRank
+
+    Examples
+    --------
+    >>> from symctl.discovery.pattern import Pattern
+    >>> from symctl.discovery.rank import generic_rank
+    >>> generic_rank(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 0])).minimal
+    False
+    """
+    rng = random.Random(seed * 1_000_003 + pattern.mask)
+    n = pattern.n
+    best, minimal = 0, False
+    tries = 0
+    for tries in range(1, POINTS + 1):  # noqa: B007 (tries is reported)
+        F, H, M = _point(pattern, rng)
+        minimal = minimal or _minimal_at(n, F, H, M)
+        best = max(best, _rank_at(pattern, F, H, M, rng))
+        if best == 2 * n and minimal:
+            break
+    full = best == 2 * n
+    exact = full or pattern.size < 3 * n
+    return GenericRank(best, minimal, exact, tries)

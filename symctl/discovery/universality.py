@@ -1,0 +1,622 @@
+r"""Universality over the reals: proved, refuted, or witnessed region by region.
+
+Write an order-:math:`n` :math:`G_2 = N + b(z)/a(z)`, :math:`a(z) = z^n +
+\sum_{i<n} a_i z^i`, :math:`b(z) = \sum_{i<n} c_i z^i`
+(:func:`~symctl.realization.realization.split_proper`). A pattern
+(:mod:`symctl.discovery.pattern`) is **universal** when almost every real
+:math:`(a, c)` has a real realization with exactly that support. After the
+torus normalization (the spanning-tree entries set to 1) the unknowns are the
+other entries, and the conditions are the :math:`2n` polynomial equations
+:math:`\det(zI - F) = a(z)`, :math:`M \operatorname{adj}(zI - F) H = b(z)`.
+The verdicts, each with its method (:class:`Evidence`):
+
+``"rank"`` (refuted)
+    The generic rank is below :math:`2n` (:mod:`symctl.discovery.rank`): the
+    reachable :math:`G_2` form a set of lower dimension.
+``"real eigenvalues"`` (refuted)
+    ``F``'s graph has strongly connected components of sizes :math:`s_1, ..`;
+    after a permutation ``F`` is block triangular with those diagonal blocks,
+    so :math:`a = \prod a_k` with real :math:`a_k` of degree :math:`s_k`, and
+    each odd :math:`s_k` gives a real pole. When more blocks are odd than
+    :math:`n \bmod 2`, no :math:`G_2` with only :math:`n \bmod 2` real poles
+    (an open set: complex poles) is reachable. A triangular ``F`` is the
+    case :math:`s = (1, .., 1)`.
+``"closed form"`` (proved)
+    The equations are solved one unknown at a time, each linear in it with
+    the earlier ones substituted: the entries are rational functions of
+    :math:`(a, c)`, real wherever defined, and none is identically zero. The
+    realization built from them is proved to equal the symbolic :math:`G_2`
+    by :func:`~symctl.check_realization` (exact).
+``"lifted"`` (proved when its source is)
+    The pattern contains a universal pattern :math:`S'`. For almost every
+    :math:`G_2`, a realization :math:`x_0` with support :math:`S'` is a
+    regular point of the bigger map (its :math:`S'`-columns already have rank
+    :math:`2n`), so near :math:`x_0` the fibre is a manifold of dimension
+    :math:`k - 2n` on which each added entry has a nonzero derivative (solve
+    the kernel equation with that entry set to 1); it leaves every
+    coordinate hyperplane, so a nearby point of the fibre has every entry of
+    the bigger pattern nonzero.
+``"witnesses"`` (evidence, not a proof)
+    For sampled :math:`G_2` in every region (every number of complex pole
+    pairs, real poles of both signs, random numerators) a real realization
+    is found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
+    position (:math:`x_i = g_i(t)`, :math:`e(t) = 0`, :math:`t` a random
+    linear form), a real root of :math:`e` isolated in a rational interval,
+    and every entry :math:`g_i(t)` shown nonzero on it.
+``"counterexample"`` (refuted)
+    A sampled :math:`G_2` whose fibre has :math:`d` simple points, none real
+    (same certificate). With :math:`d` the fibre degree, the points move
+    continuously and stay non-real nearby, so an open set of controllers of
+    that region has no realization. (The degree is the one seen at random
+    targets; that part holds with probability 1, not by proof.)
+``"not decided"``
+    None of the above settled it; the search done is stated.
+
+>>> from symctl.discovery.pattern import Pattern
+>>> from symctl.discovery.universality import decide
+>>> decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])).method
+'closed form'
+>>> decide(Pattern.from_matrices([[1, 1], [0, 1]], [1, 1], [1, 0])).method
+'real eigenvalues'
+"""
+
+from __future__ import annotations
+
+import itertools
+import random
+from dataclasses import dataclass, field
+from functools import cache
+from types import MappingProxyType
+
+import sympy as sp
+from flint import fmpq, fmpq_mat
+
+from symctl.discovery.certify import certified_real_root
+from symctl.discovery.pattern import Pattern
+from symctl.discovery.rank import generic_rank
+from symctl.symbols import z
+
+__all__ = ["Evidence", "coefficient_symbols", "decide", "sample_targets", "solve_at"]
+
+SAMPLES_PER_REGION = 2
+"""Sampled controllers per region of the witness search."""
+
+FIXINGS = 6
+"""Random values tried for the entries beyond a square system (patterns above 3n entries)."""
+
+DRAWS_PER_REGION = 4
+"""Random values tried for the entries beyond a square system (patterns above 3n entries)."""
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """Why a pattern is (or is not) universal; truthy when it is.
+
+    Attributes
+    ----------
+    universal : bool or None
+        True, False, or None (not decided).
+    method : str
+        One of the methods of the module text (``"closed form"``, ``"lifted"``,
+        ``"witnesses"``, ``"rank"``, ``"real eigenvalues"``, ``"counterexample"``,
+        ``"not minimal"``, ``"not decided"``).
+    proved : bool
+        Whether the verdict is a proof (closed forms, lifts of proofs and the
+        refutations) or sampled evidence (witnesses).
+    text : str
+        One sentence.
+    details : mapping
+        The formulas, witnesses or the counterexample (plain data, for JSON).
+
+    Examples
+    --------
+    >>> from symctl.discovery.pattern import Pattern
+    >>> from symctl.discovery.universality import decide
+    >>> ev = decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
+    >>> bool(ev), ev.proved, sorted(ev.details["entries"])
+    (True, True, ['F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]'])
+    """
+
+    universal: bool | None
+    method: str
+    proved: bool
+    text: str
+    details: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
+
+    def __bool__(self) -> bool:
+        return bool(self.universal)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Evidence:
+        """The evidence that :meth:`to_dict` wrote."""
+        return cls(
+            data["universal"],
+            data["method"],
+            data["proved"],
+            data["text"],
+            MappingProxyType(dict(data.get("details", {}))),
+        )
+
+    def to_dict(self) -> dict:
+        """Plain data for JSON."""
+        return {
+            "universal": self.universal,
+            "method": self.method,
+            "proved": self.proved,
+            "text": self.text,
+            "details": dict(self.details),
+        }
+
+
+def _evidence(universal, method, proved, text, **details) -> Evidence:
+    return Evidence(universal, method, proved, text, MappingProxyType(details))
+
+
+@cache
+def coefficient_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
+    """The symbols :math:`a_0..a_{n-1}` and :math:`c_0..c_{n-1}` of a generic :math:`G_2`."""
+    return sp.symbols(f"a_0:{n}"), sp.symbols(f"c_0:{n}")
+
+
+@cache
+def _system(pattern: Pattern):
+    """(unknowns, their slots, value of every slot, coefficient polynomials of a and b)."""
+    tree = set(pattern.tree_slots() or ())
+    syms = pattern.symbols()
+    values = {k: sp.Integer(1) if k in tree else syms[k] for k in pattern.indices}
+    F, H, M = pattern.matrices(values)
+    n = pattern.n
+    A = z * sp.eye(n) - F
+    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
+    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
+    numer = numer + [sp.Integer(0)] * (n - len(numer))
+    unknown_slots = tuple(k for k in pattern.indices if k not in tree)
+    return tuple(syms[k] for k in unknown_slots), unknown_slots, values, charpoly, numer
+
+
+def _equations(pattern: Pattern, a, c) -> list[sp.Expr]:
+    _, _, _, charpoly, numer = _system(pattern)
+    return [sp.expand(p - v) for p, v in zip((*charpoly, *numer), (*a, *c), strict=True)]
+
+
+def closed_form(pattern: Pattern) -> dict[int, sp.Expr] | None:
+    """The entries as rational functions of :math:`(a, c)`, by one-unknown linear steps; or None."""
+    unknowns, _slots, values, _, _ = _system(pattern)
+    a, c = coefficient_symbols(pattern.n)
+    eqs = [e for e in _equations(pattern, a, c) if e != 0]
+    solved: dict[sp.Symbol, sp.Expr] = {}
+    left = set(unknowns)
+    while left:
+        for e in eqs:
+            free = e.free_symbols & left
+            if len(free) != 1:
+                continue
+            (x,) = free
+            poly = sp.Poly(e, x)
+            if poly.degree() != 1:
+                continue
+            c1, c0 = poly.all_coeffs()
+            value = sp.cancel(-c0 / c1)
+            if value == 0:
+                return None
+            solved[x] = value
+            left.discard(x)
+            eqs = [sp.numer(sp.together(q.subs(x, value))) for q in eqs if q is not e]
+            eqs = [sp.expand(q) for q in eqs]
+            eqs = [q for q in eqs if q != 0]
+            break
+        else:
+            return None
+    if eqs:
+        return None
+    return {k: solved.get(values[k], values[k]) for k in pattern.indices}
+
+
+def _linear_form(unknowns, rng):
+    return sum(rng.randint(1, 9) * x for x in unknowns)
+
+
+MAX_FIBRE = 400
+"""Largest quotient-ring dimension (number of complex solutions) solve_at handles."""
+
+
+def _standard_monomials(basis, gens):
+    """The monomials not divisible by any leading monomial (grevlex): a basis of the quotient."""
+    leads = [sp.Poly(g, *gens).monoms(order="grevlex")[0] for g in basis.exprs]
+    start = (0,) * len(gens)
+    seen, todo, out = {start}, [start], []
+    while todo:
+        m = todo.pop()
+        if any(all(a >= b for a, b in zip(m, lead, strict=True)) for lead in leads):
+            continue
+        out.append(m)
+        if len(out) > MAX_FIBRE:
+            return None
+        for i in range(len(gens)):
+            nxt = tuple(e + (k == i) for k, e in enumerate(m))
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    return sorted(out, key=lambda m: (sum(m), m))
+
+
+def _normal_form(basis, expr, gens, index):
+    """Coordinates of expr's normal form on the standard monomials."""
+    rem = basis.reduce(sp.expand(expr))[1]
+    vec = [sp.Integer(0)] * len(index)
+    for m, coeff in sp.Poly(rem, *gens).terms():
+        vec[index[m]] = coeff
+    return vec
+
+
+def _q(v):
+    v = sp.Rational(v)
+    return fmpq(int(v.p), int(v.q))
+
+
+def _rational(q) -> sp.Rational:
+    return sp.Rational(int(q.p), int(q.q))
+
+
+def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
+    r"""The real realizations of one rational target, exactly.
+
+    A grevlex Groebner basis over :math:`\mathbb{Q}` gives the quotient ring
+    of the fibre; the multiplication matrix of a random linear form
+    :math:`t = \sum r_i x_i` has the characteristic polynomial :math:`e(t)`,
+    squarefree when :math:`t` separates the (then simple) solutions, and each
+    unknown is :math:`x_i = g_i(t)` with :math:`g_i` from the Krylov basis
+    (shape position). A non-real solution has a non-real :math:`t` (its
+    conjugate is another solution with the conjugate :math:`t`), so the real
+    solutions are the real roots of :math:`e`, isolated in rational intervals.
+
+    Parameters
+    ----------
+    pattern : Pattern
+    a, c : sequences of rationals
+        The target's :math:`a_0..a_{n-1}` and :math:`c_0..c_{n-1}`.
+    fixed : mapping of slot to rational, optional
+        Entries set to given values (to make a bigger pattern's system square).
+    rng : random.Random, optional
+    tries : int
+        Random linear forms tried until :math:`e` is squarefree.
+
+    Returns
+    -------
+    dict or None
+        ``{"degree": d, "real": [...], "eliminant": str}`` with one item per
+        real solution (its isolating interval, and whether every entry is
+        nonzero there); None when the fibre is not finite and reduced.
+    """
+    rng = rng or random.Random(0)
+    unknowns, _slots, values, _, _ = _system(pattern)
+    fixed = dict(fixed or {})
+    eqs = _equations(pattern, a, c)
+    rule = {values[k]: sp.Rational(v) for k, v in fixed.items()}
+    if rule:
+        eqs = [sp.expand(e.xreplace(rule)) for e in eqs]
+    free = [x for x in unknowns if x not in rule]
+    if not free:
+        return {"degree": int(all(e == 0 for e in eqs)), "real": [], "eliminant": "1"}
+    basis = sp.groebner(eqs, *free, order="grevlex", domain=sp.QQ)
+    if basis.exprs == [1]:
+        return {"degree": 0, "real": [], "eliminant": "1"}
+    if not basis.is_zero_dimensional:
+        return None
+    monos = _standard_monomials(basis, free)
+    if monos is None:
+        return None
+    index = {m: i for i, m in enumerate(monos)}
+    d = len(monos)
+    mono_expr = [sp.Mul(*(x**e for x, e in zip(free, m, strict=True))) for m in monos]
+    nfs = {x: [_q(v) for v in _normal_form(basis, x, free, index)] for x in free}
+    t = sp.Symbol("t_")
+    for _ in range(tries):
+        form = _linear_form(free, rng)
+        cols = [_normal_form(basis, form * m, free, index) for m in mono_expr]
+        Mt = fmpq_mat(d, d, [_q(cols[j][i]) for i in range(d) for j in range(d)])
+        e = sp.Poly([_rational(q) for q in Mt.charpoly().coeffs()[::-1]], t)
+        if sp.degree(sp.gcd(e, e.diff(t)), t) > 0:
+            continue
+        # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
+        krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]
+        for _ in range(d - 1):
+            krylov.append(Mt * krylov[-1])
+        K = fmpq_mat(d, d, [krylov[j][i, 0] for i in range(d) for j in range(d)])
+        try:
+            g = {}
+            for x in free:
+                coeffs = K.solve(fmpq_mat(d, 1, nfs[x]))
+                g[x] = sp.Add(*(_rational(coeffs[k, 0]) * t**k for k in range(d)))
+        except ZeroDivisionError:
+            continue
+        e_expr = e.as_expr()
+        real = []
+        for (lo, hi), _mult in e.intervals():
+            nonzero = all(
+                sp.Poly(sp.gcd(e_expr, gi), t).count_roots(lo, hi) == 0 for gi in g.values()
+            )
+            real.append({"interval": [str(lo), str(hi)], "entries_nonzero": nonzero})
+        return {
+            "degree": d,
+            "real": real,
+            "eliminant": str(e_expr),
+            "_g": g,
+            "_e": e_expr,
+            "_t": t,
+        }
+    return None
+
+
+def _poles(n: int, pairs: int, signs, rng) -> sp.Expr:
+    """A monic a(z) with ``pairs`` complex pole pairs and real poles of the given signs."""
+    a = sp.Integer(1)
+    for _ in range(pairs):
+        re = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 7), 8)
+        im = sp.Rational(rng.randint(1, 7), 8)
+        a *= z**2 - 2 * re * z + re**2 + im**2
+    used = set()
+    for s in signs:
+        p = sp.Rational(rng.randint(1, 15), 16) * s
+        while p in used:
+            p += sp.Rational(1, 32) * s
+        used.add(p)
+        a *= z - p
+    return sp.expand(a)
+
+
+def _regions(n: int) -> list[tuple[str, int]]:
+    out = []
+    for pairs in range(n // 2, -1, -1):  # complex poles first: where patterns fail
+        real = n - 2 * pairs
+        name = (
+            f"{pairs} complex pair{'s' * (pairs > 1)}, {real} real pole{'s' * (real != 1)}"
+            if pairs
+            else f"{real} real poles"
+        )
+        out.append((name, pairs))
+    return out
+
+
+def _sample(n: int, pairs: int, s: int, rng):
+    real = n - 2 * pairs
+    signs = [1 if (i + s) % 2 else -1 for i in range(real)]
+    a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
+    c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4)) for _ in range(n)]
+    return [sp.Rational(v) for v in a], c
+
+
+def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
+    """Sampled targets ``(region, a, c)``: every number of complex pole pairs, real poles of both signs.
+
+    Examples
+    --------
+    >>> from symctl.discovery.universality import sample_targets
+    >>> sorted({r for r, _, _ in sample_targets(3)})
+    ['1 complex pair, 1 real pole', '3 real poles']
+    """
+    rng = rng or random.Random(n)
+    return [
+        (region, *_sample(n, pairs, s, rng))
+        for region, pairs in _regions(n)
+        for s in range(per_region)
+    ]
+
+
+def _odd_blocks(pattern: Pattern) -> Evidence | None:
+    sizes = pattern.component_sizes()
+    odd = sum(s % 2 for s in sizes)
+    if odd <= pattern.n % 2:
+        return None
+    return _evidence(
+        False,
+        "real eigenvalues",
+        True,
+        f"F is block triangular with diagonal blocks of sizes {list(sizes)}: it has at least "
+        f"{odd} real eigenvalues, so no G2 with only {pattern.n % 2} real poles "
+        "(complex poles) has a realization with this pattern",
+        block_sizes=list(sizes),
+    )
+
+
+ATTEMPTS = 16
+"""Choices of fixed entries tried for a pattern above 3n entries."""
+
+
+def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
+    """Entries to fix and their values: small ones first.
+
+    By the lifting argument (module text, ``"lifted"``), when the
+    other entries contain a universal pattern, small enough fixed values leave
+    a real solution near that pattern's realization.
+    """
+    if extra <= 0:
+        yield {}
+        return
+    combos = list(itertools.islice(itertools.combinations(slots, extra), 2000))
+    rng.shuffle(combos)
+    scales = (sp.Rational(1, 8), sp.Rational(1, 64), sp.Rational(1, 512), sp.Integer(1))
+    for i, combo in enumerate(combos[:attempts]):
+        scale = scales[i % len(scales)]
+        yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
+
+
+def _witness(pattern: Pattern, rng, extra: int, region: str, a, c):
+    """(witness, None), (None, refutation) or (None, None) for one sampled target."""
+    unknowns, slots, values, _, _ = _system(pattern)
+    found = None
+    for attempt, fixed in enumerate(fixings(slots, extra, rng, FIXINGS)):
+        rule = {values[k]: v for k, v in fixed.items()}
+        eqs = [sp.expand(e.xreplace(rule)) for e in _equations(pattern, a, c)]
+        free = [x for x in unknowns if x not in rule]
+        root = certified_real_root(eqs, free, seed=rng.randrange(2**32))
+        if root is not None and root.nonzero:
+            found = {
+                "a": [str(v) for v in a],
+                "c": [str(v) for v in c],
+                "fixed": {pattern_slot(pattern, k): str(v) for k, v in fixed.items()},
+                "entries": {str(x): v for x, v in zip(free, root.values, strict=True)},
+                "radius": max(root.radii),
+                "attempt": attempt + 1,
+            }
+            break
+    if found is None and not extra:
+        sol = solve_at(pattern, a, c, rng=rng)
+        good = [r for r in sol["real"] if r["entries_nonzero"]] if sol else []
+        if good:
+            found = {
+                "a": [str(v) for v in a],
+                "c": [str(v) for v in c],
+                "fixed": {},
+                "eliminant": sol["eliminant"],
+                "interval": good[0]["interval"],
+            }
+        elif sol is not None and sol["degree"] > 0 and not sol["real"]:
+            return None, _evidence(
+                False,
+                "counterexample",
+                True,
+                f"the sampled G2 with a = {[str(v) for v in a]}, c = {[str(v) for v in c]} "
+                f"({region}) has {sol['degree']} complex realizations with this pattern and "
+                "no real one",
+                region=region,
+                a=[str(v) for v in a],
+                c=[str(v) for v in c],
+                degree=sol["degree"],
+                eliminant=sol["eliminant"],
+            )
+    return found, None
+
+
+def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
+    _unknowns, _slots, _values, _, _ = _system(pattern)
+    witnessed: dict[str, list] = {}
+    failed = []
+    for region, pairs in _regions(pattern.n):
+        for s in range(DRAWS_PER_REGION):
+            if len(witnessed.get(region, ())) >= SAMPLES_PER_REGION:
+                break
+            a, c = _sample(pattern.n, pairs, s, rng)
+            found, refuted = _witness(pattern, rng, extra, region, a, c)
+            if refuted is not None:
+                return refuted
+            if found is not None:
+                witnessed.setdefault(region, []).append(found)
+        if region not in witnessed:
+            failed.append(region)
+    if not failed:
+        return _evidence(
+            True,
+            "witnesses",
+            False,
+            "real realizations with every entry nonzero, proved (Krawczyk test or exact "
+            "Groebner basis), for "
+            f"{sum(map(len, witnessed.values()))} sampled G2 in every region "
+            f"({', '.join(witnessed)})",
+            witnesses=witnessed,
+        )
+    return _evidence(
+        None,
+        "not decided",
+        False,
+        f"no real realization found for sampled G2 in {sorted(set(failed))}"
+        + (f" with {FIXINGS} random values of the {extra} extra entries" if extra else "")
+        + "; neither proved nor refuted",
+        failed_regions=sorted(set(failed)),
+        witnesses=witnessed,
+    )
+
+
+def pattern_slot(pattern: Pattern, k: int) -> str:
+    """The name of slot ``k`` of ``pattern``'s order."""
+    from symctl.discovery.pattern import slot_names
+
+    return slot_names(pattern.n)[k]
+
+
+def decide(pattern: Pattern, universal_below=(), *, seed: int = 0) -> Evidence:
+    """Decide whether ``pattern`` is universal (see the module text for the methods).
+
+    Parameters
+    ----------
+    pattern : Pattern
+    universal_below : iterable of (Pattern, Evidence)
+        Patterns already found universal; one contained in ``pattern``
+        decides it by lifting.
+    seed : int
+        Seeds the sampled targets and linear forms.
+
+    Returns
+    -------
+    Evidence
+
+    Examples
+    --------
+    >>> from symctl.discovery.pattern import Pattern
+    >>> from symctl.discovery.universality import decide
+    >>> decide(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 1])).universal
+    False
+    """
+    n = pattern.n
+    rank = generic_rank(pattern, seed)
+    if not rank.minimal:
+        return _evidence(
+            False,
+            "not minimal",
+            rank.exact,
+            "no realization with this pattern is minimal",
+            rank=rank.rank,
+        )
+    if rank.rank < 2 * n:
+        return _evidence(
+            False,
+            "rank",
+            rank.exact,
+            f"generic rank {rank.rank} < {2 * n}: the G2 it realizes form a set of dimension "
+            f"{rank.rank} in the {2 * n}-dimensional space of order-{n} G2",
+            rank=rank.rank,
+        )
+    blocked = _odd_blocks(pattern)
+    if blocked is not None:
+        return blocked
+    for sub, ev in universal_below:
+        if pattern.contains(sub) and ev.universal:
+            return _evidence(
+                True,
+                "lifted",
+                ev.proved,
+                f"contains the universal pattern {sub.text} ({ev.method}); every added entry can "
+                "be made nonzero along the fibre",
+                source=sub.text,
+                source_method=ev.method,
+            )
+    if pattern.size == 3 * n:
+        form = closed_form(pattern)
+        if form is not None:
+            return _closed_form_evidence(pattern, form)
+    rng = random.Random(seed * 7919 + pattern.mask)
+    return _witness_search(pattern, rng, pattern.size - 3 * n)
+
+
+def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
+    from symctl.realization.check import check_realization
+    from symctl.realization.realization import Realization
+
+    a, c = coefficient_symbols(pattern.n)
+    n = pattern.n
+    F, H, M = pattern.matrices(form)
+    G2 = sp.Integer(1) + sum(c[i] * z**i for i in range(n)) / (
+        z**n + sum(a[i] * z**i for i in range(n))
+    )
+    check = check_realization(Realization(F, H, M, 1), G2, "exact")
+    if not check:
+        return _evidence(None, "not decided", False, "the closed form failed its exact check")
+    names = pattern.slots
+    return _evidence(
+        True,
+        "closed form",
+        True,
+        "the entries are rational functions of G2's coefficients (torus-normalized), "
+        f"proved exactly against the symbolic G2 ({check.method})",
+        entries={name: str(form[k]) for name, k in zip(names, pattern.indices, strict=True)},
+    )

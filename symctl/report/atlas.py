@@ -1,0 +1,244 @@
+r"""The atlas as documents: ``atlas.json``, ``atlas.md``, ``atlas.tex``/``.pdf`` and drawings.
+
+:func:`atlas_blocks` writes the text (definitions, counts, the answer to the
+paper's claim, the table of classes, the evidence); :func:`write_atlas` writes
+the files into an existing folder (the command line stages it,
+:class:`~symctl.report.output.OutputFolder`).
+
+>>> import symctl
+>>> from symctl.report.atlas import paper_realizations
+>>> sorted(paper_realizations(symctl.atlas(2, workers=1)))
+['controllable canonical', 'general', 'observable canonical']
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+
+import sympy as sp
+
+from symctl.report.document import Graphic, Heading, Table, Text
+
+__all__ = ["DRAWINGS", "atlas_blocks", "paper_realizations", "write_atlas"]
+
+DRAWINGS = 24
+"""Classes drawn one by one by default (the sparsest first); the overview has the universal ones."""
+
+OVERVIEW_MAX = 24
+"""Universal classes on the overview figure (the sparsest first)."""
+
+TABLE_ROWS = 60
+"""Classes listed in the documents' table (atlas.json lists every class)."""
+
+_VERDICT = {True: "universal", False: "not universal", None: "not decided"}
+
+
+def paper_realizations(A) -> dict:
+    """The classes of the paper's three realizations of a generic order-n G2, by name."""
+    from symctl.discovery.pattern import Pattern
+    from symctl.realization.realization import controllable_canonical, observable_canonical
+    from symctl.symbols import z
+
+    n = A.order
+    a = sp.symbols(f"a_0:{n}")
+    c = sp.symbols(f"c_0:{n}")
+    G2 = 1 + sum(c[i] * z**i for i in range(n)) / (z**n + sum(a[i] * z**i for i in range(n)))
+    dense = Pattern(n, (1 << (n * n + 2 * n)) - 1)
+    out = {}
+    for name, pattern in (
+        ("controllable canonical", Pattern.of(controllable_canonical(G2))),
+        ("observable canonical", Pattern.of(observable_canonical(G2))),
+        ("general", dense),
+    ):
+        try:
+            out[name] = A.find(pattern)
+        except Exception:
+            continue
+    return out
+
+
+def _claim(A) -> list:
+    ours = paper_realizations(A)
+    universal = A.universal_classes
+    sparse = min((c.representatives[0].size for c in universal), default=None)
+    sparsest = [c for c in universal if c.representatives[0].size == sparse]
+    where = ", ".join(f"the {k} one is {c.label}" for k, c in ours.items())
+    text = (
+        f"At order {A.order} there are {len(universal)} universal circuit classes "
+        f"(minimal circuits that implement almost every order-{A.order} controller), "
+        f"{len(sparsest)} of them with the fewest nonzero entries ({sparse}). "
+        f"Among them, {where}."
+    )
+    if A.order == 2:
+        text += (
+            " The paper's abstract says that for any second-order controller there are three "
+            "minimal circuit configurations. Counted as circuit classes, the number is "
+            f"{len(universal)}, not three. The paper's three (controllable canonical, observable "
+            "canonical, general) are three of these classes: the two canonical ones have the "
+            "fewest entries and the general one is the dense pattern. The statement holds for "
+            "the three realizations the paper drew, not for every circuit."
+        )
+    return [Heading("The paper's claim, checked", 2), Text(text)]
+
+
+def atlas_blocks(A, drawn=()) -> list:
+    """The document: definitions, counts, the paper's claim, the classes, their evidence."""
+    s = A.stats
+    methods = Counter((c.universal, c.evidence.method) for c in A.classes)
+    blocks = [
+        Heading(f"The circuit atlas of order {A.order}"),
+        Text(
+            "A pattern is the set of nonzero entries of $(F, H, M)$ in a realization of an "
+            f"order-{A.order} $G_2$ with $N \\ne 0$. Its circuit is read off the "
+            f"{A.delays}-delay structure with symctl's neuron rule; patterns with isomorphic "
+            "circuits (neurons, synapses with their delays, self-dynamics, input and output) form "
+            "a circuit class. A class is universal when one of its patterns realizes almost every "
+            "real order-$n$ $G_2$ (complex poles, real poles of either sign, any numerator). Only "
+            "patterns whose generic realization is minimal are kept."
+        ),
+        Table(
+            (
+                "patterns",
+                "orbits",
+                "minimal",
+                "full rank",
+                "classes",
+                "universal",
+                "undecided",
+                "sizes",
+                "seconds",
+            ),
+            (
+                (
+                    str(s["patterns"]),
+                    str(s["canonical"]),
+                    str(s["minimal"]),
+                    str(s["full_rank"]),
+                    str(len(A.classes)),
+                    str(len(A.universal_classes)),
+                    str(s["undecided"]),
+                    f"{s['sizes'][0]}..{s['sizes'][1]}"
+                    + ("" if s["complete"] else " (not exhaustive)"),
+                    f"{s['seconds']:g}",
+                ),
+            ),
+        ),
+        *_claim(A),
+        Heading("How each verdict was reached", 2),
+        Table(
+            ("verdict", "method", "classes"),
+            tuple(
+                (_VERDICT[u], m, str(k))
+                for (u, m), k in sorted(methods.items(), key=lambda t: (str(t[0][0]), t[0][1]))
+            ),
+        ),
+        Text(
+            "closed form: entries as rational functions of $G_2$'s coefficients, proved exactly "
+            "against the symbolic $G_2$; lifted: contains a universal pattern; witnesses: real "
+            "realizations proved to exist (Krawczyk test or exact Groebner basis) for sampled $G_2$ "
+            "in every region, evidence rather than proof; rank: generic rank below $2n$; real "
+            "eigenvalues: $F$ block triangular with too many odd blocks; counterexample: a sampled "
+            "$G_2$ with no real realization, exactly."
+        ),
+        Heading("The classes", 2),
+        Table(
+            (
+                "class",
+                "neurons",
+                "synapses",
+                "branches",
+                "pattern (F / H / M)",
+                "verdict",
+                "method",
+            ),
+            tuple(
+                (
+                    c.label,
+                    str(c.n_neurons),
+                    str(c.n_synapses),
+                    str(c.n_branches),
+                    c.representatives[0].text.replace("|", "/"),
+                    _VERDICT[c.universal],
+                    c.evidence.method,
+                )
+                for c in A.classes[:TABLE_ROWS]
+            ),
+        ),
+    ]
+    if len(A.classes) > TABLE_ROWS:
+        blocks.append(
+            Text(f"The first {TABLE_ROWS} of {len(A.classes)} classes; atlas.json lists them all.")
+        )
+    if drawn:
+        blocks.append(Heading("Drawings", 2))
+        blocks.append(
+            Graphic("atlas_overview", f"The universal classes of order {A.order}, sparsest first.")
+        )
+        for label in drawn:
+            c = next(x for x in A.classes if x.label == label)
+            blocks.append(
+                Graphic(
+                    f"class_{label}",
+                    f"{label}: {c.n_neurons} neurons, {c.n_synapses} synapses, "
+                    f"{_VERDICT[c.universal]} ({c.evidence.method}).",
+                )
+            )
+    return blocks
+
+
+def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, progress=None):
+    """Write atlas.json, atlas.md, atlas.tex (and .pdf) and the drawings into the folder ``out``.
+
+    Parameters
+    ----------
+    A : Atlas
+    out : path
+        An existing folder.
+    drawings : int or None
+        Classes drawn one by one (the first ones of the atlas); None draws every class.
+    pdf : bool
+        Compile atlas.tex when ``pdflatex`` is installed.
+    progress : callable, optional
+        Called with the name of each step.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    from symctl.report.document import compile_pdf, write_markdown, write_tex
+    from symctl.report.figures import save
+
+    out = Path(out)
+    written = []
+    path = out / "atlas.json"
+    path.write_text(json.dumps(A.to_dict(), indent=1, sort_keys=False) + "\n")
+    written.append(path)
+    chosen = A.classes if drawings is None else A.classes[:drawings]
+    drawn = []
+    if chosen:
+        if progress:
+            progress("drawings")
+        overview = A.universal_classes[:OVERVIEW_MAX] or A.classes[:OVERVIEW_MAX]
+        from symctl.plotting.atlas import draw_classes
+
+        written += save(draw_classes(A, overview), out, "atlas_overview")
+        for c in chosen:
+            written += save(c.draw(), out, f"class_{c.label}")
+            drawn.append(c.label)
+    if progress:
+        progress("documents")
+    blocks = atlas_blocks(A, drawn)
+    title = f"The circuit atlas of order {A.order}"
+    written.append(write_markdown(blocks, out / "atlas.md", title=title))
+    tex = write_tex(blocks, out / "atlas.tex", title=title)
+    written.append(tex)
+    if pdf:
+        if progress:
+            progress("pdf")
+        made = compile_pdf(tex)
+        if made is not None:
+            written.append(made)
+    return written

@@ -1,0 +1,225 @@
+"""The circuit atlas: patterns, the rank filter, universality proofs and refutations, the search."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import random
+
+import control
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import symctl
+from symctl import NotRealizableError, ParameterError, SymctlTypeError, z
+from symctl.discovery.certify import certified_real_root
+from symctl.discovery.pattern import Pattern, canonical_mask, slot_names
+from symctl.discovery.rank import generic_rank
+from symctl.discovery.search import canonical_masks
+from symctl.discovery.universality import decide, sample_targets, solve_at
+
+
+@pytest.fixture(scope="module")
+def atlas2():
+    return symctl.atlas(2, workers=1)
+
+
+def _symbolic_rank(p: Pattern) -> int:
+    """The rank of the Jacobian of (a, c) in the pattern's entries, over Q(entries): SymPy."""
+    syms = p.symbols()
+    F, H, M = p.matrices(syms)
+    n = p.n
+    A = z * sp.eye(n) - F
+    a = sp.Poly(A.det(), z).all_coeffs()[1:]
+    b = sp.Poly(sp.expand((M * A.adjugate() * H)[0]), z).all_coeffs()
+    coeffs = [*a, *b]
+    J = sp.Matrix([[sp.diff(f, s) for s in syms.values()] for f in coeffs])
+    return J.rank() if syms else 0
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(min_value=0, max_value=2**8 - 1))
+def test_generic_rank_mod_p_equals_the_symbolic_jacobian_rank_at_order_2(mask):
+    p = Pattern(2, mask)
+    rank = generic_rank(p)
+    if rank.minimal:  # below minimality the coefficient count is the same, the rank is too
+        assert rank.rank == _symbolic_rank(p)
+
+
+def test_canonical_masks_give_one_pattern_per_permutation_orbit():
+    for n in (2, 3):
+        slots = n * n + 2 * n
+        for size in (n, 2 * n, 3 * n):
+            combos = itertools.combinations(range(slots), size)
+            brute = {canonical_mask(n, sum(1 << k for k in c)) for c in combos}
+            assert sorted(brute) == sorted(canonical_masks(n, size))
+
+
+def test_patterns_are_values_with_permutation_orbits():
+    p = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
+    assert p == Pattern(2, p.mask) and hash(p) == hash(Pattern(2, p.mask))
+    assert p.permuted((1, 0)) in p.orbit() and len(p.orbit()) == 2
+    assert p.canonical() == p.permuted((1, 0)).canonical()
+    assert slot_names(2)[:2] == ("F[1,1]", "F[1,2]")
+
+
+def test_order_2_atlas_has_nine_universal_classes_and_the_papers_three_among_them(atlas2):
+    from symctl.report.atlas import paper_realizations
+
+    assert len(atlas2.universal_classes) == 9
+    assert atlas2.stats["complete"] and atlas2.stats["undecided"] == 0
+    ours = paper_realizations(atlas2)
+    assert ours["controllable canonical"].label == "A1"  # the sparsest: 2 neurons
+    assert ours["controllable canonical"].n_neurons == 2
+    assert ours["observable canonical"].n_neurons == 3
+    assert ours["general"].representatives[0].size == 8
+    assert all(c.universal and c.evidence.proved for c in ours.values())
+
+
+def test_sparsest_class_is_first_and_classes_are_ranked_by_neurons_then_synapses(atlas2):
+    ranked = [(c.n_neurons, c.n_synapses) for c in atlas2.universal_classes]
+    assert ranked == sorted(ranked)
+    assert atlas2.sparsest() is atlas2.classes[0]
+
+
+@pytest.mark.parametrize("region", ["1 complex pair, 0 real poles", "2 real poles"])
+def test_every_universal_order_2_class_realizes_sampled_controllers_exactly(atlas2, region):
+    rng = random.Random(7)
+    targets = [t for t in sample_targets(2, rng, per_region=2) if t[0] == region]
+    for _, a, c in targets:
+        G2 = 3 + (c[0] + c[1] * z) / (z**2 + a[1] * z + a[0])
+        for cls in atlas2.universal_classes:
+            R = cls.realize(G2)
+            assert Pattern.of(R).canonical() == cls.representatives[0]
+            if R.params["method"] == "closed form":
+                assert symctl.check_realization(R, G2, "exact")
+            else:  # algebraic entries: proved inside realize; cross-check in floats
+                Rn = [np.array(m.evalf(30), dtype=float) for m in (R.F, R.H, R.M, R.N)]
+                sys = control.ss(*Rn, True)
+                zz = np.exp(0.7j)
+                assert abs(sys(zz) - complex(G2.subs(z, zz))) < 1e-9
+
+
+def test_realization_agrees_with_python_control(atlas2):
+    G2 = 2 + (z - sp.Rational(1, 3)) / (z**2 - z / 2 + sp.Rational(1, 4))
+    R = atlas2.classes[0].realize(G2)
+    sys = control.ss(*(np.array(m, dtype=float) for m in (R.F, R.H, R.M, R.N)), True)
+    for w in (0.3, 1.1, 2.5):
+        zz = np.exp(1j * w)
+        want = complex(G2.subs(z, zz))
+        assert abs(sys(zz) - want) < 1e-12 * (1 + abs(want))
+
+
+def test_closed_form_class_realizes_a_symbolic_G2(atlas2):
+    a0, a1, c0, c1 = sp.symbols("a0 a1 c0 c1")
+    G2 = 5 + (c1 * z + c0) / (z**2 + a1 * z + a0)
+    R = atlas2.classes[0].realize(G2)
+    assert R.params["method"] == "closed form"
+    assert symctl.check_realization(R, G2, "exact")
+
+
+def test_triangular_F_is_refuted_and_cannot_realize_complex_poles(atlas2):
+    tri = Pattern.from_matrices([[1, 1], [0, 1]], [1, 1], [1, 1])
+    ev = decide(tri)
+    assert ev.universal is False and ev.method == "real eigenvalues" and ev.proved
+    cls = atlas2.find(tri)
+    with pytest.raises(NotRealizableError, match="not realizable"):
+        cls.realize(1 + (z + 1) / (z**2 + 1))
+    R = cls.realize(1 + (z + 1) / ((z - sp.Rational(1, 2)) * (z + sp.Rational(1, 3))))
+    assert symctl.check_realization(
+        R, 1 + (z + 1) / ((z - sp.Rational(1, 2)) * (z + sp.Rational(1, 3)))
+    )
+
+
+def test_a_counterexample_has_no_real_realization_exactly():
+    for mask in canonical_masks(3, 9):
+        ev = decide(Pattern(3, mask))
+        if ev.method == "counterexample":
+            break
+    else:  # pragma: no cover
+        pytest.fail("no counterexample at order 3")
+    a = [sp.Rational(v) for v in ev.details["a"]]
+    c = [sp.Rational(v) for v in ev.details["c"]]
+    sol = solve_at(Pattern(3, mask), a, c)
+    assert sol["degree"] == ev.details["degree"] > 0 and sol["real"] == []
+    roots = np.roots([float(v) for v in sp.Poly(sol["_e"], sol["_t"]).all_coeffs()])
+    assert np.all(np.abs(roots.imag) > 1e-9)
+
+
+def test_certified_root_proves_a_real_root_and_refuses_none():
+    x, y = sp.symbols("x y")
+    root = certified_real_root([x**2 - 2, y - x], [x, y], seed=3)
+    assert root is not None and abs(abs(root.values[0]) - 2**0.5) < 1e-12 and root.nonzero
+    assert certified_real_root([x**2 + 1, y], [x, y], seed=3) is None
+
+
+def test_the_search_on_a_local_dask_cluster_gives_the_serial_atlas(atlas2, tmp_path):
+    A = symctl.atlas(2, workers=2, checkpoint=tmp_path / "ck.jsonl")
+    assert [c.representatives for c in A.classes] == [c.representatives for c in atlas2.classes]
+    resumed = symctl.atlas(2, workers=1, checkpoint=tmp_path / "ck.jsonl")
+    assert resumed.stats["resumed"] == resumed.stats["canonical"]
+    assert [c.label for c in resumed.classes] == [c.label for c in atlas2.classes]
+
+
+def test_a_checkpoint_of_another_search_is_refused(tmp_path):
+    path = tmp_path / "ck.jsonl"
+    symctl.atlas(1, workers=1, checkpoint=path)
+    with pytest.raises(ParameterError, match="another search"):
+        symctl.atlas(2, workers=1, checkpoint=path)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"order": 0}, ParameterError, "order"),
+        ({"order": 5}, ParameterError, "order"),
+        ({"order": "2"}, SymctlTypeError, "order"),
+        ({"order": 2, "delays": "axon"}, ParameterError, "delays"),
+        ({"order": 2, "workers": 0}, ParameterError, "workers"),
+        ({"order": 2, "max_size": 99}, ParameterError, "max_size"),
+    ],
+)
+def test_bad_atlas_arguments_are_refused_with_their_name(kwargs, error, match):
+    with pytest.raises(error, match=match):
+        symctl.atlas(**kwargs)
+
+
+@pytest.mark.parametrize(
+    ("G2", "match"),
+    [
+        (1 / (z**2 - z / 2), "N = G2"),
+        (1 + 1 / (z - 2), "order 2"),
+        (z**3 / (z**2 + 1), "proper"),
+    ],
+)
+def test_realize_refuses_a_G2_it_cannot_take(atlas2, G2, match):
+    with pytest.raises(symctl.SymctlError, match=match):
+        atlas2.classes[0].realize(G2)
+
+
+def test_atlas_json_lists_every_class_with_patterns_and_evidence(atlas2):
+    data = json.loads(json.dumps(atlas2.to_dict()))
+    assert data["order"] == 2 and len(data["classes"]) == len(atlas2.classes)
+    first = data["classes"][0]
+    assert {"label", "neurons", "synapses", "branches", "universal", "evidence", "patterns"} <= set(
+        first
+    )
+    assert first["patterns"][0]["F"] == [[1, 1], [1, 0]]
+
+
+def test_cli_writes_the_atlas_and_refuses_a_bad_order(tmp_path):
+    from symctl.cli import main
+
+    out = tmp_path / "atlas"
+    assert main(["atlas", "--order", "2", "--out", str(out), "--no-pdf", "--drawings", "2"]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"atlas.json", "atlas.md", "atlas.tex", "atlas_overview.png", "class_A1.png"} <= names
+    assert (
+        "nine" not in (out / "atlas.md").read_text()
+        and "9 universal" in (out / "atlas.md").read_text()
+    )
+    assert not (tmp_path / "atlas.progress.jsonl").exists()
+    assert main(["atlas", "--order", "0", "--out", str(tmp_path / "bad")]) == 2
