@@ -37,6 +37,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/paper.py
 	$(BIN)/python benchmarks/scaling.py
 	$(BIN)/python benchmarks/mimo.py
+	$(BIN)/python benchmarks/atlas.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

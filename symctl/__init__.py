@@ -96,6 +96,8 @@ _PUBLIC = {
     # discovery: the circuit atlas
     "Atlas": "symctl.discovery.atlas",
     "atlas": "symctl.discovery.atlas",
+    "CandidateCircuit": "symctl.discovery.candidates",
+    "circuits_for": "symctl.discovery.candidates",
     "CircuitClass": "symctl.discovery.circuitclass",
     "Evidence": "symctl.discovery.universality",
     "Pattern": "symctl.discovery.pattern",

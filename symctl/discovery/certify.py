@@ -28,7 +28,7 @@ import numpy as np
 import sympy as sp
 from flint import arb, arb_mat, fmpq
 
-__all__ = ["CertifiedRoot", "certified_real_root"]
+__all__ = ["CertifiedRoot", "certified_point", "certified_real_root"]
 
 STARTS = 24
 """Random starting points of the Newton search."""
@@ -48,12 +48,17 @@ class _Poly:
     def __init__(self, expr, gens):
         poly = sp.Poly(expr, *gens)
         self.terms = [(fmpq(int(sp.numer(c)), int(sp.denom(c))), m) for m, c in poly.terms()]
-        self.float_terms = [(float(c.p) / float(c.q), m) for c, m in self.terms]
+        self.coeffs = np.array([float(c.p) / float(c.q) for c, _ in self.terms])
+        self.exps = np.array([m for _, m in self.terms], dtype=float).reshape(
+            len(self.terms), len(gens)
+        )
 
     def __call__(self, x, ball: bool = False):
-        total = arb(0) if ball else 0.0
-        for c, m in self.terms if ball else self.float_terms:
-            term = arb(c) if ball else c
+        if not ball:
+            return float(self.coeffs @ np.prod(np.power(x, self.exps), axis=1))
+        total = arb(0)
+        for c, m in self.terms:
+            term = arb(c)
             for xi, e in zip(x, m, strict=True):
                 if e:
                     term = term * xi**e
@@ -67,15 +72,36 @@ def _compile(eqs, gens):
     return f, J
 
 
-def _newton(f, J, x0, steps: int = 60):
+class _Floats:
+    """The system and its Jacobian in floats, from one vector of monomials per point."""
+
+    def __init__(self, f, J):
+        polys = [*f, *(p for row in J for p in row)]
+        monos = sorted({m for p in polys for _, m in p.terms})
+        index = {m: k for k, m in enumerate(monos)}
+        width = len(f[0].exps[0]) if f and len(f[0].exps) else len(J[0]) if J else 0
+        self.exps = np.array(monos, dtype=float).reshape(len(monos), width)
+        C = np.zeros((len(polys), len(monos)))
+        for i, p in enumerate(polys):
+            for c, m in p.terms:
+                C[i, index[m]] += float(c.p) / float(c.q)
+        self.m = len(f)
+        self.Cf, self.CJ = C[: self.m], C[self.m :]
+
+    def __call__(self, x):
+        with np.errstate(over="ignore", invalid="ignore"):
+            mono = np.prod(np.power(x, self.exps), axis=1)
+        return self.Cf @ mono, (self.CJ @ mono).reshape(self.m, len(x))
+
+
+def _newton(system: _Floats, x0, steps: int = 60):
     x = np.array(x0, dtype=float)
     for _ in range(steps):
-        fx = np.array([p(x) for p in f])
+        fx, Jx = system(x)
         if not np.all(np.isfinite(fx)):
             return None
         if np.max(np.abs(fx)) < 1e-13 * (1 + np.max(np.abs(x))):
             return x
-        Jx = np.array([[p(x) for p in row] for row in J])
         try:
             dx = np.linalg.lstsq(Jx, -fx, rcond=None)[0]
         except np.linalg.LinAlgError:
@@ -83,7 +109,7 @@ def _newton(f, J, x0, steps: int = 60):
         x = x + dx
         if not np.all(np.isfinite(x)) or np.max(np.abs(x)) > 1e8:
             return None
-    fx = np.array([p(x) for p in f])
+    fx, _ = system(x)
     return x if np.max(np.abs(fx)) < 1e-9 * (1 + np.max(np.abs(x))) else None
 
 
@@ -134,10 +160,11 @@ def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale
     if len(eqs) != len(gens):
         raise ValueError("certified_real_root: the system must be square")
     f, J = _compile(eqs, gens)
+    system = _Floats(f, J)
     rng = np.random.default_rng(seed)
     fallback = None
     for _ in range(starts):
-        x = _newton(f, J, rng.normal(0, scale, len(gens)))
+        x = _newton(system, rng.normal(0, scale, len(gens)))
         if x is None:
             continue
         root = _krawczyk(f, J, x)
@@ -147,3 +174,49 @@ def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale
             return root
         fallback = fallback or root
     return fallback
+
+
+def certified_point(
+    eqs, gens, *, seed: int = 0, starts: int = STARTS, scale: float = 1.0, accept=None
+):
+    """A real point of ``eqs = 0`` (as many or more unknowns than equations), proved by Krawczyk.
+
+    Gauss-Newton with minimum-norm steps finds a point of the solution set; the
+    unknowns beyond the equations' count are then fixed at their values there
+    (the columns a pivoted QR of the Jacobian leaves out), and the remaining
+    square system is certified by :func:`certified_real_root`'s Krawczyk test
+    around the point.
+
+    ``accept(values)`` (optional) rejects points, e.g. section poles outside
+    the unit circle; the search then goes on from the next start.
+
+    Returns
+    -------
+    dict or None
+        ``{"values": {gen: float}, "fixed": [gen, ...], "radius": float}``, or
+        None when no run converged to a certified point.
+    """
+    from scipy.linalg import qr
+
+    f, J = _compile(eqs, gens)
+    system = _Floats(f, J)
+    rng = np.random.default_rng(seed)
+    m = len(eqs)
+    for _ in range(starts):
+        x = _newton(system, rng.normal(0, scale, len(gens)))
+        if x is None or (accept is not None and not accept(dict(zip(gens, x, strict=True)))):
+            continue
+        Jx = np.array([[p(x) for p in row] for row in J])
+        _, _, piv = qr(Jx, pivoting=True)
+        free = sorted(piv[:m])
+        fixed = [k for k in range(len(gens)) if k not in free]
+        rule = {gens[k]: sp.Rational(float(x[k])) for k in fixed}
+        square = [sp.expand(e.xreplace(rule)) for e in eqs]
+        fs, Js = _compile(square, [gens[k] for k in free])
+        root = _krawczyk(fs, Js, np.array([x[k] for k in free]))
+        if root is None:
+            continue
+        values = {gens[k]: float(x[k]) for k in fixed}
+        values.update({gens[k]: v for k, v in zip(free, root.values, strict=True)})
+        return {"values": values, "fixed": [gens[k] for k in fixed], "radius": max(root.radii)}
+    return None

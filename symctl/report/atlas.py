@@ -21,7 +21,7 @@ import sympy as sp
 
 from symctl.report.document import Graphic, Heading, Table, Text
 
-__all__ = ["DRAWINGS", "atlas_blocks", "paper_realizations", "write_atlas"]
+__all__ = ["DRAWINGS", "atlas_blocks", "paper_blocks", "paper_realizations", "write_atlas"]
 
 DRAWINGS = 24
 """Classes drawn one by one by default (the sparsest first); the overview has the universal ones."""
@@ -242,3 +242,109 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
         if made is not None:
             written.append(made)
     return written
+
+
+# ---------------------------------------------------------------- the paper's section
+def claim_json(A) -> dict:
+    """The order-n count and where the paper's three realizations sit (results.json ``atlas``)."""
+    return {
+        "order": A.order,
+        "classes": len(A.classes),
+        "universal": len(A.universal_classes),
+        "universal_labels": [c.label for c in A.universal_classes],
+        "paper": {k: c.label for k, c in paper_realizations(A).items()},
+    }
+
+
+def candidates_json(candidates) -> list | None:
+    """One item per circuit class that realizes the paper's controller."""
+    if candidates is None:
+        return None
+    return [
+        {
+            "class": c.circuit_class.label,
+            "pattern": c.circuit_class.representatives[0].text,
+            "degenerate": c.degenerate,
+            "eps": [float(e) for e in c.eps],
+            "neurons": c.n_neurons,
+            "synapses": c.n_synapses,
+            "compatible": c.compatible,
+            "check": c.check.method,
+        }
+        for c in candidates
+    ]
+
+
+def paper_blocks(res, shown) -> list:
+    from symctl.report.figures import simplified
+
+    """The atlas section of ``symctl paper``: the order-2 count, the drawings, this controller's classes."""
+    A = res.atlas
+    blocks = [Heading("The circuit atlas"), *_claim(A)[1:]]
+
+    def figure(name: str, caption: str) -> None:
+        if name in shown:
+            blocks.append(Graphic(name, caption))
+
+    blocks.append(
+        Text(
+            f"The order-2 atlas has {len(A.classes)} circuit classes of minimal realizations in all "
+            f"({len(A.universal_classes)} universal; the others realize a lower-dimensional set "
+            "of $G_2$, or miss a region of them). `symctl atlas --order 2` writes every class "
+            "with its evidence; order 3 is new: see the README."
+        )
+    )
+    figure("atlas_overview", "The universal circuit classes of order 2, sparsest first.")
+    cands = res.candidates
+    if cands is None:
+        blocks.append(
+            Text(
+                f"This controller's $G_2$ has order {res.system.T}; run `symctl atlas --order "
+                f"{res.system.T}` for its classes."
+            )
+        )
+        return blocks
+    blocks.append(Heading("The circuits of this controller", 2))
+    blocks.append(
+        Text(
+            "Every class of the atlas that realizes this controller's $G_2$ for some section poles "
+            "$\\epsilon$, with the whole controller $G_3 G_2 G_1$ checked on the delay graph. "
+            "Generic classes use the seeded $\\epsilon$ shown; degenerate ones need special "
+            "$\\epsilon$, found by Gauss-Newton and certified by the Krawczyk test: they are the "
+            "paper's simplified circuits (for example $K_2 + \\epsilon_1\\epsilon_3 = 0$ drops "
+            "an axon branch of the controllable canonical circuit)."
+        )
+    )
+    blocks.append(
+        Table(
+            (
+                "class",
+                "pattern (F / H / M)",
+                "$\\epsilon$",
+                "kind",
+                "neurons",
+                "synapses",
+                "compatible",
+            ),
+            tuple(
+                (
+                    c.circuit_class.label,
+                    c.circuit_class.representatives[0].text.replace("|", "/"),
+                    ", ".join(f"{float(e):.4g}" for e in c.eps),
+                    "special $\\epsilon$" if c.degenerate else "generic",
+                    str(c.n_neurons),
+                    str(c.n_synapses),
+                    {True: "yes", False: "no", None: "-"}[c.compatible],
+                )
+                for c in cands
+            ),
+        )
+    )
+    for c in simplified(cands):
+        figure(
+            f"simplified_{c.circuit_class.label}",
+            f"A simplified circuit: class {c.circuit_class.label} at "
+            f"$\\epsilon = ({', '.join(f'{float(e):.4g}' for e in c.eps)})$, "
+            f"{c.n_neurons} neurons.",
+        )
+    return blocks

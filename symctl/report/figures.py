@@ -105,7 +105,18 @@ def figure_names(res) -> list[str]:
     names = ["open_loop", "closed_loop"]
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
-    return [*names, "nonlinear"]
+    names.append("nonlinear")
+    if getattr(res, "atlas", None) is not None:
+        names.append("atlas_overview")
+        names += [f"simplified_{c.circuit_class.label}" for c in simplified(res.candidates)]
+    return names
+
+
+def simplified(candidates, count: int = 2) -> list:
+    """The degenerate candidates with the fewest neurons: the paper's simplified circuits."""
+    if not candidates:
+        return []
+    return [c for c in candidates if c.degenerate][:count]
 
 
 def make_figure(res, name: str):
@@ -140,6 +151,15 @@ def make_figure(res, name: str):
         return res.closed_loop.plot()
     if name == "nonlinear":
         return res.nonlinear.plot()
+    if name == "atlas_overview" and res.atlas is not None:
+        return res.atlas.draw()
+    if name.startswith("simplified_") and res.candidates:
+        for c in res.candidates:
+            if c.degenerate and f"simplified_{c.circuit_class.label}" == name:
+                eps = ", ".join(f"{float(e):.4g}" for e in c.eps)
+                return c.circuit.draw(
+                    title=f"Simplified circuit {c.circuit_class.label}: G3 G2 G1 at eps = ({eps})"
+                )
     kind, _, circuit = name.partition("_")
     rec = res.circuits.get(circuit)
     if rec is None or kind not in ("structure", "circuit", "firing"):

@@ -35,6 +35,8 @@ from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
+from symctl.discovery.atlas import atlas
+from symctl.discovery.candidates import circuits_for
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import circuit_firing
@@ -47,6 +49,10 @@ from symctl.report.results import CircuitRecord, PaperResults, RealizationRecord
 from symctl.report.spec import CIRCUITS, EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
 
 __all__ = ["derive_paper"]
+
+
+PAPER_ATLAS_MAX_ORDER = 2
+"""Largest G2 order whose circuits for the paper's controller ``derive_paper`` lists."""
 
 
 def derive_paper(
@@ -174,6 +180,19 @@ def derive_paper(
         )
         for k in CIRCUITS
     }
+    step("atlas")
+    found = atlas(2, workers=1)
+    candidates = None
+    if system.T <= PAPER_ATLAS_MAX_ORDER:  # G2 has order T; order 3 takes a minute: symctl atlas
+        order = found if system.T == 2 else atlas(system.T, workers=1)
+        candidates = circuits_for(
+            G,
+            graph,
+            sensor_delay=sensor_delay,
+            actuator_delay=actuator_delay,
+            atlas=order,
+            seed=seed,
+        )
     return PaperResults(
         model,
         plant_symbolic,
@@ -192,6 +211,8 @@ def derive_paper(
         closed_loop_response(gains),
         nonlinear_check(model, gains),
         G2_symbolic,
+        found,
+        candidates,
     )
 
 

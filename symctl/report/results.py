@@ -269,6 +269,8 @@ class PaperResults:
     closed_loop: Response
     nonlinear: NonlinearCheck
     G2_symbolic: DiscreteTF | None = None
+    atlas: object = None
+    candidates: tuple | None = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):
@@ -316,7 +318,8 @@ class PaperResults:
         dict
             Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
             ``gains``, ``controller``, ``factorization``, ``closed_loop``,
-            ``delay_graph``, ``circuits`` and ``simulation`` (README, "results.json").
+            ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
+            "results.json").
 
         Examples
         --------
@@ -379,7 +382,15 @@ class PaperResults:
             },
             "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
             "simulation": self._simulation_json(),
+            "atlas": self._atlas_json(),
         }
+
+    def _atlas_json(self) -> dict | None:
+        if self.atlas is None:
+            return None
+        from symctl.report.atlas import candidates_json, claim_json
+
+        return {**claim_json(self.atlas), "candidates": candidates_json(self.candidates)}
 
     def _simulation_json(self) -> dict:
         ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
@@ -433,15 +444,16 @@ class PaperResults:
         -------
         list of str
             ``open_loop``, ``closed_loop``, then ``structure_<c>``,
-            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, and ``nonlinear``
-            (table in :mod:`symctl.report.figures`).
+            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
+            ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
+            circuits (table in :mod:`symctl.report.figures`).
 
         Examples
         --------
         >>> from symctl import derive_paper
         >>> names = derive_paper().figure_names()
-        >>> len(names), names[-1]
-        (15, 'nonlinear')
+        >>> len(names), names[15:]
+        (18, ['atlas_overview', 'simplified_A16', 'simplified_A17'])
         """
         return _figures.figure_names(self)
 

@@ -493,6 +493,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     figure("nonlinear", "The linear controller around the nonlinear muscle.")
+    if res.atlas is not None:
+        from symctl.report.atlas import paper_blocks
+
+        put(paper_blocks(res, shown))
     return blocks
 
 

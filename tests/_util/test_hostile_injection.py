@@ -357,6 +357,14 @@ AUDITED = {
     # discovery: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
     ("symctl.discovery.certify", "_Poly.__init__", "Poly"): 1,
+    ("symctl.discovery.certify", "certified_point", "expand"): 1,
+    # circuits_for: G is a validated DiscreteTF (DiscreteTF.from_expr); factor is symctl's
+    ("symctl.discovery.candidates", "circuits_for", "factor"): 2,
+    ("symctl.discovery.candidates", "_generic_eps", "Poly"): 1,
+    ("symctl.discovery.candidates", "_degenerate", "Poly"): 6,
+    ("symctl.discovery.candidates", "_degenerate", "expand"): 3,
+    ("symctl.discovery.candidates", "_degenerate", "factor"): 1,
+    ("symctl.discovery.candidates", "_exact", "expand"): 1,
     ("symctl.discovery.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
     ("symctl.discovery.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
     ("symctl.discovery.solve", "_solved", "Poly"): 2,

@@ -5,6 +5,8 @@ from __future__ import annotations
 import itertools
 import json
 import random
+import subprocess
+import sys
 
 import control
 import numpy as np
@@ -157,8 +159,22 @@ def test_certified_root_proves_a_real_root_and_refuses_none():
 
 
 def test_the_search_on_a_local_dask_cluster_gives_the_serial_atlas(atlas2, tmp_path):
-    A = symctl.atlas(2, workers=2, checkpoint=tmp_path / "ck.jsonl")
-    assert [c.representatives for c in A.classes] == [c.representatives for c in atlas2.classes]
+    # in a child process: dask's worker processes leave a multiprocessing resource tracker
+    # behind, which the signal tests of this session would count as a stray child
+    code = (
+        "import json, sys, symctl\n"
+        "A = symctl.atlas(2, workers=2, checkpoint=sys.argv[1])\n"
+        "print(json.dumps([[p.mask for p in c.representatives] for c in A.classes]))\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code, str(tmp_path / "ck.jsonl")],
+        capture_output=True,
+        text=True,
+        timeout=240,
+        check=True,
+    )
+    masks = json.loads(run.stdout.strip().splitlines()[-1])
+    assert masks == [[p.mask for p in c.representatives] for c in atlas2.classes]
     resumed = symctl.atlas(2, workers=1, checkpoint=tmp_path / "ck.jsonl")
     assert resumed.stats["resumed"] == resumed.stats["canonical"]
     assert [c.label for c in resumed.classes] == [c.label for c in atlas2.classes]
@@ -223,3 +239,37 @@ def test_cli_writes_the_atlas_and_refuses_a_bad_order(tmp_path):
     )
     assert not (tmp_path / "atlas.progress.jsonl").exists()
     assert main(["atlas", "--order", "0", "--out", str(tmp_path / "bad")]) == 2
+
+
+@pytest.fixture(scope="module")
+def paper_candidates(atlas2):
+    G = -0.0459719 / (z**2 + 0.580041 * z + 0.351813)
+    return symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]), atlas=atlas2)
+
+
+def test_circuits_for_finds_the_papers_simplified_circuits_with_their_epsilon(paper_candidates):
+    degenerate = {
+        c.circuit_class.representatives[0].text: c for c in paper_candidates if c.degenerate
+    }
+    no_m1 = degenerate["11 10 | 10 | 10"]  # controllable canonical without M_1 (states swapped)
+    no_m2 = degenerate["01 11 | 01 | 10"]
+    e1, e3 = (float(e) for e in no_m1.eps)
+    assert abs(-0.351813 + e1 * e3) < 1e-8  # K2 + eps1 eps3 = 0
+    e1, e3 = (float(e) for e in no_m2.eps)
+    assert abs(-0.580041 - e1 - e3) < 1e-8  # K1 - eps1 - eps3 = 0
+    for c in (no_m1, no_m2):
+        assert c.check and c.compatible and c.n_neurons == 4
+
+
+def test_circuits_for_is_ranked_with_the_minimum_neuron_circuit_first(paper_candidates):
+    ranked = [(c.n_neurons, c.n_synapses) for c in paper_candidates]
+    assert ranked == sorted(ranked) and ranked[0][0] == 4
+    generic = [c for c in paper_candidates if not c.degenerate]
+    assert len(generic) == 9 and all(c.check for c in generic)
+
+
+def test_circuits_for_refuses_symbolic_gains_and_unrealizable_orders():
+    with pytest.raises(ParameterError, match="numeric"):
+        symctl.circuits_for(symctl.controller_tf(2))
+    with pytest.raises(ParameterError, match="order"):
+        symctl.circuits_for(sp.Integer(3), sensor_delay=0, actuator_delay=0)  # G2 of order 0

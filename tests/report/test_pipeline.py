@@ -13,9 +13,11 @@ from symctl.cli import main
 from symctl.report.figures import FORMATS
 from symctl.report.spec import CIRCUITS
 
-FIGURES = ["open_loop", "closed_loop", "nonlinear"] + [
-    f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")
-]
+FIGURES = (
+    ["open_loop", "closed_loop", "nonlinear", "atlas_overview"]
+    + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
+    + ["simplified_A16", "simplified_A17"]
+)  # the paper's simplified circuits (the atlas)
 
 
 @pytest.fixture(scope="module")
@@ -115,4 +117,4 @@ def test_console_shows_progress_and_summary_tables(paper):
     for step in ("plant", "LQR", "simulation", "figures", "documents"):
         assert re.search(rf"done\s+{step}\s+[\d.]+ s", text), step
     assert "summary" in text and "circuits" in text and "max deviation" in text
-    assert "results.json" in text and "derivation.tex" in text and "15 figures" in text
+    assert "results.json" in text and "derivation.tex" in text and "18 figures" in text

@@ -1,0 +1,323 @@
+r"""Every circuit class that realizes one controller :math:`G`, with its compatibility, ranked.
+
+:func:`circuits_for` factors :math:`G = G_3 G_2 G_1` along the delays and
+asks, class by class of the order-:math:`n` atlas, whether the class
+realizes :math:`G_2` for *some* section poles :math:`\epsilon` and gains
+:math:`C`:
+
+* a class that realizes the :math:`G_2` of generic (seeded random)
+  :math:`\epsilon` is listed with those values (the universal classes, and
+  others whose refuted region this :math:`G` avoids, e.g. a triangular
+  :math:`F` when :math:`G`'s poles are real);
+* a **degenerate** class (generic rank below :math:`2n`) can still realize
+  :math:`G_2` on a special set of :math:`\epsilon`. With :math:`G = \nu(z) /
+  \delta(z)` (so :math:`G_2 = \mu\, \nu Z / \delta`, :math:`Z = \prod (z -
+  \epsilon_i)`, :math:`\mu = 1/\prod C_i`), the unknowns are the pattern's
+  entries, the :math:`\epsilon_i` and :math:`\mu`, and the equations are
+  :math:`\det(zI - F) = \delta` and :math:`M \operatorname{adj}(zI - F) H =
+  \mu(\nu Z - \nu_{\mathrm{lead}} \delta)`, where :math:`\mu = 1` loses
+  nothing (scaling :math:`M` keeps the pattern, so the reachable :math:`b`
+  form a cone). A real point with every entry nonzero and no cancellation between :math:`Z` and
+  :math:`\delta` is found by Gauss-Newton and proved to exist by the Krawczyk
+  test (:func:`~symctl.discovery.certify.certified_point`). Only section poles
+  inside the unit circle are accepted (:data:`STABLE`): an unstable
+  :math:`G_1` or :math:`G_3` cancelled by a zero of :math:`G_2` would hide an
+  unstable mode in the circuit. A class that needs unstable sections is left out. The paper's
+  simplified circuits come out here, e.g. the controllable canonical circuit
+  without :math:`M_1` at :math:`K_2 + \epsilon_1 \epsilon_3 = 0`.
+
+Each candidate carries the compatibility verdict of the whole
+:math:`G_3 G_2 G_1` structure on the delay graph (when one is given), and the
+list is ranked by the whole circuit's neurons, then synapses.
+
+>>> import symctl
+>>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
+>>> found = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))
+>>> found[0].n_neurons, found[0].compatible
+(4, True)
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+
+import sympy as sp
+
+from symctl.compatibility.check import CompatibilityResult, check_compatibility
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure
+from symctl.design.tf import DiscreteTF
+from symctl.discovery.certify import certified_point
+from symctl.discovery.circuitclass import CircuitClass
+from symctl.discovery.universality import _system
+from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
+from symctl.neural.circuit import Circuit
+from symctl.realization.check import check_realization
+from symctl.realization.factorization import Factorization, factor
+from symctl.realization.realization import Realization
+from symctl.symbols import z
+
+__all__ = ["CandidateCircuit", "circuits_for"]
+
+MAX_ORDER = 3
+"""Largest order of :math:`G_2` (the exhaustive atlas)."""
+
+STABLE = 0.999
+"""Section poles are searched inside this radius: G1 and G3 stay stable, so no unstable
+pole of a section is cancelled by a zero of G2 (an internally stable controller)."""
+
+
+@dataclass(frozen=True)
+class CandidateCircuit:
+    """One circuit class realizing a given controller, at given section values.
+
+    Attributes
+    ----------
+    circuit_class : CircuitClass
+    degenerate : bool
+        True when the class needs special section poles (its generic rank is
+        below :math:`2n`).
+    eps, C : tuple
+        The section poles and gains used (sensor sections first).
+    factorization : Factorization
+        :math:`G = G_3 G_2 G_1` at those values.
+    realization : Realization
+        The realization of :math:`G_2` with the class's pattern.
+    check : RealizationCheck
+        Its check against :math:`G_2` (exact, or numeric for floats).
+    structure : Structure
+        The whole controller's structure.
+    circuit : Circuit
+        The whole controller's circuit (neurons placed when compatible).
+    compatibility : CompatibilityResult or None
+        The verdict on the delay graph (None without one).
+    method : str
+        How the realization was found.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
+    >>> best = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))[0]
+    >>> best.degenerate, best.n_neurons, bool(best.check)
+    (True, 4, True)
+    """
+
+    circuit_class: CircuitClass
+    degenerate: bool
+    eps: tuple
+    C: tuple
+    factorization: Factorization
+    realization: Realization
+    check: object
+    structure: Structure
+    circuit: Circuit
+    compatibility: CompatibilityResult | None
+    method: str
+
+    @property
+    def n_neurons(self) -> int:
+        """Neurons of the whole controller's circuit."""
+        return self.circuit.n_neurons
+
+    @property
+    def n_synapses(self) -> int:
+        """Synapses of the whole controller's circuit."""
+        return len(self.circuit.synapses)
+
+    @property
+    def compatible(self) -> bool | None:
+        """The compatibility verdict (None without a delay graph)."""
+        return None if self.compatibility is None else bool(self.compatibility)
+
+    def __repr__(self) -> str:
+        kind = "degenerate" if self.degenerate else "generic"
+        eps = ", ".join(f"{float(e):.4g}" for e in self.eps)
+        return (
+            f"CandidateCircuit({self.circuit_class.label}, {kind}, eps=({eps}), "
+            f"{self.n_neurons} neurons, {self.n_synapses} synapses, compatible={self.compatible})"
+        )
+
+
+def circuits_for(
+    G,
+    graph: DelayGraph | None = None,
+    *,
+    sensor_delay: int = 1,
+    actuator_delay: int = 1,
+    atlas=None,
+    seed: int = 0,
+) -> tuple[CandidateCircuit, ...]:
+    r"""Every circuit class of the atlas that realizes the controller ``G``, ranked (module text).
+
+    Parameters
+    ----------
+    G : DiscreteTF or sympy expression in ``z``
+        A SISO controller with numeric coefficients (floats are taken as the
+        exact rationals they are), e.g. ``controller_tf(2)`` with its gains.
+    graph : DelayGraph, optional
+        The delay graph each candidate is checked against.
+    sensor_delay, actuator_delay : int
+        The sections of :math:`G_1` and :math:`G_3`.
+    atlas : Atlas, optional
+        The atlas of :math:`G_2`'s order (built when not given).
+    seed : int
+        Seeds the generic section poles and the numeric searches.
+
+    Returns
+    -------
+    tuple of CandidateCircuit
+        Ranked by neurons, then synapses; the minimum-neuron circuit first.
+
+    Raises
+    ------
+    ParameterError
+        ``G`` with symbolic coefficients, or a :math:`G_2` of order 0 or above
+        :data:`MAX_ORDER`, or with :math:`N = 0`.
+    NotRealizableError
+        No class of the atlas realizes ``G``.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
+    >>> [c.degenerate for c in symctl.circuits_for(G)][:3]
+    [True, True, False]
+    """
+    from symctl.discovery.atlas import Atlas
+    from symctl.discovery.atlas import atlas as build_atlas
+
+    tf = DiscreteTF.from_expr(G)
+    if tf.free_symbols - {z}:
+        raise ParameterError(
+            f"G: give numeric coefficients (substitute the gains), got the symbols "
+            f"{sorted(map(str, tf.free_symbols - {z}))}"
+        )
+    if graph is not None and not isinstance(graph, DelayGraph):
+        raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
+    T = sensor_delay + actuator_delay
+    generic = factor(tf, sensor_delay, actuator_delay)
+    n = generic.G2.order
+    if not 1 <= n <= MAX_ORDER:
+        raise ParameterError(
+            f"G: its G2 has order {n}; circuits_for handles orders 1 to {MAX_ORDER}"
+        )
+    if atlas is None:
+        atlas = build_atlas(n, workers=1 if n <= 2 else None)
+    elif not isinstance(atlas, Atlas) or atlas.order != n:
+        raise ParameterError(f"atlas: expected the order-{n} atlas, got {atlas!r}")
+    rng = random.Random(seed)
+    eps = _generic_eps(T, tf, rng)
+    at_eps = factor(tf, sensor_delay, actuator_delay, eps=eps, C=1)
+    found = []
+    for cls in atlas.classes:
+        if cls.evidence.method in ("rank", "not minimal"):
+            hit = _degenerate(cls, tf, sensor_delay, actuator_delay, rng)
+        else:
+            hit = _generic(cls, at_eps, eps)
+        if hit is not None:
+            found.append(_candidate(cls, *hit, graph))
+    if not found:
+        raise NotRealizableError(
+            f"G: no circuit class of the order-{n} atlas realizes this controller (its G2 = "
+            f"{at_eps.G2.expr})"
+        )
+    found.sort(key=lambda c: (c.n_neurons, c.n_synapses, c.degenerate, c.circuit_class.label))
+    return tuple(found)
+
+
+def _generic_eps(T: int, tf: DiscreteTF, rng) -> list:
+    poles = set(sp.Poly(tf.den, z).nroots()) if tf.order else set()
+    out = []
+    while len(out) < T:
+        e = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), 10)
+        if e not in out and all(abs(complex(e - p)) > 1e-6 for p in poles):
+            out.append(e)
+    return out
+
+
+def _generic(cls: CircuitClass, f: Factorization, eps):
+    try:
+        R = cls.realize(f.G2)
+    except NotRealizableError:
+        return None
+    return False, tuple(eps), (1,) * len(eps), f, R, R.params.get("method", "")
+
+
+def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
+    pattern = cls.representatives[0]
+    n = pattern.n
+    T = ds + da
+    unknowns, _slots, values, charpoly, numer = _system(pattern)
+    e = sp.symbols(f"e_0:{T}")
+    mu = sp.Integer(1)  # the image is a cone in b (M -> lambda M keeps the pattern): mu = 1
+    Z = sp.Mul(*(z - ei for ei in e))
+    num = sp.Poly(tf.num, z)
+    den = sp.Poly(tf.den, z)
+    lead_den = den.LC()
+    nu = num.as_expr() / lead_den
+    delta = den.as_expr() / lead_den
+    lead = sp.Poly(nu, z).LC()
+    target_a = sp.Poly(delta, z).all_coeffs()[::-1][:n]
+    target_b = sp.Poly(sp.expand(nu * Z - lead * delta), z).all_coeffs()[::-1]
+    target_b = target_b + [sp.Integer(0)] * (n - len(target_b))
+    eqs = [sp.expand(p - _exact(t)) for p, t in zip(charpoly, target_a, strict=True)]
+    eqs += [sp.expand(p - mu * _exact(t)) for p, t in zip(numer, target_b[:n], strict=True)]
+    gens = [*unknowns, *e]
+    if len(gens) < len(eqs):
+        return None
+
+    def accept(v):  # stable sections (an internally stable controller), nonzero entries
+        return all(abs(v[ei]) < STABLE for ei in e) and all(abs(v[x]) > 1e-6 for x in unknowns)
+
+    point = certified_point(
+        eqs, gens, seed=rng.randrange(2**32), starts=32, scale=0.6, accept=accept
+    )
+    if point is None:
+        return None
+    vals = point["values"]
+    if any(abs(vals[x]) < 1e-9 for x in unknowns) or any(abs(vals[ei]) >= 1 for ei in e):
+        return None
+    eps_vals = tuple(sp.Float(vals[ei], 15) for ei in e)
+    poles = sp.Poly(delta, z).nroots()
+    if any(abs(complex(p) - float(ev)) < 1e-7 for p in poles for ev in eps_vals):
+        return None  # a pole-zero cancellation: G2 would lose order
+    C = (sp.Integer(1),) * T
+    f = factor(tf, ds, da, eps=list(eps_vals), C=list(C))
+    entries = {
+        k: sp.Float(vals[values[k]], 15) if values[k] in vals else values[k]
+        for k in pattern.indices
+    }
+    F, H, M = pattern.matrices(entries)
+    R = Realization(F, H, M, _feedthrough(f))
+    return True, eps_vals, C, f, R, "special eps: Gauss-Newton, Krawczyk-certified"
+
+
+def _exact(expr):
+    """``expr`` with its floats as the exact binary rationals they are."""
+    expr = sp.expand(expr)
+    return expr.xreplace({v: sp.Rational(v) for v in expr.atoms(sp.Float)})
+
+
+def _feedthrough(f: Factorization):
+    from symctl.realization.realization import split_proper
+
+    return split_proper(f.G2)[0]
+
+
+def _floats(R: Realization) -> Realization:
+    """R with algebraic (non-rational) entries as 30-digit floats, for checks and drawings."""
+    if all(v.is_Rational or not v.is_number for m in (R.F, R.H, R.M, R.N) for v in m):
+        return R
+    F, H, M, N = (m.evalf(30) for m in (R.F, R.H, R.M, R.N))
+    return Realization(F, H, M, N, params=R.params)
+
+
+def _candidate(cls, degenerate, eps, C, f, R, method, graph):
+    shown = _floats(R)  # exact algebraic entries were proved in CircuitClass.realize
+    check = check_realization(shown, f.G2, "auto", rng=0)
+    S = Structure.from_factorization(f, shown)
+    result = None if graph is None else check_compatibility(S, graph)
+    circuit = Circuit.from_structure(S, result if result is not None and result.ok else None)
+    return CandidateCircuit(cls, degenerate, eps, C, f, R, check, S, circuit, result, method)
