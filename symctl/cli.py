@@ -198,9 +198,18 @@ def paper(
     show_default=True,
     help="Classes drawn one by one (the sparsest first), or 'all'.",
 )
+@click.option(
+    "--max-neurons",
+    type=int,
+    default=None,
+    help="Decide only patterns whose circuits have at most this many neurons "
+    "[default: all for orders 1-3, 3 for order 4].",
+)
 @click.option("--out", default="out/atlas", show_default=True, help="Output folder.")
 @click.option("--pdf/--no-pdf", default=True, show_default=True, help="Compile atlas.pdf.")
-def atlas_command(order, delays, max_size, workers, scheduler, drawings, out, pdf) -> None:
+def atlas_command(
+    order, delays, max_size, workers, scheduler, max_neurons, drawings, out, pdf
+) -> None:
     """Find every minimal circuit class of order-N controllers and write the atlas into OUT.
 
     Writes atlas.json, atlas.md, atlas.tex (and atlas.pdf), an overview figure and
@@ -248,6 +257,7 @@ def atlas_command(order, delays, max_size, workers, scheduler, drawings, out, pd
                 scheduler=scheduler,
                 checkpoint=checkpoint,
                 progress=progress,
+                max_neurons=max_neurons,
             )
         written = write_atlas(A, folder.staging, drawings=count, pdf=pdf)
     checkpoint.unlink(missing_ok=True)

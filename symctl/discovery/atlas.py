@@ -24,9 +24,12 @@ patterns may realize less.
 The search (:mod:`~symctl.discovery.search`) is exhaustive for orders 1 to
 :data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
 filtered by the exact generic-rank test, then decided. Order
-:data:`MAX_ATLAS_ORDER` searches the sparsest sizes (:math:`3n` nonzero
-entries and up, ``max_size``): a universal pattern needs at least :math:`3n`
-(:mod:`~symctl.discovery.rank`).
+:data:`MAX_ATLAS_ORDER` searches the sparsest classes: patterns of :math:`3n`
+nonzero entries (up to ``max_size``; a universal pattern needs at least
+:math:`3n`, :mod:`~symctl.discovery.rank`) whose circuits have at most
+:data:`ORDER4_MAX_NEURONS` neurons (``max_neurons``), and there a region
+without a certified witness leaves a pattern not decided
+(:data:`~symctl.discovery.universality.EXACT_SOLVE_MAX_ORDER`).
 
 >>> import symctl
 >>> A = symctl.atlas(2, workers=1)
@@ -59,6 +62,9 @@ EXHAUSTIVE_MAX_ORDER = 3
 
 MAX_ATLAS_ORDER = 4
 """Highest order accepted (searched from the sparsest sizes up to ``max_size``)."""
+
+ORDER4_MAX_NEURONS = 3
+"""Order 4 decides the patterns whose circuits have at most this many neurons (the sparsest)."""
 
 MAX_WORKERS = 512
 """Most worker processes one search may ask for."""
@@ -171,6 +177,7 @@ def atlas(
     scheduler: str | None = None,
     checkpoint=None,
     progress: Callable[[int, int, int], None] | None = None,
+    max_neurons: int | None = None,
 ) -> Atlas:
     r"""Every minimal circuit class of order-``order`` controllers :math:`G_2`, with its evidence.
 
@@ -195,6 +202,11 @@ def atlas(
         proceeds; a rerun with the same file resumes.
     progress : callable, optional
         Called as ``progress(size, done, total)``.
+    max_neurons : int, optional
+        Decide only the patterns whose circuit has at most this many neurons
+        (:attr:`Pattern.n_neurons`); the others are counted as skipped. By
+        default every pattern for the exhaustive orders and
+        :data:`ORDER4_MAX_NEURONS` for order 4, which gives its sparsest classes.
 
     Returns
     -------
@@ -203,7 +215,7 @@ def atlas(
     Raises
     ------
     ParameterError
-        ``order`` outside 1..4, ``max_size`` out of range, ``workers`` below 1,
+        ``order`` outside 1..4, ``max_size`` or ``max_neurons`` out of range, ``workers`` below 1,
         or a scheduler that cannot be reached.
 
     Examples
@@ -227,15 +239,14 @@ def atlas(
     workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
     if scheduler is not None and not isinstance(scheduler, str):
         raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
-    if (
-        max_size is None
-        and scheduler is None
-        and checkpoint is None
-        and progress is None
-        and workers == 1
-    ):
+    if max_neurons is None and n > EXHAUSTIVE_MAX_ORDER:
+        max_neurons = ORDER4_MAX_NEURONS
+    if max_neurons is not None:
+        max_neurons = bounded_int(max_neurons, "max_neurons", 1, n + 1)
+    plain = max_size is None and max_neurons is None and scheduler is None
+    if plain and checkpoint is None and progress is None and workers == 1:
         return _cached(n, delays)  # a value: the same search gives the same atlas
-    return _search(n, delays, low, top, workers, scheduler, checkpoint, progress)
+    return _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons)
 
 
 @functools.lru_cache(maxsize=8)
@@ -243,10 +254,10 @@ def _cached(n: int, delays: str) -> Atlas:
     slots = n * n + 2 * n
     top = slots if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
     low = 0 if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
-    return _search(n, delays, low, top, 1, None, None, None)
+    return _search(n, delays, low, top, 1, None, None, None, None)
 
 
-def _search(n, delays, low, top, workers, scheduler, checkpoint, progress) -> Atlas:
+def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons) -> Atlas:
     from symctl.discovery.search import run
 
     slots = n * n + 2 * n
@@ -259,6 +270,7 @@ def _search(n, delays, low, top, workers, scheduler, checkpoint, progress) -> At
         scheduler=scheduler,
         checkpoint=checkpoint,
         progress=progress,
+        max_neurons=max_neurons,
     )
     classes = _classes(n, delays, records)
     minimal = [r for r in records if r["evidence"]["method"] != "not minimal"]
@@ -269,7 +281,8 @@ def _search(n, delays, low, top, workers, scheduler, checkpoint, progress) -> At
         "universal": sum(bool(r["evidence"]["universal"]) for r in records),
         "undecided": sum(r["evidence"]["universal"] is None for r in records),
         "sizes": [low, top],
-        "complete": low == 0 and top == slots,
+        "complete": low == 0 and top == slots and not counts["skipped"],
+        "max_neurons": max_neurons,
         "seconds": round(time.perf_counter() - start, 2),
         "workers": workers if scheduler is None else scheduler,
     }

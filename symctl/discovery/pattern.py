@@ -188,6 +188,23 @@ class Pattern:
         names = slot_names(self.n)
         return tuple(names[k] for k in self.indices)
 
+    @property
+    def n_neurons(self) -> int:
+        """The neurons of its circuit: rows of ``[F H]`` with two or more entries, and the output.
+
+        (:mod:`symctl.neural.circuit`'s rule: an adder of two or more terms is a
+        neuron; :math:`y = Mx + Nu` always has :math:`N \\ne 0` and, when
+        minimal, an entry of :math:`M`.)
+        """
+        n = self.n
+        rows = 0
+        for i in range(n):
+            row = sum(self.mask >> (i * n + j) & 1 for j in range(n)) + (
+                self.mask >> (n * n + i) & 1
+            )
+            rows += row >= 2
+        return rows + 1
+
     def where(self, k: int) -> tuple[str, int, int]:
         """Slot ``k`` as (matrix letter, row, column), 0-based."""
         return _slot_of(self.n)[k]

@@ -182,18 +182,29 @@ def run(
     scheduler: str | None,
     checkpoint=None,
     progress: Callable[[int, int, int], None] | None = None,
+    max_neurons: int | None = None,
 ) -> tuple[list[dict], dict]:
-    """Decide every canonical pattern of the given sizes; return the records and counts."""
-    header = {"format": FORMAT, "order": n, "delays": delays}
+    """Decide every canonical pattern of the given sizes; return the records and counts.
+
+    With ``max_neurons``, patterns whose circuit has more neurons are counted
+    (``skipped``) but not decided.
+    """
+    from symctl.discovery.pattern import Pattern
+
+    header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
     store = _Checkpoint(checkpoint, header)
     pool = _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
-    counts = {"patterns": 0, "canonical": 0, "resumed": 0}
+    counts = {"patterns": 0, "canonical": 0, "resumed": 0, "skipped": 0}
     records: list[dict] = []
     try:
         for size in sizes:
             masks = canonical_masks(n, size)
             counts["canonical"] += len(masks)
             counts["patterns"] += _orbit_total(n, masks)
+            if max_neurons is not None:
+                kept = [m for m in masks if Pattern(n, m).n_neurons <= max_neurons]
+                counts["skipped"] += len(masks) - len(kept)
+                masks = kept
             lifted = [(r["mask"], r["evidence"]) for r in records if r["evidence"]["universal"]]
             todo = [m for m in masks if m not in store.done]
             counts["resumed"] += len(masks) - len(todo)

@@ -85,6 +85,12 @@ FIXINGS = 6
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
 
 DRAWS_PER_REGION = 4
+"""Sampled controllers drawn per region before the region counts as failed."""
+
+EXACT_SOLVE_MAX_ORDER = 3
+"""Highest order whose failed witness searches fall back to the exact Groebner-basis solve
+(a refutation). Above it that solve has no useful bound (eight unknowns at order 4), so a
+region without a certified real root leaves the pattern not decided."""
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
 
 
@@ -441,7 +447,7 @@ def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
         yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
 
 
-def _witness(pattern: Pattern, rng, extra: int, region: str, a, c):
+def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool = True):
     """(witness, None), (None, refutation) or (None, None) for one sampled target."""
     unknowns, slots, values, _, _ = _system(pattern)
     found = None
@@ -460,7 +466,7 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c):
                 "attempt": attempt + 1,
             }
             break
-    if found is None and not extra:
+    if found is None and not extra and exact:
         sol = solve_at(pattern, a, c, rng=rng)
         good = [r for r in sol["real"] if r["entries_nonzero"]] if sol else []
         if good:
@@ -488,7 +494,7 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c):
     return found, None
 
 
-def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
+def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Evidence:
     _unknowns, _slots, _values, _, _ = _system(pattern)
     witnessed: dict[str, list] = {}
     failed = []
@@ -497,7 +503,7 @@ def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
             if len(witnessed.get(region, ())) >= SAMPLES_PER_REGION:
                 break
             a, c = _sample(pattern.n, pairs, s, rng)
-            found, refuted = _witness(pattern, rng, extra, region, a, c)
+            found, refuted = _witness(pattern, rng, extra, region, a, c, exact)
             if refuted is not None:
                 return refuted
             if found is not None:
@@ -534,7 +540,9 @@ def pattern_slot(pattern: Pattern, k: int) -> str:
     return slot_names(pattern.n)[k]
 
 
-def decide(pattern: Pattern, universal_below=(), *, seed: int = 0) -> Evidence:
+def decide(
+    pattern: Pattern, universal_below=(), *, seed: int = 0, exact: bool | None = None
+) -> Evidence:
     """Decide whether ``pattern`` is universal (see the module text for the methods).
 
     Parameters
@@ -545,6 +553,10 @@ def decide(pattern: Pattern, universal_below=(), *, seed: int = 0) -> Evidence:
         decides it by lifting.
     seed : int
         Seeds the sampled targets and linear forms.
+    exact : bool, optional
+        Fall back to the exact solve (and its counterexamples) when the
+        certified numeric search finds no witness; by default up to
+        :data:`EXACT_SOLVE_MAX_ORDER`.
 
     Returns
     -------
@@ -595,7 +607,9 @@ def decide(pattern: Pattern, universal_below=(), *, seed: int = 0) -> Evidence:
         if form is not None:
             return _closed_form_evidence(pattern, form)
     rng = random.Random(seed * 7919 + pattern.mask)
-    return _witness_search(pattern, rng, pattern.size - 3 * n)
+    if exact is None:
+        exact = n <= EXACT_SOLVE_MAX_ORDER
+    return _witness_search(pattern, rng, pattern.size - 3 * n, exact)
 
 
 def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:

@@ -83,6 +83,21 @@ def _claim(A) -> list:
     return [Heading("The paper's claim, checked", 2), Text(text)]
 
 
+def _scope(A) -> list:
+    s = A.stats
+    if not s.get("skipped"):
+        return []
+    return [
+        Text(
+            f"Not exhaustive: of the {s['canonical']} pattern orbits of sizes {s['sizes'][0]} to "
+            f"{s['sizes'][1]}, the {s['skipped']} whose circuits have more than "
+            f"{s['max_neurons']} neurons were skipped, so the classes below are the sparsest "
+            f"ones (at most {s['max_neurons']} neurons) among patterns of at most "
+            f"{s['sizes'][1]} entries."
+        )
+    ]
+
+
 def atlas_blocks(A, drawn=()) -> list:
     """The document: definitions, counts, the paper's claim, the classes, their evidence."""
     s = A.stats
@@ -125,6 +140,7 @@ def atlas_blocks(A, drawn=()) -> list:
                 ),
             ),
         ),
+        *_scope(A),
         *_claim(A),
         Heading("How each verdict was reached", 2),
         Table(

@@ -273,3 +273,24 @@ def test_circuits_for_refuses_symbolic_gains_and_unrealizable_orders():
         symctl.circuits_for(symctl.controller_tf(2))
     with pytest.raises(ParameterError, match="order"):
         symctl.circuits_for(sp.Integer(3), sensor_delay=0, actuator_delay=0)  # G2 of order 0
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(min_value=0, max_value=2**15 - 1))
+def test_pattern_neuron_count_is_the_circuits(mask):
+    from symctl.discovery.circuitclass import circuit_of
+
+    p = Pattern(3, mask)
+    if generic_rank(p).minimal:
+        assert p.n_neurons == circuit_of(p).n_neurons
+
+
+def test_order_4_sparsest_classes_include_the_controllable_canonical_circuit():
+    A = symctl.atlas(4, max_neurons=2, workers=1)
+    assert not A.stats["complete"] and A.stats["skipped"] > 0
+    best = A.sparsest()
+    assert best.n_neurons == 2 and best.universal and best.evidence.proved
+    a, c = sp.symbols("a0:4"), sp.symbols("c0:4")
+    G2 = 1 + sum(c[i] * z**i for i in range(4)) / (z**4 + sum(a[i] * z**i for i in range(4)))
+    ccf = Pattern.of(symctl.controllable_canonical(G2)).canonical()
+    assert any(ccf in c.representatives for c in A.universal_classes)
