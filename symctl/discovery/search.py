@@ -156,8 +156,8 @@ class _Dask:
             self.client = Client(self.cluster)
         else:
             try:
-                self.client = Client(scheduler, timeout="10s")
-            except OSError as exc:
+                self.client = Client(scheduler, timeout="5s")
+            except (OSError, ValueError, TypeError) as exc:  # refused, timed out, malformed
                 raise ParameterError(f"scheduler: cannot connect to {scheduler!r}: {exc}") from None
 
     def map(self, fn, chunks):
@@ -192,8 +192,12 @@ def run(
     from symctl.discovery.pattern import Pattern
 
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
-    store = _Checkpoint(checkpoint, header)
     pool = _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
+    try:
+        store = _Checkpoint(checkpoint, header)  # after the cluster: a bad address writes nothing
+    except BaseException:
+        pool.close()
+        raise
     counts = {"patterns": 0, "canonical": 0, "resumed": 0, "skipped": 0}
     records: list[dict] = []
     try:

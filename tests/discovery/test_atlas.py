@@ -158,12 +158,16 @@ def test_certified_root_proves_a_real_root_and_refuses_none():
     assert certified_real_root([x**2 + 1, y], [x, y], seed=3) is None
 
 
-def test_the_search_on_a_local_dask_cluster_gives_the_serial_atlas(atlas2, tmp_path):
+def test_the_search_on_dask_local_and_running_clusters_gives_the_serial_atlas(atlas2, tmp_path):
     # in a child process: dask's worker processes leave a multiprocessing resource tracker
     # behind, which the signal tests of this session would count as a stray child
     code = (
         "import json, sys, symctl\n"
+        "from distributed import LocalCluster\n"
         "A = symctl.atlas(2, workers=2, checkpoint=sys.argv[1])\n"
+        "with LocalCluster(n_workers=1, dashboard_address=':0', silence_logs=40) as cluster:\n"
+        "    B = symctl.atlas(1, scheduler=cluster.scheduler_address)\n"
+        "print(json.dumps([[p.mask for p in c.representatives] for c in B.classes]))\n"
         "print(json.dumps([[p.mask for p in c.representatives] for c in A.classes]))\n"
     )
     run = subprocess.run(
@@ -173,8 +177,13 @@ def test_the_search_on_a_local_dask_cluster_gives_the_serial_atlas(atlas2, tmp_p
         timeout=240,
         check=True,
     )
-    masks = json.loads(run.stdout.strip().splitlines()[-1])
+    lines = run.stdout.strip().splitlines()
+    masks = json.loads(lines[-1])
     assert masks == [[p.mask for p in c.representatives] for c in atlas2.classes]
+    on_a_running_cluster = json.loads(lines[-2])  # --scheduler ADDRESS
+    assert on_a_running_cluster == [
+        [p.mask for p in c.representatives] for c in symctl.atlas(1, workers=1).classes
+    ]
     resumed = symctl.atlas(2, workers=1, checkpoint=tmp_path / "ck.jsonl")
     assert resumed.stats["resumed"] == resumed.stats["canonical"]
     assert [c.label for c in resumed.classes] == [c.label for c in atlas2.classes]
@@ -294,3 +303,40 @@ def test_order_4_sparsest_classes_include_the_controllable_canonical_circuit():
     G2 = 1 + sum(c[i] * z**i for i in range(4)) / (z**4 + sum(a[i] * z**i for i in range(4)))
     ccf = Pattern.of(symctl.controllable_canonical(G2)).canonical()
     assert any(ccf in c.representatives for c in A.universal_classes)
+
+
+@pytest.mark.parametrize("address", ["not an address", "tcp://127.0.0.1:9"])
+def test_an_unreachable_scheduler_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, address):
+    from symctl.cli import main
+
+    out = tmp_path / "atlas"
+    assert main(["atlas", "--order", "1", "--scheduler", address, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("symctl: error: scheduler:")
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+_coeff = st.fractions(min_value=-3, max_value=3, max_denominator=7)
+
+
+@settings(max_examples=60, deadline=None)
+@given(_coeff, _coeff, _coeff, _coeff, _coeff.filter(lambda v: v != 0))
+def test_the_sparsest_order_2_class_realizes_any_rational_G2_in_closed_form(
+    atlas2, a0, a1, c0, c1, N
+):
+    G2 = sp.Rational(N) + (sp.Rational(c1) * z + sp.Rational(c0)) / (
+        z**2 + sp.Rational(a1) * z + sp.Rational(a0)
+    )
+    cls = atlas2.sparsest()
+    try:
+        R = cls.realize(G2)
+    except (NotRealizableError, ParameterError):
+        # only on a measure-zero set: a pole-zero cancellation (then G2 has a lower order) or
+        # a coefficient that the closed form puts into an entry (F = [[-a1, 1], [-a0, 0]],
+        # M = [c1, -c0/a0]): zero there, the entry would leave the pattern
+        a_poly = z**2 + sp.Rational(a1) * z + sp.Rational(a0)
+        b_poly = sp.Rational(c1) * z + sp.Rational(c0)
+        assert sp.resultant(b_poly, a_poly, z) == 0 or 0 in (a0, a1, c0, c1)
+        return
+    assert Pattern.of(R).canonical() == cls.representatives[0]
+    assert symctl.check_realization(R, G2, "exact")
