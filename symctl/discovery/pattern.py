@@ -220,6 +220,31 @@ class Pattern:
         )
 
     @property
+    def F(self) -> sp.ImmutableMatrix:
+        """The support of ``F`` as a 0/1 matrix (n x n).
+
+        Examples
+        --------
+        >>> from symctl.discovery.pattern import Pattern
+        >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
+        >>> P.F, P.H.T, P.M
+        (Matrix([
+        [0, 1],
+        [1, 1]]), Matrix([[0, 1]]), Matrix([[1, 1]]))
+        """
+        return sp.ImmutableMatrix(self.arrays()[0])
+
+    @property
+    def H(self) -> sp.ImmutableMatrix:
+        """The support of ``H`` as a 0/1 column (n x 1)."""
+        return sp.ImmutableMatrix(self.n, 1, self.arrays()[1])
+
+    @property
+    def M(self) -> sp.ImmutableMatrix:
+        """The support of ``M`` as a 0/1 row (1 x n)."""
+        return sp.ImmutableMatrix(1, self.n, self.arrays()[2])
+
+    @property
     def text(self) -> str:
         """One line: the rows of ``F``, then ``H`` and ``M``, as 0/1 digits."""
         F, H, M = self.arrays()

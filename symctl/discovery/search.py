@@ -98,6 +98,14 @@ class _Checkpoint:
         self.done: dict[int, dict] = {}
         if self.path is None:
             return
+        try:
+            self._open(header)
+        except OSError as exc:
+            raise ParameterError(
+                f"checkpoint: cannot use {self.path}: {exc.strerror or exc}"
+            ) from None
+
+    def _open(self, header: dict) -> None:
         if self.path.exists():
             lines = self.path.read_text().splitlines()
             try:
@@ -109,12 +117,16 @@ class _Checkpoint:
                     f"checkpoint: {self.path} belongs to another search ({first}); remove it "
                     "or choose another file"
                 )
+            slots = header["order"] ** 2 + 2 * header["order"]
             for line in lines[1:]:
                 try:
-                    for rec in json.loads(line):
-                        self.done[rec["mask"]] = rec
-                except (json.JSONDecodeError, KeyError, TypeError):
+                    records = json.loads(line)
+                except json.JSONDecodeError:
                     break  # a line cut by the interruption: redo from there
+                if not isinstance(records, list) or not all(_valid(r, slots) for r in records):
+                    break  # not a record this search wrote: redo from there
+                for rec in records:
+                    self.done[rec["mask"]] = rec
         else:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self.path.write_text(json.dumps(header) + "\n")
@@ -127,6 +139,29 @@ class _Checkpoint:
                 fh.write(json.dumps(records) + "\n")
                 fh.flush()
                 os.fsync(fh.fileno())
+
+
+_EVIDENCE_KEYS = {"universal": (bool, type(None)), "method": str, "proved": bool, "text": str}
+
+
+def _valid(rec, slots: int) -> bool:
+    """A checkpoint record as _evaluate writes it (the file may have been edited or cut)."""
+    if not isinstance(rec, dict):
+        return False
+    mask, ev = rec.get("mask"), rec.get("evidence")
+    if isinstance(mask, bool) or not isinstance(mask, int) or not 0 <= mask < 1 << slots:
+        return False
+    if not isinstance(ev, dict) or not isinstance(ev.get("details", {}), dict):
+        return False
+    if not all(isinstance(ev.get(k), t) for k, t in _EVIDENCE_KEYS.items()):
+        return False
+    if "graph" in rec:
+        counts = [rec.get(k) for k in ("neurons", "synapses", "branches")]
+        if not all(isinstance(c, int) and c >= 0 for c in counts):
+            return False
+        if not isinstance(rec["graph"], dict) or not isinstance(rec["graph"].get("links"), list):
+            return False
+    return True
 
 
 class _Local:

@@ -25,14 +25,14 @@ import sympy as sp
 
 from symctl.discovery.universality import _system, closed_form, fixings, solve_at
 from symctl.errors import NotRealizableError, ParameterError
-from symctl.realization.realization import Realization, split_proper
+from symctl.realization.realization import Realization, _siso, split_proper
 
 __all__ = ["realize_with", "target_of"]
 
 
 def target_of(G2, order: int, argname: str = "G2"):
     """``(N, a, c)`` of a proper order-``order`` ``G2`` with ``N != 0`` (ascending coefficients)."""
-    N, c, a = split_proper(G2)
+    N, c, a = split_proper(_siso(G2, argname))
     if len(a) != order:
         raise ParameterError(f"{argname}: expected order {order}, got order {len(a)}")
     if N == 0:

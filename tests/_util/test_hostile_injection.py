@@ -366,6 +366,9 @@ AUDITED = {
     ("symctl.discovery.candidates", "_degenerate", "factor"): 1,
     ("symctl.discovery.candidates", "_exact", "expand"): 1,
     ("symctl.discovery.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
+    ("symctl.discovery.pattern", "Pattern.F", "ImmutableMatrix"): 1,  # 0/1 ints of the mask
+    ("symctl.discovery.pattern", "Pattern.H", "ImmutableMatrix"): 1,
+    ("symctl.discovery.pattern", "Pattern.M", "ImmutableMatrix"): 1,
     ("symctl.discovery.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
     ("symctl.discovery.solve", "_solved", "Poly"): 2,
     ("symctl.discovery.solve", "_markov_equal", "expand"): 1,  # own entries and coefficients

@@ -340,3 +340,20 @@ def test_the_sparsest_order_2_class_realizes_any_rational_G2_in_closed_form(
         return
     assert Pattern.of(R).canonical() == cls.representatives[0]
     assert symctl.check_realization(R, G2, "exact")
+
+
+def test_a_cut_or_edited_checkpoint_is_redone_from_the_bad_line(atlas2, tmp_path):
+    path = tmp_path / "ck.jsonl"
+    symctl.atlas(2, workers=1, checkpoint=path)
+    lines = path.read_text().splitlines()
+    path.write_text(
+        "\n".join([*lines[:2], '[{"mask": "x"}]', lines[2][: len(lines[2]) // 2]]) + "\n"
+    )
+    again = symctl.atlas(2, workers=1, checkpoint=path)
+    assert 0 < again.stats["resumed"] < again.stats["canonical"]
+    assert [c.representatives for c in again.classes] == [c.representatives for c in atlas2.classes]
+
+
+def test_a_checkpoint_that_is_a_folder_is_a_clear_error(tmp_path):
+    with pytest.raises(ParameterError, match="checkpoint: cannot use"):
+        symctl.atlas(1, workers=1, checkpoint=tmp_path)
