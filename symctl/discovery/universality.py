@@ -45,7 +45,10 @@ The verdicts, each with its method (:class:`Evidence`):
     and every entry :math:`g_i(t)` shown nonzero on it.
 ``"counterexample"`` (refuted)
     A sampled :math:`G_2` whose fibre has :math:`d` simple points, none real
-    (same certificate). With :math:`d` the fibre degree, the points move
+    (same certificate). Or, for a pattern the witness search left open, the
+    poles alone: when ``F``'s own torus leaves :math:`n` free entries,
+    :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` with no
+    real solution refutes every pattern with that ``F``. With :math:`d` the fibre degree, the points move
     continuously and stay non-real nearby, so an open set of controllers of
     that region has no realization. (The degree is the one seen at random
     targets; that part holds with probability 1, not by proof.)
@@ -68,6 +71,7 @@ from dataclasses import dataclass, field
 from functools import cache
 from types import MappingProxyType
 
+import networkx as nx
 import sympy as sp
 from flint import fmpq, fmpq_mat
 
@@ -302,6 +306,11 @@ def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
     if rule:
         eqs = [sp.expand(e.xreplace(rule)) for e in eqs]
     free = [x for x in unknowns if x not in rule]
+    return real_solutions(eqs, free, rng, tries)
+
+
+def real_solutions(eqs, free, rng, tries: int = 3):
+    """The exact real solutions of a square rational system (see :func:`solve_at`)."""
     if not free:
         return {"degree": int(all(e == 0 for e in eqs)), "real": [], "eliminant": "1"}
     basis = sp.groebner(eqs, *free, order="grevlex", domain=sp.QQ)
@@ -445,6 +454,68 @@ def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
     for i, combo in enumerate(combos[:attempts]):
         scale = scales[i % len(scales)]
         yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
+
+
+@cache
+def _pole_system(n: int, fmask: int):
+    """F's entries after F's own torus normalization, and det(zI - F)'s coefficients; or None.
+
+    None unless the free entries are exactly ``n`` (a square system for the poles).
+    """
+    graph = nx.Graph()
+    graph.add_nodes_from(range(n))
+    slots = [k for k in range(n * n) if fmask >> k & 1]
+    for k in slots:
+        i, j = divmod(k, n)
+        if i != j and not graph.has_edge(i, j):
+            graph.add_edge(i, j, slot=k)
+    forest = {
+        d["slot"] for _, _, d in nx.minimum_spanning_tree(graph, weight="slot").edges(data=True)
+    }
+    values = {k: sp.Integer(1) if k in forest else sp.Symbol(f"f_{k}") for k in slots}
+    free = [v for v in values.values() if v != 1]
+    if len(free) != n:
+        return None
+    F = sp.zeros(n, n)
+    for k, v in values.items():
+        F[k // n, k % n] = v
+    charpoly = sp.Poly((z * sp.eye(n) - F).det(method="berkowitz"), z).all_coeffs()[::-1][:n]
+    return free, charpoly
+
+
+def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
+    r"""A refutation from the poles alone: no real ``F`` with this support has the sampled poles.
+
+    ``F``'s own torus (diagonal similarities) sets a spanning forest of its graph to 1; when
+    :math:`n` entries remain, :math:`\det(zI - F) = a(z)` is square, and a sampled
+    :math:`a` whose solutions are all non-real (exactly, :func:`real_solutions`) refutes
+    every pattern with this ``F``, whatever ``H`` and ``M``.
+    """
+    n = pattern.n
+    system = _pole_system(n, pattern.mask & ((1 << (n * n)) - 1))
+    if system is None:
+        return None
+    free, charpoly = system
+    for region, pairs in _regions(n):
+        for s in range(DRAWS_PER_REGION):
+            a, _c = _sample(n, pairs, s, rng)
+            eqs = [sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)]
+            sol = real_solutions(eqs, free, rng)
+            if sol is not None and sol["degree"] > 0 and not sol["real"]:
+                return _evidence(
+                    False,
+                    "counterexample",
+                    True,
+                    f"no real F with this support has the poles of the sampled a = "
+                    f"{[str(v) for v in a]} ({region}): det(zI - F) = a(z) has {sol['degree']} "
+                    "complex solutions and no real one, so no H, M helps",
+                    region=region,
+                    a=[str(v) for v in a],
+                    degree=sol["degree"],
+                    eliminant=sol["eliminant"],
+                    poles_only=True,
+                )
+    return None
 
 
 def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool = True):
@@ -609,7 +680,12 @@ def decide(
     rng = random.Random(seed * 7919 + pattern.mask)
     if exact is None:
         exact = n <= EXACT_SOLVE_MAX_ORDER
-    return _witness_search(pattern, rng, pattern.size - 3 * n, exact)
+    found = _witness_search(pattern, rng, pattern.size - 3 * n, exact)
+    if found.universal is None:  # n unknowns of degree <= n: bounded at every order here
+        blocked = _pole_obstruction(pattern, rng)
+        if blocked is not None:
+            return blocked
+    return found
 
 
 def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:

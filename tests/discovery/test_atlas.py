@@ -357,3 +357,15 @@ def test_a_cut_or_edited_checkpoint_is_redone_from_the_bad_line(atlas2, tmp_path
 def test_a_checkpoint_that_is_a_folder_is_a_clear_error(tmp_path):
     with pytest.raises(ParameterError, match="checkpoint: cannot use"):
         symctl.atlas(1, workers=1, checkpoint=tmp_path)
+
+
+def test_the_poles_alone_refute_a_pattern_whose_F_cannot_have_complex_poles_of_some_size():
+    # F = [[f11, f12, 0], [0, f22, f23], [f31, 0, 0]]: det(zI - F) = z (z - f11)(z - f22) - p,
+    # so (f11 + f22)^2 >= 4 f11 f22 bounds the reachable cubics: an open set of complex poles
+    # is out of reach whatever H and M are
+    p = Pattern.from_matrices([[1, 1, 0], [0, 1, 1], [1, 0, 0]], [1, 1, 0], [1, 1, 1])
+    ev = decide(p)
+    assert ev.universal is False and ev.method == "counterexample" and ev.details["poles_only"]
+    a = [sp.Rational(v) for v in ev.details["a"]]
+    # the sampled cubic z^3 + a2 z^2 + a1 z + a0 needs f11 + f22 = -a2 and f11 f22 = a1
+    assert a[2] ** 2 - 4 * a[1] < 0
