@@ -306,8 +306,8 @@ def paper_blocks(res, shown) -> list:
         Text(
             f"The order-2 atlas has {len(A.classes)} circuit classes of minimal realizations in all "
             f"({len(A.universal_classes)} universal; the others realize a lower-dimensional set "
-            "of $G_2$, or miss a region of them). `symctl atlas --order 2` writes every class "
-            "with its evidence; order 3 is new: see the README."
+            "of $G_2$, or miss a region of them). The command symctl atlas writes every class "
+            "with its evidence, for orders 1 to 4; order 3 is new: see the README."
         )
     )
     figure("atlas_overview", "The universal circuit classes of order 2, sparsest first.")
@@ -315,8 +315,8 @@ def paper_blocks(res, shown) -> list:
     if cands is None:
         blocks.append(
             Text(
-                f"This controller's $G_2$ has order {res.system.T}; run `symctl atlas --order "
-                f"{res.system.T}` for its classes."
+                f"This controller's $G_2$ has order {res.system.T}; the command symctl atlas "
+                f"with that order lists its classes."
             )
         )
         return blocks
