@@ -272,7 +272,7 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
         return all(abs(v[ei]) < STABLE for ei in e) and all(abs(v[x]) > 1e-6 for x in unknowns)
 
     point = certified_point(
-        eqs, gens, seed=rng.randrange(2**32), starts=32, scale=0.6, accept=accept
+        eqs, gens, seed=rng.randrange(2**32), starts=12, scale=0.6, accept=accept
     )
     if point is None:
         return None

@@ -96,10 +96,17 @@ class _Floats:
 
 def _newton(system: _Floats, x0, steps: int = 60):
     x = np.array(x0, dtype=float)
-    for _ in range(steps):
+    best = np.inf
+    for step in range(steps):
         fx, Jx = system(x)
         if not np.all(np.isfinite(fx)):
             return None
+        size = np.max(np.abs(fx))
+        if step % 10 == 9:  # stalled far from a root: give up this start
+            if size > 0.5 * best and size > 1e-6:
+                return None
+            best = size
+        best = min(best, size) if step < 10 else best
         if np.max(np.abs(fx)) < 1e-13 * (1 + np.max(np.abs(x))):
             return x
         try:

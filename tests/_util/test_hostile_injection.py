@@ -384,7 +384,10 @@ AUDITED = {
     ("symctl.discovery.universality", "_normal_form", "expand"): 1,
     ("symctl.discovery.universality", "_normal_form", "Poly"): 1,
     ("symctl.discovery.universality", "solve_at", "expand"): 1,
-    ("symctl.discovery.universality", "solve_at", "Poly"): 2,
+    ("symctl.discovery.universality", "solve_at", "Poly"): 0,
+    ("symctl.discovery.universality", "real_solutions", "Poly"): 2,
+    ("symctl.discovery.universality", "_pole_system", "Poly"): 1,  # the pattern's own F
+    ("symctl.discovery.universality", "_pole_obstruction", "expand"): 1,
     ("symctl.discovery.universality", "_poles", "expand"): 1,
     ("symctl.discovery.universality", "_sample", "Poly"): 1,
     ("symctl.discovery.universality", "_witness", "expand"): 1,
