@@ -78,13 +78,14 @@ except ImportError:  # pragma: no cover
 __all__ = ["OutputFolder", "check_output_folder"]
 
 _FIGURES = "|".join(
-    ["open_loop", "closed_loop", "nonlinear"]
+    ["open_loop", "closed_loop", "nonlinear", "atlas_overview", r"simplified_A\d+", r"class_A\d+"]
     + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
 )
 _OURS = re.compile(
-    rf"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|({_FIGURES})\.(png|svg))"
+    r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
+    rf"|({_FIGURES})\.(png|svg))"
 )
-"""The names of the files an earlier run of ``symctl paper`` leaves in its folder."""
+"""The names of the files an earlier run of ``symctl paper`` or ``symctl atlas`` leaves."""
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
@@ -147,7 +148,8 @@ def check_output_folder(out, argname: str = "out") -> Path:
         if foreign:
             shown = ", ".join(repr(n) for n in foreign[:3]) + (", ..." if len(foreign) > 3 else "")
             raise ParameterError(
-                f"{argname}: {text!r} holds files that symctl paper does not write ({shown}); "
+                f"{argname}: {text!r} holds files that symctl paper does not write, nor symctl "
+                f"atlas ({shown}); "
                 "give a new or empty folder, or the folder of an earlier run (it is replaced)"
             )
     ancestor = path.parent

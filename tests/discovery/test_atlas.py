@@ -369,3 +369,12 @@ def test_the_poles_alone_refute_a_pattern_whose_F_cannot_have_complex_poles_of_s
     a = [sp.Rational(v) for v in ev.details["a"]]
     # the sampled cubic z^3 + a2 z^2 + a1 z + a0 needs f11 + f22 = -a2 and f11 f22 = a1
     assert a[2] ** 2 - 4 * a[1] < 0
+
+
+def test_a_second_run_replaces_the_first_runs_folder(tmp_path):
+    from symctl.cli import main
+
+    out = tmp_path / "atlas"
+    for _ in range(2):  # the folder of an earlier run is replaced, not refused
+        assert main(["atlas", "--order", "1", "--out", str(out), "--no-pdf"]) == 0
+    assert (out / "atlas.json").exists()

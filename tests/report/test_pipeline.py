@@ -118,3 +118,12 @@ def test_console_shows_progress_and_summary_tables(paper):
         assert re.search(rf"done\s+{step}\s+[\d.]+ s", text), step
     assert "summary" in text and "circuits" in text and "max deviation" in text
     assert "results.json" in text and "derivation.tex" in text and "18 figures" in text
+
+
+def test_every_file_of_a_full_run_is_one_an_earlier_run_may_leave(paper):
+    # a second `make paper` into out/paper replaces the first run's folder: every name the
+    # full run wrote (figures of the atlas section included) must be known as its own
+    from symctl.report.output import _foreign
+
+    out, _ = paper
+    assert _foreign(out) == []
