@@ -50,7 +50,7 @@ from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.discovery.certify import certified_point
 from symctl.discovery.circuitclass import CircuitClass
-from symctl.discovery.universality import _system
+from symctl.discovery.fibre import _system
 from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization

@@ -23,7 +23,8 @@ import random
 
 import sympy as sp
 
-from symctl.discovery.universality import _system, closed_form, fixings, solve_at
+from symctl.discovery.fibre import _system, solve_at
+from symctl.discovery.universality import closed_form, fixings
 from symctl.errors import NotRealizableError, ParameterError
 from symctl.realization.realization import Realization, _siso, split_proper
 
@@ -85,7 +86,7 @@ def realize_with(cls, G2) -> Realization:
 
 
 def _symbols(n):
-    from symctl.discovery.universality import coefficient_symbols
+    from symctl.discovery.fibre import coefficient_symbols
 
     return coefficient_symbols(n)
 

@@ -45,7 +45,8 @@ The verdicts, each with its method (:class:`Evidence`):
     and every entry :math:`g_i(t)` shown nonzero on it.
 ``"counterexample"`` (refuted)
     A sampled :math:`G_2` whose fibre has :math:`d` simple points, none real
-    (same certificate). Or, for a pattern the witness search left open, the
+    (same certificate). Or, tried before any witness search (witnesses for a
+    few sampled :math:`G_2` cannot rule out an unreachable sub-region), the
     poles alone: when ``F``'s own torus leaves :math:`n` free entries,
     :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` with no
     real solution refutes every pattern with that ``F``. With :math:`d` the fibre degree, the points move
@@ -73,14 +74,20 @@ from types import MappingProxyType
 
 import networkx as nx
 import sympy as sp
-from flint import fmpq, fmpq_mat
 
 from symctl.discovery.certify import certified_real_root
+from symctl.discovery.fibre import (
+    _equations,
+    _system,
+    coefficient_symbols,
+    real_solutions,
+    solve_at,
+)
 from symctl.discovery.pattern import Pattern
 from symctl.discovery.rank import generic_rank
 from symctl.symbols import z
 
-__all__ = ["Evidence", "coefficient_symbols", "decide", "sample_targets", "solve_at"]
+__all__ = ["Evidence", "closed_form", "decide", "fixings", "sample_targets"]
 
 SAMPLES_PER_REGION = 2
 """Sampled controllers per region of the witness search."""
@@ -90,6 +97,9 @@ FIXINGS = 6
 
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
+
+POLE_DRAWS = 8
+"""Sampled pole polynomials per region of the poles-alone refutation."""
 
 EXACT_SOLVE_MAX_ORDER = 3
 """Highest order whose failed witness searches fall back to the exact Groebner-basis solve
@@ -162,40 +172,52 @@ def _evidence(universal, method, proved, text, **details) -> Evidence:
     return Evidence(universal, method, proved, text, MappingProxyType(details))
 
 
-@cache
-def coefficient_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
-    """The symbols :math:`a_0..a_{n-1}` and :math:`c_0..c_{n-1}` of a generic :math:`G_2`."""
-    return sp.symbols(f"a_0:{n}"), sp.symbols(f"c_0:{n}")
-
-
-@cache
-def _system(pattern: Pattern):
-    """(unknowns, their slots, value of every slot, coefficient polynomials of a and b)."""
-    tree = set(pattern.tree_slots() or ())
-    syms = pattern.symbols()
-    values = {k: sp.Integer(1) if k in tree else syms[k] for k in pattern.indices}
-    F, H, M = pattern.matrices(values)
-    n = pattern.n
-    A = z * sp.eye(n) - F
-    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
-    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
-    numer = numer + [sp.Integer(0)] * (n - len(numer))
-    unknown_slots = tuple(k for k in pattern.indices if k not in tree)
-    return tuple(syms[k] for k in unknown_slots), unknown_slots, values, charpoly, numer
-
-
-def _equations(pattern: Pattern, a, c) -> list[sp.Expr]:
-    _, _, _, charpoly, numer = _system(pattern)
-    return [sp.expand(p - v) for p, v in zip((*charpoly, *numer), (*a, *c), strict=True)]
+def _linear_pair(eqs, left):
+    """Two equations linear in the same two unknowns (and free of the others): their solution."""
+    for i, e1 in enumerate(eqs):
+        pair = e1.free_symbols & left
+        if len(pair) != 2:
+            continue
+        x, y = sorted(pair, key=str)
+        for e2 in eqs[i + 1 :]:
+            if e2.free_symbols & left != pair:
+                continue
+            rows = []
+            for e in (e1, e2):
+                poly = sp.Poly(e, x, y)
+                if poly.total_degree() != 1:
+                    break
+                rows.append(
+                    (poly.coeff_monomial(x), poly.coeff_monomial(y), poly.coeff_monomial(1))
+                )
+            else:
+                (p1, q1, r1), (p2, q2, r2) = rows
+                det = sp.expand(p1 * q2 - p2 * q1)
+                if det == 0:
+                    continue
+                return {
+                    x: sp.cancel((q1 * r2 - q2 * r1) / det),
+                    y: sp.cancel((p2 * r1 - p1 * r2) / det),
+                }, (e1, e2)
+    return None
 
 
 def closed_form(pattern: Pattern) -> dict[int, sp.Expr] | None:
-    """The entries as rational functions of :math:`(a, c)`, by one-unknown linear steps; or None."""
+    """The entries as rational functions of :math:`(a, c)`, by linear steps; or None.
+
+    A step solves one equation linear in one unknown, or two equations linear in the
+    same two unknowns (Cramer), with the earlier solutions substituted.
+    """
     unknowns, _slots, values, _, _ = _system(pattern)
     a, c = coefficient_symbols(pattern.n)
     eqs = [e for e in _equations(pattern, a, c) if e != 0]
     solved: dict[sp.Symbol, sp.Expr] = {}
     left = set(unknowns)
+
+    def substitute(rule, used):
+        out = [sp.expand(sp.numer(sp.together(q.xreplace(rule)))) for q in eqs if q not in used]
+        return [q for q in out if q != 0]
+
     while left:
         for e in eqs:
             free = e.free_symbols & left
@@ -216,151 +238,19 @@ def closed_form(pattern: Pattern) -> dict[int, sp.Expr] | None:
             eqs = [q for q in eqs if q != 0]
             break
         else:
-            return None
+            step = _linear_pair(eqs, left)
+            if step is None:
+                return None
+            rule, used = step
+            if any(v == 0 for v in rule.values()):
+                return None
+            solved = {k: sp.cancel(v.xreplace(rule)) for k, v in solved.items()}
+            solved.update(rule)
+            left -= set(rule)
+            eqs = substitute(rule, used)
     if eqs:
         return None
     return {k: solved.get(values[k], values[k]) for k in pattern.indices}
-
-
-def _linear_form(unknowns, rng):
-    return sum(rng.randint(1, 9) * x for x in unknowns)
-
-
-MAX_FIBRE = 400
-"""Largest quotient-ring dimension (number of complex solutions) solve_at handles."""
-
-
-def _standard_monomials(basis, gens):
-    """The monomials not divisible by any leading monomial (grevlex): a basis of the quotient."""
-    leads = [sp.Poly(g, *gens).monoms(order="grevlex")[0] for g in basis.exprs]
-    start = (0,) * len(gens)
-    seen, todo, out = {start}, [start], []
-    while todo:
-        m = todo.pop()
-        if any(all(a >= b for a, b in zip(m, lead, strict=True)) for lead in leads):
-            continue
-        out.append(m)
-        if len(out) > MAX_FIBRE:
-            return None
-        for i in range(len(gens)):
-            nxt = tuple(e + (k == i) for k, e in enumerate(m))
-            if nxt not in seen:
-                seen.add(nxt)
-                todo.append(nxt)
-    return sorted(out, key=lambda m: (sum(m), m))
-
-
-def _normal_form(basis, expr, gens, index):
-    """Coordinates of expr's normal form on the standard monomials."""
-    rem = basis.reduce(sp.expand(expr))[1]
-    vec = [sp.Integer(0)] * len(index)
-    for m, coeff in sp.Poly(rem, *gens).terms():
-        vec[index[m]] = coeff
-    return vec
-
-
-def _q(v):
-    v = sp.Rational(v)
-    return fmpq(int(v.p), int(v.q))
-
-
-def _rational(q) -> sp.Rational:
-    return sp.Rational(int(q.p), int(q.q))
-
-
-def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
-    r"""The real realizations of one rational target, exactly.
-
-    A grevlex Groebner basis over :math:`\mathbb{Q}` gives the quotient ring
-    of the fibre; the multiplication matrix of a random linear form
-    :math:`t = \sum r_i x_i` has the characteristic polynomial :math:`e(t)`,
-    squarefree when :math:`t` separates the (then simple) solutions, and each
-    unknown is :math:`x_i = g_i(t)` with :math:`g_i` from the Krylov basis
-    (shape position). A non-real solution has a non-real :math:`t` (its
-    conjugate is another solution with the conjugate :math:`t`), so the real
-    solutions are the real roots of :math:`e`, isolated in rational intervals.
-
-    Parameters
-    ----------
-    pattern : Pattern
-    a, c : sequences of rationals
-        The target's :math:`a_0..a_{n-1}` and :math:`c_0..c_{n-1}`.
-    fixed : mapping of slot to rational, optional
-        Entries set to given values (to make a bigger pattern's system square).
-    rng : random.Random, optional
-    tries : int
-        Random linear forms tried until :math:`e` is squarefree.
-
-    Returns
-    -------
-    dict or None
-        ``{"degree": d, "real": [...], "eliminant": str}`` with one item per
-        real solution (its isolating interval, and whether every entry is
-        nonzero there); None when the fibre is not finite and reduced.
-    """
-    rng = rng or random.Random(0)
-    unknowns, _slots, values, _, _ = _system(pattern)
-    fixed = dict(fixed or {})
-    eqs = _equations(pattern, a, c)
-    rule = {values[k]: sp.Rational(v) for k, v in fixed.items()}
-    if rule:
-        eqs = [sp.expand(e.xreplace(rule)) for e in eqs]
-    free = [x for x in unknowns if x not in rule]
-    return real_solutions(eqs, free, rng, tries)
-
-
-def real_solutions(eqs, free, rng, tries: int = 3):
-    """The exact real solutions of a square rational system (see :func:`solve_at`)."""
-    if not free:
-        return {"degree": int(all(e == 0 for e in eqs)), "real": [], "eliminant": "1"}
-    basis = sp.groebner(eqs, *free, order="grevlex", domain=sp.QQ)
-    if basis.exprs == [1]:
-        return {"degree": 0, "real": [], "eliminant": "1"}
-    if not basis.is_zero_dimensional:
-        return None
-    monos = _standard_monomials(basis, free)
-    if monos is None:
-        return None
-    index = {m: i for i, m in enumerate(monos)}
-    d = len(monos)
-    mono_expr = [sp.Mul(*(x**e for x, e in zip(free, m, strict=True))) for m in monos]
-    nfs = {x: [_q(v) for v in _normal_form(basis, x, free, index)] for x in free}
-    t = sp.Symbol("t_")
-    for _ in range(tries):
-        form = _linear_form(free, rng)
-        cols = [_normal_form(basis, form * m, free, index) for m in mono_expr]
-        Mt = fmpq_mat(d, d, [_q(cols[j][i]) for i in range(d) for j in range(d)])
-        e = sp.Poly([_rational(q) for q in Mt.charpoly().coeffs()[::-1]], t)
-        if sp.degree(sp.gcd(e, e.diff(t)), t) > 0:
-            continue
-        # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
-        krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]
-        for _ in range(d - 1):
-            krylov.append(Mt * krylov[-1])
-        K = fmpq_mat(d, d, [krylov[j][i, 0] for i in range(d) for j in range(d)])
-        try:
-            g = {}
-            for x in free:
-                coeffs = K.solve(fmpq_mat(d, 1, nfs[x]))
-                g[x] = sp.Add(*(_rational(coeffs[k, 0]) * t**k for k in range(d)))
-        except ZeroDivisionError:
-            continue
-        e_expr = e.as_expr()
-        real = []
-        for (lo, hi), _mult in e.intervals():
-            nonzero = all(
-                sp.Poly(sp.gcd(e_expr, gi), t).count_roots(lo, hi) == 0 for gi in g.values()
-            )
-            real.append({"interval": [str(lo), str(hi)], "entries_nonzero": nonzero})
-        return {
-            "degree": d,
-            "real": real,
-            "eliminant": str(e_expr),
-            "_g": g,
-            "_e": e_expr,
-            "_t": t,
-        }
-    return None
 
 
 def _poles(n: int, pairs: int, signs, rng) -> sp.Expr:
@@ -483,6 +373,12 @@ def _pole_system(n: int, fmask: int):
     return free, charpoly
 
 
+@cache
+def _pole_verdict(n: int, fmask: int, seed: int) -> Evidence | None:
+    """:func:`_pole_obstruction` for every pattern with this ``F`` (cached: many share it)."""
+    return _pole_obstruction(Pattern(n, fmask), random.Random(seed * 104729 + fmask))
+
+
 def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
     r"""A refutation from the poles alone: no real ``F`` with this support has the sampled poles.
 
@@ -497,7 +393,7 @@ def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
         return None
     free, charpoly = system
     for region, pairs in _regions(n):
-        for s in range(DRAWS_PER_REGION):
+        for s in range(POLE_DRAWS):
             a, _c = _sample(n, pairs, s, rng)
             eqs = [sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)]
             sol = real_solutions(eqs, free, rng)
@@ -677,15 +573,15 @@ def decide(
         form = closed_form(pattern)
         if form is not None:
             return _closed_form_evidence(pattern, form)
+    # an exact refutation first: witnesses for a few sampled G2 per region do not rule out
+    # an unreachable sub-region (n unknowns of degree <= n: bounded at every order here)
+    blocked = _pole_verdict(n, pattern.mask & ((1 << (n * n)) - 1), seed)
+    if blocked is not None:
+        return blocked
     rng = random.Random(seed * 7919 + pattern.mask)
     if exact is None:
         exact = n <= EXACT_SOLVE_MAX_ORDER
-    found = _witness_search(pattern, rng, pattern.size - 3 * n, exact)
-    if found.universal is None:  # n unknowns of degree <= n: bounded at every order here
-        blocked = _pole_obstruction(pattern, rng)
-        if blocked is not None:
-            return blocked
-    return found
+    return _witness_search(pattern, rng, pattern.size - 3 * n, exact)
 
 
 def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:

@@ -18,10 +18,11 @@ from hypothesis import strategies as st
 import symctl
 from symctl import NotRealizableError, ParameterError, SymctlTypeError, z
 from symctl.discovery.certify import certified_real_root
+from symctl.discovery.fibre import solve_at
 from symctl.discovery.pattern import Pattern, canonical_mask, slot_names
 from symctl.discovery.rank import generic_rank
 from symctl.discovery.search import canonical_masks
-from symctl.discovery.universality import decide, sample_targets, solve_at
+from symctl.discovery.universality import decide, sample_targets
 
 
 @pytest.fixture(scope="module")
@@ -139,7 +140,7 @@ def test_triangular_F_is_refuted_and_cannot_realize_complex_poles(atlas2):
 def test_a_counterexample_has_no_real_realization_exactly():
     for mask in canonical_masks(3, 9):
         ev = decide(Pattern(3, mask))
-        if ev.method == "counterexample":
+        if ev.method == "counterexample" and not ev.details.get("poles_only"):
             break
     else:  # pragma: no cover
         pytest.fail("no counterexample at order 3")
