@@ -228,12 +228,9 @@ def atlas(
     n = bounded_int(order, "order", 1, MAX_ATLAS_ORDER)
     if delays not in ("branch", "state"):
         raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
-    slots = n * n + 2 * n
-    if max_size is None:
-        top = slots if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
-    else:
-        top = bounded_int(max_size, "max_size", 0, slots)
-    low = 0 if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
+    low, top = _sizes(n)
+    if max_size is not None:
+        top = bounded_int(max_size, "max_size", 0, n * n + 2 * n)
     if workers is None:
         workers = 1 if n <= 2 else max(1, os.cpu_count() or 1)
     workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
@@ -249,12 +246,16 @@ def atlas(
     return _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons)
 
 
+def _sizes(n: int) -> tuple[int, int]:
+    """The pattern sizes searched by default: all for the exhaustive orders, else 3n only."""
+    if n <= EXHAUSTIVE_MAX_ORDER:
+        return 0, n * n + 2 * n
+    return 3 * n, 3 * n
+
+
 @functools.lru_cache(maxsize=8)
 def _cached(n: int, delays: str) -> Atlas:
-    slots = n * n + 2 * n
-    top = slots if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
-    low = 0 if n <= EXHAUSTIVE_MAX_ORDER else 3 * n
-    return _search(n, delays, low, top, 1, None, None, None, None)
+    return _search(n, delays, *_sizes(n), 1, None, None, None, None)
 
 
 def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons) -> Atlas:

@@ -50,7 +50,7 @@ from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.discovery.certify import certified_point
 from symctl.discovery.circuitclass import CircuitClass
-from symctl.discovery.fibre import _system
+from symctl.discovery.fibre import _system, binary_rationals
 from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization
@@ -262,8 +262,10 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     target_a = sp.Poly(delta, z).all_coeffs()[::-1][:n]
     target_b = sp.Poly(sp.expand(nu * Z - lead * delta), z).all_coeffs()[::-1]
     target_b = target_b + [sp.Integer(0)] * (n - len(target_b))
-    eqs = [sp.expand(p - _exact(t)) for p, t in zip(charpoly, target_a, strict=True)]
-    eqs += [sp.expand(p - mu * _exact(t)) for p, t in zip(numer, target_b[:n], strict=True)]
+    eqs = [sp.expand(p - binary_rationals(t)) for p, t in zip(charpoly, target_a, strict=True)]
+    eqs += [
+        sp.expand(p - mu * binary_rationals(t)) for p, t in zip(numer, target_b[:n], strict=True)
+    ]
     gens = [*unknowns, *e]
     if len(gens) < len(eqs):
         return None
@@ -292,12 +294,6 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     F, H, M = pattern.matrices(entries)
     R = Realization(F, H, M, _feedthrough(f))
     return True, eps_vals, C, f, R, "special eps: Gauss-Newton, Krawczyk-certified"
-
-
-def _exact(expr):
-    """``expr`` with its floats as the exact binary rationals they are."""
-    expr = sp.expand(expr)
-    return expr.xreplace({v: sp.Rational(v) for v in expr.atoms(sp.Float)})
 
 
 def _feedthrough(f: Factorization):

@@ -27,7 +27,13 @@ from flint import fmpq, fmpq_mat
 from symctl.discovery.pattern import Pattern
 from symctl.symbols import z
 
-__all__ = ["MAX_FIBRE", "coefficient_symbols", "real_solutions", "solve_at"]
+__all__ = ["MAX_FIBRE", "binary_rationals", "coefficient_symbols", "real_solutions", "solve_at"]
+
+
+def binary_rationals(expr):
+    """A SymPy number or expression with its floats as the exact binary rationals they are."""
+    expr = sp.expand(expr)
+    return expr.xreplace({v: sp.Rational(v) for v in expr.atoms(sp.Float)})
 
 
 @cache

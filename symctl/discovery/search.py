@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from symctl.discovery.pattern import _permutation_maps
+from symctl.discovery.pattern import Pattern, _permutation_maps, orbit_size
 from symctl.errors import ParameterError
 
 __all__ = ["CHUNK", "canonical_masks", "run"]
@@ -70,7 +70,6 @@ def _evaluate(n: int, masks: list[int], delays: str, lifted: list) -> list[dict]
     import networkx as nx
 
     from symctl.discovery.circuitclass import circuit_graph, circuit_of
-    from symctl.discovery.pattern import Pattern
     from symctl.discovery.universality import Evidence, decide
 
     below = [(Pattern(n, m), Evidence.from_dict(e)) for m, e in lifted]
@@ -224,8 +223,6 @@ def run(
     With ``max_neurons``, patterns whose circuit has more neurons are counted
     (``skipped``) but not decided.
     """
-    from symctl.discovery.pattern import Pattern
-
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
     pool = _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
     try:
@@ -239,7 +236,7 @@ def run(
         for size in sizes:
             masks = canonical_masks(n, size)
             counts["canonical"] += len(masks)
-            counts["patterns"] += _orbit_total(n, masks)
+            counts["patterns"] += sum(orbit_size(n, m) for m in masks)
             if max_neurons is not None:
                 kept = [m for m in masks if Pattern(n, m).n_neurons <= max_neurons]
                 counts["skipped"] += len(masks) - len(kept)
@@ -260,9 +257,3 @@ def run(
     finally:
         pool.close()
     return records, counts
-
-
-def _orbit_total(n: int, masks: list[int]) -> int:
-    from symctl.discovery.pattern import orbit_size
-
-    return sum(orbit_size(n, m) for m in masks)

@@ -23,7 +23,7 @@ import random
 
 import sympy as sp
 
-from symctl.discovery.fibre import _system, solve_at
+from symctl.discovery.fibre import _system, binary_rationals, coefficient_symbols, solve_at
 from symctl.discovery.universality import closed_form, fixings
 from symctl.errors import NotRealizableError, ParameterError
 from symctl.realization.realization import Realization, _siso, split_proper
@@ -43,15 +43,6 @@ def target_of(G2, order: int, argname: str = "G2"):
     return N, a, c
 
 
-def _exact(values):
-    out = []
-    for v in values:
-        if isinstance(v, sp.Float):
-            v = sp.Rational(v)
-        out.append(v)
-    return out
-
-
 def realize_with(cls, G2) -> Realization:
     """A realization of ``G2`` with a pattern of ``cls`` (see the module text)."""
     N, a, c = target_of(G2, cls.order)
@@ -62,7 +53,7 @@ def realize_with(cls, G2) -> Realization:
         ev = cls.pattern_evidence[pattern]
         form = closed_form(pattern) if ev.method == "closed form" else None
         if form is not None:
-            a_s, c_s = _symbols(pattern.n)
+            a_s, c_s = coefficient_symbols(pattern.n)
             rule = dict(zip((*a_s, *c_s), (*a, *c), strict=True))
             values = {k: sp.cancel(v.xreplace(rule)) for k, v in form.items()}
             if all(v != 0 and not v.has(sp.zoo, sp.nan) for v in values.values()):
@@ -72,10 +63,11 @@ def realize_with(cls, G2) -> Realization:
         if not numeric:
             reasons.append(f"{pattern.text}: no closed form, and G2 is symbolic")
             continue
-        values = _solved(pattern, _exact(a), _exact(c))
+        a_q, c_q = [binary_rationals(v) for v in a], [binary_rationals(v) for v in c]
+        values = _solved(pattern, a_q, c_q)
         if values is not None:
             R = _realization(pattern, values, N, "exact solve")
-            if not _markov_equal(R, _exact(a), _exact(c)):  # pragma: no cover - a bug
+            if not _markov_equal(R, a_q, c_q):  # pragma: no cover - a bug
                 raise AssertionError(f"the solve for {pattern.text} gave a wrong realization")
             return R
         reasons.append(f"{pattern.text}: no real solution with every entry nonzero found")
@@ -83,12 +75,6 @@ def realize_with(cls, G2) -> Realization:
         f"G2: not realizable with the circuit class {cls.label or ''} ({cls.n_neurons} neurons): "
         + "; ".join(reasons)
     )
-
-
-def _symbols(n):
-    from symctl.discovery.fibre import coefficient_symbols
-
-    return coefficient_symbols(n)
 
 
 def _solved(pattern, a, c):

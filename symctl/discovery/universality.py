@@ -83,7 +83,7 @@ from symctl.discovery.fibre import (
     real_solutions,
     solve_at,
 )
-from symctl.discovery.pattern import Pattern
+from symctl.discovery.pattern import Pattern, slot_names
 from symctl.discovery.rank import generic_rank
 from symctl.symbols import z
 
@@ -202,7 +202,8 @@ def _linear_pair(eqs, left):
     return None
 
 
-def closed_form(pattern: Pattern) -> dict[int, sp.Expr] | None:
+@cache  # deterministic and a few tens of ms: realize and decide ask for it again and again
+def closed_form(pattern: Pattern) -> MappingProxyType | None:
     """The entries as rational functions of :math:`(a, c)`, by linear steps; or None.
 
     A step solves one equation linear in one unknown, or two equations linear in the
@@ -250,7 +251,7 @@ def closed_form(pattern: Pattern) -> dict[int, sp.Expr] | None:
             eqs = substitute(rule, used)
     if eqs:
         return None
-    return {k: solved.get(values[k], values[k]) for k in pattern.indices}
+    return MappingProxyType({k: solved.get(values[k], values[k]) for k in pattern.indices})
 
 
 def _poles(n: int, pairs: int, signs, rng) -> sp.Expr:
@@ -346,6 +347,11 @@ def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
         yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
 
 
+def _no_real_point(sol) -> bool:
+    """A solve_at / real_solutions result that is a nonempty finite fibre without a real point."""
+    return sol is not None and sol["degree"] > 0 and not sol["real"]
+
+
 @cache
 def _pole_system(n: int, fmask: int):
     """F's entries after F's own torus normalization, and det(zI - F)'s coefficients; or None.
@@ -397,7 +403,7 @@ def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
             a, _c = _sample(n, pairs, s, rng)
             eqs = [sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)]
             sol = real_solutions(eqs, free, rng)
-            if sol is not None and sol["degree"] > 0 and not sol["real"]:
+            if _no_real_point(sol):
                 return _evidence(
                     False,
                     "counterexample",
@@ -427,7 +433,7 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
             found = {
                 "a": [str(v) for v in a],
                 "c": [str(v) for v in c],
-                "fixed": {pattern_slot(pattern, k): str(v) for k, v in fixed.items()},
+                "fixed": {slot_names(pattern.n)[k]: str(v) for k, v in fixed.items()},
                 "entries": {str(x): v for x, v in zip(free, root.values, strict=True)},
                 "radius": max(root.radii),
                 "attempt": attempt + 1,
@@ -444,7 +450,7 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
                 "eliminant": sol["eliminant"],
                 "interval": good[0]["interval"],
             }
-        elif sol is not None and sol["degree"] > 0 and not sol["real"]:
+        elif _no_real_point(sol):
             return None, _evidence(
                 False,
                 "counterexample",
@@ -462,7 +468,6 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
 
 
 def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Evidence:
-    _unknowns, _slots, _values, _, _ = _system(pattern)
     witnessed: dict[str, list] = {}
     failed = []
     for region, pairs in _regions(pattern.n):
@@ -498,13 +503,6 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Ev
         failed_regions=sorted(set(failed)),
         witnesses=witnessed,
     )
-
-
-def pattern_slot(pattern: Pattern, k: int) -> str:
-    """The name of slot ``k`` of ``pattern``'s order."""
-    from symctl.discovery.pattern import slot_names
-
-    return slot_names(pattern.n)[k]
 
 
 def decide(

@@ -364,7 +364,7 @@ AUDITED = {
     ("symctl.discovery.candidates", "_degenerate", "Poly"): 6,
     ("symctl.discovery.candidates", "_degenerate", "expand"): 3,
     ("symctl.discovery.candidates", "_degenerate", "factor"): 1,
-    ("symctl.discovery.candidates", "_exact", "expand"): 1,
+    ("symctl.discovery.fibre", "binary_rationals", "expand"): 1,  # sympy values only
     ("symctl.discovery.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
     ("symctl.discovery.pattern", "Pattern.F", "ImmutableMatrix"): 1,  # 0/1 ints of the mask
     ("symctl.discovery.pattern", "Pattern.H", "ImmutableMatrix"): 1,
