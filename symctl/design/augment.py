@@ -44,28 +44,120 @@ from symctl._util.validate import (
     MAX_DELAY,
     MAX_STATES,
     check_magnitude,
+    common_dt,
     nonneg_int,
     psd_matrix,
     to_matrix,
 )
+from symctl.design._foreign import is_control_system, plant_from_control
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
-__all__ = ["AugmentedSystem", "as_plant", "augment"]
+__all__ = ["AugmentedSystem", "as_plant", "augment", "same_dt"]
 
 
 def as_plant(plant) -> DiscretePlant:
-    """Accept a :class:`DiscretePlant`, a :class:`MuscleModel` or a pair ``(A, B)``."""
+    """The plant that every function taking a ``plant`` works with.
+
+    Parameters
+    ----------
+    plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
+        A :class:`DiscretePlant` is returned as it is, a :class:`MuscleModel` gives
+        :meth:`MuscleModel.plant`, a pair ``(A, B)`` a plant without ``Ts``. A discrete
+        ``control.StateSpace`` gives its ``A``, ``B``, ``dt`` (as ``Ts``; python-control's
+        ``dt=True``, "discrete, unspecified", is ``Ts=None``) and its labels when they are
+        identifiers (the default ``x[0]``, ``u[0]`` give symctl's ``x_1, ...``, ``u``); a
+        discrete ``control.TransferFunction`` (SISO or MIMO) is realized in the
+        column-wise controllable canonical form of
+        :func:`symctl.design._foreign.canonical_columns` (for SISO, that of
+        :func:`~symctl.realization.realization.controllable_canonical`). ``C`` and ``D``
+        are not used: the plant is state feedback, :math:`x(t+1) = A x(t) + B u(t)`.
+
+    Returns
+    -------
+    DiscretePlant
+
+    Raises
+    ------
+    SymctlTypeError
+        Another type.
+    ParameterError
+        A continuous-time python-control system (discretize it first: ``control.c2d``
+        or :func:`~symctl.design.plant.discretize`), an improper transfer function.
+    DimensionError
+        Matrices of the wrong shape.
+
+    Examples
+    --------
+    >>> import control
+    >>> from symctl.design.augment import as_plant
+    >>> p = as_plant(control.ss([[0.5, 0], [0, 0.2]], [[1], [1]], [[1, 1]], 0, 0.01))
+    >>> p.A, p.Ts, p.state_names, p.input_names
+    (Matrix([
+    [0.5, 0.0],
+    [0.0, 0.2]]), 0.0100000000000000, ('x_1', 'x_2'), ('u',))
+    >>> as_plant(control.ss([[-1]], [[1]], [[1]], 0))
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: plant: a continuous-time system (dt = 0); discretize it first ...
+    """
     if isinstance(plant, DiscretePlant):
         return plant
     if isinstance(plant, MuscleModel):
         return plant.plant()
     if isinstance(plant, tuple) and len(plant) == 2:
         return DiscretePlant(*plant)
+    if is_control_system(plant):
+        return plant_from_control(plant, "plant")
     raise SymctlTypeError(
-        "plant: expected a DiscretePlant, a MuscleModel or a tuple (A, B), "
-        f"got {type(plant).__name__}"
+        "plant: expected a DiscretePlant, a MuscleModel, a tuple (A, B) or a discrete "
+        f"python-control StateSpace or TransferFunction, got {type(plant).__name__}"
     )
+
+
+def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") -> None:
+    """Refuse ``argname`` when the plant's ``Ts`` and the ``dt`` it comes with differ.
+
+    Parameters
+    ----------
+    plant : DiscretePlant
+    dt : sympy expression or None
+        The sampling time of the other object (a controller, the gains' plant...).
+        ``None`` (unspecified) fits any ``Ts``, as a plant's ``Ts=None`` fits any ``dt``.
+    argname : str
+        The argument named in the error.
+    of : str
+        What ``dt`` belongs to, for the message.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    ParameterError
+        Two numeric times that differ by more than a relative 1e-12, or two different
+        symbolic ones (:func:`symctl._util.validate.common_dt`).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import DiscretePlant
+    >>> from symctl.design.augment import same_dt
+    >>> plant = DiscretePlant([[0.5]], [[1]], Ts=sp.Rational(1, 100))
+    >>> same_dt(plant, sp.Float(0.01), "R")
+    >>> same_dt(plant, sp.Float(0.1), "R")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: R: the plant is sampled with Ts = 1/100, the controller with dt = 0.1...
+    """
+    try:
+        common_dt(plant.Ts, dt, argname)
+    except ParameterError:
+        raise ParameterError(
+            f"{argname}: the plant is sampled with Ts = {plant.Ts}, {of} with dt = {dt}; "
+            "they must agree (or one be unspecified)"
+        ) from None
 
 
 @dataclass(frozen=True)
@@ -158,8 +250,9 @@ def augment(
 
     Parameters
     ----------
-    plant : DiscretePlant, MuscleModel or (A, B)
-        Numeric or symbolic.
+    plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
+        Numeric or symbolic; a discrete ``control.StateSpace`` or ``TransferFunction``
+        is read by :func:`as_plant` (its ``dt`` becomes the plant's ``Ts``).
     sensor_delay, actuator_delay : int
         Delays in steps, integers >= 0 with a net delay
         ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500; the augmented

@@ -292,7 +292,7 @@ def simulate_batch(
 
     Parameters
     ----------
-    plant : DiscretePlant, MuscleModel or (A, B)
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     F, H, M, N : arrays of shapes (R, nc, nc), (R, nc, n), (R, m, nc), (R, m, n)
         E.g. ``Realization.lambdify(symbols)(*values)`` with arrays of values.
     disturbance : float or array

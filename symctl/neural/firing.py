@@ -57,7 +57,7 @@ from symctl._util.validate import (
     read_only,
 )
 from symctl.compatibility.structure import Structure, ifp_structure
-from symctl.design.augment import as_plant
+from symctl.design.augment import as_plant, same_dt
 from symctl.design.controller import controller_tf
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant
@@ -332,6 +332,7 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     if plant is None:
         return gains.system.plant
     p = as_plant(plant)
+    same_dt(p, gains.system.plant.Ts, "plant", "the gains' plant")
     _scalar(p.n, p.m, "plant")
     return p
 
@@ -435,7 +436,7 @@ def circuit_firing(
         ocr_diagram), or the IFP controller.
     gains : Gains
         E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
-    plant : DiscretePlant, MuscleModel or (A, B), optional
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
         Number of realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP
@@ -459,7 +460,8 @@ def circuit_firing(
         ``"ifp"``), a negative ``seed``, ``"ifp"``
         with gains for a net delay ``T = 0`` (no neuron), an unstable
         loop, or a realization whose force or rate departs from the optimal
-        controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains').
+        controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains'),
+        or a ``plant`` whose ``Ts`` is not the gains'.
     SymctlTypeError
         ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``seed``.
     DimensionError

@@ -57,7 +57,7 @@ from symctl._util.validate import (
     read_only,
     real_number,
 )
-from symctl.design.augment import as_plant
+from symctl.design.augment import as_plant, same_dt
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
@@ -507,7 +507,7 @@ def open_loop_response(
 
     Parameters
     ----------
-    plant : DiscretePlant, MuscleModel or (A, B), optional
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Numeric; the paper's muscle by default.
     pulse : float
         Pulse amplitude [spikes/s]; default 1 (a unit pulse).
@@ -545,12 +545,13 @@ def open_loop_response(
     return _response(p, t, df[0], u, np.zeros_like(df[0]), np.zeros((len(t), 0)), "open loop")
 
 
-def _numeric_realization(R, p: DiscretePlant) -> tuple[np.ndarray, ...]:
+def _numeric_realization(R, p: DiscretePlant, argname: str = "R") -> tuple[np.ndarray, ...]:
     if not isinstance(R, Realization):
-        raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
+        raise SymctlTypeError(f"{argname}: expected a Realization, got {type(R).__name__}")
+    same_dt(p, R.dt, argname)
     if R.shape != (p.m, p.n):
         raise DimensionError(
-            f"R: the controller maps the plant's {p.n} states to its {p.m} inputs, so it must "
+            f"{argname}: the controller maps the plant's {p.n} states to its {p.m} inputs, so it must "
             f"have shape (outputs, inputs) = {(p.m, p.n)}, got {R.shape}"
         )
     return tuple(a[None] for a in R.numeric())
@@ -579,7 +580,7 @@ def simulate_realization(
 
     Parameters
     ----------
-    plant : DiscretePlant, MuscleModel or (A, B)
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     R : Realization
         Numeric, of shape (plant inputs, plant states).
     disturbance : float or array
@@ -598,8 +599,8 @@ def simulate_realization(
         ``R``: the message names the eigenvalue, and says when it is a hidden mode of
         ``R``'s own ``F``, e.g. :math:`|\epsilon| \ge 1` in :math:`G_3 G_2 G_1`, whose
         transfer function is right; :func:`symctl.neural.stability.loop_stability`
-        gives the verdict without raising), non-finite values, bad horizon, or a run
-        that overflows.
+        gives the verdict without raising), non-finite values, bad horizon, a run
+        that overflows, or an ``R.dt`` other than the plant's ``Ts``.
     DimensionError
         ``R`` or ``disturbance`` of the wrong shape.
 
@@ -643,7 +644,7 @@ def closed_loop_response(
         ``plant`` given, the gains' :func:`ifp_realization` is closed around that plant.
         A numeric SISO :class:`DiscreteTF` is realized in controllable canonical form;
         a :class:`Realization` goes to :func:`simulate_realization`.
-    plant : DiscretePlant, MuscleModel or (A, B), optional
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Required unless ``controller`` is ``Gains``.
     disturbance, steps, start, length
         As in :func:`simulate_realization` (default: a unit pulse, 1 N per step, on
@@ -652,6 +653,12 @@ def closed_loop_response(
     Returns
     -------
     Response
+
+    Raises
+    ------
+    ParameterError
+        No ``plant`` for a controller other than ``Gains``, or a plant whose ``Ts`` is
+        not the controller's ``dt`` (named ``plant`` for ``Gains``, else ``controller``).
 
     Examples
     --------
@@ -669,6 +676,8 @@ def closed_loop_response(
     """
     if isinstance(controller, Gains):
         if plant is not None:
+            plant = as_plant(plant)
+            same_dt(plant, controller.system.plant.Ts, "plant", "the gains' plant")
             return simulate_realization(
                 plant, _as_realization(controller), disturbance,
                 steps=steps, start=start, length=length,
@@ -699,4 +708,6 @@ def closed_loop_response(
             "controller: expected Gains, a DiscreteTF or a Realization, "
             f"got {type(controller).__name__}"
         )
+    plant = as_plant(plant)
+    same_dt(plant, R.dt, "controller")
     return simulate_realization(plant, R, disturbance, steps=steps, start=start, length=length)

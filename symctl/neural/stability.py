@@ -113,7 +113,7 @@ def loop_stability(plant, controller) -> LoopStability:
 
     Parameters
     ----------
-    plant : DiscretePlant, MuscleModel or (A, B)
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     controller : Realization, DiscreteTF, Gains or Circuit
         A numeric realization (e.g. ``controller_realization(factor(G).subs(values), R2)``),
         a SISO transfer function (realized in controllable canonical form), gains
@@ -132,7 +132,7 @@ def loop_stability(plant, controller) -> LoopStability:
     DimensionError
         ``controller`` of the wrong shape for ``plant``.
     ParameterError
-        Symbols left in the controller.
+        Symbols left in the controller, or a controller ``dt`` other than the plant's ``Ts``.
 
     Examples
     --------
@@ -158,7 +158,7 @@ def loop_stability(plant, controller) -> LoopStability:
                 "controller: expected a Realization, a DiscreteTF, Gains or a Circuit, "
                 f"got {type(controller).__name__}"
             )
-        mats = _numeric_realization(controller, p)
+        mats = _numeric_realization(controller, p, "controller")
     Acl, _ = _closed_loop_matrices(A, B, *mats)
     Acl = Acl[:, :, 0]
     eigs = np.linalg.eigvals(Acl) if Acl.shape[0] else np.zeros(0)

@@ -1,0 +1,250 @@
+r"""python-control systems as symctl plants, and the one realization of a numeric transfer function.
+
+:func:`plant_from_control` reads a discrete ``control.StateSpace`` or
+``control.TransferFunction`` as a :class:`~symctl.design.plant.DiscretePlant`
+(:func:`~symctl.design.augment.as_plant` hands python-control objects to it, so
+every function that takes a plant takes them too). python-control is imported
+only when such an object arrives, so ``import symctl`` stays cheap.
+
+:func:`canonical_columns` realizes a matrix of numeric transfer functions
+:math:`G_{ij} = n_{ij}/d_{ij}`, column by column, in symctl's controllable
+canonical form (that of :func:`~symctl.realization.realization.controllable_canonical`):
+column :math:`j` has the denominator :math:`d_j(z) = z^r + a_{r-1} z^{r-1} + \dots + a_0`,
+the product of the distinct denominators of its entries, and
+
+.. math::
+    F_j = \begin{bmatrix} 0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\
+        -a_0 & -a_1 & \cdots & -a_{r-1}\end{bmatrix},\quad H_j = e_r,\quad
+    M_j = [c_{ij,0}\ \cdots\ c_{ij,r-1}]_i,\quad N_{ij} = G_{ij}(\infty),
+
+with :math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k / d_j`; the columns' blocks are put
+on the diagonal in input order. Deterministic, controllable, and minimal for
+SISO (and whenever the columns' entries share one denominator without common factor).
+
+>>> import control
+>>> from symctl.design._foreign import plant_from_control
+>>> p = plant_from_control(control.ss([[0.5]], [[2.0]], [[1.0]], 0, 0.1))
+>>> p.A, p.B, p.Ts, p.state_names
+(Matrix([[0.5]]), Matrix([[2.0]]), 0.100000000000000, ('x',))
+"""
+
+from __future__ import annotations
+
+from functools import reduce
+
+import numpy as np
+
+from symctl._util.validate import MAX_STATES, sampling_time
+from symctl.design.plant import DiscretePlant
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+
+__all__ = ["canonical_columns", "control_dt", "is_control_system", "plant_from_control"]
+
+
+def is_control_system(obj) -> bool:
+    """Whether ``obj`` is a python-control object (read from its type, without importing control).
+
+    >>> from symctl.design._foreign import is_control_system
+    >>> is_control_system(([[1]], [[1]]))
+    False
+    """
+    return type(obj).__module__.partition(".")[0] == "control"
+
+
+def control_dt(sys, argname: str):
+    """The sampling time of a discrete python-control system; ``dt=True`` (or None) -> None.
+
+    >>> import control
+    >>> from symctl.design._foreign import control_dt
+    >>> control_dt(control.tf([1], [1, -0.5], True), "sys") is None
+    True
+    >>> control_dt(control.tf([1], [1, 1]), "sys")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: sys: a continuous-time system (dt = 0); discretize it first ...
+    """
+    dt = sys.dt
+    if dt is True or dt is None:  # python-control's "discrete, unspecified" (None: either)
+        return None
+    if dt is False or dt == 0:
+        raise ParameterError(
+            f"{argname}: a continuous-time system (dt = 0); discretize it first "
+            "(control.c2d, or symctl.discretize for (a, b))"
+        )
+    return sampling_time(float(dt), argname)
+
+
+def _finite(arr, argname: str) -> np.ndarray:
+    arr = np.asarray(arr)
+    if np.iscomplexobj(arr):
+        if np.any(arr.imag):
+            raise ParameterError(f"{argname}: complex coefficients, expected real ones")
+        arr = arr.real
+    arr = np.asarray(arr, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{argname}: coefficients must be finite, got {arr.tolist()}")
+    return arr
+
+
+def _monic(num, den, where: str) -> tuple[np.ndarray, np.ndarray]:
+    num = np.trim_zeros(np.atleast_1d(_finite(num, where)), "f")
+    den = np.trim_zeros(np.atleast_1d(_finite(den, where)), "f")
+    if den.size == 0:
+        raise ParameterError(f"{where}: the denominator is zero")
+    if num.size > den.size:
+        raise ParameterError(
+            f"{where}: improper (numerator degree above denominator's): not causal"
+        )
+    return (num if num.size else np.zeros(1)) / den[0], den / den[0]
+
+
+def _column(entries: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, ...]:
+    """``(F, H, M, N)`` of one input column, ``entries`` monic ``(num, den)`` pairs."""
+    distinct: list[np.ndarray] = []
+    for _, den in entries:
+        if not any(np.array_equal(den, d) for d in distinct):
+            distinct.append(den)
+    col_den = reduce(np.polymul, distinct, np.ones(1))
+    r = col_den.size - 1
+    a = col_den[1:]  # descending, z^{r-1} .. z^0
+    M, N = np.zeros((len(entries), r)), np.zeros((len(entries), 1))
+    for i, (num, den) in enumerate(entries):
+        full = reduce(np.polymul, [d for d in distinct if not np.array_equal(d, den)], num)
+        full = np.concatenate([np.zeros(r + 1 - full.size), full])
+        N[i, 0] = full[0]
+        M[i] = (full[1:] - full[0] * a)[::-1]  # ascending powers z^0 .. z^{r-1}
+    F = np.eye(r, k=1)
+    H = np.zeros((r, 1))
+    if r:
+        F[-1] = -a[::-1]
+        H[-1, 0] = 1.0
+    return F, H, M, N
+
+
+def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
+    """``(F, H, M, N)``: the column-wise controllable canonical form of ``nums[i][j]/dens[i][j]``.
+
+    Parameters
+    ----------
+    nums, dens : nested sequences ``[outputs][inputs]`` of coefficient arrays
+        Descending powers of z (python-control's ``num_array``/``den_array``).
+    argname : str
+        Named in errors.
+
+    Returns
+    -------
+    tuple of numpy arrays
+        ``F`` (n x n), ``H`` (n x inputs), ``M`` (outputs x n), ``N`` (outputs x inputs),
+        with ``n`` the sum of the columns' denominator degrees.
+
+    Raises
+    ------
+    ParameterError
+        An improper entry, a zero denominator, complex or non-finite coefficients.
+    DimensionError
+        No entries, or more than ``MAX_STATES`` (1000) states.
+
+    Examples
+    --------
+    >>> from symctl.design._foreign import canonical_columns
+    >>> F, H, M, N = canonical_columns([[[2.0, 1.0]]], [[[1.0, -0.5, 0.06]]], "G")
+    >>> F.tolist(), H.ravel().tolist(), M.tolist(), N.tolist()
+    ([[0.0, 1.0], [-0.06, 0.5]], [0.0, 1.0], [[1.0, 2.0]], [[0.0]])
+    """
+    rows = len(nums)
+    cols = len(nums[0]) if rows else 0
+    if not rows or not cols:
+        raise DimensionError(f"{argname}: a transfer function with no inputs or outputs")
+    blocks = [
+        _column([_monic(nums[i][j], dens[i][j], f"{argname}[{i}, {j}]") for i in range(rows)])
+        for j in range(cols)
+    ]
+    n = sum(b[0].shape[0] for b in blocks)
+    if n > MAX_STATES:
+        raise DimensionError(f"{argname}: realizes with {n} states, more than {MAX_STATES}")
+    F, H, M = np.zeros((n, n)), np.zeros((n, cols)), np.zeros((rows, n))
+    N = np.hstack([b[3] for b in blocks])
+    at = 0
+    for j, (Fj, Hj, Mj, _) in enumerate(blocks):
+        r = Fj.shape[0]
+        F[at : at + r, at : at + r] = Fj
+        H[at : at + r, j : j + 1] = Hj
+        M[:, at : at + r] = Mj
+        at += r
+    return F, H, M, N
+
+
+def _labels(labels) -> tuple[str, ...]:
+    """User labels when all are distinct identifiers; else () for symctl's defaults.
+
+    python-control 0.10 labels signals ``x[0]``, ``u[0]``... by default: not
+    identifiers, so they give symctl's ``x_1``, ``u`` names instead.
+    """
+    names = tuple(labels or ())
+    ok = all(isinstance(s, str) and s.isidentifier() for s in names)
+    return names if ok and len(set(names)) == len(names) else ()
+
+
+def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
+    """A :class:`~symctl.design.plant.DiscretePlant` from a discrete python-control system.
+
+    A ``StateSpace`` gives its ``A`` and ``B`` (``C`` and ``D`` are not used: symctl's
+    plant is state feedback, :math:`x(t+1) = A x(t) + B u(t)`); a SISO or MIMO
+    ``TransferFunction`` is realized first by :func:`canonical_columns`, so its
+    states are those of the column-wise controllable canonical form. ``Ts`` is the
+    system's ``dt`` (``dt=True``, "discrete, unspecified", gives ``None``). State and
+    input names are the system's labels when they are distinct identifiers; the
+    default labels (``x[0]``, ``u[0]``) give symctl's defaults ``x_1, ...`` and ``u``.
+
+    Parameters
+    ----------
+    sys : control.StateSpace or control.TransferFunction
+        Discrete-time, numeric.
+    argname : str
+        Named in errors (default ``"plant"``).
+
+    Returns
+    -------
+    DiscretePlant
+
+    Raises
+    ------
+    ParameterError
+        A continuous-time system (``dt = 0``), an improper transfer function,
+        non-finite or complex coefficients.
+    SymctlTypeError
+        Another python-control object.
+    DimensionError
+        No states (a static gain), or more than ``MAX_STATES`` (1000).
+
+    Examples
+    --------
+    >>> import control
+    >>> from symctl.design._foreign import plant_from_control
+    >>> sys = control.ss([[1, 0.1], [0, 1]], [[0], [0.1]], [[1, 0]], 0, 0.1,
+    ...                  states=["pos", "vel"], inputs=["force"])
+    >>> p = plant_from_control(sys)
+    >>> p.state_names, p.input_names, p.Ts
+    (('pos', 'vel'), ('force',), 0.100000000000000)
+    >>> plant_from_control(control.tf([2], [1, -0.5], True)).A
+    Matrix([[0.5]])
+    """
+    import control
+
+    if not isinstance(sys, control.StateSpace | control.TransferFunction):
+        raise SymctlTypeError(
+            f"{argname}: expected a python-control StateSpace or TransferFunction, "
+            f"got {type(sys).__name__}"
+        )
+    Ts = control_dt(sys, argname)
+    if isinstance(sys, control.TransferFunction):
+        A, B, _, _ = canonical_columns(sys.num_array, sys.den_array, argname)
+        states = ()
+    else:
+        A, B = _finite(sys.A, argname), _finite(sys.B, argname)
+        states = _labels(sys.state_labels)
+    if A.shape[0] == 0:
+        raise DimensionError(f"{argname}: a static gain (no states) is not a plant")
+    if A.shape[0] > MAX_STATES:
+        raise DimensionError(f"{argname}: at most {MAX_STATES} states, got {A.shape[0]}")
+    return DiscretePlant(A, B, Ts, states, _labels(sys.input_labels))
