@@ -1,10 +1,25 @@
-"""Conversions between symctl's objects and python-control / SciPy.
+r"""Conversions between symctl's objects and python-control, SciPy and SymPy.
 
-Kept in one small module (house style): :func:`tf_to_control` and
-:func:`tf_from_control` for transfer functions, :func:`ss_to_control` and
-:func:`ss_from_control` for realizations (the objects' ``to_control`` and
-``from_control`` hand over to them). The sampling time is carried over
-(``dt=True``, python-control's "discrete, unspecified", maps to ``None``).
+Small free functions in one module (house style; SciPy's ``signal/_lti_conversion.py``
+is the model); the objects' ``to_*``/``from_*`` methods hand over to them.
+
+================================  =================================  =================================
+library                           :class:`~symctl.DiscreteTF`        :class:`~symctl.Realization`
+================================  =================================  =================================
+python-control                    tf_to_control, tf_from_control     ss_to_control, ss_from_control
+``scipy.signal``                  tf_to_scipy, tf_from_scipy         ss_to_scipy, ss_from_scipy
+``sympy.physics.control``         tf_to_sympy, tf_from_sympy         ss_to_sympy, ss_from_sympy
+================================  =================================  =================================
+
+python-control and SciPy hold numbers (objects with symbols are refused); SymPy
+holds symbols, and its conversions are exact both ways. The sampling time is kept:
+``dt=True`` of python-control and SciPy ("discrete, unspecified") is ``dt=None``,
+continuous-time systems are refused (:class:`~symctl.errors.ParameterError`: discretize
+first). SymPy 1.14 has no discrete-time classes, so its objects carry no ``dt``
+(``*_from_sympy`` take ``dt=``); a later SymPy's ``DiscreteTransferFunction`` and
+``DiscreteStateSpace`` are detected and carry it (``docs/interop.md`` has the table).
+A transfer function is realized, where a state space is needed, by
+:func:`symctl.design._foreign.canonical_columns` (for SISO: controllable canonical form).
 
 >>> from symctl import z
 >>> from symctl import DiscreteTF
@@ -21,13 +36,41 @@ from __future__ import annotations
 import control
 import numpy as np
 import sympy as sp
+from scipy import signal
 
+from symctl._util.validate import common_dt, sampling_time
+from symctl.design._foreign import canonical_columns, control_dt
 from symctl.design.tf import DiscreteTF
-from symctl.errors import ParameterError, SymctlTypeError
-from symctl.realization.realization import Realization
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.realization.realization import Realization, controllable_canonical
 from symctl.symbols import z
 
-__all__ = ["ss_from_control", "ss_to_control", "tf_from_control", "tf_to_control"]
+__all__ = [
+    "ss_from_control",
+    "ss_from_scipy",
+    "ss_from_sympy",
+    "ss_to_control",
+    "ss_to_scipy",
+    "ss_to_sympy",
+    "tf_from_control",
+    "tf_from_scipy",
+    "tf_from_sympy",
+    "tf_to_control",
+    "tf_to_scipy",
+    "tf_to_sympy",
+]
+
+
+def _tf(G) -> DiscreteTF:
+    if not isinstance(G, DiscreteTF):
+        raise SymctlTypeError(f"G: expected a DiscreteTF, got {type(G).__name__}")
+    return G
+
+
+def _realization(R) -> Realization:
+    if not isinstance(R, Realization):
+        raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
+    return R
 
 
 def _floats(coeffs, what: str) -> list[float]:
@@ -37,67 +80,625 @@ def _floats(coeffs, what: str) -> list[float]:
         raise ParameterError(f"G: {what} has free symbols; substitute numbers first") from None
 
 
+def _z_expr(coeffs) -> sp.Expr:
+    """The polynomial in z of float coefficients (descending powers) of another library."""
+    return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
+
+
+def _their_dt(dt):
+    """symctl's dt as python-control's and SciPy's: None (unspecified) is ``True``."""
+    return True if dt is None else float(dt)
+
+
+def _merge_dt(own, given, argname: str = "dt"):
+    """The system's own sampling time and the ``dt=`` argument, which must agree."""
+    given = None if given is None else sampling_time(given, argname)
+    return common_dt(own, given, argname)
+
+
 def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
-    """``control.TransferFunction`` (dt kept) of a numeric :class:`DiscreteTF`."""
-    if not isinstance(G, DiscreteTF):
-        raise SymctlTypeError(f"G: expected a DiscreteTF, got {type(G).__name__}")
+    """``control.TransferFunction`` (dt kept) of a numeric :class:`DiscreteTF`.
+
+    Parameters
+    ----------
+    G : DiscreteTF
+        Numeric, SISO or MIMO.
+
+    Returns
+    -------
+    control.TransferFunction
+        With ``dt = G.dt`` (``True`` when ``G.dt`` is None).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``G`` not a DiscreteTF.
+    ParameterError
+        Free symbols in ``G``.
+
+    Examples
+    --------
+    >>> from symctl import DiscreteTF, z
+    >>> from symctl.interop import tf_to_control
+    >>> tf_to_control(DiscreteTF.from_expr(1 / (z - 0.5))).dt
+    True
+    """
+    G = _tf(G)
     den = _floats(G.den_coeffs(), "the denominator")
     rows, cols = G.shape
     nums = [
         [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
     ]
     dens = [[den for _ in range(cols)] for _ in range(rows)]
-    dt = True if G.dt is None else float(G.dt)
     if G.is_siso:
-        return control.tf(nums[0][0], den, dt)
-    return control.tf(nums, dens, dt)
+        return control.tf(nums[0][0], den, _their_dt(G.dt))
+    return control.tf(nums, dens, _their_dt(G.dt))
 
 
-def _discrete(sys) -> None:
+def _discrete(sys):
     if not isinstance(sys, control.LTI):
         raise SymctlTypeError(f"sys: expected a python-control system, got {type(sys).__name__}")
-    if not sys.isdtime():
-        raise ParameterError("sys: a continuous-time system; discretize it first (control.c2d)")
+    return control_dt(sys, "sys")
 
 
 def tf_from_control(sys) -> DiscreteTF:
-    """A :class:`DiscreteTF` from a discrete python-control system (TF or state space)."""
-    _discrete(sys)
+    """A :class:`DiscreteTF` from a discrete python-control system (TF or state space).
+
+    Parameters
+    ----------
+    sys : control.TransferFunction or control.StateSpace
+        Discrete-time (``dt > 0`` or ``True``).
+
+    Returns
+    -------
+    DiscreteTF
+        In lowest terms, with ``dt = sys.dt`` (None for ``dt=True``).
+
+    Raises
+    ------
+    SymctlTypeError
+        Not a python-control system.
+    ParameterError
+        A continuous-time system.
+
+    Examples
+    --------
+    >>> import control
+    >>> from symctl.interop import tf_from_control
+    >>> tf_from_control(control.tf([1], [1, -0.5], True)).dt is None
+    True
+    """
+    dt = _discrete(sys)
     tf = control.tf(sys)
     rows, cols = tf.noutputs, tf.ninputs
     entries = sp.zeros(rows, cols)
     for i in range(rows):
         for j in range(cols):
-            num = sp.Poly(np.atleast_1d(tf.num_array[i, j]).tolist(), z).as_expr()
-            den = sp.Poly(np.atleast_1d(tf.den_array[i, j]).tolist(), z).as_expr()
-            entries[i, j] = num / den
-    dt = None if sys.dt is True else sys.dt
+            entries[i, j] = _z_expr(tf.num_array[i, j]) / _z_expr(tf.den_array[i, j])
     return DiscreteTF.from_expr(entries if (rows, cols) != (1, 1) else entries[0, 0], dt=dt)
 
 
 def ss_to_control(R: Realization) -> control.StateSpace:
     """A discrete ``control.StateSpace`` of a numeric :class:`~symctl.Realization` (dt kept).
 
+    Parameters
+    ----------
+    R : Realization
+        Numeric.
+
+    Returns
+    -------
+    control.StateSpace
+        ``(F, H, M, N)`` as ``(A, B, C, D)``, ``dt = R.dt`` (``True`` when None).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``R`` not a Realization.
+    ParameterError
+        Free symbols in ``R``.
+
+    Examples
+    --------
     >>> from symctl import Realization
     >>> from symctl.interop import ss_to_control
     >>> ss_to_control(Realization([[0.5]], [[1]], [[2]], 0, dt=0.1)).dt
     0.1
     """
-    if not isinstance(R, Realization):
-        raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
-    F, H, M, N = R.numeric()
-    return control.ss(F, H, M, N, True if R.dt is None else float(R.dt))
+    F, H, M, N = _realization(R).numeric()
+    return control.ss(F, H, M, N, _their_dt(R.dt))
 
 
 def ss_from_control(sys) -> Realization:
-    """A :class:`~symctl.Realization` of a discrete python-control system (made state space).
+    """A :class:`~symctl.Realization` of a discrete python-control system.
 
+    Parameters
+    ----------
+    sys : control.StateSpace or control.TransferFunction
+        Discrete-time. A transfer function (SISO or MIMO) is realized in the
+        column-wise controllable canonical form (see the module's docstring).
+
+    Returns
+    -------
+    Realization
+        With ``dt = sys.dt`` (None for ``dt=True``).
+
+    Raises
+    ------
+    SymctlTypeError
+        Not a python-control system.
+    ParameterError
+        A continuous-time system, or an improper transfer function.
+
+    Examples
+    --------
     >>> import control
     >>> from symctl.interop import ss_from_control
     >>> ss_from_control(control.tf([1], [1, -0.5], 0.1)).to_tf().expr
     1.0/(z - 0.5)
     """
-    _discrete(sys)
+    dt = _discrete(sys)
+    if isinstance(sys, control.TransferFunction):
+        return Realization(*canonical_columns(sys.num_array, sys.den_array, "sys"), dt)
     ss = control.ss(sys)
-    dt = None if ss.dt is True else ss.dt
     return Realization(ss.A, ss.B, ss.C, ss.D, dt)
+
+
+def _scipy_dt(sys):
+    if isinstance(sys, signal.lti):
+        raise ParameterError(
+            "sys: a continuous-time SciPy system (scipy.signal.lti); discretize it first "
+            "(its .to_discrete(dt) or scipy.signal.cont2discrete)"
+        )
+    if not isinstance(sys, signal.dlti):
+        raise SymctlTypeError(
+            "sys: expected a discrete scipy.signal system (dlti: StateSpace, TransferFunction "
+            f"or ZerosPolesGain), got {type(sys).__name__}"
+        )
+    return None if sys.dt is True or sys.dt is None else sampling_time(float(sys.dt), "sys")
+
+
+def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
+    """A discrete ``scipy.signal.TransferFunction`` of a numeric SISO or SIMO :class:`DiscreteTF`.
+
+    SciPy's transfer functions have one input (a SIMO ``G`` gives a 2-D ``num``,
+    one row per output); :func:`ss_to_scipy` holds any shape.
+
+    Parameters
+    ----------
+    G : DiscreteTF
+        Numeric, with one input.
+
+    Returns
+    -------
+    scipy.signal.TransferFunction
+        A ``dlti`` with ``dt = G.dt`` (``True`` when ``G.dt`` is None).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``G`` not a DiscreteTF.
+    DimensionError
+        ``G`` with more than one input.
+    ParameterError
+        Free symbols in ``G``.
+
+    Examples
+    --------
+    >>> from symctl import DiscreteTF, z
+    >>> from symctl.interop import tf_to_scipy
+    >>> sys = tf_to_scipy(DiscreteTF.from_expr((z + 2) / (z - 0.5), dt=0.1))
+    >>> sys.num.tolist(), sys.den.tolist(), sys.dt
+    ([1.0, 2.0], [1.0, -0.5], 0.1)
+    """
+    G = _tf(G)
+    rows, cols = G.shape
+    if cols != 1:
+        raise DimensionError(
+            f"G: scipy.signal.TransferFunction holds one input, G has shape {G.shape}; "
+            "use ss_to_scipy (a StateSpace holds any shape)"
+        )
+    den = _floats(G.den_coeffs(), "the denominator")
+    nums = [_floats(G.num_coeffs(i, 0), "the numerator") for i in range(rows)]
+    if G.is_siso:
+        return signal.TransferFunction(nums[0], den, dt=_their_dt(G.dt))
+    width = max(len(n) for n in nums)
+    num = np.array([[0.0] * (width - len(n)) + n for n in nums])
+    return signal.TransferFunction(num, den, dt=_their_dt(G.dt))
+
+
+def _scipy_tf_parts(sys) -> tuple[list[list[np.ndarray]], np.ndarray]:
+    """``nums[i][j]`` and the common denominator of a discrete SciPy system."""
+    if isinstance(sys, signal.StateSpace):
+        rows, cols = sys.D.shape
+        if not rows or not cols:
+            raise DimensionError(f"sys: no inputs or no outputs, D has shape {sys.D.shape}")
+        columns = [signal.ss2tf(sys.A, sys.B, sys.C, sys.D, input=j) for j in range(cols)]
+        den = np.atleast_1d(columns[0][1])
+        return [[np.atleast_2d(num)[i] for num, _ in columns] for i in range(rows)], den
+    if isinstance(sys, signal.ZerosPolesGain):
+        sys = sys.to_tf()
+    num = np.atleast_2d(sys.num)
+    return [[row] for row in num], np.atleast_1d(sys.den)
+
+
+def tf_from_scipy(sys) -> DiscreteTF:
+    """A :class:`DiscreteTF` from a discrete ``scipy.signal`` system.
+
+    Parameters
+    ----------
+    sys : scipy.signal.dlti
+        A discrete ``TransferFunction`` (SISO or SIMO), ``ZerosPolesGain`` or
+        ``StateSpace`` (any shape: ``scipy.signal.ss2tf`` input by input).
+
+    Returns
+    -------
+    DiscreteTF
+        With ``dt = sys.dt`` (None for ``dt=True``); coefficients as SciPy has them.
+
+    Raises
+    ------
+    SymctlTypeError
+        Not a discrete SciPy system.
+    ParameterError
+        A continuous-time system (``scipy.signal.lti``).
+
+    Examples
+    --------
+    >>> from scipy import signal
+    >>> from symctl.interop import tf_from_scipy
+    >>> G = tf_from_scipy(signal.dlti([2.0], [1.0, -0.5], dt=0.1))
+    >>> G.expr, G.dt
+    (2.0/(z - 0.5), 0.100000000000000)
+    """
+    dt = _scipy_dt(sys)
+    nums, den = _scipy_tf_parts(sys)
+    num = sp.zeros(len(nums), len(nums[0]))
+    for i, row in enumerate(nums):
+        for j, coeffs in enumerate(row):
+            num[i, j] = _z_expr(coeffs)
+    return DiscreteTF(num, _z_expr(den), dt)
+
+
+def ss_to_scipy(R: Realization) -> signal.StateSpace:
+    """A discrete ``scipy.signal.StateSpace`` of a numeric :class:`~symctl.Realization`.
+
+    Parameters
+    ----------
+    R : Realization
+        Numeric, any shape.
+
+    Returns
+    -------
+    scipy.signal.StateSpace
+        ``(F, H, M, N)`` as ``(A, B, C, D)``, a ``dlti`` with ``dt = R.dt`` (``True``
+        when None).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``R`` not a Realization.
+    ParameterError
+        Free symbols in ``R``.
+
+    Examples
+    --------
+    >>> from symctl import Realization
+    >>> from symctl.interop import ss_to_scipy
+    >>> sys = ss_to_scipy(Realization([[0.5]], [[1]], [[2]], 0, dt=0.1))
+    >>> sys.A.tolist(), sys.C.tolist(), sys.dt
+    ([[0.5]], [[2.0]], 0.1)
+    """
+    F, H, M, N = _realization(R).numeric()
+    return signal.StateSpace(F, H, M, N, dt=_their_dt(R.dt))
+
+
+def ss_from_scipy(sys) -> Realization:
+    """A :class:`~symctl.Realization` of a discrete ``scipy.signal`` system.
+
+    Parameters
+    ----------
+    sys : scipy.signal.dlti
+        A discrete ``StateSpace`` (taken as it is), or a ``TransferFunction`` or
+        ``ZerosPolesGain``, realized in the column-wise controllable canonical form.
+
+    Returns
+    -------
+    Realization
+        With ``dt = sys.dt`` (None for ``dt=True``).
+
+    Raises
+    ------
+    SymctlTypeError
+        Not a discrete SciPy system.
+    ParameterError
+        A continuous-time system, or an improper transfer function.
+
+    Examples
+    --------
+    >>> from scipy import signal
+    >>> from symctl.interop import ss_from_scipy
+    >>> R = ss_from_scipy(signal.dlti([1.0, 2.0], [1.0, -0.5, 0.06], dt=0.1))
+    >>> R.F, R.H.T, R.M, R.dt
+    (Matrix([
+    [  0.0, 1.0],
+    [-0.06, 0.5]]), Matrix([[0.0, 1.0]]), Matrix([[2.0, 1.0]]), 0.100000000000000)
+    """
+    dt = _scipy_dt(sys)
+    if isinstance(sys, signal.StateSpace):
+        return Realization(sys.A, sys.B, sys.C, sys.D, dt)
+    nums, den = _scipy_tf_parts(sys)
+    return Realization(*canonical_columns(nums, [[den]] * len(nums), "sys"), dt)
+
+
+class _SymPy:
+    """``sympy.physics.control``'s classes, feature-detected: None where this SymPy lacks one.
+
+    ``StateSpace`` arrived in SymPy 1.13; ``DiscreteTransferFunction`` and
+    ``DiscreteStateSpace`` after 1.14 (on SymPy's main branch since August 2025).
+    """
+
+    def __init__(self):
+        import sympy.physics.control as ctl
+
+        self.ctl = ctl
+        self.ss = getattr(ctl, "StateSpace", None)
+        self.dtf = getattr(ctl, "DiscreteTransferFunction", None)
+        self.dss = getattr(ctl, "DiscreteStateSpace", None)
+        self.tfs = tuple(c for c in (ctl.TransferFunction, self.dtf) if c is not None)
+        self.sss = tuple(c for c in (self.ss, self.dss) if c is not None)
+
+
+def _sympy_dt(sys, dt):
+    """The sampling time of a SymPy system merged with ``dt=``; continuous time refused."""
+    if getattr(sys, "is_continuous", None) is True:  # only a SymPy with discrete classes says
+        raise ParameterError(
+            f"sys: a continuous-time SymPy {type(sys).__name__}; use DiscreteTransferFunction "
+            "or DiscreteStateSpace (e.g. DiscreteTransferFunction.from_gbt) to discretize"
+        )
+    own = None
+    if getattr(sys, "is_continuous", None) is False:
+        own = sampling_time(sys.sampling_time, "sys")
+    return _merge_dt(own, dt)
+
+
+def _variable(sys, var, discrete: bool) -> sp.Symbol:
+    """The variable of ``sys`` that is z: ``var``, else any of a discrete class, else z."""
+    if var is not None:
+        if not isinstance(var, sp.Symbol):
+            raise SymctlTypeError(f"var: expected a sympy Symbol, got {type(var).__name__}")
+        if var != sys.var:
+            raise ParameterError(f"var: sys is a transfer function in {sys.var}, not in {var}")
+        return var
+    if not discrete and sys.var != z:
+        raise ParameterError(
+            f"sys: a transfer function in {sys.var}, not in z; pass var={sys.var} if "
+            f"{sys.var} is the z-transform variable"
+        )
+    return sys.var
+
+
+def tf_to_sympy(G: DiscreteTF):
+    """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
+
+    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14 and older: no sampling time,
+    ``G.dt`` is dropped) or a ``DiscreteTransferFunction(num, den, z, dt)`` (a SymPy
+    with discrete classes; ``dt=None`` is written as 1). MIMO: a
+    ``TransferFunctionMatrix`` of those, every entry over ``G``'s common denominator.
+
+    Parameters
+    ----------
+    G : DiscreteTF
+        Exact, symbolic or numeric.
+
+    Returns
+    -------
+    sympy.physics.control.TransferFunction, DiscreteTransferFunction or TransferFunctionMatrix
+
+    Raises
+    ------
+    SymctlTypeError
+        ``G`` not a DiscreteTF.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import DiscreteTF, z
+    >>> from symctl.interop import tf_to_sympy
+    >>> K, a = sp.symbols("K a")
+    >>> sys = tf_to_sympy(DiscreteTF.from_expr(K * z / (z**2 - a), dt=sp.Rational(1, 100)))
+    >>> sys.num, sys.den, sys.var
+    (K*z, -a + z**2, z)
+    """
+    G = _tf(G)
+    lib = _SymPy()
+
+    def entry(num):
+        if lib.dtf is None:
+            return lib.ctl.TransferFunction(num, G.den, z)
+        return lib.dtf(num, G.den, z, 1 if G.dt is None else G.dt)
+
+    if G.is_siso:
+        return entry(G.num)
+    rows = [[entry(e) for e in row] for row in G.num_matrix.tolist()]
+    return lib.ctl.TransferFunctionMatrix(rows)
+
+
+def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
+    """A :class:`DiscreteTF` from a ``sympy.physics.control`` system, exactly (symbols kept).
+
+    Parameters
+    ----------
+    sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
+        SymPy 1.14's classes carry no sampling time: they are read as discrete, in
+        the variable ``z``. A SymPy with discrete classes gives ``sampling_time`` and
+        any variable of its ``DiscreteTransferFunction``; its continuous-time classes
+        are refused. Series, Parallel and Feedback: call ``.doit()`` first.
+    dt : number, symbol or None
+        The sampling time (SymPy 1.14), or one that must agree with the system's.
+    var : sympy Symbol, optional
+        The variable of ``sys`` that is the z-transform variable, when it is not
+        named ``z`` (it becomes :data:`symctl.z`); a transfer function in another
+        variable is refused without it.
+
+    Returns
+    -------
+    DiscreteTF
+        Over the common denominator when all entries share one (exact, not cancelled),
+        else in lowest terms.
+
+    Raises
+    ------
+    SymctlTypeError
+        Another type, or a ``var`` that is not a Symbol.
+    ParameterError
+        A continuous-time system, a variable other than z (or ``var``), a ``dt`` that
+        disagrees with the system's, or entries that are not rational in the variable.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import DiscreteTF, z
+    >>> from symctl.interop import tf_from_sympy, tf_to_sympy
+    >>> G = DiscreteTF.from_expr(sp.Symbol("K") / (z - sp.Rational(1, 2)), dt=sp.Rational(1, 10))
+    >>> back = tf_from_sympy(tf_to_sympy(G), dt=sp.Rational(1, 10))
+    >>> back == G, back.expr
+    (True, K/(z - 1/2))
+    >>> tf_from_sympy(G)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.SymctlTypeError: sys: expected a sympy.physics.control TransferFunction, ...
+    """
+    lib = _SymPy()
+    if isinstance(sys, lib.sss):
+        return ss_from_sympy(sys, dt).to_tf()
+    if isinstance(sys, lib.ctl.TransferFunctionMatrix):
+        entries = [list(row) for row in sys.args[0]]
+    elif isinstance(sys, lib.tfs):
+        entries = [[sys]]
+    else:
+        raise SymctlTypeError(
+            "sys: expected a sympy.physics.control TransferFunction, TransferFunctionMatrix "
+            f"or StateSpace (Series, Parallel, Feedback: call .doit() first), got "
+            f"{type(sys).__name__}"
+        )
+    dt = _sympy_dt(sys, dt)
+    v = _variable(sys, var, getattr(sys, "is_continuous", None) is False)
+    flat = [e for row in entries for e in row]
+    if not all(isinstance(e, lib.tfs) for e in flat):
+        raise SymctlTypeError("sys: entries other than transfer functions; call .doit() first")
+    if v != z and any(z in e.num.free_symbols | e.den.free_symbols for e in flat):
+        raise ParameterError(f"sys: uses z as a parameter besides its variable {v}")
+    nums = [e.num.xreplace({v: z}) for e in flat]
+    dens = [e.den.xreplace({v: z}) for e in flat]
+    for n, d in zip(nums, dens, strict=True):
+        if not (n.is_rational_function(z) and d.is_rational_function(z)):
+            raise ParameterError(f"sys: ({n})/({d}) is not rational in {v}")
+    shape = (len(entries), len(entries[0]))
+    if len(set(dens)) == 1 and all(e.is_polynomial(z) for e in (*nums, *dens)):
+        return DiscreteTF(_matrix(nums, shape), dens[0], dt)  # as it is: exact, not cancelled
+    return DiscreteTF.from_expr(
+        _matrix([n / d for n, d in zip(nums, dens, strict=True)], shape), dt
+    )
+
+
+def _matrix(values: list, shape: tuple[int, int]):
+    """Sympy values (not text) in a matrix of ``shape``, or the one value for 1 x 1."""
+    if shape == (1, 1):
+        return values[0]
+    out = sp.zeros(*shape)
+    for k, value in enumerate(values):
+        out[k // shape[1], k % shape[1]] = value
+    return out
+
+
+def ss_to_sympy(R: Realization):
+    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
+
+    A ``StateSpace(F, H, M, N)`` (SymPy 1.14 and older: no sampling time, ``R.dt``
+    is dropped) or a ``DiscreteStateSpace(F, H, M, N, dt)`` (a SymPy with discrete
+    classes; ``dt=None`` is written as 1).
+
+    Parameters
+    ----------
+    R : Realization
+        Exact, symbolic or numeric.
+
+    Returns
+    -------
+    sympy.physics.control.StateSpace or DiscreteStateSpace
+
+    Raises
+    ------
+    SymctlTypeError
+        ``R`` not a Realization.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import Realization
+    >>> from symctl.interop import ss_to_sympy
+    >>> e, C = sp.symbols("epsilon C")
+    >>> sys = ss_to_sympy(Realization([[e]], [[C]], [[1]], 0))
+    >>> sys.A, sys.B
+    (Matrix([[epsilon]]), Matrix([[C]]))
+    """
+    R = _realization(R)
+    lib = _SymPy()
+    if lib.ss is None:
+        raise ParameterError(f"R: SymPy {sp.__version__} has no StateSpace (SymPy >= 1.13 has)")
+    if lib.dss is None:
+        return lib.ss(R.F, R.H, R.M, R.N)
+    return lib.dss(R.F, R.H, R.M, R.N, 1 if R.dt is None else R.dt)
+
+
+def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
+    """A :class:`~symctl.Realization` of a ``sympy.physics.control`` system, exactly.
+
+    Parameters
+    ----------
+    sys : StateSpace, DiscreteStateSpace or a SISO transfer function
+        A state space is taken as it is; a SISO ``TransferFunction`` (or
+        ``DiscreteTransferFunction``) is realized by
+        :func:`~symctl.realization.realization.controllable_canonical`.
+    dt : number, symbol or None
+        As in :func:`tf_from_sympy`.
+    var : sympy Symbol, optional
+        As in :func:`tf_from_sympy` (transfer functions only).
+
+    Returns
+    -------
+    Realization
+
+    Raises
+    ------
+    SymctlTypeError
+        Another type.
+    ParameterError
+        A continuous-time system or a ``dt`` that disagrees with the system's.
+    DimensionError
+        A transfer function matrix (realize it with a symctl realizer instead).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import Realization
+    >>> from symctl.interop import ss_from_sympy, ss_to_sympy
+    >>> e, C = sp.symbols("epsilon C")
+    >>> R = Realization([[e]], [[C]], [[1]], 0, dt=sp.Rational(1, 100))
+    >>> ss_from_sympy(ss_to_sympy(R), dt=sp.Rational(1, 100)) == R
+    True
+    """
+    lib = _SymPy()
+    if isinstance(sys, lib.tfs):
+        return controllable_canonical(tf_from_sympy(sys, dt, var=var))
+    if isinstance(sys, lib.ctl.TransferFunctionMatrix):
+        raise DimensionError(
+            "sys: a transfer function matrix has no canonical realization here; use "
+            "tf_from_sympy and a symctl realizer"
+        )
+    if not isinstance(sys, lib.sss):
+        raise SymctlTypeError(
+            f"sys: expected a sympy.physics.control StateSpace, got {type(sys).__name__}"
+        )
+    return Realization(sys.A, sys.B, sys.C, sys.D, _sympy_dt(sys, dt))

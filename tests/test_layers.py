@@ -32,7 +32,16 @@ STAGES = (
     ("symctl.report",),
     ("symctl.cli",),
 )
-DELEGATIONS = {"draw", "plot", "to_control", "from_control"}
+DELEGATIONS = {
+    "draw",
+    "plot",
+    "to_control",
+    "from_control",
+    "to_sympy",
+    "from_sympy",
+    "to_scipy",
+    "from_scipy",
+}
 DELEGATION_TARGETS = ("symctl.plotting", "symctl.interop")
 MAX_LINES = 720  # "about 700"
 

@@ -380,6 +380,32 @@ class DiscreteTF(LatexMixin):
 
         return tf_from_control(sys)
 
+    def to_sympy(self):
+        """As a ``sympy.physics.control`` transfer function, exactly (:func:`symctl.interop.tf_to_sympy`)."""
+        from symctl.interop import tf_to_sympy
+
+        return tf_to_sympy(self)
+
+    @classmethod
+    def from_sympy(cls, sys, dt=None, *, var=None) -> DiscreteTF:
+        """From a ``sympy.physics.control`` system, exactly (:func:`symctl.interop.tf_from_sympy`)."""
+        from symctl.interop import tf_from_sympy
+
+        return tf_from_sympy(sys, dt, var=var)
+
+    def to_scipy(self):
+        """As a discrete ``scipy.signal.TransferFunction`` (:func:`symctl.interop.tf_to_scipy`)."""
+        from symctl.interop import tf_to_scipy
+
+        return tf_to_scipy(self)
+
+    @classmethod
+    def from_scipy(cls, sys) -> DiscreteTF:
+        """From a discrete ``scipy.signal`` system (:func:`symctl.interop.tf_from_scipy`)."""
+        from symctl.interop import tf_from_scipy
+
+        return tf_from_scipy(sys)
+
     # ------------------------------------------------------------ display
     def latex(self) -> str:
         """LaTeX in the paper's style: a constant factor pulled out, descending powers of z."""

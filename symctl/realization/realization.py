@@ -292,6 +292,32 @@ class Realization(LatexMixin):
 
         return ss_from_control(sys)
 
+    def to_sympy(self):
+        """As a ``sympy.physics.control`` state space, exactly (:func:`symctl.interop.ss_to_sympy`)."""
+        from symctl.interop import ss_to_sympy
+
+        return ss_to_sympy(self)
+
+    @classmethod
+    def from_sympy(cls, sys, dt=None, *, var=None) -> Realization:
+        """From a ``sympy.physics.control`` system, exactly (:func:`symctl.interop.ss_from_sympy`)."""
+        from symctl.interop import ss_from_sympy
+
+        return ss_from_sympy(sys, dt, var=var)
+
+    def to_scipy(self):
+        """As a discrete ``scipy.signal.StateSpace`` (:func:`symctl.interop.ss_to_scipy`)."""
+        from symctl.interop import ss_to_scipy
+
+        return ss_to_scipy(self)
+
+    @classmethod
+    def from_scipy(cls, sys) -> Realization:
+        """From a discrete ``scipy.signal`` system (:func:`symctl.interop.ss_from_scipy`)."""
+        from symctl.interop import ss_from_scipy
+
+        return ss_from_scipy(sys)
+
     @classmethod
     def series(cls, *parts: Realization) -> Realization:
         r"""The series connection of ``parts`` in signal-flow order (the first acts first).

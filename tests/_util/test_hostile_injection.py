@@ -427,7 +427,7 @@ AUDITED = {
     ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
     ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
     ("symctl.design.tf", "DiscreteTF.subs", "subs"): 3,  # subs_rule
-    ("symctl.interop", "tf_from_control", "Poly"): 2,  # python-control's float arrays
+    ("symctl.interop", "_z_expr", "Poly"): 1,  # float coefficients of control/SciPy arrays
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
     ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
     ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
