@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 OUT ?= out/paper
 
-.PHONY: all paper test lint format bench clean
+.PHONY: all paper examples test lint format bench clean
 
 all: test
 
@@ -17,6 +17,15 @@ $(STAMP): pyproject.toml
 
 paper: $(STAMP)
 	$(BIN)/symctl paper --out $(OUT)
+
+EXAMPLES := $(wildcard examples/*.toml)
+
+examples: $(STAMP)
+	@for f in $(EXAMPLES); do \
+		name=$$(basename $$f .toml); \
+		echo "== $$f -> out/$$name"; \
+		$(BIN)/symctl derive $$f --out out/$$name || exit $$?; \
+	done
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -n 2 -q

@@ -26,6 +26,7 @@ _PUBLIC = {
     # errors
     "DimensionError": "symctl.errors",
     "LatexError": "symctl.errors",
+    "ModelFileError": "symctl.errors",
     "NotRealizableError": "symctl.errors",
     "NotStabilizableError": "symctl.errors",
     "ParameterError": "symctl.errors",
@@ -46,6 +47,7 @@ _PUBLIC = {
     "MuscleModel": "symctl.design.plant",
     "discretize": "symctl.design.plant",
     "linearize": "symctl.design.plant",
+    "ODEModel": "symctl.design.ode",
     "DiscreteTF": "symctl.design.tf",
     # 3. realization: G = G3 G2 G1, realizations of G2, the exact checker
     "RealizationCheck": "symctl.realization.check",
@@ -86,6 +88,8 @@ _PUBLIC = {
     "Synapse": "symctl.neural.neuron",
     "NonlinearCheck": "symctl.neural.nonlinear",
     "nonlinear_check": "symctl.neural.nonlinear",
+    "DelaySearch": "symctl.neural.nonlinear",
+    "longest_delay": "symctl.neural.nonlinear",
     "Response": "symctl.neural.simulate",
     "closed_loop_response": "symctl.neural.simulate",
     "open_loop_response": "symctl.neural.simulate",
@@ -101,9 +105,13 @@ _PUBLIC = {
     "CircuitClass": "symctl.discovery.circuitclass",
     "Evidence": "symctl.discovery.universality",
     "Pattern": "symctl.discovery.pattern",
+    # your own system: model files
+    "Model": "symctl.model.model",
+    "load_model": "symctl.model.modelfile",
     # 6. report: the whole derivation
     "PaperResults": "symctl.report.results",
     "derive_paper": "symctl.report.pipeline",
+    "derive": "symctl.report.pipeline",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _PUBLIC, submodules=("latex",))

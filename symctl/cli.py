@@ -169,6 +169,69 @@ def paper(
     _written(out, folder.final(written), pdf)
 
 
+@cli.command("derive")
+@click.argument("model_file", metavar="MODEL.toml", type=click.Path(dir_okay=False))
+@click.option("--out", default=None, help="Output folder [default: out/<model name>].")
+@click.option(
+    "--check", is_flag=True, default=False, help="Validate the model file and exit; run nothing."
+)
+@click.option("--figures/--no-figures", default=True, show_default=True, help="Write the figures.")
+@click.option(
+    "--pdf/--no-pdf",
+    default=True,
+    show_default=True,
+    help="Compile derivation.pdf (needs pdflatex on the PATH).",
+)
+@click.option(
+    "--jobs",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Processes drawing the figures [default: CPUs, at most 4].",
+)
+def derive_command(model_file, out, check, figures, pdf, jobs) -> None:
+    """Run the whole derivation on your own system, described in MODEL.toml.
+
+    The same pipeline and outputs as `symctl paper` (which is this command on
+    examples/muscle.toml): results.json, derivation.tex (and .pdf), report.md and
+    the figures, titled with the model's names and units. The model file's
+    format is in docs/model-file.md. With --check the file is only read and
+    checked.
+    """
+    from symctl.model.modelfile import load_model
+    from symctl.report.output import OutputFolder
+    from symctl.report.pipeline import derive
+
+    model = load_model(Path(model_file))
+    for note in model.notes:
+        _console.print(f"note: {note}", markup=False, soft_wrap=True, highlight=False)
+    if check:
+        _console.print(_check_line(model), markup=False, soft_wrap=True, highlight=False)
+        return
+    out = out if out is not None else f"out/{model.name}"
+    with OutputFolder(out, "--out") as folder, _Steps() as steps:
+        res = derive(model, progress=steps.start)
+        written = res._write_files(
+            folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
+        )
+    _summary(res)
+    _written(Path(out), folder.final(written), pdf)
+
+
+def _check_line(model) -> str:
+    xs, us = model.signal_names
+    kind = "ODE" if model.ode is not None else "discrete plant"
+    graph = (
+        f"a delay graph of {len(model.vertices)} vertices"
+        if model.graph_given
+        else "the chain of the delays"
+    )
+    return (
+        f"{model.path}: ok: {model.name!r}, {kind} with states {', '.join(xs)} and inputs "
+        f"{', '.join(us)}, Ts = {model.Ts:g} s, delays {model.sensor_delay} + "
+        f"{model.actuator_delay} steps, {graph}; circuits {', '.join(model.circuits)}"
+    )
+
+
 @cli.command("atlas")
 @click.option("--order", type=int, required=True, help="Order n of G2 (1 to 4; 1-3 exhaustive).")
 @click.option(
@@ -356,21 +419,33 @@ def _summary(res) -> None:
             text = rest
         _console.print(text, markup=False, soft_wrap=True)
 
-    out("Plant|  (linearized, zero-order hold)")
-    out(f"  f_bar = {p['symbolic']['f_bar']} = {p['f_bar']:.6g} N")
-    out(f"  A = {p['symbolic']['A']} = {_fmt(p['A'])}")
-    out(f"  B = {p['symbolic']['B']} = {_fmt(p['B'])}")
+    out(f"Plant|  {data['model']['title']} (linearized, zero-order hold)")
+    units = data["model"]["units"]
+    eq = p["equilibrium"]
+    if eq is not None:
+        for (name, value), text in zip(eq["states"].items(), eq["symbolic"], strict=True):
+            unit = f" {units[name]}" if units.get(name) else ""
+            shown = f"{text} = " if text != repr(value) else ""
+            out(f"  {name}_bar = {shown}{value:.6g}{unit}")
+    sym_A, sym_B = p["symbolic"]["A"], p["symbolic"]["B"]
+    out(f"  A = {sym_A + ' = ' if sym_A else ''}{_fmt(p['A'])}")
+    out(f"  B = {sym_B + ' = ' if sym_B else ''}{_fmt(p['B'])}")
     out(f"Augmented system|  (T = {aug['T']}): chi = [{', '.join(aug['state'])}]")
     out(f"  A~ = {_fmt(aug['A'])}")
     out(f"  B~ = {_fmt(aug['B'])}")
     out(f"  Q~ = {_fmt(aug['Q'])}")
     out("Gains|  mu = K chi, K = [" + ", ".join(data["gains"]["names"]) + "]")
     out(f"  K = {_fmt(data['gains']['K'])}")
-    out("Controller|  G(z) = Delta_r / Delta_f")
+    out("Controller|  G(z): measured states -> inputs")
     out(f"  G(z) = {res.G_symbolic}")
     out(f"  numerator {_fmt(c['numerator'])}, denominator {_fmt(c['denominator'])}")
     out(f"  relative degree {c['relative_degree']}; derivation proved: {c['proved']}")
+    _extra(data, out)
     f = data["factorization"]
+    if f is None:
+        out(f"Not derived|  {data['model']['skipped']}")
+        _summary_table(data, p)
+        return
     out("Factorization|  G = G3 G2 G1")
     out(f"  G1 = {f['G1']},  G3 = {f['G3']}")
     out(f"  G2 = {f['G2']}")
@@ -384,10 +459,30 @@ def _summary(res) -> None:
             f"numeric ({num['method']}): {num['ok']}"
         )
 
+    _summary_table(data, p)
+    _circuit_table(data)
+
+
+def _extra(data, out) -> None:
+    longest = data["model"]["longest_delay"]
+    if longest is not None:
+        found = (
+            f"T = {longest['longest']} steps"
+            if longest["limited"]
+            else f"every T up to {longest['delays'][-1]} (the largest tried)"
+        )
+        out(f"Longest delay|  that still stabilizes the nonlinear plant: {found}")
+
+
+def _summary_table(data, p) -> None:
     table = Table(title="summary")
     table.add_column("quantity")
     table.add_column("value", justify="right")
-    table.add_row("f_bar [N]", f"{p['f_bar']:.4f}")
+    units = data["model"]["units"]
+    if p["equilibrium"] is not None:
+        for name, value in p["equilibrium"]["states"].items():
+            unit = f" [{units[name]}]" if units.get(name) else ""
+            table.add_row(f"{name}_bar{unit}", f"{value:.4f}")
     table.add_row("A", f"{p['A'][0][0]:.6f}" if len(p["A"]) == 1 else _fmt(p["A"]))
     table.add_row("B", f"{p['B'][0][0]:.6f}" if len(p["B"]) == 1 else _fmt(p["B"]))
     for name, value in zip(data["gains"]["names"], data["gains"]["K"][0], strict=False):
@@ -395,6 +490,8 @@ def _summary(res) -> None:
     table.add_row("spectral radius", f"{data['closed_loop']['spectral_radius']:.6f}")
     _console.print(table)
 
+
+def _circuit_table(data) -> None:
     circuits = Table(title="circuits (closed loop against the optimal controller)")
     for head in ("circuit", "neurons", "in G2", "compatible", "realizations", "max deviation"):
         circuits.add_column(head, justify="left" if head == "circuit" else "right")

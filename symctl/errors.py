@@ -10,7 +10,9 @@ ValueError`` and ``except TypeError`` keep working:
 - an argument of the wrong type: :class:`SymctlTypeError` (a ``TypeError``);
 - an LQR problem without a stabilizing solution: :class:`NotStabilizableError`;
 - ``pdflatex`` failing on a document symctl wrote: :class:`LatexError`;
-- a controller that a circuit class cannot realize: :class:`NotRealizableError`.
+- a controller that a circuit class cannot realize: :class:`NotRealizableError`;
+- a model file with a bad field: :class:`ModelFileError` (a :class:`ParameterError`
+  naming the file, the line and the field).
 
 Each message names the offending argument and its value. The command line
 turns them into a one-line message and exit code 2.
@@ -142,3 +144,32 @@ class NotRealizableError(SymctlError, ValueError):
     >>> issubclass(NotRealizableError, ValueError), issubclass(NotRealizableError, ParameterError)
     (True, False)
     """
+
+
+class ModelFileError(ParameterError):
+    """A model file that cannot be read: the message names the file, the line and the field.
+
+    ``str(err)`` is one line, ``FILE:LINE: FIELD: problem``; the parts are also
+    kept as attributes.
+
+    Attributes
+    ----------
+    path : str
+        The file (``"<text>"`` for a string).
+    line : int or None
+        The line of the field (1-based), when it can be found.
+    field : str
+        The field, as a dotted path such as ``states[0].rhs``.
+
+    Examples
+    --------
+    >>> from symctl import ModelFileError, ParameterError
+    >>> err = ModelFileError("no value", path="m.toml", line=3, field="parameters.tau")
+    >>> str(err), issubclass(ModelFileError, ParameterError)
+    ('m.toml:3: parameters.tau: no value', True)
+    """
+
+    def __init__(self, problem: str, *, path: str = "<text>", line=None, field: str = ""):
+        self.path, self.line, self.field, self.problem = path, line, field, problem
+        where = f"{path}:{line}" if line else path
+        super().__init__(f"{where}: {field}: {problem}" if field else f"{where}: {problem}")

@@ -28,6 +28,7 @@ STAGES = (
     ("symctl.neural",),
     ("symctl.discovery",),
     ("symctl.latex", "symctl.interop"),
+    ("symctl.model",),
     ("symctl.plotting",),
     ("symctl.report",),
     ("symctl.cli",),

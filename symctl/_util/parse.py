@@ -68,6 +68,7 @@ _FUNCTIONS = {
     "cosh": sp.cosh,
     "atan": sp.atan,
     "Abs": sp.Abs,
+    "logistic": lambda x: 1 / (1 + sp.exp(-x)),
 }
 _ARITY = {name: (1, 1) for name in _FUNCTIONS} | {"log": (1, 2)}
 _CONSTANTS = {"pi": sp.pi, "E": sp.E}

@@ -1,11 +1,17 @@
-r"""The linear controller around the paper's original, nonlinear muscle.
+r"""The linear controller around the nonlinear plant it was designed from.
 
-The design is linear (the muscle linearized at its operating point,
-:class:`~symctl.design.plant.MuscleModel`); :func:`nonlinear_check` closes the same
-controller around the nonlinear ODE
-:math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau` and measures how far the
-force departs from the linear prediction as the disturbance grows: quadratically
+The design is linear (the plant linearized at its operating point: the paper's
+muscle, :class:`~symctl.design.plant.MuscleModel`, or any
+:class:`~symctl.design.ode.ODEModel`); :func:`nonlinear_check` closes the same
+controller around the nonlinear ODE (for the muscle
+:math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) and measures how far the
+states depart from the linear prediction as the disturbance grows: quadratically
 in its amplitude, since the linearization is exact to first order.
+
+:func:`longest_delay` asks the question an unstable plant poses: for which net
+delays does the optimal controller still bring the *nonlinear* plant back to its
+equilibrium after the disturbance? (For the linear plant every delay can be
+stabilized; what limits it is the nonlinearity, e.g. a torque that saturates.)
 
 >>> from symctl import nonlinear_check
 >>> chk = nonlinear_check(amplitudes=[0.01, 0.1], steps=30)
@@ -29,6 +35,7 @@ from symctl._util.validate import (
 )
 from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
+from symctl.design.ode import ODEModel
 from symctl.design.plant import MuscleModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
@@ -41,7 +48,7 @@ from symctl.neural.simulate import (
 )
 from symctl.realization.realization import Realization
 
-__all__ = ["NonlinearCheck", "nonlinear_check"]
+__all__ = ["DelaySearch", "NonlinearCheck", "longest_delay", "nonlinear_check"]
 
 MAX_STEPS = 5000
 """Longest horizon of :func:`nonlinear_check` (one ODE solve per sample: about 10 s at 5000)."""
@@ -55,24 +62,34 @@ r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Rada
 
 @dataclass(frozen=True, eq=False)
 class NonlinearCheck:
-    r"""The linear controller around the nonlinear muscle, against the linear prediction.
+    r"""The linear controller around the nonlinear plant, against the linear prediction.
 
     Attributes
     ----------
     amplitudes : (k,) array
-        Disturbance pulse amplitudes [N per step].
+        Disturbance pulse amplitudes (in the disturbed states' units per step).
     t : (steps,) array
         Time [s].
-    f_linear, f_nonlinear : (k, steps) arrays
-        Absolute force [N] of the linear model and of the nonlinear ODE.
-    r_nonlinear : (k, steps) array
-        Absolute motor-neuron rate [spikes/s] driving the nonlinear muscle.
+    x_linear, x_nonlinear : (k, steps, n) arrays
+        Absolute states of the linear model and of the nonlinear ODE.
+    u_nonlinear : (k, steps, m) array
+        Absolute inputs driving the nonlinear plant.
     max_deviation : (k,) array
-        :math:`\max_t |f_\text{nonlinear} - f_\text{linear}|` [N].
+        :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`: the first state's, in its unit.
     relative_deviation : (k,) array
-        ``max_deviation`` over :math:`\max_t |\delta_f^\text{linear}|`.
+        The worst over the states of :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|`
+        over that state's linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
+    final_deviation : (k,) array
+        The worst over the states of :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|`
+        over the same peak: whether the nonlinear loop came back (inf: the ODE failed).
+    state_names, input_names : tuple of str
+        The plant's names (the muscle's ``f``, ``r``).
+    units : tuple of str
+        The states' units, for labels (``"N"``).
 
-    Made by :func:`nonlinear_check`; the arrays are read-only copies.
+    ``f_linear``, ``f_nonlinear`` and ``r_nonlinear`` are the first state's and
+    input's traces, ``(k, steps)``, as for the muscle. Made by
+    :func:`nonlinear_check`; the arrays are read-only copies.
 
     Examples
     --------
@@ -81,44 +98,61 @@ class NonlinearCheck:
     >>> chk.f_nonlinear.shape, bool(chk.max_deviation[1] > chk.max_deviation[0])
     ((2, 20), True)
     >>> print(chk.table().splitlines()[0])
-     amplitude [N] | peak |δf| linear [N] | max |f_nl - f_lin| [N] | relative
+     amplitude | peak |δf| linear [N] | max |f_nl - f_lin| [N] | relative
     """
 
     amplitudes: np.ndarray
     t: np.ndarray
-    f_linear: np.ndarray
-    f_nonlinear: np.ndarray
-    r_nonlinear: np.ndarray
+    x_linear: np.ndarray
+    x_nonlinear: np.ndarray
+    u_nonlinear: np.ndarray
     max_deviation: np.ndarray
     relative_deviation: np.ndarray
+    final_deviation: np.ndarray
+    state_names: tuple = ("f",)
+    input_names: tuple = ("r",)
+    units: tuple = ("N",)
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in (
-            "amplitudes",
-            "t",
-            "f_linear",
-            "f_nonlinear",
-            "r_nonlinear",
-            "max_deviation",
-            "relative_deviation",
-        ):
+            "amplitudes", "t", "x_linear", "x_nonlinear", "u_nonlinear", "max_deviation",
+            "relative_deviation", "final_deviation",
+        ):  # fmt: skip
             object.__setattr__(self, name, read_only(getattr(self, name), float))
 
+    @property
+    def f_linear(self) -> np.ndarray:
+        """The first state of the linear model, ``(k, steps)`` (the muscle's force)."""
+        return self.x_linear[:, :, 0]
+
+    @property
+    def f_nonlinear(self) -> np.ndarray:
+        """The first state of the nonlinear plant, ``(k, steps)``."""
+        return self.x_nonlinear[:, :, 0]
+
+    @property
+    def r_nonlinear(self) -> np.ndarray:
+        """The first input driving the nonlinear plant, ``(k, steps)`` (the muscle's rate)."""
+        return self.u_nonlinear[:, :, 0]
+
     def table(self) -> str:
-        """A plain-text table: amplitude, peak linear force change, max and relative deviation."""
-        peak = np.max(np.abs(self.f_linear - self.f_linear[:, :1]), axis=1)  # f(0) = f_bar
+        """A plain-text table: amplitude, peak linear change, max and relative deviation."""
+        x0, unit = self.state_names[0], self.units[0] if self.units else ""
+        u = f" [{unit}]" if unit else ""
+        first = self.x_linear[:, :, 0]
+        peak = np.max(np.abs(first - first[:, :1]), axis=1)  # x(0) = x_bar
         lines = [
-            " amplitude [N] | peak |δf| linear [N] | max |f_nl - f_lin| [N] | relative",
+            f" amplitude | peak |δ{x0}| linear{u} | max |{x0}_nl - {x0}_lin|{u} | relative",
             "-" * 78,
         ]
         for a, pk, d, rel in zip(
             self.amplitudes, peak, self.max_deviation, self.relative_deviation, strict=True
         ):
-            lines.append(f" {a:13.4g} | {pk:20.4g} | {d:22.4g} | {rel:8.2e}")
+            lines.append(f" {a:9.4g} | {pk:20.4g} | {d:22.4g} | {rel:8.2e}")
         return "\n".join(lines)
 
     def plot(self):
-        """Force traces (nonlinear solid, linear dashed) and the deviation against amplitude.
+        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude.
 
         Returns
         -------
@@ -137,8 +171,20 @@ class NonlinearCheck:
         return nonlinear_plot(self)
 
 
+def _as_ode(model) -> ODEModel:
+    if model is None:
+        model = MuscleModel()
+    if isinstance(model, MuscleModel):
+        return ODEModel.from_muscle(model)
+    if not isinstance(model, ODEModel):
+        raise SymctlTypeError(
+            f"model: expected a MuscleModel or an ODEModel, got {type(model).__name__}"
+        )
+    return model
+
+
 def nonlinear_check(
-    model: MuscleModel | None = None,
+    model: MuscleModel | ODEModel | None = None,
     controller=None,
     amplitudes=(0.1, 0.3, 1.0, 3.0, 10.0),
     *,
@@ -146,34 +192,42 @@ def nonlinear_check(
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
     rtol: float = 1e-10,
+    disturbance=None,
+    fail: str = "raise",
 ) -> NonlinearCheck:
-    r"""Close the linear controller around the nonlinear muscle ODE and compare with the linear loop.
+    r"""Close the linear controller around the nonlinear plant and compare with the linear loop.
 
-    At each sample the controller reads :math:`\delta_f = f - \bar f`, its output
-    :math:`r = \bar r + \delta_r` is held constant over the step, and
-    :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau` (:meth:`MuscleModel.rhs`)
-    is integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all
+    At each sample the controller reads :math:`\delta x = x - \bar x`, its output
+    :math:`u = \bar u + \delta u` is held constant over the step, and the ODE
+    (for the muscle :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) is
+    integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all
     amplitudes as one vector ODE, relative tolerance ``rtol``); the disturbance is
-    added to the force at the sample, as in the linear model. The solver is
-    explicit (DOP853) while :math:`T_s/\tau \le` ``STIFF_RATIO`` (1, the paper's
-    is 0.5) and implicit beyond (Radau, with the exact Jacobian
-    :math:`-1/\tau`), so that a stiff muscle (a small ``tau``) takes seconds too.
+    added to the states at the sample, as in the linear model. The solver is
+    explicit (DOP853) while :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO``
+    (1; the muscle's :math:`T_s/\tau` is 0.5) and implicit beyond (Radau, with the
+    exact Jacobian), so that a stiff plant (a small ``tau``) takes seconds too.
 
     Parameters
     ----------
-    model : MuscleModel, optional
-        The paper's by default.
+    model : MuscleModel or ODEModel, optional
+        The paper's muscle by default.
     controller : Gains or Realization, optional
         Default: the optimal delayed controller for ``Q = R = 1``, one step of delay
         each way (as the IFP realization).
     amplitudes : sequence of float
-        Disturbance pulse amplitudes [N per step]; default 0.1 .. 10; at most
+        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most
         ``MAX_COUNT`` (10,000) of them.
     steps, start, length : int
         Horizon (at most ``MAX_STEPS``, 5000) and disturbance pulse, as in
         :func:`~symctl.simulate_realization`.
     rtol : float
         Relative tolerance of the ODE solver, in ``RTOL_RANGE`` ``[1e-13, 1e-2]``.
+    disturbance : array (steps, n), optional
+        The disturbance of unit amplitude (default: the pulse on every state),
+        scaled by each amplitude.
+    fail : {"raise", "mark"}
+        On an ODE that fails (a plant that runs away): raise, or mark the
+        amplitude's traces NaN from there on (its ``final_deviation`` is then inf).
 
     Returns
     -------
@@ -185,7 +239,7 @@ def nonlinear_check(
         ``steps`` above ``MAX_STEPS``, ``rtol`` outside ``RTOL_RANGE``, non-finite
         amplitudes, or an ODE that fails (naming the amplitudes).
     SymctlTypeError
-        ``model`` not a MuscleModel, or arguments of the wrong type.
+        ``model`` not a MuscleModel or ODEModel, or arguments of the wrong type.
     DimensionError
         No amplitude.
 
@@ -196,13 +250,14 @@ def nonlinear_check(
     >>> bool(chk.relative_deviation[0] < 1e-3 < chk.relative_deviation[1])
     True
     """
-    model = MuscleModel() if model is None else model
-    if not isinstance(model, MuscleModel):
-        raise SymctlTypeError(f"model: expected a MuscleModel, got {type(model).__name__}")
+    model = _as_ode(model)
+    plant = model.plant()
     if controller is None:
-        controller = lqr_gains(augment(model, 1, 1))
+        controller = lqr_gains(augment(plant, 1, 1))
     bounded_int(steps, "steps", 1, MAX_STEPS)
     rtol = bounded_number(rtol, "rtol", *RTOL_RANGE)
+    if fail not in ("raise", "mark"):
+        raise ParameterError(f"fail: must be 'raise' or 'mark', got {fail!r}")
     if not isinstance(controller, Gains | Realization):
         raise SymctlTypeError(
             f"controller: expected Gains or a Realization, got {type(controller).__name__}"
@@ -213,37 +268,195 @@ def nonlinear_check(
         raise DimensionError("amplitudes: give at least one amplitude")
     if amps.size > MAX_COUNT:
         raise DimensionError(f"amplitudes: at most {MAX_COUNT} amplitudes, got {amps.size}")
-    linear = simulate_realization(model, R, 1.0, steps=steps, start=start, length=length)
-    F, H, M, N = (a[0] for a in _numeric_realization(R, model.plant()))
-    w = linear.w[:, 0]
-    f_bar, r_bar, Ts = model.f_bar, model.r_bar, model.Ts
-    f = np.full(amps.size, f_bar)
-    xc = np.zeros((amps.size, F.shape[0]))
-    f_nl = np.empty((amps.size, linear.t.size))
-    r_nl = np.empty_like(f_nl)
-    if Ts / model.tau <= STIFF_RATIO:
-        solver = {"method": "DOP853"}
-    else:  # stiff: implicit, with the exact (diagonal) Jacobian of rhs in f
-        jac = -np.eye(amps.size) / model.tau
-        solver = {"method": "Radau", "jac": lambda _t, _y: jac}
-    for k in range(linear.t.size):
-        df = f - f_bar
-        r = r_bar + (xc @ M.T)[:, 0] + N[0, 0] * df
-        f_nl[:, k], r_nl[:, k] = f, r
+    w_in = 1.0 if disturbance is None else disturbance
+    linear = simulate_realization(plant, R, w_in, steps=steps, start=start, length=length)
+    F, H, M, N = (a[0] for a in _numeric_realization(R, plant))
+    return _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail)
+
+
+def _solver(model: ODEModel, k: int) -> dict:
+    a = np.array(model.linearize_symbolic().a.subs(model.values).evalf(), dtype=float)
+    if model.Ts * float(np.max(np.abs(np.linalg.eigvals(a)))) <= STIFF_RATIO:
+        return {"method": "DOP853"}
+    n = model.n
+
+    def jac(_t, y, u):  # block diagonal: one block per amplitude
+        out = np.zeros((n * k, n * k))
+        for i in range(k):
+            out[i * n : (i + 1) * n, i * n : (i + 1) * n] = model.jacobian_numeric(
+                y[i * n : (i + 1) * n], u[:, i]
+            )
+        return out
+
+    return {"method": "Radau", "jac": jac}
+
+
+def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearCheck:
+    k, n, m, Ts = amps.size, model.n, model.m, model.Ts
+    x_bar, u_bar = model.x_bar, model.u_bar
+    w = linear.w  # (steps, n)
+    steps = linear.t.size
+    x = np.tile(x_bar, (k, 1))  # (k, n)
+    xc = np.zeros((k, F.shape[0]))
+    x_nl = np.full((k, steps, n), np.nan)
+    u_nl = np.full((k, steps, m), np.nan)
+    alive = np.ones(k, dtype=bool)
+    solver = _solver(model, k)
+    scale = max(1.0, float(np.max(np.abs(x_bar))))
+    for t in range(steps):
+        dx = x - x_bar
+        u = u_bar + xc @ M.T + dx @ N.T  # (k, m)
+        x_nl[alive, t], u_nl[alive, t] = x[alive], u[alive]
+        options = dict(solver)
+        if "jac" in options:
+            options["jac"] = lambda _t, y, u=u, j=options["jac"]: j(_t, y, u.T)
         with np.errstate(over="ignore", invalid="ignore"):  # checked just below
             sol = scipy.integrate.solve_ivp(
-                lambda _t, y, r=r: model.rhs(y, r), (0.0, Ts), f,
-                rtol=rtol, atol=rtol * max(1.0, abs(f_bar)), **solver,
+                lambda _t, y, u=u: model.rhs_numeric(y.reshape(k, n).T, u.T).T.ravel(),
+                (0.0, Ts), x.ravel(), rtol=rtol, atol=rtol * scale, **options,
             )  # fmt: skip
-        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            raise ParameterError(
-                f"amplitudes: the nonlinear ODE failed at step {k} (amplitudes up to "
-                f"{float(np.max(np.abs(amps))):g}): {sol.message}"
-            )
-        f = sol.y[:, -1] + amps * w[k]
-        xc = xc @ F.T + df[:, None] @ H.T
-    f_lin = f_bar + amps[:, None] * linear.delta_f[:, 0]
-    dev = np.max(np.abs(f_nl - f_lin), axis=1)
-    peak = np.abs(amps) * np.max(np.abs(linear.delta_f))
-    rel = np.divide(dev, peak, out=np.zeros_like(dev), where=peak > 0)
-    return NonlinearCheck(amps, linear.t, f_lin, f_nl, r_nl, dev, rel)
+        y = sol.y[:, -1].reshape(k, n) if sol.success else np.full((k, n), np.nan)
+        bad = ~np.all(np.isfinite(y), axis=1) & alive
+        if np.any(bad):
+            if fail == "raise":
+                raise ParameterError(
+                    f"amplitudes: the nonlinear ODE failed at step {t} (amplitudes up to "
+                    f"{float(np.max(np.abs(amps))):g}): {sol.message}"
+                )
+            alive &= ~bad
+            y[~alive] = x_bar
+        x = y + amps[:, None] * w[t]
+        xc = xc @ F.T + dx @ H.T
+    x_lin = x_bar + amps[:, None, None] * linear.delta_f[None]
+    diff = np.abs(x_nl - x_lin)  # (k, steps, n); NaN after a failure
+    peak_i = np.abs(amps)[:, None] * np.max(np.abs(linear.delta_f), axis=0)[None]  # (k, n)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dev_i = np.nanmax(np.where(np.isnan(diff), -np.inf, diff), axis=1)  # (k, n)
+        rel_i = np.where(peak_i > 0, dev_i / np.where(peak_i > 0, peak_i, 1), 0.0)
+        end_i = np.abs(x_nl[:, -1] - x_bar)
+        fin_i = np.where(peak_i > 0, end_i / np.where(peak_i > 0, peak_i, 1), 0.0)
+    dev = np.where(alive, dev_i[:, 0], np.inf)  # the first state's, in its unit
+    rel = np.where(alive, np.max(rel_i, axis=1), np.inf)  # the worst state's, relative
+    final = np.where(alive, np.max(fin_i, axis=1), np.inf)
+    units = tuple(model.units.get(s.name, "") for s in model.states)
+    names = tuple(s.name for s in model.states), tuple(s.name for s in model.inputs)
+    return NonlinearCheck(amps, linear.t, x_lin, x_nl, u_nl, dev, rel, final, *names, units)
+
+
+@dataclass(frozen=True, eq=False)
+class DelaySearch:
+    r"""The longest net delay for which the optimal controller still stabilizes the nonlinear plant.
+
+    Attributes
+    ----------
+    delays : tuple of int
+        The net delays tried, 1 .. ``max``, in order, until the first failure.
+    final_deviation : tuple of float
+        For each, the nonlinear loop's final distance from the equilibrium
+        over the linear loop's peak (inf: the ODE ran away).
+    stabilized : tuple of bool
+        ``final_deviation <= tolerance``.
+    longest : int or None
+        The longest delay with every shorter one stabilized too (None: not even 1 step).
+    tolerance : float
+    limited : bool
+        Whether a failure was found (False: every delay up to ``max`` worked).
+
+    Examples
+    --------
+    >>> from symctl import longest_delay
+    >>> res = longest_delay(None, max_delay=2, steps=30)
+    >>> res.longest, res.limited
+    (2, False)
+    """
+
+    delays: tuple
+    final_deviation: tuple
+    stabilized: tuple
+    longest: int | None
+    tolerance: float
+    limited: bool
+
+    def table(self) -> str:
+        """A plain-text table of the delays tried."""
+        rows = [" T | final deviation | stabilized", "-" * 32]
+        rows += [
+            f"{T:2d} | {d:15.3g} | {'yes' if ok else 'no'}"
+            for T, d, ok in zip(self.delays, self.final_deviation, self.stabilized, strict=True)
+        ]
+        return "\n".join(rows)
+
+
+def longest_delay(
+    model: MuscleModel | ODEModel | None,
+    *,
+    Q=None,
+    R=None,
+    disturbance=None,
+    amplitude: float = 1.0,
+    max_delay: int = 20,
+    tolerance: float = 0.01,
+    steps: int = DEFAULT_STEPS,
+    start: int = DEFAULT_START,
+    length: int = DEFAULT_LENGTH,
+) -> DelaySearch:
+    r"""Search the longest net delay :math:`T` whose optimal controller stabilizes the nonlinear plant.
+
+    For :math:`T = 1, 2, \dots`, ``max_delay``: the optimal controller for the
+    linear plant with that delay (:func:`~symctl.design.augment.augment`, all of it
+    on the actuator side: for state feedback only the net delay matters) is
+    closed around the nonlinear ODE (:func:`nonlinear_check`) under the
+    disturbance; the loop counts as stabilized when the state returns to the
+    equilibrium, within ``tolerance`` of the linear loop's peak, by the end of
+    the horizon. The search stops at the first failure.
+
+    Parameters
+    ----------
+    model : MuscleModel or ODEModel
+        The plant (None: the paper's muscle).
+    Q, R : matrix-like, optional
+        The cost (identity by default).
+    disturbance : array (steps, n), optional
+        The disturbance of unit amplitude (default: the pulse on every state).
+    amplitude : float
+        Its size.
+    max_delay : int
+        Largest delay tried, 1 to 200.
+    tolerance : float
+        Largest final deviation (relative to the peak), > 0.
+    steps, start, length : int
+        Horizon and pulse, as in :func:`nonlinear_check`.
+
+    Returns
+    -------
+    DelaySearch
+
+    Examples
+    --------
+    >>> from symctl import longest_delay
+    >>> longest_delay(None, max_delay=1, steps=30).stabilized
+    (True,)
+    """
+    ode = _as_ode(model)
+    bounded_int(max_delay, "max_delay", 1, 200)
+    tolerance = bounded_number(tolerance, "tolerance", 1e-12, 1e12)
+    amplitude = bounded_number(amplitude, "amplitude", -1e100, 1e100)
+    plant = ode.plant()
+    delays, finals, oks = [], [], []
+    for T in range(1, max_delay + 1):
+        gains = lqr_gains(augment(plant, 0, T, Q=Q, R=R))
+        chk = nonlinear_check(
+            ode, gains, [amplitude], steps=steps, start=start, length=length,
+            disturbance=disturbance, fail="mark", rtol=1e-8,
+        )  # fmt: skip
+        final = float(chk.final_deviation[0])
+        delays.append(T)
+        finals.append(final)
+        oks.append(bool(final <= tolerance))
+        if not oks[-1]:
+            break
+    good = [T for T, ok in zip(delays, oks, strict=True) if ok]
+    return DelaySearch(
+        tuple(delays), tuple(finals), tuple(oks), max(good) if good else None, tolerance,
+        not all(oks),
+    )  # fmt: skip

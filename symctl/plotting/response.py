@@ -16,26 +16,37 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
 from matplotlib.figure import Figure
 
 if TYPE_CHECKING:
     from symctl.neural.nonlinear import NonlinearCheck
     from symctl.neural.simulate import Response
 
-__all__ = ["nonlinear_plot", "response_plot"]
+__all__ = ["MAX_PANELS", "nonlinear_plot", "response_plot"]
+
+MAX_PANELS = 6
+"""Most panels of signals in :func:`response_plot` (beyond, the rest share the last)."""
 
 
-def _labels(p_names: tuple[str, ...], kind: str) -> tuple[str, str, str]:
-    """(change label, absolute label, unit) for the muscle; neutral names otherwise."""
-    muscle = {"delta_f": ("force change δf", "force f", "N"),
-              "delta_r": ("rate change δr", "motor-neuron rate r", "spikes/s")}  # fmt: skip
-    if p_names == (kind,) and kind in muscle:
-        return muscle[kind]
-    return ("change from equilibrium", "absolute value", "units")
+_MUSCLE = {"f": ("force", "N"), "r": ("rate", "spikes/s")}
 
 
-def response_plot(res: Response, states: bool | None = None) -> Figure:
-    """Force and motor-neuron rate against time, absolute values on the right axes.
+def _label(name: str, labels) -> tuple[str, str, str]:
+    """(change label, absolute label, unit) of a signal ``delta_<x>`` (or ``<x>``)."""
+    raw = name[6:] if name.startswith("delta_") else name
+    table = _MUSCLE if labels is None else labels
+    what, unit = table.get(raw, ("", ""))
+    if labels is None and raw == "r":
+        return "rate change δr", "motor-neuron rate r", "spikes/s"
+    what = what or raw
+    unit = unit or "units"
+    head = f"{what} change δ{raw}" if what != raw else f"change δ{raw}"
+    return head, f"{what} {raw}" if what != raw else raw, unit
+
+
+def response_plot(res: Response, states: bool | None = None, labels=None) -> Figure:
+    """Each state and input against time (absolute values on the right axes), and the controller.
 
     Parameters
     ----------
@@ -44,11 +55,15 @@ def response_plot(res: Response, states: bool | None = None) -> Figure:
     states : bool, optional
         Add a panel with the controller's internal states (default: when there
         are any).
+    labels : mapping of str to (str, str), optional
+        ``name -> (description, unit)`` of the states and inputs (their names
+        without ``delta_``); default the muscle's (force f [N], rate r [spikes/s]).
 
     Returns
     -------
     matplotlib.figure.Figure
-        Two or three panels sharing the time axis.
+        One panel per state and per input (at most ``MAX_PANELS``; beyond, the
+        rest share the last one), then the controller's states, on one time axis.
 
     Examples
     --------
@@ -58,52 +73,77 @@ def response_plot(res: Response, states: bool | None = None) -> Figure:
     2
     """
     states = res.states.shape[1] > 0 if states is None else states
-    rows = 3 if states else 2
-    fig = Figure(figsize=(7.5, 2.4 * rows + 0.6), layout="constrained")
-    axes = fig.subplots(rows, 1, sharex=True)
-    panels = [
-        (axes[0], res.delta_f, res.f_bar, res.state_names, "delta_f"),
-        (axes[1], res.delta_r, res.r_bar, res.input_names, "delta_r"),
-    ]
-    for ax, trace, bar, names, kind in panels:
-        change, absolute, unit = _labels(names, kind)
-        for i in range(trace.shape[1]):
-            label = change if trace.shape[1] == 1 else f"{change} ({names[i]})"
-            ax.plot(res.t, trace[:, i], marker=".", lw=1.5, label=label)
-        if kind == "delta_f" and res.kind == "closed loop":
-            for i in range(res.w.shape[1]):
+    signals = [(res.delta_f, res.f_bar, res.state_names, i, True)
+               for i in range(res.delta_f.shape[1])]  # fmt: skip
+    signals += [(res.delta_r, res.r_bar, res.input_names, i, False)
+                for i in range(res.delta_r.shape[1])]  # fmt: skip
+    groups = [[s] for s in signals[: MAX_PANELS - 1]]
+    if len(signals) >= MAX_PANELS:
+        groups.append(signals[MAX_PANELS - 1 :])
+    rows = len(groups) + (1 if states else 0)
+    fig = Figure(figsize=(7.5, min(2.4 * rows + 0.6, 16)), layout="constrained")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    for ax, group in zip(axes, groups, strict=False):
+        for trace, _bar, names, i, is_state in group:
+            change, absolute, unit = _label(names[i], labels)
+            ax.plot(res.t, trace[:, i], marker=".", lw=1.5, label=change)
+            if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
                 ax.step(res.t, res.w[:, i], where="post", ls="--", color="gray",
                         label=f"disturbance w [{unit}/step]")  # fmt: skip
         ax.axhline(0, color="black", lw=0.5)
-        ax.set_ylabel(f"{change} [{unit}]")
-        if trace.shape[1] == 1:
-            offset = float(bar[0])
+        if len(group) == 1:
+            _, bar, names, i, _ = group[0]
+            raw = names[i][6:] if names[i].startswith("delta_") else names[i]
+            ax.set_ylabel(f"{change} [{unit}]" if labels is None else f"δ{raw} [{unit}]")
+            absolute = absolute if labels is None else raw
+            offset = float(bar[i])
             sec = ax.secondary_yaxis(
                 "right", functions=(lambda x, o=offset: x + o, lambda x, o=offset: x - o)
             )
             sec.set_ylabel(f"{absolute} [{unit}]")
+        else:
+            ax.set_ylabel("change from equilibrium")
         ax.legend(loc="best", fontsize="small")
         ax.grid(alpha=0.3)
     if states:
-        ax = axes[2]
+        ax = axes[-1]
         for i in range(res.states.shape[1]):
             ax.plot(res.t, res.states[:, i], marker=".", lw=1.2, label=f"x_{i + 1}")
-        ax.set_ylabel("controller state\n(rate change) [spikes/s]")
+        if res.delta_r.shape[1] == 1:
+            change, _, unit = _label(res.input_names[0], labels)
+            what = change.replace(" change", "").split(" δ")[0]
+            ax.set_ylabel(
+                f"controller state\n({what} change) [{unit}]"
+                if labels is None
+                else f"controller state [{unit}]"
+            )
+        else:
+            ax.set_ylabel("controller state")
         ax.legend(loc="best", fontsize="small", ncol=min(4, res.states.shape[1]))
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(f"time [{res.time_unit}]")
-    what = "pulse in firing rate" if res.kind == "open loop" else "pulse disturbance on force"
+    if res.kind == "open loop":
+        what = "pulse in " + ", ".join(_label(n, labels)[1] for n in res.input_names)
+        if labels is None:
+            what = "pulse in firing rate"
+    else:
+        hit = [n for i, n in enumerate(res.state_names) if res.w[:, i].any()]
+        what = "pulse disturbance on " + ", ".join(_label(n, labels)[1] for n in hit)
+        if labels is None:
+            what = "pulse disturbance on force"
     fig.suptitle(f"{res.kind.capitalize()} response to a {what}")
     return fig
 
 
-def nonlinear_plot(chk: NonlinearCheck) -> Figure:
-    """Force traces (nonlinear solid, linear dashed) and the deviation against amplitude.
+def nonlinear_plot(chk: NonlinearCheck, labels=None) -> Figure:
+    """The first state's traces (nonlinear solid, linear dashed) and the deviation against amplitude.
 
     Parameters
     ----------
     chk : NonlinearCheck
         The result of :func:`~symctl.neural.nonlinear.nonlinear_check`.
+    labels : mapping of str to (str, str), optional
+        ``name -> (description, unit)``, as in :func:`response_plot`.
 
     Returns
     -------
@@ -120,21 +160,28 @@ def nonlinear_plot(chk: NonlinearCheck) -> Figure:
     """
     fig = Figure(figsize=(11, 4.2), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.6, 1])
+    x0 = chk.state_names[0]
+    _, absolute, unit = _label(x0, labels)
+    if labels is None:
+        absolute, unit = "force f", "N"
+    plant = "muscle" if labels is None else "plant"
+    ok = np.isfinite(chk.max_deviation)
     colors = [f"C{i % 10}" for i in range(len(chk.amplitudes))]
     for a, lin, nl, c in zip(chk.amplitudes, chk.f_linear, chk.f_nonlinear, colors, strict=True):
-        ax1.plot(chk.t, nl, color=c, lw=1.6, label=f"w = {a:g} N per step")
+        ax1.plot(chk.t, nl, color=c, lw=1.6, label=f"w = {a:g} per step")
         ax1.plot(chk.t, lin, color=c, lw=1.2, ls="--")
-    ax1.plot([], [], color="gray", lw=1.6, label="nonlinear muscle (solid)")
+    ax1.plot([], [], color="gray", lw=1.6, label=f"nonlinear {plant} (solid)")
     ax1.plot([], [], color="gray", lw=1.2, ls="--", label="linear model (dashed)")
     ax1.set_xlabel("time [s]")
-    ax1.set_ylabel("force f [N]")
-    ax1.set_title("Linear controller around the nonlinear muscle")
+    ax1.set_ylabel(f"{absolute} [{unit}]")
+    ax1.set_title(f"Linear controller around the nonlinear {plant}")
     ax1.legend(fontsize="small", loc="best")
     ax1.grid(alpha=0.3)
-    ax2.loglog(chk.amplitudes, chk.max_deviation, "o-", label="max |f_nl - f_lin| [N]")
-    ax2.loglog(chk.amplitudes, chk.relative_deviation, "s--", label="relative to peak |δf|")
-    ax2.set_xlabel("disturbance pulse amplitude [N per step]")
-    ax2.set_ylabel("deviation [N] / relative [1]")
+    amps = np.abs(chk.amplitudes[ok])
+    ax2.loglog(amps, chk.max_deviation[ok], "o-", label=f"max |{x0}_nl - {x0}_lin| [{unit}]")
+    ax2.loglog(amps, chk.relative_deviation[ok], "s--", label="relative to the peak")
+    ax2.set_xlabel("disturbance pulse amplitude (per step)")
+    ax2.set_ylabel(f"deviation [{unit}] / relative [1]")
     ax2.set_title("Departure from the linear prediction")
     ax2.legend(fontsize="small")
     ax2.grid(alpha=0.3, which="both")

@@ -105,11 +105,21 @@ def figure_names(res) -> list[str]:
     names = ["open_loop", "closed_loop"]
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
-    names.append("nonlinear")
+    if getattr(res, "nonlinear", None) is not None:
+        names.append("nonlinear")
     if getattr(res, "atlas", None) is not None:
         names.append("atlas_overview")
         names += [f"simplified_{c.circuit_class.label}" for c in simplified(res.candidates)]
     return names
+
+
+def _labels(res) -> dict[str, tuple[str, str]] | None:
+    """``name -> (description, unit)`` of the model's states and inputs, for the plots."""
+    spec = getattr(res, "spec", None)
+    if spec is None:
+        return None
+    xs, us = spec.signal_names
+    return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
 
 
 def simplified(candidates, count: int = 2) -> list:
@@ -145,12 +155,14 @@ def make_figure(res, name: str):
     >>> type(make_figure(derive_paper(), "structure_observable")).__name__
     'Figure'
     """
-    if name == "open_loop":
-        return res.open_loop.plot()
-    if name == "closed_loop":
-        return res.closed_loop.plot()
-    if name == "nonlinear":
-        return res.nonlinear.plot()
+    if name in ("open_loop", "closed_loop", "nonlinear"):
+        from symctl.plotting.response import nonlinear_plot, response_plot
+
+        labels = _labels(res)
+        if name == "nonlinear" and res.nonlinear is not None:
+            return nonlinear_plot(res.nonlinear, labels=labels)
+        if name != "nonlinear":
+            return response_plot(getattr(res, name), labels=labels)
     if name == "atlas_overview" and res.atlas is not None:
         return res.atlas.draw()
     if name.startswith("simplified_") and res.candidates:

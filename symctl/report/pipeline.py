@@ -16,8 +16,10 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
+import numpy as np
 import sympy as sp
 
 from symctl._util.validate import (
@@ -27,9 +29,10 @@ from symctl._util.validate import (
     bounded_int,
     callable_or_none,
     nonneg_int,
+    psd_matrix,
+    to_matrix,
 )
 from symctl.compatibility.check import check_compatibility
-from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
@@ -37,18 +40,20 @@ from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.discovery.atlas import atlas
 from symctl.discovery.candidates import circuits_for
-from symctl.errors import ParameterError
+from symctl.errors import NotStabilizableError, ParameterError
+from symctl.model.modelfile import Model, load_model
+from symctl.model.presets import muscle
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import circuit_firing
-from symctl.neural.nonlinear import nonlinear_check
+from symctl.neural.nonlinear import longest_delay, nonlinear_check
 from symctl.neural.simulate import closed_loop_response, open_loop_response
 from symctl.realization.check import check_realization
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realizers import REALIZERS
 from symctl.report.results import CircuitRecord, PaperResults, RealizationRecord
-from symctl.report.spec import CIRCUITS, EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
+from symctl.report.spec import EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
 
-__all__ = ["derive_paper"]
+__all__ = ["derive", "derive_paper"]
 
 
 PAPER_ATLAS_MAX_ORDER = 2
@@ -140,59 +145,161 @@ def derive_paper(
             "have T steps), got 0"
         )
     step("plant")
-    model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts)
-    plant_symbolic = model.discrete_symbolic()
-    plant = model.plant()
+    model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts)  # validates the parameters
+    spec = muscle(
+        tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts, sensor_delay=delays[0],
+        actuator_delay=delays[1], seed=seed, realizations=realizations,
+    )  # fmt: skip
+    if Q is not None or R is not None:
+        plant = spec.plant
+        Qm = spec.Q if Q is None else _weight(Q, "Q", plant.n, definite=False)
+        Rm = spec.R if R is None else _weight(R, "R", plant.m, definite=True)
+        spec = dataclasses.replace(spec, Q=Qm, R=Rm)
+    return _derive(spec, model, step, announced=True)
+
+
+def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResults:
+    r"""Run the whole derivation on your own system: a model file, plant to circuits.
+
+    The same pipeline as :func:`derive_paper` (which is this function on the
+    muscle preset, ``examples/muscle.toml``), on any
+    :class:`~symctl.model.modelfile.Model`. Every stage runs for a plant with one
+    state and one input; for a larger plant the controller is a matrix and the
+    stages after :math:`G(z)` (factorization, realizations, structures, circuits,
+    the atlas) wait for MIMO support: they are skipped, and the results say so
+    (``PaperResults.skipped``), while the plant, the delays, LQR, :math:`G(z)` and
+    its proof, the closed loop, the nonlinear check and the longest-delay search run.
+
+    Parameters
+    ----------
+    model : Model, path or str
+        A model, or a model file (path or TOML text) for :func:`~symctl.model.modelfile.load_model`.
+    progress : callable, optional
+        Called with the name of each step before it runs.
+
+    Returns
+    -------
+    PaperResults
+
+    Raises
+    ------
+    ModelFileError
+        A bad model file, or a plant that the delays leave unstabilizable
+        (naming the file and the field).
+
+    Examples
+    --------
+    >>> from symctl import derive, derive_paper
+    >>> from symctl.model.presets import muscle_text
+    >>> derive(muscle_text()).to_json() == derive_paper().to_json()
+    True
+    """
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
+    spec = model if isinstance(model, Model) else load_model(model)
+    return _derive(spec, spec.ode, step)
+
+
+def _weight(value, argname: str, size: int, *, definite: bool) -> sp.ImmutableMatrix:
+    M = to_matrix(value, argname)
+    psd_matrix(M, argname, size, definite=definite)
+    return sp.ImmutableMatrix(M)
+
+
+def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResults:
+    """The pipeline on ``spec``; ``announced``: the caller has reported the "plant" step."""
+    ds, da = spec.sensor_delay, spec.actuator_delay
+    seed, count = spec.seed, spec.realizations
+    if not announced:
+        step("plant")
+    plant_symbolic, plant = spec.plant_symbolic, spec.plant
     step("delays")
-    system = augment(plant, sensor_delay, actuator_delay, Q=Q, R=R)
+    system = augment(plant, ds, da, Q=spec.Q, R=spec.R)
     step("LQR")
-    gains = lqr_gains(system)
+    try:
+        gains = lqr_gains(system)
+    except NotStabilizableError as exc:
+        where = "discrete" if spec.ode is None else "states"
+        raise spec.error(
+            where, f"the plant cannot be stabilized with these delays: {exc}"
+        ) from None
     step("G(z)")
     G_symbolic = controller_tf(system)
     proved = bool(prove_controller_tf(system, G_symbolic))
     G = G_symbolic.subs(gains.substitutions())
-    step("factorization")
-    factors = factor(G_symbolic, sensor_delay, actuator_delay)
-    step("simulation")
-    firing = {
-        k: circuit_firing(k, gains, count=1 if k == "ifp" else realizations, seed=seed)
-        for k in CIRCUITS
-    }
-    step("realizations")
-    G2_symbolic = factors.abbreviated() if len(factors.poles) > EXPANDED_ZEROS_MAX else factors.G2
-    records = _realizations(
-        factors, G2_symbolic, gains, {k: firing[k].params[0] for k in CIRCUITS[1:]}
-    )
-    step("compatibility")
-    graph = DelayGraph.chain([1] * system.T)
-    structures = {"ifp": ifp_structure(system.T)}
-    structures.update(
-        {k: Structure.from_factorization(factors, records[k].symbolic) for k in CIRCUITS[1:]}
-    )
-    verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
-    circuits = {
-        k: CircuitRecord(
-            k,
-            structures[k],
-            verdicts[k],
-            Circuit.from_structure(structures[k], verdicts[k] if verdicts[k].ok else None),
-            firing[k],
+    w = spec.disturbance_signal()
+    window = {"steps": spec.steps}
+    graph = spec.graph
+    kinds = spec.circuits
+    skipped = None
+    factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
+    if plant.n == 1 and plant.m == 1:
+        step("factorization")
+        factors = factor(G_symbolic, ds, da)
+        step("simulation")
+        firing = {
+            k: circuit_firing(
+                k, gains, count=1 if k == "ifp" else count, seed=seed, disturbance=w, **window
+            )
+            for k in kinds
+        }
+        step("realizations")
+        G2_symbolic = (
+            factors.abbreviated() if len(factors.poles) > EXPANDED_ZEROS_MAX else factors.G2
         )
-        for k in CIRCUITS
-    }
-    step("atlas")
-    found = atlas(2, workers=1)
-    candidates = None
-    if system.T <= PAPER_ATLAS_MAX_ORDER:  # G2 has order T; order 3 takes a minute: symctl atlas
-        order = found if system.T == 2 else atlas(system.T, workers=1)
-        candidates = circuits_for(
-            G,
-            graph,
-            sensor_delay=sensor_delay,
-            actuator_delay=actuator_delay,
-            atlas=order,
-            seed=seed,
+        names = [k for k in kinds if k != "ifp"]
+        records = _realizations(
+            factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}, names
         )
+        step("compatibility")
+        structures = {"ifp": ifp_structure(system.T)} if "ifp" in kinds else {}
+        structures.update(
+            {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
+        )
+        verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
+        circuits = {
+            k: CircuitRecord(
+                k,
+                structures[k],
+                verdicts[k],
+                Circuit.from_structure(structures[k], verdicts[k] if verdicts[k].ok else None),
+                firing[k],
+            )
+            for k in kinds
+        }
+        step("atlas")
+        found = atlas(2, workers=1)
+        if (
+            system.T <= PAPER_ATLAS_MAX_ORDER
+        ):  # G2 has order T; order 3 takes a minute: symctl atlas
+            order = found if system.T == 2 else atlas(system.T, workers=1)
+            candidates = circuits_for(
+                G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, seed=seed
+            )
+    else:
+        skipped = (
+            f"the plant has {plant.n} states and {plant.m} inputs, so G(z) is a "
+            f"{G.shape[0]} x {G.shape[1]} matrix; factorization, realizations, structures, "
+            "circuits and the atlas handle one state and one input (MIMO support is the next "
+            "step of symctl)"
+        )
+    step("closed loop")
+    amplitude = spec.disturbance[1]
+    unit_w = w / amplitude if amplitude else w
+    closed = closed_loop_response(gains, disturbance=w, **window)
+    nonlinear = longest = None
+    if spec.ode is not None:
+        step("nonlinear")
+        nonlinear = nonlinear_check(
+            spec.ode, gains, amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
+            steps=spec.steps, disturbance=unit_w, fail="mark",
+        )  # fmt: skip
+        if spec.longest_delay is not None:
+            step("longest delay")
+            top, tol = spec.longest_delay
+            longest = longest_delay(
+                spec.ode, Q=spec.Q, R=spec.R, disturbance=unit_w, amplitude=amplitude,
+                max_delay=top, tolerance=tol, steps=spec.steps,
+            )  # fmt: skip
     return PaperResults(
         model,
         plant_symbolic,
@@ -207,17 +314,20 @@ def derive_paper(
         records,
         graph,
         circuits,
-        open_loop_response(plant),
-        closed_loop_response(gains),
-        nonlinear_check(model, gains),
+        open_loop_response(plant, steps=spec.steps),
+        closed,
+        nonlinear,
         G2_symbolic,
         found,
         candidates,
+        spec,
+        longest,
+        skipped,
     )
 
 
 def _realizations(
-    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict]
+    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict], names=None
 ) -> dict[str, RealizationRecord]:
     """The paper's three realizations of G2: controllable and observable canonical, general.
 
@@ -238,7 +348,7 @@ def _realizations(
     G_exact = factors.G.subs(gains.substitutions(exact=True))
     ds = len(factors.sensor_eps)
     out = {}
-    for name in ("controllable", "observable", "general"):
+    for name in [k for k in ("controllable", "observable", "general") if k in (names or drawn)]:
         eps = {k: drawn[name][k] for k in factors.poles}
         G2_num = factor(G_exact, ds, len(factors.actuator_eps), eps=list(eps.values()), C=1).G2
         realizer = REALIZERS[name]

@@ -51,7 +51,7 @@ from symctl.neural.simulate import Response
 from symctl.realization.check import RealizationCheck
 from symctl.realization.factorization import Factorization, remainder
 from symctl.realization.realization import Realization
-from symctl.report import document, story
+from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
 from symctl.report.spec import SCHEMA_VERSION
@@ -271,17 +271,35 @@ class PaperResults:
     G2_symbolic: DiscreteTF | None = None
     atlas: object = None
     candidates: tuple | None = None
+    spec: object = None
+    longest: object = None
+    skipped: str | None = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
-        if self.G2_symbolic is None:
+        if self.G2_symbolic is None and self.factors is not None:
             object.__setattr__(self, "G2_symbolic", self.factors.G2)
 
     @property
     def abbreviated(self) -> bool:
         r"""Whether the symbolic realizations write :math:`G_2`'s zeros as :math:`\sigma_k`."""
-        return self.G2_symbolic != self.factors.G2
+        return self.factors is not None and self.G2_symbolic != self.factors.G2
+
+    @property
+    def names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """The states' and inputs' names as the model gives them (the muscle's ``f``, ``r``)."""
+        if self.spec is not None:
+            return self.spec.signal_names
+        return ("f",), ("r",)
+
+    def unit(self, name: str) -> str:
+        """The unit of a state, input or parameter of the model ('' when not given)."""
+        if self.spec is not None:
+            return self.spec.unit(name)
+        return {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}.get(
+            name, ""
+        )
 
     __hash__ = _hash_fields
 
@@ -301,8 +319,9 @@ class PaperResults:
         0.05
         """
         s = self.system
+        values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.Ts}
         return {
-            **self.model.as_dict(),
+            **values,
             "sensor_delay": s.sensor_delay,
             "actuator_delay": s.actuator_delay,
             "Q": _matrix(s.Q_plant),
@@ -335,18 +354,7 @@ class PaperResults:
         return {
             "schema_version": SCHEMA_VERSION,
             "parameters": self.parameters(),
-            "plant": {
-                "f_bar": self.model.f_bar,
-                "r_bar": self.model.r_bar,
-                "A": _matrix(self.plant.A),
-                "B": _matrix(self.plant.B),
-                "Ts": self.model.Ts,
-                "symbolic": {
-                    "A": sp.sstr(self.plant_symbolic.A[0, 0]),
-                    "B": sp.sstr(self.plant_symbolic.B[0, 0]),
-                    "f_bar": sp.sstr(self.model.f_bar_symbolic),
-                },
-            },
+            "plant": model_json.plant(self),
             "augmented": {
                 "T": s.T,
                 "state": list(s.state_names),
@@ -362,7 +370,7 @@ class PaperResults:
                 "numerator": numerator[0][0] if G.is_siso else numerator,
                 "denominator": _floats(G.den_coeffs()),
                 "relative_degree": G.relative_degree,
-                "dt": self.model.Ts,
+                "dt": self.spec.Ts,
                 "symbolic": {
                     "numerator": _poly_text(self.G_symbolic.num),
                     "denominator": descending_str(self.G_symbolic.den),
@@ -370,7 +378,7 @@ class PaperResults:
                 },
                 "proved": bool(self.proved),
             },
-            "factorization": self._factorization_json(),
+            "factorization": self._factorization_json() if self.factors is not None else None,
             "closed_loop": {
                 "poles": [[float(p.real), float(p.imag)] for p in self.gains.poles],
                 "spectral_radius": self.gains.spectral_radius,
@@ -383,6 +391,7 @@ class PaperResults:
             "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
             "simulation": self._simulation_json(),
             "atlas": self._atlas_json(),
+            "model": model_json.model(self),
         }
 
     def _atlas_json(self) -> dict | None:
@@ -394,7 +403,7 @@ class PaperResults:
 
     def _simulation_json(self) -> dict:
         ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
-        return {
+        out = {
             "t": _floats(cl.t),
             "open_loop": {
                 "pulse": _floats(ol.delta_r[:, 0]),
@@ -405,12 +414,24 @@ class PaperResults:
                 "delta_f": _floats(cl.delta_f[:, 0]),
                 "delta_r": _floats(cl.delta_r[:, 0]),
             },
-            "nonlinear": {
+            "nonlinear": None
+            if nl is None
+            else {
                 "amplitudes": _floats(nl.amplitudes),
-                "max_deviation": _floats(nl.max_deviation),
-                "relative_deviation": _floats(nl.relative_deviation),
+                "max_deviation": _finite(nl.max_deviation),
+                "relative_deviation": _finite(nl.relative_deviation),
             },
         }
+        if self.plant.n > 1 or self.plant.m > 1:  # every state and input, by name
+            out["states"] = {
+                n: {
+                    "open_loop": _floats(ol.delta_f[:, i]),
+                    "closed_loop": _floats(cl.delta_f[:, i]),
+                }
+                for i, n in enumerate(self.names[0])
+            }
+            out["inputs"] = {n: _floats(cl.delta_r[:, i]) for i, n in enumerate(self.names[1])}
+        return out
 
     def _factorization_json(self) -> dict:
         f = self.factors
@@ -585,8 +606,9 @@ class PaperResults:
             written += paths
         step("documents")
         blocks = story.story(self, figures=names)
-        written.append(document.write_tex(blocks, out / "derivation.tex"))
-        written.append(document.write_markdown(blocks, out / "report.md"))
+        title = self.spec.title if self.spec is not None else document.TITLE
+        written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
+        written.append(document.write_markdown(blocks, out / "report.md", title=title))
         if pdf:
             step("pdflatex")
             compiled = document.compile_pdf(out / "derivation.tex")
@@ -623,6 +645,11 @@ def _text_matrix(mat: sp.MatrixBase) -> list[list[str]]:
 
 def _floats(values) -> list[float]:
     return [float(v) for v in values]
+
+
+def _finite(values) -> list[float | None]:
+    """Floats, with None for inf (a nonlinear run that failed)."""
+    return [None if not np.isfinite(v) else float(v) for v in values]
 
 
 def _matrix(mat: sp.MatrixBase) -> list[list[float]]:

@@ -237,3 +237,37 @@ class _Matcher:
             if n1 * d2 == n2 * d1:
                 return symbol
         return entry
+
+
+def _num(value):
+    """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
+    if isinstance(value, sp.MatrixBase):
+        return np.array(value.evalf(), dtype=float)
+    if isinstance(value, np.ndarray):
+        return value.astype(float)
+    return float(value)
+
+
+def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
+    """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
+
+    A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
+    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
+    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
+    header, rows)``), follow the display.
+    """
+    lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
+    shown, more = [], []
+    for lhs, rhs in rows:
+        if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
+            view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
+            shown += view.rows
+            more += view.tables
+        else:
+            shown.append((lhs, L.to_latex(rhs)))
+    return _display(shown, label, [*more, *tables])
+
+
+def _both(symbolic, numeric) -> str:
+    """``symbolic = numeric`` as one right-hand side."""
+    return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"

@@ -13,7 +13,7 @@ Examples
 >>> from symctl.report.story import story
 >>> blocks = story(derive_paper())
 >>> [b.text for b in blocks if type(b).__name__ == "Heading" and b.level == 1][:3]
-['Muscle model and linearization', 'Discretization', 'Delays and the augmented system']
+['Plant model and linearization', 'Discretization', 'Delays and the augmented system']
 """
 
 from __future__ import annotations
@@ -28,15 +28,19 @@ from symctl._util.display import descending_latex
 from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
+from symctl.report import model_story as MS
 from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
 from symctl.report.shorthand import (
     COMPACT_LENGTH,
+    _both,
     _compact,
     _display,
+    _eq,
     _fits,
     _fmt,
     _indexed,
     _named_weights,
+    _num,
     _quotient_tex,
     _remainder_poly,
     _remainder_symbols,
@@ -48,40 +52,6 @@ from symctl.report.shorthand import (
 from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
-
-
-def _num(value):
-    """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
-    if isinstance(value, sp.MatrixBase):
-        return np.array(value.evalf(), dtype=float)
-    if isinstance(value, np.ndarray):
-        return value.astype(float)
-    return float(value)
-
-
-def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
-    """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
-
-    A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
-    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
-    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
-    header, rows)``), follow the display.
-    """
-    lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
-    shown, more = [], []
-    for lhs, rhs in rows:
-        if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
-            view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
-            shown += view.rows
-            more += view.tables
-        else:
-            shown.append((lhs, L.to_latex(rhs)))
-    return _display(shown, label, [*more, *tables])
-
-
-def _both(symbolic, numeric) -> str:
-    """``symbolic = numeric`` as one right-hand side."""
-    return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"
 
 
 def _ascii(text: str) -> str:
@@ -126,88 +96,16 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         if name in shown:
             add(Graphic(name, caption))
 
-    params = res.parameters()
     s, g, f = res.system, res.gains, res.factors
-    add(
-        Text(
-            "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
-            "proved: an identity is shown by reducing a difference to the zero polynomial. "
-            "Numbers are the paper's parameters unless given otherwise, to 6 significant digits."
-        )
-    )
-    add(
-        Table(
-            ("parameter", "value"),
-            (
-                (r"muscle time constant $\tau$", f"{params['tau']:g} s"),
-                (r"maximum force $f_\text{max}$", f"{params['f_max']:g} N"),
-                (r"equilibrium firing rate $\bar r$", f"{params['r_bar']:g} spikes/s"),
-                ("sampling time $T_s$", f"{params['Ts']:g} s"),
-                ("sensor delay $d_s$, actuator delay $d_a$",
-                 f"{params['sensor_delay']}, {params['actuator_delay']} steps"),
-                ("cost weights $Q$, $R$", f"{params['Q']}, {params['R']}"),
-                ("seed of the random realizations", str(params["seed"])),
-            ),
-        )
-    )  # fmt: skip
-
-    # 1. muscle
-    model = res.model
-    lin = model.linearize_symbolic()
-    add(Heading("Muscle model and linearization"))
-    add(
-        Text(
-            "The muscle's force $f$ [N] follows the motor-neuron firing rate $r$ [spikes/s] through "
-            "a sigmoid and a first-order lag; at the equilibrium rate $\\bar r$ the force is "
-            "$\\bar f$."
-        )
-    )
-    put(
-        _eq(
-            (r"\frac{df}{dt}", model.ode),
-            (r"\bar f", _both(model.f_bar_symbolic, model.f_bar) + r"\ \text{N}"),
-            label="eq:muscle",
-        )
-    )
-    add(
-        Text(
-            "Linearized at $(\\bar f, \\bar r)$, with $\\delta_f = f - \\bar f$ and "
-            "$\\delta_r = r - \\bar r$, it is $\\dot\\delta_f = a\\,\\delta_f + b\\,\\delta_r$:"
-        )
-    )
-    values = model.values
-    put(
-        _eq(
-            ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
-            ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
-            label="eq:linear",
-        )
-    )
-
-    # 2. discretization
-    sym, num = res.plant_symbolic, res.plant
-    add(Heading("Discretization"))
-    add(
-        Text(
-            "A zero-order hold over the sampling time $T_s$ (the exact matrix exponential) gives "
-            "$\\delta_f(t+1) = A\\,\\delta_f(t) + B\\,\\delta_r(t)$ with"
-        )
-    )
-    put(
-        _eq(
-            ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
-            ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
-            label="eq:discrete",
-        )
-    )
-    figure("open_loop", "Open-loop response of the linear muscle to a pulse in firing rate "
-                        "(the paper's Fig. ol_sims).")  # fmt: skip
+    put(MS.opening(res, figure))
+    xs = res.names[0]
 
     # 3. delays
     add(Heading("Delays and the augmented system"))
     add(
         Text(
-            f"The sensor delays the force by $d_s = {s.sensor_delay}$ step(s) and the actuator "
+            f"The sensor delays the measured {', '.join(xs)} by $d_s = {s.sensor_delay}$ step(s) "
+            "and the actuator "
             f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
             f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
             "become states: the augmented state $\\chi$ evolves as "
@@ -251,8 +149,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(Heading("The controller $G(z)$"))
     add(
         Text(
-            "Eliminating the delayed commands, the controller from $\\Delta_f$ to "
-            "$\\Delta_r$ is a transfer function of the gains, kept symbolic:"
+            "Eliminating the delayed commands, the controller from the measured states to the "
+            "inputs is a transfer function of the gains, kept symbolic:"
         )
     )
     whole = _both(res.G_symbolic, G_num.expr.evalf(6))
@@ -268,8 +166,14 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"{G_num.relative_degree}."
         )
     )
+    hit = ", ".join(xs[i] for i in res.spec.disturbance[0])
     figure("closed_loop", "Closed loop of the optimal delayed controller: response to a pulse "
-                          "disturbance on the force (the paper's Fig. cl_sims).")  # fmt: skip
+                          f"disturbance on {hit} (the paper's Fig. cl_sims).")  # fmt: skip
+    if f is None:
+        put(MS.skipped(res))
+        put(MS.nonlinear(res, figure))
+        put(MS.longest(res))
+        return blocks
 
     # 6. factorization
     add(Heading("Factorization $G = G_3 G_2 G_1$"))
@@ -335,7 +239,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
-    for name in ("controllable", "observable"):
+    for name in [k for k in ("controllable", "observable") if k in res.realizations]:
         rec = res.realizations[name]
         add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
         mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
@@ -344,43 +248,57 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         put(_eq(*mats, label=f"eq:{name}"))
         where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
         add(Text(_check_text(rec) + where))
-    rec = res.realizations["general"]
-    add(Heading("General realization", 2))
-    P = rec.P
-    add(
-        Text(
-            "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-            "into another realization of the same $G_2$:"
+    if "general" in res.realizations:
+        rec = res.realizations["general"]
+        add(Heading("General realization", 2))
+        P = rec.P
+        add(
+            Text(
+                "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
+                "into another realization of the same $G_2$:"
+            )
         )
-    )
-    put(
-        _eq(
-            ("F", r"P^{-1} F_c P"),
-            ("H", r"P^{-1} H_c"),
-            ("M", r"M_c P"),
-            ("P", "P" if P is None else P if P.free_symbols else _num(P)),
-            label="eq:general",
+        put(
+            _eq(
+                ("F", r"P^{-1} F_c P"),
+                ("H", r"P^{-1} H_c"),
+                ("M", r"M_c P"),
+                ("P", "P" if P is None else P if P.free_symbols else _num(P)),
+                label="eq:general",
+            )
         )
-    )
-    add(Text(_check_text(rec)))
-    values = ", ".join(
-        f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
-    )
-    add(Text(f"With the seeded numbers ({values}):"))
-    put(
-        _eq(
-            *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-            ("P", _num(rec.P_numeric)),
-            label="eq:general-numeric",
+        add(Text(_check_text(rec)))
+        values = ", ".join(
+            f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
         )
-    )
+        add(Text(f"With the seeded numbers ({values}):"))
+        put(
+            _eq(
+                *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
+                ("P", _num(rec.P_numeric)),
+                label="eq:general-numeric",
+            )
+        )
 
     # 8. delay graph and compatibility
     add(Heading("Delay graph and compatibility"))
+    spec = res.spec
+    if spec.graph_given:
+        named = ", ".join(f"v{i + 1} = {v.replace('_', ' ')}" for i, v in enumerate(spec.vertices))
+        edges = "; ".join(f"{a.replace('_', ' ')} to {b.replace('_', ' ')}: {d}"
+                          for a, b, d in spec.edges)  # fmt: skip
+        graph_text = (
+            f"The delay graph is the model file's: {res.graph.n} vertices ({named}; the sensor "
+            f"first, the actuator last) and edges with their delays in steps ({edges})"
+        )
+    else:
+        graph_text = (
+            "The delay graph has one vertex per stage (sensor side, one relay per further unit "
+            f"delay, the actuator), {res.graph.n} in all"
+        )
     add(
         Text(
-            f"The delay graph has one vertex per stage (sensor side, one relay per further unit "
-            f"delay, the muscle), {res.graph.n} in all; $E_{{ij}}$ is the smallest delay from "
+            graph_text + "; $E_{ij}$ is the smallest delay from "
             "vertex $i$ to vertex $j$ ($\\infty$: no path). A structure is compatible when its "
             "signals can be placed at vertices so that every path's delays $\\tilde E$ are at "
             "least $E$."
@@ -472,27 +390,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         put(_firing_table(fp))
         figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
                                  f"{fp.count} realization(s), same force.")  # fmt: skip
-    nl = res.nonlinear
-    add(Heading("The nonlinear muscle", 2))
-    add(
-        Text(
-            "The linear controller closed around the nonlinear muscle (integrated between "
-            "samples, the rate held over each step): how far the force departs from the linear "
-            "prediction as the disturbance grows."
-        )
-    )
-    add(
-        Table(
-            ("pulse amplitude [N/step]", "max. deviation [N]", "relative"),
-            tuple(
-                (_fmt(a), _fmt(d), _fmt(r))
-                for a, d, r in zip(
-                    nl.amplitudes, nl.max_deviation, nl.relative_deviation, strict=True
-                )
-            ),
-        )
-    )
-    figure("nonlinear", "The linear controller around the nonlinear muscle.")
+    put(MS.nonlinear(res, figure))
+    put(MS.longest(res))
     if res.atlas is not None:
         from symctl.report.atlas import paper_blocks
 

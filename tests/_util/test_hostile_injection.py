@@ -354,6 +354,37 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # ODEModel (design/ode.py): rhs, x_eq and u_eq are SymPy values or numbers (_vector refuses
+    # text; solve_equilibrium routes its arguments through to_matrix); parameter values are
+    # exact_value numbers; the expressions lambdified are those validated ones
+    ("symctl.design.ode", "_vector", "ImmutableMatrix"): 1,
+    ("symctl.design.ode", "_affine", "expand"): 1,
+    ("symctl.design.ode", "solve_equilibrium", "subs"): 3,
+    ("symctl.design.ode", "solve_equilibrium", "Matrix"): 1,
+    ("symctl.design.ode", "solve_equilibrium", "ImmutableMatrix"): 1,
+    ("symctl.design.ode", "_numeric_equilibrium", "lambdify"): 2,
+    ("symctl.design.ode", "_numeric_equilibrium", "subs"): 2,
+    ("symctl.design.ode", "_numeric_equilibrium", "ImmutableMatrix"): 1,
+    ("symctl.design.ode", "ODEModel._check_equilibrium", "subs"): 2,
+    ("symctl.design.ode", "ODEModel._check_equilibrium", "expand"): 1,
+    ("symctl.design.ode", "ODEModel._numeric_plant", "subs"): 5,
+    ("symctl.design.ode", "ODEModel.x_bar", "subs"): 1,
+    ("symctl.design.ode", "ODEModel.u_bar", "subs"): 1,
+    ("symctl.design.ode", "ODEModel._rhs_numeric", "subs"): 1,
+    ("symctl.design.ode", "ODEModel._rhs_numeric", "lambdify"): 2,
+    # model files: every text goes through parse_expr (the safe parser) or parse_unit (which
+    # calls it); matrices and polynomials are built from those parsed values
+    ("symctl.model.modelfile", "_Reader.expr", "parse_expr"): 1,
+    ("symctl.model.modelfile", "_Reader.discrete", "subs"): 4,
+    ("symctl.model.modelfile", "_Reader.discrete", "Poly"): 2,
+    ("symctl.model.modelfile", "_Reader.matrix", "Matrix"): 1,
+    ("symctl.model.modelfile", "_Reader.weight", "ImmutableMatrix"): 2,
+    ("symctl.model.units", "parse_unit", "parse_expr"): 1,
+    ("symctl.neural.nonlinear", "_solver", "subs"): 1,  # an ODEModel's own values
+    ("symctl.report.model_story", "opening", "subs"): 4,  # an ODEModel's own values
+    ("symctl.report.pipeline", "_weight", "ImmutableMatrix"): 1,  # after to_matrix
+    ("symctl.report.pipeline", "_derive", "subs"): 1,  # the gains' own substitutions
+    ("symctl.report.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
     # discovery: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
     ("symctl.discovery.certify", "_Poly.__init__", "Poly"): 1,

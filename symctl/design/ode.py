@@ -1,0 +1,541 @@
+r"""A nonlinear plant of your own: :math:`\dot x = f(x, u; p)`, its equilibrium, linearization and ZOH.
+
+:class:`ODEModel` is the general form of the paper's muscle
+(:class:`~symctl.design.plant.MuscleModel`): any number of states and inputs,
+named parameters with values, right-hand sides that are SymPy expressions
+(model files give them as text, read by the safe parser only), an operating
+point, and a sampling time. The derivation stays symbolic in the parameters
+(:meth:`ODEModel.linearize_symbolic`, and for one state the closed-form ZOH
+:meth:`ODEModel.discrete_symbolic`), and :meth:`ODEModel.plant` substitutes the
+values, exactly (a float becomes the rational of its shortest decimal, 0.1 -> 1/10).
+
+:func:`solve_equilibrium` finds the states of an equilibrium from the inputs:
+
+- exactly (SymPy, in the parameters' symbols) when :math:`f` is affine in the
+  states, which proves the solution unique (or that there is none, or many);
+- otherwise numerically (:func:`scipy.optimize.root` at the parameter values),
+  from a ``guess`` when one is given, or from several starts, refusing none
+  and several distinct solutions.
+
+Every symbol of a parameter whose value is positive is a positive SymPy symbol
+(so that the closed forms simplify as they should, e.g. :math:`e^{-T_s/\tau}`);
+the others, the states and the inputs are real.
+
+>>> import sympy as sp
+>>> from symctl.design.ode import ODEModel
+>>> x, u, a = sp.symbols("x u a", real=True)
+>>> m = ODEModel([x], [u], [-a * x + u], {a: 2}, u_eq=[1], Ts=0.1)
+>>> m.x_eq
+Matrix([[1/a]])
+>>> m.plant().A[0, 0]
+exp(-1/5)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+
+from symctl import symbols as S
+from symctl._util.display import LatexMixin, latex
+from symctl._util.validate import MAX_MAGNITUDE, bounded_number, sampling_time, to_matrix
+from symctl.design.plant import DiscretePlant, Linearization, _tidy, discretize, linearize
+from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+
+__all__ = ["MAX_MODEL_STATES", "ODEModel", "exact_value", "solve_equilibrium"]
+
+MAX_MODEL_STATES = 20
+"""Most states (and most inputs) of an :class:`ODEModel`: the Jacobians are symbolic."""
+
+ROOT_STARTS = 12
+"""Starts of the numeric equilibrium search when no ``guess`` is given."""
+
+ROOT_TOL = 1e-9
+"""Residual below which a numeric equilibrium counts as one (relative to the scale of f)."""
+
+
+def exact_value(value, argname: str) -> sp.Expr:
+    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal.
+
+    ``0.1`` becomes 1/10 (the decimal a user wrote, which reads back as the same
+    float), as :class:`~symctl.design.plant.MuscleModel` does.
+
+    Parameters
+    ----------
+    value : int, float or sympy number
+        A finite real number, ``|value| <= MAX_MAGNITUDE`` (1e100).
+    argname : str
+        Named in errors.
+
+    Returns
+    -------
+    sympy.Rational or sympy.Integer (a SymPy number given stays as it is)
+
+    Examples
+    --------
+    >>> from symctl.design.ode import exact_value
+    >>> exact_value(0.5, "tau"), exact_value(3, "n")
+    (1/2, 3)
+    """
+    if isinstance(value, sp.Basic):
+        if not (value.is_number and value.is_real and value.is_finite):
+            raise ParameterError(f"{argname}: expected a finite real number, got {value}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise SymctlTypeError(f"{argname}: expected a number, got {type(value).__name__}")
+    bounded_number(value, argname, -MAX_MAGNITUDE, MAX_MAGNITUDE)
+    if isinstance(value, int | np.integer):
+        return sp.Integer(int(value))
+    q = Fraction(repr(float(value)))  # the shortest decimal that reads back as this float
+    return sp.Rational(q.numerator, q.denominator)
+
+
+def _symbols(values, argname: str) -> tuple[sp.Symbol, ...]:
+    if isinstance(values, sp.Symbol) or not isinstance(values, Sequence):
+        raise SymctlTypeError(f"{argname}: expected a sequence of symbols, got {values!r}")
+    out = tuple(values)
+    if not 1 <= len(out) <= MAX_MODEL_STATES:
+        raise DimensionError(f"{argname}: needs 1 to {MAX_MODEL_STATES} symbols, got {len(out)}")
+    if not all(isinstance(s, sp.Symbol) for s in out):
+        raise SymctlTypeError(f"{argname}: expected symbols, got {out}")
+    return out
+
+
+def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
+    if isinstance(values, str) or not isinstance(values, Sequence | sp.MatrixBase):
+        raise SymctlTypeError(f"{argname}: expected a sequence of {n} expressions, got {values!r}")
+    items = list(values)
+    if len(items) != n:
+        raise DimensionError(f"{argname}: needs {n} entries, got {len(items)}")
+    out = []
+    for i, item in enumerate(items):
+        if isinstance(item, str):
+            raise SymctlTypeError(
+                f"{argname}[{i}]: text is read by model files (symctl.load_model) or "
+                "symctl._util.parse.parse_expr; give a SymPy expression or a number"
+            )
+        value = exact_value(item, f"{argname}[{i}]") if not isinstance(item, sp.Basic) else item
+        unknown = value.free_symbols - set(names.values())
+        if unknown:
+            raise ParameterError(
+                f"{argname}[{i}]: names {sorted(map(str, unknown))}, which is not a state, "
+                "input or parameter"
+            )
+        out.append(value)
+    return sp.ImmutableMatrix(out)
+
+
+SYMBOLIC_MAX_DENOMINATOR = 10_000
+"""Largest denominator of a rational in :math:`a` for which the closed-form ZOH is attempted.
+
+A numeric equilibrium (``-1.0000000000000002`` is 5000000000000001/5000000000000000)
+puts such a rational into :math:`e^{a T_s}`, and SymPy's ``factor`` then expands a
+power of :math:`e^{T_s/q}` to degree :math:`q`: such a plant is discretized in numbers.
+"""
+
+
+def _small_rationals(M: sp.MatrixBase) -> bool:
+    """Whether every rational in ``M`` has a numerator and denominator below the limit."""
+    limit = SYMBOLIC_MAX_DENOMINATOR
+    return all(abs(q.q) <= limit and abs(q.p) <= limit**2 for e in M for q in e.atoms(sp.Rational))
+
+
+def _affine(rhs: sp.MatrixBase, states) -> bool:
+    """Whether every entry of ``rhs`` is affine in ``states`` (its Hessian is zero)."""
+    J = rhs.jacobian(list(states))
+    return all(sp.expand(sp.diff(e, x)) == 0 for e in J for x in states)
+
+
+def solve_equilibrium(
+    rhs, states, inputs, u_eq, values: Mapping, *, guess=None, argname: str = "equilibrium"
+) -> tuple[sp.ImmutableMatrix, str]:
+    r"""The states :math:`\bar x` with :math:`f(\bar x, \bar u) = 0`, and how they were found.
+
+    Parameters
+    ----------
+    rhs : sympy Matrix (n x 1)
+        :math:`f(x, u)` in the state, input and parameter symbols.
+    states, inputs : sequence of sympy.Symbol
+    u_eq : sympy Matrix (m x 1)
+        The inputs at the equilibrium (may hold parameter symbols).
+    values : mapping of sympy.Symbol to number
+        The parameter values (for the numeric search and the checks).
+    guess : sequence of float, optional
+        Start of the numeric search (then the solution nearest it is taken).
+    argname : str
+        Named in errors.
+
+    Returns
+    -------
+    (sympy.ImmutableMatrix, str)
+        :math:`\bar x` (symbolic in the parameters when found exactly), and the
+        method: ``"exact (affine in the states)"`` or ``"numeric (scipy.optimize.root ...)"``.
+
+    Raises
+    ------
+    ParameterError
+        No equilibrium, or several (the message lists some and asks for
+        ``equilibrium`` values or a ``guess``).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.design.ode import solve_equilibrium
+    >>> x, u, k = sp.symbols("x u k", real=True)
+    >>> xe, how = solve_equilibrium(sp.Matrix([-k * x + u]), [x], [u], sp.Matrix([2]), {k: 4})
+    >>> xe, how
+    (Matrix([[2/k]]), 'exact (affine in the states)')
+    """
+    states, inputs = list(_symbols(states, "states")), list(_symbols(inputs, "inputs"))
+    if not isinstance(values, Mapping) or not all(isinstance(k, sp.Symbol) for k in values):
+        raise SymctlTypeError("values: expected a mapping of symbols to numbers")
+    values = {k: exact_value(v, f"values[{k}]") for k, v in values.items()}
+    names = {s.name: s for s in (*states, *inputs, *values)}
+    rhs = to_matrix(rhs, "rhs", (len(states), 1), names)
+    u_eq = to_matrix(u_eq, "u_eq", (len(inputs), 1), {s.name: s for s in values})
+    f = rhs.subs(dict(zip(inputs, u_eq, strict=True)))
+    if _affine(f, states):
+        J = f.jacobian(states)
+        c = f.subs({x: 0 for x in states})
+        Jn = np.array(J.subs(values).evalf(), dtype=float)
+        if np.linalg.matrix_rank(Jn) < len(states):
+            raise ParameterError(
+                f"{argname}: f is affine in the states with a singular Jacobian, so the "
+                "equilibrium is not unique (or does not exist); give the states' equilibrium values"
+            )
+        x = J.LUsolve(-c).applyfunc(_tidy)
+        return sp.ImmutableMatrix(x), "exact (affine in the states)"
+    return _numeric_equilibrium(f, states, values, guess, argname)
+
+
+def _numeric_equilibrium(f, states, values, guess, argname):
+    import scipy.optimize
+
+    fn = sp.lambdify([states], list(f.subs(values)), modules="numpy")
+    jac = sp.lambdify([states], f.subs(values).jacobian(states), modules="numpy")
+    n = len(states)
+
+    def residual(x):
+        return np.asarray(fn(x), dtype=float)
+
+    def jacobian(x):
+        return np.asarray(jac(x), dtype=float)
+
+    if guess is not None:
+        starts = [np.asarray(guess, dtype=float)]
+    else:
+        gen = np.random.default_rng(0)
+        starts = [np.zeros(n)] + [gen.normal(scale=s, size=n) for s in (1, 10) for _ in range(6)]
+        starts = starts[:ROOT_STARTS]
+    found: list[np.ndarray] = []
+    with np.errstate(all="ignore"):
+        for x0 in starts:
+            try:
+                sol = scipy.optimize.root(residual, x0, jac=jacobian, method="hybr")
+            except (ValueError, ArithmeticError):
+                continue
+            if not np.all(np.isfinite(sol.x)):
+                continue
+            scale = 1.0 + float(np.max(np.abs(residual(x0)))) if np.all(np.isfinite(x0)) else 1.0
+            if float(np.max(np.abs(residual(sol.x)))) > ROOT_TOL * scale:
+                continue
+            if not any(np.allclose(sol.x, y, rtol=1e-6, atol=1e-9) for y in found):
+                found.append(sol.x)
+    if not found:
+        where = "from the guess" if guess is not None else f"from {len(starts)} starts"
+        raise ParameterError(
+            f"{argname}: no equilibrium found {where} (scipy.optimize.root); give the states' "
+            "equilibrium values or a guess"
+        )
+    if len(found) > 1:
+        shown = "; ".join(
+            ", ".join(f"{s} = {v:.6g}" for s, v in zip(states, x, strict=True)) for x in found[:3]
+        )
+        raise ParameterError(
+            f"{argname}: several equilibria ({shown}{'; ...' if len(found) > 3 else ''}); "
+            "give the states' equilibrium values or a guess"
+        )
+    how = "numeric (scipy.optimize.root from " + (
+        "the guess)" if guess is not None else f"{len(starts)} starts, one solution)"
+    )
+    return sp.ImmutableMatrix([exact_value(float(v), argname) for v in found[0]]), how
+
+
+@dataclass(frozen=True, eq=False)
+class ODEModel(LatexMixin):
+    r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point.
+
+    Parameters
+    ----------
+    states, inputs : sequence of sympy.Symbol
+        The state and input variables (1 to ``MAX_MODEL_STATES``, 20, each).
+    rhs : sequence of sympy expressions
+        :math:`f`, one entry per state, in the states, inputs and parameters.
+    params : mapping of sympy.Symbol to number
+        Every parameter with its value (kept exact: floats become the
+        rationals of their binary values).
+    x_eq : sequence, optional
+        The states at the operating point (expressions in the parameters, or
+        numbers); solved with :func:`solve_equilibrium` when omitted.
+    u_eq : sequence, optional
+        The inputs at the operating point (default 0).
+    Ts : float
+        The sampling time [s], > 0.
+    guess : sequence of float, optional
+        Start of the numeric equilibrium search.
+    name : str
+        A name for titles.
+    units : mapping of str to str, optional
+        Units of the states, inputs and parameters by name (for labels).
+
+    Attributes
+    ----------
+    equilibrium_method : str
+        ``"given"``, or how :func:`solve_equilibrium` found ``x_eq``.
+
+    Raises
+    ------
+    ParameterError
+        A point that is not an equilibrium (``f`` provably nonzero there, or
+        numerically above 1e-9 of its scale), names that are not states,
+        inputs or parameters, or no or several equilibria.
+    DimensionError, SymctlTypeError
+        Sizes or types that do not fit.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.design.ode import ODEModel
+    >>> th, w, u = sp.symbols("theta omega u", real=True)
+    >>> g = sp.Symbol("g", positive=True)
+    >>> m = ODEModel([th, w], [u], [w, g * sp.sin(th) + u], {g: 9.81}, x_eq=[0, 0], Ts=0.01)
+    >>> m.linearize_symbolic().a
+    Matrix([
+    [0, 1],
+    [g, 0]])
+    >>> round(float(m.plant().A[1, 0]), 6)
+    0.098116
+    """
+
+    states: tuple
+    inputs: tuple
+    rhs: sp.ImmutableMatrix
+    params: Mapping
+    x_eq: sp.ImmutableMatrix | None = None
+    u_eq: sp.ImmutableMatrix | None = None
+    Ts: float = 0.01
+    guess: tuple | None = None
+    name: str = "model"
+    units: Mapping = field(default_factory=dict)
+    equilibrium_method: str = field(default="given", init=False)
+
+    def __post_init__(self) -> None:
+        states, inputs = _symbols(self.states, "states"), _symbols(self.inputs, "inputs")
+        if len(set(states + inputs)) != len(states) + len(inputs):
+            raise ParameterError("states, inputs: names must be distinct")
+        if not isinstance(self.params, Mapping):
+            raise SymctlTypeError(f"params: expected a mapping, got {type(self.params).__name__}")
+        params = {}
+        for k, v in self.params.items():
+            if not isinstance(k, sp.Symbol):
+                raise SymctlTypeError(f"params: keys must be symbols, got {k!r}")
+            params[k] = exact_value(v, f"params[{k}]")
+        if set(params) & set(states + inputs):
+            raise ParameterError("params: a parameter has the name of a state or an input")
+        names = {s.name: s for s in (*states, *inputs, *params)}
+        pnames = {s.name: s for s in params}
+        rhs = _vector(self.rhs, len(states), "rhs", names)
+        u_eq = (
+            sp.ImmutableMatrix.zeros(len(inputs), 1)
+            if self.u_eq is None
+            else _vector(self.u_eq, len(inputs), "u_eq", pnames)
+        )
+        ts = sampling_time(exact_value(self.Ts, "Ts"), "Ts")
+        object.__setattr__(self, "states", states)
+        object.__setattr__(self, "inputs", inputs)
+        object.__setattr__(self, "params", MappingProxyType(params))
+        object.__setattr__(self, "rhs", rhs)
+        object.__setattr__(self, "u_eq", u_eq)
+        object.__setattr__(self, "Ts", float(ts))
+        object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
+        if self.guess is not None:
+            object.__setattr__(self, "guess", tuple(float(g) for g in self.guess))
+        if self.x_eq is None:
+            x_eq, how = solve_equilibrium(
+                rhs, states, inputs, u_eq, self.values, guess=self.guess, argname="x_eq"
+            )
+            object.__setattr__(self, "equilibrium_method", how)
+        else:
+            x_eq = _vector(self.x_eq, len(states), "x_eq", pnames)
+        object.__setattr__(self, "x_eq", x_eq)
+        self._check_equilibrium()
+
+    def _check_equilibrium(self) -> None:
+        point = dict(zip(self.states + self.inputs, [*self.x_eq, *self.u_eq], strict=True))
+        residual = self.rhs.subs(point).subs(self.values)
+        values = np.array([complex(sp.N(e, 30)) for e in residual])
+        terms = [t for e in residual for t in sp.Add.make_args(sp.expand(e))]
+        scale = 1.0 + max(abs(complex(sp.N(t, 30))) for t in terms)
+        if np.max(np.abs(values)) > 1e-9 * scale:
+            shown = ", ".join(f"{v.real:.4g}" for v in values)
+            raise ParameterError(
+                f"x_eq, u_eq: not an equilibrium, f(x_eq, u_eq) = [{shown}] != 0 at the "
+                "parameter values"
+            )
+
+    @property
+    def n(self) -> int:
+        """Number of states."""
+        return len(self.states)
+
+    @property
+    def m(self) -> int:
+        """Number of inputs."""
+        return len(self.inputs)
+
+    @property
+    def values(self) -> dict:
+        """The exact values of the parameters and of :math:`T_s` (``symctl.symbols.T_s``)."""
+        return {**self.params, S.T_s: exact_value(self.Ts, "Ts")}
+
+    @cached_property
+    def _linearization(self) -> Linearization:
+        lin = linearize(
+            list(self.rhs), list(self.states), list(self.inputs), list(self.x_eq),
+            list(self.u_eq), check_equilibrium=False,
+        )  # fmt: skip
+        return Linearization(lin.a.applyfunc(_tidy), lin.b.applyfunc(_tidy), lin.residual)
+
+    def linearize_symbolic(self) -> Linearization:
+        r"""The Jacobians :math:`a = \partial f/\partial x`, :math:`b = \partial f/\partial u`.
+
+        At the operating point, in the parameters' symbols.
+        """
+        return self._linearization
+
+    @cached_property
+    def _discrete(self) -> DiscretePlant | None:
+        if self.n != 1 or self.m != 1:
+            return None
+        a, b = self._linearization
+        if not _small_rationals(a) or not _small_rationals(b):
+            return None  # e^{a T_s} with a rational of a large denominator: SymPy's factor hangs
+        A, B = discretize(a, b, S.T_s)
+        return self._plant(A, B, S.T_s, self.x_eq, self.u_eq)
+
+    def discrete_symbolic(self) -> DiscretePlant | None:
+        """The closed-form ZOH plant in symbols (one state and one input), else None.
+
+        Beyond one state the closed form of :math:`e^{a T_s}` is rarely worth
+        printing; :meth:`plant` then discretizes the numbers (exactly to float
+        precision, :func:`scipy.linalg.expm`).
+        """
+        return self._discrete
+
+    def _plant(self, A, B, Ts, x_eq, u_eq) -> DiscretePlant:
+        return DiscretePlant(
+            A, B, Ts, tuple(f"delta_{s.name}" for s in self.states),
+            tuple(f"delta_{s.name}" for s in self.inputs),
+            x_eq, u_eq, {str(k): float(v) for k, v in self.values.items()},
+        )  # fmt: skip
+
+    @classmethod
+    def from_muscle(cls, muscle) -> ODEModel:
+        """The paper's muscle (a :class:`~symctl.design.plant.MuscleModel`) as an ODEModel.
+
+        Its symbols are those a model file gives (``examples/muscle.toml``): each
+        parameter positive when its value is.
+
+        Examples
+        --------
+        >>> from symctl import MuscleModel
+        >>> from symctl.design.ode import ODEModel
+        >>> m = ODEModel.from_muscle(MuscleModel())
+        >>> m.plant().A == MuscleModel().plant().A, round(float(m.x_bar[0]), 4)
+        (True, 43.8635)
+        """
+
+        def sym(name, value):
+            return sp.Symbol(name, positive=True) if value > 0 else sp.Symbol(name, real=True)
+
+        tau, f_max, r_bar = (sym(k, getattr(muscle, k)) for k in ("tau", "f_max", "r_bar"))
+        f, r = S.f, S.r
+        return cls(
+            [f], [r], [f_max / (tau * (1 + sp.exp(-r))) - f / tau],
+            {tau: muscle.tau, f_max: muscle.f_max, r_bar: muscle.r_bar},
+            [f_max / (1 + sp.exp(-r_bar))], [r_bar], muscle.Ts, name="muscle",
+            units={"tau": "s", "f_max": "N", "r_bar": "spikes/s", "f": "N", "r": "spikes/s"},
+        )  # fmt: skip
+
+    @cached_property
+    def _numeric_plant(self) -> DiscretePlant:
+        values = self.values
+        if self._discrete is not None:
+            p = self._discrete.subs(values)
+            return self._plant(p.A, p.B, p.Ts, p.x_eq, p.u_eq)
+        a, b = self._linearization
+        A, B = discretize(a.subs(values).evalf(), b.subs(values).evalf(), self.Ts)
+        return self._plant(A, B, self.Ts, self.x_eq.subs(values), self.u_eq.subs(values))
+
+    def plant(self) -> DiscretePlant:
+        """The discrete linear plant at the parameter values (exact for one state)."""
+        return self._numeric_plant
+
+    @property
+    def x_bar(self) -> np.ndarray:
+        """The equilibrium states as floats."""
+        return np.array([float(sp.N(e.subs(self.values), 17)) for e in self.x_eq])
+
+    @property
+    def u_bar(self) -> np.ndarray:
+        """The equilibrium inputs as floats."""
+        return np.array([float(sp.N(e.subs(self.values), 17)) for e in self.u_eq])
+
+    @cached_property
+    def _rhs_numeric(self):
+        f = self.rhs.subs(self.values)
+        fn = sp.lambdify([self.states, self.inputs], list(f), modules="numpy")
+        jac = sp.lambdify([self.states, self.inputs], f.jacobian(list(self.states)), "numpy")
+        return fn, jac
+
+    def rhs_numeric(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """:math:`f(x, u)` with NumPy; ``x`` is ``(n, k)``, ``u`` is ``(m, k)`` for ``k`` points."""
+        fn, _ = self._rhs_numeric
+        out = fn(list(x), list(u))
+        return np.array([np.broadcast_to(np.asarray(v, dtype=float), x.shape[1:]) for v in out])
+
+    def jacobian_numeric(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+        r""":math:`\partial f/\partial x` at one point (``x`` of length n, ``u`` of length m)."""
+        _, jac = self._rhs_numeric
+        return np.asarray(jac(list(x), list(u)), dtype=float)
+
+    def as_dict(self) -> dict[str, float]:
+        """The parameters and ``Ts`` as plain floats, in order (for JSON)."""
+        return {**{str(k): float(v) for k, v in self.params.items()}, "Ts": self.Ts}
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, ODEModel):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def _key(self) -> tuple:
+        return (
+            self.states, self.inputs, self.rhs, tuple(self.params.items()), self.x_eq,
+            self.u_eq, self.Ts, self.name,
+        )  # fmt: skip
+
+    def latex(self) -> str:
+        rows = [
+            rf"\frac{{d{latex(x)}}}{{dt}} &= {latex(f)}"
+            for x, f in zip(self.states, self.rhs, strict=True)
+        ]
+        return r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"

@@ -1,0 +1,619 @@
+r"""Your own system in a file: :func:`load_model` reads a model file into a :class:`Model`.
+
+A model file (TOML; ``docs/model-file.md`` has the schema and an example of
+every field, :mod:`symctl.model.schema` the table of fields) describes a plant
+(a nonlinear ODE as text, or a discrete plant as :math:`(A, B)` or a transfer
+function), its sampling time, its sensor and actuator delays (in steps or
+seconds), the cost, the delay graph and what to build and simulate. ``symctl
+derive MODEL.toml`` runs the whole derivation on it
+(:func:`~symctl.report.pipeline.derive`).
+
+No text of the file is ever evaluated: expressions go through the safe parser
+(:func:`symctl._util.parse.parse_expr`) with the names the file declares, and
+every other value is checked for its type and range. Every problem is one
+:class:`~symctl.errors.ModelFileError` that names the file, the line and the
+field (``muscle.toml:14: states[0].rhs: name 'tau2' is not allowed; ...``);
+an unknown key is refused with the nearest valid one suggested.
+
+>>> from symctl.model.modelfile import load_model
+>>> m = load_model('''
+... [model]
+... name = "leaky"
+... [parameters]
+... k = { value = 2.0, unit = "1/s" }
+... [[states]]
+... name = "x"
+... rhs = "-k*x + u"
+... [[inputs]]
+... name = "u"
+... equilibrium = 1.0
+... [sampling]
+... Ts = 0.1
+... ''')
+>>> m.ode.x_eq, m.sensor_delay, m.actuator_delay
+(Matrix([[1/k]]), 1, 1)
+>>> load_model('[model]\nname = "x"\n[sampling]\nTz = 1\n')
+Traceback (most recent call last):
+...
+symctl.errors.ModelFileError: <text>:4: sampling.Tz: unknown key 'Tz'; did you mean 'Ts'?
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import sympy as sp
+
+from symctl._util.parse import parse_expr
+from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value
+from symctl.design.plant import DiscretePlant
+from symctl.design.tf import DiscreteTF
+from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
+from symctl.model.model import Model
+from symctl.model.schema import CIRCUIT_KINDS, FIELDS
+from symctl.model.source import Source
+from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
+from symctl.realization.realization import controllable_canonical
+from symctl.symbols import z
+
+__all__ = ["Model", "load_model"]
+
+MAX_PARAMETERS = 200
+"""Most parameters of a model file."""
+MAX_VERTICES = 50
+"""Most vertices of a model file's delay graph."""
+MAX_SIM_STEPS = 5000
+"""Longest simulation horizon of a model file."""
+_IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
+_RESERVED = {"z", "T_s", "t", "pi", "E", "exp", "log", "sqrt", "sin", "cos", "tan", "tanh",
+             "sinh", "cosh", "atan", "Abs", "logistic"}  # fmt: skip
+
+
+def load_model(source) -> Model:
+    """Read a model file (a path, or TOML text) into a :class:`Model`.
+
+    Parameters
+    ----------
+    source : str or pathlib.Path
+        A path to a ``.toml`` file, or the TOML text itself (a string holding
+        a newline or a ``[`` is read as text).
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    ModelFileError
+        Any problem, in one line naming the file, the line and the field.
+    SymctlTypeError
+        ``source`` is neither text nor a path.
+
+    Examples
+    --------
+    >>> from symctl.model.modelfile import load_model
+    >>> load_model('[model]\\nname = "m"\\n').name
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ModelFileError: <text>: sampling: missing; give [sampling] Ts
+    """
+    if isinstance(source, Path) or (
+        isinstance(source, str) and "\n" not in source and "[" not in source
+    ):
+        src = Source.from_path(source)
+    elif isinstance(source, str):
+        src = Source.from_text(source)
+    else:
+        raise SymctlTypeError(f"source: expected a path or TOML text, got {type(source).__name__}")
+    return _Reader(src).model()
+
+
+class _Reader:
+    """Reads one :class:`Source` into a :class:`Model`, field by field."""
+
+    def __init__(self, src: Source):
+        self.src = src
+        self.notes: list[str] = []
+
+    # --------------------------------------------------------------- helpers
+    def fail(self, where: str, problem: str) -> ModelFileError:
+        return self.src.error(where, problem)
+
+    def table(self, data, where: str, allowed: str | None = None) -> dict:
+        if not isinstance(data, dict):
+            raise self.fail(where, f"expected a table, got {_kind(data)}")
+        if allowed is not None:
+            self.src.check_keys(data, FIELDS[allowed], where)
+        return data
+
+    def text(self, value, where: str, *, ident: bool = False) -> str:
+        if not isinstance(value, str):
+            raise self.fail(where, f"expected text, got {_kind(value)}")
+        if ident and (not _IDENT.match(value) or value in _RESERVED):
+            raise self.fail(
+                where, f"{value!r} is not a valid name (a letter, then letters, digits or _, "
+                "at most 40; not a function name or z, t, T_s)",
+            )  # fmt: skip
+        return value
+
+    def number(self, value, where: str, *, positive: bool = False) -> float:
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise self.fail(where, f"expected a number, got {_kind(value)}")
+        if not math.isfinite(value) or abs(value) > 1e100:
+            raise self.fail(where, f"expected a finite number, got {value!r}")
+        if positive and value <= 0:
+            raise self.fail(where, f"must be > 0, got {value!r}")
+        return value
+
+    def integer(self, value, where: str, low: int, high: int) -> int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(where, f"expected an integer, got {_kind(value)}")
+        if not low <= value <= high:
+            raise self.fail(where, f"must be an integer in [{low}, {high}], got {value}")
+        return value
+
+    def expr(self, value, where: str, names: dict) -> sp.Expr:
+        if isinstance(value, bool):
+            raise self.fail(where, f"expected a number or text, got {_kind(value)}")
+        if isinstance(value, int | float):
+            return exact_value(self.number(value, where), where)
+        if not isinstance(value, str):
+            raise self.fail(where, f"expected a number or text, got {_kind(value)}")
+        try:
+            return parse_expr(value, names, argname=where)
+        except SymctlError as exc:
+            raise self.fail(where, _strip(str(exc), where)) from None
+
+    def unit(self, value, where: str) -> Unit | None:
+        if value is None:
+            return None
+        try:
+            return parse_unit(self.text(value, where), where)
+        except SymctlError as exc:
+            if isinstance(exc, ModelFileError):
+                raise
+            raise self.fail(where, _strip(str(exc), where)) from None
+
+    def items(self, data, where: str, allowed: str, *, limit: int) -> list[dict]:
+        if not isinstance(data, list):
+            raise self.fail(where, f"expected an array of tables ([[{where}]]), got {_kind(data)}")
+        if len(data) > limit:
+            raise self.fail(where, f"at most {limit} entries, got {len(data)}")
+        return [self.table(d, f"{where}[{i}]", allowed) for i, d in enumerate(data)]
+
+    # --------------------------------------------------------------- the model
+    def model(self) -> Model:
+        d = self.src.data
+        self.src.check_keys(d, FIELDS.keys() - {"parameter", "vertex", "edge", "disturbance",
+                                                "longest_delay"}, "")  # fmt: skip
+        meta = self.table(d.get("model", {}), "model", "model")
+        if "name" not in meta:
+            raise self.fail("model", 'missing the model\'s name; give name = "..."')
+        name = self.text(meta["name"], "model.name")
+        if not re.match(r"^[A-Za-z0-9_-]{1,60}$", name):
+            raise self.fail("model.name", f"{name!r}: letters, digits, _ and - only (at most 60)")
+        title = self.text(meta.get("title", name), "model.title")
+        description = self.text(meta.get("description", ""), "model.description")
+        if "sampling" not in d:
+            raise self.fail("sampling", "missing; give [sampling] Ts")
+        Ts = self.sampling(self.table(d["sampling"], "sampling", "sampling"))
+        params, units, descr = self.parameters(d.get("parameters", {}))
+        ode, plant, plant_symbolic = self.plant(d, params, units, descr, Ts, name)
+        self.names = tuple(s.name for s in ode.states) if ode is not None else plant.state_names
+        outputs = self.outputs(d.get("outputs"), plant, units, descr)
+        delays = self.table(d.get("delays", {}), "delays", "delays")
+        ds = self.delay(delays.get("sensor", 1), "delays.sensor", Ts)
+        da = self.delay(delays.get("actuator", 1), "delays.actuator", Ts)
+        if ds + da > PAPER_MAX_DELAY:
+            raise self.fail(
+                "delays", f"the derivation takes a net delay of at most {PAPER_MAX_DELAY} steps, "
+                f"got {ds} + {da} = {ds + da}",
+            )  # fmt: skip
+        if ds + da == 0:
+            raise self.fail("delays", "the net delay sensor + actuator must be at least 1 step")
+        cost = self.table(d.get("cost", {}), "cost", "cost")
+        Q = self.weight(cost.get("Q", "identity"), "cost.Q", plant.n)
+        R = self.weight(cost.get("R", "identity"), "cost.R", plant.m, definite=True)
+        graph, vertices, edges, given = self.graph(d.get("delay_graph"), ds + da, Ts)
+        circuits = self.table(d.get("circuits", {}), "circuits", "circuits")
+        build = self.build(circuits.get("build", list(CIRCUIT_KINDS)))
+        realizations = self.integer(
+            circuits.get("realizations", 4), "circuits.realizations", 1, 1000
+        )
+        seed = self.integer(circuits.get("seed", 0), "circuits.seed", 0, 2**32 - 1)
+        sim = self.table(d.get("simulation", {}), "simulation", "simulation")
+        steps = self.integer(sim.get("steps", 50), "simulation.steps", 2, MAX_SIM_STEPS)
+        disturbance = self.disturbance(sim.get("disturbance", {}), plant, steps)
+        longest = self.analysis(d.get("analysis", {}))
+        return Model(
+            name, title, description, ode, plant, plant_symbolic, units, descr, outputs, Ts,
+            ds, da, Q, R, graph, vertices, edges, given, build, realizations, seed, steps,
+            disturbance, longest, tuple(self.notes), self.src.path, self.src.text,
+            self.src.lines,
+        )  # fmt: skip
+
+    def sampling(self, table: dict) -> float:
+        if "Ts" not in table:
+            raise self.fail("sampling", "missing Ts, the sampling time")
+        value = table["Ts"]
+        if isinstance(value, dict):
+            self.table(value, "sampling.Ts", "parameter")
+            if "value" not in value:
+                raise self.fail("sampling.Ts", "missing value")
+            ts = self.number(value["value"], "sampling.Ts.value", positive=True)
+            unit = self.unit(value.get("unit", "s"), "sampling.Ts.unit")
+            if not unit.is_time():
+                raise self.fail("sampling.Ts.unit", f"{unit} is not a unit of time")
+            return ts * unit.scale
+        return float(self.number(value, "sampling.Ts", positive=True))
+
+    def parameters(self, table) -> tuple[dict, dict, dict]:
+        table = self.table(table, "parameters")
+        if len(table) > MAX_PARAMETERS:
+            raise self.fail("parameters", f"at most {MAX_PARAMETERS} parameters")
+        params, units, descr = {}, {}, {}
+        for key, value in table.items():
+            where = f"parameters.{key}"
+            self.text(key, where, ident=True)
+            if isinstance(value, dict):
+                self.table(value, where, "parameter")
+                if "value" not in value:
+                    raise self.fail(where, "missing value")
+                number = self.number(value["value"], f"{where}.value")
+                if "unit" in value:
+                    units[key] = self.unit(value["unit"], f"{where}.unit")
+                descr[key] = self.text(value.get("description", ""), f"{where}.description")
+            else:
+                number = self.number(value, where)
+            sym = sp.Symbol(key, positive=True) if number > 0 else sp.Symbol(key, real=True)
+            params[sym] = number
+        return params, units, descr
+
+    def signals(self, d, section, allowed, *, required: bool) -> list[dict]:
+        if section not in d:
+            if required:
+                raise self.fail(section, f"missing; give at least one [[{section}]] with a name")
+            return []
+        items = self.items(d[section], section, allowed, limit=MAX_MODEL_STATES)
+        for i, item in enumerate(items):
+            if "name" not in item:
+                raise self.fail(f"{section}[{i}]", "missing name")
+            self.text(item["name"], f"{section}[{i}].name", ident=True)
+        return items
+
+    def plant(self, d, params, units, descr, Ts, name):
+        if "discrete" in d:
+            return self.discrete(d, params, units, descr, Ts)
+        states = self.signals(d, "states", "states", required=True)
+        inputs = self.signals(d, "inputs", "inputs", required=True)
+        names = [s["name"] for s in states] + [u["name"] for u in inputs]
+        pnames = {str(p) for p in params}
+        for i, n in enumerate(names):
+            kind, k = ("states", i) if i < len(states) else ("inputs", i - len(states))
+            if n in pnames or names.index(n) != i:
+                raise self.fail(
+                    f"{kind}[{k}].name", f"{n!r} is already a state, input or parameter"
+                )
+        xs = [sp.Symbol(s["name"], real=True) for s in states]
+        us = [sp.Symbol(u["name"], real=True) for u in inputs]
+        psyms = {p.name: p for p in params}
+        allnames = {**psyms, **{s.name: s for s in (*xs, *us)}}
+        sym_units = {psyms[k]: v for k, v in units.items()}
+        for kind, items, syms in (("states", states, xs), ("inputs", inputs, us)):
+            for i, (item, s) in enumerate(zip(items, syms, strict=True)):
+                u = self.unit(item.get("unit"), f"{kind}[{i}].unit")
+                if u is not None:
+                    units[s.name] = u
+                    sym_units[s] = u
+                descr[s.name] = self.text(item.get("description", ""), f"{kind}[{i}].description")
+        rhs = []
+        for i, item in enumerate(states):
+            if "rhs" not in item:
+                raise self.fail(f"states[{i}]", "missing rhs, d(state)/dt as text")
+            e = self.expr(item["rhs"], f"states[{i}].rhs", allnames)
+            try:
+                check_rhs(e, sym_units.get(xs[i]), sym_units, f"states[{i}].rhs")
+            except SymctlError as exc:
+                raise self.fail(f"states[{i}].rhs", _strip(str(exc), f"states[{i}].rhs")) from None
+            rhs.append(e)
+        u_eq = [self.equilibrium(u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units)
+                if "equilibrium" in u else sp.Integer(0) for i, u in enumerate(inputs)]  # fmt: skip
+        given = [("equilibrium" in s) for s in states]
+        if any(given) and not all(given):
+            k = given.index(False)
+            raise self.fail(
+                f"states[{k}]",
+                "give the equilibrium of every state, or of none (then it is solved)",
+            )
+        x_eq = [self.equilibrium(s, f"states[{i}]", psyms, sym_units.get(xs[i]), sym_units)
+                for i, s in enumerate(states)] if all(given) else None  # fmt: skip
+        guess = None
+        if "guess" in states[0] or any("guess" in s for s in states):
+            guess = [self.number(s.get("guess", 0.0), f"states[{i}].guess")
+                     for i, s in enumerate(states)]  # fmt: skip
+        where = "states" if x_eq is None else "states[0].equilibrium"
+        try:
+            ode = ODEModel(xs, us, rhs, params, x_eq, u_eq, Ts, guess, name,
+                           {k: str(v) for k, v in units.items()})  # fmt: skip
+            plant = ode.plant()
+            plant_symbolic = ode.discrete_symbolic()
+        except SymctlError as exc:
+            raise self.fail(where, _strip(str(exc), where)) from None
+        return ode, plant, plant_symbolic
+
+    def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:
+        e = self.expr(item["equilibrium"], f"{where}.equilibrium", psyms)
+        try:
+            got = unit_of(e, sym_units)
+        except SymctlError as exc:
+            raise self.fail(f"{where}.equilibrium", _strip(str(exc), where)) from None
+        if unit is not None and got is not None and not e.is_Number and got != unit:
+            raise self.fail(
+                f"{where}.equilibrium", f"has unit [{got}] but the signal is in [{unit}]"
+            )
+        return e
+
+    def discrete(self, d, params, units, descr, Ts):
+        table = self.table(d["discrete"], "discrete", "discrete")
+        psyms = {p.name: p for p in params}
+        values = {p: exact_value(v, p.name) for p, v in params.items()}
+        has_ab, has_tf = (
+            ("A" in table or "B" in table),
+            ("numerator" in table or "denominator" in table),
+        )
+        if has_ab == has_tf:
+            raise self.fail("discrete", "give either A and B, or numerator and denominator")
+        try:
+            if has_ab:
+                if "A" not in table or "B" not in table:
+                    raise self.fail("discrete", "give both A and B")
+                A = self.matrix(table["A"], "discrete.A", psyms).subs(values)
+                B = self.matrix(table["B"], "discrete.B", psyms).subs(values)
+            else:
+                if "numerator" not in table or "denominator" not in table:
+                    raise self.fail("discrete", "give both numerator and denominator")
+                num = self.row(table["numerator"], "discrete.numerator", psyms)
+                den = self.row(table["denominator"], "discrete.denominator", psyms)
+                G = DiscreteTF(sp.Poly(num, z).as_expr().subs(values),
+                               sp.Poly(den, z).as_expr().subs(values), dt=Ts)  # fmt: skip
+                if G.relative_degree is None or G.relative_degree < 1:
+                    raise self.fail(
+                        "discrete.numerator", "the plant's transfer function must be strictly "
+                        "proper (x(t+1) = A x(t) + B u(t) has no direct feedthrough)",
+                    )  # fmt: skip
+                Rz = controllable_canonical(G)
+                A, B = Rz.F, Rz.H
+        except ModelFileError:
+            raise
+        except SymctlError as exc:
+            raise self.fail("discrete", _strip(str(exc), "discrete")) from None
+        n, m = A.shape[0], B.shape[1] if B.shape[0] else 0
+        states = self.signals(d, "states", "states", required=False)
+        inputs = self.signals(d, "inputs", "inputs", required=False)
+        for kind, items, size in (("states", states, n), ("inputs", inputs, m)):
+            if items and len(items) != size:
+                raise self.fail(
+                    kind, f"the discrete plant has {size} {kind}, got {len(items)} names"
+                )
+            for i, item in enumerate(items):
+                if "rhs" in item or "equilibrium" in item or "guess" in item:
+                    raise self.fail(f"{kind}[{i}]", "a discrete plant takes names, units and "
+                                    "descriptions only (no rhs or equilibrium)")  # fmt: skip
+                u = self.unit(item.get("unit"), f"{kind}[{i}].unit")
+                if u is not None:
+                    units[item["name"]] = u
+                descr[item["name"]] = self.text(
+                    item.get("description", ""), f"{kind}[{i}].description"
+                )
+        try:
+            plant = DiscretePlant(
+                A, B, exact_value(Ts, "Ts"), tuple(s["name"] for s in states),
+                tuple(u["name"] for u in inputs), params={str(k): v for k, v in params.items()},
+            )  # fmt: skip
+            plant.numeric()
+        except SymctlError as exc:
+            raise self.fail("discrete", _strip(str(exc), "discrete")) from None
+        return None, plant, None
+
+    def matrix(self, value, where, names) -> sp.Matrix:
+        if not isinstance(value, list) or not value or not all(isinstance(r, list) for r in value):
+            raise self.fail(where, "expected rows of entries, like [[1, 0], [0, 1]]")
+        if len(value) > MAX_MODEL_STATES or len({len(r) for r in value}) != 1:
+            raise self.fail(where, f"rows of one length, at most {MAX_MODEL_STATES} of them")
+        if len(value[0]) > MAX_MODEL_STATES or not value[0]:
+            raise self.fail(where, f"1 to {MAX_MODEL_STATES} columns")
+        return sp.Matrix([[self.expr(e, f"{where}[{i}][{j}]", names) for j, e in enumerate(r)]
+                          for i, r in enumerate(value)])  # fmt: skip
+
+    def row(self, value, where, names) -> list:
+        if not isinstance(value, list) or not 1 <= len(value) <= MAX_MODEL_STATES + 1:
+            raise self.fail(where, f"expected a list of 1 to {MAX_MODEL_STATES + 1} coefficients")
+        return [self.expr(e, f"{where}[{i}]", names) for i, e in enumerate(value)]
+
+    def outputs(self, data, plant, units, descr) -> tuple:
+        if data is None:
+            return tuple((s, s) for s in self.names)
+        items = self.items(data, "outputs", "outputs", limit=MAX_MODEL_STATES)
+        out = []
+        for i, item in enumerate(items):
+            where = f"outputs[{i}]"
+            if "name" not in item:
+                raise self.fail(where, "missing name")
+            name = self.text(item["name"], f"{where}.name", ident=True)
+            state = self.text(item.get("state", name), f"{where}.state")
+            if state not in self.names:
+                raise self.fail(f"{where}.state", f"{state!r} is not a state; the states are "
+                                f"{', '.join(self.names)}")  # fmt: skip
+            u = self.unit(item.get("unit"), f"{where}.unit")
+            if u is not None and state in units and units[state] != u:
+                raise self.fail(f"{where}.unit", f"[{u}] contradicts the unit [{units[state]}] "
+                                f"of state {state}")  # fmt: skip
+            descr.setdefault(name, self.text(item.get("description", ""), f"{where}.description"))
+            out.append((name, state))
+        missing = [s for s in self.names if s not in {st for _, st in out}]
+        if missing:
+            raise self.fail(
+                "outputs",
+                f"every state must be measured (symctl designs state "
+                f"feedback, with no observer); not measured: {', '.join(missing)}",
+            )
+        return tuple(out)
+
+    def delay(self, value, where: str, Ts: float) -> int:
+        if isinstance(value, dict):
+            self.src.check_keys(value, ("steps", "seconds"), where)
+            if len(value) != 1:
+                raise self.fail(where, "give one of steps or seconds")
+            if "steps" in value:
+                return self.integer(value["steps"], f"{where}.steps", 0, MAX_DELAY)
+            seconds = self.number(value["seconds"], f"{where}.seconds")
+            if seconds < 0:
+                raise self.fail(f"{where}.seconds", f"must be >= 0, got {seconds}")
+            exact = seconds / Ts
+            steps = math.ceil(exact - 1e-9)
+            if abs(exact - round(exact)) > 1e-6:
+                self.notes.append(
+                    f"{where}: {seconds:g} s is {exact:.4g} steps of Ts = {Ts:g} s, not a "
+                    f"multiple; rounded up to {steps} steps ({steps * Ts:g} s)"
+                )
+            if steps > MAX_DELAY:
+                raise self.fail(f"{where}.seconds", f"{steps} steps, above {MAX_DELAY}")
+            return int(steps)
+        return self.integer(value, where, 0, MAX_DELAY)
+
+    def weight(self, value, where: str, size: int, *, definite: bool = False) -> sp.ImmutableMatrix:
+        if value == "identity":
+            return sp.ImmutableMatrix(sp.eye(size))
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            M = sp.eye(size) * exact_value(self.number(value, where), where)
+        elif isinstance(value, list):
+            M = self.matrix(value, where, {})
+            if M.shape != (size, size):
+                raise self.fail(where, f"must be {size} x {size}, got {M.shape[0]} x {M.shape[1]}")
+        else:
+            raise self.fail(where, f"expected a number, a matrix or 'identity', got {_kind(value)}")
+        try:
+            psd_matrix(M, where, size, definite=definite)
+        except SymctlError as exc:
+            raise self.fail(where, _strip(str(exc), where)) from None
+        return sp.ImmutableMatrix(M)
+
+    def graph(self, data, T: int, Ts: float):
+        if data is None:
+            names = tuple(f"v{i + 1}" for i in range(T + 1))
+            edges = tuple((names[i], names[i + 1], 1) for i in range(T))
+            return DelayGraph.chain([1] * T), names, edges, False
+        table = self.table(data, "delay_graph", "delay_graph")
+        if "vertices" not in table:
+            raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")
+        vs = self.items(table["vertices"], "delay_graph.vertices", "vertex", limit=MAX_VERTICES)
+        names = []
+        for i, v in enumerate(vs):
+            if "name" not in v:
+                raise self.fail(f"delay_graph.vertices[{i}]", "missing name")
+            n = self.text(v["name"], f"delay_graph.vertices[{i}].name", ident=True)
+            if n in names:
+                raise self.fail(f"delay_graph.vertices[{i}].name", f"{n!r} appears twice")
+            names.append(n)
+        if len(names) < 2:
+            raise self.fail("delay_graph.vertices", "needs at least 2 vertices")
+        sensor = self.text(table.get("sensor", names[0]), "delay_graph.sensor")
+        actuator = self.text(table.get("actuator", names[-1]), "delay_graph.actuator")
+        for key, v in (("sensor", sensor), ("actuator", actuator)):
+            if v not in names:
+                raise self.fail(f"delay_graph.{key}", f"{v!r} is not a vertex; the vertices are "
+                                f"{', '.join(names)}")  # fmt: skip
+        if sensor == actuator:
+            raise self.fail("delay_graph.actuator", "the sensor and the actuator are one vertex")
+        order = [sensor, *[n for n in names if n not in (sensor, actuator)], actuator]
+        es = self.items(table.get("edges", []), "delay_graph.edges", "edge", limit=MAX_VERTICES**2)
+        edges = []
+        for i, e in enumerate(es):
+            where = f"delay_graph.edges[{i}]"
+            for key in ("from", "to"):
+                if key not in e:
+                    raise self.fail(where, f"missing {key}")
+                if self.text(e[key], f"{where}.{key}") not in names:
+                    raise self.fail(f"{where}.{key}", f"{e[key]!r} is not a vertex")
+            if ("steps" in e) == ("seconds" in e):
+                raise self.fail(where, "give one of steps or seconds")
+            d = self.delay({k: e[k] for k in ("steps", "seconds") if k in e}, where, Ts)
+            if e["from"] == e["to"]:
+                raise self.fail(where, "an edge from a vertex to itself")
+            edges.append((e["from"], e["to"], d))
+        index = {n: k + 1 for k, n in enumerate(order)}
+        try:
+            graph = DelayGraph.from_edges(
+                len(order), [(index[a], index[b], d) for a, b, d in edges]
+            )
+        except SymctlError as exc:
+            problem = (
+                _strip(str(exc), "E")
+                .replace("v1", repr(sensor))
+                .replace(f"v{len(order)}", repr(actuator))
+            )
+            raise self.fail("delay_graph.edges", problem) from None
+        if math.isinf(graph.E[0, -1]):
+            raise self.fail("delay_graph.edges", f"no path from the sensor {sensor!r} to the "
+                            f"actuator {actuator!r}")  # fmt: skip
+        return graph, tuple(order), tuple(edges), True
+
+    def build(self, value) -> tuple:
+        if not isinstance(value, list) or not value:
+            raise self.fail("circuits.build", f"expected a list of {', '.join(CIRCUIT_KINDS)}")
+        for i, k in enumerate(value):
+            if k not in CIRCUIT_KINDS:
+                raise self.fail(
+                    f"circuits.build[{i}]", f"{k!r} is not one of {', '.join(CIRCUIT_KINDS)}"
+                )
+        return tuple(k for k in CIRCUIT_KINDS if k in value)
+
+    def disturbance(self, table, plant, steps: int) -> tuple:
+        table = self.table(table, "simulation.disturbance", "disturbance")
+        where = "simulation.disturbance"
+        chosen = table.get("state", list(self.names))
+        chosen = [chosen] if isinstance(chosen, str) else chosen
+        if not isinstance(chosen, list) or not chosen:
+            raise self.fail(f"{where}.state", "expected a state or a list of states")
+        for s in chosen:
+            if not isinstance(s, str) or s not in self.names:
+                raise self.fail(f"{where}.state", f"{s!r} is not a state; the states are "
+                                f"{', '.join(self.names)}")  # fmt: skip
+        amplitude = float(self.number(table.get("amplitude", 1.0), f"{where}.amplitude"))
+        start = self.integer(table.get("start", 5), f"{where}.start", 0, steps - 1)
+        length = self.integer(table.get("length", 10), f"{where}.length", 1, steps - start)
+        idx = tuple(self.names.index(s) for s in dict.fromkeys(chosen))
+        return idx, amplitude, start, length
+
+    def analysis(self, table):
+        table = self.table(table, "analysis", "analysis")
+        value = table.get("longest_delay", False)
+        if value is False:
+            return None
+        if value is True:
+            value = {}
+        value = self.table(value, "analysis.longest_delay", "longest_delay")
+        top = self.integer(value.get("max", PAPER_MAX_DELAY), "analysis.longest_delay.max", 1, 200)
+        tol = float(self.number(value.get("tolerance", 0.01), "analysis.longest_delay.tolerance",
+                                positive=True))  # fmt: skip
+        return top, tol
+
+
+def _kind(value) -> str:
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return "an array"
+    if isinstance(value, str):
+        return f"text {value!r}" if len(value) <= 40 else "text"
+    return f"{type(value).__name__} {value!r}"
+
+
+def _strip(message: str, where: str) -> str:
+    """A symctl error's message without a leading ``argname:`` (the field is named already)."""
+    head, sep, rest = message.partition(": ")
+    return rest if sep and (head == where or " " not in head) else message

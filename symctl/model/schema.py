@@ -1,0 +1,119 @@
+"""The fields of a model file, in one table: what each holds, its default, an example.
+
+:data:`FIELDS` maps a section to its keys; the reader refuses any other key
+(suggesting the nearest), and ``docs/model-file.md`` documents each one (a test
+checks that every field is there). A name in angle brackets is a key the user
+chooses (a parameter's name).
+
+>>> from symctl.model.schema import FIELDS
+>>> sorted(FIELDS)[:4]
+['analysis', 'circuits', 'cost', 'delay_graph']
+>>> "rhs" in FIELDS["states"]
+True
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+
+__all__ = ["CIRCUIT_KINDS", "FIELDS", "SECTIONS"]
+
+CIRCUIT_KINDS = ("ifp", "general", "controllable", "observable")
+"""The circuits a model file can ask for (``[circuits] build``), in the report's order."""
+
+_FIELDS = {
+    "model": {
+        "name": "identifier of the model (letters, digits, _ and -); required",
+        "title": "title of the documents (default: the name)",
+        "description": "a paragraph that opens the plant section of the derivation",
+    },
+    "parameters": {
+        "<name>": "a number, or a table {value, unit, description}",
+    },
+    "parameter": {  # the keys of one parameter's table
+        "value": "the number; required",
+        "unit": "its unit (docs/model-file.md, Units)",
+        "description": "what it is, for the parameter table",
+    },
+    "states": {  # array of tables
+        "name": "identifier; required",
+        "unit": "unit of the state",
+        "description": "what it is",
+        "rhs": "d(state)/dt as text (safe parser); required unless [discrete]",
+        "equilibrium": "value or text in the parameters; solved when absent",
+        "guess": "start of the numeric equilibrium search",
+    },
+    "inputs": {  # array of tables
+        "name": "identifier; required",
+        "unit": "unit of the input",
+        "description": "what it is",
+        "equilibrium": "value or text in the parameters (default 0)",
+    },
+    "outputs": {  # array of tables
+        "name": "identifier of the measured output; required",
+        "state": "the state it measures (default: the state of the same name)",
+        "unit": "its unit (must be the state's where both are given)",
+        "description": "what it is",
+    },
+    "discrete": {
+        "A": "state matrix of x(t+1) = A x(t) + B u(t): rows of numbers or text",
+        "B": "input matrix",
+        "numerator": "transfer function in z, descending powers (instead of A, B)",
+        "denominator": "its denominator, descending powers, leading entry nonzero",
+    },
+    "sampling": {
+        "Ts": "the sampling time: seconds, or {value, unit}; required",
+    },
+    "delays": {
+        "sensor": "steps, or {steps = k} or {seconds = t} (rounded up to steps)",
+        "actuator": "the same for the actuator side",
+    },
+    "cost": {
+        "Q": "state weight: a number (times I), a matrix, or 'identity' (default)",
+        "R": "input weight, likewise",
+    },
+    "delay_graph": {
+        "vertices": "array of tables {name, description}",
+        "edges": "array of tables {from, to, steps | seconds}",
+        "sensor": "the vertex of the sensor (default: the first)",
+        "actuator": "the vertex of the actuator (default: the last)",
+    },
+    "vertex": {"name": "identifier; required", "description": "what it is"},
+    "edge": {
+        "from": "a vertex; required",
+        "to": "a vertex; required",
+        "steps": "the delay in steps",
+        "seconds": "or the delay in seconds (rounded up to steps)",
+        "description": "what it is",
+    },
+    "circuits": {
+        "build": "which of ifp, general, controllable, observable (default all, in this order)",
+        "realizations": "random realizations simulated per circuit (default 4)",
+        "seed": "seed of the random realizations (default 0)",
+    },
+    "simulation": {
+        "steps": "horizon in steps (default 50)",
+        "disturbance": "table {state, amplitude, start, length}",
+    },
+    "disturbance": {
+        "state": "the state (or list of states) it is added to (default: every state)",
+        "amplitude": "size per step, in the state's unit (default 1)",
+        "start": "first step of the pulse (default 5)",
+        "length": "steps of the pulse (default 10)",
+    },
+    "analysis": {
+        "longest_delay": "search the longest stabilizable delay: true, or {max, tolerance}",
+    },
+    "longest_delay": {
+        "max": "largest net delay tried, in steps (default 20)",
+        "tolerance": "largest final deviation, relative to the peak (default 0.01)",
+    },
+}
+FIELDS = MappingProxyType({k: MappingProxyType(v) for k, v in _FIELDS.items()})
+"""Every section (and sub-table) of a model file and its keys, with a line of documentation."""
+
+SECTIONS = (
+    "model", "parameters", "states", "inputs", "outputs", "discrete", "sampling",
+    "delays", "cost", "delay_graph", "circuits", "simulation", "analysis",
+)  # fmt: skip
+"""The top-level sections, in the order the documentation gives them."""

@@ -1,0 +1,253 @@
+r"""The model's own sections of the derivation: parameters, plant, nonlinear check, longest delay.
+
+:func:`~symctl.report.story.story` tells the pipeline; the parts that depend on
+which plant it runs on (the paper's muscle or a model file's) are told here,
+with the model's names, units and descriptions: the parameter table, the plant
+and its linearization and discretization (:func:`opening`), the linear
+controller around the nonlinear plant (:func:`nonlinear`) and the longest
+delay the nonlinear loop still recovers from (:func:`longest`).
+
+>>> from symctl import derive_paper
+>>> from symctl.report.model_story import opening
+>>> [b.text for b in opening(derive_paper(), lambda *a: None) if type(b).__name__ == "Heading"]
+['Plant model and linearization', 'Discretization']
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import sympy as sp
+
+from symctl import latex as L
+from symctl.report.document import DocumentBlock, Heading, Table, Text
+from symctl.report.shorthand import _both, _eq, _fmt, _num
+
+__all__ = ["longest", "nonlinear", "opening", "skipped", "unit_text"]
+
+
+def unit_text(unit: str) -> str:
+    r"""A unit for prose and tables: ``" N"``, ``" m/s$^{2}$"`` (from ``m/s**2``), or nothing.
+
+    Examples
+    --------
+    >>> from symctl.report.model_story import unit_text
+    >>> unit_text("N*m*s"), unit_text("m/s**2"), unit_text("1")
+    (' N m s', ' m/s$^{2}$', '')
+    """
+    if not unit or unit == "1":
+        return ""
+    text = re.sub(r"\*\*\s*\(?(-?[0-9./]+)\)?", r"$^{\1}$", unit).replace("*", " ")
+    return " " + text.replace("_", r"\_")
+
+
+def _sym(name: str) -> str:
+    return L.to_latex(sp.Symbol(name))
+
+
+def opening(res, figure) -> list[DocumentBlock]:
+    """The parameter table and the plant's sections (model, linearization, discretization)."""
+    spec, params = res.spec, res.parameters()
+    ode = spec.ode
+    blocks: list[DocumentBlock] = [
+        Text(
+            "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
+            "proved: an identity is shown by reducing a difference to the zero polynomial. "
+            f"The model is {spec.name!r}"
+            + (f" ({spec.path})" if spec.path and not spec.path.startswith("muscle preset") else "")
+            + "; the cost weights, the delays and the random realizations are the model file's "
+            "choices. Numbers are written to 6 significant digits."
+        )
+    ]
+    rows = []
+    if ode is not None:
+        for sym, value in ode.params.items():
+            what = spec.descriptions.get(sym.name) or "parameter"
+            rows.append(
+                (f"{what} ${_sym(sym.name)}$", f"{float(value):g}{unit_text(spec.unit(sym.name))}")
+            )
+    rows += [
+        ("sampling time $T_s$", f"{params['Ts']:g} s"),
+        (
+            "sensor delay $d_s$, actuator delay $d_a$",
+            f"{params['sensor_delay']}, {params['actuator_delay']} steps",
+        ),
+        (
+            "cost weights $Q$, $R$",
+            f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
+        ),
+        ("seed of the random realizations", str(params["seed"])),
+    ]
+    blocks.append(Table(("parameter", "value"), tuple(rows)))
+    for note in spec.notes:
+        blocks.append(Text("Note: " + note.replace("_", r"\_") + "."))
+    blocks.append(Heading("Plant model and linearization"))
+    if spec.description:
+        blocks.append(Text(spec.description))
+    xs, us = res.names
+    signals = tuple(
+        (
+            f"{kind} ${_sym(n)}$",
+            spec.descriptions.get(n) or "-",
+            unit_text(spec.unit(n)).strip() or "-",
+        )
+        for kind, names in (("state", xs), ("input", us))
+        for n in names
+    )
+    blocks.append(Table(("signal", "what it is", "unit"), signals))
+    if ode is not None:
+        rows = [
+            (rf"\frac{{d{_sym(x.name)}}}{{dt}}", f)
+            for x, f in zip(ode.states, ode.rhs, strict=True)
+        ]
+        values = ode.values
+        for x, e, v in zip(ode.states, ode.x_eq, ode.x_bar, strict=True):
+            shown = _both(e, float(v)) if e.free_symbols else L.number(float(v))
+            rows.append((rf"\bar {_sym(x.name)}", shown + _unit_tex(spec.unit(x.name))))
+        blocks += _eq(*rows, label=f"eq:{spec.name}")
+        how = ode.equilibrium_method
+        blocks.append(
+            Text(
+                f"The equilibrium: {'given in the model file and checked' if how == 'given' else how}. "
+                "Linearized there, with $\\delta$ the deviations from it, "
+                "$\\dot{\\delta x} = a\\,\\delta x + b\\,\\delta u$:"
+            )
+        )
+        lin = ode.linearize_symbolic()
+        if lin.a.shape == (1, 1) and lin.b.shape == (1, 1):
+            rows = [
+                ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
+                ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
+            ]
+        else:
+            rows = [
+                ("a", lin.a),
+                ("b", lin.b),
+                ("a", _num(lin.a.subs(values))),
+                ("b", _num(lin.b.subs(values))),
+            ]
+        blocks += _eq(*rows, label="eq:linear")
+    else:
+        blocks.append(Text("The model file gives the discrete plant directly."))
+    sym, num = res.plant_symbolic, res.plant
+    blocks.append(Heading("Discretization"))
+    if ode is not None:
+        blocks.append(
+            Text(
+                "A zero-order hold over the sampling time $T_s$ (the exact matrix exponential) gives "
+                "$\\delta x(t+1) = A\\,\\delta x(t) + B\\,\\delta u(t)$ with"
+                + (
+                    ""
+                    if sym is not None
+                    else " (in numbers: beyond one state the closed form of "
+                    "$e^{a T_s}$ is not printed)"
+                )
+            )
+        )
+    if sym is not None:
+        rows = [
+            ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
+            ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
+        ]
+    else:
+        rows = [("A", _num(num.A)), ("B", _num(num.B))]
+    blocks += _eq(*rows, label="eq:discrete")
+    blocks.append(
+        Text(
+            f"States ${', '.join(_sym('delta_' + x) for x in xs)}$, inputs "
+            f"${', '.join(_sym('delta_' + u) for u in us)}$."
+        )
+    )
+    figure(
+        "open_loop",
+        f"Open-loop response of the linear plant to a pulse in "
+        f"{', '.join(us)} (the paper's Fig. ol_sims for the muscle).",
+    )
+    return blocks
+
+
+def _weight(M) -> str:
+    """A cost weight: a number when 1 x 1, else the matrix."""
+    if M.shape == (1, 1):
+        return L.number(float(M[0, 0]))
+    return L.to_latex(_num(M))
+
+
+def _unit_tex(unit: str) -> str:
+    return rf"\ \text{{{unit_text(unit).strip()}}}" if unit and unit != "1" else ""
+
+
+def skipped(res) -> list[DocumentBlock]:
+    """What did not run, and why (a plant with more than one state or input)."""
+    return [Heading("Beyond the controller"), Text("Not derived here: " + res.skipped + ".")]
+
+
+def nonlinear(res, figure) -> list[DocumentBlock]:
+    """The linear controller around the nonlinear plant: deviations against amplitude."""
+    nl = res.nonlinear
+    if nl is None:
+        return []
+    xs = res.names[0]
+    unit = res.spec.unit(xs[0])
+    u = f" [{unit}]" if unit else ""
+    hit = {res.spec.unit(xs[i]) for i in res.spec.disturbance[0]}
+    a_unit = f" [{hit.pop()}]" if len(hit) == 1 and "" not in hit else ""
+    blocks: list[DocumentBlock] = [
+        Heading("The nonlinear plant", 2),
+        Text(
+            "The linear controller closed around the nonlinear plant (integrated between "
+            "samples, the inputs held over each step): how far the states depart from the linear "
+            "prediction as the disturbance grows. A run that leaves the region where the ODE "
+            "can be integrated is marked inf."
+        ),
+        Table(
+            (
+                f"pulse amplitude{a_unit}",
+                f"max. deviation of {xs[0]}{u}",
+                "relative",
+                "final / peak",
+            ),
+            tuple(
+                (_fmt(a), _fmt(d), _fmt(r), _fmt(e))
+                for a, d, r, e in zip(
+                    nl.amplitudes,
+                    nl.max_deviation,
+                    nl.relative_deviation,
+                    nl.final_deviation,
+                    strict=True,
+                )
+            ),
+        ),
+    ]
+    figure("nonlinear", "The linear controller around the nonlinear plant.")
+    return blocks
+
+
+def longest(res) -> list[DocumentBlock]:
+    """The longest net delay for which the nonlinear loop still comes back."""
+    L_ = res.longest
+    if L_ is None:
+        return []
+    found = (
+        f"the longest net delay for which the optimal controller still stabilizes the "
+        f"nonlinear plant is $T = {L_.longest}$ steps ({L_.longest * res.spec.Ts:g} s)"
+        if L_.longest is not None
+        else "not even one step of delay is stabilized"
+    )
+    if not L_.limited:
+        found = f"every net delay up to {L_.delays[-1]} steps (the largest tried) is stabilized"
+    rows = tuple(
+        (str(T), _fmt(d) if np.isfinite(d) else "inf", "yes" if ok else "no")
+        for T, d, ok in zip(L_.delays, L_.final_deviation, L_.stabilized, strict=True)
+    )
+    return [
+        Heading("The longest delay", 2),
+        Text(
+            "For each net delay $T$ the optimal controller of the linear plant is closed around "
+            "the nonlinear ODE under the same disturbance; the loop counts as stabilized when the "
+            f"state ends within {L_.tolerance:g} of the linear loop's peak from the equilibrium. "
+            f"Found: {found}."
+        ),
+        Table(("T [steps]", "final deviation / peak", "stabilized"), rows),
+    ]

@@ -1,0 +1,128 @@
+"""The shipped examples: each runs through symctl derive, and the muscle is symctl paper."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from symctl import derive, derive_paper, load_model, longest_delay, nonlinear_check
+from symctl.cli import main
+from symctl.model.presets import muscle_text
+from symctl.report.spec import PAPER
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+NAMES = ("muscle", "oculomotor", "pendulum", "antagonist", "spinal_transcortical")
+
+
+def test_every_example_is_shipped_and_listed():
+    assert sorted(p.stem for p in EXAMPLES.glob("*.toml")) == sorted(NAMES)
+
+
+def test_the_packaged_muscle_preset_is_the_example_file():
+    assert muscle_text() == (EXAMPLES / "muscle.toml").read_text()
+
+
+def test_the_muscle_file_holds_the_papers_numbers():
+    m = load_model(EXAMPLES / "muscle.toml")
+    values = {str(k): float(v) for k, v in m.ode.params.items()}
+    assert values == {"tau": PAPER.tau, "f_max": PAPER.f_max, "r_bar": PAPER.r_bar}
+    assert (m.Ts, m.sensor_delay, m.actuator_delay) == (PAPER.Ts, 1, 1)
+    assert (m.seed, m.realizations) == (PAPER.seed, PAPER.realizations)
+
+
+def test_symctl_derive_on_the_muscle_file_writes_byte_identical_results_to_symctl_paper(tmp_path):
+    a, b = tmp_path / "paper", tmp_path / "derive"
+    assert main(["paper", "--out", str(a), "--no-figures", "--no-pdf"]) == 0
+    assert main(["derive", str(EXAMPLES / "muscle.toml"), "--out", str(b), "--no-figures",
+                 "--no-pdf"]) == 0  # fmt: skip
+    assert (a / "results.json").read_bytes() == (b / "results.json").read_bytes()
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_derive_check_accepts_every_example(name, capsys):
+    assert main(["derive", "--check", str(EXAMPLES / f"{name}.toml")]) == 0
+    assert ": ok:" in capsys.readouterr().out
+
+
+@pytest.fixture(scope="module")
+def results():
+    return {name: derive(EXAMPLES / f"{name}.toml") for name in NAMES if name != "muscle"}
+
+
+@pytest.mark.parametrize("name", [n for n in NAMES if n != "muscle"])
+def test_every_example_derives_a_proved_stabilizing_controller(results, name):
+    res = results[name]
+    data = json.loads(json.dumps(res.to_json(), allow_nan=False))
+    assert data["controller"]["proved"] is True
+    assert data["closed_loop"]["spectral_radius"] < 1
+    assert data["model"]["name"] == name
+    assert set(data) >= {"parameters", "plant", "gains", "controller", "simulation", "model"}
+
+
+def test_the_oculomotor_plant_is_second_order_with_its_pulse_on_the_velocity(results):
+    res = results["oculomotor"]
+    assert res.plant.n == 2 and res.spec.disturbance[0] == (1,)
+    # seconds rounded to steps of 5 ms: 10 ms is 2 steps, 5 ms is 1
+    assert (res.spec.sensor_delay, res.spec.actuator_delay) == (2, 1)
+    assert res.skipped is not None and "2 states" in res.skipped
+    # the plant is linear: the nonlinear loop is the linear one to the ODE tolerance
+    assert float(np.max(res.nonlinear.relative_deviation)) < 1e-8
+
+
+def test_the_pendulum_finds_its_longest_delay_and_the_next_one_fails(results):
+    res = results["pendulum"]
+    L = res.longest
+    assert L is not None and L.limited and L.longest is not None
+    assert L.stabilized[-1] is False and all(L.stabilized[:-1])
+    # re-run the failing delay by hand: the nonlinear loop does not come back
+    spec = res.spec
+    unit = spec.disturbance_signal() / spec.disturbance[1]
+    from symctl import augment, lqr_gains
+
+    T = L.longest + 1
+    gains = lqr_gains(augment(spec.plant, 0, T, Q=spec.Q, R=spec.R))
+    chk = nonlinear_check(spec.ode, gains, [spec.disturbance[1]], steps=spec.steps,
+                          disturbance=unit, fail="mark")  # fmt: skip
+    assert not chk.final_deviation[0] <= L.tolerance
+
+
+def test_a_linear_plant_is_stabilized_at_every_delay():
+    m = load_model(EXAMPLES / "oculomotor.toml")
+    res = longest_delay(m.ode, Q=m.Q, R=m.R, max_delay=4, steps=60)
+    assert res.stabilized == (True,) * 4 and not res.limited
+
+
+def test_the_antagonist_pair_runs_through_lqr_and_g_with_two_inputs(results):
+    res = results["antagonist"]
+    assert res.plant.m == 2 and res.G.shape == (2, 4) and res.proved
+    assert res.spec.ode.equilibrium_method.startswith("exact")
+    eq = res.to_json()["plant"]["equilibrium"]["states"]
+    assert eq["theta"] == 0 and math.isclose(eq["f_flex"], eq["f_ext"])
+
+
+def test_the_two_pathway_graph_is_checked_beyond_chains(results):
+    res = results["spinal_transcortical"]
+    assert res.spec.vertices == ("receptor", "spinal", "cortex", "muscle")
+    assert not res.graph.is_chain
+    assert {k: bool(c.compatibility) for k, c in res.circuits.items()} == {
+        "ifp": False, "general": True, "controllable": True, "observable": True,
+    }  # fmt: skip
+    # the same circuits as the paper's muscle on a chain: only the graph differs
+    paper = derive_paper()
+    for k in ("general", "controllable", "observable"):
+        assert res.circuits[k].circuit.n_neurons == paper.circuits[k].circuit.n_neurons
+
+
+@pytest.mark.parametrize("name", ["pendulum", "spinal_transcortical"])
+def test_examples_write_their_documents_with_their_own_names(tmp_path, name):
+    out = tmp_path / name
+    assert main(["derive", str(EXAMPLES / f"{name}.toml"), "--out", str(out), "--no-pdf",
+                 "--no-figures"]) == 0  # fmt: skip
+    tex = (out / "derivation.tex").read_text()
+    spec = load_model(EXAMPLES / f"{name}.toml")
+    assert spec.title.split(":")[0] in tex
+    assert spec.descriptions[spec.signal_names[0][0]] in tex
