@@ -44,6 +44,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import sympy as sp
 
 from symctl._util.parse import parse_expr
@@ -204,6 +205,7 @@ class _Reader:
         params, units, descr = self.parameters(d.get("parameters", {}))
         ode, plant, plant_symbolic = self.plant(d, params, units, descr, Ts, name)
         self.names = tuple(s.name for s in ode.states) if ode is not None else plant.state_names
+        self.stabilizable(plant, "states" if ode is not None else "discrete")
         outputs = self.outputs(d.get("outputs"), plant, units, descr)
         delays = self.table(d.get("delays", {}), "delays", "delays")
         ds = self.delay(delays.get("sensor", 1), "delays.sensor", Ts)
@@ -344,6 +346,27 @@ class _Reader:
         except SymctlError as exc:
             raise self.fail(where, _strip(str(exc), where)) from None
         return ode, plant, plant_symbolic
+
+    def stabilizable(self, plant: DiscretePlant, where: str) -> None:
+        """Refuse a plant with an unstable mode the inputs cannot reach (PBH test).
+
+        The delays add a chain of delayed copies of the input, which is always
+        stabilizable, so the delayed plant is stabilizable exactly when the plant is.
+        """
+        A, B = plant.numeric()
+        n = A.shape[0]
+        scale = max(1.0, float(np.max(np.abs(A))), float(np.max(np.abs(B))))
+        for lam in np.linalg.eigvals(A):
+            if abs(lam) < 1 - 1e-9:
+                continue
+            M = np.hstack([A - lam * np.eye(n), B])
+            sv = np.linalg.svd(M, compute_uv=False)
+            if sv[n - 1] <= 1e-9 * scale:
+                shown = f"{lam.real:.6g}" if abs(lam.imag) < 1e-12 else f"{lam:.6g}"
+                raise self.fail(
+                    where, f"the plant cannot be stabilized with any delays: its mode "
+                    f"{shown} (|lambda| >= 1) is not reachable from the inputs",
+                )  # fmt: skip
 
     def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:
         e = self.expr(item["equilibrium"], f"{where}.equilibrium", psyms)

@@ -33,8 +33,23 @@ def _tex(name: str, *, part: bool = True) -> str:
     return f"${signal_tex(name, part=part)}$"
 
 
-def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
-    """One panel per neuron of :math:`G_2` (one line per realization), the force on top.
+def _names(fp, labels, which: str = "state") -> tuple[str, str, str]:
+    """(axis label, unit, short name) of the plant's state or input."""
+    if labels is None:
+        return (
+            ("force f", "N", "force")
+            if which == "state"
+            else ("rate r", "spikes/s", "motor-neuron rate")
+        )
+    ref = fp.reference
+    name = (ref.state_names if which == "state" else ref.input_names)[0]
+    raw = name[6:] if name.startswith("delta_") else name
+    what, unit = labels.get(raw, ("", ""))
+    return (f"{what} {raw}" if what else raw), unit or "units", what or raw
+
+
+def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
+    """One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
 
     Parameters
     ----------
@@ -42,6 +57,9 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
         The result of :func:`~symctl.neural.firing.circuit_firing`.
     ncols : int
         Neuron panels per row.
+    labels : mapping of str to (str, str), optional
+        ``name -> (description, unit)`` of the plant's state and input (their
+        names without ``delta_``); default the muscle's (force f [N], rate r).
 
     Returns
     -------
@@ -71,8 +89,9 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
         top.plot(fp.t, fp.f_bar + fp.delta_f[i], color=f"C{i % 10}", lw=1.2)
     top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], "k:", lw=1.2,
              label="optimal controller (identical)")  # fmt: skip
-    top.set_ylabel("force f [N]")
-    top.set_title("force, every realization (identical)", fontsize="medium")
+    state = _names(fp, labels)
+    top.set_ylabel(f"{state[0]} [{state[1]}]")
+    top.set_title(f"{state[2]}, every realization (identical)", fontsize="medium")
     top.legend(loc="upper right", fontsize="small")
     top.grid(alpha=0.3)
     axes = []
@@ -89,8 +108,8 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
         ax.grid(alpha=0.3)
         axes.append(ax)
     if axes:
-        handles, labels = axes[0].get_legend_handles_labels()
-        fig.legend(handles, labels, loc="outside lower center", fontsize="small",
+        handles, texts = axes[0].get_legend_handles_labels()
+        fig.legend(handles, texts, loc="outside lower center", fontsize="small",
                    ncols=min(fp.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
     what = "the neuron of the" if fp.kind == "ifp" else "the neurons of $G_2$,"
     fig.suptitle(
@@ -98,7 +117,7 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3) -> Figure:
         + (
             "one realization: the optimal controller's delay chain"
             if fp.kind == "ifp"
-            else "same force and motor-neuron rate, different firing patterns"
+            else f"same {state[2]} and {_names(fp, labels, 'input')[2]}, different firing patterns"
         )
     )
     return fig

@@ -177,7 +177,9 @@ def make_figure(res, name: str):
     if rec is None or kind not in ("structure", "circuit", "firing"):
         raise ParameterError(f"name: no figure {name!r}; the figures are {figure_names(res)}")
     if kind == "firing":
-        return rec.firing.plot()
+        from symctl.plotting.firing import firing_plot
+
+        return firing_plot(rec.firing, labels=_labels(res))
     if kind == "structure":
         title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
         S = rec.structure

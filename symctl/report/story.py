@@ -337,8 +337,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "A neuron is an adder that sums two or more terms (the output sum included); a "
             "single term through delays is an axon with a synaptic weight; a loop through the "
             "neuron's own output is its self-dynamics. The closed loop was simulated with "
-            f"{_count_text(res)} of each circuit; the largest relative departure of the force "
-            "and motor-neuron traces from the optimal controller's is in the last column."
+            f"{_count_text(res)} of each circuit; the largest relative departure of the "
+            f"{xs[0]} and {res.names[1][0]} traces from the optimal controller's is in the last "
+            "column."
         )
     )
     add(
@@ -379,7 +380,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(Heading("Simulations: the same behaviour, different firing"))
     add(
         Text(
-            "Every realization gives the force and motor-neuron traces of the optimal controller "
+            f"Every realization gives the {xs[0]} and {res.names[1][0]} traces of the optimal "
+            "controller "
             "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
             "(change from equilibrium, spikes/s) per neuron and realization:"
         )
@@ -389,7 +391,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
         figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
-                                 f"{fp.count} realization(s), same force.")  # fmt: skip
+                                 f"{fp.count} realization(s), same {xs[0]}.")  # fmt: skip
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
     if res.atlas is not None:

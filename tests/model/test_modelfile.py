@@ -215,6 +215,28 @@ def test_a_discrete_plant_as_a_transfer_function_is_realized():
     assert "strictly proper" in str(_err(improper))
 
 
+def test_a_plant_that_no_delayed_controller_can_stabilize_is_refused(tmp_path, capfd):
+    text = textwrap.dedent("""\
+        [model]
+        name = "stuck"
+        [discrete]
+        A = [[1.2, 0], [0, 0.5]]
+        B = [[0], [1]]
+        [sampling]
+        Ts = 0.01
+    """)
+    err = _err(text)
+    assert err.field == "discrete" and "1.2" in str(err) and "not reachable" in str(err)
+    path = tmp_path / "stuck.toml"
+    path.write_text(text)
+    from symctl.cli import main
+
+    assert main(["derive", "--check", str(path)]) == 2
+    line = capfd.readouterr().err.strip()
+    assert line.startswith(f"symctl: error: {path}:3: discrete:") and "\n" not in line
+    assert load_model(text.replace("[[0], [1]]", "[[1], [1]]")).plant.n == 2
+
+
 def test_a_missing_sampling_time_or_name_is_refused():
     assert _err(BASE.replace("[sampling]\nTs = 0.1\n", "")).field == "sampling"
     assert "name" in str(_err(BASE.replace('name = "leaky"\n', "")))
