@@ -47,6 +47,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/scaling.py
 	$(BIN)/python benchmarks/mimo.py
 	$(BIN)/python benchmarks/atlas.py
+	$(BIN)/python benchmarks/examples.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -49,12 +49,33 @@ def _indexed_name(symbol: sp.Symbol) -> str | None:
     return ("\\" + stem if stem in GREEK else stem) + "_{" + rest
 
 
+def _stem(text: str) -> str:
+    return "\\" + text if text in GREEK else text
+
+
+def _word_name(symbol: sp.Symbol) -> str | None:
+    r"""Names in the paper's style, for any symbol: ``x_bar`` -> :math:`\bar x`,
+    ``u_max`` -> :math:`u_\text{max}`, ``delta_theta`` -> :math:`\delta_\theta`."""
+    stem, sep, rest = symbol.name.partition("_")
+    if not sep or not stem.isalpha():
+        return None
+    if rest == "bar" and len(stem) <= 8:
+        return rf"\bar{{{_stem(stem)}}}"
+    if stem == "delta" and rest.isalpha():
+        return rf"\delta_{{{_stem(rest)}}}"
+    if rest.isalpha() and len(rest) > 1 and rest not in GREEK:
+        return rf"{_stem(stem)}_\text{{{rest}}}"
+    return None
+
+
 def latex(expr, **settings) -> str:
-    """LaTeX of a sympy object with the paper's symbol names."""
+    """LaTeX of a sympy object with the paper's symbol names (``x_bar`` as :math:`\bar x`, ...)."""
     names = dict(_NAMES)
     if isinstance(expr, sp.Basic | sp.MatrixBase):
         for sym in expr.free_symbols:
-            tex = _indexed_name(sym) if isinstance(sym, sp.Symbol) else None
+            if not isinstance(sym, sp.Symbol) or sym in names:
+                continue
+            tex = _indexed_name(sym) or _word_name(sym)
             if tex:
                 names[sym] = tex
     names.update(settings.pop("symbol_names", {}))
