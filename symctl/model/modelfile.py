@@ -40,6 +40,7 @@ symctl.errors.ModelFileError: <text>:4: sampling.Tz: unknown key 'Tz'; did you m
 
 from __future__ import annotations
 
+import keyword
 import math
 import re
 from pathlib import Path
@@ -134,10 +135,10 @@ class _Reader:
     def text(self, value, where: str, *, ident: bool = False) -> str:
         if not isinstance(value, str):
             raise self.fail(where, f"expected text, got {_kind(value)}")
-        if ident and (not _IDENT.match(value) or value in _RESERVED):
+        if ident and (not _IDENT.match(value) or value in _RESERVED or keyword.iskeyword(value)):
             raise self.fail(
                 where, f"{value!r} is not a valid name (a letter, then letters, digits or _, "
-                "at most 40; not a function name or z, t, T_s)",
+                "at most 40; not a Python keyword, a function name or z, t, T_s)",
             )  # fmt: skip
         return value
 
@@ -365,7 +366,8 @@ class _Reader:
                 shown = f"{lam.real:.6g}" if abs(lam.imag) < 1e-12 else f"{lam:.6g}"
                 raise self.fail(
                     where, f"the plant cannot be stabilized with any delays: its mode "
-                    f"{shown} (|lambda| >= 1) is not reachable from the inputs",
+                    f"{shown} (|lambda| >= 1) is not reachable from the inputs (to 1e-9 of "
+                    "the plant's scale)",
                 )  # fmt: skip
 
     def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:

@@ -40,7 +40,7 @@ from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.discovery.atlas import atlas
 from symctl.discovery.candidates import circuits_for
-from symctl.errors import NotStabilizableError, ParameterError
+from symctl.errors import NotRealizableError, NotStabilizableError, ParameterError
 from symctl.model.modelfile import Model, load_model
 from symctl.model.presets import muscle
 from symctl.neural.circuit import Circuit
@@ -272,9 +272,13 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             system.T <= PAPER_ATLAS_MAX_ORDER
         ):  # G2 has order T; order 3 takes a minute: symctl atlas
             order = found if system.T == 2 else atlas(system.T, workers=1)
-            candidates = circuits_for(
-                G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, seed=seed
-            )
+            try:
+                candidates = circuits_for(
+                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, seed=seed
+                )
+            except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
+                note = f"no atlas circuits for this controller: {exc}"
+                spec = dataclasses.replace(spec, notes=(*spec.notes, note))
     else:
         skipped = (
             f"the plant has {plant.n} states and {plant.m} inputs, so G(z) is a "

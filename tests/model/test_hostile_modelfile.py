@@ -1,0 +1,83 @@
+"""Hostile model files: any value in any field is a symctl error or a model, never a crash."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from symctl import SymctlError, derive, load_model
+
+MUSCLE = (Path(__file__).resolve().parents[2] / "examples" / "muscle.toml").read_text()
+
+# every "key = value" line of the muscle file whose value is a plain scalar
+FIELDS = [m.start(1) for m in re.finditer(r"^\w+ = (.+?)(?:\s+#.*)?$", MUSCLE, re.M)]
+
+_VALUES = st.one_of(
+    st.integers(-(10**30), 10**30),
+    st.floats(allow_nan=False, allow_infinity=False),
+    st.text(max_size=30),
+    st.sampled_from(["__import__('os')", "1/0", "x**9**9", "exp(1000)", "f", "r", "[[1]]"]),
+    st.lists(st.integers(-3, 3), max_size=3),
+    st.booleans(),
+)
+
+
+def _toml(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return json.dumps(value)
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(FIELDS), _VALUES)
+def test_any_value_in_any_field_reads_or_is_refused_in_one_line(start, value):
+    end = MUSCLE.index("\n", start)
+    line_end = MUSCLE.rfind("#", start, end)
+    stop = line_end if line_end != -1 else end
+    text = MUSCLE[:start] + _toml(value) + MUSCLE[stop:]
+    try:
+        load_model(text)
+    except SymctlError as err:
+        assert "\n" not in str(err)
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ('Ts = { value = 0.01, unit = "s" }', "Ts = 1e6"),  # exp(-Ts/tau) underflows to 0
+        ('value = 0.02, unit = "s"', 'value = 1e-90, unit = "s"'),  # a zero controller
+        ('value = 1.0, unit = "spikes/s"', 'value = 1e90, unit = "spikes/s"'),
+    ],
+)
+def test_a_degenerate_controller_derives_with_a_note_instead_of_failing(old, new):
+    res = derive(MUSCLE.replace(old, new))
+    assert res.to_json()["controller"]["proved"] is True
+    assert any("no atlas circuits" in n for n in res.spec.notes)
+
+
+def test_a_python_keyword_is_not_a_name():
+    with pytest.raises(SymctlError, match="not a Python keyword"):
+        load_model(MUSCLE.replace('name = "r"\n', 'name = "lambda"\n'))
+
+
+def test_windows_line_endings_read_the_same():
+    a, b = load_model(MUSCLE), load_model(MUSCLE.replace("\n", "\r\n"))
+    assert a.plant == b.plant and a.lines == b.lines
+
+
+def test_a_folder_or_a_missing_file_is_one_line(tmp_path):
+    for path in (tmp_path, tmp_path / "missing.toml"):
+        with pytest.raises(SymctlError, match="cannot read it"):
+            load_model(path)
+
+
+def test_a_huge_matrix_is_refused_before_any_work():
+    rows = ", ".join("[" + ", ".join(["1"] * 30) + "]" for _ in range(30))
+    text = f'[model]\nname = "big"\n[discrete]\nA = [{rows}]\nB = [[1]]\n[sampling]\nTs = 0.1\n'
+    with pytest.raises(SymctlError, match="at most 20"):
+        load_model(text)
