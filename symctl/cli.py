@@ -45,6 +45,31 @@ def cli() -> None:
     """Derive, check and simulate neural implementations of delayed optimal controllers."""
 
 
+def _writing_options(command):
+    """The options of a command that writes a derivation: --figures, --pdf, --jobs."""
+    for option in reversed(
+        (
+            click.option(
+                "--figures/--no-figures", default=True, show_default=True, help="Write the figures."
+            ),
+            click.option(
+                "--pdf/--no-pdf",
+                default=True,
+                show_default=True,
+                help="Compile derivation.pdf (when pdflatex is installed).",
+            ),
+            click.option(
+                "--jobs",
+                type=click.IntRange(min=1),
+                default=None,
+                help="Processes drawing the figures [default: CPUs, at most 4].",
+            ),
+        )
+    ):
+        command = option(command)
+    return command
+
+
 @cli.command()
 @click.option(
     "--tau", type=float, default=PAPER.tau, show_default=True, help="Muscle time constant [s]."
@@ -104,19 +129,7 @@ def cli() -> None:
     show_default=True,
     help="Output folder: new, empty, or an earlier run's (replaced when the run is complete).",
 )
-@click.option("--figures/--no-figures", default=True, show_default=True, help="Write the figures.")
-@click.option(
-    "--pdf/--no-pdf",
-    default=True,
-    show_default=True,
-    help="Compile derivation.pdf (when pdflatex is installed).",
-)
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=None,
-    help="Processes drawing the figures [default: CPUs, at most 4].",
-)
+@_writing_options
 def paper(
     tau,
     f_max,
@@ -175,19 +188,7 @@ def paper(
 @click.option(
     "--check", is_flag=True, default=False, help="Validate the model file and exit; run nothing."
 )
-@click.option("--figures/--no-figures", default=True, show_default=True, help="Write the figures.")
-@click.option(
-    "--pdf/--no-pdf",
-    default=True,
-    show_default=True,
-    help="Compile derivation.pdf (needs pdflatex on the PATH).",
-)
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=None,
-    help="Processes drawing the figures [default: CPUs, at most 4].",
-)
+@_writing_options
 def derive_command(model_file, out, check, figures, pdf, jobs) -> None:
     """Run the whole derivation on your own system, described in MODEL.toml.
 
@@ -208,11 +209,16 @@ def derive_command(model_file, out, check, figures, pdf, jobs) -> None:
         _console.print(_check_line(model), markup=False, soft_wrap=True, highlight=False)
         return
     out = out if out is not None else f"out/{model.name}"
-    with OutputFolder(out, "--out") as folder, _Steps() as steps:
-        res = derive(model, progress=steps.start)
-        written = res._write_files(
-            folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
-        )
+    try:
+        with OutputFolder(out, "--out") as folder, _Steps() as steps:
+            res = derive(model, progress=steps.start)
+            written = res._write_files(
+                folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
+            )
+    except _NUMERICAL as exc:  # named with the model file (main's one-line message)
+        with contextlib.suppress(AttributeError):
+            exc._symctl_inputs = f"the model file {model_file}"
+        raise
     _summary(res)
     _written(Path(out), folder.final(written), pdf)
 
@@ -526,6 +532,8 @@ _STEP_OPTIONS = {
     "simulation": "--seed, --realizations, --sensor-delay, --actuator-delay",
     "realizations": "--seed, --sensor-delay, --actuator-delay",
     "compatibility": "--sensor-delay, --actuator-delay, --tau, --f-max",
+    "closed loop": "--tau, --f-max, --r-bar, --ts, --sensor-delay, --actuator-delay",
+    "nonlinear": "--tau, --f-max, --r-bar, --ts, --sensor-delay, --actuator-delay",
     "figures": "--jobs, --out",
     "documents": "--out",
     "pdflatex": "--pdf, --out",
@@ -640,11 +648,13 @@ def _run_cli(argv: list[str] | None) -> int:
         return 2
     except _NUMERICAL as exc:
         step = getattr(exc, "_symctl_step", None)
-        if step not in _STEP_OPTIONS or os.environ.get("SYMCTL_TRACEBACK"):
+        inputs = getattr(exc, "_symctl_inputs", None)  # symctl derive: the model file
+        known = step in _STEP_OPTIONS or (inputs is not None and step is not None)
+        if not known or os.environ.get("SYMCTL_TRACEBACK"):
             raise  # not in a step that user input drives: the last resort in _main
         where = "reading" if step == "options" else f"the {step} step failed on"
         _error(
-            f"symctl: error: {where} {_STEP_OPTIONS[step]}: {type(exc).__name__}: "
+            f"symctl: error: {where} {inputs or _STEP_OPTIONS[step]}: {type(exc).__name__}: "
             f"{_first_line(exc)}"
         )
         return 2

@@ -61,8 +61,9 @@ def _word_name(symbol: sp.Symbol) -> str | None:
         return None
     if rest == "bar" and len(stem) <= 8:
         return rf"\bar{{{_stem(stem)}}}"
-    if stem == "delta" and rest.isalpha():
-        return rf"\delta_{{{_stem(rest)}}}"
+    if stem == "delta" and rest.isidentifier():
+        inner = _word_name(sp.Symbol(rest)) or sp.latex(sp.Symbol(rest))
+        return rf"\delta_{{{inner}}}"
     if rest.isalpha() and len(rest) > 1 and rest not in GREEK:
         return rf"{_stem(stem)}_\text{{{rest}}}"
     return None

@@ -199,6 +199,10 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
     return _derive(spec, spec.ode, step)
 
 
+def _count(k: int, noun: str) -> str:
+    return f"{k} {noun}" + ("" if k == 1 else "s")
+
+
 def _weight(value, argname: str, size: int, *, definite: bool) -> sp.ImmutableMatrix:
     M = to_matrix(value, argname)
     psd_matrix(M, argname, size, definite=definite)
@@ -281,7 +285,8 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
                 spec = dataclasses.replace(spec, notes=(*spec.notes, note))
     else:
         skipped = (
-            f"the plant has {plant.n} states and {plant.m} inputs, so G(z) is a "
+            f"the plant has {_count(plant.n, 'state')} and {_count(plant.m, 'input')}, so "
+            "G(z) is a "
             f"{G.shape[0]} x {G.shape[1]} matrix; factorization, realizations, structures, "
             "circuits and the atlas handle one state and one input (MIMO support is the next "
             "step of symctl)"

@@ -126,3 +126,30 @@ def test_examples_write_their_documents_with_their_own_names(tmp_path, name):
     spec = load_model(EXAMPLES / f"{name}.toml")
     assert spec.title.split(":")[0] in tex
     assert spec.descriptions[spec.signal_names[0][0]] in tex
+
+
+def test_a_foreign_exception_in_derive_is_one_line_naming_the_model_file(
+    tmp_path, capfd, monkeypatch
+):
+    def boom(*_a, **_k):
+        raise ValueError("singular matrix")
+
+    monkeypatch.setattr("symctl.report.pipeline.lqr_gains", boom)
+    path = EXAMPLES / "pendulum.toml"
+    assert main(["derive", str(path), "--out", str(tmp_path / "o"), "--no-pdf"]) == 2
+    err = capfd.readouterr().err.strip()
+    assert (
+        err
+        == f"symctl: error: the LQR step failed on the model file {path}: ValueError: singular matrix"
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_derive_refuses_a_bad_file_in_one_line_with_exit_2(tmp_path, capfd):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        (EXAMPLES / "pendulum.toml").read_text().replace('rhs = "omega"', 'rhs = "omegaa"')
+    )
+    assert main(["derive", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capfd.readouterr().err.strip()
+    assert err.startswith(f"symctl: error: {bad}:") and "states[0].rhs" in err and "\n" not in err
