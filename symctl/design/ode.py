@@ -13,6 +13,9 @@ values, exactly (a float becomes the rational of its shortest decimal, 0.1 -> 1/
 
 - exactly (SymPy, in the parameters' symbols) when :math:`f` is affine in the
   states, which proves the solution unique (or that there is none, or many);
+- for one state where :math:`f` is a polynomial in it (degree up to 12, at the
+  parameter values), by isolating its real roots exactly: none and several are
+  proved, and the one root is exact when rational;
 - otherwise numerically (:func:`scipy.optimize.root` at the parameter values),
   from a ``guess`` when one is given, or from several starts, refusing none
   and several distinct solutions.
@@ -211,7 +214,51 @@ def solve_equilibrium(
             )
         x = J.LUsolve(-c).applyfunc(_tidy)
         return sp.ImmutableMatrix(x), "exact (affine in the states)"
+    if len(states) == 1 and guess is None:
+        found = _polynomial_equilibrium(f[0].subs(values), states[0], argname)
+        if found is not None:
+            return found
     return _numeric_equilibrium(f, states, values, guess, argname)
+
+
+MAX_EXACT_DEGREE = 12
+"""Largest degree of a one-state polynomial equilibrium found exactly (real roots, SymPy)."""
+
+
+def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
+    """The unique real root of a polynomial f(x) (exact coefficients), or None if f is not one.
+
+    The real roots are isolated exactly (:meth:`sympy.Poly.real_roots`), so that "none" and
+    "several" are proved, not sampled. A rational root is kept exactly; an irrational one
+    as the rational of its float (the method says so).
+    """
+    try:
+        poly = sp.Poly(sp.together(f).as_numer_denom()[0], x, domain="QQ")
+    except (sp.PolynomialError, sp.polys.polyerrors.CoercionFailed, ValueError):
+        return None
+    if not 2 <= poly.degree() <= MAX_EXACT_DEGREE:
+        return None
+    den = sp.together(f).as_numer_denom()[1]
+    roots = sorted({r for r in poly.real_roots() if sp.simplify(den.subs(x, r)) != 0}, key=float)
+    if not roots:
+        raise ParameterError(
+            f"{argname}: no equilibrium: f is a polynomial of degree {poly.degree()} in "
+            f"{x} with no real root (exact, SymPy real_roots)"
+        )
+    if len(roots) > 1:
+        shown = ", ".join(f"{x} = {float(r):.6g}" for r in roots[:4])
+        raise ParameterError(
+            f"{argname}: several equilibria ({shown}{', ...' if len(roots) > 4 else ''}; "
+            "exact, SymPy real_roots); give the state's equilibrium value or a guess"
+        )
+    root = roots[0]
+    if root.is_Rational:
+        return sp.ImmutableMatrix([root]), "exact (the one real root of a polynomial)"
+    value = exact_value(float(root), argname)
+    return sp.ImmutableMatrix([value]), (
+        "exact count (the one real root of a polynomial, SymPy real_roots), its value to "
+        "double precision"
+    )
 
 
 def _numeric_equilibrium(f, states, values, guess, argname):
