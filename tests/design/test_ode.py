@@ -44,9 +44,9 @@ def test_an_affine_equilibrium_is_solved_symbolically_and_proved_unique():
 def test_a_polynomial_equilibrium_of_one_state_is_decided_exactly():
     xe, how = solve_equilibrium(sp.Matrix([-(x**3) - x + u]), [x], [u], sp.Matrix([2]), {})
     assert list(xe) == [1] and how.startswith("exact")
-    with pytest.raises(ParameterError, match="several equilibria .* exact"):
+    with pytest.raises(ParameterError, match=r"several equilibria .* exact"):
         solve_equilibrium(sp.Matrix([-((x - 1) ** 2) * (x + 2) ** 2]), [x], [u], [0], {})
-    with pytest.raises(ParameterError, match="no equilibrium: .* no real root"):
+    with pytest.raises(ParameterError, match=r"no equilibrium: .* no real root"):
         solve_equilibrium(sp.Matrix([x**2 + 1 + u]), [x], [u], [0], {})
     xe, how = solve_equilibrium(sp.Matrix([-(x**3) + u]), [x], [u], sp.Matrix([2]), {})
     assert float(xe[0]) == pytest.approx(2 ** (1 / 3), rel=1e-15) and "double precision" in how
