@@ -153,3 +153,22 @@ def test_derive_refuses_a_bad_file_in_one_line_with_exit_2(tmp_path, capfd):
     assert main(["derive", str(bad), "--out", str(tmp_path / "o")]) == 2
     err = capfd.readouterr().err.strip()
     assert err.startswith(f"symctl: error: {bad}:") and "states[0].rhs" in err and "\n" not in err
+
+
+def test_a_model_file_builds_only_the_circuits_it_asks_for(tmp_path):
+    text = (EXAMPLES / "muscle.toml").read_text()
+    text = text.replace(
+        'build = ["ifp", "general", "controllable", "observable"]', 'build = ["observable"]'
+    )
+    res = derive(text)
+    assert list(res.circuits) == ["observable"] and list(res.realizations) == ["observable"]
+    data = res.to_json()
+    assert list(data["circuits"]) == ["observable"] and data["model"]["circuits_built"] == [
+        "observable"
+    ]
+    names = res.figure_names()
+    assert "firing_observable" in names and not any(n.endswith("_general") for n in names)
+    assert (
+        derive_paper().circuits["observable"].circuit.n_neurons
+        == res.circuits["observable"].circuit.n_neurons
+    )
