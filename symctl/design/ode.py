@@ -232,14 +232,15 @@ def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
     "several" are proved, not sampled. A rational root is kept exactly; an irrational one
     as the rational of its float (the method says so).
     """
+    num, den = sp.fraction(sp.cancel(sp.together(f)))  # no common factor: num's roots are f's
     try:
-        poly = sp.Poly(sp.together(f).as_numer_denom()[0], x, domain="QQ")
+        poly = sp.Poly(num, x, domain="QQ")
+        sp.Poly(den, x, domain="QQ")  # a rational function of x with rational coefficients
     except (sp.PolynomialError, sp.polys.polyerrors.CoercionFailed, ValueError):
         return None
     if not 2 <= poly.degree() <= MAX_EXACT_DEGREE:
         return None
-    den = sp.together(f).as_numer_denom()[1]
-    roots = sorted({r for r in poly.real_roots() if sp.simplify(den.subs(x, r)) != 0}, key=float)
+    roots = sorted(set(poly.real_roots()), key=float)
     if not roots:
         raise ParameterError(
             f"{argname}: no equilibrium: f is a polynomial of degree {poly.degree()} in "

@@ -359,7 +359,12 @@ AUDITED = {
     # exact_value numbers; the expressions lambdified are those validated ones
     ("symctl.design.ode", "_vector", "ImmutableMatrix"): 1,
     ("symctl.design.ode", "_affine", "expand"): 1,
-    ("symctl.design.ode", "solve_equilibrium", "subs"): 3,
+    ("symctl.design.ode", "solve_equilibrium", "subs"): 4,
+    ("symctl.design.ode", "_polynomial_equilibrium", "fraction"): 1,
+    ("symctl.design.ode", "_polynomial_equilibrium", "cancel"): 1,
+    ("symctl.design.ode", "_polynomial_equilibrium", "together"): 1,
+    ("symctl.design.ode", "_polynomial_equilibrium", "Poly"): 2,
+    ("symctl.design.ode", "_polynomial_equilibrium", "ImmutableMatrix"): 2,
     ("symctl.design.ode", "solve_equilibrium", "Matrix"): 1,
     ("symctl.design.ode", "solve_equilibrium", "ImmutableMatrix"): 1,
     ("symctl.design.ode", "_numeric_equilibrium", "lambdify"): 2,
