@@ -47,6 +47,13 @@ from symctl._util.proof import Proof
 from symctl._util.validate import nonneg_int, relative_tolerance, subs_rule, to_expr
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
+from symctl.realization.channels import (
+    channel_sections,
+    channel_symbols,
+    diagonal,
+    mimo_G2,
+    verify_entries,
+)
 from symctl.symbols import z
 
 __all__ = ["Factorization", "factor", "remainder", "section_symbols", "sigma_symbols"]
@@ -123,7 +130,10 @@ class Factorization(LatexMixin):
     G, G1, G2, G3 : DiscreteTF
     sensor_eps, sensor_C, actuator_eps, actuator_C : tuple of sympy expressions
         Poles and gains of the first-order sections of ``G1`` and ``G3`` (symbols,
-        or values after :meth:`subs`).
+        or values after :meth:`subs`); channel-major for a MIMO controller.
+    channels : (int, int)
+        The measured signals (columns of ``G``) and the outputs (rows): ``(1, 1)``
+        for the paper's SISO controller.
 
     Built by :func:`factor`; compares and hashes by value.
 
@@ -147,12 +157,53 @@ class Factorization(LatexMixin):
     sensor_C: tuple
     actuator_eps: tuple
     actuator_C: tuple
+    channels: tuple[int, int] = (1, 1)
+
+    @property
+    def is_siso(self) -> bool:
+        """Whether the controller has one measured signal and one output (the paper's case)."""
+        return self.channels == (1, 1)
+
+    def _siso_only(self, what: str) -> None:
+        if not self.is_siso:
+            raise DimensionError(
+                f"{what}: defined for a SISO factorization, this one has {self.channels[0]} "
+                f"measured signals and {self.channels[1]} outputs"
+            )
+
+    @property
+    def sensor_sections(self) -> tuple[DiscreteTF, ...]:
+        r"""The SISO sections :math:`g_{1,j}` of each measured signal (the diagonal of ``G1``)."""
+        return self._channel_tfs(self.sensor_eps, self.sensor_C, self.channels[0])
+
+    @property
+    def actuator_sections(self) -> tuple[DiscreteTF, ...]:
+        r"""The SISO sections :math:`g_{3,i}` of each output (the diagonal of ``G3``)."""
+        return self._channel_tfs(self.actuator_eps, self.actuator_C, self.channels[1])
+
+    def _channel_tfs(self, eps, cs, channels: int) -> tuple[DiscreteTF, ...]:
+        count = len(eps) // channels
+        return tuple(
+            _sections(e, c, self.G.dt)
+            for e, c in zip(
+                channel_sections(eps, count, channels), channel_sections(cs, count, channels),
+                strict=True,
+            )
+        )  # fmt: skip
 
     @property
     def N(self) -> sp.Expr:
-        r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`)."""
+        r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`).
+
+        A matrix for a MIMO factorization (:math:`G_2(\infty)`, entry by entry).
+        """
         from symctl.realization.realization import split_proper
 
+        if not self.is_siso:
+            n = self.G2.order
+            return sp.Matrix(
+                self.G2.num_matrix.applyfunc(lambda e: sp.Poly(e, z).coeff_monomial(z**n))
+            )
         return split_proper(self.G2)[0]
 
     @property
@@ -167,6 +218,7 @@ class Factorization(LatexMixin):
         The paper's :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`;
         when :math:`N = 0` the numerator of :math:`G_2` itself.
         """
+        self._siso_only("remainder_coeffs")
         return remainder(self.G2)[1]
 
     @property
@@ -203,6 +255,7 @@ class Factorization(LatexMixin):
         >>> f.abbreviated().subs(f.sigma_values()).equals(f.G2)
         True
         """
+        self._siso_only("abbreviated")
         d = len(self.poles)
         zeros = sp.Add(
             z**d, *((-1) ** k * s * z ** (d - k) for k, s in enumerate(self.sigma, start=1))
@@ -287,6 +340,17 @@ class Factorization(LatexMixin):
         (True, True)
         """
         rtol = relative_tolerance(rtol, "rtol")
+        if not self.is_siso:
+            holds = verify_entries(
+                self.G, self.G2, self.sensor_sections, self.actuator_sections, _products_equal
+            )
+            return Proof(
+                holds,
+                "G3 G2 G1 = G",
+                "entry by entry, g3_i (G2)_ij g1_j = G_ij: cross-multiplied numerators and "
+                "denominators compared as polynomials",
+                "" if holds else "an entry of G3 G2 G1 differs from G's",
+            )
         left = [self.G3.num, self.G2.num, self.G1.num, self.G.den]
         right = [self.G.num, self.G3.den, self.G2.den, self.G1.den]
         holds = _products_equal(left, right)
@@ -332,12 +396,15 @@ class Factorization(LatexMixin):
             sub(self.sensor_C),
             sub(self.actuator_eps),
             sub(self.actuator_C),
+            self.channels,
         )
         _check_C(out.sensor_C + out.actuator_C)
         return out
 
     def latex(self) -> str:
         r"""The three factors, :math:`G_2` written as the paper does (gain times zeros over poles)."""
+        if not self.is_siso:
+            return rf"G_1 = {self.G1.latex()},\quad G_2 = {self.G2.latex()},\quad G_3 = {self.G3.latex()}"
         zeros = sp.Mul(*(z - e for e in (*self.sensor_eps, *self.actuator_eps)))
         zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
         g2 = (
@@ -400,7 +467,14 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
         Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
         negative delays, a zero ``C`` or a value in ``z``.
     DimensionError
-        A MIMO ``G``, or ``eps``/``C`` of the wrong length.
+        ``eps``/``C`` of the wrong length, or more than ``MAX_CHANNELS`` (50)
+        inputs or outputs.
+
+    A MIMO ``G`` (p x m) is factored channel by channel
+    (:mod:`symctl.realization.channels`): ``G1`` and ``G3`` are diagonal, with
+    ``sensor_delay`` sections on each of the ``m`` measured signals and
+    ``actuator_delay`` on each of the ``p`` outputs; ``eps`` and ``C`` are then
+    channel-major, sensor channels first (``m * sensor_delay + p * actuator_delay``).
 
     Examples
     --------
@@ -416,8 +490,6 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     tf = DiscreteTF.from_expr(G)
     ds = nonneg_int(sensor_delay, "sensor_delay")
     da = nonneg_int(actuator_delay, "actuator_delay")
-    if not tf.is_siso:
-        raise DimensionError(f"G: factor() handles SISO controllers, got shape {tf.shape}")
     rd = tf.relative_degree
     if rd < 0:
         raise ParameterError("G: improper (numerator degree above denominator degree)")
@@ -426,6 +498,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
             f"G: relative degree {rd} is below sensor_delay + actuator_delay = {ds + da}; "
             "no factorization puts the delays at the input and output"
         )
+    if not tf.is_siso:
+        return _factor_mimo(tf, ds, da, eps, C)
     eps1, c1 = section_symbols(1, ds) if ds else ((), ())
     eps3, c3 = section_symbols(3, da) if da else ((), ())
     eps_all = _section_values(eps, ds + da, "eps", (*eps1, *eps3))
@@ -439,6 +513,33 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     zeros = sp.Mul(*(z - e for e in (*eps1, *eps3)))
     G2 = DiscreteTF(tf.num / scale * zeros, tf.den, tf.dt)
     return Factorization(tf, G1, G2, G3, eps1, c1, eps3, c3)
+
+
+def _factor_mimo(tf: DiscreteTF, ds: int, da: int, eps, C) -> Factorization:
+    """:func:`factor` of a p x m controller: one chain of sections per channel (module channels)."""
+    p, m = tf.shape
+    sym1 = [channel_symbols(1, j, ds) for j in range(1, m + 1)] if ds else []
+    sym3 = [channel_symbols(3, i, da) for i in range(1, p + 1)] if da else []
+    default_eps = (*(e for es, _ in sym1 for e in es), *(e for es, _ in sym3 for e in es))
+    default_C = (*(c for _, cs in sym1 for c in cs), *(c for _, cs in sym3 for c in cs))
+    count = m * ds + p * da
+    eps_all = _section_values(eps, count, "eps", default_eps)
+    c_all = _section_values(C, count, "C", default_C)
+    _check_C(c_all)
+    e1, e3 = eps_all[: m * ds], eps_all[m * ds :]
+    c1, c3 = c_all[: m * ds], c_all[m * ds :]
+    g1 = [
+        _sections(e, c, tf.dt)
+        for e, c in zip(channel_sections(e1, ds, m), channel_sections(c1, ds, m), strict=True)
+    ]
+    g3 = [
+        _sections(e, c, tf.dt)
+        for e, c in zip(channel_sections(e3, da, p), channel_sections(c3, da, p), strict=True)
+    ]
+    G2 = mimo_G2(tf, e1, c1, e3, c3, ds, da)
+    return Factorization(
+        tf, diagonal(tuple(g1), tf.dt), G2, diagonal(tuple(g3), tf.dt), e1, c1, e3, c3, (m, p)
+    )  # fmt: skip
 
 
 def _fmpq(value: sp.Rational) -> fmpq:
@@ -473,6 +574,9 @@ def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
     leaves the sections' expanded denominators against the zeros' linear
     factors, which python-flint multiplies out (sparse, exact).
     """
+    zero_left, zero_right = (any(e == 0 for e in side) for side in (left, right))
+    if zero_left or zero_right:  # a zero factor: cancelling the others would hide it
+        return zero_left and zero_right
     lf, rf = _factors(left), _factors(right)
     net = {b: lf.get(b, 0) - rf.get(b, 0) for b in {*lf, *rf}}
     exprs = [

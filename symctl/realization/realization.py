@@ -455,10 +455,11 @@ def controllable_canonical(G2) -> Realization:
 
     Raises
     ------
-    DimensionError
-        A MIMO ``G2``.
     ParameterError
         An improper ``G2``, or one that is not rational in ``z``.
+
+    A p x m ``G2`` (one common denominator) gets the block controllable form,
+    :math:`n m` states (:func:`_block_controllable`).
 
     Examples
     --------
@@ -469,7 +470,9 @@ def controllable_canonical(G2) -> Realization:
     [  0,   1],
     [K_2, K_1]]), Matrix([[0, 1]]))
     """
-    tf = _siso(G2)
+    tf = _proper(G2)
+    if not tf.is_siso:
+        return _block_controllable(tf)
     N, c, a = split_proper(tf)
     n = len(a)
     F = sp.zeros(n, n)
@@ -502,10 +505,11 @@ def observable_canonical(G2) -> Realization:
 
     Raises
     ------
-    DimensionError
-        A MIMO ``G2``.
     ParameterError
         An improper ``G2``, or one that is not rational in ``z``.
+
+    A p x m ``G2`` gets the block observable form, :math:`n p` states (the dual
+    of the block controllable form of :math:`G_2^\top`).
 
     Examples
     --------
@@ -516,7 +520,58 @@ def observable_canonical(G2) -> Realization:
     [0, K_2],
     [1, K_1]]), Matrix([[0, 1]]))
     """
-    return controllable_canonical(G2).transpose()
+    tf = _proper(G2)
+    if not tf.is_siso:  # the dual of the block controllable form of G2^T
+        return _block_controllable(DiscreteTF(tf.num_matrix.T, tf.den, tf.dt)).transpose()
+    return controllable_canonical(tf).transpose()
+
+
+def _proper(G, argname: str = "G2") -> DiscreteTF:
+    tf = DiscreteTF.from_expr(G)
+    if tf.relative_degree < 0:
+        raise ParameterError(f"{argname}: improper (numerator degree above denominator degree)")
+    return tf
+
+
+def _block_controllable(tf: DiscreteTF) -> Realization:
+    r"""The block controllable canonical form of a proper p x m ``G = N(z)/d(z)``.
+
+    With :math:`d = z^n + a_{n-1} z^{n-1} + \dots + a_0` (monic, common to every
+    entry) and :math:`G = D + \sum_{k<n} C_k z^k / d(z)` (:math:`C_k` p x m):
+
+    .. math::
+        F = \begin{bmatrix} 0 & I_m & & \\ & \ddots & \ddots & \\ & & 0 & I_m \\
+            -a_0 I_m & -a_1 I_m & \cdots & -a_{n-1} I_m \end{bmatrix},\quad
+        H = \begin{bmatrix} 0 \\ \vdots \\ 0 \\ I_m \end{bmatrix},\quad
+        M = [C_0\ C_1\ \cdots\ C_{n-1}],\quad N = D,
+
+    :math:`n m` states: the scalar form with every entry a block, since
+    :math:`(zI - F)^{-1} H = [I;\ zI;\ \dots;\ z^{n-1} I] / d(z)`.
+    """
+    p, m = tf.shape
+    a = tf.den_coeffs()[::-1]  # ascending, a[n] = 1
+    n = len(a) - 1
+    D = sp.zeros(p, m)
+    C = [sp.zeros(p, m) for _ in range(n)]
+    for i in range(p):
+        for j in range(m):
+            b = tf.num_coeffs(i, j)[::-1]
+            b = b + [sp.Integer(0)] * (n + 1 - len(b))
+            D[i, j] = _tidy(b[n])
+            for k in range(n):
+                C[k][i, j] = _tidy(b[k] - b[n] * a[k])
+    F = sp.zeros(n * m, n * m)
+    for blk in range(n - 1):
+        for r in range(m):
+            F[blk * m + r, (blk + 1) * m + r] = 1
+    for k in range(n):
+        for r in range(m):
+            F[(n - 1) * m + r, k * m + r] = -a[k]
+    H = sp.zeros(n * m, m)
+    if n:
+        H[(n - 1) * m :, :] = sp.eye(m)
+    M = sp.Matrix.hstack(*C) if n else sp.zeros(p, 0)
+    return Realization(F, H, M, D, tf.dt)
 
 
 def first_order_realization(eps, C, dt=None) -> Realization:

@@ -354,6 +354,11 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # MIMO factorization: entries of a validated DiscreteTF times section factors of symbols
+    ("symctl.realization.channels", "mimo_G2", "Matrix"): 1,
+    ("symctl.realization.channels", "mimo_G2", "expand"): 1,
+    ("symctl.realization.factorization", "Factorization.N", "Matrix"): 1,
+    ("symctl.realization.factorization", "Factorization.N", "Poly"): 1,
     # ODEModel (design/ode.py): rhs, x_eq and u_eq are SymPy values or numbers (_vector refuses
     # text; solve_equilibrium routes its arguments through to_matrix); parameter values are
     # exact_value numbers; the expressions lambdified are those validated ones

@@ -7,7 +7,7 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from symctl import DimensionError, ParameterError, controller_tf, factor, z
+from symctl import ParameterError, controller_tf, factor, z
 from symctl.realization.factorization import section_symbols
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
 
@@ -80,7 +80,7 @@ def test_refusals():
         factor(controller_tf(2)).subs({C_1: 0})
     with pytest.raises(ParameterError, match="C"):
         factor(controller_tf(2)).subs({C_3: 0})
-    with pytest.raises(DimensionError, match="SISO"):
+    with pytest.raises(ParameterError, match="relative degree 1"):  # MIMO: the same rule
         factor(sp.Matrix([[1 / z, 1 / z]]))
     with pytest.raises(ParameterError, match="sensor_delay"):
         factor(controller_tf(2), -1, 1)

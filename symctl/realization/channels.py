@@ -1,0 +1,124 @@
+r"""The factorization of a MIMO controller: one chain of sections per channel.
+
+A :math:`p \times m` controller :math:`G(z) = N(z)/d(z)` (one common monic
+denominator, as :func:`~symctl.design.controller.controller_tf` returns it) maps
+:math:`m` measured signals to :math:`p` inputs. Each measured signal :math:`j`
+crosses the sensor delay through its own :math:`d_s` first-order sections and each
+input :math:`i` the actuator delay through its own :math:`d_a`:
+
+.. math::
+    G_1 = \operatorname{diag}_j\, g_{1,j},\quad
+    g_{1,j}(z) = \prod_{k=1}^{d_s} \frac{C_{1,j,k}}{z - \epsilon_{1,j,k}},\qquad
+    G_3 = \operatorname{diag}_i\, g_{3,i},\qquad
+    (G_2)_{ij} = \frac{G_{ij}}{g_{3,i}\, g_{1,j}}
+    = \frac{N_{ij}(z)\, Z_{3,i}(z)\, Z_{1,j}(z)}{C_{3,i}\, C_{1,j}\, d(z)},
+
+with :math:`Z_{1,j} = \prod_k (z - \epsilon_{1,j,k})` and :math:`C_{1,j} = \prod_k
+C_{1,j,k}` (likewise on the actuator side). Then :math:`G_3 G_2 G_1 = G` entry by
+entry: :math:`(G_3 G_2 G_1)_{ij} = g_{3,i} (G_2)_{ij}\, g_{1,j} = G_{ij}`, which
+:meth:`~symctl.realization.factorization.Factorization.verify` proves exactly,
+entry by entry (polynomial cross-multiplication). :math:`G_2` keeps the common
+denominator :math:`d`, so its block canonical realizations have :math:`n m` (or
+:math:`n p`) states for :math:`\deg d = n`. Each entry of :math:`G` needs a relative
+degree of at least :math:`d_s + d_a` (the optimal delayed controller has exactly
+that, :math:`T`). The scalar case is the paper's factorization, unchanged.
+
+>>> from symctl import augment, controller_tf
+>>> from symctl.realization.factorization import factor
+>>> G = controller_tf(augment(([[0.9, 0.1], [0, 0.8]], [[0], [0.1]]), 1, 1))
+>>> f = factor(G, 1, 1)
+>>> f.G2.shape, f.channels, f.sensor_eps
+((1, 2), (2, 1), (epsilon_{1,1,1}, epsilon_{1,2,1}))
+>>> bool(f.verify())
+True
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+
+from symctl.design.tf import DiscreteTF
+from symctl.errors import DimensionError, ParameterError
+from symctl.symbols import z
+
+__all__ = ["MAX_CHANNELS", "channel_sections", "channel_symbols", "mimo_G2"]
+
+MAX_CHANNELS = 50
+"""Most measured signals (and most inputs) of a MIMO factorization."""
+
+
+@cache
+def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
+    """The ``(epsilons, Cs)`` of the ``count`` sections of one channel on side 1 or 3.
+
+    Named ``epsilon_{side,channel,k}`` and ``C_{side,channel,k}`` (indices from 1).
+
+    >>> from symctl.realization.channels import channel_symbols
+    >>> channel_symbols(3, 2, 1)
+    ((epsilon_{3,2,1},), (C_{3,2,1},))
+    """
+    if side not in (1, 3):
+        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
+    eps = tuple(
+        sp.Symbol(f"epsilon_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1)
+    )
+    cs = tuple(sp.Symbol(f"C_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1))
+    return eps, cs
+
+
+def _check_shape(tf: DiscreteTF) -> tuple[int, int]:
+    p, m = tf.shape
+    if p > MAX_CHANNELS or m > MAX_CHANNELS:
+        raise DimensionError(
+            f"G: at most {MAX_CHANNELS} inputs and {MAX_CHANNELS} outputs, got shape {tf.shape}"
+        )
+    return p, m
+
+
+def channel_sections(values: tuple, count: int, channels: int) -> tuple[tuple, ...]:
+    """``values`` (channel-major) cut into one tuple of ``count`` per channel."""
+    return tuple(values[j * count : (j + 1) * count] for j in range(channels))
+
+
+def mimo_G2(tf: DiscreteTF, sens_eps, sens_C, act_eps, act_C, ds: int, da: int) -> DiscreteTF:
+    r""":math:`(G_2)_{ij} = N_{ij} Z_{3,i} Z_{1,j} / (C_{3,i} C_{1,j} d)`, over G's denominator.
+
+    ``sens_*`` and ``act_*`` are channel-major flat tuples (``m * ds`` and ``p * da``).
+    """
+    p, m = _check_shape(tf)
+    e1, c1 = channel_sections(sens_eps, ds, m), channel_sections(sens_C, ds, m)
+    e3, c3 = channel_sections(act_eps, da, p), channel_sections(act_C, da, p)
+    Z1 = [sp.Mul(*(z - e for e in e1[j])) for j in range(m)]
+    Z3 = [sp.Mul(*(z - e for e in e3[i])) for i in range(p)]
+    C1 = [sp.Mul(*c1[j]) for j in range(m)]
+    C3 = [sp.Mul(*c3[i]) for i in range(p)]
+    num = tf.num_matrix
+    entries = sp.Matrix(p, m, lambda i, j: sp.expand(num[i, j] * Z3[i] * Z1[j]) / (C3[i] * C1[j]))
+    return DiscreteTF(entries, tf.den, tf.dt)
+
+
+def diagonal(sections: tuple[DiscreteTF, ...], dt) -> DiscreteTF:
+    """The diagonal matrix of SISO transfer functions, over one common denominator."""
+    k = len(sections)
+    if k == 1:
+        return sections[0]
+    den = sp.Mul(*(s.den for s in sections))
+    num = sp.zeros(k, k)
+    for j, s in enumerate(sections):
+        num[j, j] = s.num * sp.Mul(*(t.den for i, t in enumerate(sections) if i != j))
+    return DiscreteTF(num, den, dt)
+
+
+def verify_entries(G: DiscreteTF, G2: DiscreteTF, g1, g3, products_equal) -> bool:
+    """Whether :math:`g_{3,i} (G_2)_{ij} g_{1,j} = G_{ij}` for every entry, exactly."""
+    p, m = G.shape
+    n, n2 = G.num_matrix, G2.num_matrix
+    for i in range(p):
+        for j in range(m):
+            left = [g3[i].num, n2[i, j], g1[j].num, G.den]
+            right = [n[i, j], g3[i].den, G2.den, g1[j].den]
+            if not products_equal(left, right):
+                return False
+    return True
