@@ -610,6 +610,9 @@ def first_order_realization(eps, C, dt=None) -> Realization:
 def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
     r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order.
 
+    For a MIMO factorization each stage is one diagonal realization holding that
+    stage's section of every channel (:func:`_channel_stages`).
+
     >>> from symctl import controller_tf, factor
     >>> from symctl.realization.realization import section_realizations
     >>> first, last = section_realizations(factor(controller_tf(2)))
@@ -618,6 +621,10 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
     """
     f = factorization
     dt = f.G.dt
+    if not getattr(f, "is_siso", True):
+        return _channel_stages(f.sensor_eps, f.sensor_C, f.channels[0], dt), _channel_stages(
+            f.actuator_eps, f.actuator_C, f.channels[1], dt
+        )
     first = [
         first_order_realization(e, c, dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
     ]
@@ -625,6 +632,25 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
         first_order_realization(e, c, dt) for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
     ]
     return first, last
+
+
+def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
+    r"""The k-th sections of every channel side by side, one diagonal realization per stage.
+
+    Stage :math:`k`: :math:`F = \operatorname{diag}_j \epsilon_{j,k}`,
+    :math:`H = \operatorname{diag}_j C_{j,k}`, :math:`M = I`, :math:`N = 0` (``eps``
+    and ``cs`` channel-major, as in a MIMO
+    :class:`~symctl.realization.factorization.Factorization`).
+    """
+    count = len(eps) // channels if channels else 0
+    stages = []
+    for k in range(count):
+        e = [eps[j * count + k] for j in range(channels)]
+        c = [cs[j * count + k] for j in range(channels)]
+        stages.append(
+            Realization(sp.diag(*e), sp.diag(*c), sp.eye(channels), sp.zeros(channels), dt)
+        )
+    return stages
 
 
 def controller_realization(factorization, R2: Realization) -> Realization:
