@@ -338,6 +338,39 @@ class DelayGraph:
         D = self.chain_order[1]
         return tuple(b - a for a, b in itertools.pairwise(D))
 
+    def draw(self, names=None, **kwargs):
+        """Draw the graph: vertices as boxes, edges as arrows with their delays in steps.
+
+        Laid out left to right along the longest path from the sensor
+        :math:`v_1` to the actuator :math:`v_N`; parallel pathways in rows of
+        their own; edges closing a cycle curved, in purple (the paper's Fig.
+        muscle_system, right).
+
+        Parameters
+        ----------
+        names : sequence of str, optional
+            The vertices' names, :math:`v_1` first (default ``v1 .. vN``).
+        **kwargs
+            ``title``, ``descriptions`` (a line under a vertex's name, by name)
+            and ``ax``, as :func:`symctl.plotting.delaygraph.delay_graph_plot` takes them.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Drawn by :func:`symctl.plotting.delaygraph.delay_graph_plot` (positions
+            from :func:`symctl.plotting.delaygraph_layout.delay_graph_layout`).
+
+        Examples
+        --------
+        >>> from symctl import DelayGraph
+        >>> fig = DelayGraph.chain([1, 1]).draw(["Golgi tendon organ", "nervous system", "muscle"])
+        >>> type(fig).__name__
+        'Figure'
+        """
+        from symctl.plotting.delaygraph import delay_graph_plot
+
+        return delay_graph_plot(self, names, **kwargs)
+
     def latex(self) -> str:
         """The matrix :math:`E` in LaTeX."""
         return matrix_latex("E", self.E)

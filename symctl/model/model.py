@@ -59,6 +59,8 @@ class Model:
         Its direct edges by name, with their delays in steps.
     graph_given : bool
         Whether the file gave the delay graph (else the chain of the delays).
+    vertex_descriptions : mapping of str to str
+        The descriptions of the graph's vertices the file gives, by name.
     circuits : tuple of str
         The circuits to build (of ``ifp``, ``general``, ``controllable``, ``observable``).
     realizations, seed : int
@@ -121,11 +123,12 @@ class Model:
     path: str = "<text>"
     source: str = field(default="", repr=False)
     lines: Mapping = field(default_factory=dict, repr=False)
+    vertex_descriptions: Mapping = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         units = {k: str(v) for k, v in self.units.items()}
         object.__setattr__(self, "units", MappingProxyType(units))
-        for name in ("descriptions", "lines"):
+        for name in ("descriptions", "lines", "vertex_descriptions"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
 
     def error(self, dotted: str, problem: str) -> ModelFileError:

@@ -221,7 +221,7 @@ class _Reader:
         cost = self.table(d.get("cost", {}), "cost", "cost")
         Q = self.weight(cost.get("Q", "identity"), "cost.Q", plant.n)
         R = self.weight(cost.get("R", "identity"), "cost.R", plant.m, definite=True)
-        graph, vertices, edges, given = self.graph(d.get("delay_graph"), ds + da, Ts)
+        graph, vertices, edges, given, about = self.graph(d.get("delay_graph"), ds + da, Ts)
         circuits = self.table(d.get("circuits", {}), "circuits", "circuits")
         build = self.build(circuits.get("build", list(CIRCUIT_KINDS)))
         realizations = self.integer(
@@ -236,7 +236,7 @@ class _Reader:
             name, title, description, ode, plant, plant_symbolic, units, descr, outputs, Ts,
             ds, da, Q, R, graph, vertices, edges, given, build, realizations, seed, steps,
             disturbance, longest, tuple(self.notes), self.src.path, self.src.text,
-            self.src.lines,
+            self.src.lines, about,
         )  # fmt: skip
 
     def sampling(self, table: dict) -> float:
@@ -531,12 +531,12 @@ class _Reader:
         if data is None:
             names = tuple(f"v{i + 1}" for i in range(T + 1))
             edges = tuple((names[i], names[i + 1], 1) for i in range(T))
-            return DelayGraph.chain([1] * T), names, edges, False
+            return DelayGraph.chain([1] * T), names, edges, False, {}
         table = self.table(data, "delay_graph", "delay_graph")
         if "vertices" not in table:
             raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")
         vs = self.items(table["vertices"], "delay_graph.vertices", "vertex", limit=MAX_VERTICES)
-        names = []
+        names, about = [], {}
         for i, v in enumerate(vs):
             if "name" not in v:
                 raise self.fail(f"delay_graph.vertices[{i}]", "missing name")
@@ -544,6 +544,8 @@ class _Reader:
             if n in names:
                 raise self.fail(f"delay_graph.vertices[{i}].name", f"{n!r} appears twice")
             names.append(n)
+            if "description" in v:
+                about[n] = self.text(v["description"], f"delay_graph.vertices[{i}].description")
         if len(names) < 2:
             raise self.fail("delay_graph.vertices", "needs at least 2 vertices")
         sensor = self.text(table.get("sensor", names[0]), "delay_graph.sensor")
@@ -585,7 +587,7 @@ class _Reader:
         if math.isinf(graph.E[0, -1]):
             raise self.fail("delay_graph.edges", f"no path from the sensor {sensor!r} to the "
                             f"actuator {actuator!r}")  # fmt: skip
-        return graph, tuple(order), tuple(edges), True
+        return graph, tuple(order), tuple(edges), True, about
 
     def build(self, value) -> tuple:
         if not isinstance(value, list) or not value:

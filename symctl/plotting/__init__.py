@@ -1,10 +1,10 @@
 """Drawing: the only package that imports matplotlib.
 
 Layout apart from rendering, as networkx's ``drawing/layout.py`` and ``nx_pylab.py``:
-``structure_layout`` and ``circuit_layout`` return numbers (positions, routes,
-sizes) and never import matplotlib; ``structure``, ``circuit``, ``response`` and
-``firing`` render them on pyplot-free ``Figure`` objects; ``common`` holds the
-figure, heading, key and text measure they share. Objects reach this package
-through one-line delegations (``Structure.draw``, ``Circuit.draw``,
-``Response.plot``, ...).
+``structure_layout``, ``circuit_layout`` and ``delaygraph_layout`` return numbers
+(positions, routes, sizes) and never import matplotlib; ``structure``, ``circuit``,
+``delaygraph``, ``response`` and ``firing`` render them on pyplot-free ``Figure``
+objects; ``common`` holds the figure, heading, key and text measure they share.
+Objects reach this package through one-line delegations (``Structure.draw``,
+``Circuit.draw``, ``DelayGraph.draw``, ``Response.plot``, ...).
 """

@@ -1,0 +1,241 @@
+r"""Rendering of a delay graph: vertices as boxes, edges as arrows labelled with their delays.
+
+The paper's Fig. muscle_system (right): the sensor :math:`v_1`, the nervous
+system, the actuator :math:`v_N`, and the delay of each edge in steps. The
+positions come from :mod:`symctl.plotting.delaygraph_layout` (a layered drawing,
+left to right along the longest path from the sensor); this module measures the
+text (a box fits its name, its vertex and role, and its description) and draws
+with matplotlib's patches on a pyplot-free figure.
+:meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>`
+delegates here.
+
+>>> from symctl import DelayGraph
+>>> from symctl.plotting.delaygraph import delay_graph_plot
+>>> fig = delay_graph_plot(DelayGraph.chain([1, 1]), ["Golgi tendon organ", "nervous system",
+...                                                   "muscle"])
+>>> [p.get_gid() for p in fig.axes[0].patches]
+['edge:1-2', 'edge:2-3', 'vertex:1', 'vertex:2', 'vertex:3']
+"""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
+
+from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
+from matplotlib.path import Path
+
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.errors import ParameterError, SymctlTypeError
+from symctl.plotting.common import figure_and_axes, finish_figure, text_size
+from symctl.plotting.delaygraph_layout import delay_graph_layout
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["delay_graph_plot", "steps_text"]
+
+_NAME = 9.5  # a vertex's name [pt]
+_SMALL = 8  # its vertex and role, its description, the delays
+_LINE = {_NAME: 0.19, _SMALL: 0.16}  # line heights [in]
+_PAD = (0.14, 0.09)  # inside a box [in]
+_WRAP = 24  # characters per line of a description
+_FILL = {
+    "sensor": ("#dcedd9", "#2e7d32"),
+    "actuator": ("#fbe3cf", "#c25a0c"),
+    "": ("#f3f3f3", "0.2"),
+}
+_INK = "0.15"
+_BACK = "#7b3fa0"  # an edge laid out right to left (closing a cycle)
+
+
+def steps_text(delay: int) -> str:
+    """``"1 step"``, ``"2 steps"``, ``"0 steps"``: an edge's label.
+
+    Examples
+    --------
+    >>> from symctl.plotting.delaygraph import steps_text
+    >>> steps_text(1), steps_text(3)
+    ('1 step', '3 steps')
+    """
+    return f"{delay} step" + ("" if delay == 1 else "s")
+
+
+def _plain(text: str) -> str:
+    """``text`` shown as it is (a dollar sign does not start mathtext)."""
+    return text.replace("$", r"\$")
+
+
+def _names(graph: DelayGraph, names) -> tuple[list[str], bool]:
+    if names is None:
+        return [f"v{k}" for k in range(1, graph.n + 1)], False
+    if isinstance(names, str) or not isinstance(names, Sequence):
+        raise SymctlTypeError(f"names: expected a sequence of {graph.n} strings, got {names!r}")
+    if len(names) != graph.n:
+        raise ParameterError(f"names: the graph has {graph.n} vertices, got {len(names)} names")
+    for k, name in enumerate(names):
+        if not isinstance(name, str):
+            raise SymctlTypeError(f"names[{k}]: expected a string, got {name!r}")
+    return list(names), list(names) != [f"v{k}" for k in range(1, graph.n + 1)]
+
+
+def _lines(graph, names, named, descriptions) -> dict[int, list[tuple[str, float, str]]]:
+    """Each vertex's text lines ``(text, size, style)``: name, vertex and role, description."""
+    out = {}
+    for k, name in enumerate(names, start=1):
+        role = "sensor" if k == 1 else "actuator" if k == graph.n else ""
+        lines = [(_plain(name.replace("_", " ")), _NAME, "bold")]
+        tag = ", ".join(t for t in (f"v{k}" if named else "", role) if t)
+        if tag:
+            lines.append((tag, _SMALL, "normal"))
+        about = descriptions.get(name, "") if descriptions else ""
+        lines += [(_plain(t), _SMALL, "italic") for t in textwrap.wrap(about, _WRAP)[:3]]
+        out[k] = lines
+    return out
+
+
+def delay_graph_plot(
+    graph: DelayGraph,
+    names: Sequence[str] | None = None,
+    *,
+    title: str | None = None,
+    descriptions: Mapping[str, str] | None = None,
+    ax=None,
+) -> Figure:
+    """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays.
+
+    The vertices are laid out left to right along the longest path from the
+    sensor :math:`v_1` (green) to the actuator :math:`v_N` (orange); parallel
+    pathways run in rows of their own, and an edge across several columns bends
+    around the vertices between. Each arrow is labelled with its delay in steps
+    (:attr:`DelayGraph.edges`). Edges against the flow (into the sensor, out of
+    the actuator, or closing a cycle) are purple and curved. Layout:
+    :func:`symctl.plotting.delaygraph_layout.delay_graph_layout`.
+
+    Parameters
+    ----------
+    graph : DelayGraph
+    names : sequence of str, optional
+        The vertices' names, :math:`v_1` first (default ``v1 .. vN``); with
+        names, each box also shows its vertex ``v<k>``.
+    title : str, optional
+        The heading (default ``"delay graph: <N> vertices, <E> edges"``).
+    descriptions : mapping of str to str, optional
+        A line or two under a vertex's name, by name (e.g. a model file's
+        ``[[delay_graph.vertices]]`` descriptions).
+    ax : matplotlib Axes, optional
+        Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    SymctlTypeError
+        ``graph`` is not a DelayGraph, ``names`` not a sequence of strings, or
+        ``descriptions`` not a mapping.
+    ParameterError
+        ``names`` of another length than the graph's vertices, or a graph too
+        large to draw (:data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES`).
+
+    Examples
+    --------
+    The spinal and transcortical pathways of a stretch reflex:
+
+    >>> from symctl import DelayGraph
+    >>> from symctl.plotting.delaygraph import delay_graph_plot
+    >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
+    >>> fig = delay_graph_plot(g, ["receptor", "spinal", "cortex", "muscle"], title="Reflex")
+    >>> sorted(t.get_text() for t in fig.axes[0].texts if t.get_text().endswith("step"))
+    ['1 step', '1 step', '1 step', '1 step']
+    """
+    if not isinstance(graph, DelayGraph):
+        raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
+    if descriptions is not None and not isinstance(descriptions, Mapping):
+        raise SymctlTypeError(
+            f"descriptions: expected a mapping of vertex names to text, got {descriptions!r}"
+        )
+    names, named = _names(graph, names)
+    lines = _lines(graph, names, named, descriptions)
+    height = max(sum(_LINE[s] for _, s, _ in ls) for ls in lines.values()) + 2 * _PAD[1]
+    sizes = {
+        k: (max(1.06 * text_size(t, s)[0] for t, s, _ in ls) + 2 * _PAD[0], height)
+        for k, ls in lines.items()
+    }
+    labels = {(i, j): steps_text(d) for i, j, d in graph.edges}
+    label_sizes = {e: (text_size(t, _SMALL)[0] * 1.06 + 0.1, 0.2) for e, t in labels.items()}
+    lay = delay_graph_layout(graph, sizes, label_sizes)
+    fig, ax, own = figure_and_axes(ax)
+
+    for r in lay.routes:
+        colour = _BACK if r.back else _INK
+        path = Path(r.bezier, [Path.MOVETO] + [Path.CURVE4] * (len(r.bezier) - 1))
+        ax.add_patch(
+            FancyArrowPatch(
+                path=path,
+                arrowstyle="-|>,head_length=0.45,head_width=0.22",
+                mutation_scale=12,
+                color=colour,
+                lw=1.3,
+                zorder=1,
+                gid=f"edge:{r.source}-{r.target}",
+            )
+        )
+        ax.text(
+            *r.label,
+            labels[r.source, r.target],
+            ha="center",
+            va="center",
+            fontsize=_SMALL,
+            color=colour,
+            bbox={"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none", "alpha": 0.95},
+            zorder=3,
+        )
+
+    for k, (x, y) in lay.pos.items():
+        w, h = lay.size[k]
+        role = "sensor" if k == 1 else "actuator" if k == graph.n else ""
+        fill, edge = _FILL[role]
+        ax.add_patch(
+            FancyBboxPatch(
+                (x - w / 2, y - h / 2),
+                w,
+                h,
+                boxstyle="round,pad=0,rounding_size=0.08",
+                fc=fill,
+                ec=edge,
+                lw=1.4 if role else 1.1,
+                zorder=2,
+                gid=f"vertex:{k}",
+            )
+        )
+        total = sum(_LINE[s] for _, s, _ in lines[k])
+        top = y + total / 2
+        for text, size, style in lines[k]:
+            ax.text(
+                x,
+                top - _LINE[size] / 2,
+                text,
+                ha="center",
+                va="center",
+                fontsize=size,
+                fontweight="bold" if style == "bold" else "normal",
+                fontstyle="italic" if style == "italic" else "normal",
+                color="black" if style == "bold" else "0.3",
+                zorder=3,
+            )
+            top -= _LINE[size]
+
+    n_edges = len(graph.edges)
+    heading = title or (
+        f"delay graph: {graph.n} vertices, {n_edges} edge{'s' if n_edges != 1 else ''}"
+    )
+    key = (
+        f"boxes: vertices, v1 the sensor (green) to v{graph.n} the actuator (orange)   "
+        "arrows: direct edges, with their delays in steps"
+    )
+    if any(r.back for r in lay.routes):
+        key += "   purple, curved: edges against the flow (a cycle)"
+    return finish_figure(fig, ax, own, lay.bounds, _plain(heading), key, top=0.65)

@@ -1,0 +1,524 @@
+r"""Where a delay graph's vertices and edges go: numbers, no matplotlib.
+
+The layout of :meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>`
+apart from its rendering (:mod:`symctl.plotting.delaygraph`), a layered drawing in
+the manner of Sugiyama, Tagawa and Toda (1981). One unit is one inch.
+
+* **Flow**: the edges into the sensor :math:`v_1`, out of the actuator :math:`v_N`
+  and those closing a cycle in a depth-first search from :math:`v_1`
+  (:func:`~symctl.compatibility.signalgraph.back_edges`) are *back edges*, laid
+  out turned around; what is left is acyclic.
+* **Layers** (columns, left to right): :math:`v_1` in layer 0, every other vertex
+  one layer right of its furthest predecessor (the longest path from the sensor),
+  the actuator alone in the last layer.
+* **Bends**: an edge across several layers passes one bend point in each layer
+  between, which takes a row of its own there, so no edge runs through a vertex.
+* **Order**: within a layer, vertices and bends sorted by the mean position of
+  their neighbours (barycentre sweeps, down and up); the order with the fewest
+  crossings is kept.
+* **Rows**: each node as near the mean height of its neighbours as the order and
+  the gaps allow (least squares under the order: pool-adjacent-violators), in a
+  few sweeps; bends pull hardest, so long edges run straight. A chain is one
+  straight row; parallel pathways lie in rows side by side.
+* **Routes**: an edge leaves the right side of its left end and enters the left
+  side of its right end, each end's edges spread over the side in the order of
+  their other ends (no two arrowheads meet). Across a column it runs level (at
+  its bend's row, or beside its own box); between columns, where there are no
+  boxes, it is an S-shaped cubic Bézier. So no edge ever crosses a vertex. Two
+  edges between the same two vertices (a two-cycle) bulge apart, and a back edge
+  between neighbouring columns bulges even alone.
+* **Labels**: an edge's label sits on its curve in its middle gap between
+  columns, moved along the gap when it would cover another label or curve; the
+  gaps are as wide as their labels.
+
+>>> from symctl import DelayGraph
+>>> from symctl.plotting.delaygraph_layout import delay_graph_layout
+>>> lay = delay_graph_layout(DelayGraph.chain([1, 1]))
+>>> lay.layer, [lay.pos[v][1] for v in (1, 2, 3)]
+({1: 0, 2: 1, 3: 2}, [0.0, 0.0, 0.0])
+>>> [(r.source, r.target, r.back, len(r.points)) for r in lay.routes]
+[(1, 2, False, 2), (2, 3, False, 2)]
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections import Counter
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.signalgraph import back_edges
+from symctl.errors import ParameterError, SymctlTypeError
+
+__all__ = [
+    "BOX",
+    "LABEL",
+    "MAX_BENDS",
+    "MAX_DRAWN_VERTICES",
+    "DelayGraphLayout",
+    "EdgeRoute",
+    "delay_graph_layout",
+]
+
+MAX_DRAWN_VERTICES = 200
+"""Most vertices a delay-graph drawing takes (beyond, a picture says nothing)."""
+MAX_BENDS = 40000
+"""Most bend points (an edge across k layers has k - 1): bounds the time a dense graph takes."""
+BOX = (0.8, 0.45)
+"""A vertex box's width and height [in] when none is given."""
+LABEL = (0.5, 0.17)
+"""An edge label's width and height [in] when none is given."""
+
+_ROW_GAP = 0.5  # between two boxes of a layer [in]
+_BEND_GAP = 0.3  # between a bend and anything else of its layer
+_BEND_HEIGHT = 0.1
+_MIN_GAP = 0.8  # between two columns, at least
+_STEEP = 0.4  # a gap at least this part of the largest fall of an edge across it [in/in]
+_MAX_GAP = 2.0  # ... up to this width [in]
+_LABEL_MARGIN = 0.25  # either side of the widest label of a gap
+_SHIFTS = (0.0, -0.2, 0.2, -0.4, 0.4, -0.6, 0.6, -0.8, 0.8, -1.0, 1.0)  # a label along its gap
+_LABEL_CLEAR = 0.06  # a label keeps this far from the gap's ends (the columns)
+_BULGE = 0.28  # of a two-cycle's edges, and of a lone back edge between neighbouring layers
+_CLIP = 0.03  # arrow tips stop this far from a box
+_PORT_STEP = 0.1  # between the ends of two edges on one side of a box
+_PORT_MARGIN = 0.08  # from the box's corners
+_SWEEPS = 8
+_WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True, True): 60.0}
+
+
+@dataclass(frozen=True)
+class EdgeRoute:
+    """One drawn edge: its curve from the source's box to the target's.
+
+    Attributes
+    ----------
+    source, target, delay : int
+        The edge ``(i, j, delay)`` of :attr:`DelayGraph.edges`.
+    back : bool
+        Laid out turned around (an edge into the sensor, out of the actuator, or
+        closing a cycle): it runs right to left.
+    points : tuple of (float, float)
+        The points the curve passes: on the source's border, the bends, on the
+        target's border.
+    bezier : tuple of (float, float)
+        The curve as cubic Bézier segments: ``p0, c, c, p1, c, c, p2, ...``
+        (``3k + 1`` points for ``k`` segments; matplotlib's ``Path.CURVE4``).
+    label : (float, float)
+        The centre of the delay's label.
+    """
+
+    source: int
+    target: int
+    delay: int
+    back: bool
+    points: tuple[tuple[float, float], ...]
+    bezier: tuple[tuple[float, float], ...]
+    label: tuple[float, float]
+
+
+@dataclass(frozen=True, eq=False)
+class DelayGraphLayout:
+    """The positions of a delay-graph drawing (see the module text for the rules).
+
+    Attributes
+    ----------
+    layer : mapping of int to int
+        Each vertex's column (the sensor 0, the actuator the last).
+    pos : mapping of int to (float, float)
+        Each vertex's centre [in].
+    size : mapping of int to (float, float)
+        Each vertex box's width and height [in].
+    routes : tuple of EdgeRoute
+        One per edge, in the order of :attr:`DelayGraph.edges`.
+    bounds : (float, float, float, float)
+        ``(x_lo, x_hi, y_lo, y_hi)``: every box, curve and label inside, with margins.
+    """
+
+    layer: Mapping[int, int]
+    pos: Mapping[int, tuple[float, float]]
+    size: Mapping[int, tuple[float, float]]
+    routes: tuple[EdgeRoute, ...]
+    bounds: tuple[float, float, float, float]
+
+
+def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
+    """Each edge as laid out ``(a, b, back)``, ``a -> b`` acyclic (the module text)."""
+    n = graph.n
+    succ: dict[int, list[int]] = {v: [] for v in range(1, n + 1)}
+    against = set()
+    for i, j, _ in graph.edges:
+        if j == 1 or i == n:
+            against.add((i, j))
+        else:
+            succ[i].append(j)
+    against.update(back_edges(succ, [1]))
+    return [(j, i, True) if (i, j) in against else (i, j, False) for i, j, _ in graph.edges]
+
+
+def _layers(n: int, flow) -> dict[int, int]:
+    dag = nx.DiGraph()
+    dag.add_nodes_from(range(1, n + 1))
+    dag.add_edges_from((a, b) for a, b, _ in flow)
+    layer: dict[int, int] = {}
+    for v in nx.topological_sort(dag):
+        layer[v] = 0 if v == 1 else max([1] + [layer[p] + 1 for p in dag.predecessors(v)])
+    layer[n] = max(layer[n], 1 + max(layer[v] for v in range(1, n)))
+    return layer
+
+
+def _crossings(order, down) -> int:
+    """Edge crossings between neighbouring layers (inversions, counted with a Fenwick tree)."""
+    total = 0
+    for upper, lower in itertools.pairwise(order):
+        at = {node: k for k, node in enumerate(lower)}
+        ends = sorted((k, at[m]) for k, node in enumerate(upper) for m in down[node])
+        tree = [0] * (len(lower) + 1)
+        for seen, (_, b) in enumerate(ends):
+            i, below = b + 1, 0  # how many earlier ends are at or left of b
+            while i > 0:
+                below += tree[i]
+                i -= i & -i
+            total += seen - below
+            i = b + 1
+            while i <= len(lower):
+                tree[i] += 1
+                i += i & -i
+    return total
+
+
+def _order(order, up, down) -> list[list]:
+    """Barycentre sweeps down and up; the order with the fewest crossings."""
+    best, fewest = [list(o) for o in order], _crossings(order, down)
+    for sweep in range(2 * _SWEEPS):
+        layers = range(1, len(order)) if sweep % 2 == 0 else range(len(order) - 2, -1, -1)
+        for k in layers:
+            near, nbrs = (order[k - 1], up) if sweep % 2 == 0 else (order[k + 1], down)
+            at = {node: i for i, node in enumerate(near)}
+            mean = {
+                node: sum(at[m] for m in nbrs[node]) / len(nbrs[node]) if nbrs[node] else i
+                for i, node in enumerate(order[k])
+            }
+            order[k] = sorted(order[k], key=lambda node, m=mean: m[node])
+        count = _crossings(order, down)
+        if count < fewest:
+            best, fewest = [list(o) for o in order], count
+    return best
+
+
+def _pack(target, weight, gaps) -> np.ndarray:
+    """Least squares ``sum w (d - t)^2`` under ``d[k+1] >= d[k] + gaps[k]`` (pool adjacent)."""
+    offset = np.concatenate(([0.0], np.cumsum(gaps)))
+    blocks: list[list[float]] = []  # [mean, weight, count]
+    for value, w in zip(np.asarray(target) - offset, weight, strict=True):
+        blocks.append([value, w, 1])
+        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
+            (m1, w1, c1), (m2, w2, c2) = blocks.pop(-2), blocks.pop()
+            blocks.append([(m1 * w1 + m2 * w2) / (w1 + w2), w1 + w2, c1 + c2])
+    return np.repeat([b[0] for b in blocks], [b[2] for b in blocks]) + offset
+
+
+def _depths(order, up, down, height) -> dict:
+    """Each node's depth (minus its height): near its neighbours, gaps kept (the module text)."""
+    bend = {node: not isinstance(node, int) for o in order for node in o}
+    gaps = [
+        [
+            (height[a] + height[b]) / 2 + (_ROW_GAP if not (bend[a] or bend[b]) else _BEND_GAP)
+            for a, b in itertools.pairwise(o)
+        ]
+        for o in order
+    ]
+    depth: dict = {}
+    for o, g in zip(order, gaps, strict=True):
+        depth.update(zip(o, _pack(np.zeros(len(o)), np.ones(len(o)), g), strict=True))
+    for sweep in range(3 * _SWEEPS):
+        side = sweep % 3  # 0: from the left, 1: from the right, 2: both
+        layers = range(len(order)) if side != 1 else range(len(order) - 1, -1, -1)
+        for k in layers:
+            target, weight = [], []
+            for node in order[k]:
+                nbrs = (up[node], down[node], up[node] + down[node])[side]
+                w = [_WEIGHT[bend[node], bend[m]] for m in nbrs]
+                if w:
+                    target.append(sum(a * depth[m] for a, m in zip(w, nbrs, strict=True)) / sum(w))
+                    weight.append(sum(w))
+                else:
+                    target.append(depth[node])
+                    weight.append(0.5)
+            depth.update(zip(order[k], _pack(target, weight, gaps[k]), strict=True))
+    return depth
+
+
+def _line(p, q) -> list[tuple[float, float]]:
+    """A straight segment as cubic Bézier control points ``c, c, q``."""
+    (x0, y0), (x1, y1) = p, q
+    return [
+        (x0 + (x1 - x0) / 3, y0 + (y1 - y0) / 3),
+        (x0 + 2 * (x1 - x0) / 3, y0 + 2 * (y1 - y0) / 3),
+        q,
+    ]
+
+
+def _across(p, q, bulge: float) -> list[tuple[float, float]]:
+    """From ``p`` to ``q`` across a gap: an S (level at both ends), or a hump of ``bulge`` [in]."""
+    (x0, y0), (x1, y1) = p, q
+    dx = x1 - x0
+    if not bulge:
+        return [(x0 + dx / 2, y0), (x1 - dx / 2, y1), q]
+    mx, my = (x0 + x1) / 2, (y0 + y1) / 2 + bulge
+    return [(x0 + dx / 4, y0), (mx - dx / 4, my), (mx, my), (mx + dx / 4, my), (x1 - dx / 4, y1), q]
+
+
+def _ports(chains, flow, at, size) -> tuple[list[float], list[float]]:
+    """The height of each chain at its two ends, spread over the box's side (the module text)."""
+    starts: dict[int, list[int]] = {}
+    ends: dict[int, list[int]] = {}
+    for k, chain in enumerate(chains):
+        starts.setdefault(chain[0], []).append(k)
+        ends.setdefault(chain[-1], []).append(k)
+    out = ([0.0] * len(chains), [0.0] * len(chains))
+    for side, (where, other) in enumerate(((starts, 1), (ends, -2))):
+        for v, ks in where.items():
+            # top first; of a two-cycle, the edge kept forward above the one turned around
+            ks.sort(key=lambda k: (-at[chains[k][other]][1], flow[k][2]))
+            step = min(_PORT_STEP, (size[v][1] - 2 * _PORT_MARGIN) / max(len(ks) - 1, 1))
+            for i, k in enumerate(ks):
+                out[side][k] = at[v][1] + ((len(ks) - 1) / 2 - i) * step
+    return out
+
+
+def _route(chain, ys, at, size, left, right, bulge: float) -> list[tuple[float, float]]:
+    """Cubic Bézier control points of one chain at heights ``ys`` (the module text)."""
+    a, b = chain[0], chain[-1]
+    x = at[a][0] + size[a][0] / 2 + _CLIP
+    ctrl = [(x, ys[0])]
+    for k, node in enumerate(chain):
+        hi = right[node] if node != b else at[b][0] - size[b][0] / 2 - _CLIP
+        lo = x if not k else min(left[node], hi)  # the chain's extent in the node's column
+        if k:
+            ctrl += _across(ctrl[-1], (lo, ys[k]), bulge)
+        if hi > max(lo, ctrl[-1][0]) + 1e-9:
+            ctrl += _line(ctrl[-1], (hi, ys[k]))
+    return [(float(px), float(py)) for px, py in ctrl]
+
+
+def _at_x(bezier, x: float) -> tuple[float, float]:
+    """The point of the curve at abscissa ``x`` (each segment x-monotone; clamped to the ends)."""
+    ctrl = np.asarray(bezier, dtype=float)
+    segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
+    for k, (p0, c1, c2, p1) in enumerate(segments):
+        lo, hi = sorted((p0[0], p1[0]))
+        if not (lo - 1e-9 <= x <= hi + 1e-9 or k == len(segments) - 1):
+            continue
+        rising = p1[0] >= p0[0]
+        a, b = 0.0, 1.0
+        for _ in range(40):  # bisection on the segment's parameter
+            t = (a + b) / 2
+            px = (1 - t) ** 3 * p0[0] + 3 * (1 - t) ** 2 * t * c1[0]
+            px += 3 * (1 - t) * t**2 * c2[0] + t**3 * p1[0]
+            a, b = (t, b) if (px < x) == rising else (a, t)
+        t = (a + b) / 2
+        pt = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * p1
+        return (float(pt[0]), float(pt[1]))
+    return (float(ctrl[-1, 0]), float(ctrl[-1, 1]))  # pragma: no cover - no segments
+
+
+def _sample(bezier, k: int = 12) -> np.ndarray:
+    """``k`` points on each cubic segment of ``bezier``."""
+    ctrl = np.asarray(bezier, dtype=float)
+    t = np.linspace(0, 1, k)[:, None]
+    out = []
+    for s in range(0, len(ctrl) - 1, 3):
+        p0, c1, c2, p1 = ctrl[s : s + 4]
+        out.append(
+            (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * p1
+        )
+    return np.vstack(out)
+
+
+def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[int]]:
+    """Each label on its curve within its gap ``(lo, hi)``: where it covers no other label and
+    the fewest other curves, nearest the gap's middle (the module text).
+
+    Placed one by one, then each label that still covers another moved again (up to three
+    rounds), now knowing where every other label is. Returns the centres and the labels
+    that still cover another.
+    """
+    samples = [_sample(bez) for bez in curves]
+    owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(samples)])
+    points = np.vstack(samples)
+    options = []  # per label: candidate centres and what each costs besides other labels
+    for k, (bez, (lo, hi), (w, h)) in enumerate(zip(curves, gaps, sizes, strict=True)):
+        near = (points[:, 0] > lo - w) & (points[:, 0] < hi + w) & (owner != k)
+        others = points[near]
+        room = max((hi - lo - w) / 2 - _LABEL_CLEAR, 0.0)
+        spots = []
+        for shift in _SHIFTS:
+            x, y = _at_x(bez, (lo + hi) / 2 + shift * room)
+            crossed = np.count_nonzero(
+                (np.abs(others[:, 0] - x) < w / 2 + 0.02)
+                & (np.abs(others[:, 1] - y) < h / 2 + 0.02)
+            )
+            spots.append((x, y, crossed + abs(shift) / 4))
+        options.append(spots)
+    by_gap: dict[tuple, list[int]] = {}
+    for k, g in enumerate(gaps):
+        by_gap.setdefault(g, []).append(k)
+    at: dict[int, tuple[float, float]] = {}
+
+    def covers(k, x, y) -> int:
+        w, h = sizes[k]
+        return sum(
+            abs(at[m][0] - x) < (w + sizes[m][0]) / 2 + 0.02
+            and abs(at[m][1] - y) < (h + sizes[m][1]) / 2 + 0.02
+            for m in by_gap[gaps[k]]
+            if m != k and m in at
+        )
+
+    def place(k) -> int:
+        x, y, _ = min(options[k], key=lambda o: 1000 * covers(k, o[0], o[1]) + o[2])
+        at[k] = (x, y)
+        return covers(k, x, y)
+
+    clashes = [k for k in range(len(curves)) if place(k)]
+    for _ in range(3):
+        clashes = [k for k in range(len(curves)) if covers(k, *at[k]) and place(k)]
+        if not clashes:
+            break
+    return [at[k] for k in range(len(curves))], clashes
+
+
+def _edges(flow, chains, node_layer, depth, size, width, gap, where, label):
+    """Positions, curves (as laid out, left to right) and labels for given column gaps."""
+    column = [0.0]
+    for k, g in enumerate(gap):
+        column.append(column[-1] + width[k] / 2 + g + width[k + 1] / 2)
+    at = {node: (column[node_layer[node]], float(depth[1] - depth[node])) for node in depth}
+    left = {node: column[node_layer[node]] - width[node_layer[node]] / 2 for node in at}
+    right = {node: column[node_layer[node]] + width[node_layer[node]] / 2 for node in at}
+    pairs = Counter((a, b) for a, b, _ in flow)
+    first, last = _ports(chains, flow, at, size)
+    curves = []
+    for k, ((a, b, back), chain) in enumerate(zip(flow, chains, strict=True)):
+        ys = [first[k], *(at[node][1] for node in chain[1:-1]), last[k]]
+        bulge = 0.0
+        if len(chain) == 2 and (back or pairs[a, b] > 1):
+            bulge = -_BULGE if back else _BULGE  # turned around: below; its partner above
+        curves.append(_route(chain, ys, at, size, left, right, bulge))
+    gaps = [(column[g] + width[g] / 2, column[g + 1] - width[g + 1] / 2) for g in where]
+    placed, clashes = _place_labels(curves, gaps, label)
+    return at, curves, placed, clashes
+
+
+def delay_graph_layout(
+    graph: DelayGraph,
+    sizes: Mapping[int, tuple[float, float]] | None = None,
+    label_sizes: Mapping[tuple[int, int], tuple[float, float]] | None = None,
+) -> DelayGraphLayout:
+    """The positions, routes and extent of the drawing of ``graph``.
+
+    Parameters
+    ----------
+    graph : DelayGraph
+    sizes : mapping of int to (float, float), optional
+        Each vertex box's width and height [in], e.g. measured from its text;
+        default :data:`BOX`.
+    label_sizes : mapping of (int, int) to (float, float), optional
+        Each edge's label width and height [in], by ``(i, j)``; default :data:`LABEL`.
+
+    Returns
+    -------
+    DelayGraphLayout
+
+    Raises
+    ------
+    SymctlTypeError
+        ``graph`` is not a DelayGraph.
+    ParameterError
+        More than :data:`MAX_DRAWN_VERTICES` vertices, or edges across so many
+        layers that they need more than :data:`MAX_BENDS` bends.
+
+    Examples
+    --------
+    Two pathways from the sensor to the actuator, through v2 and v3 (one step
+    each), lie in two rows:
+
+    >>> from symctl import DelayGraph
+    >>> from symctl.plotting.delaygraph_layout import delay_graph_layout
+    >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 4, 1)])
+    >>> lay = delay_graph_layout(g)
+    >>> lay.layer[2] == lay.layer[3], lay.pos[2][1] != lay.pos[3][1]
+    (True, True)
+    """
+    if not isinstance(graph, DelayGraph):
+        raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
+    n = graph.n
+    if n > MAX_DRAWN_VERTICES:
+        raise ParameterError(f"graph: at most {MAX_DRAWN_VERTICES} vertices are drawn, got {n}")
+    size = {v: tuple(map(float, (sizes or {}).get(v, BOX))) for v in range(1, n + 1)}
+    flow = _flow(graph)
+    layer = _layers(n, flow)
+    if sum(abs(layer[b] - layer[a]) - 1 for a, b, _ in flow) > MAX_BENDS:
+        raise ParameterError(
+            f"graph: its {len(flow)} edges cross too many layers to be drawn (more than "
+            f"{MAX_BENDS} bends)"
+        )
+    # the chains: each edge as laid out, from a through its bends to b
+    chains = []
+    for k, (a, b, _) in enumerate(flow):
+        chains.append([a, *((k, step) for step in range(layer[a] + 1, layer[b])), b])
+    node_layer = dict(layer)
+    up: dict = {v: [] for v in layer}
+    down: dict = {v: [] for v in layer}
+    for chain in chains:
+        for node in chain[1:-1]:
+            node_layer[node] = node[1]
+            up[node], down[node] = [], []
+        for p, q in itertools.pairwise(chain):
+            down[p].append(q)
+            up[q].append(p)
+    order: list[list] = [[] for _ in range(layer[n] + 1)]
+    for node in sorted(node_layer, key=lambda v: (isinstance(v, tuple), v)):
+        order[node_layer[node]].append(node)
+    order = _order(order, up, down)
+    height = {node: size[node][1] if isinstance(node, int) else _BEND_HEIGHT for node in up}
+    depth = _depths(order, up, down, height)
+    # columns: each as wide as its widest box, the gaps as wide as their widest label
+    label_sizes = label_sizes or {}
+    label = [tuple(map(float, label_sizes.get((i, j), LABEL))) for i, j, _ in graph.edges]
+    where = [layer[a] + (layer[b] - layer[a] - 1) // 2 for a, b, _ in flow]  # a label's gap
+    width = [max([size[v][0] for v in o if isinstance(v, int)], default=0.0) for o in order]
+    gap = [_MIN_GAP] * (len(order) - 1)
+    for g, (w, _) in zip(where, label, strict=True):
+        gap[g] = max(gap[g], w + 2 * _LABEL_MARGIN)
+    for chain in chains:  # a steep S is hard to follow: wider gaps where edges fall far
+        for u, w in itertools.pairwise(chain):
+            fall = abs(depth[u] - depth[w])
+            gap[node_layer[u]] = max(gap[node_layer[u]], min(_STEEP * fall, _MAX_GAP))
+    for _ in range(3):  # labels that cannot help covering one another get a wider gap
+        at, curves, placed, clashes = _edges(flow, chains, node_layer, depth, size, width, gap,
+                                             where, label)  # fmt: skip
+        if not clashes:
+            break
+        for k in clashes:
+            gap[where[k]] += label[k][0] / len(clashes)
+    pos = {v: at[v] for v in range(1, n + 1)}
+    routes = []
+    for (i, j, d), (_, _, back), bez, centre in zip(graph.edges, flow, curves, placed, strict=True):
+        if back:
+            bez = bez[::-1]
+        routes.append(EdgeRoute(i, j, d, back, tuple(bez[::3]), tuple(bez), centre))
+    xs = [x for r in routes for x, _ in r.bezier]
+    ys = [y for r in routes for _, y in r.bezier]
+    boxes = [(*pos[v], *size[v]) for v in pos]
+    boxes += [(*xy, *wh) for xy, wh in zip(placed, label, strict=True)]
+    bounds = (
+        min(xs + [b[0] - b[2] / 2 for b in boxes]) - 0.3,
+        max(xs + [b[0] + b[2] / 2 for b in boxes]) + 0.3,
+        min(ys + [b[1] - b[3] / 2 for b in boxes]) - 0.3,
+        max(ys + [b[1] + b[3] / 2 for b in boxes]) + 0.3,
+    )
+    return DelayGraphLayout(layer, pos, size, tuple(routes), bounds)
