@@ -570,7 +570,7 @@ class Circuit(LatexMixin):
         names = ", ".join(n.name for n in self.neurons)
         return f"Circuit({self.n_neurons} neurons: {names}; inputs={self.inputs})"
 
-    def draw(self, ax=None, *, title: str | None = None):
+    def draw(self, ax=None, *, title: str | None = None, vertex_names=None):
         """Draw the circuit: neurons as circles, synapses as arrows, layered left to right.
 
         Each circle holds the neuron's self-dynamics (:math:`\\sum_k w_k z^{-d_k}`,
@@ -579,7 +579,7 @@ class Circuit(LatexMixin):
         (positive) ones are blue with an arrow head, inhibitory (negative) red
         with a bar, symbolic sign grey; dashed arrows have a one-step delay
         (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
-        right.
+        right. A placed neuron shows its vertex: ``(v2)``, ``(v2: spinal)`` with names.
 
         Parameters
         ----------
@@ -587,6 +587,8 @@ class Circuit(LatexMixin):
             Draw into it; by default a new figure sized to the drawing.
         title : str, optional
             The heading (default ``"neural circuit: <n> neurons"``).
+        vertex_names : sequence of str, optional
+            The delay graph's vertex names, :math:`v_1` first (a model's ``vertices``).
 
         Returns
         -------
@@ -602,7 +604,7 @@ class Circuit(LatexMixin):
         """
         from symctl.plotting.circuit import draw_circuit
 
-        return draw_circuit(self, ax, title=title)
+        return draw_circuit(self, ax, title=title, vertex_names=vertex_names)
 
 
 # ---------------------------------------------------------------- helpers

@@ -69,7 +69,17 @@ def _self_tex(n: Neuron) -> str:
     return " + ".join(parts).replace("+ -", "- ")
 
 
-def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
+def _where(vertex: int | None, vertex_names) -> str:
+    """``"  (v2)"``, ``"  (v2: spinal)"`` with names; empty for a neuron at no vertex."""
+    if vertex is None:
+        return ""
+    name = vertex_names[vertex - 1] if vertex_names and vertex <= len(vertex_names) else ""
+    if not name or name == f"v{vertex}":
+        return f"  (v{vertex})"
+    return f"  (v{vertex}: {name.replace('_', ' ')})".replace("$", r"\$")
+
+
+def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=None) -> Figure:
     r"""Draw the circuit: neurons as circles, synapses as arrows, layered left to right.
 
     Each circle holds the neuron's self-dynamics (:math:`\sum_k w_k z^{-d_k}`,
@@ -77,7 +87,9 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
     :math:`w_1, w_2, \dots`, listed under the drawing); excitatory (positive) ones
     are blue with an arrow head, inhibitory (negative) red with a bar, symbolic
     sign grey; dashed arrows have a one-step delay (:math:`z^{-d}` is written for
-    more). Inputs on the left, outputs on the right.
+    more). Inputs on the left, outputs on the right. A neuron placed on a delay
+    graph (:attr:`Neuron.vertex <symctl.neural.neuron.Neuron.vertex>`) shows its
+    vertex beside its name: ``(v2)``, or ``(v2: spinal)`` with ``vertex_names``.
 
     Parameters
     ----------
@@ -86,6 +98,8 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
         Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
     title : str, optional
         The heading (default ``"neural circuit: <n> neurons"``).
+    vertex_names : sequence of str, optional
+        The delay graph's vertex names, :math:`v_1` first.
 
     Returns
     -------
@@ -98,6 +112,16 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
     >>> fig = draw_circuit(Circuit.from_structure(ifp_structure(2)), title="IFP")
     >>> fig.axes[0].texts[-2].get_text()
     'IFP'
+
+    Placed on the paper's chain sensor -> nervous system -> muscle:
+
+    >>> from symctl import DelayGraph, Structure, check_compatibility, controllable_canonical
+    >>> from symctl import controller_tf, factor
+    >>> S = Structure.from_factorization(f := factor(controller_tf(2)), controllable_canonical(f.G2))
+    >>> c = Circuit.from_structure(S, check_compatibility(S, DelayGraph.chain([1, 1])))
+    >>> fig = draw_circuit(c, vertex_names=["sensor", "nervous_system", "muscle"])
+    >>> sorted({t.get_text().partition("$  ")[2] for t in fig.axes[0].texts} - {""})
+    ['(v2: nervous system)', '(v3: muscle)']
     """
     legend: list[str] = []
 
@@ -170,7 +194,7 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
             )
         )
         ax.text(x, y, body[n.name], ha="center", va="center", fontsize=_FONT, zorder=3)
-        where = f"  (v{n.vertex})" if n.vertex is not None else ""
+        where = _where(n.vertex, vertex_names)
         ax.text(
             x,
             y + radius[n.name] + 0.08,
@@ -197,6 +221,8 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None) -> Figure:
         "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
         "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
     )
+    if any(n.vertex is not None for n in c.neurons):
+        key += "   (v2): the delay-graph vertex the neuron sits at"
     width = 0.0
     for k, line in enumerate(legend):
         ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)

@@ -14,12 +14,15 @@ name                          content
                               pulse in firing rate
 ``closed_loop``               Fig. cl_sims: the optimal delayed controller's
                               response to a pulse disturbance on the force
+``delay_graph``               Fig. muscle_system (right): the delay graph,
+                              sensor to actuator, each edge with its delay
 ``nonlinear``                 the linear controller around the nonlinear muscle
 ``firing_<circuit>``          Figs. full_diagram, ccr_diagram, ocr_diagram: the
                               neurons' firing in several realizations
 ``structure_<circuit>``       the structure (gains, adders, unit delays)
-``circuit_<circuit>``         the circuit of stylized neurons (for ``general``
-                              the first simulated realization, with numbers)
+``circuit_<circuit>``         the circuit of stylized neurons, each at its
+                              vertex of the delay graph (for ``general`` the
+                              first simulated realization, with numbers)
 ============================  ==================================================
 
 with ``<circuit>`` one of :data:`symctl.report.spec.CIRCUITS` (``ifp``, ``general``,
@@ -50,7 +53,9 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from symctl._util.validate import positive_int
+from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
+from symctl.neural.circuit import Circuit
 from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
@@ -99,10 +104,10 @@ def figure_names(res) -> list[str]:
     --------
     >>> from symctl import derive_paper
     >>> from symctl.report.figures import figure_names
-    >>> figure_names(derive_paper())[2:5]
-    ['structure_ifp', 'circuit_ifp', 'firing_ifp']
+    >>> figure_names(derive_paper())[1:5]
+    ['closed_loop', 'delay_graph', 'structure_ifp', 'circuit_ifp']
     """
-    names = ["open_loop", "closed_loop"]
+    names = ["open_loop", "closed_loop", "delay_graph"]
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
     if getattr(res, "nonlinear", None) is not None:
@@ -120,6 +125,47 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
         return None
     xs, us = spec.signal_names
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
+
+
+def _vertex_names(res) -> tuple[tuple[str, ...] | None, dict]:
+    """The model's names of the delay graph's vertices (None: ``v1 .. vN``) and their descriptions."""
+    spec = getattr(res, "spec", None)
+    names = tuple(getattr(spec, "vertices", ()))
+    if len(names) != res.graph.n:
+        return None, {}
+    return names, dict(getattr(spec, "vertex_descriptions", {}))
+
+
+def _graph_title(res) -> str:
+    spec = getattr(res, "spec", None)
+    if spec is not None and spec.graph_given:
+        title = f"Delay graph of {spec.name}"
+    else:
+        title = "Delay graph: the chain of the delays (sensor, a relay per further step, actuator)"
+    Ts = getattr(spec, "Ts", None)
+    if Ts:
+        title += f"; one step is {Ts * 1000:g} ms" if Ts < 1 else f"; one step is {Ts:g} s"
+    return title
+
+
+def _placed(circuit, rec, graph):
+    """The simulated ``circuit`` at the vertices of the witness assignment of ``rec``.
+
+    A numeric realization's structure has the symbolic one's signals less the zero
+    gains, so the witness assigns it too; the assignment is checked again (by
+    :meth:`Circuit.from_structure`), and the circuit is returned as it is when the
+    check fails or there is no witness.
+    """
+    verdict = rec.compatibility
+    if not verdict.ok or verdict.assignment is None:
+        return circuit
+    S, where = circuit.structure, verdict.assignment.vertex_of
+    try:
+        return Circuit.from_structure(
+            S, DelayAssignment(S, graph, {k: where[k] for k in S.blocks if k in where})
+        )
+    except ParameterError:
+        return circuit
 
 
 def simplified(candidates, count: int = 2) -> list:
@@ -163,6 +209,9 @@ def make_figure(res, name: str):
             return nonlinear_plot(res.nonlinear, labels=labels)
         if name != "nonlinear":
             return response_plot(getattr(res, name), labels=labels)
+    names, about = _vertex_names(res)
+    if name == "delay_graph":
+        return res.graph.draw(names, title=_graph_title(res), descriptions=about)
     if name == "atlas_overview" and res.atlas is not None:
         return res.atlas.draw()
     if name.startswith("simplified_") and res.candidates:
@@ -170,7 +219,8 @@ def make_figure(res, name: str):
             if c.degenerate and f"simplified_{c.circuit_class.label}" == name:
                 eps = ", ".join(f"{float(e):.4g}" for e in c.eps)
                 return c.circuit.draw(
-                    title=f"Simplified circuit {c.circuit_class.label}: G3 G2 G1 at eps = ({eps})"
+                    title=f"Simplified circuit {c.circuit_class.label}: G3 G2 G1 at eps = ({eps})",
+                    vertex_names=names,
                 )
     kind, _, circuit = name.partition("_")
     rec = res.circuits.get(circuit)
@@ -187,10 +237,15 @@ def make_figure(res, name: str):
         if len(S) > MAX_DRAWN_SIGNALS or len(parts) > MAX_DRAWN_PARTS:  # a strip in print
             return S.draw(title=title, overview=True)
         return rec.structure.draw(title=title)
+    title = f"Circuit: {CIRCUIT_SPECS[circuit].diagram}"
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
-        return rec.firing.circuits[0].draw(title=title)
-    return rec.circuit.draw(title=f"Circuit: {CIRCUIT_SPECS[circuit].diagram}")
+    if not rec.compatibility.ok:
+        title += " (not compatible with the delay graph: no neuron has a vertex)"
+    if circuit == "general":
+        drawn = _placed(rec.firing.circuits[0], rec, res.graph)
+        return drawn.draw(title=title, vertex_names=names)
+    return rec.circuit.draw(title=title, vertex_names=names)
 
 
 def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:

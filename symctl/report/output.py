@@ -78,7 +78,15 @@ except ImportError:  # pragma: no cover
 __all__ = ["OutputFolder", "check_output_folder"]
 
 _FIGURES = "|".join(
-    ["open_loop", "closed_loop", "nonlinear", "atlas_overview", r"simplified_A\d+", r"class_A\d+"]
+    [
+        "open_loop",
+        "closed_loop",
+        "delay_graph",
+        "nonlinear",
+        "atlas_overview",
+        r"simplified_A\d+",
+        r"class_A\d+",
+    ]
     + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
 )
 _OURS = re.compile(

@@ -245,7 +245,7 @@ class PaperResults:
     >>> print(res.G_symbolic)
     (K_0)/(z**2 - K_1*z - K_2)
     >>> res.figure_names()[:3]
-    ['open_loop', 'closed_loop', 'structure_ifp']
+    ['open_loop', 'closed_loop', 'delay_graph']
     >>> res.circuits["ifp"] = None
     Traceback (most recent call last):
     ...
@@ -464,7 +464,7 @@ class PaperResults:
         Returns
         -------
         list of str
-            ``open_loop``, ``closed_loop``, then ``structure_<c>``,
+            ``open_loop``, ``closed_loop``, ``delay_graph``, then ``structure_<c>``,
             ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
             ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
             circuits (table in :mod:`symctl.report.figures`).
@@ -473,8 +473,8 @@ class PaperResults:
         --------
         >>> from symctl import derive_paper
         >>> names = derive_paper().figure_names()
-        >>> len(names), names[15:]
-        (18, ['atlas_overview', 'simplified_A16', 'simplified_A17'])
+        >>> len(names), names[16:]
+        (19, ['atlas_overview', 'simplified_A16', 'simplified_A17'])
         """
         return _figures.figure_names(self)
 

@@ -54,6 +54,12 @@ from symctl.report.spec import CIRCUIT_SPECS
 __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
 
 
+_GRAPH_CAPTION = (
+    "The delay graph: the sensor (green) on the left, the actuator (orange) on the right, each "
+    "direct edge with its delay in steps (the paper's Fig. muscle_system, right)."
+)
+
+
 def _ascii(text: str) -> str:
     return text.replace("Ẽ", "E~").replace("→", "->").replace("≤", "<=").replace("≥", ">=")
 
@@ -171,6 +177,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                           f"disturbance on {hit} (the paper's Fig. cl_sims).")  # fmt: skip
     if f is None:
         put(MS.skipped(res))
+        figure("delay_graph", _GRAPH_CAPTION)
         put(MS.nonlinear(res, figure))
         put(MS.longest(res))
         return blocks
@@ -304,6 +311,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "least $E$."
         )
     )
+    figure("delay_graph", _GRAPH_CAPTION)
     put(_eq(("E", res.graph.E), label="eq:E"))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility

@@ -277,3 +277,47 @@ def test_figure_refuses_bad_names_and_descriptions():
         delay_graph_plot(g, descriptions=["a"])
     with pytest.raises(SymctlTypeError, match="graph: expected a DelayGraph"):
         delay_graph_plot(np.zeros((2, 2)))
+
+
+# ------------------------------------------------------------------ report
+@pytest.fixture(scope="module")
+def derived():
+    return symctl.derive(str(SPINAL))
+
+
+def test_report_draws_the_model_graph_right_after_the_closed_loop(derived, tmp_path):
+    from symctl.report.figures import save
+    from symctl.report.output import _OURS
+
+    names = derived.figure_names()
+    assert names[names.index("closed_loop") + 1] == "delay_graph"
+    fig = derived.figure("delay_graph")
+    texts = _texts(fig)
+    assert texts[-2] == "Delay graph of spinal_transcortical; one step is 10 ms"
+    assert {"receptor", "cortex", "v2", "spinal cord"} <= set(texts)
+    written = save(fig, tmp_path, "delay_graph")
+    assert [p.name for p in written] == ["delay_graph.png", "delay_graph.svg"]
+    assert all(_OURS.fullmatch(p.name) for p in written)
+
+
+def test_report_circuits_mark_each_neuron_with_its_vertex_by_name(derived):
+    for circuit in ("general", "controllable", "observable"):
+        texts = _texts(derived.figure(f"circuit_{circuit}"))
+        where = [t.partition("$  ")[2] for t in texts if "$  (v" in t]
+        neurons = derived.circuits[circuit].circuit.n_neurons
+        assert len(where) == neurons, circuit  # the general one too (its numeric realization)
+        assert set(where) <= {"(v1: receptor)", "(v2: spinal)", "(v3: cortex)", "(v4: muscle)"}
+    ifp = _texts(derived.figure("circuit_ifp"))
+    assert "not compatible with the delay graph" in ifp[-2] and not any("$  (v" in t for t in ifp)
+
+
+def test_report_story_shows_the_graph_after_describing_it(derived):
+    from symctl.report.document import Graphic, Heading
+    from symctl.report.story import story
+
+    blocks = story(derived, derived.figure_names())
+    at = next(k for k, b in enumerate(blocks) if isinstance(b, Heading) and "Delay graph" in b.text)
+    graphic = next(
+        k for k, b in enumerate(blocks) if isinstance(b, Graphic) and b.name == "delay_graph"
+    )
+    assert graphic == at + 2  # the heading, the paragraph on the graph, then the figure
