@@ -71,7 +71,7 @@ from symctl.neural.simulate import (
     closed_loop_response,
     simulate_realization,
 )
-from symctl.realization.factorization import factor, section_symbols
+from symctl.realization.factorization import factor
 from symctl.realization.realization import Realization, controller_realization
 from symctl.realization.realizers import get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
@@ -319,7 +319,8 @@ def _gains(gains, kind: str) -> Gains:
             f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
         )
     s = gains.system
-    _scalar(s.n, s.m, "gains")
+    if kind == "ifp":
+        _scalar(s.n, s.m, "gains")
     if kind == "ifp" and s.T < 1:
         raise ParameterError(
             "gains: the IFP controller has a neuron only for a net delay T >= 1 "
@@ -333,7 +334,11 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
         return gains.system.plant
     p = as_plant(plant)
     same_dt(p, gains.system.plant.Ts, "plant", "the gains' plant")
-    _scalar(p.n, p.m, "plant")
+    g = gains.system.plant
+    if (p.n, p.m) != (g.n, g.m):
+        raise DimensionError(
+            f"plant: has {p.n} states and {p.m} input{'s' * (p.m != 1)}, the gains' plant {g.n} and {g.m}"
+        )
     return p
 
 
@@ -360,8 +365,8 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
     # the optimal controller with the gains as the exact rationals of their floats: every
     # realization below is then exact rational arithmetic (python-flint), never float SymPy
     G = controller_tf(s).subs(gains.substitutions(exact=True))
-    sides = [(1, s.sensor_delay), (3, s.actuator_delay)]
-    eps = tuple(e for side, d in sides if d for e in section_symbols(side, d)[0])
+    f0 = factor(G, s.sensor_delay, s.actuator_delay)  # the section symbols, per channel
+    eps = (*f0.sensor_eps, *f0.actuator_eps)
     for _ in range(count):
         drawn = {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
         # the factors built at the drawn values: exact and cheap (no substitution into G2)
@@ -383,12 +388,12 @@ def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
     """
     sys = circuit.as_linear_system(numeric=True)
     k = sys.A.shape[0]
-    _, out, _ = _run(
-        sys.A[:, :, None], sys.C[:, :, None], k, u[:, None] * sys.B[:, 0], states=False
-    )
-    out = out[0] + u[:, None] * sys.D[:, 0]
-    traces = dict(zip(sys.outputs[: circuit.n_neurons], out.T[: circuit.n_neurons], strict=True))
-    traces["output"] = out[:, -1]
+    u = u[:, None] if u.ndim == 1 else u  # (steps, inputs)
+    _, out, _ = _run(sys.A[:, :, None], sys.C[:, :, None], k, u @ sys.B.T, states=False)
+    out = out[0] + u @ sys.D.T
+    n = circuit.n_neurons
+    traces = dict(zip(sys.outputs[:n], out.T[:n], strict=True))
+    traces["output"] = out[:, n:] if out.shape[1] - n > 1 else out[:, -1]
     return traces
 
 
@@ -496,12 +501,13 @@ def circuit_firing(
     worst = 0.0
     for i, (params, R2, R, circuit) in enumerate(_realizations(kind, gains, count, gen)):
         res = simulate_realization(plant, R, disturbance, **window)
-        traces = _drive(circuit, res.delta_f[:, 0])
+        traces = _drive(circuit, res.delta_f if res.delta_f.shape[1] > 1 else res.delta_f[:, 0])
         dev = max(
             _deviation(res.delta_f, ref.delta_f),
             _deviation(res.delta_r, ref.delta_r),
-            _deviation(traces.pop("output"), ref.delta_r[:, 0]),
-        )
+            _deviation(traces.pop("output"), ref.delta_r if ref.delta_r.shape[1] > 1
+                       else ref.delta_r[:, 0]),
+        )  # fmt: skip
         if not dev <= rtol:
             raise ParameterError(
                 f"plant: realization {i} ({kind}) departs from the optimal controller's closed "

@@ -163,12 +163,12 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
 
     The same pipeline as :func:`derive_paper` (which is this function on the
     muscle preset, ``examples/muscle.toml``), on any
-    :class:`~symctl.model.modelfile.Model`. Every stage runs for a plant with one
-    state and one input; for a larger plant the controller is a matrix and the
-    stages after :math:`G(z)` (factorization, realizations, structures, circuits,
-    the atlas) wait for MIMO support: they are skipped, and the results say so
-    (``PaperResults.skipped``), while the plant, the delays, LQR, :math:`G(z)` and
-    its proof, the closed loop, the nonlinear check and the longest-delay search run.
+    :class:`~symctl.model.modelfile.Model`. A plant with several states or inputs
+    has a matrix controller: it is factored channel by channel
+    (:mod:`symctl.realization.channels`), realized in block canonical forms, and
+    its structures, circuits, compatibility and simulations follow; the IFP circuit
+    and the circuit atlas are built for one state and one input only, and the
+    results say so (``PaperResults.skipped``).
 
     Parameters
     ----------
@@ -236,7 +236,15 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
     kinds = spec.circuits
     skipped = None
     factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
-    if plant.n == 1 and plant.m == 1:
+    siso = plant.n == 1 and plant.m == 1
+    if not siso and "ifp" in kinds:  # the IFP structure is drawn for one state and one input
+        kinds = tuple(k for k in kinds if k != "ifp")
+        skipped = (
+            f"the plant has {_count(plant.n, 'state')} and {_count(plant.m, 'input')}, so "
+            f"G(z) is a {G.shape[0]} x {G.shape[1]} matrix: the IFP circuit and the circuit "
+            "atlas are built for one state and one input, the other circuits for any size"
+        )
+    if kinds:
         step("factorization")
         factors = factor(G_symbolic, ds, da)
         step("simulation")
@@ -247,9 +255,8 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             for k in kinds
         }
         step("realizations")
-        G2_symbolic = (
-            factors.abbreviated() if len(factors.poles) > EXPANDED_ZEROS_MAX else factors.G2
-        )
+        long = factors.is_siso and len(factors.poles) > EXPANDED_ZEROS_MAX
+        G2_symbolic = factors.abbreviated() if long else factors.G2
         names = [k for k in kinds if k != "ifp"]
         records = _realizations(
             factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}, names
@@ -270,6 +277,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             )
             for k in kinds
         }
+    if kinds and siso:
         step("atlas")
         found = atlas(2, workers=1)
         if (
@@ -283,14 +291,6 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
                 note = f"no atlas circuits for this controller: {exc}"
                 spec = dataclasses.replace(spec, notes=(*spec.notes, note))
-    else:
-        skipped = (
-            f"the plant has {_count(plant.n, 'state')} and {_count(plant.m, 'input')}, so "
-            "G(z) is a "
-            f"{G.shape[0]} x {G.shape[1]} matrix; factorization, realizations, structures, "
-            "circuits and the atlas handle one state and one input (MIMO support is the next "
-            "step of symctl)"
-        )
     step("closed loop")
     amplitude = spec.disturbance[1]
     unit_w = w / amplitude if amplitude else w
@@ -355,11 +355,11 @@ def _realizations(
     sections = (*factors.sensor_C, *factors.actuator_C)
     unit_C = {c: 1 for c in sections}
     G_exact = factors.G.subs(gains.substitutions(exact=True))
-    ds = len(factors.sensor_eps)
+    ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     out = {}
     for name in [k for k in ("controllable", "observable", "general") if k in (names or drawn)]:
         eps = {k: drawn[name][k] for k in factors.poles}
-        G2_num = factor(G_exact, ds, len(factors.actuator_eps), eps=list(eps.values()), C=1).G2
+        G2_num = factor(G_exact, ds, da, eps=list(eps.values()), C=1).G2
         realizer = REALIZERS[name]
         symbolic_options, numeric_options = {}, {}
         if realizer.takes_transform:

@@ -435,7 +435,10 @@ class PaperResults:
 
     def _factorization_json(self) -> dict:
         f = self.factors
-        N, coeffs = remainder(self.G2_symbolic)
+        if f.is_siso:
+            N, coeffs = remainder(self.G2_symbolic)
+        else:  # a matrix feed-through; the rewritten G2 is the SISO form
+            N, coeffs = f.N, []
         poles = ", ".join(map(str, f.poles))
         if self.abbreviated:  # the product forms: expanded, the zeros have 2^d terms
             sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
@@ -449,7 +452,8 @@ class PaperResults:
             "G1": G1,
             "G2": G2,
             "G3": G3,
-            "N": sp.sstr(N),
+            "N": _text_matrix(N) if isinstance(N, sp.MatrixBase) else sp.sstr(N),
+            "channels": list(f.channels),
             "remainder_coeffs": [sp.sstr(c) for c in coeffs],
             "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
             if self.abbreviated

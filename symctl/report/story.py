@@ -28,6 +28,7 @@ from symctl._util.display import descending_latex
 from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
+from symctl.report import mimo_story as MIMO
 from symctl.report import model_story as MS
 from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
 from symctl.report.shorthand import (
@@ -182,110 +183,117 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         put(MS.longest(res))
         return blocks
 
-    # 6. factorization
-    add(Heading("Factorization $G = G_3 G_2 G_1$"))
-    add(
-        Text(
-            "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
-            "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
-        )
-    )
-    den = descending_latex(f.G2.den)
-    zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
-    if not _fits("G_2(z)", zeros):
-        zeros = (
-            _zeros_tex(f.sensor_eps, product=True) + " " + _zeros_tex(f.actuator_eps, product=True)
-        )
-    f_N, f_coeffs, sigma_rows = _remainder(res)
-    c = _remainder_symbols(f_coeffs)
-    remainder = descending_latex(_remainder_poly(c))
-    named_den = []  # the row defining the denominator's name, where it is first used
-    if not (_fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
-            and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")):  # fmt: skip
-        same = f.G2.den_coeffs() == res.G_symbolic.den_coeffs()
-        named_den = [] if long_G and same else [("a(z)" if same else "d(z)", den)]
-        den = "a(z)" if same else "d(z)"
-    if not _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
-        n = len(c)
-        remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
-    put(
-        _eq(
-            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
-            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-            ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
-            *named_den,
-            *sigma_rows,
-            label="eq:factors",
-        )
-    )
-    add(
-        Text(
-            "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-            "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
-        )
-    )
-    put(
-        _eq(
-            ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
-            ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
-            *zip(map(L.to_latex, c), f_coeffs, strict=True),
-            label="eq:G2rewritten",
-        )
-    )
-    add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
-
-    # 7. realizations
-    add(Heading("Realizations of $G_2$"))
-    add(
-        Text(
-            "A realization $(F, H, M, N)$ of $G_2$ satisfies "
-            "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
-            "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
-            "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
-            f"from seed {res.seed})."
-        )
-    )
     names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
-    for name in [k for k in ("controllable", "observable") if k in res.realizations]:
-        rec = res.realizations[name]
-        add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
-        mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
-        if short:
-            names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
-        put(_eq(*mats, label=f"eq:{name}"))
-        where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
-        add(Text(_check_text(rec) + where))
-    if "general" in res.realizations:
-        rec = res.realizations["general"]
-        add(Heading("General realization", 2))
-        P = rec.P
+    if not f.is_siso:  # per-channel sections and block forms
+        put(MIMO.factorization(res))
+        put(MIMO.realizations(res))
+    else:
+        # 6. factorization
+        add(Heading("Factorization $G = G_3 G_2 G_1$"))
         add(
             Text(
-                "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-                "into another realization of the same $G_2$:"
+                "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
+                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
+            )
+        )
+        den = descending_latex(f.G2.den)
+        zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
+        if not _fits("G_2(z)", zeros):
+            zeros = (
+                _zeros_tex(f.sensor_eps, product=True)
+                + " "
+                + _zeros_tex(f.actuator_eps, product=True)
+            )
+        f_N, f_coeffs, sigma_rows = _remainder(res)
+        c = _remainder_symbols(f_coeffs)
+        remainder = descending_latex(_remainder_poly(c))
+        named_den = []  # the row defining the denominator's name, where it is first used
+        if not (_fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
+                and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")):  # fmt: skip
+            same = f.G2.den_coeffs() == res.G_symbolic.den_coeffs()
+            named_den = [] if long_G and same else [("a(z)" if same else "d(z)", den)]
+            den = "a(z)" if same else "d(z)"
+        if not _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
+            n = len(c)
+            remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
+        put(
+            _eq(
+                ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
+                ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
+                ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
+                *named_den,
+                *sigma_rows,
+                label="eq:factors",
+            )
+        )
+        add(
+            Text(
+                "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
+                "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
             )
         )
         put(
             _eq(
-                ("F", r"P^{-1} F_c P"),
-                ("H", r"P^{-1} H_c"),
-                ("M", r"M_c P"),
-                ("P", "P" if P is None else P if P.free_symbols else _num(P)),
-                label="eq:general",
+                ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
+                ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
+                *zip(map(L.to_latex, c), f_coeffs, strict=True),
+                label="eq:G2rewritten",
             )
         )
-        add(Text(_check_text(rec)))
-        values = ", ".join(
-            f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$" for k, v in sorted(rec.values.items())
-        )
-        add(Text(f"With the seeded numbers ({values}):"))
-        put(
-            _eq(
-                *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-                ("P", _num(rec.P_numeric)),
-                label="eq:general-numeric",
+        add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
+
+        # 7. realizations
+        add(Heading("Realizations of $G_2$"))
+        add(
+            Text(
+                "A realization $(F, H, M, N)$ of $G_2$ satisfies "
+                "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
+                "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
+                "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
+                f"from seed {res.seed})."
             )
         )
+        for name in [k for k in ("controllable", "observable") if k in res.realizations]:
+            rec = res.realizations[name]
+            add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
+            mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
+            if short:
+                names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
+            put(_eq(*mats, label=f"eq:{name}"))
+            where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
+            add(Text(_check_text(rec) + where))
+        if "general" in res.realizations:
+            rec = res.realizations["general"]
+            add(Heading("General realization", 2))
+            P = rec.P
+            add(
+                Text(
+                    "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
+                    "into another realization of the same $G_2$:"
+                )
+            )
+            put(
+                _eq(
+                    ("F", r"P^{-1} F_c P"),
+                    ("H", r"P^{-1} H_c"),
+                    ("M", r"M_c P"),
+                    ("P", "P" if P is None else P if P.free_symbols else _num(P)),
+                    label="eq:general",
+                )
+            )
+            add(Text(_check_text(rec)))
+            values = ", ".join(
+                f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$"
+                for k, v in sorted(rec.values.items())
+            )
+            add(Text(f"With the seeded numbers ({values}):"))
+            put(
+                _eq(
+                    *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
+                    ("P", _num(rec.P_numeric)),
+                    label="eq:general-numeric",
+                )
+            )
 
     # 8. delay graph and compatibility
     add(Heading("Delay graph and compatibility"))

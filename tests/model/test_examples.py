@@ -96,9 +96,16 @@ def test_a_linear_plant_is_stabilized_at_every_delay():
     assert res.stabilized == (True,) * 4 and not res.limited
 
 
-def test_the_antagonist_pair_runs_through_lqr_and_g_with_two_inputs(results):
+def test_the_antagonist_pair_runs_end_to_end_with_two_inputs(results):
     res = results["antagonist"]
     assert res.plant.m == 2 and res.G.shape == (2, 4) and res.proved
+    assert res.factors.channels == (4, 2) and bool(res.factors.verify())
+    assert set(res.circuits) == {"general", "controllable", "observable"}
+    for rec in res.realizations.values():
+        assert rec.check_symbolic.ok and rec.check_numeric.ok
+    for c in res.circuits.values():
+        assert c.compatibility.ok and c.firing.max_deviation < 1e-9
+    assert "IFP" in res.skipped
     assert res.spec.ode.equilibrium_method.startswith("exact")
     eq = res.to_json()["plant"]["equilibrium"]["states"]
     assert eq["theta"] == 0 and math.isclose(eq["f_flex"], eq["f_ext"])

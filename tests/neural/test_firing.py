@@ -119,7 +119,11 @@ def test_plot_returns_a_figure_with_one_panel_per_neuron_and_the_force(general):
         ({"seed": "x"}, SymctlTypeError, "seed:"),
         ({"rtol": 0}, ParameterError, "rtol:"),
         ({"plant": ([[0.5]], [[4.6]])}, ParameterError, "plant: realization 0"),
-        ({"plant": ([[0.5, 0], [0, 0.5]], [[1], [1]])}, DimensionError, "plant: firing patterns"),
+        (
+            {"plant": ([[0.5, 0], [0, 0.5]], [[1], [1]])},
+            DimensionError,
+            "plant: has 2 states and 1 input",
+        ),
         ({"plant": "muscle"}, SymctlTypeError, "plant: expected"),
         ({"kind": "ifp", "gains": NO_DELAY}, ParameterError, "gains: the IFP controller"),
     ],
