@@ -458,10 +458,14 @@ def _summary(res) -> None:
     out(f"  N = {f['N']};  G3 G2 G1 == G proved: {f['verified']}")
     for name, rec in f["realizations"].items():
         sym, num = rec["check"]["symbolic"], rec["check"]["numeric"]
+        size = len(rec["numeric"]["F"])
+        small = size <= 3
         shown = rec["symbolic"]["F"] if name != "general" else "P^-1 F_c P"
+        shown = shown if small or name == "general" else f"({size} x {size})"
+        numeric = _fmt(rec["numeric"]["F"]) if small else f"({size} x {size}, in results.json)"
         out(
             f"  {name:>12}: F = {shown}; F(seed {data['parameters']['seed']}) = "
-            f"{_fmt(rec['numeric']['F'])}; realizes G2, symbolic ({sym['method']}): {sym['ok']}, "
+            f"{numeric}; realizes G2, symbolic ({sym['method']}): {sym['ok']}, "
             f"numeric ({num['method']}): {num['ok']}"
         )
 
