@@ -56,6 +56,15 @@ from symctl.report.spec import EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
 __all__ = ["derive", "derive_paper"]
 
 
+MIMO_EXACT_MAX_ORDER = 12
+"""Largest symbolic MIMO realization (states) whose check is an exact proof (else randomized)."""
+
+MIMO_MAX_ORDER = 48
+"""Largest MIMO block realization (states) whose structures and circuits derive builds."""
+
+MIMO_GENERAL_MAX_ORDER = 16
+"""Largest MIMO block realization for which derive also builds the dense general one."""
+
 PAPER_ATLAS_MAX_ORDER = 2
 """Largest G2 order whose circuits for the paper's controller ``derive_paper`` lists."""
 
@@ -199,6 +208,35 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
     return _derive(spec, spec.ode, step)
 
 
+def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
+    """The circuits a MIMO controller gets, and the sentence saying what is left out and why.
+
+    The IFP circuit and the atlas are SISO; the block forms have ``deg d`` times
+    the number of columns (controllable) or rows (observable) states: beyond
+    :data:`MIMO_MAX_ORDER` no circuit is built, beyond :data:`MIMO_GENERAL_MAX_ORDER`
+    no dense general one (each bounds the work).
+    """
+    rows, cols = G.shape
+    order = G.order * max(rows, cols)
+    head = (
+        f"the plant has {_count(plant.n, 'state')} and {_count(plant.m, 'input')}, so "
+        f"G(z) is a {rows} x {cols} matrix"
+    )
+    if order > MIMO_MAX_ORDER:
+        return (), (
+            f"{head}, whose block realizations have up to {order} states: symctl builds the "
+            f"circuits of a MIMO controller up to {MIMO_MAX_ORDER} states"
+        )
+    left = ["the IFP circuit and the circuit atlas (built for one state and one input)"]
+    out = tuple(k for k in kinds if k != "ifp")
+    if order > MIMO_GENERAL_MAX_ORDER and "general" in out:
+        out = tuple(k for k in out if k != "general")
+        left.append(
+            f"the general realization (dense, {order} states; built up to {MIMO_GENERAL_MAX_ORDER})"
+        )
+    return out, f"{head}: left out are {' and '.join(left)}"
+
+
 def _count(k: int, noun: str) -> str:
     return f"{k} {noun}" + ("" if k == 1 else "s")
 
@@ -237,13 +275,8 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
     skipped = None
     factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
     siso = plant.n == 1 and plant.m == 1
-    if not siso and "ifp" in kinds:  # the IFP structure is drawn for one state and one input
-        kinds = tuple(k for k in kinds if k != "ifp")
-        skipped = (
-            f"the plant has {_count(plant.n, 'state')} and {_count(plant.m, 'input')}, so "
-            f"G(z) is a {G.shape[0]} x {G.shape[1]} matrix: the IFP circuit and the circuit "
-            "atlas are built for one state and one input, the other circuits for any size"
-        )
+    if not siso:
+        kinds, skipped = _mimo_kinds(kinds, G, plant)
     if kinds:
         step("factorization")
         factors = factor(G_symbolic, ds, da)
@@ -386,7 +419,17 @@ def _realizations(
 
 
 def _check(result, G2, transformed: bool):
-    """The exact check of a realizer's result; a transformed one through its proved base."""
+    """The check of a realizer's result; a transformed one through its proved base.
+
+    Exact (a proof) for a SISO G2 and for a MIMO realization of at most
+    :data:`MIMO_EXACT_MAX_ORDER` states with symbols; beyond, the symbolic Markov
+    parameters of a block form cost minutes (18 states: 2 min), so the randomized
+    test decides (exact arithmetic at random points, error below 2^-64: the
+    check's ``method`` and ``error_bound`` say so).
+    """
+    R = result.realization
+    big = not G2.is_siso and R.n > MIMO_EXACT_MAX_ORDER and bool(R.free_symbols)
+    method = "auto" if big else "exact"
     if transformed:  # P F = F0 P, ...: multiplies, never raises a dense F to powers
-        return check_realization(result.realization, G2, similar_to=(result.base, result.P))
-    return check_realization(result.realization, G2)
+        return check_realization(R, G2, method, similar_to=(result.base, result.P))
+    return check_realization(R, G2, method)
