@@ -51,7 +51,7 @@ from symctl._util.validate import MAX_MAGNITUDE, bounded_number, sampling_time, 
 from symctl.design.plant import DiscretePlant, Linearization, _tidy, discretize, linearize
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
-__all__ = ["MAX_MODEL_STATES", "ODEModel", "exact_value", "solve_equilibrium"]
+__all__ = ["MAX_MODEL_STATES", "ODEModel", "exact_value", "parameter_symbol", "solve_equilibrium"]
 
 MAX_MODEL_STATES = 20
 """Most states (and most inputs) of an :class:`ODEModel`: the Jacobians are symbolic."""
@@ -97,6 +97,20 @@ def exact_value(value, argname: str) -> sp.Expr:
         return sp.Integer(int(value))
     q = Fraction(repr(float(value)))  # the shortest decimal that reads back as this float
     return sp.Rational(q.numerator, q.denominator)
+
+
+def parameter_symbol(name: str, value) -> sp.Symbol:
+    """The symbol of a parameter: positive when its value is, else real.
+
+    So that closed forms simplify as they should for the values given
+    (:math:`e^{-T_s/\tau}` needs :math:`\tau > 0`); model files and
+    :meth:`ODEModel.from_muscle` name their parameters this way.
+
+    >>> from symctl.design.ode import parameter_symbol
+    >>> parameter_symbol("tau", 0.02).is_positive, parameter_symbol("c", -1).is_real
+    (True, True)
+    """
+    return sp.Symbol(name, positive=True) if value > 0 else sp.Symbol(name, real=True)
 
 
 def _symbols(values, argname: str) -> tuple[sp.Symbol, ...]:
@@ -279,8 +293,8 @@ def _numeric_equilibrium(f, states, values, guess, argname):
         starts = [np.asarray(guess, dtype=float)]
     else:
         gen = np.random.default_rng(0)
-        starts = [np.zeros(n)] + [gen.normal(scale=s, size=n) for s in (1, 10) for _ in range(6)]
-        starts = starts[:ROOT_STARTS]
+        scales = [1.0] * 6 + [10.0] * (ROOT_STARTS - 7)  # near the origin, then farther
+        starts = [np.zeros(n)] + [gen.normal(scale=s, size=n) for s in scales]
     found: list[np.ndarray] = []
     with np.errstate(all="ignore"):
         for x0 in starts:
@@ -326,8 +340,8 @@ class ODEModel(LatexMixin):
     rhs : sequence of sympy expressions
         :math:`f`, one entry per state, in the states, inputs and parameters.
     params : mapping of sympy.Symbol to number
-        Every parameter with its value (kept exact: floats become the
-        rationals of their binary values).
+        Every parameter with its value (kept exact: a float becomes the
+        rational of its shortest decimal, :func:`exact_value`).
     x_eq : sequence, optional
         The states at the operating point (expressions in the parameters, or
         numbers); solved with :func:`solve_equilibrium` when omitted.
@@ -509,15 +523,13 @@ class ODEModel(LatexMixin):
         (True, 43.8635)
         """
 
-        def sym(name, value):
-            return sp.Symbol(name, positive=True) if value > 0 else sp.Symbol(name, real=True)
-
-        tau, f_max, r_bar = (sym(k, getattr(muscle, k)) for k in ("tau", "f_max", "r_bar"))
-        f, r = S.f, S.r
+        names = ("tau", "f_max", "r_bar")
+        params = {parameter_symbol(k, getattr(muscle, k)): getattr(muscle, k) for k in names}
+        rename = dict(zip((S.tau, S.f_max, S.r_bar), params, strict=True))
         return cls(
-            [f], [r], [f_max / (tau * (1 + sp.exp(-r))) - f / tau],
-            {tau: muscle.tau, f_max: muscle.f_max, r_bar: muscle.r_bar},
-            [f_max / (1 + sp.exp(-r_bar))], [r_bar], muscle.Ts, name="muscle",
+            [S.f], [S.r], [muscle.ode.xreplace(rename)], params,
+            [muscle.f_bar_symbolic.xreplace(rename)], [rename[S.r_bar]], muscle.Ts,
+            name="muscle",
             units={"tau": "s", "f_max": "N", "r_bar": "spikes/s", "f": "N", "r": "spikes/s"},
         )  # fmt: skip
 

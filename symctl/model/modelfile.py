@@ -51,7 +51,7 @@ import sympy as sp
 from symctl._util.parse import parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
 from symctl.compatibility.delaygraph import DelayGraph
-from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value
+from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
@@ -272,8 +272,7 @@ class _Reader:
                 descr[key] = self.text(value.get("description", ""), f"{where}.description")
             else:
                 number = self.number(value, where)
-            sym = sp.Symbol(key, positive=True) if number > 0 else sp.Symbol(key, real=True)
-            params[sym] = number
+            params[parameter_symbol(key, number)] = number
         return params, units, descr
 
     def signals(self, d, section, allowed, *, required: bool) -> list[dict]:

@@ -43,7 +43,7 @@ def _names(fp, labels, which: str = "state") -> tuple[str, str, str]:
         )
     ref = fp.reference
     name = (ref.state_names if which == "state" else ref.input_names)[0]
-    raw = name[6:] if name.startswith("delta_") else name
+    raw = name.removeprefix("delta_")
     what, unit = labels.get(raw, ("", ""))
     return (f"{what} {raw}" if what else raw), unit or "units", what or raw
 

@@ -34,7 +34,7 @@ _MUSCLE = {"f": ("force", "N"), "r": ("rate", "spikes/s")}
 
 def _label(name: str, labels) -> tuple[str, str, str]:
     """(change label, absolute label, unit) of a signal ``delta_<x>`` (or ``<x>``)."""
-    raw = name[6:] if name.startswith("delta_") else name
+    raw = name.removeprefix("delta_")
     table = _MUSCLE if labels is None else labels
     what, unit = table.get(raw, ("", ""))
     if labels is None and raw == "r":
@@ -93,7 +93,7 @@ def response_plot(res: Response, states: bool | None = None, labels=None) -> Fig
         ax.axhline(0, color="black", lw=0.5)
         if len(group) == 1:
             _, bar, names, i, _ = group[0]
-            raw = names[i][6:] if names[i].startswith("delta_") else names[i]
+            raw = names[i].removeprefix("delta_")
             ax.set_ylabel(f"{change} [{unit}]" if labels is None else f"δ{raw} [{unit}]")
             absolute = absolute if labels is None else raw
             offset = float(bar[i])

@@ -15,10 +15,11 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-__all__ = ["model", "plant"]
+__all__ = ["float_rows", "model", "plant"]
 
 
-def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
+def float_rows(mat: sp.MatrixBase) -> list[list[float]]:
+    """A matrix as nested lists of floats (rows), for JSON."""
     return np.array(mat.evalf(), dtype=float).tolist()
 
 
@@ -31,8 +32,8 @@ def plant(res) -> dict:
     return {
         "f_bar": x_eq[0] if x_eq else None,
         "r_bar": u_eq[0] if u_eq else None,
-        "A": _matrix(res.plant.A),
-        "B": _matrix(res.plant.B),
+        "A": float_rows(res.plant.A),
+        "B": float_rows(res.plant.B),
         "Ts": spec.Ts,
         "symbolic": {
             "A": sp.sstr(sym.A[0, 0]) if sym is not None else None,

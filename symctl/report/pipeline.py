@@ -292,7 +292,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
         G2_symbolic = factors.abbreviated() if long else factors.G2
         names = [k for k in kinds if k != "ifp"]
         records = _realizations(
-            factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}, names
+            factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}
         )
         step("compatibility")
         structures = {"ifp": ifp_structure(system.T)} if "ifp" in kinds else {}
@@ -369,7 +369,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
 
 
 def _realizations(
-    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict], names=None
+    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict]
 ) -> dict[str, RealizationRecord]:
     """The paper's three realizations of G2: controllable and observable canonical, general.
 
@@ -390,7 +390,7 @@ def _realizations(
     G_exact = factors.G.subs(gains.substitutions(exact=True))
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     out = {}
-    for name in [k for k in ("controllable", "observable", "general") if k in (names or drawn)]:
+    for name in [k for k in ("controllable", "observable", "general") if k in drawn]:
         eps = {k: drawn[name][k] for k in factors.poles}
         G2_num = factor(G_exact, ds, da, eps=list(eps.values()), C=1).G2
         realizer = REALIZERS[name]

@@ -656,8 +656,7 @@ def _finite(values) -> list[float | None]:
     return [None if not np.isfinite(v) else float(v) for v in values]
 
 
-def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
-    return np.array(mat.evalf(), dtype=float).tolist()
+_matrix = model_json.float_rows
 
 
 def _delays(E: np.ndarray) -> list[list[int | None]]:
