@@ -35,8 +35,11 @@ def rel_err(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
 
 
-def random_structure(rng, max_signals: int = 7) -> Structure:
-    """A random well-posed SISO structure with up to ``max_signals`` signals besides u."""
+def random_structure(rng, max_signals: int = 7, max_steps: int = 1) -> Structure:
+    """A random well-posed SISO structure with up to ``max_signals`` signals besides u.
+
+    Delay blocks delay by 1 .. ``max_steps`` steps.
+    """
     while True:
         k = int(rng.integers(1, max_signals))
         names = ["u"] + [f"s{i}" for i in range(1, k + 1)]
@@ -51,7 +54,10 @@ def random_structure(rng, max_signals: int = 7) -> Structure:
                 ins = (str(rng.choice(pool)),)
             else:
                 ins = tuple(dict.fromkeys(str(rng.choice(pool)) for _ in range(rng.integers(4))))
-            blocks[names[i]] = Block(kinds[i], ins, 2 if kinds[i] == "gain" else None)
+            steps = 1
+            if kinds[i] == "delay" and max_steps > 1:
+                steps = int(rng.integers(1, max_steps + 1))
+            blocks[names[i]] = Block(kinds[i], ins, 2 if kinds[i] == "gain" else None, "", steps)
         out = str(rng.choice(names[1:])) if rng.random() > 0.03 else "u"
         try:
             return Structure(blocks, "u", out)

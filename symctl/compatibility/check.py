@@ -158,6 +158,23 @@ def _result(structure, graph, place, method, stats, problem=None, core=None) -> 
     return CompatibilityResult(False, None, reason, method, structure, graph, paths, stats)
 
 
+def witness_result(structure, graph, vertex_of, method: str) -> CompatibilityResult:
+    """The result for a constructed assignment, after checking it by the definition's words.
+
+    Raises
+    ------
+    RuntimeError
+        The assignment is not compatible (a construction that contradicts its theorem).
+    """
+    assignment = DelayAssignment(structure, graph, vertex_of)
+    bad = assignment.violations()
+    if bad:  # pragma: no cover - the constructions' theorems
+        raise RuntimeError(f"the constructed assignment is not compatible: {bad[:3]}")
+    return CompatibilityResult(
+        True, assignment, _witness_text(assignment), method, structure, graph, (), {}
+    )
+
+
 def _check_args(structure, graph):
     if not isinstance(structure, Structure):
         raise SymctlTypeError(f"structure: expected a Structure, got {type(structure).__name__}")

@@ -1,35 +1,116 @@
-r"""Compatibility of a controller (a transfer function) with a delay graph: the chain theorem.
+r"""Compatibility of a controller (a transfer function) with a delay graph: theorems and constructions.
 
 A controller is compatible with a delay graph when one of its realizations has
 a compatible structure (the paper's section "Structure, delay graphs, and
-compatibility"). :func:`controller_compatibility` decides it for chain graphs by
-a theorem (proved in its docstring) and a construction checked by
-:func:`symctl.check_compatibility`; for other graphs it searches the family of
-structures symctl builds and says so.
+compatibility"). :func:`controller_compatibility` decides it for every SISO
+controller and every delay graph by the theorem below, and builds a compatible
+structure when there is one (:mod:`symctl.compatibility.construction`),
+checked by the definition's words.
+
+Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots`
+and relative degree :math:`r` (the first :math:`j` with :math:`h_j \ne 0`);
+a structure's wires carry at most :math:`W` steps each
+(``max_wire_delay``; :math:`W = \infty` by default, :math:`W = 1` is the
+paper's unit delays); :math:`L_W` is the delay of the fastest path from the
+sensor :math:`v_1` to the actuator :math:`v_N` over edges of at most
+:math:`W` steps (:math:`\infty` if there is none; :math:`L_\infty = E_{1N}`).
+
+**Theorem 1.** Some structure, with wires of at most :math:`W` steps, of some
+realization of :math:`G` is compatible with the delay graph iff
+:math:`r \ge L_W`.
+
+*Proof.* Necessity. Unroll the structure in time: :math:`h_j` is the sum,
+over the walks of the structure from its input to its output whose wires
+carry :math:`j` steps in all, of the products of their gains. As
+:math:`h_r \ne 0`, some walk :math:`s_0 \to \dots \to s_k` has total delay
+:math:`r`. In a compatible assignment every wire :math:`a \xrightarrow{w} b`
+has :math:`E_{v(a) v(b)} \le w \le W` (the reduction to one constraint per
+wire, :mod:`symctl.compatibility.csp`). A fastest route from :math:`v(a)` to
+:math:`v(b)` has delay :math:`E_{v(a) v(b)}`, so each of its edges has at most
+that many steps, at most :math:`W`. Joining these routes gives a walk from
+:math:`v_1` (the input's vertex) to :math:`v_N` (the output's) over edges of
+at most :math:`W` steps, of delay :math:`\sum E_{v(s_{l-1}) v(s_l)} \le
+\sum w_l = r`; hence :math:`L_W \le r`.
+
+Sufficiency. Take a fastest such path :math:`q_0 = v_1 \to \dots \to q_m = v_N`
+with edge delays :math:`e_1, \dots, e_m` (:math:`\sum e_l = L_W`). Factor
+:math:`G = G_3 G_2 G_1` with one first-order section
+:math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps: a branch
+structure whose self-loop has a unit delay and whose input branch an axon of
+:math:`e \le W` steps, the first half of the sections in :math:`G_1`, the
+rest in :math:`G_3`. :math:`G_1 G_3` has relative degree :math:`L_W \le r`, so
+:math:`G_2 = G / (G_3 G_1)` is proper and any realization of it has unit
+delays. Put each section's input gain at the vertex where its edge starts and
+the rest of it where the edge ends, and all of :math:`G_2` at the vertex after
+the last sensor-side section. Every wire then either stays at one vertex
+(:math:`E = 0`), crosses zero-delay edges with delay 0, or crosses one edge
+of :math:`e` steps with delay :math:`e`; on the path read as a chain every
+wire constraint holds, and on the whole graph too, since :math:`E` between
+two vertices of the path is at most their distance along it. (The exact chain
+solver finds such a placement; symctl checks the result by the definition's
+words, and the constructed structure realizes :math:`G` by construction.)
+:math:`G = 0` is compatible with any graph. :math:`\square`
+
+*Corollary (chain graphs).* With unit wires (:math:`W = 1`) a chain with steps
+:math:`d_k` and total :math:`D` has :math:`L_1 = D` when every
+:math:`d_k \le 1` and :math:`L_1 = \infty` otherwise: compatible iff
+:math:`r \ge D` and every :math:`d_k \le 1`, the theorem symctl proved before
+multi-step wires. With axons (:math:`W = \infty`) it is :math:`r \ge D`: a
+10 ms axon sampled at 5 ms is crossed by one wire of delay 2.
+
+**Theorem 2 (parallel decomposition).** Let :math:`P_1, \dots, P_k` be paths
+from :math:`v_1` to :math:`v_N` over edges of at most :math:`W` steps, of
+delays :math:`L_1 < \dots < L_k`, and :math:`r \ge L_1`. Then
+:math:`G = G_1 + \dots + G_k` with
+:math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` (:math:`i < k`) and
+:math:`G_k = \sum_{j \ge L_k} h_j z^{-j}`; each :math:`G_i` has relative
+degree at least :math:`L_i`, is factored along :math:`P_i` as in Theorem 1,
+and the parallel connection (the input shared at :math:`v_1`, the parts'
+outputs summed by an adder at :math:`v_N`) is compatible: each part's wires
+satisfy their constraints as in Theorem 1 and the adder's wires stay at
+:math:`v_N`. A part with no Markov parameter is left out. :math:`\square`
+
+This is how a short spinal loop and a long transcortical loop share one
+controller: the spinal part carries the first Markov parameters, the cortical
+part the rest.
 
 >>> from symctl import DelayGraph, controller_compatibility, controller_tf
 >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
 >>> r.ok, r.scope
 (True, 'all realizations')
+>>> controller_compatibility(controller_tf(2), DelayGraph.chain([2])).ok
+True
+>>> controller_compatibility(controller_tf(2), DelayGraph.chain([2]), max_wire_delay=1).ok
+False
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-import sympy as sp
-
 from symctl._util.display import LatexMixin
-from symctl.compatibility.check import CompatibilityResult, check_compatibility
+from symctl._util.validate import bounded_int
+from symctl.compatibility.block import MAX_WIRE_STEPS
+from symctl.compatibility.check import CompatibilityResult, witness_result
+from symctl.compatibility.construction import (
+    PathPart,
+    along_path,
+    fastest_path,
+    markov_split,
+    path_delays,
+    slowest_path,
+)
 from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.realization.factorization import factor
-from symctl.realization.realization import controller_realization
-from symctl.realization.realizers import REALIZERS, get_realizer
+from symctl.realization.realizers import get_realizer
 
-__all__ = ["ControllerCompatibility", "controller_compatibility"]
+__all__ = ["CONSTRUCTIONS", "ControllerCompatibility", "controller_compatibility"]
+
+CONSTRUCTIONS = ("path", "parallel")
+"""The constructions of :func:`controller_compatibility` (Theorems 1 and 2)."""
 
 
 @dataclass(frozen=True)
@@ -42,28 +123,33 @@ class ControllerCompatibility(LatexMixin):
     Parameters
     ----------
     ok : bool
-        Whether a compatible realization exists (within ``scope``).
+        Whether a compatible realization exists.
     realization : Realization or None
-        The whole controller's realization (series of the parts) when found.
+        A realization of the controller whose structure is ``structure``: the
+        series realization of the parts when every wire has one step, else the
+        structure's state-space form (one state per delay step).
     structure : Structure or None
-        Its compatible structure (the series of the parts' structures).
+        The constructed compatible structure.
     check : CompatibilityResult or None
         The structure-level result with the witness assignment.
     reason : str
         The argument: the theorem's condition that fails, or the construction.
     scope : str
-        ``"all realizations"`` when the verdict is a theorem about every
-        realization, ``"family"`` when it only covers the structures searched.
+        ``"all realizations"``: the verdict is a theorem about every
+        realization (``"family"`` would mark a verdict that covers only the
+        structures searched; the theorems leave none for SISO controllers).
     method : str
-        ``"theorem (chain graphs)"``, ``"necessary condition"``, or the search.
+        The theorem and construction that answered.
+    parts : tuple of PathPart
+        The parts of the construction, each a transfer function along a path.
 
     Examples
     --------
     >>> from symctl import DelayGraph, controller_compatibility, controller_tf
     >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
-    >>> bool(r), r.scope, bool(r.check)
-    (True, 'all realizations', True)
-    >>> no = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    >>> bool(r), r.scope, bool(r.check), r.parts[0].path
+    (True, 'all realizations', True, (1, 2, 3))
+    >>> no = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 2]))
     >>> bool(no), no.realization is None
     (False, True)
     """
@@ -75,9 +161,13 @@ class ControllerCompatibility(LatexMixin):
     reason: str
     scope: str
     method: str
+    parts: tuple[PathPart, ...] = ()
 
     def __bool__(self) -> bool:
         return self.ok
+
+    def __hash__(self) -> int:
+        return hash((self.ok, self.structure, self.reason, self.scope, self.method))
 
     def latex(self) -> str:
         return (
@@ -90,55 +180,24 @@ class ControllerCompatibility(LatexMixin):
         )
 
 
-def _build(G: DiscreteTF, ds: int, da: int, base: str, delays: str):
-    f = factor(G, ds, da)
-    realizer = get_realizer(base, "base", where=lambda r: r.keeps_symbols)
-    n = f.G2.order  # a transform is dense and fixed: I + 1 1^T (det n + 1)
-    options = {"P": sp.eye(n) + sp.ones(n, n)} if realizer.takes_transform else {}
-    R2 = realizer(f.G2, **options).realization
-    return controller_realization(f, R2), Structure.from_factorization(f, R2, delays)
-
-
 def controller_compatibility(
-    G, graph: DelayGraph, *, base: str = "controllable", delays: str = "branch"
+    G,
+    graph: DelayGraph,
+    *,
+    base: str = "controllable",
+    delays: str = "branch",
+    max_wire_delay: int | None = None,
+    construction: str = "path",
+    paths=None,
 ) -> ControllerCompatibility:
     r"""Decide whether a SISO controller :math:`G` has a realization compatible with a delay graph.
 
-    **Theorem (chain graphs).** Let the chain :math:`v_1 \to \dots \to v_N` have
-    step delays :math:`d_1, \dots, d_{N-1}` and total :math:`D = \sum_k d_k`,
-    and let :math:`G \ne 0` be proper with relative degree :math:`r`. Some
-    structure of some realization of :math:`G` is compatible with the chain iff
-    :math:`r \ge D` and every :math:`d_k \le 1`.
-
-    *Proof.* Necessity: in a compatible assignment every wire
-    :math:`a \xrightarrow{w} b` has :math:`E_{v(a) v(b)} \le w \le 1` (wires of
-    a realization's structure carry at most one unit delay), so :math:`v(a)`
-    comes no later than :math:`v(b)` on the chain and a wire that crosses step
-    :math:`k` needs :math:`d_k \le 1`. As :math:`G \ne 0` some path runs from the
-    input (at :math:`v_1`) to the output (at :math:`v_N`); it crosses every step,
-    and the delays of its wires add up to at least :math:`D`. Every path from
-    input to output thus has at least :math:`D` delays, so
-    :math:`y(t)` depends on :math:`u(t-D), u(t-D-1), \dots` only: the first
-    :math:`D` Markov parameters vanish and :math:`r \ge D`. Sufficiency: factor
-    :math:`G = G_3 G_2 G_1` with one first-order section
-    :math:`C/(z - \epsilon)` per unit step (:func:`symctl.factor`,
-    :math:`G_2` proper as :math:`r \ge D`), give the sections the branch
-    structure and :math:`G_2` any realization; put each section's output at the
-    vertex after its step and :math:`G_2` at the vertex where the sensor-side
-    steps end, as the paper does for :math:`T = 2`. The checker confirms the
-    constructed structure with a witness. :math:`G = 0` is always compatible.
-    :math:`\square`
-
-    A chain step of 2 or more delays can therefore never be crossed by a
-    structure built from unit delays (a signal must sit at a vertex after every
-    unit delay); split such a step with relay vertices if that is what it means.
-
-    **Other graphs.** The necessary condition :math:`r \ge E_{1N}` holds for any
-    graph (same argument). Beyond it, symctl searches the structures it can
-    build: every split :math:`d_s + d_a \le r` into first-order sections, with
-    :math:`G_2` in controllable, observable or general (dense) form and branch or
-    state delays. A negative answer then covers **only that family**
-    (``scope == "family"``); another realization may still be compatible.
+    Exact for every delay graph (Theorem 1 of the module text): compatible iff
+    the relative degree of :math:`G` is at least the delay of the fastest path
+    from :math:`v_1` to :math:`v_N` over edges of at most ``max_wire_delay``
+    steps. When compatible, a structure is constructed along a path
+    (``construction="path"``) or along several paths at once
+    (``construction="parallel"``, Theorem 2), and checked.
 
     Parameters
     ----------
@@ -146,15 +205,27 @@ def controller_compatibility(
         The controller, SISO and proper.
     graph : DelayGraph
     base : {"controllable", "observable", "general"}
-        The realization of :math:`G_2` in the chain construction.
+        The realization of :math:`G_2` in the construction.
     delays : {"branch", "state"}
-        The structure of :math:`G_2` in the chain construction.
+        The structure of :math:`G_2` in the construction.
+    max_wire_delay : int, optional
+        The most steps one wire may carry (default: no bound, axons of any
+        length). ``1`` gives the paper's unit delays: a chain step of two or
+        more delays can then never be crossed.
+    construction : {"path", "parallel"}
+        ``"path"``: :math:`G = G_3 G_2 G_1` along the fastest path (or along
+        ``paths[0]``). ``"parallel"``: :math:`G` split into parts by its Markov
+        parameters, one per path, each factored along its own path (by
+        default the fastest and the slowest simple path).
+    paths : sequence of sequences of int, optional
+        The paths to build along, as vertex lists from 1 (e.g. ``[1, 2, 4]``);
+        each must follow edges of the graph from :math:`v_1` to :math:`v_N`.
 
     Returns
     -------
     ControllerCompatibility
-        Truthy when compatible, with the realization, its structure and the
-        witness, or the reason and its ``scope``.
+        Truthy when compatible, with the realization, its structure, the
+        witness and the parts, or the reason.
 
     Raises
     ------
@@ -163,7 +234,9 @@ def controller_compatibility(
     DimensionError
         ``G`` is not SISO.
     ParameterError
-        ``G`` is improper, or an unknown ``base`` or ``delays``.
+        ``G`` improper; an unknown ``base``, ``delays`` or ``construction``; a
+        ``max_wire_delay`` that is not a positive integer; a path that is not
+        a path of the graph, or whose delay exceeds the relative degree.
 
     Examples
     --------
@@ -172,7 +245,11 @@ def controller_compatibility(
     >>> r.ok, r.scope
     (False, 'all realizations')
     >>> print(r.reason)  # doctest: +ELLIPSIS
-    Not compatible: the relative degree 2 of G is below the chain's total delay 3 ...
+    Not compatible: the relative degree 2 of G is below 3, the delay of the fastest path ...
+    >>> two = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
+    >>> p = controller_compatibility(controller_tf(2), two, construction="parallel")
+    >>> p.ok, [part.path for part in p.parts]
+    (True, [(1, 2, 4), (1, 3, 2, 4)])
     """
     tf = DiscreteTF.from_expr(G)
     if not isinstance(graph, DelayGraph):
@@ -184,84 +261,127 @@ def controller_compatibility(
     get_realizer(base, "base", where=lambda r: r.keeps_symbols)
     if delays not in ("branch", "state"):
         raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
+    if construction not in CONSTRUCTIONS:
+        raise ParameterError(f"construction: must be one of {CONSTRUCTIONS}, got {construction!r}")
+    W = None
+    if max_wire_delay is not None:
+        W = bounded_int(max_wire_delay, "max_wire_delay", 1, MAX_WIRE_STEPS)
     r = tf.relative_degree
     if r < 0:
         raise ParameterError("G: improper (numerator degree above denominator degree)")
     zero = tf.num == 0
-    total = graph.E[0, graph.n - 1]
-    steps = graph.chain_delays
-    theorem = "theorem (chain graphs)" if steps is not None else "necessary condition"
-    if not zero and r < total:
-        return ControllerCompatibility(
-            False,
-            None,
-            None,
-            None,
-            f"Not compatible: the relative degree {r} of G is below the "
-            f"{'chain' if steps is not None else 'graph'}'s total delay {int(total)} = E[1,{graph.n}]; "
-            "every path from the input to the output of any compatible structure has at least "
-            "that many delays, so the first Markov parameters of G would vanish.",
-            "all realizations",
+    routes = _routes(graph, W, construction, paths)
+    theorem = "theorem 1" + (" (chain graphs)" if graph.is_chain else "")
+    bound = "" if W is None else f" over edges of at most {W} step{'s' * (W != 1)}"
+    if routes is None and not zero:
+        return _no(
+            f"Not compatible: no path from v1 to v{graph.n} uses only edges of at most {W} "
+            f"step{'s' * (W != 1)}; every wire of the structures asked for carries at most {W}, "
+            "so no signal path from the input to the output can cross the graph.",
             theorem,
         )
-    if steps is not None and not zero and max(steps) > 1:
-        k = next(i for i, d in enumerate(steps) if d > 1)
-        return ControllerCompatibility(
-            False,
-            None,
-            None,
-            None,
-            f"Not compatible: step {k + 1} of the chain has delay {steps[k]} > 1; a wire of a "
-            "realization's structure carries at most one unit delay, so no signal path from the "
-            "input to the output can cross that step.",
-            "all realizations",
+    if not zero and r < routes[0][0]:
+        which = "the fastest path" if paths is None else "the fastest path given"
+        return _no(
+            f"Not compatible: the relative degree {r} of G is below {routes[0][0]}, the delay of "
+            f"{which} from v1 to v{graph.n}{bound}; every path from the input to the output of "
+            "a compatible structure has at least that many delays, so the first Markov "
+            "parameters of G would vanish.",
             theorem,
         )
-    if steps is not None:
-        ds = int(total) // 2
-        da = int(total) - ds
-        realization, structure = _build(tf, ds, da, base, delays)
-        check = check_compatibility(structure, graph)
-        if not check.ok:  # pragma: no cover - contradicts the theorem
-            raise RuntimeError("the chain construction is not compatible:\n" + check.reason)
+    if zero:
+        S = Structure({"u": ("input",), "y": ("sum", ())}, "u", "y")
+        check = witness_result(S, graph, {"u": 1, "y": graph.n}, "construction (G = 0)")
         return ControllerCompatibility(
-            True,
-            realization,
-            structure,
-            check,
-            f"Compatible (theorem for chain graphs): G = G3 G2 G1 with {ds} sensor-side and {da} "
-            f"actuator-side first-order sections, G2 {base} with {delays} delays. " + check.reason,
-            "all realizations",
-            "theorem (chain graphs) + construction",
-        )
-    tried = 0
-    for ds in range(r + 1 if not zero else 1):
-        for da in range(r - ds + 1 if not zero else 1):
-            for b in (k for k, r in REALIZERS.items() if r.keeps_symbols):
-                for d in ("branch", "state"):
-                    realization, structure = _build(tf, ds, da, b, d)
-                    check = check_compatibility(structure, graph)
-                    tried += 1
-                    if check.ok:
-                        return ControllerCompatibility(
-                            True,
-                            realization,
-                            structure,
-                            check,
-                            f"Compatible: G = G3 G2 G1 with {ds} sensor-side and {da} actuator-side "
-                            f"sections, G2 {b} with {d} delays. " + check.reason,
-                            "all realizations",
-                            f"family search ({tried} structures)",
-                        )
-    return ControllerCompatibility(
-        False,
-        None,
-        None,
-        None,
-        f"None of the {tried} structures symctl builds for G (first-order sections d_s + d_a <= "
-        f"{r}, G2 controllable / observable / general, branch / state delays) is compatible. "
-        "This answer covers only that family: another realization or structure of G may still "
-        "be compatible.",
-        "family",
-        f"family search ({tried} structures)",
+            True, structure_realization(S), S, check, "Compatible: G = 0 has no signal path. "
+            + check.reason, "all realizations", "G = 0",
+        )  # fmt: skip
+    pieces = [tf.expr]
+    if construction == "parallel" and len(routes) > 1:
+        pieces = markov_split(tf, [L for L, _, _ in routes])
+    kept = [(piece, route) for piece, route in zip(pieces, routes, strict=True) if piece != 0]
+    labels = [f"P{k + 1}" for k in range(len(kept))] if len(kept) > 1 else [None]
+    parts = tuple(
+        along_path(piece, route[1], route[2], base=base, structure=delays) for piece, route in kept
     )
+    if len(parts) == 1:
+        S, vertex_of = parts[0].structure, dict(parts[0].vertex_of)
+    else:
+        S = Structure.parallel(*(p.structure for p in parts), names=labels)
+        vertex_of = _parallel_places(S, parts, labels, graph.n)
+    R = parts[0].realization if len(parts) == 1 and parts[0].realization is not None else None
+    method = f"{theorem} + {'parallel decomposition' if len(parts) > 1 else 'path construction'}"
+    check = witness_result(S, graph, vertex_of, method)
+    return ControllerCompatibility(
+        True,
+        R if R is not None else structure_realization(S),
+        S,
+        check,
+        f"Compatible ({theorem}): " + _describe(parts) + ". " + check.reason,
+        "all realizations",
+        method,
+        parts,
+    )
+
+
+def _no(reason: str, theorem: str) -> ControllerCompatibility:
+    return ControllerCompatibility(False, None, None, None, reason, "all realizations", theorem)
+
+
+def _routes(graph: DelayGraph, W, construction: str, paths):
+    """The paths to build along, fastest first, as ``(delay, vertices, edge delays)``."""
+    if paths is not None:
+        if isinstance(paths, str) or not hasattr(paths, "__iter__"):
+            raise ParameterError("paths: expected a sequence of vertex lists, e.g. [[1, 2, 3]]")
+        routes = []
+        for k, path in enumerate(paths):
+            vertices, steps = path_delays(graph, path, W, f"paths[{k}]")
+            routes.append((sum(steps), vertices, steps))
+        if not routes:
+            raise ParameterError("paths: give at least one path")
+        if construction == "path" and len(routes) > 1:
+            raise ParameterError("paths: the path construction takes one path; use 'parallel'")
+        routes.sort()
+        if len({L for L, _, _ in routes}) != len(routes):
+            raise ParameterError(
+                "paths: the paths of a parallel decomposition need distinct delays, got "
+                f"{[L for L, _, _ in routes]}"
+            )
+        return routes
+    fast = fastest_path(graph, W)
+    if fast is None:
+        return None
+    if construction == "path":
+        return [fast]
+    slow = slowest_path(graph, W)
+    return [fast] if slow is None or slow[0] == fast[0] else [fast, slow]
+
+
+def _parallel_places(S: Structure, parts, labels, n: int) -> dict[str, int]:
+    place = {}
+    for part, label in zip(parts, labels, strict=True):
+        inner = part.structure
+        for name, v in part.vertex_of.items():
+            if name in inner.inputs:
+                continue
+            place[f"{label}.{name}"] = v
+    for name in S.inputs:
+        place[name] = 1
+    for name in S.outputs:
+        place[name] = n
+    return {name: place[name] for name in S.blocks}
+
+
+def _describe(parts) -> str:
+    out = []
+    for k, part in enumerate(parts):
+        route = " -> ".join(f"v{v}" for v in part.path)
+        axons = [e for e in part.delays if e > 1]
+        note = f", axons of {', '.join(map(str, axons))} steps" if axons else ""
+        crossing = sum(1 for e in part.delays if e > 0)
+        what = "G" if len(parts) == 1 else f"part {k + 1} (Markov parameters from {part.delay})"
+        out.append(
+            f"{what} = G3 G2 G1 along {route} (delay {part.delay}{note}; "
+            f"{crossing // 2} sensor-side and {crossing - crossing // 2} actuator-side sections)"
+        )
+    return "; ".join(out)

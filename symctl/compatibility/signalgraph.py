@@ -6,7 +6,8 @@ and per-signal successor / predecessor lists. The searches every stage needs
 live here, once:
 
 * :func:`zero_one_bfs`, the fewest delays from some signals to every signal
-  (0-1 breadth-first search: a wire costs its delay, 0 or 1); the delay
+  (a wire costs its delay: 0-1 breadth-first search when every wire carries
+  0 or 1 steps, Dijkstra's algorithm when some carry more); the delay
   assignment matrix :math:`\tilde E`, the compatibility checkers and
   :meth:`Structure.delay_distances` all call it;
 * :func:`back_edges`, the wires that close a cycle in a depth-first search from
@@ -27,6 +28,7 @@ The module is pure Python (no SymPy, NumPy or networkx).
 
 from __future__ import annotations
 
+import heapq
 from collections import deque
 from collections.abc import Hashable, Iterable, Iterator, Mapping, Sequence
 from types import MappingProxyType
@@ -89,8 +91,17 @@ def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
     """Fewest delays from any of ``sources`` to every signal (None if unreachable).
 
     ``allowed`` (a sequence of booleans, one per signal) restricts the paths to
-    the allowed signals.
+    the allowed signals. Wires of several steps (axons) are searched by
+    Dijkstra's algorithm, the rest by the 0-1 breadth-first search.
+
+    >>> from symctl.compatibility.signalgraph import SignalGraph, zero_one_bfs
+    >>> g = SignalGraph.from_wires("abc", ("input", "delay", "delay"),
+    ...                            [(0, 1, 3), (0, 2, 1), (2, 1, 1)], inputs=(0,), outputs=(1,))
+    >>> zero_one_bfs(g, [0])
+    [0, 2, 1]
     """
+    if any(w > 1 for _, _, w in graph.wires):
+        return _dijkstra(graph, sources, allowed)
     dist: list[int | None] = [None] * len(graph.names)
     queue = deque()
     for s in sources:
@@ -113,6 +124,27 @@ def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
                     queue.append(b)
                 else:
                     queue.appendleft(b)
+    return dist
+
+
+def _dijkstra(graph: SignalGraph, sources, allowed) -> list[int | None]:
+    dist: list[int | None] = [None] * len(graph.names)
+    heap = []
+    for s in sources:
+        dist[s] = 0
+        heap.append((0, s))
+    heapq.heapify(heap)
+    while heap:
+        da, a = heapq.heappop(heap)
+        if da != dist[a]:
+            continue
+        for b, w, _ in graph.succ[a]:
+            if allowed is not None and not allowed[b]:
+                continue
+            nd = da + w
+            if dist[b] is None or nd < dist[b]:
+                dist[b] = nd
+                heapq.heappush(heap, (nd, b))
     return dist
 
 

@@ -1,4 +1,4 @@
-r"""Controller structures: signal-flow graphs of scalar signals, gains, adders and unit delays.
+r"""Controller structures: signal-flow graphs of scalar signals, gains, adders and delays.
 
 The paper's definition (section "Structure, delay graphs, and compatibility"):
 the *structure* of a controller is the block diagram of one realization, made
@@ -17,9 +17,12 @@ that makes it:
 ``"delay"``
     its one input delayed by one step, :math:`a(t-1)` (a broken line in the
     paper's figures; the delayed signal is a signal, e.g. the paper's
-    :math:`\gamma`).
+    :math:`\gamma`); with ``steps=k`` (:attr:`Block.steps`) by :math:`k`
+    steps, :math:`a(t-k)`: an axon whose conduction takes :math:`k` steps, one
+    block :math:`z^{-k}` (a 20 ms axon sampled at 5 ms is one wire of delay 4,
+    not four relay vertices).
 
-A wire ``a -> b`` has delay 1 when ``b`` is a delay block and 0 otherwise.
+A wire ``a -> b`` has delay ``k`` when ``b`` is a delay block of ``k`` steps and 0 otherwise.
 Loops without a delay (algebraic loops) are refused.
 
 Two conventions keep the diagrams as the paper draws them: a gain equal to
@@ -53,58 +56,23 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from functools import cached_property
 from types import MappingProxyType
-from typing import NamedTuple
 
 import networkx as nx
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.validate import nonneg_int, to_expr
+from symctl._util.validate import nonneg_int, positive_int
+from symctl.compatibility.block import KINDS, MAX_WIRE_STEPS, Block, signal_name, signal_names
+from symctl.compatibility.block import block as checked_block
 from symctl.compatibility.signalgraph import SignalGraph, delay_free_cycle, zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization, section_realizations
 from symctl.symbols import gain_symbols
 
-__all__ = ["KINDS", "Block", "Structure", "ifp_structure", "same_structure"]
+__all__ = ["KINDS", "MAX_WIRE_STEPS", "Block", "Structure", "ifp_structure", "same_structure"]
 
-KINDS = ("input", "gain", "sum", "delay")
 MAX_SIGNALS = 1_000_000
 """Most signals (blocks) of one structure: every algorithm on it is then bounded."""
-"""The block kinds of a structure."""
-
-
-class Block(NamedTuple):
-    """One block of a structure and the signal it produces.
-
-    A named tuple, so a value (equal and hashing alike when the fields are);
-    :class:`Structure` checks and normalises its blocks (the gain to a SymPy
-    expression, the inputs to a tuple).
-
-    Parameters
-    ----------
-    kind : str
-        One of :data:`KINDS`.
-    inputs : tuple of str
-        Names of the signals it reads (none for an input, one for a gain or a
-        delay, any number for a sum).
-    gain : sympy expression or None
-        The gain value of a gain block (for display; structure ignores it).
-    part : str
-        The part of a series connection it came from (``""`` if none).
-
-    Examples
-    --------
-    >>> from symctl import Block
-    >>> Block("gain", ("u",), 2)
-    Block(kind='gain', inputs=('u',), gain=2, part='')
-    >>> Block("delay", ("mu",)) == Block("delay", ("mu",))
-    True
-    """
-
-    kind: str
-    inputs: tuple[str, ...] = ()
-    gain: sp.Expr | None = None
-    part: str = ""
 
 
 @dataclass(frozen=True)
@@ -167,9 +135,9 @@ class Structure(LatexMixin):
             )
         clean: dict[str, Block] = {}
         for name, value in blocks.items():
-            clean[_name(name, "blocks")] = _block(name, value)
-        ins = _names(inputs, "inputs")
-        outs = _names(outputs, "outputs")
+            clean[signal_name(name, "blocks")] = checked_block(name, value)
+        ins = signal_names(inputs, "inputs")
+        outs = signal_names(outputs, "outputs")
         for name, block in clean.items():
             for src in block.inputs:
                 if src not in clean:
@@ -231,7 +199,7 @@ class Structure(LatexMixin):
         return sum(1 for b in self.blocks.values() if b.kind == kind)
 
     def wires(self) -> Iterable[tuple[str, str, int]]:
-        """The wires ``(source, target, delay)``; delay 1 exactly into a delay block."""
+        """The wires ``(source, target, delay)``; a wire into a delay block carries its steps."""
         names = self.signal_graph.names
         return ((names[a], names[b], w) for a, b, w in self.signal_graph.wires)
 
@@ -241,9 +209,9 @@ class Structure(LatexMixin):
         names = tuple(self.blocks)
         index = {n: i for i, n in enumerate(names)}
         wires = [
-            (index[src], b, 1 if block.kind == "delay" else 0)
-            for b, block in enumerate(self.blocks.values())
-            for src in block.inputs
+            (index[src], b, blk.delay)
+            for b, blk in enumerate(self.blocks.values())
+            for src in blk.inputs
         ]
         return SignalGraph.from_wires(
             names,
@@ -281,7 +249,9 @@ class Structure(LatexMixin):
 
     # ------------------------------------------------------------ constructors
     @classmethod
-    def from_realization(cls, R: Realization, delays: str = "branch") -> Structure:
+    def from_realization(
+        cls, R: Realization, delays: str = "branch", *, input_delay: int = 1
+    ) -> Structure:
         r"""The structure of a realization :math:`(F, H, M, N)`.
 
         Signals: inputs ``u`` (``u1, u2, ...`` for several), states ``x1 .. xn``,
@@ -295,6 +265,13 @@ class Structure(LatexMixin):
         R : Realization
         delays : {"branch", "state"}
             Where the unit delays sit relative to the adders (see the module text).
+        input_delay : int, default 1
+            With ``delays="branch"``, the steps of the branches that carry
+            :math:`H u` into the states (axons of ``input_delay`` steps):
+            :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-k)`, so the
+            structure's transfer function is
+            :math:`M (zI - F)^{-1} H z^{1-k} + N`. The first-order sections that
+            cross a delay-graph step of :math:`k` steps use it.
 
         >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -303,11 +280,22 @@ class Structure(LatexMixin):
         >>> S = Structure.from_realization(first_order_realization(eps, C))
         >>> sorted(S.wires())[:3]
         [('F[1,1]', 'z^-1 F[1,1]', 1), ('H', 'z^-1 H', 1), ('u', 'H', 0)]
+        >>> S3 = Structure.from_realization(first_order_realization(eps, C), input_delay=3)
+        >>> sorted(S3.wires())[:3]
+        [('F[1,1]', 'z^-1 F[1,1]', 1), ('H', 'z^-3 H', 3), ('u', 'H', 0)]
         """
         if not isinstance(R, Realization):
             raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
         if delays not in ("branch", "state"):
             raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
+        k_in = positive_int(input_delay, "input_delay")
+        if k_in > MAX_WIRE_STEPS:
+            raise ParameterError(f"input_delay: at most {MAX_WIRE_STEPS} steps, got {k_in}")
+        if k_in != 1 and delays != "branch":
+            raise ParameterError(
+                "input_delay: only the branch structure carries the input on its own wires; "
+                f"got input_delay={k_in} with delays={delays!r}"
+            )
         n = R.n
         p, q = R.shape
         u = ["u"] if q == 1 else [f"u{k + 1}" for k in range(q)]
@@ -345,14 +333,15 @@ class Structure(LatexMixin):
         for i in range(n):
             row = terms(i, ((R.F, "F", x), (R.H, "H", u)))
             if delays == "branch":
-                carried = [(signal(*t), t[2]) for t in row]
+                carried = [(signal(*t), t[2], k_in if t[1] in u else 1) for t in row]
                 if len(carried) == 1:
-                    blocks[x[i]] = Block("delay", (carried[0][0],))
+                    src, _, steps = carried[0]
+                    blocks[x[i]] = Block("delay", (src,), steps=steps)
                 else:
                     names = []
-                    for src, label in carried:
-                        blocks[f"z^-1 {label}"] = Block("delay", (src,))
-                        names.append(f"z^-1 {label}")
+                    for src, label, steps in carried:
+                        blocks[f"z^-{steps} {label}"] = Block("delay", (src,), steps=steps)
+                        names.append(f"z^-{steps} {label}")
                     blocks[x[i]] = Block("sum", tuple(names))
             else:
                 carried = [signal(*t) for t in row]
@@ -429,11 +418,60 @@ class Structure(LatexMixin):
                     tuple(rename[s] for s in block.inputs),
                     block.gain,
                     f"{label}.{block.part}" if block.part else label,
+                    block.steps,
                 )
             if not k:
                 inputs = tuple(rename[s] for s in part.inputs)
             previous = tuple(rename[s] for s in part.outputs)
         return cls(blocks, inputs, previous)
+
+    @classmethod
+    def parallel(cls, *parts: Realization | Structure, names: Iterable[str] | None = None):
+        """The parallel connection of ``parts``: one input shared, the outputs summed.
+
+        Each part's signals are prefixed by its name (``P1.``, ``P2.``, ... by
+        default); the inputs are the first part's (renamed), read by every part;
+        output ``k`` is an adder ``y`` (``y1, y2, ...`` for several) of every
+        part's output ``k``. One part is returned renamed.
+
+        >>> from symctl import Structure
+        >>> from symctl.realization.realization import first_order_realization
+        >>> S = Structure.parallel(first_order_realization(1, 2), first_order_realization(0, 3))
+        >>> S.inputs, S.outputs, S.blocks["y"].inputs
+        (('P1.u',), ('y',), ('P1.x1', 'P2.x1'))
+        """
+        if not parts:
+            raise ParameterError("parts: give at least one realization or structure")
+        labels = [f"P{k + 1}" for k in range(len(parts))] if names is None else list(names)
+        if len(labels) != len(parts) or len(set(labels)) != len(labels):
+            raise ParameterError(f"names: need {len(parts)} distinct names, got {labels!r}")
+        structures = [
+            cls.series(part, names=[label]) for label, part in zip(labels, parts, strict=True)
+        ]
+        first = structures[0]
+        blocks: dict[str, Block] = {}
+        ends = []
+        for k, part in enumerate(structures):
+            if len(part.inputs) != len(first.inputs) or len(part.outputs) != len(first.outputs):
+                raise DimensionError(
+                    f"parts: part {k + 1} has {len(part.inputs)} inputs and {len(part.outputs)} "
+                    f"outputs, part 1 {len(first.inputs)} and {len(first.outputs)}"
+                )
+            rename = dict(zip(part.inputs, first.inputs, strict=True))
+            ends.append([rename.get(s, s) for s in part.outputs])
+            for name, b in part.blocks.items():
+                if k and b.kind == "input":
+                    continue
+                blocks[name] = b._replace(inputs=tuple(rename.get(s, s) for s in b.inputs))
+        if len(structures) == 1:
+            return first
+        p = len(first.outputs)
+        outputs = ["y"] if p == 1 else [f"y{k + 1}" for k in range(p)]
+        for k, out in enumerate(outputs):
+            if out in blocks:  # pragma: no cover - every part's names carry a prefix
+                raise ParameterError(f"names: {out!r} is taken")
+            blocks[out] = Block("sum", tuple(end[k] for end in ends))
+        return cls(blocks, first.inputs, outputs)
 
     # ------------------------------------------------------------ display
     @classmethod
@@ -482,7 +520,7 @@ class Structure(LatexMixin):
         out = []
         for name, block in self.blocks.items():
             if block.kind == "delay":
-                rhs = value(block.inputs[0], t - 1)
+                rhs = value(block.inputs[0], t - block.steps)
             elif block.kind == "sum":
                 rhs = sp.Add(*(value(s, t) for s in block.inputs))
             else:
@@ -552,50 +590,6 @@ class Structure(LatexMixin):
 
 
 # ---------------------------------------------------------------- helpers
-def _name(value, argname: str) -> str:
-    if not isinstance(value, str) or not value:
-        raise SymctlTypeError(f"{argname}: signal names must be non-empty strings, got {value!r}")
-    return value
-
-
-def _names(value, argname: str) -> tuple[str, ...]:
-    if isinstance(value, str):
-        return (value,)
-    if not isinstance(value, Iterable):
-        raise SymctlTypeError(f"{argname}: expected a signal name or names, got {value!r}")
-    return tuple(_name(v, argname) for v in value)
-
-
-def _block(name: str, value) -> Block:
-    if isinstance(value, Block):
-        block = value
-    elif isinstance(value, tuple | list) and 1 <= len(value) <= 4:
-        block = Block(*value)
-    else:
-        raise SymctlTypeError(
-            f"blocks[{name!r}]: expected a Block or a tuple (kind, inputs, gain), got {value!r}"
-        )
-    if block.kind not in KINDS:
-        raise ParameterError(f"blocks[{name!r}]: kind must be one of {KINDS}, got {block.kind!r}")
-    inputs = (block.inputs,) if isinstance(block.inputs, str) else tuple(block.inputs)
-    for src in inputs:
-        _name(src, f"blocks[{name!r}].inputs")
-    expected = {"input": (0, 0), "gain": (1, 1), "delay": (1, 1), "sum": (0, None)}[block.kind]
-    low, high = expected
-    if len(inputs) < low or (high is not None and len(inputs) > high):
-        raise ParameterError(
-            f"blocks[{name!r}]: a {block.kind} block takes "
-            f"{'exactly ' + str(high) if high is not None else 'any number of'} "
-            f"input(s), got {list(inputs)}"
-        )
-    gain = None
-    if block.kind == "gain" and block.gain is not None:
-        gain = to_expr(block.gain, f"blocks[{name!r}].gain")
-    if not isinstance(block.part, str):
-        raise SymctlTypeError(f"blocks[{name!r}].part: expected a string, got {block.part!r}")
-    return Block(block.kind, inputs, gain, block.part)
-
-
 def _is_zero(value) -> bool:
     value = sp.sympify(value)
     if value == 0:

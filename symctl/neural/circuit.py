@@ -90,7 +90,6 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import NamedTuple
 
-import networkx as nx
 import numpy as np
 import sympy as sp
 
@@ -99,6 +98,12 @@ from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int, subs_rule, to_expr
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.compatibility.check import CompatibilityResult
+from symctl.compatibility.statespace import (
+    block_gain,
+    delay_states,
+    signal_rows,
+    structure_realization,
+)
 from symctl.compatibility.structure import Block, Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.neuron import Neuron, Synapse
@@ -392,7 +397,7 @@ class Circuit(LatexMixin):
         gains = [b.gain for b in self.structure.blocks.values() if b.gain is not None]
         rule, flags = subs_rule(args, kwargs, set().union(*(g.free_symbols for g in gains)))
         blocks = {
-            name: Block(b.kind, b.inputs, b.gain.subs(rule, **flags), b.part)
+            name: Block(b.kind, b.inputs, b.gain.subs(rule, **flags), b.part, b.steps)
             if b.kind == "gain" and b.gain is not None
             else b
             for name, b in self.structure.blocks.items()
@@ -452,23 +457,14 @@ class Circuit(LatexMixin):
         [3]]))
         """
         S = self.structure
-        states = tuple(n for n, b in S.blocks.items() if b.kind == "delay")
+        states, feeds = delay_states(S)
         out_names = tuple(n.name for n in self.neurons) + S.outputs
         if numeric:
-            return self._numeric_system(states, out_names)
-        k, m = len(states), len(S.inputs)
-        unit = [sp.eye(k + m)[i, :] for i in range(k + m)]
-        row = _signal_rows(S, states, unit, sp.zeros(1, k + m), lambda name, g: g)
-        nxt = sp.Matrix.vstack(*(row[S.blocks[s].inputs[0]] for s in states)) if k else None
-        obs = sp.Matrix.vstack(*(row[s] for s in out_names)) if out_names else None
-        A = nxt[:, :k] if k else sp.zeros(0, 0)
-        B = nxt[:, k:] if k else sp.zeros(0, m)
-        C = obs[:, :k] if out_names else sp.zeros(0, k)
-        D = obs[:, k:] if out_names else sp.zeros(0, m)
-        mats = [A.applyfunc(sp.expand), B, C.applyfunc(sp.expand), D]
-        return CircuitSystem(*mats, states, S.inputs, out_names)
+            return self._numeric_system(states, feeds, out_names)
+        R = structure_realization(S, out_names)
+        return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
 
-    def _numeric_system(self, states: tuple, out_names: tuple) -> CircuitSystem:
+    def _numeric_system(self, states: tuple, feeds: tuple, out_names: tuple) -> CircuitSystem:
         """:meth:`as_linear_system` in floats: the same signal order, rows as NumPy vectors."""
         left = sorted(map(str, self.free_symbols))
         if left:
@@ -483,8 +479,8 @@ class Circuit(LatexMixin):
                 )
             return float(gain)
 
-        row = _signal_rows(S, states, list(np.eye(k + m)), np.zeros(k + m), real)
-        nxt = np.array([row[S.blocks[s].inputs[0]] for s in states]).reshape(k, k + m)
+        row = signal_rows(S, states, list(np.eye(k + m)), np.zeros(k + m), real)
+        nxt = np.array([row[f] for f in feeds]).reshape(k, k + m)
         obs = np.array([row[s] for s in out_names]).reshape(len(out_names), k + m)
         return CircuitSystem(
             nxt[:, :k], nxt[:, k:], obs[:, :k], obs[:, k:], states, S.inputs, out_names
@@ -626,32 +622,6 @@ def _is_neuron(block: Block) -> bool:
     return block.kind == "sum" and len(block.inputs) >= 2
 
 
-def _signal_rows(S: Structure, states: tuple, unit: list, zero, gain_value) -> dict:
-    """Each signal as a row of coefficients on ``[states | inputs]``, in delay-free order.
-
-    ``unit`` holds the unit rows (states, then inputs) and ``zero`` the zero row,
-    as SymPy or NumPy rows; ``gain_value(name, gain)`` turns a gain into the
-    number type of the rows.
-    """
-    row = dict(zip((*states, *S.inputs), unit, strict=True))
-    free = nx.DiGraph()
-    free.add_nodes_from(S.blocks)
-    free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
-    for name in nx.topological_sort(free):
-        block = S.blocks[name]
-        if name in row:
-            continue
-        if block.kind == "gain":
-            row[name] = gain_value(name, _gain(block, name)) * row[block.inputs[0]]
-        else:
-            row[name] = sum((row[s] for s in block.inputs), zero)
-    return row
-
-
-def _gain(block: Block, name: str) -> sp.Expr:
-    return block.gain if block.gain is not None else sp.Symbol(name)
-
-
 def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
     """The axon path ending at ``start``, back to a neuron or an input, as a Synapse.
 
@@ -672,9 +642,9 @@ def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse 
         seen.add(node)
         path.append(node)
         if block.kind == "gain":
-            weight = _gain(block, node) * weight
+            weight = block_gain(block, node) * weight
         elif block.kind == "delay":
-            delay += 1
+            delay += block.steps
         elif not block.inputs:  # an adder of nothing: the zero signal
             return None
         node = block.inputs[0]

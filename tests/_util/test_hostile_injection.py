@@ -506,7 +506,11 @@ AUDITED = {
     # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
     ("symctl._util.exact", "products_equal", "expand"): 1,
     ("symctl._util.exact", "z_poly", "cancel"): 1,
-    ("symctl.compatibility.controller", "_build", "factor"): 1,
+    # constructions along paths: a validated DiscreteTF's expression and its Markov parameters
+    ("symctl.compatibility.construction", "along_path", "factor"): 1,  # symctl.factor
+    ("symctl.compatibility.construction", "along_path", "cancel"): 1,
+    ("symctl.compatibility.construction", "markov_split", "cancel"): 3,
+    ("symctl.compatibility.construction", "markov_split", "together"): 2,
     ("symctl.compatibility.structure", "_is_zero", "cancel"): 1,
     ("symctl.design.controller", "controller_tf", "expand"): 1,
     ("symctl.design.controller", "prove_controller_tf", "expand"): 1,

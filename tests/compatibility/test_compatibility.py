@@ -198,15 +198,19 @@ def test_chain_construction_realizes_G_and_matches_the_paper_for_T2():
     assert more.ok
 
 
-def test_chain_theorem_a_step_of_two_delays_cannot_be_crossed():
-    r = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
-    assert not r.ok and "step 1" in r.reason
+def test_chain_theorem_a_step_of_two_delays_needs_an_axon():
+    """Unit wires (max_wire_delay=1): the old theorem; with axons the step is one wire."""
+    r = controller_compatibility(controller_tf(2), DelayGraph.chain([2]), max_wire_delay=1)
+    assert not r.ok and "at most 1 step" in r.reason and r.scope == "all realizations"
     assert not check_compatibility(ifp_structure(2), DelayGraph.chain([2])).ok
-    assert controller_compatibility(sp.Integer(0) * z, DelayGraph.chain([2])).ok  # G = 0
+    assert controller_compatibility(sp.Integer(0) * z, DelayGraph.chain([2]), max_wire_delay=1).ok
+    axon = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    assert axon.ok and axon.check.assignment.is_compatible()
+    assert max(w for _, _, w in axon.structure.wires()) == 2
 
 
 def test_chain_theorem_necessity_holds_for_every_structure_symctl_builds():
-    """Relative degree 1 on two unit steps: no built structure is compatible (family search)."""
+    """Relative degree 1 on two unit steps: no built structure is compatible."""
     g = DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 2)])
     assert g.is_chain
     G = 1 / (z - sp.Rational(1, 2))
@@ -216,17 +220,16 @@ def test_chain_theorem_necessity_holds_for_every_structure_symctl_builds():
             assert not check_compatibility(Structure.from_realization(R, delays), g).ok
 
 
-def test_other_graphs_search_the_family_and_say_so():
+def test_other_graphs_are_decided_by_the_theorem():
     fast = DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (3, 2, 0)])
     r = controller_compatibility(controller_tf(2), fast)
-    assert r.ok and r.method.startswith("family search") and r.check.assignment.is_compatible()
+    assert r.ok and r.scope == "all realizations" and r.check.assignment.is_compatible()
     loop = DelayGraph.from_edges(3, [(1, 2, 1), (2, 1, 1), (2, 3, 1), (3, 2, 1)])
-    none = controller_compatibility(controller_tf(2), loop)
-    if not none.ok:
-        assert none.scope == "family" and "only that family" in none.reason
+    assert controller_compatibility(controller_tf(2), loop).ok
     far = DelayGraph.from_edges(4, [(1, 2, 2), (1, 3, 1), (3, 4, 2), (2, 4, 1)])
     no = controller_compatibility(controller_tf(2), far)
     assert not no.ok and no.scope == "all realizations"
+    assert controller_compatibility(controller_tf(3), far).ok
 
 
 def test_controller_compatibility_checks_arguments():
@@ -261,10 +264,11 @@ def test_compatibility_results_are_truthy_values_with_their_evidence():
 
 def test_controller_compatibility_is_a_truthy_value():
     yes = controller_compatibility(controller_tf(2), NEUROMUSCULAR)
-    no = controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
+    three = DelayGraph.chain([1, 1, 1])
+    no = controller_compatibility(controller_tf(2), three)
     assert yes and not no and yes.check and yes.structure is not None
-    assert no == controller_compatibility(controller_tf(2), DelayGraph.chain([2]))
-    assert hash(no) == hash(controller_compatibility(controller_tf(2), DelayGraph.chain([2])))
+    assert no == controller_compatibility(controller_tf(2), three)
+    assert hash(no) == hash(controller_compatibility(controller_tf(2), three))
     assert yes != no
     with pytest.raises(AttributeError):
         yes.ok = False

@@ -1,0 +1,144 @@
+r"""The blocks of a controller structure: inputs, gains, adders and delays of k steps.
+
+Every block of a :class:`~symctl.compatibility.structure.Structure` produces
+one scalar signal. A ``"delay"`` block delays its one input by ``steps``
+sampling steps, :math:`a(t - k)`: ``steps=1`` is the paper's unit delay (a
+broken line in its figures), ``steps=k`` an axon whose conduction takes
+:math:`k` steps, one block :math:`z^{-k}` rather than :math:`k` relays.
+
+>>> from symctl.compatibility.block import Block, block
+>>> block("d", ("delay", ("a",), None, "", 3))
+Block(kind='delay', inputs=('a',), gain=None, part='', steps=3)
+>>> block("d", ("delay", ("a",), None, "", 0))  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+symctl.errors.ParameterError: blocks['d'].steps: a delay block delays by an integer number ... got 0
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Iterable
+from typing import NamedTuple
+
+import sympy as sp
+
+from symctl._util.validate import to_expr
+from symctl.errors import ParameterError, SymctlTypeError
+
+__all__ = ["KINDS", "MAX_WIRE_STEPS", "Block", "block", "signal_name", "signal_names"]
+
+KINDS = ("input", "gain", "sum", "delay")
+"""The block kinds of a structure."""
+
+MAX_WIRE_STEPS = 100_000
+"""The longest delay block, in steps (a bound on every shift register built from one)."""
+
+
+class Block(NamedTuple):
+    """One block of a structure and the signal it produces.
+
+    A named tuple, so a value (equal and hashing alike when the fields are);
+    :class:`~symctl.compatibility.structure.Structure` checks and normalises its
+    blocks (the gain to a SymPy expression, the inputs to a tuple).
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    inputs : tuple of str
+        Names of the signals it reads (none for an input, one for a gain or a
+        delay, any number for a sum).
+    gain : sympy expression or None
+        The gain value of a gain block (for display; structure ignores it).
+    part : str
+        The part of a series connection it came from (``""`` if none).
+    steps : int, default 1
+        The delay of a delay block in sampling steps (an axon of ``steps``
+        steps, :math:`z^{-k}`); 1 for every other kind.
+
+    Examples
+    --------
+    >>> from symctl import Block
+    >>> Block("gain", ("u",), 2)
+    Block(kind='gain', inputs=('u',), gain=2, part='', steps=1)
+    >>> Block("delay", ("mu",)) == Block("delay", ("mu",))
+    True
+    >>> Block("delay", ("mu",), steps=4).steps
+    4
+    """
+
+    kind: str
+    inputs: tuple[str, ...] = ()
+    gain: sp.Expr | None = None
+    part: str = ""
+    steps: int = 1
+
+    @property
+    def delay(self) -> int:
+        """The delay of the wires into this block: ``steps`` for a delay block, else 0."""
+        return self.steps if self.kind == "delay" else 0
+
+
+def signal_name(value, argname: str) -> str:
+    """``value`` as a signal name (a non-empty string), or a SymctlTypeError naming ``argname``."""
+    if not isinstance(value, str) or not value:
+        raise SymctlTypeError(f"{argname}: signal names must be non-empty strings, got {value!r}")
+    return value
+
+
+def signal_names(value, argname: str) -> tuple[str, ...]:
+    """One signal name or an iterable of them, as a tuple."""
+    if isinstance(value, str):
+        return (value,)
+    if not isinstance(value, Iterable):
+        raise SymctlTypeError(f"{argname}: expected a signal name or names, got {value!r}")
+    return tuple(signal_name(v, argname) for v in value)
+
+
+def block(name: str, value) -> Block:
+    """``value`` (a Block or a tuple of its fields) checked and normalised as signal ``name``'s block."""
+    if isinstance(value, Block):
+        out = value
+    elif isinstance(value, tuple | list) and 1 <= len(value) <= 5:
+        out = Block(*value)
+    else:
+        raise SymctlTypeError(
+            f"blocks[{name!r}]: expected a Block or a tuple (kind, inputs, gain), got {value!r}"
+        )
+    if out.kind not in KINDS:
+        raise ParameterError(f"blocks[{name!r}]: kind must be one of {KINDS}, got {out.kind!r}")
+    inputs = (out.inputs,) if isinstance(out.inputs, str) else tuple(out.inputs)
+    for src in inputs:
+        signal_name(src, f"blocks[{name!r}].inputs")
+    low, high = {"input": (0, 0), "gain": (1, 1), "delay": (1, 1), "sum": (0, None)}[out.kind]
+    if len(inputs) < low or (high is not None and len(inputs) > high):
+        raise ParameterError(
+            f"blocks[{name!r}]: a {out.kind} block takes "
+            f"{'exactly ' + str(high) if high is not None else 'any number of'} "
+            f"input(s), got {list(inputs)}"
+        )
+    gain = None
+    if out.kind == "gain" and out.gain is not None:
+        gain = to_expr(out.gain, f"blocks[{name!r}].gain")
+    if not isinstance(out.part, str):
+        raise SymctlTypeError(f"blocks[{name!r}].part: expected a string, got {out.part!r}")
+    return Block(out.kind, inputs, gain, out.part, _steps(name, out))
+
+
+def _steps(name: str, out: Block) -> int:
+    steps = out.steps
+    ok = isinstance(steps, numbers.Integral) and not isinstance(steps, bool)
+    if out.kind != "delay":
+        if not ok or steps != 1:
+            raise ParameterError(
+                f"blocks[{name!r}].steps: only a delay block has steps; a {out.kind} block "
+                f"keeps 1, got {steps!r}"
+            )
+        return 1
+    if not ok or not 1 <= steps <= MAX_WIRE_STEPS:
+        raise ParameterError(
+            f"blocks[{name!r}].steps: a delay block delays by an integer number of steps "
+            f"1..{MAX_WIRE_STEPS}, got {steps!r}"
+        )
+    return int(steps)

@@ -1,0 +1,341 @@
+r"""Compatible structures built along the paths of a delay graph.
+
+The constructive half of the theorems in :mod:`symctl.compatibility.controller`:
+
+* :func:`fastest_path`, the fastest path from the sensor :math:`v_1` to the
+  actuator :math:`v_N` over edges of at most ``max_wire_delay`` steps (among
+  the fastest, the one through the most vertices, so that the controller is
+  spread over the graph rather than squeezed at its ends);
+* :func:`along_path`, a controller :math:`G` of relative degree
+  :math:`r \ge L` (the path's delay) factored along one path
+  :math:`q_0 \to \dots \to q_m`: one first-order section
+  :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps (a unit
+  branch delay on its self-loop and an axon of :math:`e` steps on its input),
+  the first half of them on the sensor side (:math:`G_1`), the rest on the
+  actuator side (:math:`G_3`), and :math:`G_2 = G / (G_3 G_1)` proper between
+  them; every signal is placed by the exact chain solver on the path;
+* :func:`markov_split`, the parallel decomposition
+  :math:`G = G_1 + \dots + G_k` for paths of delays :math:`L_1 < \dots < L_k`:
+  :math:`G_i` collects the Markov parameters :math:`h_j`,
+  :math:`L_i \le j < L_{i+1}` (the last one the whole tail), so
+  :math:`G_i` has relative degree at least :math:`L_i` and can run along path
+  :math:`i`.
+
+>>> from symctl import DelayGraph, controller_tf
+>>> from symctl.compatibility.construction import along_path, fastest_path
+>>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
+>>> fastest_path(g)
+(2, (1, 2, 4), (1, 1))
+>>> part = along_path(controller_tf(2), (1, 2, 4), (1, 1))
+>>> sorted(set(part.vertex_of.values()))
+[1, 2, 4]
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import networkx as nx
+import sympy as sp
+
+from symctl.compatibility.csp import build_problem, solve_chain
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure
+from symctl.design.tf import DiscreteTF
+from symctl.errors import ParameterError
+from symctl.realization.factorization import factor
+from symctl.realization.realization import (
+    controllable_canonical,
+    controller_realization,
+    section_realizations,
+)
+from symctl.realization.realizers import get_realizer
+from symctl.symbols import z
+
+__all__ = ["MAX_PATHS", "PathPart", "along_path", "fastest_path", "markov_split", "slowest_path"]
+
+MAX_PATHS = 10_000
+"""The most simple paths :func:`slowest_path` enumerates before it asks for ``paths=``."""
+
+
+@dataclass(frozen=True)
+class PathPart:
+    """One part of a construction: a transfer function factored along one path.
+
+    Attributes
+    ----------
+    G : sympy expression
+        The part's transfer function.
+    path : tuple of int
+        The vertices of the path, from 1.
+    delays : tuple of int
+        The steps of the path's edges.
+    structure : Structure
+        The part's structure: first-order sections (with axons on the edges of
+        several steps) and :math:`G_2`, in series.
+    vertex_of : dict
+        Each signal's vertex, on the path.
+    realization : Realization or None
+        The series realization when every edge has at most one step (None
+        otherwise: the structure's own state-space form is the realization).
+
+    Examples
+    --------
+    >>> from symctl import DelayGraph, controller_compatibility, controller_tf
+    >>> (part,) = controller_compatibility(controller_tf(2), DelayGraph.chain([2])).parts
+    >>> part.path, part.delays, part.delay
+    ((1, 2), (2,), 2)
+    """
+
+    G: sp.Expr
+    path: tuple[int, ...]
+    delays: tuple[int, ...]
+    structure: Structure
+    vertex_of: dict
+    realization: object = None
+
+    @property
+    def delay(self) -> int:
+        """The path's total delay."""
+        return sum(self.delays)
+
+
+def _edges(graph: DelayGraph, max_wire_delay: int | None) -> list[tuple[int, int, int]]:
+    return [
+        (i - 1, j - 1, d)
+        for i, j, d in graph.edges
+        if i != j and (max_wire_delay is None or d <= max_wire_delay)
+    ]
+
+
+def _distances(n: int, edges, source: int, reverse: bool) -> list[float]:
+    adj: list[list] = [[] for _ in range(n)]
+    for i, j, d in edges:
+        if reverse:
+            adj[j].append((i, d))
+        else:
+            adj[i].append((j, d))
+    dist = [math.inf] * n
+    dist[source] = 0
+    heap = [(0, source)]
+    while heap:
+        d, a = heapq.heappop(heap)
+        if d != dist[a]:
+            continue
+        for b, w in adj[a]:
+            if d + w < dist[b]:
+                dist[b] = d + w
+                heapq.heappush(heap, (d + w, b))
+    return dist
+
+
+def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+    """The fastest path from v1 to vN over edges of at most ``max_wire_delay`` steps.
+
+    Returns ``(delay, vertices, edge delays)`` (vertices from 1), or None when
+    no such path exists. Among the fastest paths the one through the most
+    vertices (a longest path in the acyclic graph of tight edges; when zero
+    delay cycles make that graph cyclic, one with the fewest edges).
+    """
+    n = graph.n
+    edges = _edges(graph, max_wire_delay)
+    ahead = _distances(n, edges, 0, False)
+    behind = _distances(n, edges, n - 1, True)
+    total = ahead[n - 1]
+    if math.isinf(total):
+        return None
+    tight = nx.DiGraph()
+    tight.add_nodes_from(range(n))
+    for i, j, d in edges:
+        if ahead[i] + d + behind[j] == total and ahead[i] + d == ahead[j]:
+            if not tight.has_edge(i, j) or tight.edges[i, j]["delay"] > d:
+                tight.add_edge(i, j, delay=d)
+    if nx.is_directed_acyclic_graph(tight):
+        best = {0: (0, None)}
+        for v in nx.topological_sort(tight):
+            if v not in best:
+                continue
+            for w in tight.successors(v):
+                if w not in best or best[w][0] < best[v][0] + 1:
+                    best[w] = (best[v][0] + 1, v)
+        vertices = [n - 1]
+        while vertices[-1] != 0:
+            vertices.append(best[vertices[-1]][1])
+        vertices.reverse()
+    else:
+        vertices = nx.shortest_path(tight, 0, n - 1)
+    delays = tuple(int(tight.edges[a, b]["delay"]) for a, b in itertools.pairwise(vertices))
+    return int(total), tuple(v + 1 for v in vertices), delays
+
+
+def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+    """The slowest simple path from v1 to vN (edges of at most ``max_wire_delay`` steps).
+
+    Returns ``(delay, vertices, edge delays)`` or None. The simple paths are
+    enumerated (networkx), at most :data:`MAX_PATHS` of them.
+
+    Raises
+    ------
+    ParameterError
+        More than :data:`MAX_PATHS` simple paths (give the paths explicitly).
+    """
+    g = nx.DiGraph()
+    for i, j, d in _edges(graph, max_wire_delay):
+        if not g.has_edge(i, j) or g.edges[i, j]["delay"] > d:
+            g.add_edge(i, j, delay=d)
+    if 0 not in g or graph.n - 1 not in g:
+        return None
+    best = None
+    for count, path in enumerate(nx.all_simple_paths(g, 0, graph.n - 1)):
+        if count >= MAX_PATHS:
+            raise ParameterError(
+                f"paths: the graph has more than {MAX_PATHS} simple paths from v1 to "
+                f"v{graph.n}; give the paths of the decomposition explicitly"
+            )
+        delays = tuple(int(g.edges[a, b]["delay"]) for a, b in itertools.pairwise(path))
+        key = (sum(delays), len(path))
+        if best is None or key > best[0]:
+            best = (key, tuple(v + 1 for v in path), delays)
+    return None if best is None else (best[0][0], best[1], best[2])
+
+
+def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: str):
+    """The edge delays along a user's ``path`` (vertices from 1), checked against the graph."""
+    n = graph.n
+    try:
+        vertices = tuple(int(v) for v in path)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{argname}: expected a sequence of vertices 1..{n}") from None
+    if len(vertices) < 2 or vertices[0] != 1 or vertices[-1] != n:
+        raise ParameterError(f"{argname}: a path runs from v1 to v{n}, got {list(vertices)}")
+    if len(set(vertices)) != len(vertices):
+        raise ParameterError(f"{argname}: a path visits each vertex once, got {list(vertices)}")
+    direct = {}
+    for i, j, d in graph.edges:
+        direct[i, j] = min(d, direct.get((i, j), d))
+    delays = []
+    for a, b in itertools.pairwise(vertices):
+        if (a, b) not in direct:
+            raise ParameterError(f"{argname}: v{a} -> v{b} is not an edge of the graph")
+        if max_wire_delay is not None and direct[a, b] > max_wire_delay:
+            raise ParameterError(
+                f"{argname}: the edge v{a} -> v{b} has {direct[a, b]} steps, more than "
+                f"max_wire_delay = {max_wire_delay}"
+            )
+        delays.append(direct[a, b])
+    return vertices, tuple(delays)
+
+
+def along_path(
+    G, path: Sequence[int], delays: Sequence[int], *, base: str = "controllable",
+    structure: str = "branch", label: str | None = None,
+) -> PathPart:  # fmt: skip
+    r"""``G`` factored along one path, with every signal placed on it.
+
+    Parameters
+    ----------
+    G : DiscreteTF or sympy expression in z
+        SISO, proper, of relative degree at least ``sum(delays)``.
+    path : sequence of int
+        The vertices :math:`q_0 = 1, \dots, q_m` (from 1).
+    delays : sequence of int
+        The steps of the path's edges, :math:`e_1, \dots, e_m`.
+    base : str
+        The realization of :math:`G_2` (a realizer that keeps symbols).
+    structure : {"branch", "state"}
+        The structure of :math:`G_2`; the sections take the branch structure.
+    label : str, optional
+        Prefix of the part names (``G1.1`` becomes ``label.G1.1``).
+
+    Returns
+    -------
+    PathPart
+        The structure (series of the sections and :math:`G_2`) and its
+        placement, found by the exact chain solver on the path (a theorem
+        guarantees one; see :mod:`symctl.compatibility.controller`).
+    """
+    tf = DiscreteTF.from_expr(G)
+    steps = [int(e) for e in delays]
+    crossing = [e for e in steps if e > 0]
+    ms = len(crossing) // 2
+    ma = len(crossing) - ms
+    f = factor(tf, ms, ma)
+    extra = sum(crossing) - len(crossing)
+    G2 = f.G2 if not extra else DiscreteTF.from_expr(sp.cancel(f.G2.expr * z**extra))
+    realizer = get_realizer(base, "base", where=lambda r: r.keeps_symbols)
+    n = G2.order
+    options = {"P": sp.eye(n) + sp.ones(n, n)} if realizer.takes_transform else {}
+    R2 = realizer(G2, **options).realization
+    first, last = section_realizations(f)
+    parts = [
+        Structure.from_realization(R, "branch", input_delay=e)
+        for R, e in zip(first, crossing[:ms], strict=True)
+    ]
+    parts.append(Structure.from_realization(R2, structure))
+    parts += [
+        Structure.from_realization(R, "branch", input_delay=e)
+        for R, e in zip(last, crossing[ms:], strict=True)
+    ]
+    names = [f"G1.{k + 1}" if ms > 1 else "G1" for k in range(ms)]
+    names += ["G2"] + [f"G3.{k + 1}" if ma > 1 else "G3" for k in range(ma)]
+    if label:
+        names = [f"{label}.{name}" for name in names]
+    S = Structure.series(*parts, names=names)
+    chain = DelayGraph.chain(steps)
+    place, _ = solve_chain(build_problem(S, chain), *chain.chain_order)
+    if place is None:  # pragma: no cover - the construction's theorem
+        raise RuntimeError("the path construction found no placement on its own path")
+    vertex_of = {name: path[p] for name, p in zip(S.signal_graph.names, place, strict=True)}
+    realization = controller_realization(f, R2) if extra == 0 else None
+    return PathPart(tf.expr, tuple(path), tuple(steps), S, vertex_of, realization)
+
+
+def markov_split(G, delays: Sequence[int]) -> list[sp.Expr]:
+    r""":math:`G = G_1 + \dots + G_k` with :math:`G_i` of relative degree at least ``delays[i]``.
+
+    :math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` for :math:`i < k` (a
+    finite impulse response) and :math:`G_k = G - \sum_{i<k} G_i`: Theorem 2 of
+    :mod:`symctl.compatibility.controller`.
+
+    Parameters
+    ----------
+    G : DiscreteTF or sympy expression in z
+        SISO and proper.
+    delays : sequence of int
+        :math:`L_1 < L_2 < \dots < L_k`, increasing.
+
+    Returns
+    -------
+    list of sympy expressions
+        :math:`G_1, \dots, G_k`, summing to :math:`G` exactly (zero parts kept).
+
+    Raises
+    ------
+    ParameterError
+        ``delays`` not increasing.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import z
+    >>> from symctl.compatibility.construction import markov_split
+    >>> markov_split(1 / (z - sp.Rational(1, 2)), [1, 3])
+    [(2*z + 1)/(2*z**2), 1/(4*z**3 - 2*z**2)]
+    """
+    tf = DiscreteTF.from_expr(G)
+    Ls = [int(d) for d in delays]
+    if any(b <= a for a, b in itertools.pairwise(Ls)):
+        raise ParameterError(f"delays: must increase, got {Ls}")
+    h = controllable_canonical(tf).markov(Ls[-1]) if Ls[-1] > 0 else []
+    parts, rest = [], tf.expr
+    for lo, hi in itertools.pairwise(Ls):
+        part = sp.Add(*(sp.cancel(h[j][0, 0]) * z**-j for j in range(lo, hi)))
+        part = sp.cancel(sp.together(part))
+        parts.append(part)
+        rest = rest - part
+    parts.append(sp.cancel(sp.together(rest)))
+    return parts

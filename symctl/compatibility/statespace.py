@@ -1,0 +1,135 @@
+r"""The state-space form of a structure: every delay step is one state.
+
+A delay block of :math:`k` steps, :math:`d(t) = a(t - k)`, is a shift register
+of :math:`k` states ``d@1, ..., d@(k-1), d`` (``d@j`` holds :math:`a(t - j)`),
+so the state of a structure is every step of every delay block and
+
+.. math::
+    s(t+1) = A s(t) + B u(t), \qquad y(t) = C s(t) + D u(t),
+
+with each signal a row of coefficients on :math:`[s \mid u]` read in
+delay-free order. :func:`structure_realization` gives it as a
+:class:`~symctl.realization.realization.Realization`, so the exact checker can
+prove which transfer function a structure has;
+:meth:`symctl.Circuit.as_linear_system` builds on the same rows.
+
+>>> import sympy as sp
+>>> from symctl import Structure
+>>> from symctl.compatibility.statespace import structure_realization
+>>> from symctl.realization.realization import first_order_realization
+>>> S = Structure.from_realization(first_order_realization(sp.Rational(1, 2), 3), input_delay=3)
+>>> sp.factor(structure_realization(S).to_tf().expr)
+6/(z**2*(2*z - 1))
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import networkx as nx
+import sympy as sp
+
+from symctl.compatibility.block import Block
+from symctl.errors import ParameterError
+from symctl.realization.realization import Realization
+
+__all__ = ["MAX_STATES", "delay_states", "signal_rows", "structure_realization"]
+
+MAX_STATES = 20_000
+"""The most states (delay steps) of a structure's state-space form."""
+
+
+def delay_states(S) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The states of a structure (every step of every delay block) and what feeds each one.
+
+    Returns ``(states, feeds)``: ``feeds[i]`` names the signal or state whose
+    value now is ``states[i]``'s value one step later. A unit delay ``d`` is the
+    one state ``d`` fed by its input.
+    """
+    states: list[str] = []
+    feeds: list[str] = []
+    for name, block in S.blocks.items():
+        if block.kind != "delay":
+            continue
+        source = block.inputs[0]
+        for j in range(1, block.steps):
+            states.append(f"{name}@{j}")
+            feeds.append(source)
+            source = f"{name}@{j}"
+        states.append(name)
+        feeds.append(source)
+        if len(states) > MAX_STATES:
+            raise ParameterError(
+                f"S: the state-space form has more than {MAX_STATES} states (delay steps)"
+            )
+    return tuple(states), tuple(feeds)
+
+
+def signal_rows(S, states: Sequence[str], unit: list, zero, gain_value) -> dict:
+    """Each signal (and state) as a row of coefficients on ``[states | inputs]``.
+
+    ``unit`` holds the unit rows (states, then inputs) and ``zero`` the zero row,
+    as SymPy or NumPy rows; ``gain_value(name, gain)`` turns a gain into the
+    number type of the rows. Signals are read in delay-free (topological) order.
+    """
+    row = dict(zip((*states, *S.inputs), unit, strict=True))
+    free = nx.DiGraph()
+    free.add_nodes_from(S.blocks)
+    free.add_edges_from((a, b) for a, b, d in S.wires() if d == 0)
+    for name in nx.topological_sort(free):
+        block = S.blocks[name]
+        if name in row:
+            continue
+        if block.kind == "gain":
+            row[name] = gain_value(name, block_gain(block, name)) * row[block.inputs[0]]
+        else:
+            row[name] = sum((row[s] for s in block.inputs), zero)
+    return row
+
+
+def block_gain(block: Block, name: str) -> sp.Expr:
+    """A gain block's value, or the symbol named after its signal when it has none."""
+    return block.gain if block.gain is not None else sp.Symbol(name)
+
+
+def structure_realization(S, outputs: Sequence[str] | None = None) -> Realization:
+    r"""The structure as a realization :math:`(A, B, C, D)` from its inputs to ``outputs``.
+
+    Parameters
+    ----------
+    S : Structure
+    outputs : sequence of str, optional
+        The signals read out (default: the structure's outputs).
+
+    Returns
+    -------
+    Realization
+        States in the order of :func:`delay_states`; its transfer function is
+        the structure's, from the inputs to ``outputs``.
+
+    Raises
+    ------
+    ParameterError
+        An output that is not a signal; more than :data:`MAX_STATES` states.
+
+    Examples
+    --------
+    >>> from symctl import Block, Structure, structure_realization
+    >>> S = Structure({"u": ("input",), "d": Block("delay", ("u",), steps=3)}, "u", "d")
+    >>> R = structure_realization(S)
+    >>> R.n, R.to_tf().expr
+    (3, z**(-3))
+    """
+    states, feeds = delay_states(S)
+    outs = tuple(S.outputs if outputs is None else outputs)
+    for name in outs:
+        if name not in S.blocks:
+            raise ParameterError(f"outputs: {name!r} is not a signal of the structure")
+    k, m = len(states), len(S.inputs)
+    unit = [sp.eye(k + m)[i, :] for i in range(k + m)]
+    row = signal_rows(S, states, unit, sp.zeros(1, k + m), lambda name, g: g)
+    nxt = sp.Matrix.vstack(*(row[f] for f in feeds)) if k else sp.zeros(0, k + m)
+    obs = sp.Matrix.vstack(*(row[s] for s in outs)) if outs else sp.zeros(0, k + m)
+    return Realization(
+        nxt[:, :k].applyfunc(sp.expand), nxt[:, k:], obs[:, :k].applyfunc(sp.expand), obs[:, k:]
+    )

@@ -1,0 +1,223 @@
+"""Multi-step wires (axons) and delay graphs beyond chains: structures, checkers, theorems."""
+
+from __future__ import annotations
+
+import math
+
+import networkx as nx
+import numpy as np
+import pytest
+import sympy as sp
+from helpers import random_graph, random_structure
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from symctl import Circuit, ParameterError, SymctlError, controller_tf, z
+from symctl.compatibility.block import MAX_WIRE_STEPS, Block
+from symctl.compatibility.check import brute_force_compatibility, check_compatibility
+from symctl.compatibility.construction import fastest_path, markov_split, slowest_path
+from symctl.compatibility.controller import controller_compatibility
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.statespace import structure_realization
+from symctl.compatibility.structure import Structure
+from symctl.design.tf import DiscreteTF
+from symctl.realization.check import check_realization
+from symctl.realization.realization import first_order_realization
+
+# sensor -> spinal -> muscle beside sensor -> cortex -> spinal -> muscle
+TWO_PATHWAYS = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
+
+
+def _relative_degree_G(r: int, rng) -> sp.Expr:
+    """A random proper G of relative degree exactly r and order r + 1 (exact rationals)."""
+    n = r + 1
+    poles = [sp.Rational(int(rng.integers(-9, 10)), 10) for _ in range(n)]
+    den = sp.Mul(*(z - p for p in poles))
+    num = sum(sp.Rational(int(rng.integers(1, 9)), 4) * z**k for k in range(n - r + 1))
+    return num / den
+
+
+# ---------------------------------------------------------------- blocks
+@pytest.mark.parametrize("steps", [0, -1, 1.5, True, "2", MAX_WIRE_STEPS + 1, None])
+def test_a_wire_delay_must_be_a_positive_integer(steps):
+    with pytest.raises(ParameterError, match=r"blocks\['d'\]\.steps"):
+        Structure({"u": ("input",), "d": Block("delay", ("u",), steps=steps)}, "u", "d")
+
+
+def test_only_delay_blocks_have_steps():
+    with pytest.raises(ParameterError, match="only a delay block has steps"):
+        Structure({"u": ("input",), "g": Block("gain", ("u",), 2, "", 3)}, "u", "g")
+
+
+def test_a_k_step_block_is_a_wire_of_delay_k_everywhere():
+    S = Structure(
+        {"u": ("input",), "d": Block("delay", ("u",), steps=4), "y": ("sum", ("d", "u"))},
+        "u",
+        "y",
+    )
+    assert ("u", "d", 4) in set(S.wires())
+    assert S.delay_distances("u") == {"u": 0, "d": 4, "y": 0}
+    assert S.graph.edges["u", "d"]["delay"] == 4
+    assert str(S.equations()[0]) == "Eq(d(t), u(t - 4))"
+    R = structure_realization(S)
+    assert R.n == 4 and sp.simplify(R.to_tf().expr - (1 + z**-4)) == 0
+    # series and parallel keep the steps
+    assert Structure.series(S, S).blocks["G1.d"].steps == 4
+    assert Structure.parallel(S, S).blocks["P2.d"].steps == 4
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1))
+def test_fewest_delays_with_axons_agree_with_networkx_dijkstra(seed):
+    rng = np.random.default_rng(seed)
+    S = random_structure(rng, 9, max_steps=4)
+    g = nx.DiGraph()
+    g.add_nodes_from(S.blocks)
+    for a, b, w in S.wires():
+        g.add_edge(a, b, weight=w)
+    expected = nx.single_source_dijkstra_path_length(g, S.input)
+    assert S.delay_distances(S.input) == expected
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), chain=st.booleans())
+def test_checkers_with_axons_agree_with_brute_force(seed, chain):
+    rng = np.random.default_rng(seed)
+    S = random_structure(rng, 6, max_steps=3)
+    graph = random_graph(rng, chain)
+    fast = check_compatibility(S, graph)
+    slow = brute_force_compatibility(S, graph)
+    assert fast.ok == slow.ok
+    if fast.ok:
+        assert fast.assignment.is_compatible()
+
+
+# ---------------------------------------------------------------- the theorems
+def _fastest_over(graph: DelayGraph, W) -> float:
+    g = nx.DiGraph()
+    g.add_nodes_from(range(1, graph.n + 1))
+    for i, j, d in graph.edges:
+        if W is None or d <= W:
+            g.add_edge(i, j, weight=d)
+    try:
+        return nx.dijkstra_path_length(g, 1, graph.n)
+    except nx.NetworkXNoPath:
+        return math.inf
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    chain=st.booleans(),
+    r=st.integers(0, 4),
+    W=st.sampled_from([None, 1, 2]),
+)
+def test_theorem_1_compatible_iff_relative_degree_reaches_the_fastest_path(seed, chain, r, W):
+    rng = np.random.default_rng(seed)
+    graph = random_graph(rng, chain)
+    G = _relative_degree_G(r, rng)
+    result = controller_compatibility(G, graph, max_wire_delay=W)
+    assert result.scope == "all realizations"
+    assert result.ok == (r >= _fastest_over(graph, W))
+    if not result.ok:
+        return
+    S = result.structure
+    assert W is None or max((w for _, _, w in S.wires()), default=0) <= W
+    assert result.check.assignment.is_compatible()
+    assert brute_force_compatibility(S, graph, limit=10**9).ok if len(S) <= 12 else True
+    proof = check_realization(structure_realization(S), G)  # exact: the structure is G
+    assert proof.ok and proof.method == "exact"
+    assert check_realization(result.realization, G).ok
+
+
+def test_old_chain_theorem_is_the_corollary_for_unit_wires():
+    G = controller_tf(3)
+    for steps in ([1, 1, 1], [0, 1, 2], [3], [1, 0, 2], [2, 2]):
+        unit = controller_compatibility(G, DelayGraph.chain(steps), max_wire_delay=1)
+        axon = controller_compatibility(G, DelayGraph.chain(steps))
+        assert unit.ok == (sum(steps) <= 3 and max(steps) <= 1)
+        assert axon.ok == (sum(steps) <= 3)
+
+
+def test_fastest_path_prefers_more_vertices_and_slowest_path_is_simple():
+    g = DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 2)])
+    assert fastest_path(g) == (2, (1, 2, 3), (1, 1))
+    assert fastest_path(g, 1) == (2, (1, 2, 3), (1, 1))
+    assert fastest_path(DelayGraph.chain([2]), 1) is None
+    assert slowest_path(TWO_PATHWAYS) == (3, (1, 3, 2, 4), (1, 1, 1))
+    zero_cycle = DelayGraph.from_edges(3, [(1, 2, 0), (2, 1, 0), (2, 3, 1)])
+    assert fastest_path(zero_cycle)[0] == 1
+
+
+def test_parallel_decomposition_uses_both_pathways_and_adds_up_to_G():
+    G = controller_tf(2)
+    r = controller_compatibility(G, TWO_PATHWAYS, construction="parallel")
+    assert r.ok and len(r.parts) == 2 and "parallel decomposition" in r.method
+    assert [p.path for p in r.parts] == [(1, 2, 4), (1, 3, 2, 4)]
+    total = sum((p.G for p in r.parts), sp.Integer(0))
+    assert sp.cancel(sp.together(total - G.expr)) == 0  # exact
+    for p in r.parts:
+        assert DiscreteTF.from_expr(p.G).relative_degree >= p.delay
+    assert 3 in r.check.assignment.vertex_of.values()  # the cortex vertex is used
+    assert check_realization(structure_realization(r.structure), G).ok
+    circuit = Circuit.from_structure(r.structure, r.check)
+    assert set(circuit.vertices.values()) >= {2, 3, 4}
+
+
+def test_markov_split_is_exact_for_a_symbolic_controller():
+    G = controller_tf(2)
+    parts = markov_split(G, [2, 3, 5])
+    assert sp.cancel(sp.together(sum(parts) - G.expr)) == 0
+    for L, part in zip([2, 3, 5], parts, strict=True):
+        assert part == 0 or DiscreteTF.from_expr(part).relative_degree >= L
+
+
+def test_paths_are_checked_and_named():
+    G = controller_tf(2)
+    for bad, message in (
+        ([[1, 3, 4]], "not an edge"),
+        ([[2, 4]], "from v1 to v4"),
+        ([[1, 2, 1, 2, 4]], "each vertex once"),
+        ("1 2 4", "vertex lists"),
+        ([], "at least one"),
+        ([["a", 2]], "sequence of vertices"),
+    ):
+        with pytest.raises(ParameterError, match="paths"):
+            controller_compatibility(G, TWO_PATHWAYS, paths=bad)
+        del message
+    with pytest.raises(ParameterError, match="distinct delays"):
+        controller_compatibility(
+            G, TWO_PATHWAYS, construction="parallel", paths=[[1, 2, 4], [1, 2, 4]]
+        )
+    with pytest.raises(ParameterError, match="max_wire_delay"):
+        controller_compatibility(G, DelayGraph.chain([2]), paths=[[1, 2]], max_wire_delay=1)
+    for W in (0, -1, 1.5, True, "2", 10**9):
+        with pytest.raises(SymctlError, match="max_wire_delay"):
+            controller_compatibility(G, TWO_PATHWAYS, max_wire_delay=W)
+    with pytest.raises(ParameterError, match="construction"):
+        controller_compatibility(G, TWO_PATHWAYS, construction="tree")
+    slow = controller_compatibility(G, TWO_PATHWAYS, paths=[[1, 3, 2, 4]])
+    assert not slow.ok and "fastest path given" in slow.reason
+
+
+# ---------------------------------------------------------------- circuits and simulation
+def test_circuits_carry_axon_delays_and_simulate_them():
+    sec = first_order_realization(sp.Rational(1, 2), 3)
+    S = Structure.from_realization(sec, input_delay=3)
+    c = Circuit.from_structure(S)
+    (syn,) = [s for s in c.synapses if s.source == "u"]
+    assert syn.delay == 3 and syn.weight == 3
+    sym = c.as_linear_system()
+    num = c.as_linear_system(numeric=True)
+    assert np.allclose(np.array(sym.A, dtype=float), num.A)
+    assert np.allclose(np.array(sym.B, dtype=float), num.B)
+    # the impulse response: 3 (1/2)^(k-3) from k = 3 on
+    s = np.zeros(num.A.shape[0])
+    out = []
+    for k in range(8):
+        u = 1.0 if k == 0 else 0.0
+        out.append(float((num.C @ s + num.D[:, 0] * u)[-1]))
+        s = num.A @ s + num.B[:, 0] * u
+    assert out == pytest.approx([0, 0, 0, 3, 1.5, 0.75, 0.375, 0.1875])
+    with pytest.raises(ParameterError, match="input_delay"):
+        Structure.from_realization(sec, "state", input_delay=2)
