@@ -39,6 +39,7 @@ format: $(STAMP)
 	$(BIN)/ruff check --fix symctl tests benchmarks conftest.py
 
 bench: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[bench]"
 	$(BIN)/python benchmarks/core.py
 	$(BIN)/python benchmarks/checker.py
 	$(BIN)/python benchmarks/compatibility.py

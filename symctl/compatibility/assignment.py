@@ -64,7 +64,9 @@ class DelayAssignment(LatexMixin):
     structure : Structure
     graph : DelayGraph
     vertex_of : mapping of signal name to vertex (1..N)
-        Every signal exactly once; inputs at :math:`v_1`, outputs at :math:`v_N`.
+        Every signal exactly once; inputs at their sensor vertex and outputs at
+        their actuator vertex (:meth:`DelayGraph.pins`; by default
+        :math:`v_1` and :math:`v_N`).
 
     Raises
     ------
@@ -72,7 +74,10 @@ class DelayAssignment(LatexMixin):
         ``structure``, ``graph`` or ``vertex_of`` of the wrong type.
     ParameterError
         A missing or unknown signal, a vertex out of range, an input not at
-        :math:`v_1` or an output not at :math:`v_N`.
+        its sensor vertex or an output not at its actuator vertex.
+    DimensionError
+        The graph's sensor or actuator vertices do not fit the structure's
+        inputs or outputs.
 
     Notes
     -----
@@ -121,15 +126,16 @@ class DelayAssignment(LatexMixin):
         missing = [s for s in structure.blocks if s not in clean]
         if missing:
             raise ParameterError(f"vertex_of: every signal needs a vertex; missing {missing[:5]}")
-        for name in structure.inputs:
-            if clean[name] != 1:
+        at_in, at_out = graph.pins(len(structure.inputs), len(structure.outputs))
+        for name, v in zip(structure.inputs, at_in, strict=True):
+            if clean[name] != v:
                 raise ParameterError(
-                    f"vertex_of[{name!r}]: the input must be at v1, got v{clean[name]}"
+                    f"vertex_of[{name!r}]: the input must be at v{v}, got v{clean[name]}"
                 )
-        for name in structure.outputs:
-            if clean[name] != n:
+        for name, v in zip(structure.outputs, at_out, strict=True):
+            if clean[name] != v:
                 raise ParameterError(
-                    f"vertex_of[{name!r}]: the output must be at v{n}, got v{clean[name]}"
+                    f"vertex_of[{name!r}]: the output must be at v{v}, got v{clean[name]}"
                 )
         ordered = {name: clean[name] for name in structure.blocks}  # the structure's order
         object.__setattr__(self, "vertex_of", MappingProxyType(ordered))

@@ -134,7 +134,7 @@ def _distances(n: int, edges, source: int, reverse: bool) -> list[float]:
 
 
 def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
-    """The fastest path from v1 to vN over edges of at most ``max_wire_delay`` steps.
+    """The fastest path from the sensor to the actuator over edges of at most ``max_wire_delay`` steps.
 
     Returns ``(delay, vertices, edge delays)`` (vertices from 1), or None when
     no such path exists. Among the fastest paths the one through the most
@@ -142,10 +142,11 @@ def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
     delay cycles make that graph cyclic, one with the fewest edges).
     """
     n = graph.n
+    (src,), (dst,) = ((v - 1 for v in end) for end in graph.pins(1, 1))
     edges = _edges(graph, max_wire_delay)
-    ahead = _distances(n, edges, 0, False)
-    behind = _distances(n, edges, n - 1, True)
-    total = ahead[n - 1]
+    ahead = _distances(n, edges, src, False)
+    behind = _distances(n, edges, dst, True)
+    total = ahead[dst]
     if math.isinf(total):
         return None
     tight = nx.DiGraph()
@@ -155,25 +156,25 @@ def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
             if not tight.has_edge(i, j) or tight.edges[i, j]["delay"] > d:
                 tight.add_edge(i, j, delay=d)
     if nx.is_directed_acyclic_graph(tight):
-        best = {0: (0, None)}
+        best = {src: (0, None)}
         for v in nx.topological_sort(tight):
             if v not in best:
                 continue
             for w in tight.successors(v):
                 if w not in best or best[w][0] < best[v][0] + 1:
                     best[w] = (best[v][0] + 1, v)
-        vertices = [n - 1]
-        while vertices[-1] != 0:
+        vertices = [dst]
+        while vertices[-1] != src:
             vertices.append(best[vertices[-1]][1])
         vertices.reverse()
     else:
-        vertices = nx.shortest_path(tight, 0, n - 1)
+        vertices = nx.shortest_path(tight, src, dst)
     delays = tuple(int(tight.edges[a, b]["delay"]) for a, b in itertools.pairwise(vertices))
     return int(total), tuple(v + 1 for v in vertices), delays
 
 
 def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
-    """The slowest simple path from v1 to vN (edges of at most ``max_wire_delay`` steps).
+    """The slowest simple path from the sensor to the actuator (edges of at most ``max_wire_delay`` steps).
 
     Returns ``(delay, vertices, edge delays)`` or None. The simple paths are
     enumerated (networkx), at most :data:`MAX_PATHS` of them.
@@ -187,14 +188,15 @@ def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
     for i, j, d in _edges(graph, max_wire_delay):
         if not g.has_edge(i, j) or g.edges[i, j]["delay"] > d:
             g.add_edge(i, j, delay=d)
-    if 0 not in g or graph.n - 1 not in g:
+    (src,), (dst,) = graph.pins(1, 1)
+    if src - 1 not in g or dst - 1 not in g:
         return None
     best = None
-    for count, path in enumerate(nx.all_simple_paths(g, 0, graph.n - 1)):
+    for count, path in enumerate(nx.all_simple_paths(g, src - 1, dst - 1)):
         if count >= MAX_PATHS:
             raise ParameterError(
-                f"paths: the graph has more than {MAX_PATHS} simple paths from v1 to "
-                f"v{graph.n}; give the paths of the decomposition explicitly"
+                f"paths: the graph has more than {MAX_PATHS} simple paths from v{src} to "
+                f"v{dst}; give the paths of the decomposition explicitly"
             )
         delays = tuple(int(g.edges[a, b]["delay"]) for a, b in itertools.pairwise(path))
         key = (sum(delays), len(path))
@@ -206,12 +208,13 @@ def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
 def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: str):
     """The edge delays along a user's ``path`` (vertices from 1), checked against the graph."""
     n = graph.n
+    (src,), (dst,) = graph.pins(1, 1)
     try:
         vertices = tuple(int(v) for v in path)
     except (TypeError, ValueError):
         raise ParameterError(f"{argname}: expected a sequence of vertices 1..{n}") from None
-    if len(vertices) < 2 or vertices[0] != 1 or vertices[-1] != n:
-        raise ParameterError(f"{argname}: a path runs from v1 to v{n}, got {list(vertices)}")
+    if len(vertices) < 2 or vertices[0] != src or vertices[-1] != dst:
+        raise ParameterError(f"{argname}: a path runs from v{src} to v{dst}, got {list(vertices)}")
     if len(set(vertices)) != len(vertices):
         raise ParameterError(f"{argname}: a path visits each vertex once, got {list(vertices)}")
     direct = {}

@@ -270,12 +270,13 @@ def controller_compatibility(
     if r < 0:
         raise ParameterError("G: improper (numerator degree above denominator degree)")
     zero = tf.num == 0
+    (src,), (dst,) = graph.pins(1, 1)
     routes = _routes(graph, W, construction, paths)
     theorem = "theorem 1" + (" (chain graphs)" if graph.is_chain else "")
     bound = "" if W is None else f" over edges of at most {W} step{'s' * (W != 1)}"
     if routes is None and not zero:
         return _no(
-            f"Not compatible: no path from v1 to v{graph.n} uses only edges of at most {W} "
+            f"Not compatible: no path from v{src} to v{dst} uses only edges of at most {W} "
             f"step{'s' * (W != 1)}; every wire of the structures asked for carries at most {W}, "
             "so no signal path from the input to the output can cross the graph.",
             theorem,
@@ -284,14 +285,14 @@ def controller_compatibility(
         which = "the fastest path" if paths is None else "the fastest path given"
         return _no(
             f"Not compatible: the relative degree {r} of G is below {routes[0][0]}, the delay of "
-            f"{which} from v1 to v{graph.n}{bound}; every path from the input to the output of "
+            f"{which} from v{src} to v{dst}{bound}; every path from the input to the output of "
             "a compatible structure has at least that many delays, so the first Markov "
             "parameters of G would vanish.",
             theorem,
         )
     if zero:
         S = Structure({"u": ("input",), "y": ("sum", ())}, "u", "y")
-        check = witness_result(S, graph, {"u": 1, "y": graph.n}, "construction (G = 0)")
+        check = witness_result(S, graph, {"u": src, "y": dst}, "construction (G = 0)")
         return ControllerCompatibility(
             True, structure_realization(S), S, check, "Compatible: G = 0 has no signal path. "
             + check.reason, "all realizations", "G = 0",
@@ -308,7 +309,7 @@ def controller_compatibility(
         S, vertex_of = parts[0].structure, dict(parts[0].vertex_of)
     else:
         S = Structure.parallel(*(p.structure for p in parts), names=labels)
-        vertex_of = _parallel_places(S, parts, labels, graph.n)
+        vertex_of = _parallel_places(S, parts, labels, src, dst)
     R = parts[0].realization if len(parts) == 1 and parts[0].realization is not None else None
     method = f"{theorem} + {'parallel decomposition' if len(parts) > 1 else 'path construction'}"
     check = witness_result(S, graph, vertex_of, method)
@@ -357,7 +358,7 @@ def _routes(graph: DelayGraph, W, construction: str, paths):
     return [fast] if slow is None or slow[0] == fast[0] else [fast, slow]
 
 
-def _parallel_places(S: Structure, parts, labels, n: int) -> dict[str, int]:
+def _parallel_places(S: Structure, parts, labels, src: int, dst: int) -> dict[str, int]:
     place = {}
     for part, label in zip(parts, labels, strict=True):
         inner = part.structure
@@ -366,9 +367,9 @@ def _parallel_places(S: Structure, parts, labels, n: int) -> dict[str, int]:
                 continue
             place[f"{label}.{name}"] = v
     for name in S.inputs:
-        place[name] = 1
+        place[name] = src
     for name in S.outputs:
-        place[name] = n
+        place[name] = dst
     return {name: place[name] for name in S.blocks}
 
 

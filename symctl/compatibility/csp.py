@@ -79,7 +79,7 @@ from __future__ import annotations
 
 import bisect
 import math
-from collections import deque
+from collections import Counter, deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -92,6 +92,7 @@ __all__ = ["Problem", "build_problem", "explain", "solve_chain", "solve_search"]
 
 _MINIMIZE_LIMIT = 80  # cores up to this many wires are minimized wire by wire
 _CASES_LIMIT = 243  # case analyses up to this many leaves are printed in full
+_SHOWN_PATHS = 40  # a certificate's text lists this many paths; .paths keeps them all
 
 
 # ---------------------------------------------------------------- the constraint problem
@@ -105,6 +106,7 @@ class Problem:
     E: np.ndarray
     succ: list = field(default_factory=list)
     pred: list = field(default_factory=list)
+    inputs: frozenset = frozenset()  # the pinned signals that are inputs (the rest: outputs)
 
     def __post_init__(self):
         if not self.succ:
@@ -127,6 +129,7 @@ class Problem:
             ],
             {where[s]: v for s, v in self.pins.items() if s in where},
             self.E,
+            inputs=frozenset(where[s] for s in self.inputs if s in where),
         )
         return sub, wire_ids
 
@@ -138,19 +141,21 @@ class Problem:
 
 
 def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
+    """The constraint problem; a string when the pins alone contradict each other."""
     cs = structure.signal_graph
-    n = graph.n
+    at_in, at_out = graph.pins(len(cs.inputs), len(cs.outputs))
     pins: dict[int, int] = {}
-    for s in cs.inputs:
-        pins[s] = 0
-    for s in cs.outputs:
-        if pins.get(s, n - 1) != n - 1:
+    for s, v in zip(cs.inputs, at_in, strict=True):
+        pins[s] = v - 1
+    for s, v in zip(cs.outputs, at_out, strict=True):
+        if pins.get(s, v - 1) != v - 1:
+            role = "an input" if s in cs.inputs else "an output"
             return (
-                f"The signal {cs.names[s]!r} is both an input (at v1) and an output (at v{n}); "
-                "no assignment can put it at two vertices (give the output a signal of its "
-                "own, e.g. a unit gain, and the delay graph decides)."
+                f"The signal {cs.names[s]!r} is both {role} (at v{pins[s] + 1}) and an output "
+                f"(at v{v}); no assignment can put it at two vertices (give the output a signal "
+                "of its own, e.g. a unit gain, and the delay graph decides)."
             )
-        pins[s] = n - 1
+        pins[s] = v - 1
     return Problem(
         cs.names,
         list(cs.wires),
@@ -158,6 +163,7 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
         graph.E,
         [list(x) for x in cs.succ],
         [list(x) for x in cs.pred],
+        frozenset(cs.inputs),
     )
 
 
@@ -449,21 +455,22 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
         "No delay assignment of this structure is compatible with the delay graph "
         f"(decided by {method}). These signal paths suffice for the contradiction:"
     ]
-    for letter, (sig, w) in zip(letters, paths, strict=True):
+    for k, (letter, (sig, w)) in enumerate(zip(letters, paths, strict=True)):
+        if k == _SHOWN_PATHS and len(paths) > _SHOWN_PATHS + 1:
+            lines.append(f"  ... {len(paths) - k} more paths (all of them in the result's .paths)")
+            break
         lines.append(f"  ({letter}) {' -> '.join(names[s] for s in sig)}, delay {w}")
     pinned = sorted({p for sig, _ in paths for p in (sig[0], sig[-1]) if p in problem.pins})
     if pinned:
         where = ", ".join(
-            f"{names[s]} at v{problem.pins[s] + 1} ({'input' if problem.pins[s] == 0 else 'output'})"
+            f"{names[s]} at v{problem.pins[s] + 1} ({'input' if s in problem.inputs else 'output'})"
             for s in pinned
         )
         lines.append(
             f"with {where}.".replace(", ", " and ", 1) if len(pinned) == 2 else f"with {where}."
         )
-    junctions = sorted(
-        {p for sig, _ in paths for p in (sig[0], sig[-1]) if p not in problem.pins},
-        key=lambda s: -sum(s in (sig[0], sig[-1]) for sig, _ in paths),
-    )
+    meets = Counter(p for sig, _ in paths for p in {sig[0], sig[-1]} if p not in problem.pins)
+    junctions = sorted(meets, key=lambda s: (-meets[s], s))
 
     def violated(place):
         """The path this placement makes too fast by the widest margin (None if none)."""

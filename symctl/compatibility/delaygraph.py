@@ -110,6 +110,25 @@ def _direct_edges(E: np.ndarray) -> tuple[tuple[int, int, int], ...]:
     return tuple(out)
 
 
+def _ends(value, default: tuple[int, ...], n: int, argname: str) -> tuple[int, ...]:
+    """Sensor or actuator vertices: distinct integers in 1..n (``default`` for None)."""
+    if value is None:
+        return default
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        value = (value,)
+    if isinstance(value, str) or not isinstance(value, Iterable):
+        raise ParameterError(f"{argname}: expected vertices 1..{n}, got {value!r}")
+    out = tuple(itertools.islice(value, MAX_VERTICES + 1))
+    if not out or len(out) > MAX_VERTICES:
+        raise ParameterError(f"{argname}: expected 1 to {MAX_VERTICES} vertices, got {len(out)}")
+    for v in out:
+        if isinstance(v, bool) or not isinstance(v, numbers.Integral) or not 1 <= v <= n:
+            raise ParameterError(f"{argname}: vertices are integers 1..{n}, got {v!r}")
+    if len(set(out)) != len(out):
+        raise ParameterError(f"{argname}: a vertex appears twice in {list(out)}")
+    return tuple(int(v) for v in out)
+
+
 def _fmt(value: float) -> str:
     return "inf" if math.isinf(value) else str(int(value))
 
@@ -132,6 +151,13 @@ class DelayGraph:
         The shortest-path delays: integers >= 0, ``inf`` (``math.inf``,
         ``numpy.inf``, ``sympy.oo`` or ``"inf"``) where no path exists, zero
         diagonal, and closed (:math:`E_{ik} \le E_{ij} + E_{jk}`).
+    sensors : sequence of int, optional (keyword)
+        The sensor vertices (from 1), default ``(1,)``: one vertex for all the
+        controller's inputs, or one per input (the vertex where measured
+        signal ``k`` enters).
+    actuators : sequence of int, optional (keyword)
+        The actuator vertices, default ``(N,)``: one for all the controller's
+        outputs, or one per output (the vertex that drives input ``k``).
 
     Attributes
     ----------
@@ -149,8 +175,9 @@ class DelayGraph:
     ParameterError
         Negative or non-integer delays, a nonzero diagonal, a matrix that is
         not a shortest-path closure, fewer than two vertices, a vertex that
-        :math:`v_1` cannot reach (no source) or that cannot reach
-        :math:`v_N` (no sink).
+        no sensor can reach (with the default sensor: :math:`v_1` is no
+        source) or that reaches no actuator (:math:`v_N` is no sink); sensor
+        or actuator vertices out of range or repeated.
     DimensionError
         A matrix that is not square.
     SymctlTypeError
@@ -176,6 +203,8 @@ class DelayGraph:
     E: np.ndarray
     _edges: InitVar[tuple | None] = field(default=None, kw_only=True)
     edges: tuple[tuple[int, int, int], ...] = field(init=False)
+    sensors: tuple[int, ...] = field(default=None, kw_only=True)
+    actuators: tuple[int, ...] = field(default=None, kw_only=True)
 
     def __post_init__(self, _edges):
         E = self.E
@@ -216,16 +245,24 @@ class DelayGraph:
                 f"E: not a shortest-path closure: E[{i + 1},{k + 1}] = {_fmt(arr[i, k])} but "
                 f"E[{i + 1},{via + 1}] + E[{via + 1},{k + 1}] = {_fmt(arr[i, via] + arr[via, k])}"
             )
-        unreached = np.flatnonzero(np.isinf(arr[0]))
-        if len(unreached):
+        sensors = _ends(self.sensors, (1,), n, "sensors")
+        actuators = _ends(self.actuators, (n,), n, "actuators")
+        unreached = np.flatnonzero(np.isinf(arr[[v - 1 for v in sensors]]).all(axis=0))
+        if len(unreached) and sensors == (1,):
             raise ParameterError(
                 f"E: v1 is not a source: there is no path from v1 to v{unreached[0] + 1}"
             )
-        stranded = np.flatnonzero(np.isinf(arr[:, n - 1]))
-        if len(stranded):
+        if len(unreached):
+            raise ParameterError(f"E: no sensor vertex reaches v{unreached[0] + 1}")
+        stranded = np.flatnonzero(np.isinf(arr[:, [v - 1 for v in actuators]]).all(axis=1))
+        if len(stranded) and actuators == (n,):
             raise ParameterError(
                 f"E: v{n} is not a sink: there is no path from v{stranded[0] + 1} to v{n}"
             )
+        if len(stranded):
+            raise ParameterError(f"E: v{stranded[0] + 1} reaches no actuator vertex")
+        object.__setattr__(self, "sensors", sensors)
+        object.__setattr__(self, "actuators", actuators)
         arr.setflags(write=False)
         if _edges is None:
             _edges = _direct_edges(arr)
@@ -234,10 +271,13 @@ class DelayGraph:
 
     # ------------------------------------------------------------ constructors
     @classmethod
-    def from_edges(cls, n: int, edges: Iterable[tuple[int, int, int]]) -> DelayGraph:
+    def from_edges(
+        cls, n: int, edges: Iterable[tuple[int, int, int]], *, sensors=None, actuators=None
+    ) -> DelayGraph:
         """The delay graph of ``n`` vertices and the edges ``(i, j, delay)`` (vertices 1..n).
 
-        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure.
+        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path
+        closure. ``sensors`` and ``actuators`` as for :class:`DelayGraph`.
 
         >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
@@ -269,7 +309,12 @@ class DelayGraph:
             key = (int(i), int(j))
             kept[key] = min(delay, kept.get(key, delay))
             arr[key[0] - 1, key[1] - 1] = kept[key]
-        return cls(_closure(arr), _edges=tuple((i, j, d) for (i, j), d in kept.items()))
+        return cls(
+            _closure(arr),
+            _edges=tuple((i, j, d) for (i, j), d in kept.items()),
+            sensors=sensors,
+            actuators=actuators,
+        )
 
     @classmethod
     def chain(cls, delays: Iterable[int]) -> DelayGraph:
@@ -319,6 +364,8 @@ class DelayGraph:
             return None
         P = E[np.ix_(order, order)]
         D = P[0]
+        if not np.isfinite(D).all():  # v1 does not reach every vertex: not a chain
+            return None
         upper = np.triu(np.ones((n, n), dtype=bool))
         expected = np.where(upper, D[None, :] - D[:, None], INF)
         if not np.array_equal(P, expected):
@@ -381,10 +428,51 @@ class DelayGraph:
     def __eq__(self, other) -> bool:
         if not isinstance(other, DelayGraph):
             return NotImplemented
-        return self.edges == other.edges and np.array_equal(self.E, other.E)
+        return (
+            self.edges == other.edges
+            and np.array_equal(self.E, other.E)
+            and (self.sensors, self.actuators) == (other.sensors, other.actuators)
+        )
 
     def __hash__(self) -> int:
-        return hash((self.E.shape, self.E.tobytes(), self.edges))
+        return hash((self.E.shape, self.E.tobytes(), self.edges, self.sensors, self.actuators))
 
     def __repr__(self) -> str:
-        return f"DelayGraph(n={self.n}, edges={list(self.edges)})"
+        ends = ""
+        if self.sensors != (1,) or self.actuators != (self.n,):
+            ends = f", sensors={self.sensors}, actuators={self.actuators}"
+        return f"DelayGraph(n={self.n}, edges={list(self.edges)}{ends})"
+
+    def pins(self, inputs: int, outputs: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+        """The vertex (from 1) of each of ``inputs`` controller inputs and ``outputs`` outputs.
+
+        One sensor (actuator) vertex serves every input (output); otherwise
+        there is one per input (output).
+
+        Raises
+        ------
+        DimensionError
+            The numbers of sensor or actuator vertices fit neither.
+
+        >>> from symctl import DelayGraph
+        >>> g = DelayGraph.from_edges(4, [(1, 3, 1), (2, 3, 1), (3, 4, 1)], sensors=[1, 2])
+        >>> g.pins(2, 3)
+        ((1, 2), (4, 4, 4))
+        """
+        out = []
+        for what, count, ends in (
+            ("input", inputs, self.sensors),
+            ("output", outputs, self.actuators),
+        ):
+            if len(ends) == 1:
+                out.append(ends * count)
+            elif len(ends) == count:
+                out.append(ends)
+            else:
+                role = "sensor" if what == "input" else "actuator"
+                raise DimensionError(
+                    f"graph: the delay graph has {len(ends)} {role} vertices "
+                    f"({', '.join(f'v{v}' for v in ends)}) but the controller {count} {what}s; "
+                    f"give one {role} vertex for all {what}s or one per {what}"
+                )
+        return out[0], out[1]
