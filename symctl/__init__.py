@@ -87,6 +87,7 @@ _PUBLIC = {
     "FiringPatterns": "symctl.neural.firing",
     "FiringSummary": "symctl.neural.firing",
     "circuit_firing": "symctl.neural.firing",
+    "structure_firing": "symctl.neural.firing",
     "Neuron": "symctl.neural.neuron",
     "Synapse": "symctl.neural.neuron",
     "NonlinearCheck": "symctl.neural.nonlinear",

@@ -222,6 +222,13 @@ class _Reader:
         Q = self.weight(cost.get("Q", "identity"), "cost.Q", plant.n)
         R = self.weight(cost.get("R", "identity"), "cost.R", plant.m, definite=True)
         graph, vertices, edges, given, about = self.graph(d.get("delay_graph"), ds + da, Ts)
+        for key, ends, count, what in (
+            ("sensor", graph.sensors, plant.n, "measured state"),
+            ("actuator", graph.actuators, plant.m, "input"),
+        ):
+            if len(ends) not in (1, count):
+                raise self.fail(f"delay_graph.{key}", f"{len(ends)} {key} vertices for {count} "
+                                f"{what}s; give one vertex for all, or one per {what}")  # fmt: skip
         circuits = self.table(d.get("circuits", {}), "circuits", "circuits")
         build = self.build(circuits.get("build", list(CIRCUIT_KINDS)))
         realizations = self.integer(
@@ -547,15 +554,14 @@ class _Reader:
                 about[n] = self.text(v["description"], f"delay_graph.vertices[{i}].description")
         if len(names) < 2:
             raise self.fail("delay_graph.vertices", "needs at least 2 vertices")
-        sensor = self.text(table.get("sensor", names[0]), "delay_graph.sensor")
-        actuator = self.text(table.get("actuator", names[-1]), "delay_graph.actuator")
-        for key, v in (("sensor", sensor), ("actuator", actuator)):
-            if v not in names:
-                raise self.fail(f"delay_graph.{key}", f"{v!r} is not a vertex; the vertices are "
-                                f"{', '.join(names)}")  # fmt: skip
-        if sensor == actuator:
-            raise self.fail("delay_graph.actuator", "the sensor and the actuator are one vertex")
-        order = [sensor, *[n for n in names if n not in (sensor, actuator)], actuator]
+        sensors = self.ends(table.get("sensor", names[0]), "delay_graph.sensor", names)
+        actuators = self.ends(table.get("actuator", names[-1]), "delay_graph.actuator", names)
+        both = set(sensors) & set(actuators)
+        if both:
+            raise self.fail("delay_graph.actuator", f"{sorted(both)[0]!r} is both a sensor and "
+                            "an actuator vertex")  # fmt: skip
+        ends = (*sensors, *actuators)
+        order = [*sensors, *[n for n in names if n not in ends], *actuators]
         es = self.items(table.get("edges", []), "delay_graph.edges", "edge", limit=MAX_VERTICES**2)
         edges = []
         for i, e in enumerate(es):
@@ -572,21 +578,40 @@ class _Reader:
                 raise self.fail(where, "an edge from a vertex to itself")
             edges.append((e["from"], e["to"], d))
         index = {n: k + 1 for k, n in enumerate(order)}
+        n = len(order)
         try:
             graph = DelayGraph.from_edges(
-                len(order), [(index[a], index[b], d) for a, b, d in edges]
+                n,
+                [(index[a], index[b], d) for a, b, d in edges],
+                sensors=[index[v] for v in sensors],
+                actuators=[index[v] for v in actuators],
             )
         except SymctlError as exc:
-            problem = (
-                _strip(str(exc), "E")
-                .replace("v1", repr(sensor))
-                .replace(f"v{len(order)}", repr(actuator))
-            )
+            problem = re.sub(r"\bv(\d+)\b", lambda m: repr(order[int(m.group(1)) - 1]),
+                             _strip(str(exc), "E"))  # fmt: skip
             raise self.fail("delay_graph.edges", problem) from None
-        if math.isinf(graph.E[0, -1]):
-            raise self.fail("delay_graph.edges", f"no path from the sensor {sensor!r} to the "
-                            f"actuator {actuator!r}")  # fmt: skip
+        for a in sensors:
+            for b in actuators:
+                if math.isinf(graph.E[index[a] - 1, index[b] - 1]):
+                    raise self.fail("delay_graph.edges", f"no path from the sensor {a!r} to the "
+                                    f"actuator {b!r}")  # fmt: skip
         return graph, tuple(order), tuple(edges), True, about
+
+    def ends(self, value, where: str, names: list) -> tuple[str, ...]:
+        """A sensor or actuator entry: one vertex name, or a list of them (one per channel)."""
+        values = value if isinstance(value, list) else [value]
+        if not values:
+            raise self.fail(where, "expected a vertex or a list of vertices, got an empty list")
+        out = []
+        for k, v in enumerate(values):
+            at = where if not isinstance(value, list) else f"{where}[{k}]"
+            v = self.text(v, at)
+            if v not in names:
+                raise self.fail(at, f"{v!r} is not a vertex; the vertices are {', '.join(names)}")
+            if v in out:
+                raise self.fail(at, f"{v!r} appears twice")
+            out.append(v)
+        return tuple(out)
 
     def build(self, value) -> tuple:
         if not isinstance(value, list) or not value:

@@ -75,8 +75,8 @@ _FIELDS = {
     "delay_graph": {
         "vertices": "array of tables {name, description}",
         "edges": "array of tables {from, to, steps | seconds}",
-        "sensor": "the vertex of the sensor (default: the first)",
-        "actuator": "the vertex of the actuator (default: the last)",
+        "sensor": "the vertex of the sensor, or a list: one per measured state (default: the first)",
+        "actuator": "the vertex of the actuator, or a list: one per input (default: the last)",
     },
     "vertex": {"name": "identifier; required", "description": "what it is"},
     "edge": {

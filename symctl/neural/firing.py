@@ -56,6 +56,7 @@ from symctl._util.validate import (
     positive_number,
     read_only,
 )
+from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant, same_dt
 from symctl.design.controller import controller_tf
@@ -76,7 +77,7 @@ from symctl.realization.realization import Realization, controller_realization
 from symctl.realization.realizers import get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
 
-__all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing"]
+__all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing", "structure_firing"]
 
 KINDS = ("general", "controllable", "observable", "ifp")
 """The circuits :func:`circuit_firing` simulates."""
@@ -86,6 +87,7 @@ _TITLES = {
     "controllable": "controllable canonical realization",
     "observable": "observable canonical realization",
     "ifp": "IFP controller",
+    "pathways": "built along the delay graph's pathways",
 }
 LEGEND_MAX_EPS = 4
 """Most epsilons a realization's legend entry lists (beyond, their count)."""
@@ -494,12 +496,114 @@ def circuit_firing(
     plant = _plant(plant, gains)
     count = _count(count, kind)
     gen = as_generator(seed, "seed")
+    rows = _realizations(kind, gains, count, gen)
+    return _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
+
+
+def structure_firing(
+    structure: Structure,
+    gains: Gains,
+    plant=None,
+    *,
+    assignment=None,
+    kind: str = "pathways",
+    count: int | None = None,
+    seed=0,
+    disturbance=1.0,
+    steps: int | None = None,
+    start: int = DEFAULT_START,
+    length: int = DEFAULT_LENGTH,
+    rtol: float = 1e-9,
+) -> FiringPatterns:
+    r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
+
+    The structure's gains may hold the gains' symbols :math:`K` (replaced by
+    the gains' values, as exact rationals) and section symbols: every
+    ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)` and every ``C...``
+    set to 1, e.g. the
+    structure :func:`~symctl.compatibility.controller.controller_compatibility`
+    builds along a delay graph's pathways (axons of several steps included).
+    Each realization is closed around the plant through the structure's
+    state-space form (:func:`~symctl.compatibility.statespace.structure_realization`)
+    and checked against the optimal controller; the neurons of every ``G2``
+    part are recorded.
+
+    Parameters
+    ----------
+    structure : Structure
+        A SISO controller structure of the gains' controller.
+    gains, plant, count, seed, disturbance, steps, start, length, rtol
+        As in :func:`circuit_firing`.
+    assignment : DelayAssignment or CompatibilityResult, optional
+        Places the circuits' neurons on the delay graph.
+    kind : str, default "pathways"
+        The label of the results.
+
+    Returns
+    -------
+    FiringPatterns
+
+    Raises
+    ------
+    ParameterError
+        A gain symbol that is neither an epsilon nor a C; a realization whose
+        behaviour departs from the optimal controller's (a structure of another
+        controller); the errors of :func:`circuit_firing`.
+    SymctlTypeError
+        ``structure`` is not a Structure.
+
+    Examples
+    --------
+    >>> from symctl import (DelayGraph, MuscleModel, augment, controller_compatibility,
+    ...                     controller_tf, lqr_gains, structure_firing)
+    >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
+    >>> r = controller_compatibility(G, DelayGraph.chain([2]))  # one axon of 2 steps
+    >>> fp = structure_firing(r.structure, gains, assignment=r.check, count=2)
+    >>> fp.kind, fp.neurons, fp.max_deviation < 1e-9
+    ('pathways', ('G2.x2', 'G2.y'), True)
+    """
+    if not isinstance(structure, Structure):
+        raise SymctlTypeError(f"structure: expected a Structure, got {type(structure).__name__}")
+    if not isinstance(kind, str) or not kind:
+        raise ParameterError(f"kind: expected a label, got {kind!r}")
+    gains = _gains(gains, "general")
+    plant = _plant(plant, gains)
+    count = _count(count, "general")
+    gen = as_generator(seed, "seed")
+    base = Circuit.from_structure(structure, assignment)
+    values = gains.substitutions(exact=True)
+    if base.free_symbols & set(values):
+        base = base.subs(values)
+    symbols = sorted(base.free_symbols, key=str)
+    eps = [x for x in symbols if str(x).startswith("epsilon")]
+    cs = [x for x in symbols if str(x).startswith("C")]
+    other = [str(x) for x in symbols if x not in eps and x not in cs]
+    if other:
+        raise ParameterError(
+            f"structure: its gains hold {other}; only section symbols (epsilon.., C..) are drawn"
+        )
+
+    def rows():
+        for _ in range(count):
+            drawn = {
+                e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps
+            }
+            circuit = base.subs({**drawn, **{c: 1 for c in cs}})
+            R = structure_realization(circuit.structure)
+            yield drawn, R, R, circuit
+
+    return _simulate(kind, rows(), gains, plant, disturbance, steps, start, length, rtol)
+
+
+def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol) -> FiringPatterns:
+    """Close each realization of ``rows`` around ``plant``, check it, record its neurons."""
     rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}
     ref = closed_loop_response(gains, disturbance=disturbance, **window)
-    rows: list[tuple] = []
+    out: list[tuple] = []
     worst = 0.0
-    for i, (params, R2, R, circuit) in enumerate(_realizations(kind, gains, count, gen)):
+    for i, (params, R2, R, circuit) in enumerate(rows):
         res = simulate_realization(plant, R, disturbance, **window)
         traces = _drive(circuit, res.delta_f if res.delta_f.shape[1] > 1 else res.delta_f[:, 0])
         dev = max(
@@ -515,24 +619,27 @@ def circuit_firing(
                 "gains were computed for?"
             )
         worst = max(worst, dev)
-        keep = {n.name for n in circuit.neurons if kind == "ifp" or n.part == "G2"}
-        rows.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
+        keep = {
+            n.name for n in circuit.neurons
+            if kind == "ifp" or n.part == "G2" or n.part.endswith(".G2")
+        }  # fmt: skip
+        out.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
     names: list[str] = []
-    for *_, traces in rows:
+    for *_, traces in out:
         names += [n for n in traces if n not in names]
     firing = {
-        n: np.array([tr.get(n, np.full(ref.t.size, np.nan)) for *_, tr in rows]) for n in names
+        n: np.array([tr.get(n, np.full(ref.t.size, np.nan)) for *_, tr in out]) for n in names
     }
     return FiringPatterns(
         kind,
         ref.t,
-        np.array([r[3].delta_f[:, 0] for r in rows]),
-        np.array([r[3].delta_r[:, 0] for r in rows]),
+        np.array([r[3].delta_f[:, 0] for r in out]),
+        np.array([r[3].delta_r[:, 0] for r in out]),
         float(ref.f_bar[0]),
         firing,
-        tuple(r[0] for r in rows),
-        tuple(r[1] for r in rows),
-        tuple(r[2] for r in rows),
+        tuple(r[0] for r in out),
+        tuple(r[1] for r in out),
+        tuple(r[2] for r in out),
         ref,
         worst,
     )

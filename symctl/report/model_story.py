@@ -24,7 +24,7 @@ from symctl import latex as L
 from symctl.report.document import DocumentBlock, Heading, Table, Text
 from symctl.report.shorthand import _both, _eq, _fmt, _num
 
-__all__ = ["longest", "nonlinear", "opening", "skipped", "unit_text"]
+__all__ = ["longest", "nonlinear", "opening", "skipped", "theorem", "unit_text"]
 
 
 def unit_text(unit: str) -> str:
@@ -176,6 +176,47 @@ def _weight(M) -> str:
 
 def _unit_tex(unit: str) -> str:
     return rf"\ \text{{{unit_text(unit).strip()}}}" if unit and unit != "1" else ""
+
+
+def theorem(res) -> list[DocumentBlock]:
+    """The exact verdict on the delay graph (Theorems 1 and 2 of symctl.compatibility.controller)."""
+    verdict = getattr(res, "pathways", None)
+    if verdict is None:
+        return []
+    names = res.spec.vertices if res.spec is not None and res.spec.vertices else None
+
+    def vertex(v: int) -> str:
+        return names[v - 1].replace("_", r"\_") if names else f"v{v}"
+
+    head = (
+        "For every realization at once (a theorem, not a search): some structure of the "
+        "controller is compatible with this delay graph if and only if the relative degree of "
+        "$G$ reaches the delay of the fastest path from the sensor to the actuator (Theorem 1 "
+        "of symctl.compatibility.controller, proved there; a wire may carry an axon of several "
+        "steps)."
+    )
+    if not verdict.ok:
+        return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
+    rows = tuple(
+        (
+            str(k + 1),
+            r" $\to$ ".join(vertex(v) for v in part.path),
+            ", ".join(map(str, part.delays)),
+            str(part.delay),
+        )
+        for k, part in enumerate(verdict.parts)
+    )
+    what = "Here it holds, and symctl built such a structure" + (
+        ": $G$ split by its Markov parameters into one part per pathway (Theorem 2), each "
+        "part factored as $G_3 G_2 G_1$ along its own path, the parts summed at the actuator "
+        "(circuit 'pathways' below):"
+        if len(verdict.parts) > 1
+        else ", $G_3 G_2 G_1$ with one section per edge along the path:"
+    )
+    return [
+        Text(head + " " + what),
+        Table(("part", "path", "edge delays [steps]", "Markov parameters from"), rows),
+    ]
 
 
 def skipped(res) -> list[DocumentBlock]:

@@ -33,6 +33,7 @@ from symctl._util.validate import (
     to_matrix,
 )
 from symctl.compatibility.check import check_compatibility
+from symctl.compatibility.controller import controller_compatibility
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
@@ -44,7 +45,7 @@ from symctl.errors import NotRealizableError, NotStabilizableError, ParameterErr
 from symctl.model.modelfile import Model, load_model
 from symctl.model.presets import muscle
 from symctl.neural.circuit import Circuit
-from symctl.neural.firing import circuit_firing
+from symctl.neural.firing import circuit_firing, structure_firing
 from symctl.neural.nonlinear import longest_delay, nonlinear_check
 from symctl.neural.simulate import closed_loop_response, open_loop_response
 from symctl.realization.check import check_realization
@@ -274,6 +275,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
     kinds = spec.circuits
     skipped = None
     factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
+    pathways = None
     siso = plant.n == 1 and plant.m == 1
     if not siso:
         kinds, skipped = _mimo_kinds(kinds, G, plant)
@@ -300,6 +302,21 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
+        if siso:
+            beyond = _beyond_unit_chain(graph)
+            pathways = controller_compatibility(
+                G_symbolic,
+                graph,
+                construction="parallel" if beyond else "path",
+            )
+            if beyond and pathways.ok:
+                step("pathways")
+                structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
+                firing["pathways"] = structure_firing(
+                    pathways.structure, gains, assignment=pathways.check, count=count,
+                    seed=seed, disturbance=w, **window,
+                )  # fmt: skip
+                kinds = (*kinds, "pathways")
         circuits = {
             k: CircuitRecord(
                 k,
@@ -365,7 +382,14 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
         spec,
         longest,
         skipped,
+        pathways,
     )
+
+
+def _beyond_unit_chain(graph) -> bool:
+    """Whether the delay graph has parallel pathways or a step of several delays."""
+    steps = graph.chain_delays
+    return steps is None or max(steps) > 1
 
 
 def _realizations(

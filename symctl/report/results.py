@@ -159,10 +159,10 @@ class CircuitRecord:
 
     @property
     def g2_neurons(self) -> int | None:
-        """The neurons of the G2 part (None for the IFP controller, which has no G2)."""
+        """The neurons of the G2 parts (None for the IFP controller, which has no G2)."""
         if self.name == "ifp":
             return None
-        return sum(1 for n in self.circuit.neurons if n.part == "G2")
+        return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 
     def to_json(self) -> dict:
         """The entry of ``results.json``'s ``circuits`` for this circuit."""
@@ -237,6 +237,12 @@ class PaperResults:
         (the default), or beyond :data:`~symctl.report.spec.EXPANDED_ZEROS_MAX`
         sections ``factors.abbreviated()``, its zeros' coefficients written
         :math:`\sigma_k = e_k(\epsilon)`.
+    atlas, candidates, spec, longest, skipped : optional
+        The atlas and its candidate circuits, the model, the longest-delay
+        search, and the stages left out (with the reason).
+    pathways : ControllerCompatibility, optional
+        The exact verdict on the delay graph (SISO controllers): the theorem,
+        and the structure built along the graph's pathways.
 
     Examples
     --------
@@ -274,6 +280,7 @@ class PaperResults:
     spec: object = None
     longest: object = None
     skipped: str | None = None
+    pathways: object = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):
@@ -387,6 +394,10 @@ class PaperResults:
                 "E": _delays(self.graph.E),
                 "vertices": self.graph.n,
                 "chain_delays": list(self.graph.chain_delays or ()),
+                "edges": [list(e) for e in self.graph.edges],
+                "sensors": list(self.graph.sensors),
+                "actuators": list(self.graph.actuators),
+                "theorem": _theorem_json(self.pathways),
             },
             "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
             "simulation": self._simulation_json(),
@@ -669,3 +680,19 @@ def _value(v):
     if isinstance(v, sp.MatrixBase | np.ndarray):
         return _matrix(sp.Matrix(v))
     return float(v)
+
+
+def _theorem_json(verdict) -> dict | None:
+    """The exact verdict of :func:`symctl.controller_compatibility` on the model's delay graph."""
+    if verdict is None:
+        return None
+    return {
+        "compatible": verdict.ok,
+        "scope": verdict.scope,
+        "method": verdict.method,
+        "reason": verdict.reason,
+        "parts": [
+            {"path": list(p.path), "edge_delays": list(p.delays), "delay": p.delay}
+            for p in verdict.parts
+        ],
+    }

@@ -18,7 +18,7 @@ Examples
 >>> PAPER.sensor_delay, PAPER.actuator_delay, PAPER.seed, PAPER.realizations
 (1, 1, 0, 4)
 >>> CIRCUITS
-('ifp', 'general', 'controllable', 'observable')
+('ifp', 'general', 'controllable', 'observable', 'pathways')
 """
 
 from __future__ import annotations
@@ -148,10 +148,16 @@ CIRCUIT_SPECS = MappingProxyType(
                 "G3 G2 G1, observable canonical G2",
                 "G3 G2 G1, observable canonical G2",
             ),
+            CircuitSpec(
+                "pathways",
+                "G3 G2 G1 along the delay graph's pathways",
+                "G3 G2 G1 built along the delay graph's pathways (axons, parallel parts)",
+            ),
         )
     }
 )
 """The report's circuits by name, in reading order."""
 
 CIRCUITS = tuple(CIRCUIT_SPECS)
-"""The circuits of the report: the IFP controller, and G3 G2 G1 with each realization of G2."""
+"""The circuits of the report: the IFP controller, G3 G2 G1 with each realization of G2, and
+the structure built along the delay graph's pathways (when the graph is not a chain of unit steps)."""

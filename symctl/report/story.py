@@ -321,6 +321,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     figure("delay_graph", _GRAPH_CAPTION)
     put(_eq(("E", res.graph.E), label="eq:E"))
+    put(MS.theorem(res))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
         add(Heading(_title(name), 2))

@@ -506,6 +506,9 @@ AUDITED = {
     # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
     ("symctl._util.exact", "products_equal", "expand"): 1,
     ("symctl._util.exact", "z_poly", "cancel"): 1,
+    # structure_firing: Circuit.subs with the gains' exact values and drawn rationals
+    ("symctl.neural.firing", "structure_firing", "subs"): 1,
+    ("symctl.neural.firing", "structure_firing.rows", "subs"): 1,
     # constructions along paths: a validated DiscreteTF's expression and its Markov parameters
     ("symctl.compatibility.construction", "along_path", "factor"): 1,  # symctl.factor
     ("symctl.compatibility.construction", "along_path", "cancel"): 1,

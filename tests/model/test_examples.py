@@ -116,12 +116,21 @@ def test_the_two_pathway_graph_is_checked_beyond_chains(results):
     assert res.spec.vertices == ("receptor", "spinal", "cortex", "muscle")
     assert not res.graph.is_chain
     assert {k: bool(c.compatibility) for k, c in res.circuits.items()} == {
-        "ifp": False, "general": True, "controllable": True, "observable": True,
+        "ifp": False, "general": True, "controllable": True, "observable": True, "pathways": True,
     }  # fmt: skip
     # the same circuits as the paper's muscle on a chain: only the graph differs
     paper = derive_paper()
     for k in ("general", "controllable", "observable"):
         assert res.circuits[k].circuit.n_neurons == paper.circuits[k].circuit.n_neurons
+    # the theorem decides it exactly, and the pathways circuit uses both loops
+    theorem = res.to_json()["delay_graph"]["theorem"]
+    assert theorem["compatible"] and theorem["scope"] == "all realizations"
+    assert [p["path"] for p in theorem["parts"]] == [[1, 2, 4], [1, 3, 2, 4]]
+    rec = res.circuits["pathways"]
+    assert rec.firing.max_deviation < 1e-9 and rec.g2_neurons >= 2
+    cortex = {n.name for n in rec.circuit.neurons if n.vertex == 3}
+    assert any(name.startswith("P2.G2.") for name in cortex)  # the long part's G2 in cortex
+    assert "pathways" not in paper.circuits and paper.pathways.ok  # a unit chain: no extra circuit
 
 
 @pytest.mark.parametrize("name", ["pendulum", "spinal_transcortical"])

@@ -301,3 +301,28 @@ def test_key_lines_finds_the_line_of_every_key(doc, blank):
             expected[f"{table}.{key}"] = len(lines)
     found = key_lines("\n".join(lines))
     assert {k: found[k] for k in expected} == expected
+
+
+def test_sensor_and_actuator_lists_give_one_vertex_per_channel():
+    two = _with(
+        BASE, "[[inputs]]", '[[states]]\nname = "v"\nrhs = "-v + u"\nequilibrium = 1\n\n[[inputs]]'
+    )
+    two = _with(two, 'rhs = "-k*x + u"', 'rhs = "-k*x + u"\nequilibrium = 0.5')
+    graph = (
+        GRAPH.replace('sensor = "a"', 'sensor = ["a", "b"]')
+        .replace('from = "a"\nto = "b"', 'from = "a"\nto = "c"')
+        .replace('[[delay_graph.vertices]]\nname = "c"', '[[delay_graph.vertices]]\nname = "c"')
+    )
+    m = load_model(two + graph)
+    assert m.vertices == ("a", "b", "c") and m.graph.sensors == (1, 2) and m.graph.actuators == (3,)
+    # two sensors for one measured state, a vertex twice, one vertex at both ends
+    err = _err(BASE + graph)
+    assert err.field == "delay_graph.sensor" and "2 sensor vertices for 1 measured state" in str(
+        err
+    )
+    err = _err(two + GRAPH.replace('sensor = "a"', 'sensor = ["a", "a"]'))
+    assert err.field == "delay_graph.sensor[1]" and "appears twice" in str(err)
+    err = _err(two + GRAPH.replace('sensor = "a"', 'sensor = ["a", "c"]'))
+    assert "both a sensor and an actuator" in str(err)
+    err = _err(two + GRAPH.replace('sensor = "a"', "sensor = []"))
+    assert err.field == "delay_graph.sensor" and "empty list" in str(err)

@@ -15,7 +15,12 @@ from symctl.report.spec import CIRCUITS
 
 FIGURES = (
     ["open_loop", "closed_loop", "delay_graph", "nonlinear", "atlas_overview"]
-    + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
+    + [
+        f"{kind}_{c}"
+        for c in CIRCUITS
+        if c != "pathways"  # the paper's chain of unit steps needs no circuit along pathways
+        for kind in ("structure", "circuit", "firing")
+    ]
     + ["simplified_A16", "simplified_A17"]
 )  # the paper's simplified circuits (the atlas)
 
