@@ -59,6 +59,7 @@ _PUBLIC = {
     "controller_realization": "symctl.realization.realization",
     "first_order_realization": "symctl.realization.realization",
     "observable_canonical": "symctl.realization.realization",
+    "minimal_realization": "symctl.realization.minimal",
     "RealizerResult": "symctl.realization.realizers",
     "general_realization": "symctl.realization.realizers",
     "get_realizer": "symctl.realization.realizers",

@@ -4,7 +4,9 @@
 - ``realization``: the ``Realization`` type (F, H, M, N), canonical forms, sections, series;
 - ``realizers``: one registry of realizers (controllable, observable, general, random)
   returning a ``RealizerResult`` with the transform; ``ifp_realization``;
-- ``check``: ``check_realization``, an exact proof or a randomized test with its bound.
+- ``check``: ``check_realization``, an exact proof or a randomized test with its bound;
+- ``channels``: MIMO factorization channel by channel;
+- ``minimal``: ``minimal_realization``, the exact Kalman reduction (MIMO too).
 
 The names of the former module ``symctl.realization`` stay importable from here.
 """
@@ -20,6 +22,7 @@ __getattr__, __dir__, __all__ = attach(
         "first_order_realization": "symctl.realization.realization",
         "observable_canonical": "symctl.realization.realization",
         "split_proper": "symctl.realization.realization",
+        "minimal_realization": "symctl.realization.minimal",
         "general_realization": "symctl.realization.realizers",
         "random_realization": "symctl.realization.realizers",
     },

@@ -506,6 +506,8 @@ AUDITED = {
     # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
     ("symctl._util.exact", "products_equal", "expand"): 1,
     ("symctl._util.exact", "z_poly", "cancel"): 1,
+    # minimal_realization: a Matrix of flint rationals turned into sympy Rationals
+    ("symctl.realization.minimal", "_sympy", "Matrix"): 1,
     # structure_firing: Circuit.subs with the gains' exact values and drawn rationals
     ("symctl.neural.firing", "structure_firing", "subs"): 1,
     ("symctl.neural.firing", "structure_firing.rows", "subs"): 1,
