@@ -221,7 +221,7 @@ class _Reader:
         cost = self.table(d.get("cost", {}), "cost", "cost")
         Q = self.weight(cost.get("Q", "identity"), "cost.Q", plant.n)
         R = self.weight(cost.get("R", "identity"), "cost.R", plant.m, definite=True)
-        graph, vertices, edges, given, about = self.graph(d.get("delay_graph"), ds + da, Ts)
+        graph, vertices, edges, given, about = self.graph(d.get("delay_graph"), (ds, da), Ts)
         for key, ends, count, what in (
             ("sensor", graph.sensors, plant.n, "measured state"),
             ("actuator", graph.actuators, plant.m, "input"),
@@ -533,11 +533,15 @@ class _Reader:
             raise self.fail(where, _strip(str(exc), where)) from None
         return sp.ImmutableMatrix(M)
 
-    def graph(self, data, T: int, Ts: float):
+    def graph(self, data, delays: tuple[int, int], Ts: float):
         if data is None:
-            names = tuple(f"v{i + 1}" for i in range(T + 1))
-            edges = tuple((names[i], names[i + 1], 1) for i in range(T))
-            return DelayGraph.chain([1] * T), names, edges, False, {}
+            # the chain of the delays, one vertex per step; a side without delay keeps an edge
+            # of 0 steps, so the controller's own vertex (after the sensor-side steps) exists
+            ds, da = delays
+            steps = ([1] * ds or [0]) + ([1] * da or [0])
+            names = tuple(f"v{i + 1}" for i in range(len(steps) + 1))
+            edges = tuple((names[i], names[i + 1], d) for i, d in enumerate(steps))
+            return DelayGraph.chain(steps), names, edges, False, {}
         table = self.table(data, "delay_graph", "delay_graph")
         if "vertices" not in table:
             raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")

@@ -326,3 +326,14 @@ def test_sensor_and_actuator_lists_give_one_vertex_per_channel():
     assert "both a sensor and an actuator" in str(err)
     err = _err(two + GRAPH.replace('sensor = "a"', "sensor = []"))
     assert err.field == "delay_graph.sensor" and "empty list" in str(err)
+
+
+def test_without_sensor_delay_the_controller_sits_after_the_sensor_not_at_it():
+    from symctl import derive
+
+    m = load_model(BASE + "\n[delays]\nsensor = 0\nactuator = 2\n")
+    assert m.graph.chain_delays == (0, 1, 1) and m.vertices == ("v1", "v2", "v3", "v4")
+    res = derive(m)
+    where = {n.name: n.vertex for n in res.circuits["controllable"].circuit.neurons}
+    assert {v for name, v in where.items() if name.startswith("G2.")} == {2}
+    assert where["G3.2.x1"] == 4
