@@ -103,20 +103,23 @@ def draw_structure(
             fontsize=FONT,
             color="0.35",
         )
+    axons = any(b.steps > 1 for b in S.blocks.values())
+    word = "delay" if axons else "one-step delay"
     counts = ", ".join(
-        f"{S.count(k)} {word}{'s' if S.count(k) != 1 else ''}"
-        for k, word in (("gain", "gain"), ("sum", "adder"), ("delay", "one-step delay"))
+        f"{S.count(k)} {w}{'s' if S.count(k) != 1 else ''}"
+        for k, w in (("gain", "gain"), ("sum", "adder"), ("delay", word))
     )
     heading = title or f"controller structure: {counts}"
     legend = (
         "boxes: gains (their values; long ones by block name)   circles: adders   "
         "dashed arrows: one-step delays   dots: signals"
+        + ("   z^-k: an axon of k steps" if axons else "")
     )
     return finish_figure(fig, ax, own, layout.bounds, heading, legend, top=0.62)
 
 
 def _draw_wires(ax, wires: list[Wire] | tuple[Wire, ...]) -> None:
-    """Polylines ending in an arrow head; dashed for a one-step delay."""
+    """Polylines ending in an arrow head; dashed for a delay, labelled z^-k for an axon of k steps."""
     from matplotlib.patches import FancyArrowPatch
 
     for wire in wires:
@@ -124,6 +127,12 @@ def _draw_wires(ax, wires: list[Wire] | tuple[Wire, ...]) -> None:
         xs, ys = zip(*pts, strict=True)
         style = (0, (3.5, 2.2)) if wire.delay else "-"
         ax.plot(xs, ys, color=_INK, lw=1.0, linestyle=style, zorder=1, solid_capstyle="butt")
+        if wire.delay > 1:
+            k = max(range(len(pts) - 1), key=lambda i: math.dist(pts[i], pts[i + 1]))
+            (xa, ya), (xb, yb) = pts[k], pts[k + 1]
+            ax.text((xa + xb) / 2, (ya + yb) / 2 + 0.03, f"$z^{{-{wire.delay}}}$",
+                    ha="center", va="bottom", fontsize=FONT, color=_INK, zorder=2,
+                    bbox={"fc": "white", "ec": "none", "pad": 0.5})  # fmt: skip
         (x0, y0), (x1, y1) = pts[-2], pts[-1]
         length = math.hypot(x1 - x0, y1 - y0)
         if length == 0:

@@ -198,7 +198,7 @@ class Geometry:
                 self.size[name] = (2 * SUM_R, 2 * SUM_R)
             else:
                 self.size[name] = (2 * DOT_R, 2 * DOT_R)
-            if block.kind != "gain" and not name.rpartition(".")[2].startswith("z^-1"):
+            if block.kind != "gain" and not name.rpartition(".")[2].startswith("z^-"):
                 text = signal_label(name)
                 self.name[name] = (text, measure(text, NAME_FONT)[0])
 
