@@ -80,11 +80,18 @@ def _names(graph: DelayGraph, names) -> tuple[list[str], bool]:
     return list(names), list(names) != [f"v{k}" for k in range(1, graph.n + 1)]
 
 
+def _role(graph, k: int) -> str:
+    """``"sensor"``, ``"actuator"`` or ``""`` for vertex ``k`` (from 1)."""
+    sensors = getattr(graph, "sensors", (1,))
+    actuators = getattr(graph, "actuators", (graph.n,))
+    return "sensor" if k in sensors else "actuator" if k in actuators else ""
+
+
 def _lines(graph, names, named, descriptions) -> dict[int, list[tuple[str, float, str]]]:
     """Each vertex's text lines ``(text, size, style)``: name, vertex and role, description."""
     out = {}
     for k, name in enumerate(names, start=1):
-        role = "sensor" if k == 1 else "actuator" if k == graph.n else ""
+        role = _role(graph, k)
         lines = [(_plain(name.replace("_", " ")), _NAME, "bold")]
         tag = ", ".join(t for t in (f"v{k}" if named else "", role) if t)
         if tag:
@@ -196,7 +203,7 @@ def delay_graph_plot(
 
     for k, (x, y) in lay.pos.items():
         w, h = lay.size[k]
-        role = "sensor" if k == 1 else "actuator" if k == graph.n else ""
+        role = _role(graph, k)
         fill, edge = _FILL[role]
         ax.add_patch(
             FancyBboxPatch(
@@ -232,10 +239,12 @@ def delay_graph_plot(
     heading = title or (
         f"delay graph: {graph.n} vertices, {n_edges} edge{'s' if n_edges != 1 else ''}"
     )
-    key = (
-        f"boxes: vertices, v1 the sensor (green) to v{graph.n} the actuator (orange)   "
-        "arrows: direct edges, with their delays in steps"
-    )
+    ends = (1,), (graph.n,)
+    if (tuple(graph.sensors), tuple(graph.actuators)) == ends:
+        roles = f"v1 the sensor (green) to v{graph.n} the actuator (orange)"
+    else:
+        roles = "sensors green, actuators orange (one per channel)"
+    key = f"boxes: vertices, {roles}   arrows: direct edges, with their delays in steps"
     if any(r.back for r in lay.routes):
         key += "   purple, curved: edges against the flow (a cycle)"
     return finish_figure(fig, ax, own, lay.bounds, _plain(heading), key, top=0.65)

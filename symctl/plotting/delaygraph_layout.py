@@ -10,7 +10,8 @@ the manner of Sugiyama, Tagawa and Toda (1981). One unit is one inch.
   out turned around; what is left is acyclic.
 * **Layers** (columns, left to right): :math:`v_1` in layer 0, every other vertex
   one layer right of its furthest predecessor (the longest path from the sensor),
-  the actuator alone in the last layer.
+  the actuator alone in the last layer (with one vertex per channel, every sensor
+  in the first layer and the actuators together in the last).
 * **Bends**: an edge across several layers passes one bend point in each layer
   between, which takes a row of its own there, so no edge runs through a vertex.
 * **Order**: within a layer, vertices and bends sorted by the mean position of
@@ -148,25 +149,36 @@ class DelayGraphLayout:
 def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
     """Each edge as laid out ``(a, b, back)``, ``a -> b`` acyclic (the module text)."""
     n = graph.n
+    sensors, actuators = _ends(graph)
     succ: dict[int, list[int]] = {v: [] for v in range(1, n + 1)}
     against = set()
     for i, j, _ in graph.edges:
-        if j == 1 or i == n:
+        if j in sensors or i in actuators:
             against.add((i, j))
         else:
             succ[i].append(j)
-    against.update(back_edges(succ, [1]))
+    against.update(back_edges(succ, list(sensors)))
     return [(j, i, True) if (i, j) in against else (i, j, False) for i, j, _ in graph.edges]
 
 
-def _layers(n: int, flow) -> dict[int, int]:
+def _ends(graph: DelayGraph) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """The sensor and actuator vertices (v1 and vN unless the graph names others)."""
+    return tuple(getattr(graph, "sensors", (1,))), tuple(getattr(graph, "actuators", (graph.n,)))
+
+
+def _layers(n: int, flow, ends=((1,), None)) -> dict[int, int]:
+    """Sensors in layer 0, the actuators together in the last layer, the rest by longest path."""
+    sensors, actuators = ends[0], ends[1] or (n,)
     dag = nx.DiGraph()
     dag.add_nodes_from(range(1, n + 1))
     dag.add_edges_from((a, b) for a, b, _ in flow)
     layer: dict[int, int] = {}
     for v in nx.topological_sort(dag):
-        layer[v] = 0 if v == 1 else max([1] + [layer[p] + 1 for p in dag.predecessors(v)])
-    layer[n] = max(layer[n], 1 + max(layer[v] for v in range(1, n)))
+        layer[v] = 0 if v in sensors else max([1] + [layer[p] + 1 for p in dag.predecessors(v)])
+    inner = [layer[v] for v in range(1, n + 1) if v not in actuators]
+    last = max([*(layer[v] for v in actuators), 1 + max(inner, default=0)])
+    for v in actuators:
+        layer[v] = last
     return layer
 
 
@@ -460,7 +472,7 @@ def delay_graph_layout(
         raise ParameterError(f"graph: at most {MAX_DRAWN_VERTICES} vertices are drawn, got {n}")
     size = {v: tuple(map(float, (sizes or {}).get(v, BOX))) for v in range(1, n + 1)}
     flow = _flow(graph)
-    layer = _layers(n, flow)
+    layer = _layers(n, flow, _ends(graph))
     if sum(abs(layer[b] - layer[a]) - 1 for a, b, _ in flow) > MAX_BENDS:
         raise ParameterError(
             f"graph: its {len(flow)} edges cross too many layers to be drawn (more than "

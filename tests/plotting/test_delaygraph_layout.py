@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 from pathlib import Path
 
+import matplotlib.text
 import numpy as np
 import pytest
 
@@ -238,7 +239,7 @@ def test_spinal_figure_names_its_vertices_and_marks_sensor_and_actuator(tmp_path
     texts = _texts(fig)
     assert {"receptor", "spinal", "cortex", "muscle", "Stretch reflex"} <= set(texts)
     assert {"v1, sensor", "v4, actuator", "motor cortex", "muscle spindle afferents"} <= set(texts)
-    assert texts.count("1 step") == 4
+    assert texts.count("1 step") == 3 and texts.count("2 steps") == 1  # the 20 ms axon
     # readable at the size it is saved: no text under 7.5 pt (the key), the rest 8 pt and more
     sizes = {t.get_text(): t.get_fontsize() for t in fig.axes[0].texts}
     assert min(sizes.values()) >= 7.5
@@ -321,3 +322,17 @@ def test_report_story_shows_the_graph_after_describing_it(derived):
         k for k, b in enumerate(blocks) if isinstance(b, Graphic) and b.name == "delay_graph"
     )
     assert graphic == at + 2  # the heading, the paragraph on the graph, then the figure
+
+
+def test_one_vertex_per_channel_puts_every_sensor_first_and_every_actuator_last():
+    g = DelayGraph.from_edges(
+        7, [(k, 5, 1) for k in range(1, 5)] + [(5, 6, 1), (5, 7, 1)],
+        sensors=[1, 2, 3, 4], actuators=[6, 7],
+    )  # fmt: skip
+    lay = delay_graph_layout(g)
+    assert {lay.layer[v] for v in (1, 2, 3, 4)} == {0}
+    assert lay.layer[6] == lay.layer[7] == max(lay.layer.values())
+    fig = g.draw()
+    texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)]
+    assert texts.count("sensor") == 4 and texts.count("actuator") == 2
+    assert any("one per channel" in t for t in texts)
