@@ -101,7 +101,9 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
             ax.plot(fp.t, fp.firing[name][i], marker=".", ms=3, lw=1.3,
                     color=f"C{i % 10}", label=fp.legend_label(i))  # fmt: skip
         ax.axhline(0, color="black", lw=0.5)
-        ax.set_title(f"neuron {_tex(name, part=False)}")
+        part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
+        where = f" ({part.partition('.')[0]})" if "." in part else ""
+        ax.set_title(f"neuron {_tex(name, part=False)}{where}")
         ax.set_xlabel(f"time [{fp.reference.time_unit}]")
         if k % cols == 0:
             ax.set_ylabel(_RATE_LABEL)
@@ -109,11 +111,12 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
         axes.append(ax)
     if axes:
         handles, texts = axes[0].get_legend_handles_labels()
+        wide = max((len(t) for t in texts), default=0) > 48  # long labels: two per row
         fig.legend(handles, texts, loc="outside lower center", fontsize="small",
-                   ncols=min(fp.count, 4 if cols > 2 else 2), title="realization")  # fmt: skip
+                   ncols=min(fp.count, 2 if wide or cols <= 2 else 4), title="realization")  # fmt: skip
     what = "the neuron of the" if fp.kind == "ifp" else "the neurons of $G_2$,"
     fig.suptitle(
-        f"Firing of {what} {_TITLES[fp.kind]}\n"
+        f"Firing of {what} {_TITLES.get(fp.kind, fp.kind)}\n"
         + (
             "one realization: the optimal controller's delay chain"
             if fp.kind == "ifp"
