@@ -82,6 +82,8 @@ class PathPart:
     realization : Realization or None
         The series realization when every edge has at most one step (None
         otherwise: the structure's own state-space form is the realization).
+    label : str
+        Which part it is, e.g. ``"G[1,2]"`` for an entry of a MIMO controller.
 
     Examples
     --------
@@ -97,6 +99,7 @@ class PathPart:
     structure: Structure
     vertex_of: dict
     realization: object = None
+    label: str = ""
 
     @property
     def delay(self) -> int:
@@ -133,16 +136,23 @@ def _distances(n: int, edges, source: int, reverse: bool) -> list[float]:
     return dist
 
 
-def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+def fastest_path(
+    graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
+):
     """The fastest path from the sensor to the actuator over edges of at most ``max_wire_delay`` steps.
 
     Returns ``(delay, vertices, edge delays)`` (vertices from 1), or None when
     no such path exists. Among the fastest paths the one through the most
     vertices (a longest path in the acyclic graph of tight edges; when zero
-    delay cycles make that graph cyclic, one with the fewest edges).
+    delay cycles make that graph cyclic, one with the fewest edges). ``ends``
+    gives other end vertices ``(source, target)`` (from 1), e.g. one channel's
+    sensor and actuator.
     """
     n = graph.n
-    (src,), (dst,) = ((v - 1 for v in end) for end in graph.pins(1, 1))
+    if ends is None:
+        (src,), (dst,) = ((v - 1 for v in end) for end in graph.pins(1, 1))
+    else:
+        src, dst = ends[0] - 1, ends[1] - 1
     edges = _edges(graph, max_wire_delay)
     ahead = _distances(n, edges, src, False)
     behind = _distances(n, edges, dst, True)
@@ -173,7 +183,9 @@ def fastest_path(graph: DelayGraph, max_wire_delay: int | None = None):
     return int(total), tuple(v + 1 for v in vertices), delays
 
 
-def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+def slowest_path(
+    graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
+):
     """The slowest simple path from the sensor to the actuator (edges of at most ``max_wire_delay`` steps).
 
     Returns ``(delay, vertices, edge delays)`` or None. The simple paths are
@@ -188,7 +200,7 @@ def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
     for i, j, d in _edges(graph, max_wire_delay):
         if not g.has_edge(i, j) or g.edges[i, j]["delay"] > d:
             g.add_edge(i, j, delay=d)
-    (src,), (dst,) = graph.pins(1, 1)
+    (src,), (dst,) = graph.pins(1, 1) if ends is None else ((ends[0],), (ends[1],))
     if src - 1 not in g or dst - 1 not in g:
         return None
     best = None

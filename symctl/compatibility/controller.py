@@ -74,6 +74,25 @@ This is how a short spinal loop and a long transcortical loop share one
 controller: the spinal part carries the first Markov parameters, the cortical
 part the rest.
 
+**Theorem 3 (MIMO).** Let input :math:`j` enter at sensor vertex :math:`s_j`
+and output :math:`i` leave at actuator vertex :math:`a_i`
+(:meth:`~symctl.compatibility.delaygraph.DelayGraph.pins`: one vertex for all,
+or one per channel). Some structure of some realization of the :math:`p \times m`
+controller :math:`G` is compatible iff every nonzero entry :math:`G_{ij}` has
+relative degree at least :math:`L_W(s_j \to a_i)`, the delay of the fastest
+path from :math:`s_j` to :math:`a_i` over edges of at most :math:`W` steps.
+
+*Proof.* Necessity: the first nonzero Markov parameter of :math:`G_{ij}` is a
+sum over walks from input :math:`j` to output :math:`i`; the argument of
+Theorem 1 applies to one such walk, from :math:`s_j` to :math:`a_i`.
+Sufficiency: realize each nonzero entry as in Theorem 1 along its own fastest
+path, read its input from input :math:`j` (at :math:`s_j`) and sum the entries
+of output :math:`i` in one adder at :math:`a_i`; each entry's wires satisfy
+their constraints as in Theorem 1 and the adders' wires stay at :math:`a_i`.
+:math:`\square` The construction shares no interneurons between entries; it
+proves existence, while the canonical MIMO forms share them (their
+compatibility is checked by :func:`symctl.check_compatibility`).
+
 >>> from symctl import DelayGraph, controller_compatibility, controller_tf
 >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
 >>> r.ok, r.scope
@@ -86,7 +105,10 @@ False
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+
+import sympy as sp
 
 from symctl._util.display import LatexMixin
 from symctl._util.validate import bounded_int
@@ -104,7 +126,7 @@ from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.errors import ParameterError, SymctlTypeError
 from symctl.realization.realizers import get_realizer
 
 __all__ = ["CONSTRUCTIONS", "ControllerCompatibility", "controller_compatibility"]
@@ -190,7 +212,7 @@ def controller_compatibility(
     construction: str = "path",
     paths=None,
 ) -> ControllerCompatibility:
-    r"""Decide whether a SISO controller :math:`G` has a realization compatible with a delay graph.
+    r"""Decide whether a controller :math:`G` has a realization compatible with a delay graph.
 
     Exact for every delay graph (Theorem 1 of the module text): compatible iff
     the relative degree of :math:`G` is at least the delay of the fastest path
@@ -202,7 +224,9 @@ def controller_compatibility(
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
-        The controller, SISO and proper.
+        The controller, proper; SISO (Theorems 1 and 2) or MIMO (Theorem 3,
+        each entry along its own path; ``construction`` and ``paths`` then
+        do not apply).
     graph : DelayGraph
     base : {"controllable", "observable", "general"}
         The realization of :math:`G_2` in the construction.
@@ -232,7 +256,8 @@ def controller_compatibility(
     SymctlTypeError
         ``graph`` is not a DelayGraph.
     DimensionError
-        ``G`` is not SISO.
+        The graph's sensor or actuator vertices fit neither one for all of
+        ``G``'s inputs (outputs) nor one per input (output).
     ParameterError
         ``G`` improper; an unknown ``base``, ``delays`` or ``construction``; a
         ``max_wire_delay`` that is not a positive integer; a path that is not
@@ -254,10 +279,6 @@ def controller_compatibility(
     tf = DiscreteTF.from_expr(G)
     if not isinstance(graph, DelayGraph):
         raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
-    if not tf.is_siso:
-        raise DimensionError(
-            f"G: controller compatibility is decided for SISO G, got shape {tf.shape}"
-        )
     get_realizer(base, "base", where=lambda r: r.keeps_symbols)
     if delays not in ("branch", "state"):
         raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
@@ -269,6 +290,11 @@ def controller_compatibility(
     r = tf.relative_degree
     if r < 0:
         raise ParameterError("G: improper (numerator degree above denominator degree)")
+    if not tf.is_siso:
+        if paths is not None:
+            raise ParameterError("paths: give paths for a SISO controller; a MIMO one takes "
+                                 "each entry's fastest path")  # fmt: skip
+        return _mimo(tf, graph, W, base, delays)
     zero = tf.num == 0
     (src,), (dst,) = graph.pins(1, 1)
     routes = _routes(graph, W, construction, paths)
@@ -323,6 +349,59 @@ def controller_compatibility(
         method,
         parts,
     )
+
+
+def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
+    """Theorem 3: every nonzero entry along its own fastest path, outputs summed at the actuators."""
+    p, m = tf.shape
+    at_in, at_out = graph.pins(m, p)
+    entries = []
+    for i in range(p):
+        for j in range(m):
+            e = DiscreteTF.from_expr(sp.cancel(tf.expr[i, j]), dt=tf.dt)
+            if e.num == 0:
+                continue
+            route = fastest_path(graph, W, (at_in[j], at_out[i]))
+            where = f"G[{i + 1},{j + 1}] (v{at_in[j]} -> v{at_out[i]})"
+            if route is None:
+                return _no(f"Not compatible: no path for {where} uses only edges of at most {W} "
+                           "steps.", "theorem 3 (MIMO)")  # fmt: skip
+            if e.relative_degree < route[0]:
+                return _no(
+                    f"Not compatible: the relative degree {e.relative_degree} of {where} is "
+                    f"below {route[0]}, the delay of its fastest path; every path from input "
+                    f"{j + 1} to output {i + 1} of a compatible structure has at least that many "
+                    "delays.", "theorem 3 (MIMO)",
+                )  # fmt: skip
+            part = along_path(e, route[1], route[2], base=base, structure=delays)
+            entries.append((i, j, dataclasses.replace(part, label=f"G[{i + 1},{j + 1}]")))
+    blocks: dict = {f"u{j + 1}": ("input",) for j in range(m)}
+    place = {f"u{j + 1}": at_in[j] for j in range(m)}
+    sums: list[list[str]] = [[] for _ in range(p)]
+    for i, j, part in entries:
+        label = f"G{i + 1},{j + 1}"
+        S = Structure.series(part.structure, names=[label])
+        rename = {S.inputs[0]: f"u{j + 1}"}
+        for name, b in S.blocks.items():
+            if b.kind == "input":
+                continue
+            blocks[name] = b._replace(inputs=tuple(rename.get(x, x) for x in b.inputs))
+            place[name] = part.vertex_of[name.removeprefix(label + ".")]
+        sums[i].append(rename.get(S.outputs[0], S.outputs[0]))
+    outputs = [f"y{i + 1}" for i in range(p)]
+    for i, name in enumerate(outputs):
+        blocks[name] = ("sum", tuple(sums[i]))
+        place[name] = at_out[i]
+    S = Structure(blocks, tuple(f"u{j + 1}" for j in range(m)), outputs)
+    check = witness_result(S, graph, {n: place[n] for n in S.blocks}, "theorem 3 (MIMO)")
+    return ControllerCompatibility(
+        True, structure_realization(S), S, check,
+        f"Compatible (theorem 3, MIMO): each of the {len(entries)} nonzero entries G[i,j] = "
+        "G3 G2 G1 along its fastest path from input j's sensor vertex to output i's actuator "
+        "vertex, the entries of each output summed there. " + check.reason,
+        "all realizations", "theorem 3 (MIMO) + construction per entry",
+        tuple(part for *_, part in entries),
+    )  # fmt: skip
 
 
 def _no(reason: str, theorem: str) -> ControllerCompatibility:

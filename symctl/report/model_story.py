@@ -195,8 +195,28 @@ def theorem(res) -> list[DocumentBlock]:
         "of symctl.compatibility.controller, proved there; a wire may carry an axon of several "
         "steps)."
     )
+    if verdict.method.startswith("theorem 3"):
+        head = (
+            "For every realization at once (a theorem, not a search): some structure of the "
+            "MIMO controller is compatible with this delay graph if and only if every nonzero "
+            "entry $G_{ij}$ has relative degree at least the delay of the fastest path from "
+            "input $j$'s sensor vertex to output $i$'s actuator vertex (Theorem 3 of "
+            "symctl.compatibility.controller, proved there)."
+        )
     if not verdict.ok:
         return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
+    if verdict.method.startswith("theorem 3"):
+        rows = tuple(
+            (part.label, r" $\to$ ".join(vertex(v) for v in part.path),
+             ", ".join(map(str, part.delays)), str(part.delay))
+            for part in verdict.parts
+        )  # fmt: skip
+        return [
+            Text(head + " Here it holds; symctl built such a structure, each entry as "
+                 "$G_3 G_2 G_1$ along its own path (it proves existence; the circuits below "
+                 "share their interneurons):"),
+            Table(("entry", "path", "edge delays [steps]", "delay"), rows),
+        ]  # fmt: skip
     rows = tuple(
         (
             str(k + 1),

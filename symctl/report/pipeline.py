@@ -302,6 +302,9 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
+        if not siso and G.order <= MIMO_GENERAL_MAX_ORDER:  # theorem 3: every entry exactly
+            exact = controller_tf(system).subs(gains.substitutions(exact=True))
+            pathways = controller_compatibility(exact, graph)
         if siso:
             beyond = _beyond_unit_chain(graph)
             pathways = controller_compatibility(

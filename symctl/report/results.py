@@ -692,7 +692,12 @@ def _theorem_json(verdict) -> dict | None:
         "method": verdict.method,
         "reason": verdict.reason,
         "parts": [
-            {"path": list(p.path), "edge_delays": list(p.delays), "delay": p.delay}
+            {
+                "label": p.label,
+                "path": list(p.path),
+                "edge_delays": list(p.delays),
+                "delay": p.delay,
+            }
             for p in verdict.parts
         ],
     }

@@ -513,6 +513,7 @@ AUDITED = {
     ("symctl.neural.firing", "structure_firing.rows", "subs"): 1,
     # constructions along paths: a validated DiscreteTF's expression and its Markov parameters
     ("symctl.compatibility.construction", "along_path", "factor"): 1,  # symctl.factor
+    ("symctl.compatibility.controller", "_mimo", "cancel"): 1,  # an entry of a DiscreteTF
     ("symctl.compatibility.construction", "along_path", "cancel"): 1,
     ("symctl.compatibility.construction", "markov_split", "cancel"): 3,
     ("symctl.compatibility.construction", "markov_split", "together"): 2,

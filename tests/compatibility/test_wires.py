@@ -221,3 +221,56 @@ def test_circuits_carry_axon_delays_and_simulate_them():
     assert out == pytest.approx([0, 0, 0, 3, 1.5, 0.75, 0.375, 0.1875])
     with pytest.raises(ParameterError, match="input_delay"):
         Structure.from_realization(sec, "state", input_delay=2)
+
+
+# ---------------------------------------------------------------- MIMO: theorem 3
+def _channel_graph(rng) -> DelayGraph:
+    """Two sensors v1, v2, a middle v3, two actuators v4, v5; random delays 0..2."""
+    while True:
+        edges = [(s, 3, int(rng.integers(0, 3))) for s in (1, 2)]
+        edges += [(3, a, int(rng.integers(0, 3))) for a in (4, 5)]
+        edges += [
+            (s, a, int(rng.integers(0, 4))) for s in (1, 2) for a in (4, 5) if rng.random() < 0.3
+        ]
+        try:
+            return DelayGraph.from_edges(5, edges, sensors=[1, 2], actuators=[4, 5])
+        except ParameterError:  # pragma: no cover - every vertex is reached here
+            continue
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1))
+def test_theorem_3_every_entry_along_its_own_path(seed):
+    rng = np.random.default_rng(seed)
+    graph = _channel_graph(rng)
+    degrees = rng.integers(0, 4, size=(2, 2))
+    zero = rng.random((2, 2)) < 0.2
+    entries = [
+        [
+            sp.Integer(0) if zero[i, j] else _relative_degree_G(int(degrees[i, j]), rng)
+            for j in range(2)
+        ]
+        for i in range(2)
+    ]
+    G = sp.Matrix(entries)
+    result = controller_compatibility(G, graph)
+    expected = all(
+        zero[i, j] or degrees[i, j] >= graph.E[j, 3 + i] for i in range(2) for j in range(2)
+    )
+    assert result.ok == expected and result.scope == "all realizations"
+    if result.ok:
+        assert result.check.assignment.is_compatible()
+        placed = result.check.assignment.vertex_of
+        assert (placed["u1"], placed["u2"], placed["y1"], placed["y2"]) == (1, 2, 4, 5)
+        assert check_realization(structure_realization(result.structure), G).ok
+
+
+def test_a_graph_whose_channels_do_not_fit_the_controller_is_refused():
+    from symctl import DimensionError
+
+    G = sp.Matrix([[1 / z, 1 / z, 1 / z]])  # 3 inputs, 1 output
+    two = DelayGraph.from_edges(3, [(1, 3, 1), (2, 3, 1)], sensors=[1, 2])
+    with pytest.raises(DimensionError, match="graph: the delay graph has 2 sensor vertices"):
+        controller_compatibility(G, two)
+    with pytest.raises(ParameterError, match="paths"):
+        controller_compatibility(G, DelayGraph.chain([1]), paths=[[1, 2]])

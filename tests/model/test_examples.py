@@ -106,6 +106,15 @@ def test_the_antagonist_pair_runs_end_to_end_with_two_inputs(results):
     for c in res.circuits.values():
         assert c.compatibility.ok and c.firing.max_deviation < 1e-9
     assert "IFP" in res.skipped
+    # one receptor per measured state, one muscle per input: theorem 3 decides it exactly
+    assert res.graph.sensors == (1, 2, 3, 4) and res.graph.actuators == (6, 7)
+    theorem = res.to_json()["delay_graph"]["theorem"]
+    assert theorem["compatible"] and theorem["method"].startswith("theorem 3")
+    assert {p["label"] for p in theorem["parts"]} == {
+        f"G[{i},{j}]" for i in (1, 2) for j in (1, 2, 3, 4)
+    }
+    placed = res.circuits["controllable"].compatibility.assignment.vertex_of
+    assert [placed[s] for s in res.circuits["controllable"].structure.inputs] == [1, 2, 3, 4]
     assert res.spec.ode.equilibrium_method.startswith("exact")
     eq = res.to_json()["plant"]["equilibrium"]["states"]
     assert eq["theta"] == 0 and math.isclose(eq["f_flex"], eq["f_ext"])
