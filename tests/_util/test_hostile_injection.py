@@ -393,7 +393,7 @@ AUDITED = {
     ("symctl.neural.nonlinear", "_solver", "subs"): 1,  # an ODEModel's own values
     ("symctl.report.model_story", "opening", "subs"): 4,  # an ODEModel's own values
     ("symctl.report.pipeline", "_weight", "ImmutableMatrix"): 1,  # after to_matrix
-    ("symctl.report.pipeline", "_derive", "subs"): 1,  # the gains' own substitutions
+    ("symctl.report.pipeline", "_derive", "subs"): 2,  # the gains' own substitutions (float, exact)
     ("symctl.report.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
     # discovery: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
