@@ -370,7 +370,7 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
     f0 = factor(G, s.sensor_delay, s.actuator_delay)  # the section symbols, per channel
     eps = (*f0.sensor_eps, *f0.actuator_eps)
     for _ in range(count):
-        drawn = {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
+        drawn = _draw_eps(eps, gen)
         # the factors built at the drawn values: exact and cheap (no substitution into G2)
         fs = factor(G, s.sensor_delay, s.actuator_delay, eps=list(drawn.values()), C=1)
         R2 = realizer(fs.G2, rng=gen).realization
@@ -378,6 +378,11 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
         R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)
         circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))
         yield params, R2, controller_realization(fs, R2), circuit
+
+
+def _draw_eps(eps, gen: np.random.Generator) -> dict:
+    """Each epsilon drawn uniformly from the grid k / 1000, |k| <= 899 (exact rationals)."""
+    return {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
 
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
@@ -586,9 +591,7 @@ def structure_firing(
 
     def rows():
         for _ in range(count):
-            drawn = {
-                e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps
-            }
+            drawn = _draw_eps(eps, gen)
             circuit = base.subs({**drawn, **{c: 1 for c in cs}})
             R = structure_realization(circuit.structure)
             yield drawn, R, R, circuit
