@@ -274,3 +274,21 @@ def test_a_graph_whose_channels_do_not_fit_the_controller_is_refused():
         controller_compatibility(G, two)
     with pytest.raises(ParameterError, match="paths"):
         controller_compatibility(G, DelayGraph.chain([1]), paths=[[1, 2]])
+
+
+def test_batch_simulation_of_structures_with_axons_matches_the_optimal_loop():
+    """Batch-simulate the state-space forms of axon constructions at random epsilons."""
+    from symctl import MuscleModel, augment, closed_loop_response, lqr_gains, simulate_batch
+
+    gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
+    r = controller_compatibility(G, DelayGraph.chain([2]))  # one axon of 2 steps
+    R = structure_realization(r.structure)
+    symbols = sorted(R.free_symbols, key=str)
+    rng = np.random.default_rng(3)
+    values = [rng.uniform(-0.9, 0.9, 5) if str(s).startswith("epsilon") else np.ones(5)
+              for s in symbols]  # fmt: skip
+    mats = [np.asarray(m, dtype=float) for m in R.lambdify(symbols)(*values)]
+    out = simulate_batch(gains.system.plant, *mats, 1.0, steps=40)
+    ref = closed_loop_response(gains, disturbance=1.0, steps=40)
+    assert np.abs(out.delta_r - ref.delta_r[None]).max() < 1e-9 * np.abs(ref.delta_r).max()
