@@ -36,6 +36,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import math
+import numbers
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -221,10 +222,13 @@ def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: st
     """The edge delays along a user's ``path`` (vertices from 1), checked against the graph."""
     n = graph.n
     (src,), (dst,) = graph.pins(1, 1)
-    try:
-        vertices = tuple(int(v) for v in path)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{argname}: expected a sequence of vertices 1..{n}") from None
+    if isinstance(path, str) or not hasattr(path, "__iter__"):
+        raise ParameterError(f"{argname}: expected a sequence of vertices 1..{n}, got {path!r}")
+    vertices = tuple(itertools.islice(path, n + 1))
+    for v in vertices:
+        if isinstance(v, bool) or not isinstance(v, numbers.Integral) or not 1 <= v <= n:
+            raise ParameterError(f"{argname}: expected a sequence of vertices 1..{n}, got {v!r}")
+    vertices = tuple(int(v) for v in vertices)
     if len(vertices) < 2 or vertices[0] != src or vertices[-1] != dst:
         raise ParameterError(f"{argname}: a path runs from v{src} to v{dst}, got {list(vertices)}")
     if len(set(vertices)) != len(vertices):

@@ -292,3 +292,11 @@ def test_batch_simulation_of_structures_with_axons_matches_the_optimal_loop():
     out = simulate_batch(gains.system.plant, *mats, 1.0, steps=40)
     ref = closed_loop_response(gains, disturbance=1.0, steps=40)
     assert np.abs(out.delta_r - ref.delta_r[None]).max() < 1e-9 * np.abs(ref.delta_r).max()
+
+
+@pytest.mark.parametrize(
+    "bad", [[1, 2.5, 4], [1, True, 4], [1, 9, 4], [[1], 2, 4], iter(range(10**9))]
+)
+def test_a_path_of_non_vertices_is_refused(bad):
+    with pytest.raises(ParameterError, match=r"paths\[0\]"):
+        controller_compatibility(controller_tf(2), TWO_PATHWAYS, paths=[bad])
