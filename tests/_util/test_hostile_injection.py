@@ -223,6 +223,24 @@ CASES = [
     ("DelayGraph.from_edges", lambda p: DelayGraph.from_edges(2, [(0, 1, p)])),
     ("check_compatibility(graph)", lambda p: check_compatibility(_o("S"), p)),
     ("controller_compatibility(G)", lambda p: controller_compatibility(p, _o("graph"))),
+    (
+        "controller_compatibility(paths)",
+        lambda p: controller_compatibility(controller_tf(2), _o("graph"), paths=[p]),
+    ),
+    (
+        "controller_compatibility(max_wire_delay)",
+        lambda p: controller_compatibility(controller_tf(2), _o("graph"), max_wire_delay=p),
+    ),
+    (
+        "Block(steps)",
+        lambda p: symctl.Structure(
+            {"u": ("input",), "d": symctl.Block("delay", ("u",), steps=p)}, "u", "d"
+        ),
+    ),
+    ("DelayGraph(sensors)", lambda p: DelayGraph.from_edges(2, [(1, 2, 1)], sensors=p)),
+    ("markov_split(G)", lambda p: symctl.markov_split(p, [1, 2])),
+    ("minimal_realization(R)", lambda p: symctl.minimal_realization(p)),
+    ("structure_firing(structure)", lambda p: symctl.structure_firing(p, _o("gains"))),
     # neural
     ("Synapse(weight).sign", lambda p: Synapse("u", "x", p, 1).sign),
     ("Synapse(weight).excitatory", lambda p: Synapse("u", "x", p, 1).excitatory),
