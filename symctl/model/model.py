@@ -59,6 +59,9 @@ class Model:
         Its direct edges by name, with their delays in steps.
     graph_given : bool
         Whether the file gave the delay graph (else the chain of the delays).
+    max_wire_delay : int or None
+        The most steps one wire of a circuit may carry (``[delay_graph]
+        max_wire_delay``; None: axons of any length).
     vertex_descriptions : mapping of str to str
         The descriptions of the graph's vertices the file gives, by name.
     circuits : tuple of str
@@ -124,6 +127,7 @@ class Model:
     source: str = field(default="", repr=False)
     lines: Mapping = field(default_factory=dict, repr=False)
     vertex_descriptions: Mapping = field(default_factory=dict)
+    max_wire_delay: int | None = None
 
     def __post_init__(self) -> None:
         units = {k: str(v) for k, v in self.units.items()}

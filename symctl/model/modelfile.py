@@ -243,7 +243,7 @@ class _Reader:
             name, title, description, ode, plant, plant_symbolic, units, descr, outputs, Ts,
             ds, da, Q, R, graph, vertices, edges, given, build, realizations, seed, steps,
             disturbance, longest, tuple(self.notes), self.src.path, self.src.text,
-            self.src.lines, about,
+            self.src.lines, about, self.wire_bound(d.get("delay_graph")),
         )  # fmt: skip
 
     def sampling(self, table: dict) -> float:
@@ -600,6 +600,12 @@ class _Reader:
                     raise self.fail("delay_graph.edges", f"no path from the sensor {a!r} to the "
                                     f"actuator {b!r}")  # fmt: skip
         return graph, tuple(order), tuple(edges), True, about
+
+    def wire_bound(self, data) -> int | None:
+        """``[delay_graph] max_wire_delay``: the most steps of one wire (None: any)."""
+        if not isinstance(data, dict) or "max_wire_delay" not in data:
+            return None
+        return self.integer(data["max_wire_delay"], "delay_graph.max_wire_delay", 1, 100_000)
 
     def ends(self, value, where: str, names: list) -> tuple[str, ...]:
         """A sensor or actuator entry: one vertex name, or a list of them (one per channel)."""

@@ -77,6 +77,7 @@ _FIELDS = {
         "edges": "array of tables {from, to, steps | seconds}",
         "sensor": "the vertex of the sensor, or a list: one per measured state (default: the first)",
         "actuator": "the vertex of the actuator, or a list: one per input (default: the last)",
+        "max_wire_delay": "the most steps one wire may carry (default: any; 1 for unit delays)",
     },
     "vertex": {"name": "identifier; required", "description": "what it is"},
     "edge": {

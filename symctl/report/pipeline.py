@@ -304,13 +304,14 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
         if not siso and G.order <= MIMO_GENERAL_MAX_ORDER:  # theorem 3: every entry exactly
             exact = controller_tf(system).subs(gains.substitutions(exact=True))
-            pathways = controller_compatibility(exact, graph)
+            pathways = controller_compatibility(exact, graph, max_wire_delay=spec.max_wire_delay)
         if siso:
             beyond = _beyond_unit_chain(graph)
             pathways = controller_compatibility(
                 G_symbolic,
                 graph,
                 construction="parallel" if beyond else "path",
+                max_wire_delay=spec.max_wire_delay,
             )
             if beyond and pathways.ok:
                 step("pathways")

@@ -337,3 +337,19 @@ def test_without_sensor_delay_the_controller_sits_after_the_sensor_not_at_it():
     where = {n.name: n.vertex for n in res.circuits["controllable"].circuit.neurons}
     assert {v for name, v in where.items() if name.startswith("G2.")} == {2}
     assert where["G3.2.x1"] == 4
+
+
+def test_max_wire_delay_asks_for_unit_wires():
+    from symctl import derive
+
+    axon = GRAPH.replace('from = "a"\nto = "b"\nsteps = 1', 'from = "a"\nto = "b"\nsteps = 2')
+    axon = axon.replace('from = "b"\nto = "c"\nsteps = 1', 'from = "b"\nto = "c"\nsteps = 0')
+    free = derive(load_model(BASE + axon))
+    assert free.pathways.ok and "pathways" in free.circuits  # one wire of 2 steps crosses a -> b
+    unit = load_model(BASE + axon.replace('actuator = "c"', 'actuator = "c"\nmax_wire_delay = 1'))
+    assert unit.max_wire_delay == 1
+    res = derive(unit)
+    assert not res.pathways.ok and "at most 1 step" in res.pathways.reason
+    assert "pathways" not in res.circuits
+    err = _err(BASE + axon.replace('actuator = "c"', 'actuator = "c"\nmax_wire_delay = 0'))
+    assert err.field == "delay_graph.max_wire_delay"
