@@ -1,9 +1,10 @@
 r"""Rendering of a circuit drawing: neurons as circles, synapses as arrows, weights as labels.
 
-The positions come from :mod:`symctl.plotting.circuit_layout`; this module measures
-the labels (a neuron's circle fits its self-dynamics), sets the weights in LaTeX
-(long ones as :math:`w_1, w_2, \dots`, listed under the drawing) and draws with
-matplotlib's patches on a pyplot-free figure.
+The positions come from :mod:`symctl.plotting.circuit_layout` and the text from
+:mod:`symctl.plotting.circuit_labels` (long weights as :math:`w_1, w_2, \dots`, listed
+in a key under the drawing); this module measures the labels (a neuron's circle fits
+its self-dynamics) and draws with matplotlib's patches on a pyplot-free figure, the
+key as the glyph outlines that measured it.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit import draw_circuit
@@ -17,56 +18,25 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
-import sympy as sp
-from matplotlib.patches import Circle, FancyArrowPatch
+from matplotlib.patches import Circle, FancyArrowPatch, PathPatch
+from matplotlib.transforms import Affine2D, ScaledTranslation
 
-from symctl._util.display import latex
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import to_expr
+from symctl.plotting.circuit_labels import circuit_text, display_text
 from symctl.plotting.circuit_layout import MIN_RADIUS, circuit_layout
-from symctl.plotting.common import figure_and_axes, finish_figure, text_size
+from symctl.plotting.common import figure_and_axes, finish_figure, text_outline, text_size
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from symctl.neural.circuit import Circuit
-    from symctl.neural.neuron import Neuron, Synapse
 
 __all__ = ["draw_circuit"]
 
 _COLOURS = {"+": "#1f5fa8", "-": "#c0392b", "?": "0.55", "0": "0.75"}
 _FONT = 9
-_MAX_LABEL = 14  # weights with more visible characters are shown as w_k
 _DOT = 0.06  # radius of an input or output dot [in]
-
-
-def _visible(tex: str) -> int:
-    """The number of characters ``tex`` shows (a command counts as one)."""
-    text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
-    text = re.sub(r"\\[a-zA-Z]+", "m", text)
-    return len(re.sub(r"[{}_^\s]", "", text))
-
-
-def _weight_tex(weight) -> str:
-    """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
-    w = to_expr(weight, "weight")
-    if w.is_number and w.is_real:
-        return f"{float(w):.3g}"
-    return latex(w)
-
-
-def _self_tex(n: Neuron) -> str:
-    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
-    if not n.self_terms:
-        return "0"
-    parts = []
-    for s in sorted(n.self_terms, key=lambda s: s.delay):
-        w = to_expr(s.weight, "weight")
-        tex = _weight_tex(w)
-        if isinstance(w, sp.Add):
-            tex = rf"\left({tex}\right)"
-        parts.append(tex + (rf"\,z^{{-{s.delay}}}" if s.delay else ""))
-    return " + ".join(parts).replace("+ -", "- ")
+_KEY_GAP = 0.4  # between two columns of the key [in]
 
 
 def _where(vertex: int | None, vertex_names) -> str:
@@ -123,25 +93,11 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=
     >>> sorted({t.get_text().partition("$  ")[2] for t in fig.axes[0].texts} - {""})
     ['(v2: nervous system)', '(v3: muscle)']
     """
-    legend: list[str] = []
-
-    def weight_label(s: Synapse) -> str:
-        tex = _weight_tex(s.weight)
-        if _visible(tex) > _MAX_LABEL:
-            legend.append(rf"$w_{{{len(legend) + 1}}} = {tex}$")
-            tex = rf"w_{{{len(legend)}}}"
-        if s.delay > 1:
-            tex += rf"\,z^{{-{s.delay}}}"
-        return f"${tex}$"
-
-    body, radius = {}, {}
-    for n in c.neurons:
-        tex = _self_tex(n)
-        if _visible(tex) > 2 * _MAX_LABEL:
-            legend.append(rf"$\mathrm{{self}}({signal_tex(n.name)}) = {tex}$")
-            tex = rf"\mathrm{{self}}_{{{len(legend)}}}"
-        body[n.name] = f"${tex}$"
-        radius[n.name] = max(MIN_RADIUS, text_size(body[n.name], _FONT)[0] / 2 + 0.1)
+    text = circuit_text(c)
+    body = {name: display_text(tex) for name, tex in text.bodies.items()}
+    radius = {
+        name: max(MIN_RADIUS, text_size(tex, _FONT)[0] / 2 + 0.1) for name, tex in body.items()
+    }
     lay = circuit_layout(c, radius)
     pos = lay.pos
     fig, ax, own = figure_and_axes(ax)
@@ -152,7 +108,7 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=
         colour = _COLOURS[sign] if s is not None else "0.15"
         style = "-[,widthB=0.7,lengthB=0" if sign == "-" else "-|>,head_length=0.5,head_width=0.25"
         dashed = s is not None and s.delay > 0
-        ax.add_patch(
+        ax.add_artist(  # not add_patch: its data limits would route every arrow once more
             FancyArrowPatch(
                 pos[arc.source],
                 pos[arc.target],
@@ -171,7 +127,7 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=
             continue
         ax.text(
             *arc.label,
-            weight_label(s),
+            display_text(text.weights[s]),
             ha="center",
             va="center",
             fontsize=_FONT,
@@ -223,10 +179,62 @@ def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=
     )
     if any(n.vertex is not None for n in c.neurons):
         key += "   (v2): the delay-graph vertex the neuron sits at"
-    width = 0.0
-    for k, line in enumerate(legend):
-        ax.text(x_lo + 0.1, y_lo - 0.05 - 0.28 * k, line, ha="left", va="top", fontsize=_FONT)
-        width = max(width, text_size(line, _FONT)[0] + 0.3)
-    y_lo -= 0.28 * len(legend) + 0.15
-    x_hi = max(x_hi, x_lo + width)
+    key_lo, key_hi = _draw_key(ax, text.key_lines(), x_lo + 0.1, y_lo - 0.05, x_hi - x_lo - 0.3)
+    y_lo, x_hi = min(y_lo, key_lo), max(x_hi, key_hi)
     return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)
+
+
+def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:
+    r"""The key's ``label = value`` lines from ``(x, y)`` down, in columns if they fit ``room``.
+
+    Each line is drawn as the outlines of its glyphs (a ``PathPatch`` with gid
+    ``key:w1``, ``key:self1``, ...), the path that also measured it: matplotlib parses
+    a mathtext string again for every measure and every output format, and a key of
+    forty long fractions took two thirds of the drawing's time, three times over. As many
+    columns as fit (:func:`_key_columns`), each as wide as its widest line, filled top to
+    bottom; each row is as tall as its tallest line (a fraction is). The key is laid out
+    in inches from its corner ``(x, y)``, as text is; returns its lowest ``y`` and
+    rightmost ``x`` in data units of one inch (``y`` and ``x`` without lines).
+    """
+    if not lines:
+        return y, x
+    outlines = [text_outline(f"${line}$", _FONT) for line in lines]
+    sizes = [((x1 - x0) / 72, (y1 - y0) / 72) for _, (x0, y0, x1, y1) in outlines]
+    columns = _key_columns([w for w, _ in sizes], room)
+    nrows = len(columns[0])
+    # laid out in inches from its corner (x, y) in data units, as text is (a caller's axes
+    # may scale its data): glyphs in points -> inches, the offset, then display units
+    anchor = ax.figure.dpi_scale_trans + ScaledTranslation(x, y, ax.transData)
+    lefts = [0.0]
+    for col in columns:
+        lefts.append(lefts[-1] + max(sizes[k][0] for k in col) + _KEY_GAP)
+    top = 0.0
+    for r in range(nrows):
+        row = [(c, col[r]) for c, col in enumerate(columns) if r < len(col)]
+        for c, k in row:
+            path, (x0, _, _, y1) = outlines[k]
+            if path is None:
+                continue
+            place = Affine2D().translate(-x0, -y1).scale(1 / 72).translate(lefts[c], top)
+            name = re.sub(r"\\mathrm|[^A-Za-z0-9]", "", lines[k].partition(" = ")[0])
+            ax.add_artist(  # not add_patch: its data limits would walk every glyph's curves
+                PathPatch(path, transform=place + anchor, fc="black", lw=0, zorder=3,
+                          gid=f"key:{name}")
+            )  # fmt: skip
+        top -= max(sizes[k][1] for _, k in row) + 0.1
+    return y + top - 0.1, x + lefts[-1] - _KEY_GAP + 0.2
+
+
+def _key_columns(widths: list[float], room: float) -> list[list[int]]:
+    """The key's lines (indices) in columns, top to bottom: the most that fit ``room``.
+
+    Each column is as wide as its widest line; with ``n`` columns the first ones hold
+    ``ceil(len / n)`` lines. One column when even two do not fit.
+    """
+    for n in range(len(widths), 1, -1):
+        rows = -(-len(widths) // n)
+        columns = [list(range(k, min(k + rows, len(widths)))) for k in range(0, len(widths), rows)]
+        total = sum(max(widths[k] for k in col) for col in columns) + _KEY_GAP * (len(columns) - 1)
+        if total <= room:
+            return columns
+    return [list(range(len(widths)))]

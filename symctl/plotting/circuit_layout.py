@@ -11,10 +11,12 @@ apart from ``nx_pylab.py``. One unit is one inch.
 * **Rows**: each node at the mean row of its placed predecessors (two sweeps),
   the nodes of a column spread one row apart around their mean.
 * **Arcs**: a synapse between neighbouring columns is straight; one that skips
-  a column with a node near its row bulges by the largest such radius plus a
-  margin (alternately above and below), a feedback synapse (to the same or an
-  earlier column) runs below; parallel synapses between the same two neurons
-  fan out 0.4 inch apart. An arc's weight label sits at its middle.
+  a column bulges when its straight line would pass within a quarter inch of a
+  circle there, by the largest such radius plus a margin (alternately above and
+  below, or the other way or further when its label would come that close to a
+  circle); a feedback synapse (to the same or an earlier column) runs below;
+  parallel synapses between the same two neurons fan out 0.4 inch apart. An
+  arc's weight label sits at its middle.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
@@ -48,6 +50,7 @@ YSTEP = 1.5
 """Inches between rows."""
 MIN_RADIUS = 0.32
 """The smallest neuron circle [in] (the radius when none is given)."""
+_CLEAR = 0.25  # a straight arc or a label closer than this to a circle [in] moves away
 
 
 @dataclass(frozen=True)
@@ -164,14 +167,40 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     return col, row
 
 
-def _arc(pos, a, b, s: Synapse | None, h: float) -> Arc:
+def _distance(p, a, b) -> float:
+    """The distance from the point ``p`` to the segment from ``a`` to ``b``."""
+    p, a, b = (np.asarray(v, dtype=float) for v in (p, a, b))
+    d = b - a
+    t = float(np.clip(np.dot(p - a, d) / max(float(np.dot(d, d)), 1e-18), 0.0, 1.0))
+    return float(np.hypot(*(p - a - t * d)))
+
+
+def _rad(pos, a, b, h: float) -> float:
+    """The ``arc3`` curvature of an arc from ``a`` to ``b`` that bulges by ``h``."""
     (x0, y0), (x1, y1) = pos[a], pos[b]
     length = max(np.hypot(x1 - x0, y1 - y0), 1e-9)
-    rad = float(-2 * h / length * (1 if x1 >= x0 else -1))
-    label = None
-    if s is not None:
-        label = ((x0 + x1) / 2 + 0.5 * rad * (y1 - y0), (y0 + y1) / 2 - 0.5 * rad * (x1 - x0))
-    return Arc(a, b, s, float(h), rad, label)
+    return float(-2 * h / length * (1 if x1 >= x0 else -1))
+
+
+def _middle(pos, a, b, h: float) -> tuple[float, float]:
+    """The middle of the arc from ``a`` to ``b`` that bulges by ``h``: where its label goes."""
+    (x0, y0), (x1, y1), rad = pos[a], pos[b], _rad(pos, a, b, h)
+    return ((x0 + x1) / 2 + 0.5 * rad * (y1 - y0), (y0 + y1) / 2 - 0.5 * rad * (x1 - x0))
+
+
+def _clear_bulge(pos, a, b, h: float, radius: Mapping[str, float]) -> float:
+    """``h``, or the nearest bulge (the other way, then 0.4 inch further) whose label is on no circle."""
+    side = 1.0 if h >= 0 else -1.0
+    for t in (h, -h, *(s * (abs(h) + 0.4 * i) for i in (1, 2, 3) for s in (side, -side))):
+        x, y = _middle(pos, a, b, t)
+        if all(np.hypot(x - pos[n][0], y - pos[n][1]) >= r + _CLEAR for n, r in radius.items()):
+            return t
+    return h
+
+
+def _arc(pos, a, b, s: Synapse | None, h: float) -> Arc:
+    label = _middle(pos, a, b, h) if s is not None else None
+    return Arc(a, b, s, float(h), _rad(pos, a, b, h), label)
 
 
 def circuit_layout(c: Circuit, radius: Mapping[str, float] | None = None) -> CircuitLayout:
@@ -216,13 +245,15 @@ def circuit_layout(c: Circuit, radius: Mapping[str, float] | None = None) -> Cir
         between = [
             radius.get(n, 0.1)
             for n in col
-            if min(col[a], col[b]) < col[n] < max(col[a], col[b]) and abs(row[n] - row[a]) < 1
+            if min(col[a], col[b]) < col[n] < max(col[a], col[b])
+            and _distance(pos[n], pos[a], pos[b]) < radius.get(n, 0.1) + _CLEAR
         ]
         skips = bool(between)
         if col[b] <= col[a]:
             base = -(0.55 + 0.4 * max(span - 1, 0))
         elif skips:
             base, up = up * (max(between) + 0.5 + 0.4 * (span - 2)), -up
+            base = _clear_bulge(pos, a, b, base, radius)
         else:
             base = 0.0
         for k, s in enumerate(group):

@@ -7,21 +7,43 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = ["figure_and_axes", "finish_figure", "text_size", "wrap_key"]
+__all__ = ["figure_and_axes", "finish_figure", "text_outline", "text_size", "wrap_key"]
 
 
 @lru_cache(maxsize=4096)
 def text_size(text: str, size: float) -> tuple[float, float]:
     """Width and height in inches of ``text`` set at ``size`` points (mathtext allowed).
 
-    Cached: every drawing measures the same keys and headings again (an atlas overview
-    measured its key nine times, two thirds of its drawing time).
+    The box of its glyph outlines (:func:`text_outline`). Cached: every drawing
+    measures the same keys and headings again (an atlas overview measured its key
+    nine times, two thirds of its drawing time).
+    """
+    _, (x0, y0, x1, y1) = text_outline(text, size)
+    return (x1 - x0) / 72, (y1 - y0) / 72
+
+
+def text_outline(text: str, size: float):
+    """``(path, (x0, y0, x1, y1))``: the glyph outlines of ``text`` at ``size`` points and their box.
+
+    The path is in points, its origin on the baseline at the left (``None`` for text
+    without ink). The box is that of the outlines' vertices: TrueType outlines have
+    their on- and off-curve points at the curves' extrema, so it is the outlines' box
+    (to a thousandth of a point) without ``Path.get_extents``, which walks every
+    Bezier segment in Python (three quarters of the drawing time of a circuit with a
+    key of long weights).
     """
     from matplotlib.font_manager import FontProperties
+    from matplotlib.path import Path
     from matplotlib.textpath import TextPath
 
-    box = TextPath((0, 0), text, size=size, prop=FontProperties(size=size)).get_extents()
-    return box.width / 72, box.height / 72
+    if not text.strip():  # no ink (TextPath cannot make an empty path)
+        return None, (0.0, 0.0, 0.0, 0.0)
+    path = TextPath((0, 0), text, size=size, prop=FontProperties(size=size))
+    points = path.vertices if path.codes is None else path.vertices[path.codes != Path.CLOSEPOLY]
+    if not len(points):
+        return None, (0.0, 0.0, 0.0, 0.0)
+    (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
+    return path, (float(x0), float(y0), float(x1), float(y1))
 
 
 def figure_and_axes(ax):

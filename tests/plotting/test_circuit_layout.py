@@ -116,3 +116,21 @@ def test_layout_does_not_import_matplotlib():
         "assert 'matplotlib' not in sys.modules, 'matplotlib was imported'\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.parametrize("realize", [controllable_canonical, observable_canonical])
+def test_no_arc_of_a_mimo_circuit_runs_or_has_its_label_on_a_circle(mimo_factorization, realize):
+    f = mimo_factorization
+    c = Circuit.from_structure(Structure.from_factorization(f, realize(f.G2)))
+    lay = circuit_layout(c)
+    for arc in lay.arcs:
+        for n in c.neurons:
+            if n.name in (arc.source, arc.target):
+                continue
+            centre, r = np.array(lay.pos[n.name]), lay.radius[n.name]
+            if arc.label is not None:
+                assert np.hypot(*(np.array(arc.label) - centre)) >= r, (arc.source, arc.target)
+            if arc.height == 0:  # a straight arc passes no circle
+                a, b = np.array(lay.pos[arc.source]), np.array(lay.pos[arc.target])
+                t = np.clip(np.dot(centre - a, b - a) / np.dot(b - a, b - a), 0, 1)
+                assert np.hypot(*(a + t * (b - a) - centre)) >= r, (arc.source, arc.target, n.name)

@@ -1,0 +1,229 @@
+r"""The text of a circuit drawing: each synapse's weight, each neuron's body, and the key.
+
+What :func:`symctl.plotting.circuit.draw_circuit` writes, apart from where and how it
+draws it (no matplotlib here). A weight is written on its synapse as its LaTeX
+(numbers to 3 significant digits) when that is short; a long one, e.g. a
+coefficient of a MIMO :math:`G_2` rational in :math:`K`, :math:`\epsilon` and
+:math:`C`, would cover its neighbours, so its synapse carries a short label
+:math:`w_k` and the key under the drawing reads :math:`w_k = \dots` in full.
+A neuron's self-dynamics too long for its circle becomes
+:math:`\mathrm{self}_k` in the same way. Equal values share one label (the four
+G2 neurons of a controllable canonical form with two inputs have the same
+self-dynamics: one key entry, not four), and labels are numbered in the order of
+the circuit's neurons, then its outputs.
+
+* **Short**: :data:`LONG_WEIGHT` visible characters or fewer for a weight,
+  :data:`LONG_SELF` for a self-dynamics (:func:`visible_length`: a command such as
+  ``\epsilon`` counts as one; ``\frac``, braces and sub/superscript marks as none).
+* **Text**: a plain number is set as text (with a minus sign), everything else
+  as mathtext; matplotlib parses every mathtext string once per measure and once
+  per output format, a few milliseconds each (:func:`display_text`).
+
+>>> from symctl import Circuit, controllable_canonical, controller_tf, factor
+>>> from symctl.compatibility.structure import Structure
+>>> from symctl.plotting.circuit_labels import circuit_text
+>>> f = factor(controller_tf(2))
+>>> text = circuit_text(Circuit.from_structure(Structure.from_realization(
+...     controllable_canonical(f.G2))))
+>>> sorted(set(text.weights.values()))
+['1', '\\frac{K_{0}}{C_{1} C_{3}}', 'w_{1}', 'w_{2}']
+>>> text.key_lines()[0]
+'w_{1} = \\frac{K_{0} \\left(K_{2} + \\epsilon_{1} \\epsilon_{3}\\right)}{C_{1} C_{3}}'
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from symctl._util.display import latex
+from symctl._util.validate import to_expr
+
+if TYPE_CHECKING:
+    from symctl.neural.circuit import Circuit
+    from symctl.neural.neuron import Neuron, Synapse
+
+__all__ = [
+    "LONG_SELF",
+    "LONG_WEIGHT",
+    "CircuitText",
+    "circuit_text",
+    "display_text",
+    "visible_length",
+    "weight_tex",
+]
+
+LONG_WEIGHT = 14
+"""A weight whose LaTeX shows more characters than this is drawn as :math:`w_k`, its value
+in the key. 14 characters at 9 points are about 1.2 inches, what fits on a synapse between
+two neighbouring columns (2.6 inches apart, less the two circles) without covering the next
+synapse's label."""
+LONG_SELF = 2 * LONG_WEIGHT
+r"""A self-dynamics whose LaTeX shows more characters than this is drawn as
+:math:`\mathrm{self}_k`, its value in the key; shorter ones are written in the circle, which
+grows to hold them (two lag terms such as :math:`K_1 z^{-1} + K_2 z^{-2}` fit)."""
+
+_NUMBER = re.compile(r"-?\d+(\.\d*)?(e[+-]?\d+)?")
+
+
+def visible_length(tex: str) -> int:
+    r"""The number of characters ``tex`` shows: a command counts as one, markup as none.
+
+    ``\left``, ``\right``, ``\frac``, ``\dfrac`` and ``\cdot`` count as nothing,
+    braces, ``_``, ``^`` and spaces neither.
+
+    Examples
+    --------
+    >>> from symctl.plotting.circuit_labels import visible_length
+    >>> visible_length(r"\frac{K_{0,11}}{C_{1,1,1} C_{3,1,1}}")
+    17
+    """
+    text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
+    text = re.sub(r"\\[a-zA-Z]+", "m", text)
+    return len(re.sub(r"[{}_^\s]", "", text))
+
+
+def weight_tex(weight) -> str:
+    r"""LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.plotting.circuit_labels import weight_tex
+    >>> weight_tex(sp.Rational(-1, 3)), weight_tex(sp.Symbol("K_1") / 2)
+    ('-0.333', '\\frac{K_{1}}{2}')
+    """
+    w = to_expr(weight, "weight")
+    if w.is_number and w.is_real:
+        return f"{float(w):.3g}"
+    return latex(w)
+
+
+def _self_tex(n: Neuron) -> str:
+    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
+    if not n.self_terms:
+        return "0"
+    parts = []
+    for s in sorted(n.self_terms, key=lambda s: s.delay):
+        w = to_expr(s.weight, "weight")
+        tex = weight_tex(w)
+        if isinstance(w, sp.Add):
+            tex = rf"\left({tex}\right)"
+        parts.append(tex + (rf"\,z^{{-{s.delay}}}" if s.delay else ""))
+    return " + ".join(parts).replace("+ -", "- ")
+
+
+def display_text(tex: str) -> str:
+    r"""The string matplotlib draws for ``tex``: a plain number as text, else ``$tex$``.
+
+    A number needs no mathtext, and text is laid out by FreeType alone, with no parse
+    (a circuit of numeric weights has hundreds of labels); the minus is the minus sign
+    (U+2212) that mathtext would set.
+
+    Examples
+    --------
+    >>> from symctl.plotting.circuit_labels import display_text
+    >>> display_text("-0.25"), display_text("w_{1}")
+    ('−0.25', '$w_{1}$')
+    """
+    if _NUMBER.fullmatch(tex):
+        return tex.replace("-", "\N{MINUS SIGN}")
+    return f"${tex}$"
+
+
+@dataclass(frozen=True, eq=False)
+class CircuitText:
+    r"""What a circuit drawing writes (LaTeX without ``$``; see the module text for the rules).
+
+    Attributes
+    ----------
+    weights : mapping of Synapse to str
+        Each synapse's label (and each weighted or delayed output's): its weight, or
+        :math:`w_k` for a long one, then :math:`z^{-d}` for a delay ``d > 1``.
+    bodies : mapping of str to str
+        Each neuron's self-dynamics (``"0"`` without), or :math:`\mathrm{self}_k`.
+    key : tuple of (str, str)
+        ``(label, value)`` of each long value, the self-dynamics first, then the weights.
+    """
+
+    weights: Mapping = field(default_factory=dict)
+    bodies: Mapping[str, str] = field(default_factory=dict)
+    key: tuple[tuple[str, str], ...] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "weights", MappingProxyType(dict(self.weights)))
+        object.__setattr__(self, "bodies", MappingProxyType(dict(self.bodies)))
+
+    def key_lines(self) -> list[str]:
+        r"""The key as LaTeX lines, ``label = value``.
+
+        Examples
+        --------
+        >>> from symctl.plotting.circuit_labels import CircuitText
+        >>> CircuitText(key=(("w_{1}", r"\frac{a}{b}"),)).key_lines()
+        ['w_{1} = \\frac{a}{b}']
+        """
+        return [f"{label} = {value}" for label, value in self.key]
+
+
+class _Labels:
+    """Short labels ``stem_k`` for long values, one per distinct value, numbered from 1."""
+
+    def __init__(self, stem: str, limit: int):
+        self.stem, self.limit, self.seen = stem, limit, {}
+
+    def __call__(self, tex: str) -> str:
+        if visible_length(tex) <= self.limit:
+            return tex
+        if tex not in self.seen:
+            self.seen[tex] = f"{self.stem}_{{{len(self.seen) + 1}}}"
+        return self.seen[tex]
+
+    def key(self) -> list[tuple[str, str]]:
+        return [(label, tex) for tex, label in self.seen.items()]
+
+
+def circuit_text(c: Circuit) -> CircuitText:
+    r"""The labels of the drawing of ``c``: weights, neuron bodies, and the key of long ones.
+
+    Parameters
+    ----------
+    c : Circuit
+
+    Returns
+    -------
+    CircuitText
+
+    Examples
+    --------
+    A long weight gets a short label and a key entry; a short one is written as it is:
+
+    >>> import sympy as sp
+    >>> from symctl import Circuit, Structure
+    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl.plotting.circuit_labels import circuit_text
+    >>> a, b = sp.symbols("a b")
+    >>> long = sum(sp.symbols("k1:6")) / (a + b)
+    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(a, long)))
+    >>> text = circuit_text(c)
+    >>> text.bodies["x1"], [(s.source, w) for s, w in text.weights.items()]
+    ('a\\,z^{-1}', [('u', 'w_{1}')])
+    >>> text.key_lines()
+    ['w_{1} = \\frac{k_{1} + k_{2} + k_{3} + k_{4} + k_{5}}{a + b}']
+    >>> circuit_text(c.subs({s: 1 for s in long.free_symbols})).key   # 5/2: short
+    ()
+    """
+    weight, body = _Labels("w", LONG_WEIGHT), _Labels(r"\mathrm{self}", LONG_SELF)
+    bodies = {n.name: body(_self_tex(n)) for n in c.neurons}
+    synapses: list[Synapse] = [s for n in c.neurons for s in n.synapses]
+    synapses += [o for o in c.outputs if o.weight != 1 or o.delay]
+    weights = {}
+    for s in synapses:
+        tex = weight(weight_tex(s.weight))
+        weights[s] = tex + (rf"\,z^{{-{s.delay}}}" if s.delay > 1 else "")
+    return CircuitText(weights, bodies, (*body.key(), *weight.key()))
