@@ -251,7 +251,7 @@ def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: st
 
 def along_path(
     G, path: Sequence[int], delays: Sequence[int], *, base: str = "controllable",
-    structure: str = "branch", label: str | None = None,
+    structure: str = "branch",
 ) -> PathPart:  # fmt: skip
     r"""``G`` factored along one path, with every signal placed on it.
 
@@ -267,8 +267,6 @@ def along_path(
         The realization of :math:`G_2` (a realizer that keeps symbols).
     structure : {"branch", "state"}
         The structure of :math:`G_2`; the sections take the branch structure.
-    label : str, optional
-        Prefix of the part names (``G1.1`` becomes ``label.G1.1``).
 
     Returns
     -------
@@ -301,8 +299,6 @@ def along_path(
     ]
     names = [f"G1.{k + 1}" if ms > 1 else "G1" for k in range(ms)]
     names += ["G2"] + [f"G3.{k + 1}" if ma > 1 else "G3" for k in range(ma)]
-    if label:
-        names = [f"{label}.{name}" for name in names]
     S = Structure.series(*parts, names=names)
     chain = DelayGraph.chain(steps)
     place, _ = solve_chain(build_problem(S, chain), *chain.chain_order)

@@ -82,9 +82,7 @@ def _names(graph: DelayGraph, names) -> tuple[list[str], bool]:
 
 def _role(graph, k: int) -> str:
     """``"sensor"``, ``"actuator"`` or ``""`` for vertex ``k`` (from 1)."""
-    sensors = getattr(graph, "sensors", (1,))
-    actuators = getattr(graph, "actuators", (graph.n,))
-    return "sensor" if k in sensors else "actuator" if k in actuators else ""
+    return "sensor" if k in graph.sensors else "actuator" if k in graph.actuators else ""
 
 
 def _lines(graph, names, named, descriptions) -> dict[int, list[tuple[str, float, str]]]:

@@ -149,7 +149,7 @@ class DelayGraphLayout:
 def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
     """Each edge as laid out ``(a, b, back)``, ``a -> b`` acyclic (the module text)."""
     n = graph.n
-    sensors, actuators = _ends(graph)
+    sensors, actuators = graph.sensors, graph.actuators
     succ: dict[int, list[int]] = {v: [] for v in range(1, n + 1)}
     against = set()
     for i, j, _ in graph.edges:
@@ -161,14 +161,9 @@ def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
     return [(j, i, True) if (i, j) in against else (i, j, False) for i, j, _ in graph.edges]
 
 
-def _ends(graph: DelayGraph) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    """The sensor and actuator vertices (v1 and vN unless the graph names others)."""
-    return tuple(getattr(graph, "sensors", (1,))), tuple(getattr(graph, "actuators", (graph.n,)))
-
-
-def _layers(n: int, flow, ends=((1,), None)) -> dict[int, int]:
+def _layers(graph: DelayGraph, flow) -> dict[int, int]:
     """Sensors in layer 0, the actuators together in the last layer, the rest by longest path."""
-    sensors, actuators = ends[0], ends[1] or (n,)
+    n, sensors, actuators = graph.n, graph.sensors, graph.actuators
     dag = nx.DiGraph()
     dag.add_nodes_from(range(1, n + 1))
     dag.add_edges_from((a, b) for a, b, _ in flow)
@@ -472,7 +467,7 @@ def delay_graph_layout(
         raise ParameterError(f"graph: at most {MAX_DRAWN_VERTICES} vertices are drawn, got {n}")
     size = {v: tuple(map(float, (sizes or {}).get(v, BOX))) for v in range(1, n + 1)}
     flow = _flow(graph)
-    layer = _layers(n, flow, _ends(graph))
+    layer = _layers(graph, flow)
     if sum(abs(layer[b] - layer[a]) - 1 for a, b, _ in flow) > MAX_BENDS:
         raise ParameterError(
             f"graph: its {len(flow)} edges cross too many layers to be drawn (more than "
