@@ -110,6 +110,13 @@ _PUBLIC = {
     "CircuitClass": "symctl.discovery.circuitclass",
     "Evidence": "symctl.discovery.universality",
     "Pattern": "symctl.discovery.pattern",
+    # Dale's law: excitatory and inhibitory neurons
+    "DaleResult": "symctl.discovery.dale",
+    "dale": "symctl.discovery.dale",
+    "EICircuit": "symctl.discovery.interneurons",
+    "ei_circuit": "symctl.discovery.interneurons",
+    "DaleTable": "symctl.discovery.dale_atlas",
+    "dale_atlas": "symctl.discovery.dale_atlas",
     # your own system: model files
     "Model": "symctl.model.model",
     "load_model": "symctl.model.modelfile",

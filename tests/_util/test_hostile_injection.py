@@ -566,6 +566,27 @@ AUDITED = {
     ("symctl.realization.realization", "_tidy", "cancel"): 1,
     ("symctl.report.pipeline", "derive_paper", "factor"): 1,
     ("symctl.report.story", "_match", "cancel"): 1,
+    # Dale's law (issue 17): G is a validated numeric DiscreteTF (controller_of), the rest are
+    # the templates' own symbols, z3's exact values and seeded rationals; no user text
+    ("symctl.discovery.dale", "controller_of", "subs"): 1,
+    ("symctl.discovery.dale", "poles_of", "fraction"): 1,
+    ("symctl.discovery.dale", "poles_of", "together"): 1,
+    ("symctl.discovery.dale", "dale", "factor"): 1,
+    ("symctl.discovery.dale", "_witness", "subs"): 2,
+    ("symctl.discovery.dale_atlas", "_sample", "expand"): 1,
+    ("symctl.discovery.dale_atlas", "_decide", "factor"): 1,
+    ("symctl.discovery.interneurons", "ei_circuit", "factor"): 1,
+    ("symctl.discovery.interneurons", "_relays", "subs"): 1,
+    ("symctl.discovery.signs", "template", "Poly"): 2,
+    ("symctl.discovery.signs", "template", "expand"): 2,
+    ("symctl.discovery.signs", "template", "together"): 1,
+    ("symctl.discovery.signs", "encode", "expand"): 2,
+    ("symctl.discovery.signs", "encode", "fraction"): 1,
+    ("symctl.discovery.signs", "encode", "together"): 1,
+    ("symctl.discovery.signs", "value_of", "Poly"): 1,
+    ("symctl.discovery.witness", "search_general", "lambdify"): 1,
+    ("symctl.discovery.witness", "_exact", "Poly"): 1,
+    ("symctl.discovery.witness", "_exact", "factor"): 1,
 }
 
 

@@ -1,0 +1,367 @@
+r"""Dale's law: can a circuit carry the controller with every neuron excitatory or inhibitory?
+
+The paper's future-work item 2: "In animals, neurons are generally excitatory
+(all outputs have positive synaptic weights on downstream neurons) or
+inhibitory (all negative). This translates to sign requirements on internal
+variables in the controller realization and circuit structure."
+
+:func:`dale` decides it for one circuit of the whole controller
+:math:`G = G_3 G_2 G_1`. What varies is what leaves :math:`G` unchanged: the
+sections' :math:`\epsilon_k` and :math:`C_k`, and :math:`G_2`'s realization
+within the circuit (the similarity transform :math:`P` for the general circuit,
+the fibre of the pattern for an atlas class). A neuron's **sign** is the sign
+of every synapse it sends to another neuron; its **self-dynamics** and the
+circuit's **read-out** (the motor command :math:`\delta_r`) are exempt.
+The question is a formula of nonlinear real arithmetic
+(:mod:`symctl.discovery.signs`), decided by z3:
+
+* **feasible** (``True``): a witness, pinned to rationals where z3 allows,
+  then verified exactly: :math:`G_3 G_2 G_1 = G` by
+  :func:`~symctl.check_realization` (or, with algebraic entries, by z3's exact
+  evaluation of every constraint) and each neuron's outgoing signs read off
+  the witness circuit;
+* **infeasible** (``False``): z3 proved the formula unsatisfiable, so no
+  realization of this circuit is E/I (with stable, nonzero sections);
+* **not decided** (``None``): z3 stopped at ``timeout``; ``reason`` says what
+  was tried.
+
+>>> import sympy as sp
+>>> import symctl
+>>> from symctl import z
+>>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
+>>> r = symctl.dale(G, sensor_delay=1, actuator_delay=1, circuit="controllable")
+>>> r.feasible, dict(r.signs)
+(True, {'G1.x1': '+', 'G2.x2': '+', 'G2.y': '+', 'G3.x1': '+'})
+>>> symctl.dale(G, sensor_delay=1, actuator_delay=1, circuit="observable").feasible
+False
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import sympy as sp
+
+from symctl._util.validate import bounded_number, nonneg_int
+from symctl.compatibility.structure import Structure
+from symctl.design.controller import controller_tf
+from symctl.design.lqr import Gains
+from symctl.design.tf import DiscreteTF
+from symctl.discovery.circuitclass import CircuitClass
+from symctl.discovery.fibre import binary_rationals
+from symctl.discovery.pattern import Pattern
+from symctl.discovery.signs import NAMED, Template, _expr, decide, encode, refine, template
+from symctl.discovery.witness import search_general
+from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
+from symctl.neural.circuit import Circuit
+from symctl.realization.check import check_realization
+from symctl.realization.factorization import factor
+from symctl.realization.realization import Realization, controller_realization
+from symctl.symbols import z
+
+__all__ = ["METHOD", "DaleResult", "controller_of", "dale", "templates_of"]
+
+METHOD = "z3 nlsat (a complete decision procedure for nonlinear real arithmetic)"
+"""The method named in every decided result."""
+
+MAX_TIMEOUT = 3600.0
+"""Most seconds one z3 call may take."""
+
+
+@dataclass(frozen=True)
+class DaleResult:
+    r"""The verdict of :func:`dale`: a witness, a proof that none exists, or "not decided".
+
+    Attributes
+    ----------
+    feasible : bool or None
+        ``True`` (a witness), ``False`` (proved: no E/I realization of this
+        circuit), ``None`` (not decided).
+    realization : Realization or None
+        The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
+    signs : mapping
+        Neuron name -> ``"+"`` (excitatory) or ``"-"`` (inhibitory), for every neuron
+        of the witness circuit; a neuron that drives only the read-out is ``"+"``
+        (nothing constrains it).
+    method, reason : str
+        How it was decided, and the evidence (or what was tried).
+    circuit : str
+        The circuit asked about (``"general"``, ``"controllable"``, ``"observable"``
+        or an atlas class's label).
+    witness : Circuit or None
+        The witness circuit, exact weights.
+    R2 : Realization or None
+        :math:`G_2`'s realization in the witness.
+    sections : mapping
+        The witness's :math:`\epsilon_k` and :math:`C_k`.
+    exact : bool
+        The witness was verified in exact arithmetic (always, for a witness).
+    elapsed : float
+        Seconds spent.
+
+    Examples
+    --------
+    >>> import sympy as sp, symctl
+    >>> from symctl import z
+    >>> r = symctl.dale(-sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3)),
+    ...                 sensor_delay=1, actuator_delay=1, circuit="general")
+    >>> r.feasible, r.exact, bool(symctl.check_realization(r.realization, r.G))
+    (True, True, True)
+    """
+
+    feasible: bool | None
+    realization: Realization | None
+    signs: Mapping = field(default_factory=dict)
+    method: str = METHOD
+    reason: str = ""
+    circuit: str = ""
+    witness: Circuit | None = field(default=None, repr=False)
+    R2: Realization | None = field(default=None, repr=False)
+    sections: Mapping = field(default_factory=dict, repr=False)
+    exact: bool = False
+    elapsed: float = 0.0
+    G: DiscreteTF | None = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "signs", MappingProxyType(dict(self.signs)))
+        object.__setattr__(self, "sections", MappingProxyType(dict(self.sections)))
+
+    def __str__(self) -> str:
+        verdict = {True: "feasible", False: "infeasible", None: "not decided"}[self.feasible]
+        lines = [f"Dale's law, circuit {self.circuit}: {verdict} ({self.method})", self.reason]
+        if self.signs:
+            lines.append("signs: " + ", ".join(f"{k} {v}" for k, v in self.signs.items()))
+        return "\n".join(lines)
+
+
+# ---------------------------------------------------------------- inputs
+def controller_of(G, sensor_delay, actuator_delay) -> tuple[DiscreteTF, int, int]:
+    """``(G, ds, da)``: a numeric SISO controller, its floats as exact binary rationals."""
+    if isinstance(G, Gains):
+        s = G.system
+        ds = s.sensor_delay if sensor_delay is None else sensor_delay
+        da = s.actuator_delay if actuator_delay is None else actuator_delay
+        G = controller_tf(s).subs(G.substitutions(exact=True))
+    else:
+        ds = 1 if sensor_delay is None else sensor_delay
+        da = 1 if actuator_delay is None else actuator_delay
+    if isinstance(G, sp.Basic) and not isinstance(G, sp.MatrixBase):
+        G = DiscreteTF.from_expr(G)
+    if not isinstance(G, DiscreteTF):
+        raise SymctlTypeError(
+            f"G: expected Gains, a DiscreteTF or a SymPy expression in z, got {type(G).__name__}"
+        )
+    if G.shape != (1, 1):
+        raise DimensionError(f"G: Dale's law is decided for a SISO controller, got {G.shape}")
+    extra = sorted(str(s) for s in G.free_symbols - {z})
+    if extra:
+        raise ParameterError(
+            f"G: must be numeric to decide Dale's law, but has the symbols {extra}; "
+            "substitute the gains first (e.g. G.subs(gains.substitutions(exact=True)))"
+        )
+    ds = nonneg_int(ds, "sensor_delay")
+    da = nonneg_int(da, "actuator_delay")
+    G = DiscreteTF.from_expr(binary_rationals(G.expr), G.dt)
+    return G, ds, da
+
+
+def templates_of(factorization, circuit) -> tuple[str, list[Template]]:
+    """``(label, templates)`` of ``circuit``: one per representative pattern of a class."""
+    n = factorization.G2.order
+    if isinstance(circuit, str):
+        if circuit not in NAMED:
+            raise ParameterError(
+                f"circuit: must be one of {NAMED} or a CircuitClass of the atlas, got {circuit!r}"
+            )
+        if n == 0:
+            raise NotRealizableError(
+                "circuit: G2 is a constant (order 0), so it has no neurons of its own to sign"
+            )
+        return circuit, [template(factorization, circuit)]
+    if isinstance(circuit, Pattern):
+        patterns, label, delays = [circuit], circuit.text, "branch"
+    elif isinstance(circuit, CircuitClass):
+        patterns, label, delays = list(circuit.representatives), circuit.label, circuit.delays
+        label = label or "class"
+    else:
+        raise SymctlTypeError(
+            f"circuit: expected {NAMED}, a CircuitClass or a Pattern, got {type(circuit).__name__}"
+        )
+    order = patterns[0].n
+    if order != n:
+        raise NotRealizableError(
+            f"circuit: {label} has order {order}, but this controller's G2 has order {n}; "
+            f"take a class of symctl.atlas({n})"
+        )
+    if factorization.N == 0:
+        raise NotRealizableError(
+            "circuit: the atlas's circuits have N = G2(oo) != 0, but this G2 has N = 0 "
+            "(relative degree above the delays); use 'general', 'controllable' or 'observable'"
+        )
+    return label, [template(factorization, p, delays) for p in patterns]
+
+
+def poles_of(G: DiscreteTF) -> list[sp.Expr]:
+    """The denominator of ``G`` as a polynomial in ``z`` (the sections must avoid its roots)."""
+    return [sp.fraction(sp.together(G.expr))[1]]
+
+
+# ---------------------------------------------------------------- the decision
+def dale(
+    G,
+    *,
+    sensor_delay: int | None = None,
+    actuator_delay: int | None = None,
+    circuit="general",
+    timeout: float = 30.0,
+) -> DaleResult:
+    r"""Decide whether ``circuit`` can carry the controller ``G`` with every neuron E or I.
+
+    A neuron is excitatory when every synapse it sends to another neuron is
+    positive, inhibitory when every one is negative; self-dynamics and the
+    read-out are exempt. What may vary is what keeps :math:`G_3 G_2 G_1 = G`
+    exact: the sections' :math:`\epsilon_k \in (-1, 1)` (nonzero, off the poles
+    of :math:`G`) and :math:`C_k \ne 0`, and :math:`G_2`'s realization within
+    the circuit (a similarity :math:`P`, or a point of the class's fibre). See
+    :mod:`symctl.discovery.dale`.
+
+    Parameters
+    ----------
+    G : Gains, DiscreteTF or sympy expression in ``z``
+        A numeric SISO controller (floats are taken as the exact binary rationals
+        they are); ``Gains`` give the optimal controller with their delays.
+    sensor_delay, actuator_delay : int, optional
+        The split :math:`G_1`, :math:`G_3` (default the gains' delays, else 1 and 1).
+    circuit : {"general", "controllable", "observable"}, CircuitClass or Pattern
+        The circuit of :math:`G_2`: the paper's general (every entry of a
+        similarity transform nonzero) or canonical circuits, or a class of
+        :func:`symctl.atlas` (each of its representative patterns is tried).
+    timeout : float
+        Seconds for each pattern's search (z3 and, for the general circuit, the numeric search;
+        default 30, at most 3600).
+
+    Returns
+    -------
+    DaleResult
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``circuit`` name, ``G`` with symbols, a bad ``timeout``, delays
+        that ``G``'s relative degree cannot carry (from :func:`~symctl.factor`).
+    NotRealizableError
+        A class of another order than :math:`G_2`, or :math:`N = 0` for a class.
+    DimensionError
+        A MIMO ``G``.
+    SymctlTypeError
+        ``G`` or ``circuit`` of a wrong type.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> from symctl import MuscleModel, augment, lqr_gains
+    >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> r = symctl.dale(gains, circuit="general")     # the paper's controller
+    >>> r.feasible, r.signs["G1.x1"] in "+-"
+    (True, True)
+    >>> symctl.dale(gains, circuit="diagonal")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: circuit: must be one of ('general', 'controllable', ...
+    """
+    t0 = time.perf_counter()
+    G, ds, da = controller_of(G, sensor_delay, actuator_delay)
+    timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
+    fs = factor(G, ds, da)
+    label, templates = templates_of(fs, circuit)
+    poles = poles_of(G)
+    tried: list[str] = []
+    for t in templates:
+        verdict, model = solve(G, t, poles, timeout, tried)
+        if verdict == "sat":
+            return _witness(G, fs, t, model, label, tried, t0)
+    if all(v.endswith("unsat") for v in tried):
+        reason = (
+            f"z3 proved the sign constraints unsatisfiable for every pattern of {label} "
+            f"({'; '.join(tried)}): no realization of this circuit, with stable nonzero "
+            "sections, has every neuron excitatory or inhibitory"
+        )
+        return DaleResult(False, None, {}, METHOD, reason, label, G=G,
+                          elapsed=time.perf_counter() - t0)  # fmt: skip
+    reason = (
+        f"not decided: z3 gave up within timeout = {timeout:g} s per call ({'; '.join(tried)}); "
+        "raise timeout to search longer"
+    )
+    return DaleResult(None, None, {}, METHOD, reason, label, G=G,
+                      elapsed=time.perf_counter() - t0)  # fmt: skip
+
+
+def solve(G, t: Template, poles, timeout: float, tried: list) -> tuple[str, dict | None]:
+    """Decide one template: z3 first (briefly), the general circuit's numeric search, z3 again.
+
+    Returns ``(verdict, model)``; ``tried`` gets one line per attempt.
+    """
+    start = time.perf_counter()
+    enc = encode(t, poles, timeout=timeout)
+    general = t.label == "general"
+    verdict, assume = decide(enc, budget=min(timeout, 3.0) if general else timeout)
+    if verdict == "unknown" and general:
+        found = search_general(G, t, budget=min(timeout, 20.0))
+        if found is not None:
+            tried.append("general: z3 undecided in 3 s; Nelder-Mead found a witness, made exact")
+            return "sat", {"values": found}
+        left = timeout - (time.perf_counter() - start)
+        if left > 0:
+            verdict, assume = decide(enc, budget=left)
+    tried.append(f"{t.label}: z3 {verdict}")
+    if verdict != "sat":
+        return verdict, None
+    order = [*t.sections, *t.unknowns]
+    return verdict, refine(enc, order, timeout=min(timeout, 0.5), keep=assume)
+
+
+def _witness(G, fs, t: Template, model: dict, label: str, tried, t0, signed=True) -> DaleResult:
+    """The exact witness circuit of a model, verified (see the module text).
+
+    ``signed=False`` (a witness with mixed neurons allowed) skips the sign check.
+    """
+    values = model["values"]
+    sections = {str(s): values[s] for s in t.sections}
+    fixed = {s: values[s] for s in (*t.sections, *t.unknowns)}
+    R2 = t.R2.subs(fixed)
+    sub = fs.subs(fixed)
+    whole = controller_realization(sub, R2)
+    algebraic = any(not v.is_Rational for v in fixed.values())
+    if algebraic:
+        proof = "z3 evaluated every constraint exactly at the algebraic witness"
+    else:
+        check = check_realization(whole, G)
+        if not check.ok:  # pragma: no cover - z3's model satisfies the equations
+            raise ParameterError(f"circuit: the witness does not realize G ({check.details})")
+        proof = "G3 G2 G1 = G proved by check_realization (exact rational arithmetic)"
+    witness = Circuit.from_structure(Structure.from_factorization(sub, R2, t.delays))
+    signs = _signs(witness) if signed else {}
+    reason = (
+        f"a witness of {t.label}: {proof}; every neuron's outgoing synapses have one sign "
+        f"(read off the witness circuit exactly); z3: {'; '.join(tried)}"
+    )
+    return DaleResult(
+        True, whole, signs, METHOD, reason, label, witness, R2, sections, True,
+        time.perf_counter() - t0, G,
+    )  # fmt: skip
+
+
+def _signs(circuit: Circuit) -> dict[str, str]:
+    """Each neuron's sign, checked exactly on its outgoing weights (read-out and self exempt)."""
+    names = {n.name for n in circuit.neurons}
+    out = {}
+    for n in circuit.neurons:
+        ws = [s.weight for s in n.axon if s.target in names and s.target != n.name]
+        signs = {bool(_expr(w) > 0) for w in ws} if ws else {True}
+        if len(signs) != 1:  # pragma: no cover - the witness satisfies the sign constraints
+            raise ParameterError(f"circuit: the witness's neuron {n.name} has mixed signs")
+        out[n.name] = "+" if signs.pop() else "-"
+    return out

@@ -1,0 +1,325 @@
+r"""The cheapest E/I circuit of a controller, with sign-flipping interneurons where needed.
+
+When no circuit carries :math:`G` with every neuron excitatory or inhibitory
+(:func:`~symctl.discovery.dale.dale`), a neuron with **mixed** signs can keep
+Dale's law with one extra inhibitory interneuron: the neuron :math:`j` of sign
+:math:`\sigma` sends :math:`\sigma` to the interneuron :math:`I_j` (delay 0,
+no self-dynamics), and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target
+:math:`t` whose weight :math:`w_t` has the other sign, with :math:`w_t`'s
+delay. The product is :math:`w_t`, so the circuit computes the same
+:math:`G` exactly; each interneuron costs one neuron.
+
+:func:`ei_circuit` finds, over a set of circuits (the named ones and, for
+:math:`G_2` of order 1 or 2, every class of the atlas), the fewest mixed neurons
+each admits, exactly: z3 with a Boolean "mixed" per neuron and the bound
+:math:`\sum \text{mixed} \le k`, for :math:`k = 0, 1, \dots` until satisfiable
+(so the minimum is proved by the unsatisfiable :math:`k - 1`). The cheapest
+total (circuit neurons plus interneurons) wins, and what Dale's law costs is
+that total minus the fewest neurons any searched circuit needs without it.
+
+>>> import sympy as sp, symctl
+>>> from symctl import z
+>>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
+>>> e = symctl.ei_circuit(G, sensor_delay=1, actuator_delay=1, circuits=["observable"])
+>>> e.circuit, e.base_neurons, e.interneurons, e.cost
+('observable', 5, ('G2.x2',), 1)
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import sympy as sp
+
+from symctl._util.validate import bounded_number
+from symctl.discovery.dale import (
+    METHOD,
+    controller_of,
+    poles_of,
+    search_general,
+    templates_of,
+)
+from symctl.discovery.signs import NAMED, _expr, decide, encode, refine
+from symctl.errors import ParameterError
+from symctl.realization.factorization import factor
+
+__all__ = ["EICandidate", "EICircuit", "Interneuron", "ei_circuit"]
+
+ATLAS_MAX_ORDER = 2
+"""Highest order of :math:`G_2` whose atlas classes are all searched by default."""
+
+
+@dataclass(frozen=True)
+class Interneuron:
+    """One inhibitory interneuron: it relays ``source``'s synapses of the minority sign.
+
+    Attributes
+    ----------
+    name : str
+        ``"I[source]"``.
+    source : str
+        The mixed neuron it serves; its sign ``sign`` is kept on every synapse it sends.
+    sign : str
+        The source's sign, ``"+"`` or ``"-"``.
+    targets : tuple of str
+        The neurons that now receive the relayed (negative) synapses.
+    weights : tuple of sympy.Expr
+        The relayed weights :math:`w_t / \\sigma` (all negative).
+    """
+
+    name: str
+    source: str
+    sign: str
+    targets: tuple
+    weights: tuple
+
+
+@dataclass(frozen=True)
+class EICandidate:
+    """One searched circuit: its neurons and the fewest mixed neurons it needs (or why not)."""
+
+    label: str
+    neurons: int | None
+    mixed: int | None
+    status: str
+
+    @property
+    def total(self) -> int | None:
+        """Neurons plus one interneuron per mixed neuron."""
+        return None if self.mixed is None or self.neurons is None else self.neurons + self.mixed
+
+
+@dataclass(frozen=True)
+class EICircuit:
+    r"""The cheapest E/I circuit found by :func:`ei_circuit`.
+
+    Attributes
+    ----------
+    circuit : str
+        The winning circuit's label.
+    base_neurons : int
+        Its neurons (sections included).
+    interneurons : tuple of str
+        The mixed neurons, each given one inhibitory interneuron (see :attr:`relays`).
+    neurons : int
+        ``base_neurons + len(interneurons)``.
+    minimum : int
+        The fewest neurons of any searched circuit that realizes :math:`G`, without Dale's law.
+    cost : int
+        ``neurons - minimum``: the neurons Dale's law costs.
+    signs : mapping
+        Every neuron's sign in the E/I circuit (interneurons ``"-"``).
+    relays : tuple of Interneuron
+    realization : Realization
+        The witness of :math:`G_3 G_2 G_1` (exact); the relays leave it unchanged.
+    candidates : tuple of EICandidate
+        Every circuit searched, with its verdict.
+    method, reason : str
+
+    Examples
+    --------
+    >>> import sympy as sp, symctl
+    >>> from symctl import z
+    >>> e = symctl.ei_circuit(-sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3)),
+    ...                       sensor_delay=1, actuator_delay=1)
+    >>> e.cost, e.neurons == e.minimum
+    (0, True)
+    """
+
+    circuit: str
+    base_neurons: int
+    interneurons: tuple
+    neurons: int
+    minimum: int
+    cost: int
+    signs: Mapping = field(default_factory=dict)
+    relays: tuple = ()
+    realization: object = field(default=None, repr=False)
+    candidates: tuple = field(default=(), repr=False)
+    method: str = METHOD
+    reason: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "signs", MappingProxyType(dict(self.signs)))
+
+    def table(self) -> str:
+        """The searched circuits, one line each."""
+        rows = [f"{'circuit':>14} | neurons | mixed | total | status"]
+        for c in self.candidates:
+            mixed = "" if c.mixed is None else str(c.mixed)
+            total = "" if c.total is None else str(c.total)
+            rows.append(f"{c.label:>14} | {c.neurons!s:>7} | {mixed:>5} | {total:>5} | {c.status}")
+        return "\n".join(rows)
+
+
+def _candidates(circuits, n: int):
+    if circuits is not None:
+        if isinstance(circuits, str) or not isinstance(circuits, Iterable):
+            raise ParameterError(
+                "circuits: expected a list of circuits (names, CircuitClass or Pattern), "
+                f"got {circuits!r}"
+            )
+        out = list(circuits)
+        if not out:
+            raise ParameterError("circuits: empty; give at least one circuit")
+        return out
+    out = list(NAMED)
+    if 1 <= n <= ATLAS_MAX_ORDER:
+        from symctl.discovery.atlas import atlas
+
+        out += list(atlas(n, workers=1).classes)
+    return out
+
+
+def _fewest_mixed(G, t, poles, timeout: float):
+    """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness.
+
+    Subsets of neurons allowed to be mixed are tried by size (each with every sign
+    assignment of the rest, :func:`~symctl.discovery.signs.decide`); the first
+    satisfiable size is the minimum, proved when every smaller one was refuted.
+    """
+    enc = encode(t, poles, timeout=timeout, relax=True)
+    names = list(enc.mixed)
+    unknown = False
+    deadline = time.perf_counter() + timeout
+    for k in range(len(names) + 1):
+        for free in itertools.combinations(names, k):
+            left = deadline - time.perf_counter()
+            if left <= 0:
+                return "unknown", None, None
+            verdict, assume = decide(enc, free, budget=left)
+            if verdict == "sat":
+                model = refine(enc, [*t.sections, *t.unknowns], timeout=0.5, keep=assume)
+                return ("sat" if not unknown else "bound"), k, model | {"proved": not unknown}
+            unknown |= verdict == "unknown"
+    return ("unknown" if unknown else "unsat"), None, None
+
+
+def ei_circuit(
+    G,
+    *,
+    sensor_delay: int | None = None,
+    actuator_delay: int | None = None,
+    circuits=None,
+    timeout: float = 30.0,
+) -> EICircuit:
+    r"""The cheapest circuit of ``G`` that obeys Dale's law, with interneurons where it must.
+
+    See :mod:`symctl.discovery.interneurons`.
+
+    Parameters
+    ----------
+    G, sensor_delay, actuator_delay
+        As in :func:`~symctl.discovery.dale.dale`.
+    circuits : list, optional
+        The circuits to search (names, ``CircuitClass`` or ``Pattern``); default the
+        general, controllable and observable circuits and, when :math:`G_2` has
+        order 1 or 2, every class of ``symctl.atlas(order)``.
+    timeout : float
+        Seconds for each circuit's search (default 30).
+
+    Returns
+    -------
+    EICircuit
+
+    Raises
+    ------
+    ParameterError
+        No searched circuit realizes ``G`` (or none was decided), an empty
+        ``circuits``; the errors of :func:`~symctl.discovery.dale.dale`.
+
+    Examples
+    --------
+    >>> import sympy as sp, symctl
+    >>> from symctl import z
+    >>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
+    >>> e = symctl.ei_circuit(G, sensor_delay=1, actuator_delay=1,
+    ...                       circuits=["observable", "controllable"])
+    >>> e.circuit, e.cost, [(c.label, c.mixed) for c in e.candidates]
+    ('controllable', 0, [('observable', 1), ('controllable', 0)])
+    """
+    t0 = time.perf_counter()
+    G, ds, da = controller_of(G, sensor_delay, actuator_delay)
+    timeout = bounded_number(timeout, "timeout", 1e-3, 3600.0)
+    fs = factor(G, ds, da)
+    poles = poles_of(G)
+    found: list[EICandidate] = []
+    best = None
+    for circuit in _candidates(circuits, fs.G2.order):
+        try:
+            label, templates = templates_of(fs, circuit)
+        except ParameterError as exc:  # a class of another order, or N = 0
+            found.append(EICandidate(getattr(circuit, "label", str(circuit)), None, None,
+                                     f"cannot realize: {exc}"))  # fmt: skip
+            continue
+        outcome = None
+        for t in templates:
+            verdict, k, model = _fewest_mixed(G, t, poles, timeout)
+            if verdict == "unknown" and t.label == "general":
+                values = search_general(G, t, budget=min(timeout, 20.0))
+                if values is not None:
+                    verdict, k, model = "sat", 0, {"values": values, "mixed": {}}
+            if verdict in ("sat", "bound") and (outcome is None or k < outcome[1]):
+                outcome = (t, k, model)
+            elif outcome is None:
+                outcome = verdict
+        neurons = templates[0].circuit.n_neurons
+        if isinstance(outcome, tuple):
+            t, k, model = outcome
+            found.append(EICandidate(label, neurons, k, "decided (z3)" if model.get("proved", True)
+                                     else "upper bound (z3 undecided below)"))  # fmt: skip
+            if best is None or neurons + k < best[0]:
+                best = (neurons + k, label, t, model, neurons)
+        else:
+            status = "cannot realize G" if outcome == "unsat" else "not decided (z3 timeout)"
+            found.append(EICandidate(label, neurons, None, status))
+    if best is None:
+        raise ParameterError(
+            "circuits: no searched circuit realizes G (or none was decided within the timeout)"
+        )
+    _, label, t, model, neurons = best
+    minimum = min(c.neurons for c in found if c.mixed is not None)
+    relays, signs, realization = _relays(G, fs, t, model)
+    total = neurons + len(relays)
+    reason = (
+        f"{len(found)} circuits searched in {time.perf_counter() - t0:.1f} s; the fewest mixed "
+        "neurons of each is proved by z3 (that bound is satisfiable, one fewer is not); "
+        f"{label} needs {len(relays)} interneuron(s)"
+    )
+    return EICircuit(
+        label, neurons, tuple(r.source for r in relays), total, minimum, total - minimum, signs,
+        tuple(relays), realization, tuple(found), METHOD, reason,
+    )  # fmt: skip
+
+
+def _relays(G, fs, t, model):
+    """The witness's interneurons, every neuron's sign and the whole controller (exact)."""
+    from symctl.discovery.dale import _witness
+
+    values = model["values"]
+    mixed = {name for name, m in model.get("mixed", {}).items() if m}
+    circuit = t.circuit.subs({s: values[s] for s in values if s in t.circuit.free_symbols})
+    names = {n.name for n in circuit.neurons}
+    relays, signs = [], {}
+    for n in circuit.neurons:
+        out = [s for s in n.axon if s.target in names and s.target != n.name]
+        ws = [_expr(s.weight) for s in out]
+        pos = sum(1 for w in ws if w > 0)
+        if n.name not in mixed or not ws or pos in (0, len(ws)):
+            signs[n.name] = "-" if ws and pos == 0 else "+"
+            continue
+        sigma = 1 if 2 * pos >= len(ws) else -1
+        flip = [(s.target, w / sigma) for s, w in zip(out, ws, strict=True) if w * sigma < 0]
+        name = f"I[{n.name}]"
+        relays.append(Interneuron(name, n.name, "+" if sigma > 0 else "-",
+                                  tuple(a for a, _ in flip), tuple(w for _, w in flip)))  # fmt: skip
+        signs[n.name] = "+" if sigma > 0 else "-"
+        signs[name] = "-"
+    whole = _witness(G, fs, t, {"values": values}, t.label, [], 0.0, signed=False).realization
+    if any(not all(sp.sign(w) < 0 for w in r.weights) for r in relays):  # pragma: no cover
+        raise ParameterError("circuits: an interneuron's relayed weights are not all negative")
+    return relays, signs, whole

@@ -1,0 +1,173 @@
+r"""A numeric search for an E/I witness of the general circuit, made exact.
+
+The general circuit's realizations are :math:`(F, H, M) = (Q F_0 Q^{-1},\ Q H_0,\ M_0 Q^{-1})`
+of the controllable canonical form :math:`(F_0, H_0, M_0)` of
+:math:`G_2 = G / (G_3 G_1)`, for any invertible :math:`Q = P^{-1}` and sections
+:math:`\epsilon_k \in (-1, 1)`. :func:`search_general` maximizes the **Dale
+margin**, the least over neurons of
+
+.. math::
+    \frac{\max(\min_k w_k,\ \min_k -w_k)}{\max_k |w_k|}
+
+over each neuron's outgoing weights :math:`w_k` (positive exactly when the
+neuron is E or I), with Nelder-Mead from seeded random starts. A positive
+margin is then made exact: :math:`\epsilon` and :math:`Q` are rounded to
+rationals, the realization is rebuilt in exact arithmetic (python-flint
+behind :func:`~symctl.realization.realizers.general_realization`) and every
+sign is checked on it exactly. The search finds witnesses; only z3 proves that
+none exists (:mod:`symctl.discovery.signs`).
+"""
+
+from __future__ import annotations
+
+import time
+from fractions import Fraction
+
+import numpy as np
+import sympy as sp
+from scipy.optimize import minimize
+
+from symctl.discovery.signs import _expr
+from symctl.realization.factorization import factor
+from symctl.realization.realizers import general_realization
+from symctl.symbols import z
+
+__all__ = ["dale_margin", "search_general"]
+
+
+def dale_margin(groups) -> float:
+    """The least normalized sign margin over the neurons' weight groups (> 0: Dale holds)."""
+    worst = np.inf
+    for w in groups:
+        scale = float(np.max(np.abs(w)))
+        if not np.isfinite(scale) or scale == 0:
+            return -np.inf
+        worst = min(worst, max(float(np.min(w)), float(np.min(-w))) / scale)
+    return worst
+
+
+def _coefficients(G, eps: np.ndarray, gain: float):
+    """``(a, c, N)`` of :math:`G_2` (ascending, monic ``a``) for sections ``eps`` (floats)."""
+    num = np.array([float(x) for x in G.num_coeffs()])  # descending
+    den = np.array([float(x) for x in G.den_coeffs()])
+    for e in eps:
+        num = np.convolve(num, [1.0, -e])
+    num = num / gain
+    n = den.size - 1
+    num = np.concatenate([np.zeros(n + 1 - num.size), num])
+    N = num[0]
+    rest = num[1:] - N * den[1:]
+    return den[1:][::-1], rest[::-1], N
+
+
+def _canonical(a, c):
+    n = a.size
+    F0 = np.zeros((n, n))
+    F0[:-1, 1:] = np.eye(n - 1)
+    F0[-1, :] = -a
+    H0 = np.zeros(n)
+    H0[-1] = 1.0
+    return F0, H0, c.copy()
+
+
+def search_general(G, t, *, starts: int = 48, seed: int = 0, budget: float = 20.0):
+    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None.
+
+    Sections ``C`` are 1 but for the first, whose sign is tried both ways (only the sign of
+    their product changes :math:`G_2`); ``starts`` Nelder-Mead runs in at most ``budget`` s.
+    """
+    fs = t.factorization
+    eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
+    c_syms = (*fs.sensor_C, *fs.actuator_C)
+    n = fs.G2.order
+    k = len(eps_syms)
+    names = list(t.outgoing)
+    order = [*t.unknowns, *eps_syms, *c_syms]
+    fns = {
+        name: sp.lambdify(order, list(ws) or [1.0], "numpy")
+        for name, ws in t.outgoing.items()
+        if ws
+    }
+    rng = np.random.default_rng(seed)
+    deadline = time.perf_counter() + budget
+
+    def values(theta, sign):
+        eps = 0.95 * np.tanh(theta[:k])
+        cs = np.ones(len(c_syms))
+        if cs.size:
+            cs[0] = sign
+        a, c, _ = _coefficients(G, eps, float(np.prod(cs)) if cs.size else 1.0)
+        F0, H0, M0 = _canonical(a, c)
+        Q = theta[k:].reshape(n, n)
+        try:
+            Qi = np.linalg.inv(Q)
+        except np.linalg.LinAlgError:
+            return None
+        F, H, M = Q @ F0 @ Qi, Q @ H0, M0 @ Qi
+        return [*F.ravel(), *H, *M, *eps, *cs], eps, cs, Q
+
+    def margin(theta, sign):
+        got = values(theta, sign)
+        if got is None:
+            return -np.inf
+        vals, *_ = got
+        groups = [np.atleast_1d(np.asarray(fns[m](*vals), dtype=float)) for m in names if m in fns]
+        cond = np.linalg.cond(got[3])
+        return dale_margin(groups) - 1e-4 * np.log10(max(cond, 1.0))
+
+    for i in range(starts):
+        if time.perf_counter() > deadline:
+            break
+        sign = 1.0 if i % 2 == 0 else -1.0
+        theta0 = np.concatenate([rng.uniform(-1.5, 1.5, k), rng.normal(size=n * n)])
+        res = minimize(
+            lambda th, s=sign: -margin(th, s),
+            theta0,
+            method="Nelder-Mead",
+            options={"maxiter": 400 * (k + n * n), "xatol": 1e-9, "fatol": 1e-12},
+        )
+        if -res.fun > 1e-3:
+            exact = _exact(G, t, res.x, sign, k, n)
+            if exact is not None:
+                return exact
+    return None
+
+
+def _exact(G, t, theta, sign, k, n):
+    """The search's point in exact rationals, or None when rounding breaks a sign."""
+    fs = t.factorization
+    eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
+    c_syms = (*fs.sensor_C, *fs.actuator_C)
+    poles = sp.Poly(G.den, z)
+    for den in (100, 10**4, 10**6):
+        eps = [_rational(0.95 * np.tanh(x), den) for x in theta[:k]]
+        if any(abs(e) >= 1 or e == 0 or poles.eval(e) == 0 for e in eps):
+            continue
+        cs = [sp.Integer(1)] * len(c_syms)
+        if cs:
+            cs[0] = sp.Integer(int(sign))
+        Q = sp.zeros(n, n)
+        for i, x in enumerate(theta[k:]):
+            Q[i // n, i % n] = _rational(x, den)
+        if Q.det() == 0:
+            continue
+        sub = factor(G, len(fs.sensor_eps), len(fs.actuator_eps), eps=eps, C=cs)
+        R2 = general_realization(sub.G2, Q.inv())
+        entries = [*R2.F, *R2.H, *R2.M]
+        if any(e == 0 for e in entries):
+            continue
+        values = dict(zip(eps_syms, eps, strict=True)) | dict(zip(c_syms, cs, strict=True))
+        values |= dict(zip(t.unknowns, entries, strict=True))
+        if all(_one_sign([_expr(w).xreplace(values) for w in ws]) for ws in t.outgoing.values()):
+            return values
+    return None
+
+
+def _one_sign(ws) -> bool:
+    """Every weight nonzero and of one sign (exact rationals)."""
+    return all(w > 0 for w in ws) or all(w < 0 for w in ws)
+
+
+def _rational(x: float, den: int) -> sp.Rational:
+    q = Fraction(float(x)).limit_denominator(den)
+    return sp.Rational(q.numerator, q.denominator)
