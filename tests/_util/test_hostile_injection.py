@@ -110,6 +110,13 @@ def _neuron_weight(p):
     return n.self_weight, n.self_dynamics
 
 
+_FIT = {"sensor_delay": 1, "actuator_delay": 1}
+
+
+def _fit_y():
+    return {"G2.y": np.zeros(50)}
+
+
 # Each case: (label, callable of the payload). Every one takes a *value* from the user.
 CASES = [
     # DiscreteTF: constructor, from_expr, subs (mapping / pair / pairs / name keys), algebra
@@ -566,6 +573,21 @@ AUDITED = {
     ("symctl.realization.realization", "_tidy", "cancel"): 1,
     ("symctl.report.pipeline", "derive_paper", "factor"): 1,
     ("symctl.report.story", "_match", "cancel"): 1,
+    # fitting (issue 17): G is a validated numeric DiscreteTF (its Float atoms made exact), the
+    # parameters are floats rounded to Fractions by the fit itself; every matrix and
+    # substitution is built from symctl's own section symbols and those rationals
+    ("symctl.discovery.fit", "_exact", "Matrix"): 1,
+    ("symctl.discovery.fitargs", "_loop", "subs"): 1,
+    ("symctl.discovery.fitargs", "_rational_tf", "subs"): 1,
+    ("symctl.discovery.fitargs", "_circuit_neurons", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "factor"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "subs"): 2,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.factorization", "factor"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.realize", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "subs"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "lambdify"): 1,
 }
 
 
