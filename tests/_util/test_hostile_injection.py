@@ -274,6 +274,20 @@ CASES = [
     ("derive_paper(R)", lambda p: symctl.derive_paper(R=p)),
     ("derive_paper(seed)", lambda p: symctl.derive_paper(seed=p)),
     ("derive_paper(realizations)", lambda p: symctl.derive_paper(realizations=p)),
+    # fitting (issue 17): traces, options and data files
+    ("fit(traces={name: p})", lambda p: symctl.fit({"G2.y": p}, _o("gains"), **_FIT)),
+    ("fit(traces={p: ...})", lambda p: symctl.fit({p: np.zeros(50)}, _o("gains"), **_FIT)),
+    ("fit(circuit=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), circuit=p, **_FIT)),
+    ("fit(C=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), C=p, **_FIT)),
+    (
+        "fit(signs={name: p})",
+        lambda p: symctl.fit(_fit_y(), _o("gains"), signs={"G2.y": p}, **_FIT),
+    ),
+    ("fit(disturbance=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), disturbance=p, **_FIT)),
+    ("fit(G=p)", lambda p: symctl.fit(_fit_y(), p, **_FIT)),
+    ("identifiability([[p]])", lambda p: symctl.identifiability([[p]], _o("gains"), **_FIT)),
+    ("synthetic_traces(noise=p)", lambda p: symctl.synthetic_traces(_o("gains"), noise=p, **_FIT)),
+    ("read_traces(p)", lambda p: symctl.read_traces(p)),
 ]
 
 

@@ -168,7 +168,7 @@ def test_unidentifiable_parameters_have_no_standard_error(hidden):
 def test_across_classes_the_best_fit_is_kept(hidden):
     res = fit(hidden.select(["G2.x1", "G2.y"]).traces, GAINS, **KW, circuit=["observable", "general"],
               C=1, starts=2, steps=STEPS)  # fmt: skip
-    assert res.circuit_class == "general" and [a[0] for a in res.alternatives][0] == "general"
+    assert res.circuit_class == "general" == res.alternatives[0][0]
     assert len(res.alternatives) == 2 and res.alternatives[0][1] <= res.alternatives[1][1]
 
 
