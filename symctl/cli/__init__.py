@@ -46,6 +46,9 @@ def cli() -> None:
     """Derive, check and simulate neural implementations of delayed optimal controllers."""
 
 
+cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
+
+
 def _writing_options(command):
     """The options of a command that writes a derivation: --figures, --pdf, --jobs."""
     for option in reversed(
@@ -680,10 +683,3 @@ def run() -> None:  # pragma: no cover - console-script wrapper
         Always, with :func:`main`'s exit code.
     """
     sys.exit(main())
-
-
-if __name__ == "__main__":  # pragma: no cover
-    run()
-
-
-cli.add_command(fit_command)
