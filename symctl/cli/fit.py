@@ -32,7 +32,7 @@ _console = Console()
 @click.option(
     "--circuit",
     default=None,
-    help="general, controllable, observable, an atlas class A1..A5, or several "
+    help="general, controllable, observable, an atlas class A1..A5, all, or several "
     "separated by commas [default: the data's, else general].",
 )
 @click.option(

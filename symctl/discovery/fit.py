@@ -58,7 +58,7 @@ from symctl.discovery.fitargs import (
 )
 from symctl.discovery.fitmodel import TraceModel
 from symctl.discovery.identify import _verdicts
-from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
+from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -263,6 +263,9 @@ class FitResult:
     alternatives : tuple of (str, float)
         ``(class, cost)`` of every class fitted, best first (one row unless
         ``circuit`` listed several).
+    skipped : tuple of (str, str)
+        ``(class, reason)`` of the classes of a list that could not take the data
+        (a recorded neuron they lack, no closed-form realization).
 
     Examples
     --------
@@ -292,6 +295,7 @@ class FitResult:
     alternatives: tuple
     _predicted: Mapping = field(repr=False)
     _band: Mapping = field(repr=False)
+    skipped: tuple = ()
 
     def __post_init__(self) -> None:
         for name in ("params", "stderr", "identifiable", "neuron_identifiable", "residuals"):
@@ -349,6 +353,7 @@ class FitResult:
             "cost": self.cost,
             "starts": self.starts,
             "alternatives": [list(a) for a in self.alternatives],
+            "skipped": [list(a) for a in self.skipped],
         }
 
     def plot(self):
@@ -404,7 +409,9 @@ def fit(
         ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"``, an
         atlas class of order 2 (``"A1"``... or a
         :class:`~symctl.discovery.circuitclass.CircuitClass`) with a closed form; a
-        list fits each and keeps the best.
+        list fits each and keeps the best, skipping (``skipped``) the classes that
+        cannot take the data; ``"all"`` is the three and the atlas's closed-form
+        classes.
     disturbance, steps, start, length
         As in :func:`~symctl.neural.simulate.closed_loop_response` (default the
         unit pulse on steps 5..14 of 50).
@@ -471,25 +478,17 @@ def fit(
     classes = _circuit_arg(circuit)
     tf, u, t = _loop(G, plant, disturbance, _window(steps, start, length))
     data = _traces(traces, u.size)
-    fits = []
+    fits, skipped = [], []
     pool = None
     try:
         for cls in classes:
-            model = TraceModel.build(tf, ds, da, cls, C)
-            neurons = _circuit_neurons(model)
-            for name in data:
-                if name not in neurons:
-                    raise ParameterError(
-                        f"traces[{name!r}]: no such neuron in the {_label(cls)} circuit; its "
-                        f"neurons are {', '.join(neurons)}"
-                    )
-            samples = sum(v.size for v in data.values())
-            if model.n_params > samples:
-                raise ParameterError(
-                    f"traces: {samples} samples for {model.n_params} parameters "
-                    f"({', '.join(model.names)}); record more steps or neurons"
-                )
-            problem = _Problem(tf, ds, da, cls, C, tuple(data.items()), u, _signs(signs, neurons))
+            try:
+                model, neurons, problem = _setup(tf, ds, da, cls, C, data, u, signs)
+            except (ParameterError, DimensionError, NotRealizableError) as exc:
+                if len(classes) == 1:
+                    raise
+                skipped.append((_label(cls), str(exc)))  # this class cannot take the data
+                continue
             points = _start_points(problem, model, starts, gen)
             if pool is None:
                 pool = _pool(workers, scheduler)
@@ -500,7 +499,32 @@ def fit(
     finally:
         if pool is not None:
             pool.close()
-    return _best(fits, data, t, starts)
+    if not fits:
+        raise ParameterError(
+            "circuit: no class can take these traces: "
+            + "; ".join(f"{label}: {why}" for label, why in skipped)
+        )
+    return _best(fits, data, t, starts, tuple(skipped))
+
+
+def _setup(tf, ds, da, cls, C, data, u, signs):
+    """The model, the neurons and the problem of one class; errors name the bad input."""
+    model = TraceModel.build(tf, ds, da, cls, C)
+    neurons = _circuit_neurons(model)
+    for name in data:
+        if name not in neurons:
+            raise ParameterError(
+                f"traces[{name!r}]: no such neuron in the {_label(cls)} circuit; its "
+                f"neurons are {', '.join(neurons)}"
+            )
+    samples = sum(v.size for v in data.values())
+    if model.n_params > samples:
+        raise ParameterError(
+            f"traces: {samples} samples for {model.n_params} parameters "
+            f"({', '.join(model.names)}); record more steps or neurons"
+        )
+    problem = _Problem(tf, ds, da, cls, C, tuple(data.items()), u, _signs(signs, neurons))
+    return model, neurons, problem
 
 
 def _rational(x: float) -> sp.Rational:
@@ -528,7 +552,7 @@ def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):
     return q, fs, R2, circuit
 
 
-def _best(fits, data, t, starts) -> FitResult:
+def _best(fits, data, t, starts, skipped=()) -> FitResult:
     chosen, table = None, []
     for cls, model, neurons, problem, runs in fits:
         for cost, theta in runs:
@@ -587,4 +611,5 @@ def _best(fits, data, t, starts) -> FitResult:
         alternatives,
         {n: vals[n] for n in neurons},
         band,
+        skipped,
     )

@@ -106,6 +106,11 @@ def _circuit_arg(circuit) -> list:
     """The classes to fit: names and atlas classes (labels resolved)."""
     from symctl.discovery.circuitclass import CircuitClass
 
+    if circuit == "all":  # the registry's classes and the atlas's closed-form classes
+        from symctl.discovery.atlas import atlas
+
+        closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
+        return ["general", *FIXED_CLASSES, *closed]
     items = list(circuit) if isinstance(circuit, list | tuple) else [circuit]
     if not items or len(items) > 100:
         raise ParameterError(f"circuit: expected 1 to 100 classes, got {len(items)}")

@@ -172,6 +172,17 @@ def test_across_classes_the_best_fit_is_kept(hidden):
     assert len(res.alternatives) == 2 and res.alternatives[0][1] <= res.alternatives[1][1]
 
 
+def test_all_classes_skip_those_that_cannot_take_the_data(hidden):
+    res = fit(hidden.select(["G2.x1", "G2.y"]).traces, GAINS, **KW, circuit="all", C=1, starts=2,
+              steps=STEPS)  # fmt: skip
+    skipped = dict(res.skipped)
+    assert "controllable" in skipped and "no such neuron" in skipped["controllable"]
+    fitted = {a[0] for a in res.alternatives}
+    assert {"general", "observable", "A4"} <= fitted and not fitted & set(skipped)
+    with pytest.raises(ParameterError, match="no class can take these traces: controllable"):
+        fit(hidden.select(["G2.x1"]).traces, GAINS, **KW, circuit=["controllable"] * 2, steps=STEPS)
+
+
 def test_dale_signs_hold_on_the_fitted_circuit(hidden):
     res = fit(hidden.select(["G2.y", "G1.x1"]).traces, GAINS, **KW, C=1, starts=4,
               signs={"G2.x1": "+", "G2.x2": "-"}, steps=STEPS)  # fmt: skip
@@ -181,8 +192,8 @@ def test_dale_signs_hold_on_the_fitted_circuit(hidden):
 
 def test_two_excitatory_state_neurons_are_impossible_with_complex_poles(hidden):
     # F12 F21 > 0 makes F's eigenvalues real; the paper's controller has complex poles
-    with pytest.raises(ParameterError, match="no start of 4 gave a circuit that meets the signs"):
-        fit(hidden.select(["G2.y", "G1.x1"]).traces, GAINS, **KW, C=1, starts=4,
+    with pytest.raises(ParameterError, match="no start of 2 gave a circuit that meets the signs"):
+        fit(hidden.select(["G2.y", "G1.x1"]).traces, GAINS, **KW, C=1, starts=2,
             signs={"G2.x1": "+", "G2.x2": "+"}, steps=STEPS)  # fmt: skip
     with pytest.raises(ParameterError, match=r"signs\['G2.x7'\]: no such neuron"):
         fit(hidden.select(["G2.y"]).traces, GAINS, **KW, signs={"G2.x7": "+"}, steps=STEPS)
