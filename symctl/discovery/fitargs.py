@@ -137,6 +137,14 @@ def _circuit_arg(circuit) -> list:
     return out
 
 
+def _one_class(circuit, what: str):
+    """The one class of ``circuit`` (a list or ``"all"`` is refused for ``what``)."""
+    classes = _circuit_arg(circuit)
+    if len(classes) != 1 or isinstance(circuit, list | tuple):
+        raise ParameterError(f"circuit: {what} takes one class, got {circuit!r}")
+    return classes[0]
+
+
 def _label(circuit) -> str:
     return circuit if isinstance(circuit, str) else circuit.label
 

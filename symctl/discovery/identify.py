@@ -15,7 +15,7 @@ from types import MappingProxyType
 import numpy as np
 
 from symctl._util.validate import as_generator, bounded_int
-from symctl.discovery.fitargs import _circuit_arg, _circuit_neurons, _loop, _window
+from symctl.discovery.fitargs import _circuit_neurons, _loop, _one_class, _window
 from symctl.discovery.fitmodel import TraceModel
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
@@ -149,9 +149,7 @@ def identifiability(
         raise ParameterError(f"neuron_sets: expected 1 to 100 sets, got {len(neuron_sets)}")
     ds = bounded_int(sensor_delay, "sensor_delay", 1, 50)
     da = bounded_int(actuator_delay, "actuator_delay", 1, 50)
-    (cls,) = _circuit_arg(circuit) if not isinstance(circuit, list | tuple) else [None]
-    if cls is None:
-        raise ParameterError("circuit: identifiability takes one class")
+    cls = _one_class(circuit, "identifiability")
     C = None if C is None else float(C)
     tf, u, _ = _loop(G, plant, disturbance, _window(steps, start, length))
     model = TraceModel.build(tf, ds, da, cls, C)

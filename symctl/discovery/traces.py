@@ -34,7 +34,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl._util.validate import as_generator, read_only
+from symctl._util.validate import as_generator, bounded_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Traces", "read_traces", "synthetic_traces"]
@@ -300,12 +300,16 @@ def synthetic_traces(
     >>> sorted(data.hidden)[:2], data.meta["circuit"]
     (['C_1', 'C_3'], 'general')
     """
-    from symctl.discovery.fitargs import _circuit_arg, _circuit_neurons, _label, _loop, _window
+    from symctl.discovery.fitargs import _circuit_neurons, _label, _loop, _one_class, _window
     from symctl.discovery.fitmodel import TraceModel
     from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START, _signal
     from symctl.realization.realizers import random_full_rank
 
-    (cls,) = _circuit_arg(circuit)
+    cls = _one_class(circuit, "synthetic_traces")
+    sensor_delay = bounded_int(sensor_delay, "sensor_delay", 1, 50)
+    actuator_delay = bounded_int(actuator_delay, "actuator_delay", 1, 50)
+    if isinstance(C, bool) or not isinstance(C, int | float) or C == 0 or not np.isfinite(C):
+        raise ParameterError(f"C: expected a finite nonzero number, got {C!r}")
     if isinstance(noise, bool) or not isinstance(noise, int | float) or not 0 <= noise <= 10:
         raise ParameterError(f"noise: expected a number in [0, 10], got {noise!r}")
     gen = as_generator(seed, "seed")

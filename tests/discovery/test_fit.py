@@ -238,6 +238,26 @@ def test_bad_input_is_a_clear_error_naming_it(traces, options, error, match):
         fit(traces, GAINS, **kw)
 
 
+def test_one_class_functions_refuse_a_list_or_all():
+    with pytest.raises(ParameterError, match="circuit: identifiability takes one class"):
+        identifiability([["G2.y"]], GAINS, **KW, circuit="all")
+    with pytest.raises(ParameterError, match="circuit: synthetic_traces takes one class"):
+        synthetic_traces(GAINS, **KW, circuit=["general"])
+    with pytest.raises(ParameterError, match="sensor_delay: must be an integer >= 1"):
+        synthetic_traces(GAINS, sensor_delay=0, actuator_delay=1)
+    with pytest.raises(ParameterError, match="noise: expected a number in"):
+        synthetic_traces(GAINS, **KW, noise=-1)
+
+
+def test_the_paper_fit_of_3_neurons_500_steps_is_under_10_s():
+    import time
+
+    data = synthetic_traces(GAINS, **KW, seed=5, steps=500, noise=0.01)
+    t0 = time.perf_counter()
+    res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, GAINS, **KW, steps=500)
+    assert time.perf_counter() - t0 < 10 and res.exact  # about 0.2-0.7 s on 2 cores
+
+
 def test_G_must_be_gains_or_a_numeric_tf_with_its_plant():
     with pytest.raises(SymctlTypeError, match="G: expected Gains"):
         fit({"G2.y": np.zeros(50)}, "K0/z**2", **KW)
