@@ -49,7 +49,7 @@ def _loop(G, plant, disturbance, window) -> tuple[DiscreteTF, np.ndarray, np.nda
             )
         if G.shape != (1, 1):
             raise DimensionError(f"G: fit takes a SISO controller, got shape {G.shape}")
-        tf = G.rationalized() if hasattr(G, "rationalized") else _rational_tf(G)
+        tf = _rational_tf(G)
         res = closed_loop_response(tf, plant, disturbance=disturbance, **window)
     else:
         raise SymctlTypeError(
@@ -71,6 +71,10 @@ def _traces(traces, steps: int) -> dict:
         )
     if not traces:
         raise ParameterError("traces: no recorded neuron given")
+    if steps > MAX_FIT_STEPS:
+        raise ParameterError(
+            f"disturbance: {steps} steps; a fit takes at most {MAX_FIT_STEPS} per trace"
+        )
     if len(traces) > MAX_NEURONS:
         raise ParameterError(f"traces: at most {MAX_NEURONS} neurons, got {len(traces)}")
     out = {}
