@@ -117,6 +117,14 @@ _PUBLIC = {
     "ei_circuit": "symctl.discovery.interneurons",
     "DaleTable": "symctl.discovery.dale_atlas",
     "dale_atlas": "symctl.discovery.dale_atlas",
+    # fitting: a circuit fitted to recorded firing rates
+    "FitResult": "symctl.discovery.fit",
+    "Identifiability": "symctl.discovery.identify",
+    "fit": "symctl.discovery.fit",
+    "identifiability": "symctl.discovery.identify",
+    "Traces": "symctl.discovery.traces",
+    "read_traces": "symctl.discovery.traces",
+    "synthetic_traces": "symctl.discovery.traces",
     # your own system: model files
     "Model": "symctl.model.model",
     "load_model": "symctl.model.modelfile",

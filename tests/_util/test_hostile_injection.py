@@ -110,6 +110,13 @@ def _neuron_weight(p):
     return n.self_weight, n.self_dynamics
 
 
+_FIT = {"sensor_delay": 1, "actuator_delay": 1}
+
+
+def _fit_y():
+    return {"G2.y": np.zeros(50)}
+
+
 # Each case: (label, callable of the payload). Every one takes a *value* from the user.
 CASES = [
     # DiscreteTF: constructor, from_expr, subs (mapping / pair / pairs / name keys), algebra
@@ -267,6 +274,20 @@ CASES = [
     ("derive_paper(R)", lambda p: symctl.derive_paper(R=p)),
     ("derive_paper(seed)", lambda p: symctl.derive_paper(seed=p)),
     ("derive_paper(realizations)", lambda p: symctl.derive_paper(realizations=p)),
+    # fitting (issue 17): traces, options and data files
+    ("fit(traces={name: p})", lambda p: symctl.fit({"G2.y": p}, _o("gains"), **_FIT)),
+    ("fit(traces={p: ...})", lambda p: symctl.fit({p: np.zeros(50)}, _o("gains"), **_FIT)),
+    ("fit(circuit=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), circuit=p, **_FIT)),
+    ("fit(C=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), C=p, **_FIT)),
+    (
+        "fit(signs={name: p})",
+        lambda p: symctl.fit(_fit_y(), _o("gains"), signs={"G2.y": p}, **_FIT),
+    ),
+    ("fit(disturbance=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), disturbance=p, **_FIT)),
+    ("fit(G=p)", lambda p: symctl.fit(_fit_y(), p, **_FIT)),
+    ("identifiability([[p]])", lambda p: symctl.identifiability([[p]], _o("gains"), **_FIT)),
+    ("synthetic_traces(noise=p)", lambda p: symctl.synthetic_traces(_o("gains"), noise=p, **_FIT)),
+    ("read_traces(p)", lambda p: symctl.read_traces(p)),
 ]
 
 
@@ -587,6 +608,21 @@ AUDITED = {
     ("symctl.discovery.witness", "search_general", "lambdify"): 1,
     ("symctl.discovery.witness", "_exact", "Poly"): 1,
     ("symctl.discovery.witness", "_exact", "factor"): 1,
+    # fitting (issue 17): G is a validated numeric DiscreteTF (its Float atoms made exact), the
+    # parameters are floats rounded to Fractions by the fit itself; every matrix and
+    # substitution is built from symctl's own section symbols and those rationals
+    ("symctl.discovery.fit", "_exact", "Matrix"): 1,
+    ("symctl.discovery.fitargs", "_loop", "subs"): 1,
+    ("symctl.discovery.fitargs", "_rational_tf", "subs"): 1,
+    ("symctl.discovery.fitargs", "_circuit_neurons", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "factor"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "subs"): 2,
+    ("symctl.discovery.fitmodel", "TraceModel.build", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.factorization", "factor"): 1,
+    ("symctl.discovery.fitmodel", "TraceModel.realize", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "subs"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "Matrix"): 1,
+    ("symctl.discovery.fitmodel", "_lambdified", "lambdify"): 1,
 }
 
 

@@ -31,6 +31,7 @@ from rich.console import Console
 from rich.table import Table
 
 from symctl._util.parse import parse_matrix
+from symctl.cli.fit import fit_command
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
 
@@ -43,6 +44,9 @@ _console = Console()
 @click.version_option(package_name="symctl")
 def cli() -> None:
     """Derive, check and simulate neural implementations of delayed optimal controllers."""
+
+
+cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 
 
 def _writing_options(command):
@@ -679,7 +683,3 @@ def run() -> None:  # pragma: no cover - console-script wrapper
         Always, with :func:`main`'s exit code.
     """
     sys.exit(main())
-
-
-if __name__ == "__main__":  # pragma: no cover
-    run()

@@ -1,0 +1,5 @@
+"""``python -m symctl.cli``: the ``symctl`` command (as the console script)."""
+
+from symctl.cli import run
+
+run()

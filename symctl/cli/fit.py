@@ -1,0 +1,161 @@
+"""``symctl fit``: a circuit of the controller fitted to recorded firing rates.
+
+Orchestration only (the math is :func:`symctl.fit`); registered on the ``symctl``
+group by :mod:`symctl.cli`. Bad input is one line and exit 2, as for every command.
+
+>>> from symctl.cli import main
+>>> main(["fit", "no-such-file.csv", "--out", "never-written"])
+2
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+from rich.console import Console
+
+__all__ = ["fit_command"]
+
+_console = Console()
+
+
+@click.command("fit")
+@click.argument("data", metavar="DATA", type=click.Path(dir_okay=False))
+@click.option(
+    "--model",
+    "model_file",
+    default=None,
+    metavar="MODEL.toml",
+    help="The plant and penalties [default: the paper's muscle model].",
+)
+@click.option(
+    "--circuit",
+    default=None,
+    help="general, controllable, observable, an atlas class A1..A5, all, or several "
+    "separated by commas [default: the data's, else general].",
+)
+@click.option(
+    "--sensor-delay",
+    type=int,
+    default=None,
+    help="Sensor sections [default: the data's, else the model's, else 1].",
+)
+@click.option(
+    "--actuator-delay",
+    type=int,
+    default=None,
+    help="Actuator sections [default: the data's, else the model's, else 1].",
+)
+@click.option(
+    "--C",
+    "c_value",
+    type=float,
+    default=None,
+    help="Fix every section gain C to this value [default: fitted].",
+)
+@click.option(
+    "--starts",
+    type=click.IntRange(min=1),
+    default=8,
+    show_default=True,
+    help="Starting points of the least-squares fit.",
+)
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the starts.")
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    default=1,
+    show_default=True,
+    help="Local processes running the starts (the atlas's dask path).",
+)
+@click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
+@click.option("--figures/--no-figures", default=True, show_default=True, help="Write fit.png.")
+@click.option("--out", default="out/fit", show_default=True, help="Output folder.")
+def fit_command(
+    data,
+    model_file,
+    circuit,
+    sensor_delay,
+    actuator_delay,
+    c_value,
+    starts,
+    seed,
+    workers,
+    scheduler,
+    figures,
+    out,
+) -> None:
+    """Fit a circuit of the controller to the firing rates recorded in DATA (CSV or NPZ).
+
+    Writes fit.json, predictions.csv (every neuron's trace), report.md and fit.png
+    into OUT. The data format is in docs/fitting.md.
+    """
+    from symctl.discovery.fit import fit
+    from symctl.report.fit import write_fit
+    from symctl.report.output import OutputFolder
+
+    gains, tr = _fit_inputs(data, model_file, sensor_delay, actuator_delay)
+    ds, da = gains.system.sensor_delay, gains.system.actuator_delay
+    classes = (circuit or tr.meta.get("circuit") or "general").split(",")
+    classes = [c.strip() for c in classes]
+    with OutputFolder(out, "--out") as folder:
+        res = fit(tr.traces, gains, sensor_delay=ds, actuator_delay=da,
+                  circuit=classes if len(classes) > 1 else classes[0],
+                  disturbance=1.0 if tr.disturbance is None else tr.disturbance,
+                  steps=tr.steps, C=c_value, starts=starts, seed=seed, workers=workers,
+                  scheduler=scheduler)  # fmt: skip
+        written = write_fit(res, folder.staging, figures=figures, source=str(data))
+    worst = max(res.residuals.values())
+    _console.print(
+        f"fitted {len(res.data)} neurons with the {res.circuit_class} circuit "
+        f"(exact realization of G: {res.exact}); largest RMS residual {worst:.3g}",
+        markup=False, soft_wrap=True, highlight=False,
+    )  # fmt: skip
+    names = ", ".join(p.name for p in folder.final(written))
+    _console.print(f"wrote {out}/: {names}", markup=False, soft_wrap=True, highlight=False)
+
+
+def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
+    """The gains (of --model or the paper's muscle) and the traces of DATA."""
+    from symctl.design.augment import augment
+    from symctl.design.lqr import lqr_gains
+    from symctl.design.plant import MuscleModel
+    from symctl.discovery.traces import read_traces
+    from symctl.errors import ParameterError
+
+    tr = read_traces(Path(data))
+    if model_file is not None:
+        from symctl.model.modelfile import load_model
+
+        model = load_model(Path(model_file))
+        plant, Q, R = model.plant, model.Q, model.R
+        defaults = (model.sensor_delay, model.actuator_delay)
+    else:
+        plant, Q, R, defaults = MuscleModel(), 1, 1, (1, 1)
+    ds, da = (
+        _meta_int(v, key, tr) if v is None else v
+        for v, key in ((sensor_delay, "sensor_delay"), (actuator_delay, "actuator_delay"))
+    )
+    ds = defaults[0] if ds is None else ds
+    da = defaults[1] if da is None else da
+    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    Ts = gains.system.plant.Ts
+    if Ts is not None:
+        dt = float(tr.t[1] - tr.t[0])
+        if abs(dt - float(Ts)) > 1e-6 * float(Ts):
+            raise ParameterError(
+                f"DATA: its time step is {dt:g}, the plant's sampling time {float(Ts):g}"
+            )
+    return gains, tr
+
+
+def _meta_int(value, key, tr):
+    from symctl.errors import ParameterError
+
+    text = tr.meta.get(key)
+    if text is None:
+        return None
+    if not text.strip().isdigit():
+        raise ParameterError(f"DATA: header line '{key}: {text[:40]}' is not a whole number")
+    return int(text)

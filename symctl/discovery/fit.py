@@ -1,0 +1,615 @@
+r"""Fitting a circuit to recorded firing rates: :func:`fit` and :func:`identifiability`.
+
+The paper's closing remark: "if we have data from the biological neuron(s), we
+can tune the controller circuit to match this data while preserving the
+model's match to behavioral observations". Every realization in the family
+(:math:`\epsilon`, :math:`C`, the similarity :math:`P`, the circuit class)
+implements the same :math:`G` *exactly*, so the force and the motor-neuron
+rate, the behaviour, cannot drift while the neurons are fitted: the fit moves
+only inside the set of circuits that are the optimal controller.
+
+Method. The loop's :math:`\delta_f` is computed once
+(:func:`~symctl.neural.simulate.closed_loop_response`); each neuron's trace is a
+linear filter of it (:mod:`symctl.discovery.fitmodel`), with exact Jacobians by
+forward sensitivity. :func:`scipy.optimize.least_squares` (trust-region
+reflective, :math:`|\epsilon| < 1` as bounds) minimises the sum over recorded
+neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
+starting points; for the general class each start's :math:`Q = P^{-1}` rows of
+recorded neurons are first solved by linear least squares (they enter
+linearly). Dale's-law ``signs`` add penalty residuals on the outgoing weights
+and are checked exactly on the final circuit. The fitted values are rounded to
+rationals (denominators at most ``10**6``), the exact realization is built and
+:func:`~symctl.realization.check.check_realization` proves that it realizes
+:math:`G`.
+
+Identifiability. With :math:`J` the weighted Jacobian of the recorded traces,
+a parameter is identifiable iff its unit vector lies in the row space of
+:math:`J`, a neuron's prediction iff its sensitivity rows do (to ``1e-6``,
+relative); the rank of :math:`J` per neuron set is :func:`identifiability`.
+Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}` with
+:math:`\hat\sigma^2 = \mathrm{RSS}/(m - \mathrm{rank})`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+from scipy.optimize import least_squares
+
+from symctl._util.validate import as_generator, bounded_int, read_only
+from symctl.compatibility.structure import Structure
+from symctl.design.tf import DiscreteTF
+from symctl.discovery.fitargs import (
+    MAX_FIT_STEPS,
+    MAX_NEURONS,
+    _circuit_arg,
+    _circuit_neurons,
+    _label,
+    _loop,
+    _pool,
+    _signs,
+    _traces,
+    _window,
+)
+from symctl.discovery.fitmodel import TraceModel
+from symctl.discovery.identify import _verdicts
+from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
+from symctl.neural.circuit import Circuit
+from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
+from symctl.realization.check import check_realization
+from symctl.realization.realization import Realization, controller_realization
+
+__all__ = ["MAX_FIT_STEPS", "MAX_NEURONS", "MAX_STARTS", "FitResult", "fit"]
+
+MAX_STARTS = 1000
+"""Most starting points of one fit."""
+DENOMINATOR = 10**6
+"""The fitted values are rationals with denominators at most this."""
+_MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot flip it
+_EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
+
+
+# ---------------------------------------------------------------- the problem
+@dataclass(frozen=True)
+class _Problem:
+    """Everything a worker needs to run starts (plain, picklable data)."""
+
+    G: DiscreteTF
+    ds: int
+    da: int
+    circuit: object
+    C: float | None
+    data: tuple  # ((name, trace), ...)
+    u: np.ndarray
+    signs: tuple  # ((name, +1/-1), ...)
+
+    def model(self) -> TraceModel:
+        return TraceModel.build(self.G, self.ds, self.da, self.circuit, self.C)
+
+
+def _weights(data) -> dict:
+    """1 / RMS per recorded trace (1 for a trace that is all zeros)."""
+    rms = {n: float(np.sqrt(np.mean(v**2))) for n, v in data}
+    return {n: 1.0 / r if r > 0 else 1.0 for n, r in rms.items()}
+
+
+def _residual_fns(problem: _Problem, model: TraceModel):
+    w = _weights(problem.data)
+
+    def both(theta):
+        vals, jacs = model.traces(theta, problem.u)
+        r = [w[n] * (vals[n] - v) for n, v in problem.data]
+        J = [w[n] * jacs[n] for n, _ in problem.data]
+        if problem.signs:
+            pen, dpen = _penalty(model, theta, problem.signs)
+            r.append(pen)
+            J.append(dpen)
+        return np.concatenate(r), np.vstack(J)
+
+    return both
+
+
+def _outgoing(model: TraceModel, theta: np.ndarray) -> dict:
+    """The outgoing synaptic weights of every neuron, numerically (for the sign penalty)."""
+    _, cs, Q = model.split(theta)
+    k = model.n_sections
+    e_c = theta[: 2 * k] if model.C is None else theta[:k]
+    T = Q if Q is not None else model._T(e_c)[0]
+    Ti = np.linalg.inv(T)
+    F, H = T @ model.F0 @ Ti, T @ model.H0
+    mn = model._mn(e_c)[0]
+    M, N = mn[: model.order, 0] @ Ti, mn[model.order, 0]
+    ds, da = model.sensor_delay, model.actuator_delay
+    out = {}
+    for j, name in enumerate(model.neurons[:ds]):
+        out[name] = np.array([cs[j + 1]]) if j + 1 < ds else np.append(H, N)
+    for i in range(model.order):
+        out[f"G2.x{i + 1}"] = np.append(np.delete(F[:, i], i), M[i])
+    out["G2.y"] = np.array([cs[ds]])
+    for j, name in enumerate(model.neurons[-da:]):
+        out[name] = np.array([cs[ds + j + 1]]) if j + 1 < da else np.array([1.0])
+    return out
+
+
+def _penalty(model: TraceModel, theta: np.ndarray, signs) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals ``10 max(0, 1e-4 - s w)`` per outgoing weight of each signed neuron, and their Jacobian."""
+
+    def pen(th):
+        out = _outgoing(model, th)
+        return np.concatenate([10.0 * np.maximum(0.0, _MARGIN - s * out[n]) for n, s in signs])
+
+    p0 = pen(theta)
+    J = np.empty((p0.size, theta.size))
+    for j in range(theta.size):  # the few weights are cheap: central differences
+        h = 1e-7 * max(1.0, abs(theta[j]))
+        tp, tm = theta.copy(), theta.copy()
+        tp[j] += h
+        tm[j] -= h
+        J[:, j] = (pen(tp) - pen(tm)) / (2 * h)
+    return p0, J
+
+
+def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> list[np.ndarray]:
+    """Seeded starts: epsilons uniform in (-0.9, 0.9), C = 1, Q's recorded rows by linear LS."""
+    k = model.n_sections
+    data = dict(problem.data)
+    points = []
+    for _ in range(starts):
+        eps = gen.uniform(-0.9, 0.9, k)
+        theta = np.concatenate([eps, np.ones(k) if model.C is None else []])
+        if model.circuit == "general":
+            n = model.order
+            Q = gen.normal(size=(n, n))  # either orientation: det Q < 0 and > 0 are not
+            while np.linalg.cond(Q) > 20:  # connected through invertible Q
+                Q = gen.normal(size=(n, n))
+            vals, _ = model.traces(np.concatenate([theta, np.eye(n).ravel()]), problem.u)
+            xc = np.column_stack([vals[f"G2.x{i + 1}"] for i in range(n)])  # Q = I: x_c
+            for i in range(n):
+                if f"G2.x{i + 1}" in data:
+                    Q[i] = np.linalg.lstsq(xc, data[f"G2.x{i + 1}"], rcond=None)[0]
+            theta = np.concatenate([theta, Q.ravel()])
+        points.append(theta)
+    return points
+
+
+def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray]]:
+    """Least squares from each start: ``[(cost, theta), ...]`` (a worker's chunk).
+
+    The epsilons are optimised as :math:`\\epsilon = 0.999 \\tanh\\phi` (stable sections
+    without bounds), so MINPACK's Levenberg-Marquardt (``method="lm"``, a QR per
+    step) runs instead of the bounded trust region (an SVD per step, 5-20 times
+    slower here).
+    """
+    model = problem.model()
+    both = _residual_fns(problem, model)
+    k = model.n_sections
+    cache: dict = {}
+
+    def theta_of(x):
+        th = x.copy()
+        th[:k] = _EPS_BOUND * np.tanh(x[:k])
+        return th
+
+    def value(x):
+        r, J = both(theta_of(x))
+        J = J.copy()
+        J[:, :k] *= _EPS_BOUND * (1.0 - np.tanh(x[:k]) ** 2)
+        cache["key"], cache["J"] = x.tobytes(), J
+        return r
+
+    def jac(x):
+        if cache.get("key") != x.tobytes():
+            value(x)
+        return cache["J"]
+
+    out = []
+    for x0 in points:
+        x0 = np.array(x0, dtype=float)
+        x0[:k] = np.arctanh(np.clip(x0[:k], -0.99, 0.99) / _EPS_BOUND)
+        try:
+            with np.errstate(all="ignore"):  # a start that wanders onto a singular point fails
+                res = least_squares(value, x0, jac=jac, method="lm", x_scale="jac")
+        except (np.linalg.LinAlgError, ValueError):  # a singular Q on the way: skip the start
+            continue
+        if np.isfinite(res.cost):
+            out.append((float(res.cost), theta_of(res.x)))
+    return out
+
+
+# ---------------------------------------------------------------- results
+
+
+@dataclass(frozen=True, eq=False)
+class FitResult:
+    r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
+
+    Attributes
+    ----------
+    realization : Realization
+        The whole controller :math:`G_3 G_2 G_1`, exact rationals.
+    realization_G2 : Realization
+        Its :math:`G_2` part.
+    circuit : Circuit
+        The fitted circuit (exact weights).
+    circuit_class : str
+        ``"general"``, ``"controllable"``, ``"observable"`` or an atlas label.
+    params : mapping of str to sympy.Rational
+        The fitted values, exact (``epsilon_1``, ``C_1``, ``Q[i,j]`` with
+        :math:`Q = P^{-1}`, ...); ``P`` is ``realization_G2.params["P"]``.
+    stderr : mapping of str to float or None
+        The standard error of each parameter; None where it is not identifiable.
+    identifiable : mapping of str to bool
+        Per parameter.
+    neuron_identifiable : mapping of str to bool
+        Per neuron of the circuit: is its predicted trace pinned down by the data?
+    residuals : mapping of str to float
+        RMS of data minus fit, per recorded neuron [spikes/s].
+    data : mapping of str to array
+        The recorded traces.
+    t : array
+        Time of each sample.
+    proof : RealizationCheck
+        :func:`~symctl.realization.check.check_realization` of ``realization``
+        against :math:`G`: exact.
+    cost : float
+        Half the sum of squared weighted residuals at the exact values.
+    starts : int
+        Starting points tried.
+    alternatives : tuple of (str, float)
+        ``(class, cost)`` of every class fitted, best first (one row unless
+        ``circuit`` listed several).
+    skipped : tuple of (str, str)
+        ``(class, reason)`` of the classes of a list that could not take the data
+        (a recorded neuron they lack, no closed-form realization).
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
+    >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=2)
+    >>> res = fit(data.select(["G1.x1", "G2.x1"]).traces, gains, sensor_delay=1,
+    ...           actuator_delay=1, C=1)
+    >>> res.exact, res.circuit_class, res.identifiable["Q[2,1]"]
+    (True, 'general', False)
+    """
+
+    realization: Realization
+    realization_G2: Realization
+    circuit: Circuit
+    circuit_class: str
+    params: Mapping
+    stderr: Mapping
+    identifiable: Mapping
+    neuron_identifiable: Mapping
+    residuals: Mapping
+    data: Mapping
+    t: np.ndarray
+    proof: object
+    cost: float
+    starts: int
+    alternatives: tuple
+    _predicted: Mapping = field(repr=False)
+    _band: Mapping = field(repr=False)
+    skipped: tuple = ()
+
+    def __post_init__(self) -> None:
+        for name in ("params", "stderr", "identifiable", "neuron_identifiable", "residuals"):
+            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+        for name in ("data", "_predicted", "_band"):
+            d = {k: read_only(v, float) for k, v in getattr(self, name).items()}
+            object.__setattr__(self, name, MappingProxyType(d))
+        object.__setattr__(self, "t", read_only(self.t, float))
+
+    @property
+    def exact(self) -> bool:
+        """True: the fitted realization is proved to realize :math:`G` (``proof``)."""
+        return bool(self.proof)
+
+    def predict(self) -> dict:
+        """Every neuron's trace at the fitted values: ``{name: (steps,) array}``."""
+        return dict(self._predicted)
+
+    def band(self) -> dict:
+        """One standard error of each neuron's predicted trace, per step (NaN if not identifiable)."""
+        return dict(self._band)
+
+    def table(self) -> str:
+        """Plain-text report: parameters with standard errors, residuals, predictions."""
+        lines = [f"circuit class: {self.circuit_class}; realizes G exactly: {self.exact}"]
+        lines.append(" parameter  | value       | std. error")
+        for name, v in self.params.items():
+            se = self.stderr[name]
+            text = f"{se:.3g}" if se is not None else "not identifiable"
+            lines.append(f" {name:<10} | {float(v):11.6g} | {text}")
+        lines.append(" neuron     | recorded | RMS residual | prediction")
+        for name, ok in self.neuron_identifiable.items():
+            rec = name in self.residuals
+            res = f"{self.residuals[name]:12.3g}" if rec else " " * 12
+            lines.append(
+                f" {name:<10} | {'yes' if rec else 'no':<8} | {res} | "
+                f"{'identifiable' if ok else 'not identifiable'}"
+            )
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        """Plain data for ``fit.json``: values as exact ``"p/q"`` text and floats."""
+        return {
+            "circuit_class": self.circuit_class,
+            "exact": self.exact,
+            "method": getattr(self.proof, "method", "exact"),
+            "params": {k: {"exact": str(v), "value": float(v)} for k, v in self.params.items()},
+            "stderr": dict(self.stderr),
+            "identifiable": dict(self.identifiable),
+            "neurons": {
+                n: {"recorded": n in self.residuals, "identifiable": ok}
+                for n, ok in self.neuron_identifiable.items()
+            },
+            "residuals": dict(self.residuals),
+            "cost": self.cost,
+            "starts": self.starts,
+            "alternatives": [list(a) for a in self.alternatives],
+            "skipped": [list(a) for a in self.skipped],
+        }
+
+    def plot(self):
+        """Data against fit, and the predicted traces of unrecorded neurons (a Figure)."""
+        from symctl.plotting.fit import fit_plot
+
+        return fit_plot(self)
+
+
+# ---------------------------------------------------------------- arguments
+
+
+# ---------------------------------------------------------------- the functions
+
+
+def fit(
+    traces: Mapping,
+    G,
+    *,
+    sensor_delay: int,
+    actuator_delay: int,
+    circuit="general",
+    disturbance=1.0,
+    plant=None,
+    C=None,
+    signs: Mapping | None = None,
+    starts: int = 8,
+    seed=0,
+    workers: int = 1,
+    scheduler: str | None = None,
+    steps: int | None = None,
+    start: int = DEFAULT_START,
+    length: int = DEFAULT_LENGTH,
+) -> FitResult:
+    r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
+
+    Every candidate circuit implements :math:`G` exactly, so the fit changes
+    the neurons and never the behaviour (the force and rate traces stay the
+    optimal controller's). See :mod:`symctl.discovery.fit` for the method.
+
+    Parameters
+    ----------
+    traces : mapping of str to (steps,) array
+        Recorded firing-rate changes, keyed by the circuit's neuron names
+        (:attr:`Circuit.neurons`: ``"G1.x1"``, ``"G2.x1"``, ``"G2.y"``, ...), one
+        sample per step of the closed loop's response to ``disturbance``.
+    G : Gains or DiscreteTF
+        :class:`~symctl.design.lqr.Gains` (their controller and plant), or a
+        numeric SISO controller together with ``plant``.
+    sensor_delay, actuator_delay : int
+        Sections of :math:`G_1` and :math:`G_3`.
+    circuit : str, CircuitClass or list of them, default "general"
+        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"``, an
+        atlas class of order 2 (``"A1"``... or a
+        :class:`~symctl.discovery.circuitclass.CircuitClass`) with a closed form; a
+        list fits each and keeps the best, skipping (``skipped``) the classes that
+        cannot take the data; ``"all"`` is the three and the atlas's closed-form
+        classes.
+    disturbance, steps, start, length
+        As in :func:`~symctl.neural.simulate.closed_loop_response` (default the
+        unit pulse on steps 5..14 of 50).
+    plant : optional
+        The plant, required for a DiscreteTF ``G``.
+    C : number, optional
+        Fix every section gain to this value (the paper's figures use 1); by
+        default they are fitted.
+    signs : mapping of str to {"+", "-"}, optional
+        Dale's law: every outgoing synapse of the neuron has this sign.
+    starts : int
+        Seeded starting points, at most ``MAX_STARTS`` (1000).
+    seed : int or numpy Generator
+    workers : int, scheduler : str, optional
+        Run the starts (and classes) on the atlas's dask path: local processes, or
+        a running dask.distributed scheduler's address.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    DimensionError
+        A trace of the wrong length or shape; a MIMO ``G``; an atlas class of
+        another order.
+    ParameterError
+        NaN or inf in a trace; a neuron name the circuit does not have; more
+        parameters than samples; unknown class; no start met the ``signs``.
+    NotRealizableError
+        A class that cannot realize the controller.
+    SymctlTypeError
+        Arguments of the wrong type.
+
+    Examples
+    --------
+    >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
+    >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+    >>> rec = {n: data.traces[n] for n in ("G2.x1", "G2.x2", "G2.y")}
+    >>> res = fit(rec, gains, sensor_delay=1, actuator_delay=1, C=1)
+    >>> bool(res.proof), res.neuron_identifiable["G1.x1"]
+    (True, True)
+    >>> fit({"G2.x9": data.traces["G2.y"]}, gains, sensor_delay=1, actuator_delay=1)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: traces['G2.x9']: no such neuron in the general circuit; ...
+    """
+    ds = bounded_int(sensor_delay, "sensor_delay", 0, 50)
+    da = bounded_int(actuator_delay, "actuator_delay", 0, 50)
+    if ds < 1 or da < 1:
+        raise ParameterError(
+            f"sensor_delay, actuator_delay: fitting needs at least one section on each side, "
+            f"got {ds} and {da}"
+        )
+    starts = bounded_int(starts, "starts", 1, MAX_STARTS)
+    gen = as_generator(seed, "seed")
+    if C is not None:
+        if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
+            raise SymctlTypeError(f"C: expected a number, got {C!r}")
+        if not np.isfinite(float(C)) or float(C) == 0:
+            raise ParameterError(f"C: must be a finite nonzero number, got {C!r}")
+        C = float(C)
+    classes = _circuit_arg(circuit)
+    tf, u, t = _loop(G, plant, disturbance, _window(steps, start, length))
+    data = _traces(traces, u.size)
+    fits, skipped = [], []
+    pool = None
+    try:
+        for cls in classes:
+            try:
+                model, neurons, problem = _setup(tf, ds, da, cls, C, data, u, signs)
+            except (ParameterError, DimensionError, NotRealizableError) as exc:
+                if len(classes) == 1:
+                    raise
+                skipped.append((_label(cls), str(exc)))  # this class cannot take the data
+                continue
+            points = _start_points(problem, model, starts, gen)
+            if pool is None:
+                pool = _pool(workers, scheduler)
+            per = max(1, -(-len(points) // max(1, int(workers))))
+            chunks = [(problem, points[i : i + per]) for i in range(0, len(points), per)]
+            runs = [r for chunk in pool.map(_run_starts, chunks) for r in chunk]
+            fits.append((cls, model, neurons, problem, sorted(runs, key=lambda r: r[0])))
+    finally:
+        if pool is not None:
+            pool.close()
+    if not fits:
+        raise ParameterError(
+            "circuit: no class can take these traces: "
+            + "; ".join(f"{label}: {why}" for label, why in skipped)
+        )
+    return _best(fits, data, t, starts, tuple(skipped))
+
+
+def _setup(tf, ds, da, cls, C, data, u, signs):
+    """The model, the neurons and the problem of one class; errors name the bad input."""
+    model = TraceModel.build(tf, ds, da, cls, C)
+    neurons = _circuit_neurons(model)
+    for name in data:
+        if name not in neurons:
+            raise ParameterError(
+                f"traces[{name!r}]: no such neuron in the {_label(cls)} circuit; its "
+                f"neurons are {', '.join(neurons)}"
+            )
+    samples = sum(v.size for v in data.values())
+    if model.n_params > samples:
+        raise ParameterError(
+            f"traces: {samples} samples for {model.n_params} parameters "
+            f"({', '.join(model.names)}); record more steps or neurons"
+        )
+    problem = _Problem(tf, ds, da, cls, C, tuple(data.items()), u, _signs(signs, neurons))
+    return model, neurons, problem
+
+
+def _rational(x: float) -> sp.Rational:
+    f = Fraction(float(x)).limit_denominator(DENOMINATOR)
+    return sp.Rational(f.numerator, f.denominator)
+
+
+def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):
+    """The exact circuit at ``theta`` rounded to rationals, or None if it breaks a constraint."""
+    q = np.array([float(_rational(v)) for v in theta])
+    eps, cs, Q = model.split(q)
+    fs = model.factorization([_rational(e) for e in eps], [_rational(c) for c in cs])
+    Qx = (
+        None
+        if Q is None
+        else sp.Matrix(model.order, model.order, [_rational(v) for v in Q.ravel()])
+    )
+    if Qx is not None and Qx.det() == 0:
+        return None
+    R2 = model.realize(fs, Qx)
+    circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))
+    for name, s in problem.signs:  # Dale's law, checked exactly on the circuit
+        if any(sp.sign(syn.weight) * s < 0 for syn in circuit.neuron(name).axon):
+            return None
+    return q, fs, R2, circuit
+
+
+def _best(fits, data, t, starts, skipped=()) -> FitResult:
+    chosen, table = None, []
+    for cls, model, neurons, problem, runs in fits:
+        for cost, theta in runs:
+            built = _exact(model, problem, neurons, theta)
+            if built is not None:
+                table.append((_label(cls), cost))
+                if chosen is None or cost < chosen[0]:
+                    chosen = (cost, cls, model, neurons, problem, built)
+                break
+    if chosen is None:
+        why = "the signs" if any(f[3].signs for f in fits) else "a usable circuit"
+        raise ParameterError(
+            f"signs: no start of {starts} gave a circuit that meets {why} (sign patterns can be "
+            "infeasible: two state neurons exciting each other force real poles)"
+        )
+    _, cls, model, neurons, problem, (q, fs, R2, circuit) = chosen
+    R = controller_realization(fs, R2)
+    proof = check_realization(R, model.G)
+    if not proof:  # pragma: no cover - the family realizes G by construction
+        raise NotRealizableError(f"circuit: the fitted {_label(cls)} circuit does not realize G")
+    vals, jacs = model.traces(q, problem.u)
+    w = _weights(problem.data)
+    r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
+    J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
+    params_ok, cells_ok, (s, V) = _verdicts(model, jacs, J, neurons)
+    dof = max(r.size - s.size, 1)
+    sigma2 = float(r @ r) / dof
+    cov = (V.T / s**2) @ V * sigma2 if s.size else np.zeros((model.n_params,) * 2)
+    stderr = {
+        n: (float(np.sqrt(max(cov[i, i], 0.0))) if params_ok[n] else None)
+        for i, n in enumerate(model.names)
+    }
+    band = {}
+    for n in neurons:  # the prediction's standard error, in the data's units
+        if cells_ok[n]:
+            band[n] = np.sqrt(np.maximum(np.einsum("tp,pq,tq->t", jacs[n], cov, jacs[n]), 0.0))
+        else:
+            band[n] = np.full(t.size, np.nan)
+    values = dict(zip(model.names, (_rational(v) for v in q), strict=True))
+    alternatives = tuple(sorted(table, key=lambda a: a[1]))
+    return FitResult(
+        controller_realization(fs, R2),
+        R2,
+        circuit,
+        _label(cls),
+        values,
+        stderr,
+        params_ok,
+        cells_ok,
+        {n: float(np.sqrt(np.mean((vals[n] - v) ** 2))) for n, v in problem.data},
+        dict(problem.data),
+        t,
+        proof,
+        0.5 * float(r @ r),
+        starts,
+        alternatives,
+        {n: vals[n] for n in neurons},
+        band,
+        skipped,
+    )

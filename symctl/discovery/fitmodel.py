@@ -1,0 +1,265 @@
+r"""The trace model of :func:`symctl.fit`: every neuron's firing as a function of the parameters.
+
+Every realization in the family implements the same controller :math:`G`
+exactly, so the closed loop (the force :math:`\delta_f` and the rate
+:math:`\delta_r`) is the optimal controller's whatever the parameters are. The
+loop's :math:`\delta_f` is computed once; each neuron's trace is then a linear
+filter of it, whose coefficients are the parameters
+:math:`\theta = (\epsilon, C, Q)`:
+
+* the sensor sections (:math:`G_1`, neurons ``G1.x1`` or ``G1.k.x1``):
+  :math:`s_k(t+1) = \epsilon_k s_k(t) + C_k s_{k-1}(t)`, :math:`s_0 = \delta_f`;
+* the states of :math:`G_2` (neurons ``G2.xi``): every minimal realization of
+  :math:`G_2` has a state :math:`x = T x_c`, :math:`x_c` the controllable canonical
+  state driven by :math:`y_1 = s_{d_s}` (its matrices :math:`F_0, H_0` depend only
+  on the gains). For the general class :math:`T = Q = P^{-1}` is free; for a
+  class with a fixed pattern (the canonical forms, the atlas's closed-form
+  classes) :math:`T(\epsilon, C) = \mathcal{C}(\epsilon, C)\,\mathcal{C}_0^{-1}`,
+  the ratio of the controllability matrices, built once symbolically and
+  lambdified;
+* the output neuron ``G2.y`` :math:`= M_0(\epsilon, C) x_c + N(\epsilon, C) y_1`
+  (invariant under the similarity);
+* the actuator sections (:math:`G_3`, neurons ``G3.x1`` or ``G3.k.x1``), fed by
+  ``G2.y``; the last one is :math:`\delta_r` itself.
+
+Derivatives are exact (forward sensitivities): the derivative of a linear filter
+with respect to its pole is the filter applied to its own output, and with
+respect to anything upstream it is the filter applied to the upstream derivative.
+:meth:`TraceModel.traces` returns every neuron's trace and its Jacobian
+``(steps, parameters)``.
+
+>>> import numpy as np
+>>> from symctl import MuscleModel, augment, controller_tf, lqr_gains
+>>> from symctl.discovery.fitmodel import TraceModel
+>>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+>>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
+>>> m = TraceModel.build(G, 1, 1, "general")
+>>> m.names
+('epsilon_1', 'epsilon_3', 'C_1', 'C_3', 'Q[1,1]', 'Q[1,2]', 'Q[2,1]', 'Q[2,2]')
+>>> m.neurons
+('G1.x1', 'G2.x1', 'G2.x2', 'G2.y', 'G3.x1')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+from scipy.signal import lfilter
+
+from symctl.design.tf import DiscreteTF
+from symctl.errors import DimensionError, NotRealizableError, ParameterError
+from symctl.realization.factorization import Factorization, factor
+from symctl.realization.realization import Realization, controllable_canonical
+from symctl.realization.realizers import get_realizer
+
+__all__ = ["FIXED_CLASSES", "TraceModel", "section_name"]
+
+FIXED_CLASSES = ("controllable", "observable")
+"""The registry's canonical forms: no similarity parameters, only epsilons and Cs."""
+
+
+def section_name(side: str, k: int, count: int) -> str:
+    """The circuit's name of section ``k`` (1-based) of ``count``: ``G1.x1`` or ``G1.2.x1``."""
+    return f"{side}.x1" if count == 1 else f"{side}.{k}.x1"
+
+
+def _filter1(e: float, c: float, v: np.ndarray) -> np.ndarray:
+    """:math:`x(t+1) = e\\,x(t) + c\\,v(t)`, :math:`x(0) = 0`, along axis 0."""
+    return lfilter([0.0, c], [1.0, -e], v, axis=0)
+
+
+def _state_filter(F: np.ndarray, H: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """:math:`x(t+1) = F x(t) + H v(t)` from rest; ``v`` ``(steps, k)`` -> ``(steps, n, k)``."""
+    steps, k = v.shape
+    n = F.shape[0]
+    out = np.zeros((steps, n, k))
+    for t in range(steps - 1):
+        out[t + 1] = F @ out[t] + H[:, None] * v[t]
+    return out
+
+
+def _ctrb(R: Realization) -> sp.Matrix:
+    cols = [R.H]
+    for _ in range(R.n - 1):
+        cols.append(R.F * cols[-1])
+    return sp.Matrix.hstack(*cols)
+
+
+@dataclass(frozen=True, eq=False)
+class TraceModel:
+    r"""Every neuron's trace, and its exact Jacobian, as a function of :math:`\theta`.
+
+    Built by :meth:`build`; ``names`` are the parameters in order (epsilons,
+    then Cs unless fixed, then ``Q`` row-major for the general class).
+    """
+
+    G: DiscreteTF
+    sensor_delay: int
+    actuator_delay: int
+    circuit: object  # "general", a FIXED_CLASSES name, or a CircuitClass
+    C: float | None  # every C fixed to this value, or None (fitted)
+    names: tuple[str, ...]
+    neurons: tuple[str, ...]
+    order: int
+    F0: np.ndarray
+    H0: np.ndarray
+    _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
+    _T: object  # lambdified T and its gradient over (eps, C); None for "general"
+
+    # ------------------------------------------------------------ construction
+    @classmethod
+    def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
+        """The model of ``G`` with ``ds`` sensor and ``da`` actuator sections in ``circuit``."""
+        f0 = factor(G, ds, da)
+        eps = (*f0.sensor_eps, *f0.actuator_eps)
+        cs = (*f0.sensor_C, *f0.actuator_C)
+        base = controllable_canonical(f0.G2)
+        n = base.n
+        if n == 0:
+            raise ParameterError("G: G2 has no states, so its circuit has nothing to fit")
+        F0 = np.array(base.F, dtype=float)
+        H0 = np.array(base.H, dtype=float).ravel()
+        free = eps + (() if C is not None else cs)
+        fixed = {c: sp.Rational(C) for c in cs} if C is not None else {}
+        M0 = base.M.subs(fixed)
+        N = sp.Matrix([[base.N[0, 0]]]).subs(fixed)
+        mn = _lambdified(sp.Matrix.vstack(M0.T, N), free)
+        if circuit == "general":
+            T = None
+            qnames = tuple(f"Q[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
+        else:
+            R2 = _symbolic_realization(circuit, f0.G2, n)
+            T = _lambdified(_ctrb(R2) * _ctrb(base).inv(), free, fixed)
+            qnames = ()
+        names = tuple(map(str, free)) + qnames
+        neurons = (
+            *(section_name("G1", k + 1, ds) for k in range(ds)),
+            *(f"G2.x{i + 1}" for i in range(n)),
+            "G2.y",
+            *(section_name("G3", k + 1, da) for k in range(da)),
+        )
+        return cls(G, ds, da, circuit, C, names, neurons, n, F0, H0, mn, T)
+
+    @property
+    def n_params(self) -> int:
+        return len(self.names)
+
+    @property
+    def n_sections(self) -> int:
+        return self.sensor_delay + self.actuator_delay
+
+    def split(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """``(eps, C, Q)`` of ``theta`` (``C`` filled in when fixed; ``Q`` None unless general)."""
+        k = self.n_sections
+        eps = theta[:k]
+        if self.C is None:
+            cs = theta[k : 2 * k]
+            rest = theta[2 * k :]
+        else:
+            cs = np.full(k, float(self.C))
+            rest = theta[k:]
+        Q = rest.reshape(self.order, self.order) if self.circuit == "general" else None
+        return eps, cs, Q
+
+    # ------------------------------------------------------------ the traces
+    def traces(self, theta: np.ndarray, u: np.ndarray) -> tuple[dict, dict]:
+        """``({neuron: (steps,)}, {neuron: (steps, p)})``: traces and Jacobians, driven by ``u``."""
+        theta = np.asarray(theta, dtype=float)
+        p, k, ds = self.n_params, self.n_sections, self.sensor_delay
+        eps, cs, Q = self.split(theta)
+        ci = (lambda j: k + j) if self.C is None else (lambda j: None)
+        vals: dict[str, np.ndarray] = {}
+        jacs: dict[str, np.ndarray] = {}
+
+        def chain(side: str, offset: int, count: int, v: np.ndarray, dv: np.ndarray):
+            for j in range(count):
+                e, c = eps[offset + j], cs[offset + j]
+                x = _filter1(e, c, v)
+                dx = _filter1(e, c, dv)
+                dx[:, offset + j] += _filter1(e, 1.0, x)
+                idx = ci(offset + j)
+                if idx is not None:
+                    dx[:, idx] += _filter1(e, 1.0, v)
+                name = section_name(side, j + 1, count)
+                vals[name], jacs[name] = x, dx
+                v, dv = x, dx
+            return v, dv
+
+        u = np.asarray(u, dtype=float)
+        y1, dy1 = chain("G1", 0, ds, u, np.zeros((u.size, p)))
+        # x_c and its sensitivities in one pass: columns [y1, dy1/dtheta]
+        both = _state_filter(self.F0, self.H0, np.column_stack([y1, dy1]))
+        xc, dxc = both[:, :, 0], both[:, :, 1:]  # (steps, n), (steps, n, p)
+        e_c = theta[: 2 * k] if self.C is None else theta[:k]
+        if Q is None:
+            T, dT = self._T(e_c)  # (n, n), (n, n, q)
+        else:
+            T = Q
+        x2 = xc @ T.T
+        dx2 = np.einsum("ij,tjp->tip", T, dxc)
+        if Q is None:
+            dx2[:, :, : dT.shape[2]] += np.einsum("ijq,tj->tiq", dT, xc)
+        else:
+            off = p - self.order**2
+            for i in range(self.order):
+                dx2[:, i, off + i * self.order : off + (i + 1) * self.order] += xc
+        for i in range(self.order):
+            vals[f"G2.x{i + 1}"], jacs[f"G2.x{i + 1}"] = x2[:, i], dx2[:, i, :]
+        mn, dmn = self._mn(e_c)  # (n+1, 1), (n+1, 1, q)
+        M0, N = mn[: self.order, 0], mn[self.order, 0]
+        y2 = xc @ M0 + N * y1
+        dy2 = np.einsum("j,tjp->tp", M0, dxc) + N * dy1
+        q = dmn.shape[2]
+        dy2[:, :q] += xc @ dmn[: self.order, 0, :] + y1[:, None] * dmn[self.order, 0, :]
+        vals["G2.y"], jacs["G2.y"] = y2, dy2
+        chain("G3", ds, self.actuator_delay, y2, dy2)
+        return vals, jacs
+
+    # ------------------------------------------------------------ exact realization
+    def factorization(self, eps, cs) -> Factorization:
+        """The exact factors at rational ``eps`` and ``cs``."""
+        return factor(self.G, self.sensor_delay, self.actuator_delay, eps=list(eps), C=list(cs))
+
+    def realize(self, fs: Factorization, Q=None) -> Realization:
+        """The exact realization of ``fs.G2`` in the model's class (``Q`` = :math:`P^{-1}`)."""
+        if self.circuit == "general":
+            return get_realizer("general")(fs.G2, P=sp.Matrix(Q).inv()).realization
+        return _symbolic_realization(self.circuit, fs.G2, self.order)
+
+
+def _symbolic_realization(circuit, G2, n: int) -> Realization:
+    """``G2`` realized in a fixed class: a canonical form or an atlas class (closed form)."""
+    if isinstance(circuit, str):
+        return get_realizer(circuit, "circuit")(G2).realization
+    if circuit.order != n:
+        raise DimensionError(
+            f"circuit: class {circuit.label} realizes controllers with G2 of order "
+            f"{circuit.order}, this one has order {n}"
+        )
+    try:
+        return circuit.realize(G2)
+    except NotRealizableError as exc:
+        raise NotRealizableError(
+            f"circuit: class {circuit.label} cannot realize this controller in closed form "
+            f"({str(exc).splitlines()[0][:160]}); choose 'general' or a closed-form class"
+        ) from None
+
+
+def _lambdified(mat: sp.Matrix, free: tuple, fixed: dict | None = None):
+    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``."""
+    if fixed:
+        mat = mat.subs(fixed)
+    mat = sp.Matrix(mat)
+    grads = [mat.diff(s) for s in free]
+    f = sp.lambdify([free], [mat, *grads], "numpy", cse=True)
+    r, c = mat.shape
+
+    def evaluate(theta):
+        out = f(tuple(theta))
+        val = np.asarray(out[0], dtype=float).reshape(r, c)
+        grad = np.stack([np.asarray(g, dtype=float).reshape(r, c) for g in out[1:]], axis=2)
+        return val, grad
+
+    return evaluate

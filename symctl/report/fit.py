@@ -1,0 +1,69 @@
+"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure.
+
+Written into a staging folder (:class:`symctl.report.output.OutputFolder` renames
+it into place when every file is written, so a failed run leaves nothing).
+
+>>> import tempfile
+>>> from pathlib import Path
+>>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
+>>> from symctl.report.fit import write_fit
+>>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+>>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+>>> res = fit(data.select(["G2.x1", "G2.y"]).traces, gains, sensor_delay=1, actuator_delay=1,
+...           C=1, starts=2)
+>>> with tempfile.TemporaryDirectory() as out:
+...     sorted(p.name for p in write_fit(res, Path(out), figures=False))
+['fit.json', 'predictions.csv', 'report.md']
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from symctl.discovery.traces import Traces
+
+__all__ = ["write_fit"]
+
+
+def report_text(result, source: str = "") -> str:
+    """The short Markdown report: what was fitted, how well, what is pinned down."""
+    lines = [
+        "# symctl fit",
+        "",
+        f"Data: {source}" if source else "",
+        f"Circuit class: **{result.circuit_class}** ({result.starts} starts). The fitted "
+        "realization implements the controller G exactly "
+        f"(check_realization, method {getattr(result.proof, 'method', 'exact')}: "
+        f"{result.exact}), so the force and motor-neuron rate are the optimal controller's: "
+        "the behaviour did not move while the neurons were fitted.",
+        "",
+        "```",
+        result.table(),
+        "```",
+    ]
+    if len(result.alternatives) > 1:
+        lines += ["", "| class | cost |", "|---|---|"]
+        lines += [f"| {c} | {cost:.4g} |" for c, cost in result.alternatives]
+    lines += ["", f"Circuit:\n\n```\n{result.circuit}\n```", ""]
+    return "\n".join(x for x in lines if x is not None) + "\n"
+
+
+def write_fit(result, folder: Path, *, figures: bool = True, source: str = "") -> list[Path]:
+    """Write the fit's files into ``folder``; return their paths."""
+    folder = Path(folder)
+    out = []
+    path = folder / "fit.json"
+    path.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
+    out.append(path)
+    meta = {"circuit": result.circuit_class, "content": "predicted traces of every neuron"}
+    pred = Traces(result.t, result.predict(), meta=meta)
+    out.append(pred.to_csv(folder / "predictions.csv"))
+    path = folder / "report.md"
+    path.write_text(report_text(result, source), encoding="utf-8")
+    out.append(path)
+    if figures:
+        from symctl.plotting.png import write_png
+
+        out.append(write_png(result.plot(), folder / "fit.png", dpi=110))
+    return out
