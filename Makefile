@@ -49,6 +49,8 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/mimo.py
 	$(BIN)/python benchmarks/atlas.py
 	$(BIN)/python benchmarks/examples.py
+	$(BIN)/python benchmarks/dale.py --workers 2
+	$(BIN)/python benchmarks/fit.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

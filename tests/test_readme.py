@@ -15,6 +15,7 @@ def test_readme_python_blocks_run(tmp_path, monkeypatch):
     blocks = re.findall(r"```python\n(.*?)```", README.read_text(), re.S)
     assert len(blocks) >= 5
     monkeypatch.chdir(tmp_path)  # the examples write g3g2g1.png and out/paper
+    (tmp_path / "examples").symlink_to(README.parent / "examples")  # they read examples/data
     namespace: dict = {"__name__": "__main__"}
     for k, code in enumerate(blocks):
         code = code.replace("[...]", "[]")  # the elided argument of symctl.latex.document

@@ -99,6 +99,10 @@ class DaleResult:
         The witness's :math:`\epsilon_k` and :math:`C_k`.
     exact : bool
         The witness was verified in exact arithmetic (always, for a witness).
+    realizes : bool or None
+        The circuit realizes :math:`G` at all, signs aside: ``True`` with a witness
+        (or when Dale's law fails only for the signs), ``False`` when z3 proved it does
+        not, ``None`` when not decided.
     elapsed : float
         Seconds spent.
 
@@ -124,6 +128,7 @@ class DaleResult:
     exact: bool = False
     elapsed: float = 0.0
     G: DiscreteTF | None = field(default=None, repr=False)
+    realizes: bool | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "signs", MappingProxyType(dict(self.signs)))
@@ -284,19 +289,36 @@ def dale(
         if verdict == "sat":
             return _witness(G, fs, t, model, label, tried, t0)
     if all(v.endswith("unsat") for v in tried):
+        realizes = _realizes(templates, poles, timeout)
+        why = {
+            True: "it realizes G, but never with every neuron excitatory or inhibitory",
+            False: "it does not realize this G at all, whatever the signs",
+            None: "whether it realizes G at all was not decided",
+        }[realizes]
         reason = (
             f"z3 proved the sign constraints unsatisfiable for every pattern of {label} "
-            f"({'; '.join(tried)}): no realization of this circuit, with stable nonzero "
-            "sections, has every neuron excitatory or inhibitory"
+            f"({'; '.join(tried)}), with stable nonzero sections: {why}"
         )
-        return DaleResult(False, None, {}, METHOD, reason, label, G=G,
+        return DaleResult(False, None, {}, METHOD, reason, label, G=G, realizes=realizes,
                           elapsed=time.perf_counter() - t0)  # fmt: skip
     reason = (
-        f"not decided: z3 gave up within timeout = {timeout:g} s per call ({'; '.join(tried)}); "
+        f"not decided: z3 gave up within timeout = {timeout:g} s ({'; '.join(tried)}); "
         "raise timeout to search longer"
     )
     return DaleResult(None, None, {}, METHOD, reason, label, G=G,
                       elapsed=time.perf_counter() - t0)  # fmt: skip
+
+
+def _realizes(templates, poles, timeout: float) -> bool | None:
+    """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
+    unknown = False
+    for t in templates:
+        enc = encode(t, poles, timeout=timeout, relax=True)
+        verdict, _ = decide(enc, tuple(enc.mixed), budget=timeout)
+        if verdict == "sat":
+            return True
+        unknown |= verdict != "unsat"
+    return None if unknown else False
 
 
 def solve(G, t: Template, poles, timeout: float, tried: list) -> tuple[str, dict | None]:
@@ -350,7 +372,7 @@ def _witness(G, fs, t: Template, model: dict, label: str, tried, t0, signed=True
     )
     return DaleResult(
         True, whole, signs, METHOD, reason, label, witness, R2, sections, True,
-        time.perf_counter() - t0, G,
+        time.perf_counter() - t0, G, True,
     )  # fmt: skip
 
 

@@ -35,7 +35,7 @@ import sympy as sp
 
 from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.dale import controller_of, poles_of
+from symctl.discovery.dale import controller_of, poles_of, solve
 from symctl.discovery.pattern import Pattern
 from symctl.discovery.signs import decide, encode, template
 from symctl.errors import ParameterError, SymctlTypeError
@@ -179,8 +179,12 @@ def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
     fs = factor(G, ds, da)
     unknown = False
     for p in patterns:
-        enc = encode(template(fs, p, delays), poles_of(G), timeout=timeout, relax=relax)
-        verdict, _ = decide(enc, tuple(enc.mixed), budget=timeout)
+        t = template(fs, p, delays)
+        if t.label == "general" and not relax and not G.free_symbols - {z}:
+            verdict, _ = solve(G, t, poles_of(G), timeout, [])  # z3, then the numeric search
+        else:
+            enc = encode(t, poles_of(G), timeout=timeout, relax=relax)
+            verdict, _ = decide(enc, tuple(enc.mixed), budget=timeout)
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"

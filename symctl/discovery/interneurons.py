@@ -272,8 +272,8 @@ def ei_circuit(
             t, k, model = outcome
             found.append(EICandidate(label, neurons, k, "decided (z3)" if model.get("proved", True)
                                      else "upper bound (z3 undecided below)"))  # fmt: skip
-            if best is None or neurons + k < best[0]:
-                best = (neurons + k, label, t, model, neurons)
+            if best is None or (neurons + k, k) < best[0]:  # at a tie, fewer interneurons
+                best = ((neurons + k, k), label, t, model, neurons)
         else:
             status = "cannot realize G" if outcome == "unsat" else "not decided (z3 timeout)"
             found.append(EICandidate(label, neurons, None, status))

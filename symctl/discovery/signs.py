@@ -140,7 +140,7 @@ def template(factorization, circuit, delays: str = "branch") -> Template:
         R2 = canonical[circuit](G2)
         return _finish(circuit, factorization, R2, (), (), (), delays)
     pattern = full_pattern(n) if circuit == "general" else circuit
-    label = "general" if circuit == "general" else pattern.text
+    label = "general" if pattern == full_pattern(n) else pattern.text  # the dense class too
     syms = pattern.symbols()
     tree = set(pattern.tree_slots() or ())
     F, H, M = pattern.matrices(syms)

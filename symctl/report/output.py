@@ -86,14 +86,16 @@ _FIGURES = "|".join(
         "atlas_overview",
         r"simplified_A\d+",
         r"class_A\d+",
+        "fit",
     ]
     + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
 )
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
+    r"|fit\.json|predictions\.csv"
     rf"|({_FIGURES})\.(png|svg))"
 )
-"""The names of the files an earlier run of ``symctl paper`` or ``symctl atlas`` leaves."""
+"""The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive`` or ``fit`` leaves."""
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
@@ -156,8 +158,8 @@ def check_output_folder(out, argname: str = "out") -> Path:
         if foreign:
             shown = ", ".join(repr(n) for n in foreign[:3]) + (", ..." if len(foreign) > 3 else "")
             raise ParameterError(
-                f"{argname}: {text!r} holds files that symctl paper does not write, nor symctl "
-                f"atlas ({shown}); "
+                f"{argname}: {text!r} holds files that symctl paper, derive, atlas and fit do "
+                f"not write ({shown}); "
                 "give a new or empty folder, or the folder of an earlier run (it is replaced)"
             )
     ancestor = path.parent

@@ -323,6 +323,11 @@ def test_cli_fit_writes_its_files(tmp_path, hidden, capsys):
     assert "general circuit (exact realization of G: True)" in line
     pred = read_traces(out / "predictions.csv")
     assert set(pred.neurons) == {"G1.x1", "G2.x1", "G2.x2", "G2.y", "G3.x1"}
+    # the folder of an earlier fit is replaced, like an earlier run of symctl paper
+    assert main(["fit", str(data), "--out", str(out), "--starts", "2"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == [
+        "fit.json", "fit.png", "predictions.csv", "report.md"
+    ]  # fmt: skip
 
 
 @pytest.mark.parametrize(
