@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import functools
 import math
+from fractions import Fraction
 
 import control
 import numpy as np
 import pytest
 import scipy.signal
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import symctl
@@ -268,7 +269,7 @@ nonzero = st.fractions(min_value=-2, max_value=2, max_denominator=12).filter(lam
 
 
 @settings(
-    max_examples=10,
+    max_examples=8,
     deadline=None,
     database=None,
     derandomize=True,
@@ -276,10 +277,12 @@ nonzero = st.fractions(min_value=-2, max_value=2, max_denominator=12).filter(lam
 )
 @given(
     k=nonzero,
-    a1=st.fractions(min_value=-2, max_value=2, max_denominator=12),
-    a0=nonzero,
+    a1=st.fractions(min_value=-8, max_value=8, max_denominator=8),
+    a0=st.fractions(min_value=-8, max_value=8, max_denominator=8).filter(lambda q: q != 0),
     delays=st.sampled_from([(1, 1), (2, 0), (0, 2)]),
 )
+@example(k=Fraction(16), a1=Fraction(-15, 7), a0=Fraction(23, 3), delays=(1, 1))  # refused
+@example(k=Fraction(1, 2), a1=Fraction(1, 2), a0=Fraction(1, 3), delays=(1, 1))  # feasible
 def test_controllable_verdict_is_verified_or_agrees_with_brute_force(k, a1, a0, delays):
     G = second_order(R(k.numerator, k.denominator), R(a1.numerator, a1.denominator),
                      R(a0.numerator, a0.denominator))  # fmt: skip
@@ -290,7 +293,7 @@ def test_controllable_verdict_is_verified_or_agrees_with_brute_force(k, a1, a0, 
     if r.feasible is True:
         assert_witness(r, G)
     elif r.feasible is False:
-        assert brute_force(G, ds, da, controllable_canonical, tries=150) is None
+        assert brute_force(G, ds, da, controllable_canonical, tries=100) is None
         assert r.witness is None and not r.signs
 
 
