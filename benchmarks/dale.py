@@ -52,7 +52,8 @@ def previous(fs, circuit, poles) -> tuple[str, float]:
     verdicts = []
     for t in templates_of(fs, circuit)[1]:
         enc = encode(t, poles, timeout=TIMEOUT)
-        s = z3.SolverFor("QF_NRA")
+        ctx = enc.solver.ctx
+        s = z3.SolverFor("QF_NRA", ctx=ctx)
         s.set("timeout", int(TIMEOUT * 1000))
         c_syms = {str(c) for c in (*fs.sensor_C, *fs.actuator_C)}
         for a in enc.solver.assertions():  # drop the C normalization, keep C != 0
@@ -61,7 +62,7 @@ def previous(fs, circuit, poles) -> tuple[str, float]:
                 continue
             s.add(a)
         for c in c_syms:
-            s.add(z3.Real(c) != 0)
+            s.add(z3.Real(c, ctx) != 0)
         verdicts.append(str(s.check()))
         if verdicts[-1] == "sat":
             break

@@ -177,22 +177,27 @@ def _expr(w) -> sp.Expr:
     return sp.Integer(w) if isinstance(w, int) else w
 
 
-def to_z3(expr, env: dict):
-    """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only)."""
+def to_z3(expr, env: dict, ctx=None):
+    """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only).
+
+    ``ctx`` is the z3 context of the terms (default: that of ``env``'s first term).
+    """
+    if ctx is None:
+        ctx = next(iter(env.values())).ctx if env else None
     expr = _expr(expr)
     if expr.is_Symbol:
         return env[expr]
     if expr.is_Rational:
-        return z3.Q(int(expr.p), int(expr.q))
+        return z3.RealVal(int(expr.p), ctx) / z3.RealVal(int(expr.q), ctx)
     if expr.is_Float:
         q = Fraction(float(expr))
-        return z3.Q(q.numerator, q.denominator)
+        return z3.RealVal(q.numerator, ctx) / z3.RealVal(q.denominator, ctx)
     if expr.is_Add:
-        return z3.Sum([to_z3(t, env) for t in expr.args])
+        return z3.Sum([to_z3(t, env, ctx) for t in expr.args])
     if expr.is_Mul:
-        return z3.Product([to_z3(t, env) for t in expr.args])
+        return z3.Product([to_z3(t, env, ctx) for t in expr.args])
     if expr.is_Pow and expr.exp.is_Integer:
-        base = to_z3(expr.base, env)
+        base = to_z3(expr.base, env, ctx)
         k = int(expr.exp)
         power = z3.Product([base] * abs(k)) if abs(k) > 1 else base
         return power if k > 0 else 1 / power
@@ -216,14 +221,15 @@ def encode(t: Template, poles, *, timeout: float, relax: bool = False, fixed=Non
         | set().union(*(_expr(w).free_symbols for w in (*t.weights, *t.equations))),
         key=str,
     )
-    env = {s: z3.Real(str(s)) for s in symbols}
-    solver = z3.SolverFor("QF_NRA")
+    ctx = z3.Context()  # its own context: a call never depends on an earlier one
+    env = {s: z3.Real(str(s), ctx) for s in symbols}
+    solver = z3.SolverFor("QF_NRA", ctx=ctx)
     solver.set("timeout", max(1, int(timeout * 1000)))
     f = t.factorization
     for e in (*f.sensor_eps, *f.actuator_eps):
         x = env[e]
         solver.add(x > -1, x < 1, x != 0)
-        solver.add(*(to_z3(sp.expand(p), {**env, z: x}) != 0 for p in poles))
+        solver.add(*(to_z3(sp.expand(p), {**env, z: x}, ctx) != 0 for p in poles))
     for k, c in enumerate((*f.sensor_C, *f.actuator_C)):  # see "The sections' C" above
         solver.add(env[c] * env[c] == 1 if k == 0 else env[c] == 1)
     for u in t.unknowns:
@@ -232,26 +238,26 @@ def encode(t: Template, poles, *, timeout: float, relax: bool = False, fixed=Non
         solver.add(env[u] * env[u] == 1)
     for eq in t.equations:
         num, den = sp.fraction(sp.together(eq))
-        solver.add(to_z3(sp.expand(num), env) == 0)
+        solver.add(to_z3(sp.expand(num), env, ctx) == 0)
         if not den.is_number:
-            solver.add(to_z3(den, env) != 0)
+            solver.add(to_z3(den, env, ctx) != 0)
     for w in t.weights:
         if not _expr(w).is_number:
-            solver.add(to_z3(w, env) != 0)
+            solver.add(to_z3(w, env, ctx) != 0)
     signs, mixed = {}, {}
     for name, ws in t.outgoing.items():
         if len(ws) < 2:  # one synapse has one sign: nothing to decide (it is nonzero above)
             continue
-        s = signs[name] = z3.Bool(f"excitatory[{name}]")
-        terms = [to_z3(w, env) for w in ws]
+        s = signs[name] = z3.Bool(f"excitatory[{name}]", ctx)
+        terms = [to_z3(w, env, ctx) for w in ws]
         rule = z3.If(s, z3.And(*[w > 0 for w in terms]), z3.And(*[w < 0 for w in terms]))
         if relax:
-            m = mixed[name] = z3.Bool(f"mixed[{name}]")
+            m = mixed[name] = z3.Bool(f"mixed[{name}]", ctx)
             solver.add(z3.Or(m, rule))
         else:
             solver.add(rule)
     for sym, value in (fixed or {}).items():
-        solver.add(env[sym] == to_z3(value, env))
+        solver.add(env[sym] == to_z3(value, env, ctx))
     return Encoding(env, solver, signs, mixed)
 
 
@@ -333,7 +339,7 @@ def refine(enc: Encoding, order, *, timeout: float = 2.0, keep=()) -> dict:
             pinned.append(x == v)
             continue
         for q in _candidates(v):
-            pin = x == z3.Q(q.numerator, q.denominator)
+            pin = x == z3.RealVal(q.numerator, x.ctx) / z3.RealVal(q.denominator, x.ctx)
             if s.check(*pinned, pin) == z3.sat:
                 pinned.append(pin)
                 model = s.model()

@@ -92,7 +92,10 @@ def _bad_outs(tmp: Path) -> dict[str, tuple[str, str]]:
         "a file": (str(tmp / "file"), "is a file, not a folder"),
         "under a file": (str(tmp / "file" / "sub"), "is a file"),
         "under /dev/null": ("/dev/null/out", "is a file"),
-        "holds other files": (str(tmp / "foreign"), "holds files that symctl paper does not"),
+        "holds other files": (
+            str(tmp / "foreign"),
+            "holds files that symctl paper, derive, atlas and fit do not",
+        ),
         "a folder named derivation.tex": (str(tmp / "dir_named_like_ours"), "derivation.tex"),
         "NUL": (str(tmp / "a\0b"), "NUL"),
         "root": ("/", "root"),
