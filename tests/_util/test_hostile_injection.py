@@ -288,6 +288,16 @@ CASES = [
     ("identifiability([[p]])", lambda p: symctl.identifiability([[p]], _o("gains"), **_FIT)),
     ("synthetic_traces(noise=p)", lambda p: symctl.synthetic_traces(_o("gains"), noise=p, **_FIT)),
     ("read_traces(p)", lambda p: symctl.read_traces(p)),
+    # Dale's law (issue 17)
+    ("dale(G=p)", lambda p: symctl.dale(p, circuit="controllable", timeout=2)),
+    ("dale(circuit=p)", lambda p: symctl.dale(_o("gains"), circuit=p, timeout=2)),
+    ("dale(timeout=p)", lambda p: symctl.dale(_o("gains"), circuit="controllable", timeout=p)),
+    ("dale(sensor_delay=p)", lambda p: symctl.dale(_o("gains"), sensor_delay=p, timeout=2)),
+    ("ei_circuit(G=p)", lambda p: symctl.ei_circuit(p, circuits=["controllable"], timeout=2)),
+    ("ei_circuit(circuits=[p])", lambda p: symctl.ei_circuit(_o("gains"), circuits=[p])),
+    ("dale_atlas(classes=[p])", lambda p: symctl.dale_atlas(2, samples=1, classes=[p])),
+    ("dale_atlas(G=p)", lambda p: symctl.dale_atlas(2, samples=1, classes=["A1"], G=p)),
+    ("dale_atlas(seed=p)", lambda p: symctl.dale_atlas(2, samples=1, classes=["A1"], seed=p)),
 ]
 
 
