@@ -31,6 +31,7 @@ from rich.console import Console
 from rich.table import Table
 
 from symctl._util.parse import parse_matrix
+from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
@@ -47,6 +48,7 @@ def cli() -> None:
 
 
 cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
+cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
 
 
 def _writing_options(command):

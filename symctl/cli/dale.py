@@ -1,0 +1,152 @@
+"""``symctl dale``: Dale's law for the controller of a model (or the paper's), on the terminal.
+
+Orchestration only (the math is :func:`symctl.dale`, :func:`symctl.ei_circuit` and
+:func:`symctl.dale_atlas`); registered on the ``symctl`` group by :mod:`symctl.cli`.
+It writes nothing: ``--json`` prints the verdicts as JSON for scripts. Bad input is
+one line and exit 2, as for every command.
+
+>>> from symctl.cli import main
+>>> main(["dale", "--circuit", "diagonal"])
+2
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+from rich.console import Console
+
+__all__ = ["dale_command"]
+
+_console = Console()
+
+
+def _say(text: str) -> None:
+    _console.print(text, markup=False, soft_wrap=True, highlight=False)
+
+
+@click.command("dale")
+@click.argument("model_file", metavar="[MODEL.toml]", required=False, default=None)
+@click.option(
+    "--circuit",
+    default="general,controllable,observable",
+    show_default=True,
+    help="Circuits to decide, separated by commas: general, controllable, observable, "
+    "or atlas labels A1, A2, ... of G2's order.",
+)
+@click.option("--sensor-delay", type=int, default=None, help="[default: the model's, else 1]")
+@click.option("--actuator-delay", type=int, default=None, help="[default: the model's, else 1]")
+@click.option("--timeout", type=float, default=30.0, show_default=True,
+              help="Seconds for each circuit's search.")  # fmt: skip
+@click.option("--ei", is_flag=True, help="Also find the cheapest E/I circuit (interneurons).")
+@click.option(
+    "--atlas",
+    "atlas_table",
+    is_flag=True,
+    help="Instead: the E/I table of the order-2 atlas (every, some or never).",
+)
+@click.option("--samples", type=click.IntRange(min=0), default=24, show_default=True,
+              help="Sampled controllers per class (--atlas).")  # fmt: skip
+@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Local processes (--atlas; the atlas's dask path).")  # fmt: skip
+@click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON instead of text.")
+def dale_command(
+    model_file, circuit, sensor_delay, actuator_delay, timeout, ei, atlas_table, samples,
+    workers, scheduler, as_json,
+) -> None:  # fmt: skip
+    """Decide whether the circuits of the controller can have every neuron E or I.
+
+    The controller is the optimal one of MODEL.toml (default: the paper's muscle
+    model, Q = R = 1). Each verdict is a witness verified exactly, a z3 proof that
+    none exists, or "not decided".
+    """
+    import symctl
+
+    gains = _gains(model_file, sensor_delay, actuator_delay)
+    if atlas_table:
+        T = symctl.dale_atlas(2, samples=samples, G=gains, timeout=timeout, workers=workers,
+                              scheduler=scheduler)  # fmt: skip
+        if as_json:
+            rows = [{"class": r.label, "verdict": r.verdict, "controller": r.controller,
+                     "sampled": list(r.sampled), "exists": r.exists} for r in T.rows]  # fmt: skip
+            _say(json.dumps({"order": 2, "samples": samples, "rows": rows}, indent=1))
+        else:
+            _say(T.table())
+        return
+    s = gains.system
+    circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
+    if not circuits:
+        raise click.BadParameter("name at least one circuit", param_hint="--circuit")
+    results = [symctl.dale(gains, circuit=c, timeout=timeout) for c in circuits]
+    e = symctl.ei_circuit(gains, timeout=timeout) if ei else None
+    if as_json:
+        out = {
+            "circuits": [
+                {"circuit": r.circuit, "feasible": r.feasible, "realizes": r.realizes,
+                 "signs": dict(r.signs), "method": r.method, "reason": r.reason}
+                for r in results
+            ],
+        }  # fmt: skip
+        if e is not None:
+            out["ei_circuit"] = {"circuit": e.circuit, "neurons": e.neurons,
+                                 "minimum": e.minimum, "cost": e.cost,
+                                 "interneurons": list(e.interneurons)}  # fmt: skip
+        _say(json.dumps(out, indent=1))
+        return
+    word = {True: "E/I", False: "none (proved)", None: "not decided"}
+    _say(f"controller: sensor delay {s.sensor_delay}, actuator delay {s.actuator_delay}")
+    for r in results:
+        signs = ", ".join(f"{k} {v}" for k, v in r.signs.items())
+        _say(f"{r.circuit:>12}: {word[r.feasible]}" + (f"  [{signs}]" if signs else ""))
+        _say(f"{'':>14}{r.reason}")
+    if e is not None:
+        _say(f"cheapest E/I circuit: {e.circuit}, {e.neurons} neurons (the fewest without "
+             f"Dale's law: {e.minimum}; Dale's law costs {e.cost})")  # fmt: skip
+        _say(e.table())
+
+
+def _gains(model_file, sensor_delay, actuator_delay):
+    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1)."""
+    from symctl.design.augment import augment
+    from symctl.design.lqr import lqr_gains
+    from symctl.design.plant import MuscleModel
+
+    if model_file is not None:
+        from symctl.model.modelfile import load_model
+
+        model = load_model(Path(model_file))
+        plant, Q, R = model.plant, model.Q, model.R
+        defaults = (model.sensor_delay, model.actuator_delay)
+    else:
+        plant, Q, R, defaults = MuscleModel(), 1, 1, (1, 1)
+    ds = defaults[0] if sensor_delay is None else sensor_delay
+    da = defaults[1] if actuator_delay is None else actuator_delay
+    return lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+
+
+def _circuit(name: str, system):
+    """A circuit name, or an atlas label of G2's order (1 or 2)."""
+    from symctl.errors import ParameterError
+
+    if name in ("general", "controllable", "observable"):
+        return name
+    if not (name[:1] == "A" and name[1:].isdigit()):
+        raise ParameterError(
+            f"--circuit: {name!r} is not general, controllable, observable or an atlas label"
+        )
+    from symctl.discovery.atlas import atlas
+
+    from symctl.design.controller import controller_tf
+
+    order = controller_tf(system).order  # G2 has G's order (the sections cancel nothing)
+    if order > 2:
+        raise ParameterError(
+            f"--circuit: atlas labels are for G2 of order 1 or 2, this controller's is {order}"
+        )
+    classes = {c.label: c for c in atlas(order, workers=1).classes}
+    if name not in classes:
+        raise ParameterError(f"--circuit: the order-{order} atlas has no class {name!r}")
+    return classes[name]
