@@ -63,11 +63,13 @@ def dale_command(
     model, Q = R = 1). Each verdict is a witness verified exactly, a z3 proof that
     none exists, or "not decided".
     """
-    import symctl
+    from symctl.discovery.dale import dale
+    from symctl.discovery.dale_atlas import dale_atlas
+    from symctl.discovery.interneurons import ei_circuit
 
     gains = _gains(model_file, sensor_delay, actuator_delay)
     if atlas_table:
-        T = symctl.dale_atlas(2, samples=samples, G=gains, timeout=timeout, workers=workers,
+        T = dale_atlas(2, samples=samples, G=gains, timeout=timeout, workers=workers,
                               scheduler=scheduler)  # fmt: skip
         if as_json:
             rows = [{"class": r.label, "verdict": r.verdict, "controller": r.controller,
@@ -80,8 +82,8 @@ def dale_command(
     circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
     if not circuits:
         raise click.BadParameter("name at least one circuit", param_hint="--circuit")
-    results = [symctl.dale(gains, circuit=c, timeout=timeout) for c in circuits]
-    e = symctl.ei_circuit(gains, timeout=timeout) if ei else None
+    results = [dale(gains, circuit=c, timeout=timeout) for c in circuits]
+    e = ei_circuit(gains, timeout=timeout) if ei else None
     if as_json:
         out = {
             "circuits": [
@@ -137,9 +139,8 @@ def _circuit(name: str, system):
         raise ParameterError(
             f"--circuit: {name!r} is not general, controllable, observable or an atlas label"
         )
-    from symctl.discovery.atlas import atlas
-
     from symctl.design.controller import controller_tf
+    from symctl.discovery.atlas import atlas
 
     order = controller_tf(system).order  # G2 has G's order (the sections cancel nothing)
     if order > 2:
