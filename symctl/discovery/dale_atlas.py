@@ -211,7 +211,7 @@ def _row(spec, ds, da, samples, timeout, own):
         verdict = "some"
     else:  # no sampled witness: ask z3 whether any controller has one
         generic = _symbolic(order, ds, da)
-        found = _decide(generic, patterns, delays, ds, da, timeout)
+        found = _decide(generic, patterns, delays, ds, da, 3 * timeout)  # more unknowns
         exists = {True: "sat", False: "unsat", None: "unknown"}[found]
         verdict = {True: "some", False: "never", None: None}[found]
         if counts[0]:  # sampled witnesses but undecided samples: not "every" for sure
@@ -252,7 +252,8 @@ def dale_atlas(
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each z3 search (default 10).
+        Seconds for each z3 search (default 10; three times that for the generic
+        controller, which has three more unknowns).
     workers : int
         Processes (default 1: in this process; more use dask's local cluster).
     scheduler : str, optional
