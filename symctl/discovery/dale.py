@@ -134,6 +134,20 @@ class DaleResult:
         object.__setattr__(self, "signs", MappingProxyType(dict(self.signs)))
         object.__setattr__(self, "sections", MappingProxyType(dict(self.sections)))
 
+    def draw(self, ax=None, *, title: str | None = None):
+        """Draw the witness circuit (a matplotlib Figure): blue arrows excite, red bars inhibit.
+
+        Raises
+        ------
+        ParameterError
+            There is no witness (``feasible`` is False or None).
+        """
+        if self.witness is None:
+            raise ParameterError(
+                f"draw: there is no witness to draw (feasible = {self.feasible}): {self.reason}"
+            )
+        return self.witness.draw(ax, title=title or f"E/I witness of the {self.circuit} circuit")
+
     def __str__(self) -> str:
         verdict = {True: "feasible", False: "infeasible", None: "not decided"}[self.feasible]
         lines = [f"Dale's law, circuit {self.circuit}: {verdict} ({self.method})", self.reason]

@@ -481,3 +481,20 @@ def test_dale_verdict_and_validity_are_stable_across_repeated_calls():
         for r in runs:
             if r.feasible:
                 assert_witness(r, G_POS)
+
+
+def test_a_witness_draws_and_a_refusal_says_there_is_none():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    r = symctl.dale(G_POS, circuit="controllable", **KW)
+    fig = r.draw()
+    texts = [t.get_text() for ax in fig.axes for t in (ax.title, *ax.texts)]
+    texts += [t.get_text() for t in fig.texts]
+    assert any("E/I witness of the controllable circuit" in t for t in texts)
+    plt.close(fig)
+    refused = symctl.dale(G_POS, circuit="observable", **KW)
+    with pytest.raises(symctl.ParameterError, match="no witness"):
+        refused.draw()
