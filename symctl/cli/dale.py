@@ -13,7 +13,6 @@ one line and exit 2, as for every command.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import click
 from rich.console import Console
@@ -112,18 +111,11 @@ def dale_command(
 
 def _gains(model_file, sensor_delay, actuator_delay):
     """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1)."""
+    from symctl.cli.fit import model_parts
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-    from symctl.design.plant import MuscleModel
 
-    if model_file is not None:
-        from symctl.model.modelfile import load_model
-
-        model = load_model(Path(model_file))
-        plant, Q, R = model.plant, model.Q, model.R
-        defaults = (model.sensor_delay, model.actuator_delay)
-    else:
-        plant, Q, R, defaults = MuscleModel(), 1, 1, (1, 1)
+    plant, Q, R, defaults = model_parts(model_file)
     ds = defaults[0] if sensor_delay is None else sensor_delay
     da = defaults[1] if actuator_delay is None else actuator_delay
     return lqr_gains(augment(plant, ds, da, Q=Q, R=R))

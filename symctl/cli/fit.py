@@ -120,19 +120,11 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
     """The gains (of --model or the paper's muscle) and the traces of DATA."""
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-    from symctl.design.plant import MuscleModel
     from symctl.discovery.traces import read_traces
     from symctl.errors import ParameterError
 
     tr = read_traces(Path(data))
-    if model_file is not None:
-        from symctl.model.modelfile import load_model
-
-        model = load_model(Path(model_file))
-        plant, Q, R = model.plant, model.Q, model.R
-        defaults = (model.sensor_delay, model.actuator_delay)
-    else:
-        plant, Q, R, defaults = MuscleModel(), 1, 1, (1, 1)
+    plant, Q, R, defaults = model_parts(model_file)
     ds, da = (
         _meta_int(v, key, tr) if v is None else v
         for v, key in ((sensor_delay, "sensor_delay"), (actuator_delay, "actuator_delay"))
@@ -148,6 +140,18 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
                 f"DATA: its time step is {dt:g}, the plant's sampling time {float(Ts):g}"
             )
     return gains, tr
+
+
+def model_parts(model_file):
+    """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
+    from symctl.design.plant import MuscleModel
+
+    if model_file is None:
+        return MuscleModel(), 1, 1, (1, 1)
+    from symctl.model.modelfile import load_model
+
+    model = load_model(Path(model_file))
+    return model.plant, model.Q, model.R, (model.sensor_delay, model.actuator_delay)
 
 
 def _meta_int(value, key, tr):
