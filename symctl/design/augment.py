@@ -53,7 +53,7 @@ from symctl.design._foreign import is_control_system, plant_from_control
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
-__all__ = ["AugmentedSystem", "as_plant", "augment", "same_dt"]
+__all__ = ["AugmentedSystem", "as_plant", "augment", "chain_names", "same_dt"]
 
 
 def as_plant(plant) -> DiscretePlant:
@@ -347,3 +347,16 @@ def augment(
         sp.ImmutableMatrix(Rm),
         _chain_names(p, T),
     )
+
+
+def chain_names(T: int, m: int) -> tuple[str, ...]:
+    """The delay chain's names, ``gamma_1 .. gamma_{T-1}, delta_r`` (``[i]`` per input; none at T = 0).
+
+    >>> from symctl.design.augment import chain_names
+    >>> chain_names(2, 1), chain_names(1, 2), chain_names(0, 1)
+    (('gamma_1', 'delta_r'), ('delta_r[1]', 'delta_r[2]'), ())
+    """
+    if T < 1:
+        return ()
+    base = [f"gamma_{k}" for k in range(1, T)] + ["delta_r"]
+    return tuple(b if m == 1 else f"{b}[{i + 1}]" for b in base for i in range(m))

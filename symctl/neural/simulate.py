@@ -57,7 +57,7 @@ from symctl._util.validate import (
     read_only,
     real_number,
 )
-from symctl.design.augment import as_plant, same_dt
+from symctl.design.augment import as_plant, chain_names, same_dt
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
@@ -193,6 +193,9 @@ class Response:
         The plant's names of its states and inputs.
     time_unit : str
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
+    controller_state_names : tuple of str
+        Of the columns of ``states``: the optimal controller's delay chain
+        (:func:`~symctl.design.augment.chain_names`), else ``x_1, ...``.
 
     The arrays are read-only copies; :func:`open_loop_response`,
     :func:`closed_loop_response` and :func:`simulate_realization` make a Response.
@@ -218,6 +221,7 @@ class Response:
     state_names: tuple[str, ...] = ("delta_f",)
     input_names: tuple[str, ...] = ("delta_r",)
     time_unit: str = "s"
+    controller_state_names: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
@@ -475,7 +479,7 @@ def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
     return steps if finite.all() else int(np.argmin(finite))
 
 
-def _response(p, t, df, dr, w, xc, kind) -> Response:
+def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
     return Response(
         t,
         df,
@@ -488,6 +492,7 @@ def _response(p, t, df, dr, w, xc, kind) -> Response:
         p.state_names,
         p.input_names,
         "s" if p.Ts is not None else "steps",
+        tuple(names) or tuple(f"x_{i + 1}" for i in range(xc.shape[1])),
     )
 
 
@@ -694,7 +699,7 @@ def closed_loop_response(
         _stability(Acl[:, :, None], "controller")
         df, dr, xc = _run(Acl[:, :, None], Cr[:, :, None], n, w)
         t = np.arange(w.shape[0]) * _ts(p)
-        return _response(p, t, df[0], dr[0], w, xc[0], "closed loop")
+        return _response(p, t, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"

@@ -50,11 +50,12 @@ def fit_plot(result: FitResult, ncols: int = 3) -> Figure:
         ax = fig.add_subplot(rows, min(ncols, len(names)), i + 1)
         if name in result.data:
             ax.plot(t, result.data[name], ".", ms=3, color="0.55", label="data")
-            ax.plot(t, pred[name], color="C0", label="fit")
+            ax.plot(t, pred[name], color="C0", label="fit", drawstyle="steps-post")
             ax.set_title(f"{name} (recorded)")
         else:
             ok = result.neuron_identifiable[name]
-            ax.plot(t, pred[name], color="C1" if ok else "C3", label="prediction")
+            ax.plot(t, pred[name], color="C1" if ok else "C3", label="prediction",
+                    drawstyle="steps-post")  # fmt: skip
             if ok and np.all(np.isfinite(band[name])):
                 ax.fill_between(t, pred[name] - band[name], pred[name] + band[name], color="C1",
                                 alpha=0.3, lw=0, label="1 s.e.")  # fmt: skip
@@ -63,7 +64,7 @@ def fit_plot(result: FitResult, ncols: int = 3) -> Figure:
                         ha="center", fontsize=8, color="C3")  # fmt: skip
             ax.set_title(f"{name} (predicted)")
         ax.set_xlabel("t [s]")
-        ax.set_ylabel("firing-rate change")
+        ax.set_ylabel("change in firing rate [spikes/s]")
         ax.legend(fontsize=7, loc="lower right")
     fig.suptitle(
         f"fit: {result.circuit_class} circuit, realizes G exactly: {result.exact}", fontsize=10

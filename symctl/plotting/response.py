@@ -45,6 +45,15 @@ def _label(name: str, labels) -> tuple[str, str, str]:
     return head, f"{what} {raw}" if what != raw else raw, unit
 
 
+def _state_tex(name: str) -> str:
+    """A controller state's name as mathtext: ``gamma_1`` -> γ₁, ``delta_r[2]`` -> δ_r[2]."""
+    base, _, index = name.partition("[")
+    head, _, sub = base.partition("_")
+    head = {"gamma": r"\gamma", "delta": r"\delta"}.get(head, head)
+    tex = f"${head}_{{{sub}}}$" if sub else f"${head}$"
+    return tex + (f"[{index}" if index else "")
+
+
 def response_plot(res: Response, states: bool | None = None, labels=None) -> Figure:
     """Each state and input against time (absolute values on the right axes), and the controller.
 
@@ -86,7 +95,7 @@ def response_plot(res: Response, states: bool | None = None, labels=None) -> Fig
     for ax, group in zip(axes, groups, strict=False):
         for trace, _bar, names, i, is_state in group:
             change, absolute, unit = _label(names[i], labels)
-            ax.plot(res.t, trace[:, i], marker=".", lw=1.5, label=change)
+            ax.plot(res.t, trace[:, i], marker=".", lw=1.5, label=change, drawstyle="steps-post")
             if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
                 ax.step(res.t, res.w[:, i], where="post", ls="--", color="gray",
                         label=f"disturbance w [{unit}/step]")  # fmt: skip
@@ -107,8 +116,11 @@ def response_plot(res: Response, states: bool | None = None, labels=None) -> Fig
         ax.grid(alpha=0.3)
     if states:
         ax = axes[-1]
-        for i in range(res.states.shape[1]):
-            ax.plot(res.t, res.states[:, i], marker=".", lw=1.2, label=f"x_{i + 1}")
+        count = res.states.shape[1]
+        names = res.controller_state_names or tuple(f"x_{i + 1}" for i in range(count))
+        for i, name in enumerate(names):
+            ax.plot(res.t, res.states[:, i], marker=".", lw=1.2, label=_state_tex(name),
+                    drawstyle="steps-post")  # fmt: skip
         if res.delta_r.shape[1] == 1:
             change, _, unit = _label(res.input_names[0], labels)
             what = change.replace(" change", "").split(" δ")[0]
