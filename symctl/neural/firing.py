@@ -111,6 +111,10 @@ class FiringSummary:
     behaviour_spread : float
         The largest difference between realizations of the force and rate traces
         (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
+    trace_spread : (k,) array
+        The largest difference between two realizations' traces at any one step, per
+        neuron [spikes/s]: nonzero whenever the traces differ, even when their peaks are
+        equal (``spread`` then is 0). Defaults to ``spread`` when not given.
 
     Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
 
@@ -120,10 +124,10 @@ class FiringSummary:
     >>> from symctl import FiringSummary
     >>> s = FiringSummary(("x1", "x2"), np.array([[1.0, -2.0], [3.0, -2.5]]), np.array([2.0, 0.5]), 0.0)
     >>> print(s.table())
-     neuron | peak #1   | peak #2   | spread
-    ----------------------------------------
-     x1     |         1 |         3 | 2
-     x2     |        -2 |      -2.5 | 0.5
+     neuron | peak #1   | peak #2   | peak spread | trace spread
+    ------------------------------------------------------------
+     x1     |         1 |         3 |           2 |            2
+     x2     |        -2 |      -2.5 |         0.5 |          0.5
     force/rate spread across realizations: 0.00e+00
     """
 
@@ -131,9 +135,12 @@ class FiringSummary:
     peak: np.ndarray
     spread: np.ndarray
     behaviour_spread: float
+    trace_spread: np.ndarray | None = None
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("peak", "spread"):
+        if self.trace_spread is None:
+            object.__setattr__(self, "trace_spread", self.spread)
+        for name in ("peak", "spread", "trace_spread"):
             object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     def table(self) -> str:
@@ -141,10 +148,13 @@ class FiringSummary:
         count = self.peak.shape[0]
         width = max([6, *map(len, self.neurons)])
         head = f" {'neuron':<{width}} | " + " | ".join(f"peak #{i + 1:<3d}" for i in range(count))
-        lines = [head + " | spread", "-" * (len(head) + 9)]
+        head += " | peak spread | trace spread"
+        lines = [head, "-" * len(head)]
         for k, name in enumerate(self.neurons):
             peaks = " | ".join(f"{v:9.4g}" for v in self.peak[:, k])
-            lines.append(f" {name:<{width}} | {peaks} | {self.spread[k]:.4g}")
+            lines.append(
+                f" {name:<{width}} | {peaks} | {self.spread[k]:11.4g} | {self.trace_spread[k]:12.4g}"
+            )
         lines.append(f"force/rate spread across realizations: {self.behaviour_spread:.2e}")
         return "\n".join(lines)
 
@@ -258,11 +268,15 @@ class FiringPatterns:
             vals = tr[np.arange(self.count), idx]
             peak[ok, k] = vals[ok]
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
+        trace = np.array([
+            float(np.nanmax(np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0)))
+            for n in names
+        ])  # fmt: skip
         behaviour = max(
             float(np.max(np.abs(self.delta_f - self.delta_f[0]))),
             float(np.max(np.abs(self.delta_r - self.delta_r[0]))),
         )
-        return FiringSummary(names, peak, spread, behaviour)
+        return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
         """One panel per neuron of :math:`G_2` (one line per realization), the force on top.

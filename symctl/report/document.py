@@ -65,6 +65,11 @@ __all__ = [
 ]
 
 TITLE = "Toward neuronal implementations of delayed optimal control: the derivation"
+AUTHOR = (
+    r"Derived by symctl \\ \small with the method of Jing Shuang (Lisa) Li, \\ "
+    r"\small\emph{Toward Neuronal Implementations of Delayed Optimal Control}"
+)
+"""The author line: the tool, and the paper (and author) whose method it implements."""
 """The title of the paper's derivation (``derivation.tex`` and ``report.md``)."""
 PDFLATEX_TIMEOUT = 180  # seconds
 
@@ -256,7 +261,7 @@ def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     parts = [_tex_block(b) for b in _checked(blocks)]
     packages = ["longtable"] if any(r"\begin{longtable}" in p for p in parts) else []
     return L.document(
-        parts, title=_tex_text(title), author="symctl", packages=packages, preamble=_PREAMBLE
+        parts, title=_tex_text(title), author=AUTHOR, packages=packages, preamble=_PREAMBLE
     )
 
 

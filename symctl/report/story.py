@@ -400,7 +400,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"Every realization gives the {xs[0]} and {res.names[1][0]} traces of the optimal "
             "controller "
             "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
-            "(change from equilibrium, spikes/s) per neuron and realization:"
+            "(change from equilibrium, spikes/s) per neuron and realization; the spread is "
+            "the largest difference between two realizations' traces at any one step:"
         )
     )
     for name, crec in res.circuits.items():
@@ -453,7 +454,7 @@ def _firing_table(fp) -> list[DocumentBlock]:
     summ = fp.summary()
     for shown in range(fp.count, 0, -1):
         rows = tuple(
-            (n, *(_fmt(v) for v in summ.peak[:shown, i]), _fmt(summ.spread[i]))
+            (n, *(_fmt(v) for v in summ.peak[:shown, i]), _fmt(summ.trace_spread[i]))
             for i, n in enumerate(summ.neurons)
         )
         head = ("neuron", *(f"#{i + 1}" for i in range(shown)), "spread")

@@ -176,3 +176,13 @@ def test_firing_patterns_and_summary_are_read_only(general):
     with pytest.raises(ValueError, match="read-only"):
         s.peak[0, 0] = 0.0
     assert not s.spread.flags.writeable
+
+
+def test_trace_spread_sees_differing_traces_whose_peaks_are_equal():
+    """G2.y starts at N * x1(G1) in every realization, so its peaks agree; its traces do not."""
+    fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=4)
+    s = fp.summary()
+    y = s.neurons.index("G2.y")
+    tr = fp.firing["G2.y"]
+    assert s.trace_spread[y] == pytest.approx(float(np.max(tr.max(0) - tr.min(0))))
+    assert s.trace_spread[y] > 1e-3 and s.trace_spread[y] > 10 * s.spread[y]

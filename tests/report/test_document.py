@@ -74,3 +74,11 @@ def test_the_title_is_a_parameter():
 def test_a_non_block_is_a_type_error_naming_blocks(render):
     with pytest.raises(SymctlTypeError, match=r"blocks: element 1 is a str"):
         render([Text("a"), "not a block"])
+
+
+def test_the_document_cites_the_paper_and_its_author():
+    from symctl.report.document import Text, to_tex
+
+    tex = to_tex([Text("x")])
+    assert r"\author{Derived by symctl \\ \small with the method of Jing Shuang (Lisa) Li" in tex
+    assert "Toward Neuronal Implementations of Delayed Optimal Control" in tex
