@@ -111,8 +111,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(Heading("Delays and the augmented system"))
     add(
         Text(
-            f"The sensor delays the measured {', '.join(xs)} by $d_s = {s.sensor_delay}$ step(s) "
-            "and the actuator "
+            f"The sensor delays the measured {', '.join(xs)} by $d_s = {s.sensor_delay}$ "
+            f"step{'s' * (s.sensor_delay != 1)} and the actuator "
             f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
             f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
             "become states: the augmented state $\\chi$ evolves as "

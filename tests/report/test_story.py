@@ -43,3 +43,12 @@ def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
         for name, mat in rows:
             assert (mat.subs(values) - getattr(R, name)).applyfunc(sp.cancel).is_zero_matrix
         assert any(mat.has(sp.Symbol("N")) for _, mat in rows)
+
+
+def test_the_delays_are_counted_in_words_not_step_s():
+    from symctl.report.document import Text
+
+    for ds, word in ((1, "$d_s = 1$ step and"), (2, "$d_s = 2$ steps and")):
+        text = " ".join(b.text for b in story(derive_paper(sensor_delay=ds, realizations=1))
+                        if isinstance(b, Text))  # fmt: skip
+        assert "step(s)" not in text and word in text
