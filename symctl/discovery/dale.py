@@ -53,7 +53,16 @@ from symctl.design.tf import DiscreteTF
 from symctl.discovery.circuitclass import CircuitClass
 from symctl.discovery.fibre import binary_rationals
 from symctl.discovery.pattern import Pattern
-from symctl.discovery.signs import NAMED, Template, _expr, decide, encode, refine, template
+from symctl.discovery.signs import (
+    NAMED,
+    Template,
+    _expr,
+    decide,
+    encode,
+    outgoing_synapses,
+    refine,
+    template,
+)
 from symctl.discovery.witness import search_general
 from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
@@ -335,14 +344,18 @@ def _realizes(templates, poles, timeout: float) -> bool | None:
     return None if unknown else False
 
 
-def solve(G, t: Template, poles, timeout: float, tried: list) -> tuple[str, dict | None]:
+def solve(
+    G, t: Template, poles, timeout: float, tried: list, witness: bool = True
+) -> tuple[str, dict | None]:
     """Decide one template: z3 first (briefly), the general circuit's numeric search, z3 again.
 
-    Returns ``(verdict, model)``; ``tried`` gets one line per attempt.
+    The numeric search runs for the general circuit of a numeric ``G`` only. Returns
+    ``(verdict, model)``, the model pinned to rationals when ``witness`` (else None);
+    ``tried`` gets one line per attempt.
     """
     start = time.perf_counter()
     enc = encode(t, poles, timeout=timeout)
-    general = t.label == "general"
+    general = t.label == "general" and not G.free_symbols - {z}
     verdict, assume = decide(enc, budget=min(timeout, 3.0) if general else timeout)
     if verdict == "unknown" and general:
         found = search_general(G, t, budget=min(timeout, 20.0))
@@ -353,7 +366,7 @@ def solve(G, t: Template, poles, timeout: float, tried: list) -> tuple[str, dict
         if left > 0:
             verdict, assume = decide(enc, budget=left)
     tried.append(f"{t.label}: z3 {verdict}")
-    if verdict != "sat":
+    if verdict != "sat" or not witness:
         return verdict, None
     order = [*t.sections, *t.unknowns]
     return verdict, refine(enc, order, timeout=min(timeout, 0.5), keep=assume)
@@ -392,12 +405,10 @@ def _witness(G, fs, t: Template, model: dict, label: str, tried, t0, signed=True
 
 def _signs(circuit: Circuit) -> dict[str, str]:
     """Each neuron's sign, checked exactly on its outgoing weights (read-out and self exempt)."""
-    names = {n.name for n in circuit.neurons}
     out = {}
-    for n in circuit.neurons:
-        ws = [s.weight for s in n.axon if s.target in names and s.target != n.name]
-        signs = {bool(_expr(w) > 0) for w in ws} if ws else {True}
+    for name, synapses in outgoing_synapses(circuit).items():
+        signs = {bool(_expr(s.weight) > 0) for s in synapses} if synapses else {True}
         if len(signs) != 1:  # pragma: no cover - the witness satisfies the sign constraints
-            raise ParameterError(f"circuit: the witness's neuron {n.name} has mixed signs")
-        out[n.name] = "+" if signs.pop() else "-"
+            raise ParameterError(f"circuit: the witness's neuron {name} has mixed signs")
+        out[name] = "+" if signs.pop() else "-"
     return out

@@ -35,10 +35,11 @@ import sympy as sp
 
 from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.dale import controller_of, poles_of, solve
+from symctl.discovery.dale import MAX_TIMEOUT, _realizes, controller_of, poles_of, solve
+from symctl.discovery.fitargs import _pool, pool_options
 from symctl.discovery.pattern import Pattern
-from symctl.discovery.signs import decide, encode, template
-from symctl.errors import ParameterError, SymctlTypeError
+from symctl.discovery.signs import template
+from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
 from symctl.symbols import z
 
@@ -177,14 +178,12 @@ def _sample(order: int, ds: int, da: int, gen: np.random.Generator, i: int) -> D
 def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
     """Some pattern realizes ``G`` with every neuron E or I (``relax``: signs free)."""
     fs = factor(G, ds, da)
+    templates = [template(fs, p, delays) for p in patterns]
+    if relax:
+        return _realizes(templates, poles_of(G), timeout)
     unknown = False
-    for p in patterns:
-        t = template(fs, p, delays)
-        if t.label == "general" and not relax and not G.free_symbols - {z}:
-            verdict, _ = solve(G, t, poles_of(G), timeout, [])  # z3, then the numeric search
-        else:
-            enc = encode(t, poles_of(G), timeout=timeout, relax=relax)
-            verdict, _ = decide(enc, tuple(enc.mixed), budget=timeout)
+    for t in templates:
+        verdict, _ = solve(G, t, poles_of(G), timeout, [], witness=False)
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"
@@ -277,7 +276,6 @@ def dale_atlas(
     ('every', (2, 0, 0, 0))
     """
     from symctl.discovery.atlas import atlas
-    from symctl.discovery.search import _Dask, _Local
 
     t0 = time.perf_counter()
     order = bounded_int(order, "order", 1, 2)
@@ -289,10 +287,8 @@ def dale_atlas(
             "(G2 would have N = 0, and the atlas's circuits have N != 0)"
         )
     samples = bounded_int(samples, "samples", 0, MAX_SAMPLES)
-    timeout = bounded_number(timeout, "timeout", 1e-3, 3600.0)
-    workers = bounded_int(workers, "workers", 1, 512)
-    if scheduler is not None and not isinstance(scheduler, str):
-        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
+    timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
+    workers, scheduler = pool_options(workers, scheduler)
     gen = as_generator(seed, "seed")
     own, label = None, ""
     if G is not None:
@@ -316,7 +312,7 @@ def dale_atlas(
          c.n_synapses, c.universal)
         for c in found
     ]  # fmt: skip
-    pool = _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
+    pool = _pool(workers, scheduler)
     try:
         rows = list(pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]))
     finally:

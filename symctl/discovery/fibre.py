@@ -27,7 +27,14 @@ from flint import fmpq, fmpq_mat
 from symctl.discovery.pattern import Pattern
 from symctl.symbols import z
 
-__all__ = ["MAX_FIBRE", "binary_rationals", "coefficient_symbols", "real_solutions", "solve_at"]
+__all__ = [
+    "MAX_FIBRE",
+    "binary_rationals",
+    "coefficient_polynomials",
+    "coefficient_symbols",
+    "real_solutions",
+    "solve_at",
+]
 
 
 def binary_rationals(expr):
@@ -42,18 +49,23 @@ def coefficient_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol,
     return sp.symbols(f"a_0:{n}"), sp.symbols(f"c_0:{n}")
 
 
+def coefficient_polynomials(F, H, M) -> tuple[list[sp.Expr], list[sp.Expr]]:
+    r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of
+    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each: a realization's :math:`a` and :math:`c`."""
+    n = F.shape[0]
+    A = z * sp.eye(n) - F
+    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
+    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
+    return charpoly, numer + [sp.Integer(0)] * (n - len(numer))
+
+
 @cache
 def _system(pattern: Pattern):
     """(unknowns, their slots, value of every slot, coefficient polynomials of a and b)."""
     tree = set(pattern.tree_slots() or ())
     syms = pattern.symbols()
     values = {k: sp.Integer(1) if k in tree else syms[k] for k in pattern.indices}
-    F, H, M = pattern.matrices(values)
-    n = pattern.n
-    A = z * sp.eye(n) - F
-    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
-    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
-    numer = numer + [sp.Integer(0)] * (n - len(numer))
+    charpoly, numer = coefficient_polynomials(*pattern.matrices(values))
     unknown_slots = tuple(k for k in pattern.indices if k not in tree)
     return tuple(syms[k] for k in unknown_slots), unknown_slots, values, charpoly, numer
 

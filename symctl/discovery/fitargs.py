@@ -191,11 +191,19 @@ def _window(steps, start, length) -> dict:
     return {"steps": steps, "start": start, "length": length}
 
 
-def _pool(workers, scheduler):
+def pool_options(workers, scheduler) -> tuple[int, str | None]:
+    """``workers`` and ``scheduler`` checked as the atlas's dask path takes them."""
     from symctl.discovery.atlas import MAX_WORKERS
-    from symctl.discovery.search import _Dask, _Local
 
     workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
     if scheduler is not None and not isinstance(scheduler, str):
         raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
+    return workers, scheduler
+
+
+def _pool(workers, scheduler):
+    """This process (one worker, no scheduler) or a dask cluster, as the atlas runs."""
+    from symctl.discovery.search import _Dask, _Local
+
+    workers, scheduler = pool_options(workers, scheduler)
     return _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)

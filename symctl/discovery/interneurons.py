@@ -37,13 +37,14 @@ import sympy as sp
 
 from symctl._util.validate import bounded_number
 from symctl.discovery.dale import (
+    MAX_TIMEOUT,
     METHOD,
     controller_of,
     poles_of,
     search_general,
     templates_of,
 )
-from symctl.discovery.signs import NAMED, _expr, decide, encode, refine
+from symctl.discovery.signs import NAMED, _expr, decide, encode, outgoing_synapses, refine
 from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
 
@@ -244,7 +245,7 @@ def ei_circuit(
     """
     t0 = time.perf_counter()
     G, ds, da = controller_of(G, sensor_delay, actuator_delay)
-    timeout = bounded_number(timeout, "timeout", 1e-3, 3600.0)
+    timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     fs = factor(G, ds, da)
     poles = poles_of(G)
     found: list[EICandidate] = []
@@ -302,24 +303,22 @@ def _relays(G, fs, t, model):
 
     values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}
-    circuit = t.circuit.subs({s: values[s] for s in values if s in t.circuit.free_symbols})
-    names = {n.name for n in circuit.neurons}
+    witness = _witness(G, fs, t, {"values": values}, t.label, [], 0.0, signed=False)
     relays, signs = [], {}
-    for n in circuit.neurons:
-        out = [s for s in n.axon if s.target in names and s.target != n.name]
+    for source, out in outgoing_synapses(witness.witness).items():
         ws = [_expr(s.weight) for s in out]
         pos = sum(1 for w in ws if w > 0)
-        if n.name not in mixed or not ws or pos in (0, len(ws)):
-            signs[n.name] = "-" if ws and pos == 0 else "+"
+        if source not in mixed or not ws or pos in (0, len(ws)):
+            signs[source] = "-" if ws and pos == 0 else "+"
             continue
         sigma = 1 if 2 * pos >= len(ws) else -1
         flip = [(s.target, w / sigma) for s, w in zip(out, ws, strict=True) if w * sigma < 0]
-        name = f"I[{n.name}]"
-        relays.append(Interneuron(name, n.name, "+" if sigma > 0 else "-",
+        name = f"I[{source}]"
+        relays.append(Interneuron(name, source, "+" if sigma > 0 else "-",
                                   tuple(a for a, _ in flip), tuple(w for _, w in flip)))  # fmt: skip
-        signs[n.name] = "+" if sigma > 0 else "-"
+        signs[source] = "+" if sigma > 0 else "-"
         signs[name] = "-"
-    whole = _witness(G, fs, t, {"values": values}, t.label, [], 0.0, signed=False).realization
+    whole = witness.realization
     if any(not all(sp.sign(w) < 0 for w in r.weights) for r in relays):  # pragma: no cover
         raise ParameterError("circuits: an interneuron's relayed weights are not all negative")
     return relays, signs, whole

@@ -60,6 +60,7 @@ import sympy as sp
 import z3
 
 from symctl.compatibility.structure import Structure
+from symctl.discovery.fibre import coefficient_polynomials
 from symctl.discovery.pattern import Pattern
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
@@ -71,7 +72,7 @@ from symctl.realization.realization import (
 )
 from symctl.symbols import z
 
-__all__ = ["Template", "decide", "full_pattern", "template", "to_z3"]
+__all__ = ["Template", "decide", "full_pattern", "outgoing_synapses", "template", "to_z3"]
 
 NAMED = ("general", "controllable", "observable")
 """The circuits named by a word: the general (full) pattern and the two canonical forms."""
@@ -145,10 +146,7 @@ def template(factorization, circuit, delays: str = "branch") -> Template:
     tree = set(pattern.tree_slots() or ())
     F, H, M = pattern.matrices(syms)
     N, c, a = split_proper(G2)
-    A = z * sp.eye(n) - F
-    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
-    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
-    numer += [sp.Integer(0)] * (n - len(numer))
+    charpoly, numer = coefficient_polynomials(F, H, M)
     equations = [sp.expand(p - q) for p, q in zip(charpoly, a, strict=True)]
     equations += [sp.together(p - q) for p, q in zip(numer, c, strict=True)]
     R2 = Realization(F, H, M, N, G2.dt)
@@ -157,13 +155,18 @@ def template(factorization, circuit, delays: str = "branch") -> Template:
     return _finish(label, factorization, R2, unknowns, signed, tuple(equations), delays)
 
 
-def _finish(label, factorization, R2, unknowns, signed, equations, delays) -> Template:
-    circuit = Circuit.from_structure(Structure.from_factorization(factorization, R2, delays))
+def outgoing_synapses(circuit: Circuit) -> dict[str, tuple]:
+    """Each neuron's synapses onto other neurons: what Dale's law signs (self and read-out exempt)."""
     names = {nr.name for nr in circuit.neurons}
-    outgoing = {
-        nr.name: tuple(s.weight for s in nr.axon if s.target in names and s.target != nr.name)
+    return {
+        nr.name: tuple(s for s in nr.axon if s.target in names and s.target != nr.name)
         for nr in circuit.neurons
     }
+
+
+def _finish(label, factorization, R2, unknowns, signed, equations, delays) -> Template:
+    circuit = Circuit.from_structure(Structure.from_factorization(factorization, R2, delays))
+    outgoing = {n: tuple(s.weight for s in out) for n, out in outgoing_synapses(circuit).items()}
     weights = [s.weight for nr in circuit.neurons for s in (*nr.synapses, *nr.self_terms)]
     return Template(
         label, factorization, R2, unknowns, signed, equations, circuit, outgoing,

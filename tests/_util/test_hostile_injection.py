@@ -462,8 +462,8 @@ AUDITED = {
     ("symctl.discovery.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
     ("symctl.discovery.solve", "_solved", "Poly"): 2,
     ("symctl.discovery.solve", "_markov_equal", "expand"): 1,  # own entries and coefficients
-    ("symctl.discovery.fibre", "_system", "Poly"): 2,
-    ("symctl.discovery.fibre", "_system", "expand"): 1,
+    ("symctl.discovery.fibre", "coefficient_polynomials", "Poly"): 2,  # a pattern's symbols
+    ("symctl.discovery.fibre", "coefficient_polynomials", "expand"): 1,
     ("symctl.discovery.fibre", "_equations", "expand"): 1,
     ("symctl.discovery.universality", "closed_form", "Poly"): 1,
     ("symctl.discovery.universality", "closed_form", "cancel"): 3,
@@ -607,9 +607,7 @@ AUDITED = {
     ("symctl.discovery.dale_atlas", "_sample", "expand"): 1,
     ("symctl.discovery.dale_atlas", "_decide", "factor"): 1,
     ("symctl.discovery.interneurons", "ei_circuit", "factor"): 1,
-    ("symctl.discovery.interneurons", "_relays", "subs"): 1,
-    ("symctl.discovery.signs", "template", "Poly"): 2,
-    ("symctl.discovery.signs", "template", "expand"): 2,
+    ("symctl.discovery.signs", "template", "expand"): 1,
     ("symctl.discovery.signs", "template", "together"): 1,
     ("symctl.discovery.signs", "encode", "expand"): 2,
     ("symctl.discovery.signs", "encode", "fraction"): 1,
