@@ -121,8 +121,8 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
         + (
             "one realization: the optimal controller's delay chain"
             if fp.kind == "ifp"
-            else f"same {state[2]} (top) and {_names(fp, labels, 'input')[2]} (checked to "
-            f"{max(fp.max_deviation, 1e-16):.0e}, relative) in every realization; different firing"
+            else f"same {state[2]} (top) and {_names(fp, labels, 'input')[2]} in every realization"
+            f"\n(the rate checked to {max(fp.max_deviation, 1e-16):.0e}, relative); different firing"
         )
     )
     return fig

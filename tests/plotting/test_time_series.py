@@ -56,3 +56,11 @@ def test_firing_panels_are_steps_and_the_title_says_what_is_plotted():
     title = fig._suptitle.get_text()
     assert "(top)" in title and "checked to" in title
     assert np.ptp(fp.delta_r, axis=0).max() <= 1e-9 * np.abs(fp.delta_r).max()
+
+
+def test_the_firing_title_fits_the_figure_even_with_two_columns():
+    fp = circuit_firing("controllable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
+    fig = firing_plot(fp)
+    fig.canvas.draw()
+    box = fig._suptitle.get_window_extent()
+    assert box.x0 >= 0 and box.x1 <= fig.bbox.width, (box, fig.bbox.width)
