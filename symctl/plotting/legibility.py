@@ -1,0 +1,171 @@
+r"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping.
+
+The checks a reviewer makes by eye, made on the drawn figure: every text at least
+:data:`~symctl.plotting.style.MIN_FONT` points at the size the figure is printed,
+no two texts overlapping, no text running off the figure, and the figure no wider
+than the page it goes on. :func:`legibility` draws the figure once (Agg) and returns a
+:class:`Legibility` that is truthy when every check holds and lists what fails.
+
+``scale`` is the factor the figure is printed at (1 when it is included at its
+natural size, as ``derivation.pdf`` includes every figure).
+
+Examples
+--------
+>>> from symctl.plotting.style import new_figure
+>>> from symctl.plotting.legibility import legibility
+>>> fig = new_figure("column", 1.5)
+>>> ax = fig.add_subplot()
+>>> _ = ax.set_xlabel("time [s]")
+>>> bool(legibility(fig))
+True
+>>> _ = ax.text(0.5, 0.5, "tiny", fontsize=4)
+>>> legibility(fig).small
+(('tiny', 4.0),)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from symctl.plotting.style import MIN_FONT, TEXT_WIDTH
+
+__all__ = ["Legibility", "legibility"]
+
+
+@dataclass(frozen=True)
+class Legibility:
+    """What :func:`legibility` found; truthy when the figure is legible.
+
+    Attributes
+    ----------
+    small : tuple of (str, float)
+        Texts set below the minimum, with their printed size [pt].
+    overlaps : tuple of (str, str)
+        Pairs of texts whose drawn boxes overlap.
+    clipped : tuple of str
+        Texts that run off the figure.
+    width : float
+        The figure's printed width [in].
+    too_wide : bool
+        Wider than the page width it was checked against.
+    """
+
+    small: tuple = ()
+    overlaps: tuple = ()
+    clipped: tuple = ()
+    width: float = 0.0
+    too_wide: bool = False
+
+    def __bool__(self) -> bool:
+        return not (self.small or self.overlaps or self.clipped or self.too_wide)
+
+    def __str__(self) -> str:
+        if self:
+            return f"legible ({self.width:.2f} in wide)"
+        parts = []
+        if self.small:
+            parts.append("small text: " + ", ".join(f"{t!r} {s:.1f} pt" for t, s in self.small))
+        if self.overlaps:
+            parts.append("overlaps: " + ", ".join(f"{a!r}/{b!r}" for a, b in self.overlaps))
+        if self.clipped:
+            parts.append("clipped: " + ", ".join(repr(t) for t in self.clipped))
+        if self.too_wide:
+            parts.append(f"{self.width:.2f} in wide")
+        return "not legible: " + "; ".join(parts)
+
+
+def _hidden_ticks(fig) -> set[int]:
+    """Tick labels outside their axis's view: matplotlib keeps them but never draws them."""
+    hidden = set()
+    for ax in fig.get_axes():
+        for axis in (ax.xaxis, ax.yaxis):
+            lo, hi = sorted(axis.get_view_interval())
+            slack = 1e-9 * max(1.0, abs(hi - lo))
+            for tick in (*axis.get_major_ticks(), *axis.get_minor_ticks()):
+                if not lo - slack <= tick.get_loc() <= hi + slack:
+                    hidden.update((id(tick.label1), id(tick.label2)))
+    return hidden
+
+
+def _texts(fig):
+    """Every drawn, non-empty text artist of ``fig`` (titles, labels, ticks, legends)."""
+    from matplotlib.text import Text
+
+    hidden = _hidden_ticks(fig)
+    for t in fig.findobj(Text):
+        if t.get_visible() and t.get_text().strip() and id(t) not in hidden:
+            yield t
+
+
+def legibility(
+    fig,
+    *,
+    scale: float = 1.0,
+    min_font: float = MIN_FONT,
+    page_width: float | None = TEXT_WIDTH,
+    overlap_tolerance: float = 0.5,
+) -> Legibility:
+    """Check that ``fig`` is legible when printed at ``scale`` times its size.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, as it will be saved.
+    scale : float
+        Print size over the figure's size (1: included at natural size).
+    min_font : float
+        The smallest legible text [pt].
+    page_width : float or None
+        The widest a figure may be printed [in]; ``None`` skips the check.
+    overlap_tolerance : float
+        Overlaps smaller than this many points in either direction are ignored (the
+        boxes of text include some space around the ink).
+
+    Returns
+    -------
+    Legibility
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import new_figure
+    >>> from symctl.plotting.legibility import legibility
+    >>> fig = new_figure(9.0, 2.0)
+    >>> legibility(fig).too_wide
+    True
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = fig.canvas
+    try:
+        agg = FigureCanvasAgg(fig)
+        renderer = agg.get_renderer()
+        fig.draw(renderer)
+        W, H = fig.bbox.width, fig.bbox.height
+        px_per_pt = fig.dpi / 72.0
+        tol = overlap_tolerance * px_per_pt
+        small, boxes, clipped = [], [], []
+        for t in _texts(fig):
+            size = t.get_fontsize() * scale
+            if size < min_font - 1e-9:
+                small.append((t.get_text(), round(float(size), 2)))
+            box = t.get_window_extent(renderer)
+            if box.x0 < -tol or box.y0 < -tol or box.x1 > W + tol or box.y1 > H + tol:
+                clipped.append(t.get_text())
+            boxes.append((t.get_text(), box))
+        overlaps = []
+        for i, (a, ba) in enumerate(boxes):
+            for b, bb in boxes[i + 1 :]:
+                dx = min(ba.x1, bb.x1) - max(ba.x0, bb.x0)
+                dy = min(ba.y1, bb.y1) - max(ba.y0, bb.y0)
+                if dx > tol and dy > tol:
+                    overlaps.append((a, b))
+    finally:
+        fig.set_canvas(canvas)
+    printed = float(fig.get_size_inches()[0]) * scale
+    return Legibility(
+        small=tuple(small),
+        overlaps=tuple(overlaps),
+        clipped=tuple(clipped),
+        width=printed,
+        too_wide=page_width is not None and printed > page_width + 1e-6,
+    )
