@@ -566,25 +566,32 @@ class Circuit(LatexMixin):
         names = ", ".join(n.name for n in self.neurons)
         return f"Circuit({self.n_neurons} neurons: {names}; inputs={self.inputs})"
 
-    def draw(self, ax=None, *, title: str | None = None, vertex_names=None):
-        """Draw the circuit: neurons as circles, synapses as arrows, layered left to right.
+    def draw(
+        self, ax=None, *, title: str | None = None, vertex_names=None, signs_at=None, width="text"
+    ):
+        """Draw the circuit at its printed size: neurons as circles, synapses as arrows.
 
-        Each circle holds the neuron's self-dynamics (:math:`\\sum_k w_k z^{-d_k}`,
-        ``0`` without), its name above it. Synapses carry their weights (long
-        ones as :math:`w_1, w_2, \\dots`, listed under the drawing); excitatory
-        (positive) ones are blue with an arrow head, inhibitory (negative) red
-        with a bar, symbolic sign grey; dashed arrows have a one-step delay
-        (:math:`z^{-d}` is written for more). Inputs on the left, outputs on the
-        right. A placed neuron shows its vertex: ``(v2)``, ``(v2: spinal)`` with names.
+        Each circle holds the neuron's self-dynamics (:math:`\\sum_k w_k z^{-d_k}`;
+        empty without), its name above it, its delay-graph vertex below it when
+        placed. Synapses carry their weights (long ones as :math:`w_1, w_2, \\dots`,
+        listed under the drawing) and are coloured by sign: excitatory blue with an
+        arrow head, inhibitory vermillion with a bar, purple when the sign depends on
+        symbols (read at ``signs_at`` when given); dashed ones are delayed, one step or
+        :math:`k` where :math:`z^{-k}` is written. A key under the drawing says so.
 
         Parameters
         ----------
         ax : matplotlib Axes, optional
-            Draw into it; by default a new figure sized to the drawing.
+            Draw into it; by default a new figure of the drawing's printed size.
         title : str, optional
-            The heading (default ``"neural circuit: <n> neurons"``).
+            A heading above the drawing (default none).
         vertex_names : sequence of str, optional
             The delay graph's vertex names, :math:`v_1` first (a model's ``vertices``).
+        signs_at : mapping, optional
+            Numbers, or ``(lo, hi)`` ranges, of the weights' symbols at which their
+            signs are read (e.g. the controller's gains).
+        width : float or {"text", "column", "double"}
+            The widest the drawing may be [in]: a longer chain is cut into bands.
 
         Returns
         -------
@@ -600,7 +607,9 @@ class Circuit(LatexMixin):
         """
         from symctl.plotting.circuit import draw_circuit
 
-        return draw_circuit(self, ax, title=title, vertex_names=vertex_names)
+        return draw_circuit(
+            self, ax, title=title, vertex_names=vertex_names, signs_at=signs_at, width=width
+        )
 
 
 # ---------------------------------------------------------------- helpers

@@ -1,187 +1,388 @@
-r"""Rendering of a circuit drawing: neurons as circles, synapses as arrows, weights as labels.
+r"""Rendering of a circuit drawing at its printed size: neurons, synapses, weights, a key.
 
-The positions come from :mod:`symctl.plotting.circuit_layout` and the text from
-:mod:`symctl.plotting.circuit_labels` (long weights as :math:`w_1, w_2, \dots`, listed
-in a key under the drawing); this module measures the labels (a neuron's circle fits
-its self-dynamics) and draws with matplotlib's patches on a pyplot-free figure, the
-key as the glyph outlines that measured it.
+The positions come from :mod:`symctl.plotting.circuit_layout`, the text from
+:mod:`symctl.plotting.circuit_labels` (long weights as :math:`w_1, w_2, \dots`,
+listed under the drawing) and the colours from :mod:`symctl.plotting.circuit_signs`;
+this module measures the texts, so that the layout makes room for each, and draws
+with matplotlib's patches on a pyplot-free figure in the house style
+(:mod:`symctl.plotting.style`): one unit is one printed inch, no text is smaller
+than :data:`~symctl.plotting.style.MIN_FONT`, and the drawing is no wider than its
+``width`` (the derivation's text width by default), cut into bands when a long
+chain needs it.
+
+A drawing whose weights cannot all be written legibly at that width (a dense MIMO
+circuit with hundreds of synapses) is drawn without them, and says so in its key;
+a circuit's weights are always in :meth:`Circuit.equations
+<symctl.neural.circuit.Circuit.equations>`.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit import draw_circuit
 >>> fig = draw_circuit(Circuit.from_structure(ifp_structure(2)))
->>> [p.get_gid() for p in fig.axes[0].patches if p.get_gid()]
+>>> [p.get_gid() for p in fig.axes[0].patches if "neuron" in (p.get_gid() or "")]
 ['neuron:mu']
 """
 
 from __future__ import annotations
 
+import math
 import re
-from typing import TYPE_CHECKING
+import weakref
+from functools import lru_cache
+from typing import TYPE_CHECKING, NamedTuple
 
 from matplotlib.patches import Circle, FancyArrowPatch, PathPatch
+from matplotlib.path import Path
 from matplotlib.transforms import Affine2D, ScaledTranslation
 
 from symctl._util.texnames import signal_tex
-from symctl.plotting.circuit_labels import circuit_text, display_text
-from symctl.plotting.circuit_layout import MIN_RADIUS, circuit_layout
-from symctl.plotting.common import figure_and_axes, finish_figure, text_outline, text_size
+from symctl.plotting import style
+from symctl.plotting.circuit_key import COLOURS, Key, draw_key_items, key_items, wrap_words
+from symctl.plotting.circuit_labels import circuit_text, display_text, visible_length
+from symctl.plotting.circuit_layout import (
+    DOT,
+    MIN_GAP,
+    MIN_RADIUS,
+    NAME_GAP,
+    CircuitLayout,
+    Measures,
+    circuit_layout,
+)
+from symctl.plotting.circuit_signs import SignValues, weight_sign
+from symctl.plotting.common import figure_and_axes, text_outline, text_size
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from symctl.neural.circuit import Circuit
 
-__all__ = ["draw_circuit"]
+__all__ = ["COLOURS", "Drawn", "draw_circuit", "drawn"]
 
-_COLOURS = {"+": "#1f5fa8", "-": "#c0392b", "?": "0.55", "0": "0.75"}
-_FONT = 9
-_DOT = 0.06  # radius of an input or output dot [in]
-_KEY_GAP = 0.4  # between two columns of the key [in]
-
-
-def _where(vertex: int | None, vertex_names) -> str:
-    """``"  (v2)"``, ``"  (v2: spinal)"`` with names; empty for a neuron at no vertex."""
-    if vertex is None:
-        return ""
-    name = vertex_names[vertex - 1] if vertex_names and vertex <= len(vertex_names) else ""
-    if not name or name == f"v{vertex}":
-        return f"  (v{vertex})"
-    return f"  (v{vertex}: {name.replace('_', ' ')})".replace("$", r"\$")
+NAME = style.FONT_SIZE
+"""A neuron's name, an input's or output's, and a neuron's self-dynamics [pt]."""
+SMALL = style.SMALL
+"""Weights, vertex tags and the key [pt]."""
+_KEY_GAP = 0.3  # between two columns of the key of long values [in]
+_LINE = 0.8  # synapse lines [pt]
+_KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
+_BODY_WIDE = 0.55  # a self-dynamics wider than this [in] is set on two lines
+MAX_LABELS = 80
+"""A circuit of more synapses is drawn without its weights (they could not all be read)."""
+MAX_KEY = 2.0
+"""The tallest key of long weights [in]; a circuit with more is drawn without its weights."""
 
 
-def draw_circuit(c: Circuit, ax=None, *, title: str | None = None, vertex_names=None) -> Figure:
-    r"""Draw the circuit: neurons as circles, synapses as arrows, layered left to right.
+@lru_cache(maxsize=8192)
+def _extent(text: str, size: float) -> tuple[float, float]:
+    """Width and height [in] of ``text`` at ``size`` points as matplotlib draws it.
 
-    Each circle holds the neuron's self-dynamics (:math:`\sum_k w_k z^{-d_k}`,
-    ``0`` without), its name above it. Synapses carry their weights (long ones as
-    :math:`w_1, w_2, \dots`, listed under the drawing); excitatory (positive) ones
-    are blue with an arrow head, inhibitory (negative) red with a bar, symbolic
-    sign grey; dashed arrows have a one-step delay (:math:`z^{-d}` is written for
-    more). Inputs on the left, outputs on the right. A neuron placed on a delay
-    graph (:attr:`Neuron.vertex <symctl.neural.neuron.Neuron.vertex>`) shows its
-    vertex beside its name: ``(v2)``, or ``(v2: spinal)`` with ``vertex_names``.
+    Its window extent (the box :func:`~symctl.plotting.legibility.legibility` checks),
+    measured once per text on a figure of its own.
+    """
+    global _RULER
+    if _RULER is None:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        fig = Figure(dpi=72)
+        _RULER = (fig, FigureCanvasAgg(fig).get_renderer())
+    fig, renderer = _RULER
+    t = fig.text(0, 0, text, fontsize=size)
+    box = t.get_window_extent(renderer)
+    t.remove()
+    return box.width / 72, box.height / 72
+
+
+_RULER = None
+_DRAWN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # axes -> its Drawn
+
+
+class Drawn(NamedTuple):
+    """What :func:`draw_circuit` drew into an axes: its key, layout and text sizes."""
+
+    key: Key
+    layout: CircuitLayout
+    measures: Measures
+
+
+def drawn(ax) -> Drawn | None:
+    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit).
+
+    For a grid of drawings that shares one key (:func:`symctl.plotting.atlas.draw_classes`),
+    and for tests of the drawing's geometry.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, ifp_structure
+    >>> from symctl.plotting.circuit import drawn
+    >>> fig = Circuit.from_structure(ifp_structure(2)).draw()
+    >>> sorted(drawn(fig.axes[0]).key.signs), drawn(fig.axes[0]).layout.fits
+    (['+', '?'], True)
+    """
+    return _DRAWN.get(ax)
+
+
+def _vertex_tag(vertex: int | None) -> str:
+    return "" if vertex is None else f"v{vertex}"
+
+
+_LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
+    (True, True, True, MIN_GAP),
+    (False, True, True, MIN_GAP),
+    (False, False, True, MIN_GAP),
+    (False, False, False, 0.12),
+)
+"""How much a drawing writes, from everything to numbered circles: the first that fits."""
+
+
+def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
+    """The sizes of the drawing's texts (inches) and the strings drawn, at ``level``."""
+    labelled, bodies, named, _ = level
+    if named:
+        body = {n.name: _body(text.bodies[n.name]) if bodies else "" for n in c.neurons}
+    else:  # each circle holds its number, the key its name
+        body = {n.name: str(k) for k, n in enumerate(c.neurons, start=1)}
+    radius = {}
+    for name, s in body.items():
+        w, h = _extent(s, NAME if named else SMALL) if s else (0.0, 0.0)
+        inside = math.hypot(w, h) / 2 + 0.02  # the text's corners inside the circle
+        radius[name] = max(MIN_RADIUS if named else 0.0, inside)
+    names = {n.name: f"${signal_tex(n.name)}$" for n in c.neurons} if named else {}
+    tags = {n.name: _vertex_tag(n.vertex) for n in c.neurons if n.vertex is not None and named}
+    ends = {u: f"${signal_tex(u)}$" for u in c.inputs}
+    for o in c.outputs:
+        ends["out", o.target] = "output" if o.target == o.source else f"${signal_tex(o.target)}$"
+    weights = {s: display_text(t) for s, t in text.weights.items()} if labelled else {}
+
+    def size(s: str, pt: float, pad: float = 0.0) -> tuple[float, float]:
+        w, h = _extent(s, pt)
+        return w + 2 * pad, h + 2 * pad
+
+    m = Measures(
+        radius,
+        {k: size(v, NAME) for k, v in names.items()},
+        {k: size(v, SMALL) for k, v in tags.items()},
+        {k: size(v, SMALL, 0.02) for k, v in weights.items()},
+        {k: size(v, NAME) for k, v in ends.items()},
+    )
+    strings = {"body": body, "name": names, "tag": tags, "end": ends, "weight": weights}
+    return m, strings
+
+
+def draw_circuit(
+    c: Circuit,
+    ax=None,
+    *,
+    title: str | None = None,
+    vertex_names=None,
+    signs_at=None,
+    width: float | str = "text",
+    key: bool = True,
+) -> Figure:
+    r"""Draw the circuit at its printed size: neurons as circles, synapses as arrows.
+
+    Each circle holds the neuron's self-dynamics (:math:`\sum_k w_k z^{-d_k}`; an
+    empty circle has none), its name above it and, when it sits on a delay graph
+    (:attr:`Neuron.vertex <symctl.neural.neuron.Neuron.vertex>`), its vertex
+    ``v<k>`` below. Inputs on the left, outputs on the right; columns left to right
+    along the forward synapses, cut into bands when wider than ``width``. A synapse
+    carries its weight (long ones as :math:`w_1, w_2, \dots`, listed under the
+    drawing) and is coloured by its sign: excitatory blue with an arrow head,
+    inhibitory vermillion with a bar, purple when the sign depends on symbols
+    (:mod:`symctl.plotting.circuit_signs`). A dashed synapse is delayed: one step,
+    or :math:`k` steps where its label ends in :math:`z^{-k}`. The key under the
+    drawing says all this for the drawing at hand.
 
     Parameters
     ----------
     c : Circuit
     ax : matplotlib Axes, optional
-        Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
+        Draw into it (one data unit is one inch; its limits are set to the drawing);
+        by default a new figure of the drawing's printed size.
     title : str, optional
-        The heading (default ``"neural circuit: <n> neurons"``).
+        A heading above the drawing (default: none; a report's caption names it).
     vertex_names : sequence of str, optional
-        The delay graph's vertex names, :math:`v_1` first.
+        The delay graph's vertex names, :math:`v_1` first: the key says which is which.
+    signs_at : mapping, optional
+        Values at which to read the signs of symbolic weights: a number per symbol
+        (e.g. the controller's gains), or a range ``(lo, hi)`` for one that varies
+        (:class:`~symctl.plotting.circuit_signs.SignValues`); a weight is coloured
+        by its sign only when that sign holds for all of them.
+    width : float or {"text", "column", "double"}
+        The widest the drawing may be [in] (default the derivation's text width).
+    key : bool
+        Draw the key under the drawing (a grid of drawings may share one).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    SymctlTypeError, ParameterError
+        ``signs_at`` or ``width`` of the wrong type or value.
 
     Examples
     --------
     >>> from symctl import Circuit, ifp_structure
     >>> from symctl.plotting.circuit import draw_circuit
     >>> fig = draw_circuit(Circuit.from_structure(ifp_structure(2)), title="IFP")
-    >>> fig.axes[0].texts[-2].get_text()
+    >>> fig.axes[0].texts[-1].get_text()   # drawn last, above the drawing
     'IFP'
 
-    Placed on the paper's chain sensor -> nervous system -> muscle:
+    Placed on the paper's chain sensor -> nervous system -> muscle, with the signs at
+    the controller's gains:
 
     >>> from symctl import DelayGraph, Structure, check_compatibility, controllable_canonical
     >>> from symctl import controller_tf, factor
+    >>> from symctl.symbols import gain_symbols
     >>> S = Structure.from_factorization(f := factor(controller_tf(2)), controllable_canonical(f.G2))
     >>> c = Circuit.from_structure(S, check_compatibility(S, DelayGraph.chain([1, 1])))
-    >>> fig = draw_circuit(c, vertex_names=["sensor", "nervous_system", "muscle"])
-    >>> sorted({t.get_text().partition("$  ")[2] for t in fig.axes[0].texts} - {""})
-    ['(v2: nervous system)', '(v3: muscle)']
+    >>> K0, K1, K2 = gain_symbols(2)
+    >>> fig = draw_circuit(c, vertex_names=["sensor", "nervous_system", "muscle"],
+    ...                    signs_at={K0: -0.046, K1: -0.58, K2: -0.35})
+    >>> sorted(t.get_text() for t in fig.axes[0].texts if t.get_text().startswith("v"))
+    ['v2', 'v2', 'v2', 'v3']
     """
+    page = style.width(width)
+    symbols = c.free_symbols
+    at = SignValues.of(signs_at, "signs_at", symbols)
     text = circuit_text(c)
-    body = {name: display_text(tex) for name, tex in text.bodies.items()}
-    radius = {
-        name: max(MIN_RADIUS, text_size(tex, _FONT)[0] / 2 + 0.1) for name, tex in body.items()
-    }
-    lay = circuit_layout(c, radius)
-    pos = lay.pos
+    # weights written if they fit; else none (a dense circuit); then no self-dynamics;
+    # then numbered circles, their names in the key
+    legible = _key_fits([v for k, v in text.key if k[0] == "w"], page)
+    levels = _LEVELS if legible and len(text.weights) <= MAX_LABELS else _LEVELS[1:]
+    for level in levels:
+        m, strings = _measure(c, text, level)
+        lay = circuit_layout(c, measures=m, width=page, gap=level[3])
+        if lay.narrow and lay.labelled:
+            break
+    named = level[2]
     fig, ax, own = figure_and_axes(ax)
-
+    signs = {}
     for arc in lay.arcs:
         s = arc.synapse
-        sign = s.sign if s is not None else "+"
-        colour = _COLOURS[sign] if s is not None else "0.15"
-        style = "-[,widthB=0.7,lengthB=0" if sign == "-" else "-|>,head_length=0.5,head_width=0.25"
-        dashed = s is not None and s.delay > 0
-        ax.add_artist(  # not add_patch: its data limits would route every arrow once more
-            FancyArrowPatch(
-                pos[arc.source],
-                pos[arc.target],
-                connectionstyle=f"arc3,rad={arc.rad}",
-                arrowstyle=style,
-                mutation_scale=12,
-                color=colour,
-                lw=1.3,
-                linestyle=(0, (4, 2.5)) if dashed else "-",
-                shrinkA=radius.get(arc.source, _DOT) * 72,
-                shrinkB=radius.get(arc.target, _DOT) * 72 + 1,
-                zorder=1,
+        sign = weight_sign(s.weight, at) if s is not None else ""
+        signs[id(arc)] = sign
+        _draw_arc(ax, arc, sign, s is not None and s.delay > 0)
+        if arc.label is not None and s in strings["weight"]:
+            ax.text(
+                *arc.label,
+                strings["weight"][s],
+                ha="center",
+                va="center",
+                fontsize=SMALL,
+                color=COLOURS[sign] if sign in "+-" else "0.2",
+                bbox={"boxstyle": "square,pad=0.05", "fc": "white", "ec": "none"},
+                zorder=3,
             )
-        )
-        if s is None:
-            continue
-        ax.text(
-            *arc.label,
-            display_text(text.weights[s]),
-            ha="center",
-            va="center",
-            fontsize=_FONT,
-            color=colour if sign != "?" else "0.25",
-            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.9},
-            zorder=3,
-        )
-
     for n in c.neurons:
-        x, y = pos[n.name]
+        x, y = lay.pos[n.name]
+        r = lay.radius[n.name]
         ax.add_patch(
-            Circle(
-                (x, y),
-                radius[n.name],
-                fc="#f3f3f3",
-                ec="black",
-                lw=1.2,
-                zorder=2,
-                gid=f"neuron:{n.name}",
-            )
+            Circle((x, y), r, fc="#f4f4f4", ec="black", lw=0.8, zorder=2, gid=f"neuron:{n.name}")
         )
-        ax.text(x, y, body[n.name], ha="center", va="center", fontsize=_FONT, zorder=3)
-        where = _where(n.vertex, vertex_names)
-        ax.text(
-            x,
-            y + radius[n.name] + 0.08,
-            f"${signal_tex(n.name)}${where}",
-            ha="center",
-            va="bottom",
-            fontsize=_FONT,
-            color="0.2",
-            zorder=3,
-        )
-    for u in c.inputs:
-        x, y = pos[u]
-        ax.add_patch(Circle((x, y), _DOT, fc="black", zorder=2))
-        ax.text(x - 0.12, y, f"${signal_tex(u)}$", ha="right", va="center", fontsize=_FONT + 1)
-    for o in c.outputs:
-        x, y = pos[("out", o.target)]
-        ax.add_patch(Circle((x, y), _DOT, fc="black", zorder=2))
-        name = "output" if o.target == o.source else f"${signal_tex(o.target)}$"
-        ax.text(x + 0.12, y, name, ha="left", va="center", fontsize=_FONT + 1)
+        if strings["body"][n.name]:
+            ax.text(x, y, strings["body"][n.name], ha="center", va="center",
+                    fontsize=NAME if named else SMALL, zorder=3)  # fmt: skip
+        if named:
+            ax.text(x, y + r + NAME_GAP, strings["name"][n.name], ha="center", va="bottom",
+                    fontsize=NAME, color="0.1", zorder=3)  # fmt: skip
+        if n.name in strings["tag"]:
+            ax.text(x, y - r - NAME_GAP, strings["tag"][n.name], ha="center", va="top",
+                    fontsize=SMALL, color="0.35", style="italic", zorder=3)  # fmt: skip
+    for node, label in strings["end"].items():
+        if node not in lay.pos:
+            continue
+        x, y = lay.pos[node]
+        ax.add_patch(Circle((x, y), DOT, fc="black", lw=0, zorder=2))
+        right = isinstance(node, tuple)
+        ax.text(x + (0.07 if right else -0.07), y, label, ha="left" if right else "right",
+                va="center", fontsize=NAME, zorder=3)  # fmt: skip
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
-    heading = title or (f"neural circuit: {c.n_neurons} neuron{'s' if c.n_neurons != 1 else ''}")
-    key = (
-        "circles: neurons (their self-dynamics)   blue arrows: excitatory   "
-        "red bars: inhibitory   grey: sign depends on symbols   dashed: one-step delay"
+    room = max(x_hi - x_lo, min(page, _KEY_ROOM))
+    said = Key(
+        signs=frozenset(signs.values()),
+        delays=frozenset(s.delay for s in (a.synapse for a in lay.arcs) if s is not None),
+        labelled=bool(strings["weight"]),
+        bodies=named and any(strings["body"].values()),
+        empty=named and not all(strings["body"].values()) and any(strings["body"].values()),
+        vertices=tuple(sorted({n.vertex for n in c.neurons if n.vertex is not None})),
+        vertex_names=tuple(vertex_names) if vertex_names is not None else None,
+        signs_at=at,
+        synapses=len(c.synapses),
+        numbered=()
+        if named
+        else tuple(
+            (k, f"${signal_tex(n.name)}$", n.vertex) for k, n in enumerate(c.neurons, start=1)
+        ),
     )
-    if any(n.vertex is not None for n in c.neurons):
-        key += "   (v2): the delay-graph vertex the neuron sits at"
-    key_lo, key_hi = _draw_key(ax, text.key_lines(), x_lo + 0.1, y_lo - 0.05, x_hi - x_lo - 0.3)
-    y_lo, x_hi = min(y_lo, key_lo), max(x_hi, key_hi)
-    return finish_figure(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, key, top=0.65)
+    _DRAWN[ax] = Drawn(said, lay, m)
+    y = y_lo - 0.06
+    items = key_items(said) if key else []
+    y, right = draw_key_items(ax, items, x_lo + 0.02, y, room - 0.04, SMALL)
+    lines = [  # the keys of the long values drawn
+        line
+        for (label, _), line in zip(text.key, text.key_lines(), strict=True)
+        if key and (strings["weight"] if label.startswith("w") else said.bodies)
+    ]
+    key_lo, key_hi = _draw_key(ax, lines, x_lo + 0.02, y - 0.04, room - 0.04)
+    y_lo = min(y, key_lo) - 0.03
+    x_hi = max(x_hi, key_hi, right + 0.03)
+    if title:  # wrapped to the drawing (or the page, for a narrow one)
+        lines = wrap_words(title, max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04, style.TITLE)
+        step = style.TITLE / 72 * 1.3
+        top = y_hi + 0.04 + step * len(lines)
+        for k, line in enumerate(lines):
+            ax.text(x_lo + 0.02, top - k * step, line, ha="left", va="top", fontsize=style.TITLE)
+            x_hi = max(x_hi, x_lo + 0.06 + 1.04 * text_size(line, style.TITLE)[0])
+        y_hi = top + 0.03
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo, y_hi)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if own:
+        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
+    return fig
+
+
+def _key_fits(values: list[str], room: float) -> bool:
+    """Whether a key of these long values fits a page ``room`` wide and :data:`MAX_KEY` tall.
+
+    Estimated from the characters shown (:func:`~symctl.plotting.circuit_labels.visible_length`,
+    half an em each), before any is set: matplotlib parses a long formula in a tenth of a
+    second, and a MIMO circuit has forty.
+    """
+    em = SMALL / 72
+    widths = [0.55 * em * (visible_length(v) + 4) for v in values]
+    if any(w > room for w in widths):
+        return False
+    tall = [(2.6 if "frac" in v else 1.4) * em + 0.06 for v in values]
+    rows = len(_key_columns(widths, room)[0]) if widths else 0
+    return rows * max(tall, default=0.0) <= MAX_KEY
+
+
+def _draw_arc(ax, arc, sign: str, delayed: bool) -> None:
+    """One synapse (or output wire) along its path: colour by sign, dashed when delayed."""
+    colour = COLOURS[sign]
+    if sign == "-":
+        head = "-[,widthB=0.55,lengthB=0"
+    else:
+        head = "-|>,head_length=0.55,head_width=0.3"
+    ax.add_artist(  # not add_patch: its data limits would walk the curves once more
+        FancyArrowPatch(
+            path=Path(arc.path, arc.codes),
+            arrowstyle=head,
+            mutation_scale=8,
+            color=colour,
+            lw=_LINE,
+            linestyle=(0, (3.0, 1.8)) if delayed else "-",
+            shrinkA=0,
+            shrinkB=0,
+            zorder=1,
+            gid=f"synapse:{arc.source}->{arc.target[1] if isinstance(arc.target, tuple) else arc.target}",
+        )
+    )
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:
@@ -198,12 +399,14 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
     """
     if not lines:
         return y, x
-    outlines = [text_outline(f"${line}$", _FONT) for line in lines]
+    names = [re.sub(r"\\mathrm|[^A-Za-z0-9]", "", line.partition(" = ")[0]) for line in lines]
+    broken = [(name, part) for name, line in zip(names, lines, strict=True)
+              for part in _broken(line, room)]  # fmt: skip
+    names, lines = [n for n, _ in broken], [p for _, p in broken]
+    outlines = [text_outline(display_text(line), SMALL) for line in lines]
     sizes = [((x1 - x0) / 72, (y1 - y0) / 72) for _, (x0, y0, x1, y1) in outlines]
     columns = _key_columns([w for w, _ in sizes], room)
     nrows = len(columns[0])
-    # laid out in inches from its corner (x, y) in data units, as text is (a caller's axes
-    # may scale its data): glyphs in points -> inches, the offset, then display units
     anchor = ax.figure.dpi_scale_trans + ScaledTranslation(x, y, ax.transData)
     lefts = [0.0]
     for col in columns:
@@ -216,13 +419,68 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
             if path is None:
                 continue
             place = Affine2D().translate(-x0, -y1).scale(1 / 72).translate(lefts[c], top)
-            name = re.sub(r"\\mathrm|[^A-Za-z0-9]", "", lines[k].partition(" = ")[0])
+            name = names[k]  # a line broken in two: both parts keyed by its name
             ax.add_artist(  # not add_patch: its data limits would walk every glyph's curves
                 PathPatch(path, transform=place + anchor, fc="black", lw=0, zorder=3,
                           gid=f"key:{name}")
             )  # fmt: skip
-        top -= max(sizes[k][1] for _, k in row) + 0.1
-    return y + top - 0.1, x + lefts[-1] - _KEY_GAP + 0.2
+        top -= max(sizes[k][1] for _, k in row) + 0.06
+    return y + top - 0.02, x + lefts[-1] - _KEY_GAP + 0.02
+
+
+def _terms(tex: str) -> list[str]:
+    r"""``tex`` cut before each of its outermost ``+`` and ``-`` signs (``"a + b - c"``:
+    ``["a ", "+ b ", "- c"]``)."""
+    parts, depth, start = [], 0, 0
+    for k, ch in enumerate(tex):
+        depth += {"{": 1, "}": -1, "(": 1, ")": -1}.get(ch, 0)
+        if depth == 0 and ch in "+-" and k > 0 and tex[k - 1] == " ":
+            parts.append(tex[start:k])
+            start = k
+    parts.append(tex[start:])
+    return parts
+
+
+def _body(tex: str) -> str:
+    """A neuron's self-dynamics as drawn: on two lines when one would make a large circle."""
+    if not tex:
+        return ""
+    one = display_text(tex)
+    terms = _terms(tex)
+    if len(terms) < 2 or text_size(one, NAME)[0] <= _BODY_WIDE:
+        return one
+    half = sum(visible_length(t) for t in terms) / 2
+    seen, cut = 0, 1
+    for k, t in enumerate(terms[:-1], start=1):
+        seen += visible_length(t)
+        cut = k
+        if seen >= half:
+            break
+    first, second = "".join(terms[:cut]).strip(), "".join(terms[cut:]).strip()
+    return display_text(first) + "\n" + display_text(second)
+
+
+def _broken(line: str, room: float) -> list[str]:
+    r"""A key line too wide for ``room``, broken before its outermost ``+`` and ``-`` signs.
+
+    The continuation lines are indented; an unbreakable part stays whole. Widths are
+    estimated as in :func:`_key_fits`.
+    """
+    em = SMALL / 72
+
+    def wide(tex: str) -> bool:
+        return 0.55 * em * (visible_length(tex) + 4) > room
+
+    if not wide(line):
+        return [line]
+    parts = _terms(line)
+    out = [parts[0]]
+    for part in parts[1:]:
+        if wide(out[-1] + part):
+            out.append(r"\quad " + part)
+        else:
+            out[-1] += part
+    return out
 
 
 def _key_columns(widths: list[float], room: float) -> list[list[int]]:

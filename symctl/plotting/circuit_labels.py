@@ -105,9 +105,9 @@ def weight_tex(weight) -> str:
 
 
 def _self_tex(n: Neuron) -> str:
-    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; ``0`` without self-dynamics."""
+    r"""``\epsilon_{1} z^{-1}``, ``K_{1} z^{-1} + K_{2} z^{-2}``; empty without self-dynamics."""
     if not n.self_terms:
-        return "0"
+        return ""
     parts = []
     for s in sorted(n.self_terms, key=lambda s: s.delay):
         w = to_expr(s.weight, "weight")
@@ -123,17 +123,18 @@ def display_text(tex: str) -> str:
 
     A number needs no mathtext, and text is laid out by FreeType alone, with no parse
     (a circuit of numeric weights has hundreds of labels); the minus is the minus sign
-    (U+2212) that mathtext would set.
+    (U+2212) that mathtext would set. A fraction is set as ``\dfrac``: mathtext sets a
+    ``\frac``'s numerator and denominator at 70 %, under 6 pt in a 7-pt label.
 
     Examples
     --------
     >>> from symctl.plotting.circuit_labels import display_text
-    >>> display_text("-0.25"), display_text("w_{1}")
-    ('−0.25', '$w_{1}$')
+    >>> display_text("-0.25"), display_text("w_{1}"), display_text(r"\frac{a}{b}")
+    ('−0.25', '$w_{1}$', '$\\dfrac{a}{b}$')
     """
     if _NUMBER.fullmatch(tex):
         return tex.replace("-", "\N{MINUS SIGN}")
-    return f"${tex}$"
+    return "$" + re.sub(r"\\frac\b", r"\\dfrac", tex) + "$"
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,7 +147,8 @@ class CircuitText:
         Each synapse's label (and each weighted or delayed output's): its weight, or
         :math:`w_k` for a long one, then :math:`z^{-d}` for a delay ``d > 1``.
     bodies : mapping of str to str
-        Each neuron's self-dynamics (``"0"`` without), or :math:`\mathrm{self}_k`.
+        Each neuron's self-dynamics (``""`` without: the circle stays empty), or
+        :math:`\mathrm{self}_k`.
     key : tuple of (str, str)
         ``(label, value)`` of each long value, the self-dynamics first, then the weights.
     """

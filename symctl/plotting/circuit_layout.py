@@ -1,61 +1,160 @@
-r"""Where a circuit's neurons, inputs, outputs and synapse arcs go: numbers, no matplotlib.
+r"""Where a circuit's neurons, inputs, outputs and synapse curves go: numbers, no matplotlib.
 
 The layout of :meth:`Circuit.draw <symctl.neural.circuit.Circuit.draw>`, apart from
 its rendering (:mod:`symctl.plotting.circuit`), as networkx keeps ``drawing/layout.py``
-apart from ``nx_pylab.py``. One unit is one inch.
+apart from ``nx_pylab.py``. One unit is one inch of the printed page; the sizes of
+the texts come in :class:`Measures` (measured by the renderer, or estimated).
 
 * **Columns**: the inputs in column 0; each neuron one column right of its
   furthest predecessor along forward synapses (a depth-first search from the
   inputs; the edges it finds closing a cycle are feedback); the outputs in one
-  last column.
+  last column. Two columns are as far apart as their circles and names need, and
+  the weight of a synapse between them (:data:`MIN_GAP` at least).
 * **Rows**: each node at the mean row of its placed predecessors (two sweeps),
-  the nodes of a column spread one row apart around their mean.
-* **Arcs**: a synapse between neighbouring columns is straight; one that skips
-  a column bulges when its straight line would pass within a quarter inch of a
-  circle there, by the largest such radius plus a margin (alternately above and
-  below, or the other way or further when its label would come that close to a
-  circle); a feedback synapse (to the same or an earlier column) runs below;
-  parallel synapses between the same two neurons fan out 0.4 inch apart. An
-  arc's weight label sits at its middle.
+  the nodes of a column spread one row apart around their mean; a row is as tall
+  as the tallest node with its name and vertex tag.
+* **Bands**: a drawing wider than ``width`` (the page) is cut into bands stacked
+  top to bottom, as a line of text is broken: only where every synapse crossing the
+  cut joins two neighbouring columns (in a chain, between two sections), as few
+  bands as fit, the widest as narrow as it can be. A synapse across a cut runs as a
+  wire out of the right of its band, back under it and into the next band from the
+  left. A drawing that cannot be cut narrow enough says so (:attr:`CircuitLayout.fits`).
+* **Curves**: every synapse is a bridge (:mod:`symctl.plotting.circuit_routes`),
+  straight between neighbouring columns when that is clear, else bulging above or
+  below (feedback below) just enough to pass no circle and no text; synapses
+  between the same two neurons run apart. Its weight sits on it, on no circle and
+  no other text. Where curves meet a circle, their ends are spread apart, so no two
+  arrow heads or bars overlap.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
 >>> lay = circuit_layout(Circuit.from_structure(ifp_structure(2)))
 >>> lay.column
 {'x': 0, 'mu': 1, ('out', 'u'): 2}
->>> lay.pos["mu"], [(a.source, a.target, a.height) for a in lay.arcs]
-((2.6, 0.0), [('x', 'mu', 0.0), ('mu', ('out', 'u'), 0.0)])
+>>> [(a.source, a.target, a.height) for a in lay.arcs], lay.fits
+([('x', 'mu', 0.0), ('mu', ('out', 'u'), 0.0)], True)
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 import networkx as nx
 import numpy as np
 
 from symctl.compatibility.signalgraph import back_edges
+from symctl.plotting import circuit_routes as rt
 
 if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
     from symctl.neural.neuron import Synapse
 
-__all__ = ["MIN_RADIUS", "XSTEP", "YSTEP", "Arc", "CircuitLayout", "circuit_layout", "grid"]
+__all__ = [
+    "DOT",
+    "MAX_RADIUS",
+    "MIN_GAP",
+    "MIN_RADIUS",
+    "NAME_GAP",
+    "XSTEP",
+    "YSTEP",
+    "Arc",
+    "CircuitLayout",
+    "Measures",
+    "circuit_layout",
+    "grid",
+]
 
-XSTEP = 2.6
-"""Inches between columns."""
-YSTEP = 1.5
-"""Inches between rows."""
-MIN_RADIUS = 0.32
+MIN_RADIUS = 0.11
 """The smallest neuron circle [in] (the radius when none is given)."""
-_CLEAR = 0.25  # a straight arc or a label closer than this to a circle [in] moves away
+DOT = 0.03
+"""The radius of an input or output dot [in]."""
+MIN_GAP = 0.3
+"""The least room between two columns' circles and names [in]."""
+XSTEP = 0.9
+"""The distance between two columns of circles of :data:`MIN_RADIUS` with estimated texts [in]
+(the measured layout sets each distance from its texts)."""
+YSTEP = 0.62
+"""The distance between two rows [in], likewise."""
+MAX_RADIUS = 0.25
+"""A circle grows to space the ends of its synapses no larger than this [in]."""
+NAME_GAP = 0.045
+"""Between a circle and its name above it or its vertex tag below it [in]."""
+_END_GAP = 0.04  # between a dot and its label
+_ARROW = 0.11  # room for an arrow head or bar, either side of a weight on a straight synapse [in]
+_ROW_GAP = 0.22  # between the texts of two rows
+_MARGIN = 0.04  # around the drawing
+_WIRE = 0.12  # a wire between bands runs this far outside the bands
+_WIRE_STEP = 0.07  # between two wires at one cut
+_CORNER = 0.05  # the rounding of a wire's corners
+_MAX_CURVES = 150  # beyond: the curves are not searched (a hairball takes its first choice)
+
+
+@dataclass(frozen=True)
+class Measures:
+    """The sizes [in] a circuit drawing's texts take, for its layout.
+
+    Attributes
+    ----------
+    radius : mapping of str to float
+        Each neuron's circle.
+    name : mapping of node to (float, float)
+        The width and height of the label above each neuron (its name).
+    tag : mapping of node to (float, float)
+        The label below a neuron (its delay-graph vertex); absent for none.
+    label : mapping of Synapse to (float, float)
+        The weight label of each synapse (and each weighted or delayed output) that
+        has one; a synapse absent here is drawn without a label.
+    end : mapping of node to (float, float)
+        The label of each input (left of its dot) and output (right of its dot).
+
+    Examples
+    --------
+    >>> from symctl import Circuit, ifp_structure
+    >>> from symctl.plotting.circuit_layout import Measures
+    >>> m = Measures.estimate(Circuit.from_structure(ifp_structure(2)))
+    >>> dict(m.radius), list(m.end)
+    ({'mu': 0.11}, ['x', ('out', 'u')])
+    """
+
+    radius: Mapping[str, float]
+    name: Mapping = field(default_factory=dict)
+    tag: Mapping = field(default_factory=dict)
+    label: Mapping = field(default_factory=dict)
+    end: Mapping = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for f in ("radius", "name", "tag", "label", "end"):
+            object.__setattr__(self, f, MappingProxyType(dict(getattr(self, f))))
+
+    @classmethod
+    def estimate(cls, c: Circuit, radius: Mapping[str, float] | None = None) -> Measures:
+        """Sizes from character counts (the layout without a renderer): 0.06 in a character.
+
+        Every synapse has a label (outputs: when weighted or delayed), a neuron's
+        name is its signal name, inputs and outputs are labelled by their names.
+        """
+        radius = dict(radius) if radius is not None else {n.name: MIN_RADIUS for n in c.neurons}
+
+        def size(text: str) -> tuple[float, float]:
+            return 0.06 * len(text) + 0.04, 0.13
+
+        labels = {s: size("w1") for n in c.neurons for s in n.synapses}
+        labels.update({o: size("w1") for o in c.outputs if o.weight != 1 or o.delay})
+        ends = {u: size(u) for u in c.inputs}
+        ends.update({("out", o.target): size(o.target) for o in c.outputs})
+        names = {n.name: size(n.name.rpartition(".")[2]) for n in c.neurons}
+        tags = {n.name: size(f"v{n.vertex}") for n in c.neurons if n.vertex is not None}
+        return cls(radius, names, tags, labels, ends)
 
 
 @dataclass(frozen=True)
 class Arc:
-    """One drawn arrow: a synapse, or the path from a neuron (or input) to a circuit output.
+    """One drawn synapse, or the wire from a neuron (or input) to a circuit output.
 
     Attributes
     ----------
@@ -64,19 +163,42 @@ class Arc:
     synapse : Synapse or None
         What the arc carries; None for a plain wire to an output (weight 1, no delay).
     height : float
-        How far the arc bulges from the straight line [in]; > 0 above it.
-    rad : float
-        The same as a curvature relative to the arc's length (matplotlib's ``arc3``).
+        How far the curve bulges from the straight line between the centres [in];
+        > 0 above it (right of a vertical one). A wire between bands has height 0.
     label : (float, float) or None
-        Where the weight label goes (None: no label).
+        The centre of the weight's label (None: no label).
+    path : tuple of (float, float)
+        The drawn curve, from the border of the source's circle to the target's.
+    codes : tuple of int
+        Its segments, as matplotlib's ``Path`` codes (1 move, 2 line, 3 quadratic and
+        4 cubic Bézier control points).
     """
 
     source: str | tuple
     target: str | tuple
     synapse: Synapse | None
     height: float
-    rad: float
     label: tuple[float, float] | None
+    path: tuple[tuple[float, float], ...] = ()
+    codes: tuple[int, ...] = ()
+
+    @property
+    def rad(self) -> float:
+        """The bulge relative to the chord's length (matplotlib's ``arc3`` curvature)."""
+        (x0, y0), (x1, y1) = self.path[0], self.path[-1]
+        return -2 * self.height / max(math.hypot(x1 - x0, y1 - y0), 1e-9)
+
+    @property
+    def wire(self) -> bool:
+        """Whether the arc runs between two bands (a wire with corners)."""
+        return 2 in self.codes
+
+    def points(self) -> np.ndarray:
+        """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
+        if not self.wire:
+            return rt.samples(self.path)
+        pts = np.array(self.path)
+        return np.concatenate([np.linspace(a, b, 12) for a, b in itertools.pairwise(pts)])
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,7 +217,15 @@ class CircuitLayout:
     arcs : tuple of Arc
         Synapses (shortest span first, parallel ones together), then the outputs.
     bounds : (float, float, float, float)
-        ``(x_lo, x_hi, y_lo, y_hi)``: every node, circle and label inside, with margins.
+        ``(x_lo, x_hi, y_lo, y_hi)``: every node, text and curve inside, with margins.
+    band : mapping
+        The band each node is drawn in (0 the top one).
+    narrow : bool
+        The drawing is no wider than asked.
+    clear : bool
+        No curve passes a circle or a text it does not end at.
+    labelled : bool
+        Every weight label found a free place (on no circle, text or other label).
     """
 
     column: Mapping
@@ -104,6 +234,24 @@ class CircuitLayout:
     radius: Mapping[str, float]
     arcs: tuple[Arc, ...]
     bounds: tuple[float, float, float, float]
+    band: Mapping = field(default_factory=dict)
+    narrow: bool = True
+    clear: bool = True
+    labelled: bool = True
+
+    @property
+    def fits(self) -> bool:
+        """Narrow enough, every curve clear and every label placed."""
+        return self.narrow and self.clear and self.labelled
+
+    @property
+    def width(self) -> float:
+        """The drawing's width [in]."""
+        return self.bounds[1] - self.bounds[0]
+
+    def boxes(self, measures: Measures) -> dict:
+        """The text boxes ``(x0, y0, x1, y1)`` of the drawing: names, tags, ends, labels."""
+        return _text_boxes(self.pos, self.radius, measures, self.arcs)
 
 
 def grid(c: Circuit) -> tuple[dict, dict]:
@@ -167,51 +315,180 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     return col, row
 
 
-def _distance(p, a, b) -> float:
-    """The distance from the point ``p`` to the segment from ``a`` to ``b``."""
-    p, a, b = (np.asarray(v, dtype=float) for v in (p, a, b))
-    d = b - a
-    t = float(np.clip(np.dot(p - a, d) / max(float(np.dot(d, d)), 1e-18), 0.0, 1.0))
-    return float(np.hypot(*(p - a - t * d)))
+def _extents(node, c_inputs, m: Measures) -> tuple[float, float, float, float]:
+    """``(left, right, down, up)``: how far a node's circle or dot and its texts reach [in]."""
+    if node in m.radius:
+        r = m.radius[node]
+        nw, nh = m.name.get(node, (0.0, 0.0))
+        tw, th = m.tag.get(node, (0.0, 0.0))
+        half = max(r, nw / 2, tw / 2)
+        return half, half, r + (NAME_GAP + th if th else 0.0), r + (NAME_GAP + nh if nh else 0.0)
+    w, h = m.end.get(node, (0.0, 0.0))
+    half = max(DOT, h / 2)
+    if node in c_inputs:
+        return DOT + _END_GAP + w, DOT, half, half
+    return DOT, DOT + _END_GAP + w, half, half
 
 
-def _rad(pos, a, b, h: float) -> float:
-    """The ``arc3`` curvature of an arc from ``a`` to ``b`` that bulges by ``h``."""
-    (x0, y0), (x1, y1) = pos[a], pos[b]
-    length = max(np.hypot(x1 - x0, y1 - y0), 1e-9)
-    return float(-2 * h / length * (1 if x1 >= x0 else -1))
+def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
+    """Every text box ``(x0, y0, x1, y1)`` by ``(kind, key)``: name, tag, end and label."""
+    out = {}
+    for node, (x, y) in pos.items():
+        if node in radius:
+            r = radius[node]
+            if node in m.name:
+                w, h = m.name[node]
+                out["name", node] = (x - w / 2, y + r + NAME_GAP, x + w / 2, y + r + NAME_GAP + h)
+            if node in m.tag:
+                w, h = m.tag[node]
+                out["tag", node] = (x - w / 2, y - r - NAME_GAP - h, x + w / 2, y - r - NAME_GAP)
+        elif node in m.end:
+            w, h = m.end[node]
+            if isinstance(node, tuple):  # an output: its label on the right
+                out["end", node] = (
+                    x + DOT + _END_GAP,
+                    y - h / 2,
+                    x + DOT + _END_GAP + w,
+                    y + h / 2,
+                )
+            else:
+                out["end", node] = (
+                    x - DOT - _END_GAP - w,
+                    y - h / 2,
+                    x - DOT - _END_GAP,
+                    y + h / 2,
+                )
+    for k, arc in enumerate(arcs):
+        if arc.label is not None and arc.synapse in m.label:
+            w, h = m.label[arc.synapse]
+            (x, y) = arc.label
+            out["label", k] = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+    return out
 
 
-def _middle(pos, a, b, h: float) -> tuple[float, float]:
-    """The middle of the arc from ``a`` to ``b`` that bulges by ``h``: where its label goes."""
-    (x0, y0), (x1, y1), rad = pos[a], pos[b], _rad(pos, a, b, h)
-    return ((x0 + x1) / 2 + 0.5 * rad * (y1 - y0), (y0 + y1) / 2 - 0.5 * rad * (x1 - x0))
+def _room_for_ends(c: Circuit, m: Measures) -> Measures:
+    """``m`` with each neuron's circle large enough to space the ends of its synapses in.
+
+    The ends go on its sides (about 2 rad of the circle, its name above and tag below),
+    :data:`~symctl.plotting.circuit_routes.PORT_GAP` apart; no circle grows past
+    :data:`MAX_RADIUS` for it.
+    """
+    grown = dict(m.radius)
+    for n in c.neurons:
+        ends = min(len(n.synapses) * rt.PORT_GAP / 2.0, MAX_RADIUS)
+        grown[n.name] = max(grown.get(n.name, MIN_RADIUS), ends)
+    return Measures(grown, m.name, m.tag, m.label, m.end)
 
 
-def _clear_bulge(pos, a, b, h: float, radius: Mapping[str, float]) -> float:
-    """``h``, or the nearest bulge (the other way, then 0.4 inch further) whose label is on no circle."""
-    side = 1.0 if h >= 0 else -1.0
-    for t in (h, -h, *(s * (abs(h) + 0.4 * i) for i in (1, 2, 3) for s in (side, -side))):
-        x, y = _middle(pos, a, b, t)
-        if all(np.hypot(x - pos[n][0], y - pos[n][1]) >= r + _CLEAR for n, r in radius.items()):
-            return t
-    return h
+def _specs(c: Circuit, col) -> list[tuple]:
+    """``(source, target, synapse or None)`` of every arc: synapses, shortest first, then outputs."""
+    pairs: dict[tuple, list] = {}
+    for n in c.neurons:
+        for s in n.synapses:
+            pairs.setdefault((s.source, s.target), []).append(s)
+    out = []
+    for (a, b), group in sorted(
+        pairs.items(),
+        key=lambda kv: (abs(col[kv[0][1]] - col[kv[0][0]]), col[kv[0][1]] <= col[kv[0][0]]),
+    ):
+        out += [(a, b, s) for s in group]
+    for o in c.outputs:
+        if o.source in col:
+            out.append((o.source, ("out", o.target), o if (o.weight != 1 or o.delay) else None))
+    return out
 
 
-def _arc(pos, a, b, s: Synapse | None, h: float) -> Arc:
-    label = _middle(pos, a, b, h) if s is not None else None
-    return Arc(a, b, s, float(h), _rad(pos, a, b, h), label)
+def _column_x(columns: dict, specs, col, ext, m: Measures, gap: float) -> dict[int, float]:
+    """Each column's x [in]: room for the circles and names, and for a weight between two."""
+    x = {}
+    for k in sorted(columns):
+        if not x:
+            x[k] = 0.0
+            continue
+        prev = max(x)
+        right = max(ext[n][1] for n in columns[prev])
+        left = max(ext[n][0] for n in columns[k])
+        need = x[prev] + right + gap + left
+        for a, b, s in specs:
+            if col[a] == prev and col[b] == k and s in m.label:
+                ra, rb = m.radius.get(a, DOT), m.radius.get(b, DOT)
+                need = max(need, x[prev] + ra + m.label[s][0] + 2 * _ARROW + rb)
+        x[k] = need
+    return x
 
 
-def circuit_layout(c: Circuit, radius: Mapping[str, float] | None = None) -> CircuitLayout:
-    """The positions, arcs and extent of the drawing of ``c``.
+def _cuts(specs, col, last: int) -> dict[int, int]:
+    """The gaps a drawing may be cut at (gap ``k``: between columns ``k`` and ``k+1``),
+    each with the number of synapses across it: all of them join ``k`` to ``k+1``."""
+    cross: dict[int, list[bool]] = {k: [] for k in range(last)}
+    for a, b, _ in specs:
+        lo, hi = sorted((col[a], col[b]))
+        for k in range(lo, hi):
+            cross[k].append(col[a] == k and col[b] == k + 1)
+    return {k: len(v) for k, v in cross.items() if v and all(v)}
+
+
+def _bands(x, columns, ext, cuts, width: float | None) -> list[tuple[int, int]]:
+    """Columns ``(first, last)`` of each band: the fewest bands that fit, the widest narrowest."""
+    ks = sorted(columns)
+    if not ks:
+        return []
+    lo = {k: x[k] - max(ext[n][0] for n in columns[k]) for k in ks}
+    hi = {k: x[k] + max(ext[n][1] for n in columns[k]) for k in ks}
+
+    def span(i, j):
+        room = (_WIRE + cuts[i - 1] * _WIRE_STEP if i > ks[0] else 0.0) + (
+            _WIRE + cuts[j] * _WIRE_STEP if j < ks[-1] else 0.0
+        )
+        return hi[j] - lo[i] + room + 2 * _MARGIN
+
+    if width is None or span(ks[0], ks[-1]) <= width:
+        return [(ks[0], ks[-1])]
+    # best[j]: (overflow, bands, widest) of the columns up to j, cut after j
+    best: dict[int, tuple] = {}
+    choice: dict[int, int] = {}
+    for j in ks:
+        if j != ks[-1] and j not in cuts:
+            continue
+        for i in ks:
+            if i > j or (i != ks[0] and i - 1 not in best):
+                continue
+            w = span(i, j)
+            before = best[i - 1] if i != ks[0] else (0.0, 0, 0.0)
+            cand = (max(before[0], max(w - width, 0.0)), before[1] + 1, max(before[2], w))
+            if j not in best or cand < best[j]:
+                best[j], choice[j] = cand, i
+    out, j = [], ks[-1]
+    while True:
+        i = choice[j]
+        out.append((i, j))
+        if i == ks[0]:
+            return out[::-1]
+        j = i - 1
+
+
+def circuit_layout(
+    c: Circuit,
+    radius: Mapping[str, float] | None = None,
+    *,
+    measures: Measures | None = None,
+    width: float | None = None,
+    gap: float = MIN_GAP,
+) -> CircuitLayout:
+    """The positions, curves and extent of the drawing of ``c``.
 
     Parameters
     ----------
     c : Circuit
     radius : mapping of str to float, optional
-        Each neuron's circle [in], e.g. measured from its label; default
-        :data:`MIN_RADIUS` for every neuron.
+        Each neuron's circle [in] (with estimated texts); default :data:`MIN_RADIUS`.
+    measures : Measures, optional
+        The sizes of the circles and texts (default :meth:`Measures.estimate`).
+    width : float, optional
+        The widest the drawing may be [in]: a wider one is cut into bands (default:
+        no limit, one band).
+    gap : float
+        The least room between two columns' texts [in].
 
     Returns
     -------
@@ -224,52 +501,142 @@ def circuit_layout(c: Circuit, radius: Mapping[str, float] | None = None) -> Cir
     >>> f = factor(controller_tf(2))
     >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
     >>> lay = circuit_layout(c)
-    >>> [(a.source, a.target, round(a.height, 2)) for a in lay.arcs]   # u -> y skips x2
-    [('u', 'x2', 0.0), ('x2', 'y', -0.2), ('x2', 'y', 0.2), ('u', 'y', 0.82), ('y', ('out', 'y'), 0.0)]
+    >>> [(a.source, a.target, round(a.height, 2)) for a in lay.arcs]   # u -> y bulges over x2
+    [('u', 'x2', 0.0), ('x2', 'y', 0.0), ('x2', 'y', 0.16), ('u', 'y', -0.36), ('y', ('out', 'y'), 0.0)]
     """
-    if radius is None:
-        radius = {n.name: MIN_RADIUS for n in c.neurons}
+    m = measures if measures is not None else Measures.estimate(c, radius)
+    m = _room_for_ends(c, m)
     col, row = grid(c)
-    pos = {n: (XSTEP * col[n], YSTEP * row[n]) for n in col}
-    # group parallel synapses (same pair of ends) and give each its own curvature
-    pairs: dict[tuple, list[Synapse]] = {}
-    for n in c.neurons:
-        for s in n.synapses:
-            pairs.setdefault((s.source, s.target), []).append(s)
-    # each arc bulges by a height h (inches; > 0 above): skipping arcs alternate above and
-    # below, feedback arcs run below, parallel synapses fan out; longer arcs bulge more
-    arcs = []
-    up = 1
-    for (a, b), group in sorted(pairs.items(), key=lambda kv: abs(col[kv[0][1]] - col[kv[0][0]])):
-        span = abs(col[b] - col[a])
-        between = [
-            radius.get(n, 0.1)
-            for n in col
-            if min(col[a], col[b]) < col[n] < max(col[a], col[b])
-            and _distance(pos[n], pos[a], pos[b]) < radius.get(n, 0.1) + _CLEAR
-        ]
-        skips = bool(between)
-        if col[b] <= col[a]:
-            base = -(0.55 + 0.4 * max(span - 1, 0))
-        elif skips:
-            base, up = up * (max(between) + 0.5 + 0.4 * (span - 2)), -up
-            base = _clear_bulge(pos, a, b, base, radius)
-        else:
-            base = 0.0
-        for k, s in enumerate(group):
-            arcs.append(_arc(pos, a, b, s, base + (k - (len(group) - 1) / 2) * 0.4))
-    for o in c.outputs:
-        if o.source in pos:
-            wire = o if (o.weight != 1 or o.delay) else None
-            arcs.append(_arc(pos, o.source, ("out", o.target), wire, 0.0))
-    xs = [p[0] for p in pos.values()]
-    ys = [p[1] for p in pos.values()]
-    labels = [a.label[1] for a in arcs if a.label is not None]
-    big = max(radius.values(), default=0.3)
-    bounds = (
-        min(xs) - 0.9,
-        max(xs) + 0.9,
-        min([min(ys) - big - 0.5] + [y - 0.35 for y in labels]),
-        max([max(ys) + big + 0.45] + [y + 0.35 for y in labels]),
+    columns: dict[int, list] = {}
+    for node, k in col.items():
+        columns.setdefault(k, []).append(node)
+    inputs = set(c.inputs)
+    ext = {node: _extents(node, inputs, m) for node in col}
+    specs = _specs(c, col)
+    x = _column_x(columns, specs, col, ext, m, gap)
+    cuts = _cuts(specs, col, max(columns, default=0))
+    last_neuron = max((col[n.name] for n in c.neurons), default=0)
+    cuts = {k: v for k, v in cuts.items() if k < last_neuron}  # an output stays by its neuron
+    bands = _bands(x, columns, ext, cuts, width)
+    pitch = max((e[2] + e[3] for e in ext.values()), default=0.3) + _ROW_GAP
+    band_of = {node: b for b, (i, j) in enumerate(bands) for node in col if i <= col[node] <= j}
+    search = len(specs) <= _MAX_CURVES
+    pos: dict = {}
+    by_spec: dict[int, Arc] = {}
+    clear = labelled = True
+    top = 0.0
+    band_box: list[tuple[float, float, float, float]] = []
+    for b, (i, _) in enumerate(bands):
+        left = (
+            x[i]
+            - max(ext[n][0] for n in columns[i])
+            - (_WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0)
+        )
+        local = {n: (x[col[n]] - left + _MARGIN, row[n] * pitch) for n in col if band_of[n] == b}
+        idx = [k for k, s in enumerate(specs) if band_of[s[0]] == b and band_of[s[1]] == b]
+        mine = [specs[k] for k in idx]
+        texts = _text_boxes(local, m.radius, m)
+        nodes = list(local)
+        obstacles = rt.Obstacles.of(
+            [(local[n], m.radius.get(n, DOT)) for n in nodes],
+            list(texts.values()),
+            nodes,
+            [key for _, key in texts],
+        )
+        chosen, fine, written = rt.route(
+            mine, local, col, m.radius, m.label, obstacles, search=search, dot=DOT
+        )
+        clear, labelled = clear and fine, labelled and written
+        curves = [curve for _, curve, _ in chosen]
+        # the band's extent, then moved under the one above
+        xs0 = [lx - ext[n][0] for n, (lx, _) in local.items()]
+        xs1 = [lx + ext[n][1] for n, (lx, _) in local.items()]
+        ys0 = [ly - ext[n][2] for n, (_, ly) in local.items()]
+        ys1 = [ly + ext[n][3] for n, (_, ly) in local.items()]
+        for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
+            p = rt.samples(curve)
+            xs0.append(p[:, 0].min())
+            xs1.append(p[:, 0].max())
+            ys0.append(p[:, 1].min())
+            ys1.append(p[:, 1].max())
+            if where is not None:
+                w, h = m.label[s]
+                xs0.append(where[0] - w / 2)
+                xs1.append(where[0] + w / 2)
+                ys0.append(where[1] - h / 2)
+                ys1.append(where[1] + h / 2)
+        gap = 0.0 if b == 0 else _band_gap(specs, band_of, b, m)
+        dy = top - gap - max(ys1)
+        top = min(ys0) + dy
+        band_box.append((min(xs0), max(xs1), min(ys0) + dy, max(ys1) + dy))
+        for n, (lx, ly) in local.items():
+            pos[n] = (lx, ly + dy)
+        for k, (h, _, where), curve in zip(idx, chosen, curves, strict=True):
+            a, t, s = specs[k]
+            path = tuple((px, py + dy) for px, py in curve)
+            label = None if where is None else (where[0], where[1] + dy)
+            by_spec[k] = Arc(a, t, s, float(h), label, path, (1, 4, 4, 4))
+    for b in range(1, len(bands)):
+        by_spec.update(_wires(specs, band_of, b, pos, m, band_box))
+    arcs = [by_spec[k] for k in sorted(by_spec)]
+    texts = _text_boxes(pos, m.radius, m, arcs)
+    xs = [v for bb in band_box for v in bb[:2]] + [v for t in texts.values() for v in (t[0], t[2])]
+    ys = [v for bb in band_box for v in bb[2:]] + [v for t in texts.values() for v in (t[1], t[3])]
+    for arc in arcs:
+        xs += [p[0] for p in arc.path]
+        ys += [p[1] for p in arc.path]
+    bounds = (min(xs) - _MARGIN, max(xs) + _MARGIN, min(ys) - _MARGIN, max(ys) + _MARGIN)
+    narrow = width is None or bounds[1] - bounds[0] <= width + 1e-9
+    return CircuitLayout(
+        col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
     )
-    return CircuitLayout(col, row, pos, dict(radius), tuple(arcs), bounds)
+
+
+def _crossing(specs, band_of, b: int) -> list[int]:
+    """The arcs (indices of ``specs``) from band ``b - 1`` into band ``b``."""
+    return [k for k, s in enumerate(specs) if band_of[s[0]] == b - 1 and band_of[s[1]] == b]
+
+
+def _band_gap(specs, band_of, b: int, m: Measures) -> float:
+    """The room between bands ``b - 1`` and ``b``: the wires across and their labels."""
+    gap = 0.12
+    for k in _crossing(specs, band_of, b):
+        s = specs[k][2]
+        gap += (m.label[s][1] if s in m.label else 0.0) + 0.08
+    return gap
+
+
+def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]:
+    """The arcs across the cut above band ``b``: out right, back under band ``b - 1``, in left."""
+    out = {}
+    # the top source's wire runs outermost on the right, lowest under the band and
+    # innermost on the left, and so on down: no two wires cross
+    crossing = sorted(_crossing(specs, band_of, b), key=lambda k: -pos[specs[k][0]][1])
+    n = len(crossing)
+    levels = {}
+    y = band_box[b - 1][2] - 0.06
+    for k in reversed(range(n)):
+        s = specs[crossing[k]][2]
+        h = m.label[s][1] if s in m.label else 0.0
+        levels[k] = y - h / 2 - 0.02
+        y = levels[k] - h / 2 - 0.06
+    for k, index in enumerate(crossing):
+        a, t, s = specs[index]
+        (xa, ya), (xt, yt) = pos[a], pos[t]
+        ra, rt_ = m.radius.get(a, DOT), m.radius.get(t, DOT) + rt.TIP
+        yg = levels[k]
+        xr = band_box[b - 1][1] + _WIRE + (n - 1 - k) * _WIRE_STEP
+        xl = band_box[b][0] - _WIRE + (n - 1 - k) * _WIRE_STEP
+        xr, xl = max(xr, xa + ra + 2 * _CORNER), min(xl, xt - rt_ - 2 * _CORNER)
+        c = _CORNER
+        pts = [
+            (xa + ra, ya), (xr - c, ya), (xr, ya), (xr, ya - c),
+            (xr, yg + c), (xr, yg), (xr - c, yg),
+            (xl + c, yg), (xl, yg), (xl, yg - c),
+            (xl, yt + c), (xl, yt), (xl + c, yt),
+            (xt - rt_, yt),
+        ]  # fmt: skip
+        codes = (1, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2)
+        label = ((xr + xl) / 2, yg) if s in m.label else None
+        out[index] = Arc(a, t, s, 0.0, label, tuple(pts), codes)
+    return out

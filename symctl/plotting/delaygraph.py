@@ -23,12 +23,15 @@ import textwrap
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
+from matplotlib.colors import to_rgb
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 from matplotlib.path import Path
 
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.plotting.common import figure_and_axes, finish_figure, text_size
+from symctl.plotting import style
+from symctl.plotting.circuit_key import wrap_words
+from symctl.plotting.common import figure_and_axes, text_size, wrap_key
 from symctl.plotting.delaygraph_layout import delay_graph_layout
 
 if TYPE_CHECKING:
@@ -36,18 +39,26 @@ if TYPE_CHECKING:
 
 __all__ = ["delay_graph_plot", "steps_text"]
 
-_NAME = 9.5  # a vertex's name [pt]
-_SMALL = 8  # its vertex and role, its description, the delays
-_LINE = {_NAME: 0.19, _SMALL: 0.16}  # line heights [in]
-_PAD = (0.14, 0.09)  # inside a box [in]
+_NAME = style.FONT_SIZE  # a vertex's name [pt]
+_SMALL = style.SMALL  # its vertex and role, its description, the delays
+_LINE = {_NAME: 0.15, _SMALL: 0.13}  # line heights [in]
+_PAD = (0.06, 0.05)  # inside a box [in]
 _WRAP = 24  # characters per line of a description
+_KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
+
+
+def _tint(colour: str, amount: float = 0.2) -> tuple[float, float, float]:
+    """``colour`` mixed with white: a fill light enough for black text."""
+    return tuple(amount * c + (1 - amount) for c in to_rgb(colour))
+
+
 _FILL = {
-    "sensor": ("#dcedd9", "#2e7d32"),
-    "actuator": ("#fbe3cf", "#c25a0c"),
-    "": ("#f3f3f3", "0.2"),
+    "sensor": (_tint(style.SENSOR), style.SENSOR),
+    "actuator": (_tint(style.ACTUATOR), style.ACTUATOR),
+    "": ("#f4f4f4", style.NEUTRAL),
 }
-_INK = "0.15"
-_BACK = "#7b3fa0"  # an edge laid out right to left (closing a cycle)
+_INK = style.NEUTRAL
+_BACK = style.PALETTE[3]  # an edge laid out right to left (closing a cycle)
 
 
 def steps_text(delay: int) -> str:
@@ -125,7 +136,7 @@ def delay_graph_plot(
         The vertices' names, :math:`v_1` first (default ``v1 .. vN``); with
         names, each box also shows its vertex ``v<k>``.
     title : str, optional
-        The heading (default ``"delay graph: <N> vertices, <E> edges"``).
+        A heading above the drawing, wrapped to its width (default none).
     descriptions : mapping of str to str, optional
         A line or two under a vertex's name, by name (e.g. a model file's
         ``[[delay_graph.vertices]]`` descriptions).
@@ -180,10 +191,10 @@ def delay_graph_plot(
         ax.add_patch(
             FancyArrowPatch(
                 path=path,
-                arrowstyle="-|>,head_length=0.45,head_width=0.22",
-                mutation_scale=12,
+                arrowstyle="-|>,head_length=0.55,head_width=0.3",
+                mutation_scale=8,
                 color=colour,
-                lw=1.3,
+                lw=0.9,
                 zorder=1,
                 gid=f"edge:{r.source}-{r.target}",
             )
@@ -195,7 +206,7 @@ def delay_graph_plot(
             va="center",
             fontsize=_SMALL,
             color=colour,
-            bbox={"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none", "alpha": 0.95},
+            bbox={"boxstyle": "square,pad=0.08", "fc": "white", "ec": "none"},
             zorder=3,
         )
 
@@ -208,17 +219,17 @@ def delay_graph_plot(
                 (x - w / 2, y - h / 2),
                 w,
                 h,
-                boxstyle="round,pad=0,rounding_size=0.08",
+                boxstyle="round,pad=0,rounding_size=0.05",
                 fc=fill,
                 ec=edge,
-                lw=1.4 if role else 1.1,
+                lw=1.1 if role else 0.8,
                 zorder=2,
                 gid=f"vertex:{k}",
             )
         )
         total = sum(_LINE[s] for _, s, _ in lines[k])
         top = y + total / 2
-        for text, size, style in lines[k]:
+        for text, size, kind in lines[k]:
             ax.text(
                 x,
                 top - _LINE[size] / 2,
@@ -226,23 +237,49 @@ def delay_graph_plot(
                 ha="center",
                 va="center",
                 fontsize=size,
-                fontweight="bold" if style == "bold" else "normal",
-                fontstyle="italic" if style == "italic" else "normal",
-                color="black" if style == "bold" else "0.3",
+                fontweight="bold" if kind == "bold" else "normal",
+                fontstyle="italic" if kind == "italic" else "normal",
+                color="black" if kind == "bold" else "0.3",
                 zorder=3,
             )
             top -= _LINE[size]
 
-    n_edges = len(graph.edges)
-    heading = title or (
-        f"delay graph: {graph.n} vertices, {n_edges} edge{'s' if n_edges != 1 else ''}"
-    )
     ends = (1,), (graph.n,)
     if (tuple(graph.sensors), tuple(graph.actuators)) == ends:
         roles = f"v1 the sensor (green) to v{graph.n} the actuator (orange)"
     else:
         roles = "sensors green, actuators orange (one per channel)"
-    key = f"boxes: vertices, {roles}   arrows: direct edges, with their delays in steps"
+    key = [f"boxes: vertices, {roles}", "arrows: direct edges, with their delays in steps"]
     if any(r.back for r in lay.routes):
-        key += "   purple, curved: edges against the flow (a cycle)"
-    return finish_figure(fig, ax, own, lay.bounds, _plain(heading), key, top=0.65)
+        key.append("purple, curved: edges against the flow (a cycle)")
+    return _finish(fig, ax, own, lay.bounds, title, key)
+
+
+def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
+    """The key under the drawing and the heading (if any) above, both wrapped to its width."""
+    x_lo, x_hi, y_lo, y_hi = bounds
+    room = max(x_hi - x_lo, min(style.TEXT_WIDTH, _KEY_ROOM)) - 0.1
+    lines = wrap_key(key, room, _SMALL)
+    step = _SMALL / 72 * 1.35
+    y = y_lo - 0.04
+    for line in lines:
+        ax.text(x_lo + 0.05, y, line, ha="left", va="top", fontsize=_SMALL, color="0.3")
+        y -= step
+    right = max(1.04 * text_size(line, _SMALL)[0] for line in lines) + x_lo + 0.1
+    y_lo = y - 0.04
+    if title:
+        heading = wrap_words(_plain(title), room, style.TITLE)
+        size = style.TITLE / 72 * 1.3
+        top = y_hi + 0.04 + size * len(heading)
+        for k, line in enumerate(heading):
+            ax.text(x_lo + 0.05, top - k * size, line, ha="left", va="top", fontsize=style.TITLE)
+        right = max(right, x_lo + 0.1 + max(1.04 * text_size(h, style.TITLE)[0] for h in heading))
+        y_hi = top + 0.04
+    x_hi = max(x_hi, right)
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo, y_hi)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if own:
+        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
+    return fig

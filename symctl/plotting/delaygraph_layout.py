@@ -69,24 +69,24 @@ MAX_DRAWN_VERTICES = 200
 """Most vertices a delay-graph drawing takes (beyond, a picture says nothing)."""
 MAX_BENDS = 40000
 """Most bend points (an edge across k layers has k - 1): bounds the time a dense graph takes."""
-BOX = (0.8, 0.45)
+BOX = (0.6, 0.35)
 """A vertex box's width and height [in] when none is given."""
-LABEL = (0.5, 0.17)
+LABEL = (0.4, 0.13)
 """An edge label's width and height [in] when none is given."""
 
-_ROW_GAP = 0.5  # between two boxes of a layer [in]
-_BEND_GAP = 0.3  # between a bend and anything else of its layer
+_ROW_GAP = 0.25  # between two boxes of a layer [in]
+_BEND_GAP = 0.2  # between a bend and anything else of its layer
 _BEND_HEIGHT = 0.1
-_MIN_GAP = 0.8  # between two columns, at least
+_MIN_GAP = 0.55  # between two columns, at least
 _STEEP = 0.4  # a gap at least this part of the largest fall of an edge across it [in/in]
-_MAX_GAP = 2.0  # ... up to this width [in]
-_LABEL_MARGIN = 0.25  # either side of the widest label of a gap
-_SHIFTS = (0.0, -0.2, 0.2, -0.4, 0.4, -0.6, 0.6, -0.8, 0.8, -1.0, 1.0)  # a label along its gap
+_MAX_GAP = 1.4  # ... up to this width [in]
+_LABEL_MARGIN = 0.11  # either side of the widest label of a gap
+_SHIFTS = (0.0, -0.15, 0.15, -0.3, 0.3, -0.45, 0.45, -0.6, 0.6, -0.75, 0.75)  # along its gap
 _LABEL_CLEAR = 0.06  # a label keeps this far from the gap's ends (the columns)
-_BULGE = 0.28  # of a two-cycle's edges, and of a lone back edge between neighbouring layers
+_BULGE = 0.22  # of a two-cycle's edges, and of a lone back edge between neighbouring layers
 _CLIP = 0.03  # arrow tips stop this far from a box
-_PORT_STEP = 0.1  # between the ends of two edges on one side of a box
-_PORT_MARGIN = 0.08  # from the box's corners
+_PORT_STEP = 0.08  # between the ends of two edges on one side of a box
+_PORT_MARGIN = 0.06  # from the box's corners
 _SWEEPS = 8
 _WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True, True): 60.0}
 

@@ -150,23 +150,54 @@ def _graph_title(res) -> str:
 
 
 def _placed(circuit, rec, graph):
-    """The simulated ``circuit`` at the vertices of the witness assignment of ``rec``.
+    """The simulated ``circuit`` at delay-graph vertices: the witness of ``rec``, or its own.
 
     A numeric realization's structure has the symbolic one's signals less the zero
     gains, so the witness assigns it too; the assignment is checked again (by
-    :meth:`Circuit.from_structure`), and the circuit is returned as it is when the
-    check fails or there is no witness.
+    :meth:`Circuit.from_structure`). When the witness does not carry over (a signal it
+    does not assign, or a violation), the drawn structure's own compatibility is
+    decided, and its witness places the neurons; the circuit is returned unplaced only
+    when that structure is not compatible.
     """
     verdict = rec.compatibility
-    if not verdict.ok or verdict.assignment is None:
+    if not verdict.ok:
         return circuit
-    S, where = circuit.structure, verdict.assignment.vertex_of
-    try:
-        return Circuit.from_structure(
-            S, DelayAssignment(S, graph, {k: where[k] for k in S.blocks if k in where})
-        )
-    except ParameterError:
-        return circuit
+    S = circuit.structure
+    if verdict.assignment is not None:
+        where = verdict.assignment.vertex_of
+        if all(k in where for k in S.blocks):
+            try:
+                return Circuit.from_structure(
+                    S, DelayAssignment(S, graph, {k: where[k] for k in S.blocks})
+                )
+            except ParameterError:
+                pass
+    from symctl.compatibility.check import check_compatibility
+
+    own = check_compatibility(S, graph)
+    return Circuit.from_structure(S, own) if own.ok and own.assignment is not None else circuit
+
+
+EPS_RANGE = (-0.9, 0.9)
+"""The range :func:`~symctl.neural.firing.circuit_firing` draws every epsilon from (with every
+C set to 1): a circuit figure's symbolic weights are coloured by their sign over it."""
+
+
+def _signs_at(res, circuit) -> dict:
+    """The values a circuit figure reads its signs at: the controller's gains, C = 1, epsilon's range.
+
+    The simulations' standing choices (:func:`~symctl.neural.firing.structure_firing`
+    names the sections' symbols the same way): a weight is coloured excitatory or
+    inhibitory only when its sign is the same for every epsilon they may draw.
+    """
+    free = circuit.free_symbols
+    values = {k: v for k, v in res.gains.substitutions().items() if k in free}
+    for sym in free - set(values):
+        if str(sym).startswith("epsilon"):
+            values[sym] = EPS_RANGE
+        elif str(sym).startswith("C"):
+            values[sym] = 1
+    return values
 
 
 def simplified(candidates, count: int = 2) -> list:
@@ -218,11 +249,7 @@ def make_figure(res, name: str):
     if name.startswith("simplified_") and res.candidates:
         for c in res.candidates:
             if c.degenerate and f"simplified_{c.circuit_class.label}" == name:
-                eps = ", ".join(f"{float(e):.4g}" for e in c.eps)
-                return c.circuit.draw(
-                    title=f"Simplified circuit {c.circuit_class.label}: G3 G2 G1 at eps = ({eps})",
-                    vertex_names=names,
-                )
+                return c.circuit.draw(vertex_names=names)  # the caption names it
     kind, _, circuit = name.partition("_")
     rec = res.circuits.get(circuit)
     if rec is None or kind not in ("structure", "circuit", "firing"):
@@ -238,15 +265,12 @@ def make_figure(res, name: str):
         if len(S) > MAX_DRAWN_SIGNALS or len(parts) > MAX_DRAWN_PARTS:  # a strip in print
             return S.draw(title=title, overview=True)
         return rec.structure.draw(title=title)
-    title = f"Circuit: {CIRCUIT_SPECS[circuit].diagram}"
+    # no heading in the figure: the report's caption names the circuit
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
-        title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
-    if not rec.compatibility.ok:
-        title += " (not compatible with the delay graph: no neuron has a vertex)"
-    if circuit == "general":
         drawn = _placed(rec.firing.circuits[0], rec, res.graph)
-        return drawn.draw(title=title, vertex_names=names)
-    return rec.circuit.draw(title=title, vertex_names=names)
+    else:
+        drawn = rec.circuit
+    return drawn.draw(vertex_names=names, signs_at=_signs_at(res, drawn))
 
 
 def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:

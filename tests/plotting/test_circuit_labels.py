@@ -121,8 +121,11 @@ def test_a_mimo_controllable_form_keys_its_four_equal_self_dynamics_once(mimo_fa
     for s, tex in text.weights.items():
         shown = tex.split(r"\,z^")[0]
         assert (shown in dict(text.key)) == (visible_length(weight_tex(s.weight)) > LONG_WEIGHT)
-    assert key_gids(draw_circuit(c)) == [f"key:{label}" for label in ("self1", *(
-        f"w{k}" for k in range(1, len(labels))))]  # fmt: skip
+    # forty long weights are too many to list under a printed drawing: none is written,
+    # the self-dynamics' key is (broken over lines to fit the page)
+    fig = draw_circuit(c)
+    assert set(key_gids(fig)) == {"key:self1"}
+    assert any("weights not written" in t.get_text() for t in fig.axes[0].texts)
 
 
 def test_the_labels_are_chosen_without_matplotlib():
