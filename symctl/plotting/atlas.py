@@ -35,7 +35,7 @@ def _panel(fig, circuit, head: str, width: float, ax=None):
     return ax, x1 - x0, y1 - y0, head
 
 
-GAP = 0.12
+GAP = 0.1
 """Between two panels [in]."""
 _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 

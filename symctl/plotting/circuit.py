@@ -126,10 +126,11 @@ def _vertex_tag(vertex: int | None) -> str:
 
 
 _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
-    (True, True, True, MIN_GAP),
-    (False, True, True, MIN_GAP),
-    (False, False, True, MIN_GAP),
-    (False, False, False, 0.12),
+    (True, "full", True, MIN_GAP),
+    (False, "full", True, MIN_GAP),
+    (False, "compact", True, MIN_GAP),
+    (False, "", True, MIN_GAP),
+    (False, "", False, 0.12),
 )
 """How much a drawing writes, from everything to numbered circles: the first that fits."""
 
@@ -138,12 +139,14 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     """The sizes of the drawing's texts (inches) and the strings drawn, at ``level``."""
     labelled, bodies, named, _ = level
     if named:
-        body = {n.name: _body(text.bodies[n.name]) if bodies else "" for n in c.neurons}
+        compact = bodies == "compact"
+        body = {n.name: _body(text.bodies[n.name], compact) if bodies else "" for n in c.neurons}
     else:  # each circle holds its number, the key its name
         body = {n.name: str(k) for k, n in enumerate(c.neurons, start=1)}
+    inner = NAME if named and bodies == "full" else SMALL
     radius = {}
     for name, s in body.items():
-        w, h = _extent(s, NAME if named else SMALL) if s else (0.0, 0.0)
+        w, h = _extent(s, inner) if s else (0.0, 0.0)
         inside = math.hypot(w, h) / 2 + 0.02  # the text's corners inside the circle
         radius[name] = max(MIN_RADIUS if named else 0.0, inside)
     names = {n.name: f"${signal_tex(n.name)}$" for n in c.neurons} if named else {}
@@ -164,7 +167,8 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         {k: size(v, SMALL, 0.02) for k, v in weights.items()},
         {k: size(v, NAME) for k, v in ends.items()},
     )
-    strings = {"body": body, "name": names, "tag": tags, "end": ends, "weight": weights}
+    strings = {"body": body, "name": names, "tag": tags, "end": ends, "weight": weights,
+               "inner": inner}  # fmt: skip
     return m, strings
 
 
@@ -283,7 +287,7 @@ def draw_circuit(
         )
         if strings["body"][n.name]:
             ax.text(x, y, strings["body"][n.name], ha="center", va="center",
-                    fontsize=NAME if named else SMALL, zorder=3)  # fmt: skip
+                    fontsize=strings["inner"], zorder=3)  # fmt: skip
         if named:
             ax.text(x, y + r + NAME_GAP, strings["name"][n.name], ha="center", va="bottom",
                     fontsize=NAME, color="0.1", zorder=3)  # fmt: skip
@@ -441,13 +445,19 @@ def _terms(tex: str) -> list[str]:
     return parts
 
 
-def _body(tex: str) -> str:
-    """A neuron's self-dynamics as drawn: on two lines when one would make a large circle."""
+def _body(tex: str, compact: bool = False) -> str:
+    r"""A neuron's self-dynamics as drawn: on two lines when one would make a large circle.
+
+    ``compact``: always on two lines, a single term's weight over its :math:`z^{-k}`.
+    """
     if not tex:
         return ""
     one = display_text(tex)
     terms = _terms(tex)
-    if len(terms) < 2 or text_size(one, NAME)[0] <= _BODY_WIDE:
+    if compact and len(terms) == 1 and r"\,z^" in tex:
+        weight, _, lag = tex.rpartition(r"\,")
+        return display_text(weight) + "\n" + display_text(lag)
+    if len(terms) < 2 or (text_size(one, NAME)[0] <= _BODY_WIDE and not compact):
         return one
     half = sum(visible_length(t) for t in terms) / 2
     seen, cut = 0, 1

@@ -145,7 +145,8 @@ class CircuitText:
     ----------
     weights : mapping of Synapse to str
         Each synapse's label (and each weighted or delayed output's): its weight, or
-        :math:`w_k` for a long one, then :math:`z^{-d}` for a delay ``d > 1``.
+        :math:`w_k` for a long one, then :math:`z^{-d}` for a delay ``d > 1`` (alone for
+        a weight 1).
     bodies : mapping of str to str
         Each neuron's self-dynamics (``""`` without: the circle stays empty), or
         :math:`\mathrm{self}_k`.
@@ -227,5 +228,7 @@ def circuit_text(c: Circuit) -> CircuitText:
     weights = {}
     for s in synapses:
         tex = weight(weight_tex(s.weight))
-        weights[s] = tex + (rf"\,z^{{-{s.delay}}}" if s.delay > 1 else "")
+        if s.delay > 1:  # a weight 1 of k steps is z^-k alone
+            tex = ("" if tex == "1" else tex + r"\,") + rf"z^{{-{s.delay}}}"
+        weights[s] = tex
     return CircuitText(weights, bodies, (*body.key(), *weight.key()))

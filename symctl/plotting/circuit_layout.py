@@ -73,7 +73,7 @@ MIN_RADIUS = 0.11
 """The smallest neuron circle [in] (the radius when none is given)."""
 DOT = 0.03
 """The radius of an input or output dot [in]."""
-MIN_GAP = 0.3
+MIN_GAP = 0.26
 """The least room between two columns' circles and names [in]."""
 XSTEP = 0.9
 """The distance between two columns of circles of :data:`MIN_RADIUS` with estimated texts [in]

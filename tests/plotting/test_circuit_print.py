@@ -176,7 +176,7 @@ def test_the_key_says_what_dashes_mean(figures):
     one = " ".join(t.get_text() for t in figures["controllable"].axes[0].texts)
     assert "delayed one step" in one and "z^{-k}" not in one
     ifp = [t.get_text() for t in figures["ifp"].axes[0].texts]
-    assert r"$K_{0}$" in ifp and any(r"z^{-2}" in t for t in ifp)  # 1 z^-2 to the output
+    assert r"$K_{0}$" in ifp and r"$z^{-2}$" in ifp  # weight 1, two steps, to the output
     assert any("or $k$ where $z^{-k}$ is written" in t for t in ifp)
 
 
