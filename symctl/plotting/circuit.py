@@ -67,7 +67,7 @@ _KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
 _BODY_WIDE = 0.55  # a self-dynamics wider than this [in] is set on two lines
 MAX_LABELS = 80
 """A circuit of more synapses is drawn without its weights (they could not all be read)."""
-MAX_KEY = 2.0
+MAX_KEY = 2.5
 """The tallest key of long weights [in]; a circuit with more is drawn without its weights."""
 
 
@@ -127,6 +127,7 @@ def _vertex_tag(vertex: int | None) -> str:
 
 _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
     (True, "full", True, MIN_GAP),
+    (True, "full", True, 0.7 * MIN_GAP),
     (False, "full", True, MIN_GAP),
     (False, "compact", True, MIN_GAP),
     (False, "", True, MIN_GAP),
@@ -167,6 +168,8 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         {k: size(v, SMALL, 0.02) for k, v in weights.items()},
         {k: size(v, NAME) for k, v in ends.items()},
     )
+    if named:  # (numbered circles of a hairball stay small)
+        m = m.with_room_for_ends(c)
     strings = {"body": body, "name": names, "tag": tags, "end": ends, "weight": weights,
                "inner": inner}  # fmt: skip
     return m, strings
@@ -254,7 +257,7 @@ def draw_circuit(
     # weights written if they fit; else none (a dense circuit); then no self-dynamics;
     # then numbered circles, their names in the key
     legible = _key_fits([v for k, v in text.key if k[0] == "w"], page)
-    levels = _LEVELS if legible and len(text.weights) <= MAX_LABELS else _LEVELS[1:]
+    levels = [lv for lv in _LEVELS if (legible and len(text.weights) <= MAX_LABELS) or not lv[0]]
     for level in levels:
         m, strings = _measure(c, text, level)
         lay = circuit_layout(c, measures=m, width=page, gap=level[3])
@@ -350,18 +353,40 @@ def draw_circuit(
     return fig
 
 
+def _shown(tex: str) -> int:
+    r"""The characters ``tex`` shows across: a ``\frac{a}{b}`` as the longer of ``a`` and ``b``."""
+    out, k = 0, 0
+    while True:
+        at = tex.find(r"\frac{", k)
+        if at < 0:
+            return out + visible_length(tex[k:])
+        out += visible_length(tex[k:at])
+        parts, end = [], at + len(r"\frac")
+        for _ in range(2):  # the two brace groups
+            depth, start = 0, end
+            for j in range(end, len(tex)):
+                depth += {"{": 1, "}": -1}.get(tex[j], 0)
+                if depth == 0:
+                    end = j + 1
+                    break
+            parts.append(tex[start + 1 : end - 1])
+        out += max(_shown(q) for q in parts)
+        k = end
+
+
 def _key_fits(values: list[str], room: float) -> bool:
     """Whether a key of these long values fits a page ``room`` wide and :data:`MAX_KEY` tall.
 
-    Estimated from the characters shown (:func:`~symctl.plotting.circuit_labels.visible_length`,
-    half an em each), before any is set: matplotlib parses a long formula in a tenth of a
-    second, and a MIMO circuit has forty.
+    Estimated from the characters shown (:func:`_shown`, half an em each), before any is
+    set: matplotlib parses a long formula in a tenth of a second, and a MIMO circuit has
+    forty. A line too wide is broken before its outermost signs (:func:`_broken`).
     """
     em = SMALL / 72
-    widths = [0.55 * em * (visible_length(v) + 4) for v in values]
+    lines = [part for v in values for part in _broken(f"w = {v}", room)]
+    widths = [0.55 * em * (_shown(v) + 2) for v in lines]
     if any(w > room for w in widths):
         return False
-    tall = [(2.6 if "frac" in v else 1.4) * em + 0.06 for v in values]
+    tall = [(2.6 if "frac" in v else 1.4) * em + 0.06 for v in lines]
     rows = len(_key_columns(widths, room)[0]) if widths else 0
     return rows * max(tall, default=0.0) <= MAX_KEY
 
@@ -479,7 +504,7 @@ def _broken(line: str, room: float) -> list[str]:
     em = SMALL / 72
 
     def wide(tex: str) -> bool:
-        return 0.55 * em * (visible_length(tex) + 4) > room
+        return 0.55 * em * (_shown(tex) + 2) > room
 
     if not wide(line):
         return [line]

@@ -82,7 +82,7 @@ YSTEP = 0.62
 """The distance between two rows [in], likewise."""
 MAX_RADIUS = 0.25
 """A circle grows to space the ends of its synapses no larger than this [in]."""
-NAME_GAP = 0.045
+NAME_GAP = 0.06
 """Between a circle and its name above it or its vertex tag below it [in]."""
 _END_GAP = 0.04  # between a dot and its label
 _ARROW = 0.11  # room for an arrow head or bar, either side of a weight on a straight synapse [in]
@@ -149,7 +149,30 @@ class Measures:
         ends.update({("out", o.target): size(o.target) for o in c.outputs})
         names = {n.name: size(n.name.rpartition(".")[2]) for n in c.neurons}
         tags = {n.name: size(f"v{n.vertex}") for n in c.neurons if n.vertex is not None}
-        return cls(radius, names, tags, labels, ends)
+        return cls(radius, names, tags, labels, ends).with_room_for_ends(c)
+
+    def with_room_for_ends(self, c: Circuit) -> Measures:
+        """These sizes, each neuron's circle large enough to space the ends of its synapses in.
+
+        The ends go on its sides (about 2 rad of the circle, its name above and tag below),
+        one more than it has, so that each may move round from where it points,
+        :data:`~symctl.plotting.circuit_routes.PORT_GAP` apart; no circle grows past
+        :data:`MAX_RADIUS` for it.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
+        >>> from symctl.plotting.circuit_layout import Measures
+        >>> f = factor(controller_tf(2))
+        >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
+        >>> round(Measures({"x2": 0.1, "y": 0.1}).with_room_for_ends(c).radius["y"], 3)  # 3 in
+        0.2
+        """
+        grown = dict(self.radius)
+        for n in c.neurons:
+            ends = min((len(n.synapses) + 1) * rt.PORT_GAP / 2.0, MAX_RADIUS) if n.synapses else 0
+            grown[n.name] = max(grown.get(n.name, MIN_RADIUS), ends)
+        return Measures(grown, self.name, self.tag, self.label, self.end)
 
 
 @dataclass(frozen=True)
@@ -366,20 +389,6 @@ def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
     return out
 
 
-def _room_for_ends(c: Circuit, m: Measures) -> Measures:
-    """``m`` with each neuron's circle large enough to space the ends of its synapses in.
-
-    The ends go on its sides (about 2 rad of the circle, its name above and tag below),
-    :data:`~symctl.plotting.circuit_routes.PORT_GAP` apart; no circle grows past
-    :data:`MAX_RADIUS` for it.
-    """
-    grown = dict(m.radius)
-    for n in c.neurons:
-        ends = min(len(n.synapses) * rt.PORT_GAP / 2.0, MAX_RADIUS)
-        grown[n.name] = max(grown.get(n.name, MIN_RADIUS), ends)
-    return Measures(grown, m.name, m.tag, m.label, m.end)
-
-
 def _specs(c: Circuit, col) -> list[tuple]:
     """``(source, target, synapse or None)`` of every arc: synapses, shortest first, then outputs."""
     pairs: dict[tuple, list] = {}
@@ -409,10 +418,11 @@ def _column_x(columns: dict, specs, col, ext, m: Measures, gap: float) -> dict[i
         right = max(ext[n][1] for n in columns[prev])
         left = max(ext[n][0] for n in columns[k])
         need = x[prev] + right + gap + left
+        arrow = _ARROW * min(1.0, gap / MIN_GAP)  # a tight drawing leaves less room too
         for a, b, s in specs:
             if col[a] == prev and col[b] == k and s in m.label:
                 ra, rb = m.radius.get(a, DOT), m.radius.get(b, DOT)
-                need = max(need, x[prev] + ra + m.label[s][0] + 2 * _ARROW + rb)
+                need = max(need, x[prev] + ra + m.label[s][0] + 2 * arrow + rb)
         x[k] = need
     return x
 
@@ -488,7 +498,8 @@ def circuit_layout(
         The widest the drawing may be [in]: a wider one is cut into bands (default:
         no limit, one band).
     gap : float
-        The least room between two columns' texts [in].
+        The least room between two columns' texts [in]; under :data:`MIN_GAP`, the room
+        either side of a weight shrinks in proportion.
 
     Returns
     -------
@@ -505,7 +516,6 @@ def circuit_layout(
     [('u', 'x2', 0.0), ('x2', 'y', 0.0), ('x2', 'y', 0.16), ('u', 'y', -0.36), ('y', ('out', 'y'), 0.0)]
     """
     m = measures if measures is not None else Measures.estimate(c, radius)
-    m = _room_for_ends(c, m)
     col, row = grid(c)
     columns: dict[int, list] = {}
     for node, k in col.items():
@@ -516,9 +526,10 @@ def circuit_layout(
     x = _column_x(columns, specs, col, ext, m, gap)
     cuts = _cuts(specs, col, max(columns, default=0))
     last_neuron = max((col[n.name] for n in c.neurons), default=0)
-    cuts = {k: v for k, v in cuts.items() if k < last_neuron}  # an output stays by its neuron
+    first_neuron = min((col[n.name] for n in c.neurons), default=0)
+    # an input and an output stay by their neurons: no band of inputs or outputs alone
+    cuts = {k: v for k, v in cuts.items() if first_neuron <= k < last_neuron}
     bands = _bands(x, columns, ext, cuts, width)
-    pitch = max((e[2] + e[3] for e in ext.values()), default=0.3) + _ROW_GAP
     band_of = {node: b for b, (i, j) in enumerate(bands) for node in col if i <= col[node] <= j}
     search = len(specs) <= _MAX_CURVES
     pos: dict = {}
@@ -532,7 +543,10 @@ def circuit_layout(
             - max(ext[n][0] for n in columns[i])
             - (_WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0)
         )
-        local = {n: (x[col[n]] - left + _MARGIN, row[n] * pitch) for n in col if band_of[n] == b}
+        mine_nodes = [n for n in col if band_of[n] == b]
+        pitch = max(ext[n][2] + ext[n][3] for n in mine_nodes) + _ROW_GAP  # this band's rows
+        rows = _closed_up([row[n] for n in mine_nodes])
+        local = {n: (x[col[n]] - left + _MARGIN, rows[row[n]] * pitch) for n in mine_nodes}
         idx = [k for k, s in enumerate(specs) if band_of[s[0]] == b and band_of[s[1]] == b]
         mine = [specs[k] for k in idx]
         texts = _text_boxes(local, m.radius, m)
@@ -582,14 +596,26 @@ def circuit_layout(
     texts = _text_boxes(pos, m.radius, m, arcs)
     xs = [v for bb in band_box for v in bb[:2]] + [v for t in texts.values() for v in (t[0], t[2])]
     ys = [v for bb in band_box for v in bb[2:]] + [v for t in texts.values() for v in (t[1], t[3])]
-    for arc in arcs:
-        xs += [p[0] for p in arc.path]
-        ys += [p[1] for p in arc.path]
+    for arc in arcs:  # the curves, not their control points
+        pts = arc.points()
+        xs += [float(pts[:, 0].min()), float(pts[:, 0].max())]
+        ys += [float(pts[:, 1].min()), float(pts[:, 1].max())]
     bounds = (min(xs) - _MARGIN, max(xs) + _MARGIN, min(ys) - _MARGIN, max(ys) + _MARGIN)
     narrow = width is None or bounds[1] - bounds[0] <= width + 1e-9
     return CircuitLayout(
         col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
     )
+
+
+def _closed_up(rows: list[float]) -> dict[float, float]:
+    """Rows with no gap wider than one row between neighbours (a band of a few nodes)."""
+    levels = sorted(set(rows))
+    out, at = {}, 0.0
+    for k, r in enumerate(levels):
+        if k:
+            at += min(r - levels[k - 1], 1.0)
+        out[r] = at
+    return out
 
 
 def _crossing(specs, band_of, b: int) -> list[int]:

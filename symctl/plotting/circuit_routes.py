@@ -75,7 +75,7 @@ _BOX_MARGIN = 0.015  # a curve keeps this far from a text box [in]
 REACH = 0.7
 """How far along the chord a bridge's first inner control point lies (its share of the
 chord's length); over 1/2 the two cross, and the ends flatten."""
-END_MARGIN = 0.05
+END_MARGIN = 0.04
 """How far a curve keeps from the texts of the neuron it ends at [in] (its arrow head)."""
 PAIR = 0.13
 """Least difference of the heights of two curves between the same two nodes [in]."""
@@ -413,7 +413,7 @@ def route(arcs, pos, col, radius, labels, obstacles: Obstacles, *, search=True, 
         size = labels.get(s) if s is not None else None
         apart = max(PAIR, size[1] + 0.03) if size else PAIR
         if search:
-            cands = heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 16)
+            cands = heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24)
         else:  # a hairball: one arch each, as high as it is long
             span = abs(col[b] - col[a])
             cands = [0.0] if adjacent else [prefer * (0.08 + 0.06 * span)]

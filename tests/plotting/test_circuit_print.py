@@ -62,10 +62,12 @@ def general(gains, steps: int) -> Circuit:
 def circuits(mimo_factorization):
     g2, g6 = (lqr_gains(augment(MuscleModel(), d, d)) for d in (1, 3))
     f2, f6 = factor(controller_tf(2)), factor(controller_tf(6), 3, 3)
+    # the report's T = 6 form: G2 in sigma, the sums of products of the epsilons
+    obs6 = Structure.from_factorization(f6, observable_canonical(f6.abbreviated()))
     out = {
         "ifp": (Circuit.from_structure(ifp_structure(2)), g2),
         "general": (general(g2, 2), g2),
-        "observable6": (placed(Structure.from_factorization(f6, observable_canonical(f6.G2)), 6), g6),
+        "observable6": (placed(obs6, 6), g6),
         "general6": (general(g6, 6), g6),
     }  # fmt: skip
     for kind, realize in (
@@ -185,6 +187,11 @@ def test_title_is_drawn_only_when_given(circuits):
     plain = [t.get_text() for t in draw_circuit(c).axes[0].texts]
     titled = [t.get_text() for t in draw_circuit(c, title="The IFP controller").axes[0].texts]
     assert "The IFP controller" in titled and set(titled) - set(plain) == {"The IFP controller"}
+
+
+def test_the_paper_circuits_write_every_weight(figures):
+    for name in ("ifp", "general", "controllable", "observable", "observable6"):
+        assert drawn(figures[name].axes[0]).key.labelled, name
 
 
 def test_a_dense_circuit_says_its_weights_are_not_written(figures):
