@@ -144,7 +144,7 @@ class DaleResult:
         object.__setattr__(self, "sections", MappingProxyType(dict(self.sections)))
 
     def draw(self, ax=None, *, title: str | None = None):
-        """Draw the witness circuit (a matplotlib Figure): blue arrows excite, red bars inhibit.
+        """Draw the witness circuit (a matplotlib Figure): blue arrows excite, vermillion bars inhibit.
 
         Raises
         ------

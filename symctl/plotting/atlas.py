@@ -37,6 +37,7 @@ def _panel(fig, circuit, head: str, width: float, ax=None):
 
 GAP = 0.1
 """Between two panels [in]."""
+_SQUEEZE = 1.1  # a drawing this much wider than its column is redrawn to fit it
 _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 
 
@@ -86,9 +87,10 @@ def draw_classes(atlas, classes, *, columns: int = 3, title: str | None = None) 
             f"{c.n_synapses} synapse{'s' if c.n_synapses != 1 else ''}, {_VERDICT[c.universal]}"
         )
         panels.append(_panel(fig, c.circuit, head, width))
-    # as many columns as asked for, or as fit the widest drawing
+    # as many columns as asked for, or as fit the widest drawing (one a little wider is
+    # drawn again at the column's width, more tightly spaced)
     columns = max(1, min(columns, len(classes)))
-    while columns > 1 and max(w for _, w, _, _ in panels) > _cell(columns):
+    while columns > 1 and max(w for _, w, _, _ in panels) > _SQUEEZE * _cell(columns):
         columns -= 1
     cell = _cell(columns)
     panels = [

@@ -80,7 +80,7 @@ XSTEP = 0.9
 (the measured layout sets each distance from its texts)."""
 YSTEP = 0.62
 """The distance between two rows [in], likewise."""
-MAX_RADIUS = 0.25
+MAX_RADIUS = 0.3
 """A circle grows to space the ends of its synapses no larger than this [in]."""
 NAME_GAP = 0.06
 """Between a circle and its name above it or its vertex tag below it [in]."""
@@ -166,7 +166,7 @@ class Measures:
         >>> f = factor(controller_tf(2))
         >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
         >>> round(Measures({"x2": 0.1, "y": 0.1}).with_room_for_ends(c).radius["y"], 3)  # 3 in
-        0.2
+        0.17
         """
         grown = dict(self.radius)
         for n in c.neurons:

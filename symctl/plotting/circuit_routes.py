@@ -68,7 +68,7 @@ __all__ = [
 
 CLEAR = 0.035
 """How near a curve may pass a circle it does not end at [in]."""
-PORT_GAP = 0.1
+PORT_GAP = 0.085
 """Least distance along a circle between the ends of two curves [in] (an arrow head is
 about 0.05 in wide, a bar 0.07 in)."""
 _BOX_MARGIN = 0.015  # a curve keeps this far from a text box [in]
@@ -412,34 +412,40 @@ def route(arcs, pos, col, radius, labels, obstacles: Obstacles, *, search=True, 
         taken = heights_of.setdefault(frozenset((a, b)), [])
         size = labels.get(s) if s is not None else None
         apart = max(PAIR, size[1] + 0.03) if size else PAIR
-        if search:
-            cands = heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24)
+        if search:  # the usual heights and ends, then (none clear) more of each
+            tiers = [
+                (heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24), SWING, 3),
+                (heights(adjacent, prefer, 0.12, 0.08, 40), 2 * SWING, 8),
+            ]
         else:  # a hairball: one arch each, as high as it is long
             span = abs(col[b] - col[a])
-            cands = [0.0] if adjacent else [prefer * (0.08 + 0.06 * span)]
-        cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
-            (max(map(abs, taken)) + apart) * prefer
-        ]
+            tiers = [([0.0] if adjacent else [prefer * (0.08 + 0.06 * span)], SWING, 3)]
         used = ports.setdefault(b, []) if b in radius else []
         others = np.concatenate(lines) if lines else None
         pick, fallback = None, None
         qa, qb = chord(pa, ra, pb, rb)
-        for h in cands:
-            curve = bridge(qa, qb, h)
-            natural = end_angle(curve, pb, False)
-            angles = _end_angles(natural, used, rb)
-            for angle in angles or [natural]:
-                drawn = trimmed(curve, pa, ra, pb, rb + TIP, None, angle)
-                nh = hits(samples(drawn), obstacles, {a, b}) + (not angles)
-                if fallback is None or nh < fallback[0]:
-                    fallback = (nh, h, drawn, angle)
-                if nh:
-                    continue
-                where = place_label(drawn, size, obstacles, others) if size else None
-                if size is None or where is not None:
-                    pick = (h, drawn, where, angle)
+        for cands, swing, count in tiers:
+            cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
+                (max(map(abs, taken)) + apart) * prefer
+            ]
+            for h in cands:
+                curve = bridge(qa, qb, h)
+                natural = end_angle(curve, pb, False)
+                angles = _end_angles(natural, used, rb, swing, count)
+                for angle in angles or [natural]:
+                    drawn = trimmed(curve, pa, ra, pb, rb + TIP, None, angle)
+                    nh = hits(samples(drawn), obstacles, {a, b}) + (not angles)
+                    if fallback is None or nh < fallback[0]:
+                        fallback = (nh, h, drawn, angle)
+                    if nh:
+                        continue
+                    where = place_label(drawn, size, obstacles, others) if size else None
+                    if size is None or where is not None:
+                        pick = (h, drawn, where, angle)
+                        break
+                if pick is not None or not search:
                     break
-            if pick is not None or not search:
+            if pick is not None:
                 break
         if pick is None:  # the least bad, its label where it overlaps the least
             nh, h, drawn, angle = fallback
@@ -464,18 +470,20 @@ def route(arcs, pos, col, radius, labels, obstacles: Obstacles, *, search=True, 
     return chosen, clear, labelled
 
 
-def _end_angles(natural: float, used: list[float], radius: float) -> list[float]:
-    """Where a curve may end on a circle: its natural angle, or the nearest ones within
-    :data:`SWING` of it, each :data:`PORT_GAP` clear of the ends already there (none: no
+def _end_angles(
+    natural: float, used: list[float], radius: float, swing: float = SWING, count: int = 3
+) -> list[float]:
+    """Where a curve may end on a circle: its natural angle, or the ``count`` nearest ones
+    within ``swing`` of it, each :data:`PORT_GAP` clear of the ends already there (none: no
     room)."""
     need = PORT_GAP / max(radius, 1e-9)
 
-    steps = int(SWING / (need / 3))
+    steps = int(swing / (need / 3))
     tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
     if used:
         d = np.abs((tries[:, None] - np.array(used)[None, :] + math.pi) % (2 * math.pi) - math.pi)
         tries = tries[(d >= need - 1e-9).all(axis=1)]
-    return [float(t) for t in dict.fromkeys(tries.tolist())][:3]
+    return [float(t) for t in dict.fromkeys(tries.tolist())][:count]
 
 
 def _circles(obstacles: Obstacles) -> Obstacles:
