@@ -58,13 +58,16 @@ __all__ = [
     "TABLE_WIDTH",
     "TERM_MAX_LINES",
     "VECTOR_MAX_ENTRIES",
+    "WRAP_MIN",
     "MatrixView",
     "cell_width",
+    "column_widths",
     "fit_rows",
     "height",
     "show_matrix",
     "table_width",
     "width",
+    "wrapped_columns",
 ]
 
 # ---------------------------------------------------------------- the thresholds, in one place
@@ -77,6 +80,10 @@ TABLE_WIDTH = 100.0
 """Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt of
 text each, so the 17 cm line holds about 110); a wider table is set in ``\\footnotesize``
 with less space between its columns (about 0.75 of the width)."""
+WRAP_MIN = 12.0
+"""A table wider than :data:`TABLE_WIDTH` wraps the text of its prose columns (those whose wide
+cells hold words), each at least this wide, so that the others keep their natural width
+(:func:`wrapped_columns`)."""
 MATRIX_MAX_ROWS = 12
 """A matrix with more rows is never written in full (a display that tall reads badly)."""
 MATRIX_MAX_COLUMNS = 12
@@ -309,6 +316,20 @@ def cell_width(text: str) -> float:
     return sum(len(p) if k % 2 == 0 else width(p) for k, p in enumerate(parts))
 
 
+def column_widths(header, rows) -> list[float]:
+    """The widest cell of each column of a table, in the units of :data:`TABLE_WIDTH`.
+
+    Examples
+    --------
+    >>> from symctl.report.longform import column_widths
+    >>> column_widths(("a", "bb"), (("ccc", "d"),))
+    [3, 2]
+    """
+    table = [header, *rows]
+    columns = max(len(r) for r in table)
+    return [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
+
+
 def table_width(header, rows) -> float:
     """The width of a table: its widest cell per column plus the space between columns.
 
@@ -318,10 +339,50 @@ def table_width(header, rows) -> float:
     >>> table_width(("a", "bb"), (("ccc", "d"),))
     9.8
     """
+    widest = column_widths(header, rows)
+    return sum(widest) + 2.4 * len(widest)
+
+
+def _breakable(cell: str) -> bool:
+    """Whether a cell can wrap: a space outside its math."""
+    return any(" " in part.strip() for part in cell.split("$")[::2])
+
+
+def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...]:
+    """The columns a table wraps to fit ``budget``: its prose columns, widest first.
+
+    A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a
+    space outside math. The widest such columns wrap until the others, at
+    their natural width, and :data:`WRAP_MIN` for each wrapped one fit;
+    ``()`` when the table fits as it is (or no choice of columns makes it fit).
+
+    Examples
+    --------
+    >>> from symctl.report.longform import wrapped_columns
+    >>> wide = ("a circuit with a long name, " * 4, "$1$", "yes")
+    >>> wrapped_columns(("circuit", "n", "ok"), (wide,))
+    (0,)
+    >>> wrapped_columns(("circuit", "n"), (("short", "$1$"),))
+    ()
+    """
+    widths = column_widths(header, rows)
+    sep = 2.4 * len(widths)
+    if sum(widths) + sep <= budget:
+        return ()
     table = [header, *rows]
-    columns = max(len(r) for r in table)
-    widest = [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
-    return sum(widest) + 2.4 * columns
+    can = [j for j in range(len(widths))
+           if all(_breakable(r[j]) for r in table if j < len(r) and cell_width(r[j]) > WRAP_MIN)]  # fmt: skip
+    chosen: list[int] = []
+    for j in sorted(can, key=lambda j: -widths[j]):
+        if widths[j] <= WRAP_MIN:
+            break
+        chosen.append(j)
+        if (
+            sum(w for k, w in enumerate(widths) if k not in chosen) + WRAP_MIN * len(chosen) + sep
+            <= budget
+        ):
+            return tuple(sorted(chosen))
+    return ()
 
 
 # ---------------------------------------------------------------- breaking a line

@@ -12,6 +12,7 @@ from symctl.report.document import (
     Graphic,
     Heading,
     Math,
+    References,
     Table,
     Text,
     Verbatim,
@@ -58,11 +59,40 @@ def test_every_block_type_renders_in_both_formats():
         Table(("h1", "h2"), (("1", "a|b"),)),
         Graphic("g", "c"),
         Verbatim("x -> y"),
+        References((("k", "An entry."),)),
     ]
     assert {type(b) for b in blocks} == set(BLOCKS)
     tex, md = to_tex(blocks), to_markdown(blocks)
     assert r"\subsection{A}" in tex and r"a &= 1 \\ b &= 2" in tex and r"\begin{verbatim}" in tex
+    assert r"\bibitem{k} An entry." in tex
     assert "### A" in md and r"a\|b" in md and "```\nx -> y\n```" in md
+    assert "## References\n\n[1] An entry." in md
+
+
+def test_citations_and_references_are_numbered_alike_in_both_formats():
+    blocks = [
+        Text("As in [@b, Fig. 5] and [@a]; see Fig. [#fig:g], Table [#tab:t] and [#eq:x]."),
+        Math((("x", "1"),), "eq:y"),
+        Math((("x", "1"),), "eq:x"),
+        Table(("h",), (("1",),), caption="A table.", label="t"),
+        Graphic("g", "c"),
+        References((("a", "First."), ("b", "Second."))),
+    ]
+    tex, md = to_tex(blocks), to_markdown(blocks)
+    assert (r"As in~\cite[Fig. 5]{b} and~\cite{a}; see Fig.~\ref{fig:g}, Table~\ref{tab:t} and~"
+            r"\eqref{eq:x}.") in tex  # fmt: skip
+    assert r"\caption{A table.}\label{tab:t}" in tex and r"\begin{table}" in tex
+    assert "As in [2, Fig. 5] and [1]; see Fig. 1, Table 1 and (2)." in md
+    assert "*Table 1: A table.*" in md and "*Figure 1: c*" in md
+
+
+def test_an_unknown_reference_is_question_marks_in_markdown():
+    assert "Fig. ?? [??]" in to_markdown([Text("Fig. [#fig:none] [@none]")])
+
+
+def test_every_heading_first_places_the_floats_of_the_section_before():
+    tex = to_tex([Heading("A"), Graphic("g", "c"), Heading("B", 2), Heading("C")])
+    assert tex.count("\\symctlbarrier\n\\s") == 3 and r"\newcommand{\symctlbarrier}" in tex
 
 
 def test_the_title_is_a_parameter():
