@@ -16,9 +16,11 @@ escaped for LaTeX, except the citations ``[@key, locator]`` of the
 ``[#eq:label]`` to the document's own figures, captioned tables and displays,
 which both formats number (:mod:`symctl.report.prose`).
 
-Each section and subsection keeps its floats: a heading first places the
-figures still waiting (``\symctlbarrier``, like the ``placeins`` package, which
-is not in TeX Live's base set).
+Each section keeps its floats: a section heading first places the figures
+still waiting (``\symctlbarrier``: it ends the page, where they go on top of the
+next one, or flushes them, like the ``placeins`` package, which is not in TeX
+Live's base set); subsections are not barriers, which would leave too many pages
+half empty.
 
 Examples
 --------
@@ -169,9 +171,12 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
   \else\usebox{\symctlbox}\fi}
 \setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}
 \makeatletter
-\newcommand{\symctlbarrier}{\par\begingroup\let\@elt\relax
-  \edef\@tempa{\@botlist\@deferlist\@dbldeferlist}%
-  \ifx\@tempa\@empty\else\clearpage\fi\endgroup}
+\newif\ifsymctlwaiting
+\newcommand{\symctlcheck}{\begingroup\let\@elt\relax
+  \edef\@tempa{\@botlist\@deferlist\@dbldeferlist}\ifx\@tempa\@empty
+  \aftergroup\symctlwaitingfalse\else\aftergroup\symctlwaitingtrue\fi\endgroup}
+\newcommand{\symctlbarrier}{\par\symctlcheck
+  \ifsymctlwaiting\newpage\symctlcheck\ifsymctlwaiting\clearpage\fi\fi}
 \makeatother
 \renewcommand{\topfraction}{0.9}\renewcommand{\bottomfraction}{0.8}
 \renewcommand{\textfraction}{0.1}\renewcommand{\floatpagefraction}{0.8}
@@ -236,6 +241,7 @@ def _tex_table(b: Table) -> str:
     body += [" & ".join(tex_text(c) for c in row) + r" \\" for row in b.rows]
     caption = rf"\caption{{{tex_text(b.caption)}}}" if b.caption else ""
     label = rf"\label{{tab:{b.label}}}" if b.caption and b.label else ""
+    label += r"\vspace{0.5ex}" if b.caption and not long else ""
     if long:
         top = [rf"{caption}{label}\\"] if caption else []
         return "\n".join([rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", *top, r"\hline",
@@ -257,7 +263,7 @@ def _tex_references(b: References) -> str:
 def _tex_block(b) -> str:
     if isinstance(b, Heading):
         command = rf"\{'sub' * (b.level - 1)}section{{{tex_text(b.text)}}}"
-        return "\n".join([r"\symctlbarrier", command])
+        return rf"\symctlbarrier{command}" if b.level == 1 else command
     if isinstance(b, Text):
         return tex_text(b.text)
     if isinstance(b, Math):

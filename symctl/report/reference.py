@@ -106,7 +106,7 @@ SECTIONS = MappingProxyType(
 """The paper's sections: LaTeX label (without ``sec:``) to Roman numeral."""
 
 _KINDS = {"Fig.": FIGURES, "Figs.": FIGURES, "Eq.": EQUATIONS, "Def.": DEFINITIONS,
-          "Sec.": SECTIONS}  # fmt: skip
+          "Defs.": DEFINITIONS, "Sec.": SECTIONS, "Secs.": SECTIONS}  # fmt: skip
 
 
 def cite(kind: str | None = None, *labels: str) -> str:
@@ -114,7 +114,7 @@ def cite(kind: str | None = None, *labels: str) -> str:
 
     Parameters
     ----------
-    kind : {"Fig.", "Figs.", "Eq.", "Def.", "Sec."}, optional
+    kind : {"Fig.", "Figs.", "Eq.", "Def.", "Defs.", "Sec.", "Secs."}, optional
         What is cited; without it, the paper as a whole.
     *labels : str
         The paper's labels of what is cited (keys of :data:`FIGURES`,

@@ -33,9 +33,9 @@ from symctl.symbols import z
 __all__ = ["COMPACT_LENGTH"]
 
 
-def _fmt(value: float) -> str:
-    """A number as inline math (for prose and table cells)."""
-    return f"${L.number(value, 6)}$"
+def _fmt(value: float, digits: int = 6) -> str:
+    """A number as inline math (for prose and table cells), to ``digits`` significant digits."""
+    return f"${L.number(value, digits)}$"
 
 
 def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
@@ -252,13 +252,15 @@ def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
     """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
 
     A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
-    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
-    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
-    header, rows)``), follow the display.
+    fits; a 1 x 1 matrix as its entry), every row is broken to the line
+    (:func:`~symctl.report.longform.fit_rows`), and a tall display may break across pages;
+    the matrices' tables, then ``tables`` (``(intro, header, rows)``), follow the display.
     """
     lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
     shown, more = [], []
     for lhs, rhs in rows:
+        if getattr(rhs, "shape", None) == (1, 1):  # a 1 x 1 matrix is its entry, as papers write it
+            rhs = rhs[0, 0]
         if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
             view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
             shown += view.rows

@@ -30,7 +30,16 @@ from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
 from symctl.report import mimo_story as MIMO
 from symctl.report import model_story as MS
-from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
+from symctl.report.document import (
+    DocumentBlock,
+    Graphic,
+    Heading,
+    References,
+    Table,
+    Text,
+    Verbatim,
+)
+from symctl.report.reference import REFERENCES, cite
 from symctl.report.shorthand import (
     COMPACT_LENGTH,
     _both,
@@ -57,8 +66,56 @@ __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
 
 _GRAPH_CAPTION = (
     "The delay graph: the sensor (green) on the left, the actuator (orange) on the right, each "
-    "direct edge with its delay in steps (the paper's Fig. muscle_system, right)."
+    f"direct edge with its delay in steps (as in {cite('Fig.', 'muscle_system')}, right)."
 )
+
+
+_PAPER_STRUCTURE = {
+    "ifp": f" (as in {cite('Fig.', 'ifp_diagram')})",
+    "general": f" (as in {cite('Fig.', 'full_diagram')}, left, with $G_1$ and $G_3$)",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, left, with $G_1$ and $G_3$)",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, left, with $G_1$ and $G_3$)",
+}
+_PAPER_CIRCUIT = {
+    "general": f" (as in {cite('Fig.', 'full_diagram')}, right)",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, right)",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, right)",
+}
+_PAPER_FIRING = {
+    "general": f" (as in {cite('Fig.', 'full_diagram')})",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')})",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')})",
+}
+
+
+def _readings() -> list[DocumentBlock]:
+    """The two readings of the delay assignment matrix, and why the verdicts agree."""
+    return [
+        Text(
+            f"Two readings of $\\tilde E$. The paper defines $\\tilde E_{{ij}}$ as the delay along "
+            f"the fastest path from a signal at vertex $i$ to a signal at vertex $j$ "
+            f"{cite('Def.', 'delay_assignment_matrix')}. Read by its words, a path may pass "
+            "through signals at any vertex: this is the matrix $\\tilde E$ shown below. The "
+            f"matrix the paper prints for its $G_3 G_2 G_1$ {cite('Eq.', 'E_tilde')} counts only "
+            "the paths whose signals all sit at $v_i$ or $v_j$; it has $\\tilde E_{13} = \\infty$ "
+            "although a path of delay 2 runs from $v_1$ through $v_2$ to $v_3$. This direct "
+            "reading is shown as $\\tilde E^{\\mathrm{d}}$ where it differs. The fastest reading is "
+            "entrywise at most the direct one, and $E$ holds the shortest delays of the graph "
+            "(it obeys the triangle inequality), so an assignment meets $\\tilde E \\ge E$ in one "
+            "reading exactly when it meets it in the other (proved in "
+            "symctl.compatibility.assignment): the verdicts below hold in both."
+        )
+    ]
+
+
+def _e_tilde(E, assignment, name: str) -> list[DocumentBlock]:
+    """The witness assignment's delay matrix in both readings (one row when they agree)."""
+    fast, direct = assignment.e_tilde("fastest"), assignment.e_tilde("direct")
+    big = not LF.show_matrix("E", E).full
+    rows = [(r"\tilde E", "E" if big and np.array_equal(fast, E) else fast)]
+    if not np.array_equal(direct, fast):
+        rows.append((r"\tilde E^{\mathrm{d}}", direct))
+    return _eq(*rows, label=f"eq:Etilde-{name}")
 
 
 def _ascii(text: str) -> str:
@@ -99,9 +156,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     blocks: list[DocumentBlock] = []
     add, put = blocks.append, blocks.extend
 
-    def figure(name: str, caption: str) -> None:
-        if name in shown:
-            add(Graphic(name, caption))
+    def figure(name: str, caption: str) -> list[DocumentBlock]:
+        return [Graphic(name, caption)] if name in shown else []
+
+    def see(name: str) -> str:
+        """`` (Fig. n)`` for a figure of the document, nothing for one not written."""
+        return f" (Fig. [#fig:{name}])" if name in shown else ""
 
     s, g, f = res.system, res.gains, res.factors
     put(MS.opening(res, figure))
@@ -174,13 +234,15 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     hit = ", ".join(xs[i] for i in res.spec.disturbance[0])
-    figure("closed_loop", "Closed loop of the optimal delayed controller: response to a pulse "
-                          f"disturbance on {hit} (the paper's Fig. cl_sims).")  # fmt: skip
+    like = cite("Fig.", "cl_sims")
+    put(figure("closed_loop", "Closed loop of the optimal delayed controller: response to a "
+                              f"unit pulse disturbance on {hit} (as in {like})."))  # fmt: skip
     if f is None:
         put(MS.skipped(res))
-        figure("delay_graph", _GRAPH_CAPTION)
+        put(figure("delay_graph", _GRAPH_CAPTION))
         put(MS.nonlinear(res, figure))
         put(MS.longest(res))
+        add(References(REFERENCES))
         return blocks
 
     names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
@@ -313,14 +375,17 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     add(
         Text(
-            graph_text + "; $E_{ij}$ is the smallest delay from "
-            "vertex $i$ to vertex $j$ ($\\infty$: no path). A structure is compatible when its "
-            "signals can be placed at vertices so that every path's delays $\\tilde E$ are at "
-            "least $E$."
+            graph_text + f"{see('delay_graph')}; $E_{{ij}}$ is the smallest delay from vertex $i$ "
+            f"to vertex $j$ ($\\infty$: no path; {cite('Def.', 'delay_graph')}, and "
+            f"{cite('Eq.', 'E')} for the paper's graph). A delay assignment puts every signal "
+            "of a structure at a vertex, the controller's input at the sensor and its output at "
+            "the actuator; the structure is compatible when some assignment has $\\tilde E \\ge E$ "
+            f"entry by entry {cite('Defs.', 'delay_assignment', 'compatible_structure')}."
         )
     )
-    figure("delay_graph", _GRAPH_CAPTION)
+    put(figure("delay_graph", _GRAPH_CAPTION))
     put(_eq(("E", res.graph.E), label="eq:E"))
+    put(_readings())
     put(MS.theorem(res))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
@@ -329,15 +394,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(
                 Text(
                     f"Compatible (decided by {verdict.method}); the delays between the vertices "
-                    "under the witness assignment:"
+                    "under the witness assignment, in both readings:"
                 )
             )
-            same = np.array_equal(verdict.E_tilde, res.graph.E)
-            big = not LF.show_matrix("E", res.graph.E).full
-            put(_eq((r"\tilde E", "E" if same and big else verdict.E_tilde),
-                    label=f"eq:Etilde-{name}"))  # fmt: skip
+            put(_e_tilde(res.graph.E, verdict.assignment, name))
             where = "; ".join(
-                f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
+                f"v{v}: {MS.counted(len(verdict.assignment.signals_at(v)), 'signal')}"
                 for v in range(1, res.graph.n + 1)
             )
             add(Text(f"Signals per vertex: {where}. The checker's witness:"))
@@ -345,7 +407,11 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         else:
             add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
             add(Verbatim(_ascii(verdict.reason)))
-        figure(f"structure_{name}", f"Structure: {_title(name)}.")
+        put(
+            figure(
+                f"structure_{name}", f"Structure: {_title(name)}{_PAPER_STRUCTURE.get(name, '')}."
+            )
+        )
 
     # 9. circuits
     add(Heading("Neurons and circuits"))
@@ -371,7 +437,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                     str(len(c.circuit.synapses)),
                     "yes" if c.compatibility.ok else "no",
                     str(c.firing.count),
-                    _fmt(c.firing.max_deviation),
+                    _fmt(c.firing.max_deviation, 2),
                 )
                 for k, c in res.circuits.items()
             ),
@@ -390,8 +456,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as circles "
-                                  "with their self-dynamics, synapses as arrows with weights.")  # fmt: skip
+        put(figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
+                                      "circles with their self-dynamics, synapses as arrows with "
+                                      f"weights{_PAPER_CIRCUIT.get(name, '')}."))  # fmt: skip
 
     # 10. simulations
     add(Heading("Simulations: the same behaviour, different firing"))
@@ -408,14 +475,16 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         fp = crec.firing
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
-        figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
-                                 f"{fp.count} realization(s), same {xs[0]}.")  # fmt: skip
+        put(figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
+                                     f"{MS.counted(fp.count, 'realization')}, the same {xs[0]} "
+                                     f"traces{_PAPER_FIRING.get(name, '')}."))  # fmt: skip
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
     if res.atlas is not None:
         from symctl.report.atlas import paper_blocks
 
         put(paper_blocks(res, shown))
+    add(References(REFERENCES))
     return blocks
 
 

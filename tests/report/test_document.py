@@ -90,9 +90,10 @@ def test_an_unknown_reference_is_question_marks_in_markdown():
     assert "Fig. ?? [??]" in to_markdown([Text("Fig. [#fig:none] [@none]")])
 
 
-def test_every_heading_first_places_the_floats_of_the_section_before():
+def test_every_section_heading_first_places_the_floats_of_the_section_before():
     tex = to_tex([Heading("A"), Graphic("g", "c"), Heading("B", 2), Heading("C")])
-    assert tex.count("\\symctlbarrier\n\\s") == 3 and r"\newcommand{\symctlbarrier}" in tex
+    assert tex.count(r"\symctlbarrier\section{") == 2 and r"\newcommand{\symctlbarrier}" in tex
+    assert "\n\\subsection{B}" in tex
 
 
 def test_the_title_is_a_parameter():
