@@ -100,8 +100,10 @@ TERM_MAX_LINES = 12
 """An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
 VECTOR_MAX_ENTRIES = 6
 """A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
-DISPLAY_MAX_LINES = 24
-"""A display taller than this (in lines) may break across pages."""
+DISPLAY_MAX_LINES = 16
+"""A display taller than this (in lines, :func:`height`) may break across pages: about a third
+of the page, so that a display which cannot break still fits beside a figure (taller ones made
+the page overfull, "Overfull \\vbox ... while \\output is active")."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""
 TABLE_MAX_ROWS = 30
@@ -292,15 +294,17 @@ def width(tex: str) -> float:
 
 
 def height(tex: str) -> int:
-    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly).
+    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly); one more
+    with a fraction (as tall as two lines).
 
     Examples
     --------
     >>> from symctl.report.longform import height
-    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}")
-    (1, 3)
+    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}"), height(r"\\frac{a}{b}")
+    (1, 3, 2)
     """
-    return max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
+    rows = max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
+    return rows + (r"\frac" in tex)
 
 
 def cell_width(text: str) -> float:

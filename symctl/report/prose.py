@@ -39,6 +39,7 @@ _SPECIAL = {
     "}": r"\}",
     "~": r"\textasciitilde{}",
     "^": r"\textasciicircum{}",
+    "/": r"\slash{}",  # a line may break after a slash (a file's path in prose), at a small cost
 }
 
 

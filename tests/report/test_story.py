@@ -62,9 +62,8 @@ def test_the_delays_are_counted_in_words_not_step_s():
 
 
 @pytest.fixture(scope="module")
-def paper_blocks():
-    res = derive_paper(realizations=1)
-    return res, story(res, figures=res.figure_names())
+def paper_blocks(derived_T2):
+    return derived_T2, story(derived_T2, figures=derived_T2.figure_names())
 
 
 def _prose(blocks) -> list[str]:
