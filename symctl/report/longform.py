@@ -10,8 +10,10 @@ that are the same background value (0, or :math:`\infty` for a delay matrix).
   ``-`` (sums) or ``,`` (lists) into continuation lines; one with more than
   :data:`TERM_MAX_LINES` lines keeps its first and last lines and states how
   many terms it leaves out.
-* A matrix that fits (at most :data:`MATRIX_MAX_ROWS` rows and its width within
-  the line) is written in full, as before. Beyond that, in this order:
+* A diagonal matrix of at least :data:`DIAGONAL_MIN` rows is
+  :math:`\operatorname{diag}(d_1, \dots, d_n)`. Another matrix that fits (at most
+  :data:`MATRIX_MAX_ROWS` rows and its width within the line) is written in full.
+  Beyond that, in this order:
   a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
   (transposed for a column) broken over lines; a companion matrix (ones on the
   super- or sub-diagonal, one free row or column) is its dots picture with the
@@ -46,6 +48,7 @@ from symctl import latex as L
 
 __all__ = [
     "CORNER",
+    "DIAGONAL_MIN",
     "DISPLAY_MAX_LINES",
     "LARGE_DIGITS",
     "LINE_WIDTH",
@@ -98,6 +101,10 @@ LARGE_DIGITS = 4
 """Significant digits of the numbers in a large matrix (the full values are in results.json)."""
 TERM_MAX_LINES = 12
 """An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
+DIAGONAL_MIN = 4
+r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}(d_1, \dots, d_n)`
+(a run of four or more equal entries as :math:`\underbrace{0, \dots, 0}_k`), as the paper writes
+:math:`\tilde Q = \operatorname{diag}(Q, 0, R)`."""
 VECTOR_MAX_ENTRIES = 6
 """A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
 DISPLAY_MAX_LINES = 16
@@ -529,6 +536,21 @@ def _is(e, value) -> bool:
         return False
 
 
+def _runs(items: list[str]) -> str:
+    """Items joined by commas, a run of four or more equal ones as ``0, \\dots, 0`` braced with
+    its length."""
+    out, k = [], 0
+    while k < len(items):
+        j = k
+        while j < len(items) and items[j] == items[k]:
+            j += 1
+        run = j - k
+        out.append(rf"\underbrace{{{items[k]}, \dots, {items[k]}}}_{{{run}}}" if run >= 4
+                   else ", ".join(items[k:j]))  # fmt: skip
+        k = j
+    return ", ".join(out)
+
+
 def _companion(E) -> str | None:
     """``"row"`` (ones above the diagonal, a free last row), ``"column"`` (ones below it, a free
     last column) or None."""
@@ -623,15 +645,22 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
     --------
     >>> import numpy as np
     >>> from symctl.report.longform import show_matrix
-    >>> view = show_matrix("D", 2 * np.eye(15))
+    >>> view = show_matrix("D", 2 * np.eye(15) + np.eye(15, k=1))
     >>> view.rows[0][1].startswith(r"\left[\begin{smallmatrix}")
     True
     >>> view.tables[0][2]
-    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'),)
+    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'), ('${D}_{i,i+1}$', '$i = 1, \\dots, 14$', '$1$'))
+    >>> show_matrix("Q", np.diag([1.0, 0, 0, 0, 0, 1])).rows
+    [('Q', '\\operatorname{diag}\\left(1, \\underbrace{0, \\dots, 0}_{4}, 1\\right)')]
     """
     room = LINE_WIDTH - 12.0 if room is None else room
     E, numeric = _entries(M)
     n, m = len(E), len(E[0]) if E else 0
+    if n == m >= DIAGONAL_MIN and all(
+        _is(E[i][j], 0) for i in range(n) for j in range(n) if i != j
+    ):
+        diag = [_entry_tex(E[i][i], numeric, digits) for i in range(n)]
+        return MatrixView([(lhs, rf"\operatorname{{diag}}\left({_runs(diag)}\right)")])
     full = L.to_latex(M if not numeric else np.asarray(M, dtype=float), digits=digits)
     small = n <= MATRIX_MAX_ROWS and m <= MATRIX_MAX_COLUMNS
     if min(n, m) == 1:

@@ -28,7 +28,16 @@ from symctl.report.reference import cite
 from symctl.report.shorthand import _both, _eq, _fmt, _num
 from symctl.report.spec import PAPER
 
-__all__ = ["counted", "longest", "nonlinear", "opening", "skipped", "theorem", "unit_text"]
+__all__ = [
+    "counted",
+    "longest",
+    "names_tex",
+    "nonlinear",
+    "opening",
+    "skipped",
+    "theorem",
+    "unit_text",
+]
 
 
 def unit_text(unit: str, value: float | None = None) -> str:
@@ -68,6 +77,18 @@ def counted(n: int, word: str) -> str:
 
 def _sym(name: str) -> str:
     return L.to_latex(sp.Symbol(name))
+
+
+def names_tex(names) -> str:
+    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $\omega$``.
+
+    Examples
+    --------
+    >>> from symctl.report.model_story import names_tex
+    >>> names_tex(["theta", "f_flex"])
+    '$\\theta$, $f_\\text{flex}$'
+    """
+    return ", ".join(f"${_sym(n)}$" for n in names)
 
 
 def _is_paper(spec) -> bool:
@@ -115,7 +136,7 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
     ours = "ours" if paper else "symctl"
     none = f"ours ({cite()} states none)" if paper else "model file"
     states, amplitude, start, length = spec.disturbance
-    hit = ", ".join(res.names[0][i] for i in states)
+    hit = names_tex([res.names[0][i] for i in states])
     unit = unit_text(spec.unit(res.names[0][states[0]]), amplitude)
     rows += [
         ("sampling time $T_s$", f"{params['Ts']:g} s", _source(paper, "Ts", params["Ts"])),
@@ -262,7 +283,7 @@ def opening(res, figure) -> list[DocumentBlock]:
     )
     blocks += figure(
         "open_loop",
-        f"Open-loop response of the linear plant to a unit pulse in {', '.join(us)} "
+        f"Open-loop response of the linear plant to a unit pulse in {names_tex(us)} "
         f"(as in {cite('Fig.', 'ol_sims')} for the muscle).",
     )
     return blocks
@@ -287,7 +308,9 @@ def theorem(res) -> list[DocumentBlock]:
     names = res.spec.vertices if res.spec is not None and res.spec.vertices else None
 
     def vertex(v: int) -> str:
-        return names[v - 1].replace("_", r"\_") if names else f"v{v}"
+        if names and names[v - 1] != f"v{v}":
+            return names[v - 1].replace("_", r"\_")
+        return f"$v_{{{v}}}$"
 
     head = (
         "For every realization at once (a theorem, not a search): some structure of the "
@@ -367,7 +390,7 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
         Table(
             (
                 f"pulse amplitude{a_unit}",
-                f"max. deviation of {xs[0]}{u}",
+                f"max. deviation of {names_tex(xs[:1])}{u}",
                 "relative",
                 "final / peak",
             ),

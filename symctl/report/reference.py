@@ -105,7 +105,7 @@ SECTIONS = MappingProxyType(
 )
 """The paper's sections: LaTeX label (without ``sec:``) to Roman numeral."""
 
-_KINDS = {"Fig.": FIGURES, "Figs.": FIGURES, "Eq.": EQUATIONS, "Def.": DEFINITIONS,
+_KINDS = {"Fig.": FIGURES, "Figs.": FIGURES, "Eq.": EQUATIONS, "Eqs.": EQUATIONS, "Def.": DEFINITIONS,
           "Defs.": DEFINITIONS, "Sec.": SECTIONS, "Secs.": SECTIONS}  # fmt: skip
 
 
@@ -114,7 +114,7 @@ def cite(kind: str | None = None, *labels: str) -> str:
 
     Parameters
     ----------
-    kind : {"Fig.", "Figs.", "Eq.", "Def.", "Defs.", "Sec.", "Secs."}, optional
+    kind : {"Fig.", "Figs.", "Eq.", "Eqs.", "Def.", "Defs.", "Sec.", "Secs."}, optional
         What is cited; without it, the paper as a whole.
     *labels : str
         The paper's labels of what is cited (keys of :data:`FIGURES`,
@@ -144,5 +144,5 @@ def cite(kind: str | None = None, *labels: str) -> str:
     unknown = [x for x in labels if x not in table]
     if unknown or not labels:
         raise ParameterError(f"labels: the paper has no {kind} {unknown or 'without a label'}")
-    numbers = [f"({table[x]})" if kind == "Eq." else str(table[x]) for x in labels]
+    numbers = [f"({table[x]})" if kind.startswith("Eq") else str(table[x]) for x in labels]
     return f"[@{KEY}, {kind} {', '.join(numbers)}]"

@@ -176,6 +176,24 @@ def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
     return rows, short
 
 
+def _factored(mat):
+    r"""A symbolic matrix with the factor common to its entries written in front, as the paper
+    writes :math:`M = \frac{K_0}{C_1 C_3} [K_2 + \epsilon_1 \epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`
+    (LaTeX); the matrix itself when its entries share no factor with a symbol."""
+    if not isinstance(mat, sp.MatrixBase) or len(mat) < 2 or len(mat) > LF.MATRIX_MAX_ROWS:
+        return mat
+    entries = [e for e in mat if e != 0]
+    if len(entries) < 2:
+        return mat
+    common = entries[0]
+    for e in entries[1:]:
+        common = sp.gcd(common, e)
+        if not common.free_symbols:
+            return mat
+    inner = mat.applyfunc(lambda e: sp.factor_terms(sp.cancel(e / common)))
+    return rf"{L.to_latex(common)} {L.to_latex(inner)}"
+
+
 def _renamed(R, compact: dict) -> dict[str, str]:
     """The LaTeX of each entry of ``R`` that :func:`_compact` renamed, to its new LaTeX."""
     out = {}

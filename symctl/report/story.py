@@ -18,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 
 import numpy as np
@@ -25,6 +26,7 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl._util.texnames import signal_tex
 from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
@@ -46,6 +48,7 @@ from symctl.report.shorthand import (
     _compact,
     _display,
     _eq,
+    _factored,
     _fits,
     _fmt,
     _indexed,
@@ -69,6 +72,8 @@ _GRAPH_CAPTION = (
     f"direct edge with its delay in steps (as in {cite('Fig.', 'muscle_system')}, right)."
 )
 
+
+_PAPER_FORMS = ("controllable", "observable")  # labelled as the paper's equations
 
 _PAPER_STRUCTURE = {
     "ifp": f" (as in {cite('Fig.', 'ifp_diagram')})",
@@ -166,18 +171,21 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     s, g, f = res.system, res.gains, res.factors
     put(MS.opening(res, figure))
     xs = res.names[0]
+    x0, u0 = MS.names_tex(xs[:1]), MS.names_tex(res.names[1][:1])  # the signals the figures plot
 
     # 3. delays
     add(Heading("Delays and the augmented system"))
     add(
         Text(
-            f"The sensor delays the measured {', '.join(xs)} by $d_s = {s.sensor_delay}$ "
+            f"The sensor delays the measured {MS.names_tex(xs)} by $d_s = {s.sensor_delay}$ "
             f"step{'s' * (s.sensor_delay != 1)} and the actuator "
-            f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
-            f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
-            "become states: the augmented state $\\chi$ evolves as "
+            f"the command $\\mu$ by $d_a = {s.actuator_delay}$ step{'s' * (s.actuator_delay != 1)}; "
+            f"only the net delay $T = d_s + d_a = {s.T}$ enters the optimal control problem "
+            f"{cite('Sec.', 'optimal_delayed_controller')}. The delayed commands become states: "
+            "the augmented state $\\chi$ evolves as "
             "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
-            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
+            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself; for $T = 2$ these "
+            f"are {cite('Eqs.', 'augmented_states', 'augmented_system', 'augmented_cost')}):"
         )
     )
     put(
@@ -195,7 +203,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(
         Text(
             "The discrete algebraic Riccati equation gives the optimal feedback "
-            "$\\mu(t) = K \\chi(t)$ (the paper's sign), "
+            f"$\\mu(t) = K \\chi(t)$ (the paper's sign, {cite('Eq.', 'ifp_controller')}), "
             f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
             f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
             "square root of the rounding error in floating point):"
@@ -217,7 +225,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(
         Text(
             "Eliminating the delayed commands, the controller from the measured states to the "
-            "inputs is a transfer function of the gains, kept symbolic:"
+            "inputs is a transfer function of the gains, kept symbolic (for $T = 2$ the paper's "
+            f"{cite('Eq.', 'transfer_fn')}):"
         )
     )
     whole = _both(res.G_symbolic, G_num.expr.evalf(6))
@@ -233,7 +242,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"{G_num.relative_degree}."
         )
     )
-    hit = ", ".join(xs[i] for i in res.spec.disturbance[0])
+    hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
     put(figure("closed_loop", "Closed loop of the optimal delayed controller: response to a "
                               f"unit pulse disturbance on {hit} (as in {like})."))  # fmt: skip
@@ -255,7 +264,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(
             Text(
                 "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
-                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
+                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest "
+                f"(for $T = 2$ the paper's {cite('Eq.', 'factors')}, realized as in "
+                f"{cite('Eq.', 'sections')}):"
             )
         )
         den = descending_latex(f.G2.den)
@@ -291,7 +302,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(
             Text(
                 "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-                "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
+                "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
+                f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
             )
         )
         put(
@@ -309,10 +321,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(
             Text(
                 "A realization $(F, H, M, N)$ of $G_2$ satisfies "
-                "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
-                "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
-                "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
-                f"from seed {res.seed})."
+                f"$M (zI - F)^{{-1}} H + N = G_2(z)$ {cite('Eq.', 'realization')}; each one below "
+                "is checked exactly, symbolically and with the numbers used in the simulations "
+                "(the optimal gains, $C = 1$ on every section, and for the general one random "
+                f"$\\epsilon$ and a random full-rank $P$ drawn from seed {res.seed})."
             )
         )
         for name in [k for k in ("controllable", "observable") if k in res.realizations]:
@@ -321,9 +333,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
             if short:
                 names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
-            put(_eq(*mats, label=f"eq:{name}"))
+            put(_eq(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}"))
             where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
-            add(Text(_check_text(rec) + where))
+            paper = f" For $T = 2$ this is {cite('Eq.', name)}." if name in _PAPER_FORMS else ""
+            add(Text(_check_text(rec) + where + paper))
         if "general" in res.realizations:
             rec = res.realizations["general"]
             add(Heading("General realization", 2))
@@ -331,7 +344,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(
                 Text(
                     "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-                    "into another realization of the same $G_2$:"
+                    "into another realization of the same $G_2$ (for $T = 2$ the paper's "
+                    f"{cite('Eq.', 'general_realization')}):"
                 )
             )
             put(
@@ -399,7 +413,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             )
             put(_e_tilde(res.graph.E, verdict.assignment, name))
             where = "; ".join(
-                f"v{v}: {MS.counted(len(verdict.assignment.signals_at(v)), 'signal')}"
+                f"$v_{{{v}}}$: {MS.counted(len(verdict.assignment.signals_at(v)), 'signal')}"
                 for v in range(1, res.graph.n + 1)
             )
             add(Text(f"Signals per vertex: {where}. The checker's witness:"))
@@ -417,12 +431,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(Heading("Neurons and circuits"))
     add(
         Text(
-            "A neuron is an adder that sums two or more terms (the output sum included); a "
+            f"A neuron (the stylized neuron of {cite('Fig.', 'neural_circuit')}) is an adder that "
+            "sums two or more terms (the output sum included); a "
             "single term through delays is an axon with a synaptic weight; a loop through the "
             "neuron's own output is its self-dynamics. The closed loop was simulated with "
             f"{_count_text(res)} of each circuit; the largest relative departure of the "
-            f"{xs[0]} and {res.names[1][0]} traces from the optimal controller's is in the last "
-            "column."
+            f"{x0} and {u0} traces from the optimal controller's is in the last column."
         )
     )
     add(
@@ -453,7 +467,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(Text("The neurons, their self-dynamics and synapses:"))
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
         put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
-        placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
+        placed = [f"${signal_tex(n.name)}$ at $v_{{{n.vertex}}}$" for n in crec.circuit.neurons
+                  if n.vertex]  # fmt: skip
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
         put(figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
@@ -464,9 +479,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(Heading("Simulations: the same behaviour, different firing"))
     add(
         Text(
-            f"Every realization gives the {xs[0]} and {res.names[1][0]} traces of the optimal "
-            "controller "
-            "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
+            f"Every realization gives the {x0} and {u0} traces of the optimal controller "
+            "(to rounding), while the neurons of $G_2$ fire differently, as "
+            f"{cite('Sec.', 'simulations')} shows for its circuits. Peak firing "
             "(change from equilibrium, spikes/s) per neuron and realization; the spread is "
             "the largest difference between two realizations' traces at any one step:"
         )
@@ -476,7 +491,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
         put(figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
-                                     f"{MS.counted(fp.count, 'realization')}, the same {xs[0]} "
+                                     f"{MS.counted(fp.count, 'realization')}, the same {x0} "
                                      f"traces{_PAPER_FIRING.get(name, '')}."))  # fmt: skip
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
@@ -523,7 +538,11 @@ def _firing_table(fp) -> list[DocumentBlock]:
     summ = fp.summary()
     for shown in range(fp.count, 0, -1):
         rows = tuple(
-            (n, *(_fmt(v) for v in summ.peak[:shown, i]), _fmt(summ.trace_spread[i]))
+            (
+                f"${signal_tex(n)}$",
+                *(_fmt(v) for v in summ.peak[:shown, i]),
+                _fmt(summ.trace_spread[i]),
+            )
             for i, n in enumerate(summ.neurons)
         )
         head = ("neuron", *(f"#{i + 1}" for i in range(shown)), "spread")
@@ -536,7 +555,9 @@ def _firing_table(fp) -> list[DocumentBlock]:
 
 
 def _title(circuit: str) -> str:
-    return CIRCUIT_SPECS[circuit].title
+    """The circuit's title with its transfer functions as math: ``$G_3 G_2 G_1$, general $G_2$``."""
+    title = re.sub(r"\bG([123])\b", r"$G_\1$", CIRCUIT_SPECS[circuit].title)
+    return title.replace("$ $", " ")
 
 
 _WHICH = {"general": " (its first simulated realization)"}

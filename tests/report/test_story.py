@@ -31,10 +31,12 @@ def test_the_augmented_state_is_the_systems_chi():
     assert eq.rows[0] == (r"\chi", to_latex(res.system.chi))
 
 
-def test_circuit_headings_use_the_specs_titles():
+def test_circuit_headings_use_the_specs_titles_with_their_math():
     res = derive_paper(realizations=1)
     headings = {b.text for b in story(res) if isinstance(b, Heading)}
-    assert {CIRCUIT_SPECS[name].title for name in res.circuits} <= headings
+    plain = {h.replace("$", "").replace("_", "") for h in headings}
+    assert {CIRCUIT_SPECS[name].title for name in res.circuits} <= plain
+    assert "$G_3 G_2 G_1$, controllable canonical $G_2$" in headings
 
 
 def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
