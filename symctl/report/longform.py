@@ -17,10 +17,10 @@ that are the same background value (0, or :math:`\infty` for a delay matrix).
   a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
   (transposed for a column) broken over lines; a companion matrix (ones on the
   super- or sub-diagonal, one free row or column) is its dots picture with the
-  free row or column as a list; a sparse or banded matrix (its entries other than
-  the background value fit a table of :data:`PATTERN_TABLE_ROWS` rows per row,
-  runs along a diagonal in one row) is its sparsity pattern (:math:`\ast` and
-  :math:`\cdot`) with that table; a dense matrix is its corners with
+  free row or column as a list; a sparse or banded matrix (at least a quarter
+  of its entries one background value, and the others fit a table of
+  :data:`PATTERN_TABLE_ROWS` rows per row, runs along a diagonal in one row) is
+  its sparsity pattern (:math:`\ast` and :math:`\cdot`) with that table; a dense matrix is its corners with
   dots, numbers to :data:`LARGE_DIGITS` digits (the exact values are in
   ``results.json``).
 * A display taller than :data:`DISPLAY_MAX_LINES` lines is breakable across pages.
@@ -700,9 +700,9 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
             [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
         )
     counts = Counter(flat)
-    background = counts.most_common(1)[0][0]
+    background, repeats = counts.most_common(1)[0]
     table = _sparse_table(lhs, E, background, tex)
-    if len(table) <= PATTERN_TABLE_ROWS * max(n, m):
+    if 4 * repeats >= len(flat) > repeats and len(table) <= PATTERN_TABLE_ROWS * max(n, m):
         cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
         pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
         fits = width(pattern + size) <= room

@@ -184,7 +184,8 @@ def opening(res, figure) -> list[DocumentBlock]:
     )
     blocks: list[DocumentBlock] = [
         Text(
-            f"This document carries out the derivation of {cite()} step by step on {model}. "
+            f"This document carries out {'the derivation' if paper else 'the method'} of "
+            f"{cite()} step by step on {model}. "
             "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
             "proved: an identity is shown by reducing a difference to the zero polynomial. "
             "Numbers are written to 6 significant digits. Table [#tab:parameters] lists the "
@@ -290,10 +291,14 @@ def opening(res, figure) -> list[DocumentBlock]:
 
 
 def _weight(M) -> str:
-    """A cost weight: a number when 1 x 1, else the matrix."""
-    if M.shape == (1, 1):
-        return L.number(float(M[0, 0]))
-    return L.to_latex(_num(M))
+    """A cost weight: a number when 1 x 1, ``I`` or ``diag(...)`` when diagonal, else the matrix."""
+    W = _num(M)
+    if W.shape == (1, 1):
+        return L.number(float(W[0, 0]))
+    if np.array_equal(W, np.diag(np.diag(W))):
+        d = np.diag(W)
+        return "I" if np.all(d == 1) else rf"\operatorname{{diag}}({', '.join(map(L.number, d))})"
+    return L.to_latex(W)
 
 
 def _unit_tex(unit: str) -> str:
