@@ -169,7 +169,7 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
       \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
     \else\usebox{\symctlbox}\fi
   \else\usebox{\symctlbox}\fi}
-\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}
+\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}\setlength{\emergencystretch}{3em}
 \makeatletter
 \newif\ifsymctlwaiting
 \newcommand{\symctlcheck}{\begingroup\let\@elt\relax
@@ -400,7 +400,8 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
         elif isinstance(b, Graphic):
             figure += 1
             caption = text(b.caption)
-            out += [f"![{caption}]({b.name}.png)", "", f"*Figure {figure}: {caption}*", ""]
+            alt = caption.replace("[", "(").replace("]", ")")  # an image's text has no brackets
+            out += [f"![{alt}]({b.name}.png)", "", f"*Figure {figure}: {caption}*", ""]
         elif isinstance(b, References):
             out += ["## References", ""]
             out += [f"[{k}] {text(entry)}  " for k, (_, entry) in enumerate(b.entries, 1)]

@@ -86,6 +86,11 @@ def test_citations_and_references_are_numbered_alike_in_both_formats():
     assert "*Table 1: A table.*" in md and "*Figure 1: c*" in md
 
 
+def test_a_figure_cited_in_its_caption_keeps_its_markdown_image_whole():
+    md = to_markdown([Graphic("g", "As in [@a, Fig. 5]."), References((("a", "A."),))])
+    assert "![As in (1, Fig. 5).](g.png)" in md and "*Figure 1: As in [1, Fig. 5].*" in md
+
+
 def test_an_unknown_reference_is_question_marks_in_markdown():
     assert "Fig. ?? [??]" in to_markdown([Text("Fig. [#fig:none] [@none]")])
 
