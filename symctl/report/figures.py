@@ -19,7 +19,13 @@ name                          content
 ``nonlinear``                 the linear controller around the nonlinear muscle
 ``firing_<circuit>``          Figs. full_diagram, ccr_diagram, ocr_diagram: the
                               neurons' firing in several realizations
-``structure_<circuit>``       the structure (gains, adders, unit delays)
+``g1g3_structures``            Fig. g1g3 (left): the two structures of a first-order
+                              section of :math:`G_1` or :math:`G_3` (delays on the
+                              branches, or one after the adder), each checked on one
+                              edge of the delay graph
+``structure_<circuit>``       the structure (gains, adders, unit delays), each
+                              delay-graph vertex's signals in a band when it is
+                              compatible (the witness assignment)
 ``circuit_<circuit>``         the circuit of stylized neurons, each at its
                               vertex of the delay graph (for ``general`` the
                               first simulated realization, with numbers)
@@ -53,6 +59,8 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from symctl._util.display import latex
+from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
@@ -76,13 +84,15 @@ DPI = 120
 FORMATS = ("png", "svg")
 """The formats every figure is saved in."""
 MAX_DRAWN_SIGNALS = 400
-"""Structures up to this many signals (and :data:`MAX_DRAWN_PARTS` parts) are drawn block by
-block; larger ones (a long delay's general realization) as the overview of their parts
+"""Structures up to this many signals are drawn block by block when they fit the page (folded
+into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
+block forms), as the overview of their parts
 (:func:`symctl.plotting.structure_overview.draw_structure_overview`)."""
 MAX_DRAWN_PARTS = 6
-"""Structures of up to this many parts in series (sections of G1 and G3, and G2) are drawn
-block by block; with more (T >= 6), the diagram is a strip over 30 inches wide, so the
-overview of the parts is drawn instead."""
+"""Kept for compatibility; no longer a limit: a structure of many parts in series (sections
+of G1 and G3, and G2; T >= 6) is folded into rows of parts that fit the page
+(:mod:`symctl.plotting.structure_rows`), and only one that fits no page is drawn as the
+overview of its parts."""
 MAX_PIXELS = 4000
 """Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
 long delay) is written at a lower resolution, so that its size and time stay bounded (the
@@ -106,9 +116,11 @@ def figure_names(res) -> list[str]:
     >>> from symctl import derive_paper
     >>> from symctl.report.figures import figure_names
     >>> figure_names(derive_paper())[1:5]
-    ['closed_loop', 'delay_graph', 'structure_ifp', 'circuit_ifp']
+    ['closed_loop', 'delay_graph', 'g1g3_structures', 'structure_ifp']
     """
     names = ["open_loop", "closed_loop", "delay_graph"]
+    if getattr(res, "factors", None) is not None:
+        names.append("g1g3_structures")
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
     if getattr(res, "nonlinear", None) is not None:
@@ -169,6 +181,78 @@ def _placed(circuit, rec, graph):
         return circuit
 
 
+def _end_labels(res, S) -> dict[str, str] | None:
+    """The plant's names at the structure's ends: its input the measured states, its output
+    the plant's inputs (so every structure of one controller names them alike)."""
+    spec = getattr(res, "spec", None)
+    if spec is None:
+        return None
+    xs, us = spec.signal_names
+    if len(xs) != len(S.inputs) or len(us) != len(S.outputs):
+        return None
+    pairs = (*zip(S.inputs, xs, strict=True), *zip(S.outputs, us, strict=True))
+    return {n: signal_tex(v) for n, v in pairs}
+
+
+def _structure_figure(res, rec, circuit: str, names):
+    """The structure of ``rec``, its witness assignment in bands, the plant's names at its ends.
+
+    The general realization's gains are rational in a symbolic :math:`P`; when a value is
+    too long for the key to print (:data:`KEY_LENGTH` characters), the structure of the
+    first simulated realization is drawn, with numbers (as its circuit is).
+    """
+    from symctl.plotting.circuit_labels import visible_length
+
+    title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
+    S, verdict = rec.structure, rec.compatibility
+    where = verdict.assignment.vertex_of if verdict.ok and verdict.assignment else None
+    values = [latex(b.gain) for b in S.blocks.values() if b.kind == "gain" and b.gain is not None]
+    if (
+        circuit == "general"
+        and rec.firing is not None
+        and any(visible_length(v) > KEY_LENGTH for v in values)
+    ):
+        S = rec.firing.circuits[0].structure
+        title = f"Structure: {CIRCUIT_SPECS[circuit].diagram} (realization #1 of the simulations)"
+    if where is not None and not set(S.blocks) <= set(where):
+        where = None
+    if where is None and verdict.ok is False:
+        title += ": not compatible (no vertex bands)"
+    return S.draw(title=title, overview="auto", max_signals=MAX_DRAWN_SIGNALS,
+                  assignment=where, vertex_names=names, labels=_end_labels(res, S))  # fmt: skip
+
+
+def _g1g3_figure(factors):
+    """The paper's Fig. g1g3 (left): two structures of a first-order section, checked on one edge."""
+    from symctl.compatibility.check import check_compatibility
+    from symctl.compatibility.delaygraph import DelayGraph
+    from symctl.compatibility.structure import Structure
+    from symctl.plotting.structure import draw_structures
+    from symctl.realization.realization import first_order_realization
+
+    eps = (*factors.sensor_eps, *factors.actuator_eps)[0]
+    C = (*factors.sensor_C, *factors.actuator_C)[0]
+    section = first_order_realization(eps, C)
+    edge = DelayGraph.chain([1])
+    panels = []
+    for delays, words in (
+        ("branch", "one delay on each branch into the adder (the paper's choice)"),
+        ("state", "one delay after the adder"),
+    ):
+        S = Structure.from_realization(section, delays)
+        verdict = check_compatibility(S, edge)
+        fits = "compatible" if verdict.ok else "not compatible"
+        caption = f'delays="{delays}": {words}; {fits} with one edge v1 -> v2 of one step'
+        panels.append((S, caption, verdict.assignment if verdict.ok else None))
+    title = f"Two structures of one section ${latex(C)} / (z - {latex(eps)})$ of G1 or G3"
+    return draw_structures(panels, title=title)
+
+
+KEY_LENGTH = 120
+"""The longest gain value (visible characters) the key of a structure figure prints: about
+the width of the page at 7 points."""
+
+
 def simplified(candidates, count: int = 2) -> list:
     """The degenerate candidates with the fewest neurons: the paper's simplified circuits."""
     if not candidates:
@@ -213,6 +297,8 @@ def make_figure(res, name: str):
     names, about = _vertex_names(res)
     if name == "delay_graph":
         return res.graph.draw(names, title=_graph_title(res), descriptions=about)
+    if name == "g1g3_structures" and getattr(res, "factors", None) is not None:
+        return _g1g3_figure(res.factors)
     if name == "atlas_overview" and res.atlas is not None:
         return res.atlas.draw()
     if name.startswith("simplified_") and res.candidates:
@@ -232,12 +318,7 @@ def make_figure(res, name: str):
 
         return firing_plot(rec.firing, labels=_labels(res))
     if kind == "structure":
-        title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
-        S = rec.structure
-        parts = {b.part for b in S.blocks.values()}
-        if len(S) > MAX_DRAWN_SIGNALS or len(parts) > MAX_DRAWN_PARTS:  # a strip in print
-            return S.draw(title=title, overview=True)
-        return rec.structure.draw(title=title)
+        return _structure_figure(res, rec, circuit, names)
     title = f"Circuit: {CIRCUIT_SPECS[circuit].diagram}"
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         title = "Circuit: G3 G2 G1, general G2 (realization #1 of the simulations)"
