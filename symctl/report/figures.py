@@ -213,7 +213,8 @@ def _structure_figure(res, rec, circuit: str, names):
         and any(visible_length(v) > KEY_LENGTH for v in values)
     ):
         S = rec.firing.circuits[0].structure
-        title = f"Structure: {CIRCUIT_SPECS[circuit].diagram} (realization #1 of the simulations)"
+        diagram = CIRCUIT_SPECS[circuit].diagram.replace(" (symbolic P)", "")
+        title = f"Structure: {diagram}, realization #1 of the simulations (numbers)"
     if where is not None and not set(S.blocks) <= set(where):
         where = None
     if where is None and verdict.ok is False:
