@@ -119,8 +119,8 @@ class StructureText:
     gains : mapping of str to str
         Each gain block's text: its value, or the short name listed in the key.
     names : mapping of str to str
-        The name written at each named signal (adders, delayed states); inputs and
-        outputs carry theirs at their arrows (:attr:`ends`) instead when it is the same.
+        The name written at each named signal (inputs, adders, delayed states); an input
+        or output whose arrow (:attr:`ends`) carries the same name is not named twice.
     ends : mapping of str to str
         The label at the arrow into each input and out of each output.
     key : tuple of (str, str)
@@ -196,7 +196,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     >>> from symctl.plotting.structure_labels import structure_text
     >>> text = structure_text(ifp_structure(2), {"x": "f", "u": "r"})
     >>> dict(text.ends), dict(text.names)
-    ({'x': 'f', 'u': 'r'}, {'gamma': '\\gamma', 'u': 'u', 'mu': '\\mu'})
+    ({'x': 'f', 'u': 'r'}, {'x': 'x', 'gamma': '\\gamma', 'u': 'u', 'mu': '\\mu'})
     >>> dict(structure_text(ifp_structure(2)).names)  # u is named at its arrow
     {'gamma': '\\gamma', 'mu': '\\mu'}
     """
@@ -205,7 +205,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     ends = _end_labels(S, labels)
     names = {}
     for name, block in S.blocks.items():
-        if block.kind in ("gain", "input") or is_branch_term(name):
+        if block.kind == "gain" or is_branch_term(name):
             continue
         label = signal_label(name)
         if ends.get(name) != label:
