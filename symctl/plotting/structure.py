@@ -256,9 +256,9 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
     """One layout, shifted by ``(dx, dy)``: bands, frames, wires, blocks, text."""
     from matplotlib.patches import Circle, FancyBboxPatch, Rectangle
 
-    for band in layout.bands:
+    for k, band in enumerate(layout.bands):  # tints alternate from band to band
         ax.add_patch(Rectangle((band.x0 + dx, band.y0 + dy), band.x1 - band.x0,
-                               band.y1 - band.y0, fc=_BAND[(band.vertex - 1) % 2], ec="none",
+                               band.y1 - band.y0, fc=_BAND[k % 2], ec="none",
                                zorder=0, gid=f"band:v{band.vertex}"))  # fmt: skip
         ax.text((band.x0 + band.x1) / 2 + dx, band.y1 + dy + 0.04, band.label, ha="center",
                 va="bottom", fontsize=FONT_SIZE, color="0.2", zorder=4)  # fmt: skip

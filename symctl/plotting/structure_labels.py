@@ -45,6 +45,7 @@ __all__ = [
     "StructureText",
     "gain_name",
     "is_branch_term",
+    "part_tex",
     "signal_label",
     "structure_text",
 ]
@@ -74,17 +75,27 @@ def signal_label(name: str) -> str:
 
     >>> from symctl.plotting.structure_labels import signal_label
     >>> signal_label("G2.x1"), signal_label("gamma"), signal_label("G1.2.u")
-    ('x^{\\mathrm{G2}}_{1}', '\\gamma', 'u^{\\mathrm{G1{.}2}}')
+    ('x^{\\mathrm{G2}}_{1}', '\\gamma', 'u^{\\mathrm{G1.\\!2}}')
     """
     part, _, local = name.rpartition(".")
     base = signal_tex(local, part=False)
     if not part:
         return base
-    sup = rf"^{{\mathrm{{{part.replace('.', '{.}')}}}}}"  # {.}: no space after the dot
+    sup = "^{" + part_tex(part) + "}"
     stem, sep, index = base.partition("_")
     if _NAME.fullmatch(local):
         return f"{stem}{sup}{sep}{index}"
     return f"{{{base}}}{sup}"
+
+
+def part_tex(part: str) -> str:
+    r"""A part's name in roman, without mathtext's space after a dot.
+
+    >>> from symctl.plotting.structure_labels import part_tex
+    >>> print(part_tex("P1.G2"))
+    \mathrm{P1.\!G2}
+    """
+    return r"\mathrm{" + part.replace(".", r".\!") + "}"
 
 
 def gain_name(name: str) -> str | None:
@@ -231,7 +242,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
             short[n] = f"w_{{{numbered}}}"
         elif short[n] in clash:
             stem, _, index = short[n].partition("_")
-            short[n] = rf"{stem}^{{\mathrm{{{part}}}}}_{index}"
+            short[n] = stem + "^{" + part_tex(part) + "}_" + index
         gains[n] = short[n]
     by_value: dict[str, list[str]] = {}
     for n, tex in long_values.items():
