@@ -3,7 +3,8 @@ r"""The report's figures, built from a :class:`~symctl.report.results.PaperResul
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows (:func:`make_figure`, under the stable file names of
 :func:`figure_names`); :func:`save` writes one as PNG and SVG, and
-:func:`write_figures` makes and writes them all, in parallel processes. This
+:func:`write_figures` makes and writes them all, in parallel processes. The report's
+figures carry no heading: the document's caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
 
@@ -128,6 +129,48 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
 
 
+def _state_bounds(res) -> list[tuple[float, str]]:
+    r"""The values a plant's own dynamics keep its state within, with their legend text.
+
+    For a plant of one state :math:`x` and one input :math:`u` whose ODE is affine in
+    :math:`x` with a negative coefficient, :math:`\dot x = a x + b(u)`, :math:`a < 0` (the
+    muscle: :math:`a = -1/\tau`, :math:`b = f_\max/(\tau(1 + e^{-r}))`), the state relaxes
+    towards :math:`x^*(u) = -b(u)/a` while the input is held: between two samples it stays
+    between its value and :math:`x^*(u)`. Started inside the range of :math:`x^*`, it
+    never leaves it, whatever the controller does; the ends of that range are the limits
+    of :math:`x^*` as :math:`u \to \pm\infty` (the muscle's :math:`f_\max` and 0). Only a
+    disturbance, added to the state at the samples, takes it beyond: the nonlinear figure
+    marks them. Other plants: none.
+    """
+    import sympy as sp
+
+    from symctl._util.texnames import signal_tex
+
+    ode = getattr(getattr(res, "spec", None), "ode", None)
+    if ode is None or ode.n != 1 or ode.m != 1:
+        return []
+    x, u = ode.states[0], ode.inputs[0]
+    a = sp.diff(ode.rhs[0], x)
+    if a.free_symbols & {x, u} or not float(a.subs(ode.values)) < 0:
+        return []
+    steady = -sp.expand(ode.rhs[0] - a * x) / a
+    unit = res.spec.unit(x.name)
+    bounds = []
+    for end, word in ((sp.oo, "most"), (-sp.oo, "least")):
+        try:
+            limit = sp.limit(steady, u, end)
+        except (NotImplementedError, ValueError, TypeError, ZeroDivisionError):
+            continue
+        if not limit.is_finite:
+            continue
+        value = float(limit.subs(ode.values))
+        name = f"${signal_tex(limit.name)}$ = " if isinstance(limit, sp.Symbol) else ""
+        sym = signal_tex(x.name)
+        amount = f"{value:.4g}" + (f" {unit}" if unit else "")
+        bounds.append((value, f"{name}{amount}: the {word} ${sym}$ reaches without $w$"))
+    return bounds
+
+
 def _vertex_names(res) -> tuple[tuple[str, ...] | None, dict]:
     """The model's names of the delay graph's vertices (None: ``v1 .. vN``) and their descriptions."""
     spec = getattr(res, "spec", None)
@@ -207,7 +250,7 @@ def make_figure(res, name: str):
 
         labels = _labels(res)
         if name == "nonlinear" and res.nonlinear is not None:
-            return nonlinear_plot(res.nonlinear, labels=labels)
+            return nonlinear_plot(res.nonlinear, labels=labels, bounds=_state_bounds(res))
         if name != "nonlinear":
             return response_plot(getattr(res, name), labels=labels)
     names, about = _vertex_names(res)
@@ -230,7 +273,9 @@ def make_figure(res, name: str):
     if kind == "firing":
         from symctl.plotting.firing import firing_plot
 
-        return firing_plot(rec.firing, labels=_labels(res))
+        # at most about five rows of neuron panels: the figure stays within a page
+        cols = max(3, -(-len(rec.firing.neurons) // 5))
+        return firing_plot(rec.firing, cols, labels=_labels(res))
     if kind == "structure":
         title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
         S = rec.structure
