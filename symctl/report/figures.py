@@ -2,9 +2,10 @@ r"""The report's figures, built from a :class:`~symctl.report.results.PaperResul
 
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows (:func:`make_figure`, under the stable file names of
-:func:`figure_names`); :func:`save` writes one as PNG and SVG, and
-:func:`write_figures` makes and writes them all, in parallel processes. The report's
-figures carry no heading: the document's caption says what each shows. This
+:func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
+includes, at its natural size), SVG and PNG, and :func:`write_figures` makes and writes
+them all, in parallel processes. The report's figures carry no heading: the document's
+caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
 
@@ -42,7 +43,7 @@ Examples
 ['open_loop', 'closed_loop']
 >>> with tempfile.TemporaryDirectory() as out:
 ...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
-['.png', '.svg']
+['.pdf', '.svg', '.png']
 """
 
 from __future__ import annotations
@@ -58,6 +59,7 @@ from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
+from symctl.plotting import style
 from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
@@ -72,10 +74,10 @@ __all__ = [
     "write_figures",
 ]
 
-DPI = 120
-"""Resolution of the PNG files [dots per inch]."""
-FORMATS = ("png", "svg")
-"""The formats every figure is saved in."""
+DPI = style.PNG_DPI
+"""Resolution of the PNG files [dots per inch] (the house style's)."""
+FORMATS = style.FORMATS
+"""The formats every figure is saved in: vector PDF and SVG, and PNG (the house style's)."""
 MAX_DRAWN_SIGNALS = 400
 """Structures up to this many signals (and :data:`MAX_DRAWN_PARTS` parts) are drawn block by
 block; larger ones (a long delay's general realization) as the overview of their parts
@@ -295,12 +297,15 @@ def make_figure(res, name: str):
 
 
 def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
-    """Save ``fig`` as ``out/<name>.png`` and ``out/<name>.svg``; returns the paths.
+    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (:data:`FORMATS`); returns the paths.
 
-    The layout is computed once, for the first format; the files carry no date,
-    so the same figure writes the same bytes. The PNG of an opaque figure has no
-    alpha channel (:func:`symctl.plotting.png.write_png`), which ``pdflatex``
-    embeds as it is: a report's PDF compiles in a tenth of the time.
+    The PDF and SVG are vector drawings of the figure at its size (the PDF is what
+    ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
+    the screen and Markdown. The layout is computed once, for the first format, so
+    the three agree; the files carry no date and the SVG's ids a fixed salt
+    (:func:`symctl.plotting.vector.write_vector`), so the same figure writes the same
+    bytes. The PNG of an opaque figure has no alpha channel
+    (:func:`symctl.plotting.png.write_png`).
 
     Parameters
     ----------
@@ -317,6 +322,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     Returns
     -------
     list of Path
+        In the order of :data:`FORMATS`.
 
     Raises
     ------
@@ -331,19 +337,20 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     >>> fig = open_loop_response(MuscleModel().plant()).plot()
     >>> with tempfile.TemporaryDirectory() as out:
     ...     [p.name for p in save(fig, out, "open_loop")]
-    ['open_loop.png', 'open_loop.svg']
+    ['open_loop.pdf', 'open_loop.svg', 'open_loop.png']
     """
     from symctl.plotting.png import write_png
+    from symctl.plotting.vector import write_vector
 
     out = _folder(out)
     paths = []
     dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
     for ext in FORMATS:
         path = out / f"{name}.{ext}"
-        if ext == "png":  # RGB, not matplotlib's RGBA: pdflatex copies it instead of re-encoding
-            write_png(fig, path, dpi=dpi, metadata=_metadata(ext))
-        else:
-            fig.savefig(path, dpi=dpi, metadata=_metadata(ext))
+        if ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
+            write_png(fig, path, dpi=dpi, metadata={"Software": "symctl (matplotlib)"})
+        else:  # no date, fixed ids: the same bytes every time
+            write_vector(fig, path)
         fig.set_layout_engine("none")  # keep the layout of the first save
         paths.append(path)
     return paths
@@ -477,10 +484,3 @@ def _folder(out: Path | str) -> Path:
     if not out.is_dir():
         raise ParameterError(f"out: {str(out)!r} is not a folder")
     return out
-
-
-def _metadata(ext: str) -> dict:
-    """No dates in the files, so that the same derivation writes the same bytes."""
-    if ext == "svg":
-        return {"Date": None}
-    return {"Software": "symctl (matplotlib)"}
