@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.plotting import style
+from symctl.plotting.response import UNKNOWN_UNIT
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -112,7 +113,7 @@ def firing_plot(
         optimal = top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], color="black", lw=0.9,
                            ls=(0, (1, 1.5)), drawstyle="steps-post")[0]  # fmt: skip
         what, sym, unit = _state(fp, labels)
-        top.set_ylabel(style.axis_label(f"${sym}$", unit))
+        top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
         head = f"{what} ${sym}$" if what else f"${sym}$"
         if fp.kind == "ifp":

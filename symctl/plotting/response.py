@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from symctl.neural.nonlinear import NonlinearCheck
     from symctl.neural.simulate import Response
 
-__all__ = ["MAX_PANELS", "nonlinear_plot", "response_plot"]
+__all__ = ["MARKERS_UP_TO", "MAX_PANELS", "UNKNOWN_UNIT", "nonlinear_plot", "response_plot"]
 
 MAX_PANELS = 6
 """Most panels of signals in :func:`response_plot` (beyond, the rest share the last)."""
@@ -42,6 +42,8 @@ MARKERS_UP_TO = 60
 """Samples are marked with dots on traces of up to this many samples (more would be a smear)."""
 
 _MUSCLE = {"f": ("muscle force", "N"), "r": ("motor-neuron rate", "spikes/s")}
+UNKNOWN_UNIT = "arb. unit"
+"""The unit an axis names when the model gives none (not ``[1]``: that says dimensionless)."""
 _MARGINS = 0.75  # inches of a panel's row taken by the y-axis label and ticks (for legends)
 
 
@@ -59,6 +61,11 @@ def _state_tex(name: str) -> str:
     head = {"gamma": r"\gamma", "delta": r"\delta"}.get(head, head)
     tex = f"${head}_{{{sub}}}$" if sub else f"${head}$"
     return tex + (f"[{index}" if index else "")
+
+
+def _axis(quantity: str, unit: str | None) -> str:
+    """``quantity [unit]``, :data:`UNKNOWN_UNIT` where the model gives no unit."""
+    return style.axis_label(quantity, unit or UNKNOWN_UNIT)
 
 
 def _amount(value: float, unit: str | None) -> str:
@@ -184,17 +191,17 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             label = rf"$\delta {sym}$ [{unit or '1'}]"
         _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
-            per = f"{unit}/step" if unit else "per step"
+            per = f"{unit or UNKNOWN_UNIT}/step"
             ax.step(res.t, res.w[:, i], where="post", ls="--", lw=0.8, color=style.NEUTRAL,
                     label=f"disturbance $w$ [{per}]")  # fmt: skip
     ax.axhline(0, color="black", lw=0.5)
     if len(group) == 1:
         _trace, bar, names, i, _ = group[0]
-        ax.set_ylabel(style.axis_label(rf"$\delta {sym}$", unit))
+        ax.set_ylabel(_axis(rf"$\delta {sym}$", unit))
         head = f"{what} ${sym}$" if what else f"${sym}$"
         _heading(ax, rf"{head} ($\bar{{{sym}}}$ = {_amount(float(bar[i]), unit)})", room)
     else:
-        ax.set_ylabel(style.axis_label("change", units[0] if len(set(units)) == 1 else "mixed"))
+        ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
         _heading(ax, "further signals (change from the operating point)", room)
 
 
@@ -230,11 +237,11 @@ def _controller_panel(ax, res: Response, labels, marked: bool, room: float) -> N
     if chain and len(units) == 1:  # delayed copies of the input: the input's symbol and unit
         one = len(res.input_names) == 1
         what = rf"$\delta {_signal(res.input_names[0], labels)[1]}$" if one else "delayed input"
-        ax.set_ylabel(style.axis_label(what, units.pop()))
+        ax.set_ylabel(_axis(what, units.pop()))
     elif chain:
         ax.set_ylabel(style.axis_label("delayed input", "mixed units"))
     else:  # a realization's states have the scale the realization gives them
-        ax.set_ylabel(style.axis_label("state", "arb. unit"))
+        ax.set_ylabel(_axis("state", None))
     _heading(ax, "controller state: the delay chain" if chain else "controller state", room)
 
 
@@ -310,7 +317,7 @@ def nonlinear_plot(
         unit = chk.units[0]
     fig = style.new_figure(size, 2.7)
     ok = np.isfinite(chk.max_deviation)
-    per = f"{unit} per step" if unit else "per step"
+    per = f"{unit or UNKNOWN_UNIT} per step"
     with style.styled():
         ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.5, 1])
         handles, texts = [], []
@@ -329,7 +336,7 @@ def nonlinear_plot(
                     Line2D([], [], color=style.NEUTRAL, lw=0.9, ls=(0, (3, 2)))]  # fmt: skip
         texts += [f"nonlinear {plant}", "linear model"]
         ax1.set_xlabel(style.axis_label("time", "s"))
-        ax1.set_ylabel(style.axis_label(f"{what} ${sym}$" if what else f"${sym}$", unit))
+        ax1.set_ylabel(_axis(f"{what} ${sym}$" if what else f"${sym}$", unit))
         amps = np.abs(chk.amplitudes[ok])
         dev = chk.max_deviation[ok]
         handles.append(ax2.loglog(amps, dev, "o-", ms=3, color=style.PALETTE[0])[0])
@@ -340,9 +347,7 @@ def nonlinear_plot(
             handles.append(ax2.loglog(amps, guide, color=style.NEUTRAL, lw=0.7, ls=":")[0])
             texts.append(rf"fit $\propto w^{{{slope:.2f}}}$")
         ax2.set_xlabel(style.axis_label("pulse amplitude", per))
-        ax2.set_ylabel(
-            style.axis_label(rf"largest $|{sym}_\mathrm{{nl}} - {sym}_\mathrm{{lin}}|$", unit)
-        )
+        ax2.set_ylabel(_axis(rf"largest $|{sym}_\mathrm{{nl}} - {sym}_\mathrm{{lin}}|$", unit))
         ax2.grid(True, which="both", alpha=0.3)
         style.figure_legend(fig, handles, texts)
     _title(fig, title)

@@ -167,3 +167,15 @@ def test_legend_width_is_never_narrower_than_matplotlibs_legend():
         fig.draw(renderer)
         drawn = legend.get_window_extent(renderer).width / fig.dpi
         assert drawn <= legend_width(labels, ncol) <= drawn + 0.3, (labels, ncol)
+
+
+def test_an_axis_of_a_plant_without_units_says_so_not_dimensionless():
+    from symctl import open_loop_response
+
+    res = open_loop_response((np.array([[0.5]]), np.array([[1.0]])), steps=10)
+    fig = response_plot(res)
+    assert [ax.get_ylabel() for ax in fig.axes] == [
+        r"$\delta x$ [arb. unit]",
+        r"$\delta u$ [arb. unit]",
+    ]
+    assert fig.axes[-1].get_xlabel() == "time [steps]"
