@@ -63,6 +63,12 @@ def _state_tex(name: str) -> str:
     return tex + (f"[{index}" if index else "")
 
 
+def _bar(sym: str) -> str:
+    """The operating point's symbol: the bar over the stem, not the index (``f_{flex}``)."""
+    stem, sep, index = sym.partition("_")
+    return rf"\bar{{{stem}}}{sep}{index}"
+
+
 def _axis(quantity: str, unit: str | None) -> str:
     """``quantity [unit]``, :data:`UNKNOWN_UNIT` where the model gives no unit."""
     return style.axis_label(quantity, unit or UNKNOWN_UNIT)
@@ -181,7 +187,7 @@ def response_plot(
 def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -> None:
     """One state or input (its change; its operating point in the heading), or several."""
     units = []
-    for j, (trace, _bar, names, i, is_state) in enumerate(group):
+    for j, (trace, _point, names, i, is_state) in enumerate(group):
         what, sym, unit = _signal(names[i], labels)
         units.append(unit)
         if len(group) == 1:
@@ -199,7 +205,7 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
         _trace, bar, names, i, _ = group[0]
         ax.set_ylabel(_axis(rf"$\delta {sym}$", unit))
         head = f"{what} ${sym}$" if what else f"${sym}$"
-        _heading(ax, rf"{head} ($\bar{{{sym}}}$ = {_amount(float(bar[i]), unit)})", room)
+        _heading(ax, rf"{head} (${_bar(sym)}$ = {_amount(float(bar[i]), unit)})", room)
     else:
         ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
         _heading(ax, "further signals (change from the operating point)", room)
