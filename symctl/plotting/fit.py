@@ -98,12 +98,8 @@ def fit_plot(result: FitResult, ncols: int = 3, *, title: str | None = None,
     fig = style.new_figure(size, 0.75 + _PANEL_HEIGHT * rows)
     t = np.asarray(result.t, dtype=float)
     end = _window(t, [*pred.values(), *result.data.values()])
-    data_c, fit_c, pred_c, lost_c = (
-        style.NEUTRAL,
-        style.PALETTE[0],
-        style.PALETTE[4],
-        style.PALETTE[1],
-    )
+    # grey data, blue fit, green prediction, vermillion where the data pin nothing down
+    data_c, fit_c, pred_c, lost_c = style.NEUTRAL, *(style.PALETTE[k] for k in (0, 2, 1))
     used = set()
     with style.styled():
         grid = fig.subfigures(1, 1)  # its axis labels, then the figure's legend below it
