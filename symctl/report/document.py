@@ -113,7 +113,10 @@ class Table:
 
 @dataclass(frozen=True)
 class Graphic:
-    """An image file ``<name>.png`` (next to the document) with its caption."""
+    """A figure ``<name>`` (its files next to the document) with its caption.
+
+    LaTeX includes the vector ``<name>.pdf`` at its natural size, Markdown ``<name>.png``.
+    """
 
     name: str
     caption: str
@@ -166,6 +169,17 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
       \typeout{symctl: shrunk a display on page \thepage}%
       \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
     \else\usebox{\symctlbox}\fi
+  \else\usebox{\symctlbox}\fi}
+% \fitgraphic includes a (vector) figure at its natural size: figures are drawn at the size they
+% are printed. One wider than the text or taller than most of a page is scaled down to fit, and
+% the log says so ("symctl: scaled figure"), for a test to find.
+\newif\ifsymctlfit
+\newcommand{\fitgraphic}[1]{\sbox{\symctlbox}{\includegraphics{#1}}\symctlfitfalse
+  \ifdim\wd\symctlbox>\linewidth \symctlfittrue\fi
+  \ifdim\ht\symctlbox>0.8\textheight \symctlfittrue\fi
+  \ifsymctlfit
+    \typeout{symctl: scaled figure #1 down to fit the page}%
+    \includegraphics[width=\linewidth,height=0.8\textheight,keepaspectratio]{#1}%
   \else\usebox{\symctlbox}\fi}
 \setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}""".replace(
     "<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth"
@@ -221,8 +235,7 @@ def _tex_block(b) -> str:
         return "\n".join(
             [
                 r"\begin{figure}[htbp]\centering",
-                rf"\includegraphics[width=\linewidth,height=0.42\textheight,keepaspectratio]"
-                rf"{{{b.name}.png}}",
+                rf"\fitgraphic{{{b.name}.pdf}}",
                 rf"\caption{{{_tex_text(b.caption)}}}\label{{fig:{b.name}}}",
                 r"\end{figure}",
             ]

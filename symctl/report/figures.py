@@ -2,8 +2,10 @@ r"""The report's figures, built from a :class:`~symctl.report.results.PaperResul
 
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows (:func:`make_figure`, under the stable file names of
-:func:`figure_names`); :func:`save` writes one as PNG and SVG, and
-:func:`write_figures` makes and writes them all, in parallel processes. This
+:func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
+includes, at its natural size), SVG and PNG, and :func:`write_figures` makes and writes
+them all, in parallel processes. The report's figures carry no heading: the document's
+caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
 
@@ -47,7 +49,7 @@ Examples
 ['open_loop', 'closed_loop']
 >>> with tempfile.TemporaryDirectory() as out:
 ...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
-['.png', '.svg']
+['.pdf', '.svg', '.png']
 """
 
 from __future__ import annotations
@@ -65,6 +67,7 @@ from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
+from symctl.plotting import style
 from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
@@ -79,10 +82,10 @@ __all__ = [
     "write_figures",
 ]
 
-DPI = 120
-"""Resolution of the PNG files [dots per inch]."""
-FORMATS = ("png", "svg")
-"""The formats every figure is saved in."""
+DPI = style.PNG_DPI
+"""Resolution of the PNG files [dots per inch] (the house style's)."""
+FORMATS = style.FORMATS
+"""The formats every figure is saved in: vector PDF and SVG, and PNG (the house style's)."""
 MAX_DRAWN_SIGNALS = 400
 """Structures up to this many signals are drawn block by block when they fit the page (folded
 into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
@@ -138,6 +141,48 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
         return None
     xs, us = spec.signal_names
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
+
+
+def _state_bounds(res) -> list[tuple[float, str]]:
+    r"""The values a plant's own dynamics keep its state within, with their legend text.
+
+    For a plant of one state :math:`x` and one input :math:`u` whose ODE is affine in
+    :math:`x` with a negative coefficient, :math:`\dot x = a x + b(u)`, :math:`a < 0` (the
+    muscle: :math:`a = -1/\tau`, :math:`b = f_\max/(\tau(1 + e^{-r}))`), the state relaxes
+    towards :math:`x^*(u) = -b(u)/a` while the input is held: between two samples it stays
+    between its value and :math:`x^*(u)`. Started inside the range of :math:`x^*`, it
+    never leaves it, whatever the controller does; the ends of that range are the limits
+    of :math:`x^*` as :math:`u \to \pm\infty` (the muscle's :math:`f_\max` and 0). Only a
+    disturbance, added to the state at the samples, takes it beyond: the nonlinear figure
+    marks them. Other plants: none.
+    """
+    import sympy as sp
+
+    from symctl._util.texnames import signal_tex
+
+    ode = getattr(getattr(res, "spec", None), "ode", None)
+    if ode is None or ode.n != 1 or ode.m != 1:
+        return []
+    x, u = ode.states[0], ode.inputs[0]
+    a = sp.diff(ode.rhs[0], x)
+    if a.free_symbols & {x, u} or not float(a.subs(ode.values)) < 0:
+        return []
+    steady = -sp.expand(ode.rhs[0] - a * x) / a
+    unit = res.spec.unit(x.name)
+    bounds = []
+    for end, word in ((sp.oo, "most"), (-sp.oo, "least")):
+        try:
+            limit = sp.limit(steady, u, end)
+        except (NotImplementedError, ValueError, TypeError, ZeroDivisionError):
+            continue
+        if not limit.is_finite:
+            continue
+        value = float(limit.subs(ode.values))
+        name = f"${signal_tex(limit.name)}$ = " if isinstance(limit, sp.Symbol) else ""
+        sym = signal_tex(x.name)
+        amount = f"{value:.4g}" + (f" {unit}" if unit else "")
+        bounds.append((value, f"{name}{amount}: the {word} ${sym}$ reaches without $w$"))
+    return bounds
 
 
 def _vertex_names(res) -> tuple[tuple[str, ...] | None, dict]:
@@ -292,7 +337,7 @@ def make_figure(res, name: str):
 
         labels = _labels(res)
         if name == "nonlinear" and res.nonlinear is not None:
-            return nonlinear_plot(res.nonlinear, labels=labels)
+            return nonlinear_plot(res.nonlinear, labels=labels, bounds=_state_bounds(res))
         if name != "nonlinear":
             return response_plot(getattr(res, name), labels=labels)
     names, about = _vertex_names(res)
@@ -317,7 +362,9 @@ def make_figure(res, name: str):
     if kind == "firing":
         from symctl.plotting.firing import firing_plot
 
-        return firing_plot(rec.firing, labels=_labels(res))
+        # at most about five rows of neuron panels: the figure stays within a page
+        cols = max(3, -(-len(rec.firing.neurons) // 5))
+        return firing_plot(rec.firing, cols, labels=_labels(res))
     if kind == "structure":
         return _structure_figure(res, rec, circuit, names)
     title = f"Circuit: {CIRCUIT_SPECS[circuit].diagram}"
@@ -332,12 +379,15 @@ def make_figure(res, name: str):
 
 
 def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
-    """Save ``fig`` as ``out/<name>.png`` and ``out/<name>.svg``; returns the paths.
+    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (:data:`FORMATS`); returns the paths.
 
-    The layout is computed once, for the first format; the files carry no date,
-    so the same figure writes the same bytes. The PNG of an opaque figure has no
-    alpha channel (:func:`symctl.plotting.png.write_png`), which ``pdflatex``
-    embeds as it is: a report's PDF compiles in a tenth of the time.
+    The PDF and SVG are vector drawings of the figure at its size (the PDF is what
+    ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
+    the screen and Markdown. The layout is computed once, for the first format, so
+    the three agree; the files carry no date and the SVG's ids a fixed salt
+    (:func:`symctl.plotting.vector.write_vector`), so the same figure writes the same
+    bytes. The PNG of an opaque figure has no alpha channel
+    (:func:`symctl.plotting.png.write_png`).
 
     Parameters
     ----------
@@ -354,6 +404,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     Returns
     -------
     list of Path
+        In the order of :data:`FORMATS`.
 
     Raises
     ------
@@ -368,19 +419,20 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     >>> fig = open_loop_response(MuscleModel().plant()).plot()
     >>> with tempfile.TemporaryDirectory() as out:
     ...     [p.name for p in save(fig, out, "open_loop")]
-    ['open_loop.png', 'open_loop.svg']
+    ['open_loop.pdf', 'open_loop.svg', 'open_loop.png']
     """
     from symctl.plotting.png import write_png
+    from symctl.plotting.vector import write_vector
 
     out = _folder(out)
     paths = []
     dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
     for ext in FORMATS:
         path = out / f"{name}.{ext}"
-        if ext == "png":  # RGB, not matplotlib's RGBA: pdflatex copies it instead of re-encoding
-            write_png(fig, path, dpi=dpi, metadata=_metadata(ext))
-        else:
-            fig.savefig(path, dpi=dpi, metadata=_metadata(ext))
+        if ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
+            write_png(fig, path, dpi=dpi, metadata={"Software": "symctl (matplotlib)"})
+        else:  # no date, fixed ids: the same bytes every time
+            write_vector(fig, path)
         fig.set_layout_engine("none")  # keep the layout of the first save
         paths.append(path)
     return paths
@@ -514,10 +566,3 @@ def _folder(out: Path | str) -> Path:
     if not out.is_dir():
         raise ParameterError(f"out: {str(out)!r} is not a folder")
     return out
-
-
-def _metadata(ext: str) -> dict:
-    """No dates in the files, so that the same derivation writes the same bytes."""
-    if ext == "svg":
-        return {"Date": None}
-    return {"Software": "symctl (matplotlib)"}
