@@ -403,14 +403,13 @@ class _Steps:
 
 
 def _written(out: Path, written: list[Path], pdf: bool) -> None:
-    names = [p.name for p in written]
     figures = sorted({p.stem for p in written if p.suffix == ".png"})
-    docs = [n for n in names if not n.endswith((".png", ".svg"))]
+    docs = [p.name for p in written if p.stem not in figures]  # a figure is also a .pdf
     line = f"wrote {out}/: " + ", ".join(docs)
     if figures:
-        line += f", {len(figures)} figures (PNG and SVG): " + ", ".join(figures)
+        line += f", {len(figures)} figures (PDF, SVG and PNG): " + ", ".join(figures)
     _console.print(line, markup=False, soft_wrap=True, highlight=False)
-    if pdf and not any(n.endswith(".pdf") for n in names):
+    if pdf and not any(n.endswith(".pdf") for n in docs):
         _console.print(
             "note: pdflatex not found, the PDF was not compiled (install TeX Live's "
             "texlive-latex-base)",

@@ -25,6 +25,7 @@ from symctl._util.texnames import signal_tex
 from symctl.plotting.circuit_labels import circuit_text, display_text
 from symctl.plotting.circuit_layout import MIN_RADIUS, circuit_layout
 from symctl.plotting.common import figure_and_axes, finish_figure, text_outline, text_size
+from symctl.plotting.key import key_columns
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -191,7 +192,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
     ``key:w1``, ``key:self1``, ...), the path that also measured it: matplotlib parses
     a mathtext string again for every measure and every output format, and a key of
     forty long fractions took two thirds of the drawing's time, three times over. As many
-    columns as fit (:func:`_key_columns`), each as wide as its widest line, filled top to
+    columns as fit (:func:`symctl.plotting.key.key_columns`), each as wide as its widest line, filled top to
     bottom; each row is as tall as its tallest line (a fraction is). The key is laid out
     in inches from its corner ``(x, y)``, as text is; returns its lowest ``y`` and
     rightmost ``x`` in data units of one inch (``y`` and ``x`` without lines).
@@ -200,7 +201,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
         return y, x
     outlines = [text_outline(f"${line}$", _FONT) for line in lines]
     sizes = [((x1 - x0) / 72, (y1 - y0) / 72) for _, (x0, y0, x1, y1) in outlines]
-    columns = _key_columns([w for w, _ in sizes], room)
+    columns = key_columns([w for w, _ in sizes], room, _KEY_GAP)
     nrows = len(columns[0])
     # laid out in inches from its corner (x, y) in data units, as text is (a caller's axes
     # may scale its data): glyphs in points -> inches, the offset, then display units
@@ -223,18 +224,3 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
             )  # fmt: skip
         top -= max(sizes[k][1] for _, k in row) + 0.1
     return y + top - 0.1, x + lefts[-1] - _KEY_GAP + 0.2
-
-
-def _key_columns(widths: list[float], room: float) -> list[list[int]]:
-    """The key's lines (indices) in columns, top to bottom: the most that fit ``room``.
-
-    Each column is as wide as its widest line; with ``n`` columns the first ones hold
-    ``ceil(len / n)`` lines. One column when even two do not fit.
-    """
-    for n in range(len(widths), 1, -1):
-        rows = -(-len(widths) // n)
-        columns = [list(range(k, min(k + rows, len(widths)))) for k in range(0, len(widths), rows)]
-        total = sum(max(widths[k] for k in col) for col in columns) + _KEY_GAP * (len(columns) - 1)
-        if total <= room:
-            return columns
-    return [list(range(len(widths)))]

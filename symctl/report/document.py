@@ -129,7 +129,10 @@ class Table:
 
 @dataclass(frozen=True)
 class Graphic:
-    """An image file ``<name>.png`` (next to the document) with its caption."""
+    """A figure ``<name>`` (its files next to the document) with its caption.
+
+    LaTeX includes the vector ``<name>.pdf`` at its natural size, Markdown ``<name>.png``.
+    """
 
     name: str
     caption: str
@@ -168,6 +171,17 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
       \typeout{symctl: shrunk a display on page \thepage}%
       \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
     \else\usebox{\symctlbox}\fi
+  \else\usebox{\symctlbox}\fi}
+% \fitgraphic includes a (vector) figure at its natural size: figures are drawn at the size they
+% are printed. One wider than the text or taller than most of a page is scaled down to fit, and
+% the log says so ("symctl: scaled figure"), for a test to find.
+\newif\ifsymctlfit
+\newcommand{\fitgraphic}[1]{\sbox{\symctlbox}{\includegraphics{#1}}\symctlfitfalse
+  \ifdim\wd\symctlbox>\linewidth \symctlfittrue\fi
+  \ifdim\ht\symctlbox>0.8\textheight \symctlfittrue\fi
+  \ifsymctlfit
+    \typeout{symctl: scaled figure #1 down to fit the page}%
+    \includegraphics[width=\linewidth,height=0.8\textheight,keepaspectratio]{#1}%
   \else\usebox{\symctlbox}\fi}
 \setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}\setlength{\emergencystretch}{3em}
 \makeatletter
@@ -276,8 +290,7 @@ def _tex_block(b) -> str:
         return "\n".join(
             [
                 r"\begin{figure}[htbp]\centering",
-                rf"\includegraphics[width=\linewidth,height=0.42\textheight,keepaspectratio]"
-                rf"{{{b.name}.png}}",
+                rf"\fitgraphic{{{b.name}.pdf}}",
                 rf"\caption{{{tex_text(b.caption)}}}\label{{fig:{b.name}}}",
                 r"\end{figure}",
             ]

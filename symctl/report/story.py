@@ -73,6 +73,15 @@ _GRAPH_CAPTION = (
 )
 
 
+_G1G3_CAPTION = (
+    f"Two structures of one first-order section of $G_1$ or $G_3$ (as in {cite('Fig.', 'g1g3')}, "
+    "left): "
+    "a unit delay on each branch into the adder, the one symctl builds, puts the section's input "
+    "and gain at one vertex and its state at the next; one delay after the adder cannot, since "
+    "the state feeds the adder without delay."
+)
+
+
 _PAPER_FORMS = ("controllable", "observable")  # labelled as the paper's equations
 
 _PAPER_STRUCTURE = {
@@ -315,6 +324,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             )
         )
         add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
+        put(figure("g1g3_structures", _G1G3_CAPTION))
 
         # 7. realizations
         add(Heading("Realizations of $G_2$"))

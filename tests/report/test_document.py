@@ -47,7 +47,8 @@ def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
 def test_tex_and_markdown_show_the_same_graphic_with_its_caption():
     blocks = [Graphic("open_loop", "Open loop, 100%.")]
     tex, md = to_tex(blocks), to_markdown(blocks)
-    assert r"{open_loop.png}" in tex and r"\caption{Open loop, 100\%.}\label{fig:open_loop}" in tex
+    assert r"\fitgraphic{open_loop.pdf}" in tex  # the vector figure, at its natural size
+    assert r"\caption{Open loop, 100\%.}\label{fig:open_loop}" in tex
     assert "![Open loop, 100%.](open_loop.png)" in md
 
 

@@ -94,7 +94,7 @@ def test_derivation_tex_has_the_paper_order_and_numbers(paper):
     assert [lab for lab in labels if lab in order] == order
     assert "43.8635" in tex and "0.606531" in tex and "4.64165" in tex
     assert r"K_{0}" in tex and r"\epsilon_{1}" in tex
-    assert "Not compatible" in tex and tex.count(r"\includegraphics") == len(FIGURES)
+    assert "Not compatible" in tex and tex.count(r"\fitgraphic{") == len(FIGURES)
 
 
 def test_derivation_pdf_is_compiled(paper, pdflatex):
