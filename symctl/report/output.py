@@ -82,6 +82,7 @@ _FIGURES = "|".join(
         "open_loop",
         "closed_loop",
         "delay_graph",
+        "g1g3_structures",
         "nonlinear",
         "atlas_overview",
         r"simplified_A\d+",
