@@ -2,8 +2,9 @@
 
 The notebooks are committed with their outputs, so that a reader browsing the repository
 sees the formulas and figures. Each runs top to bottom in a fresh kernel, in a temporary
-folder (the notebooks write files), with a fixed hash seed and no timing metadata, so
-that running it again changes the stored outputs only where the code's results change.
+folder (the notebooks write files), with a fixed hash seed, no timing metadata and each
+cell's printing stored as one output per stream, so that running it again changes the
+stored outputs only where the code's results change (the notebooks seed their randomness).
 A notebook whose run raises an error is not written, and the command exits with 1.
 ``tests/test_notebooks.py`` runs the notebooks the same way (:func:`execute`).
 
@@ -41,6 +42,26 @@ def execute(path: Path, cwd: Path) -> nbformat.NotebookNode:
         record_timing=False,
         resources={"metadata": {"path": str(cwd)}},
     ).execute()
+    return coalesce_streams(nb)
+
+
+def coalesce_streams(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
+    """``nb`` with each run of consecutive outputs to one stream (stdout, stderr) made one
+    output: how a cell's printing is cut into outputs depends on timing, not on the code."""
+    for cell in nb.cells:
+        merged: list = []
+        for out in cell.get("outputs", []):
+            last = merged[-1] if merged else None
+            if (
+                last is not None
+                and out.output_type == last.output_type == "stream"
+                and out.name == last.name
+            ):
+                last.text += out.text
+            else:
+                merged.append(out)
+        if cell.cell_type == "code":
+            cell.outputs = merged
     return nb
 
 
