@@ -307,15 +307,14 @@ def test_no_page_refers_to_a_resource_outside_the_site(site):
     assert not found, "\n".join(found)
 
 
-def _screenshot(browser, server, page_path: str, name: str, scroll_to: str | None = None) -> Path:
+def _screenshot(browser, server, page_path: str, name: str, scroll_to: str | None = None):
     page, problems = open_page(browser, server, page_path)
     try:
         page.evaluate(INSPECT)  # waits for MathJax and the images
         if scroll_to:
-            page.get_by_role(
-                "heading", name=re.compile(scroll_to)
-            ).first.scroll_into_view_if_needed()
-            page.evaluate("window.scrollBy(0, -80)")  # the heading below the theme's top bar
+            heading = page.get_by_role("heading", name=re.compile(scroll_to)).first
+            heading.evaluate("el => el.scrollIntoView({block: 'start'})")
+            page.evaluate("window.scrollBy(0, -120)")  # the heading below the theme's top bar
         visible = page.evaluate(
             """() => Array.from(document.querySelectorAll("mjx-container")).filter(el => {
                 const r = el.getBoundingClientRect();
@@ -333,7 +332,7 @@ def _screenshot(browser, server, page_path: str, name: str, scroll_to: str | Non
 def test_screenshots_of_the_front_page_and_the_derivation(browser, server, site):
     front, _ = _screenshot(browser, server, "index.html", "front.png")
     derivation, math = _screenshot(
-        browser, server, DERIVATION, "derivation.png", scroll_to=r"controller"
+        browser, server, DERIVATION, "derivation.png", scroll_to=r"^The controller"
     )
     assert front.stat().st_size > 10_000 and derivation.stat().st_size > 10_000
     assert math >= 2, f"the derivation's screenshot shows {math} typeset formulas"
