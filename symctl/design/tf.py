@@ -77,6 +77,8 @@ class DiscreteTF(LatexMixin):
     dt : number, symbol or None
         Sampling time, kept for conversions (``None``: unspecified).
 
+    Notes
+    -----
     Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
     stored in lowest terms only when built by :meth:`from_expr`. Two objects
     are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
