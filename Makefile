@@ -1,11 +1,14 @@
-# symctl: `make paper` and `make test` do all the set-up themselves (a local .venv).
+# symctl: `make paper`, `make test` and `make docs` do all the set-up themselves (a local .venv).
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+DOCS_STAMP := $(VENV)/.installed-docs
 OUT ?= out/paper
+DOCS_OUT := docs/_build/html
+PY_FILES := symctl tests benchmarks conftest.py docs/conf.py docs/_ext docs/run_notebooks.py
 
-.PHONY: all paper examples test lint format bench clean
+.PHONY: all paper examples test lint format bench clean docs docs-check notebooks
 
 all: test
 
@@ -14,6 +17,11 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[dev]"
 	touch $(STAMP)
+
+# the documentation site's tools (Sphinx, myst-nb, numpydoc, MathJax, Playwright): the docs extra
+$(DOCS_STAMP): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[dev,docs]"
+	touch $(DOCS_STAMP)
 
 paper: $(STAMP)
 	$(BIN)/symctl paper --out $(OUT)
@@ -31,12 +39,27 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -n 2 -q
 
 lint: $(STAMP)
-	$(BIN)/ruff check symctl tests benchmarks conftest.py
-	$(BIN)/ruff format --check symctl tests benchmarks conftest.py
+	$(BIN)/ruff check $(PY_FILES)
+	$(BIN)/ruff format --check $(PY_FILES)
 
 format: $(STAMP)
-	$(BIN)/ruff format symctl tests benchmarks conftest.py
-	$(BIN)/ruff check --fix symctl tests benchmarks conftest.py
+	$(BIN)/ruff format $(PY_FILES)
+	$(BIN)/ruff check --fix $(PY_FILES)
+
+# the documentation site, into docs/_build/html: the notebooks executed and `symctl paper` run
+# while it builds; every warning is an error; -E reads every page again, so none is hidden
+docs: $(DOCS_STAMP)
+	$(BIN)/sphinx-build -b html -W --keep-going -E -j 2 -q docs $(DOCS_OUT)
+	@echo "docs: $(DOCS_OUT)/index.html"
+
+# the built site in headless Chromium (Debian's /usr/bin/chromium): math, images, links, no
+# request off 127.0.0.1; screenshots in out/docs-check/
+docs-check: $(DOCS_STAMP)
+	$(BIN)/python -m pytest tests/docs -m docs -p no:xdist -q
+
+# run every notebook and store it with its outputs (commit the result)
+notebooks: $(STAMP)
+	$(BIN)/python docs/run_notebooks.py
 
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[bench]"
@@ -53,4 +76,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/fit.py
 
 clean:
-	rm -rf $(VENV) out .pytest_cache .hypothesis
+	rm -rf $(VENV) out .pytest_cache .hypothesis docs/_build docs/generated

@@ -25,6 +25,21 @@ def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
     assert len(data["closed_loop"]["poles"]) == 3
     out = capsys.readouterr().out
     assert "K_0" in out and "results.json" in out
+    # numbers as a reader writes them: no "[[0.606531]]", no 15 digits, no "1." or "(1)/(1)"
+    assert "A = exp(-T_s/tau) = 0.606531\n" in out and "Q~ = [[1  0  0] [0  0  0] [0  0  1]]" in out
+    assert "F = [[0, 1], [K_2, K_1]]" in out and "0.0459718543789935" not in out
+
+
+def test_the_summary_prints_numbers_short_and_a_missing_section_in_words(tmp_path, capsys):
+    from symctl.cli import SUMMARY_TEXT, _fmt, _long
+
+    assert _fmt([[0.6065306597]]) == "0.606531" and _fmt([[1.0, 0.0]]) == "[[1  0]]"
+    assert _fmt([[0.0] * 9] * 9) == "(9 x 9, in results.json)"
+    assert _long("x" * (SUMMARY_TEXT + 1), "G2").startswith(f"({SUMMARY_TEXT + 1:,} characters")
+    args = ["paper", "--out", str(tmp_path), "--no-figures", "--no-pdf", "--sensor-delay", "0"]
+    assert main([*args, "--realizations", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "G1 = 1 (no sensor delay),  G3 = (C_3)/(z - epsilon_3)" in out and "(1)/(1)" not in out
 
 
 def test_paper_options_are_used(tmp_path):

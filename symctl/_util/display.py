@@ -29,7 +29,17 @@ from symctl._util.exact import z_poly
 from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
-__all__ = ["LatexMixin", "descending_latex", "descending_str", "latex"]
+__all__ = [
+    "DISPLAY_DIGITS",
+    "LatexMixin",
+    "descending_latex",
+    "descending_str",
+    "latex",
+    "shortened",
+]
+
+DISPLAY_DIGITS = 6
+"""Significant digits of the floats an object prints (its ``str``, ``repr`` and LaTeX)."""
 
 _NAMES = {
     S.r_bar: r"\bar{r}",
@@ -69,6 +79,32 @@ def _word_name(symbol: sp.Symbol) -> str | None:
     return None
 
 
+def shortened(expr, digits: int = DISPLAY_DIGITS):
+    """``expr`` with its floats to ``digits`` significant digits for display; exact numbers as they are.
+
+    A float that rounds to an integer becomes that integer, so that a monic
+    polynomial computed in floating point prints ``z**2``, not ``1.0*z**2``.
+
+    >>> import sympy as sp
+    >>> from symctl import z
+    >>> from symctl._util.display import shortened
+    >>> shortened(sp.Float(1.0000000000000002) * z**2 + sp.Float(0.580040776580175) * z + sp.Rational(1, 3))
+    z**2 + 0.580041*z + 1/3
+    """
+    if not isinstance(expr, sp.Basic | sp.MatrixBase):
+        return expr
+    floats = {}
+    for f in expr.atoms(sp.Float):
+        text = f"{float(f):.{digits}g}"
+        value = float(text)
+        if value.is_integer() and "e" not in text:
+            floats[f] = sp.Integer(int(value))
+        else:  # as many digits as the text has, so that it prints as written
+            mantissa = text.lstrip("-").partition("e")[0].replace(".", "").lstrip("0")
+            floats[f] = sp.Float(text, max(len(mantissa), 1))
+    return expr.xreplace(floats) if floats else expr
+
+
 def latex(expr, **settings) -> str:
     """LaTeX of a sympy object with the paper's symbol names (``x_bar`` as :math:`\bar x`, ...)."""
     names = dict(_NAMES)
@@ -93,7 +129,7 @@ class LatexMixin:
         return f"$\\displaystyle {self.latex()}$"
 
 
-def _descending(expr: sp.Expr, printer, times: str) -> str:
+def _descending(expr: sp.Expr, printer, times: str, digits: int | None = None) -> str:
     """A polynomial in z printed with its terms in descending powers, as papers write them.
 
     Each term is ``sign coefficient z^k`` with a sum coefficient in parentheses:
@@ -104,7 +140,7 @@ def _descending(expr: sp.Expr, printer, times: str) -> str:
         return "0"
     terms = []
     for (power,), coeff in poly.terms():
-        coeff = sp.factor_terms(coeff)
+        coeff = sp.factor_terms(coeff if digits is None else shortened(coeff, digits))
         negative = coeff.could_extract_minus_sign()
         mag = -coeff if negative else coeff
         if power == 0:
@@ -125,11 +161,17 @@ def _descending(expr: sp.Expr, printer, times: str) -> str:
     return " ".join(terms)
 
 
-def descending_latex(expr: sp.Expr) -> str:
-    """LaTeX of a polynomial in z in descending powers: ``'z^{2} - K_{1} z - K_{2}'``."""
-    return _descending(expr, latex, " ")
+def descending_latex(expr: sp.Expr, digits: int | None = None) -> str:
+    """LaTeX of a polynomial in z in descending powers: ``'z^{2} - K_{1} z - K_{2}'``.
+
+    With ``digits``, floats are :func:`shortened` to that many significant digits.
+    """
+    return _descending(expr, latex, " ", digits)
 
 
-def descending_str(expr: sp.Expr) -> str:
-    """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``."""
-    return _descending(expr, sp.sstr, "*")
+def descending_str(expr: sp.Expr, digits: int | None = None) -> str:
+    """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``.
+
+    With ``digits``, floats are :func:`shortened` to that many significant digits.
+    """
+    return _descending(expr, sp.sstr, "*", digits)

@@ -403,14 +403,13 @@ class _Steps:
 
 
 def _written(out: Path, written: list[Path], pdf: bool) -> None:
-    names = [p.name for p in written]
     figures = sorted({p.stem for p in written if p.suffix == ".png"})
-    docs = [n for n in names if not n.endswith((".png", ".svg"))]
+    docs = [p.name for p in written if p.stem not in figures]  # a figure is also a .pdf
     line = f"wrote {out}/: " + ", ".join(docs)
     if figures:
-        line += f", {len(figures)} figures (PNG and SVG): " + ", ".join(figures)
+        line += f", {len(figures)} figures (PDF, SVG and PNG): " + ", ".join(figures)
     _console.print(line, markup=False, soft_wrap=True, highlight=False)
-    if pdf and not any(n.endswith(".pdf") for n in names):
+    if pdf and not any(n.endswith(".pdf") for n in docs):
         _console.print(
             "note: pdflatex not found, the PDF was not compiled (install TeX Live's "
             "texlive-latex-base)",
@@ -431,13 +430,13 @@ def _summary(res) -> None:
             text = rest
         _console.print(text, markup=False, soft_wrap=True)
 
-    out(f"Plant|  {data['model']['title']} (linearized, zero-order hold)")
+    out(f"Plant|  {data['model']['name']} (linearized, zero-order hold)")
     units = data["model"]["units"]
     eq = p["equilibrium"]
     if eq is not None:
         for (name, value), text in zip(eq["states"].items(), eq["symbolic"], strict=True):
             unit = f" {units[name]}" if units.get(name) else ""
-            shown = f"{text} = " if text != repr(value) else ""
+            shown = "" if _is_number(text, value) else f"{text} = "
             out(f"  {name}_bar = {shown}{value:.6g}{unit}")
     sym_A, sym_B = p["symbolic"]["A"], p["symbolic"]["B"]
     out(f"  A = {sym_A + ' = ' if sym_A else ''}{_fmt(p['A'])}")
@@ -449,7 +448,7 @@ def _summary(res) -> None:
     out("Gains|  mu = K chi, K = [" + ", ".join(data["gains"]["names"]) + "]")
     out(f"  K = {_fmt(data['gains']['K'])}")
     out("Controller|  G(z): measured states -> inputs")
-    out(f"  G(z) = {res.G_symbolic}")
+    out(f"  G(z) = {_long(str(res.G_symbolic), 'controller')}")
     out(f"  numerator {_fmt(c['numerator'])}, denominator {_fmt(c['denominator'])}")
     out(f"  relative degree {c['relative_degree']}; derivation proved: {c['proved']}")
     _extra(data, out)
@@ -459,14 +458,18 @@ def _summary(res) -> None:
         _summary_table(data, p)
         return
     out("Factorization|  G = G3 G2 G1")
-    out(f"  G1 = {f['G1']},  G3 = {f['G3']}")
-    out(f"  G2 = {f['G2']}")
-    out(f"  N = {f['N']};  G3 G2 G1 == G proved: {f['verified']}")
+    none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
+    out("  " + ",  ".join(f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}"
+                         for k in ("G1", "G3")))  # fmt: skip
+    out(f"  G2 = {_long(f['G2'], 'factorization')}")
+    N = f["N"] if isinstance(f["N"], str) else f"({len(f['N'])} x {len(f['N'][0])})"
+    out(f"  N = {_long(N, 'factorization')};  G3 G2 G1 == G proved: {f['verified']}")
     for name, rec in f["realizations"].items():
         sym, num = rec["check"]["symbolic"], rec["check"]["numeric"]
         size = len(rec["numeric"]["F"])
         small = size <= 3
-        shown = rec["symbolic"]["F"] if name != "general" else "P^-1 F_c P"
+        rows = ", ".join("[" + ", ".join(row) + "]" for row in rec["symbolic"]["F"])
+        shown = f"[{rows}]" if name != "general" else "P^-1 F_c P"
         shown = shown if small or name == "general" else f"({size} x {size})"
         numeric = _fmt(rec["numeric"]["F"]) if small else f"({size} x {size}, in results.json)"
         out(
@@ -524,11 +527,35 @@ def _circuit_table(data) -> None:
     _console.print(circuits)
 
 
+SUMMARY_TEXT, SUMMARY_MATRIX = 240, 8  # the console's longest formula, largest matrix in full
+
+
 def _fmt(values) -> str:
+    """Numbers to 6 significant digits: a 1 x 1 matrix as its entry, a large one by its size."""
     import numpy as np
 
     arr = np.asarray(values, dtype=float)
-    return np.array2string(arr, precision=6, max_line_width=10_000).replace("\n", "")
+    if arr.size == 1:
+        return f"{arr.item():.6g}"
+    if max(arr.shape) > SUMMARY_MATRIX:
+        return "(" + " x ".join(map(str, arr.shape)) + ", in results.json)"
+    text = np.array2string(arr, max_line_width=10_000, separator="  ",
+                           formatter={"float_kind": lambda v: f"{v:.6g}"})  # fmt: skip
+    return text.replace("\n", "")
+
+
+def _long(text: str, where: str) -> str:
+    """A formula for the console, or its length when longer than ``SUMMARY_TEXT``."""
+    return (
+        text if len(text) <= SUMMARY_TEXT else f"({len(text):,} characters; results.json, {where})"
+    )
+
+
+def _is_number(text: str, value: float) -> bool:
+    """Whether a symbolic value's text is just its number (``0`` for 0.0): not printed twice."""
+    with contextlib.suppress(ValueError):
+        return float(text) == value
+    return False
 
 
 # the options each step of derive_paper depends on: named when NumPy or SciPy fails in it

@@ -70,7 +70,12 @@ _console = Console()
     help="Local processes running the starts (the atlas's dask path).",
 )
 @click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
-@click.option("--figures/--no-figures", default=True, show_default=True, help="Write fit.png.")
+@click.option(
+    "--figures/--no-figures",
+    default=True,
+    show_default=True,
+    help="Write the figure (fit.pdf, .svg, .png).",
+)
 @click.option("--out", default="out/fit", show_default=True, help="Output folder.")
 def fit_command(
     data,
@@ -88,8 +93,8 @@ def fit_command(
 ) -> None:
     """Fit a circuit of the controller to the firing rates recorded in DATA (CSV or NPZ).
 
-    Writes fit.json, predictions.csv (every neuron's trace), report.md and fit.png
-    into OUT. The data format is in docs/fitting.md.
+    Writes fit.json, predictions.csv (every neuron's trace), report.md and the figure
+    (fit.pdf, fit.svg, fit.png) into OUT. The data format is in docs/fitting.md.
     """
     from symctl.discovery.fit import fit
     from symctl.report.fit import write_fit

@@ -60,10 +60,11 @@ from types import MappingProxyType
 import networkx as nx
 import sympy as sp
 
-from symctl._util.display import LatexMixin, latex
+from symctl._util.display import LatexMixin
 from symctl._util.validate import nonneg_int, positive_int
 from symctl.compatibility.block import KINDS, MAX_WIRE_STEPS, Block, signal_name, signal_names
 from symctl.compatibility.block import block as checked_block
+from symctl.compatibility.equations import structure_equations, structure_latex
 from symctl.compatibility.signalgraph import SignalGraph, delay_free_cycle, zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization, section_realizations
@@ -508,30 +509,15 @@ class Structure(LatexMixin):
         >>> ifp_structure(2).equations()[-1]
         Eq(mu(t), K_0*x(t) + K_1*gamma(t) + K_2*u(t))
         """
-        t = sp.Symbol("t", integer=True)
-
-        def value(name, time):
-            block = self.blocks[name]
-            if block.kind == "gain":
-                gain = block.gain if block.gain is not None else sp.Symbol(_symbol_name(name))
-                return gain * value(block.inputs[0], time)
-            return sp.Function(_symbol_name(name))(time)
-
-        out = []
-        for name, block in self.blocks.items():
-            if block.kind == "delay":
-                rhs = value(block.inputs[0], t - block.steps)
-            elif block.kind == "sum":
-                rhs = sp.Add(*(value(s, t) for s in block.inputs))
-            else:
-                continue
-            out.append(sp.Eq(sp.Function(_symbol_name(name))(t), rhs, evaluate=False))
-        return out
+        return structure_equations(self)
 
     def latex(self) -> str:
-        """The equations of :meth:`equations`, one per line."""
-        body = r" \\ ".join(latex(eq) for eq in self.equations())
-        return r"\begin{gathered}" + body + r"\end{gathered}"
+        r"""The equations, one per adder and delayed state, signals by readable names.
+
+        Delayed branch terms are written into the adder they feed
+        (:func:`~symctl.compatibility.equations.structure_latex`).
+        """
+        return structure_latex(self)
 
     def _repr_latex_(self) -> str | None:
         if len(self) > 60:
@@ -543,16 +529,24 @@ class Structure(LatexMixin):
         return f"Structure({len(self)} signals: {counts}; inputs={self.inputs}, outputs={self.outputs})"
 
     def draw(
-        self, ax=None, *, title: str | None = None, max_signals: int = 400, overview: bool = False
+        self,
+        ax=None,
+        *,
+        title: str | None = None,
+        max_signals: int = 400,
+        overview: bool | str = False,
+        assignment=None,
+        vertex_names=None,
+        labels=None,
     ):
-        """Draw the structure in the style of the paper's block diagrams.
+        """Draw the structure as a block diagram, at the size it is printed (6.9 in at most).
 
-        Gains are boxes with their value, adders circles with a plus, one-step
-        delays broken (dashed) lines into the delayed signal (a small dot, named
-        when the paper names it, e.g. :math:`\\gamma`); inputs on the left,
-        outputs on the right. The layout is
-        :func:`symctl.plotting.structure_layout.structure_layout` (numbers), the
-        rendering :func:`symctl.plotting.structure.draw_structure`.
+        Gains are boxes with their value (long ones by their entry's name, listed in a
+        key), adders circles with a plus, delays dashed wires into the delayed signal (a
+        dot), every wire orthogonal with an arrow head; the parts of a series connection
+        are framed; a structure wider than the page is folded into rows of parts. Layout:
+        :func:`symctl.plotting.structure_layout.structure_layout` (numbers); rendering:
+        :func:`symctl.plotting.structure.draw_structure`, whose parameters these are.
 
         Parameters
         ----------
@@ -562,31 +556,39 @@ class Structure(LatexMixin):
             The heading (default: the counts of gains, adders and delays).
         max_signals : int, default 400
             Refuse larger structures (unless ``overview``).
-        overview : bool, default False
-            Draw only the parts of the series connection, one box each with its
-            counts (:func:`symctl.plotting.structure_overview.draw_structure_overview`):
-            how the report shows a structure of a long delay.
+        overview : bool or "auto", default False
+            Draw only the parts, one box each with its counts
+            (:func:`symctl.plotting.structure_overview.draw_structure_overview`);
+            ``"auto"``: when the block diagram would not fit the page.
+        assignment : DelayAssignment or mapping, optional
+            A delay assignment (e.g. the witness of compatibility): each vertex's
+            signals are drawn in a shaded band labelled :math:`v_k`.
+        vertex_names : sequence or mapping of str, optional
+            The bands' names (default :math:`v_1, v_2, \\dots`).
+        labels : mapping of str to str, optional
+            LaTeX labels of the inputs' and outputs' arrows, by signal name.
 
         Returns
         -------
         matplotlib.figure.Figure
-            The caller saves it (``fig.savefig("ifp.svg")`` or ``.png``).
+            The caller saves it (``fig.savefig("ifp.pdf")``).
 
         Raises
         ------
         ParameterError
-            More than ``max_signals`` signals.
+            More than ``max_signals`` signals, or ``assignment`` misses a signal.
 
         Examples
         --------
         >>> from symctl import ifp_structure
-        >>> fig = ifp_structure(2).draw()
+        >>> fig = ifp_structure(2).draw(labels={"x": "f", "u": "r"})
         >>> type(fig).__name__
         'Figure'
         """
         from symctl.plotting.structure import draw_structure
 
-        return draw_structure(self, ax, title=title, max_signals=max_signals, overview=overview)
+        return draw_structure(self, ax, title=title, max_signals=max_signals, overview=overview,
+                              assignment=assignment, vertex_names=vertex_names, labels=labels)  # fmt: skip
 
 
 # ---------------------------------------------------------------- helpers
@@ -595,10 +597,6 @@ def _is_zero(value) -> bool:
     if value == 0:
         return True
     return bool(value.free_symbols) and sp.cancel(value) == 0
-
-
-def _symbol_name(name: str) -> str:
-    return name.replace(" ", "").replace("^-1", "d_")
 
 
 # ---------------------------------------------------------------- the paper's structures

@@ -178,6 +178,8 @@ class AugmentedSystem(LatexMixin):
     state_names : tuple of str
         Names of the entries of :math:`\chi`.
 
+    Notes
+    -----
     Built by :func:`augment`; compares and hashes by value.
 
     Examples

@@ -65,6 +65,8 @@ class Gains(LatexMixin):
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
 
+    Notes
+    -----
     Built by :func:`lqr_gains`. The arrays are read-only copies; gains compare
     and hash by value (the system and the arrays).
 

@@ -448,6 +448,8 @@ class MuscleModel(LatexMixin):
     Ts : float
         Sampling time [s], > 0.
 
+    Notes
+    -----
     The admissible ranges keep every number of the derivation finite:
     ``tau``, ``f_max`` and ``Ts`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
     :math:`|\bar r| \le 700` and :math:`10^{-6} \le T_s/\tau \le 700`

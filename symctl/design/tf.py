@@ -24,7 +24,14 @@ from functools import reduce
 import numpy as np
 import sympy as sp
 
-from symctl._util.display import LatexMixin, descending_latex, descending_str, latex
+from symctl._util.display import (
+    DISPLAY_DIGITS,
+    LatexMixin,
+    descending_latex,
+    descending_str,
+    latex,
+    shortened,
+)
 from symctl._util.exact import products_equal, z_poly
 from symctl._util.validate import (
     MAX_STEPS,
@@ -70,6 +77,8 @@ class DiscreteTF(LatexMixin):
     dt : number, symbol or None
         Sampling time, kept for conversions (``None``: unspecified).
 
+    Notes
+    -----
     Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
     stored in lowest terms only when built by :meth:`from_expr`. Two objects
     are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
@@ -408,26 +417,45 @@ class DiscreteTF(LatexMixin):
 
     # ------------------------------------------------------------ display
     def latex(self) -> str:
-        """LaTeX in the paper's style: a constant factor pulled out, descending powers of z."""
-        den = descending_latex(self.den)
+        r"""LaTeX in the paper's style: a constant factor pulled out, descending powers of z.
+
+        Floats are written to 6 significant digits, exact numbers exactly.
+
+        >>> import sympy as sp
+        >>> from symctl import DiscreteTF, z
+        >>> DiscreteTF(sp.Float(-0.0459718543789935), 1.0 * z**2 + 0.580040776580175 * z).latex()
+        '\\frac{-0.0459719}{z^{2} + 0.580041 z}'
+        """
+        num, den_expr = shortened(self._num), shortened(self.den)
+        den = descending_latex(den_expr, DISPLAY_DIGITS)
         if not self.is_siso:
-            return rf"\frac{{1}}{{{den}}} {latex(self._num)}"
-        gain, rest = sp.factor_terms(self._num[0, 0]).as_independent(z, as_Add=False)
+            return rf"\frac{{1}}{{{den}}} {latex(num)}"
+        gain, rest = sp.factor_terms(num[0, 0]).as_independent(z, as_Add=False)
         prefix = "" if gain == 1 else ("-" if gain == -1 else latex(gain) + " ")
         if rest == 1:
-            return latex(gain) if self.den == 1 else rf"\frac{{{latex(gain)}}}{{{den}}}"
-        if self.den == 1:
-            return prefix + descending_latex(rest)
-        return rf"{prefix}\frac{{{descending_latex(rest)}}}{{{den}}}"
+            return latex(gain) if den_expr == 1 else rf"\frac{{{latex(gain)}}}{{{den}}}"
+        if den_expr == 1:
+            return prefix + descending_latex(rest, DISPLAY_DIGITS)
+        return rf"{prefix}\frac{{{descending_latex(rest, DISPLAY_DIGITS)}}}{{{den}}}"
 
     def __repr__(self) -> str:
         return f"DiscreteTF({self}, dt={self.dt})"
 
     def __str__(self) -> str:
-        den = descending_str(self.den)
+        """``(num)/(den)`` in descending powers of z, floats to 6 significant digits; without a
+        denominator (``den`` 1) the numerator alone.
+
+        >>> from symctl import DiscreteTF, z
+        >>> str(DiscreteTF(1, 1)), str(DiscreteTF(0.5, 1.0 * z - 0.25))
+        ('1', '(0.5)/(z - 0.25)')
+        """
+        num, den_expr = shortened(self._num), shortened(self.den)
+        den = descending_str(den_expr, DISPLAY_DIGITS)
         if self.is_siso:
-            return f"({descending_str(self._num[0, 0])})/({den})"
+            text = descending_str(num[0, 0], DISPLAY_DIGITS)
+            return text if den_expr == 1 else f"({text})/({den})"
         rows = ", ".join(
-            "[" + ", ".join(descending_str(e) for e in row) + "]" for row in self._num.tolist()
+            "[" + ", ".join(descending_str(e, DISPLAY_DIGITS) for e in row) + "]"
+            for row in num.tolist()
         )
-        return f"[{rows}]/({den})"
+        return f"[{rows}]" if den_expr == 1 else f"[{rows}]/({den})"

@@ -289,7 +289,7 @@ def ei_circuit(
     reason = (
         f"{len(found)} circuits searched in {time.perf_counter() - t0:.1f} s; the fewest mixed "
         "neurons of each is proved by z3 (that bound is satisfiable, one fewer is not); "
-        f"{label} needs {len(relays)} interneuron(s)"
+        f"{label} needs {len(relays)} interneuron{'' if len(relays) == 1 else 's'}"
     )
     return EICircuit(
         label, neurons, tuple(r.source for r in relays), total, minimum, total - minimum, signs,

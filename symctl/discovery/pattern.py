@@ -100,6 +100,8 @@ class Pattern:
     mask : int
         Bit ``k`` set when slot ``k`` (:func:`slot_names`) is nonzero.
 
+    Notes
+    -----
     Patterns are values: they compare, sort and hash by ``(n, mask)``.
 
     Examples

@@ -116,6 +116,8 @@ class FiringSummary:
         neuron [spikes/s]: nonzero whenever the traces differ, even when their peaks are
         equal (``spread`` then is 0). Defaults to ``spread`` when not given.
 
+    Notes
+    -----
     Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
 
     Examples
@@ -192,6 +194,8 @@ class FiringPatterns:
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
 
+    Notes
+    -----
     Made by :func:`circuit_firing`; the arrays are read-only copies, ``firing``
     and each of ``params`` read-only mappings.
 

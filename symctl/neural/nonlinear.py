@@ -87,6 +87,8 @@ class NonlinearCheck:
     units : tuple of str
         The states' units, for labels (``"N"``).
 
+    Notes
+    -----
     ``f_linear``, ``f_nonlinear`` and ``r_nonlinear`` are the first state's and
     input's traces, ``(k, steps)``, as for the muscle. Made by
     :func:`nonlinear_check`; the arrays are read-only copies.

@@ -197,6 +197,8 @@ class Response:
         Of the columns of ``states``: the optimal controller's delay chain
         (:func:`~symctl.design.augment.chain_names`), else ``x_1, ...``.
 
+    Notes
+    -----
     The arrays are read-only copies; :func:`open_loop_response`,
     :func:`closed_loop_response` and :func:`simulate_realization` make a Response.
 

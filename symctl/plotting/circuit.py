@@ -49,6 +49,7 @@ from symctl.plotting.circuit_layout import (
 )
 from symctl.plotting.circuit_signs import SignValues, weight_sign
 from symctl.plotting.common import figure_and_axes, text_outline, text_size
+from symctl.plotting.key import key_columns
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -387,7 +388,7 @@ def _key_fits(values: list[str], room: float) -> bool:
     if any(w > room for w in widths):
         return False
     tall = [(2.6 if "frac" in v else 1.4) * em + 0.06 for v in lines]
-    rows = len(_key_columns(widths, room)[0]) if widths else 0
+    rows = len(key_columns(widths, room, _KEY_GAP)[0]) if widths else 0
     return rows * max(tall, default=0.0) <= MAX_KEY
 
 
@@ -421,7 +422,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
     ``key:w1``, ``key:self1``, ...), the path that also measured it: matplotlib parses
     a mathtext string again for every measure and every output format, and a key of
     forty long fractions took two thirds of the drawing's time, three times over. As many
-    columns as fit (:func:`_key_columns`), each as wide as its widest line, filled top to
+    columns as fit (:func:`symctl.plotting.key.key_columns`), each as wide as its widest line, filled top to
     bottom; each row is as tall as its tallest line (a fraction is). The key is laid out
     in inches from its corner ``(x, y)``, as text is; returns its lowest ``y`` and
     rightmost ``x`` in data units of one inch (``y`` and ``x`` without lines).
@@ -434,7 +435,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
     names, lines = [n for n, _ in broken], [p for _, p in broken]
     outlines = [text_outline(display_text(line), SMALL) for line in lines]
     sizes = [((x1 - x0) / 72, (y1 - y0) / 72) for _, (x0, y0, x1, y1) in outlines]
-    columns = _key_columns([w for w, _ in sizes], room)
+    columns = key_columns([w for w, _ in sizes], room, _KEY_GAP)
     nrows = len(columns[0])
     anchor = ax.figure.dpi_scale_trans + ScaledTranslation(x, y, ax.transData)
     lefts = [0.0]
@@ -516,18 +517,3 @@ def _broken(line: str, room: float) -> list[str]:
         else:
             out[-1] += part
     return out
-
-
-def _key_columns(widths: list[float], room: float) -> list[list[int]]:
-    """The key's lines (indices) in columns, top to bottom: the most that fit ``room``.
-
-    Each column is as wide as its widest line; with ``n`` columns the first ones hold
-    ``ceil(len / n)`` lines. One column when even two do not fit.
-    """
-    for n in range(len(widths), 1, -1):
-        rows = -(-len(widths) // n)
-        columns = [list(range(k, min(k + rows, len(widths)))) for k in range(0, len(widths), rows)]
-        total = sum(max(widths[k] for k in col) for col in columns) + _KEY_GAP * (len(columns) - 1)
-        if total <= room:
-            return columns
-    return [list(range(len(widths)))]

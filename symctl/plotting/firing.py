@@ -1,8 +1,11 @@
 r"""The firing-pattern figure: one panel per neuron of :math:`G_2`, one line per realization.
 
 The rendering of :meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>`
-(the paper's Figs. full_diagram, ccr_diagram, ocr_diagram): the force of every
-realization on top (identical), each neuron's change of firing rate below.
+(the paper's Figs. full_diagram, ccr_diagram, ocr_diagram): the plant's first state in
+every realization on top (identical, and the optimal controller's), each neuron's change
+of firing rate below, one legend of the realizations under the figure. Drawn in the
+house style (:mod:`symctl.plotting.style`) at the text width; no heading unless
+``title`` asks for one (a paper's caption says what the figure shows).
 
 >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
 >>> from symctl.plotting.firing import firing_plot
@@ -15,40 +18,44 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from matplotlib.figure import Figure
-
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
-from symctl.neural.firing import _TITLES
+from symctl.plotting import style
+from symctl.plotting.response import UNKNOWN_UNIT
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from symctl.neural.firing import FiringPatterns
 
 __all__ = ["firing_plot"]
 
-_RATE_LABEL = "change in firing rate [spikes/s]"
+PANEL_HEIGHT = 1.05
+"""Height of a row of neuron panels [in], their headings included."""
+_COLOURS = tuple(c for c in style.PALETTE if c != "#F0E442")  # yellow is faint as a line
 
 
 def _tex(name: str, *, part: bool = True) -> str:
     return f"${signal_tex(name, part=part)}$"
 
 
-def _names(fp, labels, which: str = "state") -> tuple[str, str, str]:
-    """(axis label, unit, short name) of the plant's state or input."""
+def _state(fp, labels) -> tuple[str, str, str | None]:
+    """(description, mathtext symbol without ``$``, unit) of the plant's first state."""
     if labels is None:
-        return (
-            ("force f", "N", "force")
-            if which == "state"
-            else ("rate r", "spikes/s", "motor-neuron rate")
-        )
-    ref = fp.reference
-    name = (ref.state_names if which == "state" else ref.input_names)[0]
-    raw = name.removeprefix("delta_")
+        return "muscle force", "f", "N"
+    raw = fp.reference.state_names[0].removeprefix("delta_")
     what, unit = labels.get(raw, ("", ""))
-    return (f"{what} {raw}" if what else raw), unit or "units", what or raw
+    return what, signal_tex(raw), unit or None
 
 
-def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
+def firing_plot(
+    fp: FiringPatterns,
+    ncols: int = 3,
+    labels=None,
+    *,
+    title: str | None = None,
+    size: str | float = "text",
+) -> Figure:
     """One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
 
     Parameters
@@ -60,10 +67,17 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
     labels : mapping of str to (str, str), optional
         ``name -> (description, unit)`` of the plant's state and input (their
         names without ``delta_``); default the muscle's (force f [N], rate r).
+    title : str, optional
+        A heading over the figure (default none).
+    size : {"column", "double", "text"} or float
+        The printed width (:func:`symctl.plotting.style.width`).
 
     Returns
     -------
     matplotlib.figure.Figure
+        The state panel on top (its heading says how closely the realizations'
+        rates agree), the neuron panels (time and rate axes labelled once, for
+        all of them), the legend of the realizations below.
 
     Raises
     ------
@@ -82,47 +96,59 @@ def firing_plot(fp: FiringPatterns, ncols: int = 3, labels=None) -> Figure:
     names = fp.neurons
     cols = max(1, min(int(ncols), len(names)))
     rows = -(-len(names) // cols)
-    fig = Figure(figsize=(max(3.6 * cols + 1.2, 8.0), 2.2 + 2.7 * rows), layout="constrained")
-    grid = fig.add_gridspec(1 + rows, cols, height_ratios=[0.55] + [1.0] * rows)
-    top = fig.add_subplot(grid[0, :])
-    for i in range(fp.count):
-        top.plot(fp.t, fp.f_bar + fp.delta_f[i], color=f"C{i % 10}", lw=1.2,
-                 drawstyle="steps-post")  # fmt: skip
-    top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], "k:", lw=1.2,
-             label="optimal controller (identical)", drawstyle="steps-post")  # fmt: skip
-    state = _names(fp, labels)
-    top.set_ylabel(f"{state[0]} [{state[1]}]")
-    top.set_title(f"{state[2]}, every realization (identical)", fontsize="medium")
-    top.legend(loc="upper right", fontsize="small")
-    top.grid(alpha=0.3)
-    axes = []
-    for k, name in enumerate(names):
-        ax = fig.add_subplot(grid[1 + k // cols, k % cols], sharex=top)
+    width = style.width(size)
+    labels_ = [fp.legend_label(i) for i in range(fp.count)]
+    entries = len(labels_) + 1
+    legend_rows = -(-entries // style.legend_columns([*labels_, "optimal controller"], width))
+    height = 1.45 + PANEL_HEIGHT * rows + 0.16 * legend_rows + 0.3
+    fig = style.new_figure(size, height)
+    unit_t = fp.reference.time_unit
+    with style.styled():
+        top_fig, grid_fig = fig.subfigures(2, 1, height_ratios=[1.1, PANEL_HEIGHT * rows + 0.3])
+        top = top_fig.subplots()
+        lines = []
         for i in range(fp.count):
-            ax.plot(fp.t, fp.firing[name][i], marker=".", ms=3, lw=1.3, drawstyle="steps-post",
-                    color=f"C{i % 10}", label=fp.legend_label(i))  # fmt: skip
-        ax.axhline(0, color="black", lw=0.5)
-        part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
-        where = f" ({part.partition('.')[0]})" if "." in part else ""
-        ax.set_title(f"neuron {_tex(name, part=False)}{where}")
-        ax.set_xlabel(f"time [{fp.reference.time_unit}]")
-        if k % cols == 0:
-            ax.set_ylabel(_RATE_LABEL)
-        ax.grid(alpha=0.3)
-        axes.append(ax)
-    if axes:
-        handles, texts = axes[0].get_legend_handles_labels()
-        wide = max((len(t) for t in texts), default=0) > 48  # long labels: two per row
-        fig.legend(handles, texts, loc="outside lower center", fontsize="small",
-                   ncols=min(fp.count, 2 if wide or cols <= 2 else 4), title="realization")  # fmt: skip
-    what = "the neuron of the" if fp.kind == "ifp" else "the neurons of $G_2$,"
-    fig.suptitle(
-        f"Firing of {what} {_TITLES.get(fp.kind, fp.kind)}\n"
-        + (
-            "one realization: the optimal controller's delay chain"
-            if fp.kind == "ifp"
-            else f"same {state[2]} (top) and {_names(fp, labels, 'input')[2]} in every realization"
-            f"\n(the rate checked to {max(fp.max_deviation, 1e-16):.0e}, relative); different firing"
-        )
-    )
+            lines += top.plot(fp.t, fp.f_bar + fp.delta_f[i], color=_COLOURS[i % len(_COLOURS)],
+                              lw=1.2, drawstyle="steps-post")  # fmt: skip
+        optimal = top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], color="black", lw=0.9,
+                           ls=(0, (1, 1.5)), drawstyle="steps-post")[0]  # fmt: skip
+        what, sym, unit = _state(fp, labels)
+        top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
+        top.set_xlabel(style.axis_label("time", unit_t))
+        head = f"{what} ${sym}$" if what else f"${sym}$"
+        if fp.kind == "ifp":
+            head += ": one realization, the optimal controller's delay chain"
+        else:
+            dev = max(fp.max_deviation, 1e-16)
+            head += (f" in every realization and with the optimal controller: the same, "
+                     f"to {dev:.0e} relative (and so is the input)")  # fmt: skip
+        top.set_title(head, loc="left", fontsize=style.SMALL, pad=3)
+        axes = grid_fig.subplots(rows, cols, sharex=True, squeeze=False)
+        for k, name in enumerate(names):
+            ax = axes[k // cols, k % cols]
+            for i in range(fp.count):
+                ax.plot(fp.t, fp.firing[name][i], drawstyle="steps-post", lw=1.0,
+                        color=_COLOURS[i % len(_COLOURS)])  # fmt: skip
+            ax.axhline(0, color="black", lw=0.5)
+            part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
+            where = f" ({part.partition('.')[0]})" if "." in part else ""
+            ax.set_title(f"neuron {_tex(name, part=False)}{where}", fontsize=style.SMALL, pad=2)
+            ax.yaxis.set_major_locator(_locator())
+            # a panel with none below it shows the time ticks (the last row may be short)
+            ax.xaxis.set_tick_params(labelbottom=k + cols >= len(names))
+        for k in range(len(names), rows * cols):
+            axes[k // cols, k % cols].remove()
+        grid_fig.supxlabel(style.axis_label("time", unit_t), fontsize=style.FONT_SIZE)
+        grid_fig.supylabel(style.axis_label("firing-rate change", "spikes/s"),
+                           fontsize=style.FONT_SIZE)  # fmt: skip
+        style.figure_legend(fig, [*lines, optimal], [*labels_, "optimal controller"],
+                            title="realization")  # fmt: skip
+    if title:
+        fig.suptitle(title, fontsize=style.TITLE)
     return fig
+
+
+def _locator():
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10])

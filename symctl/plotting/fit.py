@@ -1,9 +1,11 @@
 r"""The fit figure: data against fit for the recorded neurons, predictions for the others.
 
 The rendering of :meth:`FitResult.plot <symctl.discovery.fit.FitResult.plot>`: one
-panel per neuron of the fitted circuit. A recorded neuron shows its data (dots)
-and the fitted trace; an unrecorded one its predicted trace with one standard
-error as a band, or a note that the data do not pin it down.
+panel per neuron of the fitted circuit, in the house style (:mod:`symctl.plotting.style`)
+at the text width. A recorded neuron shows its data (dots) and the fitted trace; an
+unrecorded one its predicted trace with one standard error as a band, or, when the data
+do not pin it down, its heading says so. One legend under the figure; the time axis ends
+where every trace has settled (the axis label says where, when it is cut).
 
 >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
 >>> from symctl.plotting.fit import fit_plot
@@ -12,7 +14,7 @@ error as a band, or a note that the data do not pin it down.
 >>> res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, gains, sensor_delay=1,
 ...           actuator_delay=1, C=1, starts=2)
 >>> [ax.get_title() for ax in fit_plot(res).axes][:2]
-['G1.x1 (predicted)', 'G2.x1 (recorded)']
+['$x_{1}^{\\mathrm{G1}}$ (predicted)', '$x_{1}^{\\mathrm{G2}}$ (recorded)']
 """
 
 from __future__ import annotations
@@ -20,15 +22,50 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
+
+from symctl._util.texnames import signal_tex
+from symctl._util.validate import positive_int
+from symctl.plotting import style
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from symctl.discovery.fit import FitResult
 
-__all__ = ["fit_plot"]
+__all__ = ["SETTLED", "fit_plot"]
+
+SETTLED = 0.01
+"""A trace has settled once it stays within this fraction of its peak; the time axis ends
+a little after the last trace settles (when that is well before the end of the data)."""
+
+_PANEL_HEIGHT = 1.15  # a row of panels with its headings [in]
 
 
-def fit_plot(result: FitResult, ncols: int = 3) -> Figure:
+def _neuron_tex(name: str) -> str:
+    """``G2.x1`` -> :math:`x_1^{G2}`, as in the circuit diagrams."""
+    prefix, _, short = name.rpartition(".")
+    return f"${signal_tex(short)}^{{\\mathrm{{{prefix}}}}}$" if prefix else f"${signal_tex(name)}$"
+
+
+def _window(t: np.ndarray, traces) -> float | None:
+    """Where the time axis ends: a quarter after the last trace settles; None: the whole data."""
+    last = 0.0
+    for y in traces:
+        y = np.asarray(y, dtype=float)
+        ok = np.isfinite(y)
+        if not ok.any():
+            continue
+        peak = np.max(np.abs(y[ok]))
+        busy = np.flatnonzero(ok & (np.abs(y) > SETTLED * peak)) if peak > 0 else []
+        if len(busy):
+            last = max(last, float(t[busy[-1]]))
+    span = float(t[-1] - t[0])
+    end = t[0] + 1.25 * (last - t[0]) + 0.05 * span
+    return None if end >= t[0] + 0.8 * span else end
+
+
+def fit_plot(result: FitResult, ncols: int = 3, *, title: str | None = None,
+             size: str | float = "text") -> Figure:  # fmt: skip
     """One panel per neuron: data and fit (recorded), prediction and its band (unrecorded).
 
     Parameters
@@ -36,37 +73,74 @@ def fit_plot(result: FitResult, ncols: int = 3) -> Figure:
     result : FitResult
     ncols : int
         Panels per row.
+    title : str, optional
+        A heading over the figure (default none).
+    size : {"column", "double", "text"} or float
+        The printed width (:func:`symctl.plotting.style.width`).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    ParameterError
+        ``ncols`` is not an integer >= 1.
     """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    ncols = positive_int(ncols, "ncols")
     pred, band = result.predict(), result.band()
     names = list(pred)
-    rows = -(-len(names) // ncols)
-    fig = Figure(figsize=(4.0 * min(ncols, len(names)), 2.8 * rows), layout="constrained")
-    t = result.t
-    for i, name in enumerate(names):
-        ax = fig.add_subplot(rows, min(ncols, len(names)), i + 1)
-        if name in result.data:
-            ax.plot(t, result.data[name], ".", ms=3, color="0.55", label="data")
-            ax.plot(t, pred[name], color="C0", label="fit", drawstyle="steps-post")
-            ax.set_title(f"{name} (recorded)")
-        else:
-            ok = result.neuron_identifiable[name]
-            ax.plot(t, pred[name], color="C1" if ok else "C3", label="prediction",
-                    drawstyle="steps-post")  # fmt: skip
-            if ok and np.all(np.isfinite(band[name])):
-                ax.fill_between(t, pred[name] - band[name], pred[name] + band[name], color="C1",
-                                alpha=0.3, lw=0, label="1 s.e.")  # fmt: skip
+    cols = min(ncols, len(names))
+    rows = -(-len(names) // cols)
+    fig = style.new_figure(size, 0.75 + _PANEL_HEIGHT * rows)
+    t = np.asarray(result.t, dtype=float)
+    end = _window(t, [*pred.values(), *result.data.values()])
+    # grey data, blue fit, green prediction, vermillion where the data pin nothing down
+    data_c, fit_c, pred_c, lost_c = style.NEUTRAL, *(style.PALETTE[k] for k in (0, 2, 1))
+    used = set()
+    with style.styled():
+        grid = fig.subfigures(1, 1)  # its axis labels, then the figure's legend below it
+        axes = grid.subplots(rows, cols, sharex=True, squeeze=False)
+        for k, name in enumerate(names):
+            ax = axes[k // cols, k % cols]
+            if name in result.data:
+                ax.plot(t, pred[name], color=fit_c, lw=1.2, drawstyle="steps-post")
+                ax.plot(t, result.data[name], ".", ms=2.5, color=data_c, zorder=3)
+                head = "recorded"
+                used.update((0, 1))
             else:
-                ax.text(0.5, 0.9, "not identifiable: one of many", transform=ax.transAxes,
-                        ha="center", fontsize=8, color="C3")  # fmt: skip
-            ax.set_title(f"{name} (predicted)")
-        ax.set_xlabel("t [s]")
-        ax.set_ylabel("change in firing rate [spikes/s]")
-        ax.legend(fontsize=7, loc="lower right")
-    fig.suptitle(
-        f"fit: {result.circuit_class} circuit, realizes G exactly: {result.exact}", fontsize=10
-    )
+                ok = bool(result.neuron_identifiable[name])
+                ax.plot(t, pred[name], color=pred_c if ok else lost_c, lw=1.0,
+                        drawstyle="steps-post")  # fmt: skip
+                used.add(2 if ok else 4)
+                if ok and np.all(np.isfinite(band[name])):
+                    used.add(3)
+                    ax.fill_between(t, pred[name] - band[name], pred[name] + band[name],
+                                    color=pred_c, alpha=0.3, lw=0, step="post")  # fmt: skip
+                head = "predicted" if ok else "predicted; not identifiable"
+            ax.set_title(f"{_neuron_tex(name)} ({head})", fontsize=style.SMALL, pad=2)
+            ax.axhline(0, color="black", lw=0.5)
+            ax.xaxis.set_tick_params(labelbottom=k + cols >= len(names))
+        for k in range(len(names), rows * cols):
+            axes[k // cols, k % cols].remove()
+        if end is not None:
+            axes[0, 0].set_xlim(t[0] - 0.02 * (end - t[0]), end)
+        shown = "" if end is None else f" (to {end:.2g} s; later, every trace stays settled)"
+        grid.supxlabel(style.axis_label("time", "s") + shown, fontsize=style.FONT_SIZE)
+        grid.supylabel(style.axis_label("firing-rate change", "spikes/s"), fontsize=style.FONT_SIZE)
+        handles = [
+            Line2D([], [], ls="", marker=".", ms=4, color=data_c),
+            Line2D([], [], color=fit_c),
+            Line2D([], [], color=pred_c),
+            Patch(color=pred_c, alpha=0.3, lw=0),
+            Line2D([], [], color=lost_c),
+        ]
+        texts = ["data", "fit", "prediction", "1 standard error", "prediction, not identifiable"]
+        keep = sorted(used)
+        style.figure_legend(fig, [handles[i] for i in keep], [texts[i] for i in keep])
+    if title:
+        fig.suptitle(title, fontsize=style.TITLE)
     return fig

@@ -5,6 +5,7 @@ The checks a reviewer makes by eye, made on the drawn figure: every text at leas
 no two texts overlapping, no text running off the figure, and the figure no wider
 than the page it goes on. :func:`legibility` draws the figure once (Agg) and returns a
 :class:`Legibility` that is truthy when every check holds and lists what fails.
+:func:`missing_units` lists the axes whose numbers come without a unit.
 
 ``scale`` is the factor the figure is printed at (1 when it is included at its
 natural size, as ``derivation.pdf`` includes every figure).
@@ -29,7 +30,7 @@ from dataclasses import dataclass
 
 from symctl.plotting.style import MIN_FONT, TEXT_WIDTH
 
-__all__ = ["Legibility", "legibility"]
+__all__ = ["Legibility", "legibility", "missing_units"]
 
 
 @dataclass(frozen=True)
@@ -75,14 +76,20 @@ class Legibility:
 
 
 def _hidden_ticks(fig) -> set[int]:
-    """Tick labels outside their axis's view: matplotlib keeps them but never draws them."""
+    """Tick labels outside their axis's view: matplotlib keeps them but never draws them.
+
+    Compared as matplotlib compares them, in the axis's scale (a log axis in decades) and
+    relative to the view's span, so that an axis of tiny values (1e-11) is judged right.
+    """
     hidden = set()
     for ax in fig.get_axes():
         for axis in (ax.xaxis, ax.yaxis):
-            lo, hi = sorted(axis.get_view_interval())
-            slack = 1e-9 * max(1.0, abs(hi - lo))
+            scale = axis.get_transform()
+            lo, hi = sorted(scale.transform(list(axis.get_view_interval())))
+            slack = 1e-9 * abs(hi - lo)
             for tick in (*axis.get_major_ticks(), *axis.get_minor_ticks()):
-                if not lo - slack <= tick.get_loc() <= hi + slack:
+                loc = scale.transform([tick.get_loc()])[0]
+                if not lo - slack <= loc <= hi + slack:
                     hidden.update((id(tick.label1), id(tick.label2)))
     return hidden
 
@@ -169,3 +176,53 @@ def legibility(
         width=printed,
         too_wide=page_width is not None and printed > page_width + 1e-6,
     )
+
+
+def missing_units(fig) -> tuple[str, ...]:
+    """The axes of ``fig`` that show numbers but name no unit (``quantity [unit]``).
+
+    An axis counts as labelled when its own label, or a label shared by its
+    (sub)figure (``supxlabel``, ``supylabel``) for that direction, holds ``[...]``
+    (:func:`symctl.plotting.style.axis_label`; ``[1]`` for a pure number). Call it on a
+    drawn figure (after :func:`legibility`, or ``fig.canvas.draw()``): tick labels get
+    their text when drawn.
+
+    Returns
+    -------
+    tuple of str
+        ``"<axes k> x"`` or ``"<axes k> y"``, with the label found, for each unit missing.
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import new_figure
+    >>> from symctl.plotting.legibility import legibility, missing_units
+    >>> fig = new_figure("column", 1.5)
+    >>> ax = fig.add_subplot()
+    >>> _ = ax.plot([0, 1], [0, 2])
+    >>> _ = ax.set_xlabel("time [s]"), ax.set_ylabel("force")
+    >>> _ = legibility(fig)
+    >>> missing_units(fig)
+    ("axes 0 y: 'force'",)
+    """
+
+    def shared(ax, which: str) -> str:
+        texts, parent = [], ax.figure
+        while parent is not None:  # the (sub)figure, then its parents up to the figure
+            label = getattr(parent, f"_sup{which}label", None)
+            texts.append(label.get_text() if label is not None else "")
+            parent = getattr(parent, "_parent", None)
+        return " ".join(texts)
+
+    missing = []
+    for k, ax in enumerate(fig.get_axes()):
+        if not ax.get_visible() or not ax.axison:
+            continue
+        for which, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+            shown = any(
+                t.label1.get_visible() and t.label1.get_text().strip()
+                for t in axis.get_major_ticks()
+            )
+            label = axis.get_label().get_text()
+            if shown and "[" not in label and "[" not in shared(ax, which):
+                missing.append(f"axes {k} {which}: {label!r}")
+    return tuple(missing)

@@ -1,15 +1,21 @@
-r"""Figures of simulations: a loop's force and rate traces, the nonlinear muscle's departure.
+r"""Figures of simulations: a loop's state and input traces, the nonlinear plant's departure.
 
 The rendering of :meth:`Response.plot <symctl.neural.simulate.Response.plot>` and
 :meth:`NonlinearCheck.plot <symctl.neural.nonlinear.NonlinearCheck.plot>` (the methods
 hand their object over). Figures are pyplot-free :class:`matplotlib.figure.Figure`
-objects, saved by the caller.
+objects in the house style (:mod:`symctl.plotting.style`), drawn at the width they are
+printed at, saved by the caller. Sampled signals are drawn as steps, held over each
+sampling period; every axis has its unit; legends sit beside a panel's heading, above
+the data. A figure carries no heading of its own unless ``title`` asks for one: in a
+paper the caption says what it shows.
 
 >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
 >>> from symctl.plotting.response import response_plot
 >>> fig = response_plot(closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))))
 >>> [ax.get_ylabel() for ax in fig.axes]
-['force change δf [N]', 'rate change δr [spikes/s]', 'controller state\n(rate change) [spikes/s]']
+['$\\delta f$ [N]', '$\\delta r$ [spikes/s]', '$\\delta r$ [spikes/s]']
+>>> [ax.get_title(loc="left") for ax in fig.axes][1]
+'motor-neuron rate $r$ ($\\bar{r}$ = 1 spike/s)'
 """
 
 from __future__ import annotations
@@ -17,32 +23,35 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
+
+from symctl._util.texnames import signal_tex
+from symctl.plotting import style
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from symctl.neural.nonlinear import NonlinearCheck
     from symctl.neural.simulate import Response
 
-__all__ = ["MAX_PANELS", "nonlinear_plot", "response_plot"]
+__all__ = ["MARKERS_UP_TO", "MAX_PANELS", "UNKNOWN_UNIT", "nonlinear_plot", "response_plot"]
 
 MAX_PANELS = 6
 """Most panels of signals in :func:`response_plot` (beyond, the rest share the last)."""
 
+MARKERS_UP_TO = 60
+"""Samples are marked with dots on traces of up to this many samples (more would be a smear)."""
 
-_MUSCLE = {"f": ("force", "N"), "r": ("rate", "spikes/s")}
+_MUSCLE = {"f": ("muscle force", "N"), "r": ("motor-neuron rate", "spikes/s")}
+UNKNOWN_UNIT = "arb. unit"
+"""The unit an axis names when the model gives none (not ``[1]``: that says dimensionless)."""
+_MARGINS = 0.75  # inches of a panel's row taken by the y-axis label and ticks (for legends)
 
 
-def _label(name: str, labels) -> tuple[str, str, str]:
-    """(change label, absolute label, unit) of a signal ``delta_<x>`` (or ``<x>``)."""
+def _signal(name: str, labels) -> tuple[str, str, str | None]:
+    """(description, mathtext symbol without ``$``, unit) of ``delta_<x>`` or ``<x>``."""
     raw = name.removeprefix("delta_")
-    table = _MUSCLE if labels is None else labels
-    what, unit = table.get(raw, ("", ""))
-    if labels is None and raw == "r":
-        return "rate change δr", "motor-neuron rate r", "spikes/s"
-    what = what or raw
-    unit = unit or "units"
-    head = f"{what} change δ{raw}" if what != raw else f"change δ{raw}"
-    return head, f"{what} {raw}" if what != raw else raw, unit
+    what, unit = (_MUSCLE if labels is None else labels).get(raw, ("", ""))
+    return what, signal_tex(raw), unit or None
 
 
 def _state_tex(name: str) -> str:
@@ -54,8 +63,71 @@ def _state_tex(name: str) -> str:
     return tex + (f"[{index}" if index else "")
 
 
-def response_plot(res: Response, states: bool | None = None, labels=None) -> Figure:
-    """Each state and input against time (absolute values on the right axes), and the controller.
+def _bar(sym: str) -> str:
+    """The operating point's symbol: the bar over the stem, not the index (``f_{flex}``)."""
+    stem, sep, index = sym.partition("_")
+    return rf"\bar{{{stem}}}{sep}{index}"
+
+
+def _axis(quantity: str, unit: str | None) -> str:
+    """``quantity [unit]``, :data:`UNKNOWN_UNIT` where the model gives no unit."""
+    return style.axis_label(quantity, unit or UNKNOWN_UNIT)
+
+
+def _amount(value: float, unit: str | None) -> str:
+    """``43.86 N``; a count noun in the singular at one (``1 spike/s``, not ``1 spikes/s``)."""
+    if unit is None:
+        return f"{value:.4g}"
+    head, sep, rest = unit.partition("/")
+    if value == 1 and len(head) >= 4 and head.isalpha() and head.endswith("s"):
+        unit = head[:-1] + sep + rest
+    return f"{value:.4g} {unit}"
+
+
+_LINE_COLOURS = tuple(c for c in style.PALETTE if c != "#F0E442")  # yellow is faint as a line
+
+
+def _steps(ax, t, y, *, marked: bool, **kwargs):
+    """A sampled signal, held over each step (a dot at each sample on short traces)."""
+    if marked:
+        kwargs.setdefault("marker", ".")
+        kwargs.setdefault("markersize", 2.5)
+    return ax.plot(t, y, drawstyle="steps-post", **kwargs)[0]
+
+
+def _heading(ax, text: str, room: float) -> None:
+    """The panel's short heading, left in the row above it, with the legend of several traces.
+
+    With one trace the heading is the axes' title; with several it is the title of their
+    legend, which sits above the axes (never on the data) in as many columns as ``room``
+    inches hold.
+    """
+    handles, labels = ax.get_legend_handles_labels()
+    if len(handles) < 2:
+        ax.set_title(text, loc="left", fontsize=style.SMALL, pad=3)
+        return
+    style.legend_above(ax, handles, labels, room=room, heading=text)
+
+
+def _title(fig, title: str | None) -> None:
+    if title:
+        fig.suptitle(title, fontsize=style.TITLE)
+
+
+def response_plot(
+    res: Response,
+    states: bool | None = None,
+    labels=None,
+    *,
+    title: str | None = None,
+    size: str | float = "column",
+) -> Figure:
+    r"""Each state and input against time, and the controller's states, on one time axis.
+
+    Each panel shows a change from the operating point (:math:`\delta x`), headed by
+    what it is and the operating point's value (:math:`\bar x`): the absolute value is
+    their sum. A closed loop's disturbance is drawn (dashed) in the panel of the state
+    it acts on.
 
     Parameters
     ----------
@@ -67,19 +139,24 @@ def response_plot(res: Response, states: bool | None = None, labels=None) -> Fig
     labels : mapping of str to (str, str), optional
         ``name -> (description, unit)`` of the states and inputs (their names
         without ``delta_``); default the muscle's (force f [N], rate r [spikes/s]).
+    title : str, optional
+        A heading over the figure (default none: a paper's caption says it).
+    size : {"column", "double", "text"} or float
+        The printed width (:func:`symctl.plotting.style.width`).
 
     Returns
     -------
     matplotlib.figure.Figure
         One panel per state and per input (at most ``MAX_PANELS``; beyond, the
-        rest share the last one), then the controller's states, on one time axis.
+        rest share the last one), then the controller's states.
 
     Examples
     --------
     >>> from symctl import open_loop_response
     >>> from symctl.plotting.response import response_plot
-    >>> len(response_plot(open_loop_response()).axes)   # open loop: no controller states
-    2
+    >>> fig = response_plot(open_loop_response())   # open loop: no controller states
+    >>> len(fig.axes), fig.axes[-1].get_xlabel()
+    (2, 'time [s]')
     """
     states = res.states.shape[1] > 0 if states is None else states
     signals = [(res.delta_f, res.f_bar, res.state_names, i, True)
@@ -90,65 +167,123 @@ def response_plot(res: Response, states: bool | None = None, labels=None) -> Fig
     if len(signals) >= MAX_PANELS:
         groups.append(signals[MAX_PANELS - 1 :])
     rows = len(groups) + (1 if states else 0)
-    fig = Figure(figsize=(7.5, min(2.4 * rows + 0.6, 16)), layout="constrained")
-    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
-    for ax, group in zip(axes, groups, strict=False):
-        for trace, _bar, names, i, is_state in group:
-            change, absolute, unit = _label(names[i], labels)
-            ax.plot(res.t, trace[:, i], marker=".", lw=1.5, label=change, drawstyle="steps-post")
-            if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
-                ax.step(res.t, res.w[:, i], where="post", ls="--", color="gray",
-                        label=f"disturbance w [{unit}/step]")  # fmt: skip
-        ax.axhline(0, color="black", lw=0.5)
-        if len(group) == 1:
-            _, bar, names, i, _ = group[0]
-            raw = names[i].removeprefix("delta_")
-            ax.set_ylabel(f"{change} [{unit}]" if labels is None else f"δ{raw} [{unit}]")
-            absolute = absolute if labels is None else raw
-            offset = float(bar[i])
-            sec = ax.secondary_yaxis(
-                "right", functions=(lambda x, o=offset: x + o, lambda x, o=offset: x - o)
-            )
-            sec.set_ylabel(f"{absolute} [{unit}]")
-        else:
-            ax.set_ylabel("change from equilibrium")
-        ax.legend(loc="best", fontsize="small")
-        ax.grid(alpha=0.3)
-    if states:
-        ax = axes[-1]
-        count = res.states.shape[1]
-        names = res.controller_state_names or tuple(f"x_{i + 1}" for i in range(count))
-        for i, name in enumerate(names):
-            ax.plot(res.t, res.states[:, i], marker=".", lw=1.2, label=_state_tex(name),
-                    drawstyle="steps-post")  # fmt: skip
-        if res.delta_r.shape[1] == 1:
-            change, _, unit = _label(res.input_names[0], labels)
-            what = change.replace(" change", "").split(" δ")[0]
-            ax.set_ylabel(
-                f"controller state\n({what} change) [{unit}]"
-                if labels is None
-                else f"controller state [{unit}]"
-            )
-        else:
-            ax.set_ylabel("controller state")
-        ax.legend(loc="best", fontsize="small", ncol=min(4, res.states.shape[1]))
-        ax.grid(alpha=0.3)
-    axes[-1].set_xlabel(f"time [{res.time_unit}]")
-    if res.kind == "open loop":
-        what = "pulse in " + ", ".join(_label(n, labels)[1] for n in res.input_names)
-        if labels is None:
-            what = "pulse in firing rate"
-    else:
-        hit = [n for i, n in enumerate(res.state_names) if res.w[:, i].any()]
-        what = "pulse disturbance on " + ", ".join(_label(n, labels)[1] for n in hit)
-        if labels is None:
-            what = "pulse disturbance on force"
-    fig.suptitle(f"{res.kind.capitalize()} response to a {what}")
+    panel = 1.25 if rows <= 3 else 1.0
+    fig = style.new_figure(size, min(0.55 + panel * rows, 9.0))
+    room = style.width(size) - _MARGINS
+    marked = res.t.size <= MARKERS_UP_TO
+    with style.styled():
+        axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+        for ax, group in zip(axes, groups, strict=False):
+            _signal_panel(ax, group, res, labels, marked, room)
+        if states:
+            _controller_panel(axes[-1], res, labels, marked, room)
+        axes[-1].set_xlabel(style.axis_label("time", res.time_unit))
+        for ax in axes:
+            ax.yaxis.set_major_locator(_locator())
+    _title(fig, title)
     return fig
 
 
-def nonlinear_plot(chk: NonlinearCheck, labels=None) -> Figure:
-    """The first state's traces (nonlinear solid, linear dashed) and the deviation against amplitude.
+def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -> None:
+    """One state or input (its change; its operating point in the heading), or several."""
+    units = []
+    for j, (trace, _point, names, i, is_state) in enumerate(group):
+        what, sym, unit = _signal(names[i], labels)
+        units.append(unit)
+        if len(group) == 1:
+            colour, label = style.PALETTE[0] if is_state else style.PALETTE[1], rf"$\delta {sym}$"
+        else:
+            colour = _LINE_COLOURS[j % len(_LINE_COLOURS)]
+            label = rf"$\delta {sym}$ [{unit or '1'}]"
+        _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
+        if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
+            per = f"{unit or UNKNOWN_UNIT}/step"
+            ax.step(res.t, res.w[:, i], where="post", ls="--", lw=0.8, color=style.NEUTRAL,
+                    label=f"disturbance $w$ [{per}]")  # fmt: skip
+    ax.axhline(0, color="black", lw=0.5)
+    if len(group) == 1:
+        _trace, bar, names, i, _ = group[0]
+        ax.set_ylabel(_axis(rf"$\delta {sym}$", unit))
+        head = f"{what} ${sym}$" if what else f"${sym}$"
+        _heading(ax, rf"{head} (${_bar(sym)}$ = {_amount(float(bar[i]), unit)})", room)
+    else:
+        ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
+        _heading(ax, "further signals (change from the operating point)", room)
+
+
+def _locator():
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10])
+
+
+def _chain_tex(name: str, res: Response, labels) -> str:
+    """A state of the delay chain as mathtext: ``gamma_1`` -> γ₁, ``delta_r[2]`` -> δ of input 2.
+
+    The chain's last state is the input itself, delayed (``delta_r`` whatever the input is
+    called): it takes the input's symbol, as on the input's panel.
+    """
+    base, _, index = name.partition("[")
+    if base != "delta_r":
+        return _state_tex(name)
+    i = int(index.rstrip("]")) - 1 if index else 0
+    return rf"$\delta {_signal(res.input_names[i], labels)[1]}$"
+
+
+def _controller_panel(ax, res: Response, labels, marked: bool, room: float) -> None:
+    """The controller's states: the delay chain of the optimal controller, or a realization's."""
+    count = res.states.shape[1]
+    names = res.controller_state_names or tuple(f"x_{i + 1}" for i in range(count))
+    chain = all(n.startswith(("gamma_", "delta_r")) for n in names)
+    for i, name in enumerate(names):
+        label = _chain_tex(name, res, labels) if chain else _state_tex(name)
+        colour = _LINE_COLOURS[(2 + i) % len(_LINE_COLOURS)]
+        _steps(ax, res.t, res.states[:, i], marked=marked, color=colour, lw=0.9, label=label)
+    units = {_signal(n, labels)[2] for n in res.input_names}
+    if chain and len(units) == 1:  # delayed copies of the input: the input's symbol and unit
+        one = len(res.input_names) == 1
+        what = rf"$\delta {_signal(res.input_names[0], labels)[1]}$" if one else "delayed input"
+        ax.set_ylabel(_axis(what, units.pop()))
+    elif chain:
+        ax.set_ylabel(style.axis_label("delayed input", "mixed units"))
+    else:  # a realization's states have the scale the realization gives them
+        ax.set_ylabel(_axis("state", None))
+    _heading(ax, "controller state: the delay chain" if chain else "controller state", room)
+
+
+def _slope(amps: np.ndarray, dev: np.ndarray) -> float | None:
+    """The least-squares slope of ``log dev`` against ``log amps`` (None: under two points)."""
+    good = (amps > 0) & (dev > 0)
+    if np.unique(amps[good]).size < 2:
+        return None
+    return float(np.polyfit(np.log(amps[good]), np.log(dev[good]), 1)[0])
+
+
+def _near(bounds, chk: NonlinearCheck) -> list[tuple[float, str]]:
+    """The ``bounds`` within a quarter of the traces' range of the traces."""
+    values = np.concatenate([chk.f_linear.ravel(), chk.f_nonlinear.ravel()])
+    values = values[np.isfinite(values)]
+    if not values.size:
+        return []
+    lo, hi = float(values.min()), float(values.max())
+    slack = 0.25 * (hi - lo)
+    return [(float(v), text) for v, text in bounds if lo - slack <= v <= hi + slack]
+
+
+def nonlinear_plot(
+    chk: NonlinearCheck,
+    labels=None,
+    *,
+    bounds=(),
+    title: str | None = None,
+    size: str | float = "text",
+) -> Figure:
+    r"""The first state's traces (nonlinear solid, linear dashed) and their largest gap against amplitude.
+
+    The state is drawn as the plant's ODE carries it between samples, with the
+    disturbance pulse added at each sample (as in the linear model): a disturbance can
+    push it beyond the values the plant's own dynamics reach. ``bounds`` draws such
+    values as reference lines (the muscle's :math:`f_\max`).
 
     Parameters
     ----------
@@ -156,45 +291,70 @@ def nonlinear_plot(chk: NonlinearCheck, labels=None) -> Figure:
         The result of :func:`~symctl.neural.nonlinear.nonlinear_check`.
     labels : mapping of str to (str, str), optional
         ``name -> (description, unit)``, as in :func:`response_plot`.
+    bounds : sequence of (float, str)
+        Values of the first state to mark with a dotted line, with their legend text;
+        those further from the traces than a quarter of the traces' range are left
+        out (they would squash the traces).
+    title : str, optional
+        A heading over the figure (default none).
+    size : {"column", "double", "text"} or float
+        The printed width.
 
     Returns
     -------
     matplotlib.figure.Figure
-        The traces on the left, the deviations (log-log) on the right.
+        The traces on the left; on the right the largest gap between the nonlinear and the
+        linear trace against the amplitude (log-log, with the power law fitted to it: about
+        :math:`w^2` where the linearization is exact to first order); one legend below.
 
     Examples
     --------
     >>> from symctl import nonlinear_check
     >>> from symctl.plotting.response import nonlinear_plot
     >>> fig = nonlinear_plot(nonlinear_check(amplitudes=[0.1, 1.0], steps=20))
-    >>> [ax.get_title() for ax in fig.axes]
-    ['Linear controller around the nonlinear muscle', 'Departure from the linear prediction']
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['time [s]', 'pulse amplitude [N per step]']
     """
-    fig = Figure(figsize=(11, 4.2), layout="constrained")
-    ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.6, 1])
+    from matplotlib.lines import Line2D
+
     x0 = chk.state_names[0]
-    _, absolute, unit = _label(x0, labels)
-    if labels is None:
-        absolute, unit = "force f", "N"
-    plant = "muscle" if labels is None else "plant"
+    what, sym, unit = _signal(x0, labels)
+    if labels is None and chk.units and chk.units[0]:
+        unit = chk.units[0]
+    fig = style.new_figure(size, 2.7)
     ok = np.isfinite(chk.max_deviation)
-    colors = [f"C{i % 10}" for i in range(len(chk.amplitudes))]
-    for a, lin, nl, c in zip(chk.amplitudes, chk.f_linear, chk.f_nonlinear, colors, strict=True):
-        ax1.plot(chk.t, nl, color=c, lw=1.6, label=f"w = {a:g} per step")
-        ax1.plot(chk.t, lin, color=c, lw=1.2, ls="--")
-    ax1.plot([], [], color="gray", lw=1.6, label=f"nonlinear {plant} (solid)")
-    ax1.plot([], [], color="gray", lw=1.2, ls="--", label="linear model (dashed)")
-    ax1.set_xlabel("time [s]")
-    ax1.set_ylabel(f"{absolute} [{unit}]")
-    ax1.set_title(f"Linear controller around the nonlinear {plant}")
-    ax1.legend(fontsize="small", loc="best")
-    ax1.grid(alpha=0.3)
-    amps = np.abs(chk.amplitudes[ok])
-    ax2.loglog(amps, chk.max_deviation[ok], "o-", label=f"max |{x0}_nl - {x0}_lin| [{unit}]")
-    ax2.loglog(amps, chk.relative_deviation[ok], "s--", label="relative to the peak")
-    ax2.set_xlabel("disturbance pulse amplitude (per step)")
-    ax2.set_ylabel(f"deviation [{unit}] / relative [1]")
-    ax2.set_title("Departure from the linear prediction")
-    ax2.legend(fontsize="small")
-    ax2.grid(alpha=0.3, which="both")
+    per = f"{unit or UNKNOWN_UNIT} per step"
+    with style.styled():
+        ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.5, 1])
+        handles, texts = [], []
+        for k, (a, lin, nl) in enumerate(zip(chk.amplitudes, chk.f_linear, chk.f_nonlinear,
+                                             strict=True)):  # fmt: skip
+            colour = _LINE_COLOURS[k % len(_LINE_COLOURS)]
+            handles.append(_steps(ax1, chk.t, nl, marked=False, color=colour, lw=1.1))
+            _steps(ax1, chk.t, lin, marked=False, color=colour, lw=0.9, ls=(0, (3, 2)))
+            texts.append(f"$w$ = {a:g} {per}")
+        for value, text in _near(bounds, chk):
+            ax1.axhline(value, color=style.NEUTRAL, lw=0.8, ls=":")
+            handles.append(Line2D([], [], color=style.NEUTRAL, lw=0.8, ls=":"))
+            texts.append(text)
+        plant = "muscle" if labels is None else "plant"
+        handles += [Line2D([], [], color=style.NEUTRAL, lw=1.1),
+                    Line2D([], [], color=style.NEUTRAL, lw=0.9, ls=(0, (3, 2)))]  # fmt: skip
+        texts += [f"nonlinear {plant}", "linear model"]
+        ax1.set_xlabel(style.axis_label("time", "s"))
+        ax1.set_ylabel(_axis(f"{what} ${sym}$" if what else f"${sym}$", unit))
+        amps = np.abs(chk.amplitudes[ok])
+        dev = chk.max_deviation[ok]
+        handles.append(ax2.loglog(amps, dev, "o-", ms=3, color=style.PALETTE[0])[0])
+        texts.append(rf"largest $|{sym}_\mathrm{{nl}} - {sym}_\mathrm{{lin}}|$")
+        slope = _slope(amps, dev)
+        if slope is not None:  # about 2 where the linearization is exact to first order
+            guide = dev[-1] * (amps / amps[-1]) ** slope
+            handles.append(ax2.loglog(amps, guide, color=style.NEUTRAL, lw=0.7, ls=":")[0])
+            texts.append(rf"fit $\propto w^{{{slope:.2f}}}$")
+        ax2.set_xlabel(style.axis_label("pulse amplitude", per))
+        ax2.set_ylabel(_axis(rf"largest $|{sym}_\mathrm{{nl}} - {sym}_\mathrm{{lin}}|$", unit))
+        ax2.grid(True, which="both", alpha=0.3)
+        style.figure_legend(fig, handles, texts)
+    _title(fig, title)
     return fig

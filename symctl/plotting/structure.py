@@ -1,40 +1,101 @@
-r"""Rendering of a structure's block diagram (the paper's style) from its layout.
+r"""Rendering of a structure's block diagram, at the size it is printed.
 
-:func:`draw_structure` asks :func:`symctl.plotting.structure_layout.structure_layout`
-where everything goes (measuring text with :func:`symctl.plotting.common.text_size`)
-and draws it: gains as boxes with their value, adders as circles with a plus,
-one-step delays as dashed wires into the delayed signal (a small dot, named
-when the paper names it, e.g. :math:`\gamma`). :meth:`Structure.draw
+:func:`draw_structure` asks :func:`symctl.plotting.structure_rows.structure_rows` where
+everything goes (one layout, or several rows of parts when one would be wider than the
+page) and draws it: gains as boxes with their value (long values by their entry's name,
+listed in a key under the drawing), adders as circles with a plus, one-step delays as
+dashed wires into the delayed signal (a dot), an arrow head on every wire, a junction
+dot where a signal branches, each part of a series connection framed, and, given a
+delay assignment, each delay-graph vertex's signals in a shaded band. Drawing
+coordinates are inches of the printed figure: text is set at its printed size (never
+below :data:`~symctl.plotting.style.MIN_FONT`) and the figure is no wider than
+:data:`~symctl.plotting.style.TEXT_WIDTH`. :meth:`Structure.draw
 <symctl.compatibility.structure.Structure.draw>` delegates here.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure import draw_structure
 >>> fig = draw_structure(ifp_structure(2))
->>> type(fig).__name__
-'Figure'
+>>> float(fig.get_size_inches()[0]) <= 6.91
+True
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.plotting.common import figure_and_axes, finish_figure, text_size
+from symctl.plotting.common import figure_and_axes, text_size
+from symctl.plotting.key import key_columns
 from symctl.plotting.structure_layout import (
-    DOT_R,
+    ARROW,
+    END_FONT,
     FONT,
     NAME_FONT,
-    SUM_R,
     StructureLayout,
     Wire,
-    structure_layout,
+    dashed_part,
 )
 from symctl.plotting.structure_overview import draw_structure_overview
+from symctl.plotting.structure_rows import structure_rows
+from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH, TITLE
 
-__all__ = ["draw_structure"]
+__all__ = ["draw_structure", "draw_structures", "vertex_map"]
 
-_INK = "0.15"
+_INK = "0.1"
+_BAND = ("#e8eef4", "#f4f1e6")  # alternating tints of the vertex bands
+_FRAME = "0.4"
+_KEY_GAP = 0.3  # between two columns of the key [in]
+
+
+def vertex_map(S: Structure, assignment) -> dict[str, int] | None:
+    """The vertex of every signal of ``S`` from a delay assignment (or a mapping), or None.
+
+    Raises
+    ------
+    ParameterError
+        A signal of ``S`` has no vertex, or a vertex is not an integer >= 1.
+    SymctlTypeError
+        ``assignment`` is neither a DelayAssignment nor a mapping.
+
+    Examples
+    --------
+    >>> from symctl import ifp_structure
+    >>> from symctl.plotting.structure import vertex_map
+    >>> vertex_map(ifp_structure(1), {"x": 1, "K0": 1, "K1": 2, "mu": 2, "u": 2})["mu"]
+    2
+    """
+    if assignment is None:
+        return None
+    where = getattr(assignment, "vertex_of", assignment)
+    if not isinstance(where, Mapping):
+        raise SymctlTypeError(
+            "assignment: expected a DelayAssignment or a mapping of signal names to vertices, "
+            f"got {type(assignment).__name__}"
+        )
+    missing = [n for n in S.blocks if n not in where]
+    if missing:
+        raise ParameterError(f"assignment: no vertex for the signals {missing[:5]}")
+    out = {}
+    for n in S.blocks:
+        v = where[n]
+        if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+            raise ParameterError(f"assignment: vertex of {n!r} must be an integer >= 1, got {v!r}")
+        out[n] = v
+    return out
+
+
+def _names(vertex_names) -> dict[int, str] | None:
+    if vertex_names is None:
+        return None
+    if isinstance(vertex_names, Mapping):
+        return {int(k): str(v) for k, v in vertex_names.items()}
+    if isinstance(vertex_names, Sequence) and not isinstance(vertex_names, str):
+        return {k + 1: str(v) for k, v in enumerate(vertex_names)}
+    raise SymctlTypeError(
+        f"vertex_names: expected a sequence or mapping of names, got {vertex_names!r}"
+    )
 
 
 def draw_structure(
@@ -44,8 +105,12 @@ def draw_structure(
     title: str | None = None,
     max_signals: int = 400,
     overview: bool = False,
+    assignment=None,
+    vertex_names=None,
+    labels: Mapping[str, str] | None = None,
+    width: float = TEXT_WIDTH,
 ):
-    """Draw the structure ``S`` in the style of the paper's block diagrams.
+    r"""Draw the structure ``S`` as a block diagram, at its printed size.
 
     Parameters
     ----------
@@ -56,8 +121,22 @@ def draw_structure(
         The heading (default: the counts of gains, adders and delays).
     max_signals : int, default 400
         Refuse larger structures (their drawings are unreadable and slow).
-    overview : bool, default False
-        Draw the overview of the parts instead (:func:`draw_structure_overview`).
+    overview : bool or "auto", default False
+        Draw the overview of the parts instead (:func:`draw_structure_overview`);
+        ``"auto"``: when the block diagram would not fit the page (wider than ``width``
+        however folded, or taller than
+        :data:`~symctl.plotting.structure_rows.PAGE_HEIGHT`), or has more than
+        ``max_signals`` signals.
+    assignment : DelayAssignment or mapping of str to int, optional
+        Where each signal sits in the delay graph (the witness of compatibility): each
+        vertex's signals are drawn in a shaded band labelled :math:`v_k`.
+    vertex_names : sequence or mapping of str, optional
+        The model's names of the vertices (:math:`v_1, v_2, \dots` by default).
+    labels : mapping of str to str, optional
+        LaTeX labels of the arrows into the inputs and out of the outputs, by signal name
+        (default: the signals' own names).
+    width : float, default TEXT_WIDTH
+        The widest the figure may be [in]: a wider drawing is folded into rows of parts.
 
     Returns
     -------
@@ -68,136 +147,237 @@ def draw_structure(
     SymctlTypeError
         ``S`` is not a Structure.
     ParameterError
-        ``S`` has more than ``max_signals`` signals.
+        ``S`` has more than ``max_signals`` signals, or ``assignment`` misses a signal.
 
     Examples
     --------
     >>> from symctl import ifp_structure
     >>> from symctl.plotting.structure import draw_structure
-    >>> draw_structure(ifp_structure(2), title="IFP").axes[0].texts[-2].get_text()
-    'IFP'
+    >>> fig = draw_structure(ifp_structure(2), title="IFP", labels={"x": "f", "u": "r"})
+    >>> texts = [t.get_text() for t in fig.axes[0].texts]
+    >>> texts[-1], {"$f$", "$r$"} <= set(texts)
+    ('IFP', True)
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
-    if overview:
-        return draw_structure_overview(S, ax, title=title)
+    if overview not in (True, False, "auto"):
+        raise ParameterError(f"overview: must be True, False or 'auto', got {overview!r}")
+    if overview is True or (overview == "auto" and len(S) > max_signals):
+        return draw_structure_overview(S, ax, title=title, width=width)
     if len(S) > max_signals:
         raise ParameterError(
             f"max_signals: the structure has {len(S)} signals, more than {max_signals}; "
             "raise max_signals to draw it anyway"
         )
-    layout = structure_layout(S, text_size)
+    where = vertex_map(S, assignment)
+    rows = structure_rows(S, text_size, labels=labels, vertex_of=where,
+                          vertex_names=_names(vertex_names), width=width)  # fmt: skip
+    if overview == "auto" and not rows.fits:
+        return draw_structure_overview(S, ax, title=title, width=width)
     fig, ax, own = figure_and_axes(ax)
-    _draw_wires(ax, layout.wires)
-    _draw_blocks(ax, S, layout)
-    for arrow in (*layout.arrows_in, *layout.arrows_out):
-        _draw_wires(ax, [arrow])
-    for part, x_left, x_right, y in layout.parts:
-        ax.plot([x_left, x_right], [y, y], color="0.6", lw=0.8)
-        ax.text(
-            (x_left + x_right) / 2,
-            y + 0.04,
-            part,
-            ha="center",
-            va="bottom",
-            fontsize=FONT,
-            color="0.35",
-        )
+    for layout, (dx, dy) in rows.placed:
+        _draw_layout(ax, layout, dx, dy)
+    key = list(rows.key)
+    x_lo, x_hi, y_lo, y_hi = rows.bounds
     axons = any(b.steps > 1 for b in S.blocks.values())
-    word = "delay" if axons else "one-step delay"
     counts = ", ".join(
         f"{S.count(k)} {w}{'s' if S.count(k) != 1 else ''}"
-        for k, w in (("gain", "gain"), ("sum", "adder"), ("delay", word))
+        for k, w in (("gain", "gain"), ("sum", "adder"), ("delay", "delay"))
     )
-    heading = title or f"controller structure: {counts}"
-    legend = (
-        "boxes: gains (their values; long ones by block name)   circles: adders   "
-        "dashed arrows: one-step delays   dots: signals"
-        + ("   z^-k: an axon of k steps" if axons else "")
-    )
-    return finish_figure(fig, ax, own, layout.bounds, heading, legend, top=0.62)
+    heading = title or f"Controller structure: {counts}"
+    legend = ["boxes: gains", "circles: adders", "dashed: one-step delays", "dots: signals"]
+    if axons:
+        legend[2] = "dashed: delays ($z^{-k}$: an axon of k steps)"
+    if where:
+        legend.append("bands: delay-graph vertices")
+    if rows.folded:
+        legend.append("a row ends and the next begins with the signal they share")
+    y_lo = _draw_key(ax, key, x_lo, y_lo - 0.08, min(width, x_hi - x_lo))
+    return _finish(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, width)
 
 
-def _draw_wires(ax, wires: list[Wire] | tuple[Wire, ...]) -> None:
-    """Polylines ending in an arrow head; dashed for a delay, labelled z^-k for an axon of k steps."""
-    from matplotlib.patches import FancyArrowPatch
+def draw_structures(panels, *, title: str, width: float = TEXT_WIDTH):
+    r"""Several structures in one figure, one above the other, each with its caption line.
 
-    for wire in wires:
-        pts = wire.points
-        xs, ys = zip(*pts, strict=True)
-        style = (0, (3.5, 2.2)) if wire.delay else "-"
-        ax.plot(xs, ys, color=_INK, lw=1.0, linestyle=style, zorder=1, solid_capstyle="butt")
-        if wire.delay > 1:
-            k = max(range(len(pts) - 1), key=lambda i: math.dist(pts[i], pts[i + 1]))
-            (xa, ya), (xb, yb) = pts[k], pts[k + 1]
-            ax.text((xa + xb) / 2, (ya + yb) / 2 + 0.03, f"$z^{{-{wire.delay}}}$",
-                    ha="center", va="bottom", fontsize=FONT, color=_INK, zorder=2,
-                    bbox={"fc": "white", "ec": "none", "pad": 0.5})  # fmt: skip
-        (x0, y0), (x1, y1) = pts[-2], pts[-1]
-        length = math.hypot(x1 - x0, y1 - y0)
-        if length == 0:
-            continue
-        back = min(0.08, length) / length
-        ax.add_patch(
-            FancyArrowPatch(
-                (x1 - (x1 - x0) * back, y1 - (y1 - y0) * back),
-                (x1, y1),
-                arrowstyle="-|>,head_length=0.5,head_width=0.22",
-                mutation_scale=11,
-                color=_INK,
-                lw=0.8,
-                shrinkA=0,
-                shrinkB=0,
-                zorder=1.5,
-            )
-        )
+    Parameters
+    ----------
+    panels : sequence of (Structure, str, assignment or None)
+        Each structure, the line written above it, and a delay assignment (or None).
+    title : str
+        The heading.
+    width : float, default TEXT_WIDTH
+        The widest the figure may be [in].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> from symctl import Structure
+    >>> from symctl.plotting.structure import draw_structures
+    >>> from symctl.realization.realization import first_order_realization
+    >>> R = first_order_realization(0.5, 2)
+    >>> fig = draw_structures([(Structure.from_realization(R, d), d, None)
+    ...                        for d in ("branch", "state")], title="two structures")
+    >>> [t.get_text() for t in fig.axes[0].texts if t.get_text() in ("branch", "state")]
+    ['branch', 'state']
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure()
+    ax = fig.add_axes((0, 0, 1, 1))
+    top, x_hi, keys, banded = 0.0, 0.0, [], False
+    for S, caption, assignment in panels:
+        if not isinstance(S, Structure):
+            raise SymctlTypeError(f"panels: expected Structures, got {type(S).__name__}")
+        where = vertex_map(S, assignment)
+        banded = banded or bool(where)
+        rows = structure_rows(S, text_size, vertex_of=where, width=width)
+        lines = _wrap(caption.split(" "), width - 0.1, SMALL, " ")
+        for line in lines:
+            ax.text(0.05, top - 0.02, line, ha="left", va="top", fontsize=SMALL, color="0.2")
+            x_hi = max(x_hi, min(0.15 + 1.06 * text_size(line, SMALL)[0], width))
+            top -= 0.14
+        top -= 0.06
+        for layout, (dx, dy) in rows.placed:
+            _draw_layout(ax, layout, dx, dy + top)
+        keys += [k for k in rows.key if k not in keys]
+        top += rows.bounds[2] - 0.15
+        x_hi = max(x_hi, rows.bounds[1])
+    y_lo = _draw_key(ax, keys, 0.0, top, width)
+    legend = ["boxes: gains", "circles: adders", "dashed: one-step delays", "dots: signals"]
+    if banded:
+        legend.append("bands: delay-graph vertices")
+    return _finish(fig, ax, True, (0.0, x_hi, y_lo, 0.0), title, legend, width)
 
 
-def _draw_blocks(ax, S: Structure, layout: StructureLayout) -> None:
-    """Gain boxes with their values, adders with a plus, dots and names for signals."""
-    from matplotlib.patches import Circle, Rectangle
+def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
+    """One layout, shifted by ``(dx, dy)``: bands, frames, wires, blocks, text."""
+    from matplotlib.patches import Circle, FancyBboxPatch, Rectangle
 
-    for name, block in S.blocks.items():
-        xc, yc = layout.positions[name]
+    for k, band in enumerate(layout.bands):  # tints alternate from band to band
+        ax.add_patch(Rectangle((band.x0 + dx, band.y0 + dy), band.x1 - band.x0,
+                               band.y1 - band.y0, fc=_BAND[k % 2], ec="none",
+                               zorder=0, gid=f"band:v{band.vertex}"))  # fmt: skip
+        ax.text((band.x0 + band.x1) / 2 + dx, band.y1 + dy + 0.04, band.label, ha="center",
+                va="bottom", fontsize=FONT_SIZE, color="0.2", zorder=4)  # fmt: skip
+    for frame in layout.parts:
+        ax.add_patch(FancyBboxPatch((frame.x0 + dx, frame.y0 + dy), frame.x1 - frame.x0,
+                                    frame.y1 - frame.y0, boxstyle="round,pad=0,rounding_size=0.04",
+                                    fc="none", ec=_FRAME, lw=0.7, zorder=0.5,
+                                    gid=f"part:{frame.part}"))  # fmt: skip
+        ax.text(frame.x0 + dx + 0.02, frame.y1 + dy + 0.02, frame.part, ha="left", va="bottom",
+                fontsize=SMALL, color=_FRAME, zorder=4)  # fmt: skip
+    every = (*layout.wires, *layout.arrows_in, *layout.arrows_out)
+    for wire in every:
+        _draw_wire(ax, wire, dx, dy, dashed_part(wire, every) if wire.delay else None)
+    for x, y in layout.junctions:
+        ax.add_patch(Circle((x + dx, y + dy), 0.02, fc=_INK, ec="none", zorder=2))
+    for name, (xc, yc) in layout.positions.items():
+        xc, yc = xc + dx, yc + dy
         w, h = layout.sizes[name]
-        if block.kind == "gain":
-            ax.add_patch(
-                Rectangle(
-                    (xc - w / 2, yc - h / 2),
-                    w,
-                    h,
-                    fc="white",
-                    ec="black",
-                    lw=1.0,
-                    zorder=2,
-                    gid=f"gain:{name}",
-                )
-            )
-            ax.text(
-                xc,
-                yc,
-                layout.labels[name],
-                ha="center",
-                va="center",
-                fontsize=FONT,
-                zorder=3,
-                gid=f"gain:{name}",
-            )
-        elif block.kind == "sum":
-            ax.add_patch(
-                Circle((xc, yc), SUM_R, fc="white", ec="black", lw=1.0, zorder=2, gid=f"sum:{name}")
-            )
-            ax.text(xc, yc, "+", ha="center", va="center_baseline", fontsize=FONT + 1, zorder=3)
+        if name in layout.labels:
+            ax.add_patch(Rectangle((xc - w / 2, yc - h / 2), w, h, fc="white", ec=_INK, lw=0.8,
+                                   zorder=2, gid=f"gain:{name}"))  # fmt: skip
+            ax.text(xc, yc, layout.labels[name], ha="center", va="center_baseline",
+                    fontsize=FONT, zorder=3, gid=f"gain:{name}")  # fmt: skip
+        elif w > 0.05:  # an adder: a circle with a plus
+            r = w / 2
+            ax.add_patch(Circle((xc, yc), r, fc="white", ec=_INK, lw=0.8, zorder=2,
+                                gid=f"sum:{name}"))  # fmt: skip
+            arm = min(0.6 * r, 0.045)
+            ax.plot([xc - arm, xc + arm], [yc, yc], color=_INK, lw=0.8, zorder=3)
+            ax.plot([xc, xc], [yc - arm, yc + arm], color=_INK, lw=0.8, zorder=3)
         else:
-            ax.add_patch(Circle((xc, yc), DOT_R, fc="black", zorder=2, gid=f"signal:{name}"))
-        if name in layout.names:
-            ax.text(
-                xc + w / 2 + 0.03,
-                yc + 0.035,
-                layout.names[name],
-                ha="left",
-                va="bottom",
-                fontsize=NAME_FONT,
-                color="0.3",
-                zorder=3,
-            )
+            ax.add_patch(Circle((xc, yc), w / 2, fc=_INK, ec="none", zorder=2,
+                                gid=f"signal:{name}"))  # fmt: skip
+    for label in layout.names.values():
+        ax.text(label.x + dx, label.y + dy, label.text, ha=label.ha, va=label.va,
+                fontsize=NAME_FONT, color="0.15", zorder=4)  # fmt: skip
+    for label in layout.ends:
+        ax.text(label.x + dx, label.y + dy, label.text, ha=label.ha, va=label.va,
+                fontsize=END_FONT, zorder=4)  # fmt: skip
+
+
+def _draw_wire(ax, wire: Wire, dx: float, dy: float, dashed=None) -> None:
+    """A polyline ending in an arrow head; dashed into a delay (``dashed``: the part drawn so,
+    after the wires it shares its start with), labelled z^-k for k steps."""
+    from matplotlib.patches import Polygon
+
+    pts = [(x + dx, y + dy) for x, y in (dashed or wire.points)]
+    xs, ys = zip(*pts, strict=True)
+    style = (0, (3.0, 2.0)) if wire.delay else "-"
+    ax.plot(xs, ys, color=_INK, lw=0.8, linestyle=style, zorder=1, solid_capstyle="butt")
+    (x0, y0), (x1, y1) = pts[-2], pts[-1]
+    length = math.hypot(x1 - x0, y1 - y0)
+    ux, uy = (x1 - x0) / length, (y1 - y0) / length
+    bx, by = x1 - ARROW * ux, y1 - ARROW * uy
+    half = 0.38 * ARROW
+    ax.add_patch(Polygon([(x1, y1), (bx - half * uy, by + half * ux), (bx + half * uy, by - half * ux)],
+                         closed=True, fc=_INK, ec="none", zorder=1.5))  # fmt: skip
+    if wire.delay > 1:
+        k = max(range(len(pts) - 1), key=lambda i: math.dist(pts[i], pts[i + 1]))
+        (xa, ya), (xb, yb) = pts[k], pts[k + 1]
+        ax.text((xa + xb) / 2, (ya + yb) / 2 + 0.02, f"$z^{{-{wire.delay}}}$", ha="center",
+                va="bottom", fontsize=SMALL, color=_INK, zorder=3,
+                bbox={"fc": "white", "ec": "none", "pad": 0.3})  # fmt: skip
+
+
+def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> float:
+    """The key's ``name = value`` lines under the drawing, in columns; returns its lowest y."""
+    if not lines:
+        return y + 0.08
+    texts = [f"${line}$" for line in lines]
+    sizes = [text_size(t, SMALL) for t in texts]
+    columns = key_columns([w for w, _ in sizes], room - 0.2, _KEY_GAP)
+    lefts = [x + 0.1]
+    for col in columns:
+        lefts.append(lefts[-1] + max(sizes[k][0] for k in col) + _KEY_GAP)
+    top = y
+    for r in range(len(columns[0])):
+        row = [(c, col[r]) for c, col in enumerate(columns) if r < len(col)]
+        height = max(sizes[k][1] for _, k in row)
+        for c, k in row:
+            ax.text(lefts[c], top - height / 2, texts[k], ha="left", va="center_baseline",
+                    fontsize=SMALL, zorder=3, gid="key")  # fmt: skip
+        top -= height + 0.07
+    return top
+
+
+def _wrap(words: list[str], room: float, size: float, sep: str) -> list[str]:
+    """Items joined by ``sep`` into lines no wider than ``room`` inches (one item may overflow)."""
+    lines: list[str] = []
+    for item in words:
+        if lines and text_size(lines[-1] + sep + item, size)[0] * 1.06 <= room:
+            lines[-1] += sep + item
+        else:
+            lines.append(item)
+    return lines
+
+
+def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: float):
+    """Heading and legend above the drawing, equal axes without frame, size in inches."""
+    x_lo, x_hi, y_lo, y_hi = bounds
+    room = min(width, max(x_hi - x_lo, 3.0)) - 0.1
+    legend_lines = _wrap(legend, room, SMALL, "   ")
+    heading_lines = _wrap(heading.split(" "), room, TITLE, " ")
+    y = y_hi + 0.06
+    for line in reversed(legend_lines):
+        ax.text(x_lo + 0.05, y, line, ha="left", va="bottom", fontsize=SMALL, color="0.35")
+        y += 0.14
+    y += 0.03
+    for line in reversed(heading_lines):
+        ax.text(x_lo + 0.05, y, line, ha="left", va="bottom", fontsize=TITLE)
+        y += 0.16
+    widths = [text_size(t, s)[0] * 1.06 for t, s in
+              [*((ln, TITLE) for ln in heading_lines), *((ln, SMALL) for ln in legend_lines)]]  # fmt: skip
+    x_hi = max(x_hi, min(x_lo + max(widths) + 0.15, x_lo + width))
+    y_hi = y + 0.04
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo - 0.04, y_hi)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if own:
+        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo + 0.04)
+    return fig

@@ -1,19 +1,31 @@
-r"""Layout of a structure's block diagram: positions, wire routes, lanes and sizes, as numbers.
+r"""Layout of a structure's block diagram at its printed size: positions, orthogonal wires, bands.
 
 The drawing of :meth:`Structure.draw <symctl.compatibility.structure.Structure.draw>`
 in two steps, as networkx splits ``drawing/layout.py`` from ``nx_pylab.py``: this
-module computes where everything goes (in inches, one data unit is one inch of
-the figure) and never imports matplotlib; :mod:`symctl.plotting.structure`
-renders the result. Text is measured by a function passed in, ``measure(text,
-points) -> (width, height)`` in inches (the renderer passes
-:func:`symctl.plotting.common.text_size`).
+module computes where everything goes, in inches of the printed figure, and never
+imports matplotlib; :mod:`symctl.plotting.structure` renders it. Text is measured by
+a function passed in, ``measure(text, points) -> (width, height)`` in inches.
 
-The steps: feedback wires (the back edges of a depth-first search from the
-inputs) are routed on arcs below or above the rows, carrying the gains and
-delays that feed them; the remaining forward graph is layered by longest path
-from the inputs (outputs last); rows inside each layer follow barycenter sweeps
-made integer and one apart by an isotonic fit (PAVA); columns widen where an arc
-must hold its blocks; arcs take lanes so that arcs in one lane do not overlap.
+A layered (Sugiyama) layout made for block diagrams:
+
+1. **Feedback.** The wires closing a cycle (the back edges of a depth-first search
+   from the inputs, and, with a delay assignment, every wire back to an earlier
+   vertex) are drawn as arcs below or above the rows, carrying the gains and delays
+   that feed them (the paper's IFP drawing: :math:`K_1, K_2` on the arcs into
+   :math:`\mu`).
+2. **Columns.** The rest is layered by longest path from the inputs; with a delay
+   assignment (the witness of compatibility) the vertices come first: every signal of
+   an earlier vertex level lies left of every signal of a later one, so each vertex's
+   signals sit in one vertical band (:attr:`StructureLayout.bands`).
+3. **Rows** inside a column follow barycenter sweeps, made integer and one apart by an
+   isotonic fit (:func:`pava_rows`).
+4. **Wires** are orthogonal: a wire changes rows in the gap between two columns, at a
+   slot chosen by :mod:`symctl.plotting.structure_routing` (a branching signal shares
+   one vertical, with a junction dot). Every wire ends on its block's outline, its last
+   piece at least :data:`ARROW` long and axis-parallel, so its arrow head shows; an
+   adder takes its inputs on its left side (spread, the circle grows for many) and
+   feedback arcs from below or above.
+5. **Frames** box the parts of a series connection (``G1``, ``G2``, ``G3``).
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure_layout import structure_layout
@@ -30,7 +42,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -38,26 +49,41 @@ from typing import NamedTuple
 
 import networkx as nx
 
-from symctl._util.display import latex
-from symctl._util.texnames import signal_tex
 from symctl.compatibility.signalgraph import back_edges
-from symctl.compatibility.structure import Block, Structure
+from symctl.compatibility.structure import Structure
+from symctl.plotting.structure_labels import StructureText, structure_text
+from symctl.plotting.structure_regions import Band, Frame, frames, vertex_bands, vertex_levels
+from symctl.plotting.structure_routing import (
+    Segment,
+    Wire,
+    assign_slots,
+    clean,
+    dashed_part,
+    junctions,
+    merge,
+)
+from symctl.plotting.style import FONT_SIZE, SMALL
 
-__all__ = ["Geometry", "Route", "StructureLayout", "Wire", "structure_layout"]
+__all__ = ["ARROW", "Route", "StructureLayout", "Wire", "dashed_part", "structure_layout"]
 
 Measure = Callable[[str, float], tuple[float, float]]
 """``measure(text, points) -> (width, height)`` in inches; :class:`ValueError` for bad mathtext."""
 
-# Drawing coordinates are inches (one data unit is one inch of the figure), so
-# text measured in points fits its box whatever the size of the structure.
-FONT = 9  # points: gain values and adders
-NAME_FONT = 8  # points: signal names
-GAP = 0.55  # horizontal gap between layers
-ROW = 0.72  # vertical pitch of the rows inside a layer
-SUM_R = 0.12  # adder radius
-DOT_R = 0.03  # dot of a named signal (input, delayed signal)
-PAD = 0.07  # padding around a gain value inside its box
-MAX_LABEL = 25  # gain values with more visible characters are shown by block name
+FONT = SMALL  # points: gain values
+NAME_FONT = SMALL  # points: signal names
+END_FONT = FONT_SIZE  # points: the labels of the inputs and outputs
+ROW = 0.4  # vertical pitch of the rows [in]
+SUM_R = 0.07  # adder radius, at least
+PORT = 0.045  # spacing of the inputs along an adder's side
+DOT_R = 0.02  # dot of a signal (input, delayed signal)
+PAD = 0.035  # padding around a gain value inside its box
+ARROW = 0.055  # length of an arrow head; every wire's last piece is longer
+PITCH = 0.05  # spacing of the vertical wires in a gap
+GAP_IN, GAP_OUT = 0.07, 0.1  # room in a gap before its first and after its last vertical
+MIN_GAP = 0.17  # narrowest gap between two columns
+END = 0.24  # length of the arrows into the inputs and out of the outputs
+ITEM_GAP = 0.1  # between two blocks on a feedback arc
+DASH_ROOM = 0.06  # more room after the last turn of a wire into a delay, for its dashes
 
 
 class Route(NamedTuple):
@@ -68,47 +94,84 @@ class Route(NamedTuple):
     target: str
 
 
-def gain_label(block: Block, name: str, measure: Measure) -> str:
-    """The gain value as mathtext, or the block name when it is long or not renderable.
+class Label(NamedTuple):
+    """A text at ``(x, y)`` with its alignment; ``text`` is mathtext."""
 
-    ``measure`` raises :class:`ValueError` for text it cannot set (bad mathtext).
+    text: str
+    x: float
+    y: float
+    ha: str
+    va: str
+
+
+@dataclass(frozen=True)
+class StructureLayout:
+    """Where every piece of a structure drawing goes, in inches of the printed figure.
+
+    Attributes
+    ----------
+    positions : mapping of signal name to (x, y)
+        The centre of each block (gains on feedback arcs included).
+    sizes : mapping of signal name to (width, height)
+        Gain boxes, adder circles (diameter) and signal dots.
+    labels : mapping of gain name to str
+        The text in each gain box (mathtext).
+    names : mapping of signal name to Label
+        The name written at a named signal (adders, delayed states).
+    ends : tuple of Label
+        The labels of the arrows into the inputs and out of the outputs.
+    layers : mapping of signal name to int
+        The column of each block in the rows (blocks on feedback arcs have none).
+    wires : tuple of Wire
+        Every wire of the structure, as drawn (orthogonal polylines).
+    arrows_in, arrows_out : tuple of Wire
+        The arrows into the inputs and out of the outputs.
+    junctions : tuple of (x, y)
+        Where a wire branches (a dot each).
+    parts : tuple of Frame
+        The frame of each part of a series connection (none for one part).
+    bands : tuple of Band
+        The band of each delay-graph vertex (none without an assignment).
+    bounds : (x_lo, x_hi, y_lo, y_hi)
+        The extent of the drawing (heading and key not included).
     """
-    if block.gain is None:
-        return name
-    text = latex(block.gain)
-    visible = re.sub(r"\\(left|right|frac|dfrac)\b", "", text)
-    visible = re.sub(r"\\[a-zA-Z]+", "m", visible)
-    if len(re.sub(r"[{}_^\s]", "", visible)) > MAX_LABEL:
-        return name
-    try:
-        measure(f"${text}$", FONT)
-    except ValueError:
-        return name
-    return f"${text}$"
+
+    positions: Mapping[str, tuple[float, float]]
+    sizes: Mapping[str, tuple[float, float]]
+    labels: Mapping[str, str]
+    names: Mapping[str, Label]
+    ends: tuple[Label, ...]
+    layers: Mapping[str, int]
+    wires: tuple[Wire, ...]
+    arrows_in: tuple[Wire, ...]
+    arrows_out: tuple[Wire, ...]
+    junctions: tuple[tuple[float, float], ...]
+    parts: tuple[Frame, ...]
+    bands: tuple[Band, ...]
+    bounds: tuple[float, float, float, float]
 
 
-def signal_label(name: str) -> str:
-    """``gamma2`` -> ``$\\gamma_{2}$``, ``G2.x1`` -> ``$x_{1}$`` (the part is labelled apart)."""
-    return f"${signal_tex(name, part=False)}$"
-
-
-def feedback_edges(S: Structure) -> list[tuple[str, str]]:
-    """Wires closing a cycle, found by a depth-first search from the inputs (in order)."""
+# ---------------------------------------------------------------- graph steps
+def feedback_edges(S: Structure, level: Mapping[str, int]) -> list[tuple[str, str]]:
+    """Wires closing a cycle (depth-first search from the inputs), and wires to an earlier level."""
     sg = S.signal_graph
     successors = [list(dict.fromkeys(out)) for out in sg.successors]
-    return [(sg.names[a], sg.names[b]) for a, b in back_edges(successors, sg.inputs)]
+    back = [(sg.names[a], sg.names[b]) for a, b in back_edges(successors, sg.inputs)]
+    back += [(a, b) for a, b, _ in S.wires() if level[a] > level[b] and (a, b) not in back]
+    return back
 
 
-def feedback_routes(S: Structure, g: nx.DiGraph) -> list[Route]:
+def feedback_routes(S: Structure, g: nx.DiGraph, level, vertex) -> list[Route]:
     """Each feedback wire with the single-input, single-output gains and delays before it.
 
     Those blocks (e.g. the IFP's :math:`K_1, K_2`, a state's self-gain :math:`F_{ii}`) are
-    drawn on the feedback arc itself, as the paper does, and take no place in the rows.
+    drawn on the feedback arc itself, as the paper does, and take no place in the rows;
+    with a delay assignment only when they sit at the vertex of both ends of the arc.
     """
     ends = set(S.inputs) | set(S.outputs)
     taken: set[str] = set()
     routes = []
-    for tail, head in feedback_edges(S):
+    for tail, head in feedback_edges(S, level):
         chain: list[str] = []
         node = tail
         while (
@@ -120,14 +183,16 @@ def feedback_routes(S: Structure, g: nx.DiGraph) -> list[Route]:
             and g.out_degree(node) == 1
         ):
             chain.insert(0, node)
-            taken.add(node)
             node = next(iter(g.predecessors(node)))
+        if vertex and any(vertex.get(n) != vertex.get(head) for n in (node, *chain)):
+            chain, node = [], tail  # blocks of other vertices stay in the rows, in their band
+        taken.update(chain)
         routes.append(Route(node, tuple(chain), head))
     return routes
 
 
-def layering(S: Structure, g: nx.DiGraph, routes: list[Route]) -> tuple[nx.DiGraph, dict]:
-    """The forward graph (feedback removed) and its layers: longest path from the inputs."""
+def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[nx.DiGraph, dict]:
+    """The forward graph (feedback removed) and its layers: longest path, level by level."""
     on_arcs = {n for r in routes for n in r.chain}
     index = {n: k for k, n in enumerate(S.blocks)}
     dag = nx.DiGraph()
@@ -135,14 +200,23 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route]) -> tuple[nx.DiGra
     skip = {(r.chain[-1] if r.chain else r.source, r.target) for r in routes}
     dag.add_edges_from((a, b) for a, b in g.edges if a in dag and b in dag and (a, b) not in skip)
     layer: dict[str, int] = {}
-    for node in nx.lexicographical_topological_sort(dag, key=index.__getitem__):
-        layer[node] = max((layer[p] + 1 for p in dag.predecessors(node)), default=0)
-    last = max(layer.values(), default=0)
-    if any(layer[n] == last for n in dag if n not in S.outputs):
-        last += 1
-    for n in S.outputs:
-        if n not in S.inputs and n in layer:
-            layer[n] = last
+    order = list(nx.lexicographical_topological_sort(dag, key=index.__getitem__))
+    start = 0
+    for lev in sorted({level[n] for n in dag}):
+        members = [n for n in order if level[n] == lev]
+        for node in members:
+            preds = [layer[p] + 1 for p in dag.predecessors(node) if p in layer]
+            layer[node] = max([start, *preds])
+        last = max(layer[n] for n in members)
+        # outputs (nothing after them) close their level
+        for n in members:
+            if n in S.outputs and n not in S.inputs and not any(dag.successors(n)):
+                if any(layer[m] == last for m in members if m not in S.outputs):
+                    last += 1
+        for n in members:
+            if n in S.outputs and n not in S.inputs and not any(dag.successors(n)):
+                layer[n] = last
+        start = last + 1
     return dag, layer
 
 
@@ -180,49 +254,6 @@ def order_rows(columns: dict[int, list], preds: dict, succs: dict) -> dict:
     return row
 
 
-class Geometry:
-    """Sizes of the drawn blocks (inches) and where a wire meets them."""
-
-    def __init__(self, S: Structure, measure: Measure):
-        self.S = S
-        self.label: dict[str, str] = {}
-        self.size: dict[str, tuple[float, float]] = {}
-        self.name: dict[str, tuple[str, float]] = {}
-        for name, block in S.blocks.items():
-            if block.kind == "gain":
-                label = gain_label(block, name, measure)
-                w, h = measure(label, FONT)
-                self.label[name] = label
-                self.size[name] = (max(w + 2 * PAD, 0.3), max(h + 2 * PAD, 0.26))
-            elif block.kind == "sum":
-                self.size[name] = (2 * SUM_R, 2 * SUM_R)
-            else:
-                self.size[name] = (2 * DOT_R, 2 * DOT_R)
-            if block.kind != "gain" and not name.rpartition(".")[2].startswith("z^-"):
-                text = signal_label(name)
-                self.name[name] = (text, measure(text, NAME_FONT)[0])
-
-    def kind(self, name) -> str:
-        return self.S.blocks[name].kind if name in self.S.blocks else "dummy"
-
-    def half(self, name) -> float:
-        """Half the width a node needs in its column, its name included."""
-        if name not in self.size:
-            return 0.05
-        w = self.size[name][0] / 2
-        if name in self.name:
-            w = max(w, w + 0.03 + self.name[name][1])
-        return w
-
-    def reach(self, name, offset: float, axis: int) -> float:
-        """Distance from the centre to the edge along ``axis`` (0 = x) at ``offset`` across."""
-        if name not in self.size:
-            return 0.0
-        if self.kind(name) == "sum":
-            return math.sqrt(max(SUM_R**2 - offset**2, 0.0))
-        return self.size[name][axis] / 2
-
-
 def spread(count: int, half: float) -> list[float]:
     """``count`` offsets from ``+half`` to ``-half`` (0 for one)."""
     if count <= 1:
@@ -230,90 +261,87 @@ def spread(count: int, half: float) -> list[float]:
     return [half - 2 * half * k / (count - 1) for k in range(count)]
 
 
-def assign_lanes(side, drop, rise, boxes, span) -> dict[int, int]:
-    """Lane 1, 2, ... (away from the rows) of each feedback arc, narrowest arcs first.
+def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
+    """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ.
 
-    Arcs in one lane must not overlap; the vertical legs of an outer arc must not pass
-    through a block on an inner arc. If no lane avoids every clash, the least bad one.
+    Narrow arcs first, so an arc nested in another runs inside it.
     """
     lane: dict[int, int] = {}
-
-    def clashes(k, level):
-        count = 0
-        for q, lq in lane.items():
-            if side[q] != side[k]:
-                continue
-            if lq == level:
-                (lo, hi), (qlo, qhi) = span(k), span(q)
-                count += lo < qhi and qlo < hi
-            else:
-                inner, outer = (q, k) if lq < level else (k, q)
-                count += any(
-                    lo - 0.12 < v < hi + 0.12
-                    for v in (drop[outer], rise[outer])
-                    for lo, hi in boxes(inner)
-                )
-        return count
-
-    for k in sorted(side, key=lambda k: (span(k)[1] - span(k)[0], k)):
-        levels = range(1, len(lane) + 2)
-        lane[k] = min(levels, key=lambda level, k=k: (clashes(k, level) > 0, clashes(k, level)))
+    for k in sorted(spans, key=lambda k: (spans[k][1] - spans[k][0], k)):
+        lo, hi = spans[k]
+        used = {
+            lane[q] for q in lane if side[q] == side[k] and lo <= spans[q][1] and spans[q][0] <= hi
+        }
+        lane[k] = min(set(range(1, len(lane) + 2)) - used)
     return lane
 
 
-class Wire(NamedTuple):
-    """One drawn wire: a polyline from ``source`` to ``target`` (None: from outside / to outside).
+# ---------------------------------------------------------------- sizes
+class Geometry:
+    """Sizes of the drawn blocks (inches) and where a wire meets them."""
 
-    ``delay`` is 1 for a one-step delay (drawn dashed); ``feedback`` marks the
-    wires on a feedback arc.
-    """
+    def __init__(self, S: Structure, text: StructureText, measure: Measure):
+        self.S = S
+        self.size: dict[str, tuple[float, float]] = {}
+        self.label: dict[str, str] = {}
+        self.name: dict[str, tuple[str, float, float]] = {}
+        self.left_named: set[str] = set()  # named above their left (an arc comes from above)
+        for name, block in S.blocks.items():
+            if block.kind == "gain":
+                label = f"${text.gains[name]}$"
+                w, h = measure(label, FONT)
+                self.label[name] = label
+                self.size[name] = (max(w + 2 * PAD, 0.22), max(h + 2 * PAD, 0.17))
+            elif block.kind == "sum":
+                self.size[name] = (2 * SUM_R, 2 * SUM_R)
+            else:
+                self.size[name] = (2 * DOT_R, 2 * DOT_R)
+            if name in text.names:
+                label = f"${text.names[name]}$"
+                self.name[name] = (label, *measure(label, NAME_FONT))
 
-    points: tuple[tuple[float, float], ...]
-    delay: int
-    source: str | None
-    target: str | None
-    feedback: bool
+    def kind(self, name) -> str:
+        return self.S.blocks[name].kind if name in self.S.blocks else "dummy"
+
+    def grow(self, name: str, entries: int) -> None:
+        """An adder with ``entries`` inputs on one side grows to space them :data:`PORT` apart."""
+        r = min(max(SUM_R, (entries - 1) * PORT / 1.2), ROW / 2 - 0.06)
+        self.size[name] = (2 * r, 2 * r)
+
+    def half(self, name) -> float:
+        """Half the width a node needs in its column, its name (written above it) included."""
+        if name not in self.size:
+            return 0.0
+        w = self.size[name][0] / 2
+        if name in self.name and name in self.left_named:
+            w = max(w, 0.45 * w + self.name[name][1] + 0.02)
+        elif name in self.name:
+            w = max(w, self.name[name][1] / 2 + 0.02)
+        return w
+
+    def reach(self, name, offset: float, axis: int) -> float:
+        """Distance from the centre to the edge along ``axis`` (0 = x) at ``offset`` across."""
+        if name not in self.size:
+            return 0.0
+        if self.kind(name) == "sum":
+            r = self.size[name][0] / 2
+            return math.sqrt(max(r**2 - offset**2, 0.0))
+        return self.size[name][axis] / 2
+
+    def port(self, name) -> float:
+        """Half the span an adder's inputs may take along its side."""
+        return 0.6 * self.size[name][0] / 2 if self.kind(name) == "sum" else 0.0
 
 
-@dataclass(frozen=True)
-class StructureLayout:
-    """Where every piece of a structure drawing goes, in inches.
-
-    Attributes
-    ----------
-    positions : mapping of signal name to (x, y)
-        The centre of each block (gains on feedback arcs included).
-    sizes : mapping of signal name to (width, height)
-        Gain boxes, adder circles (diameter) and signal dots.
-    labels : mapping of gain name to str
-        The text in each gain box (mathtext, or the block name).
-    names : mapping of signal name to str
-        The name written next to an input, adder or delayed signal.
-    layers : mapping of signal name to int
-        The column of each block in the rows (blocks on feedback arcs have none).
-    wires : tuple of Wire
-        Every wire of the structure, as drawn.
-    arrows_in, arrows_out : tuple of Wire
-        The arrows into the inputs and out of the outputs.
-    parts : tuple of (name, x_left, x_right, y)
-        The bars naming the parts of a series connection (none for one part).
-    bounds : (x_lo, x_hi, y_lo, y_hi)
-        The extent of the drawing (heading and key not included).
-    """
-
-    positions: Mapping[str, tuple[float, float]]
-    sizes: Mapping[str, tuple[float, float]]
-    labels: Mapping[str, str]
-    names: Mapping[str, str]
-    layers: Mapping[str, int]
-    wires: tuple[Wire, ...]
-    arrows_in: tuple[Wire, ...]
-    arrows_out: tuple[Wire, ...]
-    parts: tuple[tuple[str, float, float, float], ...]
-    bounds: tuple[float, float, float, float]
-
-
-def structure_layout(S: Structure, measure: Measure) -> StructureLayout:
+# ---------------------------------------------------------------- the layout
+def structure_layout(
+    S: Structure,
+    measure: Measure,
+    *,
+    text: StructureText | None = None,
+    vertex_of: Mapping[str, int] | None = None,
+    vertex_names: Mapping[int, str] | None = None,
+) -> StructureLayout:
     """The layout of the block diagram of ``S`` (see the module text).
 
     Parameters
@@ -321,15 +349,25 @@ def structure_layout(S: Structure, measure: Measure) -> StructureLayout:
     S : Structure
     measure : callable
         ``measure(text, points) -> (width, height)`` in inches.
+    text : StructureText, optional
+        What is written (default :func:`~symctl.plotting.structure_labels.structure_text`).
+    vertex_of : mapping of signal name to int, optional
+        A delay assignment (vertex ``1 .. N`` of every signal): the signals of each vertex
+        are drawn in one band.
+    vertex_names : mapping of int to str, optional
+        The bands' labels (default ``v1``, ``v2``, ...), mathtext allowed.
 
     Returns
     -------
     StructureLayout
     """
+    text = text or structure_text(S)
     g = S.graph
-    geo = Geometry(S, measure)
-    routes = feedback_routes(S, g)
-    dag, layer = layering(S, g, routes)
+    geo = Geometry(S, text, measure)
+    vertex = dict(vertex_of or {})
+    level = vertex_levels(S, vertex)
+    routes = feedback_routes(S, g, level, vertex)
+    dag, layer = layering(S, g, routes, level)
 
     # forward wires spanning several layers pass through one dummy slot per layer
     columns: dict[int, list] = {}
@@ -347,211 +385,276 @@ def structure_layout(S: Structure, measure: Measure) -> StructureLayout:
             succs[p].append(q)
             preds[q].append(p)
         paths[(a, b)] = path
+    ncol = max(columns) + 1
     row = order_rows(columns, preds, succs)
     col = {n: c for c, nodes in columns.items() for n in nodes}
     y = {n: ROW * r for n, r in row.items()}
 
-    # column widths, then widen where a feedback arc must hold its blocks
-    ncol = max(columns) + 1
-    hw = [max(geo.half(n) for n in columns[c]) for c in range(ncol)]
-    gaps = [GAP] * (ncol + 1)  # gaps[c] lies left of column c
-    item_width = {n: geo.size[n][0] for r in routes for n in r.chain}
-    for r in routes:
-        need = sum(item_width[n] for n in r.chain) + 0.3 * len(r.chain) + 0.2
-        a, b = col[r.source], col[r.target]
-        if a == b:
-            hw[a] = max(hw[a], (need - GAP) / 2)
-    x = [0.0] * ncol
-    for c in range(1, ncol):
-        x[c] = x[c - 1] + hw[c - 1] + gaps[c] + hw[c]
-    for r in routes:
-        need = sum(item_width[n] for n in r.chain) + 0.3 * len(r.chain) + 0.2
-        a, b = col[r.source], col[r.target]
-        if a > b and x[a] - x[b] < need:
-            for c in range(b + 1, a + 1):
-                gaps[c] += (need - (x[a] - x[b])) / (a - b)
-    for c in range(1, ncol):
-        x[c] = x[c - 1] + hw[c - 1] + gaps[c] + hw[c]
-    pos = {n: (x[col[n]], y[n]) for n in col}
-
-    # feedback arcs: side (below unless more is in the way there), legs, blocks, lane
-    lowest = {c: min(y[n] for n in columns[c]) for c in columns}
-    highest = {c: max(y[n] for n in columns[c]) for c in columns}
-    # a leg straight down (up) from a node unless something is below (above) it in its
-    # column or a self-loop hangs there
-    looped = {r.source for r in routes if r.source == r.target}
-    # legs in a gap: drops left of rises, the longest arcs outermost (they take outer lanes)
-    legs: dict[int, list] = {}  # gap index -> [(order, route id, "drop" | "rise")]
-    side, drop, rise, straight = {}, {}, {}, {}
+    # feedback arcs: side (below unless more is in the way), straight entry into an adder
+    side, straight = {}, {}
     for k, r in enumerate(routes):
         ends = ((r.source, col[r.source]), (r.target, col[r.target]))
         above = sum(y[n] > y[e] for e, c in ends for n in columns[c])
         below = sum(y[n] < y[e] for e, c in ends for n in columns[c])
-        sign = 1 if below > above else -1
-        side[k] = sign
-        edge = highest if sign > 0 else lowest
-        s_col, t_col = col[r.source], col[r.target]
-        straight[k] = (
-            r.source not in looped and y[r.source] == edge[s_col],
-            r.target not in looped and y[r.target] == edge[t_col],
-        )
-        if straight[k][0]:
-            drop[k] = pos[r.source][0]
-        else:
-            legs.setdefault(s_col + 1, []).append((0, s_col - t_col, k, "drop"))
-        if straight[k][1]:
-            rise[k] = pos[r.target][0]
-        else:
-            legs.setdefault(t_col, []).append((1, t_col - s_col, k, "rise"))
-    for gap, entries in legs.items():
-        left = x[gap - 1] + hw[gap - 1] if gap > 0 else x[0] - hw[0] - gaps[0]
-        right = x[gap] - hw[gap] if gap < ncol else left + gaps[gap]
-        for j, (*_, k, what) in enumerate(sorted(entries)):
-            xj = left + (right - left) * (j + 1) / (len(entries) + 1)
-            (drop if what == "drop" else rise)[k] = xj
+        side[k] = 1 if below > above else -1
+        beyond = [n for n in columns[col[r.target]] if side[k] * (y[n] - y[r.target]) > 0]
+        straight[k] = geo.kind(r.target) == "sum" and not beyond
+    spans = {k: (col[r.target] - 0.5, col[r.source] + 0.5) for k, r in enumerate(routes)}
+    geo.left_named = {r.target for k, r in enumerate(routes) if straight[k] and side[k] > 0}
+    lane = arc_lanes(spans, side)
 
-    items: dict[int, list[tuple[str, float]]] = {}
+    # where wires enter a node: its left side (spread), or from below / above
+    enter_left: dict[str, list] = {}
+    enter_vert: dict[tuple[str, int], list] = {}
+    for a, b in dag.edges:
+        enter_left.setdefault(b, []).append((-y[paths[(a, b)][-2]], ("wire", a)))
     for k, r in enumerate(routes):
-        widths = [item_width[n] for n in r.chain]
-        total = sum(widths) + 0.3 * max(len(widths) - 1, 0)
-        cursor = (drop[k] + rise[k]) / 2 + total / 2
-        placed = []
-        for n, w in zip(r.chain, widths, strict=True):
-            placed.append((n, cursor - w / 2))
-            cursor -= w + 0.3
-        items[k] = placed
+        if straight[k]:
+            enter_vert.setdefault((r.target, side[k]), []).append((-lane[k], k))
+        else:
+            enter_left.setdefault(r.target, []).append((-side[k] * 1e6 - lane[k], ("arc", k)))
+    for b, entries in enter_left.items():
+        if geo.kind(b) == "sum":
+            geo.grow(
+                b, max([len(entries)] + [len(v) for (t, _), v in enter_vert.items() if t == b])
+            )
+    offset: dict = {}
+    for b, entries in enter_left.items():
+        for (_, key), off in zip(sorted(entries), spread(len(entries), geo.port(b)), strict=True):
+            offset[(b, key)] = off
+    rise_off: dict[int, float] = {}
+    for (b, _), entries in enter_vert.items():
+        # outer lanes enter on the left, so that arcs do not cross
+        for (_, k), off in zip(
+            sorted(entries), spread(len(entries), geo.port(b))[::-1], strict=True
+        ):
+            rise_off[k] = off
 
-    def boxes(k):
-        return [(cx - item_width[n] / 2, cx + item_width[n] / 2) for n, cx in items[k]]
-
-    def span(k):
-        ends = [drop[k], rise[k], *itertools.chain.from_iterable(boxes(k))]
-        return min(ends) - 0.1, max(ends) + 0.1
-
-    lane = assign_lanes(side, drop, rise, boxes, span)
-
-    pitch = max([0.42] + [geo.size[n][1] + 0.16 for r in routes for n in r.chain])
+    # arcs' heights: just clear of the columns they span, outside the inner arcs they overlap
+    pitch = max([0.26] + [geo.size[n][1] + 0.1 for r in routes for n in r.chain])
 
     def extent(n, sign):
         reach = geo.size[n][1] / 2 if n in geo.size else 0.0
         if sign > 0:
-            return y[n] + reach + (0.25 if n in geo.name else 0.08)
-        return y[n] - reach - 0.12
+            return y[n] + reach + (0.04 + geo.name[n][2] if n in geo.name else 0.04)
+        return y[n] - reach - 0.04
 
-    # an arc runs just clear of the columns it spans, outside every inner arc it overlaps
+    # a gap's vertical wires reach the rows of both its columns: an arc clears those too
+    reach_y = {c: [y[n] for n in columns.get(c, [])] for c in range(-1, ncol + 1)}
+    for a, b in dag.edges:
+        for p, q in itertools.pairwise(paths[(a, b)]):
+            reach_y[col[q]] += [y[p], y[q]]
     heights: dict[int, float] = {}
     for k in sorted(lane, key=lambda k: (lane[k], k)):
         sign, r = side[k], routes[k]
         spanned = [n for c in range(col[r.target], col[r.source] + 1) for n in columns[c]]
-        level = sign * max(sign * extent(n, sign) for n in spanned) + sign * pitch / 2
+        level_y = sign * max(sign * extent(n, sign) for n in spanned) + sign * pitch / 2
+        for c in (col[r.target], col[r.source] + 1):  # the gaps of its legs
+            level_y = sign * max([sign * level_y] + [sign * v + pitch for v in reach_y.get(c, [])])
         for q, hq in heights.items():
-            if side[q] == sign and lane[q] < lane[k]:
-                (lo, hi), (qlo, qhi) = span(k), span(q)
-                if lo < qhi and qlo < hi:
-                    level = sign * max(sign * level, sign * (hq + sign * pitch))
-        heights[k] = level
-    bottom = min([extent(n, -1) for n in y] + [h - pitch / 2 for h in heights.values()])
-    top = max([extent(n, 1) for n in y] + [h + pitch / 2 for h in heights.values()])
+            lo, hi = spans[k]
+            if side[q] == sign and lane[q] < lane[k] and lo <= spans[q][1] and spans[q][0] <= hi:
+                level_y = sign * max(sign * level_y, sign * (hq + sign * pitch))
+        heights[k] = level_y
 
-    # where wires enter a node: from the left (spread across), from below or above
-    enter_left: dict[str, list] = {}
-    enter_vert: dict[tuple[str, int], list] = {}
+    # the vertical pieces in each gap (gap c lies left of column c), by net
+    pieces: dict[int, list[Segment]] = {}
+    hops: dict[tuple, tuple[int, object]] = {}  # (wire key, hop) -> (gap, net)
+
+    def piece(gap, net, attachments, key):
+        pieces.setdefault(gap, []).append(Segment(net, tuple(attachments)))
+        hops[key] = (gap, net)
+
     for a, b in dag.edges:
-        last = paths[(a, b)][-2]
-        enter_left.setdefault(b, []).append((-y[last], ("wire", a)))
+        path = paths[(a, b)]
+        for h, (p, q) in enumerate(itertools.pairwise(path)):
+            yq = y[q] + (offset[(b, ("wire", a))] if q == b else 0.0)
+            net = ("src", a) if p == a else ("hop", a, b, h)
+            piece(col[q], net, [(y[p], "left"), (yq, "right")], ((a, b), h))
     for k, r in enumerate(routes):
-        if straight[k][1]:
-            enter_vert.setdefault((r.target, side[k]), []).append((-lane[k], k))
-        else:
-            enter_left.setdefault(r.target, []).append((-side[k] * 1e6 - lane[k], ("arc", k)))
-    offset: dict = {}
-    for b, entries in enter_left.items():
-        half = 0.7 * (SUM_R if geo.kind(b) == "sum" else geo.size[b][1] / 2)
-        for (_, key), off in zip(sorted(entries), spread(len(entries), half), strict=True):
-            offset[(b, key)] = off
-    for (b, _), entries in enter_vert.items():
-        half = 0.55 * (SUM_R if geo.kind(b) == "sum" else geo.size[b][0] / 2)
-        # outer lanes enter on the left so that arcs do not cross
-        for (_, k), off in zip(sorted(entries), spread(len(entries), half)[::-1], strict=True):
-            rise[k] = pos[b][0] + off
+        s_col, t_col = col[r.source], col[r.target]
+        piece(s_col + 1, ("src", r.source), [(y[r.source], "left"), (heights[k], "left")],
+              (("arc", k), "drop"))  # fmt: skip
+        if not straight[k]:
+            yt = y[r.target] + offset[(r.target, ("arc", k))]
+            piece(t_col, ("rise", k), [(heights[k], "right"), (yt, "right")], (("arc", k), "rise"))
+    for n in S.outputs:
+        piece(col[n] + 1, ("src", n), [(y[n], "left"), (y[n], "right")], (("out", n), 0))
+    slots = {gap: assign_slots(merge(segs)) for gap, segs in pieces.items()}
 
-    wires: list[Wire] = []
+    # column widths and gaps, then room for the blocks on the arcs
+    hw = [max([geo.half(n) for n in columns[c]] + [0.0]) for c in range(ncol)]
+    gaps = [MIN_GAP] * (ncol + 1)
+    # a delay's dashes need room after the last turn of its wire (a dot in the next column)
+    delayed = {col[b] for a, b in dag.edges if g.edges[a, b]["delay"]}
+    for gap, used in slots.items():
+        if used:
+            out = GAP_OUT + (DASH_ROOM if gap in delayed else 0.0)
+            gaps[gap] = max(MIN_GAP, GAP_IN + PITCH * max(used.values()) + out)
+    gaps[0] = max(gaps[0], 0.05)
+    item_width = {n: geo.size[n][0] for r in routes for n in r.chain}
+
+    def place():
+        x = [0.0] * ncol
+        for c in range(1, ncol):
+            x[c] = x[c - 1] + hw[c - 1] + gaps[c] + hw[c]
+        return x
+
+    x = place()
+    widened: set[int] = set()
+
+    def slot_x(gap, net):
+        left = x[gap - 1] + hw[gap - 1] if gap > 0 else x[0] - hw[0] - gaps[0]
+        right = x[gap] - hw[gap] if gap < ncol else left + gaps[gap]
+        used = slots.get(gap, {})
+        n = max(used.values(), default=0) + 1
+        if gap in widened:  # the slots keep to the right, where the widening put the drop
+            out = GAP_OUT + (DASH_ROOM if gap in delayed else 0.0)
+            return max(left + GAP_IN, right - out - PITCH * (n - 1)) + PITCH * used[net]
+        return left + GAP_IN + PITCH * used[net]
+
+    def arc_ends(k):
+        r = routes[k]
+        drop = slot_x(*hops[(("arc", k), "drop")])
+        if straight[k]:
+            return drop, x[col[r.target]] + rise_off[k]
+        return drop, slot_x(*hops[(("arc", k), "rise")])
+
+    # room on each arc for its blocks: widen the gap before its source, or for a loop on one
+    # column the gap of its drop (whose slots then keep to its right)
+    for k, r in enumerate(routes):
+        need = sum(item_width[n] + ITEM_GAP for n in _on_arc(r, g)) + ITEM_GAP
+        for _ in range(3):
+            drop, rise = arc_ends(k)
+            if not r.chain or drop - rise >= need - 1e-9:
+                break
+            gap = col[r.source] if col[r.source] > col[r.target] else col[r.source] + 1
+            if gap > col[r.source]:
+                widened.add(gap)
+            gaps[gap] += need - (drop - rise)
+            x = place()
+    pos = {n: (x[col[n]], y[n]) for n in col}
 
     def out_point(a):
         xa, ya = pos[a]
         return (xa + geo.reach(a, 0, 0), ya)
 
-    def in_points(b, off):
-        xb, yb = pos[b]
-        return [(xb - hw[col[b]], yb + off), (xb - geo.reach(b, off, 0), yb + off)]
+    def turn(key, y0, y1, pts):
+        """The two corners of a hop that changes rows (none when it keeps its row)."""
+        gap, net = hops[key]
+        if abs(y0 - y1) > 1e-9:
+            xs = slot_x(gap, net)
+            pts += [(xs, y0), (xs, y1)]
 
+    wires: list[Wire] = []
     for a, b in dag.edges:
         path = paths[(a, b)]
-        pts = [out_point(a), (pos[a][0] + hw[col[a]], pos[a][1])]
-        for d in path[1:-1]:
-            pts += [(pos[d][0] - hw[col[d]], pos[d][1]), (pos[d][0] + hw[col[d]], pos[d][1])]
-        pts += in_points(b, offset[(b, ("wire", a))])
-        wires.append(Wire(tuple(pts), g.edges[a, b]["delay"], a, b, False))
+        off = offset[(b, ("wire", a))]
+        pts = [out_point(a)]
+        for h, (p, q) in enumerate(itertools.pairwise(path)):
+            turn(((a, b), h), y[p], y[q] + (off if q == b else 0.0), pts)
+        pts.append((pos[b][0] - geo.reach(b, off, 0), y[b] + off))
+        wires.append(Wire(clean(pts), g.edges[a, b]["delay"], a, b, False))
+
+    # feedback arcs with their blocks
     for k, r in enumerate(routes):
         sign, ly = side[k], heights[k]
-        xs, ys = pos[r.source]
-        if straight[k][0]:
-            pts = [(xs, ys + sign * geo.reach(r.source, 0, 1)), (xs, ly)]
-        else:
-            pts = [out_point(r.source), (drop[k], ys), (drop[k], ly)]
+        ys = pos[r.source][1]
+        drop, rise = arc_ends(k)
+        items = _on_arc(r, g)
+        widths = [item_width[n] for n in items]
+        total = sum(widths) + ITEM_GAP * max(len(widths) - 1, 0)
+        cursor = (drop + rise) / 2 + total / 2
+        pts = [out_point(r.source), (drop, ys), (drop, ly)]
         prev = r.source
-        for n, cx in items[k]:
-            pts.append((cx + item_width[n] / 2, ly))
-            wires.append(Wire(tuple(pts), g.edges[prev, n]["delay"], prev, n, True))
-            pos[n] = (cx, ly)
-            pts, prev = [(cx - item_width[n] / 2, ly)], n
+        for n, w in zip(items, widths, strict=True):
+            pos[n] = (cursor - w / 2, ly)
+            pts.append((cursor, ly))
+            wires.append(Wire(clean(pts), g.edges[prev, n]["delay"], prev, n, True))
+            pts, prev = [(cursor - w, ly)], n
+            cursor -= w + ITEM_GAP
+        if len(items) < len(r.chain):  # the delayed signal at the arc's corner
+            n = r.chain[-1]
+            pos[n] = (rise, ly)
+            pts.append((rise + item_width[n] / 2, ly))
+            wires.append(Wire(clean(pts), g.edges[prev, n]["delay"], prev, n, True))
+            pts, prev = [(rise, ly)], n
         xt, yt = pos[r.target]
-        if straight[k][1]:
-            off = rise[k] - xt
-            pts += [(rise[k], ly), (rise[k], yt - sign * geo.reach(r.target, off, 1))]
+        if straight[k]:
+            pts += [(rise, ly), (rise, yt - sign * geo.reach(r.target, rise - xt, 1))]
+            if prev in r.chain and g.nodes[prev]["kind"] == "delay":  # up from the corner dot
+                pts[0] = (rise, ly - sign * item_width[prev] / 2)
         else:
             off = offset[(r.target, ("arc", k))]
-            pts += [(rise[k], ly), *in_points(r.target, off)]
-            pts[-2] = (rise[k], yt + off)
-        wires.append(Wire(tuple(pts), g.edges[prev, r.target]["delay"], prev, r.target, True))
+            pts += [(rise, ly), (rise, yt + off), (xt - geo.reach(r.target, off, 0), yt + off)]
+            if prev in r.chain and g.nodes[prev]["kind"] == "delay":
+                pts[0] = (rise, ly - sign * item_width[prev] / 2)
+        wires.append(Wire(clean(pts), g.edges[prev, r.target]["delay"], prev, r.target, True))
 
-    # input and output arrows
-    arrows_in = tuple(
-        Wire(((xa - hw[col[n]] - 0.35, ya), (xa - geo.reach(n, 0, 0), ya)), 0, None, n, False)
-        for n in S.inputs
-        for xa, ya in [pos[n]]
-    )
-    arrows_out = tuple(
-        Wire((out_point(n), (pos[n][0] + hw[col[n]] + 0.45, pos[n][1])), 0, n, None, False)
-        for n in S.outputs
-    )
+    # the arrows into the inputs and out of the outputs, and their labels
+    arrows_in, arrows_out, ends = [], [], []
+    for n in S.inputs:
+        xa, ya = pos[n]
+        tail = xa - hw[col[n]] - END
+        arrows_in.append(Wire(((tail, ya), (xa - geo.reach(n, 0, 0), ya)), 0, None, n, False))
+        ends.append(Label(f"${text.ends[n]}$", tail - 0.04, ya, "right", "center"))
+    for n in S.outputs:
+        c = col[n]
+        head = x[c] + hw[c] + (gaps[c + 1] - GAP_OUT if slots.get(c + 1) else 0.0) + END
+        arrows_out.append(Wire((out_point(n), (head, pos[n][1])), 0, n, None, False))
+        ends.append(Label(f"${text.ends[n]}$", head + 0.04, pos[n][1], "left", "center"))
 
-    # extent, parts, title and legend
-    xs_all = [p[0] for p in pos.values()]
-    x_lo = min(x[0] - hw[0] - gaps[0], min(xs_all)) - 0.15
-    x_hi = x[-1] + hw[-1] + 0.6
-    y_lo, y_hi = bottom, top
-    parts: dict[str, list[float]] = {}
-    for n in dag:
-        part = S.blocks[n].part.partition(".")[0]
-        if part:
-            parts.setdefault(part, []).append(pos[n][0])
-    bars = []
-    if len(parts) > 1:
-        y_hi += 0.05
-        for part, xs in parts.items():
-            bars.append((part, min(xs) - 0.1, max(xs) + 0.1, y_hi))
-        y_hi += 0.25
+    dots = []
+    for gap, segs in pieces.items():
+        for seg in merge(segs):
+            if seg.net in slots[gap]:
+                dots += [(slot_x(gap, seg.net), yj) for yj in junctions(seg)]
+
+    # names: above the signal, or above its left when an arc comes in from above
+    names = {}
+    for n, (label, _, _) in geo.name.items():
+        xn, yn = pos[n]
+        reach = geo.size[n][1] / 2 + 0.015
+        if n in geo.left_named:  # above its top left, clear of the arcs coming in
+            r = geo.size[n][0] / 2
+            names[n] = Label(label, xn - 0.45 * r, yn + r + 0.01, "right", "bottom")
+        else:
+            names[n] = Label(label, xn, yn + reach, "center", "bottom")
+
+    # extent, bands, frames
+    boxes = {n: (*pos[n], *geo.size[n]) for n in S.blocks}
+    xs_all = [p[0] for w in (*wires, *arrows_in, *arrows_out) for p in w.points]
+    ys_all = [p[1] for w in wires for p in w.points] + [b[1] - b[3] / 2 for b in boxes.values()]
+    tops = [b[1] + b[3] / 2 for b in boxes.values()]
+    tops += [lab.y + geo.name[n][2] for n, lab in names.items() if lab.va == "bottom"]
+    ys_all += [lab.y - geo.name[n][2] for n, lab in names.items() if lab.va == "top"]
+    x_lo = min(xs_all + [e.x - measure(e.text, END_FONT)[0] for e in ends if e.ha == "right"])
+    x_hi = max(xs_all + [e.x + measure(e.text, END_FONT)[0] for e in ends if e.ha == "left"])
+    y_lo, y_hi = min(ys_all) - 0.06, max(tops + ys_all) + 0.04
+    part_frames, y_hi = frames(S, boxes, names, geo.name, wires, y_hi, measure)
+    band_list, y_hi = vertex_bands(
+        vertex, level, boxes, x, hw, gaps, col, (y_lo, y_hi), vertex_names, measure
+    )
     signals = set(S.blocks)
     return StructureLayout(
         positions=MappingProxyType({n: p for n, p in pos.items() if n in signals}),
         sizes=MappingProxyType(dict(geo.size)),
         labels=MappingProxyType(dict(geo.label)),
-        names=MappingProxyType({n: text for n, (text, _) in geo.name.items()}),
+        names=MappingProxyType(names),
+        ends=tuple(ends),
         layers=MappingProxyType({n: col[n] for n in dag}),
         wires=tuple(wires),
-        arrows_in=arrows_in,
-        arrows_out=arrows_out,
-        parts=tuple(bars),
-        bounds=(x_lo, x_hi, y_lo, y_hi),
+        arrows_in=tuple(arrows_in),
+        arrows_out=tuple(arrows_out),
+        junctions=tuple(dots),
+        parts=part_frames,
+        bands=band_list,
+        bounds=(x_lo - 0.05, x_hi + 0.05, y_lo, y_hi),
     )
+
+
+def _on_arc(route: Route, g: nx.DiGraph) -> tuple[str, ...]:
+    """The blocks placed along an arc: its chain, less a last delay (a dot at the arc's corner)."""
+    if route.chain and g.nodes[route.chain[-1]]["kind"] == "delay":
+        return route.chain[:-1]
+    return route.chain

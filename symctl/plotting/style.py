@@ -15,7 +15,9 @@ legible at the size it is printed and every figure reads alike:
   :data:`SYMBOLIC` mark a synapse's sign, :data:`SENSOR` and :data:`ACTUATOR` the ends
   of a delay graph. :func:`cycle` gives line colours in order.
 * **Axes.** :func:`axis_label` writes ``quantity [unit]``: every axis carries its unit.
-  :func:`legend_below` puts a legend under its axes, where it never covers data.
+  :func:`legend_below` puts a legend under its axes, :func:`legend_above` over them
+  (under the panel's heading), :func:`figure_legend` under the whole figure: where it
+  never covers data, in as many columns as :func:`legend_columns` finds room for.
 * **Files.** :data:`FORMATS` are written for every figure (vector PDF and SVG, and a PNG
   at :data:`PNG_DPI` for the screen).
 
@@ -65,7 +67,11 @@ __all__ = [
     "TITLE",
     "axis_label",
     "cycle",
+    "figure_legend",
+    "legend_above",
     "legend_below",
+    "legend_columns",
+    "legend_width",
     "new_figure",
     "rc",
     "styled",
@@ -285,3 +291,101 @@ def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, titl
         fontsize=SMALL,
         frameon=False,
     )
+
+
+_HANDLE = 2.0 + 0.8  # matplotlib's handlelength + handletextpad [em]
+_SPACING = 2.0  # columnspacing [em]
+_PAD = 2 * (0.5 + 0.4)  # borderaxespad + borderpad, both sides, at their defaults [em]
+
+
+def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
+    """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out.
+
+    Matplotlib fills the columns in order, the first ``len(labels) % ncol`` of them
+    with one entry more than the others. Each column is as wide as its longest label
+    (measured as drawn, mathtext included) plus the handle; the columns are separated
+    as matplotlib separates them.
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import legend_width
+    >>> legend_width(["a", "b"], 2) > legend_width(["a", "b"], 1)
+    True
+    """
+    from symctl.plotting.common import text_size
+
+    labels = list(labels)
+    if not labels:
+        return 0.0
+    ncol = max(1, min(int(ncol), len(labels)))
+    rows, large = divmod(len(labels), ncol)
+    sizes = [rows + 1] * large + [rows] * (ncol - large)
+    widths, start = [], 0
+    for count in sizes:
+        widths.append(max(text_size(t, size)[0] for t in labels[start : start + count]))
+        start += count
+    em = size / 72.0
+    # TextPath measures the outlines; drawn text runs a few percent wider
+    return 1.06 * sum(widths) + em * (_HANDLE * ncol + _SPACING * (ncol - 1) + _PAD)
+
+
+def legend_columns(labels, room: float, *, size: float = SMALL, most: int | None = None) -> int:
+    """The most columns (at least 1) in which a legend of ``labels`` fits ``room`` inches.
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import legend_columns
+    >>> legend_columns(["short", "labels"], 3.0), legend_columns(["x" * 60, "y" * 60], 3.0)
+    (2, 1)
+    """
+    labels = list(labels)
+    top = max(1, min(len(labels), most or len(labels)))
+    for ncol in range(top, 1, -1):
+        if legend_width(labels, ncol, size=size) <= room:
+            return ncol
+    return 1
+
+
+def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | None = None):
+    """A legend in the row above ``ax``, from its left end, at most ``room`` inches wide.
+
+    ``heading``, the panel's short heading, is the legend's title, set on the left above
+    the entries: a panel with several traces has its heading and key in one block over
+    the data, never on it. The legend takes as many columns as fit ``room`` (the
+    panel's width) and grows upward; the figure's constrained layout makes space.
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import legend_above, new_figure
+    >>> fig = new_figure("column", 2.0)
+    >>> ax = fig.add_subplot()
+    >>> _ = ax.plot([0, 1], [0, 1], label="a")
+    >>> _ = ax.plot([0, 1], [1, 0], label="b")
+    >>> legend = legend_above(ax, room=2.0, heading="two lines")
+    >>> legend._ncols, legend.get_title().get_text()
+    (2, 'two lines')
+    """
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    return ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0),
+                     ncols=legend_columns(labels, room), title=heading, alignment="left",
+                     fontsize=SMALL, title_fontsize=SMALL, frameon=False, borderaxespad=0.1,
+                     borderpad=0.1)  # fmt: skip
+
+
+def figure_legend(fig, handles, labels, *, title: str | None = None, most: int | None = None):
+    """One legend under the whole figure, centred, in as many columns as fit its width.
+
+    Examples
+    --------
+    >>> from symctl.plotting.style import figure_legend, new_figure
+    >>> fig = new_figure("column", 2.0)
+    >>> ax = fig.add_subplot()
+    >>> lines = ax.plot([0, 1], [0, 1], [0, 1], [1, 0])
+    >>> figure_legend(fig, lines, ["up", "down"])._ncols
+    2
+    """
+    room = float(fig.get_size_inches()[0]) - 0.1
+    ncol = legend_columns(labels, room, most=most)
+    return fig.legend(handles, labels, loc="outside lower center", ncols=ncol, title=title,
+                      fontsize=SMALL, title_fontsize=SMALL, frameon=False)  # fmt: skip

@@ -135,6 +135,8 @@ class Factorization(LatexMixin):
         The measured signals (columns of ``G``) and the outputs (rows): ``(1, 1)``
         for the paper's SISO controller.
 
+    Notes
+    -----
     Built by :func:`factor`; compares and hashes by value.
 
     Examples

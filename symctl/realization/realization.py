@@ -83,6 +83,8 @@ class Realization(LatexMixin):
         Values used to build it (e.g. the random epsilons and ``P``), for
         records; kept as a read-only mapping and not compared.
 
+    Notes
+    -----
     ``F, H, M, N`` are stored as :class:`sympy.ImmutableMatrix`. ``n = 0`` (a
     static gain) is allowed. Realizations compare and hash by value: the
     matrices and ``dt`` (structurally; similar realizations are not equal).

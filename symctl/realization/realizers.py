@@ -366,7 +366,7 @@ def random_realization(
     eps_range : (float, float)
         Interval of the epsilons: each is an exact multiple of 1/1000 drawn uniformly
         from [low, high] (both ends included); default (-0.9, 0.9). Both ends must lie
-        in (-1, 1): a section C/(z - epsilon) with |epsilon| >= 1 is unstable and
+        in (-1, 1): a section C/(z - epsilon) with ``|epsilon| >= 1`` is unstable and
         G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit would be
         internally unstable although its transfer function is right.
     values : dict, optional

@@ -19,7 +19,8 @@ from pathlib import Path
 
 import sympy as sp
 
-from symctl.report.document import Graphic, Heading, Table, Text
+from symctl.report.document import Graphic, Heading, References, Table, Text
+from symctl.report.reference import REFERENCES, cite
 
 __all__ = ["DRAWINGS", "atlas_blocks", "paper_blocks", "paper_realizations", "write_atlas"]
 
@@ -73,7 +74,7 @@ def _claim(A) -> list:
     )
     if A.order == 2:
         text += (
-            " The paper's abstract says that for any second-order controller there are three "
+            f" The paper's abstract {cite()} says that for any second-order controller there are three "
             "minimal circuit configurations. Counted as circuit classes, the number is "
             f"{len(universal)}, not three. The paper's three (controllable canonical, observable "
             "canonical, general) are three of these classes: the two canonical ones have the "
@@ -201,6 +202,7 @@ def atlas_blocks(A, drawn=()) -> list:
                     f"{_VERDICT[c.universal]} ({c.evidence.method}).",
                 )
             )
+    blocks.append(References(REFERENCES))
     return blocks
 
 
@@ -327,8 +329,9 @@ def paper_blocks(res, shown) -> list:
             "$\\epsilon$, with the whole controller $G_3 G_2 G_1$ checked on the delay graph. "
             "Generic classes use the seeded $\\epsilon$ shown; degenerate ones need special "
             "$\\epsilon$, found by Gauss-Newton and certified by the Krawczyk test: they are the "
-            "paper's simplified circuits (for example $K_2 + \\epsilon_1\\epsilon_3 = 0$ drops "
-            "an axon branch of the controllable canonical circuit)."
+            f"paper's simplified circuits {cite('Sec.', 'microcircuits')} (for example "
+            "$K_2 + \\epsilon_1\\epsilon_3 = 0$ drops an axon branch of the controllable canonical "
+            "circuit)."
         )
     )
     blocks.append(
@@ -359,7 +362,7 @@ def paper_blocks(res, shown) -> list:
     for c in simplified(cands):
         figure(
             f"simplified_{c.circuit_class.label}",
-            f"A simplified circuit: class {c.circuit_class.label} at "
+            f"A simplified circuit {cite('Sec.', 'microcircuits')}: class {c.circuit_class.label} at "
             f"$\\epsilon = ({', '.join(f'{float(e):.4g}' for e in c.eps)})$, "
             f"{c.n_neurons} neurons.",
         )

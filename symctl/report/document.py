@@ -1,17 +1,26 @@
 r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 
 A block is one of :class:`Heading`, :class:`Text`, :class:`Math` (one numbered
-display), :class:`Table`, :class:`Graphic` (an image file with its caption) and
-:class:`Verbatim`. :func:`to_tex` and :func:`to_markdown` render the same
-blocks, so the two documents tell the same story with the same equation
-numbers; :func:`write_tex` and :func:`write_markdown` write them to files
+display), :class:`Table`, :class:`Graphic` (an image file with its caption),
+:class:`Verbatim` and :class:`References` (the bibliography). :func:`to_tex` and
+:func:`to_markdown` render the same blocks, so the two documents tell the same
+story with the same numbers; :func:`write_tex` and :func:`write_markdown` write them to files
 (``symctl paper`` writes ``derivation.tex`` and ``report.md``), and
 :func:`compile_pdf` runs ``pdflatex``. The paper's blocks are made by
 :func:`symctl.report.story.story`; this module knows nothing of the paper
 but its title.
 
 Prose may hold inline math between ``$`` signs; everything outside them is
-escaped for LaTeX.
+escaped for LaTeX, except the citations ``[@key, locator]`` of the
+:class:`References` and the references ``[#fig:name]``, ``[#tab:label]``,
+``[#eq:label]`` to the document's own figures, captioned tables and displays,
+which both formats number (:mod:`symctl.report.prose`).
+
+Each section keeps its floats: a section heading first places the figures
+still waiting (``\symctlbarrier``: it ends the page, where they go on top of the
+next one, or flushes them, like the ``placeins`` package, which is not in TeX
+Live's base set); subsections are not barriers, which would leave too many pages
+half empty.
 
 Examples
 --------
@@ -35,7 +44,6 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
-import textwrap
 import typing
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -45,6 +53,7 @@ from symctl import latex as L
 from symctl.errors import LatexError, SymctlTypeError
 from symctl.report import longform as LF
 from symctl.report.longform import MD_LINE, TABLE_MAX_ROWS
+from symctl.report.prose import markdown_lines, markdown_text, tex_text, verbatim_lines
 
 __all__ = [
     "BLOCKS",
@@ -54,6 +63,7 @@ __all__ = [
     "Graphic",
     "Heading",
     "Math",
+    "References",
     "Table",
     "Text",
     "Verbatim",
@@ -105,15 +115,24 @@ class Math:
 
 @dataclass(frozen=True)
 class Table:
-    """A table; cells are prose (inline math between ``$`` signs)."""
+    """A table; cells are prose (inline math between ``$`` signs).
+
+    With a ``caption`` it is numbered (a float of its section, ``label`` for
+    ``[#tab:label]``); without one it sits in the text where it is.
+    """
 
     header: tuple
     rows: tuple
+    caption: str = ""
+    label: str = ""
 
 
 @dataclass(frozen=True)
 class Graphic:
-    """An image file ``<name>.png`` (next to the document) with its caption."""
+    """A figure ``<name>`` (its files next to the document) with its caption.
+
+    LaTeX includes the vector ``<name>.pdf`` at its natural size, Markdown ``<name>.png``.
+    """
 
     name: str
     caption: str
@@ -126,34 +145,20 @@ class Verbatim:
     text: str
 
 
-DocumentBlock = Heading | Text | Math | Table | Graphic | Verbatim
+@dataclass(frozen=True)
+class References:
+    """The bibliography: ``(key, entry)`` pairs, numbered in this order (cited as ``[@key]``)."""
+
+    entries: tuple
+
+
+DocumentBlock = Heading | Text | Math | Table | Graphic | Verbatim | References
 """Any block of a document (not a structure's :class:`~symctl.compatibility.structure.Block`)."""
 BLOCKS = typing.get_args(DocumentBlock)
 """The block types of a document."""
 
 
 # ---------------------------------------------------------------- LaTeX
-_SPECIAL = {
-    "\\": r"\textbackslash{}",
-    "&": r"\&",
-    "%": r"\%",
-    "#": r"\#",
-    "_": r"\_",
-    "{": r"\{",
-    "}": r"\}",
-    "~": r"\textasciitilde{}",
-    "^": r"\textasciicircum{}",
-}
-
-
-def _tex_text(text: str) -> str:
-    """Prose for LaTeX: escape outside ``$...$``, keep the math."""
-    parts = text.split("$")
-    for i in range(0, len(parts), 2):
-        parts[i] = "".join(_SPECIAL.get(ch, ch) for ch in parts[i])
-    return "$".join(parts)
-
-
 # \fitmath is a safety net: a display a little wider than the line (the story keeps every line
 # within its width estimate, symctl.report.longform) is shrunk to fit and reported in the log as
 # "symctl: shrunk"; one wider than SHRINK_MAX lines is left as it is (an overfull box that shows
@@ -167,7 +172,29 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
       \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
     \else\usebox{\symctlbox}\fi
   \else\usebox{\symctlbox}\fi}
-\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}""".replace(
+% \fitgraphic includes a (vector) figure at its natural size: figures are drawn at the size they
+% are printed. One wider than the text or taller than most of a page is scaled down to fit, and
+% the log says so ("symctl: scaled figure"), for a test to find.
+\newif\ifsymctlfit
+\newcommand{\fitgraphic}[1]{\sbox{\symctlbox}{\includegraphics{#1}}\symctlfitfalse
+  \ifdim\wd\symctlbox>\linewidth \symctlfittrue\fi
+  \ifdim\ht\symctlbox>0.8\textheight \symctlfittrue\fi
+  \ifsymctlfit
+    \typeout{symctl: scaled figure #1 down to fit the page}%
+    \includegraphics[width=\linewidth,height=0.8\textheight,keepaspectratio]{#1}%
+  \else\usebox{\symctlbox}\fi}
+\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}\setlength{\emergencystretch}{3em}
+\makeatletter
+\newif\ifsymctlwaiting
+\newcommand{\symctlcheck}{\begingroup\let\@elt\relax
+  \edef\@tempa{\@botlist\@deferlist\@dbldeferlist}\ifx\@tempa\@empty
+  \aftergroup\symctlwaitingfalse\else\aftergroup\symctlwaitingtrue\fi\endgroup}
+\newcommand{\symctlbarrier}{\par\symctlcheck
+  \ifsymctlwaiting\newpage\symctlcheck\ifsymctlwaiting\clearpage\fi\fi}
+\makeatother
+\renewcommand{\topfraction}{0.9}\renewcommand{\bottomfraction}{0.8}
+\renewcommand{\textfraction}{0.1}\renewcommand{\floatpagefraction}{0.8}
+\setcounter{topnumber}{3}\setcounter{totalnumber}{4}""".replace(
     "<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth"
 )
 
@@ -193,41 +220,82 @@ def _tex_math(b: Math) -> str:
     )
 
 
+_WRAP = r">{\raggedright\arraybackslash}"
+"""The column type prefix of a wrapped column: ragged right, rows still end with ``\\``."""
+
+
+def _columns(b: Table, long: bool) -> tuple[str, str, str]:
+    """The column spec, the font size and the environment of a table (tabularx when it wraps)."""
+    wrap = LF.wrapped_columns(b.header, b.rows)
+    if not wrap:
+        wide = LF.table_width(b.header, b.rows) > LF.TABLE_WIDTH
+        size = r"\footnotesize\setlength{\tabcolsep}{3pt}" if wide else r"\small"
+        return "l" * len(b.header), size, "longtable" if long else "tabular"
+    if not long:
+        cols = "".join(_WRAP + "X" if j in wrap else "l" for j in range(len(b.header)))
+        return cols, r"\small", "tabularx"
+    # longtable cannot stretch columns: the wrapped ones share what the others leave
+    widths = LF.column_widths(b.header, b.rows)
+    others = sum(w for j, w in enumerate(widths) if j not in wrap) * _SMALL_UNIT_PT
+    share = rf"\dimexpr(\linewidth-{others:.0f}pt-{2 * len(widths)}\tabcolsep)/{len(wrap)}\relax"
+    cols = "".join(_WRAP + f"p{{{share}}}" if j in wrap else "l" for j in range(len(widths)))
+    return cols, r"\small", "longtable"
+
+
+_SMALL_UNIT_PT = 5.0
+"""Points per unit of :func:`~symctl.report.longform.cell_width` at ``\\small`` (about 4.4,
+rounded up: the columns a longtable keeps at their natural width are given this much)."""
+
+
 def _tex_table(b: Table) -> str:
-    cols = "l" * len(b.header)
-    body = [" & ".join(_tex_text(c) for c in b.header) + r" \\ \hline"]
-    body += [" & ".join(_tex_text(c) for c in row) + r" \\" for row in b.rows]
-    size = r"\small"
-    if LF.table_width(b.header, b.rows) > LF.TABLE_WIDTH:
-        size = r"\footnotesize\setlength{\tabcolsep}{3pt}"
-    if len(b.rows) <= TABLE_MAX_ROWS:
-        return "\n".join([rf"\begin{{center}}{size}", rf"\begin{{tabular}}{{{cols}}}", r"\hline",
-                          *body, r"\hline", r"\end{tabular}\end{center}"])  # fmt: skip
-    head = body[0]
-    return "\n".join([rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", r"\hline", head,
-                      r"\endhead", r"\hline", r"\endfoot", *body[1:], r"\end{longtable}}"])  # fmt: skip
+    long = len(b.rows) > TABLE_MAX_ROWS
+    cols, size, env = _columns(b, long)
+    width = r"{\linewidth}" if env == "tabularx" else ""
+    body = [" & ".join(tex_text(c) for c in b.header) + r" \\ \hline"]
+    body += [" & ".join(tex_text(c) for c in row) + r" \\" for row in b.rows]
+    caption = rf"\caption{{{tex_text(b.caption)}}}" if b.caption else ""
+    label = rf"\label{{tab:{b.label}}}" if b.caption and b.label else ""
+    label += r"\vspace{0.5ex}" if b.caption and not long else ""
+    if long:
+        top = [rf"{caption}{label}\\"] if caption else []
+        return "\n".join([rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", *top, r"\hline",
+                          body[0], r"\endhead", r"\hline", r"\endfoot", *body[1:],
+                          r"\end{longtable}}"])  # fmt: skip
+    table = [rf"\begin{{{env}}}{width}{{{cols}}}", r"\hline", *body, r"\hline", rf"\end{{{env}}}"]
+    if caption:
+        return "\n".join([r"\begin{table}[htbp]\centering", caption + label, size, *table,
+                          r"\end{table}"])  # fmt: skip
+    return "\n".join([rf"\begin{{center}}{size}", *table, r"\end{center}"])
+
+
+def _tex_references(b: References) -> str:
+    items = [rf"\bibitem{{{key}}} {tex_text(text)}" for key, text in b.entries]
+    return "\n".join([r"\symctlbarrier", r"\begin{thebibliography}{9}", *items,
+                      r"\end{thebibliography}"])  # fmt: skip
 
 
 def _tex_block(b) -> str:
     if isinstance(b, Heading):
-        return rf"\{'sub' * (b.level - 1)}section{{{_tex_text(b.text)}}}"
+        command = rf"\{'sub' * (b.level - 1)}section{{{tex_text(b.text)}}}"
+        return rf"\symctlbarrier{command}" if b.level == 1 else command
     if isinstance(b, Text):
-        return _tex_text(b.text)
+        return tex_text(b.text)
     if isinstance(b, Math):
         return _tex_math(b)
     if isinstance(b, Table):
         return _tex_table(b)
+    if isinstance(b, References):
+        return _tex_references(b)
     if isinstance(b, Graphic):
         return "\n".join(
             [
                 r"\begin{figure}[htbp]\centering",
-                rf"\includegraphics[width=\linewidth,height=0.42\textheight,keepaspectratio]"
-                rf"{{{b.name}.png}}",
-                rf"\caption{{{_tex_text(b.caption)}}}\label{{fig:{b.name}}}",
+                rf"\fitgraphic{{{b.name}.pdf}}",
+                rf"\caption{{{tex_text(b.caption)}}}\label{{fig:{b.name}}}",
                 r"\end{figure}",
             ]
         )
-    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *_wrapped(b.text), r"\end{verbatim}",
+    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *verbatim_lines(b.text), r"\end{verbatim}",
                       "}"])  # fmt: skip
 
 
@@ -259,9 +327,11 @@ def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     (True, True)
     """
     parts = [_tex_block(b) for b in _checked(blocks)]
-    packages = ["longtable"] if any(r"\begin{longtable}" in p for p in parts) else []
+    packages = [p for p in ("array", "longtable", "tabularx")
+                if any(rf"\begin{{{p}}}" in part or (p == "array" and _WRAP in part)
+                       for part in parts)]  # fmt: skip
     return L.document(
-        parts, title=_tex_text(title), author=AUTHOR, packages=packages, preamble=_PREAMBLE
+        parts, title=tex_text(title), author=AUTHOR, packages=packages, preamble=_PREAMBLE
     )
 
 
@@ -299,16 +369,21 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     <BLANKLINE>
     ![The open loop.](open_loop.png)
     <BLANKLINE>
-    *The open loop.*
+    *Figure 1: The open loop.*
     <BLANKLINE>
     """
+    numbers = _numbers(_checked(blocks))
+
+    def text(t: str) -> str:
+        return markdown_text(t, numbers)
+
     out = [f"# {title}", ""]
-    number = 0
-    for b in _checked(blocks):
+    number = figure = table = 0
+    for b in blocks:
         if isinstance(b, Heading):
-            out += [f"{'#' * (b.level + 1)} {b.text}", ""]
+            out += [f"{'#' * (b.level + 1)} {text(b.text)}", ""]
         elif isinstance(b, Text):
-            out += [*_md_wrap(b.text), ""]
+            out += [*markdown_lines(text(b.text)), ""]
         elif isinstance(b, Math):
             number += 1
             rows = [_row(lhs, rhs) for lhs, rhs in b.rows]
@@ -328,15 +403,48 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
                     "",
                 ]
         elif isinstance(b, Table):
-            out.append("| " + " | ".join(map(_md_cell, b.header)) + " |")
+            if b.caption:
+                table += 1
+                out += [f"*Table {table}: {text(b.caption)}*", ""]
+            out.append("| " + " | ".join(_md_cell(text(c)) for c in b.header) + " |")
             out.append("|" + "---|" * len(b.header))
-            out += ["| " + " | ".join(map(_md_cell, row)) + " |" for row in b.rows]
+            out += ["| " + " | ".join(_md_cell(text(c)) for c in row) + " |" for row in b.rows]
             out.append("")
         elif isinstance(b, Graphic):
-            out += [f"![{b.caption}]({b.name}.png)", "", f"*{b.caption}*", ""]
+            figure += 1
+            caption = text(b.caption)
+            alt = caption.replace("[", "(").replace("]", ")")  # an image's text has no brackets
+            out += [f"![{alt}]({b.name}.png)", "", f"*Figure {figure}: {caption}*", ""]
+        elif isinstance(b, References):
+            out += ["## References", ""]
+            out += [f"[{k}] {text(entry)}  " for k, (_, entry) in enumerate(b.entries, 1)]
+            out.append("")
         else:
-            out += ["```", *_wrapped(b.text), "```", ""]
+            out += ["```", *verbatim_lines(b.text), "```", ""]
     return "\n".join(out)
+
+
+def _numbers(blocks: Sequence[DocumentBlock]) -> dict[str, int]:
+    """The number of every figure (``fig:name``), captioned table (``tab:label``), display
+    (``eq:label``) and reference (its key), in reading order."""
+    numbers: dict[str, int] = {}
+    count = {"fig": 0, "tab": 0, "eq": 0}
+
+    def number(kind: str, name: str) -> None:
+        count[kind] += 1
+        numbers.setdefault(f"{kind}:{name}", count[kind])
+
+    for b in blocks:
+        if isinstance(b, Graphic):
+            number("fig", b.name)
+        elif isinstance(b, Math):
+            number("eq", b.label.removeprefix("eq:"))
+        elif isinstance(b, Table) and b.caption:
+            number("tab", b.label or f"table-{count['tab'] + 1}")
+        elif isinstance(b, References):
+            for k, (key, _) in enumerate(b.entries, 1):
+                numbers.setdefault(key, k)
+    return numbers
 
 
 def _md_math_lines(row: str) -> list[str]:
@@ -350,34 +458,6 @@ def _md_math_lines(row: str) -> list[str]:
             lines.append(piece)
         else:
             lines[-1] += piece
-    return lines
-
-
-def _wrapped(text: str) -> list[str]:
-    """Preformatted text with its lines wrapped at 100 characters (as in the LaTeX)."""
-    return [w for line in text.splitlines() for w in textwrap.wrap(line, 100) or [""]]
-
-
-def _md_wrap(text: str) -> list[str]:
-    """Prose as lines of at most about 100 characters, never breaking inside ``$...$``."""
-    if len(text) <= 100:
-        return [text]
-    words, cur, in_math = [], "", False
-    for ch in text:  # a word ends at a space outside math
-        if ch == "$":
-            in_math = not in_math
-        if ch == " " and not in_math:
-            words.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    words.append(cur)
-    lines = [""]
-    for w in words:
-        if lines[-1] and len(lines[-1]) + 1 + len(w) > 100:
-            lines.append(w)
-        else:
-            lines[-1] = f"{lines[-1]} {w}" if lines[-1] else w
     return lines
 
 
@@ -505,7 +585,7 @@ def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
         return None
     cmd = [exe, "-interaction=nonstopmode", "-halt-on-error", tex.name]
     log = tex.with_suffix(".log")
-    passes = 2 if re.search(r"\\(eq)?ref\{", tex.read_text(errors="replace")) else 1
+    passes = 2 if re.search(r"\\((eq)?ref|cite)\b", tex.read_text(errors="replace")) else 1
     for _ in range(passes):
         try:
             run = subprocess.run(

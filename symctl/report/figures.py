@@ -2,8 +2,10 @@ r"""The report's figures, built from a :class:`~symctl.report.results.PaperResul
 
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows (:func:`make_figure`, under the stable file names of
-:func:`figure_names`); :func:`save` writes one as PNG and SVG, and
-:func:`write_figures` makes and writes them all, in parallel processes. This
+:func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
+includes, at its natural size), SVG and PNG, and :func:`write_figures` makes and writes
+them all, in parallel processes. The report's figures carry no heading: the document's
+caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
 
@@ -19,7 +21,13 @@ name                          content
 ``nonlinear``                 the linear controller around the nonlinear muscle
 ``firing_<circuit>``          Figs. full_diagram, ccr_diagram, ocr_diagram: the
                               neurons' firing in several realizations
-``structure_<circuit>``       the structure (gains, adders, unit delays)
+``g1g3_structures``            Fig. g1g3 (left): the two structures of a first-order
+                              section of :math:`G_1` or :math:`G_3` (delays on the
+                              branches, or one after the adder), each checked on one
+                              edge of the delay graph
+``structure_<circuit>``       the structure (gains, adders, unit delays), each
+                              delay-graph vertex's signals in a band when it is
+                              compatible (the witness assignment)
 ``circuit_<circuit>``         the circuit of stylized neurons, each at its
                               vertex of the delay graph (for ``general`` the
                               first simulated realization, with numbers)
@@ -41,7 +49,7 @@ Examples
 ['open_loop', 'closed_loop']
 >>> with tempfile.TemporaryDirectory() as out:
 ...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
-['.png', '.svg']
+['.pdf', '.svg', '.png']
 """
 
 from __future__ import annotations
@@ -53,10 +61,13 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from symctl._util.display import latex
+from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
+from symctl.plotting import style
 from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
@@ -71,18 +82,20 @@ __all__ = [
     "write_figures",
 ]
 
-DPI = 120
-"""Resolution of the PNG files [dots per inch]."""
-FORMATS = ("png", "svg")
-"""The formats every figure is saved in."""
+DPI = style.PNG_DPI
+"""Resolution of the PNG files [dots per inch] (the house style's)."""
+FORMATS = style.FORMATS
+"""The formats every figure is saved in: vector PDF and SVG, and PNG (the house style's)."""
 MAX_DRAWN_SIGNALS = 400
-"""Structures up to this many signals (and :data:`MAX_DRAWN_PARTS` parts) are drawn block by
-block; larger ones (a long delay's general realization) as the overview of their parts
+"""Structures up to this many signals are drawn block by block when they fit the page (folded
+into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
+block forms), as the overview of their parts
 (:func:`symctl.plotting.structure_overview.draw_structure_overview`)."""
 MAX_DRAWN_PARTS = 6
-"""Structures of up to this many parts in series (sections of G1 and G3, and G2) are drawn
-block by block; with more (T >= 6), the diagram is a strip over 30 inches wide, so the
-overview of the parts is drawn instead."""
+"""Kept for compatibility; no longer a limit: a structure of many parts in series (sections
+of G1 and G3, and G2; T >= 6) is folded into rows of parts that fit the page
+(:mod:`symctl.plotting.structure_rows`), and only one that fits no page is drawn as the
+overview of its parts."""
 MAX_PIXELS = 4000
 """Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
 long delay) is written at a lower resolution, so that its size and time stay bounded (the
@@ -106,9 +119,11 @@ def figure_names(res) -> list[str]:
     >>> from symctl import derive_paper
     >>> from symctl.report.figures import figure_names
     >>> figure_names(derive_paper())[1:5]
-    ['closed_loop', 'delay_graph', 'structure_ifp', 'circuit_ifp']
+    ['closed_loop', 'delay_graph', 'g1g3_structures', 'structure_ifp']
     """
     names = ["open_loop", "closed_loop", "delay_graph"]
+    if getattr(res, "factors", None) is not None:
+        names.append("g1g3_structures")
     for circuit in res.circuits:
         names += [f"structure_{circuit}", f"circuit_{circuit}", f"firing_{circuit}"]
     if getattr(res, "nonlinear", None) is not None:
@@ -126,6 +141,48 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
         return None
     xs, us = spec.signal_names
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
+
+
+def _state_bounds(res) -> list[tuple[float, str]]:
+    r"""The values a plant's own dynamics keep its state within, with their legend text.
+
+    For a plant of one state :math:`x` and one input :math:`u` whose ODE is affine in
+    :math:`x` with a negative coefficient, :math:`\dot x = a x + b(u)`, :math:`a < 0` (the
+    muscle: :math:`a = -1/\tau`, :math:`b = f_\max/(\tau(1 + e^{-r}))`), the state relaxes
+    towards :math:`x^*(u) = -b(u)/a` while the input is held: between two samples it stays
+    between its value and :math:`x^*(u)`. Started inside the range of :math:`x^*`, it
+    never leaves it, whatever the controller does; the ends of that range are the limits
+    of :math:`x^*` as :math:`u \to \pm\infty` (the muscle's :math:`f_\max` and 0). Only a
+    disturbance, added to the state at the samples, takes it beyond: the nonlinear figure
+    marks them. Other plants: none.
+    """
+    import sympy as sp
+
+    from symctl._util.texnames import signal_tex
+
+    ode = getattr(getattr(res, "spec", None), "ode", None)
+    if ode is None or ode.n != 1 or ode.m != 1:
+        return []
+    x, u = ode.states[0], ode.inputs[0]
+    a = sp.diff(ode.rhs[0], x)
+    if a.free_symbols & {x, u} or not float(a.subs(ode.values)) < 0:
+        return []
+    steady = -sp.expand(ode.rhs[0] - a * x) / a
+    unit = res.spec.unit(x.name)
+    bounds = []
+    for end, word in ((sp.oo, "most"), (-sp.oo, "least")):
+        try:
+            limit = sp.limit(steady, u, end)
+        except (NotImplementedError, ValueError, TypeError, ZeroDivisionError):
+            continue
+        if not limit.is_finite:
+            continue
+        value = float(limit.subs(ode.values))
+        name = f"${signal_tex(limit.name)}$ = " if isinstance(limit, sp.Symbol) else ""
+        sym = signal_tex(x.name)
+        amount = f"{value:.4g}" + (f" {unit}" if unit else "")
+        bounds.append((value, f"{name}{amount}: the {word} ${sym}$ reaches without $w$"))
+    return bounds
 
 
 def _vertex_names(res) -> tuple[tuple[str, ...] | None, dict]:
@@ -200,6 +257,79 @@ def _signs_at(res, circuit) -> dict:
     return values
 
 
+def _end_labels(res, S) -> dict[str, str] | None:
+    """The plant's names at the structure's ends: its input the measured states, its output
+    the plant's inputs (so every structure of one controller names them alike)."""
+    spec = getattr(res, "spec", None)
+    if spec is None:
+        return None
+    xs, us = spec.signal_names
+    if len(xs) != len(S.inputs) or len(us) != len(S.outputs):
+        return None
+    pairs = (*zip(S.inputs, xs, strict=True), *zip(S.outputs, us, strict=True))
+    return {n: signal_tex(v) for n, v in pairs}
+
+
+def _structure_figure(res, rec, circuit: str, names):
+    """The structure of ``rec``, its witness assignment in bands, the plant's names at its ends.
+
+    The general realization's gains are rational in a symbolic :math:`P`; when a value is
+    too long for the key to print (:data:`KEY_LENGTH` characters), the structure of the
+    first simulated realization is drawn, with numbers (as its circuit is).
+    """
+    from symctl.plotting.circuit_labels import visible_length
+
+    title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
+    S, verdict = rec.structure, rec.compatibility
+    where = verdict.assignment.vertex_of if verdict.ok and verdict.assignment else None
+    values = [latex(b.gain) for b in S.blocks.values() if b.kind == "gain" and b.gain is not None]
+    if (
+        circuit == "general"
+        and rec.firing is not None
+        and any(visible_length(v) > KEY_LENGTH for v in values)
+    ):
+        S = rec.firing.circuits[0].structure
+        diagram = CIRCUIT_SPECS[circuit].diagram.replace(" (symbolic P)", "")
+        title = f"Structure: {diagram}, realization #1 of the simulations (numbers)"
+    if where is not None and not set(S.blocks) <= set(where):
+        where = None
+    if where is None and verdict.ok is False:
+        title += ": not compatible (no vertex bands)"
+    return S.draw(title=title, overview="auto", max_signals=MAX_DRAWN_SIGNALS,
+                  assignment=where, vertex_names=names, labels=_end_labels(res, S))  # fmt: skip
+
+
+def _g1g3_figure(factors):
+    """The paper's Fig. g1g3 (left): two structures of a first-order section, checked on one edge."""
+    from symctl.compatibility.check import check_compatibility
+    from symctl.compatibility.delaygraph import DelayGraph
+    from symctl.compatibility.structure import Structure
+    from symctl.plotting.structure import draw_structures
+    from symctl.realization.realization import first_order_realization
+
+    eps = (*factors.sensor_eps, *factors.actuator_eps)[0]
+    C = (*factors.sensor_C, *factors.actuator_C)[0]
+    section = first_order_realization(eps, C)
+    edge = DelayGraph.chain([1])
+    panels = []
+    for delays, words in (
+        ("branch", "one delay on each branch into the adder (the paper's choice)"),
+        ("state", "one delay after the adder"),
+    ):
+        S = Structure.from_realization(section, delays)
+        verdict = check_compatibility(S, edge)
+        fits = "compatible" if verdict.ok else "not compatible"
+        caption = f'delays="{delays}": {words}; {fits} with one edge v1 -> v2 of one step'
+        panels.append((S, caption, verdict.assignment if verdict.ok else None))
+    title = f"Two structures of one section ${latex(C)} / (z - {latex(eps)})$ of G1 or G3"
+    return draw_structures(panels, title=title)
+
+
+KEY_LENGTH = 120
+"""The longest gain value (visible characters) the key of a structure figure prints: about
+the width of the page at 7 points."""
+
+
 def simplified(candidates, count: int = 2) -> list:
     """The degenerate candidates with the fewest neurons: the paper's simplified circuits."""
     if not candidates:
@@ -238,12 +368,14 @@ def make_figure(res, name: str):
 
         labels = _labels(res)
         if name == "nonlinear" and res.nonlinear is not None:
-            return nonlinear_plot(res.nonlinear, labels=labels)
+            return nonlinear_plot(res.nonlinear, labels=labels, bounds=_state_bounds(res))
         if name != "nonlinear":
             return response_plot(getattr(res, name), labels=labels)
     names, about = _vertex_names(res)
     if name == "delay_graph":
         return res.graph.draw(names, title=_graph_title(res), descriptions=about)
+    if name == "g1g3_structures" and getattr(res, "factors", None) is not None:
+        return _g1g3_figure(res.factors)
     if name == "atlas_overview" and res.atlas is not None:
         return res.atlas.draw()
     if name.startswith("simplified_") and res.candidates:
@@ -257,14 +389,11 @@ def make_figure(res, name: str):
     if kind == "firing":
         from symctl.plotting.firing import firing_plot
 
-        return firing_plot(rec.firing, labels=_labels(res))
+        # at most about five rows of neuron panels: the figure stays within a page
+        cols = max(3, -(-len(rec.firing.neurons) // 5))
+        return firing_plot(rec.firing, cols, labels=_labels(res))
     if kind == "structure":
-        title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
-        S = rec.structure
-        parts = {b.part for b in S.blocks.values()}
-        if len(S) > MAX_DRAWN_SIGNALS or len(parts) > MAX_DRAWN_PARTS:  # a strip in print
-            return S.draw(title=title, overview=True)
-        return rec.structure.draw(title=title)
+        return _structure_figure(res, rec, circuit, names)
     # no heading in the figure: the report's caption names the circuit
     if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
         drawn = _placed(rec.firing.circuits[0], rec, res.graph)
@@ -274,12 +403,15 @@ def make_figure(res, name: str):
 
 
 def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
-    """Save ``fig`` as ``out/<name>.png`` and ``out/<name>.svg``; returns the paths.
+    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (:data:`FORMATS`); returns the paths.
 
-    The layout is computed once, for the first format; the files carry no date,
-    so the same figure writes the same bytes. The PNG of an opaque figure has no
-    alpha channel (:func:`symctl.plotting.png.write_png`), which ``pdflatex``
-    embeds as it is: a report's PDF compiles in a tenth of the time.
+    The PDF and SVG are vector drawings of the figure at its size (the PDF is what
+    ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
+    the screen and Markdown. The layout is computed once, for the first format, so
+    the three agree; the files carry no date and the SVG's ids a fixed salt
+    (:func:`symctl.plotting.vector.write_vector`), so the same figure writes the same
+    bytes. The PNG of an opaque figure has no alpha channel
+    (:func:`symctl.plotting.png.write_png`).
 
     Parameters
     ----------
@@ -296,6 +428,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     Returns
     -------
     list of Path
+        In the order of :data:`FORMATS`.
 
     Raises
     ------
@@ -310,19 +443,20 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     >>> fig = open_loop_response(MuscleModel().plant()).plot()
     >>> with tempfile.TemporaryDirectory() as out:
     ...     [p.name for p in save(fig, out, "open_loop")]
-    ['open_loop.png', 'open_loop.svg']
+    ['open_loop.pdf', 'open_loop.svg', 'open_loop.png']
     """
     from symctl.plotting.png import write_png
+    from symctl.plotting.vector import write_vector
 
     out = _folder(out)
     paths = []
     dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
     for ext in FORMATS:
         path = out / f"{name}.{ext}"
-        if ext == "png":  # RGB, not matplotlib's RGBA: pdflatex copies it instead of re-encoding
-            write_png(fig, path, dpi=dpi, metadata=_metadata(ext))
-        else:
-            fig.savefig(path, dpi=dpi, metadata=_metadata(ext))
+        if ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
+            write_png(fig, path, dpi=dpi, metadata={"Software": "symctl (matplotlib)"})
+        else:  # no date, fixed ids: the same bytes every time
+            write_vector(fig, path)
         fig.set_layout_engine("none")  # keep the layout of the first save
         paths.append(path)
     return paths
@@ -456,10 +590,3 @@ def _folder(out: Path | str) -> Path:
     if not out.is_dir():
         raise ParameterError(f"out: {str(out)!r} is not a folder")
     return out
-
-
-def _metadata(ext: str) -> dict:
-    """No dates in the files, so that the same derivation writes the same bytes."""
-    if ext == "svg":
-        return {"Date": None}
-    return {"Software": "symctl (matplotlib)"}

@@ -1,4 +1,4 @@
-"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure.
+"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure (PDF, SVG, PNG).
 
 Written into a staging folder (:class:`symctl.report.output.OutputFolder` renames
 it into place when every file is written, so a failed run leaves nothing).
@@ -62,8 +62,8 @@ def write_fit(result, folder: Path, *, figures: bool = True, source: str = "") -
     path = folder / "report.md"
     path.write_text(report_text(result, source), encoding="utf-8")
     out.append(path)
-    if figures:
-        from symctl.plotting.png import write_png
+    if figures:  # fit.pdf, fit.svg and fit.png, as every figure of a report
+        from symctl.report.figures import save
 
-        out.append(write_png(result.plot(), folder / "fit.png", dpi=110))
+        out += save(result.plot(), folder, "fit")
     return out

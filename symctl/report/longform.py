@@ -10,15 +10,17 @@ that are the same background value (0, or :math:`\infty` for a delay matrix).
   ``-`` (sums) or ``,`` (lists) into continuation lines; one with more than
   :data:`TERM_MAX_LINES` lines keeps its first and last lines and states how
   many terms it leaves out.
-* A matrix that fits (at most :data:`MATRIX_MAX_ROWS` rows and its width within
-  the line) is written in full, as before. Beyond that, in this order:
+* A diagonal matrix of at least :data:`DIAGONAL_MIN` rows is
+  :math:`\operatorname{diag}(d_1, \dots, d_n)`. Another matrix that fits (at most
+  :data:`MATRIX_MAX_ROWS` rows and its width within the line) is written in full.
+  Beyond that, in this order:
   a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
   (transposed for a column) broken over lines; a companion matrix (ones on the
   super- or sub-diagonal, one free row or column) is its dots picture with the
-  free row or column as a list; a sparse or banded matrix (its entries other than
-  the background value fit a table of :data:`PATTERN_TABLE_ROWS` rows per row,
-  runs along a diagonal in one row) is its sparsity pattern (:math:`\ast` and
-  :math:`\cdot`) with that table; a dense matrix is its corners with
+  free row or column as a list; a sparse or banded matrix (at least a quarter
+  of its entries one background value, and the others fit a table of
+  :data:`PATTERN_TABLE_ROWS` rows per row, runs along a diagonal in one row) is
+  its sparsity pattern (:math:`\ast` and :math:`\cdot`) with that table; a dense matrix is its corners with
   dots, numbers to :data:`LARGE_DIGITS` digits (the exact values are in
   ``results.json``).
 * A display taller than :data:`DISPLAY_MAX_LINES` lines is breakable across pages.
@@ -46,6 +48,7 @@ from symctl import latex as L
 
 __all__ = [
     "CORNER",
+    "DIAGONAL_MIN",
     "DISPLAY_MAX_LINES",
     "LARGE_DIGITS",
     "LINE_WIDTH",
@@ -58,13 +61,16 @@ __all__ = [
     "TABLE_WIDTH",
     "TERM_MAX_LINES",
     "VECTOR_MAX_ENTRIES",
+    "WRAP_MIN",
     "MatrixView",
     "cell_width",
+    "column_widths",
     "fit_rows",
     "height",
     "show_matrix",
     "table_width",
     "width",
+    "wrapped_columns",
 ]
 
 # ---------------------------------------------------------------- the thresholds, in one place
@@ -77,6 +83,10 @@ TABLE_WIDTH = 100.0
 """Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt of
 text each, so the 17 cm line holds about 110); a wider table is set in ``\\footnotesize``
 with less space between its columns (about 0.75 of the width)."""
+WRAP_MIN = 12.0
+"""A table wider than :data:`TABLE_WIDTH` wraps the text of its prose columns (those whose wide
+cells hold words), each at least this wide, so that the others keep their natural width
+(:func:`wrapped_columns`)."""
 MATRIX_MAX_ROWS = 12
 """A matrix with more rows is never written in full (a display that tall reads badly)."""
 MATRIX_MAX_COLUMNS = 12
@@ -91,10 +101,16 @@ LARGE_DIGITS = 4
 """Significant digits of the numbers in a large matrix (the full values are in results.json)."""
 TERM_MAX_LINES = 12
 """An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
+DIAGONAL_MIN = 4
+r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}(d_1, \dots, d_n)`
+(a run of four or more equal entries as :math:`\underbrace{0, \dots, 0}_k`), as the paper writes
+:math:`\tilde Q = \operatorname{diag}(Q, 0, R)`."""
 VECTOR_MAX_ENTRIES = 6
 """A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
-DISPLAY_MAX_LINES = 24
-"""A display taller than this (in lines) may break across pages."""
+DISPLAY_MAX_LINES = 16
+"""A display taller than this (in lines, :func:`height`) may break across pages: about a third
+of the page, so that a display which cannot break still fits beside a figure (taller ones made
+the page overfull, "Overfull \\vbox ... while \\output is active")."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""
 TABLE_MAX_ROWS = 30
@@ -285,15 +301,17 @@ def width(tex: str) -> float:
 
 
 def height(tex: str) -> int:
-    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly).
+    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly); one more
+    with a fraction (as tall as two lines).
 
     Examples
     --------
     >>> from symctl.report.longform import height
-    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}")
-    (1, 3)
+    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}"), height(r"\\frac{a}{b}")
+    (1, 3, 2)
     """
-    return max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
+    rows = max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
+    return rows + (r"\frac" in tex)
 
 
 def cell_width(text: str) -> float:
@@ -309,6 +327,20 @@ def cell_width(text: str) -> float:
     return sum(len(p) if k % 2 == 0 else width(p) for k, p in enumerate(parts))
 
 
+def column_widths(header, rows) -> list[float]:
+    """The widest cell of each column of a table, in the units of :data:`TABLE_WIDTH`.
+
+    Examples
+    --------
+    >>> from symctl.report.longform import column_widths
+    >>> column_widths(("a", "bb"), (("ccc", "d"),))
+    [3, 2]
+    """
+    table = [header, *rows]
+    columns = max(len(r) for r in table)
+    return [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
+
+
 def table_width(header, rows) -> float:
     """The width of a table: its widest cell per column plus the space between columns.
 
@@ -318,10 +350,50 @@ def table_width(header, rows) -> float:
     >>> table_width(("a", "bb"), (("ccc", "d"),))
     9.8
     """
+    widest = column_widths(header, rows)
+    return sum(widest) + 2.4 * len(widest)
+
+
+def _breakable(cell: str) -> bool:
+    """Whether a cell can wrap: a space outside its math."""
+    return any(" " in part.strip() for part in cell.split("$")[::2])
+
+
+def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...]:
+    """The columns a table wraps to fit ``budget``: its prose columns, widest first.
+
+    A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a
+    space outside math. The widest such columns wrap until the others, at
+    their natural width, and :data:`WRAP_MIN` for each wrapped one fit;
+    ``()`` when the table fits as it is (or no choice of columns makes it fit).
+
+    Examples
+    --------
+    >>> from symctl.report.longform import wrapped_columns
+    >>> wide = ("a circuit with a long name, " * 4, "$1$", "yes")
+    >>> wrapped_columns(("circuit", "n", "ok"), (wide,))
+    (0,)
+    >>> wrapped_columns(("circuit", "n"), (("short", "$1$"),))
+    ()
+    """
+    widths = column_widths(header, rows)
+    sep = 2.4 * len(widths)
+    if sum(widths) + sep <= budget:
+        return ()
     table = [header, *rows]
-    columns = max(len(r) for r in table)
-    widest = [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
-    return sum(widest) + 2.4 * columns
+    can = [j for j in range(len(widths))
+           if all(_breakable(r[j]) for r in table if j < len(r) and cell_width(r[j]) > WRAP_MIN)]  # fmt: skip
+    chosen: list[int] = []
+    for j in sorted(can, key=lambda j: -widths[j]):
+        if widths[j] <= WRAP_MIN:
+            break
+        chosen.append(j)
+        if (
+            sum(w for k, w in enumerate(widths) if k not in chosen) + WRAP_MIN * len(chosen) + sep
+            <= budget
+        ):
+            return tuple(sorted(chosen))
+    return ()
 
 
 # ---------------------------------------------------------------- breaking a line
@@ -464,6 +536,21 @@ def _is(e, value) -> bool:
         return False
 
 
+def _runs(items: list[str]) -> str:
+    """Items joined by commas, a run of four or more equal ones as ``0, \\dots, 0`` braced with
+    its length."""
+    out, k = [], 0
+    while k < len(items):
+        j = k
+        while j < len(items) and items[j] == items[k]:
+            j += 1
+        run = j - k
+        out.append(rf"\underbrace{{{items[k]}, \dots, {items[k]}}}_{{{run}}}" if run >= 4
+                   else ", ".join(items[k:j]))  # fmt: skip
+        k = j
+    return ", ".join(out)
+
+
 def _companion(E) -> str | None:
     """``"row"`` (ones above the diagonal, a free last row), ``"column"`` (ones below it, a free
     last column) or None."""
@@ -558,15 +645,22 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
     --------
     >>> import numpy as np
     >>> from symctl.report.longform import show_matrix
-    >>> view = show_matrix("D", 2 * np.eye(15))
+    >>> view = show_matrix("D", 2 * np.eye(15) + np.eye(15, k=1))
     >>> view.rows[0][1].startswith(r"\left[\begin{smallmatrix}")
     True
     >>> view.tables[0][2]
-    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'),)
+    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'), ('${D}_{i,i+1}$', '$i = 1, \\dots, 14$', '$1$'))
+    >>> show_matrix("Q", np.diag([1.0, 0, 0, 0, 0, 1])).rows
+    [('Q', '\\operatorname{diag}\\left(1, \\underbrace{0, \\dots, 0}_{4}, 1\\right)')]
     """
     room = LINE_WIDTH - 12.0 if room is None else room
     E, numeric = _entries(M)
     n, m = len(E), len(E[0]) if E else 0
+    if n == m >= DIAGONAL_MIN and all(
+        _is(E[i][j], 0) for i in range(n) for j in range(n) if i != j
+    ):
+        diag = [_entry_tex(E[i][i], numeric, digits) for i in range(n)]
+        return MatrixView([(lhs, rf"\operatorname{{diag}}\left({_runs(diag)}\right)")])
     full = L.to_latex(M if not numeric else np.asarray(M, dtype=float), digits=digits)
     small = n <= MATRIX_MAX_ROWS and m <= MATRIX_MAX_COLUMNS
     if min(n, m) == 1:
@@ -606,9 +700,9 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
             [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
         )
     counts = Counter(flat)
-    background = counts.most_common(1)[0][0]
+    background, repeats = counts.most_common(1)[0]
     table = _sparse_table(lhs, E, background, tex)
-    if len(table) <= PATTERN_TABLE_ROWS * max(n, m):
+    if 4 * repeats >= len(flat) > repeats and len(table) <= PATTERN_TABLE_ROWS * max(n, m):
         cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
         pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
         fits = width(pattern + size) <= room

@@ -17,9 +17,9 @@ exact check.
 
 from __future__ import annotations
 
-from symctl import latex as L
 from symctl._util.display import descending_latex
 from symctl.realization.realizers import REALIZERS
+from symctl.report import longform as LF
 from symctl.report.document import DocumentBlock, Heading, Text
 from symctl.report.shorthand import _eq, _num
 
@@ -31,10 +31,8 @@ def factorization(res) -> list[DocumentBlock]:
     f = res.factors
     m, p = f.channels
     xs, us = res.names
-    rows = [(rf"g_{{1,{j + 1}}}(z)", L.to_latex(s.expr)) for j, s in enumerate(f.sensor_sections)]
-    rows += [
-        (rf"g_{{3,{i + 1}}}(z)", L.to_latex(s.expr)) for i, s in enumerate(f.actuator_sections)
-    ]
+    rows = [(rf"g_{{1,{j + 1}}}(z)", s.latex()) for j, s in enumerate(f.sensor_sections)]
+    rows += [(rf"g_{{3,{i + 1}}}(z)", s.latex()) for i, s in enumerate(f.actuator_sections)]
     blocks: list[DocumentBlock] = [
         Heading("Factorization $G = G_3 G_2 G_1$"),
         Text(
@@ -50,10 +48,16 @@ def factorization(res) -> list[DocumentBlock]:
         blocks.append(Text("Not built here: " + res.skipped.replace("_", r"\_") + "."))
     if rows:
         blocks += _eq(*rows, label="eq:sections")
+    N2 = f.G2.num_matrix
+    if LF.show_matrix("N_2(z)", N2).full:
+        entries = [("N_2(z)", N2)]
+    else:  # too wide for the line: each entry in descending powers of z, broken over lines
+        entries = [(rf"(N_2)_{{{i + 1}{j + 1}}}", descending_latex(N2[i, j]))
+                   for i in range(N2.rows) for j in range(N2.cols) if N2[i, j] != 0]  # fmt: skip
     blocks += _eq(
         ("G_2(z)", r"\frac{1}{d(z)}\, N_2(z)"),
         ("d(z)", descending_latex(f.G2.den)),
-        ("N_2(z)", f.G2.num_matrix),
+        *entries,
         label="eq:factors",
     )
     blocks.append(

@@ -9,7 +9,7 @@ delay the nonlinear loop still recovers from (:func:`longest`).
 
 >>> from symctl import derive_paper
 >>> from symctl.report.model_story import opening
->>> [b.text for b in opening(derive_paper(), lambda *a: None) if type(b).__name__ == "Heading"]
+>>> [b.text for b in opening(derive_paper(), lambda *a: []) if type(b).__name__ == "Heading"]
 ['Plant model and linearization', 'Discretization']
 """
 
@@ -21,70 +21,192 @@ import numpy as np
 import sympy as sp
 
 from symctl import latex as L
+from symctl.model.presets import muscle
+from symctl.neural.firing import _EPS_GRID, _EPS_MAX  # the grid of the random section poles
 from symctl.report.document import DocumentBlock, Heading, Table, Text
+from symctl.report.reference import cite
 from symctl.report.shorthand import _both, _eq, _fmt, _num
+from symctl.report.spec import PAPER
 
-__all__ = ["longest", "nonlinear", "opening", "skipped", "theorem", "unit_text"]
+__all__ = [
+    "counted",
+    "longest",
+    "names_tex",
+    "nonlinear",
+    "opening",
+    "skipped",
+    "theorem",
+    "unit_text",
+]
 
 
-def unit_text(unit: str) -> str:
+def unit_text(unit: str, value: float | None = None) -> str:
     r"""A unit for prose and tables: ``" N"``, ``" m/s$^{2}$"`` (from ``m/s**2``), or nothing.
+
+    After the ``value`` 1 a counted unit is singular: ``1 spike/s``, ``2 spikes/s``
+    (a leading word of four or more letters ending in ``s``, such as ``spikes`` or
+    ``steps``; short symbols such as ``ms`` are left as they are).
 
     Examples
     --------
     >>> from symctl.report.model_story import unit_text
     >>> unit_text("N*m*s"), unit_text("m/s**2"), unit_text("1")
     (' N m s', ' m/s$^{2}$', '')
+    >>> unit_text("spikes/s", 1.0), unit_text("spikes/s", 2.0)
+    (' spike/s', ' spikes/s')
     """
     if not unit or unit == "1":
         return ""
+    if value == 1:
+        unit = re.sub(r"^([A-Za-z]{3,})s(?=$|[/*\s])", r"\1", unit)
     text = re.sub(r"\*\*\s*\(?(-?[0-9./]+)\)?", r"$^{\1}$", unit).replace("*", " ")
     return " " + text.replace("_", r"\_")
+
+
+def counted(n: int, word: str) -> str:
+    """``1 step``, ``2 steps``, ``0 steps``.
+
+    Examples
+    --------
+    >>> from symctl.report.model_story import counted
+    >>> counted(1, "step"), counted(3, "realization")
+    ('1 step', '3 realizations')
+    """
+    return f"{n} {word}{'' if n == 1 else 's'}"
 
 
 def _sym(name: str) -> str:
     return L.to_latex(sp.Symbol(name))
 
 
-def opening(res, figure) -> list[DocumentBlock]:
-    """The parameter table and the plant's sections (model, linearization, discretization)."""
+def names_tex(names) -> str:
+    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $\omega$``.
+
+    Examples
+    --------
+    >>> from symctl.report.model_story import names_tex
+    >>> names_tex(["theta", "f_flex"])
+    '$\\theta$, $f_\\text{flex}$'
+    """
+    return ", ".join(f"${_sym(n)}$" for n in names)
+
+
+def _is_paper(spec) -> bool:
+    """Whether the model is the paper's muscle (the preset's equations; its numbers may differ)."""
+    preset = muscle()
+    return (spec.name == preset.name and spec.ode is not None and preset.ode is not None
+            and spec.ode.rhs == preset.ode.rhs and spec.ode.x_eq == preset.ode.x_eq)  # fmt: skip
+
+
+_PAPER_SECTION = cite("Sec.", "simulations")
+
+
+def _source(paper: bool, name: str, value) -> str:
+    """Where a number comes from: the paper (its section), a change of the paper's, the file."""
+    if not paper:
+        return "model file"
+    given = getattr(PAPER, name)
+    if value == given:
+        return _PAPER_SECTION
+    return f"this run ({cite()}: {given:g})"
+
+
+def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
+    """The parameter table: what the derivation starts from, its value, where it comes from."""
     spec, params = res.spec, res.parameters()
+    rows = []
+    if spec.ode is not None:
+        for sym, value in spec.ode.params.items():
+            what = spec.descriptions.get(sym.name) or "parameter"
+            v = float(value)
+            rows.append((f"{what} ${_sym(sym.name)}$", f"{v:g}{unit_text(spec.unit(sym.name), v)}",
+                         _source(paper and hasattr(PAPER, sym.name), sym.name, v)))  # fmt: skip
+    ds, da = params["sensor_delay"], params["actuator_delay"]
+    delays = (
+        counted(ds, "step") + " each"
+        if ds == da
+        else f"{counted(ds, 'step')} and {counted(da, 'step')}"
+    )
+    if not paper:
+        delay_source = "model file"
+    elif (ds, da) == (PAPER.sensor_delay, PAPER.actuator_delay):
+        delay_source = cite("Secs.", "optimal_delayed_controller", "simulations")
+    else:
+        delay_source = f"this run ({cite()}: {PAPER.sensor_delay} and {PAPER.actuator_delay})"
+    ours = "ours" if paper else "symctl"
+    none = f"ours ({cite()} states none)" if paper else "model file"
+    states, amplitude, start, length = spec.disturbance
+    hit = names_tex([res.names[0][i] for i in states])
+    unit = unit_text(spec.unit(res.names[0][states[0]]), amplitude)
+    rows += [
+        ("sampling time $T_s$", f"{params['Ts']:g} s", _source(paper, "Ts", params["Ts"])),
+        ("sensor delay $d_s$, actuator delay $d_a$", delays, delay_source),
+        ("cost weights $Q$, $R$", f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
+         none),
+        ("pulse disturbance on " + hit, f"{amplitude:g}{unit} per step, steps {start} to "
+         f"{start + length - 1} of {spec.steps}",
+         f"{ours} ({cite()}: a unit pulse)" if paper else "model file"),
+    ]  # fmt: skip
+    if getattr(res, "factors", None) is not None:
+        lo, hi = -_EPS_MAX / _EPS_GRID, _EPS_MAX / _EPS_GRID
+        rows += [
+            ("section gains $C$ of $G_1$, $G_3$ in the simulations", "1",
+             f"{ours} ({cite()}: any $C \\ne 0$)" if paper else "symctl"),
+            ("section poles $\\epsilon$ of the random realizations",
+             f"uniform on $[{lo:g}, {hi:g}]$, step ${1 / _EPS_GRID:g}$",
+             f"{ours} ({cite()}: random)" if paper else "symctl"),
+            ("$P$ of the random general realization", "entries $N(0, 1)$ to 0.01, well "
+             "conditioned", f"{ours} ({cite()}: random, full rank)" if paper else "symctl"),
+            ("random realizations per circuit, their seed",
+             f"{spec.realizations}, seed {params['seed']}",
+             f"{ours} ({cite()} shows 4, 3, 2)" if paper else "model file"),
+        ]  # fmt: skip
+    return rows
+
+
+def opening(res, figure) -> list[DocumentBlock]:
+    """The parameter table and the plant's sections (model, linearization, discretization).
+
+    ``figure(name, caption)`` returns the blocks of a figure (none when it is not written).
+    """
+    spec = res.spec
     ode = spec.ode
+    paper = _is_paper(spec)
+    where = f" ({spec.path})" if spec.path and not spec.path.startswith("muscle preset") else ""
+    model = (f"the paper's muscle {cite('Sec.', 'problem_setup')}" if paper
+             else f"the model {spec.name!r}{where}")  # fmt: skip
+    sources = (
+        "the paper's numbers are those of its Sec. VI; it states no cost weights and draws its "
+        "realizations at random without saying how, so those numbers are ours"
+        if paper
+        else "the model file gives the plant, the delays and the cost; the random "
+        "realizations are drawn by symctl"
+    )
     blocks: list[DocumentBlock] = [
         Text(
+            f"This document carries out {'the derivation' if paper else 'the method'} of "
+            f"{cite()} step by step on {model}. "
             "Every formula below was derived by symctl in closed form (SymPy) and, where stated, "
             "proved: an identity is shown by reducing a difference to the zero polynomial. "
-            f"The model is {spec.name!r}"
-            + (f" ({spec.path})" if spec.path and not spec.path.startswith("muscle preset") else "")
-            + "; the cost weights, the delays and the random realizations are the model file's "
-            "choices. Numbers are written to 6 significant digits."
-        )
-    ]
-    rows = []
-    if ode is not None:
-        for sym, value in ode.params.items():
-            what = spec.descriptions.get(sym.name) or "parameter"
-            rows.append(
-                (f"{what} ${_sym(sym.name)}$", f"{float(value):g}{unit_text(spec.unit(sym.name))}")
-            )
-    rows += [
-        ("sampling time $T_s$", f"{params['Ts']:g} s"),
-        (
-            "sensor delay $d_s$, actuator delay $d_a$",
-            f"{params['sensor_delay']}, {params['actuator_delay']} steps",
+            "Numbers are written to 6 significant digits. Table [#tab:parameters] lists the "
+            f"numbers the derivation starts from and where each comes from: {sources}."
         ),
-        (
-            "cost weights $Q$, $R$",
-            f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
+        Table(
+            ("parameter", "value", "source"),
+            tuple(_parameter_rows(res, paper)),
+            caption="The numbers the derivation starts from.",
+            label="parameters",
         ),
-        ("seed of the random realizations", str(params["seed"])),
     ]
-    blocks.append(Table(("parameter", "value"), tuple(rows)))
     for note in spec.notes:
         blocks.append(Text("Note: " + note.replace("_", r"\_") + "."))
     blocks.append(Heading("Plant model and linearization"))
     if spec.description:
         blocks.append(Text(spec.description))
+    if paper:
+        which = cite("Sec.", "problem_setup")
+        blocks.append(Text(f"It is the model of {cite('Eq.', 'muscle')}, with the activation "
+                           f"parameters $D_0 = 0$, $D_1 = 1$ of {which}."))  # fmt: skip
     xs, us = res.names
     signals = tuple(
         (
@@ -136,7 +258,8 @@ def opening(res, figure) -> list[DocumentBlock]:
         blocks.append(
             Text(
                 "A zero-order hold over the sampling time $T_s$ (the exact matrix exponential) gives "
-                "$\\delta x(t+1) = A\\,\\delta x(t) + B\\,\\delta u(t)$ with"
+                "$\\delta x(t+1) = A\\,\\delta x(t) + B\\,\\delta u(t)$ "
+                f"(the form of {cite('Eq.', 'system')}) with"
                 + (
                     ""
                     if sym is not None
@@ -159,19 +282,23 @@ def opening(res, figure) -> list[DocumentBlock]:
             f"${', '.join(_sym('delta_' + u) for u in us)}$."
         )
     )
-    figure(
+    blocks += figure(
         "open_loop",
-        f"Open-loop response of the linear plant to a pulse in "
-        f"{', '.join(us)} (the paper's Fig. ol_sims for the muscle).",
+        f"Open-loop response of the linear plant to a unit pulse in {names_tex(us)} "
+        f"(as in {cite('Fig.', 'ol_sims')} for the muscle).",
     )
     return blocks
 
 
 def _weight(M) -> str:
-    """A cost weight: a number when 1 x 1, else the matrix."""
-    if M.shape == (1, 1):
-        return L.number(float(M[0, 0]))
-    return L.to_latex(_num(M))
+    """A cost weight: a number when 1 x 1, ``I`` or ``diag(...)`` when diagonal, else the matrix."""
+    W = _num(M)
+    if W.shape == (1, 1):
+        return L.number(float(W[0, 0]))
+    if np.array_equal(W, np.diag(np.diag(W))):
+        d = np.diag(W)
+        return "I" if np.all(d == 1) else rf"\operatorname{{diag}}({', '.join(map(L.number, d))})"
+    return L.to_latex(W)
 
 
 def _unit_tex(unit: str) -> str:
@@ -186,7 +313,9 @@ def theorem(res) -> list[DocumentBlock]:
     names = res.spec.vertices if res.spec is not None and res.spec.vertices else None
 
     def vertex(v: int) -> str:
-        return names[v - 1].replace("_", r"\_") if names else f"v{v}"
+        if names and names[v - 1] != f"v{v}":
+            return names[v - 1].replace("_", r"\_")
+        return f"$v_{{{v}}}$"
 
     head = (
         "For every realization at once (a theorem, not a search): some structure of the "
@@ -245,7 +374,8 @@ def skipped(res) -> list[DocumentBlock]:
 
 
 def nonlinear(res, figure) -> list[DocumentBlock]:
-    """The linear controller around the nonlinear plant: deviations against amplitude."""
+    """The linear controller around the nonlinear plant: deviations against amplitude (and
+    ``figure(name, caption)``'s blocks)."""
     nl = res.nonlinear
     if nl is None:
         return []
@@ -265,7 +395,7 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
         Table(
             (
                 f"pulse amplitude{a_unit}",
-                f"max. deviation of {xs[0]}{u}",
+                f"max. deviation of {names_tex(xs[:1])}{u}",
                 "relative",
                 "final / peak",
             ),
@@ -281,8 +411,7 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
             ),
         ),
     ]
-    figure("nonlinear", "The linear controller around the nonlinear plant.")
-    return blocks
+    return blocks + figure("nonlinear", "The linear controller around the nonlinear plant.")
 
 
 def longest(res) -> list[DocumentBlock]:

@@ -82,6 +82,7 @@ _FIGURES = "|".join(
         "open_loop",
         "closed_loop",
         "delay_graph",
+        "g1g3_structures",
         "nonlinear",
         "atlas_overview",
         r"simplified_A\d+",
@@ -93,7 +94,7 @@ _FIGURES = "|".join(
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
     r"|fit\.json|predictions\.csv"
-    rf"|({_FIGURES})\.(png|svg))"
+    rf"|({_FIGURES})\.(pdf|png|svg))"
 )
 """The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive`` or ``fit`` leaves."""
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)

@@ -33,9 +33,9 @@ from symctl.symbols import z
 __all__ = ["COMPACT_LENGTH"]
 
 
-def _fmt(value: float) -> str:
-    """A number as inline math (for prose and table cells)."""
-    return f"${L.number(value, 6)}$"
+def _fmt(value: float, digits: int = 6) -> str:
+    """A number as inline math (for prose and table cells), to ``digits`` significant digits."""
+    return f"${L.number(value, digits)}$"
 
 
 def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
@@ -176,6 +176,24 @@ def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
     return rows, short
 
 
+def _factored(mat):
+    r"""A symbolic matrix with the factor common to its entries written in front, as the paper
+    writes :math:`M = \frac{K_0}{C_1 C_3} [K_2 + \epsilon_1 \epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`
+    (LaTeX); the matrix itself when its entries share no factor with a symbol."""
+    if not isinstance(mat, sp.MatrixBase) or len(mat) < 2 or len(mat) > LF.MATRIX_MAX_ROWS:
+        return mat
+    entries = [e for e in mat if e != 0]
+    if len(entries) < 2:
+        return mat
+    common = entries[0]
+    for e in entries[1:]:
+        common = sp.gcd(common, e)
+        if not common.free_symbols:
+            return mat
+    inner = mat.applyfunc(lambda e: sp.factor_terms(sp.cancel(e / common)))
+    return rf"{L.to_latex(common)} {L.to_latex(inner)}"
+
+
 def _renamed(R, compact: dict) -> dict[str, str]:
     """The LaTeX of each entry of ``R`` that :func:`_compact` renamed, to its new LaTeX."""
     out = {}
@@ -252,13 +270,15 @@ def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
     """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
 
     A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
-    fits), every row is broken to the line (:func:`~symctl.report.longform.fit_rows`), and a
-    tall display may break across pages; the matrices' tables, then ``tables`` (``(intro,
-    header, rows)``), follow the display.
+    fits; a 1 x 1 matrix as its entry), every row is broken to the line
+    (:func:`~symctl.report.longform.fit_rows`), and a tall display may break across pages;
+    the matrices' tables, then ``tables`` (``(intro, header, rows)``), follow the display.
     """
     lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
     shown, more = [], []
     for lhs, rhs in rows:
+        if getattr(rhs, "shape", None) == (1, 1):  # a 1 x 1 matrix is its entry, as papers write it
+            rhs = rhs[0, 0]
         if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
             view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
             shown += view.rows

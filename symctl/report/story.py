@@ -18,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 
 import numpy as np
@@ -25,18 +26,29 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl._util.display import descending_latex
+from symctl._util.texnames import signal_tex
 from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
 from symctl.report import mimo_story as MIMO
 from symctl.report import model_story as MS
-from symctl.report.document import DocumentBlock, Graphic, Heading, Table, Text, Verbatim
+from symctl.report.document import (
+    DocumentBlock,
+    Graphic,
+    Heading,
+    References,
+    Table,
+    Text,
+    Verbatim,
+)
+from symctl.report.reference import REFERENCES, cite
 from symctl.report.shorthand import (
     COMPACT_LENGTH,
     _both,
     _compact,
     _display,
     _eq,
+    _factored,
     _fits,
     _fmt,
     _indexed,
@@ -57,8 +69,67 @@ __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
 
 _GRAPH_CAPTION = (
     "The delay graph: the sensor (green) on the left, the actuator (orange) on the right, each "
-    "direct edge with its delay in steps (the paper's Fig. muscle_system, right)."
+    f"direct edge with its delay in steps (as in {cite('Fig.', 'muscle_system')}, right)."
 )
+
+
+_G1G3_CAPTION = (
+    f"Two structures of one first-order section of $G_1$ or $G_3$ (as in {cite('Fig.', 'g1g3')}, "
+    "left): "
+    "a unit delay on each branch into the adder, the one symctl builds, puts the section's input "
+    "and gain at one vertex and its state at the next; one delay after the adder cannot, since "
+    "the state feeds the adder without delay."
+)
+
+
+_PAPER_FORMS = ("controllable", "observable")  # labelled as the paper's equations
+
+_PAPER_STRUCTURE = {
+    "ifp": f" (as in {cite('Fig.', 'ifp_diagram')})",
+    "general": f" (as in {cite('Fig.', 'full_diagram')}, left, with $G_1$ and $G_3$)",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, left, with $G_1$ and $G_3$)",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, left, with $G_1$ and $G_3$)",
+}
+_PAPER_CIRCUIT = {
+    "general": f" (as in {cite('Fig.', 'full_diagram')}, right)",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, right)",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, right)",
+}
+_PAPER_FIRING = {
+    "general": f" (as in {cite('Fig.', 'full_diagram')})",
+    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')})",
+    "observable": f" (as in {cite('Fig.', 'ocr_diagram')})",
+}
+
+
+def _readings() -> list[DocumentBlock]:
+    """The two readings of the delay assignment matrix, and why the verdicts agree."""
+    return [
+        Text(
+            f"Two readings of $\\tilde E$. The paper defines $\\tilde E_{{ij}}$ as the delay along "
+            f"the fastest path from a signal at vertex $i$ to a signal at vertex $j$ "
+            f"{cite('Def.', 'delay_assignment_matrix')}. Read by its words, a path may pass "
+            "through signals at any vertex: this is the matrix $\\tilde E$ shown below. The "
+            f"matrix the paper prints for its $G_3 G_2 G_1$ {cite('Eq.', 'E_tilde')} counts only "
+            "the paths whose signals all sit at $v_i$ or $v_j$; it has $\\tilde E_{13} = \\infty$ "
+            "although a path of delay 2 runs from $v_1$ through $v_2$ to $v_3$. This direct "
+            "reading is shown as $\\tilde E^{\\mathrm{d}}$ where it differs. The fastest reading is "
+            "entrywise at most the direct one, and $E$ holds the shortest delays of the graph "
+            "(it obeys the triangle inequality), so an assignment meets $\\tilde E \\ge E$ in one "
+            "reading exactly when it meets it in the other (proved in "
+            "symctl.compatibility.assignment): the verdicts below hold in both."
+        )
+    ]
+
+
+def _e_tilde(E, assignment, name: str) -> list[DocumentBlock]:
+    """The witness assignment's delay matrix in both readings (one row when they agree)."""
+    fast, direct = assignment.e_tilde("fastest"), assignment.e_tilde("direct")
+    big = not LF.show_matrix("E", E).full
+    rows = [(r"\tilde E", "E" if big and np.array_equal(fast, E) else fast)]
+    if not np.array_equal(direct, fast):
+        rows.append((r"\tilde E^{\mathrm{d}}", direct))
+    return _eq(*rows, label=f"eq:Etilde-{name}")
 
 
 def _ascii(text: str) -> str:
@@ -99,25 +170,31 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     blocks: list[DocumentBlock] = []
     add, put = blocks.append, blocks.extend
 
-    def figure(name: str, caption: str) -> None:
-        if name in shown:
-            add(Graphic(name, caption))
+    def figure(name: str, caption: str) -> list[DocumentBlock]:
+        return [Graphic(name, caption)] if name in shown else []
+
+    def see(name: str) -> str:
+        """`` (Fig. n)`` for a figure of the document, nothing for one not written."""
+        return f" (Fig. [#fig:{name}])" if name in shown else ""
 
     s, g, f = res.system, res.gains, res.factors
     put(MS.opening(res, figure))
     xs = res.names[0]
+    x0, u0 = MS.names_tex(xs[:1]), MS.names_tex(res.names[1][:1])  # the signals the figures plot
 
     # 3. delays
     add(Heading("Delays and the augmented system"))
     add(
         Text(
-            f"The sensor delays the measured {', '.join(xs)} by $d_s = {s.sensor_delay}$ "
+            f"The sensor delays the measured {MS.names_tex(xs)} by $d_s = {s.sensor_delay}$ "
             f"step{'s' * (s.sensor_delay != 1)} and the actuator "
-            f"the command $\\mu$ by $d_a = {s.actuator_delay}$; only the net delay "
-            f"$T = d_s + d_a = {s.T}$ enters the optimal control problem. The delayed commands "
-            "become states: the augmented state $\\chi$ evolves as "
+            f"the command $\\mu$ by $d_a = {s.actuator_delay}$ step{'s' * (s.actuator_delay != 1)}; "
+            f"only the net delay $T = d_s + d_a = {s.T}$ enters the optimal control problem "
+            f"{cite('Sec.', 'optimal_delayed_controller')}. The delayed commands become states: "
+            "the augmented state $\\chi$ evolves as "
             "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
-            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself)."
+            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself; for $T = 2$ these "
+            f"are {cite('Eqs.', 'augmented_states', 'augmented_system', 'augmented_cost')}):"
         )
     )
     put(
@@ -135,7 +212,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(
         Text(
             "The discrete algebraic Riccati equation gives the optimal feedback "
-            "$\\mu(t) = K \\chi(t)$ (the paper's sign), "
+            f"$\\mu(t) = K \\chi(t)$ (the paper's sign, {cite('Eq.', 'ifp_controller')}), "
             f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
             f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
             "square root of the rounding error in floating point):"
@@ -157,7 +234,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     add(
         Text(
             "Eliminating the delayed commands, the controller from the measured states to the "
-            "inputs is a transfer function of the gains, kept symbolic:"
+            "inputs is a transfer function of the gains, kept symbolic (for $T = 2$ the paper's "
+            f"{cite('Eq.', 'transfer_fn')}):"
         )
     )
     whole = _both(res.G_symbolic, G_num.expr.evalf(6))
@@ -173,14 +251,16 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"{G_num.relative_degree}."
         )
     )
-    hit = ", ".join(xs[i] for i in res.spec.disturbance[0])
-    figure("closed_loop", "Closed loop of the optimal delayed controller: response to a pulse "
-                          f"disturbance on {hit} (the paper's Fig. cl_sims).")  # fmt: skip
+    hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
+    like = cite("Fig.", "cl_sims")
+    put(figure("closed_loop", "Closed loop of the optimal delayed controller: response to a "
+                              f"unit pulse disturbance on {hit} (as in {like})."))  # fmt: skip
     if f is None:
         put(MS.skipped(res))
-        figure("delay_graph", _GRAPH_CAPTION)
+        put(figure("delay_graph", _GRAPH_CAPTION))
         put(MS.nonlinear(res, figure))
         put(MS.longest(res))
+        add(References(REFERENCES))
         return blocks
 
     names: dict[str, dict[str, str]] = {}  # LaTeX of long weights -> N c_k, per circuit
@@ -193,7 +273,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(
             Text(
                 "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
-                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest:"
+                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest "
+                f"(for $T = 2$ the paper's {cite('Eq.', 'factors')}, realized as in "
+                f"{cite('Eq.', 'sections')}):"
             )
         )
         den = descending_latex(f.G2.den)
@@ -229,7 +311,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(
             Text(
                 "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-                "remainder's numerator coefficients $c_k$ (descending powers of $z$):"
+                "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
+                f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
             )
         )
         put(
@@ -241,16 +324,17 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             )
         )
         add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
+        put(figure("g1g3_structures", _G1G3_CAPTION))
 
         # 7. realizations
         add(Heading("Realizations of $G_2$"))
         add(
             Text(
                 "A realization $(F, H, M, N)$ of $G_2$ satisfies "
-                "$M (zI - F)^{-1} H + N = G_2(z)$; each one below is checked exactly, symbolically "
-                "and with the numbers used in the simulations (the optimal gains, $C = 1$ on every "
-                "section, and for the general one random $\\epsilon$ and a random full-rank $P$ drawn "
-                f"from seed {res.seed})."
+                f"$M (zI - F)^{{-1}} H + N = G_2(z)$ {cite('Eq.', 'realization')}; each one below "
+                "is checked exactly, symbolically and with the numbers used in the simulations "
+                "(the optimal gains, $C = 1$ on every section, and for the general one random "
+                f"$\\epsilon$ and a random full-rank $P$ drawn from seed {res.seed})."
             )
         )
         for name in [k for k in ("controllable", "observable") if k in res.realizations]:
@@ -259,9 +343,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
             if short:
                 names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
-            put(_eq(*mats, label=f"eq:{name}"))
+            put(_eq(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}"))
             where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
-            add(Text(_check_text(rec) + where))
+            paper = f" For $T = 2$ this is {cite('Eq.', name)}." if name in _PAPER_FORMS else ""
+            add(Text(_check_text(rec) + where + paper))
         if "general" in res.realizations:
             rec = res.realizations["general"]
             add(Heading("General realization", 2))
@@ -269,7 +354,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(
                 Text(
                     "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-                    "into another realization of the same $G_2$:"
+                    "into another realization of the same $G_2$ (for $T = 2$ the paper's "
+                    f"{cite('Eq.', 'general_realization')}):"
                 )
             )
             put(
@@ -313,14 +399,17 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     add(
         Text(
-            graph_text + "; $E_{ij}$ is the smallest delay from "
-            "vertex $i$ to vertex $j$ ($\\infty$: no path). A structure is compatible when its "
-            "signals can be placed at vertices so that every path's delays $\\tilde E$ are at "
-            "least $E$."
+            graph_text + f"{see('delay_graph')}; $E_{{ij}}$ is the smallest delay from vertex $i$ "
+            f"to vertex $j$ ($\\infty$: no path; {cite('Def.', 'delay_graph')}, and "
+            f"{cite('Eq.', 'E')} for the paper's graph). A delay assignment puts every signal "
+            "of a structure at a vertex, the controller's input at the sensor and its output at "
+            "the actuator; the structure is compatible when some assignment has $\\tilde E \\ge E$ "
+            f"entry by entry {cite('Defs.', 'delay_assignment', 'compatible_structure')}."
         )
     )
-    figure("delay_graph", _GRAPH_CAPTION)
+    put(figure("delay_graph", _GRAPH_CAPTION))
     put(_eq(("E", res.graph.E), label="eq:E"))
+    put(_readings())
     put(MS.theorem(res))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
@@ -329,15 +418,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(
                 Text(
                     f"Compatible (decided by {verdict.method}); the delays between the vertices "
-                    "under the witness assignment:"
+                    "under the witness assignment, in both readings:"
                 )
             )
-            same = np.array_equal(verdict.E_tilde, res.graph.E)
-            big = not LF.show_matrix("E", res.graph.E).full
-            put(_eq((r"\tilde E", "E" if same and big else verdict.E_tilde),
-                    label=f"eq:Etilde-{name}"))  # fmt: skip
+            put(_e_tilde(res.graph.E, verdict.assignment, name))
             where = "; ".join(
-                f"v{v}: {len(verdict.assignment.signals_at(v))} signals"
+                f"$v_{{{v}}}$: {MS.counted(len(verdict.assignment.signals_at(v)), 'signal')}"
                 for v in range(1, res.graph.n + 1)
             )
             add(Text(f"Signals per vertex: {where}. The checker's witness:"))
@@ -345,18 +431,22 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         else:
             add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
             add(Verbatim(_ascii(verdict.reason)))
-        figure(f"structure_{name}", f"Structure: {_title(name)}.")
+        put(
+            figure(
+                f"structure_{name}", f"Structure: {_title(name)}{_PAPER_STRUCTURE.get(name, '')}."
+            )
+        )
 
     # 9. circuits
     add(Heading("Neurons and circuits"))
     add(
         Text(
-            "A neuron is an adder that sums two or more terms (the output sum included); a "
+            f"A neuron (the stylized neuron of {cite('Fig.', 'neural_circuit')}) is an adder that "
+            "sums two or more terms (the output sum included); a "
             "single term through delays is an axon with a synaptic weight; a loop through the "
             "neuron's own output is its self-dynamics. The closed loop was simulated with "
             f"{_count_text(res)} of each circuit; the largest relative departure of the "
-            f"{xs[0]} and {res.names[1][0]} traces from the optimal controller's is in the last "
-            "column."
+            f"{x0} and {u0} traces from the optimal controller's is in the last column."
         )
     )
     add(
@@ -371,7 +461,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                     str(len(c.circuit.synapses)),
                     "yes" if c.compatibility.ok else "no",
                     str(c.firing.count),
-                    _fmt(c.firing.max_deviation),
+                    _fmt(c.firing.max_deviation, 2),
                 )
                 for k, c in res.circuits.items()
             ),
@@ -387,19 +477,21 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(Text("The neurons, their self-dynamics and synapses:"))
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
         put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
-        placed = [f"{n.name} at v{n.vertex}" for n in crec.circuit.neurons if n.vertex]
+        placed = [f"${signal_tex(n.name)}$ at $v_{{{n.vertex}}}$" for n in crec.circuit.neurons
+                  if n.vertex]  # fmt: skip
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as circles "
-                                  "with their self-dynamics, synapses as arrows with weights.")  # fmt: skip
+        put(figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
+                                      "circles with their self-dynamics, synapses as arrows with "
+                                      f"weights{_PAPER_CIRCUIT.get(name, '')}."))  # fmt: skip
 
     # 10. simulations
     add(Heading("Simulations: the same behaviour, different firing"))
     add(
         Text(
-            f"Every realization gives the {xs[0]} and {res.names[1][0]} traces of the optimal "
-            "controller "
-            "(to rounding), while the neurons of $G_2$ fire differently. Peak firing "
+            f"Every realization gives the {x0} and {u0} traces of the optimal controller "
+            "(to rounding), while the neurons of $G_2$ fire differently, as "
+            f"{cite('Sec.', 'simulations')} shows for its circuits. Peak firing "
             "(change from equilibrium, spikes/s) per neuron and realization; the spread is "
             "the largest difference between two realizations' traces at any one step:"
         )
@@ -408,14 +500,16 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         fp = crec.firing
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
-        figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
-                                 f"{fp.count} realization(s), same {xs[0]}.")  # fmt: skip
+        put(figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
+                                     f"{MS.counted(fp.count, 'realization')}, the same {x0} "
+                                     f"traces{_PAPER_FIRING.get(name, '')}."))  # fmt: skip
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
     if res.atlas is not None:
         from symctl.report.atlas import paper_blocks
 
         put(paper_blocks(res, shown))
+    add(References(REFERENCES))
     return blocks
 
 
@@ -454,7 +548,11 @@ def _firing_table(fp) -> list[DocumentBlock]:
     summ = fp.summary()
     for shown in range(fp.count, 0, -1):
         rows = tuple(
-            (n, *(_fmt(v) for v in summ.peak[:shown, i]), _fmt(summ.trace_spread[i]))
+            (
+                f"${signal_tex(n)}$",
+                *(_fmt(v) for v in summ.peak[:shown, i]),
+                _fmt(summ.trace_spread[i]),
+            )
             for i, n in enumerate(summ.neurons)
         )
         head = ("neuron", *(f"#{i + 1}" for i in range(shown)), "spread")
@@ -467,7 +565,9 @@ def _firing_table(fp) -> list[DocumentBlock]:
 
 
 def _title(circuit: str) -> str:
-    return CIRCUIT_SPECS[circuit].title
+    """The circuit's title with its transfer functions as math: ``$G_3 G_2 G_1$, general $G_2$``."""
+    title = re.sub(r"\bG([123])\b", r"$G_\1$", CIRCUIT_SPECS[circuit].title)
+    return title.replace("$ $", " ")
 
 
 _WHICH = {"general": " (its first simulated realization)"}

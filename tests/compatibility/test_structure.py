@@ -210,18 +210,22 @@ def test_drawing_shows_each_gain_value_once_in_its_own_box_and_no_boxes_overlap(
 
     from matplotlib.figure import Figure
 
-    from symctl._util.display import latex
+    from symctl.plotting.circuit_labels import visible_length, weight_tex
+    from symctl.plotting.structure_labels import LONG_GAIN, structure_text
 
     fig, texts, boxes, renderer = _drawn(S)
     assert isinstance(fig, Figure)
     gains = {n: b.gain for n, b in S.blocks.items() if b.kind == "gain"}
     assert sorted(t.get_gid().removeprefix("gain:") for t in texts) == sorted(gains)
+    key = dict(structure_text(S).key)
     for text in texts:
         name = text.get_gid().removeprefix("gain:")
-        value = latex(gains[name])
-        assert text.get_text() in (f"${value}$", name)
-        if len(value) <= 25:  # short values are always shown, never the block name
+        value = weight_tex(gains[name])
+        if visible_length(value) <= LONG_GAIN:  # short values are always shown
             assert text.get_text() == f"${value}$"
+        else:  # a long one by a short name, its value in the key
+            shown = text.get_text().strip("$")
+            assert any(shown in names.split(" = ") and v == value for names, v in key.items())
         inside = text.get_window_extent(renderer).expanded(1, 1).padded(-1)
         box = boxes[text.get_gid()]
         assert box.x0 <= inside.x0 and inside.x1 <= box.x1, name
@@ -232,13 +236,13 @@ def test_drawing_shows_each_gain_value_once_in_its_own_box_and_no_boxes_overlap(
 
 
 def test_drawing_puts_the_input_left_of_the_output_and_scales_the_figure():
-    small, large = ifp_structure(2).draw(), ifp_structure(4).draw()
+    small, large = ifp_structure(2).draw(), ifp_structure(6).draw()
     assert large.get_figwidth() > small.get_figwidth()
     assert large.get_figheight() > small.get_figheight()
     ax = small.axes[0]
     dots = {p.get_gid(): p.center for p in ax.patches if (p.get_gid() or "").startswith("signal:")}
     assert dots["signal:x"][0] < dots["signal:u"][0]
-    assert any(t.get_text().startswith("controller structure") for t in ax.texts)
+    assert any(t.get_text().startswith("Controller structure") for t in ax.texts)
 
 
 def test_drawing_is_deterministic():

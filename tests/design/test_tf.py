@@ -109,3 +109,18 @@ def test_importing_the_tf_type_does_not_load_scipy_or_the_controller():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_floats_print_short_and_exact_numbers_exactly():
+    from symctl import controller_tf, lqr_gains
+
+    s = augment(MuscleModel(), 1, 1)
+    G = controller_tf(s).subs(lqr_gains(s).substitutions())  # floats from the Riccati equation
+    assert str(G) == "(-0.0459719)/(z**2 + 0.580041*z + 0.351813)"
+    assert G.latex() == r"\frac{-0.0459719}{z^{2} + 0.580041 z + 0.351813}"
+    assert "1.0" not in repr(G) and str(DiscreteTF(sp.Rational(1, 3), z - 1)) == "(1/3)/(z - 1)"
+
+
+def test_a_transfer_function_without_a_denominator_prints_its_numerator():
+    assert str(DiscreteTF(1, 1)) == "1" and DiscreteTF(1, 1).latex() == "1"
+    assert str(DiscreteTF(sp.Symbol("C") * z, 1)) == "C*z"

@@ -326,7 +326,7 @@ def test_cli_fit_writes_its_files(tmp_path, hidden, capsys):
     # the folder of an earlier fit is replaced, like an earlier run of symctl paper
     assert main(["fit", str(data), "--out", str(out), "--starts", "2"]) == 0
     assert sorted(p.name for p in out.iterdir()) == [
-        "fit.json", "fit.png", "predictions.csv", "report.md"
+        "fit.json", "fit.pdf", "fit.png", "fit.svg", "predictions.csv", "report.md"
     ]  # fmt: skip
 
 

@@ -94,16 +94,13 @@ def test_plot_returns_a_figure_with_one_panel_per_neuron_and_the_force(general):
     fig = general.plot()
     assert isinstance(fig, Figure)
     titles = [ax.get_title() for ax in fig.axes]
-    assert titles == [
-        "force, every realization (identical)",
-        "neuron $x_{1}$",
-        "neuron $x_{2}$",
-        "neuron $y$",
-    ]
-    assert fig.axes[1].get_ylabel() == "change in firing rate [spikes/s]"
-    assert fig.axes[1].get_xlabel() == "time [s]"
+    assert titles == ["", "neuron $x_{1}$", "neuron $x_{2}$", "neuron $y$"]
+    assert fig.axes[0].get_title(loc="left").startswith("muscle force $f$ in every realization")
+    grid = fig.axes[1].figure  # the neuron panels share their axis labels
+    assert grid.get_supylabel() == "firing-rate change [spikes/s]"
+    assert grid.get_supxlabel() == "time [s]"
     legend = fig.legends[0]
-    assert len(legend.get_texts()) == 3
+    assert len(legend.get_texts()) == general.count + 1  # the realizations and the optimal one
     assert "epsilon_{1}" in legend.get_texts()[0].get_text()
 
 
@@ -138,7 +135,8 @@ def test_bad_arguments_are_refused_by_name(kwargs, error, match):
 def test_time_axis_is_labelled_in_the_plants_time_unit():
     steps = circuit_firing("controllable", lqr_gains(augment(([[0.6]], [[4.6]]), 1, 1)), count=1)
     assert steps.reference.time_unit == "steps"
-    assert steps.plot().axes[1].get_xlabel() == "time [steps]"
+    fig = steps.plot()
+    assert fig.axes[0].get_xlabel() == fig.axes[1].figure.get_supxlabel() == "time [steps]"
 
 
 def test_plot_refuses_a_bad_ncols_by_name(general):

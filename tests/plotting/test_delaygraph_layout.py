@@ -318,7 +318,7 @@ def test_report_draws_the_model_graph_right_after_the_closed_loop(derived, tmp_p
     assert "Delay graph of spinal_transcortical; one step is 10 ms" in texts
     assert {"receptor", "cortex", "v2", "spinal cord"} <= set(texts)
     written = save(fig, tmp_path, "delay_graph")
-    assert [p.name for p in written] == ["delay_graph.png", "delay_graph.svg"]
+    assert [p.name for p in written] == ["delay_graph.pdf", "delay_graph.svg", "delay_graph.png"]
     assert all(_OURS.fullmatch(p.name) for p in written)
 
 

@@ -47,7 +47,7 @@ def test_a_translucent_figure_keeps_its_alpha_channel(tmp_path):
 
 def test_report_figures_are_rgb_and_the_same_bytes_twice(tmp_path):
     fig = open_loop_response(MuscleModel().plant()).plot()
-    png, _ = save(fig, tmp_path, "open_loop")
+    *_, png = save(fig, tmp_path, "open_loop")
     assert colour_type(png) == 2
     first = png.read_bytes()
     save(fig, tmp_path, "open_loop")

@@ -5,7 +5,9 @@ from __future__ import annotations
 import pytest
 
 from symctl import Structure, SymctlTypeError, controller_tf, factor, observable_canonical
+from symctl.plotting.legibility import legibility
 from symctl.plotting.structure_overview import draw_structure_overview, parts_in_order
+from symctl.realization.realization import first_order_realization
 
 
 @pytest.mark.parametrize("ds, da", [(1, 1), (3, 4), (10, 10)])
@@ -22,8 +24,9 @@ def test_overview_counts_every_block_of_every_part(ds, da):
     texts = [t.get_text() for t in fig.axes[0].texts]
     assert all(p in texts for p, _ in parts)
     width, height = fig.get_size_inches()
-    assert width < 14 and height < 2 + 1.5 * (len(parts) // 6 + 1)  # page-shaped at any T
+    assert width <= 6.9 and height < 1.2 + 1.0 * (len(parts) // 5 + 1)  # page-shaped at any T
     assert S.draw(overview=True).get_size_inches().tolist() == [width, height]
+    assert legibility(fig), legibility(fig)
 
 
 def test_overview_refuses_other_objects():
@@ -39,11 +42,17 @@ def test_report_draws_large_structures_as_overview(monkeypatch):
     full = figures.make_figure(res, "structure_general")
     monkeypatch.setattr(figures, "MAX_DRAWN_SIGNALS", 10)
     assert any(
-        "overview" in t.get_text()
+        "too many" in t.get_text()
         for t in figures.make_figure(res, "structure_general").axes[0].texts
     )
-    monkeypatch.setattr(figures, "MAX_DRAWN_SIGNALS", 400)
-    monkeypatch.setattr(figures, "MAX_DRAWN_PARTS", 2)
-    small = figures.make_figure(res, "structure_general")
-    assert any("overview" in t.get_text() for t in small.axes[0].texts)
-    assert not any("overview" in t.get_text() for t in full.axes[0].texts)
+    assert not any("too many" in t.get_text() for t in full.axes[0].texts)
+
+
+def test_parallel_pathways_are_drawn_side_by_side_not_in_series():
+    R = first_order_realization(1, 2)
+    S = Structure.parallel(Structure.series(R, R, R), Structure.series(R, R))
+    fig = draw_structure_overview(S)
+    boxes = {t.get_text(): t.get_position() for t in fig.axes[0].texts if "." in t.get_text()}
+    assert boxes["P1.G1"][1] != boxes["P2.G1"][1]  # one row per pathway
+    assert boxes["P1.G1"][0] == boxes["P2.G1"][0]
+    assert legibility(fig)

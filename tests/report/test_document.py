@@ -12,6 +12,7 @@ from symctl.report.document import (
     Graphic,
     Heading,
     Math,
+    References,
     Table,
     Text,
     Verbatim,
@@ -46,7 +47,8 @@ def test_compile_pdf_without_pdflatex_returns_none(tmp_path, monkeypatch):
 def test_tex_and_markdown_show_the_same_graphic_with_its_caption():
     blocks = [Graphic("open_loop", "Open loop, 100%.")]
     tex, md = to_tex(blocks), to_markdown(blocks)
-    assert r"{open_loop.png}" in tex and r"\caption{Open loop, 100\%.}\label{fig:open_loop}" in tex
+    assert r"\fitgraphic{open_loop.pdf}" in tex  # the vector figure, at its natural size
+    assert r"\caption{Open loop, 100\%.}\label{fig:open_loop}" in tex
     assert "![Open loop, 100%.](open_loop.png)" in md
 
 
@@ -58,11 +60,46 @@ def test_every_block_type_renders_in_both_formats():
         Table(("h1", "h2"), (("1", "a|b"),)),
         Graphic("g", "c"),
         Verbatim("x -> y"),
+        References((("k", "An entry."),)),
     ]
     assert {type(b) for b in blocks} == set(BLOCKS)
     tex, md = to_tex(blocks), to_markdown(blocks)
     assert r"\subsection{A}" in tex and r"a &= 1 \\ b &= 2" in tex and r"\begin{verbatim}" in tex
+    assert r"\bibitem{k} An entry." in tex
     assert "### A" in md and r"a\|b" in md and "```\nx -> y\n```" in md
+    assert "## References\n\n[1] An entry." in md
+
+
+def test_citations_and_references_are_numbered_alike_in_both_formats():
+    blocks = [
+        Text("As in [@b, Fig. 5] and [@a]; see Fig. [#fig:g], Table [#tab:t] and [#eq:x]."),
+        Math((("x", "1"),), "eq:y"),
+        Math((("x", "1"),), "eq:x"),
+        Table(("h",), (("1",),), caption="A table.", label="t"),
+        Graphic("g", "c"),
+        References((("a", "First."), ("b", "Second."))),
+    ]
+    tex, md = to_tex(blocks), to_markdown(blocks)
+    assert (r"As in~\cite[Fig. 5]{b} and~\cite{a}; see Fig.~\ref{fig:g}, Table~\ref{tab:t} and~"
+            r"\eqref{eq:x}.") in tex  # fmt: skip
+    assert r"\caption{A table.}\label{tab:t}" in tex and r"\begin{table}" in tex
+    assert "As in [2, Fig. 5] and [1]; see Fig. 1, Table 1 and (2)." in md
+    assert "*Table 1: A table.*" in md and "*Figure 1: c*" in md
+
+
+def test_a_figure_cited_in_its_caption_keeps_its_markdown_image_whole():
+    md = to_markdown([Graphic("g", "As in [@a, Fig. 5]."), References((("a", "A."),))])
+    assert "![As in (1, Fig. 5).](g.png)" in md and "*Figure 1: As in [1, Fig. 5].*" in md
+
+
+def test_an_unknown_reference_is_question_marks_in_markdown():
+    assert "Fig. ?? [??]" in to_markdown([Text("Fig. [#fig:none] [@none]")])
+
+
+def test_every_section_heading_first_places_the_floats_of_the_section_before():
+    tex = to_tex([Heading("A"), Graphic("g", "c"), Heading("B", 2), Heading("C")])
+    assert tex.count(r"\symctlbarrier\section{") == 2 and r"\newcommand{\symctlbarrier}" in tex
+    assert "\n\\subsection{B}" in tex
 
 
 def test_the_title_is_a_parameter():

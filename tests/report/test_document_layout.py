@@ -27,9 +27,20 @@ def test_a_long_table_is_a_longtable_and_a_short_one_a_tabular():
     assert r"\begin{tabular}" in short and "longtable" not in short
 
 
-def test_a_wide_table_is_set_smaller():
-    wide = to_tex([Table(tuple(f"column {k} with a long title" for k in range(6)), (("x",) * 6,))])
-    assert r"\footnotesize\setlength{\tabcolsep}{3pt}" in wide
+def test_a_wide_table_wraps_its_prose_columns_and_keeps_the_others():
+    rows = (("G3 G2 G1, controllable canonical G2 " * 2, "$4$", "yes", "$1.8 \\times 10^{-15}$"),)
+    head = ("circuit", "neurons", "compatible", "max. deviation " * 3)
+    tex = to_tex([Table(head, rows)])
+    x = r">{\raggedright\arraybackslash}X"
+    assert rf"\begin{{tabularx}}{{\linewidth}}{{{x}lll}}" in tex and r"\usepackage{tabularx}" in tex
+    long = to_tex([Table(head, rows * (TABLE_MAX_ROWS + 1))])  # a longtable: fixed widths
+    assert r"\begin{longtable}{>{\raggedright\arraybackslash}p{\dimexpr(\linewidth-" in long
+
+
+def test_a_wide_table_that_cannot_wrap_is_set_smaller():
+    wide = to_tex([Table(tuple(f"$x_{{{k}}} + y_{{{k}}} + z_{{{k}}}$" for k in range(12)),
+                         (("$1$",) * 12,))])  # fmt: skip
+    assert r"\footnotesize\setlength{\tabcolsep}{3pt}" in wide and "tabularx" not in wide
 
 
 def test_markdown_cuts_long_math_after_matrix_rows_and_wraps_prose_outside_math():

@@ -1,19 +1,62 @@
-"""Writing the report's figures: the slowest drawn first, the paths in reading order."""
+"""The report's figures: legible in print, written as PDF, SVG and PNG, the slowest drawn first.
+
+Every time-series figure (open and closed loop, the firing patterns, the nonlinear check)
+is measured as printed (symctl.plotting.legibility: no text under 6 pt, no two texts
+overlapping, none off the figure, no wider than the derivation's text, a unit on every
+axis), for the paper at T = 2 and T = 6 and for a model file (the oculomotor plant).
+"""
 
 from __future__ import annotations
 
 import gc
+from pathlib import Path
 
+import numpy as np
 import pytest
 from matplotlib.figure import Figure
+from matplotlib.text import Text
 
-from symctl import derive_paper
+from symctl import derive, derive_paper
+from symctl.plotting.legibility import legibility, missing_units
+from symctl.plotting.style import COLUMN, TEXT_WIDTH
 from symctl.report import figures
+from symctl.report.figures import figure_names, make_figure
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+TIME_SERIES = ("open_loop", "closed_loop", "nonlinear", "firing_")
 
 
 @pytest.fixture(scope="module")
 def paper():
-    return derive_paper(realizations=1)
+    return derive_paper()  # the report's four realizations: the keys at their real length
+
+
+@pytest.fixture(scope="module")
+def paper_T6():
+    return derive_paper(sensor_delay=3, actuator_delay=3)
+
+
+@pytest.fixture(scope="module")
+def oculomotor():
+    return derive(EXAMPLES / "oculomotor.toml")
+
+
+def _texts(fig):
+    return [t.get_text() for t in fig.findobj(Text) if t.get_visible() and t.get_text()]
+
+
+def _check(fig, name):
+    """Legible at print size, a unit on every axis, no heading, one column or the text wide."""
+    found = legibility(fig)
+    assert found, f"{name}: {found}"
+    assert not missing_units(fig), (name, missing_units(fig))
+    assert fig._suptitle is None, f"{name}: a report figure has no heading (the caption says it)"
+    width = float(fig.get_size_inches()[0])
+    assert width == pytest.approx(COLUMN) or width == pytest.approx(TEXT_WIDTH), (name, width)
+
+
+def _time_series(res):
+    return [n for n in figure_names(res) if n.startswith(TIME_SERIES)]
 
 
 def test_the_slowest_figures_are_drawn_first_and_the_paths_come_in_reading_order(
@@ -38,3 +81,90 @@ def test_the_slowest_figures_are_drawn_first_and_the_paths_come_in_reading_order
     assert set(drawn[: len(kinds)]) == set(kinds)  # the circuits first, the slowest kind
     assert drawn.index("open_loop") > max(drawn.index(k) for k in kinds)
     assert gc.get_freeze_count() == 0  # the parent's objects are thawed again
+
+
+def test_every_time_series_figure_of_the_paper_is_legible_with_units_and_no_heading(paper):
+    names = _time_series(paper)
+    assert len(names) == 7
+    for name in names:
+        _check(make_figure(paper, name), name)
+
+
+@pytest.mark.parametrize("name", ["closed_loop", "firing_general"])  # the most panels and keys
+def test_the_T6_figures_are_legible(paper_T6, name):
+    _check(make_figure(paper_T6, name), name)
+
+
+def test_the_figures_of_a_model_file_are_legible(oculomotor):
+    names = _time_series(oculomotor)
+    assert {"open_loop", "closed_loop", "nonlinear", "firing_general"} <= set(names)
+    for name in ("open_loop", "closed_loop", "nonlinear", "firing_general"):
+        fig = make_figure(oculomotor, name)
+        _check(fig, name)
+        assert any("deg" in t for t in _texts(fig)), name  # the model's own units
+
+
+def test_the_nonlinear_figure_marks_f_max_and_the_force_crosses_it_only_under_the_pulse(paper):
+    # nonlinear.png showed 63.7 N, above f_max = 60 N: the muscle's own drive
+    # f_max / (1 + exp(-r)) stays below f_max, and the force is above it only just after a
+    # sample that added the disturbance w (10 N per step at the largest amplitude)
+    chk, w = paper.nonlinear, paper.closed_loop.w[:, 0]
+    assert 60.0 < chk.f_nonlinear.max() < 64.0
+    assert (60.0 / (1 + np.exp(-chk.r_nonlinear))).max() < 60.0
+    above = np.flatnonzero((chk.f_nonlinear > 60.0).any(axis=0))
+    assert above.size and np.all(w[above - 1] != 0)
+    assert figures._state_bounds(paper) == [
+        (60.0, r"$f_{max}$ = 60 N: the most $f$ reaches without $w$"),
+        (0.0, r"0 N: the least $f$ reaches without $w$"),
+    ]
+    fig = make_figure(paper, "nonlinear")
+    key = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert r"$f_{max}$ = 60 N: the most $f$ reaches without $w$" in key
+    assert not any(t.startswith("0 N") for t in key)  # far below the traces: left out
+    flat = [ln.get_ydata() for ln in fig.axes[0].get_lines() if len(ln.get_ydata()) == 2]
+    assert [float(y[0]) for y in flat] == [60.0]
+
+
+def test_a_plant_without_a_bound_of_its_own_gets_no_line(oculomotor):
+    assert figures._state_bounds(oculomotor) == []  # two states: no such argument
+
+
+def test_save_writes_pdf_svg_and_png_with_the_same_bytes_twice(tmp_path):
+    first = {}
+    for k in range(2):
+        out = tmp_path / str(k)
+        out.mkdir()
+        fig = Figure(figsize=(2.0, 1.2), layout="constrained")
+        ax = fig.add_subplot()
+        ax.plot([0, 1, 2], [0, 1, 0], label=r"$\delta f$")
+        ax.set_ylabel(r"$\delta f$ [N]")
+        ax.legend()
+        paths = figures.save(fig, out, "open_loop")
+        assert [p.name for p in paths] == ["open_loop.pdf", "open_loop.svg", "open_loop.png"]
+        got = {p.suffix: p.read_bytes() for p in paths}
+        assert got[".pdf"][:5] == b"%PDF-" and b"CreationDate" not in got[".pdf"]
+        assert got[".svg"].lstrip().startswith(b"<?xml") and b"<dc:date>" not in got[".svg"]
+        assert got[".png"][:8] == b"\x89PNG\r\n\x1a\n"
+        first = first or got
+        assert got == first  # byte-reproducible: no date, no random ids
+
+
+def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_path, pdflatex):
+    import subprocess
+
+    from symctl.report.document import Graphic, Text, to_tex
+
+    for name, size in (("small", 3.4), ("wide", 9.0)):
+        fig = Figure(figsize=(size, 1.5))
+        fig.add_subplot().plot([0, 1], [0, 1])
+        figures.save(fig, tmp_path, name)
+    blocks = [Text("Two figures."), Graphic("small", "Narrow."), Graphic("wide", "Too wide.")]
+    tex = to_tex(blocks, title="Figures")
+    assert r"\fitgraphic{small.pdf}" in tex and ".png" not in tex
+    assert "width=\\linewidth" not in tex.split("\\begin{document}")[1]  # no scaling in the body
+    (tmp_path / "f.tex").write_text(tex)
+    subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error", "f.tex"],
+                   cwd=tmp_path, check=True, capture_output=True, timeout=120)  # fmt: skip
+    log = (tmp_path / "f.log").read_text(errors="replace")
+    assert "symctl: scaled figure wide.pdf down to fit the page" in log
+    assert "scaled figure small.pdf" not in log  # at its natural size

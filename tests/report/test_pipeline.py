@@ -14,7 +14,7 @@ from symctl.report.figures import FORMATS
 from symctl.report.spec import CIRCUITS
 
 FIGURES = (
-    ["open_loop", "closed_loop", "delay_graph", "nonlinear", "atlas_overview"]
+    ["open_loop", "closed_loop", "delay_graph", "g1g3_structures", "nonlinear", "atlas_overview"]
     + [
         f"{kind}_{c}"
         for c in CIRCUITS
@@ -94,7 +94,7 @@ def test_derivation_tex_has_the_paper_order_and_numbers(paper):
     assert [lab for lab in labels if lab in order] == order
     assert "43.8635" in tex and "0.606531" in tex and "4.64165" in tex
     assert r"K_{0}" in tex and r"\epsilon_{1}" in tex
-    assert "Not compatible" in tex and tex.count(r"\includegraphics") == len(FIGURES)
+    assert "Not compatible" in tex and tex.count(r"\fitgraphic{") == len(FIGURES)
 
 
 def test_derivation_pdf_is_compiled(paper, pdflatex):
@@ -122,7 +122,7 @@ def test_console_shows_progress_and_summary_tables(paper):
     for step in ("plant", "LQR", "simulation", "figures", "documents"):
         assert re.search(rf"done\s+{step}\s+[\d.]+ s", text), step
     assert "summary" in text and "circuits" in text and "max deviation" in text
-    assert "results.json" in text and "derivation.tex" in text and "19 figures" in text
+    assert "results.json" in text and "derivation.tex" in text and f"{len(FIGURES)} figures" in text
 
 
 def test_every_file_of_a_full_run_is_one_an_earlier_run_may_leave(paper):

@@ -53,7 +53,7 @@ def test_figures_are_reached_by_name(res):
     assert names[:3] == ["open_loop", "closed_loop", "delay_graph"] and "nonlinear" in names
     simplified = [n for n in names if n.startswith("simplified_")]
     assert names[-1 - len(simplified)] == "atlas_overview" and len(simplified) == 2
-    assert len(names) == 5 + 3 * len(res.circuits) + len(simplified)
+    assert len(names) == 6 + 3 * len(res.circuits) + len(simplified)  # g1g3_structures too
     fig = res.figure("firing_ifp")
     assert type(fig).__name__ == "Figure" and fig.get_axes()
     with pytest.raises(ParameterError, match="name: no figure 'firing_nothing'"):

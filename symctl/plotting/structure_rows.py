@@ -1,0 +1,198 @@
+r"""A structure too wide for the page, folded into rows of parts.
+
+The controller of a long delay is a long series connection: :math:`T = 6` gives
+:math:`G_{1.1} G_{1.2} G_{1.3}`, :math:`G_2` and :math:`G_{3.1} G_{3.2} G_{3.3}`, about
+30 columns, 13 inches at print size. Shrinking it would set its text far below 6 points;
+so :func:`structure_rows` cuts it between parts, where one signal (one per channel)
+joins them, and lays out each row of parts on its own: as many consecutive parts per
+row as fit the page. A row ends with an arrow out of the signal the next row begins
+with, both labelled with its name (the way a long equation is broken). Each row has its
+own vertex bands (the vertices it reaches) and the frames of its parts; the key of long
+gain values is the whole structure's, drawn once under the rows.
+
+A structure that is no series connection (parallel pathways, one part) is laid out in
+one piece however wide: :attr:`StructureRows.fits` tells the caller.
+
+>>> from symctl import Structure, controllable_canonical, controller_tf, factor
+>>> from symctl.plotting.common import text_size
+>>> from symctl.plotting.structure_rows import structure_rows
+>>> f = factor(controller_tf(6), 3, 3)
+>>> S = Structure.from_factorization(f, controllable_canonical(f.abbreviated()))
+>>> rows = structure_rows(S, text_size)
+>>> rows.folded, rows.fits, len(rows.placed) > 1
+(True, True, True)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from symctl.compatibility.structure import Block, Structure
+from symctl.plotting.structure_labels import StructureText, signal_label, structure_text
+from symctl.plotting.structure_layout import Measure, StructureLayout, structure_layout
+from symctl.plotting.style import TEXT_WIDTH
+
+__all__ = ["ROW_GAP", "StructureRows", "series_parts", "structure_rows"]
+
+ROW_GAP = 0.2
+"""Space between two rows of a folded drawing [in]."""
+PAGE_HEIGHT = 8.6
+"""The tallest a drawing may be to fit a page with its caption [in] (the derivation's text
+height is 9.2 in)."""
+
+
+@dataclass(frozen=True)
+class StructureRows:
+    """Where the rows of a (possibly folded) structure drawing go.
+
+    Attributes
+    ----------
+    placed : tuple of (StructureLayout, (dx, dy))
+        Each row's layout and the shift that places it (rows top to bottom).
+    key : tuple of str
+        The key's lines (LaTeX), for the whole structure.
+    bounds : (x_lo, x_hi, y_lo, y_hi)
+        The extent of all rows.
+    folded : bool
+        Whether the structure was cut into rows.
+    fits : bool
+        Whether the drawing fits the page: no wider than the width asked for and no taller
+        than :data:`PAGE_HEIGHT`.
+    """
+
+    placed: tuple[tuple[StructureLayout, tuple[float, float]], ...]
+    key: tuple[str, ...]
+    bounds: tuple[float, float, float, float]
+    folded: bool
+    fits: bool
+
+
+def series_parts(S: Structure) -> list[str] | None:
+    """The parts of ``S`` in series order, or None when ``S`` is not a series of parts.
+
+    A series: every wire between two parts goes from one part to the next one (in the
+    order the parts' blocks come), as :meth:`Structure.series` builds them.
+
+    >>> from symctl import Structure, ifp_structure
+    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl.plotting.structure_rows import series_parts
+    >>> R = first_order_realization(1, 2)
+    >>> series_parts(Structure.series(R, R, R)), series_parts(ifp_structure(2))
+    (['G1', 'G2', 'G3'], None)
+    >>> series_parts(Structure.parallel(R, R)) is None
+    True
+    """
+    order = list(dict.fromkeys(b.part for b in S.blocks.values()))
+    if len(order) < 2 or "" in order:
+        return None
+    rank = {p: k for k, p in enumerate(order)}
+    for a, b, _ in S.wires():
+        pa, pb = rank[S.blocks[a].part], rank[S.blocks[b].part]
+        if pb not in (pa, pa + 1):
+            return None
+    return order
+
+
+def _row_structure(S: Structure, parts: list[str]) -> tuple[Structure, tuple[str, ...]]:
+    """The parts ``parts`` of ``S`` alone; the signals they read from earlier parts become inputs."""
+    inside = {n for n, b in S.blocks.items() if b.part in parts}
+    blocks: dict[str, Block] = {}
+    entering: list[str] = []
+    for n, b in S.blocks.items():
+        if n not in inside:
+            continue
+        for src in b.inputs:
+            if src not in inside and src not in entering:
+                entering.append(src)
+                blocks[src] = Block("input", part=b.part)
+        blocks[n] = b
+    inputs = [n for n in S.inputs if n in inside] + entering
+    leaving = [
+        n for n in inside if n in S.outputs or any(
+            n in b.inputs for m, b in S.blocks.items() if m not in inside
+        )
+    ]  # fmt: skip
+    return Structure(blocks, inputs, leaving), tuple(entering)
+
+
+def _row_text(text: StructureText, sub: Structure) -> StructureText:
+    """The whole structure's text, restricted to one row (a row's own ends named as signals)."""
+    ends = {n: text.ends.get(n, signal_label(n)) for n in (*sub.inputs, *sub.outputs)}
+    names = {n: t for n, t in text.names.items() if n in sub.blocks and ends.get(n) != t}
+    gains = {n: t for n, t in text.gains.items() if n in sub.blocks}
+    return StructureText(gains, names, ends, ())
+
+
+def _width(layout: StructureLayout) -> float:
+    x_lo, x_hi, _, _ = layout.bounds
+    return x_hi - x_lo
+
+
+def structure_rows(
+    S: Structure,
+    measure: Measure,
+    *,
+    labels: Mapping[str, str] | None = None,
+    vertex_of: Mapping[str, int] | None = None,
+    vertex_names: Mapping[int, str] | None = None,
+    width: float = TEXT_WIDTH,
+) -> StructureRows:
+    """The layout of ``S`` in one row, or folded into rows of parts no wider than ``width``.
+
+    Parameters
+    ----------
+    S : Structure
+    measure : callable
+        ``measure(text, points) -> (width, height)`` in inches.
+    labels : mapping of str to str, optional
+        The labels of the inputs' and outputs' arrows
+        (:func:`~symctl.plotting.structure_labels.structure_text`).
+    vertex_of, vertex_names : mapping, optional
+        A delay assignment and the names of its vertices
+        (:func:`~symctl.plotting.structure_layout.structure_layout`).
+    width : float
+        The widest a row may be [in].
+
+    Returns
+    -------
+    StructureRows
+    """
+    text = structure_text(S, labels)
+    where = dict(vertex_of or {})
+
+    def lay(sub: Structure, sub_text: StructureText) -> StructureLayout:
+        return structure_layout(
+            sub, measure, text=sub_text,
+            vertex_of={n: where[n] for n in sub.blocks} if where else None,
+            vertex_names=vertex_names,
+        )  # fmt: skip
+
+    whole = lay(S, text)
+    order = series_parts(S) if _width(whole) > width else None
+    rows: list[StructureLayout] = []
+    if order is None:
+        rows = [whole]
+    else:
+        start = 0
+        while start < len(order):
+            best = None
+            for stop in range(start + 1, len(order) + 1):
+                sub, _ = _row_structure(S, order[start:stop])
+                layout = lay(sub, _row_text(text, sub))
+                if best is not None and _width(layout) > width:
+                    break
+                best = (stop, layout)
+            stop, layout = best
+            rows.append(layout)
+            start = stop
+    placed = []
+    top = 0.0
+    for layout in rows:
+        x_lo, _, y_lo, y_hi = layout.bounds
+        placed.append((layout, (-x_lo, top - y_hi)))
+        top -= (y_hi - y_lo) + ROW_GAP
+    x_hi = max(lay_.bounds[1] + dx for lay_, (dx, _) in placed)
+    bounds = (0.0, x_hi, top + ROW_GAP, 0.0)
+    fits = x_hi <= width + 1e-9 and -bounds[2] <= PAGE_HEIGHT
+    return StructureRows(tuple(placed), tuple(text.key_lines()), bounds, len(rows) > 1, fits)

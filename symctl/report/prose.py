@@ -1,0 +1,169 @@
+r"""Prose of a document: escaped for LaTeX, its citations and references, wrapped lines.
+
+The blocks of :mod:`symctl.report.document` hold prose with inline math between
+``$`` signs. Outside the math, :func:`tex_text` escapes LaTeX's special characters
+and turns two marks into LaTeX; :func:`markdown_text` turns them into numbers:
+
+* ``[@key]`` or ``[@key, locator]`` cites an entry of the bibliography
+  (``\cite[locator]{key}``; in Markdown ``[1, locator]``);
+* ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
+  captioned table or a display (``\ref``, ``\eqref``; in Markdown ``3`` or ``(3)``).
+
+A space before a mark becomes a tie in LaTeX, so that "Fig. 3" never breaks
+across lines. :func:`verbatim_lines` and :func:`markdown_lines` wrap preformatted
+text and prose to the page.
+
+Examples
+--------
+>>> from symctl.report.prose import markdown_text, tex_text
+>>> tex_text("50% as in [@li2024, Fig. 5] and (Fig. [#fig:a]), $x_1$")
+'50\\% as in~\\cite[Fig. 5]{li2024} and (Fig.~\\ref{fig:a}), $x_1$'
+>>> markdown_text("as in [@li2024, Fig. 5], see ([#eq:G])", {"li2024": 1, "eq:G": 6})
+'as in [1, Fig. 5], see ((6))'
+"""
+
+from __future__ import annotations
+
+import re
+import textwrap
+
+__all__ = ["MARK", "VERBATIM_LINE", "markdown_lines", "markdown_text", "tex_text", "verbatim_lines"]
+
+_SPECIAL = {
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+    "/": r"\slash{}",  # a line may break after a slash (a file's path in prose), at a small cost
+}
+
+
+MARK = re.compile(
+    r"\[@(?P<key>[A-Za-z][\w:.\-]*)(?:,\s*(?P<loc>[^\]$]+))?\]"
+    r"|\[#(?P<ref>(?:fig|tab|eq):[A-Za-z0-9:._\-]+)\]"
+)
+"""A citation ``[@key, locator]`` or a reference ``[#fig:name]`` in prose (outside math)."""
+
+
+def _escape(text: str) -> str:
+    return "".join(_SPECIAL.get(ch, ch) for ch in text)
+
+
+def _tex_mark(m: re.Match) -> str:
+    if m["ref"] is not None:
+        return (r"\eqref" if m["ref"].startswith("eq:") else r"\ref") + f"{{{m['ref']}}}"
+    loc = f"[{_escape(m['loc'].strip())}]" if m["loc"] else ""
+    return rf"\cite{loc}{{{m['key']}}}"
+
+
+def _tex_prose(text: str) -> str:
+    """Prose outside math: escaped, its marks as LaTeX (tied to the word before them)."""
+    out, last = [], 0
+    for m in MARK.finditer(text):
+        before = _escape(text[last : m.start()])
+        out.append(before[:-1] + "~" if before.endswith(" ") else before)
+        out.append(_tex_mark(m))
+        last = m.end()
+    out.append(_escape(text[last:]))
+    return "".join(out)
+
+
+def tex_text(text: str) -> str:
+    r"""Prose for LaTeX: escaped outside ``$...$``, its marks as ``\cite``/``\ref``, the math kept.
+
+    Examples
+    --------
+    >>> from symctl.report.prose import tex_text
+    >>> tex_text("a_b & $a_b$ [#eq:x]")
+    'a\\_b \\& $a_b$~\\eqref{eq:x}'
+    """
+    parts = text.split("$")
+    for i in range(0, len(parts), 2):
+        parts[i] = _tex_prose(parts[i])
+    return "$".join(parts)
+
+
+def markdown_text(text: str, numbers: dict[str, int]) -> str:
+    """Prose for Markdown: its marks as numbers (``[1, Fig. 5]``, ``3``, ``(2)``; ``??`` unknown).
+
+    ``numbers`` maps a reference (``"fig:name"``) or a citation key to its number.
+
+    Examples
+    --------
+    >>> from symctl.report.prose import markdown_text
+    >>> markdown_text("Fig. [#fig:a], [@x]", {})
+    'Fig. ??, [??]'
+    """
+
+    def mark(m: re.Match) -> str:
+        if m["ref"] is not None:
+            n = numbers.get(m["ref"])
+            shown = "??" if n is None else str(n)
+            return f"({shown})" if m["ref"].startswith("eq:") else shown
+        n = numbers.get(m["key"])
+        loc = f", {m['loc'].strip()}" if m["loc"] else ""
+        return f"[{'??' if n is None else n}{loc}]"
+
+    parts = text.split("$")
+    for i in range(0, len(parts), 2):
+        parts[i] = MARK.sub(mark, parts[i])
+    return "$".join(parts)
+
+
+VERBATIM_LINE = 96
+"""Characters of a line of preformatted text (``\\footnotesize`` typewriter: 4.2 pt each, so
+about 400 pt of the 483 pt line); a longer line wraps, its continuation indented."""
+
+
+def verbatim_lines(text: str) -> list[str]:
+    """Preformatted text with its lines wrapped at :data:`VERBATIM_LINE` characters (in both
+    formats), a continuation indented four spaces past its line's own indent.
+
+    Examples
+    --------
+    >>> from symctl.report.prose import verbatim_lines
+    >>> lines = verbatim_lines("  " + "word " * 30)
+    >>> len(lines), lines[1][:8]
+    (2, '      wo')
+    """
+    out = []
+    for line in text.splitlines():
+        indent = " " * (len(line) - len(line.lstrip()))
+        out += textwrap.wrap(line, VERBATIM_LINE, subsequent_indent=indent + "    ") or [""]
+    return out
+
+
+def markdown_lines(text: str) -> list[str]:
+    """Prose as lines of at most about 100 characters, never breaking inside ``$...$``.
+
+    Examples
+    --------
+    >>> from symctl.report.prose import markdown_lines
+    >>> lines = markdown_lines("word " * 40 + "$a + b + c$")
+    >>> max(map(len, lines)) <= 100, lines[-1][-11:]
+    (True, '$a + b + c$')
+    """
+    if len(text) <= 100:
+        return [text]
+    words, cur, in_math = [], "", False
+    for ch in text:  # a word ends at a space outside math
+        if ch == "$":
+            in_math = not in_math
+        if ch == " " and not in_math:
+            words.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    words.append(cur)
+    lines = [""]
+    for w in words:
+        if lines[-1] and len(lines[-1]) + 1 + len(w) > 100:
+            lines.append(w)
+        else:
+            lines[-1] = f"{lines[-1]} {w}" if lines[-1] else w
+    return lines

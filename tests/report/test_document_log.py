@@ -1,0 +1,109 @@
+"""derivation.tex compiles without a line or table in the margin: pdflatex's log, read.
+
+Each case is compiled once (two passes, for the references), with every figure
+the run writes replaced by a placeholder of one square inch: the test is about
+the text's boxes (the figures have layout tests of their own, and change on their
+own). A figure the document shows but the run does not write stops pdflatex
+("File not found"), so missing figures fail too.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import zlib
+
+import pytest
+
+from symctl.report.document import to_tex
+from symctl.report.story import story
+
+CASES = ("derived_T2", "derived_T6", "derived_oculomotor")
+
+_PROBLEMS = {
+    "overfull box": re.compile(r"^Overfull \\[hv]box.*$", re.M),
+    "float too large": re.compile(r"^.*Float too large.*$", re.M),
+    "undefined reference": re.compile(
+        r"^LaTeX Warning: (Reference|Citation) .* undefined.*$", re.M
+    ),
+    "shrunk display": re.compile(r"^symctl: shrunk.*$", re.M),
+    "error": re.compile(r"^! .*$", re.M),
+}
+
+
+def _png() -> bytes:
+    """A white 72 x 72 pixel PNG (one inch at its default resolution)."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        body = kind + data
+        return len(data).to_bytes(4, "big") + body + zlib.crc32(body).to_bytes(4, "big")
+
+    header = (72).to_bytes(4, "big") * 2 + bytes([8, 0, 0, 0, 0])  # 8-bit greyscale
+    pixels = zlib.compress(b"".join(b"\x00" + b"\xff" * 72 for _ in range(72)))
+    return (
+        b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
+    )
+
+
+def _pdf() -> bytes:
+    """An empty one-inch PDF page."""
+    objects = [b"<< /Type /Catalog /Pages 2 0 R >>",
+               b"<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
+               b"<< /Type /Page /Parent 2 0 R /MediaBox [0 0 72 72] >>"]  # fmt: skip
+    out, offsets = bytearray(b"%PDF-1.4\n"), []
+    for k, body in enumerate(objects, 1):
+        offsets.append(len(out))
+        out += b"%d 0 obj\n" % k + body + b"\nendobj\n"
+    xref = len(out)
+    out += b"xref\n0 %d\n0000000000 65535 f \n" % (len(objects) + 1)
+    out += b"".join(b"%010d 00000 n \n" % o for o in offsets)
+    out += b"trailer\n<< /Size %d /Root 1 0 R >>\nstartxref\n%d\n%%%%EOF\n" % (
+        len(objects) + 1,
+        xref,
+    )
+    return bytes(out)
+
+
+@pytest.fixture(scope="module")
+def logs(request, tmp_path_factory):
+    """The pdflatex log of each case's derivation.tex (compiled on first use)."""
+    done: dict[str, str] = {}
+
+    def log(case: str, pdflatex: str) -> str:
+        if case not in done:
+            res = request.getfixturevalue(case)
+            out = tmp_path_factory.mktemp(case)
+            for name in res.figure_names():  # what the run writes, in the formats pdflatex reads
+                (out / f"{name}.png").write_bytes(_png())
+                (out / f"{name}.pdf").write_bytes(_pdf())
+            tex = to_tex(story(res, res.figure_names()), title=res.spec.title)  # as res.write does
+            (out / "derivation.tex").write_text(tex)
+            for _ in range(2):
+                subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error",
+                                "derivation.tex"], cwd=out, capture_output=True, timeout=300)  # fmt: skip
+            done[case] = (out / "derivation.log").read_text(errors="replace")
+        return done[case]
+
+    return log
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_derivation_compiles_with_nothing_in_the_margin(logs, case, pdflatex):
+    log = logs(case, pdflatex)
+    assert "Output written on derivation.pdf" in log, case
+    found = {what: rx.findall(log) and [m.group(0) for m in rx.finditer(log)]
+             for what, rx in _PROBLEMS.items()}  # fmt: skip
+    assert not any(found.values()), {k: v[:5] for k, v in found.items() if v}
+
+
+def test_the_log_check_finds_an_overfull_line(tmp_path, pdflatex):
+    # the check above cannot pass by reading nothing: a line too long is reported
+    (tmp_path / "bad.tex").write_text(
+        "\\documentclass{article}\\begin{document}\\ref{nowhere} "
+        + "x" * 200
+        + "\n\\end{document}\n"
+    )
+    subprocess.run([pdflatex, "-interaction=nonstopmode", "bad.tex"], cwd=tmp_path,
+                   capture_output=True, timeout=60)  # fmt: skip
+    log = (tmp_path / "bad.log").read_text(errors="replace")
+    assert _PROBLEMS["overfull box"].search(log) and _PROBLEMS["undefined reference"].search(log)
