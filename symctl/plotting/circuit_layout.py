@@ -86,7 +86,8 @@ NAME_GAP = 0.06
 """Between a circle and its name above it or its vertex tag below it [in]."""
 _END_GAP = 0.04  # between a dot and its label
 _ARROW = 0.11  # room for an arrow head or bar, either side of a weight on a straight synapse [in]
-_ROW_GAP = 0.22  # between the texts of two rows
+_ROW_GAP = 0.18  # between the texts of two rows
+_ROW_STEP = 0.45  # rows of nodes not side by side stay this far apart, per row [in]
 _MARGIN = 0.04  # around the drawing
 _WIRE = 0.12  # a wire between bands runs this far outside the bands
 _WIRE_STEP = 0.07  # between two wires at one cut
@@ -544,9 +545,9 @@ def circuit_layout(
             - (_WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0)
         )
         mine_nodes = [n for n in col if band_of[n] == b]
-        pitch = max(ext[n][2] + ext[n][3] for n in mine_nodes) + _ROW_GAP  # this band's rows
         rows = _closed_up([row[n] for n in mine_nodes])
-        local = {n: (x[col[n]] - left + _MARGIN, rows[row[n]] * pitch) for n in mine_nodes}
+        ys = _row_heights(mine_nodes, {n: rows[row[n]] for n in mine_nodes}, x, col, ext)
+        local = {n: (x[col[n]] - left + _MARGIN, ys[n]) for n in mine_nodes}
         idx = [k for k, s in enumerate(specs) if band_of[s[0]] == b and band_of[s[1]] == b]
         mine = [specs[k] for k in idx]
         texts = _text_boxes(local, m.radius, m)
@@ -605,6 +606,32 @@ def circuit_layout(
     return CircuitLayout(
         col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
     )
+
+
+def _row_heights(nodes, row, x, col, ext) -> dict:
+    """Each node's height [in]: rows top to bottom, each as near the one above as its nodes
+    allow (a node keeps :data:`_ROW_GAP` from every node above whose texts it would meet side
+    by side, and rows keep :data:`_ROW_STEP` per row apart: their order stays)."""
+    levels = sorted({row[n] for n in nodes}, reverse=True)
+    at = {lv: [n for n in nodes if row[n] == lv] for lv in levels}
+    y: dict[float, float] = {}
+    for k, lv in enumerate(levels):
+        if not k:
+            y[lv] = 0.0
+            continue
+        prev = levels[k - 1]
+        h = y[prev] - _ROW_STEP * (prev - lv)
+        for above in levels[:k]:
+            for a in at[above]:
+                for b in at[lv]:
+                    xa, xb = x[col[a]], x[col[b]]
+                    if (
+                        xa + ext[a][1] + 0.05 > xb - ext[b][0]
+                        and xb + ext[b][1] + 0.05 > xa - ext[a][0]
+                    ):
+                        h = min(h, y[above] - ext[a][2] - ext[b][3] - _ROW_GAP)
+        y[lv] = h
+    return {n: y[row[n]] for n in nodes}
 
 
 def _closed_up(rows: list[float]) -> dict[float, float]:
