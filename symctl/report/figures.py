@@ -143,6 +143,10 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
 
 
+MAX_BOUND_OPS = 40
+"""The longest right-hand side (SymPy operations) whose limits the nonlinear figure seeks."""
+
+
 def _state_bounds(res) -> list[tuple[float, str]]:
     r"""The values a plant's own dynamics keep its state within, with their legend text.
 
@@ -164,6 +168,8 @@ def _state_bounds(res) -> list[tuple[float, str]]:
     if ode is None or ode.n != 1 or ode.m != 1:
         return []
     x, u = ode.states[0], ode.inputs[0]
+    if sp.count_ops(ode.rhs[0]) > MAX_BOUND_OPS:  # a limit of a long expression is unbounded work
+        return []
     a = sp.diff(ode.rhs[0], x)
     if a.free_symbols & {x, u} or not float(a.subs(ode.values)) < 0:
         return []

@@ -403,6 +403,12 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # report figures: the nonlinear figure's bounds come from an ODEModel's validated rhs and its
+    # numeric parameter values (Symbol -> number), never from text
+    ("symctl.report.figures", "_state_bounds", "subs"): 2,
+    ("symctl.report.figures", "_state_bounds", "expand"): 1,
+    # the document's common factor of a realization matrix: entries of a derived SymPy matrix
+    ("symctl.report.shorthand", "_factored", "cancel"): 1,
     # MIMO factorization: entries of a validated DiscreteTF times section factors of symbols
     ("symctl.realization.channels", "mimo_G2", "Matrix"): 1,
     ("symctl.realization.channels", "mimo_G2", "expand"): 1,
