@@ -166,7 +166,7 @@ class NonlinearCheck:
         >>> from symctl import nonlinear_check
         >>> fig = nonlinear_check(amplitudes=[0.1, 1.0], steps=20).plot()
         >>> fig.axes[0].get_ylabel()
-        'force f [N]'
+        'muscle force $f$ [N]'
         """
         from symctl.plotting.response import nonlinear_plot
 

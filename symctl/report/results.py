@@ -479,7 +479,7 @@ class PaperResults:
         Returns
         -------
         list of str
-            ``open_loop``, ``closed_loop``, ``delay_graph``, then ``structure_<c>``,
+            ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
             ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
             ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
             circuits (table in :mod:`symctl.report.figures`).
@@ -488,8 +488,8 @@ class PaperResults:
         --------
         >>> from symctl import derive_paper
         >>> names = derive_paper().figure_names()
-        >>> len(names), names[16:]
-        (19, ['atlas_overview', 'simplified_A16', 'simplified_A17'])
+        >>> len(names), names[-4:]
+        (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
         """
         return _figures.figure_names(self)
 
