@@ -165,7 +165,7 @@ def draw_structure(
     if overview not in (True, False, "auto"):
         raise ParameterError(f"overview: must be True, False or 'auto', got {overview!r}")
     if overview is True or (overview == "auto" and len(S) > max_signals):
-        return draw_structure_overview(S, ax, title=title, width=width)
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     if len(S) > max_signals:
         raise ParameterError(
             f"max_signals: the structure has {len(S)} signals, more than {max_signals}; "
@@ -176,11 +176,11 @@ def draw_structure(
     if overview == "auto" and not page_bound(
         S, labels=labels, vertex_of=where, vertex_names=names, width=width
     ):  # too large even without text: no text measured, no layout made
-        return draw_structure_overview(S, ax, title=title, width=width)
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     rows = structure_rows(S, text_size, labels=labels, vertex_of=where,
                           vertex_names=names, width=width)  # fmt: skip
     if overview == "auto" and not rows.fits:
-        return draw_structure_overview(S, ax, title=title, width=width)
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     fig, ax, own = figure_and_axes(ax)
     for layout, (dx, dy) in rows.placed:
         _draw_layout(ax, layout, dx, dy)
