@@ -74,6 +74,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/examples.py
 	$(BIN)/python benchmarks/dale.py --workers 2
 	$(BIN)/python benchmarks/fit.py
+	$(BIN)/python benchmarks/figures.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis docs/_build docs/generated

@@ -38,7 +38,7 @@ from symctl.plotting.structure_layout import (
     dashed_part,
 )
 from symctl.plotting.structure_overview import draw_structure_overview
-from symctl.plotting.structure_rows import structure_rows
+from symctl.plotting.structure_rows import page_bound, structure_rows
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH, TITLE
 
 __all__ = ["draw_structure", "draw_structures", "vertex_map"]
@@ -126,7 +126,9 @@ def draw_structure(
         ``"auto"``: when the block diagram would not fit the page (wider than ``width``
         however folded, or taller than
         :data:`~symctl.plotting.structure_rows.PAGE_HEIGHT`), or has more than
-        ``max_signals`` signals.
+        ``max_signals`` signals. A part too large even without its text
+        (:func:`~symctl.plotting.structure_rows.page_bound`) decides it before any
+        text is measured.
     assignment : DelayAssignment or mapping of str to int, optional
         Where each signal sits in the delay graph (the witness of compatibility): each
         vertex's signals are drawn in a shaded band labelled :math:`v_k`.
@@ -163,17 +165,22 @@ def draw_structure(
     if overview not in (True, False, "auto"):
         raise ParameterError(f"overview: must be True, False or 'auto', got {overview!r}")
     if overview is True or (overview == "auto" and len(S) > max_signals):
-        return draw_structure_overview(S, ax, title=title, width=width)
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     if len(S) > max_signals:
         raise ParameterError(
             f"max_signals: the structure has {len(S)} signals, more than {max_signals}; "
             "raise max_signals to draw it anyway"
         )
     where = vertex_map(S, assignment)
+    names = _names(vertex_names)
+    if overview == "auto" and not page_bound(
+        S, labels=labels, vertex_of=where, vertex_names=names, width=width
+    ):  # too large even without text: no text measured, no layout made
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     rows = structure_rows(S, text_size, labels=labels, vertex_of=where,
-                          vertex_names=_names(vertex_names), width=width)  # fmt: skip
+                          vertex_names=names, width=width)  # fmt: skip
     if overview == "auto" and not rows.fits:
-        return draw_structure_overview(S, ax, title=title, width=width)
+        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     fig, ax, own = figure_and_axes(ax)
     for layout, (dx, dy) in rows.placed:
         _draw_layout(ax, layout, dx, dy)

@@ -43,6 +43,7 @@ from symctl.plotting.circuit_labels import visible_length, weight_tex
 __all__ = [
     "LONG_GAIN",
     "StructureText",
+    "end_labels",
     "gain_name",
     "is_branch_term",
     "part_tex",
@@ -157,8 +158,36 @@ class StructureText:
         return [f"{names} = {value}" for names, value in self.key]
 
 
-def _end_labels(S: Structure, labels) -> dict[str, str]:
-    """The arrow labels of the inputs and outputs: ``labels`` where given, else the signal's."""
+def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[str, str]:
+    r"""The arrow labels of the inputs and outputs: ``labels`` where given, else the signal's.
+
+    What the block diagram and the overview of ``S`` write at its ends (LaTeX without
+    ``$``), inputs first.
+
+    Parameters
+    ----------
+    S : Structure
+    labels : mapping of str to str, optional
+        LaTeX labels by input or output signal name.
+
+    Returns
+    -------
+    dict of str to str
+
+    Raises
+    ------
+    ParameterError
+        ``labels`` names a signal that is no input or output.
+    SymctlTypeError
+        ``labels`` is not a mapping of non-empty strings.
+
+    Examples
+    --------
+    >>> from symctl import ifp_structure
+    >>> from symctl.plotting.structure_labels import end_labels
+    >>> end_labels(ifp_structure(2)), end_labels(ifp_structure(2), {"x": "f"})
+    ({'x': 'x', 'u': 'u'}, {'x': 'f', 'u': 'u'})
+    """
     if labels is None:
         labels = {}
     if not isinstance(labels, Mapping):
@@ -213,7 +242,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
-    ends = _end_labels(S, labels)
+    ends = end_labels(S, labels)
     names = {}
     for name, block in S.blocks.items():
         if block.kind == "gain" or is_branch_term(name):

@@ -7,22 +7,29 @@ would: the parts of :math:`G_3 G_2 G_1` in signal-flow order, one box each with 
 counts of states, gains, adders and delays, rows snaking so that the figure stays
 page-shaped; parallel pathways (:meth:`Structure.parallel
 <symctl.compatibility.structure.Structure.parallel>`) one row each, joined by their
-output adder. Text at its printed size (7 and 8 points), no wider than the page.
+output adder. Text at its printed size (7 and 8 points), no wider than the page. The
+arrows into the first part and out of the last carry the names the block diagram writes
+at its ends (the plant's, when the report passes them): one arrow for all the inputs,
+their names listed, a line per few names.
 """
 
 from __future__ import annotations
 
 import itertools
+from collections.abc import Mapping
 
 from symctl.compatibility.structure import Structure
 from symctl.errors import SymctlTypeError
-from symctl.plotting.common import figure_and_axes
+from symctl.plotting.common import figure_and_axes, text_size
+from symctl.plotting.structure_labels import end_labels
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH
 
 __all__ = ["draw_structure_overview", "parts_in_order"]
 
 _BOX_W, _BOX_H, _GAP, _ROW = 1.0, 0.62, 0.3, 0.95  # inches
-_END = 0.35  # room for the input or output label and its arrow [in]
+_END = 0.35  # room for the input or output label and its arrow, at least [in]
+_LABEL_ROOM = 1.1  # the widest line of names at an end [in]
+_LINE = 0.15  # pitch of those lines [in]
 
 
 def parts_in_order(S: Structure) -> list[tuple[str, dict[str, int]]]:
@@ -50,6 +57,25 @@ def _plural(k: int, word: str) -> str:
     return f"{k} {word}{'' if k == 1 else 's'}"
 
 
+def _count_lines(k: dict[str, int]) -> tuple[str, str]:
+    """The two lines of counts in a part's box."""
+    return (
+        f"{_plural(k['states'], 'state')}, {_plural(k['delay'], 'delay')}",
+        f"{_plural(k['gain'], 'gain')}, {_plural(k['sum'], 'adder')}",
+    )
+
+
+def _wrap(text: str, room: float, size: float) -> list[str]:
+    """The words of ``text`` in lines no wider than ``room`` inches (a single word may be)."""
+    lines: list[str] = []
+    for word in text.split(" "):
+        if lines and text_size(f"{lines[-1]} {word}", size)[0] * 1.06 <= room:
+            lines[-1] += f" {word}"
+        else:
+            lines.append(word)
+    return lines
+
+
 def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
     """The parts in rows, and whether they are parallel pathways (one row each).
 
@@ -67,8 +93,25 @@ def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
     return [order[k : k + per_row] for k in range(0, len(order), per_row)], False
 
 
+def _end_lines(names: list[str]) -> list[str]:
+    """The names at one end (LaTeX) as mathtext lines, comma-separated, each at most
+    :data:`_LABEL_ROOM` wide (a single name may be wider)."""
+    lines: list[list[str]] = []
+    for name in names:
+        if lines and text_size(f"${', '.join([*lines[-1], name])}$", FONT_SIZE)[0] <= _LABEL_ROOM:
+            lines[-1].append(name)
+        else:
+            lines.append([name])
+    return [f"${', '.join(line)}$" for line in lines]
+
+
 def draw_structure_overview(
-    S: Structure, ax=None, *, title: str | None = None, width: float = TEXT_WIDTH
+    S: Structure,
+    ax=None,
+    *,
+    title: str | None = None,
+    width: float = TEXT_WIDTH,
+    labels: Mapping[str, str] | None = None,
 ):
     """Draw ``S`` as its parts, one box per part with its counts.
 
@@ -81,6 +124,10 @@ def draw_structure_overview(
         The heading (default: the structure's counts).
     width : float, default TEXT_WIDTH
         The widest the figure may be [in].
+    labels : mapping of str to str, optional
+        LaTeX labels of the inputs and outputs, by signal name, as for
+        :func:`~symctl.plotting.structure.draw_structure` (default: the signals' own
+        names).
 
     Returns
     -------
@@ -89,7 +136,9 @@ def draw_structure_overview(
     Raises
     ------
     SymctlTypeError
-        ``S`` is not a Structure.
+        ``S`` is not a Structure, or ``labels`` not a mapping of strings.
+    ParameterError
+        ``labels`` names a signal that is no input or output.
 
     Examples
     --------
@@ -97,17 +146,26 @@ def draw_structure_overview(
     >>> from symctl.plotting.structure_overview import draw_structure_overview
     >>> f = factor(controller_tf(6), 3, 3)
     >>> S = Structure.from_factorization(f, observable_canonical(f.abbreviated()))
-    >>> fig = draw_structure_overview(S)
-    >>> "G1.1" in [t.get_text() for t in fig.axes[0].texts]
-    True
+    >>> fig = draw_structure_overview(S, labels={"G1.1.u": "f", "G3.3.x1": "r"})
+    >>> texts = [t.get_text() for t in fig.axes[0].texts]
+    >>> "G1.1" in texts, "$f$" in texts, "$r$" in texts
+    (True, True, True)
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
-    counts = dict(parts_in_order(S))
-    step = _BOX_W + _GAP
-    per_row = max(1, int((width - 2 * _END - 0.2 + _GAP) // step))
+    ends = end_labels(S, labels)
+    ins = _end_lines([ends[n] for n in S.inputs])
+    outs = _end_lines([ends[n] for n in S.outputs])
+    widest = max(text_size(t, FONT_SIZE)[0] for t in (*ins, *outs))
+    end = max(_END, 0.3 + 1.06 * widest)  # room for an end's arrow and its names, either side
+    counts = {part: _count_lines(k) for part, k in parts_in_order(S)}
+    box_w = max(  # a part of hundreds of gains gets a wider box: its counts stay inside
+        [_BOX_W] + [text_size(t, SMALL - 0.5)[0] * 1.06 + 0.14 for c in counts.values() for t in c]
+    )
+    step = box_w + _GAP
+    per_row = max(1, int((width - 2 * end - 0.2 + _GAP) // step))
     rows, parallel = _rows(S, per_row)
     fig, ax, own = figure_and_axes(ax)
     centres: dict[str, tuple[float, float]] = {}
@@ -115,31 +173,31 @@ def draw_structure_overview(
         for c, part in enumerate(row):
             if not parallel and r % 2:  # a series snakes, so its arrows stay short
                 c = per_row - 1 - c
-            centres[part] = (_END + _BOX_W / 2 + c * step, -r * _ROW)
+            centres[part] = (end + box_w / 2 + c * step, -r * _ROW)
     for part, (x, y) in centres.items():
-        ax.add_patch(FancyBboxPatch((x - _BOX_W / 2, y - _BOX_H / 2), _BOX_W, _BOX_H,
+        ax.add_patch(FancyBboxPatch((x - box_w / 2, y - _BOX_H / 2), box_w, _BOX_H,
                                     boxstyle="round,pad=0.01", fc="0.96" if "G2" in part else "white",
                                     ec="black", lw=0.8))  # fmt: skip
         ax.text(x, y + 0.17, part, ha="center", va="center", fontsize=FONT_SIZE)
-        k = counts[part]
-        lines = [
-            f"{_plural(k['states'], 'state')}, {_plural(k['delay'], 'delay')}",
-            f"{_plural(k['gain'], 'gain')}, {_plural(k['sum'], 'adder')}",
-        ]
-        ax.text(x, y - 0.1, "\n".join(lines), ha="center", va="center", fontsize=SMALL - 0.5,
+        ax.text(x, y - 0.1, "\n".join(counts[part]), ha="center", va="center", fontsize=SMALL - 0.5,
                 linespacing=1.2)  # fmt: skip
 
     def arrow(a, b):
         ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=8, lw=0.8,
                                      color="black", shrinkA=0, shrinkB=0))  # fmt: skip
 
-    half = _BOX_W / 2
+    def names(lines, x, y, ha):
+        for k, line in enumerate(lines):  # one line per few names, centred on the arrow
+            ax.text(x, y + ((len(lines) - 1) / 2 - k) * _LINE, line, ha=ha, va="center",
+                    fontsize=FONT_SIZE)  # fmt: skip
+
+    half = box_w / 2
     chains = rows if parallel else [[p for row in rows for p in row]]
     ends_x = []
     for chain in chains:
         x0, y0 = centres[chain[0]]
-        arrow((x0 - half - _END + 0.14, y0), (x0 - half, y0))
-        ax.text(x0 - half - _END + 0.03, y0, "u", ha="left", va="center", fontsize=FONT_SIZE)
+        arrow((x0 - half - 0.21, y0), (x0 - half, y0))
+        names(ins, x0 - half - 0.24, y0, "right")
         for a, b in itertools.pairwise(chain):
             (xa, ya), (xb, yb) = centres[a], centres[b]
             if ya == yb:
@@ -155,15 +213,15 @@ def draw_structure_overview(
         for xe, ye in ends_x:  # orthogonal: along the row, then down or up to the adder
             ax.plot([xe + half, xs - 0.12, xs - 0.12], [ye, ye, ys], color="black", lw=0.8)
             arrow((xs - 0.12, ys), (xs - 0.02, ys))
-        ax.text(xs + 0.03, ys, "+  y", ha="left", va="center", fontsize=FONT_SIZE)
-        x_hi = xs + 0.35
+        ax.text(xs + 0.03, ys, "+", ha="left", va="center", fontsize=FONT_SIZE)
+        names(outs, xs + 0.2, ys, "left")
+        x_hi = max(xs + 0.35, xs + 0.25 + widest)
     else:
         xe, ye = ends_x[0]
         d = 1 if len(rows) % 2 else -1
-        arrow((xe + d * half, ye), (xe + d * (half + _END - 0.12), ye))
-        ax.text(xe + d * (half + _END - 0.08), ye, "y", ha="left" if d > 0 else "right",
-                va="center", fontsize=FONT_SIZE)  # fmt: skip
-        x_hi = _END * 2 + min(per_row, max(len(r) for r in rows)) * step - _GAP
+        arrow((xe + d * half, ye), (xe + d * (half + 0.23), ye))
+        names(outs, xe + d * (half + 0.27), ye, "left" if d > 0 else "right")
+        x_hi = end * 2 + min(per_row, max(len(r) for r in rows)) * step - _GAP
     y_lo = -(len(rows) - 1) * _ROW - _BOX_H / 2 - 0.1
     total = ", ".join(
         _plural(S.count(k), word)
@@ -177,9 +235,14 @@ def draw_structure_overview(
     )[::-1]:
         ax.text(0.05, y, line, ha="left", va="bottom", fontsize=SMALL, color="0.35")
         y += 0.13
-    ax.text(0.05, y + 0.04, heading, ha="left", va="bottom", fontsize=FONT_SIZE + 0.5)
-    y_hi = y + 0.25
-    x_hi = min(max(x_hi, 4.6), width)
+    room = width - 0.15
+    heading_lines = _wrap(heading, room, FONT_SIZE + 0.5)
+    for line in heading_lines[::-1]:
+        ax.text(0.05, y + 0.04, line, ha="left", va="bottom", fontsize=FONT_SIZE + 0.5)
+        y += 0.16
+    y_hi = y + 0.09
+    wide = max(text_size(line, FONT_SIZE + 0.5)[0] * 1.06 for line in heading_lines)
+    x_hi = min(max(x_hi, 4.6, 0.15 + wide), width)
     ax.set_xlim(0, x_hi)
     ax.set_ylim(y_lo, y_hi)
     ax.set_aspect("equal")

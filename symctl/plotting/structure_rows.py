@@ -13,6 +13,15 @@ gain values is the whole structure's, drawn once under the rows.
 A structure that is no series connection (parallel pathways, one part) is laid out in
 one piece however wide: :attr:`StructureRows.fits` tells the caller.
 
+Whether a structure can fit a page at all is often clear before any text is measured
+(measuring is most of the time of a layout: each gain value is a mathtext parse):
+:func:`page_bound` lays out each part alone, as its own row, with every text taking no
+room. A layout only grows with its texts (a text enters a size only through sums and
+maxima: a gain's box, a column's half width, an arc's height, a label's reach), so a part
+that is wider than the page or taller than :data:`PAGE_HEIGHT` even so is taken to fit
+no page: the MIMO block forms of a two-input plant (a :math:`G_2` of a hundred gains, 17
+inches tall) are known to need the overview in a tenth of a second, not a few seconds.
+
 >>> from symctl import Structure, controllable_canonical, controller_tf, factor
 >>> from symctl.plotting.common import text_size
 >>> from symctl.plotting.structure_rows import structure_rows
@@ -25,6 +34,7 @@ one piece however wide: :attr:`StructureRows.fits` tells the caller.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -33,7 +43,15 @@ from symctl.plotting.structure_labels import StructureText, signal_label, struct
 from symctl.plotting.structure_layout import Measure, StructureLayout, structure_layout
 from symctl.plotting.style import TEXT_WIDTH
 
-__all__ = ["ROW_GAP", "StructureRows", "series_parts", "structure_rows"]
+__all__ = [
+    "PAGE_HEIGHT",
+    "ROW_GAP",
+    "PageBound",
+    "StructureRows",
+    "page_bound",
+    "series_parts",
+    "structure_rows",
+]
 
 ROW_GAP = 0.2
 """Space between two rows of a folded drawing [in]."""
@@ -66,6 +84,104 @@ class StructureRows:
     bounds: tuple[float, float, float, float]
     folded: bool
     fits: bool
+
+
+@dataclass(frozen=True)
+class PageBound:
+    """Lower bounds on the size of a structure drawing, found without measuring any text.
+
+    Truthy when the drawing may fit the page; falsy when it cannot, whatever its text.
+
+    Attributes
+    ----------
+    width, height : float
+        The largest width and height [in] of a part of a series connection (else of the
+        whole structure) laid out alone, as a row, with every text taking no room:
+        lower bounds of that row's drawn size.
+    part : str
+        The part that sets the larger excess over the page ("" for the whole structure).
+    fits : bool
+        Whether ``width`` and ``height`` are within the page (the width asked for and
+        :data:`PAGE_HEIGHT`).
+    """
+
+    width: float
+    height: float
+    part: str
+    fits: bool
+
+    def __bool__(self) -> bool:
+        return self.fits
+
+
+def _no_text(text: str, points: float) -> tuple[float, float]:
+    """A measure below every other: text takes no room."""
+    return 0.0, 0.0
+
+
+def page_bound(
+    S: Structure,
+    *,
+    labels: Mapping[str, str] | None = None,
+    vertex_of: Mapping[str, int] | None = None,
+    vertex_names: Mapping[int, str] | None = None,
+    width: float = TEXT_WIDTH,
+) -> PageBound:
+    """Whether the drawing of ``S`` can fit the page, decided before any text is measured.
+
+    A drawing is cut between the parts of a series connection only, never inside one;
+    a part (the whole structure, when it is no series) whose row alone is wider than
+    ``width`` or taller than :data:`PAGE_HEIGHT` even without text is taken to fit no
+    page. Each is laid out as :func:`structure_rows` lays out a row, with text of no
+    size; a layout only grows with its texts, so these extents are lower bounds of the
+    drawn rows' (for a structure in one piece, of the drawing's).
+
+    Parameters
+    ----------
+    S : Structure
+    labels, vertex_of, vertex_names : mapping, optional
+        As for :func:`structure_rows`.
+    width : float
+        The widest the drawing may be [in].
+
+    Returns
+    -------
+    PageBound
+        Falsy when some part (or the whole) is wider than ``width`` or taller than
+        :data:`PAGE_HEIGHT` even without text.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl import Structure, controller_tf, factor, general_realization
+    >>> from symctl.plotting.structure_rows import page_bound
+    >>> f = factor(controller_tf(6), 3, 3)
+    >>> P = sp.Matrix(6, 6, lambda i, j: 2 if i == j else int(j == i + 1))
+    >>> S = Structure.from_factorization(f, general_realization(f.abbreviated(), P))
+    >>> bound = page_bound(S)
+    >>> bool(bound), bound.part, bound.width > 6.9
+    (False, 'G2', True)
+    """
+    text = structure_text(S, labels)
+    where = dict(vertex_of or {})
+    units = [("", S, text)]
+    order = series_parts(S)
+    if order is not None:
+        rows = [(p, _row_structure(S, [p])[0]) for p in order]
+        units = [(p, sub, _row_text(text, sub)) for p, sub in rows]
+    widest, tallest, part, excess = 0.0, 0.0, "", -math.inf
+    for name, sub, sub_text in units:
+        layout = structure_layout(
+            sub, _no_text, text=sub_text,
+            vertex_of={n: where[n] for n in sub.blocks} if where else None,
+            vertex_names=vertex_names,
+        )  # fmt: skip
+        w, h = _width(layout), layout.bounds[3] - layout.bounds[2]
+        widest, tallest = max(widest, w), max(tallest, h)
+        if max(w - width, h - PAGE_HEIGHT) > excess:
+            part, excess = name, max(w - width, h - PAGE_HEIGHT)
+    fits = widest <= width + 1e-9 and tallest <= PAGE_HEIGHT
+    return PageBound(widest, tallest, part, fits)
 
 
 def series_parts(S: Structure) -> list[str] | None:

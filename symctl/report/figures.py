@@ -288,11 +288,11 @@ def _structure_figure(res, rec, circuit: str, names):
     title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
     S, verdict = rec.structure, rec.compatibility
     where = verdict.assignment.vertex_of if verdict.ok and verdict.assignment else None
-    values = [latex(b.gain) for b in S.blocks.values() if b.kind == "gain" and b.gain is not None]
+    gains = (b.gain for b in S.blocks.values() if b.kind == "gain" and b.gain is not None)
     if (
         circuit == "general"
         and rec.firing is not None
-        and any(visible_length(v) > KEY_LENGTH for v in values)
+        and any(visible_length(latex(g)) > KEY_LENGTH for g in gains)  # stops at the first
     ):
         S = rec.firing.circuits[0].structure
         diagram = CIRCUIT_SPECS[circuit].diagram.replace(" (symbolic P)", "")
