@@ -261,6 +261,7 @@ def ei_circuit(
     found: list[EICandidate] = []
     best = None
     for circuit in _candidates(circuits, fs.G2.order):
+        deadline = whole if shared else Deadline(whole.seconds)  # this circuit's search
         try:
             label, templates = templates_of(fs, circuit)
         except ParameterError as exc:  # a class of another order, or N = 0
@@ -268,7 +269,6 @@ def ei_circuit(
                                      f"cannot realize: {exc}"))  # fmt: skip
             continue
         outcome = None
-        deadline = whole if shared else Deadline(whole.seconds)  # this circuit's search
         for t in templates:
             verdict, k, model = _fewest_mixed(G, t, poles, deadline)
             if verdict == "unknown" and t.label == "general":
