@@ -35,6 +35,7 @@ import z3
 
 import symctl
 from symctl import MuscleModel, augment, lqr_gains, z
+from symctl._util.deadline import Deadline
 from symctl.compatibility.structure import Structure
 from symctl.discovery.dale import controller_of, poles_of, templates_of
 from symctl.discovery.signs import encode
@@ -51,7 +52,7 @@ def previous(fs, circuit, poles) -> tuple[str, float]:
     t0 = time.perf_counter()
     verdicts = []
     for t in templates_of(fs, circuit)[1]:
-        enc = encode(t, poles, timeout=TIMEOUT)
+        enc = encode(t, poles, Deadline(TIMEOUT))
         ctx = enc.solver.ctx
         s = z3.SolverFor("QF_NRA", ctx=ctx)
         s.set("timeout", int(TIMEOUT * 1000))

@@ -38,7 +38,8 @@ def _say(text: str) -> None:
 @click.option("--sensor-delay", type=int, default=None, help="[default: the model's, else 1]")
 @click.option("--actuator-delay", type=int, default=None, help="[default: the model's, else 1]")
 @click.option("--timeout", type=float, default=30.0, show_default=True,
-              help="Seconds for each circuit's search.")  # fmt: skip
+              help="Seconds for each circuit's decision, every stage included (--ei: for each "
+              "circuit searched; --atlas: for each search).")  # fmt: skip
 @click.option("--ei", is_flag=True, help="Also find the cheapest E/I circuit (interneurons).")
 @click.option(
     "--atlas",

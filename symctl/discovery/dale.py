@@ -22,8 +22,14 @@ The question is a formula of nonlinear real arithmetic
   the witness circuit;
 * **infeasible** (``False``): z3 proved the formula unsatisfiable, so no
   realization of this circuit is E/I (with stable, nonzero sections);
-* **not decided** (``None``): z3 stopped at ``timeout``; ``reason`` says what
-  was tried.
+* **not decided** (``None``): the time ran out (or an encoding passed its size
+  limit); ``reason`` says what was tried.
+
+``timeout`` bounds the whole call: one deadline
+(:class:`~symctl._util.deadline.Deadline`) is checked by every stage. Each z3
+query gets the time left, the numeric search and the building of the
+polynomial equations stop when it passes, and whatever is left undone makes
+the verdict "not decided", with the stage that ran out in ``reason``.
 
 >>> import sympy as sp
 >>> import symctl
@@ -38,21 +44,21 @@ False
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
 import sympy as sp
 
-from symctl._util.validate import bounded_number, nonneg_int
+from symctl._util.deadline import Deadline, Unfinished, deadline_of
+from symctl._util.validate import nonneg_int
 from symctl.compatibility.structure import Structure
 from symctl.design.controller import controller_tf
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.discovery.circuitclass import CircuitClass
 from symctl.discovery.fibre import binary_rationals
-from symctl.discovery.pattern import Pattern
+from symctl.discovery.pattern import MAX_ORDER, Pattern
 from symctl.discovery.signs import (
     NAMED,
     Template,
@@ -77,7 +83,16 @@ METHOD = "z3 nlsat (a complete decision procedure for nonlinear real arithmetic)
 """The method named in every decided result."""
 
 MAX_TIMEOUT = 3600.0
-"""Most seconds one z3 call may take."""
+"""Most seconds a ``timeout`` may give."""
+
+GENERAL_Z3_FIRST = 3.0
+"""Seconds z3 gets on the general circuit before the numeric search (:func:`solve`)."""
+
+GENERAL_SEARCH = 20.0
+"""Most seconds of the general circuit's numeric search."""
+
+WITNESS_PIN = 0.5
+"""Most seconds of each z3 call that pins a witness's value to a rational."""
 
 
 @dataclass(frozen=True)
@@ -208,6 +223,12 @@ def templates_of(factorization, circuit) -> tuple[str, list[Template]]:
             raise NotRealizableError(
                 "circuit: G2 is a constant (order 0), so it has no neurons of its own to sign"
             )
+        if circuit == "general" and n > MAX_ORDER:
+            raise ParameterError(
+                f"circuit: the general circuit is decided up to order {MAX_ORDER} (its "
+                f"equations grow as n! n^2 terms), but this G2 has order {n}; take "
+                "'controllable' or 'observable'"
+            )
         return circuit, [template(factorization, circuit)]
     if isinstance(circuit, Pattern):
         patterns, label, delays = [circuit], circuit.text, "branch"
@@ -267,9 +288,11 @@ def dale(
         The circuit of :math:`G_2`: the paper's general (every entry of a
         similarity transform nonzero) or canonical circuits, or a class of
         :func:`symctl.atlas` (each of its representative patterns is tried).
-    timeout : float
-        Seconds for each pattern's search (z3 and, for the general circuit, the numeric search;
-        default 30, at most 3600).
+    timeout : float or Deadline
+        Seconds for the whole call (default 30, at most 3600), shared by every
+        pattern and stage (z3, the numeric search of the general circuit, the
+        equations); or a :class:`~symctl._util.deadline.Deadline` already running
+        (shared with other calls, or on a clock of one's own).
 
     Returns
     -------
@@ -300,19 +323,20 @@ def dale(
     ...
     symctl.errors.ParameterError: circuit: must be one of ('general', 'controllable', ...
     """
-    t0 = time.perf_counter()
+    deadline = deadline_of(timeout, "timeout", MAX_TIMEOUT)
     G, ds, da = controller_of(G, sensor_delay, actuator_delay)
-    timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     fs = factor(G, ds, da)
     label, templates = templates_of(fs, circuit)
     poles = poles_of(G)
     tried: list[str] = []
+    verdicts = []
     for t in templates:
-        verdict, model = solve(G, t, poles, timeout, tried)
+        verdict, model = solve(G, t, poles, deadline, tried)
         if verdict == "sat":
-            return _witness(G, fs, t, model, label, tried, t0)
-    if all(v.endswith("unsat") for v in tried):
-        realizes = _realizes(templates, poles, timeout)
+            return _witness(G, fs, t, model, label, tried, deadline)
+        verdicts.append(verdict)
+    if all(v == "unsat" for v in verdicts):
+        realizes = _realizes(templates, poles, deadline)
         why = {
             True: "it realizes G, but never with every neuron excitatory or inhibitory",
             False: "it does not realize this G at all, whatever the signs",
@@ -323,21 +347,24 @@ def dale(
             f"({'; '.join(tried)}), with stable nonzero sections: {why}"
         )
         return DaleResult(False, None, {}, METHOD, reason, label, G=G, realizes=realizes,
-                          elapsed=time.perf_counter() - t0)  # fmt: skip
+                          elapsed=deadline.elapsed())  # fmt: skip
     reason = (
-        f"not decided: z3 gave up within timeout = {timeout:g} s ({'; '.join(tried)}); "
+        f"not decided within timeout = {deadline.seconds:g} s ({'; '.join(tried)}); "
         "raise timeout to search longer"
     )
-    return DaleResult(None, None, {}, METHOD, reason, label, G=G,
-                      elapsed=time.perf_counter() - t0)  # fmt: skip
+    return DaleResult(None, None, {}, METHOD, reason, label, G=G, elapsed=deadline.elapsed())
 
 
-def _realizes(templates, poles, timeout: float) -> bool | None:
+def _realizes(templates, poles, deadline: Deadline) -> bool | None:
     """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
     unknown = False
     for t in templates:
-        enc = encode(t, poles, timeout=timeout, relax=True)
-        verdict, _ = decide(enc, tuple(enc.mixed), budget=timeout)
+        try:
+            enc = encode(t, poles, deadline, relax=True)
+        except Unfinished:
+            unknown = True
+            continue
+        verdict, _ = decide(enc, tuple(enc.mixed), deadline=deadline)
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"
@@ -345,34 +372,54 @@ def _realizes(templates, poles, timeout: float) -> bool | None:
 
 
 def solve(
-    G, t: Template, poles, timeout: float, tried: list, witness: bool = True
+    G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True
 ) -> tuple[str, dict | None]:
     """Decide one template: z3 first (briefly), the general circuit's numeric search, z3 again.
 
-    The numeric search runs for the general circuit of a numeric ``G`` only. Returns
-    ``(verdict, model)``, the model pinned to rationals when ``witness`` (else None);
-    ``tried`` gets one line per attempt.
+    The numeric search runs for the general circuit of a numeric ``G`` only; every
+    stage stops at ``deadline``. Returns ``(verdict, model)``, the model pinned to
+    rationals when ``witness`` (else None); ``tried`` gets one line per attempt.
     """
-    start = time.perf_counter()
-    enc = encode(t, poles, timeout=timeout)
     general = t.label == "general" and not G.free_symbols - {z}
-    verdict, assume = decide(enc, budget=min(timeout, 3.0) if general else timeout)
+    try:
+        enc = encode(t, poles, deadline)
+    except Unfinished as exc:  # out of time, or the equations too large: z3 is not asked
+        enc = None
+        tried.append(f"{t.label}: z3 not asked ({exc})")
+    verdict, assume = "unknown", []
+    if enc is not None:
+        verdict, assume = decide(
+            enc, deadline=deadline.within(GENERAL_Z3_FIRST) if general else deadline
+        )
     if verdict == "unknown" and general:
-        found = search_general(G, t, budget=min(timeout, 20.0))
-        if found is not None:
-            tried.append("general: z3 undecided in 3 s; Nelder-Mead found a witness, made exact")
-            return "sat", {"values": found}
-        left = timeout - (time.perf_counter() - start)
-        if left > 0:
-            verdict, assume = decide(enc, budget=left)
-    tried.append(f"{t.label}: z3 {verdict}")
+        if deadline.expired():
+            tried.append("general: no time left for the numeric search")
+        else:
+            found = search_general(G, t, deadline=deadline.within(GENERAL_SEARCH))
+            if found is not None:
+                tried.append(
+                    f"general: z3 undecided in {GENERAL_Z3_FIRST:g} s; Nelder-Mead found a "
+                    "witness, made exact"
+                )
+                return "sat", {"values": found}
+            tried.append("general: Nelder-Mead found no witness")
+        if enc is not None:
+            verdict, assume = decide(enc, deadline=deadline)
+    if enc is not None:
+        tried.append(f"{t.label}: z3 {verdict}")
     if verdict != "sat" or not witness:
         return verdict, None
     order = [*t.sections, *t.unknowns]
-    return verdict, refine(enc, order, timeout=min(timeout, 0.5), keep=assume)
+    try:
+        return verdict, refine(enc, order, deadline=deadline, cap=WITNESS_PIN, keep=assume)
+    except Unfinished as exc:  # z3 found one, but it is not exact yet: not a verdict
+        tried.append(f"{t.label}: the witness not made exact ({exc})")
+        return "unknown", None
 
 
-def _witness(G, fs, t: Template, model: dict, label: str, tried, t0, signed=True) -> DaleResult:
+def _witness(
+    G, fs, t: Template, model: dict, label: str, tried, deadline, signed=True
+) -> DaleResult:
     """The exact witness circuit of a model, verified (see the module text).
 
     ``signed=False`` (a witness with mixed neurons allowed) skips the sign check.
@@ -399,7 +446,7 @@ def _witness(G, fs, t: Template, model: dict, label: str, tried, t0, signed=True
     )
     return DaleResult(
         True, whole, signs, METHOD, reason, label, witness, R2, sections, True,
-        time.perf_counter() - t0, G, True,
+        deadline.elapsed(), G, True,
     )  # fmt: skip
 
 

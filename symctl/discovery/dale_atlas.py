@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from symctl._util.deadline import Deadline
 from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
 from symctl.design.tf import DiscreteTF
 from symctl.discovery.dale import MAX_TIMEOUT, _realizes, controller_of, poles_of, solve
@@ -176,14 +177,18 @@ def _sample(order: int, ds: int, da: int, gen: np.random.Generator, i: int) -> D
 
 
 def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
-    """Some pattern realizes ``G`` with every neuron E or I (``relax``: signs free)."""
+    """Some pattern realizes ``G`` with every neuron E or I (``relax``: signs free).
+
+    One search: ``timeout`` seconds for every pattern and stage together.
+    """
+    deadline = Deadline(timeout)
     fs = factor(G, ds, da)
     templates = [template(fs, p, delays) for p in patterns]
     if relax:
-        return _realizes(templates, poles_of(G), timeout)
+        return _realizes(templates, poles_of(G), deadline)
     unknown = False
     for t in templates:
-        verdict, _ = solve(G, t, poles_of(G), timeout, [], witness=False)
+        verdict, _ = solve(G, t, poles_of(G), deadline, [], witness=False)
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"
@@ -251,8 +256,10 @@ def dale_atlas(
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each z3 search (default 10; three times that for the generic
-        controller, which has three more unknowns).
+        Seconds for each search, every stage included (default 10; three times that
+        for the generic controller, which has three more unknowns). A class makes at
+        most ``2 * samples + 2`` searches, so the table takes at most about
+        ``(2 * samples + 4) * timeout`` seconds per class, over ``workers``.
     workers : int
         Processes (default 1: in this process; more use dask's local cluster).
     scheduler : str, optional

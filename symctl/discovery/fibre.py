@@ -24,13 +24,16 @@ from functools import cache
 import sympy as sp
 from flint import fmpq, fmpq_mat
 
+from symctl._util.deadline import Unfinished
 from symctl.discovery.pattern import Pattern
 from symctl.symbols import z
 
 __all__ = [
     "MAX_FIBRE",
+    "MAX_TERMS",
     "binary_rationals",
     "coefficient_polynomials",
+    "coefficient_polys",
     "coefficient_symbols",
     "real_solutions",
     "solve_at",
@@ -49,14 +52,85 @@ def coefficient_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol,
     return sp.symbols(f"a_0:{n}"), sp.symbols(f"c_0:{n}")
 
 
+MAX_TERMS = 250_000
+"""Most terms the minors of :func:`coefficient_polys` may hold at once (the general
+circuit of order 7 needs about 10^5, of order 8 about 10^6)."""
+
+
+def coefficient_polys(F, H, M, ring, *, deadline=None) -> tuple[list, list]:
+    r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of
+    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each, as polynomials of ``ring``.
+
+    ``ring`` is a SymPy :func:`~sympy.polys.rings.ring` whose generators include
+    :math:`z` and every symbol of the entries. Both are determinants, expanded by
+    minors (division-free, exact): :math:`\det(zI - F)` and the bordered
+    :math:`M \operatorname{adj}(A) H = -\det\begin{bmatrix} A & H \\ M & 0 \end{bmatrix}`.
+    ``deadline`` (a :class:`~symctl._util.deadline.Deadline`) is checked as the minors
+    grow; :class:`~symctl._util.deadline.Unfinished` when they pass :data:`MAX_TERMS`.
+
+    >>> import sympy as sp
+    >>> from sympy.polys.rings import ring
+    >>> from symctl import z
+    >>> from symctl.discovery.fibre import coefficient_polys
+    >>> f, h, m = sp.symbols("f h m")
+    >>> R, *_ = ring([f, h, m, z], sp.QQ)
+    >>> coefficient_polys(sp.Matrix([[f]]), sp.Matrix([[h]]), sp.Matrix([[m]]), R)
+    ([-f], [h*m])
+    """
+    n = F.shape[0]
+    zi = ring.symbols.index(z)
+    A = [[ring.from_expr(z * int(i == j) - F[i, j]) for j in range(n)] for i in range(n)]
+    bordered = [[*A[i], ring.from_expr(H[i, 0])] for i in range(n)]
+    bordered.append([*(ring.from_expr(M[0, j]) for j in range(n)), ring.zero])
+    charpoly = _z_coefficients(_det(A, ring, deadline, n), zi, n)
+    numer = _z_coefficients(-_det(bordered, ring, deadline, n), zi, n)
+    return charpoly, numer
+
+
+def _det(rows, ring, deadline, n):
+    """The determinant of a square matrix of ring elements, by minors of the first rows."""
+    size = len(rows)
+    minors = {0: ring.one}  # column set (bits) -> the minor of the first k rows on it
+    for k, row in enumerate(rows):
+        grown = {}
+        for cols, minor in minors.items():
+            for j, entry in enumerate(row):
+                if not entry or cols >> j & 1:
+                    continue
+                term = minor * entry
+                key = cols | 1 << j
+                grown[key] = grown.get(key, ring.zero) + (
+                    -term if (cols >> j).bit_count() % 2 else term
+                )
+            if deadline is not None:
+                deadline.check(f"the coefficient polynomials of an order-{n} realization")
+        minors = {c: m for c, m in grown.items() if m}
+        if sum(len(m) for m in minors.values()) > MAX_TERMS:
+            raise Unfinished(
+                f"the coefficient polynomials of an order-{n} realization exceed "
+                f"{MAX_TERMS} terms (minors of {k + 1} rows)"
+            )
+    return minors.get((1 << size) - 1, ring.zero)
+
+
+def _z_coefficients(poly, zi: int, n: int) -> list:
+    """``poly``'s coefficients of :math:`z^0..z^{n-1}` (polynomials of the same ring)."""
+    ring = poly.ring
+    out = [{} for _ in range(n)]
+    for monom, coeff in poly.terms():
+        if monom[zi] < n:
+            out[monom[zi]][(*monom[:zi], 0, *monom[zi + 1 :])] = coeff
+    return [ring(terms) for terms in out]
+
+
 def coefficient_polynomials(F, H, M) -> tuple[list[sp.Expr], list[sp.Expr]]:
     r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of
-    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each: a realization's :math:`a` and :math:`c`."""
-    n = F.shape[0]
-    A = z * sp.eye(n) - F
-    charpoly = sp.Poly(A.det(method="berkowitz"), z).all_coeffs()[::-1][:n]
-    numer = sp.Poly(sp.expand((M * A.adjugate() * H)[0, 0]), z).all_coeffs()[::-1]
-    return charpoly, numer + [sp.Integer(0)] * (n - len(numer))
+    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each: a realization's :math:`a` and :math:`c`
+    (SymPy expressions; see :func:`coefficient_polys`)."""
+    symbols = set().union(*(m.free_symbols for m in (F, H, M))) - {z}
+    ring, *_ = sp.ring([*sorted(symbols, key=str), z], sp.QQ)
+    charpoly, numer = coefficient_polys(F, H, M, ring)
+    return [p.as_expr() for p in charpoly], [p.as_expr() for p in numer]
 
 
 @cache

@@ -35,10 +35,12 @@ from types import MappingProxyType
 
 import sympy as sp
 
-from symctl._util.validate import bounded_number
+from symctl._util.deadline import Deadline, Unfinished, deadline_of
 from symctl.discovery.dale import (
+    GENERAL_SEARCH,
     MAX_TIMEOUT,
     METHOD,
+    WITNESS_PIN,
     controller_of,
     poles_of,
     search_general,
@@ -176,25 +178,30 @@ def _candidates(circuits, n: int):
     return out
 
 
-def _fewest_mixed(G, t, poles, timeout: float):
+def _fewest_mixed(G, t, poles, deadline: Deadline):
     """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness.
 
     Subsets of neurons allowed to be mixed are tried by size (each with every sign
     assignment of the rest, :func:`~symctl.discovery.signs.decide`); the first
     satisfiable size is the minimum, proved when every smaller one was refuted.
     """
-    enc = encode(t, poles, timeout=timeout, relax=True)
+    try:
+        enc = encode(t, poles, deadline, relax=True)
+    except Unfinished:
+        return "unknown", None, None
     names = list(enc.mixed)
     unknown = False
-    deadline = time.perf_counter() + timeout
     for k in range(len(names) + 1):
         for free in itertools.combinations(names, k):
-            left = deadline - time.perf_counter()
-            if left <= 0:
+            if deadline.expired():
                 return "unknown", None, None
-            verdict, assume = decide(enc, free, budget=left)
+            verdict, assume = decide(enc, free, deadline=deadline)
             if verdict == "sat":
-                model = refine(enc, [*t.sections, *t.unknowns], timeout=0.5, keep=assume)
+                order = [*t.sections, *t.unknowns]
+                try:
+                    model = refine(enc, order, deadline=deadline, cap=WITNESS_PIN, keep=assume)
+                except Unfinished:  # satisfiable, but the witness is not exact in time
+                    return "unknown", None, None
                 return ("sat" if not unknown else "bound"), k, model | {"proved": not unknown}
             unknown |= verdict == "unknown"
     return ("unknown" if unknown else "unsat"), None, None
@@ -220,8 +227,10 @@ def ei_circuit(
         The circuits to search (names, ``CircuitClass`` or ``Pattern``); default the
         general, controllable and observable circuits and, when :math:`G_2` has
         order 1 or 2, every class of ``symctl.atlas(order)``.
-    timeout : float
-        Seconds for each circuit's search (default 30).
+    timeout : float or Deadline
+        Seconds for each circuit's search, every stage included (default 30, at most
+        3600; the call takes at most about this times the number of circuits), or a
+        :class:`~symctl._util.deadline.Deadline` that bounds the whole call instead.
 
     Returns
     -------
@@ -244,13 +253,15 @@ def ei_circuit(
     ('controllable', 0, [('observable', 1), ('controllable', 0)])
     """
     t0 = time.perf_counter()
+    shared = isinstance(timeout, Deadline)
+    whole = deadline_of(timeout, "timeout", MAX_TIMEOUT)
     G, ds, da = controller_of(G, sensor_delay, actuator_delay)
-    timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     fs = factor(G, ds, da)
     poles = poles_of(G)
     found: list[EICandidate] = []
     best = None
     for circuit in _candidates(circuits, fs.G2.order):
+        deadline = whole if shared else Deadline(whole.seconds)  # this circuit's search
         try:
             label, templates = templates_of(fs, circuit)
         except ParameterError as exc:  # a class of another order, or N = 0
@@ -259,9 +270,9 @@ def ei_circuit(
             continue
         outcome = None
         for t in templates:
-            verdict, k, model = _fewest_mixed(G, t, poles, timeout)
+            verdict, k, model = _fewest_mixed(G, t, poles, deadline)
             if verdict == "unknown" and t.label == "general":
-                values = search_general(G, t, budget=min(timeout, 20.0))
+                values = search_general(G, t, deadline=deadline.within(GENERAL_SEARCH))
                 if values is not None:
                     verdict, k, model = "sat", 0, {"values": values, "mixed": {}}
             if verdict in ("sat", "bound") and (outcome is None or k < outcome[1]):
@@ -303,7 +314,7 @@ def _relays(G, fs, t, model):
 
     values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}
-    witness = _witness(G, fs, t, {"values": values}, t.label, [], 0.0, signed=False)
+    witness = _witness(G, fs, t, {"values": values}, t.label, [], Deadline(0.0), signed=False)
     relays, signs = [], {}
     for source, out in outgoing_synapses(witness.witness).items():
         ws = [_expr(s.weight) for s in out]

@@ -52,15 +52,16 @@ algebraic witness, ``unsat`` is a proof that none exists.
 from __future__ import annotations
 
 import itertools
-import time
-from dataclasses import dataclass
+import threading
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 import sympy as sp
 import z3
 
+from symctl._util.deadline import Deadline, Unfinished
 from symctl.compatibility.structure import Structure
-from symctl.discovery.fibre import coefficient_polynomials
+from symctl.discovery.fibre import coefficient_polys
 from symctl.discovery.pattern import Pattern
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
@@ -98,8 +99,11 @@ class Template:
     unknowns : tuple of sympy.Symbol
         Entries of ``R2`` that are free (nonzero); ``signed`` ones are :math:`\\pm 1`.
     signed : tuple of sympy.Symbol
-    equations : tuple of sympy.Expr
-        Polynomials that vanish exactly when ``R2`` realizes :math:`G_2`.
+    target : tuple
+        ``(a, c)``, :math:`G_2`'s denominator and numerator coefficients (ascending,
+        as in :func:`~symctl.realization.realization.split_proper`) that a pattern's
+        ``R2`` must match: :func:`encode` builds those equations (empty for a canonical
+        form, which realizes :math:`G_2` by construction).
     circuit : Circuit
         The whole controller's circuit in the unknowns.
     outgoing : dict
@@ -115,7 +119,7 @@ class Template:
     R2: Realization
     unknowns: tuple
     signed: tuple
-    equations: tuple
+    target: tuple
     circuit: Circuit
     outgoing: dict
     weights: tuple
@@ -146,13 +150,10 @@ def template(factorization, circuit, delays: str = "branch") -> Template:
     tree = set(pattern.tree_slots() or ())
     F, H, M = pattern.matrices(syms)
     N, c, a = split_proper(G2)
-    charpoly, numer = coefficient_polynomials(F, H, M)
-    equations = [sp.expand(p - q) for p, q in zip(charpoly, a, strict=True)]
-    equations += [sp.together(p - q) for p, q in zip(numer, c, strict=True)]
     R2 = Realization(F, H, M, N, G2.dt)
     unknowns = tuple(syms[k] for k in pattern.indices)
     signed = tuple(syms[k] for k in sorted(tree))
-    return _finish(label, factorization, R2, unknowns, signed, tuple(equations), delays)
+    return _finish(label, factorization, R2, unknowns, signed, (tuple(a), tuple(c)), delays)
 
 
 def outgoing_synapses(circuit: Circuit) -> dict[str, tuple]:
@@ -164,12 +165,12 @@ def outgoing_synapses(circuit: Circuit) -> dict[str, tuple]:
     }
 
 
-def _finish(label, factorization, R2, unknowns, signed, equations, delays) -> Template:
+def _finish(label, factorization, R2, unknowns, signed, target, delays) -> Template:
     circuit = Circuit.from_structure(Structure.from_factorization(factorization, R2, delays))
     outgoing = {n: tuple(s.weight for s in out) for n, out in outgoing_synapses(circuit).items()}
     weights = [s.weight for nr in circuit.neurons for s in (*nr.synapses, *nr.self_terms)]
     return Template(
-        label, factorization, R2, unknowns, signed, equations, circuit, outgoing,
+        label, factorization, R2, unknowns, signed, target, circuit, outgoing,
         tuple(weights), delays,
     )  # fmt: skip
 
@@ -184,50 +185,72 @@ def to_z3(expr, env: dict, ctx=None):
     """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only).
 
     ``ctx`` is the z3 context of the terms (default: that of ``env``'s first term).
+    The term follows the expression's tree (its sums, products and powers, in
+    SymPy's order), built through z3's C API: the Python API coerces every
+    argument, which costs seconds on the general circuit's 10^4 terms.
     """
     if ctx is None:
         ctx = next(iter(env.values())).ctx if env else None
     expr = _expr(expr)
     if expr.is_Symbol:
         return env[expr]
-    if expr.is_Rational:
-        return z3.RealVal(int(expr.p), ctx) / z3.RealVal(int(expr.q), ctx)
-    if expr.is_Float:
-        q = Fraction(float(expr))
-        return z3.RealVal(q.numerator, ctx) / z3.RealVal(q.denominator, ctx)
-    if expr.is_Add:
-        return z3.Sum([to_z3(t, env, ctx) for t in expr.args])
-    if expr.is_Mul:
-        return z3.Product([to_z3(t, env, ctx) for t in expr.args])
+    if expr.is_Rational or expr.is_Float:
+        q = Fraction(int(expr.p), int(expr.q)) if expr.is_Rational else Fraction(float(expr))
+        return _apply(z3.Z3_mk_div, [z3.RealVal(q.numerator, ctx), z3.RealVal(q.denominator, ctx)])
+    if expr.is_Add or expr.is_Mul:
+        args = [to_z3(t, env, ctx) for t in expr.args]
+        return _apply(z3.Z3_mk_add if expr.is_Add else z3.Z3_mk_mul, args)
     if expr.is_Pow and expr.exp.is_Integer:
         base = to_z3(expr.base, env, ctx)
         k = int(expr.exp)
-        power = z3.Product([base] * abs(k)) if abs(k) > 1 else base
+        power = _apply(z3.Z3_mk_mul, [base] * abs(k)) if abs(k) > 1 else base
         return power if k > 0 else 1 / power
     raise ParameterError(f"G: a coefficient {expr} is not a rational function of the unknowns")
 
 
+def _apply(make, args: list):
+    """The z3 term ``make(args)`` (``Z3_mk_add``, ``Z3_mk_mul`` or ``Z3_mk_div`` of two).
+
+    The result is wrapped at once, so z3 counts a reference to it; ``args`` stay
+    alive (and referenced) until it is made.
+    """
+    ctx = args[0].ctx
+    array = [a.as_ast() for a in args]
+    if make is z3.Z3_mk_div:
+        return z3.ArithRef(make(ctx.ref(), *array), ctx)
+    return z3.ArithRef(make(ctx.ref(), len(array), (z3.Ast * len(array))(*array)), ctx)
+
+
 @dataclass(frozen=True)
 class Encoding:
-    """The z3 formula of one template (see the module text)."""
+    """The z3 formula of one template (see the module text).
+
+    ``running`` holds a z3 call that outlived its deadline (see :func:`check`): while
+    it runs, nothing else may touch the formula's context.
+    """
 
     env: dict
     solver: z3.Solver
     signs: dict
     mixed: dict
+    running: list = field(default_factory=list, repr=False, compare=False)
 
 
-def encode(t: Template, poles, *, timeout: float, relax: bool = False, fixed=None) -> Encoding:
-    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed)."""
-    symbols = sorted(
-        {*t.sections, *t.unknowns}
-        | set().union(*(_expr(w).free_symbols for w in (*t.weights, *t.equations))),
-        key=str,
-    )
+def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed=None) -> Encoding:
+    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed).
+
+    Building a pattern's equations is checked against ``deadline`` (a
+    :class:`~symctl._util.deadline.Deadline`): :class:`~symctl._util.deadline.Unfinished`
+    when it passes, or when the equations pass :data:`~symctl.discovery.fibre.MAX_TERMS`.
+    """
+    R2 = t.R2
+    entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))
+    symbols = {*t.sections, *t.unknowns}.union(*(_expr(w).free_symbols for w in entries))
+    symbols = sorted(symbols - {z}, key=str)
     ctx = z3.Context()  # its own context: a call never depends on an earlier one
     env = {s: z3.Real(str(s), ctx) for s in symbols}
     solver = z3.SolverFor("QF_NRA", ctx=ctx)
-    solver.set("timeout", max(1, int(timeout * 1000)))
+    solver.set("timeout", _ms(deadline))
     f = t.factorization
     for e in (*f.sensor_eps, *f.actuator_eps):
         x = env[e]
@@ -239,9 +262,8 @@ def encode(t: Template, poles, *, timeout: float, relax: bool = False, fixed=Non
         solver.add(env[u] != 0)
     for u in t.signed:
         solver.add(env[u] * env[u] == 1)
-    for eq in t.equations:
-        num, den = sp.fraction(sp.together(eq))
-        solver.add(to_z3(sp.expand(num), env, ctx) == 0)
+    for num, den in _equations(t, symbols, deadline):
+        solver.add(to_z3(num, env, ctx) == 0)
         if not den.is_number:
             solver.add(to_z3(den, env, ctx) != 0)
     for w in t.weights:
@@ -261,32 +283,123 @@ def encode(t: Template, poles, *, timeout: float, relax: bool = False, fixed=Non
             solver.add(rule)
     for sym, value in (fixed or {}).items():
         solver.add(env[sym] == to_z3(value, env, ctx))
+    deadline.check(f"the z3 formula of {t.label}")
     return Encoding(env, solver, signs, mixed)
 
 
-def decide(enc: Encoding, free=(), *, budget: float = 30.0) -> tuple[str, list]:
+def _equations(t: Template, symbols, deadline: Deadline):
+    r"""``(numerator, denominator)`` of each equation of a pattern's ``R2`` (none for a canonical form).
+
+    :math:`\det(zI - F) = a(z)` and :math:`M \operatorname{adj}(zI - F) H = c(z)`
+    coefficient by coefficient, each cleared of the denominator of its target
+    (a rational function of the sections), as SymPy expressions; the polynomial
+    arithmetic runs in the ring over ``symbols`` and :math:`z`.
+    """
+    if not t.target:
+        return
+    ring, *_ = sp.ring([*symbols, z], sp.QQ)
+    charpoly, numer = coefficient_polys(t.R2.F, t.R2.H, t.R2.M, ring, deadline=deadline)
+    for p, q in zip((*charpoly, *numer), (*t.target[0], *t.target[1]), strict=True):
+        num, den = sp.fraction(sp.together(q))
+        yield _as_expr(p * ring.from_expr(den) - ring.from_expr(num), deadline, t.label), den
+
+
+CHUNK = 500
+"""Terms of a polynomial turned into a SymPy expression between two looks at the deadline."""
+
+
+def _as_expr(poly, deadline: Deadline, label: str) -> sp.Expr:
+    """``poly.as_expr()``, :data:`CHUNK` terms at a time with the deadline checked in between.
+
+    SymPy sorts the terms of a sum into one canonical order, so the expression is the
+    same, and so is z3's formula (whose search depends on the order of its terms).
+    """
+    terms = poly.terms()
+    parts = []
+    for start in range(0, len(terms), CHUNK):
+        deadline.check(f"the z3 formula of {label}")
+        parts.append(poly.ring(dict(terms[start : start + CHUNK])).as_expr())
+    return sp.Add(*parts)
+
+
+def _ms(deadline: Deadline, cap: float | None = None) -> int:
+    """z3's timeout in milliseconds: the time left (at most ``cap`` seconds), at least 1."""
+    left = deadline.left() if cap is None else min(cap, deadline.left())
+    return max(1, int(left * 1000))
+
+
+GRACE = 0.25
+"""Seconds a z3 call may run past its timeout before :func:`check` stops waiting for it."""
+
+
+def check(enc: Encoding, assume, deadline: Deadline, cap: float | None = None, *, grace=GRACE):
+    """``enc.solver.check(*assume)`` within the time ``deadline`` leaves (at most ``cap`` s).
+
+    z3 gets that time as its timeout, but its nonlinear core can run on for a
+    minute before it notices (big-rational arithmetic that does not poll the
+    timeout, on the general circuit of order 6). So the call runs in a worker
+    thread, and the caller waits at most ``grace`` seconds longer: a call still
+    running then is interrupted and left to finish on its own, and the answer is
+    ``unknown``. Its context is busy until it ends (:func:`idle`).
+    """
+    if not idle(enc, deadline):
+        return z3.unknown
+    left = deadline.left() if cap is None else min(cap, deadline.left())
+    enc.solver.set("timeout", _ms(deadline, cap))
+    out: list = []
+
+    def run(enc=enc, assume=assume):  # holds every z3 object it uses until it ends
+        try:
+            out.append(enc.solver.check(*assume))
+        except z3.Z3Exception as exc:  # pragma: no cover - z3 reports errors as exceptions
+            out.append(exc)
+
+    worker = threading.Thread(target=run, name="symctl-z3", daemon=True)
+    worker.start()
+    worker.join(left + grace)
+    if worker.is_alive():
+        enc.solver.ctx.interrupt()
+        enc.running.append(worker)
+        return z3.unknown
+    if isinstance(out[0], Exception):  # pragma: no cover
+        raise out[0]
+    return out[0]
+
+
+def idle(enc: Encoding, deadline: Deadline) -> bool:
+    """The formula's context is free: no z3 call left running, or it ended before ``deadline``."""
+    while enc.running:
+        enc.running[0].join(deadline.left())
+        if enc.running[0].is_alive():
+            return False
+        enc.running.pop(0)
+    return True
+
+
+def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
     """``(verdict, assumptions)``: one z3 call per sign assignment of the multi-synapse neurons.
 
     nlsat is far faster on a conjunction than on the disjunction of all
     assignments, so the :math:`2^m` assignments (neurons in ``free``, allowed to be
-    mixed, are skipped) are tried in turn, within ``budget`` seconds in all:
+    mixed, are skipped) are tried in turn, each with the time ``deadline`` leaves:
     ``"sat"`` with the assignment that holds, ``"unsat"`` when every one is
-    refuted (a proof), else ``"unknown"``.
+    refuted (a proof), else ``"unknown"`` (at once when the deadline has passed).
     """
-    deadline = time.perf_counter() + budget
+    if deadline.expired() or not idle(enc, deadline):
+        return "unknown", []
     names = [n for n in enc.signs if n not in free]
     fixed = [enc.mixed[n] if n in free else z3.Not(enc.mixed[n]) for n in enc.mixed]
     unknown = False
     for combo in itertools.product((True, False), repeat=len(names)):
-        left = deadline - time.perf_counter()
-        if left <= 0:
+        if deadline.expired():
             return "unknown", []
-        enc.solver.set("timeout", max(1, int(left * 1000)))
         assume = fixed + [b if v else z3.Not(b) for b, v in
                           zip((enc.signs[n] for n in names), combo, strict=True)]  # fmt: skip
-        got = enc.solver.check(*assume)
+        got = check(enc, assume, deadline)
         if got == z3.sat:
             return "sat", assume
+        if enc.running:  # a call left running: its context is not to be touched
+            return "unknown", []
         unknown |= got != z3.unsat
     return ("unknown" if unknown else "unsat"), []
 
@@ -319,20 +432,23 @@ def _candidates(v, count: int = 6):
     return out[:count] if len(out) > count else out
 
 
-def refine(enc: Encoding, order, *, timeout: float = 2.0, keep=()) -> dict:
+def refine(enc: Encoding, order, *, deadline: Deadline, cap: float = 0.5, keep=()) -> dict:
     """A model with as many unknowns rational as z3 allows: each one pinned in turn.
 
     ``order`` lists the symbols, first to last. A symbol whose value is a
     simple rational (denominator at most 1000) is pinned to it; another is
     pinned to the first simple rational near its value for which the formula
-    stays satisfiable (each try at most ``timeout`` seconds), or left to the
-    equations. Pinning the free directions of a family first (the sections,
-    then :math:`F` and :math:`H`) leaves the rest determined by linear
-    equations, so rational too. ``keep`` are assumptions every check keeps
-    (and the current model satisfies).
+    stays satisfiable (each try at most ``cap`` seconds and the time ``deadline``
+    leaves), or left to the equations. Pinning the free directions of a family
+    first (the sections, then :math:`F` and :math:`H`) leaves the rest
+    determined by linear equations, so rational too. ``keep`` are assumptions
+    every check keeps (and the current model satisfies).
+
+    Raises :class:`~symctl._util.deadline.Unfinished` when the deadline passes with
+    a symbol not pinned yet (its exact algebraic value would cost more than the
+    budget to verify), or with a z3 call still running (:func:`check`).
     """
     s = enc.solver
-    s.set("timeout", max(1, int(timeout * 1000)))
     pinned: list = list(keep)
     model = s.model()
     for sym in order:
@@ -342,8 +458,13 @@ def refine(enc: Encoding, order, *, timeout: float = 2.0, keep=()) -> dict:
             pinned.append(x == v)
             continue
         for q in _candidates(v):
+            if deadline.expired():
+                raise Unfinished(f"pinning the witness's {sym} to a rational: out of time")
             pin = x == z3.RealVal(q.numerator, x.ctx) / z3.RealVal(q.denominator, x.ctx)
-            if s.check(*pinned, pin) == z3.sat:
+            got = check(enc, [*pinned, pin], deadline, cap)
+            if not idle(enc, deadline):
+                raise Unfinished(f"pinning the witness's {sym}: z3 still running at the deadline")
+            if got == z3.sat:
                 pinned.append(pin)
                 model = s.model()
                 break

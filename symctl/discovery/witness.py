@@ -20,13 +20,13 @@ none exists (:mod:`symctl.discovery.signs`).
 
 from __future__ import annotations
 
-import time
 from fractions import Fraction
 
 import numpy as np
 import sympy as sp
 from scipy.optimize import minimize
 
+from symctl._util.deadline import Deadline
 from symctl.discovery.signs import _expr
 from symctl.realization.factorization import factor
 from symctl.realization.realizers import general_realization
@@ -70,11 +70,13 @@ def _canonical(a, c):
     return F0, H0, c.copy()
 
 
-def search_general(G, t, *, starts: int = 48, seed: int = 0, budget: float = 20.0):
+def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
     """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None.
 
     Sections ``C`` are 1 but for the first, whose sign is tried both ways (only the sign of
-    their product changes :math:`G_2`); ``starts`` Nelder-Mead runs in at most ``budget`` s.
+    their product changes :math:`G_2`); up to ``starts`` Nelder-Mead runs, each stopped (and
+    the search given up) when ``deadline`` (a :class:`~symctl._util.deadline.Deadline`)
+    passes, as is making a point exact.
     """
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
@@ -89,7 +91,6 @@ def search_general(G, t, *, starts: int = 48, seed: int = 0, budget: float = 20.
         if ws
     }
     rng = np.random.default_rng(seed)
-    deadline = time.perf_counter() + budget
 
     def values(theta, sign):
         eps = 0.95 * np.tanh(theta[:k])
@@ -115,8 +116,12 @@ def search_general(G, t, *, starts: int = 48, seed: int = 0, budget: float = 20.
         cond = np.linalg.cond(got[3])
         return dale_margin(groups) - 1e-4 * np.log10(max(cond, 1.0))
 
+    def stop(_x):  # Nelder-Mead's callback, once per iteration
+        if deadline.expired():
+            raise StopIteration
+
     for i in range(starts):
-        if time.perf_counter() > deadline:
+        if deadline.expired():
             break
         sign = 1.0 if i % 2 == 0 else -1.0
         theta0 = np.concatenate([rng.uniform(-1.5, 1.5, k), rng.normal(size=n * n)])
@@ -124,22 +129,25 @@ def search_general(G, t, *, starts: int = 48, seed: int = 0, budget: float = 20.
             lambda th, s=sign: -margin(th, s),
             theta0,
             method="Nelder-Mead",
+            callback=stop,
             options={"maxiter": 400 * (k + n * n), "xatol": 1e-9, "fatol": 1e-12},
         )
-        if -res.fun > 1e-3:
-            exact = _exact(G, t, res.x, sign, k, n)
+        if -res.fun > 1e-3 and not deadline.expired():
+            exact = _exact(G, t, res.x, sign, k, n, deadline)
             if exact is not None:
                 return exact
     return None
 
 
-def _exact(G, t, theta, sign, k, n):
-    """The search's point in exact rationals, or None when rounding breaks a sign."""
+def _exact(G, t, theta, sign, k, n, deadline):
+    """The search's point in exact rationals, or None when rounding breaks a sign (or time is out)."""
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
     c_syms = (*fs.sensor_C, *fs.actuator_C)
     poles = sp.Poly(G.den, z)
     for den in (100, 10**4, 10**6):
+        if deadline.expired():
+            return None
         eps = [_rational(0.95 * np.tanh(x), den) for x in theta[:k]]
         if any(abs(e) >= 1 or e == 0 or poles.eval(e) == 0 for e in eps):
             continue

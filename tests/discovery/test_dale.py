@@ -56,12 +56,14 @@ def second_order(k, a1, a0) -> sp.Expr:
 G_POS = second_order(-R(1, 20), R(1, 2), R(1, 3))
 G_NEG = second_order(R(1, 5), -R(1, 3), -R(1, 4))
 TIMEOUT = 5
+GENERAL_TIMEOUT = 30  # the whole call: z3's first 3 s, then the numeric search (seconds here)
 
 
 @functools.cache
 def _dale(name: str, circuit: str, ds: int | None, da: int | None):
     source = {"paper": GAINS, "order3": GAINS3, "pos": G_POS, "neg": G_NEG}[name]
-    return symctl.dale(source, sensor_delay=ds, actuator_delay=da, circuit=circuit, timeout=TIMEOUT)
+    timeout = GENERAL_TIMEOUT if circuit == "general" else TIMEOUT
+    return symctl.dale(source, sensor_delay=ds, actuator_delay=da, circuit=circuit, timeout=timeout)
 
 
 def _G(name: str) -> sp.Expr:

@@ -1,0 +1,127 @@
+r"""One deadline for a whole computation: every stage asks it how long is left.
+
+A search with a ``timeout`` (:func:`symctl.dale` and the functions that call it)
+makes one :class:`Deadline` and hands it down. A z3 query gets the time that is
+left (:meth:`Deadline.left`), a loop stops when it has passed
+(:meth:`Deadline.check` raises :class:`OutOfTime`, naming the stage), and the
+caller turns :class:`OutOfTime` (an :class:`Unfinished`, as is a stage that
+stops at a size limit) into its "not decided" result. The clock is a
+parameter, so a test can run a stage with a deadline that has already passed,
+or one that passes after a given number of readings, without waiting.
+
+>>> from symctl._util.deadline import Deadline, OutOfTime
+>>> ticks = iter(range(100))
+>>> d = Deadline(2.5, clock=lambda: next(ticks))   # started at tick 0
+>>> d.left(), d.expired()                          # ticks 1 and 2
+(1.5, False)
+>>> try:
+...     d.check("building the equations")          # tick 3
+... except OutOfTime as err:
+...     print(err)
+building the equations: out of time (2.5 s)
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from symctl._util.validate import bounded_number
+
+__all__ = ["Deadline", "OutOfTime", "Unfinished", "deadline_of"]
+
+
+class Unfinished(Exception):
+    """A stage stopped before its end: out of time, or past a size limit (the message says why).
+
+    Internal: the function that set the budget catches it and reports "not
+    decided" with the message (it never reaches the user).
+    """
+
+
+class OutOfTime(Unfinished):
+    """A stage found its :class:`Deadline` passed; ``stage`` says which."""
+
+    def __init__(self, stage: str, seconds: float):
+        self.stage, self.seconds = stage, seconds
+        super().__init__(f"{stage}: out of time ({seconds:g} s)")
+
+
+@dataclass(frozen=True)
+class Deadline:
+    """``seconds`` from its creation on ``clock`` (default :func:`time.perf_counter`).
+
+    Attributes
+    ----------
+    seconds : float
+        The whole budget.
+    clock : callable
+        Returns the time in seconds; injectable for tests.
+    start : float
+        The clock's reading at creation.
+
+    Examples
+    --------
+    >>> from symctl._util.deadline import Deadline
+    >>> d = Deadline(10.0, clock=lambda: 0.0)
+    >>> d.left(), d.within(3.0).left(), d.within(30.0).left()
+    (10.0, 3.0, 10.0)
+    >>> Deadline.passed().expired()
+    True
+    """
+
+    seconds: float
+    clock: Callable[[], float] = field(default=time.perf_counter, repr=False, compare=False)
+    start: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.start is None:
+            object.__setattr__(self, "start", self.clock())
+
+    @classmethod
+    def passed(cls) -> Deadline:
+        """A deadline that has already passed (every stage stops at once)."""
+        return cls(0.0)
+
+    @property
+    def at(self) -> float:
+        """The clock's reading when the time runs out."""
+        return self.start + self.seconds
+
+    def left(self) -> float:
+        """Seconds left (0 once passed)."""
+        return max(0.0, self.at - self.clock())
+
+    def expired(self) -> bool:
+        """The time has run out."""
+        return self.left() <= 0.0
+
+    def elapsed(self) -> float:
+        """Seconds since the start."""
+        return self.clock() - self.start
+
+    def check(self, stage: str) -> None:
+        """Raise :class:`OutOfTime` naming ``stage`` when the time has run out."""
+        if self.expired():
+            raise OutOfTime(stage, self.seconds)
+
+    def within(self, seconds: float) -> Deadline:
+        """A deadline at most ``seconds`` from now and never after this one (same clock)."""
+        now = self.clock()
+        return Deadline(max(0.0, min(seconds, self.at - now)), self.clock, now)
+
+
+def deadline_of(timeout, argname: str = "timeout", high: float = 3600.0) -> Deadline:
+    """``timeout`` as a :class:`Deadline`: seconds from now (in ``[0.001, high]``), or itself.
+
+    >>> from symctl._util.deadline import Deadline, deadline_of
+    >>> deadline_of(5.0).seconds
+    5.0
+    >>> shared = Deadline(60.0)
+    >>> deadline_of(shared) is shared
+    True
+    """
+    if isinstance(timeout, Deadline):
+        return timeout
+    return Deadline(bounded_number(timeout, argname, 1e-3, high))
