@@ -618,6 +618,8 @@ AUDITED = {
     ("symctl.discovery.signs", "encode", "expand"): 2,
     ("symctl.discovery.signs", "encode", "fraction"): 1,
     ("symctl.discovery.signs", "encode", "together"): 1,
+    ("symctl.discovery.signs", "_equations", "fraction"): 1,  # the template's own entries
+    ("symctl.discovery.signs", "_equations", "together"): 1,
     ("symctl.discovery.signs", "value_of", "Poly"): 1,
     ("symctl.discovery.witness", "search_general", "lambdify"): 1,
     ("symctl.discovery.witness", "_exact", "Poly"): 1,
