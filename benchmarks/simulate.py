@@ -318,6 +318,43 @@ def main() -> None:
             f"{name:52} | {res['sec']:8.3f} | {res['before']:15.0f} | {res['peak']:13.0f} | "
             f"{res['peak'] - res['before']:10.0f}"
         )
+    large_circuits(args.repeat)
+
+
+def large_circuits(repeat: int) -> None:
+    """Few loops of a large circuit (the antagonist's general circuit: 332 states, 18 nonzero
+    terms per row): the grouped time loop against the row-by-row one (the previous method)."""
+    from symctl.neural.simulate import GROUPED_LOOPS, _run_groups, _run_rows
+
+    size, n, m, steps, terms = 332, 4, 26, 100, 18
+    gen = np.random.default_rng(1)
+    mask = np.zeros((size, size), dtype=bool)
+    for i in range(size):
+        mask[i, gen.choice(size, terms, replace=False)] = True
+    print()
+    print(
+        f"few loops of a large circuit ({size} states, {terms} terms per row, {m} rates, "
+        f"{steps} steps): the grouped loop (used for a large sparse circuit up to "
+        f"{GROUPED_LOOPS} loops) against the row-by-row loop (the previous method), "
+        "best of --repeat"
+    )
+    head = line("", "grouped", "row by row", "speed-up", "same bits")
+    print(head)
+    print("-" * len(head))
+    for count in (1, 4, 64, GROUPED_LOOPS, 4 * GROUPED_LOOPS):
+        A = np.where(mask[:, :, None], gen.normal(size=(size, size, count)), 0.0) * 0.2
+        Cr = np.where(gen.random((m, size, 1)) < 0.05, gen.normal(size=(m, size, count)), 0.0)
+        w = np.zeros((steps, n, 1))
+        w[5:15] = 1.0
+        outs, secs = [], []
+        for run in (_run_groups, _run_rows):
+            out = np.empty((steps, n + m + size - n, count))
+            args = (A, Cr, n, w, out, list(range(out.shape[1])))
+            secs.append(best(lambda run=run, args=args: run(*args), repeat))
+            outs.append(out)
+        same = np.array_equal(outs[0], outs[1], equal_nan=True)
+        print(line(f"{count:,} loops", f"{secs[0]:.3f} s", f"{secs[1]:.3f} s",
+                   f"{secs[1] / secs[0]:.1f}x", "yes" if same else "NO"))  # fmt: skip
 
 
 if __name__ == "__main__":

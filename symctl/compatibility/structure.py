@@ -61,6 +61,7 @@ import networkx as nx
 import sympy as sp
 
 from symctl._util.display import LatexMixin
+from symctl._util.exact import ring_fractions
 from symctl._util.validate import nonneg_int, positive_int
 from symctl.compatibility.block import KINDS, MAX_WIRE_STEPS, Block, signal_name, signal_names
 from symctl.compatibility.block import block as checked_block
@@ -593,10 +594,17 @@ class Structure(LatexMixin):
 
 # ---------------------------------------------------------------- helpers
 def _is_zero(value) -> bool:
+    """Exactly zero: a rational expression's numerator as a sparse polynomial (no gcd, no
+    expansion of the expression tree), any other by ``cancel``."""
     value = sp.sympify(value)
     if value == 0:
         return True
-    return bool(value.free_symbols) and sp.cancel(value) == 0
+    if not value.free_symbols:
+        return False
+    pairs = ring_fractions([value])
+    if pairs is not None:
+        return not pairs[0][0]
+    return sp.cancel(value) == 0
 
 
 # ---------------------------------------------------------------- the paper's structures
