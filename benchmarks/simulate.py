@@ -324,7 +324,7 @@ def main() -> None:
 def large_circuits(repeat: int) -> None:
     """Few loops of a large circuit (the antagonist's general circuit: 332 states, 18 nonzero
     terms per row): the grouped time loop against the row-by-row one (the previous method)."""
-    from symctl.neural.simulate import GROUPED_LOOPS, _run_groups, _run_rows
+    from symctl.neural.timeloop import GROUPED_LOOPS, _run_groups, _run_rows
 
     size, n, m, steps, terms = 332, 4, 26, 100, 18
     gen = np.random.default_rng(1)

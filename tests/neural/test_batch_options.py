@@ -29,7 +29,7 @@ from symctl import (
     pulse,
     simulate_batch,
 )
-from symctl.neural import simulate
+from symctl.neural import timeloop
 from symctl.neural.batch import KEEP, TRACES, _chunks
 from symctl.neural.simulate import _run
 from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3
@@ -129,7 +129,7 @@ def test_the_grouped_and_the_row_by_row_time_loops_give_the_same_bits(n, m, nc, 
     rows = [r for r in range(n + m + nc) if gen.random() < 0.7]
     peak_rows = tuple(r for r in range(n + m + nc) if peak and gen.random() < 0.5)
     results = []
-    for run in (simulate._run_groups, simulate._run_rows):
+    for run in (timeloop._run_groups, timeloop._run_rows):
         out = np.full((25, len(rows), count), np.nan)
         peaks = np.empty((len(peak_rows), count)) if peak_rows else None
         results.append((run(A, Cr, n, w, out, rows, peaks, peak_rows), out, peaks))

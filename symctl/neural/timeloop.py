@@ -1,0 +1,210 @@
+"""The time loop of a stack of linear closed loops: ``xi(t+1) = A xi(t) + [I; 0] w(t)``.
+
+:func:`_run_chunk` fills an output buffer with the signals asked for, step by step, for a
+chunk of loops given as stacks ``A`` ``(size, size, R)`` and ``Cr`` ``(m, size, R)``
+(the rates read off the states). Two loops do it, with the same bits: each row's sum is
+taken in the order of the dense sum over ``j``, the first product written directly, and
+a coefficient zero in every loop is left out. :func:`_run_rows` goes row by row in place
+(no gathered copies: the fastest for many loops, the paper's batches);
+:func:`_run_groups` computes the rows with as many terms at once (few NumPy calls per
+step: the fastest for a large sparse circuit of few loops). ``benchmarks/simulate.py``
+times both. :mod:`symctl.neural.simulate` owns the signals, checks and results.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _groups(mat: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, list]]:
+    """The rows of a stack ``(rows, cols, R)`` as groups for ``sum_j a_ij x_j``, row-wise at once.
+
+    A coefficient zero in every loop is left out (the paper's loops are sparse: 14 of 25
+    entries); the rows with the same number of terms form a group ``(rows, sources,
+    coefficients)``: ``sources`` ``(len(rows), k)`` are the ``j`` of each row's terms in
+    the order of the dense sum over ``j``, hence of its rounding, and ``coefficients``
+    their ``k`` stacks ``(len(rows), 1 or R)`` (one column when the coefficients are
+    equal in every loop). A row with no terms is a group with ``k = 0``.
+    """
+    if not mat.shape[0]:
+        return []
+    nonzero = np.any(mat != 0, axis=2)  # (rows, cols)
+    counts = nonzero.sum(axis=1)
+    groups = []
+    for k in np.unique(counts):
+        rows = np.flatnonzero(counts == k)
+        sources = np.array([np.flatnonzero(nonzero[i]) for i in rows], dtype=np.intp)
+        sources = sources.reshape(len(rows), int(k))
+        coefficients = []
+        for c in range(int(k)):
+            a = mat[rows, sources[:, c], :]  # (len(rows), R)
+            coefficients.append(a[:, :1].copy() if np.all(a == a[:, :1]) else a.copy())
+        groups.append((rows, sources, coefficients))
+    return groups
+
+
+def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
+    """``dst[i] = sum_j a_ij x_j`` for every row of ``groups``: each row's terms summed in
+    their order, the first product written directly (the rounding of the dense sum)."""
+    for rows, sources, coefficients in groups:
+        if not coefficients:
+            dst[rows] = 0.0
+            continue
+        acc = x[sources[:, 0]] * coefficients[0]
+        for c in range(1, len(coefficients)):
+            acc += x[sources[:, c]] * coefficients[c]
+        dst[rows] = acc
+
+
+@np.errstate(over="ignore", invalid="ignore")
+def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
+    """:func:`_run_chunk` for few loops: the rows with as many terms at once.
+
+    Each step computes the rows of ``x(t+1)`` with the same number of nonzero terms at
+    once (:func:`_groups`), each row's sum in the order of the dense sum, and copies the
+    signals asked for into ``out``; only the rates asked for are computed (the states
+    always are). Returns the first step with an inf or NaN in ``out``, or ``steps``.
+    """
+    steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
+    slot = {signal: k for k, signal in enumerate(rows)}
+    state = [j if j < n else m + j for j in range(size)]  # signal number of each state
+    kept = [(j, slot[s]) for j, s in enumerate(state) if s in slot]
+    kept_state = np.array([j for j, _ in kept], dtype=np.intp)
+    kept_slot = np.array([k for _, k in kept], dtype=np.intp)
+    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
+    rate_out = [(r, slot[n + k]) for r, k in enumerate(rates) if n + k in slot]
+    a_groups = _groups(A)
+    c_groups = _groups(Cr[rates]) if rates else []
+    x, nxt = np.zeros((size, count)), np.empty((size, count))
+    rate = np.zeros((len(rates), count))
+    tmp = np.empty(count)
+    quiet = ~np.any(w, axis=(1, 2))  # the steps without input
+
+    if peaks is not None:
+        peaks[...] = 0.0
+    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
+    for t in range(steps):
+        out[t, kept_slot] = x[kept_state]
+        if t <= rest:  # at rest: exact zeros (+0, as the dense sum 0 + a 0 gives)
+            rate[...] = 0.0
+            nxt[...] = 0.0
+        else:
+            _combine_groups(c_groups, x, rate)
+            _combine_groups(a_groups, x, nxt)
+        for r, at in rate_out:
+            out[t, at] = rate[r]
+        if not quiet[t]:
+            nxt[:n] += w[t]
+        for p, s in enumerate(peak_rows):
+            src = x[s] if s < n else rate[rates.index(s - n)] if s < n + m else x[s - m]
+            np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
+        x, nxt = nxt, x
+    if not len(rows):
+        return steps
+    finite = np.all(np.isfinite(out), axis=(1, 2))
+    return steps if finite.all() else int(np.argmin(finite))
+
+
+def _terms(mat: np.ndarray) -> list[list[tuple[int, float | np.ndarray]]]:
+    """Row ``i`` of a stack ``(rows, cols, R)`` as ``(j, coefficient)`` terms of ``sum_j``.
+
+    A coefficient equal in every loop is a float (no memory read), one zero in every
+    loop is left out (the paper's loops are sparse: 14 of 25 entries); the order of
+    the terms, hence of the rounding, is that of the dense sum over ``j``.
+    """
+    terms = []
+    for row in mat:
+        terms.append([])
+        for j, v in enumerate(row):
+            if np.all(v == v[0]):
+                if v[0] != 0:
+                    terms[-1].append((j, float(v[0])))
+            else:
+                terms[-1].append((j, np.ascontiguousarray(v)))
+    return terms
+
+
+def _combine(terms, x: list[np.ndarray], dst: np.ndarray, tmp: np.ndarray) -> None:
+    """``dst = sum_j a_j x_j`` over ``terms``, in place (the first product written directly)."""
+    if not terms:
+        dst[...] = 0.0
+        return
+    j, a = terms[0]
+    np.multiply(x[j], a, out=dst)
+    for j, a in terms[1:]:
+        np.multiply(x[j], a, out=tmp)
+        np.add(dst, tmp, out=dst)
+
+
+@np.errstate(over="ignore", invalid="ignore")
+def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
+    """:func:`_run_chunk` for many loops: row by row in place.
+
+    Row by row in place: each state row of ``x(t+1)`` is computed straight into its
+    row of ``out`` (a state not kept lives in a two-step scratch), each rate row
+    likewise; only the rows asked for are computed (the states always are). Returns
+    the first step with an inf or NaN in ``out``, or ``steps``.
+    """
+    steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
+    slot = {signal: k for k, signal in enumerate(rows)}
+    state = [j if j < n else m + j for j in range(size)]  # signal number of each state
+    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
+    a_terms, c_terms = _terms(A), _terms(Cr)
+    scratch, rate_rows, tmp = np.empty((2, size, count)), np.empty((m, count)), np.empty(count)
+    quiet = ~np.any(w, axis=(1, 2))  # the steps without input
+
+    def at(t: int) -> list[np.ndarray]:  # the rows that hold x(t)
+        if t == steps:  # the state after the horizon, which nobody sees
+            return list(scratch[t % 2])
+        o = out[t]
+        return [o[slot[s]] if s in slot else scratch[t % 2, j] for j, s in enumerate(state)]
+
+    x = at(0)
+    for row in x:
+        row[...] = 0.0
+    if peaks is not None:
+        peaks[...] = 0.0
+    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
+    for t in range(steps):
+        rate = [out[t, slot[n + k]] if n + k in slot else rate_rows[k] for k in range(m)]
+        nxt = at(t + 1)
+        if t <= rest:  # at rest: exact zeros (+0, as the dense sum 0 + a 0 gives)
+            for row in [rate[k] for k in rates] + nxt:
+                row[...] = 0.0
+        else:
+            for k in rates:
+                _combine(c_terms[k], x, rate[k], tmp)
+            for i in range(size):
+                _combine(a_terms[i], x, nxt[i], tmp)
+        if not quiet[t]:
+            for i in range(n):
+                nxt[i] += w[t, i]
+        for p, s in enumerate(peak_rows):
+            src = x[s] if s < n else rate[s - n] if s < n + m else x[s - m]
+            np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
+        x = nxt
+    if not len(rows):
+        return steps
+    finite = np.all(np.isfinite(out), axis=(1, 2))
+    return steps if finite.all() else int(np.argmin(finite))
+
+
+GROUPED_LOOPS = 4096
+"""Up to this many loops in a chunk, a large sparse circuit's time loop computes the rows
+with as many terms at once (:func:`_run_groups`), when that takes at most a quarter of the
+NumPy calls per step of going row by row (:func:`_run_rows`, which makes no gathered
+copies and is faster for many loops or few terms). Both sum each row in the order of the
+dense sum, so they give the same bits (``benchmarks/simulate.py`` times both)."""
+
+
+def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
+    """All steps of one chunk of loops: the signals ``rows`` into ``out`` ``(steps, ., chunk)``.
+
+    Returns the first step with an inf or NaN in ``out``, or ``steps``.
+    """
+    run = _run_rows
+    if A.shape[-1] <= GROUPED_LOOPS:
+        counts = np.count_nonzero(np.any(A != 0, axis=2), axis=1)  # terms per row
+        if 4 * int(np.unique(counts).sum()) <= int(counts.sum()):
+            run = _run_groups
+    return run(A, Cr, n, w, out, rows, peaks, peak_rows)
