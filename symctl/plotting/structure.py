@@ -118,7 +118,8 @@ def draw_structure(
     ax : matplotlib Axes, optional
         Draw into these axes; by default a new figure sized to the drawing.
     title : str, optional
-        The heading (default: the counts of gains, adders and delays).
+        The heading (default: the counts of gains, adders and delays; ``""``: none, for a
+        figure whose caption names it).
     max_signals : int, default 400
         Refuse larger structures (their drawings are unreadable and slow).
     overview : bool or "auto", default False
@@ -191,7 +192,7 @@ def draw_structure(
         f"{S.count(k)} {w}{'s' if S.count(k) != 1 else ''}"
         for k, w in (("gain", "gain"), ("sum", "adder"), ("delay", "delay"))
     )
-    heading = title or f"Controller structure: {counts}"
+    heading = f"Controller structure: {counts}" if title is None else title
     legend = ["boxes: gains", "circles: adders", "dashed: one-step delays", "dots: signals"]
     if axons:
         legend[2] = "dashed: delays ($z^{-k}$: an axon of k steps)"
@@ -203,15 +204,15 @@ def draw_structure(
     return _finish(fig, ax, own, (x_lo, x_hi, y_lo, y_hi), heading, legend, width)
 
 
-def draw_structures(panels, *, title: str, width: float = TEXT_WIDTH):
+def draw_structures(panels, *, title: str = "", width: float = TEXT_WIDTH):
     r"""Several structures in one figure, one above the other, each with its caption line.
 
     Parameters
     ----------
     panels : sequence of (Structure, str, assignment or None)
         Each structure, the line written above it, and a delay assignment (or None).
-    title : str
-        The heading.
+    title : str, default ""
+        The heading (none by default: a figure's caption names it).
     width : float, default TEXT_WIDTH
         The widest the figure may be [in].
 
@@ -368,12 +369,12 @@ def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: 
     x_lo, x_hi, y_lo, y_hi = bounds
     room = min(width, max(x_hi - x_lo, 3.0)) - 0.1
     legend_lines = _wrap(legend, room, SMALL, "   ")
-    heading_lines = _wrap(heading.split(" "), room, TITLE, " ")
+    heading_lines = _wrap(heading.split(" "), room, TITLE, " ") if heading else []
     y = y_hi + 0.06
     for line in reversed(legend_lines):
         ax.text(x_lo + 0.05, y, line, ha="left", va="bottom", fontsize=SMALL, color="0.35")
         y += 0.14
-    y += 0.03
+    y += 0.03 if heading_lines else 0.0
     for line in reversed(heading_lines):
         ax.text(x_lo + 0.05, y, line, ha="left", va="bottom", fontsize=TITLE)
         y += 0.16

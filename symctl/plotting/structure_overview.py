@@ -121,7 +121,8 @@ def draw_structure_overview(
     ax : matplotlib Axes, optional
         Draw into these axes; by default a new figure sized to the drawing.
     title : str, optional
-        The heading (default: the structure's counts).
+        The heading (default: the structure's counts; ``""``: none, for a figure whose
+        caption names it).
     width : float, default TEXT_WIDTH
         The widest the figure may be [in].
     labels : mapping of str to str, optional
@@ -227,7 +228,7 @@ def draw_structure_overview(
         _plural(S.count(k), word)
         for k, word in (("gain", "gain"), ("sum", "adder"), ("delay", "delay"))
     )
-    heading = title or f"Controller structure: {total}"
+    heading = f"Controller structure: {total}" if title is None else title
     y = _BOX_H / 2 + 0.12
     for line in (
         f"{_plural(len(S), 'signal')}, too many to draw block by block at print size: its parts,",
@@ -236,12 +237,12 @@ def draw_structure_overview(
         ax.text(0.05, y, line, ha="left", va="bottom", fontsize=SMALL, color="0.35")
         y += 0.13
     room = width - 0.15
-    heading_lines = _wrap(heading, room, FONT_SIZE + 0.5)
+    heading_lines = _wrap(heading, room, FONT_SIZE + 0.5) if heading else []
     for line in heading_lines[::-1]:
         ax.text(0.05, y + 0.04, line, ha="left", va="bottom", fontsize=FONT_SIZE + 0.5)
         y += 0.16
     y_hi = y + 0.09
-    wide = max(text_size(line, FONT_SIZE + 0.5)[0] * 1.06 for line in heading_lines)
+    wide = max((text_size(line, FONT_SIZE + 0.5)[0] * 1.06 for line in heading_lines), default=0)
     x_hi = min(max(x_hi, 4.6, 0.15 + wide), width)
     ax.set_xlim(0, x_hi)
     ax.set_ylim(y_lo, y_hi)

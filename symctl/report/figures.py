@@ -68,7 +68,6 @@ from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.plotting import style
-from symctl.report.spec import CIRCUIT_SPECS
 
 __all__ = [
     "DPI",
@@ -285,7 +284,7 @@ def _structure_figure(res, rec, circuit: str, names):
     """
     from symctl.plotting.circuit_labels import visible_length
 
-    title = f"Structure: {CIRCUIT_SPECS[circuit].diagram}"
+    title = ""  # the caption names the structure; the figure notes only what departs from it
     S, verdict = rec.structure, rec.compatibility
     where = verdict.assignment.vertex_of if verdict.ok and verdict.assignment else None
     gains = (b.gain for b in S.blocks.values() if b.kind == "gain" and b.gain is not None)
@@ -295,12 +294,11 @@ def _structure_figure(res, rec, circuit: str, names):
         and any(visible_length(latex(g)) > KEY_LENGTH for g in gains)  # stops at the first
     ):
         S = rec.firing.circuits[0].structure
-        diagram = CIRCUIT_SPECS[circuit].diagram.replace(" (symbolic P)", "")
-        title = f"Structure: {diagram}, realization #1 of the simulations (numbers)"
+        title = "Realization #1 of the simulations, with numbers (its symbolic gains are too long)"
     if where is not None and not set(S.blocks) <= set(where):
         where = None
     if where is None and verdict.ok is False:
-        title += ": not compatible (no vertex bands)"
+        title = "; ".join(t for t in (title, "not compatible (no vertex bands)") if t)
     return S.draw(title=title, overview="auto", max_signals=MAX_DRAWN_SIGNALS,
                   assignment=where, vertex_names=names, labels=_end_labels(res, S))  # fmt: skip
 
@@ -327,8 +325,7 @@ def _g1g3_figure(factors):
         fits = "compatible" if verdict.ok else "not compatible"
         caption = f'delays="{delays}": {words}; {fits} with one edge v1 -> v2 of one step'
         panels.append((S, caption, verdict.assignment if verdict.ok else None))
-    title = f"Two structures of one section ${latex(C)} / (z - {latex(eps)})$ of G1 or G3"
-    return draw_structures(panels, title=title)
+    return draw_structures(panels)  # the caption names the section
 
 
 KEY_LENGTH = 120

@@ -113,3 +113,15 @@ def test_structure_latex_names_signals_readably():
     assert "operatorname" not in tex and "zd" not in tex and "z^-1" not in tex
     assert r"{x_{1}}^{\mathrm{G1}}(t) &= \epsilon_{1} {x_{1}}^{\mathrm{G1}}(t - 1)" in tex
     assert Structure._repr_latex_(STRUCTURES["ccr"]).startswith("$")
+
+
+def test_an_empty_title_draws_no_heading_and_a_lower_figure():
+    S = ifp_structure(2)
+    with_heading, without = draw_structure(S), draw_structure(S, title="")
+    texts = [t.get_text() for t in without.axes[0].texts]
+    assert not any(t.startswith("Controller structure") for t in texts)
+    assert any(
+        t.startswith("Controller structure")
+        for t in (x.get_text() for x in with_heading.axes[0].texts)
+    )
+    assert without.get_size_inches()[1] < with_heading.get_size_inches()[1]

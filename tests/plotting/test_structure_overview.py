@@ -95,3 +95,11 @@ def test_overview_box_holds_its_counts_and_the_heading_fits_the_figure():
     check = legibility(fig, page_width=4.0)
     assert check, str(check)
     assert fig.get_size_inches()[0] <= 4.0
+
+
+def test_an_overview_with_an_empty_title_has_no_heading():
+    R = first_order_realization(1, 2)
+    fig = draw_structure_overview(Structure.series(R, R, R), title="")
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert not any(t.startswith("Controller structure") for t in texts)
+    assert legibility(fig), legibility(fig)

@@ -90,6 +90,16 @@ def test_every_time_series_figure_of_the_paper_is_legible_with_units_and_no_head
         _check(make_figure(paper, name), name)
 
 
+def test_the_structure_figures_leave_their_heading_to_the_caption(paper):
+    """The caption names the structure: the figure repeated it as a heading above its key."""
+    for name in ("structure_ifp", "g1g3_structures"):
+        texts = _texts(make_figure(paper, name))
+        assert not any(
+            t.startswith(("Structure:", "Two structures", "Controller structure")) for t in texts
+        ), (name, texts[-3:])
+        assert "boxes: gains" in " ".join(texts), name  # the key to the symbols stays
+
+
 @pytest.mark.parametrize("name", ["closed_loop", "firing_general"])  # the most panels and keys
 def test_the_T6_figures_are_legible(paper_T6, name):
     _check(make_figure(paper_T6, name), name)
