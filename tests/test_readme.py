@@ -22,3 +22,19 @@ def test_readme_python_blocks_run(tmp_path, monkeypatch):
         exec(compile(code, f"README.md python block {k + 1}", "exec"), namespace)
     assert (tmp_path / "g3g2g1.png").is_file()
     assert (tmp_path / "out" / "paper" / "results.json").is_file()
+
+
+def test_the_papers_figures_are_cited_by_number_not_by_latex_label():
+    """A reader has the paper's PDF, not its LaTeX: "Fig. 9", never "Fig. full_diagram"."""
+    from symctl.report.reference import FIGURES
+
+    root = README.parent
+    texts = [
+        README,
+        *sorted((root / "docs").glob("*.md")),
+        *sorted((root / "notebooks").glob("*.ipynb")),
+    ]
+    labels = "|".join(FIGURES)
+    pattern = re.compile(rf"Figs?\.\s+(?:[\w ,]*?\b)?({labels})\b")
+    found = [f"{p.name}: {m.group(0)}" for p in texts for m in pattern.finditer(p.read_text())]
+    assert not found, found

@@ -30,7 +30,7 @@ Two conventions keep the diagrams as the paper draws them: a gain equal to
 (the signal passes through). Zero entries make no block.
 
 :meth:`Structure.from_realization` gives the two structures of a realization
-that the paper's Fig. g1g3 contrasts:
+that the paper's Fig. 7 contrasts:
 
 * ``delays="branch"`` (default; the paper's choice for :math:`G_1` and
   :math:`G_3`): every term :math:`F_{ij} x_j` and :math:`H_i u` passes through
@@ -480,7 +480,7 @@ class Structure(LatexMixin):
     def from_factorization(
         cls, factorization, R2: Realization, delays: str = "branch"
     ) -> Structure:
-        r"""The structure of the whole controller :math:`G_3 G_2 G_1` (the paper's Fig. g1g3).
+        r"""The structure of the whole controller :math:`G_3 G_2 G_1` (the paper's Fig. 7).
 
         The first-order sections of :math:`G_1` and :math:`G_3` take the
         ``"branch"`` structure (the paper's choice, a unit delay on each branch
@@ -620,7 +620,7 @@ def ifp_structure(T: int = 2) -> Structure:
     argument, the input is called ``x`` (:math:`\delta_f`) and the output ``u``
     (:math:`\delta_r`); for :math:`T = 2` the one intermediate signal is ``gamma``.
     Gain blocks are named ``K0 .. KT``; the delays are the broken lines of
-    Fig. ifp_diagram.
+    Fig. 4.
 
     Parameters
     ----------

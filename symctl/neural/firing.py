@@ -1,12 +1,12 @@
 r"""Firing patterns of the neurons of :math:`G_2` under a pulse disturbance.
 
-The paper's Figs. full_diagram, ccr_diagram and ocr_diagram.
+The paper's Figs. 9, 10 and 11.
 
 The paper's section "Simulations": the whole controller
 :math:`G = G_3 G_2 G_1` is realized in several ways, each closed around the
 linear muscle and hit by the same pulse disturbance on the force. By
 construction every realization gives the same force and motor-neuron traces
-(those of the optimal controller, Fig. cl_sims), while the neurons of
+(those of the optimal controller, Fig. 5), while the neurons of
 :math:`G_2` fire differently.
 
 The recipe, per realization (seeded):
@@ -447,7 +447,7 @@ def circuit_firing(
     Each realization of :math:`G = G_3 G_2 G_1` (random :math:`\epsilon_1,
     \epsilon_3 \in (-0.9, 0.9)`, :math:`C_1 = C_3 = 1`, and for ``"general"`` a
     random full-rank ``P``) is closed around ``plant`` with the pulse
-    disturbance on the force, as in Fig. cl_sims:
+    disturbance on the force, as in Fig. 5:
 
     .. math::
         \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
@@ -462,8 +462,8 @@ def circuit_firing(
     Parameters
     ----------
     kind : {"general", "controllable", "observable", "ifp"}
-        The realization of :math:`G_2` (Figs. full_diagram, ccr_diagram,
-        ocr_diagram), or the IFP controller.
+        The realization of :math:`G_2` (Figs. 9, 10,
+        11), or the IFP controller.
     gains : Gains
         E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional

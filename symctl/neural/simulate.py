@@ -1,10 +1,10 @@
 r"""Open- and closed-loop simulation of the plant with any realization of the controller.
 
 The paper's section "Simulations": the linear plant of eq. (system) driven by a
-pulse in firing rate (Fig. ol_sims); the loop closed with the optimal delayed
-controller and hit by a pulse disturbance on the force (Fig. cl_sims); the same
-loop closed with any realization of :math:`G = G_3 G_2 G_1` (Figs. full_diagram,
-ccr_diagram, ocr_diagram), whose outputs agree while the neurons' firing
+pulse in firing rate (Fig. 3); the loop closed with the optimal delayed
+controller and hit by a pulse disturbance on the force (Fig. 5); the same
+loop closed with any realization of :math:`G = G_3 G_2 G_1` (Figs. 9,
+10, 11), whose outputs agree while the neurons' firing
 patterns differ. Every simulation here, in :mod:`symctl.neural.batch` (many
 loops at once) and in :mod:`symctl.neural.firing` (the neurons' traces) runs
 through one time-stepping loop, ``_run``; the nonlinear muscle is in
@@ -423,7 +423,7 @@ def open_loop_response(
     length: int = DEFAULT_LENGTH,
     steps: int = DEFAULT_STEPS,
 ) -> Response:
-    r"""The linear plant's response to a pulse in firing rate (the paper's Fig. ol_sims).
+    r"""The linear plant's response to a pulse in firing rate (the paper's Fig. 3).
 
     :math:`\delta_f(t+1) = A\delta_f(t) + B\delta_r(t)` with
     :math:`\delta_r(t) =` ``pulse`` for ``start <= t < start + length`` (every input
@@ -557,7 +557,7 @@ def closed_loop_response(
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
 ) -> Response:
-    r"""The closed loop under a pulse disturbance on the force (the paper's Fig. cl_sims).
+    r"""The closed loop under a pulse disturbance on the force (the paper's Fig. 5).
 
     Parameters
     ----------

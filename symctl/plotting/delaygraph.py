@@ -1,6 +1,6 @@
 r"""Rendering of a delay graph: vertices as boxes, edges as arrows labelled with their delays.
 
-The paper's Fig. muscle_system (right): the sensor :math:`v_1`, the nervous
+The paper's Fig. 2 (right): the sensor :math:`v_1`, the nervous
 system, the actuator :math:`v_N`, and the delay of each edge in steps. The
 positions come from :mod:`symctl.plotting.delaygraph_layout` (a layered drawing,
 left to right along the longest path from the sensor); this module measures the

@@ -1,7 +1,7 @@
 r"""The firing-pattern figure: one panel per neuron of :math:`G_2`, one line per realization.
 
 The rendering of :meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>`
-(the paper's Figs. full_diagram, ccr_diagram, ocr_diagram): the plant's first state in
+(the paper's Figs. 9, 10, 11): the plant's first state in
 every realization on top (identical, and the optimal controller's), each neuron's change
 of firing rate below, one legend of the realizations under the figure. Drawn in the
 house style (:mod:`symctl.plotting.style`) at the text width; no heading unless

@@ -12,16 +12,16 @@ themselves to :mod:`symctl.plotting`. The figures of the paper:
 ============================  ==================================================
 name                          content
 ============================  ==================================================
-``open_loop``                 Fig. ol_sims: the linear muscle's response to a
+``open_loop``                 Fig. 3: the linear muscle's response to a
                               pulse in firing rate
-``closed_loop``               Fig. cl_sims: the optimal delayed controller's
+``closed_loop``               Fig. 5: the optimal delayed controller's
                               response to a pulse disturbance on the force
-``delay_graph``               Fig. muscle_system (right): the delay graph,
+``delay_graph``               Fig. 2 (right): the delay graph,
                               sensor to actuator, each edge with its delay
 ``nonlinear``                 the linear controller around the nonlinear muscle
-``firing_<circuit>``          Figs. full_diagram, ccr_diagram, ocr_diagram: the
+``firing_<circuit>``          Figs. 9, 10, 11: the
                               neurons' firing in several realizations
-``g1g3_structures``            Fig. g1g3 (left): the two structures of a first-order
+``g1g3_structures``            Fig. 7 (left): the two structures of a first-order
                               section of :math:`G_1` or :math:`G_3` (delays on the
                               branches, or one after the adder), each checked on one
                               edge of the delay graph
@@ -304,7 +304,7 @@ def _structure_figure(res, rec, circuit: str, names):
 
 
 def _g1g3_figure(factors):
-    """The paper's Fig. g1g3 (left): two structures of a first-order section, checked on one edge."""
+    """The paper's Fig. 7 (left): two structures of a first-order section, checked on one edge."""
     from symctl.compatibility.check import check_compatibility
     from symctl.compatibility.delaygraph import DelayGraph
     from symctl.compatibility.structure import Structure

@@ -69,7 +69,7 @@ def test_G3_G2_G1_is_compatible_with_the_papers_assignment(R2):
 
 
 def test_the_other_structure_of_G1_is_not_compatible():
-    """Fig. g1g3: with one delay after the adder the input section cannot span v1 -> v2."""
+    """Fig. 7: with one delay after the adder the input section cannot span v1 -> v2."""
     S = Structure.series(
         Structure.from_realization(
             first_order_realization(F.sensor_eps[0], F.sensor_C[0]), "state"
