@@ -18,7 +18,14 @@ import pytest
 from symctl.report.document import to_tex
 from symctl.report.story import story
 
-CASES = ("derived_T2", "derived_T6", "derived_oculomotor")
+CASES = ("derived_T2", "derived_T6", "derived_oculomotor", "derived_T6 tall figures")
+"""Each case's results fixture; "tall figures": every placeholder nearly the text's width and
+two thirds of its height, as large as the T = 6 general circuit drawn at its printed size:
+such a figure placed "here" left too little room for a display that cannot break (15 lines
+made the page overfull; with DISPLAY_MAX_LINES = 16 this case fails)."""
+TALL = (480, 480)
+"""The tall placeholder [pt] (the text: 497 x 731 pt; ``\\fitgraphic`` scales a figure over
+0.8 of its height or its width)."""
 
 _PROBLEMS = {
     "overfull box": re.compile(r"^Overfull \\[hv]box.*$", re.M),
@@ -45,11 +52,12 @@ def _png() -> bytes:
     )
 
 
-def _pdf() -> bytes:
-    """An empty one-inch PDF page."""
+def _pdf(width: int = 72, height: int = 72) -> bytes:
+    """An empty PDF page, one inch square by default [pt]."""
+    box = b"[0 0 %d %d]" % (width, height)
     objects = [b"<< /Type /Catalog /Pages 2 0 R >>",
                b"<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
-               b"<< /Type /Page /Parent 2 0 R /MediaBox [0 0 72 72] >>"]  # fmt: skip
+               b"<< /Type /Page /Parent 2 0 R /MediaBox " + box + b" >>"]  # fmt: skip
     out, offsets = bytearray(b"%PDF-1.4\n"), []
     for k, body in enumerate(objects, 1):
         offsets.append(len(out))
@@ -71,11 +79,12 @@ def logs(request, tmp_path_factory):
 
     def log(case: str, pdflatex: str) -> str:
         if case not in done:
-            res = request.getfixturevalue(case)
-            out = tmp_path_factory.mktemp(case)
+            fixture, _, tall = case.partition(" ")
+            res = request.getfixturevalue(fixture)
+            out = tmp_path_factory.mktemp(fixture)
             for name in res.figure_names():  # what the run writes, in the formats pdflatex reads
                 (out / f"{name}.png").write_bytes(_png())
-                (out / f"{name}.pdf").write_bytes(_pdf())
+                (out / f"{name}.pdf").write_bytes(_pdf(*TALL) if tall else _pdf())
             tex = to_tex(story(res, res.figure_names()), title=res.spec.title)  # as res.write does
             (out / "derivation.tex").write_text(tex)
             for _ in range(2):
