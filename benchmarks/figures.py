@@ -11,7 +11,8 @@ from run to run; CPU times vary less, but a busy machine (shared cores and cache
 makes them up to twice as long, so compare methods within one run, not across runs.
 
 For each figure as ``derivation.pdf`` prints it (at its natural size, or scaled down to fit
-when wider than the text or taller than 0.8 of its height, as its ``\fitgraphic`` does):
+when wider than the text or taller than the text less four lines, as its ``\fitgraphic``
+does):
 its printed width [in] and scale, its smallest font [pt], and whether
 ``symctl.plotting.legibility.legibility()`` passes at that scale (else what fails).
 
@@ -46,8 +47,10 @@ from symctl.plotting.style import TEXT_WIDTH
 from symctl.report.figures import save
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-TEXT_HEIGHT = 9.2
-"""The text height of derivation.tex [in]; \\fitgraphic scales down a figure taller than 0.8 of it."""
+TEXT_HEIGHT = 9.43
+"""The text height of derivation.tex [in] (letter, 2 cm margins)."""
+FIGURE_HEIGHT = TEXT_HEIGHT - 4 * 13.6 / 72
+"""\\fitgraphic scales down a figure taller than this [in]: the text less four 11-pt lines."""
 CASES = {
     "T2": ("paper T=2", lambda: derive_paper()),
     "T6": ("paper T=6", lambda: derive_paper(sensor_delay=3, actuator_delay=3)),
@@ -98,7 +101,7 @@ def run(key: str, out: str) -> tuple[list[tuple], str]:
         fig, t_make, t_save, t_wall = made_and_saved(res, name, out)
         wall += t_wall
         width, height = (float(v) for v in fig.get_size_inches())
-        scale = min(1.0, TEXT_WIDTH / width, 0.8 * TEXT_HEIGHT / height)
+        scale = min(1.0, TEXT_WIDTH / width, FIGURE_HEIGHT / height)
         font = smallest_font(fig) * scale
         check = verdict(legibility(fig, scale=scale))
         before = None

@@ -57,7 +57,7 @@ ROW_GAP = 0.2
 """Space between two rows of a folded drawing [in]."""
 PAGE_HEIGHT = 8.6
 """The tallest a drawing may be to fit a page with its caption [in] (the derivation's text
-height is 9.2 in)."""
+height is 9.43 in; ``\\fitgraphic`` scales a figure over 8.68 in)."""
 
 
 @dataclass(frozen=True)

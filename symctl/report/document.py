@@ -173,15 +173,17 @@ _PREAMBLE = r"""\newsavebox{\symctlbox}
     \else\usebox{\symctlbox}\fi
   \else\usebox{\symctlbox}\fi}
 % \fitgraphic includes a (vector) figure at its natural size: figures are drawn at the size they
-% are printed. One wider than the text or taller than most of a page is scaled down to fit, and
-% the log says so ("symctl: scaled figure"), for a test to find.
+% are printed. One wider than the text, or taller than the text less four lines (room for its
+% caption on a page of its own), is scaled down to fit, and the log says so ("symctl: scaled
+% figure"), for a test to find.
 \newif\ifsymctlfit
 \newcommand{\fitgraphic}[1]{\sbox{\symctlbox}{\includegraphics{#1}}\symctlfitfalse
   \ifdim\wd\symctlbox>\linewidth \symctlfittrue\fi
-  \ifdim\ht\symctlbox>0.8\textheight \symctlfittrue\fi
+  \ifdim\ht\symctlbox>\dimexpr\textheight-4\baselineskip\relax \symctlfittrue\fi
   \ifsymctlfit
     \typeout{symctl: scaled figure #1 down to fit the page}%
-    \includegraphics[width=\linewidth,height=0.8\textheight,keepaspectratio]{#1}%
+    \includegraphics[width=\linewidth,height=\dimexpr\textheight-4\baselineskip\relax,
+      keepaspectratio]{#1}%
   \else\usebox{\symctlbox}\fi}
 \setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}\setlength{\emergencystretch}{3em}
 \makeatletter

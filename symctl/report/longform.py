@@ -110,7 +110,7 @@ VECTOR_MAX_ENTRIES = 6
 DISPLAY_MAX_LINES = 8
 """A display taller than this (in lines, :func:`height`) may break across pages: about a sixth
 of the page, so that a display which cannot break still fits beside a figure drawn at its
-printed size, up to 0.8 of the page tall (taller ones made the page overfull, "Overfull
+printed size, up to the page less its caption (taller ones made the page overfull, "Overfull
 \\vbox ... while \\output is active": 15 lines under the T = 6 general circuit)."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""

@@ -24,8 +24,8 @@ two thirds of its height, as large as the T = 6 general circuit drawn at its pri
 such a figure placed "here" left too little room for a display that cannot break (15 lines
 made the page overfull; with DISPLAY_MAX_LINES = 16 this case fails)."""
 TALL = (480, 480)
-"""The tall placeholder [pt] (the text: 497 x 731 pt; ``\\fitgraphic`` scales a figure over
-0.8 of its height or its width)."""
+"""The tall placeholder [pt] (the text: 500 x 681 pt; ``\\fitgraphic`` scales a figure wider
+than it or taller than it less four lines)."""
 
 _PROBLEMS = {
     "overfull box": re.compile(r"^Overfull \\[hv]box.*$", re.M),

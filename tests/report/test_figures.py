@@ -164,11 +164,14 @@ def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_pa
 
     from symctl.report.document import Graphic, Text, to_tex
 
-    for name, size in (("small", 3.4), ("wide", 9.0)):
-        fig = Figure(figsize=(size, 1.5))
+    # the text is 6.93 x 9.43 in; a figure up to the text less four lines (8.68 in) is not
+    # scaled: the order-2 atlas (8.63 in) was, to 0.85, its 7-pt text printed at 6 pt
+    sizes = {"small": (3.4, 1.5), "wide": (9.0, 1.5), "tall": (3.4, 8.63), "taller": (3.4, 8.8)}
+    for name, size in sizes.items():
+        fig = Figure(figsize=size)
         fig.add_subplot().plot([0, 1], [0, 1])
         figures.save(fig, tmp_path, name)
-    blocks = [Text("Two figures."), Graphic("small", "Narrow."), Graphic("wide", "Too wide.")]
+    blocks = [Text("Four figures."), *(Graphic(name, f"{name}.") for name in sizes)]
     tex = to_tex(blocks, title="Figures")
     assert r"\fitgraphic{small.pdf}" in tex and ".png" not in tex
     assert "width=\\linewidth" not in tex.split("\\begin{document}")[1]  # no scaling in the body
@@ -177,4 +180,6 @@ def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_pa
                    cwd=tmp_path, check=True, capture_output=True, timeout=120)  # fmt: skip
     log = (tmp_path / "f.log").read_text(errors="replace")
     assert "symctl: scaled figure wide.pdf down to fit the page" in log
+    assert "symctl: scaled figure taller.pdf down to fit the page" in log
     assert "scaled figure small.pdf" not in log  # at its natural size
+    assert "scaled figure tall.pdf" not in log
