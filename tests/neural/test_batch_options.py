@@ -77,6 +77,19 @@ def old_run_chunk(A, Cr, n, w, out):
     return steps if finite.all() else int(np.argmin(finite))
 
 
+def random_stack(gen, n: int, m: int, nc: int, count: int, *, zeros: float):
+    """A random stack ``A`` ``(n + nc, n + nc, count)`` and ``Cr`` ``(m, n + nc, count)``: entries
+    zero in every loop (a fraction ``zeros`` of ``A``) or equal in every loop, as in circuits."""
+    size = n + nc
+    A = gen.normal(size=(size, size, count)) * 0.4 / np.sqrt(size)
+    A[gen.random((size, size)) < zeros] = 0.0  # zero in every loop
+    const = gen.random((size, size)) < 0.3
+    A[const] = A[const][:, :1]  # equal in every loop
+    Cr = gen.normal(size=(m, size, count))
+    Cr[gen.random((m, size)) < 0.4] = 0.0
+    return A, Cr
+
+
 @given(
     st.integers(1, 3),
     st.integers(0, 3),
@@ -87,13 +100,7 @@ def old_run_chunk(A, Cr, n, w, out):
 )
 def test_the_in_place_time_loop_equals_the_einsum_loop_it_replaced(n, m, nc, count, seed, shared):
     gen = np.random.default_rng(seed)
-    size = n + nc
-    A = gen.normal(size=(size, size, count)) * 0.4 / np.sqrt(size)
-    A[gen.random((size, size)) < 0.4] = 0.0  # zero in every loop
-    const = gen.random((size, size)) < 0.3
-    A[const] = A[const][:, :1]  # equal in every loop
-    Cr = gen.normal(size=(m, size, count))
-    Cr[gen.random((m, size)) < 0.4] = 0.0
+    A, Cr = random_stack(gen, n, m, nc, count, zeros=0.4)
     w = gen.normal(size=(30, n)) if shared else gen.normal(size=(count, 30, n))
     w[..., 5:9, :] = 0.0  # quiet steps
     df, dr, xc = _run(A, Cr, n, w)
@@ -117,13 +124,7 @@ def test_the_in_place_time_loop_equals_the_einsum_loop_it_replaced(n, m, nc, cou
 def test_the_grouped_and_the_row_by_row_time_loops_give_the_same_bits(n, m, nc, count, seed, peak):
     """Few loops take the grouped loop, many the row-by-row one: the same sums, the same bits."""
     gen = np.random.default_rng(seed)
-    size = n + nc
-    A = gen.normal(size=(size, size, count)) * 0.4 / np.sqrt(size)
-    A[gen.random((size, size)) < 0.5] = 0.0
-    const = gen.random((size, size)) < 0.3
-    A[const] = A[const][:, :1]
-    Cr = gen.normal(size=(m, size, count))
-    Cr[gen.random((m, size)) < 0.4] = 0.0
+    A, Cr = random_stack(gen, n, m, nc, count, zeros=0.5)
     w = gen.normal(size=(25, n, 1))
     w[3:7] = 0.0
     rows = [r for r in range(n + m + nc) if gen.random() < 0.7]
