@@ -108,10 +108,9 @@ r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}
 VECTOR_MAX_ENTRIES = 6
 """A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
 DISPLAY_MAX_LINES = 8
-"""A display taller than this (in lines, :func:`height`) may break across pages: about a sixth
-of the page, so that a display which cannot break still fits beside a figure drawn at its
-printed size, up to the page less its caption (taller ones made the page overfull, "Overfull
-\\vbox ... while \\output is active": 15 lines under the T = 6 general circuit)."""
+"""A display taller than this (in lines, :func:`height`) may break across pages, so that one
+that cannot break still fits beside a figure drawn at its printed size (a 15-line display
+under the T = 6 general circuit overfilled the page: "Overfull \\vbox ... \\output")."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""
 TABLE_MAX_ROWS = 30
