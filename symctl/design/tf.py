@@ -64,6 +64,21 @@ def _lcm(a: sp.Expr, b: sp.Expr) -> sp.Expr:
     return b if a == 1 else sp.lcm(a, b)
 
 
+def _replaced(expr, rule, flags: dict):
+    """``expr.subs(rule, **flags)``; symbols to numbers by ``xreplace``, the same expression
+    without ``subs``'s matching at every node (numbers to a 72-state MIMO controller's gains
+    took 20 s). Numbers hold no symbols, so the order of the rule does not matter."""
+    items = list(rule.items()) if isinstance(rule, dict) else list(rule)
+    keys = [k for k, _ in items]
+    if (
+        items
+        and len(set(keys)) == len(keys)
+        and all(isinstance(k, sp.Symbol) and isinstance(v, sp.Number) for k, v in items)
+    ):
+        return expr.xreplace(dict(items))
+    return expr.subs(rule, **flags)
+
+
 @dataclass(frozen=True, eq=False)
 class DiscreteTF(LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` in the symbol :data:`symctl.z`.
@@ -234,8 +249,8 @@ class DiscreteTF(LatexMixin):
         (read by the safe parser): :func:`symctl._util.validate.subs_rule`.
         """
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
-        dt = None if self.dt is None else self.dt.subs(rule, **flags)
-        return DiscreteTF(self._num.subs(rule, **flags), self.den.subs(rule, **flags), dt)
+        dt = None if self.dt is None else _replaced(self.dt, rule, flags)
+        return DiscreteTF(_replaced(self._num, rule, flags), _replaced(self.den, rule, flags), dt)
 
     def equals(self, other) -> bool:
         """Exact equality as rational functions (a difference that cancels to zero)."""

@@ -6,6 +6,8 @@ import control
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import given
+from hypothesis import strategies as st
 
 from symctl import (
     DiscreteTF,
@@ -124,3 +126,19 @@ def test_floats_print_short_and_exact_numbers_exactly():
 def test_a_transfer_function_without_a_denominator_prints_its_numerator():
     assert str(DiscreteTF(1, 1)) == "1" and DiscreteTF(1, 1).latex() == "1"
     assert str(DiscreteTF(sp.Symbol("C") * z, 1)) == "C*z"
+
+
+@given(st.lists(st.fractions(max_denominator=50), min_size=3, max_size=3))
+def test_subs_of_numbers_is_sympys_subs_and_a_rule_with_symbols_keeps_its_order(values):
+    """Numbers go in by xreplace (fast): the same expression as SymPy's subs; a rule whose
+    values hold symbols keeps subs's sequential meaning."""
+    a, b, c = sp.symbols("a b c")
+    G = DiscreteTF(a * z**2 + b * z - c, z**3 - a * b * z + c**2 + 1)
+    rule = {
+        s: sp.Rational(v.numerator, v.denominator) for s, v in zip((a, b, c), values, strict=True)
+    }
+    got = G.subs(rule)
+    assert got.num == G.num.subs(rule) and got.den == G.den.subs(rule)
+    chained = G.subs([(a, b), (b, 2)])  # sequential: a -> b -> 2
+    assert chained.num == G.num.subs([(a, b), (b, 2)])
+    assert not chained.free_symbols - {c}
