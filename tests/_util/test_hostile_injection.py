@@ -522,7 +522,7 @@ AUDITED = {
     ("symctl.design.tf", "DiscreteTF.from_expr", "Matrix"): 3,  # sympy objects only
     ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
     ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
-    ("symctl.design.tf", "DiscreteTF.subs", "subs"): 3,  # subs_rule
+    ("symctl.design.tf", "_replaced", "subs"): 1,  # the subs_rule of DiscreteTF.subs
     ("symctl.interop", "_z_expr", "Poly"): 1,  # float coefficients of control/SciPy arrays
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
     ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
