@@ -48,7 +48,7 @@ from symctl.plotting.circuit_layout import (
     circuit_layout,
 )
 from symctl.plotting.circuit_signs import SignValues, weight_sign
-from symctl.plotting.common import figure_and_axes, text_outline, text_size
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_outline, text_size
 from symctl.plotting.key import key_columns
 
 if TYPE_CHECKING:
@@ -345,13 +345,7 @@ def draw_circuit(
             ax.text(x_lo + 0.02, top - k * step, line, ha="left", va="top", fontsize=style.TITLE)
             x_hi = max(x_hi, x_lo + 0.06 + 1.04 * text_size(line, style.TITLE)[0])
         y_hi = top + 0.03
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
-    return fig
+    return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
 
 
 def _shown(tex: str) -> int:

@@ -7,7 +7,14 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = ["figure_and_axes", "finish_figure", "text_outline", "text_size", "wrap_key"]
+__all__ = [
+    "figure_and_axes",
+    "finish_figure",
+    "fit_to_drawing",
+    "text_outline",
+    "text_size",
+    "wrap_key",
+]
 
 
 @lru_cache(maxsize=4096)
@@ -56,6 +63,18 @@ def figure_and_axes(ax):
     return ax.figure, ax, False
 
 
+def fit_to_drawing(fig, ax, own: bool, x_lo: float, x_hi: float, y_lo: float, y_hi: float):
+    """The axes show ``[x_lo, x_hi] x [y_lo, y_hi]`` at one inch per data unit, without frame;
+    a figure of the drawing's own (``own``) is sized to it. Returns ``fig``."""
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_ylim(y_lo, y_hi)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if own:
+        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
+    return fig
+
+
 def finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float):
     """Heading and key above the drawing, equal axes without frame, size in inches.
 
@@ -72,13 +91,7 @@ def finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float
     width = 1.08 * max(text_size(t, s)[0] for t, s in [(heading, 10), *((ln, 7.5) for ln in lines)])
     x_hi = max(x_hi, x_lo + width + 0.3)
     y_hi += top + extra
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
-    return fig
+    return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
 
 
 def wrap_key(items: list[str], room: float, size: float) -> list[str]:

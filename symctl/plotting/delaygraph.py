@@ -31,7 +31,7 @@ from symctl.compatibility.delaygraph import DelayGraph
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
 from symctl.plotting.circuit_key import wrap_words
-from symctl.plotting.common import figure_and_axes, text_size, wrap_key
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap_key
 from symctl.plotting.delaygraph_layout import delay_graph_layout
 
 if TYPE_CHECKING:
@@ -276,10 +276,4 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
         right = max(right, x_lo + 0.1 + max(1.04 * text_size(h, style.TITLE)[0] for h in heading))
         y_hi = top + 0.04
     x_hi = max(x_hi, right)
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo)
-    return fig
+    return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)

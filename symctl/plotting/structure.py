@@ -26,7 +26,7 @@ from collections.abc import Mapping, Sequence
 
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.plotting.common import figure_and_axes, text_size
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size
 from symctl.plotting.key import key_columns
 from symctl.plotting.structure_layout import (
     ARROW,
@@ -382,10 +382,4 @@ def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: 
               [*((ln, TITLE) for ln in heading_lines), *((ln, SMALL) for ln in legend_lines)]]  # fmt: skip
     x_hi = max(x_hi, min(x_lo + max(widths) + 0.15, x_lo + width))
     y_hi = y + 0.04
-    ax.set_xlim(x_lo, x_hi)
-    ax.set_ylim(y_lo - 0.04, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi - x_lo, y_hi - y_lo + 0.04)
-    return fig
+    return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo - 0.04, y_hi)

@@ -20,7 +20,7 @@ from collections.abc import Mapping
 
 from symctl.compatibility.structure import Structure
 from symctl.errors import SymctlTypeError
-from symctl.plotting.common import figure_and_axes, text_size
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size
 from symctl.plotting.structure_labels import end_labels
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH
 
@@ -244,10 +244,4 @@ def draw_structure_overview(
     y_hi = y + 0.09
     wide = max((text_size(line, FONT_SIZE + 0.5)[0] * 1.06 for line in heading_lines), default=0)
     x_hi = min(max(x_hi, 4.6, 0.15 + wide), width)
-    ax.set_xlim(0, x_hi)
-    ax.set_ylim(y_lo, y_hi)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if own:
-        fig.set_size_inches(x_hi, y_hi - y_lo)
-    return fig
+    return fit_to_drawing(fig, ax, own, 0.0, x_hi, y_lo, y_hi)
