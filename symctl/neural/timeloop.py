@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 
-def _groups(mat: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, list]]:
+def _groups(mat: np.ndarray, nonzero=None) -> list[tuple[np.ndarray, np.ndarray, list]]:
     """The rows of a stack ``(rows, cols, R)`` as groups for ``sum_j a_ij x_j``, row-wise at once.
 
     A coefficient zero in every loop is left out (the paper's loops are sparse: 14 of 25
@@ -24,11 +24,13 @@ def _groups(mat: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, list]]:
     coefficients)``: ``sources`` ``(len(rows), k)`` are the ``j`` of each row's terms in
     the order of the dense sum over ``j``, hence of its rounding, and ``coefficients``
     their ``k`` stacks ``(len(rows), 1 or R)`` (one column when the coefficients are
-    equal in every loop). A row with no terms is a group with ``k = 0``.
+    equal in every loop). A row with no terms is a group with ``k = 0``. ``nonzero``: the
+    entries not zero in every loop, when the caller has them (:func:`_run_chunk`).
     """
     if not mat.shape[0]:
         return []
-    nonzero = np.any(mat != 0, axis=2)  # (rows, cols)
+    if nonzero is None:
+        nonzero = np.any(mat != 0, axis=2)  # (rows, cols)
     counts = nonzero.sum(axis=1)
     groups = []
     for k in np.unique(counts):
@@ -57,7 +59,7 @@ def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
 
 
 @np.errstate(over="ignore", invalid="ignore")
-def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
+def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=None) -> int:
     """:func:`_run_chunk` for few loops: the rows with as many terms at once.
 
     Each step computes the rows of ``x(t+1)`` with the same number of nonzero terms at
@@ -73,7 +75,10 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
     kept_slot = np.array([k for _, k in kept], dtype=np.intp)
     rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
     rate_out = [(r, slot[n + k]) for r, k in enumerate(rates) if n + k in slot]
-    a_groups = _groups(A)
+    # each peak's signal: a state (delta_f, or a controller state after the rates) or a rate
+    peak_src = [(False, s) if s < n else (True, rates.index(s - n)) if s < n + m else (False, s - m)
+                for s in peak_rows]  # fmt: skip
+    a_groups = _groups(A, nonzero)
     c_groups = _groups(Cr[rates]) if rates else []
     x, nxt = np.zeros((size, count)), np.empty((size, count))
     rate = np.zeros((len(rates), count))
@@ -95,8 +100,8 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
             out[t, at] = rate[r]
         if not quiet[t]:
             nxt[:n] += w[t]
-        for p, s in enumerate(peak_rows):
-            src = x[s] if s < n else rate[rates.index(s - n)] if s < n + m else x[s - m]
+        for p, (is_rate, i) in enumerate(peak_src):
+            src = rate[i] if is_rate else x[i]
             np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
         x, nxt = nxt, x
     if not len(rows):
@@ -202,9 +207,9 @@ def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
 
     Returns the first step with an inf or NaN in ``out``, or ``steps``.
     """
-    run = _run_rows
     if A.shape[-1] <= GROUPED_LOOPS:
-        counts = np.count_nonzero(np.any(A != 0, axis=2), axis=1)  # terms per row
+        nonzero = np.any(A != 0, axis=2)  # read once: the choice, then the groups
+        counts = np.count_nonzero(nonzero, axis=1)  # terms per row
         if 4 * int(np.unique(counts).sum()) <= int(counts.sum()):
-            run = _run_groups
-    return run(A, Cr, n, w, out, rows, peaks, peak_rows)
+            return _run_groups(A, Cr, n, w, out, rows, peaks, peak_rows, nonzero=nonzero)
+    return _run_rows(A, Cr, n, w, out, rows, peaks, peak_rows)
