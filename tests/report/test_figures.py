@@ -98,6 +98,8 @@ def test_the_structure_figures_leave_their_heading_to_the_caption(paper):
             t.startswith(("Structure:", "Two structures", "Controller structure")) for t in texts
         ), (name, texts[-3:])
         assert "boxes: gains" in " ".join(texts), name  # the key to the symbols stays
+    texts = _texts(make_figure(paper, "structure_ifp"))  # what departs from the caption stays
+    assert "Not compatible (no vertex bands)" in texts, texts
 
 
 @pytest.mark.parametrize("name", ["closed_loop", "firing_general"])  # the most panels and keys
