@@ -8,7 +8,7 @@ OUT ?= out/paper
 DOCS_OUT := docs/_build/html
 PY_FILES := symctl tests benchmarks conftest.py docs/conf.py docs/_ext docs/run_notebooks.py
 
-.PHONY: all paper examples test lint format bench clean docs docs-check notebooks
+.PHONY: all paper examples test test-all lint format bench clean docs docs-check notebooks
 
 all: test
 
@@ -35,8 +35,15 @@ examples: $(STAMP)
 		$(BIN)/symctl derive $$f --out out/$$name || exit $$?; \
 	done
 
+# the fast tier: unit, property (10 examples each) and doctests on small objects, one end-to-end
+# run of each CLI command
 test: $(STAMP)
-	$(BIN)/python -m pytest -n 2 -q
+	SYMCTL_EXAMPLES=$${SYMCTL_EXAMPLES:-10} $(BIN)/python -m pytest -n 2 -q -m "not slow and not docs"
+
+# both tiers (what CI runs): adds every example end to end, the notebooks, PDF compiles, dask
+# clusters, the console script's subprocess runs; 40 examples per property; the 25 slowest listed
+test-all: $(STAMP)
+	$(BIN)/python -m pytest -n 2 -q --durations=25
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(PY_FILES)

@@ -1,5 +1,19 @@
-"""Doctests run in a fresh namespace: an Examples block must import what it uses.
+"""Test tiers, and doctests in a fresh namespace.
 
+Two tiers (``make test`` runs the fast one, ``make test-all`` both):
+
+- **fast**: unit, property and doctests on small objects, and one end-to-end run
+  of each CLI command;
+- **slow** (marker ``slow``): every example end to end, the notebooks, PDF
+  compiles, dask clusters, subprocess runs of the console script, the full
+  paper's figures and documents.
+
+A test is slow by its marker (``@pytest.mark.slow``) or by its location: the
+files in ``SLOW_FILES`` and the doctests of the modules in ``SLOW_DOCTESTS`` (the
+report's, whose examples write whole derivations). The tier of a test is decided
+here and nowhere else.
+
+Doctests run in a fresh namespace: an Examples block must import what it uses.
 pytest gives a module's doctests the module's globals, so an example that forgets
 an import still passes there but fails when pasted into a fresh interpreter.
 Emptying the namespace makes every doctest self-contained.
@@ -7,10 +21,51 @@ Emptying the namespace makes every doctest self-contained.
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
 from _pytest.doctest import DoctestItem
 
+ROOT = Path(__file__).resolve().parent
 
-def pytest_collection_modifyitems(items):
+# whole files of the slow tier: end-to-end runs, notebooks, PDF compiles, subprocesses
+SLOW_FILES = (
+    "tests/test_notebooks.py",
+    "tests/test_hostile_cli.py",
+    "tests/model/test_examples.py",
+    "tests/report/test_pipeline.py",
+    "tests/report/test_hostile_output.py",
+    "tests/report/test_document_log.py",
+    "tests/report/test_figures.py",
+    "tests/report/test_story_layout.py",
+    "tests/report/test_story.py",
+    "tests/report/test_pipeline_long_delays.py",
+)
+# modules whose doctests derive and write the whole paper, or decide hard cases
+SLOW_DOCTESTS = (
+    "symctl/report/",
+    "symctl/discovery/dale.py",
+    "symctl/discovery/candidates.py",
+    "symctl/discovery/interneurons.py",
+)
+
+
+def _is_slow(item) -> bool:
+    path = Path(str(item.fspath)).resolve().relative_to(ROOT).as_posix()
+    if isinstance(item, DoctestItem):
+        return path.startswith(SLOW_DOCTESTS)
+    return path in SLOW_FILES
+
+
+def pytest_collection_modifyitems(config, items):
     for item in items:
         if isinstance(item, DoctestItem):
             item.dtest.globs = {"__name__": "__main__"}
+        if _is_slow(item):
+            item.add_marker(pytest.mark.slow)
+
+
+def pytest_sessionstart(session):
+    missing = [f for f in (*SLOW_FILES, *SLOW_DOCTESTS) if not (ROOT / f).exists()]
+    if missing:  # a renamed file would silently join the fast tier
+        raise pytest.UsageError(f"conftest.SLOW_FILES/SLOW_DOCTESTS name files that do not exist: {missing}")

@@ -86,6 +86,7 @@ def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):
     assert len(err) == 1 and err[0].startswith("symctl: error:") and word in err[0]
 
 
+@pytest.mark.slow
 def test_console_script_has_no_traceback_on_bad_input(tmp_path):
     proc = subprocess.run(
         [sys.executable, "-m", "symctl.cli", "paper", "--tau", "0", "--out", str(tmp_path)],

@@ -10,12 +10,15 @@ from symctl.cli import main
 
 
 def test_dale_prints_a_verdict_per_circuit(capsys):
-    assert main(["dale", "--timeout", "10"]) == 0
+    assert main(
+        ["dale", "--timeout", "120"]
+    )  # far above the work: a loaded machine decides too == 0
     out = capsys.readouterr().out
     assert "general: E/I" in out and "controllable: E/I" in out
     assert "observable: none (proved)" in out and "never with every neuron" in out
 
 
+@pytest.mark.slow
 def test_dale_json_has_the_verdicts_signs_and_the_cheapest_circuit(capsys):
     assert main(["dale", "--circuit", "controllable,A10", "--ei", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)

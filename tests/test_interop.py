@@ -460,6 +460,7 @@ def stable_systems(draw):
                        rng.normal(size=(p, q)), dt)  # fmt: skip
 
 
+@pytest.mark.slow
 @given(stable_systems())
 def test_random_stable_systems_round_trip_through_scipy_and_sympy(R):
     assert ss_from_scipy(ss_to_scipy(R)) == R

@@ -6,10 +6,12 @@ import re
 from pathlib import Path
 
 import matplotlib
+import pytest
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 
 
+@pytest.mark.slow
 def test_readme_python_blocks_run(tmp_path, monkeypatch):
     matplotlib.use("Agg")
     blocks = re.findall(r"```python\n(.*?)```", README.read_text(), re.S)

@@ -42,6 +42,7 @@ INF = math.inf
 """No path: the delay of an unreachable vertex."""
 
 MAX_VERTICES = 1000
+PARALLEL_EDGES = 8  # entries of an edge list per ordered pair of vertices
 """Most vertices of a delay graph: its shortest-path closure is cubic (about 3 s at 1000)."""
 
 MAX_EDGE_DELAY = 10**12
@@ -277,7 +278,10 @@ class DelayGraph:
         """The delay graph of ``n`` vertices and the edges ``(i, j, delay)`` (vertices 1..n).
 
         Parallel edges keep the smallest delay; :attr:`E` is the shortest-path
-        closure. ``sensors`` and ``actuators`` as for :class:`DelayGraph`.
+        closure. ``sensors`` and ``actuators`` as for :class:`DelayGraph`. The list
+        holds at most ``PARALLEL_EDGES`` entries per ordered pair of vertices
+        (``PARALLEL_EDGES * n**2`` in all), so an endless iterable is refused after a
+        read bounded by ``n``.
 
         >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
@@ -292,9 +296,13 @@ class DelayGraph:
         kept: dict[tuple[int, int], int] = {}
         if not isinstance(edges, Iterable):
             raise SymctlTypeError(f"edges: expected (i, j, delay) triples, got {edges!r}")
+        limit = PARALLEL_EDGES * n * n
         for k, edge in enumerate(edges):
-            if k >= MAX_VERTICES**2:
-                raise ParameterError(f"edges: at most {MAX_VERTICES**2} edges, got more")
+            if k >= limit:
+                raise ParameterError(
+                    f"edges: at most {limit} entries for {n} vertices "
+                    f"({PARALLEL_EDGES} per ordered pair), got more"
+                )
             if not isinstance(edge, tuple | list) or len(edge) != 3:
                 raise ParameterError(f"edges[{k}]: expected (i, j, delay), got {edge!r}")
             i, j, d = edge

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import itertools
-import time
 
 import numpy as np
 import pytest
 import sympy as sp
-from helpers import paper_assignment, random_graph, random_structure
+from helpers import bounded, paper_assignment, random_graph, random_structure
 
 from symctl import (
     ParameterError,
@@ -83,6 +82,7 @@ def test_the_other_structure_of_G1_is_not_compatible():
 
 
 # ---------------------------------------------------------------- exactness
+@pytest.mark.slow
 @pytest.mark.parametrize("chain", [True, False], ids=["chain graphs", "general graphs"])
 def test_checker_agrees_with_brute_force_on_thousands_of_random_instances(chain):
     rng = np.random.default_rng(2024 + chain)
@@ -168,13 +168,15 @@ def test_brute_force_method_is_spelled_with_a_hyphen_and_the_old_spelling_still_
     assert "brute-force" in METHODS and "brute force" not in METHODS
 
 
-def test_long_cascades_on_chains_are_fast():
+CALL_BUDGET = 2_000_000  # about 200,000 calls
+
+
+def test_long_cascades_on_chains_are_checked_within_a_bounded_work():
     S = Structure.series(*[paper_controller(controllable_canonical(F.G2))] * 300)
     g = DelayGraph.chain([1] * 600)
-    start = time.perf_counter()
-    r = check_compatibility(S, g)
+    with bounded(CALL_BUDGET):
+        r = check_compatibility(S, g)
     assert r.ok and len(S) > 6000
-    assert time.perf_counter() - start < 5
 
 
 # ---------------------------------------------------------------- controllers

@@ -238,6 +238,7 @@ def _channel_graph(rng) -> DelayGraph:
             continue
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1))
 def test_theorem_3_every_entry_along_its_own_path(seed):

@@ -67,6 +67,7 @@ def test_fraction_markov_parameters_equal_the_expanded_ones(n, m, ds, da):
         assert (a - b).applyfunc(sp.expand) == sp.zeros(*G.shape)
 
 
+@pytest.mark.slow
 def test_terms_bound_is_the_exact_size_for_symbolic_gains():
     aug = _aug(3, 4, 1, 1)
     F, G = _fraction(aug), controller_tf(aug)
@@ -74,6 +75,7 @@ def test_terms_bound_is_the_exact_size_for_symbolic_gains():
     assert F.terms_bound() == size == 633 + 3324
 
 
+@pytest.mark.slow
 def test_substituted_numbers_expand_to_the_numeric_controller():
     aug = _aug(3, 6, 1, 2, seed=5)
     gains = lqr_gains(aug)
@@ -201,6 +203,7 @@ def test_random_plants_are_proved_and_a_perturbed_controller_is_not(n, m, T, see
 
 
 # ---------------------------------------------------------------- against python-control
+@pytest.mark.slow
 @pytest.mark.parametrize("n, m, ds, da", [(3, 4, 1, 1), (3, 6, 1, 2), (2, 3, 0, 3)])
 def test_numeric_fraction_matches_the_lqr_controller_of_python_control(n, m, ds, da):
     """D^-1 K_0 of the symbolic fraction with LQR gains, solved numerically at a few points,

@@ -1,16 +1,15 @@
 """Hostile sizes (issue 12, class 3): every size has a limit, refused before any work starts.
 
 Each case must raise a symctl error naming the argument within a few seconds
-(an alarm turns a hang into a failure), where before it ran for minutes or ended
+(a count of function calls turns a hang into a failure), where before it ran for minutes or ended
 in a MemoryError.
 """
 
 import itertools
-import time
 
 import numpy as np
 import pytest
-from helpers import SECONDS, bounded
+from helpers import bounded
 from sympy import Symbol
 
 from symctl import (
@@ -100,27 +99,26 @@ CASES = [
 
 @pytest.mark.parametrize(("call", "match"), [c[1:] for c in CASES], ids=[c[0] for c in CASES])
 def test_sizes_beyond_their_limit_are_refused_at_once_by_name(call, match):
-    start = time.perf_counter()
     with bounded(), pytest.raises((ParameterError, DimensionError), match=match):
         call()
-    assert time.perf_counter() - start < SECONDS
 
 
+@pytest.mark.slow
 def test_the_stiff_nonlinear_check_at_the_smallest_admitted_tau_takes_seconds():
     model = MuscleModel(tau=0.01 / 700)  # Ts/tau = 700, the largest admitted
-    with bounded(30):
+    with bounded(15_000_000):  # about 1.5 million calls
         chk = nonlinear_check(model)
     assert np.all(np.isfinite(chk.f_nonlinear))
 
 
+@pytest.mark.slow
 def test_a_chain_at_the_vertex_limit_is_still_fast():
-    start = time.perf_counter()
-    with bounded(30):
+    with bounded(100_000_000):  # about 24 million calls
         g = DelayGraph.chain([1] * 999)
         assert DelayGraph(g.E).edges == g.edges
-    assert time.perf_counter() - start < 30
 
 
+@pytest.mark.slow
 def test_limits_keep_valid_sizes_working():
     assert controller_tf(500).relative_degree == 500
     assert G.impulse_response(10**6).shape == (10**6, 1, 1)

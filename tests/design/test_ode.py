@@ -82,6 +82,7 @@ def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
     np.testing.assert_allclose(bn, fd_b, atol=1e-8)
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(
     st.floats(0.1, 5.0), st.floats(0.05, 3.0), st.floats(-2.0, 2.0), st.floats(0.001, 0.2),

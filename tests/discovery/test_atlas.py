@@ -159,6 +159,7 @@ def test_certified_root_proves_a_real_root_and_refuses_none():
     assert certified_real_root([x**2 + 1, y], [x, y], seed=3) is None
 
 
+@pytest.mark.slow
 def test_the_search_on_dask_local_and_running_clusters_gives_the_serial_atlas(atlas2, tmp_path):
     # in a child process: dask's worker processes leave a multiprocessing resource tracker
     # behind, which the signal tests of this session would count as a stray child
@@ -295,6 +296,7 @@ def test_pattern_neuron_count_is_the_circuits(mask):
         assert p.n_neurons == circuit_of(p).n_neurons
 
 
+@pytest.mark.slow
 def test_order_4_sparsest_classes_include_the_controllable_canonical_circuit():
     A = symctl.atlas(4, max_neurons=2, workers=1)
     assert not A.stats["complete"] and A.stats["skipped"] > 0
@@ -306,6 +308,7 @@ def test_order_4_sparsest_classes_include_the_controllable_canonical_circuit():
     assert any(ccf in c.representatives for c in A.universal_classes)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("address", ["not an address", "tcp://127.0.0.1:9"])
 def test_an_unreachable_scheduler_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, address):
     from symctl.cli import main
@@ -320,6 +323,7 @@ def test_an_unreachable_scheduler_is_one_line_exit_2_and_writes_nothing(tmp_path
 _coeff = st.fractions(min_value=-3, max_value=3, max_denominator=7)
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(_coeff, _coeff, _coeff, _coeff, _coeff.filter(lambda v: v != 0))
 def test_the_sparsest_order_2_class_realizes_any_rational_G2_in_closed_form(
@@ -372,6 +376,7 @@ def test_the_poles_alone_refute_a_pattern_whose_F_cannot_have_complex_poles_of_s
     assert a[2] ** 2 - 4 * a[1] < 0
 
 
+@pytest.mark.slow
 def test_a_second_run_replaces_the_first_runs_folder(tmp_path):
     from symctl.cli import main
 

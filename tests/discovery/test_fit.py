@@ -8,6 +8,7 @@ import sys
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import bounded
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -35,6 +36,7 @@ from symctl.discovery.fitmodel import TraceModel
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _drive
 
+CALL_BUDGET = 3_000_000  # about 280,000 calls
 GAINS = lqr_gains(augment(MuscleModel(), 1, 1))
 G = controller_tf(GAINS.system).subs(GAINS.substitutions(exact=True))
 KW = {"sensor_delay": 1, "actuator_delay": 1}
@@ -132,6 +134,7 @@ def test_fitted_realization_agrees_with_scipy_dlsim(hidden):
     assert np.max(np.abs(x[:, 0] - res.predict()["G1.x1"])) < 1e-12  # G1's state first
 
 
+@pytest.mark.slow
 @settings(max_examples=6, deadline=None)
 @given(
     seed=st.integers(0, 10**6),
@@ -172,6 +175,7 @@ def test_across_classes_the_best_fit_is_kept(hidden):
     assert len(res.alternatives) == 2 and res.alternatives[0][1] <= res.alternatives[1][1]
 
 
+@pytest.mark.slow
 def test_all_classes_skip_those_that_cannot_take_the_data(hidden):
     res = fit(hidden.select(["G2.x1", "G2.y"]).traces, GAINS, **KW, circuit="all", C=1, starts=2,
               steps=STEPS)  # fmt: skip
@@ -190,6 +194,7 @@ def test_dale_signs_hold_on_the_fitted_circuit(hidden):
     assert all(sp.sign(s.weight) < 0 for s in res.circuit.neuron("G2.x2").axon)
 
 
+@pytest.mark.slow
 def test_two_excitatory_state_neurons_are_impossible_with_complex_poles(hidden):
     # F12 F21 > 0 makes F's eigenvalues real; the paper's controller has complex poles
     with pytest.raises(ParameterError, match="no start of 2 gave a circuit that meets the signs"):
@@ -249,13 +254,11 @@ def test_one_class_functions_refuse_a_list_or_all():
         synthetic_traces(GAINS, **KW, noise=-1)
 
 
-def test_the_paper_fit_of_3_neurons_500_steps_is_under_10_s():
-    import time
-
+def test_the_paper_fit_of_3_neurons_500_steps_is_exact_within_a_bounded_work():
     data = synthetic_traces(GAINS, **KW, seed=5, steps=500, noise=0.01)
-    t0 = time.perf_counter()
-    res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, GAINS, **KW, steps=500)
-    assert time.perf_counter() - t0 < 10 and res.exact  # about 0.2-0.7 s on 2 cores
+    with bounded(CALL_BUDGET):
+        res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, GAINS, **KW, steps=500)
+    assert res.exact
 
 
 def test_G_must_be_gains_or_a_numeric_tf_with_its_plant():
@@ -363,6 +366,7 @@ def test_the_shipped_example_dataset_fits(tmp_path):
     assert not res.neuron_identifiable["G2.x2"] and res.neuron_identifiable["G3.x1"]
 
 
+@pytest.mark.slow
 def test_starts_on_a_local_dask_cluster_give_the_serial_fit(tmp_path):
     # a child process, as the atlas's dask test: dask's workers leave a resource tracker
     code = (

@@ -328,6 +328,7 @@ def test_sensor_and_actuator_lists_give_one_vertex_per_channel():
     assert err.field == "delay_graph.sensor" and "empty list" in str(err)
 
 
+@pytest.mark.slow
 def test_without_sensor_delay_the_controller_sits_after_the_sensor_not_at_it():
     from symctl import derive
 
@@ -339,6 +340,7 @@ def test_without_sensor_delay_the_controller_sits_after_the_sensor_not_at_it():
     assert where["G3.2.x1"] == 4
 
 
+@pytest.mark.slow
 def test_max_wire_delay_asks_for_unit_wires():
     from symctl import derive
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from symctl import (
     augment,
@@ -20,6 +21,7 @@ A = [[1, 0.01, 0, 0], [-0.4, 0.96, 0.005, -0.005], [0, 0, 0.6, 0], [0, 0, 0, 0.6
 B = [[0, 0], [0.01, -0.01], [4.6, 0], [0, 4.6]]
 
 
+@pytest.mark.slow
 def test_a_batch_of_mimo_realizations_gives_each_ones_loop_and_the_optimal_behaviour():
     system = augment((A, B), 1, 1)
     gains = lqr_gains(system)

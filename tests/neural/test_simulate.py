@@ -196,6 +196,7 @@ def test_a_run_that_blows_up_says_so():
 
 
 # ---------------------------------------------------------------- figures
+@pytest.mark.slow
 def test_figures_have_units_and_legends(tmp_path):
     matplotlib.use("Agg")
     figs = {

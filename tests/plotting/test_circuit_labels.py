@@ -5,6 +5,7 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import pytest
 import sympy as sp
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -108,6 +109,7 @@ def test_the_key_is_inside_the_figure_under_the_drawing():
         assert box.y1 < lowest, p.get_gid()
 
 
+@pytest.mark.slow
 def test_a_mimo_controllable_form_keys_its_four_equal_self_dynamics_once(mimo_factorization):
     f = mimo_factorization
     c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
@@ -128,6 +130,7 @@ def test_a_mimo_controllable_form_keys_its_four_equal_self_dynamics_once(mimo_fa
     assert any("weights not written" in t.get_text() for t in fig.axes[0].texts)
 
 
+@pytest.mark.slow
 def test_the_labels_are_chosen_without_matplotlib():
     code = (
         "import sys\n"

@@ -131,6 +131,7 @@ def test_output_wire_of_weight_one_has_no_label():
     assert lay.arcs[-1].synapse is None and lay.arcs[-1].label is None
 
 
+@pytest.mark.slow
 def test_layout_does_not_import_matplotlib():
     code = (
         "import sys\n"
@@ -175,6 +176,7 @@ def test_no_curve_runs_through_a_circle_or_a_name(kind, width):
         assert rt.hits(arc.points(), around, {arc.source, arc.target}) == 0, arc
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("realize", [controllable_canonical, observable_canonical])
 def test_no_arc_of_a_mimo_circuit_runs_or_has_its_label_on_a_circle(mimo_factorization, realize):
     f = mimo_factorization

@@ -97,6 +97,7 @@ NAMES = [
 ]  # fmt: skip
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_the_drawing_is_legible_at_its_printed_size(figures, name):
     leg = legibility(figures[name], page_width=style.TEXT_WIDTH)

@@ -277,6 +277,7 @@ def test_random_graph_of_15_vertices_renders_at_print_size(tmp_path):
     assert "fifteen" in (tmp_path / "r15.svg").read_text()
 
 
+@pytest.mark.slow
 def test_a_large_graph_still_renders():
     fig = delay_graph_plot(random_graph(60, 0, extra=20, back=5))
     assert len(fig.axes[0].patches) == 60 + len(random_graph(60, 0, extra=20, back=5).edges)

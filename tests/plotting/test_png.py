@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 
 import numpy as np
+import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
@@ -45,6 +46,7 @@ def test_a_translucent_figure_keeps_its_alpha_channel(tmp_path):
     assert colour_type(write_png(fig, tmp_path / "a.png", dpi=50)) == 6
 
 
+@pytest.mark.slow
 def test_report_figures_are_rgb_and_the_same_bytes_twice(tmp_path):
     fig = open_loop_response(MuscleModel().plant()).plot()
     *_, png = save(fig, tmp_path, "open_loop")

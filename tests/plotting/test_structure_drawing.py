@@ -46,6 +46,7 @@ def drawn(name):
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", PRINTED)
 def test_structure_is_legible_at_its_printed_size(name):
     fig = drawn(name)

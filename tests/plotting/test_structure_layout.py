@@ -263,6 +263,7 @@ def test_layout_is_a_frozen_value():
         a.positions["x"] = (0.0, 0.0)
 
 
+@pytest.mark.slow
 def test_layout_never_imports_matplotlib():
     import subprocess
     import sys

@@ -17,6 +17,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from test_structure_layout import STRUCTURES
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ds, da", [(1, 1), (3, 4), (10, 10)])
 def test_overview_counts_every_block_of_every_part(ds, da):
     f = factor(controller_tf(ds + da), ds, da)
@@ -41,6 +42,7 @@ def test_overview_refuses_other_objects():
         draw_structure_overview("G2")
 
 
+@pytest.mark.slow
 def test_report_draws_large_structures_as_overview(monkeypatch):
     from symctl import derive_paper
     from symctl.report import figures

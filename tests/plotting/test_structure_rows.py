@@ -69,6 +69,7 @@ def test_page_bound_lets_every_structure_that_fits_through(name):
     assert structure_rows(S, text_size, vertex_of=where).fits
 
 
+@pytest.mark.slow
 def test_a_part_too_large_without_text_gives_the_overview_before_any_layout(monkeypatch):
     S = too_large()
     bound = page_bound(S)

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import random
-import time
 from fractions import Fraction
 
 import control
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import bounded
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
@@ -94,7 +94,10 @@ def test_G3_realization_similar_by_symbolic_3x3_P_passes_both_methods(canonical)
     assert randomized.rounds >= 1 and randomized.degree_bound > 0
 
 
-def test_G4_similar_by_fully_symbolic_4x4_P_is_proved_quickly():
+CALL_BUDGET = 1_500_000  # about 120,000 calls
+
+
+def test_G4_similar_by_fully_symbolic_4x4_P_is_proved_within_a_bounded_work():
     K = gain_symbols(4)
     eps = [
         epsilon_1,
@@ -105,12 +108,13 @@ def test_G4_similar_by_fully_symbolic_4x4_P_is_proved_quickly():
     G4 = K[0] / (C_1 * C_3) * sp.Mul(*(z - e for e in eps))
     G4 = DiscreteTF.from_expr(G4 / (z**4 - K[1] * z**3 - K[2] * z**2 - K[3] * z - K[4]))
     R = controllable_canonical(G4).similar(symbolic_P(4))
-    start = time.perf_counter()
-    result = check_realization(R, G4)
-    assert result.ok and time.perf_counter() - start < 10  # about 0.1 s on 2 cores
+    with bounded(CALL_BUDGET):
+        result = check_realization(R, G4)
+    assert result.ok
     assert len(R.free_symbols | G4.free_symbols) == 16 + 5 + 2 + 4
 
 
+@pytest.mark.slow
 def test_every_single_entry_perturbation_of_a_symbolic_similar_G2_fails_both_methods():
     R = observable_canonical(G2).similar(symbolic_P(2))
     for site in perturbation_sites(R):
@@ -121,6 +125,7 @@ def test_every_single_entry_perturbation_of_a_symbolic_similar_G2_fails_both_met
             assert_rejected_with_real_counterexample(bad, G2, result)
 
 
+@pytest.mark.slow
 def test_perturbed_symbolic_3x3_similar_G3_fails_with_a_counterexample():
     R = controllable_canonical(G3).similar(symbolic_P(3))
     F = R.F.as_mutable()
@@ -162,6 +167,7 @@ def test_the_last_markov_parameter_n_plus_d_is_needed_and_checked():
         assert_rejected_with_real_counterexample(R, G, result)
 
 
+@pytest.mark.slow
 def test_rational_entries_not_from_a_similarity_are_cancelled_by_gcd():
     a, b = sp.symbols("a b")
     F = sp.Matrix([[1 / a, 1], [b / (a + 1), a / (b - 1)]])
@@ -175,6 +181,7 @@ def test_rational_entries_not_from_a_similarity_are_cancelled_by_gcd():
 
 
 # ---------------------------------------------------------------- MIMO
+@pytest.mark.slow
 def test_mimo_realization_passes_and_a_perturbed_one_fails():
     a, b = sp.symbols("a b")
     F = sp.Matrix([[a, 1, 0], [0, b, 1], [1, 0, 2]])
@@ -216,6 +223,7 @@ def similar_realizations(draw):
     return G, canonical.similar(P)
 
 
+@pytest.mark.slow
 @given(similar_realizations(), st.integers(0, 2**32))
 def test_property_similar_realizations_pass_and_perturbed_ones_fail(case, seed):
     G, R = case

@@ -18,6 +18,7 @@ from symctl import (
 from symctl.realization.realizers import random_full_rank
 
 
+@pytest.mark.slow
 @given(st.integers(1, 3), st.integers(0, 3), st.integers(0, 10**6))
 @settings(max_examples=25, deadline=None)
 def test_similar_to_agrees_with_the_direct_proof(ds, da, seed):

@@ -48,6 +48,7 @@ def test_latex_reads_like_the_paper():
     assert r"G_1 = \frac{C_{1}}{z - \epsilon_{1}}" in text
 
 
+@pytest.mark.slow
 @given(ds=st.integers(0, 4), da=st.integers(0, 4), extra=st.integers(0, 2))
 def test_any_delays_factor_exactly(ds, da, extra):
     G = controller_tf(ds + da + extra)

@@ -98,6 +98,7 @@ def test_random_mimo_controllers_factor_exactly(p, m, ds, da, data):
     assert bool(f.verify())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("form", ["controllable", "observable"])
 def test_block_canonical_forms_realize_a_mimo_g2_exactly(form):
     from symctl import check_realization, controllable_canonical, observable_canonical
@@ -117,6 +118,7 @@ def test_block_canonical_forms_realize_a_mimo_g2_exactly(form):
     assert not check_realization(wrong, f.G2).ok
 
 
+@pytest.mark.slow
 @settings(max_examples=20, deadline=None)
 @given(st.integers(1, 3), st.integers(1, 3), st.integers(1, 3), st.data())
 def test_block_forms_match_python_control_numerically(p, m, n, data):

@@ -91,6 +91,7 @@ def test_sigma_values_numeric_are_the_polynomial_coefficients():
     )
 
 
+@pytest.mark.slow
 def test_abbreviated_realizations_stay_small_at_T_20():
     f = factor(controller_tf(20), 10, 10)
     G2a = f.abbreviated()

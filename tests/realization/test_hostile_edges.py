@@ -162,6 +162,7 @@ def test_factorization_exact_proof_is_unchanged_for_exact_values():
     assert proof and proof.method.startswith("cross-multiplied")
 
 
+@pytest.mark.slow
 def test_notebook_02_shows_the_honest_verdict_for_the_paper_random_realization(tmp_path):
     from pathlib import Path
 

@@ -55,6 +55,7 @@ def _padded(rng, p: int, q: int) -> Realization:
     return Realization(P.inv() * F * P, P.inv() * H, M * P, r(p, q))
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), p=st.integers(1, 2), q=st.integers(1, 2))
 def test_the_minimal_order_is_the_hankel_rank_and_the_transfer_function_is_kept(seed, p, q):

@@ -82,6 +82,7 @@ def _random_tf(seed: int, n: int, strictly: bool = False):
     return num, den
 
 
+@pytest.mark.slow
 @given(
     n=st.integers(1, 6),
     seed=st.integers(0, 2**32 - 1),
@@ -156,6 +157,7 @@ def test_whole_controller_series_realizes_G():
     assert check_realization(controller_realization(f5, controllable_canonical(f5.G2)), f5.G).ok
 
 
+@pytest.mark.slow
 @given(
     ds=st.integers(0, 3),
     da=st.integers(0, 3),

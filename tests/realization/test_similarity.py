@@ -112,6 +112,7 @@ def _case(seed: int):
     return F, H, M, P
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(60))
 def test_random_similarity_equals_the_sympy_path_in_value_and_form(seed):
     old, new = both(*_case(seed))
@@ -122,6 +123,7 @@ def test_random_similarity_equals_the_sympy_path_in_value_and_form(seed):
     assert_same_form(old, new)
 
 
+@pytest.mark.slow
 @settings(max_examples=15)  # each example runs SymPy's cancel too
 @given(st.integers(0, 2**32))
 def test_property_flint_similarity_has_the_value_of_the_sympy_one(seed):
@@ -194,6 +196,7 @@ def test_property_terms_built_from_flint_equal_sympys_evaluated_sum(seed):
             assert got == ref and got.args == ref.args and hash(got) == hash(ref)
 
 
+@pytest.mark.slow
 def test_fully_symbolic_5x5_P_of_the_order_5_controller_is_built_and_proved():
     G = controller_tf(5)
     R = general_realization(G, symbolic_P(5))

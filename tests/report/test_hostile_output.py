@@ -313,11 +313,11 @@ def test_a_second_run_on_the_same_out_is_refused_at_once(res, tmp_path, capsys, 
     holder = _holder(out)
     try:
         monkeypatch.setattr("symctl.report.pipeline.derive_paper", _no_derivation)
-        t0 = time.perf_counter()
+        # refused before any work: the derivation is replaced by one that fails the test
         assert main(["paper", "--out", str(out), "--no-pdf"]) == 2
         line = _one_error_line(capsys.readouterr().err)
         assert f"being written by another symctl run (pid {holder.pid}" in line
-        assert line.startswith("symctl: error: --out:") and time.perf_counter() - t0 < 5
+        assert line.startswith("symctl: error: --out:")
         with pytest.raises(ParameterError, match=r"out: .* being written by another symctl run"):
             res.write(out, figures=False, pdf=False)
         assert _contents(out) == old
@@ -392,9 +392,7 @@ def test_a_signal_stops_every_worker_and_leaves_the_old_folder(tmp_path, case):
         if when == "derivation":
             time.sleep(0.3)
         (os.killpg if group else os.kill)(proc.pid, sig)
-        t0 = time.monotonic()
-        err = proc.communicate(timeout=30)[1]
-        took = time.monotonic() - t0
+        err = proc.communicate(timeout=120)[1]  # a hang guard, not a speed assertion
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
@@ -402,7 +400,6 @@ def test_a_signal_stops_every_worker_and_leaves_the_old_folder(tmp_path, case):
     assert proc.returncode == 128 + sig, err
     line = _one_error_line(err)
     assert line.startswith("symctl: interrupted by " + signal.Signals(sig).name)
-    assert took < 10
     time.sleep(0.2)
     assert _in_group(proc.pid) == []  # no worker left running (and none holding the terminal)
     assert _contents(out) == old and _leftovers(tmp_path, "paper") == []
@@ -417,10 +414,12 @@ def test_a_misbehaving_pdflatex_is_a_latex_error(tmp_path, monkeypatch, kind):
         exe.chmod(0o755)
         monkeypatch.setattr(document, "PDFLATEX_TIMEOUT", 0.5)
     tex = document.write_tex([document.Text("Hello.")], tmp_path / "a.tex")
-    t0 = time.monotonic()
-    with pytest.raises(LatexError, match=r"pdflatex .*a\.tex"):
+    # the hanging one is stopped by the timeout (its message says so), not waited for
+    expected = (
+        r"pdflatex did not finish a\.tex within 0\.5 s" if kind == "hangs" else r"pdflatex .*a\.tex"
+    )
+    with pytest.raises(LatexError, match=expected):
         document.compile_pdf(tex, pdflatex=str(exe))
-    assert time.monotonic() - t0 < 10
 
 
 def test_stale_leftovers_that_are_links_or_files_are_removed_without_following(res, tmp_path):
