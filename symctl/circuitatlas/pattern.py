@@ -22,7 +22,7 @@ Two symmetries act on patterns and on realizations with a given pattern:
   :math:`D` (:meth:`Pattern.tree_slots`); the diagonal of :math:`F` does not
   move.
 
->>> from symctl.discovery.pattern import Pattern
+>>> from symctl.circuitatlas.pattern import Pattern
 >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
 >>> P.size, P.text
 (6, '01 11 | 01 | 11')
@@ -106,7 +106,7 @@ class Pattern:
 
     Examples
     --------
-    >>> from symctl.discovery.pattern import Pattern
+    >>> from symctl.circuitatlas.pattern import Pattern
     >>> P = Pattern(2, 0b11101110)
     >>> P.slots
     ('F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]')
@@ -131,7 +131,7 @@ class Pattern:
 
         Examples
         --------
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]).mask
         238
         """
@@ -157,7 +157,7 @@ class Pattern:
         Examples
         --------
         >>> from symctl import controllable_canonical, z
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.of(controllable_canonical(1 + 1 / (z**2 - z / 2 - 1))).text
         '01 11 | 01 | 10'
         """
@@ -227,7 +227,7 @@ class Pattern:
 
         Examples
         --------
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
         >>> P.F, P.H.T, P.M
         (Matrix([

@@ -15,7 +15,7 @@ margin is then made exact: :math:`\epsilon` and :math:`Q` are rounded to
 rationals, the realization is rebuilt in exact arithmetic (python-flint
 behind :func:`~symctl.realization.realizers.general_realization`) and every
 sign is checked on it exactly. The search finds witnesses; only z3 proves that
-none exists (:mod:`symctl.discovery.signs`).
+none exists (:mod:`symctl.dalelaw.signs`).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import sympy as sp
 from scipy.optimize import minimize
 
 from symctl._util.deadline import Deadline
-from symctl.discovery.signs import _expr
+from symctl.dalelaw.signs import _expr
 from symctl.realization.factorization import factor
 from symctl.realization.realizers import general_realization
 from symctl.symbols import z
