@@ -355,20 +355,29 @@ def dale(
     return DaleResult(None, None, {}, METHOD, reason, label, G=G, elapsed=deadline.elapsed())
 
 
-def _realizes(templates, poles, deadline: Deadline) -> bool | None:
-    """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
+def any_sat(verdicts) -> bool | None:
+    """True at the first ``"sat"`` (the rest not asked), False when all are ``"unsat"``, else None."""
     unknown = False
-    for t in templates:
-        try:
-            enc = encode(t, poles, deadline, relax=True)
-        except Unfinished:
-            unknown = True
-            continue
-        verdict, _ = decide(enc, tuple(enc.mixed), deadline=deadline)
+    for verdict in verdicts:
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"
     return None if unknown else False
+
+
+def _realizes(templates, poles, deadline: Deadline) -> bool | None:
+    """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
+
+    def verdicts():
+        for t in templates:
+            try:
+                enc = encode(t, poles, deadline, relax=True)
+            except Unfinished:
+                yield "unknown"
+                continue
+            yield decide(enc, tuple(enc.mixed), deadline=deadline)[0]
+
+    return any_sat(verdicts())
 
 
 def solve(

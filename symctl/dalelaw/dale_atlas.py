@@ -37,7 +37,14 @@ from symctl._util.deadline import Deadline
 from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
 from symctl.circuitatlas.pattern import Pattern
 from symctl.circuitatlas.search import open_pool, pool_options
-from symctl.dalelaw.dale import MAX_TIMEOUT, _realizes, controller_of, poles_of, solve
+from symctl.dalelaw.dale import (
+    MAX_TIMEOUT,
+    _realizes,
+    any_sat,
+    controller_of,
+    poles_of,
+    solve,
+)
 from symctl.dalelaw.signs import template
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError
@@ -184,15 +191,10 @@ def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
     deadline = Deadline(timeout)
     fs = factor(G, ds, da)
     templates = [template(fs, p, delays) for p in patterns]
+    poles = poles_of(G)
     if relax:
-        return _realizes(templates, poles_of(G), deadline)
-    unknown = False
-    for t in templates:
-        verdict, _ = solve(G, t, poles_of(G), deadline, [], witness=False)
-        if verdict == "sat":
-            return True
-        unknown |= verdict != "unsat"
-    return None if unknown else False
+        return _realizes(templates, poles, deadline)
+    return any_sat(solve(G, t, poles, deadline, [], witness=False)[0] for t in templates)
 
 
 def _row(spec, ds, da, samples, timeout, own):

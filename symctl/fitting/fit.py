@@ -41,6 +41,7 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares
 
+from symctl._util.exact import nearest_rational
 from symctl._util.validate import as_generator, bounded_int, read_only
 from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
@@ -525,8 +526,7 @@ def _setup(tf, ds, da, cls, C, data, u, signs):
 
 
 def _rational(x: float) -> sp.Rational:
-    f = Fraction(float(x)).limit_denominator(DENOMINATOR)
-    return sp.Rational(f.numerator, f.denominator)
+    return nearest_rational(x, DENOMINATOR)
 
 
 def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):
