@@ -338,19 +338,3 @@ def canonical_mask(n: int, mask: int) -> int:
 def orbit_size(n: int, mask: int) -> int:
     """How many patterns the state permutations give from ``mask``."""
     return len({_permute(mask, m) for m in _permutation_maps(n)})
-
-
-def canonical_patterns(n: int, size: int):
-    """Every canonical pattern of order ``n`` with ``size`` nonzero slots, by increasing mask.
-
-    Enumerates the subsets of the slots; the state permutations reduce them to
-    one per orbit (about ``n!`` times fewer).
-    """
-    slots = n * n + 2 * n
-    if not 0 <= size <= slots:
-        raise ParameterError(f"size: must be between 0 and {slots}, got {size}")
-    maps = _permutation_maps(n)
-    for combo in itertools.combinations(range(slots), size):
-        mask = sum(1 << k for k in combo)
-        if all(_permute(mask, m) >= mask for m in maps):
-            yield Pattern(n, mask)
