@@ -37,8 +37,8 @@ import symctl
 from symctl import MuscleModel, augment, lqr_gains, z
 from symctl._util.deadline import Deadline
 from symctl.compatibility.structure import Structure
-from symctl.discovery.dale import controller_of, poles_of, templates_of
-from symctl.discovery.signs import encode
+from symctl.dalelaw.dale import controller_of, poles_of, templates_of
+from symctl.dalelaw.signs import encode
 from symctl.neural.circuit import Circuit
 from symctl.realization.factorization import factor
 from symctl.realization.realization import controllable_canonical, observable_canonical
@@ -113,7 +113,7 @@ def table1(gains, rng) -> None:
     )
     print("|---|---|---|---|---|---|---|---|---|")
     total = prev_total = 0.0
-    for circuit in [*symctl.discovery.signs.NAMED, *classes]:
+    for circuit in [*symctl.dalelaw.signs.NAMED, *classes]:
         r = symctl.dale(gains, circuit=circuit, timeout=TIMEOUT)
         total += r.elapsed
         v, tp = previous(fs, circuit, poles)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from fractions import Fraction
 from functools import lru_cache
 
 import sympy as sp
@@ -46,6 +47,7 @@ __all__ = [
     "RingFractions",
     "ZPoly",
     "fold",
+    "nearest_rational",
     "products_equal",
     "ring_fractions",
     "z_poly",
@@ -362,3 +364,14 @@ def z_poly(expr: sp.Expr) -> ZPoly:
     return ZPoly(
         {k: sp.cancel(ring_.from_dict(terms).as_expr() / den_expr) for k, terms in by_power.items()}
     )
+
+
+def nearest_rational(x: float, den: int) -> sp.Rational:
+    """The rational nearest the float ``x`` with denominator at most ``den``.
+
+    >>> from symctl._util.exact import nearest_rational
+    >>> nearest_rational(0.3333333, 100)
+    1/3
+    """
+    q = Fraction(float(x)).limit_denominator(den)
+    return sp.Rational(q.numerator, q.denominator)

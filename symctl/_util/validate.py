@@ -539,32 +539,6 @@ def cmath_isfinite(value) -> bool:
     return cmath.isfinite(complex(value))
 
 
-def finite_matrix(mat, argname: str):
-    """``mat`` unchanged (a sympy matrix or a NumPy array), unless an entry is not finite.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import finite_matrix
-    >>> finite_matrix(np.array([[np.inf]]), "A")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: A: entries must be finite (no NaN or infinity), got [[inf]]
-    """
-    if isinstance(mat, np.ndarray):
-        if mat.dtype.kind in "fc" and not np.all(np.isfinite(mat)):
-            raise ParameterError(
-                f"{argname}: entries must be finite (no NaN or infinity), got {mat.tolist()}"
-            )
-        return mat
-    for entry in mat:
-        try:
-            finite_expr(entry, argname)
-        except ParameterError:
-            raise ParameterError(
-                f"{argname}: entries must be finite (no NaN or infinity), got {mat.tolist()}"
-            ) from None
-    return mat
-
-
 def callable_or_none(value, argname: str):
     """``value`` when it is callable or None, else a :class:`SymctlTypeError`.
 

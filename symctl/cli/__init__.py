@@ -293,7 +293,7 @@ def atlas_command(
     """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
-    from symctl.discovery.atlas import atlas as find_atlas
+    from symctl.circuitatlas.atlas import atlas as find_atlas
     from symctl.report.atlas import write_atlas
     from symctl.report.output import OutputFolder
 

@@ -63,9 +63,9 @@ def dale_command(
     model, Q = R = 1). Each verdict is a witness verified exactly, a z3 proof that
     none exists, or "not decided".
     """
-    from symctl.discovery.dale import dale
-    from symctl.discovery.dale_atlas import dale_atlas
-    from symctl.discovery.interneurons import ei_circuit
+    from symctl.dalelaw.dale import dale
+    from symctl.dalelaw.dale_atlas import dale_atlas
+    from symctl.dalelaw.interneurons import ei_circuit
 
     gains = _gains(model_file, sensor_delay, actuator_delay)
     if atlas_table:
@@ -132,8 +132,8 @@ def _circuit(name: str, system):
         raise ParameterError(
             f"--circuit: {name!r} is not general, controllable, observable or an atlas label"
         )
+    from symctl.circuitatlas.atlas import atlas
     from symctl.design.controller import controller_tf
-    from symctl.discovery.atlas import atlas
 
     order = controller_tf(system).order  # G2 has G's order (the sections cancel nothing)
     if order > 2:

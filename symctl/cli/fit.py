@@ -96,7 +96,7 @@ def fit_command(
     Writes fit.json, predictions.csv (every neuron's trace), report.md and the figure
     (fit.pdf, fit.svg, fit.png) into OUT. The data format is in docs/fitting.md.
     """
-    from symctl.discovery.fit import fit
+    from symctl.fitting.fit import fit
     from symctl.report.fit import write_fit
     from symctl.report.output import OutputFolder
 
@@ -125,8 +125,8 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
     """The gains (of --model or the paper's muscle) and the traces of DATA."""
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-    from symctl.discovery.traces import read_traces
     from symctl.errors import ParameterError
+    from symctl.fitting.traces import read_traces
 
     tr = read_traces(Path(data))
     plant, Q, R, defaults = model_parts(model_file)

@@ -218,14 +218,11 @@ def _order(order, up, down) -> list[list]:
 
 def _pack(target, weight, gaps) -> np.ndarray:
     """Least squares ``sum w (d - t)^2`` under ``d[k+1] >= d[k] + gaps[k]`` (pool adjacent)."""
+    from scipy.optimize import isotonic_regression
+
     offset = np.concatenate(([0.0], np.cumsum(gaps)))
-    blocks: list[list[float]] = []  # [mean, weight, count]
-    for value, w in zip(np.asarray(target) - offset, weight, strict=True):
-        blocks.append([value, w, 1])
-        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
-            (m1, w1, c1), (m2, w2, c2) = blocks.pop(-2), blocks.pop()
-            blocks.append([(m1 * w1 + m2 * w2) / (w1 + w2), w1 + w2, c1 + c2])
-    return np.repeat([b[0] for b in blocks], [b[2] for b in blocks]) + offset
+    fit = isotonic_regression(np.asarray(target, dtype=float) - offset, weights=weight)
+    return fit.x + offset
 
 
 def _depths(order, up, down, height) -> dict:

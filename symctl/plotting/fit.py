@@ -1,6 +1,6 @@
 r"""The fit figure: data against fit for the recorded neurons, predictions for the others.
 
-The rendering of :meth:`FitResult.plot <symctl.discovery.fit.FitResult.plot>`: one
+The rendering of :meth:`FitResult.plot <symctl.fitting.fit.FitResult.plot>`: one
 panel per neuron of the fitted circuit, in the house style (:mod:`symctl.plotting.style`)
 at the text width. A recorded neuron shows its data (dots) and the fitted trace; an
 unrecorded one its predicted trace with one standard error as a band, or, when the data
@@ -30,7 +30,7 @@ from symctl.plotting import style
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from symctl.discovery.fit import FitResult
+    from symctl.fitting.fit import FitResult
 
 __all__ = ["SETTLED", "fit_plot"]
 

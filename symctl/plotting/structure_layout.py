@@ -221,18 +221,16 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
 
 
 def pava_rows(desired: list[float]) -> list[int]:
-    """Integer rows, top first, one apart at least, closest to ``desired`` (isotonic fit)."""
-    blocks: list[list[float]] = []  # [mean, weight] of pooled z_i = y_i + i, non-increasing
-    for i, d in enumerate(desired):
-        blocks.append([d + i, 1.0])
-        while len(blocks) > 1 and blocks[-2][0] < blocks[-1][0]:
-            mean, weight = blocks.pop()
-            blocks[-1][0] = (blocks[-1][0] * blocks[-1][1] + mean * weight) / (
-                blocks[-1][1] + weight
-            )
-            blocks[-1][1] += weight
-    z = [mean for mean, weight in blocks for _ in range(int(weight))]
-    rows = [math.floor(zi - i + 0.5) for i, zi in enumerate(z)]
+    """Integer rows, top first, one apart at least, closest to ``desired`` (isotonic fit).
+
+    The least-squares non-increasing fit of :math:`z_i = y_i + i`
+    (:func:`scipy.optimize.isotonic_regression`), rounded half up (after the pooled
+    means' last-bit noise is rounded away) and pushed one row apart.
+    """
+    from scipy.optimize import isotonic_regression
+
+    z = isotonic_regression([d + i for i, d in enumerate(desired)], increasing=False).x
+    rows = [math.floor(round(zi - i, 9) + 0.5) for i, zi in enumerate(z)]
     for i in range(1, len(rows)):
         rows[i] = min(rows[i], rows[i - 1] - 1)
     return rows

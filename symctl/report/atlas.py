@@ -38,7 +38,7 @@ _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 
 def paper_realizations(A) -> dict:
     """The classes of the paper's three realizations of a generic order-n G2, by name."""
-    from symctl.discovery.pattern import Pattern
+    from symctl.circuitatlas.pattern import Pattern
     from symctl.realization.realization import controllable_canonical, observable_canonical
     from symctl.symbols import z
 

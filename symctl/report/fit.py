@@ -21,7 +21,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from symctl.discovery.traces import Traces
+from symctl.fitting.traces import Traces
 
 __all__ = ["write_fit"]
 

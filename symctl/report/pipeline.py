@@ -32,6 +32,8 @@ from symctl._util.validate import (
     psd_matrix,
     to_matrix,
 )
+from symctl.circuitatlas.atlas import atlas
+from symctl.circuitatlas.candidates import circuits_for
 from symctl.compatibility.check import check_compatibility
 from symctl.compatibility.controller import controller_compatibility
 from symctl.compatibility.structure import Structure, ifp_structure
@@ -39,8 +41,6 @@ from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.plant import MuscleModel
-from symctl.discovery.atlas import atlas
-from symctl.discovery.candidates import circuits_for
 from symctl.errors import NotRealizableError, NotStabilizableError, ParameterError
 from symctl.model.modelfile import Model, load_model
 from symctl.model.presets import muscle

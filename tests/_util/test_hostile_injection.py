@@ -450,48 +450,48 @@ AUDITED = {
     ("symctl.report.pipeline", "_weight", "ImmutableMatrix"): 1,  # after to_matrix
     ("symctl.report.pipeline", "_derive", "subs"): 2,  # the gains' own substitutions (float, exact)
     ("symctl.report.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
-    # discovery: every expression is built from a Pattern's own symbols and exact rationals;
+    # the circuit atlas: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
-    ("symctl.discovery.certify", "_Poly.__init__", "Poly"): 1,
-    ("symctl.discovery.certify", "certified_point", "expand"): 1,
+    ("symctl.circuitatlas.certify", "_Poly.__init__", "Poly"): 1,
+    ("symctl.circuitatlas.certify", "certified_point", "expand"): 1,
     # circuits_for: G is a validated DiscreteTF (DiscreteTF.from_expr); factor is symctl's
-    ("symctl.discovery.candidates", "circuits_for", "factor"): 2,
-    ("symctl.discovery.candidates", "_generic_eps", "Poly"): 1,
-    ("symctl.discovery.candidates", "_degenerate", "Poly"): 6,
-    ("symctl.discovery.candidates", "_degenerate", "expand"): 3,
-    ("symctl.discovery.candidates", "_degenerate", "factor"): 1,
-    ("symctl.discovery.fibre", "binary_rationals", "expand"): 1,  # sympy values only
-    ("symctl.discovery.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
-    ("symctl.discovery.pattern", "Pattern.F", "ImmutableMatrix"): 1,  # 0/1 ints of the mask
-    ("symctl.discovery.pattern", "Pattern.H", "ImmutableMatrix"): 1,
-    ("symctl.discovery.pattern", "Pattern.M", "ImmutableMatrix"): 1,
-    ("symctl.discovery.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
-    ("symctl.discovery.solve", "_solved", "Poly"): 2,
-    ("symctl.discovery.solve", "_markov_equal", "expand"): 1,  # own entries and coefficients
-    ("symctl.discovery.fibre", "coefficient_polynomials", "Poly"): 2,  # a pattern's symbols
-    ("symctl.discovery.fibre", "coefficient_polynomials", "expand"): 1,
-    ("symctl.discovery.fibre", "_equations", "expand"): 1,
-    ("symctl.discovery.universality", "closed_form", "Poly"): 1,
-    ("symctl.discovery.universality", "closed_form", "cancel"): 3,
-    ("symctl.discovery.universality", "closed_form.substitute", "expand"): 1,
-    ("symctl.discovery.universality", "closed_form.substitute", "together"): 1,
-    ("symctl.discovery.universality", "_linear_pair", "Poly"): 1,  # the pattern's equations
-    ("symctl.discovery.universality", "_linear_pair", "expand"): 1,
-    ("symctl.discovery.universality", "_linear_pair", "cancel"): 2,
-    ("symctl.discovery.universality", "closed_form", "together"): 1,
-    ("symctl.discovery.universality", "closed_form", "subs"): 1,  # symbol -> own expression
-    ("symctl.discovery.universality", "closed_form", "expand"): 1,
-    ("symctl.discovery.fibre", "_standard_monomials", "Poly"): 1,
-    ("symctl.discovery.fibre", "_normal_form", "expand"): 1,
-    ("symctl.discovery.fibre", "_normal_form", "Poly"): 1,
-    ("symctl.discovery.fibre", "solve_at", "expand"): 1,
-    ("symctl.discovery.fibre", "solve_at", "Poly"): 0,
-    ("symctl.discovery.fibre", "real_solutions", "Poly"): 2,
-    ("symctl.discovery.universality", "_pole_system", "Poly"): 1,  # the pattern's own F
-    ("symctl.discovery.universality", "_pole_obstruction", "expand"): 1,
-    ("symctl.discovery.universality", "_poles", "expand"): 1,
-    ("symctl.discovery.universality", "_sample", "Poly"): 1,
-    ("symctl.discovery.universality", "_witness", "expand"): 1,
+    ("symctl.circuitatlas.candidates", "circuits_for", "factor"): 2,
+    ("symctl.circuitatlas.candidates", "_generic_eps", "Poly"): 1,
+    ("symctl.circuitatlas.candidates", "_degenerate", "Poly"): 6,
+    ("symctl.circuitatlas.candidates", "_degenerate", "expand"): 3,
+    ("symctl.circuitatlas.candidates", "_degenerate", "factor"): 1,
+    ("symctl.circuitatlas.fibre", "binary_rationals", "expand"): 1,  # sympy values only
+    ("symctl.circuitatlas.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
+    ("symctl.circuitatlas.pattern", "Pattern.F", "ImmutableMatrix"): 1,  # 0/1 ints of the mask
+    ("symctl.circuitatlas.pattern", "Pattern.H", "ImmutableMatrix"): 1,
+    ("symctl.circuitatlas.pattern", "Pattern.M", "ImmutableMatrix"): 1,
+    ("symctl.circuitatlas.solve", "realize_with", "cancel"): 1,  # split_proper's coefficients
+    ("symctl.circuitatlas.solve", "_solved", "Poly"): 2,
+    ("symctl.circuitatlas.solve", "_markov_equal", "expand"): 1,  # own entries and coefficients
+    ("symctl.circuitatlas.fibre", "coefficient_polynomials", "Poly"): 2,  # a pattern's symbols
+    ("symctl.circuitatlas.fibre", "coefficient_polynomials", "expand"): 1,
+    ("symctl.circuitatlas.fibre", "_equations", "expand"): 1,
+    ("symctl.circuitatlas.universality", "closed_form", "Poly"): 1,
+    ("symctl.circuitatlas.universality", "closed_form", "cancel"): 3,
+    ("symctl.circuitatlas.universality", "closed_form.substitute", "expand"): 1,
+    ("symctl.circuitatlas.universality", "closed_form.substitute", "together"): 1,
+    ("symctl.circuitatlas.universality", "_linear_pair", "Poly"): 1,  # the pattern's equations
+    ("symctl.circuitatlas.universality", "_linear_pair", "expand"): 1,
+    ("symctl.circuitatlas.universality", "_linear_pair", "cancel"): 2,
+    ("symctl.circuitatlas.universality", "closed_form", "together"): 1,
+    ("symctl.circuitatlas.universality", "closed_form", "subs"): 1,  # symbol -> own expression
+    ("symctl.circuitatlas.universality", "closed_form", "expand"): 1,
+    ("symctl.circuitatlas.fibre", "_standard_monomials", "Poly"): 1,
+    ("symctl.circuitatlas.fibre", "_normal_form", "expand"): 1,
+    ("symctl.circuitatlas.fibre", "_normal_form", "Poly"): 1,
+    ("symctl.circuitatlas.fibre", "solve_at", "expand"): 1,
+    ("symctl.circuitatlas.fibre", "solve_at", "Poly"): 0,
+    ("symctl.circuitatlas.fibre", "real_solutions", "Poly"): 2,
+    ("symctl.circuitatlas.universality", "_pole_system", "Poly"): 1,  # the pattern's own F
+    ("symctl.circuitatlas.universality", "_pole_obstruction", "expand"): 1,
+    ("symctl.circuitatlas.universality", "_poles", "expand"): 1,
+    ("symctl.circuitatlas.universality", "_sample", "Poly"): 1,
+    ("symctl.circuitatlas.universality", "_witness", "expand"): 1,
     # the checkers themselves: to_expr/to_matrix/parse_matrix only pass sympy objects on
     ("symctl._util.evaluate", "lambdify_matrices", "lambdify"): 1,  # symbol_tuple
     ("symctl._util.exact", "z_poly", "Poly"): 1,  # sympy expressions of a DiscreteTF
@@ -605,40 +605,40 @@ AUDITED = {
     ("symctl.report.story", "_match", "cancel"): 1,
     # Dale's law (issue 17): G is a validated numeric DiscreteTF (controller_of), the rest are
     # the templates' own symbols, z3's exact values and seeded rationals; no user text
-    ("symctl.discovery.dale", "controller_of", "subs"): 1,
-    ("symctl.discovery.dale", "poles_of", "fraction"): 1,
-    ("symctl.discovery.dale", "poles_of", "together"): 1,
-    ("symctl.discovery.dale", "dale", "factor"): 1,
-    ("symctl.discovery.dale", "_witness", "subs"): 2,
-    ("symctl.discovery.dale_atlas", "_sample", "expand"): 1,
-    ("symctl.discovery.dale_atlas", "_decide", "factor"): 1,
-    ("symctl.discovery.interneurons", "ei_circuit", "factor"): 1,
-    ("symctl.discovery.signs", "template", "expand"): 1,
-    ("symctl.discovery.signs", "template", "together"): 1,
-    ("symctl.discovery.signs", "encode", "expand"): 2,
-    ("symctl.discovery.signs", "encode", "fraction"): 1,
-    ("symctl.discovery.signs", "encode", "together"): 1,
-    ("symctl.discovery.signs", "_equations", "fraction"): 1,  # the template's own entries
-    ("symctl.discovery.signs", "_equations", "together"): 1,
-    ("symctl.discovery.signs", "value_of", "Poly"): 1,
-    ("symctl.discovery.witness", "search_general", "lambdify"): 1,
-    ("symctl.discovery.witness", "_exact", "Poly"): 1,
-    ("symctl.discovery.witness", "_exact", "factor"): 1,
+    ("symctl.dalelaw.dale", "controller_of", "subs"): 1,
+    ("symctl.dalelaw.dale", "poles_of", "fraction"): 1,
+    ("symctl.dalelaw.dale", "poles_of", "together"): 1,
+    ("symctl.dalelaw.dale", "dale", "factor"): 1,
+    ("symctl.dalelaw.dale", "_witness", "subs"): 2,
+    ("symctl.dalelaw.dale_atlas", "_sample", "expand"): 1,
+    ("symctl.dalelaw.dale_atlas", "_decide", "factor"): 1,
+    ("symctl.dalelaw.interneurons", "ei_circuit", "factor"): 1,
+    ("symctl.dalelaw.signs", "template", "expand"): 1,
+    ("symctl.dalelaw.signs", "template", "together"): 1,
+    ("symctl.dalelaw.signs", "encode", "expand"): 2,
+    ("symctl.dalelaw.signs", "encode", "fraction"): 1,
+    ("symctl.dalelaw.signs", "encode", "together"): 1,
+    ("symctl.dalelaw.signs", "_equations", "fraction"): 1,  # the template's own entries
+    ("symctl.dalelaw.signs", "_equations", "together"): 1,
+    ("symctl.dalelaw.signs", "value_of", "Poly"): 1,
+    ("symctl.dalelaw.witness", "search_general", "lambdify"): 1,
+    ("symctl.dalelaw.witness", "_exact", "Poly"): 1,
+    ("symctl.dalelaw.witness", "_exact", "factor"): 1,
     # fitting (issue 17): G is a validated numeric DiscreteTF (its Float atoms made exact), the
     # parameters are floats rounded to Fractions by the fit itself; every matrix and
     # substitution is built from symctl's own section symbols and those rationals
-    ("symctl.discovery.fit", "_exact", "Matrix"): 1,
-    ("symctl.discovery.fitargs", "_loop", "subs"): 1,
-    ("symctl.discovery.fitargs", "_rational_tf", "subs"): 1,
-    ("symctl.discovery.fitargs", "_circuit_neurons", "Matrix"): 1,
-    ("symctl.discovery.fitmodel", "TraceModel.build", "factor"): 1,
-    ("symctl.discovery.fitmodel", "TraceModel.build", "subs"): 2,
-    ("symctl.discovery.fitmodel", "TraceModel.build", "Matrix"): 1,
-    ("symctl.discovery.fitmodel", "TraceModel.factorization", "factor"): 1,
-    ("symctl.discovery.fitmodel", "TraceModel.realize", "Matrix"): 1,
-    ("symctl.discovery.fitmodel", "_lambdified", "subs"): 1,
-    ("symctl.discovery.fitmodel", "_lambdified", "Matrix"): 1,
-    ("symctl.discovery.fitmodel", "_lambdified", "lambdify"): 1,
+    ("symctl.fitting.fit", "_exact", "Matrix"): 1,
+    ("symctl.fitting.fitargs", "_loop", "subs"): 1,
+    ("symctl.fitting.fitargs", "_rational_tf", "subs"): 1,
+    ("symctl.fitting.fitargs", "_circuit_neurons", "Matrix"): 1,
+    ("symctl.fitting.fitmodel", "TraceModel.build", "factor"): 1,
+    ("symctl.fitting.fitmodel", "TraceModel.build", "subs"): 2,
+    ("symctl.fitting.fitmodel", "TraceModel.build", "Matrix"): 1,
+    ("symctl.fitting.fitmodel", "TraceModel.factorization", "factor"): 1,
+    ("symctl.fitting.fitmodel", "TraceModel.realize", "Matrix"): 1,
+    ("symctl.fitting.fitmodel", "_lambdified", "subs"): 1,
+    ("symctl.fitting.fitmodel", "_lambdified", "Matrix"): 1,
+    ("symctl.fitting.fitmodel", "_lambdified", "lambdify"): 1,
 }
 
 

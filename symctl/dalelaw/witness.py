@@ -15,19 +15,18 @@ margin is then made exact: :math:`\epsilon` and :math:`Q` are rounded to
 rationals, the realization is rebuilt in exact arithmetic (python-flint
 behind :func:`~symctl.realization.realizers.general_realization`) and every
 sign is checked on it exactly. The search finds witnesses; only z3 proves that
-none exists (:mod:`symctl.discovery.signs`).
+none exists (:mod:`symctl.dalelaw.signs`).
 """
 
 from __future__ import annotations
-
-from fractions import Fraction
 
 import numpy as np
 import sympy as sp
 from scipy.optimize import minimize
 
 from symctl._util.deadline import Deadline
-from symctl.discovery.signs import _expr
+from symctl._util.exact import nearest_rational
+from symctl.dalelaw.signs import _expr
 from symctl.realization.factorization import factor
 from symctl.realization.realizers import general_realization
 from symctl.symbols import z
@@ -148,7 +147,7 @@ def _exact(G, t, theta, sign, k, n, deadline):
     for den in (100, 10**4, 10**6):
         if deadline.expired():
             return None
-        eps = [_rational(0.95 * np.tanh(x), den) for x in theta[:k]]
+        eps = [nearest_rational(0.95 * np.tanh(x), den) for x in theta[:k]]
         if any(abs(e) >= 1 or e == 0 or poles.eval(e) == 0 for e in eps):
             continue
         cs = [sp.Integer(1)] * len(c_syms)
@@ -156,7 +155,7 @@ def _exact(G, t, theta, sign, k, n, deadline):
             cs[0] = sp.Integer(int(sign))
         Q = sp.zeros(n, n)
         for i, x in enumerate(theta[k:]):
-            Q[i // n, i % n] = _rational(x, den)
+            Q[i // n, i % n] = nearest_rational(x, den)
         if Q.det() == 0:
             continue
         sub = factor(G, len(fs.sensor_eps), len(fs.actuator_eps), eps=eps, C=cs)
@@ -174,8 +173,3 @@ def _exact(G, t, theta, sign, k, n, deadline):
 def _one_sign(ws) -> bool:
     """Every weight nonzero and of one sign (exact rationals)."""
     return all(w > 0 for w in ws) or all(w < 0 for w in ws)
-
-
-def _rational(x: float, den: int) -> sp.Rational:
-    q = Fraction(float(x)).limit_denominator(den)
-    return sp.Rational(q.numerator, q.denominator)

@@ -3,7 +3,7 @@ r"""Universality over the reals: proved, refuted, or witnessed region by region.
 Write an order-:math:`n` :math:`G_2 = N + b(z)/a(z)`, :math:`a(z) = z^n +
 \sum_{i<n} a_i z^i`, :math:`b(z) = \sum_{i<n} c_i z^i`
 (:func:`~symctl.realization.realization.split_proper`). A pattern
-(:mod:`symctl.discovery.pattern`) is **universal** when almost every real
+(:mod:`symctl.circuitatlas.pattern`) is **universal** when almost every real
 :math:`(a, c)` has a real realization with exactly that support. After the
 torus normalization (the spanning-tree entries set to 1) the unknowns are the
 other entries, and the conditions are the :math:`2n` polynomial equations
@@ -11,7 +11,7 @@ other entries, and the conditions are the :math:`2n` polynomial equations
 The verdicts, each with its method (:class:`Evidence`):
 
 ``"rank"`` (refuted)
-    The generic rank is below :math:`2n` (:mod:`symctl.discovery.rank`): the
+    The generic rank is below :math:`2n` (:mod:`symctl.circuitatlas.rank`): the
     reachable :math:`G_2` form a set of lower dimension.
 ``"real eigenvalues"`` (refuted)
     ``F``'s graph has strongly connected components of sizes :math:`s_1, ..`;
@@ -56,8 +56,8 @@ The verdicts, each with its method (:class:`Evidence`):
 ``"not decided"``
     None of the above settled it; the search done is stated.
 
->>> from symctl.discovery.pattern import Pattern
->>> from symctl.discovery.universality import decide
+>>> from symctl.circuitatlas.pattern import Pattern
+>>> from symctl.circuitatlas.universality import decide
 >>> decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])).method
 'closed form'
 >>> decide(Pattern.from_matrices([[1, 1], [0, 1]], [1, 1], [1, 0])).method
@@ -75,16 +75,16 @@ from types import MappingProxyType
 import networkx as nx
 import sympy as sp
 
-from symctl.discovery.certify import certified_real_root
-from symctl.discovery.fibre import (
+from symctl.circuitatlas.certify import certified_real_root
+from symctl.circuitatlas.fibre import (
     _equations,
     _system,
     coefficient_symbols,
     real_solutions,
     solve_at,
 )
-from symctl.discovery.pattern import Pattern, slot_names
-from symctl.discovery.rank import generic_rank
+from symctl.circuitatlas.pattern import Pattern, slot_names
+from symctl.circuitatlas.rank import generic_rank
 from symctl.symbols import z
 
 __all__ = ["Evidence", "closed_form", "decide", "fixings", "sample_targets"]
@@ -130,8 +130,8 @@ class Evidence:
 
     Examples
     --------
-    >>> from symctl.discovery.pattern import Pattern
-    >>> from symctl.discovery.universality import decide
+    >>> from symctl.circuitatlas.pattern import Pattern
+    >>> from symctl.circuitatlas.universality import decide
     >>> ev = decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
     >>> bool(ev), ev.proved, sorted(ev.details["entries"])
     (True, True, ['F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]'])
@@ -297,7 +297,7 @@ def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
 
     Examples
     --------
-    >>> from symctl.discovery.universality import sample_targets
+    >>> from symctl.circuitatlas.universality import sample_targets
     >>> sorted({r for r, _, _ in sample_targets(3)})
     ['1 complex pair, 1 real pole', '3 real poles']
     """
@@ -529,8 +529,8 @@ def decide(
 
     Examples
     --------
-    >>> from symctl.discovery.pattern import Pattern
-    >>> from symctl.discovery.universality import decide
+    >>> from symctl.circuitatlas.pattern import Pattern
+    >>> from symctl.circuitatlas.universality import decide
     >>> decide(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 1])).universal
     False
     """

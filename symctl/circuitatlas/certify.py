@@ -13,7 +13,7 @@ whose interval excludes 0 is nonzero at the root. Every evaluation is in
 rigorous ball arithmetic on the exact rational coefficients.
 
 >>> import sympy as sp
->>> from symctl.discovery.certify import certified_real_root
+>>> from symctl.circuitatlas.certify import certified_real_root
 >>> x, y = sp.symbols("x y")
 >>> root = certified_real_root([x**2 + y - 3, x - y + 1], [x, y], seed=1)
 >>> sorted(round(v, 6) for v in root.values)

@@ -22,7 +22,7 @@ Two symmetries act on patterns and on realizations with a given pattern:
   :math:`D` (:meth:`Pattern.tree_slots`); the diagonal of :math:`F` does not
   move.
 
->>> from symctl.discovery.pattern import Pattern
+>>> from symctl.circuitatlas.pattern import Pattern
 >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
 >>> P.size, P.text
 (6, '01 11 | 01 | 11')
@@ -106,7 +106,7 @@ class Pattern:
 
     Examples
     --------
-    >>> from symctl.discovery.pattern import Pattern
+    >>> from symctl.circuitatlas.pattern import Pattern
     >>> P = Pattern(2, 0b11101110)
     >>> P.slots
     ('F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]')
@@ -131,7 +131,7 @@ class Pattern:
 
         Examples
         --------
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]).mask
         238
         """
@@ -157,7 +157,7 @@ class Pattern:
         Examples
         --------
         >>> from symctl import controllable_canonical, z
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.of(controllable_canonical(1 + 1 / (z**2 - z / 2 - 1))).text
         '01 11 | 01 | 10'
         """
@@ -227,7 +227,7 @@ class Pattern:
 
         Examples
         --------
-        >>> from symctl.discovery.pattern import Pattern
+        >>> from symctl.circuitatlas.pattern import Pattern
         >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
         >>> P.F, P.H.T, P.M
         (Matrix([
@@ -338,19 +338,3 @@ def canonical_mask(n: int, mask: int) -> int:
 def orbit_size(n: int, mask: int) -> int:
     """How many patterns the state permutations give from ``mask``."""
     return len({_permute(mask, m) for m in _permutation_maps(n)})
-
-
-def canonical_patterns(n: int, size: int):
-    """Every canonical pattern of order ``n`` with ``size`` nonzero slots, by increasing mask.
-
-    Enumerates the subsets of the slots; the state permutations reduce them to
-    one per orbit (about ``n!`` times fewer).
-    """
-    slots = n * n + 2 * n
-    if not 0 <= size <= slots:
-        raise ParameterError(f"size: must be between 0 and {slots}, got {size}")
-    maps = _permutation_maps(n)
-    for combo in itertools.combinations(range(slots), size):
-        mask = sum(1 << k for k in combo)
-        if all(_permute(mask, m) >= mask for m in maps):
-            yield Pattern(n, mask)

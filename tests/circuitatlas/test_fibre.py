@@ -7,9 +7,9 @@ import sympy as sp
 
 from symctl import z
 from symctl._util.deadline import Deadline, OutOfTime, Unfinished
-from symctl.discovery import fibre
-from symctl.discovery.pattern import Pattern
-from symctl.discovery.signs import full_pattern
+from symctl.circuitatlas import fibre
+from symctl.circuitatlas.pattern import Pattern
+from symctl.dalelaw.signs import full_pattern
 
 
 def test_coefficient_polynomials_of_order_6_stop_at_a_passed_deadline():

@@ -10,7 +10,7 @@ only inside the set of circuits that are the optimal controller.
 
 Method. The loop's :math:`\delta_f` is computed once
 (:func:`~symctl.neural.simulate.closed_loop_response`); each neuron's trace is a
-linear filter of it (:mod:`symctl.discovery.fitmodel`), with exact Jacobians by
+linear filter of it (:mod:`symctl.fitting.fitmodel`), with exact Jacobians by
 forward sensitivity. :func:`scipy.optimize.least_squares` (trust-region
 reflective, :math:`|\epsilon| < 1` as bounds) minimises the sum over recorded
 neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
@@ -41,24 +41,25 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares
 
+from symctl._util.exact import nearest_rational
 from symctl._util.validate import as_generator, bounded_int, read_only
+from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.fitargs import (
+from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
+from symctl.fitting.fitargs import (
     MAX_FIT_STEPS,
     MAX_NEURONS,
     _circuit_arg,
     _circuit_neurons,
     _label,
     _loop,
-    _pool,
     _signs,
     _traces,
     _window,
 )
-from symctl.discovery.fitmodel import TraceModel
-from symctl.discovery.identify import _verdicts
-from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
+from symctl.fitting.fitmodel import TraceModel
+from symctl.fitting.identify import _verdicts
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -389,7 +390,7 @@ def fit(
 
     Every candidate circuit implements :math:`G` exactly, so the fit changes
     the neurons and never the behaviour (the force and rate traces stay the
-    optimal controller's). See :mod:`symctl.discovery.fit` for the method.
+    optimal controller's). See :mod:`symctl.fitting.fit` for the method.
 
     Parameters
     ----------
@@ -405,7 +406,7 @@ def fit(
     circuit : str, CircuitClass or list of them, default "general"
         ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"``, an
         atlas class of order 2 (``"A1"``... or a
-        :class:`~symctl.discovery.circuitclass.CircuitClass`) with a closed form; a
+        :class:`~symctl.circuitatlas.circuitclass.CircuitClass`) with a closed form; a
         list fits each and keeps the best, skipping (``skipped``) the classes that
         cannot take the data; ``"all"`` is the three and the atlas's closed-form
         classes.
@@ -488,7 +489,7 @@ def fit(
                 continue
             points = _start_points(problem, model, starts, gen)
             if pool is None:
-                pool = _pool(workers, scheduler)
+                pool = open_pool(workers, scheduler)
             per = max(1, -(-len(points) // max(1, int(workers))))
             chunks = [(problem, points[i : i + per]) for i in range(0, len(points), per)]
             runs = [r for chunk in pool.map(_run_starts, chunks) for r in chunk]
@@ -525,8 +526,7 @@ def _setup(tf, ds, da, cls, C, data, u, signs):
 
 
 def _rational(x: float) -> sp.Rational:
-    f = Fraction(float(x)).limit_denominator(DENOMINATOR)
-    return sp.Rational(f.numerator, f.denominator)
+    return nearest_rational(x, DENOMINATOR)
 
 
 def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):

@@ -19,10 +19,10 @@ import z3
 import symctl
 from symctl import MuscleModel, ParameterError, augment, check_realization, lqr_gains, z
 from symctl._util.deadline import Deadline, OutOfTime, Unfinished
-from symctl.discovery import dale_atlas as dale_atlas_module
-from symctl.discovery import witness
-from symctl.discovery.dale import controller_of, poles_of, templates_of
-from symctl.discovery.signs import (
+from symctl.dalelaw import dale_atlas as dale_atlas_module
+from symctl.dalelaw import witness
+from symctl.dalelaw.dale import controller_of, poles_of, templates_of
+from symctl.dalelaw.signs import (
     Encoding,
     check,
     decide,

@@ -1,7 +1,7 @@
 r"""The cheapest E/I circuit of a controller, with sign-flipping interneurons where needed.
 
 When no circuit carries :math:`G` with every neuron excitatory or inhibitory
-(:func:`~symctl.discovery.dale.dale`), a neuron with **mixed** signs can keep
+(:func:`~symctl.dalelaw.dale.dale`), a neuron with **mixed** signs can keep
 Dale's law with one extra inhibitory interneuron: the neuron :math:`j` of sign
 :math:`\sigma` sends :math:`\sigma` to the interneuron :math:`I_j` (delay 0,
 no self-dynamics), and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target
@@ -36,7 +36,7 @@ from types import MappingProxyType
 import sympy as sp
 
 from symctl._util.deadline import Deadline, Unfinished, deadline_of
-from symctl.discovery.dale import (
+from symctl.dalelaw.dale import (
     GENERAL_SEARCH,
     MAX_TIMEOUT,
     METHOD,
@@ -46,7 +46,7 @@ from symctl.discovery.dale import (
     search_general,
     templates_of,
 )
-from symctl.discovery.signs import NAMED, _expr, decide, encode, outgoing_synapses, refine
+from symctl.dalelaw.signs import NAMED, _expr, decide, encode, outgoing_synapses, refine
 from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
 
@@ -172,7 +172,7 @@ def _candidates(circuits, n: int):
         return out
     out = list(NAMED)
     if 1 <= n <= ATLAS_MAX_ORDER:
-        from symctl.discovery.atlas import atlas
+        from symctl.circuitatlas.atlas import atlas
 
         out += list(atlas(n, workers=1).classes)
     return out
@@ -182,7 +182,7 @@ def _fewest_mixed(G, t, poles, deadline: Deadline):
     """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness.
 
     Subsets of neurons allowed to be mixed are tried by size (each with every sign
-    assignment of the rest, :func:`~symctl.discovery.signs.decide`); the first
+    assignment of the rest, :func:`~symctl.dalelaw.signs.decide`); the first
     satisfiable size is the minimum, proved when every smaller one was refuted.
     """
     try:
@@ -217,12 +217,12 @@ def ei_circuit(
 ) -> EICircuit:
     r"""The cheapest circuit of ``G`` that obeys Dale's law, with interneurons where it must.
 
-    See :mod:`symctl.discovery.interneurons`.
+    See :mod:`symctl.dalelaw.interneurons`.
 
     Parameters
     ----------
     G, sensor_delay, actuator_delay
-        As in :func:`~symctl.discovery.dale.dale`.
+        As in :func:`~symctl.dalelaw.dale.dale`.
     circuits : list, optional
         The circuits to search (names, ``CircuitClass`` or ``Pattern``); default the
         general, controllable and observable circuits and, when :math:`G_2` has
@@ -240,7 +240,7 @@ def ei_circuit(
     ------
     ParameterError
         No searched circuit realizes ``G`` (or none was decided), an empty
-        ``circuits``; the errors of :func:`~symctl.discovery.dale.dale`.
+        ``circuits``; the errors of :func:`~symctl.dalelaw.dale.dale`.
 
     Examples
     --------
@@ -310,7 +310,7 @@ def ei_circuit(
 
 def _relays(G, fs, t, model):
     """The witness's interneurons, every neuron's sign and the whole controller (exact)."""
-    from symctl.discovery.dale import _witness
+    from symctl.dalelaw.dale import _witness
 
     values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}

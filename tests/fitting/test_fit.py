@@ -32,7 +32,7 @@ from symctl import (
 )
 from symctl.cli import main
 from symctl.compatibility.structure import Structure
-from symctl.discovery.fitmodel import TraceModel
+from symctl.fitting.fitmodel import TraceModel
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _drive
 

@@ -15,9 +15,9 @@ from types import MappingProxyType
 import numpy as np
 
 from symctl._util.validate import as_generator, bounded_int
-from symctl.discovery.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.discovery.fitmodel import TraceModel
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
+from symctl.fitting.fitmodel import TraceModel
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 
 __all__ = ["Identifiability", "identifiability"]

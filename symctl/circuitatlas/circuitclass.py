@@ -11,8 +11,8 @@ circuit, are one edge labelled ``(0, 1)``). Weights do not count. Patterns are
 in the same **class** when their graphs are isomorphic with the labels kept
 (networkx's VF2, after a Weisfeiler-Lehman hash to bucket them).
 
->>> from symctl.discovery.pattern import Pattern
->>> from symctl.discovery.circuitclass import circuit_of, circuit_key
+>>> from symctl.circuitatlas.pattern import Pattern
+>>> from symctl.circuitatlas.circuitclass import circuit_of, circuit_key
 >>> c = circuit_of(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
 >>> c.n_neurons, len(c.synapses)
 (2, 4)
@@ -29,9 +29,9 @@ from functools import cached_property
 import networkx as nx
 import sympy as sp
 
+from symctl.circuitatlas.pattern import Pattern
+from symctl.circuitatlas.universality import Evidence
 from symctl.compatibility.structure import Structure
-from symctl.discovery.pattern import Pattern
-from symctl.discovery.universality import Evidence
 from symctl.neural.circuit import Circuit
 from symctl.realization.realization import Realization
 
@@ -172,7 +172,7 @@ class CircuitClass:
         >>> bool(symctl.check_realization(R, 1 + (z + 3) / (z**2 + z / 2 + 1)))
         True
         """
-        from symctl.discovery.solve import realize_with
+        from symctl.circuitatlas.solve import realize_with
 
         return realize_with(self, G2)
 

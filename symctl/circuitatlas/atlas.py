@@ -1,7 +1,7 @@
 r"""The circuit atlas: every minimal circuit of an order-:math:`n` :math:`G_2`, found, proved and ranked.
 
-Definitions (the issue's, kept; :mod:`symctl.discovery.pattern`,
-:mod:`~symctl.discovery.universality`, :mod:`~symctl.discovery.circuitclass`):
+Definitions (the issue's, kept; :mod:`symctl.circuitatlas.pattern`,
+:mod:`~symctl.circuitatlas.universality`, :mod:`~symctl.circuitatlas.circuitclass`):
 
 * a realization :math:`(F, H, M, N)` of an order-:math:`n` :math:`G_2` (proper,
   :math:`N \ne 0`) has a **pattern**, the support of :math:`(F, H, M)`;
@@ -21,15 +21,15 @@ One refinement of the definition: a class is universal when *one* of its
 patterns is (the circuit then carries almost every :math:`G_2`); its other
 patterns may realize less.
 
-The search (:mod:`~symctl.discovery.search`) is exhaustive for orders 1 to
+The search (:mod:`~symctl.circuitatlas.search`) is exhaustive for orders 1 to
 :data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
 filtered by the exact generic-rank test, then decided. Order
 :data:`MAX_ATLAS_ORDER` searches the sparsest classes: patterns of :math:`3n`
 nonzero entries (up to ``max_size``; a universal pattern needs at least
-:math:`3n`, :mod:`~symctl.discovery.rank`) whose circuits have at most
+:math:`3n`, :mod:`~symctl.circuitatlas.rank`) whose circuits have at most
 :data:`ORDER4_MAX_NEURONS` neurons (``max_neurons``), and there a region
 without a certified witness leaves a pattern not decided
-(:data:`~symctl.discovery.universality.EXACT_SOLVE_MAX_ORDER`).
+(:data:`~symctl.circuitatlas.universality.EXACT_SOLVE_MAX_ORDER`).
 
 >>> import symctl
 >>> A = symctl.atlas(2, workers=1)
@@ -50,9 +50,10 @@ from types import MappingProxyType
 import networkx as nx
 
 from symctl._util.validate import bounded_int
-from symctl.discovery.circuitclass import CircuitClass, circuit_key, same_circuit
-from symctl.discovery.pattern import Pattern
-from symctl.discovery.universality import Evidence
+from symctl.circuitatlas.circuitclass import CircuitClass, circuit_key, same_circuit
+from symctl.circuitatlas.pattern import Pattern
+from symctl.circuitatlas.search import pool_options, run
+from symctl.circuitatlas.universality import Evidence
 from symctl.errors import ParameterError, SymctlTypeError
 
 __all__ = ["EXHAUSTIVE_MAX_ORDER", "MAX_ATLAS_ORDER", "Atlas", "atlas"]
@@ -65,9 +66,6 @@ MAX_ATLAS_ORDER = 4
 
 ORDER4_MAX_NEURONS = 3
 """Order 4 decides the patterns whose circuits have at most this many neurons (the sparsest)."""
-
-MAX_WORKERS = 512
-"""Most worker processes one search may ask for."""
 
 _RANK = {True: 0, None: 1, False: 2}
 
@@ -233,9 +231,7 @@ def atlas(
         top = bounded_int(max_size, "max_size", 0, n * n + 2 * n)
     if workers is None:
         workers = 1 if n <= 2 else max(1, os.cpu_count() or 1)
-    workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
-    if scheduler is not None and not isinstance(scheduler, str):
-        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
+    workers, scheduler = pool_options(workers, scheduler)
     if max_neurons is None and n > EXHAUSTIVE_MAX_ORDER:
         max_neurons = ORDER4_MAX_NEURONS
     if max_neurons is not None:
@@ -259,8 +255,6 @@ def _cached(n: int, delays: str) -> Atlas:
 
 
 def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons) -> Atlas:
-    from symctl.discovery.search import run
-
     slots = n * n + 2 * n
     start = time.perf_counter()
     records, counts = run(

@@ -19,7 +19,7 @@ realizes :math:`G_2` for *some* section poles :math:`\epsilon` and gains
   nothing (scaling :math:`M` keeps the pattern, so the reachable :math:`b`
   form a cone). A real point with every entry nonzero and no cancellation between :math:`Z` and
   :math:`\delta` is found by Gauss-Newton and proved to exist by the Krawczyk
-  test (:func:`~symctl.discovery.certify.certified_point`). Only section poles
+  test (:func:`~symctl.circuitatlas.certify.certified_point`). Only section poles
   inside the unit circle are accepted (:data:`STABLE`): an unstable
   :math:`G_1` or :math:`G_3` cancelled by a zero of :math:`G_2` would hide an
   unstable mode in the circuit. A class that needs unstable sections is left out. The paper's
@@ -44,13 +44,13 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symctl.circuitatlas.certify import certified_point
+from symctl.circuitatlas.circuitclass import CircuitClass
+from symctl.circuitatlas.fibre import _system, binary_rationals
 from symctl.compatibility.check import CompatibilityResult, check_compatibility
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.certify import certified_point
-from symctl.discovery.circuitclass import CircuitClass
-from symctl.discovery.fibre import _system, binary_rationals
 from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization
@@ -185,8 +185,8 @@ def circuits_for(
     >>> [c.degenerate for c in symctl.circuits_for(G)][:3]
     [True, True, False]
     """
-    from symctl.discovery.atlas import Atlas
-    from symctl.discovery.atlas import atlas as build_atlas
+    from symctl.circuitatlas.atlas import Atlas
+    from symctl.circuitatlas.atlas import atlas as build_atlas
 
     tf = DiscreteTF.from_expr(G)
     if tf.free_symbols - {z}:

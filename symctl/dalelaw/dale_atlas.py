@@ -16,7 +16,7 @@ monic of degree :math:`n - d_s - d_a` (so :math:`G_2` has order :math:`n` and
   elimination over the coefficients), and the table says so;
 * **not decided** (``None``): z3 ran out of time somewhere that matters.
 
-Each class runs on the atlas's dask path (:mod:`symctl.discovery.search`): in
+Each class runs on the atlas's dask path (:mod:`symctl.circuitatlas.search`): in
 this process with ``workers=1``, else on a local cluster or at ``scheduler``.
 
 >>> import symctl
@@ -35,11 +35,18 @@ import sympy as sp
 
 from symctl._util.deadline import Deadline
 from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
+from symctl.circuitatlas.pattern import Pattern
+from symctl.circuitatlas.search import open_pool, pool_options
+from symctl.dalelaw.dale import (
+    MAX_TIMEOUT,
+    _realizes,
+    any_sat,
+    controller_of,
+    poles_of,
+    solve,
+)
+from symctl.dalelaw.signs import template
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.dale import MAX_TIMEOUT, _realizes, controller_of, poles_of, solve
-from symctl.discovery.fitargs import _pool, pool_options
-from symctl.discovery.pattern import Pattern
-from symctl.discovery.signs import template
 from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
 from symctl.symbols import z
@@ -184,15 +191,10 @@ def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
     deadline = Deadline(timeout)
     fs = factor(G, ds, da)
     templates = [template(fs, p, delays) for p in patterns]
+    poles = poles_of(G)
     if relax:
-        return _realizes(templates, poles_of(G), deadline)
-    unknown = False
-    for t in templates:
-        verdict, _ = solve(G, t, poles_of(G), deadline, [], witness=False)
-        if verdict == "sat":
-            return True
-        unknown |= verdict != "unsat"
-    return None if unknown else False
+        return _realizes(templates, poles, deadline)
+    return any_sat(solve(G, t, poles, deadline, [], witness=False)[0] for t in templates)
 
 
 def _row(spec, ds, da, samples, timeout, own):
@@ -282,7 +284,7 @@ def dale_atlas(
     >>> T.rows[0].verdict, T.rows[0].sampled
     ('every', (2, 0, 0, 0))
     """
-    from symctl.discovery.atlas import atlas
+    from symctl.circuitatlas.atlas import atlas
 
     t0 = time.perf_counter()
     order = bounded_int(order, "order", 1, 2)
@@ -319,7 +321,7 @@ def dale_atlas(
          c.n_synapses, c.universal)
         for c in found
     ]  # fmt: skip
-    pool = _pool(workers, scheduler)
+    pool = open_pool(workers, scheduler)
     try:
         rows = list(pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]))
     finally:

@@ -30,7 +30,7 @@ respect to anything upstream it is the filter applied to the upstream derivative
 
 >>> import numpy as np
 >>> from symctl import MuscleModel, augment, controller_tf, lqr_gains
->>> from symctl.discovery.fitmodel import TraceModel
+>>> from symctl.fitting.fitmodel import TraceModel
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
 >>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
 >>> m = TraceModel.build(G, 1, 1, "general")

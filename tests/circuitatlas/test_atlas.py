@@ -17,12 +17,12 @@ from hypothesis import strategies as st
 
 import symctl
 from symctl import NotRealizableError, ParameterError, SymctlTypeError, z
-from symctl.discovery.certify import certified_real_root
-from symctl.discovery.fibre import solve_at
-from symctl.discovery.pattern import Pattern, canonical_mask, slot_names
-from symctl.discovery.rank import generic_rank
-from symctl.discovery.search import canonical_masks
-from symctl.discovery.universality import decide, sample_targets
+from symctl.circuitatlas.certify import certified_real_root
+from symctl.circuitatlas.fibre import solve_at
+from symctl.circuitatlas.pattern import Pattern, canonical_mask, slot_names
+from symctl.circuitatlas.rank import generic_rank
+from symctl.circuitatlas.search import canonical_masks
+from symctl.circuitatlas.universality import decide, sample_targets
 
 
 @pytest.fixture(scope="module")
@@ -289,7 +289,7 @@ def test_circuits_for_refuses_symbolic_gains_and_unrealizable_orders():
 @settings(max_examples=60, deadline=None)
 @given(st.integers(min_value=0, max_value=2**15 - 1))
 def test_pattern_neuron_count_is_the_circuits(mask):
-    from symctl.discovery.circuitclass import circuit_of
+    from symctl.circuitatlas.circuitclass import circuit_of
 
     p = Pattern(3, mask)
     if generic_rank(p).minimal:

@@ -1,6 +1,6 @@
 r"""The fibre of a pattern over one :math:`G_2`: its polynomial system and its exact real points.
 
-For a pattern (:mod:`symctl.discovery.pattern`) with its spanning-tree entries set
+For a pattern (:mod:`symctl.circuitatlas.pattern`) with its spanning-tree entries set
 to 1 (the torus normalization), :func:`_system` gives the unknowns and the
 coefficients of :math:`\det(zI - F)` and :math:`M \operatorname{adj}(zI - F) H` as
 polynomials in them; the fibre over :math:`G_2 = N + b/a` is where they equal
@@ -9,8 +9,8 @@ points exactly: a grevlex Groebner basis over :math:`\mathbb{Q}`, the multiplica
 matrix of a random linear form and its characteristic polynomial, and the Krylov
 basis for the other coordinates (shape position).
 
->>> from symctl.discovery.pattern import Pattern
->>> from symctl.discovery.fibre import solve_at
+>>> from symctl.circuitatlas.pattern import Pattern
+>>> from symctl.circuitatlas.fibre import solve_at
 >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
 >>> solve_at(P, [1, 0], [2, 3])["degree"]
 1
@@ -25,7 +25,7 @@ import sympy as sp
 from flint import fmpq, fmpq_mat
 
 from symctl._util.deadline import Unfinished
-from symctl.discovery.pattern import Pattern
+from symctl.circuitatlas.pattern import Pattern
 from symctl.symbols import z
 
 __all__ = [
@@ -71,7 +71,7 @@ def coefficient_polys(F, H, M, ring, *, deadline=None) -> tuple[list, list]:
     >>> import sympy as sp
     >>> from sympy.polys.rings import ring
     >>> from symctl import z
-    >>> from symctl.discovery.fibre import coefficient_polys
+    >>> from symctl.circuitatlas.fibre import coefficient_polys
     >>> f, h, m = sp.symbols("f h m")
     >>> R, *_ = ring([f, h, m, z], sp.QQ)
     >>> coefficient_polys(sp.Matrix([[f]]), sp.Matrix([[h]]), sp.Matrix([[m]]), R)

@@ -13,7 +13,7 @@ the fibre of the pattern for an atlas class). A neuron's **sign** is the sign
 of every synapse it sends to another neuron; its **self-dynamics** and the
 circuit's **read-out** (the motor command :math:`\delta_r`) are exempt.
 The question is a formula of nonlinear real arithmetic
-(:mod:`symctl.discovery.signs`), decided by z3:
+(:mod:`symctl.dalelaw.signs`), decided by z3:
 
 * **feasible** (``True``): a witness, pinned to rationals where z3 allows,
   then verified exactly: :math:`G_3 G_2 G_1 = G` by
@@ -52,14 +52,11 @@ import sympy as sp
 
 from symctl._util.deadline import Deadline, Unfinished, deadline_of
 from symctl._util.validate import nonneg_int
+from symctl.circuitatlas.circuitclass import CircuitClass
+from symctl.circuitatlas.fibre import binary_rationals
+from symctl.circuitatlas.pattern import MAX_ORDER, Pattern
 from symctl.compatibility.structure import Structure
-from symctl.design.controller import controller_tf
-from symctl.design.lqr import Gains
-from symctl.design.tf import DiscreteTF
-from symctl.discovery.circuitclass import CircuitClass
-from symctl.discovery.fibre import binary_rationals
-from symctl.discovery.pattern import MAX_ORDER, Pattern
-from symctl.discovery.signs import (
+from symctl.dalelaw.signs import (
     NAMED,
     Template,
     _expr,
@@ -69,7 +66,10 @@ from symctl.discovery.signs import (
     refine,
     template,
 )
-from symctl.discovery.witness import search_general
+from symctl.dalelaw.witness import search_general
+from symctl.design.controller import controller_tf
+from symctl.design.lqr import Gains
+from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization
@@ -275,7 +275,7 @@ def dale(
     exact: the sections' :math:`\epsilon_k \in (-1, 1)` (nonzero, off the poles
     of :math:`G`) and :math:`C_k \ne 0`, and :math:`G_2`'s realization within
     the circuit (a similarity :math:`P`, or a point of the class's fibre). See
-    :mod:`symctl.discovery.dale`.
+    :mod:`symctl.dalelaw.dale`.
 
     Parameters
     ----------
@@ -355,20 +355,29 @@ def dale(
     return DaleResult(None, None, {}, METHOD, reason, label, G=G, elapsed=deadline.elapsed())
 
 
-def _realizes(templates, poles, deadline: Deadline) -> bool | None:
-    """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
+def any_sat(verdicts) -> bool | None:
+    """True at the first ``"sat"`` (the rest not asked), False when all are ``"unsat"``, else None."""
     unknown = False
-    for t in templates:
-        try:
-            enc = encode(t, poles, deadline, relax=True)
-        except Unfinished:
-            unknown = True
-            continue
-        verdict, _ = decide(enc, tuple(enc.mixed), deadline=deadline)
+    for verdict in verdicts:
         if verdict == "sat":
             return True
         unknown |= verdict != "unsat"
     return None if unknown else False
+
+
+def _realizes(templates, poles, deadline: Deadline) -> bool | None:
+    """Some template realizes G with its signs free (every neuron allowed to be mixed)."""
+
+    def verdicts():
+        for t in templates:
+            try:
+                enc = encode(t, poles, deadline, relax=True)
+            except Unfinished:
+                yield "unknown"
+                continue
+            yield decide(enc, tuple(enc.mixed), deadline=deadline)[0]
+
+    return any_sat(verdicts())
 
 
 def solve(

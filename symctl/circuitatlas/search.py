@@ -13,7 +13,7 @@ Every finished chunk is appended to a checkpoint file (JSON lines) when one
 is given; a later run with the same file skips the patterns already done, so
 an interrupted search resumes.
 
->>> from symctl.discovery.search import canonical_masks
+>>> from symctl.circuitatlas.search import canonical_masks
 >>> len(canonical_masks(2, 6)), len(canonical_masks(3, 9))
 (16, 870)
 """
@@ -28,16 +28,20 @@ from pathlib import Path
 
 import numpy as np
 
-from symctl.discovery.pattern import Pattern, _permutation_maps, orbit_size
-from symctl.errors import ParameterError
+from symctl._util.validate import bounded_int
+from symctl.circuitatlas.pattern import Pattern, _permutation_maps, orbit_size
+from symctl.errors import ParameterError, SymctlTypeError
 
-__all__ = ["CHUNK", "canonical_masks", "run"]
+__all__ = ["CHUNK", "MAX_WORKERS", "canonical_masks", "open_pool", "pool_options", "run"]
 
 CHUNK = 64
 """Patterns per task sent to a worker."""
 
 FORMAT = 1
 """Version of the checkpoint format."""
+
+MAX_WORKERS = 512
+"""Most worker processes one search may ask for."""
 
 
 def canonical_masks(n: int, size: int) -> list[int]:
@@ -69,8 +73,8 @@ def _evaluate(n: int, masks: list[int], delays: str, lifted: list) -> list[dict]
     """Decide each pattern and read off its circuit (runs in a worker)."""
     import networkx as nx
 
-    from symctl.discovery.circuitclass import circuit_graph, circuit_of
-    from symctl.discovery.universality import Evidence, decide
+    from symctl.circuitatlas.circuitclass import circuit_graph, circuit_of
+    from symctl.circuitatlas.universality import Evidence, decide
 
     below = [(Pattern(n, m), Evidence.from_dict(e)) for m, e in lifted]
     out = []
@@ -207,6 +211,20 @@ class _Dask:
             self.cluster.close()
 
 
+def pool_options(workers, scheduler) -> tuple[int, str | None]:
+    """``workers`` and ``scheduler`` checked as the dask path takes them."""
+    workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
+    if scheduler is not None and not isinstance(scheduler, str):
+        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
+    return workers, scheduler
+
+
+def open_pool(workers, scheduler):
+    """This process (one worker, no scheduler) or a dask cluster, with ``map`` and ``close``."""
+    workers, scheduler = pool_options(workers, scheduler)
+    return _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
+
+
 def run(
     n: int,
     sizes,
@@ -224,7 +242,7 @@ def run(
     (``skipped``) but not decided.
     """
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
-    pool = _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
+    pool = open_pool(workers, scheduler)
     try:
         store = _Checkpoint(checkpoint, header)  # after the cluster: a bad address writes nothing
     except BaseException:

@@ -25,7 +25,7 @@ proof**. A smaller rank is confirmed at independent points; by
 Schwartz-Zippel one point misses a nonzero :math:`2n`-minor (a polynomial
 of degree at most :math:`2n^2` in the entries and the :math:`z_l`) with
 probability at most :math:`2n^2/p`. When :math:`k < 3n` the deficiency is
-exact anyway: the torus orbits (:mod:`symctl.discovery.pattern`) lie in the
+exact anyway: the torus orbits (:mod:`symctl.circuitatlas.pattern`) lie in the
 fibres and have dimension :math:`n` for a minimal realization, so the rank is
 at most :math:`k - n < 2n`.
 
@@ -33,8 +33,8 @@ The same points decide **generic minimality**: the controllability and
 observability matrices of the pattern's generic realization have rank
 :math:`n` mod :math:`p` (a proof) or not at a few points (Schwartz-Zippel).
 
->>> from symctl.discovery.pattern import Pattern
->>> from symctl.discovery.rank import generic_rank
+>>> from symctl.circuitatlas.pattern import Pattern
+>>> from symctl.circuitatlas.rank import generic_rank
 >>> generic_rank(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
 GenericRank(rank=4, minimal=True, exact=True, points=1)
 """
@@ -46,7 +46,7 @@ from typing import NamedTuple
 
 from flint import nmod_mat
 
-from symctl.discovery.pattern import Pattern
+from symctl.circuitatlas.pattern import Pattern
 
 __all__ = ["PRIME", "GenericRank", "generic_rank"]
 
@@ -145,8 +145,8 @@ def generic_rank(pattern: Pattern, seed: int = 0) -> GenericRank:
 
     Examples
     --------
-    >>> from symctl.discovery.pattern import Pattern
-    >>> from symctl.discovery.rank import generic_rank
+    >>> from symctl.circuitatlas.pattern import Pattern
+    >>> from symctl.circuitatlas.rank import generic_rank
     >>> generic_rank(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 0])).minimal
     False
     """

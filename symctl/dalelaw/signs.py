@@ -4,7 +4,7 @@ A **template** is a family of realizations of the whole controller
 :math:`G = G_3 G_2 G_1` that share one circuit: the sections'
 :math:`\epsilon_k, C_k` are unknowns, and :math:`G_2`'s realization is either a
 canonical form (entries rational in the sections' unknowns) or a pattern
-(:mod:`symctl.discovery.pattern`) whose nonzero entries are unknowns tied to
+(:mod:`symctl.circuitatlas.pattern`) whose nonzero entries are unknowns tied to
 :math:`G_2` by the polynomial equations
 
 .. math::
@@ -42,7 +42,7 @@ algebraic witness, ``unsat`` is a proof that none exists.
 
 >>> import sympy as sp
 >>> from symctl import factor, z
->>> from symctl.discovery.signs import template
+>>> from symctl.dalelaw.signs import template
 >>> fs = factor(-sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3)), 1, 1)
 >>> t = template(fs, "controllable")
 >>> sorted(t.outgoing)
@@ -60,9 +60,9 @@ import sympy as sp
 import z3
 
 from symctl._util.deadline import Deadline, Unfinished
+from symctl.circuitatlas.fibre import coefficient_polys
+from symctl.circuitatlas.pattern import Pattern
 from symctl.compatibility.structure import Structure
-from symctl.discovery.fibre import coefficient_polys
-from symctl.discovery.pattern import Pattern
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.realization.realization import (
@@ -241,7 +241,7 @@ def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed
 
     Building a pattern's equations is checked against ``deadline`` (a
     :class:`~symctl._util.deadline.Deadline`): :class:`~symctl._util.deadline.Unfinished`
-    when it passes, or when the equations pass :data:`~symctl.discovery.fibre.MAX_TERMS`.
+    when it passes, or when the equations pass :data:`~symctl.circuitatlas.fibre.MAX_TERMS`.
     """
     R2 = t.R2
     entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))

@@ -3,7 +3,7 @@
 Also the closed loop the traces answer (:math:`\\delta_f` under the disturbance,
 computed once) and the pool the starts run on (the atlas's dask path).
 
->>> from symctl.discovery.fitargs import _circuit_arg
+>>> from symctl.fitting.fitargs import _circuit_arg
 >>> _circuit_arg("general")
 ['general']
 """
@@ -19,8 +19,8 @@ from symctl._util.validate import bounded_int
 from symctl.compatibility.structure import Structure
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
-from symctl.discovery.fitmodel import FIXED_CLASSES, TraceModel
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.fitting.fitmodel import FIXED_CLASSES, TraceModel
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import closed_loop_response
 
@@ -108,10 +108,10 @@ def _traces(traces, steps: int) -> dict:
 
 def _circuit_arg(circuit) -> list:
     """The classes to fit: names and atlas classes (labels resolved)."""
-    from symctl.discovery.circuitclass import CircuitClass
+    from symctl.circuitatlas.circuitclass import CircuitClass
 
     if circuit == "all":  # the registry's classes and the atlas's closed-form classes
-        from symctl.discovery.atlas import atlas
+        from symctl.circuitatlas.atlas import atlas
 
         closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
         return ["general", *FIXED_CLASSES, *closed]
@@ -123,7 +123,7 @@ def _circuit_arg(circuit) -> list:
         if isinstance(c, CircuitClass) or c in ("general", *FIXED_CLASSES):
             out.append(c)
         elif isinstance(c, str) and c[:1] == "A" and c[1:].isdigit():
-            from symctl.discovery.atlas import atlas
+            from symctl.circuitatlas.atlas import atlas
 
             classes = {k.label: k for k in atlas(2, workers=1).classes}
             if c not in classes:
@@ -189,21 +189,3 @@ def _window(steps, start, length) -> dict:
     if steps is not None:
         steps = bounded_int(steps, "steps", 1, MAX_FIT_STEPS)
     return {"steps": steps, "start": start, "length": length}
-
-
-def pool_options(workers, scheduler) -> tuple[int, str | None]:
-    """``workers`` and ``scheduler`` checked as the atlas's dask path takes them."""
-    from symctl.discovery.atlas import MAX_WORKERS
-
-    workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
-    if scheduler is not None and not isinstance(scheduler, str):
-        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
-    return workers, scheduler
-
-
-def _pool(workers, scheduler):
-    """This process (one worker, no scheduler) or a dask cluster, as the atlas runs."""
-    from symctl.discovery.search import _Dask, _Local
-
-    workers, scheduler = pool_options(workers, scheduler)
-    return _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)

@@ -141,7 +141,7 @@ def _check(t, traces, disturbance, source: str) -> None:
 
 
 def read_traces(path) -> Traces:
-    r"""Read recorded traces from a CSV or NPZ file (format: :mod:`symctl.discovery.traces`).
+    r"""Read recorded traces from a CSV or NPZ file (format: :mod:`symctl.fitting.traces`).
 
     Parameters
     ----------
@@ -184,7 +184,7 @@ def read_traces(path) -> Traces:
         cols, meta = _read_npz(p)
     else:
         raise ParameterError(f"path: expected a .csv or .npz file, got {str(p)!r}")
-    from symctl.discovery.fitargs import MAX_FIT_STEPS, MAX_NEURONS
+    from symctl.fitting.fitargs import MAX_FIT_STEPS, MAX_NEURONS
 
     if "t" not in cols:
         raise ParameterError(f"path: {p.name} has no time column 't'")
@@ -280,7 +280,7 @@ def synthetic_traces(
     Parameters
     ----------
     G, sensor_delay, actuator_delay, circuit, disturbance, plant, steps
-        As in :func:`~symctl.discovery.fit.fit` (one class).
+        As in :func:`~symctl.fitting.fit.fit` (one class).
     C : number
         The section gains of the hidden circuit (default 1).
     noise : float
@@ -300,8 +300,8 @@ def synthetic_traces(
     >>> sorted(data.hidden)[:2], data.meta["circuit"]
     (['C_1', 'C_3'], 'general')
     """
-    from symctl.discovery.fitargs import _circuit_neurons, _label, _loop, _one_class, _window
-    from symctl.discovery.fitmodel import TraceModel
+    from symctl.fitting.fitargs import _circuit_neurons, _label, _loop, _one_class, _window
+    from symctl.fitting.fitmodel import TraceModel
     from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START, _signal
     from symctl.realization.realizers import random_full_rank
 
