@@ -44,9 +44,9 @@ SLOW_FILES = (
 # modules whose doctests derive and write the whole paper, or decide hard cases
 SLOW_DOCTESTS = (
     "symctl/report/",
-    "symctl/discovery/dale.py",
-    "symctl/discovery/candidates.py",
-    "symctl/discovery/interneurons.py",
+    "symctl/dalelaw/dale.py",
+    "symctl/circuitatlas/candidates.py",
+    "symctl/dalelaw/interneurons.py",
 )
 
 
