@@ -68,20 +68,10 @@ docs-check: $(DOCS_STAMP)
 notebooks: $(STAMP)
 	$(BIN)/python docs/run_notebooks.py
 
+# every benchmark against its baseline, in one run; writes docs/benchmarks.md
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[bench]"
-	$(BIN)/python benchmarks/core.py
-	$(BIN)/python benchmarks/checker.py
-	$(BIN)/python benchmarks/compatibility.py
-	$(BIN)/python benchmarks/simulate.py
-	$(BIN)/python benchmarks/paper.py
-	$(BIN)/python benchmarks/scaling.py
-	$(BIN)/python benchmarks/mimo.py
-	$(BIN)/python benchmarks/atlas.py
-	$(BIN)/python benchmarks/examples.py
-	$(BIN)/python benchmarks/dale.py --workers 2
-	$(BIN)/python benchmarks/fit.py
-	$(BIN)/python benchmarks/figures.py
+	$(BIN)/python benchmarks/run_all.py --out docs/benchmarks.md
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis docs/_build docs/generated

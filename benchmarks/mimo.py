@@ -1,4 +1,4 @@
-"""Time the MIMO controller G(z) = D(z)^-1 K_0 and its proof (issue 13).
+"""Time the MIMO controller G(z) = D(z)^-1 K_0 and its proof.
 
 Rows (n, m, T) = (3, 4, 2) and (3, 6, 3): a random plant with n states and m
 inputs, delays (T // 2, T - T // 2). Columns: ``controller_tf`` with numeric
@@ -10,7 +10,7 @@ adj D(z) K_0 / det D(z) (fraction-free Laplace minors in SymPy's ZZ[z, K]), and
 the proof by the identities (zI - F_c) W = H_c det D, M_c W = N_G multiplied out
 in ZZ[z, K], W = [z^(T-1) N; ...; N]. Now a symbolic controller past
 MAX_EXPANDED_TERMS is the left fraction D(z)^-1 K_0, proved by multiplying by D.
-(The method before issue 13, SymPy's generic ``adjugate``, took > 30 s in every
+(The earlier method, SymPy's generic ``adjugate``, took > 30 s in every
 column.) Every measurement runs in a subprocess capped at --cap seconds ("> cap")
 and 4 GB of address space ("mem").
 

@@ -36,7 +36,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
-BASELINE = "43dc9c6"  # main before issue 13's derivation work (T = 10: 106 s, 1.3 GB)
+BASELINE = "43dc9c6"  # main before the derivation's rewrite (T = 10: 106 s, 1.3 GB)
 STEPS = (
     "plant",
     "delays",
@@ -59,7 +59,7 @@ SHORT = {
     "documents": "docs",
     "pdflatex": "pdf",
 }
-TARGETS = {2: 8.0, 6: 15.0, 10: 30.0, 20: 120.0}  # issue 13: symctl paper, seconds
+TARGETS = {2: 8.0, 6: 15.0, 10: 30.0, 20: 120.0}  # targets of symctl paper, seconds
 MEMORY_TARGET_MB = 1024.0
 
 

@@ -12,7 +12,7 @@ x 500 steps: 0.8 GB of float64): measured in the same run, NumPy's copy of an ar
 that size (``np.copyto`` into a buffer already touched, best of 5; and ``a.copy()``,
 which pays the page faults of a fresh buffer as ``simulate_batch`` does), and the
 bandwidth ``simulate_batch`` achieves (bytes of outputs written / time) as a fraction
-of it. The time loop before issue 13 (one einsum per step and chunk of 8192 loops,
+of it. The earlier time loop (one einsum per step and chunk of 8192 loops,
 symctl commit 43dc9c6, copied below) runs in the same run as the old-method baseline.
 The timings in the first table are the best of ``--repeat`` interleaved runs in one
 process, where a fresh output buffer reuses memory just freed. The second table runs one
@@ -85,7 +85,7 @@ def baseline(model, F, H, M, N, w, t) -> float:
 
 # ---------------------------------------------------------------- the old time loop
 def old_simulate(model, F, H, M, N, w):
-    """``(delta_f, delta_r)`` by symctl's time loop before issue 13 (commit 43dc9c6).
+    """``(delta_f, delta_r)`` by symctl's earlier time loop (commit 43dc9c6).
 
     The closed loop realization-last, one ``einsum`` per step for ``A_cl x`` and one for
     the rate, the state copied into a time-major buffer, chunks of 8192 loops on every

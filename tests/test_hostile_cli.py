@@ -1,6 +1,6 @@
 """Hostile command lines: one line on stderr, never a traceback or a NumPy warning, exit 2.
 
-Issue 12, class 5 (and the CLI side of class 4). A symctl error names the option;
+A symctl error names the option;
 a NumPy/SciPy/SymPy exception that bad input causes (``TypeError``,
 ``LinAlgError``, ``MemoryError``, ``OverflowError``, ...) is one line naming the
 step it stopped and the options that step depends on, exit 2; any other exception

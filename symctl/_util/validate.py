@@ -431,7 +431,7 @@ def relative_tolerance(value, argname: str) -> float:
     return out
 
 
-# ---------------------------------------------------------------- limits (issue 12)
+# ---------------------------------------------------------------- limits
 # Every size symctl accepts has a limit, checked before any work starts, so that a
 # typo such as a delay of 10**22 is a clear ParameterError instead of minutes of work
 # or a MemoryError. Each limit is defined here, once; docs/reliability.md tabulates them.

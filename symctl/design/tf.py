@@ -145,7 +145,7 @@ class DiscreteTF(LatexMixin):
         object.__setattr__(self, "_num", num_m)
         object.__setattr__(self, "den", den_e)
         object.__setattr__(self, "dt", dt_e)
-        for e in (*num_m, den_e):  # NaN or oo in a coefficient (issue 12)
+        for e in (*num_m, den_e):  # NaN or oo in a coefficient
             finite_expr(e, "num/den")
 
     def __eq__(self, other) -> bool:

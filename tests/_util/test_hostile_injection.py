@@ -1,4 +1,4 @@
-"""Issue 12, class 1: no public function or method evaluates user text.
+"""No public function or method evaluates user text.
 
 SymPy's ``sympify`` (and so ``Matrix(str)``, ``ImmutableMatrix(str)``, ``expr.subs(str)``,
 ``sp.S(str)``) runs ``eval``. Every entry point that takes a value is fed a string that,
@@ -274,7 +274,7 @@ CASES = [
     ("derive_paper(R)", lambda p: symctl.derive_paper(R=p)),
     ("derive_paper(seed)", lambda p: symctl.derive_paper(seed=p)),
     ("derive_paper(realizations)", lambda p: symctl.derive_paper(realizations=p)),
-    # fitting (issue 17): traces, options and data files
+    # fitting: traces, options and data files
     ("fit(traces={name: p})", lambda p: symctl.fit({"G2.y": p}, _o("gains"), **_FIT)),
     ("fit(traces={p: ...})", lambda p: symctl.fit({p: np.zeros(50)}, _o("gains"), **_FIT)),
     ("fit(circuit=p)", lambda p: symctl.fit(_fit_y(), _o("gains"), circuit=p, **_FIT)),
@@ -288,7 +288,7 @@ CASES = [
     ("identifiability([[p]])", lambda p: symctl.identifiability([[p]], _o("gains"), **_FIT)),
     ("synthetic_traces(noise=p)", lambda p: symctl.synthetic_traces(_o("gains"), noise=p, **_FIT)),
     ("read_traces(p)", lambda p: symctl.read_traces(p)),
-    # Dale's law (issue 17)
+    # Dale's law
     ("dale(G=p)", lambda p: symctl.dale(p, circuit="controllable", timeout=2)),
     ("dale(circuit=p)", lambda p: symctl.dale(_o("gains"), circuit=p, timeout=2)),
     ("dale(timeout=p)", lambda p: symctl.dale(_o("gains"), circuit="controllable", timeout=p)),
@@ -310,7 +310,7 @@ def _payloads(marker) -> list[str]:
 
 
 # Refused safely (never evaluated) but with a foreign exception, in code other helpers of
-# issue 12 own (class 5: wrong types are SymctlTypeError); the marker check still holds.
+# wrong types (class 5) are SymctlTypeError; the marker check still holds.
 FOREIGN: dict[str, str] = {}  # entry points that refuse text with a foreign exception: none left
 
 
@@ -603,7 +603,7 @@ AUDITED = {
     ("symctl.realization.realization", "_tidy", "cancel"): 1,
     ("symctl.report.pipeline", "derive_paper", "factor"): 1,
     ("symctl.report.story", "_match", "cancel"): 1,
-    # Dale's law (issue 17): G is a validated numeric DiscreteTF (controller_of), the rest are
+    # Dale's law: G is a validated numeric DiscreteTF (controller_of), the rest are
     # the templates' own symbols, z3's exact values and seeded rationals; no user text
     ("symctl.dalelaw.dale", "controller_of", "subs"): 1,
     ("symctl.dalelaw.dale", "poles_of", "fraction"): 1,
@@ -624,7 +624,7 @@ AUDITED = {
     ("symctl.dalelaw.witness", "search_general", "lambdify"): 1,
     ("symctl.dalelaw.witness", "_exact", "Poly"): 1,
     ("symctl.dalelaw.witness", "_exact", "factor"): 1,
-    # fitting (issue 17): G is a validated numeric DiscreteTF (its Float atoms made exact), the
+    # fitting: G is a validated numeric DiscreteTF (its Float atoms made exact), the
     # parameters are floats rounded to Fractions by the fit itself; every matrix and
     # substitution is built from symctl's own section symbols and those rationals
     ("symctl.fitting.fit", "_exact", "Matrix"): 1,

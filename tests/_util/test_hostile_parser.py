@@ -1,4 +1,4 @@
-"""Issue 12, class 1: the safe parser bounds its work.
+"""The safe parser bounds its work.
 
 Each hostile text must give a ParseError naming the argument, in well under a
 second, never a hang, a MemoryError, a RecursionError or a foreign exception.

@@ -1,4 +1,4 @@
-"""A plain wire y = u (issue 12, class 6): the delay graph decides, not "u at two vertices"."""
+"""A plain wire y = u: the delay graph decides, not "u at two vertices"."""
 
 from __future__ import annotations
 

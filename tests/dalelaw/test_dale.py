@@ -1,4 +1,4 @@
-"""Dale's law (issue 17): symctl.dale, ei_circuit and dale_atlas, checked independently.
+"""Dale's law: symctl.dale, ei_circuit and dale_atlas, checked independently.
 
 Every witness is re-verified here without trusting the verdict: the whole realization is
 checked exactly against G, the witness circuit's weights are read off one by one (exact

@@ -158,9 +158,9 @@ def test_proof_of_the_controller_is_a_result_with_its_evidence():
     assert refuted.evidence and refuted.evidence != "0"
 
 
-# ---------------------------------------------------------------- MIMO (issue 13)
+# ---------------------------------------------------------------- MIMO
 def _generic_inverse_controller(T, m, n):
-    """Today's (before issue 13) MIMO controller: SymPy's adjugate of D(z), expanded."""
+    """The earlier MIMO controller: SymPy's adjugate of D(z), expanded."""
     from symctl.symbols import gain_matrix_symbols
 
     blocks = gain_matrix_symbols(T, m, n)

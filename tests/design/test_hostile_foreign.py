@@ -1,4 +1,4 @@
-"""Tracebacks and foreign exceptions (issue 12, class 5), through the API.
+"""Tracebacks and foreign exceptions, through the API.
 
 Every bad argument (None, text, a negative, a huge int, a wrong shape, a wrong
 type) is one of symctl's errors naming the argument, never a NumPy, SciPy or

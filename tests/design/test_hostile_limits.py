@@ -1,4 +1,4 @@
-"""Hostile sizes (issue 12, class 3): every size has a limit, refused before any work starts.
+"""Hostile sizes: every size has a limit, refused before any work starts.
 
 Each case must raise a symctl error naming the argument within a few seconds
 (a count of function calls turns a hang into a failure), where before it ran for minutes or ended

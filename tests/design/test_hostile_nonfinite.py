@@ -1,4 +1,4 @@
-"""Silent NaN/inf and misleading messages (issue 12, class 4).
+"""Silent NaN/inf and misleading messages.
 
 Non-finite values are refused where they enter, a numerical failure names the
 argument that caused it, and no NumPy/SciPy warning escapes (warnings are errors here).

@@ -1,4 +1,4 @@
-"""symctl.fit: circuits fitted to recorded firing rates (issue 17)."""
+"""symctl.fit: circuits fitted to recorded firing rates."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """simulate_batch's bounded memory: kept traces, peaks and chunks equal the keep-all run exactly.
 
-The time loop of issue 13 (each row in place, zero coefficients skipped, constant ones
+The time loop (each row in place, zero coefficients skipped, constant ones
 as scalars) is checked against the loop it replaced (one einsum per step, copied here
 from commit 43dc9c6) on random loops.
 """
@@ -57,7 +57,7 @@ def full(*args, **kwargs):
 # ---------------------------------------------------------------- the old time loop
 @np.errstate(over="ignore", invalid="ignore")
 def old_run_chunk(A, Cr, n, w, out):
-    """symctl's time loop before issue 13 (commit 43dc9c6), verbatim but for its name."""
+    """symctl's earlier time loop (commit 43dc9c6), verbatim but for its name."""
     steps, rows, _ = out.shape
     m = Cr.shape[0]
     states = rows > n + m

@@ -1,4 +1,4 @@
-"""Circuit.as_linear_system(numeric=True) computes in floats what the exact system gives (issue 13)."""
+"""Circuit.as_linear_system(numeric=True) computes in floats what the exact system gives."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Hostile ``keep=`` and ``chunk=`` of simulate_batch (issue 12, class 3: sizes and limits).
+"""Hostile ``keep=`` and ``chunk=`` of simulate_batch.
 
 Each case is a symctl error naming the argument, raised before any work starts
 (an alarm turns a hang into a failure); valid edge values keep working.

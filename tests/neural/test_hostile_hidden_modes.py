@@ -1,4 +1,4 @@
-"""Hidden modes (issue 12, class 6): |epsilon| >= 1 gives the right G but an unstable loop."""
+"""Hidden modes: |epsilon| >= 1 gives the right G but an unstable loop."""
 
 from __future__ import annotations
 

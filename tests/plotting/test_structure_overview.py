@@ -1,4 +1,4 @@
-"""The overview of a structure too large to draw block by block (issue 13)."""
+"""The overview of a structure too large to draw block by block."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""check_realization(similar_to=(base, P)): the proof through a proved similar realization (issue 13)."""
+"""check_realization(similar_to=(base, P)): the proof through a proved similar realization."""
 
 from __future__ import annotations
 

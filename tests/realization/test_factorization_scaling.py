@@ -1,4 +1,4 @@
-"""Factors built at given section values, the abbreviated G2 and the cancelling proof (issue 13)."""
+"""Factors built at given section values, the abbreviated G2 and the cancelling proof."""
 
 from __future__ import annotations
 

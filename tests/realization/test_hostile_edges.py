@@ -1,4 +1,4 @@
-"""Wrong answers at the edges (issue 12, class 6): sampling times, float inputs, hidden modes."""
+"""Wrong answers at the edges: sampling times, float inputs, hidden modes."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Issue 12, class 5: random_realization refuses bad seeds, ranges and values with symctl errors."""
+"""random_realization refuses bad seeds, ranges and values with symctl errors."""
 
 from __future__ import annotations
 

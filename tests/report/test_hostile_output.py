@@ -1,6 +1,6 @@
 """Hostile output folders: a folder is the old complete one or the new complete one, never a mix.
 
-Issue 12, class 2. ``symctl paper`` and ``PaperResults.write`` stage the files beside
+``symctl paper`` and ``PaperResults.write`` stage the files beside
 ``--out``, lock ``<out>.lock``, and rename the staged folder into place only when
 every file is written; a bad ``--out`` is refused before any derivation; an error,
 a second run, SIGINT or SIGTERM leave ``--out`` as it was, no staged folder, no

@@ -1,4 +1,4 @@
-"""derive_paper beyond EXPANDED_ZEROS_MAX sections: the abbreviated G2, proved, in results.json (issue 13)."""
+"""derive_paper beyond EXPANDED_ZEROS_MAX sections: the abbreviated G2, proved, in results.json."""
 
 from __future__ import annotations
 
