@@ -49,6 +49,7 @@ import numpy as np
 
 from symctl.compatibility.signalgraph import back_edges
 from symctl.plotting import circuit_routes as rt
+from symctl.plotting import layered
 
 if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
@@ -301,19 +302,17 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     dag = nx.DiGraph()
     dag.add_nodes_from(nodes)
     dag.add_edges_from((a, b) for a in nodes for b in successors[a] if (a, b) not in feedback)
-    col: dict = {}
-    for node in nx.topological_sort(dag):
-        if node in c.inputs:
-            col[node] = 0
-        else:
-            col[node] = max((col[p] + 1 for p in dag.predecessors(node)), default=1)
-    last = max(col.values(), default=0) + 1
+    outs = [("out", o.target) for o in c.outputs]
+    col = layered.longest_path(
+        [*nx.topological_sort(dag), *outs],
+        {**dag.pred, **dict.fromkeys(outs, ())},
+        first=c.inputs,
+        last=outs,
+        floor=1,
+    )
     columns: dict[int, list] = {}
-    for node in nodes:
+    for node in [*nodes, *outs]:
         columns.setdefault(col[node], []).append(node)
-    for o in c.outputs:
-        col[("out", o.target)] = last
-        columns.setdefault(last, []).append(("out", o.target))
     # rows: barycenters of the already placed neighbours, two sweeps
     preds: dict = {n: [] for n in col}
     for s in edges:

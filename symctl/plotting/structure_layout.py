@@ -347,13 +347,14 @@ def structure_layout(
 
     # forward wires spanning several layers pass through one bend per layer
     edges = list(dag.edges)
-    chains, col, preds, succs = layered.split(edges, layer)
+    chains, node_layer, preds, succs = layered.split(edges, layer)
     paths = dict(zip(edges, chains, strict=True))
     columns: dict[int, list] = {}
     for node in [*dag, *(n for chain in chains for n in chain[1:-1])]:
-        columns.setdefault(col[node], []).append(node)
+        columns.setdefault(node_layer[node], []).append(node)
     ncol = max(columns) + 1
     row = order_rows(columns, preds, succs)
+    col = {n: c for c, nodes in columns.items() for n in nodes}
     y = {n: ROW * r for n, r in row.items()}
 
     # feedback arcs: side (below unless more is in the way), straight entry into an adder
