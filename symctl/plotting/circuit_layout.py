@@ -313,28 +313,15 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     columns: dict[int, list] = {}
     for node in [*nodes, *outs]:
         columns.setdefault(col[node], []).append(node)
-    # rows: barycenters of the already placed neighbours, two sweeps
     preds: dict = {n: [] for n in col}
-    for s in edges:
-        preds[s.target].append(s.source)
-    for o in c.outputs:
-        preds[("out", o.target)].append(o.source)
-    row: dict = {}
-    for _ in range(2):
-        for k in sorted(columns):
-            items = columns[k]
-            want = {
-                n: (
-                    np.mean([row[p] for p in preds.get(n, []) if p in row and p != n])
-                    if any(p in row and p != n for p in preds.get(n, []))
-                    else row.get(n, 0.0)
-                )
-                for n in items
-            }
-            items.sort(key=lambda n, w=want: -w[n])
-            mean = np.mean(list(want.values()))
-            for i, n in enumerate(items):
-                row[n] = float(mean + (len(items) - 1) / 2 - i)
+    succs: dict = {n: [] for n in col}
+    links = [(s.source, s.target) for s in edges]
+    links += [(o.source, ("out", o.target)) for o in c.outputs if o.source in col]
+    for a, b in links:
+        if a != b:
+            succs[a].append(b)
+            preds[b].append(a)
+    row = layered.rows(columns, preds, succs, integer=False)
     return col, row
 
 

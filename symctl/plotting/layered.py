@@ -13,7 +13,7 @@ keeps ``drawing/layout.py`` apart from ``nx_pylab.py``.
   layer between, so that every edge joins two neighbouring layers.
 * **Order** (:func:`order`): barycentre sweeps down and up; the order with the fewest
   crossings (:func:`crossings`, inversions counted with a Fenwick tree) is kept.
-* **Rows** (:func:`isotonic`, :func:`integer_rows`): heights as near their targets as the
+* **Rows** (:func:`rows`, :func:`isotonic`): heights as near their targets as the
   order and the gaps allow, a least-squares fit under order constraints (the
   pool-adjacent-violators algorithm, :func:`scipy.optimize.isotonic_regression`).
 * **Curves** (:func:`bezier_points`, :func:`at_x`): piecewise cubic Bézier curves
@@ -51,11 +51,11 @@ __all__ = [
     "at_x",
     "bezier_points",
     "crossings",
-    "integer_rows",
     "isotonic",
     "line",
     "longest_path",
     "order",
+    "rows",
     "split",
 ]
 
@@ -214,22 +214,40 @@ def isotonic(target, weight, gaps) -> np.ndarray:
     return fit.x + offset
 
 
-def integer_rows(desired: Sequence[float]) -> list[int]:
-    """Integer rows, top first, one apart at least, nearest ``desired`` (an isotonic fit).
+def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: bool = True) -> dict:
+    """Rows (top first, one apart at least) in each layer: barycentre sweeps, each fitted
+    by :func:`isotonic`, then rounded to integers when ``integer``.
+
+    Sweeps left to right on the predecessors, back on the successors, and again (five);
+    ``columns`` maps each layer to its nodes, sorted in place top first.
 
     Examples
     --------
-    >>> from symctl.plotting.layered import integer_rows
-    >>> integer_rows([0.0, 0.0, 0.0])
-    [1, 0, -1]
+    >>> from symctl.plotting.layered import rows
+    >>> columns = {0: ["a"], 1: ["b", "c"], 2: ["d"]}
+    >>> preds = {"a": [], "b": ["a"], "c": ["a"], "d": ["b", "c"]}
+    >>> succs = {"a": ["b", "c"], "b": ["d"], "c": ["d"], "d": []}
+    >>> row = rows(columns, preds, succs)
+    >>> row["b"] - row["c"], columns[1]
+    (1, ['b', 'c'])
     """
-    if not len(desired):
-        return []
-    fit = -isotonic([-d for d in desired], np.ones(len(desired)), np.ones(len(desired) - 1))
-    rows = [math.floor(y + 0.5) for y in fit]
-    for i in range(1, len(rows)):
-        rows[i] = min(rows[i], rows[i - 1] - 1)
-    return rows
+    row: dict = {}
+    for neighbours in (preds, succs, preds, succs, preds):
+        for c in sorted(columns, reverse=neighbours is succs):
+            nodes = columns[c]
+            desired = {}
+            for n in nodes:
+                ys = [row[m] for m in neighbours[n] if m in row]
+                desired[n] = sum(ys) / len(ys) if ys else row.get(n, 0.0)
+            nodes.sort(key=lambda n, d=desired: -d[n])
+            want = [-desired[n] for n in nodes]  # top first: rows fall
+            fit = [-y for y in isotonic(want, [1.0] * len(want), [1.0] * (len(want) - 1))]
+            if integer:  # rounded, and kept one apart
+                fit = [math.floor(y + 0.5) for y in fit]
+                for i in range(1, len(fit)):
+                    fit[i] = min(fit[i], fit[i - 1] - 1)
+            row.update(zip(nodes, fit, strict=True))
+    return row
 
 
 def line(p, q) -> list[tuple[float, float]]:

@@ -18,7 +18,7 @@ A layered (Sugiyama) layout made for block diagrams:
    an earlier vertex level lies left of every signal of a later one, so each vertex's
    signals sit in one vertical band (:attr:`StructureLayout.bands`).
 3. **Rows** inside a column follow barycenter sweeps, made integer and one apart by an
-   isotonic fit (:func:`~symctl.plotting.layered.integer_rows`).
+   isotonic fit (:func:`~symctl.plotting.layered.rows`).
 4. **Wires** are orthogonal: a wire changes rows in the gap between two columns, at a
    slot chosen by :mod:`symctl.plotting.structure_routing` (a branching signal shares
    one vertical, with a junction dot). Every wire ends on its block's outline, its last
@@ -214,22 +214,6 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
     return dag, layer
 
 
-def order_rows(columns: dict[int, list], preds: dict, succs: dict) -> dict:
-    """Rows inside each layer: barycenter sweeps (left to right, back, and again)."""
-    row: dict = {}
-    for neighbours in (preds, succs, preds, succs, preds):
-        cols = sorted(columns, reverse=neighbours is succs)
-        for c in cols:
-            nodes = columns[c]
-            desired = {}
-            for n in nodes:
-                ys = [row[m] for m in neighbours[n] if m in row]
-                desired[n] = sum(ys) / len(ys) if ys else row.get(n, 0.0)
-            nodes.sort(key=lambda n, d=desired: -d[n])
-            row.update(zip(nodes, layered.integer_rows([desired[n] for n in nodes]), strict=True))
-    return row
-
-
 def spread(count: int, half: float) -> list[float]:
     """``count`` offsets from ``+half`` to ``-half`` (0 for one)."""
     if count <= 1:
@@ -353,7 +337,7 @@ def structure_layout(
     for node in [*dag, *(n for chain in chains for n in chain[1:-1])]:
         columns.setdefault(node_layer[node], []).append(node)
     ncol = max(columns) + 1
-    row = order_rows(columns, preds, succs)
+    row = layered.rows(columns, preds, succs)
     col = {n: c for c, nodes in columns.items() for n in nodes}
     y = {n: ROW * r for n, r in row.items()}
 
