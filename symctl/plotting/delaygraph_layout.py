@@ -184,25 +184,7 @@ def _depths(order, up, down, height) -> dict:
         ]
         for o in order
     ]
-    depth: dict = {}
-    for o, g in zip(order, gaps, strict=True):
-        depth.update(zip(o, layered.isotonic(np.zeros(len(o)), np.ones(len(o)), g), strict=True))
-    for sweep in range(3 * _SWEEPS):
-        side = sweep % 3  # 0: from the left, 1: from the right, 2: both
-        layers = range(len(order)) if side != 1 else range(len(order) - 1, -1, -1)
-        for k in layers:
-            target, weight = [], []
-            for node in order[k]:
-                nbrs = (up[node], down[node], up[node] + down[node])[side]
-                w = [_WEIGHT[bend[node], bend[m]] for m in nbrs]
-                if w:
-                    target.append(sum(a * depth[m] for a, m in zip(w, nbrs, strict=True)) / sum(w))
-                    weight.append(sum(w))
-                else:
-                    target.append(depth[node])
-                    weight.append(0.5)
-            depth.update(zip(order[k], layered.isotonic(target, weight, gaps[k]), strict=True))
-    return depth
+    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]], _SWEEPS)
 
 
 def _across(p, q, bulge: float) -> list[tuple[float, float]]:

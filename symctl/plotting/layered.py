@@ -13,7 +13,7 @@ keeps ``drawing/layout.py`` apart from ``nx_pylab.py``.
   layer between, so that every edge joins two neighbouring layers.
 * **Order** (:func:`order`): barycentre sweeps down and up; the order with the fewest
   crossings (:func:`crossings`, inversions counted with a Fenwick tree) is kept.
-* **Rows** (:func:`rows`, :func:`isotonic`): heights as near their targets as the
+* **Rows** (:func:`rows`, :func:`positions`, :func:`isotonic`): heights as near their targets as the
   order and the gaps allow, a least-squares fit under order constraints (the
   pool-adjacent-violators algorithm, :func:`scipy.optimize.isotonic_regression`).
 * **Curves** (:func:`bezier_points`, :func:`at_x`): piecewise cubic Bézier curves
@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Hashable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -55,6 +55,7 @@ __all__ = [
     "line",
     "longest_path",
     "order",
+    "positions",
     "rows",
     "split",
 ]
@@ -212,6 +213,50 @@ def isotonic(target, weight, gaps) -> np.ndarray:
     offset = np.concatenate(([0.0], np.cumsum(gaps)))
     fit = isotonic_regression(np.asarray(target, float) - offset, weights=np.asarray(weight, float))
     return fit.x + offset
+
+
+def positions(
+    layers: Sequence[Sequence],
+    up: Mapping,
+    down: Mapping,
+    gaps: Sequence[Sequence[float]],
+    weight: Callable[[Hashable, Hashable], float],
+    sweeps: int = 8,
+) -> dict:
+    """Each node's position across its layer, the order kept: as near the weighted mean of its
+    neighbours as the ``gaps`` between neighbours in the layer allow (:func:`isotonic`).
+
+    Sweeps from the left (on ``up``), from the right (on ``down``) and on both, ``sweeps``
+    times; ``weight(node, neighbour)`` is how hard a neighbour pulls (a node without
+    neighbours keeps its place, with weight 1/2).
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import positions
+    >>> up, down = {"a": [], "b": [], "c": ["a", "b"]}, {"a": ["c"], "b": ["c"], "c": []}
+    >>> at = positions([["a", "b"], ["c"]], up, down, [[1.0], []], lambda n, m: 1.0)
+    >>> float(at["b"] - at["a"]), float(at["c"] - (at["a"] + at["b"]) / 2)
+    (1.0, 0.0)
+    """
+    at: dict = {}
+    for nodes, gap in zip(layers, gaps, strict=True):
+        at.update(zip(nodes, isotonic(np.zeros(len(nodes)), np.ones(len(nodes)), gap), strict=True))
+    for sweep in range(3 * sweeps):
+        side = sweep % 3  # 0: from the left, 1: from the right, 2: both
+        ks = range(len(layers)) if side != 1 else range(len(layers) - 1, -1, -1)
+        for k in ks:
+            target, pull = [], []
+            for node in layers[k]:
+                nbrs = (up[node], down[node], [*up[node], *down[node]])[side]
+                w = [weight(node, m) for m in nbrs]
+                if w:
+                    target.append(sum(a * at[m] for a, m in zip(w, nbrs, strict=True)) / sum(w))
+                    pull.append(sum(w))
+                else:
+                    target.append(at[node])
+                    pull.append(0.5)
+            at.update(zip(layers[k], isotonic(target, pull, gaps[k]), strict=True))
+    return at
 
 
 def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: bool = True) -> dict:
