@@ -667,15 +667,23 @@ def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]
         xr = band_box[b - 1][1] + _WIRE + (n - 1 - k) * _WIRE_STEP
         xl = band_box[b][0] - _WIRE + (n - 1 - k) * _WIRE_STEP
         xr, xl = max(xr, xa + ra + 2 * _CORNER), min(xl, xt - rt_ - 2 * _CORNER)
-        c = _CORNER
-        pts = [
-            (xa + ra, ya), (xr - c, ya), (xr, ya), (xr, ya - c),
-            (xr, yg + c), (xr, yg), (xr - c, yg),
-            (xl + c, yg), (xl, yg), (xl, yg - c),
-            (xl, yt + c), (xl, yt), (xl + c, yt),
-            (xt - rt_, yt),
-        ]  # fmt: skip
-        codes = (1, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2)
+        corners = [(xa + ra, ya), (xr, ya), (xr, yg), (xl, yg), (xl, yt), (xt - rt_, yt)]
+        pts, codes = _rounded(corners, _CORNER)
         label = ((xr + xl) / 2, yg) if s in m.label else None
-        out[index] = Arc(a, t, s, 0.0, label, tuple(pts), codes)
+        out[index] = Arc(a, t, s, 0.0, label, pts, codes)
     return out
+
+
+def _rounded(corners, r: float) -> tuple[tuple, tuple]:
+    """A polyline through ``corners`` with each inner corner rounded (a quadratic Bézier
+    reaching ``r`` along both sides): its points and matplotlib ``Path`` codes."""
+
+    def toward(q, p):
+        d = math.hypot(p[0] - q[0], p[1] - q[1]) or 1.0
+        return (q[0] + r * (p[0] - q[0]) / d, q[1] + r * (p[1] - q[1]) / d)
+
+    pts, codes = [corners[0]], [1]
+    for p, q, nxt in zip(corners, corners[1:], corners[2:], strict=False):
+        pts += [toward(q, p), q, toward(q, nxt)]
+        codes += [2, 3, 3]
+    return (*pts, corners[-1]), (*codes, 2)

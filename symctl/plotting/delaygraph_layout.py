@@ -377,8 +377,9 @@ def delay_graph_layout(
             fall = abs(depth[u] - depth[w])
             gap[node_layer[u]] = max(gap[node_layer[u]], min(_STEEP * fall, _MAX_GAP))
     for _ in range(3):  # labels that cannot help covering one another get a wider gap
-        at, curves, placed, clashes = _edges(flow, chains, node_layer, depth, size, width, gap,
-                                             where, label)  # fmt: skip
+        at, curves, placed, clashes = _edges(
+            flow, chains, node_layer, depth, size, width, gap, where, label
+        )
         if not clashes:
             break
         for k in clashes:

@@ -424,8 +424,12 @@ def structure_layout(
             piece(col[q], net, [(y[p], "left"), (yq, "right")], ((a, b), h))
     for k, r in enumerate(routes):
         s_col, t_col = col[r.source], col[r.target]
-        piece(s_col + 1, ("src", r.source), [(y[r.source], "left"), (heights[k], "left")],
-              (("arc", k), "drop"))  # fmt: skip
+        piece(
+            s_col + 1,
+            ("src", r.source),
+            [(y[r.source], "left"), (heights[k], "left")],
+            (("arc", k), "drop"),
+        )
         if not straight[k]:
             yt = y[r.target] + offset[(r.target, ("arc", k))]
             piece(t_col, ("rise", k), [(heights[k], "right"), (yt, "right")], (("arc", k), "rise"))
