@@ -10,9 +10,10 @@ the texts come in :class:`Measures` (measured by the renderer, or estimated).
   inputs; the edges it finds closing a cycle are feedback); the outputs in one
   last column. Two columns are as far apart as their circles and names need, and
   the weight of a synapse between them (:data:`MIN_GAP` at least).
-* **Rows**: each node at the mean row of its placed predecessors (two sweeps),
-  the nodes of a column spread one row apart around their mean; a row is as tall
-  as the tallest node with its name and vertex tag.
+* **Rows**: each node near the mean row of its neighbours, the nodes of a column
+  at least one row apart (half rows allowed): the barycentre sweeps and isotonic fit
+  of :func:`symctl.plotting.layered.rows`; a row is as tall as the tallest node with
+  its name and vertex tag.
 * **Bands**: a drawing wider than ``width`` (the page) is cut into bands stacked
   top to bottom, as a line of text is broken: only where every synapse crossing the
   cut joins two neighbouring columns (in a chain, between two sections), as few

@@ -13,9 +13,12 @@ keeps ``drawing/layout.py`` apart from ``nx_pylab.py``.
   layer between, so that every edge joins two neighbouring layers.
 * **Order** (:func:`order`): barycentre sweeps down and up; the order with the fewest
   crossings (:func:`crossings`, inversions counted with a Fenwick tree) is kept.
-* **Rows** (:func:`rows`, :func:`positions`, :func:`isotonic`): heights as near their targets as the
-  order and the gaps allow, a least-squares fit under order constraints (the
-  pool-adjacent-violators algorithm, :func:`scipy.optimize.isotonic_regression`).
+* **Rows**: heights as near their neighbours as the order and the gaps allow, a
+  least-squares fit under order constraints (:func:`isotonic`: the pool-adjacent-violators
+  algorithm of :func:`scipy.optimize.isotonic_regression`). The block diagrams and
+  circuits take :func:`rows` (each sweep re-sorts a column by its barycentres, then fits
+  integer or half rows: straight orthogonal wires); the delay graph takes :func:`order`
+  then :func:`positions` (the order kept, measured gaps, bends pulling hardest).
 * **Curves** (:func:`bezier_points`, :func:`at_x`): piecewise cubic Bézier curves
   (``p0, c, c, p1, c, c, p2, ...``: matplotlib's ``Path.CURVE4``) sampled, or met at an
   abscissa.
