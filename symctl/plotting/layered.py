@@ -54,6 +54,7 @@ __all__ = [
     "at_x",
     "bezier_points",
     "crossings",
+    "fit_rows",
     "isotonic",
     "line",
     "longest_path",
@@ -211,11 +212,14 @@ def isotonic(target, weight, gaps) -> np.ndarray:
     >>> isotonic([0.0, 0.0], [1.0, 1.0], [1.0]).tolist()
     [-0.5, 0.5]
     """
+    target = np.asarray(target, float)
+    offset = np.concatenate(([0.0], np.cumsum(gaps)))[: len(target)]
+    free = target - offset
+    if np.all(free[1:] >= free[:-1]):  # most calls of a sweep: nothing to pool
+        return free + offset
     from scipy.optimize import isotonic_regression  # ~0.5 s to import: only when drawing
 
-    offset = np.concatenate(([0.0], np.cumsum(gaps)))
-    fit = isotonic_regression(np.asarray(target, float) - offset, weights=np.asarray(weight, float))
-    return fit.x + offset
+    return isotonic_regression(free, weights=np.asarray(weight, float)).x + offset
 
 
 def positions(
@@ -262,9 +266,29 @@ def positions(
     return at
 
 
+def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
+    """Rows, top first and one apart at least, nearest ``desired`` in least squares
+    (:func:`isotonic`); when ``integer``, rounded half up and pushed one apart.
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import fit_rows
+    >>> fit_rows([0.0, 0.0]), fit_rows([0.0, 0.0], integer=False)
+    ([1, 0], [0.5, -0.5])
+    """
+    n = len(desired)
+    fit = [-float(y) for y in isotonic([-d for d in desired], [1.0] * n, [1.0] * (n - 1))]
+    if not integer:
+        return fit
+    rows = [math.floor(round(y, 9) + 0.5) for y in fit]  # the last bits' noise rounded away
+    for i in range(1, n):
+        rows[i] = min(rows[i], rows[i - 1] - 1)
+    return rows
+
+
 def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: bool = True) -> dict:
-    """Rows (top first, one apart at least) in each layer: barycentre sweeps, each fitted
-    by :func:`isotonic`, then rounded to integers when ``integer``.
+    """Rows (top first, one apart at least) in each layer: barycentre sweeps, each column
+    fitted by :func:`fit_rows` (integer rows, or half rows allowed).
 
     Sweeps left to right on the predecessors, back on the successors, and again (five);
     ``columns`` maps each layer to its nodes, sorted in place top first.
@@ -288,12 +312,7 @@ def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: b
                 ys = [row[m] for m in neighbours[n] if m in row]
                 desired[n] = sum(ys) / len(ys) if ys else row.get(n, 0.0)
             nodes.sort(key=lambda n, d=desired: -d[n])
-            want = [-desired[n] for n in nodes]  # top first: rows fall
-            fit = [-y for y in isotonic(want, [1.0] * len(want), [1.0] * (len(want) - 1))]
-            if integer:  # rounded, and kept one apart
-                fit = [math.floor(y + 0.5) for y in fit]
-                for i in range(1, len(fit)):
-                    fit[i] = min(fit[i], fit[i - 1] - 1)
+            fit = fit_rows([desired[n] for n in nodes], integer)
             row.update(zip(nodes, fit, strict=True))
     return row
 
