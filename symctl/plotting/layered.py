@@ -344,7 +344,7 @@ def bezier_points(bezier, t) -> np.ndarray:
     for k in range(0, len(ctrl) - 1, 3):
         p0, c1, c2, p1 = ctrl[k : k + 4]
         out.append(s**3 * p0 + 3 * s * s * t * c1 + 3 * s * t * t * c2 + t**3 * p1)
-    return np.vstack(out)
+    return out[0] if len(out) == 1 else np.vstack(out)
 
 
 def at_x(bezier, x: float) -> tuple[float, float]:
@@ -356,7 +356,7 @@ def at_x(bezier, x: float) -> tuple[float, float]:
     >>> [round(v, 6) for v in at_x([(0, 0), (1, 0), (2, 2), (3, 2)], 1.5)]
     [1.5, 1.0]
     """
-    ctrl = np.asarray(bezier, dtype=float)
+    ctrl = [(float(px), float(py)) for px, py in bezier]  # plain floats: a fast bisection
     segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
     for k, (p0, c1, c2, p1) in enumerate(segments):
         lo, hi = sorted((p0[0], p1[0]))
@@ -369,6 +369,12 @@ def at_x(bezier, x: float) -> tuple[float, float]:
             px = (1 - t) ** 3 * p0[0] + 3 * (1 - t) ** 2 * t * c1[0]
             px += 3 * (1 - t) * t**2 * c2[0] + t**3 * p1[0]
             a, b = (t, b) if (px < x) == rising else (a, t)
-        pt = bezier_points((p0, c1, c2, p1), [(a + b) / 2])[0]
-        return (float(pt[0]), float(pt[1]))
-    return (float(ctrl[-1, 0]), float(ctrl[-1, 1]))  # pragma: no cover - no segments
+        t = (a + b) / 2
+        return tuple(
+            (1 - t) ** 3 * p0[i]
+            + 3 * (1 - t) ** 2 * t * c1[i]
+            + 3 * (1 - t) * t**2 * c2[i]
+            + t**3 * p1[i]
+            for i in (0, 1)
+        )
+    return ctrl[-1]  # pragma: no cover - no segments
