@@ -10,9 +10,10 @@ the texts come in :class:`Measures` (measured by the renderer, or estimated).
   inputs; the edges it finds closing a cycle are feedback); the outputs in one
   last column. Two columns are as far apart as their circles and names need, and
   the weight of a synapse between them (:data:`MIN_GAP` at least).
-* **Rows**: each node at the mean row of its placed predecessors (two sweeps),
-  the nodes of a column spread one row apart around their mean; a row is as tall
-  as the tallest node with its name and vertex tag.
+* **Rows**: each node near the mean row of its neighbours, the nodes of a column
+  at least one row apart (half rows allowed): the barycentre sweeps and isotonic fit
+  of :func:`symctl.plotting.layered.rows`; a row is as tall as the tallest node with
+  its name and vertex tag.
 * **Bands**: a drawing wider than ``width`` (the page) is cut into bands stacked
   top to bottom, as a line of text is broken: only where every synapse crossing the
   cut joins two neighbouring columns (in a chain, between two sections), as few
@@ -49,6 +50,7 @@ import numpy as np
 
 from symctl.compatibility.signalgraph import back_edges
 from symctl.plotting import circuit_routes as rt
+from symctl.plotting import layered
 
 if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
@@ -301,41 +303,26 @@ def grid(c: Circuit) -> tuple[dict, dict]:
     dag = nx.DiGraph()
     dag.add_nodes_from(nodes)
     dag.add_edges_from((a, b) for a in nodes for b in successors[a] if (a, b) not in feedback)
-    col: dict = {}
-    for node in nx.topological_sort(dag):
-        if node in c.inputs:
-            col[node] = 0
-        else:
-            col[node] = max((col[p] + 1 for p in dag.predecessors(node)), default=1)
-    last = max(col.values(), default=0) + 1
+    outs = [("out", o.target) for o in c.outputs]
+    col = layered.longest_path(
+        [*nx.topological_sort(dag), *outs],
+        {**dag.pred, **dict.fromkeys(outs, ())},
+        first=c.inputs,
+        last=outs,
+        floor=1,
+    )
     columns: dict[int, list] = {}
-    for node in nodes:
+    for node in [*nodes, *outs]:
         columns.setdefault(col[node], []).append(node)
-    for o in c.outputs:
-        col[("out", o.target)] = last
-        columns.setdefault(last, []).append(("out", o.target))
-    # rows: barycenters of the already placed neighbours, two sweeps
     preds: dict = {n: [] for n in col}
-    for s in edges:
-        preds[s.target].append(s.source)
-    for o in c.outputs:
-        preds[("out", o.target)].append(o.source)
-    row: dict = {}
-    for _ in range(2):
-        for k in sorted(columns):
-            items = columns[k]
-            want = {
-                n: (
-                    np.mean([row[p] for p in preds.get(n, []) if p in row and p != n])
-                    if any(p in row and p != n for p in preds.get(n, []))
-                    else row.get(n, 0.0)
-                )
-                for n in items
-            }
-            items.sort(key=lambda n, w=want: -w[n])
-            mean = np.mean(list(want.values()))
-            for i, n in enumerate(items):
-                row[n] = float(mean + (len(items) - 1) / 2 - i)
+    succs: dict = {n: [] for n in col}
+    links = [(s.source, s.target) for s in edges]
+    links += [(o.source, ("out", o.target)) for o in c.outputs if o.source in col]
+    for a, b in links:
+        if a != b:
+            succs[a].append(b)
+            preds[b].append(a)
+    row = layered.rows(columns, preds, succs, integer=False)
     return col, row
 
 
@@ -681,15 +668,23 @@ def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]
         xr = band_box[b - 1][1] + _WIRE + (n - 1 - k) * _WIRE_STEP
         xl = band_box[b][0] - _WIRE + (n - 1 - k) * _WIRE_STEP
         xr, xl = max(xr, xa + ra + 2 * _CORNER), min(xl, xt - rt_ - 2 * _CORNER)
-        c = _CORNER
-        pts = [
-            (xa + ra, ya), (xr - c, ya), (xr, ya), (xr, ya - c),
-            (xr, yg + c), (xr, yg), (xr - c, yg),
-            (xl + c, yg), (xl, yg), (xl, yg - c),
-            (xl, yt + c), (xl, yt), (xl + c, yt),
-            (xt - rt_, yt),
-        ]  # fmt: skip
-        codes = (1, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2, 3, 3, 2)
+        corners = [(xa + ra, ya), (xr, ya), (xr, yg), (xl, yg), (xl, yt), (xt - rt_, yt)]
+        pts, codes = _rounded(corners, _CORNER)
         label = ((xr + xl) / 2, yg) if s in m.label else None
-        out[index] = Arc(a, t, s, 0.0, label, tuple(pts), codes)
+        out[index] = Arc(a, t, s, 0.0, label, pts, codes)
     return out
+
+
+def _rounded(corners, r: float) -> tuple[tuple, tuple]:
+    """A polyline through ``corners`` with each inner corner rounded (a quadratic Bézier
+    reaching ``r`` along both sides): its points and matplotlib ``Path`` codes."""
+
+    def toward(q, p):
+        d = math.hypot(p[0] - q[0], p[1] - q[1]) or 1.0
+        return (q[0] + r * (p[0] - q[0]) / d, q[1] + r * (p[1] - q[1]) / d)
+
+    pts, codes = [corners[0]], [1]
+    for p, q, nxt in zip(corners, corners[1:], corners[2:], strict=False):
+        pts += [toward(q, p), q, toward(q, nxt)]
+        codes += [2, 3, 3]
+    return (*pts, corners[-1]), (*codes, 2)

@@ -40,6 +40,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from symctl.plotting import layered
+
 __all__ = [
     "CLEAR",
     "END_MARGIN",
@@ -116,10 +118,7 @@ def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
 
 def samples(curve, t=_T) -> np.ndarray:
     """Points of a cubic Bézier ``(P0, C1, C2, P3)`` at the parameters ``t`` (``len(t) x 2``)."""
-    p0, c1, c2, p3 = (np.asarray(p, float) for p in curve)
-    t = np.asarray(t, float)[:, None]
-    s = 1 - t
-    return s**3 * p0 + 3 * s * s * t * c1 + 3 * s * t * t * c2 + t**3 * p3
+    return layered.bezier_points(curve, t)
 
 
 def point_at(curve, t: float) -> tuple[float, float]:

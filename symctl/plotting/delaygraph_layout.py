@@ -2,7 +2,8 @@ r"""Where a delay graph's vertices and edges go: numbers, no matplotlib.
 
 The layout of :meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>`
 apart from its rendering (:mod:`symctl.plotting.delaygraph`), a layered drawing in
-the manner of Sugiyama, Tagawa and Toda (1981). One unit is one inch.
+the manner of Sugiyama, Tagawa and Toda (1981), on the shared core
+:mod:`symctl.plotting.layered` (layers, bends, order, rows). One unit is one inch.
 
 * **Flow**: the edges into the sensor :math:`v_1`, out of the actuator :math:`v_N`
   and those closing a cycle in a depth-first search from :math:`v_1`
@@ -54,6 +55,7 @@ import numpy as np
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.signalgraph import back_edges
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.plotting import layered
 
 __all__ = [
     "BOX",
@@ -88,6 +90,7 @@ _CLIP = 0.03  # arrow tips stop this far from a box
 _PORT_STEP = 0.08  # between the ends of two edges on one side of a box
 _PORT_MARGIN = 0.06  # from the box's corners
 _SWEEPS = 8
+_T = np.linspace(0, 1, 12)  # where a curve's segments are sampled
 _WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True, True): 60.0}
 
 
@@ -163,66 +166,12 @@ def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
 
 def _layers(graph: DelayGraph, flow) -> dict[int, int]:
     """Sensors in layer 0, the actuators together in the last layer, the rest by longest path."""
-    n, sensors, actuators = graph.n, graph.sensors, graph.actuators
     dag = nx.DiGraph()
-    dag.add_nodes_from(range(1, n + 1))
+    dag.add_nodes_from(range(1, graph.n + 1))
     dag.add_edges_from((a, b) for a, b, _ in flow)
-    layer: dict[int, int] = {}
-    for v in nx.topological_sort(dag):
-        layer[v] = 0 if v in sensors else max([1] + [layer[p] + 1 for p in dag.predecessors(v)])
-    inner = [layer[v] for v in range(1, n + 1) if v not in actuators]
-    last = max([*(layer[v] for v in actuators), 1 + max(inner, default=0)])
-    for v in actuators:
-        layer[v] = last
-    return layer
-
-
-def _crossings(order, down) -> int:
-    """Edge crossings between neighbouring layers (inversions, counted with a Fenwick tree)."""
-    total = 0
-    for upper, lower in itertools.pairwise(order):
-        at = {node: k for k, node in enumerate(lower)}
-        ends = sorted((k, at[m]) for k, node in enumerate(upper) for m in down[node])
-        tree = [0] * (len(lower) + 1)
-        for seen, (_, b) in enumerate(ends):
-            i, below = b + 1, 0  # how many earlier ends are at or left of b
-            while i > 0:
-                below += tree[i]
-                i -= i & -i
-            total += seen - below
-            i = b + 1
-            while i <= len(lower):
-                tree[i] += 1
-                i += i & -i
-    return total
-
-
-def _order(order, up, down) -> list[list]:
-    """Barycentre sweeps down and up; the order with the fewest crossings."""
-    best, fewest = [list(o) for o in order], _crossings(order, down)
-    for sweep in range(2 * _SWEEPS):
-        layers = range(1, len(order)) if sweep % 2 == 0 else range(len(order) - 2, -1, -1)
-        for k in layers:
-            near, nbrs = (order[k - 1], up) if sweep % 2 == 0 else (order[k + 1], down)
-            at = {node: i for i, node in enumerate(near)}
-            mean = {
-                node: sum(at[m] for m in nbrs[node]) / len(nbrs[node]) if nbrs[node] else i
-                for i, node in enumerate(order[k])
-            }
-            order[k] = sorted(order[k], key=lambda node, m=mean: m[node])
-        count = _crossings(order, down)
-        if count < fewest:
-            best, fewest = [list(o) for o in order], count
-    return best
-
-
-def _pack(target, weight, gaps) -> np.ndarray:
-    """Least squares ``sum w (d - t)^2`` under ``d[k+1] >= d[k] + gaps[k]`` (pool adjacent)."""
-    from scipy.optimize import isotonic_regression
-
-    offset = np.concatenate(([0.0], np.cumsum(gaps)))
-    fit = isotonic_regression(np.asarray(target, dtype=float) - offset, weights=weight)
-    return fit.x + offset
+    return layered.longest_path(
+        nx.topological_sort(dag), dag.pred, first=graph.sensors, last=graph.actuators, floor=1
+    )
 
 
 def _depths(order, up, down, height) -> dict:
@@ -235,35 +184,7 @@ def _depths(order, up, down, height) -> dict:
         ]
         for o in order
     ]
-    depth: dict = {}
-    for o, g in zip(order, gaps, strict=True):
-        depth.update(zip(o, _pack(np.zeros(len(o)), np.ones(len(o)), g), strict=True))
-    for sweep in range(3 * _SWEEPS):
-        side = sweep % 3  # 0: from the left, 1: from the right, 2: both
-        layers = range(len(order)) if side != 1 else range(len(order) - 1, -1, -1)
-        for k in layers:
-            target, weight = [], []
-            for node in order[k]:
-                nbrs = (up[node], down[node], up[node] + down[node])[side]
-                w = [_WEIGHT[bend[node], bend[m]] for m in nbrs]
-                if w:
-                    target.append(sum(a * depth[m] for a, m in zip(w, nbrs, strict=True)) / sum(w))
-                    weight.append(sum(w))
-                else:
-                    target.append(depth[node])
-                    weight.append(0.5)
-            depth.update(zip(order[k], _pack(target, weight, gaps[k]), strict=True))
-    return depth
-
-
-def _line(p, q) -> list[tuple[float, float]]:
-    """A straight segment as cubic Bézier control points ``c, c, q``."""
-    (x0, y0), (x1, y1) = p, q
-    return [
-        (x0 + (x1 - x0) / 3, y0 + (y1 - y0) / 3),
-        (x0 + 2 * (x1 - x0) / 3, y0 + 2 * (y1 - y0) / 3),
-        q,
-    ]
+    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]], _SWEEPS)
 
 
 def _across(p, q, bulge: float) -> list[tuple[float, float]]:
@@ -305,42 +226,8 @@ def _route(chain, ys, at, size, left, right, bulge: float) -> list[tuple[float, 
         if k:
             ctrl += _across(ctrl[-1], (lo, ys[k]), bulge)
         if hi > max(lo, ctrl[-1][0]) + 1e-9:
-            ctrl += _line(ctrl[-1], (hi, ys[k]))
+            ctrl += layered.line(ctrl[-1], (hi, ys[k]))
     return [(float(px), float(py)) for px, py in ctrl]
-
-
-def _at_x(bezier, x: float) -> tuple[float, float]:
-    """The point of the curve at abscissa ``x`` (each segment x-monotone; clamped to the ends)."""
-    ctrl = np.asarray(bezier, dtype=float)
-    segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
-    for k, (p0, c1, c2, p1) in enumerate(segments):
-        lo, hi = sorted((p0[0], p1[0]))
-        if not (lo - 1e-9 <= x <= hi + 1e-9 or k == len(segments) - 1):
-            continue
-        rising = p1[0] >= p0[0]
-        a, b = 0.0, 1.0
-        for _ in range(40):  # bisection on the segment's parameter
-            t = (a + b) / 2
-            px = (1 - t) ** 3 * p0[0] + 3 * (1 - t) ** 2 * t * c1[0]
-            px += 3 * (1 - t) * t**2 * c2[0] + t**3 * p1[0]
-            a, b = (t, b) if (px < x) == rising else (a, t)
-        t = (a + b) / 2
-        pt = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * p1
-        return (float(pt[0]), float(pt[1]))
-    return (float(ctrl[-1, 0]), float(ctrl[-1, 1]))  # pragma: no cover - no segments
-
-
-def _sample(bezier, k: int = 12) -> np.ndarray:
-    """``k`` points on each cubic segment of ``bezier``."""
-    ctrl = np.asarray(bezier, dtype=float)
-    t = np.linspace(0, 1, k)[:, None]
-    out = []
-    for s in range(0, len(ctrl) - 1, 3):
-        p0, c1, c2, p1 = ctrl[s : s + 4]
-        out.append(
-            (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * p1
-        )
-    return np.vstack(out)
 
 
 def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[int]]:
@@ -351,7 +238,7 @@ def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[
     rounds), now knowing where every other label is. Returns the centres and the labels
     that still cover another.
     """
-    samples = [_sample(bez) for bez in curves]
+    samples = [layered.bezier_points(bez, _T) for bez in curves]
     owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(samples)])
     points = np.vstack(samples)
     options = []  # per label: candidate centres and what each costs besides other labels
@@ -361,7 +248,7 @@ def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[
         room = max((hi - lo - w) / 2 - _LABEL_CLEAR, 0.0)
         spots = []
         for shift in _SHIFTS:
-            x, y = _at_x(bez, (lo + hi) / 2 + shift * room)
+            x, y = layered.at_x(bez, (lo + hi) / 2 + shift * room)
             crossed = np.count_nonzero(
                 (np.abs(others[:, 0] - x) < w / 2 + 0.02)
                 & (np.abs(others[:, 1] - y) < h / 2 + 0.02)
@@ -470,24 +357,11 @@ def delay_graph_layout(
             f"graph: its {len(flow)} edges cross too many layers to be drawn (more than "
             f"{MAX_BENDS} bends)"
         )
-    # the chains: each edge as laid out, from a through its bends to b
-    chains = []
-    for k, (a, b, _) in enumerate(flow):
-        chains.append([a, *((k, step) for step in range(layer[a] + 1, layer[b])), b])
-    node_layer = dict(layer)
-    up: dict = {v: [] for v in layer}
-    down: dict = {v: [] for v in layer}
-    for chain in chains:
-        for node in chain[1:-1]:
-            node_layer[node] = node[1]
-            up[node], down[node] = [], []
-        for p, q in itertools.pairwise(chain):
-            down[p].append(q)
-            up[q].append(p)
+    chains, node_layer, up, down = layered.split(flow, layer)
     order: list[list] = [[] for _ in range(layer[n] + 1)]
     for node in sorted(node_layer, key=lambda v: (isinstance(v, tuple), v)):
         order[node_layer[node]].append(node)
-    order = _order(order, up, down)
+    order = layered.order(order, up, down, _SWEEPS)
     height = {node: size[node][1] if isinstance(node, int) else _BEND_HEIGHT for node in up}
     depth = _depths(order, up, down, height)
     # columns: each as wide as its widest box, the gaps as wide as their widest label
@@ -503,8 +377,9 @@ def delay_graph_layout(
             fall = abs(depth[u] - depth[w])
             gap[node_layer[u]] = max(gap[node_layer[u]], min(_STEEP * fall, _MAX_GAP))
     for _ in range(3):  # labels that cannot help covering one another get a wider gap
-        at, curves, placed, clashes = _edges(flow, chains, node_layer, depth, size, width, gap,
-                                             where, label)  # fmt: skip
+        at, curves, placed, clashes = _edges(
+            flow, chains, node_layer, depth, size, width, gap, where, label
+        )
         if not clashes:
             break
         for k in clashes:

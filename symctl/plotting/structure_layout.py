@@ -18,7 +18,7 @@ A layered (Sugiyama) layout made for block diagrams:
    an earlier vertex level lies left of every signal of a later one, so each vertex's
    signals sit in one vertical band (:attr:`StructureLayout.bands`).
 3. **Rows** inside a column follow barycenter sweeps, made integer and one apart by an
-   isotonic fit (:func:`pava_rows`).
+   isotonic fit (:func:`~symctl.plotting.layered.rows`).
 4. **Wires** are orthogonal: a wire changes rows in the gap between two columns, at a
    slot chosen by :mod:`symctl.plotting.structure_routing` (a branching signal shares
    one vertical, with a junction dot). Every wire ends on its block's outline, its last
@@ -51,6 +51,7 @@ import networkx as nx
 
 from symctl.compatibility.signalgraph import back_edges
 from symctl.compatibility.structure import Structure
+from symctl.plotting import layered
 from symctl.plotting.structure_labels import StructureText, structure_text
 from symctl.plotting.structure_regions import Band, Frame, frames, vertex_bands, vertex_levels
 from symctl.plotting.structure_routing import (
@@ -204,52 +205,13 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
     start = 0
     for lev in sorted({level[n] for n in dag}):
         members = [n for n in order if level[n] == lev]
-        for node in members:
-            preds = [layer[p] + 1 for p in dag.predecessors(node) if p in layer]
-            layer[node] = max([start, *preds])
-        last = max(layer[n] for n in members)
         # outputs (nothing after them) close their level
-        for n in members:
-            if n in S.outputs and n not in S.inputs and not any(dag.successors(n)):
-                if any(layer[m] == last for m in members if m not in S.outputs):
-                    last += 1
-        for n in members:
-            if n in S.outputs and n not in S.inputs and not any(dag.successors(n)):
-                layer[n] = last
-        start = last + 1
+        ends = [
+            n for n in members if n in S.outputs and n not in S.inputs and not dag.out_degree(n)
+        ]
+        layered.longest_path(members, dag.pred, last=ends, floor=start, layer=layer)
+        start = max(layer[n] for n in members) + 1
     return dag, layer
-
-
-def pava_rows(desired: list[float]) -> list[int]:
-    """Integer rows, top first, one apart at least, closest to ``desired`` (isotonic fit).
-
-    The least-squares non-increasing fit of :math:`z_i = y_i + i`
-    (:func:`scipy.optimize.isotonic_regression`), rounded half up (after the pooled
-    means' last-bit noise is rounded away) and pushed one row apart.
-    """
-    from scipy.optimize import isotonic_regression
-
-    z = isotonic_regression([d + i for i, d in enumerate(desired)], increasing=False).x
-    rows = [math.floor(round(zi - i, 9) + 0.5) for i, zi in enumerate(z)]
-    for i in range(1, len(rows)):
-        rows[i] = min(rows[i], rows[i - 1] - 1)
-    return rows
-
-
-def order_rows(columns: dict[int, list], preds: dict, succs: dict) -> dict:
-    """Rows inside each layer: barycenter sweeps (left to right, back, and again)."""
-    row: dict = {}
-    for neighbours in (preds, succs, preds, succs, preds):
-        cols = sorted(columns, reverse=neighbours is succs)
-        for c in cols:
-            nodes = columns[c]
-            desired = {}
-            for n in nodes:
-                ys = [row[m] for m in neighbours[n] if m in row]
-                desired[n] = sum(ys) / len(ys) if ys else row.get(n, 0.0)
-            nodes.sort(key=lambda n, d=desired: -d[n])
-            row.update(zip(nodes, pava_rows([desired[n] for n in nodes]), strict=True))
-    return row
 
 
 def spread(count: int, half: float) -> list[float]:
@@ -367,24 +329,15 @@ def structure_layout(
     routes = feedback_routes(S, g, level, vertex)
     dag, layer = layering(S, g, routes, level)
 
-    # forward wires spanning several layers pass through one dummy slot per layer
+    # forward wires spanning several layers pass through one bend per layer
+    edges = list(dag.edges)
+    chains, node_layer, preds, succs = layered.split(edges, layer)
+    paths = dict(zip(edges, chains, strict=True))
     columns: dict[int, list] = {}
-    for node in dag:
-        columns.setdefault(layer[node], []).append(node)
-    preds: dict = {n: [] for n in dag}
-    succs: dict = {n: [] for n in dag}
-    paths: dict[tuple[str, str], list] = {}
-    for a, b in dag.edges:
-        path = [a, *(("~", a, b, k) for k in range(layer[a] + 1, layer[b])), b]
-        for k, node in enumerate(path[1:-1], start=layer[a] + 1):
-            columns[k].append(node)
-            preds[node], succs[node] = [], []
-        for p, q in itertools.pairwise(path):
-            succs[p].append(q)
-            preds[q].append(p)
-        paths[(a, b)] = path
+    for node in [*dag, *(n for chain in chains for n in chain[1:-1])]:
+        columns.setdefault(node_layer[node], []).append(node)
     ncol = max(columns) + 1
-    row = order_rows(columns, preds, succs)
+    row = layered.rows(columns, preds, succs)
     col = {n: c for c, nodes in columns.items() for n in nodes}
     y = {n: ROW * r for n, r in row.items()}
 
@@ -471,8 +424,12 @@ def structure_layout(
             piece(col[q], net, [(y[p], "left"), (yq, "right")], ((a, b), h))
     for k, r in enumerate(routes):
         s_col, t_col = col[r.source], col[r.target]
-        piece(s_col + 1, ("src", r.source), [(y[r.source], "left"), (heights[k], "left")],
-              (("arc", k), "drop"))  # fmt: skip
+        piece(
+            s_col + 1,
+            ("src", r.source),
+            [(y[r.source], "left"), (heights[k], "left")],
+            (("arc", k), "drop"),
+        )
         if not straight[k]:
             yt = y[r.target] + offset[(r.target, ("arc", k))]
             piece(t_col, ("rise", k), [(heights[k], "right"), (yt, "right")], (("arc", k), "rise"))

@@ -143,8 +143,11 @@ def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure
             if len(members) == 1:
                 y0, y1 = y_lo, y_hi
             else:
-                ys = [(b[1] - b[3] / 2, b[1] + b[3] / 2) for n, b in boxes.items()
-                      if vertex.get(n) == v]  # fmt: skip
+                ys = [
+                    (b[1] - b[3] / 2, b[1] + b[3] / 2)
+                    for n, b in boxes.items()
+                    if vertex.get(n) == v
+                ]
                 y0 = max(y_lo, min(a for a, _ in ys) - 0.12)
                 y1 = min(y_hi, max(b for _, b in ys) + 0.12)
             bands.append(Band(v, vertex_label(v, names), x0, x1, y0, y1))

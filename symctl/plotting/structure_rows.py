@@ -172,10 +172,12 @@ def page_bound(
     widest, tallest, part, excess = 0.0, 0.0, "", -math.inf
     for name, sub, sub_text in units:
         layout = structure_layout(
-            sub, _no_text, text=sub_text,
+            sub,
+            _no_text,
+            text=sub_text,
             vertex_of={n: where[n] for n in sub.blocks} if where else None,
             vertex_names=vertex_names,
-        )  # fmt: skip
+        )
         w, h = _width(layout), layout.bounds[3] - layout.bounds[2]
         widest, tallest = max(widest, w), max(tallest, h)
         if max(w - width, h - PAGE_HEIGHT) > excess:
@@ -225,10 +227,10 @@ def _row_structure(S: Structure, parts: list[str]) -> tuple[Structure, tuple[str
         blocks[n] = b
     inputs = [n for n in S.inputs if n in inside] + entering
     leaving = [
-        n for n in inside if n in S.outputs or any(
-            n in b.inputs for m, b in S.blocks.items() if m not in inside
-        )
-    ]  # fmt: skip
+        n
+        for n in inside
+        if n in S.outputs or any(n in b.inputs for m, b in S.blocks.items() if m not in inside)
+    ]
     return Structure(blocks, inputs, leaving), tuple(entering)
 
 
@@ -279,10 +281,12 @@ def structure_rows(
 
     def lay(sub: Structure, sub_text: StructureText) -> StructureLayout:
         return structure_layout(
-            sub, measure, text=sub_text,
+            sub,
+            measure,
+            text=sub_text,
             vertex_of={n: where[n] for n in sub.blocks} if where else None,
             vertex_names=vertex_names,
-        )  # fmt: skip
+        )
 
     whole = lay(S, text)
     order = series_parts(S) if _width(whole) > width else None

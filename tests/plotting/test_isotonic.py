@@ -15,8 +15,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from symctl.plotting.delaygraph_layout import _pack
-from symctl.plotting.structure_layout import pava_rows
+from symctl.plotting.layered import fit_rows, isotonic
 
 
 def _reference_rows(desired: list[float]) -> list[int]:
@@ -56,14 +55,14 @@ def test_structure_rows_are_the_exact_pava_rows_on_random_barycenters(seed):
     ]
     desired = sorted((float(p.mean()) for p in parts), reverse=True)
     exact = sorted((Fraction(int(p.sum()), len(p)) for p in parts), reverse=True)
-    assert pava_rows(desired) == _reference_rows(exact)
+    assert fit_rows(desired) == _reference_rows(exact)
 
 
 @pytest.mark.parametrize("seed", range(40))
 def test_structure_rows_match_the_former_pava_rows_on_random_reals(seed):
     rng = np.random.default_rng(1000 + seed)
     desired = list(rng.normal(0.0, 3.0, size=int(rng.integers(1, 15))))
-    assert pava_rows(desired) == _reference_rows(desired)
+    assert fit_rows(desired) == _reference_rows(desired)
 
 
 @pytest.mark.parametrize("seed", range(40))
@@ -73,11 +72,11 @@ def test_delay_graph_packing_is_the_former_weighted_pava_on_random_targets(seed)
     target = rng.normal(0.0, 2.0, size=n)
     weight = rng.choice([0.5, 1.0, 30.0, 60.0, 91.0], size=n)
     gaps = rng.uniform(0.5, 2.0, size=n - 1)
-    packed = _pack(target, weight, gaps)
+    packed = isotonic(target, weight, gaps)
     np.testing.assert_allclose(packed, _reference_pack(target, weight, gaps), rtol=0, atol=1e-12)
     assert np.all(np.diff(packed) >= gaps - 1e-12)
 
 
 def test_empty_layers_pack_and_row_to_nothing():
-    assert pava_rows([]) == []
-    assert _pack(np.zeros(0), np.ones(0), np.zeros(0)).shape == (0,)
+    assert fit_rows([]) == []
+    assert isotonic(np.zeros(0), np.ones(0), np.zeros(0)).shape == (0,)
