@@ -115,3 +115,31 @@ def test_the_console_script_run_is_public_and_exits_with_mains_code(monkeypatch)
     with pytest.raises(SystemExit) as exit_info:
         cli.run()
     assert exit_info.value.code == 2
+
+
+@pytest.mark.parametrize("formats", ["jpg", "", ",", "pdf;png", "pdf,eps"])
+def test_bad_formats_are_one_line_and_exit_2_before_any_work(
+    tmp_path, capsys, monkeypatch, formats
+):
+    def no_derivation(*args, **kwargs):
+        raise AssertionError("the derivation ran before --formats was checked")
+
+    monkeypatch.setattr("symctl.report.pipeline.derive_paper", no_derivation)
+    assert main(["paper", "--out", str(tmp_path / "p"), "--formats", formats]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("symctl: error: --formats: ")
+    assert not (tmp_path / "p").exists()
+
+
+def test_formats_choose_the_figure_files_and_each_document_shows_its_own(tmp_path, monkeypatch):
+    from matplotlib.figure import Figure
+
+    from symctl.report import figures
+
+    monkeypatch.setattr(figures, "make_figure", lambda res, name: Figure(figsize=(1, 1)))
+    args = ["paper", "--out", str(tmp_path), "--no-pdf", "--realizations", "1", "--jobs", "1"]
+    assert main([*args, "--formats", "svg,png"]) == 0
+    suffixes = {p.suffix for p in tmp_path.iterdir() if p.stem == "open_loop"}
+    assert suffixes == {".svg", ".png"}
+    assert "open_loop.png" in (tmp_path / "report.md").read_text()
+    assert r"\fitgraphic{" not in (tmp_path / "derivation.tex").read_text()  # no PDF to include

@@ -52,11 +52,11 @@ class Run:
 
 
 RUNS = (
-    Run("paper", "the paper's case, T = 2", ("paper",)),
+    Run("paper", "the paper's case, T = 2", ("paper", "--formats", "pdf,png,svg")),
     Run(
         "paper_T6",
         "delays of three steps, T = 6",
-        ("paper", "--sensor-delay", "3", "--actuator-delay", "3"),
+        ("paper", "--sensor-delay", "3", "--actuator-delay", "3", "--formats", "pdf,png,svg"),
     ),
 )
 """The derivations shown on the site: the paper's parameters at T = 2 and at T = 6."""

@@ -51,12 +51,26 @@ cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
 
 
+def _formats(ctx, param, value) -> tuple[str, ...]:
+    from symctl.report.figures import figure_formats
+
+    return figure_formats(value, "--formats")
+
+
 def _writing_options(command):
-    """The options of a command that writes a derivation: --figures, --pdf, --jobs."""
+    """The options of a command that writes a derivation: --figures, --formats, --pdf, --jobs."""
     for option in reversed(
         (
             click.option(
                 "--figures/--no-figures", default=True, show_default=True, help="Write the figures."
+            ),
+            click.option(
+                "--formats",
+                default="pdf,png",
+                show_default=True,
+                callback=_formats,
+                help="The figures' formats, comma-separated, among pdf, png and svg "
+                "(derivation.tex includes the PDFs, report.md shows the PNGs).",
             ),
             click.option(
                 "--pdf/--no-pdf",
@@ -149,13 +163,14 @@ def paper(
     realizations,
     out,
     figures,
+    formats,
     pdf,
     jobs,
 ) -> None:
     """Run the paper's derivation and write it into OUT.
 
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
-    figures (PNG and SVG).
+    figures (PDF and PNG; SVG with --formats pdf,png,svg).
     """
     from symctl.report.output import OutputFolder  # imported here: keeps `symctl --help` fast
     from symctl.report.pipeline import derive_paper
@@ -182,7 +197,12 @@ def paper(
             progress=steps.start,
         )
         written = res._write_files(
-            folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
+            folder.staging,
+            figures=figures,
+            pdf=pdf,
+            jobs=jobs,
+            progress=steps.start,
+            formats=formats,
         )
     _summary(res)
     _written(out, folder.final(written), pdf)
@@ -195,7 +215,7 @@ def paper(
     "--check", is_flag=True, default=False, help="Validate the model file and exit; run nothing."
 )
 @_writing_options
-def derive_command(model_file, out, check, figures, pdf, jobs) -> None:
+def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     """Run the whole derivation on your own system, described in MODEL.toml.
 
     The same pipeline and outputs as `symctl paper` (which is this command on
@@ -219,7 +239,12 @@ def derive_command(model_file, out, check, figures, pdf, jobs) -> None:
         with OutputFolder(out, "--out") as folder, _Steps() as steps:
             res = derive(model, progress=steps.start)
             written = res._write_files(
-                folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=steps.start
+                folder.staging,
+                figures=figures,
+                pdf=pdf,
+                jobs=jobs,
+                progress=steps.start,
+                formats=formats,
             )
     except _NUMERICAL as exc:  # named with the model file (main's one-line message)
         with contextlib.suppress(AttributeError):
@@ -403,11 +428,16 @@ class _Steps:
 
 
 def _written(out: Path, written: list[Path], pdf: bool) -> None:
-    figures = sorted({p.stem for p in written if p.suffix == ".png"})
-    docs = [p.name for p in written if p.stem not in figures]  # a figure is also a .pdf
+    docs = [p.name for p in written if p.stem in ("results", "derivation", "report")]
+    drawn = [p for p in written if p.name not in docs]
+    figures = sorted({p.stem for p in drawn})
     line = f"wrote {out}/: " + ", ".join(docs)
     if figures:
-        line += f", {len(figures)} figures (PDF, SVG and PNG): " + ", ".join(figures)
+        kinds = [
+            f.upper() for f in ("pdf", "svg", "png") if any(p.suffix == f".{f}" for p in drawn)
+        ]
+        shown = ", ".join(kinds[:-1]) + " and " + kinds[-1] if len(kinds) > 1 else kinds[0]
+        line += f", {len(figures)} figures ({shown}): " + ", ".join(figures)
     _console.print(line, markup=False, soft_wrap=True, highlight=False)
     if pdf and not any(n.endswith(".pdf") for n in docs):
         _console.print(

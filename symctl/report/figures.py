@@ -3,9 +3,10 @@ r"""The report's figures, built from a :class:`~symctl.report.results.PaperResul
 Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
 the object it shows (:func:`make_figure`, under the stable file names of
 :func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
-includes, at its natural size), SVG and PNG, and :func:`write_figures` makes and writes
-them all, in parallel processes. The report's figures carry no heading: the document's
-caption says what each shows. This
+includes, at its natural size), SVG and PNG (what ``report.md`` shows), and
+:func:`write_figures` makes and writes them all in the formats asked for (by default
+:data:`DEFAULT_FORMATS`: PDF and PNG; SVG on request), in parallel processes. The
+report's figures carry no heading: the document's caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
 
@@ -54,11 +55,9 @@ Examples
 
 from __future__ import annotations
 
-import contextlib
 import gc
 import multiprocessing
 import os
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from symctl._util.display import latex
@@ -70,11 +69,13 @@ from symctl.neural.circuit import Circuit
 from symctl.plotting import style
 
 __all__ = [
+    "DEFAULT_FORMATS",
     "DPI",
     "FORMATS",
     "MAX_DRAWN_PARTS",
     "MAX_DRAWN_SIGNALS",
     "MAX_PIXELS",
+    "figure_formats",
     "figure_names",
     "make_figure",
     "save",
@@ -84,7 +85,10 @@ __all__ = [
 DPI = style.PNG_DPI
 """Resolution of the PNG files [dots per inch] (the house style's)."""
 FORMATS = style.FORMATS
-"""The formats every figure is saved in: vector PDF and SVG, and PNG (the house style's)."""
+"""The formats a figure can be saved in: vector PDF and SVG, and PNG (the house style's)."""
+DEFAULT_FORMATS = ("pdf", "png")
+"""The formats the report writes unless asked for others: the PDF that ``derivation.tex``
+includes and the PNG that ``report.md`` shows (SVG on request)."""
 MAX_DRAWN_SIGNALS = 400
 """Structures up to this many signals are drawn block by block when they fit the page (folded
 into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
@@ -406,13 +410,62 @@ def make_figure(res, name: str):
     return drawn.draw(vertex_names=names, signs_at=_signs_at(res, drawn))
 
 
-def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
-    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (:data:`FORMATS`); returns the paths.
+def figure_formats(formats, argname: str = "formats") -> tuple[str, ...]:
+    """``formats`` (a comma-separated text or a sequence of names) as names of :data:`FORMATS`.
+
+    Parameters
+    ----------
+    formats : str or sequence of str
+        Some of ``pdf``, ``svg`` and ``png``, e.g. ``"pdf,png,svg"``.
+    argname : str
+        The name in the messages (``"--formats"`` for the command line).
+
+    Returns
+    -------
+    tuple of str
+        The formats, each once, in the order of :data:`FORMATS` (the first is the one
+        whose renderer lays the figure out).
+
+    Raises
+    ------
+    ParameterError
+        ``formats`` is empty or names an unknown format.
+
+    Examples
+    --------
+    >>> from symctl.report.figures import figure_formats
+    >>> figure_formats("png, svg,png")
+    ('svg', 'png')
+    >>> figure_formats("pdf,jpg")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: formats: unknown format 'jpg'; choose among pdf, svg, png
+    """
+    items = formats.split(",") if isinstance(formats, str) else formats
+    if not isinstance(items, list | tuple) or not all(isinstance(f, str) for f in items):
+        raise ParameterError(f"{argname}: expected format names such as 'pdf,png', got {formats!r}")
+    names = {f.strip().lower() for f in items} - {""}
+    unknown = sorted(names - set(FORMATS))
+    if unknown:
+        raise ParameterError(
+            f"{argname}: unknown format {unknown[0]!r}; choose among {', '.join(FORMATS)}"
+        )
+    if not names:
+        raise ParameterError(
+            f"{argname}: name at least one of {', '.join(FORMATS)}, got {formats!r}"
+        )
+    return tuple(f for f in FORMATS if f in names)
+
+
+def save(
+    fig, out: Path | str, name: str, *, dpi: int = DPI, formats: tuple[str, ...] = FORMATS
+) -> list[Path]:
+    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (``formats``); returns the paths.
 
     The PDF and SVG are vector drawings of the figure at its size (the PDF is what
     ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
     the screen and Markdown. The layout is computed once, for the first format, so
-    the three agree; the files carry no date and the SVG's ids a fixed salt
+    the formats agree; the files carry no date and the SVG's ids a fixed salt
     (:func:`symctl.plotting.vector.write_vector`), so the same figure writes the same
     bytes. The PNG of an opaque figure has no alpha channel
     (:func:`symctl.plotting.png.write_png`).
@@ -428,6 +481,8 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     dpi : int
         Resolution of the PNG, lowered for a figure whose longest side would
         exceed :data:`MAX_PIXELS`.
+    formats : sequence of str
+        Some of :data:`FORMATS` (:func:`figure_formats`); default all three.
 
     Returns
     -------
@@ -437,7 +492,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     Raises
     ------
     ParameterError
-        ``out`` is not a folder.
+        ``out`` is not a folder, or ``formats`` names an unknown format.
 
     Examples
     --------
@@ -455,7 +510,7 @@ def save(fig, out: Path | str, name: str, *, dpi: int = DPI) -> list[Path]:
     out = _folder(out)
     paths = []
     dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
-    for ext in FORMATS:
+    for ext in figure_formats(formats):
         path = out / f"{name}.{ext}"
         if ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
             write_png(fig, path, dpi=dpi, metadata={"Software": "symctl (matplotlib)"})
@@ -485,23 +540,31 @@ def _worker_init() -> None:
 
 
 def _worker(name: str) -> list[Path]:
-    res, out, dpi = _SHARED["job"]
-    return save(make_figure(res, name), out, name, dpi=dpi)
+    res, out, dpi, formats = _SHARED["job"]
+    return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
 
 
-def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = DPI) -> list[Path]:
-    """Make and save every figure of the report (PNG and SVG); returns the paths.
+def write_figures(
+    res,
+    out: Path | str,
+    *,
+    jobs: int | None = None,
+    dpi: int = DPI,
+    formats: tuple[str, ...] = DEFAULT_FORMATS,
+) -> list[Path]:
+    """Make and save every figure of the report (:data:`DEFAULT_FORMATS`); returns the paths.
 
-    Figures are independent, so with ``jobs > 1`` they are drawn in forked
+    Figures are independent, so with ``jobs > 1`` they are drawn in a pool of forked
     worker processes, which share ``res`` without copying it, the slowest kinds
     first (circuits, firing patterns, structures: no long drawing starts last
     while the other workers wait), with the parent's objects frozen
     (:func:`gc.freeze`) so that the workers' garbage collections neither walk nor
     copy them; ``jobs=1``, or a platform without ``fork``, draws them here. When
     anything stops the drawing (an error in one figure, ``KeyboardInterrupt``, a
-    signal turned into an exception), every worker is killed and reaped before
-    the exception goes on: none is left running. The workers ignore SIGINT (the parent
-    handles Ctrl-C for them) and, on Linux, die with the parent.
+    signal turned into an exception), the pool is terminated
+    (:meth:`multiprocessing.pool.Pool.terminate`: every worker is stopped and reaped)
+    before the exception goes on. The workers ignore SIGINT (the parent handles
+    Ctrl-C for them) and, on Linux, die with the parent.
 
     Parameters
     ----------
@@ -513,16 +576,19 @@ def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = D
         Processes drawing figures; default the number of CPUs, at most 4.
     dpi : int
         Resolution of the PNGs.
+    formats : sequence of str
+        The formats of each figure (:func:`figure_formats`).
 
     Returns
     -------
     list of Path
-        Two per figure, in the order of :func:`figure_names`.
+        One per figure and format, in the order of :func:`figure_names`.
 
     Raises
     ------
     ParameterError
-        ``out`` is not a folder, or ``jobs`` is not an integer >= 1.
+        ``out`` is not a folder, ``jobs`` is not an integer >= 1, or ``formats``
+        names an unknown format.
 
     Examples
     --------
@@ -530,9 +596,9 @@ def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = D
     >>> from symctl import derive_paper
     >>> from symctl.report.figures import write_figures
     >>> res = derive_paper()
-    >>> with tempfile.TemporaryDirectory() as out:  # 15 figures: about 15 s on 2 cores
+    >>> with tempfile.TemporaryDirectory() as out:  # 20 figures: a few seconds on 2 cores
     ...     len(write_figures(res, out, jobs=2))  # doctest: +SKIP
-    30
+    40
     >>> with tempfile.TemporaryDirectory() as out:
     ...     write_figures(res, out, jobs=0)
     Traceback (most recent call last):
@@ -541,25 +607,22 @@ def write_figures(res, out: Path | str, *, jobs: int | None = None, dpi: int = D
     """
     names = figure_names(res)
     out = _folder(out)
+    formats = figure_formats(formats)
     jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
     if jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [p for name in names for p in save(make_figure(res, name), out, name, dpi=dpi)]
-    _SHARED["job"] = (res, out, dpi)
+        return [
+            p for n in names for p in save(make_figure(res, n), out, n, dpi=dpi, formats=formats)
+        ]
+    _SHARED["job"] = (res, out, dpi, formats)
     freeze = gc.get_freeze_count() == 0  # not when the caller froze objects of its own
     if freeze:  # the workers' collections skip the inherited objects (and copy no pages of them)
         gc.freeze()
     try:
         context = multiprocessing.get_context("fork")
-        pool = ProcessPoolExecutor(
-            min(jobs, len(names)), mp_context=context, initializer=_worker_init
-        )
         first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
-        try:
-            done = dict(zip(first, pool.map(_worker, first), strict=True))
-        except BaseException:
-            _kill(pool)
-            raise
-        pool.shutdown()
+        # leaving the block terminates the pool: every worker stopped and reaped, also on errors
+        with context.Pool(min(jobs, len(names)), initializer=_worker_init) as pool:
+            done = dict(zip(first, pool.map(_worker, first, chunksize=1), strict=True))
         return [p for name in names for p in done[name]]
     finally:
         if freeze:
@@ -575,18 +638,6 @@ _SLOWEST = ("circuit_", "firing_", "structure_", "atlas_", "simplified_")
 def _drawing_rank(name: str) -> int:
     """Where ``name`` goes in the order of drawing: the slowest kinds first (:data:`_SLOWEST`)."""
     return next((k for k, prefix in enumerate(_SLOWEST) if name.startswith(prefix)), len(_SLOWEST))
-
-
-def _kill(pool: ProcessPoolExecutor) -> None:
-    """Kill every worker of ``pool`` now and reap it (no waiting for the figures they draw)."""
-    procs = list((getattr(pool, "_processes", None) or {}).values())
-    for proc in procs:
-        with contextlib.suppress(OSError, ValueError):
-            proc.kill()
-    pool.shutdown(wait=False, cancel_futures=True)
-    for proc in procs:
-        with contextlib.suppress(OSError, ValueError, AssertionError):
-            proc.join(timeout=5)
 
 
 def _folder(out: Path | str) -> Path:

@@ -532,6 +532,7 @@ class PaperResults:
         pdf: bool = True,
         jobs: int | None = None,
         progress: Callable[[str], None] | None = None,
+        formats: str | tuple[str, ...] = _figures.DEFAULT_FORMATS,
     ) -> list[Path]:
         """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
 
@@ -548,7 +549,7 @@ class PaperResults:
             The folder: new (made, with its parents), empty, or the folder of
             an earlier run (replaced).
         figures : bool
-            Also write the figures as PNG and SVG (:meth:`figure_names`).
+            Also write the figures (:meth:`figure_names`).
         pdf : bool
             Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
         jobs : int, optional
@@ -556,6 +557,11 @@ class PaperResults:
         progress : callable, optional
             Called with the name of each step (``"figures"``, ``"documents"``,
             ``"pdflatex"``) before it runs.
+        formats : str or sequence of str
+            The figures' formats (:func:`symctl.report.figures.figure_formats`): by
+            default the PDF that ``derivation.tex`` includes and the PNG that
+            ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
+            figures written in its format.
 
         Returns
         -------
@@ -570,7 +576,7 @@ class PaperResults:
         ParameterError
             ``out`` is empty, a file, a folder holding other files, cannot be
             made, or is being written by another run; or ``jobs`` is not an
-            integer >= 1.
+            integer >= 1; or ``formats`` names an unknown format.
         LatexError
             ``pdflatex`` failed on ``derivation.tex``.
         OSError
@@ -592,9 +598,15 @@ class PaperResults:
         """
         if jobs is not None:
             positive_int(jobs, "jobs")
+        formats = _figures.figure_formats(formats)
         with OutputFolder(out, "out") as folder:
             written = self._write_files(
-                folder.staging, figures=figures, pdf=pdf, jobs=jobs, progress=progress
+                folder.staging,
+                figures=figures,
+                pdf=pdf,
+                jobs=jobs,
+                progress=progress,
+                formats=formats,
             )
             return folder.final(written)
 
@@ -606,6 +618,7 @@ class PaperResults:
         pdf: bool = True,
         jobs: int | None = None,
         progress: Callable[[str], None] | None = None,
+        formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
     ) -> list[Path]:
         """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`)."""
         step = progress or (lambda _name: None)
@@ -613,17 +626,22 @@ class PaperResults:
         path = out / "results.json"
         path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")
         written.append(path)
-        names: list[str] = []
+        paths: list[Path] = []
         if figures:
             step("figures")
-            paths = _figures.write_figures(self, out, jobs=jobs)
-            names = [p.stem for p in paths if p.suffix == ".png"]
+            paths = _figures.write_figures(self, out, jobs=jobs, formats=formats)
             written += paths
         step("documents")
-        blocks = story.story(self, figures=names)
+        # derivation.tex includes the PDFs, report.md shows the PNGs
+        shown = {ext: [p.stem for p in paths if p.suffix == f".{ext}"] for ext in ("pdf", "png")}
+        blocks = story.story(self, figures=shown["pdf"])
+        if shown["png"] != shown["pdf"]:
+            md_blocks = story.story(self, figures=shown["png"])
+        else:
+            md_blocks = blocks
         title = self.spec.title if self.spec is not None else document.TITLE
         written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
-        written.append(document.write_markdown(blocks, out / "report.md", title=title))
+        written.append(document.write_markdown(md_blocks, out / "report.md", title=title))
         if pdf:
             step("pdflatex")
             compiled = document.compile_pdf(out / "derivation.tex")

@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 
 from symctl import derive, derive_paper
+from symctl.errors import ParameterError
 from symctl.plotting.legibility import legibility, missing_units
 from symctl.plotting.style import COLUMN, TEXT_WIDTH
 from symctl.report import figures
@@ -74,7 +75,7 @@ def test_the_slowest_figures_are_drawn_first_and_the_paths_come_in_reading_order
     out.mkdir()
     paths = figures.write_figures(paper, out, jobs=2)
     names = figures.figure_names(paper)
-    assert [p.stem for p in paths] == [n for n in names for _ in figures.FORMATS]
+    assert [p.name for p in paths] == [f"{n}.{f}" for n in names for f in ("pdf", "png")]
     drawn = log.read_text().split()
     assert sorted(drawn) == sorted(names)
     kinds = [n for n in names if n.startswith("circuit_")]
@@ -159,6 +160,58 @@ def test_save_writes_pdf_svg_and_png_with_the_same_bytes_twice(tmp_path):
         assert got[".png"][:8] == b"\x89PNG\r\n\x1a\n"
         first = first or got
         assert got == first  # byte-reproducible: no date, no random ids
+
+
+def test_save_writes_only_the_formats_asked_for_in_the_order_of_formats(tmp_path):
+    fig = Figure(figsize=(2.0, 1.2))
+    fig.add_subplot().plot([0, 1], [1, 0])
+    paths = figures.save(fig, tmp_path, "a", formats=("png", "svg"))
+    assert [p.name for p in paths] == ["a.svg", "a.png"] and sorted(tmp_path.iterdir()) == sorted(paths)
+
+
+@pytest.mark.parametrize(
+    ("given", "expected"),
+    [("pdf,png", ("pdf", "png")), (" SVG , pdf ,svg", ("pdf", "svg")), (["png"], ("png",))],
+)
+def test_figure_formats_are_read_in_the_order_of_formats(given, expected):
+    assert figures.figure_formats(given) == expected
+
+
+@pytest.mark.parametrize(
+    ("given", "words"),
+    [("", "name at least one"), (",", "name at least one"), ("pdf,jpg", "unknown format 'jpg'"),
+     ("pdf;png", "unknown format 'pdf;png'"), (3, "expected format names"),
+     ([b"pdf"], "expected format names")],
+)  # fmt: skip
+def test_bad_figure_formats_are_a_parameter_error_naming_the_argument(given, words):
+    with pytest.raises(ParameterError, match=rf"^formats: .*{words}"):
+        figures.figure_formats(given)
+
+
+def test_a_pdf_embeds_only_the_glyphs_it_shows_with_the_fonts_outlines(tmp_path):
+    # each font is cut down once per process; a figure's subset is cut from that one
+    import io
+    import re
+    import zlib
+
+    from fontTools import ttLib
+    from matplotlib import font_manager
+
+    fig = Figure(figsize=(2.0, 1.2))
+    fig.text(0.1, 0.5, r"fifty $\epsilon_1 \leq \tau$")
+    data = figures.save(fig, tmp_path, "a", formats=("pdf",))[0].read_bytes()
+    streams = [
+        zlib.decompress(m) for m in re.findall(rb"stream\r?\n(.*?)\r?\nendstream", data, re.S)
+    ]
+    embedded = [ttLib.TTFont(io.BytesIO(s)) for s in streams if s[:4] == b"\x00\x01\x00\x00"]
+    full = ttLib.TTFont(font_manager.findfont("DejaVu Sans"))
+    sans = next(f for f in embedded if "f" in f.getGlyphOrder())
+    assert "fi" not in sans.getGlyphOrder()  # no ligature the text does not show
+    assert not {"GSUB", "GPOS", "MATH"} & set(sans.keys())
+    for name in ("f", "i", "y"):
+        assert sans["glyf"][name].getCoordinates(sans["glyf"]) == full["glyf"][name].getCoordinates(
+            full["glyf"]
+        )
 
 
 def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_path, pdflatex):
