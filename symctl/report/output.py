@@ -1,8 +1,8 @@
-r"""An output folder written all at once: staged beside its place, locked, then renamed into it.
+r"""An output folder written all at once: staged in a sibling folder, then renamed into place.
 
 :class:`OutputFolder` is how :meth:`~symctl.report.results.PaperResults.write`
-and ``symctl paper`` write a folder. It promises that the folder ``out`` is at
-every moment either the old complete one (or absent) or the new complete one:
+and ``symctl paper`` write a folder. Nothing in ``out`` is ever mixed (files of two
+runs) or partial (a run's files missing or half written):
 
 1. **Checked before any work.** :func:`check_output_folder` refuses an empty
    name, a file, a parent that cannot hold a folder, and an existing folder
@@ -10,16 +10,13 @@ every moment either the old complete one (or absent) or the new complete one:
    it never deletes a user's files).
 2. **Locked.** ``<out>.lock`` (beside ``out``) is held with ``fcntl.flock`` for
    the whole run; a second run on the same folder is refused at once with a
-   :class:`~symctl.errors.ParameterError` naming the process that holds it
-   (non-blocking: a refusal is clearer than a silent wait). The lock file is
-   removed when the run ends.
+   :class:`~symctl.errors.ParameterError` naming the process that holds it. The
+   lock file is removed when the run ends.
 3. **Staged.** Everything is written into a fresh folder ``.<name>.tmp-<hex>``
-   beside ``out`` (same parent, so same file system and renames are atomic).
-4. **Committed by rename.** When everything is written, the staged folder and
-   ``out`` are exchanged in one step (Linux ``renameat2(RENAME_EXCHANGE)``),
-   or, where that is not available, by the rename dance
-   ``out -> .<name>.old-<hex>``, ``staged -> out``, then the old one is removed.
-   SIGINT and SIGTERM are held back during the commit.
+   beside ``out`` (same parent, so same file system: a rename is atomic).
+4. **Renamed into place** with :func:`os.replace`: ``out -> .<name>.old-<hex>``,
+   then the staged folder ``-> out``; then the old one is removed. Between the two
+   renames ``out`` is absent for an instant, never mixed.
 
 What happens on each failure:
 
@@ -29,10 +26,10 @@ failure                                result
 error or signal while writing          staged folder removed; ``out`` untouched
 second run on the same ``out``         refused before any work; the first goes on
 ``out -> .old`` rename fails           nothing moved; staged folder removed; error
-``staged -> out`` rename fails         ``.old`` renamed back to ``out``; staged
-                                       folder removed; error
-removing ``.old`` fails                ``out`` is the new folder; ``.old`` stays and
-                                       the next run on ``out`` removes it
+error or signal after it               ``.old`` renamed back to ``out`` when ``out``
+                                       is absent; staged folder removed
+removing ``.old`` fails                ``out`` is the new folder; the next run on
+                                       ``out`` removes ``.old``
 process killed (SIGKILL, power loss)   ``.tmp-``/``.old-`` folders may stay; the next
                                        run on ``out`` (under the lock) removes them,
                                        and renames ``.old-`` back to ``out`` when
@@ -56,14 +53,11 @@ False
 from __future__ import annotations
 
 import contextlib
-import errno
 import os
 import re
 import secrets
 import shutil
-import signal
 import stat
-import time
 from pathlib import Path
 from types import TracebackType
 
@@ -97,7 +91,6 @@ _OURS = re.compile(
     rf"|({_FIGURES})\.(pdf|png|svg))"
 )
 """The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive`` or ``fit`` leaves."""
-_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
 def check_output_folder(out, argname: str = "out") -> Path:
@@ -184,12 +177,12 @@ def _foreign(path: Path) -> list[str]:
 
 
 class OutputFolder:
-    """A context manager that stages a folder beside ``out`` and moves it into place on success.
+    """A context manager that stages a folder beside ``out`` and renames it into place on success.
 
     Entering checks ``out`` (:func:`check_output_folder`), makes its parents,
     takes the lock ``<out>.lock``, clears what a killed run left and makes the
     staging folder; write into :attr:`staging`. Leaving without an exception
-    moves the staging folder to ``out`` (replacing the old one); leaving with
+    renames the staging folder to ``out`` (replacing the old one); leaving with
     one removes it and leaves ``out`` as it was. The lock is released either way.
 
     Parameters
@@ -204,7 +197,7 @@ class OutputFolder:
     out : Path
         The absolute output folder.
     staging : Path or None
-        The folder being written (None outside the ``with`` block).
+        The folder being written (None before the ``with`` block).
 
     Raises
     ------
@@ -232,7 +225,6 @@ class OutputFolder:
         self.out = check_output_folder(out, argname)
         self.lock_path = self.out.with_name(self.out.name + ".lock")
         self.staging: Path | None = None
-        self._staged: Path | None = None  # the staging folder's name, kept for final()
         self._lock_fd: int | None = None
 
     def __enter__(self) -> OutputFolder:
@@ -244,7 +236,8 @@ class OutputFolder:
         try:
             self._clear_stale()
             check_output_folder(self.out, self.argname)  # again, under the lock
-            self.staging = self._staged = self._fresh("tmp")
+            self.staging = self._sibling("tmp")
+            self.staging.mkdir()  # mode 0o777 minus the umask, as a plain mkdir
             if self.out.is_dir():
                 os.chmod(self.staging, stat.S_IMODE(self.out.stat().st_mode))
         except BaseException:
@@ -258,59 +251,35 @@ class OutputFolder:
         exc: BaseException | None,
         tb: TracebackType | None,
     ) -> None:
+        old = self._sibling("old") if self.out.exists() else None
         try:
             if exc_type is None:
-                with _signals_held():
-                    self._commit()
+                if old is not None:
+                    os.replace(self.out, old)
+                os.replace(self.staging, self.out)
         finally:
             try:
-                if self.staging is not None:
-                    _remove_tree(self.staging)
-                    self.staging = None
+                if old is not None and os.path.lexists(old) and not os.path.lexists(self.out):
+                    os.replace(old, self.out)  # stopped between the renames: the old one back
+                for path in (self.staging, old):  # the staging folder unless it is out now
+                    if path is not None and os.path.lexists(path):
+                        shutil.rmtree(path, ignore_errors=True)
             finally:
                 self._unlock()
 
     def final(self, paths: list[Path]) -> list[Path]:
-        """``paths`` inside :attr:`staging` as they will be inside :attr:`out`."""
-        return [self.out / Path(p).relative_to(self._staged) for p in paths]
+        """``paths`` inside :attr:`staging` as they are inside :attr:`out` once renamed."""
+        return [self.out / Path(p).relative_to(self.staging) for p in paths]
 
-    # ------------------------------------------------------------- commit
-    def _commit(self) -> None:
-        staging, out = self.staging, self.out
-        if not out.exists():
-            os.rename(staging, out)
-            self.staging = None
-            return
-        if _exchange(staging, out):  # staging now holds the old folder
-            _remove_tree(staging)
-            self.staging = None
-            return
-        backup = self._fresh("old", make=False)
-        os.rename(out, backup)
-        try:
-            os.rename(staging, out)
-        except BaseException:
-            os.rename(backup, out)
-            raise
-        self.staging = None
-        _remove_tree(backup)
-
-    def _fresh(self, kind: str, *, make: bool = True) -> Path:
-        """A new name ``.<name>.<kind>-<hex>`` beside ``out`` (made as a folder when ``make``)."""
+    def _sibling(self, kind: str) -> Path:
+        """A free name ``.<name>.<kind>-<hex>`` beside ``out``."""
         while True:
             path = self.out.with_name(f".{self.out.name}.{kind}-{secrets.token_hex(4)}")
-            if not make:
-                if not os.path.lexists(path):
-                    return path
-                continue
-            try:
-                path.mkdir()  # mode 0o777 minus the umask, as a plain mkdir
-            except FileExistsError:
-                continue
-            return path
+            if not os.path.lexists(path):
+                return path
 
     def _clear_stale(self) -> None:
-        """Remove the staging and backup folders of runs that were killed (we hold the lock)."""
+        """Remove the staging and old folders of runs that were killed (we hold the lock)."""
         prefix = f".{self.out.name}."
         stale = sorted(
             (
@@ -322,8 +291,8 @@ class OutputFolder:
             key=lambda p: p.lstat().st_mtime,
         )
         backups = [p for p in stale if p.name[len(prefix) :].startswith("old-") and p.is_dir()]
-        if backups and not self.out.exists():  # killed between the two renames of a commit
-            os.rename(backups[-1], self.out)
+        if backups and not self.out.exists():  # killed between the two renames
+            os.replace(backups[-1], self.out)
             stale.remove(backups[-1])
         for p in stale:
             if p.is_symlink() or not p.is_dir():
@@ -331,7 +300,6 @@ class OutputFolder:
             else:
                 shutil.rmtree(p, ignore_errors=True)
 
-    # --------------------------------------------------------------- lock
     def _lock(self) -> None:
         if fcntl is None:  # pragma: no cover
             return
@@ -352,8 +320,7 @@ class OutputFolder:
                     f"(pid {holder}, lock {self.lock_path.name!r}); wait for it to finish or "
                     "choose another folder"
                 ) from None
-            # the file may have been removed by the run that held it: lock the one at the path
-            try:
+            try:  # the run that held it may have removed the file: lock the one at the path
                 same = os.stat(self.lock_path).st_ino == os.fstat(fd).st_ino
             except FileNotFoundError:
                 same = False
@@ -371,48 +338,3 @@ class OutputFolder:
         with contextlib.suppress(OSError):
             os.unlink(self.lock_path)  # while still holding it (see _lock)
         os.close(fd)
-
-
-def _exchange(a: Path, b: Path) -> bool:
-    """Swap two paths in one atomic step (Linux ``renameat2``); False where unsupported."""
-    try:
-        import ctypes
-
-        fn = ctypes.CDLL(None, use_errno=True).renameat2
-    except (OSError, AttributeError, ImportError):  # not glibc/Linux
-        return False
-    at_fdcwd, rename_exchange = -100, 2
-    if fn(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
-        return True
-    err = ctypes.get_errno()
-    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
-        return False  # the kernel or the file system cannot: use the rename dance
-    raise OSError(err, os.strerror(err), str(b))
-
-
-@contextlib.contextmanager
-def _signals_held():
-    """Defer SIGINT and SIGTERM (main thread, POSIX) until the block is done."""
-    mask = getattr(signal, "pthread_sigmask", None)
-    if mask is None:  # pragma: no cover
-        yield
-        return
-    old = mask(signal.SIG_BLOCK, _SIGNALS)
-    try:
-        yield
-    finally:
-        mask(signal.SIG_SETMASK, old)
-
-
-def _remove_tree(path: Path, tries: int = 20) -> None:
-    """Remove the folder ``path``, retrying while something still writes into it.
-
-    A figure worker killed by a signal may have a file half written when the
-    staging folder is removed (one pass of ``rmtree`` then meets a file it did
-    not list, "Directory not empty"); a few passes, 50 ms apart, remove it.
-    """
-    for _ in range(tries):
-        shutil.rmtree(path, ignore_errors=True)
-        if not os.path.lexists(path):
-            return
-        time.sleep(0.05)

@@ -166,7 +166,9 @@ def test_save_writes_only_the_formats_asked_for_in_the_order_of_formats(tmp_path
     fig = Figure(figsize=(2.0, 1.2))
     fig.add_subplot().plot([0, 1], [1, 0])
     paths = figures.save(fig, tmp_path, "a", formats=("png", "svg"))
-    assert [p.name for p in paths] == ["a.svg", "a.png"] and sorted(tmp_path.iterdir()) == sorted(paths)
+    assert [p.name for p in paths] == ["a.svg", "a.png"] and sorted(tmp_path.iterdir()) == sorted(
+        paths
+    )
 
 
 @pytest.mark.parametrize(

@@ -233,32 +233,38 @@ def test_a_failing_figure_stops_every_worker_and_leaves_the_old_folder(
     assert _children(os.getpid()) == []
 
 
-def test_a_failing_rename_into_place_puts_the_old_folder_back(res, tmp_path, monkeypatch):
+RENAME_FAILURES = {
+    "staged -> out fails (disk full)": (".paper.tmp-", OSError(28, "No space left on device")),
+    "Ctrl-C between the two renames": (".paper.tmp-", KeyboardInterrupt()),
+    "out -> .old fails": ("paper", OSError(16, "Device or resource busy")),
+}
+
+
+@pytest.mark.parametrize("case", list(RENAME_FAILURES))
+def test_a_failing_rename_into_place_puts_the_old_folder_back(res, tmp_path, monkeypatch, case):
+    source, error = RENAME_FAILURES[case]  # the rename whose source name starts so fails
     out = tmp_path / "paper"
     old = _old_run(out)
-    monkeypatch.setattr(output, "_exchange", lambda a, b: False)  # the rename dance
-    real_rename = os.rename
+    real_replace = os.replace
 
-    def rename(src, dst):
-        if ".tmp-" in str(src):  # staged -> out fails (after out -> backup)
-            raise OSError(28, "No space left on device", str(dst))
-        return real_rename(src, dst)
+    def replace(src, dst):
+        name = Path(src).name
+        if name == source or (source.endswith("-") and name.startswith(source)):
+            raise error
+        return real_replace(src, dst)
 
-    monkeypatch.setattr(output.os, "rename", rename)
-    with pytest.raises(OSError, match="No space left"):
+    monkeypatch.setattr(output.os, "replace", replace)
+    with pytest.raises(type(error)):
         res.write(out, figures=False, pdf=False)
     assert _contents(out) == old and _leftovers(tmp_path, "paper") == []
 
 
 # ---------------------------------------------------------------- complete replacement
-@pytest.mark.parametrize("exchange", ["renameat2", "rename dance"])
-def test_a_new_run_replaces_every_file_of_the_old_one(res, tmp_path, monkeypatch, exchange):
+def test_a_new_run_replaces_every_file_of_the_old_one(res, tmp_path):
     out = tmp_path / "paper"
     _old_run(out)
     (out / "derivation.aux").write_text("left by a failed pdflatex")
     out.chmod(0o750)
-    if exchange == "rename dance":
-        monkeypatch.setattr(output, "_exchange", lambda a, b: False)
     written = res.write(out, figures=False, pdf=False)
     assert [p.parent for p in written] == [out.resolve()] * 3
     assert sorted(p.name for p in out.iterdir()) == ["derivation.tex", "report.md", "results.json"]
