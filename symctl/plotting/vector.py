@@ -148,14 +148,15 @@ def _fast_subsets():
         return
 
     def get_glyphs_subset(fontfile, glyphs):
-        from fontTools import subset, ttLib
+        from fontTools import subset
 
         glyphs = set(glyphs)
         data, first = _base_font(os.fspath(fontfile), getattr(fontfile, "face_index", 0))
         if not glyphs <= first.keys():
             return own(fontfile, glyphs)
-        font = ttLib.TTFont(io.BytesIO(data))
-        subsetter = subset.Subsetter(options=_subset_options())
+        options = _subset_options()
+        font = subset.load_font(io.BytesIO(data), options)  # no new timestamp: the same bytes
+        subsetter = subset.Subsetter(options=options)
         subsetter.populate(gids={first[g] for g in glyphs})
         subsetter.subset(font)
         second = subsetter.glyph_index_map
