@@ -18,8 +18,8 @@ legible at the size it is printed and every figure reads alike:
   :func:`legend_below` puts a legend under its axes, :func:`legend_above` over them
   (under the panel's heading), :func:`figure_legend` under the whole figure: where it
   never covers data, in as many columns as :func:`legend_columns` finds room for.
-* **Files.** :data:`FORMATS` are written for every figure (vector PDF and SVG, and a PNG
-  at :data:`PNG_DPI` for the screen).
+* **Files.** A figure is written in some of :data:`FORMATS` (vector PDF and SVG, and a
+  PNG at :data:`PNG_DPI` for the screen).
 
 :func:`rc` is the matplotlib ``rcParams`` of the style; :func:`new_figure` makes a
 pyplot-free figure under it.
@@ -97,7 +97,7 @@ MIN_FONT = 6.0
 PNG_DPI = 200
 """Resolution of the PNG files [dots per inch] (the PDF and SVG are vector)."""
 FORMATS = ("pdf", "svg", "png")
-"""The formats every figure is written in."""
+"""The formats a figure can be written in, in the order they are written."""
 
 PALETTE = (
     "#0072B2",  # blue

@@ -151,8 +151,11 @@ def _fast_subsets():
         from fontTools import subset
 
         glyphs = set(glyphs)
-        data, first = _base_font(os.fspath(fontfile), getattr(fontfile, "face_index", 0))
-        if not glyphs <= first.keys():
+        try:
+            data, first = _base_font(os.fspath(fontfile), getattr(fontfile, "face_index", 0))
+        except Exception:  # a font fontTools cannot cut down (matplotlib's subset says why)
+            return own(fontfile, glyphs)
+        if not glyphs <= first.keys():  # a glyph beyond the base set
             return own(fontfile, glyphs)
         options = _subset_options()
         font = subset.load_font(io.BytesIO(data), options)  # no new timestamp: the same bytes

@@ -11,7 +11,7 @@ Modules, lowest first (each imports only those above it in this list):
 - ``shorthand``: the indexed forms of long objects (products over sections,
   G(z) as b(z)/a(z) with a coefficient table, entries as N c_k);
 - ``story``: the derivation told as blocks;
-- ``figures``: the report's figures by name, saved as PNG and SVG;
+- ``figures``: the report's figures by name, saved as PDF and PNG (SVG on request);
 - ``output``: an output folder written all at once (checked, locked, staged
   beside its place, renamed into it when complete);
 - ``results``: ``PaperResults`` (with its records), ``results.json``, and

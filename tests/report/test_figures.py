@@ -217,6 +217,25 @@ def test_a_pdf_embeds_only_the_glyphs_it_shows_with_the_fonts_outlines(tmp_path)
         )
 
 
+def test_a_glyph_beyond_the_fonts_base_set_is_embedded_by_matplotlibs_own_subset(tmp_path):
+    import io
+    import re
+    import zlib
+
+    from fontTools import ttLib
+    from matplotlib import font_manager
+
+    fig = Figure(figsize=(2.0, 1.2))
+    fig.text(0.1, 0.5, "\u0416 a")  # Cyrillic: not among the characters fonts are cut to first
+    data = figures.save(fig, tmp_path, "a", formats=("pdf",))[0].read_bytes()
+    streams = [
+        zlib.decompress(m) for m in re.findall(rb"stream\r?\n(.*?)\r?\nendstream", data, re.S)
+    ]
+    fonts = [ttLib.TTFont(io.BytesIO(s)) for s in streams if s[:4] == b"\x00\x01\x00\x00"]
+    name = ttLib.TTFont(font_manager.findfont("DejaVu Sans")).getBestCmap()[0x416]
+    assert any(name in f.getGlyphOrder() for f in fonts)
+
+
 def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_path, pdflatex):
     import subprocess
 
