@@ -131,6 +131,7 @@ def test_bad_formats_are_one_line_and_exit_2_before_any_work(
     assert not (tmp_path / "p").exists()
 
 
+@pytest.mark.slow
 def test_formats_choose_the_figure_files_and_each_document_shows_its_own(tmp_path, monkeypatch):
     from matplotlib.figure import Figure
 
