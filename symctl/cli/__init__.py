@@ -33,6 +33,7 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
+from symctl.cli.writing import writing_options as _writing_options
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
 
@@ -49,45 +50,6 @@ def cli() -> None:
 
 cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
-
-
-def _formats(ctx, param, value) -> tuple[str, ...]:
-    from symctl.report.figures import figure_formats
-
-    return figure_formats(value, "--formats")
-
-
-def _writing_options(command):
-    """The options of a command that writes a derivation: --figures, --formats, --pdf, --jobs."""
-    for option in reversed(
-        (
-            click.option(
-                "--figures/--no-figures", default=True, show_default=True, help="Write the figures."
-            ),
-            click.option(
-                "--formats",
-                default="pdf,png",
-                show_default=True,
-                callback=_formats,
-                help="The figures' formats, comma-separated, among pdf, png and svg "
-                "(derivation.tex includes the PDFs, report.md shows the PNGs).",
-            ),
-            click.option(
-                "--pdf/--no-pdf",
-                default=True,
-                show_default=True,
-                help="Compile derivation.pdf (when pdflatex is installed).",
-            ),
-            click.option(
-                "--jobs",
-                type=click.IntRange(min=1),
-                default=None,
-                help="Processes drawing the figures [default: CPUs, at most 4].",
-            ),
-        )
-    ):
-        command = option(command)
-    return command
 
 
 @cli.command()
@@ -433,11 +395,8 @@ def _written(out: Path, written: list[Path], pdf: bool) -> None:
     figures = sorted({p.stem for p in drawn})
     line = f"wrote {out}/: " + ", ".join(docs)
     if figures:
-        kinds = [
-            f.upper() for f in ("pdf", "svg", "png") if any(p.suffix == f".{f}" for p in drawn)
-        ]
-        shown = ", ".join(kinds[:-1]) + " and " + kinds[-1] if len(kinds) > 1 else kinds[0]
-        line += f", {len(figures)} figures ({shown}): " + ", ".join(figures)
+        kinds = ", ".join(dict.fromkeys(p.suffix[1:].upper() for p in drawn))  # as written
+        line += f", {len(figures)} figures ({kinds}): " + ", ".join(figures)
     _console.print(line, markup=False, soft_wrap=True, highlight=False)
     if pdf and not any(n.endswith(".pdf") for n in docs):
         _console.print(

@@ -600,14 +600,8 @@ class PaperResults:
             positive_int(jobs, "jobs")
         formats = _figures.figure_formats(formats)
         with OutputFolder(out, "out") as folder:
-            written = self._write_files(
-                folder.staging,
-                figures=figures,
-                pdf=pdf,
-                jobs=jobs,
-                progress=progress,
-                formats=formats,
-            )
+            kw = {"figures": figures, "pdf": pdf, "jobs": jobs, "formats": formats}
+            written = self._write_files(folder.staging, progress=progress, **kw)
             return folder.final(written)
 
     def _write_files(
@@ -635,10 +629,9 @@ class PaperResults:
         # derivation.tex includes the PDFs, report.md shows the PNGs
         shown = {ext: [p.stem for p in paths if p.suffix == f".{ext}"] for ext in ("pdf", "png")}
         blocks = story.story(self, figures=shown["pdf"])
-        if shown["png"] != shown["pdf"]:
-            md_blocks = story.story(self, figures=shown["png"])
-        else:
-            md_blocks = blocks
+        md_blocks = (
+            blocks if shown["png"] == shown["pdf"] else story.story(self, figures=shown["png"])
+        )
         title = self.spec.title if self.spec is not None else document.TITLE
         written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
         written.append(document.write_markdown(md_blocks, out / "report.md", title=title))
