@@ -20,9 +20,10 @@ from symctl.compatibility.structure import Structure
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.fitting.fitmodel import FIXED_CLASSES, TraceModel
+from symctl.fitting.fitmodel import TraceModel
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import closed_loop_response
+from symctl.realization.realizers import circuit_names
 
 __all__: list[str] = []
 
@@ -114,13 +115,13 @@ def _circuit_arg(circuit) -> list:
         from symctl.circuitatlas.atlas import atlas
 
         closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
-        return ["general", *FIXED_CLASSES, *closed]
+        return [*circuit_names(whole=False), *closed]
     items = list(circuit) if isinstance(circuit, list | tuple) else [circuit]
     if not items or len(items) > 100:
         raise ParameterError(f"circuit: expected 1 to 100 classes, got {len(items)}")
     out = []
     for c in items:
-        if isinstance(c, CircuitClass) or c in ("general", *FIXED_CLASSES):
+        if isinstance(c, CircuitClass) or c in circuit_names(whole=False):
             out.append(c)
         elif isinstance(c, str) and c[:1] == "A" and c[1:].isdigit():
             from symctl.circuitatlas.atlas import atlas
@@ -133,8 +134,8 @@ def _circuit_arg(circuit) -> list:
             out.append(classes[c])
         elif isinstance(c, str):
             raise ParameterError(
-                f"circuit: expected 'general', 'controllable', 'observable' or an atlas label "
-                f"such as 'A1', got {c!r}"
+                f"circuit: expected {', '.join(map(repr, circuit_names(whole=False)))} or an "
+                f"atlas label such as 'A1', got {c!r}"
             )
         else:
             raise SymctlTypeError(f"circuit: expected a class name or CircuitClass, got {c!r}")
