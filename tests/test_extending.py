@@ -76,8 +76,9 @@ def test_model_files_accept_it_and_build_it_by_default(page):
 
 def test_firing_the_report_spec_dale_and_the_fits_list_it(page):
     import symctl
-    from symctl.discovery import fitmodel, signs
-    from symctl.discovery.fitargs import _circuit_arg
+    from symctl.dalelaw import signs
+    from symctl.fitting import fitmodel
+    from symctl.fitting.fitargs import _circuit_arg
     from symctl.neural import firing
     from symctl.report import spec
 
@@ -90,6 +91,7 @@ def test_firing_the_report_spec_dale_and_the_fits_list_it(page):
     assert symctl.dale(gains, circuit="reversed").circuit == "reversed"
 
 
+@pytest.mark.slow  # a second derivation and four Dale decisions
 def test_symctl_derive_and_dale_write_and_print_it(page, tmp_path, capsys):
     model = tmp_path / "m.toml"
     model.write_text(muscle_text().replace(BUILD, 'build = ["reversed"]'))
