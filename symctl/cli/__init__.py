@@ -446,6 +446,8 @@ def _summary(res) -> None:
         out(f"Not derived|  {data['model']['skipped']}")
         _summary_table(data, p)
         return
+    from symctl.realization.realizers import REALIZERS
+
     out("Factorization|  G = G3 G2 G1")
     none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
     out("  " + ",  ".join(f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}"
@@ -458,8 +460,9 @@ def _summary(res) -> None:
         size = len(rec["numeric"]["F"])
         small = size <= 3
         rows = ", ".join("[" + ", ".join(row) + "]" for row in rec["symbolic"]["F"])
-        shown = f"[{rows}]" if name != "general" else "P^-1 F_c P"
-        shown = shown if small or name == "general" else f"({size} x {size})"
+        dense = name in REALIZERS and REALIZERS[name].takes_transform  # F in a symbolic P
+        shown = "P^-1 F_c P" if dense else f"[{rows}]"
+        shown = shown if small or dense else f"({size} x {size})"
         numeric = _fmt(rec["numeric"]["F"]) if small else f"({size} x {size}, in results.json)"
         out(
             f"  {name:>12}: F = {shown}; F(seed {data['parameters']['seed']}) = "

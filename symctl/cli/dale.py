@@ -30,10 +30,10 @@ def _say(text: str) -> None:
 @click.argument("model_file", metavar="[MODEL.toml]", required=False, default=None)
 @click.option(
     "--circuit",
-    default="general,controllable,observable",
-    show_default=True,
-    help="Circuits to decide, separated by commas: general, controllable, observable, "
-    "or atlas labels A1, A2, ... of G2's order.",
+    default=None,
+    help="Circuits to decide, separated by commas: circuits of G2 in the realizers' registry "
+    "(general, controllable, observable, ...) or atlas labels A1, A2, ... of G2's order "
+    "[default: every circuit of G2 in the registry].",
 )
 @click.option("--sensor-delay", type=int, default=None, help="[default: the model's, else 1]")
 @click.option("--actuator-delay", type=int, default=None, help="[default: the model's, else 1]")
@@ -78,7 +78,10 @@ def dale_command(
         else:
             _say(T.table())
         return
+    from symctl.realization.realizers import circuit_names
+
     s = gains.system
+    circuit = ",".join(circuit_names(whole=False)) if circuit is None else circuit
     circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
     if not circuits:
         raise click.BadParameter("name at least one circuit", param_hint="--circuit")
@@ -125,12 +128,13 @@ def _gains(model_file, sensor_delay, actuator_delay):
 def _circuit(name: str, system):
     """A circuit name, or an atlas label of G2's order (1 or 2)."""
     from symctl.errors import ParameterError
+    from symctl.realization.realizers import circuit_names
 
-    if name in ("general", "controllable", "observable"):
+    if name in circuit_names(whole=False):
         return name
     if not (name[:1] == "A" and name[1:].isdigit()):
         raise ParameterError(
-            f"--circuit: {name!r} is not general, controllable, observable or an atlas label"
+            f"--circuit: {name!r} is not {', '.join(circuit_names(whole=False))} or an atlas label"
         )
     from symctl.circuitatlas.atlas import atlas
     from symctl.design.controller import controller_tf

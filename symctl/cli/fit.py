@@ -32,8 +32,9 @@ _console = Console()
 @click.option(
     "--circuit",
     default=None,
-    help="general, controllable, observable, an atlas class A1..A5, all, or several "
-    "separated by commas [default: the data's, else general].",
+    help="A circuit of G2 in the realizers' registry (general, controllable, observable, ...), "
+    "an atlas class A1..A5, all, or several separated by commas [default: the data's, else "
+    "general].",
 )
 @click.option(
     "--sensor-delay",

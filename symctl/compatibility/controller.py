@@ -228,8 +228,10 @@ def controller_compatibility(
         each entry along its own path; ``construction`` and ``paths`` then
         do not apply).
     graph : DelayGraph
-    base : {"controllable", "observable", "general"}
-        The realization of :math:`G_2` in the construction.
+    base : str
+        The realization of :math:`G_2` in the construction: a realizer of
+        :data:`~symctl.realization.realizers.REALIZERS` that keeps the symbols
+        (``"controllable"``, ``"observable"``, ``"general"`` or one registered).
     delays : {"branch", "state"}
         The structure of :math:`G_2` in the construction.
     max_wire_delay : int, optional

@@ -57,7 +57,6 @@ from symctl.circuitatlas.fibre import binary_rationals
 from symctl.circuitatlas.pattern import MAX_ORDER, Pattern
 from symctl.compatibility.structure import Structure
 from symctl.dalelaw.signs import (
-    NAMED,
     Template,
     _expr,
     decide,
@@ -75,6 +74,7 @@ from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization
 from symctl.realization.factorization import factor
 from symctl.realization.realization import Realization, controller_realization
+from symctl.realization.realizers import circuit_names
 from symctl.symbols import z
 
 __all__ = ["METHOD", "DaleResult", "controller_of", "dale", "templates_of"]
@@ -215,9 +215,10 @@ def templates_of(factorization, circuit) -> tuple[str, list[Template]]:
     """``(label, templates)`` of ``circuit``: one per representative pattern of a class."""
     n = factorization.G2.order
     if isinstance(circuit, str):
-        if circuit not in NAMED:
+        if circuit not in circuit_names(whole=False):
             raise ParameterError(
-                f"circuit: must be one of {NAMED} or a CircuitClass of the atlas, got {circuit!r}"
+                f"circuit: must be one of {circuit_names(whole=False)} or a CircuitClass of the "
+                f"atlas, got {circuit!r}"
             )
         if n == 0:
             raise NotRealizableError(
@@ -237,7 +238,8 @@ def templates_of(factorization, circuit) -> tuple[str, list[Template]]:
         label = label or "class"
     else:
         raise SymctlTypeError(
-            f"circuit: expected {NAMED}, a CircuitClass or a Pattern, got {type(circuit).__name__}"
+            f"circuit: expected {circuit_names(whole=False)}, a CircuitClass or a Pattern, got "
+            f"{type(circuit).__name__}"
         )
     order = patterns[0].n
     if order != n:

@@ -46,9 +46,10 @@ from symctl.dalelaw.dale import (
     search_general,
     templates_of,
 )
-from symctl.dalelaw.signs import NAMED, _expr, decide, encode, outgoing_synapses, refine
+from symctl.dalelaw.signs import _expr, decide, encode, outgoing_synapses, refine
 from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
+from symctl.realization.realizers import circuit_names
 
 __all__ = ["EICandidate", "EICircuit", "Interneuron", "ei_circuit"]
 
@@ -170,7 +171,7 @@ def _candidates(circuits, n: int):
         if not out:
             raise ParameterError("circuits: empty; give at least one circuit")
         return out
-    out = list(NAMED)
+    out = list(circuit_names(whole=False))
     if 1 <= n <= ATLAS_MAX_ORDER:
         from symctl.circuitatlas.atlas import atlas
 

@@ -65,18 +65,19 @@ from symctl.circuitatlas.pattern import Pattern
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
-from symctl.realization.realization import (
-    Realization,
-    controllable_canonical,
-    observable_canonical,
-    split_proper,
-)
+from symctl.realization.realization import Realization, split_proper
+from symctl.realization.realizers import circuit_names, get_realizer
 from symctl.symbols import z
 
 __all__ = ["Template", "decide", "full_pattern", "outgoing_synapses", "template", "to_z3"]
 
-NAMED = ("general", "controllable", "observable")
-"""The circuits named by a word: the general (full) pattern and the two canonical forms."""
+
+def __getattr__(name: str):
+    """``NAMED``: the circuits named by a word (the realizers' circuits of G2: the general, full,
+    pattern and the canonical forms), read from the registry at each access."""
+    if name == "NAMED":
+        return circuit_names(whole=False)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def full_pattern(n: int) -> Pattern:
@@ -140,9 +141,8 @@ def template(factorization, circuit, delays: str = "branch") -> Template:
     """
     G2 = factorization.G2
     n = G2.order
-    if isinstance(circuit, str) and circuit != "general":
-        canonical = {"controllable": controllable_canonical, "observable": observable_canonical}
-        R2 = canonical[circuit](G2)
+    if isinstance(circuit, str) and not get_realizer(circuit, "circuit").takes_transform:
+        R2 = get_realizer(circuit, "circuit")(G2).realization  # a fixed form, no unknowns
         return _finish(circuit, factorization, R2, (), (), (), delays)
     pattern = full_pattern(n) if circuit == "general" else circuit
     label = "general" if pattern == full_pattern(n) else pattern.text  # the dense class too

@@ -20,7 +20,7 @@ from symctl.compatibility.structure import Structure
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.fitting.fitmodel import FIXED_CLASSES, TraceModel
+from symctl.fitting.fitmodel import TraceModel, fixed_classes
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import closed_loop_response
 
@@ -114,13 +114,13 @@ def _circuit_arg(circuit) -> list:
         from symctl.circuitatlas.atlas import atlas
 
         closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
-        return ["general", *FIXED_CLASSES, *closed]
+        return [*_named(), *closed]
     items = list(circuit) if isinstance(circuit, list | tuple) else [circuit]
     if not items or len(items) > 100:
         raise ParameterError(f"circuit: expected 1 to 100 classes, got {len(items)}")
     out = []
     for c in items:
-        if isinstance(c, CircuitClass) or c in ("general", *FIXED_CLASSES):
+        if isinstance(c, CircuitClass) or c in _named():
             out.append(c)
         elif isinstance(c, str) and c[:1] == "A" and c[1:].isdigit():
             from symctl.circuitatlas.atlas import atlas
@@ -133,12 +133,17 @@ def _circuit_arg(circuit) -> list:
             out.append(classes[c])
         elif isinstance(c, str):
             raise ParameterError(
-                f"circuit: expected 'general', 'controllable', 'observable' or an atlas label "
-                f"such as 'A1', got {c!r}"
+                f"circuit: expected {', '.join(map(repr, _named()))} or an "
+                f"atlas label such as 'A1', got {c!r}"
             )
         else:
             raise SymctlTypeError(f"circuit: expected a class name or CircuitClass, got {c!r}")
     return out
+
+
+def _named() -> tuple[str, ...]:
+    """The classes named by a word: the general one (its transform fitted) and the fixed forms."""
+    return ("general", *fixed_classes())
 
 
 def _one_class(circuit, what: str):

@@ -52,12 +52,28 @@ from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, NotRealizableError, ParameterError
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realization import Realization, controllable_canonical
-from symctl.realization.realizers import get_realizer
+from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer
 
-__all__ = ["FIXED_CLASSES", "TraceModel", "section_name"]
+__all__ = ["FIXED_CLASSES", "TraceModel", "fixed_classes", "section_name"]
 
-FIXED_CLASSES = ("controllable", "observable")
-"""The registry's canonical forms: no similarity parameters, only epsilons and Cs."""
+FIXED_CLASSES: tuple[str, ...]  # read from the registry at each access (__getattr__)
+
+
+def fixed_classes() -> tuple[str, ...]:
+    """The registry's fixed forms (no transform): no similarity parameters, only epsilons and Cs.
+
+    >>> from symctl.fitting.fitmodel import fixed_classes
+    >>> fixed_classes()
+    ('controllable', 'observable')
+    """
+    return tuple(k for k in circuit_names(whole=False) if not REALIZERS[k].takes_transform)
+
+
+def __getattr__(name: str):
+    """``FIXED_CLASSES``: :func:`fixed_classes`, read from the registry at each access."""
+    if name == "FIXED_CLASSES":
+        return fixed_classes()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def section_name(side: str, k: int, count: int) -> str:

@@ -18,7 +18,7 @@ from symctl.compatibility.delaygraph import DelayGraph
 from symctl.design.ode import ODEModel
 from symctl.design.plant import DiscretePlant
 from symctl.errors import ModelFileError
-from symctl.model.schema import CIRCUIT_KINDS
+from symctl.realization.realizers import circuit_names
 
 __all__ = ["Model"]
 
@@ -65,7 +65,7 @@ class Model:
     vertex_descriptions : mapping of str to str
         The descriptions of the graph's vertices the file gives, by name.
     circuits : tuple of str
-        The circuits to build (of ``ifp``, ``general``, ``controllable``, ``observable``).
+        The circuits to build, of :func:`~symctl.realization.realizers.circuit_names`.
     realizations, seed : int
         Random realizations per circuit and their seed.
     steps : int
@@ -116,7 +116,7 @@ class Model:
     vertices: tuple
     edges: tuple
     graph_given: bool
-    circuits: tuple = CIRCUIT_KINDS
+    circuits: tuple = field(default_factory=circuit_names)
     realizations: int = 4
     seed: int = 0
     steps: int = 50

@@ -56,10 +56,11 @@ from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
 from symctl.model.model import Model
-from symctl.model.schema import CIRCUIT_KINDS, FIELDS
+from symctl.model.schema import FIELDS
 from symctl.model.source import Source
 from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
 from symctl.realization.realization import controllable_canonical
+from symctl.realization.realizers import circuit_names
 from symctl.symbols import z
 
 __all__ = ["Model", "load_model"]
@@ -230,7 +231,7 @@ class _Reader:
                 raise self.fail(f"delay_graph.{key}", f"{len(ends)} {key} vertices for {count} "
                                 f"{what}s; give one vertex for all, or one per {what}")  # fmt: skip
         circuits = self.table(d.get("circuits", {}), "circuits", "circuits")
-        build = self.build(circuits.get("build", list(CIRCUIT_KINDS)))
+        build = self.build(circuits.get("build", list(circuit_names())))
         realizations = self.integer(
             circuits.get("realizations", 4), "circuits.realizations", 1, 1000
         )
@@ -624,14 +625,13 @@ class _Reader:
         return tuple(out)
 
     def build(self, value) -> tuple:
+        kinds = circuit_names()
         if not isinstance(value, list) or not value:
-            raise self.fail("circuits.build", f"expected a list of {', '.join(CIRCUIT_KINDS)}")
+            raise self.fail("circuits.build", f"expected a list of {', '.join(kinds)}")
         for i, k in enumerate(value):
-            if k not in CIRCUIT_KINDS:
-                raise self.fail(
-                    f"circuits.build[{i}]", f"{k!r} is not one of {', '.join(CIRCUIT_KINDS)}"
-                )
-        return tuple(k for k in CIRCUIT_KINDS if k in value)
+            if k not in kinds:
+                raise self.fail(f"circuits.build[{i}]", f"{k!r} is not one of {', '.join(kinds)}")
+        return tuple(k for k in kinds if k in value)
 
     def disturbance(self, table, plant, steps: int) -> tuple:
         table = self.table(table, "simulation.disturbance", "disturbance")

@@ -16,10 +16,21 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from symctl.realization.realizers import circuit_names
+
 __all__ = ["CIRCUIT_KINDS", "FIELDS", "SECTIONS"]
 
-CIRCUIT_KINDS = ("ifp", "general", "controllable", "observable")
-"""The circuits a model file can ask for (``[circuits] build``), in the report's order."""
+CIRCUIT_KINDS: tuple[str, ...]  # read from the registry at each access (__getattr__)
+
+
+def __getattr__(name: str):
+    """``CIRCUIT_KINDS``: the circuits a model file can ask for (``[circuits] build``), in the
+    report's order; read from the realizers' registry at each access
+    (:func:`~symctl.realization.realizers.circuit_names`)."""
+    if name == "CIRCUIT_KINDS":
+        return circuit_names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 _FIELDS = {
     "model": {
@@ -88,7 +99,7 @@ _FIELDS = {
         "description": "what it is",
     },
     "circuits": {
-        "build": "which of ifp, general, controllable, observable (default all, in this order)",
+        "build": "which circuits to build, by realizer name (default all, in the registry's order)",
         "realizations": "random realizations simulated per circuit (default 4)",
         "seed": "seed of the random realizations (default 0)",
     },

@@ -74,21 +74,22 @@ from symctl.neural.simulate import (
 )
 from symctl.realization.factorization import factor
 from symctl.realization.realization import Realization, controller_realization
-from symctl.realization.realizers import get_realizer, ifp_realization
+from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
 
 __all__ = ["KINDS", "FiringPatterns", "FiringSummary", "circuit_firing", "structure_firing"]
 
-KINDS = ("general", "controllable", "observable", "ifp")
-"""The circuits :func:`circuit_firing` simulates."""
+KINDS: tuple[str, ...]  # read from the registry at each access (__getattr__)
 
-_TITLES = {
-    "general": "general realization (random P)",
-    "controllable": "controllable canonical realization",
-    "observable": "observable canonical realization",
-    "ifp": "IFP controller",
-    "pathways": "built along the delay graph's pathways",
-}
+
+def __getattr__(name: str):
+    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry
+    (:func:`~symctl.realization.realizers.circuit_names`)."""
+    if name == "KINDS":
+        return circuit_names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 LEGEND_MAX_EPS = 4
 """Most epsilons a realization's legend entry lists (beyond, their count)."""
 _EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
@@ -168,7 +169,7 @@ class FiringPatterns:
     Attributes
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :func:`~symctl.realization.realizers.circuit_names`.
     t : (steps,) array
         Time, in ``reference.time_unit`` (seconds, or steps for a plant
         without a sampling time).
@@ -315,18 +316,24 @@ class FiringPatterns:
 
 # ---------------------------------------------------------------- arguments
 def _kind(kind) -> str:
+    kinds = circuit_names()
     if not isinstance(kind, str):
-        raise SymctlTypeError(f"kind: expected one of {KINDS}, got {kind!r}")
-    if kind not in KINDS:
-        raise ParameterError(f"kind: must be one of {KINDS}, got {kind!r}")
+        raise SymctlTypeError(f"kind: expected one of {kinds}, got {kind!r}")
+    if kind not in kinds:
+        raise ParameterError(f"kind: must be one of {kinds}, got {kind!r}")
     return kind
+
+
+def _whole(kind: str) -> bool:
+    """Whether ``kind`` realizes the whole controller from its gains (the IFP controller)."""
+    return kind in REALIZERS and REALIZERS[kind].controller
 
 
 def _count(count, kind: str) -> int:
     if count is None:
-        return 1 if kind == "ifp" else 4
+        return 1 if _whole(kind) else 4
     count = bounded_int(count, "count", 1, MAX_CIRCUITS)
-    if kind == "ifp" and count != 1:
+    if _whole(kind) and count != 1:
         raise ParameterError(
             f"count: the IFP controller has a single realization, so count must be 1, got {count}"
         )
@@ -339,9 +346,9 @@ def _gains(gains, kind: str) -> Gains:
             f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
         )
     s = gains.system
-    if kind == "ifp":
+    if _whole(kind):
         _scalar(s.n, s.m, "gains")
-    if kind == "ifp" and s.T < 1:
+    if _whole(kind) and s.T < 1:
         raise ParameterError(
             "gains: the IFP controller has a neuron only for a net delay T >= 1 "
             f"(mu sums K0 x and its own delayed copies), got T = {s.T}"
@@ -374,7 +381,7 @@ def _scalar(n: int, m: int, argname: str) -> None:
 def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator):
     """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric)."""
     s = gains.system
-    if kind == "ifp":
+    if _whole(kind):
         K = np.asarray(gains.K, dtype=float).ravel()
         circuit = Circuit.from_structure(ifp_structure(s.T))
         circuit = circuit.subs(dict(zip(gain_symbols(s.T), map(sp.Float, K), strict=True)))
@@ -461,9 +468,10 @@ def circuit_firing(
 
     Parameters
     ----------
-    kind : {"general", "controllable", "observable", "ifp"}
-        The realization of :math:`G_2` (Figs. 9, 10,
-        11), or the IFP controller.
+    kind : str
+        A circuit of :func:`~symctl.realization.realizers.circuit_names`: the IFP
+        controller (``"ifp"``) or a realization of :math:`G_2` (``"general"``,
+        ``"controllable"``, ``"observable"``: Figs. 9, 10, 11).
     gains : Gains
         E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
@@ -512,7 +520,7 @@ def circuit_firing(
     >>> circuit_firing("diagonal", gains)
     Traceback (most recent call last):
     ...
-    symctl.errors.ParameterError: kind: must be one of ('general', 'controllable', ...
+    symctl.errors.ParameterError: kind: must be one of ('ifp', 'general', ...
     """
     kind = _kind(kind)
     gains = _gains(gains, kind)
@@ -590,9 +598,9 @@ def structure_firing(
         raise SymctlTypeError(f"structure: expected a Structure, got {type(structure).__name__}")
     if not isinstance(kind, str) or not kind:
         raise ParameterError(f"kind: expected a label, got {kind!r}")
-    gains = _gains(gains, "general")
+    gains = _gains(gains, "")  # never the whole controller: a structure of G3 G2 G1
     plant = _plant(plant, gains)
-    count = _count(count, "general")
+    count = _count(count, "")
     gen = as_generator(seed, "seed")
     base = Circuit.from_structure(structure, assignment)
     values = gains.substitutions(exact=True)
@@ -642,7 +650,7 @@ def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
         worst = max(worst, dev)
         keep = {
             n.name for n in circuit.neurons
-            if kind == "ifp" or n.part == "G2" or n.part.endswith(".G2")
+            if _whole(kind) or n.part == "G2" or n.part.endswith(".G2")
         }  # fmt: skip
         out.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
     names: list[str] = []

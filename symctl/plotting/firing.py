@@ -92,6 +92,8 @@ def firing_plot(
     >>> [ax.get_title() for ax in firing_plot(fp, ncols=2).axes][1:]
     ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
     """
+    from symctl.realization.realizers import REALIZERS
+
     ncols = positive_int(ncols, "ncols")
     names = fp.neurons
     cols = max(1, min(int(ncols), len(names)))
@@ -116,7 +118,7 @@ def firing_plot(
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
         head = f"{what} ${sym}$" if what else f"${sym}$"
-        if fp.kind == "ifp":
+        if fp.kind in REALIZERS and REALIZERS[fp.kind].controller:  # the IFP controller
             head += ": one realization, the optimal controller's delay chain"
         else:
             dev = max(fp.max_deviation, 1e-16)

@@ -5,25 +5,32 @@ A *realizer* turns a proper SISO transfer function into a
 :class:`RealizerResult` with the realization, the canonical realization it
 was built from (its *base*) and the similarity transform :math:`P` relating
 them, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). The paper uses four, registered in
-:data:`REALIZERS` under their names:
+nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them under their
+names, in the order the report reads the circuits they build:
 
-* ``"controllable"``: the controllable canonical form (:math:`P = I`);
-* ``"observable"``: the observable canonical form (:math:`P = I`);
+* ``"ifp"``: the paper's IFP controller, the optimal controller's own state
+  space (:func:`ifp_realization`); it realizes the whole controller from its
+  gains, not :math:`G_2`;
 * ``"general"``: the similarity transform of a canonical base by a given
   :math:`P` (or, given only ``rng``, a random well-conditioned rational one);
+* ``"controllable"``: the controllable canonical form (:math:`P = I`);
+* ``"observable"``: the observable canonical form (:math:`P = I`);
 * ``"random"``: the paper's recipe for its figures, random epsilons and then a
-  random :math:`P` (:func:`random_realization`).
+  random :math:`P` (:func:`random_realization`); not a circuit of its own.
 
-:func:`get_realizer` looks a name up (and names the argument when it is
-unknown). The optimal controller's own state space, the IFP structure, is
-:func:`ifp_realization`.
+This table is the one place these names, titles and their order are written:
+the model file's ``[circuits] build``, :func:`~symctl.neural.firing.circuit_firing`,
+the report, the CLI, Dale's law and the fits read it (:func:`circuit_names`).
+:func:`register` adds a realizer (docs/extending.md), :func:`get_realizer`
+looks a name up (and names the argument when it is unknown).
 
 >>> import sympy as sp
 >>> from symctl import z
->>> from symctl.realization.realizers import REALIZERS, get_realizer
+>>> from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer
 >>> list(REALIZERS)
-['controllable', 'observable', 'general', 'random']
+['ifp', 'general', 'controllable', 'observable', 'random']
+>>> circuit_names()
+('ifp', 'general', 'controllable', 'observable')
 >>> result = get_realizer("general")(1 / (z - sp.Rational(1, 2)), P=[[2]])
 >>> result.realization.H, result.P, result.base.H
 (Matrix([[1/2]]), Matrix([[2]]), Matrix([[1]]))
@@ -33,8 +40,10 @@ unknown). The optimal controller's own state space, the IFP structure, is
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
@@ -55,11 +64,14 @@ __all__ = [
     "REALIZERS",
     "Realizer",
     "RealizerResult",
+    "circuit_names",
     "general_realization",
     "get_realizer",
     "ifp_realization",
     "random_full_rank",
     "random_realization",
+    "register",
+    "unregister",
 ]
 
 
@@ -103,19 +115,36 @@ class RealizerResult:
 class Realizer:
     """A way of realizing a proper SISO :math:`G_2`; call it to get a :class:`RealizerResult`.
 
+    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register`
+    an instance: every table of circuits reads :data:`REALIZERS`.
+
     Attributes
     ----------
     name : str
-        Its key in :data:`REALIZERS`.
+        Its key in :data:`REALIZERS`, the word a model file, the CLI and
+        :func:`~symctl.neural.firing.circuit_firing` use.
     title : str
         A human title, for reports ("controllable canonical").
     canonical : bool
         Whether it is a canonical form (a valid ``base`` of the others).
     takes_transform : bool
-        Whether it accepts a transform ``P``.
+        Whether it accepts a transform ``P`` (its circuits form a dense class).
     keeps_symbols : bool
         Whether it realizes :math:`G_2` as given, free symbols kept (the
         random recipe draws values for the epsilons).
+    form : str
+        The words that name its :math:`G_2` in a circuit's title ("general",
+        "controllable canonical"); by default the title.
+    circuit : bool
+        Whether it builds a circuit of its own: a model file may list it in
+        ``[circuits] build`` and the report draws it.
+    paper : bool
+        Whether it is one of the paper's named forms (the paper draws its
+        circuit; a fixed one it writes out for :math:`T = 2` as an equation
+        labelled by its name).
+    controller : bool
+        Whether it realizes the whole optimal controller, called with its
+        :class:`~symctl.Gains` (the IFP structure), instead of :math:`G_2`.
     """
 
     name: str
@@ -123,6 +152,14 @@ class Realizer:
     canonical: bool = False
     takes_transform: bool = False
     keeps_symbols: bool = True
+    form: str = ""
+    circuit: bool = True
+    paper: bool = False
+    controller: bool = False
+
+    def __post_init__(self):
+        if not self.form:
+            object.__setattr__(self, "form", self.title)
 
     def __call__(self, G2, **options) -> RealizerResult:  # pragma: no cover - abstract
         raise NotImplementedError
@@ -215,20 +252,138 @@ def _eps_range(value) -> tuple[float, float]:
     return low, high
 
 
-REALIZERS: dict[str, Realizer] = {
+@dataclass(frozen=True)
+class _IFP(Realizer):
+    def __call__(self, gains, *, rng=None) -> RealizerResult:
+        """``rng`` is accepted, and unused: the IFP controller has no free parameters."""
+        R = ifp_realization(gains)
+        return _identity(R, R.to_tf())
+
+
+_REGISTRY: dict[str, Realizer] = {
     r.name: r
     for r in (
-        _Controllable("controllable", "controllable canonical", canonical=True),
-        _Observable("observable", "observable canonical", canonical=True),
-        _General("general", "general (similarity transform)", takes_transform=True),
-        _Random("random", "random (the paper's recipe)", keeps_symbols=False),
+        _IFP("ifp", "IFP controller", keeps_symbols=False, paper=True, controller=True),
+        _General(
+            "general",
+            "general (similarity transform)",
+            takes_transform=True,
+            form="general",
+            paper=True,
+        ),
+        _Controllable("controllable", "controllable canonical", canonical=True, paper=True),
+        _Observable("observable", "observable canonical", canonical=True, paper=True),
+        _Random("random", "random (the paper's recipe)", keeps_symbols=False, circuit=False),
     )
 }
-"""Every realizer, by name."""
+_BUILTIN = frozenset(_REGISTRY)
+_RESERVED = (
+    "all",
+    "pathways",
+)  # "all" the fits' classes, "pathways" the report's graph-built circuit
+_NAME = re.compile(r"[a-z][a-z0-9_]{0,31}")
+
+REALIZERS: Mapping[str, Realizer] = MappingProxyType(_REGISTRY)
+"""Every realizer, by name, in the report's order (a read-only view; :func:`register` adds one)."""
 
 
 def _canonical(realizer: Realizer) -> bool:
     return realizer.canonical
+
+
+def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
+    """The circuits a model builds, in the report's order: the realizers with a circuit.
+
+    Read at each call, so that a realizer :func:`register` ed later is among them.
+
+    Parameters
+    ----------
+    whole : bool
+        Include the circuits of the whole controller (the IFP controller); ``False``
+        gives the circuits of :math:`G_3 G_2 G_1`, named by their :math:`G_2`.
+
+    Examples
+    --------
+    >>> from symctl.realization.realizers import circuit_names
+    >>> circuit_names()
+    ('ifp', 'general', 'controllable', 'observable')
+    >>> circuit_names(whole=False)
+    ('general', 'controllable', 'observable')
+    """
+    return tuple(k for k, r in _REGISTRY.items() if r.circuit and (whole or not r.controller))
+
+
+def register(realizer: Realizer) -> Realizer:
+    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
+
+    From then on a model file may build its circuit, :func:`~symctl.neural.firing.circuit_firing`
+    simulates it, the report and the CLI list it, Dale's law and the fits accept its name.
+
+    Parameters
+    ----------
+    realizer : Realizer
+        An instance of a subclass that defines ``__call__(G2, *, rng=None)``.
+
+    Returns
+    -------
+    Realizer
+        ``realizer``, so that it can decorate an assignment.
+
+    Raises
+    ------
+    SymctlTypeError
+        ``realizer`` is not a :class:`Realizer`.
+    ParameterError
+        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label such as
+        ``"A3"``) or not a lower-case identifier of at most 32 characters.
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> from symctl.realization.realizers import Realizer, get_realizer, register, unregister
+    >>> @dataclass(frozen=True)
+    ... class Doubled(Realizer):
+    ...     def __call__(self, G2, *, rng=None):
+    ...         return get_realizer("general")(G2, P=[[2]])
+    >>> _ = register(Doubled("doubled", "doubled controllable"))
+    >>> from symctl import z
+    >>> get_realizer("doubled")(1 / (z - 1)).realization.M
+    Matrix([[2]])
+    >>> unregister("doubled").name
+    'doubled'
+    """
+    if not isinstance(realizer, Realizer):
+        raise SymctlTypeError(f"realizer: expected a Realizer, got {type(realizer).__name__}")
+    name = realizer.name
+    if not isinstance(name, str) or not _NAME.fullmatch(name):
+        raise ParameterError(
+            f"realizer: its name must be a lower-case identifier (a-z, 0-9, _; at most 32), "
+            f"got {name!r}"
+        )
+    if name in _REGISTRY or name in _RESERVED:
+        raise ParameterError(f"realizer: the name {name!r} is taken")
+    if not isinstance(realizer.title, str) or not realizer.title:
+        raise ParameterError(
+            f"realizer: its title must be a nonempty string, got {realizer.title!r}"
+        )
+    _REGISTRY[name] = realizer
+    return realizer
+
+
+def unregister(name: str) -> Realizer:
+    """Remove the realizer :func:`register` ed as ``name`` and return it (the built-in ones stay).
+
+    Raises
+    ------
+    ParameterError
+        ``name`` is built in or not registered.
+    """
+    if name in _BUILTIN:
+        raise ParameterError(f"name: {name!r} is built in and cannot be removed")
+    added = [k for k in _REGISTRY if k not in _BUILTIN]
+    if name not in added:
+        raise ParameterError(f"name: {name!r} is not a registered realizer (registered: {added})")
+    return _REGISTRY.pop(name)
 
 
 def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
@@ -261,7 +416,7 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     >>> get_realizer("diagonal", "base")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    symctl.errors.ParameterError: base: must be 'controllable', ... or 'random', got 'diagonal'
+    symctl.errors.ParameterError: base: must be 'ifp', ... or 'random', got 'diagonal'
     """
     names = [k for k, r in REALIZERS.items() if where is None or where(r)]
     if not isinstance(name, str) or name not in names:

@@ -39,7 +39,7 @@ _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 def paper_realizations(A) -> dict:
     """The classes of the paper's three realizations of a generic order-n G2, by name."""
     from symctl.circuitatlas.pattern import Pattern
-    from symctl.realization.realization import controllable_canonical, observable_canonical
+    from symctl.realization.realizers import REALIZERS
     from symctl.symbols import z
 
     n = A.order
@@ -47,14 +47,12 @@ def paper_realizations(A) -> dict:
     c = sp.symbols(f"c_0:{n}")
     G2 = 1 + sum(c[i] * z**i for i in range(n)) / (z**n + sum(a[i] * z**i for i in range(n)))
     dense = Pattern(n, (1 << (n * n + 2 * n)) - 1)
+    forms = [r for r in REALIZERS.values() if r.paper and not r.controller]
     out = {}
-    for name, pattern in (
-        ("controllable canonical", Pattern.of(controllable_canonical(G2))),
-        ("observable canonical", Pattern.of(observable_canonical(G2))),
-        ("general", dense),
-    ):
+    for r in sorted(forms, key=lambda r: not r.canonical):  # the canonical forms first
         try:
-            out[name] = A.find(pattern)
+            pattern = dense if r.takes_transform else Pattern.of(r(G2).realization)
+            out[r.form] = A.find(pattern)
         except Exception:
             continue
     return out

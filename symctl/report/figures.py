@@ -279,6 +279,13 @@ def _end_labels(res, S) -> dict[str, str] | None:
     return {n: signal_tex(v) for n, v in pairs}
 
 
+def _dense(circuit: str) -> bool:
+    """Whether ``circuit`` realizes G2 by a transform P (symbolic in the derivation)."""
+    from symctl.realization.realizers import REALIZERS
+
+    return circuit in REALIZERS and REALIZERS[circuit].takes_transform
+
+
 def _structure_figure(res, rec, circuit: str, names):
     """The structure of ``rec``, its witness assignment in bands, the plant's names at its ends.
 
@@ -293,7 +300,7 @@ def _structure_figure(res, rec, circuit: str, names):
     where = verdict.assignment.vertex_of if verdict.ok and verdict.assignment else None
     gains = (b.gain for b in S.blocks.values() if b.kind == "gain" and b.gain is not None)
     if (
-        circuit == "general"
+        _dense(circuit)
         and rec.firing is not None
         and any(visible_length(latex(g)) > KEY_LENGTH for g in gains)  # stops at the first
     ):
@@ -403,7 +410,7 @@ def make_figure(res, name: str):
     if kind == "structure":
         return _structure_figure(res, rec, circuit, names)
     # no heading in the figure: the report's caption names the circuit
-    if circuit == "general":  # weights rational in a symbolic P are unreadable: show numbers
+    if _dense(circuit):  # weights rational in a symbolic P are unreadable: show numbers
         drawn = _placed(rec.firing.circuits[0], rec, res.graph)
     else:
         drawn = rec.circuit

@@ -62,7 +62,6 @@ from pathlib import Path
 from types import TracebackType
 
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.report.spec import CIRCUITS
 
 try:  # POSIX only; elsewhere the folder is staged and renamed but not locked
     import fcntl
@@ -82,8 +81,8 @@ _FIGURES = "|".join(
         r"simplified_A\d+",
         r"class_A\d+",
         "fit",
+        r"(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}",  # any circuit (the registry's names)
     ]
-    + [f"{kind}_{c}" for c in CIRCUITS for kind in ("structure", "circuit", "firing")]
 )
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"

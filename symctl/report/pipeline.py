@@ -229,9 +229,9 @@ def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
             f"circuits of a MIMO controller up to {MIMO_MAX_ORDER} states"
         )
     left = ["the IFP circuit and the circuit atlas (built for one state and one input)"]
-    out = tuple(k for k in kinds if k != "ifp")
-    if order > MIMO_GENERAL_MAX_ORDER and "general" in out:
-        out = tuple(k for k in out if k != "general")
+    out = tuple(k for k in kinds if not REALIZERS[k].controller)
+    if order > MIMO_GENERAL_MAX_ORDER and any(REALIZERS[k].takes_transform for k in out):
+        out = tuple(k for k in out if not REALIZERS[k].takes_transform)
         left.append(
             f"the general realization (dense, {order} states; built up to {MIMO_GENERAL_MAX_ORDER})"
         )
@@ -285,19 +285,24 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
         step("simulation")
         firing = {
             k: circuit_firing(
-                k, gains, count=1 if k == "ifp" else count, seed=seed, disturbance=w, **window
+                k,
+                gains,
+                count=1 if REALIZERS[k].controller else count,
+                seed=seed,
+                disturbance=w,
+                **window,
             )
             for k in kinds
         }
         step("realizations")
         long = factors.is_siso and len(factors.poles) > EXPANDED_ZEROS_MAX
         G2_symbolic = factors.abbreviated() if long else factors.G2
-        names = [k for k in kinds if k != "ifp"]
+        names = [k for k in kinds if not REALIZERS[k].controller]
         records = _realizations(
             factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}
         )
         step("compatibility")
-        structures = {"ifp": ifp_structure(system.T)} if "ifp" in kinds else {}
+        structures = {k: ifp_structure(system.T) for k in kinds if REALIZERS[k].controller}
         structures.update(
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
@@ -418,7 +423,7 @@ def _realizations(
     G_exact = factors.G.subs(gains.substitutions(exact=True))
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     out = {}
-    for name in [k for k in ("controllable", "observable", "general") if k in drawn]:
+    for name in sorted(drawn, key=lambda k: not REALIZERS[k].canonical):  # the bases first
         eps = {k: drawn[name][k] for k in factors.poles}
         G2_num = factor(G_exact, ds, da, eps=list(eps.values()), C=1).G2
         realizer = REALIZERS[name]

@@ -51,6 +51,7 @@ from symctl.neural.simulate import Response
 from symctl.realization.check import RealizationCheck
 from symctl.realization.factorization import Factorization, remainder
 from symctl.realization.realization import Realization
+from symctl.realization.realizers import REALIZERS
 from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
@@ -160,7 +161,7 @@ class CircuitRecord:
     @property
     def g2_neurons(self) -> int | None:
         """The neurons of the G2 parts (None for the IFP controller, which has no G2)."""
-        if self.name == "ifp":
+        if self.name in REALIZERS and REALIZERS[self.name].controller:
             return None
         return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 

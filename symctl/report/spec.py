@@ -8,7 +8,8 @@ repeated here: they are read from the defaults of
 spike/s, :math:`T_s = 0.01` s), and the delays from those of
 :func:`~symctl.design.augment.augment` (one step each), so each number lives
 in one place. :data:`CIRCUITS` names the report's circuits in reading order and
-:data:`CIRCUIT_SPECS` gives each its titles.
+:data:`CIRCUIT_SPECS` gives each its titles, both read from the realizers' registry
+(:data:`~symctl.realization.realizers.REALIZERS`).
 
 Examples
 --------
@@ -25,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
+from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
@@ -40,7 +42,11 @@ __all__ = [
     "SYMBOLIC_P_MAX_ORDER",
     "CircuitSpec",
     "PaperSpec",
+    "circuit_specs",
 ]
+
+CIRCUITS: tuple[str, ...]  # read from the registry at each access (__getattr__)
+CIRCUIT_SPECS: Mapping  # likewise
 
 SCHEMA_VERSION = 1
 """Version of the ``results.json`` schema (README, section "results.json")."""
@@ -128,36 +134,44 @@ class CircuitSpec:
     diagram: str
 
 
-CIRCUIT_SPECS = MappingProxyType(
-    {
-        spec.name: spec
-        for spec in (
-            CircuitSpec("ifp", "IFP controller", "IFP controller"),
-            CircuitSpec(
-                "general",
-                "G3 G2 G1, general G2",
-                "G3 G2 G1, general realization of G2 (symbolic P)",
-            ),
-            CircuitSpec(
-                "controllable",
-                "G3 G2 G1, controllable canonical G2",
-                "G3 G2 G1, controllable canonical G2",
-            ),
-            CircuitSpec(
-                "observable",
-                "G3 G2 G1, observable canonical G2",
-                "G3 G2 G1, observable canonical G2",
-            ),
-            CircuitSpec(
-                "pathways",
-                "G3 G2 G1 along the delay graph's pathways",
-                "G3 G2 G1 built along the delay graph's pathways (axons, parallel parts)",
-            ),
-        )
-    }
+_DIAGRAMS = {"general": "G3 G2 G1, general realization of G2 (symbolic P)"}
+_PATHWAYS = CircuitSpec(
+    "pathways",
+    "G3 G2 G1 along the delay graph's pathways",
+    "G3 G2 G1 built along the delay graph's pathways (axons, parallel parts)",
 )
-"""The report's circuits by name, in reading order."""
 
-CIRCUITS = tuple(CIRCUIT_SPECS)
-"""The circuits of the report: the IFP controller, G3 G2 G1 with each realization of G2, and
-the structure built along the delay graph's pathways (when the graph is not a chain of unit steps)."""
+
+def circuit_specs() -> Mapping[str, CircuitSpec]:
+    """The report's circuits by name, in reading order: the realizers' circuits, then pathways.
+
+    Titles come from the realizers' registry
+    (:data:`~symctl.realization.realizers.REALIZERS`): the whole controller's own
+    title, or ``G3 G2 G1, <form> G2``; read at each call, so that a realizer
+    registered later is among them.
+
+    Examples
+    --------
+    >>> from symctl.report.spec import circuit_specs
+    >>> circuit_specs()["controllable"].title
+    'G3 G2 G1, controllable canonical G2'
+    """
+    from symctl.realization.realizers import REALIZERS, circuit_names  # not at `symctl --help`
+
+    specs = {}
+    for name in circuit_names():
+        r = REALIZERS[name]
+        title = r.title if r.controller else f"G3 G2 G1, {r.form} G2"
+        specs[name] = CircuitSpec(name, title, _DIAGRAMS.get(name, title))
+    return MappingProxyType({**specs, _PATHWAYS.name: _PATHWAYS})
+
+
+def __getattr__(name: str):
+    """``CIRCUIT_SPECS`` (:func:`circuit_specs`) and ``CIRCUITS``, the circuits of the report:
+    the IFP controller, G3 G2 G1 with each realization of G2, and the structure built along the
+    delay graph's pathways (when the graph is not a chain of unit steps); read at each access."""
+    if name == "CIRCUIT_SPECS":
+        return circuit_specs()
+    if name == "CIRCUITS":
+        return tuple(circuit_specs())
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

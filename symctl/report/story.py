@@ -62,7 +62,7 @@ from symctl.report.shorthand import (
     _tf_long,
     _zeros_tex,
 )
-from symctl.report.spec import CIRCUIT_SPECS
+from symctl.report.spec import circuit_specs
 
 __all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
 
@@ -81,8 +81,6 @@ _G1G3_CAPTION = (
     "the state feeds the adder without delay."
 )
 
-
-_PAPER_FORMS = ("controllable", "observable")  # labelled as the paper's equations
 
 _PAPER_STRUCTURE = {
     "ifp": f" (as in {cite('Fig.', 'ifp_diagram')})",
@@ -337,7 +335,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                 f"$\\epsilon$ and a random full-rank $P$ drawn from seed {res.seed})."
             )
         )
-        for name in [k for k in ("controllable", "observable") if k in res.realizations]:
+        for name in [k for k in res.realizations if not _is(k, "takes_transform")]:
             rec = res.realizations[name]
             add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
             mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
@@ -345,7 +343,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                 names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
             put(_eq(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}"))
             where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
-            paper = f" For $T = 2$ this is {cite('Eq.', name)}." if name in _PAPER_FORMS else ""
+            paper = f" For $T = 2$ this is {cite('Eq.', name)}." if _is(name, "paper") else ""
             add(Text(_check_text(rec) + where + paper))
         if "general" in res.realizations:
             rec = res.realizations["general"]
@@ -469,7 +467,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )  # fmt: skip
     for name, crec in res.circuits.items():
         add(Heading(_title(name), 2))
-        if name == "general" and crec.circuit.free_symbols - set(f.G.free_symbols):
+        if _is(name, "takes_transform") and crec.circuit.free_symbols - set(f.G.free_symbols):
             circuit, what = crec.firing.circuits[0], "its first simulated realization"
             add(Text(f"The neurons of {what} (the symbolic weights are rational in $P$):"))
         else:
@@ -566,15 +564,20 @@ def _firing_table(fp) -> list[DocumentBlock]:
 
 def _title(circuit: str) -> str:
     """The circuit's title with its transfer functions as math: ``$G_3 G_2 G_1$, general $G_2$``."""
-    title = re.sub(r"\bG([123])\b", r"$G_\1$", CIRCUIT_SPECS[circuit].title)
+    title = re.sub(r"\bG([123])\b", r"$G_\1$", circuit_specs()[circuit].title)
     return title.replace("$ $", " ")
 
 
 _WHICH = {"general": " (its first simulated realization)"}
 
 
+def _is(name: str, flag: str) -> bool:
+    """Whether the circuit ``name`` is a registered realizer with ``flag`` set."""
+    return name in REALIZERS and getattr(REALIZERS[name], flag)
+
+
 def _count_text(res) -> str:
-    counts = {c.firing.count for c in res.circuits.values() if c.name != "ifp"}
+    counts = {c.firing.count for c in res.circuits.values() if not _is(c.name, "controller")}
     n = max(counts) if counts else 1
     return f"{n} random realizations (the IFP controller has one)"
 

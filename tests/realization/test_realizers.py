@@ -8,25 +8,59 @@ import pytest
 import sympy as sp
 
 from symctl import (
+    MuscleModel,
     ParameterError,
+    SymctlTypeError,
+    augment,
     controllable_canonical,
     controller_tf,
     factor,
     general_realization,
+    ifp_realization,
+    lqr_gains,
     observable_canonical,
     random_realization,
     z,
 )
-from symctl.realization.realizers import REALIZERS, RealizerResult, get_realizer
+from symctl.realization.realizers import (
+    REALIZERS,
+    RealizerResult,
+    circuit_names,
+    get_realizer,
+    register,
+    unregister,
+)
 
 G2 = factor(controller_tf(2)).G2
 
 
-def test_registry_holds_the_four_realizers_with_titles():
-    assert list(REALIZERS) == ["controllable", "observable", "general", "random"]
+def test_registry_holds_the_five_realizers_with_titles_in_the_reports_order():
+    assert list(REALIZERS) == ["ifp", "general", "controllable", "observable", "random"]
+    assert circuit_names() == ("ifp", "general", "controllable", "observable")
     assert REALIZERS["controllable"].title == "controllable canonical"
-    assert all(r.name == k and r.title for k, r in REALIZERS.items())
+    assert all(r.name == k and r.title and r.form for k, r in REALIZERS.items())
     assert [k for k, r in REALIZERS.items() if r.canonical] == ["controllable", "observable"]
+    assert [k for k, r in REALIZERS.items() if r.paper] == list(circuit_names())
+    assert [k for k, r in REALIZERS.items() if r.controller] == ["ifp"]
+    assert REALIZERS["general"].form == "general"
+
+
+def test_ifp_realizer_realizes_the_whole_controller_from_its_gains():
+    gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    result = REALIZERS["ifp"](gains)
+    assert result.realization == ifp_realization(gains) and result.P == sp.eye(2)
+
+
+def test_register_refuses_bad_realizers_by_name_and_unregister_keeps_the_built_ins():
+    with pytest.raises(SymctlTypeError, match="realizer: expected a Realizer"):
+        register("toy")
+    for name in ("general", "pathways", "all", "Toy", "A3", "a b"):
+        with pytest.raises(ParameterError, match="realizer: "):
+            register(REALIZERS["controllable"].__class__(name, "toy"))
+    with pytest.raises(ParameterError, match="'general' is built in"):
+        unregister("general")
+    with pytest.raises(ParameterError, match="'toy' is not a registered realizer"):
+        unregister("toy")
 
 
 def test_unknown_realizer_names_the_argument_and_the_value():
