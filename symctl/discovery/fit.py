@@ -41,6 +41,7 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import as_generator, bounded_int, read_only
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
@@ -225,7 +226,7 @@ def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
-class FitResult:
+class FitResult(ArrayValue):
     r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
 
     Attributes

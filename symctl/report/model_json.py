@@ -1,6 +1,6 @@
 """The model's entries of ``results.json``: ``plant`` (with the equilibrium) and ``model``.
 
-Read from a :class:`~symctl.report.results.PaperResults` (``res``), which this module
+Read from a :class:`~symctl.derivation.derivation.Derivation` (``res``), which this module
 does not import (it sits above).
 
 >>> from symctl import derive_paper

@@ -159,7 +159,7 @@ def test_a_foreign_exception_in_derive_is_one_line_naming_the_model_file(
     def boom(*_a, **_k):
         raise ValueError("singular matrix")
 
-    monkeypatch.setattr("symctl.report.pipeline.lqr_gains", boom)
+    monkeypatch.setattr("symctl.derivation.pipeline.lqr_gains", boom)
     path = EXAMPLES / "pendulum.toml"
     assert main(["derive", str(path), "--out", str(tmp_path / "o"), "--no-pdf"]) == 2
     err = capfd.readouterr().err.strip()
