@@ -136,6 +136,8 @@ _PUBLIC = {
     "PaperResults": "symctl.derivation.derivation",
     "derive_paper": "symctl.derivation.pipeline",
     "derive": "symctl.derivation.pipeline",
+    "SavedDerivation": "symctl.derivation.load",
+    "load_results": "symctl.derivation.load",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _PUBLIC, submodules=("latex",))

@@ -31,7 +31,7 @@ def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
 
 
 def test_the_summary_prints_numbers_short_and_a_missing_section_in_words(tmp_path, capsys):
-    from symctl.cli import SUMMARY_TEXT, _fmt, _long
+    from symctl.cli.summary import SUMMARY_TEXT, _fmt, _long
 
     assert _fmt([[0.6065306597]]) == "0.606531" and _fmt([[1.0, 0.0]]) == "[[1  0]]"
     assert _fmt([[0.0] * 9] * 9) == "(9 x 9, in results.json)"

@@ -113,6 +113,7 @@ FOREIGN = {
 }
 
 
+@pytest.mark.usefixtures("uncached_derive")
 @pytest.mark.parametrize("case", list(FOREIGN))
 def test_a_foreign_exception_is_one_line_naming_the_step(tmp_path, capfd, monkeypatch, case):
     exc, name, code, word = FOREIGN[case]
@@ -124,6 +125,7 @@ def test_a_foreign_exception_is_one_line_naming_the_step(tmp_path, capfd, monkey
     assert list(tmp_path.iterdir()) == []  # nothing staged, no lock left
 
 
+@pytest.mark.usefixtures("uncached_derive")
 def test_symctl_traceback_shows_the_traceback_of_a_bug(tmp_path, monkeypatch):
     monkeypatch.setenv("SYMCTL_TRACEBACK", "1")
     monkeypatch.setattr(*_raises(AttributeError("a bug")))

@@ -22,7 +22,7 @@ import functools
 from collections.abc import Mapping
 from types import MappingProxyType
 
-__all__ = ["ArrayValue", "CachedState", "read_only_mapping", "register"]
+__all__ = ["ArrayValue", "CachedState", "read_only_mapping", "register", "register_sympy"]
 
 
 def read_only_mapping(items: dict) -> MappingProxyType:
@@ -34,9 +34,32 @@ def _reduce(proxy: MappingProxyType):
     return read_only_mapping, (dict(proxy),)
 
 
+def _unevaluated(cls, args):
+    """A SymPy sum, product or power rebuilt from its arguments as they were (not evaluated)."""
+    return cls(*args, evaluate=False)
+
+
+def _reduce_operation(expr):
+    return _unevaluated, (type(expr), expr.args)
+
+
 def register() -> None:
     """Let :mod:`pickle` (and :mod:`copy`) handle read-only mappings; idempotent."""
     copyreg.pickle(MappingProxyType, _reduce)
+
+
+def register_sympy() -> None:
+    """Pickle SymPy sums, products and powers as they are; idempotent.
+
+    Called where symctl first imports SymPy (:mod:`symctl._util.validate`). An exact
+    form such as :math:`(1353 K_1 + 1435 K_2 + 2145)/3628`, built unevaluated by the
+    fraction-free algebra, loads as that form (SymPy's own pickling evaluates it
+    again, distributing the rational, and the loaded matrix would not compare equal).
+    """
+    import sympy
+
+    for cls in (sympy.Add, sympy.Mul, sympy.Pow):
+        copyreg.pickle(cls, _reduce_operation)
 
 
 class CachedState:

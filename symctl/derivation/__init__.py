@@ -8,7 +8,9 @@ and computes nothing.
   with values replaced), each computed once per model;
 - ``derivation``: :class:`Derivation` (its inputs, every stage's result, what was
   skipped and why) and its records;
-- ``load``: :func:`load_results`, a derivation's ``results.json`` read back.
+- ``paper``: :data:`PAPER`, the paper's inputs;
+- ``load``: :func:`load_results`, a derivation's ``results.json`` read back
+  (numbers, exact symbolic objects, the figures' data, the model).
 
 Examples
 --------
@@ -28,5 +30,7 @@ __getattr__, __dir__, __all__ = attach(
         "RealizationRecord": "symctl.derivation.derivation",
         "derive": "symctl.derivation.pipeline",
         "derive_paper": "symctl.derivation.pipeline",
+        "SavedDerivation": "symctl.derivation.load",
+        "load_results": "symctl.derivation.load",
     },
 )

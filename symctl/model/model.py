@@ -188,7 +188,9 @@ class Model:
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
 
     def _key(self) -> tuple:
-        return tuple(_key_value(getattr(self, f.name)) for f in dataclasses.fields(self))
+        key = [_key_value(getattr(self, f.name)) for f in dataclasses.fields(self)]
+        key[-1] = tuple(sorted(key[-1]))  # the values replaced: in any order, the same model
+        return tuple(key)
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Model):

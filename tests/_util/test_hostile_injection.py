@@ -449,6 +449,8 @@ AUDITED = {
     ("symctl.report.model_story", "opening", "subs"): 4,  # an ODEModel's own values
     ("symctl.model.model", "Model.replace", "ImmutableMatrix"): 1,  # after to_matrix
     ("symctl.model.saved", "_parsed", "parse_expr"): 4,  # the safe parser itself
+    ("symctl.derivation.load", "parse_saved", "parse_expr"): 1,  # the safe parser itself
+    ("symctl.derivation.load", "SavedDerivation._matrix", "ImmutableMatrix"): 1,  # parsed entries
     ("symctl.model.saved", "_parsed", "ImmutableMatrix"): 2,  # of parse_expr's results
     (
         "symctl.derivation.pipeline",
