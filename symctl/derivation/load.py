@@ -41,7 +41,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl._util.parse import parse_expr
+from symctl._util.parse import MAX_OPERATORS, MAX_TEXT, parse_expr
 from symctl._util.pickling import CachedState
 from symctl.derivation.derivation import Derivation
 from symctl.design.ode import exact_value
@@ -95,7 +95,89 @@ def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
 
     plain = _NAME.sub(placeholder, text)
     names = {key: z if word == "z" else _symbol(word, known) for word, key in keys.items()}
-    return parse_expr(plain, names, argname=argname)
+    return _parse_long(plain, names, argname)
+
+
+def _parse_long(text: str, names: Mapping, argname: str) -> sp.Expr:
+    """``parse_expr``, on a text beyond its size bounds split into sums, products and powers.
+
+    Only the splitting is done here (on the operators at the outer level of the
+    parentheses); every piece is read by the safe parser, within its bounds.
+    """
+    text = text.strip()
+    if len(text) <= MAX_TEXT // 2 and sum(text.count(c) for c in "+-*/(") <= MAX_OPERATORS // 2:
+        return parse_expr(text, names, argname=argname)
+    for ops in (("+", "-"), ("*", "/")):
+        parts = _split(text, ops)
+        if len(parts) > 1:
+            out = None
+            for op, piece in parts:
+                value = _parse_long(piece, names, argname)
+                if out is None:
+                    out = -value if op == "-" else value
+                elif op == "+":
+                    out = out + value
+                elif op == "-":
+                    out = out - value
+                elif op == "*":
+                    out = out * value
+                else:
+                    out = out / value
+            return out
+    if text.startswith("-"):
+        return -_parse_long(text[1:], names, argname)
+    power = _split(text, ("**",))
+    if len(power) > 1:
+        base = _parse_long(power[0][1], names, argname)
+        return base ** _parse_long(text[len(power[0][1]) + 2 :], names, argname)
+    if text.startswith("(") and _closing(text, 0) == len(text) - 1:
+        return _parse_long(text[1:-1], names, argname)
+    return parse_expr(text, names, argname=argname)  # a call too long to split: refused
+
+
+def _closing(text: str, start: int) -> int:
+    depth = 0
+    for i in range(start, len(text)):
+        depth += {"(": 1, ")": -1}.get(text[i], 0)
+        if depth == 0:
+            return i
+    return -1
+
+
+def _split(text: str, ops: tuple[str, ...]) -> list[tuple[str, str]]:
+    """``text`` cut at the binary operators ``ops`` outside parentheses: ``[(op, piece)]``."""
+    parts, depth, start, op, i = [], 0, 0, "", 0
+    while i < len(text):
+        c = text[i]
+        if c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif depth == 0:
+            for o in ops:
+                if not text.startswith(o, i):
+                    continue
+                if o == "*" and (text.startswith("**", i) or text[i - 1] == "*"):
+                    continue
+                prev = text[:i].rstrip()
+                if o in "+-" and (not prev or prev[-1] in "+-*/(" or re.search(r"\de$", prev)):
+                    continue  # a sign, or the exponent of a decimal such as 1e-5
+                parts.append((op, text[start:i]))
+                op, start = o, i + len(o)
+                i += len(o) - 1
+                break
+        i += 1
+    parts.append((op, text[start:]))
+    return [(o, p) for o, p in parts if p.strip()] if len(parts) > 1 else parts
+
+
+def _matrix_text(text: str) -> tuple[list[list[str]], str | None]:
+    """A matrix transfer function's text ``[[a, b], [c, d]]/(den)``: its entries and denominator."""
+    end = text.index("]]") + 2
+    rows = text[2 : end - 2].split("], [")
+    entries = [[e.strip() for _, e in _split(row, (",",))] for row in rows]
+    rest = text[end:].strip()
+    return entries, rest[1:] if rest.startswith("/") else None
 
 
 @dataclass(frozen=True, eq=False)
@@ -193,7 +275,7 @@ class SavedDerivation(CachedState):
         f = self.data["factorization"]
         if f is None:
             return None
-        out = {k: self._expr(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3")}
+        out = {k: self._factor(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3")}
         N = f["N"]
         out["N"] = (
             self._matrix(N, "factorization.N")
@@ -201,6 +283,14 @@ class SavedDerivation(CachedState):
             else self._expr(N, "factorization.N")
         )
         return out
+
+    def _factor(self, text: str, where: str):
+        """A factor's text: an expression in z, or ``[[...]]/(den)`` for a matrix."""
+        if not text.startswith("[["):
+            return self._expr(text, where)
+        entries, den = _matrix_text(text)
+        M = self._matrix(entries, where)
+        return M / self._expr(den, f"{where} (denominator)") if den is not None else M
 
     @cached_property
     def realizations(self) -> dict[str, dict]:

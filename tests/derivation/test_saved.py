@@ -218,7 +218,20 @@ def test_a_matrix_controller_loads_its_symbolic_objects(derived_oculomotor, tmp_
     derived_oculomotor.write(tmp_path / "o", figures=False, pdf=False)
     saved = load_results(tmp_path / "o")
     assert saved.G_symbolic == derived_oculomotor.G_symbolic
+    G2 = derived_oculomotor.factors.G2
+    assert (saved.factors["G2"] - G2.num_matrix / G2.den).applyfunc(sp.cancel).is_zero_matrix
     assert saved.derive() is derived_oculomotor
+
+
+def test_an_expression_beyond_the_parser_bounds_is_read_in_pieces():
+    from symctl._util.parse import MAX_OPERATORS
+    from symctl.derivation.load import parse_saved
+
+    K = sp.symbols("K_0:300", real=True)
+    e = sum((k - i) ** 2 / (i + 1) for i, k in enumerate(K)) * K[0] - K[1] ** 3
+    text = sp.sstr(e)
+    assert sum(text.count(c) for c in "+-*/(") > MAX_OPERATORS  # one call would refuse it
+    assert parse_saved(text, {}, "e") == e
 
 
 @pytest.mark.parametrize(
