@@ -261,9 +261,11 @@ class Model:
                 "give a model file with the new one"
             )
         changes: dict = {}
-        if "Ts" in new:
+        if "Ts" in new and positive_number(new["Ts"], "Ts") != self.Ts:
             changes["Ts"] = positive_number(new["Ts"], "Ts")
-        if given or "Ts" in new:
+        else:
+            new.pop("Ts", None)
+        if given or "Ts" in changes:  # the plant derived again: only for a new value
             changes.update(self._replot(given, changes.get("Ts", self.Ts)))
         ds = nonneg_int(new.get("sensor_delay", self.sensor_delay), "sensor_delay")
         da = nonneg_int(new.get("actuator_delay", self.actuator_delay), "actuator_delay")

@@ -449,7 +449,7 @@ AUDITED = {
     ("symctl.report.model_story", "opening", "subs"): 4,  # an ODEModel's own values
     ("symctl.model.model", "Model.replace", "ImmutableMatrix"): 1,  # after to_matrix
     ("symctl.model.saved", "_parsed", "parse_expr"): 4,  # the safe parser itself
-    ("symctl.derivation.load", "parse_saved", "parse_expr"): 1,  # the safe parser itself
+    ("symctl.derivation.load", "_parse_long", "parse_expr"): 2,  # the safe parser, piece by piece
     ("symctl.derivation.load", "SavedDerivation._matrix", "ImmutableMatrix"): 1,  # parsed entries
     ("symctl.model.saved", "_parsed", "ImmutableMatrix"): 2,  # of parse_expr's results
     (
