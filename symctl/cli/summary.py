@@ -72,8 +72,12 @@ def summary(res, console: Console) -> None:
     f = factor_texts(res)
     out("Factorization|  G = G3 G2 G1")
     none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
-    out("  " + ",  ".join(f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}"
-                         for k in ("G1", "G3")))  # fmt: skip
+    out(
+        "  "
+        + ",  ".join(
+            f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}" for k in ("G1", "G3")
+        )
+    )
     out(f"  G2 = {_long(f['G2'], 'factorization')}")
     N = f["N"] if isinstance(f["N"], str) else f"({len(f['N'])} x {len(f['N'][0])})"
     out(f"  N = {_long(N, 'factorization')};  G3 G2 G1 == G proved: {bool(res.verified)}")
@@ -155,8 +159,9 @@ def _fmt(values) -> str:
         return f"{arr.item():.6g}"
     if max(arr.shape) > SUMMARY_MATRIX:
         return "(" + " x ".join(map(str, arr.shape)) + ", in results.json)"
-    text = np.array2string(arr, max_line_width=10_000, separator="  ",
-                           formatter={"float_kind": lambda v: f"{v:.6g}"})  # fmt: skip
+    text = np.array2string(
+        arr, max_line_width=10_000, separator="  ", formatter={"float_kind": lambda v: f"{v:.6g}"}
+    )
     return text.replace("\n", "")
 
 

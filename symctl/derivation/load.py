@@ -58,8 +58,22 @@ MAX_RESULTS_BYTES = 200_000_000
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
 _REAL = re.compile(r"^(K|C|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
-_FUNCTIONS = {"exp", "log", "sqrt", "sin", "cos", "tan", "tanh", "sinh", "cosh", "atan", "Abs",
-              "logistic", "pi", "E"}  # fmt: skip
+_FUNCTIONS = {
+    "exp",
+    "log",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "tanh",
+    "sinh",
+    "cosh",
+    "atan",
+    "Abs",
+    "logistic",
+    "pi",
+    "E",
+}
 
 
 def _symbol(name: str, known: Mapping) -> sp.Symbol:

@@ -407,9 +407,14 @@ def _derive(spec: Model, step) -> Derivation:
         if "pathways" in kinds:
             step("pathways")
             firing["pathways"] = structure_firing(
-                pathways.structure, gains, assignment=pathways.check, count=count,
-                seed=seed, disturbance=w, **window,
-            )  # fmt: skip
+                pathways.structure,
+                gains,
+                assignment=pathways.check,
+                count=count,
+                seed=seed,
+                disturbance=w,
+                **window,
+            )
         circuits = {
             k: CircuitRecord(
                 k,
@@ -442,16 +447,26 @@ def _derive(spec: Model, step) -> Derivation:
     if spec.ode is not None:
         step("nonlinear")
         nonlinear = nonlinear_check(
-            spec.ode, gains, amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
-            steps=spec.steps, disturbance=unit_w, fail="mark",
-        )  # fmt: skip
+            spec.ode,
+            gains,
+            amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
+            steps=spec.steps,
+            disturbance=unit_w,
+            fail="mark",
+        )
         if spec.longest_delay is not None:
             step("longest delay")
             top, tol = spec.longest_delay
             longest = longest_delay(
-                spec.ode, Q=spec.Q, R=spec.R, disturbance=unit_w, amplitude=amplitude,
-                max_delay=top, tolerance=tol, steps=spec.steps,
-            )  # fmt: skip
+                spec.ode,
+                Q=spec.Q,
+                R=spec.R,
+                disturbance=unit_w,
+                amplitude=amplitude,
+                max_delay=top,
+                tolerance=tol,
+                steps=spec.steps,
+            )
     return Derivation(
         model,
         plant_symbolic,

@@ -36,9 +36,10 @@ PUBLIC_CLASSES = sorted(
     if inspect.isclass(getattr(symctl, name)) and not issubclass(getattr(symctl, name), Exception)
 )
 ERRORS = sorted(
-    name for name in symctl.__all__ if inspect.isclass(getattr(symctl, name))
-    and issubclass(getattr(symctl, name), Exception)
-)  # fmt: skip
+    name
+    for name in symctl.__all__
+    if inspect.isclass(getattr(symctl, name)) and issubclass(getattr(symctl, name), Exception)
+)
 
 
 def _walk(obj, found: dict, depth: int = 0, seen=None) -> None:
