@@ -54,7 +54,7 @@ class Steps:
 
 
 def paper(T: int, out: str) -> None:
-    import symctl.report.pipeline as pipeline
+    import symctl.derivation.pipeline as pipeline
 
     pipeline.PAPER_MAX_DELAY = max(pipeline.PAPER_MAX_DELAY, T)  # the baseline stops at 8
     steps = Steps()

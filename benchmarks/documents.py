@@ -15,7 +15,7 @@ not part of ``make test``:
     python benchmarks/documents.py              # T = 2 4 6 8 10
     python benchmarks/documents.py 2 6 10 20 --no-figures --out /tmp/docs
 
-A T above ``derive_paper``'s limit (``symctl.report.pipeline.PAPER_MAX_DELAY``) is run
+A T above ``derive_paper``'s limit (``symctl.derivation.pipeline.PAPER_MAX_DELAY``) is run
 with the limit raised for this script, and the row says so.
 """
 
@@ -29,7 +29,7 @@ import tempfile
 import time
 from pathlib import Path
 
-import symctl.report.pipeline as pipeline
+import symctl.derivation.pipeline as pipeline
 from symctl import derive_paper
 
 

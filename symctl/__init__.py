@@ -19,6 +19,9 @@ True
 from __future__ import annotations
 
 from symctl._util.lazy import attach
+from symctl._util.pickling import register as _register_pickling
+
+_register_pickling()  # read-only mappings pickle, so every value object does
 
 __version__ = "0.1.0"
 
@@ -128,10 +131,13 @@ _PUBLIC = {
     # your own system: model files
     "Model": "symctl.model.model",
     "load_model": "symctl.model.modelfile",
-    # 6. report: the whole derivation
-    "PaperResults": "symctl.report.results",
-    "derive_paper": "symctl.report.pipeline",
-    "derive": "symctl.report.pipeline",
+    # 6. the derivation: the whole pipeline on a model
+    "Derivation": "symctl.derivation.derivation",
+    "PaperResults": "symctl.derivation.derivation",
+    "derive_paper": "symctl.derivation.pipeline",
+    "derive": "symctl.derivation.pipeline",
+    "SavedDerivation": "symctl.derivation.load",
+    "load_results": "symctl.derivation.load",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _PUBLIC, submodules=("latex",))

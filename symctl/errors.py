@@ -173,3 +173,12 @@ class ModelFileError(ParameterError):
         self.path, self.line, self.field, self.problem = path, line, field, problem
         where = f"{path}:{line}" if line else path
         super().__init__(f"{where}: {field}: {problem}" if field else f"{where}: {problem}")
+
+    def __reduce__(self):
+        """Pickled with its parts (the default would read the whole message as the problem)."""
+        return _model_file_error, (self.problem, self.path, self.line, self.field)
+
+
+def _model_file_error(problem: str, path: str, line, field: str) -> ModelFileError:
+    """A :class:`ModelFileError` from its parts (what a pickled one loads as)."""
+    return ModelFileError(problem, path=path, line=line, field=field)

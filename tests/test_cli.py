@@ -31,7 +31,7 @@ def test_paper_writes_results_json_with_the_documented_keys(tmp_path, capsys):
 
 
 def test_the_summary_prints_numbers_short_and_a_missing_section_in_words(tmp_path, capsys):
-    from symctl.cli import SUMMARY_TEXT, _fmt, _long
+    from symctl.cli.summary import SUMMARY_TEXT, _fmt, _long
 
     assert _fmt([[0.6065306597]]) == "0.606531" and _fmt([[1.0, 0.0]]) == "[[1  0]]"
     assert _fmt([[0.0] * 9] * 9) == "(9 x 9, in results.json)"
@@ -124,7 +124,7 @@ def test_bad_formats_are_one_line_and_exit_2_before_any_work(
     def no_derivation(*args, **kwargs):
         raise AssertionError("the derivation ran before --formats was checked")
 
-    monkeypatch.setattr("symctl.report.pipeline.derive_paper", no_derivation)
+    monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", no_derivation)
     assert main(["paper", "--out", str(tmp_path / "p"), "--formats", formats]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and err.startswith("symctl: error: --formats: ")

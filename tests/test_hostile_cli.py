@@ -94,7 +94,7 @@ def test_the_console_script_prints_no_traceback(tmp_path, args, word):
 
 
 # ---------------------------------------------------------------- foreign exceptions
-def _raises(exc: BaseException, where: str = "symctl.report.pipeline.lqr_gains"):
+def _raises(exc: BaseException, where: str = "symctl.derivation.pipeline.lqr_gains"):
     def fake(*args, **kwargs):
         raise exc
 
@@ -113,10 +113,11 @@ FOREIGN = {
 }
 
 
+@pytest.mark.usefixtures("uncached_derive")
 @pytest.mark.parametrize("case", list(FOREIGN))
 def test_a_foreign_exception_is_one_line_naming_the_step(tmp_path, capfd, monkeypatch, case):
     exc, name, code, word = FOREIGN[case]
-    monkeypatch.setattr(*_raises(exc, f"symctl.report.pipeline.{name}"))
+    monkeypatch.setattr(*_raises(exc, f"symctl.derivation.pipeline.{name}"))
     assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]) == code
     line = _one_line(capfd.readouterr().err)
     assert line.startswith("symctl: error:" if code == 2 else "symctl: internal error:")
@@ -124,6 +125,7 @@ def test_a_foreign_exception_is_one_line_naming_the_step(tmp_path, capfd, monkey
     assert list(tmp_path.iterdir()) == []  # nothing staged, no lock left
 
 
+@pytest.mark.usefixtures("uncached_derive")
 def test_symctl_traceback_shows_the_traceback_of_a_bug(tmp_path, monkeypatch):
     monkeypatch.setenv("SYMCTL_TRACEBACK", "1")
     monkeypatch.setattr(*_raises(AttributeError("a bug")))
@@ -133,7 +135,7 @@ def test_symctl_traceback_shows_the_traceback_of_a_bug(tmp_path, monkeypatch):
 
 # ---------------------------------------------------------------- warnings
 def _warning_derivation(fail: bool):
-    from symctl.report import pipeline
+    from symctl.derivation import pipeline
 
     real = pipeline.derive_paper
 
@@ -150,7 +152,7 @@ def _warning_derivation(fail: bool):
 
 
 def test_warnings_of_a_successful_run_are_one_line(tmp_path, capfd, monkeypatch):
-    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _warning_derivation(False))
+    monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", _warning_derivation(False))
     args = ["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]
     assert main([*args, "--realizations", "1"]) == 0
     line = _one_line(capfd.readouterr().err)
@@ -159,7 +161,7 @@ def test_warnings_of_a_successful_run_are_one_line(tmp_path, capfd, monkeypatch)
 
 
 def test_warnings_before_an_error_do_not_show(tmp_path, capfd, monkeypatch):
-    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _warning_derivation(True))
+    monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", _warning_derivation(True))
     assert main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf"]) == 2
     assert _one_line(capfd.readouterr().err) == "symctl: error: R: no stabilizing DARE solution"
 

@@ -31,6 +31,7 @@ STAGES = (
     ("symctl.fitting",),
     ("symctl.latex", "symctl.interop"),
     ("symctl.model",),
+    ("symctl.derivation",),
     ("symctl.plotting",),
     ("symctl.report",),
     ("symctl.cli",),
@@ -44,8 +45,14 @@ DELEGATIONS = {
     "from_sympy",
     "to_scipy",
     "from_scipy",
+    # a derivation handed to the report stage, which writes it
+    "to_json",
+    "parameters",
+    "figure",
+    "figure_names",
+    "write",
 }
-DELEGATION_TARGETS = ("symctl.plotting", "symctl.interop")
+DELEGATION_TARGETS = ("symctl.plotting", "symctl.interop", "symctl.report")
 MAX_LINES = 720  # "about 700"
 
 

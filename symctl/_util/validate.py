@@ -28,7 +28,10 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.parse import parse_expr
+from symctl._util.pickling import register_sympy
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+
+register_sympy()  # exact expressions pickle as they are (every value module imports this one)
 
 __all__ = [
     "as_generator",

@@ -33,6 +33,7 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
+from symctl.cli.summary import summary
 from symctl.cli.writing import writing_options as _writing_options
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
@@ -134,8 +135,9 @@ def paper(
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PDF and PNG; SVG with --formats pdf,png,svg).
     """
+    from symctl.derivation.pipeline import derive_paper
     from symctl.report.output import OutputFolder  # imported here: keeps `symctl --help` fast
-    from symctl.report.pipeline import derive_paper
+    from symctl.report.results import write_files
 
     try:
         Q = parse_matrix(q_text, "--q")
@@ -158,7 +160,8 @@ def paper(
             realizations=realizations,
             progress=steps.start,
         )
-        written = res._write_files(
+        written = write_files(
+            res,
             folder.staging,
             figures=figures,
             pdf=pdf,
@@ -166,7 +169,7 @@ def paper(
             progress=steps.start,
             formats=formats,
         )
-    _summary(res)
+    summary(res, _console)
     _written(out, folder.final(written), pdf)
 
 
@@ -186,9 +189,10 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     format is in docs/model-file.md. With --check the file is only read and
     checked.
     """
+    from symctl.derivation.pipeline import derive
     from symctl.model.modelfile import load_model
     from symctl.report.output import OutputFolder
-    from symctl.report.pipeline import derive
+    from symctl.report.results import write_files
 
     model = load_model(Path(model_file))
     for note in model.notes:
@@ -200,7 +204,8 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     try:
         with OutputFolder(out, "--out") as folder, _Steps() as steps:
             res = derive(model, progress=steps.start)
-            written = res._write_files(
+            written = write_files(
+                res,
                 folder.staging,
                 figures=figures,
                 pdf=pdf,
@@ -212,7 +217,7 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
         with contextlib.suppress(AttributeError):
             exc._symctl_inputs = f"the model file {model_file}"
         raise
-    _summary(res)
+    summary(res, _console)
     _written(Path(out), folder.final(written), pdf)
 
 
@@ -406,148 +411,6 @@ def _written(out: Path, written: list[Path], pdf: bool) -> None:
             soft_wrap=True,
             highlight=False,
         )
-
-
-def _summary(res) -> None:
-    data = res.to_json()
-    p, aug, c = data["plant"], data["augmented"], data["controller"]
-
-    def out(text: str) -> None:
-        head, sep, rest = text.partition("|")
-        if sep:
-            _console.print(head, style="bold", end="", markup=False)
-            text = rest
-        _console.print(text, markup=False, soft_wrap=True)
-
-    out(f"Plant|  {data['model']['name']} (linearized, zero-order hold)")
-    units = data["model"]["units"]
-    eq = p["equilibrium"]
-    if eq is not None:
-        for (name, value), text in zip(eq["states"].items(), eq["symbolic"], strict=True):
-            unit = f" {units[name]}" if units.get(name) else ""
-            shown = "" if _is_number(text, value) else f"{text} = "
-            out(f"  {name}_bar = {shown}{value:.6g}{unit}")
-    sym_A, sym_B = p["symbolic"]["A"], p["symbolic"]["B"]
-    out(f"  A = {sym_A + ' = ' if sym_A else ''}{_fmt(p['A'])}")
-    out(f"  B = {sym_B + ' = ' if sym_B else ''}{_fmt(p['B'])}")
-    out(f"Augmented system|  (T = {aug['T']}): chi = [{', '.join(aug['state'])}]")
-    out(f"  A~ = {_fmt(aug['A'])}")
-    out(f"  B~ = {_fmt(aug['B'])}")
-    out(f"  Q~ = {_fmt(aug['Q'])}")
-    out("Gains|  mu = K chi, K = [" + ", ".join(data["gains"]["names"]) + "]")
-    out(f"  K = {_fmt(data['gains']['K'])}")
-    out("Controller|  G(z): measured states -> inputs")
-    out(f"  G(z) = {_long(str(res.G_symbolic), 'controller')}")
-    out(f"  numerator {_fmt(c['numerator'])}, denominator {_fmt(c['denominator'])}")
-    out(f"  relative degree {c['relative_degree']}; derivation proved: {c['proved']}")
-    _extra(data, out)
-    f = data["factorization"]
-    if f is None:
-        out(f"Not derived|  {data['model']['skipped']}")
-        _summary_table(data, p)
-        return
-    from symctl.realization.realizers import REALIZERS
-
-    out("Factorization|  G = G3 G2 G1")
-    none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
-    out("  " + ",  ".join(f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}"
-                         for k in ("G1", "G3")))  # fmt: skip
-    out(f"  G2 = {_long(f['G2'], 'factorization')}")
-    N = f["N"] if isinstance(f["N"], str) else f"({len(f['N'])} x {len(f['N'][0])})"
-    out(f"  N = {_long(N, 'factorization')};  G3 G2 G1 == G proved: {f['verified']}")
-    for name, rec in f["realizations"].items():
-        sym, num = rec["check"]["symbolic"], rec["check"]["numeric"]
-        size = len(rec["numeric"]["F"])
-        small = size <= 3
-        rows = ", ".join("[" + ", ".join(row) + "]" for row in rec["symbolic"]["F"])
-        dense = name in REALIZERS and REALIZERS[name].takes_transform  # F in a symbolic P
-        shown = "P^-1 F_c P" if dense else f"[{rows}]"
-        shown = shown if small or dense else f"({size} x {size})"
-        numeric = _fmt(rec["numeric"]["F"]) if small else f"({size} x {size}, in results.json)"
-        out(
-            f"  {name:>12}: F = {shown}; F(seed {data['parameters']['seed']}) = "
-            f"{numeric}; realizes G2, symbolic ({sym['method']}): {sym['ok']}, "
-            f"numeric ({num['method']}): {num['ok']}"
-        )
-
-    _summary_table(data, p)
-    _circuit_table(data)
-
-
-def _extra(data, out) -> None:
-    longest = data["model"]["longest_delay"]
-    if longest is not None:
-        found = (
-            f"T = {longest['longest']} steps"
-            if longest["limited"]
-            else f"every T up to {longest['delays'][-1]} (the largest tried)"
-        )
-        out(f"Longest delay|  that still stabilizes the nonlinear plant: {found}")
-
-
-def _summary_table(data, p) -> None:
-    table = Table(title="summary")
-    table.add_column("quantity")
-    table.add_column("value", justify="right")
-    units = data["model"]["units"]
-    if p["equilibrium"] is not None:
-        for name, value in p["equilibrium"]["states"].items():
-            unit = f" [{units[name]}]" if units.get(name) else ""
-            table.add_row(f"{name}_bar{unit}", f"{value:.4f}")
-    table.add_row("A", f"{p['A'][0][0]:.6f}" if len(p["A"]) == 1 else _fmt(p["A"]))
-    table.add_row("B", f"{p['B'][0][0]:.6f}" if len(p["B"]) == 1 else _fmt(p["B"]))
-    for name, value in zip(data["gains"]["names"], data["gains"]["K"][0], strict=False):
-        table.add_row(name, f"{value:.6f}")
-    table.add_row("spectral radius", f"{data['closed_loop']['spectral_radius']:.6f}")
-    _console.print(table)
-
-
-def _circuit_table(data) -> None:
-    circuits = Table(title="circuits (closed loop against the optimal controller)")
-    for head in ("circuit", "neurons", "in G2", "compatible", "realizations", "max deviation"):
-        circuits.add_column(head, justify="left" if head == "circuit" else "right")
-    for name, c in data["circuits"].items():
-        g2 = c["neurons"]["G2"]
-        circuits.add_row(
-            name,
-            str(c["neurons"]["count"]),
-            "-" if g2 is None else str(g2),
-            "yes" if c["compatible"] else "no",
-            str(len(c["realizations"])),
-            f"{c['max_closed_loop_deviation']:.1e}",
-        )
-    _console.print(circuits)
-
-
-SUMMARY_TEXT, SUMMARY_MATRIX = 240, 8  # the console's longest formula, largest matrix in full
-
-
-def _fmt(values) -> str:
-    """Numbers to 6 significant digits: a 1 x 1 matrix as its entry, a large one by its size."""
-    import numpy as np
-
-    arr = np.asarray(values, dtype=float)
-    if arr.size == 1:
-        return f"{arr.item():.6g}"
-    if max(arr.shape) > SUMMARY_MATRIX:
-        return "(" + " x ".join(map(str, arr.shape)) + ", in results.json)"
-    text = np.array2string(arr, max_line_width=10_000, separator="  ",
-                           formatter={"float_kind": lambda v: f"{v:.6g}"})  # fmt: skip
-    return text.replace("\n", "")
-
-
-def _long(text: str, where: str) -> str:
-    """A formula for the console, or its length when longer than ``SUMMARY_TEXT``."""
-    return (
-        text if len(text) <= SUMMARY_TEXT else f"({len(text):,} characters; results.json, {where})"
-    )
-
-
-def _is_number(text: str, value: float) -> bool:
-    """Whether a symbolic value's text is just its number (``0`` for 0.0): not printed twice."""
-    with contextlib.suppress(ValueError):
-        return float(text) == value
-    return False
 
 
 # the options each step of derive_paper depends on: named when NumPy or SciPy fails in it

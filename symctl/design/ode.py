@@ -47,6 +47,7 @@ import sympy as sp
 
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, latex
+from symctl._util.pickling import CachedState
 from symctl._util.validate import MAX_MAGNITUDE, bounded_number, sampling_time, to_matrix
 from symctl.design.plant import DiscretePlant, Linearization, _tidy, discretize, linearize
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
@@ -330,7 +331,7 @@ def _numeric_equilibrium(f, states, values, guess, argname):
 
 
 @dataclass(frozen=True, eq=False)
-class ODEModel(LatexMixin):
+class ODEModel(CachedState, LatexMixin):
     r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point.
 
     Parameters

@@ -42,6 +42,7 @@ import sympy as sp
 from scipy.optimize import least_squares
 
 from symctl._util.exact import nearest_rational
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import as_generator, bounded_int, read_only
 from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
@@ -226,7 +227,7 @@ def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
-class FitResult:
+class FitResult(ArrayValue):
     r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
 
     Attributes

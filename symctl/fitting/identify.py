@@ -14,6 +14,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import as_generator, bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
@@ -56,7 +57,7 @@ def _verdicts(model: TraceModel, jacs: dict, J: np.ndarray, neurons) -> tuple[di
 
 
 @dataclass(frozen=True, eq=False)
-class Identifiability:
+class Identifiability(ArrayValue):
     r"""Which parameters and neurons a set of recorded neurons pins down.
 
     Attributes

@@ -34,6 +34,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import as_generator, bounded_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
@@ -45,7 +46,7 @@ _KEYS = ("circuit", "sensor_delay", "actuator_delay")
 
 
 @dataclass(frozen=True, eq=False)
-class Traces:
+class Traces(ArrayValue):
     r"""Recorded (or simulated) firing-rate traces of some neurons of one circuit.
 
     Attributes

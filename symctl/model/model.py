@@ -2,11 +2,12 @@
 
 :class:`Model` holds the plant (nonlinear or discrete), the delays, the cost,
 the delay graph and what to build and simulate, as values; the pipeline
-(:func:`~symctl.report.pipeline.derive`) reads it and nothing else.
+(:func:`~symctl.derivation.pipeline.derive`) reads it and nothing else.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -14,20 +15,63 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.validate import (
+    MAX_CIRCUITS,
+    PAPER_MAX_DELAY,
+    bounded_int,
+    nonneg_int,
+    positive_number,
+    psd_matrix,
+    to_matrix,
+)
 from symctl.compatibility.delaygraph import DelayGraph
-from symctl.design.ode import ODEModel
+from symctl.design.ode import ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
-from symctl.errors import ModelFileError
+from symctl.errors import ModelFileError, ParameterError
 from symctl.realization.realizers import circuit_names
 
-__all__ = ["Model"]
+__all__ = ["Model", "chain_graph"]
+
+MAX_SEED = 2**32 - 1
+"""The largest ``[circuits] seed``."""
+
+_FIELDS_REPLACED = ("Ts", "sensor_delay", "actuator_delay", "Q", "R", "seed", "realizations")
+"""The fields :meth:`Model.replace` takes (besides the parameters of the plant, by name)."""
+
+
+def chain_graph(sensor_delay: int, actuator_delay: int) -> tuple[DelayGraph, tuple, tuple]:
+    """The delay graph of a model file without one: the chain of the delays, one vertex per step.
+
+    A side without delay keeps an edge of 0 steps, so that the controller's own vertex
+    (after the sensor-side steps) exists.
+
+    Returns
+    -------
+    (DelayGraph, vertices, edges)
+        The graph, its vertices' names and its edges ``(from, to, steps)``.
+
+    Examples
+    --------
+    >>> from symctl.model.model import chain_graph
+    >>> graph, vertices, edges = chain_graph(1, 1)
+    >>> vertices, edges
+    (('v1', 'v2', 'v3'), (('v1', 'v2', 1), ('v2', 'v3', 1)))
+    """
+    steps = ([1] * sensor_delay or [0]) + ([1] * actuator_delay or [0])
+    names = tuple(f"v{i + 1}" for i in range(len(steps) + 1))
+    edges = tuple((names[i], names[i + 1], d) for i, d in enumerate(steps))
+    return DelayGraph.chain(steps), names, edges
+
+
+def _key_value(value):
+    return tuple(value.items()) if isinstance(value, Mapping) else value
 
 
 @dataclass(frozen=True, eq=False)
 class Model:
     r"""A model file, read and checked: the plant, its delays, cost, delay graph and what to build.
 
-    Made by :func:`load_model`; the pipeline (:func:`~symctl.report.pipeline.derive`)
+    Made by :func:`load_model`; the pipeline (:func:`~symctl.derivation.pipeline.derive`)
     reads it.
 
     Attributes
@@ -79,6 +123,13 @@ class Model:
         What the reader changed and says so (delays in seconds rounded up).
     path : str
         The file.
+    replaced : mapping of str to value
+        The values :meth:`replace` set in place of the file's, by keyword (empty for a
+        model as its file gives it): the file's text and these re-create the model
+        (:func:`~symctl.model.saved.model_from_dict`).
+
+    Two models are equal when every field is (the file's text and name included), so a
+    model is a key of caches: :func:`~symctl.derivation.derive` is computed once per model.
 
     Examples
     --------
@@ -128,12 +179,176 @@ class Model:
     lines: Mapping = field(default_factory=dict, repr=False)
     vertex_descriptions: Mapping = field(default_factory=dict)
     max_wire_delay: int | None = None
+    replaced: Mapping = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         units = {k: str(v) for k, v in self.units.items()}
         object.__setattr__(self, "units", MappingProxyType(units))
-        for name in ("descriptions", "lines", "vertex_descriptions"):
+        for name in ("descriptions", "lines", "vertex_descriptions", "replaced"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+
+    def _key(self) -> tuple:
+        key = [_key_value(getattr(self, f.name)) for f in dataclasses.fields(self)]
+        key[-1] = tuple(sorted(key[-1]))  # the values replaced: in any order, the same model
+        return tuple(key)
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, Model):
+            return NotImplemented
+        return self is other or self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def replace(self, **values) -> Model:
+        r"""A new model with some values replaced; the others, and this model, stay as they are.
+
+        The plant, its closed forms and the delay graph (when the file gives none) are
+        derived again from the new values, as reading the file with them would.
+
+        Parameters
+        ----------
+        **values
+            Any of ``Ts`` (the sampling time [s]), ``sensor_delay``, ``actuator_delay``
+            (steps), ``Q``, ``R`` (the cost's weights, matrix-like), ``seed``,
+            ``realizations``, and the plant's parameters by name (``tau=0.05``; a
+            model with an ODE).
+
+        Returns
+        -------
+        Model
+            Its :attr:`replaced` records the values that differ from the model's, so that
+            the file's text and they re-create it (:meth:`to_dict`); with none, this model.
+
+        Raises
+        ------
+        ParameterError
+            An unknown name (the names taken are listed), a value out of range, a
+            parameter or ``Ts`` of a discrete plant given as matrices (they hold numbers
+            for one sampling time), a net delay outside ``[1, PAPER_MAX_DELAY]``, or
+            parameter values at which the file's equilibrium is none.
+        SymctlTypeError
+            A value of the wrong type.
+        DimensionError
+            ``Q`` or ``R`` of the wrong shape.
+
+        Examples
+        --------
+        >>> from symctl.model.presets import muscle
+        >>> m = muscle()
+        >>> slow = m.replace(tau=0.05, sensor_delay=2)
+        >>> slow.T, [float(v) for v in slow.ode.params.values()], m.T
+        (3, [0.05, 60.0, 1.0], 2)
+        >>> slow == m.replace(sensor_delay=2).replace(tau=0.05), slow == m
+        (True, False)
+        >>> m.replace(taus=1)
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: taus: not a value of the model; replace takes Ts, ...
+        """
+        params = {p.name: p for p in self.ode.params} if self.ode is not None else {}
+        for name in values:
+            if name not in _FIELDS_REPLACED and name not in params:
+                taken = ", ".join((*_FIELDS_REPLACED, *params))
+                raise ParameterError(f"{name}: not a value of the model; replace takes {taken}")
+        new = {k: v for k, v in values.items() if k in _FIELDS_REPLACED}
+        given = {k: v for k, v in values.items() if k in params}
+        current = dict(self.ode.params.items()) if self.ode is not None else {}
+        given = {k: v for k, v in given.items() if exact_value(v, k) != current[params[k]]}
+        if self.ode is None and "Ts" in new:
+            raise ParameterError(
+                "Ts: the discrete plant's matrices hold numbers for its own sampling time; "
+                "give a model file with the new one"
+            )
+        changes: dict = {}
+        if "Ts" in new and positive_number(new["Ts"], "Ts") != self.Ts:
+            changes["Ts"] = positive_number(new["Ts"], "Ts")
+        else:
+            new.pop("Ts", None)
+        if given or "Ts" in changes:  # the plant derived again: only for a new value
+            changes.update(self._replot(given, changes.get("Ts", self.Ts)))
+        ds = nonneg_int(new.get("sensor_delay", self.sensor_delay), "sensor_delay")
+        da = nonneg_int(new.get("actuator_delay", self.actuator_delay), "actuator_delay")
+        if not 1 <= ds + da <= PAPER_MAX_DELAY:
+            raise ParameterError(
+                f"sensor_delay, actuator_delay: the derivation takes a net delay of 1 to "
+                f"{PAPER_MAX_DELAY} steps, got {ds} + {da} = {ds + da}"
+            )
+        changes.update(sensor_delay=ds, actuator_delay=da)
+        if not self.graph_given and (ds, da) != (self.sensor_delay, self.actuator_delay):
+            changes["graph"], changes["vertices"], changes["edges"] = chain_graph(ds, da)
+        for name, size, definite in (("Q", self.plant.n, False), ("R", self.plant.m, True)):
+            if name in new:
+                M = to_matrix(new[name], name)
+                psd_matrix(M, name, size, definite=definite)
+                changes[name] = sp.ImmutableMatrix(M)
+        if "seed" in new:
+            changes["seed"] = bounded_int(new["seed"], "seed", 0, MAX_SEED)
+        if "realizations" in new:
+            changes["realizations"] = bounded_int(
+                new["realizations"], "realizations", 1, MAX_CIRCUITS
+            )
+        recorded = {k: changes[k] for k in new if changes[k] != getattr(self, k)}
+        recorded.update({k: exact_value(v, k) for k, v in given.items()})
+        if not recorded:  # every value is the one the model has: it stays as it is
+            return self
+        return dataclasses.replace(self, **changes, replaced={**self.replaced, **recorded})
+
+    def _replot(self, given: dict, Ts: float) -> dict:
+        """The ODE, the plant and its closed form at new parameter values or sampling time."""
+        ode = self.ode
+        params = {p.name: (p, v) for p, v in ode.params.items()}
+        rename, values = {}, {}
+        for name, (symbol, value) in params.items():
+            value = exact_value(given.get(name, value), name)
+            new = parameter_symbol(name, value)  # positive when the value is
+            if new != symbol:
+                rename[symbol] = new
+            values[new] = value
+        solved = ode.equilibrium_method != "given"
+        ode = ODEModel(
+            ode.states,
+            ode.inputs,
+            ode.rhs.xreplace(rename),
+            values,
+            None if solved else ode.x_eq.xreplace(rename),
+            ode.u_eq.xreplace(rename),
+            Ts,
+            ode.guess,
+            ode.name,
+            ode.units,
+        )
+        return {"ode": ode, "plant": ode.plant(), "plant_symbolic": ode.discrete_symbolic()}
+
+    def to_dict(self) -> dict:
+        """The model as its file's text, the file's name and the values replaced (for JSON).
+
+        Returns
+        -------
+        dict
+            ``source`` (the TOML text), ``path`` and ``replaced`` (numbers as numbers,
+            matrices as rows of exact expressions' text).
+
+        Raises
+        ------
+        ParameterError
+            A model not read from a model file (it has no text).
+
+        Examples
+        --------
+        >>> from symctl.model.saved import model_from_dict
+        >>> from symctl.model.presets import muscle
+        >>> d = muscle().replace(tau=0.05).to_dict()
+        >>> d["replaced"], model_from_dict(d) == muscle().replace(tau=0.05)
+        ({'tau': '1/20'}, True)
+        """
+        if not self.source:
+            raise ParameterError("model: made without a model file, so it has no text to save")
+        return {
+            "source": self.source,
+            "path": self.path,
+            "replaced": {k: _text(v) for k, v in self.replaced.items()},
+        }
 
     def error(self, dotted: str, problem: str) -> ModelFileError:
         """An error about one field of the file this model came from (with its line)."""
@@ -177,3 +392,14 @@ class Model:
         w = np.zeros((n_steps, self.plant.n))
         w[start : start + length, list(states)] = amplitude
         return w
+
+
+def _text(value):
+    """A replaced value for JSON: ints and floats as numbers, exact ones as text, matrices as rows."""
+    if isinstance(value, sp.MatrixBase):
+        return [[_text(e) for e in row] for row in value.tolist()]
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return value
+    if isinstance(value, sp.Float):
+        return float(value)
+    return sp.sstr(value)

@@ -6,7 +6,7 @@ every field, :mod:`symctl.model.schema` the table of fields) describes a plant
 function), its sampling time, its sensor and actuator delays (in steps or
 seconds), the cost, the delay graph and what to build and simulate. ``symctl
 derive MODEL.toml`` runs the whole derivation on it
-(:func:`~symctl.report.pipeline.derive`).
+(:func:`~symctl.derivation.pipeline.derive`).
 
 No text of the file is ever evaluated: expressions go through the safe parser
 (:func:`symctl._util.parse.parse_expr`) with the names the file declares, and
@@ -55,7 +55,7 @@ from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter
 from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
-from symctl.model.model import Model
+from symctl.model.model import Model, chain_graph
 from symctl.model.schema import FIELDS
 from symctl.model.source import Source
 from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
@@ -63,7 +63,7 @@ from symctl.realization.realization import controllable_canonical
 from symctl.realization.realizers import circuit_names
 from symctl.symbols import z
 
-__all__ = ["Model", "load_model"]
+__all__ = ["Model", "load_model", "read_model"]
 
 MAX_PARAMETERS = 200
 """Most parameters of a model file."""
@@ -113,6 +113,17 @@ def load_model(source) -> Model:
     else:
         raise SymctlTypeError(f"source: expected a path or TOML text, got {type(source).__name__}")
     return _Reader(src).model()
+
+
+def read_model(text: str, path: str = "<text>") -> Model:
+    """Read a model file's text, named ``path`` in messages (as :func:`load_model` reads a file).
+
+    >>> from symctl.model.modelfile import read_model
+    >>> from symctl.model.presets import muscle_text
+    >>> read_model(muscle_text(), "muscle.toml").path
+    'muscle.toml'
+    """
+    return _Reader(Source.from_text(text, path)).model()
 
 
 class _Reader:
@@ -538,11 +549,7 @@ class _Reader:
         if data is None:
             # the chain of the delays, one vertex per step; a side without delay keeps an edge
             # of 0 steps, so the controller's own vertex (after the sensor-side steps) exists
-            ds, da = delays
-            steps = ([1] * ds or [0]) + ([1] * da or [0])
-            names = tuple(f"v{i + 1}" for i in range(len(steps) + 1))
-            edges = tuple((names[i], names[i + 1], d) for i, d in enumerate(steps))
-            return DelayGraph.chain(steps), names, edges, False, {}
+            return (*chain_graph(*delays), False, {})
         table = self.table(data, "delay_graph", "delay_graph")
         if "vertices" not in table:
             raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")

@@ -2,8 +2,8 @@
 
 :func:`muscle` reads the packaged ``presets/muscle.toml`` (a copy of
 ``examples/muscle.toml``; a test keeps them identical) with the muscle's
-parameters, the delays and the circuits' seed and count replaced, so that
-``derive_paper(tau=...)`` and ``symctl derive examples/muscle.toml`` run one
+values given replaced (:meth:`Model.replace <symctl.model.model.Model.replace>`),
+so that ``derive_paper(tau=...)`` and ``symctl derive examples/muscle.toml`` run one
 pipeline on one description.
 
 >>> from symctl.model.presets import muscle
@@ -14,12 +14,10 @@ pipeline on one description.
 
 from __future__ import annotations
 
-import copy
 from functools import cache
 from importlib import resources
 
-from symctl.model.modelfile import Model, _Reader
-from symctl.model.source import Source
+from symctl.model.modelfile import Model, read_model
 
 __all__ = ["MUSCLE_FILE", "muscle", "muscle_text"]
 
@@ -34,47 +32,24 @@ def muscle_text() -> str:
 
 
 @cache
-def _source() -> Source:
-    return Source.from_text(muscle_text(), "muscle preset (examples/muscle.toml)")
+def _preset() -> Model:
+    return read_model(muscle_text(), "muscle preset (examples/muscle.toml)")
 
 
-def muscle(
-    *,
-    tau: float | None = None,
-    f_max: float | None = None,
-    r_bar: float | None = None,
-    Ts: float | None = None,
-    sensor_delay: int | None = None,
-    actuator_delay: int | None = None,
-    seed: int | None = None,
-    realizations: int | None = None,
-) -> Model:
-    """The muscle preset, with the values given replacing the file's (validated by the caller).
+def muscle(**values) -> Model:
+    """The muscle preset, with the values given replacing the file's.
 
     Parameters
     ----------
-    tau, f_max, r_bar, Ts : float, optional
-        The muscle's parameters and the sampling time.
-    sensor_delay, actuator_delay : int, optional
-        The delays in steps.
-    seed, realizations : int, optional
-        Of the random realizations.
+    **values
+        As :meth:`Model.replace <symctl.model.model.Model.replace>` takes them: the
+        muscle's ``tau``, ``f_max``, ``r_bar``, the sampling time ``Ts``, the delays
+        ``sensor_delay``, ``actuator_delay`` in steps, ``Q``, ``R``, ``seed`` and
+        ``realizations``; a value None keeps the file's.
 
     Returns
     -------
     Model
     """
-    src = _source()
-    data = copy.deepcopy(src.data)
-    for key, value in (("tau", tau), ("f_max", f_max), ("r_bar", r_bar)):
-        if value is not None:
-            data["parameters"][key]["value"] = value
-    if Ts is not None:
-        data["sampling"]["Ts"] = {"value": Ts, "unit": "s"}
-    for key, value in (("sensor", sensor_delay), ("actuator", actuator_delay)):
-        if value is not None:
-            data["delays"][key] = value
-    for key, value in (("seed", seed), ("realizations", realizations)):
-        if value is not None:
-            data["circuits"][key] = value
-    return _Reader(Source(data, src.path, src.lines, src.text)).model()
+    given = {k: v for k, v in values.items() if v is not None}
+    return _preset().replace(**given) if given else _preset()

@@ -34,6 +34,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
@@ -64,7 +65,7 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 
 
 @dataclass(frozen=True, eq=False)
-class BatchResponse:
+class BatchResponse(ArrayValue):
     """Traces of many closed loops at once (see :func:`simulate_batch`).
 
     Attributes

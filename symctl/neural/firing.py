@@ -41,13 +41,14 @@ realization, no free parameters): its one neuron :math:`\mu` of
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import (
     MAX_CIRCUITS,
@@ -72,7 +73,8 @@ from symctl.neural.simulate import (
     closed_loop_response,
     simulate_realization,
 )
-from symctl.realization.factorization import factor
+from symctl.realization.draws import Draw, draw_realizations
+from symctl.realization.draws import draw_eps as _draw_eps
 from symctl.realization.realization import Realization, controller_realization
 from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer, ifp_realization
 from symctl.symbols import gain_symbols
@@ -92,13 +94,11 @@ def __getattr__(name: str):
 
 LEGEND_MAX_EPS = 4
 """Most epsilons a realization's legend entry lists (beyond, their count)."""
-_EPS_GRID = 1000  # epsilons are k / 1000 with |k| <= 899: the open interval (-0.9, 0.9)
-_EPS_MAX = 899
 
 
 # ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
-class FiringSummary:
+class FiringSummary(ArrayValue):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
 
     Attributes
@@ -163,7 +163,7 @@ class FiringSummary:
 
 
 @dataclass(frozen=True, eq=False)
-class FiringPatterns:
+class FiringPatterns(ArrayValue):
     r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
 
     Attributes
@@ -378,8 +378,11 @@ def _scalar(n: int, m: int, argname: str) -> None:
 
 
 # ---------------------------------------------------------------- the pieces
-def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator):
-    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric)."""
+def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator, draws=None):
+    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric).
+
+    ``draws``: the realizations of :math:`G_2` to simulate (else ``count`` drawn from ``gen``).
+    """
     s = gains.system
     if _whole(kind):
         K = np.asarray(gains.K, dtype=float).ravel()
@@ -388,26 +391,22 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator)
         R = ifp_realization(gains)
         yield {}, R, R, circuit
         return
-    realizer = get_realizer(kind, "kind")  # "general": a random P drawn from gen
-    # the optimal controller with the gains as the exact rationals of their floats: every
-    # realization below is then exact rational arithmetic (python-flint), never float SymPy
-    G = controller_tf(s).subs(gains.substitutions(exact=True))
-    f0 = factor(G, s.sensor_delay, s.actuator_delay)  # the section symbols, per channel
-    eps = (*f0.sensor_eps, *f0.actuator_eps)
-    for _ in range(count):
-        drawn = _draw_eps(eps, gen)
-        # the factors built at the drawn values: exact and cheap (no substitution into G2)
-        fs = factor(G, s.sensor_delay, s.actuator_delay, eps=list(drawn.values()), C=1)
-        R2 = realizer(fs.G2, rng=gen).realization
-        params = {**drawn, **R2.params}
+    for d in draws if draws is not None else _draw(kind, gains, count, gen):
+        R2 = d.result.realization
+        params = {**d.values, **R2.params}
         R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)
-        circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))
-        yield params, R2, controller_realization(fs, R2), circuit
+        circuit = Circuit.from_structure(Structure.from_factorization(d.factors, R2))
+        yield params, R2, controller_realization(d.factors, R2), circuit
 
 
-def _draw_eps(eps, gen: np.random.Generator) -> dict:
-    """Each epsilon drawn uniformly from the grid k / 1000, |k| <= 899 (exact rationals)."""
-    return {e: sp.Rational(int(gen.integers(-_EPS_MAX, _EPS_MAX + 1)), _EPS_GRID) for e in eps}
+def _draw(kind: str, gains: Gains, count: int, gen: np.random.Generator) -> tuple[Draw, ...]:
+    """``count`` realizations of the optimal controller's :math:`G_2` drawn from ``gen``."""
+    s = gains.system
+    get_realizer(kind, "kind")
+    # the optimal controller with the gains as the exact rationals of their floats: every
+    # realization is then exact rational arithmetic (python-flint), never float SymPy
+    G = controller_tf(s).subs(gains.substitutions(exact=True))
+    return draw_realizations(G, s.sensor_delay, s.actuator_delay, kind, count, gen)
 
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
@@ -448,6 +447,7 @@ def circuit_firing(
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
     rtol: float = 1e-9,
+    draws: Sequence[Draw] | None = None,
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
@@ -486,6 +486,11 @@ def circuit_firing(
         pulse on steps 5..14 of 50).
     rtol : float
         Tolerance of the behaviour check (default 1e-9).
+    draws : sequence of Draw, optional
+        The realizations of :math:`G_2` to simulate, drawn already
+        (:func:`~symctl.realization.draws.draw_realizations` of the gains' controller,
+        as the derivation draws them before it simulates); ``count`` and ``seed`` are
+        then not used. Default: ``count`` drawn from ``seed``.
 
     Returns
     -------
@@ -527,7 +532,14 @@ def circuit_firing(
     plant = _plant(plant, gains)
     count = _count(count, kind)
     gen = as_generator(seed, "seed")
-    rows = _realizations(kind, gains, count, gen)
+    if draws is not None:
+        draws = tuple(draws)
+        if kind == "ifp" or not draws or not all(isinstance(d, Draw) for d in draws):
+            raise ParameterError(
+                "draws: expected a non-empty sequence of Draw (draw_realizations) for a "
+                f"realization of G2, got {type(draws).__name__} for kind {kind!r}"
+            )
+    rows = _realizations(kind, gains, count, gen, draws)
     return _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
 
 

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import (
     MAX_COUNT,
     bounded_int,
@@ -61,7 +62,7 @@ r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Rada
 
 
 @dataclass(frozen=True, eq=False)
-class NonlinearCheck:
+class NonlinearCheck(ArrayValue):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
 
     Attributes
@@ -346,7 +347,7 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
 
 
 @dataclass(frozen=True, eq=False)
-class DelaySearch:
+class DelaySearch(ArrayValue):
     r"""The longest net delay for which the optimal controller still stabilizes the nonlinear plant.
 
     Attributes

@@ -46,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from symctl._util.pickling import ArrayValue
 from symctl._util.validate import (
     MAX_STATES,
     MAX_STEPS,
@@ -168,7 +169,7 @@ def _ts(p: DiscretePlant) -> float:
 
 # ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
-class Response:
+class Response(ArrayValue):
     r"""Traces of one simulation (open or closed loop), all sampled at ``t = k Ts``.
 
     Attributes

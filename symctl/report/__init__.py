@@ -14,12 +14,11 @@ Modules, lowest first (each imports only those above it in this list):
 - ``figures``: the report's figures by name, saved as PDF and PNG (SVG on request);
 - ``output``: an output folder written all at once (checked, locked, staged
   beside its place, renamed into it when complete);
-- ``results``: ``PaperResults`` (with its records), ``results.json``, and
-  ``PaperResults.write`` / ``PaperResults.figure``;
-- ``pipeline``: ``derive_paper``, which runs the derivation and returns a
-  ``PaperResults``.
+- ``results``: a :class:`~symctl.derivation.Derivation` written: ``results.json``,
+  the documents and the figures (``Derivation.write`` / ``Derivation.figure``).
 
-The names of the former module ``symctl.report`` stay importable from here.
+The report computes nothing: :mod:`symctl.derivation` derives. The names of the
+former module ``symctl.report`` stay importable from here.
 
 Examples
 --------
@@ -34,9 +33,9 @@ __getattr__, __dir__, __all__ = attach(
     __name__,
     {
         "CIRCUITS": "symctl.report.spec",
-        "CircuitRecord": "symctl.report.results",
-        "PaperResults": "symctl.report.results",
-        "RealizationRecord": "symctl.report.results",
-        "derive_paper": "symctl.report.pipeline",
+        "CircuitRecord": "symctl.derivation.derivation",
+        "PaperResults": "symctl.derivation.derivation",
+        "RealizationRecord": "symctl.derivation.derivation",
+        "derive_paper": "symctl.derivation.pipeline",
     },
 )

@@ -62,7 +62,7 @@ def factorization(res) -> list[DocumentBlock]:
     )
     blocks.append(
         Text(
-            f"$G_3 G_2 G_1 = G$ proved entry by entry: {'yes' if f.verify() else 'NO'} "
+            f"$G_3 G_2 G_1 = G$ proved entry by entry: {'yes' if res.verified else 'NO'} "
             "(each $g_{3,i} (G_2)_{ij} g_{1,j} = G_{ij}$ as a polynomial identity)."
         )
     )

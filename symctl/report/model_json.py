@@ -1,6 +1,6 @@
 """The model's entries of ``results.json``: ``plant`` (with the equilibrium) and ``model``.
 
-Read from a :class:`~symctl.report.results.PaperResults` (``res``), which this module
+Read from a :class:`~symctl.derivation.derivation.Derivation` (``res``), which this module
 does not import (it sits above).
 
 >>> from symctl import derive_paper
@@ -54,7 +54,11 @@ def plant(res) -> dict:
 
 
 def model(res) -> dict:
-    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped."""
+    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped.
+
+    Its ``file`` (the model file's text, its name and the values replaced:
+    :meth:`~symctl.model.model.Model.to_dict`) re-creates the model.
+    """
     spec = res.spec
     out = {
         "name": spec.name,
@@ -66,6 +70,7 @@ def model(res) -> dict:
         "notes": list(spec.notes),
         "skipped": res.skipped,
         "longest_delay": None,
+        "file": spec.to_dict() if spec.source else None,  # re-creates the model (load_results)
     }
     if res.longest is not None:
         L = res.longest

@@ -22,7 +22,8 @@ import sympy as sp
 
 from symctl import latex as L
 from symctl.model.presets import muscle
-from symctl.neural.firing import _EPS_GRID, _EPS_MAX  # the grid of the random section poles
+from symctl.realization.draws import EPS_GRID as _EPS_GRID  # the grid of the random section poles
+from symctl.realization.draws import EPS_MAX as _EPS_MAX
 from symctl.report.document import DocumentBlock, Heading, Table, Text
 from symctl.report.reference import cite
 from symctl.report.shorthand import _both, _eq, _fmt, _num

@@ -1,647 +1,450 @@
-r"""What the paper's derivation produced: :class:`PaperResults`, its records, and its files.
+r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
 
-:func:`~symctl.report.pipeline.derive_paper` returns a :class:`PaperResults`:
-every derived object, symbolic and numeric, with one :class:`RealizationRecord`
-per realization of :math:`G_2` and one :class:`CircuitRecord` per circuit.
-:meth:`PaperResults.to_json` is the ``results.json`` document (schema in the
-README); :meth:`PaperResults.figure` draws one of the report's figures and
-:meth:`PaperResults.write` writes every file of ``symctl paper``.
+The report stage computes nothing: it reads a derivation (made by
+:func:`~symctl.derivation.derive`) and writes it. :func:`results_json` is the
+``results.json`` document (schema in the README); :func:`figure` draws one of the
+report's figures and :func:`write` writes every file of ``symctl paper``. The
+derivation's :meth:`~symctl.derivation.Derivation.to_json`,
+:meth:`~symctl.derivation.Derivation.figure` and
+:meth:`~symctl.derivation.Derivation.write` call them.
 
 This module sits above the modules that render the results
 (:mod:`~symctl.report.story`, :mod:`~symctl.report.document`,
-:mod:`~symctl.report.figures`), which read a :class:`PaperResults` without
-importing it, so that ``write`` and ``figure`` are plain methods and no import
-runs back up.
+:mod:`~symctl.report.figures`), which read a derivation without importing it.
 
 Examples
 --------
 >>> from symctl import derive_paper
->>> res = derive_paper()
->>> round(res.to_json()["plant"]["f_bar"], 4)
+>>> from symctl.report.results import results_json
+>>> round(results_json(derive_paper())["plant"]["f_bar"], 4)
 43.8635
->>> res.circuits["controllable"].circuit.n_neurons
-4
 """
 
 from __future__ import annotations
 
-import dataclasses
 import json
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from collections.abc import Callable
 from pathlib import Path
-from types import MappingProxyType
 
 import numpy as np
 import sympy as sp
 
 from symctl._util.display import descending_str
 from symctl._util.validate import positive_int
-from symctl.compatibility.check import CompatibilityResult
-from symctl.compatibility.delaygraph import DelayGraph
-from symctl.compatibility.structure import Structure
-from symctl.design.augment import AugmentedSystem
-from symctl.design.lqr import Gains
-from symctl.design.plant import DiscretePlant, MuscleModel
-from symctl.design.tf import DiscreteTF
-from symctl.neural.circuit import Circuit
-from symctl.neural.firing import FiringPatterns
-from symctl.neural.nonlinear import NonlinearCheck
-from symctl.neural.simulate import Response
-from symctl.realization.check import RealizationCheck
-from symctl.realization.factorization import Factorization, remainder
-from symctl.realization.realization import Realization
-from symctl.realization.realizers import REALIZERS
+from symctl.derivation.derivation import CircuitRecord, PaperResults, RealizationRecord
+from symctl.realization.factorization import remainder
 from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
 from symctl.report.spec import SCHEMA_VERSION
 
-__all__ = ["CircuitRecord", "PaperResults", "RealizationRecord"]
+__all__ = [
+    "CircuitRecord",
+    "PaperResults",
+    "RealizationRecord",
+    "circuit_json",
+    "factor_texts",
+    "figure",
+    "figure_names",
+    "parameters",
+    "realization_json",
+    "results_json",
+    "write",
+    "write_files",
+]
 
 
-def _hash_fields(obj) -> int:
-    """A hash of a frozen dataclass's fields, mappings hashed by their items."""
-    values = (getattr(obj, f.name) for f in dataclasses.fields(obj))
-    return hash(tuple(tuple(v.items()) if isinstance(v, Mapping) else v for v in values))
+def realization_json(self) -> dict:
+    """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
+    sym, num = self.check_symbolic, self.check_numeric
+    return {
+        "symbolic": {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"},
+        "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
+        "values": {k: float(v) for k, v in self.values.items()},
+        "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
+        "check": {
+            "symbolic": {"ok": sym.ok, "method": sym.method},
+            "numeric": {"ok": num.ok, "method": num.method},
+        },
+    }
 
 
-@dataclass(frozen=True)
-class RealizationRecord:
-    """One realization of :math:`G_2` for the report: symbolic, numeric, and the checks of both.
-
-    Parameters
-    ----------
-    name : str
-        ``"controllable"``, ``"observable"`` or ``"general"``.
-    symbolic, numeric : Realization
-        The realization in the symbols of the factorization, and with the
-        numbers of the simulations.
-    values : mapping
-        The numbers substituted (``epsilon_1``, ``C_1``, ... by name); kept read-only.
-    check_symbolic, check_numeric : RealizationCheck
-        The exact checks that each realizes :math:`G_2`.
-    P, P_numeric : sympy Matrix or None
-        The similarity transforms of the two from their canonical base (the
-        realizer's :class:`~symctl.realization.realizers.RealizerResult`), or
-        None for a canonical form.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> rec = derive_paper().realizations["controllable"]
-    >>> rec.name, bool(rec.check_symbolic), bool(rec.check_numeric)
-    ('controllable', True, True)
-    >>> sorted(rec.values)
-    ['C_1', 'C_3', 'epsilon_1', 'epsilon_3']
-    """
-
-    name: str
-    symbolic: Realization
-    numeric: Realization
-    values: Mapping[str, object]
-    check_symbolic: RealizationCheck
-    check_numeric: RealizationCheck
-    P: sp.MatrixBase | None = None
-    P_numeric: sp.MatrixBase | None = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
-
-    __hash__ = _hash_fields
-
-    def to_json(self) -> dict:
-        """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
-        sym, num = self.check_symbolic, self.check_numeric
-        return {
-            "symbolic": {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"},
-            "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
-            "values": {k: float(v) for k, v in self.values.items()},
-            "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
-            "check": {
-                "symbolic": {"ok": sym.ok, "method": sym.method},
-                "numeric": {"ok": num.ok, "method": num.method},
-            },
-        }
+def circuit_json(self) -> dict:
+    """The entry of ``results.json``'s ``circuits`` for this circuit."""
+    c, fp, verdict = self.circuit, self.firing, self.compatibility
+    peak = fp.summary().peak
+    return {
+        "neurons": {
+            "count": c.n_neurons,
+            "G2": self.g2_neurons,
+            "names": [n.name for n in c.neurons],
+            "vertices": {n.name: n.vertex for n in c.neurons},
+            "branches": {n.name: n.branches for n in c.neurons},
+        },
+        "synapses": len(c.synapses),
+        "signals": len(self.structure.signals),
+        "compatible": verdict.ok,
+        "compatibility": {
+            "method": verdict.method,
+            "reason": verdict.reason,
+            "E_tilde": _delays(verdict.E_tilde) if verdict.ok else None,
+        },
+        "max_closed_loop_deviation": fp.max_deviation,
+        "realizations": [
+            {str(k): _value(v) for k, v in params.items()} | {c: 1.0 for c in _section_C(params)}
+            for params in fp.params
+        ],
+        "peak_firing": {
+            name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
+            for i, name in enumerate(fp.neurons)
+        },
+    }
 
 
-@dataclass(frozen=True)
-class CircuitRecord:
-    """One circuit of the report: its structure, compatibility, neurons and simulations.
+def parameters(self) -> dict:
+    """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
 
-    Parameters
-    ----------
-    name : str
-        One of :data:`~symctl.report.spec.CIRCUITS`.
-    structure : Structure
-        The structure (gains, adders, unit delays); symbolic, for ``"general"``
-        with the symbolic or seeded ``P`` of the :class:`RealizationRecord`.
-    compatibility : CompatibilityResult
-        Whether the structure fits the delay graph, with its evidence.
-    circuit : Circuit
-        The neurons of the structure (placed on the delay graph when compatible).
-    firing : FiringPatterns
-        The closed-loop simulations of the random realizations
-        (:func:`~symctl.neural.firing.circuit_firing`).
+    Returns
+    -------
+    dict
+        ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
+        (nested lists of floats) and ``seed``.
 
     Examples
     --------
     >>> from symctl import derive_paper
-    >>> rec = derive_paper().circuits["observable"]
-    >>> rec.circuit.n_neurons, rec.g2_neurons, bool(rec.compatibility)
-    (5, 3, True)
+    >>> derive_paper(tau=0.05).parameters()["tau"]
+    0.05
     """
+    s = self.system
+    values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.Ts}
+    return {
+        **values,
+        "sensor_delay": s.sensor_delay,
+        "actuator_delay": s.actuator_delay,
+        "Q": _matrix(s.Q_plant),
+        "R": _matrix(s.R),
+        "seed": self.seed,
+    }
 
-    name: str
-    structure: Structure
-    compatibility: CompatibilityResult
-    circuit: Circuit
-    firing: FiringPatterns
 
-    @property
-    def g2_neurons(self) -> int | None:
-        """The neurons of the G2 parts (None for the IFP controller, which has no G2)."""
-        if self.name in REALIZERS and REALIZERS[self.name].controller:
-            return None
-        return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
+def results_json(self) -> dict:
+    """The ``results.json`` document: a dictionary of plain lists, floats and strings.
 
-    def to_json(self) -> dict:
-        """The entry of ``results.json``'s ``circuits`` for this circuit."""
-        c, fp, verdict = self.circuit, self.firing, self.compatibility
-        peak = fp.summary().peak
-        return {
-            "neurons": {
-                "count": c.n_neurons,
-                "G2": self.g2_neurons,
-                "names": [n.name for n in c.neurons],
-                "vertices": {n.name: n.vertex for n in c.neurons},
-                "branches": {n.name: n.branches for n in c.neurons},
+    Returns
+    -------
+    dict
+        Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
+        ``gains``, ``controller``, ``factorization``, ``closed_loop``,
+        ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
+        "results.json").
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> data = derive_paper().to_json()
+    >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
+    (1, True, 3)
+    """
+    s = self.system
+    G = self.G
+    rows, cols = G.shape
+    numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "parameters": parameters(self),
+        "plant": model_json.plant(self),
+        "augmented": {
+            "T": s.T,
+            "state": list(s.state_names),
+            "A": _matrix(s.A),
+            "B": _matrix(s.B),
+            "Q": _matrix(s.Q),
+        },
+        "gains": {
+            "K": self.gains.K.tolist(),
+            "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
+        },
+        "controller": {
+            "numerator": numerator[0][0] if G.is_siso else numerator,
+            "denominator": _floats(G.den_coeffs()),
+            "relative_degree": G.relative_degree,
+            "dt": self.spec.Ts,
+            "symbolic": {
+                "numerator": _poly_text(self.G_symbolic.num),
+                "denominator": descending_str(self.G_symbolic.den),
+                "latex": self.G_symbolic.latex(),
             },
-            "synapses": len(c.synapses),
-            "signals": len(self.structure.signals),
-            "compatible": verdict.ok,
-            "compatibility": {
-                "method": verdict.method,
-                "reason": verdict.reason,
-                "E_tilde": _delays(verdict.E_tilde) if verdict.ok else None,
-            },
-            "max_closed_loop_deviation": fp.max_deviation,
-            "realizations": [
-                {str(k): _value(v) for k, v in params.items()}
-                | {c: 1.0 for c in _section_C(params)}
-                for params in fp.params
-            ],
-            "peak_firing": {
-                name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
-                for i, name in enumerate(fp.neurons)
-            },
+            "proved": bool(self.proved),
+        },
+        "factorization": _factorization_json(self) if self.factors is not None else None,
+        "closed_loop": {
+            "poles": [[float(p.real), float(p.imag)] for p in self.gains.poles],
+            "spectral_radius": self.gains.spectral_radius,
+        },
+        "delay_graph": {
+            "E": _delays(self.graph.E),
+            "vertices": self.graph.n,
+            "chain_delays": list(self.graph.chain_delays or ()),
+            "edges": [list(e) for e in self.graph.edges],
+            "sensors": list(self.graph.sensors),
+            "actuators": list(self.graph.actuators),
+            "theorem": _theorem_json(self.pathways),
+        },
+        "circuits": {name: circuit_json(rec) for name, rec in self.circuits.items()},
+        "simulation": _simulation_json(self),
+        "atlas": _atlas_json(self),
+        "model": model_json.model(self),
+    }
+
+
+def _atlas_json(self) -> dict | None:
+    if self.atlas is None:
+        return None
+    from symctl.report.atlas import candidates_json, claim_json
+
+    return {**claim_json(self.atlas), "candidates": candidates_json(self.candidates)}
+
+
+def _simulation_json(self) -> dict:
+    ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
+    out = {
+        "t": _floats(cl.t),
+        "open_loop": {
+            "pulse": _floats(ol.delta_r[:, 0]),
+            "delta_f": _floats(ol.delta_f[:, 0]),
+        },
+        "closed_loop": {
+            "disturbance": _floats(cl.w[:, 0]),
+            "delta_f": _floats(cl.delta_f[:, 0]),
+            "delta_r": _floats(cl.delta_r[:, 0]),
+        },
+        "nonlinear": None
+        if nl is None
+        else {
+            "amplitudes": _floats(nl.amplitudes),
+            "max_deviation": _finite(nl.max_deviation),
+            "relative_deviation": _finite(nl.relative_deviation),
+        },
+    }
+    if self.plant.n > 1 or self.plant.m > 1:  # every state and input, by name
+        out["states"] = {
+            n: {
+                "open_loop": _floats(ol.delta_f[:, i]),
+                "closed_loop": _floats(cl.delta_f[:, i]),
+            }
+            for i, n in enumerate(self.names[0])
         }
+        out["inputs"] = {n: _floats(cl.delta_r[:, i]) for i, n in enumerate(self.names[1])}
+    return out
 
 
-@dataclass(frozen=True)
-class PaperResults:
-    r"""Everything the paper's derivation produced, symbolic and numeric.
+def factor_texts(self) -> dict:
+    """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text (``results.json``'s).
 
-    Made by :func:`~symctl.report.pipeline.derive_paper`; the fields are in
-    the order of the pipeline.
+    Beyond :data:`~symctl.derivation.pipeline.EXPANDED_ZEROS_MAX` sections, the product
+    forms: expanded, the zeros have :math:`2^d` terms.
+    """
+    f = self.factors
+    N = remainder(self.G2_symbolic)[0] if f.is_siso else f.N
+    if self.abbreviated:
+        sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
+        G1, G3 = (_product_text(sp.Mul(*c), e, d) for c, e, d in sides)
+        G2 = _product_text(
+            f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C), f.poles, f.G.den, zeros=True
+        )
+    else:
+        G1, G2, G3 = str(f.G1), str(f.G2), str(f.G3)
+    N = _text_matrix(N) if isinstance(N, sp.MatrixBase) else sp.sstr(N)
+    return {"G1": G1, "G2": G2, "G3": G3, "N": N}
+
+
+def _factorization_json(self) -> dict:
+    f = self.factors
+    # a MIMO G has a matrix feed-through; the rewritten G2 is the SISO form
+    coeffs = remainder(self.G2_symbolic)[1] if f.is_siso else []
+    poles = ", ".join(map(str, f.poles))
+    return {
+        **factor_texts(self),
+        "channels": list(f.channels),
+        "remainder_coeffs": [sp.sstr(c) for c in coeffs],
+        "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
+        if self.abbreviated
+        else {},
+        "verified": bool(self.verified),
+        "realizations": {name: realization_json(rec) for name, rec in self.realizations.items()},
+    }
+
+
+def figure_names(self) -> list[str]:
+    """The names of the report's figures, in reading order (the file names of :meth:`write`).
+
+    Returns
+    -------
+    list of str
+        ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
+        ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
+        ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
+        circuits (table in :mod:`symctl.report.figures`).
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> names = derive_paper().figure_names()
+    >>> len(names), names[-4:]
+    (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
+    """
+    return _figures.figure_names(self)
+
+
+def figure(self, name: str):  # -> matplotlib.figure.Figure (matplotlib: only in plotting)
+    """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
 
     Parameters
     ----------
-    model : MuscleModel
-        The muscle and its parameters.
-    plant_symbolic, plant : DiscretePlant
-        The discretized linear muscle, in symbols and with the numbers.
-    system : AugmentedSystem
-        The delay-augmented system and cost.
-    gains : Gains
-        The optimal gains :math:`K_0, \dots, K_T` and the closed-loop poles.
-    G_symbolic, G : DiscreteTF
-        The controller :math:`G(z)` in the gains' symbols, and with the optimal gains.
-    proved : bool
-        Whether the derivation of :math:`G` was proved against the state-space matrices.
-    seed : int
-        The seed of the random realizations.
-    factors : Factorization
-        :math:`G = G_3 G_2 G_1`.
-    realizations : mapping of str to RealizationRecord
-        The realizations of :math:`G_2` (read-only).
-    graph : DelayGraph
-        The delay graph of the circuits.
-    circuits : mapping of str to CircuitRecord
-        The circuits, by name, in the order of :data:`~symctl.report.spec.CIRCUITS` (read-only).
-    open_loop, closed_loop : Response
-        The open-loop pulse response of the muscle and the optimal closed loop's.
-    nonlinear : NonlinearCheck
-        The linear controller around the nonlinear muscle.
-    G2_symbolic : DiscreteTF, optional
-        The :math:`G_2` the symbolic realizations realize: ``factors.G2``
-        (the default), or beyond :data:`~symctl.report.spec.EXPANDED_ZEROS_MAX`
-        sections ``factors.abbreviated()``, its zeros' coefficients written
-        :math:`\sigma_k = e_k(\epsilon)`.
-    atlas, candidates, spec, longest, skipped : optional
-        The atlas and its candidate circuits, the model, the longest-delay
-        search, and the stages left out (with the reason).
-    pathways : ControllerCompatibility, optional
-        The exact verdict on the delay graph (SISO controllers): the theorem,
-        and the structure built along the graph's pathways.
+    name : str
+        One of :meth:`figure_names`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ParameterError
+        ``name`` is not one of :meth:`figure_names`.
 
     Examples
     --------
     >>> from symctl import derive_paper
     >>> res = derive_paper()
-    >>> print(res.G_symbolic)
-    (K_0)/(z**2 - K_1*z - K_2)
-    >>> res.figure_names()[:3]
-    ['open_loop', 'closed_loop', 'delay_graph']
-    >>> res.circuits["ifp"] = None
+    >>> fig = res.figure("closed_loop")
+    >>> type(fig).__name__
+    'Figure'
+    >>> res.figure("no_such_figure")
     Traceback (most recent call last):
     ...
-    TypeError: 'mappingproxy' object does not support item assignment
+    symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
     """
+    return _figures.make_figure(self, name)
 
-    model: MuscleModel
-    plant_symbolic: DiscretePlant
-    plant: DiscretePlant
-    system: AugmentedSystem
-    gains: Gains
-    G_symbolic: DiscreteTF
-    G: DiscreteTF
-    proved: bool
-    seed: int
-    factors: Factorization
-    realizations: Mapping[str, RealizationRecord]
-    graph: DelayGraph
-    circuits: Mapping[str, CircuitRecord]
-    open_loop: Response
-    closed_loop: Response
-    nonlinear: NonlinearCheck
-    G2_symbolic: DiscreteTF | None = None
-    atlas: object = None
-    candidates: tuple | None = None
-    spec: object = None
-    longest: object = None
-    skipped: str | None = None
-    pathways: object = None
 
-    def __post_init__(self) -> None:
-        for name in ("realizations", "circuits"):
-            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
-        if self.G2_symbolic is None and self.factors is not None:
-            object.__setattr__(self, "G2_symbolic", self.factors.G2)
+def write(
+    self,
+    out: Path | str,
+    *,
+    figures: bool = True,
+    pdf: bool = True,
+    jobs: int | None = None,
+    progress: Callable[[str], None] | None = None,
+    formats: str | tuple[str, ...] = _figures.DEFAULT_FORMATS,
+) -> list[Path]:
+    """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
 
-    @property
-    def abbreviated(self) -> bool:
-        r"""Whether the symbolic realizations write :math:`G_2`'s zeros as :math:`\sigma_k`."""
-        return self.factors is not None and self.G2_symbolic != self.factors.G2
+    The files are written into a fresh folder beside ``out`` and moved into
+    place only when all are written (:class:`~symctl.report.output.OutputFolder`):
+    ``out`` is always either the old complete folder or the new complete
+    one, and on any error it is left as it was. ``out`` is checked before
+    anything is written, and a second run on the same ``out`` is refused
+    while one is under way.
 
-    @property
-    def names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
-        """The states' and inputs' names as the model gives them (the muscle's ``f``, ``r``)."""
-        if self.spec is not None:
-            return self.spec.signal_names
-        return ("f",), ("r",)
+    Parameters
+    ----------
+    out : path
+        The folder: new (made, with its parents), empty, or the folder of
+        an earlier run (replaced).
+    figures : bool
+        Also write the figures (:meth:`figure_names`).
+    pdf : bool
+        Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
+    jobs : int, optional
+        Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
+    progress : callable, optional
+        Called with the name of each step (``"figures"``, ``"documents"``,
+        ``"pdflatex"``) before it runs.
+    formats : str or sequence of str
+        The figures' formats (:func:`symctl.report.figures.figure_formats`): by
+        default the PDF that ``derivation.tex`` includes and the PNG that
+        ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
+        figures written in its format.
 
-    def unit(self, name: str) -> str:
-        """The unit of a state, input or parameter of the model ('' when not given)."""
-        if self.spec is not None:
-            return self.spec.unit(name)
-        return {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}.get(
-            name, ""
-        )
+    Returns
+    -------
+    list of Path
+        The files written, inside ``out``: ``results.json``, the figures,
+        ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
 
-    __hash__ = _hash_fields
+    Raises
+    ------
+    SymctlTypeError
+        ``out`` is not a path.
+    ParameterError
+        ``out`` is empty, a file, a folder holding other files, cannot be
+        made, or is being written by another run; or ``jobs`` is not an
+        integer >= 1; or ``formats`` names an unknown format.
+    LatexError
+        ``pdflatex`` failed on ``derivation.tex``.
+    OSError
+        Writing failed (``out`` is then as it was).
 
-    def parameters(self) -> dict:
-        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from symctl import derive_paper
+    >>> with tempfile.TemporaryDirectory() as parent:
+    ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
+    ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
+    (['results.json', 'derivation.tex', 'report.md'], ['paper'])
+    >>> derive_paper().write("")
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: out: must name a folder, got ''
+    """
+    if jobs is not None:
+        positive_int(jobs, "jobs")
+    formats = _figures.figure_formats(formats)
+    with OutputFolder(out, "out") as folder:
+        kw = {"figures": figures, "pdf": pdf, "jobs": jobs, "formats": formats}
+        written = write_files(self, folder.staging, progress=progress, **kw)
+        return folder.final(written)
 
-        Returns
-        -------
-        dict
-            ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
-            (nested lists of floats) and ``seed``.
 
-        Examples
-        --------
-        >>> from symctl import derive_paper
-        >>> derive_paper(tau=0.05).parameters()["tau"]
-        0.05
-        """
-        s = self.system
-        values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.Ts}
-        return {
-            **values,
-            "sensor_delay": s.sensor_delay,
-            "actuator_delay": s.actuator_delay,
-            "Q": _matrix(s.Q_plant),
-            "R": _matrix(s.R),
-            "seed": self.seed,
-        }
-
-    def to_json(self) -> dict:
-        """The ``results.json`` document: a dictionary of plain lists, floats and strings.
-
-        Returns
-        -------
-        dict
-            Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
-            ``gains``, ``controller``, ``factorization``, ``closed_loop``,
-            ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
-            "results.json").
-
-        Examples
-        --------
-        >>> from symctl import derive_paper
-        >>> data = derive_paper().to_json()
-        >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
-        (1, True, 3)
-        """
-        s = self.system
-        G = self.G
-        rows, cols = G.shape
-        numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
-        return {
-            "schema_version": SCHEMA_VERSION,
-            "parameters": self.parameters(),
-            "plant": model_json.plant(self),
-            "augmented": {
-                "T": s.T,
-                "state": list(s.state_names),
-                "A": _matrix(s.A),
-                "B": _matrix(s.B),
-                "Q": _matrix(s.Q),
-            },
-            "gains": {
-                "K": self.gains.K.tolist(),
-                "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
-            },
-            "controller": {
-                "numerator": numerator[0][0] if G.is_siso else numerator,
-                "denominator": _floats(G.den_coeffs()),
-                "relative_degree": G.relative_degree,
-                "dt": self.spec.Ts,
-                "symbolic": {
-                    "numerator": _poly_text(self.G_symbolic.num),
-                    "denominator": descending_str(self.G_symbolic.den),
-                    "latex": self.G_symbolic.latex(),
-                },
-                "proved": bool(self.proved),
-            },
-            "factorization": self._factorization_json() if self.factors is not None else None,
-            "closed_loop": {
-                "poles": [[float(p.real), float(p.imag)] for p in self.gains.poles],
-                "spectral_radius": self.gains.spectral_radius,
-            },
-            "delay_graph": {
-                "E": _delays(self.graph.E),
-                "vertices": self.graph.n,
-                "chain_delays": list(self.graph.chain_delays or ()),
-                "edges": [list(e) for e in self.graph.edges],
-                "sensors": list(self.graph.sensors),
-                "actuators": list(self.graph.actuators),
-                "theorem": _theorem_json(self.pathways),
-            },
-            "circuits": {name: rec.to_json() for name, rec in self.circuits.items()},
-            "simulation": self._simulation_json(),
-            "atlas": self._atlas_json(),
-            "model": model_json.model(self),
-        }
-
-    def _atlas_json(self) -> dict | None:
-        if self.atlas is None:
-            return None
-        from symctl.report.atlas import candidates_json, claim_json
-
-        return {**claim_json(self.atlas), "candidates": candidates_json(self.candidates)}
-
-    def _simulation_json(self) -> dict:
-        ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
-        out = {
-            "t": _floats(cl.t),
-            "open_loop": {
-                "pulse": _floats(ol.delta_r[:, 0]),
-                "delta_f": _floats(ol.delta_f[:, 0]),
-            },
-            "closed_loop": {
-                "disturbance": _floats(cl.w[:, 0]),
-                "delta_f": _floats(cl.delta_f[:, 0]),
-                "delta_r": _floats(cl.delta_r[:, 0]),
-            },
-            "nonlinear": None
-            if nl is None
-            else {
-                "amplitudes": _floats(nl.amplitudes),
-                "max_deviation": _finite(nl.max_deviation),
-                "relative_deviation": _finite(nl.relative_deviation),
-            },
-        }
-        if self.plant.n > 1 or self.plant.m > 1:  # every state and input, by name
-            out["states"] = {
-                n: {
-                    "open_loop": _floats(ol.delta_f[:, i]),
-                    "closed_loop": _floats(cl.delta_f[:, i]),
-                }
-                for i, n in enumerate(self.names[0])
-            }
-            out["inputs"] = {n: _floats(cl.delta_r[:, i]) for i, n in enumerate(self.names[1])}
-        return out
-
-    def _factorization_json(self) -> dict:
-        f = self.factors
-        if f.is_siso:
-            N, coeffs = remainder(self.G2_symbolic)
-        else:  # a matrix feed-through; the rewritten G2 is the SISO form
-            N, coeffs = f.N, []
-        poles = ", ".join(map(str, f.poles))
-        if self.abbreviated:  # the product forms: expanded, the zeros have 2^d terms
-            sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
-            G1, G3 = (_product_text(sp.Mul(*c), e, d) for c, e, d in sides)
-            G2 = _product_text(
-                f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C), f.poles, f.G.den, zeros=True
-            )
-        else:
-            G1, G2, G3 = str(f.G1), str(f.G2), str(f.G3)
-        return {
-            "G1": G1,
-            "G2": G2,
-            "G3": G3,
-            "N": _text_matrix(N) if isinstance(N, sp.MatrixBase) else sp.sstr(N),
-            "channels": list(f.channels),
-            "remainder_coeffs": [sp.sstr(c) for c in coeffs],
-            "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
-            if self.abbreviated
-            else {},
-            "verified": bool(f.verify()),
-            "realizations": {name: rec.to_json() for name, rec in self.realizations.items()},
-        }
-
-    def figure_names(self) -> list[str]:
-        """The names of the report's figures, in reading order (the file names of :meth:`write`).
-
-        Returns
-        -------
-        list of str
-            ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
-            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
-            ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
-            circuits (table in :mod:`symctl.report.figures`).
-
-        Examples
-        --------
-        >>> from symctl import derive_paper
-        >>> names = derive_paper().figure_names()
-        >>> len(names), names[-4:]
-        (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
-        """
-        return _figures.figure_names(self)
-
-    def figure(self, name: str):  # -> matplotlib.figure.Figure (matplotlib: only in plotting)
-        """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
-
-        Parameters
-        ----------
-        name : str
-            One of :meth:`figure_names`.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-
-        Raises
-        ------
-        ParameterError
-            ``name`` is not one of :meth:`figure_names`.
-
-        Examples
-        --------
-        >>> from symctl import derive_paper
-        >>> res = derive_paper()
-        >>> fig = res.figure("closed_loop")
-        >>> type(fig).__name__
-        'Figure'
-        >>> res.figure("no_such_figure")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
-        """
-        return _figures.make_figure(self, name)
-
-    def write(
-        self,
-        out: Path | str,
-        *,
-        figures: bool = True,
-        pdf: bool = True,
-        jobs: int | None = None,
-        progress: Callable[[str], None] | None = None,
-        formats: str | tuple[str, ...] = _figures.DEFAULT_FORMATS,
-    ) -> list[Path]:
-        """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
-
-        The files are written into a fresh folder beside ``out`` and moved into
-        place only when all are written (:class:`~symctl.report.output.OutputFolder`):
-        ``out`` is always either the old complete folder or the new complete
-        one, and on any error it is left as it was. ``out`` is checked before
-        anything is written, and a second run on the same ``out`` is refused
-        while one is under way.
-
-        Parameters
-        ----------
-        out : path
-            The folder: new (made, with its parents), empty, or the folder of
-            an earlier run (replaced).
-        figures : bool
-            Also write the figures (:meth:`figure_names`).
-        pdf : bool
-            Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
-        jobs : int, optional
-            Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
-        progress : callable, optional
-            Called with the name of each step (``"figures"``, ``"documents"``,
-            ``"pdflatex"``) before it runs.
-        formats : str or sequence of str
-            The figures' formats (:func:`symctl.report.figures.figure_formats`): by
-            default the PDF that ``derivation.tex`` includes and the PNG that
-            ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
-            figures written in its format.
-
-        Returns
-        -------
-        list of Path
-            The files written, inside ``out``: ``results.json``, the figures,
-            ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
-
-        Raises
-        ------
-        SymctlTypeError
-            ``out`` is not a path.
-        ParameterError
-            ``out`` is empty, a file, a folder holding other files, cannot be
-            made, or is being written by another run; or ``jobs`` is not an
-            integer >= 1; or ``formats`` names an unknown format.
-        LatexError
-            ``pdflatex`` failed on ``derivation.tex``.
-        OSError
-            Writing failed (``out`` is then as it was).
-
-        Examples
-        --------
-        >>> import tempfile
-        >>> from pathlib import Path
-        >>> from symctl import derive_paper
-        >>> with tempfile.TemporaryDirectory() as parent:
-        ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
-        ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
-        (['results.json', 'derivation.tex', 'report.md'], ['paper'])
-        >>> derive_paper().write("")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: out: must name a folder, got ''
-        """
-        if jobs is not None:
-            positive_int(jobs, "jobs")
-        formats = _figures.figure_formats(formats)
-        with OutputFolder(out, "out") as folder:
-            kw = {"figures": figures, "pdf": pdf, "jobs": jobs, "formats": formats}
-            written = self._write_files(folder.staging, progress=progress, **kw)
-            return folder.final(written)
-
-    def _write_files(
-        self,
-        out: Path,
-        *,
-        figures: bool = True,
-        pdf: bool = True,
-        jobs: int | None = None,
-        progress: Callable[[str], None] | None = None,
-        formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
-    ) -> list[Path]:
-        """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`)."""
-        step = progress or (lambda _name: None)
-        written = []
-        path = out / "results.json"
-        path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")
-        written.append(path)
-        paths: list[Path] = []
-        if figures:
-            step("figures")
-            paths = _figures.write_figures(self, out, jobs=jobs, formats=formats)
-            written += paths
-        step("documents")
-        # derivation.tex includes the PDFs, report.md shows the PNGs
-        shown = {ext: [p.stem for p in paths if p.suffix == f".{ext}"] for ext in ("pdf", "png")}
-        blocks = story.story(self, figures=shown["pdf"])
-        md_blocks = (
-            blocks if shown["png"] == shown["pdf"] else story.story(self, figures=shown["png"])
-        )
-        title = self.spec.title if self.spec is not None else document.TITLE
-        written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
-        written.append(document.write_markdown(md_blocks, out / "report.md", title=title))
-        if pdf:
-            step("pdflatex")
-            compiled = document.compile_pdf(out / "derivation.tex")
-            if compiled is not None:
-                written.append(compiled)
-        return written
+def write_files(
+    self,
+    out: Path,
+    *,
+    figures: bool = True,
+    pdf: bool = True,
+    jobs: int | None = None,
+    progress: Callable[[str], None] | None = None,
+    formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
+) -> list[Path]:
+    """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`)."""
+    step = progress or (lambda _name: None)
+    written = []
+    path = out / "results.json"
+    path.write_text(json.dumps(results_json(self), indent=2, allow_nan=False) + "\n")
+    written.append(path)
+    paths: list[Path] = []
+    if figures:
+        step("figures")
+        paths = _figures.write_figures(self, out, jobs=jobs, formats=formats)
+        written += paths
+    step("documents")
+    # derivation.tex includes the PDFs, report.md shows the PNGs
+    shown = {ext: [p.stem for p in paths if p.suffix == f".{ext}"] for ext in ("pdf", "png")}
+    blocks = story.story(self, figures=shown["pdf"])
+    md_blocks = blocks if shown["png"] == shown["pdf"] else story.story(self, figures=shown["png"])
+    title = self.spec.title if self.spec is not None else document.TITLE
+    written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
+    written.append(document.write_markdown(md_blocks, out / "report.md", title=title))
+    if pdf:
+        step("pdflatex")
+        compiled = document.compile_pdf(out / "derivation.tex")
+        if compiled is not None:
+            written.append(compiled)
+    return written
 
 
 def _section_C(params: dict) -> list[str]:

@@ -1,6 +1,6 @@
 r"""The paper's parameters and the circuits of its report, stated once.
 
-:data:`PAPER` holds the inputs of :func:`~symctl.report.pipeline.derive_paper`
+:data:`PAPER` holds the inputs of :func:`~symctl.derivation.pipeline.derive_paper`
 (and the defaults of ``symctl paper``). The muscle's parameters are not
 repeated here: they are read from the defaults of
 :class:`~symctl.design.plant.MuscleModel` (the paper's section "Simulations":
@@ -24,14 +24,12 @@ Examples
 
 from __future__ import annotations
 
-import dataclasses
-import inspect
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from symctl.design.augment import augment
-from symctl.design.plant import MuscleModel
+from symctl.derivation.paper import PAPER, PaperSpec
+from symctl.derivation.pipeline import EXPANDED_ZEROS_MAX, SYMBOLIC_P_MAX_ORDER
 
 __all__ = [
     "CIRCUITS",
@@ -50,63 +48,6 @@ CIRCUIT_SPECS: Mapping  # likewise
 
 SCHEMA_VERSION = 1
 """Version of the ``results.json`` schema (README, section "results.json")."""
-SYMBOLIC_P_MAX_ORDER = 3  # the general realization keeps a fully symbolic P up to this order
-EXPANDED_ZEROS_MAX = 4
-r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out.
-
-The zeros :math:`\prod_i (z - \epsilon_i)` of :math:`d` sections have :math:`2^d`
-monomials (:math:`inom{d}{k}` in the k-th coefficient): up to this many
-sections the realizations show them, as the paper does (:math:`K_1 - \epsilon_1
-- \epsilon_3`); beyond, they realize
-:meth:`~symctl.realization.factorization.Factorization.abbreviated`, the
-coefficients written :math:`\sigma_k = e_k(\epsilon)`, so that every entry stays
-a few terms long at any delay.
-"""
-
-_MUSCLE = {f.name: f.default for f in dataclasses.fields(MuscleModel)}
-_DELAYS = {
-    name: p.default
-    for name, p in inspect.signature(augment).parameters.items()
-    if name in ("sensor_delay", "actuator_delay")
-}
-
-
-@dataclass(frozen=True)
-class PaperSpec:
-    r"""The inputs of the paper's derivation, defaulting to the paper's values.
-
-    Parameters
-    ----------
-    tau, f_max, r_bar, Ts : float
-        The muscle's time constant [s], maximum force [N], equilibrium firing
-        rate [spikes/s] and the sampling time [s]; defaults are those of
-        :class:`~symctl.design.plant.MuscleModel`.
-    sensor_delay, actuator_delay : int
-        Delays in steps; defaults are those of :func:`~symctl.design.augment.augment`.
-    seed : int
-        Seed of the random realizations.
-    realizations : int
-        Random realizations simulated per circuit (the IFP controller has one).
-
-    Examples
-    --------
-    >>> from symctl.report.spec import PaperSpec
-    >>> PaperSpec(tau=0.05).tau, PaperSpec().f_max
-    (0.05, 60.0)
-    """
-
-    tau: float = _MUSCLE["tau"]
-    f_max: float = _MUSCLE["f_max"]
-    r_bar: float = _MUSCLE["r_bar"]
-    Ts: float = _MUSCLE["Ts"]
-    sensor_delay: int = _DELAYS["sensor_delay"]
-    actuator_delay: int = _DELAYS["actuator_delay"]
-    seed: int = 0
-    realizations: int = 4
-
-
-PAPER = PaperSpec()
-"""The paper's parameters (the defaults of ``derive_paper`` and ``symctl paper``)."""
 
 
 @dataclass(frozen=True)

@@ -140,7 +140,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     Parameters
     ----------
     res : PaperResults
-        What :func:`~symctl.report.pipeline.derive_paper` returned (read, not
+        What :func:`~symctl.derivation.pipeline.derive_paper` returned (read, not
         imported: :mod:`~symctl.report.results` sits above this module).
     figures : iterable of str
         The figures written next to the document (names of
@@ -321,7 +321,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                 label="eq:G2rewritten",
             )
         )
-        add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if f.verify() else 'NO'}."))
+        add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if res.verified else 'NO'}."))
         put(figure("g1g3_structures", _G1G3_CAPTION))
 
         # 7. realizations

@@ -447,9 +447,14 @@ AUDITED = {
     ("symctl.model.units", "parse_unit", "parse_expr"): 1,
     ("symctl.neural.nonlinear", "_solver", "subs"): 1,  # an ODEModel's own values
     ("symctl.report.model_story", "opening", "subs"): 4,  # an ODEModel's own values
-    ("symctl.report.pipeline", "_weight", "ImmutableMatrix"): 1,  # after to_matrix
-    ("symctl.report.pipeline", "_derive", "subs"): 2,  # the gains' own substitutions (float, exact)
-    ("symctl.report.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
+    ("symctl.model.model", "Model.replace", "ImmutableMatrix"): 1,  # after to_matrix
+    ("symctl.model.saved", "_parsed", "parse_expr"): 4,  # the safe parser itself
+    ("symctl.derivation.load", "_parse_long", "parse_expr"): 2,  # the safe parser, piece by piece
+    ("symctl.derivation.load", "SavedDerivation._matrix", "ImmutableMatrix"): 1,  # parsed entries
+    ("symctl.model.saved", "_parsed", "ImmutableMatrix"): 2,  # of parse_expr's results
+    # the gains' own substitutions (float, exact)
+    ("symctl.derivation.pipeline", "_derive", "subs"): 3,
+    ("symctl.derivation.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
     # the circuit atlas: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
     ("symctl.circuitatlas.certify", "_Poly.__init__", "Poly"): 1,
@@ -527,6 +532,7 @@ AUDITED = {
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
     ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
     ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
+    ("symctl.neural.firing", "_draw", "subs"): 1,  # the gains' exact substitutions
     ("symctl.realization._markov", "_problem", "sympify"): 1,  # DiscreteTF coefficients
     ("symctl.realization.factorization", "_relative_difference", "Poly"): 2,  # parsed sides
     ("symctl.realization.factorization", "_relative_difference", "cancel"): 2,  # parsed sides
@@ -549,11 +555,11 @@ AUDITED = {
     ("symctl.realization.factorization", "Factorization.sigma_values", "subs"): 1,  # subs_rule
     ("symctl.realization.factorization", "Factorization.sigma_values", "Poly"): 1,  # to_expr'd
     ("symctl.realization.factorization", "Factorization.sigma_values", "expand"): 1,  # its Poly
-    ("symctl.report.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
+    ("symctl.derivation.pipeline", "_realizations", "Matrix"): 1,  # sp.symbols
     ("symctl.realization.check", "_similarity_holds", "Matrix"): 2,  # to_matrix'd P
-    ("symctl.report.pipeline", "_realizations", "factor"): 1,  # symctl.factor, built values
-    ("symctl.report.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
-    ("symctl.report.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
+    ("symctl.derivation.pipeline", "_realizations", "factor"): 1,  # symctl.factor, built values
+    ("symctl.derivation.pipeline", "_realizations", "subs"): 3,  # exact/drawn values
+    ("symctl.derivation.pipeline", "derive_paper", "subs"): 1,  # Gains.substitutions
     ("symctl.report.results", "_value", "Matrix"): 1,  # derived sympy values
     ("symctl.report.story", "story", "subs"): 2,  # checked model values
     ("symctl.symbols", "gain_matrix_symbols", "Matrix"): 2,  # symbols
@@ -594,6 +600,7 @@ AUDITED = {
     ("symctl.design.tf", "DiscreteTF.from_expr", "together"): 1,
     ("symctl.design.tf", "_lcm", "expand"): 2,
     ("symctl.neural.firing", "_realizations", "factor"): 2,  # symctl's factor, on a validated G
+    ("symctl.realization.draws", "draw_realizations", "factor"): 2,  # symctl's factor of G
     ("symctl.realization.factorization", "Factorization.latex", "expand"): 1,
     ("symctl.realization.factorization", "remainder", "cancel"): 1,
     ("symctl.realization.realization", "_similar_sympy", "cancel"): 1,  # own matrices (det P)
@@ -601,7 +608,7 @@ AUDITED = {
     ("symctl.realization.realization", "Realization.to_tf", "together"): 1,
     ("symctl.realization.realization", "_rank", "cancel"): 1,
     ("symctl.realization.realization", "_tidy", "cancel"): 1,
-    ("symctl.report.pipeline", "derive_paper", "factor"): 1,
+    ("symctl.derivation.pipeline", "derive_paper", "factor"): 1,
     ("symctl.report.story", "_match", "cancel"): 1,
     # Dale's law: G is a validated numeric DiscreteTF (controller_of), the rest are
     # the templates' own symbols, z3's exact values and seeded rationals; no user text

@@ -19,7 +19,7 @@ from symctl import (
     factor,
     lqr_gains,
 )
-from symctl.neural import firing
+from symctl.realization import draws
 from symctl.report.figures import EPS_RANGE, _placed, _signs_at
 
 GRAPH = DelayGraph.chain([1, 1])
@@ -65,5 +65,5 @@ def test_signs_are_read_at_the_gains_c_one_and_the_epsilons_simulations_draw():
         "C_1": 1, "C_3": 1, "epsilon_1": EPS_RANGE, "epsilon_3": EPS_RANGE,
     }  # fmt: skip
     # the range holds every epsilon circuit_firing draws
-    drawn = firing._EPS_MAX / firing._EPS_GRID
+    drawn = draws.EPS_MAX / draws.EPS_GRID
     assert EPS_RANGE[0] <= -drawn and drawn <= EPS_RANGE[1]

@@ -126,7 +126,7 @@ def _no_derivation(*args, **kwargs):
 def test_cli_refuses_an_unusable_out_before_deriving(tmp_path, capsys, monkeypatch, case):
     text, word = _bad_outs(tmp_path)[case]
     before = {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*")}
-    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _no_derivation)
+    monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", _no_derivation)
     if "\0" in text:  # the OS refuses NUL in argv: the API's check is the one tested
         with pytest.raises(ParameterError, match=r"out: .*NUL"):
             output.check_output_folder(text, "--out")
@@ -141,7 +141,7 @@ def test_cli_refuses_an_unusable_out_before_deriving(tmp_path, capsys, monkeypat
 def test_write_refuses_an_unusable_out_before_writing(res, tmp_path, monkeypatch, case):
     text, word = _bad_outs(tmp_path)[case]
     before = {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*")}
-    monkeypatch.setattr(PaperResults, "_write_files", _no_derivation)
+    monkeypatch.setattr("symctl.report.results.write_files", _no_derivation)
     with pytest.raises(ParameterError) as info:
         res.write(text, pdf=False)
     assert str(info.value).startswith("out: ") and word in str(info.value)
@@ -158,7 +158,7 @@ def test_write_refuses_an_out_that_is_not_a_path_as_a_type_error(res, out):
 def test_a_read_only_parent_is_refused_before_deriving(tmp_path, capsys, monkeypatch):
     ro = tmp_path / "ro"
     ro.mkdir(mode=0o555)
-    monkeypatch.setattr("symctl.report.pipeline.derive_paper", _no_derivation)
+    monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", _no_derivation)
     assert main(["paper", "--out", str(ro / "out")]) == 2
     assert "not writable" in _one_error_line(capsys.readouterr().err)
 
@@ -318,7 +318,7 @@ def test_a_second_run_on_the_same_out_is_refused_at_once(res, tmp_path, capsys, 
     old = _old_run(out)
     holder = _holder(out)
     try:
-        monkeypatch.setattr("symctl.report.pipeline.derive_paper", _no_derivation)
+        monkeypatch.setattr("symctl.derivation.pipeline.derive_paper", _no_derivation)
         # refused before any work: the derivation is replaced by one that fails the test
         assert main(["paper", "--out", str(out), "--no-pdf"]) == 2
         line = _one_error_line(capsys.readouterr().err)

@@ -9,6 +9,7 @@ import pytest
 
 from symctl import cli
 from symctl.cli import main
+from symctl.derivation import pipeline
 from symctl.report.figures import DEFAULT_FORMATS
 from symctl.report.spec import CIRCUITS
 
@@ -28,7 +29,13 @@ FIGURES = (
 def paper(tmp_path_factory):
     """One full run of ``symctl paper`` (figures and PDF): its folder and its console output."""
     out = tmp_path_factory.mktemp("paper")
-    with cli._console.capture() as captured:  # leaves the console's stream as it was
+    with (
+        pytest.MonkeyPatch.context() as mp,  # computed here, as a fresh process does: its steps show
+        cli._console.capture() as captured,  # leaves the console's stream as it was
+    ):
+        mp.setattr(
+            pipeline, "_cached", lambda spec, progress: pipeline._derive(spec, progress.step)
+        )
         assert main(["paper", "--out", str(out)]) == 0
     return out, captured.get()
 

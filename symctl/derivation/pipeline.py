@@ -1,10 +1,15 @@
-r"""The main job: run the paper's derivation, plant to circuits, and collect its results.
+r"""The pipeline: a model derived, plant to circuits, into one :class:`~symctl.derivation.Derivation`.
 
-:func:`derive_paper` runs the pipeline (plant -> delays -> LQR -> :math:`G(z)`
+:func:`derive` runs the stages in order (plant -> delays -> LQR -> :math:`G(z)`
 -> factors -> realizations -> delay graph and compatibility -> circuits ->
-simulations) for given parameters and returns a
-:class:`~symctl.report.results.PaperResults`, which writes ``results.json``,
-the documents and the figures. ``symctl paper`` is a thin command around these.
+simulations of those realizations -> atlas -> closed loop -> nonlinear plant) on a
+:class:`~symctl.model.model.Model` and returns a
+:class:`~symctl.derivation.Derivation`, which the report stage writes
+(``results.json``, the documents and the figures). A derivation is a value of its
+model: :func:`derive` computes it once per model and returns the same object
+after. :func:`derive_paper` is :func:`derive` on the muscle preset with the values
+given (``muscle().replace(**values)``); ``symctl paper`` and ``symctl derive`` are
+thin commands around these.
 
 Examples
 --------
@@ -17,6 +22,7 @@ Examples
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable
 
 import numpy as np
@@ -37,9 +43,11 @@ from symctl.circuitatlas.candidates import circuits_for
 from symctl.compatibility.check import check_compatibility
 from symctl.compatibility.controller import controller_compatibility
 from symctl.compatibility.structure import Structure, ifp_structure
+from symctl.derivation.derivation import CircuitRecord, Derivation, RealizationRecord
+from symctl.derivation.paper import PAPER
 from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
-from symctl.design.lqr import Gains, lqr_gains
+from symctl.design.lqr import lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.errors import NotRealizableError, NotStabilizableError, ParameterError
 from symctl.model.modelfile import Model, load_model
@@ -49,13 +57,27 @@ from symctl.neural.firing import circuit_firing, structure_firing
 from symctl.neural.nonlinear import longest_delay, nonlinear_check
 from symctl.neural.simulate import closed_loop_response, open_loop_response
 from symctl.realization.check import check_realization
+from symctl.realization.draws import Draw, draw_realizations
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realizers import REALIZERS
-from symctl.report.results import CircuitRecord, PaperResults, RealizationRecord
-from symctl.report.spec import EXPANDED_ZEROS_MAX, PAPER, SYMBOLIC_P_MAX_ORDER
 
 __all__ = ["derive", "derive_paper"]
 
+
+SYMBOLIC_P_MAX_ORDER = 3
+"""Order up to which the general realization keeps a fully symbolic ``P``."""
+
+EXPANDED_ZEROS_MAX = 4
+r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out.
+
+The zeros :math:`\prod_i (z - \epsilon_i)` of :math:`d` sections have :math:`2^d`
+monomials (:math:`\binom{d}{k}` in the k-th coefficient): up to this many
+sections the realizations show them, as the paper does (:math:`K_1 - \epsilon_1
+- \epsilon_3`); beyond, they realize
+:meth:`~symctl.realization.factorization.Factorization.abbreviated`, the
+coefficients written :math:`\sigma_k = e_k(\epsilon)`, so that every entry stays
+a few terms long at any delay.
+"""
 
 MIMO_EXACT_MAX_ORDER = 12
 """Largest symbolic MIMO realization (states) whose check is an exact proof (else randomized)."""
@@ -82,11 +104,13 @@ def derive_paper(
     seed: int = PAPER.seed,
     realizations: int = PAPER.realizations,
     progress: Callable[[str], None] | None = None,
-) -> PaperResults:
-    r"""Run the paper's whole derivation on its muscle; every argument defaults to the paper's value.
+) -> Derivation:
+    r"""Run the paper's whole derivation on its muscle: :func:`derive` of the preset with these values.
 
-    The defaults are :data:`~symctl.report.spec.PAPER` (the muscle's from
-    :class:`~symctl.design.plant.MuscleModel`).
+    ``derive_paper(**values)`` is ``derive(muscle().replace(**values))``
+    (:func:`~symctl.model.presets.muscle`, ``examples/muscle.toml``); every value
+    defaults to the paper's (the preset's, :data:`~symctl.report.spec.PAPER`), and
+    ``Q``, ``R`` not given (None) to the preset's identity.
 
     Parameters
     ----------
@@ -110,7 +134,7 @@ def derive_paper(
 
     Returns
     -------
-    PaperResults
+    Derivation
 
     Raises
     ------
@@ -126,21 +150,51 @@ def derive_paper(
 
     Examples
     --------
-    >>> from symctl import derive_paper
+    >>> from symctl import derive, derive_paper
+    >>> from symctl.model.presets import muscle
     >>> res = derive_paper()
     >>> res.G_symbolic.latex()
     '\\frac{K_{0}}{z^{2} - K_{1} z - K_{2}}'
     >>> [round(float(k), 6) for k in res.gains.K[0]]
     [-0.045972, -0.580041, -0.351813]
+    >>> derive_paper(tau=0.05) is derive(muscle().replace(tau=0.05))  # one value, computed once
+    True
     >>> derive_paper(sensor_delay=0, actuator_delay=0)
     Traceback (most recent call last):
     ...
     symctl.errors.ParameterError: sensor_delay, actuator_delay: the derivation needs a net delay ...
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    seed = nonneg_int(seed, "seed")
-    realizations = bounded_int(realizations, "realizations", 1, MAX_CIRCUITS)
-    delays = nonneg_int(sensor_delay, "sensor_delay"), nonneg_int(actuator_delay, "actuator_delay")
+    step("plant")  # the values are checked in the step they belong to
+    given = {
+        "tau": tau,
+        "f_max": f_max,
+        "r_bar": r_bar,
+        "Ts": Ts,
+        "sensor_delay": sensor_delay,
+        "actuator_delay": actuator_delay,
+        "Q": Q,
+        "R": R,
+        "seed": seed,
+        "realizations": realizations,
+    }
+    given = {k: v for k, v in given.items() if v is not None}
+    _check_paper_values(given)
+    model = muscle(**given)
+    return derive(model, progress=lambda name: None if name == "plant" else step(name))
+
+
+def _check_paper_values(given: dict) -> None:
+    """The checks of the paper's values, with the messages :func:`derive_paper` has always given."""
+    if "seed" in given:
+        nonneg_int(given["seed"], "seed")
+    if "realizations" in given:
+        bounded_int(given["realizations"], "realizations", 1, MAX_CIRCUITS)
+    preset = muscle()
+    delays = (
+        nonneg_int(given.get("sensor_delay", preset.sensor_delay), "sensor_delay"),
+        nonneg_int(given.get("actuator_delay", preset.actuator_delay), "actuator_delay"),
+    )
     if sum(delays) > PAPER_MAX_DELAY:
         raise ParameterError(
             f"sensor_delay, actuator_delay: derive_paper handles a net delay of at most "
@@ -148,27 +202,21 @@ def derive_paper(
             "the design "
             f"functions take up to {MAX_DELAY}), got {delays[0]} + {delays[1]} = {sum(delays)}"
         )
-    if sensor_delay == 0 and actuator_delay == 0:
+    if sum(delays) == 0:
         raise ParameterError(
             "sensor_delay, actuator_delay: the derivation needs a net delay "
             "T = sensor_delay + actuator_delay >= 1 (the delay graph and the IFP controller "
             "have T steps), got 0"
         )
-    step("plant")
-    model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts)  # validates the parameters
-    spec = muscle(
-        tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts, sensor_delay=delays[0],
-        actuator_delay=delays[1], seed=seed, realizations=realizations,
-    )  # fmt: skip
-    if Q is not None or R is not None:
-        plant = spec.plant
-        Qm = spec.Q if Q is None else _weight(Q, "Q", plant.n, definite=False)
-        Rm = spec.R if R is None else _weight(R, "R", plant.m, definite=True)
-        spec = dataclasses.replace(spec, Q=Qm, R=Rm)
-    return _derive(spec, model, step, announced=True)
+    muscle_values = {k: given[k] for k in ("tau", "f_max", "r_bar", "Ts") if k in given}
+    if muscle_values:
+        MuscleModel(**muscle_values)  # the muscle's admissible ranges, named
+    for name, definite in (("Q", False), ("R", True)):
+        if name in given:
+            psd_matrix(to_matrix(given[name], name), name, 1, definite=definite)
 
 
-def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResults:
+def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivation:
     r"""Run the whole derivation on your own system: a model file, plant to circuits.
 
     The same pipeline as :func:`derive_paper` (which is this function on the
@@ -178,7 +226,12 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
     (:mod:`symctl.realization.channels`), realized in block canonical forms, and
     its structures, circuits, compatibility and simulations follow; the IFP circuit
     and the circuit atlas are built for one state and one input only, and the
-    results say so (``PaperResults.skipped``).
+    results say so (``Derivation.skipped``).
+
+    The derivation is a value of the model: it is computed once per model (equal
+    models share it, as :func:`~symctl.circuitatlas.atlas.atlas` shares an atlas, the
+    :data:`DERIVATIONS_CACHED` most recent), and ``progress`` is called only when it is
+    computed; ``derive.cache_clear()`` empties the cache.
 
     Parameters
     ----------
@@ -189,7 +242,7 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
 
     Returns
     -------
-    PaperResults
+    Derivation
 
     Raises
     ------
@@ -201,12 +254,45 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
     --------
     >>> from symctl import derive, derive_paper
     >>> from symctl.model.presets import muscle_text
-    >>> derive(muscle_text()).to_json() == derive_paper().to_json()
+    >>> a, b = derive(muscle_text()).to_json(), derive_paper().to_json()
+    >>> a["model"]["file"].pop("path"), b["model"]["file"].pop("path")  # only the name differs
+    ('<text>', 'muscle preset (examples/muscle.toml)')
+    >>> a == b
     True
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
     spec = model if isinstance(model, Model) else load_model(model)
-    return _derive(spec, spec.ode, step)
+    return _cached(spec, _Progress(step))
+
+
+class _Progress:
+    """The progress callback, kept out of the cache's key (every callback is the same key)."""
+
+    def __init__(self, step: Callable[[str], None]) -> None:
+        self.step = step
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, _Progress)
+
+    def __hash__(self) -> int:
+        return 0
+
+
+DERIVATIONS_CACHED = 8
+"""Most derivations :func:`derive` keeps (the most recently used)."""
+
+
+@functools.lru_cache(maxsize=DERIVATIONS_CACHED)
+def _cached(spec: Model, progress: _Progress) -> Derivation:
+    return _derive(spec, progress.step)
+
+
+def _clear() -> None:
+    """Empty :func:`derive`'s cache (a benchmark that times the computation itself)."""
+    _cached.cache_clear()
+
+
+derive.cache_clear = _clear
 
 
 def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
@@ -242,18 +328,12 @@ def _count(k: int, noun: str) -> str:
     return f"{k} {noun}" + ("" if k == 1 else "s")
 
 
-def _weight(value, argname: str, size: int, *, definite: bool) -> sp.ImmutableMatrix:
-    M = to_matrix(value, argname)
-    psd_matrix(M, argname, size, definite=definite)
-    return sp.ImmutableMatrix(M)
-
-
-def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResults:
-    """The pipeline on ``spec``; ``announced``: the caller has reported the "plant" step."""
+def _derive(spec: Model, step) -> Derivation:
+    """The pipeline on ``spec``, stage by stage."""
     ds, da = spec.sensor_delay, spec.actuator_delay
     seed, count = spec.seed, spec.realizations
-    if not announced:
-        step("plant")
+    model = spec.ode
+    step("plant")
     plant_symbolic, plant = spec.plant_symbolic, spec.plant
     step("delays")
     system = augment(plant, ds, da, Q=spec.Q, R=spec.R)
@@ -275,32 +355,22 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
     kinds = spec.circuits
     skipped = None
     factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
-    pathways = None
+    pathways = verified = None
     siso = plant.n == 1 and plant.m == 1
     if not siso:
         kinds, skipped = _mimo_kinds(kinds, G, plant)
     if kinds:
         step("factorization")
         factors = factor(G_symbolic, ds, da)
-        step("simulation")
-        firing = {
-            k: circuit_firing(
-                k,
-                gains,
-                count=1 if REALIZERS[k].controller else count,
-                seed=seed,
-                disturbance=w,
-                **window,
-            )
-            for k in kinds
-        }
+        verified = factors.verify()
         step("realizations")
         long = factors.is_siso and len(factors.poles) > EXPANDED_ZEROS_MAX
         G2_symbolic = factors.abbreviated() if long else factors.G2
         names = [k for k in kinds if not REALIZERS[k].controller]
-        records = _realizations(
-            factors, G2_symbolic, gains, {k: firing[k].params[0] for k in names}
-        )
+        # the realizations the circuits simulate, drawn from the seed (one stream per circuit)
+        G_exact = factors.G.subs(gains.substitutions(exact=True))
+        draws = {k: draw_realizations(G_exact, ds, da, k, count, seed) for k in names}
+        records = _realizations(factors, G2_symbolic, {k: draws[k][0] for k in names})
         step("compatibility")
         structures = {k: ifp_structure(system.T) for k in kinds if REALIZERS[k].controller}
         structures.update(
@@ -319,13 +389,32 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
                 max_wire_delay=spec.max_wire_delay,
             )
             if beyond and pathways.ok:
-                step("pathways")
                 structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
-                firing["pathways"] = structure_firing(
-                    pathways.structure, gains, assignment=pathways.check, count=count,
-                    seed=seed, disturbance=w, **window,
-                )  # fmt: skip
                 kinds = (*kinds, "pathways")
+        step("simulation")  # each circuit closed around the plant: the realizations drawn above
+        firing = {
+            k: circuit_firing(
+                k,
+                gains,
+                count=1 if REALIZERS[k].controller else count,
+                disturbance=w,
+                draws=draws.get(k),
+                **window,
+            )
+            for k in kinds
+            if k != "pathways"
+        }
+        if "pathways" in kinds:
+            step("pathways")
+            firing["pathways"] = structure_firing(
+                pathways.structure,
+                gains,
+                assignment=pathways.check,
+                count=count,
+                seed=seed,
+                disturbance=w,
+                **window,
+            )
         circuits = {
             k: CircuitRecord(
                 k,
@@ -358,17 +447,27 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
     if spec.ode is not None:
         step("nonlinear")
         nonlinear = nonlinear_check(
-            spec.ode, gains, amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
-            steps=spec.steps, disturbance=unit_w, fail="mark",
-        )  # fmt: skip
+            spec.ode,
+            gains,
+            amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
+            steps=spec.steps,
+            disturbance=unit_w,
+            fail="mark",
+        )
         if spec.longest_delay is not None:
             step("longest delay")
             top, tol = spec.longest_delay
             longest = longest_delay(
-                spec.ode, Q=spec.Q, R=spec.R, disturbance=unit_w, amplitude=amplitude,
-                max_delay=top, tolerance=tol, steps=spec.steps,
-            )  # fmt: skip
-    return PaperResults(
+                spec.ode,
+                Q=spec.Q,
+                R=spec.R,
+                disturbance=unit_w,
+                amplitude=amplitude,
+                max_delay=top,
+                tolerance=tol,
+                steps=spec.steps,
+            )
+    return Derivation(
         model,
         plant_symbolic,
         plant,
@@ -392,6 +491,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
         longest,
         skipped,
         pathways,
+        verified,
     )
 
 
@@ -402,7 +502,7 @@ def _beyond_unit_chain(graph) -> bool:
 
 
 def _realizations(
-    factors: Factorization, G2_symbolic, gains: Gains, drawn: dict[str, dict]
+    factors: Factorization, G2_symbolic, first: dict[str, Draw]
 ) -> dict[str, RealizationRecord]:
     """The paper's three realizations of G2: controllable and observable canonical, general.
 
@@ -410,34 +510,32 @@ def _realizations(
     :meth:`~symctl.realization.factorization.Factorization.abbreviated` form
     beyond :data:`EXPANDED_ZEROS_MAX` sections), keeping K, eps (or sigma) and C
     (and, up to order :data:`SYMBOLIC_P_MAX_ORDER`, a fully symbolic ``P`` for
-    the general one; above it the seeded random ``P``); numeric ones use the
-    optimal gains (as the exact rationals of their binary floats, so that the
-    checks stay exact), C = 1 on every section and ``drawn[name]``, the
-    epsilons (and for the general one ``P``) of the first simulated realization
-    of that circuit; their factors are built at those values
-    (:func:`~symctl.realization.factorization.factor` with ``eps`` and ``C``),
-    never substituted into the symbolic ones.
+    the general one; above it the seeded random ``P``); numeric ones are
+    ``first[name]``, the first realization drawn for that circuit
+    (:func:`~symctl.realization.draws.draw_realizations`: the optimal gains as the
+    exact rationals of their binary floats, so that the checks stay exact, the
+    drawn epsilons, C = 1 on every section, and for the general one a random ``P``),
+    built at those values, never substituted into the symbolic ones.
     """
     sections = (*factors.sensor_C, *factors.actuator_C)
     unit_C = {c: 1 for c in sections}
-    G_exact = factors.G.subs(gains.substitutions(exact=True))
-    ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     out = {}
-    for name in sorted(drawn, key=lambda k: not REALIZERS[k].canonical):  # the bases first
-        eps = {k: drawn[name][k] for k in factors.poles}
-        G2_num = factor(G_exact, ds, da, eps=list(eps.values()), C=1).G2
+    for name in sorted(first, key=lambda k: not REALIZERS[k].canonical):  # the bases first
+        draw = first[name]
+        eps = {k: draw.values[k] for k in factors.poles}
+        G2_num = draw.factors.G2
         realizer = REALIZERS[name]
-        symbolic_options, numeric_options = {}, {}
+        symbolic_options = {}
+        numeric = draw.result
         if realizer.takes_transform:
-            P_num = drawn[name]["P"]
+            P_num = numeric.P
             n = P_num.shape[0]
             if n <= SYMBOLIC_P_MAX_ORDER:
                 P = sp.Matrix(n, n, sp.symbols(f"p_1:{n + 1}(1:{n + 1})"))
             else:  # a fully symbolic P costs minutes beyond order 3: use the drawn one
                 P = P_num
-            symbolic_options, numeric_options = {"P": P}, {"P": P_num}
+            symbolic_options = {"P": P}
         symbolic = realizer(G2_symbolic, **symbolic_options)
-        numeric = realizer(G2_num, **numeric_options)
         out[name] = RealizationRecord(
             name,
             symbolic.realization,

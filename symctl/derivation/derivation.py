@@ -1,0 +1,411 @@
+r"""What a derivation produced: :class:`Derivation`, with one record per realization and circuit.
+
+:func:`~symctl.derivation.derive` runs the pipeline on a model and returns a
+:class:`Derivation`: its inputs (the :class:`~symctl.model.model.Model`), every stage's
+result, symbolic and numeric, and what was skipped and why. It is a value: frozen,
+compared by value, picklable. The report stage writes it (``results.json``, the
+documents, the figures: :mod:`symctl.report.results`); :meth:`Derivation.to_json`,
+:meth:`Derivation.write` and :meth:`Derivation.figure` hand it over there.
+``PaperResults`` is its former name, kept.
+
+Examples
+--------
+>>> from symctl import derive_paper
+>>> res = derive_paper()
+>>> round(res.to_json()["plant"]["f_bar"], 4)
+43.8635
+>>> res.circuits["controllable"].circuit.n_neurons
+4
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+
+import sympy as sp
+
+from symctl.compatibility.check import CompatibilityResult
+from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.structure import Structure
+from symctl.design.augment import AugmentedSystem
+from symctl.design.lqr import Gains
+from symctl.design.ode import ODEModel
+from symctl.design.plant import DiscretePlant
+from symctl.design.tf import DiscreteTF
+from symctl.model.model import Model
+from symctl.neural.circuit import Circuit
+from symctl.neural.firing import FiringPatterns
+from symctl.neural.nonlinear import NonlinearCheck
+from symctl.neural.simulate import Response
+from symctl.realization.check import RealizationCheck
+from symctl.realization.factorization import Factorization
+from symctl.realization.realization import Realization
+from symctl.realization.realizers import REALIZERS
+
+__all__ = ["CircuitRecord", "Derivation", "PaperResults", "RealizationRecord"]
+
+
+def _hash_fields(obj) -> int:
+    """A hash of a frozen dataclass's fields, mappings hashed by their items."""
+    values = (getattr(obj, f.name) for f in dataclasses.fields(obj))
+    return hash(tuple(tuple(v.items()) if isinstance(v, Mapping) else v for v in values))
+
+
+@dataclass(frozen=True)
+class RealizationRecord:
+    """One realization of :math:`G_2` for the report: symbolic, numeric, and the checks of both.
+
+    Parameters
+    ----------
+    name : str
+        ``"controllable"``, ``"observable"`` or ``"general"``.
+    symbolic, numeric : Realization
+        The realization in the symbols of the factorization, and with the
+        numbers of the simulations.
+    values : mapping
+        The numbers substituted (``epsilon_1``, ``C_1``, ... by name); kept read-only.
+    check_symbolic, check_numeric : RealizationCheck
+        The exact checks that each realizes :math:`G_2`.
+    P, P_numeric : sympy Matrix or None
+        The similarity transforms of the two from their canonical base (the
+        realizer's :class:`~symctl.realization.realizers.RealizerResult`), or
+        None for a canonical form.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> rec = derive_paper().realizations["controllable"]
+    >>> rec.name, bool(rec.check_symbolic), bool(rec.check_numeric)
+    ('controllable', True, True)
+    >>> sorted(rec.values)
+    ['C_1', 'C_3', 'epsilon_1', 'epsilon_3']
+    """
+
+    name: str
+    symbolic: Realization
+    numeric: Realization
+    values: Mapping[str, object]
+    check_symbolic: RealizationCheck
+    check_numeric: RealizationCheck
+    P: sp.MatrixBase | None = None
+    P_numeric: sp.MatrixBase | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
+
+    __hash__ = _hash_fields
+
+    def to_json(self) -> dict:
+        """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
+        from symctl.report import results
+
+        return results.realization_json(self)
+
+
+@dataclass(frozen=True)
+class CircuitRecord:
+    """One circuit of the report: its structure, compatibility, neurons and simulations.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`~symctl.report.spec.CIRCUITS`.
+    structure : Structure
+        The structure (gains, adders, unit delays); symbolic, for ``"general"``
+        with the symbolic or seeded ``P`` of the :class:`RealizationRecord`.
+    compatibility : CompatibilityResult
+        Whether the structure fits the delay graph, with its evidence.
+    circuit : Circuit
+        The neurons of the structure (placed on the delay graph when compatible).
+    firing : FiringPatterns
+        The closed-loop simulations of the random realizations
+        (:func:`~symctl.neural.firing.circuit_firing`).
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> rec = derive_paper().circuits["observable"]
+    >>> rec.circuit.n_neurons, rec.g2_neurons, bool(rec.compatibility)
+    (5, 3, True)
+    """
+
+    name: str
+    structure: Structure
+    compatibility: CompatibilityResult
+    circuit: Circuit
+    firing: FiringPatterns
+
+    @property
+    def g2_neurons(self) -> int | None:
+        """The neurons of the G2 parts (None for the IFP controller, which has no G2)."""
+        if self.name in REALIZERS and REALIZERS[self.name].controller:
+            return None
+        return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
+
+    def to_json(self) -> dict:
+        """The entry of ``results.json``'s ``circuits`` for this circuit."""
+        from symctl.report import results
+
+        return results.circuit_json(self)
+
+
+@dataclass(frozen=True)
+class Derivation:
+    r"""Everything a derivation produced, symbolic and numeric: its inputs and each stage's result.
+
+    Made by :func:`~symctl.derivation.derive` (and :func:`~symctl.derivation.derive_paper`);
+    the fields are in the order of the pipeline. A value: frozen, equal when its fields
+    are, picklable; :func:`~symctl.derivation.load_results` reads it back from
+    ``results.json``.
+
+    Parameters
+    ----------
+    model : ODEModel or None
+        The nonlinear plant of the model (None for a discrete plant given directly).
+    plant_symbolic, plant : DiscretePlant
+        The discretized linear plant, in symbols (one state and one input, else None)
+        and with the numbers.
+    system : AugmentedSystem
+        The delay-augmented system and cost.
+    gains : Gains
+        The optimal gains :math:`K_0, \dots, K_T` and the closed-loop poles.
+    G_symbolic, G : DiscreteTF
+        The controller :math:`G(z)` in the gains' symbols, and with the optimal gains.
+    proved : bool
+        Whether the derivation of :math:`G` was proved against the state-space matrices.
+    seed : int
+        The seed of the random realizations.
+    factors : Factorization
+        :math:`G = G_3 G_2 G_1`.
+    realizations : mapping of str to RealizationRecord
+        The realizations of :math:`G_2` (read-only).
+    graph : DelayGraph
+        The delay graph of the circuits.
+    circuits : mapping of str to CircuitRecord
+        The circuits, by name, in the order of :data:`~symctl.report.spec.CIRCUITS` (read-only).
+    open_loop, closed_loop : Response
+        The open-loop pulse response of the muscle and the optimal closed loop's.
+    nonlinear : NonlinearCheck
+        The linear controller around the nonlinear muscle.
+    G2_symbolic : DiscreteTF, optional
+        The :math:`G_2` the symbolic realizations realize: ``factors.G2``
+        (the default), or beyond :data:`~symctl.derivation.pipeline.EXPANDED_ZEROS_MAX`
+        sections ``factors.abbreviated()``, its zeros' coefficients written
+        :math:`\sigma_k = e_k(\epsilon)`.
+    atlas, candidates : optional
+        The circuit atlas and its candidate circuits for this controller.
+    spec : Model
+        The inputs: the model the derivation ran on (a key of :func:`derive`'s cache).
+    longest : DelaySearch, optional
+        The longest-delay search, when the model asks for it.
+    skipped : str, optional
+        The stages left out, and why (e.g. the IFP circuit and the atlas of a
+        controller with several states or inputs).
+    pathways : ControllerCompatibility, optional
+        The exact verdict on the delay graph (SISO controllers): the theorem,
+        and the structure built along the graph's pathways.
+    verified : Proof, optional
+        The proof that :math:`G_3 G_2 G_1 = G` (``factors.verify()``), truthy when it holds.
+
+    Examples
+    --------
+    >>> from symctl import derive_paper
+    >>> res = derive_paper()
+    >>> print(res.G_symbolic)
+    (K_0)/(z**2 - K_1*z - K_2)
+    >>> res.figure_names()[:3]
+    ['open_loop', 'closed_loop', 'delay_graph']
+    >>> res.circuits["ifp"] = None
+    Traceback (most recent call last):
+    ...
+    TypeError: 'mappingproxy' object does not support item assignment
+    """
+
+    model: ODEModel | None
+    plant_symbolic: DiscretePlant
+    plant: DiscretePlant
+    system: AugmentedSystem
+    gains: Gains
+    G_symbolic: DiscreteTF
+    G: DiscreteTF
+    proved: bool
+    seed: int
+    factors: Factorization
+    realizations: Mapping[str, RealizationRecord]
+    graph: DelayGraph
+    circuits: Mapping[str, CircuitRecord]
+    open_loop: Response
+    closed_loop: Response
+    nonlinear: NonlinearCheck
+    G2_symbolic: DiscreteTF | None = None
+    atlas: object = None
+    candidates: tuple | None = None
+    spec: Model | None = None
+    longest: object = None
+    skipped: str | None = None
+    pathways: object = None
+    verified: object = None
+
+    def __post_init__(self) -> None:
+        for name in ("realizations", "circuits"):
+            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+        if self.G2_symbolic is None and self.factors is not None:
+            object.__setattr__(self, "G2_symbolic", self.factors.G2)
+
+    @property
+    def abbreviated(self) -> bool:
+        r"""Whether the symbolic realizations write :math:`G_2`'s zeros as :math:`\sigma_k`."""
+        return self.factors is not None and self.G2_symbolic != self.factors.G2
+
+    @property
+    def names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """The states' and inputs' names as the model gives them (the muscle's ``f``, ``r``)."""
+        if self.spec is not None:
+            return self.spec.signal_names
+        return ("f",), ("r",)
+
+    def unit(self, name: str) -> str:
+        """The unit of a state, input or parameter of the model ('' when not given)."""
+        if self.spec is not None:
+            return self.spec.unit(name)
+        return {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}.get(
+            name, ""
+        )
+
+    __hash__ = _hash_fields
+
+    def parameters(self) -> dict:
+        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
+
+        Returns
+        -------
+        dict
+            ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
+            (nested lists of floats) and ``seed``.
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> derive_paper(tau=0.05).parameters()["tau"]
+        0.05
+        """
+        from symctl.report import results
+
+        return results.parameters(self)
+
+    def to_json(self) -> dict:
+        """The ``results.json`` document: a dictionary of plain lists, floats and strings.
+
+        Returns
+        -------
+        dict
+            Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
+            ``gains``, ``controller``, ``factorization``, ``closed_loop``,
+            ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
+            "results.json").
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> data = derive_paper().to_json()
+        >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
+        (1, True, 3)
+        """
+        from symctl.report import results
+
+        return results.results_json(self)
+
+    def figure_names(self) -> list[str]:
+        """The names of the report's figures, in reading order (the file names of :meth:`write`).
+
+        Returns
+        -------
+        list of str
+            ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
+            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
+            ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
+            circuits (table in :mod:`symctl.report.figures`).
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> names = derive_paper().figure_names()
+        >>> len(names), names[-4:]
+        (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
+        """
+        from symctl.report import results
+
+        return results.figure_names(self)
+
+    def figure(self, name: str):
+        """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
+
+        Parameters
+        ----------
+        name : str
+            One of :meth:`figure_names`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Raises
+        ------
+        ParameterError
+            ``name`` is not one of :meth:`figure_names`.
+
+        Examples
+        --------
+        >>> from symctl import derive_paper
+        >>> res = derive_paper()
+        >>> fig = res.figure("closed_loop")
+        >>> type(fig).__name__
+        'Figure'
+        >>> res.figure("no_such_figure")
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
+        """
+        from symctl.report import results
+
+        return results.figure(self, name)
+
+    def write(
+        self,
+        out: Path | str,
+        *,
+        figures: bool = True,
+        pdf: bool = True,
+        jobs: int | None = None,
+        progress: Callable[[str], None] | None = None,
+        formats: str | tuple[str, ...] = ("pdf", "png"),
+    ) -> list[Path]:
+        """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
+
+        A hand-over to :func:`symctl.report.results.write`, which documents the
+        parameters, the files and the guarantees (the folder is the old complete
+        one or the new complete one, never a mix).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from pathlib import Path
+        >>> from symctl import derive_paper
+        >>> with tempfile.TemporaryDirectory() as parent:
+        ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
+        ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
+        (['results.json', 'derivation.tex', 'report.md'], ['paper'])
+        """
+        from symctl.report import results
+
+        return results.write(
+            self, out, figures=figures, pdf=pdf, jobs=jobs, progress=progress, formats=formats
+        )
+
+
+PaperResults = Derivation
+"""The former name of :class:`Derivation` (the results of any model, not only the paper's)."""

@@ -1,0 +1,114 @@
+r"""Realizations of :math:`G_2` at random section values: the realizations a circuit simulates.
+
+A circuit of the paper is one realization of :math:`G = G_3 G_2 G_1` among many:
+the sections' poles :math:`\epsilon_k` are free (and, for the general realization,
+the similarity transform :math:`P`). :func:`draw_realizations` draws them, seeded,
+and realizes :math:`G_2` at each draw; the derivation builds its numeric
+realizations from the first draw, and the simulations close the loop with every
+one (:func:`~symctl.neural.firing.circuit_firing`).
+
+Each draw, in turn: the epsilons uniformly from the grid :math:`k/1000`,
+:math:`|k| \le 899` (exact rationals in :math:`(-0.9, 0.9)`), :math:`C_k = 1`;
+then the realizer's own random choices (``P`` for ``"general"``) from the same
+generator.
+
+>>> from symctl import augment, controller_tf, lqr_gains, MuscleModel
+>>> from symctl.realization.draws import draw_realizations
+>>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
+>>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
+>>> first, second = draw_realizations(G, 1, 1, "observable", 2, rng=0)
+>>> [str(v) for v in first.values.values()], first.result.realization.n
+(['631/1000', '123/500'], 2)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+
+from symctl._util.validate import MAX_CIRCUITS, as_generator, bounded_int
+from symctl.design.tf import DiscreteTF
+from symctl.realization.factorization import Factorization, factor
+from symctl.realization.realizers import RealizerResult, get_realizer
+
+__all__ = ["EPS_GRID", "EPS_MAX", "Draw", "draw_eps", "draw_realizations"]
+
+EPS_GRID = 1000
+"""The epsilons are ``k / EPS_GRID``..."""
+EPS_MAX = 899
+"""... with ``|k| <= EPS_MAX``: the open interval (-0.9, 0.9)."""
+
+
+@dataclass(frozen=True)
+class Draw:
+    """One realization of :math:`G_2` at drawn values.
+
+    Attributes
+    ----------
+    values : mapping of Symbol to Rational
+        The epsilons drawn (the C are 1), read-only.
+    factors : Factorization
+        :math:`G = G_3 G_2 G_1` built at those values.
+    result : RealizerResult
+        The realization of ``factors.G2`` (with ``P`` for a transformed one).
+    """
+
+    values: Mapping
+    factors: Factorization
+    result: RealizerResult
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
+
+    def __hash__(self) -> int:
+        return hash((tuple(self.values.items()), self.factors, self.result))
+
+
+def draw_eps(eps, gen: np.random.Generator) -> dict:
+    """Each epsilon drawn uniformly from the grid ``k / EPS_GRID``, ``|k| <= EPS_MAX`` (exact)."""
+    return {e: sp.Rational(int(gen.integers(-EPS_MAX, EPS_MAX + 1)), EPS_GRID) for e in eps}
+
+
+def draw_realizations(
+    G: DiscreteTF, sensor_delay: int, actuator_delay: int, name: str, count: int, rng=None
+) -> tuple[Draw, ...]:
+    """``count`` realizations of :math:`G_2` of ``G`` at random section values, drawn in turn.
+
+    Parameters
+    ----------
+    G : DiscreteTF
+        The controller, with numbers (exact rationals keep every realization exact).
+    sensor_delay, actuator_delay : int
+        The delays (the sections of :math:`G_1` and :math:`G_3`).
+    name : str
+        A realizer of :data:`~symctl.realization.realizers.REALIZERS`.
+    count : int
+        From 1 to ``MAX_CIRCUITS``.
+    rng : None, int or numpy.random.Generator
+        Seeds the epsilons and the realizer's choices.
+
+    Returns
+    -------
+    tuple of Draw
+
+    Raises
+    ------
+    ParameterError
+        An unknown realizer, ``count`` out of range, a bad ``rng``.
+    """
+    realizer = get_realizer(name, "name")
+    count = bounded_int(count, "count", 1, MAX_CIRCUITS)
+    gen = as_generator(rng, "rng")
+    f0 = factor(G, sensor_delay, actuator_delay)  # the section symbols, per channel
+    eps = (*f0.sensor_eps, *f0.actuator_eps)
+    out = []
+    for _ in range(count):
+        drawn = draw_eps(eps, gen)
+        # the factors built at the drawn values: exact and cheap (no substitution into G2)
+        fs = factor(G, sensor_delay, actuator_delay, eps=list(drawn.values()), C=1)
+        out.append(Draw(drawn, fs, realizer(fs.G2, rng=gen)))
+    return tuple(out)
