@@ -45,9 +45,10 @@ The verdicts, each with its method (:class:`Evidence`):
     coordinate hyperplane, so a nearby point of the fibre has every entry of
     the bigger pattern nonzero.
 ``"conjectured"`` (evidence, not a proof; :attr:`Evidence.universal` is None)
-    For sampled :math:`G_2` in every pole region (every number of complex pole
-    pairs, real poles of both signs, random numerators) a real realization
-    is found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
+    For a sampled :math:`G_2` in every region of poles and zeros (every number
+    of complex pole pairs, every sign pattern of the real poles, and from order
+    3 a numerator with complex zeros or only real ones) a real realization is
+    found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
     position (:math:`x_i = g_i(t)`, :math:`e(t) = 0`, :math:`t` a random
     linear form), a real root of :math:`e` isolated in a rational interval,
     and every entry :math:`g_i(t)` shown nonzero on it. A handful of samples per
@@ -114,13 +115,17 @@ __all__ = [
 ]
 
 SAMPLES_PER_REGION = 2
-"""Sampled controllers per region of the witness search."""
+"""Sampled controllers per pole region of :func:`sample_targets`."""
 
 FIXINGS = 6
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
 
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
+
+WITNESSES_PER_REGION = 1
+"""Witnesses the search asks for in each region of poles and zeros (signs of the real poles,
+complex or real zeros; :func:`_search_regions`)."""
 
 POLE_DRAWS = 8
 """Sampled pole polynomials per region of the poles-alone refutation."""
@@ -250,6 +255,42 @@ def _sample(n: int, pairs: int, s: int, rng):
     a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
     c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4)) for _ in range(n)]
     return [sp.Rational(v) for v in a], c
+
+
+def _search_regions(n: int) -> list[tuple[str, int, tuple[int, ...], bool]]:
+    """The regions of the witness search: ``(name, pairs, real pole signs, complex zeros)``.
+
+    Every number of complex pole pairs, every sign pattern of the real poles, and (from
+    order 3, where the numerator has two zeros or more) complex or only real zeros.
+    """
+    out = []
+    for pairs in range(n // 2, -1, -1):  # complex poles first: where patterns fail
+        real = n - 2 * pairs
+        for plus in range(real, -1, -1):
+            signs = (1,) * plus + (-1,) * (real - plus)
+            poles = (f"{pairs} complex pair{'s' * (pairs > 1)}" if pairs else "") + (
+                (", " if pairs else "") + "real poles " + "".join("+-"[x < 0] for x in signs)
+                if real
+                else ""
+            )
+            for complex_zeros in (True, False) if n >= 3 else (None,):
+                zeros = {True: ", complex zeros", False: ", real zeros", None: ""}[complex_zeros]
+                out.append((poles + zeros, pairs, signs, complex_zeros))
+    return out
+
+
+def _search_sample(n: int, pairs: int, signs, complex_zeros, rng):
+    """A target of one search region: its poles, and a numerator with the region's zeros."""
+    a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
+    if complex_zeros is None:
+        c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
+             for _ in range(n)]  # fmt: skip
+        return [sp.Rational(v) for v in a], c
+    zpairs = (n - 1) // 2 if complex_zeros else 0
+    zsigns = [rng.choice([-1, 1]) for _ in range(n - 1 - 2 * zpairs)]
+    gain = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
+    b = sp.Poly(gain * _poles(n - 1, zpairs, zsigns, rng), z).all_coeffs()[::-1]
+    return [sp.Rational(v) for v in a], [sp.Rational(v) for v in b]
 
 
 def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
@@ -449,11 +490,11 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
 def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Evidence:
     witnessed: dict[str, list] = {}
     failed = []
-    for region, pairs in _regions(pattern.n):
-        for s in range(DRAWS_PER_REGION):
-            if len(witnessed.get(region, ())) >= SAMPLES_PER_REGION:
+    for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
+        for _ in range(DRAWS_PER_REGION):
+            if len(witnessed.get(region, ())) >= WITNESSES_PER_REGION:
                 break
-            a, c = _sample(pattern.n, pairs, s, rng)
+            a, c = _search_sample(pattern.n, pairs, signs, complex_zeros, rng)
             found, refuted = _witness(pattern, rng, extra, region, a, c, exact)
             if refuted is not None:
                 return refuted
@@ -468,8 +509,8 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Ev
             False,
             "conjectured universal, not proved: real realizations with every entry nonzero, "
             "proved (Krawczyk test or exact Groebner basis), for "
-            f"{sum(map(len, witnessed.values()))} sampled G2 in every pole region "
-            f"({', '.join(witnessed)}); samples cannot rule out a region they missed",
+            f"{sum(map(len, witnessed.values()))} sampled G2, one in each region of poles and "
+            f"zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region they missed",
             witnesses=witnessed,
         )
     return _evidence(
