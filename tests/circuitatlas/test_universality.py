@@ -135,3 +135,30 @@ def test_a_counterexample_is_a_generic_target_with_no_real_realization(text):
     c = [sp.Rational(v) for v in ev.details["c"]]
     sol = solve_at(pattern, a, c, rng=random.Random(5))  # another linear form, same fibre
     assert sol["degree"] == generic_degree(pattern) and not sol["real"]
+
+
+def test_conjectured_classes_are_counted_and_drawn_apart_from_the_proved_ones(tmp_path):
+    import dataclasses
+    from types import MappingProxyType
+
+    import symctl
+    from symctl.circuitatlas.atlas import Atlas
+    from symctl.report.atlas import claim_json, write_atlas
+
+    A = symctl.atlas(2, workers=1)
+    conj = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
+    last = A.universal_classes[-1]
+    guess = dataclasses.replace(
+        last,
+        evidence=conj,
+        pattern_evidence=MappingProxyType(dict.fromkeys(last.pattern_evidence, conj)),
+    )
+    B = Atlas(2, A.delays, tuple(guess if c is last else c for c in A.classes), A.stats)
+    assert len(B.universal_classes) == 8 and B.conjectured_classes == (guess,)
+    assert guess.universal is None and guess.verdict == "conjectured"
+    assert guess.to_dict()["universal"] is None and guess.to_dict()["conjectured"] is True
+    assert B.table()[A.classes.index(last)]["universal"] == "conjectured"
+    assert claim_json(B)["universal"] == 8 and claim_json(B)["conjectured"] == 1
+    written = {p.name for p in write_atlas(B, tmp_path, drawings=1, pdf=False)}
+    assert {"atlas_overview.png", "atlas_conjectured.png"} <= written
+    assert "only conjectured universal" in (tmp_path / "atlas.md").read_text()
