@@ -18,6 +18,15 @@ realization with it, and excludes an open set of order-:math:`n` :math:`G_2`
     than :math:`(n - 1) \bmod 2` real zeros, the :math:`G_2` whose numerator has complex
     zeros (an open set) are out of reach (:func:`forced_real_zeros`).
 
+No rule forces a *sign* on a single pole or zero: the coefficients of
+:math:`\det(zI - F)` and :math:`M \operatorname{adj}(zI - F) H` are multilinear in the
+entries, so a factor linear in :math:`z` is :math:`f_1 z + f_0` with coprime multilinear
+(hence squarefree) :math:`f_0, f_1`; unless both are constant (a fixed root: a rank
+deficiency), one of them changes sign across its zero set where the other does not vanish,
+and so does the root :math:`-f_0 / f_1`. Sign restrictions come from several coefficients at
+once (a discriminant, for example); the sampled counterexamples of
+:mod:`~symctl.circuitatlas.universality` find those.
+
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.structural import structural_refutation
 >>> structural_refutation(Pattern.from_matrices([[1, 1], [0, 1]], [1, 1], [1, 1])).method
