@@ -19,7 +19,10 @@ Definitions (the issue's, kept; :mod:`symctl.circuitatlas.pattern`,
 
 One refinement of the definition: a class is universal when *one* of its
 patterns is (the circuit then carries almost every :math:`G_2`); its other
-patterns may realize less.
+patterns may realize less. Universal means proved universal (a closed form, or
+a lift of one); a class whose best pattern has only witnesses at sampled
+:math:`G_2` is **conjectured** (:attr:`Atlas.conjectured_classes`), counted
+apart and never among :attr:`Atlas.universal_classes`.
 
 The search (:mod:`~symctl.circuitatlas.search`) is exhaustive for orders 1 to
 :data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
@@ -53,7 +56,7 @@ from symctl._util.validate import bounded_int
 from symctl.circuitatlas.circuitclass import CircuitClass, circuit_key, same_circuit
 from symctl.circuitatlas.pattern import Pattern
 from symctl.circuitatlas.search import pool_options, run
-from symctl.circuitatlas.universality import Evidence
+from symctl.circuitatlas.universality import CONJECTURED, Evidence
 from symctl.errors import ParameterError, SymctlTypeError
 
 __all__ = ["EXHAUSTIVE_MAX_ORDER", "MAX_ATLAS_ORDER", "Atlas", "atlas"]
@@ -67,12 +70,11 @@ MAX_ATLAS_ORDER = 4
 ORDER4_MAX_NEURONS = 3
 """Order 4 decides the patterns whose circuits have at most this many neurons (the sparsest)."""
 
-_RANK = {True: 0, None: 1, False: 2}
-
 
 @dataclass(frozen=True)
 class Atlas:
-    """The circuit classes of one order, ranked: universal first, then by neurons and synapses.
+    """The circuit classes of one order, ranked: universal, conjectured, undecided, refuted; then
+    by neurons and synapses.
 
     Attributes
     ----------
@@ -82,7 +84,8 @@ class Atlas:
     stats : mapping
         ``patterns`` (all, before the symmetry reduction), ``canonical``,
         ``minimal`` (generically minimal), ``full_rank``, ``universal``
-        (patterns), ``sizes`` searched, ``complete`` (exhaustive or not),
+        (patterns proved universal), ``conjectured`` (patterns conjectured),
+        ``undecided``, ``sizes`` searched, ``complete`` (exhaustive or not),
         ``seconds``, ``workers``.
 
     Examples
@@ -100,8 +103,13 @@ class Atlas:
 
     @property
     def universal_classes(self) -> tuple[CircuitClass, ...]:
-        """The classes that carry almost every order-``n`` G2."""
+        """The classes proved to carry almost every order-``n`` G2."""
         return tuple(c for c in self.classes if c.universal)
+
+    @property
+    def conjectured_classes(self) -> tuple[CircuitClass, ...]:
+        """The classes conjectured universal (witnesses at sampled G2, no proof)."""
+        return tuple(c for c in self.classes if c.conjectured)
 
     def sparsest(self) -> CircuitClass:
         """The universal class with the fewest neurons, then synapses (the first of the atlas)."""
@@ -137,7 +145,9 @@ class Atlas:
                 "synapses": c.n_synapses,
                 "branches": c.n_branches,
                 "patterns": len(c.representatives),
-                "universal": {True: "yes", False: "no", None: "?"}[c.universal],
+                "universal": "conjectured"
+                if c.conjectured
+                else {True: "yes", False: "no", None: "?"}[c.universal],
                 "method": c.evidence.method,
                 "proved": c.evidence.proved,
             }
@@ -156,7 +166,8 @@ class Atlas:
     def __repr__(self) -> str:
         return (
             f"Atlas(order={self.order}, {len(self.classes)} classes, "
-            f"{len(self.universal_classes)} universal, complete={self.stats.get('complete')})"
+            f"{len(self.universal_classes)} universal, {len(self.conjectured_classes)} "
+            f"conjectured, complete={self.stats.get('complete')})"
         )
 
     def draw(self, *, universal_only: bool = True, columns: int = 3):
@@ -274,7 +285,11 @@ def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_n
         "minimal": len(minimal),
         "full_rank": sum(r["evidence"]["method"] not in ("rank", "not minimal") for r in records),
         "universal": sum(bool(r["evidence"]["universal"]) for r in records),
-        "undecided": sum(r["evidence"]["universal"] is None for r in records),
+        "conjectured": sum(r["evidence"]["method"] == CONJECTURED for r in records),
+        "undecided": sum(
+            r["evidence"]["universal"] is None and r["evidence"]["method"] != CONJECTURED
+            for r in records
+        ),
         "sizes": [low, top],
         "complete": low == 0 and top == slots and not counts["skipped"],
         "max_neurons": max_neurons,
@@ -304,7 +319,7 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
             reps = sorted(
                 evidence,
                 key=lambda p: (
-                    _RANK[evidence[p].universal],
+                    evidence[p].sort_rank,
                     not evidence[p].proved,
                     p.size,
                     p.mask,
@@ -323,7 +338,7 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
             )
     found.sort(
         key=lambda c: (
-            _RANK[c["evidence"].universal],
+            c["evidence"].sort_rank,
             c["n_neurons"],
             c["n_synapses"],
             c["n_branches"],

@@ -94,10 +94,10 @@ class CircuitClass:
         The structure convention (``"branch"`` or ``"state"``).
     representatives : tuple of Pattern
         The canonical patterns of the class (one per state-permutation orbit),
-        universal ones first, then by size.
+        proved universal ones first, then conjectured ones, then by size.
     evidence : Evidence
-        The class's verdict: a universal pattern's evidence when it has one,
-        else the first pattern's.
+        The class's verdict: a proved universal pattern's evidence when it
+        has one, else a conjectured one's, else the first pattern's.
     pattern_evidence : mapping of Pattern to Evidence
     n_neurons, n_synapses, n_branches : int
         Neurons, synapses onto neurons (self-dynamics excluded) and axon
@@ -125,8 +125,19 @@ class CircuitClass:
 
     @property
     def universal(self) -> bool | None:
-        """True (every G2 but a measure-zero set), False, or None (not decided)."""
+        """True (proved: every G2 but a measure-zero set), False, or None (conjectured or not
+        decided)."""
         return self.evidence.universal
+
+    @property
+    def conjectured(self) -> bool:
+        """Whether the class is conjectured universal (witnesses at sampled G2, no proof)."""
+        return self.evidence.conjectured
+
+    @property
+    def verdict(self) -> str:
+        """``"universal"``, ``"conjectured"``, ``"not universal"`` or ``"not decided"``."""
+        return self.evidence.verdict
 
     @property
     def patterns(self) -> tuple[Pattern, ...]:
@@ -184,6 +195,7 @@ class CircuitClass:
             "synapses": self.n_synapses,
             "branches": self.n_branches,
             "universal": self.universal,
+            "conjectured": self.conjectured,
             "evidence": self.evidence.to_dict(),
             "patterns": [
                 {
@@ -199,7 +211,7 @@ class CircuitClass:
         }
 
     def __repr__(self) -> str:
-        verdict = {True: "universal", False: "not universal", None: "not decided"}[self.universal]
+        verdict = self.verdict
         return (
             f"CircuitClass({self.label or '?'}: {self.n_neurons} neurons, {self.n_synapses} "
             f"synapses, {len(self.representatives)} pattern(s), {verdict})"
@@ -207,7 +219,7 @@ class CircuitClass:
 
     def draw(self, ax=None, *, title: str | None = None):
         """Draw the class's circuit (a matplotlib Figure); the title gives its counts and verdict."""
-        verdict = {True: "universal", False: "not universal", None: "not decided"}[self.universal]
+        verdict = self.verdict
         head = title or (
             f"{self.label}: {self.n_neurons} neurons, {self.n_synapses} synapses ({verdict})"
         )

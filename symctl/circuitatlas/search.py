@@ -37,8 +37,8 @@ __all__ = ["CHUNK", "MAX_WORKERS", "canonical_masks", "open_pool", "pool_options
 CHUNK = 64
 """Patterns per task sent to a worker."""
 
-FORMAT = 1
-"""Version of the checkpoint format."""
+FORMAT = 2
+"""Version of the checkpoint format (2: witnesses give conjectures, not universal verdicts)."""
 
 MAX_WORKERS = 512
 """Most worker processes one search may ask for."""
@@ -241,6 +241,8 @@ def run(
     With ``max_neurons``, patterns whose circuit has more neurons are counted
     (``skipped``) but not decided.
     """
+    from symctl.circuitatlas.universality import CONJECTURED
+
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
     pool = open_pool(workers, scheduler)
     try:
@@ -259,7 +261,11 @@ def run(
                 kept = [m for m in masks if Pattern(n, m).n_neurons <= max_neurons]
                 counts["skipped"] += len(masks) - len(kept)
                 masks = kept
-            lifted = [(r["mask"], r["evidence"]) for r in records if r["evidence"]["universal"]]
+            lifted = [
+                (r["mask"], r["evidence"])
+                for r in records
+                if r["evidence"]["universal"] or r["evidence"]["method"] == CONJECTURED
+            ]
             todo = [m for m in masks if m not in store.done]
             counts["resumed"] += len(masks) - len(todo)
             chunks = [(n, todo[i : i + CHUNK], delays, lifted) for i in range(0, len(todo), CHUNK)]

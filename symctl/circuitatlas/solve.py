@@ -48,7 +48,7 @@ def realize_with(cls, G2) -> Realization:
     N, a, c = target_of(G2, cls.order)
     numeric = all(v.is_number for v in (*a, *c))
     reasons = []
-    order = sorted(cls.representatives, key=lambda p: not cls.pattern_evidence[p].universal)
+    order = sorted(cls.representatives, key=lambda p: cls.pattern_evidence[p].sort_rank)
     for pattern in order:
         ev = cls.pattern_evidence[pattern]
         form = closed_form(pattern) if ev.method == "closed form" else None

@@ -1,4 +1,4 @@
-r"""Universality over the reals: proved, refuted, or witnessed region by region.
+r"""Universality over the reals: proved, refuted, or conjectured from witnesses region by region.
 
 Write an order-:math:`n` :math:`G_2 = N + b(z)/a(z)`, :math:`a(z) = z^n +
 \sum_{i<n} a_i z^i`, :math:`b(z) = \sum_{i<n} c_i z^i`
@@ -21,6 +21,14 @@ The verdicts, each with its method (:class:`Evidence`):
     :math:`n \bmod 2`, no :math:`G_2` with only :math:`n \bmod 2` real poles
     (an open set: complex poles) is reachable. A triangular ``F`` is the
     case :math:`s = (1, .., 1)`.
+``"real zeros"`` (refuted)
+    :math:`M \operatorname{adj}(zI - F) H`, factored over :math:`\mathbb{Q}` as a
+    polynomial in :math:`z` and the entries, has irreducible factors of odd degree in
+    :math:`z`, each with a real root for every real realization; when they force more
+    than :math:`(n - 1) \bmod 2` real zeros, no :math:`G_2` whose numerator has complex
+    zeros (an open set) is reachable (:func:`forced_real_zeros`). Example:
+    ``F = [[f11, f12, f13], [f21, f22, 0], [f31, 0, f33]]``, :math:`H = e_1`,
+    :math:`M = e_1^T` gives :math:`m_1 h_1 (z - f_{22})(z - f_{33})`.
 ``"closed form"`` (proved)
     The equations are solved one unknown at a time, each linear in it with
     the earlier ones substituted: the entries are rational functions of
@@ -36,13 +44,17 @@ The verdicts, each with its method (:class:`Evidence`):
     the kernel equation with that entry set to 1); it leaves every
     coordinate hyperplane, so a nearby point of the fibre has every entry of
     the bigger pattern nonzero.
-``"witnesses"`` (evidence, not a proof)
-    For sampled :math:`G_2` in every region (every number of complex pole
-    pairs, real poles of both signs, random numerators) a real realization
-    is found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
+``"conjectured"`` (evidence, not a proof; :attr:`Evidence.universal` is None)
+    For a sampled :math:`G_2` in every region of poles and zeros (every number
+    of complex pole pairs, every sign pattern of the real poles, and from order
+    3 a numerator with complex zeros or only real ones) a real realization is
+    found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
     position (:math:`x_i = g_i(t)`, :math:`e(t) = 0`, :math:`t` a random
     linear form), a real root of :math:`e` isolated in a rational interval,
-    and every entry :math:`g_i(t)` shown nonzero on it.
+    and every entry :math:`g_i(t)` shown nonzero on it. A handful of samples per
+    region cannot rule out an open sub-region they missed, so this is a
+    conjecture, counted apart from the proofs. A pattern that contains a
+    conjectured one (and no proved one) is conjectured too.
 ``"counterexample"`` (refuted)
     A sampled :math:`G_2` whose fibre has :math:`d` simple points, none real
     (same certificate). Or, tried before any witness search (witnesses for a
@@ -51,8 +63,11 @@ The verdicts, each with its method (:class:`Evidence`):
     :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` with no
     real solution refutes every pattern with that ``F``. With :math:`d` the fibre degree, the points move
     continuously and stay non-real nearby, so an open set of controllers of
-    that region has no realization. (The degree is the one seen at random
-    targets; that part holds with probability 1, not by proof.)
+    that region has no realization. The sampled target must be generic: its
+    fibre has the degree :math:`d` seen at a random target (:func:`generic_degree`)
+    with simple points, else a solution went to infinity there and the target
+    refutes nothing. (That :math:`d` is the generic degree holds with probability
+    1, not by proof.)
 ``"not decided"``
     None of the above settled it; the search done is stated.
 
@@ -68,7 +83,6 @@ from __future__ import annotations
 
 import itertools
 import random
-from dataclasses import dataclass, field
 from functools import cache
 from types import MappingProxyType
 
@@ -76,6 +90,7 @@ import networkx as nx
 import sympy as sp
 
 from symctl.circuitatlas.certify import certified_real_root
+from symctl.circuitatlas.evidence import CONJECTURED, Evidence, _evidence
 from symctl.circuitatlas.fibre import (
     _equations,
     _system,
@@ -85,18 +100,32 @@ from symctl.circuitatlas.fibre import (
 )
 from symctl.circuitatlas.pattern import Pattern, slot_names
 from symctl.circuitatlas.rank import generic_rank
+from symctl.circuitatlas.structural import forced_real_zeros, structural_refutation
 from symctl.symbols import z
 
-__all__ = ["Evidence", "closed_form", "decide", "fixings", "sample_targets"]
+__all__ = [
+    "CONJECTURED",
+    "Evidence",
+    "closed_form",
+    "decide",
+    "fixings",
+    "forced_real_zeros",
+    "generic_degree",
+    "sample_targets",
+]
 
 SAMPLES_PER_REGION = 2
-"""Sampled controllers per region of the witness search."""
+"""Sampled controllers per pole region of :func:`sample_targets`."""
 
 FIXINGS = 6
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
 
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
+
+WITNESSES_PER_REGION = 1
+"""Witnesses the search asks for in each region of poles and zeros (signs of the real poles,
+complex or real zeros; :func:`_search_regions`)."""
 
 POLE_DRAWS = 8
 """Sampled pole polynomials per region of the poles-alone refutation."""
@@ -106,70 +135,6 @@ EXACT_SOLVE_MAX_ORDER = 3
 (a refutation). Above it that solve has no useful bound (eight unknowns at order 4), so a
 region without a certified real root leaves the pattern not decided."""
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
-
-
-@dataclass(frozen=True)
-class Evidence:
-    """Why a pattern is (or is not) universal; truthy when it is.
-
-    Attributes
-    ----------
-    universal : bool or None
-        True, False, or None (not decided).
-    method : str
-        One of the methods of the module text (``"closed form"``, ``"lifted"``,
-        ``"witnesses"``, ``"rank"``, ``"real eigenvalues"``, ``"counterexample"``,
-        ``"not minimal"``, ``"not decided"``).
-    proved : bool
-        Whether the verdict is a proof (closed forms, lifts of proofs and the
-        refutations) or sampled evidence (witnesses).
-    text : str
-        One sentence.
-    details : mapping
-        The formulas, witnesses or the counterexample (plain data, for JSON).
-
-    Examples
-    --------
-    >>> from symctl.circuitatlas.pattern import Pattern
-    >>> from symctl.circuitatlas.universality import decide
-    >>> ev = decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
-    >>> bool(ev), ev.proved, sorted(ev.details["entries"])
-    (True, True, ['F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]'])
-    """
-
-    universal: bool | None
-    method: str
-    proved: bool
-    text: str
-    details: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
-
-    def __bool__(self) -> bool:
-        return bool(self.universal)
-
-    @classmethod
-    def from_dict(cls, data: dict) -> Evidence:
-        """The evidence that :meth:`to_dict` wrote."""
-        return cls(
-            data["universal"],
-            data["method"],
-            data["proved"],
-            data["text"],
-            MappingProxyType(dict(data.get("details", {}))),
-        )
-
-    def to_dict(self) -> dict:
-        """Plain data for JSON."""
-        return {
-            "universal": self.universal,
-            "method": self.method,
-            "proved": self.proved,
-            "text": self.text,
-            "details": dict(self.details),
-        }
-
-
-def _evidence(universal, method, proved, text, **details) -> Evidence:
-    return Evidence(universal, method, proved, text, MappingProxyType(details))
 
 
 def _linear_pair(eqs, left):
@@ -292,6 +257,42 @@ def _sample(n: int, pairs: int, s: int, rng):
     return [sp.Rational(v) for v in a], c
 
 
+def _search_regions(n: int) -> list[tuple[str, int, tuple[int, ...], bool]]:
+    """The regions of the witness search: ``(name, pairs, real pole signs, complex zeros)``.
+
+    Every number of complex pole pairs, every sign pattern of the real poles, and (from
+    order 3, where the numerator has two zeros or more) complex or only real zeros.
+    """
+    out = []
+    for pairs in range(n // 2, -1, -1):  # complex poles first: where patterns fail
+        real = n - 2 * pairs
+        for plus in range(real, -1, -1):
+            signs = (1,) * plus + (-1,) * (real - plus)
+            poles = (f"{pairs} complex pair{'s' * (pairs > 1)}" if pairs else "") + (
+                (", " if pairs else "") + "real poles " + "".join("+-"[x < 0] for x in signs)
+                if real
+                else ""
+            )
+            for complex_zeros in (True, False) if n >= 3 else (None,):
+                zeros = {True: ", complex zeros", False: ", real zeros", None: ""}[complex_zeros]
+                out.append((poles + zeros, pairs, signs, complex_zeros))
+    return out
+
+
+def _search_sample(n: int, pairs: int, signs, complex_zeros, rng):
+    """A target of one search region: its poles, and a numerator with the region's zeros."""
+    a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
+    if complex_zeros is None:
+        c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
+             for _ in range(n)]  # fmt: skip
+        return [sp.Rational(v) for v in a], c
+    zpairs = (n - 1) // 2 if complex_zeros else 0
+    zsigns = [rng.choice([-1, 1]) for _ in range(n - 1 - 2 * zpairs)]
+    gain = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
+    b = sp.Poly(gain * _poles(n - 1, zpairs, zsigns, rng), z).all_coeffs()[::-1]
+    return [sp.Rational(v) for v in a], [sp.Rational(v) for v in b]
+
+
 def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
     """Sampled targets ``(region, a, c)``: every number of complex pole pairs, real poles of both signs.
 
@@ -307,22 +308,6 @@ def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
         for region, pairs in _regions(n)
         for s in range(per_region)
     ]
-
-
-def _odd_blocks(pattern: Pattern) -> Evidence | None:
-    sizes = pattern.component_sizes()
-    odd = sum(s % 2 for s in sizes)
-    if odd <= pattern.n % 2:
-        return None
-    return _evidence(
-        False,
-        "real eigenvalues",
-        True,
-        f"F is block triangular with diagonal blocks of sizes {list(sizes)}: it has at least "
-        f"{odd} real eigenvalues, so no G2 with only {pattern.n % 2} real poles "
-        "(complex poles) has a realization with this pattern",
-        block_sizes=list(sizes),
-    )
 
 
 ATTEMPTS = 16
@@ -347,9 +332,42 @@ def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
         yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
 
 
-def _no_real_point(sol) -> bool:
-    """A solve_at / real_solutions result that is a nonempty finite fibre without a real point."""
-    return sol is not None and sol["degree"] > 0 and not sol["real"]
+def _no_real_point(sol, generic: int | None = None) -> bool:
+    """A solve_at / real_solutions result that is a finite fibre without a real point.
+
+    With ``generic`` (the fibre degree at a generic target), only a fibre of that degree
+    counts: a smaller one lost solutions to infinity and refutes nothing.
+    """
+    if sol is None or sol["degree"] == 0 or sol["real"]:
+        return False
+    return generic is None or sol["degree"] == generic
+
+
+def _generic_rationals(rng, k: int) -> list[sp.Rational]:
+    return [sp.Rational(rng.randint(-(10**6), 10**6), rng.randint(1, 10**6)) for _ in range(k)]
+
+
+@cache
+def generic_degree(pattern: Pattern) -> int | None:
+    """The number of complex realizations (torus-normalized) of a random rational target.
+
+    With probability 1 it is the fibre degree of almost every target; a target with fewer
+    (simple) points is not generic. None when that fibre is not finite and reduced.
+    """
+    rng = random.Random(pattern.mask)
+    n = pattern.n
+    sol = solve_at(pattern, _generic_rationals(rng, n), _generic_rationals(rng, n), rng=rng)
+    return None if sol is None else sol["degree"]
+
+
+@cache
+def _generic_pole_degree(n: int, fmask: int) -> int | None:
+    """:func:`generic_degree` of the poles-alone system of this ``F``."""
+    free, charpoly = _pole_system(n, fmask)
+    rng = random.Random(fmask)
+    a = _generic_rationals(rng, n)
+    sol = real_solutions([sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)], free, rng)
+    return None if sol is None else sol["degree"]
 
 
 @cache
@@ -403,7 +421,9 @@ def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
             a, _c = _sample(n, pairs, s, rng)
             eqs = [sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)]
             sol = real_solutions(eqs, free, rng)
-            if _no_real_point(sol):
+            if _no_real_point(sol) and _no_real_point(
+                sol, _generic_pole_degree(n, pattern.mask & ((1 << (n * n)) - 1))
+            ):
                 return _evidence(
                     False,
                     "counterexample",
@@ -450,14 +470,14 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
                 "eliminant": sol["eliminant"],
                 "interval": good[0]["interval"],
             }
-        elif _no_real_point(sol):
+        elif _no_real_point(sol) and _no_real_point(sol, generic_degree(pattern)):
             return None, _evidence(
                 False,
                 "counterexample",
                 True,
                 f"the sampled G2 with a = {[str(v) for v in a]}, c = {[str(v) for v in c]} "
-                f"({region}) has {sol['degree']} complex realizations with this pattern and "
-                "no real one",
+                f"({region}) has {sol['degree']} complex realizations with this pattern (the "
+                "generic number, all simple) and no real one",
                 region=region,
                 a=[str(v) for v in a],
                 c=[str(v) for v in c],
@@ -470,11 +490,11 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
 def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Evidence:
     witnessed: dict[str, list] = {}
     failed = []
-    for region, pairs in _regions(pattern.n):
-        for s in range(DRAWS_PER_REGION):
-            if len(witnessed.get(region, ())) >= SAMPLES_PER_REGION:
+    for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
+        for _ in range(DRAWS_PER_REGION):
+            if len(witnessed.get(region, ())) >= WITNESSES_PER_REGION:
                 break
-            a, c = _sample(pattern.n, pairs, s, rng)
+            a, c = _search_sample(pattern.n, pairs, signs, complex_zeros, rng)
             found, refuted = _witness(pattern, rng, extra, region, a, c, exact)
             if refuted is not None:
                 return refuted
@@ -484,13 +504,13 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Ev
             failed.append(region)
     if not failed:
         return _evidence(
-            True,
-            "witnesses",
+            None,
+            CONJECTURED,
             False,
-            "real realizations with every entry nonzero, proved (Krawczyk test or exact "
-            "Groebner basis), for "
-            f"{sum(map(len, witnessed.values()))} sampled G2 in every region "
-            f"({', '.join(witnessed)})",
+            "conjectured universal, not proved: real realizations with every entry nonzero, "
+            "proved (Krawczyk test or exact Groebner basis), for "
+            f"{sum(map(len, witnessed.values()))} sampled G2, one in each region of poles and "
+            f"zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region they missed",
             witnesses=witnessed,
         )
     return _evidence(
@@ -514,8 +534,9 @@ def decide(
     ----------
     pattern : Pattern
     universal_below : iterable of (Pattern, Evidence)
-        Patterns already found universal; one contained in ``pattern``
-        decides it by lifting.
+        Patterns already found universal (proved or conjectured); one contained
+        in ``pattern`` decides it by lifting, a proof only when the source's
+        verdict is one.
     seed : int
         Seeds the sampled targets and linear forms.
     exact : bool, optional
@@ -553,15 +574,16 @@ def decide(
             f"{rank.rank} in the {2 * n}-dimensional space of order-{n} G2",
             rank=rank.rank,
         )
-    blocked = _odd_blocks(pattern)
+    blocked = structural_refutation(pattern)
     if blocked is not None:
         return blocked
-    for sub, ev in universal_below:
-        if pattern.contains(sub) and ev.universal:
+    below = [(sub, ev) for sub, ev in universal_below if pattern.contains(sub)]
+    for sub, ev in below:
+        if ev.universal and ev.proved:
             return _evidence(
                 True,
                 "lifted",
-                ev.proved,
+                True,
                 f"contains the universal pattern {sub.text} ({ev.method}); every added entry can "
                 "be made nonzero along the fibre",
                 source=sub.text,
@@ -576,6 +598,18 @@ def decide(
     blocked = _pole_verdict(n, pattern.mask & ((1 << (n * n)) - 1), seed)
     if blocked is not None:
         return blocked
+    for sub, ev in below:
+        if ev.conjectured:  # a lift is a proof only when its source is one
+            return _evidence(
+                None,
+                CONJECTURED,
+                False,
+                f"contains the conjectured pattern {sub.text}: universal if that one is (a lift), "
+                "not proved",
+                source=sub.text,
+                source_method=ev.method,
+                lifted=True,
+            )
     rng = random.Random(seed * 7919 + pattern.mask)
     if exact is None:
         exact = n <= EXACT_SOLVE_MAX_ORDER

@@ -337,7 +337,8 @@ def _atlas_summary(A) -> None:
     _console.print(
         f"order {A.order}: {s['patterns']} patterns, {s['canonical']} up to permutation, "
         f"{s['minimal']} minimal, {s['full_rank']} of full rank; {len(A.classes)} circuit classes, "
-        f"{len(A.universal_classes)} universal, {s['undecided']} undecided ({s['seconds']:g} s)"
+        f"{len(A.universal_classes)} universal, {len(A.conjectured_classes)} conjectured, "
+        f"{s['undecided']} undecided ({s['seconds']:g} s)"
     )
     table = Table(title=f"circuit classes of order {A.order} (the first 15)")
     for col in (

@@ -41,6 +41,11 @@ _SQUEEZE = 1.1  # a drawing this much wider than its column is redrawn to fit it
 _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 
 
+def _verdict(c) -> str:
+    """A class's verdict: universal, conjectured, not universal or not decided."""
+    return getattr(c, "verdict", None) or _VERDICT[c.universal]
+
+
 def draw_atlas(
     atlas, *, universal_only: bool = True, columns: int = 3, title: str | None = None
 ) -> Figure:
@@ -50,7 +55,7 @@ def draw_atlas(
     ----------
     atlas : Atlas
     universal_only : bool
-        Only the universal classes (default), or every class.
+        Only the proved universal classes (default), or every class.
     columns : int
         Panels per row, at most: fewer when a circuit is too wide for its column.
     title : str, optional
@@ -84,7 +89,7 @@ def draw_classes(atlas, classes, *, columns: int = 3, title: str | None = None) 
     for c in classes:  # each at its natural size first
         head = (
             f"{c.label}: {c.n_neurons} neuron{'s' if c.n_neurons != 1 else ''}, "
-            f"{c.n_synapses} synapse{'s' if c.n_synapses != 1 else ''}, {_VERDICT[c.universal]}"
+            f"{c.n_synapses} synapse{'s' if c.n_synapses != 1 else ''}, {_verdict(c)}"
         )
         panels.append(_panel(fig, c.circuit, head, width))
     # as many columns as asked for, or as fit the widest drawing (one a little wider is

@@ -33,8 +33,6 @@ OVERVIEW_MAX = 24
 TABLE_ROWS = 60
 """Classes listed in the documents' table (atlas.json lists every class)."""
 
-_VERDICT = {True: "universal", False: "not universal", None: "not decided"}
-
 
 def paper_realizations(A) -> dict:
     """The classes of the paper's three realizations of a generic order-n G2, by name."""
@@ -64,12 +62,18 @@ def _claim(A) -> list:
     sparse = min((c.representatives[0].size for c in universal), default=None)
     sparsest = [c for c in universal if c.representatives[0].size == sparse]
     where = ", ".join(f"the {k} one is {c.label}" for k, c in ours.items())
+    conjectured = A.conjectured_classes
     text = (
-        f"At order {A.order} there are {len(universal)} universal circuit classes "
-        f"(minimal circuits that implement almost every order-{A.order} controller), "
+        f"At order {A.order} there are {len(universal)} universal circuit classes, each "
+        f"proved (minimal circuits that implement almost every order-{A.order} controller), "
         f"{len(sparsest)} of them with the fewest nonzero entries ({sparse}). "
         f"Among them, {where}."
     )
+    if conjectured:
+        text += (
+            f" Another {len(conjectured)} classes are only conjectured universal: they have "
+            "real realizations at sampled controllers of every pole region, which is not a proof."
+        )
     if A.order == 2:
         text += (
             f" The paper's abstract {cite()} says that for any second-order controller there are three "
@@ -100,7 +104,7 @@ def _scope(A) -> list:
 def atlas_blocks(A, drawn=()) -> list:
     """The document: definitions, counts, the paper's claim, the classes, their evidence."""
     s = A.stats
-    methods = Counter((c.universal, c.evidence.method) for c in A.classes)
+    methods = Counter((c.verdict, c.evidence.method) for c in A.classes)
     blocks = [
         Heading(f"The circuit atlas of order {A.order}"),
         Text(
@@ -120,6 +124,7 @@ def atlas_blocks(A, drawn=()) -> list:
                 "full rank",
                 "classes",
                 "universal",
+                "conjectured",
                 "undecided",
                 "sizes",
                 "seconds",
@@ -132,6 +137,7 @@ def atlas_blocks(A, drawn=()) -> list:
                     str(s["full_rank"]),
                     str(len(A.classes)),
                     str(len(A.universal_classes)),
+                    str(len(A.conjectured_classes)),
                     str(s["undecided"]),
                     f"{s['sizes'][0]}..{s['sizes'][1]}"
                     + ("" if s["complete"] else " (not exhaustive)"),
@@ -144,18 +150,19 @@ def atlas_blocks(A, drawn=()) -> list:
         Heading("How each verdict was reached", 2),
         Table(
             ("verdict", "method", "classes"),
-            tuple(
-                (_VERDICT[u], m, str(k))
-                for (u, m), k in sorted(methods.items(), key=lambda t: (str(t[0][0]), t[0][1]))
-            ),
+            tuple((v, m, str(k)) for (v, m), k in sorted(methods.items())),
         ),
         Text(
             "closed form: entries as rational functions of $G_2$'s coefficients, proved exactly "
-            "against the symbolic $G_2$; lifted: contains a universal pattern; witnesses: real "
-            "realizations proved to exist (Krawczyk test or exact Groebner basis) for sampled $G_2$ "
-            "in every region, evidence rather than proof; rank: generic rank below $2n$; real "
-            "eigenvalues: $F$ block triangular with too many odd blocks; counterexample: a sampled "
-            "$G_2$ with no real realization, exactly."
+            "against the symbolic $G_2$; lifted: contains a proved universal pattern; "
+            "conjectured: real realizations proved to exist (Krawczyk test or exact Groebner "
+            "basis) for sampled $G_2$ in every pole region, or contains such a pattern: evidence, "
+            "not proof, so not counted as universal; rank: generic rank below $2n$; real "
+            "eigenvalues: $F$ block triangular with too many odd blocks; real zeros: "
+            "$M \\operatorname{adj}(zI - F) H$ factors into odd-degree factors in $z$ that force "
+            "real zeros, so numerators with complex zeros are missed; counterexample: a sampled "
+            "generic $G_2$ (the generic number of simple complex realizations) with no real "
+            "realization, exactly."
         ),
         Heading("The classes", 2),
         Table(
@@ -175,7 +182,7 @@ def atlas_blocks(A, drawn=()) -> list:
                     str(c.n_synapses),
                     str(c.n_branches),
                     c.representatives[0].text.replace("|", "/"),
-                    _VERDICT[c.universal],
+                    c.verdict,
                     c.evidence.method,
                 )
                 for c in A.classes[:TABLE_ROWS]
@@ -189,15 +196,28 @@ def atlas_blocks(A, drawn=()) -> list:
     if drawn:
         blocks.append(Heading("Drawings", 2))
         blocks.append(
-            Graphic("atlas_overview", f"The universal classes of order {A.order}, sparsest first.")
+            Graphic(
+                "atlas_overview",
+                f"The classes of order {A.order} proved universal, sparsest first."
+                if A.universal_classes
+                else f"The first classes of order {A.order}.",
+            )
         )
+        if A.universal_classes and A.conjectured_classes:
+            blocks.append(
+                Graphic(
+                    "atlas_conjectured",
+                    f"Classes of order {A.order} conjectured universal (not proved), sparsest "
+                    "first.",
+                )
+            )
         for label in drawn:
             c = next(x for x in A.classes if x.label == label)
             blocks.append(
                 Graphic(
                     f"class_{label}",
                     f"{label}: {c.n_neurons} neurons, {c.n_synapses} synapses, "
-                    f"{_VERDICT[c.universal]} ({c.evidence.method}).",
+                    f"{c.verdict} ({c.evidence.method}).",
                 )
             )
     blocks.append(References(REFERENCES))
@@ -241,6 +261,10 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
         from symctl.plotting.atlas import draw_classes
 
         written += save(draw_classes(A, overview), out, "atlas_overview")
+        if A.universal_classes and A.conjectured_classes:
+            written += save(
+                draw_classes(A, A.conjectured_classes[:OVERVIEW_MAX]), out, "atlas_conjectured"
+            )
         for c in chosen:
             written += save(c.draw(), out, f"class_{c.label}")
             drawn.append(c.label)
@@ -268,6 +292,7 @@ def claim_json(A) -> dict:
         "classes": len(A.classes),
         "universal": len(A.universal_classes),
         "universal_labels": [c.label for c in A.universal_classes],
+        "conjectured": len(A.conjectured_classes),
         "paper": {k: c.label for k, c in paper_realizations(A).items()},
     }
 
