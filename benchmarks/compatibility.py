@@ -170,10 +170,17 @@ def main() -> None:
             )
             rows.append(
                 (
-                    label, len(S), gname, "ok" if r.ok else "no", t, method, brute(S, g),
-                    cp_sat(S, g), t_build,
+                    label,
+                    len(S),
+                    gname,
+                    "ok" if r.ok else "no",
+                    t,
+                    method,
+                    brute(S, g),
+                    cp_sat(S, g),
+                    t_build,
                 )
-            )  # fmt: skip
+            )
     columns = [
         ("structure", ">16"),
         ("signals", ">7"),

@@ -149,8 +149,13 @@ def table2() -> None:
     ]
     for name, G, circuits in cases:
         t0 = time.perf_counter()
-        e = symctl.ei_circuit(G, sensor_delay=1 if "1 + 1" in name else 2, actuator_delay=1,
-                              circuits=circuits, timeout=TIMEOUT)  # fmt: skip
+        e = symctl.ei_circuit(
+            G,
+            sensor_delay=1 if "1 + 1" in name else 2,
+            actuator_delay=1,
+            circuits=circuits,
+            timeout=TIMEOUT,
+        )
         what = "observable only" if circuits else f"{len(e.candidates)}"
         print(
             f"| {name} | {what} | {e.circuit} | {e.neurons} | {e.minimum} | "

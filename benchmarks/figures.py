@@ -133,16 +133,20 @@ def main() -> None:
             case_rows, summary = run(key, out)
             rows += case_rows
             summaries.append(summary)
-    head = (f"{'case':<11} {'figure':<23} {'make':>5} {'save':>5} {'prev.':>5} {'width':>5} "
-            f"{'scale':>5} {'font':>4}  legible")  # fmt: skip
+    head = (
+        f"{'case':<11} {'figure':<23} {'make':>5} {'save':>5} {'prev.':>5} {'width':>5} "
+        f"{'scale':>5} {'font':>4}  legible"
+    )
     print("make, save: CPU s; prev.: make + save by the previous method (structure figures)")
     print("as printed in derivation.pdf: width [in], scale (1: natural size), smallest font [pt]")
     print(head)
     print("-" * len(head))
     for label, name, t_make, t_save, before, width, scale, font, check in rows:
         prev = f"{before:5.2f}" if before is not None else f"{'-':>5}"
-        print(f"{label:<11} {name:<23} {t_make:5.2f} {t_save:5.2f} {prev} {width:5.2f} "
-              f"{scale:5.2f} {font:4.1f}  {check}")  # fmt: skip
+        print(
+            f"{label:<11} {name:<23} {t_make:5.2f} {t_save:5.2f} {prev} {width:5.2f} "
+            f"{scale:5.2f} {font:4.1f}  {check}"
+        )
     print()
     for line in summaries:
         print(line)

@@ -448,8 +448,12 @@ def export(
     if len(pairs) == 1:
         lhs, rhs = pairs[0]
         lhs = name if name is not None else lhs
-        return equation(rhs if lhs is None else lhs, None if lhs is None else rhs,
-                        label=label, numbered=numbered)  # fmt: skip
+        return equation(
+            rhs if lhs is None else lhs,
+            None if lhs is None else rhs,
+            label=label,
+            numbered=numbered,
+        )
     if name is not None:
         raise ParameterError(f"name: only for a single equation; this object has {len(pairs)}")
     return align(pairs, labels=[label] + [None] * (len(pairs) - 1), numbered=numbered)

@@ -37,9 +37,14 @@ def _say(text: str) -> None:
 )
 @click.option("--sensor-delay", type=int, default=None, help="[default: the model's, else 1]")
 @click.option("--actuator-delay", type=int, default=None, help="[default: the model's, else 1]")
-@click.option("--timeout", type=float, default=30.0, show_default=True,
-              help="Seconds for each circuit's decision, every stage included (--ei: for each "
-              "circuit searched; --atlas: for each search).")  # fmt: skip
+@click.option(
+    "--timeout",
+    type=float,
+    default=30.0,
+    show_default=True,
+    help="Seconds for each circuit's decision, every stage included (--ei: for each "
+    "circuit searched; --atlas: for each search).",
+)
 @click.option("--ei", is_flag=True, help="Also find the cheapest E/I circuit (interneurons).")
 @click.option(
     "--atlas",
@@ -47,16 +52,35 @@ def _say(text: str) -> None:
     is_flag=True,
     help="Instead: the E/I table of the order-2 atlas (every, some or never).",
 )
-@click.option("--samples", type=click.IntRange(min=0), default=24, show_default=True,
-              help="Sampled controllers per class (--atlas).")  # fmt: skip
-@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Local processes (--atlas; the atlas's dask path).")  # fmt: skip
+@click.option(
+    "--samples",
+    type=click.IntRange(min=0),
+    default=24,
+    show_default=True,
+    help="Sampled controllers per class (--atlas).",
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    default=1,
+    show_default=True,
+    help="Local processes (--atlas; the atlas's dask path).",
+)
 @click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of text.")
 def dale_command(
-    model_file, circuit, sensor_delay, actuator_delay, timeout, ei, atlas_table, samples,
-    workers, scheduler, as_json,
-) -> None:  # fmt: skip
+    model_file,
+    circuit,
+    sensor_delay,
+    actuator_delay,
+    timeout,
+    ei,
+    atlas_table,
+    samples,
+    workers,
+    scheduler,
+    as_json,
+) -> None:
     """Decide whether the circuits of the controller can have every neuron E or I.
 
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
@@ -69,11 +93,20 @@ def dale_command(
 
     gains = _gains(model_file, sensor_delay, actuator_delay)
     if atlas_table:
-        T = dale_atlas(2, samples=samples, G=gains, timeout=timeout, workers=workers,
-                              scheduler=scheduler)  # fmt: skip
+        T = dale_atlas(
+            2, samples=samples, G=gains, timeout=timeout, workers=workers, scheduler=scheduler
+        )
         if as_json:
-            rows = [{"class": r.label, "verdict": r.verdict, "controller": r.controller,
-                     "sampled": list(r.sampled), "exists": r.exists} for r in T.rows]  # fmt: skip
+            rows = [
+                {
+                    "class": r.label,
+                    "verdict": r.verdict,
+                    "controller": r.controller,
+                    "sampled": list(r.sampled),
+                    "exists": r.exists,
+                }
+                for r in T.rows
+            ]
             _say(json.dumps({"order": 2, "samples": samples, "rows": rows}, indent=1))
         else:
             _say(T.table())
@@ -90,15 +123,25 @@ def dale_command(
     if as_json:
         out = {
             "circuits": [
-                {"circuit": r.circuit, "feasible": r.feasible, "realizes": r.realizes,
-                 "signs": dict(r.signs), "method": r.method, "reason": r.reason}
+                {
+                    "circuit": r.circuit,
+                    "feasible": r.feasible,
+                    "realizes": r.realizes,
+                    "signs": dict(r.signs),
+                    "method": r.method,
+                    "reason": r.reason,
+                }
                 for r in results
             ],
-        }  # fmt: skip
+        }
         if e is not None:
-            out["ei_circuit"] = {"circuit": e.circuit, "neurons": e.neurons,
-                                 "minimum": e.minimum, "cost": e.cost,
-                                 "interneurons": list(e.interneurons)}  # fmt: skip
+            out["ei_circuit"] = {
+                "circuit": e.circuit,
+                "neurons": e.neurons,
+                "minimum": e.minimum,
+                "cost": e.cost,
+                "interneurons": list(e.interneurons),
+            }
         _say(json.dumps(out, indent=1))
         return
     word = {True: "E/I", False: "none (proved)", None: "not decided"}
@@ -108,8 +151,10 @@ def dale_command(
         _say(f"{r.circuit:>12}: {word[r.feasible]}" + (f"  [{signs}]" if signs else ""))
         _say(f"{'':>14}{r.reason}")
     if e is not None:
-        _say(f"cheapest E/I circuit: {e.circuit}, {e.neurons} neurons (the fewest without "
-             f"Dale's law: {e.minimum}; Dale's law costs {e.cost})")  # fmt: skip
+        _say(
+            f"cheapest E/I circuit: {e.circuit}, {e.neurons} neurons (the fewest without "
+            f"Dale's law: {e.minimum}; Dale's law costs {e.cost})"
+        )
         _say(e.table())
 
 

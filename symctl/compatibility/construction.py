@@ -250,9 +250,13 @@ def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: st
 
 
 def along_path(
-    G, path: Sequence[int], delays: Sequence[int], *, base: str = "controllable",
+    G,
+    path: Sequence[int],
+    delays: Sequence[int],
+    *,
+    base: str = "controllable",
     structure: str = "branch",
-) -> PathPart:  # fmt: skip
+) -> PathPart:
     r"""``G`` factored along one path, with every signal placed on it.
 
     Parameters

@@ -529,55 +529,17 @@ class Structure(LatexMixin):
         counts = ", ".join(f"{self.count(k)} {k}" for k in ("gain", "sum", "delay"))
         return f"Structure({len(self)} signals: {counts}; inputs={self.inputs}, outputs={self.outputs})"
 
-    def draw(
-        self,
-        ax=None,
-        *,
-        title: str | None = None,
-        max_signals: int = 400,
-        overview: bool | str = False,
-        assignment=None,
-        vertex_names=None,
-        labels=None,
-    ):
+    def draw(self, ax=None, **options):
         """Draw the structure as a block diagram, at the size it is printed (6.9 in at most).
 
         Gains are boxes with their value (long ones by their entry's name, listed in a
         key), adders circles with a plus, delays dashed wires into the delayed signal (a
         dot), every wire orthogonal with an arrow head; the parts of a series connection
-        are framed; a structure wider than the page is folded into rows of parts. Layout:
-        :func:`symctl.plotting.structure_layout.structure_layout` (numbers); rendering:
-        :func:`symctl.plotting.structure.draw_structure`, whose parameters these are.
-
-        Parameters
-        ----------
-        ax : matplotlib Axes, optional
-            Draw into these axes; by default a new figure sized to the drawing.
-        title : str, optional
-            The heading (default: the counts of gains, adders and delays).
-        max_signals : int, default 400
-            Refuse larger structures (unless ``overview``).
-        overview : bool or "auto", default False
-            Draw only the parts, one box each with its counts
-            (:func:`symctl.plotting.structure_overview.draw_structure_overview`);
-            ``"auto"``: when the block diagram would not fit the page.
-        assignment : DelayAssignment or mapping, optional
-            A delay assignment (e.g. the witness of compatibility): each vertex's
-            signals are drawn in a shaded band labelled :math:`v_k`.
-        vertex_names : sequence or mapping of str, optional
-            The bands' names (default :math:`v_1, v_2, \\dots`).
-        labels : mapping of str to str, optional
-            LaTeX labels of the inputs' and outputs' arrows, by signal name.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            The caller saves it (``fig.savefig("ifp.pdf")``).
-
-        Raises
-        ------
-        ParameterError
-            More than ``max_signals`` signals, or ``assignment`` misses a signal.
+        are framed; a structure wider than the page is folded into rows of parts. A
+        hand-over to :func:`symctl.plotting.structure.draw_structure`, whose keyword
+        parameters ``options`` are (``title``, ``max_signals``, ``overview``,
+        ``assignment``, ``vertex_names``, ``labels``); it returns the
+        :class:`matplotlib.figure.Figure`, which the caller saves.
 
         Examples
         --------
@@ -588,8 +550,7 @@ class Structure(LatexMixin):
         """
         from symctl.plotting.structure import draw_structure
 
-        return draw_structure(self, ax, title=title, max_signals=max_signals, overview=overview,
-                              assignment=assignment, vertex_names=vertex_names, labels=labels)  # fmt: skip
+        return draw_structure(self, ax, **options)
 
 
 # ---------------------------------------------------------------- helpers

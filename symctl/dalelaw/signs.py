@@ -170,9 +170,17 @@ def _finish(label, factorization, R2, unknowns, signed, target, delays) -> Templ
     outgoing = {n: tuple(s.weight for s in out) for n, out in outgoing_synapses(circuit).items()}
     weights = [s.weight for nr in circuit.neurons for s in (*nr.synapses, *nr.self_terms)]
     return Template(
-        label, factorization, R2, unknowns, signed, target, circuit, outgoing,
-        tuple(weights), delays,
-    )  # fmt: skip
+        label,
+        factorization,
+        R2,
+        unknowns,
+        signed,
+        target,
+        circuit,
+        outgoing,
+        tuple(weights),
+        delays,
+    )
 
 
 # ---------------------------------------------------------------- z3
@@ -393,8 +401,9 @@ def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
     for combo in itertools.product((True, False), repeat=len(names)):
         if deadline.expired():
             return "unknown", []
-        assume = fixed + [b if v else z3.Not(b) for b, v in
-                          zip((enc.signs[n] for n in names), combo, strict=True)]  # fmt: skip
+        assume = fixed + [
+            b if v else z3.Not(b) for b, v in zip((enc.signs[n] for n in names), combo, strict=True)
+        ]
         got = check(enc, assume, deadline)
         if got == z3.sat:
             return "sat", assume

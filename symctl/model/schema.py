@@ -125,7 +125,18 @@ FIELDS = MappingProxyType({k: MappingProxyType(v) for k, v in _FIELDS.items()})
 """Every section (and sub-table) of a model file and its keys, with a line of documentation."""
 
 SECTIONS = (
-    "model", "parameters", "states", "inputs", "outputs", "discrete", "sampling",
-    "delays", "cost", "delay_graph", "circuits", "simulation", "analysis",
-)  # fmt: skip
+    "model",
+    "parameters",
+    "states",
+    "inputs",
+    "outputs",
+    "discrete",
+    "sampling",
+    "delays",
+    "cost",
+    "delay_graph",
+    "circuits",
+    "simulation",
+    "analysis",
+)
 """The top-level sections, in the order the documentation gives them."""

@@ -76,8 +76,10 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=Non
     rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
     rate_out = [(r, slot[n + k]) for r, k in enumerate(rates) if n + k in slot]
     # each peak's signal: a state (delta_f, or a controller state after the rates) or a rate
-    peak_src = [(False, s) if s < n else (True, rates.index(s - n)) if s < n + m else (False, s - m)
-                for s in peak_rows]  # fmt: skip
+    peak_src = [
+        (False, s) if s < n else (True, rates.index(s - n)) if s < n + m else (False, s - m)
+        for s in peak_rows
+    ]
     a_groups = _groups(A, nonzero)
     c_groups = _groups(Cr[rates]) if rates else []
     x, nxt = np.zeros((size, count)), np.empty((size, count))

@@ -171,8 +171,14 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     )
     if named:  # (numbered circles of a hairball stay small)
         m = m.with_room_for_ends(c)
-    strings = {"body": body, "name": names, "tag": tags, "end": ends, "weight": weights,
-               "inner": inner}  # fmt: skip
+    strings = {
+        "body": body,
+        "name": names,
+        "tag": tags,
+        "end": ends,
+        "weight": weights,
+        "inner": inner,
+    }
     return m, strings
 
 
@@ -290,22 +296,53 @@ def draw_circuit(
             Circle((x, y), r, fc="#f4f4f4", ec="black", lw=0.8, zorder=2, gid=f"neuron:{n.name}")
         )
         if strings["body"][n.name]:
-            ax.text(x, y, strings["body"][n.name], ha="center", va="center",
-                    fontsize=strings["inner"], zorder=3)  # fmt: skip
+            ax.text(
+                x,
+                y,
+                strings["body"][n.name],
+                ha="center",
+                va="center",
+                fontsize=strings["inner"],
+                zorder=3,
+            )
         if named:
-            ax.text(x, y + r + NAME_GAP, strings["name"][n.name], ha="center", va="bottom",
-                    fontsize=NAME, color="0.1", zorder=3)  # fmt: skip
+            ax.text(
+                x,
+                y + r + NAME_GAP,
+                strings["name"][n.name],
+                ha="center",
+                va="bottom",
+                fontsize=NAME,
+                color="0.1",
+                zorder=3,
+            )
         if n.name in strings["tag"]:
-            ax.text(x, y - r - NAME_GAP, strings["tag"][n.name], ha="center", va="top",
-                    fontsize=SMALL, color="0.35", style="italic", zorder=3)  # fmt: skip
+            ax.text(
+                x,
+                y - r - NAME_GAP,
+                strings["tag"][n.name],
+                ha="center",
+                va="top",
+                fontsize=SMALL,
+                color="0.35",
+                style="italic",
+                zorder=3,
+            )
     for node, label in strings["end"].items():
         if node not in lay.pos:
             continue
         x, y = lay.pos[node]
         ax.add_patch(Circle((x, y), DOT, fc="black", lw=0, zorder=2))
         right = isinstance(node, tuple)
-        ax.text(x + (0.07 if right else -0.07), y, label, ha="left" if right else "right",
-                va="center", fontsize=NAME, zorder=3)  # fmt: skip
+        ax.text(
+            x + (0.07 if right else -0.07),
+            y,
+            label,
+            ha="left" if right else "right",
+            va="center",
+            fontsize=NAME,
+            zorder=3,
+        )
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
     room = max(x_hi - x_lo, min(page, _KEY_ROOM))
@@ -424,8 +461,11 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
     if not lines:
         return y, x
     names = [re.sub(r"\\mathrm|[^A-Za-z0-9]", "", line.partition(" = ")[0]) for line in lines]
-    broken = [(name, part) for name, line in zip(names, lines, strict=True)
-              for part in _broken(line, room)]  # fmt: skip
+    broken = [
+        (name, part)
+        for name, line in zip(names, lines, strict=True)
+        for part in _broken(line, room)
+    ]
     names, lines = [n for n, _ in broken], [p for _, p in broken]
     outlines = [text_outline(display_text(line), SMALL) for line in lines]
     sizes = [((x1 - x0) / 72, (y1 - y0) / 72) for _, (x0, y0, x1, y1) in outlines]
@@ -445,9 +485,10 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
             place = Affine2D().translate(-x0, -y1).scale(1 / 72).translate(lefts[c], top)
             name = names[k]  # a line broken in two: both parts keyed by its name
             ax.add_artist(  # not add_patch: its data limits would walk every glyph's curves
-                PathPatch(path, transform=place + anchor, fc="black", lw=0, zorder=3,
-                          gid=f"key:{name}")
-            )  # fmt: skip
+                PathPatch(
+                    path, transform=place + anchor, fc="black", lw=0, zorder=3, gid=f"key:{name}"
+                )
+            )
         top -= max(sizes[k][1] for _, k in row) + 0.06
     return y + top - 0.02, x + lefts[-1] - _KEY_GAP + 0.02
 

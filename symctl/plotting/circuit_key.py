@@ -165,8 +165,13 @@ def key_items(key: Key) -> list[tuple[str, str]]:
         items.append(("", _signs_note(key.signs_at)))
     if not key.labelled and key.synapses:
         what = "weights" if key.bodies else "weights and self-dynamics"
-        items.append(("", f"{what} not written: too many or too long to set legibly at this "
-                          "size (Circuit.equations() lists them)"))  # fmt: skip
+        items.append(
+            (
+                "",
+                f"{what} not written: too many or too long to set legibly at this "
+                "size (Circuit.equations() lists them)",
+            )
+        )
     if key.numbered:
         items.append(("", "neurons by number:"))
         items += [

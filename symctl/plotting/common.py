@@ -86,8 +86,16 @@ def finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float
     lines = wrap_key(key.split("   "), room, 7.5)
     extra = 0.14 * (len(lines) - 1)
     ax.text(x_lo + 0.1, y_hi + 0.3 + extra, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(x_lo + 0.1, y_hi + 0.1, "\n".join(lines), ha="left", va="bottom", fontsize=7.5,
-            color="0.35", linespacing=1.3)  # fmt: skip
+    ax.text(
+        x_lo + 0.1,
+        y_hi + 0.1,
+        "\n".join(lines),
+        ha="left",
+        va="bottom",
+        fontsize=7.5,
+        color="0.35",
+        linespacing=1.3,
+    )
     width = 1.08 * max(text_size(t, s)[0] for t, s in [(heading, 10), *((ln, 7.5) for ln in lines)])
     x_hi = max(x_hi, x_lo + width + 0.3)
     y_hi += top + extra

@@ -110,10 +110,21 @@ def firing_plot(
         top = top_fig.subplots()
         lines = []
         for i in range(fp.count):
-            lines += top.plot(fp.t, fp.f_bar + fp.delta_f[i], color=_COLOURS[i % len(_COLOURS)],
-                              lw=1.2, drawstyle="steps-post")  # fmt: skip
-        optimal = top.plot(fp.t, fp.f_bar + fp.reference.delta_f[:, 0], color="black", lw=0.9,
-                           ls=(0, (1, 1.5)), drawstyle="steps-post")[0]  # fmt: skip
+            lines += top.plot(
+                fp.t,
+                fp.f_bar + fp.delta_f[i],
+                color=_COLOURS[i % len(_COLOURS)],
+                lw=1.2,
+                drawstyle="steps-post",
+            )
+        optimal = top.plot(
+            fp.t,
+            fp.f_bar + fp.reference.delta_f[:, 0],
+            color="black",
+            lw=0.9,
+            ls=(0, (1, 1.5)),
+            drawstyle="steps-post",
+        )[0]
         what, sym, unit = _state(fp, labels)
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
@@ -122,15 +133,22 @@ def firing_plot(
             head += ": one realization, the optimal controller's delay chain"
         else:
             dev = max(fp.max_deviation, 1e-16)
-            head += (f" in every realization and with the optimal controller: the same, "
-                     f"to {dev:.0e} relative (and so is the input)")  # fmt: skip
+            head += (
+                f" in every realization and with the optimal controller: the same, "
+                f"to {dev:.0e} relative (and so is the input)"
+            )
         top.set_title(head, loc="left", fontsize=style.SMALL, pad=3)
         axes = grid_fig.subplots(rows, cols, sharex=True, squeeze=False)
         for k, name in enumerate(names):
             ax = axes[k // cols, k % cols]
             for i in range(fp.count):
-                ax.plot(fp.t, fp.firing[name][i], drawstyle="steps-post", lw=1.0,
-                        color=_COLOURS[i % len(_COLOURS)])  # fmt: skip
+                ax.plot(
+                    fp.t,
+                    fp.firing[name][i],
+                    drawstyle="steps-post",
+                    lw=1.0,
+                    color=_COLOURS[i % len(_COLOURS)],
+                )
             ax.axhline(0, color="black", lw=0.5)
             part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
             where = f" ({part.partition('.')[0]})" if "." in part else ""
@@ -141,10 +159,12 @@ def firing_plot(
         for k in range(len(names), rows * cols):
             axes[k // cols, k % cols].remove()
         grid_fig.supxlabel(style.axis_label("time", unit_t), fontsize=style.FONT_SIZE)
-        grid_fig.supylabel(style.axis_label("firing-rate change", "spikes/s"),
-                           fontsize=style.FONT_SIZE)  # fmt: skip
-        style.figure_legend(fig, [*lines, optimal], [*labels_, "optimal controller"],
-                            title="realization")  # fmt: skip
+        grid_fig.supylabel(
+            style.axis_label("firing-rate change", "spikes/s"), fontsize=style.FONT_SIZE
+        )
+        style.figure_legend(
+            fig, [*lines, optimal], [*labels_, "optimal controller"], title="realization"
+        )
     if title:
         fig.suptitle(title, fontsize=style.TITLE)
     return fig

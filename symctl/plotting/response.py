@@ -159,10 +159,12 @@ def response_plot(
     (2, 'time [s]')
     """
     states = res.states.shape[1] > 0 if states is None else states
-    signals = [(res.delta_f, res.f_bar, res.state_names, i, True)
-               for i in range(res.delta_f.shape[1])]  # fmt: skip
-    signals += [(res.delta_r, res.r_bar, res.input_names, i, False)
-                for i in range(res.delta_r.shape[1])]  # fmt: skip
+    signals = [
+        (res.delta_f, res.f_bar, res.state_names, i, True) for i in range(res.delta_f.shape[1])
+    ]
+    signals += [
+        (res.delta_r, res.r_bar, res.input_names, i, False) for i in range(res.delta_r.shape[1])
+    ]
     groups = [[s] for s in signals[: MAX_PANELS - 1]]
     if len(signals) >= MAX_PANELS:
         groups.append(signals[MAX_PANELS - 1 :])
@@ -198,8 +200,15 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
         _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
-            ax.step(res.t, res.w[:, i], where="post", ls="--", lw=0.8, color=style.NEUTRAL,
-                    label=f"disturbance $w$ [{per}]")  # fmt: skip
+            ax.step(
+                res.t,
+                res.w[:, i],
+                where="post",
+                ls="--",
+                lw=0.8,
+                color=style.NEUTRAL,
+                label=f"disturbance $w$ [{per}]",
+            )
     ax.axhline(0, color="black", lw=0.5)
     if len(group) == 1:
         _trace, bar, names, i, _ = group[0]
@@ -327,8 +336,9 @@ def nonlinear_plot(
     with style.styled():
         ax1, ax2 = fig.subplots(1, 2, width_ratios=[1.5, 1])
         handles, texts = [], []
-        for k, (a, lin, nl) in enumerate(zip(chk.amplitudes, chk.f_linear, chk.f_nonlinear,
-                                             strict=True)):  # fmt: skip
+        for k, (a, lin, nl) in enumerate(
+            zip(chk.amplitudes, chk.f_linear, chk.f_nonlinear, strict=True)
+        ):
             colour = _LINE_COLOURS[k % len(_LINE_COLOURS)]
             handles.append(_steps(ax1, chk.t, nl, marked=False, color=colour, lw=1.1))
             _steps(ax1, chk.t, lin, marked=False, color=colour, lw=0.9, ls=(0, (3, 2)))
@@ -338,8 +348,10 @@ def nonlinear_plot(
             handles.append(Line2D([], [], color=style.NEUTRAL, lw=0.8, ls=":"))
             texts.append(text)
         plant = "muscle" if labels is None else "plant"
-        handles += [Line2D([], [], color=style.NEUTRAL, lw=1.1),
-                    Line2D([], [], color=style.NEUTRAL, lw=0.9, ls=(0, (3, 2)))]  # fmt: skip
+        handles += [
+            Line2D([], [], color=style.NEUTRAL, lw=1.1),
+            Line2D([], [], color=style.NEUTRAL, lw=0.9, ls=(0, (3, 2))),
+        ]
         texts += [f"nonlinear {plant}", "linear model"]
         ax1.set_xlabel(style.axis_label("time", "s"))
         ax1.set_ylabel(_axis(f"{what} ${sym}$" if what else f"${sym}$", unit))

@@ -178,8 +178,9 @@ def draw_structure(
         S, labels=labels, vertex_of=where, vertex_names=names, width=width
     ):  # too large even without text: no text measured, no layout made
         return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
-    rows = structure_rows(S, text_size, labels=labels, vertex_of=where,
-                          vertex_names=names, width=width)  # fmt: skip
+    rows = structure_rows(
+        S, text_size, labels=labels, vertex_of=where, vertex_names=names, width=width
+    )
     if overview == "auto" and not rows.fits:
         return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     fig, ax, own = figure_and_axes(ax)
@@ -265,18 +266,51 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
     from matplotlib.patches import Circle, FancyBboxPatch, Rectangle
 
     for k, band in enumerate(layout.bands):  # tints alternate from band to band
-        ax.add_patch(Rectangle((band.x0 + dx, band.y0 + dy), band.x1 - band.x0,
-                               band.y1 - band.y0, fc=_BAND[k % 2], ec="none",
-                               zorder=0, gid=f"band:v{band.vertex}"))  # fmt: skip
-        ax.text((band.x0 + band.x1) / 2 + dx, band.y1 + dy + 0.04, band.label, ha="center",
-                va="bottom", fontsize=FONT_SIZE, color="0.2", zorder=4)  # fmt: skip
+        ax.add_patch(
+            Rectangle(
+                (band.x0 + dx, band.y0 + dy),
+                band.x1 - band.x0,
+                band.y1 - band.y0,
+                fc=_BAND[k % 2],
+                ec="none",
+                zorder=0,
+                gid=f"band:v{band.vertex}",
+            )
+        )
+        ax.text(
+            (band.x0 + band.x1) / 2 + dx,
+            band.y1 + dy + 0.04,
+            band.label,
+            ha="center",
+            va="bottom",
+            fontsize=FONT_SIZE,
+            color="0.2",
+            zorder=4,
+        )
     for frame in layout.parts:
-        ax.add_patch(FancyBboxPatch((frame.x0 + dx, frame.y0 + dy), frame.x1 - frame.x0,
-                                    frame.y1 - frame.y0, boxstyle="round,pad=0,rounding_size=0.04",
-                                    fc="none", ec=_FRAME, lw=0.7, zorder=0.5,
-                                    gid=f"part:{frame.part}"))  # fmt: skip
-        ax.text(frame.x0 + dx + 0.02, frame.y1 + dy + 0.02, frame.part, ha="left", va="bottom",
-                fontsize=SMALL, color=_FRAME, zorder=4)  # fmt: skip
+        ax.add_patch(
+            FancyBboxPatch(
+                (frame.x0 + dx, frame.y0 + dy),
+                frame.x1 - frame.x0,
+                frame.y1 - frame.y0,
+                boxstyle="round,pad=0,rounding_size=0.04",
+                fc="none",
+                ec=_FRAME,
+                lw=0.7,
+                zorder=0.5,
+                gid=f"part:{frame.part}",
+            )
+        )
+        ax.text(
+            frame.x0 + dx + 0.02,
+            frame.y1 + dy + 0.02,
+            frame.part,
+            ha="left",
+            va="bottom",
+            fontsize=SMALL,
+            color=_FRAME,
+            zorder=4,
+        )
     every = (*layout.wires, *layout.arrows_in, *layout.arrows_out)
     for wire in every:
         _draw_wire(ax, wire, dx, dy, dashed_part(wire, every) if wire.delay else None)
@@ -286,26 +320,61 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
         xc, yc = xc + dx, yc + dy
         w, h = layout.sizes[name]
         if name in layout.labels:
-            ax.add_patch(Rectangle((xc - w / 2, yc - h / 2), w, h, fc="white", ec=_INK, lw=0.8,
-                                   zorder=2, gid=f"gain:{name}"))  # fmt: skip
-            ax.text(xc, yc, layout.labels[name], ha="center", va="center_baseline",
-                    fontsize=FONT, zorder=3, gid=f"gain:{name}")  # fmt: skip
+            ax.add_patch(
+                Rectangle(
+                    (xc - w / 2, yc - h / 2),
+                    w,
+                    h,
+                    fc="white",
+                    ec=_INK,
+                    lw=0.8,
+                    zorder=2,
+                    gid=f"gain:{name}",
+                )
+            )
+            ax.text(
+                xc,
+                yc,
+                layout.labels[name],
+                ha="center",
+                va="center_baseline",
+                fontsize=FONT,
+                zorder=3,
+                gid=f"gain:{name}",
+            )
         elif w > 0.05:  # an adder: a circle with a plus
             r = w / 2
-            ax.add_patch(Circle((xc, yc), r, fc="white", ec=_INK, lw=0.8, zorder=2,
-                                gid=f"sum:{name}"))  # fmt: skip
+            ax.add_patch(
+                Circle((xc, yc), r, fc="white", ec=_INK, lw=0.8, zorder=2, gid=f"sum:{name}")
+            )
             arm = min(0.6 * r, 0.045)
             ax.plot([xc - arm, xc + arm], [yc, yc], color=_INK, lw=0.8, zorder=3)
             ax.plot([xc, xc], [yc - arm, yc + arm], color=_INK, lw=0.8, zorder=3)
         else:
-            ax.add_patch(Circle((xc, yc), w / 2, fc=_INK, ec="none", zorder=2,
-                                gid=f"signal:{name}"))  # fmt: skip
+            ax.add_patch(
+                Circle((xc, yc), w / 2, fc=_INK, ec="none", zorder=2, gid=f"signal:{name}")
+            )
     for label in layout.names.values():
-        ax.text(label.x + dx, label.y + dy, label.text, ha=label.ha, va=label.va,
-                fontsize=NAME_FONT, color="0.15", zorder=4)  # fmt: skip
+        ax.text(
+            label.x + dx,
+            label.y + dy,
+            label.text,
+            ha=label.ha,
+            va=label.va,
+            fontsize=NAME_FONT,
+            color="0.15",
+            zorder=4,
+        )
     for label in layout.ends:
-        ax.text(label.x + dx, label.y + dy, label.text, ha=label.ha, va=label.va,
-                fontsize=END_FONT, zorder=4)  # fmt: skip
+        ax.text(
+            label.x + dx,
+            label.y + dy,
+            label.text,
+            ha=label.ha,
+            va=label.va,
+            fontsize=END_FONT,
+            zorder=4,
+        )
 
 
 def _draw_wire(ax, wire: Wire, dx: float, dy: float, dashed=None) -> None:
@@ -322,14 +391,29 @@ def _draw_wire(ax, wire: Wire, dx: float, dy: float, dashed=None) -> None:
     ux, uy = (x1 - x0) / length, (y1 - y0) / length
     bx, by = x1 - ARROW * ux, y1 - ARROW * uy
     half = 0.38 * ARROW
-    ax.add_patch(Polygon([(x1, y1), (bx - half * uy, by + half * ux), (bx + half * uy, by - half * ux)],
-                         closed=True, fc=_INK, ec="none", zorder=1.5))  # fmt: skip
+    ax.add_patch(
+        Polygon(
+            [(x1, y1), (bx - half * uy, by + half * ux), (bx + half * uy, by - half * ux)],
+            closed=True,
+            fc=_INK,
+            ec="none",
+            zorder=1.5,
+        )
+    )
     if wire.delay > 1:
         k = max(range(len(pts) - 1), key=lambda i: math.dist(pts[i], pts[i + 1]))
         (xa, ya), (xb, yb) = pts[k], pts[k + 1]
-        ax.text((xa + xb) / 2, (ya + yb) / 2 + 0.02, f"$z^{{-{wire.delay}}}$", ha="center",
-                va="bottom", fontsize=SMALL, color=_INK, zorder=3,
-                bbox={"fc": "white", "ec": "none", "pad": 0.3})  # fmt: skip
+        ax.text(
+            (xa + xb) / 2,
+            (ya + yb) / 2 + 0.02,
+            f"$z^{{-{wire.delay}}}$",
+            ha="center",
+            va="bottom",
+            fontsize=SMALL,
+            color=_INK,
+            zorder=3,
+            bbox={"fc": "white", "ec": "none", "pad": 0.3},
+        )
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> float:
@@ -347,8 +431,16 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> float:
         row = [(c, col[r]) for c, col in enumerate(columns) if r < len(col)]
         height = max(sizes[k][1] for _, k in row)
         for c, k in row:
-            ax.text(lefts[c], top - height / 2, texts[k], ha="left", va="center_baseline",
-                    fontsize=SMALL, zorder=3, gid="key")  # fmt: skip
+            ax.text(
+                lefts[c],
+                top - height / 2,
+                texts[k],
+                ha="left",
+                va="center_baseline",
+                fontsize=SMALL,
+                zorder=3,
+                gid="key",
+            )
         top -= height + 0.07
     return top
 
@@ -378,8 +470,10 @@ def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: 
     for line in reversed(heading_lines):
         ax.text(x_lo + 0.05, y, line, ha="left", va="bottom", fontsize=TITLE)
         y += 0.16
-    widths = [text_size(t, s)[0] * 1.06 for t, s in
-              [*((ln, TITLE) for ln in heading_lines), *((ln, SMALL) for ln in legend_lines)]]  # fmt: skip
+    widths = [
+        text_size(t, s)[0] * 1.06
+        for t, s in [*((ln, TITLE) for ln in heading_lines), *((ln, SMALL) for ln in legend_lines)]
+    ]
     x_hi = max(x_hi, min(x_lo + max(widths) + 0.15, x_lo + width))
     y_hi = y + 0.04
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo - 0.04, y_hi)

@@ -176,21 +176,52 @@ def draw_structure_overview(
                 c = per_row - 1 - c
             centres[part] = (end + box_w / 2 + c * step, -r * _ROW)
     for part, (x, y) in centres.items():
-        ax.add_patch(FancyBboxPatch((x - box_w / 2, y - _BOX_H / 2), box_w, _BOX_H,
-                                    boxstyle="round,pad=0.01", fc="0.96" if "G2" in part else "white",
-                                    ec="black", lw=0.8))  # fmt: skip
+        ax.add_patch(
+            FancyBboxPatch(
+                (x - box_w / 2, y - _BOX_H / 2),
+                box_w,
+                _BOX_H,
+                boxstyle="round,pad=0.01",
+                fc="0.96" if "G2" in part else "white",
+                ec="black",
+                lw=0.8,
+            )
+        )
         ax.text(x, y + 0.17, part, ha="center", va="center", fontsize=FONT_SIZE)
-        ax.text(x, y - 0.1, "\n".join(counts[part]), ha="center", va="center", fontsize=SMALL - 0.5,
-                linespacing=1.2)  # fmt: skip
+        ax.text(
+            x,
+            y - 0.1,
+            "\n".join(counts[part]),
+            ha="center",
+            va="center",
+            fontsize=SMALL - 0.5,
+            linespacing=1.2,
+        )
 
     def arrow(a, b):
-        ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=8, lw=0.8,
-                                     color="black", shrinkA=0, shrinkB=0))  # fmt: skip
+        ax.add_patch(
+            FancyArrowPatch(
+                a,
+                b,
+                arrowstyle="-|>",
+                mutation_scale=8,
+                lw=0.8,
+                color="black",
+                shrinkA=0,
+                shrinkB=0,
+            )
+        )
 
     def names(lines, x, y, ha):
         for k, line in enumerate(lines):  # one line per few names, centred on the arrow
-            ax.text(x, y + ((len(lines) - 1) / 2 - k) * _LINE, line, ha=ha, va="center",
-                    fontsize=FONT_SIZE)  # fmt: skip
+            ax.text(
+                x,
+                y + ((len(lines) - 1) / 2 - k) * _LINE,
+                line,
+                ha=ha,
+                va="center",
+                fontsize=FONT_SIZE,
+            )
 
     half = box_w / 2
     chains = rows if parallel else [[p for row in rows for p in row]]

@@ -367,10 +367,20 @@ def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | N
     """
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
-    return ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0),
-                     ncols=legend_columns(labels, room), title=heading, alignment="left",
-                     fontsize=SMALL, title_fontsize=SMALL, frameon=False, borderaxespad=0.1,
-                     borderpad=0.1)  # fmt: skip
+    return ax.legend(
+        handles,
+        labels,
+        loc="lower left",
+        bbox_to_anchor=(0.0, 1.0),
+        ncols=legend_columns(labels, room),
+        title=heading,
+        alignment="left",
+        fontsize=SMALL,
+        title_fontsize=SMALL,
+        frameon=False,
+        borderaxespad=0.1,
+        borderpad=0.1,
+    )
 
 
 def figure_legend(fig, handles, labels, *, title: str | None = None, most: int | None = None):
@@ -387,5 +397,13 @@ def figure_legend(fig, handles, labels, *, title: str | None = None, most: int |
     """
     room = float(fig.get_size_inches()[0]) - 0.1
     ncol = legend_columns(labels, room, most=most)
-    return fig.legend(handles, labels, loc="outside lower center", ncols=ncol, title=title,
-                      fontsize=SMALL, title_fontsize=SMALL, frameon=False)  # fmt: skip
+    return fig.legend(
+        handles,
+        labels,
+        loc="outside lower center",
+        ncols=ncol,
+        title=title,
+        fontsize=SMALL,
+        title_fontsize=SMALL,
+        frameon=False,
+    )

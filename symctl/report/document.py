@@ -208,8 +208,10 @@ def _row(lhs, rhs) -> str:
 
 def _tex_math(b: Math) -> str:
     if b.breakable:
-        rows = [_row(lhs, rhs) + ("" if k else rf" \label{{{b.label}}}") + (r" \notag" if k else "")
-                for k, (lhs, rhs) in enumerate(b.rows)]  # fmt: skip
+        rows = [
+            _row(lhs, rhs) + ("" if k else rf" \label{{{b.label}}}") + (r" \notag" if k else "")
+            for k, (lhs, rhs) in enumerate(b.rows)
+        ]
         return "\n".join([r"\begin{align}", "  " + " \\\\\n  ".join(rows), r"\end{align}"])
     rows = r" \\ ".join(_row(lhs, rhs) for lhs, rhs in b.rows)
     return "\n".join(
@@ -260,20 +262,33 @@ def _tex_table(b: Table) -> str:
     label += r"\vspace{0.5ex}" if b.caption and not long else ""
     if long:
         top = [rf"{caption}{label}\\"] if caption else []
-        return "\n".join([rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", *top, r"\hline",
-                          body[0], r"\endhead", r"\hline", r"\endfoot", *body[1:],
-                          r"\end{longtable}}"])  # fmt: skip
+        return "\n".join(
+            [
+                rf"{{{size}",
+                rf"\begin{{longtable}}{{{cols}}}",
+                *top,
+                r"\hline",
+                body[0],
+                r"\endhead",
+                r"\hline",
+                r"\endfoot",
+                *body[1:],
+                r"\end{longtable}}",
+            ]
+        )
     table = [rf"\begin{{{env}}}{width}{{{cols}}}", r"\hline", *body, r"\hline", rf"\end{{{env}}}"]
     if caption:
-        return "\n".join([r"\begin{table}[htbp]\centering", caption + label, size, *table,
-                          r"\end{table}"])  # fmt: skip
+        return "\n".join(
+            [r"\begin{table}[htbp]\centering", caption + label, size, *table, r"\end{table}"]
+        )
     return "\n".join([rf"\begin{{center}}{size}", *table, r"\end{center}"])
 
 
 def _tex_references(b: References) -> str:
     items = [rf"\bibitem{{{key}}} {tex_text(text)}" for key, text in b.entries]
-    return "\n".join([r"\symctlbarrier", r"\begin{thebibliography}{9}", *items,
-                      r"\end{thebibliography}"])  # fmt: skip
+    return "\n".join(
+        [r"\symctlbarrier", r"\begin{thebibliography}{9}", *items, r"\end{thebibliography}"]
+    )
 
 
 def _tex_block(b) -> str:
@@ -297,8 +312,9 @@ def _tex_block(b) -> str:
                 r"\end{figure}",
             ]
         )
-    return "\n".join([r"{\footnotesize", r"\begin{verbatim}", *verbatim_lines(b.text), r"\end{verbatim}",
-                      "}"])  # fmt: skip
+    return "\n".join(
+        [r"{\footnotesize", r"\begin{verbatim}", *verbatim_lines(b.text), r"\end{verbatim}", "}"]
+    )
 
 
 def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
@@ -329,9 +345,11 @@ def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     (True, True)
     """
     parts = [_tex_block(b) for b in _checked(blocks)]
-    packages = [p for p in ("array", "longtable", "tabularx")
-                if any(rf"\begin{{{p}}}" in part or (p == "array" and _WRAP in part)
-                       for part in parts)]  # fmt: skip
+    packages = [
+        p
+        for p in ("array", "longtable", "tabularx")
+        if any(rf"\begin{{{p}}}" in part or (p == "array" and _WRAP in part) for part in parts)
+    ]
     return L.document(
         parts, title=tex_text(title), author=AUTHOR, packages=packages, preamble=_PREAMBLE
     )
@@ -591,9 +609,13 @@ def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
     for _ in range(passes):
         try:
             run = subprocess.run(
-                cmd, cwd=tex.parent, capture_output=True, text=True, timeout=PDFLATEX_TIMEOUT,
+                cmd,
+                cwd=tex.parent,
+                capture_output=True,
+                text=True,
+                timeout=PDFLATEX_TIMEOUT,
                 errors="replace",
-            )  # fmt: skip
+            )
         except subprocess.TimeoutExpired:
             raise LatexError(
                 f"pdflatex did not finish {tex.name} within {PDFLATEX_TIMEOUT} s"

@@ -1,7 +1,7 @@
 r"""Long objects laid out the way a paper shows them, so that every line fits the page.
 
 The story (:mod:`symctl.report.story`) hands its equations to :func:`fit_rows`
-and its matrices to :func:`show_matrix`; both decide by SIZE, never by the
+and its matrices to :func:`~symctl.report.matrixview.show_matrix`; both decide by SIZE, never by the
 delay: the estimated printed width of a line (:func:`width`, in glyphs of the
 11 pt math font), the rows and columns of a matrix, the share of its entries
 that are the same background value (0, or :math:`\infty` for a delay matrix).
@@ -39,12 +39,6 @@ True
 from __future__ import annotations
 
 import re
-from collections import Counter
-
-import numpy as np
-import sympy as sp
-
-from symctl import latex as L
 
 __all__ = [
     "CORNER",
@@ -62,12 +56,10 @@ __all__ = [
     "TERM_MAX_LINES",
     "VECTOR_MAX_ENTRIES",
     "WRAP_MIN",
-    "MatrixView",
     "cell_width",
     "column_widths",
     "fit_rows",
     "height",
-    "show_matrix",
     "table_width",
     "width",
     "wrapped_columns",
@@ -127,18 +119,87 @@ a display wider than TeX's largest dimension, as the T = 8 report's were, stops 
 
 # ---------------------------------------------------------------- width of LaTeX
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
-_SPACE = {",": 0.35, ":": 0.45, ">": 0.45, ";": 0.55, "!": -0.35, " ": 0.6, "quad": 2.0,
-          "qquad": 4.0, "enspace": 1.0}  # fmt: skip
-_ARG1 = {"text", "textrm", "mathrm", "mathbf", "mathit", "mathcal", "mathbb", "operatorname",
-         "boldsymbol", "bar", "tilde", "hat", "dot", "ddot", "vec", "overline", "widetilde",
-         "sqrt", "textit", "textbf", "underline", "mathsf"}  # fmt: skip
+_SPACE = {
+    ",": 0.35,
+    ":": 0.45,
+    ">": 0.45,
+    ";": 0.55,
+    "!": -0.35,
+    " ": 0.6,
+    "quad": 2.0,
+    "qquad": 4.0,
+    "enspace": 1.0,
+}
+_ARG1 = {
+    "text",
+    "textrm",
+    "mathrm",
+    "mathbf",
+    "mathit",
+    "mathcal",
+    "mathbb",
+    "operatorname",
+    "boldsymbol",
+    "bar",
+    "tilde",
+    "hat",
+    "dot",
+    "ddot",
+    "vec",
+    "overline",
+    "widetilde",
+    "sqrt",
+    "textit",
+    "textbf",
+    "underline",
+    "mathsf",
+}
 _TEXT = {"text", "textrm", "operatorname", "textit", "textbf"}
-_BINARY = {"times", "cdot", "ge", "geq", "le", "leq", "to", "in", "pm", "mp", "neq", "approx",
-           "equiv", "mapsto", "rightarrow", "leftarrow", "subset", "cup", "cap", "setminus"}  # fmt: skip
-_WIDE = {"cdots": 2.6, "ldots": 2.6, "dots": 2.6, "vdots": 1.0, "ddots": 2.6, "infty": 1.8,
-         "sum": 2.6, "prod": 2.6, "qquad": 4.0, "quad": 2.0}  # fmt: skip
-_MATRICES = {"matrix": 1.9, "bmatrix": 1.9, "pmatrix": 1.9, "vmatrix": 1.9, "array": 1.9,
-             "smallmatrix": 0.6, "cases": 2.0, "aligned": 0.0, "split": 0.0}  # fmt: skip
+_BINARY = {
+    "times",
+    "cdot",
+    "ge",
+    "geq",
+    "le",
+    "leq",
+    "to",
+    "in",
+    "pm",
+    "mp",
+    "neq",
+    "approx",
+    "equiv",
+    "mapsto",
+    "rightarrow",
+    "leftarrow",
+    "subset",
+    "cup",
+    "cap",
+    "setminus",
+}
+_WIDE = {
+    "cdots": 2.6,
+    "ldots": 2.6,
+    "dots": 2.6,
+    "vdots": 1.0,
+    "ddots": 2.6,
+    "infty": 1.8,
+    "sum": 2.6,
+    "prod": 2.6,
+    "qquad": 4.0,
+    "quad": 2.0,
+}
+_MATRICES = {
+    "matrix": 1.9,
+    "bmatrix": 1.9,
+    "pmatrix": 1.9,
+    "vmatrix": 1.9,
+    "array": 1.9,
+    "smallmatrix": 0.6,
+    "cases": 2.0,
+    "aligned": 0.0,
+    "split": 0.0,
+}
 _BRACKETS = {"bmatrix": 1.6, "pmatrix": 1.6, "vmatrix": 1.2, "cases": 1.6}
 
 
@@ -271,8 +332,17 @@ def width(tex: str) -> float:
                 scale = 0.7 if env == "smallmatrix" else 1.0
                 total += _table_width(body, _MATRICES.get(env, 1.9), scale)
                 total += _BRACKETS.get(env, 0.0)
-            elif name in ("displaystyle", "textstyle", "scriptstyle", "limits", "nolimits",
-                          "label", "notag", "nonumber", "tag"):  # fmt: skip
+            elif name in (
+                "displaystyle",
+                "textstyle",
+                "scriptstyle",
+                "limits",
+                "nolimits",
+                "label",
+                "notag",
+                "nonumber",
+                "tag",
+            ):
                 if name in ("label", "tag"):
                     r.group()
             elif name in _WIDE:
@@ -381,8 +451,11 @@ def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...
     if sum(widths) + sep <= budget:
         return ()
     table = [header, *rows]
-    can = [j for j in range(len(widths))
-           if all(_breakable(r[j]) for r in table if j < len(r) and cell_width(r[j]) > WRAP_MIN)]  # fmt: skip
+    can = [
+        j
+        for j in range(len(widths))
+        if all(_breakable(r[j]) for r in table if j < len(r) and cell_width(r[j]) > WRAP_MIN)
+    ]
     chosen: list[int] = []
     for j in sorted(can, key=lambda j: -widths[j]):
         if widths[j] <= WRAP_MIN:
@@ -483,238 +556,11 @@ def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
                 lines.append(term)
         if len(lines) > TERM_MAX_LINES:
             left = sum(len(_terms(x)) for x in lines[TERM_MAX_LINES - 2 : -1])
-            lines = [*lines[: TERM_MAX_LINES - 2], rf"\cdots\ \text{{({left} terms not shown)}}",
-                     lines[-1]]  # fmt: skip
+            lines = [
+                *lines[: TERM_MAX_LINES - 2],
+                rf"\cdots\ \text{{({left} terms not shown)}}",
+                lines[-1],
+            ]
         out.append((lhs, lines[0]))
         out += [(None, INDENT + line) for line in lines[1:]]
     return out
-
-
-# ---------------------------------------------------------------- matrices
-class MatrixView:
-    r"""How :func:`show_matrix` shows a matrix: display rows, and tables to follow the display.
-
-    Attributes
-    ----------
-    rows : list of (str or None, str)
-        Rows of the display (``lhs`` None: a continuation).
-    tables : list of (str, tuple, tuple)
-        ``(intro, header, rows)`` of each table (prose, with inline math).
-    full : bool
-        Whether the matrix is written in full.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.report.longform import show_matrix
-    >>> show_matrix("H", sp.Matrix([0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1])).rows
-    [('H', 'e_{14}\\quad (14 \\times 1)')]
-    """
-
-    def __init__(self, rows, tables=(), full: bool = False) -> None:
-        self.rows, self.tables, self.full = list(rows), list(tables), full
-
-
-def _entries(M) -> tuple[list[list[object]], bool]:
-    """The entries of ``M`` as a list of rows, and whether they are plain floats."""
-    if isinstance(M, sp.MatrixBase):
-        return M.tolist(), False
-    arr = np.asarray(M, dtype=float)
-    return arr.reshape(arr.shape[0], -1).tolist() if arr.ndim else [[float(arr)]], True
-
-
-def _entry_tex(e, numeric: bool, digits: int) -> str:
-    if numeric:
-        return L.number(e, digits)
-    return L.to_latex(e, digits=digits)
-
-
-def _is(e, value) -> bool:
-    try:
-        return bool(e == value)
-    except TypeError:  # pragma: no cover - a relational entry
-        return False
-
-
-def _runs(items: list[str]) -> str:
-    """Items joined by commas, a run of four or more equal ones as ``0, \\dots, 0`` braced with
-    its length."""
-    out, k = [], 0
-    while k < len(items):
-        j = k
-        while j < len(items) and items[j] == items[k]:
-            j += 1
-        run = j - k
-        out.append(rf"\underbrace{{{items[k]}, \dots, {items[k]}}}_{{{run}}}" if run >= 4
-                   else ", ".join(items[k:j]))  # fmt: skip
-        k = j
-    return ", ".join(out)
-
-
-def _companion(E) -> str | None:
-    """``"row"`` (ones above the diagonal, a free last row), ``"column"`` (ones below it, a free
-    last column) or None."""
-    n = len(E)
-    if n < 3 or any(len(r) != n for r in E):
-        return None
-    if all(_is(E[i][j], 1 if j == i + 1 else 0) for i in range(n - 1) for j in range(n)):
-        return "row"
-    if all(_is(E[i][j], 1 if i == j + 1 else 0) for i in range(n) for j in range(n - 1)):
-        return "column"
-    return None
-
-
-def _index(base: str, i: str, j: str) -> str:
-    return f"{{{base}}}_{{{i},{j}}}"
-
-
-def _offset(k: int) -> str:
-    return "i" if k == 0 else (f"i+{k}" if k > 0 else f"i-{-k}")
-
-
-def _sparse_table(lhs: str, E, background, tex) -> list[tuple[str, str, str]]:
-    """The entries other than ``background``, a run of three or more along a diagonal in one row."""
-    n, m = len(E), len(E[0])
-    found: dict[tuple[int, int], tuple[str, str, str]] = {}
-    for k in range(-(n - 1), m):
-        cells = [(i, i + k) for i in range(n) if 0 <= i + k < m]
-        run: list[tuple[int, int]] = []
-        for cell in [*cells, None]:
-            same = (cell is not None and run and _is(E[cell[0]][cell[1]], E[run[0][0]][run[0][1]])
-                    and cell[0] == run[-1][0] + 1)  # fmt: skip
-            if same:
-                run.append(cell)
-                continue
-            if run and not _is(E[run[0][0]][run[0][1]], background):
-                value = f"${tex(E[run[0][0]][run[0][1]])}$"
-                if len(run) >= 3:
-                    lo, hi = run[0][0] + 1, run[-1][0] + 1
-                    found[run[0]] = (f"${_index(lhs, 'i', _offset(k))}$",
-                                     f"$i = {lo}, \\dots, {hi}$", value)  # fmt: skip
-                else:
-                    for i, j in run:
-                        found[(i, j)] = (f"${_index(lhs, i + 1, j + 1)}$", "", value)
-            run = [cell] if cell is not None else []
-    return [found[key] for key in sorted(found)]
-
-
-def _shown(count: int, corner: int) -> list[int | None]:
-    """The indices shown of ``count``: all when few, else the first ``corner``, a gap, the last."""
-    if count <= corner + 2:
-        return list(range(count))
-    return [*range(corner), None, count - 1]
-
-
-def _corners(E, tex, corner: int) -> str:
-    lines = []
-    for i in _shown(len(E), corner):
-        if i is None:
-            cells = [r"\vdots" if j is not None else r"\ddots" for j in _shown(len(E[0]), corner)]
-        else:
-            cells = [
-                tex(E[i][j]) if j is not None else r"\cdots" for j in _shown(len(E[0]), corner)
-            ]
-        lines.append(" & ".join(cells))
-    return r"\begin{bmatrix}" + r" \\ ".join(lines) + r"\end{bmatrix}"
-
-
-def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGITS) -> MatrixView:
-    r"""A matrix as it fits the page: in full, or as a formula, a pattern with a table, or corners.
-
-    Written in full (:func:`symctl.latex.to_latex`, as for a small matrix) when
-    it has at most :data:`MATRIX_MAX_ROWS` rows and :data:`MATRIX_MAX_COLUMNS`
-    columns and fits ``room`` glyphs; otherwise see the module's docstring for
-    the order of the other forms.
-
-    Parameters
-    ----------
-    lhs : str
-        The matrix's name in LaTeX (``"F"``, ``r"\tilde A"``).
-    M : sympy Matrix or array
-        The matrix (floats, ``inf`` allowed, when an array).
-    room : float, optional
-        Glyphs left on the line after ``lhs =`` (default: the line less 12).
-    digits : int
-        Significant digits of numbers written in full or in a table.
-
-    Returns
-    -------
-    MatrixView
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from symctl.report.longform import show_matrix
-    >>> view = show_matrix("D", 2 * np.eye(15) + np.eye(15, k=1))
-    >>> view.rows[0][1].startswith(r"\left[\begin{smallmatrix}")
-    True
-    >>> view.tables[0][2]
-    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'), ('${D}_{i,i+1}$', '$i = 1, \\dots, 14$', '$1$'))
-    >>> show_matrix("Q", np.diag([1.0, 0, 0, 0, 0, 1])).rows
-    [('Q', '\\operatorname{diag}\\left(1, \\underbrace{0, \\dots, 0}_{4}, 1\\right)')]
-    """
-    room = LINE_WIDTH - 12.0 if room is None else room
-    E, numeric = _entries(M)
-    n, m = len(E), len(E[0]) if E else 0
-    if n == m >= DIAGONAL_MIN and all(
-        _is(E[i][j], 0) for i in range(n) for j in range(n) if i != j
-    ):
-        diag = [_entry_tex(E[i][i], numeric, digits) for i in range(n)]
-        return MatrixView([(lhs, rf"\operatorname{{diag}}\left({_runs(diag)}\right)")])
-    full = L.to_latex(M if not numeric else np.asarray(M, dtype=float), digits=digits)
-    small = n <= MATRIX_MAX_ROWS and m <= MATRIX_MAX_COLUMNS
-    if min(n, m) == 1:
-        small = max(n, m) <= VECTOR_MAX_ENTRIES
-    if small and width(full) <= room:
-        return MatrixView([(lhs, full)], full=True)
-
-    def tex(e) -> str:
-        return _entry_tex(e, numeric, digits)
-
-    size = rf"\quad ({n} \times {m})"
-    flat = [e for row in E for e in row]
-    if n == 1 or m == 1:
-        ones = [k for k, e in enumerate(flat) if not _is(e, 0)]
-        if len(ones) == 1 and _is(flat[ones[0]], 1):
-            unit = f"e_{{{ones[0] + 1}}}" + (r"^{\top}" if n == 1 else "")
-            return MatrixView([(lhs, unit + size)])
-        items = ", ".join(tex(e) for e in flat)
-        return MatrixView([(lhs, f"({items})" + ("" if n == 1 else r"^{\top}"))])
-    kind = _companion(E)
-    if kind is not None:
-        last = f"{n}"
-        if kind == "row":
-            free = [E[n - 1][j] for j in range(n)]
-            picture = (r"\begin{bmatrix}0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\ "
-                       + " & ".join([_index(lhs, last, 1), _index(lhs, last, 2), r"\cdots",
-                                     _index(lhs, last, last)]) + r"\end{bmatrix}")  # fmt: skip
-            names = (_index(lhs, last, 1), _index(lhs, last, last))
-        else:
-            free = [E[i][n - 1] for i in range(n)]
-            picture = (r"\begin{bmatrix}0 & & & " + _index(lhs, 1, last) + r" \\ 1 & \ddots & & "
-                       r"\vdots \\ & \ddots & 0 & \vdots \\ & & 1 & " + _index(lhs, last, last)
-                       + r"\end{bmatrix}")  # fmt: skip
-            names = (_index(lhs, 1, last), _index(lhs, last, last))
-        items = ", ".join(tex(e) for e in free)
-        return MatrixView(
-            [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
-        )
-    counts = Counter(flat)
-    background, repeats = counts.most_common(1)[0]
-    table = _sparse_table(lhs, E, background, tex)
-    if 4 * repeats >= len(flat) > repeats and len(table) <= PATTERN_TABLE_ROWS * max(n, m):
-        cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
-        pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
-        fits = width(pattern + size) <= room
-        rows = [(lhs, pattern + size if fits else rf"\text{{(its entries below)}}{size}")]
-        intro = f"The entries $\\ast$ of ${lhs}$ (those marked $\\cdot$ are ${tex(background)}$):"
-        return MatrixView(rows, [(intro, ("entry", "for", "value"), tuple(table))])
-
-    def short(e) -> str:
-        return _entry_tex(e, numeric, LARGE_DIGITS)
-
-    for corner in (CORNER, 1):
-        picture = _corners(E, short, corner)
-        if width(picture + size) <= room:
-            return MatrixView([(lhs, picture + size)])
-    return MatrixView([(lhs, rf"\text{{a dense matrix}}{size}")])

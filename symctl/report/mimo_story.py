@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from symctl._util.display import descending_latex
 from symctl.realization.realizers import REALIZERS
-from symctl.report import longform as LF
+from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
 from symctl.report.shorthand import _eq, _num
 
@@ -49,7 +49,7 @@ def factorization(res) -> list[DocumentBlock]:
     if rows:
         blocks += _eq(*rows, label="eq:sections")
     N2 = f.G2.num_matrix
-    if LF.show_matrix("N_2(z)", N2).full:
+    if MV.show_matrix("N_2(z)", N2).full:
         entries = [("N_2(z)", N2)]
     else:  # too wide for the line: each entry in descending powers of z, broken over lines
         entries = [(rf"(N_2)_{{{i + 1}{j + 1}}}", descending_latex(N2[i, j]))

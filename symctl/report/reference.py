@@ -105,8 +105,16 @@ SECTIONS = MappingProxyType(
 )
 """The paper's sections: LaTeX label (without ``sec:``) to Roman numeral."""
 
-_KINDS = {"Fig.": FIGURES, "Figs.": FIGURES, "Eq.": EQUATIONS, "Eqs.": EQUATIONS, "Def.": DEFINITIONS,
-          "Defs.": DEFINITIONS, "Sec.": SECTIONS, "Secs.": SECTIONS}  # fmt: skip
+_KINDS = {
+    "Fig.": FIGURES,
+    "Figs.": FIGURES,
+    "Eq.": EQUATIONS,
+    "Eqs.": EQUATIONS,
+    "Def.": DEFINITIONS,
+    "Defs.": DEFINITIONS,
+    "Sec.": SECTIONS,
+    "Secs.": SECTIONS,
+}
 
 
 def cite(kind: str | None = None, *labels: str) -> str:

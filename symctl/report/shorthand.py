@@ -27,6 +27,7 @@ import sympy as sp
 from symctl import latex as L
 from symctl._util.exact import IntFractions, NotRational, fold, ring_fractions
 from symctl.report import longform as LF
+from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Math, Table, Text
 from symctl.symbols import z
 
@@ -128,8 +129,13 @@ def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
     n, m = len(a_s) - 1, len(b_s) - 1
     rows = []
     if m == 0:
-        rows.append((lhs, rf"\frac{{{L.to_latex(b_s[0])}}}{{a(z)}} = "
-                          rf"\frac{{{L.number(float(b_n[0]))}}}{{a(z)}}"))  # fmt: skip
+        rows.append(
+            (
+                lhs,
+                rf"\frac{{{L.to_latex(b_s[0])}}}{{a(z)}} = "
+                rf"\frac{{{L.number(float(b_n[0]))}}}{{a(z)}}",
+            )
+        )
     else:
         rows += [(lhs, r"\frac{b(z)}{a(z)}"), ("b(z)", rf"\sum_{{k=0}}^{{{m}}} b_k\, z^{{{m}-k}}")]
     rows.append(("a(z)", rf"\sum_{{k=0}}^{{{n}}} a_k\, z^{{{n}-k}}"))
@@ -229,8 +235,9 @@ class _Matcher:
         self.targets = targets
         syms = sorted(set().union(*(v.free_symbols for v, _ in targets)), key=str)
         rng = np.random.default_rng(0)
-        self.point = {x: Fraction(int(rng.integers(10**6, 10**7)), int(rng.integers(1, 997)))
-                      for x in syms}  # fmt: skip
+        self.point = {
+            x: Fraction(int(rng.integers(10**6, 10**7)), int(rng.integers(1, 997))) for x in syms
+        }
         self.keys: dict[Fraction | None, list] = {}
         for value, symbol in targets:
             self.keys.setdefault(self._key(value), []).append((value, symbol))
@@ -269,7 +276,7 @@ def _num(value):
 def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
     """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
 
-    A matrix is shown as :func:`~symctl.report.longform.show_matrix` decides (in full when it
+    A matrix is shown as :func:`~symctl.report.matrixview.show_matrix` decides (in full when it
     fits; a 1 x 1 matrix as its entry), every row is broken to the line
     (:func:`~symctl.report.longform.fit_rows`), and a tall display may break across pages;
     the matrices' tables, then ``tables`` (``(intro, header, rows)``), follow the display.
@@ -280,7 +287,7 @@ def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
         if getattr(rhs, "shape", None) == (1, 1):  # a 1 x 1 matrix is its entry, as papers write it
             rhs = rhs[0, 0]
         if isinstance(rhs, sp.MatrixBase) or (isinstance(rhs, np.ndarray) and rhs.ndim == 2):
-            view = LF.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
+            view = MV.show_matrix(lhs, rhs, room=LF.LINE_WIDTH - lead)
             shown += view.rows
             more += view.tables
         else:

@@ -30,6 +30,7 @@ from symctl._util.texnames import signal_tex
 from symctl.realization.factorization import remainder
 from symctl.realization.realizers import REALIZERS
 from symctl.report import longform as LF
+from symctl.report import matrixview as MV
 from symctl.report import mimo_story as MIMO
 from symctl.report import model_story as MS
 from symctl.report.document import (
@@ -123,7 +124,7 @@ def _readings() -> list[DocumentBlock]:
 def _e_tilde(E, assignment, name: str) -> list[DocumentBlock]:
     """The witness assignment's delay matrix in both readings (one row when they agree)."""
     fast, direct = assignment.e_tilde("fastest"), assignment.e_tilde("direct")
-    big = not LF.show_matrix("E", E).full
+    big = not MV.show_matrix("E", E).full
     rows = [(r"\tilde E", "E" if big and np.array_equal(fast, E) else fast)]
     if not np.array_equal(direct, fast):
         rows.append((r"\tilde E^{\mathrm{d}}", direct))

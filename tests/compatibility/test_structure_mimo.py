@@ -108,8 +108,12 @@ def test_one_sensor_vertex_per_measured_signal_and_one_actuator_vertex_per_input
     pair = DelayGraph.from_edges(4, [(1, 3, 1), (2, 3, 1), (3, 4, 1)], sensors=[1, 2])
     with pytest.raises(DimensionError, match="graph: the delay graph has 2 sensor vertices"):
         check_compatibility(S, pair)
-    wrong = DelayGraph.from_edges(8, [(k, 5, 1) for k in range(1, 5)] + [(5, 7, 1), (5, 8, 1), (5, 6, 1)],
-                                  sensors=[1, 2, 3, 4], actuators=[6, 7, 8])  # fmt: skip
+    wrong = DelayGraph.from_edges(
+        8,
+        [(k, 5, 1) for k in range(1, 5)] + [(5, 7, 1), (5, 8, 1), (5, 6, 1)],
+        sensors=[1, 2, 3, 4],
+        actuators=[6, 7, 8],
+    )
     with pytest.raises(DimensionError, match="3 actuator vertices"):
         check_compatibility(S, wrong)
 

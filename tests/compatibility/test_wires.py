@@ -287,8 +287,9 @@ def test_batch_simulation_of_structures_with_axons_matches_the_optimal_loop():
     R = structure_realization(r.structure)
     symbols = sorted(R.free_symbols, key=str)
     rng = np.random.default_rng(3)
-    values = [rng.uniform(-0.9, 0.9, 5) if str(s).startswith("epsilon") else np.ones(5)
-              for s in symbols]  # fmt: skip
+    values = [
+        rng.uniform(-0.9, 0.9, 5) if str(s).startswith("epsilon") else np.ones(5) for s in symbols
+    ]
     mats = [np.asarray(m, dtype=float) for m in R.lambdify(symbols)(*values)]
     out = simulate_batch(gains.system.plant, *mats, 1.0, steps=40)
     ref = closed_loop_response(gains, disturbance=1.0, steps=40)

@@ -292,8 +292,11 @@ nonzero = st.fractions(min_value=-2, max_value=2, max_denominator=12).filter(lam
 @example(k=Fraction(16), a1=Fraction(-15, 7), a0=Fraction(23, 3), delays=(1, 1))  # refused
 @example(k=Fraction(1, 2), a1=Fraction(1, 2), a0=Fraction(1, 3), delays=(1, 1))  # feasible
 def test_controllable_verdict_is_verified_or_agrees_with_brute_force(k, a1, a0, delays):
-    G = second_order(R(k.numerator, k.denominator), R(a1.numerator, a1.denominator),
-                     R(a0.numerator, a0.denominator))  # fmt: skip
+    G = second_order(
+        R(k.numerator, k.denominator),
+        R(a1.numerator, a1.denominator),
+        R(a0.numerator, a0.denominator),
+    )
     ds, da = delays
     r = symctl.dale(G, sensor_delay=ds, actuator_delay=da, circuit="controllable", timeout=TIMEOUT)
     assert r.feasible in (True, False, None)
@@ -316,8 +319,11 @@ def test_controllable_verdict_is_verified_or_agrees_with_brute_force(k, a1, a0, 
 def test_observable_verdict_follows_a0_and_agrees_with_brute_force(k, a1, a0):
     """a0 > 0 is always refused; a0 < 0 is necessary, not sufficient (e.g. k = 1/2, a1 = 2,
     a0 = -11/12 is refused too: see test_observable_a0_negative_can_still_be_refused)."""
-    G = second_order(R(k.numerator, k.denominator), R(a1.numerator, a1.denominator),
-                     R(a0.numerator, a0.denominator))  # fmt: skip
+    G = second_order(
+        R(k.numerator, k.denominator),
+        R(a1.numerator, a1.denominator),
+        R(a0.numerator, a0.denominator),
+    )
     r = symctl.dale(G, sensor_delay=1, actuator_delay=1, circuit="observable", timeout=TIMEOUT)
     assert r.feasible is None or isinstance(r.feasible, bool)
     if a0 > 0:

@@ -178,8 +178,13 @@ def test_the_numeric_search_stops_inside_a_run_when_the_deadline_passes(monkeypa
 # ---------------------------------------------------------------- whole calls
 @pytest.mark.parametrize("circuit", ["general", "controllable", "observable"])
 def test_dale_with_a_passed_deadline_is_not_decided_and_says_why(circuit):
-    r = symctl.dale(G_POS, sensor_delay=1, actuator_delay=1, circuit=circuit,
-                    timeout=Deadline(5.0, clock=passes_after(0)))  # fmt: skip
+    r = symctl.dale(
+        G_POS,
+        sensor_delay=1,
+        actuator_delay=1,
+        circuit=circuit,
+        timeout=Deadline(5.0, clock=passes_after(0)),
+    )
     assert r.feasible is None and r.witness is None and r.realization is None
     assert "not decided within timeout = 5 s" in r.reason and "out of time" in r.reason
 
@@ -188,8 +193,13 @@ def test_dale_with_a_passed_deadline_is_not_decided_and_says_why(circuit):
 @pytest.mark.parametrize("circuit", ["controllable", "observable"])
 def test_dale_whenever_the_deadline_passes_is_not_decided_or_exact(circuit, readings):
     """Cut at any point, a call returns: "not decided", or a verdict with its evidence."""
-    r = symctl.dale(G_POS, sensor_delay=1, actuator_delay=1, circuit=circuit,
-                    timeout=Deadline(5.0, clock=passes_after(readings)))  # fmt: skip
+    r = symctl.dale(
+        G_POS,
+        sensor_delay=1,
+        actuator_delay=1,
+        circuit=circuit,
+        timeout=Deadline(5.0, clock=passes_after(readings)),
+    )
     want = {"controllable": True, "observable": False}[circuit]
     assert r.feasible in (None, want)
     if r.feasible is None:
@@ -217,9 +227,13 @@ def test_dale_refuses_the_general_circuit_beyond_the_largest_pattern():
 
 def test_ei_circuit_with_a_passed_deadline_decides_nothing():
     with pytest.raises(ParameterError, match="none was decided within the timeout"):
-        symctl.ei_circuit(G_POS, sensor_delay=1, actuator_delay=1,
-                          circuits=["controllable", "observable"],
-                          timeout=Deadline(5.0, clock=passes_after(0)))  # fmt: skip
+        symctl.ei_circuit(
+            G_POS,
+            sensor_delay=1,
+            actuator_delay=1,
+            circuits=["controllable", "observable"],
+            timeout=Deadline(5.0, clock=passes_after(0)),
+        )
 
 
 def test_dale_atlas_gives_each_search_its_deadline(monkeypatch):

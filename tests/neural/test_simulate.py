@@ -49,10 +49,14 @@ def paper_controllers(seed: int, count: int = 3) -> dict[str, list[Realization]]
         out[kind] = []
         for i in range(count):
             eps = [sp.Rational(int(gen.integers(-900, 901)), 1000) for _ in range(2)]
-            cs = [sp.Integer(1), sp.Integer(1)] if i == 0 else [
-                sp.Rational(int(gen.choice([-1, 1]) * gen.integers(200, 3000)), 1000)
-                for _ in range(2)
-            ]  # fmt: skip
+            cs = (
+                [sp.Integer(1), sp.Integer(1)]
+                if i == 0
+                else [
+                    sp.Rational(int(gen.choice([-1, 1]) * gen.integers(200, 3000)), 1000)
+                    for _ in range(2)
+                ]
+            )
             values = {**K_VALUES, epsilon_1: eps[0], epsilon_3: eps[1], C_1: cs[0], C_3: cs[1]}
             f = FACT.subs(values)
             if kind == "general":

@@ -71,12 +71,12 @@ def circuits(mimo_factorization):
         "observable6": (placed(obs6, 6), g6),
         "controllable6": (placed(ctrl6, 6), g6),  # six synapses x6 -> y, z^-1 .. z^-5
         "general6": (general(g6, 6), g6),
-    }  # fmt: skip
+    }
     for kind, realize in (
         ("controllable", controllable_canonical),
         ("observable", observable_canonical),
     ):
-        out[kind] = (placed(Structure.from_factorization(f2, realize(f2.G2)), 2), g2)  # fmt: skip
+        out[kind] = (placed(Structure.from_factorization(f2, realize(f2.G2)), 2), g2)
     f = mimo_factorization
     mimo = Structure.from_factorization(f, controllable_canonical(f.G2))
     out["mimo"] = (Circuit.from_structure(mimo), None)
@@ -92,9 +92,15 @@ def figures(circuits):
 
 
 NAMES = [
-    "ifp", "general", "controllable", "observable", "observable6", "controllable6", "general6",
+    "ifp",
+    "general",
+    "controllable",
+    "observable",
+    "observable6",
+    "controllable6",
+    "general6",
     "mimo",
-]  # fmt: skip
+]
 
 
 @pytest.mark.slow

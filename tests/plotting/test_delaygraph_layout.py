@@ -227,11 +227,13 @@ def _texts(fig) -> list[str]:
         DelayGraph.chain([1, 1]),
         DelayGraph.chain([1] * 6),
         DelayGraph.from_edges(
-            7, [(k, 5, 1) for k in range(1, 5)] + [(5, 6, 1), (5, 7, 1)],
-            sensors=[1, 2, 3, 4], actuators=[6, 7],
+            7,
+            [(k, 5, 1) for k in range(1, 5)] + [(5, 6, 1), (5, 7, 1)],
+            sensors=[1, 2, 3, 4],
+            actuators=[6, 7],
         ),
     ],
-)  # fmt: skip
+)
 def test_delay_graph_figures_are_legible_in_print_in_the_style_colours(graph):
     fig = graph.draw(title="A delay graph with a title as long as the one the report writes")
     assert legibility(fig), legibility(fig)
@@ -351,9 +353,11 @@ def test_report_story_shows_the_graph_after_describing_it(derived):
 
 def test_one_vertex_per_channel_puts_every_sensor_first_and_every_actuator_last():
     g = DelayGraph.from_edges(
-        7, [(k, 5, 1) for k in range(1, 5)] + [(5, 6, 1), (5, 7, 1)],
-        sensors=[1, 2, 3, 4], actuators=[6, 7],
-    )  # fmt: skip
+        7,
+        [(k, 5, 1) for k in range(1, 5)] + [(5, 6, 1), (5, 7, 1)],
+        sensors=[1, 2, 3, 4],
+        actuators=[6, 7],
+    )
     lay = delay_graph_layout(g)
     assert {lay.layer[v] for v in (1, 2, 3, 4)} == {0}
     assert lay.layer[6] == lay.layer[7] == max(lay.layer.values())

@@ -30,8 +30,10 @@ def test_an_opaque_figure_is_written_as_rgb_with_the_pixels_of_savefig(tmp_path)
         assert colour_type(path) == 2
         assert fig.canvas is canvas and fig.dpi == 100 and (fig.get_size_inches() == size).all()
         ours = np.asarray(Image.open(path))
-        fresh = [open_loop_response(MuscleModel().plant()).plot(),
-                 Circuit.from_structure(ifp_structure(2)).draw()][k]  # fmt: skip
+        fresh = [
+            open_loop_response(MuscleModel().plant()).plot(),
+            Circuit.from_structure(ifp_structure(2)).draw(),
+        ][k]
         raw = io.BytesIO()
         fresh.savefig(raw, format="png", dpi=120)
         theirs = np.asarray(Image.open(raw))

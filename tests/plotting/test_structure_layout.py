@@ -186,8 +186,10 @@ def test_each_signal_sits_in_the_band_of_its_vertex(name):
 def test_vertex_bands_follow_the_delay_graph_and_the_dashed_wire_crosses_them():
     layout = layout_of("ocr")
     assert [(b.vertex, b.label) for b in layout.bands] == [
-        (1, "$v_{1}$"), (2, "$v_{2}$"), (3, "$v_{3}$")
-    ]  # fmt: skip
+        (1, "$v_{1}$"),
+        (2, "$v_{2}$"),
+        (3, "$v_{3}$"),
+    ]
     (w,) = [w for w in layout.wires if w.source == "G1.H"]
     v1, v2 = layout.bands[:2]
     assert w.delay == 1 and w.points[0][0] < v1.x1 <= v2.x0 + TOL < w.points[-1][0]

@@ -42,8 +42,17 @@ def test_the_symbolic_factorization_proves_and_a_wrong_g2_is_refused():
     G = controller_tf(_antagonist_like())
     f = factor(G, 1, 1)
     assert f.verify().method.startswith("entry by entry")
-    wrong = type(f)(f.G, f.G1, f.G2.subs({f.sensor_C[0]: 2 * f.sensor_C[0]}), f.G3,
-                    f.sensor_eps, f.sensor_C, f.actuator_eps, f.actuator_C, f.channels)  # fmt: skip
+    wrong = type(f)(
+        f.G,
+        f.G1,
+        f.G2.subs({f.sensor_C[0]: 2 * f.sensor_C[0]}),
+        f.G3,
+        f.sensor_eps,
+        f.sensor_C,
+        f.actuator_eps,
+        f.actuator_C,
+        f.channels,
+    )
     assert not wrong.verify()
 
 
@@ -129,8 +138,9 @@ def test_block_forms_match_python_control_numerically(p, m, n, data):
     rng = np.random.default_rng(data.draw(st.integers(0, 2**16)))
     den = np.poly(rng.uniform(-0.9, 0.9, n))
     num = rng.integers(-3, 4, size=(p, m, n + 1)).astype(float)
-    G = sp.Matrix(p, m, lambda i, j: sum(sp.Rational(int(num[i, j, k])) * z ** (n - k)
-                                         for k in range(n + 1)))  # fmt: skip
+    G = sp.Matrix(
+        p, m, lambda i, j: sum(sp.Rational(int(num[i, j, k])) * z ** (n - k) for k in range(n + 1))
+    )
     G = G / sum(sp.Rational(c).limit_denominator(10**12) * z ** (n - k) for k, c in enumerate(den))
     for realize in (controllable_canonical, observable_canonical):
         R = realize(G)

@@ -70,8 +70,10 @@ def test_unknown_realizer_names_the_argument_and_the_value():
         general_realization(G2, sp.eye(2), base="general")
 
 
-@pytest.mark.parametrize(("name", "build"), [("controllable", controllable_canonical),
-                                             ("observable", observable_canonical)])  # fmt: skip
+@pytest.mark.parametrize(
+    ("name", "build"),
+    [("controllable", controllable_canonical), ("observable", observable_canonical)],
+)
 def test_canonical_realizers_return_their_form_with_identity_transform(name, build):
     result = REALIZERS[name](G2)
     assert isinstance(result, RealizerResult)

@@ -23,8 +23,11 @@ from symctl.report.document import (
 
 
 def test_prose_is_escaped_for_latex_and_math_kept():
-    blocks = [Heading("Gains"), Text("100% of x_1 & $K_0 + \\epsilon_1$"), Math((("a", "1"),),
-              "eq:a")]  # fmt: skip
+    blocks = [
+        Heading("Gains"),
+        Text("100% of x_1 & $K_0 + \\epsilon_1$"),
+        Math((("a", "1"),), "eq:a"),
+    ]
     tex = to_tex(blocks)
     assert r"100\% of x\_1 \& $K_0 + \epsilon_1$" in tex
     md = to_markdown(blocks)
@@ -80,8 +83,10 @@ def test_citations_and_references_are_numbered_alike_in_both_formats():
         References((("a", "First."), ("b", "Second."))),
     ]
     tex, md = to_tex(blocks), to_markdown(blocks)
-    assert (r"As in~\cite[Fig. 5]{b} and~\cite{a}; see Fig.~\ref{fig:g}, Table~\ref{tab:t} and~"
-            r"\eqref{eq:x}.") in tex  # fmt: skip
+    assert (
+        r"As in~\cite[Fig. 5]{b} and~\cite{a}; see Fig.~\ref{fig:g}, Table~\ref{tab:t} and~"
+        r"\eqref{eq:x}."
+    ) in tex
     assert r"\caption{A table.}\label{tab:t}" in tex and r"\begin{table}" in tex
     assert "As in [2, Fig. 5] and [1]; see Fig. 1, Table 1 and (2)." in md
     assert "*Table 1: A table.*" in md and "*Figure 1: c*" in md

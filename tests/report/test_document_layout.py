@@ -38,15 +38,20 @@ def test_a_wide_table_wraps_its_prose_columns_and_keeps_the_others():
 
 
 def test_a_wide_table_that_cannot_wrap_is_set_smaller():
-    wide = to_tex([Table(tuple(f"$x_{{{k}}} + y_{{{k}}} + z_{{{k}}}$" for k in range(12)),
-                         (("$1$",) * 12,))])  # fmt: skip
+    wide = to_tex(
+        [Table(tuple(f"$x_{{{k}}} + y_{{{k}}} + z_{{{k}}}$" for k in range(12)), (("$1$",) * 12,))]
+    )
     assert r"\footnotesize\setlength{\tabcolsep}{3pt}" in wide and "tabularx" not in wide
 
 
 def test_markdown_cuts_long_math_after_matrix_rows_and_wraps_prose_outside_math():
     matrix = r"\begin{bmatrix}" + r" \\ ".join(" & ".join(["0.123456"] * 20) for _ in range(20))
-    md = to_markdown([Math((("P", matrix + r"\end{bmatrix}"),), "eq:P"),
-                      Text("word " * 40 + "$a + b + c + d$ " + "word " * 40)])  # fmt: skip
+    md = to_markdown(
+        [
+            Math((("P", matrix + r"\end{bmatrix}"),), "eq:P"),
+            Text("word " * 40 + "$a + b + c + d$ " + "word " * 40),
+        ]
+    )
     lines = md.splitlines()
     assert max(map(len, lines)) <= MD_LINE
     assert "$a + b + c + d$" in md  # never broken inside inline math

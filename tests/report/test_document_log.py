@@ -55,9 +55,11 @@ def _png() -> bytes:
 def _pdf(width: int = 72, height: int = 72) -> bytes:
     """An empty PDF page, one inch square by default [pt]."""
     box = b"[0 0 %d %d]" % (width, height)
-    objects = [b"<< /Type /Catalog /Pages 2 0 R >>",
-               b"<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
-               b"<< /Type /Page /Parent 2 0 R /MediaBox " + box + b" >>"]  # fmt: skip
+    objects = [
+        b"<< /Type /Catalog /Pages 2 0 R >>",
+        b"<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
+        b"<< /Type /Page /Parent 2 0 R /MediaBox " + box + b" >>",
+    ]
     out, offsets = bytearray(b"%PDF-1.4\n"), []
     for k, body in enumerate(objects, 1):
         offsets.append(len(out))
@@ -88,8 +90,12 @@ def logs(request, tmp_path_factory):
             tex = to_tex(story(res, res.figure_names()), title=res.spec.title)  # as res.write does
             (out / "derivation.tex").write_text(tex)
             for _ in range(2):
-                subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error",
-                                "derivation.tex"], cwd=out, capture_output=True, timeout=300)  # fmt: skip
+                subprocess.run(
+                    [pdflatex, "-interaction=nonstopmode", "-halt-on-error", "derivation.tex"],
+                    cwd=out,
+                    capture_output=True,
+                    timeout=300,
+                )
             done[case] = (out / "derivation.log").read_text(errors="replace")
         return done[case]
 
@@ -100,8 +106,10 @@ def logs(request, tmp_path_factory):
 def test_the_derivation_compiles_with_nothing_in_the_margin(logs, case, pdflatex):
     log = logs(case, pdflatex)
     assert "Output written on derivation.pdf" in log, case
-    found = {what: rx.findall(log) and [m.group(0) for m in rx.finditer(log)]
-             for what, rx in _PROBLEMS.items()}  # fmt: skip
+    found = {
+        what: rx.findall(log) and [m.group(0) for m in rx.finditer(log)]
+        for what, rx in _PROBLEMS.items()
+    }
     assert not any(found.values()), {k: v[:5] for k, v in found.items() if v}
 
 
@@ -112,7 +120,11 @@ def test_the_log_check_finds_an_overfull_line(tmp_path, pdflatex):
         + "x" * 200
         + "\n\\end{document}\n"
     )
-    subprocess.run([pdflatex, "-interaction=nonstopmode", "bad.tex"], cwd=tmp_path,
-                   capture_output=True, timeout=60)  # fmt: skip
+    subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "bad.tex"],
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=60,
+    )
     log = (tmp_path / "bad.log").read_text(errors="replace")
     assert _PROBLEMS["overfull box"].search(log) and _PROBLEMS["undefined reference"].search(log)

@@ -181,10 +181,15 @@ def test_figure_formats_are_read_in_the_order_of_formats(given, expected):
 
 @pytest.mark.parametrize(
     ("given", "words"),
-    [("", "name at least one"), (",", "name at least one"), ("pdf,jpg", "unknown format 'jpg'"),
-     ("pdf;png", "unknown format 'pdf;png'"), (3, "expected format names"),
-     ([b"pdf"], "expected format names")],
-)  # fmt: skip
+    [
+        ("", "name at least one"),
+        (",", "name at least one"),
+        ("pdf,jpg", "unknown format 'jpg'"),
+        ("pdf;png", "unknown format 'pdf;png'"),
+        (3, "expected format names"),
+        ([b"pdf"], "expected format names"),
+    ],
+)
 def test_bad_figure_formats_are_a_parameter_error_naming_the_argument(given, words):
     with pytest.raises(ParameterError, match=rf"^formats: .*{words}"):
         figures.figure_formats(given)
@@ -253,8 +258,13 @@ def test_the_derivation_includes_the_vector_figures_at_their_natural_size(tmp_pa
     assert r"\fitgraphic{small.pdf}" in tex and ".png" not in tex
     assert "width=\\linewidth" not in tex.split("\\begin{document}")[1]  # no scaling in the body
     (tmp_path / "f.tex").write_text(tex)
-    subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error", "f.tex"],
-                   cwd=tmp_path, check=True, capture_output=True, timeout=120)  # fmt: skip
+    subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "-halt-on-error", "f.tex"],
+        cwd=tmp_path,
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
     log = (tmp_path / "f.log").read_text(errors="replace")
     assert "symctl: scaled figure wide.pdf down to fit the page" in log
     assert "symctl: scaled figure taller.pdf down to fit the page" in log

@@ -55,8 +55,11 @@ def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
 
 def test_the_delays_are_counted_in_words_not_step_s():
     for ds, word in ((1, "$d_s = 1$ step and"), (2, "$d_s = 2$ steps and")):
-        text = " ".join(b.text for b in story(derive_paper(sensor_delay=ds, realizations=1))
-                        if isinstance(b, Text))  # fmt: skip
+        text = " ".join(
+            b.text
+            for b in story(derive_paper(sensor_delay=ds, realizations=1))
+            if isinstance(b, Text)
+        )
         assert "step(s)" not in text and word in text
 
 
@@ -123,8 +126,12 @@ def test_the_parameter_table_says_which_numbers_are_the_papers_and_which_ours(pa
     values = {row[0]: row[1] for row in table.rows}
     assert values["equilibrium firing rate $\\bar{r}$"] == "1 spike/s"
     other = derive_paper(sensor_delay=3, tau=0.05, realizations=1)
-    rows = {r[0]: r for b in story(other) if isinstance(b, Table) and b.label == "parameters"
-            for r in b.rows}  # fmt: skip
+    rows = {
+        r[0]: r
+        for b in story(other)
+        if isinstance(b, Table) and b.label == "parameters"
+        for r in b.rows
+    }
     assert rows["muscle time constant $\\tau$"][2] == "this run ([@li2024]: 0.02)"
     assert rows["sensor delay $d_s$, actuator delay $d_a$"][1:] == (
         "3 steps and 1 step",

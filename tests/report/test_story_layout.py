@@ -19,6 +19,7 @@ import sympy as sp
 
 from symctl import controller_tf, derive_paper
 from symctl.report import longform as LF
+from symctl.report import matrixview as MV
 from symctl.report.document import Math, Table, Text, to_markdown, write_tex
 from symctl.report.story import _display, _eq, _tf_long, story
 from symctl.symbols import gain_symbols
@@ -42,8 +43,15 @@ def _objects(n: int) -> list[tuple[str, object]]:
     shift = np.diag(np.ones(n - 1), -1)
     shift[0, 0], shift[0, n - 1] = 0.606531, 4.64165
     E = np.array([[j - i if j >= i else np.inf for j in range(n)] for i in range(n)], dtype=float)
-    p = sp.Matrix(n, n, lambda i, j: sp.Rational(int(rng.integers(-10**6, 10**6)), 997) * sp.Symbol(
-        f"sigma_{{{(i + j) % n + 1}}}") + sp.Symbol(f"p_{{{i + 1},{j + 1}}}"))  # fmt: skip
+    p = sp.Matrix(
+        n,
+        n,
+        lambda i, j: (
+            sp.Rational(int(rng.integers(-(10**6), 10**6)), 997)
+            * sp.Symbol(f"sigma_{{{(i + j) % n + 1}}}")
+            + sp.Symbol(f"p_{{{i + 1},{j + 1}}}")
+        ),
+    )
     K = gain_symbols(n)
     return [
         ("F", _companion(n)),
@@ -78,24 +86,24 @@ def test_every_kind_of_large_matrix_fits_the_line(n):
     for lhs, obj in _objects(n):
         blocks = _eq((lhs, obj), label="eq:x")
         _rows_fit(blocks)
-        view = LF.show_matrix(lhs, obj)
+        view = MV.show_matrix(lhs, obj)
         if view.full:
             assert n <= LF.MATRIX_MAX_ROWS
 
 
 def test_a_large_matrix_is_shown_by_its_structure():
     n = 20
-    rows = LF.show_matrix("H", sp.Matrix([0] * (n - 1) + [1])).rows
+    rows = MV.show_matrix("H", sp.Matrix([0] * (n - 1) + [1])).rows
     assert rows == [("H", r"e_{20}\quad (20 \times 1)")]
-    F = LF.show_matrix("F", _companion(n)).rows
+    F = MV.show_matrix("F", _companion(n)).rows
     assert r"\ddots" in F[0][1] and F[1][1].startswith("(K_{20}, K_{19}")
     E = _objects(21)[6][1]
-    view = LF.show_matrix("E", E)
+    view = MV.show_matrix("E", E)
     assert r"\begin{smallmatrix}" in view.rows[0][1]
     (intro, _, body) = view.tables[0]
     assert r"\infty" in intro and len(body) == 22  # a row per diagonal (two for k = 19)
     assert body[1] == ("${E}_{i,i+1}$", r"$i = 1, \dots, 20$", "$1$")
-    dense = LF.show_matrix("P", np.arange(400.0).reshape(20, 20) + 0.5).rows[0][1]
+    dense = MV.show_matrix("P", np.arange(400.0).reshape(20, 20) + 0.5).rows[0][1]
     assert r"\cdots" in dense and r"\vdots" in dense and "399.5" in dense
 
 
@@ -142,12 +150,19 @@ def test_large_objects_compile_without_an_overfull_box(tmp_path, pdflatex):
             blocks += _eq((lhs, obj), label=f"eq:{n}-{k}")
     G = controller_tf(20)
     blocks += _tf_long("G(z)", G, G.subs({k: 0.123456789 for k in gain_symbols(20)}), label="eq:G")
-    blocks += _display([("y(t)", " + ".join(rf"0.{k}123456\, x_{{{k}}}(t-{k})" for k in range(300)))],
-                       "eq:long")  # fmt: skip
+    blocks += _display(
+        [("y(t)", " + ".join(rf"0.{k}123456\, x_{{{k}}}(t-{k})" for k in range(300)))], "eq:long"
+    )
     blocks.append(Table(("k", "value"), tuple((str(k), f"${k}.5$") for k in range(80))))
     write_tex(blocks, tmp_path / "big.tex")
-    run = subprocess.run([pdflatex, "-interaction=nonstopmode", "big.tex"], cwd=tmp_path,
-                         capture_output=True, text=True, errors="replace", timeout=180)  # fmt: skip
+    run = subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "big.tex"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        errors="replace",
+        timeout=180,
+    )
     log = (tmp_path / "big.log").read_text(errors="replace")
     assert run.returncode == 0, [line for line in log.splitlines() if line.startswith("!")][:3]
     assert "Overfull \\hbox" not in log and "symctl: shrunk" not in log
