@@ -59,7 +59,7 @@ def main() -> None:
         stages = "all" if res.skipped is None else "no IFP"
         rows.append((path.name, model.plant.n, model.plant.m, stages, t_load, t_derive, t_write))
         if path.stem == "muscle":
-            same = json.dumps(res.to_json()) == json.dumps(paper.to_json())
+            same = json.dumps(res.to_dict()) == json.dumps(paper.to_dict())
     print(f"{'model file':<26} {'n':>2} {'m':>2} {'stages':>8} {'read [s]':>9} "
           f"{'derive [s]':>11} {'write [s]':>10}")  # fmt: skip
     print("-" * 74)

@@ -35,6 +35,8 @@ _PUBLIC = {
     "SymctlTypeError": "symctl.errors",
     # symbols
     "z": "symctl.symbols",
+    # verdicts: every check's result
+    "Proof": "symctl.proof",
     # 1-2. design: plant, delays, LQR, G(z)
     "AugmentedSystem": "symctl.design.augment",
     "augment": "symctl.design.augment",

@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent / "symctl"
 # lowest first; a module may import from its own rank or below
 STAGES = (
     ("symctl.errors", "symctl.symbols"),
-    ("symctl._util",),
+    ("symctl._util", "symctl.proof"),
     ("symctl.design",),
     ("symctl.realization",),
     ("symctl.compatibility",),

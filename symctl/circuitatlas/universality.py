@@ -85,6 +85,7 @@ from symctl.circuitatlas.fibre import (
 )
 from symctl.circuitatlas.pattern import Pattern, slot_names
 from symctl.circuitatlas.rank import generic_rank
+from symctl.proof import Verdict
 from symctl.symbols import z
 
 __all__ = ["Evidence", "closed_form", "decide", "fixings", "sample_targets"]
@@ -109,7 +110,7 @@ region without a certified real root leaves the pattern not decided."""
 
 
 @dataclass(frozen=True)
-class Evidence:
+class Evidence(Verdict):
     """Why a pattern is (or is not) universal; truthy when it is.
 
     Attributes
@@ -143,8 +144,12 @@ class Evidence:
     text: str
     details: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
 
-    def __bool__(self) -> bool:
-        return bool(self.universal)
+    _verdict = "universal"
+
+    @property
+    def evidence(self):
+        """The witness or certificate: :attr:`details` (read-only)."""
+        return self.details
 
     @classmethod
     def from_dict(cls, data: dict) -> Evidence:

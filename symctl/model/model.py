@@ -14,6 +14,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import renamed_attribute, renamed_keywords
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.design.ode import ODEModel
 from symctl.design.plant import DiscretePlant
@@ -45,8 +46,9 @@ class Model:
         Units and descriptions of the states, inputs, outputs and parameters, by name.
     outputs : tuple of (str, str)
         The measured outputs: (name, state).
-    Ts : float
-        The sampling time in seconds.
+    dt : float
+        The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is
+        the deprecated name of the attribute and keyword).
     sensor_delay, actuator_delay : int
         The delays in steps.
     Q, R : sympy.ImmutableMatrix
@@ -107,7 +109,7 @@ class Model:
     units: Mapping
     descriptions: Mapping
     outputs: tuple
-    Ts: float
+    dt: float
     sensor_delay: int
     actuator_delay: int
     Q: sp.ImmutableMatrix
@@ -177,3 +179,8 @@ class Model:
         w = np.zeros((n_steps, self.plant.n))
         w[start : start + length, list(states)] = amplitude
         return w
+
+    Ts = renamed_attribute("Ts", "dt")
+
+
+Model.__init__ = renamed_keywords(Ts="dt")(Model.__init__)

@@ -10,7 +10,7 @@ Examples
 --------
 >>> from symctl import derive_paper
 >>> res = derive_paper()
->>> round(res.to_json()["plant"]["f_bar"], 4)
+>>> round(res.to_dict()["plant"]["f_bar"], 4)
 43.8635
 """
 
@@ -22,6 +22,7 @@ from collections.abc import Callable
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import renamed_keywords
 from symctl._util.validate import (
     MAX_CIRCUITS,
     MAX_DELAY,
@@ -70,16 +71,17 @@ PAPER_ATLAS_MAX_ORDER = 2
 """Largest G2 order whose circuits for the paper's controller ``derive_paper`` lists."""
 
 
+@renamed_keywords(Ts="dt", seed="rng")
 def derive_paper(
     tau: float = PAPER.tau,
     f_max: float = PAPER.f_max,
     r_bar: float = PAPER.r_bar,
-    Ts: float = PAPER.Ts,
+    dt: float = PAPER.Ts,
     sensor_delay: int = PAPER.sensor_delay,
     actuator_delay: int = PAPER.actuator_delay,
     Q=None,
     R=None,
-    seed: int = PAPER.seed,
+    rng: int = PAPER.seed,
     realizations: int = PAPER.realizations,
     progress: Callable[[str], None] | None = None,
 ) -> PaperResults:
@@ -90,17 +92,20 @@ def derive_paper(
 
     Parameters
     ----------
-    tau, f_max, r_bar, Ts : float
+    tau, f_max, r_bar, dt : float
         The muscle's time constant [s], maximum force [N] and equilibrium
-        firing rate [spikes/s], and the sampling time [s].
+        firing rate [spikes/s], and the sampling time [s] (``Ts=`` is the
+        deprecated name of ``dt``).
     sensor_delay, actuator_delay : int
         Delays in steps (integers >= 0, not both 0), with a net delay of at most
         :data:`~symctl._util.validate.PAPER_MAX_DELAY` (20; the README's scaling
         table gives the time of each T).
     Q, R : matrix-like, optional
         State and input penalties of the cost (identity by default).
-    seed : int
-        Seed of the random realizations (epsilons, and ``P`` of the general one).
+    rng : int
+        Seed of the random realizations (epsilons, and ``P`` of the general
+        one): an int >= 0, recorded as ``seed`` in the results (``seed=`` is
+        the deprecated name of ``rng``).
     realizations : int
         Random realizations simulated per circuit (the IFP controller has one),
         from 1 to :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
@@ -117,10 +122,10 @@ def derive_paper(
     ParameterError
         A parameter out of range (e.g. ``tau <= 0``, negative delays, both
         delays 0, a net delay above ``PAPER_MAX_DELAY``, ``Q`` not positive
-        semidefinite, a negative ``seed``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
-        ``Ts/tau`` outside the muscle's admissible range).
+        semidefinite, a negative ``rng``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
+        ``dt/tau`` outside the muscle's admissible range).
     SymctlTypeError
-        ``seed``, a delay or ``realizations`` not an integer, ``progress`` not callable.
+        ``rng``, a delay or ``realizations`` not an integer, ``progress`` not callable.
     DimensionError
         ``Q`` or ``R`` of the wrong shape.
 
@@ -138,7 +143,7 @@ def derive_paper(
     symctl.errors.ParameterError: sensor_delay, actuator_delay: the derivation needs a net delay ...
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    seed = nonneg_int(seed, "seed")
+    seed = nonneg_int(rng, "rng")
     realizations = bounded_int(realizations, "realizations", 1, MAX_CIRCUITS)
     delays = nonneg_int(sensor_delay, "sensor_delay"), nonneg_int(actuator_delay, "actuator_delay")
     if sum(delays) > PAPER_MAX_DELAY:
@@ -155,9 +160,9 @@ def derive_paper(
             "have T steps), got 0"
         )
     step("plant")
-    model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts)  # validates the parameters
+    model = MuscleModel(tau=tau, f_max=f_max, r_bar=r_bar, dt=dt)  # validates the parameters
     spec = muscle(
-        tau=tau, f_max=f_max, r_bar=r_bar, Ts=Ts, sensor_delay=delays[0],
+        tau=tau, f_max=f_max, r_bar=r_bar, Ts=dt, sensor_delay=delays[0],
         actuator_delay=delays[1], seed=seed, realizations=realizations,
     )  # fmt: skip
     if Q is not None or R is not None:
@@ -201,7 +206,7 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> PaperResu
     --------
     >>> from symctl import derive, derive_paper
     >>> from symctl.model.presets import muscle_text
-    >>> derive(muscle_text()).to_json() == derive_paper().to_json()
+    >>> derive(muscle_text()).to_dict() == derive_paper().to_dict()
     True
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
@@ -288,7 +293,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
                 k,
                 gains,
                 count=1 if REALIZERS[k].controller else count,
-                seed=seed,
+                rng=seed,
                 disturbance=w,
                 **window,
             )
@@ -323,7 +328,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
                 structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
                 firing["pathways"] = structure_firing(
                     pathways.structure, gains, assignment=pathways.check, count=count,
-                    seed=seed, disturbance=w, **window,
+                    rng=seed, disturbance=w, **window,
                 )  # fmt: skip
                 kinds = (*kinds, "pathways")
         circuits = {
@@ -345,7 +350,7 @@ def _derive(spec: Model, model, step, *, announced: bool = False) -> PaperResult
             order = found if system.T == 2 else atlas(system.T, workers=1)
             try:
                 candidates = circuits_for(
-                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, seed=seed
+                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, rng=seed
                 )
             except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
                 note = f"no atlas circuits for this controller: {exc}"

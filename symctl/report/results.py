@@ -17,7 +17,7 @@ Examples
 --------
 >>> from symctl import derive_paper
 >>> res = derive_paper()
->>> round(res.to_json()["plant"]["f_bar"], 4)
+>>> round(res.to_dict()["plant"]["f_bar"], 4)
 43.8635
 >>> res.circuits["controllable"].circuit.n_neurons
 4
@@ -35,6 +35,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import warn_deprecated
 from symctl._util.display import descending_str
 from symctl._util.validate import positive_int
 from symctl.compatibility.check import CompatibilityResult
@@ -327,7 +328,7 @@ class PaperResults:
         0.05
         """
         s = self.system
-        values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.Ts}
+        values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.dt}
         return {
             **values,
             "sensor_delay": s.sensor_delay,
@@ -338,6 +339,11 @@ class PaperResults:
         }
 
     def to_json(self) -> dict:
+        """Deprecated name of :meth:`to_dict`."""
+        warn_deprecated("to_json", "to_dict", "PaperResults")
+        return self.to_dict()
+
+    def to_dict(self) -> dict:
         """The ``results.json`` document: a dictionary of plain lists, floats and strings.
 
         Returns
@@ -351,7 +357,7 @@ class PaperResults:
         Examples
         --------
         >>> from symctl import derive_paper
-        >>> data = derive_paper().to_json()
+        >>> data = derive_paper().to_dict()
         >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
         (1, True, 3)
         """
@@ -378,7 +384,7 @@ class PaperResults:
                 "numerator": numerator[0][0] if G.is_siso else numerator,
                 "denominator": _floats(G.den_coeffs()),
                 "relative_degree": G.relative_degree,
-                "dt": self.spec.Ts,
+                "dt": self.spec.dt,
                 "symbolic": {
                     "numerator": _poly_text(self.G_symbolic.num),
                     "denominator": descending_str(self.G_symbolic.den),
@@ -619,7 +625,7 @@ class PaperResults:
         step = progress or (lambda _name: None)
         written = []
         path = out / "results.json"
-        path.write_text(json.dumps(self.to_json(), indent=2, allow_nan=False) + "\n")
+        path.write_text(json.dumps(self.to_dict(), indent=2, allow_nan=False) + "\n")
         written.append(path)
         paths: list[Path] = []
         if figures:
