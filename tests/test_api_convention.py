@@ -261,3 +261,10 @@ def test_fit_names_the_similarity_entries_pinv_and_q_still_reads_them():
     rows = symctl.identifiability([["G2.x1", "G2.y"]], GAINS, **KW, C=1)
     with pytest.warns(DeprecationWarning):
         assert rows[0].params["Q[1,2]"] == rows[0].params["Pinv[1,2]"]
+
+
+def test_an_atlas_round_trips_through_its_json_dict():
+    A = symctl.atlas(2, workers=1)
+    back = symctl.Atlas.from_dict(json.loads(json.dumps(A.to_dict())))
+    assert back == A and back.to_dict() == A.to_dict()
+    assert [c.label for c in back.classes] == [c.label for c in A.classes]

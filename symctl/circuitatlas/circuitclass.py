@@ -198,6 +198,31 @@ class CircuitClass:
             ],
         }
 
+    @classmethod
+    def from_dict(cls, data: dict, delays: str = "branch") -> CircuitClass:
+        """The class :meth:`to_dict` wrote; ``delays`` is its atlas's (not in the class's dict).
+
+        >>> import symctl
+        >>> best = symctl.atlas(2, workers=1).classes[0]
+        >>> type(best).from_dict(best.to_dict()) == best
+        True
+        """
+        reps = tuple(Pattern.from_matrices(p["F"], p["H"], p["M"]) for p in data["patterns"])
+        return cls(
+            order=reps[0].n,
+            delays=delays,
+            representatives=reps,
+            evidence=Evidence.from_dict(data["evidence"]),
+            pattern_evidence={
+                r: Evidence.from_dict(p["evidence"])
+                for r, p in zip(reps, data["patterns"], strict=True)
+            },
+            n_neurons=data["neurons"],
+            n_synapses=data["synapses"],
+            n_branches=data["branches"],
+            label=data["label"],
+        )
+
     def __repr__(self) -> str:
         verdict = {True: "universal", False: "not universal", None: "not decided"}[self.universal]
         return (
