@@ -62,6 +62,7 @@ _PUBLIC = {
     "first_order_realization": "symctl.realization.realization",
     "observable_canonical": "symctl.realization.realization",
     "minimal_realization": "symctl.realization.minimal",
+    "Realizer": "symctl.realization.realizers",
     "RealizerResult": "symctl.realization.realizers",
     "general_realization": "symctl.realization.realizers",
     "get_realizer": "symctl.realization.realizers",

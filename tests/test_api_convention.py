@@ -268,3 +268,10 @@ def test_an_atlas_round_trips_through_its_json_dict():
     back = symctl.Atlas.from_dict(json.loads(json.dumps(A.to_dict())))
     assert back == A and back.to_dict() == A.to_dict()
     assert [c.label for c in back.classes] == [c.label for c in A.classes]
+
+
+def test_no_public_signature_names_a_type_that_is_not_public():
+    results = {"get_realizer": symctl.Realizer, "prove_controller_tf": symctl.Proof}
+    for name, cls in results.items():
+        annotation = inspect.signature(getattr(symctl, name)).return_annotation
+        assert annotation == cls.__name__ and cls.__name__ in symctl.__all__

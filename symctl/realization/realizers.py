@@ -146,6 +146,13 @@ class Realizer:
     controller : bool
         Whether it realizes the whole optimal controller, called with its
         :class:`~symctl.Gains` (the IFP structure), instead of :math:`G_2`.
+
+    Examples
+    --------
+    >>> from symctl import Realizer, get_realizer, z
+    >>> r = get_realizer("controllable")
+    >>> isinstance(r, Realizer), r.canonical, r(1 / (z - 2)).realization.F
+    (True, True, Matrix([[2]]))
     """
 
     name: str
