@@ -100,6 +100,9 @@ WITNESS_PIN = 0.5
 class DaleResult(Verdict):
     r"""The verdict of :func:`dale`: a witness, a proof that none exists, or "not decided".
 
+    Truthy when a witness exists (``verdict`` is :attr:`feasible`); ``evidence``
+    is the witness circuit, or the reason when there is none.
+
     Attributes
     ----------
     feasible : bool or None

@@ -69,6 +69,10 @@ r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Rada
 class NonlinearCheck(Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
 
+    Truthy when the nonlinear loop returned at every amplitude (``verdict``:
+    every :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``method``
+    says how it was simulated and ``evidence`` is :attr:`final_deviation`.
+
     Attributes
     ----------
     amplitudes : (k,) array
