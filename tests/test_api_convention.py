@@ -202,6 +202,8 @@ def test_from_dict_refuses_another_type_and_foreign_classes():
         symctl.Gains.from_dict({**data, "@module": "os"})
     with pytest.raises(ParameterError, match="not a SymPy class"):
         decode({"@sympy": "__import__", "args": []})
+    with pytest.raises(ParameterError, match="tagged SymPy tree"):  # text is never parsed
+        decode({"@sympy": "ImmutableDenseMatrix", "shape": [1, 1], "args": ["x**2"]})
 
 
 _leaves = st.one_of(

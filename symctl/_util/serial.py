@@ -75,6 +75,8 @@ def _sympy_class(name: str):
 
 
 def _decode_sympy(d: dict):
+    if not isinstance(d, dict) or "@sympy" not in d:
+        raise ParameterError(f"data: expected a tagged SymPy tree, got {d!r}")
     kind = d["@sympy"]
     if kind == "ImmutableDenseMatrix":
         rows, cols = d["shape"]

@@ -403,6 +403,9 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # from_dict: a matrix of entries each rebuilt from a tagged tree (numbers, symbols, SymPy
+    # classes by name); a string in the tree is refused before it reaches the constructor
+    ("symctl._util.serial", "_decode_sympy", "ImmutableMatrix"): 1,
     # report figures: the nonlinear figure's bounds come from an ODEModel's validated rhs and its
     # numeric parameter values (Symbol -> number), never from text
     ("symctl.report.figures", "_state_bounds", "subs"): 2,
