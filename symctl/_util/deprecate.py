@@ -37,6 +37,7 @@ __all__ = [
     "RenamedKeys",
     "renamed_attribute",
     "renamed_keywords",
+    "renamed_method",
     "rng_argument",
     "warn_deprecated",
 ]
@@ -90,6 +91,18 @@ def renamed_attribute(old: str, new: str) -> property:
     getter.__name__ = old
     getter.__doc__ = f"Deprecated name of :attr:`{new}`."
     return property(getter)
+
+
+def renamed_method(old: str, new: str):
+    """A method ``old`` that warns and calls the method ``new``."""
+
+    def method(self, *args, **kwargs):
+        warn_deprecated(old, new, type(self).__name__)
+        return getattr(self, new)(*args, **kwargs)
+
+    method.__name__ = old
+    method.__doc__ = f"Deprecated name of :meth:`{new}`."
+    return method
 
 
 def rng_argument(kind: str = "numpy"):

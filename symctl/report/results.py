@@ -35,7 +35,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl._util.deprecate import warn_deprecated
+from symctl._util.deprecate import renamed_method
 from symctl._util.display import descending_str
 from symctl._util.validate import positive_int
 from symctl.compatibility.check import CompatibilityResult
@@ -338,10 +338,7 @@ class PaperResults:
             "seed": self.seed,
         }
 
-    def to_json(self) -> dict:
-        """Deprecated name of :meth:`to_dict`."""
-        warn_deprecated("to_json", "to_dict", "PaperResults")
-        return self.to_dict()
+    to_json = renamed_method("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The ``results.json`` document: a dictionary of plain lists, floats and strings.
