@@ -59,7 +59,7 @@ def main() -> None:
         stages = "all" if res.skipped is None else "no IFP"
         rows.append((path.name, model.plant.n, model.plant.m, stages, t_load, t_derive, t_write))
         if path.stem == "muscle":
-            a, b = res.to_json(), paper.to_json()
+            a, b = res.to_dict(), paper.to_dict()
             a["model"]["file"].pop("path"), b["model"]["file"].pop("path")  # the file's name
             same = a == b
     print(f"{'model file':<26} {'n':>2} {'m':>2} {'stages':>8} {'read [s]':>9} "

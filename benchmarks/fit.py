@@ -111,8 +111,8 @@ def _starts(count: int, seed: int) -> list[np.ndarray]:
 # ---------------------------------------------------------------- the tables
 def timing(gains, starts: int) -> None:
     steps = 500
-    data = synthetic_traces(gains, **KW, seed=11, steps=steps, noise=0.01)
-    clean = synthetic_traces(gains, **KW, seed=11, steps=steps)
+    data = synthetic_traces(gains, **KW, rng=11, steps=steps, noise=0.01)
+    clean = synthetic_traces(gains, **KW, rng=11, steps=steps)
     rec = data.select(RECORDED).traces
     fit(rec, gains, **KW, C=1, starts=1, steps=steps)  # warm-up: imports, lambdify
     times = []
@@ -155,8 +155,8 @@ def recovery(gains, hidden: int, starts: int) -> None:
     for noise in (0.0, 0.001, 0.01, 0.05):
         g1, g3, e1, g2 = [], [], [], []
         for seed in range(hidden):
-            clean = synthetic_traces(gains, **KW, seed=seed, steps=steps)
-            noisy = synthetic_traces(gains, **KW, seed=seed, steps=steps, noise=noise)
+            clean = synthetic_traces(gains, **KW, rng=seed, steps=steps)
+            noisy = synthetic_traces(gains, **KW, rng=seed, steps=steps, noise=noise)
             res = fit(noisy.select(RECORDED).traces, gains, **KW, C=1, starts=starts, steps=steps)
             pred = res.predict()
             g1.append(_rel(pred["G1.x1"], clean.traces["G1.x1"]))

@@ -197,11 +197,11 @@ def _before_controller(aug, gains=None) -> DiscreteTF:
     T, m, n = aug.T, aug.m, aug.n
     blocks = gain_matrix_symbols(T, m, n)
     if gains is not None:
-        return _numeric_mimo(gains, T, m, n, aug.plant.Ts)
+        return _numeric_mimo(gains, T, m, n, aug.plant.dt)
     num, den, relative_degree = _symbolic_mimo(blocks, T, m)
     if relative_degree != T:
         raise AssertionError("relative degree")
-    return DiscreteTF(num, den, aug.plant.Ts)
+    return DiscreteTF(num, den, aug.plant.dt)
 
 
 def _before_proof(aug, G) -> bool:

@@ -78,7 +78,7 @@ def baseline(model, F, H, M, N, w, t) -> float:
         Acl = np.block([[A + B * N[i], B * M[i]], [H[i], F[i]]])
         E = np.vstack([np.eye(1), np.zeros((nc, 1))])
         C = np.vstack([np.hstack([np.eye(1), np.zeros((1, nc))]), np.hstack([N[i], M[i]])])
-        sys = control.ss(Acl, E, C, np.zeros((2, 1)), model.Ts)
+        sys = control.ss(Acl, E, C, np.zeros((2, 1)), model.dt)
         control.forced_response(sys, T=t, U=w[:, 0])
     return time.perf_counter() - start
 

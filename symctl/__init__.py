@@ -38,6 +38,8 @@ _PUBLIC = {
     "SymctlTypeError": "symctl.errors",
     # symbols
     "z": "symctl.symbols",
+    # verdicts: every check's result
+    "Proof": "symctl.proof",
     # 1-2. design: plant, delays, LQR, G(z)
     "AugmentedSystem": "symctl.design.augment",
     "augment": "symctl.design.augment",
@@ -63,6 +65,7 @@ _PUBLIC = {
     "first_order_realization": "symctl.realization.realization",
     "observable_canonical": "symctl.realization.realization",
     "minimal_realization": "symctl.realization.minimal",
+    "Realizer": "symctl.realization.realizers",
     "RealizerResult": "symctl.realization.realizers",
     "general_realization": "symctl.realization.realizers",
     "get_realizer": "symctl.realization.realizers",

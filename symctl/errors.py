@@ -62,10 +62,10 @@ class ParameterError(SymctlError, ValueError):
     Examples
     --------
     >>> import symctl
-    >>> symctl.MuscleModel(Ts=0)
+    >>> symctl.MuscleModel(dt=0)
     Traceback (most recent call last):
     ...
-    symctl.errors.ParameterError: Ts: must be a finite number > 0, got 0
+    symctl.errors.ParameterError: dt: must be a finite number > 0, got 0
     """
 
 

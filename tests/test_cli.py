@@ -66,7 +66,7 @@ def test_paper_options_are_used(tmp_path):
     [
         (["--tau", "-1"], "tau"),
         (["--f-max", "0"], "f_max"),
-        (["--ts", "0"], "Ts"),
+        (["--ts", "0"], "--ts"),
         (["--sensor-delay", "-2"], "sensor_delay"),
         (["--actuator-delay", "1.5"], "actuator-delay"),
         (["--q", "[[1, 0], [0, 1]]"], "Q"),

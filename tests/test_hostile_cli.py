@@ -39,7 +39,7 @@ HOSTILE = [
     (["--q", "[[1, 2]]"], ("Q", "--q")),
     (["--tau", "nan"], "tau"),
     (["--f-max", "nan"], "f_max"),
-    (["--ts", "inf"], "Ts"),
+    (["--ts", "inf"], "--ts"),
     (["--ts", "1e-300"], ""),
     (["--f-max", "1e308"], ""),  # ten NumPy warnings before the error: none may show
     (["--q", "1e300"], ""),

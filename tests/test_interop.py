@@ -113,14 +113,14 @@ def test_control_transfer_function_plant_is_its_controllable_canonical_form():
     ccf = controllable_canonical(DiscreteTF.from_expr(B_MUSCLE / (z - A_MUSCLE)))
     ref_gains, _ = _gains_and_G((np.array(ccf.F, float), np.array(ccf.H, float)))
     np.testing.assert_array_equal(gains.K, ref_gains.K)
-    assert gains.system.plant.Ts == sp.Float(0.01) and G.dt == sp.Float(0.01)
+    assert gains.system.plant.dt == sp.Float(0.01) and G.dt == sp.Float(0.01)
     # second order: the same F, H as symctl's controllable_canonical
     tf2 = control.tf([1.0, 0.5], [1.0, -0.9, 0.2], True)
     p = augment(tf2, 0, 0).plant
     ccf2 = controllable_canonical(DiscreteTF.from_expr((z + 0.5) / (z**2 - 0.9 * z + 0.2)))
     np.testing.assert_allclose(np.array(p.A, float), np.array(ccf2.F, float), atol=0)
     np.testing.assert_allclose(np.array(p.B, float), np.array(ccf2.H, float), atol=0)
-    assert p.Ts is None  # dt=True, python-control's "discrete, unspecified"
+    assert p.dt is None  # dt=True, python-control's "discrete, unspecified"
 
 
 def test_control_mimo_transfer_function_plant_realizes_the_same_transfer_function():
@@ -132,7 +132,7 @@ def test_control_mimo_transfer_function_plant_realizes_the_same_transfer_functio
     p = augment(sys, 1, 0).plant
     np.testing.assert_array_equal(np.array(p.A, float), F)
     np.testing.assert_array_equal(np.array(p.B, float), H)
-    assert (p.n, p.m, p.Ts) == (4, 2, sp.Float(0.1))  # column 0: one shared pole; column 1: two
+    assert (p.n, p.m, p.dt) == (4, 2, sp.Float(0.1))  # column 0: one shared pole; column 1: two
     assert lqr_gains(augment(sys, 1, 1)).K.shape == (2, 4 + 2 * 2)
 
 

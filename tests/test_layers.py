@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent / "symctl"
 # lowest first; a module may import from its own rank or below
 STAGES = (
     ("symctl.errors", "symctl.symbols"),
-    ("symctl._util",),
+    ("symctl._util", "symctl.proof"),
     ("symctl.design",),
     ("symctl.realization",),
     ("symctl.compatibility",),
@@ -46,7 +46,7 @@ DELEGATIONS = {
     "to_scipy",
     "from_scipy",
     # a derivation handed to the report stage, which writes it
-    "to_json",
+    "to_dict",
     "parameters",
     "figure",
     "figure_names",

@@ -11,7 +11,7 @@ from pathlib import Path
 from symctl import MuscleModel, Traces, augment, lqr_gains, synthetic_traces
 
 gains = lqr_gains(augment(MuscleModel(), 1, 1))
-data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=7, steps=500, noise=0.01)
+data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=7, steps=500, noise=0.01)
 rec = data.select(["G1.x1", "G2.x1", "G2.y"])
 meta = {
     "symctl traces": "synthetic recording for symctl fit (docs/fitting.md)",

@@ -163,6 +163,19 @@ class Atlas:
             "classes": [c.to_dict() for c in self.classes],
         }
 
+    @classmethod
+    def from_dict(cls, data: dict) -> Atlas:
+        """The atlas :meth:`to_dict` wrote.
+
+        >>> import symctl
+        >>> A = symctl.atlas(2, workers=1)
+        >>> type(A).from_dict(A.to_dict()) == A
+        True
+        """
+        delays = data["delays"]
+        classes = tuple(CircuitClass.from_dict(c, delays) for c in data["classes"])
+        return cls(data["order"], delays, classes, data["stats"])
+
     def __repr__(self) -> str:
         return (
             f"Atlas(order={self.order}, {len(self.classes)} classes, "

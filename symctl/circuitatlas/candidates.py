@@ -39,11 +39,12 @@ list is ranked by the whole circuit's neurons, then synapses.
 
 from __future__ import annotations
 
-import random
 from dataclasses import dataclass
 
 import sympy as sp
 
+from symctl._util.deprecate import rng_argument
+from symctl._util.serial import DictMixin
 from symctl.circuitatlas.certify import certified_point
 from symctl.circuitatlas.circuitclass import CircuitClass
 from symctl.circuitatlas.fibre import _system, binary_rationals
@@ -69,7 +70,7 @@ pole of a section is cancelled by a zero of G2 (an internally stable controller)
 
 
 @dataclass(frozen=True)
-class CandidateCircuit:
+class CandidateCircuit(DictMixin):
     """One circuit class realizing a given controller, at given section values.
 
     Attributes
@@ -140,6 +141,7 @@ class CandidateCircuit:
         )
 
 
+@rng_argument("random")
 def circuits_for(
     G,
     graph: DelayGraph | None = None,
@@ -147,7 +149,7 @@ def circuits_for(
     sensor_delay: int = 1,
     actuator_delay: int = 1,
     atlas=None,
-    seed: int = 0,
+    rng=0,
 ) -> tuple[CandidateCircuit, ...]:
     r"""Every circuit class of the atlas that realizes the controller ``G``, ranked (module text).
 
@@ -162,8 +164,10 @@ def circuits_for(
         The sections of :math:`G_1` and :math:`G_3`.
     atlas : Atlas, optional
         The atlas of :math:`G_2`'s order (built when not given).
-    seed : int
-        Seeds the generic section poles and the numeric searches.
+    rng : int, numpy Generator or None, default 0
+        Seeds the generic section poles and the numeric searches (an int
+        seed >= 0 gives the same circuits every time; ``seed=`` is its
+        deprecated name).
 
     Returns
     -------
@@ -207,7 +211,6 @@ def circuits_for(
         atlas = build_atlas(n, workers=1 if n <= 2 else None)
     elif not isinstance(atlas, Atlas) or atlas.order != n:
         raise ParameterError(f"atlas: expected the order-{n} atlas, got {atlas!r}")
-    rng = random.Random(seed)
     eps = _generic_eps(T, tf, rng)
     at_eps = factor(tf, sensor_delay, actuator_delay, eps=eps, C=1)
     found = []

@@ -135,9 +135,9 @@ class CircuitClass:
         return self.evidence.conjectured
 
     @property
-    def verdict(self) -> str:
+    def status(self) -> str:
         """``"universal"``, ``"conjectured"``, ``"not universal"`` or ``"not decided"``."""
-        return self.evidence.verdict
+        return self.evidence.status
 
     @property
     def patterns(self) -> tuple[Pattern, ...]:
@@ -210,8 +210,33 @@ class CircuitClass:
             ],
         }
 
+    @classmethod
+    def from_dict(cls, data: dict, delays: str = "branch") -> CircuitClass:
+        """The class :meth:`to_dict` wrote; ``delays`` is its atlas's (not in the class's dict).
+
+        >>> import symctl
+        >>> best = symctl.atlas(2, workers=1).classes[0]
+        >>> type(best).from_dict(best.to_dict()) == best
+        True
+        """
+        reps = tuple(Pattern.from_matrices(p["F"], p["H"], p["M"]) for p in data["patterns"])
+        return cls(
+            order=reps[0].n,
+            delays=delays,
+            representatives=reps,
+            evidence=Evidence.from_dict(data["evidence"]),
+            pattern_evidence={
+                r: Evidence.from_dict(p["evidence"])
+                for r, p in zip(reps, data["patterns"], strict=True)
+            },
+            n_neurons=data["neurons"],
+            n_synapses=data["synapses"],
+            n_branches=data["branches"],
+            label=data["label"],
+        )
+
     def __repr__(self) -> str:
-        verdict = self.verdict
+        verdict = self.status
         return (
             f"CircuitClass({self.label or '?'}: {self.n_neurons} neurons, {self.n_synapses} "
             f"synapses, {len(self.representatives)} pattern(s), {verdict})"
@@ -219,7 +244,7 @@ class CircuitClass:
 
     def draw(self, ax=None, *, title: str | None = None):
         """Draw the class's circuit (a matplotlib Figure); the title gives its counts and verdict."""
-        verdict = self.verdict
+        verdict = self.status
         head = title or (
             f"{self.label}: {self.n_neurons} neurons, {self.n_synapses} synapses ({verdict})"
         )

@@ -2,14 +2,16 @@
 
 >>> from symctl.circuitatlas.evidence import CONJECTURED, Evidence
 >>> ev = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
->>> bool(ev), ev.verdict, ev.sort_rank
-(False, 'conjectured', 1)
+>>> bool(ev), ev.verdict, ev.status, ev.sort_rank
+(False, None, 'conjectured', 1)
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from types import MappingProxyType
+
+from symctl.proof import Verdict
 
 __all__ = ["CONJECTURED", "Evidence"]
 
@@ -18,8 +20,12 @@ CONJECTURED = "conjectured"
 
 
 @dataclass(frozen=True)
-class Evidence:
+class Evidence(Verdict):
     """Why a pattern is (or is not) universal; truthy when it is proved universal.
+
+    The verdict protocol (:class:`~symctl.proof.Verdict`): :attr:`verdict` is
+    :attr:`universal` (True proved, False refuted, None a conjecture or undecided),
+    :attr:`evidence` the details; :attr:`status` says it in words.
 
     Attributes
     ----------
@@ -52,8 +58,12 @@ class Evidence:
     text: str
     details: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
 
-    def __bool__(self) -> bool:
-        return bool(self.universal)
+    _verdict = "universal"
+
+    @property
+    def evidence(self):
+        """The witness or certificate: :attr:`details` (read-only)."""
+        return self.details
 
     @property
     def conjectured(self) -> bool:
@@ -61,7 +71,7 @@ class Evidence:
         return self.method == CONJECTURED
 
     @property
-    def verdict(self) -> str:
+    def status(self) -> str:
         """``"universal"``, ``"conjectured"``, ``"not universal"`` or ``"not decided"``."""
         if self.conjectured:
             return CONJECTURED

@@ -33,6 +33,7 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
+from symctl.cli.options import options_named
 from symctl.cli.summary import summary
 from symctl.cli.writing import writing_options as _writing_options
 from symctl.errors import SymctlError
@@ -147,19 +148,20 @@ def paper(
         raise
     # --out is checked, locked and staged before any work; written into place at the end
     with OutputFolder(out, "--out") as folder, _Steps() as steps:
-        res = derive_paper(
-            tau=tau,
-            f_max=f_max,
-            r_bar=r_bar,
-            Ts=ts,
-            sensor_delay=sensor_delay,
-            actuator_delay=actuator_delay,
-            Q=Q,
-            R=R,
-            seed=seed,
-            realizations=realizations,
-            progress=steps.start,
-        )
+        with options_named({"dt": "--ts", "rng": "--seed"}):
+            res = derive_paper(
+                tau=tau,
+                f_max=f_max,
+                r_bar=r_bar,
+                dt=ts,
+                sensor_delay=sensor_delay,
+                actuator_delay=actuator_delay,
+                Q=Q,
+                R=R,
+                rng=seed,
+                realizations=realizations,
+                progress=steps.start,
+            )
         written = write_files(
             res,
             folder.staging,
@@ -231,7 +233,7 @@ def _check_line(model) -> str:
     )
     return (
         f"{model.path}: ok: {model.name!r}, {kind} with states {', '.join(xs)} and inputs "
-        f"{', '.join(us)}, Ts = {model.Ts:g} s, delays {model.sensor_delay} + "
+        f"{', '.join(us)}, Ts = {model.dt:g} s, delays {model.sensor_delay} + "
         f"{model.actuator_delay} steps, {graph}; circuits {', '.join(model.circuits)}"
     )
 

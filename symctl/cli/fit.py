@@ -109,7 +109,7 @@ def fit_command(
         res = fit(tr.traces, gains, sensor_delay=ds, actuator_delay=da,
                   circuit=classes if len(classes) > 1 else classes[0],
                   disturbance=1.0 if tr.disturbance is None else tr.disturbance,
-                  steps=tr.steps, C=c_value, starts=starts, seed=seed, workers=workers,
+                  steps=tr.steps, C=c_value, starts=starts, rng=seed, workers=workers,
                   scheduler=scheduler)  # fmt: skip
         written = write_fit(res, folder.staging, figures=figures, source=str(data))
     worst = max(res.residuals.values())
@@ -138,7 +138,7 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
     ds = defaults[0] if ds is None else ds
     da = defaults[1] if da is None else da
     gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
-    Ts = gains.system.plant.Ts
+    Ts = gains.system.plant.dt
     if Ts is not None:
         dt = float(tr.t[1] - tr.t[0])
         if abs(dt - float(Ts)) > 1e-6 * float(Ts):

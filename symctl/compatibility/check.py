@@ -44,6 +44,7 @@ from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.signalgraph import zero_one_bfs
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.proof import Verdict
 
 __all__ = ["METHODS", "CompatibilityResult", "brute_force_compatibility", "check_compatibility"]
 
@@ -56,7 +57,7 @@ _ALIASES = {"brute force": "brute-force"}
 
 # ---------------------------------------------------------------- results
 @dataclass(frozen=True)
-class CompatibilityResult(LatexMixin):
+class CompatibilityResult(Verdict, LatexMixin):
     r"""The verdict of :func:`check_compatibility`, with its evidence.
 
     Truthy exactly when the structure is compatible (``bool(r) == r.ok``). A
@@ -115,8 +116,12 @@ class CompatibilityResult(LatexMixin):
         object.__setattr__(self, "paths", tuple(self.paths))
         object.__setattr__(self, "stats", MappingProxyType(dict(self.stats)))
 
-    def __bool__(self) -> bool:
-        return self.ok
+    _verdict = "ok"
+
+    @property
+    def evidence(self):
+        """The witness :attr:`assignment` when compatible, else the certificate's :attr:`paths`."""
+        return self.assignment if self.ok else self.paths
 
     def __hash__(self) -> int:
         stats = frozenset(self.stats.items())

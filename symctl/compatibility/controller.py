@@ -127,6 +127,7 @@ from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.proof import Verdict
 from symctl.realization.realizers import get_realizer
 
 __all__ = ["CONSTRUCTIONS", "ControllerCompatibility", "controller_compatibility"]
@@ -136,7 +137,7 @@ CONSTRUCTIONS = ("path", "parallel")
 
 
 @dataclass(frozen=True)
-class ControllerCompatibility(LatexMixin):
+class ControllerCompatibility(Verdict, LatexMixin):
     r"""Whether some realization of a controller has a structure compatible with a delay graph.
 
     The verdict of :func:`controller_compatibility`; truthy exactly when
@@ -185,8 +186,12 @@ class ControllerCompatibility(LatexMixin):
     method: str
     parts: tuple[PathPart, ...] = ()
 
-    def __bool__(self) -> bool:
-        return self.ok
+    _verdict = "ok"
+
+    @property
+    def evidence(self):
+        """The structure-level :attr:`check` (its witness) when compatible, else the :attr:`reason`."""
+        return self.check if self.ok else self.reason
 
     def __hash__(self) -> int:
         return hash((self.ok, self.structure, self.reason, self.scope, self.method))

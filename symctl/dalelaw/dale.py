@@ -71,6 +71,7 @@ from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
+from symctl.proof import Verdict
 from symctl.realization.check import check_realization
 from symctl.realization.factorization import factor
 from symctl.realization.realization import Realization, controller_realization
@@ -96,8 +97,11 @@ WITNESS_PIN = 0.5
 
 
 @dataclass(frozen=True)
-class DaleResult:
+class DaleResult(Verdict):
     r"""The verdict of :func:`dale`: a witness, a proof that none exists, or "not decided".
+
+    Truthy when a witness exists (``verdict`` is :attr:`feasible`); ``evidence``
+    is the witness circuit, or the reason when there is none.
 
     Attributes
     ----------
@@ -153,6 +157,13 @@ class DaleResult:
     elapsed: float = 0.0
     G: DiscreteTF | None = field(default=None, repr=False)
     realizes: bool | None = None
+
+    _verdict = "feasible"
+
+    @property
+    def evidence(self):
+        """The :attr:`witness` circuit when feasible, else the :attr:`reason`."""
+        return self.witness if self.feasible else self.reason
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "signs", MappingProxyType(dict(self.signs)))

@@ -34,7 +34,9 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.deadline import Deadline
-from symctl._util.validate import as_generator, bounded_int, bounded_number, nonneg_int
+from symctl._util.deprecate import rng_argument
+from symctl._util.serial import DictMixin
+from symctl._util.validate import bounded_int, bounded_number, nonneg_int
 from symctl.circuitatlas.pattern import Pattern
 from symctl.circuitatlas.search import open_pool, pool_options
 from symctl.dalelaw.dale import (
@@ -94,7 +96,7 @@ class DaleRow:
 
 
 @dataclass(frozen=True)
-class DaleTable:
+class DaleTable(DictMixin):
     """The E/I table of an atlas (:func:`dale_atlas`).
 
     Attributes
@@ -227,13 +229,14 @@ def _row(spec, ds, da, samples, timeout, own):
                    time.perf_counter() - t0)  # fmt: skip
 
 
+@rng_argument()
 def dale_atlas(
     order: int = 2,
     *,
     sensor_delay: int = 1,
     actuator_delay: int = 1,
     samples: int = 24,
-    seed=0,
+    rng=0,
     G=None,
     classes=None,
     timeout: float = 10.0,
@@ -251,8 +254,8 @@ def dale_atlas(
         most ``order``.
     samples : int
         Sampled controllers per class (default 24, at most 1000).
-    seed : int or numpy Generator
-        Seeds the samples (default 0).
+    rng : int, numpy Generator or None, default 0
+        Seeds the samples (``seed=`` is its deprecated name).
     G : Gains, DiscreteTF or expression, optional
         A controller of its own column (e.g. the paper's gains).
     classes : list of str, optional
@@ -298,7 +301,7 @@ def dale_atlas(
     samples = bounded_int(samples, "samples", 0, MAX_SAMPLES)
     timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     workers, scheduler = pool_options(workers, scheduler)
-    gen = as_generator(seed, "seed")
+    gen = rng
     own, label = None, ""
     if G is not None:
         own, _, _ = controller_of(G, ds, da)

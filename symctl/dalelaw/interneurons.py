@@ -36,6 +36,7 @@ from types import MappingProxyType
 import sympy as sp
 
 from symctl._util.deadline import Deadline, Unfinished, deadline_of
+from symctl._util.serial import DictMixin
 from symctl.dalelaw.dale import (
     GENERAL_SEARCH,
     MAX_TIMEOUT,
@@ -98,7 +99,7 @@ class EICandidate:
 
 
 @dataclass(frozen=True)
-class EICircuit:
+class EICircuit(DictMixin):
     r"""The cheapest E/I circuit found by :func:`ei_circuit`.
 
     Attributes

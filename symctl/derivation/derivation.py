@@ -4,7 +4,7 @@ r"""What a derivation produced: :class:`Derivation`, with one record per realiza
 :class:`Derivation`: its inputs (the :class:`~symctl.model.model.Model`), every stage's
 result, symbolic and numeric, and what was skipped and why. It is a value: frozen,
 compared by value, picklable. The report stage writes it (``results.json``, the
-documents, the figures: :mod:`symctl.report.results`); :meth:`Derivation.to_json`,
+documents, the figures: :mod:`symctl.report.results`); :meth:`Derivation.to_dict`,
 :meth:`Derivation.write` and :meth:`Derivation.figure` hand it over there.
 ``PaperResults`` is its former name, kept.
 
@@ -12,7 +12,7 @@ Examples
 --------
 >>> from symctl import derive_paper
 >>> res = derive_paper()
->>> round(res.to_json()["plant"]["f_bar"], 4)
+>>> round(res.to_dict()["plant"]["f_bar"], 4)
 43.8635
 >>> res.circuits["controllable"].circuit.n_neurons
 4
@@ -28,6 +28,7 @@ from types import MappingProxyType
 
 import sympy as sp
 
+from symctl._util.deprecate import renamed_method
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
@@ -99,7 +100,9 @@ class RealizationRecord:
 
     __hash__ = _hash_fields
 
-    def to_json(self) -> dict:
+    to_json = renamed_method("to_json", "to_dict")
+
+    def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
         from symctl.report import results
 
@@ -146,7 +149,9 @@ class CircuitRecord:
             return None
         return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 
-    def to_json(self) -> dict:
+    to_json = renamed_method("to_json", "to_dict")
+
+    def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``circuits`` for this circuit."""
         from symctl.report import results
 
@@ -279,7 +284,7 @@ class Derivation:
     __hash__ = _hash_fields
 
     def parameters(self) -> dict:
-        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
+        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_dict`).
 
         Returns
         -------
@@ -297,7 +302,9 @@ class Derivation:
 
         return results.parameters(self)
 
-    def to_json(self) -> dict:
+    to_json = renamed_method("to_json", "to_dict")
+
+    def to_dict(self) -> dict:
         """The ``results.json`` document: a dictionary of plain lists, floats and strings.
 
         Returns
@@ -311,7 +318,7 @@ class Derivation:
         Examples
         --------
         >>> from symctl import derive_paper
-        >>> data = derive_paper().to_json()
+        >>> data = derive_paper().to_dict()
         >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
         (1, True, 3)
         """

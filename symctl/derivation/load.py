@@ -216,7 +216,7 @@ class SavedDerivation(CachedState):
     --------
     >>> from symctl import SavedDerivation, derive_paper
     >>> res = derive_paper()
-    >>> saved = SavedDerivation(res.to_json(), res.spec)   # what load_results makes
+    >>> saved = SavedDerivation(res.to_dict(), res.spec)   # what load_results makes
     >>> saved.factors["N"], saved.derive() is res
     (K_0/(C_1*C_3), True)
     """
@@ -258,7 +258,7 @@ class SavedDerivation(CachedState):
     def dt(self):
         """The sampling time, as the derivation's transfer functions hold it (its plant's)."""
         if self.model is not None:
-            return self.model.plant.Ts
+            return self.model.plant.dt
         return exact_value(float(self.data["controller"]["dt"]), "dt")
 
     @property

@@ -58,7 +58,7 @@ class PaperSpec:
     tau: float = _MUSCLE["tau"]
     f_max: float = _MUSCLE["f_max"]
     r_bar: float = _MUSCLE["r_bar"]
-    Ts: float = _MUSCLE["Ts"]
+    Ts: float = _MUSCLE["dt"]
     sensor_delay: int = _DELAYS["sensor_delay"]
     actuator_delay: int = _DELAYS["actuator_delay"]
     seed: int = 0

@@ -15,7 +15,7 @@ Examples
 --------
 >>> from symctl import derive_paper
 >>> res = derive_paper()
->>> round(res.to_json()["plant"]["f_bar"], 4)
+>>> round(res.to_dict()["plant"]["f_bar"], 4)
 43.8635
 """
 
@@ -28,6 +28,7 @@ from collections.abc import Callable
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import renamed_keywords
 from symctl._util.validate import (
     MAX_CIRCUITS,
     MAX_DELAY,
@@ -92,16 +93,17 @@ PAPER_ATLAS_MAX_ORDER = 2
 """Largest G2 order whose circuits for the paper's controller ``derive_paper`` lists."""
 
 
+@renamed_keywords(Ts="dt", seed="rng")
 def derive_paper(
     tau: float = PAPER.tau,
     f_max: float = PAPER.f_max,
     r_bar: float = PAPER.r_bar,
-    Ts: float = PAPER.Ts,
+    dt: float = PAPER.Ts,
     sensor_delay: int = PAPER.sensor_delay,
     actuator_delay: int = PAPER.actuator_delay,
     Q=None,
     R=None,
-    seed: int = PAPER.seed,
+    rng: int = PAPER.seed,
     realizations: int = PAPER.realizations,
     progress: Callable[[str], None] | None = None,
 ) -> Derivation:
@@ -114,17 +116,20 @@ def derive_paper(
 
     Parameters
     ----------
-    tau, f_max, r_bar, Ts : float
+    tau, f_max, r_bar, dt : float
         The muscle's time constant [s], maximum force [N] and equilibrium
-        firing rate [spikes/s], and the sampling time [s].
+        firing rate [spikes/s], and the sampling time [s] (``Ts=`` is the
+        deprecated name of ``dt``).
     sensor_delay, actuator_delay : int
         Delays in steps (integers >= 0, not both 0), with a net delay of at most
         :data:`~symctl._util.validate.PAPER_MAX_DELAY` (20; the README's scaling
         table gives the time of each T).
     Q, R : matrix-like, optional
         State and input penalties of the cost (identity by default).
-    seed : int
-        Seed of the random realizations (epsilons, and ``P`` of the general one).
+    rng : int
+        Seed of the random realizations (epsilons, and ``P`` of the general
+        one): an int >= 0, recorded as ``seed`` in the results (``seed=`` is
+        the deprecated name of ``rng``).
     realizations : int
         Random realizations simulated per circuit (the IFP controller has one),
         from 1 to :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
@@ -141,10 +146,10 @@ def derive_paper(
     ParameterError
         A parameter out of range (e.g. ``tau <= 0``, negative delays, both
         delays 0, a net delay above ``PAPER_MAX_DELAY``, ``Q`` not positive
-        semidefinite, a negative ``seed``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
-        ``Ts/tau`` outside the muscle's admissible range).
+        semidefinite, a negative ``rng``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
+        ``dt/tau`` outside the muscle's admissible range).
     SymctlTypeError
-        ``seed``, a delay or ``realizations`` not an integer, ``progress`` not callable.
+        ``rng``, a delay or ``realizations`` not an integer, ``progress`` not callable.
     DimensionError
         ``Q`` or ``R`` of the wrong shape.
 
@@ -170,12 +175,12 @@ def derive_paper(
         "tau": tau,
         "f_max": f_max,
         "r_bar": r_bar,
-        "Ts": Ts,
+        "dt": dt,
         "sensor_delay": sensor_delay,
         "actuator_delay": actuator_delay,
         "Q": Q,
         "R": R,
-        "seed": seed,
+        "seed": rng,
         "realizations": realizations,
     }
     given = {k: v for k, v in given.items() if v is not None}
@@ -187,7 +192,7 @@ def derive_paper(
 def _check_paper_values(given: dict) -> None:
     """The checks of the paper's values, with the messages :func:`derive_paper` has always given."""
     if "seed" in given:
-        nonneg_int(given["seed"], "seed")
+        nonneg_int(given["seed"], "rng")
     if "realizations" in given:
         bounded_int(given["realizations"], "realizations", 1, MAX_CIRCUITS)
     preset = muscle()
@@ -208,7 +213,7 @@ def _check_paper_values(given: dict) -> None:
             "T = sensor_delay + actuator_delay >= 1 (the delay graph and the IFP controller "
             "have T steps), got 0"
         )
-    muscle_values = {k: given[k] for k in ("tau", "f_max", "r_bar", "Ts") if k in given}
+    muscle_values = {k: given[k] for k in ("tau", "f_max", "r_bar", "dt") if k in given}
     if muscle_values:
         MuscleModel(**muscle_values)  # the muscle's admissible ranges, named
     for name, definite in (("Q", False), ("R", True)):
@@ -254,7 +259,7 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivatio
     --------
     >>> from symctl import derive, derive_paper
     >>> from symctl.model.presets import muscle_text
-    >>> a, b = derive(muscle_text()).to_json(), derive_paper().to_json()
+    >>> a, b = derive(muscle_text()).to_dict(), derive_paper().to_dict()
     >>> a["model"]["file"].pop("path"), b["model"]["file"].pop("path")  # only the name differs
     ('<text>', 'muscle preset (examples/muscle.toml)')
     >>> a == b
@@ -411,7 +416,7 @@ def _derive(spec: Model, step) -> Derivation:
                 gains,
                 assignment=pathways.check,
                 count=count,
-                seed=seed,
+                rng=seed,
                 disturbance=w,
                 **window,
             )
@@ -434,7 +439,7 @@ def _derive(spec: Model, step) -> Derivation:
             order = found if system.T == 2 else atlas(system.T, workers=1)
             try:
                 candidates = circuits_for(
-                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, seed=seed
+                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, rng=seed
                 )
             except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
                 note = f"no atlas circuits for this controller: {exc}"

@@ -24,7 +24,7 @@ SISO (and whenever the columns' entries share one denominator without common fac
 >>> import control
 >>> from symctl.design._foreign import plant_from_control
 >>> p = plant_from_control(control.ss([[0.5]], [[2.0]], [[1.0]], 0, 0.1))
->>> p.A, p.B, p.Ts, p.state_names
+>>> p.A, p.B, p.dt, p.state_names
 (Matrix([[0.5]]), Matrix([[2.0]]), 0.100000000000000, ('x',))
 """
 
@@ -191,7 +191,7 @@ def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
     A ``StateSpace`` gives its ``A`` and ``B`` (``C`` and ``D`` are not used: symctl's
     plant is state feedback, :math:`x(t+1) = A x(t) + B u(t)`); a SISO or MIMO
     ``TransferFunction`` is realized first by :func:`canonical_columns`, so its
-    states are those of the column-wise controllable canonical form. ``Ts`` is the
+    states are those of the column-wise controllable canonical form. ``dt`` is the
     system's ``dt`` (``dt=True``, "discrete, unspecified", gives ``None``). State and
     input names are the system's labels when they are distinct identifiers; the
     default labels (``x[0]``, ``u[0]``) give symctl's defaults ``x_1, ...`` and ``u``.
@@ -224,7 +224,7 @@ def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
     >>> sys = control.ss([[1, 0.1], [0, 1]], [[0], [0.1]], [[1, 0]], 0, 0.1,
     ...                  states=["pos", "vel"], inputs=["force"])
     >>> p = plant_from_control(sys)
-    >>> p.state_names, p.input_names, p.Ts
+    >>> p.state_names, p.input_names, p.dt
     (('pos', 'vel'), ('force',), 0.100000000000000)
     >>> plant_from_control(control.tf([2], [1, -0.5], True)).A
     Matrix([[0.5]])

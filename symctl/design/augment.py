@@ -63,9 +63,9 @@ def as_plant(plant) -> DiscretePlant:
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
         A :class:`DiscretePlant` is returned as it is, a :class:`MuscleModel` gives
-        :meth:`MuscleModel.plant`, a pair ``(A, B)`` a plant without ``Ts``. A discrete
-        ``control.StateSpace`` gives its ``A``, ``B``, ``dt`` (as ``Ts``; python-control's
-        ``dt=True``, "discrete, unspecified", is ``Ts=None``) and its labels when they are
+        :meth:`MuscleModel.plant`, a pair ``(A, B)`` a plant without ``dt``. A discrete
+        ``control.StateSpace`` gives its ``A``, ``B``, ``dt`` (python-control's
+        ``dt=True``, "discrete, unspecified", is ``dt=None``) and its labels when they are
         identifiers (the default ``x[0]``, ``u[0]`` give symctl's ``x_1, ...``, ``u``); a
         discrete ``control.TransferFunction`` (SISO or MIMO) is realized in the
         column-wise controllable canonical form of
@@ -92,7 +92,7 @@ def as_plant(plant) -> DiscretePlant:
     >>> import control
     >>> from symctl.design.augment import as_plant
     >>> p = as_plant(control.ss([[0.5, 0], [0, 0.2]], [[1], [1]], [[1, 1]], 0, 0.01))
-    >>> p.A, p.Ts, p.state_names, p.input_names
+    >>> p.A, p.dt, p.state_names, p.input_names
     (Matrix([
     [0.5, 0.0],
     [0.0, 0.2]]), 0.0100000000000000, ('x_1', 'x_2'), ('u',))
@@ -116,14 +116,14 @@ def as_plant(plant) -> DiscretePlant:
 
 
 def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") -> None:
-    """Refuse ``argname`` when the plant's ``Ts`` and the ``dt`` it comes with differ.
+    """Refuse ``argname`` when the plant's ``dt`` and the ``dt`` it comes with differ.
 
     Parameters
     ----------
     plant : DiscretePlant
     dt : sympy expression or None
         The sampling time of the other object (a controller, the gains' plant...).
-        ``None`` (unspecified) fits any ``Ts``, as a plant's ``Ts=None`` fits any ``dt``.
+        ``None`` (unspecified) fits any plant ``dt``, as a plant's ``dt=None`` fits any ``dt``.
     argname : str
         The argument named in the error.
     of : str
@@ -144,7 +144,7 @@ def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") 
     >>> import sympy as sp
     >>> from symctl import DiscretePlant
     >>> from symctl.design.augment import same_dt
-    >>> plant = DiscretePlant([[0.5]], [[1]], Ts=sp.Rational(1, 100))
+    >>> plant = DiscretePlant([[0.5]], [[1]], dt=sp.Rational(1, 100))
     >>> same_dt(plant, sp.Float(0.01), "R")
     >>> same_dt(plant, sp.Float(0.1), "R")
     Traceback (most recent call last):
@@ -152,10 +152,10 @@ def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") 
     symctl.errors.ParameterError: R: the plant is sampled with Ts = 1/100, the controller with dt = 0.1...
     """
     try:
-        common_dt(plant.Ts, dt, argname)
+        common_dt(plant.dt, dt, argname)
     except ParameterError:
         raise ParameterError(
-            f"{argname}: the plant is sampled with Ts = {plant.Ts}, {of} with dt = {dt}; "
+            f"{argname}: the plant is sampled with Ts = {plant.dt}, {of} with dt = {dt}; "
             "they must agree (or one be unspecified)"
         ) from None
 
@@ -254,7 +254,7 @@ def augment(
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
         Numeric or symbolic; a discrete ``control.StateSpace`` or ``TransferFunction``
-        is read by :func:`as_plant` (its ``dt`` becomes the plant's ``Ts``).
+        is read by :func:`as_plant` (its ``dt`` becomes the plant's).
     sensor_delay, actuator_delay : int
         Delays in steps, integers >= 0 with a net delay
         ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500; the augmented

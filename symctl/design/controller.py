@@ -61,13 +61,13 @@ import sympy as sp
 from sympy.polys.rings import ring
 
 from symctl._util.exact import NotRational, RingFractions, fold
-from symctl._util.proof import Proof
 from symctl._util.validate import MAX_DELAY, MAX_EXPANDED_TERMS, bounded_int
 from symctl.design.augment import AugmentedSystem
 from symctl.design.fraction import MatrixFractionTF
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
+from symctl.proof import Proof
 from symctl.symbols import gain_matrix_symbols, z
 
 __all__ = ["controller_tf", "ifp_state_space", "prove_controller_tf"]
@@ -90,7 +90,7 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
         An integer ``T`` gives the scalar controller with symbolic gains
         :math:`K_0 \dots K_T`; an :class:`~symctl.AugmentedSystem` gives the
         (possibly MIMO) controller for its sizes and delay with symbolic gain
-        blocks and the plant's ``Ts``; :class:`~symctl.Gains` give the numeric controller.
+        blocks and the plant's ``dt``; :class:`~symctl.Gains` give the numeric controller.
     gains : Gains, optional
         Substitute these gain values.
 
@@ -135,7 +135,7 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
         gains = source
     system, T, m, n = _system_of(source)
     blocks = gain_matrix_symbols(T, m, n)
-    dt = system.plant.Ts if system is not None else None
+    dt = system.plant.dt if system is not None else None
     if m > 1:
         return _mimo(blocks, gains, T, m, n, dt)
     G = DiscreteTF(blocks[0], _chain(T, m, lambda k, i, j: blocks[k][i, j])[0, 0], dt)

@@ -41,6 +41,7 @@ import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.serial import DictMixin
 from symctl._util.validate import check_magnitude, numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
 from symctl.errors import NotStabilizableError, ParameterError, SymctlTypeError
@@ -52,7 +53,7 @@ _TOL = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
-class Gains(LatexMixin):
+class Gains(DictMixin, LatexMixin):
     r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
 
     Attributes

@@ -27,7 +27,7 @@ the others, the states and the inputs are real.
 >>> import sympy as sp
 >>> from symctl.design.ode import ODEModel
 >>> x, u, a = sp.symbols("x u a", real=True)
->>> m = ODEModel([x], [u], [-a * x + u], {a: 2}, u_eq=[1], Ts=0.1)
+>>> m = ODEModel([x], [u], [-a * x + u], {a: 2}, u_eq=[1], dt=0.1)
 >>> m.x_eq
 Matrix([[1/a]])
 >>> m.plant().A[0, 0]
@@ -46,6 +46,7 @@ import numpy as np
 import sympy as sp
 
 from symctl import symbols as S
+from symctl._util.deprecate import renamed_attribute, renamed_keywords
 from symctl._util.display import LatexMixin, latex
 from symctl._util.pickling import CachedState
 from symctl._util.validate import MAX_MAGNITUDE, bounded_number, sampling_time, to_matrix
@@ -348,8 +349,9 @@ class ODEModel(CachedState, LatexMixin):
         numbers); solved with :func:`solve_equilibrium` when omitted.
     u_eq : sequence, optional
         The inputs at the operating point (default 0).
-    Ts : float
-        The sampling time [s], > 0.
+    dt : float
+        The sampling time [s], > 0 (``Ts`` is its deprecated name, as a
+        keyword and as an attribute).
     guess : sequence of float, optional
         Start of the numeric equilibrium search.
     name : str
@@ -377,7 +379,7 @@ class ODEModel(CachedState, LatexMixin):
     >>> from symctl.design.ode import ODEModel
     >>> th, w, u = sp.symbols("theta omega u", real=True)
     >>> g = sp.Symbol("g", positive=True)
-    >>> m = ODEModel([th, w], [u], [w, g * sp.sin(th) + u], {g: 9.81}, x_eq=[0, 0], Ts=0.01)
+    >>> m = ODEModel([th, w], [u], [w, g * sp.sin(th) + u], {g: 9.81}, x_eq=[0, 0], dt=0.01)
     >>> m.linearize_symbolic().a
     Matrix([
     [0, 1],
@@ -392,7 +394,7 @@ class ODEModel(CachedState, LatexMixin):
     params: Mapping
     x_eq: sp.ImmutableMatrix | None = None
     u_eq: sp.ImmutableMatrix | None = None
-    Ts: float = 0.01
+    dt: float = 0.01
     guess: tuple | None = None
     name: str = "model"
     units: Mapping = field(default_factory=dict)
@@ -419,13 +421,13 @@ class ODEModel(CachedState, LatexMixin):
             if self.u_eq is None
             else _vector(self.u_eq, len(inputs), "u_eq", pnames)
         )
-        ts = sampling_time(exact_value(self.Ts, "Ts"), "Ts")
+        ts = sampling_time(exact_value(self.dt, "dt"), "dt")
         object.__setattr__(self, "states", states)
         object.__setattr__(self, "inputs", inputs)
         object.__setattr__(self, "params", MappingProxyType(params))
         object.__setattr__(self, "rhs", rhs)
         object.__setattr__(self, "u_eq", u_eq)
-        object.__setattr__(self, "Ts", float(ts))
+        object.__setattr__(self, "dt", float(ts))
         object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
         if self.guess is not None:
             object.__setattr__(self, "guess", tuple(float(g) for g in self.guess))
@@ -465,7 +467,7 @@ class ODEModel(CachedState, LatexMixin):
     @property
     def values(self) -> dict:
         """The exact values of the parameters and of :math:`T_s` (``symctl.symbols.T_s``)."""
-        return {**self.params, S.T_s: exact_value(self.Ts, "Ts")}
+        return {**self.params, S.T_s: exact_value(self.dt, "dt")}
 
     @cached_property
     def _linearization(self) -> Linearization:
@@ -529,7 +531,7 @@ class ODEModel(CachedState, LatexMixin):
         rename = dict(zip((S.tau, S.f_max, S.r_bar), params, strict=True))
         return cls(
             [S.f], [S.r], [muscle.ode.xreplace(rename)], params,
-            [muscle.f_bar_symbolic.xreplace(rename)], [rename[S.r_bar]], muscle.Ts,
+            [muscle.f_bar_symbolic.xreplace(rename)], [rename[S.r_bar]], muscle.dt,
             name="muscle",
             units={"tau": "s", "f_max": "N", "r_bar": "spikes/s", "f": "N", "r": "spikes/s"},
         )  # fmt: skip
@@ -539,10 +541,10 @@ class ODEModel(CachedState, LatexMixin):
         values = self.values
         if self._discrete is not None:
             p = self._discrete.subs(values)
-            return self._plant(p.A, p.B, p.Ts, p.x_eq, p.u_eq)
+            return self._plant(p.A, p.B, p.dt, p.x_eq, p.u_eq)
         a, b = self._linearization
-        A, B = discretize(a.subs(values).evalf(), b.subs(values).evalf(), self.Ts)
-        return self._plant(A, B, self.Ts, self.x_eq.subs(values), self.u_eq.subs(values))
+        A, B = discretize(a.subs(values).evalf(), b.subs(values).evalf(), self.dt)
+        return self._plant(A, B, self.dt, self.x_eq.subs(values), self.u_eq.subs(values))
 
     def plant(self) -> DiscretePlant:
         """The discrete linear plant at the parameter values (exact for one state)."""
@@ -578,7 +580,7 @@ class ODEModel(CachedState, LatexMixin):
 
     def as_dict(self) -> dict[str, float]:
         """The parameters and ``Ts`` as plain floats, in order (for JSON)."""
-        return {**{str(k): float(v) for k, v in self.params.items()}, "Ts": self.Ts}
+        return {**{str(k): float(v) for k, v in self.params.items()}, "Ts": self.dt}
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, ODEModel):
@@ -591,7 +593,7 @@ class ODEModel(CachedState, LatexMixin):
     def _key(self) -> tuple:
         return (
             self.states, self.inputs, self.rhs, tuple(self.params.items()), self.x_eq,
-            self.u_eq, self.Ts, self.name,
+            self.u_eq, self.dt, self.name,
         )  # fmt: skip
 
     def latex(self) -> str:
@@ -600,3 +602,8 @@ class ODEModel(CachedState, LatexMixin):
             for x, f in zip(self.states, self.rhs, strict=True)
         ]
         return r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"
+
+    Ts = renamed_attribute("Ts", "dt")
+
+
+ODEModel.__init__ = renamed_keywords(Ts="dt")(ODEModel.__init__)

@@ -33,6 +33,7 @@ import numpy as np
 import sympy as sp
 
 from symctl import symbols as S
+from symctl._util.deprecate import renamed_attribute, renamed_keywords
 from symctl._util.display import LatexMixin, latex
 from symctl._util.validate import (
     MAX_EXPONENT,
@@ -196,7 +197,8 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor(sp.cancel(sp.together(sp.powsimp(sp.expand(expr)))))
 
 
-def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
+@renamed_keywords(Ts="dt")
+def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`.
 
     .. math::
@@ -213,8 +215,8 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
         The continuous state matrix (a scalar for ``n = 1``).
     b : (n, m) matrix-like
         The continuous input matrix.
-    Ts : number or symbol
-        The sampling time, > 0 when a number.
+    dt : number or symbol
+        The sampling time, > 0 when a number (``Ts=`` is its deprecated name).
 
     Returns
     -------
@@ -228,7 +230,7 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
         with another number of rows, or a symbolic system with more than
         ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
     ParameterError
-        A numeric ``Ts <= 0``, non-finite entries, or numeric ``a Ts`` whose
+        A numeric ``dt <= 0``, non-finite entries, or numeric ``a dt`` whose
         exponential overflows (``discretize([[800]], [[1]], 1)``).
 
     Examples
@@ -251,7 +253,7 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
     bm = to_matrix(b, "b")
     if bm.shape[0] != n:
         raise DimensionError(f"b: must have {n} rows like a, got shape {bm.shape}")
-    ts = sampling_time(Ts, "Ts")
+    ts = sampling_time(dt, "dt")
     m = bm.shape[1]
     block = sp.zeros(n + m, n + m)
     block[:n, :n] = am
@@ -271,13 +273,13 @@ def discretize(a, b, Ts) -> tuple[sp.Matrix, sp.Matrix]:
 
 
 def _expm(block: np.ndarray, expm) -> np.ndarray:
-    """``expm(block)``, refusing an overflow (a NaN or inf result) with the size of ``a Ts``."""
+    """``expm(block)``, refusing an overflow (a NaN or inf result) with the size of ``a dt``."""
     with np.errstate(over="ignore", invalid="ignore"):
         phi = expm(block)
     if not np.all(np.isfinite(phi)):
         raise ParameterError(
-            "a, Ts: exp(a Ts) overflows (largest |a Ts| entry "
-            f"{float(np.max(np.abs(block))):g}); use a shorter Ts or rescale a"
+            "a, dt: exp(a dt) overflows (largest |a dt| entry "
+            f"{float(np.max(np.abs(block))):g}); use a shorter dt or rescale a"
         )
     return phi
 
@@ -287,7 +289,8 @@ class DiscretePlant(LatexMixin):
     r"""A discrete-time linear plant :math:`x(t+1) = A x(t) + B u(t)`.
 
     ``A`` (n x n) and ``B`` (n x m) are sympy matrices, exact or symbolic.
-    ``Ts`` is the sampling time (a number, a symbol, or ``None`` when unknown).
+    ``dt`` is the sampling time (a number, a symbol, or ``None`` when unknown;
+    ``Ts`` is its deprecated name, as a keyword and as an attribute).
     ``state_names``/``input_names`` label the signals (the muscle's are
     ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
     of a linearized plant. It compares and hashes by value (``params`` aside).
@@ -296,7 +299,7 @@ class DiscretePlant(LatexMixin):
     ----------
     A : (n, n) matrix-like
     B : (n, m) matrix-like
-    Ts : number, symbol or None
+    dt : number, symbol or None
         Sampling time, > 0 when a number.
     state_names, input_names : tuple of str, optional
         Default ``x`` (``x_1, x_2, ...``) and ``u``.
@@ -310,21 +313,21 @@ class DiscretePlant(LatexMixin):
     DimensionError
         ``A`` not square or empty, ``B`` with other rows, or names of the wrong count.
     ParameterError
-        A numeric ``Ts <= 0``.
+        A numeric ``dt <= 0``.
 
     Examples
     --------
     >>> from symctl import DiscretePlant
-    >>> p = DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
+    >>> p = DiscretePlant([[1, 1], [0, 1]], [[0], [1]], dt=0.1)
     >>> p.n, p.m
     (2, 1)
-    >>> p == DiscretePlant([[1, 1], [0, 1]], [[0], [1]], Ts=0.1)
+    >>> p == DiscretePlant([[1, 1], [0, 1]], [[0], [1]], dt=0.1)
     True
     """
 
     A: sp.Matrix
     B: sp.Matrix
-    Ts: sp.Expr | None = None
+    dt: sp.Expr | None = None
     state_names: tuple[str, ...] = ()
     input_names: tuple[str, ...] = ()
     x_eq: sp.Matrix | None = None
@@ -345,8 +348,8 @@ class DiscretePlant(LatexMixin):
             if value is not None:
                 object.__setattr__(self, name, sp.ImmutableMatrix(to_matrix(value, name)))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
-        if self.Ts is not None:
-            object.__setattr__(self, "Ts", sampling_time(self.Ts, "Ts"))
+        if self.dt is not None:
+            object.__setattr__(self, "dt", sampling_time(self.dt, "dt"))
         n, m = A.shape[0], B.shape[1]
         object.__setattr__(self, "state_names", tuple(self.state_names) or _names("x", n))
         object.__setattr__(self, "input_names", tuple(self.input_names) or _names("u", m))
@@ -368,9 +371,9 @@ class DiscretePlant(LatexMixin):
 
     def subs(self, *args, **kwargs) -> DiscretePlant:
         """A new plant with symbols substituted (arguments as :meth:`sympy.Basic.subs`)."""
-        parts = [m for m in (self.A, self.B, self.Ts, self.x_eq, self.u_eq) if m is not None]
+        parts = [m for m in (self.A, self.B, self.dt, self.x_eq, self.u_eq) if m is not None]
         rule, flags = subs_rule(args, kwargs, set().union(*(m.free_symbols for m in parts)))
-        ts = self.Ts.subs(rule, **flags) if self.Ts is not None else None
+        ts = self.dt.subs(rule, **flags) if self.dt is not None else None
         return DiscretePlant(
             self.A.subs(rule, **flags),
             self.B.subs(rule, **flags),
@@ -391,11 +394,16 @@ class DiscretePlant(LatexMixin):
         import control
 
         A, B = self.numeric()
-        dt = True if self.Ts is None else float(self.Ts)
+        dt = True if self.dt is None else float(self.dt)
         return control.ss(A, B, np.eye(self.n), np.zeros((self.n, self.m)), dt)
 
     def latex(self) -> str:
         return rf"A = {latex(self.A)},\quad B = {latex(self.B)}"
+
+    Ts = renamed_attribute("Ts", "dt")
+
+
+DiscretePlant.__init__ = renamed_keywords(Ts="dt")(DiscretePlant.__init__)
 
 
 def _names(stem: str, count: int) -> tuple[str, ...]:
@@ -431,7 +439,8 @@ class MuscleModel(LatexMixin):
     r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`.
 
     Parameters default to the paper's (section "Simulations"): ``tau = 0.02`` s,
-    ``f_max = 60`` N, ``r_bar = 1`` spike/s, ``Ts = 0.01`` s.
+    ``f_max = 60`` N, ``r_bar = 1`` spike/s, ``dt = 0.01`` s (``Ts`` is the deprecated name of
+    ``dt``, as a keyword and as an attribute).
 
     The derivation is symbolic (:meth:`linearize_symbolic`, :meth:`discrete_symbolic`);
     :meth:`plant` substitutes the numbers and returns an exact
@@ -445,13 +454,13 @@ class MuscleModel(LatexMixin):
         Maximum force [N], > 0.
     r_bar : float
         Equilibrium firing rate [spikes/s].
-    Ts : float
+    dt : float
         Sampling time [s], > 0.
 
     Notes
     -----
     The admissible ranges keep every number of the derivation finite:
-    ``tau``, ``f_max`` and ``Ts`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
+    ``tau``, ``f_max`` and ``dt`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
     :math:`|\bar r| \le 700` and :math:`10^{-6} \le T_s/\tau \le 700`
     (``TS_TAU_MIN``, ``MAX_EXPONENT``: beyond, :math:`e^{-T_s/\tau}` underflows
     and the nonlinear check integrates an ODE over more than 700 time constants).
@@ -459,7 +468,7 @@ class MuscleModel(LatexMixin):
     Raises
     ------
     ParameterError
-        A parameter that is not a finite number, ``tau``, ``f_max``, ``Ts <= 0``, or
+        A parameter that is not a finite number, ``tau``, ``f_max``, ``dt <= 0``, or
         a parameter or :math:`T_s/\tau` outside its admissible range.
     SymctlTypeError
         A parameter that is not a real number.
@@ -478,18 +487,18 @@ class MuscleModel(LatexMixin):
     tau: float = 0.02
     f_max: float = 60.0
     r_bar: float = 1.0
-    Ts: float = 0.01
+    dt: float = 0.01
 
     def __post_init__(self):
-        for name in ("tau", "f_max", "Ts"):
+        for name in ("tau", "f_max", "dt"):
             positive_number(getattr(self, name), name)
             bounded_number(getattr(self, name), name, 1 / MAX_MAGNITUDE, MAX_MAGNITUDE)
         bounded_number(self.r_bar, "r_bar", -MAX_EXPONENT, MAX_EXPONENT)
-        ratio = float(self.Ts) / float(self.tau)
+        ratio = float(self.dt) / float(self.tau)
         if not TS_TAU_MIN <= ratio <= MAX_EXPONENT:
             raise ParameterError(
-                f"Ts, tau: Ts/tau must be in [{TS_TAU_MIN:g}, {MAX_EXPONENT:g}] "
-                f"(exp(-Ts/tau) is the plant's A), got Ts/tau = {self.Ts!r}/{self.tau!r} = {ratio:g}"
+                f"dt, tau: dt/tau must be in [{TS_TAU_MIN:g}, {MAX_EXPONENT:g}] "
+                f"(exp(-dt/tau) is the plant's A), got dt/tau = {self.dt!r}/{self.tau!r} = {ratio:g}"
             )
 
     @property
@@ -509,7 +518,7 @@ class MuscleModel(LatexMixin):
             S.tau: sp.nsimplify(self.tau, rational=True),
             S.f_max: sp.nsimplify(self.f_max, rational=True),
             S.r_bar: sp.nsimplify(self.r_bar, rational=True),
-            S.T_s: sp.nsimplify(self.Ts, rational=True),
+            S.T_s: sp.nsimplify(self.dt, rational=True),
         }
 
     @property
@@ -532,12 +541,12 @@ class MuscleModel(LatexMixin):
         """The discrete plant with this model's numbers substituted (exact)."""
         p = self.discrete_symbolic().subs(self.values)
         return DiscretePlant(
-            p.A, p.B, p.Ts, p.state_names, p.input_names, p.x_eq, p.u_eq, self.as_dict()
+            p.A, p.B, p.dt, p.state_names, p.input_names, p.x_eq, p.u_eq, self.as_dict()
         )
 
     def as_dict(self) -> dict[str, float]:
         """The parameters as plain floats (for JSON)."""
-        return {"tau": self.tau, "f_max": self.f_max, "r_bar": self.r_bar, "Ts": self.Ts}
+        return {"tau": self.tau, "f_max": self.f_max, "r_bar": self.r_bar, "Ts": self.dt}
 
     def rhs(self, f: np.ndarray, r: np.ndarray) -> np.ndarray:
         """The nonlinear ODE's right-hand side, evaluated with NumPy."""
@@ -545,3 +554,8 @@ class MuscleModel(LatexMixin):
 
     def latex(self) -> str:
         return rf"\frac{{df}}{{dt}} = {latex(self.ode)}"
+
+    Ts = renamed_attribute("Ts", "dt")
+
+
+MuscleModel.__init__ = renamed_keywords(Ts="dt")(MuscleModel.__init__)

@@ -14,7 +14,7 @@ linear filter of it (:mod:`symctl.fitting.fitmodel`), with exact Jacobians by
 forward sensitivity. :func:`scipy.optimize.least_squares` (trust-region
 reflective, :math:`|\epsilon| < 1` as bounds) minimises the sum over recorded
 neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
-starting points; for the general class each start's :math:`Q = P^{-1}` rows of
+starting points; for the general class each start's :math:`P^{-1}` rows of
 recorded neurons are first solved by linear least squares (they enter
 linearly). Dale's-law ``signs`` add penalty residuals on the outgoing weights
 and are checked exactly on the final circuit. The fitted values are rounded to
@@ -41,9 +41,10 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares
 
+from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.exact import nearest_rational
 from symctl._util.pickling import ArrayValue
-from symctl._util.validate import as_generator, bounded_int, read_only
+from symctl._util.validate import bounded_int, read_only
 from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
@@ -59,7 +60,7 @@ from symctl.fitting.fitargs import (
     _traces,
     _window,
 )
-from symctl.fitting.fitmodel import TraceModel
+from symctl.fitting.fitmodel import TraceModel, renamed_param
 from symctl.fitting.identify import _verdicts
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
@@ -241,8 +242,9 @@ class FitResult(ArrayValue):
     circuit_class : str
         ``"general"``, ``"controllable"``, ``"observable"`` or an atlas label.
     params : mapping of str to sympy.Rational
-        The fitted values, exact (``epsilon_1``, ``C_1``, ``Q[i,j]`` with
-        :math:`Q = P^{-1}`, ...); ``P`` is ``realization_G2.params["P"]``.
+        The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, the
+        entries of :math:`P^{-1}`, ...); ``P`` is ``realization_G2.params["P"]``.
+        The old names ``Q[i,j]`` still work, with a ``DeprecationWarning``.
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
     identifiable : mapping of str to bool
@@ -273,10 +275,10 @@ class FitResult(ArrayValue):
     --------
     >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
-    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=2)
+    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=2)
     >>> res = fit(data.select(["G1.x1", "G2.x1"]).traces, gains, sensor_delay=1,
     ...           actuator_delay=1, C=1)
-    >>> res.exact, res.circuit_class, res.identifiable["Q[2,1]"]
+    >>> res.exact, res.circuit_class, res.identifiable["Pinv[2,1]"]
     (True, 'general', False)
     """
 
@@ -300,8 +302,11 @@ class FitResult(ArrayValue):
     skipped: tuple = ()
 
     def __post_init__(self) -> None:
-        for name in ("params", "stderr", "identifiable", "neuron_identifiable", "residuals"):
+        for name in ("neuron_identifiable", "residuals"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+        for name in ("params", "stderr", "identifiable"):  # Q[i,j]: the old name of Pinv[i,j]
+            value = RenamedKeys(getattr(self, name), renamed_param, f"FitResult.{name}")
+            object.__setattr__(self, name, value)
         for name in ("data", "_predicted", "_band"):
             d = {k: read_only(v, float) for k, v in getattr(self, name).items()}
             object.__setattr__(self, name, MappingProxyType(d))
@@ -368,6 +373,7 @@ class FitResult(ArrayValue):
 # ---------------------------------------------------------------- the functions
 
 
+@rng_argument()
 def fit(
     traces: Mapping,
     G,
@@ -380,7 +386,7 @@ def fit(
     C=None,
     signs: Mapping | None = None,
     starts: int = 8,
-    seed=0,
+    rng=0,
     workers: int = 1,
     scheduler: str | None = None,
     steps: int | None = None,
@@ -423,7 +429,8 @@ def fit(
         Dale's law: every outgoing synapse of the neuron has this sign.
     starts : int
         Seeded starting points, at most ``MAX_STARTS`` (1000).
-    seed : int or numpy Generator
+    rng : int, numpy Generator or None, default 0
+        Seeds the starts (``seed=`` is its deprecated name).
     workers : int, scheduler : str, optional
         Run the starts (and classes) on the atlas's dask path: local processes, or
         a running dask.distributed scheduler's address.
@@ -449,7 +456,7 @@ def fit(
     --------
     >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
-    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
     >>> rec = {n: data.traces[n] for n in ("G2.x1", "G2.x2", "G2.y")}
     >>> res = fit(rec, gains, sensor_delay=1, actuator_delay=1, C=1)
     >>> bool(res.proof), res.neuron_identifiable["G1.x1"]
@@ -467,7 +474,7 @@ def fit(
             f"got {ds} and {da}"
         )
     starts = bounded_int(starts, "starts", 1, MAX_STARTS)
-    gen = as_generator(seed, "seed")
+    gen = rng
     if C is not None:
         if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
             raise SymctlTypeError(f"C: expected a number, got {C!r}")

@@ -5,14 +5,15 @@ exactly, so the closed loop (the force :math:`\delta_f` and the rate
 :math:`\delta_r`) is the optimal controller's whatever the parameters are. The
 loop's :math:`\delta_f` is computed once; each neuron's trace is then a linear
 filter of it, whose coefficients are the parameters
-:math:`\theta = (\epsilon, C, Q)`:
+:math:`\theta = (\epsilon, C, P^{-1})`:
 
 * the sensor sections (:math:`G_1`, neurons ``G1.x1`` or ``G1.k.x1``):
   :math:`s_k(t+1) = \epsilon_k s_k(t) + C_k s_{k-1}(t)`, :math:`s_0 = \delta_f`;
 * the states of :math:`G_2` (neurons ``G2.xi``): every minimal realization of
   :math:`G_2` has a state :math:`x = T x_c`, :math:`x_c` the controllable canonical
   state driven by :math:`y_1 = s_{d_s}` (its matrices :math:`F_0, H_0` depend only
-  on the gains). For the general class :math:`T = Q = P^{-1}` is free; for a
+  on the gains). For the general class :math:`T = P^{-1}` is free (its entries
+  ``Pinv[i,j]``); for a
   class with a fixed pattern (the canonical forms, the atlas's closed-form
   classes) :math:`T(\epsilon, C) = \mathcal{C}(\epsilon, C)\,\mathcal{C}_0^{-1}`,
   the ratio of the controllability matrices, built once symbolically and
@@ -35,7 +36,7 @@ respect to anything upstream it is the filter applied to the upstream derivative
 >>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
 >>> m = TraceModel.build(G, 1, 1, "general")
 >>> m.names
-('epsilon_1', 'epsilon_3', 'C_1', 'C_3', 'Q[1,1]', 'Q[1,2]', 'Q[2,1]', 'Q[2,2]')
+('epsilon_1', 'epsilon_3', 'C_1', 'C_3', 'Pinv[1,1]', 'Pinv[1,2]', 'Pinv[2,1]', 'Pinv[2,2]')
 >>> m.neurons
 ('G1.x1', 'G2.x1', 'G2.x2', 'G2.y', 'G3.x1')
 """
@@ -74,6 +75,11 @@ def __getattr__(name: str):
     if name == "FIXED_CLASSES":
         return fixed_classes()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def renamed_param(name: str) -> str | None:
+    """The name of a parameter that was spelled ``Q[i,j]`` (the entries of :math:`P^{-1}`)."""
+    return "Pinv[" + name[2:] if name.startswith("Q[") else None
 
 
 def section_name(side: str, k: int, count: int) -> str:
@@ -144,7 +150,7 @@ class TraceModel:
         mn = _lambdified(sp.Matrix.vstack(M0.T, N), free)
         if circuit == "general":
             T = None
-            qnames = tuple(f"Q[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
+            qnames = tuple(f"Pinv[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
         else:
             R2 = _symbolic_realization(circuit, f0.G2, n)
             T = _lambdified(_ctrb(R2) * _ctrb(base).inv(), free, fixed)

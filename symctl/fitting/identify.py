@@ -14,11 +14,13 @@ from types import MappingProxyType
 
 import numpy as np
 
+from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.pickling import ArrayValue
-from symctl._util.validate import as_generator, bounded_int
+from symctl._util.serial import DictMixin
+from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.fitting.fitmodel import TraceModel
+from symctl.fitting.fitmodel import TraceModel, renamed_param
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 
 __all__ = ["Identifiability", "identifiability"]
@@ -57,7 +59,7 @@ def _verdicts(model: TraceModel, jacs: dict, J: np.ndarray, neurons) -> tuple[di
 
 
 @dataclass(frozen=True, eq=False)
-class Identifiability(ArrayValue):
+class Identifiability(ArrayValue, DictMixin):
     r"""Which parameters and neurons a set of recorded neurons pins down.
 
     Attributes
@@ -88,10 +90,14 @@ class Identifiability(ArrayValue):
     neurons: Mapping = field(repr=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
+        params = RenamedKeys(
+            self.params, renamed_param, "Identifiability.params"
+        )  # Q[i,j]: old name
+        object.__setattr__(self, "params", params)
         object.__setattr__(self, "neurons", MappingProxyType(dict(self.neurons)))
 
 
+@rng_argument()
 def identifiability(
     neuron_sets: Sequence,
     G,
@@ -102,7 +108,7 @@ def identifiability(
     disturbance=1.0,
     plant=None,
     C=None,
-    seed=0,
+    rng=0,
     steps: int | None = None,
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
@@ -110,7 +116,7 @@ def identifiability(
     r"""Which parameters, and which neurons' traces, each set of recorded neurons pins down.
 
     The answer is the rank of the sensitivity of the recorded traces to the
-    parameters, at a generic point (seeded random epsilons, Cs and :math:`Q`):
+    parameters, at a generic point (seeded random epsilons, Cs and :math:`P^{-1}`):
     a parameter is identifiable iff its unit vector lies in the row space, an
     unrecorded neuron iff its sensitivity does.
 
@@ -120,8 +126,8 @@ def identifiability(
         Each a set of recorded neurons (at most 100 sets).
     G, sensor_delay, actuator_delay, circuit, disturbance, plant, C, steps, start, length
         As in :func:`fit` (one class).
-    seed : int or numpy Generator
-        Seeds the generic point.
+    rng : int, numpy Generator or None, default 0
+        Seeds the generic point (``seed=`` is its deprecated name).
 
     Returns
     -------
@@ -155,7 +161,7 @@ def identifiability(
     tf, u, _ = _loop(G, plant, disturbance, _window(steps, start, length))
     model = TraceModel.build(tf, ds, da, cls, C)
     neurons = _circuit_neurons(model)
-    gen = as_generator(seed, "seed")
+    gen = rng
     k = model.n_sections
     theta = [gen.uniform(-0.8, 0.8, k)]
     if C is None:

@@ -34,8 +34,10 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
-from symctl._util.validate import as_generator, bounded_int, read_only
+from symctl._util.serial import DictMixin
+from symctl._util.validate import bounded_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Traces", "read_traces", "synthetic_traces"]
@@ -46,7 +48,7 @@ _KEYS = ("circuit", "sensor_delay", "actuator_delay")
 
 
 @dataclass(frozen=True, eq=False)
-class Traces(ArrayValue):
+class Traces(ArrayValue, DictMixin):
     r"""Recorded (or simulated) firing-rate traces of some neurons of one circuit.
 
     Attributes
@@ -257,6 +259,7 @@ def _read_npz(p: Path) -> tuple[dict, dict]:
     return cols, meta
 
 
+@rng_argument()
 def synthetic_traces(
     G,
     *,
@@ -267,7 +270,7 @@ def synthetic_traces(
     plant=None,
     C=1,
     noise: float = 0.0,
-    seed=0,
+    rng=0,
     steps: int | None = None,
 ) -> Traces:
     r"""Every neuron's trace in a hidden random realization of ``G``, with noise.
@@ -286,7 +289,8 @@ def synthetic_traces(
         The section gains of the hidden circuit (default 1).
     noise : float
         Relative noise level, in ``[0, 10]``.
-    seed : int or numpy Generator
+    rng : int, numpy Generator or None, default 0
+        Seeds the sections, ``P`` and the noise (``seed=`` is its deprecated name).
 
     Returns
     -------
@@ -297,7 +301,7 @@ def synthetic_traces(
     --------
     >>> from symctl import MuscleModel, augment, lqr_gains, synthetic_traces
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
-    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=1)
+    >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=1)
     >>> sorted(data.hidden)[:2], data.meta["circuit"]
     (['C_1', 'C_3'], 'general')
     """
@@ -313,7 +317,7 @@ def synthetic_traces(
         raise ParameterError(f"C: expected a finite nonzero number, got {C!r}")
     if isinstance(noise, bool) or not isinstance(noise, int | float) or not 0 <= noise <= 10:
         raise ParameterError(f"noise: expected a number in [0, 10], got {noise!r}")
-    gen = as_generator(seed, "seed")
+    gen = rng
     window = _window(steps, DEFAULT_START, DEFAULT_LENGTH)
     tf, u, t = _loop(G, plant, disturbance, window)
     model = TraceModel.build(tf, sensor_delay, actuator_delay, cls, None)

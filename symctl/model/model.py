@@ -15,6 +15,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import _moved, renamed_attribute, renamed_keywords
 from symctl._util.validate import (
     MAX_CIRCUITS,
     PAPER_MAX_DELAY,
@@ -35,7 +36,7 @@ __all__ = ["Model", "chain_graph"]
 MAX_SEED = 2**32 - 1
 """The largest ``[circuits] seed``."""
 
-_FIELDS_REPLACED = ("Ts", "sensor_delay", "actuator_delay", "Q", "R", "seed", "realizations")
+_FIELDS_REPLACED = ("dt", "sensor_delay", "actuator_delay", "Q", "R", "seed", "realizations")
 """The fields :meth:`Model.replace` takes (besides the parameters of the plant, by name)."""
 
 
@@ -89,8 +90,9 @@ class Model:
         Units and descriptions of the states, inputs, outputs and parameters, by name.
     outputs : tuple of (str, str)
         The measured outputs: (name, state).
-    Ts : float
-        The sampling time in seconds.
+    dt : float
+        The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is
+        the deprecated name of the attribute and keyword).
     sensor_delay, actuator_delay : int
         The delays in steps.
     Q, R : sympy.ImmutableMatrix
@@ -158,7 +160,7 @@ class Model:
     units: Mapping
     descriptions: Mapping
     outputs: tuple
-    Ts: float
+    dt: float
     sensor_delay: int
     actuator_delay: int
     Q: sp.ImmutableMatrix
@@ -209,10 +211,10 @@ class Model:
         Parameters
         ----------
         **values
-            Any of ``Ts`` (the sampling time [s]), ``sensor_delay``, ``actuator_delay``
-            (steps), ``Q``, ``R`` (the cost's weights, matrix-like), ``seed``,
-            ``realizations``, and the plant's parameters by name (``tau=0.05``; a
-            model with an ODE).
+            Any of ``dt`` (the sampling time [s]; ``Ts`` is its deprecated name),
+            ``sensor_delay``, ``actuator_delay`` (steps), ``Q``, ``R`` (the cost's
+            weights, matrix-like), ``seed``, ``realizations``, and the plant's
+            parameters by name (``tau=0.05``; a model with an ODE).
 
         Returns
         -------
@@ -224,7 +226,7 @@ class Model:
         ------
         ParameterError
             An unknown name (the names taken are listed), a value out of range, a
-            parameter or ``Ts`` of a discrete plant given as matrices (they hold numbers
+            parameter or ``dt`` of a discrete plant given as matrices (they hold numbers
             for one sampling time), a net delay outside ``[1, PAPER_MAX_DELAY]``, or
             parameter values at which the file's equilibrium is none.
         SymctlTypeError
@@ -244,8 +246,9 @@ class Model:
         >>> m.replace(taus=1)
         Traceback (most recent call last):
         ...
-        symctl.errors.ParameterError: taus: not a value of the model; replace takes Ts, ...
+        symctl.errors.ParameterError: taus: not a value of the model; replace takes dt, ...
         """
+        values = _moved(values, {"Ts": "dt"}, "Model.replace")
         params = {p.name: p for p in self.ode.params} if self.ode is not None else {}
         for name in values:
             if name not in _FIELDS_REPLACED and name not in params:
@@ -255,18 +258,18 @@ class Model:
         given = {k: v for k, v in values.items() if k in params}
         current = dict(self.ode.params.items()) if self.ode is not None else {}
         given = {k: v for k, v in given.items() if exact_value(v, k) != current[params[k]]}
-        if self.ode is None and "Ts" in new:
+        if self.ode is None and "dt" in new:
             raise ParameterError(
-                "Ts: the discrete plant's matrices hold numbers for its own sampling time; "
+                "dt: the discrete plant's matrices hold numbers for its own sampling time; "
                 "give a model file with the new one"
             )
         changes: dict = {}
-        if "Ts" in new and positive_number(new["Ts"], "Ts") != self.Ts:
-            changes["Ts"] = positive_number(new["Ts"], "Ts")
+        if "dt" in new and positive_number(new["dt"], "dt") != self.dt:
+            changes["dt"] = positive_number(new["dt"], "dt")
         else:
-            new.pop("Ts", None)
-        if given or "Ts" in changes:  # the plant derived again: only for a new value
-            changes.update(self._replot(given, changes.get("Ts", self.Ts)))
+            new.pop("dt", None)
+        if given or "dt" in changes:  # the plant derived again: only for a new value
+            changes.update(self._replot(given, changes.get("dt", self.dt)))
         ds = nonneg_int(new.get("sensor_delay", self.sensor_delay), "sensor_delay")
         da = nonneg_int(new.get("actuator_delay", self.actuator_delay), "actuator_delay")
         if not 1 <= ds + da <= PAPER_MAX_DELAY:
@@ -392,6 +395,11 @@ class Model:
         w = np.zeros((n_steps, self.plant.n))
         w[start : start + length, list(states)] = amplitude
         return w
+
+    Ts = renamed_attribute("Ts", "dt")
+
+
+Model.__init__ = renamed_keywords(Ts="dt")(Model.__init__)
 
 
 def _text(value):

@@ -35,6 +35,7 @@ from types import MappingProxyType
 import numpy as np
 
 from symctl._util.pickling import ArrayValue
+from symctl._util.serial import DictMixin
 from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.simulate import (
@@ -65,13 +66,13 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 
 
 @dataclass(frozen=True, eq=False)
-class BatchResponse(ArrayValue):
+class BatchResponse(ArrayValue, DictMixin):
     """Traces of many closed loops at once (see :func:`simulate_batch`).
 
     Attributes
     ----------
     t : (steps,) array
-        Time in seconds (in steps when the plant has no ``Ts``).
+        Time in seconds (in steps when the plant has no ``dt``).
     delta_f : (R, steps, n) array or None
         Each loop's plant state change (None when not kept).
     delta_r : (R, steps, m) array or None

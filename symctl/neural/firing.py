@@ -48,11 +48,12 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
+from symctl._util.serial import DictMixin
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import (
     MAX_CIRCUITS,
-    as_generator,
     bounded_int,
     positive_number,
     read_only,
@@ -98,7 +99,7 @@ LEGEND_MAX_EPS = 4
 
 # ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
-class FiringSummary(ArrayValue):
+class FiringSummary(ArrayValue, DictMixin):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
 
     Attributes
@@ -163,7 +164,7 @@ class FiringSummary(ArrayValue):
 
 
 @dataclass(frozen=True, eq=False)
-class FiringPatterns(ArrayValue):
+class FiringPatterns(ArrayValue, DictMixin):
     r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
 
     Attributes
@@ -360,7 +361,7 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     if plant is None:
         return gains.system.plant
     p = as_plant(plant)
-    same_dt(p, gains.system.plant.Ts, "plant", "the gains' plant")
+    same_dt(p, gains.system.plant.dt, "plant", "the gains' plant")
     g = gains.system.plant
     if (p.n, p.m) != (g.n, g.m):
         raise DimensionError(
@@ -435,13 +436,14 @@ def _deviation(a: np.ndarray, ref: np.ndarray) -> float:
 
 
 # ---------------------------------------------------------------- the function
+@rng_argument()
 def circuit_firing(
     kind: str,
     gains: Gains,
     plant=None,
     *,
     count: int | None = None,
-    seed=0,
+    rng=0,
     disturbance=1.0,
     steps: int | None = None,
     start: int = DEFAULT_START,
@@ -479,8 +481,9 @@ def circuit_firing(
     count : int, optional
         Number of realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP
         controller has exactly 1).
-    seed : int or numpy Generator
-        Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is >= 0.
+    rng : int, numpy Generator or None, default 0
+        Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is
+        >= 0. ``seed=`` is its deprecated name.
     disturbance, steps, start, length
         As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
         pulse on steps 5..14 of 50).
@@ -489,8 +492,8 @@ def circuit_firing(
     draws : sequence of Draw, optional
         The realizations of :math:`G_2` to simulate, drawn already
         (:func:`~symctl.realization.draws.draw_realizations` of the gains' controller,
-        as the derivation draws them before it simulates); ``count`` and ``seed`` are
-        then not used. Default: ``count`` drawn from ``seed``.
+        as the derivation draws them before it simulates); ``count`` and ``rng`` are
+        then not used. Default: ``count`` drawn from ``rng``.
 
     Returns
     -------
@@ -500,13 +503,13 @@ def circuit_firing(
     ------
     ParameterError
         Unknown ``kind``, ``count`` outside ``[1, MAX_CIRCUITS]`` (or ``!= 1`` for
-        ``"ifp"``), a negative ``seed``, ``"ifp"``
+        ``"ifp"``), a negative ``rng``, ``"ifp"``
         with gains for a net delay ``T = 0`` (no neuron), an unstable
         loop, or a realization whose force or rate departs from the optimal
         controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains'),
-        or a ``plant`` whose ``Ts`` is not the gains'.
+        or a ``plant`` whose ``dt`` is not the gains'.
     SymctlTypeError
-        ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``seed``.
+        ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``rng``.
     DimensionError
         ``gains`` or ``plant`` for a plant with more than one state or input.
 
@@ -515,7 +518,7 @@ def circuit_firing(
     >>> import numpy as np
     >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
-    >>> fp = circuit_firing("general", gains, count=3, seed=1)
+    >>> fp = circuit_firing("general", gains, count=3, rng=1)
     >>> fp.neurons
     ('G2.x1', 'G2.x2', 'G2.y')
     >>> bool(np.ptp(fp.delta_r, axis=0).max() < 1e-12)        # the same behaviour
@@ -531,7 +534,7 @@ def circuit_firing(
     gains = _gains(gains, kind)
     plant = _plant(plant, gains)
     count = _count(count, kind)
-    gen = as_generator(seed, "seed")
+    gen = rng
     if draws is not None:
         draws = tuple(draws)
         if kind == "ifp" or not draws or not all(isinstance(d, Draw) for d in draws):
@@ -543,6 +546,7 @@ def circuit_firing(
     return _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
 
 
+@rng_argument()
 def structure_firing(
     structure: Structure,
     gains: Gains,
@@ -551,7 +555,7 @@ def structure_firing(
     assignment=None,
     kind: str = "pathways",
     count: int | None = None,
-    seed=0,
+    rng=0,
     disturbance=1.0,
     steps: int | None = None,
     start: int = DEFAULT_START,
@@ -575,7 +579,7 @@ def structure_firing(
     ----------
     structure : Structure
         A SISO controller structure of the gains' controller.
-    gains, plant, count, seed, disturbance, steps, start, length, rtol
+    gains, plant, count, rng, disturbance, steps, start, length, rtol
         As in :func:`circuit_firing`.
     assignment : DelayAssignment or CompatibilityResult, optional
         Places the circuits' neurons on the delay graph.
@@ -613,7 +617,7 @@ def structure_firing(
     gains = _gains(gains, "")  # never the whole controller: a structure of G3 G2 G1
     plant = _plant(plant, gains)
     count = _count(count, "")
-    gen = as_generator(seed, "seed")
+    gen = rng
     base = Circuit.from_structure(structure, assignment)
     values = gains.substitutions(exact=True)
     if base.free_symbols & set(values):

@@ -27,6 +27,7 @@ import numpy as np
 import scipy.integrate
 
 from symctl._util.pickling import ArrayValue
+from symctl._util.serial import DictMixin
 from symctl._util.validate import (
     MAX_COUNT,
     bounded_int,
@@ -47,6 +48,7 @@ from symctl.neural.simulate import (
     _numeric_realization,
     simulate_realization,
 )
+from symctl.proof import Verdict
 from symctl.realization.realization import Realization
 
 __all__ = ["DelaySearch", "NonlinearCheck", "longest_delay", "nonlinear_check"]
@@ -57,13 +59,20 @@ MAX_STEPS = 5000
 RTOL_RANGE = (1e-13, 1e-2)
 """Admissible ``rtol`` of the ODE solver (SciPy refuses below about 2.2e-14)."""
 
+RETURN_TOLERANCE = 0.01
+"""A loop counts as returned when every state ends within this fraction of its linear peak."""
+
 STIFF_RATIO = 1.0
 r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Radau (implicit)."""
 
 
 @dataclass(frozen=True, eq=False)
-class NonlinearCheck(ArrayValue):
+class NonlinearCheck(ArrayValue, Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
+
+    Truthy when the nonlinear loop returned at every amplitude (``verdict``:
+    every :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``method``
+    says how it was simulated and ``evidence`` is :attr:`final_deviation`.
 
     Attributes
     ----------
@@ -115,6 +124,22 @@ class NonlinearCheck(ArrayValue):
     state_names: tuple = ("f",)
     input_names: tuple = ("r",)
     units: tuple = ("N",)
+
+    method = "the nonlinear ODE integrated with scipy.integrate.solve_ivp beside the linear loop"
+
+    @property
+    def verdict(self) -> bool:
+        """Whether the nonlinear loop returned at every amplitude.
+
+        Every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %
+        of the linear peak; the default ``tolerance`` of :func:`longest_delay`).
+        """
+        return bool(np.all(self.final_deviation <= RETURN_TOLERANCE))
+
+    @property
+    def evidence(self) -> np.ndarray:
+        """The :attr:`final_deviation` per amplitude."""
+        return self.final_deviation
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in (
@@ -279,7 +304,7 @@ def nonlinear_check(
 
 def _solver(model: ODEModel, k: int) -> dict:
     a = np.array(model.linearize_symbolic().a.subs(model.values).evalf(), dtype=float)
-    if model.Ts * float(np.max(np.abs(np.linalg.eigvals(a)))) <= STIFF_RATIO:
+    if model.dt * float(np.max(np.abs(np.linalg.eigvals(a)))) <= STIFF_RATIO:
         return {"method": "DOP853"}
     n = model.n
 
@@ -295,7 +320,7 @@ def _solver(model: ODEModel, k: int) -> dict:
 
 
 def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearCheck:
-    k, n, m, Ts = amps.size, model.n, model.m, model.Ts
+    k, n, m, Ts = amps.size, model.n, model.m, model.dt
     x_bar, u_bar = model.x_bar, model.u_bar
     w = linear.w  # (steps, n)
     steps = linear.t.size
@@ -347,7 +372,7 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
 
 
 @dataclass(frozen=True, eq=False)
-class DelaySearch(ArrayValue):
+class DelaySearch(ArrayValue, DictMixin):
     r"""The longest net delay for which the optimal controller still stabilizes the nonlinear plant.
 
     Attributes
@@ -398,7 +423,7 @@ def longest_delay(
     disturbance=None,
     amplitude: float = 1.0,
     max_delay: int = 20,
-    tolerance: float = 0.01,
+    tolerance: float = RETURN_TOLERANCE,
     steps: int = DEFAULT_STEPS,
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,

@@ -27,7 +27,7 @@ Defaults (documented choices; the paper gives none): a pulse of amplitude 1
 (1 spike/s in firing rate, or 1 N of force per step), starting at step
 ``start = 5`` and lasting ``length = 10`` steps, over a horizon of
 ``steps = 50`` samples (0.5 s at the paper's :math:`T_s` = 10 ms). Time is
-``t = k Ts`` in seconds; absolute force and rate add the plant's operating
+``t = k dt`` in seconds; absolute force and rate add the plant's operating
 point :math:`(\bar f, \bar r)` back.
 
 >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from symctl._util.pickling import ArrayValue
+from symctl._util.serial import DictMixin
 from symctl._util.validate import (
     MAX_STATES,
     MAX_STEPS,
@@ -164,18 +165,18 @@ def _equilibrium(value, size: int, argname: str) -> np.ndarray:
 
 
 def _ts(p: DiscretePlant) -> float:
-    return 1.0 if p.Ts is None else float(numeric_matrix(p.Ts, "Ts")[0, 0])
+    return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
 # ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
-class Response(ArrayValue):
-    r"""Traces of one simulation (open or closed loop), all sampled at ``t = k Ts``.
+class Response(ArrayValue, DictMixin):
+    r"""Traces of one simulation (open or closed loop), all sampled at ``t = k dt``.
 
     Attributes
     ----------
     t : (steps,) array
-        Time in seconds (in steps when the plant has no ``Ts``).
+        Time in seconds (in steps when the plant has no ``dt``).
     delta_f, f : (steps, n) arrays
         Plant state change :math:`\delta_f` and absolute :math:`f = \bar f + \delta_f` [N].
     delta_r, r : (steps, m) arrays
@@ -411,7 +412,7 @@ def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
         kind,
         p.state_names,
         p.input_names,
-        "s" if p.Ts is not None else "steps",
+        "s" if p.dt is not None else "steps",
         tuple(names) or tuple(f"x_{i + 1}" for i in range(xc.shape[1])),
     )
 
@@ -525,7 +526,7 @@ def simulate_realization(
         ``R``'s own ``F``, e.g. :math:`|\epsilon| \ge 1` in :math:`G_3 G_2 G_1`, whose
         transfer function is right; :func:`symctl.neural.stability.loop_stability`
         gives the verdict without raising), non-finite values, bad horizon, a run
-        that overflows, or an ``R.dt`` other than the plant's ``Ts``.
+        that overflows, or an ``R.dt`` other than the plant's ``dt``.
     DimensionError
         ``R`` or ``disturbance`` of the wrong shape.
 
@@ -582,7 +583,7 @@ def closed_loop_response(
     Raises
     ------
     ParameterError
-        No ``plant`` for a controller other than ``Gains``, or a plant whose ``Ts`` is
+        No ``plant`` for a controller other than ``Gains``, or a plant whose ``dt`` is
         not the controller's ``dt`` (named ``plant`` for ``Gains``, else ``controller``).
 
     Examples
@@ -602,7 +603,7 @@ def closed_loop_response(
     if isinstance(controller, Gains):
         if plant is not None:
             plant = as_plant(plant)
-            same_dt(plant, controller.system.plant.Ts, "plant", "the gains' plant")
+            same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
             return simulate_realization(
                 plant, _as_realization(controller), disturbance,
                 steps=steps, start=start, length=length,

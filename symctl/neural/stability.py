@@ -42,13 +42,14 @@ from symctl.neural.simulate import (
     _numeric_realization,
     _plant,
 )
+from symctl.proof import Verdict
 from symctl.realization.realization import Realization, controllable_canonical
 
 __all__ = ["LoopStability", "loop_stability"]
 
 
 @dataclass(frozen=True)
-class LoopStability:
+class LoopStability(Verdict):
     """The verdict of :func:`loop_stability`: truthy when every state of the loop decays.
 
     Attributes
@@ -81,8 +82,13 @@ class LoopStability:
     unstable: tuple[complex, ...]
     hidden: tuple[complex, ...]
 
-    def __bool__(self) -> bool:
-        return self.stable
+    _verdict = "stable"
+    method = "eigenvalues of the closed loop's state matrix"
+
+    @property
+    def evidence(self):
+        """The :attr:`unstable` eigenvalues when unstable, else the :attr:`spectral_radius` (< 1)."""
+        return self.spectral_radius if self.stable else self.unstable
 
     def __str__(self) -> str:
         if self.stable:
@@ -132,7 +138,7 @@ def loop_stability(plant, controller) -> LoopStability:
     DimensionError
         ``controller`` of the wrong shape for ``plant``.
     ParameterError
-        Symbols left in the controller, or a controller ``dt`` other than the plant's ``Ts``.
+        Symbols left in the controller, or a controller ``dt`` other than the plant's ``dt``.
 
     Examples
     --------

@@ -10,7 +10,7 @@ where every trace has settled (the axis label says where, when it is cut).
 >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
 >>> from symctl.plotting.fit import fit_plot
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+>>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
 >>> res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, gains, sensor_delay=1,
 ...           actuator_delay=1, C=1, starts=2)
 >>> [ax.get_title() for ax in fit_plot(res).axes][:2]

@@ -79,6 +79,7 @@ from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import Degrees, NotRational, fold
 from symctl._util.validate import as_random, relative_tolerance, to_expr, to_matrix
 from symctl.errors import ParameterError, SymctlTypeError
+from symctl.proof import Verdict
 from symctl.realization._markov import (
     _Entries,
     _first_difference,
@@ -104,7 +105,7 @@ _NUMERIC_POINTS = 8  # points of the symbols at which floating-point inputs are 
 
 # ---------------------------------------------------------------- the result
 @dataclass(frozen=True)
-class RealizationCheck(LatexMixin):
+class RealizationCheck(Verdict, LatexMixin):
     r"""The verdict of :func:`check_realization`, with its method and evidence.
 
     Attributes
@@ -185,8 +186,15 @@ class RealizationCheck(LatexMixin):
     rtol: float | None = None
     numeric_ok: bool | None = None
 
-    def __bool__(self) -> bool:
+    @property
+    def verdict(self) -> bool:
+        """The verdict: :attr:`ok` for exact inputs, :attr:`numeric_ok` for floating-point ones."""
         return bool(self.numeric_ok) if self.floating else self.ok
+
+    @property
+    def evidence(self):
+        """The :attr:`counterexample` when the check fails, else the :attr:`error_bound` (0: proved)."""
+        return self.error_bound if self.verdict else self.counterexample
 
     def _numeric_text(self) -> str:
         relation = "<=" if self.numeric_ok else ">"

@@ -43,10 +43,11 @@ from flint import fmpq, fmpq_poly, fmpz_mpoly_ctx
 from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
 from symctl._util.exact import NotRational, PolyFractions, fold, products_equal
-from symctl._util.proof import Proof
+from symctl._util.serial import DictMixin
 from symctl._util.validate import nonneg_int, relative_tolerance, subs_rule, to_expr
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
+from symctl.proof import Proof
 from symctl.realization.channels import (
     channel_sections,
     channel_symbols,
@@ -122,7 +123,7 @@ def _sections(eps, cs, dt) -> DiscreteTF:
 
 
 @dataclass(frozen=True)
-class Factorization(LatexMixin):
+class Factorization(DictMixin, LatexMixin):
     r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols.
 
     Attributes

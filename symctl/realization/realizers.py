@@ -48,6 +48,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
+from symctl._util.serial import DictMixin
 from symctl._util.validate import as_generator, numeric_matrix, real_number
 from symctl.design.controller import ifp_state_space
 from symctl.design.lqr import Gains
@@ -76,7 +77,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class RealizerResult:
+class RealizerResult(DictMixin):
     r"""What a realizer returns: the realization, its base and the transform between them.
 
     Attributes
@@ -145,6 +146,13 @@ class Realizer:
     controller : bool
         Whether it realizes the whole optimal controller, called with its
         :class:`~symctl.Gains` (the IFP structure), instead of :math:`G_2`.
+
+    Examples
+    --------
+    >>> from symctl import Realizer, get_realizer, z
+    >>> r = get_realizer("controllable")
+    >>> isinstance(r, Realizer), r.canonical, r(1 / (z - 2)).realization.F
+    (True, True, Matrix([[2]]))
     """
 
     name: str
@@ -590,4 +598,4 @@ def ifp_realization(gains: Gains) -> Realization:
     s = gains.system
     A, B = numeric_matrix(s.A, "gains"), numeric_matrix(s.B, "gains")
     K = np.asarray(gains.K, dtype=float)
-    return Realization(*ifp_state_space(A, B, K, s.n, s.m, s.T), s.plant.Ts)
+    return Realization(*ifp_state_space(A, B, K, s.n, s.m, s.T), s.plant.dt)

@@ -104,7 +104,7 @@ def _scope(A) -> list:
 def atlas_blocks(A, drawn=()) -> list:
     """The document: definitions, counts, the paper's claim, the classes, their evidence."""
     s = A.stats
-    methods = Counter((c.verdict, c.evidence.method) for c in A.classes)
+    methods = Counter((c.status, c.evidence.method) for c in A.classes)
     blocks = [
         Heading(f"The circuit atlas of order {A.order}"),
         Text(
@@ -182,7 +182,7 @@ def atlas_blocks(A, drawn=()) -> list:
                     str(c.n_synapses),
                     str(c.n_branches),
                     c.representatives[0].text.replace("|", "/"),
-                    c.verdict,
+                    c.status,
                     c.evidence.method,
                 )
                 for c in A.classes[:TABLE_ROWS]
@@ -217,7 +217,7 @@ def atlas_blocks(A, drawn=()) -> list:
                 Graphic(
                     f"class_{label}",
                     f"{label}: {c.n_neurons} neurons, {c.n_synapses} synapses, "
-                    f"{c.verdict} ({c.evidence.method}).",
+                    f"{c.status} ({c.evidence.method}).",
                 )
             )
     blocks.append(References(REFERENCES))

@@ -209,7 +209,7 @@ def _graph_title(res) -> str:
         title = f"Delay graph of {spec.name}"
     else:
         title = "Delay graph: the chain of the delays (sensor, a relay per further step, actuator)"
-    Ts = getattr(spec, "Ts", None)
+    Ts = getattr(spec, "dt", None)
     if Ts:
         title += f"; one step is {Ts * 1000:g} ms" if Ts < 1 else f"; one step is {Ts:g} s"
     return title

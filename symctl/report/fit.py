@@ -8,7 +8,7 @@ it into place when every file is written, so a failed run leaves nothing).
 >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
 >>> from symctl.report.fit import write_fit
 >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+>>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
 >>> res = fit(data.select(["G2.x1", "G2.y"]).traces, gains, sensor_delay=1, actuator_delay=1,
 ...           C=1, starts=2)
 >>> with tempfile.TemporaryDirectory() as out:

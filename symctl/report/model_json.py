@@ -34,7 +34,7 @@ def plant(res) -> dict:
         "r_bar": u_eq[0] if u_eq else None,
         "A": float_rows(res.plant.A),
         "B": float_rows(res.plant.B),
-        "Ts": spec.Ts,
+        "Ts": spec.dt,
         "symbolic": {
             "A": sp.sstr(sym.A[0, 0]) if sym is not None else None,
             "B": sp.sstr(sym.B[0, 0]) if sym is not None else None,

@@ -422,7 +422,7 @@ def longest(res) -> list[DocumentBlock]:
         return []
     found = (
         f"the longest net delay for which the optimal controller still stabilizes the "
-        f"nonlinear plant is $T = {L_.longest}$ steps ({L_.longest * res.spec.Ts:g} s)"
+        f"nonlinear plant is $T = {L_.longest}$ steps ({L_.longest * res.spec.dt:g} s)"
         if L_.longest is not None
         else "not even one step of delay is stabilized"
     )

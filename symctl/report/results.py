@@ -4,7 +4,7 @@ The report stage computes nothing: it reads a derivation (made by
 :func:`~symctl.derivation.derive`) and writes it. :func:`results_json` is the
 ``results.json`` document (schema in the README); :func:`figure` draws one of the
 report's figures and :func:`write` writes every file of ``symctl paper``. The
-derivation's :meth:`~symctl.derivation.Derivation.to_json`,
+derivation's :meth:`~symctl.derivation.Derivation.to_dict`,
 :meth:`~symctl.derivation.Derivation.figure` and
 :meth:`~symctl.derivation.Derivation.write` call them.
 
@@ -102,7 +102,7 @@ def circuit_json(self) -> dict:
 
 
 def parameters(self) -> dict:
-    """The inputs of the derivation (the ``parameters`` entry of :meth:`to_json`).
+    """The inputs of the derivation (the ``parameters`` entry of :meth:`to_dict`).
 
     Returns
     -------
@@ -117,7 +117,7 @@ def parameters(self) -> dict:
     0.05
     """
     s = self.system
-    values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.Ts}
+    values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.dt}
     return {
         **values,
         "sensor_delay": s.sensor_delay,
@@ -142,7 +142,7 @@ def results_json(self) -> dict:
     Examples
     --------
     >>> from symctl import derive_paper
-    >>> data = derive_paper().to_json()
+    >>> data = derive_paper().to_dict()
     >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
     (1, True, 3)
     """
@@ -169,7 +169,7 @@ def results_json(self) -> dict:
             "numerator": numerator[0][0] if G.is_siso else numerator,
             "denominator": _floats(G.den_coeffs()),
             "relative_degree": G.relative_degree,
-            "dt": self.spec.Ts,
+            "dt": self.spec.dt,
             "symbolic": {
                 "numerator": _poly_text(self.G_symbolic.num),
                 "denominator": descending_str(self.G_symbolic.den),

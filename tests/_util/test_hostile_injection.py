@@ -145,7 +145,7 @@ CASES = [
     ("DiscretePlant(A)", lambda p: DiscretePlant(p, [[1]])),
     ("DiscretePlant(A entry)", lambda p: DiscretePlant([[p]], [[1]])),
     ("DiscretePlant(B)", lambda p: DiscretePlant([[1]], [[p]])),
-    ("DiscretePlant(Ts)", lambda p: DiscretePlant([[1]], [[1]], p)),
+    ("DiscretePlant(dt)", lambda p: DiscretePlant([[1]], [[1]], p)),
     ("DiscretePlant(x_eq)", lambda p: DiscretePlant([[1]], [[1]], x_eq=p)),
     ("DiscretePlant(u_eq)", lambda p: DiscretePlant([[1]], [[1]], u_eq=[p])),
     ("DiscretePlant.subs({name: p})", lambda p: _o("plant_sym").subs({"tau": p})),
@@ -154,11 +154,11 @@ CASES = [
     ("MuscleModel(tau)", lambda p: MuscleModel(tau=p)),
     ("MuscleModel(f_max)", lambda p: MuscleModel(f_max=p)),
     ("MuscleModel(r_bar)", lambda p: MuscleModel(r_bar=p)),
-    ("MuscleModel(Ts)", lambda p: MuscleModel(Ts=p)),
+    ("MuscleModel(dt)", lambda p: MuscleModel(dt=p)),
     ("discretize(a)", lambda p: discretize(p, [[1]], 1)),
     ("discretize(a entry)", lambda p: discretize([[p]], [[1]], 1)),
     ("discretize(b)", lambda p: discretize([[1]], p, 1)),
-    ("discretize(Ts)", lambda p: discretize([[1]], [[1]], p)),
+    ("discretize(dt)", lambda p: discretize([[1]], [[1]], p)),
     ("linearize(f)", lambda p: linearize(p, [sp.Symbol("x")], [sp.Symbol("u")], [0], [0])),
     ("linearize(x_eq)", lambda p: linearize([sp.Symbol("x")], [sp.Symbol("x")], [], [p], [])),
     ("augment(plant)", lambda p: augment(p)),
@@ -272,7 +272,7 @@ CASES = [
     ("derive_paper(tau)", lambda p: symctl.derive_paper(tau=p)),
     ("derive_paper(Q)", lambda p: symctl.derive_paper(Q=p)),
     ("derive_paper(R)", lambda p: symctl.derive_paper(R=p)),
-    ("derive_paper(seed)", lambda p: symctl.derive_paper(seed=p)),
+    ("derive_paper(rng)", lambda p: symctl.derive_paper(rng=p)),
     ("derive_paper(realizations)", lambda p: symctl.derive_paper(realizations=p)),
     # fitting: traces, options and data files
     ("fit(traces={name: p})", lambda p: symctl.fit({"G2.y": p}, _o("gains"), **_FIT)),
@@ -297,7 +297,7 @@ CASES = [
     ("ei_circuit(circuits=[p])", lambda p: symctl.ei_circuit(_o("gains"), circuits=[p])),
     ("dale_atlas(classes=[p])", lambda p: symctl.dale_atlas(2, samples=1, classes=[p])),
     ("dale_atlas(G=p)", lambda p: symctl.dale_atlas(2, samples=1, classes=["A1"], G=p)),
-    ("dale_atlas(seed=p)", lambda p: symctl.dale_atlas(2, samples=1, classes=["A1"], seed=p)),
+    ("dale_atlas(rng=p)", lambda p: symctl.dale_atlas(2, samples=1, classes=["A1"], rng=p)),
 ]
 
 
@@ -403,6 +403,9 @@ SINKS = frozenset(
     }
 )
 AUDITED = {
+    # from_dict: a matrix of entries each rebuilt from a tagged tree (numbers, symbols, SymPy
+    # classes by name); a string in the tree is refused before it reaches the constructor
+    ("symctl._util.serial", "_decode_sympy", "ImmutableMatrix"): 1,
     # report figures: the nonlinear figure's bounds come from an ODEModel's validated rhs and its
     # numeric parameter values (Symbol -> number), never from text
     ("symctl.report.figures", "_state_bounds", "subs"): 2,

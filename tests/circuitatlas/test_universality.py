@@ -71,7 +71,11 @@ def test_real_zeros_is_not_claimed_when_a_realization_has_complex_zeros():
 def test_witnesses_make_a_conjecture_never_a_universal_verdict():
     conj = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
     assert not conj and conj.universal is None and conj.conjectured and not conj.proved
-    assert conj.verdict == "conjectured" and Evidence.from_dict(conj.to_dict()) == conj
+    assert (
+        conj.status == "conjectured"
+        and conj.verdict is None
+        and Evidence.from_dict(conj.to_dict()) == conj
+    )
 
 
 def test_a_lift_from_a_conjectured_pattern_is_a_conjecture_and_from_a_proof_a_proof():
@@ -155,7 +159,7 @@ def test_conjectured_classes_are_counted_and_drawn_apart_from_the_proved_ones(tm
     )
     B = Atlas(2, A.delays, tuple(guess if c is last else c for c in A.classes), A.stats)
     assert len(B.universal_classes) == 8 and B.conjectured_classes == (guess,)
-    assert guess.universal is None and guess.verdict == "conjectured"
+    assert guess.universal is None and guess.status == "conjectured"
     assert guess.to_dict()["universal"] is None and guess.to_dict()["conjectured"] is True
     assert B.table()[A.classes.index(last)]["universal"] == "conjectured"
     assert claim_json(B)["universal"] == 8 and claim_json(B)["conjectured"] == 1

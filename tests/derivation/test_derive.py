@@ -24,7 +24,7 @@ def test_derive_runs_the_steps_once_per_model_value():
 
 def test_derive_paper_is_derive_of_the_preset_with_the_values_replaced(derived_T2):
     assert derive_paper() is derived_T2 is derive(muscle())
-    assert derive_paper(realizations=1, seed=11) is derive(_fresh())
+    assert derive_paper(realizations=1, rng=11) is derive(_fresh())
 
 
 def test_the_realizations_run_before_the_simulation_that_closes_the_loop_with_them(derived_T2):
@@ -49,7 +49,7 @@ def test_replacing_a_value_is_reading_the_file_with_that_value():
 
 def test_replacing_a_value_by_the_one_the_model_has_keeps_the_model():
     m = muscle()
-    assert m.replace(tau=0.02, Ts=0.01, seed=0, Q=[[1]]) is m
+    assert m.replace(tau=0.02, dt=0.01, seed=0, Q=[[1]]) is m
 
 
 @pytest.mark.parametrize(
@@ -72,6 +72,6 @@ def test_a_discrete_plant_keeps_its_sampling_time():
     m = read_model(
         '[model]\nname = "d"\n[discrete]\nA = [[0.5]]\nB = [[1.0]]\n[sampling]\nTs = 0.1\n'
     )
-    with pytest.raises(ParameterError, match="Ts: the discrete plant"):
-        m.replace(Ts=0.2)
+    with pytest.raises(ParameterError, match="dt: the discrete plant"):
+        m.replace(dt=0.2)
     assert m.replace(seed=3).seed == 3

@@ -71,7 +71,7 @@ def values(derived_T2) -> dict:
     circuit = derived_T2.circuits["observable"].circuit
     F = np.zeros((2, 1, 1))
     H = np.array([-0.01, -0.03]).reshape(2, 1, 1)
-    data = symctl.synthetic_traces(gains, sensor_delay=1, actuator_delay=1, seed=3)
+    data = symctl.synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
     rec = {n: data.traces[n] for n in ("G2.x1", "G2.x2", "G2.y")}
     G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
     made = {
@@ -98,7 +98,9 @@ def values(derived_T2) -> dict:
         ),
         "Pattern": lambda: next(iter(derived_T2.atlas.classes)).pattern,
         "DaleTable": lambda: symctl.dale_atlas(2, samples=2, classes=["A1"]),
-        "SavedDerivation": lambda: symctl.SavedDerivation(derived_T2.to_json(), derived_T2.spec),
+        "SavedDerivation": lambda: symctl.SavedDerivation(derived_T2.to_dict(), derived_T2.spec),
+        "Realizer": lambda: symctl.get_realizer("controllable"),
+        "Proof": lambda: derived_T2.verified,
     }
     for name, make in made.items():
         if name not in found:
@@ -191,7 +193,7 @@ def test_a_derivation_pickled_in_one_process_loads_equal_in_another(saved_elsewh
     with open(saved_elsewhere / "derivation.pickle", "rb") as f:
         loaded = pickle.load(f)
     assert loaded == here
-    assert loaded.to_json() == here.to_json()
+    assert loaded.to_dict() == here.to_dict()
 
 
 def test_results_json_written_in_one_process_loads_its_objects_in_another(saved_elsewhere):
@@ -247,7 +249,7 @@ def test_load_results_refuses_what_is_not_a_results_json(tmp_path, content, word
 
 
 def test_saved_text_is_parsed_never_evaluated(tmp_path, derived_T2):
-    data = derived_T2.to_json()
+    data = derived_T2.to_dict()
     data["controller"]["symbolic"]["denominator"] = "__import__('os').system('x')"
     path = tmp_path / "results.json"
     path.write_text(json.dumps(data))

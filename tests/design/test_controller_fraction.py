@@ -35,7 +35,7 @@ def _chain(T: int, m: int, n: int) -> tuple[sp.Matrix, sp.Matrix]:
 
 def _fraction(aug) -> MatrixFractionTF:
     D, K0 = _chain(aug.T, aug.m, aug.n)
-    return MatrixFractionTF(D, K0, aug.plant.Ts)
+    return MatrixFractionTF(D, K0, aug.plant.dt)
 
 
 def _aug(n: int, m: int, ds: int, da: int, seed: int = 0):

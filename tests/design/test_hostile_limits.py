@@ -69,10 +69,10 @@ CASES = [
     ("closed_loop_steps", lambda: closed_loop_response(GAINS, steps=10**12), "steps"),
     ("open_loop_steps", lambda: open_loop_response(steps=10**12), "steps"),
     ("pulse_size", lambda: pulse(size=10**9), "size"),
-    ("ts_over_tau_1e4", lambda: MuscleModel(Ts=1e4), "Ts, tau: Ts/tau must be in"),
-    ("tau_1e-8", lambda: MuscleModel(tau=1e-8), "Ts/tau"),
-    ("tau_1e-6", lambda: MuscleModel(tau=1e-6), "Ts/tau"),
-    ("tau_huge", lambda: MuscleModel(tau=1e9), "Ts/tau"),
+    ("ts_over_tau_1e4", lambda: MuscleModel(dt=1e4), "dt, tau: dt/tau must be in"),
+    ("tau_1e-8", lambda: MuscleModel(tau=1e-8), "dt/tau"),
+    ("tau_1e-6", lambda: MuscleModel(tau=1e-6), "dt/tau"),
+    ("tau_huge", lambda: MuscleModel(tau=1e9), "dt/tau"),
     ("r_bar_1e300", lambda: MuscleModel(r_bar=1e300), "r_bar"),
     (
         "discretize_symbolic_5",
@@ -92,8 +92,8 @@ CASES = [
     ("paper_sensor_delay_50", lambda: derive_paper(sensor_delay=50), "at most 20 steps"),
     ("paper_delay_1e23", lambda: derive_paper(sensor_delay=99999999999999999999999), "at most 20"),
     ("paper_realizations_1e7", lambda: derive_paper(realizations=10**7), "realizations"),
-    ("paper_tau_1e-8", lambda: derive_paper(tau=1e-8), "Ts/tau"),
-    ("paper_ts_1e4", lambda: derive_paper(Ts=1e4), "Ts/tau"),
+    ("paper_tau_1e-8", lambda: derive_paper(tau=1e-8), "dt/tau"),
+    ("paper_ts_1e4", lambda: derive_paper(dt=1e4), "dt/tau"),
 ]
 
 

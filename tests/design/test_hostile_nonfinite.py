@@ -35,10 +35,10 @@ AUG = augment(MuscleModel(), 1, 1)
 nan, inf = math.nan, math.inf
 
 CASES = [
-    ("discretize_1e308", lambda: discretize([[1e308]], [[1]], 1.0), "a, Ts: exp"),
-    ("discretize_800", lambda: discretize([[800]], [[1]], 1), "a, Ts: exp"),
+    ("discretize_1e308", lambda: discretize([[1e308]], [[1]], 1.0), "a, dt: exp"),
+    ("discretize_800", lambda: discretize([[800]], [[1]], 1), "a, dt: exp"),
     ("discretize_nan", lambda: discretize([[nan]], [[1]], 1), "a"),
-    ("discretize_ts_nan", lambda: discretize(1, 1, nan), "Ts"),
+    ("discretize_ts_nan", lambda: discretize(1, 1, nan), "dt"),
     ("tf_nan_den", lambda: DiscreteTF(1, sp.nan * z + 1), "num/den: must be finite"),
     ("tf_oo_den", lambda: DiscreteTF(1, z + sp.oo), "num/den"),
     ("tf_zoo_num", lambda: DiscreteTF(sp.zoo, z), "num/den"),
@@ -60,7 +60,7 @@ CASES = [
     ("muscle_f_max_inf", lambda: MuscleModel(f_max=inf), "f_max"),
     ("muscle_tau_1e-300", lambda: MuscleModel(tau=1e-300), "tau"),
     ("muscle_tau_nan", lambda: MuscleModel(tau=nan), "tau"),
-    ("muscle_ts_1e400", lambda: MuscleModel(Ts=10**400), "Ts"),
+    ("muscle_ts_1e400", lambda: MuscleModel(dt=10**400), "dt"),
     ("muscle_r_bar_-1000", lambda: MuscleModel(r_bar=-1000), "r_bar"),
     (
         "augment_Q_1e300",

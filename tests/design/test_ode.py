@@ -62,12 +62,12 @@ def test_solve_equilibrium_never_evaluates_text():
         solve_equilibrium(["__import__('os').getcwd()"], [x], [u], [0], {})
     assert "not allowed" in str(info.value)
     with pytest.raises(SymctlTypeError):
-        ODEModel([x], [u], ["-x + u"], {}, Ts=0.1)
+        ODEModel([x], [u], ["-x + u"], {}, dt=0.1)
 
 
 def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
     g = sp.Symbol("g", positive=True)
-    m = ODEModel([x, v], [u], [v, g * sp.sin(x) - v + sp.tanh(u)], {g: 9.81}, [0, 0], Ts=0.01)
+    m = ODEModel([x, v], [u], [v, g * sp.sin(x) - v + sp.tanh(u)], {g: 9.81}, [0, 0], dt=0.01)
     a, b = m.linearize_symbolic()
     an = np.array(a.subs(m.values).evalf(), dtype=float)
     bn = np.array(b.subs(m.values).evalf(), dtype=float)
@@ -88,7 +88,7 @@ def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
     st.floats(0.1, 5.0), st.floats(0.05, 3.0), st.floats(-2.0, 2.0), st.floats(0.001, 0.2),
 )  # fmt: skip
 def test_the_zero_order_hold_matches_scipy_cont2discrete(kv, cv, ue, ts):
-    m = ODEModel([x, v], [u], [v, -k * x - c * v + u], {k: kv, c: cv}, u_eq=[ue], Ts=ts)
+    m = ODEModel([x, v], [u], [v, -k * x - c * v + u], {k: kv, c: cv}, u_eq=[ue], dt=ts)
     a, b = m.linearize_symbolic()
     an = np.array(a.subs(m.values).evalf(), dtype=float)
     bn = np.array(b.subs(m.values).evalf(), dtype=float)
@@ -101,7 +101,7 @@ def test_the_zero_order_hold_matches_scipy_cont2discrete(kv, cv, ue, ts):
 @settings(max_examples=25, deadline=None)
 @given(st.floats(0.2, 5.0), st.floats(-3.0, 3.0))
 def test_the_one_state_closed_form_is_exact_at_the_values(kv, ue):
-    m = ODEModel([x], [u], [-k * x + u], {k: kv}, u_eq=[ue], Ts=0.05)
+    m = ODEModel([x], [u], [-k * x + u], {k: kv}, u_eq=[ue], dt=0.05)
     sym = m.discrete_symbolic()
     assert sym is not None and sym.A[0, 0] == sp.exp(-sp.Symbol("T_s", positive=True) * k)
     A, B = m.plant().numeric()
@@ -110,7 +110,7 @@ def test_the_one_state_closed_form_is_exact_at_the_values(kv, ue):
 
 
 def test_a_numeric_equilibrium_discretizes_in_numbers_without_hanging():
-    m = ODEModel([x], [u], [-(x**2) + u], {}, u_eq=[1], Ts=0.01, guess=[-2.0])
+    m = ODEModel([x], [u], [-(x**2) + u], {}, u_eq=[1], dt=0.01, guess=[-2.0])
     assert m.equilibrium_method.startswith("numeric")
     assert m.discrete_symbolic() is None or m.plant().n == 1
     assert m.plant().A[0, 0] == pytest.approx(np.exp(2 * 0.01))
@@ -118,7 +118,7 @@ def test_a_numeric_equilibrium_discretizes_in_numbers_without_hanging():
 
 def test_a_point_that_is_not_an_equilibrium_is_refused():
     with pytest.raises(ParameterError, match="not an equilibrium"):
-        ODEModel([x], [u], [-k * x + u], {k: 2}, x_eq=[1], u_eq=[1], Ts=0.1)
+        ODEModel([x], [u], [-k * x + u], {k: 2}, x_eq=[1], u_eq=[1], dt=0.1)
 
 
 def test_the_nonlinear_check_of_the_muscle_is_unchanged_through_the_ode_model():
@@ -130,7 +130,7 @@ def test_the_nonlinear_check_of_the_muscle_is_unchanged_through_the_ode_model():
 
 
 def test_the_nonlinear_loop_of_a_linear_plant_is_the_linear_loop():
-    m = ODEModel([x, v], [u], [v, -k * x - c * v + u], {k: 4, c: 1}, Ts=0.01)
+    m = ODEModel([x, v], [u], [v, -k * x - c * v + u], {k: 4, c: 1}, dt=0.01)
     gains = lqr_gains(augment(m.plant(), 1, 1))
     chk = nonlinear_check(m, gains, [0.5, 5.0], steps=60)
     np.testing.assert_allclose(chk.x_nonlinear, chk.x_linear, rtol=1e-7, atol=1e-9)
@@ -140,7 +140,7 @@ def test_the_nonlinear_loop_of_a_linear_plant_is_the_linear_loop():
 def test_a_run_away_plant_is_marked_not_raised_when_asked():
     g = sp.Symbol("g", positive=True)
     rhs = [v, g * sp.sin(x) + 2 * sp.tanh(u / 2)]  # the torque saturates at 2
-    m = ODEModel([x, v], [u], rhs, {g: 9.81}, [0, 0], Ts=0.01)
+    m = ODEModel([x, v], [u], rhs, {g: 9.81}, [0, 0], dt=0.01)
     gains = lqr_gains(augment(m.plant(), 1, 1))
     chk = nonlinear_check(m, gains, [1e-3, 5.0], steps=400, fail="mark")
     assert chk.final_deviation[0] < 0.01 < chk.final_deviation[1]

@@ -65,7 +65,7 @@ def test_paper_numbers():
     ts=st.floats(0.001, 0.05),
 )
 def test_closed_form_agrees_with_control_c2d(tau_, fmax, rbar, ts):
-    m = MuscleModel(tau=tau_, f_max=fmax, r_bar=rbar, Ts=ts)
+    m = MuscleModel(tau=tau_, f_max=fmax, r_bar=rbar, dt=ts)
     a, b = m.linearize_symbolic()
     vals = m.values
     sys_c = control.ss(float(a[0, 0].subs(vals)), float(b[0, 0].subs(vals)), 1.0, 0.0)
@@ -147,7 +147,7 @@ def test_linearize_checks_dimensions():
         linearize([x], [x], [u], [0, 1], [0])
 
 
-@pytest.mark.parametrize("name", ["tau", "f_max", "Ts"])
+@pytest.mark.parametrize("name", ["tau", "f_max", "dt"])
 @pytest.mark.parametrize("value", [0, -1.0, float("nan"), float("inf")])
 def test_muscle_refuses_non_positive_parameters(name, value):
     with pytest.raises(ParameterError, match=name):
@@ -164,14 +164,14 @@ def test_discretize_refuses_bad_shapes_and_ts():
         discretize([[1, 2]], [[1]], 0.1)
     with pytest.raises(DimensionError, match="b"):
         discretize([[1]], [[1], [2]], 0.1)
-    with pytest.raises(ParameterError, match="Ts"):
+    with pytest.raises(ParameterError, match="dt"):
         discretize([[1]], [[1]], -0.1)
 
 
 def test_discrete_plant_checks_shapes():
     with pytest.raises(DimensionError, match="B"):
         DiscretePlant([[1, 0], [0, 1]], [[1]])
-    p = DiscretePlant([[1, 0], [0, 1]], [[1], [0]], Ts=0.1)
+    p = DiscretePlant([[1, 0], [0, 1]], [[1], [0]], dt=0.1)
     assert p.state_names == ("x_1", "x_2") and p.input_names == ("u",)
     assert p.to_control().dt == pytest.approx(0.1)
 

@@ -30,7 +30,7 @@ def test_the_muscle_file_holds_the_papers_numbers():
     m = load_model(EXAMPLES / "muscle.toml")
     values = {str(k): float(v) for k, v in m.ode.params.items()}
     assert values == {"tau": PAPER.tau, "f_max": PAPER.f_max, "r_bar": PAPER.r_bar}
-    assert (m.Ts, m.sensor_delay, m.actuator_delay) == (PAPER.Ts, 1, 1)
+    assert (m.dt, m.sensor_delay, m.actuator_delay) == (PAPER.Ts, 1, 1)
     assert (m.seed, m.realizations) == (PAPER.seed, PAPER.realizations)
 
 
@@ -59,7 +59,7 @@ def results():
 @pytest.mark.parametrize("name", [n for n in NAMES if n != "muscle"])
 def test_every_example_derives_a_proved_stabilizing_controller(results, name):
     res = results[name]
-    data = json.loads(json.dumps(res.to_json(), allow_nan=False))
+    data = json.loads(json.dumps(res.to_dict(), allow_nan=False))
     assert data["controller"]["proved"] is True
     assert data["closed_loop"]["spectral_radius"] < 1
     assert data["model"]["name"] == name
@@ -111,7 +111,7 @@ def test_the_antagonist_pair_runs_end_to_end_with_two_inputs(results):
     assert "IFP" in res.skipped
     # one receptor per measured state, one muscle per input: theorem 3 decides it exactly
     assert res.graph.sensors == (1, 2, 3, 4) and res.graph.actuators == (6, 7)
-    theorem = res.to_json()["delay_graph"]["theorem"]
+    theorem = res.to_dict()["delay_graph"]["theorem"]
     assert theorem["compatible"] and theorem["method"].startswith("theorem 3")
     assert {p["label"] for p in theorem["parts"]} == {
         f"G[{i},{j}]" for i in (1, 2) for j in (1, 2, 3, 4)
@@ -119,7 +119,7 @@ def test_the_antagonist_pair_runs_end_to_end_with_two_inputs(results):
     placed = res.circuits["controllable"].compatibility.assignment.vertex_of
     assert [placed[s] for s in res.circuits["controllable"].structure.inputs] == [1, 2, 3, 4]
     assert res.spec.ode.equilibrium_method.startswith("exact")
-    eq = res.to_json()["plant"]["equilibrium"]["states"]
+    eq = res.to_dict()["plant"]["equilibrium"]["states"]
     assert eq["theta"] == 0 and math.isclose(eq["f_flex"], eq["f_ext"])
 
 
@@ -135,7 +135,7 @@ def test_the_two_pathway_graph_is_checked_beyond_chains(results):
     for k in ("general", "controllable", "observable"):
         assert res.circuits[k].circuit.n_neurons == paper.circuits[k].circuit.n_neurons
     # the theorem decides it exactly, and the pathways circuit uses both loops
-    theorem = res.to_json()["delay_graph"]["theorem"]
+    theorem = res.to_dict()["delay_graph"]["theorem"]
     assert theorem["compatible"] and theorem["scope"] == "all realizations"
     assert [p["path"] for p in theorem["parts"]] == [[1, 2, 4], [1, 3, 2, 4]]
     rec = res.circuits["pathways"]
@@ -191,7 +191,7 @@ def test_a_model_file_builds_only_the_circuits_it_asks_for(tmp_path):
     )
     res = derive(text)
     assert list(res.circuits) == ["observable"] and list(res.realizations) == ["observable"]
-    data = res.to_json()
+    data = res.to_dict()
     assert list(data["circuits"]) == ["observable"] and data["model"]["circuits_built"] == [
         "observable"
     ]

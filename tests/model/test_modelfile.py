@@ -147,7 +147,7 @@ def test_delays_in_seconds_round_up_to_steps_and_say_so():
 
 def test_sampling_time_in_milliseconds_is_converted():
     m = load_model(_with(BASE, "Ts = 0.1", 'Ts = { value = 100, unit = "ms" }'))
-    assert m.Ts == pytest.approx(0.1)
+    assert m.dt == pytest.approx(0.1)
 
 
 GRAPH = """

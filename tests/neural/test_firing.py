@@ -28,7 +28,7 @@ NO_DELAY = lqr_gains(augment(MODEL, 0, 0))
 
 @pytest.fixture(scope="module")
 def general() -> FiringPatterns:
-    return circuit_firing("general", GAINS, count=3, seed=7)
+    return circuit_firing("general", GAINS, count=3, rng=7)
 
 
 def test_force_and_rate_are_identical_across_realizations_and_optimal(general):
@@ -74,7 +74,7 @@ def test_neuron_traces_equal_the_realization_states_of_an_independent_simulation
 
 
 def test_observable_and_ifp_neurons():
-    ocr = circuit_firing("observable", GAINS, count=2, seed=3)
+    ocr = circuit_firing("observable", GAINS, count=2, rng=3)
     assert ocr.neurons == ("G2.x1", "G2.x2", "G2.y")
     ifp = circuit_firing("ifp", GAINS)
     assert ifp.count == 1 and ifp.neurons == ("mu",)
@@ -83,9 +83,9 @@ def test_observable_and_ifp_neurons():
 
 
 def test_same_seed_same_draws_other_seed_other_draws():
-    a = circuit_firing("controllable", GAINS, count=2, seed=5)
-    b = circuit_firing("controllable", GAINS, count=2, seed=np.random.default_rng(5))
-    c = circuit_firing("controllable", GAINS, count=2, seed=6)
+    a = circuit_firing("controllable", GAINS, count=2, rng=5)
+    b = circuit_firing("controllable", GAINS, count=2, rng=np.random.default_rng(5))
+    c = circuit_firing("controllable", GAINS, count=2, rng=6)
     assert a.params == b.params != c.params
     np.testing.assert_array_equal(a.firing["G2.x2"], b.firing["G2.x2"])
 
@@ -113,7 +113,7 @@ def test_plot_returns_a_figure_with_one_panel_per_neuron_and_the_force(general):
         ({"count": 2.0}, SymctlTypeError, "count: expected an integer"),
         ({"kind": "ifp", "count": 2}, ParameterError, "count: the IFP controller"),
         ({"gains": "K"}, SymctlTypeError, "gains: expected Gains"),
-        ({"seed": "x"}, SymctlTypeError, "seed:"),
+        ({"rng": "x"}, SymctlTypeError, "rng:"),
         ({"rtol": 0}, ParameterError, "rtol:"),
         ({"plant": ([[0.5]], [[4.6]])}, ParameterError, "plant: realization 0"),
         (

@@ -17,7 +17,7 @@ def test_nonlinear_check_departs_quadratically_and_integrates_accurately():
     np.testing.assert_allclose(ratio, 100, rtol=0.1)  # second order in the amplitude
     assert chk.relative_deviation[0] < 1e-4
     # the exact solution with r held constant: f_inf + (f - f_inf) exp(-Ts/tau)
-    decay = np.exp(-MODEL.Ts / MODEL.tau)
+    decay = np.exp(-MODEL.dt / MODEL.tau)
     w = pulse(40)[:, 0]
     for i, amp in enumerate(chk.amplitudes):
         f_inf = MODEL.f_max / (1 + np.exp(-chk.r_nonlinear[i, :-1]))

@@ -28,7 +28,7 @@ def test_long_delays_realize_the_abbreviated_G2_exactly(res):
 
 def test_results_json_of_long_delays(res):
     f = res.factors
-    j = res.to_json()["factorization"]
+    j = res.to_dict()["factorization"]
     T = len(f.poles)
     assert list(j["abbreviations"]) == [f"sigma_{k}" for k in range(1, T + 1)]
     # the product form, nothing multiplied out (the symbol names hold braces: not parseable)
@@ -43,4 +43,4 @@ def test_results_json_of_long_delays(res):
 
 def test_the_paper_case_is_not_abbreviated():
     res = derive_paper()
-    assert not res.abbreviated and res.to_json()["factorization"]["abbreviations"] == {}
+    assert not res.abbreviated and res.to_dict()["factorization"]["abbreviations"] == {}

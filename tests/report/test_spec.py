@@ -12,7 +12,9 @@ from symctl.report.spec import CIRCUIT_SPECS, CIRCUITS, PAPER
 
 def test_the_muscle_defaults_are_muscle_models_fields():
     fields = {f.name: f.default for f in dataclasses.fields(MuscleModel)}
-    assert {k: getattr(PAPER, k) for k in fields} == fields
+    assert {
+        k: getattr(PAPER, {"dt": "Ts"}.get(k, k)) for k in fields
+    } == fields  # Ts: the file's key
     delays = inspect.signature(augment).parameters
     assert PAPER.sensor_delay == delays["sensor_delay"].default
     assert PAPER.actuator_delay == delays["actuator_delay"].default
@@ -20,7 +22,9 @@ def test_the_muscle_defaults_are_muscle_models_fields():
 
 def test_derive_paper_and_the_cli_default_to_the_spec():
     params = inspect.signature(derive_paper).parameters
-    for name in ("tau", "f_max", "r_bar", "Ts", "sensor_delay", "actuator_delay", "seed"):
+    for name, field in (("dt", "Ts"), ("rng", "seed")):
+        assert params[name].default == getattr(PAPER, field), name
+    for name in ("tau", "f_max", "r_bar", "sensor_delay", "actuator_delay"):
         assert params[name].default == getattr(PAPER, name), name
     assert params["realizations"].default == PAPER.realizations
     options = {p.name: p.default for p in paper.params}
@@ -41,9 +45,9 @@ def test_bad_seed_and_realizations_name_themselves_before_any_work():
 
     from symctl.errors import ParameterError, SymctlTypeError
 
-    with pytest.raises(ParameterError, match="seed: must be an integer >= 0, got -1"):
-        derive_paper(seed=-1)
-    with pytest.raises(SymctlTypeError, match=r"seed: expected an integer, got 1\.5"):
-        derive_paper(seed=1.5)
+    with pytest.raises(ParameterError, match="rng: must be an integer >= 0, got -1"):
+        derive_paper(rng=-1)
+    with pytest.raises(SymctlTypeError, match=r"rng: expected an integer, got 1\.5"):
+        derive_paper(rng=1.5)
     with pytest.raises(ParameterError, match="realizations: must be an integer >= 1, got 0"):
         derive_paper(realizations=0)

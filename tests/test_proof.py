@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from symctl import controller_tf, factor
-from symctl._util.proof import Proof
+from symctl.proof import Proof
 
 
 def test_factorization_proof_is_truthy_and_names_its_method():

@@ -1,0 +1,111 @@
+"""Verdicts: every checker's result is truthy when its claim holds, with its method and evidence.
+
+Checkers return results, not bare booleans. Every result of a check or a
+decision in symctl follows one protocol, :class:`Verdict`: ``bool(result)`` is
+the verdict, ``result.verdict`` the same as a value (``True``, ``False``, or
+``None`` when a decision procedure gave no answer), ``result.method`` how it
+was decided and ``result.evidence`` what backs it (a witness, a certificate, a
+counterexample or a bound). Older field names (``ok``, ``holds``, ``stable``,
+``feasible``, ``universal``) stay as they are.
+
+:class:`Proof` is the result of an exact proof: ``proof.claim`` is what was
+proved, ``proof.method`` how, and ``proof.evidence`` a witness of failure (the
+first entry of the difference that is not the zero polynomial). A proof also
+equals the boolean of its verdict, so ``prove_controller_tf(system) == True``
+keeps working.
+
+>>> from symctl.proof import Proof
+>>> p = Proof(True, "G3 G2 G1 = G", "cross-multiplication")
+>>> bool(p), p == True, p.verdict, p
+(True, True, True, Proof(True, claim='G3 G2 G1 = G', method='cross-multiplication'))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from symctl._util.serial import DictMixin
+
+__all__ = ["Proof", "Verdict"]
+
+
+class Verdict(DictMixin):
+    """The verdict protocol, mixed into every checker's and decision's result.
+
+    A subclass names the attribute that holds its verdict in ``_verdict`` (a
+    bool, or None when undecided) and provides ``method`` and ``evidence``
+    (fields or properties). ``verdict`` reads that attribute; the result is
+    truthy exactly when the verdict is True. ``to_dict()`` and ``from_dict()``
+    write and read it as JSON types.
+
+    Examples
+    --------
+    >>> from symctl import DelayGraph, check_compatibility, ifp_structure
+    >>> from symctl.proof import Verdict
+    >>> r = check_compatibility(ifp_structure(2), DelayGraph.chain([0]))
+    >>> isinstance(r, Verdict), bool(r), r.verdict, r.method
+    (True, True, True, 'chain: bounds arc consistency')
+    """
+
+    __slots__ = ()
+    _verdict: str = "verdict"
+
+    @property
+    def verdict(self) -> bool | None:
+        """True when the claim holds, False when it fails, None when undecided."""
+        return getattr(self, self._verdict)
+
+    def __bool__(self) -> bool:
+        return bool(self.verdict)
+
+
+@dataclass(frozen=True, eq=False)
+class Proof(Verdict):
+    """An exact verdict on a claim.
+
+    Parameters
+    ----------
+    holds : bool
+        Whether the claim was proved.
+    claim : str
+        What was proved (or refuted).
+    method : str
+        How: the exact algebra used.
+    evidence : str, optional
+        For a refuted claim, a nonzero entry of the difference.
+
+    Examples
+    --------
+    >>> from symctl.proof import Proof
+    >>> bool(Proof(False, "x = y", "expand", evidence="x - y"))
+    False
+    """
+
+    _verdict = "holds"
+
+    holds: bool
+    claim: str
+    method: str
+    evidence: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "holds", bool(self.holds))
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, bool):
+            return self.holds == other
+        if isinstance(other, Proof):
+            return (self.holds, self.claim, self.method, self.evidence) == (
+                other.holds,
+                other.claim,
+                other.method,
+                other.evidence,
+            )
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self.holds)  # equal to its verdict's bool, so the hash must be too
+
+    def __repr__(self) -> str:
+        tail = f", evidence={self.evidence!r}" if self.evidence else ""
+        return f"Proof({self.holds}, claim={self.claim!r}, method={self.method!r}{tail})"
