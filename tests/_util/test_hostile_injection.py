@@ -462,6 +462,12 @@ AUDITED = {
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
     ("symctl.circuitatlas.certify", "_Poly.__init__", "Poly"): 1,
     ("symctl.circuitatlas.certify", "certified_point", "expand"): 1,
+    # the structural refutations: the numerator M adj(zI - F) H of the pattern's own symbols
+    ("symctl.circuitatlas.structural", "_odd_factors", "Poly"): 1,
+    ("symctl.circuitatlas.structural", "_odd_factors", "factor"): 1,
+    # witness targets: random exact rationals; a pattern's characteristic polynomial
+    ("symctl.circuitatlas.universality", "_search_sample", "Poly"): 2,
+    ("symctl.circuitatlas.universality", "_generic_pole_degree", "expand"): 1,
     # circuits_for: G is a validated DiscreteTF (DiscreteTF.from_expr); factor is symctl's
     ("symctl.circuitatlas.candidates", "circuits_for", "factor"): 2,
     ("symctl.circuitatlas.candidates", "_generic_eps", "Poly"): 1,
