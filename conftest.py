@@ -68,4 +68,6 @@ def pytest_collection_modifyitems(config, items):
 def pytest_sessionstart(session):
     missing = [f for f in (*SLOW_FILES, *SLOW_DOCTESTS) if not (ROOT / f).exists()]
     if missing:  # a renamed file would silently join the fast tier
-        raise pytest.UsageError(f"conftest.SLOW_FILES/SLOW_DOCTESTS name files that do not exist: {missing}")
+        raise pytest.UsageError(
+            f"conftest.SLOW_FILES/SLOW_DOCTESTS name files that do not exist: {missing}"
+        )

@@ -37,10 +37,18 @@ def _log(out: Path) -> str:
     """The pdflatex log of ``out/derivation.tex`` (one pass, into a scratch folder)."""
     with tempfile.TemporaryDirectory() as scratch:
         subprocess.run(
-            ["pdflatex", "-interaction=nonstopmode", f"-output-directory={scratch}",
-             "derivation.tex"],
-            cwd=out, capture_output=True, text=True, errors="replace", timeout=600,
-        )  # fmt: skip
+            [
+                "pdflatex",
+                "-interaction=nonstopmode",
+                f"-output-directory={scratch}",
+                "derivation.tex",
+            ],
+            cwd=out,
+            capture_output=True,
+            text=True,
+            errors="replace",
+            timeout=600,
+        )
         path = Path(scratch) / "derivation.log"
         return path.read_text(errors="replace") if path.exists() else ""
 
@@ -92,14 +100,26 @@ def main() -> None:
         raise SystemExit("pdflatex is not installed (Debian: apt-get install texlive-latex-base)")
     root = args.out or Path(tempfile.mkdtemp(prefix="symctl-documents-"))
     print(f"outputs in {root}; figures {'off' if args.no_figures else 'on'}")
-    head = ("T", "pages", "overfull hboxes", "shrunk", "errors", "max md line", "derive s",
-            "write s", "note")  # fmt: skip
+    head = (
+        "T",
+        "pages",
+        "overfull hboxes",
+        "shrunk",
+        "errors",
+        "max md line",
+        "derive s",
+        "write s",
+        "note",
+    )
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for T in args.T:
         r = run(T, root / f"T{T}", figures=not args.no_figures)
-        print(f"| {r['T']} | {r['pages']} | {r['overfull']} | {r['shrunk']} | {r['errors']} | "
-              f"{r['md']} | {r['derive']:.1f} | {r['write']:.1f} | {r['note']} |", flush=True)  # fmt: skip
+        print(
+            f"| {r['T']} | {r['pages']} | {r['overfull']} | {r['shrunk']} | {r['errors']} | "
+            f"{r['md']} | {r['derive']:.1f} | {r['write']:.1f} | {r['note']} |",
+            flush=True,
+        )
     if args.out is None:
         shutil.rmtree(root, ignore_errors=True)
 

@@ -131,10 +131,14 @@ def timing(gains, starts: int) -> None:
     )
     print("| method | time [s] | cost | G1.x1 (unrecorded) rel. RMS error |")
     print("|---|---|---|---|")
-    print(f"| symctl.fit (trace model, exact Jacobian, LM; best of 3) | {min(times):.3f} | "
-          f"{res.cost:.4g} | {ours:.2e} |")  # fmt: skip
-    print(f"| baseline: least_squares, FD Jacobian, loop simulated ({nfev} evaluations) | "
-          f"{t_base:.2f} | {cost:.4g} | {theirs:.2e} |")  # fmt: skip
+    print(
+        f"| symctl.fit (trace model, exact Jacobian, LM; best of 3) | {min(times):.3f} | "
+        f"{res.cost:.4g} | {ours:.2e} |"
+    )
+    print(
+        f"| baseline: least_squares, FD Jacobian, loop simulated ({nfev} evaluations) | "
+        f"{t_base:.2f} | {cost:.4g} | {theirs:.2e} |"
+    )
     print(f"speed-up: {t_base / min(times):.0f}x; realizes G exactly: {res.exact}")
     print()
 
@@ -143,13 +147,19 @@ def recovery(gains, hidden: int, starts: int) -> None:
     steps = 500
     ident = identifiability([RECORDED, ["G1.x1", "G2.x1", "G2.y"]], gains, **KW, C=1)
     (second,) = identifiability([["G1.x1", "G2.x1", "G2.y"]], gains, **KW)
-    print(f"Table 2. Recovery of unrecorded neurons, {hidden} hidden general realizations, "
-          f"{steps} steps")  # fmt: skip
-    print(f"recorded {', '.join(RECORDED)} (C = 1): rank {ident[0].rank} of "
-          f"{ident[0].n_params}; unrecorded identifiable: "
-          f"{[n for n, ok in ident[0].neurons.items() if ok and n not in RECORDED]}")  # fmt: skip
-    print("| noise | G1.x1 median | G1.x1 worst | G3.x1 worst | epsilon_1 worst abs. error |"
-          " G2.x2 from G1.x1, G2.x1, G2.y (not identifiable) median |")  # fmt: skip
+    print(
+        f"Table 2. Recovery of unrecorded neurons, {hidden} hidden general realizations, "
+        f"{steps} steps"
+    )
+    print(
+        f"recorded {', '.join(RECORDED)} (C = 1): rank {ident[0].rank} of "
+        f"{ident[0].n_params}; unrecorded identifiable: "
+        f"{[n for n, ok in ident[0].neurons.items() if ok and n not in RECORDED]}"
+    )
+    print(
+        "| noise | G1.x1 median | G1.x1 worst | G3.x1 worst | epsilon_1 worst abs. error |"
+        " G2.x2 from G1.x1, G2.x1, G2.y (not identifiable) median |"
+    )
     print("|---|---|---|---|---|---|")
     assert not second.neurons["G2.x2"]
     for noise in (0.0, 0.001, 0.01, 0.05):
@@ -162,11 +172,18 @@ def recovery(gains, hidden: int, starts: int) -> None:
             g1.append(_rel(pred["G1.x1"], clean.traces["G1.x1"]))
             g3.append(_rel(pred["G3.x1"], clean.traces["G3.x1"]))
             e1.append(abs(float(res.params["epsilon_1"]) - float(clean.hidden["epsilon_1"])))
-            other = fit(noisy.select(["G1.x1", "G2.x1", "G2.y"]).traces, gains, **KW,
-                        starts=starts, steps=steps)  # fmt: skip
+            other = fit(
+                noisy.select(["G1.x1", "G2.x1", "G2.y"]).traces,
+                gains,
+                **KW,
+                starts=starts,
+                steps=steps,
+            )
             g2.append(_rel(other.predict()["G2.x2"], clean.traces["G2.x2"]))
-        print(f"| {noise:.1%} | {np.median(g1):.2e} | {max(g1):.2e} | {max(g3):.1e} | "
-              f"{max(e1):.1e} | {np.median(g2):.2f} |")  # fmt: skip
+        print(
+            f"| {noise:.1%} | {np.median(g1):.2e} | {max(g1):.2e} | {max(g3):.1e} | "
+            f"{max(e1):.1e} | {np.median(g2):.2f} |"
+        )
     print()
 
 

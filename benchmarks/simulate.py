@@ -353,8 +353,15 @@ def large_circuits(repeat: int) -> None:
             secs.append(best(lambda run=run, args=args: run(*args), repeat))
             outs.append(out)
         same = np.array_equal(outs[0], outs[1], equal_nan=True)
-        print(line(f"{count:,} loops", f"{secs[0]:.3f} s", f"{secs[1]:.3f} s",
-                   f"{secs[1] / secs[0]:.1f}x", "yes" if same else "NO"))  # fmt: skip
+        print(
+            line(
+                f"{count:,} loops",
+                f"{secs[0]:.3f} s",
+                f"{secs[1]:.3f} s",
+                f"{secs[1] / secs[0]:.1f}x",
+                "yes" if same else "NO",
+            )
+        )
 
 
 if __name__ == "__main__":

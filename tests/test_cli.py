@@ -55,8 +55,9 @@ def test_paper_options_are_used(tmp_path):
     assert len(data["gains"]["K"][0]) == 6
     assert len(data["controller"]["denominator"]) == 6
     assert data["delay_graph"]["chain_delays"] == [1, 1, 1, 1, 1]
-    assert all(len(c["realizations"]) == (1 if k == "ifp" else 2)
-               for k, c in data["circuits"].items())  # fmt: skip
+    assert all(
+        len(c["realizations"]) == (1 if k == "ifp" else 2) for k, c in data["circuits"].items()
+    )
     assert data["circuits"]["controllable"]["neurons"]["count"] == 2 + 2 + 3
     assert (tmp_path / "derivation.tex").exists() and not (tmp_path / "open_loop.png").exists()
 

@@ -76,8 +76,9 @@ def _at(G: DiscreteTF, points=POINTS) -> np.ndarray:
 
 
 def _control_at(sys, points=POINTS) -> np.ndarray:
-    return np.array([np.array(sys(p), dtype=complex).reshape(sys.noutputs, sys.ninputs)
-                     for p in points])  # fmt: skip
+    return np.array(
+        [np.array(sys(p), dtype=complex).reshape(sys.noutputs, sys.ninputs) for p in points]
+    )
 
 
 def _ss_at(A, B, C, D, points=POINTS) -> np.ndarray:
@@ -456,8 +457,9 @@ def stable_systems(draw):
     rng = np.random.default_rng(seed)
     F = rng.normal(size=(n, n))
     F *= draw(st.floats(0.05, 0.95)) / max(np.max(np.abs(np.linalg.eigvals(F))), 1e-3)
-    return Realization(F, rng.normal(size=(n, q)), rng.normal(size=(p, n)),
-                       rng.normal(size=(p, q)), dt)  # fmt: skip
+    return Realization(
+        F, rng.normal(size=(n, q)), rng.normal(size=(p, n)), rng.normal(size=(p, q)), dt
+    )
 
 
 @pytest.mark.slow

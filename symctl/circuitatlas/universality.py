@@ -283,8 +283,10 @@ def _search_sample(n: int, pairs: int, signs, complex_zeros, rng):
     """A target of one search region: its poles, and a numerator with the region's zeros."""
     a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
     if complex_zeros is None:
-        c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
-             for _ in range(n)]  # fmt: skip
+        c = [
+            sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
+            for _ in range(n)
+        ]
         return [sp.Rational(v) for v in a], c
     zpairs = (n - 1) // 2 if complex_zeros else 0
     zsigns = [rng.choice([-1, 1]) for _ in range(n - 1 - 2 * zpairs)]

@@ -355,9 +355,14 @@ def _atlas_summary(A) -> None:
         table.add_column(col)
     for row, c in zip(A.table()[:15], A.classes, strict=False):
         table.add_row(
-            row["class"], str(row["neurons"]), str(row["synapses"]), str(row["branches"]),
-            c.representatives[0].text, row["universal"], row["method"],
-        )  # fmt: skip
+            row["class"],
+            str(row["neurons"]),
+            str(row["synapses"]),
+            str(row["branches"]),
+            c.representatives[0].text,
+            row["universal"],
+            row["method"],
+        )
     _console.print(table)
 
 

@@ -106,18 +106,29 @@ def fit_command(
     classes = (circuit or tr.meta.get("circuit") or "general").split(",")
     classes = [c.strip() for c in classes]
     with OutputFolder(out, "--out") as folder:
-        res = fit(tr.traces, gains, sensor_delay=ds, actuator_delay=da,
-                  circuit=classes if len(classes) > 1 else classes[0],
-                  disturbance=1.0 if tr.disturbance is None else tr.disturbance,
-                  steps=tr.steps, C=c_value, starts=starts, rng=seed, workers=workers,
-                  scheduler=scheduler)  # fmt: skip
+        res = fit(
+            tr.traces,
+            gains,
+            sensor_delay=ds,
+            actuator_delay=da,
+            circuit=classes if len(classes) > 1 else classes[0],
+            disturbance=1.0 if tr.disturbance is None else tr.disturbance,
+            steps=tr.steps,
+            C=c_value,
+            starts=starts,
+            rng=seed,
+            workers=workers,
+            scheduler=scheduler,
+        )
         written = write_fit(res, folder.staging, figures=figures, source=str(data))
     worst = max(res.residuals.values())
     _console.print(
         f"fitted {len(res.data)} neurons with the {res.circuit_class} circuit "
         f"(exact realization of G: {res.exact}); largest RMS residual {worst:.3g}",
-        markup=False, soft_wrap=True, highlight=False,
-    )  # fmt: skip
+        markup=False,
+        soft_wrap=True,
+        highlight=False,
+    )
     names = ", ".join(p.name for p in folder.final(written))
     _console.print(f"wrote {out}/: {names}", markup=False, soft_wrap=True, highlight=False)
 

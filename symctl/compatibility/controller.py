@@ -299,8 +299,10 @@ def controller_compatibility(
         raise ParameterError("G: improper (numerator degree above denominator degree)")
     if not tf.is_siso:
         if paths is not None:
-            raise ParameterError("paths: give paths for a SISO controller; a MIMO one takes "
-                                 "each entry's fastest path")  # fmt: skip
+            raise ParameterError(
+                "paths: give paths for a SISO controller; a MIMO one takes "
+                "each entry's fastest path"
+            )
         return _mimo(tf, graph, W, base, delays)
     zero = tf.num == 0
     (src,), (dst,) = graph.pins(1, 1)
@@ -327,9 +329,14 @@ def controller_compatibility(
         S = Structure({"u": ("input",), "y": ("sum", ())}, "u", "y")
         check = witness_result(S, graph, {"u": src, "y": dst}, "construction (G = 0)")
         return ControllerCompatibility(
-            True, structure_realization(S), S, check, "Compatible: G = 0 has no signal path. "
-            + check.reason, "all realizations", "G = 0",
-        )  # fmt: skip
+            True,
+            structure_realization(S),
+            S,
+            check,
+            "Compatible: G = 0 has no signal path. " + check.reason,
+            "all realizations",
+            "G = 0",
+        )
     pieces = [tf.expr]
     if construction == "parallel" and len(routes) > 1:
         pieces = markov_split(tf, [L for L, _, _ in routes])
@@ -371,15 +378,18 @@ def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
             route = fastest_path(graph, W, (at_in[j], at_out[i]))
             where = f"G[{i + 1},{j + 1}] (v{at_in[j]} -> v{at_out[i]})"
             if route is None:
-                return _no(f"Not compatible: no path for {where} uses only edges of at most {W} "
-                           "steps.", "theorem 3 (MIMO)")  # fmt: skip
+                return _no(
+                    f"Not compatible: no path for {where} uses only edges of at most {W} steps.",
+                    "theorem 3 (MIMO)",
+                )
             if e.relative_degree < route[0]:
                 return _no(
                     f"Not compatible: the relative degree {e.relative_degree} of {where} is "
                     f"below {route[0]}, the delay of its fastest path; every path from input "
                     f"{j + 1} to output {i + 1} of a compatible structure has at least that many "
-                    "delays.", "theorem 3 (MIMO)",
-                )  # fmt: skip
+                    "delays.",
+                    "theorem 3 (MIMO)",
+                )
             part = along_path(e, route[1], route[2], base=base, structure=delays)
             entries.append((i, j, dataclasses.replace(part, label=f"G[{i + 1},{j + 1}]")))
     blocks: dict = {f"u{j + 1}": ("input",) for j in range(m)}
@@ -402,13 +412,17 @@ def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
     S = Structure(blocks, tuple(f"u{j + 1}" for j in range(m)), outputs)
     check = witness_result(S, graph, {n: place[n] for n in S.blocks}, "theorem 3 (MIMO)")
     return ControllerCompatibility(
-        True, structure_realization(S), S, check,
+        True,
+        structure_realization(S),
+        S,
+        check,
         f"Compatible (theorem 3, MIMO): each of the {len(entries)} nonzero entries G[i,j] = "
         "G3 G2 G1 along its fastest path from input j's sensor vertex to output i's actuator "
         "vertex, the entries of each output summed there. " + check.reason,
-        "all realizations", "theorem 3 (MIMO) + construction per entry",
+        "all realizations",
+        "theorem 3 (MIMO) + construction per entry",
         tuple(part for *_, part in entries),
-    )  # fmt: skip
+    )
 
 
 def _no(reason: str, theorem: str) -> ControllerCompatibility:

@@ -359,8 +359,17 @@ def dale(
             f"z3 proved the sign constraints unsatisfiable for every pattern of {label} "
             f"({'; '.join(tried)}), with stable nonzero sections: {why}"
         )
-        return DaleResult(False, None, {}, METHOD, reason, label, G=G, realizes=realizes,
-                          elapsed=deadline.elapsed())  # fmt: skip
+        return DaleResult(
+            False,
+            None,
+            {},
+            METHOD,
+            reason,
+            label,
+            G=G,
+            realizes=realizes,
+            elapsed=deadline.elapsed(),
+        )
     reason = (
         f"not decided within timeout = {deadline.seconds:g} s ({'; '.join(tried)}); "
         "raise timeout to search longer"
@@ -467,9 +476,20 @@ def _witness(
         f"(read off the witness circuit exactly); z3: {'; '.join(tried)}"
     )
     return DaleResult(
-        True, whole, signs, METHOD, reason, label, witness, R2, sections, True,
-        deadline.elapsed(), G, True,
-    )  # fmt: skip
+        True,
+        whole,
+        signs,
+        METHOD,
+        reason,
+        label,
+        witness,
+        R2,
+        sections,
+        True,
+        deadline.elapsed(),
+        G,
+        True,
+    )
 
 
 def _signs(circuit: Circuit) -> dict[str, str]:

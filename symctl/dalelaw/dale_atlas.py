@@ -225,8 +225,17 @@ def _row(spec, ds, da, samples, timeout, own):
         if counts[0]:  # sampled witnesses but undecided samples: not "every" for sure
             verdict = "some" if counts[1] or counts[2] else None
     mine = _decide(own, patterns, delays, ds, da, timeout) if own is not None else None
-    return DaleRow(label, neurons, synapses, universal, verdict, mine, tuple(counts), exists,
-                   time.perf_counter() - t0)  # fmt: skip
+    return DaleRow(
+        label,
+        neurons,
+        synapses,
+        universal,
+        verdict,
+        mine,
+        tuple(counts),
+        exists,
+        time.perf_counter() - t0,
+    )
 
 
 @rng_argument()
@@ -320,10 +329,17 @@ def dale_atlas(
         found = [known[c] for c in classes]
     sampled = [_sample(order, ds, da, gen, i) for i in range(samples)]
     specs = [
-        (c.label, order, tuple(p.mask for p in c.representatives), c.delays, c.n_neurons,
-         c.n_synapses, c.universal)
+        (
+            c.label,
+            order,
+            tuple(p.mask for p in c.representatives),
+            c.delays,
+            c.n_neurons,
+            c.n_synapses,
+            c.universal,
+        )
         for c in found
-    ]  # fmt: skip
+    ]
     pool = open_pool(workers, scheduler)
     try:
         rows = list(pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]))

@@ -267,8 +267,11 @@ def ei_circuit(
         try:
             label, templates = templates_of(fs, circuit)
         except ParameterError as exc:  # a class of another order, or N = 0
-            found.append(EICandidate(getattr(circuit, "label", str(circuit)), None, None,
-                                     f"cannot realize: {exc}"))  # fmt: skip
+            found.append(
+                EICandidate(
+                    getattr(circuit, "label", str(circuit)), None, None, f"cannot realize: {exc}"
+                )
+            )
             continue
         outcome = None
         for t in templates:
@@ -284,8 +287,16 @@ def ei_circuit(
         neurons = templates[0].circuit.n_neurons
         if isinstance(outcome, tuple):
             t, k, model = outcome
-            found.append(EICandidate(label, neurons, k, "decided (z3)" if model.get("proved", True)
-                                     else "upper bound (z3 undecided below)"))  # fmt: skip
+            found.append(
+                EICandidate(
+                    label,
+                    neurons,
+                    k,
+                    "decided (z3)"
+                    if model.get("proved", True)
+                    else "upper bound (z3 undecided below)",
+                )
+            )
             if best is None or (neurons + k, k) < best[0]:  # at a tie, fewer interneurons
                 best = ((neurons + k, k), label, t, model, neurons)
         else:
@@ -305,9 +316,19 @@ def ei_circuit(
         f"{label} needs {len(relays)} interneuron{'' if len(relays) == 1 else 's'}"
     )
     return EICircuit(
-        label, neurons, tuple(r.source for r in relays), total, minimum, total - minimum, signs,
-        tuple(relays), realization, tuple(found), METHOD, reason,
-    )  # fmt: skip
+        label,
+        neurons,
+        tuple(r.source for r in relays),
+        total,
+        minimum,
+        total - minimum,
+        signs,
+        tuple(relays),
+        realization,
+        tuple(found),
+        METHOD,
+        reason,
+    )
 
 
 def _relays(G, fs, t, model):
@@ -327,8 +348,15 @@ def _relays(G, fs, t, model):
         sigma = 1 if 2 * pos >= len(ws) else -1
         flip = [(s.target, w / sigma) for s, w in zip(out, ws, strict=True) if w * sigma < 0]
         name = f"I[{source}]"
-        relays.append(Interneuron(name, source, "+" if sigma > 0 else "-",
-                                  tuple(a for a, _ in flip), tuple(w for _, w in flip)))  # fmt: skip
+        relays.append(
+            Interneuron(
+                name,
+                source,
+                "+" if sigma > 0 else "-",
+                tuple(a for a, _ in flip),
+                tuple(w for _, w in flip),
+            )
+        )
         signs[source] = "+" if sigma > 0 else "-"
         signs[name] = "-"
     whole = witness.realization

@@ -472,9 +472,13 @@ class ODEModel(CachedState, LatexMixin):
     @cached_property
     def _linearization(self) -> Linearization:
         lin = linearize(
-            list(self.rhs), list(self.states), list(self.inputs), list(self.x_eq),
-            list(self.u_eq), check_equilibrium=False,
-        )  # fmt: skip
+            list(self.rhs),
+            list(self.states),
+            list(self.inputs),
+            list(self.x_eq),
+            list(self.u_eq),
+            check_equilibrium=False,
+        )
         return Linearization(lin.a.applyfunc(_tidy), lin.b.applyfunc(_tidy), lin.residual)
 
     def linearize_symbolic(self) -> Linearization:
@@ -505,10 +509,15 @@ class ODEModel(CachedState, LatexMixin):
 
     def _plant(self, A, B, Ts, x_eq, u_eq) -> DiscretePlant:
         return DiscretePlant(
-            A, B, Ts, tuple(f"delta_{s.name}" for s in self.states),
+            A,
+            B,
+            Ts,
+            tuple(f"delta_{s.name}" for s in self.states),
             tuple(f"delta_{s.name}" for s in self.inputs),
-            x_eq, u_eq, {str(k): float(v) for k, v in self.values.items()},
-        )  # fmt: skip
+            x_eq,
+            u_eq,
+            {str(k): float(v) for k, v in self.values.items()},
+        )
 
     @classmethod
     def from_muscle(cls, muscle) -> ODEModel:
@@ -530,11 +539,16 @@ class ODEModel(CachedState, LatexMixin):
         params = {parameter_symbol(k, getattr(muscle, k)): getattr(muscle, k) for k in names}
         rename = dict(zip((S.tau, S.f_max, S.r_bar), params, strict=True))
         return cls(
-            [S.f], [S.r], [muscle.ode.xreplace(rename)], params,
-            [muscle.f_bar_symbolic.xreplace(rename)], [rename[S.r_bar]], muscle.dt,
+            [S.f],
+            [S.r],
+            [muscle.ode.xreplace(rename)],
+            params,
+            [muscle.f_bar_symbolic.xreplace(rename)],
+            [rename[S.r_bar]],
+            muscle.dt,
             name="muscle",
             units={"tau": "s", "f_max": "N", "r_bar": "spikes/s", "f": "N", "r": "spikes/s"},
-        )  # fmt: skip
+        )
 
     @cached_property
     def _numeric_plant(self) -> DiscretePlant:
@@ -592,9 +606,15 @@ class ODEModel(CachedState, LatexMixin):
 
     def _key(self) -> tuple:
         return (
-            self.states, self.inputs, self.rhs, tuple(self.params.items()), self.x_eq,
-            self.u_eq, self.dt, self.name,
-        )  # fmt: skip
+            self.states,
+            self.inputs,
+            self.rhs,
+            tuple(self.params.items()),
+            self.x_eq,
+            self.u_eq,
+            self.dt,
+            self.name,
+        )
 
     def latex(self) -> str:
         rows = [

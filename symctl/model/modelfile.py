@@ -50,12 +50,12 @@ import sympy as sp
 
 from symctl._util.parse import parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
-from symctl.compatibility.delaygraph import DelayGraph
 from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
-from symctl.model.model import Model, chain_graph
+from symctl.model.graphsection import GraphSection, strip_argname
+from symctl.model.model import Model
 from symctl.model.schema import FIELDS
 from symctl.model.source import Source
 from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
@@ -67,13 +67,28 @@ __all__ = ["Model", "load_model", "read_model"]
 
 MAX_PARAMETERS = 200
 """Most parameters of a model file."""
-MAX_VERTICES = 50
-"""Most vertices of a model file's delay graph."""
 MAX_SIM_STEPS = 5000
 """Longest simulation horizon of a model file."""
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
-_RESERVED = {"z", "T_s", "t", "pi", "E", "exp", "log", "sqrt", "sin", "cos", "tan", "tanh",
-             "sinh", "cosh", "atan", "Abs", "logistic"}  # fmt: skip
+_RESERVED = {
+    "z",
+    "T_s",
+    "t",
+    "pi",
+    "E",
+    "exp",
+    "log",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "tanh",
+    "sinh",
+    "cosh",
+    "atan",
+    "Abs",
+    "logistic",
+}
 
 
 def load_model(source) -> Model:
@@ -126,7 +141,7 @@ def read_model(text: str, path: str = "<text>") -> Model:
     return _Reader(Source.from_text(text, path)).model()
 
 
-class _Reader:
+class _Reader(GraphSection):
     """Reads one :class:`Source` into a :class:`Model`, field by field."""
 
     def __init__(self, src: Source):
@@ -149,9 +164,10 @@ class _Reader:
             raise self.fail(where, f"expected text, got {_kind(value)}")
         if ident and (not _IDENT.match(value) or value in _RESERVED or keyword.iskeyword(value)):
             raise self.fail(
-                where, f"{value!r} is not a valid name (a letter, then letters, digits or _, "
+                where,
+                f"{value!r} is not a valid name (a letter, then letters, digits or _, "
                 "at most 40; not a Python keyword, a function name or z, t, T_s)",
-            )  # fmt: skip
+            )
         return value
 
     def number(self, value, where: str, *, positive: bool = False) -> float:
@@ -180,7 +196,7 @@ class _Reader:
         try:
             return parse_expr(value, names, argname=where)
         except SymctlError as exc:
-            raise self.fail(where, _strip(str(exc), where)) from None
+            raise self.fail(where, strip_argname(str(exc), where)) from None
 
     def unit(self, value, where: str) -> Unit | None:
         if value is None:
@@ -190,7 +206,7 @@ class _Reader:
         except SymctlError as exc:
             if isinstance(exc, ModelFileError):
                 raise
-            raise self.fail(where, _strip(str(exc), where)) from None
+            raise self.fail(where, strip_argname(str(exc), where)) from None
 
     def items(self, data, where: str, allowed: str, *, limit: int) -> list[dict]:
         if not isinstance(data, list):
@@ -202,8 +218,9 @@ class _Reader:
     # --------------------------------------------------------------- the model
     def model(self) -> Model:
         d = self.src.data
-        self.src.check_keys(d, FIELDS.keys() - {"parameter", "vertex", "edge", "disturbance",
-                                                "longest_delay"}, "")  # fmt: skip
+        self.src.check_keys(
+            d, FIELDS.keys() - {"parameter", "vertex", "edge", "disturbance", "longest_delay"}, ""
+        )
         meta = self.table(d.get("model", {}), "model", "model")
         if "name" not in meta:
             raise self.fail("model", 'missing the model\'s name; give name = "..."')
@@ -225,9 +242,10 @@ class _Reader:
         da = self.delay(delays.get("actuator", 1), "delays.actuator", Ts)
         if ds + da > PAPER_MAX_DELAY:
             raise self.fail(
-                "delays", f"the derivation takes a net delay of at most {PAPER_MAX_DELAY} steps, "
+                "delays",
+                f"the derivation takes a net delay of at most {PAPER_MAX_DELAY} steps, "
                 f"got {ds} + {da} = {ds + da}",
-            )  # fmt: skip
+            )
         if ds + da == 0:
             raise self.fail("delays", "the net delay sensor + actuator must be at least 1 step")
         cost = self.table(d.get("cost", {}), "cost", "cost")
@@ -239,8 +257,11 @@ class _Reader:
             ("actuator", graph.actuators, plant.m, "input"),
         ):
             if len(ends) not in (1, count):
-                raise self.fail(f"delay_graph.{key}", f"{len(ends)} {key} vertices for {count} "
-                                f"{what}s; give one vertex for all, or one per {what}")  # fmt: skip
+                raise self.fail(
+                    f"delay_graph.{key}",
+                    f"{len(ends)} {key} vertices for {count} "
+                    f"{what}s; give one vertex for all, or one per {what}",
+                )
         circuits = self.table(d.get("circuits", {}), "circuits", "circuits")
         build = self.build(circuits.get("build", list(circuit_names())))
         realizations = self.integer(
@@ -252,11 +273,37 @@ class _Reader:
         disturbance = self.disturbance(sim.get("disturbance", {}), plant, steps)
         longest = self.analysis(d.get("analysis", {}))
         return Model(
-            name, title, description, ode, plant, plant_symbolic, units, descr, outputs, Ts,
-            ds, da, Q, R, graph, vertices, edges, given, build, realizations, seed, steps,
-            disturbance, longest, tuple(self.notes), self.src.path, self.src.text,
-            self.src.lines, about, self.wire_bound(d.get("delay_graph")),
-        )  # fmt: skip
+            name,
+            title,
+            description,
+            ode,
+            plant,
+            plant_symbolic,
+            units,
+            descr,
+            outputs,
+            Ts,
+            ds,
+            da,
+            Q,
+            R,
+            graph,
+            vertices,
+            edges,
+            given,
+            build,
+            realizations,
+            seed,
+            steps,
+            disturbance,
+            longest,
+            tuple(self.notes),
+            self.src.path,
+            self.src.text,
+            self.src.lines,
+            about,
+            self.wire_bound(d.get("delay_graph")),
+        )
 
     def sampling(self, table: dict) -> float:
         if "Ts" not in table:
@@ -339,10 +386,16 @@ class _Reader:
             try:
                 check_rhs(e, sym_units.get(xs[i]), sym_units, f"states[{i}].rhs")
             except SymctlError as exc:
-                raise self.fail(f"states[{i}].rhs", _strip(str(exc), f"states[{i}].rhs")) from None
+                raise self.fail(
+                    f"states[{i}].rhs", strip_argname(str(exc), f"states[{i}].rhs")
+                ) from None
             rhs.append(e)
-        u_eq = [self.equilibrium(u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units)
-                if "equilibrium" in u else sp.Integer(0) for i, u in enumerate(inputs)]  # fmt: skip
+        u_eq = [
+            self.equilibrium(u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units)
+            if "equilibrium" in u
+            else sp.Integer(0)
+            for i, u in enumerate(inputs)
+        ]
         given = [("equilibrium" in s) for s in states]
         if any(given) and not all(given):
             k = given.index(False)
@@ -350,20 +403,37 @@ class _Reader:
                 f"states[{k}]",
                 "give the equilibrium of every state, or of none (then it is solved)",
             )
-        x_eq = [self.equilibrium(s, f"states[{i}]", psyms, sym_units.get(xs[i]), sym_units)
-                for i, s in enumerate(states)] if all(given) else None  # fmt: skip
+        x_eq = (
+            [
+                self.equilibrium(s, f"states[{i}]", psyms, sym_units.get(xs[i]), sym_units)
+                for i, s in enumerate(states)
+            ]
+            if all(given)
+            else None
+        )
         guess = None
         if "guess" in states[0] or any("guess" in s for s in states):
-            guess = [self.number(s.get("guess", 0.0), f"states[{i}].guess")
-                     for i, s in enumerate(states)]  # fmt: skip
+            guess = [
+                self.number(s.get("guess", 0.0), f"states[{i}].guess") for i, s in enumerate(states)
+            ]
         where = "states" if x_eq is None else "states[0].equilibrium"
         try:
-            ode = ODEModel(xs, us, rhs, params, x_eq, u_eq, Ts, guess, name,
-                           {k: str(v) for k, v in units.items()})  # fmt: skip
+            ode = ODEModel(
+                xs,
+                us,
+                rhs,
+                params,
+                x_eq,
+                u_eq,
+                Ts,
+                guess,
+                name,
+                {k: str(v) for k, v in units.items()},
+            )
             plant = ode.plant()
             plant_symbolic = ode.discrete_symbolic()
         except SymctlError as exc:
-            raise self.fail(where, _strip(str(exc), where)) from None
+            raise self.fail(where, strip_argname(str(exc), where)) from None
         return ode, plant, plant_symbolic
 
     def stabilizable(self, plant: DiscretePlant, where: str) -> None:
@@ -383,17 +453,18 @@ class _Reader:
             if sv[n - 1] <= 1e-9 * scale:
                 shown = f"{lam.real:.6g}" if abs(lam.imag) < 1e-12 else f"{lam:.6g}"
                 raise self.fail(
-                    where, f"the plant cannot be stabilized with any delays: its mode "
+                    where,
+                    f"the plant cannot be stabilized with any delays: its mode "
                     f"{shown} (|lambda| >= 1) is not reachable from the inputs (to 1e-9 of "
                     "the plant's scale)",
-                )  # fmt: skip
+                )
 
     def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:
         e = self.expr(item["equilibrium"], f"{where}.equilibrium", psyms)
         try:
             got = unit_of(e, sym_units)
         except SymctlError as exc:
-            raise self.fail(f"{where}.equilibrium", _strip(str(exc), where)) from None
+            raise self.fail(f"{where}.equilibrium", strip_argname(str(exc), where)) from None
         if unit is not None and got is not None and not e.is_Number and got != unit:
             raise self.fail(
                 f"{where}.equilibrium", f"has unit [{got}] but the signal is in [{unit}]"
@@ -421,19 +492,23 @@ class _Reader:
                     raise self.fail("discrete", "give both numerator and denominator")
                 num = self.row(table["numerator"], "discrete.numerator", psyms)
                 den = self.row(table["denominator"], "discrete.denominator", psyms)
-                G = DiscreteTF(sp.Poly(num, z).as_expr().subs(values),
-                               sp.Poly(den, z).as_expr().subs(values), dt=Ts)  # fmt: skip
+                G = DiscreteTF(
+                    sp.Poly(num, z).as_expr().subs(values),
+                    sp.Poly(den, z).as_expr().subs(values),
+                    dt=Ts,
+                )
                 if G.relative_degree is None or G.relative_degree < 1:
                     raise self.fail(
-                        "discrete.numerator", "the plant's transfer function must be strictly "
+                        "discrete.numerator",
+                        "the plant's transfer function must be strictly "
                         "proper (x(t+1) = A x(t) + B u(t) has no direct feedthrough)",
-                    )  # fmt: skip
+                    )
                 Rz = controllable_canonical(G)
                 A, B = Rz.F, Rz.H
         except ModelFileError:
             raise
         except SymctlError as exc:
-            raise self.fail("discrete", _strip(str(exc), "discrete")) from None
+            raise self.fail("discrete", strip_argname(str(exc), "discrete")) from None
         n, m = A.shape[0], B.shape[1] if B.shape[0] else 0
         states = self.signals(d, "states", "states", required=False)
         inputs = self.signals(d, "inputs", "inputs", required=False)
@@ -444,8 +519,11 @@ class _Reader:
                 )
             for i, item in enumerate(items):
                 if "rhs" in item or "equilibrium" in item or "guess" in item:
-                    raise self.fail(f"{kind}[{i}]", "a discrete plant takes names, units and "
-                                    "descriptions only (no rhs or equilibrium)")  # fmt: skip
+                    raise self.fail(
+                        f"{kind}[{i}]",
+                        "a discrete plant takes names, units and "
+                        "descriptions only (no rhs or equilibrium)",
+                    )
                 u = self.unit(item.get("unit"), f"{kind}[{i}].unit")
                 if u is not None:
                     units[item["name"]] = u
@@ -454,12 +532,16 @@ class _Reader:
                 )
         try:
             plant = DiscretePlant(
-                A, B, exact_value(Ts, "Ts"), tuple(s["name"] for s in states),
-                tuple(u["name"] for u in inputs), params={str(k): v for k, v in params.items()},
-            )  # fmt: skip
+                A,
+                B,
+                exact_value(Ts, "Ts"),
+                tuple(s["name"] for s in states),
+                tuple(u["name"] for u in inputs),
+                params={str(k): v for k, v in params.items()},
+            )
             plant.numeric()
         except SymctlError as exc:
-            raise self.fail("discrete", _strip(str(exc), "discrete")) from None
+            raise self.fail("discrete", strip_argname(str(exc), "discrete")) from None
         return None, plant, None
 
     def matrix(self, value, where, names) -> sp.Matrix:
@@ -469,8 +551,12 @@ class _Reader:
             raise self.fail(where, f"rows of one length, at most {MAX_MODEL_STATES} of them")
         if len(value[0]) > MAX_MODEL_STATES or not value[0]:
             raise self.fail(where, f"1 to {MAX_MODEL_STATES} columns")
-        return sp.Matrix([[self.expr(e, f"{where}[{i}][{j}]", names) for j, e in enumerate(r)]
-                          for i, r in enumerate(value)])  # fmt: skip
+        return sp.Matrix(
+            [
+                [self.expr(e, f"{where}[{i}][{j}]", names) for j, e in enumerate(r)]
+                for i, r in enumerate(value)
+            ]
+        )
 
     def row(self, value, where, names) -> list:
         if not isinstance(value, list) or not 1 <= len(value) <= MAX_MODEL_STATES + 1:
@@ -489,12 +575,15 @@ class _Reader:
             name = self.text(item["name"], f"{where}.name", ident=True)
             state = self.text(item.get("state", name), f"{where}.state")
             if state not in self.names:
-                raise self.fail(f"{where}.state", f"{state!r} is not a state; the states are "
-                                f"{', '.join(self.names)}")  # fmt: skip
+                raise self.fail(
+                    f"{where}.state",
+                    f"{state!r} is not a state; the states are {', '.join(self.names)}",
+                )
             u = self.unit(item.get("unit"), f"{where}.unit")
             if u is not None and state in units and units[state] != u:
-                raise self.fail(f"{where}.unit", f"[{u}] contradicts the unit [{units[state]}] "
-                                f"of state {state}")  # fmt: skip
+                raise self.fail(
+                    f"{where}.unit", f"[{u}] contradicts the unit [{units[state]}] of state {state}"
+                )
             descr.setdefault(name, self.text(item.get("description", ""), f"{where}.description"))
             out.append((name, state))
         missing = [s for s in self.names if s not in {st for _, st in out}]
@@ -542,94 +631,8 @@ class _Reader:
         try:
             psd_matrix(M, where, size, definite=definite)
         except SymctlError as exc:
-            raise self.fail(where, _strip(str(exc), where)) from None
+            raise self.fail(where, strip_argname(str(exc), where)) from None
         return sp.ImmutableMatrix(M)
-
-    def graph(self, data, delays: tuple[int, int], Ts: float):
-        if data is None:
-            # the chain of the delays, one vertex per step; a side without delay keeps an edge
-            # of 0 steps, so the controller's own vertex (after the sensor-side steps) exists
-            return (*chain_graph(*delays), False, {})
-        table = self.table(data, "delay_graph", "delay_graph")
-        if "vertices" not in table:
-            raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")
-        vs = self.items(table["vertices"], "delay_graph.vertices", "vertex", limit=MAX_VERTICES)
-        names, about = [], {}
-        for i, v in enumerate(vs):
-            if "name" not in v:
-                raise self.fail(f"delay_graph.vertices[{i}]", "missing name")
-            n = self.text(v["name"], f"delay_graph.vertices[{i}].name", ident=True)
-            if n in names:
-                raise self.fail(f"delay_graph.vertices[{i}].name", f"{n!r} appears twice")
-            names.append(n)
-            if "description" in v:
-                about[n] = self.text(v["description"], f"delay_graph.vertices[{i}].description")
-        if len(names) < 2:
-            raise self.fail("delay_graph.vertices", "needs at least 2 vertices")
-        sensors = self.ends(table.get("sensor", names[0]), "delay_graph.sensor", names)
-        actuators = self.ends(table.get("actuator", names[-1]), "delay_graph.actuator", names)
-        both = set(sensors) & set(actuators)
-        if both:
-            raise self.fail("delay_graph.actuator", f"{sorted(both)[0]!r} is both a sensor and "
-                            "an actuator vertex")  # fmt: skip
-        ends = (*sensors, *actuators)
-        order = [*sensors, *[n for n in names if n not in ends], *actuators]
-        es = self.items(table.get("edges", []), "delay_graph.edges", "edge", limit=MAX_VERTICES**2)
-        edges = []
-        for i, e in enumerate(es):
-            where = f"delay_graph.edges[{i}]"
-            for key in ("from", "to"):
-                if key not in e:
-                    raise self.fail(where, f"missing {key}")
-                if self.text(e[key], f"{where}.{key}") not in names:
-                    raise self.fail(f"{where}.{key}", f"{e[key]!r} is not a vertex")
-            if ("steps" in e) == ("seconds" in e):
-                raise self.fail(where, "give one of steps or seconds")
-            d = self.delay({k: e[k] for k in ("steps", "seconds") if k in e}, where, Ts)
-            if e["from"] == e["to"]:
-                raise self.fail(where, "an edge from a vertex to itself")
-            edges.append((e["from"], e["to"], d))
-        index = {n: k + 1 for k, n in enumerate(order)}
-        n = len(order)
-        try:
-            graph = DelayGraph.from_edges(
-                n,
-                [(index[a], index[b], d) for a, b, d in edges],
-                sensors=[index[v] for v in sensors],
-                actuators=[index[v] for v in actuators],
-            )
-        except SymctlError as exc:
-            problem = re.sub(r"\bv(\d+)\b", lambda m: repr(order[int(m.group(1)) - 1]),
-                             _strip(str(exc), "E"))  # fmt: skip
-            raise self.fail("delay_graph.edges", problem) from None
-        for a in sensors:
-            for b in actuators:
-                if math.isinf(graph.E[index[a] - 1, index[b] - 1]):
-                    raise self.fail("delay_graph.edges", f"no path from the sensor {a!r} to the "
-                                    f"actuator {b!r}")  # fmt: skip
-        return graph, tuple(order), tuple(edges), True, about
-
-    def wire_bound(self, data) -> int | None:
-        """``[delay_graph] max_wire_delay``: the most steps of one wire (None: any)."""
-        if not isinstance(data, dict) or "max_wire_delay" not in data:
-            return None
-        return self.integer(data["max_wire_delay"], "delay_graph.max_wire_delay", 1, 100_000)
-
-    def ends(self, value, where: str, names: list) -> tuple[str, ...]:
-        """A sensor or actuator entry: one vertex name, or a list of them (one per channel)."""
-        values = value if isinstance(value, list) else [value]
-        if not values:
-            raise self.fail(where, "expected a vertex or a list of vertices, got an empty list")
-        out = []
-        for k, v in enumerate(values):
-            at = where if not isinstance(value, list) else f"{where}[{k}]"
-            v = self.text(v, at)
-            if v not in names:
-                raise self.fail(at, f"{v!r} is not a vertex; the vertices are {', '.join(names)}")
-            if v in out:
-                raise self.fail(at, f"{v!r} appears twice")
-            out.append(v)
-        return tuple(out)
 
     def build(self, value) -> tuple:
         kinds = circuit_names()
@@ -649,8 +652,10 @@ class _Reader:
             raise self.fail(f"{where}.state", "expected a state or a list of states")
         for s in chosen:
             if not isinstance(s, str) or s not in self.names:
-                raise self.fail(f"{where}.state", f"{s!r} is not a state; the states are "
-                                f"{', '.join(self.names)}")  # fmt: skip
+                raise self.fail(
+                    f"{where}.state",
+                    f"{s!r} is not a state; the states are {', '.join(self.names)}",
+                )
         amplitude = float(self.number(table.get("amplitude", 1.0), f"{where}.amplitude"))
         start = self.integer(table.get("start", 5), f"{where}.start", 0, steps - 1)
         length = self.integer(table.get("length", 10), f"{where}.length", 1, steps - start)
@@ -666,8 +671,11 @@ class _Reader:
             value = {}
         value = self.table(value, "analysis.longest_delay", "longest_delay")
         top = self.integer(value.get("max", PAPER_MAX_DELAY), "analysis.longest_delay.max", 1, 200)
-        tol = float(self.number(value.get("tolerance", 0.01), "analysis.longest_delay.tolerance",
-                                positive=True))  # fmt: skip
+        tol = float(
+            self.number(
+                value.get("tolerance", 0.01), "analysis.longest_delay.tolerance", positive=True
+            )
+        )
         return top, tol
 
 
@@ -679,9 +687,3 @@ def _kind(value) -> str:
     if isinstance(value, str):
         return f"text {value!r}" if len(value) <= 40 else "text"
     return f"{type(value).__name__} {value!r}"
-
-
-def _strip(message: str, where: str) -> str:
-    """A symctl error's message without a leading ``argname:`` (the field is named already)."""
-    head, sep, rest = message.partition(": ")
-    return rest if sep and (head == where or " " not in head) else message

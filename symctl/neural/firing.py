@@ -274,10 +274,12 @@ class FiringPatterns(ArrayValue, DictMixin):
             vals = tr[np.arange(self.count), idx]
             peak[ok, k] = vals[ok]
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
-        trace = np.array([
-            float(np.nanmax(np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0)))
-            for n in names
-        ])  # fmt: skip
+        trace = np.array(
+            [
+                float(np.nanmax(np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0)))
+                for n in names
+            ]
+        )
         behaviour = max(
             float(np.max(np.abs(self.delta_f - self.delta_f[0]))),
             float(np.max(np.abs(self.delta_r - self.delta_r[0]))),
@@ -654,9 +656,10 @@ def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
         dev = max(
             _deviation(res.delta_f, ref.delta_f),
             _deviation(res.delta_r, ref.delta_r),
-            _deviation(traces.pop("output"), ref.delta_r if ref.delta_r.shape[1] > 1
-                       else ref.delta_r[:, 0]),
-        )  # fmt: skip
+            _deviation(
+                traces.pop("output"), ref.delta_r if ref.delta_r.shape[1] > 1 else ref.delta_r[:, 0]
+            ),
+        )
         if not dev <= rtol:
             raise ParameterError(
                 f"plant: realization {i} ({kind}) departs from the optimal controller's closed "
@@ -665,9 +668,10 @@ def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
             )
         worst = max(worst, dev)
         keep = {
-            n.name for n in circuit.neurons
+            n.name
+            for n in circuit.neurons
             if _whole(kind) or n.part == "G2" or n.part.endswith(".G2")
-        }  # fmt: skip
+        }
         out.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
     names: list[str] = []
     for *_, traces in out:

@@ -143,9 +143,15 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
         for name in (
-            "amplitudes", "t", "x_linear", "x_nonlinear", "u_nonlinear", "max_deviation",
-            "relative_deviation", "final_deviation",
-        ):  # fmt: skip
+            "amplitudes",
+            "t",
+            "x_linear",
+            "x_nonlinear",
+            "u_nonlinear",
+            "max_deviation",
+            "relative_deviation",
+            "final_deviation",
+        ):
             object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     @property
@@ -341,8 +347,12 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
         with np.errstate(over="ignore", invalid="ignore"):  # checked just below
             sol = scipy.integrate.solve_ivp(
                 lambda _t, y, u=u: model.rhs_numeric(y.reshape(k, n).T, u.T).T.ravel(),
-                (0.0, Ts), x.ravel(), rtol=rtol, atol=rtol * scale, **options,
-            )  # fmt: skip
+                (0.0, Ts),
+                x.ravel(),
+                rtol=rtol,
+                atol=rtol * scale,
+                **options,
+            )
         y = sol.y[:, -1].reshape(k, n) if sol.success else np.full((k, n), np.nan)
         bad = ~np.all(np.isfinite(y), axis=1) & alive
         if np.any(bad):
@@ -474,9 +484,16 @@ def longest_delay(
     for T in range(1, max_delay + 1):
         gains = lqr_gains(augment(plant, 0, T, Q=Q, R=R))
         chk = nonlinear_check(
-            ode, gains, [amplitude], steps=steps, start=start, length=length,
-            disturbance=disturbance, fail="mark", rtol=1e-8,
-        )  # fmt: skip
+            ode,
+            gains,
+            [amplitude],
+            steps=steps,
+            start=start,
+            length=length,
+            disturbance=disturbance,
+            fail="mark",
+            rtol=1e-8,
+        )
         final = float(chk.final_deviation[0])
         delays.append(T)
         finals.append(final)
@@ -485,6 +502,10 @@ def longest_delay(
             break
     good = [T for T, ok in zip(delays, oks, strict=True) if ok]
     return DelaySearch(
-        tuple(delays), tuple(finals), tuple(oks), max(good) if good else None, tolerance,
+        tuple(delays),
+        tuple(finals),
+        tuple(oks),
+        max(good) if good else None,
+        tolerance,
         not all(oks),
-    )  # fmt: skip
+    )

@@ -605,9 +605,13 @@ def closed_loop_response(
             plant = as_plant(plant)
             same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
             return simulate_realization(
-                plant, _as_realization(controller), disturbance,
-                steps=steps, start=start, length=length,
-            )  # fmt: skip
+                plant,
+                _as_realization(controller),
+                disturbance,
+                steps=steps,
+                start=start,
+                length=length,
+            )
         s = controller.system
         p, n, m = s.plant, s.n, s.m
         Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ controller.K

@@ -64,8 +64,9 @@ def _window(t: np.ndarray, traces) -> float | None:
     return None if end >= t[0] + 0.8 * span else end
 
 
-def fit_plot(result: FitResult, ncols: int = 3, *, title: str | None = None,
-             size: str | float = "text") -> Figure:  # fmt: skip
+def fit_plot(
+    result: FitResult, ncols: int = 3, *, title: str | None = None, size: str | float = "text"
+) -> Figure:
     """One panel per neuron: data and fit (recorded), prediction and its band (unrecorded).
 
     Parameters
@@ -113,13 +114,21 @@ def fit_plot(result: FitResult, ncols: int = 3, *, title: str | None = None,
                 used.update((0, 1))
             else:
                 ok = bool(result.neuron_identifiable[name])
-                ax.plot(t, pred[name], color=pred_c if ok else lost_c, lw=1.0,
-                        drawstyle="steps-post")  # fmt: skip
+                ax.plot(
+                    t, pred[name], color=pred_c if ok else lost_c, lw=1.0, drawstyle="steps-post"
+                )
                 used.add(2 if ok else 4)
                 if ok and np.all(np.isfinite(band[name])):
                     used.add(3)
-                    ax.fill_between(t, pred[name] - band[name], pred[name] + band[name],
-                                    color=pred_c, alpha=0.3, lw=0, step="post")  # fmt: skip
+                    ax.fill_between(
+                        t,
+                        pred[name] - band[name],
+                        pred[name] + band[name],
+                        color=pred_c,
+                        alpha=0.3,
+                        lw=0,
+                        step="post",
+                    )
                 head = "predicted" if ok else "predicted; not identifiable"
             ax.set_title(f"{_neuron_tex(name)} ({head})", fontsize=style.SMALL, pad=2)
             ax.axhline(0, color="black", lw=0.5)

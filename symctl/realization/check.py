@@ -519,9 +519,10 @@ def _similarity_holds(R: Realization, base: Realization, P) -> bool:
 
     def same(A, B):
         return all(
-            a[0] * b[1] == b[0] * a[1] for ra, rb in zip(A, B, strict=True)
+            a[0] * b[1] == b[0] * a[1]
+            for ra, rb in zip(A, B, strict=True)
             for a, b in zip(ra, rb, strict=True)
-        )  # fmt: skip
+        )
 
     if R.n and sp.Matrix(P).det(method="bareiss") == 0:
         return False

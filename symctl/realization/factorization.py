@@ -189,10 +189,11 @@ class Factorization(DictMixin, LatexMixin):
         return tuple(
             _sections(e, c, self.G.dt)
             for e, c in zip(
-                channel_sections(eps, count, channels), channel_sections(cs, count, channels),
+                channel_sections(eps, count, channels),
+                channel_sections(cs, count, channels),
                 strict=True,
             )
-        )  # fmt: skip
+        )
 
     @property
     def N(self) -> sp.Expr:
@@ -542,7 +543,7 @@ def _factor_mimo(tf: DiscreteTF, ds: int, da: int, eps, C) -> Factorization:
     G2 = mimo_G2(tf, e1, c1, e3, c3, ds, da)
     return Factorization(
         tf, diagonal(tuple(g1), tf.dt), G2, diagonal(tuple(g3), tf.dt), e1, c1, e3, c3, (m, p)
-    )  # fmt: skip
+    )
 
 
 def _fmpq(value: sp.Rational) -> fmpq:

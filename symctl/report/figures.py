@@ -311,8 +311,14 @@ def _structure_figure(res, rec, circuit: str, names):
     if where is None and verdict.ok is False:
         title = "; ".join(t for t in (title, "not compatible (no vertex bands)") if t)
         title = title[:1].upper() + title[1:]  # a heading of its own starts with a capital
-    return S.draw(title=title, overview="auto", max_signals=MAX_DRAWN_SIGNALS,
-                  assignment=where, vertex_names=names, labels=_end_labels(res, S))  # fmt: skip
+    return S.draw(
+        title=title,
+        overview="auto",
+        max_signals=MAX_DRAWN_SIGNALS,
+        assignment=where,
+        vertex_names=names,
+        labels=_end_labels(res, S),
+    )
 
 
 def _g1g3_figure(factors):

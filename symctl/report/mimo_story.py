@@ -52,8 +52,12 @@ def factorization(res) -> list[DocumentBlock]:
     if MV.show_matrix("N_2(z)", N2).full:
         entries = [("N_2(z)", N2)]
     else:  # too wide for the line: each entry in descending powers of z, broken over lines
-        entries = [(rf"(N_2)_{{{i + 1}{j + 1}}}", descending_latex(N2[i, j]))
-                   for i in range(N2.rows) for j in range(N2.cols) if N2[i, j] != 0]  # fmt: skip
+        entries = [
+            (rf"(N_2)_{{{i + 1}{j + 1}}}", descending_latex(N2[i, j]))
+            for i in range(N2.rows)
+            for j in range(N2.cols)
+            if N2[i, j] != 0
+        ]
     blocks += _eq(
         ("G_2(z)", r"\frac{1}{d(z)}\, N_2(z)"),
         ("d(z)", descending_latex(f.G2.den)),

@@ -95,8 +95,13 @@ def names_tex(names) -> str:
 def _is_paper(spec) -> bool:
     """Whether the model is the paper's muscle (the preset's equations; its numbers may differ)."""
     preset = muscle()
-    return (spec.name == preset.name and spec.ode is not None and preset.ode is not None
-            and spec.ode.rhs == preset.ode.rhs and spec.ode.x_eq == preset.ode.x_eq)  # fmt: skip
+    return (
+        spec.name == preset.name
+        and spec.ode is not None
+        and preset.ode is not None
+        and spec.ode.rhs == preset.ode.rhs
+        and spec.ode.x_eq == preset.ode.x_eq
+    )
 
 
 _PAPER_SECTION = cite("Sec.", "simulations")
@@ -120,8 +125,13 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
         for sym, value in spec.ode.params.items():
             what = spec.descriptions.get(sym.name) or "parameter"
             v = float(value)
-            rows.append((f"{what} ${_sym(sym.name)}$", f"{v:g}{unit_text(spec.unit(sym.name), v)}",
-                         _source(paper and hasattr(PAPER, sym.name), sym.name, v)))  # fmt: skip
+            rows.append(
+                (
+                    f"{what} ${_sym(sym.name)}$",
+                    f"{v:g}{unit_text(spec.unit(sym.name), v)}",
+                    _source(paper and hasattr(PAPER, sym.name), sym.name, v),
+                )
+            )
     ds, da = params["sensor_delay"], params["actuator_delay"]
     delays = (
         counted(ds, "step") + " each"
@@ -142,26 +152,41 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
     rows += [
         ("sampling time $T_s$", f"{params['Ts']:g} s", _source(paper, "Ts", params["Ts"])),
         ("sensor delay $d_s$, actuator delay $d_a$", delays, delay_source),
-        ("cost weights $Q$, $R$", f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
-         none),
-        ("pulse disturbance on " + hit, f"{amplitude:g}{unit} per step, steps {start} to "
-         f"{start + length - 1} of {spec.steps}",
-         f"{ours} ({cite()}: a unit pulse)" if paper else "model file"),
-    ]  # fmt: skip
+        (
+            "cost weights $Q$, $R$",
+            f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
+            none,
+        ),
+        (
+            "pulse disturbance on " + hit,
+            f"{amplitude:g}{unit} per step, steps {start} to {start + length - 1} of {spec.steps}",
+            f"{ours} ({cite()}: a unit pulse)" if paper else "model file",
+        ),
+    ]
     if getattr(res, "factors", None) is not None:
         lo, hi = -_EPS_MAX / _EPS_GRID, _EPS_MAX / _EPS_GRID
         rows += [
-            ("section gains $C$ of $G_1$, $G_3$ in the simulations", "1",
-             f"{ours} ({cite()}: any $C \\ne 0$)" if paper else "symctl"),
-            ("section poles $\\epsilon$ of the random realizations",
-             f"uniform on $[{lo:g}, {hi:g}]$, step ${1 / _EPS_GRID:g}$",
-             f"{ours} ({cite()}: random)" if paper else "symctl"),
-            ("$P$ of the random general realization", "entries $N(0, 1)$ to 0.01, well "
-             "conditioned", f"{ours} ({cite()}: random, full rank)" if paper else "symctl"),
-            ("random realizations per circuit, their seed",
-             f"{spec.realizations}, seed {params['seed']}",
-             f"{ours} ({cite()} shows 4, 3, 2)" if paper else "model file"),
-        ]  # fmt: skip
+            (
+                "section gains $C$ of $G_1$, $G_3$ in the simulations",
+                "1",
+                f"{ours} ({cite()}: any $C \\ne 0$)" if paper else "symctl",
+            ),
+            (
+                "section poles $\\epsilon$ of the random realizations",
+                f"uniform on $[{lo:g}, {hi:g}]$, step ${1 / _EPS_GRID:g}$",
+                f"{ours} ({cite()}: random)" if paper else "symctl",
+            ),
+            (
+                "$P$ of the random general realization",
+                "entries $N(0, 1)$ to 0.01, well conditioned",
+                f"{ours} ({cite()}: random, full rank)" if paper else "symctl",
+            ),
+            (
+                "random realizations per circuit, their seed",
+                f"{spec.realizations}, seed {params['seed']}",
+                f"{ours} ({cite()} shows 4, 3, 2)" if paper else "model file",
+            ),
+        ]
     return rows
 
 
@@ -174,8 +199,11 @@ def opening(res, figure) -> list[DocumentBlock]:
     ode = spec.ode
     paper = _is_paper(spec)
     where = f" ({spec.path})" if spec.path and not spec.path.startswith("muscle preset") else ""
-    model = (f"the paper's muscle {cite('Sec.', 'problem_setup')}" if paper
-             else f"the model {spec.name!r}{where}")  # fmt: skip
+    model = (
+        f"the paper's muscle {cite('Sec.', 'problem_setup')}"
+        if paper
+        else f"the model {spec.name!r}{where}"
+    )
     sources = (
         "the paper's numbers are those of its Sec. VI; it states no cost weights and draws its "
         "realizations at random without saying how, so those numbers are ours"
@@ -206,8 +234,12 @@ def opening(res, figure) -> list[DocumentBlock]:
         blocks.append(Text(spec.description))
     if paper:
         which = cite("Sec.", "problem_setup")
-        blocks.append(Text(f"It is the model of {cite('Eq.', 'muscle')}, with the activation "
-                           f"parameters $D_0 = 0$, $D_1 = 1$ of {which}."))  # fmt: skip
+        blocks.append(
+            Text(
+                f"It is the model of {cite('Eq.', 'muscle')}, with the activation "
+                f"parameters $D_0 = 0$, $D_1 = 1$ of {which}."
+            )
+        )
     xs, us = res.names
     signals = tuple(
         (
@@ -337,16 +369,22 @@ def theorem(res) -> list[DocumentBlock]:
         return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
     if verdict.method.startswith("theorem 3"):
         rows = tuple(
-            (part.label, r" $\to$ ".join(vertex(v) for v in part.path),
-             ", ".join(map(str, part.delays)), str(part.delay))
+            (
+                part.label,
+                r" $\to$ ".join(vertex(v) for v in part.path),
+                ", ".join(map(str, part.delays)),
+                str(part.delay),
+            )
             for part in verdict.parts
-        )  # fmt: skip
+        )
         return [
-            Text(head + " Here it holds; symctl built such a structure, each entry as "
-                 "$G_3 G_2 G_1$ along its own path (it proves existence; the circuits below "
-                 "share their interneurons):"),
+            Text(
+                head + " Here it holds; symctl built such a structure, each entry as "
+                "$G_3 G_2 G_1$ along its own path (it proves existence; the circuits below "
+                "share their interneurons):"
+            ),
             Table(("entry", "path", "edge delays [steps]", "delay"), rows),
-        ]  # fmt: skip
+        ]
     rows = tuple(
         (
             str(k + 1),

@@ -239,8 +239,11 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     whole = _both(res.G_symbolic, G_num.expr.evalf(6))
     long_G = not _fits("G(z)", whole)
-    put(_tf_long("G(z)", res.G_symbolic, G_num, label="eq:G") if long_G
-        else _eq(("G(z)", whole), label="eq:G"))  # fmt: skip
+    put(
+        _tf_long("G(z)", res.G_symbolic, G_num, label="eq:G")
+        if long_G
+        else _eq(("G(z)", whole), label="eq:G")
+    )
     add(
         Text(
             "Proved: "
@@ -252,8 +255,13 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
-    put(figure("closed_loop", "Closed loop of the optimal delayed controller: response to a "
-                              f"unit pulse disturbance on {hit} (as in {like})."))  # fmt: skip
+    put(
+        figure(
+            "closed_loop",
+            "Closed loop of the optimal delayed controller: response to a "
+            f"unit pulse disturbance on {hit} (as in {like}).",
+        )
+    )
     if f is None:
         put(MS.skipped(res))
         put(figure("delay_graph", _GRAPH_CAPTION))
@@ -289,8 +297,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         c = _remainder_symbols(f_coeffs)
         remainder = descending_latex(_remainder_poly(c))
         named_den = []  # the row defining the denominator's name, where it is first used
-        if not (_fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
-                and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")):  # fmt: skip
+        if not (
+            _fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
+            and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")
+        ):
             same = f.G2.den_coeffs() == res.G_symbolic.den_coeffs()
             named_den = [] if long_G and same else [("a(z)" if same else "d(z)", den)]
             den = "a(z)" if same else "d(z)"
@@ -385,8 +395,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     spec = res.spec
     if spec.graph_given:
         named = ", ".join(f"v{i + 1} = {v.replace('_', ' ')}" for i, v in enumerate(spec.vertices))
-        edges = "; ".join(f"{a.replace('_', ' ')} to {b.replace('_', ' ')}: {d}"
-                          for a, b, d in spec.edges)  # fmt: skip
+        edges = "; ".join(
+            f"{a.replace('_', ' ')} to {b.replace('_', ' ')}: {d}" for a, b, d in spec.edges
+        )
         graph_text = (
             f"The delay graph is the model file's: {res.graph.n} vertices ({named}; the sensor "
             f"first, the actuator last) and edges with their delays in steps ({edges})"
@@ -450,8 +461,15 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     add(
         Table(
-            ("circuit", "neurons", "of them in $G_2$", "synapses", "compatible",
-             "realizations", "max. deviation"),
+            (
+                "circuit",
+                "neurons",
+                "of them in $G_2$",
+                "synapses",
+                "compatible",
+                "realizations",
+                "max. deviation",
+            ),
             tuple(
                 (
                     _title(k),
@@ -465,7 +483,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                 for k, c in res.circuits.items()
             ),
         )
-    )  # fmt: skip
+    )
     for name, crec in res.circuits.items():
         add(Heading(_title(name), 2))
         if _is(name, "takes_transform") and crec.circuit.free_symbols - set(f.G.free_symbols):
@@ -476,13 +494,21 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             add(Text("The neurons, their self-dynamics and synapses:"))
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
         put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
-        placed = [f"${signal_tex(n.name)}$ at $v_{{{n.vertex}}}$" for n in crec.circuit.neurons
-                  if n.vertex]  # fmt: skip
+        placed = [
+            f"${signal_tex(n.name)}$ at $v_{{{n.vertex}}}$"
+            for n in crec.circuit.neurons
+            if n.vertex
+        ]
         if placed:
             add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        put(figure(f"circuit_{name}", f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
-                                      "circles with their self-dynamics, synapses as arrows with "
-                                      f"weights{_PAPER_CIRCUIT.get(name, '')}."))  # fmt: skip
+        put(
+            figure(
+                f"circuit_{name}",
+                f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
+                "circles with their self-dynamics, synapses as arrows with "
+                f"weights{_PAPER_CIRCUIT.get(name, '')}.",
+            )
+        )
 
     # 10. simulations
     add(Heading("Simulations: the same behaviour, different firing"))
@@ -499,9 +525,14 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         fp = crec.firing
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
-        put(figure(f"firing_{name}", f"Firing of the neurons, {_title(name)}: "
-                                     f"{MS.counted(fp.count, 'realization')}, the same {x0} "
-                                     f"traces{_PAPER_FIRING.get(name, '')}."))  # fmt: skip
+        put(
+            figure(
+                f"firing_{name}",
+                f"Firing of the neurons, {_title(name)}: "
+                f"{MS.counted(fp.count, 'realization')}, the same {x0} "
+                f"traces{_PAPER_FIRING.get(name, '')}.",
+            )
+        )
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
     if res.atlas is not None:
@@ -528,9 +559,12 @@ def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
     args = ", ".join(_range_tex(g) for g in groups if g)
     rows = [
         (r"\sigma_k", rf"e_k\left({args}\right),\ k = 1, \dots, {d}"),
-        (None, r"\qquad \text{(so that } \prod (z - \epsilon) = "
-               rf"\sum_{{k=0}}^{{{d}}} (-1)^k \sigma_k\, z^{{{d}-k}},\ \sigma_0 = 1)"),
-    ]  # fmt: skip
+        (
+            None,
+            r"\qquad \text{(so that } \prod (z - \epsilon) = "
+            rf"\sum_{{k=0}}^{{{d}}} (-1)^k \sigma_k\, z^{{{d}-k}},\ \sigma_0 = 1)",
+        ),
+    ]
     return N, c, rows
 
 
@@ -557,9 +591,16 @@ def _firing_table(fp) -> list[DocumentBlock]:
         head = ("neuron", *(f"#{i + 1}" for i in range(shown)), "spread")
         if 0.75 * LF.table_width(head, rows) <= LF.TABLE_WIDTH or shown == 1:
             break
-    note = [] if shown == fp.count else [Text(
-        f"The first {shown} of the {fp.count} realizations (all of them in results.json, "
-        "peak_firing); the spread is over all of them:")]  # fmt: skip
+    note = (
+        []
+        if shown == fp.count
+        else [
+            Text(
+                f"The first {shown} of the {fp.count} realizations (all of them in results.json, "
+                "peak_firing); the spread is over all of them:"
+            )
+        ]
+    )
     return [*note, Table(head, rows)]
 
 

@@ -74,9 +74,12 @@ def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
     h = 1e-6
     x0, u0 = np.zeros((2, 1)), np.zeros((1, 1))
     fd_a = np.column_stack(
-        [(m.rhs_numeric(x0 + h * e[:, None], u0) - m.rhs_numeric(x0 - h * e[:, None], u0))[:, 0]
-         / (2 * h) for e in np.eye(2)]
-    )  # fmt: skip
+        [
+            (m.rhs_numeric(x0 + h * e[:, None], u0) - m.rhs_numeric(x0 - h * e[:, None], u0))[:, 0]
+            / (2 * h)
+            for e in np.eye(2)
+        ]
+    )
     fd_b = (m.rhs_numeric(x0, u0 + h) - m.rhs_numeric(x0, u0 - h))[:, :1] / (2 * h)
     np.testing.assert_allclose(an, fd_a, atol=1e-8)
     np.testing.assert_allclose(bn, fd_b, atol=1e-8)
@@ -85,8 +88,11 @@ def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
 @pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(
-    st.floats(0.1, 5.0), st.floats(0.05, 3.0), st.floats(-2.0, 2.0), st.floats(0.001, 0.2),
-)  # fmt: skip
+    st.floats(0.1, 5.0),
+    st.floats(0.05, 3.0),
+    st.floats(-2.0, 2.0),
+    st.floats(0.001, 0.2),
+)
 def test_the_zero_order_hold_matches_scipy_cont2discrete(kv, cv, ue, ts):
     m = ODEModel([x, v], [u], [v, -k * x - c * v + u], {k: kv, c: cv}, u_eq=[ue], dt=ts)
     a, b = m.linearize_symbolic()
@@ -147,8 +153,12 @@ def test_a_run_away_plant_is_marked_not_raised_when_asked():
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.lists(st.sampled_from(["N", "m", "s", "kg", "spikes", "rad", "ms", "Hz"]), min_size=1,
-                max_size=4), st.lists(st.integers(-3, 3), min_size=4, max_size=4))  # fmt: skip
+@given(
+    st.lists(
+        st.sampled_from(["N", "m", "s", "kg", "spikes", "rad", "ms", "Hz"]), min_size=1, max_size=4
+    ),
+    st.lists(st.integers(-3, 3), min_size=4, max_size=4),
+)
 def test_units_multiply_as_their_text_does(names, powers):
     text = "*".join(f"{n}**({p})" for n, p in zip(names, powers, strict=False))
     whole = parse_unit(text, "u")

@@ -127,8 +127,10 @@ def test_fitted_realization_agrees_with_scipy_dlsim(hidden):
     from scipy.signal import dlsim
 
     res = fit(hidden.select(["G1.x1", "G2.x1"]).traces, GAINS, **KW, C=1, starts=2, steps=STEPS)
-    F, H, M, N = (np.array(m, dtype=float) for m in (res.realization.F, res.realization.H,
-                                                      res.realization.M, res.realization.N))  # fmt: skip
+    F, H, M, N = (
+        np.array(m, dtype=float)
+        for m in (res.realization.F, res.realization.H, res.realization.M, res.realization.N)
+    )
     u = closed_loop_response(GAINS, steps=STEPS).delta_f[:, 0]
     _, y, x = dlsim((F, H, M, N, 0.01), u)
     assert np.max(np.abs(y[:, 0] - res.predict()["G3.x1"])) < 1e-12
@@ -147,8 +149,15 @@ def test_every_fitted_realization_realizes_G_exactly(seed, recorded, circuit, no
     data = synthetic_traces(GAINS, **KW, rng=seed, steps=30, noise=noise)
     if circuit == "controllable":
         recorded = recorded - {"G2.x1"} or {"G2.y"}
-    res = fit(data.select(sorted(recorded)).traces, GAINS, **KW, circuit=circuit, starts=2,
-              rng=seed, steps=30)  # fmt: skip
+    res = fit(
+        data.select(sorted(recorded)).traces,
+        GAINS,
+        **KW,
+        circuit=circuit,
+        starts=2,
+        rng=seed,
+        steps=30,
+    )
     assert res.exact and bool(check_realization(res.realization, G, "exact"))
     assert all(isinstance(v, sp.Rational) for v in res.params.values())
 
@@ -170,16 +179,30 @@ def test_unidentifiable_parameters_have_no_standard_error(hidden):
 
 
 def test_across_classes_the_best_fit_is_kept(hidden):
-    res = fit(hidden.select(["G2.x1", "G2.y"]).traces, GAINS, **KW, circuit=["observable", "general"],
-              C=1, starts=2, steps=STEPS)  # fmt: skip
+    res = fit(
+        hidden.select(["G2.x1", "G2.y"]).traces,
+        GAINS,
+        **KW,
+        circuit=["observable", "general"],
+        C=1,
+        starts=2,
+        steps=STEPS,
+    )
     assert res.circuit_class == "general" == res.alternatives[0][0]
     assert len(res.alternatives) == 2 and res.alternatives[0][1] <= res.alternatives[1][1]
 
 
 @pytest.mark.slow
 def test_all_classes_skip_those_that_cannot_take_the_data(hidden):
-    res = fit(hidden.select(["G2.x1", "G2.y"]).traces, GAINS, **KW, circuit="all", C=1, starts=2,
-              steps=STEPS)  # fmt: skip
+    res = fit(
+        hidden.select(["G2.x1", "G2.y"]).traces,
+        GAINS,
+        **KW,
+        circuit="all",
+        C=1,
+        starts=2,
+        steps=STEPS,
+    )
     skipped = dict(res.skipped)
     assert "controllable" in skipped and "no such neuron" in skipped["controllable"]
     fitted = {a[0] for a in res.alternatives}
@@ -189,8 +212,15 @@ def test_all_classes_skip_those_that_cannot_take_the_data(hidden):
 
 
 def test_dale_signs_hold_on_the_fitted_circuit(hidden):
-    res = fit(hidden.select(["G2.y", "G1.x1"]).traces, GAINS, **KW, C=1, starts=4,
-              signs={"G2.x1": "+", "G2.x2": "-"}, steps=STEPS)  # fmt: skip
+    res = fit(
+        hidden.select(["G2.y", "G1.x1"]).traces,
+        GAINS,
+        **KW,
+        C=1,
+        starts=4,
+        signs={"G2.x1": "+", "G2.x2": "-"},
+        steps=STEPS,
+    )
     assert all(sp.sign(s.weight) > 0 for s in res.circuit.neuron("G2.x1").axon)
     assert all(sp.sign(s.weight) < 0 for s in res.circuit.neuron("G2.x2").axon)
 
@@ -199,8 +229,15 @@ def test_dale_signs_hold_on_the_fitted_circuit(hidden):
 def test_two_excitatory_state_neurons_are_impossible_with_complex_poles(hidden):
     # F12 F21 > 0 makes F's eigenvalues real; the paper's controller has complex poles
     with pytest.raises(ParameterError, match="no start of 2 gave a circuit that meets the signs"):
-        fit(hidden.select(["G2.y", "G1.x1"]).traces, GAINS, **KW, C=1, starts=2,
-            signs={"G2.x1": "+", "G2.x2": "+"}, steps=STEPS)  # fmt: skip
+        fit(
+            hidden.select(["G2.y", "G1.x1"]).traces,
+            GAINS,
+            **KW,
+            C=1,
+            starts=2,
+            signs={"G2.x1": "+", "G2.x2": "+"},
+            steps=STEPS,
+        )
     with pytest.raises(ParameterError, match=r"signs\['G2.x7'\]: no such neuron"):
         fit(hidden.select(["G2.y"]).traces, GAINS, **KW, signs={"G2.x7": "+"}, steps=STEPS)
     with pytest.raises(ParameterError, match="expected '\\+' or '-'"):
@@ -268,8 +305,9 @@ def test_G_must_be_gains_or_a_numeric_tf_with_its_plant():
     with pytest.raises(ParameterError, match="G: must be numeric"):
         fit({"G2.y": np.zeros(50)}, controller_tf(2), **KW, plant=MuscleModel())
     data = synthetic_traces(GAINS, **KW, rng=1, steps=40)
-    res = fit(data.select(["G2.y", "G1.x1"]).traces, G, **KW, plant=MuscleModel(), steps=40,
-              starts=2)  # fmt: skip
+    res = fit(
+        data.select(["G2.y", "G1.x1"]).traces, G, **KW, plant=MuscleModel(), steps=40, starts=2
+    )
     assert res.exact and max(res.residuals.values()) < 1e-6
 
 
@@ -280,8 +318,13 @@ def test_csv_and_npz_readers_round_trip(tmp_path, hidden):
     assert back.meta["circuit"] == "general" and back.neurons == hidden.neurons
     assert all(np.array_equal(back.traces[n], hidden.traces[n]) for n in hidden.neurons)
     assert np.array_equal(back.disturbance, hidden.disturbance)
-    np.savez(tmp_path / "b.npz", t=hidden.t, disturbance=hidden.disturbance,
-             circuit=np.array("observable"), **{"G2.y": hidden.traces["G2.y"]})  # fmt: skip
+    np.savez(
+        tmp_path / "b.npz",
+        t=hidden.t,
+        disturbance=hidden.disturbance,
+        circuit=np.array("observable"),
+        **{"G2.y": hidden.traces["G2.y"]},
+    )
     npz = read_traces(tmp_path / "b.npz")
     assert npz.meta["circuit"] == "observable" and npz.neurons == ("G2.y",)
 
@@ -330,8 +373,13 @@ def test_cli_fit_writes_its_files(tmp_path, hidden, capsys):
     # the folder of an earlier fit is replaced, like an earlier run of symctl paper
     assert main(["fit", str(data), "--out", str(out), "--starts", "2"]) == 0
     assert sorted(p.name for p in out.iterdir()) == [
-        "fit.json", "fit.pdf", "fit.png", "fit.svg", "predictions.csv", "report.md"
-    ]  # fmt: skip
+        "fit.json",
+        "fit.pdf",
+        "fit.png",
+        "fit.svg",
+        "predictions.csv",
+        "report.md",
+    ]
 
 
 @pytest.mark.parametrize(
@@ -342,8 +390,9 @@ def test_cli_fit_writes_its_files(tmp_path, hidden, capsys):
         ("G2.x1", ["--model", "examples/oculomotor.toml"], "time step"),
     ],
 )
-def test_cli_fit_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, hidden,
-                                                                 column, args, match):  # fmt: skip
+def test_cli_fit_bad_input_is_one_line_exit_2_and_writes_nothing(
+    tmp_path, capsys, hidden, column, args, match
+):
     data = Traces(hidden.t, {column: hidden.traces["G2.x1"]}, hidden.disturbance)
     path = data.to_csv(tmp_path / "d.csv")
     out = tmp_path / "out"
@@ -381,6 +430,7 @@ def test_starts_on_a_local_dask_cluster_give_the_serial_fit(tmp_path):
         "b = symctl.fit(tr, g, workers=1, **kw)\n"
         "print(a.exact, dict(a.params) == dict(b.params))\n"
     )
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         timeout=240, check=True)  # fmt: skip
+    run = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=240, check=True
+    )
     assert run.stdout.strip().splitlines()[-1] == "True True"

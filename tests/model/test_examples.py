@@ -37,8 +37,10 @@ def test_the_muscle_file_holds_the_papers_numbers():
 def test_symctl_derive_on_the_muscle_file_writes_byte_identical_results_to_symctl_paper(tmp_path):
     a, b = tmp_path / "paper", tmp_path / "derive"
     assert main(["paper", "--out", str(a), "--no-figures", "--no-pdf"]) == 0
-    assert main(["derive", str(EXAMPLES / "muscle.toml"), "--out", str(b), "--no-figures",
-                 "--no-pdf"]) == 0  # fmt: skip
+    assert (
+        main(["derive", str(EXAMPLES / "muscle.toml"), "--out", str(b), "--no-figures", "--no-pdf"])
+        == 0
+    )
     paper, derived = (json.loads((d / "results.json").read_text()) for d in (a, b))
     # the same model: only the file's name (the preset's, the example's) tells them apart
     assert paper["model"]["file"].pop("path") != derived["model"]["file"].pop("path")
@@ -88,8 +90,9 @@ def test_the_pendulum_finds_its_longest_delay_and_the_next_one_fails(results):
 
     T = L.longest + 1
     gains = lqr_gains(augment(spec.plant, 0, T, Q=spec.Q, R=spec.R))
-    chk = nonlinear_check(spec.ode, gains, [spec.disturbance[1]], steps=spec.steps,
-                          disturbance=unit, fail="mark")  # fmt: skip
+    chk = nonlinear_check(
+        spec.ode, gains, [spec.disturbance[1]], steps=spec.steps, disturbance=unit, fail="mark"
+    )
     assert not chk.final_deviation[0] <= L.tolerance
 
 
@@ -128,8 +131,12 @@ def test_the_two_pathway_graph_is_checked_beyond_chains(results):
     assert res.spec.vertices == ("receptor", "spinal", "cortex", "muscle")
     assert not res.graph.is_chain
     assert {k: bool(c.compatibility) for k, c in res.circuits.items()} == {
-        "ifp": False, "general": True, "controllable": True, "observable": True, "pathways": True,
-    }  # fmt: skip
+        "ifp": False,
+        "general": True,
+        "controllable": True,
+        "observable": True,
+        "pathways": True,
+    }
     # the same circuits as the paper's muscle on a chain: only the graph differs
     paper = derive_paper()
     for k in ("general", "controllable", "observable"):
@@ -148,8 +155,19 @@ def test_the_two_pathway_graph_is_checked_beyond_chains(results):
 @pytest.mark.parametrize("name", ["pendulum", "spinal_transcortical"])
 def test_examples_write_their_documents_with_their_own_names(tmp_path, name):
     out = tmp_path / name
-    assert main(["derive", str(EXAMPLES / f"{name}.toml"), "--out", str(out), "--no-pdf",
-                 "--no-figures"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "derive",
+                str(EXAMPLES / f"{name}.toml"),
+                "--out",
+                str(out),
+                "--no-pdf",
+                "--no-figures",
+            ]
+        )
+        == 0
+    )
     tex = (out / "derivation.tex").read_text()
     spec = load_model(EXAMPLES / f"{name}.toml")
     assert spec.title.split(":")[0] in tex

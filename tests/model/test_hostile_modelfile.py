@@ -104,5 +104,6 @@ def test_mimo_circuits_are_bounded_in_size_and_say_what_they_leave_out():
     mid = derive(_discrete_mimo(3, 2, 3))  # 18 states: no dense general one, randomized checks
     assert set(mid.circuits) == {"controllable", "observable"} and "general" in mid.skipped
     methods = {rec.check_symbolic.method for rec in mid.realizations.values()}
-    assert "randomized" in methods and all(r.check_numeric.method == "exact"
-                                           for r in mid.realizations.values())  # fmt: skip
+    assert "randomized" in methods and all(
+        r.check_numeric.method == "exact" for r in mid.realizations.values()
+    )

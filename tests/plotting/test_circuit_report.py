@@ -62,8 +62,11 @@ def test_signs_are_read_at_the_gains_c_one_and_the_epsilons_simulations_draw():
     values = _signs_at(SimpleNamespace(gains=GAINS), c)
     assert set(values) == c.free_symbols
     assert {str(s): v for s, v in values.items() if str(s).startswith(("C", "eps"))} == {
-        "C_1": 1, "C_3": 1, "epsilon_1": EPS_RANGE, "epsilon_3": EPS_RANGE,
-    }  # fmt: skip
+        "C_1": 1,
+        "C_3": 1,
+        "epsilon_1": EPS_RANGE,
+        "epsilon_3": EPS_RANGE,
+    }
     # the range holds every epsilon circuit_firing draws
     drawn = draws.EPS_MAX / draws.EPS_GRID
     assert EPS_RANGE[0] <= -drawn and drawn <= EPS_RANGE[1]

@@ -65,8 +65,14 @@ def test_no_legend_is_clipped_with_the_whole_delay_on_the_actuator():
 def test_the_fit_figure_is_legible_and_names_what_each_panel_shows():
     gains = lqr_gains(augment(MuscleModel(), 1, 1))
     data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
-    res = fit(data.select(["G2.x1", "G2.y"]).traces, gains, sensor_delay=1, actuator_delay=1,
-              C=1, starts=2)  # fmt: skip
+    res = fit(
+        data.select(["G2.x1", "G2.y"]).traces,
+        gains,
+        sensor_delay=1,
+        actuator_delay=1,
+        C=1,
+        starts=2,
+    )
     fig = fit_plot(res)
     _check(fig, "fit")
     heads = [ax.get_title() for ax in fig.axes]

@@ -384,9 +384,12 @@ def test_a_signal_stops_every_worker_and_leaves_the_old_folder(tmp_path, case):
     old = _old_run(out)
     cmd = [sys.executable, "-m", "symctl.cli", "paper", "--out", str(out), "--no-pdf"]
     proc = subprocess.Popen(
-        [*cmd, "--jobs", "2"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        [*cmd, "--jobs", "2"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
         start_new_session=True,  # its own process group: the workers are found by it
-    )  # fmt: skip
+    )
     try:
         pattern = "*.png" if when == "figures" else "*"
         for _ in range(6000):  # polls 0.02 s apart: a hang guard, not a speed assertion

@@ -46,8 +46,12 @@ def test_results_json_has_a_circuits_entry_per_circuit(paper):
     circuits = data["circuits"]
     assert list(circuits) == ["ifp", "general", "controllable", "observable"]
     counts = {k: (c["neurons"]["count"], c["neurons"]["G2"]) for k, c in circuits.items()}
-    assert counts == {"ifp": (1, None), "general": (5, 3), "controllable": (4, 2),
-                      "observable": (5, 3)}  # fmt: skip
+    assert counts == {
+        "ifp": (1, None),
+        "general": (5, 3),
+        "controllable": (4, 2),
+        "observable": (5, 3),
+    }
     assert {k: c["compatible"] for k, c in circuits.items()} == {
         "ifp": False,
         "general": True,
@@ -94,9 +98,22 @@ def test_derivation_tex_has_the_paper_order_and_numbers(paper):
     assert tex.startswith(r"\documentclass") and tex.rstrip().endswith(r"\end{document}")
     assert not re.search(r"[\x00-\x08\x0b-\x1f]", tex)  # no control characters (e.g. "\f")
     labels = re.findall(r"\\label\{(eq:[^}]+)\}", tex)
-    order = ["eq:muscle", "eq:linear", "eq:discrete", "eq:augmented", "eq:gains", "eq:G",
-             "eq:factors", "eq:G2rewritten", "eq:controllable", "eq:observable", "eq:general",
-             "eq:E", "eq:Etilde-general", "eq:circuit-ifp"]  # fmt: skip
+    order = [
+        "eq:muscle",
+        "eq:linear",
+        "eq:discrete",
+        "eq:augmented",
+        "eq:gains",
+        "eq:G",
+        "eq:factors",
+        "eq:G2rewritten",
+        "eq:controllable",
+        "eq:observable",
+        "eq:general",
+        "eq:E",
+        "eq:Etilde-general",
+        "eq:circuit-ifp",
+    ]
     assert [lab for lab in labels if lab in order] == order
     assert "43.8635" in tex and "0.606531" in tex and "4.64165" in tex
     assert r"K_{0}" in tex and r"\epsilon_{1}" in tex
