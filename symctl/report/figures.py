@@ -557,21 +557,6 @@ def _worker(name: str) -> list[Path]:
     return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
 
 
-FIGURE_TIMEOUT = 600
-"""Seconds a figure's worker may take: a worker that died (killed, out of memory) never answers,
-and the pool would wait for it forever."""
-
-
-def _drawn(name: str, result) -> list[Path]:
-    """The paths of one figure from its worker, waiting at most :data:`FIGURE_TIMEOUT` seconds."""
-    try:
-        return result.get(timeout=FIGURE_TIMEOUT)
-    except multiprocessing.TimeoutError:
-        raise RuntimeError(
-            f"figure {name}: no result within {FIGURE_TIMEOUT} s (its worker died or hung)"
-        ) from None
-
-
 def write_figures(
     res,
     out: Path | str,
@@ -592,8 +577,7 @@ def write_figures(
     signal turned into an exception), the pool is terminated
     (:meth:`multiprocessing.pool.Pool.terminate`: every worker is stopped and reaped)
     before the exception goes on. The workers ignore SIGINT (the parent handles
-    Ctrl-C for them) and, on Linux, die with the parent. A worker that dies outright
-    (killed, out of memory) is not waited for beyond :data:`FIGURE_TIMEOUT` seconds.
+    Ctrl-C for them) and, on Linux, die with the parent.
 
     Parameters
     ----------
@@ -651,8 +635,7 @@ def write_figures(
         first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
         # leaving the block terminates the pool: every worker stopped and reaped, also on errors
         with context.Pool(min(jobs, len(names)), initializer=_worker_init) as pool:
-            pending = [(name, pool.apply_async(_worker, (name,))) for name in first]
-            done = {name: _drawn(name, result) for name, result in pending}
+            done = dict(zip(first, pool.map(_worker, first, chunksize=1), strict=True))
         return [p for name in names for p in done[name]]
     finally:
         if freeze:
