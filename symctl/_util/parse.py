@@ -54,7 +54,7 @@ import sympy as sp
 
 from symctl.errors import ParseError, SymctlTypeError
 
-__all__ = ["parse_expr", "parse_matrix"]
+__all__ = ["NAMES", "parse_expr", "parse_matrix"]
 
 _FUNCTIONS = {
     "exp": sp.exp,
@@ -72,6 +72,8 @@ _FUNCTIONS = {
 }
 _ARITY = {name: (1, 1) for name in _FUNCTIONS} | {"log": (1, 2)}
 _CONSTANTS = {"pi": sp.pi, "E": sp.E}
+NAMES = frozenset(_FUNCTIONS) | frozenset(_CONSTANTS)
+"""The names the parser reads as its own functions and constants, never as symbols."""
 _BINOPS = {
     ast.Add: lambda a, b: a + b,
     ast.Sub: lambda a, b: a - b,

@@ -41,7 +41,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl._util.parse import MAX_OPERATORS, MAX_TEXT, parse_expr
+from symctl._util.parse import MAX_OPERATORS, MAX_TEXT, NAMES, parse_expr
 from symctl._util.pickling import CachedState
 from symctl.derivation.derivation import Derivation
 from symctl.design.ode import exact_value
@@ -58,22 +58,7 @@ MAX_RESULTS_BYTES = 200_000_000
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
 _REAL = re.compile(r"^(K|C|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
-_FUNCTIONS = {
-    "exp",
-    "log",
-    "sqrt",
-    "sin",
-    "cos",
-    "tan",
-    "tanh",
-    "sinh",
-    "cosh",
-    "atan",
-    "Abs",
-    "logistic",
-    "pi",
-    "E",
-}
+_FUNCTIONS = NAMES  # the parser's own functions and constants, never symbols
 
 
 def _symbol(name: str, known: Mapping) -> sp.Symbol:

@@ -48,7 +48,7 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from symctl._util.parse import parse_expr
+from symctl._util.parse import NAMES, parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
 from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
@@ -70,25 +70,7 @@ MAX_PARAMETERS = 200
 MAX_SIM_STEPS = 5000
 """Longest simulation horizon of a model file."""
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
-_RESERVED = {
-    "z",
-    "T_s",
-    "t",
-    "pi",
-    "E",
-    "exp",
-    "log",
-    "sqrt",
-    "sin",
-    "cos",
-    "tan",
-    "tanh",
-    "sinh",
-    "cosh",
-    "atan",
-    "Abs",
-    "logistic",
-}
+_RESERVED = NAMES | {"z", "T_s", "t"}  # the parser's own names, z, the sampling time, time
 
 
 def load_model(source) -> Model:
