@@ -183,6 +183,11 @@ def _matrix_text(text: str) -> tuple[list[list[str]], str | None]:
 class SavedDerivation(CachedState):
     r"""A derivation as ``results.json`` holds it, read back by :func:`load_results`.
 
+    The properties give the numbers as arrays (:attr:`K`, :attr:`poles`), the
+    symbolic objects as exact SymPy objects (:attr:`G_symbolic`, :attr:`factors`,
+    :attr:`realizations`; parsed on first use) and the figures' data
+    (:attr:`simulation`, :attr:`peak_firing`).
+
     Attributes
     ----------
     data : mapping
@@ -191,11 +196,6 @@ class SavedDerivation(CachedState):
         The model the derivation ran on (None for a file that does not hold it).
     path : str
         The file read.
-
-    The properties give the numbers as arrays (:attr:`K`, :attr:`poles`), the
-    symbolic objects as exact SymPy objects (:attr:`G_symbolic`, :attr:`factors`,
-    :attr:`realizations`; parsed on first use) and the figures' data
-    (:attr:`simulation`, :attr:`peak_firing`).
 
     Examples
     --------

@@ -75,6 +75,9 @@ class Model:
     Made by :func:`load_model`; the pipeline (:func:`~symctl.derivation.pipeline.derive`)
     reads it.
 
+    Two models are equal when every field is (the file's text and name included), so a
+    model is a key of caches: :func:`~symctl.derivation.derive` is computed once per model.
+
     Attributes
     ----------
     name, title, description : str
@@ -129,9 +132,6 @@ class Model:
         The values :meth:`replace` set in place of the file's, by keyword (empty for a
         model as its file gives it): the file's text and these re-create the model
         (:func:`~symctl.model.saved.model_from_dict`).
-
-    Two models are equal when every field is (the file's text and name included), so a
-    model is a key of caches: :func:`~symctl.derivation.derive` is computed once per model.
 
     Examples
     --------
