@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 
 import pytest
 
@@ -66,8 +67,9 @@ def test_passed_is_expired_at_once():
 def test_deadline_of_takes_seconds_or_a_running_deadline():
     shared = Deadline(60.0)
     assert deadline_of(shared) is shared
-    d = deadline_of(2.5)
-    assert d.seconds == 2.5 and 0 < d.left() <= 2.5
+    d = deadline_of(2.5)  # a fresh deadline on the real clock, 2.5 s from its start
+    assert d.seconds == 2.5 and d.clock is time.perf_counter and d.at == d.start + 2.5
+    assert d.left() <= 2.5
 
 
 @pytest.mark.parametrize("bad", [0, -1, 1e-4, 3601, math.nan, math.inf, True, "5", None])
