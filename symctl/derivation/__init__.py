@@ -1,10 +1,10 @@
 """The pipeline: a model derived, plant to circuits, into one :class:`Derivation`.
 
 This stage sits above the algorithms (design, realization, compatibility, neural,
-discovery) and the model files, and below the report, which writes a derivation
+circuitatlas, dalelaw, fitting) and the model files, and below the report, which writes a derivation
 and computes nothing.
 
-- ``derive``: :func:`derive` (a model) and :func:`derive_paper` (the muscle preset
+- ``pipeline``: :func:`derive` (a model) and :func:`derive_paper` (the muscle preset
   with values replaced), each computed once per model;
 - ``derivation``: :class:`Derivation` (its inputs, every stage's result, what was
   skipped and why) and its records;

@@ -344,25 +344,30 @@ class Derivation:
         >>> len(names), names[-4:]
         (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
         """
-        from symctl.report import results
+        from symctl.report import figures
 
-        return results.figure_names(self)
+        return figures.figure_names(self)
 
     def figure(self, name: str):
         """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
 
-        A hand-over to :func:`symctl.report.results.figure`, which documents it;
-        ``name`` is one of :meth:`figure_names`.
+        A hand-over to :func:`symctl.report.figures.make_figure`; ``name`` is one of
+        :meth:`figure_names`, else a :class:`~symctl.errors.ParameterError`.
 
         Examples
         --------
         >>> from symctl import derive_paper
-        >>> type(derive_paper().figure("closed_loop")).__name__
+        >>> res = derive_paper()
+        >>> type(res.figure("closed_loop")).__name__
         'Figure'
+        >>> res.figure("no_such_figure")
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
         """
-        from symctl.report import results
+        from symctl.report import figures
 
-        return results.figure(self, name)
+        return figures.make_figure(self, name)
 
     def write(
         self,

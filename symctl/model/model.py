@@ -15,7 +15,7 @@ from types import MappingProxyType
 import numpy as np
 import sympy as sp
 
-from symctl._util.deprecate import _moved, renamed_attribute, renamed_keywords
+from symctl._util.deprecate import renamed_attribute, renamed_keywords
 from symctl._util.validate import (
     MAX_CIRCUITS,
     PAPER_MAX_DELAY,
@@ -202,6 +202,7 @@ class Model:
     def __hash__(self) -> int:
         return hash(self._key())
 
+    @renamed_keywords(Ts="dt")
     def replace(self, **values) -> Model:
         r"""A new model with some values replaced; the others, and this model, stay as they are.
 
@@ -248,7 +249,6 @@ class Model:
         ...
         symctl.errors.ParameterError: taus: not a value of the model; replace takes dt, ...
         """
-        values = _moved(values, {"Ts": "dt"}, "Model.replace")
         params = {p.name: p for p in self.ode.params} if self.ode is not None else {}
         for name in values:
             if name not in _FIELDS_REPLACED and name not in params:

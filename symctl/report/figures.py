@@ -36,9 +36,9 @@ name                          content
 
 with ``<circuit>`` one of :data:`symctl.report.spec.CIRCUITS` (``ifp``, ``general``,
 ``controllable``, ``observable``). The functions read a ``PaperResults`` without
-importing it (:mod:`~symctl.report.results` sits above this module and offers
-them as :meth:`~symctl.report.results.PaperResults.figure` and
-:meth:`~symctl.report.results.PaperResults.figure_names`).
+importing it; the derivation offers them as
+:meth:`~symctl.derivation.Derivation.figure` and
+:meth:`~symctl.derivation.Derivation.figure_names`).
 
 Examples
 --------

@@ -44,8 +44,6 @@ __all__ = [
     "RealizationRecord",
     "circuit_json",
     "factor_texts",
-    "figure",
-    "figure_names",
     "parameters",
     "realization_json",
     "results_json",
@@ -276,59 +274,6 @@ def _factorization_json(self) -> dict:
     }
 
 
-def figure_names(self) -> list[str]:
-    """The names of the report's figures, in reading order (the file names of :meth:`write`).
-
-    Returns
-    -------
-    list of str
-        ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
-        ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
-        ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
-        circuits (table in :mod:`symctl.report.figures`).
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> names = derive_paper().figure_names()
-    >>> len(names), names[-4:]
-    (20, ['nonlinear', 'atlas_overview', 'simplified_A16', 'simplified_A17'])
-    """
-    return _figures.figure_names(self)
-
-
-def figure(self, name: str):  # -> matplotlib.figure.Figure (matplotlib: only in plotting)
-    """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
-
-    Parameters
-    ----------
-    name : str
-        One of :meth:`figure_names`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    ParameterError
-        ``name`` is not one of :meth:`figure_names`.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> res = derive_paper()
-    >>> fig = res.figure("closed_loop")
-    >>> type(fig).__name__
-    'Figure'
-    >>> res.figure("no_such_figure")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
-    """
-    return _figures.make_figure(self, name)
-
-
 def write(
     self,
     out: Path | str,
@@ -354,7 +299,7 @@ def write(
         The folder: new (made, with its parents), empty, or the folder of
         an earlier run (replaced).
     figures : bool
-        Also write the figures (:meth:`figure_names`).
+        Also write the figures (:func:`symctl.report.figures.figure_names`).
     pdf : bool
         Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
     jobs : int, optional
