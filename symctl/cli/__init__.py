@@ -139,6 +139,7 @@ def paper(
     from symctl.derivation.pipeline import derive_paper
     from symctl.report.output import OutputFolder  # imported here: keeps `symctl --help` fast
     from symctl.report.results import write_files
+    from symctl.report.workers import FigureWorkers
 
     try:
         Q = parse_matrix(q_text, "--q")
@@ -147,7 +148,9 @@ def paper(
         exc._symctl_step = "options"
         raise
     # --out is checked, locked and staged before any work; written into place at the end
-    with OutputFolder(out, "--out") as folder, _Steps() as steps:
+    # the figure workers get ready while the derivation runs
+    workers = FigureWorkers(jobs if figures else 1)
+    with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
         with options_named({"dt": "--ts", "rng": "--seed"}):
             res = derive_paper(
                 tau=tau,
@@ -170,6 +173,7 @@ def paper(
             jobs=jobs,
             progress=steps.start,
             formats=formats,
+            workers=workers,
         )
     summary(res, _console)
     _written(out, folder.final(written), pdf)
@@ -195,6 +199,7 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     from symctl.model.modelfile import load_model
     from symctl.report.output import OutputFolder
     from symctl.report.results import write_files
+    from symctl.report.workers import FigureWorkers
 
     model = load_model(Path(model_file))
     for note in model.notes:
@@ -204,7 +209,8 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
         return
     out = out if out is not None else f"out/{model.name}"
     try:
-        with OutputFolder(out, "--out") as folder, _Steps() as steps:
+        workers = FigureWorkers(jobs if figures else 1)  # ready when the derivation ends
+        with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
             res = derive(model, progress=steps.start)
             written = write_files(
                 res,
@@ -214,6 +220,7 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
                 jobs=jobs,
                 progress=steps.start,
                 formats=formats,
+                workers=workers,
             )
     except _NUMERICAL as exc:  # named with the model file (main's one-line message)
         with contextlib.suppress(AttributeError):

@@ -96,9 +96,11 @@ def write_vector(fig, path: Path | str) -> Path:
 _BASE_CODES = (
     *range(0x20, 0x7F),  # ASCII
     *range(0xA0, 0x180),  # Latin-1 and Latin Extended-A
+    *range(0x300, 0x370),  # combining accents (a bar, a hat, a dot over a symbol)
     *range(0x391, 0x3CA),  # Greek
     *range(0x2010, 0x2070),  # punctuation, super- and subscripts
     *range(0x2190, 0x2300),  # arrows and mathematical operators
+    *range(0xFB00, 0xFB07),  # the ligatures text layout makes (fi, fl, ...)
 )
 """The characters whose glyphs each font is first cut down to (:func:`write_vector`)."""
 _UNREAD = ["GSUB", "GPOS", "GDEF", "kern", "MATH", "FFTM"]

@@ -5,7 +5,8 @@ the object it shows (:func:`make_figure`, under the stable file names of
 :func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
 includes, at its natural size), SVG and PNG (what ``report.md`` shows), and
 :func:`write_figures` makes and writes them all in the formats asked for (by default
-:data:`DEFAULT_FORMATS`: PDF and PNG; SVG on request), in parallel processes. The
+:data:`DEFAULT_FORMATS`: PDF and PNG; SVG on request), in parallel processes
+(:mod:`symctl.report.workers`). The
 report's figures carry no heading: the document's caption says what each shows. This
 module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
 themselves to :mod:`symctl.plotting`. The figures of the paper:
@@ -55,18 +56,17 @@ Examples
 
 from __future__ import annotations
 
-import gc
-import multiprocessing
-import os
+import contextlib
+import functools
 from pathlib import Path
 
 from symctl._util.display import latex
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import positive_int
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
 from symctl.plotting import style
+from symctl.report.workers import FigureWorkers
 
 __all__ = [
     "DEFAULT_FORMATS",
@@ -478,10 +478,11 @@ def save(
     The PDF and SVG are vector drawings of the figure at its size (the PDF is what
     ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
     the screen and Markdown. The layout is computed once, for the first format, so
-    the formats agree; the files carry no date and the SVG's ids a fixed salt
-    (:func:`symctl.plotting.vector.write_vector`), so the same figure writes the same
-    bytes. The PNG of an opaque figure has no alpha channel
-    (:func:`symctl.plotting.png.write_png`).
+    the formats agree; with a PDF, the PNG is that PDF rasterized
+    (:func:`symctl.plotting.png.render_pdf`), not a second drawing. The files carry no
+    date and the SVG's ids a fixed salt (:func:`symctl.plotting.vector.write_vector`),
+    so the same figure writes the same bytes. The PNG of an opaque figure has no alpha
+    channel (:func:`symctl.plotting.png.write_png`).
 
     Parameters
     ----------
@@ -517,44 +518,24 @@ def save(
     ...     [p.name for p in save(fig, out, "open_loop")]
     ['open_loop.pdf', 'open_loop.svg', 'open_loop.png']
     """
-    from symctl.plotting.png import write_png
+    from symctl.plotting.png import render_pdf, write_png
     from symctl.plotting.vector import write_vector
 
     out = _folder(out)
     paths = []
     dpi = min(dpi, MAX_PIXELS / max(*fig.get_size_inches(), 1e-3))
+    png = {"dpi": dpi, "metadata": {"Software": "symctl (matplotlib)"}}
     for ext in figure_formats(formats):
         path = out / f"{name}.{ext}"
-        if ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
-            write_png(fig, path, dpi=dpi, metadata={"Software": "symctl (matplotlib)"})
+        if ext == "png" and paths and paths[0].suffix == ".pdf":  # the PDF rasterized
+            render_pdf(paths[0], path, **png)
+        elif ext == "png":  # RGB, not matplotlib's RGBA: smaller, and pdflatex copies it
+            write_png(fig, path, **png)
         else:  # no date, fixed ids: the same bytes every time
             write_vector(fig, path)
         fig.set_layout_engine("none")  # keep the layout of the first save
         paths.append(path)
     return paths
-
-
-_SHARED: dict = {}  # the results a forked worker reads (set by write_figures)
-
-
-def _worker_init() -> None:
-    """A figure worker: Ctrl-C is the parent's to handle, SIGTERM kills, and so does its death."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the terminal sends it to the whole group
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's handler, inherited by fork
-    try:  # Linux: die with the parent even when it is killed outright (no orphans)
-        import ctypes
-
-        pr_set_pdeathsig = 1
-        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL)
-    except (OSError, AttributeError):  # pragma: no cover - not Linux
-        pass
-
-
-def _worker(name: str) -> list[Path]:
-    res, out, dpi, formats = _SHARED["job"]
-    return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
 
 
 def write_figures(
@@ -564,20 +545,15 @@ def write_figures(
     jobs: int | None = None,
     dpi: int = DPI,
     formats: tuple[str, ...] = DEFAULT_FORMATS,
+    workers=None,
 ) -> list[Path]:
     """Make and save every figure of the report (:data:`DEFAULT_FORMATS`); returns the paths.
 
-    Figures are independent, so with ``jobs > 1`` they are drawn in a pool of forked
-    worker processes, which share ``res`` without copying it, the slowest kinds
-    first (circuits, firing patterns, structures: no long drawing starts last
-    while the other workers wait), with the parent's objects frozen
-    (:func:`gc.freeze`) so that the workers' garbage collections neither walk nor
-    copy them; ``jobs=1``, or a platform without ``fork``, draws them here. When
-    anything stops the drawing (an error in one figure, ``KeyboardInterrupt``, a
-    signal turned into an exception), the pool is terminated
-    (:meth:`multiprocessing.pool.Pool.terminate`: every worker is stopped and reaped)
-    before the exception goes on. The workers ignore SIGINT (the parent handles
-    Ctrl-C for them) and, on Linux, die with the parent.
+    Figures are independent, so with ``jobs > 1`` they are drawn in parallel worker
+    processes (:class:`~symctl.report.workers.FigureWorkers`, started here; start them earlier, before the
+    derivation, to have them ready when it ends); ``jobs=1``, or a platform without
+    ``fork``, draws them here. When anything stops the drawing, every worker is stopped
+    and reaped before the exception goes on.
 
     Parameters
     ----------
@@ -591,6 +567,9 @@ def write_figures(
         Resolution of the PNGs.
     formats : sequence of str
         The formats of each figure (:func:`figure_formats`).
+    workers : FigureWorkers, optional
+        Workers started earlier (:class:`~symctl.report.workers.FigureWorkers`, entered);
+        ``jobs`` is then not used.
 
     Returns
     -------
@@ -602,6 +581,8 @@ def write_figures(
     ParameterError
         ``out`` is not a folder, ``jobs`` is not an integer >= 1, or ``formats``
         names an unknown format.
+    SymctlError
+        A worker died (killed by a signal or out of memory).
 
     Examples
     --------
@@ -619,28 +600,16 @@ def write_figures(
     symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
     """
     names = figure_names(res)
-    out = _folder(out)
-    formats = figure_formats(formats)
-    jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
-    if jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [
-            p for n in names for p in save(make_figure(res, n), out, n, dpi=dpi, formats=formats)
-        ]
-    _SHARED["job"] = (res, out, dpi, formats)
-    freeze = gc.get_freeze_count() == 0  # not when the caller froze objects of its own
-    if freeze:  # the workers' collections skip the inherited objects (and copy no pages of them)
-        gc.freeze()
-    try:
-        context = multiprocessing.get_context("fork")
-        first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
-        # leaving the block terminates the pool: every worker stopped and reaped, also on errors
-        with context.Pool(min(jobs, len(names)), initializer=_worker_init) as pool:
-            done = dict(zip(first, pool.map(_worker, first, chunksize=1), strict=True))
-        return [p for name in names for p in done[name]]
-    finally:
-        if freeze:
-            gc.unfreeze()
-        _SHARED.clear()
+    task = functools.partial(_draw, out=_folder(out), dpi=dpi, formats=figure_formats(formats))
+    first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
+    with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
+        done = started.map(task, res, first)
+    return [p for name in names for p in done[name]]
+
+
+def _draw(res, name: str, *, out: Path, dpi: float, formats: tuple[str, ...]) -> list[Path]:
+    """Make the figure ``name`` of ``res`` and save it (a task of the figure workers)."""
+    return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
 
 
 _SLOWEST = ("circuit_", "firing_", "structure_", "atlas_", "simplified_")

@@ -364,8 +364,10 @@ def write_files(
     jobs: int | None = None,
     progress: Callable[[str], None] | None = None,
     formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
+    workers=None,
 ) -> list[Path]:
-    """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`)."""
+    """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
+    the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`)."""
     step = progress or (lambda _name: None)
     written = []
     path = out / "results.json"
@@ -374,7 +376,7 @@ def write_files(
     paths: list[Path] = []
     if figures:
         step("figures")
-        paths = _figures.write_figures(self, out, jobs=jobs, formats=formats)
+        paths = _figures.write_figures(self, out, jobs=jobs, formats=formats, workers=workers)
         written += paths
     step("documents")
     # derivation.tex includes the PDFs, report.md shows the PNGs

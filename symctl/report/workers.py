@@ -1,0 +1,184 @@
+"""The processes that draw the report's figures, started before the derivation they draw.
+
+:class:`FigureWorkers` forks its workers when it is entered, so that they import
+matplotlib, cut the house style's fonts and typeset its text while the parent
+derives; :func:`symctl.report.figures.write_figures` starts them itself when nobody
+did. ``symctl paper`` and ``symctl derive`` start them before the derivation. The
+module knows nothing of figures: a worker runs the task it is given.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import signal
+import sys
+from concurrent.futures import FIRST_EXCEPTION, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
+
+from symctl._util.validate import positive_int
+from symctl.errors import SymctlError
+
+__all__ = ["FigureWorkers"]
+
+
+class FigureWorkers:
+    """Processes that draw the report's figures, started before the derivation they draw.
+
+    A context manager. Entering it forks ``jobs`` worker processes
+    (:class:`concurrent.futures.ProcessPoolExecutor`), which make themselves ready to
+    draw (matplotlib imported, the house style's fonts cut and its text typeset once)
+    while the parent goes on, typically deriving; :meth:`map` then hands them a value
+    (pickled once to a file, read once by each worker) and the names of the figures to
+    draw from it. With ``jobs=1``, or on a platform without ``fork``, nothing is
+    started and :meth:`map` draws here. :func:`symctl.report.figures.write_figures`
+    uses them (``workers=``) or starts its own.
+
+    When anything stops the work (an error in one figure, a worker that died,
+    ``KeyboardInterrupt``, a signal turned into an exception), every worker is stopped
+    (SIGTERM, then SIGKILL after a second) and reaped before the exception goes on. The
+    workers ignore SIGINT (the parent handles Ctrl-C for them) and, on Linux, die with
+    the parent.
+
+    Parameters
+    ----------
+    jobs : int, optional
+        Processes drawing figures; default the number of CPUs, at most 4.
+
+    Raises
+    ------
+    ParameterError
+        ``jobs`` is not an integer >= 1.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from symctl import derive_paper
+    >>> from symctl.report.figures import write_figures
+    >>> from symctl.report.workers import FigureWorkers
+    >>> with FigureWorkers(jobs=2) as workers:  # they get ready while the derivation runs
+    ...     res = derive_paper()
+    ...     with tempfile.TemporaryDirectory() as out:
+    ...         len(write_figures(res, out, workers=workers))  # doctest: +SKIP
+    40
+    >>> FigureWorkers(jobs=0)
+    Traceback (most recent call last):
+    ...
+    symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
+    """
+
+    def __init__(self, jobs: int | None = None) -> None:
+        self.jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
+        self._pool: ProcessPoolExecutor | None = None
+        self._before: set = set()
+
+    def __enter__(self) -> FigureWorkers:
+        if self.jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
+            return self
+        self._before = set(multiprocessing.active_children())
+        # Ctrl-C or SIGTERM held back while forking: a handler's exception raised in the
+        # fork's own hooks would be ignored, and the signal lost
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS)
+        try:
+            self._pool = ProcessPoolExecutor(
+                self.jobs, mp_context=multiprocessing.get_context("fork"), initializer=_worker_init
+            )
+            for _ in range(self.jobs):  # forks every worker now, each getting ready
+                self._pool.submit(_warm)
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)  # a held signal is raised here
+        except BaseException:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
+            self.__exit__(*sys.exc_info())
+            raise
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        if self._pool is None:
+            return
+        if exc_type is not None:
+            self._stop()
+        self._pool.shutdown(wait=exc_type is None, cancel_futures=True)
+        self._pool = None
+
+    def _stop(self) -> None:
+        """Stop and reap the workers: SIGTERM, then SIGKILL to any still running after a second."""
+        workers = [p for p in multiprocessing.active_children() if p not in self._before]
+        for worker in workers:
+            worker.terminate()
+        for worker in workers:
+            worker.join(1.0)
+            if worker.is_alive():
+                worker.kill()
+                worker.join()
+
+    def map(self, task, res, names) -> dict:
+        """``{name: task(res, name)}`` for every name, in the workers (in the order of ``names``).
+
+        ``task`` is a function of the module level (the workers find it by name) and
+        ``res`` a value that pickles; without workers, the tasks run here.
+        """
+        if self._pool is None:
+            return {name: task(res, name) for name in names}
+        import pickle
+        import tempfile
+
+        with tempfile.NamedTemporaryFile(prefix="symctl-figures-", suffix=".pickle") as saved:
+            pickle.dump(res, saved, protocol=pickle.HIGHEST_PROTOCOL)
+            saved.flush()
+            try:
+                futures = {n: self._pool.submit(_worker, task, saved.name, n) for n in names}
+                wait(futures.values(), return_when=FIRST_EXCEPTION)
+                return {name: future.result() for name, future in futures.items()}
+            except BaseException as exc:
+                self._stop()
+                if isinstance(exc, BrokenProcessPool):
+                    raise SymctlError(
+                        "a figure worker died (killed by a signal or out of memory)"
+                    ) from None
+                raise
+
+
+_STOPS = {signal.SIGINT, signal.SIGTERM}
+"""SIGINT and SIGTERM: the signals that stop a run (held while the workers are forked)."""
+
+
+def _worker_init() -> None:
+    """A figure worker: Ctrl-C is the parent's to handle, SIGTERM kills, and so does its death."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the terminal sends it to the whole group
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's handler, inherited by fork
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)  # held by the parent while it forked
+    try:  # Linux: die with the parent even when it is killed outright (no orphans)
+        import ctypes
+
+        pr_set_pdeathsig = 1
+        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL)
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+
+
+def _warm() -> None:
+    """Get a worker ready: draw a small figure with typeset text as PDF and PNG, then forget it."""
+    import tempfile
+
+    from symctl.plotting.png import render_pdf
+    from symctl.plotting.style import axis_label, new_figure
+    from symctl.plotting.vector import write_vector
+
+    fig = new_figure("column", 1.0)
+    fig.add_subplot().set_xlabel(axis_label("$x_{1}$ and $\\epsilon$", "s"))
+    with tempfile.TemporaryDirectory() as out:
+        render_pdf(write_vector(fig, Path(out) / "warm.pdf"), Path(out) / "warm.png", dpi=50)
+
+
+_LOADED: dict = {}  # the value a worker has read: {file: value}
+
+
+def _worker(task, saved: str, name: str):
+    if saved not in _LOADED:
+        import pickle
+
+        _LOADED.clear()
+        with open(saved, "rb") as file:
+            _LOADED[saved] = pickle.load(file)
+    return task(_LOADED[saved], name)
