@@ -64,7 +64,8 @@ def best(cmd: list[str], repeat: int, env: dict | None = None) -> tuple[float, f
     for _ in range(repeat):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True, env=env)
+        # from the root folder: `python -m` puts the working folder first on the path
+        subprocess.run(cmd, check=True, capture_output=True, env=env, cwd="/")
         walls.append(time.perf_counter() - start)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
