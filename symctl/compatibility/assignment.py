@@ -59,6 +59,9 @@ INF = math.inf
 class DelayAssignment(LatexMixin):
     r"""Every signal of a structure at one vertex of a delay graph.
 
+    A frozen value (equal and hashing alike when structure, graph and vertices are);
+    :attr:`vertex_of` is a read-only mapping in signal order, :attr:`E_tilde` a read-only array.
+
     Parameters
     ----------
     structure : Structure
@@ -78,12 +81,6 @@ class DelayAssignment(LatexMixin):
     DimensionError
         The graph's sensor or actuator vertices do not fit the structure's
         inputs or outputs.
-
-    Notes
-    -----
-    A frozen value: equal (and hashing alike) when structure, graph and
-    vertices are; :attr:`vertex_of` is a read-only mapping in the structure's
-    signal order, :attr:`E_tilde` a read-only array.
 
     Examples
     --------

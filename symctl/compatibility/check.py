@@ -1,15 +1,12 @@
 r"""Compatibility of a controller structure with a delay graph: the verdict and its evidence.
 
-:func:`check_compatibility` decides whether some delay assignment of a
-structure is compatible with a delay graph (the paper's section "Structure,
-delay graphs, and compatibility"), in polynomial time on chain graphs and by
-exact search elsewhere (the model, the solvers and the proofs are in
-:mod:`symctl.compatibility.csp`); :func:`brute_force_compatibility` enumerates
-every assignment by the definition's words, the reference for the tests. Both
-return a :class:`CompatibilityResult`: truthy when compatible, with a witness
-assignment, or else with a certificate a person can check, a minimal set of
-signal paths and, for every placement of the signals where these paths meet,
-one path that the placement makes too fast.
+:func:`check_compatibility` decides whether some delay assignment of a structure is
+compatible with a delay graph, in polynomial time on chain graphs and by exact search
+elsewhere (:mod:`symctl.compatibility.csp`); :func:`brute_force_compatibility` enumerates
+every assignment by the definition's words (the tests' reference). A
+:class:`CompatibilityResult` carries a witness, or a certificate: a minimal set of
+signal paths and, for every placement of the signals where they meet, one path it makes
+too fast.
 
 >>> from symctl import DelayGraph, check_compatibility, ifp_structure
 >>> result = check_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
@@ -60,8 +57,7 @@ _ALIASES = {"brute force": "brute-force"}
 class CompatibilityResult(Verdict, LatexMixin):
     r"""The verdict of :func:`check_compatibility`, with its evidence.
 
-    Truthy exactly when the structure is compatible (``bool(r) == r.ok``). A
-    value: two results are equal when verdict, evidence and inputs are.
+    Truthy exactly when compatible (``bool(r) == r.ok``); equal when verdict, evidence and inputs are.
 
     Parameters
     ----------
@@ -164,12 +160,9 @@ def _result(structure, graph, place, method, stats, problem=None, core=None) -> 
 
 
 def witness_result(structure, graph, vertex_of, method: str) -> CompatibilityResult:
-    """The result for a constructed assignment, after checking it by the definition's words.
+    """The result for a constructed assignment, checked by the definition's words.
 
-    Raises
-    ------
-    RuntimeError
-        The assignment is not compatible (a construction that contradicts its theorem).
+    Raises RuntimeError when it is not compatible (a construction contradicting its theorem).
     """
     assignment = DelayAssignment(structure, graph, vertex_of)
     bad = assignment.violations()
@@ -274,9 +267,8 @@ def brute_force_compatibility(
 ) -> CompatibilityResult:
     r"""Enumerate every assignment and test :math:`\tilde E \ge E` by the definition's words.
 
-    The reference for the tests: it compares the fastest-path delays between
-    *all* pairs of signals with :math:`E` (no reduction to wires). When no
-    assignment is compatible, the certificate comes from the search solver.
+    Compares the fastest-path delays between *all* pairs of signals with :math:`E` (no
+    reduction to wires); when none is compatible, the certificate comes from the search solver.
 
     Parameters
     ----------

@@ -158,9 +158,7 @@ class ControllerCompatibility(Verdict, LatexMixin):
     reason : str
         The argument: the theorem's condition that fails, or the construction.
     scope : str
-        ``"all realizations"``: the verdict is a theorem about every
-        realization (``"family"`` would mark a verdict that covers only the
-        structures searched; the theorems leave none for SISO controllers).
+        ``"all realizations"``: the verdict is a theorem about every realization.
     method : str
         The theorem and construction that answered.
     parts : tuple of PathPart
@@ -219,12 +217,8 @@ def controller_compatibility(
 ) -> ControllerCompatibility:
     r"""Decide whether a controller :math:`G` has a realization compatible with a delay graph.
 
-    Exact for every delay graph (Theorem 1 of the module text): compatible iff
-    the relative degree of :math:`G` is at least the delay of the fastest path
-    from :math:`v_1` to :math:`v_N` over edges of at most ``max_wire_delay``
-    steps. When compatible, a structure is constructed along a path
-    (``construction="path"``) or along several paths at once
-    (``construction="parallel"``, Theorem 2), and checked.
+    Exact for every delay graph (Theorems 1-3 of the module text); when compatible, a
+    structure is built along a path or several (Theorem 2), and checked.
 
     Parameters
     ----------

@@ -1,25 +1,17 @@
 r"""Delay graphs (the paper's section "Structure, delay graphs, and compatibility").
 
-A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N`
-(the actuator, sink); :math:`E_{ij}` is the delay of the shortest path from
-:math:`v_i` to :math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no
-path exists. The paper's neuromuscular graph is the chain
-:math:`v_1 \to v_2 \to v_3` with one step per edge:
+A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N` (the
+actuator, sink); :math:`E_{ij}` is the delay of the shortest path from :math:`v_i` to
+:math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no path exists. The paper's
+neuromuscular graph is the chain :math:`v_1 \to v_2 \to v_3` with one step per edge. The
+module needs only NumPy (no SymPy, SciPy or networkx).
 
 >>> from symctl import DelayGraph
 >>> g = DelayGraph.chain([1, 1])
 >>> g.E.tolist()
 [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
-
-A delay graph is a value: two graphs with the same matrix and the same direct
-edges are equal (and hash alike). The module needs only NumPy, so
-``import symctl.compatibility.delaygraph`` stays light (no SymPy, SciPy or
-networkx); delay assignments, which need a structure, are in
-:mod:`symctl.compatibility.assignment`.
-
->>> DelayGraph.chain([1, 1]) == DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]])
+>>> g == DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]])
 True
-
 """
 
 from __future__ import annotations
@@ -146,6 +138,8 @@ def matrix_latex(name: str, E: np.ndarray) -> str:
 class DelayGraph:
     r"""A delay graph: vertices :math:`v_1` (sensor) .. :math:`v_N` (actuator), delays :math:`E`.
 
+    A frozen value: equal (and hashing alike) when :attr:`E` and :attr:`edges` are.
+
     Parameters
     ----------
     E : (N, N) matrix-like
@@ -183,11 +177,6 @@ class DelayGraph:
         A matrix that is not square.
     SymctlTypeError
         ``E`` is not a matrix.
-
-    Notes
-    -----
-    A frozen value: equal (and hashing alike) when :attr:`E` and
-    :attr:`edges` are; :attr:`E` is read-only.
 
     Examples
     --------
@@ -277,11 +266,8 @@ class DelayGraph:
     ) -> DelayGraph:
         """The delay graph of ``n`` vertices and the edges ``(i, j, delay)`` (vertices 1..n).
 
-        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path
-        closure. ``sensors`` and ``actuators`` as for :class:`DelayGraph`. The list
-        holds at most ``PARALLEL_EDGES`` entries per ordered pair of vertices
-        (``PARALLEL_EDGES * n**2`` in all), so an endless iterable is refused after a
-        read bounded by ``n``.
+        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure. At most
+        ``PARALLEL_EDGES * n**2`` edges are read (an endless iterable is refused).
 
         >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
@@ -396,10 +382,8 @@ class DelayGraph:
     def draw(self, names=None, **kwargs):
         """Draw the graph: vertices as boxes, edges as arrows with their delays in steps.
 
-        Laid out left to right along the longest path from the sensor
-        :math:`v_1` to the actuator :math:`v_N`; parallel pathways in rows of
-        their own; edges closing a cycle curved, in purple (the paper's Fig.
-        muscle_system, right).
+        Left to right along the longest path, parallel pathways in rows of their own, edges
+        closing a cycle curved in purple (the paper's Fig. muscle_system, right).
 
         Parameters
         ----------
@@ -454,8 +438,7 @@ class DelayGraph:
     def pins(self, inputs: int, outputs: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
         """The vertex (from 1) of each of ``inputs`` controller inputs and ``outputs`` outputs.
 
-        One sensor (actuator) vertex serves every input (output); otherwise
-        there is one per input (output).
+        One sensor (actuator) vertex serves every input (output), or there is one per input (output).
 
         Raises
         ------

@@ -1,35 +1,10 @@
-r"""Firing patterns of the neurons of :math:`G_2` under a pulse disturbance.
+r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11).
 
-The paper's Figs. 9, 10 and 11.
-
-The paper's section "Simulations": the whole controller
-:math:`G = G_3 G_2 G_1` is realized in several ways, each closed around the
-linear muscle and hit by the same pulse disturbance on the force. By
-construction every realization gives the same force and motor-neuron traces
-(those of the optimal controller, Fig. 5), while the neurons of
-:math:`G_2` fire differently.
-
-The recipe, per realization (seeded):
-
-1. draw :math:`\epsilon_1, \epsilon_3` uniformly in :math:`(-0.9, 0.9)` (exact
-   rationals on a grid of 1/1000), set :math:`C_1 = C_3 = 1`;
-2. realize :math:`G_2`: ``"controllable"`` and ``"observable"`` canonical
-   forms, or for ``"general"`` a random full-rank similarity transform ``P`` of
-   the controllable canonical one (:func:`~symctl.realization.realization.random_realization`);
-3. close the loop with :math:`G_3 G_2 G_1`
-   (:func:`~symctl.realization.realization.controller_realization`,
-   :func:`~symctl.neural.simulate.simulate_realization`) and check that force and
-   rate equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`);
-4. read every neuron's axon output off the circuit
-   (:meth:`Circuit.as_linear_system <symctl.neural.circuit.Circuit.as_linear_system>`
-   of :meth:`Circuit.from_structure <symctl.neural.circuit.Circuit.from_structure>`
-   applied to :meth:`Structure.from_factorization
-   <symctl.compatibility.structure.Structure.from_factorization>`), driven by the loop's
-   controller input :math:`\delta_f`, and keep the neurons of :math:`G_2`.
-
-The neurons are linear, so a neuron's output *is* its change in firing rate
-from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
-realization, no free parameters): its one neuron :math:`\mu` of
+Every realization of :math:`G = G_3 G_2 G_1`, closed around the linear muscle and hit by
+the same pulse on the force, gives the optimal controller's force and motor-neuron traces
+(Fig. 5), while the neurons of :math:`G_2` fire differently. The neurons are linear, so a
+neuron's output *is* its change in firing rate from equilibrium. Kind ``"ifp"`` is the
+paper's IFP controller: the one neuron :math:`\mu` of
 :func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
 
 >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
@@ -86,8 +61,7 @@ KINDS: tuple[str, ...]  # read from the registry at each access (__getattr__)
 
 
 def __getattr__(name: str):
-    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry
-    (:func:`~symctl.realization.realizers.circuit_names`)."""
+    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry."""
     if name == "KINDS":
         return circuit_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -102,6 +76,8 @@ LEGEND_MAX_EPS = 4
 class FiringSummary(ArrayValue, DictMixin):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
 
+    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+
     Attributes
     ----------
     neurons : tuple of str
@@ -115,12 +91,7 @@ class FiringSummary(ArrayValue, DictMixin):
         (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
     trace_spread : (k,) array
         The largest difference between two realizations' traces at any one step, per
-        neuron [spikes/s]: nonzero whenever the traces differ, even when their peaks are
-        equal (``spread`` then is 0). Defaults to ``spread`` when not given.
-
-    Notes
-    -----
-    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+        neuron [spikes/s] (nonzero even when the peaks are equal); default ``spread``.
 
     Examples
     --------
@@ -167,6 +138,8 @@ class FiringSummary(ArrayValue, DictMixin):
 class FiringPatterns(ArrayValue, DictMixin):
     r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
 
+    Made by :func:`circuit_firing`; arrays, ``firing`` and each of ``params`` are read-only.
+
     Attributes
     ----------
     kind : str
@@ -195,11 +168,6 @@ class FiringPatterns(ArrayValue, DictMixin):
     max_deviation : float
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
-
-    Notes
-    -----
-    Made by :func:`circuit_firing`; the arrays are read-only copies, ``firing``
-    and each of ``params`` read-only mappings.
 
     Examples
     --------
@@ -349,8 +317,11 @@ def _gains(gains, kind: str) -> Gains:
             f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
         )
     s = gains.system
-    if _whole(kind):
-        _scalar(s.n, s.m, "gains")
+    if _whole(kind) and (s.n, s.m) != (1, 1):
+        raise DimensionError(
+            f"gains: firing patterns are drawn for a scalar plant (n = m = 1), got n = {s.n}, "
+            f"m = {s.m}"
+        )
     if _whole(kind) and s.T < 1:
         raise ParameterError(
             "gains: the IFP controller has a neuron only for a net delay T >= 1 "
@@ -372,20 +343,10 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     return p
 
 
-def _scalar(n: int, m: int, argname: str) -> None:
-    if (n, m) != (1, 1):
-        raise DimensionError(
-            f"{argname}: firing patterns are drawn for a scalar plant (n = m = 1), got n = {n}, "
-            f"m = {m}"
-        )
-
-
 # ---------------------------------------------------------------- the pieces
 def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator, draws=None):
-    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric).
-
-    ``draws``: the realizations of :math:`G_2` to simulate (else ``count`` drawn from ``gen``).
-    """
+    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric), from ``draws``
+    or ``count`` drawn from ``gen``."""
     s = gains.system
     if _whole(kind):
         K = np.asarray(gains.K, dtype=float).ravel()
@@ -413,13 +374,8 @@ def _draw(kind: str, gains: Gains, count: int, gen: np.random.Generator) -> tupl
 
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
-    r"""Every neuron's axon output and the circuit output, driven from rest by ``u`` ``(steps,)``.
-
-    :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)` of
-    :meth:`Circuit.as_linear_system`, stepped by the simulations' one time loop
-    (the input enters every state through ``B``); keys are the output names
-    (neurons, then ``"output"``).
-    """
+    """Every neuron's axon output and the circuit output (key ``"output"``), driven from rest
+    by ``u`` through :meth:`Circuit.as_linear_system` and the simulations' one time loop."""
     sys = circuit.as_linear_system(numeric=True)
     k = sys.A.shape[0]
     u = u[:, None] if u.ndim == 1 else u  # (steps, inputs)
@@ -455,20 +411,13 @@ def circuit_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
-    Each realization of :math:`G = G_3 G_2 G_1` (random :math:`\epsilon_1,
-    \epsilon_3 \in (-0.9, 0.9)`, :math:`C_1 = C_3 = 1`, and for ``"general"`` a
-    random full-rank ``P``) is closed around ``plant`` with the pulse
-    disturbance on the force, as in Fig. 5:
-
-    .. math::
-        \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
-        \delta_r = G(z)\,\delta_f.
-
-    The force and rate traces must equal the optimal controller's
-    (:func:`~symctl.neural.simulate.closed_loop_response` of ``gains``) to ``rtol``
-    (relative to their peak); the neurons' traces are read off the circuit
-    driven by the loop's :math:`\delta_f`, and the circuit's output must match
-    :math:`\delta_r` too.
+    Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` drawn
+    uniformly in :math:`(-0.9, 0.9)` as exact rationals on a grid of 1/1000,
+    :math:`C_1 = C_3 = 1`, and for ``"general"`` a random full-rank ``P``) is closed around
+    ``plant`` with the pulse disturbance on the force (Fig. 5). Its force and rate traces
+    must equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`)
+    to ``rtol`` relative to their peak; the neurons' traces are read off the circuit driven
+    by the loop's :math:`\delta_f`, whose output must match :math:`\delta_r` too.
 
     Parameters
     ----------
@@ -566,16 +515,12 @@ def structure_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
-    The structure's gains may hold the gains' symbols :math:`K` (replaced by
-    the gains' values, as exact rationals) and section symbols: every
-    ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)` and every ``C...``
-    set to 1, e.g. the
-    structure :func:`~symctl.compatibility.controller.controller_compatibility`
-    builds along a delay graph's pathways (axons of several steps included).
-    Each realization is closed around the plant through the structure's
-    state-space form (:func:`~symctl.compatibility.statespace.structure_realization`)
-    and checked against the optimal controller; the neurons of every ``G2``
-    part are recorded.
+    The structure's gains may hold the gains' symbols :math:`K` (replaced by their values,
+    exact) and section symbols: every ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)`
+    and every ``C...`` set to 1 (e.g. the structure of
+    :func:`~symctl.compatibility.controller.controller_compatibility`). Each realization is
+    closed through :func:`~symctl.compatibility.statespace.structure_realization`, checked
+    against the optimal controller, and the neurons of every ``G2`` part recorded.
 
     Parameters
     ----------

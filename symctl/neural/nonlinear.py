@@ -1,17 +1,12 @@
 r"""The linear controller around the nonlinear plant it was designed from.
 
-The design is linear (the plant linearized at its operating point: the paper's
-muscle, :class:`~symctl.design.plant.MuscleModel`, or any
-:class:`~symctl.design.ode.ODEModel`); :func:`nonlinear_check` closes the same
-controller around the nonlinear ODE (for the muscle
-:math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) and measures how far the
-states depart from the linear prediction as the disturbance grows: quadratically
-in its amplitude, since the linearization is exact to first order.
-
-:func:`longest_delay` asks the question an unstable plant poses: for which net
-delays does the optimal controller still bring the *nonlinear* plant back to its
-equilibrium after the disturbance? (For the linear plant every delay can be
-stabilized; what limits it is the nonlinearity, e.g. a torque that saturates.)
+:func:`nonlinear_check` closes the controller designed on the linearized plant (the
+paper's muscle, or any :class:`~symctl.design.ode.ODEModel`) around the nonlinear ODE and
+measures how far the states depart from the linear prediction: quadratically in the
+disturbance's amplitude, the linearization being exact to first order.
+:func:`longest_delay` finds the longest net delay whose optimal controller still brings
+the *nonlinear* plant back (every delay stabilizes the linear plant; the nonlinearity,
+e.g. a saturating torque, limits it).
 
 >>> from symctl import nonlinear_check
 >>> chk = nonlinear_check(amplitudes=[0.01, 0.1], steps=30)
@@ -70,9 +65,10 @@ r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Rada
 class NonlinearCheck(ArrayValue, Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
 
-    Truthy when the nonlinear loop returned at every amplitude (``verdict``:
-    every :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``method``
-    says how it was simulated and ``evidence`` is :attr:`final_deviation`.
+    Truthy when the nonlinear loop returned at every amplitude (every
+    :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``evidence`` is
+    :attr:`final_deviation`. ``f_linear``, ``f_nonlinear``, ``r_nonlinear`` are the first
+    state's and input's traces ``(k, steps)``. Made by :func:`nonlinear_check`; read-only arrays.
 
     Attributes
     ----------
@@ -96,12 +92,6 @@ class NonlinearCheck(ArrayValue, Verdict):
         The plant's names (the muscle's ``f``, ``r``).
     units : tuple of str
         The states' units, for labels (``"N"``).
-
-    Notes
-    -----
-    ``f_linear``, ``f_nonlinear`` and ``r_nonlinear`` are the first state's and
-    input's traces, ``(k, steps)``, as for the muscle. Made by
-    :func:`nonlinear_check`; the arrays are read-only copies.
 
     Examples
     --------
@@ -129,11 +119,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def verdict(self) -> bool:
-        """Whether the nonlinear loop returned at every amplitude.
-
-        Every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %
-        of the linear peak; the default ``tolerance`` of :func:`longest_delay`).
-        """
+        """Whether every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %)."""
         return bool(np.all(self.final_deviation <= RETURN_TOLERANCE))
 
     @property
@@ -232,14 +218,11 @@ def nonlinear_check(
     r"""Close the linear controller around the nonlinear plant and compare with the linear loop.
 
     At each sample the controller reads :math:`\delta x = x - \bar x`, its output
-    :math:`u = \bar u + \delta u` is held constant over the step, and the ODE
-    (for the muscle :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) is
-    integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all
-    amplitudes as one vector ODE, relative tolerance ``rtol``); the disturbance is
-    added to the states at the sample, as in the linear model. The solver is
-    explicit (DOP853) while :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO``
-    (1; the muscle's :math:`T_s/\tau` is 0.5) and implicit beyond (Radau, with the
-    exact Jacobian), so that a stiff plant (a small ``tau``) takes seconds too.
+    :math:`u = \bar u + \delta u` is held over the step, the ODE is integrated over
+    :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all amplitudes as one vector ODE),
+    and the disturbance is added to the states at the sample. The solver is DOP853 while
+    :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO`` (1; the muscle's is 0.5), else Radau
+    with the exact Jacobian, so a stiff plant takes seconds too.
 
     Parameters
     ----------
@@ -440,13 +423,10 @@ def longest_delay(
 ) -> DelaySearch:
     r"""Search the longest net delay :math:`T` whose optimal controller stabilizes the nonlinear plant.
 
-    For :math:`T = 1, 2, \dots`, ``max_delay``: the optimal controller for the
-    linear plant with that delay (:func:`~symctl.design.augment.augment`, all of it
-    on the actuator side: for state feedback only the net delay matters) is
-    closed around the nonlinear ODE (:func:`nonlinear_check`) under the
-    disturbance; the loop counts as stabilized when the state returns to the
-    equilibrium, within ``tolerance`` of the linear loop's peak, by the end of
-    the horizon. The search stops at the first failure.
+    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller of the plant with that
+    delay (all on the actuator side: only the net delay matters) is closed around the ODE
+    (:func:`nonlinear_check`); it stabilizes when the state ends within ``tolerance`` of the
+    linear loop's peak from the equilibrium. The search stops at the first failure.
 
     Parameters
     ----------

@@ -1,21 +1,11 @@
 r"""Internal stability of the whole loop: every state, not only the transfer function.
 
-A realization can have the right transfer function and still an unstable
-circuit: :math:`G = G_3 G_2 G_1` cancels the poles of the sections
-:math:`G_1, G_3` at :math:`\epsilon_1, \epsilon_3` with zeros of :math:`G_2`, so
-with :math:`|\epsilon| \ge 1` the controller's transfer function stabilizes the
-plant while a state of the loop grows as :math:`\epsilon^t` (a hidden mode: the
-loop cannot move an eigenvalue the controller's output does not show). The loop
-is internally stable when every eigenvalue of
-
-.. math::
-    A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}
-
-lies strictly inside the unit circle; :func:`loop_stability` says whether, and
-names the unstable eigenvalues and those that are modes of the controller's own
-:math:`F` (hidden). The simulations (:func:`~symctl.neural.simulate.simulate_realization`,
-:func:`~symctl.neural.simulate.closed_loop_response`) refuse such a loop with a
-:class:`~symctl.errors.ParameterError` that names the realization and the eigenvalue.
+A realization can have the right transfer function and an unstable circuit:
+:math:`G = G_3 G_2 G_1` cancels the poles of :math:`G_1, G_3` at :math:`\epsilon_1,
+\epsilon_3` with zeros of :math:`G_2`, so with :math:`|\epsilon| \ge 1` a state grows as
+:math:`\epsilon^t` (a hidden mode). The loop is internally stable when every eigenvalue of
+:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` lies strictly inside
+the unit circle; the simulations refuse any other loop, naming the eigenvalue.
 
 >>> from symctl import MuscleModel, Realization
 >>> from symctl.neural.stability import loop_stability
