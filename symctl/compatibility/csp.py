@@ -261,35 +261,20 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
     N = E.shape[0]
     S = len(problem.names)
     full = (1 << N) - 1
-    allowed_fwd: dict[int, list[int]] = {}
-    allowed_bwd: dict[int, list[int]] = {}
-    cache_fwd: dict[tuple[int, int], int] = {}
-    cache_bwd: dict[tuple[int, int], int] = {}
+    allowed: dict[tuple[int, int], list[int]] = {}
+    cache: dict[tuple[int, int, int], int] = {}
 
-    def fwd(w, dom):  # targets supported by some value of dom
-        key = (w, dom)
-        out = cache_fwd.get(key)
+    def support(d, w, dom):  # d = 0: the targets supported by some value of dom; 1: the sources
+        out = cache.get((d, w, dom))
         if out is None:
-            if w not in allowed_fwd:
-                allowed_fwd[w] = [sum(1 << j for j in range(N) if E[i, j] <= w) for i in range(N)]
-                allowed_bwd[w] = [sum(1 << i for i in range(N) if E[i, j] <= w) for j in range(N)]
+            if (d, w) not in allowed:
+                allowed[0, w] = [sum(1 << j for j in range(N) if E[i, j] <= w) for i in range(N)]
+                allowed[1, w] = [sum(1 << i for i in range(N) if E[i, j] <= w) for j in range(N)]
             out = 0
             for i in range(N):
                 if dom >> i & 1:
-                    out |= allowed_fwd[w][i]
-            cache_fwd[key] = out
-        return out
-
-    def bwd(w, dom):
-        key = (w, dom)
-        out = cache_bwd.get(key)
-        if out is None:
-            fwd(w, 1)
-            out = 0
-            for j in range(N):
-                if dom >> j & 1:
-                    out |= allowed_bwd[w][j]
-            cache_bwd[key] = out
+                    out |= allowed[d, w][i]
+            cache[d, w, dom] = out
         return out
 
     doms = [full] * S
@@ -321,9 +306,9 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
             x = queue.pop()
             queued.discard(x)
             dx = doms[x]
-            if not all(narrow(b, fwd(w, dx), e) for b, w, e in succ[x]):
+            if not all(narrow(b, support(0, w, dx), e) for b, w, e in succ[x]):
                 return False
-            if not all(narrow(a, bwd(w, dx), e) for a, w, e in pred[x]):
+            if not all(narrow(a, support(1, w, dx), e) for a, w, e in pred[x]):
                 return False
         return True
 

@@ -1,16 +1,9 @@
 r"""Realizations of :math:`G_2` at random section values: the realizations a circuit simulates.
 
-A circuit of the paper is one realization of :math:`G = G_3 G_2 G_1` among many:
-the sections' poles :math:`\epsilon_k` are free (and, for the general realization,
-the similarity transform :math:`P`). :func:`draw_realizations` draws them, seeded,
-and realizes :math:`G_2` at each draw; the derivation builds its numeric
-realizations from the first draw, and the simulations close the loop with every
-one (:func:`~symctl.neural.firing.circuit_firing`).
-
-Each draw, in turn: the epsilons uniformly from the grid :math:`k/1000`,
-:math:`|k| \le 899` (exact rationals in :math:`(-0.9, 0.9)`), :math:`C_k = 1`;
-then the realizer's own random choices (``P`` for ``"general"``) from the same
-generator.
+:func:`draw_realizations` draws, seeded, the sections' epsilons (uniform on the grid
+:math:`k/1000`, :math:`|k| \le 899`; :math:`C_k = 1`) and then the realizer's own choices
+(``P`` for ``"general"``) from the same generator, and realizes :math:`G_2` at each draw;
+the derivation realizes from the first draw and simulates every one.
 
 >>> from symctl import augment, controller_tf, lqr_gains, MuscleModel
 >>> from symctl.realization.draws import draw_realizations

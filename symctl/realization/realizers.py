@@ -1,28 +1,14 @@
 r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
 
-A *realizer* turns a proper SISO transfer function into a
-:class:`~symctl.Realization` and says how: it returns a
-:class:`RealizerResult` with the realization, the canonical realization it
-was built from (its *base*) and the similarity transform :math:`P` relating
-them, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them under their
-names, in the order the report reads the circuits they build:
-
-* ``"ifp"``: the paper's IFP controller, the optimal controller's own state
-  space (:func:`ifp_realization`); it realizes the whole controller from its
-  gains, not :math:`G_2`;
-* ``"general"``: the similarity transform of a canonical base by a given
-  :math:`P` (or, given only ``rng``, a random well-conditioned rational one);
-* ``"controllable"``: the controllable canonical form (:math:`P = I`);
-* ``"observable"``: the observable canonical form (:math:`P = I`);
-* ``"random"``: the paper's recipe for its figures, random epsilons and then a
-  random :math:`P` (:func:`random_realization`); not a circuit of its own.
-
-This table is the one place these names, titles and their order are written:
-the model file's ``[circuits] build``, :func:`~symctl.neural.firing.circuit_firing`,
-the report, the CLI, Dale's law and the fits read it (:func:`circuit_names`).
-:func:`register` adds a realizer (docs/extending.md), :func:`get_realizer`
-looks a name up (and names the argument when it is unknown).
+A *realizer* turns a proper SISO transfer function into a :class:`RealizerResult`: the
+realization, the canonical realization it was built from (its *base*) and the similarity
+transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
+nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them in the report's order:
+``"ifp"`` (the whole controller from its gains, :func:`ifp_realization`), ``"general"``
+(a canonical base transformed by a given or random :math:`P`), ``"controllable"``,
+``"observable"`` and ``"random"`` (the paper's recipe, :func:`random_realization`; no
+circuit of its own). This table is the one place these names, titles and their order
+are written; :func:`register` adds a realizer (docs/extending.md).
 
 >>> import sympy as sp
 >>> from symctl import z
@@ -87,12 +73,9 @@ class RealizerResult(DictMixin):
     base : Realization
         The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
     P : sympy.ImmutableMatrix
-        The transform, ``realization == base.similar(P)`` (:math:`I` for a
-        canonical form).
+        The transform, ``realization == base.similar(P)`` (:math:`I` for a canonical form).
     Pinv : sympy.ImmutableMatrix or None
-        :math:`P^{-1}` when it is cheap: for a numeric :math:`P` (the
-        similarity transform computes it anyway), ``None`` for a symbolic one
-        (never inverted explicitly).
+        :math:`P^{-1}` for a numeric :math:`P`, ``None`` for a symbolic one (never inverted).
     realization : Realization
         :math:`(F, H, M, N)`.
 
@@ -201,10 +184,7 @@ def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
 @dataclass(frozen=True)
 class _General(Realizer):
     def __call__(self, G2, P=None, *, base: str = "controllable", rng=None) -> RealizerResult:
-        """The transform of the ``base`` form by ``P``; ``P=None`` draws one from ``rng``.
-
-        Without states (``n = 0``) the base is returned as it is.
-        """
+        """The transform of the ``base`` form by ``P`` (``None``: drawn from ``rng``); no states: the base."""
         start = get_realizer(base, "base", where=_canonical)(G2).realization
         tf = DiscreteTF.from_expr(G2)
         if start.n == 0:
@@ -300,9 +280,7 @@ def _canonical(realizer: Realizer) -> bool:
 
 
 def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
-    """The circuits a model builds, in the report's order: the realizers with a circuit.
-
-    Read at each call, so that a realizer :func:`register` ed later is among them.
+    """The circuits a model builds, in the report's order (read at each call: registered ones included).
 
     Parameters
     ----------
@@ -322,10 +300,7 @@ def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
 
 
 def register(realizer: Realizer) -> Realizer:
-    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
-
-    From then on a model file may build its circuit, :func:`~symctl.neural.firing.circuit_firing`
-    simulates it, the report and the CLI list it, Dale's law and the fits accept its name.
+    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others (every table reads it).
 
     Parameters
     ----------
@@ -481,10 +456,8 @@ def random_full_rank(
 ) -> sp.Matrix:
     """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned.
 
-    Drawn until its 2-norm condition number is below ``max_cond``, by default
-    ``max(10, 5 n)``: a Gaussian matrix's condition number grows like ``n``
-    (its median is about ``3.4 n``), so a fixed bound would reject almost every
-    draw at large ``n``; this one accepts about two draws in three.
+    Redrawn until its condition number is below ``max_cond``, default ``max(10, 5 n)``
+    (a Gaussian matrix's median is about ``3.4 n``: about two draws in three pass).
 
     >>> from symctl.realization.realizers import random_full_rank
     >>> random_full_rank(2, rng=0).det() != 0
@@ -511,12 +484,10 @@ def random_realization(
 ) -> Realization:
     r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
 
-    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
-    exact rational, uniform in ``eps_range`` (stable sections by default); the
-    canonical realization (``base``) is then similarity-transformed by a random
-    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
-    that no state is scaled out of proportion).
-    Other symbols (gains K, C) stay symbolic unless given in ``values``.
+    Every free symbol of ``G2`` named ``epsilon...`` gets a random exact rational in
+    ``eps_range``; the ``base`` realization is then transformed by a random rational ``P``
+    (entries round(100 N(0, 1))/100, condition number below 10). Other symbols stay symbolic
+    unless given in ``values``.
 
     Parameters
     ----------
@@ -527,20 +498,16 @@ def random_realization(
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
-        Interval of the epsilons: each is an exact multiple of 1/1000 drawn uniformly
-        from [low, high] (both ends included); default (-0.9, 0.9). Both ends must lie
-        in (-1, 1): a section C/(z - epsilon) with ``|epsilon| >= 1`` is unstable and
-        G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit would be
-        internally unstable although its transfer function is right.
+        Each epsilon is a multiple of 1/1000 uniform in [low, high]; default (-0.9, 0.9).
+        Both ends lie in (-1, 1): G3 G2 G1 hides a section with ``|epsilon| >= 1`` (G2
+        cancels it), an internally unstable circuit with the right transfer function.
     values : dict, optional
         Values substituted first.
 
     Returns
     -------
     Realization
-        With the epsilons and ``P`` used in ``.params``. ``P`` has entries
-        round(100 N(0, 1))/100 (exact rationals), redrawn until its condition
-        number is below 10.
+        With the epsilons and ``P`` used in ``.params``.
 
     Raises
     ------
@@ -560,14 +527,10 @@ def random_realization(
 def ifp_realization(gains: Gains) -> Realization:
     r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`.
 
-    Controller state :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input
-    :math:`\delta_f`, output :math:`\delta_r`:
-    :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde B_c K_0`,
-    :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (for :math:`T = 0`: a static gain
-    :math:`N = K_0`), with :math:`\tilde A_c, \tilde B_c` the chain's rows of the
-    augmented system (eqs. augmented_states, ifp_controller). The matrices come
-    from :func:`symctl.design.controller.ifp_state_space`, the one construction
-    also used to prove :func:`symctl.controller_tf`.
+    State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`\delta_f`, output
+    :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
+    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`), from
+    :func:`symctl.design.controller.ifp_state_space`, which also proves :func:`symctl.controller_tf`.
 
     Parameters
     ----------
