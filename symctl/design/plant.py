@@ -1,16 +1,12 @@
 r"""The plant: linearization, exact zero-order-hold discretization, the muscle model.
 
-The paper's muscle (section "Problem setup") is
-
-.. math:: \frac{df}{dt} = \frac{f_\text{max}}{\tau (1 + e^{-r})} - \frac{f}{\tau},
-
-linearized about :math:`(\bar f, \bar r)` with :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`
-and discretized with a zero-order hold of sampling time :math:`T_s`, which gives
-the scalar system :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)` of eq. (system).
-
-:func:`linearize` and :func:`discretize` are general (any vector ODE, any
-number of states and inputs); :class:`MuscleModel` applies them to the paper's
-muscle and keeps every parameter symbolic until numbers are asked for.
+The paper's muscle (section "Problem setup"),
+:math:`df/dt = f_\text{max}/(\tau (1 + e^{-r})) - f/\tau`, linearized about
+:math:`(\bar f, \bar r)`, :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, and discretized
+with a zero-order hold of sampling time :math:`T_s`, gives eq. (system),
+:math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)`. :func:`linearize` and
+:func:`discretize` take any vector ODE; :class:`MuscleModel` keeps every parameter
+symbolic until numbers are asked for.
 
 >>> from symctl import MuscleModel
 >>> m = MuscleModel()
@@ -56,11 +52,9 @@ __all__ = ["DiscretePlant", "Linearization", "MuscleModel", "discretize", "linea
 
 @dataclass(frozen=True)
 class Linearization(LatexMixin):
-    r"""Jacobians of :math:`\dot x = f(x, u)` at a point.
+    r"""Jacobians of :math:`\dot x = f(x, u)` at a point: :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
 
-    :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
-
-    Unpacks as ``a, b = linearize(...)``. Compares and hashes by value.
+    Unpacks as ``a, b = linearize(...)``; compares and hashes by value.
 
     Attributes
     ----------
@@ -204,10 +198,9 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     .. math::
         \exp\left(\begin{bmatrix} a & b \\ 0 & 0 \end{bmatrix} T_s\right)
         = \begin{bmatrix} A & B \\ 0 & I \end{bmatrix},
-        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b .
+        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b,
 
-    Symbolic matrices give the closed form (sympy's matrix exponential);
-    numeric ones go through :func:`scipy.linalg.expm`.
+    in closed form for symbolic matrices, by :func:`scipy.linalg.expm` for numeric ones.
 
     Parameters
     ----------
@@ -288,12 +281,8 @@ def _expm(block: np.ndarray, expm) -> np.ndarray:
 class DiscretePlant(LatexMixin):
     r"""A discrete-time linear plant :math:`x(t+1) = A x(t) + B u(t)`.
 
-    ``A`` (n x n) and ``B`` (n x m) are sympy matrices, exact or symbolic.
-    ``dt`` is the sampling time (a number, a symbol, or ``None`` when unknown;
-    ``Ts`` is its deprecated name, as a keyword and as an attribute).
-    ``state_names``/``input_names`` label the signals (the muscle's are
-    ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
-    of a linearized plant. It compares and hashes by value (``params`` aside).
+    ``A``, ``B`` are exact or symbolic sympy matrices; ``Ts`` is the deprecated name of ``dt``
+    (keyword and attribute). Compares and hashes by value (``params`` aside).
 
     Parameters
     ----------
@@ -438,32 +427,22 @@ def _muscle_discrete() -> DiscretePlant:
 class MuscleModel(LatexMixin):
     r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`.
 
-    Parameters default to the paper's (section "Simulations"): ``tau = 0.02`` s,
-    ``f_max = 60`` N, ``r_bar = 1`` spike/s, ``dt = 0.01`` s (``Ts`` is the deprecated name of
-    ``dt``, as a keyword and as an attribute).
-
     The derivation is symbolic (:meth:`linearize_symbolic`, :meth:`discrete_symbolic`);
-    :meth:`plant` substitutes the numbers and returns an exact
-    :class:`DiscretePlant` (e.g. ``A = exp(-1/2)``).
+    :meth:`plant` substitutes the numbers exactly (e.g. ``A = exp(-1/2)``). The admissible
+    ranges keep every number finite: ``tau``, ``f_max``, ``dt`` in ``[1e-100, 1e100]``,
+    :math:`|\bar r| \le 700`, :math:`10^{-6} \le T_s/\tau \le 700` (``TS_TAU_MIN``,
+    ``MAX_EXPONENT``). ``Ts`` is the deprecated name of ``dt``.
 
     Parameters
     ----------
     tau : float
-        Muscle time constant [s], > 0.
+        Muscle time constant [s], > 0 (the paper's 0.02).
     f_max : float
-        Maximum force [N], > 0.
+        Maximum force [N], > 0 (60).
     r_bar : float
-        Equilibrium firing rate [spikes/s].
+        Equilibrium firing rate [spikes/s] (1).
     dt : float
-        Sampling time [s], > 0.
-
-    Notes
-    -----
-    The admissible ranges keep every number of the derivation finite:
-    ``tau``, ``f_max`` and ``dt`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
-    :math:`|\bar r| \le 700` and :math:`10^{-6} \le T_s/\tau \le 700`
-    (``TS_TAU_MIN``, ``MAX_EXPONENT``: beyond, :math:`e^{-T_s/\tau}` underflows
-    and the nonlinear check integrates an ODE over more than 700 time constants).
+        Sampling time [s], > 0 (0.01).
 
     Raises
     ------

@@ -1,11 +1,8 @@
 r"""Discrete transfer functions in closed form: the type :class:`DiscreteTF`.
 
-:class:`DiscreteTF` is symctl's transfer-function type: an immutable pair of a
-numerator matrix of polynomials in :math:`z` and one common, monic denominator
-polynomial, exact or symbolic. SISO objects behave like a scalar. It compares
-and hashes by value (numerator, denominator and sampling time, structurally).
-The optimal delayed controller :math:`G(z)` built from it lives in
-:mod:`symctl.design.controller`.
+An immutable numerator matrix of polynomials in :math:`z` over one common monic
+denominator, exact or symbolic; SISO objects behave like a scalar. The optimal delayed
+controller :math:`G(z)` lives in :mod:`symctl.design.controller`.
 
 >>> from symctl import DiscreteTF, z
 >>> G = DiscreteTF.from_expr(3 / (z**2 - z / 2))
@@ -83,6 +80,10 @@ def _replaced(expr, rule, flags: dict):
 class DiscreteTF(LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` in the symbol :data:`symctl.z`.
 
+    Use :meth:`from_expr` for any rational expression (lowest terms). ``==`` (and the hash)
+    compares numerator, denominator and ``dt`` structurally; :meth:`equals` compares them as
+    rational functions.
+
     Parameters
     ----------
     num : sympy Matrix or expression
@@ -91,13 +92,6 @@ class DiscreteTF(LatexMixin):
         Common denominator polynomial in ``z``; it is made monic.
     dt : number, symbol or None
         Sampling time, kept for conversions (``None``: unspecified).
-
-    Notes
-    -----
-    Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
-    stored in lowest terms only when built by :meth:`from_expr`. Two objects
-    are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
-    structurally the same; :meth:`equals` decides equality as rational functions.
 
     Raises
     ------
@@ -243,11 +237,7 @@ class DiscreteTF(LatexMixin):
 
     # ------------------------------------------------------------ algebra
     def subs(self, *args, **kwargs) -> DiscreteTF:
-        """Substitute symbols (as :meth:`sympy.Basic.subs`); ``z`` must stay free.
-
-        Keys are symbols or their names, values numbers, sympy objects or text
-        (read by the safe parser): :func:`symctl._util.validate.subs_rule`.
-        """
+        """Substitute symbols (as :meth:`sympy.Basic.subs`, text by the safe parser); ``z`` stays free."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
         dt = None if self.dt is None else _replaced(self.dt, rule, flags)
         return DiscreteTF(_replaced(self._num, rule, flags), _replaced(self.den, rule, flags), dt)
@@ -280,11 +270,7 @@ class DiscreteTF(LatexMixin):
 
     # ------------------------------------------------------------ numbers
     def markov(self, count: int) -> list[sp.Matrix]:
-        r"""The first ``count`` Markov parameters :math:`h_k` of :math:`G = \sum_k h_k z^{-k}`.
-
-        Exact (symbolic entries stay symbolic). For a strictly proper ``G``
-        these are the impulse response; :math:`h_0` is the feed-through.
-        Requires a proper ``G``.
+        r"""The first ``count`` Markov parameters :math:`h_k` of a proper :math:`G = \sum_k h_k z^{-k}`.
 
         >>> from symctl import DiscreteTF, z
         >>> [h[0] for h in DiscreteTF.from_expr(1 / (z - 2)).markov(4)]
@@ -311,10 +297,7 @@ class DiscreteTF(LatexMixin):
         return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)
 
     def impulse_response(self, steps: int) -> np.ndarray:
-        """Numeric impulse response, shape ``(steps, outputs, inputs)``; needs numbers.
-
-        The Markov parameters (:meth:`markov`) in floating point, by the
-        denominator's recurrence, for at most ``MAX_STEPS`` (10**6) steps.
+        """Numeric impulse response ``(steps, outputs, inputs)``: :meth:`markov` in floats (``MAX_STEPS``).
 
         Raises
         ------
