@@ -22,12 +22,6 @@ conversely a direct-compatible assignment satisfies
 :math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w`
 (a wire is a direct path), and then, summing along any path and using the
 triangle inequality of :math:`E`, the fastest reading is compatible too.
-
->>> from symctl import DelayAssignment, DelayGraph, ifp_structure
->>> a = DelayAssignment(ifp_structure(1), DelayGraph.chain([0]),
-...                     {"x": 1, "K0": 2, "mu": 2, "K1": 2, "u": 2})
->>> a.E_tilde.tolist(), a.is_compatible()
-([[0.0, 0.0], [inf, 0.0]], True)
 """
 
 from __future__ import annotations

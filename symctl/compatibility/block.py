@@ -3,14 +3,6 @@ r"""The blocks of a controller structure: inputs, gains, adders and delays of k 
 A ``"delay"`` block delays its one input by ``steps`` sampling steps, :math:`a(t - k)`:
 ``steps=1`` is the paper's unit delay, ``steps=k`` an axon whose conduction takes
 :math:`k` steps (one block :math:`z^{-k}`, not :math:`k` relays).
-
->>> from symctl.compatibility.block import Block, block
->>> block("d", ("delay", ("a",), None, "", 3))
-Block(kind='delay', inputs=('a',), gain=None, part='', steps=3)
->>> block("d", ("delay", ("a",), None, "", 0))  # doctest: +ELLIPSIS
-Traceback (most recent call last):
-...
-symctl.errors.ParameterError: blocks['d'].steps: a delay block delays by an integer number ... got 0
 """
 
 from __future__ import annotations

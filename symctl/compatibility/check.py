@@ -7,20 +7,6 @@ every assignment by the definition's words (the tests' reference). A
 :class:`CompatibilityResult` carries a witness, or a certificate: a minimal set of
 signal paths and, for every placement of the signals where they meet, one path it makes
 too fast.
-
->>> from symctl import DelayGraph, check_compatibility, ifp_structure
->>> result = check_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
->>> result.ok
-False
->>> print(result.reason)  # doctest: +NORMALIZE_WHITESPACE
-No delay assignment of this structure is compatible with the delay graph (decided by chain:
-bounds arc consistency). These signal paths suffice for the contradiction:
-  (a) x -> K0 -> mu, delay 0
-  (b) u -> K2 -> mu, delay 0
-with x at v1 (input) and u at v3 (output). Every placement fails:
-  mu at v1: path (b) runs from u at v3 to mu at v1 with delay 0, so Ẽ[3,1] <= 0 < E[3,1] = inf
-  mu at v2: path (b) runs from u at v3 to mu at v2 with delay 0, so Ẽ[3,2] <= 0 < E[3,2] = inf
-  mu at v3: path (a) runs from x at v1 to mu at v3 with delay 0, so Ẽ[1,3] <= 0 < E[1,3] = 2
 """
 
 from __future__ import annotations

@@ -6,15 +6,6 @@ controller over the graph), :func:`along_path` (one first-order section
 :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps, half on the sensor
 side, :math:`G_2 = G / (G_3 G_1)` between; signals placed by the exact chain solver) and
 :func:`markov_split` (the parallel decomposition of Theorem 2).
-
->>> from symctl import DelayGraph, controller_tf
->>> from symctl.compatibility.construction import along_path, fastest_path
->>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
->>> fastest_path(g)
-(2, (1, 2, 4), (1, 1))
->>> part = along_path(controller_tf(2), (1, 2, 4), (1, 1))
->>> sorted(set(part.vertex_of.values()))
-[1, 2, 4]
 """
 
 from __future__ import annotations

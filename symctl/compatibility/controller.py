@@ -92,15 +92,6 @@ their constraints as in Theorem 1 and the adders' wires stay at :math:`a_i`.
 :math:`\square` The construction shares no interneurons between entries; it
 proves existence, while the canonical MIMO forms share them (their
 compatibility is checked by :func:`symctl.check_compatibility`).
-
->>> from symctl import DelayGraph, controller_compatibility, controller_tf
->>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
->>> r.ok, r.scope
-(True, 'all realizations')
->>> controller_compatibility(controller_tf(2), DelayGraph.chain([2])).ok
-True
->>> controller_compatibility(controller_tf(2), DelayGraph.chain([2]), max_wire_delay=1).ok
-False
 """
 
 from __future__ import annotations

@@ -5,13 +5,6 @@ actuator, sink); :math:`E_{ij}` is the delay of the shortest path from :math:`v_
 :math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no path exists. The paper's
 neuromuscular graph is the chain :math:`v_1 \to v_2 \to v_3` with one step per edge. The
 module needs only NumPy (no SymPy, SciPy or networkx).
-
->>> from symctl import DelayGraph
->>> g = DelayGraph.chain([1, 1])
->>> g.E.tolist()
-[[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
->>> g == DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]])
-True
 """
 
 from __future__ import annotations

@@ -4,14 +4,6 @@ A delay block of :math:`k` steps is a shift register of :math:`k` states ``d@1, 
 d@(k-1), d`` (``d@j`` holds :math:`a(t - j)`); each signal is a row of coefficients on
 :math:`[s \mid u]`, read in delay-free order, giving :math:`s(t+1) = A s(t) + B u(t)`,
 :math:`y(t) = C s(t) + D u(t)`.
-
->>> import sympy as sp
->>> from symctl import Structure
->>> from symctl.compatibility.statespace import structure_realization
->>> from symctl.realization.realization import first_order_realization
->>> S = Structure.from_realization(first_order_realization(sp.Rational(1, 2), 3), input_delay=3)
->>> sp.factor(structure_realization(S).to_tf().expr)
-6/(z**2*(2*z - 1))
 """
 
 from __future__ import annotations

@@ -14,13 +14,6 @@ zero entry nothing.
 unit delay, :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-1)`; ``delays="state"``, one
 delay after each adder, :math:`x_i(t+1) = \sum_j F_{ij} x_j + H_i u`; both with
 :math:`y = M x + N u`.
-
->>> from symctl import Structure, controllable_canonical, ifp_structure, same_structure, z
->>> S = Structure.from_realization(controllable_canonical(1 / (z**2 - z / 2)))
->>> S.inputs, S.outputs, S.count("delay")
-(('u',), ('x1',), 3)
->>> same_structure(ifp_structure(2), ifp_structure(2))
-True
 """
 
 from __future__ import annotations

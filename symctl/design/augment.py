@@ -19,13 +19,6 @@ scalar ``T = 2``, :math:`\chi = [\delta_f, \gamma, \delta_r]` and
 Only the net delay enters (for state feedback a sensor delay can move to the actuator
 side); the split is kept for :math:`G = G_3 G_2 G_1`. With ``T = 0`` the system is the
 plant and ``R`` penalizes :math:`\mu = u`.
-
->>> from symctl import MuscleModel, augment
->>> aug = augment(MuscleModel().discrete_symbolic(), sensor_delay=1, actuator_delay=1)
->>> aug.state_names
-('delta_f', 'gamma', 'delta_r')
->>> aug.A.shape, aug.T
-((3, 3), 2)
 """
 
 from __future__ import annotations

@@ -34,13 +34,6 @@ of degree :math:`T` in :math:`z` and linear in the gains, so the proof of the
 
 Those matrices, the paper's IFP controller, are built in one place,
 :func:`ifp_state_space`, for symbolic and numeric gains alike.
-
->>> from symctl import controller_tf
->>> G = controller_tf(2)
->>> G.expr
-K_0/(-K_1*z - K_2 + z**2)
->>> G.relative_degree
-2
 """
 
 from __future__ import annotations

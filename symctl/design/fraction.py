@@ -12,14 +12,6 @@ shape, order, relative degree, Markov parameters, substitution and the proof
 (:func:`symctl.prove_controller_tf`) work on :math:`D` and :math:`N`.
 :class:`MatrixFractionTF` expands only when ``num``/``den`` are asked for, after bounding
 the size by the same permanent; numbers make the expansion small.
-
->>> import sympy as sp
->>> from symctl import z
->>> from symctl.design.fraction import MatrixFractionTF
->>> k = sp.Symbol("k")
->>> G = MatrixFractionTF(sp.Matrix([[z - k, 0], [1, z]]), sp.Matrix([[1], [0]]))
->>> G.relative_degree, G.expanded().num_matrix.T, G.expanded().den
-(1, Matrix([[z, -1]]), -k*z + z**2)
 """
 
 from __future__ import annotations

@@ -18,11 +18,6 @@ The second is a standard DARE (:func:`scipy.linalg.solve_discrete_are`) with
 :math:`R \succ 0` on the input, better conditioned than the paper's zero input penalty.
 Stabilizability and detectability are checked first (PBH test). Sign: the paper's
 :math:`\mu(t) = K\chi(t)`, minus the usual LQR gain.
-
->>> from symctl import MuscleModel, augment, lqr_gains
->>> g = lqr_gains(augment(MuscleModel(), 1, 1))
->>> [round(float(k), 6) for k in g.K[0]]
-[-0.045972, -0.580041, -0.351813]
 """
 
 from __future__ import annotations

@@ -7,14 +7,6 @@ with a zero-order hold of sampling time :math:`T_s`, gives eq. (system),
 :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)`. :func:`linearize` and
 :func:`discretize` take any vector ODE; :class:`MuscleModel` keeps every parameter
 symbolic until numbers are asked for.
-
->>> from symctl import MuscleModel
->>> m = MuscleModel()
->>> m.discrete_symbolic().A[0, 0]
-exp(-T_s/tau)
->>> p = m.plant()
->>> round(float(p.A[0, 0]), 6), round(float(p.B[0, 0]), 6), round(m.f_bar, 4)
-(0.606531, 4.641646, 43.8635)
 """
 
 from __future__ import annotations

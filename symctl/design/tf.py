@@ -3,13 +3,6 @@ r"""Discrete transfer functions in closed form: the type :class:`DiscreteTF`.
 An immutable numerator matrix of polynomials in :math:`z` over one common monic
 denominator, exact or symbolic; SISO objects behave like a scalar. The optimal delayed
 controller :math:`G(z)` lives in :mod:`symctl.design.controller`.
-
->>> from symctl import DiscreteTF, z
->>> G = DiscreteTF.from_expr(3 / (z**2 - z / 2))
->>> G.expr
-3/(z**2 - z/2)
->>> G.relative_degree, G == DiscreteTF.from_expr(6 / (2 * z**2 - z))
-(2, True)
 """
 
 from __future__ import annotations

@@ -1,33 +1,20 @@
-r"""Fitting a circuit to recorded firing rates: :func:`fit` and :func:`identifiability`.
+r"""Fitting a circuit to recorded firing rates: :func:`fit`.
 
-The paper's closing remark: "if we have data from the biological neuron(s), we
-can tune the controller circuit to match this data while preserving the
-model's match to behavioral observations". Every realization in the family
-(:math:`\epsilon`, :math:`C`, the similarity :math:`P`, the circuit class)
-implements the same :math:`G` *exactly*, so the force and the motor-neuron
-rate, the behaviour, cannot drift while the neurons are fitted: the fit moves
-only inside the set of circuits that are the optimal controller.
+The paper's closing remark: "if we have data from the biological neuron(s), we can tune
+the controller circuit to match this data while preserving the model's match to
+behavioral observations". Every realization in the family (:math:`\epsilon`, :math:`C`,
+the similarity :math:`P`, the class) implements the same :math:`G` *exactly*, so the fit
+moves only inside the set of circuits that are the optimal controller.
 
-Method. The loop's :math:`\delta_f` is computed once
-(:func:`~symctl.neural.simulate.closed_loop_response`); each neuron's trace is a
-linear filter of it (:mod:`symctl.fitting.fitmodel`), with exact Jacobians by
-forward sensitivity. :func:`scipy.optimize.least_squares` (trust-region
-reflective, :math:`|\epsilon| < 1` as bounds) minimises the sum over recorded
-neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
-starting points; for the general class each start's :math:`P^{-1}` rows of
-recorded neurons are first solved by linear least squares (they enter
-linearly). Dale's-law ``signs`` add penalty residuals on the outgoing weights
-and are checked exactly on the final circuit. The fitted values are rounded to
-rationals (denominators at most ``10**6``), the exact realization is built and
-:func:`~symctl.realization.check.check_realization` proves that it realizes
-:math:`G`.
-
-Identifiability. With :math:`J` the weighted Jacobian of the recorded traces,
-a parameter is identifiable iff its unit vector lies in the row space of
-:math:`J`, a neuron's prediction iff its sensitivity rows do (to ``1e-6``,
-relative); the rank of :math:`J` per neuron set is :func:`identifiability`.
-Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}` with
-:math:`\hat\sigma^2 = \mathrm{RSS}/(m - \mathrm{rank})`.
+Method. Each neuron's trace is a linear filter of the loop's :math:`\delta_f`, computed
+once (:mod:`symctl.fitting.fitmodel`, exact Jacobians). Least squares minimises the sum
+over recorded neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
+points (for the general class each start's :math:`P^{-1}` rows of recorded neurons solved
+linearly first); Dale's-law ``signs`` add penalty residuals and are checked exactly at
+the end. The values are rounded to rationals (denominators at most ``10**6``), the exact
+realization is built and :func:`~symctl.realization.check.check_realization` proves it.
+Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
+= \mathrm{RSS}/(m - \mathrm{rank})` (identifiability: :mod:`symctl.fitting.identify`).
 """
 
 from __future__ import annotations
@@ -181,12 +168,8 @@ def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> lis
 
 
 def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray]]:
-    """Least squares from each start: ``[(cost, theta), ...]`` (a worker's chunk).
-
-    The epsilons are optimised as :math:`\\epsilon = 0.999 \\tanh\\phi` (stable sections
-    without bounds), so MINPACK's Levenberg-Marquardt (``method="lm"``, a QR per
-    step) runs instead of the bounded trust region (an SVD per step, 5-20 times
-    slower here).
+    r"""Least squares from each start: ``[(cost, theta), ...]``. Epsilons as :math:`0.999 \tanh\phi`
+    (stable without bounds), so MINPACK's Levenberg-Marquardt runs (5-20x the trust region's speed).
     """
     model = problem.model()
     both = _residual_fns(problem, model)
@@ -395,9 +378,8 @@ def fit(
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
-    Every candidate circuit implements :math:`G` exactly, so the fit changes
-    the neurons and never the behaviour (the force and rate traces stay the
-    optimal controller's). See :mod:`symctl.fitting.fit` for the method.
+    Every candidate implements :math:`G` exactly: the fit changes the neurons, never the
+    behaviour (method: :mod:`symctl.fitting.fit`).
 
     Parameters
     ----------

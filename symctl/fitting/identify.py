@@ -30,10 +30,8 @@ _SPAN_RTOL = 1e-6
 
 
 def _spans(S: np.ndarray, V: np.ndarray, scale: float = 0.0) -> bool:
-    """Whether the rows of ``S`` lie in the span of the orthonormal rows of ``V``.
-
-    Below ``1e-9 * scale`` (the largest sensitivity of any neuron) ``S`` is zero: an
-    invariant trace such as :math:`\\delta_r` is known whatever the data.
+    r"""Whether the rows of ``S`` lie in the span of the orthonormal rows of ``V`` (``S`` below
+    ``1e-9 * scale`` is zero: an invariant trace such as :math:`\delta_r` is always known).
     """
     size = float(np.linalg.norm(S))
     if size <= 1e-9 * scale:
@@ -115,10 +113,7 @@ def identifiability(
 ) -> tuple[Identifiability, ...]:
     r"""Which parameters, and which neurons' traces, each set of recorded neurons pins down.
 
-    The answer is the rank of the sensitivity of the recorded traces to the
-    parameters, at a generic point (seeded random epsilons, Cs and :math:`P^{-1}`):
-    a parameter is identifiable iff its unit vector lies in the row space, an
-    unrecorded neuron iff its sensitivity does.
+    At a generic point (seeded random epsilons, Cs and :math:`P^{-1}`; see the module text).
 
     Parameters
     ----------

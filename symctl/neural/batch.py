@@ -4,14 +4,6 @@ r"""Many closed loops at once: the plant around a stack of realizations, vectori
 N_r)` at once (``benchmarks/simulate.py``: :math:`10^5` loops of 500 steps) through the
 time loop of :mod:`symctl.neural.simulate`, adding chunking, the stability test of many
 loops and bounded memory.
-
->>> import numpy as np
->>> from symctl import MuscleModel, simulate_batch
->>> gain = np.array([-0.01, -0.05]).reshape(2, 1, 1)
->>> out = simulate_batch(MuscleModel(), np.zeros((2, 1, 1)), gain, np.ones((2, 1, 1)),
-...                      np.zeros((2, 1, 1)))
->>> out.delta_r.shape
-(2, 50, 1)
 """
 
 from __future__ import annotations

@@ -45,14 +45,6 @@ sits at its adder's vertex: in the paper's assignment for :math:`G_3 G_2 G_1` th
 delay-free path through :math:`N` would give :math:`\tilde E_{12} = 0 < 1`).
 :meth:`Circuit.as_linear_system` outputs every neuron's axon output (named by its
 adder's signal), so a simulation gives each neuron's firing trace.
-
->>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
->>> f = factor(controller_tf(2))
->>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
->>> c.n_neurons, [n.name for n in c.neurons]
-(4, ['G1.x1', 'G2.x2', 'G2.y', 'G3.x1'])
->>> c.neuron("G2.x2").self_dynamics
-K_1/z + K_2/z**2
 """
 
 from __future__ import annotations

@@ -6,12 +6,6 @@ the same pulse on the force, gives the optimal controller's force and motor-neur
 neuron's output *is* its change in firing rate from equilibrium. Kind ``"ifp"`` is the
 paper's IFP controller: the one neuron :math:`\mu` of
 :func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
-
->>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> fp = circuit_firing("controllable", gains, count=2)
->>> fp.neurons, fp.firing["G2.y"].shape
-(('G2.x2', 'G2.y'), (2, 50))
 """
 
 from __future__ import annotations

@@ -7,11 +7,6 @@ disturbance's amplitude, the linearization being exact to first order.
 :func:`longest_delay` finds the longest net delay whose optimal controller still brings
 the *nonlinear* plant back (every delay stabilizes the linear plant; the nonlinearity,
 e.g. a saturating torque, limits it).
-
->>> from symctl import nonlinear_check
->>> chk = nonlinear_check(amplitudes=[0.01, 0.1], steps=30)
->>> round(float(chk.max_deviation[1] / chk.max_deviation[0]))   # second order
-100
 """
 
 from __future__ import annotations

@@ -18,14 +18,6 @@ controller runs on the augmented state, :math:`\chi(t+1) = (\tilde A + \tilde B 
 + [I; 0]\,w(t)`. Defaults (the paper gives none): a pulse of amplitude 1 on steps 5..14
 of 50 (0.5 s at :math:`T_s` = 10 ms). Time is ``t = k dt`` in seconds; absolute force
 and rate add the operating point :math:`(\bar f, \bar r)` back.
-
->>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> res = closed_loop_response(gains)
->>> res.t.shape, res.delta_f.shape, round(float(res.f[0, 0]), 4)
-((50,), (50, 1), 43.8635)
->>> round(float(res.delta_r.min()), 4)      # the motor neuron answers the push, 2 steps later
--0.0472
 """
 
 from __future__ import annotations

@@ -6,11 +6,6 @@ A realization can have the right transfer function and an unstable circuit:
 :math:`\epsilon^t` (a hidden mode). The loop is internally stable when every eigenvalue of
 :math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` lies strictly inside
 the unit circle; the simulations refuse any other loop, naming the eigenvalue.
-
->>> from symctl import MuscleModel, Realization
->>> from symctl.neural.stability import loop_stability
->>> bool(loop_stability(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0)))
-True
 """
 
 from __future__ import annotations

@@ -20,11 +20,6 @@ proper with a monic denominator of degree :math:`d`. Then
 a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
 :math:`e_0 = \dots = e_L = 0` forces every coefficient of :math:`P` to vanish,
 :math:`E = 0`. The converse is immediate. :math:`\square`
-
->>> from symctl import check_realization, controllable_canonical, z
->>> G = (z + 2) / (z**2 - z / 2)
->>> check_realization(controllable_canonical(G), G).ok
-True
 """
 
 from __future__ import annotations

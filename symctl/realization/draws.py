@@ -4,14 +4,6 @@ r"""Realizations of :math:`G_2` at random section values: the realizations a cir
 :math:`k/1000`, :math:`|k| \le 899`; :math:`C_k = 1`) and then the realizer's own choices
 (``P`` for ``"general"``) from the same generator, and realizes :math:`G_2` at each draw;
 the derivation realizes from the first draw and simulates every one.
-
->>> from symctl import augment, controller_tf, lqr_gains, MuscleModel
->>> from symctl.realization.draws import draw_realizations
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
->>> first, second = draw_realizations(G, 1, 1, "observable", 2, rng=0)
->>> [str(v) for v in first.values.values()], first.result.realization.n
-(['631/1000', '123/500'], 2)
 """
 
 from __future__ import annotations

@@ -19,15 +19,6 @@ paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
     {z^2 - K_1 z - K_2}
     = \frac{K_0}{C_1 C_3} + \frac{K_0}{C_1 C_3}\,
     \frac{(K_1 - \epsilon_1 - \epsilon_3) z + K_2 + \epsilon_1\epsilon_3}{z^2 - K_1 z - K_2}.
-
->>> from symctl import controller_tf, factor
->>> f = factor(controller_tf(2))
->>> f.N
-K_0/(C_1*C_3)
->>> f.remainder_coeffs
-[K_1 - epsilon_1 - epsilon_3, K_2 + epsilon_1*epsilon_3]
->>> bool(f.verify())
-True
 """
 
 from __future__ import annotations

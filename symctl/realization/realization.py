@@ -7,13 +7,6 @@ section "Realizations"). :class:`Realization` is immutable and exact. For the pa
 K_1]]`, :math:`H = [0, 1]^\top`, :math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\
 K_1 - \epsilon_1 - \epsilon_3]`; the other ways to realize :math:`G_2` are in
 :mod:`symctl.realization.realizers`.
-
->>> from symctl import controllable_canonical, z
->>> R = controllable_canonical((z + 2) / (z**2 - z / 2))
->>> R.F, R.H.T, R.M, R.N
-(Matrix([
-[0,   1],
-[0, 1/2]]), Matrix([[0, 1]]), Matrix([[2, 1]]), Matrix([[0]]))
 """
 
 from __future__ import annotations

@@ -9,19 +9,6 @@ nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them in the report'
 ``"observable"`` and ``"random"`` (the paper's recipe, :func:`random_realization`; no
 circuit of its own). This table is the one place these names, titles and their order
 are written; :func:`register` adds a realizer (docs/extending.md).
-
->>> import sympy as sp
->>> from symctl import z
->>> from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer
->>> list(REALIZERS)
-['ifp', 'general', 'controllable', 'observable', 'random']
->>> circuit_names()
-('ifp', 'general', 'controllable', 'observable')
->>> result = get_realizer("general")(1 / (z - sp.Rational(1, 2)), P=[[2]])
->>> result.realization.H, result.P, result.base.H
-(Matrix([[1/2]]), Matrix([[2]]), Matrix([[1]]))
->>> REALIZERS["observable"].title
-'observable canonical'
 """
 
 from __future__ import annotations
