@@ -184,19 +184,15 @@ def check_compatibility(
     structure : Structure
     graph : DelayGraph
     method : {"auto", "chain", "search", "brute-force"}
-        ``"auto"``: bounds arc consistency when the graph is a chain (polynomial
-        time), otherwise arc consistency + backtracking (exact, exponential in
-        the worst case). ``"brute-force"`` enumerates every assignment (small
-        structures only; ``"brute force"`` is accepted too).
+        ``"auto"``: bounds arc consistency on a chain (polynomial), else arc
+        consistency + backtracking (exact, exponential in the worst case);
+        ``"brute-force"`` (or ``"brute force"``) enumerates every assignment.
     max_decisions : int, default :data:`MAX_DECISIONS`
-        Bound on the search's decisions (branchings), so that the work is
-        bounded; the chain method is polynomial and needs none.
+        Bound on the search's decisions (the chain method needs none).
 
     Returns
     -------
     CompatibilityResult
-        Truthy when compatible: ``.ok``, ``.assignment`` (witness), ``.E_tilde``,
-        ``.reason`` (witness or certificate), ``.method``.
 
     Raises
     ------
@@ -208,9 +204,6 @@ def check_compatibility(
 
     Examples
     --------
-    The paper's controller :math:`G_3 G_2 G_1` is compatible with the
-    neuromuscular graph:
-
     >>> from symctl import (DelayGraph, Structure, check_compatibility, controllable_canonical,
     ...                     controller_tf, factor)
     >>> f = factor(controller_tf(2))

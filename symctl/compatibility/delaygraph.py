@@ -139,13 +139,9 @@ class DelayGraph:
         The shortest-path delays: integers >= 0, ``inf`` (``math.inf``,
         ``numpy.inf``, ``sympy.oo`` or ``"inf"``) where no path exists, zero
         diagonal, and closed (:math:`E_{ik} \le E_{ij} + E_{jk}`).
-    sensors : sequence of int, optional (keyword)
-        The sensor vertices (from 1), default ``(1,)``: one vertex for all the
-        controller's inputs, or one per input (the vertex where measured
-        signal ``k`` enters).
-    actuators : sequence of int, optional (keyword)
-        The actuator vertices, default ``(N,)``: one for all the controller's
-        outputs, or one per output (the vertex that drives input ``k``).
+    sensors, actuators : sequence of int, optional (keyword)
+        The sensor (actuator) vertices from 1, default ``(1,)`` (``(N,)``): one for all
+        the controller's inputs (outputs), or one per input (output).
 
     Attributes
     ----------
@@ -161,11 +157,9 @@ class DelayGraph:
     Raises
     ------
     ParameterError
-        Negative or non-integer delays, a nonzero diagonal, a matrix that is
-        not a shortest-path closure, fewer than two vertices, a vertex that
-        no sensor can reach (with the default sensor: :math:`v_1` is no
-        source) or that reaches no actuator (:math:`v_N` is no sink); sensor
-        or actuator vertices out of range or repeated.
+        Negative or non-integer delays, a nonzero diagonal, no shortest-path closure,
+        fewer than two vertices, a vertex no sensor reaches or that reaches no actuator,
+        sensor or actuator vertices out of range or repeated.
     DimensionError
         A matrix that is not square.
     SymctlTypeError

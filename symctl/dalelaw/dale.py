@@ -84,9 +84,8 @@ class DaleResult(Verdict):
     realization : Realization or None
         The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
     signs : mapping
-        Neuron name -> ``"+"`` (excitatory) or ``"-"`` (inhibitory), for every neuron
-        of the witness circuit; a neuron that drives only the read-out is ``"+"``
-        (nothing constrains it).
+        Neuron name -> ``"+"`` or ``"-"``, every neuron of the witness (one that drives
+        only the read-out is ``"+"``).
     method, reason : str
         How it was decided, and the evidence (or what was tried).
     circuit : str
@@ -101,9 +100,7 @@ class DaleResult(Verdict):
     exact : bool
         The witness was verified in exact arithmetic (always, for a witness).
     realizes : bool or None
-        The circuit realizes :math:`G` at all, signs aside: ``True`` with a witness
-        (or when Dale's law fails only for the signs), ``False`` when z3 proved it does
-        not, ``None`` when not decided.
+        Whether the circuit realizes :math:`G` at all, signs aside (None: not decided).
     elapsed : float
         Seconds spent.
 
@@ -264,14 +261,11 @@ def dale(
     sensor_delay, actuator_delay : int, optional
         The split :math:`G_1`, :math:`G_3` (default the gains' delays, else 1 and 1).
     circuit : {"general", "controllable", "observable"}, CircuitClass or Pattern
-        The circuit of :math:`G_2`: the paper's general (every entry of a
-        similarity transform nonzero) or canonical circuits, or a class of
-        :func:`symctl.atlas` (each of its representative patterns is tried).
+        The circuit of :math:`G_2`: the paper's general or canonical circuits, or a
+        class of :func:`symctl.atlas` (each representative pattern tried).
     timeout : float or Deadline
-        Seconds for the whole call (default 30, at most 3600), shared by every
-        pattern and stage (z3, the numeric search of the general circuit, the
-        equations); or a :class:`~symctl._util.deadline.Deadline` already running
-        (shared with other calls, or on a clock of one's own).
+        Seconds for the whole call, every pattern and stage (default 30, at most
+        3600), or a running :class:`~symctl._util.deadline.Deadline`.
 
     Returns
     -------

@@ -105,16 +105,11 @@ def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") 
     ----------
     plant : DiscretePlant
     dt : sympy expression or None
-        The sampling time of the other object (a controller, the gains' plant...).
-        ``None`` (unspecified) fits any plant ``dt``, as a plant's ``dt=None`` fits any ``dt``.
+        The other object's sampling time (``None`` fits any, as a plant's ``None`` does).
     argname : str
         The argument named in the error.
     of : str
         What ``dt`` belongs to, for the message.
-
-    Returns
-    -------
-    None
 
     Raises
     ------
@@ -235,9 +230,7 @@ def augment(
         Numeric or symbolic; a discrete ``control.StateSpace`` or ``TransferFunction``
         is read by :func:`as_plant` (its ``dt`` becomes the plant's).
     sensor_delay, actuator_delay : int
-        Delays in steps, integers >= 0 with a net delay
-        ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500; the augmented
-        system has ``n + T m`` states).
+        Delays in steps, >= 0, with ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500).
     Q : matrix-like, optional
         State penalty (``n x n``); identity by default.
     R : matrix-like, optional
@@ -250,9 +243,8 @@ def augment(
     Raises
     ------
     ParameterError
-        Negative delays or a net delay above ``MAX_DELAY``; numeric ``Q`` or ``R``
-        not symmetric positive semidefinite, or with an entry above ``MAX_MAGNITUDE``
-        (1e100) in magnitude, or more than ``MAX_STATES`` (1000) augmented states.
+        Negative delays or ``T > MAX_DELAY``; numeric ``Q`` or ``R`` not symmetric PSD or
+        with an entry above 1e100; more than ``MAX_STATES`` (1000) augmented states.
     SymctlTypeError
         Non-integer delays.
     DimensionError

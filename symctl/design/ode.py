@@ -317,16 +317,14 @@ class ODEModel(CachedState, LatexMixin):
     rhs : sequence of sympy expressions
         :math:`f`, one entry per state, in the states, inputs and parameters.
     params : mapping of sympy.Symbol to number
-        Every parameter with its value (kept exact: a float becomes the
-        rational of its shortest decimal, :func:`exact_value`).
+        Every parameter with its value (kept exact, :func:`exact_value`).
     x_eq : sequence, optional
         The states at the operating point (expressions in the parameters, or
         numbers); solved with :func:`solve_equilibrium` when omitted.
     u_eq : sequence, optional
         The inputs at the operating point (default 0).
     dt : float
-        The sampling time [s], > 0 (``Ts`` is its deprecated name, as a
-        keyword and as an attribute).
+        The sampling time [s], > 0 (``Ts``: deprecated).
     guess : sequence of float, optional
         Start of the numeric equilibrium search.
     name : str
@@ -342,9 +340,8 @@ class ODEModel(CachedState, LatexMixin):
     Raises
     ------
     ParameterError
-        A point that is not an equilibrium (``f`` provably nonzero there, or
-        numerically above 1e-9 of its scale), names that are not states,
-        inputs or parameters, or no or several equilibria.
+        A point that is not an equilibrium (provably, or above 1e-9 of the scale), unknown
+        names, or no or several equilibria.
     DimensionError, SymctlTypeError
         Sizes or types that do not fit.
 

@@ -225,9 +225,8 @@ class FitResult(ArrayValue):
     circuit_class : str
         ``"general"``, ``"controllable"``, ``"observable"`` or an atlas label.
     params : mapping of str to sympy.Rational
-        The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, the
-        entries of :math:`P^{-1}`, ...); ``P`` is ``realization_G2.params["P"]``.
-        The old names ``Q[i,j]`` still work, with a ``DeprecationWarning``.
+        The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, ...; the old
+        ``Q[i,j]`` warn); ``P`` is ``realization_G2.params["P"]``.
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
     identifiable : mapping of str to bool
@@ -241,18 +240,15 @@ class FitResult(ArrayValue):
     t : array
         Time of each sample.
     proof : RealizationCheck
-        :func:`~symctl.realization.check.check_realization` of ``realization``
-        against :math:`G`: exact.
+        The exact :func:`~symctl.realization.check.check_realization` against :math:`G`.
     cost : float
         Half the sum of squared weighted residuals at the exact values.
     starts : int
         Starting points tried.
     alternatives : tuple of (str, float)
-        ``(class, cost)`` of every class fitted, best first (one row unless
-        ``circuit`` listed several).
+        ``(class, cost)`` of every class fitted, best first.
     skipped : tuple of (str, str)
-        ``(class, reason)`` of the classes of a list that could not take the data
-        (a recorded neuron they lack, no closed-form realization).
+        ``(class, reason)`` of the listed classes that could not take the data.
 
     Examples
     --------
@@ -393,20 +389,17 @@ def fit(
     sensor_delay, actuator_delay : int
         Sections of :math:`G_1` and :math:`G_3`.
     circuit : str, CircuitClass or list of them, default "general"
-        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"``, an
-        atlas class of order 2 (``"A1"``... or a
-        :class:`~symctl.circuitatlas.circuitclass.CircuitClass`) with a closed form; a
-        list fits each and keeps the best, skipping (``skipped``) the classes that
-        cannot take the data; ``"all"`` is the three and the atlas's closed-form
-        classes.
+        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"`` or an
+        order-2 atlas class with a closed form (``"A1"``, ... or a CircuitClass); a list
+        fits each and keeps the best (``skipped``: those that cannot take the data);
+        ``"all"``: the three and the atlas's closed-form classes.
     disturbance, steps, start, length
         As in :func:`~symctl.neural.simulate.closed_loop_response` (default the
         unit pulse on steps 5..14 of 50).
     plant : optional
         The plant, required for a DiscreteTF ``G``.
     C : number, optional
-        Fix every section gain to this value (the paper's figures use 1); by
-        default they are fitted.
+        Fix every section gain to this value (the paper's figures use 1); else fitted.
     signs : mapping of str to {"+", "-"}, optional
         Dale's law: every outgoing synapse of the neuron has this sign.
     starts : int
@@ -414,8 +407,8 @@ def fit(
     rng : int, numpy Generator or None, default 0
         Seeds the starts (``seed=`` is its deprecated name).
     workers : int, scheduler : str, optional
-        Run the starts (and classes) on the atlas's dask path: local processes, or
-        a running dask.distributed scheduler's address.
+        Run the starts (and classes) on the atlas's dask path (local processes, or a
+        scheduler's address).
 
     Returns
     -------

@@ -271,8 +271,7 @@ def simulate_batch(
     states : bool
         Also return the controller states ``(R, steps, nc)`` (adds ``"states"`` to ``keep``).
     check_stability : bool
-        Refuse any unstable loop first (exact eigenvalues up to 2000 loops, the
-        vectorized Schur-Cohn test on the characteristic polynomial above).
+        Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
         The outputs to keep, among ``"delta_f"``, ``"delta_r"``, ``"states"`` (traces)
         and ``"peak_delta_f"``, ``"peak_delta_r"``, ``"peak_states"`` (the largest
@@ -289,8 +288,6 @@ def simulate_batch(
     Returns
     -------
     BatchResponse or iterator of BatchResponse
-        ``delta_f`` ``(R, steps, n)`` and ``delta_r`` ``(R, steps, m)`` (by default);
-        an iterator when ``chunk`` is given.
 
     Raises
     ------

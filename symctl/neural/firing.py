@@ -416,9 +416,8 @@ def circuit_firing(
     Parameters
     ----------
     kind : str
-        A circuit of :func:`~symctl.realization.realizers.circuit_names`: the IFP
-        controller (``"ifp"``) or a realization of :math:`G_2` (``"general"``,
-        ``"controllable"``, ``"observable"``: Figs. 9, 10, 11).
+        A circuit of :func:`~symctl.realization.realizers.circuit_names`: ``"ifp"`` or a
+        realization of :math:`G_2` (``"general"``, ``"controllable"``, ``"observable"``).
     gains : Gains
         E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
@@ -435,10 +434,8 @@ def circuit_firing(
     rtol : float
         Tolerance of the behaviour check (default 1e-9).
     draws : sequence of Draw, optional
-        The realizations of :math:`G_2` to simulate, drawn already
-        (:func:`~symctl.realization.draws.draw_realizations` of the gains' controller,
-        as the derivation draws them before it simulates); ``count`` and ``rng`` are
-        then not used. Default: ``count`` drawn from ``rng``.
+        Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`);
+        ``count`` and ``rng`` are then not used.
 
     Returns
     -------
@@ -448,11 +445,9 @@ def circuit_firing(
     ------
     ParameterError
         Unknown ``kind``, ``count`` outside ``[1, MAX_CIRCUITS]`` (or ``!= 1`` for
-        ``"ifp"``), a negative ``rng``, ``"ifp"``
-        with gains for a net delay ``T = 0`` (no neuron), an unstable
-        loop, or a realization whose force or rate departs from the optimal
-        controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains'),
-        or a ``plant`` whose ``dt`` is not the gains'.
+        ``"ifp"``), a negative ``rng``, ``"ifp"`` at ``T = 0``, an unstable loop, a
+        realization departing from the optimal controller by more than ``rtol``, or a
+        ``plant`` whose ``dt`` is not the gains'.
     SymctlTypeError
         ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``rng``.
     DimensionError

@@ -224,22 +224,18 @@ def nonlinear_check(
     model : MuscleModel or ODEModel, optional
         The paper's muscle by default.
     controller : Gains or Realization, optional
-        Default: the optimal delayed controller for ``Q = R = 1``, one step of delay
-        each way (as the IFP realization).
+        Default: the optimal controller for ``Q = R = 1``, one step each way (IFP).
     amplitudes : sequence of float
-        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most
-        ``MAX_COUNT`` (10,000) of them.
+        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most 10,000.
     steps, start, length : int
         Horizon (at most ``MAX_STEPS``, 5000) and disturbance pulse, as in
         :func:`~symctl.simulate_realization`.
     rtol : float
         Relative tolerance of the ODE solver, in ``RTOL_RANGE`` ``[1e-13, 1e-2]``.
     disturbance : array (steps, n), optional
-        The disturbance of unit amplitude (default: the pulse on every state),
-        scaled by each amplitude.
+        The unit disturbance scaled by each amplitude (default: the pulse on every state).
     fail : {"raise", "mark"}
-        On an ODE that fails (a plant that runs away): raise, or mark the
-        amplitude's traces NaN from there on (its ``final_deviation`` is then inf).
+        On an ODE that fails: raise, or mark its traces NaN from there on (``final_deviation`` inf).
 
     Returns
     -------
