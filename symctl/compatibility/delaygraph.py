@@ -369,22 +369,10 @@ class DelayGraph:
     def draw(self, names=None, **kwargs):
         """Draw the graph: vertices as boxes, edges as arrows with their delays in steps.
 
-        Left to right along the longest path, parallel pathways in rows of their own, edges
-        closing a cycle curved in purple (the paper's Fig. muscle_system, right).
-
-        Parameters
-        ----------
-        names : sequence of str, optional
-            The vertices' names, :math:`v_1` first (default ``v1 .. vN``).
-        **kwargs
-            ``title``, ``descriptions`` (a line under a vertex's name, by name)
-            and ``ax``, as :func:`symctl.plotting.delaygraph.delay_graph_plot` takes them.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.delaygraph.delay_graph_plot` (positions
-            from :func:`symctl.plotting.delaygraph_layout.delay_graph_layout`).
+        Left to right along the longest path, parallel pathways in rows of their own, cycles
+        curved in purple (the paper's Fig. muscle_system, right). ``names``: the vertices', from
+        :math:`v_1`; ``kwargs`` (``title``, ``descriptions``, ``ax``) go to
+        :func:`symctl.plotting.delaygraph.delay_graph_plot`, which returns the Figure.
 
         Examples
         --------

@@ -152,12 +152,9 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     SymctlTypeError
         ``system`` is not an AugmentedSystem.
     ParameterError
-        Free symbols left in the system, Q/R not symmetric positive semidefinite, an
-        entry of Q, R or the plant above ``MAX_MAGNITUDE`` (1e100), or an LQR that
-        overflows (a badly scaled problem).
+        Free symbols left, Q/R not symmetric PSD, an entry above 1e100, or an overflow.
     NotStabilizableError
-        :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
-        detectable, or no stabilizing DARE solution or no unique gain (e.g. a singular ``R``).
+        Not stabilizable or not detectable, or no stabilizing DARE solution or unique gain.
 
     Examples
     --------

@@ -115,15 +115,13 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     Parameters
     ----------
     f : sequence of expressions (or one expression)
-        Right-hand side; text is parsed safely with the names in ``x`` and ``u``
-        and the paper's parameter symbols.
+        Right-hand side; text is read by the safe parser (names of ``x``, ``u``, the paper's).
     x, u : sequence of symbols (or names)
         State and input variables.
     x_eq, u_eq : sequence of values
         The operating point; may be symbolic.
     check_equilibrium : bool
-        Refuse a point where :math:`f \ne 0` provably (the linearization of an
-        ODE about a non-equilibrium point has a constant term this API drops).
+        Refuse a point where provably :math:`f \ne 0` (its constant term would be dropped).
 
     Returns
     -------
@@ -133,8 +131,7 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     Raises
     ------
     DimensionError
-        ``f`` is not a vector with one entry per state, a point of the wrong size, or
-        no (or more than ``MAX_STATES``, 1000) states or inputs.
+        ``f`` not one entry per state, a point of the wrong size, no or over 1000 states or inputs.
     ParameterError
         Invalid or repeated symbol names, or (with ``check_equilibrium``) a
         point that is provably not an equilibrium.
@@ -211,12 +208,10 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        ``a`` not square or empty (or above ``MAX_STATES``, 1000, states), ``b``
-        with another number of rows, or a symbolic system with more than
-        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
+        ``a`` not square, empty or over 1000 states; ``b`` with other rows; a symbolic
+        system of more than ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
     ParameterError
-        A numeric ``dt <= 0``, non-finite entries, or numeric ``a dt`` whose
-        exponential overflows (``discretize([[800]], [[1]], 1)``).
+        A numeric ``dt <= 0``, non-finite entries, or an overflowing :math:`e^{a\,dt}`.
 
     Examples
     --------
@@ -283,11 +278,11 @@ class DiscretePlant(LatexMixin):
     dt : number, symbol or None
         Sampling time, > 0 when a number.
     state_names, input_names : tuple of str, optional
-        Default ``x`` (``x_1, x_2, ...``) and ``u``.
+        Default ``x`` (``x_1, x_2, ...``) and ``u`` (the muscle's: ``delta_f``, ``delta_r``).
     x_eq, u_eq : matrix-like, optional
         The operating point of a linearized plant.
     params : mapping, optional
-        The model parameters it came from, for records; kept as a read-only mapping.
+        The model parameters it came from (read-only, for records).
 
     Raises
     ------

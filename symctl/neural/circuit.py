@@ -124,10 +124,8 @@ class Circuit(LatexMixin):
     inputs : tuple of str
         The circuit inputs (the structure's inputs).
     outputs : tuple of Synapse
-        For each structure output, the axon path reaching it (``target`` is the
-        output signal; ``source`` a neuron or an input; a neuron's own signal
-        when the output is the neuron; ``"0"``, weight 0, for an output that is
-        the zero signal).
+        For each structure output, the axon path reaching it from a neuron or an input
+        (``"0"``, weight 0, for the zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
@@ -179,11 +177,8 @@ class Circuit(LatexMixin):
         Parameters
         ----------
         S : Structure
-            E.g. :meth:`Structure.from_realization` or
-            :meth:`Structure.from_factorization`; substitute values that make an
-            entry zero (e.g. :math:`\epsilon_3 = -K_2/\epsilon_1`) into the
-            realization *before* building the structure, so that the entry makes
-            no block.
+            E.g. :meth:`Structure.from_factorization`; substitute values that zero an entry
+            into the realization *before* building it, so that the entry makes no block.
         assignment : DelayAssignment or CompatibilityResult, optional
             A compatible assignment of ``S``'s signals to delay-graph vertices;
             each neuron's :attr:`Neuron.vertex` is its signal's vertex.
@@ -197,9 +192,8 @@ class Circuit(LatexMixin):
         SymctlTypeError
             ``S`` is not a Structure, or ``assignment`` is of another type.
         ParameterError
-            ``assignment`` is for another structure, is not compatible (or a
-            failed compatibility check); a gain that is not finite; a loop of
-            gains and delays with no adder.
+            ``assignment`` for another structure or not compatible; a gain that is not
+            finite; a loop of gains and delays with no adder.
 
         Examples
         --------
@@ -529,32 +523,12 @@ class Circuit(LatexMixin):
     def draw(
         self, ax=None, *, title: str | None = None, vertex_names=None, signs_at=None, width="text"
     ):
-        """Draw the circuit at its printed size: neurons as circles, synapses as arrows.
+        """Draw the circuit at its printed size: neurons as circles, synapses as arrows coloured by sign.
 
-        A circle holds the neuron's self-dynamics, its name above, its vertex below. Synapses
-        carry their weights (long ones as :math:`w_1, w_2, \\dots`, listed under the drawing)
-        and are coloured by sign (excitatory blue, arrow head; inhibitory vermillion, bar;
-        purple when symbolic at ``signs_at``); dashed ones are delayed. A key says so.
-
-        Parameters
-        ----------
-        ax : matplotlib Axes, optional
-            Draw into it; by default a new figure of the drawing's printed size.
-        title : str, optional
-            A heading above the drawing (default none).
-        vertex_names : sequence of str, optional
-            The delay graph's vertex names, :math:`v_1` first (a model's ``vertices``).
-        signs_at : mapping, optional
-            Numbers, or ``(lo, hi)`` ranges, of the weights' symbols at which their
-            signs are read (e.g. the controller's gains).
-        width : float or {"text", "column", "double"}
-            The widest the drawing may be [in]: a longer chain is cut into bands.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.circuit.draw_circuit` (positions from
-            :func:`symctl.plotting.circuit_layout.circuit_layout`).
+        The arguments are those of :func:`symctl.plotting.circuit.draw_circuit`, which draws it
+        (``vertex_names``: the delay graph's, :math:`v_1` first; ``signs_at``: values or ranges of
+        the symbols at which signs are read; ``width``: the widest the drawing may be, in inches
+        or ``"text"``, ``"column"``, ``"double"``); returns the Figure.
 
         Examples
         --------

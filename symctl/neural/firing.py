@@ -249,29 +249,14 @@ class FiringPatterns(ArrayValue, DictMixin):
         return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
-        """One panel per neuron of :math:`G_2` (one line per realization), the force on top.
-
-        Parameters
-        ----------
-        ncols : int
-            Neuron panels per row.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.firing.firing_plot`.
-
-        Raises
-        ------
-        ParameterError
-            ``ncols`` is not an integer >= 1.
+        """One panel per neuron of :math:`G_2` (a line per realization), the force on top: a Figure by
+        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row, an integer >= 1).
 
         Examples
         --------
         >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
-        >>> fig = fp.plot()
-        >>> [ax.get_title() for ax in fig.axes][1:]
+        >>> [ax.get_title() for ax in fp.plot().axes][1:]
         ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
         """
         from symctl.plotting.firing import firing_plot

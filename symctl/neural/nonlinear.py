@@ -167,12 +167,8 @@ class NonlinearCheck(ArrayValue, Verdict):
         return "\n".join(lines)
 
     def plot(self):
-        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.response.nonlinear_plot`.
+        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude: a Figure
+        by :func:`symctl.plotting.response.nonlinear_plot`.
 
         Examples
         --------

@@ -166,9 +166,8 @@ class Response(ArrayValue, DictMixin):
     w : (steps, n) array
         Disturbance on the state (zeros in open loop).
     states : (steps, nc) array
-        The controller's internal states (the neurons' firing-rate changes; for the
-        optimal controller the delay chain :math:`\gamma_1, \dots, \delta_r`); ``nc = 0``
-        in open loop.
+        The controller's states (the neurons' firing-rate changes; the optimal
+        controller's delay chain); ``nc = 0`` in open loop.
     f_bar, r_bar : arrays
         The operating point (zeros when the plant records none).
     kind : str
@@ -178,8 +177,7 @@ class Response(ArrayValue, DictMixin):
     time_unit : str
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
     controller_state_names : tuple of str
-        Of the columns of ``states``: the optimal controller's delay chain
-        (:func:`~symctl.design.augment.chain_names`), else ``x_1, ...``.
+        Of ``states``: the delay chain (:func:`~symctl.design.augment.chain_names`) or ``x_1, ...``.
 
     Examples
     --------
@@ -219,18 +217,9 @@ class Response(ArrayValue, DictMixin):
         return self.delta_r + self.r_bar
 
     def plot(self, states: bool | None = None):
-        """Force and motor-neuron rate against time, absolute values on the right axes.
-
-        Parameters
-        ----------
-        states : bool, optional
-            Add a panel with the controller's internal states (default: when
-            there are any).
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.response.response_plot`.
+        """Force and motor-neuron rate against time, absolute values on the right axes (``states``:
+        a panel of the controller's states, by default when there are any); a Figure by
+        :func:`symctl.plotting.response.response_plot`.
 
         Examples
         --------
@@ -479,12 +468,10 @@ def simulate_realization(
     Raises
     ------
     ParameterError
-        Unstable closed loop (spectral radius >= 1, over every state of plant and
-        ``R``: the message names the eigenvalue, and says when it is a hidden mode of
-        ``R``'s own ``F``, e.g. :math:`|\epsilon| \ge 1` in :math:`G_3 G_2 G_1`, whose
-        transfer function is right; :func:`symctl.neural.stability.loop_stability`
-        gives the verdict without raising), non-finite values, bad horizon, a run
-        that overflows, or an ``R.dt`` other than the plant's ``dt``.
+        Unstable closed loop over every state (the message names the eigenvalue, and a
+        hidden mode of ``R``'s own ``F``; :func:`~symctl.neural.stability.loop_stability`
+        decides without raising), non-finite values, bad horizon, an overflow, or an
+        ``R.dt`` other than the plant's.
     DimensionError
         ``R`` or ``disturbance`` of the wrong shape.
 
@@ -522,12 +509,9 @@ def closed_loop_response(
     Parameters
     ----------
     controller : Gains, DiscreteTF or Realization
-        :class:`~symctl.design.lqr.Gains` simulate the optimal controller on the augmented
-        state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi + [I; 0] w` (the
-        states reported are the delay chain :math:`\gamma_1 \dots \delta_r`); with a
-        ``plant`` given, the gains' :func:`ifp_realization` is closed around that plant.
-        A numeric SISO :class:`DiscreteTF` is realized in controllable canonical form;
-        a :class:`Realization` goes to :func:`simulate_realization`.
+        Gains simulate the optimal controller on the augmented state (with a ``plant``:
+        their :func:`ifp_realization` around it); a numeric SISO DiscreteTF is realized in
+        controllable canonical form; a Realization goes to :func:`simulate_realization`.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Required unless ``controller`` is ``Gains``.
     disturbance, steps, start, length

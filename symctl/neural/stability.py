@@ -40,17 +40,15 @@ class LoopStability(Verdict):
     Attributes
     ----------
     stable : bool
-        Spectral radius of :math:`A_{cl}` below 1 (by more than 1e-9, so that a
-        marginal mode such as epsilon = 1 counts as unstable).
+        Spectral radius of :math:`A_{cl}` below 1 - 1e-9 (a marginal mode is unstable).
     spectral_radius : float
     eigenvalues : tuple of complex
         All eigenvalues of :math:`A_{cl}` (plant states first, then the controller's).
     unstable : tuple of complex
         Those with :math:`|\\lambda| \\ge 1 - 10^{-9}`.
     hidden : tuple of complex
-        The unstable ones that are also eigenvalues of the controller's own
-        :math:`F` (to a relative 1e-8): modes the loop cannot move, hidden from
-        the transfer function.
+        The unstable ones that are eigenvalues of the controller's own :math:`F` (relative
+        1e-8): modes hidden from the transfer function.
 
     Examples
     --------
@@ -106,15 +104,12 @@ def loop_stability(plant, controller) -> LoopStability:
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     controller : Realization, DiscreteTF, Gains or Circuit
-        A numeric realization (e.g. ``controller_realization(factor(G).subs(values), R2)``),
-        a SISO transfer function (realized in controllable canonical form), gains
-        (their :func:`~symctl.realization.realizers.ifp_realization`) or a numeric
-        :class:`~symctl.neural.circuit.Circuit` (its delayed signals are the states).
+        Numeric: a realization, a SISO transfer function (controllable canonical), gains
+        (their IFP realization) or a Circuit (its delayed signals are the states).
 
     Returns
     -------
     LoopStability
-        Truthy when internally stable, with the unstable and the hidden eigenvalues.
 
     Raises
     ------

@@ -63,8 +63,7 @@ class Realization(LatexMixin):
     N : (p, q) matrix-like (a scalar for SISO)
     dt : sampling time, optional
     params : mapping, optional
-        Values used to build it (e.g. the random epsilons and ``P``), for
-        records; kept as a read-only mapping and not compared.
+        Values used to build it (e.g. the random epsilons and ``P``); read-only, not compared.
 
     Raises
     ------
@@ -532,7 +531,7 @@ def _block_controllable(tf: DiscreteTF) -> Realization:
 def first_order_realization(eps, C, dt=None) -> Realization:
     r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
 
-    The building block of :math:`G_1` and :math:`G_3` (one section per delay step).
+    One per delay step of :math:`G_1` and :math:`G_3`.
 
     Parameters
     ----------
@@ -608,8 +607,7 @@ def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
 def controller_realization(factorization, R2: Realization) -> Realization:
     r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
 
-    State order: the sensor sections of :math:`G_1` (in signal-flow order),
-    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+    States: the sections of :math:`G_1`, those of ``R2``, then the sections of :math:`G_3`.
 
     Parameters
     ----------
@@ -621,8 +619,7 @@ def controller_realization(factorization, R2: Realization) -> Realization:
     Returns
     -------
     Realization
-        The series :math:`G_3 \cdot R_2 \cdot G_1`, of order
-        ``sensor_delay + R2.n + actuator_delay``.
+        Of order ``sensor_delay + R2.n + actuator_delay``.
 
     Examples
     --------

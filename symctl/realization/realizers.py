@@ -86,36 +86,29 @@ class RealizerResult(DictMixin):
 class Realizer:
     """A way of realizing a proper SISO :math:`G_2`; call it to get a :class:`RealizerResult`.
 
-    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register`
-    an instance: every table of circuits reads :data:`REALIZERS`.
+    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an
+    instance: every table of circuits reads :data:`REALIZERS`.
 
     Attributes
     ----------
     name : str
-        Its key in :data:`REALIZERS`, the word a model file, the CLI and
-        :func:`~symctl.neural.firing.circuit_firing` use.
+        Its key in :data:`REALIZERS` (the word of model files, the CLI, :func:`circuit_firing`).
     title : str
         A human title, for reports ("controllable canonical").
     canonical : bool
-        Whether it is a canonical form (a valid ``base`` of the others).
+        A canonical form (a valid ``base`` of the others).
     takes_transform : bool
-        Whether it accepts a transform ``P`` (its circuits form a dense class).
+        Accepts a transform ``P`` (its circuits form a dense class).
     keeps_symbols : bool
-        Whether it realizes :math:`G_2` as given, free symbols kept (the
-        random recipe draws values for the epsilons).
+        Realizes :math:`G_2` as given, free symbols kept.
     form : str
-        The words that name its :math:`G_2` in a circuit's title ("general",
-        "controllable canonical"); by default the title.
+        The words naming its :math:`G_2` in a circuit's title; by default the title.
     circuit : bool
-        Whether it builds a circuit of its own: a model file may list it in
-        ``[circuits] build`` and the report draws it.
+        Builds a circuit of its own (``[circuits] build``; the report draws it).
     paper : bool
-        Whether it is one of the paper's named forms (the paper draws its
-        circuit; a fixed one it writes out for :math:`T = 2` as an equation
-        labelled by its name).
+        One of the paper's named forms (a fixed one is written out for :math:`T = 2`).
     controller : bool
-        Whether it realizes the whole optimal controller, called with its
-        :class:`~symctl.Gains` (the IFP structure), instead of :math:`G_2`.
+        Realizes the whole optimal controller from its :class:`~symctl.Gains`, not :math:`G_2`.
 
     Examples
     --------
