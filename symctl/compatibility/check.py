@@ -38,7 +38,6 @@ _ALIASES = {"brute force": "brute-force"}
 """Other spellings accepted for :data:`METHODS` (the first spelling symctl documented)."""
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True)
 class CompatibilityResult(Verdict, LatexMixin):
     r"""The verdict of :func:`check_compatibility`, with its evidence.

@@ -95,7 +95,6 @@ _CASES_LIMIT = 243  # case analyses up to this many leaves are printed in full
 _SHOWN_PATHS = 40  # a certificate's text lists this many paths; .paths keeps them all
 
 
-# ---------------------------------------------------------------- the constraint problem
 @dataclass
 class Problem:
     """Signals ``0..S-1``, wires ``(a, b, w)``, pinned signals, the matrix E (0-based)."""
@@ -167,7 +166,6 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
     )
 
 
-# ---------------------------------------------------------------- chain: bounds arc consistency
 def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
     """Bounds arc consistency on chain positions; returns (placement | None, core wires)."""
     N = len(D)
@@ -250,7 +248,6 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
     return place, set()
 
 
-# ---------------------------------------------------------------- general: MAC search
 def solve_search(problem: Problem, max_decisions: int | None = None):
     """Arc consistency + backtracking (maintaining arc consistency).
 
@@ -369,7 +366,6 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
             return None, pruning, stats
 
 
-# ---------------------------------------------------------------- certificates
 def _minimal_core(problem: Problem, core: set[int]) -> list[int]:
     """An unsatisfiable set of wires, minimized wire by wire when small."""
 

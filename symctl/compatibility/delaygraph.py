@@ -246,7 +246,6 @@ class DelayGraph:
         object.__setattr__(self, "E", arr)
         object.__setattr__(self, "edges", tuple(_edges))
 
-    # ------------------------------------------------------------ constructors
     @classmethod
     def from_edges(
         cls, n: int, edges: Iterable[tuple[int, int, int]], *, sensors=None, actuators=None
@@ -323,7 +322,6 @@ class DelayGraph:
         edges = tuple((k + 1, k + 2, int(D[k + 1] - D[k])) for k in range(len(steps)))
         return cls(E, _edges=edges)
 
-    # ------------------------------------------------------------ views
     @property
     def n(self) -> int:
         """Number of vertices."""

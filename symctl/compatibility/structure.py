@@ -135,7 +135,6 @@ class Structure(LatexMixin):
     def __hash__(self) -> int:
         return hash((frozenset(self.blocks.items()), self.inputs, self.outputs))
 
-    # ------------------------------------------------------------ views
     def __len__(self) -> int:
         return len(self.blocks)
 
@@ -210,7 +209,6 @@ class Structure(LatexMixin):
         dist = zero_one_bfs(cs, [cs.index[source]])
         return {cs.names[i]: d for i, d in enumerate(dist) if d is not None}
 
-    # ------------------------------------------------------------ constructors
     @classmethod
     def from_realization(
         cls, R: Realization, delays: str = "branch", *, input_delay: int = 1
@@ -436,7 +434,6 @@ class Structure(LatexMixin):
             blocks[out] = Block("sum", tuple(end[k] for end in ends))
         return cls(blocks, first.inputs, outputs)
 
-    # ------------------------------------------------------------ display
     @classmethod
     def from_factorization(
         cls, factorization, R2: Realization, delays: str = "branch"
@@ -508,7 +505,6 @@ class Structure(LatexMixin):
         return draw_structure(self, ax, **options)
 
 
-# ---------------------------------------------------------------- helpers
 def _is_zero(value) -> bool:
     """Exactly zero: a rational expression's numerator as a sparse polynomial (no gcd, no
     expansion of the expression tree), any other by ``cancel``."""
@@ -523,7 +519,6 @@ def _is_zero(value) -> bool:
     return sp.cancel(value) == 0
 
 
-# ---------------------------------------------------------------- the paper's structures
 def ifp_structure(T: int = 2) -> Structure:
     r"""The structure of the paper's IFP controller, eqs. augmented_states and ifp_controller.
 

@@ -158,7 +158,6 @@ class DaleResult(Verdict):
         return "\n".join(lines)
 
 
-# ---------------------------------------------------------------- inputs
 def controller_of(G, sensor_delay, actuator_delay) -> tuple[DiscreteTF, int, int]:
     """``(G, ds, da)``: a numeric SISO controller, its floats as exact binary rationals."""
     if isinstance(G, Gains):
@@ -238,7 +237,6 @@ def poles_of(G: DiscreteTF) -> list[sp.Expr]:
     return [sp.fraction(sp.together(G.expr))[1]]
 
 
-# ---------------------------------------------------------------- the decision
 def dale(
     G,
     *,

@@ -163,7 +163,6 @@ def _finish(label, factorization, R2, unknowns, signed, target, delays) -> Templ
     )
 
 
-# ---------------------------------------------------------------- z3
 def _expr(w) -> sp.Expr:
     """A weight as a SymPy expression (Python ints become Integers; nothing is parsed)."""
     return sp.Integer(w) if isinstance(w, int) else w
@@ -365,7 +364,6 @@ def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
     return ("unknown" if unknown else "unsat"), []
 
 
-# ---------------------------------------------------------------- witnesses
 def value_of(v) -> sp.Expr:
     """A z3 model value as an exact SymPy number (a Rational or a CRootOf)."""
     if z3.is_int_value(v):

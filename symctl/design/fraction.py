@@ -148,7 +148,6 @@ class MatrixFractionTF(DiscreteTF):
         object.__setattr__(self, "dt", None if dt is None else sampling_time(dt, "dt"))
         object.__setattr__(self, "_cache", {})
 
-    # ------------------------------------------------------------ the fraction
     @property
     def D(self) -> sp.ImmutableMatrix:
         """The left denominator :math:`D(z)`, ``m x m``, monic."""
@@ -267,7 +266,6 @@ class MatrixFractionTF(DiscreteTF):
     def __hash__(self) -> int:
         return hash((MatrixFractionTF, self._D, self._N, self.dt))
 
-    # ------------------------------------------------------------ algebra on D and N
     def subs(self, *args, **kwargs) -> MatrixFractionTF:
         """Substitute symbols into ``D`` and ``N`` (as :meth:`DiscreteTF.subs`); stays a fraction."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
@@ -321,7 +319,6 @@ class MatrixFractionTF(DiscreteTF):
             h.append(acc.applyfunc(sp.expand))
         return h
 
-    # ------------------------------------------------------------ display
     def latex(self) -> str:
         r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
 

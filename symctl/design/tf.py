@@ -144,7 +144,6 @@ class DiscreteTF(LatexMixin):
     def __hash__(self) -> int:
         return hash((DiscreteTF, self._num, self.den, self.dt))
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def from_expr(cls, expr, dt=None) -> DiscreteTF:
         """From a rational expression (or matrix of them) in ``z``, in lowest terms.
@@ -172,7 +171,6 @@ class DiscreteTF(LatexMixin):
         nums = [n_ if d_ == den else sp.quo(n_ * den, d_, z) for n_, d_ in fractions]
         return cls(sp.Matrix(entries.shape[0], entries.shape[1], nums), den, dt)
 
-    # ------------------------------------------------------------ views
     @property
     def shape(self) -> tuple[int, int]:
         """``(outputs, inputs)``."""
@@ -228,7 +226,6 @@ class DiscreteTF(LatexMixin):
         """Coefficients of the denominator in descending powers of ``z`` (monic)."""
         return z_poly(self.den).all_coeffs()
 
-    # ------------------------------------------------------------ algebra
     def subs(self, *args, **kwargs) -> DiscreteTF:
         """Substitute symbols (as :meth:`sympy.Basic.subs`, text by the safe parser); ``z`` stays free."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
@@ -261,7 +258,6 @@ class DiscreteTF(LatexMixin):
 
     __rmul__ = __mul__
 
-    # ------------------------------------------------------------ numbers
     def markov(self, count: int) -> list[sp.Matrix]:
         r"""The first ``count`` Markov parameters :math:`h_k` of a proper :math:`G = \sum_k h_k z^{-k}`.
 
@@ -366,7 +362,6 @@ class DiscreteTF(LatexMixin):
         coeffs = self._floats(self.den_coeffs(), complex, "poles need coefficients")
         return np.roots(coeffs)
 
-    # ------------------------------------------------------------ interop
     def to_control(self):
         """As a ``control.TransferFunction`` with ``dt`` kept (numbers only)."""
         from symctl.interop import tf_to_control
@@ -406,7 +401,6 @@ class DiscreteTF(LatexMixin):
 
         return tf_from_scipy(sys)
 
-    # ------------------------------------------------------------ display
     def latex(self) -> str:
         r"""LaTeX in the paper's style: a constant factor pulled out, descending powers of z.
 

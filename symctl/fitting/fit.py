@@ -64,7 +64,6 @@ _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot
 _EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
 
 
-# ---------------------------------------------------------------- the problem
 @dataclass(frozen=True)
 class _Problem:
     """Everything a worker needs to run starts (plain, picklable data)."""
@@ -207,9 +206,6 @@ def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray
     return out
 
 
-# ---------------------------------------------------------------- results
-
-
 @dataclass(frozen=True, eq=False)
 class FitResult(ArrayValue):
     r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
@@ -347,9 +343,6 @@ class FitResult(ArrayValue):
         from symctl.plotting.fit import fit_plot
 
         return fit_plot(self)
-
-
-# ---------------------------------------------------------------- the functions
 
 
 @rng_argument()

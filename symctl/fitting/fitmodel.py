@@ -99,7 +99,6 @@ class TraceModel:
     _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
     _T: object  # lambdified T and its gradient over (eps, C); None for "general"
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
         """The model of ``G`` with ``ds`` sensor and ``da`` actuator sections in ``circuit``."""
@@ -154,7 +153,6 @@ class TraceModel:
         Q = rest.reshape(self.order, self.order) if self.circuit == "general" else None
         return eps, cs, Q
 
-    # ------------------------------------------------------------ the traces
     def traces(self, theta: np.ndarray, u: np.ndarray) -> tuple[dict, dict]:
         """``({neuron: (steps,)}, {neuron: (steps, p)})``: traces and Jacobians, driven by ``u``."""
         theta = np.asarray(theta, dtype=float)
@@ -208,7 +206,6 @@ class TraceModel:
         chain("G3", ds, self.actuator_delay, y2, dy2)
         return vals, jacs
 
-    # ------------------------------------------------------------ exact realization
     def factorization(self, eps, cs) -> Factorization:
         """The exact factors at rational ``eps`` and ``cs``."""
         return factor(self.G, self.sensor_delay, self.actuator_delay, eps=list(eps), C=list(cs))

@@ -100,7 +100,6 @@ class BatchResponse(ArrayValue, DictMixin):
         object.__setattr__(self, "peaks", MappingProxyType(peaks))
 
 
-# ---------------------------------------------------------------- chunks and stability
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation then runs over contiguous memory, one realization per element.
 def _chunks(count: int) -> list[slice]:
@@ -174,7 +173,6 @@ def _in_chunks(run, count: int) -> int:
         return min(pool.map(run, parts))
 
 
-# ---------------------------------------------------------------- what to keep
 def _selection(keep, states: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The traces and the peaks to keep, each in the order of ``TRACES``."""
     if keep is None:
@@ -241,7 +239,6 @@ def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) 
     return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
 
-# ---------------------------------------------------------------- the function
 def simulate_batch(
     plant,
     F,

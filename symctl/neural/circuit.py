@@ -165,7 +165,6 @@ class Circuit(LatexMixin):
     def __hash__(self) -> int:
         return hash(self._key())
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def from_structure(
         cls,
@@ -254,7 +253,6 @@ class Circuit(LatexMixin):
             {u: tuple(outgoing.get(u, ())) for u in S.inputs},
         )
 
-    # ------------------------------------------------------------ views
     @property
     def n_neurons(self) -> int:
         """The number of neurons."""
@@ -317,7 +315,6 @@ class Circuit(LatexMixin):
         """The delay-graph vertex of each neuron (None without an assignment)."""
         return {n.name: n.vertex for n in self.neurons}
 
-    # ------------------------------------------------------------ numbers
     def subs(self, *args, **kwargs) -> Circuit:
         """The same circuit with values substituted into every weight (``sympy`` ``subs``).
 
@@ -440,7 +437,6 @@ class Circuit(LatexMixin):
             nxt[:, :k], nxt[:, k:], obs[:, :k], obs[:, k:], states, S.inputs, out_names
         )
 
-    # ------------------------------------------------------------ display
     def equations(self, digits: int | None = None) -> list[str]:
         r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
 
@@ -543,7 +539,6 @@ class Circuit(LatexMixin):
         )
 
 
-# ---------------------------------------------------------------- helpers
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""
     if w.is_number:

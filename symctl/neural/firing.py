@@ -65,7 +65,6 @@ LEGEND_MAX_EPS = 4
 """Most epsilons a realization's legend entry lists (beyond, their count)."""
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
 class FiringSummary(ArrayValue, DictMixin):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
@@ -264,7 +263,6 @@ class FiringPatterns(ArrayValue, DictMixin):
         return firing_plot(self, ncols)
 
 
-# ---------------------------------------------------------------- arguments
 def _kind(kind) -> str:
     kinds = circuit_names()
     if not isinstance(kind, str):
@@ -322,7 +320,6 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     return p
 
 
-# ---------------------------------------------------------------- the pieces
 def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator, draws=None):
     """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric), from ``draws``
     or ``count`` drawn from ``gen``."""
@@ -372,7 +369,6 @@ def _deviation(a: np.ndarray, ref: np.ndarray) -> float:
     return float(np.max(np.abs(a - ref))) / (scale if scale > 0 else 1.0)
 
 
-# ---------------------------------------------------------------- the function
 @rng_argument()
 def circuit_firing(
     kind: str,

@@ -68,7 +68,6 @@ DEFAULT_LENGTH = 10
 """Default pulse length in steps."""
 
 
-# ---------------------------------------------------------------- arguments
 def pulse(
     steps: int = DEFAULT_STEPS,
     amplitude: float = 1.0,
@@ -149,7 +148,6 @@ def _ts(p: DiscretePlant) -> float:
     return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
     r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
@@ -233,7 +231,6 @@ class Response(ArrayValue, DictMixin):
         return response_plot(self, states)
 
 
-# ---------------------------------------------------------------- the core
 UNIT_CIRCLE = 1 - 1e-9  # |eigenvalue| >= this is unstable (a marginal mode rounds inside)
 
 
@@ -365,7 +362,6 @@ def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
     )
 
 
-# ---------------------------------------------------------------- public simulations
 def open_loop_response(
     plant=None,
     pulse: float = 1.0,

@@ -24,7 +24,6 @@ from symctl.realization.realization import Realization
 from symctl.symbols import z
 
 
-# ---------------------------------------------------------------- the problem
 @dataclass(frozen=True)
 class _Problem:
     """The entries of both sides as sympy expressions, ready to be evaluated."""
@@ -105,7 +104,6 @@ def _problem(R, G) -> _Problem:
     )
 
 
-# ---------------------------------------------------------------- expression trees
 class _Entries:
     r"""The entries as reduced pairs (numerator, denominator) of ``fmpz_mpoly``: polynomials in the
     free symbols, or with ``values`` the constants at that point (ZeroDivisionError where a

@@ -75,7 +75,6 @@ class _Ring:
                     den = den * (d / den.gcd(d))
         return [[n * (den / d) for n, d in row] for row in pairs], den
 
-    # ------------------------------------------------------------ back to SymPy
     def _ensure(self, degrees) -> None:
         """Put ``x_i**k`` for every ``k <= degrees[i]`` in the pool of factors, ranked as SymPy sorts."""
         grew = False
@@ -286,7 +285,6 @@ def _symbolic(F, H, M, P, ring: _Ring):
     )
 
 
-# ---------------------------------------------------------------- numeric P
 def _fmpq_mat(mat: sp.MatrixBase) -> fmpq_mat:
     return fmpq_mat(mat.rows, mat.cols, [fmpq(int(e.p), int(e.q)) for e in mat.flat()])
 

@@ -62,7 +62,6 @@ RTOL = 1e-9  # default tolerance of the numeric verdict for floating-point input
 _NUMERIC_POINTS = 8  # points of the symbols at which floating-point inputs are compared
 
 
-# ---------------------------------------------------------------- the result
 @dataclass(frozen=True)
 class RealizationCheck(Verdict, LatexMixin):
     r"""The verdict of :func:`check_realization`, with its method and evidence.
@@ -221,7 +220,6 @@ def _describe(k: int, i: int, j: int) -> str:
     return f"Markov parameter h_{k}: M {power}H != h_{k} in entry ({i}, {j})"
 
 
-# ---------------------------------------------------------------- degree bounds
 def _degree_bound(problem: _Problem) -> tuple[int, int]:
     r"""``(D_E, deg Delta)``: every entry is :math:`\hat p_e/\Delta` (:math:`\Delta` the lcm of the
     ``q``, :math:`\deg \hat p_e \le A`), so :math:`e_k` has degree :math:`\le (k+1)A`, :math:`D_E = (n+d+1)A`.
@@ -240,7 +238,6 @@ def _degree_bound(problem: _Problem) -> tuple[int, int]:
     return (problem.n + problem.d + 1) * A, ddelta
 
 
-# ---------------------------------------------------------------- evaluation at points
 def _sides_at(problem: _Problem, alg: _Entries, zval: Fraction):
     """Both sides as ``fmpq_mat`` at ``alg``'s point and ``z = zval``; ``None`` at a pole."""
     n, d, (p, q) = problem.n, problem.d, problem.shape
@@ -308,7 +305,6 @@ def _counterexample(problem: _Problem, rng: random.Random) -> dict | None:
     return None
 
 
-# ---------------------------------------------------------------- the two methods
 def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
     count = problem.n + problem.d + 1
     try:
@@ -379,7 +375,6 @@ def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random)
     )
 
 
-# ---------------------------------------------------------------- floating-point inputs
 def _floating(problem: _Problem) -> bool:
     return any(e.has(sp.Float) for _, e in problem.entries())
 

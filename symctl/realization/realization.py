@@ -112,7 +112,6 @@ class Realization(LatexMixin):
         object.__setattr__(self, "dt", None if self.dt is None else to_expr(self.dt, "dt"))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params or {})))
 
-    # ------------------------------------------------------------ sizes
     @property
     def n(self) -> int:
         """Number of states."""
@@ -127,7 +126,6 @@ class Realization(LatexMixin):
     def free_symbols(self) -> set[sp.Symbol]:
         return set().union(*(m.free_symbols for m in (self.F, self.H, self.M, self.N)))
 
-    # ------------------------------------------------------------ transfer function
     def markov(self, count: int) -> list[sp.Matrix]:
         r"""``[N, M H, M F H, ..., M F^{count-2} H]``, the row vectors :math:`M F^k` cancelled at each
         step (no pile-up of ``det P`` denominators); ``count`` from 0 to ``MAX_STEPS``.
@@ -160,7 +158,6 @@ class Realization(LatexMixin):
             num.applyfunc(lambda e: sp.expand(sp.together(e))), chi.as_expr(), self.dt
         )
 
-    # ------------------------------------------------------------ transformations
     def similar(self, P) -> Realization:
         r"""The similar realization :math:`(P^{-1} F P,\ P^{-1} H,\ M P,\ N)`.
 
@@ -209,7 +206,6 @@ class Realization(LatexMixin):
         """The dual realization :math:`(F^T, M^T, H^T, N^T)` (of :math:`G^T`)."""
         return Realization(self.F.T, self.M.T, self.H.T, self.N.T, self.dt, self.params)
 
-    # ------------------------------------------------------------ properties
     def controllability_matrix(self) -> sp.Matrix:
         return (
             sp.Matrix.hstack(*[self.F**k * self.H for k in range(self.n)])
@@ -233,7 +229,6 @@ class Realization(LatexMixin):
             for mat in (self.controllability_matrix(), self.observability_matrix())
         )
 
-    # ------------------------------------------------------------ numbers and interop
     def numeric(self) -> tuple[np.ndarray, ...]:
         """``(F, H, M, N)`` as float arrays; refuses free symbols."""
         from symctl._util.validate import numeric_matrix
@@ -358,7 +353,6 @@ def _rank(mat: sp.Matrix) -> int:
     return mat.rank(iszerofunc=lambda e: sp.cancel(e) == 0)
 
 
-# ---------------------------------------------------------------- constructors
 def _siso(G, argname: str = "G2") -> DiscreteTF:
     tf = DiscreteTF.from_expr(G)
     if not tf.is_siso:

@@ -388,7 +388,6 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     return REALIZERS[name]
 
 
-# ---------------------------------------------------------------- public constructors
 def general_realization(G2, P, base: str = "controllable") -> Realization:
     r"""A general realization: the similarity transform by ``P`` of a canonical one.
 
