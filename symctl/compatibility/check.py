@@ -51,12 +51,10 @@ class CompatibilityResult(Verdict, LatexMixin):
     assignment : DelayAssignment or None
         A witness when ``ok``.
     reason : str
-        When ``ok``, a summary of the witness; otherwise a certificate: the
-        delay-free or too-fast signal paths and the case analysis that rules
-        out every placement.
+        A summary of the witness, or a certificate: the too-fast signal paths and the
+        case analysis ruling out every placement.
     method : str
-        Which algorithm answered (``"chain: bounds arc consistency"``,
-        ``"search: arc consistency + backtracking (...)"`` or ``"brute force (...)"``).
+        Which algorithm answered (``"chain: ..."``, ``"search: ..."``, ``"brute force (...)"``).
     structure : Structure
         The structure checked.
     graph : DelayGraph

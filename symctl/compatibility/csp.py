@@ -427,7 +427,9 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
     N = E.shape[0]
     core_list = _minimal_core(problem, core)
     paths = _paths(problem, core_list)
-    letters = [_letter(k) for k in range(len(paths))]
+    letters = [
+        "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}" for k in range(len(paths))
+    ]
 
     def fmt(v):
         return "inf" if math.isinf(v) else str(int(v))
@@ -500,7 +502,3 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
         )
     certificate = tuple((tuple(names[s] for s in sig), w) for sig, w in paths)
     return "\n".join(lines), certificate
-
-
-def _letter(k: int) -> str:
-    return "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}"

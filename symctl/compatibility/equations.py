@@ -65,10 +65,6 @@ def _branch_term(name: str) -> bool:
     return name.rpartition(".")[2].startswith("z^-")
 
 
-def _time(lag: int) -> str:
-    return "(t)" if lag == 0 else f"(t - {lag})"
-
-
 def structure_latex(S) -> str:
     r"""The equations of ``S`` as an ``aligned`` block, for a reader (see the module text).
 
@@ -98,7 +94,7 @@ def structure_latex(S) -> str:
             return [f"{gain} {t}" for t in inner]
         if block.kind == "delay" and _branch_term(name):
             return terms(block.inputs[0], lag + block.steps)
-        return [signal_tex(name) + _time(lag)]
+        return [signal_tex(name) + ("(t)" if lag == 0 else f"(t - {lag})")]
 
     rows = []
     for name, block in S.blocks.items():

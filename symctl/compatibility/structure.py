@@ -215,11 +215,10 @@ class Structure(LatexMixin):
     ) -> Structure:
         r"""The structure of a realization :math:`(F, H, M, N)`.
 
-        Signals: inputs ``u`` (``u1, u2, ...`` for several), states ``x1 .. xn``,
-        gain outputs named by their entry (``F[1,2]`` is :math:`F_{12} x_2`,
-        ``H[1]``, ``M[2]``, ``N``), delayed branch terms ``z^-1 F[1,2]``, adders
-        ``p1 ..`` (state delays) and the output ``y`` (unless the output is an
-        existing signal, e.g. ``y = x_2``; a plain wire ``y = u`` is a unit gain ``y``).
+        Signals: inputs ``u`` (``u1, ...``), states ``x1 .. xn``, gains by their entry
+        (``F[1,2]`` is :math:`F_{12} x_2`, ``H[1]``, ``M[2]``, ``N``), delayed branch terms
+        ``z^-1 F[1,2]``, adders ``p1 ..`` (state delays) and the output ``y`` (unless it
+        is an existing signal; ``y = u`` is a unit gain ``y``).
 
         Parameters
         ----------
@@ -227,12 +226,8 @@ class Structure(LatexMixin):
         delays : {"branch", "state"}
             Where the unit delays sit relative to the adders (see the module text).
         input_delay : int, default 1
-            With ``delays="branch"``, the steps of the branches that carry
-            :math:`H u` into the states (axons of ``input_delay`` steps):
-            :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-k)`, so the
-            structure's transfer function is
-            :math:`M (zI - F)^{-1} H z^{1-k} + N`. The first-order sections that
-            cross a delay-graph step of :math:`k` steps use it.
+            With ``delays="branch"``, the steps :math:`k` of the branches carrying
+            :math:`H u` (axons): the transfer function is :math:`M (zI - F)^{-1} H z^{1-k} + N`.
 
         >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -331,10 +326,9 @@ class Structure(LatexMixin):
     def series(cls, *parts: Realization | Structure, names: Iterable[str] | None = None):
         """The series connection of ``parts`` in signal-flow order (the first acts first).
 
-        Realizations are turned into structures with ``delays="branch"``. Each
-        part's signals are prefixed by its name (``G1.``, ``G2.``, ... by
-        default) and recorded in :attr:`Block.part`; the outputs of one part
-        *are* the inputs of the next (no extra block).
+        Realizations take ``delays="branch"``; each part's signals are prefixed by its name
+        (``G1.``, ... by default, recorded in :attr:`Block.part`); the outputs of one part
+        *are* the inputs of the next.
 
         >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> from symctl.realization.realization import first_order_realization
@@ -390,10 +384,9 @@ class Structure(LatexMixin):
     def parallel(cls, *parts: Realization | Structure, names: Iterable[str] | None = None):
         """The parallel connection of ``parts``: one input shared, the outputs summed.
 
-        Each part's signals are prefixed by its name (``P1.``, ``P2.``, ... by
-        default); the inputs are the first part's (renamed), read by every part;
-        output ``k`` is an adder ``y`` (``y1, y2, ...`` for several) of every
-        part's output ``k``. One part is returned renamed.
+        Signals prefixed by the parts' names (``P1.``, ... by default); every part reads
+        the first part's inputs; output ``k`` is an adder ``y`` (``y1, ...``) of the parts'
+        outputs ``k``. One part is returned renamed.
 
         >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -440,11 +433,9 @@ class Structure(LatexMixin):
     ) -> Structure:
         r"""The structure of the whole controller :math:`G_3 G_2 G_1` (the paper's Fig. 7).
 
-        The first-order sections of :math:`G_1` and :math:`G_3` take the
-        ``"branch"`` structure (the paper's choice, a unit delay on each branch
-        into the adder); ``R2``, a realization of ``factorization.G2``, takes
-        ``delays``. Parts are named ``G1``, ``G2``, ``G3`` (``G1.1``, ``G1.2``, ...
-        when a side has several sections).
+        The sections take the ``"branch"`` structure (the paper's choice), ``R2`` (a
+        realization of ``factorization.G2``) ``delays``; parts ``G1``, ``G2``, ``G3``
+        (``G1.1``, ``G1.2``, ... for several sections).
 
         >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))

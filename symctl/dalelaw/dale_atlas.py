@@ -59,13 +59,11 @@ class DaleRow:
     verdict : str or None
         ``"every"``, ``"some"``, ``"never"`` or None (not decided); see the module text.
     controller : bool or None
-        For the table's own controller, when one was given: feasible, infeasible, not decided.
+        For the table's own controller, when given (None: not decided).
     sampled : tuple of int
-        Over the samples: ``(E/I witness, realized but proved not E/I, proved not realized
-        by the class at all, not decided)``.
+        Samples ``(E/I witness, realized but not E/I, not realized, not decided)``.
     exists : str
-        "Some controller has an E/I witness": ``"sat"`` (a sample, or z3 on the generic
-        controller), ``"unsat"`` (proved: never), ``"unknown"``.
+        Whether some controller has an E/I witness: ``"sat"``, ``"unsat"``, ``"unknown"``.
     seconds : float
     """
 
@@ -252,10 +250,8 @@ def dale_atlas(
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each search, every stage included (default 10; three times that
-        for the generic controller, which has three more unknowns). A class makes at
-        most ``2 * samples + 2`` searches, so the table takes at most about
-        ``(2 * samples + 4) * timeout`` seconds per class, over ``workers``.
+        Seconds for each search (default 10; thrice for the generic controller): at most
+        about ``(2 * samples + 4) * timeout`` per class, over ``workers``.
     workers : int
         Processes (default 1: in this process; more use dask's local cluster).
     scheduler : str, optional

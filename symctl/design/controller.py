@@ -69,19 +69,15 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     Parameters
     ----------
     source : int, AugmentedSystem or Gains
-        An integer ``T`` gives the scalar controller with symbolic gains
-        :math:`K_0 \dots K_T`; an :class:`~symctl.AugmentedSystem` gives the
-        (possibly MIMO) controller for its sizes and delay with symbolic gain
-        blocks and the plant's ``dt``; :class:`~symctl.Gains` give the numeric controller.
+        ``T``: the scalar controller with symbolic gains :math:`K_0 \dots K_T`; an
+        AugmentedSystem: its (MIMO) controller with symbolic gain blocks; Gains: numeric.
     gains : Gains, optional
         Substitute these gain values.
 
     Returns
     -------
     DiscreteTF
-        ``m x n`` (plant inputs by plant states), relative degree ``T``. A
-        symbolic MIMO controller whose expansion would pass ``MAX_EXPANDED_TERMS``
-        (50,000) terms is the unexpanded left fraction :math:`D(z)^{-1} K_0`, a
+        ``m x n``, relative degree ``T``; beyond ``MAX_EXPANDED_TERMS`` a
         :class:`~symctl.design.fraction.MatrixFractionTF` (a DiscreteTF).
 
     Raises
@@ -140,7 +136,11 @@ def _chain(T: int, m: int, gain) -> sp.Matrix:
 
 def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF:
     """The MIMO controller as ``D(z)^-1 K_0``: expanded up to the size limit, or kept."""
-    if gains is not None and _same_sizes(gains, T, m, n):  # numbers: exact, rounded once
+    if gains is not None and (gains.system.T, gains.system.m, gains.system.n) == (
+        T,
+        m,
+        n,
+    ):  # numbers: exact, rounded once
         vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
         D = _chain(T, m, lambda k, i, j: sp.Float(float(vals[k][i, j])))
         K0 = _filled(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
@@ -151,11 +151,6 @@ def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF
     if G.terms_bound() <= MAX_EXPANDED_TERMS:
         G = G.expanded()
     return G if gains is None else G.subs(gains.substitutions())
-
-
-def _same_sizes(gains: Gains, T: int, m: int, n: int) -> bool:
-    s = gains.system
-    return (s.T, s.m, s.n) == (T, m, n)
 
 
 def _filled(rows: int, cols: int, entry) -> sp.Matrix:
@@ -310,8 +305,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     Returns
     -------
     Proof
-        Truthy when both identities hold (``G`` is the controller), with the
-        method and, when they do not, the first entry that is not zero.
+        Truthy when the identities hold, with the method (else the first nonzero entry).
 
     Raises
     ------

@@ -164,7 +164,7 @@ def solve_equilibrium(
     values : mapping of sympy.Symbol to number
         The parameter values (for the numeric search and the checks).
     guess : sequence of float, optional
-        Start of the numeric search (then the solution nearest it is taken).
+        Start of the numeric search (the solution nearest it is taken).
     argname : str
         Named in errors.
 
@@ -177,8 +177,7 @@ def solve_equilibrium(
     Raises
     ------
     ParameterError
-        No equilibrium, or several (the message lists some and asks for
-        ``equilibrium`` values or a ``guess``).
+        No equilibrium, or several (listed; give ``equilibrium`` values or a ``guess``).
 
     Examples
     --------

@@ -137,7 +137,7 @@ def read_traces(path) -> Traces:
     Parameters
     ----------
     path : str or Path
-        A ``.csv`` or ``.npz`` file of at most 64 MiB.
+        A ``.csv`` or ``.npz`` file (at most 64 MiB).
 
     Returns
     -------
@@ -146,8 +146,8 @@ def read_traces(path) -> Traces:
     Raises
     ------
     ParameterError
-        A missing or unreadable file, another suffix, no ``t`` column, no neuron
-        column, a value that is not a number, NaN, uneven time steps.
+        An unreadable file or suffix, no ``t`` or neuron column, a non-number, NaN,
+        uneven time steps.
     DimensionError
         Columns of different lengths.
 

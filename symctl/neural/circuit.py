@@ -216,7 +216,9 @@ class Circuit(LatexMixin):
                     raise ParameterError(
                         f"{argname}: the gain {name!r} is not finite: {block.gain}"
                     )
-        names = [n for n, b in S.blocks.items() if _is_neuron(b)]  # the structure's order
+        names = [
+            n for n, b in S.blocks.items() if b.kind == "sum" and len(b.inputs) >= 2
+        ]  # the structure's order
         is_neuron = set(names)
         incoming = {
             name: [
@@ -478,7 +480,9 @@ class Circuit(LatexMixin):
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
                 if isinstance(w, sp.Add):
                     tex = rf"\left({latex(w)}\right)\,"
-                terms.append(rf"{tex} {signal_tex(s.source)}(t{_lag(s.delay)})".lstrip())
+                terms.append(
+                    rf"{tex} {signal_tex(s.source)}(t{f'-{s.delay}' if s.delay else ''})".lstrip()
+                )
             rhs = " + ".join(terms).replace("+ -", "- ") if terms else "0"
             out.append(rf"{signal_tex(n.name)}(t) = {rhs}")
         return out
@@ -550,10 +554,6 @@ def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     return w
 
 
-def _is_neuron(block: Block) -> bool:
-    return block.kind == "sum" and len(block.inputs) >= 2
-
-
 def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
     """The axon path ending at ``start`` (a term of the adder ``target``, or ``target`` itself
     for an output) back to a neuron or an input; None for an adder of nothing (zero signal)."""
@@ -606,10 +606,6 @@ def _vertices(S: Structure, assignment) -> dict[str, int] | None:
             f"(E~_{i}{j} = {et:g} < E_{i}{j} = {e:g})"
         )
     return dict(assignment.vertex_of)
-
-
-def _lag(d: int) -> str:
-    return f"-{d}" if d else ""
 
 
 def _syn_text(s: Synapse, source: str) -> str:

@@ -141,14 +141,12 @@ class FiringPatterns(ArrayValue, DictMixin):
         Time, in ``reference.time_unit`` (seconds, or steps for a plant
         without a sampling time).
     delta_f, delta_r : (count, steps) arrays
-        Force change [N] and motor-neuron rate change [spikes/s] of each
-        realization (all equal to the optimal controller's, checked).
+        Force [N] and motor-neuron rate [spikes/s] changes of each realization (checked equal).
     f_bar : float
         The force at the operating point [N] (``f = f_bar + delta_f``).
     firing : mapping of str to (count, steps) array
-        Each neuron's change of axon output (firing rate) from equilibrium
-        [spikes/s], keyed by neuron name (``"G2.x1"``, ...); NaN rows for a
-        realization that lacks the neuron (a zero entry makes no adder).
+        Each neuron's firing-rate change [spikes/s] by name; NaN rows where a realization
+        lacks the neuron.
     params : tuple of dict
         Per realization, the values drawn: :math:`\epsilon_1, \epsilon_3` (and
         ``P`` for ``"general"``), exact.

@@ -78,11 +78,11 @@ class NonlinearCheck(ArrayValue, Verdict):
     max_deviation : (k,) array
         :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`: the first state's, in its unit.
     relative_deviation : (k,) array
-        The worst over the states of :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|`
-        over that state's linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
+        The worst state's :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|` over its
+        linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
     final_deviation : (k,) array
-        The worst over the states of :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|`
-        over the same peak: whether the nonlinear loop came back (inf: the ODE failed).
+        The worst state's :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|` over that
+        peak: whether the loop came back (inf: the ODE failed).
     state_names, input_names : tuple of str
         The plant's names (the muscle's ``f``, ``r``).
     units : tuple of str

@@ -17,6 +17,7 @@ not rational functions with rational coefficients return ``None`` (the SymPy pat
 
 from __future__ import annotations
 
+import math
 from itertools import compress
 
 import sympy as sp
@@ -314,10 +315,7 @@ def _assemble(den, parts: dict, shape, ring: _Ring) -> list[list]:
             if not coeffs:
                 row.append(sp.Integer(0))
                 continue
-            scale = 1
-            for c in coeffs.values():
-                q = int(c.q)
-                scale = scale * q // _gcd(scale, q)
+            scale = math.lcm(*(int(c.q) for c in coeffs.values()))
             if den.is_constant() and list(coeffs) == [(0,) * len(ring.symbols)]:
                 c = next(iter(coeffs.values())) / int(den.leading_coefficient())
                 row.append(sp.Rational(int(c.p), int(c.q)))
@@ -326,12 +324,6 @@ def _assemble(den, parts: dict, shape, ring: _Ring) -> list[list]:
             row.append(ring.tidy(*_reduce(num, den * scale)))
         out.append(row)
     return out
-
-
-def _gcd(a: int, b: int) -> int:
-    while b:
-        a, b = b, a % b
-    return a
 
 
 def _numeric(F, H, M, P, ring: _Ring):

@@ -72,20 +72,16 @@ class RealizationCheck(Verdict, LatexMixin):
     Attributes
     ----------
     ok : bool
-        Whether :math:`M(zI-F)^{-1}H + N = G(z)`. ``False`` is always certain
-        (a counterexample is attached); ``True`` is certain for
-        ``method == "exact"`` and holds up to :attr:`error_bound` otherwise.
+        Whether :math:`M(zI-F)^{-1}H + N = G(z)`: ``False`` is certain, ``True`` up to
+        :attr:`error_bound`.
     method : str
         ``"exact"`` or ``"randomized"`` (the method that gave the verdict).
     error_bound : fractions.Fraction
-        Probability bound of a wrong ``True``: ``0`` for an exact proof (and for
-        a randomized test without free symbols, which is then exact), else the
-        Schwartz–Zippel bound, below :math:`2^{-64}`.
+        Probability of a wrong ``True``: ``0`` when exact, else the Schwartz–Zippel bound
+        (below :math:`2^{-64}`).
     counterexample : dict or None
-        ``None`` when ``ok``. Else ``{"values": {symbol: value, ..., z: value},
-        "realization": ..., "G": ...}``: exact rational values of every free
-        symbol and of :math:`z`, and the two sides evaluated there (scalars for
-        SISO, matrices for MIMO), which differ.
+        ``{"values": {symbol: value, ..., z: value}, "realization": ..., "G": ...}``: exact
+        values of the symbols and :math:`z` where the two sides differ (None when ``ok``).
     details : str
         What was compared, and which Markov parameter differs.
     markov_count : int
@@ -375,10 +371,6 @@ def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random)
     )
 
 
-def _floating(problem: _Problem) -> bool:
-    return any(e.has(sp.Float) for _, e in problem.entries())
-
-
 def _relative_difference(problem: _Problem, values: Mapping) -> Fraction:
     """The normwise relative difference of the Markov parameters at ``values`` (exact)."""
     alg = _Entries(problem.symbols, values)
@@ -411,7 +403,7 @@ def _numeric(problem: _Problem, rng: random.Random) -> Fraction:
 
 
 def _with_numeric(result: RealizationCheck, problem: _Problem, rng, rtol: float):
-    if not _floating(problem):
+    if not any(e.has(sp.Float) for _, e in problem.entries()):
         return result
     worst = Fraction(0) if result.ok else _numeric(problem, rng)
     return dataclasses.replace(
@@ -498,12 +490,9 @@ def check_realization(
         :math:`n + d \le 10`. See the module notes for both and for the theorem
         that :math:`n + d + 1` Markov parameters decide.
     rng : None, int, random.Random or numpy.random.Generator, optional
-        Source of the random points (and of the counterexample's values);
-        ``None`` uses the operating system's entropy.
+        Source of the random points and counterexamples (``None``: the OS's entropy).
     rtol : float, optional
-        Tolerance of the numeric verdict for floating-point inputs (default
-        ``1e-9``): they agree numerically when the largest relative difference
-        of the Markov parameters is at most ``rtol``. Unused for exact inputs.
+        Tolerance of the numeric verdict for floating-point inputs (default ``1e-9``).
     similar_to : (Realization, matrix), optional
         ``(base, P)`` with ``R`` claimed to be ``base.similar(P)``: the identities
         :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N = N_0`,
@@ -514,9 +503,6 @@ def check_realization(
     Returns
     -------
     RealizationCheck
-        Truthy when ``G`` is realized; with ``.counterexample`` when not. For
-        floating-point inputs, truthy when they agree to ``rtol``, with the exact
-        verdict in ``.ok`` and the largest relative difference beside it.
 
     Raises
     ------

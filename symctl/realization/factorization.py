@@ -265,7 +265,7 @@ class Factorization(DictMixin, LatexMixin):
         if all(p.is_Rational for p in poles):
             poly = fmpq_poly([1])
             for p in poles:
-                poly *= fmpq_poly([-_fmpq(p), 1])
+                poly *= fmpq_poly([-fmpq(int(p.p), int(p.q)), 1])
             coeffs = [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
         else:
             coeffs = sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()
@@ -497,11 +497,6 @@ def _factor_mimo(tf: DiscreteTF, ds: int, da: int, eps, C) -> Factorization:
     return Factorization(
         tf, diagonal(tuple(g1), tf.dt), G2, diagonal(tuple(g3), tf.dt), e1, c1, e3, c3, (m, p)
     )
-
-
-def _fmpq(value: sp.Rational) -> fmpq:
-    """A SymPy rational as a python-flint ``fmpq``."""
-    return fmpq(int(value.p), int(value.q))
 
 
 def _factors(exprs) -> Counter:

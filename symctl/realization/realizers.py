@@ -198,7 +198,10 @@ class _Random(Realizer):
         eps = sorted(
             (s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name
         )
-        chosen = {s: _random_rational(gen, low, high) for s in eps}
+        chosen = {
+            s: sp.Rational(int(gen.integers(round(low * 1000), round(high * 1000) + 1)), 1000)
+            for s in eps
+        }
         tf = tf.subs(chosen)
         start = get_realizer(base, "base", where=_canonical)(tf).realization
         out = _transformed(start, tf, random_full_rank(start.n, gen))
@@ -422,12 +425,6 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
     """
     start = get_realizer(base, "base", where=_canonical)(G2).realization
     return start.similar(P)
-
-
-def _random_rational(
-    gen: np.random.Generator, low: float, high: float, grid: int = 1000
-) -> sp.Rational:
-    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
 
 
 def random_full_rank(
