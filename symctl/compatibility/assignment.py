@@ -61,20 +61,17 @@ class DelayAssignment(LatexMixin):
     structure : Structure
     graph : DelayGraph
     vertex_of : mapping of signal name to vertex (1..N)
-        Every signal exactly once; inputs at their sensor vertex and outputs at
-        their actuator vertex (:meth:`DelayGraph.pins`; by default
-        :math:`v_1` and :math:`v_N`).
+        Every signal once; inputs and outputs at their sensor and actuator vertices
+        (:meth:`DelayGraph.pins`; by default :math:`v_1` and :math:`v_N`).
 
     Raises
     ------
     SymctlTypeError
         ``structure``, ``graph`` or ``vertex_of`` of the wrong type.
     ParameterError
-        A missing or unknown signal, a vertex out of range, an input not at
-        its sensor vertex or an output not at its actuator vertex.
+        A missing or unknown signal, a vertex out of range, an input or output off its vertex.
     DimensionError
-        The graph's sensor or actuator vertices do not fit the structure's
-        inputs or outputs.
+        The graph's sensor or actuator vertices do not fit the structure.
 
     Examples
     --------

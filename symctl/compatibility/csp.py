@@ -1,10 +1,8 @@
 r"""Compatibility as a constraint satisfaction problem: the model, two exact solvers, certificates.
 
-The paper's definitions (section "Structure, delay graphs, and compatibility"):
-a structure is compatible with a delay graph when some delay assignment
-:math:`v` (signals to vertices, inputs at :math:`v_1`, outputs at :math:`v_N`)
-has :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`. This module decides
-it; :func:`symctl.check_compatibility` wraps the answer in a result.
+A structure is compatible with a delay graph when some delay assignment :math:`v`
+(inputs at :math:`v_1`, outputs at :math:`v_N`) has :math:`\tilde E_{ij} \ge E_{ij}` for
+all :math:`i, j`; :func:`symctl.check_compatibility` wraps this module's answer.
 
 **Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest
 delays on a path of the structure from signal :math:`a` to signal :math:`b`.
@@ -53,17 +51,11 @@ with :math:`f_w(i) = \max\{j : D_j \le D_i + w\}` and
 (every signal at the top of its interval) is checked wire by wire before it is
 returned.
 
-**General graphs.** Delay graphs can encode inequalities over a poset (each
-wire asks :math:`E_{v(a) v(b)} \le w`), which is NP-complete for some posets,
-so no polynomial bound is promised: :func:`check_compatibility` decides them
-exactly by arc consistency followed by backtracking search that keeps arc
-consistency after every choice, and reports the method and the search effort.
-
-**Certificates.** On failure the result's ``reason`` is a proof a person can
-check: a minimal set of signal paths (delay-free or too-fast paths, as in the
-paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`)
-and, for every placement of the signals where these paths meet, one path that
-the placement makes too fast.
+**General graphs** can encode inequalities over a poset, NP-complete for some posets:
+they are decided exactly by arc consistency and backtracking that maintains it, with the
+search effort reported. **Certificates:** on failure, a minimal set of signal paths (as
+the paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`) and, for
+every placement of the signals where they meet, one path it makes too fast.
 
 >>> from symctl import DelayGraph, ifp_structure
 >>> from symctl.compatibility.csp import build_problem, solve_chain, solve_search

@@ -63,9 +63,8 @@ class Structure(LatexMixin):
     Raises
     ------
     ParameterError
-        Unknown kind or signal name, a gain or delay without exactly one input,
-        an algebraic loop (a cycle without delay), inputs that are not the
-        input blocks.
+        Unknown kind or signal, a gain or delay without exactly one input, an algebraic
+        loop, inputs that are not the input blocks.
     SymctlTypeError
         ``blocks`` is not a mapping, or a name is not a non-empty string.
 
@@ -528,8 +527,6 @@ def ifp_structure(T: int = 2) -> Structure:
     Returns
     -------
     Structure
-        Input ``x``, output ``u``, :math:`T` delays and :math:`T + 1` gains
-        :math:`K_0 .. K_T` (symbols).
 
     Raises
     ------
@@ -576,8 +573,7 @@ def same_structure(a: Structure, b: Structure) -> bool:
     Returns
     -------
     bool
-        Whether a kind- and role-preserving isomorphism maps ``a`` onto ``b``
-        (unlike ``a == b``, which also compares names and gain values).
+        Unlike ``a == b``, blind to names and gain values.
 
     Raises
     ------

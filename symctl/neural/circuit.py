@@ -38,13 +38,10 @@ it drives (not its self-dynamics); two paths onto one neuron (the controllable c
 branches, as in the paper's figure.
 
 Given a compatible :class:`~symctl.compatibility.delaygraph.DelayAssignment`, a neuron
-sits at its adder's vertex: in the paper's assignment for :math:`G_3 G_2 G_1` the
-:math:`G_1` neuron is at :math:`v_2` (over the one-step synapse :math:`C_1 z^{-1}` from
-:math:`v_1`), the :math:`G_2` neurons at :math:`v_2` and the :math:`G_3` neuron at
-:math:`v_3`; no compatible assignment puts the :math:`G_1` adder at :math:`v_1` (its
-delay-free path through :math:`N` would give :math:`\tilde E_{12} = 0 < 1`).
-:meth:`Circuit.as_linear_system` outputs every neuron's axon output (named by its
-adder's signal), so a simulation gives each neuron's firing trace.
+sits at its adder's vertex (in the paper's assignment for :math:`G_3 G_2 G_1`: the
+:math:`G_1` and :math:`G_2` neurons at :math:`v_2`, the :math:`G_3` neuron at :math:`v_3`;
+the :math:`G_1` adder cannot be at :math:`v_1`, as its delay-free path through :math:`N`
+would give :math:`\tilde E_{12} = 0 < 1`).
 """
 
 from __future__ import annotations

@@ -345,9 +345,9 @@ def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, sched
         )
 
 
-def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
+def _response(p, df, dr, w, xc, kind, names=()) -> Response:
     return Response(
-        t,
+        np.arange(df.shape[0]) * _ts(p),
         df,
         dr,
         w,
@@ -411,8 +411,7 @@ def open_loop_response(
     df, _, _ = _run(
         A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False, argname="pulse"
     )
-    t = np.arange(u.shape[0]) * _ts(p)
-    return _response(p, t, df[0], u, np.zeros_like(df[0]), np.zeros((len(t), 0)), "open loop")
+    return _response(p, df[0], u, np.zeros_like(df[0]), np.zeros((len(u), 0)), "open loop")
 
 
 def _numeric_realization(R, p: DiscretePlant, argname: str = "R") -> tuple[np.ndarray, ...]:
@@ -487,8 +486,7 @@ def simulate_realization(
     Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p))
     _stability(Acl, "R", p.n)
     df, dr, xc = _run(Acl, Cr, p.n, w)
-    t = np.arange(w.shape[0]) * _ts(p)
-    return _response(p, t, df[0], dr[0], w, xc[0], "closed loop")
+    return _response(p, df[0], dr[0], w, xc[0], "closed loop")
 
 
 def closed_loop_response(
@@ -555,8 +553,7 @@ def closed_loop_response(
         w = _signal(disturbance, "disturbance", steps, n, start, length)
         _stability(Acl[:, :, None], "controller")
         df, dr, xc = _run(Acl[:, :, None], Cr[:, :, None], n, w)
-        t = np.arange(w.shape[0]) * _ts(p)
-        return _response(p, t, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
+        return _response(p, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"

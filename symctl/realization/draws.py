@@ -66,9 +66,9 @@ def draw_realizations(
     Parameters
     ----------
     G : DiscreteTF
-        The controller, with numbers (exact rationals keep every realization exact).
+        The controller, numeric (exact rationals keep every realization exact).
     sensor_delay, actuator_delay : int
-        The delays (the sections of :math:`G_1` and :math:`G_3`).
+        The sections of :math:`G_1` and :math:`G_3`.
     name : str
         A realizer of :data:`~symctl.realization.realizers.REALIZERS`.
     count : int

@@ -244,10 +244,8 @@ class Factorization(DictMixin, LatexMixin):
         Returns
         -------
         dict
-            Exact numbers when every pole is a number (the coefficients of
-            :math:`\prod (z - \epsilon_i)`, expanded in python-flint); SymPy
-            polynomials otherwise (:math:`\binom{d}{k}` terms each: meant for
-            small :math:`d`).
+            Exact numbers when every pole is a number (python-flint); else SymPy polynomials
+            (:math:`\binom{d}{k}` terms each: for small :math:`d`).
 
         Examples
         --------
@@ -409,9 +407,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
     eps, C : sequence or value, optional
-        Values of the section poles and gains, sensor sections first (one
-        value for all, or ``sensor_delay + actuator_delay`` of them; numbers,
-        SymPy expressions or text read by the safe parser). By default the
+        The section poles and gains, sensor sections first (one for all, or one per
+        section; text through the safe parser). By default the
         symbols of :func:`section_symbols` (building at given values is cheaper than
         :meth:`Factorization.subs` afterwards).
 
@@ -424,11 +421,10 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     Raises
     ------
     ParameterError
-        Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
-        negative delays, a zero ``C`` or a value in ``z``.
+        Improper ``G``, its relative degree below the delays, negative delays, a zero
+        ``C`` or a value in ``z``.
     DimensionError
-        ``eps``/``C`` of the wrong length, or more than ``MAX_CHANNELS`` (50)
-        inputs or outputs.
+        ``eps``/``C`` of the wrong length, or over ``MAX_CHANNELS`` (50) inputs or outputs.
 
     A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`):
     ``G1``, ``G3`` diagonal; ``eps`` and ``C`` channel-major, sensor channels first.

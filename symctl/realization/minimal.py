@@ -1,10 +1,8 @@
 r"""Minimal realizations, exactly: the Kalman reduction in rational arithmetic.
 
-A realization :math:`(F, H, M, N)` of a (MIMO) transfer function is minimal
-when it is controllable and observable; its order is then the McMillan degree
-of :math:`G`. :func:`minimal_realization` reduces any realization with number
-entries (floats are taken as the exact binary rationals they are) in two exact
-steps, each with python-flint's rational row reduction:
+A realization is minimal when controllable and observable (its order is then the
+McMillan degree). :func:`minimal_realization` reduces one with number entries (floats
+taken exactly) in two exact steps of python-flint's rational row reduction:
 
 1. **controllable part.** The columns :math:`V` of the Krylov matrix
    :math:`[H, FH, \dots, F^{n-1}H]` at its pivots are a basis of the

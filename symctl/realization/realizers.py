@@ -300,8 +300,8 @@ def register(realizer: Realizer) -> Realizer:
     SymctlTypeError
         ``realizer`` is not a :class:`Realizer`.
     ParameterError
-        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label such as
-        ``"A3"``) or not a lower-case identifier of at most 32 characters.
+        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label) or not a
+        lower-case identifier of at most 32 characters.
 
     Examples
     --------
