@@ -47,7 +47,7 @@ from symctl.fitting.fitargs import (
     _traces,
     _window,
 )
-from symctl.fitting.fitmodel import TraceModel, renamed_param
+from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.fitting.identify import _verdicts
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
@@ -151,7 +151,7 @@ def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> lis
     for _ in range(starts):
         eps = gen.uniform(-0.9, 0.9, k)
         theta = np.concatenate([eps, np.ones(k) if model.C is None else []])
-        if model.circuit == "general":
+        if transformed(model.circuit):
             n = model.order
             Q = gen.normal(size=(n, n))  # either orientation: det Q < 0 and > 0 are not
             while np.linalg.cond(Q) > 20:  # connected through invertible Q

@@ -41,6 +41,11 @@ def fixed_classes() -> tuple[str, ...]:
     return tuple(k for k in circuit_names(whole=False) if not REALIZERS[k].takes_transform)
 
 
+def transformed(circuit) -> bool:
+    """Whether ``circuit`` names a realizer with a free similarity transform (``"general"``)."""
+    return isinstance(circuit, str) and circuit in REALIZERS and REALIZERS[circuit].takes_transform
+
+
 def __getattr__(name: str):
     """``FIXED_CLASSES``: :func:`fixed_classes`, read from the registry at each access."""
     if name == "FIXED_CLASSES":
@@ -89,7 +94,7 @@ class TraceModel:
     G: DiscreteTF
     sensor_delay: int
     actuator_delay: int
-    circuit: object  # "general", a FIXED_CLASSES name, or a CircuitClass
+    circuit: object  # a realizer's name (see transformed) or a CircuitClass
     C: float | None  # every C fixed to this value, or None (fitted)
     names: tuple[str, ...]
     neurons: tuple[str, ...]
@@ -97,7 +102,7 @@ class TraceModel:
     F0: np.ndarray
     H0: np.ndarray
     _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
-    _T: object  # lambdified T and its gradient over (eps, C); None for "general"
+    _T: object  # lambdified T and its gradient over (eps, C); None when transformed
 
     @classmethod
     def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
@@ -116,7 +121,7 @@ class TraceModel:
         M0 = base.M.subs(fixed)
         N = sp.Matrix([[base.N[0, 0]]]).subs(fixed)
         mn = _lambdified(sp.Matrix.vstack(M0.T, N), free)
-        if circuit == "general":
+        if transformed(circuit):
             T = None
             qnames = tuple(f"Pinv[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
         else:
@@ -150,7 +155,7 @@ class TraceModel:
         else:
             cs = np.full(k, float(self.C))
             rest = theta[k:]
-        Q = rest.reshape(self.order, self.order) if self.circuit == "general" else None
+        Q = rest.reshape(self.order, self.order) if transformed(self.circuit) else None
         return eps, cs, Q
 
     def traces(self, theta: np.ndarray, u: np.ndarray) -> tuple[dict, dict]:
@@ -212,8 +217,8 @@ class TraceModel:
 
     def realize(self, fs: Factorization, Q=None) -> Realization:
         """The exact realization of ``fs.G2`` in the model's class (``Q`` = :math:`P^{-1}`)."""
-        if self.circuit == "general":
-            return get_realizer("general")(fs.G2, P=sp.Matrix(Q).inv()).realization
+        if transformed(self.circuit):
+            return get_realizer(self.circuit)(fs.G2, P=sp.Matrix(Q).inv()).realization
         return _symbolic_realization(self.circuit, fs.G2, self.order)
 
 

@@ -20,7 +20,7 @@ from symctl._util.serial import DictMixin
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.fitting.fitmodel import TraceModel, renamed_param
+from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 
 __all__ = ["Identifiability", "identifiability"]
@@ -161,7 +161,7 @@ def identifiability(
     theta = [gen.uniform(-0.8, 0.8, k)]
     if C is None:
         theta.append(gen.uniform(0.5, 2.0, k))
-    if model.circuit == "general":
+    if transformed(model.circuit):
         theta.append((np.eye(model.order) + 0.3 * gen.normal(size=(model.order,) * 2)).ravel())
     theta = np.concatenate(theta)
     vals, jacs = model.traces(theta, u)

@@ -292,7 +292,7 @@ def synthetic_traces(
     (['C_1', 'C_3'], 'general')
     """
     from symctl.fitting.fitargs import _circuit_neurons, _label, _loop, _one_class, _window
-    from symctl.fitting.fitmodel import TraceModel
+    from symctl.fitting.fitmodel import TraceModel, transformed
     from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START, _signal
     from symctl.realization.realizers import random_full_rank
 
@@ -313,7 +313,7 @@ def synthetic_traces(
     hidden = {str(n): v for n, v in zip(model.names[:k], eps, strict=True)}
     hidden.update({n: v for n, v in zip(model.names[k : 2 * k], cs, strict=True)})
     theta = [float(v) for v in (*eps, *cs)]
-    if model.circuit == "general":
+    if transformed(model.circuit):
         Q = random_full_rank(model.order, gen).inv()
         hidden.update({n: v for n, v in zip(model.names[2 * k :], Q, strict=True)})
         theta += [float(v) for v in Q]
