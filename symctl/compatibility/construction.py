@@ -53,13 +53,11 @@ class PathPart:
     delays : tuple of int
         The steps of the path's edges.
     structure : Structure
-        The part's structure: first-order sections (with axons on the edges of
-        several steps) and :math:`G_2`, in series.
+        The sections (axons on edges of several steps) and :math:`G_2`, in series.
     vertex_of : dict
         Each signal's vertex, on the path.
     realization : Realization or None
-        The series realization when every edge has at most one step (None
-        otherwise: the structure's own state-space form is the realization).
+        The series realization when every edge has at most one step (else None).
     label : str
         Which part it is, e.g. ``"G[1,2]"`` for an entry of a MIMO controller.
 
@@ -246,9 +244,7 @@ def along_path(
     Returns
     -------
     PathPart
-        The structure (series of the sections and :math:`G_2`) and its
-        placement, found by the exact chain solver on the path (a theorem
-        guarantees one; see :mod:`symctl.compatibility.controller`).
+        Placed by the exact chain solver on the path (Theorem 1 guarantees a placement).
     """
     tf = DiscreteTF.from_expr(G)
     steps = [int(e) for e in delays]

@@ -207,13 +207,11 @@ def ei_circuit(
     G, sensor_delay, actuator_delay
         As in :func:`~symctl.dalelaw.dale.dale`.
     circuits : list, optional
-        The circuits to search (names, ``CircuitClass`` or ``Pattern``); default the
-        general, controllable and observable circuits and, when :math:`G_2` has
-        order 1 or 2, every class of ``symctl.atlas(order)``.
+        Names, ``CircuitClass`` or ``Pattern``; default the named circuits and, for
+        :math:`G_2` of order 1 or 2, every class of ``symctl.atlas(order)``.
     timeout : float or Deadline
-        Seconds for each circuit's search, every stage included (default 30, at most
-        3600; the call takes at most about this times the number of circuits), or a
-        :class:`~symctl._util.deadline.Deadline` that bounds the whole call instead.
+        Seconds for each circuit's search (default 30, at most 3600), or a
+        :class:`~symctl._util.deadline.Deadline` bounding the whole call.
 
     Returns
     -------

@@ -213,9 +213,8 @@ class MatrixFractionTF(DiscreteTF):
         Parameters
         ----------
         max_terms : int
-            Refuse (before any work) when :meth:`terms_bound` exceeds it and
-            symbols other than ``z`` remain (with numbers only, the size is the
-            number of coefficients, linear in the degree, and never refused).
+            Refuse (before any work) when :meth:`terms_bound` exceeds it and symbols other
+            than ``z`` remain (numbers only are never refused).
 
         Raises
         ------

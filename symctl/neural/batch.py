@@ -270,10 +270,9 @@ def simulate_batch(
     check_stability : bool
         Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
-        The outputs to keep, among ``"delta_f"``, ``"delta_r"``, ``"states"`` (traces)
-        and ``"peak_delta_f"``, ``"peak_delta_r"``, ``"peak_states"`` (the largest
-        magnitude of a trace over the horizon, in ``.peaks``; the trace itself is
-        never stored). Default: ``("delta_f", "delta_r")``. A trace not kept is None.
+        Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
+        peaks ``"peak_..."`` (in ``.peaks``, the trace never stored); default
+        ``("delta_f", "delta_r")``; a trace not kept is None.
         Traces take :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks
         :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` (4 GiB) in one result or chunk is
         refused before any work, the message saying which ``chunk`` fits.

@@ -402,8 +402,7 @@ def circuit_firing(
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
-        Number of realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP
-        controller has exactly 1).
+        Realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP controller: 1).
     rng : int, numpy Generator or None, default 0
         Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is
         >= 0. ``seed=`` is its deprecated name.
@@ -411,7 +410,7 @@ def circuit_firing(
         As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
         pulse on steps 5..14 of 50).
     rtol : float
-        Tolerance of the behaviour check (default 1e-9).
+        Tolerance of the behaviour check.
     draws : sequence of Draw, optional
         Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`);
         ``count`` and ``rng`` are then not used.

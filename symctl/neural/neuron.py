@@ -38,12 +38,10 @@ class Synapse(NamedTuple):
     weight : sympy expression
         The synaptic weight: the product of the gains on the path.
     delay : int
-        The number of unit delays on the path: the branch delay into the adder
-        plus any axon delays before it (e.g. 2 for :math:`x_3 \to y` through
-        :math:`x_2, x_1` in a third-order controllable canonical realization).
+        The unit delays on the path, axon delays included (e.g. 2 for :math:`x_3 \to y`
+        through :math:`x_2, x_1` in a third-order controllable canonical realization).
     path : tuple of str
-        The structure signals strictly between ``source`` and ``target``, in
-        signal-flow order.
+        The signals strictly between ``source`` and ``target``, in signal-flow order.
 
     Examples
     --------
