@@ -83,16 +83,14 @@ class Template:
         Entries of ``R2`` that are free (nonzero); ``signed`` ones are :math:`\\pm 1`.
     signed : tuple of sympy.Symbol
     target : tuple
-        ``(a, c)``, :math:`G_2`'s denominator and numerator coefficients (ascending,
-        as in :func:`~symctl.realization.realization.split_proper`) that a pattern's
-        ``R2`` must match: :func:`encode` builds those equations (empty for a canonical
-        form, which realizes :math:`G_2` by construction).
+        ``(a, c)``: :math:`G_2`'s coefficients (as :func:`~symctl.realization.realization.split_proper`)
+        a pattern's ``R2`` must match (empty for a canonical form).
     circuit : Circuit
         The whole controller's circuit in the unknowns.
     outgoing : dict
-        Neuron name -> its weights onto other neurons (self-dynamics and read-out exempt).
+        Neuron name -> its weights onto other neurons (self-dynamics, read-out exempt).
     weights : tuple of sympy.Expr
-        Every weight of the circuit (each must stay nonzero).
+        Every weight of the circuit (each stays nonzero).
     delays : str
         :math:`G_2`'s structure convention.
     """

@@ -291,8 +291,7 @@ class DiscreteTF(LatexMixin):
         Raises
         ------
         ParameterError
-            Free symbols, an improper ``G``, ``steps`` outside ``[0, MAX_STEPS]``,
-            or a response that overflows (an unstable ``G`` over too many ``steps``).
+            Free symbols, an improper ``G``, bad ``steps``, or an overflowing response.
 
         >>> from symctl import DiscreteTF, z
         >>> DiscreteTF.from_expr(1 / (z - 2)).impulse_response(4)[:, 0, 0]

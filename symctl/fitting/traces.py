@@ -44,13 +44,13 @@ class Traces(ArrayValue, DictMixin):
     t : (steps,) array
         Time of each sample.
     traces : mapping of str to (steps,) array
-        Per neuron, its change of firing rate from equilibrium.
+        Per neuron, its firing-rate change.
     disturbance : (steps,) array or None
         The force disturbance per step (None: the default unit pulse).
     meta : mapping of str to str
-        The file's ``key: value`` lines (``circuit``, ``sensor_delay``, ...).
+        The file's ``key: value`` lines.
     hidden : mapping of str to sympy.Rational
-        For :func:`synthetic_traces`, the hidden parameters (empty for data read).
+        The hidden parameters of :func:`synthetic_traces` (empty for data read).
 
     Examples
     --------

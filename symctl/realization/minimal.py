@@ -104,15 +104,12 @@ def minimal_realization(R: Realization) -> Realization:
     Parameters
     ----------
     R : Realization
-        Entries numbers (rationals, integers, or floats, taken exactly); any
-        shape (MIMO too), at most :data:`MAX_ORDER` states.
+        Numbers (floats taken exactly), any shape, at most :data:`MAX_ORDER` states.
 
     Returns
     -------
     Realization
-        Controllable and observable, of order the McMillan degree of
-        ``R.to_tf()``, realizing it (proved by the exact checker); ``R``'s
-        ``dt`` kept.
+        Of order the McMillan degree, proved to realize ``R.to_tf()``; ``R``'s ``dt`` kept.
 
     Raises
     ------
@@ -123,8 +120,6 @@ def minimal_realization(R: Realization) -> Realization:
 
     Examples
     --------
-    Two first-order sections in parallel with the same pole are one state:
-
     >>> from symctl import Realization
     >>> from symctl.realization.minimal import minimal_realization
     >>> R = Realization([[0.5, 0], [0, 0.5]], [[1], [1]], [[1, 2]], 0)
