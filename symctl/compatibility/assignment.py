@@ -22,12 +22,6 @@ conversely a direct-compatible assignment satisfies
 :math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w`
 (a wire is a direct path), and then, summing along any path and using the
 triangle inequality of :math:`E`, the fastest reading is compatible too.
-
->>> from symctl import DelayAssignment, DelayGraph, ifp_structure
->>> a = DelayAssignment(ifp_structure(1), DelayGraph.chain([0]),
-...                     {"x": 1, "K0": 2, "mu": 2, "K1": 2, "u": 2})
->>> a.E_tilde.tolist(), a.is_compatible()
-([[0.0, 0.0], [inf, 0.0]], True)
 """
 
 from __future__ import annotations
@@ -59,31 +53,25 @@ INF = math.inf
 class DelayAssignment(LatexMixin):
     r"""Every signal of a structure at one vertex of a delay graph.
 
+    A frozen value (equal and hashing alike when structure, graph and vertices are);
+    :attr:`vertex_of` is a read-only mapping in signal order, :attr:`E_tilde` a read-only array.
+
     Parameters
     ----------
     structure : Structure
     graph : DelayGraph
     vertex_of : mapping of signal name to vertex (1..N)
-        Every signal exactly once; inputs at their sensor vertex and outputs at
-        their actuator vertex (:meth:`DelayGraph.pins`; by default
-        :math:`v_1` and :math:`v_N`).
+        Every signal once; inputs and outputs at their sensor and actuator vertices
+        (:meth:`DelayGraph.pins`; by default :math:`v_1` and :math:`v_N`).
 
     Raises
     ------
     SymctlTypeError
         ``structure``, ``graph`` or ``vertex_of`` of the wrong type.
     ParameterError
-        A missing or unknown signal, a vertex out of range, an input not at
-        its sensor vertex or an output not at its actuator vertex.
+        A missing or unknown signal, a vertex out of range, an input or output off its vertex.
     DimensionError
-        The graph's sensor or actuator vertices do not fit the structure's
-        inputs or outputs.
-
-    Notes
-    -----
-    A frozen value: equal (and hashing alike) when structure, graph and
-    vertices are; :attr:`vertex_of` is a read-only mapping in the structure's
-    signal order, :attr:`E_tilde` a read-only array.
+        The graph's sensor or actuator vertices do not fit the structure.
 
     Examples
     --------

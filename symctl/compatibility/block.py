@@ -1,18 +1,8 @@
 r"""The blocks of a controller structure: inputs, gains, adders and delays of k steps.
 
-Every block of a :class:`~symctl.compatibility.structure.Structure` produces
-one scalar signal. A ``"delay"`` block delays its one input by ``steps``
-sampling steps, :math:`a(t - k)`: ``steps=1`` is the paper's unit delay (a
-broken line in its figures), ``steps=k`` an axon whose conduction takes
-:math:`k` steps, one block :math:`z^{-k}` rather than :math:`k` relays.
-
->>> from symctl.compatibility.block import Block, block
->>> block("d", ("delay", ("a",), None, "", 3))
-Block(kind='delay', inputs=('a',), gain=None, part='', steps=3)
->>> block("d", ("delay", ("a",), None, "", 0))  # doctest: +ELLIPSIS
-Traceback (most recent call last):
-...
-symctl.errors.ParameterError: blocks['d'].steps: a delay block delays by an integer number ... got 0
+A ``"delay"`` block delays its one input by ``steps`` sampling steps, :math:`a(t - k)`:
+``steps=1`` is the paper's unit delay, ``steps=k`` an axon whose conduction takes
+:math:`k` steps (one block :math:`z^{-k}`, not :math:`k` relays).
 """
 
 from __future__ import annotations
@@ -36,11 +26,9 @@ MAX_WIRE_STEPS = 100_000
 
 
 class Block(NamedTuple):
-    """One block of a structure and the signal it produces.
+    """One block of a structure and the signal it produces (a named tuple: a value).
 
-    A named tuple, so a value (equal and hashing alike when the fields are);
-    :class:`~symctl.compatibility.structure.Structure` checks and normalises its
-    blocks (the gain to a SymPy expression, the inputs to a tuple).
+    :class:`~symctl.compatibility.structure.Structure` normalises it (gain to SymPy, inputs to a tuple).
 
     Parameters
     ----------

@@ -1,29 +1,12 @@
 r"""Compatibility of a controller structure with a delay graph: the verdict and its evidence.
 
-:func:`check_compatibility` decides whether some delay assignment of a
-structure is compatible with a delay graph (the paper's section "Structure,
-delay graphs, and compatibility"), in polynomial time on chain graphs and by
-exact search elsewhere (the model, the solvers and the proofs are in
-:mod:`symctl.compatibility.csp`); :func:`brute_force_compatibility` enumerates
-every assignment by the definition's words, the reference for the tests. Both
-return a :class:`CompatibilityResult`: truthy when compatible, with a witness
-assignment, or else with a certificate a person can check, a minimal set of
-signal paths and, for every placement of the signals where these paths meet,
-one path that the placement makes too fast.
-
->>> from symctl import DelayGraph, check_compatibility, ifp_structure
->>> result = check_compatibility(ifp_structure(2), DelayGraph.chain([1, 1]))
->>> result.ok
-False
->>> print(result.reason)  # doctest: +NORMALIZE_WHITESPACE
-No delay assignment of this structure is compatible with the delay graph (decided by chain:
-bounds arc consistency). These signal paths suffice for the contradiction:
-  (a) x -> K0 -> mu, delay 0
-  (b) u -> K2 -> mu, delay 0
-with x at v1 (input) and u at v3 (output). Every placement fails:
-  mu at v1: path (b) runs from u at v3 to mu at v1 with delay 0, so Ẽ[3,1] <= 0 < E[3,1] = inf
-  mu at v2: path (b) runs from u at v3 to mu at v2 with delay 0, so Ẽ[3,2] <= 0 < E[3,2] = inf
-  mu at v3: path (a) runs from x at v1 to mu at v3 with delay 0, so Ẽ[1,3] <= 0 < E[1,3] = 2
+:func:`check_compatibility` decides whether some delay assignment of a structure is
+compatible with a delay graph, in polynomial time on chain graphs and by exact search
+elsewhere (:mod:`symctl.compatibility.csp`); :func:`brute_force_compatibility` enumerates
+every assignment by the definition's words (the tests' reference). A
+:class:`CompatibilityResult` carries a witness, or a certificate: a minimal set of
+signal paths and, for every placement of the signals where they meet, one path it makes
+too fast.
 """
 
 from __future__ import annotations
@@ -55,13 +38,11 @@ _ALIASES = {"brute force": "brute-force"}
 """Other spellings accepted for :data:`METHODS` (the first spelling symctl documented)."""
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True)
 class CompatibilityResult(Verdict, LatexMixin):
     r"""The verdict of :func:`check_compatibility`, with its evidence.
 
-    Truthy exactly when the structure is compatible (``bool(r) == r.ok``). A
-    value: two results are equal when verdict, evidence and inputs are.
+    Truthy exactly when compatible (``bool(r) == r.ok``); equal when verdict, evidence and inputs are.
 
     Parameters
     ----------
@@ -70,12 +51,10 @@ class CompatibilityResult(Verdict, LatexMixin):
     assignment : DelayAssignment or None
         A witness when ``ok``.
     reason : str
-        When ``ok``, a summary of the witness; otherwise a certificate: the
-        delay-free or too-fast signal paths and the case analysis that rules
-        out every placement.
+        A summary of the witness, or a certificate: the too-fast signal paths and the
+        case analysis ruling out every placement.
     method : str
-        Which algorithm answered (``"chain: bounds arc consistency"``,
-        ``"search: arc consistency + backtracking (...)"`` or ``"brute force (...)"``).
+        Which algorithm answered (``"chain: ..."``, ``"search: ..."``, ``"brute force (...)"``).
     structure : Structure
         The structure checked.
     graph : DelayGraph
@@ -164,12 +143,9 @@ def _result(structure, graph, place, method, stats, problem=None, core=None) -> 
 
 
 def witness_result(structure, graph, vertex_of, method: str) -> CompatibilityResult:
-    """The result for a constructed assignment, after checking it by the definition's words.
+    """The result for a constructed assignment, checked by the definition's words.
 
-    Raises
-    ------
-    RuntimeError
-        The assignment is not compatible (a construction that contradicts its theorem).
+    Raises RuntimeError when it is not compatible (a construction contradicting its theorem).
     """
     assignment = DelayAssignment(structure, graph, vertex_of)
     bad = assignment.violations()
@@ -205,19 +181,15 @@ def check_compatibility(
     structure : Structure
     graph : DelayGraph
     method : {"auto", "chain", "search", "brute-force"}
-        ``"auto"``: bounds arc consistency when the graph is a chain (polynomial
-        time), otherwise arc consistency + backtracking (exact, exponential in
-        the worst case). ``"brute-force"`` enumerates every assignment (small
-        structures only; ``"brute force"`` is accepted too).
+        ``"auto"``: bounds arc consistency on a chain (polynomial), else arc
+        consistency + backtracking (exact, exponential in the worst case);
+        ``"brute-force"`` (or ``"brute force"``) enumerates every assignment.
     max_decisions : int, default :data:`MAX_DECISIONS`
-        Bound on the search's decisions (branchings), so that the work is
-        bounded; the chain method is polynomial and needs none.
+        Bound on the search's decisions (the chain method needs none).
 
     Returns
     -------
     CompatibilityResult
-        Truthy when compatible: ``.ok``, ``.assignment`` (witness), ``.E_tilde``,
-        ``.reason`` (witness or certificate), ``.method``.
 
     Raises
     ------
@@ -229,9 +201,6 @@ def check_compatibility(
 
     Examples
     --------
-    The paper's controller :math:`G_3 G_2 G_1` is compatible with the
-    neuromuscular graph:
-
     >>> from symctl import (DelayGraph, Structure, check_compatibility, controllable_canonical,
     ...                     controller_tf, factor)
     >>> f = factor(controller_tf(2))
@@ -274,9 +243,8 @@ def brute_force_compatibility(
 ) -> CompatibilityResult:
     r"""Enumerate every assignment and test :math:`\tilde E \ge E` by the definition's words.
 
-    The reference for the tests: it compares the fastest-path delays between
-    *all* pairs of signals with :math:`E` (no reduction to wires). When no
-    assignment is compatible, the certificate comes from the search solver.
+    Compares the fastest-path delays between *all* pairs of signals with :math:`E` (no
+    reduction to wires); when none is compatible, the certificate comes from the search solver.
 
     Parameters
     ----------

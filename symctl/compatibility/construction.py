@@ -1,34 +1,11 @@
 r"""Compatible structures built along the paths of a delay graph.
 
 The constructive half of the theorems in :mod:`symctl.compatibility.controller`:
-
-* :func:`fastest_path`, the fastest path from the sensor :math:`v_1` to the
-  actuator :math:`v_N` over edges of at most ``max_wire_delay`` steps (among
-  the fastest, the one through the most vertices, so that the controller is
-  spread over the graph rather than squeezed at its ends);
-* :func:`along_path`, a controller :math:`G` of relative degree
-  :math:`r \ge L` (the path's delay) factored along one path
-  :math:`q_0 \to \dots \to q_m`: one first-order section
-  :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps (a unit
-  branch delay on its self-loop and an axon of :math:`e` steps on its input),
-  the first half of them on the sensor side (:math:`G_1`), the rest on the
-  actuator side (:math:`G_3`), and :math:`G_2 = G / (G_3 G_1)` proper between
-  them; every signal is placed by the exact chain solver on the path;
-* :func:`markov_split`, the parallel decomposition
-  :math:`G = G_1 + \dots + G_k` for paths of delays :math:`L_1 < \dots < L_k`:
-  :math:`G_i` collects the Markov parameters :math:`h_j`,
-  :math:`L_i \le j < L_{i+1}` (the last one the whole tail), so
-  :math:`G_i` has relative degree at least :math:`L_i` and can run along path
-  :math:`i`.
-
->>> from symctl import DelayGraph, controller_tf
->>> from symctl.compatibility.construction import along_path, fastest_path
->>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
->>> fastest_path(g)
-(2, (1, 2, 4), (1, 1))
->>> part = along_path(controller_tf(2), (1, 2, 4), (1, 1))
->>> sorted(set(part.vertex_of.values()))
-[1, 2, 4]
+:func:`fastest_path` (among the fastest, the one through the most vertices, spreading the
+controller over the graph), :func:`along_path` (one first-order section
+:math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps, half on the sensor
+side, :math:`G_2 = G / (G_3 G_1)` between; signals placed by the exact chain solver) and
+:func:`markov_split` (the parallel decomposition of Theorem 2).
 """
 
 from __future__ import annotations
@@ -76,13 +53,11 @@ class PathPart:
     delays : tuple of int
         The steps of the path's edges.
     structure : Structure
-        The part's structure: first-order sections (with axons on the edges of
-        several steps) and :math:`G_2`, in series.
+        The sections (axons on edges of several steps) and :math:`G_2`, in series.
     vertex_of : dict
         Each signal's vertex, on the path.
     realization : Realization or None
-        The series realization when every edge has at most one step (None
-        otherwise: the structure's own state-space form is the realization).
+        The series realization when every edge has at most one step (else None).
     label : str
         Which part it is, e.g. ``"G[1,2]"`` for an entry of a MIMO controller.
 
@@ -142,12 +117,9 @@ def fastest_path(
 ):
     """The fastest path from the sensor to the actuator over edges of at most ``max_wire_delay`` steps.
 
-    Returns ``(delay, vertices, edge delays)`` (vertices from 1), or None when
-    no such path exists. Among the fastest paths the one through the most
-    vertices (a longest path in the acyclic graph of tight edges; when zero
-    delay cycles make that graph cyclic, one with the fewest edges). ``ends``
-    gives other end vertices ``(source, target)`` (from 1), e.g. one channel's
-    sensor and actuator.
+    ``(delay, vertices, edge delays)`` (vertices from 1) or None. Among the fastest, the one
+    through the most vertices (with zero-delay cycles, the fewest edges). ``ends``: other end
+    vertices ``(source, target)``, e.g. one channel's sensor and actuator.
     """
     n = graph.n
     if ends is None:
@@ -187,10 +159,7 @@ def fastest_path(
 def slowest_path(
     graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
 ):
-    """The slowest simple path from the sensor to the actuator (edges of at most ``max_wire_delay`` steps).
-
-    Returns ``(delay, vertices, edge delays)`` or None. The simple paths are
-    enumerated (networkx), at most :data:`MAX_PATHS` of them.
+    """The slowest simple path (``(delay, vertices, edge delays)`` or None), over at most :data:`MAX_PATHS`.
 
     Raises
     ------
@@ -275,9 +244,7 @@ def along_path(
     Returns
     -------
     PathPart
-        The structure (series of the sections and :math:`G_2`) and its
-        placement, found by the exact chain solver on the path (a theorem
-        guarantees one; see :mod:`symctl.compatibility.controller`).
+        Placed by the exact chain solver on the path (Theorem 1 guarantees a placement).
     """
     tf = DiscreteTF.from_expr(G)
     steps = [int(e) for e in delays]
@@ -316,9 +283,8 @@ def along_path(
 def markov_split(G, delays: Sequence[int]) -> list[sp.Expr]:
     r""":math:`G = G_1 + \dots + G_k` with :math:`G_i` of relative degree at least ``delays[i]``.
 
-    :math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` for :math:`i < k` (a
-    finite impulse response) and :math:`G_k = G - \sum_{i<k} G_i`: Theorem 2 of
-    :mod:`symctl.compatibility.controller`.
+    :math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` for :math:`i < k` and :math:`G_k = G -
+    \sum_{i<k} G_i` (Theorem 2 of :mod:`symctl.compatibility.controller`).
 
     Parameters
     ----------

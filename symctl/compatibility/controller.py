@@ -1,10 +1,8 @@
 r"""Compatibility of a controller (a transfer function) with a delay graph: theorems and constructions.
 
-A controller is compatible with a delay graph when one of its realizations has
-a compatible structure (the paper's section "Structure, delay graphs, and
-compatibility"). :func:`controller_compatibility` decides it for every SISO
-controller and every delay graph by the theorem below, and builds a compatible
-structure when there is one (:mod:`symctl.compatibility.construction`),
+A controller is compatible with a delay graph when one of its realizations has a
+compatible structure. :func:`controller_compatibility` decides it by the theorems below
+and builds a compatible structure when there is one (:mod:`symctl.compatibility.construction`),
 checked by the definition's words.
 
 Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots`
@@ -46,17 +44,12 @@ the last sensor-side section. Every wire then either stays at one vertex
 (:math:`E = 0`), crosses zero-delay edges with delay 0, or crosses one edge
 of :math:`e` steps with delay :math:`e`; on the path read as a chain every
 wire constraint holds, and on the whole graph too, since :math:`E` between
-two vertices of the path is at most their distance along it. (The exact chain
-solver finds such a placement; symctl checks the result by the definition's
-words, and the constructed structure realizes :math:`G` by construction.)
-:math:`G = 0` is compatible with any graph. :math:`\square`
+two vertices of the path is at most their distance along it. :math:`G = 0` is
+compatible with any graph. :math:`\square`
 
-*Corollary (chain graphs).* With unit wires (:math:`W = 1`) a chain with steps
-:math:`d_k` and total :math:`D` has :math:`L_1 = D` when every
-:math:`d_k \le 1` and :math:`L_1 = \infty` otherwise: compatible iff
-:math:`r \ge D` and every :math:`d_k \le 1`, the theorem symctl proved before
-multi-step wires. With axons (:math:`W = \infty`) it is :math:`r \ge D`: a
-10 ms axon sampled at 5 ms is crossed by one wire of delay 2.
+*Corollary (chain graphs).* A chain with steps :math:`d_k`, total :math:`D`: with unit
+wires compatible iff :math:`r \ge D` and every :math:`d_k \le 1`; with axons iff
+:math:`r \ge D` (a 10 ms axon sampled at 5 ms is one wire of delay 2).
 
 **Theorem 2 (parallel decomposition).** Let :math:`P_1, \dots, P_k` be paths
 from :math:`v_1` to :math:`v_N` over edges of at most :math:`W` steps, of
@@ -68,11 +61,8 @@ degree at least :math:`L_i`, is factored along :math:`P_i` as in Theorem 1,
 and the parallel connection (the input shared at :math:`v_1`, the parts'
 outputs summed by an adder at :math:`v_N`) is compatible: each part's wires
 satisfy their constraints as in Theorem 1 and the adder's wires stay at
-:math:`v_N`. A part with no Markov parameter is left out. :math:`\square`
-
-This is how a short spinal loop and a long transcortical loop share one
-controller: the spinal part carries the first Markov parameters, the cortical
-part the rest.
+:math:`v_N`. A part with no Markov parameter is left out. :math:`\square` (So a short
+spinal loop carries the first Markov parameters, a long transcortical loop the rest.)
 
 **Theorem 3 (MIMO).** Let input :math:`j` enter at sensor vertex :math:`s_j`
 and output :math:`i` leave at actuator vertex :math:`a_i`
@@ -89,18 +79,8 @@ Sufficiency: realize each nonzero entry as in Theorem 1 along its own fastest
 path, read its input from input :math:`j` (at :math:`s_j`) and sum the entries
 of output :math:`i` in one adder at :math:`a_i`; each entry's wires satisfy
 their constraints as in Theorem 1 and the adders' wires stay at :math:`a_i`.
-:math:`\square` The construction shares no interneurons between entries; it
-proves existence, while the canonical MIMO forms share them (their
-compatibility is checked by :func:`symctl.check_compatibility`).
-
->>> from symctl import DelayGraph, controller_compatibility, controller_tf
->>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
->>> r.ok, r.scope
-(True, 'all realizations')
->>> controller_compatibility(controller_tf(2), DelayGraph.chain([2])).ok
-True
->>> controller_compatibility(controller_tf(2), DelayGraph.chain([2]), max_wire_delay=1).ok
-False
+:math:`\square` (The construction shares no interneurons between entries; the canonical
+MIMO forms do, checked by :func:`symctl.check_compatibility`.)
 """
 
 from __future__ import annotations
@@ -148,9 +128,8 @@ class ControllerCompatibility(Verdict, LatexMixin):
     ok : bool
         Whether a compatible realization exists.
     realization : Realization or None
-        A realization of the controller whose structure is ``structure``: the
-        series realization of the parts when every wire has one step, else the
-        structure's state-space form (one state per delay step).
+        A realization whose structure is ``structure`` (the parts' series realization
+        when every wire has one step, else the structure's state-space form).
     structure : Structure or None
         The constructed compatible structure.
     check : CompatibilityResult or None
@@ -158,9 +137,7 @@ class ControllerCompatibility(Verdict, LatexMixin):
     reason : str
         The argument: the theorem's condition that fails, or the construction.
     scope : str
-        ``"all realizations"``: the verdict is a theorem about every
-        realization (``"family"`` would mark a verdict that covers only the
-        structures searched; the theorems leave none for SISO controllers).
+        ``"all realizations"``: the verdict is a theorem about every realization.
     method : str
         The theorem and construction that answered.
     parts : tuple of PathPart
@@ -219,35 +196,26 @@ def controller_compatibility(
 ) -> ControllerCompatibility:
     r"""Decide whether a controller :math:`G` has a realization compatible with a delay graph.
 
-    Exact for every delay graph (Theorem 1 of the module text): compatible iff
-    the relative degree of :math:`G` is at least the delay of the fastest path
-    from :math:`v_1` to :math:`v_N` over edges of at most ``max_wire_delay``
-    steps. When compatible, a structure is constructed along a path
-    (``construction="path"``) or along several paths at once
-    (``construction="parallel"``, Theorem 2), and checked.
+    Exact for every delay graph (Theorems 1-3 of the module text); when compatible, a
+    structure is built along a path or several (Theorem 2), and checked.
 
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
-        The controller, proper; SISO (Theorems 1 and 2) or MIMO (Theorem 3,
-        each entry along its own path; ``construction`` and ``paths`` then
-        do not apply).
+        The controller, proper; SISO, or MIMO (Theorem 3: ``construction`` and
+        ``paths`` do not apply).
     graph : DelayGraph
     base : str
-        The realization of :math:`G_2` in the construction: a realizer of
-        :data:`~symctl.realization.realizers.REALIZERS` that keeps the symbols
-        (``"controllable"``, ``"observable"``, ``"general"`` or one registered).
+        The realization of :math:`G_2` in the construction: a realizer that keeps
+        the symbols (``"controllable"``, ``"observable"``, ``"general"``, ...).
     delays : {"branch", "state"}
         The structure of :math:`G_2` in the construction.
     max_wire_delay : int, optional
-        The most steps one wire may carry (default: no bound, axons of any
-        length). ``1`` gives the paper's unit delays: a chain step of two or
-        more delays can then never be crossed.
+        The most steps one wire may carry (default: no bound); ``1`` gives the
+        paper's unit delays.
     construction : {"path", "parallel"}
-        ``"path"``: :math:`G = G_3 G_2 G_1` along the fastest path (or along
-        ``paths[0]``). ``"parallel"``: :math:`G` split into parts by its Markov
-        parameters, one per path, each factored along its own path (by
-        default the fastest and the slowest simple path).
+        ``"path"``: :math:`G = G_3 G_2 G_1` along the fastest path (or ``paths[0]``);
+        ``"parallel"``: Theorem 2, by default along the fastest and slowest simple paths.
     paths : sequence of sequences of int, optional
         The paths to build along, as vertex lists from 1 (e.g. ``[1, 2, 4]``);
         each must follow edges of the graph from :math:`v_1` to :math:`v_N`.
@@ -255,8 +223,6 @@ def controller_compatibility(
     Returns
     -------
     ControllerCompatibility
-        Truthy when compatible, with the realization, its structure, the
-        witness and the parts, or the reason.
 
     Raises
     ------

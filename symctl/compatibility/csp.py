@@ -1,10 +1,8 @@
 r"""Compatibility as a constraint satisfaction problem: the model, two exact solvers, certificates.
 
-The paper's definitions (section "Structure, delay graphs, and compatibility"):
-a structure is compatible with a delay graph when some delay assignment
-:math:`v` (signals to vertices, inputs at :math:`v_1`, outputs at :math:`v_N`)
-has :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`. This module decides
-it; :func:`symctl.check_compatibility` wraps the answer in a result.
+A structure is compatible with a delay graph when some delay assignment :math:`v`
+(inputs at :math:`v_1`, outputs at :math:`v_N`) has :math:`\tilde E_{ij} \ge E_{ij}` for
+all :math:`i, j`; :func:`symctl.check_compatibility` wraps this module's answer.
 
 **Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest
 delays on a path of the structure from signal :math:`a` to signal :math:`b`.
@@ -53,17 +51,11 @@ with :math:`f_w(i) = \max\{j : D_j \le D_i + w\}` and
 (every signal at the top of its interval) is checked wire by wire before it is
 returned.
 
-**General graphs.** Delay graphs can encode inequalities over a poset (each
-wire asks :math:`E_{v(a) v(b)} \le w`), which is NP-complete for some posets,
-so no polynomial bound is promised: :func:`check_compatibility` decides them
-exactly by arc consistency followed by backtracking search that keeps arc
-consistency after every choice, and reports the method and the search effort.
-
-**Certificates.** On failure the result's ``reason`` is a proof a person can
-check: a minimal set of signal paths (delay-free or too-fast paths, as in the
-paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`)
-and, for every placement of the signals where these paths meet, one path that
-the placement makes too fast.
+**General graphs** can encode inequalities over a poset, NP-complete for some posets:
+they are decided exactly by arc consistency and backtracking that maintains it, with the
+search effort reported. **Certificates:** on failure, a minimal set of signal paths (as
+the paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`) and, for
+every placement of the signals where they meet, one path it makes too fast.
 
 >>> from symctl import DelayGraph, ifp_structure
 >>> from symctl.compatibility.csp import build_problem, solve_chain, solve_search
@@ -95,7 +87,6 @@ _CASES_LIMIT = 243  # case analyses up to this many leaves are printed in full
 _SHOWN_PATHS = 40  # a certificate's text lists this many paths; .paths keeps them all
 
 
-# ---------------------------------------------------------------- the constraint problem
 @dataclass
 class Problem:
     """Signals ``0..S-1``, wires ``(a, b, w)``, pinned signals, the matrix E (0-based)."""
@@ -167,7 +158,6 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
     )
 
 
-# ---------------------------------------------------------------- chain: bounds arc consistency
 def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
     """Bounds arc consistency on chain positions; returns (placement | None, core wires)."""
     N = len(D)
@@ -250,7 +240,6 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
     return place, set()
 
 
-# ---------------------------------------------------------------- general: MAC search
 def solve_search(problem: Problem, max_decisions: int | None = None):
     """Arc consistency + backtracking (maintaining arc consistency).
 
@@ -261,35 +250,20 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
     N = E.shape[0]
     S = len(problem.names)
     full = (1 << N) - 1
-    allowed_fwd: dict[int, list[int]] = {}
-    allowed_bwd: dict[int, list[int]] = {}
-    cache_fwd: dict[tuple[int, int], int] = {}
-    cache_bwd: dict[tuple[int, int], int] = {}
+    allowed: dict[tuple[int, int], list[int]] = {}
+    cache: dict[tuple[int, int, int], int] = {}
 
-    def fwd(w, dom):  # targets supported by some value of dom
-        key = (w, dom)
-        out = cache_fwd.get(key)
+    def support(d, w, dom):  # d = 0: the targets supported by some value of dom; 1: the sources
+        out = cache.get((d, w, dom))
         if out is None:
-            if w not in allowed_fwd:
-                allowed_fwd[w] = [sum(1 << j for j in range(N) if E[i, j] <= w) for i in range(N)]
-                allowed_bwd[w] = [sum(1 << i for i in range(N) if E[i, j] <= w) for j in range(N)]
+            if (d, w) not in allowed:
+                allowed[0, w] = [sum(1 << j for j in range(N) if E[i, j] <= w) for i in range(N)]
+                allowed[1, w] = [sum(1 << i for i in range(N) if E[i, j] <= w) for j in range(N)]
             out = 0
             for i in range(N):
                 if dom >> i & 1:
-                    out |= allowed_fwd[w][i]
-            cache_fwd[key] = out
-        return out
-
-    def bwd(w, dom):
-        key = (w, dom)
-        out = cache_bwd.get(key)
-        if out is None:
-            fwd(w, 1)
-            out = 0
-            for j in range(N):
-                if dom >> j & 1:
-                    out |= allowed_bwd[w][j]
-            cache_bwd[key] = out
+                    out |= allowed[d, w][i]
+            cache[d, w, dom] = out
         return out
 
     doms = [full] * S
@@ -321,9 +295,9 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
             x = queue.pop()
             queued.discard(x)
             dx = doms[x]
-            if not all(narrow(b, fwd(w, dx), e) for b, w, e in succ[x]):
+            if not all(narrow(b, support(0, w, dx), e) for b, w, e in succ[x]):
                 return False
-            if not all(narrow(a, bwd(w, dx), e) for a, w, e in pred[x]):
+            if not all(narrow(a, support(1, w, dx), e) for a, w, e in pred[x]):
                 return False
         return True
 
@@ -384,7 +358,6 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
             return None, pruning, stats
 
 
-# ---------------------------------------------------------------- certificates
 def _minimal_core(problem: Problem, core: set[int]) -> list[int]:
     """An unsatisfiable set of wires, minimized wire by wire when small."""
 
@@ -446,7 +419,9 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
     N = E.shape[0]
     core_list = _minimal_core(problem, core)
     paths = _paths(problem, core_list)
-    letters = [_letter(k) for k in range(len(paths))]
+    letters = [
+        "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}" for k in range(len(paths))
+    ]
 
     def fmt(v):
         return "inf" if math.isinf(v) else str(int(v))
@@ -519,7 +494,3 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
         )
     certificate = tuple((tuple(names[s] for s in sig), w) for sig, w in paths)
     return "\n".join(lines), certificate
-
-
-def _letter(k: int) -> str:
-    return "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}"

@@ -1,25 +1,10 @@
 r"""Delay graphs (the paper's section "Structure, delay graphs, and compatibility").
 
-A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N`
-(the actuator, sink); :math:`E_{ij}` is the delay of the shortest path from
-:math:`v_i` to :math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no
-path exists. The paper's neuromuscular graph is the chain
-:math:`v_1 \to v_2 \to v_3` with one step per edge:
-
->>> from symctl import DelayGraph
->>> g = DelayGraph.chain([1, 1])
->>> g.E.tolist()
-[[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]]
-
-A delay graph is a value: two graphs with the same matrix and the same direct
-edges are equal (and hash alike). The module needs only NumPy, so
-``import symctl.compatibility.delaygraph`` stays light (no SymPy, SciPy or
-networkx); delay assignments, which need a structure, are in
-:mod:`symctl.compatibility.assignment`.
-
->>> DelayGraph.chain([1, 1]) == DelayGraph([[0, 1, 2], ["inf", 0, 1], ["inf", "inf", 0]])
-True
-
+A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N` (the
+actuator, sink); :math:`E_{ij}` is the delay of the shortest path from :math:`v_i` to
+:math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no path exists. The paper's
+neuromuscular graph is the chain :math:`v_1 \to v_2 \to v_3` with one step per edge. The
+module needs only NumPy (no SymPy, SciPy or networkx).
 """
 
 from __future__ import annotations
@@ -146,19 +131,17 @@ def matrix_latex(name: str, E: np.ndarray) -> str:
 class DelayGraph:
     r"""A delay graph: vertices :math:`v_1` (sensor) .. :math:`v_N` (actuator), delays :math:`E`.
 
+    A frozen value: equal (and hashing alike) when :attr:`E` and :attr:`edges` are.
+
     Parameters
     ----------
     E : (N, N) matrix-like
         The shortest-path delays: integers >= 0, ``inf`` (``math.inf``,
         ``numpy.inf``, ``sympy.oo`` or ``"inf"``) where no path exists, zero
         diagonal, and closed (:math:`E_{ik} \le E_{ij} + E_{jk}`).
-    sensors : sequence of int, optional (keyword)
-        The sensor vertices (from 1), default ``(1,)``: one vertex for all the
-        controller's inputs, or one per input (the vertex where measured
-        signal ``k`` enters).
-    actuators : sequence of int, optional (keyword)
-        The actuator vertices, default ``(N,)``: one for all the controller's
-        outputs, or one per output (the vertex that drives input ``k``).
+    sensors, actuators : sequence of int, optional (keyword)
+        The sensor (actuator) vertices from 1, default ``(1,)`` (``(N,)``): one for all
+        the controller's inputs (outputs), or one per input (output).
 
     Attributes
     ----------
@@ -174,20 +157,13 @@ class DelayGraph:
     Raises
     ------
     ParameterError
-        Negative or non-integer delays, a nonzero diagonal, a matrix that is
-        not a shortest-path closure, fewer than two vertices, a vertex that
-        no sensor can reach (with the default sensor: :math:`v_1` is no
-        source) or that reaches no actuator (:math:`v_N` is no sink); sensor
-        or actuator vertices out of range or repeated.
+        Negative or non-integer delays, a nonzero diagonal, no shortest-path closure,
+        fewer than two vertices, a vertex no sensor reaches or that reaches no actuator,
+        sensor or actuator vertices out of range or repeated.
     DimensionError
         A matrix that is not square.
     SymctlTypeError
         ``E`` is not a matrix.
-
-    Notes
-    -----
-    A frozen value: equal (and hashing alike) when :attr:`E` and
-    :attr:`edges` are; :attr:`E` is read-only.
 
     Examples
     --------
@@ -270,18 +246,14 @@ class DelayGraph:
         object.__setattr__(self, "E", arr)
         object.__setattr__(self, "edges", tuple(_edges))
 
-    # ------------------------------------------------------------ constructors
     @classmethod
     def from_edges(
         cls, n: int, edges: Iterable[tuple[int, int, int]], *, sensors=None, actuators=None
     ) -> DelayGraph:
         """The delay graph of ``n`` vertices and the edges ``(i, j, delay)`` (vertices 1..n).
 
-        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path
-        closure. ``sensors`` and ``actuators`` as for :class:`DelayGraph`. The list
-        holds at most ``PARALLEL_EDGES`` entries per ordered pair of vertices
-        (``PARALLEL_EDGES * n**2`` in all), so an endless iterable is refused after a
-        read bounded by ``n``.
+        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure. At most
+        ``PARALLEL_EDGES * n**2`` edges are read (an endless iterable is refused).
 
         >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
@@ -350,7 +322,6 @@ class DelayGraph:
         edges = tuple((k + 1, k + 2, int(D[k + 1] - D[k])) for k in range(len(steps)))
         return cls(E, _edges=edges)
 
-    # ------------------------------------------------------------ views
     @property
     def n(self) -> int:
         """Number of vertices."""
@@ -396,24 +367,10 @@ class DelayGraph:
     def draw(self, names=None, **kwargs):
         """Draw the graph: vertices as boxes, edges as arrows with their delays in steps.
 
-        Laid out left to right along the longest path from the sensor
-        :math:`v_1` to the actuator :math:`v_N`; parallel pathways in rows of
-        their own; edges closing a cycle curved, in purple (the paper's Fig.
-        muscle_system, right).
-
-        Parameters
-        ----------
-        names : sequence of str, optional
-            The vertices' names, :math:`v_1` first (default ``v1 .. vN``).
-        **kwargs
-            ``title``, ``descriptions`` (a line under a vertex's name, by name)
-            and ``ax``, as :func:`symctl.plotting.delaygraph.delay_graph_plot` takes them.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.delaygraph.delay_graph_plot` (positions
-            from :func:`symctl.plotting.delaygraph_layout.delay_graph_layout`).
+        Left to right along the longest path, parallel pathways in rows of their own, cycles
+        curved in purple (the paper's Fig. muscle_system, right). ``names``: the vertices', from
+        :math:`v_1`; ``kwargs`` (``title``, ``descriptions``, ``ax``) go to
+        :func:`symctl.plotting.delaygraph.delay_graph_plot`, which returns the Figure.
 
         Examples
         --------
@@ -454,8 +411,7 @@ class DelayGraph:
     def pins(self, inputs: int, outputs: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
         """The vertex (from 1) of each of ``inputs`` controller inputs and ``outputs`` outputs.
 
-        One sensor (actuator) vertex serves every input (output); otherwise
-        there is one per input (output).
+        One sensor (actuator) vertex serves every input (output), or there is one per input (output).
 
         Raises
         ------

@@ -1,12 +1,10 @@
 r"""A structure's equations: one per adder and per delayed state, as SymPy or as LaTeX.
 
-:func:`structure_equations` writes one equation per adder and delay block, with the
-gains multiplied in (SymPy functions named after the signals, e.g. ``G2.x1(t)``).
-:func:`structure_latex` writes them for a reader: signals by their readable names, the
-part as a superscript (:math:`x_1^{\mathrm{G2}}`), and the delayed branch terms of a
-``delays="branch"`` structure (``z^-1 F[1,2]``, one delay each) written into the adder
-they feed, so that a state reads as its recursion,
-:math:`x_1^{\mathrm{G1}}(t) = \epsilon_1 x_1^{\mathrm{G1}}(t-1) + C_1 u^{\mathrm{G1}}(t-1)`.
+:func:`structure_equations` multiplies the gains in (SymPy functions named after the
+signals); :func:`structure_latex` writes for a reader: readable names, the part as a
+superscript, and delayed branch terms written into the adder they feed, so a state reads
+as its recursion, :math:`x_1^{\mathrm{G1}}(t) = \epsilon_1 x_1^{\mathrm{G1}}(t-1) + C_1
+u^{\mathrm{G1}}(t-1)`.
 
 >>> from symctl import Structure
 >>> from symctl.compatibility.equations import structure_latex
@@ -65,10 +63,6 @@ def _branch_term(name: str) -> bool:
     return name.rpartition(".")[2].startswith("z^-")
 
 
-def _time(lag: int) -> str:
-    return "(t)" if lag == 0 else f"(t - {lag})"
-
-
 def structure_latex(S) -> str:
     r"""The equations of ``S`` as an ``aligned`` block, for a reader (see the module text).
 
@@ -98,7 +92,7 @@ def structure_latex(S) -> str:
             return [f"{gain} {t}" for t in inner]
         if block.kind == "delay" and _branch_term(name):
             return terms(block.inputs[0], lag + block.steps)
-        return [signal_tex(name) + _time(lag)]
+        return [signal_tex(name) + ("(t)" if lag == 0 else f"(t - {lag})")]
 
     rows = []
     for name, block in S.blocks.items():

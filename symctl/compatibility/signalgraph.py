@@ -1,21 +1,9 @@
-r"""The integer form of a structure's signal graph and the graph searches run on it.
+r"""The integer form of a structure's signal graph and the graph searches run on it (pure Python).
 
-A :class:`~symctl.compatibility.structure.Structure` is compiled once into a
-:class:`SignalGraph`: signals ``0 .. S-1``, wires ``(source, target, delay)``
-and per-signal successor / predecessor lists. The searches every stage needs
-live here, once:
-
-* :func:`zero_one_bfs`, the fewest delays from some signals to every signal
-  (a wire costs its delay: 0-1 breadth-first search when every wire carries
-  0 or 1 steps, Dijkstra's algorithm when some carry more); the delay
-  assignment matrix :math:`\tilde E`, the compatibility checkers and
-  :meth:`Structure.delay_distances` all call it;
-* :func:`back_edges`, the wires that close a cycle in a depth-first search from
-  given roots (the feedback wires of a drawing);
-* :func:`delay_free_cycle`, a cycle of delay-free wires (an algebraic loop), found
-  by the same depth-first search.
-
-The module is pure Python (no SymPy, NumPy or networkx).
+A :class:`~symctl.compatibility.structure.Structure` compiles once into a
+:class:`SignalGraph`; :func:`zero_one_bfs` (fewest delays: 0-1 BFS, Dijkstra with axons),
+:func:`back_edges` (the feedback wires of a drawing) and :func:`delay_free_cycle` (an
+algebraic loop) serve every stage.
 
 >>> from symctl.compatibility.signalgraph import SignalGraph, back_edges, zero_one_bfs
 >>> g = SignalGraph.from_wires(("u", "s", "d"), ("input", "sum", "delay"),
@@ -38,12 +26,7 @@ __all__ = ["SignalGraph", "back_edges", "delay_free_cycle", "zero_one_bfs"]
 
 
 class SignalGraph(NamedTuple):
-    """Integer form of a structure for the checkers: signals ``0..S-1``.
-
-    ``succ[a]`` lists ``(target, delay, wire id)`` for every wire out of ``a``,
-    ``pred[b]`` lists ``(source, delay, wire id)`` for every wire into ``b``, in
-    the order of :attr:`wires`.
-    """
+    """Integer form of a structure: ``succ[a]`` / ``pred[b]`` list ``(target / source, delay, wire id)``."""
 
     names: tuple[str, ...]
     index: Mapping[str, int]
@@ -90,9 +73,7 @@ class SignalGraph(NamedTuple):
 def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
     """Fewest delays from any of ``sources`` to every signal (None if unreachable).
 
-    ``allowed`` (a sequence of booleans, one per signal) restricts the paths to
-    the allowed signals. Wires of several steps (axons) are searched by
-    Dijkstra's algorithm, the rest by the 0-1 breadth-first search.
+    ``allowed`` (one boolean per signal) restricts the paths.
 
     >>> from symctl.compatibility.signalgraph import SignalGraph, zero_one_bfs
     >>> g = SignalGraph.from_wires("abc", ("input", "delay", "delay"),
@@ -149,13 +130,8 @@ def _dijkstra(graph: SignalGraph, sources, allowed) -> list[int | None]:
 
 
 def _closing(successors, roots: Iterable[Hashable]) -> Iterator[list]:
-    """Depth-first search from ``roots`` in order, then from every unvisited node.
-
-    ``successors`` maps each node to the targets of its edges: a sequence
-    (nodes ``0 .. n-1``) or a mapping (any hashable nodes, in the mapping's
-    order). Yields, for every edge that closes a cycle (its target is on the
-    search stack), the stack from the root to the edge's source followed by the
-    target.
+    """Depth-first search from ``roots``, then from every unvisited node; yields, per edge closing a
+    cycle, the stack from the root to its source followed by its target.
     """
     nodes = successors.keys() if isinstance(successors, Mapping) else range(len(successors))
     state: dict = {}  # absent new, 1 on the stack, 2 done
@@ -183,10 +159,8 @@ def back_edges(
 ) -> list[tuple]:
     """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots`` (in order).
 
-    Removing them leaves an acyclic graph. ``successors[a]`` lists the targets
-    of the edges out of node ``a``; ``successors`` is a sequence (nodes
-    ``0 .. n-1``) or a mapping (any hashable nodes). Nodes that the roots do not
-    reach are searched afterwards, in order.
+    Removing them leaves an acyclic graph. ``successors`` is a sequence (nodes ``0 .. n-1``)
+    or a mapping; nodes the roots do not reach are searched afterwards, in order.
 
     >>> from symctl.compatibility.signalgraph import back_edges
     >>> back_edges([[1], [2], [0, 1]], [0])

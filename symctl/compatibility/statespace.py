@@ -1,25 +1,9 @@
 r"""The state-space form of a structure: every delay step is one state.
 
-A delay block of :math:`k` steps, :math:`d(t) = a(t - k)`, is a shift register
-of :math:`k` states ``d@1, ..., d@(k-1), d`` (``d@j`` holds :math:`a(t - j)`),
-so the state of a structure is every step of every delay block and
-
-.. math::
-    s(t+1) = A s(t) + B u(t), \qquad y(t) = C s(t) + D u(t),
-
-with each signal a row of coefficients on :math:`[s \mid u]` read in
-delay-free order. :func:`structure_realization` gives it as a
-:class:`~symctl.realization.realization.Realization`, so the exact checker can
-prove which transfer function a structure has;
-:meth:`symctl.Circuit.as_linear_system` builds on the same rows.
-
->>> import sympy as sp
->>> from symctl import Structure
->>> from symctl.compatibility.statespace import structure_realization
->>> from symctl.realization.realization import first_order_realization
->>> S = Structure.from_realization(first_order_realization(sp.Rational(1, 2), 3), input_delay=3)
->>> sp.factor(structure_realization(S).to_tf().expr)
-6/(z**2*(2*z - 1))
+A delay block of :math:`k` steps is a shift register of :math:`k` states ``d@1, ...,
+d@(k-1), d`` (``d@j`` holds :math:`a(t - j)`); each signal is a row of coefficients on
+:math:`[s \mid u]`, read in delay-free order, giving :math:`s(t+1) = A s(t) + B u(t)`,
+:math:`y(t) = C s(t) + D u(t)`.
 """
 
 from __future__ import annotations
@@ -40,11 +24,8 @@ MAX_STATES = 20_000
 
 
 def delay_states(S) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The states of a structure (every step of every delay block) and what feeds each one.
-
-    Returns ``(states, feeds)``: ``feeds[i]`` names the signal or state whose
-    value now is ``states[i]``'s value one step later. A unit delay ``d`` is the
-    one state ``d`` fed by its input.
+    """The states (every step of every delay block) and ``feeds``: ``feeds[i]`` is what
+    ``states[i]`` holds one step later.
     """
     states: list[str] = []
     feeds: list[str] = []
@@ -66,11 +47,8 @@ def delay_states(S) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
 
 def signal_rows(S, states: Sequence[str], unit: list, zero, gain_value) -> dict:
-    """Each signal (and state) as a row of coefficients on ``[states | inputs]``.
-
-    ``unit`` holds the unit rows (states, then inputs) and ``zero`` the zero row,
-    as SymPy or NumPy rows; ``gain_value(name, gain)`` turns a gain into the
-    number type of the rows. Signals are read in delay-free (topological) order.
+    """Each signal (and state) as a row on ``[states | inputs]``, in delay-free order, from the unit
+    and ``zero`` rows (SymPy or NumPy); ``gain_value(name, gain)`` converts a gain.
     """
     row = dict(zip((*states, *S.inputs), unit, strict=True))
     free = nx.DiGraph()

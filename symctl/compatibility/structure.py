@@ -1,52 +1,19 @@
 r"""Controller structures: signal-flow graphs of scalar signals, gains, adders and delays.
 
-The paper's definition (section "Structure, delay graphs, and compatibility"):
-the *structure* of a controller is the block diagram of one realization, made
-of gain and addition blocks joined by scalar signals, possibly with delays.
-Here every block produces exactly one scalar **signal**, so a structure is a
-directed graph whose nodes are signals, each labelled with the kind of block
-that makes it:
+The *structure* of a controller is the block diagram of one realization (the paper's
+section "Structure, delay graphs, and compatibility"). Every block produces one scalar
+**signal**: ``"input"``, ``"gain"`` (:math:`g \cdot a(t)`; the value is kept for
+drawings, not part of the structure), ``"sum"`` (an adder) or ``"delay"`` (:math:`a(t-k)`,
+a unit delay or an axon of :math:`k` steps, :attr:`Block.steps`). A wire ``a -> b`` has
+delay ``k`` when ``b`` is a delay block of ``k`` steps, else 0; algebraic loops are refused.
+As the paper draws them, a gain of ``1`` is a plain wire, a one-input adder no block, a
+zero entry nothing.
 
-``"input"``
-    a controller input (:math:`u`; the paper's IFP structure calls it :math:`x`);
-``"gain"``
-    :math:`g \cdot a(t)` of its one input :math:`a` (the gain value is kept for
-    drawings; it does not change the structure);
-``"sum"``
-    the sum of its inputs (an adder);
-``"delay"``
-    its one input delayed by one step, :math:`a(t-1)` (a broken line in the
-    paper's figures; the delayed signal is a signal, e.g. the paper's
-    :math:`\gamma`); with ``steps=k`` (:attr:`Block.steps`) by :math:`k`
-    steps, :math:`a(t-k)`: an axon whose conduction takes :math:`k` steps, one
-    block :math:`z^{-k}` (a 20 ms axon sampled at 5 ms is one wire of delay 4,
-    not four relay vertices).
-
-A wire ``a -> b`` has delay ``k`` when ``b`` is a delay block of ``k`` steps and 0 otherwise.
-Loops without a delay (algebraic loops) are refused.
-
-Two conventions keep the diagrams as the paper draws them: a gain equal to
-``1`` is a plain wire (no block), and an adder with a single input is no block
-(the signal passes through). Zero entries make no block.
-
-:meth:`Structure.from_realization` gives the two structures of a realization
-that the paper's Fig. 7 contrasts:
-
-* ``delays="branch"`` (default; the paper's choice for :math:`G_1` and
-  :math:`G_3`): every term :math:`F_{ij} x_j` and :math:`H_i u` passes through
-  its own unit delay into the adder that forms :math:`x_i`, so
-  :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-1)`;
-* ``delays="state"``: one delay after each adder,
-  :math:`x_i(t+1) = p_i(t)`, :math:`p_i = \sum_j F_{ij} x_j + H_i u`;
-
-and in both :math:`y = M x + N u`.
-
->>> from symctl import Structure, controllable_canonical, ifp_structure, same_structure, z
->>> S = Structure.from_realization(controllable_canonical(1 / (z**2 - z / 2)))
->>> S.inputs, S.outputs, S.count("delay")
-(('u',), ('x1',), 3)
->>> same_structure(ifp_structure(2), ifp_structure(2))
-True
+:meth:`Structure.from_realization` gives the two structures of Fig. 7: ``delays="branch"``
+(default; the paper's choice for :math:`G_1`, :math:`G_3`), every term through its own
+unit delay, :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-1)`; ``delays="state"``, one
+delay after each adder, :math:`x_i(t+1) = \sum_j F_{ij} x_j + H_i u`; both with
+:math:`y = M x + N u`.
 """
 
 from __future__ import annotations
@@ -81,6 +48,9 @@ MAX_SIGNALS = 1_000_000
 class Structure(LatexMixin):
     r"""A controller structure: scalar signals produced by gains, adders and unit delays.
 
+    A frozen value: equal (and hashing alike) when it has the same blocks (in any order; gains
+    compared structurally), inputs and outputs; :attr:`blocks` is a read-only mapping.
+
     Parameters
     ----------
     blocks : mapping of str to Block (or tuple ``(kind, inputs, gain)``)
@@ -93,17 +63,10 @@ class Structure(LatexMixin):
     Raises
     ------
     ParameterError
-        Unknown kind or signal name, a gain or delay without exactly one input,
-        an algebraic loop (a cycle without delay), inputs that are not the
-        input blocks.
+        Unknown kind or signal, a gain or delay without exactly one input, an algebraic
+        loop, inputs that are not the input blocks.
     SymctlTypeError
         ``blocks`` is not a mapping, or a name is not a non-empty string.
-
-    Notes
-    -----
-    A structure is a frozen value: equal (and hashing alike) when it has the
-    same blocks (in any order; gains compared structurally), inputs and outputs.
-    :attr:`blocks` is a read-only mapping.
 
     Examples
     --------
@@ -171,7 +134,6 @@ class Structure(LatexMixin):
     def __hash__(self) -> int:
         return hash((frozenset(self.blocks.items()), self.inputs, self.outputs))
 
-    # ------------------------------------------------------------ views
     def __len__(self) -> int:
         return len(self.blocks)
 
@@ -225,11 +187,8 @@ class Structure(LatexMixin):
 
     @cached_property
     def graph(self) -> nx.DiGraph:
-        """The structure as a :class:`networkx.DiGraph`.
-
-        Node attributes ``kind``, ``gain``, ``part`` and ``role`` (a tuple of
-        ``("in", k)`` / ``("out", k)`` marks); edge attribute ``delay``. Frozen
-        (:func:`networkx.freeze`): the structure's graph cannot be changed.
+        """The structure as a frozen :class:`networkx.DiGraph`: nodes with ``kind``, ``gain``, ``part``,
+        ``role`` (``("in", k)`` / ``("out", k)`` marks), edges with ``delay``.
         """
         g = nx.DiGraph()
         for name, block in self.blocks.items():
@@ -249,18 +208,16 @@ class Structure(LatexMixin):
         dist = zero_one_bfs(cs, [cs.index[source]])
         return {cs.names[i]: d for i, d in enumerate(dist) if d is not None}
 
-    # ------------------------------------------------------------ constructors
     @classmethod
     def from_realization(
         cls, R: Realization, delays: str = "branch", *, input_delay: int = 1
     ) -> Structure:
         r"""The structure of a realization :math:`(F, H, M, N)`.
 
-        Signals: inputs ``u`` (``u1, u2, ...`` for several), states ``x1 .. xn``,
-        gain outputs named by their entry (``F[1,2]`` is :math:`F_{12} x_2`,
-        ``H[1]``, ``M[2]``, ``N``), delayed branch terms ``z^-1 F[1,2]``, adders
-        ``p1 ..`` (state delays) and the output ``y`` (unless the output is an
-        existing signal, e.g. ``y = x_2``; a plain wire ``y = u`` is a unit gain ``y``).
+        Signals: inputs ``u`` (``u1, ...``), states ``x1 .. xn``, gains by their entry
+        (``F[1,2]`` is :math:`F_{12} x_2`, ``H[1]``, ``M[2]``, ``N``), delayed branch terms
+        ``z^-1 F[1,2]``, adders ``p1 ..`` (state delays) and the output ``y`` (unless it
+        is an existing signal; ``y = u`` is a unit gain ``y``).
 
         Parameters
         ----------
@@ -268,12 +225,8 @@ class Structure(LatexMixin):
         delays : {"branch", "state"}
             Where the unit delays sit relative to the adders (see the module text).
         input_delay : int, default 1
-            With ``delays="branch"``, the steps of the branches that carry
-            :math:`H u` into the states (axons of ``input_delay`` steps):
-            :math:`x_i(t) = \sum_j F_{ij} x_j(t-1) + H_i u(t-k)`, so the
-            structure's transfer function is
-            :math:`M (zI - F)^{-1} H z^{1-k} + N`. The first-order sections that
-            cross a delay-graph step of :math:`k` steps use it.
+            With ``delays="branch"``, the steps :math:`k` of the branches carrying
+            :math:`H u` (axons): the transfer function is :math:`M (zI - F)^{-1} H z^{1-k} + N`.
 
         >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -372,10 +325,9 @@ class Structure(LatexMixin):
     def series(cls, *parts: Realization | Structure, names: Iterable[str] | None = None):
         """The series connection of ``parts`` in signal-flow order (the first acts first).
 
-        Realizations are turned into structures with ``delays="branch"``. Each
-        part's signals are prefixed by its name (``G1.``, ``G2.``, ... by
-        default) and recorded in :attr:`Block.part`; the outputs of one part
-        *are* the inputs of the next (no extra block).
+        Realizations take ``delays="branch"``; each part's signals are prefixed by its name
+        (``G1.``, ... by default, recorded in :attr:`Block.part`); the outputs of one part
+        *are* the inputs of the next.
 
         >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> from symctl.realization.realization import first_order_realization
@@ -431,10 +383,9 @@ class Structure(LatexMixin):
     def parallel(cls, *parts: Realization | Structure, names: Iterable[str] | None = None):
         """The parallel connection of ``parts``: one input shared, the outputs summed.
 
-        Each part's signals are prefixed by its name (``P1.``, ``P2.``, ... by
-        default); the inputs are the first part's (renamed), read by every part;
-        output ``k`` is an adder ``y`` (``y1, y2, ...`` for several) of every
-        part's output ``k``. One part is returned renamed.
+        Signals prefixed by the parts' names (``P1.``, ... by default); every part reads
+        the first part's inputs; output ``k`` is an adder ``y`` (``y1, ...``) of the parts'
+        outputs ``k``. One part is returned renamed.
 
         >>> from symctl import Structure
         >>> from symctl.realization.realization import first_order_realization
@@ -475,18 +426,15 @@ class Structure(LatexMixin):
             blocks[out] = Block("sum", tuple(end[k] for end in ends))
         return cls(blocks, first.inputs, outputs)
 
-    # ------------------------------------------------------------ display
     @classmethod
     def from_factorization(
         cls, factorization, R2: Realization, delays: str = "branch"
     ) -> Structure:
         r"""The structure of the whole controller :math:`G_3 G_2 G_1` (the paper's Fig. 7).
 
-        The first-order sections of :math:`G_1` and :math:`G_3` take the
-        ``"branch"`` structure (the paper's choice, a unit delay on each branch
-        into the adder); ``R2``, a realization of ``factorization.G2``, takes
-        ``delays``. Parts are named ``G1``, ``G2``, ``G3`` (``G1.1``, ``G1.2``, ...
-        when a side has several sections).
+        The sections take the ``"branch"`` structure (the paper's choice), ``R2`` (a
+        realization of ``factorization.G2``) ``delays``; parts ``G1``, ``G2``, ``G3``
+        (``G1.1``, ``G1.2``, ... for several sections).
 
         >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))
@@ -513,9 +461,7 @@ class Structure(LatexMixin):
         return structure_equations(self)
 
     def latex(self) -> str:
-        r"""The equations, one per adder and delayed state, signals by readable names.
-
-        Delayed branch terms are written into the adder they feed
+        r"""The equations, one per adder and delayed state, signals by readable names
         (:func:`~symctl.compatibility.equations.structure_latex`).
         """
         return structure_latex(self)
@@ -530,16 +476,12 @@ class Structure(LatexMixin):
         return f"Structure({len(self)} signals: {counts}; inputs={self.inputs}, outputs={self.outputs})"
 
     def draw(self, ax=None, **options):
-        """Draw the structure as a block diagram, at the size it is printed (6.9 in at most).
+        """Draw the structure as a block diagram, at its printed size (6.9 in at most).
 
-        Gains are boxes with their value (long ones by their entry's name, listed in a
-        key), adders circles with a plus, delays dashed wires into the delayed signal (a
-        dot), every wire orthogonal with an arrow head; the parts of a series connection
-        are framed; a structure wider than the page is folded into rows of parts. A
-        hand-over to :func:`symctl.plotting.structure.draw_structure`, whose keyword
-        parameters ``options`` are (``title``, ``max_signals``, ``overview``,
-        ``assignment``, ``vertex_names``, ``labels``); it returns the
-        :class:`matplotlib.figure.Figure`, which the caller saves.
+        Gains are boxes with their value (long ones named, in a key), adders circles, delays dashed
+        wires; parts are framed, and a wide structure folds into rows. ``options`` go to
+        :func:`symctl.plotting.structure.draw_structure` (``title``, ``max_signals``, ``overview``,
+        ``assignment``, ``vertex_names``, ``labels``); returns the Figure.
 
         Examples
         --------
@@ -553,7 +495,6 @@ class Structure(LatexMixin):
         return draw_structure(self, ax, **options)
 
 
-# ---------------------------------------------------------------- helpers
 def _is_zero(value) -> bool:
     """Exactly zero: a rational expression's numerator as a sparse polynomial (no gcd, no
     expansion of the expression tree), any other by ``cancel``."""
@@ -568,20 +509,15 @@ def _is_zero(value) -> bool:
     return sp.cancel(value) == 0
 
 
-# ---------------------------------------------------------------- the paper's structures
 def ifp_structure(T: int = 2) -> Structure:
     r"""The structure of the paper's IFP controller, eqs. augmented_states and ifp_controller.
 
     .. math::
-        \mu(t) = K_0 x(t) + K_1 \gamma_1(t) + \dots + K_{T-1}\gamma_{T-1}(t) + K_T u(t),
-        \quad \gamma_1(t+1) = \mu(t),\ \gamma_{k+1}(t+1) = \gamma_k(t),\
-        u(t+1) = \gamma_{T-1}(t)
+        \mu(t) = K_0 x(t) + K_1 \gamma_1(t) + \dots + K_T u(t),\quad \gamma_1(t+1) = \mu(t),\
+        \gamma_{k+1}(t+1) = \gamma_k(t),\ u(t+1) = \gamma_{T-1}(t)
 
-    (for :math:`T = 1`, :math:`u(t+1) = \mu(t)`). As in the paper's compatibility
-    argument, the input is called ``x`` (:math:`\delta_f`) and the output ``u``
-    (:math:`\delta_r`); for :math:`T = 2` the one intermediate signal is ``gamma``.
-    Gain blocks are named ``K0 .. KT``; the delays are the broken lines of
-    Fig. 4.
+    (:math:`T = 1`: :math:`u(t+1) = \mu(t)`). Input ``x`` (:math:`\delta_f`), output ``u``
+    (:math:`\delta_r`), for :math:`T = 2` the intermediate ``gamma``; gains ``K0 .. KT``.
 
     Parameters
     ----------
@@ -591,8 +527,6 @@ def ifp_structure(T: int = 2) -> Structure:
     Returns
     -------
     Structure
-        Input ``x``, output ``u``, :math:`T` delays and :math:`T + 1` gains
-        :math:`K_0 .. K_T` (symbols).
 
     Raises
     ------
@@ -628,10 +562,9 @@ def ifp_structure(T: int = 2) -> Structure:
 def same_structure(a: Structure, b: Structure) -> bool:
     """Whether two structures have the same block configuration, whatever the gain values.
 
-    A graph isomorphism (networkx VF2) that maps block kinds to the same kinds and
-    inputs and outputs to the inputs and outputs of the same position. The
-    paper's remark: swapping :math:`x_1, x_2` in the observable canonical
-    realization changes the sparsity pattern but not the structure.
+    A kind- and role-preserving graph isomorphism (networkx VF2). The paper's remark: swapping
+    :math:`x_1, x_2` of the observable canonical realization changes the sparsity pattern but
+    not the structure.
 
     Parameters
     ----------
@@ -640,8 +573,7 @@ def same_structure(a: Structure, b: Structure) -> bool:
     Returns
     -------
     bool
-        Whether a kind- and role-preserving isomorphism maps ``a`` onto ``b``
-        (unlike ``a == b``, which also compares names and gain values).
+        Unlike ``a == b``, blind to names and gain values.
 
     Raises
     ------

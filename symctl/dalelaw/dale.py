@@ -1,45 +1,18 @@
 r"""Dale's law: can a circuit carry the controller with every neuron excitatory or inhibitory?
 
-The paper's future-work item 2: "In animals, neurons are generally excitatory
-(all outputs have positive synaptic weights on downstream neurons) or
-inhibitory (all negative). This translates to sign requirements on internal
-variables in the controller realization and circuit structure."
-
-:func:`dale` decides it for one circuit of the whole controller
-:math:`G = G_3 G_2 G_1`. What varies is what leaves :math:`G` unchanged: the
-sections' :math:`\epsilon_k` and :math:`C_k`, and :math:`G_2`'s realization
-within the circuit (the similarity transform :math:`P` for the general circuit,
-the fibre of the pattern for an atlas class). A neuron's **sign** is the sign
-of every synapse it sends to another neuron; its **self-dynamics** and the
-circuit's **read-out** (the motor command :math:`\delta_r`) are exempt.
-The question is a formula of nonlinear real arithmetic
-(:mod:`symctl.dalelaw.signs`), decided by z3:
-
-* **feasible** (``True``): a witness, pinned to rationals where z3 allows,
-  then verified exactly: :math:`G_3 G_2 G_1 = G` by
-  :func:`~symctl.check_realization` (or, with algebraic entries, by z3's exact
-  evaluation of every constraint) and each neuron's outgoing signs read off
-  the witness circuit;
-* **infeasible** (``False``): z3 proved the formula unsatisfiable, so no
-  realization of this circuit is E/I (with stable, nonzero sections);
-* **not decided** (``None``): the time ran out (or an encoding passed its size
-  limit); ``reason`` says what was tried.
-
-``timeout`` bounds the whole call: one deadline
-(:class:`~symctl._util.deadline.Deadline`) is checked by every stage. Each z3
-query gets the time left, the numeric search and the building of the
-polynomial equations stop when it passes, and whatever is left undone makes
-the verdict "not decided", with the stage that ran out in ``reason``.
-
->>> import sympy as sp
->>> import symctl
->>> from symctl import z
->>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
->>> r = symctl.dale(G, sensor_delay=1, actuator_delay=1, circuit="controllable")
->>> r.feasible, dict(r.signs)
-(True, {'G1.x1': '+', 'G2.x2': '+', 'G2.y': '+', 'G3.x1': '+'})
->>> symctl.dale(G, sensor_delay=1, actuator_delay=1, circuit="observable").feasible
-False
+The paper's future-work item 2 ("neurons are generally excitatory or inhibitory ...
+sign requirements on internal variables in the controller realization and circuit
+structure"). :func:`dale` decides it for one circuit of :math:`G = G_3 G_2 G_1`, varying
+what leaves :math:`G` unchanged (the sections' :math:`\epsilon_k`, :math:`C_k` and
+:math:`G_2`'s realization within the circuit). A neuron's **sign** is that of every
+synapse it sends to another neuron (self-dynamics and the read-out exempt); the question
+is a formula of nonlinear real arithmetic (:mod:`symctl.dalelaw.signs`) decided by z3:
+**feasible** (a witness pinned to rationals and verified exactly: :math:`G_3 G_2 G_1 = G`
+by :func:`~symctl.check_realization`, or z3's exact evaluation with algebraic entries, and
+each neuron's signs read off it), **infeasible** (z3 proved unsatisfiable: no E/I
+realization with stable, nonzero sections) or **not decided** (time or size ran out;
+``reason`` says what was tried). ``timeout`` bounds the whole call: one
+:class:`~symctl._util.deadline.Deadline` checked by every stage.
 """
 
 from __future__ import annotations
@@ -111,9 +84,8 @@ class DaleResult(Verdict):
     realization : Realization or None
         The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
     signs : mapping
-        Neuron name -> ``"+"`` (excitatory) or ``"-"`` (inhibitory), for every neuron
-        of the witness circuit; a neuron that drives only the read-out is ``"+"``
-        (nothing constrains it).
+        Neuron name -> ``"+"`` or ``"-"``, every neuron of the witness (one that drives
+        only the read-out is ``"+"``).
     method, reason : str
         How it was decided, and the evidence (or what was tried).
     circuit : str
@@ -128,9 +100,7 @@ class DaleResult(Verdict):
     exact : bool
         The witness was verified in exact arithmetic (always, for a witness).
     realizes : bool or None
-        The circuit realizes :math:`G` at all, signs aside: ``True`` with a witness
-        (or when Dale's law fails only for the signs), ``False`` when z3 proved it does
-        not, ``None`` when not decided.
+        Whether the circuit realizes :math:`G` at all, signs aside (None: not decided).
     elapsed : float
         Seconds spent.
 
@@ -170,12 +140,9 @@ class DaleResult(Verdict):
         object.__setattr__(self, "sections", MappingProxyType(dict(self.sections)))
 
     def draw(self, ax=None, *, title: str | None = None):
-        """Draw the witness circuit (a matplotlib Figure): blue arrows excite, vermillion bars inhibit.
+        """Draw the witness circuit (a Figure; blue arrows excite, vermillion bars inhibit).
 
-        Raises
-        ------
-        ParameterError
-            There is no witness (``feasible`` is False or None).
+        Raises ParameterError when there is no witness.
         """
         if self.witness is None:
             raise ParameterError(
@@ -191,7 +158,6 @@ class DaleResult(Verdict):
         return "\n".join(lines)
 
 
-# ---------------------------------------------------------------- inputs
 def controller_of(G, sensor_delay, actuator_delay) -> tuple[DiscreteTF, int, int]:
     """``(G, ds, da)``: a numeric SISO controller, its floats as exact binary rationals."""
     if isinstance(G, Gains):
@@ -271,7 +237,6 @@ def poles_of(G: DiscreteTF) -> list[sp.Expr]:
     return [sp.fraction(sp.together(G.expr))[1]]
 
 
-# ---------------------------------------------------------------- the decision
 def dale(
     G,
     *,
@@ -282,13 +247,9 @@ def dale(
 ) -> DaleResult:
     r"""Decide whether ``circuit`` can carry the controller ``G`` with every neuron E or I.
 
-    A neuron is excitatory when every synapse it sends to another neuron is
-    positive, inhibitory when every one is negative; self-dynamics and the
-    read-out are exempt. What may vary is what keeps :math:`G_3 G_2 G_1 = G`
-    exact: the sections' :math:`\epsilon_k \in (-1, 1)` (nonzero, off the poles
-    of :math:`G`) and :math:`C_k \ne 0`, and :math:`G_2`'s realization within
-    the circuit (a similarity :math:`P`, or a point of the class's fibre). See
-    :mod:`symctl.dalelaw.dale`.
+    What may vary keeps :math:`G_3 G_2 G_1 = G` exact: :math:`\epsilon_k \in (-1, 1)` (nonzero,
+    off the poles of :math:`G`), :math:`C_k \ne 0`, and :math:`G_2`'s realization within the
+    circuit (see :mod:`symctl.dalelaw.dale`).
 
     Parameters
     ----------
@@ -298,14 +259,11 @@ def dale(
     sensor_delay, actuator_delay : int, optional
         The split :math:`G_1`, :math:`G_3` (default the gains' delays, else 1 and 1).
     circuit : {"general", "controllable", "observable"}, CircuitClass or Pattern
-        The circuit of :math:`G_2`: the paper's general (every entry of a
-        similarity transform nonzero) or canonical circuits, or a class of
-        :func:`symctl.atlas` (each of its representative patterns is tried).
+        The circuit of :math:`G_2`: the paper's general or canonical circuits, or a
+        class of :func:`symctl.atlas` (each representative pattern tried).
     timeout : float or Deadline
-        Seconds for the whole call (default 30, at most 3600), shared by every
-        pattern and stage (z3, the numeric search of the general circuit, the
-        equations); or a :class:`~symctl._util.deadline.Deadline` already running
-        (shared with other calls, or on a clock of one's own).
+        Seconds for the whole call, every pattern and stage (default 30, at most
+        3600), or a running :class:`~symctl._util.deadline.Deadline`.
 
     Returns
     -------
@@ -405,11 +363,10 @@ def _realizes(templates, poles, deadline: Deadline) -> bool | None:
 def solve(
     G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True
 ) -> tuple[str, dict | None]:
-    """Decide one template: z3 first (briefly), the general circuit's numeric search, z3 again.
+    """Decide one template: z3 briefly, the general circuit's numeric search (numeric ``G``), z3 again.
 
-    The numeric search runs for the general circuit of a numeric ``G`` only; every
-    stage stops at ``deadline``. Returns ``(verdict, model)``, the model pinned to
-    rationals when ``witness`` (else None); ``tried`` gets one line per attempt.
+    Returns ``(verdict, model)``, the model pinned to rationals when ``witness``; ``tried``
+    gets one line per attempt; every stage stops at ``deadline``.
     """
     general = t.label == "general" and not G.free_symbols - {z}
     try:
@@ -451,10 +408,7 @@ def solve(
 def _witness(
     G, fs, t: Template, model: dict, label: str, tried, deadline, signed=True
 ) -> DaleResult:
-    """The exact witness circuit of a model, verified (see the module text).
-
-    ``signed=False`` (a witness with mixed neurons allowed) skips the sign check.
-    """
+    """The exact witness circuit of a model, verified (``signed=False``: mixed neurons allowed)."""
     values = model["values"]
     sections = {str(s): values[s] for s in t.sections}
     fixed = {s: values[s] for s in (*t.sections, *t.unknowns)}

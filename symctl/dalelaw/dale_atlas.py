@@ -1,28 +1,13 @@
 r"""Dale's law across the atlas: which circuit classes admit an E/I assignment for every controller.
 
-For the order-:math:`n` atlas and one split of the delays, a **controller** is
-:math:`G = k\,b(z)/a(z)` with :math:`a` monic of degree :math:`n` and :math:`b`
-monic of degree :math:`n - d_s - d_a` (so :math:`G_2` has order :math:`n` and
-:math:`N \ne 0`). For each class, :func:`dale_atlas` answers:
-
-* **never**: z3 proves that *no* controller (the coefficients of :math:`a`,
-  :math:`b` and :math:`k \ne 0` existential unknowns, with the sections and the
-  class's entries) has an E/I realization in the class;
-* **some**: one controller has a witness and another is proved to have none
-  (a counterexample: an exact rational controller, refuted by z3);
-* **every**: every sampled controller has a witness. The samples are seeded
-  exact rationals: half with real poles, half with complex ones, of modulus up
-  to 1.5. This is evidence, not a proof (a proof would need quantifier
-  elimination over the coefficients), and the table says so;
-* **not decided** (``None``): z3 ran out of time somewhere that matters.
-
-Each class runs on the atlas's dask path (:mod:`symctl.circuitatlas.search`): in
-this process with ``workers=1``, else on a local cluster or at ``scheduler``.
-
->>> import symctl
->>> T = symctl.dale_atlas(2, samples=2, classes=["A1", "A10"])
->>> [(r.label, r.verdict) for r in T.rows]
-[('A1', 'every'), ('A10', 'never')]
+For the order-:math:`n` atlas and one split of the delays, a controller is :math:`G =
+k\,b(z)/a(z)`, :math:`a` monic of degree :math:`n`, :math:`b` monic of degree :math:`n -
+d_s - d_a`. Per class, :func:`dale_atlas` answers **never** (z3 proves no controller, its
+coefficients existential unknowns, has an E/I realization in the class), **some** (a
+witness for one controller, a refutation for another), **every** (every sampled
+controller has a witness: seeded exact rationals, half with complex poles, modulus up to
+1.5; evidence, not a proof) or ``None`` (z3 ran out of time where it matters). Classes run
+on the atlas's dask path (:mod:`symctl.circuitatlas.search`).
 """
 
 from __future__ import annotations
@@ -74,13 +59,11 @@ class DaleRow:
     verdict : str or None
         ``"every"``, ``"some"``, ``"never"`` or None (not decided); see the module text.
     controller : bool or None
-        For the table's own controller, when one was given: feasible, infeasible, not decided.
+        For the table's own controller, when given (None: not decided).
     sampled : tuple of int
-        Over the samples: ``(E/I witness, realized but proved not E/I, proved not realized
-        by the class at all, not decided)``.
+        Samples ``(E/I witness, realized but not E/I, not realized, not decided)``.
     exists : str
-        "Some controller has an E/I witness": ``"sat"`` (a sample, or z3 on the generic
-        controller), ``"unsat"`` (proved: never), ``"unknown"``.
+        Whether some controller has an E/I witness: ``"sat"``, ``"unsat"``, ``"unknown"``.
     seconds : float
     """
 
@@ -186,10 +169,7 @@ def _sample(order: int, ds: int, da: int, gen: np.random.Generator, i: int) -> D
 
 
 def _decide(G, patterns, delays, ds, da, timeout, relax=False) -> bool | None:
-    """Some pattern realizes ``G`` with every neuron E or I (``relax``: signs free).
-
-    One search: ``timeout`` seconds for every pattern and stage together.
-    """
+    """Some pattern realizes ``G`` with every neuron E or I (``relax``: signs free), in one ``timeout``."""
     deadline = Deadline(timeout)
     fs = factor(G, ds, da)
     templates = [template(fs, p, delays) for p in patterns]
@@ -270,10 +250,8 @@ def dale_atlas(
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each search, every stage included (default 10; three times that
-        for the generic controller, which has three more unknowns). A class makes at
-        most ``2 * samples + 2`` searches, so the table takes at most about
-        ``(2 * samples + 4) * timeout`` seconds per class, over ``workers``.
+        Seconds for each search (default 10; thrice for the generic controller): at most
+        about ``(2 * samples + 4) * timeout`` per class, over ``workers``.
     workers : int
         Processes (default 1: in this process; more use dask's local cluster).
     scheduler : str, optional

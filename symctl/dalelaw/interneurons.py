@@ -1,28 +1,14 @@
 r"""The cheapest E/I circuit of a controller, with sign-flipping interneurons where needed.
 
-When no circuit carries :math:`G` with every neuron excitatory or inhibitory
-(:func:`~symctl.dalelaw.dale.dale`), a neuron with **mixed** signs can keep
-Dale's law with one extra inhibitory interneuron: the neuron :math:`j` of sign
-:math:`\sigma` sends :math:`\sigma` to the interneuron :math:`I_j` (delay 0,
-no self-dynamics), and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target
-:math:`t` whose weight :math:`w_t` has the other sign, with :math:`w_t`'s
-delay. The product is :math:`w_t`, so the circuit computes the same
-:math:`G` exactly; each interneuron costs one neuron.
-
-:func:`ei_circuit` finds, over a set of circuits (the named ones and, for
-:math:`G_2` of order 1 or 2, every class of the atlas), the fewest mixed neurons
-each admits, exactly: z3 with a Boolean "mixed" per neuron and the bound
-:math:`\sum \text{mixed} \le k`, for :math:`k = 0, 1, \dots` until satisfiable
-(so the minimum is proved by the unsatisfiable :math:`k - 1`). The cheapest
-total (circuit neurons plus interneurons) wins, and what Dale's law costs is
-that total minus the fewest neurons any searched circuit needs without it.
-
->>> import sympy as sp, symctl
->>> from symctl import z
->>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
->>> e = symctl.ei_circuit(G, sensor_delay=1, actuator_delay=1, circuits=["observable"])
->>> e.circuit, e.base_neurons, e.interneurons, e.cost
-('observable', 5, ('G2.x2',), 1)
+A neuron :math:`j` with **mixed** signs keeps Dale's law with one inhibitory interneuron
+:math:`I_j`: :math:`j` (sign :math:`\sigma`) sends :math:`\sigma` to :math:`I_j` (delay 0,
+no self-dynamics), and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target :math:`t`
+whose weight :math:`w_t` has the other sign, with its delay: the product is :math:`w_t`, so
+:math:`G` is unchanged. :func:`ei_circuit` finds, over a set of circuits, the fewest mixed
+neurons each admits, exactly (z3 with a Boolean "mixed" per neuron and :math:`\sum
+\text{mixed} \le k` for :math:`k = 0, 1, \dots`, the minimum proved by the unsatisfiable
+:math:`k - 1`); the cheapest total wins, and Dale's law costs that total minus the fewest
+neurons any searched circuit needs without it.
 """
 
 from __future__ import annotations
@@ -181,11 +167,8 @@ def _candidates(circuits, n: int):
 
 
 def _fewest_mixed(G, t, poles, deadline: Deadline):
-    """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness.
-
-    Subsets of neurons allowed to be mixed are tried by size (each with every sign
-    assignment of the rest, :func:`~symctl.dalelaw.signs.decide`); the first
-    satisfiable size is the minimum, proved when every smaller one was refuted.
+    """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness, subsets
+    tried by size (proved minimal when every smaller one was refuted).
     """
     try:
         enc = encode(t, poles, deadline, relax=True)
@@ -219,20 +202,16 @@ def ei_circuit(
 ) -> EICircuit:
     r"""The cheapest circuit of ``G`` that obeys Dale's law, with interneurons where it must.
 
-    See :mod:`symctl.dalelaw.interneurons`.
-
     Parameters
     ----------
     G, sensor_delay, actuator_delay
         As in :func:`~symctl.dalelaw.dale.dale`.
     circuits : list, optional
-        The circuits to search (names, ``CircuitClass`` or ``Pattern``); default the
-        general, controllable and observable circuits and, when :math:`G_2` has
-        order 1 or 2, every class of ``symctl.atlas(order)``.
+        Names, ``CircuitClass`` or ``Pattern``; default the named circuits and, for
+        :math:`G_2` of order 1 or 2, every class of ``symctl.atlas(order)``.
     timeout : float or Deadline
-        Seconds for each circuit's search, every stage included (default 30, at most
-        3600; the call takes at most about this times the number of circuits), or a
-        :class:`~symctl._util.deadline.Deadline` that bounds the whole call instead.
+        Seconds for each circuit's search (default 30, at most 3600), or a
+        :class:`~symctl._util.deadline.Deadline` bounding the whole call.
 
     Returns
     -------

@@ -1,44 +1,26 @@
 r"""Dale's law as a polynomial sign problem, decided exactly by z3's nonlinear real arithmetic.
 
-A **template** is a family of realizations of the whole controller
-:math:`G = G_3 G_2 G_1` that share one circuit: the sections'
-:math:`\epsilon_k, C_k` are unknowns, and :math:`G_2`'s realization is either a
-canonical form (entries rational in the sections' unknowns) or a pattern
-(:mod:`symctl.circuitatlas.pattern`) whose nonzero entries are unknowns tied to
-:math:`G_2` by the polynomial equations
+A **template** is a family of realizations of :math:`G = G_3 G_2 G_1` sharing one
+circuit: the sections' :math:`\epsilon_k, C_k` are unknowns, and :math:`G_2`'s realization
+is a canonical form or a pattern (:mod:`symctl.circuitatlas.pattern`) whose nonzero
+entries are unknowns tied to :math:`G_2` by
 
 .. math::
     \det(zI - F) = a(z),\qquad M\,\operatorname{adj}(zI - F)\,H = c(z),
 
-:math:`G_2 = N + c/a`. The torus of positive diagonal similarities keeps every
-sign, so the entries of a spanning tree (:meth:`Pattern.tree_slots`) are set
-to :math:`\pm 1`, not 1: no sign is lost.
+:math:`G_2 = N + c/a`. Positive diagonal similarities keep every sign, so a spanning
+tree's entries (:meth:`Pattern.tree_slots`) are set to :math:`\pm 1`: no sign is lost.
+With a Boolean :math:`s_j` per neuron, :math:`s_j \Rightarrow w > 0`, :math:`\lnot s_j
+\Rightarrow w < 0` for every outgoing weight :math:`w` of neuron :math:`j` (self-dynamics
+and read-out exempt), with :math:`|\epsilon_k| < 1`, :math:`\epsilon_k \ne 0`, no
+:math:`\epsilon_k` at a pole of :math:`G`, and every weight nonzero.
 
-Dale's law asks for a sign per neuron, the sign of *every* synapse it sends
-to another neuron; its self-dynamics and the circuit's read-out (the motor
-command) are exempt. With a Boolean :math:`s_j` per neuron the conditions are
-
-.. math::
-    s_j \Rightarrow w > 0,\qquad \lnot s_j \Rightarrow w < 0
-    \quad\text{for every outgoing weight } w \text{ of neuron } j,
-
-together with :math:`|\epsilon_k| < 1` (stable sections), :math:`\epsilon_k \ne 0`
-and no :math:`\epsilon_k` at a pole of :math:`G` (the circuit keeps its
-self-dynamics and :math:`G_2` stays minimal), and every weight of the circuit
-nonzero (the circuit keeps its graph).
-
-**The sections' C.** Each :math:`C_k` is the weight of one synapse: from the
-input (exempt), or the only synapse a section neuron (or :math:`G_2`'s
-output neuron) sends on, which can take either sign. Besides, the :math:`C_k`
-scale :math:`G_2` by :math:`1/\prod_k C_k`, and a positive scale moves into
-:math:`H` and :math:`N` without changing a sign. So nothing is lost by
-setting every :math:`C_k = 1` but the first, :math:`C = \pm 1`; the encoding
-does, which removes the divisions and most of the unknowns.
-
-This is a quantifier-free formula of
-nonlinear real arithmetic; z3's ``nlsat`` (cylindrical algebraic
-decomposition guided by conflicts) decides it: ``sat`` gives an exact
-algebraic witness, ``unsat`` is a proof that none exists.
+**The sections' C.** Each :math:`C_k` weighs one synapse, from the input (exempt) or the
+only one a section neuron sends on (either sign); and the :math:`C_k` scale :math:`G_2`
+by :math:`1/\prod_k C_k`, a positive scale moving into :math:`H` and :math:`N` without
+changing a sign. So nothing is lost by setting every :math:`C_k = 1` but the first,
+:math:`C = \pm 1`. z3's ``nlsat`` decides the quantifier-free formula: ``sat`` gives an
+exact algebraic witness, ``unsat`` a proof that none exists.
 
 >>> import sympy as sp
 >>> from symctl import factor, z
@@ -101,16 +83,14 @@ class Template:
         Entries of ``R2`` that are free (nonzero); ``signed`` ones are :math:`\\pm 1`.
     signed : tuple of sympy.Symbol
     target : tuple
-        ``(a, c)``, :math:`G_2`'s denominator and numerator coefficients (ascending,
-        as in :func:`~symctl.realization.realization.split_proper`) that a pattern's
-        ``R2`` must match: :func:`encode` builds those equations (empty for a canonical
-        form, which realizes :math:`G_2` by construction).
+        ``(a, c)``: :math:`G_2`'s coefficients (as :func:`~symctl.realization.realization.split_proper`)
+        a pattern's ``R2`` must match (empty for a canonical form).
     circuit : Circuit
         The whole controller's circuit in the unknowns.
     outgoing : dict
-        Neuron name -> its weights onto other neurons (self-dynamics and read-out exempt).
+        Neuron name -> its weights onto other neurons (self-dynamics, read-out exempt).
     weights : tuple of sympy.Expr
-        Every weight of the circuit (each must stay nonzero).
+        Every weight of the circuit (each stays nonzero).
     delays : str
         :math:`G_2`'s structure convention.
     """
@@ -134,10 +114,8 @@ class Template:
 
 
 def template(factorization, circuit, delays: str = "branch") -> Template:
-    """The template of ``circuit`` (a name of :data:`NAMED` or a Pattern) for ``factorization``.
-
-    ``delays`` is the structure convention of :math:`G_2` (the atlas's classes may use
-    ``"state"``); the sections always take ``"branch"``.
+    """The template of ``circuit`` (a name of :data:`NAMED` or a Pattern) for ``factorization``
+    (``delays``: :math:`G_2`'s structure convention; the sections take ``"branch"``).
     """
     G2 = factorization.G2
     n = G2.order
@@ -183,19 +161,14 @@ def _finish(label, factorization, R2, unknowns, signed, target, delays) -> Templ
     )
 
 
-# ---------------------------------------------------------------- z3
 def _expr(w) -> sp.Expr:
     """A weight as a SymPy expression (Python ints become Integers; nothing is parsed)."""
     return sp.Integer(w) if isinstance(w, int) else w
 
 
 def to_z3(expr, env: dict, ctx=None):
-    """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only).
-
-    ``ctx`` is the z3 context of the terms (default: that of ``env``'s first term).
-    The term follows the expression's tree (its sums, products and powers, in
-    SymPy's order), built through z3's C API: the Python API coerces every
-    argument, which costs seconds on the general circuit's 10^4 terms.
+    """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only),
+    built through z3's C API along the expression's tree (the Python API's coercions cost seconds).
     """
     if ctx is None:
         ctx = next(iter(env.values())).ctx if env else None
@@ -217,11 +190,7 @@ def to_z3(expr, env: dict, ctx=None):
 
 
 def _apply(make, args: list):
-    """The z3 term ``make(args)`` (``Z3_mk_add``, ``Z3_mk_mul`` or ``Z3_mk_div`` of two).
-
-    The result is wrapped at once, so z3 counts a reference to it; ``args`` stay
-    alive (and referenced) until it is made.
-    """
+    """The z3 term ``make(args)``, wrapped at once (z3 counts a reference); ``args`` live until made."""
     ctx = args[0].ctx
     array = [a.as_ast() for a in args]
     if make is z3.Z3_mk_div:
@@ -231,10 +200,8 @@ def _apply(make, args: list):
 
 @dataclass(frozen=True)
 class Encoding:
-    """The z3 formula of one template (see the module text).
-
-    ``running`` holds a z3 call that outlived its deadline (see :func:`check`): while
-    it runs, nothing else may touch the formula's context.
+    """The z3 formula of one template; ``running`` holds a z3 call that outlived its deadline
+    (:func:`check`), during which nothing may touch the context.
     """
 
     env: dict
@@ -245,11 +212,8 @@ class Encoding:
 
 
 def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed=None) -> Encoding:
-    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed).
-
-    Building a pattern's equations is checked against ``deadline`` (a
-    :class:`~symctl._util.deadline.Deadline`): :class:`~symctl._util.deadline.Unfinished`
-    when it passes, or when the equations pass :data:`~symctl.circuitatlas.fibre.MAX_TERMS`.
+    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed);
+    :class:`~symctl._util.deadline.Unfinished` past ``deadline`` or ``MAX_TERMS``.
     """
     R2 = t.R2
     entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))
@@ -296,12 +260,8 @@ def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed
 
 
 def _equations(t: Template, symbols, deadline: Deadline):
-    r"""``(numerator, denominator)`` of each equation of a pattern's ``R2`` (none for a canonical form).
-
-    :math:`\det(zI - F) = a(z)` and :math:`M \operatorname{adj}(zI - F) H = c(z)`
-    coefficient by coefficient, each cleared of the denominator of its target
-    (a rational function of the sections), as SymPy expressions; the polynomial
-    arithmetic runs in the ring over ``symbols`` and :math:`z`.
+    r"""``(numerator, denominator)`` of each equation of a pattern's ``R2``, coefficient by coefficient,
+    cleared of the target's denominator (none for a canonical form).
     """
     if not t.target:
         return
@@ -317,11 +277,7 @@ CHUNK = 500
 
 
 def _as_expr(poly, deadline: Deadline, label: str) -> sp.Expr:
-    """``poly.as_expr()``, :data:`CHUNK` terms at a time with the deadline checked in between.
-
-    SymPy sorts the terms of a sum into one canonical order, so the expression is the
-    same, and so is z3's formula (whose search depends on the order of its terms).
-    """
+    """``poly.as_expr()`` in :data:`CHUNK`-term pieces, the deadline checked between (the same sum)."""
     terms = poly.terms()
     parts = []
     for start in range(0, len(terms), CHUNK):
@@ -343,12 +299,9 @@ GRACE = 0.25
 def check(enc: Encoding, assume, deadline: Deadline, cap: float | None = None, *, grace=GRACE):
     """``enc.solver.check(*assume)`` within the time ``deadline`` leaves (at most ``cap`` s).
 
-    z3 gets that time as its timeout, but its nonlinear core can run on for a
-    minute before it notices (big-rational arithmetic that does not poll the
-    timeout, on the general circuit of order 6). So the call runs in a worker
-    thread, and the caller waits at most ``grace`` seconds longer: a call still
-    running then is interrupted and left to finish on its own, and the answer is
-    ``unknown``. Its context is busy until it ends (:func:`idle`).
+    z3's nonlinear core can overrun its timeout by a minute, so the call runs in a worker
+    thread and the caller waits at most ``grace`` seconds longer: then the answer is
+    ``unknown`` and the context stays busy until the call ends (:func:`idle`).
     """
     if not idle(enc, deadline):
         return z3.unknown
@@ -385,13 +338,9 @@ def idle(enc: Encoding, deadline: Deadline) -> bool:
 
 
 def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
-    """``(verdict, assumptions)``: one z3 call per sign assignment of the multi-synapse neurons.
-
-    nlsat is far faster on a conjunction than on the disjunction of all
-    assignments, so the :math:`2^m` assignments (neurons in ``free``, allowed to be
-    mixed, are skipped) are tried in turn, each with the time ``deadline`` leaves:
-    ``"sat"`` with the assignment that holds, ``"unsat"`` when every one is
-    refuted (a proof), else ``"unknown"`` (at once when the deadline has passed).
+    """``(verdict, assumptions)``: one z3 call per sign assignment of the multi-synapse neurons
+    (nlsat is far faster on conjunctions); ``free`` neurons may be mixed. ``"sat"`` with the
+    assignment, ``"unsat"`` when all are refuted, else ``"unknown"``.
     """
     if deadline.expired() or not idle(enc, deadline):
         return "unknown", []
@@ -413,7 +362,6 @@ def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
     return ("unknown" if unknown else "unsat"), []
 
 
-# ---------------------------------------------------------------- witnesses
 def value_of(v) -> sp.Expr:
     """A z3 model value as an exact SymPy number (a Rational or a CRootOf)."""
     if z3.is_int_value(v):
@@ -444,18 +392,11 @@ def _candidates(v, count: int = 6):
 def refine(enc: Encoding, order, *, deadline: Deadline, cap: float = 0.5, keep=()) -> dict:
     """A model with as many unknowns rational as z3 allows: each one pinned in turn.
 
-    ``order`` lists the symbols, first to last. A symbol whose value is a
-    simple rational (denominator at most 1000) is pinned to it; another is
-    pinned to the first simple rational near its value for which the formula
-    stays satisfiable (each try at most ``cap`` seconds and the time ``deadline``
-    leaves), or left to the equations. Pinning the free directions of a family
-    first (the sections, then :math:`F` and :math:`H`) leaves the rest
-    determined by linear equations, so rational too. ``keep`` are assumptions
-    every check keeps (and the current model satisfies).
-
-    Raises :class:`~symctl._util.deadline.Unfinished` when the deadline passes with
-    a symbol not pinned yet (its exact algebraic value would cost more than the
-    budget to verify), or with a z3 call still running (:func:`check`).
+    In ``order``, each symbol is pinned to its value when a simple rational (denominator at
+    most 1000), else to the first nearby simple rational that keeps the formula satisfiable
+    (each try at most ``cap`` s), or left to the equations; pinning the free directions first
+    leaves the rest linear, so rational. ``keep``: assumptions every check keeps.
+    :class:`~symctl._util.deadline.Unfinished` when the deadline passes first.
     """
     s = enc.solver
     pinned: list = list(keep)

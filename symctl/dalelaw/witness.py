@@ -1,21 +1,11 @@
 r"""A numeric search for an E/I witness of the general circuit, made exact.
 
-The general circuit's realizations are :math:`(F, H, M) = (Q F_0 Q^{-1},\ Q H_0,\ M_0 Q^{-1})`
-of the controllable canonical form :math:`(F_0, H_0, M_0)` of
-:math:`G_2 = G / (G_3 G_1)`, for any invertible :math:`Q = P^{-1}` and sections
-:math:`\epsilon_k \in (-1, 1)`. :func:`search_general` maximizes the **Dale
-margin**, the least over neurons of
-
-.. math::
-    \frac{\max(\min_k w_k,\ \min_k -w_k)}{\max_k |w_k|}
-
-over each neuron's outgoing weights :math:`w_k` (positive exactly when the
-neuron is E or I), with Nelder-Mead from seeded random starts. A positive
-margin is then made exact: :math:`\epsilon` and :math:`Q` are rounded to
-rationals, the realization is rebuilt in exact arithmetic (python-flint
-behind :func:`~symctl.realization.realizers.general_realization`) and every
-sign is checked on it exactly. The search finds witnesses; only z3 proves that
-none exists (:mod:`symctl.dalelaw.signs`).
+The general circuit's realizations are :math:`(Q F_0 Q^{-1},\ Q H_0,\ M_0 Q^{-1})` of the
+controllable canonical form of :math:`G_2`. :func:`search_general` maximizes the **Dale
+margin**, the least over neurons of :math:`\max(\min_k w_k,\ \min_k -w_k)/\max_k |w_k|`
+over their outgoing weights (positive exactly when E/I), by Nelder-Mead from seeded
+starts; a positive margin is rounded to rationals, rebuilt exactly and every sign checked.
+Only z3 proves that none exists (:mod:`symctl.dalelaw.signs`).
 """
 
 from __future__ import annotations
@@ -72,10 +62,8 @@ def _canonical(a, c):
 def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
     """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None.
 
-    Sections ``C`` are 1 but for the first, whose sign is tried both ways (only the sign of
-    their product changes :math:`G_2`); up to ``starts`` Nelder-Mead runs, each stopped (and
-    the search given up) when ``deadline`` (a :class:`~symctl._util.deadline.Deadline`)
-    passes, as is making a point exact.
+    ``C`` are 1 but the first, tried with both signs; up to ``starts`` Nelder-Mead runs, each
+    stopped (and the search given up) when ``deadline`` passes.
     """
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)

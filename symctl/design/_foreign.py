@@ -1,25 +1,14 @@
 r"""python-control systems as symctl plants, and the one realization of a numeric transfer function.
 
 :func:`plant_from_control` reads a discrete ``control.StateSpace`` or
-``control.TransferFunction`` as a :class:`~symctl.design.plant.DiscretePlant`
-(:func:`~symctl.design.augment.as_plant` hands python-control objects to it, so
-every function that takes a plant takes them too). python-control is imported
-only when such an object arrives, so ``import symctl`` stays cheap.
-
-:func:`canonical_columns` realizes a matrix of numeric transfer functions
-:math:`G_{ij} = n_{ij}/d_{ij}`, column by column, in symctl's controllable
-canonical form (that of :func:`~symctl.realization.realization.controllable_canonical`):
-column :math:`j` has the denominator :math:`d_j(z) = z^r + a_{r-1} z^{r-1} + \dots + a_0`,
-the product of the distinct denominators of its entries, and
-
-.. math::
-    F_j = \begin{bmatrix} 0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\
-        -a_0 & -a_1 & \cdots & -a_{r-1}\end{bmatrix},\quad H_j = e_r,\quad
-    M_j = [c_{ij,0}\ \cdots\ c_{ij,r-1}]_i,\quad N_{ij} = G_{ij}(\infty),
-
-with :math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k / d_j`; the columns' blocks are put
-on the diagonal in input order. Deterministic, controllable, and minimal for
-SISO (and whenever the columns' entries share one denominator without common factor).
+``TransferFunction`` (python-control is imported only when such an object arrives).
+:func:`canonical_columns` realizes :math:`G_{ij} = n_{ij}/d_{ij}` column by column in the
+controllable canonical form of :func:`~symctl.realization.realization.controllable_canonical`:
+column :math:`j` has the product :math:`d_j = z^r + a_{r-1} z^{r-1} + \dots + a_0` of its
+entries' distinct denominators, :math:`F_j` the companion of :math:`d_j`, :math:`H_j =
+e_r`, :math:`M_j = [c_{ij,0}\ \cdots\ c_{ij,r-1}]_i`, :math:`N_{ij} = G_{ij}(\infty)` with
+:math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k / d_j`; the blocks are put on the diagonal in
+input order. Deterministic, controllable, and minimal for SISO.
 
 >>> import control
 >>> from symctl.design._foreign import plant_from_control
@@ -175,11 +164,7 @@ def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
 
 
 def _labels(labels) -> tuple[str, ...]:
-    """User labels when all are distinct identifiers; else () for symctl's defaults.
-
-    python-control 0.10 labels signals ``x[0]``, ``u[0]``... by default: not
-    identifiers, so they give symctl's ``x_1``, ``u`` names instead.
-    """
+    """User labels when all are distinct identifiers, else () (python-control's ``x[0]``: defaults)."""
     names = tuple(labels or ())
     ok = all(isinstance(s, str) and s.isidentifier() for s in names)
     return names if ok and len(set(names)) == len(names) else ()
@@ -188,13 +173,9 @@ def _labels(labels) -> tuple[str, ...]:
 def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
     """A :class:`~symctl.design.plant.DiscretePlant` from a discrete python-control system.
 
-    A ``StateSpace`` gives its ``A`` and ``B`` (``C`` and ``D`` are not used: symctl's
-    plant is state feedback, :math:`x(t+1) = A x(t) + B u(t)`); a SISO or MIMO
-    ``TransferFunction`` is realized first by :func:`canonical_columns`, so its
-    states are those of the column-wise controllable canonical form. ``dt`` is the
-    system's ``dt`` (``dt=True``, "discrete, unspecified", gives ``None``). State and
-    input names are the system's labels when they are distinct identifiers; the
-    default labels (``x[0]``, ``u[0]``) give symctl's defaults ``x_1, ...`` and ``u``.
+    A ``StateSpace`` gives ``A``, ``B`` (state feedback: ``C``, ``D`` unused), a
+    ``TransferFunction`` is realized by :func:`canonical_columns`; ``dt=True`` gives ``None``;
+    labels that are distinct identifiers name the states and inputs.
 
     Parameters
     ----------

@@ -1,36 +1,24 @@
 r"""Sensor and actuator delays built into an augmented state.
 
-With net delay :math:`T = d_s + d_a`, the intended actuation :math:`\mu` reaches
-the plant :math:`T` steps later through a chain of delayed copies
-(the paper's eqs. (augmented_states)–(augmented_cost), generalised to any
-:math:`T` and any plant size):
+With net delay :math:`T = d_s + d_a`, the intended actuation :math:`\mu` reaches the plant
+:math:`T` steps later through a chain of delayed copies (the paper's eqs.
+(augmented_states)–(augmented_cost), for any :math:`T` and plant size):
 
 .. math::
     \gamma_1(t+1) = \mu(t),\quad \gamma_{k+1}(t+1) = \gamma_k(t),\quad
-    \delta_r(t) = \gamma_T(t) = \mu(t - T).
+    \delta_r(t) = \gamma_T(t) = \mu(t - T),
 
-State ordering: :math:`\chi = [x;\ \gamma_1;\ \dots;\ \gamma_{T-1};\ \delta_r]`
-(plant states first, then the copies of :math:`\mu` in order of increasing
-delay, each of the plant's input size ``m``). For the paper's scalar ``T = 2``
-this is :math:`\chi = [\delta_f, \gamma, \delta_r]` and
+with :math:`\chi = [x;\ \gamma_1;\ \dots;\ \gamma_{T-1};\ \delta_r]`. For the paper's
+scalar ``T = 2``, :math:`\chi = [\delta_f, \gamma, \delta_r]` and
 
 .. math::
     \tilde A = \begin{bmatrix} A & 0 & B \\ 0 & 0 & 0 \\ 0 & I & 0 \end{bmatrix},\quad
     \tilde B = \begin{bmatrix} 0 \\ I \\ 0 \end{bmatrix},\quad
     \tilde Q = \operatorname{diag}(Q, 0, R).
 
-Only the net delay enters the augmented system (for state feedback, a sensor
-delay can be moved to the actuator side without changing the closed loop); the
-split ``sensor_delay``/``actuator_delay`` is kept for the factorization
-:math:`G = G_3 G_2 G_1` of later steps. With ``T = 0`` the system is the plant
-itself and ``R`` penalizes :math:`\mu = u` directly.
-
->>> from symctl import MuscleModel, augment
->>> aug = augment(MuscleModel().discrete_symbolic(), sensor_delay=1, actuator_delay=1)
->>> aug.state_names
-('delta_f', 'gamma', 'delta_r')
->>> aug.A.shape, aug.T
-((3, 3), 2)
+Only the net delay enters (for state feedback a sensor delay can move to the actuator
+side); the split is kept for :math:`G = G_3 G_2 G_1`. With ``T = 0`` the system is the
+plant and ``R`` penalizes :math:`\mu = u`.
 """
 
 from __future__ import annotations
@@ -62,16 +50,11 @@ def as_plant(plant) -> DiscretePlant:
     Parameters
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
-        A :class:`DiscretePlant` is returned as it is, a :class:`MuscleModel` gives
-        :meth:`MuscleModel.plant`, a pair ``(A, B)`` a plant without ``dt``. A discrete
-        ``control.StateSpace`` gives its ``A``, ``B``, ``dt`` (python-control's
-        ``dt=True``, "discrete, unspecified", is ``dt=None``) and its labels when they are
-        identifiers (the default ``x[0]``, ``u[0]`` give symctl's ``x_1, ...``, ``u``); a
-        discrete ``control.TransferFunction`` (SISO or MIMO) is realized in the
-        column-wise controllable canonical form of
-        :func:`symctl.design._foreign.canonical_columns` (for SISO, that of
-        :func:`~symctl.realization.realization.controllable_canonical`). ``C`` and ``D``
-        are not used: the plant is state feedback, :math:`x(t+1) = A x(t) + B u(t)`.
+        A :class:`DiscretePlant` as it is, a :class:`MuscleModel`'s :meth:`~MuscleModel.plant`,
+        ``(A, B)`` without ``dt``; a discrete ``control.StateSpace`` its ``A``, ``B``, ``dt``
+        (``dt=True`` is ``None``) and its labels when identifiers (``C``, ``D`` unused: state
+        feedback); a discrete ``control.TransferFunction`` in the column-wise controllable
+        canonical form of :func:`symctl.design._foreign.canonical_columns`.
 
     Returns
     -------
@@ -122,16 +105,11 @@ def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") 
     ----------
     plant : DiscretePlant
     dt : sympy expression or None
-        The sampling time of the other object (a controller, the gains' plant...).
-        ``None`` (unspecified) fits any plant ``dt``, as a plant's ``dt=None`` fits any ``dt``.
+        The other object's sampling time (``None`` fits any, as a plant's ``None`` does).
     argname : str
         The argument named in the error.
     of : str
         What ``dt`` belongs to, for the message.
-
-    Returns
-    -------
-    None
 
     Raises
     ------
@@ -162,7 +140,7 @@ def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") 
 
 @dataclass(frozen=True)
 class AugmentedSystem(LatexMixin):
-    r"""The delay-augmented system :math:`\chi(t+1) = \tilde A \chi(t) + \tilde B \mu(t)`.
+    r"""The delay-augmented system :math:`\chi(t+1) = \tilde A \chi(t) + \tilde B \mu(t)` (a value).
 
     Attributes
     ----------
@@ -177,10 +155,6 @@ class AugmentedSystem(LatexMixin):
         The plant's state and input penalties of eq. (cost).
     state_names : tuple of str
         Names of the entries of :math:`\chi`.
-
-    Notes
-    -----
-    Built by :func:`augment`; compares and hashes by value.
 
     Examples
     --------
@@ -256,9 +230,7 @@ def augment(
         Numeric or symbolic; a discrete ``control.StateSpace`` or ``TransferFunction``
         is read by :func:`as_plant` (its ``dt`` becomes the plant's).
     sensor_delay, actuator_delay : int
-        Delays in steps, integers >= 0 with a net delay
-        ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500; the augmented
-        system has ``n + T m`` states).
+        Delays in steps, >= 0, with ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500).
     Q : matrix-like, optional
         State penalty (``n x n``); identity by default.
     R : matrix-like, optional
@@ -271,9 +243,8 @@ def augment(
     Raises
     ------
     ParameterError
-        Negative delays or a net delay above ``MAX_DELAY``; numeric ``Q`` or ``R``
-        not symmetric positive semidefinite, or with an entry above ``MAX_MAGNITUDE``
-        (1e100) in magnitude, or more than ``MAX_STATES`` (1000) augmented states.
+        Negative delays or ``T > MAX_DELAY``; numeric ``Q`` or ``R`` not symmetric PSD or
+        with an entry above 1e100; more than ``MAX_STATES`` (1000) augmented states.
     SymctlTypeError
         Non-integer delays.
     DimensionError

@@ -12,21 +12,12 @@ r"""The optimal delayed controller :math:`G(z)` in closed form, its proof, and i
 which for a scalar plant is the paper's eq. (transfer_fn),
 :math:`K_0/(z^T - K_1 z^{T-1} - \dots - K_T)`.
 
-For several inputs the controller is the left matrix fraction
-:math:`D(z)^{-1} K_0` (:class:`~symctl.design.fraction.MatrixFractionTF`), and
-it is expanded into :math:`\operatorname{adj} D(z) K_0 / \det D(z)` (fraction-free:
-memoized Laplace minors, no division, in :math:`\mathbb{Q}[z, K]` for symbolic
-gains, in :math:`\mathbb{Q}[z]` from the exact values of the floats of numeric
-gains, rounded once at the end) only when the expansion is small: at most
-``MAX_EXPANDED_TERMS`` (50,000) polynomial terms, a bound computed before any
-work that is exact for symbolic gains. Up to it ``controller_tf`` returns what it
-always did, an expanded :class:`~symctl.DiscreteTF` (a 3-state, 4-input plant at
-:math:`T = 2`: 4,000 terms); beyond it the fraction itself, whose ``num`` and
-``den`` refuse to expand (6 inputs at :math:`T = 3`: 4.9 million terms; see
-:mod:`symctl.design.fraction` for the count). Keeping :math:`\det D` and
-:math:`\operatorname{adj} D` in python-flint instead would only move the
-gigabytes: nothing downstream of a symbolic MIMO controller needs the expanded
-form, and numbers (:func:`symctl.lqr_gains`) make it small again.
+For several inputs the controller is the left matrix fraction :math:`D(z)^{-1} K_0`
+(:class:`~symctl.design.fraction.MatrixFractionTF`), expanded into
+:math:`\operatorname{adj} D(z) K_0 / \det D(z)` (fraction-free, exact) only when the
+expansion has at most ``MAX_EXPANDED_TERMS`` (50,000) terms, a bound computed before any
+work (a 3-state, 4-input plant at :math:`T = 2`: 4,000 terms; 6 inputs at :math:`T = 3`:
+4.9 million, so the fraction itself, see :mod:`symctl.design.fraction`).
 
 The derivation is proved, not trusted, and by multiplying, never by inverting.
 :func:`prove_controller_tf` reads :math:`D(z)` off the controller's own
@@ -41,17 +32,8 @@ checked exactly (a difference that is the zero polynomial); all but the last are
 of degree :math:`T` in :math:`z` and linear in the gains, so the proof of the
 6-input controller at :math:`T = 3` takes a fraction of a second.
 
-Those matrices, the paper's IFP controller (eqs. augmented_states,
-ifp_controller), are built in ONE place, :func:`ifp_state_space`, for symbolic
-gain blocks (here) and for numeric gains
-(:func:`symctl.ifp_realization`) alike.
-
->>> from symctl import controller_tf
->>> G = controller_tf(2)
->>> G.expr
-K_0/(-K_1*z - K_2 + z**2)
->>> G.relative_degree
-2
+Those matrices, the paper's IFP controller, are built in one place,
+:func:`ifp_state_space`, for symbolic and numeric gains alike.
 """
 
 from __future__ import annotations
@@ -87,19 +69,15 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     Parameters
     ----------
     source : int, AugmentedSystem or Gains
-        An integer ``T`` gives the scalar controller with symbolic gains
-        :math:`K_0 \dots K_T`; an :class:`~symctl.AugmentedSystem` gives the
-        (possibly MIMO) controller for its sizes and delay with symbolic gain
-        blocks and the plant's ``dt``; :class:`~symctl.Gains` give the numeric controller.
+        ``T``: the scalar controller with symbolic gains :math:`K_0 \dots K_T`; an
+        AugmentedSystem: its (MIMO) controller with symbolic gain blocks; Gains: numeric.
     gains : Gains, optional
         Substitute these gain values.
 
     Returns
     -------
     DiscreteTF
-        ``m x n`` (plant inputs by plant states), relative degree ``T``. A
-        symbolic MIMO controller whose expansion would pass ``MAX_EXPANDED_TERMS``
-        (50,000) terms is the unexpanded left fraction :math:`D(z)^{-1} K_0`, a
+        ``m x n``, relative degree ``T``; beyond ``MAX_EXPANDED_TERMS`` a
         :class:`~symctl.design.fraction.MatrixFractionTF` (a DiscreteTF).
 
     Raises
@@ -158,7 +136,11 @@ def _chain(T: int, m: int, gain) -> sp.Matrix:
 
 def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF:
     """The MIMO controller as ``D(z)^-1 K_0``: expanded up to the size limit, or kept."""
-    if gains is not None and _same_sizes(gains, T, m, n):  # numbers: exact, rounded once
+    if gains is not None and (gains.system.T, gains.system.m, gains.system.n) == (
+        T,
+        m,
+        n,
+    ):  # numbers: exact, rounded once
         vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
         D = _chain(T, m, lambda k, i, j: sp.Float(float(vals[k][i, j])))
         K0 = _filled(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
@@ -169,11 +151,6 @@ def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF
     if G.terms_bound() <= MAX_EXPANDED_TERMS:
         G = G.expanded()
     return G if gains is None else G.subs(gains.substitutions())
-
-
-def _same_sizes(gains: Gains, T: int, m: int, n: int) -> bool:
-    s = gains.system
-    return (s.T, s.m, s.n) == (T, m, n)
 
 
 def _filled(rows: int, cols: int, entry) -> sp.Matrix:
@@ -207,11 +184,8 @@ def _ring_of(K) -> tuple[object, object]:
 
 
 def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str, str] | None:
-    """The identities of :func:`prove_controller_tf` in ``QQ[z, K]``; None if not expressible.
-
-    Returns ``(holds, evidence, method)``. Every identity is a matrix of
-    polynomials of degree at most ``T`` in ``z`` and linear in the gains, except
-    ``D N_G = K_0 d_G`` for an expanded ``G`` (as large as ``G`` itself).
+    """The identities of :func:`prove_controller_tf` in ``QQ[z, K]`` as ``(holds, evidence, method)``;
+    None if not expressible.
     """
     T, m, n = system.T, system.m, system.n
     F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T)
@@ -284,15 +258,11 @@ def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str
 def ifp_state_space(A, B, K, n: int, m: int, T: int):
     r"""``(F, H, M, N)`` of the IFP controller, read off the augmented matrices.
 
-    Controller state: the chain :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`;
-    input: the plant state :math:`x`; output: :math:`\delta_r`. With
-    :math:`\tilde A_c, \tilde B_c` the chain's rows of the augmented system,
-    :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`,
-    :math:`H = \tilde B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (for
-    :math:`T = 0`: a static gain, :math:`N = K_0`). The same code runs on SymPy
-    matrices (symbolic gain blocks) and on NumPy arrays (numeric gains):
-    ``A``, ``B`` are the augmented matrices and ``K = [K_0, K_1, ..., K_T]``
-    the gain, of one kind. ``M`` and ``N`` (for ``T > 0``) are integer arrays.
+    State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`x`, output
+    :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
+    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`). The
+    same code runs on SymPy matrices and NumPy arrays (``A``, ``B``, ``K = [K_0, ..., K_T]``
+    of one kind); ``M`` and ``N`` (for ``T > 0``) are integer arrays.
 
     >>> import sympy as sp
     >>> from symctl import MuscleModel, augment
@@ -319,17 +289,11 @@ def ifp_state_space(A, B, K, n: int, m: int, T: int):
 def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) -> Proof:
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
-    With the controller's state-space matrices :math:`(F_c, H_c, M_c)` of
-    :func:`ifp_state_space` for symbolic gains: for a scalar plant, with the
-    candidate state numerators :math:`W = [z^{T-1}; \dots; 1] N_G`, the
-    polynomial identities :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G`,
-    expanded. For several inputs, by multiplying instead of inverting (see the
-    module docstring): :math:`(zI - F_c) V = B_c D(z)`, :math:`H_c = B_c K_0`,
-    :math:`M_c V = I` with :math:`V = [z^{T-1} I; \dots; I]`, and then
-    :math:`D(z) N_G = K_0 d_G` (an expanded ``G``) or :math:`D_G = D, N_G = K_0`
-    (a :class:`~symctl.design.fraction.MatrixFractionTF`; another left fraction
-    is expanded first, within its size limit), all in :math:`\mathbb{Q}[z, K]`.
-    Each is complete: it holds exactly when :math:`M_c (zI-F_c)^{-1} H_c = G`.
+    From :math:`(F_c, H_c, M_c)` of :func:`ifp_state_space` with symbolic gains: for a
+    scalar plant, :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G` with :math:`W =
+    [z^{T-1}; \dots; 1] N_G`; for several inputs, the identities of the module text in
+    :math:`\mathbb{Q}[z, K]` (another left fraction is expanded first, within its size
+    limit). Each holds exactly when :math:`M_c (zI-F_c)^{-1} H_c = G`.
 
     Parameters
     ----------
@@ -341,8 +305,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     Returns
     -------
     Proof
-        Truthy when both identities hold (``G`` is the controller), with the
-        method and, when they do not, the first entry that is not zero.
+        Truthy when the identities hold, with the method (else the first nonzero entry).
 
     Raises
     ------

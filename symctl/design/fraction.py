@@ -1,38 +1,17 @@
 r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
 
-Why a fraction: the common-denominator form of :class:`~symctl.DiscreteTF`,
-:math:`\operatorname{adj} D(z)\, N(z) / \det D(z)`, of a *symbolic* polynomial
-matrix :math:`D` is far larger than :math:`D` and :math:`N`. For the delayed
-controller :math:`D(z) = z^T I - \sum_k K_k z^{T-k}` of a plant with
-:math:`m` inputs and symbolic gain blocks, every choice of a permutation and
-of one term per entry gives a distinct monomial of :math:`\det D`, so it has
-exactly :math:`\operatorname{perm}(C)` terms, :math:`C` the matrix of term
-counts (:math:`T + 1` on the diagonal, :math:`T` off it): 633 for
-:math:`m = 4, T = 2`, but 732,529 for :math:`m = 6, T = 3`, and the 18 entries
-of :math:`\operatorname{adj} D\, K_0` about 4.2 million more: gigabytes in
-any representation (python-flint's ``fmpz_mpoly`` packs a monomial of 127
-variables into about 130 bytes; SymPy builds a few thousand terms a second), and
-nothing needs them: the shape, order, relative degree, Markov parameters,
-substitution of numbers and the proof of the controller
-(:func:`symctl.prove_controller_tf`, which multiplies by :math:`D` instead of
-inverting it) all work on :math:`D` and :math:`N`.
-
-:class:`MatrixFractionTF` is a :class:`~symctl.DiscreteTF` that keeps the two
-matrices and expands (fraction-free: memoized Laplace minors, no division, in a
-sparse polynomial ring over :math:`\mathbb{Q}`) only when ``num``/``den`` are
-asked for, after bounding the result's size by the same permanent, before any
-work; beyond ``MAX_EXPANDED_TERMS`` it refuses with a :class:`ParameterError`
-that says what to do instead. Numbers make the expansion small (at most
-:math:`dm + 1` coefficients an entry): with every symbol substituted, ``num``
-and ``den`` always work.
-
->>> import sympy as sp
->>> from symctl import z
->>> from symctl.design.fraction import MatrixFractionTF
->>> k = sp.Symbol("k")
->>> G = MatrixFractionTF(sp.Matrix([[z - k, 0], [1, z]]), sp.Matrix([[1], [0]]))
->>> G.relative_degree, G.expanded().num_matrix.T, G.expanded().den
-(1, Matrix([[z, -1]]), -k*z + z**2)
+The common-denominator form :math:`\operatorname{adj} D(z)\, N(z) / \det D(z)` of a
+*symbolic* :math:`D` is far larger than :math:`D` and :math:`N`. For the delayed
+controller :math:`D(z) = z^T I - \sum_k K_k z^{T-k}` with :math:`m` inputs and symbolic
+gain blocks, every choice of a permutation and of one term per entry gives a distinct
+monomial of :math:`\det D`, so it has exactly :math:`\operatorname{perm}(C)` terms,
+:math:`C` the matrix of term counts (:math:`T + 1` on the diagonal, :math:`T` off it): 633
+for :math:`m = 4, T = 2`, 732,529 for :math:`m = 6, T = 3` (and about 4.2 million more in
+:math:`\operatorname{adj} D\, K_0`), gigabytes in any representation. Nothing needs them:
+shape, order, relative degree, Markov parameters, substitution and the proof
+(:func:`symctl.prove_controller_tf`) work on :math:`D` and :math:`N`.
+:class:`MatrixFractionTF` expands only when ``num``/``den`` are asked for, after bounding
+the size by the same permanent; numbers make the expansion small.
 """
 
 from __future__ import annotations
@@ -59,11 +38,8 @@ __all__ = ["MatrixFractionTF"]
 
 
 def _adj_det(D: list[list], zero, signed: bool = True) -> tuple[list[list], object]:
-    """Adjugate and determinant of a square matrix over a polynomial ring, fraction-free.
-
-    Laplace expansion with every minor memoized on its (rows, columns): no division,
-    so the entries stay polynomials; zero entries are skipped. With ``signed=False``
-    every sign is ``+`` (permanents: on term counts, bounds on the terms of each minor).
+    """Adjugate and determinant over a polynomial ring by memoized Laplace minors, no division;
+    ``signed=False`` gives permanents (term-count bounds).
     """
     m = len(D)
     memo: dict[tuple[tuple, tuple], object] = {}
@@ -105,21 +81,12 @@ def _z_degree(expr: sp.Expr) -> int:
 class MatrixFractionTF(DiscreteTF):
     r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
 
-    The common-denominator form :math:`\operatorname{adj} D(z)\, N(z) / \det D(z)`
-    of a symbolic :math:`D` can be far larger than :math:`D` and :math:`N`
-    (the 6-input controller at :math:`T = 3` has about 5 million terms), so
-    this form keeps the two polynomial matrices and expands only when ``num``,
-    ``den`` (or a method that needs them) is asked for, through :meth:`expanded`,
-    which refuses beyond ``MAX_EXPANDED_TERMS`` terms (50,000) before doing any
-    work. Shape, order, relative degree, free symbols, :meth:`subs`, products
-    with a scalar, :meth:`markov`, equality and display work on :math:`D, N`.
-
-    ``D`` is monic: its coefficient of :math:`z^d` (:math:`d` its largest
-    degree) is the identity, so :math:`\det D` is monic of degree :math:`d m`
-    and :math:`D^{-1} = z^{-d}(I + O(z^{-1}))`: the relative degree is
-    :math:`d - \max_{ij} \deg N_{ij}`. ``==`` and ``hash`` compare ``D``, ``N``
-    and ``dt`` structurally (a fraction is never ``==`` to an expanded
-    :class:`DiscreteTF`; :meth:`equals` decides equality as rational functions).
+    Expands only through :meth:`expanded` (``num``, ``den``), which refuses beyond
+    ``MAX_EXPANDED_TERMS`` (50,000) before any work; shape, order, relative degree, free
+    symbols, :meth:`subs`, scalar products, :meth:`markov`, equality and display work on
+    :math:`D, N`. ``D`` is monic (its :math:`z^d` coefficient is :math:`I`), so the relative
+    degree is :math:`d - \max_{ij} \deg N_{ij}`. ``==`` and ``hash`` compare ``D``, ``N``,
+    ``dt`` structurally (never ``==`` to an expanded :class:`DiscreteTF`; see :meth:`equals`).
 
     Parameters
     ----------
@@ -181,7 +148,6 @@ class MatrixFractionTF(DiscreteTF):
         object.__setattr__(self, "dt", None if dt is None else sampling_time(dt, "dt"))
         object.__setattr__(self, "_cache", {})
 
-    # ------------------------------------------------------------ the fraction
     @property
     def D(self) -> sp.ImmutableMatrix:
         """The left denominator :math:`D(z)`, ``m x m``, monic."""
@@ -214,12 +180,8 @@ class MatrixFractionTF(DiscreteTF):
     def terms_bound(self) -> int:
         r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`.
 
-        For symbols that occur once each (generic gain blocks) the bound is the
-        exact count: the permanent of the entries' term counts, by the same
-        memoized Laplace expansion. With numbers only (``z`` the one symbol) it
-        is the count of coefficients, ``(d m + 1)(1 + m p)``. (Rows with
-        rational coefficients are scaled to polynomials before the expansion,
-        which this bound does not count.)
+        Exact for symbols that occur once each (the permanent of the term counts); with numbers
+        only, the coefficient count ``(d m + 1)(1 + m p)`` (rational rows scaled first not counted).
 
         >>> import sympy as sp
         >>> from symctl import z
@@ -245,19 +207,14 @@ class MatrixFractionTF(DiscreteTF):
         )
 
     def expanded(self, max_terms: int = MAX_EXPANDED_TERMS) -> DiscreteTF:
-        r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF` (fraction-free).
-
-        The adjugate and determinant come from memoized Laplace minors in a sparse
-        polynomial ring over :math:`\mathbb{Q}` in ``z`` and the free symbols (no
-        division; rows with rational coefficients are scaled to polynomials
-        first), floats taken exactly and rounded once at the end.
+        r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF`, fraction-free over
+        :math:`\mathbb{Q}` (floats taken exactly, rounded once at the end).
 
         Parameters
         ----------
         max_terms : int
-            Refuse (before any work) when :meth:`terms_bound` exceeds it and
-            symbols other than ``z`` remain (with numbers only, the size is the
-            number of coefficients, linear in the degree, and never refused).
+            Refuse (before any work) when :meth:`terms_bound` exceeds it and symbols other
+            than ``z`` remain (numbers only are never refused).
 
         Raises
         ------
@@ -308,7 +265,6 @@ class MatrixFractionTF(DiscreteTF):
     def __hash__(self) -> int:
         return hash((MatrixFractionTF, self._D, self._N, self.dt))
 
-    # ------------------------------------------------------------ algebra on D and N
     def subs(self, *args, **kwargs) -> MatrixFractionTF:
         """Substitute symbols into ``D`` and ``N`` (as :meth:`DiscreteTF.subs`); stays a fraction."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
@@ -362,7 +318,6 @@ class MatrixFractionTF(DiscreteTF):
             h.append(acc.applyfunc(sp.expand))
         return h
 
-    # ------------------------------------------------------------ display
     def latex(self) -> str:
         r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
 

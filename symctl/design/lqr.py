@@ -14,22 +14,10 @@ solve the equivalent problem with the penalty moved onto :math:`\mu`:
 and the first sum is fixed by the initial state. So the paper's cost and
 :math:`\sum_t \chi^\top \operatorname{diag}(Q, 0, \dots, 0)\chi + \mu^\top R \mu`
 differ by a term no control can change: both have the same optimal feedback.
-The second is a standard DARE with :math:`R \succ 0` on the input, which is
-better conditioned than the paper's zero input penalty (scipy also accepts the
-latter; the tests cross-check both).
-
-Sign: the paper writes :math:`\mu(t) = K\chi(t)` with
-:math:`K = [K_0\ K_1 \dots K_T]`, i.e. minus the usual LQR gain.
-
-The DARE itself is SciPy's :func:`scipy.linalg.solve_discrete_are`.
-Stabilizability of :math:`(\tilde A, \tilde B)` and detectability of
-:math:`(\tilde Q^{1/2}, \tilde A)` are checked first with the PBH test, so that
-a problem without a stabilizing solution is reported as such.
-
->>> from symctl import MuscleModel, augment, lqr_gains
->>> g = lqr_gains(augment(MuscleModel(), 1, 1))
->>> [round(float(k), 6) for k in g.K[0]]
-[-0.045972, -0.580041, -0.351813]
+The second is a standard DARE (:func:`scipy.linalg.solve_discrete_are`) with
+:math:`R \succ 0` on the input, better conditioned than the paper's zero input penalty.
+Stabilizability and detectability are checked first (PBH test). Sign: the paper's
+:math:`\mu(t) = K\chi(t)`, minus the usual LQR gain.
 """
 
 from __future__ import annotations
@@ -56,6 +44,8 @@ _TOL = 1e-9
 class Gains(DictMixin, LatexMixin):
     r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
 
+    Built by :func:`lqr_gains`; read-only arrays; compares and hashes by value.
+
     Attributes
     ----------
     system : AugmentedSystem
@@ -65,11 +55,6 @@ class Gains(DictMixin, LatexMixin):
         Stabilizing DARE solution of the equivalent problem (see the module notes).
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
-
-    Notes
-    -----
-    Built by :func:`lqr_gains`. The arrays are read-only copies; gains compare
-    and hash by value (the system and the arrays).
 
     Examples
     --------
@@ -114,10 +99,8 @@ class Gains(DictMixin, LatexMixin):
         return [self.K[:, :n]] + [self.K[:, n + k * m : n + (k + 1) * m] for k in range(T)]
 
     def substitutions(self, exact: bool = False) -> dict:
-        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values.
-
-        With ``exact=True`` the values are the exact rationals of the binary
-        floats (``sympy.Rational``), so that what is built from them stays exact.
+        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values (``exact=True``:
+        the binary floats' exact rationals).
         """
         s = self.system
         out = {}
@@ -169,12 +152,9 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     SymctlTypeError
         ``system`` is not an AugmentedSystem.
     ParameterError
-        Free symbols left in the system, Q/R not symmetric positive semidefinite, an
-        entry of Q, R or the plant above ``MAX_MAGNITUDE`` (1e100), or an LQR that
-        overflows (a badly scaled problem).
+        Free symbols left, Q/R not symmetric PSD, an entry above 1e100, or an overflow.
     NotStabilizableError
-        :math:`(\tilde A, \tilde B)` not stabilizable, :math:`(\tilde Q^{1/2}, \tilde A)` not
-        detectable, or no stabilizing DARE solution or no unique gain (e.g. a singular ``R``).
+        Not stabilizable or not detectable, or no stabilizing DARE solution or unique gain.
 
     Examples
     --------

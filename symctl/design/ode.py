@@ -1,28 +1,13 @@
 r"""A nonlinear plant of your own: :math:`\dot x = f(x, u; p)`, its equilibrium, linearization and ZOH.
 
-:class:`ODEModel` is the general form of the paper's muscle
-(:class:`~symctl.design.plant.MuscleModel`): any number of states and inputs,
-named parameters with values, right-hand sides that are SymPy expressions
-(model files give them as text, read by the safe parser only), an operating
-point, and a sampling time. The derivation stays symbolic in the parameters
-(:meth:`ODEModel.linearize_symbolic`, and for one state the closed-form ZOH
-:meth:`ODEModel.discrete_symbolic`), and :meth:`ODEModel.plant` substitutes the
-values, exactly (a float becomes the rational of its shortest decimal, 0.1 -> 1/10).
-
-:func:`solve_equilibrium` finds the states of an equilibrium from the inputs:
-
-- exactly (SymPy, in the parameters' symbols) when :math:`f` is affine in the
-  states, which proves the solution unique (or that there is none, or many);
-- for one state where :math:`f` is a polynomial in it (degree up to 12, at the
-  parameter values), by isolating its real roots exactly: none and several are
-  proved, and the one root is exact when rational;
-- otherwise numerically (:func:`scipy.optimize.root` at the parameter values),
-  from a ``guess`` when one is given, or from several starts, refusing none
-  and several distinct solutions.
-
-Every symbol of a parameter whose value is positive is a positive SymPy symbol
-(so that the closed forms simplify as they should, e.g. :math:`e^{-T_s/\tau}`);
-the others, the states and the inputs are real.
+:class:`ODEModel` generalizes :class:`~symctl.design.plant.MuscleModel`: any states and
+inputs, named parameters with values, SymPy right-hand sides (model files give text, read
+by the safe parser), an operating point and a sampling time; symbolic in the parameters
+until :meth:`ODEModel.plant` substitutes them exactly (0.1 -> 1/10). A parameter with a
+positive value is a positive symbol (so :math:`e^{-T_s/\tau}` simplifies); the others,
+the states and the inputs are real. :func:`solve_equilibrium` finds the equilibrium
+exactly when :math:`f` is affine in the states, by exact real-root isolation for one
+polynomial state (degree up to 12), else numerically (refusing none and several).
 
 >>> import sympy as sp
 >>> from symctl.design.ode import ODEModel
@@ -66,10 +51,7 @@ ROOT_TOL = 1e-9
 
 
 def exact_value(value, argname: str) -> sp.Expr:
-    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal.
-
-    ``0.1`` becomes 1/10 (the decimal a user wrote, which reads back as the same
-    float), as :class:`~symctl.design.plant.MuscleModel` does.
+    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal (0.1 -> 1/10).
 
     Parameters
     ----------
@@ -102,11 +84,7 @@ def exact_value(value, argname: str) -> sp.Expr:
 
 
 def parameter_symbol(name: str, value) -> sp.Symbol:
-    """The symbol of a parameter: positive when its value is, else real.
-
-    So that closed forms simplify as they should for the values given
-    (:math:`e^{-T_s/\tau}` needs :math:`\tau > 0`); model files and
-    :meth:`ODEModel.from_muscle` name their parameters this way.
+    """The symbol of a parameter: positive when its value is (so closed forms simplify), else real.
 
     >>> from symctl.design.ode import parameter_symbol
     >>> parameter_symbol("tau", 0.02).is_positive, parameter_symbol("c", -1).is_real
@@ -186,7 +164,7 @@ def solve_equilibrium(
     values : mapping of sympy.Symbol to number
         The parameter values (for the numeric search and the checks).
     guess : sequence of float, optional
-        Start of the numeric search (then the solution nearest it is taken).
+        Start of the numeric search (the solution nearest it is taken).
     argname : str
         Named in errors.
 
@@ -199,8 +177,7 @@ def solve_equilibrium(
     Raises
     ------
     ParameterError
-        No equilibrium, or several (the message lists some and asks for
-        ``equilibrium`` values or a ``guess``).
+        No equilibrium, or several (listed; give ``equilibrium`` values or a ``guess``).
 
     Examples
     --------
@@ -242,11 +219,8 @@ MAX_EXACT_DEGREE = 12
 
 
 def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
-    """The unique real root of a polynomial f(x) (exact coefficients), or None if f is not one.
-
-    The real roots are isolated exactly (:meth:`sympy.Poly.real_roots`), so that "none" and
-    "several" are proved, not sampled. A rational root is kept exactly; an irrational one
-    as the rational of its float (the method says so).
+    """The unique real root of a polynomial f(x), exactly isolated (none and several proved), or None
+    if f is not one; an irrational root as the rational of its float.
     """
     num, den = sp.fraction(sp.cancel(sp.together(f)))  # no common factor: num's roots are f's
     try:
@@ -342,16 +316,14 @@ class ODEModel(CachedState, LatexMixin):
     rhs : sequence of sympy expressions
         :math:`f`, one entry per state, in the states, inputs and parameters.
     params : mapping of sympy.Symbol to number
-        Every parameter with its value (kept exact: a float becomes the
-        rational of its shortest decimal, :func:`exact_value`).
+        Every parameter with its value (kept exact, :func:`exact_value`).
     x_eq : sequence, optional
         The states at the operating point (expressions in the parameters, or
         numbers); solved with :func:`solve_equilibrium` when omitted.
     u_eq : sequence, optional
         The inputs at the operating point (default 0).
     dt : float
-        The sampling time [s], > 0 (``Ts`` is its deprecated name, as a
-        keyword and as an attribute).
+        The sampling time [s], > 0 (``Ts``: deprecated).
     guess : sequence of float, optional
         Start of the numeric equilibrium search.
     name : str
@@ -367,9 +339,8 @@ class ODEModel(CachedState, LatexMixin):
     Raises
     ------
     ParameterError
-        A point that is not an equilibrium (``f`` provably nonzero there, or
-        numerically above 1e-9 of its scale), names that are not states,
-        inputs or parameters, or no or several equilibria.
+        A point that is not an equilibrium (provably, or above 1e-9 of the scale), unknown
+        names, or no or several equilibria.
     DimensionError, SymctlTypeError
         Sizes or types that do not fit.
 
@@ -482,10 +453,7 @@ class ODEModel(CachedState, LatexMixin):
         return Linearization(lin.a.applyfunc(_tidy), lin.b.applyfunc(_tidy), lin.residual)
 
     def linearize_symbolic(self) -> Linearization:
-        r"""The Jacobians :math:`a = \partial f/\partial x`, :math:`b = \partial f/\partial u`.
-
-        At the operating point, in the parameters' symbols.
-        """
+        r"""The Jacobians :math:`a = \partial f/\partial x`, :math:`b = \partial f/\partial u` there."""
         return self._linearization
 
     @cached_property
@@ -499,11 +467,8 @@ class ODEModel(CachedState, LatexMixin):
         return self._plant(A, B, S.T_s, self.x_eq, self.u_eq)
 
     def discrete_symbolic(self) -> DiscretePlant | None:
-        """The closed-form ZOH plant in symbols (one state and one input), else None.
-
-        Beyond one state the closed form of :math:`e^{a T_s}` is rarely worth
-        printing; :meth:`plant` then discretizes the numbers (exactly to float
-        precision, :func:`scipy.linalg.expm`).
+        """The closed-form ZOH plant in symbols for one state and one input, else None (:meth:`plant` then
+        discretizes the numbers with :func:`scipy.linalg.expm`).
         """
         return self._discrete
 

@@ -1,24 +1,12 @@
 r"""The plant: linearization, exact zero-order-hold discretization, the muscle model.
 
-The paper's muscle (section "Problem setup") is
-
-.. math:: \frac{df}{dt} = \frac{f_\text{max}}{\tau (1 + e^{-r})} - \frac{f}{\tau},
-
-linearized about :math:`(\bar f, \bar r)` with :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`
-and discretized with a zero-order hold of sampling time :math:`T_s`, which gives
-the scalar system :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)` of eq. (system).
-
-:func:`linearize` and :func:`discretize` are general (any vector ODE, any
-number of states and inputs); :class:`MuscleModel` applies them to the paper's
-muscle and keeps every parameter symbolic until numbers are asked for.
-
->>> from symctl import MuscleModel
->>> m = MuscleModel()
->>> m.discrete_symbolic().A[0, 0]
-exp(-T_s/tau)
->>> p = m.plant()
->>> round(float(p.A[0, 0]), 6), round(float(p.B[0, 0]), 6), round(m.f_bar, 4)
-(0.606531, 4.641646, 43.8635)
+The paper's muscle (section "Problem setup"),
+:math:`df/dt = f_\text{max}/(\tau (1 + e^{-r})) - f/\tau`, linearized about
+:math:`(\bar f, \bar r)`, :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, and discretized
+with a zero-order hold of sampling time :math:`T_s`, gives eq. (system),
+:math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)`. :func:`linearize` and
+:func:`discretize` take any vector ODE; :class:`MuscleModel` keeps every parameter
+symbolic until numbers are asked for.
 """
 
 from __future__ import annotations
@@ -56,11 +44,9 @@ __all__ = ["DiscretePlant", "Linearization", "MuscleModel", "discretize", "linea
 
 @dataclass(frozen=True)
 class Linearization(LatexMixin):
-    r"""Jacobians of :math:`\dot x = f(x, u)` at a point.
+    r"""Jacobians of :math:`\dot x = f(x, u)` at a point: :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
 
-    :math:`\dot{\delta x} = a\,\delta x + b\,\delta u`.
-
-    Unpacks as ``a, b = linearize(...)``. Compares and hashes by value.
+    Unpacks as ``a, b = linearize(...)``; compares and hashes by value.
 
     Attributes
     ----------
@@ -129,15 +115,13 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     Parameters
     ----------
     f : sequence of expressions (or one expression)
-        Right-hand side; text is parsed safely with the names in ``x`` and ``u``
-        and the paper's parameter symbols.
+        Right-hand side; text is read by the safe parser (names of ``x``, ``u``, the paper's).
     x, u : sequence of symbols (or names)
         State and input variables.
     x_eq, u_eq : sequence of values
         The operating point; may be symbolic.
     check_equilibrium : bool
-        Refuse a point where :math:`f \ne 0` provably (the linearization of an
-        ODE about a non-equilibrium point has a constant term this API drops).
+        Refuse a point where provably :math:`f \ne 0` (its constant term would be dropped).
 
     Returns
     -------
@@ -147,8 +131,7 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
     Raises
     ------
     DimensionError
-        ``f`` is not a vector with one entry per state, a point of the wrong size, or
-        no (or more than ``MAX_STATES``, 1000) states or inputs.
+        ``f`` not one entry per state, a point of the wrong size, no or over 1000 states or inputs.
     ParameterError
         Invalid or repeated symbol names, or (with ``check_equilibrium``) a
         point that is provably not an equilibrium.
@@ -204,10 +187,9 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     .. math::
         \exp\left(\begin{bmatrix} a & b \\ 0 & 0 \end{bmatrix} T_s\right)
         = \begin{bmatrix} A & B \\ 0 & I \end{bmatrix},
-        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b .
+        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b,
 
-    Symbolic matrices give the closed form (sympy's matrix exponential);
-    numeric ones go through :func:`scipy.linalg.expm`.
+    in closed form for symbolic matrices, by :func:`scipy.linalg.expm` for numeric ones.
 
     Parameters
     ----------
@@ -226,12 +208,10 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        ``a`` not square or empty (or above ``MAX_STATES``, 1000, states), ``b``
-        with another number of rows, or a symbolic system with more than
-        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
+        ``a`` not square, empty or over 1000 states; ``b`` with other rows; a symbolic
+        system of more than ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
     ParameterError
-        A numeric ``dt <= 0``, non-finite entries, or numeric ``a dt`` whose
-        exponential overflows (``discretize([[800]], [[1]], 1)``).
+        A numeric ``dt <= 0``, non-finite entries, or an overflowing :math:`e^{a\,dt}`.
 
     Examples
     --------
@@ -288,12 +268,8 @@ def _expm(block: np.ndarray, expm) -> np.ndarray:
 class DiscretePlant(LatexMixin):
     r"""A discrete-time linear plant :math:`x(t+1) = A x(t) + B u(t)`.
 
-    ``A`` (n x n) and ``B`` (n x m) are sympy matrices, exact or symbolic.
-    ``dt`` is the sampling time (a number, a symbol, or ``None`` when unknown;
-    ``Ts`` is its deprecated name, as a keyword and as an attribute).
-    ``state_names``/``input_names`` label the signals (the muscle's are
-    ``delta_f`` and ``delta_r``); ``x_eq``/``u_eq`` record the operating point
-    of a linearized plant. It compares and hashes by value (``params`` aside).
+    ``A``, ``B`` are exact or symbolic sympy matrices; ``Ts`` is the deprecated name of ``dt``
+    (keyword and attribute). Compares and hashes by value (``params`` aside).
 
     Parameters
     ----------
@@ -302,11 +278,11 @@ class DiscretePlant(LatexMixin):
     dt : number, symbol or None
         Sampling time, > 0 when a number.
     state_names, input_names : tuple of str, optional
-        Default ``x`` (``x_1, x_2, ...``) and ``u``.
+        Default ``x`` (``x_1, x_2, ...``) and ``u`` (the muscle's: ``delta_f``, ``delta_r``).
     x_eq, u_eq : matrix-like, optional
         The operating point of a linearized plant.
     params : mapping, optional
-        The model parameters it came from, for records; kept as a read-only mapping.
+        The model parameters it came from (read-only, for records).
 
     Raises
     ------
@@ -438,32 +414,22 @@ def _muscle_discrete() -> DiscretePlant:
 class MuscleModel(LatexMixin):
     r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`.
 
-    Parameters default to the paper's (section "Simulations"): ``tau = 0.02`` s,
-    ``f_max = 60`` N, ``r_bar = 1`` spike/s, ``dt = 0.01`` s (``Ts`` is the deprecated name of
-    ``dt``, as a keyword and as an attribute).
-
     The derivation is symbolic (:meth:`linearize_symbolic`, :meth:`discrete_symbolic`);
-    :meth:`plant` substitutes the numbers and returns an exact
-    :class:`DiscretePlant` (e.g. ``A = exp(-1/2)``).
+    :meth:`plant` substitutes the numbers exactly (e.g. ``A = exp(-1/2)``). The admissible
+    ranges keep every number finite: ``tau``, ``f_max``, ``dt`` in ``[1e-100, 1e100]``,
+    :math:`|\bar r| \le 700`, :math:`10^{-6} \le T_s/\tau \le 700` (``TS_TAU_MIN``,
+    ``MAX_EXPONENT``). ``Ts`` is the deprecated name of ``dt``.
 
     Parameters
     ----------
     tau : float
-        Muscle time constant [s], > 0.
+        Muscle time constant [s], > 0 (the paper's 0.02).
     f_max : float
-        Maximum force [N], > 0.
+        Maximum force [N], > 0 (60).
     r_bar : float
-        Equilibrium firing rate [spikes/s].
+        Equilibrium firing rate [spikes/s] (1).
     dt : float
-        Sampling time [s], > 0.
-
-    Notes
-    -----
-    The admissible ranges keep every number of the derivation finite:
-    ``tau``, ``f_max`` and ``dt`` in ``[1e-100, 1e100]`` (``MAX_MAGNITUDE``),
-    :math:`|\bar r| \le 700` and :math:`10^{-6} \le T_s/\tau \le 700`
-    (``TS_TAU_MIN``, ``MAX_EXPONENT``: beyond, :math:`e^{-T_s/\tau}` underflows
-    and the nonlinear check integrates an ODE over more than 700 time constants).
+        Sampling time [s], > 0 (0.01).
 
     Raises
     ------

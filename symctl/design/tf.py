@@ -1,18 +1,8 @@
 r"""Discrete transfer functions in closed form: the type :class:`DiscreteTF`.
 
-:class:`DiscreteTF` is symctl's transfer-function type: an immutable pair of a
-numerator matrix of polynomials in :math:`z` and one common, monic denominator
-polynomial, exact or symbolic. SISO objects behave like a scalar. It compares
-and hashes by value (numerator, denominator and sampling time, structurally).
-The optimal delayed controller :math:`G(z)` built from it lives in
-:mod:`symctl.design.controller`.
-
->>> from symctl import DiscreteTF, z
->>> G = DiscreteTF.from_expr(3 / (z**2 - z / 2))
->>> G.expr
-3/(z**2 - z/2)
->>> G.relative_degree, G == DiscreteTF.from_expr(6 / (2 * z**2 - z))
-(2, True)
+An immutable numerator matrix of polynomials in :math:`z` over one common monic
+denominator, exact or symbolic; SISO objects behave like a scalar. The optimal delayed
+controller :math:`G(z)` lives in :mod:`symctl.design.controller`.
 """
 
 from __future__ import annotations
@@ -83,6 +73,10 @@ def _replaced(expr, rule, flags: dict):
 class DiscreteTF(LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` in the symbol :data:`symctl.z`.
 
+    Use :meth:`from_expr` for any rational expression (lowest terms). ``==`` (and the hash)
+    compares numerator, denominator and ``dt`` structurally; :meth:`equals` compares them as
+    rational functions.
+
     Parameters
     ----------
     num : sympy Matrix or expression
@@ -91,13 +85,6 @@ class DiscreteTF(LatexMixin):
         Common denominator polynomial in ``z``; it is made monic.
     dt : number, symbol or None
         Sampling time, kept for conversions (``None``: unspecified).
-
-    Notes
-    -----
-    Use :meth:`from_expr` for any rational expression. ``num`` and ``den`` are
-    stored in lowest terms only when built by :meth:`from_expr`. Two objects
-    are ``==`` (and hash alike) when numerator, denominator and ``dt`` are
-    structurally the same; :meth:`equals` decides equality as rational functions.
 
     Raises
     ------
@@ -157,7 +144,6 @@ class DiscreteTF(LatexMixin):
     def __hash__(self) -> int:
         return hash((DiscreteTF, self._num, self.den, self.dt))
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def from_expr(cls, expr, dt=None) -> DiscreteTF:
         """From a rational expression (or matrix of them) in ``z``, in lowest terms.
@@ -185,7 +171,6 @@ class DiscreteTF(LatexMixin):
         nums = [n_ if d_ == den else sp.quo(n_ * den, d_, z) for n_, d_ in fractions]
         return cls(sp.Matrix(entries.shape[0], entries.shape[1], nums), den, dt)
 
-    # ------------------------------------------------------------ views
     @property
     def shape(self) -> tuple[int, int]:
         """``(outputs, inputs)``."""
@@ -241,13 +226,8 @@ class DiscreteTF(LatexMixin):
         """Coefficients of the denominator in descending powers of ``z`` (monic)."""
         return z_poly(self.den).all_coeffs()
 
-    # ------------------------------------------------------------ algebra
     def subs(self, *args, **kwargs) -> DiscreteTF:
-        """Substitute symbols (as :meth:`sympy.Basic.subs`); ``z`` must stay free.
-
-        Keys are symbols or their names, values numbers, sympy objects or text
-        (read by the safe parser): :func:`symctl._util.validate.subs_rule`.
-        """
+        """Substitute symbols (as :meth:`sympy.Basic.subs`, text by the safe parser); ``z`` stays free."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
         dt = None if self.dt is None else _replaced(self.dt, rule, flags)
         return DiscreteTF(_replaced(self._num, rule, flags), _replaced(self.den, rule, flags), dt)
@@ -278,13 +258,8 @@ class DiscreteTF(LatexMixin):
 
     __rmul__ = __mul__
 
-    # ------------------------------------------------------------ numbers
     def markov(self, count: int) -> list[sp.Matrix]:
-        r"""The first ``count`` Markov parameters :math:`h_k` of :math:`G = \sum_k h_k z^{-k}`.
-
-        Exact (symbolic entries stay symbolic). For a strictly proper ``G``
-        these are the impulse response; :math:`h_0` is the feed-through.
-        Requires a proper ``G``.
+        r"""The first ``count`` Markov parameters :math:`h_k` of a proper :math:`G = \sum_k h_k z^{-k}`.
 
         >>> from symctl import DiscreteTF, z
         >>> [h[0] for h in DiscreteTF.from_expr(1 / (z - 2)).markov(4)]
@@ -311,16 +286,12 @@ class DiscreteTF(LatexMixin):
         return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)
 
     def impulse_response(self, steps: int) -> np.ndarray:
-        """Numeric impulse response, shape ``(steps, outputs, inputs)``; needs numbers.
-
-        The Markov parameters (:meth:`markov`) in floating point, by the
-        denominator's recurrence, for at most ``MAX_STEPS`` (10**6) steps.
+        """Numeric impulse response ``(steps, outputs, inputs)``: :meth:`markov` in floats (``MAX_STEPS``).
 
         Raises
         ------
         ParameterError
-            Free symbols, an improper ``G``, ``steps`` outside ``[0, MAX_STEPS]``,
-            or a response that overflows (an unstable ``G`` over too many ``steps``).
+            Free symbols, an improper ``G``, bad ``steps``, or an overflowing response.
 
         >>> from symctl import DiscreteTF, z
         >>> DiscreteTF.from_expr(1 / (z - 2)).impulse_response(4)[:, 0, 0]
@@ -390,7 +361,6 @@ class DiscreteTF(LatexMixin):
         coeffs = self._floats(self.den_coeffs(), complex, "poles need coefficients")
         return np.roots(coeffs)
 
-    # ------------------------------------------------------------ interop
     def to_control(self):
         """As a ``control.TransferFunction`` with ``dt`` kept (numbers only)."""
         from symctl.interop import tf_to_control
@@ -430,7 +400,6 @@ class DiscreteTF(LatexMixin):
 
         return tf_from_scipy(sys)
 
-    # ------------------------------------------------------------ display
     def latex(self) -> str:
         r"""LaTeX in the paper's style: a constant factor pulled out, descending powers of z.
 

@@ -1,33 +1,20 @@
-r"""Fitting a circuit to recorded firing rates: :func:`fit` and :func:`identifiability`.
+r"""Fitting a circuit to recorded firing rates: :func:`fit`.
 
-The paper's closing remark: "if we have data from the biological neuron(s), we
-can tune the controller circuit to match this data while preserving the
-model's match to behavioral observations". Every realization in the family
-(:math:`\epsilon`, :math:`C`, the similarity :math:`P`, the circuit class)
-implements the same :math:`G` *exactly*, so the force and the motor-neuron
-rate, the behaviour, cannot drift while the neurons are fitted: the fit moves
-only inside the set of circuits that are the optimal controller.
+The paper's closing remark: "if we have data from the biological neuron(s), we can tune
+the controller circuit to match this data while preserving the model's match to
+behavioral observations". Every realization in the family (:math:`\epsilon`, :math:`C`,
+the similarity :math:`P`, the class) implements the same :math:`G` *exactly*, so the fit
+moves only inside the set of circuits that are the optimal controller.
 
-Method. The loop's :math:`\delta_f` is computed once
-(:func:`~symctl.neural.simulate.closed_loop_response`); each neuron's trace is a
-linear filter of it (:mod:`symctl.fitting.fitmodel`), with exact Jacobians by
-forward sensitivity. :func:`scipy.optimize.least_squares` (trust-region
-reflective, :math:`|\epsilon| < 1` as bounds) minimises the sum over recorded
-neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
-starting points; for the general class each start's :math:`P^{-1}` rows of
-recorded neurons are first solved by linear least squares (they enter
-linearly). Dale's-law ``signs`` add penalty residuals on the outgoing weights
-and are checked exactly on the final circuit. The fitted values are rounded to
-rationals (denominators at most ``10**6``), the exact realization is built and
-:func:`~symctl.realization.check.check_realization` proves that it realizes
-:math:`G`.
-
-Identifiability. With :math:`J` the weighted Jacobian of the recorded traces,
-a parameter is identifiable iff its unit vector lies in the row space of
-:math:`J`, a neuron's prediction iff its sensitivity rows do (to ``1e-6``,
-relative); the rank of :math:`J` per neuron set is :func:`identifiability`.
-Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}` with
-:math:`\hat\sigma^2 = \mathrm{RSS}/(m - \mathrm{rank})`.
+Method. Each neuron's trace is a linear filter of the loop's :math:`\delta_f`, computed
+once (:mod:`symctl.fitting.fitmodel`, exact Jacobians). Least squares minimises the sum
+over recorded neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
+points (for the general class each start's :math:`P^{-1}` rows of recorded neurons solved
+linearly first); Dale's-law ``signs`` add penalty residuals and are checked exactly at
+the end. The values are rounded to rationals (denominators at most ``10**6``), the exact
+realization is built and :func:`~symctl.realization.check.check_realization` proves it.
+Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
+= \mathrm{RSS}/(m - \mathrm{rank})` (identifiability: :mod:`symctl.fitting.identify`).
 """
 
 from __future__ import annotations
@@ -60,7 +47,7 @@ from symctl.fitting.fitargs import (
     _traces,
     _window,
 )
-from symctl.fitting.fitmodel import TraceModel, renamed_param
+from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.fitting.identify import _verdicts
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
@@ -77,7 +64,6 @@ _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot
 _EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
 
 
-# ---------------------------------------------------------------- the problem
 @dataclass(frozen=True)
 class _Problem:
     """Everything a worker needs to run starts (plain, picklable data)."""
@@ -165,7 +151,7 @@ def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> lis
     for _ in range(starts):
         eps = gen.uniform(-0.9, 0.9, k)
         theta = np.concatenate([eps, np.ones(k) if model.C is None else []])
-        if model.circuit == "general":
+        if transformed(model.circuit):
             n = model.order
             Q = gen.normal(size=(n, n))  # either orientation: det Q < 0 and > 0 are not
             while np.linalg.cond(Q) > 20:  # connected through invertible Q
@@ -181,12 +167,8 @@ def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> lis
 
 
 def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray]]:
-    """Least squares from each start: ``[(cost, theta), ...]`` (a worker's chunk).
-
-    The epsilons are optimised as :math:`\\epsilon = 0.999 \\tanh\\phi` (stable sections
-    without bounds), so MINPACK's Levenberg-Marquardt (``method="lm"``, a QR per
-    step) runs instead of the bounded trust region (an SVD per step, 5-20 times
-    slower here).
+    r"""Least squares from each start: ``[(cost, theta), ...]``. Epsilons as :math:`0.999 \tanh\phi`
+    (stable without bounds), so MINPACK's Levenberg-Marquardt runs (5-20x the trust region's speed).
     """
     model = problem.model()
     both = _residual_fns(problem, model)
@@ -224,9 +206,6 @@ def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray
     return out
 
 
-# ---------------------------------------------------------------- results
-
-
 @dataclass(frozen=True, eq=False)
 class FitResult(ArrayValue):
     r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
@@ -242,9 +221,8 @@ class FitResult(ArrayValue):
     circuit_class : str
         ``"general"``, ``"controllable"``, ``"observable"`` or an atlas label.
     params : mapping of str to sympy.Rational
-        The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, the
-        entries of :math:`P^{-1}`, ...); ``P`` is ``realization_G2.params["P"]``.
-        The old names ``Q[i,j]`` still work, with a ``DeprecationWarning``.
+        The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, ...; the old
+        ``Q[i,j]`` warn); ``P`` is ``realization_G2.params["P"]``.
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
     identifiable : mapping of str to bool
@@ -258,18 +236,15 @@ class FitResult(ArrayValue):
     t : array
         Time of each sample.
     proof : RealizationCheck
-        :func:`~symctl.realization.check.check_realization` of ``realization``
-        against :math:`G`: exact.
+        The exact :func:`~symctl.realization.check.check_realization` against :math:`G`.
     cost : float
         Half the sum of squared weighted residuals at the exact values.
     starts : int
         Starting points tried.
     alternatives : tuple of (str, float)
-        ``(class, cost)`` of every class fitted, best first (one row unless
-        ``circuit`` listed several).
+        ``(class, cost)`` of every class fitted, best first.
     skipped : tuple of (str, str)
-        ``(class, reason)`` of the classes of a list that could not take the data
-        (a recorded neuron they lack, no closed-form realization).
+        ``(class, reason)`` of the listed classes that could not take the data.
 
     Examples
     --------
@@ -370,9 +345,6 @@ class FitResult(ArrayValue):
         return fit_plot(self)
 
 
-# ---------------------------------------------------------------- the functions
-
-
 @rng_argument()
 def fit(
     traces: Mapping,
@@ -395,9 +367,8 @@ def fit(
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
-    Every candidate circuit implements :math:`G` exactly, so the fit changes
-    the neurons and never the behaviour (the force and rate traces stay the
-    optimal controller's). See :mod:`symctl.fitting.fit` for the method.
+    Every candidate implements :math:`G` exactly: the fit changes the neurons, never the
+    behaviour (method: :mod:`symctl.fitting.fit`).
 
     Parameters
     ----------
@@ -411,20 +382,17 @@ def fit(
     sensor_delay, actuator_delay : int
         Sections of :math:`G_1` and :math:`G_3`.
     circuit : str, CircuitClass or list of them, default "general"
-        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"``, an
-        atlas class of order 2 (``"A1"``... or a
-        :class:`~symctl.circuitatlas.circuitclass.CircuitClass`) with a closed form; a
-        list fits each and keeps the best, skipping (``skipped``) the classes that
-        cannot take the data; ``"all"`` is the three and the atlas's closed-form
-        classes.
+        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"`` or an
+        order-2 atlas class with a closed form (``"A1"``, ... or a CircuitClass); a list
+        fits each and keeps the best (``skipped``: those that cannot take the data);
+        ``"all"``: the three and the atlas's closed-form classes.
     disturbance, steps, start, length
         As in :func:`~symctl.neural.simulate.closed_loop_response` (default the
         unit pulse on steps 5..14 of 50).
     plant : optional
         The plant, required for a DiscreteTF ``G``.
     C : number, optional
-        Fix every section gain to this value (the paper's figures use 1); by
-        default they are fitted.
+        Fix every section gain to this value (the paper's figures use 1); else fitted.
     signs : mapping of str to {"+", "-"}, optional
         Dale's law: every outgoing synapse of the neuron has this sign.
     starts : int
@@ -432,8 +400,8 @@ def fit(
     rng : int, numpy Generator or None, default 0
         Seeds the starts (``seed=`` is its deprecated name).
     workers : int, scheduler : str, optional
-        Run the starts (and classes) on the atlas's dask path: local processes, or
-        a running dask.distributed scheduler's address.
+        Run the starts (and classes) on the atlas's dask path (local processes, or a
+        scheduler's address).
 
     Returns
     -------

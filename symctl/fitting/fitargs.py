@@ -20,9 +20,10 @@ from symctl.compatibility.structure import Structure
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.fitting.fitmodel import TraceModel, fixed_classes
+from symctl.fitting.fitmodel import TraceModel
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import closed_loop_response
+from symctl.realization.realizers import circuit_names
 
 __all__: list[str] = []
 
@@ -142,8 +143,8 @@ def _circuit_arg(circuit) -> list:
 
 
 def _named() -> tuple[str, ...]:
-    """The classes named by a word: the general one (its transform fitted) and the fixed forms."""
-    return ("general", *fixed_classes())
+    """The classes named by a word: the registry's circuits of G2 (a transform fitted, or fixed)."""
+    return circuit_names(whole=False)
 
 
 def _one_class(circuit, what: str):

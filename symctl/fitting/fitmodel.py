@@ -1,44 +1,15 @@
 r"""The trace model of :func:`symctl.fit`: every neuron's firing as a function of the parameters.
 
-Every realization in the family implements the same controller :math:`G`
-exactly, so the closed loop (the force :math:`\delta_f` and the rate
-:math:`\delta_r`) is the optimal controller's whatever the parameters are. The
-loop's :math:`\delta_f` is computed once; each neuron's trace is then a linear
-filter of it, whose coefficients are the parameters
-:math:`\theta = (\epsilon, C, P^{-1})`:
-
-* the sensor sections (:math:`G_1`, neurons ``G1.x1`` or ``G1.k.x1``):
-  :math:`s_k(t+1) = \epsilon_k s_k(t) + C_k s_{k-1}(t)`, :math:`s_0 = \delta_f`;
-* the states of :math:`G_2` (neurons ``G2.xi``): every minimal realization of
-  :math:`G_2` has a state :math:`x = T x_c`, :math:`x_c` the controllable canonical
-  state driven by :math:`y_1 = s_{d_s}` (its matrices :math:`F_0, H_0` depend only
-  on the gains). For the general class :math:`T = P^{-1}` is free (its entries
-  ``Pinv[i,j]``); for a
-  class with a fixed pattern (the canonical forms, the atlas's closed-form
-  classes) :math:`T(\epsilon, C) = \mathcal{C}(\epsilon, C)\,\mathcal{C}_0^{-1}`,
-  the ratio of the controllability matrices, built once symbolically and
-  lambdified;
-* the output neuron ``G2.y`` :math:`= M_0(\epsilon, C) x_c + N(\epsilon, C) y_1`
-  (invariant under the similarity);
-* the actuator sections (:math:`G_3`, neurons ``G3.x1`` or ``G3.k.x1``), fed by
-  ``G2.y``; the last one is :math:`\delta_r` itself.
-
-Derivatives are exact (forward sensitivities): the derivative of a linear filter
-with respect to its pole is the filter applied to its own output, and with
-respect to anything upstream it is the filter applied to the upstream derivative.
-:meth:`TraceModel.traces` returns every neuron's trace and its Jacobian
-``(steps, parameters)``.
-
->>> import numpy as np
->>> from symctl import MuscleModel, augment, controller_tf, lqr_gains
->>> from symctl.fitting.fitmodel import TraceModel
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
->>> m = TraceModel.build(G, 1, 1, "general")
->>> m.names
-('epsilon_1', 'epsilon_3', 'C_1', 'C_3', 'Pinv[1,1]', 'Pinv[1,2]', 'Pinv[2,1]', 'Pinv[2,2]')
->>> m.neurons
-('G1.x1', 'G2.x1', 'G2.x2', 'G2.y', 'G3.x1')
+The loop's :math:`\delta_f` is the same for every realization of :math:`G`, computed once;
+each neuron's trace is a linear filter of it, with coefficients :math:`\theta = (\epsilon,
+C, P^{-1})`: the sensor sections :math:`s_k(t+1) = \epsilon_k s_k(t) + C_k s_{k-1}(t)`,
+:math:`s_0 = \delta_f`; the states of :math:`G_2`, :math:`x = T x_c` with :math:`x_c` the
+controllable canonical state driven by :math:`s_{d_s}` (:math:`T = P^{-1}` free for the
+general class, entries ``Pinv[i,j]``; for a fixed pattern :math:`T(\epsilon, C) =
+\mathcal{C}(\epsilon, C)\,\mathcal{C}_0^{-1}`, the controllability matrices' ratio,
+lambdified once); the output ``G2.y`` :math:`= M_0 x_c + N y_1` (similarity-invariant);
+the actuator sections, fed by ``G2.y``. Derivatives are exact forward sensitivities (a
+filter's derivative in its pole is the filter applied to its own output).
 """
 
 from __future__ import annotations
@@ -68,6 +39,11 @@ def fixed_classes() -> tuple[str, ...]:
     ('controllable', 'observable')
     """
     return tuple(k for k in circuit_names(whole=False) if not REALIZERS[k].takes_transform)
+
+
+def transformed(circuit) -> bool:
+    """Whether ``circuit`` names a realizer with a free similarity transform (``"general"``)."""
+    return isinstance(circuit, str) and circuit in REALIZERS and REALIZERS[circuit].takes_transform
 
 
 def __getattr__(name: str):
@@ -111,16 +87,14 @@ def _ctrb(R: Realization) -> sp.Matrix:
 
 @dataclass(frozen=True, eq=False)
 class TraceModel:
-    r"""Every neuron's trace, and its exact Jacobian, as a function of :math:`\theta`.
-
-    Built by :meth:`build`; ``names`` are the parameters in order (epsilons,
-    then Cs unless fixed, then ``Q`` row-major for the general class).
+    r"""Every neuron's trace, and its exact Jacobian, as a function of :math:`\theta` (by :meth:`build`;
+    ``names``: epsilons, Cs unless fixed, then ``Pinv`` row-major for the general class).
     """
 
     G: DiscreteTF
     sensor_delay: int
     actuator_delay: int
-    circuit: object  # "general", a FIXED_CLASSES name, or a CircuitClass
+    circuit: object  # a realizer's name (see transformed) or a CircuitClass
     C: float | None  # every C fixed to this value, or None (fitted)
     names: tuple[str, ...]
     neurons: tuple[str, ...]
@@ -128,9 +102,8 @@ class TraceModel:
     F0: np.ndarray
     H0: np.ndarray
     _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
-    _T: object  # lambdified T and its gradient over (eps, C); None for "general"
+    _T: object  # lambdified T and its gradient over (eps, C); None when transformed
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
         """The model of ``G`` with ``ds`` sensor and ``da`` actuator sections in ``circuit``."""
@@ -148,7 +121,7 @@ class TraceModel:
         M0 = base.M.subs(fixed)
         N = sp.Matrix([[base.N[0, 0]]]).subs(fixed)
         mn = _lambdified(sp.Matrix.vstack(M0.T, N), free)
-        if circuit == "general":
+        if transformed(circuit):
             T = None
             qnames = tuple(f"Pinv[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
         else:
@@ -182,10 +155,9 @@ class TraceModel:
         else:
             cs = np.full(k, float(self.C))
             rest = theta[k:]
-        Q = rest.reshape(self.order, self.order) if self.circuit == "general" else None
+        Q = rest.reshape(self.order, self.order) if transformed(self.circuit) else None
         return eps, cs, Q
 
-    # ------------------------------------------------------------ the traces
     def traces(self, theta: np.ndarray, u: np.ndarray) -> tuple[dict, dict]:
         """``({neuron: (steps,)}, {neuron: (steps, p)})``: traces and Jacobians, driven by ``u``."""
         theta = np.asarray(theta, dtype=float)
@@ -239,15 +211,14 @@ class TraceModel:
         chain("G3", ds, self.actuator_delay, y2, dy2)
         return vals, jacs
 
-    # ------------------------------------------------------------ exact realization
     def factorization(self, eps, cs) -> Factorization:
         """The exact factors at rational ``eps`` and ``cs``."""
         return factor(self.G, self.sensor_delay, self.actuator_delay, eps=list(eps), C=list(cs))
 
     def realize(self, fs: Factorization, Q=None) -> Realization:
         """The exact realization of ``fs.G2`` in the model's class (``Q`` = :math:`P^{-1}`)."""
-        if self.circuit == "general":
-            return get_realizer("general")(fs.G2, P=sp.Matrix(Q).inv()).realization
+        if transformed(self.circuit):
+            return get_realizer(self.circuit)(fs.G2, P=sp.Matrix(Q).inv()).realization
         return _symbolic_realization(self.circuit, fs.G2, self.order)
 
 

@@ -20,7 +20,7 @@ from symctl._util.serial import DictMixin
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.fitting.fitmodel import TraceModel, renamed_param
+from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 
 __all__ = ["Identifiability", "identifiability"]
@@ -30,10 +30,8 @@ _SPAN_RTOL = 1e-6
 
 
 def _spans(S: np.ndarray, V: np.ndarray, scale: float = 0.0) -> bool:
-    """Whether the rows of ``S`` lie in the span of the orthonormal rows of ``V``.
-
-    Below ``1e-9 * scale`` (the largest sensitivity of any neuron) ``S`` is zero: an
-    invariant trace such as :math:`\\delta_r` is known whatever the data.
+    r"""Whether the rows of ``S`` lie in the span of the orthonormal rows of ``V`` (``S`` below
+    ``1e-9 * scale`` is zero: an invariant trace such as :math:`\delta_r` is always known).
     """
     size = float(np.linalg.norm(S))
     if size <= 1e-9 * scale:
@@ -115,10 +113,7 @@ def identifiability(
 ) -> tuple[Identifiability, ...]:
     r"""Which parameters, and which neurons' traces, each set of recorded neurons pins down.
 
-    The answer is the rank of the sensitivity of the recorded traces to the
-    parameters, at a generic point (seeded random epsilons, Cs and :math:`P^{-1}`):
-    a parameter is identifiable iff its unit vector lies in the row space, an
-    unrecorded neuron iff its sensitivity does.
+    At a generic point (seeded random epsilons, Cs and :math:`P^{-1}`; see the module text).
 
     Parameters
     ----------
@@ -166,7 +161,7 @@ def identifiability(
     theta = [gen.uniform(-0.8, 0.8, k)]
     if C is None:
         theta.append(gen.uniform(0.5, 2.0, k))
-    if model.circuit == "general":
+    if transformed(model.circuit):
         theta.append((np.eye(model.order) + 0.3 * gen.normal(size=(model.order,) * 2)).ravel())
     theta = np.concatenate(theta)
     vals, jacs = model.traces(theta, u)

@@ -1,25 +1,13 @@
 r"""Recorded firing-rate traces: the data :func:`symctl.fit` takes, read from CSV or NPZ.
 
-The format (``docs/fitting.md``): a time column ``t`` (uniform steps of the
-plant's sampling time, starting at 0), optionally a column ``disturbance`` (the
-force disturbance of each step, :math:`w(t)` of
-:func:`~symctl.neural.simulate.closed_loop_response`; without it the default
-unit pulse), and one column per recorded neuron, named as
-:attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>` names them
-(``G1.x1``, ``G2.x1``, ``G2.y``, ...), holding its change of firing rate from
-equilibrium [spikes/s]. A CSV may start with ``# key: value`` comment lines;
-``circuit``, ``sensor_delay`` and ``actuator_delay`` there are the defaults of
-``symctl fit``, the others are kept as text. An NPZ holds the same columns as
-arrays and the same keys as 0-d string arrays. Nothing read is ever evaluated.
-
-:func:`synthetic_traces` simulates a hidden random realization (with noise), the
-validation data of ``benchmarks/fit.py``.
-
->>> from symctl import MuscleModel, augment, lqr_gains, synthetic_traces
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, steps=20)
->>> data.neurons, data.t.shape
-(('G1.x1', 'G2.x1', 'G2.x2', 'G2.y', 'G3.x1'), (20,))
+The format (``docs/fitting.md``): a time column ``t`` (uniform steps of the plant's
+sampling time from 0), optionally ``disturbance`` (the force disturbance per step; else
+the default unit pulse), and one column per recorded neuron, named as
+:attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>` names them, holding its
+firing-rate change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
+``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the
+same as arrays and 0-d string arrays. Nothing read is evaluated. :func:`synthetic_traces`
+simulates a hidden random realization, with noise.
 """
 
 from __future__ import annotations
@@ -56,13 +44,13 @@ class Traces(ArrayValue, DictMixin):
     t : (steps,) array
         Time of each sample.
     traces : mapping of str to (steps,) array
-        Per neuron, its change of firing rate from equilibrium.
+        Per neuron, its firing-rate change.
     disturbance : (steps,) array or None
         The force disturbance per step (None: the default unit pulse).
     meta : mapping of str to str
-        The file's ``key: value`` lines (``circuit``, ``sensor_delay``, ...).
+        The file's ``key: value`` lines.
     hidden : mapping of str to sympy.Rational
-        For :func:`synthetic_traces`, the hidden parameters (empty for data read).
+        The hidden parameters of :func:`synthetic_traces` (empty for data read).
 
     Examples
     --------
@@ -149,7 +137,7 @@ def read_traces(path) -> Traces:
     Parameters
     ----------
     path : str or Path
-        A ``.csv`` or ``.npz`` file of at most 64 MiB.
+        A ``.csv`` or ``.npz`` file (at most 64 MiB).
 
     Returns
     -------
@@ -158,8 +146,8 @@ def read_traces(path) -> Traces:
     Raises
     ------
     ParameterError
-        A missing or unreadable file, another suffix, no ``t`` column, no neuron
-        column, a value that is not a number, NaN, uneven time steps.
+        An unreadable file or suffix, no ``t`` or neuron column, a non-number, NaN,
+        uneven time steps.
     DimensionError
         Columns of different lengths.
 
@@ -275,11 +263,9 @@ def synthetic_traces(
 ) -> Traces:
     r"""Every neuron's trace in a hidden random realization of ``G``, with noise.
 
-    The paper's recipe (:func:`~symctl.neural.firing.circuit_firing`):
-    :math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`, every
-    :math:`C` equal to ``C``, and for the general class a random well-conditioned
-    rational :math:`P`. Gaussian noise of standard deviation ``noise`` times
-    each trace's RMS is added (seeded).
+    The paper's recipe (:math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`,
+    every :math:`C` = ``C``, a random well-conditioned rational :math:`P` for the general
+    class), plus seeded Gaussian noise of ``noise`` times each trace's RMS.
 
     Parameters
     ----------
@@ -306,7 +292,7 @@ def synthetic_traces(
     (['C_1', 'C_3'], 'general')
     """
     from symctl.fitting.fitargs import _circuit_neurons, _label, _loop, _one_class, _window
-    from symctl.fitting.fitmodel import TraceModel
+    from symctl.fitting.fitmodel import TraceModel, transformed
     from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START, _signal
     from symctl.realization.realizers import random_full_rank
 
@@ -327,7 +313,7 @@ def synthetic_traces(
     hidden = {str(n): v for n, v in zip(model.names[:k], eps, strict=True)}
     hidden.update({n: v for n, v in zip(model.names[k : 2 * k], cs, strict=True)})
     theta = [float(v) for v in (*eps, *cs)]
-    if model.circuit == "general":
+    if transformed(model.circuit):
         Q = random_full_rank(model.order, gen).inv()
         hidden.update({n: v for n, v in zip(model.names[2 * k :], Q, strict=True)})
         theta += [float(v) for v in Q]

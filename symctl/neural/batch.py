@@ -1,24 +1,9 @@
 r"""Many closed loops at once: the plant around a stack of realizations, vectorized in NumPy.
 
-:func:`simulate_batch` closes the plant with ``R`` realizations
-:math:`(F_r, H_r, M_r, N_r)` of the controller at once, e.g. the paper's
-:math:`G_3 G_2 G_1` for many random :math:`\epsilon_1, \epsilon_3` and similarity
-transforms (``benchmarks/simulate.py``: :math:`10^5` loops of 500 steps). The time
-steps are those of :mod:`symctl.neural.simulate` (one loop over time for every
-simulation); this module adds the chunking (blocks of at most 32768 loops, on
-every core), the stability test of many loops (exact eigenvalues up to 2000 loops,
-the Schur-Cohn test on the characteristic polynomials, from Newton's identities,
-above) and bounded memory: the caller chooses the traces to keep, or only their
-peaks (``keep=``), or streams the loops in chunks (``chunk=``), and outputs over
-``MAX_OUTPUT_BYTES`` in one piece are refused before any work.
-
->>> import numpy as np
->>> from symctl import MuscleModel, simulate_batch
->>> gain = np.array([-0.01, -0.05]).reshape(2, 1, 1)
->>> out = simulate_batch(MuscleModel(), np.zeros((2, 1, 1)), gain, np.ones((2, 1, 1)),
-...                      np.zeros((2, 1, 1)))
->>> out.delta_r.shape
-(2, 50, 1)
+:func:`simulate_batch` closes the plant with ``R`` realizations :math:`(F_r, H_r, M_r,
+N_r)` at once (``benchmarks/simulate.py``: :math:`10^5` loops of 500 steps) through the
+time loop of :mod:`symctl.neural.simulate`, adding chunking, the stability test of many
+loops and bounded memory.
 """
 
 from __future__ import annotations
@@ -69,14 +54,14 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 class BatchResponse(ArrayValue, DictMixin):
     """Traces of many closed loops at once (see :func:`simulate_batch`).
 
+    The arrays are read-only and may be non-contiguous views of one time-major buffer.
+
     Attributes
     ----------
     t : (steps,) array
         Time in seconds (in steps when the plant has no ``dt``).
-    delta_f : (R, steps, n) array or None
-        Each loop's plant state change (None when not kept).
-    delta_r : (R, steps, m) array or None
-        Each loop's motor-neuron rate change (None when not kept).
+    delta_f, delta_r : (R, steps, n), (R, steps, m) arrays or None
+        Each loop's plant state and motor-neuron rate changes (None when not kept).
     states : (R, steps, nc) array or None
         The controller states, when asked for.
     stability_checked : bool
@@ -86,9 +71,6 @@ class BatchResponse(ArrayValue, DictMixin):
         ``keep=("peak_delta_r", ...)``, by trace name (``"delta_r"``); empty by default.
     first : int
         The index of the first loop here among all of them (``chunk=``; 0 otherwise).
-
-    The arrays are read-only and may be non-contiguous views of one time-major
-    buffer (no copy is made).
 
     Examples
     --------
@@ -118,14 +100,11 @@ class BatchResponse(ArrayValue, DictMixin):
         object.__setattr__(self, "peaks", MappingProxyType(peaks))
 
 
-# ---------------------------------------------------------------- chunks and stability
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation then runs over contiguous memory, one realization per element.
 def _chunks(count: int) -> list[slice]:
-    """Consecutive slices of at most ``_CHUNK`` realizations covering ``range(count)``.
-
-    Of equal sizes, as many as a multiple of ``_WORKERS`` when each gets at least
-    ``_MIN_CHUNK`` (every core busy, and none waits for a short last chunk).
+    """Equal slices of at most ``_CHUNK`` covering ``range(count)``, a multiple of ``_WORKERS``
+    of them when each gets ``_MIN_CHUNK``.
     """
     k = -(-count // _CHUNK)
     if count >= _WORKERS * _MIN_CHUNK:
@@ -135,12 +114,10 @@ def _chunks(count: int) -> list[slice]:
 
 
 def _charpoly(A: np.ndarray) -> np.ndarray:
-    r"""Characteristic polynomials of a stack ``(N, N, R)``, ascending: ``(N + 1, R)``.
+    r"""Characteristic polynomials of a stack ``(N, N, R)``, ascending ``(N + 1, R)``.
 
-    From the power sums :math:`p_k = \operatorname{tr} A^k = \operatorname{tr}(A^a A^b)`,
-    :math:`a + b = k`, which need the powers up to :math:`\lceil N/2 \rceil` only, and
-    Newton's identities :math:`k\,c_{N-k} = -\sum_{i=1}^{k} c_{N-k+i}\,p_i` with the
-    leading coefficient :math:`c_N = 1`.
+    Power sums :math:`p_k = \operatorname{tr}(A^a A^b)`, :math:`a + b = k` (powers up to
+    :math:`\lceil N/2 \rceil`), then Newton's :math:`k\,c_{N-k} = -\sum_{i=1}^{k} c_{N-k+i}\,p_i`.
     """
     N, R = A.shape[0], A.shape[-1]
     powers = [np.broadcast_to(np.eye(N)[:, :, None], A.shape), A]
@@ -159,10 +136,8 @@ def _charpoly(A: np.ndarray) -> np.ndarray:
 def _schur_stable(A: np.ndarray) -> np.ndarray:
     r"""Whether every eigenvalue of each ``A[:, :, r]`` has modulus below ``UNIT_CIRCLE``.
 
-    The Schur-Cohn test on :math:`p(\rho z)`, :math:`\rho` = ``UNIT_CIRCLE`` (so the
-    threshold is the eigenvalue path's): reduces :math:`p(z) = \sum a_i z^i` to
-    :math:`(a_d p(z) - a_0 p^*(z))/z` while :math:`|a_0| < |a_d|` (the reflection
-    coefficient); vectorized over ``r``.
+    The Schur-Cohn test on :math:`p(\rho z)`, :math:`\rho` = ``UNIT_CIRCLE``: reduce
+    :math:`p(z) = \sum a_i z^i` to :math:`(a_d p(z) - a_0 p^*(z))/z` while :math:`|a_0| < |a_d|`.
     """
     a = _charpoly(A)
     a = a * (UNIT_CIRCLE ** np.arange(a.shape[0]))[:, None]
@@ -177,11 +152,7 @@ def _schur_stable(A: np.ndarray) -> np.ndarray:
 
 
 def _batch_stability(loops, count: int, argname: str, n: int) -> None:
-    """Refuse an unstable loop among many: eigenvalues up to ``_EIG_LIMIT``, Schur-Cohn above.
-
-    ``loops(part)`` gives ``(A_cl, C_r)`` of the loops ``part`` of ``range(count)``;
-    ``n`` (the plant's states) lets the message name a hidden mode of the controller.
-    """
+    """Refuse an unstable loop: eigenvalues up to ``_EIG_LIMIT`` loops, Schur-Cohn above."""
     if count <= _EIG_LIMIT:
         _stability(loops(slice(None))[0], argname, n)
         return
@@ -193,11 +164,7 @@ def _batch_stability(loops, count: int, argname: str, n: int) -> None:
 
 
 def _in_chunks(run, count: int) -> int:
-    """``min(run(part))`` over the chunks of ``range(count)``, on ``_WORKERS`` threads.
-
-    NumPy releases the GIL in its ufuncs: the chunks, and the page faults of the
-    fresh output buffer, share the cores.
-    """
+    """``min(run(part))`` over the chunks, on ``_WORKERS`` threads (ufuncs release the GIL)."""
     parts = _chunks(count)
     workers = min(len(parts), _WORKERS)
     if workers == 1:
@@ -206,7 +173,6 @@ def _in_chunks(run, count: int) -> int:
         return min(pool.map(run, parts))
 
 
-# ---------------------------------------------------------------- what to keep
 def _selection(keep, states: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The traces and the peaks to keep, each in the order of ``TRACES``."""
     if keep is None:
@@ -273,7 +239,6 @@ def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) 
     return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
 
-# ---------------------------------------------------------------- the function
 def simulate_batch(
     plant,
     F,
@@ -303,49 +268,28 @@ def simulate_batch(
     states : bool
         Also return the controller states ``(R, steps, nc)`` (adds ``"states"`` to ``keep``).
     check_stability : bool
-        Refuse any unstable loop first (exact eigenvalues up to 2000 loops, the
-        vectorized Schur-Cohn test on the characteristic polynomial above).
+        Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
-        The outputs to keep, among ``"delta_f"``, ``"delta_r"``, ``"states"`` (traces)
-        and ``"peak_delta_f"``, ``"peak_delta_r"``, ``"peak_states"`` (the largest
-        magnitude of a trace over the horizon, in ``.peaks``; the trace itself is
-        never stored). Default: ``("delta_f", "delta_r")``. A trace not kept is None.
+        Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
+        peaks ``"peak_..."`` (in ``.peaks``, the trace never stored); default
+        ``("delta_f", "delta_r")``; a trace not kept is None.
+        Traces take :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks
+        :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` (4 GiB) in one result or chunk is
+        refused before any work, the message saying which ``chunk`` fits.
     chunk : int, optional
-        Stream the loops in chunks of ``chunk`` consecutive realizations: the call
-        returns an iterator of :class:`BatchResponse` (each with its ``first`` loop),
-        and each chunk is simulated when the iterator reaches it. The arguments and
-        the stability of every loop are checked before the iterator is returned.
+        Stream the loops in chunks of ``chunk`` consecutive realizations: an iterator of
+        :class:`BatchResponse` (each with its ``first`` loop), each chunk simulated when
+        reached (one chunk in memory at a time); arguments and stability are checked first.
 
     Returns
     -------
     BatchResponse or iterator of BatchResponse
-        ``delta_f`` ``(R, steps, n)`` and ``delta_r`` ``(R, steps, m)`` (by default);
-        an iterator when ``chunk`` is given.
 
     Raises
     ------
     DimensionError, ParameterError, SymctlTypeError
         Also a run whose kept outputs overflow to inf or NaN (a :class:`ParameterError`;
         with ``chunk``, when its chunk is reached), and outputs over the memory limit.
-
-    Notes
-    -----
-    Memory, in bytes (float64), with :math:`c` the channels kept (``n`` for
-    ``delta_f``, ``m`` for ``delta_r``, ``nc`` for the states; the paper's loop has
-    1, 1, 4): the traces kept take :math:`8 R\,\mathrm{steps}\,c` (10^5 loops x 500
-    steps of force and rate: 0.8 GB), the peaks :math:`8 R c`; with ``chunk`` the
-    same with ``chunk`` for ``R``, per chunk (a chunk no longer referenced is freed:
-    streaming holds one chunk at a time, two when the caller keeps the last one while
-    the next is computed, as ``for part in ...`` does until ``del part``). Besides,
-    always: the closed-loop matrices, :math:`8 R (n + nc)(n + nc + m)` (240 bytes
-    per loop of the paper; with ``chunk``, those of one chunk), and the time loop's
-    rows, a few MB. The outputs of one
-    result or one chunk are limited to ``MAX_OUTPUT_BYTES`` (4 GiB,
-    :mod:`symctl._util.validate`): a larger request is a :class:`ParameterError`
-    naming ``keep`` (or ``chunk``) before any work, saying which ``chunk`` fits.
-
-    The loops run in chunks of at most 32768, on every core (threads: NumPy
-    releases the GIL in its ufuncs), row by row in place into the output buffer.
 
     Examples
     --------

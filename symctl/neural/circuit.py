@@ -1,86 +1,47 @@
 r"""Neural circuits of stylized linear neurons, read off controller structures.
 
-The paper's section "Neurons and microcircuits": a stylized *neuron* outputs on
-its axon a weighted sum of its synaptic inputs (the synaptic weights) and of its
-own past outputs (its *self-dynamics*), with no activation function; an axon may
-branch to several downstream neurons. :meth:`Circuit.from_structure` turns a
-:class:`~symctl.compatibility.structure.Structure` into such a circuit.
+its axon a weighted sum of its synaptic inputs and of its own past outputs (its
+*self-dynamics*), with no activation function; an axon may branch.
+:meth:`Circuit.from_structure` reads such a circuit off a
+:class:`~symctl.compatibility.structure.Structure`.
 
 The counting rule
 -----------------
-A **term** is one input of an adder block of the structure: one nonzero entry
-of a row of :math:`[F\ H]` or :math:`[M\ N]`, i.e. a weighted signal
-:math:`w\,s(t-d)`; a weight 1 is a plain wire (still a term) and a zero entry is
-no term. Then
+A **term** is one input of an adder of the structure: one nonzero entry of a row of
+:math:`[F\ H]` or :math:`[M\ N]`, a weighted signal :math:`w\,s(t-d)` (weight 1 is a
+plain wire, still a term). Then
 
 * every adder that sums **two or more terms** is a neuron, the output sum
-  :math:`y = M x + N u` included (in :class:`~symctl.compatibility.structure.Structure` a
-  one-input adder is no block, so the neurons are exactly the ``"sum"`` blocks
-  with at least two inputs);
+  :math:`y = M x + N u` included;
 * a single term passing through gains and unit delays (e.g. the controllable
-  canonical :math:`x_1(t) = x_2(t-1)`) is an **axon**: the product of its gains
-  is a synaptic weight, its delays the synapse's delay;
-* a term whose axon path starts at the neuron's own output (directly, or
-  through axon delays and gains) is **self-dynamics**, :math:`\sum_k w_k z^{-d_k}`;
-  the other terms are **synapses** from another neuron or a circuit input.
+  canonical :math:`x_1(t) = x_2(t-1)`) is an **axon**: the product of its gains is a
+  synaptic weight, its delays the synapse's delay;
+* a term whose axon starts at the neuron's own output is **self-dynamics**,
+  :math:`\sum_k w_k z^{-d_k}`; the others are **synapses**.
 
-Under this one rule all of the paper's counts hold (the tests check each):
+Under this rule the paper's counts hold (the tests check each): the controllable
+canonical :math:`G_2` has 2 neurons (:math:`x_2` with self-dynamics :math:`K_1 z^{-1} +
+K_2 z^{-2}`, and :math:`y`), the observable canonical one 3 (:math:`x_1`, :math:`x_2` and
+the output sum :math:`y = x_2 + N u`: counting it separates 2 from 3), a general (dense)
+realization 3; :math:`G_1` and :math:`G_3` add one neuron each, :math:`x = \epsilon
+x(t-1) + C u(t-1)`. With :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 -
+\epsilon_1 - \epsilon_3 = 0` substituted into the controllable canonical realization, the
+middle neuron has one axon branch instead of two; the observable canonical one with
+:math:`K_2 + \epsilon_1\epsilon_3 = 0` takes the controllable canonical shape. The paper
+states the simplification for "these circuits" without detail; under this rule the
+observable canonical one with :math:`K_1 - \epsilon_1 - \epsilon_3 = 0` keeps 3 neurons,
+and a general realization keeps 3 neurons and all its branches.
 
-* controllable canonical :math:`G_2`: 2 neurons. :math:`x_1 = x_2(t-1)` is one
-  term (an axon delay of :math:`x_2`), :math:`x_2 = K_2 x_1(t-1) + K_1 x_2(t-1) +
-  u(t-1)` is a neuron with self-dynamics :math:`K_1 z^{-1} + K_2 z^{-2}`, and
-  :math:`y = M_1 x_1 + M_2 x_2 + N u` is the second neuron;
-* observable canonical :math:`G_2`: 3 neurons, :math:`x_1 = K_2 x_2(t-1) +
-  H_1 u(t-1)`, :math:`x_2 = x_1(t-1) + K_1 x_2(t-1) + H_2 u(t-1)` and the output
-  sum :math:`y = x_2 + N u` (two terms, the first of weight 1). Counting the
-  output sum is what separates 2 from 3: without it the two would give 1 and 2;
-* a general (dense) realization: 3 neurons (:math:`x_1`, :math:`x_2`, :math:`y`);
-* :math:`G_1` and :math:`G_3` add one neuron each, :math:`x = \epsilon x(t-1) +
-  C u(t-1)`: self-dynamics :math:`\epsilon`, a synapse of weight :math:`C`;
-* with :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 - \epsilon_1 -
-  \epsilon_3 = 0` substituted into the controllable canonical realization (a
-  zero entry of :math:`M` is no block), the middle neuron :math:`x_2` has one
-  axon branch instead of two; the same holds for the observable canonical one
-  with :math:`K_2 + \epsilon_1\epsilon_3 = 0` (then :math:`x_1` is a single term,
-  an axon, and the circuit has the controllable canonical shape). The paper
-  states the simplification for "these circuits" without detail; under this
-  rule it does not reach every realization: the observable canonical one with
-  :math:`K_1 - \epsilon_1 - \epsilon_3 = 0` keeps 3 neurons (:math:`x_2` loses
-  its synapse from :math:`u`, but :math:`x_1` and :math:`x_2` still sum two
-  terms each), and a general realization (a dense similarity transform of
-  either) keeps 3 neurons and all its branches.
+A neuron's **axon branches** are its synapses onto other neurons plus the circuit outputs
+it drives (not its self-dynamics); two paths onto one neuron (the controllable canonical
+:math:`x_2 \to y` through :math:`M_2`, and through :math:`x_1` and :math:`M_1`) are two
+branches, as in the paper's figure.
 
-The **axon branches** of a neuron are its outgoing synapses to other neurons
-plus the circuit outputs it drives (its self-dynamics loops are not branches);
-two synapses onto the same neuron along different paths (the controllable
-canonical :math:`x_2 \to y` through :math:`M_2`, and through the delay
-:math:`x_1` and :math:`M_1`) are two branches, as in the paper's figure.
-
-Where the neurons sit: given a compatible
-:class:`~symctl.compatibility.delaygraph.DelayAssignment` (or a
-:class:`~symctl.compatibility.check.CompatibilityResult`), a neuron's vertex is the
-vertex of its adder's signal. In the paper's assignment for :math:`G_3 G_2 G_1`
-(:math:`x` and :math:`\alpha_1 = C_1 x` at :math:`v_1`, everything of
-:math:`G_2` at :math:`v_2`, :math:`u` at :math:`v_3`) the :math:`G_1` neuron is
-at :math:`v_2` (it receives the sensor's signal over the one-step synapse
-:math:`C_1 z^{-1}` from :math:`v_1`), the :math:`G_2` neurons at :math:`v_2` and
-the :math:`G_3` neuron at :math:`v_3`. No compatible assignment can put the
-:math:`G_1` adder at :math:`v_1`: its delay-free path through :math:`N` to the
-:math:`G_2` output would give :math:`\tilde E_{12} = 0 < 1` or
-:math:`\tilde E_{13} \le 1 < 2`.
-
-Firing traces: every neuron is named by its adder's signal
-(:attr:`Neuron.name`), and :meth:`Circuit.as_linear_system` gives a
-state-space system whose outputs are the neurons' axon outputs (then the circuit
-outputs), so simulating it reproduces each neuron's firing trace.
-
->>> from symctl import Circuit, Structure, controllable_canonical, controller_tf, factor
->>> f = factor(controller_tf(2))
->>> c = Circuit.from_structure(Structure.from_factorization(f, controllable_canonical(f.G2)))
->>> c.n_neurons, [n.name for n in c.neurons]
-(4, ['G1.x1', 'G2.x2', 'G2.y', 'G3.x1'])
->>> c.neuron("G2.x2").self_dynamics
-K_1/z + K_2/z**2
+Given a compatible :class:`~symctl.compatibility.delaygraph.DelayAssignment`, a neuron
+sits at its adder's vertex (in the paper's assignment for :math:`G_3 G_2 G_1`: the
+:math:`G_1` and :math:`G_2` neurons at :math:`v_2`, the :math:`G_3` neuron at :math:`v_3`;
+the :math:`G_1` adder cannot be at :math:`v_1`, as its delay-free path through :math:`N`
+would give :math:`\tilde E_{12} = 0 < 1`).
 """
 
 from __future__ import annotations
@@ -114,10 +75,7 @@ __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
 class CircuitSystem(NamedTuple):
     r"""A circuit as a state-space system :math:`s(t+1) = A s + B u`, :math:`o = C s + D u`.
 
-    The state is the circuit's delayed signals (the structure's unit delays);
-    the outputs are the neurons' axon outputs, in :attr:`Circuit.neurons` order,
-    then the circuit outputs. Made by :meth:`Circuit.as_linear_system`; it
-    unpacks as ``A, B, C, D, states, inputs, outputs``.
+    Made by :meth:`Circuit.as_linear_system`; unpacks as ``A, B, C, D, states, inputs, outputs``.
 
     Attributes
     ----------
@@ -163,10 +121,8 @@ class Circuit(LatexMixin):
     inputs : tuple of str
         The circuit inputs (the structure's inputs).
     outputs : tuple of Synapse
-        For each structure output, the axon path reaching it (``target`` is the
-        output signal; ``source`` a neuron or an input; a neuron's own signal
-        when the output is the neuron; ``"0"``, weight 0, for an output that is
-        the zero signal).
+        For each structure output, the axon path reaching it from a neuron or an input
+        (``"0"``, weight 0, for the zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
@@ -206,7 +162,6 @@ class Circuit(LatexMixin):
     def __hash__(self) -> int:
         return hash(self._key())
 
-    # ------------------------------------------------------------ construction
     @classmethod
     def from_structure(
         cls,
@@ -218,11 +173,8 @@ class Circuit(LatexMixin):
         Parameters
         ----------
         S : Structure
-            E.g. :meth:`Structure.from_realization` or
-            :meth:`Structure.from_factorization`; substitute values that make an
-            entry zero (e.g. :math:`\epsilon_3 = -K_2/\epsilon_1`) into the
-            realization *before* building the structure, so that the entry makes
-            no block.
+            E.g. :meth:`Structure.from_factorization`; substitute values that zero an entry
+            into the realization *before* building it, so that the entry makes no block.
         assignment : DelayAssignment or CompatibilityResult, optional
             A compatible assignment of ``S``'s signals to delay-graph vertices;
             each neuron's :attr:`Neuron.vertex` is its signal's vertex.
@@ -236,9 +188,8 @@ class Circuit(LatexMixin):
         SymctlTypeError
             ``S`` is not a Structure, or ``assignment`` is of another type.
         ParameterError
-            ``assignment`` is for another structure, is not compatible (or a
-            failed compatibility check); a gain that is not finite; a loop of
-            gains and delays with no adder.
+            ``assignment`` for another structure or not compatible; a gain that is not
+            finite; a loop of gains and delays with no adder.
 
         Examples
         --------
@@ -262,7 +213,9 @@ class Circuit(LatexMixin):
                     raise ParameterError(
                         f"{argname}: the gain {name!r} is not finite: {block.gain}"
                     )
-        names = [n for n, b in S.blocks.items() if _is_neuron(b)]  # the structure's order
+        names = [
+            n for n, b in S.blocks.items() if b.kind == "sum" and len(b.inputs) >= 2
+        ]  # the structure's order
         is_neuron = set(names)
         incoming = {
             name: [
@@ -299,7 +252,6 @@ class Circuit(LatexMixin):
             {u: tuple(outgoing.get(u, ())) for u in S.inputs},
         )
 
-    # ------------------------------------------------------------ views
     @property
     def n_neurons(self) -> int:
         """The number of neurons."""
@@ -362,7 +314,6 @@ class Circuit(LatexMixin):
         """The delay-graph vertex of each neuron (None without an assignment)."""
         return {n.name: n.vertex for n in self.neurons}
 
-    # ------------------------------------------------------------ numbers
     def subs(self, *args, **kwargs) -> Circuit:
         """The same circuit with values substituted into every weight (``sympy`` ``subs``).
 
@@ -421,9 +372,8 @@ class Circuit(LatexMixin):
     def as_linear_system(self, numeric: bool = False) -> CircuitSystem:
         r"""The circuit as :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)`.
 
-        The state :math:`s` holds the structure's delayed signals; the outputs
-        :math:`o` are every neuron's axon output (in :attr:`neurons` order) and
-        then the circuit outputs, so one simulation gives every firing trace.
+        The state holds the structure's delayed signals; the outputs are every neuron's
+        axon output, then the circuit outputs, so one simulation gives every firing trace.
 
         Parameters
         ----------
@@ -486,7 +436,6 @@ class Circuit(LatexMixin):
             nxt[:, :k], nxt[:, k:], obs[:, :k], obs[:, k:], states, S.inputs, out_names
         )
 
-    # ------------------------------------------------------------ display
     def equations(self, digits: int | None = None) -> list[str]:
         r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
 
@@ -528,7 +477,9 @@ class Circuit(LatexMixin):
                 tex = "" if w == 1 else "-" if w == -1 else latex(w) + r"\,"
                 if isinstance(w, sp.Add):
                     tex = rf"\left({latex(w)}\right)\,"
-                terms.append(rf"{tex} {signal_tex(s.source)}(t{_lag(s.delay)})".lstrip())
+                terms.append(
+                    rf"{tex} {signal_tex(s.source)}(t{f'-{s.delay}' if s.delay else ''})".lstrip()
+                )
             rhs = " + ".join(terms).replace("+ -", "- ") if terms else "0"
             out.append(rf"{signal_tex(n.name)}(t) = {rhs}")
         return out
@@ -569,35 +520,12 @@ class Circuit(LatexMixin):
     def draw(
         self, ax=None, *, title: str | None = None, vertex_names=None, signs_at=None, width="text"
     ):
-        """Draw the circuit at its printed size: neurons as circles, synapses as arrows.
+        """Draw the circuit at its printed size: neurons as circles, synapses as arrows coloured by sign.
 
-        Each circle holds the neuron's self-dynamics (:math:`\\sum_k w_k z^{-d_k}`;
-        empty without), its name above it, its delay-graph vertex below it when
-        placed. Synapses carry their weights (long ones as :math:`w_1, w_2, \\dots`,
-        listed under the drawing) and are coloured by sign: excitatory blue with an
-        arrow head, inhibitory vermillion with a bar, purple when the sign depends on
-        symbols (read at ``signs_at`` when given); dashed ones are delayed, one step or
-        :math:`k` where :math:`z^{-k}` is written. A key under the drawing says so.
-
-        Parameters
-        ----------
-        ax : matplotlib Axes, optional
-            Draw into it; by default a new figure of the drawing's printed size.
-        title : str, optional
-            A heading above the drawing (default none).
-        vertex_names : sequence of str, optional
-            The delay graph's vertex names, :math:`v_1` first (a model's ``vertices``).
-        signs_at : mapping, optional
-            Numbers, or ``(lo, hi)`` ranges, of the weights' symbols at which their
-            signs are read (e.g. the controller's gains).
-        width : float or {"text", "column", "double"}
-            The widest the drawing may be [in]: a longer chain is cut into bands.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.circuit.draw_circuit` (positions from
-            :func:`symctl.plotting.circuit_layout.circuit_layout`).
+        The arguments are those of :func:`symctl.plotting.circuit.draw_circuit`, which draws it
+        (``vertex_names``: the delay graph's, :math:`v_1` first; ``signs_at``: values or ranges of
+        the symbols at which signs are read; ``width``: the widest the drawing may be, in inches
+        or ``"text"``, ``"column"``, ``"double"``); returns the Figure.
 
         Examples
         --------
@@ -612,12 +540,8 @@ class Circuit(LatexMixin):
         )
 
 
-# ---------------------------------------------------------------- helpers
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
-    """``w`` with its numbers (floats, fractions) shown to ``digits`` significant digits.
-
-    Exponents stay exact (``sqrt(x)`` is not written ``x**0.500``).
-    """
+    """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""
     if w.is_number:
         return sp.Integer(w) if w == int(w) else sp.Float(w, digits)
     if w.is_Pow:
@@ -627,17 +551,9 @@ def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     return w
 
 
-def _is_neuron(block: Block) -> bool:
-    return block.kind == "sum" and len(block.inputs) >= 2
-
-
 def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
-    """The axon path ending at ``start``, back to a neuron or an input, as a Synapse.
-
-    ``start`` is a term of the adder ``target``, or ``target`` itself for a
-    circuit output; None when the path starts at an adder of nothing (the zero
-    signal).
-    """
+    """The axon path ending at ``start`` (a term of the adder ``target``, or ``target`` itself
+    for an output) back to a neuron or an input; None for an adder of nothing (zero signal)."""
     node, weight, delay, path, seen = start, sp.Integer(1), 0, [], set()
     while True:
         block = S.blocks[node]
@@ -687,10 +603,6 @@ def _vertices(S: Structure, assignment) -> dict[str, int] | None:
             f"(E~_{i}{j} = {et:g} < E_{i}{j} = {e:g})"
         )
     return dict(assignment.vertex_of)
-
-
-def _lag(d: int) -> str:
-    return f"-{d}" if d else ""
 
 
 def _syn_text(s: Synapse, source: str) -> str:

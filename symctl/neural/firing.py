@@ -1,42 +1,11 @@
-r"""Firing patterns of the neurons of :math:`G_2` under a pulse disturbance.
+r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11).
 
-The paper's Figs. 9, 10 and 11.
-
-The paper's section "Simulations": the whole controller
-:math:`G = G_3 G_2 G_1` is realized in several ways, each closed around the
-linear muscle and hit by the same pulse disturbance on the force. By
-construction every realization gives the same force and motor-neuron traces
-(those of the optimal controller, Fig. 5), while the neurons of
-:math:`G_2` fire differently.
-
-The recipe, per realization (seeded):
-
-1. draw :math:`\epsilon_1, \epsilon_3` uniformly in :math:`(-0.9, 0.9)` (exact
-   rationals on a grid of 1/1000), set :math:`C_1 = C_3 = 1`;
-2. realize :math:`G_2`: ``"controllable"`` and ``"observable"`` canonical
-   forms, or for ``"general"`` a random full-rank similarity transform ``P`` of
-   the controllable canonical one (:func:`~symctl.realization.realization.random_realization`);
-3. close the loop with :math:`G_3 G_2 G_1`
-   (:func:`~symctl.realization.realization.controller_realization`,
-   :func:`~symctl.neural.simulate.simulate_realization`) and check that force and
-   rate equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`);
-4. read every neuron's axon output off the circuit
-   (:meth:`Circuit.as_linear_system <symctl.neural.circuit.Circuit.as_linear_system>`
-   of :meth:`Circuit.from_structure <symctl.neural.circuit.Circuit.from_structure>`
-   applied to :meth:`Structure.from_factorization
-   <symctl.compatibility.structure.Structure.from_factorization>`), driven by the loop's
-   controller input :math:`\delta_f`, and keep the neurons of :math:`G_2`.
-
-The neurons are linear, so a neuron's output *is* its change in firing rate
-from equilibrium. Kind ``"ifp"`` is the paper's IFP controller (one
-realization, no free parameters): its one neuron :math:`\mu` of
+Every realization of :math:`G = G_3 G_2 G_1`, closed around the linear muscle and hit by
+the same pulse on the force, gives the optimal controller's force and motor-neuron traces
+(Fig. 5), while the neurons of :math:`G_2` fire differently. The neurons are linear, so a
+neuron's output *is* its change in firing rate from equilibrium. Kind ``"ifp"`` is the
+paper's IFP controller: the one neuron :math:`\mu` of
 :func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
-
->>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> fp = circuit_firing("controllable", gains, count=2)
->>> fp.neurons, fp.firing["G2.y"].shape
-(('G2.x2', 'G2.y'), (2, 50))
 """
 
 from __future__ import annotations
@@ -86,8 +55,7 @@ KINDS: tuple[str, ...]  # read from the registry at each access (__getattr__)
 
 
 def __getattr__(name: str):
-    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry
-    (:func:`~symctl.realization.realizers.circuit_names`)."""
+    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry."""
     if name == "KINDS":
         return circuit_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -97,10 +65,11 @@ LEGEND_MAX_EPS = 4
 """Most epsilons a realization's legend entry lists (beyond, their count)."""
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
 class FiringSummary(ArrayValue, DictMixin):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
+
+    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
 
     Attributes
     ----------
@@ -115,12 +84,7 @@ class FiringSummary(ArrayValue, DictMixin):
         (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
     trace_spread : (k,) array
         The largest difference between two realizations' traces at any one step, per
-        neuron [spikes/s]: nonzero whenever the traces differ, even when their peaks are
-        equal (``spread`` then is 0). Defaults to ``spread`` when not given.
-
-    Notes
-    -----
-    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+        neuron [spikes/s] (nonzero even when the peaks are equal); default ``spread``.
 
     Examples
     --------
@@ -167,6 +131,8 @@ class FiringSummary(ArrayValue, DictMixin):
 class FiringPatterns(ArrayValue, DictMixin):
     r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
 
+    Made by :func:`circuit_firing`; arrays, ``firing`` and each of ``params`` are read-only.
+
     Attributes
     ----------
     kind : str
@@ -175,14 +141,12 @@ class FiringPatterns(ArrayValue, DictMixin):
         Time, in ``reference.time_unit`` (seconds, or steps for a plant
         without a sampling time).
     delta_f, delta_r : (count, steps) arrays
-        Force change [N] and motor-neuron rate change [spikes/s] of each
-        realization (all equal to the optimal controller's, checked).
+        Force [N] and motor-neuron rate [spikes/s] changes of each realization (checked equal).
     f_bar : float
         The force at the operating point [N] (``f = f_bar + delta_f``).
     firing : mapping of str to (count, steps) array
-        Each neuron's change of axon output (firing rate) from equilibrium
-        [spikes/s], keyed by neuron name (``"G2.x1"``, ...); NaN rows for a
-        realization that lacks the neuron (a zero entry makes no adder).
+        Each neuron's firing-rate change [spikes/s] by name; NaN rows where a realization
+        lacks the neuron.
     params : tuple of dict
         Per realization, the values drawn: :math:`\epsilon_1, \epsilon_3` (and
         ``P`` for ``"general"``), exact.
@@ -195,11 +159,6 @@ class FiringPatterns(ArrayValue, DictMixin):
     max_deviation : float
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
-
-    Notes
-    -----
-    Made by :func:`circuit_firing`; the arrays are read-only copies, ``firing``
-    and each of ``params`` read-only mappings.
 
     Examples
     --------
@@ -287,29 +246,14 @@ class FiringPatterns(ArrayValue, DictMixin):
         return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
-        """One panel per neuron of :math:`G_2` (one line per realization), the force on top.
-
-        Parameters
-        ----------
-        ncols : int
-            Neuron panels per row.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.firing.firing_plot`.
-
-        Raises
-        ------
-        ParameterError
-            ``ncols`` is not an integer >= 1.
+        """One panel per neuron of :math:`G_2` (a line per realization), the force on top: a Figure by
+        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row, an integer >= 1).
 
         Examples
         --------
         >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
         >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
-        >>> fig = fp.plot()
-        >>> [ax.get_title() for ax in fig.axes][1:]
+        >>> [ax.get_title() for ax in fp.plot().axes][1:]
         ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
         """
         from symctl.plotting.firing import firing_plot
@@ -317,7 +261,6 @@ class FiringPatterns(ArrayValue, DictMixin):
         return firing_plot(self, ncols)
 
 
-# ---------------------------------------------------------------- arguments
 def _kind(kind) -> str:
     kinds = circuit_names()
     if not isinstance(kind, str):
@@ -349,8 +292,11 @@ def _gains(gains, kind: str) -> Gains:
             f"gains: expected Gains (from symctl.lqr_gains), got {type(gains).__name__}"
         )
     s = gains.system
-    if _whole(kind):
-        _scalar(s.n, s.m, "gains")
+    if _whole(kind) and (s.n, s.m) != (1, 1):
+        raise DimensionError(
+            f"gains: firing patterns are drawn for a scalar plant (n = m = 1), got n = {s.n}, "
+            f"m = {s.m}"
+        )
     if _whole(kind) and s.T < 1:
         raise ParameterError(
             "gains: the IFP controller has a neuron only for a net delay T >= 1 "
@@ -372,20 +318,9 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     return p
 
 
-def _scalar(n: int, m: int, argname: str) -> None:
-    if (n, m) != (1, 1):
-        raise DimensionError(
-            f"{argname}: firing patterns are drawn for a scalar plant (n = m = 1), got n = {n}, "
-            f"m = {m}"
-        )
-
-
-# ---------------------------------------------------------------- the pieces
 def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator, draws=None):
-    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric).
-
-    ``draws``: the realizations of :math:`G_2` to simulate (else ``count`` drawn from ``gen``).
-    """
+    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric), from ``draws``
+    or ``count`` drawn from ``gen``."""
     s = gains.system
     if _whole(kind):
         K = np.asarray(gains.K, dtype=float).ravel()
@@ -413,13 +348,8 @@ def _draw(kind: str, gains: Gains, count: int, gen: np.random.Generator) -> tupl
 
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
-    r"""Every neuron's axon output and the circuit output, driven from rest by ``u`` ``(steps,)``.
-
-    :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)` of
-    :meth:`Circuit.as_linear_system`, stepped by the simulations' one time loop
-    (the input enters every state through ``B``); keys are the output names
-    (neurons, then ``"output"``).
-    """
+    """Every neuron's axon output and the circuit output (key ``"output"``), driven from rest
+    by ``u`` through :meth:`Circuit.as_linear_system` and the simulations' one time loop."""
     sys = circuit.as_linear_system(numeric=True)
     k = sys.A.shape[0]
     u = u[:, None] if u.ndim == 1 else u  # (steps, inputs)
@@ -437,7 +367,6 @@ def _deviation(a: np.ndarray, ref: np.ndarray) -> float:
     return float(np.max(np.abs(a - ref))) / (scale if scale > 0 else 1.0)
 
 
-# ---------------------------------------------------------------- the function
 @rng_argument()
 def circuit_firing(
     kind: str,
@@ -455,34 +384,25 @@ def circuit_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
-    Each realization of :math:`G = G_3 G_2 G_1` (random :math:`\epsilon_1,
-    \epsilon_3 \in (-0.9, 0.9)`, :math:`C_1 = C_3 = 1`, and for ``"general"`` a
-    random full-rank ``P``) is closed around ``plant`` with the pulse
-    disturbance on the force, as in Fig. 5:
-
-    .. math::
-        \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
-        \delta_r = G(z)\,\delta_f.
-
-    The force and rate traces must equal the optimal controller's
-    (:func:`~symctl.neural.simulate.closed_loop_response` of ``gains``) to ``rtol``
-    (relative to their peak); the neurons' traces are read off the circuit
-    driven by the loop's :math:`\delta_f`, and the circuit's output must match
-    :math:`\delta_r` too.
+    Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` drawn
+    uniformly in :math:`(-0.9, 0.9)` as exact rationals on a grid of 1/1000,
+    :math:`C_1 = C_3 = 1`, and for ``"general"`` a random full-rank ``P``) is closed around
+    ``plant`` with the pulse disturbance on the force (Fig. 5). Its force and rate traces
+    must equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`)
+    to ``rtol`` relative to their peak; the neurons' traces are read off the circuit driven
+    by the loop's :math:`\delta_f`, whose output must match :math:`\delta_r` too.
 
     Parameters
     ----------
     kind : str
-        A circuit of :func:`~symctl.realization.realizers.circuit_names`: the IFP
-        controller (``"ifp"``) or a realization of :math:`G_2` (``"general"``,
-        ``"controllable"``, ``"observable"``: Figs. 9, 10, 11).
+        A circuit of :func:`~symctl.realization.realizers.circuit_names`: ``"ifp"`` or a
+        realization of :math:`G_2` (``"general"``, ``"controllable"``, ``"observable"``).
     gains : Gains
         E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
-        Number of realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP
-        controller has exactly 1).
+        Realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP controller: 1).
     rng : int, numpy Generator or None, default 0
         Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is
         >= 0. ``seed=`` is its deprecated name.
@@ -490,12 +410,10 @@ def circuit_firing(
         As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
         pulse on steps 5..14 of 50).
     rtol : float
-        Tolerance of the behaviour check (default 1e-9).
+        Tolerance of the behaviour check.
     draws : sequence of Draw, optional
-        The realizations of :math:`G_2` to simulate, drawn already
-        (:func:`~symctl.realization.draws.draw_realizations` of the gains' controller,
-        as the derivation draws them before it simulates); ``count`` and ``rng`` are
-        then not used. Default: ``count`` drawn from ``rng``.
+        Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`);
+        ``count`` and ``rng`` are then not used.
 
     Returns
     -------
@@ -505,11 +423,9 @@ def circuit_firing(
     ------
     ParameterError
         Unknown ``kind``, ``count`` outside ``[1, MAX_CIRCUITS]`` (or ``!= 1`` for
-        ``"ifp"``), a negative ``rng``, ``"ifp"``
-        with gains for a net delay ``T = 0`` (no neuron), an unstable
-        loop, or a realization whose force or rate departs from the optimal
-        controller's by more than ``rtol`` (e.g. a ``plant`` other than the gains'),
-        or a ``plant`` whose ``dt`` is not the gains'.
+        ``"ifp"``), a negative ``rng``, ``"ifp"`` at ``T = 0``, an unstable loop, a
+        realization departing from the optimal controller by more than ``rtol``, or a
+        ``plant`` whose ``dt`` is not the gains'.
     SymctlTypeError
         ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``rng``.
     DimensionError
@@ -566,16 +482,12 @@ def structure_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
-    The structure's gains may hold the gains' symbols :math:`K` (replaced by
-    the gains' values, as exact rationals) and section symbols: every
-    ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)` and every ``C...``
-    set to 1, e.g. the
-    structure :func:`~symctl.compatibility.controller.controller_compatibility`
-    builds along a delay graph's pathways (axons of several steps included).
-    Each realization is closed around the plant through the structure's
-    state-space form (:func:`~symctl.compatibility.statespace.structure_realization`)
-    and checked against the optimal controller; the neurons of every ``G2``
-    part are recorded.
+    The structure's gains may hold the gains' symbols :math:`K` (replaced by their values,
+    exact) and section symbols: every ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)`
+    and every ``C...`` set to 1 (e.g. the structure of
+    :func:`~symctl.compatibility.controller.controller_compatibility`). Each realization is
+    closed through :func:`~symctl.compatibility.statespace.structure_realization`, checked
+    against the optimal controller, and the neurons of every ``G2`` part recorded.
 
     Parameters
     ----------

@@ -1,19 +1,6 @@
 r"""Stylized linear neurons and their synapses, the parts of a :class:`~symctl.neural.circuit.Circuit`.
 
-A **neuron** outputs on its axon a weighted sum of its synaptic inputs and of its
-own past outputs (its self-dynamics), with no activation function:
-:math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`. A **synapse**
-is one axon path, with the product of its gains as weight and its unit delays as
-delay; its sign says whether it excites or inhibits. Both are values: equal
-fields, equal objects, equal hashes.
-
->>> import sympy as sp
->>> from symctl import Neuron, Synapse
->>> K1 = sp.Symbol("K_1")
->>> mu = Neuron("mu", "", (Synapse("x", "mu", sp.Symbol("K_0"), 0),),
-...             (Synapse("mu", "mu", K1, 1),), ())
->>> mu.self_dynamics, mu.synapses[0].sign
-(K_1/z, '?')
+Both are values: equal fields, equal objects, equal hashes.
 """
 
 from __future__ import annotations
@@ -51,12 +38,10 @@ class Synapse(NamedTuple):
     weight : sympy expression
         The synaptic weight: the product of the gains on the path.
     delay : int
-        The number of unit delays on the path: the branch delay into the adder
-        plus any axon delays before it (e.g. 2 for :math:`x_3 \to y` through
-        :math:`x_2, x_1` in a third-order controllable canonical realization).
+        The unit delays on the path, axon delays included (e.g. 2 for :math:`x_3 \to y`
+        through :math:`x_2, x_1` in a third-order controllable canonical realization).
     path : tuple of str
-        The structure signals strictly between ``source`` and ``target``, in
-        signal-flow order.
+        The signals strictly between ``source`` and ``target``, in signal-flow order.
 
     Examples
     --------
@@ -95,10 +80,9 @@ class Synapse(NamedTuple):
 class Neuron:
     r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
 
-    Its axon output is
-    :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`: the
-    self-dynamics terms :math:`(w_k, d_k)` and the synapses from sources
-    :math:`s_j` with weights :math:`v_j` and delays :math:`e_j`.
+    Its axon output is :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`:
+    self-dynamics terms :math:`(w_k, d_k)` and synapses from :math:`s_j` (weight :math:`v_j`,
+    delay :math:`e_j`).
 
     Attributes
     ----------
@@ -137,11 +121,7 @@ class Neuron:
 
     @property
     def self_weight(self) -> sp.Expr:
-        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics).
-
-        With one self term (e.g. :math:`\epsilon_1` for :math:`G_1`) this is its
-        weight; with several lags see :attr:`self_dynamics`.
-        """
+        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics)."""
         return sp.Add(*(to_expr(s.weight, "weight") for s in self.self_terms))
 
     @property

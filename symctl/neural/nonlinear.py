@@ -1,22 +1,12 @@
 r"""The linear controller around the nonlinear plant it was designed from.
 
-The design is linear (the plant linearized at its operating point: the paper's
-muscle, :class:`~symctl.design.plant.MuscleModel`, or any
-:class:`~symctl.design.ode.ODEModel`); :func:`nonlinear_check` closes the same
-controller around the nonlinear ODE (for the muscle
-:math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) and measures how far the
-states depart from the linear prediction as the disturbance grows: quadratically
-in its amplitude, since the linearization is exact to first order.
-
-:func:`longest_delay` asks the question an unstable plant poses: for which net
-delays does the optimal controller still bring the *nonlinear* plant back to its
-equilibrium after the disturbance? (For the linear plant every delay can be
-stabilized; what limits it is the nonlinearity, e.g. a torque that saturates.)
-
->>> from symctl import nonlinear_check
->>> chk = nonlinear_check(amplitudes=[0.01, 0.1], steps=30)
->>> round(float(chk.max_deviation[1] / chk.max_deviation[0]))   # second order
-100
+:func:`nonlinear_check` closes the controller designed on the linearized plant (the
+paper's muscle, or any :class:`~symctl.design.ode.ODEModel`) around the nonlinear ODE and
+measures how far the states depart from the linear prediction: quadratically in the
+disturbance's amplitude, the linearization being exact to first order.
+:func:`longest_delay` finds the longest net delay whose optimal controller still brings
+the *nonlinear* plant back (every delay stabilizes the linear plant; the nonlinearity,
+e.g. a saturating torque, limits it).
 """
 
 from __future__ import annotations
@@ -70,9 +60,10 @@ r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Rada
 class NonlinearCheck(ArrayValue, Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
 
-    Truthy when the nonlinear loop returned at every amplitude (``verdict``:
-    every :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``method``
-    says how it was simulated and ``evidence`` is :attr:`final_deviation`.
+    Truthy when the nonlinear loop returned at every amplitude (every
+    :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``evidence`` is
+    :attr:`final_deviation`. ``f_linear``, ``f_nonlinear``, ``r_nonlinear`` are the first
+    state's and input's traces ``(k, steps)``. Made by :func:`nonlinear_check`; read-only arrays.
 
     Attributes
     ----------
@@ -87,21 +78,15 @@ class NonlinearCheck(ArrayValue, Verdict):
     max_deviation : (k,) array
         :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`: the first state's, in its unit.
     relative_deviation : (k,) array
-        The worst over the states of :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|`
-        over that state's linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
+        The worst state's :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|` over its
+        linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
     final_deviation : (k,) array
-        The worst over the states of :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|`
-        over the same peak: whether the nonlinear loop came back (inf: the ODE failed).
+        The worst state's :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|` over that
+        peak: whether the loop came back (inf: the ODE failed).
     state_names, input_names : tuple of str
         The plant's names (the muscle's ``f``, ``r``).
     units : tuple of str
         The states' units, for labels (``"N"``).
-
-    Notes
-    -----
-    ``f_linear``, ``f_nonlinear`` and ``r_nonlinear`` are the first state's and
-    input's traces, ``(k, steps)``, as for the muscle. Made by
-    :func:`nonlinear_check`; the arrays are read-only copies.
 
     Examples
     --------
@@ -129,11 +114,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def verdict(self) -> bool:
-        """Whether the nonlinear loop returned at every amplitude.
-
-        Every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %
-        of the linear peak; the default ``tolerance`` of :func:`longest_delay`).
-        """
+        """Whether every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %)."""
         return bool(np.all(self.final_deviation <= RETURN_TOLERANCE))
 
     @property
@@ -186,12 +167,8 @@ class NonlinearCheck(ArrayValue, Verdict):
         return "\n".join(lines)
 
     def plot(self):
-        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.response.nonlinear_plot`.
+        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude: a Figure
+        by :func:`symctl.plotting.response.nonlinear_plot`.
 
         Examples
         --------
@@ -232,36 +209,29 @@ def nonlinear_check(
     r"""Close the linear controller around the nonlinear plant and compare with the linear loop.
 
     At each sample the controller reads :math:`\delta x = x - \bar x`, its output
-    :math:`u = \bar u + \delta u` is held constant over the step, and the ODE
-    (for the muscle :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`) is
-    integrated over :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all
-    amplitudes as one vector ODE, relative tolerance ``rtol``); the disturbance is
-    added to the states at the sample, as in the linear model. The solver is
-    explicit (DOP853) while :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO``
-    (1; the muscle's :math:`T_s/\tau` is 0.5) and implicit beyond (Radau, with the
-    exact Jacobian), so that a stiff plant (a small ``tau``) takes seconds too.
+    :math:`u = \bar u + \delta u` is held over the step, the ODE is integrated over
+    :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all amplitudes as one vector ODE),
+    and the disturbance is added to the states at the sample. The solver is DOP853 while
+    :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO`` (1; the muscle's is 0.5), else Radau
+    with the exact Jacobian, so a stiff plant takes seconds too.
 
     Parameters
     ----------
     model : MuscleModel or ODEModel, optional
         The paper's muscle by default.
     controller : Gains or Realization, optional
-        Default: the optimal delayed controller for ``Q = R = 1``, one step of delay
-        each way (as the IFP realization).
+        Default: the optimal controller for ``Q = R = 1``, one step each way (IFP).
     amplitudes : sequence of float
-        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most
-        ``MAX_COUNT`` (10,000) of them.
+        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most 10,000.
     steps, start, length : int
         Horizon (at most ``MAX_STEPS``, 5000) and disturbance pulse, as in
         :func:`~symctl.simulate_realization`.
     rtol : float
         Relative tolerance of the ODE solver, in ``RTOL_RANGE`` ``[1e-13, 1e-2]``.
     disturbance : array (steps, n), optional
-        The disturbance of unit amplitude (default: the pulse on every state),
-        scaled by each amplitude.
+        The unit disturbance scaled by each amplitude (default: the pulse on every state).
     fail : {"raise", "mark"}
-        On an ODE that fails (a plant that runs away): raise, or mark the
-        amplitude's traces NaN from there on (its ``final_deviation`` is then inf).
+        On an ODE that fails: raise, or mark its traces NaN from there on (``final_deviation`` inf).
 
     Returns
     -------
@@ -440,13 +410,10 @@ def longest_delay(
 ) -> DelaySearch:
     r"""Search the longest net delay :math:`T` whose optimal controller stabilizes the nonlinear plant.
 
-    For :math:`T = 1, 2, \dots`, ``max_delay``: the optimal controller for the
-    linear plant with that delay (:func:`~symctl.design.augment.augment`, all of it
-    on the actuator side: for state feedback only the net delay matters) is
-    closed around the nonlinear ODE (:func:`nonlinear_check`) under the
-    disturbance; the loop counts as stabilized when the state returns to the
-    equilibrium, within ``tolerance`` of the linear loop's peak, by the end of
-    the horizon. The search stops at the first failure.
+    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller of the plant with that
+    delay (all on the actuator side: only the net delay matters) is closed around the ODE
+    (:func:`nonlinear_check`); it stabilizes when the state ends within ``tolerance`` of the
+    linear loop's peak from the equilibrium. The search stops at the first failure.
 
     Parameters
     ----------

@@ -1,42 +1,23 @@
 r"""Open- and closed-loop simulation of the plant with any realization of the controller.
 
-The paper's section "Simulations": the linear plant of eq. (system) driven by a
-pulse in firing rate (Fig. 3); the loop closed with the optimal delayed
-controller and hit by a pulse disturbance on the force (Fig. 5); the same
-loop closed with any realization of :math:`G = G_3 G_2 G_1` (Figs. 9,
-10, 11), whose outputs agree while the neurons' firing
-patterns differ. Every simulation here, in :mod:`symctl.neural.batch` (many
-loops at once) and in :mod:`symctl.neural.firing` (the neurons' traces) runs
-through one time-stepping loop, ``_run``; the nonlinear muscle is in
-:mod:`symctl.neural.nonlinear`.
-
-The disturbance :math:`w` enters the state update (zero initial state),
+The paper's section "Simulations": the linear plant driven by a pulse in firing rate
+(Fig. 3); the loop closed with the optimal delayed controller and hit by a pulse
+disturbance on the force (Fig. 5), or with any realization of :math:`G = G_3 G_2 G_1`
+(Figs. 9-11). Every simulation here, in :mod:`~symctl.neural.batch` and in
+:mod:`~symctl.neural.firing` runs through one time loop, ``_run``. The disturbance
+:math:`w` enters the state update (zero initial state),
 
 .. math::
     \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
     x_c(t+1) = F x_c(t) + H \delta_f(t),\qquad
     \delta_r(t) = M x_c(t) + N \delta_f(t),
 
-so the closed loop is :math:`\xi(t+1) = A_{cl}\,\xi(t) + [I; 0]\,w(t)` with
-:math:`\xi = [\delta_f; x_c]` and
-:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}`. The
-optimal controller itself is simulated on the augmented state,
-:math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t) + [I; 0]\,w(t)`.
-
-Defaults (documented choices; the paper gives none): a pulse of amplitude 1
-(1 spike/s in firing rate, or 1 N of force per step), starting at step
-``start = 5`` and lasting ``length = 10`` steps, over a horizon of
-``steps = 50`` samples (0.5 s at the paper's :math:`T_s` = 10 ms). Time is
-``t = k dt`` in seconds; absolute force and rate add the plant's operating
-point :math:`(\bar f, \bar r)` back.
-
->>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> res = closed_loop_response(gains)
->>> res.t.shape, res.delta_f.shape, round(float(res.f[0, 0]), 4)
-((50,), (50, 1), 43.8635)
->>> round(float(res.delta_r.min()), 4)      # the motor neuron answers the push, 2 steps later
--0.0472
+so :math:`\xi = [\delta_f; x_c]` follows :math:`\xi(t+1) = A_{cl}\,\xi(t) + [I; 0]\,w(t)`,
+:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}`; the optimal
+controller runs on the augmented state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t)
++ [I; 0]\,w(t)`. Defaults (the paper gives none): a pulse of amplitude 1 on steps 5..14
+of 50 (0.5 s at :math:`T_s` = 10 ms). Time is ``t = k dt`` in seconds; absolute force
+and rate add the operating point :math:`(\bar f, \bar r)` back.
 """
 
 from __future__ import annotations
@@ -87,7 +68,6 @@ DEFAULT_LENGTH = 10
 """Default pulse length in steps."""
 
 
-# ---------------------------------------------------------------- arguments
 def pulse(
     steps: int = DEFAULT_STEPS,
     amplitude: float = 1.0,
@@ -168,10 +148,9 @@ def _ts(p: DiscretePlant) -> float:
     return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
-# ---------------------------------------------------------------- results
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
-    r"""Traces of one simulation (open or closed loop), all sampled at ``t = k dt``.
+    r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
 
     Attributes
     ----------
@@ -185,9 +164,8 @@ class Response(ArrayValue, DictMixin):
     w : (steps, n) array
         Disturbance on the state (zeros in open loop).
     states : (steps, nc) array
-        The controller's internal states (the neurons' firing-rate changes; for the
-        optimal controller the delay chain :math:`\gamma_1, \dots, \delta_r`); ``nc = 0``
-        in open loop.
+        The controller's states (the neurons' firing-rate changes; the optimal
+        controller's delay chain); ``nc = 0`` in open loop.
     f_bar, r_bar : arrays
         The operating point (zeros when the plant records none).
     kind : str
@@ -197,13 +175,7 @@ class Response(ArrayValue, DictMixin):
     time_unit : str
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
     controller_state_names : tuple of str
-        Of the columns of ``states``: the optimal controller's delay chain
-        (:func:`~symctl.design.augment.chain_names`), else ``x_1, ...``.
-
-    Notes
-    -----
-    The arrays are read-only copies; :func:`open_loop_response`,
-    :func:`closed_loop_response` and :func:`simulate_realization` make a Response.
+        Of ``states``: the delay chain (:func:`~symctl.design.augment.chain_names`) or ``x_1, ...``.
 
     Examples
     --------
@@ -243,18 +215,9 @@ class Response(ArrayValue, DictMixin):
         return self.delta_r + self.r_bar
 
     def plot(self, states: bool | None = None):
-        """Force and motor-neuron rate against time, absolute values on the right axes.
-
-        Parameters
-        ----------
-        states : bool, optional
-            Add a panel with the controller's internal states (default: when
-            there are any).
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-            Drawn by :func:`symctl.plotting.response.response_plot`.
+        """Force and motor-neuron rate against time, absolute values on the right axes (``states``:
+        a panel of the controller's states, by default when there are any); a Figure by
+        :func:`symctl.plotting.response.response_plot`.
 
         Examples
         --------
@@ -268,20 +231,14 @@ class Response(ArrayValue, DictMixin):
         return response_plot(self, states)
 
 
-# ---------------------------------------------------------------- the core
 UNIT_CIRCLE = 1 - 1e-9  # |eigenvalue| >= this is unstable (a marginal mode rounds inside)
 
 
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation below then runs over contiguous memory, one realization per element.
 def _stability(Acl: np.ndarray, argname: str, n: int | None = None) -> None:
-    """Refuse an unstable closed loop (spectral radius >= 1), naming the first bad realization.
-
-    ``n`` (the plant's states, optional) lets the message tell a hidden mode of the
-    controller (an eigenvalue of its own ``F`` that the loop cannot move) apart. A
-    modulus within 1e-9 of 1 counts as unstable (``UNIT_CIRCLE``): a marginal mode, such
-    as epsilon = 1, whose computed eigenvalue rounds just inside.
-    """
+    """Refuse a spectral radius >= ``UNIT_CIRCLE`` (a marginal mode, e.g. epsilon = 1, rounds
+    inside); ``n``, the plant's states, lets the message name a hidden mode of the controller."""
     count = Acl.shape[-1]
     eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((count, 1))
     _refuse_unstable(Acl, np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE), argname, n)
@@ -329,10 +286,7 @@ def _is_hidden(Acl: np.ndarray, lam: complex, n: int) -> bool:
 
 
 def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
-    """``A_cl`` ``(n + nc, n + nc, R)`` and the rate output map ``[N, M]`` ``(m, n + nc, R)``.
-
-    ``F, H, M, N`` are stacks ``(R, ., .)``; the results are realization-last.
-    """
+    """``A_cl`` ``(n + nc, n + nc, R)`` and the rate map ``[N, M]`` ``(m, n + nc, R)``."""
     R, n, nc = F.shape[0], A.shape[0], F.shape[1]
     Acl = np.empty((n + nc, n + nc, R))
     Acl[:n, :n] = A[:, :, None] + np.einsum("ij,rjk->ikr", B, N)
@@ -354,13 +308,9 @@ def _run(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Simulate ``xi(t+1) = A_cl xi + [I; 0] w`` from zero for a stack of ``R`` loops.
 
-    ``Acl`` is ``(size, size, R)``, ``Cr`` ``(m, size, R)`` and ``w`` ``(steps, n)``
-    (shared) or ``(R, steps, n)``. Returns ``(delta_f, delta_r, states)`` as
-    ``(R, steps, .)`` views of one time-major buffer, so that every step writes
-    contiguous rows. ``schedule(run, R)``, when given, calls ``run`` on slices of
-    the loops and returns the smallest result (the batch's chunks and threads);
-    by default all loops run at once. An inf or NaN in the outputs (an overflow)
-    is an error naming the first step it is at.
+    ``Acl`` ``(size, size, R)``, ``Cr`` ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``;
+    returns ``(delta_f, delta_r, states)`` as ``(R, steps, .)`` views of one time-major buffer.
+    ``schedule(run, R)`` runs slices of the loops (the batch's chunks) and returns the smallest result.
     """
     size, m = Acl.shape[0], Cr.shape[0]
     rows = range(n + m + (size - n if states else 0))  # delta_f, delta_r, states
@@ -371,13 +321,8 @@ def _run(
 
 
 def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, schedule=None):
-    """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` and ``peaks``.
-
-    The signals are numbered ``delta_f`` (``n``), ``delta_r`` (``m``), then the
-    controller states; ``peaks`` ``(len(peak_rows), R)`` receives the largest
-    ``|signal|`` over the horizon of the signals ``peak_rows`` (none is stored).
-    An inf or NaN in ``out`` or ``peaks`` is a :class:`ParameterError` naming a step.
-    """
+    """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` (``delta_f``, ``delta_r``,
+    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises."""
     steps, R = out.shape[0], Acl.shape[-1]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
 
@@ -400,9 +345,9 @@ def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, sched
         )
 
 
-def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
+def _response(p, df, dr, w, xc, kind, names=()) -> Response:
     return Response(
-        t,
+        np.arange(df.shape[0]) * _ts(p),
         df,
         dr,
         w,
@@ -417,7 +362,6 @@ def _response(p, t, df, dr, w, xc, kind, names=()) -> Response:
     )
 
 
-# ---------------------------------------------------------------- public simulations
 def open_loop_response(
     plant=None,
     pulse: float = 1.0,
@@ -467,8 +411,7 @@ def open_loop_response(
     df, _, _ = _run(
         A[:, :, None], np.zeros((0, p.n, 1)), p.n, u @ B.T, states=False, argname="pulse"
     )
-    t = np.arange(u.shape[0]) * _ts(p)
-    return _response(p, t, df[0], u, np.zeros_like(df[0]), np.zeros((len(t), 0)), "open loop")
+    return _response(p, df[0], u, np.zeros_like(df[0]), np.zeros((len(u), 0)), "open loop")
 
 
 def _numeric_realization(R, p: DiscretePlant, argname: str = "R") -> tuple[np.ndarray, ...]:
@@ -499,10 +442,9 @@ def simulate_realization(
 ) -> Response:
     r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`.
 
-    ``R`` is the whole controller, e.g. ``controller_realization(factor(G).subs(values), R2)``
-    (:math:`G_3 G_2 G_1`) or :func:`ifp_realization`. The force and rate traces
-    depend only on the transfer function; the internal states (``.states``, the
-    neurons' firing-rate changes, in ``R``'s state order) depend on the realization.
+    ``R`` is the whole controller (e.g. ``controller_realization(factor(G).subs(values), R2)``
+    or :func:`ifp_realization`); force and rate depend only on its transfer function, the
+    internal states (``.states``, in ``R``'s state order) on the realization.
 
     Parameters
     ----------
@@ -521,12 +463,10 @@ def simulate_realization(
     Raises
     ------
     ParameterError
-        Unstable closed loop (spectral radius >= 1, over every state of plant and
-        ``R``: the message names the eigenvalue, and says when it is a hidden mode of
-        ``R``'s own ``F``, e.g. :math:`|\epsilon| \ge 1` in :math:`G_3 G_2 G_1`, whose
-        transfer function is right; :func:`symctl.neural.stability.loop_stability`
-        gives the verdict without raising), non-finite values, bad horizon, a run
-        that overflows, or an ``R.dt`` other than the plant's ``dt``.
+        Unstable closed loop over every state (the message names the eigenvalue, and a
+        hidden mode of ``R``'s own ``F``; :func:`~symctl.neural.stability.loop_stability`
+        decides without raising), non-finite values, bad horizon, an overflow, or an
+        ``R.dt`` other than the plant's.
     DimensionError
         ``R`` or ``disturbance`` of the wrong shape.
 
@@ -546,8 +486,7 @@ def simulate_realization(
     Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p))
     _stability(Acl, "R", p.n)
     df, dr, xc = _run(Acl, Cr, p.n, w)
-    t = np.arange(w.shape[0]) * _ts(p)
-    return _response(p, t, df[0], dr[0], w, xc[0], "closed loop")
+    return _response(p, df[0], dr[0], w, xc[0], "closed loop")
 
 
 def closed_loop_response(
@@ -564,12 +503,9 @@ def closed_loop_response(
     Parameters
     ----------
     controller : Gains, DiscreteTF or Realization
-        :class:`~symctl.design.lqr.Gains` simulate the optimal controller on the augmented
-        state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi + [I; 0] w` (the
-        states reported are the delay chain :math:`\gamma_1 \dots \delta_r`); with a
-        ``plant`` given, the gains' :func:`ifp_realization` is closed around that plant.
-        A numeric SISO :class:`DiscreteTF` is realized in controllable canonical form;
-        a :class:`Realization` goes to :func:`simulate_realization`.
+        Gains simulate the optimal controller on the augmented state (with a ``plant``:
+        their :func:`ifp_realization` around it); a numeric SISO DiscreteTF is realized in
+        controllable canonical form; a Realization goes to :func:`simulate_realization`.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Required unless ``controller`` is ``Gains``.
     disturbance, steps, start, length
@@ -600,18 +536,12 @@ def closed_loop_response(
     ...
     symctl.errors.DimensionError: disturbance: has 2 samples but steps = 3
     """
+    window = {"steps": steps, "start": start, "length": length}
+    if isinstance(controller, Gains) and plant is not None:
+        plant = as_plant(plant)
+        same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
+        return simulate_realization(plant, ifp_realization(controller), disturbance, **window)
     if isinstance(controller, Gains):
-        if plant is not None:
-            plant = as_plant(plant)
-            same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
-            return simulate_realization(
-                plant,
-                _as_realization(controller),
-                disturbance,
-                steps=steps,
-                start=start,
-                length=length,
-            )
         s = controller.system
         p, n, m = s.plant, s.n, s.m
         Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ controller.K
@@ -623,8 +553,7 @@ def closed_loop_response(
         w = _signal(disturbance, "disturbance", steps, n, start, length)
         _stability(Acl[:, :, None], "controller")
         df, dr, xc = _run(Acl[:, :, None], Cr[:, :, None], n, w)
-        t = np.arange(w.shape[0]) * _ts(p)
-        return _response(p, t, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
+        return _response(p, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"
@@ -640,4 +569,4 @@ def closed_loop_response(
         )
     plant = as_plant(plant)
     same_dt(plant, R.dt, "controller")
-    return simulate_realization(plant, R, disturbance, steps=steps, start=start, length=length)
+    return simulate_realization(plant, R, disturbance, **window)

@@ -1,26 +1,11 @@
 r"""Internal stability of the whole loop: every state, not only the transfer function.
 
-A realization can have the right transfer function and still an unstable
-circuit: :math:`G = G_3 G_2 G_1` cancels the poles of the sections
-:math:`G_1, G_3` at :math:`\epsilon_1, \epsilon_3` with zeros of :math:`G_2`, so
-with :math:`|\epsilon| \ge 1` the controller's transfer function stabilizes the
-plant while a state of the loop grows as :math:`\epsilon^t` (a hidden mode: the
-loop cannot move an eigenvalue the controller's output does not show). The loop
-is internally stable when every eigenvalue of
-
-.. math::
-    A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}
-
-lies strictly inside the unit circle; :func:`loop_stability` says whether, and
-names the unstable eigenvalues and those that are modes of the controller's own
-:math:`F` (hidden). The simulations (:func:`~symctl.neural.simulate.simulate_realization`,
-:func:`~symctl.neural.simulate.closed_loop_response`) refuse such a loop with a
-:class:`~symctl.errors.ParameterError` that names the realization and the eigenvalue.
-
->>> from symctl import MuscleModel, Realization
->>> from symctl.neural.stability import loop_stability
->>> bool(loop_stability(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0)))
-True
+A realization can have the right transfer function and an unstable circuit:
+:math:`G = G_3 G_2 G_1` cancels the poles of :math:`G_1, G_3` at :math:`\epsilon_1,
+\epsilon_3` with zeros of :math:`G_2`, so with :math:`|\epsilon| \ge 1` a state grows as
+:math:`\epsilon^t` (a hidden mode). The loop is internally stable when every eigenvalue of
+:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` lies strictly inside
+the unit circle; the simulations refuse any other loop, naming the eigenvalue.
 """
 
 from __future__ import annotations
@@ -55,17 +40,15 @@ class LoopStability(Verdict):
     Attributes
     ----------
     stable : bool
-        Spectral radius of :math:`A_{cl}` below 1 (by more than 1e-9, so that a
-        marginal mode such as epsilon = 1 counts as unstable).
+        Spectral radius of :math:`A_{cl}` below 1 - 1e-9 (a marginal mode is unstable).
     spectral_radius : float
     eigenvalues : tuple of complex
         All eigenvalues of :math:`A_{cl}` (plant states first, then the controller's).
     unstable : tuple of complex
         Those with :math:`|\\lambda| \\ge 1 - 10^{-9}`.
     hidden : tuple of complex
-        The unstable ones that are also eigenvalues of the controller's own
-        :math:`F` (to a relative 1e-8): modes the loop cannot move, hidden from
-        the transfer function.
+        The unstable ones that are eigenvalues of the controller's own :math:`F` (relative
+        1e-8): modes hidden from the transfer function.
 
     Examples
     --------
@@ -121,15 +104,12 @@ def loop_stability(plant, controller) -> LoopStability:
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     controller : Realization, DiscreteTF, Gains or Circuit
-        A numeric realization (e.g. ``controller_realization(factor(G).subs(values), R2)``),
-        a SISO transfer function (realized in controllable canonical form), gains
-        (their :func:`~symctl.realization.realizers.ifp_realization`) or a numeric
-        :class:`~symctl.neural.circuit.Circuit` (its delayed signals are the states).
+        Numeric: a realization, a SISO transfer function (controllable canonical), gains
+        (their IFP realization) or a Circuit (its delayed signals are the states).
 
     Returns
     -------
     LoopStability
-        Truthy when internally stable, with the unstable and the hidden eigenvalues.
 
     Raises
     ------

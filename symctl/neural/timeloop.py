@@ -1,14 +1,10 @@
 """The time loop of a stack of linear closed loops: ``xi(t+1) = A xi(t) + [I; 0] w(t)``.
 
-:func:`_run_chunk` fills an output buffer with the signals asked for, step by step, for a
-chunk of loops given as stacks ``A`` ``(size, size, R)`` and ``Cr`` ``(m, size, R)``
-(the rates read off the states). Two loops do it, with the same bits: each row's sum is
-taken in the order of the dense sum over ``j``, the first product written directly, and
-a coefficient zero in every loop is left out. :func:`_run_rows` goes row by row in place
-(no gathered copies: the fastest for many loops, the paper's batches);
-:func:`_run_groups` computes the rows with as many terms at once (few NumPy calls per
-step: the fastest for a large sparse circuit of few loops). ``benchmarks/simulate.py``
-times both. :mod:`symctl.neural.simulate` owns the signals, checks and results.
+:func:`_run_chunk` fills an output buffer, step by step, for loops given as stacks ``A``
+``(size, size, R)`` and ``Cr`` ``(m, size, R)``. Two loops give the same bits (each row's
+sum in the order of the dense sum over ``j``, a coefficient zero in every loop left out):
+:func:`_run_rows`, row by row in place (many loops), and :func:`_run_groups`, rows with as
+many terms at once (a large sparse circuit of few loops); ``benchmarks/simulate.py`` times both.
 """
 
 from __future__ import annotations
@@ -17,15 +13,11 @@ import numpy as np
 
 
 def _groups(mat: np.ndarray, nonzero=None) -> list[tuple[np.ndarray, np.ndarray, list]]:
-    """The rows of a stack ``(rows, cols, R)`` as groups for ``sum_j a_ij x_j``, row-wise at once.
+    """The rows of a stack ``(rows, cols, R)`` grouped by their number ``k`` of nonzero terms.
 
-    A coefficient zero in every loop is left out (the paper's loops are sparse: 14 of 25
-    entries); the rows with the same number of terms form a group ``(rows, sources,
-    coefficients)``: ``sources`` ``(len(rows), k)`` are the ``j`` of each row's terms in
-    the order of the dense sum over ``j``, hence of its rounding, and ``coefficients``
-    their ``k`` stacks ``(len(rows), 1 or R)`` (one column when the coefficients are
-    equal in every loop). A row with no terms is a group with ``k = 0``. ``nonzero``: the
-    entries not zero in every loop, when the caller has them (:func:`_run_chunk`).
+    Each group is ``(rows, sources, coefficients)``: ``sources`` ``(len(rows), k)`` the ``j``
+    of each row's terms in dense order, ``coefficients`` their ``k`` stacks ``(len(rows), 1
+    or R)``. ``nonzero``: the entries not zero in every loop, when the caller has them.
     """
     if not mat.shape[0]:
         return []
@@ -60,13 +52,7 @@ def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
 
 @np.errstate(over="ignore", invalid="ignore")
 def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=None) -> int:
-    """:func:`_run_chunk` for few loops: the rows with as many terms at once.
-
-    Each step computes the rows of ``x(t+1)`` with the same number of nonzero terms at
-    once (:func:`_groups`), each row's sum in the order of the dense sum, and copies the
-    signals asked for into ``out``; only the rates asked for are computed (the states
-    always are). Returns the first step with an inf or NaN in ``out``, or ``steps``.
-    """
+    """:func:`_run_chunk` for few loops: the rows with as many terms at once (:func:`_groups`)."""
     steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
     slot = {signal: k for k, signal in enumerate(rows)}
     state = [j if j < n else m + j for j in range(size)]  # signal number of each state
@@ -113,11 +99,8 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=Non
 
 
 def _terms(mat: np.ndarray) -> list[list[tuple[int, float | np.ndarray]]]:
-    """Row ``i`` of a stack ``(rows, cols, R)`` as ``(j, coefficient)`` terms of ``sum_j``.
-
-    A coefficient equal in every loop is a float (no memory read), one zero in every
-    loop is left out (the paper's loops are sparse: 14 of 25 entries); the order of
-    the terms, hence of the rounding, is that of the dense sum over ``j``.
+    """Row ``i`` of a stack as ``(j, coefficient)`` terms in dense order; a coefficient equal in
+    every loop is a float, one zero in every loop is left out.
     """
     terms = []
     for row in mat:
@@ -145,13 +128,7 @@ def _combine(terms, x: list[np.ndarray], dst: np.ndarray, tmp: np.ndarray) -> No
 
 @np.errstate(over="ignore", invalid="ignore")
 def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
-    """:func:`_run_chunk` for many loops: row by row in place.
-
-    Row by row in place: each state row of ``x(t+1)`` is computed straight into its
-    row of ``out`` (a state not kept lives in a two-step scratch), each rate row
-    likewise; only the rows asked for are computed (the states always are). Returns
-    the first step with an inf or NaN in ``out``, or ``steps``.
-    """
+    """:func:`_run_chunk` for many loops: each row of ``x(t+1)`` straight into its row of ``out``."""
     steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
     slot = {signal: k for k, signal in enumerate(rows)}
     state = [j if j < n else m + j for j in range(size)]  # signal number of each state
@@ -205,10 +182,7 @@ dense sum, so they give the same bits (``benchmarks/simulate.py`` times both).""
 
 
 def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
-    """All steps of one chunk of loops: the signals ``rows`` into ``out`` ``(steps, ., chunk)``.
-
-    Returns the first step with an inf or NaN in ``out``, or ``steps``.
-    """
+    """All steps of one chunk into ``out``: the first step with an inf or NaN, or ``steps``."""
     if A.shape[-1] <= GROUPED_LOOPS:
         nonzero = np.any(A != 0, axis=2)  # read once: the choice, then the groups
         counts = np.count_nonzero(nonzero, axis=1)  # terms per row

@@ -24,7 +24,6 @@ from symctl.realization.realization import Realization
 from symctl.symbols import z
 
 
-# ---------------------------------------------------------------- the problem
 @dataclass(frozen=True)
 class _Problem:
     """The entries of both sides as sympy expressions, ready to be evaluated."""
@@ -105,15 +104,10 @@ def _problem(R, G) -> _Problem:
     )
 
 
-# ---------------------------------------------------------------- expression trees
 class _Entries:
-    r"""The entries of a problem as reduced pairs (numerator, denominator) of ``fmpz_mpoly``.
-
-    Without ``values``: polynomials in the free symbols (the exact method).
-    With ``values`` (symbol -> Fraction): constants, the exact values at that
-    point (the ring has no variables); :class:`ZeroDivisionError` when a
-    denominator vanishes there. The code that compares Markov parameters is
-    the same for both.
+    r"""The entries as reduced pairs (numerator, denominator) of ``fmpz_mpoly``: polynomials in the
+    free symbols, or with ``values`` the constants at that point (ZeroDivisionError where a
+    denominator vanishes); the same comparison code serves both.
     """
 
     def __init__(self, symbols, values: Mapping | None = None):
@@ -162,12 +156,8 @@ def _cancel(nums: list, den, factor) -> tuple[list, object]:
 
 
 def _markov_next(b: tuple, a: list, h: list, scale, zero) -> list:
-    r"""The next :math:`\hat h_k = \delta^{k+1} h_k` of :meth:`DiscreteTF.markov`'s recurrence.
-
-    :math:`h_k = b_k - \sum_{i=1}^{\min(k, d)} a_i h_{k-i}` over a common
-    denominator :math:`\delta` of the coefficients (``b``, ``a`` are their
-    numerators): :math:`\hat h_k = b_k \delta^k - \sum_i a_i \hat h_{k-i}
-    \delta^{i-1}`, fraction-free.
+    r"""The next :math:`\hat h_k = \delta^{k+1} h_k` of :meth:`DiscreteTF.markov`'s recurrence,
+    fraction-free: :math:`\hat h_k = b_k \delta^k - \sum_i a_i \hat h_{k-i} \delta^{i-1}`.
     """
     k, d = len(h), len(a) - 1
     rows, cols = len(b[0]), len(b[0][0])
@@ -194,16 +184,9 @@ def _first_difference(problem: _Problem, alg: _Entries) -> tuple[int, int, int] 
 def _markov_pairs(problem: _Problem, alg: _Entries):
     r"""Both sides' Markov parameters, entry by entry: ``(k, i, j, num, den, h, scale)``.
 
-    :math:`(M F^{k-1} H)[i, j] = num/den` (``N`` for ``k = 0``) and
-    :math:`h_k[i, j] = h/scale`.
-
-    ``k = 0`` is the feed-through, ``k >= 1`` compares :math:`M F^{k-1} H` with
-    :math:`h_k`; ``k`` runs to :math:`n + d` (the theorem of the module).
-    :math:`M F^{k-1} H` is met in the middle, :math:`(M F^a)(F^b H)` with
-    :math:`a + b = k - 1`: rows of :math:`M F^a` and columns of :math:`F^b H`
-    are carried over common denominators and cancelled at each step
-    (``_cancel``); each step advances the side with fewer terms
-    (:func:`_rows_first`), so neither grows further than it must.
+    :math:`(M F^{k-1} H)[i, j] = num/den` (``N`` for ``k = 0``), :math:`h_k[i, j] = h/scale`,
+    ``k`` up to :math:`n + d`; met in the middle as :math:`(M F^a)(F^b H)`, each side over a
+    common denominator, cancelled at each step, the side with fewer terms advancing.
     """
     n, (p, q) = problem.n, problem.shape
     Fn, Fd = alg.common(e for row in problem.F for e in row)
@@ -242,13 +225,8 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
 
 
 def _rows_first(rows, cols, steps) -> bool:
-    r"""Whether the next step advances the rows :math:`M F^a` (else the columns :math:`F^b H`).
-
-    The side whose numerators have fewer terms: a step costs about their
-    terms times those of :math:`F`. For a similarity transform the rows
-    :math:`M_0 F_0^a P` stay small while the columns :math:`P^{-1} F_0^b H_0`
-    carry the adjugate of :math:`P`, so the rows take most steps; in general
-    both grow alike and the steps alternate (``steps`` counts them, unused).
+    r"""Whether the next step advances the rows :math:`M F^a` (else the columns :math:`F^b H`): the
+    side whose numerators have fewer terms (for a similarity transform, mostly the rows).
     """
     return _size(rows) <= _size(cols)
 

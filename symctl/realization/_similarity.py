@@ -1,32 +1,23 @@
 r"""The similarity transform :math:`(P^{-1} F P,\ P^{-1} H,\ M P)`, fraction-free in python-flint.
 
-:meth:`~symctl.realization.realization.Realization.similar` lands here. Entries
-become pairs (numerator, denominator) of ``fmpz_mpoly`` in every free symbol
-(:class:`~symctl._util.exact.PolyFractions`); with :math:`P = P_n / d_P`
-(:math:`P_n` polynomial, :math:`d_P` the lcm of the denominators of ``P``):
+Entries become pairs (numerator, denominator) of ``fmpz_mpoly``
+(:class:`~symctl._util.exact.PolyFractions`); with :math:`P = P_n / d_P`:
 
-* a **symbolic** :math:`P`: fraction-free Gauss-Jordan elimination of
-  :math:`[P_n \mid I]` (Bareiss' exact divisions, a row swap where a pivot is
-  the zero polynomial) gives :math:`\delta = \pm\det P_n` and
-  :math:`A = \delta P_n^{-1}` with no fraction, so
-  :math:`P^{-1} F P = A F_n P_n / (\delta\, d_F)`,
-  :math:`P^{-1} H = d_P A H_n / (\delta\, d_H)`,
-  :math:`M P = M_n P_n / (d_M d_P)` (:math:`F = F_n/d_F` etc. over common
-  denominators): one division by :math:`\det P` per entry, at the end;
-* a **numeric** :math:`P`: :math:`P^{-1}` is an ``fmpq_mat``; each matrix is
-  split by monomials, :math:`F_n = \sum_m m\, C_m` with rational :math:`C_m`,
-  and :math:`P^{-1} C_m P` are products of ``fmpq_mat``.
+* a **symbolic** :math:`P`: fraction-free Gauss-Jordan elimination of :math:`[P_n \mid I]`
+  gives :math:`\delta = \pm\det P_n` and :math:`A = \delta P_n^{-1}`, so :math:`P^{-1} F P
+  = A F_n P_n / (\delta\, d_F)`, :math:`P^{-1} H = d_P A H_n / (\delta\, d_H)`, :math:`M P
+  = M_n P_n / (d_M d_P)`: one division by :math:`\det P` per entry, at the end;
+* a **numeric** :math:`P`: :math:`P^{-1}` is an ``fmpq_mat`` and each matrix, split by
+  monomials :math:`F_n = \sum_m m\, C_m`, is transformed by ``fmpq_mat`` products.
 
-Each entry is then reduced by one gcd and written as SymPy terms directly
-(``sp.Mul``/``sp.Add`` of the monomials), in the form
-``factor_terms(cancel(.))`` gives (numerator over denominator, their common
-numbers and monomials pulled out), with no SymPy polynomial arithmetic. Entries
-that are not rational functions with rational coefficients (floats, ``pi``,
-functions) return ``None`` here, and the caller takes the SymPy path.
+Each entry is reduced by one gcd and written as SymPy terms directly, in the form
+``factor_terms(cancel(.))`` gives, with no SymPy polynomial arithmetic. Entries that are
+not rational functions with rational coefficients return ``None`` (the SymPy path).
 """
 
 from __future__ import annotations
 
+import math
 from itertools import compress
 
 import sympy as sp
@@ -85,13 +76,8 @@ class _Ring:
                     den = den * (d / den.gcd(d))
         return [[n * (den / d) for n, d in row] for row in pairs], den
 
-    # ------------------------------------------------------------ back to SymPy
     def _ensure(self, degrees) -> None:
-        """Put ``x_i**k`` for every ``k <= degrees[i]`` in the pool of factors, ranked.
-
-        The rank orders factors as SymPy's ``Mul`` and ``Add`` sort them
-        (``Basic.compare``); the pool is re-sorted only when it grows.
-        """
+        """Put ``x_i**k`` for every ``k <= degrees[i]`` in the pool of factors, ranked as SymPy sorts."""
         grew = False
         for i, top in enumerate(degrees):
             for k in range(1, top + 1):
@@ -109,12 +95,8 @@ class _Ring:
         return sp.Mul(*(self._powers[(i, k)][0] for i, k in enumerate(exps) if k))
 
     def expr(self, poly, q: int = 1) -> sp.Expr:
-        """The polynomial over ``q`` as a SymPy sum, built as ``Poly.as_expr`` would build it.
-
-        Terms and sums are assembled from their arguments in SymPy's canonical
-        order (keys that sort as ``Basic.compare`` does: the factors' ranks,
-        :func:`_class_key`, :func:`_number_key`), so they equal the evaluated
-        ``Mul``/``Add`` without the cost of evaluating them.
+        """The polynomial over ``q`` as a SymPy sum, assembled in SymPy's canonical order (as
+        ``Poly.as_expr`` would build it) without evaluating ``Mul``/``Add``.
         """
         const, terms, powers, index = None, [], self._powers, range(len(self.symbols))
         self._ensure(poly.degrees())
@@ -250,14 +232,10 @@ def _matmul(A: list[list], B: list[list], zero) -> list[list]:
 
 
 def _gauss_jordan(Pn: list[list], ring: _Ring):
-    r"""``(delta, A)``: :math:`\delta = \pm\det P_n` and :math:`A = \delta P_n^{-1}`, or None if singular.
+    r"""``(delta, A)``: :math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}` (None if singular).
 
-    Fraction-free Gauss-Jordan elimination of :math:`[P_n \mid I]`: for every
-    pivot :math:`p_k` and every other row :math:`i`,
-    :math:`a_{ij} \leftarrow (p_k a_{ij} - a_{ik} a_{kj}) / p_{k-1}`, an exact
-    division (Bareiss); at the end the left block is :math:`\delta I` and the
-    right one :math:`\delta P_n^{-1}`. A pivot that is the zero polynomial is
-    swapped with a lower row (the sparsest nonzero one).
+    Bareiss: :math:`a_{ij} \leftarrow (p_k a_{ij} - a_{ik} a_{kj}) / p_{k-1}`, exact; a zero
+    pivot is swapped with the sparsest nonzero lower row.
     """
     n = len(Pn)
     rows = [
@@ -308,7 +286,6 @@ def _symbolic(F, H, M, P, ring: _Ring):
     )
 
 
-# ---------------------------------------------------------------- numeric P
 def _fmpq_mat(mat: sp.MatrixBase) -> fmpq_mat:
     return fmpq_mat(mat.rows, mat.cols, [fmpq(int(e.p), int(e.q)) for e in mat.flat()])
 
@@ -338,10 +315,7 @@ def _assemble(den, parts: dict, shape, ring: _Ring) -> list[list]:
             if not coeffs:
                 row.append(sp.Integer(0))
                 continue
-            scale = 1
-            for c in coeffs.values():
-                q = int(c.q)
-                scale = scale * q // _gcd(scale, q)
+            scale = math.lcm(*(int(c.q) for c in coeffs.values()))
             if den.is_constant() and list(coeffs) == [(0,) * len(ring.symbols)]:
                 c = next(iter(coeffs.values())) / int(den.leading_coefficient())
                 row.append(sp.Rational(int(c.p), int(c.q)))
@@ -350,12 +324,6 @@ def _assemble(den, parts: dict, shape, ring: _Ring) -> list[list]:
             row.append(ring.tidy(*_reduce(num, den * scale)))
         out.append(row)
     return out
-
-
-def _gcd(a: int, b: int) -> int:
-    while b:
-        a, b = b, a % b
-    return a
 
 
 def _numeric(F, H, M, P, ring: _Ring):
@@ -399,11 +367,7 @@ def _rational(F, H, M, P):
 
 
 def similar_exact(F, H, M, P):
-    """``(F', H', M', P^{-1})`` as SymPy matrices; ``"singular"``; or None.
-
-    ``None``: an entry is not a rational function with rational coefficients
-    (the caller then takes the SymPy path).
-    """
+    """``(F', H', M', P^{-1})`` as SymPy matrices; ``"singular"``; or None (not rational: the SymPy path)."""
     entries = [*F.flat(), *H.flat(), *M.flat(), *P.flat()]
     if all(e.is_Rational for e in entries):
         return _rational(F, H, M, P)

@@ -1,17 +1,11 @@
 r"""Check that a realization realizes a transfer function: a proof, or a randomized test.
 
-:func:`check_realization` decides whether a realization :math:`(F, H, M, N)`
-(:class:`~symctl.realization.realization.Realization`) has the transfer function
-:math:`G(z)`, i.e. whether :math:`M(zI - F)^{-1}H + N = G(z)` identically in
-:math:`z` and in every free symbol (gains :math:`K_i`, :math:`\epsilon_i`,
-:math:`C_i`, the entries of a similarity transform :math:`P`, ...). It returns
-a :class:`RealizationCheck` with the verdict, the method and the evidence: a
-counterexample (values of the symbols and of :math:`z` at which the two sides
-differ) when they differ, the error bound of the randomized test when they agree.
-
-Both methods compare Markov parameters, never :math:`(zI - F)^{-1}`. Write
-:math:`G = \sum_{k \ge 0} h_k z^{-k}` and
-:math:`M(zI-F)^{-1}H + N = N + \sum_{k \ge 1} M F^{k-1} H z^{-k}`.
+:func:`check_realization` decides whether :math:`M(zI - F)^{-1}H + N = G(z)` identically
+in :math:`z` and every free symbol, and returns a :class:`RealizationCheck` with the
+verdict, the method and the evidence (a counterexample, or the randomized test's error
+bound). Both methods compare Markov parameters, never :math:`(zI - F)^{-1}`: write
+:math:`G = \sum_{k \ge 0} h_k z^{-k}` and :math:`M(zI-F)^{-1}H + N = N + \sum_{k \ge 1} M
+F^{k-1} H z^{-k}`.
 
 **Theorem.** Let :math:`F` be :math:`n \times n` and :math:`G = B(z)/d(z)` be
 proper with a monic denominator of degree :math:`d`. Then
@@ -26,41 +20,6 @@ proper with a monic denominator of degree :math:`d`. Then
 a unit lower triangular map of :math:`(e_0, \dots, e_L)`. So
 :math:`e_0 = \dots = e_L = 0` forces every coefficient of :math:`P` to vanish,
 :math:`E = 0`. The converse is immediate. :math:`\square`
-
-* ``method="exact"`` proves it. Entries become sparse multivariate
-  polynomials over :math:`\mathbb{Z}` (python-flint's ``fmpz_mpoly``), each
-  rational entry a pair (numerator, denominator). :math:`M F^{k-1} H` is met
-  in the middle as :math:`(M F^a)(F^b H)`, :math:`a + b = k - 1`, each step
-  advancing the side whose numerators have fewer terms; the rows of :math:`M F^a` and the columns of
-  :math:`F^b H` are carried with one common denominator each and cancelled at
-  every step (first by exact division by the denominator of :math:`F`, else by
-  a gcd), so for a similarity transform, where :math:`M F^a = M_0 F_0^a P` and
-  :math:`F^b H = P^{-1} F_0^b H_0`, :math:`\det P` never piles up.
-  :math:`h_k` comes fraction-free from the recurrence of
-  :meth:`~symctl.design.tf.DiscreteTF.markov`. Each :math:`e_k` is tested by
-  cross-multiplication: a zero polynomial, or not.
-* ``method="randomized"`` evaluates every entry exactly (rationals, no floats)
-  at a point :math:`x` drawn uniformly from :math:`S^v`,
-  :math:`S = \{-2^{b-1}, \dots, 2^{b-1}-1\}`, :math:`b \ge 62`, and compares the
-  numeric Markov parameters. A difference found is a certain disproof. If the
-  two sides differ as rational functions, some :math:`e_k` is
-  :math:`E_k(x)/\Delta(x)^{k+1}` with a nonzero polynomial :math:`E_k` of
-  total degree at most :math:`D_E = (L+1)A` (:math:`\Delta` a common
-  denominator of all entries, :math:`A` a bound on the degrees of the entries'
-  numerators over :math:`\Delta`; both read off the expression trees, see
-  :class:`~symctl._util.exact.Degrees`). Points where a denominator vanishes are discarded and
-  resampled (such points lie in :math:`\{\Delta = 0\}`). By the
-  Schwartz–Zippel lemma one round misses with probability at most
-  :math:`\varepsilon = D_E / (|S| - \deg \Delta)`; rounds are repeated until
-  :math:`\varepsilon^r < 2^{-64}`, and :math:`\varepsilon^r` is reported.
-* ``method="auto"`` runs the randomized test and, when it passes and the
-  problem is small (:math:`n + d \le 10`), the exact proof. (Without free
-  symbols the randomized test is one exact evaluation, a proof already.)
-
->>> from symctl import check_realization, controllable_canonical, z
->>> G = (z + 2) / (z**2 - z / 2)
->>> check_realization(controllable_canonical(G), G).ok
-True
 """
 
 from __future__ import annotations
@@ -103,28 +62,26 @@ RTOL = 1e-9  # default tolerance of the numeric verdict for floating-point input
 _NUMERIC_POINTS = 8  # points of the symbols at which floating-point inputs are compared
 
 
-# ---------------------------------------------------------------- the result
 @dataclass(frozen=True)
 class RealizationCheck(Verdict, LatexMixin):
     r"""The verdict of :func:`check_realization`, with its method and evidence.
 
+    ``bool(result)`` is :attr:`ok` for exact inputs and :attr:`numeric_ok` for floating-point
+    ones (the verdict at the stated tolerance, printed beside the exact one).
+
     Attributes
     ----------
     ok : bool
-        Whether :math:`M(zI-F)^{-1}H + N = G(z)`. ``False`` is always certain
-        (a counterexample is attached); ``True`` is certain for
-        ``method == "exact"`` and holds up to :attr:`error_bound` otherwise.
+        Whether :math:`M(zI-F)^{-1}H + N = G(z)`: ``False`` is certain, ``True`` up to
+        :attr:`error_bound`.
     method : str
         ``"exact"`` or ``"randomized"`` (the method that gave the verdict).
     error_bound : fractions.Fraction
-        Probability bound of a wrong ``True``: ``0`` for an exact proof (and for
-        a randomized test without free symbols, which is then exact), else the
-        Schwartz–Zippel bound, below :math:`2^{-64}`.
+        Probability of a wrong ``True``: ``0`` when exact, else the Schwartz–Zippel bound
+        (below :math:`2^{-64}`).
     counterexample : dict or None
-        ``None`` when ``ok``. Else ``{"values": {symbol: value, ..., z: value},
-        "realization": ..., "G": ...}``: exact rational values of every free
-        symbol and of :math:`z`, and the two sides evaluated there (scalars for
-        SISO, matrices for MIMO), which differ.
+        ``{"values": {symbol: value, ..., z: value}, "realization": ..., "G": ...}``: exact
+        values of the symbols and :math:`z` where the two sides differ (None when ``ok``).
     details : str
         What was compared, and which Markov parameter differs.
     markov_count : int
@@ -138,28 +95,17 @@ class RealizationCheck(Verdict, LatexMixin):
     sample_bits : int or None
         :math:`b` with :math:`|S| = 2^b` (randomized).
     floating : bool
-        Whether an entry of ``R`` or a coefficient of ``G`` holds a floating-point
-        number. The exact verdict :attr:`ok` then judges the binary rationals the
-        floats are, so a rounding difference of 1e-17 makes it ``False``; the
-        numeric verdict beside it is what a float computation can promise.
+        Whether ``R`` or ``G`` holds a float. :attr:`ok` then judges the floats' binary
+        rationals (a rounding difference makes it ``False``); :attr:`numeric_ok` is
+        what a float computation can promise.
     max_relative_difference : float or None
-        For floating-point inputs, the largest :math:`|e_k[i, j]|` of the
-        :attr:`markov_count` Markov parameters compared, relative to the largest
-        magnitude of a Markov parameter of either side (normwise, so an entry
-        that should be 0 is not divided by itself); with free symbols, the
-        largest over 8 random points with every symbol in :math:`\pm(0, 2]`.
-        ``0.0`` when the exact verdict holds; ``None`` for exact inputs.
+        For floats, the largest :math:`|e_k[i, j]|` relative to the largest Markov
+        parameter of either side (normwise); with free symbols, the worst of 8 random
+        points in :math:`\pm(0, 2]`. ``0.0`` when :attr:`ok`; ``None`` for exact inputs.
     rtol : float or None
         The tolerance of :attr:`numeric_ok` (``None`` for exact inputs).
     numeric_ok : bool or None
         ``max_relative_difference <= rtol`` (``None`` for exact inputs).
-
-    Notes
-    -----
-    ``bool(result)`` is :attr:`ok` for exact inputs and :attr:`numeric_ok` for
-    floating-point ones: the verdict at the stated tolerance, printed beside
-    the exact one. Exact inputs (integers, rationals, symbols) keep the exact
-    proof, unchanged.
 
     Examples
     --------
@@ -270,15 +216,9 @@ def _describe(k: int, i: int, j: int) -> str:
     return f"Markov parameter h_{k}: M {power}H != h_{k} in entry ({i}, {j})"
 
 
-# ---------------------------------------------------------------- degree bounds
 def _degree_bound(problem: _Problem) -> tuple[int, int]:
-    r"""``(D_E, deg Delta)``: the Schwartz–Zippel degree and the degree of the bad set.
-
-    Every entry is :math:`\hat p_e/\Delta` with :math:`\Delta` the lcm of the
-    entries' ``q`` and :math:`\deg \hat p_e \le A = \max(\max_e(\pi_e + \deg\Delta -
-    \deg q_e), \deg \Delta)`. :math:`M F^{k-1} H` and :math:`h_k` (a sum of
-    products of at most :math:`k+1` coefficients) are then polynomials of degree
-    :math:`\le (k+1)A` over :math:`\Delta^{k+1}`, so :math:`D_E = (n+d+1)A`.
+    r"""``(D_E, deg Delta)``: every entry is :math:`\hat p_e/\Delta` (:math:`\Delta` the lcm of the
+    ``q``, :math:`\deg \hat p_e \le A`), so :math:`e_k` has degree :math:`\le (k+1)A`, :math:`D_E = (n+d+1)A`.
     """
     algebra, memo, values = Degrees(), {}, []
     for where, e in problem.entries():
@@ -294,7 +234,6 @@ def _degree_bound(problem: _Problem) -> tuple[int, int]:
     return (problem.n + problem.d + 1) * A, ddelta
 
 
-# ---------------------------------------------------------------- evaluation at points
 def _sides_at(problem: _Problem, alg: _Entries, zval: Fraction):
     """Both sides as ``fmpq_mat`` at ``alg``'s point and ``z = zval``; ``None`` at a pole."""
     n, d, (p, q) = problem.n, problem.d, problem.shape
@@ -362,7 +301,6 @@ def _counterexample(problem: _Problem, rng: random.Random) -> dict | None:
     return None
 
 
-# ---------------------------------------------------------------- the two methods
 def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
     count = problem.n + problem.d + 1
     try:
@@ -433,11 +371,6 @@ def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random)
     )
 
 
-# ---------------------------------------------------------------- floating-point inputs
-def _floating(problem: _Problem) -> bool:
-    return any(e.has(sp.Float) for _, e in problem.entries())
-
-
 def _relative_difference(problem: _Problem, values: Mapping) -> Fraction:
     """The normwise relative difference of the Markov parameters at ``values`` (exact)."""
     alg = _Entries(problem.symbols, values)
@@ -470,7 +403,7 @@ def _numeric(problem: _Problem, rng: random.Random) -> Fraction:
 
 
 def _with_numeric(result: RealizationCheck, problem: _Problem, rng, rtol: float):
-    if not _floating(problem):
+    if not any(e.has(sp.Float) for _, e in problem.entries()):
         return result
     worst = Fraction(0) if result.ok else _numeric(problem, rng)
     return dataclasses.replace(
@@ -483,10 +416,8 @@ def _with_numeric(result: RealizationCheck, problem: _Problem, rng, rtol: float)
 
 
 def _similarity_holds(R: Realization, base: Realization, P) -> bool:
-    r"""Exactly :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N = N_0`, det P != 0.
-
-    Entries are folded into pairs of python-flint ``fmpz_mpoly`` (the products
-    multiplied out, never inverted); False when an entry is not rational.
+    r"""Exactly :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N = N_0`, det P != 0
+    (python-flint, multiplied out, never inverted); False when an entry is not rational.
     """
     from flint import fmpz_mpoly_ctx
 
@@ -559,29 +490,19 @@ def check_realization(
         :math:`n + d \le 10`. See the module notes for both and for the theorem
         that :math:`n + d + 1` Markov parameters decide.
     rng : None, int, random.Random or numpy.random.Generator, optional
-        Source of the random points (and of the counterexample's values);
-        ``None`` uses the operating system's entropy.
+        Source of the random points and counterexamples (``None``: the OS's entropy).
     rtol : float, optional
-        Tolerance of the numeric verdict for floating-point inputs (default
-        ``1e-9``): they agree numerically when the largest relative difference
-        of the Markov parameters is at most ``rtol``. Unused for exact inputs.
+        Tolerance of the numeric verdict for floating-point inputs (default ``1e-9``).
     similar_to : (Realization, matrix), optional
-        ``(base, P)`` with ``R`` claimed to be ``base.similar(P)``. The proof
-        then multiplies instead of raising :math:`F` to powers: it checks
-        :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N =
-        N_0` and :math:`\det P \ne 0` exactly (so ``R`` and ``base`` have the
-        same transfer function) and decides ``base`` against ``G`` by
-        ``method``; the verdict is the base's, its details say so. When the
-        identities fail, ``R`` is decided directly. A dense symbolic ``R`` of
-        order 20 (a general realization at T = 20) takes minutes through its
-        Markov parameters and seconds this way.
+        ``(base, P)`` with ``R`` claimed to be ``base.similar(P)``: the identities
+        :math:`P F = F_0 P`, :math:`P H = H_0`, :math:`M = M_0 P`, :math:`N = N_0`,
+        :math:`\det P \ne 0` are checked exactly and ``base`` is decided against ``G``
+        (the details say so; seconds, not minutes, for a dense ``R`` at T = 20). When
+        they fail, ``R`` is decided directly.
 
     Returns
     -------
     RealizationCheck
-        Truthy when ``G`` is realized; with ``.counterexample`` when not. For
-        floating-point inputs, truthy when they agree to ``rtol``, with the exact
-        verdict in ``.ok`` and the largest relative difference beside it.
 
     Raises
     ------
@@ -658,11 +579,8 @@ def _similar_to(value) -> tuple[Realization, sp.Matrix]:
 def require_stable_sections(epsilons, argname: str) -> None:
     r"""Refuse section poles :math:`|\epsilon| \ge 1`: they are hidden, unstable modes of the loop.
 
-    :math:`G = G_3 G_2 G_1` cancels the poles of the sections
-    :math:`C/(z - \epsilon)` with zeros of :math:`G_2`, so the transfer function
-    stays right for every :math:`\epsilon` while a realization with
-    :math:`|\epsilon| \ge 1` has an internally unstable circuit (its state grows
-    as :math:`\epsilon^t`, which no feedback can move). Symbols are let through
+    :math:`G_3 G_2 G_1` cancels the sections' poles with zeros of :math:`G_2`, so the transfer
+    function stays right while the circuit's state grows as :math:`\epsilon^t`. Symbols pass
     (checked when numbers are substituted).
 
     Parameters

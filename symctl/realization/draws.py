@@ -1,24 +1,9 @@
 r"""Realizations of :math:`G_2` at random section values: the realizations a circuit simulates.
 
-A circuit of the paper is one realization of :math:`G = G_3 G_2 G_1` among many:
-the sections' poles :math:`\epsilon_k` are free (and, for the general realization,
-the similarity transform :math:`P`). :func:`draw_realizations` draws them, seeded,
-and realizes :math:`G_2` at each draw; the derivation builds its numeric
-realizations from the first draw, and the simulations close the loop with every
-one (:func:`~symctl.neural.firing.circuit_firing`).
-
-Each draw, in turn: the epsilons uniformly from the grid :math:`k/1000`,
-:math:`|k| \le 899` (exact rationals in :math:`(-0.9, 0.9)`), :math:`C_k = 1`;
-then the realizer's own random choices (``P`` for ``"general"``) from the same
-generator.
-
->>> from symctl import augment, controller_tf, lqr_gains, MuscleModel
->>> from symctl.realization.draws import draw_realizations
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> G = controller_tf(gains.system).subs(gains.substitutions(exact=True))
->>> first, second = draw_realizations(G, 1, 1, "observable", 2, rng=0)
->>> [str(v) for v in first.values.values()], first.result.realization.n
-(['631/1000', '123/500'], 2)
+:func:`draw_realizations` draws, seeded, the sections' epsilons (uniform on the grid
+:math:`k/1000`, :math:`|k| \le 899`; :math:`C_k = 1`) and then the realizer's own choices
+(``P`` for ``"general"``) from the same generator, and realizes :math:`G_2` at each draw;
+the derivation realizes from the first draw and simulates every one.
 """
 
 from __future__ import annotations
@@ -81,9 +66,9 @@ def draw_realizations(
     Parameters
     ----------
     G : DiscreteTF
-        The controller, with numbers (exact rationals keep every realization exact).
+        The controller, numeric (exact rationals keep every realization exact).
     sensor_delay, actuator_delay : int
-        The delays (the sections of :math:`G_1` and :math:`G_3`).
+        The sections of :math:`G_1` and :math:`G_3`.
     name : str
         A realizer of :data:`~symctl.realization.realizers.REALIZERS`.
     count : int

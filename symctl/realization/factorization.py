@@ -19,15 +19,6 @@ paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
     {z^2 - K_1 z - K_2}
     = \frac{K_0}{C_1 C_3} + \frac{K_0}{C_1 C_3}\,
     \frac{(K_1 - \epsilon_1 - \epsilon_3) z + K_2 + \epsilon_1\epsilon_3}{z^2 - K_1 z - K_2}.
-
->>> from symctl import controller_tf, factor
->>> f = factor(controller_tf(2))
->>> f.N
-K_0/(C_1*C_3)
->>> f.remainder_coeffs
-[K_1 - epsilon_1 - epsilon_3, K_2 + epsilon_1*epsilon_3]
->>> bool(f.verify())
-True
 """
 
 from __future__ import annotations
@@ -81,13 +72,8 @@ def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple
 
 @cache
 def sigma_symbols(count: int) -> tuple[sp.Symbol, ...]:
-    r"""The abbreviations :math:`\sigma_1, \dots, \sigma_d` of the zeros' coefficients.
-
-    :math:`\prod_{i=1}^{d} (z - \epsilon_i) = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`
-    with :math:`\sigma_0 = 1`: :math:`\sigma_k = e_k(\epsilon)` is the k-th
-    elementary symmetric polynomial of the section poles (Vieta), which has
-    :math:`\binom{d}{k}` terms; :meth:`Factorization.abbreviated` writes
-    :math:`G_2` with them.
+    r"""The abbreviations :math:`\sigma_1, \dots, \sigma_d`: :math:`\prod_{i=1}^{d} (z - \epsilon_i)
+    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`, :math:`\sigma_k = e_k(\epsilon)` (Vieta).
 
     >>> from symctl.realization.factorization import sigma_symbols
     >>> sigma_symbols(3)
@@ -97,12 +83,8 @@ def sigma_symbols(count: int) -> tuple[sp.Symbol, ...]:
 
 
 def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
-    r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N`.
-
-    ``c`` in descending powers of z, each in lowest terms; the numerator of
-    ``G2`` itself when :math:`N = 0`. :attr:`Factorization.remainder_coeffs`
-    is ``c`` of :attr:`Factorization.G2`; of the abbreviated :math:`G_2`
-    (:meth:`Factorization.abbreviated`) it is :math:`K_k \mp \sigma_k`.
+    r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N` in
+    descending powers of z (of ``G2`` itself when :math:`N = 0`).
 
     >>> from symctl import controller_tf, factor
     >>> from symctl.realization.factorization import remainder
@@ -124,7 +106,7 @@ def _sections(eps, cs, dt) -> DiscreteTF:
 
 @dataclass(frozen=True)
 class Factorization(DictMixin, LatexMixin):
-    r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols.
+    r"""The factors of :math:`G = G_3 G_2 G_1` and their symbols (built by :func:`factor`; a value).
 
     Attributes
     ----------
@@ -135,10 +117,6 @@ class Factorization(DictMixin, LatexMixin):
     channels : (int, int)
         The measured signals (columns of ``G``) and the outputs (rows): ``(1, 1)``
         for the paper's SISO controller.
-
-    Notes
-    -----
-    Built by :func:`factor`; compares and hashes by value.
 
     Examples
     --------
@@ -197,10 +175,7 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def N(self) -> sp.Expr:
-        r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`).
-
-        A matrix for a MIMO factorization (:math:`G_2(\infty)`, entry by entry).
-        """
+        r"""Feed-through of :math:`G_2`, the same in every realization (:math:`K_0/(C_1C_3)`)."""
         from symctl.realization.realization import split_proper
 
         if not self.is_siso:
@@ -217,10 +192,8 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def remainder_coeffs(self) -> list[sp.Expr]:
-        r"""Numerator of :math:`(G_2 - N)/N` in descending powers of z.
-
-        The paper's :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`;
-        when :math:`N = 0` the numerator of :math:`G_2` itself.
+        r"""Numerator of :math:`(G_2 - N)/N` in descending powers of z (the paper's
+        :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`).
         """
         self._siso_only("remainder_coeffs")
         return remainder(self.G2)[1]
@@ -238,17 +211,9 @@ class Factorization(DictMixin, LatexMixin):
     def abbreviated(self) -> DiscreteTF:
         r""":math:`G_2` with the coefficients of its zeros written as :math:`\sigma_k`.
 
-        .. math::
-            G_2 = \frac{\operatorname{num} G}{\prod C}\,
-            \frac{\sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}}{\operatorname{den} G},
-            \qquad \sigma_0 = 1,\ \sigma_k = e_k(\epsilon_1, \dots, \epsilon_d),
-
-        for the :math:`d` section poles (:func:`sigma_symbols`). The expanded
-        :attr:`G2` has :math:`2^d` monomials in its zeros' coefficients; this
-        form has :math:`d`, so realizations of it stay small at any delay. A
-        realization of the abbreviated :math:`G_2` realizes :attr:`G2` at
-        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`): an identity in free
-        symbols :math:`\sigma_k` holds at any value of them.
+        The expanded :attr:`G2` has :math:`2^d` monomials in its zeros' coefficients, this form
+        :math:`d`, so its realizations stay small at any delay; one realizes :attr:`G2` at
+        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`).
 
         Examples
         --------
@@ -279,10 +244,8 @@ class Factorization(DictMixin, LatexMixin):
         Returns
         -------
         dict
-            Exact numbers when every pole is a number (the coefficients of
-            :math:`\prod (z - \epsilon_i)`, expanded in python-flint); SymPy
-            polynomials otherwise (:math:`\binom{d}{k}` terms each: meant for
-            small :math:`d`).
+            Exact numbers when every pole is a number (python-flint); else SymPy polynomials
+            (:math:`\binom{d}{k}` terms each: for small :math:`d`).
 
         Examples
         --------
@@ -300,7 +263,7 @@ class Factorization(DictMixin, LatexMixin):
         if all(p.is_Rational for p in poles):
             poly = fmpq_poly([1])
             for p in poles:
-                poly *= fmpq_poly([-_fmpq(p), 1])
+                poly *= fmpq_poly([-fmpq(int(p.p), int(p.q)), 1])
             coeffs = [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
         else:
             coeffs = sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()
@@ -321,14 +284,10 @@ class Factorization(DictMixin, LatexMixin):
         Returns
         -------
         Proof
-            Truthy when the identity holds, with its method. When a coefficient
-            is a floating-point number and the exact identity fails (the floats'
-            binary rationals differ by rounding), the verdict is the numeric one:
-            the cross-multiplied sides :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1`
-            compared as polynomials in :math:`z` (with every other symbol at 8
-            random points in :math:`\\pm(0, 2]`), truthy when the largest
-            coefficient difference relative to the largest coefficient is at most
-            ``rtol``; the method says so and states that difference and ``rtol``.
+            Truthy when the identity holds, with its method. With floats, when the exact
+            identity fails by rounding, the verdict is numeric: :math:`n_3 n_2 n_1 d` and
+            :math:`n d_3 d_2 d_1` compared in :math:`z` (other symbols at 8 random points
+            in :math:`\\pm(0, 2]`), truthy when their relative difference is at most ``rtol``.
 
         Examples
         --------
@@ -375,11 +334,7 @@ class Factorization(DictMixin, LatexMixin):
         )
 
     def subs(self, *args, **kwargs) -> Factorization:
-        """Substitute values (e.g. for the epsilons and Cs); a zero C is refused.
-
-        Arguments are checked by :func:`symctl._util.validate.subs_rule` (text is
-        read by the safe parser, never by ``sympify``).
-        """
+        """Substitute values (e.g. epsilons and Cs; text through the safe parser); a zero C is refused."""
         sections = (*self.sensor_eps, *self.sensor_C, *self.actuator_eps, *self.actuator_C)
         sections = [to_expr(v, "sections") for v in sections]
         symbols = set().union(
@@ -452,12 +407,10 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
     eps, C : sequence or value, optional
-        Values of the section poles and gains, sensor sections first (one
-        value for all, or ``sensor_delay + actuator_delay`` of them; numbers,
-        SymPy expressions or text read by the safe parser). By default the
-        symbols of :func:`section_symbols`. Building the factors at given
-        values is exact and cheap; :meth:`Factorization.subs` afterwards
-        rewrites every expression.
+        The section poles and gains, sensor sections first (one for all, or one per
+        section; text through the safe parser). By default the
+        symbols of :func:`section_symbols` (building at given values is cheaper than
+        :meth:`Factorization.subs` afterwards).
 
     Returns
     -------
@@ -468,17 +421,13 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     Raises
     ------
     ParameterError
-        Improper ``G``, relative degree of ``G`` below ``sensor_delay + actuator_delay``,
-        negative delays, a zero ``C`` or a value in ``z``.
+        Improper ``G``, its relative degree below the delays, negative delays, a zero
+        ``C`` or a value in ``z``.
     DimensionError
-        ``eps``/``C`` of the wrong length, or more than ``MAX_CHANNELS`` (50)
-        inputs or outputs.
+        ``eps``/``C`` of the wrong length, or over ``MAX_CHANNELS`` (50) inputs or outputs.
 
-    A MIMO ``G`` (p x m) is factored channel by channel
-    (:mod:`symctl.realization.channels`): ``G1`` and ``G3`` are diagonal, with
-    ``sensor_delay`` sections on each of the ``m`` measured signals and
-    ``actuator_delay`` on each of the ``p`` outputs; ``eps`` and ``C`` are then
-    channel-major, sensor channels first (``m * sensor_delay + p * actuator_delay``).
+    A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`):
+    ``G1``, ``G3`` diagonal; ``eps`` and ``C`` channel-major, sensor channels first.
 
     Examples
     --------
@@ -546,11 +495,6 @@ def _factor_mimo(tf: DiscreteTF, ds: int, da: int, eps, C) -> Factorization:
     )
 
 
-def _fmpq(value: sp.Rational) -> fmpq:
-    """A SymPy rational as a python-flint ``fmpq``."""
-    return fmpq(int(value.p), int(value.q))
-
-
 def _factors(exprs) -> Counter:
     """The product of ``exprs`` as a multiset of bases with integer exponents (numbers folded)."""
     out: Counter = Counter()
@@ -570,13 +514,8 @@ def _factors(exprs) -> Counter:
 
 
 def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
-    """Exact ``prod(left) == prod(right)``: identical factors cancelled, the rest multiplied out.
-
-    The factorization's two sides share most factors (the gains, the section
-    gains, the denominator of G, the poles' linear factors); cancelling them
-    structurally first (as rational functions: the net exponent of each base)
-    leaves the sections' expanded denominators against the zeros' linear
-    factors, which python-flint multiplies out (sparse, exact).
+    """Exact ``prod(left) == prod(right)``: identical factors cancelled structurally, the rest
+    multiplied out in python-flint.
     """
     zero_left, zero_right = (any(e == 0 for e in side) for side in (left, right))
     if zero_left or zero_right:  # a zero factor: cancelling the others would hide it
@@ -598,11 +537,8 @@ def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
 
 
 def _relative_difference(left: sp.Expr, right: sp.Expr, points: int = 8) -> float:
-    r"""The largest coefficient of ``left - right`` in :math:`z` over the largest of either side.
-
-    Floats are taken as their exact binary rationals; other symbols are set to
-    ``points`` seeded random values in :math:`\pm(0, 2]` (a point where a side is
-    undefined is skipped), and the worst point counts.
+    r"""The largest coefficient of ``left - right`` in :math:`z` over the largest of either side,
+    other symbols at ``points`` seeded values in :math:`\pm(0, 2]` (the worst counts).
     """
     exact = {f: sp.Rational(f) for f in (left.atoms(sp.Float) | right.atoms(sp.Float))}
     left, right = left.xreplace(exact), right.xreplace(exact)

@@ -1,10 +1,8 @@
 r"""Minimal realizations, exactly: the Kalman reduction in rational arithmetic.
 
-A realization :math:`(F, H, M, N)` of a (MIMO) transfer function is minimal
-when it is controllable and observable; its order is then the McMillan degree
-of :math:`G`. :func:`minimal_realization` reduces any realization with number
-entries (floats are taken as the exact binary rationals they are) in two exact
-steps, each with python-flint's rational row reduction:
+A realization is minimal when controllable and observable (its order is then the
+McMillan degree). :func:`minimal_realization` reduces one with number entries (floats
+taken exactly) in two exact steps of python-flint's rational row reduction:
 
 1. **controllable part.** The columns :math:`V` of the Krylov matrix
    :math:`[H, FH, \dots, F^{n-1}H]` at its pivots are a basis of the
@@ -106,15 +104,12 @@ def minimal_realization(R: Realization) -> Realization:
     Parameters
     ----------
     R : Realization
-        Entries numbers (rationals, integers, or floats, taken exactly); any
-        shape (MIMO too), at most :data:`MAX_ORDER` states.
+        Numbers (floats taken exactly), any shape, at most :data:`MAX_ORDER` states.
 
     Returns
     -------
     Realization
-        Controllable and observable, of order the McMillan degree of
-        ``R.to_tf()``, realizing it (proved by the exact checker); ``R``'s
-        ``dt`` kept.
+        Of order the McMillan degree, proved to realize ``R.to_tf()``; ``R``'s ``dt`` kept.
 
     Raises
     ------
@@ -125,8 +120,6 @@ def minimal_realization(R: Realization) -> Realization:
 
     Examples
     --------
-    Two first-order sections in parallel with the same pole are one state:
-
     >>> from symctl import Realization
     >>> from symctl.realization.minimal import minimal_realization
     >>> R = Realization([[0.5, 0], [0, 0.5]], [[1], [1]], [[1, 2]], 0)

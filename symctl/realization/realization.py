@@ -1,32 +1,12 @@
 r"""State-space realizations :math:`(F, H, M, N)` in closed form.
 
-A realization of :math:`G(z)` is :math:`(F, H, M, N)` with
-:math:`G(z) = M (zI - F)^{-1} H + N`; its state-space controller is
-:math:`x(t+1) = F x(t) + H u(t)`, :math:`y(t) = M x(t) + N u(t)` (the paper's
-section "Realizations"). :class:`Realization` is immutable and exact (numeric,
-rational or symbolic entries); operations return new objects.
-
-Constructors, for any proper SISO :math:`G_2` of order :math:`n`, written as
-:math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1} + \dots + a_0)`:
-
-* :func:`controllable_canonical`: :math:`F` companion with last row
-  :math:`[-a_0, \dots, -a_{n-1}]`, :math:`H = e_n`, :math:`M = [c_0, \dots, c_{n-1}]`;
-* :func:`observable_canonical`: its dual, :math:`(F^\top, M^\top, H^\top, N)`;
-* :func:`~symctl.general_realization` and :func:`~symctl.random_realization`
-  (in :mod:`symctl.realization.realizers`, the registry of the ways to
-  realize :math:`G_2`): a similarity transform of a canonical one, and the
-  paper's recipe for its figures.
-
-For the paper's :math:`G_2` these are exactly its matrices, e.g.
-:math:`F = [[0, 1], [K_2, K_1]]`, :math:`H = [0, 1]^\top`,
-:math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`.
-
->>> from symctl import controllable_canonical, z
->>> R = controllable_canonical((z + 2) / (z**2 - z / 2))
->>> R.F, R.H.T, R.M, R.N
-(Matrix([
-[0,   1],
-[0, 1/2]]), Matrix([[0, 1]]), Matrix([[2, 1]]), Matrix([[0]]))
+A realization of :math:`G(z)` is :math:`(F, H, M, N)` with :math:`G(z) = M (zI - F)^{-1} H
++ N`: :math:`x(t+1) = F x(t) + H u(t)`, :math:`y(t) = M x(t) + N u(t)` (the paper's
+section "Realizations"). :class:`Realization` is immutable and exact. For the paper's
+:math:`G_2` the canonical forms are exactly its matrices, e.g. :math:`F = [[0, 1], [K_2,
+K_1]]`, :math:`H = [0, 1]^\top`, :math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\
+K_1 - \epsilon_1 - \epsilon_3]`; the other ways to realize :math:`G_2` are in
+:mod:`symctl.realization.realizers`.
 """
 
 from __future__ import annotations
@@ -72,6 +52,9 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 class Realization(LatexMixin):
     r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
 
+    Stored as :class:`sympy.ImmutableMatrix` (``n = 0``, a static gain, allowed); compares and
+    hashes by the matrices and ``dt`` (structurally: similar realizations are not equal).
+
     Parameters
     ----------
     F : (n, n) matrix-like
@@ -80,14 +63,7 @@ class Realization(LatexMixin):
     N : (p, q) matrix-like (a scalar for SISO)
     dt : sampling time, optional
     params : mapping, optional
-        Values used to build it (e.g. the random epsilons and ``P``), for
-        records; kept as a read-only mapping and not compared.
-
-    Notes
-    -----
-    ``F, H, M, N`` are stored as :class:`sympy.ImmutableMatrix`. ``n = 0`` (a
-    static gain) is allowed. Realizations compare and hash by value: the
-    matrices and ``dt`` (structurally; similar realizations are not equal).
+        Values used to build it (e.g. the random epsilons and ``P``); read-only, not compared.
 
     Raises
     ------
@@ -136,7 +112,6 @@ class Realization(LatexMixin):
         object.__setattr__(self, "dt", None if self.dt is None else to_expr(self.dt, "dt"))
         object.__setattr__(self, "params", MappingProxyType(dict(self.params or {})))
 
-    # ------------------------------------------------------------ sizes
     @property
     def n(self) -> int:
         """Number of states."""
@@ -151,13 +126,9 @@ class Realization(LatexMixin):
     def free_symbols(self) -> set[sp.Symbol]:
         return set().union(*(m.free_symbols for m in (self.F, self.H, self.M, self.N)))
 
-    # ------------------------------------------------------------ transfer function
     def markov(self, count: int) -> list[sp.Matrix]:
-        r"""``[N, M H, M F H, ..., M F^{count-2} H]``, evaluated left to right with cancellation.
-
-        Row vectors :math:`M F^k` are carried and cancelled at each step, so
-        denominators of a similarity transform (``det P``) do not pile up.
-        ``count`` is an integer from 0 to :data:`~symctl._util.validate.MAX_STEPS`.
+        r"""``[N, M H, M F H, ..., M F^{count-2} H]``, the row vectors :math:`M F^k` cancelled at each
+        step (no pile-up of ``det P`` denominators); ``count`` from 0 to ``MAX_STEPS``.
         """
         count = bounded_int(count, "count", 0, MAX_STEPS)
         out = [sp.Matrix(self.N)]
@@ -187,7 +158,6 @@ class Realization(LatexMixin):
             num.applyfunc(lambda e: sp.expand(sp.together(e))), chi.as_expr(), self.dt
         )
 
-    # ------------------------------------------------------------ transformations
     def similar(self, P) -> Realization:
         r"""The similar realization :math:`(P^{-1} F P,\ P^{-1} H,\ M P,\ N)`.
 
@@ -199,11 +169,8 @@ class Realization(LatexMixin):
         return self._similar(P)[0]
 
     def _similar(self, P) -> tuple[Realization, sp.Matrix]:
-        """:meth:`similar` and the inverse of ``P`` it computed (adjugate over determinant).
-
-        Fraction-free in python-flint (:mod:`symctl.realization._similarity`);
-        entries that are not rational functions with rational coefficients
-        (floats, ``pi``) take the SymPy path, :func:`_similar_sympy`.
+        """:meth:`similar` and the ``P^{-1}`` it computed, fraction-free in python-flint; other entries
+        (floats, ``pi``) take :func:`_similar_sympy`.
         """
         Pm = to_matrix(P, "P")
         if Pm.shape != (self.n, self.n):
@@ -228,11 +195,7 @@ class Realization(LatexMixin):
         return R, sp.ImmutableMatrix(Pinv)
 
     def subs(self, *args, **kwargs) -> Realization:
-        """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`).
-
-        Arguments are checked by :func:`symctl._util.validate.subs_rule` (text is
-        read by the safe parser, never by ``sympify``).
-        """
+        """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`; text through the safe parser)."""
         dt_symbols = set() if self.dt is None else self.dt.free_symbols
         rule, flags = subs_rule(args, kwargs, self.free_symbols | dt_symbols)
         mats = [m.subs(rule, **flags) for m in (self.F, self.H, self.M, self.N)]
@@ -243,7 +206,6 @@ class Realization(LatexMixin):
         """The dual realization :math:`(F^T, M^T, H^T, N^T)` (of :math:`G^T`)."""
         return Realization(self.F.T, self.M.T, self.H.T, self.N.T, self.dt, self.params)
 
-    # ------------------------------------------------------------ properties
     def controllability_matrix(self) -> sp.Matrix:
         return (
             sp.Matrix.hstack(*[self.F**k * self.H for k in range(self.n)])
@@ -259,11 +221,7 @@ class Realization(LatexMixin):
         )
 
     def is_minimal(self) -> bool:
-        r"""Controllable and observable, i.e. every eigenvalue of :math:`F` is a pole of :math:`G`.
-
-        With symbols, the rank is the generic rank (for almost all values of
-        the symbols); numeric floats use a relative tolerance of 1e-10.
-        """
+        r"""Controllable and observable (generic rank with symbols; floats to a relative 1e-10)."""
         if self.n == 0:
             return True
         return all(
@@ -271,7 +229,6 @@ class Realization(LatexMixin):
             for mat in (self.controllability_matrix(), self.observability_matrix())
         )
 
-    # ------------------------------------------------------------ numbers and interop
     def numeric(self) -> tuple[np.ndarray, ...]:
         """``(F, H, M, N)`` as float arrays; refuses free symbols."""
         from symctl._util.validate import numeric_matrix
@@ -351,11 +308,7 @@ class Realization(LatexMixin):
         return out
 
     def lambdify(self, symbols):
-        r"""A NumPy function of the ``symbols`` returning ``(F, H, M, N)`` as arrays.
-
-        Vectorized: arrays of parameter values broadcast, and each returned
-        matrix has shape ``broadcast_shape + (rows, cols)``.
-        """
+        r"""A NumPy function of the ``symbols`` returning ``(F, H, M, N)``, broadcast over value arrays."""
         from symctl._util.evaluate import lambdify_matrices
 
         return lambdify_matrices((self.F, self.H, self.M, self.N), symbols)
@@ -400,7 +353,6 @@ def _rank(mat: sp.Matrix) -> int:
     return mat.rank(iszerofunc=lambda e: sp.cancel(e) == 0)
 
 
-# ---------------------------------------------------------------- constructors
 def _siso(G, argname: str = "G2") -> DiscreteTF:
     tf = DiscreteTF.from_expr(G)
     if not tf.is_siso:
@@ -441,9 +393,8 @@ def controllable_canonical(G2) -> Realization:
             -a_0 & -a_1 & \cdots & -a_{n-1}\end{bmatrix},\quad
         H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty),
 
-    with :math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1}
-    + \dots + a_0)`. The ``"controllable"`` realizer of
-    :data:`symctl.realization.realizers.REALIZERS` returns it.
+    with :math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1} + \dots + a_0)`.
+    A p x m ``G2`` (one common denominator) gets the block form, :math:`n m` states.
 
     Parameters
     ----------
@@ -459,9 +410,6 @@ def controllable_canonical(G2) -> Realization:
     ------
     ParameterError
         An improper ``G2``, or one that is not rational in ``z``.
-
-    A p x m ``G2`` (one common denominator) gets the block controllable form,
-    :math:`n m` states (:func:`_block_controllable`).
 
     Examples
     --------
@@ -494,6 +442,7 @@ def observable_canonical(G2) -> Realization:
 
     For the paper's :math:`G_2`: :math:`F = [[0, K_2], [1, K_1]]`, :math:`M = [0, 1]`,
     :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
+    A p x m ``G2`` gets the block observable form, :math:`n p` states.
 
     Parameters
     ----------
@@ -509,9 +458,6 @@ def observable_canonical(G2) -> Realization:
     ------
     ParameterError
         An improper ``G2``, or one that is not rational in ``z``.
-
-    A p x m ``G2`` gets the block observable form, :math:`n p` states (the dual
-    of the block controllable form of :math:`G_2^\top`).
 
     Examples
     --------
@@ -579,7 +525,7 @@ def _block_controllable(tf: DiscreteTF) -> Realization:
 def first_order_realization(eps, C, dt=None) -> Realization:
     r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
 
-    The building block of :math:`G_1` and :math:`G_3` (one section per delay step).
+    One per delay step of :math:`G_1` and :math:`G_3`.
 
     Parameters
     ----------
@@ -637,12 +583,9 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
 
 
 def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
-    r"""The k-th sections of every channel side by side, one diagonal realization per stage.
-
-    Stage :math:`k`: :math:`F = \operatorname{diag}_j \epsilon_{j,k}`,
-    :math:`H = \operatorname{diag}_j C_{j,k}`, :math:`M = I`, :math:`N = 0` (``eps``
-    and ``cs`` channel-major, as in a MIMO
-    :class:`~symctl.realization.factorization.Factorization`).
+    r"""The k-th sections of every channel, one diagonal realization per stage (``eps``, ``cs``
+    channel-major): :math:`F = \operatorname{diag}_j \epsilon_{j,k}`,
+    :math:`H = \operatorname{diag}_j C_{j,k}`.
     """
     count = len(eps) // channels if channels else 0
     stages = []
@@ -658,8 +601,7 @@ def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
 def controller_realization(factorization, R2: Realization) -> Realization:
     r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
 
-    State order: the sensor sections of :math:`G_1` (in signal-flow order),
-    then the states of ``R2``, then the actuator sections of :math:`G_3`.
+    States: the sections of :math:`G_1`, those of ``R2``, then the sections of :math:`G_3`.
 
     Parameters
     ----------
@@ -671,8 +613,7 @@ def controller_realization(factorization, R2: Realization) -> Realization:
     Returns
     -------
     Realization
-        The series :math:`G_3 \cdot R_2 \cdot G_1`, of order
-        ``sensor_delay + R2.n + actuator_delay``.
+        Of order ``sensor_delay + R2.n + actuator_delay``.
 
     Examples
     --------

@@ -1,41 +1,14 @@
 r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
 
-A *realizer* turns a proper SISO transfer function into a
-:class:`~symctl.Realization` and says how: it returns a
-:class:`RealizerResult` with the realization, the canonical realization it
-was built from (its *base*) and the similarity transform :math:`P` relating
-them, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them under their
-names, in the order the report reads the circuits they build:
-
-* ``"ifp"``: the paper's IFP controller, the optimal controller's own state
-  space (:func:`ifp_realization`); it realizes the whole controller from its
-  gains, not :math:`G_2`;
-* ``"general"``: the similarity transform of a canonical base by a given
-  :math:`P` (or, given only ``rng``, a random well-conditioned rational one);
-* ``"controllable"``: the controllable canonical form (:math:`P = I`);
-* ``"observable"``: the observable canonical form (:math:`P = I`);
-* ``"random"``: the paper's recipe for its figures, random epsilons and then a
-  random :math:`P` (:func:`random_realization`); not a circuit of its own.
-
-This table is the one place these names, titles and their order are written:
-the model file's ``[circuits] build``, :func:`~symctl.neural.firing.circuit_firing`,
-the report, the CLI, Dale's law and the fits read it (:func:`circuit_names`).
-:func:`register` adds a realizer (docs/extending.md), :func:`get_realizer`
-looks a name up (and names the argument when it is unknown).
-
->>> import sympy as sp
->>> from symctl import z
->>> from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer
->>> list(REALIZERS)
-['ifp', 'general', 'controllable', 'observable', 'random']
->>> circuit_names()
-('ifp', 'general', 'controllable', 'observable')
->>> result = get_realizer("general")(1 / (z - sp.Rational(1, 2)), P=[[2]])
->>> result.realization.H, result.P, result.base.H
-(Matrix([[1/2]]), Matrix([[2]]), Matrix([[1]]))
->>> REALIZERS["observable"].title
-'observable canonical'
+A *realizer* turns a proper SISO transfer function into a :class:`RealizerResult`: the
+realization, the canonical realization it was built from (its *base*) and the similarity
+transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
+nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them in the report's order:
+``"ifp"`` (the whole controller from its gains, :func:`ifp_realization`), ``"general"``
+(a canonical base transformed by a given or random :math:`P`), ``"controllable"``,
+``"observable"`` and ``"random"`` (the paper's recipe, :func:`random_realization`; no
+circuit of its own). This table is the one place these names, titles and their order
+are written; :func:`register` adds a realizer (docs/extending.md).
 """
 
 from __future__ import annotations
@@ -87,12 +60,9 @@ class RealizerResult(DictMixin):
     base : Realization
         The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
     P : sympy.ImmutableMatrix
-        The transform, ``realization == base.similar(P)`` (:math:`I` for a
-        canonical form).
+        The transform, ``realization == base.similar(P)`` (:math:`I` for a canonical form).
     Pinv : sympy.ImmutableMatrix or None
-        :math:`P^{-1}` when it is cheap: for a numeric :math:`P` (the
-        similarity transform computes it anyway), ``None`` for a symbolic one
-        (never inverted explicitly).
+        :math:`P^{-1}` for a numeric :math:`P`, ``None`` for a symbolic one (never inverted).
     realization : Realization
         :math:`(F, H, M, N)`.
 
@@ -116,36 +86,29 @@ class RealizerResult(DictMixin):
 class Realizer:
     """A way of realizing a proper SISO :math:`G_2`; call it to get a :class:`RealizerResult`.
 
-    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register`
-    an instance: every table of circuits reads :data:`REALIZERS`.
+    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an
+    instance: every table of circuits reads :data:`REALIZERS`.
 
     Attributes
     ----------
     name : str
-        Its key in :data:`REALIZERS`, the word a model file, the CLI and
-        :func:`~symctl.neural.firing.circuit_firing` use.
+        Its key in :data:`REALIZERS` (the word of model files, the CLI, :func:`circuit_firing`).
     title : str
         A human title, for reports ("controllable canonical").
     canonical : bool
-        Whether it is a canonical form (a valid ``base`` of the others).
+        A canonical form (a valid ``base`` of the others).
     takes_transform : bool
-        Whether it accepts a transform ``P`` (its circuits form a dense class).
+        Accepts a transform ``P`` (its circuits form a dense class).
     keeps_symbols : bool
-        Whether it realizes :math:`G_2` as given, free symbols kept (the
-        random recipe draws values for the epsilons).
+        Realizes :math:`G_2` as given, free symbols kept.
     form : str
-        The words that name its :math:`G_2` in a circuit's title ("general",
-        "controllable canonical"); by default the title.
+        The words naming its :math:`G_2` in a circuit's title; by default the title.
     circuit : bool
-        Whether it builds a circuit of its own: a model file may list it in
-        ``[circuits] build`` and the report draws it.
+        Builds a circuit of its own (``[circuits] build``; the report draws it).
     paper : bool
-        Whether it is one of the paper's named forms (the paper draws its
-        circuit; a fixed one it writes out for :math:`T = 2` as an equation
-        labelled by its name).
+        One of the paper's named forms (a fixed one is written out for :math:`T = 2`).
     controller : bool
-        Whether it realizes the whole optimal controller, called with its
-        :class:`~symctl.Gains` (the IFP structure), instead of :math:`G_2`.
+        Realizes the whole optimal controller from its :class:`~symctl.Gains`, not :math:`G_2`.
 
     Examples
     --------
@@ -201,10 +164,7 @@ def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
 @dataclass(frozen=True)
 class _General(Realizer):
     def __call__(self, G2, P=None, *, base: str = "controllable", rng=None) -> RealizerResult:
-        """The transform of the ``base`` form by ``P``; ``P=None`` draws one from ``rng``.
-
-        Without states (``n = 0``) the base is returned as it is.
-        """
+        """The transform of the ``base`` form by ``P`` (``None``: drawn from ``rng``); no states: the base."""
         start = get_realizer(base, "base", where=_canonical)(G2).realization
         tf = DiscreteTF.from_expr(G2)
         if start.n == 0:
@@ -238,7 +198,10 @@ class _Random(Realizer):
         eps = sorted(
             (s for s in tf.free_symbols if s.name.startswith("epsilon")), key=lambda s: s.name
         )
-        chosen = {s: _random_rational(gen, low, high) for s in eps}
+        chosen = {
+            s: sp.Rational(int(gen.integers(round(low * 1000), round(high * 1000) + 1)), 1000)
+            for s in eps
+        }
         tf = tf.subs(chosen)
         start = get_realizer(base, "base", where=_canonical)(tf).realization
         out = _transformed(start, tf, random_full_rank(start.n, gen))
@@ -300,9 +263,7 @@ def _canonical(realizer: Realizer) -> bool:
 
 
 def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
-    """The circuits a model builds, in the report's order: the realizers with a circuit.
-
-    Read at each call, so that a realizer :func:`register` ed later is among them.
+    """The circuits a model builds, in the report's order (read at each call: registered ones included).
 
     Parameters
     ----------
@@ -322,10 +283,7 @@ def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
 
 
 def register(realizer: Realizer) -> Realizer:
-    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
-
-    From then on a model file may build its circuit, :func:`~symctl.neural.firing.circuit_firing`
-    simulates it, the report and the CLI list it, Dale's law and the fits accept its name.
+    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others (every table reads it).
 
     Parameters
     ----------
@@ -342,8 +300,8 @@ def register(realizer: Realizer) -> Realizer:
     SymctlTypeError
         ``realizer`` is not a :class:`Realizer`.
     ParameterError
-        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label such as
-        ``"A3"``) or not a lower-case identifier of at most 32 characters.
+        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label) or not a
+        lower-case identifier of at most 32 characters.
 
     Examples
     --------
@@ -433,7 +391,6 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     return REALIZERS[name]
 
 
-# ---------------------------------------------------------------- public constructors
 def general_realization(G2, P, base: str = "controllable") -> Realization:
     r"""A general realization: the similarity transform by ``P`` of a canonical one.
 
@@ -470,21 +427,13 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
     return start.similar(P)
 
 
-def _random_rational(
-    gen: np.random.Generator, low: float, high: float, grid: int = 1000
-) -> sp.Rational:
-    return sp.Rational(int(gen.integers(round(low * grid), round(high * grid) + 1)), grid)
-
-
 def random_full_rank(
     n: int, rng=None, *, grid: int = 100, max_cond: float | None = None
 ) -> sp.Matrix:
     """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned.
 
-    Drawn until its 2-norm condition number is below ``max_cond``, by default
-    ``max(10, 5 n)``: a Gaussian matrix's condition number grows like ``n``
-    (its median is about ``3.4 n``), so a fixed bound would reject almost every
-    draw at large ``n``; this one accepts about two draws in three.
+    Redrawn until its condition number is below ``max_cond``, default ``max(10, 5 n)``
+    (a Gaussian matrix's median is about ``3.4 n``: about two draws in three pass).
 
     >>> from symctl.realization.realizers import random_full_rank
     >>> random_full_rank(2, rng=0).det() != 0
@@ -511,12 +460,10 @@ def random_realization(
 ) -> Realization:
     r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
 
-    Every free symbol of ``G2`` whose name starts with ``epsilon`` gets a random
-    exact rational, uniform in ``eps_range`` (stable sections by default); the
-    canonical realization (``base``) is then similarity-transformed by a random
-    full-rank rational ``P`` (entries about N(0, 1), condition number < 10, so
-    that no state is scaled out of proportion).
-    Other symbols (gains K, C) stay symbolic unless given in ``values``.
+    Every free symbol of ``G2`` named ``epsilon...`` gets a random exact rational in
+    ``eps_range``; the ``base`` realization is then transformed by a random rational ``P``
+    (entries round(100 N(0, 1))/100, condition number below 10). Other symbols stay symbolic
+    unless given in ``values``.
 
     Parameters
     ----------
@@ -527,20 +474,16 @@ def random_realization(
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
-        Interval of the epsilons: each is an exact multiple of 1/1000 drawn uniformly
-        from [low, high] (both ends included); default (-0.9, 0.9). Both ends must lie
-        in (-1, 1): a section C/(z - epsilon) with ``|epsilon| >= 1`` is unstable and
-        G3 G2 G1 hides it (G2 cancels it with a zero), so the circuit would be
-        internally unstable although its transfer function is right.
+        Each epsilon is a multiple of 1/1000 uniform in [low, high]; default (-0.9, 0.9).
+        Both ends lie in (-1, 1): G3 G2 G1 hides a section with ``|epsilon| >= 1`` (G2
+        cancels it), an internally unstable circuit with the right transfer function.
     values : dict, optional
         Values substituted first.
 
     Returns
     -------
     Realization
-        With the epsilons and ``P`` used in ``.params``. ``P`` has entries
-        round(100 N(0, 1))/100 (exact rationals), redrawn until its condition
-        number is below 10.
+        With the epsilons and ``P`` used in ``.params``.
 
     Raises
     ------
@@ -560,14 +503,10 @@ def random_realization(
 def ifp_realization(gains: Gains) -> Realization:
     r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`.
 
-    Controller state :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input
-    :math:`\delta_f`, output :math:`\delta_r`:
-    :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde B_c K_0`,
-    :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (for :math:`T = 0`: a static gain
-    :math:`N = K_0`), with :math:`\tilde A_c, \tilde B_c` the chain's rows of the
-    augmented system (eqs. augmented_states, ifp_controller). The matrices come
-    from :func:`symctl.design.controller.ifp_state_space`, the one construction
-    also used to prove :func:`symctl.controller_tf`.
+    State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`\delta_f`, output
+    :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
+    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`), from
+    :func:`symctl.design.controller.ifp_state_space`, which also proves :func:`symctl.controller_tf`.
 
     Parameters
     ----------
