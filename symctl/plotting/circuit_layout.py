@@ -49,7 +49,6 @@ import networkx as nx
 import numpy as np
 
 from symctl.compatibility.signalgraph import back_edges
-from symctl.plotting import circuit_routes as rt
 from symctl.plotting import layered
 
 if TYPE_CHECKING:
@@ -95,6 +94,8 @@ _WIRE = 0.12  # a wire between bands runs this far outside the bands
 _WIRE_STEP = 0.07  # between two wires at one cut
 _CORNER = 0.05  # the rounding of a wire's corners
 _MAX_CURVES = 150  # beyond: the curves are not searched (a hairball takes its first choice)
+_PAIR = 0.13  # least difference of the heights of two curves between the same two nodes
+_SWING = 0.9  # an end moves at most this far round its circle from where it points [rad]
 
 
 @dataclass(frozen=True)
@@ -173,7 +174,9 @@ class Measures:
         """
         grown = dict(self.radius)
         for n in c.neurons:
-            ends = min((len(n.synapses) + 1) * rt.PORT_GAP / 2.0, MAX_RADIUS) if n.synapses else 0
+            ends = (
+                min((len(n.synapses) + 1) * layered.PORT_GAP / 2.0, MAX_RADIUS) if n.synapses else 0
+            )
             grown[n.name] = max(grown.get(n.name, MIN_RADIUS), ends)
         return Measures(grown, self.name, self.tag, self.label, self.end)
 
@@ -222,7 +225,7 @@ class Arc:
     def points(self) -> np.ndarray:
         """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
         if not self.wire:
-            return rt.samples(self.path)
+            return layered.bezier_points(self.path)
         pts = np.array(self.path)
         return np.concatenate([np.linspace(a, b, 12) for a, b in itertools.pairwise(pts)])
 
@@ -539,15 +542,13 @@ def circuit_layout(
         mine = [specs[k] for k in idx]
         texts = _text_boxes(local, m.radius, m)
         nodes = list(local)
-        obstacles = rt.Obstacles.of(
+        obstacles = layered.Obstacles.of(
             [(local[n], m.radius.get(n, DOT)) for n in nodes],
             list(texts.values()),
             nodes,
             [key for _, key in texts],
         )
-        chosen, fine, written = rt.route(
-            mine, local, col, m.radius, m.label, obstacles, search=search, dot=DOT
-        )
+        chosen, fine, written = route(mine, local, col, m.radius, m.label, obstacles, search=search)
         clear, labelled = clear and fine, labelled and written
         curves = [curve for _, curve, _ in chosen]
         # the band's extent, then moved under the one above
@@ -556,7 +557,7 @@ def circuit_layout(
         ys0 = [ly - ext[n][2] for n, (_, ly) in local.items()]
         ys1 = [ly + ext[n][3] for n, (_, ly) in local.items()]
         for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
-            p = rt.samples(curve)
+            p = layered.bezier_points(curve)
             xs0.append(p[:, 0].min())
             xs1.append(p[:, 0].max())
             ys0.append(p[:, 1].min())
@@ -593,6 +594,137 @@ def circuit_layout(
     return CircuitLayout(
         col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
     )
+
+
+def _heights(straight: bool, prefer: float, start: float, step: float, count: int) -> list:
+    """Candidate bulges: 0 first when ``straight``, then growing, on the ``prefer`` side first."""
+    out = [0.0] if straight else []
+    for size in (start + k * step for k in range(count)):
+        if size > 0:
+            out += [prefer * size, -prefer * size]
+    return out
+
+
+def _end_angles(natural: float, used: list[float], radius: float, swing: float, count: int):
+    """Up to ``count`` angles where a curve may end on a circle, nearest ``natural`` within
+    ``swing``, each :data:`~symctl.plotting.layered.PORT_GAP` clear of those ``used``."""
+    need = layered.PORT_GAP / max(radius, 1e-9)
+    steps = int(swing / (need / 3))
+    tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
+    if used:
+        d = np.abs((tries[:, None] - np.array(used)[None, :] + math.pi) % (2 * math.pi) - math.pi)
+        tries = tries[(d >= need - 1e-9).all(axis=1)]
+    return [float(t) for t in dict.fromkeys(tries.tolist())][:count]
+
+
+def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, search=True):
+    """Heights, curves and label places of arcs ``(source, target, synapse or None)``.
+
+    Each arc, in the order given, takes the first clear bridge
+    (:func:`~symctl.plotting.layered.bridge`; straight first between neighbouring columns,
+    then growing bulges, feedback below) on which its label (``labels``: sizes by synapse)
+    finds a free place, away from the other arcs between the same two nodes, its end moved
+    round the target's circle clear of the ends already there; each label placed joins the
+    ``obstacles``. Without ``search`` (hundreds of synapses) each arc is one arch as high as it
+    is long. Returns per arc ``(height, curve, label centre or None)``, whether every curve is
+    clear and whether every label found a free place.
+
+    Examples
+    --------
+    >>> from symctl.plotting.circuit_layout import route
+    >>> from symctl.plotting.layered import Obstacles
+    >>> pos, col = {"a": (0.0, 0.0), "m": (1.0, 0.0), "b": (2.0, 0.0)}, {"a": 0, "m": 1, "b": 2}
+    >>> free = Obstacles.of([(pos[k], 0.2) for k in pos], [], list(pos))
+    >>> (h, curve, where), = route([("a", "b", None)], pos, col, dict.fromkeys(pos, 0.2), {},
+    ...                            free)[0]
+    >>> h != 0   # over (or under) the neuron between
+    True
+    """
+    clear, labelled, up = True, True, 1.0
+    chosen: list[tuple] = []
+    heights_of: dict[frozenset, list[float]] = {}
+    ports: dict = {}  # the angles at which curves already end at each neuron
+    lines: list[np.ndarray] = []
+    for a, b, s in arcs:
+        (pa, pb), ra, rb = (
+            (np.asarray(pos[a], float), np.asarray(pos[b], float)),
+            radius.get(a, DOT),
+            radius.get(b, DOT),
+        )
+        forward = col[b] > col[a]
+        adjacent = forward and col[b] == col[a] + 1
+        if adjacent:
+            prefer = 1.0
+        elif forward:
+            prefer, up = up, -up
+        else:
+            prefer = -1.0
+        taken = heights_of.setdefault(frozenset((a, b)), [])
+        size = labels.get(s) if s is not None else None
+        apart = max(_PAIR, size[1] + 0.03) if size else _PAIR
+        if search:  # the usual heights and ends, then (none clear) more of each
+            tiers = [
+                (_heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24), _SWING, 3),
+                (_heights(adjacent, prefer, 0.12, 0.08, 40), 2 * _SWING, 8),
+            ]
+        else:  # a hairball: one arch each, as high as it is long
+            tiers = [
+                ([0.0] if adjacent else [prefer * (0.08 + 0.06 * abs(col[b] - col[a]))], _SWING, 3)
+            ]
+        used = ports.setdefault(b, []) if b in radius else []
+        others = np.concatenate(lines) if lines else None
+        pick, fallback = None, None
+        u = (pb - pa) / max(float(np.hypot(*(pb - pa))), 1e-12)
+        qa, qb = tuple(pa + ra * u), tuple(pb - rb * u)  # where the chord leaves the circles
+        for cands, swing, count in tiers:
+            cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
+                (max(map(abs, taken)) + apart) * prefer
+            ]
+            for h in cands:
+                curve = layered.bridge(qa, qb, h)
+                natural = math.atan2(curve[2][1] - pb[1], curve[2][0] - pb[0])
+                angles = _end_angles(natural, used, rb, swing, count)
+                for angle in angles or [natural]:
+                    drawn = layered.trimmed(curve, pa, ra, pb, rb + layered.TIP, angle)
+                    nh = layered.hits(layered.bezier_points(drawn), obstacles, {a, b}) + (
+                        not angles
+                    )
+                    if fallback is None or nh < fallback[0]:
+                        fallback = (nh, h, drawn, angle)
+                    if nh:
+                        continue
+                    where = layered.place_label(drawn, size, obstacles, others) if size else None
+                    if size is None or where is not None:
+                        pick = (h, drawn, where, angle)
+                        break
+                if pick is not None or not search:
+                    break
+            if pick is not None:
+                break
+        if pick is None:  # the least bad, its label where it overlaps the least
+            nh, h, drawn, angle = fallback
+            clear = clear and nh == 0
+            where = None
+            if size is not None:
+                where = layered.place_label(drawn, size, obstacles, others)
+                labelled = labelled and where is not None
+                circles = layered.Obstacles(
+                    obstacles.centres, obstacles.radii, obstacles.keys, np.zeros((0, 4)), ()
+                )
+                where = where or layered.place_label(drawn, size, circles, others)
+                where = where or tuple(float(v) for v in layered.bezier_points(drawn, [0.5])[0])
+            pick = (h, drawn, where, angle)
+        h, drawn, where, angle = pick
+        taken.append(h)
+        used.append(angle)
+        chosen.append((h, drawn, where))
+        lines.append(layered.bezier_points(drawn))
+        if where is not None:
+            w, hh = size
+            obstacles = obstacles.with_box(
+                (where[0] - w / 2, where[1] - hh / 2, where[0] + w / 2, where[1] + hh / 2)
+            )
+    return chosen, clear, labelled
 
 
 def _row_heights(nodes, row, x, col, ext) -> dict:
@@ -663,7 +795,7 @@ def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]
     for k, index in enumerate(crossing):
         a, t, s = specs[index]
         (xa, ya), (xt, yt) = pos[a], pos[t]
-        ra, rt_ = m.radius.get(a, DOT), m.radius.get(t, DOT) + rt.TIP
+        ra, rt_ = m.radius.get(a, DOT), m.radius.get(t, DOT) + layered.TIP
         yg = levels[k]
         xr = band_box[b - 1][1] + _WIRE + (n - 1 - k) * _WIRE_STEP
         xl = band_box[b][0] - _WIRE + (n - 1 - k) * _WIRE_STEP

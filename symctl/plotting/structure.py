@@ -28,15 +28,8 @@ from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size
 from symctl.plotting.key import key_columns
-from symctl.plotting.structure_layout import (
-    ARROW,
-    END_FONT,
-    FONT,
-    NAME_FONT,
-    StructureLayout,
-    Wire,
-    dashed_part,
-)
+from symctl.plotting.layered import Wire, dashed_part
+from symctl.plotting.structure_layout import ARROW, END_FONT, FONT, NAME_FONT, StructureLayout
 from symctl.plotting.structure_overview import draw_structure_overview
 from symctl.plotting.structure_rows import page_bound, structure_rows
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH, TITLE
