@@ -23,7 +23,7 @@ from symctl.plotting import style
 from symctl.plotting.circuit_signs import SignValues
 from symctl.plotting.common import text_size
 
-__all__ = ["COLOURS", "Key", "draw_key_items", "key_items", "stems", "wrap_words"]
+__all__ = ["COLOURS", "Key", "draw_key_items", "key_items", "stems"]
 
 COLOURS = {
     "+": style.EXCITATORY,
@@ -179,24 +179,6 @@ def key_items(key: Key) -> list[tuple[str, str]]:
             for k, name, v in key.numbered
         ]
     return items
-
-
-def wrap_words(text: str, room: float, size: float) -> list[str]:
-    """``text`` broken between words into lines no wider than ``room`` inches at ``size`` points.
-
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_key import wrap_words
-    >>> wrap_words("a few words to wrap", 0.5, 7)
-    ['a few', 'words to', 'wrap']
-    """
-    lines: list[str] = []
-    for word in text.split(" "):
-        if lines and 1.04 * text_size(lines[-1] + " " + word, size)[0] <= room:
-            lines[-1] += " " + word
-        else:
-            lines.append(word)
-    return lines
 
 
 def draw_key_items(ax, items, x: float, y: float, room: float, size: float):

@@ -1,31 +1,21 @@
-r"""Where a circuit's neurons, inputs, outputs and synapse curves go: numbers, no matplotlib.
+r"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
 
-The layout of :meth:`Circuit.draw <symctl.neural.circuit.Circuit.draw>`, apart from
-its rendering (:mod:`symctl.plotting.circuit`), as networkx keeps ``drawing/layout.py``
-apart from ``nx_pylab.py``. One unit is one inch of the printed page; the sizes of
-the texts come in :class:`Measures` (measured by the renderer, or estimated).
+On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.circuit`
+renders it, the sizes of the texts come in :class:`Measures`.
 
-* **Columns**: the inputs in column 0; each neuron one column right of its
-  furthest predecessor along forward synapses (a depth-first search from the
-  inputs; the edges it finds closing a cycle are feedback); the outputs in one
-  last column. Two columns are as far apart as their circles and names need, and
-  the weight of a synapse between them (:data:`MIN_GAP` at least).
-* **Rows**: each node near the mean row of its neighbours, the nodes of a column
-  at least one row apart (half rows allowed): the barycentre sweeps and isotonic fit
-  of :func:`symctl.plotting.layered.rows`; a row is as tall as the tallest node with
-  its name and vertex tag.
-* **Bands**: a drawing wider than ``width`` (the page) is cut into bands stacked
-  top to bottom, as a line of text is broken: only where every synapse crossing the
-  cut joins two neighbouring columns (in a chain, between two sections), as few
-  bands as fit, the widest as narrow as it can be. A synapse across a cut runs as a
-  wire out of the right of its band, back under it and into the next band from the
-  left. A drawing that cannot be cut narrow enough says so (:attr:`CircuitLayout.fits`).
-* **Curves**: every synapse is a bridge (:mod:`symctl.plotting.circuit_routes`),
-  straight between neighbouring columns when that is clear, else bulging above or
-  below (feedback below) just enough to pass no circle and no text; synapses
-  between the same two neurons run apart. Its weight sits on it, on no circle and
-  no other text. Where curves meet a circle, their ends are spread apart, so no two
-  arrow heads or bars overlap.
+* **Columns**: inputs in column 0, each neuron right of its furthest predecessor along
+  forward synapses (the edges closing a cycle in a depth-first search from the inputs are
+  feedback), outputs in one last column; as far apart as the circles, names and the
+  weights between them need.
+* **Rows**: :func:`~symctl.plotting.layered.rows` (half rows allowed); a row as tall as
+  its tallest node with its name and vertex tag.
+* **Bands**: a drawing wider than ``width`` is cut into bands stacked top to bottom, as
+  a line of text is broken, only where every synapse across the cut joins neighbouring
+  columns; a synapse across a cut runs as a wire out of the right of its band, back under
+  it and into the next band from the left.
+* **Curves**: every synapse is a bridge (:func:`route`), straight between neighbouring
+  columns when clear, else bulging (feedback below) just enough to pass no circle and no
+  text, its weight on it, on no circle and no other text; ends spread round the circles.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
@@ -57,17 +47,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DOT",
-    "MAX_RADIUS",
     "MIN_GAP",
     "MIN_RADIUS",
-    "NAME_GAP",
-    "XSTEP",
-    "YSTEP",
     "Arc",
     "CircuitLayout",
     "Measures",
     "circuit_layout",
-    "grid",
+    "route",
 ]
 
 MIN_RADIUS = 0.11
@@ -76,15 +62,8 @@ DOT = 0.03
 """The radius of an input or output dot [in]."""
 MIN_GAP = 0.26
 """The least room between two columns' circles and names [in]."""
-XSTEP = 0.9
-"""The distance between two columns of circles of :data:`MIN_RADIUS` with estimated texts [in]
-(the measured layout sets each distance from its texts)."""
-YSTEP = 0.62
-"""The distance between two rows [in], likewise."""
-MAX_RADIUS = 0.3
-"""A circle grows to space the ends of its synapses no larger than this [in]."""
-NAME_GAP = 0.06
-"""Between a circle and its name above it or its vertex tag below it [in]."""
+MAX_RADIUS = 0.3  # a circle grows to space the ends of its synapses no larger than this
+NAME_GAP = 0.06  # between a circle and its name above it or its vertex tag below it
 _END_GAP = 0.04  # between a dot and its label
 _ARROW = 0.11  # room for an arrow head or bar, either side of a weight on a straight synapse [in]
 _ROW_GAP = 0.18  # between the texts of two rows
@@ -106,13 +85,10 @@ class Measures:
     ----------
     radius : mapping of str to float
         Each neuron's circle.
-    name : mapping of node to (float, float)
-        The width and height of the label above each neuron (its name).
-    tag : mapping of node to (float, float)
-        The label below a neuron (its delay-graph vertex); absent for none.
+    name, tag : mapping of node to (float, float)
+        The width and height of the name above each neuron and of the vertex tag below.
     label : mapping of Synapse to (float, float)
-        The weight label of each synapse (and each weighted or delayed output) that
-        has one; a synapse absent here is drawn without a label.
+        The weight label of each synapse (and weighted or delayed output) that has one.
     end : mapping of node to (float, float)
         The label of each input (left of its dot) and output (right of its dot).
 
@@ -137,11 +113,7 @@ class Measures:
 
     @classmethod
     def estimate(cls, c: Circuit, radius: Mapping[str, float] | None = None) -> Measures:
-        """Sizes from character counts (the layout without a renderer): 0.06 in a character.
-
-        Every synapse has a label (outputs: when weighted or delayed), a neuron's
-        name is its signal name, inputs and outputs are labelled by their names.
-        """
+        """Sizes from character counts (0.06 in each), for a layout without a renderer."""
         radius = dict(radius) if radius is not None else {n.name: MIN_RADIUS for n in c.neurons}
 
         def size(text: str) -> tuple[float, float]:
@@ -156,12 +128,8 @@ class Measures:
         return cls(radius, names, tags, labels, ends).with_room_for_ends(c)
 
     def with_room_for_ends(self, c: Circuit) -> Measures:
-        """These sizes, each neuron's circle large enough to space the ends of its synapses in.
-
-        The ends go on its sides (about 2 rad of the circle, its name above and tag below),
-        one more than it has, so that each may move round from where it points,
-        :data:`~symctl.plotting.circuit_routes.PORT_GAP` apart; no circle grows past
-        :data:`MAX_RADIUS` for it.
+        """These sizes, each circle large enough (up to 0.3 in) to space one more end than its
+        synapses have on its sides, :data:`~symctl.plotting.layered.PORT_GAP` apart.
 
         Examples
         --------
@@ -192,15 +160,11 @@ class Arc:
     synapse : Synapse or None
         What the arc carries; None for a plain wire to an output (weight 1, no delay).
     height : float
-        How far the curve bulges from the straight line between the centres [in];
-        > 0 above it (right of a vertical one). A wire between bands has height 0.
+        The bulge over the chord between the centres [in] (> 0 above; 0 for a wire).
     label : (float, float) or None
-        The centre of the weight's label (None: no label).
-    path : tuple of (float, float)
-        The drawn curve, from the border of the source's circle to the target's.
-    codes : tuple of int
-        Its segments, as matplotlib's ``Path`` codes (1 move, 2 line, 3 quadratic and
-        4 cubic Bézier control points).
+        The centre of the weight's label.
+    path, codes : tuple
+        The drawn curve from circle to circle, and matplotlib ``Path`` codes.
     """
 
     source: str | tuple
@@ -211,20 +175,9 @@ class Arc:
     path: tuple[tuple[float, float], ...] = ()
     codes: tuple[int, ...] = ()
 
-    @property
-    def rad(self) -> float:
-        """The bulge relative to the chord's length (matplotlib's ``arc3`` curvature)."""
-        (x0, y0), (x1, y1) = self.path[0], self.path[-1]
-        return -2 * self.height / max(math.hypot(x1 - x0, y1 - y0), 1e-9)
-
-    @property
-    def wire(self) -> bool:
-        """Whether the arc runs between two bands (a wire with corners)."""
-        return 2 in self.codes
-
     def points(self) -> np.ndarray:
         """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
-        if not self.wire:
+        if 2 not in self.codes:  # a curve, not a wire between bands
             return layered.bezier_points(self.path)
         pts = np.array(self.path)
         return np.concatenate([np.linspace(a, b, 12) for a, b in itertools.pairwise(pts)])
@@ -236,25 +189,18 @@ class CircuitLayout:
 
     Attributes
     ----------
-    column, row : mapping
-        Each node's column and row (nodes: inputs and neurons by name, outputs as
-        ``("out", name)``).
-    pos : mapping
-        Each node's centre ``(x, y)`` [in].
+    column, row, pos, band : mapping
+        Each node's column, row, centre ``(x, y)`` [in] and band (0 the top one); nodes
+        are inputs and neurons by name, outputs as ``("out", name)``.
     radius : mapping of str to float
         Each neuron's circle [in].
     arcs : tuple of Arc
         Synapses (shortest span first, parallel ones together), then the outputs.
     bounds : (float, float, float, float)
         ``(x_lo, x_hi, y_lo, y_hi)``: every node, text and curve inside, with margins.
-    band : mapping
-        The band each node is drawn in (0 the top one).
-    narrow : bool
-        The drawing is no wider than asked.
-    clear : bool
-        No curve passes a circle or a text it does not end at.
-    labelled : bool
-        Every weight label found a free place (on no circle, text or other label).
+    narrow, clear, labelled : bool
+        No wider than asked; no curve passes a circle or text it does not end at; every
+        weight label found a free place.
     """
 
     column: Mapping
@@ -283,19 +229,8 @@ class CircuitLayout:
         return _text_boxes(self.pos, self.radius, measures, self.arcs)
 
 
-def grid(c: Circuit) -> tuple[dict, dict]:
-    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows.
-
-    Examples
-    --------
-    >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
-    >>> from symctl.plotting.circuit_layout import grid
-    >>> f = factor(controller_tf(2))
-    >>> col, row = grid(Circuit.from_structure(Structure.from_realization(
-    ...     controllable_canonical(f.G2))))
-    >>> col
-    {'u': 0, 'x2': 1, 'y': 2, ('out', 'y'): 3}
-    """
+def _grid(c: Circuit) -> tuple[dict, dict]:
+    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
     nodes = [*c.inputs, *(n.name for n in c.neurons)]
     edges = [s for n in c.neurons for s in n.synapses]
     successors: dict = {node: [] for node in nodes}
@@ -358,20 +293,8 @@ def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
                 out["tag", node] = (x - w / 2, y - r - NAME_GAP - h, x + w / 2, y - r - NAME_GAP)
         elif node in m.end:
             w, h = m.end[node]
-            if isinstance(node, tuple):  # an output: its label on the right
-                out["end", node] = (
-                    x + DOT + _END_GAP,
-                    y - h / 2,
-                    x + DOT + _END_GAP + w,
-                    y + h / 2,
-                )
-            else:
-                out["end", node] = (
-                    x - DOT - _END_GAP - w,
-                    y - h / 2,
-                    x - DOT - _END_GAP,
-                    y + h / 2,
-                )
+            x0 = x + DOT + _END_GAP if isinstance(node, tuple) else x - DOT - _END_GAP - w
+            out["end", node] = (x0, y - h / 2, x0 + w, y + h / 2)  # an output's on the right
     for k, arc in enumerate(arcs):
         if arc.label is not None and arc.synapse in m.label:
             w, h = m.label[arc.synapse]
@@ -507,7 +430,7 @@ def circuit_layout(
     [('u', 'x2', 0.0), ('x2', 'y', 0.0), ('x2', 'y', 0.16), ('u', 'y', -0.36), ('y', ('out', 'y'), 0.0)]
     """
     m = measures if measures is not None else Measures.estimate(c, radius)
-    col, row = grid(c)
+    col, row = _grid(c)
     columns: dict[int, list] = {}
     for node, k in col.items():
         columns.setdefault(k, []).append(node)

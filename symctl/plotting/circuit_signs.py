@@ -1,23 +1,12 @@
 r"""The sign of a synaptic weight, as a circuit drawing colours it: known, or depending on symbols.
 
-A weight of the paper's circuits is rarely a number: :math:`K_0/(C_1 C_3)` or
-:math:`K_0 (K_2 + \epsilon_1\epsilon_3)/(C_1 C_3)` has no sign until the symbols
-have values. A drawing may be given the values it is read at (``signs_at``): a
-number for a symbol (e.g. the controller's gains :math:`K_k`, or :math:`C = 1`),
-or a range ``(lo, hi)`` for one that varies (e.g. every :math:`\epsilon` the
-simulations draw, in :math:`(-0.9, 0.9)`). Then:
-
-* ``"+"`` / ``"-"``: the weight is positive / negative for *every* value in the
-  ranges (the numbers substituted exactly, the ranges by interval arithmetic,
-  SymPy's :class:`~sympy.calculus.accumulationbounds.AccumulationBounds`, which
-  never claims a sign that some point of the box does not have);
-* ``"0"``: the weight is zero;
-* ``"?"``: the sign depends on a symbol without a value, or changes within the
-  ranges (interval arithmetic may also be too coarse to decide: then ``"?"`` too,
-  never a wrong sign).
-
-Without ``signs_at`` a weight's sign is SymPy's from the symbols' assumptions
-(:attr:`Synapse.sign <symctl.neural.neuron.Synapse.sign>`).
+A weight such as :math:`K_0 (K_2 + \epsilon_1\epsilon_3)/(C_1 C_3)` has no sign until its
+symbols have values. Given ``signs_at`` (a number per symbol, or a range ``(lo, hi)`` for
+one that varies), a weight is ``"+"`` / ``"-"`` when so for *every* value (numbers
+substituted exactly, ranges by SymPy's interval arithmetic,
+:class:`~sympy.calculus.accumulationbounds.AccumulationBounds`, which never claims a sign
+some point lacks), ``"0"`` when zero, else ``"?"``. Without, the sign is SymPy's from the
+symbols' assumptions.
 
 >>> import sympy as sp
 >>> from symctl.plotting.circuit_signs import SignValues, weight_sign
@@ -166,12 +155,7 @@ def _symbol(key, names: dict, argname: str) -> sp.Symbol:
 
 def _sign_of_bounds(value) -> str:
     if isinstance(value, sp.AccumBounds):
-        lo, hi = value.min, value.max
-        if lo.is_positive:
-            return "+"
-        if hi.is_negative:
-            return "-"
-        return "?"
+        return "+" if value.min.is_positive else "-" if value.max.is_negative else "?"
     if value.is_zero:
         return "0"
     if value.is_positive:
@@ -188,8 +172,7 @@ def weight_sign(weight, at: SignValues | None = None) -> str:
     ----------
     weight : sympy expression or number
     at : SignValues, optional
-        Numbers and ranges of its symbols (see the module text); without, SymPy's
-        sign from the symbols' assumptions.
+        Numbers and ranges of its symbols; without, SymPy's sign from the assumptions.
 
     Returns
     -------

@@ -30,8 +30,7 @@ from matplotlib.path import Path
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
-from symctl.plotting.circuit_key import wrap_words
-from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap_key
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap
 from symctl.plotting.delaygraph_layout import delay_graph_layout
 
 if TYPE_CHECKING:
@@ -259,7 +258,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     """The key under the drawing and the heading (if any) above, both wrapped to its width."""
     x_lo, x_hi, y_lo, y_hi = bounds
     room = max(x_hi - x_lo, min(style.TEXT_WIDTH, _KEY_ROOM)) - 0.1
-    lines = wrap_key(key, room, _SMALL)
+    lines = wrap(key, room, _SMALL, "   ", 1.08)
     step = _SMALL / 72 * 1.35
     y = y_lo - 0.04
     for line in lines:
@@ -268,7 +267,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     right = max(1.04 * text_size(line, _SMALL)[0] for line in lines) + x_lo + 0.1
     y_lo = y - 0.04
     if title:
-        heading = wrap_words(_plain(title), room, style.TITLE)
+        heading = wrap(_plain(title).split(" "), room, style.TITLE, scale=1.04)
         size = style.TITLE / 72 * 1.3
         top = y_hi + 0.04 + size * len(heading)
         for k, line in enumerate(heading):

@@ -1,17 +1,5 @@
-r"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping.
+"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping, width.
 
-The checks a reviewer makes by eye, made on the drawn figure: every text at least
-:data:`~symctl.plotting.style.MIN_FONT` points at the size the figure is printed,
-no two texts overlapping, no text running off the figure, and the figure no wider
-than the page it goes on. :func:`legibility` draws the figure once (Agg) and returns a
-:class:`Legibility` that is truthy when every check holds and lists what fails.
-:func:`missing_units` lists the axes whose numbers come without a unit.
-
-``scale`` is the factor the figure is printed at (1 when it is included at its
-natural size, as ``derivation.pdf`` includes every figure).
-
-Examples
---------
 >>> from symctl.plotting.style import new_figure
 >>> from symctl.plotting.legibility import legibility
 >>> fig = new_figure("column", 1.5)

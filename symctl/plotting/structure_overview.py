@@ -20,7 +20,7 @@ from collections.abc import Mapping
 
 from symctl.compatibility.structure import Structure
 from symctl.errors import SymctlTypeError
-from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap
 from symctl.plotting.structure_labels import end_labels
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH
 
@@ -63,17 +63,6 @@ def _count_lines(k: dict[str, int]) -> tuple[str, str]:
         f"{_plural(k['states'], 'state')}, {_plural(k['delay'], 'delay')}",
         f"{_plural(k['gain'], 'gain')}, {_plural(k['sum'], 'adder')}",
     )
-
-
-def _wrap(text: str, room: float, size: float) -> list[str]:
-    """The words of ``text`` in lines no wider than ``room`` inches (a single word may be)."""
-    lines: list[str] = []
-    for word in text.split(" "):
-        if lines and text_size(f"{lines[-1]} {word}", size)[0] * 1.06 <= room:
-            lines[-1] += f" {word}"
-        else:
-            lines.append(word)
-    return lines
 
 
 def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
@@ -268,7 +257,7 @@ def draw_structure_overview(
         ax.text(0.05, y, line, ha="left", va="bottom", fontsize=SMALL, color="0.35")
         y += 0.13
     room = width - 0.15
-    heading_lines = _wrap(heading, room, FONT_SIZE + 0.5) if heading else []
+    heading_lines = wrap(heading.split(" "), room, FONT_SIZE + 0.5) if heading else []
     for line in heading_lines[::-1]:
         ax.text(0.05, y + 0.04, line, ha="left", va="bottom", fontsize=FONT_SIZE + 0.5)
         y += 0.16
