@@ -27,7 +27,7 @@ from matplotlib.transforms import Affine2D, ScaledTranslation
 
 from symctl._util.texnames import signal_tex
 from symctl.plotting import style
-from symctl.plotting.circuit_key import COLOURS, Key, draw_key_items, key_items
+from symctl.plotting.circuit_key import COLOURS, Key, arrow_style, draw_key_items, key_items
 from symctl.plotting.circuit_labels import circuit_text, display_text, visible_length
 from symctl.plotting.circuit_layout import (
     DOT,
@@ -385,25 +385,11 @@ def _key_fits(values: list[str], room: float) -> bool:
 
 def _draw_arc(ax, arc, sign: str, delayed: bool) -> None:
     """One synapse (or output wire) along its path: colour by sign, dashed when delayed."""
-    colour = COLOURS[sign]
-    if sign == "-":
-        head = "-[,widthB=0.55,lengthB=0"
-    else:
-        head = "-|>,head_length=0.55,head_width=0.3"
-    ax.add_artist(  # not add_patch: its data limits would walk the curves once more
-        FancyArrowPatch(
-            path=Path(arc.path, arc.codes),
-            arrowstyle=head,
-            mutation_scale=8,
-            color=colour,
-            lw=_LINE,
-            linestyle=(0, (3.0, 1.8)) if delayed else "-",
-            shrinkA=0,
-            shrinkB=0,
-            zorder=1,
-            gid=f"synapse:{arc.source}->{arc.target[1] if isinstance(arc.target, tuple) else arc.target}",
-        )
-    )
+    look = arrow_style(sign, COLOURS[sign], (0, (3.0, 1.8)) if delayed else "-")
+    target = arc.target[1] if isinstance(arc.target, tuple) else arc.target
+    path, gid = Path(arc.path, arc.codes), f"synapse:{arc.source}->{target}"
+    # add_artist, not add_patch: its data limits would walk the curves once more
+    ax.add_artist(FancyArrowPatch(path=path, lw=_LINE, zorder=1, gid=gid, **look))
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:

@@ -1,11 +1,4 @@
-r"""The key under a circuit drawing: what its marks mean, for the drawing at hand.
-
-Only what the drawing shows is explained: the sign colours it uses (and the values
-its symbolic signs were read at), dashes when some synapse is delayed (and that
-:math:`z^{-k}` marks :math:`k > 1` steps), empty circles when some neuron has no
-self-dynamics, the vertex tags and their names, and a note when the weights are
-too many to write. :func:`key_items` says it in words (no matplotlib);
-:func:`draw_key_items` draws each item's sample mark and text in rows.
+r"""The key under a circuit drawing: what its marks mean, only those the drawing shows.
 
 >>> from symctl.plotting.circuit_key import Key, key_items
 >>> [text for _, text in key_items(Key(signs=frozenset("+-"), delays=frozenset({0, 1})))]
@@ -34,6 +27,14 @@ COLOURS = {
 }
 """The colour of a synapse by its sign (``""``: a plain wire to an output)."""
 
+
+def arrow_style(sign: str, colour, linestyle) -> dict:
+    """A synapse's arrow: a bar for an inhibitory one, else a head; dashed when delayed."""
+    head = "-[,widthB=0.55,lengthB=0" if sign == "-" else "-|>,head_length=0.55,head_width=0.3"
+    look = {"arrowstyle": head, "mutation_scale": 8, "color": colour, "linestyle": linestyle}
+    return {**look, "shrinkA": 0, "shrinkB": 0}
+
+
 _SAMPLE = 0.24  # the width of a sample mark [in]
 _GAP = 0.05  # between a mark and its text
 _ITEM_GAP = 0.16  # between two items of a row
@@ -45,20 +46,13 @@ class Key:
 
     Attributes
     ----------
-    signs : frozenset of str
-        The signs of its synapses (``"+"``, ``"-"``, ``"?"``, ``"0"``; ``""`` a wire).
-    delays : frozenset of int
-        The delays of its synapses.
-    labelled : bool
-        The weights are written on the synapses.
-    bodies : bool
-        The self-dynamics are written in the circles.
-    empty : bool
-        Some circle is empty (a neuron without self-dynamics).
-    vertices : tuple of int
-        The delay-graph vertices of its neurons.
-    vertex_names : tuple of str or None
-        The graph's vertex names, :math:`v_1` first.
+    signs, delays : frozenset
+        The signs of its synapses (``"+"``, ``"-"``, ``"?"``, ``"0"``; ``""`` a wire) and
+        their delays.
+    labelled, bodies, empty : bool
+        The weights are written; the self-dynamics are written; some circle is empty.
+    vertices, vertex_names : tuple
+        The delay-graph vertices of its neurons, and the graph's vertex names (or None).
     signs_at : SignValues
         The values its signs were read at.
     synapses : int
@@ -210,24 +204,9 @@ def draw_key_items(ax, items, x: float, y: float, room: float, size: float):
             mark, text = items[k]
             if mark in ("+", "-", "?", "0", "dashed"):
                 colour = COLOURS[mark] if mark != "dashed" else style.NEUTRAL
-                head = (
-                    "-[,widthB=0.55,lengthB=0"
-                    if mark == "-"
-                    else "-|>,head_length=0.55,head_width=0.3"
-                )
-                ax.add_artist(
-                    FancyArrowPatch(
-                        (cx, yc),
-                        (cx + _SAMPLE, yc),
-                        arrowstyle=head,
-                        mutation_scale=8,
-                        color=colour,
-                        lw=0.8,
-                        linestyle=(0, (3.0, 1.8)) if mark == "dashed" else "-",
-                        shrinkA=0,
-                        shrinkB=0,
-                    )
-                )
+                dashes = (0, (3.0, 1.8)) if mark == "dashed" else "-"
+                look = arrow_style(mark, colour, dashes)
+                ax.add_artist(FancyArrowPatch((cx, yc), (cx + _SAMPLE, yc), lw=0.8, **look))
             elif mark == "neuron":
                 ax.add_patch(Circle((cx + _SAMPLE / 2, yc), 0.05, fc="#f4f4f4", ec="black", lw=0.8))
             if mark:
