@@ -175,9 +175,14 @@ class Arc:
     path: tuple[tuple[float, float], ...] = ()
     codes: tuple[int, ...] = ()
 
+    @property
+    def wire(self) -> bool:
+        """Whether the arc runs between two bands (a wire with corners)."""
+        return 2 in self.codes
+
     def points(self) -> np.ndarray:
         """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
-        if 2 not in self.codes:  # a curve, not a wire between bands
+        if not self.wire:
             return layered.bezier_points(self.path)
         pts = np.array(self.path)
         return np.concatenate([np.linspace(a, b, 12) for a, b in itertools.pairwise(pts)])
