@@ -18,6 +18,7 @@ True
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 
@@ -25,12 +26,18 @@ from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting.common import figure_and_axes, fit_to_drawing, key_columns, text_size, wrap
 from symctl.plotting.layered import Wire, dashed_part
+from symctl.plotting.structure_labels import end_labels
 from symctl.plotting.structure_layout import ARROW, END_FONT, FONT, NAME_FONT, StructureLayout
-from symctl.plotting.structure_overview import draw_structure_overview
-from symctl.plotting.structure_rows import page_bound, structure_rows
+from symctl.plotting.structure_rows import page_bound, series_parts, structure_rows
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH, TITLE
 
-__all__ = ["draw_structure", "draw_structures", "vertex_map"]
+__all__ = [
+    "draw_structure",
+    "draw_structure_overview",
+    "draw_structures",
+    "parts_in_order",
+    "vertex_map",
+]
 
 _INK = "0.1"
 _BAND = ("#e8eef4", "#f4f1e6")  # alternating tints of the vertex bands
@@ -176,12 +183,7 @@ def draw_structure(
         _draw_layout(ax, layout, dx, dy)
     key = list(rows.key)
     x_lo, x_hi, y_lo, y_hi = rows.bounds
-    counts = ", ".join(
-        f"{S.count(k)} {w}{'s' if S.count(k) != 1 else ''}"
-        for k, w in (("gain", "gain"), ("sum", "adder"), ("delay", "delay"))
-    )
-    heading = f"Controller structure: {counts}" if title is None else title
-    legend = _legend(bool(where))
+    heading, legend = _heading(S, title), _legend(bool(where))
     if any(b.steps > 1 for b in S.blocks.values()):
         legend[2] = "dashed: delays ($z^{-k}$: an axon of k steps)"
     if rows.folded:
@@ -238,6 +240,12 @@ def draw_structures(panels, *, title: str = "", width: float = TEXT_WIDTH):
         x_hi = max(x_hi, rows.bounds[1])
     y_lo = _draw_key(ax, keys, 0.0, top, width)
     return _finish(fig, ax, True, (0.0, x_hi, y_lo, 0.0), title, _legend(banded), width)
+
+
+def _heading(S: Structure, title: str | None) -> str:
+    kinds = (("gain", "gain"), ("sum", "adder"), ("delay", "delay"))
+    counts = ", ".join(_plural(S.count(k), word) for k, word in kinds)
+    return f"Controller structure: {counts}" if title is None else title
 
 
 def _legend(banded: bool) -> list[str]:
@@ -337,11 +345,12 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> float:
     return top
 
 
-def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: float):
-    """Heading and legend above the drawing, equal axes without frame, size in inches."""
+def _finish(fig, ax, own, bounds, heading: str, legend: list[str], width: float, join=True):
+    """Heading and legend (items joined on lines, unless not ``join``) above the drawing, equal
+    axes without frame, size in inches."""
     x_lo, x_hi, y_lo, y_hi = bounds
     room = min(width, max(x_hi - x_lo, 3.0)) - 0.1
-    legend_lines = wrap(legend, room, SMALL, "   ")
+    legend_lines = wrap(legend, room, SMALL, "   ") if join else legend
     heading_lines = wrap(heading.split(" "), room, TITLE) if heading else []
     y = y_hi + 0.06
     for line in reversed(legend_lines):
@@ -358,3 +367,189 @@ def _finish(fig, ax, own: bool, bounds, heading: str, legend: list[str], width: 
     x_hi = max(x_hi, min(x_lo + max(widths) + 0.15, x_lo + width))
     y_hi = y + 0.04
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo - 0.04, y_hi)
+
+
+_BOX_W, _BOX_H, _GAP, _ROW = 1.0, 0.62, 0.3, 0.95  # an overview's boxes and spacing [in]
+_END = 0.35  # room for the input or output label and its arrow, at least [in]
+_LABEL_ROOM = 1.1  # the widest line of names at an end [in]
+_LINE = 0.15  # pitch of those lines [in]
+
+
+def parts_in_order(S: Structure) -> list[tuple[str, dict[str, int]]]:
+    """``(part, counts)`` in series order; counts of ``states``, ``gain``, ``sum``, ``delay``.
+
+    >>> from symctl import controller_tf, factor, controllable_canonical, Structure
+    >>> from symctl.plotting.structure import parts_in_order
+    >>> f = factor(controller_tf(2))
+    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
+    >>> [(p, c["states"]) for p, c in parts_in_order(S)]
+    [('G1', 1), ('G2', 2), ('G3', 1)]
+    """
+    parts: dict[str, dict[str, int]] = {}
+    for name, block in S.blocks.items():
+        counts = parts.setdefault(block.part, {"states": 0, "gain": 0, "sum": 0, "delay": 0})
+        if block.kind in counts:
+            counts[block.kind] += 1
+        local = name[len(block.part) + 1 :] if block.part else name
+        if local.startswith("x") and local[1:].isdigit():  # the states x1 .. xn
+            counts["states"] += 1
+    return list(parts.items())
+
+
+def _plural(k: int, word: str) -> str:
+    return f"{k} {word}{'' if k == 1 else 's'}"
+
+
+def _count_lines(k: dict[str, int]) -> tuple[str, str]:
+    return (
+        f"{_plural(k['states'], 'state')}, {_plural(k['delay'], 'delay')}",
+        f"{_plural(k['gain'], 'gain')}, {_plural(k['sum'], 'adder')}",
+    )
+
+
+def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
+    """The parts in rows, and whether they are parallel pathways (one row each; a series
+    snakes in rows of ``per_row``)."""
+    order = [p for p, _ in parts_in_order(S) if p]
+    if series_parts(S) is None and len({p.partition(".")[0] for p in order}) > 1:
+        groups: dict[str, list[str]] = {}
+        for p in order:
+            groups.setdefault(p.partition(".")[0], []).append(p)
+        if all(len(g) <= per_row for g in groups.values()):
+            return list(groups.values()), True
+    return [order[k : k + per_row] for k in range(0, len(order), per_row)], False
+
+
+def _end_lines(names: list[str]) -> list[str]:
+    """The names at one end as mathtext lines, comma-separated, each at most 1.1 in wide."""
+    lines: list[list[str]] = []
+    for name in names:
+        if lines and text_size(f"${', '.join([*lines[-1], name])}$", FONT_SIZE)[0] <= _LABEL_ROOM:
+            lines[-1].append(name)
+        else:
+            lines.append([name])
+    return [f"${', '.join(line)}$" for line in lines]
+
+
+def draw_structure_overview(
+    S: Structure,
+    ax=None,
+    *,
+    title: str | None = None,
+    width: float = TEXT_WIDTH,
+    labels: Mapping[str, str] | None = None,
+):
+    """Draw ``S`` as its parts in signal-flow order, one box per part with its counts.
+
+    For a structure too large to draw block by block (a MIMO :math:`G_2` of hundreds of
+    gains): rows snake so that the figure stays page-shaped, parallel pathways one row
+    each, joined by their output adder; one arrow for all inputs, their names listed.
+
+    Parameters
+    ----------
+    S : Structure
+    ax : matplotlib Axes, optional
+        Draw into these axes; by default a new figure sized to the drawing.
+    title, width, labels :
+        As for :func:`draw_structure`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    SymctlTypeError
+        ``S`` is not a Structure, or ``labels`` not a mapping of strings.
+    ParameterError
+        ``labels`` names a signal that is no input or output.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor, observable_canonical, Structure
+    >>> from symctl.plotting.structure import draw_structure_overview
+    >>> f = factor(controller_tf(6), 3, 3)
+    >>> S = Structure.from_factorization(f, observable_canonical(f.abbreviated()))
+    >>> fig = draw_structure_overview(S, labels={"G1.1.u": "f", "G3.3.x1": "r"})
+    >>> texts = [t.get_text() for t in fig.axes[0].texts]
+    >>> "G1.1" in texts, "$f$" in texts, "$r$" in texts
+    (True, True, True)
+    """
+    if not isinstance(S, Structure):
+        raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
+    from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
+
+    ends = end_labels(S, labels)
+    ins = _end_lines([ends[n] for n in S.inputs])
+    outs = _end_lines([ends[n] for n in S.outputs])
+    widest = max(text_size(t, FONT_SIZE)[0] for t in (*ins, *outs))
+    end = max(_END, 0.3 + 1.06 * widest)  # room for an end's arrow and its names, either side
+    counts = {part: _count_lines(k) for part, k in parts_in_order(S)}
+    box_w = max(  # a part of hundreds of gains gets a wider box: its counts stay inside
+        [_BOX_W] + [text_size(t, SMALL - 0.5)[0] * 1.06 + 0.14 for c in counts.values() for t in c]
+    )
+    step = box_w + _GAP
+    per_row = max(1, int((width - 2 * end - 0.2 + _GAP) // step))
+    rows, parallel = _rows(S, per_row)
+    fig, ax, own = figure_and_axes(ax)
+    centres: dict[str, tuple[float, float]] = {}
+    for r, row in enumerate(rows):
+        for c, part in enumerate(row):
+            if not parallel and r % 2:  # a series snakes, so its arrows stay short
+                c = per_row - 1 - c
+            centres[part] = (end + box_w / 2 + c * step, -r * _ROW)
+    for part, (x, y) in centres.items():
+        look = {"fc": "0.96" if "G2" in part else "white", "ec": "black", "lw": 0.8}
+        corner = (x - box_w / 2, y - _BOX_H / 2)
+        ax.add_patch(FancyBboxPatch(corner, box_w, _BOX_H, boxstyle="round,pad=0.01", **look))
+        ax.text(x, y + 0.17, part, ha="center", va="center", fontsize=FONT_SIZE)
+        inner = {"ha": "center", "va": "center", "fontsize": SMALL - 0.5, "linespacing": 1.2}
+        ax.text(x, y - 0.1, "\n".join(counts[part]), **inner)
+
+    def arrow(a, b):
+        look = {"arrowstyle": "-|>", "mutation_scale": 8, "shrinkA": 0, "shrinkB": 0}
+        ax.add_patch(FancyArrowPatch(a, b, lw=0.8, color="black", **look))
+
+    def names(lines, x, y, ha):
+        for k, line in enumerate(lines):  # one line per few names, centred on the arrow
+            at = (x, y + ((len(lines) - 1) / 2 - k) * _LINE)
+            ax.text(*at, line, ha=ha, va="center", fontsize=FONT_SIZE)
+
+    half = box_w / 2
+    chains = rows if parallel else [[p for row in rows for p in row]]
+    ends_x = []
+    for chain in chains:
+        x0, y0 = centres[chain[0]]
+        arrow((x0 - half - 0.21, y0), (x0 - half, y0))
+        names(ins, x0 - half - 0.24, y0, "right")
+        for a, b in itertools.pairwise(chain):
+            (xa, ya), (xb, yb) = centres[a], centres[b]
+            if ya == yb:
+                d = 1 if xb > xa else -1
+                arrow((xa + d * half, ya), (xb - d * half, yb))
+            else:
+                arrow((xa, ya - _BOX_H / 2), (xb, yb + _BOX_H / 2))
+        xe, ye = centres[chain[-1]]
+        ends_x.append((xe, ye))
+    if parallel:  # the output adder joins the pathways
+        xs = max(x for x, _ in ends_x) + half + 0.25
+        ys = sum(y for _, y in ends_x) / len(ends_x)
+        for xe, ye in ends_x:  # orthogonal: along the row, then down or up to the adder
+            ax.plot([xe + half, xs - 0.12, xs - 0.12], [ye, ye, ys], color="black", lw=0.8)
+            arrow((xs - 0.12, ys), (xs - 0.02, ys))
+        ax.text(xs + 0.03, ys, "+", ha="left", va="center", fontsize=FONT_SIZE)
+        names(outs, xs + 0.2, ys, "left")
+        x_hi = max(xs + 0.35, xs + 0.25 + widest)
+    else:
+        xe, ye = ends_x[0]
+        d = 1 if len(rows) % 2 else -1
+        arrow((xe + d * half, ye), (xe + d * (half + 0.23), ye))
+        names(outs, xe + d * (half + 0.27), ye, "left" if d > 0 else "right")
+        x_hi = end * 2 + min(per_row, max(len(r) for r in rows)) * step - _GAP
+    y_lo = -(len(rows) - 1) * _ROW - _BOX_H / 2 - 0.1
+    legend = [
+        f"{_plural(len(S), 'signal')}, too many to draw block by block at print size: its parts,",
+        "each with its counts, in signal-flow order (Structure.draw draws every block)",
+    ]
+    bounds = (0.0, min(max(x_hi, 4.6), width), y_lo, _BOX_H / 2 + 0.06)
+    return _finish(fig, ax, own, bounds, _heading(S, title), legend, width, join=False)
