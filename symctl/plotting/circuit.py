@@ -2,7 +2,7 @@ r"""Rendering of a circuit drawing at its printed size: neurons, synapses, weigh
 
 Positions from :mod:`~symctl.plotting.circuit_layout` (this module measures the texts so
 that the layout makes room for each), text from :mod:`~symctl.plotting.circuit_labels`,
-colours from :mod:`~symctl.plotting.circuit_signs`. A drawing whose weights cannot all be
+colours from :mod:`~symctl.plotting.circuit_key`. A drawing whose weights cannot all be
 written legibly at its width is drawn without them and says so in its key (they are in
 :meth:`Circuit.equations <symctl.neural.circuit.Circuit.equations>`).
 
@@ -27,7 +27,15 @@ from matplotlib.transforms import Affine2D, ScaledTranslation
 
 from symctl._util.texnames import signal_tex
 from symctl.plotting import style
-from symctl.plotting.circuit_key import COLOURS, Key, arrow_style, draw_key_items, key_items
+from symctl.plotting.circuit_key import (
+    COLOURS,
+    Key,
+    SignValues,
+    arrow_style,
+    draw_key_items,
+    key_items,
+    weight_sign,
+)
 from symctl.plotting.circuit_labels import circuit_text, display_text, visible_length
 from symctl.plotting.circuit_layout import (
     DOT,
@@ -38,7 +46,6 @@ from symctl.plotting.circuit_layout import (
     Measures,
     circuit_layout,
 )
-from symctl.plotting.circuit_signs import SignValues, weight_sign
 from symctl.plotting.common import (
     figure_and_axes,
     fit_to_drawing,
@@ -215,7 +222,7 @@ def draw_circuit(
         The delay graph's vertex names, :math:`v_1` first: the key says which is which.
     signs_at : mapping, optional
         A number per symbol or a range ``(lo, hi)`` for one that varies
-        (:class:`~symctl.plotting.circuit_signs.SignValues`): a weight is coloured by its
+        (:class:`~symctl.plotting.circuit_key.SignValues`): a weight is coloured by its
         sign only when that holds for all of them.
     width : float or {"text", "column", "double"}
         The widest the drawing may be [in] (default the derivation's text width).

@@ -163,8 +163,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     ----------
     S : Structure
     labels : mapping of str to str, optional
-        LaTeX labels of the arrows into the inputs and out of the outputs, by signal
-        name (default: the signals' own names).
+        As for :func:`end_labels`.
 
     Returns
     -------
@@ -172,10 +171,8 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
 
     Raises
     ------
-    ParameterError
-        ``labels`` names a signal that is no input or output.
-    SymctlTypeError
-        ``labels`` is not a mapping of strings.
+    ParameterError, SymctlTypeError
+        As :func:`end_labels`; ``S`` not a Structure.
 
     Examples
     --------

@@ -153,8 +153,8 @@ def page_bound(
 
 
 def series_parts(S: Structure) -> list[str] | None:
-    """The parts of ``S`` in series order (every wire between two parts goes to the next one,
-    as :meth:`Structure.series` builds them), or None.
+    """The parts of ``S`` in series order (every wire between two parts goes to the next one, as
+    :meth:`Structure.series` builds them), or None.
 
     >>> from symctl import Structure, ifp_structure
     >>> from symctl.realization.realization import first_order_realization
@@ -162,8 +162,6 @@ def series_parts(S: Structure) -> list[str] | None:
     >>> R = first_order_realization(1, 2)
     >>> series_parts(Structure.series(R, R, R)), series_parts(ifp_structure(2))
     (['G1', 'G2', 'G3'], None)
-    >>> series_parts(Structure.parallel(R, R)) is None
-    True
     """
     order = list(dict.fromkeys(b.part for b in S.blocks.values()))
     if len(order) < 2 or "" in order:
