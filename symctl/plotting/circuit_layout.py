@@ -479,27 +479,22 @@ def circuit_layout(
         chosen, fine, written = route(mine, local, col, m.radius, m.label, obstacles, search=search)
         clear, labelled = clear and fine, labelled and written
         curves = [curve for _, curve, _ in chosen]
-        # the band's extent, then moved under the one above
-        xs0 = [lx - ext[n][0] for n, (lx, _) in local.items()]
-        xs1 = [lx + ext[n][1] for n, (lx, _) in local.items()]
-        ys0 = [ly - ext[n][2] for n, (_, ly) in local.items()]
-        ys1 = [ly + ext[n][3] for n, (_, ly) in local.items()]
+        # the band's extent (x0, y0, x1, y1), then moved under the one above
+        ink = [
+            (lx - e[0], ly - e[2], lx + e[1], ly + e[3])
+            for n, (lx, ly) in local.items()
+            for e in [ext[n]]
+        ]
         for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
             p = layered.bezier_points(curve)
-            xs0.append(p[:, 0].min())
-            xs1.append(p[:, 0].max())
-            ys0.append(p[:, 1].min())
-            ys1.append(p[:, 1].max())
+            ink.append((*p.min(axis=0), *p.max(axis=0)))
             if where is not None:
                 w, h = m.label[s]
-                xs0.append(where[0] - w / 2)
-                xs1.append(where[0] + w / 2)
-                ys0.append(where[1] - h / 2)
-                ys1.append(where[1] + h / 2)
-        gap = 0.0 if b == 0 else _band_gap(specs, band_of, b, m)
-        dy = top - gap - max(ys1)
-        top = min(ys0) + dy
-        band_box.append((min(xs0), max(xs1), min(ys0) + dy, max(ys1) + dy))
+                ink.append((where[0] - w / 2, where[1] - h / 2, where[0] + w / 2, where[1] + h / 2))
+        lo, hi = np.min(ink, axis=0), np.max(ink, axis=0)
+        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - float(hi[3])
+        top = float(lo[1]) + dy
+        band_box.append((float(lo[0]), float(hi[2]), float(lo[1]) + dy, float(hi[3]) + dy))
         for n, (lx, ly) in local.items():
             pos[n] = (lx, ly + dy)
         for k, (h, _, where), curve in zip(idx, chosen, curves, strict=True):

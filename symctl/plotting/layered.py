@@ -1,23 +1,18 @@
 r"""The layered graph layout of every drawing: layers, order, rows, routes and labels, as numbers.
 
 One core for the structure, circuit and delay-graph drawings, in the manner of Sugiyama,
-Tagawa and Toda (1981); nothing here imports matplotlib (networkx keeps
-``drawing/layout.py`` apart from ``nx_pylab.py`` in the same way). Units are inches.
+Tagawa and Toda (1981); no matplotlib here. Units are inches.
 
-* **Layers** (:func:`longest_path`), **bends** (:func:`split`: one bend node per layer an
-  edge crosses), **order** (:func:`order`: barycentre sweeps, the order with the fewest
-  :func:`crossings` kept).
-* **Rows**: least squares under order constraints (:func:`isotonic`, the
-  pool-adjacent-violators algorithm of :func:`scipy.optimize.isotonic_regression`):
-  :func:`rows` (integer or half rows: straight orthogonal wires) or :func:`positions`
-  (measured gaps, bends pulling hardest).
-* **Orthogonal routes** (block diagrams): each vertical :class:`Segment` in a gap gets a
-  slot (:func:`assign_slots`, as ELK Layered's orthogonal router: Schulze, Spönemann and
-  von Hanxleden, J. Vis. Lang. Comput. 25, 2014), a branching net shares one vertical
-  with :func:`junctions`.
-* **Curved routes** (circuits, delay graphs): cubic Bézier curves (:func:`bezier_points`,
-  :func:`at_x`), bridges between circles (:func:`bridge`, :func:`trimmed`) that pass no
-  :class:`Obstacles` (:func:`hits`), and their labels (:func:`place_label`).
+* **Layers and order**: :func:`longest_path`, :func:`split` (one bend node per layer an
+  edge crosses), :func:`order` (barycentre sweeps; the fewest :func:`crossings` kept).
+* **Rows**: least squares under order constraints (:func:`isotonic`, SciPy's
+  pool-adjacent-violators): :func:`rows` (integer or half rows) or :func:`positions`.
+* **Orthogonal routes**: a slot for each vertical :class:`Segment` in a gap
+  (:func:`assign_slots`, as ELK Layered's router: Schulze, Spönemann and von Hanxleden,
+  J. Vis. Lang. Comput. 25, 2014), one per branching net, with :func:`junctions`.
+* **Curved routes**: cubic Béziers (:func:`bezier_points`, :func:`at_x`), bridges between
+  circles (:func:`bridge`, :func:`trimmed`) clear of :class:`Obstacles` (:func:`hits`),
+  their labels placed by :func:`place_label`.
 
 References
 ----------
@@ -29,10 +24,8 @@ Examples
 >>> from symctl.plotting.layered import longest_path, order, split
 >>> layer = longest_path(["a", "b", "c"], {"a": [], "b": ["a"], "c": ["a", "b"]}, first={"a"})
 >>> chains, node_layer, up, down = split([("a", "b"), ("b", "c"), ("a", "c")], layer)
->>> layer, chains[2]
-({'a': 0, 'b': 1, 'c': 2}, ['a', (2, 1), 'c'])
->>> order([["a"], ["b", (2, 1)], ["c"]], up, down)
-[['a'], ['b', (2, 1)], ['c']]
+>>> layer, chains[2], order([["a"], ["b", (2, 1)], ["c"]], up, down)
+({'a': 0, 'b': 1, 'c': 2}, ['a', (2, 1), 'c'], [['a'], ['b', (2, 1)], ['c']])
 """
 
 from __future__ import annotations
