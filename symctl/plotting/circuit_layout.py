@@ -1,21 +1,15 @@
 r"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
 
-On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.circuit`
-renders it, the sizes of the texts come in :class:`Measures`.
-
-* **Columns**: inputs in column 0, each neuron right of its furthest predecessor along
-  forward synapses (the edges closing a cycle in a depth-first search from the inputs are
-  feedback), outputs in one last column; as far apart as the circles, names and the
-  weights between them need.
-* **Rows**: :func:`~symctl.plotting.layered.rows` (half rows allowed); a row as tall as
-  its tallest node with its name and vertex tag.
-* **Bands**: a drawing wider than ``width`` is cut into bands stacked top to bottom, as
-  a line of text is broken, only where every synapse across the cut joins neighbouring
-  columns; a synapse across a cut runs as a wire out of the right of its band, back under
-  it and into the next band from the left.
-* **Curves**: every synapse is a bridge (:func:`route`), straight between neighbouring
-  columns when clear, else bulging (feedback below) just enough to pass no circle and no
-  text, its weight on it, on no circle and no other text; ends spread round the circles.
+On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.circuit` renders
+it, the sizes of the texts come in :class:`Measures`. Columns: inputs first, each neuron
+right of its furthest predecessor along forward synapses (those closing a cycle in a
+depth-first search from the inputs are feedback), outputs last, as far apart as circles,
+names and weights need; rows by :func:`~symctl.plotting.layered.rows` (half rows allowed).
+A drawing wider than ``width`` is cut into bands stacked top to bottom, only where every
+synapse across the cut joins neighbouring columns (it runs as a wire out of the right of
+its band, under it and into the next from the left). Every synapse is a bridge
+(:func:`route`), straight between neighbouring columns when clear, else bulging (feedback
+below) just enough to pass no circle and no text, its weight on it.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
@@ -129,17 +123,7 @@ class Measures:
 
     def with_room_for_ends(self, c: Circuit) -> Measures:
         """These sizes, each circle large enough (up to 0.3 in) to space one more end than its
-        synapses have on its sides, :data:`~symctl.plotting.layered.PORT_GAP` apart.
-
-        Examples
-        --------
-        >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
-        >>> from symctl.plotting.circuit_layout import Measures
-        >>> f = factor(controller_tf(2))
-        >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
-        >>> round(Measures({"x2": 0.1, "y": 0.1}).with_room_for_ends(c).radius["y"], 3)  # 3 in
-        0.17
-        """
+        synapses have on its sides, :data:`~symctl.plotting.layered.PORT_GAP` apart."""
         grown = dict(self.radius)
         for n in c.neurons:
             ends = (
@@ -519,38 +503,16 @@ def circuit_layout(
     )
 
 
-def _heights(straight: bool, prefer: float, start: float, step: float, count: int) -> list:
-    """Candidate bulges: 0 first when ``straight``, then growing, on the ``prefer`` side first."""
-    out = [0.0] if straight else []
-    for size in (start + k * step for k in range(count)):
-        if size > 0:
-            out += [prefer * size, -prefer * size]
-    return out
-
-
-def _end_angles(natural: float, used: list[float], radius: float, swing: float, count: int):
-    """Up to ``count`` angles where a curve may end on a circle, nearest ``natural`` within
-    ``swing``, each :data:`~symctl.plotting.layered.PORT_GAP` clear of those ``used``."""
-    need = layered.PORT_GAP / max(radius, 1e-9)
-    steps = int(swing / (need / 3))
-    tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
-    if used:
-        d = np.abs((tries[:, None] - np.array(used)[None, :] + math.pi) % (2 * math.pi) - math.pi)
-        tries = tries[(d >= need - 1e-9).all(axis=1)]
-    return [float(t) for t in dict.fromkeys(tries.tolist())][:count]
-
-
 def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, search=True):
     """Heights, curves and label places of arcs ``(source, target, synapse or None)``.
 
-    Each arc, in the order given, takes the first clear bridge
-    (:func:`~symctl.plotting.layered.bridge`; straight first between neighbouring columns,
-    then growing bulges, feedback below) on which its label (``labels``: sizes by synapse)
-    finds a free place, away from the other arcs between the same two nodes, its end moved
-    round the target's circle clear of the ends already there; each label placed joins the
-    ``obstacles``. Without ``search`` (hundreds of synapses) each arc is one arch as high as it
-    is long. Returns per arc ``(height, curve, label centre or None)``, whether every curve is
-    clear and whether every label found a free place.
+    Each arc in turn takes the first bridge (straight first between neighbouring columns,
+    then growing bulges, feedback below) clear of the ``obstacles`` on which its label
+    (``labels``: sizes by synapse) finds a free place, apart from the other arcs between
+    the same two nodes, its end moved round the target's circle clear of the ends there;
+    each label placed joins the obstacles. Without ``search``, one arch each. Returns per
+    arc ``(height, curve, label centre or None)``, whether every curve is clear and
+    whether every label found a place.
 
     Examples
     --------
@@ -587,8 +549,8 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
         apart = max(_PAIR, size[1] + 0.03) if size else _PAIR
         if search:  # the usual heights and ends, then (none clear) more of each
             tiers = [
-                (_heights(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24), _SWING, 3),
-                (_heights(adjacent, prefer, 0.12, 0.08, 40), 2 * _SWING, 8),
+                (layered.bulges(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24), _SWING, 3),
+                (layered.bulges(adjacent, prefer, 0.12, 0.08, 40), 2 * _SWING, 8),
             ]
         else:  # a hairball: one arch each, as high as it is long
             tiers = [
@@ -606,7 +568,7 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
             for h in cands:
                 curve = layered.bridge(qa, qb, h)
                 natural = math.atan2(curve[2][1] - pb[1], curve[2][0] - pb[0])
-                angles = _end_angles(natural, used, rb, swing, count)
+                angles = layered.end_angles(natural, used, rb, swing, count)
                 for angle in angles or [natural]:
                     drawn = layered.trimmed(curve, pa, ra, pb, rb + layered.TIP, angle)
                     nh = layered.hits(layered.bezier_points(drawn), obstacles, {a, b}) + (

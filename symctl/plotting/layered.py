@@ -50,8 +50,10 @@ __all__ = [
     "at_x",
     "bezier_points",
     "bridge",
+    "bulges",
     "crossings",
     "dashed_part",
+    "end_angles",
     "hits",
     "isotonic",
     "junctions",
@@ -564,6 +566,27 @@ def trimmed(curve, a, ra: float, b, rb: float, a1: float | None = None):
 
     (q0, k1), (q3, k2) = port(a, c1, ra, None), port(b, c2, rb, a1)
     return tuple(tuple(float(v) for v in p) for p in (q0, k1, k2, q3))
+
+
+def bulges(straight: bool, prefer: float, start: float, step: float, count: int) -> list:
+    """Candidate bulges: 0 first when ``straight``, then growing, on the ``prefer`` side first."""
+    out = [0.0] if straight else []
+    for size in (start + k * step for k in range(count)):
+        if size > 0:
+            out += [prefer * size, -prefer * size]
+    return out
+
+
+def end_angles(natural: float, used: list[float], radius: float, swing: float, count: int):
+    """Up to ``count`` angles where a curve may end on a circle, nearest ``natural`` within
+    ``swing``, each :data:`PORT_GAP` clear of those ``used``."""
+    need = PORT_GAP / max(radius, 1e-9)
+    steps = int(swing / (need / 3))
+    tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
+    if used:
+        d = np.abs((tries[:, None] - np.array(used)[None, :] + math.pi) % (2 * math.pi) - math.pi)
+        tries = tries[(d >= need - 1e-9).all(axis=1)]
+    return [float(t) for t in dict.fromkeys(tries.tolist())][:count]
 
 
 @dataclass(frozen=True, eq=False)
