@@ -131,10 +131,6 @@ def drawn(ax) -> Drawn | None:
     return _DRAWN.get(ax)
 
 
-def _vertex_tag(vertex: int | None) -> str:
-    return "" if vertex is None else f"v{vertex}"
-
-
 _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
     (True, "full", True, MIN_GAP),
     (True, "full", True, 0.7 * MIN_GAP),
@@ -161,7 +157,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         inside = math.hypot(w, h) / 2 + 0.02  # the text's corners inside the circle
         radius[name] = max(MIN_RADIUS if named else 0.0, inside)
     names = {n.name: f"${signal_tex(n.name)}$" for n in c.neurons} if named else {}
-    tags = {n.name: _vertex_tag(n.vertex) for n in c.neurons if n.vertex is not None and named}
+    tags = {n.name: f"v{n.vertex}" for n in c.neurons if n.vertex is not None and named}
     ends = {u: f"${signal_tex(u)}$" for u in c.inputs}
     for o in c.outputs:
         ends["out", o.target] = "output" if o.target == o.source else f"${signal_tex(o.target)}$"
@@ -180,7 +176,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     )
     if named:  # (numbered circles of a hairball stay small)
         m = m.with_room_for_ends(c)
-    strings = {
+    return m, {
         "body": body,
         "name": names,
         "tag": tags,
@@ -188,7 +184,6 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         "weight": weights,
         "inner": inner,
     }
-    return m, strings
 
 
 def draw_circuit(
@@ -302,16 +297,9 @@ def draw_circuit(
             continue
         x, y = lay.pos[node]
         ax.add_patch(Circle((x, y), DOT, fc="black", lw=0, zorder=2))
-        right = isinstance(node, tuple)
-        ax.text(
-            x + (0.07 if right else -0.07),
-            y,
-            label,
-            ha="left" if right else "right",
-            va="center",
-            fontsize=NAME,
-            zorder=3,
-        )
+        right = isinstance(node, tuple)  # an output: its label on the right
+        side = {"ha": "left" if right else "right", "va": "center", "fontsize": NAME, "zorder": 3}
+        ax.text(x + (0.07 if right else -0.07), y, label, **side)
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
     room = max(x_hi - x_lo, min(page, _KEY_ROOM))

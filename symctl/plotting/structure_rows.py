@@ -137,13 +137,7 @@ def page_bound(
         units = [(p, sub, _row_text(text, sub)) for p, sub in rows]
     widest, tallest, part, excess = 0.0, 0.0, "", -math.inf
     for name, sub, sub_text in units:
-        layout = structure_layout(
-            sub,
-            _no_text,
-            text=sub_text,
-            vertex_of={n: where[n] for n in sub.blocks} if where else None,
-            vertex_names=vertex_names,
-        )
+        layout = _lay(sub, _no_text, sub_text, where, vertex_names)
         w, h = _width(layout), layout.bounds[3] - layout.bounds[2]
         widest, tallest = max(widest, w), max(tallest, h)
         if max(w - width, h - PAGE_HEIGHT) > excess:
@@ -204,6 +198,11 @@ def _row_text(text: StructureText, sub: Structure) -> StructureText:
     return StructureText(gains, names, ends, ())
 
 
+def _lay(sub: Structure, measure, text, where, names) -> StructureLayout:
+    vertex_of = {n: where[n] for n in sub.blocks} if where else None
+    return structure_layout(sub, measure, text=text, vertex_of=vertex_of, vertex_names=names)
+
+
 def _width(layout: StructureLayout) -> float:
     x_lo, x_hi, _, _ = layout.bounds
     return x_hi - x_lo
@@ -250,17 +249,7 @@ def structure_rows(
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})
-
-    def lay(sub: Structure, sub_text: StructureText) -> StructureLayout:
-        return structure_layout(
-            sub,
-            measure,
-            text=sub_text,
-            vertex_of={n: where[n] for n in sub.blocks} if where else None,
-            vertex_names=vertex_names,
-        )
-
-    whole = lay(S, text)
+    whole = _lay(S, measure, text, where, vertex_names)
     order = series_parts(S) if _width(whole) > width else None
     rows: list[StructureLayout] = []
     if order is None:
@@ -271,7 +260,7 @@ def structure_rows(
             best = None
             for stop in range(start + 1, len(order) + 1):
                 sub, _ = _row_structure(S, order[start:stop])
-                layout = lay(sub, _row_text(text, sub))
+                layout = _lay(sub, measure, _row_text(text, sub), where, vertex_names)
                 if best is not None and _width(layout) > width:
                     break
                 best = (stop, layout)
