@@ -1,10 +1,4 @@
-"""Drawing an atlas: one circuit per class on a grid at the printed size, one key for all.
-
-Each class's circuit is drawn by :func:`symctl.plotting.circuit.draw_circuit` in a
-panel as wide as a column of the grid (its text at the sizes of every drawing, never
-smaller), titled with its label and counts; the panels of a row are as tall as the
-tallest, and the key under the grid explains every mark any panel uses.
-"""
+"""An atlas drawn: one circuit per class on a grid at the printed size, one key for all."""
 
 from __future__ import annotations
 

@@ -1,19 +1,10 @@
 r"""Rendering of a circuit drawing at its printed size: neurons, synapses, weights, a key.
 
-The positions come from :mod:`symctl.plotting.circuit_layout`, the text from
-:mod:`symctl.plotting.circuit_labels` (long weights as :math:`w_1, w_2, \dots`,
-listed under the drawing) and the colours from :mod:`symctl.plotting.circuit_signs`;
-this module measures the texts, so that the layout makes room for each, and draws
-with matplotlib's patches on a pyplot-free figure in the house style
-(:mod:`symctl.plotting.style`): one unit is one printed inch, no text is smaller
-than :data:`~symctl.plotting.style.MIN_FONT`, and the drawing is no wider than its
-``width`` (the derivation's text width by default), cut into bands when a long
-chain needs it.
-
-A drawing whose weights cannot all be written legibly at that width (a dense MIMO
-circuit with hundreds of synapses) is drawn without them, and says so in its key;
-a circuit's weights are always in :meth:`Circuit.equations
-<symctl.neural.circuit.Circuit.equations>`.
+Positions from :mod:`~symctl.plotting.circuit_layout` (this module measures the texts so
+that the layout makes room for each), text from :mod:`~symctl.plotting.circuit_labels`,
+colours from :mod:`~symctl.plotting.circuit_key`. A drawing whose weights cannot all be
+written legibly at its width is drawn without them and says so in its key (they are in
+:meth:`Circuit.equations <symctl.neural.circuit.Circuit.equations>`).
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit import draw_circuit
@@ -36,7 +27,15 @@ from matplotlib.transforms import Affine2D, ScaledTranslation
 
 from symctl._util.texnames import signal_tex
 from symctl.plotting import style
-from symctl.plotting.circuit_key import COLOURS, Key, draw_key_items, key_items, wrap_words
+from symctl.plotting.circuit_key import (
+    COLOURS,
+    Key,
+    SignValues,
+    arrow_style,
+    draw_key_items,
+    key_items,
+    weight_sign,
+)
 from symctl.plotting.circuit_labels import circuit_text, display_text, visible_length
 from symctl.plotting.circuit_layout import (
     DOT,
@@ -47,9 +46,14 @@ from symctl.plotting.circuit_layout import (
     Measures,
     circuit_layout,
 )
-from symctl.plotting.circuit_signs import SignValues, weight_sign
-from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_outline, text_size
-from symctl.plotting.key import key_columns
+from symctl.plotting.common import (
+    figure_and_axes,
+    fit_to_drawing,
+    key_columns,
+    text_outline,
+    text_size,
+    wrap,
+)
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -63,6 +67,16 @@ NAME = style.FONT_SIZE
 SMALL = style.SMALL
 """Weights, vertex tags and the key [pt]."""
 _KEY_GAP = 0.3  # between two columns of the key of long values [in]
+_WEIGHT_STYLE = {
+    "ha": "center",
+    "va": "center",
+    "fontsize": SMALL,
+    "bbox": {"boxstyle": "square,pad=0.05", "fc": "white", "ec": "none"},
+    "zorder": 3,
+}
+_NAME_STYLE = {"ha": "center", "va": "bottom", "fontsize": NAME, "color": "0.1", "zorder": 3}
+_TAG_STYLE = {"ha": "center", "va": "top", "fontsize": SMALL, "color": "0.35", "zorder": 3}
+_TAG_STYLE["style"] = "italic"
 _LINE = 0.8  # synapse lines [pt]
 _KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
 _BODY_WIDE = 0.55  # a self-dynamics wider than this [in] is set on two lines
@@ -74,11 +88,8 @@ MAX_KEY = 2.5
 
 @lru_cache(maxsize=8192)
 def _extent(text: str, size: float) -> tuple[float, float]:
-    """Width and height [in] of ``text`` at ``size`` points as matplotlib draws it.
-
-    Its window extent (the box :func:`~symctl.plotting.legibility.legibility` checks),
-    measured once per text on a figure of its own.
-    """
+    """Width and height [in] of ``text`` at ``size`` points as drawn (its window extent, the box
+    :func:`~symctl.plotting.legibility.legibility` checks)."""
     global _RULER
     if _RULER is None:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -106,10 +117,8 @@ class Drawn(NamedTuple):
 
 
 def drawn(ax) -> Drawn | None:
-    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit).
-
-    For a grid of drawings that shares one key (:func:`symctl.plotting.atlas.draw_classes`),
-    and for tests of the drawing's geometry.
+    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit), for a
+    grid of drawings that shares one key and for tests of the geometry.
 
     Examples
     --------
@@ -120,10 +129,6 @@ def drawn(ax) -> Drawn | None:
     (['+', '?'], True)
     """
     return _DRAWN.get(ax)
-
-
-def _vertex_tag(vertex: int | None) -> str:
-    return "" if vertex is None else f"v{vertex}"
 
 
 _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
@@ -152,7 +157,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         inside = math.hypot(w, h) / 2 + 0.02  # the text's corners inside the circle
         radius[name] = max(MIN_RADIUS if named else 0.0, inside)
     names = {n.name: f"${signal_tex(n.name)}$" for n in c.neurons} if named else {}
-    tags = {n.name: _vertex_tag(n.vertex) for n in c.neurons if n.vertex is not None and named}
+    tags = {n.name: f"v{n.vertex}" for n in c.neurons if n.vertex is not None and named}
     ends = {u: f"${signal_tex(u)}$" for u in c.inputs}
     for o in c.outputs:
         ends["out", o.target] = "output" if o.target == o.source else f"${signal_tex(o.target)}$"
@@ -171,7 +176,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     )
     if named:  # (numbered circles of a hairball stay small)
         m = m.with_room_for_ends(c)
-    strings = {
+    return m, {
         "body": body,
         "name": names,
         "tag": tags,
@@ -179,7 +184,6 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
         "weight": weights,
         "inner": inner,
     }
-    return m, strings
 
 
 def draw_circuit(
@@ -194,33 +198,27 @@ def draw_circuit(
 ) -> Figure:
     r"""Draw the circuit at its printed size: neurons as circles, synapses as arrows.
 
-    Each circle holds the neuron's self-dynamics (:math:`\sum_k w_k z^{-d_k}`; an
-    empty circle has none), its name above it and, when it sits on a delay graph
-    (:attr:`Neuron.vertex <symctl.neural.neuron.Neuron.vertex>`), its vertex
-    ``v<k>`` below. Inputs on the left, outputs on the right; columns left to right
-    along the forward synapses, cut into bands when wider than ``width``. A synapse
-    carries its weight (long ones as :math:`w_1, w_2, \dots`, listed under the
-    drawing) and is coloured by its sign: excitatory blue with an arrow head,
-    inhibitory vermillion with a bar, purple when the sign depends on symbols
-    (:mod:`symctl.plotting.circuit_signs`). A dashed synapse is delayed: one step,
-    or :math:`k` steps where its label ends in :math:`z^{-k}`. The key under the
-    drawing says all this for the drawing at hand.
+    A circle holds the neuron's self-dynamics (empty: none), its name above and its
+    delay-graph vertex ``v<k>`` below; inputs left, outputs right, columns along the forward
+    synapses, cut into bands when wider than ``width``. A synapse carries its weight (long
+    ones as :math:`w_1, w_2, \dots`, listed under the drawing) and its sign's colour
+    (excitatory blue with an arrow head, inhibitory vermillion with a bar, purple when it
+    depends on symbols); dashed when delayed (:math:`k` steps where its label ends in
+    :math:`z^{-k}`). The key under the drawing says what the drawing shows.
 
     Parameters
     ----------
     c : Circuit
     ax : matplotlib Axes, optional
-        Draw into it (one data unit is one inch; its limits are set to the drawing);
-        by default a new figure of the drawing's printed size.
+        Draw into it (one data unit is one inch); by default a new figure of printed size.
     title : str, optional
         A heading above the drawing (default: none; a report's caption names it).
     vertex_names : sequence of str, optional
         The delay graph's vertex names, :math:`v_1` first: the key says which is which.
     signs_at : mapping, optional
-        Values at which to read the signs of symbolic weights: a number per symbol
-        (e.g. the controller's gains), or a range ``(lo, hi)`` for one that varies
-        (:class:`~symctl.plotting.circuit_signs.SignValues`); a weight is coloured
-        by its sign only when that sign holds for all of them.
+        A number per symbol or a range ``(lo, hi)`` for one that varies
+        (:class:`~symctl.plotting.circuit_key.SignValues`): a weight is coloured by its
+        sign only when that holds for all of them.
     width : float or {"text", "column", "double"}
         The widest the drawing may be [in] (default the derivation's text width).
     key : bool
@@ -279,16 +277,8 @@ def draw_circuit(
         signs[id(arc)] = sign
         _draw_arc(ax, arc, sign, s is not None and s.delay > 0)
         if arc.label is not None and s in strings["weight"]:
-            ax.text(
-                *arc.label,
-                strings["weight"][s],
-                ha="center",
-                va="center",
-                fontsize=SMALL,
-                color=COLOURS[sign] if sign in "+-" else "0.2",
-                bbox={"boxstyle": "square,pad=0.05", "fc": "white", "ec": "none"},
-                zorder=3,
-            )
+            colour = COLOURS[sign] if sign in "+-" else "0.2"
+            ax.text(*arc.label, strings["weight"][s], **_WEIGHT_STYLE, color=colour)
     for n in c.neurons:
         x, y = lay.pos[n.name]
         r = lay.radius[n.name]
@@ -296,53 +286,20 @@ def draw_circuit(
             Circle((x, y), r, fc="#f4f4f4", ec="black", lw=0.8, zorder=2, gid=f"neuron:{n.name}")
         )
         if strings["body"][n.name]:
-            ax.text(
-                x,
-                y,
-                strings["body"][n.name],
-                ha="center",
-                va="center",
-                fontsize=strings["inner"],
-                zorder=3,
-            )
+            body = strings["body"][n.name]
+            ax.text(x, y, body, ha="center", va="center", fontsize=strings["inner"], zorder=3)
         if named:
-            ax.text(
-                x,
-                y + r + NAME_GAP,
-                strings["name"][n.name],
-                ha="center",
-                va="bottom",
-                fontsize=NAME,
-                color="0.1",
-                zorder=3,
-            )
+            ax.text(x, y + r + NAME_GAP, strings["name"][n.name], **_NAME_STYLE)
         if n.name in strings["tag"]:
-            ax.text(
-                x,
-                y - r - NAME_GAP,
-                strings["tag"][n.name],
-                ha="center",
-                va="top",
-                fontsize=SMALL,
-                color="0.35",
-                style="italic",
-                zorder=3,
-            )
+            ax.text(x, y - r - NAME_GAP, strings["tag"][n.name], **_TAG_STYLE)
     for node, label in strings["end"].items():
         if node not in lay.pos:
             continue
         x, y = lay.pos[node]
         ax.add_patch(Circle((x, y), DOT, fc="black", lw=0, zorder=2))
-        right = isinstance(node, tuple)
-        ax.text(
-            x + (0.07 if right else -0.07),
-            y,
-            label,
-            ha="left" if right else "right",
-            va="center",
-            fontsize=NAME,
-            zorder=3,
-        )
+        right = isinstance(node, tuple)  # an output: its label on the right
+        side = {"ha": "left" if right else "right", "va": "center", "fontsize": NAME, "zorder": 3}
+        ax.text(x + (0.07 if right else -0.07), y, label, **side)
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
     room = max(x_hi - x_lo, min(page, _KEY_ROOM))
@@ -375,7 +332,9 @@ def draw_circuit(
     y_lo = min(y, key_lo) - 0.03
     x_hi = max(x_hi, key_hi, right + 0.03)
     if title:  # wrapped to the drawing (or the page, for a narrow one)
-        lines = wrap_words(title, max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04, style.TITLE)
+        lines = wrap(
+            title.split(" "), max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04, style.TITLE, scale=1.04
+        )
         step = style.TITLE / 72 * 1.3
         top = y_hi + 0.04 + step * len(lines)
         for k, line in enumerate(lines):
@@ -407,12 +366,8 @@ def _shown(tex: str) -> int:
 
 
 def _key_fits(values: list[str], room: float) -> bool:
-    """Whether a key of these long values fits a page ``room`` wide and :data:`MAX_KEY` tall.
-
-    Estimated from the characters shown (:func:`_shown`, half an em each), before any is
-    set: matplotlib parses a long formula in a tenth of a second, and a MIMO circuit has
-    forty. A line too wide is broken before its outermost signs (:func:`_broken`).
-    """
+    """Whether a key of these long values fits ``room`` across and :data:`MAX_KEY` tall, estimated
+    from the characters shown (half an em each) before any is set (a parse takes 0.1 s)."""
     em = SMALL / 72
     lines = [part for v in values for part in _broken(f"w = {v}", room)]
     widths = [0.55 * em * (_shown(v) + 2) for v in lines]
@@ -425,38 +380,20 @@ def _key_fits(values: list[str], room: float) -> bool:
 
 def _draw_arc(ax, arc, sign: str, delayed: bool) -> None:
     """One synapse (or output wire) along its path: colour by sign, dashed when delayed."""
-    colour = COLOURS[sign]
-    if sign == "-":
-        head = "-[,widthB=0.55,lengthB=0"
-    else:
-        head = "-|>,head_length=0.55,head_width=0.3"
-    ax.add_artist(  # not add_patch: its data limits would walk the curves once more
-        FancyArrowPatch(
-            path=Path(arc.path, arc.codes),
-            arrowstyle=head,
-            mutation_scale=8,
-            color=colour,
-            lw=_LINE,
-            linestyle=(0, (3.0, 1.8)) if delayed else "-",
-            shrinkA=0,
-            shrinkB=0,
-            zorder=1,
-            gid=f"synapse:{arc.source}->{arc.target[1] if isinstance(arc.target, tuple) else arc.target}",
-        )
-    )
+    look = arrow_style(sign, COLOURS[sign], (0, (3.0, 1.8)) if delayed else "-")
+    target = arc.target[1] if isinstance(arc.target, tuple) else arc.target
+    path, gid = Path(arc.path, arc.codes), f"synapse:{arc.source}->{target}"
+    # add_artist, not add_patch: its data limits would walk the curves once more
+    ax.add_artist(FancyArrowPatch(path=path, lw=_LINE, zorder=1, gid=gid, **look))
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:
-    r"""The key's ``label = value`` lines from ``(x, y)`` down, in columns if they fit ``room``.
+    r"""The key's ``label = value`` lines from ``(x, y)`` down, in as many columns as fit
+    ``room``; returns its lowest ``y`` and rightmost ``x``.
 
-    Each line is drawn as the outlines of its glyphs (a ``PathPatch`` with gid
-    ``key:w1``, ``key:self1``, ...), the path that also measured it: matplotlib parses
-    a mathtext string again for every measure and every output format, and a key of
-    forty long fractions took two thirds of the drawing's time, three times over. As many
-    columns as fit (:func:`symctl.plotting.key.key_columns`), each as wide as its widest line, filled top to
-    bottom; each row is as tall as its tallest line (a fraction is). The key is laid out
-    in inches from its corner ``(x, y)``, as text is; returns its lowest ``y`` and
-    rightmost ``x`` in data units of one inch (``y`` and ``x`` without lines).
+    Each line is drawn as its glyph outlines (a ``PathPatch`` with gid ``key:w1``, ...), the
+    path that measured it: matplotlib parses mathtext again for every measure and format,
+    and a key of forty long fractions took two thirds of the drawing's time.
     """
     if not lines:
         return y, x
@@ -507,10 +444,8 @@ def _terms(tex: str) -> list[str]:
 
 
 def _body(tex: str, compact: bool = False) -> str:
-    r"""A neuron's self-dynamics as drawn: on two lines when one would make a large circle.
-
-    ``compact``: always on two lines, a single term's weight over its :math:`z^{-k}`.
-    """
+    """A neuron's self-dynamics as drawn: on two lines when one would make a large circle
+    (``compact``: always, a single term's weight over its :math:`z^{-k}`)."""
     if not tex:
         return ""
     one = display_text(tex)
@@ -532,11 +467,8 @@ def _body(tex: str, compact: bool = False) -> str:
 
 
 def _broken(line: str, room: float) -> list[str]:
-    r"""A key line too wide for ``room``, broken before its outermost ``+`` and ``-`` signs.
-
-    The continuation lines are indented; an unbreakable part stays whole. Widths are
-    estimated as in :func:`_key_fits`.
-    """
+    r"""A key line too wide for ``room`` broken before its outermost signs, continuations
+    indented (widths as in :func:`_key_fits`)."""
     em = SMALL / 72
 
     def wide(tex: str) -> bool:

@@ -1,29 +1,50 @@
-r"""The key under a circuit drawing: what its marks mean, for the drawing at hand.
+r"""A circuit drawing's colours and key: the sign of each weight, and what the marks mean.
 
-Only what the drawing shows is explained: the sign colours it uses (and the values
-its symbolic signs were read at), dashes when some synapse is delayed (and that
-:math:`z^{-k}` marks :math:`k > 1` steps), empty circles when some neuron has no
-self-dynamics, the vertex tags and their names, and a note when the weights are
-too many to write. :func:`key_items` says it in words (no matplotlib);
-:func:`draw_key_items` draws each item's sample mark and text in rows.
+A weight such as :math:`K_0 (K_2 + \epsilon_1\epsilon_3)/(C_1 C_3)` has no sign until its
+symbols have values. Given ``signs_at`` (a number per symbol, or a range ``(lo, hi)`` for
+one that varies), :func:`weight_sign` is ``"+"`` / ``"-"`` when so for *every* value
+(numbers substituted exactly, ranges by SymPy's interval arithmetic,
+:class:`~sympy.calculus.accumulationbounds.AccumulationBounds`, which never claims a sign
+some point lacks), ``"0"`` when zero, else ``"?"``; without, SymPy's sign from the
+assumptions. The key (:func:`key_items`) explains only the marks the drawing shows.
 
->>> from symctl.plotting.circuit_key import Key, key_items
+>>> import sympy as sp
+>>> from symctl.plotting.circuit_key import Key, SignValues, key_items, weight_sign
+>>> K0, K2, e1, e3, C1 = sp.symbols("K_0 K_2 epsilon_1 epsilon_3 C_1", real=True)
+>>> at = SignValues.of({K0: -0.046, K2: -0.35, C1: 1, e1: (-0.9, 0.9), e3: (-0.9, 0.9)})
+>>> weight_sign(K0 / C1, at), weight_sign(K0 * (K2 + e1 * e3) / C1, at)
+('-', '?')
+>>> weight_sign(K0 * (K2 - e1**2) / C1, at)   # K_2 - eps^2 < 0 on the whole range
+'+'
 >>> [text for _, text in key_items(Key(signs=frozenset("+-"), delays=frozenset({0, 1})))]
 ['excitatory', 'inhibitory', 'delayed one step']
 """
 
 from __future__ import annotations
 
+import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import sympy as sp
 
 from symctl._util.display import latex
+from symctl._util.validate import real_number, to_expr
+from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
-from symctl.plotting.circuit_signs import SignValues
 from symctl.plotting.common import text_size
 
-__all__ = ["COLOURS", "Key", "draw_key_items", "key_items", "stems", "wrap_words"]
+__all__ = [
+    "COLOURS",
+    "Key",
+    "SignValues",
+    "arrow_style",
+    "draw_key_items",
+    "key_items",
+    "stems",
+    "weight_sign",
+]
 
 COLOURS = {
     "+": style.EXCITATORY,
@@ -34,9 +55,169 @@ COLOURS = {
 }
 """The colour of a synapse by its sign (``""``: a plain wire to an output)."""
 
+
+def arrow_style(sign: str, colour, linestyle) -> dict:
+    """A synapse's arrow: a bar for an inhibitory one, else a head; dashed when delayed."""
+    head = "-[,widthB=0.55,lengthB=0" if sign == "-" else "-|>,head_length=0.55,head_width=0.3"
+    look = {"arrowstyle": head, "mutation_scale": 8, "color": colour, "linestyle": linestyle}
+    return {**look, "shrinkA": 0, "shrinkB": 0}
+
+
 _SAMPLE = 0.24  # the width of a sample mark [in]
 _GAP = 0.05  # between a mark and its text
 _ITEM_GAP = 0.16  # between two items of a row
+
+
+@dataclass(frozen=True)
+class SignValues:
+    r"""The values at which a drawing reads the signs of its symbolic weights.
+
+    Attributes
+    ----------
+    numbers : mapping of Symbol to Rational or Float
+        A value per symbol.
+    ranges : mapping of Symbol to (float, float)
+        A closed range ``(lo, hi)``, ``lo < hi``, per symbol that varies.
+
+    Build one with :meth:`of`.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.plotting.circuit_key import SignValues
+    >>> K0, e1 = sp.symbols("K_0 epsilon_1")
+    >>> at = SignValues.of({K0: -0.05, "epsilon_1": (-0.9, 0.9)}, symbols={K0, e1})
+    >>> sorted(map(str, at.numbers)), sorted(map(str, at.ranges))
+    (['K_0'], ['epsilon_1'])
+    """
+
+    numbers: Mapping = field(default_factory=dict)
+    ranges: Mapping = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "numbers", MappingProxyType(dict(self.numbers)))
+        object.__setattr__(self, "ranges", MappingProxyType(dict(self.ranges)))
+
+    def __hash__(self) -> int:
+        return hash((tuple(self.numbers.items()), tuple(self.ranges.items())))
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, SignValues):
+            return NotImplemented
+        return dict(self.numbers) == dict(other.numbers) and dict(self.ranges) == dict(other.ranges)
+
+    def __bool__(self) -> bool:
+        return bool(self.numbers or self.ranges)
+
+    @classmethod
+    def of(cls, values, argname: str = "signs_at", symbols=()) -> SignValues:
+        """Check ``values``: a mapping of symbols (or their names, matched among ``symbols``,
+        never parsed) to real numbers or ranges ``(lo, hi)``, ``lo < hi``.
+
+        Raises
+        ------
+        SymctlTypeError
+            Not a mapping, a key neither a symbol nor a string, a value neither a number
+            nor a pair (errors name ``argname``).
+        ParameterError
+            A name that is no symbol's, a value not finite, or a range with ``lo >= hi``.
+
+        Examples
+        --------
+        >>> from symctl.plotting.circuit_key import SignValues
+        >>> SignValues.of({"x": (1, 0)}, symbols=__import__("sympy").symbols("x,"))
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: signs_at: the range of x must have lo < hi, got (1, 0)
+        """
+        if values is None:
+            return cls()
+        if isinstance(values, SignValues):
+            return values
+        if not isinstance(values, Mapping):
+            raise SymctlTypeError(
+                f"{argname}: expected a mapping of symbols to numbers or (lo, hi) ranges, "
+                f"got {type(values).__name__}"
+            )
+        names = {str(s): s for s in symbols}
+        nums, ranges = {}, {}
+        for key, value in values.items():
+            sym = _symbol(key, names, argname)
+            if isinstance(value, tuple | list) and len(value) == 2:
+                lo, hi = (real_number(v, f"{argname}[{sym}]") for v in value)
+                if not lo < hi:
+                    raise ParameterError(
+                        f"{argname}: the range of {sym} must have lo < hi, got {tuple(value)}"
+                    )
+                ranges[sym] = (lo, hi)
+            elif isinstance(value, sp.Basic | numbers.Real) and not isinstance(value, bool):
+                v = to_expr(value, f"{argname}[{sym}]")
+                if not (v.is_number and v.is_real and v.is_finite):
+                    raise ParameterError(f"{argname}[{sym}]: must be a finite real number, got {v}")
+                nums[sym] = v
+            else:
+                raise SymctlTypeError(
+                    f"{argname}[{sym}]: expected a real number or a (lo, hi) range, got {value!r}"
+                )
+        return cls(nums, ranges)
+
+
+def _symbol(key, names: dict, argname: str) -> sp.Symbol:
+    if isinstance(key, sp.Symbol):
+        return key
+    if isinstance(key, str):
+        if key in names:
+            return names[key]
+        raise ParameterError(
+            f"{argname}: no symbol named {key!r} (the symbols are: {', '.join(sorted(names))})"
+        )
+    raise SymctlTypeError(f"{argname}: a key must be a sympy Symbol or its name, got {key!r}")
+
+
+def _sign_of_bounds(value) -> str:
+    if isinstance(value, sp.AccumBounds):
+        return "+" if value.min.is_positive else "-" if value.max.is_negative else "?"
+    if value.is_zero:
+        return "0"
+    if value.is_positive:
+        return "+"
+    if value.is_negative:
+        return "-"
+    return "?"
+
+
+def weight_sign(weight, at: SignValues | None = None) -> str:
+    """``"+"``, ``"-"``, ``"0"`` or ``"?"``: the sign of ``weight`` for all the values ``at``.
+
+    Parameters
+    ----------
+    weight : sympy expression or number
+    at : SignValues, optional
+        Numbers and ranges of its symbols; without, SymPy's sign from the assumptions.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symctl.plotting.circuit_key import SignValues, weight_sign
+    >>> x = sp.Symbol("x")
+    >>> weight_sign(-2), weight_sign(x), weight_sign(x, SignValues(ranges={x: (0.5, 2.0)}))
+    ('-', '?', '+')
+    """
+    w = to_expr(weight, "weight")
+    if at:
+        if at.numbers:
+            w = w.xreplace(dict(at.numbers))
+        left = {s: sp.AccumBounds(*at.ranges[s]) for s in w.free_symbols if s in at.ranges}
+        if left and w.free_symbols <= set(left):
+            try:
+                return _sign_of_bounds(w.xreplace(left))
+            except (TypeError, ValueError, ZeroDivisionError):  # e.g. a range through a pole
+                return "?"
+    return _sign_of_bounds(w)
 
 
 @dataclass(frozen=True)
@@ -45,20 +226,13 @@ class Key:
 
     Attributes
     ----------
-    signs : frozenset of str
-        The signs of its synapses (``"+"``, ``"-"``, ``"?"``, ``"0"``; ``""`` a wire).
-    delays : frozenset of int
-        The delays of its synapses.
-    labelled : bool
-        The weights are written on the synapses.
-    bodies : bool
-        The self-dynamics are written in the circles.
-    empty : bool
-        Some circle is empty (a neuron without self-dynamics).
-    vertices : tuple of int
-        The delay-graph vertices of its neurons.
-    vertex_names : tuple of str or None
-        The graph's vertex names, :math:`v_1` first.
+    signs, delays : frozenset
+        The signs of its synapses (``"+"``, ``"-"``, ``"?"``, ``"0"``; ``""`` a wire) and
+        their delays.
+    labelled, bodies, empty : bool
+        The weights are written; the self-dynamics are written; some circle is empty.
+    vertices, vertex_names : tuple
+        The delay-graph vertices of its neurons, and the graph's vertex names (or None).
     signs_at : SignValues
         The values its signs were read at.
     synapses : int
@@ -181,24 +355,6 @@ def key_items(key: Key) -> list[tuple[str, str]]:
     return items
 
 
-def wrap_words(text: str, room: float, size: float) -> list[str]:
-    """``text`` broken between words into lines no wider than ``room`` inches at ``size`` points.
-
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_key import wrap_words
-    >>> wrap_words("a few words to wrap", 0.5, 7)
-    ['a few', 'words to', 'wrap']
-    """
-    lines: list[str] = []
-    for word in text.split(" "):
-        if lines and 1.04 * text_size(lines[-1] + " " + word, size)[0] <= room:
-            lines[-1] += " " + word
-        else:
-            lines.append(word)
-    return lines
-
-
 def draw_key_items(ax, items, x: float, y: float, room: float, size: float):
     """Draw ``items`` in rows from ``(x, y)`` down, no row wider than ``room``.
 
@@ -228,24 +384,9 @@ def draw_key_items(ax, items, x: float, y: float, room: float, size: float):
             mark, text = items[k]
             if mark in ("+", "-", "?", "0", "dashed"):
                 colour = COLOURS[mark] if mark != "dashed" else style.NEUTRAL
-                head = (
-                    "-[,widthB=0.55,lengthB=0"
-                    if mark == "-"
-                    else "-|>,head_length=0.55,head_width=0.3"
-                )
-                ax.add_artist(
-                    FancyArrowPatch(
-                        (cx, yc),
-                        (cx + _SAMPLE, yc),
-                        arrowstyle=head,
-                        mutation_scale=8,
-                        color=colour,
-                        lw=0.8,
-                        linestyle=(0, (3.0, 1.8)) if mark == "dashed" else "-",
-                        shrinkA=0,
-                        shrinkB=0,
-                    )
-                )
+                dashes = (0, (3.0, 1.8)) if mark == "dashed" else "-"
+                look = arrow_style(mark, colour, dashes)
+                ax.add_artist(FancyArrowPatch((cx, yc), (cx + _SAMPLE, yc), lw=0.8, **look))
             elif mark == "neuron":
                 ax.add_patch(Circle((cx + _SAMPLE / 2, yc), 0.05, fc="#f4f4f4", ec="black", lw=0.8))
             if mark:

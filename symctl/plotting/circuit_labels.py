@@ -1,23 +1,11 @@
 r"""The text of a circuit drawing: each synapse's weight, each neuron's body, and the key.
 
-What :func:`symctl.plotting.circuit.draw_circuit` writes, apart from where and how it
-draws it (no matplotlib here). A weight is written on its synapse as its LaTeX
-(numbers to 3 significant digits) when that is short; a long one, e.g. a
-coefficient of a MIMO :math:`G_2` rational in :math:`K`, :math:`\epsilon` and
-:math:`C`, would cover its neighbours, so its synapse carries a short label
-:math:`w_k` and the key under the drawing reads :math:`w_k = \dots` in full.
-A neuron's self-dynamics too long for its circle becomes
-:math:`\mathrm{self}_k` in the same way. Equal values share one label (the four
-G2 neurons of a controllable canonical form with two inputs have the same
-self-dynamics: one key entry, not four), and labels are numbered in the order of
-the circuit's neurons, then its outputs.
-
-* **Short**: :data:`LONG_WEIGHT` visible characters or fewer for a weight,
-  :data:`LONG_SELF` for a self-dynamics (:func:`visible_length`: a command such as
-  ``\epsilon`` counts as one; ``\frac``, braces and sub/superscript marks as none).
-* **Text**: a plain number is set as text (with a minus sign), everything else
-  as mathtext; matplotlib parses every mathtext string once per measure and once
-  per output format, a few milliseconds each (:func:`display_text`).
+A weight is written as its LaTeX (numbers to 3 significant digits) when it shows at most
+:data:`LONG_WEIGHT` characters (:func:`visible_length`); a longer one, e.g. a MIMO
+coefficient rational in :math:`K`, :math:`\epsilon` and :math:`C`, is drawn as
+:math:`w_k`, the key under the drawing reading :math:`w_k = \dots` in full; a
+self-dynamics longer than :data:`LONG_SELF` becomes :math:`\mathrm{self}_k` likewise.
+Equal values share one label, numbered in the order of the neurons, then the outputs.
 
 >>> from symctl import Circuit, controllable_canonical, controller_tf, factor
 >>> from symctl.compatibility.structure import Structure
@@ -59,23 +47,18 @@ __all__ = [
 ]
 
 LONG_WEIGHT = 14
-"""A weight whose LaTeX shows more characters than this is drawn as :math:`w_k`, its value
-in the key. 14 characters at 9 points are about 1.2 inches, what fits on a synapse between
-two neighbouring columns (2.6 inches apart, less the two circles) without covering the next
-synapse's label."""
+"""A weight showing more characters than this is drawn as :math:`w_k`, its value in the key
+(14 characters at 9 points are about 1.2 inches, what fits between two columns)."""
 LONG_SELF = 2 * LONG_WEIGHT
-r"""A self-dynamics whose LaTeX shows more characters than this is drawn as
-:math:`\mathrm{self}_k`, its value in the key; shorter ones are written in the circle, which
-grows to hold them (two lag terms such as :math:`K_1 z^{-1} + K_2 z^{-2}` fit)."""
+r"""A self-dynamics showing more characters is drawn as :math:`\mathrm{self}_k`; shorter ones are
+written in the circle, which grows to hold them."""
 
 _NUMBER = re.compile(r"-?\d+(\.\d*)?(e[+-]?\d+)?")
 
 
 def visible_length(tex: str) -> int:
-    r"""The number of characters ``tex`` shows: a command counts as one, markup as none.
-
-    ``\left``, ``\right``, ``\frac``, ``\dfrac`` and ``\cdot`` count as nothing,
-    braces, ``_``, ``^`` and spaces neither.
+    r"""The number of characters ``tex`` shows: a command counts as one; ``\left``, ``\right``,
+    ``\frac``, ``\dfrac``, ``\cdot``, braces, ``_``, ``^`` and spaces as none.
 
     Examples
     --------
@@ -119,12 +102,9 @@ def _self_tex(n: Neuron) -> str:
 
 
 def display_text(tex: str) -> str:
-    r"""The string matplotlib draws for ``tex``: a plain number as text, else ``$tex$``.
-
-    A number needs no mathtext, and text is laid out by FreeType alone, with no parse
-    (a circuit of numeric weights has hundreds of labels); the minus is the minus sign
-    (U+2212) that mathtext would set. A fraction is set as ``\dfrac``: mathtext sets a
-    ``\frac``'s numerator and denominator at 70 %, under 6 pt in a 7-pt label.
+    r"""The string matplotlib draws for ``tex``: a plain number as text (no mathtext parse; the
+    minus sign U+2212), else ``$tex$`` with ``\frac`` as ``\dfrac`` (mathtext sets a
+    ``\frac``'s parts at 70 %, under 6 pt in a 7-pt label).
 
     Examples
     --------
@@ -139,19 +119,17 @@ def display_text(tex: str) -> str:
 
 @dataclass(frozen=True, eq=False)
 class CircuitText:
-    r"""What a circuit drawing writes (LaTeX without ``$``; see the module text for the rules).
+    r"""What a circuit drawing writes (LaTeX without ``$``).
 
     Attributes
     ----------
     weights : mapping of Synapse to str
-        Each synapse's label (and each weighted or delayed output's): its weight, or
-        :math:`w_k` for a long one, then :math:`z^{-d}` for a delay ``d > 1`` (alone for
-        a weight 1).
+        Each synapse's (and weighted or delayed output's) label: its weight or :math:`w_k`,
+        then :math:`z^{-d}` for a delay ``d > 1`` (alone for a weight 1).
     bodies : mapping of str to str
-        Each neuron's self-dynamics (``""`` without: the circle stays empty), or
-        :math:`\mathrm{self}_k`.
+        Each neuron's self-dynamics (``""``: none), or :math:`\mathrm{self}_k`.
     key : tuple of (str, str)
-        ``(label, value)`` of each long value, the self-dynamics first, then the weights.
+        ``(label, value)`` of each long value, the self-dynamics first.
     """
 
     weights: Mapping = field(default_factory=dict)
@@ -163,14 +141,7 @@ class CircuitText:
         object.__setattr__(self, "bodies", MappingProxyType(dict(self.bodies)))
 
     def key_lines(self) -> list[str]:
-        r"""The key as LaTeX lines, ``label = value``.
-
-        Examples
-        --------
-        >>> from symctl.plotting.circuit_labels import CircuitText
-        >>> CircuitText(key=(("w_{1}", r"\frac{a}{b}"),)).key_lines()
-        ['w_{1} = \\frac{a}{b}']
-        """
+        """The key as LaTeX lines, ``label = value``."""
         return [f"{label} = {value}" for label, value in self.key]
 
 

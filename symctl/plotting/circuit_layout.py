@@ -1,31 +1,15 @@
-r"""Where a circuit's neurons, inputs, outputs and synapse curves go: numbers, no matplotlib.
+r"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
 
-The layout of :meth:`Circuit.draw <symctl.neural.circuit.Circuit.draw>`, apart from
-its rendering (:mod:`symctl.plotting.circuit`), as networkx keeps ``drawing/layout.py``
-apart from ``nx_pylab.py``. One unit is one inch of the printed page; the sizes of
-the texts come in :class:`Measures` (measured by the renderer, or estimated).
-
-* **Columns**: the inputs in column 0; each neuron one column right of its
-  furthest predecessor along forward synapses (a depth-first search from the
-  inputs; the edges it finds closing a cycle are feedback); the outputs in one
-  last column. Two columns are as far apart as their circles and names need, and
-  the weight of a synapse between them (:data:`MIN_GAP` at least).
-* **Rows**: each node near the mean row of its neighbours, the nodes of a column
-  at least one row apart (half rows allowed): the barycentre sweeps and isotonic fit
-  of :func:`symctl.plotting.layered.rows`; a row is as tall as the tallest node with
-  its name and vertex tag.
-* **Bands**: a drawing wider than ``width`` (the page) is cut into bands stacked
-  top to bottom, as a line of text is broken: only where every synapse crossing the
-  cut joins two neighbouring columns (in a chain, between two sections), as few
-  bands as fit, the widest as narrow as it can be. A synapse across a cut runs as a
-  wire out of the right of its band, back under it and into the next band from the
-  left. A drawing that cannot be cut narrow enough says so (:attr:`CircuitLayout.fits`).
-* **Curves**: every synapse is a bridge (:mod:`symctl.plotting.circuit_routes`),
-  straight between neighbouring columns when that is clear, else bulging above or
-  below (feedback below) just enough to pass no circle and no text; synapses
-  between the same two neurons run apart. Its weight sits on it, on no circle and
-  no other text. Where curves meet a circle, their ends are spread apart, so no two
-  arrow heads or bars overlap.
+On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.circuit` renders
+it, the sizes of the texts come in :class:`Measures`. Columns: inputs first, each neuron
+right of its furthest predecessor along forward synapses (those closing a cycle in a
+depth-first search from the inputs are feedback), outputs last, as far apart as circles,
+names and weights need; rows by :func:`~symctl.plotting.layered.rows` (half rows allowed).
+A drawing wider than ``width`` is cut into bands stacked top to bottom, only where every
+synapse across the cut joins neighbouring columns (it runs as a wire out of the right of
+its band, under it and into the next from the left). Every synapse is a bridge
+(:func:`route`), straight between neighbouring columns when clear, else bulging (feedback
+below) just enough to pass no circle and no text, its weight on it.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
@@ -49,7 +33,6 @@ import networkx as nx
 import numpy as np
 
 from symctl.compatibility.signalgraph import back_edges
-from symctl.plotting import circuit_routes as rt
 from symctl.plotting import layered
 
 if TYPE_CHECKING:
@@ -58,17 +41,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DOT",
-    "MAX_RADIUS",
     "MIN_GAP",
     "MIN_RADIUS",
-    "NAME_GAP",
-    "XSTEP",
-    "YSTEP",
     "Arc",
     "CircuitLayout",
     "Measures",
     "circuit_layout",
-    "grid",
+    "route",
 ]
 
 MIN_RADIUS = 0.11
@@ -77,15 +56,8 @@ DOT = 0.03
 """The radius of an input or output dot [in]."""
 MIN_GAP = 0.26
 """The least room between two columns' circles and names [in]."""
-XSTEP = 0.9
-"""The distance between two columns of circles of :data:`MIN_RADIUS` with estimated texts [in]
-(the measured layout sets each distance from its texts)."""
-YSTEP = 0.62
-"""The distance between two rows [in], likewise."""
-MAX_RADIUS = 0.3
-"""A circle grows to space the ends of its synapses no larger than this [in]."""
-NAME_GAP = 0.06
-"""Between a circle and its name above it or its vertex tag below it [in]."""
+MAX_RADIUS = 0.3  # a circle grows to space the ends of its synapses no larger than this
+NAME_GAP = 0.06  # between a circle and its name above it or its vertex tag below it
 _END_GAP = 0.04  # between a dot and its label
 _ARROW = 0.11  # room for an arrow head or bar, either side of a weight on a straight synapse [in]
 _ROW_GAP = 0.18  # between the texts of two rows
@@ -95,6 +67,8 @@ _WIRE = 0.12  # a wire between bands runs this far outside the bands
 _WIRE_STEP = 0.07  # between two wires at one cut
 _CORNER = 0.05  # the rounding of a wire's corners
 _MAX_CURVES = 150  # beyond: the curves are not searched (a hairball takes its first choice)
+_PAIR = 0.13  # least difference of the heights of two curves between the same two nodes
+_SWING = 0.9  # an end moves at most this far round its circle from where it points [rad]
 
 
 @dataclass(frozen=True)
@@ -105,13 +79,10 @@ class Measures:
     ----------
     radius : mapping of str to float
         Each neuron's circle.
-    name : mapping of node to (float, float)
-        The width and height of the label above each neuron (its name).
-    tag : mapping of node to (float, float)
-        The label below a neuron (its delay-graph vertex); absent for none.
+    name, tag : mapping of node to (float, float)
+        The width and height of the name above each neuron and of the vertex tag below.
     label : mapping of Synapse to (float, float)
-        The weight label of each synapse (and each weighted or delayed output) that
-        has one; a synapse absent here is drawn without a label.
+        The weight label of each synapse (and weighted or delayed output) that has one.
     end : mapping of node to (float, float)
         The label of each input (left of its dot) and output (right of its dot).
 
@@ -136,11 +107,7 @@ class Measures:
 
     @classmethod
     def estimate(cls, c: Circuit, radius: Mapping[str, float] | None = None) -> Measures:
-        """Sizes from character counts (the layout without a renderer): 0.06 in a character.
-
-        Every synapse has a label (outputs: when weighted or delayed), a neuron's
-        name is its signal name, inputs and outputs are labelled by their names.
-        """
+        """Sizes from character counts (0.06 in each), for a layout without a renderer."""
         radius = dict(radius) if radius is not None else {n.name: MIN_RADIUS for n in c.neurons}
 
         def size(text: str) -> tuple[float, float]:
@@ -155,25 +122,13 @@ class Measures:
         return cls(radius, names, tags, labels, ends).with_room_for_ends(c)
 
     def with_room_for_ends(self, c: Circuit) -> Measures:
-        """These sizes, each neuron's circle large enough to space the ends of its synapses in.
-
-        The ends go on its sides (about 2 rad of the circle, its name above and tag below),
-        one more than it has, so that each may move round from where it points,
-        :data:`~symctl.plotting.circuit_routes.PORT_GAP` apart; no circle grows past
-        :data:`MAX_RADIUS` for it.
-
-        Examples
-        --------
-        >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
-        >>> from symctl.plotting.circuit_layout import Measures
-        >>> f = factor(controller_tf(2))
-        >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
-        >>> round(Measures({"x2": 0.1, "y": 0.1}).with_room_for_ends(c).radius["y"], 3)  # 3 in
-        0.17
-        """
+        """These sizes, each circle large enough (up to 0.3 in) to space one more end than its
+        synapses have on its sides, :data:`~symctl.plotting.layered.PORT_GAP` apart."""
         grown = dict(self.radius)
         for n in c.neurons:
-            ends = min((len(n.synapses) + 1) * rt.PORT_GAP / 2.0, MAX_RADIUS) if n.synapses else 0
+            ends = (
+                min((len(n.synapses) + 1) * layered.PORT_GAP / 2.0, MAX_RADIUS) if n.synapses else 0
+            )
             grown[n.name] = max(grown.get(n.name, MIN_RADIUS), ends)
         return Measures(grown, self.name, self.tag, self.label, self.end)
 
@@ -189,15 +144,11 @@ class Arc:
     synapse : Synapse or None
         What the arc carries; None for a plain wire to an output (weight 1, no delay).
     height : float
-        How far the curve bulges from the straight line between the centres [in];
-        > 0 above it (right of a vertical one). A wire between bands has height 0.
+        The bulge over the chord between the centres [in] (> 0 above; 0 for a wire).
     label : (float, float) or None
-        The centre of the weight's label (None: no label).
-    path : tuple of (float, float)
-        The drawn curve, from the border of the source's circle to the target's.
-    codes : tuple of int
-        Its segments, as matplotlib's ``Path`` codes (1 move, 2 line, 3 quadratic and
-        4 cubic Bézier control points).
+        The centre of the weight's label.
+    path, codes : tuple
+        The drawn curve from circle to circle, and matplotlib ``Path`` codes.
     """
 
     source: str | tuple
@@ -209,12 +160,6 @@ class Arc:
     codes: tuple[int, ...] = ()
 
     @property
-    def rad(self) -> float:
-        """The bulge relative to the chord's length (matplotlib's ``arc3`` curvature)."""
-        (x0, y0), (x1, y1) = self.path[0], self.path[-1]
-        return -2 * self.height / max(math.hypot(x1 - x0, y1 - y0), 1e-9)
-
-    @property
     def wire(self) -> bool:
         """Whether the arc runs between two bands (a wire with corners)."""
         return 2 in self.codes
@@ -222,7 +167,7 @@ class Arc:
     def points(self) -> np.ndarray:
         """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
         if not self.wire:
-            return rt.samples(self.path)
+            return layered.bezier_points(self.path)
         pts = np.array(self.path)
         return np.concatenate([np.linspace(a, b, 12) for a, b in itertools.pairwise(pts)])
 
@@ -233,25 +178,18 @@ class CircuitLayout:
 
     Attributes
     ----------
-    column, row : mapping
-        Each node's column and row (nodes: inputs and neurons by name, outputs as
-        ``("out", name)``).
-    pos : mapping
-        Each node's centre ``(x, y)`` [in].
+    column, row, pos, band : mapping
+        Each node's column, row, centre ``(x, y)`` [in] and band (0 the top one); nodes
+        are inputs and neurons by name, outputs as ``("out", name)``.
     radius : mapping of str to float
         Each neuron's circle [in].
     arcs : tuple of Arc
         Synapses (shortest span first, parallel ones together), then the outputs.
     bounds : (float, float, float, float)
         ``(x_lo, x_hi, y_lo, y_hi)``: every node, text and curve inside, with margins.
-    band : mapping
-        The band each node is drawn in (0 the top one).
-    narrow : bool
-        The drawing is no wider than asked.
-    clear : bool
-        No curve passes a circle or a text it does not end at.
-    labelled : bool
-        Every weight label found a free place (on no circle, text or other label).
+    narrow, clear, labelled : bool
+        No wider than asked; no curve passes a circle or text it does not end at; every
+        weight label found a free place.
     """
 
     column: Mapping
@@ -280,19 +218,8 @@ class CircuitLayout:
         return _text_boxes(self.pos, self.radius, measures, self.arcs)
 
 
-def grid(c: Circuit) -> tuple[dict, dict]:
-    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows.
-
-    Examples
-    --------
-    >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
-    >>> from symctl.plotting.circuit_layout import grid
-    >>> f = factor(controller_tf(2))
-    >>> col, row = grid(Circuit.from_structure(Structure.from_realization(
-    ...     controllable_canonical(f.G2))))
-    >>> col
-    {'u': 0, 'x2': 1, 'y': 2, ('out', 'y'): 3}
-    """
+def _grid(c: Circuit) -> tuple[dict, dict]:
+    """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
     nodes = [*c.inputs, *(n.name for n in c.neurons)]
     edges = [s for n in c.neurons for s in n.synapses]
     successors: dict = {node: [] for node in nodes}
@@ -355,20 +282,8 @@ def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
                 out["tag", node] = (x - w / 2, y - r - NAME_GAP - h, x + w / 2, y - r - NAME_GAP)
         elif node in m.end:
             w, h = m.end[node]
-            if isinstance(node, tuple):  # an output: its label on the right
-                out["end", node] = (
-                    x + DOT + _END_GAP,
-                    y - h / 2,
-                    x + DOT + _END_GAP + w,
-                    y + h / 2,
-                )
-            else:
-                out["end", node] = (
-                    x - DOT - _END_GAP - w,
-                    y - h / 2,
-                    x - DOT - _END_GAP,
-                    y + h / 2,
-                )
+            x0 = x + DOT + _END_GAP if isinstance(node, tuple) else x - DOT - _END_GAP - w
+            out["end", node] = (x0, y - h / 2, x0 + w, y + h / 2)  # an output's on the right
     for k, arc in enumerate(arcs):
         if arc.label is not None and arc.synapse in m.label:
             w, h = m.label[arc.synapse]
@@ -504,7 +419,7 @@ def circuit_layout(
     [('u', 'x2', 0.0), ('x2', 'y', 0.0), ('x2', 'y', 0.16), ('u', 'y', -0.36), ('y', ('out', 'y'), 0.0)]
     """
     m = measures if measures is not None else Measures.estimate(c, radius)
-    col, row = grid(c)
+    col, row = _grid(c)
     columns: dict[int, list] = {}
     for node, k in col.items():
         columns.setdefault(k, []).append(node)
@@ -539,38 +454,31 @@ def circuit_layout(
         mine = [specs[k] for k in idx]
         texts = _text_boxes(local, m.radius, m)
         nodes = list(local)
-        obstacles = rt.Obstacles.of(
+        obstacles = layered.Obstacles.of(
             [(local[n], m.radius.get(n, DOT)) for n in nodes],
             list(texts.values()),
             nodes,
             [key for _, key in texts],
         )
-        chosen, fine, written = rt.route(
-            mine, local, col, m.radius, m.label, obstacles, search=search, dot=DOT
-        )
+        chosen, fine, written = route(mine, local, col, m.radius, m.label, obstacles, search=search)
         clear, labelled = clear and fine, labelled and written
         curves = [curve for _, curve, _ in chosen]
-        # the band's extent, then moved under the one above
-        xs0 = [lx - ext[n][0] for n, (lx, _) in local.items()]
-        xs1 = [lx + ext[n][1] for n, (lx, _) in local.items()]
-        ys0 = [ly - ext[n][2] for n, (_, ly) in local.items()]
-        ys1 = [ly + ext[n][3] for n, (_, ly) in local.items()]
+        # the band's extent (x0, y0, x1, y1), then moved under the one above
+        ink = [
+            (lx - e[0], ly - e[2], lx + e[1], ly + e[3])
+            for n, (lx, ly) in local.items()
+            for e in [ext[n]]
+        ]
         for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
-            p = rt.samples(curve)
-            xs0.append(p[:, 0].min())
-            xs1.append(p[:, 0].max())
-            ys0.append(p[:, 1].min())
-            ys1.append(p[:, 1].max())
+            p = layered.bezier_points(curve)
+            ink.append((*p.min(axis=0), *p.max(axis=0)))
             if where is not None:
                 w, h = m.label[s]
-                xs0.append(where[0] - w / 2)
-                xs1.append(where[0] + w / 2)
-                ys0.append(where[1] - h / 2)
-                ys1.append(where[1] + h / 2)
-        gap = 0.0 if b == 0 else _band_gap(specs, band_of, b, m)
-        dy = top - gap - max(ys1)
-        top = min(ys0) + dy
-        band_box.append((min(xs0), max(xs1), min(ys0) + dy, max(ys1) + dy))
+                ink.append((where[0] - w / 2, where[1] - h / 2, where[0] + w / 2, where[1] + h / 2))
+        lo, hi = np.min(ink, axis=0), np.max(ink, axis=0)
+        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - float(hi[3])
+        top = float(lo[1]) + dy
+        band_box.append((float(lo[0]), float(hi[2]), float(lo[1]) + dy, float(hi[3]) + dy))
         for n, (lx, ly) in local.items():
             pos[n] = (lx, ly + dy)
         for k, (h, _, where), curve in zip(idx, chosen, curves, strict=True):
@@ -593,6 +501,115 @@ def circuit_layout(
     return CircuitLayout(
         col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
     )
+
+
+def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, search=True):
+    """Heights, curves and label places of arcs ``(source, target, synapse or None)``.
+
+    Each arc in turn takes the first bridge (straight first between neighbouring columns,
+    then growing bulges, feedback below) clear of the ``obstacles`` on which its label
+    (``labels``: sizes by synapse) finds a free place, apart from the other arcs between
+    the same two nodes, its end moved round the target's circle clear of the ends there;
+    each label placed joins the obstacles. Without ``search``, one arch each. Returns per
+    arc ``(height, curve, label centre or None)``, whether every curve is clear and
+    whether every label found a place.
+
+    Examples
+    --------
+    >>> from symctl.plotting.circuit_layout import route
+    >>> from symctl.plotting.layered import Obstacles
+    >>> pos, col = {"a": (0.0, 0.0), "m": (1.0, 0.0), "b": (2.0, 0.0)}, {"a": 0, "m": 1, "b": 2}
+    >>> free = Obstacles.of([(pos[k], 0.2) for k in pos], [], list(pos))
+    >>> (h, curve, where), = route([("a", "b", None)], pos, col, dict.fromkeys(pos, 0.2), {},
+    ...                            free)[0]
+    >>> h != 0   # over (or under) the neuron between
+    True
+    """
+    clear, labelled, up = True, True, 1.0
+    chosen: list[tuple] = []
+    heights_of: dict[frozenset, list[float]] = {}
+    ports: dict = {}  # the angles at which curves already end at each neuron
+    lines: list[np.ndarray] = []
+    for a, b, s in arcs:
+        (pa, pb), ra, rb = (
+            (np.asarray(pos[a], float), np.asarray(pos[b], float)),
+            radius.get(a, DOT),
+            radius.get(b, DOT),
+        )
+        forward = col[b] > col[a]
+        adjacent = forward and col[b] == col[a] + 1
+        if adjacent:
+            prefer = 1.0
+        elif forward:
+            prefer, up = up, -up
+        else:
+            prefer = -1.0
+        taken = heights_of.setdefault(frozenset((a, b)), [])
+        size = labels.get(s) if s is not None else None
+        apart = max(_PAIR, size[1] + 0.03) if size else _PAIR
+        if search:  # the usual heights and ends, then (none clear) more of each
+            tiers = [
+                (layered.bulges(adjacent, prefer, 0.16 if forward else 0.22, 0.1, 24), _SWING, 3),
+                (layered.bulges(adjacent, prefer, 0.12, 0.08, 40), 2 * _SWING, 8),
+            ]
+        else:  # a hairball: one arch each, as high as it is long
+            tiers = [
+                ([0.0] if adjacent else [prefer * (0.08 + 0.06 * abs(col[b] - col[a]))], _SWING, 3)
+            ]
+        used = ports.setdefault(b, []) if b in radius else []
+        others = np.concatenate(lines) if lines else None
+        pick, fallback = None, None
+        u = (pb - pa) / max(float(np.hypot(*(pb - pa))), 1e-12)
+        qa, qb = tuple(pa + ra * u), tuple(pb - rb * u)  # where the chord leaves the circles
+        for cands, swing, count in tiers:
+            cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
+                (max(map(abs, taken)) + apart) * prefer
+            ]
+            for h in cands:
+                curve = layered.bridge(qa, qb, h)
+                natural = math.atan2(curve[2][1] - pb[1], curve[2][0] - pb[0])
+                angles = layered.end_angles(natural, used, rb, swing, count)
+                for angle in angles or [natural]:
+                    drawn = layered.trimmed(curve, pa, ra, pb, rb + layered.TIP, angle)
+                    nh = layered.hits(layered.bezier_points(drawn), obstacles, {a, b}) + (
+                        not angles
+                    )
+                    if fallback is None or nh < fallback[0]:
+                        fallback = (nh, h, drawn, angle)
+                    if nh:
+                        continue
+                    where = layered.place_label(drawn, size, obstacles, others) if size else None
+                    if size is None or where is not None:
+                        pick = (h, drawn, where, angle)
+                        break
+                if pick is not None or not search:
+                    break
+            if pick is not None:
+                break
+        if pick is None:  # the least bad, its label where it overlaps the least
+            nh, h, drawn, angle = fallback
+            clear = clear and nh == 0
+            where = None
+            if size is not None:
+                where = layered.place_label(drawn, size, obstacles, others)
+                labelled = labelled and where is not None
+                circles = layered.Obstacles(
+                    obstacles.centres, obstacles.radii, obstacles.keys, np.zeros((0, 4)), ()
+                )
+                where = where or layered.place_label(drawn, size, circles, others)
+                where = where or tuple(float(v) for v in layered.bezier_points(drawn, [0.5])[0])
+            pick = (h, drawn, where, angle)
+        h, drawn, where, angle = pick
+        taken.append(h)
+        used.append(angle)
+        chosen.append((h, drawn, where))
+        lines.append(layered.bezier_points(drawn))
+        if where is not None:
+            w, hh = size
+            obstacles = obstacles.with_box(
+                (where[0] - w / 2, where[1] - hh / 2, where[0] + w / 2, where[1] + hh / 2)
+            )
+    return chosen, clear, labelled
 
 
 def _row_heights(nodes, row, x, col, ext) -> dict:
@@ -663,7 +680,7 @@ def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]
     for k, index in enumerate(crossing):
         a, t, s = specs[index]
         (xa, ya), (xt, yt) = pos[a], pos[t]
-        ra, rt_ = m.radius.get(a, DOT), m.radius.get(t, DOT) + rt.TIP
+        ra, rt_ = m.radius.get(a, DOT), m.radius.get(t, DOT) + layered.TIP
         yg = levels[k]
         xr = band_box[b - 1][1] + _WIRE + (n - 1 - k) * _WIRE_STEP
         xl = band_box[b][0] - _WIRE + (n - 1 - k) * _WIRE_STEP

@@ -1,20 +1,10 @@
-"""Pieces shared by every drawing: a figure (pyplot-free), text measure, heading and key.
-
-This is the only place besides the rest of :mod:`symctl.plotting` that imports matplotlib.
-"""
+"""Pieces shared by every drawing: a pyplot-free figure, the text measure, wrapped lines, the key."""
 
 from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = [
-    "figure_and_axes",
-    "finish_figure",
-    "fit_to_drawing",
-    "text_outline",
-    "text_size",
-    "wrap_key",
-]
+__all__ = ["figure_and_axes", "fit_to_drawing", "key_columns", "text_outline", "text_size", "wrap"]
 
 
 @lru_cache(maxsize=4096)
@@ -75,39 +65,35 @@ def fit_to_drawing(fig, ax, own: bool, x_lo: float, x_hi: float, y_lo: float, y_
     return fig
 
 
-def finish_figure(fig, ax, own: bool, bounds, heading: str, key: str, top: float):
-    """Heading and key above the drawing, equal axes without frame, size in inches.
+def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -> list[str]:
+    """``items`` joined by ``sep`` into lines no wider than ``room`` inches at ``size`` points
+    (measured widths times ``scale``: drawn text runs a few percent wider); one may overflow.
 
-    Shared by structure and circuit drawings (one data unit is one inch).
+    >>> from symctl.plotting.common import wrap
+    >>> wrap("a few words to wrap".split(), 0.5, 7, scale=1.04)
+    ['a few', 'words to', 'wrap']
     """
-    x_lo, x_hi, y_lo, y_hi = bounds
-    # TextPath measures the glyph outlines; rendered text runs a few percent wider
-    room = max(x_hi - x_lo, 4.0) - 0.3
-    lines = wrap_key(key.split("   "), room, 7.5)
-    extra = 0.14 * (len(lines) - 1)
-    ax.text(x_lo + 0.1, y_hi + 0.3 + extra, heading, ha="left", va="bottom", fontsize=10)
-    ax.text(
-        x_lo + 0.1,
-        y_hi + 0.1,
-        "\n".join(lines),
-        ha="left",
-        va="bottom",
-        fontsize=7.5,
-        color="0.35",
-        linespacing=1.3,
-    )
-    width = 1.08 * max(text_size(t, s)[0] for t, s in [(heading, 10), *((ln, 7.5) for ln in lines)])
-    x_hi = max(x_hi, x_lo + width + 0.3)
-    y_hi += top + extra
-    return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
-
-
-def wrap_key(items: list[str], room: float, size: float) -> list[str]:
-    """Pack the key's items into lines no wider than ``room`` inches (one item may overflow)."""
     lines: list[str] = []
     for item in items:
-        if lines and 1.08 * text_size(lines[-1] + "   " + item, size)[0] <= room:
-            lines[-1] += "   " + item
+        if lines and scale * text_size(lines[-1] + sep + item, size)[0] <= room:
+            lines[-1] += sep + item
         else:
             lines.append(item)
     return lines
+
+
+def key_columns(widths, room: float, gap: float) -> list[list[int]]:
+    """The key's lines (indices) in the most columns, ``gap`` apart and each as wide as its widest
+    line, that fit ``room`` (the first ones hold ``ceil(len / n)`` lines; else one column).
+
+    >>> from symctl.plotting.common import key_columns
+    >>> key_columns([1.0, 1.0, 1.0], room=2.5, gap=0.3), key_columns([3.0, 1.0], 2.5, 0.3)
+    ([[0, 1], [2]], [[0, 1]])
+    """
+    for n in range(len(widths), 1, -1):
+        rows = -(-len(widths) // n)
+        columns = [list(range(k, min(k + rows, len(widths)))) for k in range(0, len(widths), rows)]
+        total = sum(max(widths[k] for k in col) for col in columns) + gap * (len(columns) - 1)
+        if total <= room:
+            return columns
+    return [list(range(len(widths)))]

@@ -1,13 +1,6 @@
-r"""Rendering of a delay graph: vertices as boxes, edges as arrows labelled with their delays.
-
-The paper's Fig. 2 (right): the sensor :math:`v_1`, the nervous
-system, the actuator :math:`v_N`, and the delay of each edge in steps. The
-positions come from :mod:`symctl.plotting.delaygraph_layout` (a layered drawing,
-left to right along the longest path from the sensor); this module measures the
-text (a box fits its name, its vertex and role, and its description) and draws
-with matplotlib's patches on a pyplot-free figure.
-:meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>`
-delegates here.
+r"""Rendering of a delay graph (the paper's Fig. 2, right): vertices as boxes, edges as arrows
+labelled with their delays. The positions come from :mod:`~symctl.plotting.delaygraph_layout`;
+:meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>` delegates here.
 
 >>> from symctl import DelayGraph
 >>> from symctl.plotting.delaygraph import delay_graph_plot
@@ -30,8 +23,7 @@ from matplotlib.path import Path
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
-from symctl.plotting.circuit_key import wrap_words
-from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap_key
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap
 from symctl.plotting.delaygraph_layout import delay_graph_layout
 
 if TYPE_CHECKING:
@@ -45,6 +37,9 @@ _LINE = {_NAME: 0.15, _SMALL: 0.13}  # line heights [in]
 _PAD = (0.06, 0.05)  # inside a box [in]
 _WRAP = 24  # characters per line of a description
 _KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
+_ARROW = {"arrowstyle": "-|>,head_length=0.55,head_width=0.3", "mutation_scale": 8}
+_LABEL = {"ha": "center", "va": "center", "fontsize": _SMALL, "zorder": 3}
+_LABEL["bbox"] = {"boxstyle": "square,pad=0.08", "fc": "white", "ec": "none"}
 
 
 def _tint(colour: str, amount: float = 0.2) -> tuple[float, float, float]:
@@ -73,8 +68,7 @@ def steps_text(delay: int) -> str:
     return f"{delay} step" + ("" if delay == 1 else "s")
 
 
-def _plain(text: str) -> str:
-    """``text`` shown as it is (a dollar sign does not start mathtext)."""
+def _plain(text: str) -> str:  # a dollar sign does not start mathtext
     return text.replace("$", r"\$")
 
 
@@ -121,25 +115,20 @@ def delay_graph_plot(
 ) -> Figure:
     """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays.
 
-    The vertices are laid out left to right along the longest path from the
-    sensor :math:`v_1` (green) to the actuator :math:`v_N` (orange); parallel
-    pathways run in rows of their own, and an edge across several columns bends
-    around the vertices between. Each arrow is labelled with its delay in steps
-    (:attr:`DelayGraph.edges`). Edges against the flow (into the sensor, out of
-    the actuator, or closing a cycle) are purple and curved. Layout:
-    :func:`symctl.plotting.delaygraph_layout.delay_graph_layout`.
+    Left to right along the longest path from the sensor :math:`v_1` (green) to the actuator
+    :math:`v_N` (orange), parallel pathways in rows of their own; edges against the flow
+    (into the sensor, out of the actuator, closing a cycle) purple and curved.
 
     Parameters
     ----------
     graph : DelayGraph
     names : sequence of str, optional
-        The vertices' names, :math:`v_1` first (default ``v1 .. vN``); with
-        names, each box also shows its vertex ``v<k>``.
+        The vertices' names, :math:`v_1` first (default ``v1 .. vN``; else each box also
+        shows its ``v<k>``).
     title : str, optional
         A heading above the drawing, wrapped to its width (default none).
     descriptions : mapping of str to str, optional
-        A line or two under a vertex's name, by name (e.g. a model file's
-        ``[[delay_graph.vertices]]`` descriptions).
+        A line or two under a vertex's name, by name.
     ax : matplotlib Axes, optional
         Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
 
@@ -153,8 +142,8 @@ def delay_graph_plot(
         ``graph`` is not a DelayGraph, ``names`` not a sequence of strings, or
         ``descriptions`` not a mapping.
     ParameterError
-        ``names`` of another length than the graph's vertices, or a graph too
-        large to draw (:data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES`).
+        ``names`` of another length than the graph's vertices, or a graph too large to
+        draw (:data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES`).
 
     Examples
     --------
@@ -188,60 +177,30 @@ def delay_graph_plot(
     for r in lay.routes:
         colour = _BACK if r.back else _INK
         path = Path(r.bezier, [Path.MOVETO] + [Path.CURVE4] * (len(r.bezier) - 1))
-        ax.add_patch(
-            FancyArrowPatch(
-                path=path,
-                arrowstyle="-|>,head_length=0.55,head_width=0.3",
-                mutation_scale=8,
-                color=colour,
-                lw=0.9,
-                zorder=1,
-                gid=f"edge:{r.source}-{r.target}",
-            )
-        )
-        ax.text(
-            *r.label,
-            labels[r.source, r.target],
-            ha="center",
-            va="center",
-            fontsize=_SMALL,
-            color=colour,
-            bbox={"boxstyle": "square,pad=0.08", "fc": "white", "ec": "none"},
-            zorder=3,
-        )
+        gid = f"edge:{r.source}-{r.target}"
+        ax.add_patch(FancyArrowPatch(path=path, **_ARROW, color=colour, lw=0.9, zorder=1, gid=gid))
+        ax.text(*r.label, labels[r.source, r.target], **_LABEL, color=colour)
 
     for k, (x, y) in lay.pos.items():
         w, h = lay.size[k]
         role = _role(graph, k)
         fill, edge = _FILL[role]
-        ax.add_patch(
-            FancyBboxPatch(
-                (x - w / 2, y - h / 2),
-                w,
-                h,
-                boxstyle="round,pad=0,rounding_size=0.05",
-                fc=fill,
-                ec=edge,
-                lw=1.1 if role else 0.8,
-                zorder=2,
-                gid=f"vertex:{k}",
-            )
-        )
-        total = sum(_LINE[s] for _, s, _ in lines[k])
-        top = y + total / 2
+        look = {
+            "fc": fill,
+            "ec": edge,
+            "lw": 1.1 if role else 0.8,
+            "zorder": 2,
+            "gid": f"vertex:{k}",
+        }
+        rounded = "round,pad=0,rounding_size=0.05"
+        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, boxstyle=rounded, **look))
+        top = y + sum(_LINE[s] for _, s, _ in lines[k]) / 2
         for text, size, kind in lines[k]:
-            ax.text(
-                x,
-                top - _LINE[size] / 2,
-                text,
-                ha="center",
-                va="center",
-                fontsize=size,
-                fontweight="bold" if kind == "bold" else "normal",
-                fontstyle="italic" if kind == "italic" else "normal",
-                color="black" if kind == "bold" else "0.3",
-                zorder=3,
-            )
+            bold = kind == "bold"
+            font = {"fontweight": "bold" if bold else "normal", "color": "black" if bold else "0.3"}
+            font["fontstyle"] = "italic" if kind == "italic" else "normal"
+            at = (x, top - _LINE[size] / 2)
+            ax.text(*at, text, ha="center", va="center", fontsize=size, zorder=3, **font)
             top -= _LINE[size]
 
     ends = (1,), (graph.n,)
@@ -259,7 +218,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     """The key under the drawing and the heading (if any) above, both wrapped to its width."""
     x_lo, x_hi, y_lo, y_hi = bounds
     room = max(x_hi - x_lo, min(style.TEXT_WIDTH, _KEY_ROOM)) - 0.1
-    lines = wrap_key(key, room, _SMALL)
+    lines = wrap(key, room, _SMALL, "   ", 1.08)
     step = _SMALL / 72 * 1.35
     y = y_lo - 0.04
     for line in lines:
@@ -268,7 +227,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     right = max(1.04 * text_size(line, _SMALL)[0] for line in lines) + x_lo + 0.1
     y_lo = y - 0.04
     if title:
-        heading = wrap_words(_plain(title), room, style.TITLE)
+        heading = wrap(_plain(title).split(" "), room, style.TITLE, scale=1.04)
         size = style.TITLE / 72 * 1.3
         top = y_hi + 0.04 + size * len(heading)
         for k, line in enumerate(heading):

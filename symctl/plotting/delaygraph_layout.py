@@ -1,37 +1,20 @@
-r"""Where a delay graph's vertices and edges go: numbers, no matplotlib.
+r"""Where a delay graph's vertices and edges go, in inches; no matplotlib.
 
-The layout of :meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>`
-apart from its rendering (:mod:`symctl.plotting.delaygraph`), a layered drawing in
-the manner of Sugiyama, Tagawa and Toda (1981), on the shared core
-:mod:`symctl.plotting.layered` (layers, bends, order, rows). One unit is one inch.
+On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.delaygraph`
+renders it.
 
-* **Flow**: the edges into the sensor :math:`v_1`, out of the actuator :math:`v_N`
-  and those closing a cycle in a depth-first search from :math:`v_1`
-  (:func:`~symctl.compatibility.signalgraph.back_edges`) are *back edges*, laid
-  out turned around; what is left is acyclic.
-* **Layers** (columns, left to right): :math:`v_1` in layer 0, every other vertex
-  one layer right of its furthest predecessor (the longest path from the sensor),
-  the actuator alone in the last layer (with one vertex per channel, every sensor
-  in the first layer and the actuators together in the last).
-* **Bends**: an edge across several layers passes one bend point in each layer
-  between, which takes a row of its own there, so no edge runs through a vertex.
-* **Order**: within a layer, vertices and bends sorted by the mean position of
-  their neighbours (barycentre sweeps, down and up); the order with the fewest
-  crossings is kept.
-* **Rows**: each node as near the mean height of its neighbours as the order and
-  the gaps allow (least squares under the order: pool-adjacent-violators), in a
-  few sweeps; bends pull hardest, so long edges run straight. A chain is one
-  straight row; parallel pathways lie in rows side by side.
-* **Routes**: an edge leaves the right side of its left end and enters the left
-  side of its right end, each end's edges spread over the side in the order of
-  their other ends (no two arrowheads meet). Across a column it runs level (at
-  its bend's row, or beside its own box); between columns, where there are no
-  boxes, it is an S-shaped cubic Bézier. So no edge ever crosses a vertex. Two
-  edges between the same two vertices (a two-cycle) bulge apart, and a back edge
-  between neighbouring columns bulges even alone.
-* **Labels**: an edge's label sits on its curve in its middle gap between
-  columns, moved along the gap when it would cover another label or curve; the
-  gaps are as wide as their labels.
+* **Flow**: edges into the sensor, out of the actuator and closing a cycle in a
+  depth-first search from :math:`v_1` are *back edges*, laid out turned around.
+* **Layers**: sensors in layer 0, the actuators together in the last, the rest by longest
+  path; an edge across several layers passes one bend per layer, a row of its own there.
+* **Order and rows**: :func:`~symctl.plotting.layered.order` then
+  :func:`~symctl.plotting.layered.positions` (bends pull hardest: long edges run straight).
+* **Routes**: an edge leaves the right side of its left end and enters the left side of
+  its right end, each side's ends spread in the order of their other ends; level across
+  a column, an S-shaped cubic Bézier between columns, so no edge crosses a vertex; the two
+  edges of a two-cycle, and a lone back edge between neighbours, bulge apart.
+* **Labels** sit on their curve in its middle gap, moved along it off other labels and
+  curves; gaps are as wide as their labels.
 
 >>> from symctl import DelayGraph
 >>> from symctl.plotting.delaygraph_layout import delay_graph_layout
@@ -57,24 +40,13 @@ from symctl.compatibility.signalgraph import back_edges
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import layered
 
-__all__ = [
-    "BOX",
-    "LABEL",
-    "MAX_BENDS",
-    "MAX_DRAWN_VERTICES",
-    "DelayGraphLayout",
-    "EdgeRoute",
-    "delay_graph_layout",
-]
+__all__ = ["MAX_BENDS", "MAX_DRAWN_VERTICES", "DelayGraphLayout", "EdgeRoute", "delay_graph_layout"]
 
 MAX_DRAWN_VERTICES = 200
 """Most vertices a delay-graph drawing takes (beyond, a picture says nothing)."""
 MAX_BENDS = 40000
 """Most bend points (an edge across k layers has k - 1): bounds the time a dense graph takes."""
-BOX = (0.6, 0.35)
-"""A vertex box's width and height [in] when none is given."""
-LABEL = (0.4, 0.13)
-"""An edge label's width and height [in] when none is given."""
+BOX, LABEL = (0.6, 0.35), (0.4, 0.13)  # a vertex box's and a label's size when none is given
 
 _ROW_GAP = 0.25  # between two boxes of a layer [in]
 _BEND_GAP = 0.2  # between a bend and anything else of its layer
@@ -103,14 +75,11 @@ class EdgeRoute:
     source, target, delay : int
         The edge ``(i, j, delay)`` of :attr:`DelayGraph.edges`.
     back : bool
-        Laid out turned around (an edge into the sensor, out of the actuator, or
-        closing a cycle): it runs right to left.
+        Laid out turned around (it runs right to left).
     points : tuple of (float, float)
-        The points the curve passes: on the source's border, the bends, on the
-        target's border.
+        The points the curve passes: on the source's border, the bends, on the target's.
     bezier : tuple of (float, float)
-        The curve as cubic Bézier segments: ``p0, c, c, p1, c, c, p2, ...``
-        (``3k + 1`` points for ``k`` segments; matplotlib's ``Path.CURVE4``).
+        The curve as cubic Bézier segments ``p0, c, c, p1, c, c, p2, ...``.
     label : (float, float)
         The centre of the delay's label.
     """
@@ -126,16 +95,12 @@ class EdgeRoute:
 
 @dataclass(frozen=True, eq=False)
 class DelayGraphLayout:
-    """The positions of a delay-graph drawing (see the module text for the rules).
+    """The positions of a delay-graph drawing.
 
     Attributes
     ----------
-    layer : mapping of int to int
-        Each vertex's column (the sensor 0, the actuator the last).
-    pos : mapping of int to (float, float)
-        Each vertex's centre [in].
-    size : mapping of int to (float, float)
-        Each vertex box's width and height [in].
+    layer, pos, size : mapping of int
+        Each vertex's column, centre and box ``(width, height)`` [in].
     routes : tuple of EdgeRoute
         One per edge, in the order of :attr:`DelayGraph.edges`.
     bounds : (float, float, float, float)
@@ -231,13 +196,9 @@ def _route(chain, ys, at, size, left, right, bulge: float) -> list[tuple[float, 
 
 
 def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[int]]:
-    """Each label on its curve within its gap ``(lo, hi)``: where it covers no other label and
-    the fewest other curves, nearest the gap's middle (the module text).
-
-    Placed one by one, then each label that still covers another moved again (up to three
-    rounds), now knowing where every other label is. Returns the centres and the labels
-    that still cover another.
-    """
+    """Each label on its curve in its gap ``(lo, hi)``, covering no other label and the fewest
+    curves, nearest the middle; then (three rounds) each that covers another moved again.
+    Returns the centres and the labels still covering another."""
     samples = [layered.bezier_points(bez, _T) for bez in curves]
     owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(samples)])
     points = np.vstack(samples)
@@ -315,10 +276,9 @@ def delay_graph_layout(
     ----------
     graph : DelayGraph
     sizes : mapping of int to (float, float), optional
-        Each vertex box's width and height [in], e.g. measured from its text;
-        default :data:`BOX`.
+        Each vertex box's width and height [in] (default 0.6 by 0.35).
     label_sizes : mapping of (int, int) to (float, float), optional
-        Each edge's label width and height [in], by ``(i, j)``; default :data:`LABEL`.
+        Each edge's label width and height [in], by ``(i, j)`` (default 0.4 by 0.13).
 
     Returns
     -------
@@ -329,13 +289,11 @@ def delay_graph_layout(
     SymctlTypeError
         ``graph`` is not a DelayGraph.
     ParameterError
-        More than :data:`MAX_DRAWN_VERTICES` vertices, or edges across so many
-        layers that they need more than :data:`MAX_BENDS` bends.
+        More than :data:`MAX_DRAWN_VERTICES` vertices, or more than :data:`MAX_BENDS` bends.
 
     Examples
     --------
-    Two pathways from the sensor to the actuator, through v2 and v3 (one step
-    each), lie in two rows:
+    Two pathways from the sensor to the actuator, through v2 and v3, lie in two rows:
 
     >>> from symctl import DelayGraph
     >>> from symctl.plotting.delaygraph_layout import delay_graph_layout

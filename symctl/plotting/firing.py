@@ -1,11 +1,8 @@
-r"""The firing-pattern figure: one panel per neuron of :math:`G_2`, one line per realization.
+"""The firing-pattern figure (the paper's Figs. 9-11): one panel per neuron of :math:`G_2`.
 
-The rendering of :meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>`
-(the paper's Figs. 9, 10, 11): the plant's first state in
-every realization on top (identical, and the optimal controller's), each neuron's change
-of firing rate below, one legend of the realizations under the figure. Drawn in the
-house style (:mod:`symctl.plotting.style`) at the text width; no heading unless
-``title`` asks for one (a paper's caption says what the figure shows).
+The plant's first state on top, each neuron's change of firing rate below, one line per
+realization and one legend under the figure; :meth:`FiringPatterns.plot
+<symctl.neural.firing.FiringPatterns.plot>` delegates here.
 
 >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
 >>> from symctl.plotting.firing import firing_plot

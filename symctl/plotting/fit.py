@@ -1,11 +1,9 @@
 r"""The fit figure: data against fit for the recorded neurons, predictions for the others.
 
-The rendering of :meth:`FitResult.plot <symctl.fitting.fit.FitResult.plot>`: one
-panel per neuron of the fitted circuit, in the house style (:mod:`symctl.plotting.style`)
-at the text width. A recorded neuron shows its data (dots) and the fitted trace; an
-unrecorded one its predicted trace with one standard error as a band, or, when the data
-do not pin it down, its heading says so. One legend under the figure; the time axis ends
-where every trace has settled (the axis label says where, when it is cut).
+One panel per neuron of the fitted circuit (:meth:`FitResult.plot
+<symctl.fitting.fit.FitResult.plot>` delegates here): a recorded neuron's data (dots) and
+fitted trace, an unrecorded one's prediction with one standard error as a band (or a
+heading saying the data do not pin it down); the time axis ends where every trace settled.
 
 >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
 >>> from symctl.plotting.fit import fit_plot

@@ -1,27 +1,18 @@
-r"""A layered graph layout: layers, long edges through bends, order, rows and curves, as numbers.
+r"""The layered graph layout of every drawing: layers, order, rows, routes and labels, as numbers.
 
-The one core of the structure, circuit and delay-graph drawings
-(:mod:`~symctl.plotting.structure_layout`, :mod:`~symctl.plotting.circuit_layout`,
-:mod:`~symctl.plotting.delaygraph_layout`), in the manner of Sugiyama, Tagawa and Toda
-(1981); each drawing adds its own shapes (boxes and orthogonal wires, circles and bridges,
-boxes and S-curves). Everything is numbers; nothing here imports matplotlib, as networkx
-keeps ``drawing/layout.py`` apart from ``nx_pylab.py``.
+One core for the structure, circuit and delay-graph drawings, in the manner of Sugiyama,
+Tagawa and Toda (1981); no matplotlib here. Units are inches.
 
-* **Layers** (:func:`longest_path`): the first nodes in layer 0, every other node one
-  layer right of its furthest predecessor, the last nodes together in one last layer.
-* **Bends** (:func:`split`): an edge across several layers passes one bend node in each
-  layer between, so that every edge joins two neighbouring layers.
-* **Order** (:func:`order`): barycentre sweeps down and up; the order with the fewest
-  crossings (:func:`crossings`, inversions counted with a Fenwick tree) is kept.
-* **Rows**: heights as near their neighbours as the order and the gaps allow, a
-  least-squares fit under order constraints (:func:`isotonic`: the pool-adjacent-violators
-  algorithm of :func:`scipy.optimize.isotonic_regression`). The block diagrams and
-  circuits take :func:`rows` (each sweep re-sorts a column by its barycentres, then fits
-  integer or half rows: straight orthogonal wires); the delay graph takes :func:`order`
-  then :func:`positions` (the order kept, measured gaps, bends pulling hardest).
-* **Curves** (:func:`bezier_points`, :func:`at_x`): piecewise cubic Bézier curves
-  (``p0, c, c, p1, c, c, p2, ...``: matplotlib's ``Path.CURVE4``) sampled, or met at an
-  abscissa.
+* **Layers and order**: :func:`longest_path`, :func:`split` (one bend node per layer an
+  edge crosses), :func:`order` (barycentre sweeps; the fewest :func:`crossings` kept).
+* **Rows**: least squares under order constraints (:func:`isotonic`, SciPy's
+  pool-adjacent-violators): :func:`rows` (integer or half rows) or :func:`positions`.
+* **Orthogonal routes**: a slot for each vertical :class:`Segment` in a gap
+  (:func:`assign_slots`, as ELK Layered's router: Schulze, Spönemann and von Hanxleden,
+  J. Vis. Lang. Comput. 25, 2014), one per branching net, with :func:`junctions`.
+* **Curved routes**: cubic Béziers (:func:`bezier_points`, :func:`at_x`), bridges between
+  circles (:func:`bridge`, :func:`trimmed`) clear of :class:`Obstacles` (:func:`hits`),
+  their labels placed by :func:`place_label`.
 
 References
 ----------
@@ -31,15 +22,10 @@ system structures", IEEE Trans. Syst. Man Cybern. 11(2), 1981.
 Examples
 --------
 >>> from symctl.plotting.layered import longest_path, order, split
->>> preds = {"a": [], "b": ["a"], "c": ["a", "b"]}
->>> layer = longest_path(["a", "b", "c"], preds, first={"a"})
->>> layer
-{'a': 0, 'b': 1, 'c': 2}
+>>> layer = longest_path(["a", "b", "c"], {"a": [], "b": ["a"], "c": ["a", "b"]}, first={"a"})
 >>> chains, node_layer, up, down = split([("a", "b"), ("b", "c"), ("a", "c")], layer)
->>> chains[2]
-['a', (2, 1), 'c']
->>> order([["a"], ["b", (2, 1)], ["c"]], up, down)
-[['a'], ['b', (2, 1)], ['c']]
+>>> layer, chains[2], order([["a"], ["b", (2, 1)], ["c"]], up, down)
+({'a': 0, 'b': 1, 'c': 2}, ['a', (2, 1), 'c'], [['a'], ['b', (2, 1)], ['c']])
 """
 
 from __future__ import annotations
@@ -47,53 +33,47 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import NamedTuple
 
+import networkx as nx
 import numpy as np
 
 __all__ = [
+    "CLEAR",
+    "PORT_GAP",
+    "TIP",
+    "Obstacles",
+    "Segment",
+    "Wire",
+    "assign_slots",
     "at_x",
     "bezier_points",
+    "bridge",
+    "bulges",
     "crossings",
-    "fit_rows",
+    "dashed_part",
+    "end_angles",
+    "hits",
     "isotonic",
-    "line",
+    "junctions",
     "longest_path",
     "order",
+    "place_label",
     "positions",
     "rows",
     "split",
 ]
 
+_EPS = 1e-9
 
-def longest_path(
-    nodes: Iterable[Hashable],
-    preds: Mapping,
-    *,
-    first: Iterable = (),
-    last: Iterable = (),
-    floor: int = 0,
-    layer: dict | None = None,
-) -> dict:
-    """Layers by longest path: ``first`` in layer 0, the others one right of their furthest
-    predecessor (at least ``floor``), ``last`` together in one layer right of all others.
 
-    Parameters
-    ----------
-    nodes : iterable
-        In a topological order of the edges kept (the feedback edges left out).
-    preds : mapping
-        Each node's predecessors; those not laid out yet are ignored.
-    first, last : iterable, optional
-        The nodes of the first layer (the inputs) and of the last (the outputs).
-    floor : int
-        The least layer of a node not in ``first``.
-    layer : dict, optional
-        Layers already given (of earlier nodes); updated and returned.
+# ---------------------------------------------------------------- layers, order, rows
+def longest_path(nodes, preds: Mapping, *, first=(), last=(), floor=0, layer=None) -> dict:
+    """Layers: ``first`` in layer 0, the others one right of their furthest laid-out
+    predecessor (at least ``floor``), ``last`` together right of all others.
 
-    Returns
-    -------
-    dict
-        Each node's layer.
+    ``nodes`` come in a topological order; ``layer`` (layers already given) is updated.
 
     Examples
     --------
@@ -104,24 +84,19 @@ def longest_path(
     layer = {} if layer is None else layer
     first, last, nodes = set(first), set(last), list(nodes)
     for v in nodes:
-        if v in first:
-            layer[v] = 0
-        else:
-            layer[v] = max([floor, *(layer[p] + 1 for p in preds[v] if p in layer)])
+        layer[v] = (
+            0 if v in first else max([floor, *(layer[p] + 1 for p in preds[v] if p in layer)])
+        )
     ends = [v for v in nodes if v in last]
     if ends:
-        inner = [layer[v] + 1 for v in nodes if v not in last]
-        at = max([*(layer[v] for v in ends), *inner])
-        for v in ends:
-            layer[v] = at
+        at = max([*(layer[v] for v in ends), *(layer[v] + 1 for v in nodes if v not in last)])
+        layer.update(dict.fromkeys(ends, at))
     return layer
 
 
 def split(edges: Sequence[tuple], layer: Mapping) -> tuple[list[list], dict, dict, dict]:
-    """Each edge ``(a, b, ...)`` as a chain ``[a, bends..., b]`` with one bend per layer between.
-
-    The bend of edge ``k`` in layer ``l`` is the node ``(k, l)``. Returns the chains, every
-    node's layer (bends included), and each node's neighbours up (left) and down (right).
+    """Each edge ``(a, b, ...)`` as a chain ``[a, (k, l)..., b]``, one bend ``(k, l)`` per layer
+    ``l`` between; returns the chains, every node's layer and its neighbours up and down.
 
     Examples
     --------
@@ -222,20 +197,9 @@ def isotonic(target, weight, gaps) -> np.ndarray:
     return isotonic_regression(free, weights=np.asarray(weight, float)).x + offset
 
 
-def positions(
-    layers: Sequence[Sequence],
-    up: Mapping,
-    down: Mapping,
-    gaps: Sequence[Sequence[float]],
-    weight: Callable[[Hashable, Hashable], float],
-    sweeps: int = 8,
-) -> dict:
-    """Each node's position across its layer, the order kept: as near the weighted mean of its
-    neighbours as the ``gaps`` between neighbours in the layer allow (:func:`isotonic`).
-
-    Sweeps from the left (on ``up``), from the right (on ``down``) and on both, ``sweeps``
-    times; ``weight(node, neighbour)`` is how hard a neighbour pulls (a node without
-    neighbours keeps its place, with weight 1/2).
+def positions(layers, up, down, gaps, weight: Callable[[Hashable, Hashable], float], sweeps=8):
+    """Each node's place across its layer, the order kept: near the ``weight``-ed mean of its
+    neighbours (from the left, the right, both; ``sweeps`` times), ``gaps`` apart at least.
 
     Examples
     --------
@@ -256,19 +220,16 @@ def positions(
             for node in layers[k]:
                 nbrs = (up[node], down[node], [*up[node], *down[node]])[side]
                 w = [weight(node, m) for m in nbrs]
-                if w:
-                    target.append(sum(a * at[m] for a, m in zip(w, nbrs, strict=True)) / sum(w))
-                    pull.append(sum(w))
-                else:
-                    target.append(at[node])
-                    pull.append(0.5)
+                target.append(
+                    sum(a * at[m] for a, m in zip(w, nbrs, strict=True)) / sum(w) if w else at[node]
+                )
+                pull.append(sum(w) if w else 0.5)
             at.update(zip(layers[k], isotonic(target, pull, gaps[k]), strict=True))
     return at
 
 
 def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
-    """Rows, top first and one apart at least, nearest ``desired`` in least squares
-    (:func:`isotonic`); when ``integer``, rounded half up and pushed one apart.
+    """Rows, top first and one apart at least, nearest ``desired`` (integer: rounded half up).
 
     Examples
     --------
@@ -280,18 +241,15 @@ def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
     fit = [-float(y) for y in isotonic([-d for d in desired], [1.0] * n, [1.0] * (n - 1))]
     if not integer:
         return fit
-    rows = [math.floor(round(y, 9) + 0.5) for y in fit]  # the last bits' noise rounded away
+    out = [math.floor(round(y, 9) + 0.5) for y in fit]  # the last bits' noise rounded away
     for i in range(1, n):
-        rows[i] = min(rows[i], rows[i - 1] - 1)
-    return rows
+        out[i] = min(out[i], out[i - 1] - 1)
+    return out
 
 
 def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: bool = True) -> dict:
-    """Rows (top first, one apart at least) in each layer: barycentre sweeps, each column
-    fitted by :func:`fit_rows` (integer rows, or half rows allowed).
-
-    Sweeps left to right on the predecessors, back on the successors, and again (five);
-    ``columns`` maps each layer to its nodes, sorted in place top first.
+    """Rows in each layer (``columns``, sorted in place top first): five barycentre sweeps,
+    alternately on ``preds`` and ``succs``, each column fitted by :func:`fit_rows`.
 
     Examples
     --------
@@ -312,24 +270,202 @@ def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: b
                 ys = [row[m] for m in neighbours[n] if m in row]
                 desired[n] = sum(ys) / len(ys) if ys else row.get(n, 0.0)
             nodes.sort(key=lambda n, d=desired: -d[n])
-            fit = fit_rows([desired[n] for n in nodes], integer)
-            row.update(zip(nodes, fit, strict=True))
+            row.update(zip(nodes, fit_rows([desired[n] for n in nodes], integer), strict=True))
     return row
 
 
-def line(p, q) -> list[tuple[float, float]]:
-    """A straight segment from ``p`` to ``q`` as cubic Bézier control points ``c, c, q``."""
-    (x0, y0), (x1, y1) = p, q
-    return [
-        (x0 + (x1 - x0) / 3, y0 + (y1 - y0) / 3),
-        (x0 + 2 * (x1 - x0) / 3, y0 + 2 * (y1 - y0) / 3),
-        q,
+def break_cycles(graph: nx.DiGraph, key) -> nx.DiGraph:
+    """``graph`` with the edge of least ``key(edge)`` removed from each cycle found, in place."""
+    while True:
+        try:
+            cycle = nx.find_cycle(graph)
+        except nx.NetworkXNoCycle:
+            return graph
+        graph.remove_edge(*min(cycle, key=key)[:2])
+
+
+# ---------------------------------------------------------------- orthogonal routes
+class Segment(NamedTuple):
+    """The vertical piece of one net in one gap; ``attachments`` are ``(y, side)``: a horizontal
+    piece at ``y`` to the gap's ``"left"`` or ``"right"`` edge.
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import Segment, assign_slots, junctions
+    >>> a = Segment("a", ((0.0, "left"), (2.0, "right")))   # up from row 0 to row 2
+    >>> b = Segment("b", ((1.0, "left"), (3.0, "right")))   # up from row 1 to row 3
+    >>> assign_slots([a, b])   # a left of b would cross twice, b left of a never
+    {'b': 0, 'a': 1}
+    >>> junctions(Segment("x", ((0.0, "left"), (0.0, "right"), (1.0, "right"), (-1.0, "right"))))
+    [0.0]
+    """
+
+    net: Hashable
+    attachments: tuple[tuple[float, str], ...]
+
+    @property
+    def low(self) -> float:
+        return min(y for y, _ in self.attachments)
+
+    @property
+    def high(self) -> float:
+        return max(y for y, _ in self.attachments)
+
+
+def merge(segments: Iterable[Segment]) -> list[Segment]:
+    """One segment per net: the attachments of a net's segments joined (first seen first)."""
+    nets: dict = {}
+    for s in segments:
+        nets.setdefault(s.net, []).extend(s.attachments)
+    return [Segment(net, tuple(dict.fromkeys(att))) for net, att in nets.items()]
+
+
+def _segment_crossings(left: Segment, right: Segment) -> int:
+    """Crossings when ``left`` runs left of ``right``; a piece along another counts three."""
+
+    def inside(y, s):
+        return s.low + _EPS < y < s.high - _EPS
+
+    count = sum(1 for y, side in right.attachments if side == "left" and inside(y, left))
+    count += sum(1 for y, side in left.attachments if side == "right" and inside(y, right))
+    ends = {y for y, side in left.attachments if side == "right"}
+    along = [y for y, side in right.attachments if side == "left"]
+    return count + 3 * sum(1 for y in along if any(abs(y - e) <= _EPS for e in ends))
+
+
+def _overlap(a: Segment, b: Segment) -> bool:
+    return a.low <= b.high + _EPS and b.low <= a.high + _EPS
+
+
+def assign_slots(segments: Sequence[Segment]) -> dict:
+    """``net -> slot`` (0, 1, ... left to right) of each segment (one per net) with a vertical
+    piece: overlapping ones apart, in the order that crosses fewer pieces (cycles of
+    preferences broken at the weakest), the others sharing slots, first fit."""
+    vertical = [s for s in segments if s.high - s.low > _EPS]
+    prefer = nx.DiGraph()
+    prefer.add_nodes_from(range(len(vertical)))
+    for i, j in itertools.combinations(range(len(vertical)), 2):
+        a, b = vertical[i], vertical[j]
+        if _overlap(a, b):
+            ab, ba = _segment_crossings(a, b), _segment_crossings(b, a)
+            prefer.add_edge(*((i, j) if ab <= ba else (j, i)), weight=abs(ba - ab))
+    break_cycles(prefer, lambda e: (prefer.edges[e[0], e[1]]["weight"], -e[0]))
+    slot: dict[int, int] = {}
+    for i in nx.lexicographical_topological_sort(prefer):
+        taken = {slot[j] for j in slot if _overlap(vertical[i], vertical[j])}
+        k = max([slot[j] for j in prefer.predecessors(i) if j in slot], default=-1) + 1
+        while k in taken:
+            k += 1
+        slot[i] = k
+    return {vertical[i].net: k for i, k in slot.items()}
+
+
+def junctions(segment: Segment) -> list[float]:
+    """Heights where three or more pieces of one net meet (up, down, left, right): a dot each."""
+    out = []
+    for y in sorted({y for y, _ in segment.attachments}):
+        sides = {side for yy, side in segment.attachments if abs(yy - y) <= _EPS}
+        if len(sides) + (y > segment.low + _EPS) + (y < segment.high - _EPS) >= 3:
+            out.append(y)
+    return out
+
+
+class Wire(NamedTuple):
+    """A drawn polyline from ``source`` to ``target`` (None: from or to outside), arrow at its end;
+    ``delay`` steps of the delay it feeds (dashed), ``feedback`` on a feedback arc."""
+
+    points: tuple[tuple[float, float], ...]
+    delay: int
+    source: str | None
+    target: str | None
+    feedback: bool
+
+
+def _shared(p, q) -> float:
+    """The length of the common start of two polylines (0 when they start apart)."""
+    if math.dist(p[0], q[0]) > _EPS:
+        return 0.0
+    i = j = 0
+    at, done = p[0], 0.0
+    while i < len(p) - 1 and j < len(q) - 1:
+        da = (p[i + 1][0] - at[0], p[i + 1][1] - at[1])
+        db = (q[j + 1][0] - at[0], q[j + 1][1] - at[1])
+        la, lb = math.hypot(*da), math.hypot(*db)
+        if la < _EPS or lb < _EPS:
+            i, j = i + (la < _EPS), j + (la >= _EPS)
+            continue
+        if abs(da[0] / la - db[0] / lb) > _EPS or abs(da[1] / la - db[1] / lb) > _EPS:
+            break
+        step = min(la, lb)
+        at = (at[0] + da[0] / la * step, at[1] + da[1] / la * step)
+        done += step
+        i, j = i + (la - step < _EPS), j + (lb - step < _EPS)
+    return done
+
+
+def dashed_part(wire: Wire, wires) -> tuple[tuple[float, float], ...]:
+    """The part of a delay wire after it leaves every undelayed wire of its signal (the shared
+    start is the undelayed signal, drawn solid).
+
+    >>> from symctl.plotting.layered import Wire, dashed_part
+    >>> solid = Wire(((0, 0), (2, 0)), 0, "a", "b", False)
+    >>> delayed = Wire(((0, 0), (1, 0), (1, 1), (2, 1)), 1, "a", "c", False)
+    >>> dashed_part(delayed, [solid, delayed])
+    ((1.0, 0.0), (1, 1), (2, 1))
+    """
+    shared = [
+        _shared(wire.points, w.points) for w in wires if w.source == wire.source and not w.delay
     ]
+    cut = max([*shared, 0.0])
+    if cut <= _EPS:
+        return wire.points
+    out, walked = [], 0.0
+    for a, b in itertools.pairwise(wire.points):
+        length = math.dist(a, b)
+        if walked + length > cut + _EPS:
+            if not out:
+                t = (cut - walked) / length if length else 0.0
+                out.append((a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t))
+            out.append(b)
+        walked += length
+    return tuple(out)
 
 
-def bezier_points(bezier, t) -> np.ndarray:
-    """The points of a piecewise cubic Bézier curve (``3k + 1`` control points) at the
-    parameters ``t`` of each segment, segment after segment (``k len(t) x 2``).
+def clean(points) -> tuple[tuple[float, float], ...]:
+    """The polyline without repeated points and without corners on a straight run."""
+    out: list[tuple[float, float]] = []
+    for p in points:
+        if out and math.dist(out[-1], p) < _EPS:
+            continue
+        if len(out) >= 2:
+            (x0, y0), (x1, y1) = out[-2], out[-1]
+            if (abs(x0 - x1) < _EPS and abs(x1 - p[0]) < _EPS) or (
+                abs(y0 - y1) < _EPS and abs(y1 - p[1]) < _EPS
+            ):
+                out[-1] = p
+                continue
+        out.append(p)
+    return tuple(out)
+
+
+# ---------------------------------------------------------------- curves
+CLEAR = 0.035
+"""How near a curve may pass a circle it does not end at [in]."""
+PORT_GAP = 0.085
+"""Least distance along a circle between the ends of two curves [in] (an arrow head is about
+0.05 in wide, a bar 0.07 in)."""
+TIP = 0.012
+"""An arrow's tip stops this far from its circle [in]."""
+_BOX_MARGIN = 0.015  # a curve keeps this far from a text box
+_END_MARGIN = 0.04  # ... and this far from the texts of a node it ends at (its arrow head)
+_INSIDE = 10  # a point inside a circle counts this many times one near it (hits)
+_LABEL_MARGIN = 0.025  # a label keeps this far from every other text
+_T = np.linspace(0.0, 1.0, 49)
+
+
+def bezier_points(bezier, t=_T) -> np.ndarray:
+    """The points of a piecewise cubic Bézier curve (``3k + 1`` control points, matplotlib's
+    ``Path.CURVE4``) at the parameters ``t`` of each segment, segment after segment.
 
     Examples
     --------
@@ -358,23 +494,211 @@ def at_x(bezier, x: float) -> tuple[float, float]:
     """
     ctrl = [(float(px), float(py)) for px, py in bezier]  # plain floats: a fast bisection
     segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
-    for k, (p0, c1, c2, p1) in enumerate(segments):
-        lo, hi = sorted((p0[0], p1[0]))
-        if not (lo - 1e-9 <= x <= hi + 1e-9 or k == len(segments) - 1):
-            continue
-        rising = p1[0] >= p0[0]
-        a, b = 0.0, 1.0
-        for _ in range(40):  # bisection on the segment's parameter
-            t = (a + b) / 2
-            px = (1 - t) ** 3 * p0[0] + 3 * (1 - t) ** 2 * t * c1[0]
-            px += 3 * (1 - t) * t**2 * c2[0] + t**3 * p1[0]
-            a, b = (t, b) if (px < x) == rising else (a, t)
-        t = (a + b) / 2
-        return tuple(
+
+    def point(seg, t, i):
+        p0, c1, c2, p1 = seg
+        return (
             (1 - t) ** 3 * p0[i]
             + 3 * (1 - t) ** 2 * t * c1[i]
             + 3 * (1 - t) * t**2 * c2[i]
             + t**3 * p1[i]
-            for i in (0, 1)
         )
+
+    for k, seg in enumerate(segments):
+        lo, hi = sorted((seg[0][0], seg[3][0]))
+        if not (lo - _EPS <= x <= hi + _EPS or k == len(segments) - 1):
+            continue
+        rising, a, b = seg[3][0] >= seg[0][0], 0.0, 1.0
+        for _ in range(40):  # bisection on the segment's parameter
+            t = (a + b) / 2
+            a, b = (t, b) if (point(seg, t, 0) < x) == rising else (a, t)
+        return point(seg, (a + b) / 2, 0), point(seg, (a + b) / 2, 1)
     return ctrl[-1]  # pragma: no cover - no segments
+
+
+def line(p, q) -> list[tuple[float, float]]:
+    """A straight segment from ``p`` to ``q`` as cubic Bézier control points ``c, c, q``."""
+    (x0, y0), (x1, y1) = p, q
+    return [
+        (x0 + (x1 - x0) / 3, y0 + (y1 - y0) / 3),
+        (x0 + 2 * (x1 - x0) / 3, y0 + 2 * (y1 - y0) / 3),
+        q,
+    ]
+
+
+def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
+    r"""The cubic Bézier ``(a, C1, C2, b)`` that rises by ``h`` over the chord's middle along its
+    upward normal (right for a vertical chord); 0 is straight.
+
+    The inner points lie :math:`\tfrac43 h` off the chord, 0.7 of its length along it from
+    the far ends (crossed over): the ends leave at a gentle slope, so a tall bridge still
+    meets its circles from the side, away from their names and tags.
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import bridge
+    >>> [(round(x, 2), round(y, 2)) for x, y in bridge((0, 0), (1, 0), 0.3)]
+    [(0.0, 0.0), (0.7, 0.4), (0.3, 0.4), (1.0, 0.0)]
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    d = b - a
+    n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-12)
+    if n[1] < -1e-12 or (abs(n[1]) <= 1e-12 and n[0] < 0):
+        n = -n
+    up = 4.0 / 3.0 * h * n
+    return tuple(tuple(float(v) for v in p) for p in (a, a + 0.7 * d + up, b - 0.7 * d + up, b))
+
+
+def trimmed(curve, a, ra: float, b, rb: float, a1: float | None = None):
+    """``curve`` from the border of the circle ``(a, ra)`` to that of ``(b, rb)``: each end where
+    the radius towards its inner control point (or at the end angle ``a1`` [rad]) meets the
+    circle, its control point moved onto that radius (an arrow points at the centre)."""
+    _, c1, c2, _ = (np.asarray(p, float) for p in curve)
+
+    def port(centre, towards, r, angle):
+        centre = np.asarray(centre, float)
+        if angle is None:
+            d = towards - centre
+            angle = math.atan2(d[1], d[0]) if np.hypot(*d) > 1e-12 else 0.0
+        out = np.array([math.cos(angle), math.sin(angle)])
+        q = centre + r * out
+        return q, q + out * 0.5 * float(np.hypot(*(towards - q)))
+
+    (q0, k1), (q3, k2) = port(a, c1, ra, None), port(b, c2, rb, a1)
+    return tuple(tuple(float(v) for v in p) for p in (q0, k1, k2, q3))
+
+
+def bulges(straight: bool, prefer: float, start: float, step: float, count: int) -> list:
+    """Candidate bulges: 0 first when ``straight``, then growing, on the ``prefer`` side first."""
+    out = [0.0] if straight else []
+    for size in (start + k * step for k in range(count)):
+        if size > 0:
+            out += [prefer * size, -prefer * size]
+    return out
+
+
+def end_angles(natural: float, used: list[float], radius: float, swing: float, count: int):
+    """Up to ``count`` angles where a curve may end on a circle, nearest ``natural`` within
+    ``swing``, each :data:`PORT_GAP` clear of those ``used``."""
+    need = PORT_GAP / max(radius, 1e-9)
+    steps = int(swing / (need / 3))
+    tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
+    if used:
+        d = np.abs((tries[:, None] - np.array(used)[None, :] + math.pi) % (2 * math.pi) - math.pi)
+        tries = tries[(d >= need - 1e-9).all(axis=1)]
+    return [float(t) for t in dict.fromkeys(tries.tolist())][:count]
+
+
+@dataclass(frozen=True, eq=False)
+class Obstacles:
+    """What a curve must not run through: circles (``centres``, ``radii``, the node ``keys``
+    they belong to) and text boxes ``(x0, y0, x1, y1)`` (``box_keys``: their node, or None).
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import Obstacles, bridge, bezier_points, hits
+    >>> free = Obstacles.of([((1.0, 0.0), 0.2)], [])
+    >>> hits(bezier_points(bridge((0, 0), (2, 0), 0.0)), free) > 0   # straight through it
+    True
+    >>> hits(bezier_points(bridge((0, 0), (2, 0), 0.4)), free)
+    0
+    """
+
+    centres: np.ndarray
+    radii: np.ndarray
+    keys: tuple
+    boxes: np.ndarray
+    box_keys: tuple
+
+    @classmethod
+    def of(cls, circles, boxes, keys=None, box_keys=None) -> Obstacles:
+        """From ``[((x, y), r), ...]`` and ``[(x0, y0, x1, y1), ...]``."""
+        radii = np.array([r for _, r in circles], float)
+        boxes = np.array(boxes, float).reshape(-1, 4)
+        return cls(
+            np.array([c for c, _ in circles], float).reshape(-1, 2),
+            radii,
+            tuple(keys) if keys is not None else tuple(range(len(radii))),
+            boxes,
+            tuple(box_keys) if box_keys is not None else (None,) * len(boxes),
+        )
+
+    def with_box(self, box) -> Obstacles:
+        """These obstacles and one more text box (a label's)."""
+        boxes = np.vstack([self.boxes, box])
+        return Obstacles(self.centres, self.radii, self.keys, boxes, (*self.box_keys, None))
+
+
+def hits(points: np.ndarray, obstacles: Obstacles, ends=()) -> int:
+    """How bad ``points`` are: those (outside the circles of ``ends``) near a circle or in a box,
+    and ten times as many again for those inside a circle; 0 is clear."""
+    own = np.array([k in ends for k in obstacles.keys], bool)
+    keep = np.ones(len(points), bool)
+    for k in np.flatnonzero(own):
+        keep &= np.hypot(*(points - obstacles.centres[k]).T) > obstacles.radii[k] + 1e-9
+    pts = points[keep]
+    if not len(pts):
+        return 0
+    (x0, y0), (x1, y1) = pts.min(axis=0), pts.max(axis=0)
+    bad = np.zeros(len(pts), bool)
+    inside = 0
+    if len(obstacles.radii):
+        c, r = obstacles.centres, obstacles.radii + CLEAR
+        near = (
+            ~own & (c[:, 0] > x0 - r) & (c[:, 0] < x1 + r) & (c[:, 1] > y0 - r) & (c[:, 1] < y1 + r)
+        )
+        if near.any():
+            d = np.hypot(pts[:, None, 0] - c[None, near, 0], pts[:, None, 1] - c[None, near, 1])
+            bad |= (d < r[None, near]).any(axis=1)
+            inside = int((d < r[None, near] - CLEAR).any(axis=1).sum())
+    if len(obstacles.boxes):
+        b = obstacles.boxes
+        m = np.array([_END_MARGIN if k in ends else _BOX_MARGIN for k in obstacles.box_keys])
+        near = (b[:, 0] - m < x1) & (b[:, 2] + m > x0) & (b[:, 1] - m < y1) & (b[:, 3] + m > y0)
+        if near.any():
+            b, m = b[near], m[near][None, :]
+            bad |= (
+                (pts[:, None, 0] > b[None, :, 0] - m)
+                & (pts[:, None, 0] < b[None, :, 2] + m)
+                & (pts[:, None, 1] > b[None, :, 1] - m)
+                & (pts[:, None, 1] < b[None, :, 3] + m)
+            ).any(axis=1)
+    return int(bad.sum()) + _INSIDE * inside
+
+
+def _box_free(box, obstacles: Obstacles) -> bool:
+    """Whether the box ``(x0, y0, x1, y1)`` overlaps no circle and no other box."""
+    x0, y0, x1, y1 = box
+    c, b, m = obstacles.centres, obstacles.boxes, _LABEL_MARGIN
+    d = np.hypot(np.clip(c[:, 0], x0, x1) - c[:, 0], np.clip(c[:, 1], y0, y1) - c[:, 1])
+    if (d < obstacles.radii + 0.02).any():
+        return False
+    return not (
+        (b[:, 0] < x1 + m) & (b[:, 2] > x0 - m) & (b[:, 1] < y1 + m) & (b[:, 3] > y0 - m)
+    ).any()
+
+
+def place_label(curve, size, obstacles: Obstacles, lines=None) -> tuple[float, float] | None:
+    """The centre of a label of ``size`` (w, h) on ``curve``, or None: tried from the middle
+    outwards, on no circle and no box; of those, the one the fewest points of ``lines``
+    (other curves) pass through."""
+    w, h = size
+    best, best_cost = None, None
+    pts = np.zeros((0, 2)) if lines is None else np.asarray(lines, float).reshape(-1, 2)
+    for t in (0.5, 0.42, 0.58, 0.34, 0.66, 0.27, 0.73, 0.2, 0.8):
+        x, y = (float(v) for v in bezier_points(curve, [t])[0])
+        box = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+        if not _box_free(box, obstacles):
+            continue
+        inside = (
+            (pts[:, 0] > box[0])
+            & (pts[:, 0] < box[2])
+            & (pts[:, 1] > box[1])
+            & (pts[:, 1] < box[3])
+        )
+        cost = int(inside.sum())
+        if cost == 0:
+            return x, y
+        if best_cost is None or cost < best_cost:
+            best, best_cost = (x, y), cost
+    return best

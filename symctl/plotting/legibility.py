@@ -1,17 +1,5 @@
-r"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping.
+"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping, width.
 
-The checks a reviewer makes by eye, made on the drawn figure: every text at least
-:data:`~symctl.plotting.style.MIN_FONT` points at the size the figure is printed,
-no two texts overlapping, no text running off the figure, and the figure no wider
-than the page it goes on. :func:`legibility` draws the figure once (Agg) and returns a
-:class:`Legibility` that is truthy when every check holds and lists what fails.
-:func:`missing_units` lists the axes whose numbers come without a unit.
-
-``scale`` is the factor the figure is printed at (1 when it is included at its
-natural size, as ``derivation.pdf`` includes every figure).
-
-Examples
---------
 >>> from symctl.plotting.style import new_figure
 >>> from symctl.plotting.legibility import legibility
 >>> fig = new_figure("column", 1.5)
@@ -39,12 +27,9 @@ class Legibility:
 
     Attributes
     ----------
-    small : tuple of (str, float)
-        Texts set below the minimum, with their printed size [pt].
-    overlaps : tuple of (str, str)
-        Pairs of texts whose drawn boxes overlap.
-    clipped : tuple of str
-        Texts that run off the figure.
+    small, overlaps, clipped : tuple
+        Texts set below the minimum ``(text, printed size [pt])``; pairs of texts whose
+        drawn boxes overlap; texts that run off the figure.
     width : float
         The figure's printed width [in].
     too_wide : bool
@@ -76,11 +61,8 @@ class Legibility:
 
 
 def _hidden_ticks(fig) -> set[int]:
-    """Tick labels outside their axis's view: matplotlib keeps them but never draws them.
-
-    Compared as matplotlib compares them, in the axis's scale (a log axis in decades) and
-    relative to the view's span, so that an axis of tiny values (1e-11) is judged right.
-    """
+    """Tick labels outside their axis's view (kept but never drawn), compared in the axis's scale
+    and relative to the view's span, as matplotlib compares them."""
     hidden = set()
     for ax in fig.get_axes():
         for axis in (ax.xaxis, ax.yaxis):
@@ -179,18 +161,14 @@ def legibility(
 
 
 def missing_units(fig) -> tuple[str, ...]:
-    """The axes of ``fig`` that show numbers but name no unit (``quantity [unit]``).
-
-    An axis counts as labelled when its own label, or a label shared by its
-    (sub)figure (``supxlabel``, ``supylabel``) for that direction, holds ``[...]``
-    (:func:`symctl.plotting.style.axis_label`; ``[1]`` for a pure number). Call it on a
-    drawn figure (after :func:`legibility`, or ``fig.canvas.draw()``): tick labels get
-    their text when drawn.
+    """The axes of ``fig`` that show numbers but name no unit (``quantity [unit]``) in their own
+    label or one their (sub)figure shares; call it on a drawn figure (tick labels get their
+    text when drawn).
 
     Returns
     -------
     tuple of str
-        ``"<axes k> x"`` or ``"<axes k> y"``, with the label found, for each unit missing.
+        ``"axes <k> x: '<label>'"`` (or ``y``) for each unit missing.
 
     Examples
     --------

@@ -1,13 +1,8 @@
 r"""Figures of simulations: a loop's state and input traces, the nonlinear plant's departure.
 
-The rendering of :meth:`Response.plot <symctl.neural.simulate.Response.plot>` and
-:meth:`NonlinearCheck.plot <symctl.neural.nonlinear.NonlinearCheck.plot>` (the methods
-hand their object over). Figures are pyplot-free :class:`matplotlib.figure.Figure`
-objects in the house style (:mod:`symctl.plotting.style`), drawn at the width they are
-printed at, saved by the caller. Sampled signals are drawn as steps, held over each
-sampling period; every axis has its unit; legends sit beside a panel's heading, above
-the data. A figure carries no heading of its own unless ``title`` asks for one: in a
-paper the caption says what it shows.
+:meth:`Response.plot <symctl.neural.simulate.Response.plot>` and :meth:`NonlinearCheck.plot
+<symctl.neural.nonlinear.NonlinearCheck.plot>` delegate here. Sampled signals are drawn as
+steps held over each period; every axis has its unit; legends sit beside a panel's heading.
 
 >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
 >>> from symctl.plotting.response import response_plot

@@ -1,22 +1,13 @@
-r"""The text of a structure drawing: signal names, gain values, the key, the ends.
+r"""The text of a structure drawing: signal names, gain values, the key, the ends; no matplotlib.
 
-What :func:`symctl.plotting.structure.draw_structure` writes, apart from where it
-goes (no matplotlib here):
-
-* **Signals** are named once each, by their part when the structure is a series
-  connection: the state :math:`x_1` of :math:`G_2` is :math:`x^{\mathrm{G2}}_1`, not
-  the same :math:`x_1` as :math:`G_1`'s and :math:`G_3`'s. Adders and delayed states
-  are named; the delayed branch terms ``z^-1 F[1,2]`` (one dot each) are not.
-* **Gains** show their value (numbers to 3 significant digits,
-  :func:`~symctl.plotting.circuit_labels.weight_tex`) when it is short
-  (:data:`LONG_GAIN` visible characters,
-  :func:`~symctl.plotting.circuit_labels.visible_length`); a long one shows the name of
-  its matrix entry (``G2.F[1,2]`` is :math:`F_{12}`), and the key under the drawing
-  lists its value, as a circuit drawing lists its long weights. Entries of equal value
-  share one line of the key.
-* **Ends**: the input arrows and output arrows carry the controller's names of its
-  input and output (by default the signals' own names; the report passes the plant's,
-  so every structure of one controller names them alike).
+* **Signals** are named once each, by their part in a series connection (the state
+  :math:`x_1` of :math:`G_2` is :math:`x^{\mathrm{G2}}_1`); adders and delayed states are
+  named, the delayed branch terms ``z^-1 F[1,2]`` (a dot each) are not.
+* **Gains** show their value (numbers to 3 significant digits) when it shows at most
+  :data:`LONG_GAIN` characters, else the name of their matrix entry (``G2.F[1,2]`` is
+  :math:`F_{12}`), the key under the drawing listing the value; equal values share a line.
+* **Ends**: the input and output arrows carry the given names (the report passes the
+  plant's), by default the signals' own.
 
 >>> from symctl import Structure, controllable_canonical, controller_tf, factor
 >>> from symctl.plotting.structure_labels import structure_text
@@ -40,35 +31,14 @@ from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting.circuit_labels import visible_length, weight_tex
 
-__all__ = [
-    "LONG_GAIN",
-    "StructureText",
-    "end_labels",
-    "gain_name",
-    "is_branch_term",
-    "part_tex",
-    "signal_label",
-    "structure_text",
-]
+__all__ = ["LONG_GAIN", "StructureText", "end_labels", "signal_label", "structure_text"]
 
 LONG_GAIN = 10
-r"""A gain whose LaTeX shows more characters than this is drawn by the name of its entry,
-its value in the key. Ten characters at 7 points are about 0.45 inch, a box that still
-leaves room for a neighbouring column on a 6.9-inch page (:math:`\frac{K_0}{C_1 C_3}`
-shows six)."""
+"""A gain showing more characters than this is drawn by its entry's name, its value in the key
+(ten characters at 7 points are about 0.45 inch)."""
 
 _ENTRY = re.compile(r"([A-Za-z]+)\[(\d+)(?:,(\d+))?\]")
 _NAME = re.compile(r"[A-Za-z]+(\d+|_\{[^{}]*\}|_[A-Za-z0-9]+)?")
-
-
-def is_branch_term(name: str) -> bool:
-    """Whether ``name`` is a delayed branch term (``G2.z^-1 F[1,2]``): a dot, not a named signal.
-
-    >>> from symctl.plotting.structure_labels import is_branch_term
-    >>> is_branch_term("G2.z^-1 F[1,2]"), is_branch_term("G2.x1")
-    (True, False)
-    """
-    return name.rpartition(".")[2].startswith("z^-")
 
 
 def signal_label(name: str) -> str:
@@ -82,34 +52,21 @@ def signal_label(name: str) -> str:
     base = signal_tex(local, part=False)
     if not part:
         return base
-    sup = "^{" + part_tex(part) + "}"
+    sup = "^{" + _part_tex(part) + "}"
     stem, sep, index = base.partition("_")
     if _NAME.fullmatch(local):
         return f"{stem}{sup}{sep}{index}"
     return f"{{{base}}}{sup}"
 
 
-def part_tex(part: str) -> str:
-    r"""A part's name in roman, without mathtext's space after a dot.
-
-    >>> from symctl.plotting.structure_labels import part_tex
-    >>> print(part_tex("P1.G2"))
-    \mathrm{P1.\!G2}
-    """
+def _part_tex(part: str) -> str:
+    """A part's name in roman, without mathtext's space after a dot."""
     return r"\mathrm{" + part.replace(".", r".\!") + "}"
 
 
-def gain_name(name: str) -> str | None:
-    r"""The short LaTeX name of a gain block: its matrix entry (``F[1,2]`` -> :math:`F_{12}`).
-
-    Indices are run together when every one is a single digit, else separated by a
-    comma; a block named like a signal (``K0``) is set as one; ``None`` for any other
-    name.
-
-    >>> from symctl.plotting.structure_labels import gain_name
-    >>> gain_name("G2.F[1,2]"), gain_name("G2.M[10,2]"), gain_name("N"), gain_name("K0")
-    ('F_{12}', 'M_{10,2}', 'N', 'K_{0}')
-    """
+def _gain_name(name: str) -> str | None:
+    """A gain's matrix entry (``F[1,2]``: ``F_{12}``, ``M[10,2]``: ``M_{10,2}``), a signal-like
+    name (``K0``) as a signal, else None."""
     local = name.rpartition(".")[2]
     entry = _ENTRY.fullmatch(local)
     if entry:
@@ -128,13 +85,10 @@ class StructureText:
 
     Attributes
     ----------
-    gains : mapping of str to str
-        Each gain block's text: its value, or the short name listed in the key.
-    names : mapping of str to str
-        The name written at each named signal (inputs, adders, delayed states); an input
-        or output whose arrow (:attr:`ends`) carries the same name is not named twice.
-    ends : mapping of str to str
-        The label at the arrow into each input and out of each output.
+    gains, names, ends : mapping of str to str
+        Each gain block's text (its value, or the short name listed in the key); the name
+        written at each named signal (not again where its arrow carries it); the label at
+        the arrow into each input and out of each output.
     key : tuple of (str, str)
         ``(names, value)`` of each long gain value (names joined by ``=``).
     """
@@ -149,20 +103,13 @@ class StructureText:
             object.__setattr__(self, attr, MappingProxyType(dict(getattr(self, attr))))
 
     def key_lines(self) -> list[str]:
-        r"""The key as LaTeX lines, ``name = value``.
-
-        >>> from symctl.plotting.structure_labels import StructureText
-        >>> StructureText(key=(("F_{12}", r"\frac{a}{b}"),)).key_lines()
-        ['F_{12} = \\frac{a}{b}']
-        """
+        """The key as LaTeX lines, ``name = value``."""
         return [f"{names} = {value}" for names, value in self.key]
 
 
 def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[str, str]:
-    r"""The arrow labels of the inputs and outputs: ``labels`` where given, else the signal's.
-
-    What the block diagram and the overview of ``S`` write at its ends (LaTeX without
-    ``$``), inputs first.
+    r"""The arrow labels (LaTeX) of the inputs, then outputs: ``labels`` where given, else the
+    signal's.
 
     Parameters
     ----------
@@ -216,8 +163,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     ----------
     S : Structure
     labels : mapping of str to str, optional
-        LaTeX labels of the arrows into the inputs and out of the outputs, by signal
-        name (default: the signals' own names).
+        As for :func:`end_labels`.
 
     Returns
     -------
@@ -225,10 +171,8 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
 
     Raises
     ------
-    ParameterError
-        ``labels`` names a signal that is no input or output.
-    SymctlTypeError
-        ``labels`` is not a mapping of strings.
+    ParameterError, SymctlTypeError
+        As :func:`end_labels`; ``S`` not a Structure.
 
     Examples
     --------
@@ -245,7 +189,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
     ends = end_labels(S, labels)
     names = {}
     for name, block in S.blocks.items():
-        if block.kind == "gain" or is_branch_term(name):
+        if block.kind == "gain" or name.rpartition(".")[2].startswith("z^-"):  # a branch term
             continue
         label = signal_label(name)
         if ends.get(name) != label:
@@ -258,7 +202,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
         if tex is not None and visible_length(tex) <= LONG_GAIN:
             gains[name] = tex
         else:
-            gains[name] = gain_name(name) or ""
+            gains[name] = _gain_name(name) or ""
             long_values[name] = tex
     # short names: one per entry, the part added where two parts share one; w_k for the rest
     short = {n: gains[n] for n in long_values}
@@ -271,7 +215,7 @@ def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> Str
             short[n] = f"w_{{{numbered}}}"
         elif short[n] in clash:
             stem, _, index = short[n].partition("_")
-            short[n] = stem + "^{" + part_tex(part) + "}_" + index
+            short[n] = stem + "^{" + _part_tex(part) + "}_" + index
         gains[n] = short[n]
     by_value: dict[str, list[str]] = {}
     for n, tex in long_values.items():

@@ -1,30 +1,21 @@
-r"""Layout of a structure's block diagram at its printed size: positions, orthogonal wires, bands.
+r"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
 
-The drawing of :meth:`Structure.draw <symctl.compatibility.structure.Structure.draw>`
-in two steps, as networkx splits ``drawing/layout.py`` from ``nx_pylab.py``: this
-module computes where everything goes, in inches of the printed figure, and never
-imports matplotlib; :mod:`symctl.plotting.structure` renders it. Text is measured by
-a function passed in, ``measure(text, points) -> (width, height)`` in inches.
+On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.structure`
+renders it. Text is measured by a function passed in, ``measure(text, points) ->
+(width, height)`` in inches.
 
-A layered (Sugiyama) layout made for block diagrams:
-
-1. **Feedback.** The wires closing a cycle (the back edges of a depth-first search
-   from the inputs, and, with a delay assignment, every wire back to an earlier
-   vertex) are drawn as arcs below or above the rows, carrying the gains and delays
-   that feed them (the paper's IFP drawing: :math:`K_1, K_2` on the arcs into
-   :math:`\mu`).
-2. **Columns.** The rest is layered by longest path from the inputs; with a delay
-   assignment (the witness of compatibility) the vertices come first: every signal of
-   an earlier vertex level lies left of every signal of a later one, so each vertex's
-   signals sit in one vertical band (:attr:`StructureLayout.bands`).
-3. **Rows** inside a column follow barycenter sweeps, made integer and one apart by an
-   isotonic fit (:func:`~symctl.plotting.layered.rows`).
-4. **Wires** are orthogonal: a wire changes rows in the gap between two columns, at a
-   slot chosen by :mod:`symctl.plotting.structure_routing` (a branching signal shares
-   one vertical, with a junction dot). Every wire ends on its block's outline, its last
-   piece at least :data:`ARROW` long and axis-parallel, so its arrow head shows; an
-   adder takes its inputs on its left side (spread, the circle grows for many) and
-   feedback arcs from below or above.
+1. **Feedback.** The wires closing a cycle (back edges of a depth-first search from the
+   inputs, and, with a delay assignment, every wire back to an earlier vertex) are arcs
+   below or above the rows, carrying the gains and delays that feed them (the paper's
+   IFP drawing: :math:`K_1, K_2` on the arcs into :math:`\mu`).
+2. **Columns** by longest path; with a delay assignment (the witness of compatibility)
+   by *vertex level* first (:func:`vertex_levels`), so each vertex's signals sit in one
+   shaded band (:attr:`StructureLayout.bands`).
+3. **Rows**: :func:`~symctl.plotting.layered.rows` (integer rows, straight wires).
+4. **Wires** are orthogonal, turning in the gap between two columns at a slot
+   (:func:`~symctl.plotting.layered.assign_slots`); every wire ends on its block's
+   outline, its last piece at least :data:`ARROW` long; an adder takes its inputs on its
+   left side (spread; the circle grows for many), feedback arcs from below or above.
 5. **Frames** box the parts of a series connection (``G1``, ``G2``, ``G3``).
 
 >>> from symctl import ifp_structure
@@ -52,26 +43,16 @@ import networkx as nx
 from symctl.compatibility.signalgraph import back_edges
 from symctl.compatibility.structure import Structure
 from symctl.plotting import layered
+from symctl.plotting.layered import Segment, Wire, assign_slots, clean, junctions, merge
 from symctl.plotting.structure_labels import StructureText, structure_text
-from symctl.plotting.structure_regions import Band, Frame, frames, vertex_bands, vertex_levels
-from symctl.plotting.structure_routing import (
-    Segment,
-    Wire,
-    assign_slots,
-    clean,
-    dashed_part,
-    junctions,
-    merge,
-)
 from symctl.plotting.style import FONT_SIZE, SMALL
 
-__all__ = ["ARROW", "Route", "StructureLayout", "Wire", "dashed_part", "structure_layout"]
+__all__ = ["ARROW", "Band", "Frame", "StructureLayout", "structure_layout", "vertex_levels"]
 
 Measure = Callable[[str, float], tuple[float, float]]
 """``measure(text, points) -> (width, height)`` in inches; :class:`ValueError` for bad mathtext."""
 
-FONT = SMALL  # points: gain values
-NAME_FONT = SMALL  # points: signal names
+FONT = NAME_FONT = SMALL  # points: gain values, signal names
 END_FONT = FONT_SIZE  # points: the labels of the inputs and outputs
 ROW = 0.4  # vertical pitch of the rows [in]
 SUM_R = 0.07  # adder radius, at least
@@ -85,6 +66,7 @@ MIN_GAP = 0.17  # narrowest gap between two columns
 END = 0.24  # length of the arrows into the inputs and out of the outputs
 ITEM_GAP = 0.1  # between two blocks on a feedback arc
 DASH_ROOM = 0.06  # more room after the last turn of a wire into a delay, for its dashes
+FRAME_PAD = 0.03  # between a part's blocks and its frame
 
 
 class Route(NamedTuple):
@@ -111,10 +93,9 @@ class StructureLayout:
 
     Attributes
     ----------
-    positions : mapping of signal name to (x, y)
-        The centre of each block (gains on feedback arcs included).
-    sizes : mapping of signal name to (width, height)
-        Gain boxes, adder circles (diameter) and signal dots.
+    positions, sizes : mapping of signal name to (float, float)
+        Each block's centre (gains on feedback arcs included) and size (gain box, adder
+        circle's diameter, signal dot).
     labels : mapping of gain name to str
         The text in each gain box (mathtext).
     names : mapping of signal name to Label
@@ -123,16 +104,13 @@ class StructureLayout:
         The labels of the arrows into the inputs and out of the outputs.
     layers : mapping of signal name to int
         The column of each block in the rows (blocks on feedback arcs have none).
-    wires : tuple of Wire
-        Every wire of the structure, as drawn (orthogonal polylines).
-    arrows_in, arrows_out : tuple of Wire
-        The arrows into the inputs and out of the outputs.
+    wires, arrows_in, arrows_out : tuple of Wire
+        Every wire as drawn (orthogonal polylines); the arrows into the inputs and out of
+        the outputs.
     junctions : tuple of (x, y)
         Where a wire branches (a dot each).
-    parts : tuple of Frame
-        The frame of each part of a series connection (none for one part).
-    bands : tuple of Band
-        The band of each delay-graph vertex (none without an assignment).
+    parts, bands : tuple of Frame, tuple of Band
+        The frame of each part of a series connection; the band of each delay-graph vertex.
     bounds : (x_lo, x_hi, y_lo, y_hi)
         The extent of the drawing (heading and key not included).
     """
@@ -152,7 +130,6 @@ class StructureLayout:
     bounds: tuple[float, float, float, float]
 
 
-# ---------------------------------------------------------------- graph steps
 def feedback_edges(S: Structure, level: Mapping[str, int]) -> list[tuple[str, str]]:
     """Wires closing a cycle (depth-first search from the inputs), and wires to an earlier level."""
     sg = S.signal_graph
@@ -163,12 +140,8 @@ def feedback_edges(S: Structure, level: Mapping[str, int]) -> list[tuple[str, st
 
 
 def feedback_routes(S: Structure, g: nx.DiGraph, level, vertex) -> list[Route]:
-    """Each feedback wire with the single-input, single-output gains and delays before it.
-
-    Those blocks (e.g. the IFP's :math:`K_1, K_2`, a state's self-gain :math:`F_{ii}`) are
-    drawn on the feedback arc itself, as the paper does, and take no place in the rows;
-    with a delay assignment only when they sit at the vertex of both ends of the arc.
-    """
+    """Each feedback wire with the single-input, single-output gains and delays before it (drawn
+    on the arc, as the paper does; with an assignment only those at the vertex of both ends)."""
     ends = set(S.inputs) | set(S.outputs)
     taken: set[str] = set()
     routes = []
@@ -222,10 +195,8 @@ def spread(count: int, half: float) -> list[float]:
 
 
 def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
-    """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ.
-
-    Narrow arcs first, so an arc nested in another runs inside it.
-    """
+    """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ
+    (narrow arcs first, so a nested arc runs inside)."""
     lane: dict[int, int] = {}
     for k in sorted(spans, key=lambda k: (spans[k][1] - spans[k][0], k)):
         lo, hi = spans[k]
@@ -236,7 +207,6 @@ def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> di
     return lane
 
 
-# ---------------------------------------------------------------- sizes
 class Geometry:
     """Sizes of the drawn blocks (inches) and where a wire meets them."""
 
@@ -293,7 +263,6 @@ class Geometry:
         return 0.6 * self.size[name][0] / 2 if self.kind(name) == "sum" else 0.0
 
 
-# ---------------------------------------------------------------- the layout
 def structure_layout(
     S: Structure,
     measure: Measure,
@@ -311,11 +280,9 @@ def structure_layout(
         ``measure(text, points) -> (width, height)`` in inches.
     text : StructureText, optional
         What is written (default :func:`~symctl.plotting.structure_labels.structure_text`).
-    vertex_of : mapping of signal name to int, optional
-        A delay assignment (vertex ``1 .. N`` of every signal): the signals of each vertex
-        are drawn in one band.
-    vertex_names : mapping of int to str, optional
-        The bands' labels (default ``v1``, ``v2``, ...), mathtext allowed.
+    vertex_of, vertex_names : mapping, optional
+        A delay assignment (vertex ``1 .. N`` of every signal: each vertex's signals in one
+        band) and the bands' labels (default ``v1``, ``v2``, ...; mathtext allowed).
 
     Returns
     -------
@@ -613,3 +580,132 @@ def _on_arc(route: Route, g: nx.DiGraph) -> tuple[str, ...]:
     if route.chain and g.nodes[route.chain[-1]]["kind"] == "delay":
         return route.chain[:-1]
     return route.chain
+
+
+class Band(NamedTuple):
+    """The region of one delay-graph vertex: ``x0 .. x1`` by ``y0 .. y1``, its label above."""
+
+    vertex: int
+    label: str
+    x0: float
+    x1: float
+    y0: float
+    y1: float
+
+
+class Frame(NamedTuple):
+    """The frame around one part of a series connection."""
+
+    part: str
+    x0: float
+    x1: float
+    y0: float
+    y1: float
+
+
+def vertex_levels(S: Structure, vertex: Mapping[str, int]) -> dict[str, int]:
+    """The level of each signal: the longest path to its vertex in the graph of the vertices
+    that the wires join (cycles broken at the wire going furthest back); 0 without ``vertex``.
+
+    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
+    >>> from symctl.compatibility.check import check_compatibility
+    >>> from symctl.compatibility.delaygraph import DelayGraph
+    >>> from symctl.plotting.structure_layout import vertex_levels
+    >>> f = factor(controller_tf(2))
+    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
+    >>> where = check_compatibility(S, DelayGraph.chain([1, 1])).assignment.vertex_of
+    >>> level = vertex_levels(S, where)
+    >>> level["G1.u"], level["G2.x1"], level["G3.x1"]
+    (0, 1, 2)
+    """
+    if not vertex:
+        return dict.fromkeys(S.blocks, 0)
+    vg = nx.DiGraph()
+    vg.add_nodes_from(sorted(set(vertex.values())))
+    for a, b, _ in S.wires():
+        va, vb = vertex.get(a), vertex.get(b)
+        if va is not None and vb is not None and va != vb:
+            vg.add_edge(va, vb)
+    layered.break_cycles(vg, lambda e: (e[1] - e[0], -e[0]))
+    level: dict[int, int] = {}
+    for v in nx.lexicographical_topological_sort(vg):
+        level[v] = max((level[p] + 1 for p in vg.predecessors(v)), default=0)
+    return {n: level[vertex[n]] if n in vertex else 0 for n in S.blocks}
+
+
+def vertex_label(v: int, names: Mapping[int, str] | None) -> str:
+    """``$v_{2}$``, or ``spinal ($v_{2}$)`` with the model's name of the vertex."""
+    name = (names or {}).get(v, "")
+    tex = f"$v_{{{v}}}$"
+    if not name or name == f"v{v}":
+        return tex
+    return f"{name.replace('_', ' ').replace('$', '')} ({tex})"
+
+
+def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure):
+    """The band of each vertex (a level's from the middle of the gap before its first column to
+    that after its last; the whole height when alone at its level) and the drawing's new top."""
+    if not vertex:
+        return (), y_range[1]
+    y_lo, y_hi = y_range
+    by_level: dict[int, set[int]] = {}
+    cols: dict[int, list[int]] = {}
+    for n, v in vertex.items():
+        if n in boxes:
+            by_level.setdefault(level[n], set()).add(v)
+            if n in col:
+                cols.setdefault(level[n], []).append(col[n])
+    bands = []
+    for lev in sorted(set(by_level) & set(cols)):
+        c0, c1 = min(cols[lev]), max(cols[lev])
+        x0 = x[c0] - hw[c0] - (gaps[c0] / 2 if lev > min(cols) else 0.06)
+        x1 = x[c1] + hw[c1] + (gaps[c1 + 1] * (0.85 if c1 == len(x) - 1 else 0.5))
+        members = sorted(by_level[lev])
+        for v in members:
+            y0, y1 = y_lo, y_hi
+            if len(members) > 1:
+                ys = [
+                    (b[1] - b[3] / 2, b[1] + b[3] / 2)
+                    for n, b in boxes.items()
+                    if vertex.get(n) == v
+                ]
+                y0 = max(y_lo, min(a for a, _ in ys) - 0.12)
+                y1 = min(y_hi, max(b for _, b in ys) + 0.12)
+            bands.append(Band(v, vertex_label(v, names), x0, x1, y0, y1))
+    return tuple(bands), y_hi + measure("$v_{1}$", FONT_SIZE)[1] + 0.08
+
+
+def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
+    """The frame of each part (its blocks, names and inner wires; none for one part) and the
+    drawing's new top (the labels sit above the frames)."""
+    parts: dict[str, list[str]] = {}
+    for n, block in S.blocks.items():
+        parts.setdefault(block.part, []).append(n)
+    parts.pop("", None)  # blocks of no part (the output adder of parallel pathways)
+    for n in S.inputs:  # an input read by several parts (parallel pathways) is no one's
+        readers = {b.part for b in S.blocks.values() if n in b.inputs}
+        if len(readers) > 1 and n in parts.get(S.blocks[n].part, []):
+            parts[S.blocks[n].part].remove(n)
+    if len(parts) <= 1:
+        return (), y_hi
+    label_h = measure("G1", SMALL)[1]
+    out = []
+    for part, members in parts.items():
+        inside, xs, ys = set(members), [], []
+        for n in members:
+            bx, by, bw, bh = boxes[n]
+            xs += [bx - bw / 2, bx + bw / 2]
+            ys += [by - bh / 2, by + bh / 2]
+            if n in names:
+                lab, (_, w, h) = names[n], name_sizes[n]
+                left = {"center": lab.x - w / 2, "right": lab.x - w, "left": lab.x}[lab.ha]
+                xs += [left, left + w]
+                ys.append(lab.y + h if lab.va == "bottom" else lab.y - h)
+        for w in wires:
+            if w.source in inside and w.target in inside:
+                xs += [p[0] for p in w.points]
+                ys += [p[1] for p in w.points]
+        pad = FRAME_PAD
+        out.append(Frame(part, min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad))
+        y_hi = max(y_hi, out[-1].y1 + label_h + 0.06)
+    return tuple(out), y_hi

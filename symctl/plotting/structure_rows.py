@@ -1,35 +1,16 @@
-r"""A structure too wide for the page, folded into rows of parts.
+r"""A structure too wide for the page, folded into rows of parts; whether it can fit at all.
 
-The controller of a long delay is a long series connection: :math:`T = 6` gives
-:math:`G_{1.1} G_{1.2} G_{1.3}`, :math:`G_2` and :math:`G_{3.1} G_{3.2} G_{3.3}`, about
-30 columns, 13 inches at print size. Shrinking it would set its text far below 6 points;
-so :func:`structure_rows` cuts it between parts, where one signal (one per channel)
-joins them, and lays out each row of parts on its own: as many consecutive parts per
-row as fit the page. A row ends with an arrow out of the signal the next row begins
-with, both labelled with its name (the way a long equation is broken). Each row has its
-own vertex bands (the vertices it reaches) and the frames of its parts; the key of long
-gain values is the whole structure's, drawn once under the rows.
+The controller of a long delay is a long series connection (:math:`T = 6`: about 30
+columns, 13 inches at print size). :func:`structure_rows` cuts it between parts, where one
+signal per channel joins them, and lays out as many consecutive parts per row as fit the
+page; a row ends with an arrow out of the signal the next row begins with, both labelled
+with its name (as a long equation is broken). A structure that is no series connection is
+laid out in one piece however wide (:attr:`StructureRows.fits` tells).
 
-A structure that is no series connection (parallel pathways, one part) is laid out in
-one piece however wide: :attr:`StructureRows.fits` tells the caller.
-
-Whether a structure can fit a page at all is often clear before any text is measured
-(measuring is most of the time of a layout: each gain value is a mathtext parse):
-:func:`page_bound` lays out each part alone, as its own row, with every text taking no
-room. A layout only grows with its texts (a text enters a size only through sums and
-maxima: a gain's box, a column's half width, an arc's height, a label's reach), so a part
-that is wider than the page or taller than :data:`PAGE_HEIGHT` even so is taken to fit
-no page: the MIMO block forms of a two-input plant (a :math:`G_2` of a hundred gains, 17
-inches tall) are known to need the overview in a tenth of a second, not a few seconds.
-
->>> from symctl import Structure, controllable_canonical, controller_tf, factor
->>> from symctl.plotting.common import text_size
->>> from symctl.plotting.structure_rows import structure_rows
->>> f = factor(controller_tf(6), 3, 3)
->>> S = Structure.from_factorization(f, controllable_canonical(f.abbreviated()))
->>> rows = structure_rows(S, text_size)
->>> rows.folded, rows.fits, len(rows.placed) > 1
-(True, True, True)
+:func:`page_bound` decides before any text is measured (most of a layout's time) whether a
+drawing can fit: a layout only grows with its texts (a text enters a size only through
+sums and maxima), so a part wider than the page or taller than :data:`PAGE_HEIGHT` laid
+out with text of no size fits no page.
 """
 
 from __future__ import annotations
@@ -45,7 +26,6 @@ from symctl.plotting.style import TEXT_WIDTH
 
 __all__ = [
     "PAGE_HEIGHT",
-    "ROW_GAP",
     "PageBound",
     "StructureRows",
     "page_bound",
@@ -53,8 +33,7 @@ __all__ = [
     "structure_rows",
 ]
 
-ROW_GAP = 0.2
-"""Space between two rows of a folded drawing [in]."""
+ROW_GAP = 0.2  # between two rows of a folded drawing [in]
 PAGE_HEIGHT = 8.6
 """The tallest a drawing may be to fit a page with its caption [in] (the derivation's text
 height is 9.43 in; ``\\fitgraphic`` scales a figure over 8.68 in)."""
@@ -72,11 +51,9 @@ class StructureRows:
         The key's lines (LaTeX), for the whole structure.
     bounds : (x_lo, x_hi, y_lo, y_hi)
         The extent of all rows.
-    folded : bool
-        Whether the structure was cut into rows.
-    fits : bool
-        Whether the drawing fits the page: no wider than the width asked for and no taller
-        than :data:`PAGE_HEIGHT`.
+    folded, fits : bool
+        Whether it was cut into rows; whether it is no wider than asked and no taller than
+        :data:`PAGE_HEIGHT`.
     """
 
     placed: tuple[tuple[StructureLayout, tuple[float, float]], ...]
@@ -88,21 +65,18 @@ class StructureRows:
 
 @dataclass(frozen=True)
 class PageBound:
-    """Lower bounds on the size of a structure drawing, found without measuring any text.
-
-    Truthy when the drawing may fit the page; falsy when it cannot, whatever its text.
+    """Lower bounds on the size of a structure drawing, without measuring any text; truthy
+    when it may fit the page.
 
     Attributes
     ----------
     width, height : float
         The largest width and height [in] of a part of a series connection (else of the
-        whole structure) laid out alone, as a row, with every text taking no room:
-        lower bounds of that row's drawn size.
+        whole structure) laid out alone with every text taking no room.
     part : str
         The part that sets the larger excess over the page ("" for the whole structure).
     fits : bool
-        Whether ``width`` and ``height`` are within the page (the width asked for and
-        :data:`PAGE_HEIGHT`).
+        Whether ``width`` and ``height`` are within the page.
     """
 
     width: float
@@ -115,7 +89,6 @@ class PageBound:
 
 
 def _no_text(text: str, points: float) -> tuple[float, float]:
-    """A measure below every other: text takes no room."""
     return 0.0, 0.0
 
 
@@ -127,14 +100,9 @@ def page_bound(
     vertex_names: Mapping[int, str] | None = None,
     width: float = TEXT_WIDTH,
 ) -> PageBound:
-    """Whether the drawing of ``S`` can fit the page, decided before any text is measured.
-
-    A drawing is cut between the parts of a series connection only, never inside one;
-    a part (the whole structure, when it is no series) whose row alone is wider than
-    ``width`` or taller than :data:`PAGE_HEIGHT` even without text is taken to fit no
-    page. Each is laid out as :func:`structure_rows` lays out a row, with text of no
-    size; a layout only grows with its texts, so these extents are lower bounds of the
-    drawn rows' (for a structure in one piece, of the drawing's).
+    """Whether the drawing of ``S`` can fit the page, decided before any text is measured:
+    no part (the whole, when no series) laid out alone without text is wider than ``width``
+    or taller than :data:`PAGE_HEIGHT`.
 
     Parameters
     ----------
@@ -147,8 +115,6 @@ def page_bound(
     Returns
     -------
     PageBound
-        Falsy when some part (or the whole) is wider than ``width`` or taller than
-        :data:`PAGE_HEIGHT` even without text.
 
     Examples
     --------
@@ -171,13 +137,7 @@ def page_bound(
         units = [(p, sub, _row_text(text, sub)) for p, sub in rows]
     widest, tallest, part, excess = 0.0, 0.0, "", -math.inf
     for name, sub, sub_text in units:
-        layout = structure_layout(
-            sub,
-            _no_text,
-            text=sub_text,
-            vertex_of={n: where[n] for n in sub.blocks} if where else None,
-            vertex_names=vertex_names,
-        )
+        layout = _lay(sub, _no_text, sub_text, where, vertex_names)
         w, h = _width(layout), layout.bounds[3] - layout.bounds[2]
         widest, tallest = max(widest, w), max(tallest, h)
         if max(w - width, h - PAGE_HEIGHT) > excess:
@@ -187,10 +147,8 @@ def page_bound(
 
 
 def series_parts(S: Structure) -> list[str] | None:
-    """The parts of ``S`` in series order, or None when ``S`` is not a series of parts.
-
-    A series: every wire between two parts goes from one part to the next one (in the
-    order the parts' blocks come), as :meth:`Structure.series` builds them.
+    """The parts of ``S`` in series order (every wire between two parts goes to the next one, as
+    :meth:`Structure.series` builds them), or None.
 
     >>> from symctl import Structure, ifp_structure
     >>> from symctl.realization.realization import first_order_realization
@@ -198,8 +156,6 @@ def series_parts(S: Structure) -> list[str] | None:
     >>> R = first_order_realization(1, 2)
     >>> series_parts(Structure.series(R, R, R)), series_parts(ifp_structure(2))
     (['G1', 'G2', 'G3'], None)
-    >>> series_parts(Structure.parallel(R, R)) is None
-    True
     """
     order = list(dict.fromkeys(b.part for b in S.blocks.values()))
     if len(order) < 2 or "" in order:
@@ -235,11 +191,16 @@ def _row_structure(S: Structure, parts: list[str]) -> tuple[Structure, tuple[str
 
 
 def _row_text(text: StructureText, sub: Structure) -> StructureText:
-    """The whole structure's text, restricted to one row (a row's own ends named as signals)."""
+    """The whole structure's text in one row (its own ends named as signals)."""
     ends = {n: text.ends.get(n, signal_label(n)) for n in (*sub.inputs, *sub.outputs)}
     names = {n: t for n, t in text.names.items() if n in sub.blocks and ends.get(n) != t}
     gains = {n: t for n, t in text.gains.items() if n in sub.blocks}
     return StructureText(gains, names, ends, ())
+
+
+def _lay(sub: Structure, measure, text, where, names) -> StructureLayout:
+    vertex_of = {n: where[n] for n in sub.blocks} if where else None
+    return structure_layout(sub, measure, text=text, vertex_of=vertex_of, vertex_names=names)
 
 
 def _width(layout: StructureLayout) -> float:
@@ -267,28 +228,28 @@ def structure_rows(
         The labels of the inputs' and outputs' arrows
         (:func:`~symctl.plotting.structure_labels.structure_text`).
     vertex_of, vertex_names : mapping, optional
-        A delay assignment and the names of its vertices
-        (:func:`~symctl.plotting.structure_layout.structure_layout`).
+        As for :func:`~symctl.plotting.structure_layout.structure_layout`.
     width : float
         The widest a row may be [in].
 
     Returns
     -------
     StructureRows
+
+    Examples
+    --------
+    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
+    >>> from symctl.plotting.common import text_size
+    >>> from symctl.plotting.structure_rows import structure_rows
+    >>> f = factor(controller_tf(6), 3, 3)
+    >>> S = Structure.from_factorization(f, controllable_canonical(f.abbreviated()))
+    >>> rows = structure_rows(S, text_size)
+    >>> rows.folded, rows.fits, len(rows.placed) > 1
+    (True, True, True)
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})
-
-    def lay(sub: Structure, sub_text: StructureText) -> StructureLayout:
-        return structure_layout(
-            sub,
-            measure,
-            text=sub_text,
-            vertex_of={n: where[n] for n in sub.blocks} if where else None,
-            vertex_names=vertex_names,
-        )
-
-    whole = lay(S, text)
+    whole = _lay(S, measure, text, where, vertex_names)
     order = series_parts(S) if _width(whole) > width else None
     rows: list[StructureLayout] = []
     if order is None:
@@ -299,7 +260,7 @@ def structure_rows(
             best = None
             for stop in range(start + 1, len(order) + 1):
                 sub, _ = _row_structure(S, order[start:stop])
-                layout = lay(sub, _row_text(text, sub))
+                layout = _lay(sub, measure, _row_text(text, sub), where, vertex_names)
                 if best is not None and _width(layout) > width:
                     break
                 best = (stop, layout)

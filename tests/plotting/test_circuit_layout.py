@@ -17,7 +17,7 @@ from symctl import (
     ifp_structure,
     observable_canonical,
 )
-from symctl.plotting import circuit_routes as rt
+from symctl.plotting import layered
 from symctl.plotting.circuit_layout import (
     DOT,
     MIN_RADIUS,
@@ -46,10 +46,10 @@ def chain(n: int) -> Circuit:
     )
 
 
-def obstacles(lay, m: Measures) -> rt.Obstacles:
+def obstacles(lay, m: Measures) -> layered.Obstacles:
     texts = lay.boxes(Measures(m.radius, m.name, m.tag, {}, m.end))
     nodes = list(lay.pos)
-    return rt.Obstacles.of(
+    return layered.Obstacles.of(
         [(lay.pos[n], lay.radius.get(n, DOT)) for n in nodes],
         list(texts.values()),
         nodes,
@@ -82,14 +82,14 @@ def test_feedback_synapse_runs_below_and_forward_ones_go_right():
         assert forward or arc.height < 0, (arc.source, arc.target)
     (back,) = [a for a in lay.arcs if (a.source, a.target) == ("x2", "x1")]
     centre = lay.pos["x1"][1]
-    assert max(p[1] for p in rt.samples(back.path)) <= centre + 1e-9  # under the chain
+    assert max(p[1] for p in layered.bezier_points(back.path)) <= centre + 1e-9  # under the chain
 
 
 def test_parallel_synapses_run_apart():
     lay = circuit_layout(g2("controllable"))
     pair = [a for a in lay.arcs if (a.source, a.target) == ("x2", "y")]
     assert len(pair) == 2 and abs(pair[0].height - pair[1].height) >= 0.13
-    a, b = (rt.samples(p.path)[24] for p in pair)  # their middles
+    a, b = (layered.bezier_points(p.path)[24] for p in pair)  # their middles
     assert np.hypot(*(a - b)) >= 0.1
 
 
@@ -98,8 +98,8 @@ def test_an_arc_that_skips_a_neuron_clears_its_circle(big):
     c = g2("controllable")  # u -> y skips the neuron x2 on the same row
     lay = circuit_layout(c, {"x2": big, "y": MIN_RADIUS})
     (skip,) = [a for a in lay.arcs if (a.source, a.target) == ("u", "y")]
-    d = np.hypot(*(rt.samples(skip.path) - np.array(lay.pos["x2"])).T)
-    assert d.min() >= big + rt.CLEAR - 1e-9
+    d = np.hypot(*(layered.bezier_points(skip.path) - np.array(lay.pos["x2"])).T)
+    assert d.min() >= big + layered.CLEAR - 1e-9
 
 
 def test_bounds_hold_every_node_circle_curve_and_label():
@@ -173,7 +173,7 @@ def test_no_curve_runs_through_a_circle_or_a_name(kind, width):
     assert lay.clear and lay.labelled
     around = obstacles(lay, m)
     for arc in lay.arcs:
-        assert rt.hits(arc.points(), around, {arc.source, arc.target}) == 0, arc
+        assert layered.hits(arc.points(), around, {arc.source, arc.target}) == 0, arc
 
 
 @pytest.mark.slow
@@ -203,7 +203,7 @@ def test_arrow_ends_at_one_neuron_are_spread_apart():
             ends = [np.array(a.path[-1]) for a in lay.arcs if a.target == n.name]
             for i, p in enumerate(ends):
                 for q in ends[i + 1 :]:
-                    assert np.hypot(*(p - q)) >= 0.9 * rt.PORT_GAP, n.name
+                    assert np.hypot(*(p - q)) >= 0.9 * layered.PORT_GAP, n.name
 
 
 def test_measures_set_the_room_between_columns():

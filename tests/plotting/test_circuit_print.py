@@ -31,8 +31,7 @@ from symctl import (
     lqr_gains,
     observable_canonical,
 )
-from symctl.plotting import circuit_routes as rt
-from symctl.plotting import style
+from symctl.plotting import layered, style
 from symctl.plotting.circuit import draw_circuit, drawn
 from symctl.plotting.circuit_layout import DOT, Measures
 from symctl.plotting.legibility import legibility
@@ -117,10 +116,10 @@ def test_no_curve_runs_through_a_neuron_or_a_text_and_arrow_ends_are_apart(figur
     texts = lay.boxes(Measures(m.radius, m.name, m.tag, {}, m.end))
     nodes = list(lay.pos)
     # (less the margin a curve keeps from a circle: inside it, not grazing it)
-    circles = rt.Obstacles.of(
-        [(lay.pos[n], lay.radius.get(n, DOT) - rt.CLEAR) for n in nodes], [], nodes
+    circles = layered.Obstacles.of(
+        [(lay.pos[n], lay.radius.get(n, DOT) - layered.CLEAR) for n in nodes], [], nodes
     )
-    around = rt.Obstacles.of(
+    around = layered.Obstacles.of(
         [(lay.pos[n], lay.radius.get(n, DOT)) for n in nodes],
         list(texts.values()),
         nodes,
@@ -134,17 +133,17 @@ def test_no_curve_runs_through_a_neuron_or_a_text_and_arrow_ends_are_apart(figur
     weights = {k: box for (kind, k), box in lay.boxes(m).items() if kind == "label"}
     for arc in lay.arcs:
         ends = {arc.source, arc.target}
-        assert rt.hits(arc.points(), around if strict else circles, ends) == 0, (name, arc)
+        assert layered.hits(arc.points(), around if strict else circles, ends) == 0, (name, arc)
         if not strict:
             continue
         others = [
             box for k, box in weights.items() if {lay.arcs[k].source, lay.arcs[k].target} != ends
         ]
-        assert rt.hits(arc.points(), rt.Obstacles.of([], others), ends) == 0, (name, arc)
+        assert layered.hits(arc.points(), layered.Obstacles.of([], others), ends) == 0, (name, arc)
     for n in lay.radius:
         ends = [np.array(a.path[-1]) for a in lay.arcs if a.target == n]
         gaps = [np.hypot(*(p - q)) for i, p in enumerate(ends) for q in ends[i + 1 :]]
-        assert min(gaps, default=1.0) >= 0.9 * rt.PORT_GAP or not strict, (name, n)
+        assert min(gaps, default=1.0) >= 0.9 * layered.PORT_GAP or not strict, (name, n)
 
 
 @pytest.mark.parametrize("name", NAMES)

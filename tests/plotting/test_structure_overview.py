@@ -9,8 +9,8 @@ import pytest
 
 from symctl import Structure, SymctlTypeError, controller_tf, factor, observable_canonical
 from symctl.plotting.legibility import legibility
+from symctl.plotting.structure import draw_structure_overview, parts_in_order
 from symctl.plotting.structure_labels import end_labels
-from symctl.plotting.structure_overview import draw_structure_overview, parts_in_order
 from symctl.realization.realization import first_order_realization
 
 sys.path.insert(0, str(Path(__file__).parent))
