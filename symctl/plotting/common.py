@@ -27,20 +27,35 @@ def text_outline(text: str, size: float):
     their on- and off-curve points at the curves' extrema, so it is the outlines' box
     (to a thousandth of a point) without ``Path.get_extents``, which walks every
     Bezier segment in Python (three quarters of the drawing time of a circuit with a
-    key of long weights).
+    key of long weights). Math text is typeset at ``size`` itself (matplotlib's
+    ``TextPath`` typesets it at 100 points and scales it down), so that drawing the
+    same text later finds it typeset (:mod:`symctl.plotting.style` shares the cache).
     """
+    from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
     from matplotlib.path import Path
-    from matplotlib.textpath import TextPath
 
-    if not text.strip():  # no ink (TextPath cannot make an empty path)
+    if not text.strip():  # no ink (a path cannot be empty)
         return None, (0.0, 0.0, 0.0, 0.0)
-    path = TextPath((0, 0), text, size=size, prop=FontProperties(size=size))
+    verts, codes = _to_path(size).get_text_path(
+        FontProperties(size=size), text, ismath=cbook.is_math_text(text)
+    )
+    path = Path(verts, codes)
     points = path.vertices if path.codes is None else path.vertices[path.codes != Path.CLOSEPOLY]
     if not len(points):
         return None, (0.0, 0.0, 0.0, 0.0)
     (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
     return path, (float(x0), float(y0), float(x1), float(y1))
+
+
+@lru_cache(maxsize=16)
+def _to_path(size: float):
+    """Matplotlib's text-to-outline converter working at ``size`` points (not its 100)."""
+    from matplotlib.textpath import TextToPath
+
+    converter = TextToPath()
+    converter.FONT_SCALE = size
+    return converter
 
 
 def figure_and_axes(ax):

@@ -93,7 +93,7 @@ MAX_DRAWN_SIGNALS = 400
 """Structures up to this many signals are drawn block by block when they fit the page (folded
 into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
 block forms), as the overview of their parts
-(:func:`symctl.plotting.structure_overview.draw_structure_overview`)."""
+(:func:`symctl.plotting.structure.draw_structure_overview`)."""
 MAX_DRAWN_PARTS = 6
 """Kept for compatibility; no longer a limit: a structure of many parts in series (sections
 of G1 and G3, and G2; T >= 6) is folded into rows of parts that fit the page
