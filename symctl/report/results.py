@@ -1,16 +1,8 @@
 r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
 
-The report stage computes nothing: it reads a derivation (made by
-:func:`~symctl.derivation.derive`) and writes it. :func:`results_json` is the
-``results.json`` document (schema in the README); :func:`figure` draws one of the
-report's figures and :func:`write` writes every file of ``symctl paper``. The
-derivation's :meth:`~symctl.derivation.Derivation.to_dict`,
-:meth:`~symctl.derivation.Derivation.figure` and
-:meth:`~symctl.derivation.Derivation.write` call them.
-
-This module sits above the modules that render the results
-(:mod:`~symctl.report.story`, :mod:`~symctl.report.document`,
-:mod:`~symctl.report.figures`), which read a derivation without importing it.
+The report stage computes nothing: it reads a derivation and writes it. The
+derivation's :meth:`~symctl.derivation.Derivation.to_dict` and
+:meth:`~symctl.derivation.Derivation.write` call :func:`results_json` and :func:`write`.
 
 Examples
 --------
@@ -100,20 +92,7 @@ def circuit_json(self) -> dict:
 
 
 def parameters(self) -> dict:
-    """The inputs of the derivation (the ``parameters`` entry of :meth:`to_dict`).
-
-    Returns
-    -------
-    dict
-        ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
-        (nested lists of floats) and ``seed``.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> derive_paper(tau=0.05).parameters()["tau"]
-    0.05
-    """
+    """The inputs of a derivation (:meth:`~symctl.derivation.Derivation.parameters`)."""
     s = self.system
     values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.dt}
     return {
@@ -127,23 +106,7 @@ def parameters(self) -> dict:
 
 
 def results_json(self) -> dict:
-    """The ``results.json`` document: a dictionary of plain lists, floats and strings.
-
-    Returns
-    -------
-    dict
-        Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
-        ``gains``, ``controller``, ``factorization``, ``closed_loop``,
-        ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
-        "results.json").
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> data = derive_paper().to_dict()
-    >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
-    (1, True, 3)
-    """
+    """The ``results.json`` document (:meth:`~symctl.derivation.Derivation.to_dict`)."""
     s = self.system
     G = self.G
     rows, cols = G.shape
