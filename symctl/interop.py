@@ -1,7 +1,6 @@
 r"""Conversions between symctl's objects and python-control, SciPy and SymPy.
 
-Small free functions in one module (house style; SciPy's ``signal/_lti_conversion.py``
-is the model); the objects' ``to_*``/``from_*`` methods hand over to them.
+The objects' ``to_*``/``from_*`` methods hand over to these functions.
 
 ================================  =================================  =================================
 library                           :class:`~symctl.DiscreteTF`        :class:`~symctl.Realization`
@@ -11,15 +10,13 @@ python-control                    tf_to_control, tf_from_control     ss_to_contr
 ``sympy.physics.control``         tf_to_sympy, tf_from_sympy         ss_to_sympy, ss_from_sympy
 ================================  =================================  =================================
 
-python-control and SciPy hold numbers (objects with symbols are refused); SymPy
-holds symbols, and its conversions are exact both ways. The sampling time is kept:
-``dt=True`` of python-control and SciPy ("discrete, unspecified") is ``dt=None``,
-continuous-time systems are refused (:class:`~symctl.errors.ParameterError`: discretize
-first). SymPy 1.14 has no discrete-time classes, so its objects carry no ``dt``
-(``*_from_sympy`` take ``dt=``); a later SymPy's ``DiscreteTransferFunction`` and
-``DiscreteStateSpace`` are detected and carry it (``docs/interop.md`` has the table).
-A transfer function is realized, where a state space is needed, by
-:func:`symctl.design._foreign.canonical_columns` (for SISO: controllable canonical form).
+python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols,
+exactly both ways. The sampling time is kept: ``dt=True`` ("discrete, unspecified")
+is ``dt=None``; continuous-time systems are refused (discretize first). SymPy 1.14
+has no discrete-time classes (``*_from_sympy`` take ``dt=``); a later SymPy's
+``DiscreteTransferFunction`` and ``DiscreteStateSpace`` carry it. Where a state space
+is needed, a transfer function is realized in the column-wise controllable canonical
+form (:func:`symctl.design._foreign.canonical_columns`).
 
 >>> from symctl import z
 >>> from symctl import DiscreteTF
@@ -80,6 +77,15 @@ def _floats(coeffs, what: str) -> list[float]:
         raise ParameterError(f"G: {what} has free symbols; substitute numbers first") from None
 
 
+def _numeric(G) -> tuple[list[float], list[list[list[float]]]]:
+    """The denominator and the numerators ``nums[i][j]`` of a numeric DiscreteTF, as floats."""
+    den = _floats(G.den_coeffs(), "the denominator")
+    rows, cols = G.shape
+    return den, [
+        [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
+    ]
+
+
 def _z_expr(coeffs) -> sp.Expr:
     """The polynomial in z of float coefficients (descending powers) of another library."""
     return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
@@ -123,16 +129,10 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
     >>> tf_to_control(DiscreteTF.from_expr(1 / (z - 0.5))).dt
     True
     """
-    G = _tf(G)
-    den = _floats(G.den_coeffs(), "the denominator")
-    rows, cols = G.shape
-    nums = [
-        [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
-    ]
-    dens = [[den for _ in range(cols)] for _ in range(rows)]
+    den, nums = _numeric(_tf(G))
     if G.is_siso:
         return control.tf(nums[0][0], den, _their_dt(G.dt))
-    return control.tf(nums, dens, _their_dt(G.dt))
+    return control.tf(nums, [[den] * len(nums[0])] * len(nums), _their_dt(G.dt))
 
 
 def _discrete(sys):
@@ -292,14 +292,13 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     ([1.0, 2.0], [1.0, -0.5], 0.1)
     """
     G = _tf(G)
-    rows, cols = G.shape
-    if cols != 1:
+    if G.shape[1] != 1:
         raise DimensionError(
             f"G: scipy.signal.TransferFunction holds one input, G has shape {G.shape}; "
             "use ss_to_scipy (a StateSpace holds any shape)"
         )
-    den = _floats(G.den_coeffs(), "the denominator")
-    nums = [_floats(G.num_coeffs(i, 0), "the numerator") for i in range(rows)]
+    den, columns = _numeric(G)
+    nums = [row[0] for row in columns]
     if G.is_siso:
         return signal.TransferFunction(nums[0], den, dt=_their_dt(G.dt))
     width = max(len(n) for n in nums)
@@ -432,11 +431,8 @@ def ss_from_scipy(sys) -> Realization:
 
 
 class _SymPy:
-    """``sympy.physics.control``'s classes, feature-detected: None where this SymPy lacks one.
-
-    ``StateSpace`` arrived in SymPy 1.13; ``DiscreteTransferFunction`` and
-    ``DiscreteStateSpace`` after 1.14 (on SymPy's main branch since August 2025).
-    """
+    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``
+    arrived in 1.13, ``DiscreteTransferFunction`` and ``DiscreteStateSpace`` after 1.14)."""
 
     def __init__(self):
         import sympy.physics.control as ctl

@@ -1,10 +1,8 @@
-"""Argument checks at the public boundary: every shape, number, integer, seed and array check.
+"""Argument checks at the public boundary, each naming the argument and its value.
 
-Every public function of symctl checks its arguments here, so that bad input
-fails early with one of :mod:`symctl.errors`' types and a message naming the
-argument and its value: a wrong type is a :class:`~symctl.errors.SymctlTypeError`,
-a bad value a :class:`~symctl.errors.ParameterError` (shapes: ``DimensionError``).
-Text goes through the safe parser (:mod:`symctl._util.parse`) only.
+A wrong type is a :class:`~symctl.errors.SymctlTypeError`, a bad value a
+:class:`~symctl.errors.ParameterError` (shapes: ``DimensionError``); text goes
+through the safe parser (:mod:`symctl._util.parse`) only.
 
 >>> from symctl._util.validate import to_matrix
 >>> to_matrix([[1, 0], ["0", "1/2"]], "Q")
@@ -72,11 +70,7 @@ def to_expr(value, argname: str, names=None) -> sp.Expr:
 
 
 def to_matrix(value, argname: str, shape: tuple[int, int] | None = None, names=None) -> sp.Matrix:
-    """A sympy Matrix from a scalar, nested lists, a NumPy array or a sympy matrix.
-
-    A scalar becomes a 1 x 1 matrix; a flat list a column. ``shape`` is
-    checked when given.
-    """
+    """A sympy Matrix from a scalar (1 x 1), a flat list (a column), nested lists or an array."""
     if isinstance(value, sp.MatrixBase):
         mat = sp.Matrix(value)
     elif isinstance(value, np.ndarray | list | tuple):
@@ -167,10 +161,7 @@ def nonneg_int(value, argname: str) -> int:
 
 
 def as_generator(value, argname: str) -> np.random.Generator:
-    """A NumPy ``Generator`` from a Generator, an int seed >= 0 or None (fresh entropy).
-
-    A negative seed is a :class:`ParameterError` (NumPy's own would be a ``ValueError``).
-    """
+    """A NumPy ``Generator`` from a Generator, an int seed >= 0 or None (fresh entropy)."""
     if isinstance(value, np.random.Generator):
         return value
     if value is None:
@@ -181,9 +172,7 @@ def as_generator(value, argname: str) -> np.random.Generator:
 
 
 def read_only(value, dtype=None) -> np.ndarray:
-    """A read-only array for a value object: a copy, unless it is read-only already.
-
-    The caller's array is never frozen in place (its flags stay as they were).
+    """A read-only array: a copy (the caller's array is never frozen), unless read-only already.
 
     >>> import numpy as np
     >>> from symctl._util.validate import read_only
@@ -219,9 +208,7 @@ def sampling_time(value, argname: str) -> sp.Expr:
 
 
 def as_random(value, argname: str):
-    """A ``random.Random`` from None (the OS's entropy), an int seed, a Random or a NumPy Generator.
-
-    For exact sampling of big integers (``randrange`` beyond 2**63).
+    """A ``random.Random`` (exact big integers) from None, an int seed, a Random or a Generator.
 
     >>> from symctl._util.validate import as_random
     >>> as_random(3, "rng").randrange(10) == as_random(3, "rng").randrange(10)
@@ -257,10 +244,7 @@ def positive_int(value, argname: str) -> int:
 
 
 def float_array(value, argname: str) -> np.ndarray:
-    """A finite float64 NumPy array of any shape, without going through sympy.
-
-    Text, None and ragged or non-numeric sequences are a :class:`SymctlTypeError`;
-    NaN or inf entries a :class:`ParameterError`.
+    """A finite float64 array of any shape (not through sympy); text, None, ragged: a type error.
 
     >>> from symctl._util.validate import float_array
     >>> float_array([[1, 2]], "w")
@@ -302,25 +286,11 @@ def _subs_key(key, names: dict, argname: str) -> sp.Basic:
 def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
     """The checked arguments of a ``subs`` method: ``(rule, flags)`` for :meth:`sympy.Basic.subs`.
 
-    Accepts what :meth:`sympy.Basic.subs` accepts from a user, and nothing that
-    SymPy would ``eval``: ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``.
-    A key is a sympy object or the name of one of ``symbols`` (the object's own
-    free symbols, so ``"K_0"`` finds the real symbol ``K_0``); a value goes
-    through :func:`to_expr` (numbers, sympy objects, or text read by the safe
-    parser with ``symbols`` as its names). The only keyword is ``simultaneous``.
-    A mapping stays a dict (SymPy orders it canonically), pairs stay in order.
+    ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``, nothing SymPy would ``eval``.
+    A key is a sympy object or the name of one of ``symbols``; a value goes through
+    :func:`to_expr` (text: the safe parser with ``symbols`` as its names). The only
+    keyword is ``simultaneous``. A mapping stays a dict, pairs stay in order.
 
-    Raises
-    ------
-    SymctlTypeError
-        Wrong argument count or types, an unknown keyword.
-    ParameterError
-        A key naming no symbol; a non-finite value.
-    ParseError
-        A value's text is not an admissible expression.
-
-    Examples
-    --------
     >>> import sympy as sp
     >>> from symctl._util.validate import subs_rule
     >>> k = sp.Symbol("K_0", real=True)
@@ -386,11 +356,8 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
 def common_dt(dt1, dt2, argname: str):
     """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``.
 
-    ``None`` (unspecified, as python-control's ``dt=True``) combines with anything and
-    yields the other; two numbers must agree to a relative ``1e-12`` (so ``0.01`` and
-    ``1/100`` combine), two symbolic times must be the same expression. Anything else is
-    a :class:`ParameterError` naming ``argname`` (python-control's "incompatible timebases").
-    The first operand's ``dt`` is kept when both are given.
+    ``None`` (unspecified) yields the other; two numbers must agree to a relative ``1e-12``,
+    two symbolic times must be equal; the first is kept.
 
     >>> import sympy as sp
     >>> from symctl._util.validate import common_dt
@@ -405,14 +372,12 @@ def common_dt(dt1, dt2, argname: str):
         return dt2
     if dt2 is None:
         return dt1
-    a, b = dt1, dt2
-    if a == b:
+    if dt1 == dt2:
         return dt1
-    if a.is_number and b.is_number:
-        x, y = float(a), float(b)
-        if math.isclose(x, y, rel_tol=1e-12, abs_tol=0.0):
+    if dt1.is_number and dt2.is_number:
+        if math.isclose(float(dt1), float(dt2), rel_tol=1e-12, abs_tol=0.0):
             return dt1
-    elif sp.expand(a - b) == 0:
+    elif sp.expand(dt1 - dt2) == 0:
         return dt1
     raise ParameterError(f"{argname}: incompatible sampling times dt = {dt1} and dt = {dt2}")
 
@@ -434,10 +399,7 @@ def relative_tolerance(value, argname: str) -> float:
     return out
 
 
-# ---------------------------------------------------------------- limits
-# Every size symctl accepts has a limit, checked before any work starts, so that a
-# typo such as a delay of 10**22 is a clear ParameterError instead of minutes of work
-# or a MemoryError. Each limit is defined here, once; docs/reliability.md tabulates them.
+# Every size symctl accepts has a limit, checked before any work (docs/reliability.md).
 
 MAX_DELAY = 500
 """Largest net delay ``T = sensor_delay + actuator_delay`` (steps) of :func:`symctl.augment`
@@ -447,9 +409,8 @@ MAX_STEPS = 10**6
 """Longest horizon (samples) of a simulation or an impulse response."""
 
 MAX_SYMBOLIC_BLOCK = 3
-"""Largest ``n + m`` (states plus inputs) of a symbolic zero-order-hold discretization:
-SymPy's closed-form matrix exponential of a generic 2-state, 1-input plant takes about
-30 s, a 3-state one does not finish (numbers go through SciPy instead, up to ``MAX_STATES``)."""
+"""Largest ``n + m`` of a symbolic zero-order-hold discretization (SymPy's matrix exponential
+of a 2-state, 1-input plant takes about 30 s; numbers go through SciPy)."""
 
 MAX_COUNT = 10_000
 """Most numeric draws at once (realizations drawn, amplitudes of the nonlinear check)."""
@@ -460,8 +421,7 @@ MAX_CIRCUITS = 1000
 
 PAPER_MAX_DELAY = 20
 """Largest net delay of ``derive_paper`` and ``symctl paper``: the range benchmarks/scaling.py
-measures and the documents are laid out for (T = 20 within two minutes on 2 cores, see the
-README's scaling table). The design functions take up to ``MAX_DELAY``."""
+measures and the documents are laid out for (the design functions take ``MAX_DELAY``)."""
 
 MAX_STATES = 1000
 """Most states of a plant (``discretize``, ``linearize``) and of a delay-augmented system."""
@@ -586,9 +546,7 @@ def _to_float(value, argname: str) -> float:
 
 
 def max_size(value, argname: str, limit: int) -> None:
-    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, cheaply.
-
-    Checked on the raw value (NumPy's shape) before SymPy converts every entry.
+    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, before SymPy.
 
     >>> import numpy as np
     >>> from symctl._util.validate import max_size
@@ -610,13 +568,9 @@ def max_size(value, argname: str, limit: int) -> None:
 
 
 MAX_EXPANDED_TERMS = 50_000
-r"""Most polynomial terms (numerators plus denominator, bounded before any work) that a
-MIMO transfer function :math:`D(z)^{-1} N(z)` is expanded into as ``num/den`` unless asked
-for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`): SymPy builds a few
-thousand terms a second (50,000: about 15 s on 2 cores), and ``controller_tf`` of a plant
-with 6 inputs at T = 3 would be 5 million."""
+r"""Most polynomial terms a MIMO :math:`D(z)^{-1} N(z)` is expanded into as ``num/den``
+unless asked for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`; about 15 s)."""
 
 MAX_OUTPUT_BYTES = 4 * 2**30
-"""Most bytes of traces (float64) that one :func:`symctl.simulate_batch` result, or one of
-its chunks, holds: 4 GiB. Force and rate of 10**6 loops x 500 steps are 8 GB: stream them
-(``chunk=``) or keep fewer traces or only their peaks (``keep=``)."""
+"""Most bytes of traces that one :func:`symctl.simulate_batch` result (or chunk) holds: 4 GiB
+(stream with ``chunk=``, or keep fewer traces with ``keep=``)."""

@@ -1,12 +1,8 @@
 r"""What a derivation produced: :class:`Derivation`, with one record per realization and circuit.
 
-:func:`~symctl.derivation.derive` runs the pipeline on a model and returns a
-:class:`Derivation`: its inputs (the :class:`~symctl.model.model.Model`), every stage's
-result, symbolic and numeric, and what was skipped and why. It is a value: frozen,
-compared by value, picklable. The report stage writes it (``results.json``, the
-documents, the figures: :mod:`symctl.report.results`); :meth:`Derivation.to_dict`,
-:meth:`Derivation.write` and :meth:`Derivation.figure` hand it over there.
-``PaperResults`` is its former name, kept.
+The report stage writes a derivation (:mod:`symctl.report.results`);
+:meth:`Derivation.to_dict`, :meth:`Derivation.write` and :meth:`Derivation.figure`
+hand it over there. ``PaperResults`` is its former name, kept.
 
 Examples
 --------
