@@ -113,7 +113,6 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
     Returns
     -------
     control.TransferFunction
-        With ``dt = G.dt`` (``True`` when ``G.dt`` is None).
 
     Raises
     ------
@@ -152,7 +151,7 @@ def tf_from_control(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        In lowest terms, with ``dt = sys.dt`` (None for ``dt=True``).
+        In lowest terms.
 
     Raises
     ------
@@ -189,7 +188,7 @@ def ss_to_control(R: Realization) -> control.StateSpace:
     Returns
     -------
     control.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``, ``dt = R.dt`` (``True`` when None).
+        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
@@ -215,13 +214,11 @@ def ss_from_control(sys) -> Realization:
     Parameters
     ----------
     sys : control.StateSpace or control.TransferFunction
-        Discrete-time. A transfer function (SISO or MIMO) is realized in the
-        column-wise controllable canonical form (see the module's docstring).
+        Discrete-time; a transfer function is realized in the controllable canonical form.
 
     Returns
     -------
     Realization
-        With ``dt = sys.dt`` (None for ``dt=True``).
 
     Raises
     ------
@@ -261,8 +258,7 @@ def _scipy_dt(sys):
 def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     """A discrete ``scipy.signal.TransferFunction`` of a numeric SISO or SIMO :class:`DiscreteTF`.
 
-    SciPy's transfer functions have one input (a SIMO ``G`` gives a 2-D ``num``,
-    one row per output); :func:`ss_to_scipy` holds any shape.
+    SciPy's transfer functions have one input (a SIMO ``G``: one ``num`` row per output).
 
     Parameters
     ----------
@@ -272,7 +268,6 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     Returns
     -------
     scipy.signal.TransferFunction
-        A ``dlti`` with ``dt = G.dt`` (``True`` when ``G.dt`` is None).
 
     Raises
     ------
@@ -333,7 +328,7 @@ def tf_from_scipy(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        With ``dt = sys.dt`` (None for ``dt=True``); coefficients as SciPy has them.
+        With the coefficients as SciPy has them.
 
     Raises
     ------
@@ -370,8 +365,7 @@ def ss_to_scipy(R: Realization) -> signal.StateSpace:
     Returns
     -------
     scipy.signal.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``, a ``dlti`` with ``dt = R.dt`` (``True``
-        when None).
+        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
@@ -398,13 +392,12 @@ def ss_from_scipy(sys) -> Realization:
     Parameters
     ----------
     sys : scipy.signal.dlti
-        A discrete ``StateSpace`` (taken as it is), or a ``TransferFunction`` or
-        ``ZerosPolesGain``, realized in the column-wise controllable canonical form.
+        A discrete ``StateSpace``, or a ``TransferFunction`` or ``ZerosPolesGain``
+        (realized in the controllable canonical form).
 
     Returns
     -------
     Realization
-        With ``dt = sys.dt`` (None for ``dt=True``).
 
     Raises
     ------
@@ -477,10 +470,9 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 def tf_to_sympy(G: DiscreteTF):
     """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
 
-    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14 and older: no sampling time,
-    ``G.dt`` is dropped) or a ``DiscreteTransferFunction(num, den, z, dt)`` (a SymPy
-    with discrete classes; ``dt=None`` is written as 1). MIMO: a
-    ``TransferFunctionMatrix`` of those, every entry over ``G``'s common denominator.
+    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14: ``G.dt`` dropped) or a
+    ``DiscreteTransferFunction(num, den, z, dt)`` (``dt=None`` written as 1). MIMO: a
+    ``TransferFunctionMatrix`` of those over ``G``'s common denominator.
 
     Parameters
     ----------
@@ -526,16 +518,13 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Parameters
     ----------
     sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
-        SymPy 1.14's classes carry no sampling time: they are read as discrete, in
-        the variable ``z``. A SymPy with discrete classes gives ``sampling_time`` and
-        any variable of its ``DiscreteTransferFunction``; its continuous-time classes
-        are refused. Series, Parallel and Feedback: call ``.doit()`` first.
+        SymPy 1.14's classes are read as discrete, in ``z``; a later SymPy's discrete
+        classes give their ``sampling_time`` and variable. Series, Parallel and
+        Feedback: call ``.doit()`` first.
     dt : number, symbol or None
         The sampling time (SymPy 1.14), or one that must agree with the system's.
     var : sympy Symbol, optional
-        The variable of ``sys`` that is the z-transform variable, when it is not
-        named ``z`` (it becomes :data:`symctl.z`); a transfer function in another
-        variable is refused without it.
+        The variable of ``sys`` that is the z-transform variable, when not ``z``.
 
     Returns
     -------
@@ -611,9 +600,8 @@ def _matrix(values: list, shape: tuple[int, int]):
 def ss_to_sympy(R: Realization):
     """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
 
-    A ``StateSpace(F, H, M, N)`` (SymPy 1.14 and older: no sampling time, ``R.dt``
-    is dropped) or a ``DiscreteStateSpace(F, H, M, N, dt)`` (a SymPy with discrete
-    classes; ``dt=None`` is written as 1).
+    A ``StateSpace(F, H, M, N)`` (SymPy 1.14: ``R.dt`` dropped) or a
+    ``DiscreteStateSpace(F, H, M, N, dt)`` (``dt=None`` written as 1).
 
     Parameters
     ----------
@@ -654,9 +642,7 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
     Parameters
     ----------
     sys : StateSpace, DiscreteStateSpace or a SISO transfer function
-        A state space is taken as it is; a SISO ``TransferFunction`` (or
-        ``DiscreteTransferFunction``) is realized by
-        :func:`~symctl.realization.realization.controllable_canonical`.
+        A transfer function is realized in the controllable canonical form.
     dt : number, symbol or None
         As in :func:`tf_from_sympy`.
     var : sympy Symbol, optional

@@ -1,13 +1,9 @@
 r"""One deadline for a whole computation: every stage asks it how long is left.
 
-A search with a ``timeout`` (:func:`symctl.dale` and the functions that call it)
-makes one :class:`Deadline` and hands it down. A z3 query gets the time that is
-left (:meth:`Deadline.left`), a loop stops when it has passed
-(:meth:`Deadline.check` raises :class:`OutOfTime`, naming the stage), and the
-caller turns :class:`OutOfTime` (an :class:`Unfinished`, as is a stage that
-stops at a size limit) into its "not decided" result. The clock is a
-parameter, so a test can run a stage with a deadline that has already passed,
-or one that passes after a given number of readings, without waiting.
+A search with a ``timeout`` makes one :class:`Deadline` and hands it down: a z3 query
+gets the time left (:meth:`Deadline.left`), a loop stops when it has passed
+(:meth:`Deadline.check` raises :class:`OutOfTime`). The clock is a parameter, so
+a test can run out of time without waiting.
 
 >>> from symctl._util.deadline import Deadline, OutOfTime
 >>> ticks = iter(range(100))

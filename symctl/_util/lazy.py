@@ -1,10 +1,8 @@
 """Public names loaded on first use (PEP 562), from one table.
 
 A package writes its public names once, as a table ``{name: module}``, and gets
-``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach` (the shape of
-``lazy_loader.attach`` and networkx's ``lazy_imports``, in twenty lines). A name
-is imported when it is first used, so ``import symctl`` stays quick and a
-script pays only for what it uses.
+``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach`, so that ``import
+symctl`` stays quick.
 
 Examples
 --------

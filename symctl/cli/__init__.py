@@ -1,12 +1,9 @@
 """The ``symctl`` command. Orchestration only: the math lives in the library.
 
-``symctl paper`` runs the paper's derivation and writes its outputs; its
-defaults are the paper's parameters (:data:`symctl.report.spec.PAPER`). Bad
-input prints one line (``symctl: error: ...``) and exits with code 2; the
-output folder is written all at once or not at all
-(:class:`symctl.report.output.OutputFolder`); SIGINT and SIGTERM end a run
-cleanly with codes 130 and 143. The console script calls :func:`run`;
-:func:`main` returns the exit code instead of exiting.
+Bad input prints one line (``symctl: error: ...``) and exits with code 2; the output
+folder is written all at once or not at all; SIGINT and SIGTERM end a run cleanly with
+codes 130 and 143. The console script calls :func:`run`; :func:`main` returns the exit
+code instead of exiting.
 
 Examples
 --------
@@ -429,12 +426,10 @@ def _warned(caught: list) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
 
-    Nothing but single lines reach stderr: ``symctl: error: ...`` for bad input,
-    one ``symctl: warning: ...`` line for the warnings of a successful run,
-    ``symctl: interrupted ...`` when stopped by a signal. SIGINT and SIGTERM
-    stop the run cleanly (figure workers killed, the staged output removed,
-    ``--out`` as it was). Set ``SYMCTL_TRACEBACK=1`` to see the traceback of an
-    unexpected exception instead of its one line.
+    Nothing but single lines reach stderr (``symctl: error: ...``, one ``symctl: warning:
+    ...`` line for a successful run's warnings, ``symctl: interrupted ...``); SIGINT and
+    SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1`` shows the
+    traceback of an unexpected exception.
 
     Parameters
     ----------
@@ -444,12 +439,9 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success; 2 on bad input: a symctl error naming the option, or a
-        NumPy/SciPy/SymPy failure (``ValueError``, ``TypeError``,
-        ``ArithmeticError``, ``MemoryError``, ``RecursionError``) named with
-        the step it stopped and the options that step depends on; 1 on an
-        internal error (any other exception: a bug) or when aborted; 130 on
-        SIGINT (Ctrl-C) and 143 on SIGTERM.
+        0 on success; 2 on bad input (a symctl error naming the option, or a NumPy, SciPy
+        or SymPy failure named with its step and the options it depends on); 1 on an
+        internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
 
     Examples
     --------

@@ -1,8 +1,6 @@
 """The console's summary of a derivation: ``symctl paper`` and ``symctl derive`` print it.
 
-Read off the :class:`~symctl.derivation.Derivation`'s objects (the plant, the gains,
-the controller, the factors, the realizations and the circuits), never off its
-``results.json``.
+Read off the derivation's objects, never off its ``results.json``.
 """
 
 from __future__ import annotations

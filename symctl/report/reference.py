@@ -1,16 +1,9 @@
 r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations.
 
-The derivation cites the paper it implements the way a paper cites another:
-``[1, Fig. 5]``, not by the LaTeX labels of its source (``fig:cl_sims``). The
-numbers below were counted in the paper's LaTeX source (arXiv:2410.02555,
-``ieeeconf`` class): figures and equations are numbered in the order of their
-environments in the source (``figure*`` included), definitions in the order of
-their ``definition`` environments, sections by the class's Roman numerals.
-
-Citations are written in the prose of the document blocks
-(:mod:`symctl.report.document`) as ``[@key]`` or ``[@key, locator]``, which the
-LaTeX renders as ``\cite[locator]{key}`` and the Markdown as ``[1, locator]``;
-:func:`cite` writes them.
+The derivation cites the paper it implements as a paper cites another (``[1, Fig. 5]``).
+The numbers were counted in the paper's LaTeX source (arXiv:2410.02555, ``ieeeconf``):
+figures, equations and definitions in the order of their environments, sections by
+the class's Roman numerals.
 
 Examples
 --------
