@@ -29,11 +29,8 @@ __all__ = ["Deadline", "OutOfTime", "Unfinished", "deadline_of"]
 
 
 class Unfinished(Exception):
-    """A stage stopped before its end: out of time, or past a size limit (the message says why).
-
-    Internal: the function that set the budget catches it and reports "not
-    decided" with the message (it never reaches the user).
-    """
+    """A stage stopped before its end: out of time, or past a size limit (the caller reports
+    "not decided" with the message)."""
 
 
 class OutOfTime(Unfinished):
@@ -46,26 +43,7 @@ class OutOfTime(Unfinished):
 
 @dataclass(frozen=True)
 class Deadline:
-    """``seconds`` from its creation on ``clock`` (default :func:`time.perf_counter`).
-
-    Attributes
-    ----------
-    seconds : float
-        The whole budget.
-    clock : callable
-        Returns the time in seconds; injectable for tests.
-    start : float
-        The clock's reading at creation.
-
-    Examples
-    --------
-    >>> from symctl._util.deadline import Deadline
-    >>> d = Deadline(10.0, clock=lambda: 0.0)
-    >>> d.left(), d.within(3.0).left(), d.within(30.0).left()
-    (10.0, 3.0, 10.0)
-    >>> Deadline.passed().expired()
-    True
-    """
+    """``seconds`` from its creation (``start``) on ``clock`` (default :func:`time.perf_counter`)."""
 
     seconds: float
     clock: Callable[[], float] = field(default=time.perf_counter, repr=False, compare=False)
@@ -109,15 +87,7 @@ class Deadline:
 
 
 def deadline_of(timeout, argname: str = "timeout", high: float = 3600.0) -> Deadline:
-    """``timeout`` as a :class:`Deadline`: seconds from now (in ``[0.001, high]``), or itself.
-
-    >>> from symctl._util.deadline import Deadline, deadline_of
-    >>> deadline_of(5.0).seconds
-    5.0
-    >>> shared = Deadline(60.0)
-    >>> deadline_of(shared) is shared
-    True
-    """
+    """``timeout`` as a :class:`Deadline`: seconds from now (in ``[0.001, high]``), or itself."""
     if isinstance(timeout, Deadline):
         return timeout
     return Deadline(bounded_number(timeout, argname, 1e-3, high))

@@ -102,7 +102,19 @@ def fold(expr: sp.Expr, algebra, memo: dict | None = None):
     return out
 
 
-class RingFractions:
+class _Pairs:
+    """An algebra of fractions as ``(numerator, denominator)`` pairs with leaves by symbol."""
+
+    _leaves: dict
+
+    def symbol(self, s):
+        return self._leaves[s]
+
+    mul = staticmethod(_mul_pairs)
+    pow = staticmethod(_pow_pair)
+
+
+class RingFractions(_Pairs):
     """Algebra: pairs (numerator, denominator) in a sparse SymPy polynomial ring, no gcd."""
 
     def __init__(self, ring_, generators):
@@ -112,9 +124,6 @@ class RingFractions:
     def number(self, p: int, q: int):
         return self.ring(p), self.ring(q)
 
-    def symbol(self, s):
-        return self._leaves[s]
-
     @staticmethod
     def add(parts):
         num, den = parts[0]
@@ -123,16 +132,12 @@ class RingFractions:
         return num, den
 
     @staticmethod
-    def mul(parts):
-        return _mul_pairs(parts)
-
-    @staticmethod
     def pow(base, value, k: int):
         num, den = value
         return (num**k, den**k) if k >= 0 else (den ** (-k), num ** (-k))
 
 
-class PolyFractions:
+class PolyFractions(_Pairs):
     """Algebra: rational functions as pairs (numerator, denominator) of ``fmpz_mpoly``."""
 
     def __init__(self, ctx, symbols):
@@ -142,9 +147,6 @@ class PolyFractions:
 
     def number(self, p: int, q: int):
         return self.ctx.constant(p), self.ctx.constant(q)
-
-    def symbol(self, s):
-        return self._leaves[s]
 
     @staticmethod
     def add(parts):
@@ -162,14 +164,8 @@ class PolyFractions:
                 num, den = num * c2 + n2 * c1, c1 * d2
         return num, den
 
-    @staticmethod
-    def mul(parts):
-        return _mul_pairs(parts)
 
-    pow = staticmethod(_pow_pair)
-
-
-class IntFractions:
+class IntFractions(_Pairs):
     """Algebra: the value at a point, as a pair of Python ints (fast for numbers)."""
 
     def __init__(self, values: Mapping):
@@ -178,9 +174,6 @@ class IntFractions:
     @staticmethod
     def number(p: int, q: int):
         return p, q
-
-    def symbol(self, s):
-        return self._leaves[s]
 
     @staticmethod
     def add(parts):
@@ -200,8 +193,6 @@ class IntFractions:
             g = math.gcd(num, den)
             num, den = num // g, den // g
         return num, den
-
-    pow = staticmethod(_pow_pair)
 
 
 class Degrees:

@@ -26,23 +26,8 @@ __all__ = ["attach"]
 def attach(
     package: str, table: Mapping[str, str], submodules: Iterable[str] = ()
 ) -> tuple[Callable[[str], object], Callable[[], list[str]], list[str]]:
-    """``(__getattr__, __dir__, __all__)`` for ``package`` from ``{name: module}``.
-
-    Parameters
-    ----------
-    package : str
-        The package's ``__name__``.
-    table : mapping of str to str
-        Each public name and the module that defines it.
-    submodules : iterable of str, optional
-        Submodules reached as attributes (``symctl.latex``).
-
-    Returns
-    -------
-    tuple
-        ``__getattr__`` (imports on first use and caches in the package),
-        ``__dir__`` and the sorted ``__all__``.
-    """
+    """``(__getattr__, __dir__, __all__)`` for ``package`` from ``{name: module}``: a name is
+    imported on first use and cached in the package; ``submodules`` are reached as attributes."""
     table = dict(table)
     subs = frozenset(submodules)
     names = sorted(table)

@@ -147,16 +147,7 @@ def _integer(value, argname: str) -> None:
 
 
 def nonneg_int(value, argname: str) -> int:
-    """An integer >= 0: a wrong type (bool, float, text) is a type error, a negative a value error.
-
-    >>> from symctl._util.validate import nonneg_int
-    >>> nonneg_int(2, "sensor_delay")
-    2
-    >>> nonneg_int(1.5, "sensor_delay")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: sensor_delay: expected an integer, got 1.5
-    """
+    """An integer >= 0: a wrong type (bool, float, text) is a type error, a negative a value one."""
     return bounded_int(value, argname, 0, math.inf)
 
 
@@ -172,17 +163,7 @@ def as_generator(value, argname: str) -> np.random.Generator:
 
 
 def read_only(value, dtype=None) -> np.ndarray:
-    """A read-only array: a copy (the caller's array is never frozen), unless read-only already.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import read_only
-    >>> a = np.zeros(2)
-    >>> b = read_only(a)
-    >>> b.flags.writeable, a.flags.writeable, read_only(b) is b
-    (False, True, True)
-    >>> read_only([1, 2], float).dtype
-    dtype('float64')
-    """
+    """A read-only array: a copy (the caller's array is never frozen), unless read-only already."""
     arr = np.asarray(value, dtype=dtype)
     if arr.flags.writeable:
         arr = np.array(arr, order="C")
@@ -191,16 +172,7 @@ def read_only(value, dtype=None) -> np.ndarray:
 
 
 def sampling_time(value, argname: str) -> sp.Expr:
-    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass).
-
-    >>> from symctl._util.validate import sampling_time
-    >>> sampling_time(0.01, "Ts")
-    0.0100000000000000
-    >>> sampling_time(0, "dt")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: dt: must be > 0, got 0
-    """
+    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass)."""
     ts = to_expr(value, argname)
     if ts.is_number and not ts.is_positive:
         raise ParameterError(f"{argname}: must be > 0, got {value!r}")
@@ -208,12 +180,7 @@ def sampling_time(value, argname: str) -> sp.Expr:
 
 
 def as_random(value, argname: str):
-    """A ``random.Random`` (exact big integers) from None, an int seed, a Random or a Generator.
-
-    >>> from symctl._util.validate import as_random
-    >>> as_random(3, "rng").randrange(10) == as_random(3, "rng").randrange(10)
-    True
-    """
+    """A ``random.Random`` (exact big integers) from None, an int seed, a Random or a Generator."""
     import random
 
     if value is None:
@@ -230,30 +197,12 @@ def as_random(value, argname: str):
 
 
 def positive_int(value, argname: str) -> int:
-    """An integer >= 1: a wrong type is a type error, a smaller integer a value error.
-
-    >>> from symctl._util.validate import positive_int
-    >>> positive_int(3, "steps")
-    3
-    >>> positive_int(0, "steps")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: steps: must be an integer >= 1, got 0
-    """
+    """An integer >= 1: a wrong type is a type error, a smaller integer a value error."""
     return bounded_int(value, argname, 1, math.inf)
 
 
 def float_array(value, argname: str) -> np.ndarray:
-    """A finite float64 array of any shape (not through sympy); text, None, ragged: a type error.
-
-    >>> from symctl._util.validate import float_array
-    >>> float_array([[1, 2]], "w")
-    array([[1., 2.]])
-    >>> float_array([1.0, float("nan")], "w")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: w: entries must be finite (no NaN or inf)
-    """
+    """A finite float64 array of any shape (not through sympy); text, None, ragged: a type error."""
     if isinstance(value, str | bytes) or value is None:
         raise SymctlTypeError(f"{argname}: expected an array of numbers, got {value!r}")
     try:
@@ -286,20 +235,9 @@ def _subs_key(key, names: dict, argname: str) -> sp.Basic:
 def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
     """The checked arguments of a ``subs`` method: ``(rule, flags)`` for :meth:`sympy.Basic.subs`.
 
-    ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``, nothing SymPy would ``eval``.
-    A key is a sympy object or the name of one of ``symbols``; a value goes through
-    :func:`to_expr` (text: the safe parser with ``symbols`` as its names). The only
-    keyword is ``simultaneous``. A mapping stays a dict, pairs stay in order.
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import subs_rule
-    >>> k = sp.Symbol("K_0", real=True)
-    >>> subs_rule(({"K_0": "1/2"},), {}, {k})
-    ({K_0: 1/2}, {})
-    >>> subs_rule(({"K_0": "__import__('os')"},), {}, {k})
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParseError: subs[K_0]: function '__import__' is not allowed; use one of: Abs, ...
+    ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``, nothing SymPy would ``eval``: a
+    key is a sympy object or the name of one of ``symbols``, a value goes through
+    :func:`to_expr`; the only keyword is ``simultaneous``.
     """
     flags = {}
     for name, flag in kwargs.items():
@@ -332,17 +270,7 @@ def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
 
 
 def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
-    """A tuple of sympy Symbols (for ``lambdify``: a name there becomes Python code, so no text).
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import symbol_tuple
-    >>> symbol_tuple([sp.Symbol("a")], "symbols")
-    (a,)
-    >>> symbol_tuple("a", "symbols")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: symbols: expected a sequence of sympy Symbols, got 'a'
-    """
+    """A tuple of sympy Symbols (for ``lambdify``: a name there becomes Python code, so no text)."""
     if isinstance(value, sp.Symbol):
         return (value,)
     if isinstance(value, str | bytes) or not isinstance(value, list | tuple):
@@ -354,20 +282,7 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
 
 
 def common_dt(dt1, dt2, argname: str):
-    """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``.
-
-    ``None`` (unspecified) yields the other; two numbers must agree to a relative ``1e-12``,
-    two symbolic times must be equal; the first is kept.
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import common_dt
-    >>> common_dt(None, sp.Rational(1, 10), "other")
-    1/10
-    >>> common_dt(sp.Float(0.1), sp.Rational(1, 2), "other")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: other: incompatible sampling times dt = 0.100000000000000 and dt = 1/2
-    """
+    """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``."""
     if dt1 is None:
         return dt2
     if dt2 is None:
@@ -383,16 +298,7 @@ def common_dt(dt1, dt2, argname: str):
 
 
 def relative_tolerance(value, argname: str) -> float:
-    """A relative tolerance: a real number with ``0 < value < 1``.
-
-    >>> from symctl._util.validate import relative_tolerance
-    >>> relative_tolerance(1e-9, "rtol")
-    1e-09
-    >>> relative_tolerance(0, "rtol")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: rtol: must be a number in (0, 1), got 0
-    """
+    """A relative tolerance: a real number with ``0 < value < 1``."""
     out = positive_number(value, argname) if value != 0 else 0.0
     if not 0 < out < 1:
         raise ParameterError(f"{argname}: must be a number in (0, 1), got {value!r}")
@@ -438,16 +344,7 @@ MAX_MAGNITUDE = 1e100
 
 
 def bounded_int(value, argname: str, low: int, high: int) -> int:
-    """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error.
-
-    >>> from symctl._util.validate import bounded_int
-    >>> bounded_int(3, "steps", 1, 10)
-    3
-    >>> bounded_int(10**12, "sensor_delay", 0, 500)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: sensor_delay: must be an integer <= 500 (the limit), got 1000000000000
-    """
+    """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error."""
     _integer(value, argname)
     if value < low:
         raise ParameterError(f"{argname}: must be an integer >= {low}, got {value!r}")
@@ -457,14 +354,7 @@ def bounded_int(value, argname: str, low: int, high: int) -> int:
 
 
 def bounded_number(value, argname: str, low: float, high: float) -> float:
-    """A finite float in ``[low, high]``.
-
-    >>> from symctl._util.validate import bounded_number
-    >>> bounded_number(1e308, "f_max", 0, 1e100)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: f_max: must be a number in [0, 1e+100], got 1e+308
-    """
+    """A finite float in ``[low, high]``."""
     out = real_number(value, argname)
     if not low <= out <= high:
         raise ParameterError(f"{argname}: must be a number in [{low:g}, {high:g}], got {value!r}")
@@ -475,18 +365,7 @@ _NON_FINITE = (sp.nan, sp.oo, -sp.oo, sp.zoo)
 
 
 def finite_expr(expr, argname: str):
-    """``expr`` unchanged, unless it holds NaN, an infinity or a non-finite float.
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import finite_expr
-    >>> from symctl.symbols import z
-    >>> finite_expr(z + 1, "den")
-    z + 1
-    >>> finite_expr(sp.nan * z + 1, "den")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: den: must be finite (no NaN or infinity), got nan
-    """
+    """``expr`` unchanged, unless it holds NaN, an infinity or a non-finite float."""
     if isinstance(expr, sp.Basic):
         bad = expr in _NON_FINITE or expr.has(*_NON_FINITE)
         bad = bad or any(not math.isfinite(float(f)) for f in expr.atoms(sp.Float))
@@ -503,29 +382,14 @@ def cmath_isfinite(value) -> bool:
 
 
 def callable_or_none(value, argname: str):
-    """``value`` when it is callable or None, else a :class:`SymctlTypeError`.
-
-    >>> from symctl._util.validate import callable_or_none
-    >>> callable_or_none("x", "progress")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: progress: expected a callable or None, got 'x'
-    """
+    """``value`` when it is callable or None, else a :class:`SymctlTypeError`."""
     if value is not None and not callable(value):
         raise SymctlTypeError(f"{argname}: expected a callable or None, got {value!r}")
     return value
 
 
 def check_magnitude(arr, argname: str):
-    """``arr`` (a float array) unless an entry exceeds ``MAX_MAGNITUDE`` in magnitude.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import check_magnitude
-    >>> check_magnitude(np.array([[1e300]]), "Q")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: Q: entries must be at most 1e+100 in magnitude (...), got 1e+300
-    """
+    """``arr`` (a float array) unless an entry exceeds ``MAX_MAGNITUDE`` in magnitude."""
     big = float(np.max(np.abs(arr))) if arr.size else 0.0
     if big > MAX_MAGNITUDE:
         raise ParameterError(
@@ -546,15 +410,7 @@ def _to_float(value, argname: str) -> float:
 
 
 def max_size(value, argname: str, limit: int) -> None:
-    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, before SymPy.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import max_size
-    >>> max_size(np.zeros((2000, 2000)), "a", 1000)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.DimensionError: a: at most 1000 rows and columns, got shape (2000, 2000)
-    """
+    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, before SymPy."""
     if isinstance(value, str):
         return
     try:
