@@ -109,8 +109,7 @@ def results_json(self) -> dict:
     """The ``results.json`` document (:meth:`~symctl.derivation.Derivation.to_dict`)."""
     s = self.system
     G = self.G
-    rows, cols = G.shape
-    numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+    numerator, denominator = controller_coeffs(G)
     return {
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
@@ -127,8 +126,8 @@ def results_json(self) -> dict:
             "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
         },
         "controller": {
-            "numerator": numerator[0][0] if G.is_siso else numerator,
-            "denominator": _floats(G.den_coeffs()),
+            "numerator": numerator,
+            "denominator": denominator,
             "relative_degree": G.relative_degree,
             "dt": self.spec.dt,
             "symbolic": {
@@ -157,6 +156,13 @@ def results_json(self) -> dict:
         "atlas": _atlas_json(self),
         "model": model_json.model(self),
     }
+
+
+def controller_coeffs(G) -> tuple[list, list[float]]:
+    """The numerator (``[i][j]`` lists for MIMO) and denominator coefficients of ``G`` as floats."""
+    rows, cols = G.shape
+    numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+    return numerator[0][0] if G.is_siso else numerator, _floats(G.den_coeffs())
 
 
 def _atlas_json(self) -> dict | None:

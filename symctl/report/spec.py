@@ -45,19 +45,9 @@ SCHEMA_VERSION = 1
 
 @dataclass(frozen=True)
 class CircuitSpec:
-    """One circuit of the report: its name and how the report titles it.
+    """One circuit of the report: its ``name``, its ``title`` in headings and tables, and its
+    title on its ``diagram``.
 
-    Parameters
-    ----------
-    name : str
-        The circuit's name (a kind of :func:`~symctl.neural.firing.circuit_firing`).
-    title : str
-        Its title in the headings and tables of the derivation.
-    diagram : str
-        Its title on the structure and circuit diagrams.
-
-    Examples
-    --------
     >>> from symctl.report.spec import CIRCUIT_SPECS
     >>> CIRCUIT_SPECS["general"].title
     'G3 G2 G1, general G2'
