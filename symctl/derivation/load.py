@@ -68,10 +68,8 @@ def _symbol(name: str, known: Mapping) -> sp.Symbol:
 def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
     """An expression as ``results.json`` writes it (``sp.sstr``), read by the safe parser.
 
-    Every name becomes a symbol with the derivation's assumptions (the model's
-    parameters and ``T_s`` as ``known`` gives them; ``K_...``, ``C_...``,
-    ``epsilon_...``, ``sigma_...`` real; others plain); a name like ``K_{0,11}``
-    (a MIMO gain) is read as one symbol.
+    Every name becomes a symbol with the derivation's assumptions (``known``; ``K_``, ``C_``,
+    ``epsilon_``, ``sigma_`` real); ``K_{0,11}`` (a MIMO gain) is one symbol.
 
     >>> from symctl.derivation.load import parse_saved
     >>> parse_saved("K_{0,11}/(z - epsilon_{1,1})", {}, "G").free_symbols == {

@@ -247,19 +247,16 @@ def write(
     self,
     out: Path | str,
     *,
-    figures: bool = True,
-    pdf: bool = True,
     jobs: int | None = None,
-    progress: Callable[[str], None] | None = None,
     formats: str | tuple[str, ...] = _figures.DEFAULT_FORMATS,
+    **kw,
 ) -> list[Path]:
     """Write every file of ``symctl paper`` into ``out`` (:meth:`~symctl.derivation.Derivation.write`)."""
     if jobs is not None:
         positive_int(jobs, "jobs")
     formats = _figures.figure_formats(formats)
     with OutputFolder(out, "out") as folder:
-        kw = {"figures": figures, "pdf": pdf, "jobs": jobs, "formats": formats}
-        written = write_files(self, folder.staging, progress=progress, **kw)
+        written = write_files(self, folder.staging, jobs=jobs, formats=formats, **kw)
         return folder.final(written)
 
 
