@@ -1,21 +1,9 @@
 """symctl's exception types: one tree under :class:`SymctlError`.
 
-Every error that bad input can cause is one of these, so ``except SymctlError``
-catches them all. Each also subclasses the matching built-in, so ``except
-ValueError`` and ``except TypeError`` keep working:
-
-- a value outside its admissible range: :class:`ParameterError` (a ``ValueError``);
-- shapes that do not fit: :class:`DimensionError` (a ``ValueError``);
-- user text that is not an admissible expression: :class:`ParseError` (a ``ValueError``);
-- an argument of the wrong type: :class:`SymctlTypeError` (a ``TypeError``);
-- an LQR problem without a stabilizing solution: :class:`NotStabilizableError`;
-- ``pdflatex`` failing on a document symctl wrote: :class:`LatexError`;
-- a controller that a circuit class cannot realize: :class:`NotRealizableError`;
-- a model file with a bad field: :class:`ModelFileError` (a :class:`ParameterError`
-  naming the file, the line and the field).
-
-Each message names the offending argument and its value. The command line
-turns them into a one-line message and exit code 2.
+Every error that bad input can cause is one of these, and each also subclasses the
+matching built-in (``ValueError``, ``TypeError``), so ``except ValueError`` keeps
+working. Each message names the offending argument and its value; the command line
+turns them into one line and exit code 2.
 
 Examples
 --------
@@ -133,10 +121,7 @@ class SymctlTypeError(SymctlError, TypeError):
 
 
 class NotRealizableError(SymctlError, ValueError):
-    """A controller that a circuit class (or every class of an atlas) cannot realize.
-
-    The message says which class and why (e.g. complex poles and a triangular
-    ``F``).
+    """A controller that a circuit class (or every class of an atlas) cannot realize, and why.
 
     Examples
     --------
@@ -147,10 +132,7 @@ class NotRealizableError(SymctlError, ValueError):
 
 
 class ModelFileError(ParameterError):
-    """A model file that cannot be read: the message names the file, the line and the field.
-
-    ``str(err)`` is one line, ``FILE:LINE: FIELD: problem``; the parts are also
-    kept as attributes.
+    """A model file that cannot be read: one line, ``FILE:LINE: FIELD: problem``.
 
     Attributes
     ----------

@@ -1,7 +1,6 @@
 r"""Conversions between symctl's objects and python-control, SciPy and SymPy.
 
-Small free functions in one module (house style; SciPy's ``signal/_lti_conversion.py``
-is the model); the objects' ``to_*``/``from_*`` methods hand over to them.
+The objects' ``to_*``/``from_*`` methods hand over to these functions.
 
 ================================  =================================  =================================
 library                           :class:`~symctl.DiscreteTF`        :class:`~symctl.Realization`
@@ -11,15 +10,13 @@ python-control                    tf_to_control, tf_from_control     ss_to_contr
 ``sympy.physics.control``         tf_to_sympy, tf_from_sympy         ss_to_sympy, ss_from_sympy
 ================================  =================================  =================================
 
-python-control and SciPy hold numbers (objects with symbols are refused); SymPy
-holds symbols, and its conversions are exact both ways. The sampling time is kept:
-``dt=True`` of python-control and SciPy ("discrete, unspecified") is ``dt=None``,
-continuous-time systems are refused (:class:`~symctl.errors.ParameterError`: discretize
-first). SymPy 1.14 has no discrete-time classes, so its objects carry no ``dt``
-(``*_from_sympy`` take ``dt=``); a later SymPy's ``DiscreteTransferFunction`` and
-``DiscreteStateSpace`` are detected and carry it (``docs/interop.md`` has the table).
-A transfer function is realized, where a state space is needed, by
-:func:`symctl.design._foreign.canonical_columns` (for SISO: controllable canonical form).
+python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols,
+exactly both ways. The sampling time is kept: ``dt=True`` ("discrete, unspecified")
+is ``dt=None``; continuous-time systems are refused (discretize first). SymPy 1.14
+has no discrete-time classes (``*_from_sympy`` take ``dt=``); a later SymPy's
+``DiscreteTransferFunction`` and ``DiscreteStateSpace`` carry it. Where a state space
+is needed, a transfer function is realized in the column-wise controllable canonical
+form (:func:`symctl.design._foreign.canonical_columns`).
 
 >>> from symctl import z
 >>> from symctl import DiscreteTF
@@ -80,6 +77,15 @@ def _floats(coeffs, what: str) -> list[float]:
         raise ParameterError(f"G: {what} has free symbols; substitute numbers first") from None
 
 
+def _numeric(G) -> tuple[list[float], list[list[list[float]]]]:
+    """The denominator and the numerators ``nums[i][j]`` of a numeric DiscreteTF, as floats."""
+    den = _floats(G.den_coeffs(), "the denominator")
+    rows, cols = G.shape
+    return den, [
+        [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
+    ]
+
+
 def _z_expr(coeffs) -> sp.Expr:
     """The polynomial in z of float coefficients (descending powers) of another library."""
     return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
@@ -107,7 +113,6 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
     Returns
     -------
     control.TransferFunction
-        With ``dt = G.dt`` (``True`` when ``G.dt`` is None).
 
     Raises
     ------
@@ -123,16 +128,10 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
     >>> tf_to_control(DiscreteTF.from_expr(1 / (z - 0.5))).dt
     True
     """
-    G = _tf(G)
-    den = _floats(G.den_coeffs(), "the denominator")
-    rows, cols = G.shape
-    nums = [
-        [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
-    ]
-    dens = [[den for _ in range(cols)] for _ in range(rows)]
+    den, nums = _numeric(_tf(G))
     if G.is_siso:
         return control.tf(nums[0][0], den, _their_dt(G.dt))
-    return control.tf(nums, dens, _their_dt(G.dt))
+    return control.tf(nums, [[den] * len(nums[0])] * len(nums), _their_dt(G.dt))
 
 
 def _discrete(sys):
@@ -152,7 +151,7 @@ def tf_from_control(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        In lowest terms, with ``dt = sys.dt`` (None for ``dt=True``).
+        In lowest terms.
 
     Raises
     ------
@@ -189,7 +188,7 @@ def ss_to_control(R: Realization) -> control.StateSpace:
     Returns
     -------
     control.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``, ``dt = R.dt`` (``True`` when None).
+        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
@@ -215,13 +214,11 @@ def ss_from_control(sys) -> Realization:
     Parameters
     ----------
     sys : control.StateSpace or control.TransferFunction
-        Discrete-time. A transfer function (SISO or MIMO) is realized in the
-        column-wise controllable canonical form (see the module's docstring).
+        Discrete-time; a transfer function is realized in the controllable canonical form.
 
     Returns
     -------
     Realization
-        With ``dt = sys.dt`` (None for ``dt=True``).
 
     Raises
     ------
@@ -261,8 +258,7 @@ def _scipy_dt(sys):
 def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     """A discrete ``scipy.signal.TransferFunction`` of a numeric SISO or SIMO :class:`DiscreteTF`.
 
-    SciPy's transfer functions have one input (a SIMO ``G`` gives a 2-D ``num``,
-    one row per output); :func:`ss_to_scipy` holds any shape.
+    SciPy's transfer functions have one input (a SIMO ``G``: one ``num`` row per output).
 
     Parameters
     ----------
@@ -272,7 +268,6 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     Returns
     -------
     scipy.signal.TransferFunction
-        A ``dlti`` with ``dt = G.dt`` (``True`` when ``G.dt`` is None).
 
     Raises
     ------
@@ -292,14 +287,13 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     ([1.0, 2.0], [1.0, -0.5], 0.1)
     """
     G = _tf(G)
-    rows, cols = G.shape
-    if cols != 1:
+    if G.shape[1] != 1:
         raise DimensionError(
             f"G: scipy.signal.TransferFunction holds one input, G has shape {G.shape}; "
             "use ss_to_scipy (a StateSpace holds any shape)"
         )
-    den = _floats(G.den_coeffs(), "the denominator")
-    nums = [_floats(G.num_coeffs(i, 0), "the numerator") for i in range(rows)]
+    den, columns = _numeric(G)
+    nums = [row[0] for row in columns]
     if G.is_siso:
         return signal.TransferFunction(nums[0], den, dt=_their_dt(G.dt))
     width = max(len(n) for n in nums)
@@ -334,7 +328,7 @@ def tf_from_scipy(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        With ``dt = sys.dt`` (None for ``dt=True``); coefficients as SciPy has them.
+        With the coefficients as SciPy has them.
 
     Raises
     ------
@@ -371,8 +365,7 @@ def ss_to_scipy(R: Realization) -> signal.StateSpace:
     Returns
     -------
     scipy.signal.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``, a ``dlti`` with ``dt = R.dt`` (``True``
-        when None).
+        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
@@ -399,13 +392,12 @@ def ss_from_scipy(sys) -> Realization:
     Parameters
     ----------
     sys : scipy.signal.dlti
-        A discrete ``StateSpace`` (taken as it is), or a ``TransferFunction`` or
-        ``ZerosPolesGain``, realized in the column-wise controllable canonical form.
+        A discrete ``StateSpace``, or a ``TransferFunction`` or ``ZerosPolesGain``
+        (realized in the controllable canonical form).
 
     Returns
     -------
     Realization
-        With ``dt = sys.dt`` (None for ``dt=True``).
 
     Raises
     ------
@@ -432,11 +424,8 @@ def ss_from_scipy(sys) -> Realization:
 
 
 class _SymPy:
-    """``sympy.physics.control``'s classes, feature-detected: None where this SymPy lacks one.
-
-    ``StateSpace`` arrived in SymPy 1.13; ``DiscreteTransferFunction`` and
-    ``DiscreteStateSpace`` after 1.14 (on SymPy's main branch since August 2025).
-    """
+    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``
+    arrived in 1.13, ``DiscreteTransferFunction`` and ``DiscreteStateSpace`` after 1.14)."""
 
     def __init__(self):
         import sympy.physics.control as ctl
@@ -481,10 +470,9 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 def tf_to_sympy(G: DiscreteTF):
     """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
 
-    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14 and older: no sampling time,
-    ``G.dt`` is dropped) or a ``DiscreteTransferFunction(num, den, z, dt)`` (a SymPy
-    with discrete classes; ``dt=None`` is written as 1). MIMO: a
-    ``TransferFunctionMatrix`` of those, every entry over ``G``'s common denominator.
+    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14: ``G.dt`` dropped) or a
+    ``DiscreteTransferFunction(num, den, z, dt)`` (``dt=None`` written as 1). MIMO: a
+    ``TransferFunctionMatrix`` of those over ``G``'s common denominator.
 
     Parameters
     ----------
@@ -530,16 +518,13 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Parameters
     ----------
     sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
-        SymPy 1.14's classes carry no sampling time: they are read as discrete, in
-        the variable ``z``. A SymPy with discrete classes gives ``sampling_time`` and
-        any variable of its ``DiscreteTransferFunction``; its continuous-time classes
-        are refused. Series, Parallel and Feedback: call ``.doit()`` first.
+        SymPy 1.14's classes are read as discrete, in ``z``; a later SymPy's discrete
+        classes give their ``sampling_time`` and variable. Series, Parallel and
+        Feedback: call ``.doit()`` first.
     dt : number, symbol or None
         The sampling time (SymPy 1.14), or one that must agree with the system's.
     var : sympy Symbol, optional
-        The variable of ``sys`` that is the z-transform variable, when it is not
-        named ``z`` (it becomes :data:`symctl.z`); a transfer function in another
-        variable is refused without it.
+        The variable of ``sys`` that is the z-transform variable, when not ``z``.
 
     Returns
     -------
@@ -615,9 +600,8 @@ def _matrix(values: list, shape: tuple[int, int]):
 def ss_to_sympy(R: Realization):
     """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
 
-    A ``StateSpace(F, H, M, N)`` (SymPy 1.14 and older: no sampling time, ``R.dt``
-    is dropped) or a ``DiscreteStateSpace(F, H, M, N, dt)`` (a SymPy with discrete
-    classes; ``dt=None`` is written as 1).
+    A ``StateSpace(F, H, M, N)`` (SymPy 1.14: ``R.dt`` dropped) or a
+    ``DiscreteStateSpace(F, H, M, N, dt)`` (``dt=None`` written as 1).
 
     Parameters
     ----------
@@ -658,9 +642,7 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
     Parameters
     ----------
     sys : StateSpace, DiscreteStateSpace or a SISO transfer function
-        A state space is taken as it is; a SISO ``TransferFunction`` (or
-        ``DiscreteTransferFunction``) is realized by
-        :func:`~symctl.realization.realization.controllable_canonical`.
+        A transfer function is realized in the controllable canonical form.
     dt : number, symbol or None
         As in :func:`tf_from_sympy`.
     var : sympy Symbol, optional

@@ -1,24 +1,11 @@
 r"""LaTeX export of derived objects and equations, for papers, Jupyter and scripts.
 
-Every derived object of symctl (plant, augmented system, gains, transfer
-function, factorization, realization, delay graph, delay assignment,
-compatibility verdict, circuit) and any sympy expression, matrix or equation
-can be written as LaTeX with the paper's symbol names (:math:`\delta_f`,
-:math:`\gamma`, :math:`\mu`, :math:`\epsilon_1`, :math:`\bar r`, ...):
-
-* :func:`to_latex` -- the math of one object (no environment);
-* :func:`equations` -- an object as ``(lhs, rhs)`` pairs of LaTeX;
-* :func:`equation` and :func:`align` -- ``equation`` / ``align`` environments
-  with labels (``equation*`` / ``align*`` when unnumbered);
-* :func:`export` -- any derived object, or a list of them, as one environment;
-* :func:`document` -- a standalone document that compiles with ``pdflatex``
-  (only packages of TeX Live's ``texlive-latex-base``).
-
-In Jupyter, ``IPython.display.Math(to_latex(obj))`` renders one object, and
-every derived object already shows itself as LaTeX (``_repr_latex_``).
-
-The equations of each derived type are one table (built on first use, so
-that importing this module loads none of the classes it writes).
+Every derived object of symctl and any sympy expression, matrix or equation is
+written with the paper's symbol names (:math:`\delta_f`, :math:`\epsilon_1`, ...):
+:func:`to_latex` (one object's math), :func:`equations` (``(lhs, rhs)`` pairs),
+:func:`equation`, :func:`align` and :func:`export` (environments with labels) and
+:func:`document` (a standalone document for ``pdflatex``). In Jupyter every derived
+object shows itself as LaTeX (``_repr_latex_``).
 
 Examples
 --------
@@ -63,7 +50,6 @@ PACKAGES = ("amsmath", "amssymb", "graphicx")
 """The packages :func:`document` loads (all in TeX Live's ``texlive-latex-base``)."""
 
 
-# ---------------------------------------------------------------- one object
 def number(value: float, digits: int = DIGITS) -> str:
     r"""A real number in LaTeX: ``digits`` significant digits, powers of ten, :math:`\infty`.
 
@@ -179,17 +165,12 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
     )
 
 
-# ---------------------------------------------------------------- objects as equations
 Pairs = list[tuple[str | None, str]]
 
 
 @functools.cache
 def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
-    """The equations of each derived type: ``rule(obj, tex)`` with ``tex`` = :func:`to_latex`.
-
-    One table instead of an ``isinstance`` ladder; built on first use, so that
-    importing this module loads none of the classes it writes.
-    """
+    """The equations of each derived type, ``rule(obj, tex)``; built on first use (fast import)."""
     from symctl.compatibility.assignment import DelayAssignment
     from symctl.compatibility.check import CompatibilityResult
     from symctl.compatibility.controller import ControllerCompatibility
@@ -293,7 +274,6 @@ def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     return _pairs(obj, digits)
 
 
-# ---------------------------------------------------------------- environments
 def _label(label) -> str:
     if label is None:
         return ""

@@ -1,13 +1,9 @@
 r"""One deadline for a whole computation: every stage asks it how long is left.
 
-A search with a ``timeout`` (:func:`symctl.dale` and the functions that call it)
-makes one :class:`Deadline` and hands it down. A z3 query gets the time that is
-left (:meth:`Deadline.left`), a loop stops when it has passed
-(:meth:`Deadline.check` raises :class:`OutOfTime`, naming the stage), and the
-caller turns :class:`OutOfTime` (an :class:`Unfinished`, as is a stage that
-stops at a size limit) into its "not decided" result. The clock is a
-parameter, so a test can run a stage with a deadline that has already passed,
-or one that passes after a given number of readings, without waiting.
+A search with a ``timeout`` makes one :class:`Deadline` and hands it down: a z3 query
+gets the time left (:meth:`Deadline.left`), a loop stops when it has passed
+(:meth:`Deadline.check` raises :class:`OutOfTime`). The clock is a parameter, so
+a test can run out of time without waiting.
 
 >>> from symctl._util.deadline import Deadline, OutOfTime
 >>> ticks = iter(range(100))
@@ -33,11 +29,8 @@ __all__ = ["Deadline", "OutOfTime", "Unfinished", "deadline_of"]
 
 
 class Unfinished(Exception):
-    """A stage stopped before its end: out of time, or past a size limit (the message says why).
-
-    Internal: the function that set the budget catches it and reports "not
-    decided" with the message (it never reaches the user).
-    """
+    """A stage stopped before its end: out of time, or past a size limit (the caller reports
+    "not decided" with the message)."""
 
 
 class OutOfTime(Unfinished):
@@ -50,26 +43,7 @@ class OutOfTime(Unfinished):
 
 @dataclass(frozen=True)
 class Deadline:
-    """``seconds`` from its creation on ``clock`` (default :func:`time.perf_counter`).
-
-    Attributes
-    ----------
-    seconds : float
-        The whole budget.
-    clock : callable
-        Returns the time in seconds; injectable for tests.
-    start : float
-        The clock's reading at creation.
-
-    Examples
-    --------
-    >>> from symctl._util.deadline import Deadline
-    >>> d = Deadline(10.0, clock=lambda: 0.0)
-    >>> d.left(), d.within(3.0).left(), d.within(30.0).left()
-    (10.0, 3.0, 10.0)
-    >>> Deadline.passed().expired()
-    True
-    """
+    """``seconds`` from its creation (``start``) on ``clock`` (default :func:`time.perf_counter`)."""
 
     seconds: float
     clock: Callable[[], float] = field(default=time.perf_counter, repr=False, compare=False)
@@ -113,15 +87,7 @@ class Deadline:
 
 
 def deadline_of(timeout, argname: str = "timeout", high: float = 3600.0) -> Deadline:
-    """``timeout`` as a :class:`Deadline`: seconds from now (in ``[0.001, high]``), or itself.
-
-    >>> from symctl._util.deadline import Deadline, deadline_of
-    >>> deadline_of(5.0).seconds
-    5.0
-    >>> shared = Deadline(60.0)
-    >>> deadline_of(shared) is shared
-    True
-    """
+    """``timeout`` as a :class:`Deadline`: seconds from now (in ``[0.001, high]``), or itself."""
     if isinstance(timeout, Deadline):
         return timeout
     return Deadline(bounded_number(timeout, argname, 1e-3, high))

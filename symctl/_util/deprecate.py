@@ -1,16 +1,8 @@
 """Old spellings of the public API, kept for one release: they still work and warn.
 
-symctl speaks one convention: ``rng`` for randomness (an int seed, a NumPy
-``Generator`` or None, as SciPy), ``dt`` for the sampling time, and every
-verdict truthy with ``.verdict``, ``.method`` and ``.evidence``. A name that
-was spelled otherwise keeps working through the helpers below, with a
-``DeprecationWarning`` that names the new spelling:
-
-- :func:`renamed_keywords` maps an old keyword of a function (or of a class's
-  ``__init__``) to its new name;
-- :func:`renamed_attribute` is a read-only property that reads the new field;
-- :func:`rng_argument` normalises ``rng`` in one place (as networkx's
-  ``np_random_state`` does) and accepts ``seed=`` as its old name.
+symctl speaks one convention: ``rng`` for randomness, ``dt`` for the sampling time,
+and every verdict truthy with ``.verdict``, ``.method`` and ``.evidence``; an older
+spelling keeps working through these helpers, with a ``DeprecationWarning``.
 
 >>> import warnings
 >>> from symctl._util.deprecate import renamed_keywords
@@ -63,11 +55,8 @@ def _moved(kwargs: dict, renames: dict, where: str) -> dict:
 
 
 def renamed_keywords(**renames: str):
-    """A decorator: each keyword ``old=new`` of ``renames`` is accepted as ``new``, with a warning.
-
-    Applied to a dataclass's generated ``__init__`` (``cls.__init__ =
-    renamed_keywords(Ts="dt")(cls.__init__)``) it renames a field's keyword.
-    """
+    """A decorator: each keyword ``old=new`` of ``renames`` is accepted as ``new``, with a warning
+    (also on a dataclass's ``__init__``)."""
 
     def decorate(func):
         where = func.__qualname__.removesuffix(".__init__")
@@ -106,13 +95,8 @@ def renamed_method(old: str, new: str):
 
 
 def rng_argument(kind: str = "numpy"):
-    """A decorator: the keyword-only ``rng`` becomes a NumPy ``Generator`` (or ``random.Random``).
-
-    ``rng`` may be an int seed >= 0 (the same int gives the same numbers), a
-    NumPy ``Generator`` or None (fresh entropy); ``kind="random"`` gives a
-    ``random.Random`` for exact big-integer sampling. ``seed=`` is accepted as
-    the deprecated name of ``rng``.
-    """
+    """A decorator: the keyword-only ``rng`` (an int seed, a Generator or None; ``seed=`` is its
+    old name) becomes a NumPy ``Generator``, or with ``kind="random"`` a ``random.Random``."""
     convert = {"numpy": as_generator, "random": as_random}[kind]
 
     def decorate(func):
@@ -132,10 +116,7 @@ def rng_argument(kind: str = "numpy"):
 
 
 class RenamedKeys(Mapping):
-    """A read-only mapping whose old key names still work, with a warning.
-
-    ``renamed`` turns an old key into its new name (or None when it is not an
-    old key); iteration gives the new names only.
+    """A read-only mapping whose old key names (``renamed(old)`` -> new) still work, with a warning.
 
     >>> import warnings
     >>> from symctl._util.deprecate import RenamedKeys

@@ -80,17 +80,8 @@ def _word_name(symbol: sp.Symbol) -> str | None:
 
 
 def shortened(expr, digits: int = DISPLAY_DIGITS):
-    """``expr`` with its floats to ``digits`` significant digits for display; exact numbers as they are.
-
-    A float that rounds to an integer becomes that integer, so that a monic
-    polynomial computed in floating point prints ``z**2``, not ``1.0*z**2``.
-
-    >>> import sympy as sp
-    >>> from symctl import z
-    >>> from symctl._util.display import shortened
-    >>> shortened(sp.Float(1.0000000000000002) * z**2 + sp.Float(0.580040776580175) * z + sp.Rational(1, 3))
-    z**2 + 0.580041*z + 1/3
-    """
+    """``expr`` with its floats to ``digits`` significant digits for display (one that rounds
+    to an integer becomes it: ``z**2``, not ``1.0*z**2``); exact numbers as they are."""
     if not isinstance(expr, sp.Basic | sp.MatrixBase):
         return expr
     floats = {}

@@ -62,6 +62,16 @@ def _mul_pairs(parts):
     return num, den
 
 
+def _pow_pair(base, value, k: int):
+    """``value ** k`` of a pair; a negative power of a vanishing numerator raises."""
+    num, den = value
+    if k >= 0:
+        return num**k, den**k
+    if num == 0:
+        raise ZeroDivisionError(f"{base} vanishes")
+    return den**-k, num**-k
+
+
 class NotRational(Exception):
     """An expression that is not a rational function of its symbols (its first argument)."""
 
@@ -69,8 +79,7 @@ class NotRational(Exception):
 def fold(expr: sp.Expr, algebra, memo: dict | None = None):
     """Evaluate a rational sympy expression bottom-up in ``algebra`` (shared subtrees once).
 
-    Floats are taken as the exact binary rationals they are. Raises
-    :class:`NotRational` on any other node (a function, a symbolic exponent).
+    Floats are their exact binary rationals; any other node raises :class:`NotRational`.
     """
     memo = {} if memo is None else memo
     got = memo.get(expr)
@@ -93,8 +102,19 @@ def fold(expr: sp.Expr, algebra, memo: dict | None = None):
     return out
 
 
-# ---------------------------------------------------------------- algebras
-class RingFractions:
+class _Pairs:
+    """An algebra of fractions as ``(numerator, denominator)`` pairs with leaves by symbol."""
+
+    _leaves: dict
+
+    def symbol(self, s):
+        return self._leaves[s]
+
+    mul = staticmethod(_mul_pairs)
+    pow = staticmethod(_pow_pair)
+
+
+class RingFractions(_Pairs):
     """Algebra: pairs (numerator, denominator) in a sparse SymPy polynomial ring, no gcd."""
 
     def __init__(self, ring_, generators):
@@ -104,9 +124,6 @@ class RingFractions:
     def number(self, p: int, q: int):
         return self.ring(p), self.ring(q)
 
-    def symbol(self, s):
-        return self._leaves[s]
-
     @staticmethod
     def add(parts):
         num, den = parts[0]
@@ -115,16 +132,12 @@ class RingFractions:
         return num, den
 
     @staticmethod
-    def mul(parts):
-        return _mul_pairs(parts)
-
-    @staticmethod
     def pow(base, value, k: int):
         num, den = value
         return (num**k, den**k) if k >= 0 else (den ** (-k), num ** (-k))
 
 
-class PolyFractions:
+class PolyFractions(_Pairs):
     """Algebra: rational functions as pairs (numerator, denominator) of ``fmpz_mpoly``."""
 
     def __init__(self, ctx, symbols):
@@ -134,9 +147,6 @@ class PolyFractions:
 
     def number(self, p: int, q: int):
         return self.ctx.constant(p), self.ctx.constant(q)
-
-    def symbol(self, s):
-        return self._leaves[s]
 
     @staticmethod
     def add(parts):
@@ -154,21 +164,8 @@ class PolyFractions:
                 num, den = num * c2 + n2 * c1, c1 * d2
         return num, den
 
-    @staticmethod
-    def mul(parts):
-        return _mul_pairs(parts)
 
-    @staticmethod
-    def pow(base, value, k: int):
-        num, den = value
-        if k >= 0:
-            return num**k, den**k
-        if num.is_zero():
-            raise ZeroDivisionError(f"{base} vanishes")
-        return den**-k, num**-k
-
-
-class IntFractions:
+class IntFractions(_Pairs):
     """Algebra: the value at a point, as a pair of Python ints (fast for numbers)."""
 
     def __init__(self, values: Mapping):
@@ -177,9 +174,6 @@ class IntFractions:
     @staticmethod
     def number(p: int, q: int):
         return p, q
-
-    def symbol(self, s):
-        return self._leaves[s]
 
     @staticmethod
     def add(parts):
@@ -199,15 +193,6 @@ class IntFractions:
             g = math.gcd(num, den)
             num, den = num // g, den // g
         return num, den
-
-    @staticmethod
-    def pow(base, value, k: int):
-        num, den = value
-        if k >= 0:
-            return num**k, den**k
-        if num == 0:
-            raise ZeroDivisionError(f"{base} vanishes")
-        return den**-k, num**-k
 
 
 class Degrees:
@@ -265,14 +250,9 @@ class Degrees:
         return (1 - k) * self.deg(q), self.merge((q, {base: -k}), int.__add__)
 
 
-# ---------------------------------------------------------------- polynomials in z
 def _generators(exprs) -> list[sp.Symbol] | None:
-    """z and the other symbols, or None when an expression holds floats or other atoms.
-
-    Transcendental constants such as ``exp(1/2)`` are algebraically related
-    (``exp(1/2) * exp(-1/2) = 1``); a polynomial ring would miss that, so such
-    expressions take the expression path instead.
-    """
+    """z and the other symbols, or None for floats or other atoms (``exp(1/2) * exp(-1/2) = 1``
+    would escape a polynomial ring)."""
     syms: set[sp.Symbol] = set()
     for e in exprs:
         for node in sp.preorder_traversal(e):
@@ -287,14 +267,8 @@ def _generators(exprs) -> list[sp.Symbol] | None:
 
 
 def ring_fractions(exprs: list[sp.Expr]) -> list[tuple] | None:
-    """Each expression as a pair (numerator, denominator) of sparse polynomials over QQ.
-
-    The ring's generators are z and every other symbol; sums, products and
-    integer powers are carried out on the pairs by :func:`fold` in
-    :class:`RingFractions`, with no gcd and no expansion of expression trees,
-    so the cost is that of sparse polynomial multiplication. Returns None when
-    an expression holds floats or atoms other than symbols and rationals.
-    """
+    """Each expression as a pair (numerator, denominator) of sparse polynomials over QQ in z and
+    its symbols (:class:`RingFractions`: no gcd, no expansion); None for floats or other atoms."""
     gens = _generators(exprs)
     if gens is None:
         return None

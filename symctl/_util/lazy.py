@@ -1,10 +1,8 @@
 """Public names loaded on first use (PEP 562), from one table.
 
 A package writes its public names once, as a table ``{name: module}``, and gets
-``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach` (the shape of
-``lazy_loader.attach`` and networkx's ``lazy_imports``, in twenty lines). A name
-is imported when it is first used, so ``import symctl`` stays quick and a
-script pays only for what it uses.
+``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach`, so that ``import
+symctl`` stays quick.
 
 Examples
 --------
@@ -28,23 +26,8 @@ __all__ = ["attach"]
 def attach(
     package: str, table: Mapping[str, str], submodules: Iterable[str] = ()
 ) -> tuple[Callable[[str], object], Callable[[], list[str]], list[str]]:
-    """``(__getattr__, __dir__, __all__)`` for ``package`` from ``{name: module}``.
-
-    Parameters
-    ----------
-    package : str
-        The package's ``__name__``.
-    table : mapping of str to str
-        Each public name and the module that defines it.
-    submodules : iterable of str, optional
-        Submodules reached as attributes (``symctl.latex``).
-
-    Returns
-    -------
-    tuple
-        ``__getattr__`` (imports on first use and caches in the package),
-        ``__dir__`` and the sorted ``__all__``.
-    """
+    """``(__getattr__, __dir__, __all__)`` for ``package`` from ``{name: module}``: a name is
+    imported on first use and cached in the package; ``submodules`` are reached as attributes."""
     table = dict(table)
     subs = frozenset(submodules)
     names = sorted(table)

@@ -87,7 +87,6 @@ MAX_NODES = 1_000
 MAX_DEPTH = 100
 MAX_EXPONENT = 1_000
 MAX_BITS = 20_000
-_MAX_TEXT = MAX_TEXT  # the old private name
 _NON_FINITE = (sp.zoo, sp.oo, -sp.oo, sp.nan)
 
 

@@ -1,11 +1,8 @@
 """Pickling of symctl's values: read-only mappings, and cached properties left out.
 
-symctl's value objects keep their mappings read-only (:class:`types.MappingProxyType`),
-which the standard library does not pickle. :func:`register` teaches :mod:`copyreg`
-to pickle a read-only mapping as the read-only view of a copy of its items (done once,
-when ``symctl`` is imported: every symctl object is made after that).
-:class:`CachedState` is the state of a frozen value with cached properties: they are
-recomputed after loading, never saved (a lambdified function does not pickle).
+:func:`register` teaches :mod:`copyreg` to pickle a read-only mapping
+(:class:`types.MappingProxyType`) as the view of a copy of its items;
+:class:`CachedState` leaves cached properties out of a frozen value's state.
 
 >>> import pickle
 >>> from types import MappingProxyType

@@ -28,30 +28,10 @@ _NAME = re.compile(r"([A-Za-z]+)(?:(\d+)|_\{([^{}]*)\}|_([A-Za-z0-9]+))?")
 
 
 def signal_tex(name: str, *, part: bool = True) -> str:
-    r"""LaTeX (without ``$``) of a signal or neuron name.
+    r"""LaTeX (without ``$``) of a signal or neuron name: ``G2.x1`` is ``{x_{1}}^{\mathrm{G2}}``.
 
-    A stem and an index (``x1``, ``gamma2``, ``epsilon_{1,2}``, ``x_3``) become
-    a subscript, Greek stems a Greek letter; the part before a dot (``G2`` in
-    ``G2.x1``) becomes a roman superscript, or is dropped with ``part=False``.
-    Any other name is set in roman.
-
-    Parameters
-    ----------
-    name : str
-        The signal name, e.g. ``"G2.x1"``.
-    part : bool, default True
-        Keep the part (``G2``) as a superscript.
-
-    Returns
-    -------
-    str
-        The LaTeX, e.g. ``{x_{1}}^{\mathrm{G2}}``.
-
-    Examples
-    --------
-    >>> from symctl._util.texnames import signal_tex
-    >>> signal_tex("mu")
-    '\\mu'
+    A stem and an index become a subscript, a Greek stem a Greek letter; the part before
+    a dot a roman superscript (dropped with ``part=False``); any other name is roman.
     """
     prefix, _, short = name.rpartition(".")
     match = _NAME.fullmatch(short)

@@ -1,10 +1,8 @@
-"""Argument checks at the public boundary: every shape, number, integer, seed and array check.
+"""Argument checks at the public boundary, each naming the argument and its value.
 
-Every public function of symctl checks its arguments here, so that bad input
-fails early with one of :mod:`symctl.errors`' types and a message naming the
-argument and its value: a wrong type is a :class:`~symctl.errors.SymctlTypeError`,
-a bad value a :class:`~symctl.errors.ParameterError` (shapes: ``DimensionError``).
-Text goes through the safe parser (:mod:`symctl._util.parse`) only.
+A wrong type is a :class:`~symctl.errors.SymctlTypeError`, a bad value a
+:class:`~symctl.errors.ParameterError` (shapes: ``DimensionError``); text goes
+through the safe parser (:mod:`symctl._util.parse`) only.
 
 >>> from symctl._util.validate import to_matrix
 >>> to_matrix([[1, 0], ["0", "1/2"]], "Q")
@@ -72,11 +70,7 @@ def to_expr(value, argname: str, names=None) -> sp.Expr:
 
 
 def to_matrix(value, argname: str, shape: tuple[int, int] | None = None, names=None) -> sp.Matrix:
-    """A sympy Matrix from a scalar, nested lists, a NumPy array or a sympy matrix.
-
-    A scalar becomes a 1 x 1 matrix; a flat list a column. ``shape`` is
-    checked when given.
-    """
+    """A sympy Matrix from a scalar (1 x 1), a flat list (a column), nested lists or an array."""
     if isinstance(value, sp.MatrixBase):
         mat = sp.Matrix(value)
     elif isinstance(value, np.ndarray | list | tuple):
@@ -153,24 +147,12 @@ def _integer(value, argname: str) -> None:
 
 
 def nonneg_int(value, argname: str) -> int:
-    """An integer >= 0: a wrong type (bool, float, text) is a type error, a negative a value error.
-
-    >>> from symctl._util.validate import nonneg_int
-    >>> nonneg_int(2, "sensor_delay")
-    2
-    >>> nonneg_int(1.5, "sensor_delay")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: sensor_delay: expected an integer, got 1.5
-    """
+    """An integer >= 0: a wrong type (bool, float, text) is a type error, a negative a value one."""
     return bounded_int(value, argname, 0, math.inf)
 
 
 def as_generator(value, argname: str) -> np.random.Generator:
-    """A NumPy ``Generator`` from a Generator, an int seed >= 0 or None (fresh entropy).
-
-    A negative seed is a :class:`ParameterError` (NumPy's own would be a ``ValueError``).
-    """
+    """A NumPy ``Generator`` from a Generator, an int seed >= 0 or None (fresh entropy)."""
     if isinstance(value, np.random.Generator):
         return value
     if value is None:
@@ -181,19 +163,7 @@ def as_generator(value, argname: str) -> np.random.Generator:
 
 
 def read_only(value, dtype=None) -> np.ndarray:
-    """A read-only array for a value object: a copy, unless it is read-only already.
-
-    The caller's array is never frozen in place (its flags stay as they were).
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import read_only
-    >>> a = np.zeros(2)
-    >>> b = read_only(a)
-    >>> b.flags.writeable, a.flags.writeable, read_only(b) is b
-    (False, True, True)
-    >>> read_only([1, 2], float).dtype
-    dtype('float64')
-    """
+    """A read-only array: a copy (the caller's array is never frozen), unless read-only already."""
     arr = np.asarray(value, dtype=dtype)
     if arr.flags.writeable:
         arr = np.array(arr, order="C")
@@ -202,16 +172,7 @@ def read_only(value, dtype=None) -> np.ndarray:
 
 
 def sampling_time(value, argname: str) -> sp.Expr:
-    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass).
-
-    >>> from symctl._util.validate import sampling_time
-    >>> sampling_time(0.01, "Ts")
-    0.0100000000000000
-    >>> sampling_time(0, "dt")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: dt: must be > 0, got 0
-    """
+    """A sampling time: a sympy expression, > 0 when it is a number (symbols pass)."""
     ts = to_expr(value, argname)
     if ts.is_number and not ts.is_positive:
         raise ParameterError(f"{argname}: must be > 0, got {value!r}")
@@ -219,14 +180,7 @@ def sampling_time(value, argname: str) -> sp.Expr:
 
 
 def as_random(value, argname: str):
-    """A ``random.Random`` from None (the OS's entropy), an int seed, a Random or a NumPy Generator.
-
-    For exact sampling of big integers (``randrange`` beyond 2**63).
-
-    >>> from symctl._util.validate import as_random
-    >>> as_random(3, "rng").randrange(10) == as_random(3, "rng").randrange(10)
-    True
-    """
+    """A ``random.Random`` (exact big integers) from None, an int seed, a Random or a Generator."""
     import random
 
     if value is None:
@@ -243,33 +197,12 @@ def as_random(value, argname: str):
 
 
 def positive_int(value, argname: str) -> int:
-    """An integer >= 1: a wrong type is a type error, a smaller integer a value error.
-
-    >>> from symctl._util.validate import positive_int
-    >>> positive_int(3, "steps")
-    3
-    >>> positive_int(0, "steps")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: steps: must be an integer >= 1, got 0
-    """
+    """An integer >= 1: a wrong type is a type error, a smaller integer a value error."""
     return bounded_int(value, argname, 1, math.inf)
 
 
 def float_array(value, argname: str) -> np.ndarray:
-    """A finite float64 NumPy array of any shape, without going through sympy.
-
-    Text, None and ragged or non-numeric sequences are a :class:`SymctlTypeError`;
-    NaN or inf entries a :class:`ParameterError`.
-
-    >>> from symctl._util.validate import float_array
-    >>> float_array([[1, 2]], "w")
-    array([[1., 2.]])
-    >>> float_array([1.0, float("nan")], "w")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: w: entries must be finite (no NaN or inf)
-    """
+    """A finite float64 array of any shape (not through sympy); text, None, ragged: a type error."""
     if isinstance(value, str | bytes) or value is None:
         raise SymctlTypeError(f"{argname}: expected an array of numbers, got {value!r}")
     try:
@@ -302,34 +235,9 @@ def _subs_key(key, names: dict, argname: str) -> sp.Basic:
 def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
     """The checked arguments of a ``subs`` method: ``(rule, flags)`` for :meth:`sympy.Basic.subs`.
 
-    Accepts what :meth:`sympy.Basic.subs` accepts from a user, and nothing that
-    SymPy would ``eval``: ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``.
-    A key is a sympy object or the name of one of ``symbols`` (the object's own
-    free symbols, so ``"K_0"`` finds the real symbol ``K_0``); a value goes
-    through :func:`to_expr` (numbers, sympy objects, or text read by the safe
-    parser with ``symbols`` as its names). The only keyword is ``simultaneous``.
-    A mapping stays a dict (SymPy orders it canonically), pairs stay in order.
-
-    Raises
-    ------
-    SymctlTypeError
-        Wrong argument count or types, an unknown keyword.
-    ParameterError
-        A key naming no symbol; a non-finite value.
-    ParseError
-        A value's text is not an admissible expression.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl._util.validate import subs_rule
-    >>> k = sp.Symbol("K_0", real=True)
-    >>> subs_rule(({"K_0": "1/2"},), {}, {k})
-    ({K_0: 1/2}, {})
-    >>> subs_rule(({"K_0": "__import__('os')"},), {}, {k})
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParseError: subs[K_0]: function '__import__' is not allowed; use one of: Abs, ...
+    ``subs(old, new)``, ``subs(mapping)`` or ``subs(pairs)``, nothing SymPy would ``eval``: a
+    key is a sympy object or the name of one of ``symbols``, a value goes through
+    :func:`to_expr`; the only keyword is ``simultaneous``.
     """
     flags = {}
     for name, flag in kwargs.items():
@@ -362,17 +270,7 @@ def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
 
 
 def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
-    """A tuple of sympy Symbols (for ``lambdify``: a name there becomes Python code, so no text).
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import symbol_tuple
-    >>> symbol_tuple([sp.Symbol("a")], "symbols")
-    (a,)
-    >>> symbol_tuple("a", "symbols")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: symbols: expected a sequence of sympy Symbols, got 'a'
-    """
+    """A tuple of sympy Symbols (for ``lambdify``: a name there becomes Python code, so no text)."""
     if isinstance(value, sp.Symbol):
         return (value,)
     if isinstance(value, str | bytes) or not isinstance(value, list | tuple):
@@ -384,60 +282,30 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
 
 
 def common_dt(dt1, dt2, argname: str):
-    """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``.
-
-    ``None`` (unspecified, as python-control's ``dt=True``) combines with anything and
-    yields the other; two numbers must agree to a relative ``1e-12`` (so ``0.01`` and
-    ``1/100`` combine), two symbolic times must be the same expression. Anything else is
-    a :class:`ParameterError` naming ``argname`` (python-control's "incompatible timebases").
-    The first operand's ``dt`` is kept when both are given.
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import common_dt
-    >>> common_dt(None, sp.Rational(1, 10), "other")
-    1/10
-    >>> common_dt(sp.Float(0.1), sp.Rational(1, 2), "other")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: other: incompatible sampling times dt = 0.100000000000000 and dt = 1/2
-    """
+    """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``."""
     if dt1 is None:
         return dt2
     if dt2 is None:
         return dt1
-    a, b = dt1, dt2
-    if a == b:
+    if dt1 == dt2:
         return dt1
-    if a.is_number and b.is_number:
-        x, y = float(a), float(b)
-        if math.isclose(x, y, rel_tol=1e-12, abs_tol=0.0):
+    if dt1.is_number and dt2.is_number:
+        if math.isclose(float(dt1), float(dt2), rel_tol=1e-12, abs_tol=0.0):
             return dt1
-    elif sp.expand(a - b) == 0:
+    elif sp.expand(dt1 - dt2) == 0:
         return dt1
     raise ParameterError(f"{argname}: incompatible sampling times dt = {dt1} and dt = {dt2}")
 
 
 def relative_tolerance(value, argname: str) -> float:
-    """A relative tolerance: a real number with ``0 < value < 1``.
-
-    >>> from symctl._util.validate import relative_tolerance
-    >>> relative_tolerance(1e-9, "rtol")
-    1e-09
-    >>> relative_tolerance(0, "rtol")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: rtol: must be a number in (0, 1), got 0
-    """
+    """A relative tolerance: a real number with ``0 < value < 1``."""
     out = positive_number(value, argname) if value != 0 else 0.0
     if not 0 < out < 1:
         raise ParameterError(f"{argname}: must be a number in (0, 1), got {value!r}")
     return out
 
 
-# ---------------------------------------------------------------- limits
-# Every size symctl accepts has a limit, checked before any work starts, so that a
-# typo such as a delay of 10**22 is a clear ParameterError instead of minutes of work
-# or a MemoryError. Each limit is defined here, once; docs/reliability.md tabulates them.
+# Every size symctl accepts has a limit, checked before any work (docs/reliability.md).
 
 MAX_DELAY = 500
 """Largest net delay ``T = sensor_delay + actuator_delay`` (steps) of :func:`symctl.augment`
@@ -447,9 +315,8 @@ MAX_STEPS = 10**6
 """Longest horizon (samples) of a simulation or an impulse response."""
 
 MAX_SYMBOLIC_BLOCK = 3
-"""Largest ``n + m`` (states plus inputs) of a symbolic zero-order-hold discretization:
-SymPy's closed-form matrix exponential of a generic 2-state, 1-input plant takes about
-30 s, a 3-state one does not finish (numbers go through SciPy instead, up to ``MAX_STATES``)."""
+"""Largest ``n + m`` of a symbolic zero-order-hold discretization (SymPy's matrix exponential
+of a 2-state, 1-input plant takes about 30 s; numbers go through SciPy)."""
 
 MAX_COUNT = 10_000
 """Most numeric draws at once (realizations drawn, amplitudes of the nonlinear check)."""
@@ -460,8 +327,7 @@ MAX_CIRCUITS = 1000
 
 PAPER_MAX_DELAY = 20
 """Largest net delay of ``derive_paper`` and ``symctl paper``: the range benchmarks/scaling.py
-measures and the documents are laid out for (T = 20 within two minutes on 2 cores, see the
-README's scaling table). The design functions take up to ``MAX_DELAY``."""
+measures and the documents are laid out for (the design functions take ``MAX_DELAY``)."""
 
 MAX_STATES = 1000
 """Most states of a plant (``discretize``, ``linearize``) and of a delay-augmented system."""
@@ -478,16 +344,7 @@ MAX_MAGNITUDE = 1e100
 
 
 def bounded_int(value, argname: str, low: int, high: int) -> int:
-    """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error.
-
-    >>> from symctl._util.validate import bounded_int
-    >>> bounded_int(3, "steps", 1, 10)
-    3
-    >>> bounded_int(10**12, "sensor_delay", 0, 500)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: sensor_delay: must be an integer <= 500 (the limit), got 1000000000000
-    """
+    """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error."""
     _integer(value, argname)
     if value < low:
         raise ParameterError(f"{argname}: must be an integer >= {low}, got {value!r}")
@@ -497,14 +354,7 @@ def bounded_int(value, argname: str, low: int, high: int) -> int:
 
 
 def bounded_number(value, argname: str, low: float, high: float) -> float:
-    """A finite float in ``[low, high]``.
-
-    >>> from symctl._util.validate import bounded_number
-    >>> bounded_number(1e308, "f_max", 0, 1e100)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: f_max: must be a number in [0, 1e+100], got 1e+308
-    """
+    """A finite float in ``[low, high]``."""
     out = real_number(value, argname)
     if not low <= out <= high:
         raise ParameterError(f"{argname}: must be a number in [{low:g}, {high:g}], got {value!r}")
@@ -515,18 +365,7 @@ _NON_FINITE = (sp.nan, sp.oo, -sp.oo, sp.zoo)
 
 
 def finite_expr(expr, argname: str):
-    """``expr`` unchanged, unless it holds NaN, an infinity or a non-finite float.
-
-    >>> import sympy as sp
-    >>> from symctl._util.validate import finite_expr
-    >>> from symctl.symbols import z
-    >>> finite_expr(z + 1, "den")
-    z + 1
-    >>> finite_expr(sp.nan * z + 1, "den")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: den: must be finite (no NaN or infinity), got nan
-    """
+    """``expr`` unchanged, unless it holds NaN, an infinity or a non-finite float."""
     if isinstance(expr, sp.Basic):
         bad = expr in _NON_FINITE or expr.has(*_NON_FINITE)
         bad = bad or any(not math.isfinite(float(f)) for f in expr.atoms(sp.Float))
@@ -543,29 +382,14 @@ def cmath_isfinite(value) -> bool:
 
 
 def callable_or_none(value, argname: str):
-    """``value`` when it is callable or None, else a :class:`SymctlTypeError`.
-
-    >>> from symctl._util.validate import callable_or_none
-    >>> callable_or_none("x", "progress")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: progress: expected a callable or None, got 'x'
-    """
+    """``value`` when it is callable or None, else a :class:`SymctlTypeError`."""
     if value is not None and not callable(value):
         raise SymctlTypeError(f"{argname}: expected a callable or None, got {value!r}")
     return value
 
 
 def check_magnitude(arr, argname: str):
-    """``arr`` (a float array) unless an entry exceeds ``MAX_MAGNITUDE`` in magnitude.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import check_magnitude
-    >>> check_magnitude(np.array([[1e300]]), "Q")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: Q: entries must be at most 1e+100 in magnitude (...), got 1e+300
-    """
+    """``arr`` (a float array) unless an entry exceeds ``MAX_MAGNITUDE`` in magnitude."""
     big = float(np.max(np.abs(arr))) if arr.size else 0.0
     if big > MAX_MAGNITUDE:
         raise ParameterError(
@@ -586,17 +410,7 @@ def _to_float(value, argname: str) -> float:
 
 
 def max_size(value, argname: str, limit: int) -> None:
-    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, cheaply.
-
-    Checked on the raw value (NumPy's shape) before SymPy converts every entry.
-
-    >>> import numpy as np
-    >>> from symctl._util.validate import max_size
-    >>> max_size(np.zeros((2000, 2000)), "a", 1000)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.DimensionError: a: at most 1000 rows and columns, got shape (2000, 2000)
-    """
+    """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, before SymPy."""
     if isinstance(value, str):
         return
     try:
@@ -610,13 +424,9 @@ def max_size(value, argname: str, limit: int) -> None:
 
 
 MAX_EXPANDED_TERMS = 50_000
-r"""Most polynomial terms (numerators plus denominator, bounded before any work) that a
-MIMO transfer function :math:`D(z)^{-1} N(z)` is expanded into as ``num/den`` unless asked
-for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`): SymPy builds a few
-thousand terms a second (50,000: about 15 s on 2 cores), and ``controller_tf`` of a plant
-with 6 inputs at T = 3 would be 5 million."""
+r"""Most polynomial terms a MIMO :math:`D(z)^{-1} N(z)` is expanded into as ``num/den``
+unless asked for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`; about 15 s)."""
 
 MAX_OUTPUT_BYTES = 4 * 2**30
-"""Most bytes of traces (float64) that one :func:`symctl.simulate_batch` result, or one of
-its chunks, holds: 4 GiB. Force and rate of 10**6 loops x 500 steps are 8 GB: stream them
-(``chunk=``) or keep fewer traces or only their peaks (``keep=``)."""
+"""Most bytes of traces that one :func:`symctl.simulate_batch` result (or chunk) holds: 4 GiB
+(stream with ``chunk=``, or keep fewer traces with ``keep=``)."""

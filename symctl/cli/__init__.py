@@ -1,12 +1,9 @@
 """The ``symctl`` command. Orchestration only: the math lives in the library.
 
-``symctl paper`` runs the paper's derivation and writes its outputs; its
-defaults are the paper's parameters (:data:`symctl.report.spec.PAPER`). Bad
-input prints one line (``symctl: error: ...``) and exits with code 2; the
-output folder is written all at once or not at all
-(:class:`symctl.report.output.OutputFolder`); SIGINT and SIGTERM end a run
-cleanly with codes 130 and 143. The console script calls :func:`run`;
-:func:`main` returns the exit code instead of exiting.
+Bad input prints one line (``symctl: error: ...``) and exits with code 2; the output
+folder is written all at once or not at all; SIGINT and SIGTERM end a run cleanly with
+codes 130 and 143. The console script calls :func:`run`; :func:`main` returns the exit
+code instead of exiting.
 
 Examples
 --------
@@ -33,9 +30,8 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
-from symctl.cli.options import options_named
+from symctl.cli.options import options, options_named, shown, writing_options
 from symctl.cli.summary import summary
-from symctl.cli.writing import writing_options as _writing_options
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
 
@@ -55,65 +51,33 @@ cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
 
 
 @cli.command()
-@click.option(
-    "--tau", type=float, default=PAPER.tau, show_default=True, help="Muscle time constant [s]."
+@options(
+    shown("--tau", type=float, default=PAPER.tau, help="Muscle time constant [s]."),
+    shown("--f-max", type=float, default=PAPER.f_max, help="Maximum force [N]."),
+    shown("--r-bar", type=float, default=PAPER.r_bar, help="Equilibrium firing rate [spikes/s]."),
+    shown("--ts", type=float, default=PAPER.Ts, help="Sampling time [s]."),
+    shown("--sensor-delay", type=int, default=PAPER.sensor_delay, help="Sensor delay [steps]."),
+    shown(
+        "--actuator-delay", type=int, default=PAPER.actuator_delay, help="Actuator delay [steps]."
+    ),
+    shown(
+        "--q", "q_text", default="1", help="State penalty Q: a number or a matrix such as '[[1]]'."
+    ),
+    shown("--r", "r_text", default="1", help="Input penalty R: a number or a matrix."),
+    shown("--seed", type=int, default=PAPER.seed, help="Seed for the random realizations."),
+    shown(
+        "--realizations",
+        type=click.IntRange(min=1),
+        default=PAPER.realizations,
+        help="Random realizations simulated per circuit.",
+    ),
+    shown(
+        "--out",
+        default="out/paper",
+        help="Output folder: new, empty, or an earlier run's (replaced when the run is complete).",
+    ),
+    writing_options,
 )
-@click.option(
-    "--f-max", type=float, default=PAPER.f_max, show_default=True, help="Maximum force [N]."
-)
-@click.option(
-    "--r-bar",
-    type=float,
-    default=PAPER.r_bar,
-    show_default=True,
-    help="Equilibrium firing rate [spikes/s].",
-)
-@click.option("--ts", type=float, default=PAPER.Ts, show_default=True, help="Sampling time [s].")
-@click.option(
-    "--sensor-delay",
-    type=int,
-    default=PAPER.sensor_delay,
-    show_default=True,
-    help="Sensor delay [steps].",
-)
-@click.option(
-    "--actuator-delay",
-    type=int,
-    default=PAPER.actuator_delay,
-    show_default=True,
-    help="Actuator delay [steps].",
-)
-@click.option(
-    "--q",
-    "q_text",
-    default="1",
-    show_default=True,
-    help="State penalty Q: a number or a matrix such as '[[1]]'.",
-)
-@click.option(
-    "--r", "r_text", default="1", show_default=True, help="Input penalty R: a number or a matrix."
-)
-@click.option(
-    "--seed",
-    type=int,
-    default=PAPER.seed,
-    show_default=True,
-    help="Seed for the random realizations.",
-)
-@click.option(
-    "--realizations",
-    type=click.IntRange(min=1),
-    default=PAPER.realizations,
-    show_default=True,
-    help="Random realizations simulated per circuit.",
-)
-@click.option(
-    "--out",
-    default="out/paper",
-    show_default=True,
-    help="Output folder: new, empty, or an earlier run's (replaced when the run is complete).",
-)
-@_writing_options
 def paper(
     tau,
     f_max,
@@ -136,10 +100,7 @@ def paper(
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PDF and PNG; SVG with --formats pdf,png,svg).
     """
-    from symctl.derivation.pipeline import derive_paper
-    from symctl.report.output import OutputFolder  # imported here: keeps `symctl --help` fast
-    from symctl.report.results import write_files
-    from symctl.report.workers import FigureWorkers
+    from symctl.derivation.pipeline import derive_paper  # imported here: `symctl --help` is fast
 
     try:
         Q = parse_matrix(q_text, "--q")
@@ -147,12 +108,10 @@ def paper(
     except _NUMERICAL as exc:
         exc._symctl_step = "options"
         raise
-    # --out is checked, locked and staged before any work; written into place at the end
-    # the figure workers get ready while the derivation runs
-    workers = FigureWorkers(jobs if figures else 1)
-    with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
-        with options_named({"dt": "--ts", "rng": "--seed"}):
-            res = derive_paper(
+    with options_named({"dt": "--ts", "rng": "--seed"}):
+        _written(
+            out,
+            lambda progress: derive_paper(
                 tau=tau,
                 f_max=f_max,
                 r_bar=r_bar,
@@ -163,20 +122,13 @@ def paper(
                 R=R,
                 rng=seed,
                 realizations=realizations,
-                progress=steps.start,
-            )
-        written = write_files(
-            res,
-            folder.staging,
+                progress=progress,
+            ),
             figures=figures,
             pdf=pdf,
             jobs=jobs,
-            progress=steps.start,
             formats=formats,
-            workers=workers,
         )
-    summary(res, _console)
-    _written(out, folder.final(written), pdf)
 
 
 @cli.command("derive")
@@ -185,7 +137,7 @@ def paper(
 @click.option(
     "--check", is_flag=True, default=False, help="Validate the model file and exit; run nothing."
 )
-@_writing_options
+@writing_options
 def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     """Run the whole derivation on your own system, described in MODEL.toml.
 
@@ -197,37 +149,26 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
     """
     from symctl.derivation.pipeline import derive
     from symctl.model.modelfile import load_model
-    from symctl.report.output import OutputFolder
-    from symctl.report.results import write_files
-    from symctl.report.workers import FigureWorkers
 
     model = load_model(Path(model_file))
     for note in model.notes:
-        _console.print(f"note: {note}", markup=False, soft_wrap=True, highlight=False)
+        _say(f"note: {note}")
     if check:
-        _console.print(_check_line(model), markup=False, soft_wrap=True, highlight=False)
+        _say(_check_line(model))
         return
-    out = out if out is not None else f"out/{model.name}"
     try:
-        workers = FigureWorkers(jobs if figures else 1)  # ready when the derivation ends
-        with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
-            res = derive(model, progress=steps.start)
-            written = write_files(
-                res,
-                folder.staging,
-                figures=figures,
-                pdf=pdf,
-                jobs=jobs,
-                progress=steps.start,
-                formats=formats,
-                workers=workers,
-            )
+        _written(
+            out if out is not None else f"out/{model.name}",
+            lambda progress: derive(model, progress=progress),
+            figures=figures,
+            pdf=pdf,
+            jobs=jobs,
+            formats=formats,
+        )
     except _NUMERICAL as exc:  # named with the model file (main's one-line message)
         with contextlib.suppress(AttributeError):
             exc._symctl_inputs = f"the model file {model_file}"
         raise
-    summary(res, _console)
-    _written(Path(out), folder.final(written), pdf)
 
 
 def _check_line(model) -> str:
@@ -246,43 +187,41 @@ def _check_line(model) -> str:
 
 
 @cli.command("atlas")
-@click.option("--order", type=int, required=True, help="Order n of G2 (1 to 4; 1-3 exhaustive).")
-@click.option(
-    "--delays",
-    type=click.Choice(["branch", "state"]),
-    default="branch",
-    show_default=True,
-    help="Where the structure's unit delays sit.",
+@options(
+    click.option(
+        "--order", type=int, required=True, help="Order n of G2 (1 to 4; 1-3 exhaustive)."
+    ),
+    shown(
+        "--delays",
+        type=click.Choice(["branch", "state"]),
+        default="branch",
+        help="Where the structure's unit delays sit.",
+    ),
+    click.option(
+        "--max-size",
+        type=int,
+        default=None,
+        help="Largest pattern size searched [default: all for orders 1-3, 3n for order 4].",
+    ),
+    click.option("--workers", type=int, help="Worker processes [default: every local core]."),
+    click.option(
+        "--scheduler",
+        help="Address of a running dask.distributed scheduler [default: a local cluster].",
+    ),
+    shown(
+        "--drawings",
+        default="24",
+        help="Classes drawn one by one (the sparsest first), or 'all'.",
+    ),
+    click.option(
+        "--max-neurons",
+        type=int,
+        help="Decide only patterns whose circuits have at most this many neurons "
+        "[default: all for orders 1-3, 3 for order 4].",
+    ),
+    shown("--out", default="out/atlas", help="Output folder."),
+    shown("--pdf/--no-pdf", default=True, help="Compile atlas.pdf."),
 )
-@click.option(
-    "--max-size",
-    type=int,
-    default=None,
-    help="Largest pattern size searched [default: all for orders 1-3, 3n for order 4].",
-)
-@click.option(
-    "--workers", type=int, default=None, help="Worker processes [default: every local core]."
-)
-@click.option(
-    "--scheduler",
-    default=None,
-    help="Address of a running dask.distributed scheduler [default: a local cluster].",
-)
-@click.option(
-    "--drawings",
-    default="24",
-    show_default=True,
-    help="Classes drawn one by one (the sparsest first), or 'all'.",
-)
-@click.option(
-    "--max-neurons",
-    type=int,
-    default=None,
-    help="Decide only patterns whose circuits have at most this many neurons "
-    "[default: all for orders 1-3, 3 for order 4].",
-)
-@click.option("--out", default="out/atlas", show_default=True, help="Output folder.")
-@click.option("--pdf/--no-pdf", default=True, show_default=True, help="Compile atlas.pdf.")
 def atlas_command(
     order, delays, max_size, workers, scheduler, max_neurons, drawings, out, pdf
 ) -> None:
@@ -338,7 +277,7 @@ def atlas_command(
         written = write_atlas(A, folder.staging, drawings=count, pdf=pdf)
     checkpoint.unlink(missing_ok=True)
     _atlas_summary(A)
-    _written(Path(out), folder.final(written), pdf)
+    _wrote(Path(out), folder.final(written), pdf)
 
 
 def _atlas_summary(A) -> None:
@@ -350,15 +289,8 @@ def _atlas_summary(A) -> None:
         f"{s['undecided']} undecided ({s['seconds']:g} s)"
     )
     table = Table(title=f"circuit classes of order {A.order} (the first 15)")
-    for col in (
-        "class",
-        "neurons",
-        "synapses",
-        "branches",
-        "pattern F | H | M",
-        "universal",
-        "method",
-    ):
+    cols = ("class", "neurons", "synapses", "branches", "pattern F | H | M", "universal", "method")
+    for col in cols:
         table.add_column(col)
     for row, c in zip(A.table()[:15], A.classes, strict=False):
         table.add_row(
@@ -409,7 +341,22 @@ class _Steps:
         self._status.__exit__(exc_type, exc, tb)
 
 
-def _written(out: Path, written: list[Path], pdf: bool) -> None:
+def _written(out, derivation, **kw) -> None:
+    """Derive (``derivation(progress)``) and write into ``out``, checked and staged first; the
+    figure workers get ready while the derivation runs."""
+    from symctl.report.output import OutputFolder
+    from symctl.report.results import write_files
+    from symctl.report.workers import FigureWorkers
+
+    workers = FigureWorkers(kw["jobs"] if kw["figures"] else 1)  # ready when the derivation ends
+    with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
+        res = derivation(steps.start)
+        written = write_files(res, folder.staging, progress=steps.start, workers=workers, **kw)
+    summary(res, _console)
+    _wrote(Path(out), folder.final(written), kw.get("pdf", False))
+
+
+def _wrote(out: Path, written: list[Path], pdf: bool) -> None:
     docs = [p.name for p in written if p.stem in ("results", "derivation", "report")]
     drawn = [p for p in written if p.name not in docs]
     figures = sorted({p.stem for p in drawn})
@@ -417,15 +364,16 @@ def _written(out: Path, written: list[Path], pdf: bool) -> None:
     if figures:
         kinds = ", ".join(dict.fromkeys(p.suffix[1:].upper() for p in drawn))  # as written
         line += f", {len(figures)} figures ({kinds}): " + ", ".join(figures)
-    _console.print(line, markup=False, soft_wrap=True, highlight=False)
+    _say(line)
     if pdf and not any(n.endswith(".pdf") for n in docs):
-        _console.print(
+        _say(
             "note: pdflatex not found, the PDF was not compiled (install TeX Live's "
-            "texlive-latex-base)",
-            markup=False,
-            soft_wrap=True,
-            highlight=False,
+            "texlive-latex-base)"
         )
+
+
+def _say(text: str) -> None:
+    _console.print(text, markup=False, soft_wrap=True, highlight=False)
 
 
 # the options each step of derive_paper depends on: named when NumPy or SciPy fails in it
@@ -478,12 +426,10 @@ def _warned(caught: list) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
 
-    Nothing but single lines reach stderr: ``symctl: error: ...`` for bad input,
-    one ``symctl: warning: ...`` line for the warnings of a successful run,
-    ``symctl: interrupted ...`` when stopped by a signal. SIGINT and SIGTERM
-    stop the run cleanly (figure workers killed, the staged output removed,
-    ``--out`` as it was). Set ``SYMCTL_TRACEBACK=1`` to see the traceback of an
-    unexpected exception instead of its one line.
+    Nothing but single lines reach stderr (``symctl: error: ...``, one ``symctl: warning:
+    ...`` line for a successful run's warnings, ``symctl: interrupted ...``); SIGINT and
+    SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1`` shows the
+    traceback of an unexpected exception.
 
     Parameters
     ----------
@@ -493,12 +439,9 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success; 2 on bad input: a symctl error naming the option, or a
-        NumPy/SciPy/SymPy failure (``ValueError``, ``TypeError``,
-        ``ArithmeticError``, ``MemoryError``, ``RecursionError``) named with
-        the step it stopped and the options that step depends on; 1 on an
-        internal error (any other exception: a bug) or when aborted; 130 on
-        SIGINT (Ctrl-C) and 143 on SIGTERM.
+        0 on success; 2 on bad input (a symctl error naming the option, or a NumPy, SciPy
+        or SymPy failure named with its step and the options it depends on); 1 on an
+        internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
 
     Examples
     --------

@@ -17,6 +17,8 @@ import json
 import click
 from rich.console import Console
 
+from symctl.cli.options import options, shown, workers_options
+
 __all__ = ["dale_command"]
 
 _console = Console()
@@ -28,46 +30,38 @@ def _say(text: str) -> None:
 
 @click.command("dale")
 @click.argument("model_file", metavar="[MODEL.toml]", required=False, default=None)
-@click.option(
-    "--circuit",
-    default=None,
-    help="Circuits to decide, separated by commas: circuits of G2 in the realizers' registry "
-    "(general, controllable, observable, ...) or atlas labels A1, A2, ... of G2's order "
-    "[default: every circuit of G2 in the registry].",
+@options(
+    click.option(
+        "--circuit",
+        help="Circuits to decide, separated by commas: circuits of G2 in the realizers' registry "
+        "(general, controllable, observable, ...) or atlas labels A1, A2, ... of G2's order "
+        "[default: every circuit of G2 in the registry].",
+    ),
+    click.option("--sensor-delay", type=int, help="[default: the model's, else 1]"),
+    click.option("--actuator-delay", type=int, help="[default: the model's, else 1]"),
+    shown(
+        "--timeout",
+        type=float,
+        default=30.0,
+        help="Seconds for each circuit's decision, every stage included (--ei: for each "
+        "circuit searched; --atlas: for each search).",
+    ),
+    click.option("--ei", is_flag=True, help="Also find the cheapest E/I circuit (interneurons)."),
+    click.option(
+        "--atlas",
+        "atlas_table",
+        is_flag=True,
+        help="Instead: the E/I table of the order-2 atlas (every, some or never).",
+    ),
+    shown(
+        "--samples",
+        type=click.IntRange(min=0),
+        default=24,
+        help="Sampled controllers per class (--atlas).",
+    ),
+    workers_options("Local processes (--atlas; the atlas's dask path)."),
+    click.option("--json", "as_json", is_flag=True, help="Print JSON instead of text."),
 )
-@click.option("--sensor-delay", type=int, default=None, help="[default: the model's, else 1]")
-@click.option("--actuator-delay", type=int, default=None, help="[default: the model's, else 1]")
-@click.option(
-    "--timeout",
-    type=float,
-    default=30.0,
-    show_default=True,
-    help="Seconds for each circuit's decision, every stage included (--ei: for each "
-    "circuit searched; --atlas: for each search).",
-)
-@click.option("--ei", is_flag=True, help="Also find the cheapest E/I circuit (interneurons).")
-@click.option(
-    "--atlas",
-    "atlas_table",
-    is_flag=True,
-    help="Instead: the E/I table of the order-2 atlas (every, some or never).",
-)
-@click.option(
-    "--samples",
-    type=click.IntRange(min=0),
-    default=24,
-    show_default=True,
-    help="Sampled controllers per class (--atlas).",
-)
-@click.option(
-    "--workers",
-    type=click.IntRange(min=1),
-    default=1,
-    show_default=True,
-    help="Local processes (--atlas; the atlas's dask path).",
-)
-@click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
-@click.option("--json", "as_json", is_flag=True, help="Print JSON instead of text.")
 def dale_command(
     model_file,
     circuit,

@@ -15,6 +15,8 @@ from pathlib import Path
 import click
 from rich.console import Console
 
+from symctl.cli.options import options, shown, workers_options
+
 __all__ = ["fit_command"]
 
 _console = Console()
@@ -22,62 +24,46 @@ _console = Console()
 
 @click.command("fit")
 @click.argument("data", metavar="DATA", type=click.Path(dir_okay=False))
-@click.option(
-    "--model",
-    "model_file",
-    default=None,
-    metavar="MODEL.toml",
-    help="The plant and penalties [default: the paper's muscle model].",
+@options(
+    click.option(
+        "--model",
+        "model_file",
+        metavar="MODEL.toml",
+        help="The plant and penalties [default: the paper's muscle model].",
+    ),
+    click.option(
+        "--circuit",
+        help="A circuit of G2 in the realizers' registry (general, controllable, observable, "
+        "...), an atlas class A1..A5, all, or several separated by commas [default: the data's, "
+        "else general].",
+    ),
+    click.option(
+        "--sensor-delay",
+        type=int,
+        help="Sensor sections [default: the data's, else the model's, else 1].",
+    ),
+    click.option(
+        "--actuator-delay",
+        type=int,
+        help="Actuator sections [default: the data's, else the model's, else 1].",
+    ),
+    click.option(
+        "--C",
+        "c_value",
+        type=float,
+        help="Fix every section gain C to this value [default: fitted].",
+    ),
+    shown(
+        "--starts",
+        type=click.IntRange(min=1),
+        default=8,
+        help="Starting points of the least-squares fit.",
+    ),
+    shown("--seed", type=int, default=0, help="Seed of the starts."),
+    workers_options("Local processes running the starts (the atlas's dask path)."),
+    shown("--figures/--no-figures", default=True, help="Write the figure (fit.pdf, .svg, .png)."),
+    shown("--out", default="out/fit", help="Output folder."),
 )
-@click.option(
-    "--circuit",
-    default=None,
-    help="A circuit of G2 in the realizers' registry (general, controllable, observable, ...), "
-    "an atlas class A1..A5, all, or several separated by commas [default: the data's, else "
-    "general].",
-)
-@click.option(
-    "--sensor-delay",
-    type=int,
-    default=None,
-    help="Sensor sections [default: the data's, else the model's, else 1].",
-)
-@click.option(
-    "--actuator-delay",
-    type=int,
-    default=None,
-    help="Actuator sections [default: the data's, else the model's, else 1].",
-)
-@click.option(
-    "--C",
-    "c_value",
-    type=float,
-    default=None,
-    help="Fix every section gain C to this value [default: fitted].",
-)
-@click.option(
-    "--starts",
-    type=click.IntRange(min=1),
-    default=8,
-    show_default=True,
-    help="Starting points of the least-squares fit.",
-)
-@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the starts.")
-@click.option(
-    "--workers",
-    type=click.IntRange(min=1),
-    default=1,
-    show_default=True,
-    help="Local processes running the starts (the atlas's dask path).",
-)
-@click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler.")
-@click.option(
-    "--figures/--no-figures",
-    default=True,
-    show_default=True,
-    help="Write the figure (fit.pdf, .svg, .png).",
-)
-@click.option("--out", default="out/fit", show_default=True, help="Output folder.")
 def fit_command(
     data,
     model_file,

@@ -1,4 +1,4 @@
-"""Errors on a Python argument, reworded with the command-line option that gave it.
+"""The commands' option plumbing: options stacked from one list, errors named by option.
 
 ``symctl paper --ts 0`` calls ``derive_paper(dt=0)``; the error names ``--ts``.
 
@@ -16,9 +16,11 @@ from __future__ import annotations
 
 import contextlib
 
+import click
+
 from symctl.errors import ParameterError, SymctlTypeError
 
-__all__ = ["options_named"]
+__all__ = ["options", "options_named", "shown", "writing_options"]
 
 
 @contextlib.contextmanager
@@ -31,3 +33,59 @@ def options_named(options: dict):
         if not sep or name not in options:
             raise
         raise type(exc)(f"{options[name]}: {rest}") from exc
+
+
+def shown(*decls, **kw):
+    """A click option whose default ``--help`` shows."""
+    return click.option(*decls, show_default=True, **kw)
+
+
+def options(*decorators):
+    """The click options ``decorators`` as one decorator, in the order listed."""
+
+    def apply(command):
+        for option in reversed(decorators):
+            command = option(command)
+        return command
+
+    return apply
+
+
+def _formats(ctx, param, value) -> tuple[str, ...]:
+    from symctl.report.figures import figure_formats
+
+    return figure_formats(value, "--formats")
+
+
+writing_options = options(
+    shown("--figures/--no-figures", default=True, help="Write the figures."),
+    shown(
+        "--formats",
+        default="pdf,png",
+        callback=_formats,
+        help="The figures' formats, comma-separated, among pdf, png and svg "
+        "(derivation.tex includes the PDFs, report.md shows the PNGs).",
+    ),
+    shown(
+        "--pdf/--no-pdf",
+        default=True,
+        help="Compile derivation.pdf (when pdflatex is installed).",
+    ),
+    click.option(
+        "--jobs",
+        type=click.IntRange(min=1),
+        default=None,
+        help="Processes drawing the figures [default: CPUs, at most 4].",
+    ),
+)
+"""The options of ``symctl paper`` and ``symctl derive``: --figures, --formats, --pdf, --jobs.
+
+``--formats`` is checked when the command line is read, before any work."""
+
+
+def workers_options(workers_help: str):
+    """``--workers`` (local processes, 1 by default) and ``--scheduler`` (a dask address)."""
+    return options(
+        shown("--workers", type=click.IntRange(min=1), default=1, help=workers_help),
+        click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler."),
+    )

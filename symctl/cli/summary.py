@@ -1,8 +1,6 @@
 """The console's summary of a derivation: ``symctl paper`` and ``symctl derive`` print it.
 
-Read off the :class:`~symctl.derivation.Derivation`'s objects (the plant, the gains,
-the controller, the factors, the realizations and the circuits), never off its
-``results.json``.
+Read off the derivation's objects, never off its ``results.json``.
 """
 
 from __future__ import annotations
@@ -20,7 +18,7 @@ def summary(res, console: Console) -> None:
     import numpy as np  # imported here, as every heavy import of the CLI: `symctl --help` is fast
     import sympy as sp
 
-    from symctl.report.results import factor_texts
+    from symctl.report.results import controller_coeffs, factor_texts
 
     spec, ode, G = res.spec, res.model, res.G
 
@@ -56,13 +54,8 @@ def summary(res, console: Console) -> None:
     out(f"  K = {_fmt(res.gains.K)}")
     out("Controller|  G(z): measured states -> inputs")
     out(f"  G(z) = {_long(str(res.G_symbolic), 'controller')}")
-    rows_, cols = G.shape
-    numerator = [
-        [[float(v) for v in G.num_coeffs(i, j)] for j in range(cols)] for i in range(rows_)
-    ]
-    shown = numerator[0][0] if G.is_siso else numerator
-    denominator = [float(v) for v in G.den_coeffs()]
-    out(f"  numerator {_fmt(shown)}, denominator {_fmt(denominator)}")
+    numerator, denominator = controller_coeffs(G)
+    out(f"  numerator {_fmt(numerator)}, denominator {_fmt(denominator)}")
     out(f"  relative degree {G.relative_degree}; derivation proved: {bool(res.proved)}")
     _extra(res, out)
     if res.factors is None:

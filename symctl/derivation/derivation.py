@@ -1,12 +1,8 @@
 r"""What a derivation produced: :class:`Derivation`, with one record per realization and circuit.
 
-:func:`~symctl.derivation.derive` runs the pipeline on a model and returns a
-:class:`Derivation`: its inputs (the :class:`~symctl.model.model.Model`), every stage's
-result, symbolic and numeric, and what was skipped and why. It is a value: frozen,
-compared by value, picklable. The report stage writes it (``results.json``, the
-documents, the figures: :mod:`symctl.report.results`); :meth:`Derivation.to_dict`,
-:meth:`Derivation.write` and :meth:`Derivation.figure` hand it over there.
-``PaperResults`` is its former name, kept.
+The report stage writes a derivation (:mod:`symctl.report.results`);
+:meth:`Derivation.to_dict`, :meth:`Derivation.write` and :meth:`Derivation.figure`
+hand it over there. ``PaperResults`` is its former name, kept.
 
 Examples
 --------
@@ -381,9 +377,51 @@ class Derivation:
     ) -> list[Path]:
         """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
 
-        A hand-over to :func:`symctl.report.results.write`, which documents the
-        parameters, the files and the guarantees (the folder is the old complete
-        one or the new complete one, never a mix).
+        The files are written into a fresh folder beside ``out`` and moved into
+        place only when all are written (:class:`~symctl.report.output.OutputFolder`):
+        ``out`` is always either the old complete folder or the new complete
+        one, and on any error it is left as it was. ``out`` is checked before
+        anything is written, and a second run on the same ``out`` is refused
+        while one is under way.
+
+        Parameters
+        ----------
+        out : path
+            The folder: new (made, with its parents), empty, or the folder of
+            an earlier run (replaced).
+        figures : bool
+            Also write the figures (:func:`symctl.report.figures.figure_names`).
+        pdf : bool
+            Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
+        jobs : int, optional
+            Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
+        progress : callable, optional
+            Called with the name of each step (``"figures"``, ``"documents"``,
+            ``"pdflatex"``) before it runs.
+        formats : str or sequence of str
+            The figures' formats (:func:`symctl.report.figures.figure_formats`): by
+            default the PDF that ``derivation.tex`` includes and the PNG that
+            ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
+            figures written in its format.
+
+        Returns
+        -------
+        list of Path
+            The files written, inside ``out``: ``results.json``, the figures,
+            ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
+
+        Raises
+        ------
+        SymctlTypeError
+            ``out`` is not a path.
+        ParameterError
+            ``out`` is empty, a file, a folder holding other files, cannot be
+            made, or is being written by another run; or ``jobs`` is not an
+            integer >= 1; or ``formats`` names an unknown format.
+        LatexError
+            ``pdflatex`` failed on ``derivation.tex``.
+        OSError
+            Writing failed (``out`` is then as it was).
 
         Examples
         --------
@@ -394,6 +432,10 @@ class Derivation:
         ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
         ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
         (['results.json', 'derivation.tex', 'report.md'], ['paper'])
+        >>> derive_paper().write("")
+        Traceback (most recent call last):
+        ...
+        symctl.errors.ParameterError: out: must name a folder, got ''
         """
         from symctl.report import results
 

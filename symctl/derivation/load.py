@@ -1,14 +1,8 @@
 r"""A derivation's ``results.json`` read back: :func:`load_results`.
 
-``results.json`` (written by ``symctl paper``, ``symctl derive`` and
-:meth:`~symctl.derivation.Derivation.write`) holds the numbers, the symbolic
-objects as text, the figures' data and the model (its file's text and the values
-replaced). :func:`load_results` reads it into a :class:`SavedDerivation`: the
-numbers as arrays, the symbolic objects as exact SymPy objects (parsed by symctl's
-safe parser, never evaluated), the figures' data, the :class:`~symctl.model.model.Model`,
-and :meth:`SavedDerivation.derive`, which re-creates the whole
-:class:`~symctl.derivation.Derivation` (from :func:`~symctl.derivation.derive`'s
-cache when it is there).
+``results.json`` holds the numbers, the symbolic objects as text (read back by the
+safe parser, never evaluated), the figures' data and the model, from which
+:meth:`SavedDerivation.derive` re-creates the whole :class:`~symctl.derivation.Derivation`.
 
 Examples
 --------
@@ -31,6 +25,7 @@ True
 from __future__ import annotations
 
 import json
+import operator
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -59,6 +54,7 @@ MAX_RESULTS_BYTES = 200_000_000
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
 _REAL = re.compile(r"^(K|C|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
 _FUNCTIONS = NAMES  # the parser's own functions and constants, never symbols
+_BINARY = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
 
 
 def _symbol(name: str, known: Mapping) -> sp.Symbol:
@@ -72,10 +68,8 @@ def _symbol(name: str, known: Mapping) -> sp.Symbol:
 def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
     """An expression as ``results.json`` writes it (``sp.sstr``), read by the safe parser.
 
-    Every name becomes a symbol with the derivation's assumptions (the model's
-    parameters and ``T_s`` as ``known`` gives them; ``K_...``, ``C_...``,
-    ``epsilon_...``, ``sigma_...`` real; others plain); a name like ``K_{0,11}``
-    (a MIMO gain) is read as one symbol.
+    Every name becomes a symbol with the derivation's assumptions (``known``; ``K_``, ``C_``,
+    ``epsilon_``, ``sigma_`` real); ``K_{0,11}`` (a MIMO gain) is one symbol.
 
     >>> from symctl.derivation.load import parse_saved
     >>> parse_saved("K_{0,11}/(z - epsilon_{1,1})", {}, "G").free_symbols == {
@@ -98,11 +92,8 @@ def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
 
 
 def _parse_long(text: str, names: Mapping, argname: str) -> sp.Expr:
-    """``parse_expr``, on a text beyond its size bounds split into sums, products and powers.
-
-    Only the splitting is done here (on the operators at the outer level of the
-    parentheses); every piece is read by the safe parser, within its bounds.
-    """
+    """``parse_expr``, on a text beyond its bounds split (at the outer level) into sums,
+    products and powers, every piece read by the safe parser."""
     text = text.strip()
     if len(text) <= MAX_TEXT // 2 and sum(text.count(c) for c in "+-*/(") <= MAX_OPERATORS // 2:
         return parse_expr(text, names, argname=argname)
@@ -112,16 +103,7 @@ def _parse_long(text: str, names: Mapping, argname: str) -> sp.Expr:
             out = None
             for op, piece in parts:
                 value = _parse_long(piece, names, argname)
-                if out is None:
-                    out = -value if op == "-" else value
-                elif op == "+":
-                    out = out + value
-                elif op == "-":
-                    out = out - value
-                elif op == "*":
-                    out = out * value
-                else:
-                    out = out / value
+                out = value if out is None else _BINARY[op](out, value)
             return out
     if text.startswith("-"):
         return -_parse_long(text[1:], names, argname)
@@ -168,6 +150,15 @@ def _split(text: str, ops: tuple[str, ...]) -> list[tuple[str, str]]:
         i += 1
     parts.append((op, text[start:]))
     return [(o, p) for o, p in parts if p.strip()] if len(parts) > 1 else parts
+
+
+def _arrays(entry):
+    """Lists of numbers (None: NaN) as float arrays, in nested mappings."""
+    if isinstance(entry, Mapping):
+        return {k: _arrays(v) for k, v in entry.items()}
+    if isinstance(entry, list):
+        return np.array([np.nan if v is None else v for v in entry], dtype=float)
+    return entry
 
 
 def _matrix_text(text: str) -> tuple[list[list[str]], str | None]:
@@ -309,27 +300,12 @@ class SavedDerivation(CachedState):
     @property
     def simulation(self) -> dict:
         """The figures' traces: time, open loop, closed loop (arrays), the nonlinear check."""
-        sim = self.data["simulation"]
-
-        def arrays(entry):
-            if isinstance(entry, Mapping):
-                return {k: arrays(v) for k, v in entry.items()}
-            if isinstance(entry, list):
-                return np.array([np.nan if v is None else v for v in entry], dtype=float)
-            return entry
-
-        return arrays(sim)
+        return _arrays(self.data["simulation"])
 
     @property
     def peak_firing(self) -> dict[str, dict[str, np.ndarray]]:
         """Per circuit, each neuron's peak firing in every realization (NaN: no such neuron)."""
-        return {
-            name: {
-                n: np.array([np.nan if v is None else v for v in vals], dtype=float)
-                for n, vals in c["peak_firing"].items()
-            }
-            for name, c in self.data["circuits"].items()
-        }
+        return {name: _arrays(c["peak_firing"]) for name, c in self.data["circuits"].items()}
 
     def derive(self) -> Derivation:
         """The whole derivation, re-created from the model (:func:`~symctl.derivation.derive`).

@@ -2,14 +2,7 @@ r"""The pipeline: a model derived, plant to circuits, into one :class:`~symctl.d
 
 :func:`derive` runs the stages in order (plant -> delays -> LQR -> :math:`G(z)`
 -> factors -> realizations -> delay graph and compatibility -> circuits ->
-simulations of those realizations -> atlas -> closed loop -> nonlinear plant) on a
-:class:`~symctl.model.model.Model` and returns a
-:class:`~symctl.derivation.Derivation`, which the report stage writes
-(``results.json``, the documents and the figures). A derivation is a value of its
-model: :func:`derive` computes it once per model and returns the same object
-after. :func:`derive_paper` is :func:`derive` on the muscle preset with the values
-given (``muscle().replace(**values)``); ``symctl paper`` and ``symctl derive`` are
-thin commands around these.
+simulations -> atlas -> closed loop -> nonlinear plant) on a model, once per model.
 
 Examples
 --------
@@ -69,16 +62,9 @@ SYMBOLIC_P_MAX_ORDER = 3
 """Order up to which the general realization keeps a fully symbolic ``P``."""
 
 EXPANDED_ZEROS_MAX = 4
-r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out.
-
-The zeros :math:`\prod_i (z - \epsilon_i)` of :math:`d` sections have :math:`2^d`
-monomials (:math:`\binom{d}{k}` in the k-th coefficient): up to this many
-sections the realizations show them, as the paper does (:math:`K_1 - \epsilon_1
-- \epsilon_3`); beyond, they realize
-:meth:`~symctl.realization.factorization.Factorization.abbreviated`, the
-coefficients written :math:`\sigma_k = e_k(\epsilon)`, so that every entry stays
-a few terms long at any delay.
-"""
+r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out
+(:math:`2^d` monomials); beyond, :meth:`~symctl.realization.factorization.Factorization.abbreviated`
+writes their coefficients :math:`\sigma_k = e_k(\epsilon)`."""
 
 MIMO_EXACT_MAX_ORDER = 12
 """Largest symbolic MIMO realization (states) whose check is an exact proof (else randomized)."""
@@ -110,9 +96,7 @@ def derive_paper(
     r"""Run the paper's whole derivation on its muscle: :func:`derive` of the preset with these values.
 
     ``derive_paper(**values)`` is ``derive(muscle().replace(**values))``
-    (:func:`~symctl.model.presets.muscle`, ``examples/muscle.toml``); every value
-    defaults to the paper's (the preset's, :data:`~symctl.report.spec.PAPER`), and
-    ``Q``, ``R`` not given (None) to the preset's identity.
+    (``examples/muscle.toml``); every value defaults to the paper's.
 
     Parameters
     ----------
@@ -224,19 +208,13 @@ def _check_paper_values(given: dict) -> None:
 def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivation:
     r"""Run the whole derivation on your own system: a model file, plant to circuits.
 
-    The same pipeline as :func:`derive_paper` (which is this function on the
-    muscle preset, ``examples/muscle.toml``), on any
-    :class:`~symctl.model.modelfile.Model`. A plant with several states or inputs
-    has a matrix controller: it is factored channel by channel
-    (:mod:`symctl.realization.channels`), realized in block canonical forms, and
-    its structures, circuits, compatibility and simulations follow; the IFP circuit
-    and the circuit atlas are built for one state and one input only, and the
-    results say so (``Derivation.skipped``).
+    A plant with several states or inputs has a matrix controller, factored channel by
+    channel and realized in block canonical forms; the IFP circuit and the circuit atlas
+    are built for one state and one input only (``Derivation.skipped`` says so).
 
-    The derivation is a value of the model: it is computed once per model (equal
-    models share it, as :func:`~symctl.circuitatlas.atlas.atlas` shares an atlas, the
-    :data:`DERIVATIONS_CACHED` most recent), and ``progress`` is called only when it is
-    computed; ``derive.cache_clear()`` empties the cache.
+    Equal models share one derivation (the :data:`DERIVATIONS_CACHED` most recent;
+    ``derive.cache_clear()`` empties the cache); ``progress`` is called only when it is
+    computed.
 
     Parameters
     ----------
@@ -301,13 +279,8 @@ derive.cache_clear = _clear
 
 
 def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
-    """The circuits a MIMO controller gets, and the sentence saying what is left out and why.
-
-    The IFP circuit and the atlas are SISO; the block forms have ``deg d`` times
-    the number of columns (controllable) or rows (observable) states: beyond
-    :data:`MIMO_MAX_ORDER` no circuit is built, beyond :data:`MIMO_GENERAL_MAX_ORDER`
-    no dense general one (each bounds the work).
-    """
+    """The circuits a MIMO controller gets (within :data:`MIMO_MAX_ORDER` and
+    :data:`MIMO_GENERAL_MAX_ORDER`), and the sentence saying what is left out and why."""
     rows, cols = G.shape
     order = G.order * max(rows, cols)
     head = (
@@ -509,19 +482,8 @@ def _beyond_unit_chain(graph) -> bool:
 def _realizations(
     factors: Factorization, G2_symbolic, first: dict[str, Draw]
 ) -> dict[str, RealizationRecord]:
-    """The paper's three realizations of G2: controllable and observable canonical, general.
-
-    Symbolic forms realize ``G2_symbolic`` (``factors.G2``, or its
-    :meth:`~symctl.realization.factorization.Factorization.abbreviated` form
-    beyond :data:`EXPANDED_ZEROS_MAX` sections), keeping K, eps (or sigma) and C
-    (and, up to order :data:`SYMBOLIC_P_MAX_ORDER`, a fully symbolic ``P`` for
-    the general one; above it the seeded random ``P``); numeric ones are
-    ``first[name]``, the first realization drawn for that circuit
-    (:func:`~symctl.realization.draws.draw_realizations`: the optimal gains as the
-    exact rationals of their binary floats, so that the checks stay exact, the
-    drawn epsilons, C = 1 on every section, and for the general one a random ``P``),
-    built at those values, never substituted into the symbolic ones.
-    """
+    """The realizations of G2: symbolic ones of ``G2_symbolic`` (a symbolic ``P`` up to order
+    :data:`SYMBOLIC_P_MAX_ORDER`), numeric ones the first drawn per circuit (``first``)."""
     sections = (*factors.sensor_C, *factors.actuator_C)
     unit_C = {c: 1 for c in sections}
     out = {}
@@ -555,14 +517,8 @@ def _realizations(
 
 
 def _check(result, G2, transformed: bool):
-    """The check of a realizer's result; a transformed one through its proved base.
-
-    Exact (a proof) for a SISO G2 and for a MIMO realization of at most
-    :data:`MIMO_EXACT_MAX_ORDER` states with symbols; beyond, the symbolic Markov
-    parameters of a block form cost minutes (18 states: 2 min), so the randomized
-    test decides (exact arithmetic at random points, error below 2^-64: the
-    check's ``method`` and ``error_bound`` say so).
-    """
+    """The check of a realizer's result (a transformed one through its base): exact, but
+    randomized beyond :data:`MIMO_EXACT_MAX_ORDER` symbolic MIMO states (minutes otherwise)."""
     R = result.realization
     big = not G2.is_siso and R.n > MIMO_EXACT_MAX_ORDER and bool(R.free_symbols)
     method = "auto" if big else "exact"

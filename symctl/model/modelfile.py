@@ -1,19 +1,10 @@
 r"""Your own system in a file: :func:`load_model` reads a model file into a :class:`Model`.
 
-A model file (TOML; ``docs/model-file.md`` has the schema and an example of
-every field, :mod:`symctl.model.schema` the table of fields) describes a plant
-(a nonlinear ODE as text, or a discrete plant as :math:`(A, B)` or a transfer
-function), its sampling time, its sensor and actuator delays (in steps or
-seconds), the cost, the delay graph and what to build and simulate. ``symctl
-derive MODEL.toml`` runs the whole derivation on it
-(:func:`~symctl.derivation.pipeline.derive`).
-
-No text of the file is ever evaluated: expressions go through the safe parser
-(:func:`symctl._util.parse.parse_expr`) with the names the file declares, and
-every other value is checked for its type and range. Every problem is one
-:class:`~symctl.errors.ModelFileError` that names the file, the line and the
-field (``muscle.toml:14: states[0].rhs: name 'tau2' is not allowed; ...``);
-an unknown key is refused with the nearest valid one suggested.
+A model file (TOML; ``docs/model-file.md`` has the schema) describes a plant (an ODE
+as text, or a discrete plant), its sampling time, delays, cost, delay graph and what
+to build and simulate. No text of the file is ever evaluated (expressions go through
+the safe parser); every problem is one :class:`~symctl.errors.ModelFileError` naming
+the file, the line and the field, an unknown key with the nearest valid one suggested.
 
 >>> from symctl.model.modelfile import load_model
 >>> m = load_model('''
@@ -40,6 +31,7 @@ symctl.errors.ModelFileError: <text>:4: sampling.Tz: unknown key 'Tz'; did you m
 
 from __future__ import annotations
 
+import contextlib
 import keyword
 import math
 import re
@@ -130,9 +122,18 @@ class _Reader(GraphSection):
         self.src = src
         self.notes: list[str] = []
 
-    # --------------------------------------------------------------- helpers
     def fail(self, where: str, problem: str) -> ModelFileError:
         return self.src.error(where, problem)
+
+    @contextlib.contextmanager
+    def named(self, where: str, argname: str | None = None):
+        """A symctl error in the block as this file's error at ``where`` (its argname dropped)."""
+        try:
+            yield
+        except ModelFileError:
+            raise
+        except SymctlError as exc:
+            raise self.fail(where, strip_argname(str(exc), argname or where)) from None
 
     def table(self, data, where: str, allowed: str | None = None) -> dict:
         if not isinstance(data, dict):
@@ -175,20 +176,14 @@ class _Reader(GraphSection):
             return exact_value(self.number(value, where), where)
         if not isinstance(value, str):
             raise self.fail(where, f"expected a number or text, got {_kind(value)}")
-        try:
+        with self.named(where):
             return parse_expr(value, names, argname=where)
-        except SymctlError as exc:
-            raise self.fail(where, strip_argname(str(exc), where)) from None
 
     def unit(self, value, where: str) -> Unit | None:
         if value is None:
             return None
-        try:
+        with self.named(where):
             return parse_unit(self.text(value, where), where)
-        except SymctlError as exc:
-            if isinstance(exc, ModelFileError):
-                raise
-            raise self.fail(where, strip_argname(str(exc), where)) from None
 
     def items(self, data, where: str, allowed: str, *, limit: int) -> list[dict]:
         if not isinstance(data, list):
@@ -197,7 +192,6 @@ class _Reader(GraphSection):
             raise self.fail(where, f"at most {limit} entries, got {len(data)}")
         return [self.table(d, f"{where}[{i}]", allowed) for i, d in enumerate(data)]
 
-    # --------------------------------------------------------------- the model
     def model(self) -> Model:
         d = self.src.data
         self.src.check_keys(
@@ -365,12 +359,8 @@ class _Reader(GraphSection):
             if "rhs" not in item:
                 raise self.fail(f"states[{i}]", "missing rhs, d(state)/dt as text")
             e = self.expr(item["rhs"], f"states[{i}].rhs", allnames)
-            try:
+            with self.named(f"states[{i}].rhs"):
                 check_rhs(e, sym_units.get(xs[i]), sym_units, f"states[{i}].rhs")
-            except SymctlError as exc:
-                raise self.fail(
-                    f"states[{i}].rhs", strip_argname(str(exc), f"states[{i}].rhs")
-                ) from None
             rhs.append(e)
         u_eq = [
             self.equilibrium(u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units)
@@ -399,7 +389,7 @@ class _Reader(GraphSection):
                 self.number(s.get("guess", 0.0), f"states[{i}].guess") for i, s in enumerate(states)
             ]
         where = "states" if x_eq is None else "states[0].equilibrium"
-        try:
+        with self.named(where):
             ode = ODEModel(
                 xs,
                 us,
@@ -414,16 +404,11 @@ class _Reader(GraphSection):
             )
             plant = ode.plant()
             plant_symbolic = ode.discrete_symbolic()
-        except SymctlError as exc:
-            raise self.fail(where, strip_argname(str(exc), where)) from None
         return ode, plant, plant_symbolic
 
     def stabilizable(self, plant: DiscretePlant, where: str) -> None:
-        """Refuse a plant with an unstable mode the inputs cannot reach (PBH test).
-
-        The delays add a chain of delayed copies of the input, which is always
-        stabilizable, so the delayed plant is stabilizable exactly when the plant is.
-        """
+        """Refuse a plant with an unstable mode the inputs cannot reach (PBH test; the delays
+        keep stabilizability as it is)."""
         A, B = plant.numeric()
         n = A.shape[0]
         scale = max(1.0, float(np.max(np.abs(A))), float(np.max(np.abs(B))))
@@ -443,10 +428,8 @@ class _Reader(GraphSection):
 
     def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:
         e = self.expr(item["equilibrium"], f"{where}.equilibrium", psyms)
-        try:
+        with self.named(f"{where}.equilibrium", where):
             got = unit_of(e, sym_units)
-        except SymctlError as exc:
-            raise self.fail(f"{where}.equilibrium", strip_argname(str(exc), where)) from None
         if unit is not None and got is not None and not e.is_Number and got != unit:
             raise self.fail(
                 f"{where}.equilibrium", f"has unit [{got}] but the signal is in [{unit}]"
@@ -463,7 +446,7 @@ class _Reader(GraphSection):
         )
         if has_ab == has_tf:
             raise self.fail("discrete", "give either A and B, or numerator and denominator")
-        try:
+        with self.named("discrete"):
             if has_ab:
                 if "A" not in table or "B" not in table:
                     raise self.fail("discrete", "give both A and B")
@@ -487,10 +470,6 @@ class _Reader(GraphSection):
                     )
                 Rz = controllable_canonical(G)
                 A, B = Rz.F, Rz.H
-        except ModelFileError:
-            raise
-        except SymctlError as exc:
-            raise self.fail("discrete", strip_argname(str(exc), "discrete")) from None
         n, m = A.shape[0], B.shape[1] if B.shape[0] else 0
         states = self.signals(d, "states", "states", required=False)
         inputs = self.signals(d, "inputs", "inputs", required=False)
@@ -512,7 +491,7 @@ class _Reader(GraphSection):
                 descr[item["name"]] = self.text(
                     item.get("description", ""), f"{kind}[{i}].description"
                 )
-        try:
+        with self.named("discrete"):
             plant = DiscretePlant(
                 A,
                 B,
@@ -522,8 +501,6 @@ class _Reader(GraphSection):
                 params={str(k): v for k, v in params.items()},
             )
             plant.numeric()
-        except SymctlError as exc:
-            raise self.fail("discrete", strip_argname(str(exc), "discrete")) from None
         return None, plant, None
 
     def matrix(self, value, where, names) -> sp.Matrix:
@@ -610,10 +587,8 @@ class _Reader(GraphSection):
                 raise self.fail(where, f"must be {size} x {size}, got {M.shape[0]} x {M.shape[1]}")
         else:
             raise self.fail(where, f"expected a number, a matrix or 'identity', got {_kind(value)}")
-        try:
+        with self.named(where):
             psd_matrix(M, where, size, definite=definite)
-        except SymctlError as exc:
-            raise self.fail(where, strip_argname(str(exc), where)) from None
         return sp.ImmutableMatrix(M)
 
     def build(self, value) -> tuple:

@@ -94,19 +94,8 @@ def _resolve(parts: list[str], counts: dict[str, int]) -> list[str]:
 
 @dataclass(frozen=True)
 class Source:
-    """A parsed model file and the lines of its keys.
-
-    Attributes
-    ----------
-    data : dict
-        The document (:func:`tomllib.loads`).
-    path : str
-        The file's name for messages (``"<text>"`` for a string).
-    lines : dict of str to int
-        :func:`key_lines` of the text.
-    text : str
-        The file's text.
-    """
+    """A parsed model file: its ``data`` (:func:`tomllib.loads`), ``path``, the ``lines`` of its
+    keys (:func:`key_lines`) and its ``text``."""
 
     data: dict
     path: str

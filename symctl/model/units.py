@@ -1,19 +1,10 @@
 r"""Units of a model file: parsed safely, and checked where they are given.
 
-A unit is text in the safe parser's syntax (``"N"``, ``"spikes/s"``,
-``"N*m/rad"``, ``"1/s**2"``, ``"1"`` for none). Known names are converted to the
-SI base units (``s``, ``m``, ``kg``) with a scale (``ms`` is 0.001 s, ``deg`` is
-:math:`\pi/180` and, like ``rad``, has no dimension); any other name (``spikes``,
-``au``, ``V``) is a base unit of its own, so that it must match itself.
-
-:func:`check_rhs` reads a right-hand side term by term: the terms of a sum
-must have one unit, products multiply units, a power with a numeric exponent
-raises them, and the result must be the state's unit per second (the model's
-time is in seconds). Elementary functions (``exp``, ``log``, ``tanh``,
-``logistic``, ``sin``, ...) return a number without a unit, and their
-arguments are not checked: models often write a sigmoid of a rate normalized
-to one unit, as the paper's muscle does with :math:`e^{-r}`. A symbol without
-a unit makes its term unknown, which is never an error ("checked where given").
+A unit is text in the safe parser's syntax (``"N*m/rad"``, ``"1/s**2"``, ``"1"``); known
+names convert to SI base units with a scale, any other name (``spikes``) is a base unit
+of its own. :func:`check_rhs` requires a right-hand side in the state's unit per second
+where every unit is known ("checked where given"); elementary functions return a pure
+number and their arguments are not checked (the muscle's :math:`e^{-r}`).
 
 >>> from symctl.model.units import parse_unit
 >>> parse_unit("N", "u") == parse_unit("kg*m/s**2", "u")
@@ -63,19 +54,9 @@ _NAME = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
 
 @dataclass(frozen=True)
 class Unit:
-    """A unit: a scale to SI and the exponents of its base units.
+    """A unit: its ``scale`` to SI (``ms``: 0.001), the sorted ``dims`` (base unit, exponent),
+    and the ``text`` it was read from.
 
-    Attributes
-    ----------
-    scale : float
-        The size of the unit in SI (``ms``: 0.001).
-    dims : tuple of (str, int or Rational)
-        Base units and exponents, sorted, zero exponents dropped.
-    text : str
-        The text it was read from.
-
-    Examples
-    --------
     >>> from symctl.model.units import parse_unit
     >>> parse_unit("N*m", "u").dims
     (('kg', 1), ('m', 2), ('s', -2))

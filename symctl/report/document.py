@@ -1,26 +1,10 @@
 r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 
-A block is one of :class:`Heading`, :class:`Text`, :class:`Math` (one numbered
-display), :class:`Table`, :class:`Graphic` (an image file with its caption),
-:class:`Verbatim` and :class:`References` (the bibliography). :func:`to_tex` and
-:func:`to_markdown` render the same blocks, so the two documents tell the same
-story with the same numbers; :func:`write_tex` and :func:`write_markdown` write them to files
-(``symctl paper`` writes ``derivation.tex`` and ``report.md``), and
-:func:`compile_pdf` runs ``pdflatex``. The paper's blocks are made by
-:func:`symctl.report.story.story`; this module knows nothing of the paper
-but its title.
-
-Prose may hold inline math between ``$`` signs; everything outside them is
-escaped for LaTeX, except the citations ``[@key, locator]`` of the
-:class:`References` and the references ``[#fig:name]``, ``[#tab:label]``,
-``[#eq:label]`` to the document's own figures, captioned tables and displays,
-which both formats number (:mod:`symctl.report.prose`).
-
-Each section keeps its floats: a section heading first places the figures
-still waiting (``\symctlbarrier``: it ends the page, where they go on top of the
-next one, or flushes them, like the ``placeins`` package, which is not in TeX
-Live's base set); subsections are not barriers, which would leave too many pages
-half empty.
+:func:`to_tex` and :func:`to_markdown` render the same blocks, so the two documents
+tell the same story with the same numbers. Prose holds inline math between ``$``
+signs, citations and references (:mod:`symctl.report.prose`). Each section keeps its
+floats: a section heading first places the figures still waiting (``\symctlbarrier``,
+like the ``placeins`` package, which is not in TeX Live's base set).
 
 Examples
 --------
@@ -75,12 +59,11 @@ __all__ = [
 ]
 
 TITLE = "Toward neuronal implementations of delayed optimal control: the derivation"
+"""The title of the paper's derivation (``derivation.tex`` and ``report.md``)."""
 AUTHOR = (
     r"Derived by symctl \\ \small with the method of Jing Shuang (Lisa) Li, \\ "
     r"\small\emph{Toward Neuronal Implementations of Delayed Optimal Control}"
 )
-"""The author line: the tool, and the paper (and author) whose method it implements."""
-"""The title of the paper's derivation (``derivation.tex`` and ``report.md``)."""
 PDFLATEX_TIMEOUT = 180  # seconds
 
 
@@ -158,12 +141,8 @@ BLOCKS = typing.get_args(DocumentBlock)
 """The block types of a document."""
 
 
-# ---------------------------------------------------------------- LaTeX
-# \fitmath is a safety net: a display a little wider than the line (the story keeps every line
-# within its width estimate, symctl.report.longform) is shrunk to fit and reported in the log as
-# "symctl: shrunk"; one wider than SHRINK_MAX lines is left as it is (an overfull box that shows
-# in the log, not a page of unreadable type). The T = 8..10 reports failed with "Dimension too
-# large": displays wider than TeX's largest dimension (about 5.8 m); the layout prevents those.
+# \fitmath shrinks a display a little wider than the line (logged "symctl: shrunk"); one wider
+# than SHRINK_MAX lines is left overfull.
 _PREAMBLE = r"""\newsavebox{\symctlbox}
 \newcommand{\fitmath}[1]{\sbox{\symctlbox}{$\displaystyle #1$}%
   \ifdim\wd\symctlbox>\linewidth
@@ -355,7 +334,6 @@ def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
     )
 
 
-# ---------------------------------------------------------------- Markdown
 def _md_cell(text: str) -> str:
     return text.replace("|", r"\|")
 
@@ -491,7 +469,6 @@ def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:
     return blocks
 
 
-# ---------------------------------------------------------------- files
 def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE) -> Path:
     r"""Write :func:`to_tex` of ``blocks`` to ``path`` (UTF-8); returns the path.
 
@@ -531,25 +508,7 @@ def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str =
 def write_markdown(
     blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE
 ) -> Path:
-    r"""Write :func:`to_markdown` of ``blocks`` to ``path`` (UTF-8); returns the path.
-
-    Parameters
-    ----------
-    blocks : sequence of blocks
-        As for :func:`to_markdown`.
-    path : path
-        The file to write (``report.md`` for ``symctl paper``).
-    title : str
-        The document's title.
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    SymctlTypeError
-        An element of ``blocks`` is not a block.
+    r"""Write :func:`to_markdown` of ``blocks`` to ``path`` (UTF-8); as :func:`write_tex`.
 
     Examples
     --------

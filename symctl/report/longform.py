@@ -6,24 +6,10 @@ delay: the estimated printed width of a line (:func:`width`, in glyphs of the
 11 pt math font), the rows and columns of a matrix, the share of its entries
 that are the same background value (0, or :math:`\infty` for a delay matrix).
 
-* An equation wider than :data:`LINE_WIDTH` is broken at its top-level ``+``,
-  ``-`` (sums) or ``,`` (lists) into continuation lines; one with more than
-  :data:`TERM_MAX_LINES` lines keeps its first and last lines and states how
-  many terms it leaves out.
-* A diagonal matrix of at least :data:`DIAGONAL_MIN` rows is
-  :math:`\operatorname{diag}(d_1, \dots, d_n)`. Another matrix that fits (at most
-  :data:`MATRIX_MAX_ROWS` rows and its width within the line) is written in full.
-  Beyond that, in this order:
-  a unit vector is :math:`e_k`; a vector is a list :math:`(v_1, \dots, v_n)`
-  (transposed for a column) broken over lines; a companion matrix (ones on the
-  super- or sub-diagonal, one free row or column) is its dots picture with the
-  free row or column as a list; a sparse or banded matrix (at least a quarter
-  of its entries one background value, and the others fit a table of
-  :data:`PATTERN_TABLE_ROWS` rows per row, runs along a diagonal in one row) is
-  its sparsity pattern (:math:`\ast` and :math:`\cdot`) with that table; a dense matrix is its corners with
-  dots, numbers to :data:`LARGE_DIGITS` digits (the exact values are in
-  ``results.json``).
-* A display taller than :data:`DISPLAY_MAX_LINES` lines is breakable across pages.
+An equation wider than :data:`LINE_WIDTH` is broken at its top-level ``+``, ``-`` or
+``,`` into continuation lines (at most :data:`TERM_MAX_LINES`, saying how many terms
+it leaves out); a display taller than :data:`DISPLAY_MAX_LINES` lines may break across
+pages. Matrices: :mod:`symctl.report.matrixview`.
 
 Examples
 --------
@@ -65,28 +51,21 @@ __all__ = [
     "wrapped_columns",
 ]
 
-# ---------------------------------------------------------------- the thresholds, in one place
 LINE_WIDTH = 72.0
-"""Glyphs of one display line, left-hand side included. The text is 17 cm wide (A4 or
-letter, 2 cm margins) and :func:`width` counts a lowercase italic letter as one glyph
-of about 5.5 pt, so the line holds about 88; the rest leaves room for the equation
-number, the alignment and the estimate's error (calibrated against pdflatex)."""
+"""Glyphs of one display line, left-hand side included (the 17 cm line holds about 88 glyphs
+of 5.5 pt; the rest is room for the equation number and the estimate's error)."""
 TABLE_WIDTH = 100.0
-"""Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt of
-text each, so the 17 cm line holds about 110); a wider table is set in ``\\footnotesize``
-with less space between its columns (about 0.75 of the width)."""
+"""Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt each);
+a wider table is set in ``\\footnotesize`` (about 0.75 of the width)."""
 WRAP_MIN = 12.0
-"""A table wider than :data:`TABLE_WIDTH` wraps the text of its prose columns (those whose wide
-cells hold words), each at least this wide, so that the others keep their natural width
-(:func:`wrapped_columns`)."""
+"""Least width of a prose column that a table wider than :data:`TABLE_WIDTH` wraps."""
 MATRIX_MAX_ROWS = 12
 """A matrix with more rows is never written in full (a display that tall reads badly)."""
 MATRIX_MAX_COLUMNS = 12
 """A matrix with more columns is never written in full."""
 PATTERN_TABLE_ROWS = 2.0
-"""A large matrix whose entries other than its background value (its most common entry) make a
-table of at most this many rows per row or column of the matrix (a run of equal entries along
-a diagonal is one row) is shown as its sparsity pattern with that table."""
+"""A large matrix whose entries other than its background value make a table of at most this
+many rows per row of the matrix is shown as its sparsity pattern with that table."""
 CORNER = 3
 """Leading rows and columns shown of a large dense matrix (then dots, then the last one)."""
 LARGE_DIGITS = 4
@@ -94,30 +73,21 @@ LARGE_DIGITS = 4
 TERM_MAX_LINES = 12
 """An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
 DIAGONAL_MIN = 4
-r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}(d_1, \dots, d_n)`
-(a run of four or more equal entries as :math:`\underbrace{0, \dots, 0}_k`), as the paper writes
-:math:`\tilde Q = \operatorname{diag}(Q, 0, R)`."""
+r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}(d_1, \dots, d_n)`."""
 VECTOR_MAX_ENTRIES = 6
 """A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
 DISPLAY_MAX_LINES = 8
-"""A display taller than this (in lines, :func:`height`) may break across pages, so that one
-that cannot break still fits beside a figure drawn at its printed size (a 15-line display
-under the T = 6 general circuit overfilled the page: "Overfull \\vbox ... \\output")."""
+"""A display taller than this (in lines, :func:`height`) may break across pages."""
 INDENT = r"\qquad "
 """The indent of a continuation line."""
 TABLE_MAX_ROWS = 30
 """A table with more rows is a ``longtable``, which breaks across pages."""
 MD_LINE = 300
-"""A Markdown display whose one-line form is longer (characters) gets a line per row, a long
-row cut after its matrices' rows; prose is wrapped at 100 characters (outside inline math)."""
+"""A Markdown display whose one-line form is longer (characters) gets a line per row."""
 SHRINK_MAX = 2
-"""The LaTeX safety net (``\\fitmath`` in :mod:`symctl.report.document`) shrinks a display up
-to this many times the line to fit it, and reports it in the log (``symctl: shrunk``); a
-wider one is left overfull. The layout above keeps every display within the line (it must:
-a display wider than TeX's largest dimension, as the T = 8 report's were, stops pdflatex with
-"Dimension too large")."""
+"""``\\fitmath`` (:mod:`symctl.report.document`) shrinks a display up to this many times the
+line to fit it; a wider one is left overfull."""
 
-# ---------------------------------------------------------------- width of LaTeX
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
 _SPACE = {
     ",": 0.35,
@@ -130,53 +100,15 @@ _SPACE = {
     "qquad": 4.0,
     "enspace": 1.0,
 }
-_ARG1 = {
-    "text",
-    "textrm",
-    "mathrm",
-    "mathbf",
-    "mathit",
-    "mathcal",
-    "mathbb",
-    "operatorname",
-    "boldsymbol",
-    "bar",
-    "tilde",
-    "hat",
-    "dot",
-    "ddot",
-    "vec",
-    "overline",
-    "widetilde",
-    "sqrt",
-    "textit",
-    "textbf",
-    "underline",
-    "mathsf",
-}
-_TEXT = {"text", "textrm", "operatorname", "textit", "textbf"}
-_BINARY = {
-    "times",
-    "cdot",
-    "ge",
-    "geq",
-    "le",
-    "leq",
-    "to",
-    "in",
-    "pm",
-    "mp",
-    "neq",
-    "approx",
-    "equiv",
-    "mapsto",
-    "rightarrow",
-    "leftarrow",
-    "subset",
-    "cup",
-    "cap",
-    "setminus",
-}
+_ARG1 = frozenset(
+    "text textrm mathrm mathbf mathit mathcal mathbb operatorname boldsymbol bar tilde "
+    "hat dot ddot vec overline widetilde sqrt textit textbf underline mathsf".split()
+)
+_TEXT = frozenset("text textrm operatorname textit textbf".split())
+_BINARY = frozenset(
+    "times cdot ge geq le leq to in pm mp neq approx equiv mapsto rightarrow leftarrow "
+    "subset cup cap setminus".split()
+)
 _WIDE = {
     "cdots": 2.6,
     "ldots": 2.6,
@@ -469,7 +401,6 @@ def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...
     return ()
 
 
-# ---------------------------------------------------------------- breaking a line
 def _terms(tex: str, ops: str = "+-=", commas: bool = True) -> list[str]:
     """``tex`` cut before each top-level `` + ``, `` - ``, `` = `` (those in ``ops``) and after
     each top-level ``, `` (when ``commas``)."""

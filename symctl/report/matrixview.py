@@ -40,24 +40,8 @@ __all__ = ["MatrixView", "show_matrix"]
 
 
 class MatrixView:
-    r"""How :func:`show_matrix` shows a matrix: display rows, and tables to follow the display.
-
-    Attributes
-    ----------
-    rows : list of (str or None, str)
-        Rows of the display (``lhs`` None: a continuation).
-    tables : list of (str, tuple, tuple)
-        ``(intro, header, rows)`` of each table (prose, with inline math).
-    full : bool
-        Whether the matrix is written in full.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.report.matrixview import show_matrix
-    >>> show_matrix("H", sp.Matrix([0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1])).rows
-    [('H', 'e_{14}\\quad (14 \\times 1)')]
-    """
+    r"""How :func:`show_matrix` shows a matrix: display ``rows`` (``lhs`` None: a continuation),
+    ``tables`` ``(intro, header, rows)`` to follow the display, and whether it is in ``full``."""
 
     def __init__(self, rows, tables=(), full: bool = False) -> None:
         self.rows, self.tables, self.full = list(rows), list(tables), full
@@ -179,10 +163,8 @@ def _corners(E, tex, corner: int) -> str:
 def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGITS) -> MatrixView:
     r"""A matrix as it fits the page: in full, or as a formula, a pattern with a table, or corners.
 
-    Written in full (:func:`symctl.latex.to_latex`, as for a small matrix) when
-    it has at most :data:`MATRIX_MAX_ROWS` rows and :data:`MATRIX_MAX_COLUMNS`
-    columns and fits ``room`` glyphs; otherwise see the module's docstring for
-    the order of the other forms.
+    In full when it has at most :data:`MATRIX_MAX_ROWS` rows and :data:`MATRIX_MAX_COLUMNS`
+    columns and fits ``room`` glyphs; otherwise as the module's docstring says.
 
     Parameters
     ----------

@@ -1,12 +1,7 @@
 r"""The factorization and realizations of a MIMO controller, told as document blocks.
 
-:func:`~symctl.report.story.story` tells the paper's SISO factorization (with the
-remainder :math:`c_k` of :math:`G_2`); for a :math:`p \times m` controller the factors
-are per channel (:mod:`symctl.realization.channels`) and the realizations are the
-block canonical forms, told here: the sections of each measured signal and of each
-input, :math:`G_2` over its common denominator, the exact check of
-:math:`G_3 G_2 G_1 = G`, and each realization of :math:`G_2` with its size and its
-exact check.
+The factors of a :math:`p \times m` controller are per channel
+(:mod:`symctl.realization.channels`) and its realizations the block canonical forms.
 
 >>> from symctl import derive
 >>> from symctl.report.mimo_story import factorization

@@ -1,11 +1,7 @@
 r"""The model's own sections of the derivation: parameters, plant, nonlinear check, longest delay.
 
-:func:`~symctl.report.story.story` tells the pipeline; the parts that depend on
-which plant it runs on (the paper's muscle or a model file's) are told here,
-with the model's names, units and descriptions: the parameter table, the plant
-and its linearization and discretization (:func:`opening`), the linear
-controller around the nonlinear plant (:func:`nonlinear`) and the longest
-delay the nonlinear loop still recovers from (:func:`longest`).
+The parts of :func:`~symctl.report.story.story` that depend on the plant (the paper's
+muscle or a model file's), told with the model's names, units and descriptions.
 
 >>> from symctl import derive_paper
 >>> from symctl.report.model_story import opening
@@ -44,9 +40,7 @@ __all__ = [
 def unit_text(unit: str, value: float | None = None) -> str:
     r"""A unit for prose and tables: ``" N"``, ``" m/s$^{2}$"`` (from ``m/s**2``), or nothing.
 
-    After the ``value`` 1 a counted unit is singular: ``1 spike/s``, ``2 spikes/s``
-    (a leading word of four or more letters ending in ``s``, such as ``spikes`` or
-    ``steps``; short symbols such as ``ms`` are left as they are).
+    After the ``value`` 1 a counted word is singular (``1 spike/s``; ``ms`` stays).
 
     Examples
     --------
@@ -367,16 +361,17 @@ def theorem(res) -> list[DocumentBlock]:
         )
     if not verdict.ok:
         return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
-    if verdict.method.startswith("theorem 3"):
-        rows = tuple(
-            (
-                part.label,
-                r" $\to$ ".join(vertex(v) for v in part.path),
-                ", ".join(map(str, part.delays)),
-                str(part.delay),
-            )
-            for part in verdict.parts
+    mimo = verdict.method.startswith("theorem 3")
+    rows = tuple(
+        (
+            part.label if mimo else str(k + 1),
+            r" $\to$ ".join(vertex(v) for v in part.path),
+            ", ".join(map(str, part.delays)),
+            str(part.delay),
         )
+        for k, part in enumerate(verdict.parts)
+    )
+    if mimo:
         return [
             Text(
                 head + " Here it holds; symctl built such a structure, each entry as "
@@ -385,15 +380,6 @@ def theorem(res) -> list[DocumentBlock]:
             ),
             Table(("entry", "path", "edge delays [steps]", "delay"), rows),
         ]
-    rows = tuple(
-        (
-            str(k + 1),
-            r" $\to$ ".join(vertex(v) for v in part.path),
-            ", ".join(map(str, part.delays)),
-            str(part.delay),
-        )
-        for k, part in enumerate(verdict.parts)
-    )
     what = "Here it holds, and symctl built such a structure" + (
         ": $G$ split by its Markov parameters into one part per pathway (Theorem 2), each "
         "part factored as $G_3 G_2 G_1$ along its own path, the parts summed at the actuator "

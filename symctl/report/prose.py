@@ -1,17 +1,9 @@
 r"""Prose of a document: escaped for LaTeX, its citations and references, wrapped lines.
 
-The blocks of :mod:`symctl.report.document` hold prose with inline math between
-``$`` signs. Outside the math, :func:`tex_text` escapes LaTeX's special characters
-and turns two marks into LaTeX; :func:`markdown_text` turns them into numbers:
-
-* ``[@key]`` or ``[@key, locator]`` cites an entry of the bibliography
-  (``\cite[locator]{key}``; in Markdown ``[1, locator]``);
-* ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
-  captioned table or a display (``\ref``, ``\eqref``; in Markdown ``3`` or ``(3)``).
-
-A space before a mark becomes a tie in LaTeX, so that "Fig. 3" never breaks
-across lines. :func:`verbatim_lines` and :func:`markdown_lines` wrap preformatted
-text and prose to the page.
+Outside the inline math (``$...$``), :func:`tex_text` escapes LaTeX's special characters
+and :func:`markdown_text` numbers two marks: ``[@key]`` or ``[@key, locator]`` cites the
+bibliography, ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
+captioned table or a display. A space before a mark becomes a tie in LaTeX.
 
 Examples
 --------

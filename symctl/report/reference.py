@@ -1,16 +1,9 @@
 r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations.
 
-The derivation cites the paper it implements the way a paper cites another:
-``[1, Fig. 5]``, not by the LaTeX labels of its source (``fig:cl_sims``). The
-numbers below were counted in the paper's LaTeX source (arXiv:2410.02555,
-``ieeeconf`` class): figures and equations are numbered in the order of their
-environments in the source (``figure*`` included), definitions in the order of
-their ``definition`` environments, sections by the class's Roman numerals.
-
-Citations are written in the prose of the document blocks
-(:mod:`symctl.report.document`) as ``[@key]`` or ``[@key, locator]``, which the
-LaTeX renders as ``\cite[locator]{key}`` and the Markdown as ``[1, locator]``;
-:func:`cite` writes them.
+The derivation cites the paper it implements as a paper cites another (``[1, Fig. 5]``).
+The numbers were counted in the paper's LaTeX source (arXiv:2410.02555, ``ieeeconf``):
+figures, equations and definitions in the order of their environments, sections by
+the class's Roman numerals.
 
 Examples
 --------
@@ -58,62 +51,56 @@ FIGURES = MappingProxyType(
 
 EQUATIONS = MappingProxyType(
     {
-        "muscle": 1,
-        "system": 2,
-        "total_controller": 3,
-        "cost": 4,
-        "augmented_states": 5,
-        "augmented_system": 6,
-        "augmented_cost": 7,
-        "ifp_controller": 8,
-        "transfer_fn": 9,
-        "realization": 10,  # x(t+1) = F x + H u, y = M x + N u
-        "E": 11,  # the delay graph's matrix
-        "factors": 12,  # G1, G3 and G2
-        "sections": 13,  # the realization of G1 and G3
-        "E_tilde": 14,  # the delay assignment matrix printed for G3 G2 G1
-        "general_realization": 15,
-        "G2_rewritten": 16,  # N + N (...)/(z^2 - K1 z - K2)
-        "controllable": 17,
-        "observable": 18,
+        name: k
+        for k, name in enumerate(
+            (
+                "muscle system total_controller cost augmented_states augmented_system "
+                "augmented_cost ifp_controller transfer_fn realization E factors sections E_tilde "
+                "general_realization G2_rewritten controllable observable"
+            ).split(),
+            start=1,
+        )
     }
 )
 """The paper's numbered equations: LaTeX label (or a name for an unlabelled one) to number."""
 
 DEFINITIONS = MappingProxyType(
     {
-        "structure": 1,
-        "delay_graph": 2,
-        "delay_assignment": 3,
-        "delay_assignment_matrix": 4,
-        "compatible_structure": 5,
-        "compatible_controller": 6,
+        name: k
+        for k, name in enumerate(
+            (
+                "structure delay_graph delay_assignment delay_assignment_matrix "
+                "compatible_structure compatible_controller"
+            ).split(),
+            start=1,
+        )
     }
 )
 """The paper's definitions (Sec. IV-B), in order."""
 
 SECTIONS = MappingProxyType(
-    {
-        "introduction": "I",
-        "problem_setup": "II",
-        "optimal_delayed_controller": "III",
-        "compatibility": "IV",
-        "microcircuits": "V",
-        "simulations": "VI",
-        "future_work": "VII",
-    }
+    dict(
+        zip(
+            (
+                "introduction problem_setup optimal_delayed_controller compatibility "
+                "microcircuits simulations future_work"
+            ).split(),
+            ("I", "II", "III", "IV", "V", "VI", "VII"),
+            strict=True,
+        )
+    )
 )
 """The paper's sections: LaTeX label (without ``sec:``) to Roman numeral."""
 
 _KINDS = {
-    "Fig.": FIGURES,
-    "Figs.": FIGURES,
-    "Eq.": EQUATIONS,
-    "Eqs.": EQUATIONS,
-    "Def.": DEFINITIONS,
-    "Defs.": DEFINITIONS,
-    "Sec.": SECTIONS,
-    "Secs.": SECTIONS,
+    f"{word}{s}.": table
+    for word, table in (
+        ("Fig", FIGURES),
+        ("Eq", EQUATIONS),
+        ("Def", DEFINITIONS),
+        ("Sec", SECTIONS),
+    )
+    for s in ("", "s")
 }
 
 

@@ -1,16 +1,8 @@
 r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
 
-The report stage computes nothing: it reads a derivation (made by
-:func:`~symctl.derivation.derive`) and writes it. :func:`results_json` is the
-``results.json`` document (schema in the README); :func:`figure` draws one of the
-report's figures and :func:`write` writes every file of ``symctl paper``. The
-derivation's :meth:`~symctl.derivation.Derivation.to_dict`,
-:meth:`~symctl.derivation.Derivation.figure` and
-:meth:`~symctl.derivation.Derivation.write` call them.
-
-This module sits above the modules that render the results
-(:mod:`~symctl.report.story`, :mod:`~symctl.report.document`,
-:mod:`~symctl.report.figures`), which read a derivation without importing it.
+The report stage computes nothing: it reads a derivation and writes it. The
+derivation's :meth:`~symctl.derivation.Derivation.to_dict` and
+:meth:`~symctl.derivation.Derivation.write` call :func:`results_json` and :func:`write`.
 
 Examples
 --------
@@ -100,20 +92,7 @@ def circuit_json(self) -> dict:
 
 
 def parameters(self) -> dict:
-    """The inputs of the derivation (the ``parameters`` entry of :meth:`to_dict`).
-
-    Returns
-    -------
-    dict
-        ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
-        (nested lists of floats) and ``seed``.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> derive_paper(tau=0.05).parameters()["tau"]
-    0.05
-    """
+    """The inputs of a derivation (:meth:`~symctl.derivation.Derivation.parameters`)."""
     s = self.system
     values = self.spec.ode.as_dict() if self.spec.ode is not None else {"Ts": self.spec.dt}
     return {
@@ -127,27 +106,10 @@ def parameters(self) -> dict:
 
 
 def results_json(self) -> dict:
-    """The ``results.json`` document: a dictionary of plain lists, floats and strings.
-
-    Returns
-    -------
-    dict
-        Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
-        ``gains``, ``controller``, ``factorization``, ``closed_loop``,
-        ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
-        "results.json").
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> data = derive_paper().to_dict()
-    >>> data["schema_version"], data["controller"]["proved"], len(data["gains"]["K"][0])
-    (1, True, 3)
-    """
+    """The ``results.json`` document (:meth:`~symctl.derivation.Derivation.to_dict`)."""
     s = self.system
     G = self.G
-    rows, cols = G.shape
-    numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+    numerator, denominator = controller_coeffs(G)
     return {
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
@@ -164,8 +126,8 @@ def results_json(self) -> dict:
             "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
         },
         "controller": {
-            "numerator": numerator[0][0] if G.is_siso else numerator,
-            "denominator": _floats(G.den_coeffs()),
+            "numerator": numerator,
+            "denominator": denominator,
             "relative_degree": G.relative_degree,
             "dt": self.spec.dt,
             "symbolic": {
@@ -194,6 +156,13 @@ def results_json(self) -> dict:
         "atlas": _atlas_json(self),
         "model": model_json.model(self),
     }
+
+
+def controller_coeffs(G) -> tuple[list, list[float]]:
+    """The numerator (``[i][j]`` lists for MIMO) and denominator coefficients of ``G`` as floats."""
+    rows, cols = G.shape
+    numerator = [[_floats(G.num_coeffs(i, j)) for j in range(cols)] for i in range(rows)]
+    return numerator[0][0] if G.is_siso else numerator, _floats(G.den_coeffs())
 
 
 def _atlas_json(self) -> dict | None:
@@ -278,80 +247,16 @@ def write(
     self,
     out: Path | str,
     *,
-    figures: bool = True,
-    pdf: bool = True,
     jobs: int | None = None,
-    progress: Callable[[str], None] | None = None,
     formats: str | tuple[str, ...] = _figures.DEFAULT_FORMATS,
+    **kw,
 ) -> list[Path]:
-    """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
-
-    The files are written into a fresh folder beside ``out`` and moved into
-    place only when all are written (:class:`~symctl.report.output.OutputFolder`):
-    ``out`` is always either the old complete folder or the new complete
-    one, and on any error it is left as it was. ``out`` is checked before
-    anything is written, and a second run on the same ``out`` is refused
-    while one is under way.
-
-    Parameters
-    ----------
-    out : path
-        The folder: new (made, with its parents), empty, or the folder of
-        an earlier run (replaced).
-    figures : bool
-        Also write the figures (:func:`symctl.report.figures.figure_names`).
-    pdf : bool
-        Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
-    jobs : int, optional
-        Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
-    progress : callable, optional
-        Called with the name of each step (``"figures"``, ``"documents"``,
-        ``"pdflatex"``) before it runs.
-    formats : str or sequence of str
-        The figures' formats (:func:`symctl.report.figures.figure_formats`): by
-        default the PDF that ``derivation.tex`` includes and the PNG that
-        ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
-        figures written in its format.
-
-    Returns
-    -------
-    list of Path
-        The files written, inside ``out``: ``results.json``, the figures,
-        ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``out`` is not a path.
-    ParameterError
-        ``out`` is empty, a file, a folder holding other files, cannot be
-        made, or is being written by another run; or ``jobs`` is not an
-        integer >= 1; or ``formats`` names an unknown format.
-    LatexError
-        ``pdflatex`` failed on ``derivation.tex``.
-    OSError
-        Writing failed (``out`` is then as it was).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from symctl import derive_paper
-    >>> with tempfile.TemporaryDirectory() as parent:
-    ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
-    ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
-    (['results.json', 'derivation.tex', 'report.md'], ['paper'])
-    >>> derive_paper().write("")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: out: must name a folder, got ''
-    """
+    """Write every file of ``symctl paper`` into ``out`` (:meth:`~symctl.derivation.Derivation.write`)."""
     if jobs is not None:
         positive_int(jobs, "jobs")
     formats = _figures.figure_formats(formats)
     with OutputFolder(out, "out") as folder:
-        kw = {"figures": figures, "pdf": pdf, "jobs": jobs, "formats": formats}
-        written = write_files(self, folder.staging, progress=progress, **kw)
+        written = write_files(self, folder.staging, jobs=jobs, formats=formats, **kw)
         return folder.final(written)
 
 

@@ -1,15 +1,8 @@
 r"""The paper's parameters and the circuits of its report, stated once.
 
-:data:`PAPER` holds the inputs of :func:`~symctl.derivation.pipeline.derive_paper`
-(and the defaults of ``symctl paper``). The muscle's parameters are not
-repeated here: they are read from the defaults of
-:class:`~symctl.design.plant.MuscleModel` (the paper's section "Simulations":
-:math:`\tau = 0.02` s, :math:`f_\text{max} = 60` N, :math:`\bar r = 1`
-spike/s, :math:`T_s = 0.01` s), and the delays from those of
-:func:`~symctl.design.augment.augment` (one step each), so each number lives
-in one place. :data:`CIRCUITS` names the report's circuits in reading order and
-:data:`CIRCUIT_SPECS` gives each its titles, both read from the realizers' registry
-(:data:`~symctl.realization.realizers.REALIZERS`).
+:data:`PAPER` (:mod:`symctl.derivation.paper`) holds the inputs of ``derive_paper``;
+:data:`CIRCUITS` names the report's circuits in reading order and :data:`CIRCUIT_SPECS`
+gives each its titles, both read from the realizers' registry.
 
 Examples
 --------
@@ -52,19 +45,9 @@ SCHEMA_VERSION = 1
 
 @dataclass(frozen=True)
 class CircuitSpec:
-    """One circuit of the report: its name and how the report titles it.
+    """One circuit of the report: its ``name``, its ``title`` in headings and tables, and its
+    title on its ``diagram``.
 
-    Parameters
-    ----------
-    name : str
-        The circuit's name (a kind of :func:`~symctl.neural.firing.circuit_firing`).
-    title : str
-        Its title in the headings and tables of the derivation.
-    diagram : str
-        Its title on the structure and circuit diagrams.
-
-    Examples
-    --------
     >>> from symctl.report.spec import CIRCUIT_SPECS
     >>> CIRCUIT_SPECS["general"].title
     'G3 G2 G1, general G2'
@@ -86,10 +69,8 @@ _PATHWAYS = CircuitSpec(
 def circuit_specs() -> Mapping[str, CircuitSpec]:
     """The report's circuits by name, in reading order: the realizers' circuits, then pathways.
 
-    Titles come from the realizers' registry
-    (:data:`~symctl.realization.realizers.REALIZERS`): the whole controller's own
-    title, or ``G3 G2 G1, <form> G2``; read at each call, so that a realizer
-    registered later is among them.
+    Titles come from the realizers' registry (read at each call): the whole controller's
+    own title, or ``G3 G2 G1, <form> G2``.
 
     Examples
     --------

@@ -1,11 +1,7 @@
 r"""The paper's derivation told as a document: :func:`story` turns results into blocks.
 
-The blocks (:mod:`symctl.report.document`) follow the paper: muscle model and
-linearization, discretization, delays and the augmented system, LQR gains,
-the controller :math:`G(z)`, the factors :math:`G_1, G_2, G_3`, the
-realizations of :math:`G_2`, the delay graph and the compatibility of each
-structure, the circuits and their neurons, and the simulations. Symbolic and
-numeric values stand side by side; numbers are written to 6 significant digits.
+The blocks (:mod:`symctl.report.document`) follow the paper, from the plant to the
+simulations; symbolic and numeric values stand side by side.
 
 Examples
 --------
@@ -83,22 +79,12 @@ _G1G3_CAPTION = (
 )
 
 
-_PAPER_STRUCTURE = {
-    "ifp": f" (as in {cite('Fig.', 'ifp_diagram')})",
-    "general": f" (as in {cite('Fig.', 'full_diagram')}, left, with $G_1$ and $G_3$)",
-    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, left, with $G_1$ and $G_3$)",
-    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, left, with $G_1$ and $G_3$)",
+_DIAGRAMS = {"general": "full_diagram", "controllable": "ccr_diagram", "observable": "ocr_diagram"}
+_PAPER_STRUCTURE = {"ifp": f" (as in {cite('Fig.', 'ifp_diagram')})"} | {
+    k: f" (as in {cite('Fig.', d)}, left, with $G_1$ and $G_3$)" for k, d in _DIAGRAMS.items()
 }
-_PAPER_CIRCUIT = {
-    "general": f" (as in {cite('Fig.', 'full_diagram')}, right)",
-    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')}, right)",
-    "observable": f" (as in {cite('Fig.', 'ocr_diagram')}, right)",
-}
-_PAPER_FIRING = {
-    "general": f" (as in {cite('Fig.', 'full_diagram')})",
-    "controllable": f" (as in {cite('Fig.', 'ccr_diagram')})",
-    "observable": f" (as in {cite('Fig.', 'ocr_diagram')})",
-}
+_PAPER_CIRCUIT = {k: f" (as in {cite('Fig.', d)}, right)" for k, d in _DIAGRAMS.items()}
+_PAPER_FIRING = {k: f" (as in {cite('Fig.', d)})" for k, d in _DIAGRAMS.items()}
 
 
 def _readings() -> list[DocumentBlock]:
@@ -544,12 +530,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
 
 
 def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
-    r"""``N`` and the coefficients :math:`c_k` of the :math:`G_2` the realizations realize.
-
-    With the abbreviated :math:`G_2` (``res.G2_symbolic``, its zeros' coefficients written
-    :math:`\sigma_k`) also the rows that define the :math:`\sigma_k`; the expanded
-    coefficients (``factors.remainder_coeffs``) have :math:`2^d` terms.
-    """
+    r"""``N``, the :math:`c_k` of the :math:`G_2` the realizations realize, and the rows
+    defining the :math:`\sigma_k` of an abbreviated :math:`G_2`."""
     f = res.factors
     if not getattr(res, "abbreviated", False):
         return f.N, f.remainder_coeffs, []
@@ -625,8 +607,7 @@ def _count_text(res) -> str:
 
 
 POLE_ZERO_TOL = 1e-6
-"""Poles smaller than this are written as 0: a multiple pole at 0 splits by about the square
-root of the rounding error in floating point (e.g. +-3e-8)."""
+"""Poles smaller than this are written as 0 (a multiple pole at 0 splits by rounding)."""
 
 
 def _pole(p: complex) -> str:
