@@ -330,14 +330,27 @@ def z_poly(expr: sp.Expr) -> ZPoly:
     num, den = pairs[0]
     if den.degree(0) > 0:
         raise ParameterError(f"num/den: {expr} is not a polynomial in z")
-    den_expr = den.as_expr()
     by_power: dict[int, dict] = {}
     for monom, coeff in num.items():
         by_power.setdefault(monom[0], {})[(0, *monom[1:])] = coeff
     ring_ = num.ring
-    return ZPoly(
-        {k: sp.cancel(ring_.from_dict(terms).as_expr() / den_expr) for k, terms in by_power.items()}
-    )
+    coeffs = {}
+    for k, terms in by_power.items():  # lowest terms in the ring: no expression is parsed again
+        p, q = ring_.from_dict(terms).cancel(den)
+        coeffs[k] = p.as_expr() / q.as_expr()
+    return ZPoly(coeffs)
+
+
+@lru_cache(maxsize=4096)
+def z_degree(expr: sp.Expr) -> int:
+    """The degree of ``expr`` in z (-1 for 0), read off the sparse ring without its coefficients."""
+    pairs = ring_fractions([expr])
+    if pairs is None:
+        return z_poly(expr).degree()
+    num, den = pairs[0]
+    if den.degree(0) > 0:
+        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
+    return max((monom[0] for monom in num.keys()), default=-1)
 
 
 def nearest_rational(x: float, den: int) -> sp.Rational:

@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.polys.rings import ring
 
 from symctl._util.display import descending_latex, descending_str
-from symctl._util.exact import RingFractions, fold, z_poly
+from symctl._util.exact import RingFractions, fold, z_degree, z_poly
 from symctl._util.validate import (
     MAX_EXPANDED_TERMS,
     MAX_STEPS,
@@ -75,7 +75,7 @@ def _adj_det(D: list[list], zero, signed: bool = True) -> tuple[list[list], obje
 
 
 def _z_degree(expr: sp.Expr) -> int:
-    return z_poly(expr).degree()
+    return z_degree(expr)
 
 
 class MatrixFractionTF(DiscreteTF):

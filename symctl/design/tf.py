@@ -22,7 +22,7 @@ from symctl._util.display import (
     latex,
     shortened,
 )
-from symctl._util.exact import products_equal, z_poly
+from symctl._util.exact import products_equal, z_degree, z_poly
 from symctl._util.validate import (
     MAX_STEPS,
     bounded_int,
@@ -200,12 +200,12 @@ class DiscreteTF(LatexMixin):
     @property
     def order(self) -> int:
         """Degree of the common denominator."""
-        return z_poly(self.den).degree()
+        return z_degree(self.den)
 
     @property
     def relative_degree(self) -> int:
         """``deg d - max deg N_ij`` over the nonzero entries (``inf`` for G = 0)."""
-        degrees = [z_poly(e).degree() for e in self._num if e != 0]
+        degrees = [z_degree(e) for e in self._num if e != 0]
         return self.order - max(degrees) if degrees else int(1e9)
 
     @property
