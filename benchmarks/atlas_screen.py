@@ -100,28 +100,27 @@ def main() -> None:
     parser.add_argument("--baseline", default="8b675c7")
     parser.add_argument("--orders", nargs="*", type=int, default=[3, 4])
     args = parser.parse_args()
-    rows, costs = [], []
+    print(f"circuit atlas on 2 dask workers ({os.cpu_count()} cores); classes by verdict\n")
+    print(
+        "| order | method | seconds | orbits decided | proved universal | refuted | conjectured "
+        "| not decided | patterns screened |"
+    )
+    print("|" + "---|" * 9, flush=True)
+    costs = []
     with tempfile.TemporaryDirectory() as tmp:
         driver = Path(tmp) / "driver.py"
         driver.write_text(DRIVER)
         before = _baseline(args.baseline, Path(tmp) / "baseline")
         for n in args.orders:
             for label, code in ((f"previous ({args.baseline})", before), ("exact screen", ROOT)):
-                found = _search(n, code, driver)
-                rows.append((n, label, found))
-            costs.append((n, _screen_cost(n, found["screened"])))
-    print(f"circuit atlas on 2 dask workers ({os.cpu_count()} cores); classes by verdict\n")
-    print(
-        "| order | method | seconds | orbits decided | proved universal | refuted | conjectured "
-        "| not decided | patterns screened |"
-    )
-    print("|" + "---|" * 9)
-    for n, label, r in rows:
-        screened = len(r["screened"]) if "screen" in label else "-"
-        print(
-            f"| {n} | {label} | {r['seconds']:.1f} | {r['decided']} | {r['universal']} | "
-            f"{r['refuted']} | {r['conjectured']} | {r['undecided']} | {screened} |"
-        )
+                r = _search(n, code, driver)
+                screened = len(r["screened"]) if code is ROOT else "-"
+                print(
+                    f"| {n} | {label} | {r['seconds']:.1f} | {r['decided']} | {r['universal']} | "
+                    f"{r['refuted']} | {r['conjectured']} | {r['undecided']} | {screened} |",
+                    flush=True,
+                )
+            costs.append((n, _screen_cost(n, r["screened"])))
     print()
     for n, (count, mean, worst) in costs:
         print(
