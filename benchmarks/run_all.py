@@ -33,6 +33,7 @@ SCRIPTS = (
     ("scaling.py", ()),
     ("mimo.py", ()),
     ("atlas.py", ()),
+    ("atlas_screen.py", ()),
     ("examples.py", ()),
     ("dale.py", ("--workers", "2")),
     ("fit.py", ()),

@@ -1,28 +1,17 @@
 r"""The circuit atlas: every minimal circuit of an order-:math:`n` :math:`G_2`, found, proved and ranked.
 
-Definitions (the issue's, kept; :mod:`symctl.circuitatlas.pattern`,
-:mod:`~symctl.circuitatlas.universality`, :mod:`~symctl.circuitatlas.circuitclass`):
-
-* a realization :math:`(F, H, M, N)` of an order-:math:`n` :math:`G_2` (proper,
-  :math:`N \ne 0`) has a **pattern**, the support of :math:`(F, H, M)`;
-* a pattern is **universal** if almost every real order-:math:`n` :math:`G_2`
-  (complex poles, real poles of either sign, any numerator) has a real
-  realization with exactly that support;
-* the **circuit** of a pattern is :meth:`Circuit.from_structure` of its
-  branch-delay structure; patterns whose circuits are isomorphic graphs
-  (neurons, synapses with their delays, self-dynamics, input and output;
-  weights ignored) form one **circuit class**;
-* every realization here has :math:`n` states, and the atlas keeps only the
-  patterns whose generic realization is minimal (controllable and
-  observable), so every circuit is minimal in the paper's sense. The
-  **sparsest** classes have the fewest neurons, then the fewest synapses.
-
-One refinement of the definition: a class is universal when *one* of its
-patterns is (the circuit then carries almost every :math:`G_2`); its other
-patterns may realize less. Universal means proved universal (a closed form, or
-a lift of one); a class whose best pattern has only witnesses at sampled
-:math:`G_2` is **conjectured** (:attr:`Atlas.conjectured_classes`), counted
-apart and never among :attr:`Atlas.universal_classes`.
+* A realization :math:`(F, H, M, N)` of an order-:math:`n` :math:`G_2` (:math:`N \ne 0`)
+  has a **pattern**, the support of :math:`(F, H, M)` (:mod:`~symctl.circuitatlas.pattern`);
+  it is **universal** if almost every real :math:`G_2` has a real realization with exactly
+  that support (:mod:`~symctl.circuitatlas.universality`).
+* Patterns whose circuits (:meth:`Circuit.from_structure` of the branch-delay structure)
+  are isomorphic graphs, weights ignored, form a **circuit class**
+  (:mod:`~symctl.circuitatlas.circuitclass`). Only generically minimal patterns (:math:`n`
+  states, controllable and observable) are kept; the **sparsest** classes have the fewest
+  neurons, then synapses.
+* A class is universal when *one* of its patterns is proved universal (a closed form, or a
+  lift of one); a class whose best pattern is only conjectured is counted apart
+  (:attr:`Atlas.conjectured_classes`), never among :attr:`Atlas.universal_classes`.
 
 The search (:mod:`~symctl.circuitatlas.search`) is exhaustive for orders 1 to
 :data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
@@ -30,9 +19,7 @@ filtered by the exact generic-rank test, then decided. Order
 :data:`MAX_ATLAS_ORDER` searches the sparsest classes: patterns of :math:`3n`
 nonzero entries (up to ``max_size``; a universal pattern needs at least
 :math:`3n`, :mod:`~symctl.circuitatlas.rank`) whose circuits have at most
-:data:`ORDER4_MAX_NEURONS` neurons (``max_neurons``), and there a region
-without a certified witness leaves a pattern not decided
-(:data:`~symctl.circuitatlas.universality.EXACT_SOLVE_MAX_ORDER`).
+:data:`ORDER4_MAX_NEURONS` neurons (``max_neurons``).
 
 >>> import symctl
 >>> A = symctl.atlas(2, workers=1)
@@ -45,7 +32,7 @@ from __future__ import annotations
 import functools
 import os
 import time
-from collections import defaultdict
+from collections import Counter, defaultdict
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -293,16 +280,14 @@ def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_n
     )
     classes = _classes(n, delays, records)
     minimal = [r for r in records if r["evidence"]["method"] != "not minimal"]
+    status = Counter(Evidence.from_dict(r["evidence"]).status for r in records)
     stats = {
         **counts,
         "minimal": len(minimal),
         "full_rank": sum(r["evidence"]["method"] not in ("rank", "not minimal") for r in records),
-        "universal": sum(bool(r["evidence"]["universal"]) for r in records),
-        "conjectured": sum(r["evidence"]["method"] == CONJECTURED for r in records),
-        "undecided": sum(
-            r["evidence"]["universal"] is None and r["evidence"]["method"] != CONJECTURED
-            for r in records
-        ),
+        "universal": status["universal"],
+        "conjectured": status[CONJECTURED],
+        "undecided": status["not decided"],
         "sizes": [low, top],
         "complete": low == 0 and top == slots and not counts["skipped"],
         "max_neurons": max_neurons,

@@ -56,7 +56,7 @@ from symctl.errors import NotRealizableError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.realization.check import check_realization
 from symctl.realization.factorization import Factorization, factor
-from symctl.realization.realization import Realization
+from symctl.realization.realization import Realization, split_proper
 from symctl.symbols import z
 
 __all__ = ["CandidateCircuit", "circuits_for"]
@@ -254,7 +254,6 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     T = ds + da
     unknowns, _slots, values, charpoly, numer = _system(pattern)
     e = sp.symbols(f"e_0:{T}")
-    mu = sp.Integer(1)  # the image is a cone in b (M -> lambda M keeps the pattern): mu = 1
     Z = sp.Mul(*(z - ei for ei in e))
     num = sp.Poly(tf.num, z)
     den = sp.Poly(tf.den, z)
@@ -266,9 +265,7 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     target_b = sp.Poly(sp.expand(nu * Z - lead * delta), z).all_coeffs()[::-1]
     target_b = target_b + [sp.Integer(0)] * (n - len(target_b))
     eqs = [sp.expand(p - binary_rationals(t)) for p, t in zip(charpoly, target_a, strict=True)]
-    eqs += [
-        sp.expand(p - mu * binary_rationals(t)) for p, t in zip(numer, target_b[:n], strict=True)
-    ]
+    eqs += [sp.expand(p - binary_rationals(t)) for p, t in zip(numer, target_b[:n], strict=True)]
     gens = [*unknowns, *e]
     if len(gens) < len(eqs):
         return None
@@ -295,14 +292,8 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
         for k in pattern.indices
     }
     F, H, M = pattern.matrices(entries)
-    R = Realization(F, H, M, _feedthrough(f))
+    R = Realization(F, H, M, split_proper(f.G2)[0])
     return True, eps_vals, C, f, R, "special eps: Gauss-Newton, Krawczyk-certified"
-
-
-def _feedthrough(f: Factorization):
-    from symctl.realization.realization import split_proper
-
-    return split_proper(f.G2)[0]
 
 
 def _floats(R: Realization) -> Realization:

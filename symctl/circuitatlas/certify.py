@@ -43,19 +43,13 @@ class CertifiedRoot(NamedTuple):
 
 
 class _Poly:
-    """A polynomial as (exact coefficient, exponents) terms, evaluated in floats or balls."""
+    """A polynomial as (exact coefficient, exponents) terms, evaluated in balls."""
 
     def __init__(self, expr, gens):
         poly = sp.Poly(expr, *gens)
         self.terms = [(fmpq(int(sp.numer(c)), int(sp.denom(c))), m) for m, c in poly.terms()]
-        self.coeffs = np.array([float(c.p) / float(c.q) for c, _ in self.terms])
-        self.exps = np.array([m for _, m in self.terms], dtype=float).reshape(
-            len(self.terms), len(gens)
-        )
 
-    def __call__(self, x, ball: bool = False):
-        if not ball:
-            return float(self.coeffs @ np.prod(np.power(x, self.exps), axis=1))
+    def __call__(self, x):
         total = arb(0)
         for c, m in self.terms:
             term = arb(c)
@@ -79,7 +73,7 @@ class _Floats:
         polys = [*f, *(p for row in J for p in row)]
         monos = sorted({m for p in polys for _, m in p.terms})
         index = {m: k for k, m in enumerate(monos)}
-        width = len(f[0].exps[0]) if f and len(f[0].exps) else len(J[0]) if J else 0
+        width = len(J[0]) if J else 0
         self.exps = np.array(monos, dtype=float).reshape(len(monos), width)
         C = np.zeros((len(polys), len(monos)))
         for i, p in enumerate(polys):
@@ -120,20 +114,20 @@ def _newton(system: _Floats, x0, steps: int = 60):
     return x if np.max(np.abs(fx)) < 1e-9 * (1 + np.max(np.abs(x))) else None
 
 
-def _krawczyk(f, J, x) -> CertifiedRoot | None:
+def _krawczyk(f, J, system, x) -> CertifiedRoot | None:
     m = len(x)
-    Jx = np.array([[p(x) for p in row] for row in J])
+    Jx = system(x)[1]
     try:
         Yf = np.linalg.inv(Jx)
     except np.linalg.LinAlgError:
         return None
     Y = arb_mat([[arb(float(v)) for v in row] for row in Yf])
     mid = [arb(float(v)) for v in x]
-    fmid = arb_mat([[p(mid, ball=True)] for p in f])
+    fmid = arb_mat([[p(mid)] for p in f])
     for scale in (1e-10, 1e-8, 1e-6):
         r = [float(scale * (1 + abs(v))) for v in x]
         X = [arb(float(v), ri) for v, ri in zip(x, r, strict=True)]
-        JX = arb_mat([[p(X, ball=True) for p in row] for row in J])
+        JX = arb_mat([[p(X) for p in row] for row in J])
         D = arb_mat([[X[i] - mid[i]] for i in range(m)])
         eye = arb_mat([[arb(1 if i == j else 0) for j in range(m)] for i in range(m)])
         K = arb_mat([[v] for v in mid]) - Y * fmid + (eye - Y * JX) * D
@@ -174,7 +168,7 @@ def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale
         x = _newton(system, rng.normal(0, scale, len(gens)))
         if x is None:
             continue
-        root = _krawczyk(f, J, x)
+        root = _krawczyk(f, J, system, x)
         if root is None:
             continue
         if root.nonzero:
@@ -213,14 +207,13 @@ def certified_point(
         x = _newton(system, rng.normal(0, scale, len(gens)))
         if x is None or (accept is not None and not accept(dict(zip(gens, x, strict=True)))):
             continue
-        Jx = np.array([[p(x) for p in row] for row in J])
-        _, _, piv = qr(Jx, pivoting=True)
+        _, _, piv = qr(system(x)[1], pivoting=True)
         free = sorted(piv[:m])
         fixed = [k for k in range(len(gens)) if k not in free]
         rule = {gens[k]: sp.Rational(float(x[k])) for k in fixed}
         square = [sp.expand(e.xreplace(rule)) for e in eqs]
         fs, Js = _compile(square, [gens[k] for k in free])
-        root = _krawczyk(fs, Js, np.array([x[k] for k in free]))
+        root = _krawczyk(fs, Js, _Floats(fs, Js), np.array([x[k] for k in free]))
         if root is None:
             continue
         values = {gens[k]: float(x[k]) for k in fixed}

@@ -199,9 +199,7 @@ class CircuitClass:
             "evidence": self.evidence.to_dict(),
             "patterns": [
                 {
-                    "F": p.arrays()[0],
-                    "H": p.arrays()[1],
-                    "M": p.arrays()[2],
+                    **dict(zip("FHM", p.arrays(), strict=True)),
                     "size": p.size,
                     "orbit": len(p.orbit()),
                     "evidence": self.pattern_evidence[p].to_dict(),
@@ -236,16 +234,14 @@ class CircuitClass:
         )
 
     def __repr__(self) -> str:
-        verdict = self.status
         return (
             f"CircuitClass({self.label or '?'}: {self.n_neurons} neurons, {self.n_synapses} "
-            f"synapses, {len(self.representatives)} pattern(s), {verdict})"
+            f"synapses, {len(self.representatives)} pattern(s), {self.status})"
         )
 
     def draw(self, ax=None, *, title: str | None = None):
         """Draw the class's circuit (a matplotlib Figure); the title gives its counts and verdict."""
-        verdict = self.status
         head = title or (
-            f"{self.label}: {self.n_neurons} neurons, {self.n_synapses} synapses ({verdict})"
+            f"{self.label}: {self.n_neurons} neurons, {self.n_synapses} synapses ({self.status})"
         )
         return self.circuit.draw(ax, title=head)

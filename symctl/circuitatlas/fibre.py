@@ -18,11 +18,13 @@ basis for the other coordinates (shape position).
 
 from __future__ import annotations
 
+import itertools
 import random
 from functools import cache
 
 import sympy as sp
-from flint import fmpq, fmpq_mat
+from flint import fmpq, fmpq_mat, fmpq_poly
+from sympy.polys.groebnertools import groebner
 
 from symctl._util.deadline import Unfinished
 from symctl.circuitatlas.pattern import Pattern
@@ -35,6 +37,8 @@ __all__ = [
     "coefficient_polynomials",
     "coefficient_polys",
     "coefficient_symbols",
+    "count_real",
+    "real_root_count",
     "real_solutions",
     "solve_at",
 ]
@@ -149,18 +153,13 @@ def _equations(pattern: Pattern, a, c) -> list[sp.Expr]:
     return [sp.expand(p - v) for p, v in zip((*charpoly, *numer), (*a, *c), strict=True)]
 
 
-def _linear_form(unknowns, rng):
-    return sum(rng.randint(1, 9) * x for x in unknowns)
-
-
 MAX_FIBRE = 400
 """Largest quotient-ring dimension (number of complex solutions) solve_at handles."""
 
 
-def _standard_monomials(basis, gens):
-    """The monomials not divisible by any leading monomial (grevlex): a basis of the quotient."""
-    leads = [sp.Poly(g, *gens).monoms(order="grevlex")[0] for g in basis.exprs]
-    start = (0,) * len(gens)
+def _standard_monomials(leads, k: int):
+    """The monomials no leading monomial divides (a basis of the quotient); None past MAX_FIBRE."""
+    start = (0,) * k
     seen, todo, out = {start}, [start], []
     while todo:
         m = todo.pop()
@@ -169,43 +168,118 @@ def _standard_monomials(basis, gens):
         out.append(m)
         if len(out) > MAX_FIBRE:
             return None
-        for i in range(len(gens)):
-            nxt = tuple(e + (k == i) for k, e in enumerate(m))
+        for i in range(k):
+            nxt = tuple(e + (j == i) for j, e in enumerate(m))
             if nxt not in seen:
                 seen.add(nxt)
                 todo.append(nxt)
     return sorted(out, key=lambda m: (sum(m), m))
 
 
-def _normal_form(basis, expr, gens, index):
-    """Coordinates of expr's normal form on the standard monomials."""
-    rem = basis.reduce(sp.expand(expr))[1]
-    vec = [sp.Integer(0)] * len(index)
-    for m, coeff in sp.Poly(rem, *gens).terms():
-        vec[index[m]] = coeff
-    return vec
+def _quotient(eqs, ring):
+    """Standard monomials and each generator's multiplication matrix (``fmpq_mat``) of the
+    ideal of ``eqs`` (a grevlex Groebner basis over Q); ``([], [])`` when it is the unit
+    ideal, None when it is not zero-dimensional or above :data:`MAX_FIBRE` points."""
+    basis = groebner(eqs, ring)
+    if basis == [ring.one]:
+        return [], []
+    monos = _standard_monomials([g.LM for g in basis], ring.ngens)
+    if monos is None:
+        return None
+    index = {m: i for i, m in enumerate(monos)}
+    d = len(monos)
+    mult = []
+    for x in ring.gens:
+        M = fmpq_mat(d, d)
+        for j, m in enumerate(monos):
+            for monom, coeff in (x * ring({m: 1})).rem(basis).items():
+                M[index[monom], j] = fmpq(coeff)
+        mult.append(M)
+    return monos, mult
 
 
-def _q(v):
-    v = sp.Rational(v)
-    return fmpq(int(v.p), int(v.q))
+def _form_matrix(mult, rng):
+    """The multiplication matrix of a random linear form (weights 1 to 9)."""
+    return sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
 
 
 def _rational(q) -> sp.Rational:
     return sp.Rational(int(q.p), int(q.q))
 
 
+def _sign_changes(values) -> int:
+    signs = [v > 0 for v in values if v != 0]
+    return sum(a != b for a, b in itertools.pairwise(signs))
+
+
+def real_root_count(e: fmpq_poly) -> int:
+    """The number of real roots of a squarefree ``fmpq_poly`` (Sturm's theorem, exact).
+
+    >>> from flint import fmpq_poly
+    >>> from symctl.circuitatlas.fibre import real_root_count
+    >>> real_root_count(fmpq_poly([-2, 0, 1])), real_root_count(fmpq_poly([2, 0, 1]))
+    (2, 0)
+    """
+    seq = [e, e.derivative()]
+    while seq[-1].degree() > 0:
+        seq.append(-(seq[-2] % seq[-1]))
+    ends = [[p[p.degree()] * s ** p.degree() for p in seq] for s in (-1, 1)]
+    return _sign_changes(ends[0]) - _sign_changes(ends[1])
+
+
+@cache
+def _fibre_ring(pattern: Pattern):
+    unknowns, _, _, charpoly, numer = _system(pattern)
+    ring = sp.ring(unknowns, sp.QQ, order="grevlex")[0]
+    return ring, [ring.from_expr(p) for p in (*charpoly, *numer)]
+
+
+def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
+    r"""The exact number of real points of the fibre over one rational target, and its degree.
+
+    The quotient ring as in :func:`solve_at`; the characteristic polynomial :math:`e(t)` of a
+    random linear form's multiplication matrix, squarefree (the :math:`d` points are simple
+    and :math:`t` separates them, so the real points are the real roots of :math:`e`, counted
+    by Sturm's theorem); and whether a point has an entry 0 (the determinant of that entry's
+    multiplication matrix is the product of its values at the points). Returns
+    ``{"degree", "real", "zero_entry", "eliminant"}``, or None when the fibre is not finite
+    and reduced.
+
+    >>> import random
+    >>> from symctl.circuitatlas.pattern import Pattern
+    >>> from symctl.circuitatlas.fibre import count_real
+    >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
+    >>> count_real(P, [1, 0], [2, 3], random.Random(0))["real"]
+    1
+    """
+    ring, polys = _fibre_ring(pattern)
+    found = _quotient([p - v for p, v in zip(polys, (*a, *c), strict=True)], ring)
+    if found is None:
+        return None
+    monos, mult = found
+    if not monos:
+        return {"degree": 0, "real": 0, "zero_entry": False, "eliminant": "1"}
+    for _ in range(tries):
+        e = _form_matrix(mult, rng).charpoly()
+        if e.gcd(e.derivative()).degree() == 0:
+            return {
+                "degree": len(monos),
+                "real": real_root_count(e),
+                "zero_entry": any(M.det() == 0 for M in mult),
+                "eliminant": e.str(var="t"),
+            }
+    return None
+
+
 def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
     r"""The real realizations of one rational target, exactly.
 
-    A grevlex Groebner basis over :math:`\mathbb{Q}` gives the quotient ring
-    of the fibre; the multiplication matrix of a random linear form
-    :math:`t = \sum r_i x_i` has the characteristic polynomial :math:`e(t)`,
-    squarefree when :math:`t` separates the (then simple) solutions, and each
-    unknown is :math:`x_i = g_i(t)` with :math:`g_i` from the Krylov basis
-    (shape position). A non-real solution has a non-real :math:`t` (its
-    conjugate is another solution with the conjugate :math:`t`), so the real
-    solutions are the real roots of :math:`e`, isolated in rational intervals.
+    A grevlex Groebner basis over :math:`\mathbb{Q}` gives the fibre's quotient ring; the
+    multiplication matrix of a random linear form :math:`t` has the characteristic polynomial
+    :math:`e(t)`, squarefree when :math:`t` separates the (then simple) solutions; each unknown
+    is :math:`x_i = g_i(t)` (the Krylov basis: shape position). A non-real solution has a
+    non-real :math:`t` (its conjugate is another solution), so the real solutions are the real
+    roots of :math:`e`, isolated in rational intervals.
 
     Parameters
     ----------
@@ -240,26 +314,21 @@ def real_solutions(eqs, free, rng, tries: int = 3):
     """The exact real solutions of a square rational system (see :func:`solve_at`)."""
     if not free:
         return {"degree": int(all(e == 0 for e in eqs)), "real": [], "eliminant": "1"}
-    basis = sp.groebner(eqs, *free, order="grevlex", domain=sp.QQ)
-    if basis.exprs == [1]:
+    ring = sp.ring(free, sp.QQ, order="grevlex")[0]
+    found = _quotient([ring.from_expr(e) for e in eqs], ring)
+    if found is None:
+        return None
+    monos, mult = found
+    if not monos:
         return {"degree": 0, "real": [], "eliminant": "1"}
-    if not basis.is_zero_dimensional:
-        return None
-    monos = _standard_monomials(basis, free)
-    if monos is None:
-        return None
-    index = {m: i for i, m in enumerate(monos)}
     d = len(monos)
-    mono_expr = [sp.Mul(*(x**e for x, e in zip(free, m, strict=True))) for m in monos]
-    nfs = {x: [_q(v) for v in _normal_form(basis, x, free, index)] for x in free}
     t = sp.Symbol("t_")
     for _ in range(tries):
-        form = _linear_form(free, rng)
-        cols = [_normal_form(basis, form * m, free, index) for m in mono_expr]
-        Mt = fmpq_mat(d, d, [_q(cols[j][i]) for i in range(d) for j in range(d)])
-        e = sp.Poly([_rational(q) for q in Mt.charpoly().coeffs()[::-1]], t)
-        if sp.degree(sp.gcd(e, e.diff(t)), t) > 0:
+        Mt = _form_matrix(mult, rng)
+        ef = Mt.charpoly()
+        if ef.gcd(ef.derivative()).degree() > 0:
             continue
+        e = sp.Poly([_rational(q) for q in ef.coeffs()[::-1]], t)
         # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
         krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]
         for _ in range(d - 1):
@@ -267,8 +336,8 @@ def real_solutions(eqs, free, rng, tries: int = 3):
         K = fmpq_mat(d, d, [krylov[j][i, 0] for i in range(d) for j in range(d)])
         try:
             g = {}
-            for x in free:
-                coeffs = K.solve(fmpq_mat(d, 1, nfs[x]))
+            for x, M in zip(free, mult, strict=True):
+                coeffs = K.solve(M * krylov[0])
                 g[x] = sp.Add(*(_rational(coeffs[k, 0]) * t**k for k in range(d)))
         except ZeroDivisionError:
             continue

@@ -173,7 +173,6 @@ class Pattern:
             [sp.cancel(v) != 0 for v in R.M],
         )
 
-    # ------------------------------------------------------------ views
     @property
     def size(self) -> int:
         """The number of nonzero entries."""
@@ -198,14 +197,8 @@ class Pattern:
         neuron; :math:`y = Mx + Nu` always has :math:`N \\ne 0` and, when
         minimal, an entry of :math:`M`.)
         """
-        n = self.n
-        rows = 0
-        for i in range(n):
-            row = sum(self.mask >> (i * n + j) & 1 for j in range(n)) + (
-                self.mask >> (n * n + i) & 1
-            )
-            rows += row >= 2
-        return rows + 1
+        F, H, _M = self.arrays()
+        return 1 + sum(sum(row) + h >= 2 for row, h in zip(F, H, strict=True))
 
     def where(self, k: int) -> tuple[str, int, int]:
         """Slot ``k`` as (matrix letter, row, column), 0-based."""
@@ -250,16 +243,13 @@ class Pattern:
     def text(self) -> str:
         """One line: the rows of ``F``, then ``H`` and ``M``, as 0/1 digits."""
         F, H, M = self.arrays()
-        return (
-            " ".join("".join(map(str, r)) for r in F)
-            + f" | {''.join(map(str, H))}"
-            + (f" | {''.join(map(str, M))}")
+        return " | ".join(
+            [" ".join("".join(map(str, r)) for r in F), *("".join(map(str, v)) for v in (H, M))]
         )
 
     def __repr__(self) -> str:
         return f"Pattern({self.n}, {self.text!r})"
 
-    # ------------------------------------------------------------ symmetry
     def permuted(self, perm) -> Pattern:
         """The pattern after renaming state ``i`` to ``perm[i]`` (0-based)."""
         perm = tuple(perm)
@@ -280,7 +270,6 @@ class Pattern:
         """``other``'s nonzero slots are all nonzero here."""
         return self.n == other.n and other.mask & ~self.mask == 0
 
-    # ------------------------------------------------------------ structure
     def tree_slots(self) -> tuple[int, ...] | None:
         """Slots of a spanning tree of the torus graph, whose entries a diagonal similarity sets to 1.
 

@@ -73,19 +73,11 @@ class GenericRank(NamedTuple):
 
 def _point(pattern: Pattern, rng: random.Random):
     n = pattern.n
-    F = [[0] * n for _ in range(n)]
-    H = [0] * n
-    M = [0] * n
+    mats = {"F": [[0] * n for _ in range(n)], "H": [[0] for _ in range(n)], "M": [[0] * n]}
     for k in pattern.indices:
         kind, i, j = pattern.where(k)
-        v = rng.randrange(1, PRIME)
-        if kind == "F":
-            F[i][j] = v
-        elif kind == "H":
-            H[i] = v
-        else:
-            M[j] = v
-    return F, H, M
+        mats[kind][i][j] = rng.randrange(1, PRIME)
+    return mats["F"], [h for (h,) in mats["H"]], mats["M"][0]
 
 
 def _minimal_at(n: int, F, H, M) -> bool:
@@ -116,15 +108,8 @@ def _rank_at(pattern: Pattern, F, H, M, rng: random.Random) -> int:
         ra, rg = [], []
         for k in pattern.indices:
             kind, i, j = pattern.where(k)
-            if kind == "F":
-                ra.append(-R[j][i] % PRIME)
-                rg.append(MR[i] * RH[j] % PRIME)
-            elif kind == "H":
-                ra.append(0)
-                rg.append(MR[i])
-            else:
-                ra.append(0)
-                rg.append(RH[j])
+            ra.append(-R[j][i] % PRIME if kind == "F" else 0)
+            rg.append({"F": MR[i] * RH[j] % PRIME, "H": MR[i], "M": RH[j]}[kind])
         rows += [ra, rg]
     return nmod_mat(rows, PRIME).rank() if pattern.size else 0
 

@@ -37,8 +37,8 @@ __all__ = ["CHUNK", "MAX_WORKERS", "canonical_masks", "open_pool", "pool_options
 CHUNK = 64
 """Patterns per task sent to a worker."""
 
-FORMAT = 2
-"""Version of the checkpoint format (2: witnesses give conjectures, not universal verdicts)."""
+FORMAT = 3
+"""Version of the checkpoint format (3: the exact screen decides patterns of 3n entries)."""
 
 MAX_WORKERS = 512
 """Most worker processes one search may ask for."""

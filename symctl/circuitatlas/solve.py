@@ -4,7 +4,7 @@ r"""Realize one :math:`G_2` with a given pattern: closed form, or an exact polyn
 pattern of the class (universal ones first) it tries, in order: the closed
 form (rational functions of :math:`G_2`'s coefficients, symbolic ``G2``
 allowed), then, for numeric ``G2``, the exact solve of
-:func:`~symctl.circuitatlas.universality.solve_at` (a Groebner basis over
+:func:`~symctl.circuitatlas.fibre.solve_at` (a Groebner basis over
 :math:`\mathbb{Q}` in shape position; a real root of the eliminant as a
 ``CRootOf``), with the entries beyond :math:`3n` set to random nonzero
 rationals. The torus-normalized entries (a spanning tree) are 1.

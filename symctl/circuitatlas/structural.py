@@ -24,8 +24,8 @@ entries, so a factor linear in :math:`z` is :math:`f_1 z + f_0` with coprime mul
 (hence squarefree) :math:`f_0, f_1`; unless both are constant (a fixed root: a rank
 deficiency), one of them changes sign across its zero set where the other does not vanish,
 and so does the root :math:`-f_0 / f_1`. Sign restrictions come from several coefficients at
-once (a discriminant, for example); the sampled counterexamples of
-:mod:`~symctl.circuitatlas.universality` find those.
+once (a discriminant, for example); the exact screen (:mod:`~symctl.circuitatlas.screen`)
+finds those.
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.structural import structural_refutation
@@ -74,12 +74,8 @@ def _odd_blocks(pattern: Pattern) -> Evidence | None:
 
 
 def _odd_factors(coeffs, gens) -> tuple[int, list[str]]:
-    r"""Real roots forced in :math:`z` by :math:`p(z) = \sum_i` ``coeffs[i]`` :math:`z^i`.
-
-    ``p`` is factored over :math:`\mathbb{Q}[` ``gens`` :math:`, z]`; each irreducible factor of
-    odd degree in :math:`z` has a real root for every real value of ``gens`` (counted with its
-    multiplicity). Returns that count and the factors that involve :math:`z`.
-    """
+    """Real roots in z forced by sum(coeffs[i] z^i) (its odd-degree factors over Q[gens, z],
+    with multiplicity), and the factors that involve z."""
     poly = sp.Poly(sum(c * z**i for i, c in enumerate(coeffs)), *gens, z, domain=sp.ZZ)
     if poly.is_zero:
         return 0, []
@@ -107,14 +103,9 @@ def _zero_factors(pattern: Pattern) -> tuple[int, list[str], int]:
 
 
 def forced_real_zeros(pattern: Pattern) -> Evidence | None:
-    r"""The refutation "real zeros": the numerator forces more real zeros than a generic one has.
-
-    :math:`M \operatorname{adj}(zI - F) H` is a polynomial in :math:`z` and the entries;
-    factored over :math:`\mathbb{Q}`, each irreducible factor of odd degree in :math:`z` has a
-    real root for every real realization with this support. When those forced real zeros are
-    more than :math:`(n - 1) \bmod 2`, the :math:`G_2` whose numerator :math:`b` of degree
-    :math:`n - 1` has only :math:`(n - 1) \bmod 2` real zeros (complex zeros: an open set) have
-    no realization with this support. None when the rule does not apply.
+    r"""The refutation "real zeros" (module text): the numerator :math:`M \operatorname{adj}(zI - F)
+    H` forces more real zeros than the :math:`G_2` with complex zeros have; None when the rule
+    does not apply.
 
     Examples
     --------

@@ -13,22 +13,10 @@ The verdicts, each with its method (:class:`Evidence`):
 ``"rank"`` (refuted)
     The generic rank is below :math:`2n` (:mod:`symctl.circuitatlas.rank`): the
     reachable :math:`G_2` form a set of lower dimension.
-``"real eigenvalues"`` (refuted)
-    ``F``'s graph has strongly connected components of sizes :math:`s_1, ..`;
-    after a permutation ``F`` is block triangular with those diagonal blocks,
-    so :math:`a = \prod a_k` with real :math:`a_k` of degree :math:`s_k`, and
-    each odd :math:`s_k` gives a real pole. When more blocks are odd than
-    :math:`n \bmod 2`, no :math:`G_2` with only :math:`n \bmod 2` real poles
-    (an open set: complex poles) is reachable. A triangular ``F`` is the
-    case :math:`s = (1, .., 1)`.
-``"real zeros"`` (refuted)
-    :math:`M \operatorname{adj}(zI - F) H`, factored over :math:`\mathbb{Q}` as a
-    polynomial in :math:`z` and the entries, has irreducible factors of odd degree in
-    :math:`z`, each with a real root for every real realization; when they force more
-    than :math:`(n - 1) \bmod 2` real zeros, no :math:`G_2` whose numerator has complex
-    zeros (an open set) is reachable (:func:`forced_real_zeros`). Example:
-    ``F = [[f11, f12, f13], [f21, f22, 0], [f31, 0, f33]]``, :math:`H = e_1`,
-    :math:`M = e_1^T` gives :math:`m_1 h_1 (z - f_{22})(z - f_{33})`.
+``"real eigenvalues"``, ``"real zeros"`` (refuted)
+    Structural rules with one-line proofs (:mod:`~symctl.circuitatlas.structural`): every
+    real realization has more real poles, or more real zeros, than an open set of
+    :math:`G_2` has.
 ``"closed form"`` (proved)
     The equations are solved one unknown at a time, each linear in it with
     the earlier ones substituted: the entries are rational functions of
@@ -44,30 +32,19 @@ The verdicts, each with its method (:class:`Evidence`):
     the kernel equation with that entry set to 1); it leaves every
     coordinate hyperplane, so a nearby point of the fibre has every entry of
     the bigger pattern nonzero.
-``"conjectured"`` (evidence, not a proof; :attr:`Evidence.universal` is None)
-    For a sampled :math:`G_2` in every region of poles and zeros (every number
-    of complex pole pairs, every sign pattern of the real poles, and from order
-    3 a numerator with complex zeros or only real ones) a real realization is
-    found exactly: a lex Groebner basis over :math:`\mathbb{Q}` in shape
-    position (:math:`x_i = g_i(t)`, :math:`e(t) = 0`, :math:`t` a random
-    linear form), a real root of :math:`e` isolated in a rational interval,
-    and every entry :math:`g_i(t)` shown nonzero on it. A handful of samples per
-    region cannot rule out an open sub-region they missed, so this is a
-    conjecture, counted apart from the proofs. A pattern that contains a
-    conjectured one (and no proved one) is conjectured too.
 ``"counterexample"`` (refuted)
-    A sampled :math:`G_2` whose fibre has :math:`d` simple points, none real
-    (same certificate). Or, tried before any witness search (witnesses for a
-    few sampled :math:`G_2` cannot rule out an unreachable sub-region), the
-    poles alone: when ``F``'s own torus leaves :math:`n` free entries,
-    :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` with no
-    real solution refutes every pattern with that ``F``. With :math:`d` the fibre degree, the points move
-    continuously and stay non-real nearby, so an open set of controllers of
-    that region has no realization. The sampled target must be generic: its
-    fibre has the degree :math:`d` seen at a random target (:func:`generic_degree`)
-    with simple points, else a solution went to infinity there and the target
-    refutes nothing. (That :math:`d` is the generic degree holds with probability
-    1, not by proof.)
+    A generic target :math:`G_2` with no real realization, found exactly by the screen of a
+    pattern of :math:`3n` entries (:mod:`~symctl.circuitatlas.screen`), or by the poles
+    alone, tried first: when ``F``'s own torus leaves :math:`n` free entries,
+    :math:`\det(zI - F) = a(z)` is square, and a sampled generic :math:`a` with no real
+    solution refutes every pattern with that ``F``. Simple points stay non-real nearby, so
+    an open set of that region has no realization.
+``"conjectured"`` (evidence, not a proof; :attr:`Evidence.universal` is None)
+    Every target of the screen had real realizations with every entry nonzero; or, for a
+    pattern above :math:`3n` entries, a real realization (a Krawczyk-certified root, some
+    entries fixed) at one sampled :math:`G_2` in every region. Samples cannot rule out an
+    open sub-region they missed. A pattern that contains a conjectured one (and no proved
+    one) is conjectured too.
 ``"not decided"``
     None of the above settled it; the search done is stated.
 
@@ -96,10 +73,17 @@ from symctl.circuitatlas.fibre import (
     _system,
     coefficient_symbols,
     real_solutions,
-    solve_at,
 )
 from symctl.circuitatlas.pattern import Pattern, slot_names
 from symctl.circuitatlas.rank import generic_rank
+from symctl.circuitatlas.screen import (
+    _generic_rationals,
+    _region_sample,
+    _search_regions,
+    generic_degree,
+    sample_targets,
+    screen,
+)
 from symctl.circuitatlas.structural import forced_real_zeros, structural_refutation
 from symctl.symbols import z
 
@@ -114,27 +98,14 @@ __all__ = [
     "sample_targets",
 ]
 
-SAMPLES_PER_REGION = 2
-"""Sampled controllers per pole region of :func:`sample_targets`."""
-
 FIXINGS = 6
 """Random values tried for the entries beyond a square system (patterns above 3n entries)."""
 
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
 
-WITNESSES_PER_REGION = 1
-"""Witnesses the search asks for in each region of poles and zeros (signs of the real poles,
-complex or real zeros; :func:`_search_regions`)."""
-
-POLE_DRAWS = 8
-"""Sampled pole polynomials per region of the poles-alone refutation."""
-
-EXACT_SOLVE_MAX_ORDER = 3
-"""Highest order whose failed witness searches fall back to the exact Groebner-basis solve
-(a refutation). Above it that solve has no useful bound (eight unknowns at order 4), so a
-region without a certified real root leaves the pattern not decided."""
-"""Random values tried for the entries beyond a square system (patterns above 3n entries)."""
+POLE_DRAWS = 2
+"""Sampled pole polynomials per region (of poles and zeros) of the poles-alone refutation."""
 
 
 def _linear_pair(eqs, left):
@@ -152,9 +123,7 @@ def _linear_pair(eqs, left):
                 poly = sp.Poly(e, x, y)
                 if poly.total_degree() != 1:
                     break
-                rows.append(
-                    (poly.coeff_monomial(x), poly.coeff_monomial(y), poly.coeff_monomial(1))
-                )
+                rows.append(tuple(poly.coeff_monomial(m) for m in (x, y, 1)))
             else:
                 (p1, q1, r1), (p2, q2, r2) = rows
                 det = sp.expand(p1 * q2 - p2 * q1)
@@ -185,131 +154,26 @@ def closed_form(pattern: Pattern) -> MappingProxyType | None:
         return [q for q in out if q != 0]
 
     while left:
+        step = None
         for e in eqs:
             free = e.free_symbols & left
-            if len(free) != 1:
-                continue
-            (x,) = free
-            poly = sp.Poly(e, x)
-            if poly.degree() != 1:
-                continue
-            c1, c0 = poly.all_coeffs()
-            value = sp.cancel(-c0 / c1)
-            if value == 0:
-                return None
-            solved[x] = value
-            left.discard(x)
-            eqs = [sp.numer(sp.together(q.subs(x, value))) for q in eqs if q is not e]
-            eqs = [sp.expand(q) for q in eqs]
-            eqs = [q for q in eqs if q != 0]
-            break
-        else:
-            step = _linear_pair(eqs, left)
-            if step is None:
-                return None
-            rule, used = step
-            if any(v == 0 for v in rule.values()):
-                return None
-            solved = {k: sp.cancel(v.xreplace(rule)) for k, v in solved.items()}
-            solved.update(rule)
-            left -= set(rule)
-            eqs = substitute(rule, used)
+            poly = sp.Poly(e, *free) if len(free) == 1 else None
+            if poly is not None and poly.degree() == 1:
+                c1, c0 = poly.all_coeffs()
+                step = {poly.gens[0]: sp.cancel(-c0 / c1)}, (e,)
+                break
+        step = step or _linear_pair(eqs, left)
+        if step is None:
+            return None
+        rule, used = step
+        if any(v == 0 for v in rule.values()):
+            return None
+        solved.update(rule)  # in (a, c) alone: the earlier unknowns were substituted
+        left -= set(rule)
+        eqs = substitute(rule, used)
     if eqs:
         return None
     return MappingProxyType({k: solved.get(values[k], values[k]) for k in pattern.indices})
-
-
-def _poles(n: int, pairs: int, signs, rng) -> sp.Expr:
-    """A monic a(z) with ``pairs`` complex pole pairs and real poles of the given signs."""
-    a = sp.Integer(1)
-    for _ in range(pairs):
-        re = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 7), 8)
-        im = sp.Rational(rng.randint(1, 7), 8)
-        a *= z**2 - 2 * re * z + re**2 + im**2
-    used = set()
-    for s in signs:
-        p = sp.Rational(rng.randint(1, 15), 16) * s
-        while p in used:
-            p += sp.Rational(1, 32) * s
-        used.add(p)
-        a *= z - p
-    return sp.expand(a)
-
-
-def _regions(n: int) -> list[tuple[str, int]]:
-    out = []
-    for pairs in range(n // 2, -1, -1):  # complex poles first: where patterns fail
-        real = n - 2 * pairs
-        name = (
-            f"{pairs} complex pair{'s' * (pairs > 1)}, {real} real pole{'s' * (real != 1)}"
-            if pairs
-            else f"{real} real poles"
-        )
-        out.append((name, pairs))
-    return out
-
-
-def _sample(n: int, pairs: int, s: int, rng):
-    real = n - 2 * pairs
-    signs = [1 if (i + s) % 2 else -1 for i in range(real)]
-    a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
-    c = [sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4)) for _ in range(n)]
-    return [sp.Rational(v) for v in a], c
-
-
-def _search_regions(n: int) -> list[tuple[str, int, tuple[int, ...], bool]]:
-    """The regions of the witness search: ``(name, pairs, real pole signs, complex zeros)``.
-
-    Every number of complex pole pairs, every sign pattern of the real poles, and (from
-    order 3, where the numerator has two zeros or more) complex or only real zeros.
-    """
-    out = []
-    for pairs in range(n // 2, -1, -1):  # complex poles first: where patterns fail
-        real = n - 2 * pairs
-        for plus in range(real, -1, -1):
-            signs = (1,) * plus + (-1,) * (real - plus)
-            poles = (f"{pairs} complex pair{'s' * (pairs > 1)}" if pairs else "") + (
-                (", " if pairs else "") + "real poles " + "".join("+-"[x < 0] for x in signs)
-                if real
-                else ""
-            )
-            for complex_zeros in (True, False) if n >= 3 else (None,):
-                zeros = {True: ", complex zeros", False: ", real zeros", None: ""}[complex_zeros]
-                out.append((poles + zeros, pairs, signs, complex_zeros))
-    return out
-
-
-def _search_sample(n: int, pairs: int, signs, complex_zeros, rng):
-    """A target of one search region: its poles, and a numerator with the region's zeros."""
-    a = sp.Poly(_poles(n, pairs, signs, rng), z).all_coeffs()[::-1][:n]
-    if complex_zeros is None:
-        c = [
-            sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
-            for _ in range(n)
-        ]
-        return [sp.Rational(v) for v in a], c
-    zpairs = (n - 1) // 2 if complex_zeros else 0
-    zsigns = [rng.choice([-1, 1]) for _ in range(n - 1 - 2 * zpairs)]
-    gain = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 9), rng.randint(1, 4))
-    b = sp.Poly(gain * _poles(n - 1, zpairs, zsigns, rng), z).all_coeffs()[::-1]
-    return [sp.Rational(v) for v in a], [sp.Rational(v) for v in b]
-
-
-def sample_targets(n: int, rng=None, per_region: int = SAMPLES_PER_REGION):
-    """Sampled targets ``(region, a, c)``: every number of complex pole pairs, real poles of both signs.
-
-    Examples
-    --------
-    >>> from symctl.circuitatlas.universality import sample_targets
-    >>> sorted({r for r, _, _ in sample_targets(3)})
-    ['1 complex pair, 1 real pole', '3 real poles']
-    """
-    rng = rng or random.Random(n)
-    return [
-        (region, *_sample(n, pairs, s, rng))
-        for region, pairs in _regions(n)
-        for s in range(per_region)
-    ]
 
 
 ATTEMPTS = 16
@@ -317,12 +181,8 @@ ATTEMPTS = 16
 
 
 def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
-    """Entries to fix and their values: small ones first.
-
-    By the lifting argument (module text, ``"lifted"``), when the
-    other entries contain a universal pattern, small enough fixed values leave
-    a real solution near that pattern's realization.
-    """
+    """Entries to fix and their values, small ones first: by the lifting argument (module text),
+    small fixed values leave a real solution near a contained universal pattern's realization."""
     if extra <= 0:
         yield {}
         return
@@ -332,34 +192,6 @@ def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
     for i, combo in enumerate(combos[:attempts]):
         scale = scales[i % len(scales)]
         yield {k: scale * rng.choice([-1, 1]) * rng.randint(1, 3) for k in combo}
-
-
-def _no_real_point(sol, generic: int | None = None) -> bool:
-    """A solve_at / real_solutions result that is a finite fibre without a real point.
-
-    With ``generic`` (the fibre degree at a generic target), only a fibre of that degree
-    counts: a smaller one lost solutions to infinity and refutes nothing.
-    """
-    if sol is None or sol["degree"] == 0 or sol["real"]:
-        return False
-    return generic is None or sol["degree"] == generic
-
-
-def _generic_rationals(rng, k: int) -> list[sp.Rational]:
-    return [sp.Rational(rng.randint(-(10**6), 10**6), rng.randint(1, 10**6)) for _ in range(k)]
-
-
-@cache
-def generic_degree(pattern: Pattern) -> int | None:
-    """The number of complex realizations (torus-normalized) of a random rational target.
-
-    With probability 1 it is the fibre degree of almost every target; a target with fewer
-    (simple) points is not generic. None when that fibre is not finite and reduced.
-    """
-    rng = random.Random(pattern.mask)
-    n = pattern.n
-    sol = solve_at(pattern, _generic_rationals(rng, n), _generic_rationals(rng, n), rng=rng)
-    return None if sol is None else sol["degree"]
 
 
 @cache
@@ -374,10 +206,8 @@ def _generic_pole_degree(n: int, fmask: int) -> int | None:
 
 @cache
 def _pole_system(n: int, fmask: int):
-    """F's entries after F's own torus normalization, and det(zI - F)'s coefficients; or None.
-
-    None unless the free entries are exactly ``n`` (a square system for the poles).
-    """
+    """F's free entries after its own torus normalization and det(zI - F)'s coefficients, when
+    those entries are exactly ``n`` (a square system); else None."""
     graph = nx.Graph()
     graph.add_nodes_from(range(n))
     slots = [k for k in range(n * n) if fmask >> k & 1]
@@ -399,33 +229,27 @@ def _pole_system(n: int, fmask: int):
     return free, charpoly
 
 
-@cache
-def _pole_verdict(n: int, fmask: int, seed: int) -> Evidence | None:
-    """:func:`_pole_obstruction` for every pattern with this ``F`` (cached: many share it)."""
-    return _pole_obstruction(Pattern(n, fmask), random.Random(seed * 104729 + fmask))
+@cache  # many patterns share their F
+def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
+    r"""A refutation from the poles alone: no real ``F`` with this support has sampled poles.
 
-
-def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
-    r"""A refutation from the poles alone: no real ``F`` with this support has the sampled poles.
-
-    ``F``'s own torus (diagonal similarities) sets a spanning forest of its graph to 1; when
-    :math:`n` entries remain, :math:`\det(zI - F) = a(z)` is square, and a sampled
-    :math:`a` whose solutions are all non-real (exactly, :func:`real_solutions`) refutes
-    every pattern with this ``F``, whatever ``H`` and ``M``.
+    ``F``'s own torus sets a spanning forest of its graph to 1; when :math:`n` entries remain,
+    :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` of the generic degree whose
+    solutions are all non-real refutes every pattern with this ``F``, whatever ``H`` and ``M``.
     """
-    n = pattern.n
-    system = _pole_system(n, pattern.mask & ((1 << (n * n)) - 1))
+    system = _pole_system(n, fmask)
     if system is None:
         return None
     free, charpoly = system
-    for region, pairs in _regions(n):
-        for s in range(POLE_DRAWS):
-            a, _c = _sample(n, pairs, s, rng)
+    rng = random.Random(seed * 104729 + fmask)
+    for region, pairs, signs, zeros in _search_regions(n):
+        for _ in range(POLE_DRAWS):
+            a, _c = _region_sample(n, pairs, signs, zeros, rng)
             eqs = [sp.expand(p - v) for p, v in zip(charpoly, a, strict=True)]
             sol = real_solutions(eqs, free, rng)
-            if _no_real_point(sol) and _no_real_point(
-                sol, _generic_pole_degree(n, pattern.mask & ((1 << (n * n)) - 1))
-            ):
+            if not sol or not sol["degree"] or sol["real"]:
+                continue
+            if sol["degree"] == _generic_pole_degree(n, fmask):
                 return _evidence(
                     False,
                     "counterexample",
@@ -442,17 +266,16 @@ def _pole_obstruction(pattern: Pattern, rng) -> Evidence | None:
     return None
 
 
-def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool = True):
-    """(witness, None), (None, refutation) or (None, None) for one sampled target."""
+def _witness(pattern: Pattern, rng, extra: int, a, c) -> dict | None:
+    """A real realization of one target, Krawczyk-certified with every entry nonzero; or None."""
     unknowns, slots, values, _, _ = _system(pattern)
-    found = None
     for attempt, fixed in enumerate(fixings(slots, extra, rng, FIXINGS)):
         rule = {values[k]: v for k, v in fixed.items()}
         eqs = [sp.expand(e.xreplace(rule)) for e in _equations(pattern, a, c)]
         free = [x for x in unknowns if x not in rule]
         root = certified_real_root(eqs, free, seed=rng.randrange(2**32))
         if root is not None and root.nonzero:
-            found = {
+            return {
                 "a": [str(v) for v in a],
                 "c": [str(v) for v in c],
                 "fixed": {slot_names(pattern.n)[k]: str(v) for k, v in fixed.items()},
@@ -460,70 +283,39 @@ def _witness(pattern: Pattern, rng, extra: int, region: str, a, c, exact: bool =
                 "radius": max(root.radii),
                 "attempt": attempt + 1,
             }
-            break
-    if found is None and not extra and exact:
-        sol = solve_at(pattern, a, c, rng=rng)
-        good = [r for r in sol["real"] if r["entries_nonzero"]] if sol else []
-        if good:
-            found = {
-                "a": [str(v) for v in a],
-                "c": [str(v) for v in c],
-                "fixed": {},
-                "eliminant": sol["eliminant"],
-                "interval": good[0]["interval"],
-            }
-        elif _no_real_point(sol) and _no_real_point(sol, generic_degree(pattern)):
-            return None, _evidence(
-                False,
-                "counterexample",
-                True,
-                f"the sampled G2 with a = {[str(v) for v in a]}, c = {[str(v) for v in c]} "
-                f"({region}) has {sol['degree']} complex realizations with this pattern (the "
-                "generic number, all simple) and no real one",
-                region=region,
-                a=[str(v) for v in a],
-                c=[str(v) for v in c],
-                degree=sol["degree"],
-                eliminant=sol["eliminant"],
-            )
-    return found, None
+    return None
 
 
-def _witness_search(pattern: Pattern, rng, extra: int, exact: bool = True) -> Evidence:
-    witnessed: dict[str, list] = {}
-    failed = []
+def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
+    witnessed: dict[str, dict] = {}
     for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
         for _ in range(DRAWS_PER_REGION):
-            if len(witnessed.get(region, ())) >= WITNESSES_PER_REGION:
-                break
-            a, c = _search_sample(pattern.n, pairs, signs, complex_zeros, rng)
-            found, refuted = _witness(pattern, rng, extra, region, a, c, exact)
-            if refuted is not None:
-                return refuted
+            a, c = _region_sample(pattern.n, pairs, signs, complex_zeros, rng)
+            found = _witness(pattern, rng, extra, a, c)
             if found is not None:
-                witnessed.setdefault(region, []).append(found)
-        if region not in witnessed:
-            failed.append(region)
+                witnessed[region] = found
+                break
+    failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
     if not failed:
         return _evidence(
             None,
             CONJECTURED,
             False,
             "conjectured universal, not proved: real realizations with every entry nonzero, "
-            "proved (Krawczyk test or exact Groebner basis), for "
-            f"{sum(map(len, witnessed.values()))} sampled G2, one in each region of poles and "
-            f"zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region they missed",
-            witnesses=witnessed,
+            f"proved (Krawczyk test), for {len(witnessed)} sampled G2, one in each region of "
+            f"poles and zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region "
+            "they missed",
+            witnesses={r: [w] for r, w in witnessed.items()},
         )
     return _evidence(
         None,
         "not decided",
         False,
-        f"no real realization found for sampled G2 in {sorted(set(failed))}"
+        f"no real realization found for sampled G2 in {failed}"
         + (f" with {FIXINGS} random values of the {extra} extra entries" if extra else "")
         + "; neither proved nor refuted",
-        failed_regions=sorted(set(failed)),
-        witnesses=witnessed,
+        failed_regions=failed,
+        witnesses={r: [w] for r, w in witnessed.items()},
     )
 
 
@@ -542,9 +334,9 @@ def decide(
     seed : int
         Seeds the sampled targets and linear forms.
     exact : bool, optional
-        Fall back to the exact solve (and its counterexamples) when the
-        certified numeric search finds no witness; by default up to
-        :data:`EXACT_SOLVE_MAX_ORDER`.
+        False skips the exact screen of a pattern of :math:`3n` entries
+        (:func:`~symctl.circuitatlas.screen.screen`); its witness search is then
+        certified numerics alone.
 
     Returns
     -------
@@ -595,9 +387,8 @@ def decide(
         form = closed_form(pattern)
         if form is not None:
             return _closed_form_evidence(pattern, form)
-    # an exact refutation first: witnesses for a few sampled G2 per region do not rule out
-    # an unreachable sub-region (n unknowns of degree <= n: bounded at every order here)
-    blocked = _pole_verdict(n, pattern.mask & ((1 << (n * n)) - 1), seed)
+    # exact refutations before any conjecture (n unknowns of degree <= n: a bounded solve)
+    blocked = _pole_obstruction(n, pattern.mask & ((1 << (n * n)) - 1), seed)
     if blocked is not None:
         return blocked
     for sub, ev in below:
@@ -612,10 +403,11 @@ def decide(
                 source_method=ev.method,
                 lifted=True,
             )
+    screened = screen(pattern, seed=seed) if exact is not False else None
+    if screened is not None:
+        return screened
     rng = random.Random(seed * 7919 + pattern.mask)
-    if exact is None:
-        exact = n <= EXACT_SOLVE_MAX_ORDER
-    return _witness_search(pattern, rng, pattern.size - 3 * n, exact)
+    return _witness_search(pattern, rng, pattern.size - 3 * n)
 
 
 def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
@@ -631,12 +423,11 @@ def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
     check = check_realization(Realization(F, H, M, 1), G2, "exact")
     if not check:
         return _evidence(None, "not decided", False, "the closed form failed its exact check")
-    names = pattern.slots
     return _evidence(
         True,
         "closed form",
         True,
         "the entries are rational functions of G2's coefficients (torus-normalized), "
         f"proved exactly against the symbolic G2 ({check.method})",
-        entries={name: str(form[k]) for name, k in zip(names, pattern.indices, strict=True)},
+        entries={slot_names(n)[k]: str(form[k]) for k in pattern.indices},
     )
