@@ -48,7 +48,7 @@ from symctl.fitting.fitargs import (
     _window,
 )
 from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
-from symctl.fitting.identify import _verdicts
+from symctl.fitting.identify import structural
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -62,6 +62,7 @@ DENOMINATOR = 10**6
 """The fitted values are rationals with denominators at most this."""
 _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot flip it
 _EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
+_RANK_RTOL = 1e-8  # the numerical rank of the covariance (standard errors)
 
 
 @dataclass(frozen=True)
@@ -226,9 +227,10 @@ class FitResult(ArrayValue):
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
     identifiable : mapping of str to bool
-        Per parameter.
+        Per parameter, structurally (``identifiability``): never from the fitted point.
     neuron_identifiable : mapping of str to bool
-        Per neuron of the circuit: is its predicted trace pinned down by the data?
+        Per neuron of the circuit: is its trace pinned down by the recorded ones? The
+        same for clean and noisy data.
     residuals : mapping of str to float
         RMS of data minus fit, per recorded neuron [spikes/s].
     data : mapping of str to array
@@ -245,6 +247,9 @@ class FitResult(ArrayValue):
         ``(class, cost)`` of every class fitted, best first.
     skipped : tuple of (str, str)
         ``(class, reason)`` of the listed classes that could not take the data.
+    identifiability : Identifiability
+        The structural verdict behind ``identifiable`` and ``neuron_identifiable``, with
+        its method and evidence (:func:`~symctl.fitting.identify.identifiability`).
 
     Examples
     --------
@@ -275,6 +280,7 @@ class FitResult(ArrayValue):
     _predicted: Mapping = field(repr=False)
     _band: Mapping = field(repr=False)
     skipped: tuple = ()
+    identifiability: object = None
 
     def __post_init__(self) -> None:
         for name in ("neuron_identifiable", "residuals"):
@@ -330,6 +336,11 @@ class FitResult(ArrayValue):
             "neurons": {
                 n: {"recorded": n in self.residuals, "identifiable": ok}
                 for n, ok in self.neuron_identifiable.items()
+            },
+            "identifiability": {
+                "method": self.identifiability.method,
+                "evidence": self.identifiability.evidence,
+                "exact": self.identifiability.exact,
             },
             "residuals": dict(self.residuals),
             "cost": self.cost,
@@ -550,7 +561,12 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
     w = _weights(problem.data)
     r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
     J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
-    params_ok, cells_ok, (s, V) = _verdicts(model, jacs, J, neurons)
+    recorded = [n for n, _ in problem.data]
+    verdict = structural(model, [recorded], neurons, problem.u, np.random.default_rng(0))[0]
+    params_ok, cells_ok = verdict.params, verdict.neurons
+    _, s, Vt = np.linalg.svd(J, full_matrices=False)
+    keep = s > _RANK_RTOL * (s[0] if s.size and s[0] > 0 else 1.0)
+    s, V = s[keep], Vt[keep]
     dof = max(r.size - s.size, 1)
     sigma2 = float(r @ r) / dof
     cov = (V.T / s**2) @ V * sigma2 if s.size else np.zeros((model.n_params,) * 2)
@@ -585,4 +601,5 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
         {n: vals[n] for n in neurons},
         band,
         skipped,
+        verdict,
     )
