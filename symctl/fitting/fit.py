@@ -13,8 +13,9 @@ points (for the general class each start's :math:`P^{-1}` rows of recorded neuro
 linearly first); Dale's-law ``signs`` add penalty residuals and are checked exactly at
 the end. The values are rounded to rationals (denominators at most ``10**6``), the exact
 realization is built and :func:`~symctl.realization.check.check_realization` proves it.
+Identifiability is structural, decided without the data (:mod:`symctl.fitting.identify`).
 Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
-= \mathrm{RSS}/(m - \mathrm{rank})` (identifiability: :mod:`symctl.fitting.identify`).
+= \mathrm{RSS}/(m - \mathrm{rank})`, the pseudo-inverse kept to the structural rank.
 """
 
 from __future__ import annotations
@@ -566,6 +567,7 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
     params_ok, cells_ok = verdict.params, verdict.neurons
     _, s, Vt = np.linalg.svd(J, full_matrices=False)
     keep = s > _RANK_RTOL * (s[0] if s.size and s[0] > 0 else 1.0)
+    keep &= np.arange(s.size) < verdict.rank  # noise adds no direction the model lacks
     s, V = s[keep], Vt[keep]
     dof = max(r.size - s.size, 1)
     sigma2 = float(r @ r) / dof

@@ -103,7 +103,7 @@ class TraceModel:
     H0: np.ndarray
     _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
     _T: object  # lambdified T and its gradient over (eps, C); None when transformed
-    exact: tuple  # (F0, H0, [M0^T; N], T or None, free symbols): exact SymPy, for identify
+    exact: tuple  # (F0, H0, free symbols) exact; _mn.exact, _T.exact: SymPy and its gradients
 
     @classmethod
     def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
@@ -121,15 +121,13 @@ class TraceModel:
         fixed = {c: sp.Rational(C) for c in cs} if C is not None else {}
         M0 = base.M.subs(fixed)
         N = sp.Matrix([[base.N[0, 0]]]).subs(fixed)
-        mn_exact = sp.Matrix.vstack(M0.T, N)
-        mn = _lambdified(mn_exact, free)
+        mn = _lambdified(sp.Matrix.vstack(M0.T, N), free)
         if transformed(circuit):
-            T = T_exact = None
+            T = None
             qnames = tuple(f"Pinv[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
         else:
             R2 = _symbolic_realization(circuit, f0.G2, n)
-            T_exact = (_ctrb(R2) * _ctrb(base).inv()).subs(fixed)
-            T = _lambdified(T_exact, free)
+            T = _lambdified((_ctrb(R2) * _ctrb(base).inv()).subs(fixed), free)
             qnames = ()
         names = tuple(map(str, free)) + qnames
         neurons = (
@@ -138,8 +136,7 @@ class TraceModel:
             "G2.y",
             *(section_name("G3", k + 1, da) for k in range(da)),
         )
-        exact = (base.F, base.H, mn_exact, T_exact, free)
-        return cls(G, ds, da, circuit, C, names, neurons, n, F0, H0, mn, T, exact)
+        return cls(G, ds, da, circuit, C, names, neurons, n, F0, H0, mn, T, (base.F, base.H, free))
 
     @property
     def n_params(self) -> int:
@@ -245,7 +242,9 @@ def _symbolic_realization(circuit, G2, n: int) -> Realization:
 
 
 def _lambdified(mat: sp.Matrix, free: tuple):
-    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``."""
+    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``
+    (``.exact``: ``mat`` and its gradients, SymPy).
+    """
     grads = [mat.diff(s) for s in free]
     f = sp.lambdify([free], [mat, *grads], "numpy", cse=True)
     r, c = mat.shape
@@ -256,4 +255,5 @@ def _lambdified(mat: sp.Matrix, free: tuple):
         grad = np.stack([np.asarray(g, dtype=float).reshape(r, c) for g in out[1:]], axis=2)
         return val, grad
 
+    evaluate.exact = (mat, grads)
     return evaluate

@@ -69,15 +69,20 @@ def _objects(a, shape=None) -> np.ndarray:
 
 def _degrees(model: TraceModel) -> tuple[int, int]:
     """``(a, b)``: degrees of the numerators over, and of, the common denominator of T, M0, N."""
-    _, _, mn, T, free = model.exact
-    fracs = [sp.fraction(sp.together(e)) for m in (mn, T) if m is not None for e in m]
+    free = model.exact[2]
+    fracs = [e.as_numer_denom() for m, _ in _parts(model) for e in m]
     dens = [sp.Poly(d, *free) for _, d in fracs]
-    b = reduce(sp.lcm, dens).total_degree()
+    b = reduce(sp.lcm, set(dens)).total_degree()
     a = max(
         sp.Poly(n, *free).total_degree() + b - d.total_degree()
         for (n, _), d in zip(fracs, dens, strict=True)
     )
     return max(a, 1 if transformed(model.circuit) else 0), b
+
+
+def _parts(model: TraceModel) -> list:
+    """``[(M, its gradients)]`` of ``[M0^T; N]`` and of ``T`` (for a fixed class), SymPy."""
+    return [f.exact for f in (model._mn, model._T) if f is not None]
 
 
 def _at(mat: sp.Matrix, grads: list, subs: dict):
@@ -94,7 +99,7 @@ def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
     the integer point ``theta`` (the recursion of ``TraceModel.traces``, impulse in); None at a pole.
     """
     p, k, n = model.n_params, model.n_sections, model.order
-    F0, H0, _, _, free = model.exact
+    F0, H0, free = model.exact
     subs = {s: sp.Integer(v) for s, v in zip(free, theta, strict=False)}
     got = [_at(m, g, subs) for m, g in parts]
     if any(x is None for x in got):
@@ -149,17 +154,25 @@ def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
     return jac
 
 
-def _rank(rows: list) -> int:
-    rows = [list(r) for r in rows]
-    return fmpq_mat(rows).rank() if rows else 0
+def _kernel(rows: np.ndarray, p: int) -> tuple[int, fmpq_mat | None]:
+    """``(rank, kernel basis as columns)`` of the exact ``(m, p)`` matrix ``rows`` (None: full rank)."""
+    if not len(rows):
+        return 0, fmpq_mat([[int(i == j) for j in range(p)] for i in range(p)])
+    N, nullity = fmpq_mat(rows.tolist()).numer_denom()[0].nullspace()
+    basis = fmpq_mat([[N[i, j] for j in range(nullity)] for i in range(p)]) if nullity else None
+    return p - nullity, basis
+
+
+def _spans(B: np.ndarray, N: fmpq_mat) -> bool:
+    """Whether the exact rows ``B`` lie in the row space of the matrix whose kernel is ``N``."""
+    return not len(B) or not any((fmpq_mat(B.tolist()) * N).entries())
 
 
 def structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, gen) -> list:
     """One :class:`Identifiability` per recorded set, decided as the module text says."""
     nz = np.flatnonzero(u)
     W = max(0, min(u.size - 1 - int(nz[0]), 2 * (model.n_sections + model.order))) if nz.size else 0
-    _, _, mn, T, free = model.exact
-    parts = [(m, [m.diff(s) for s in free]) for m in (mn, T) if m is not None]
+    parts = _parts(model)
     p = model.n_params
     points = []
     for _ in range(10 * POINTS):  # a pole of T, M0 or N is a probability-(b/|S|) event
@@ -171,21 +184,18 @@ def structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, gen
             break
     a, b = _degrees(model)
     d = p * (W + max(a, b) + b) + b
-    eye = np.eye(p, dtype=int)
     out = []
     for names in sets:
-        rank = max(_rank(np.vstack([jac[n] for n in names])) for jac in points)
+        kernels = [_kernel(np.vstack([jac[n] for n in names]), p) for jac in points]
+        rank = max(r for r, _ in kernels)
         full = rank == p
-        params = {n: full for n in model.names}
-        cells = {n: full for n in neurons}
-        for i, name in enumerate(model.names * (not full)):
-            params[name] = rank == max(
-                _rank(np.vstack([*(jac[n] for n in names), eye[i : i + 1]])) for jac in points
-            )
-        for m in neurons * (not full):
-            cells[m] = rank == max(
-                _rank(np.vstack([*(jac[n] for n in names), jac[m]])) for jac in points
-            )
+        best = [(jac, N) for jac, (r, N) in zip(points, kernels, strict=True) if r == rank]
+
+        params = {
+            n: full or all(not any(N.tolist()[i]) for _, N in best)
+            for i, n in enumerate(model.names)
+        }
+        cells = {m: full or all(_spans(jac[m], N) for jac, N in best) for m in neurons}
         bound = 0.0 if full else (1 + p + len(neurons)) * (d / _FIELD) ** len(points)
         evidence = (
             f"K_R has full column rank {p} at a point: every verdict is proved"

@@ -653,9 +653,7 @@ AUDITED = {
     ("symctl.fitting.fitmodel", "TraceModel.factorization", "factor"): 1,
     ("symctl.fitting.fitmodel", "TraceModel.realize", "Matrix"): 1,
     ("symctl.fitting.fitmodel", "_lambdified", "lambdify"): 1,
-    ("symctl.fitting.identify", "_degrees", "fraction"): 1,  # the model's own T, M0, N
-    ("symctl.fitting.identify", "_degrees", "together"): 1,
-    ("symctl.fitting.identify", "_degrees", "Poly"): 2,
+    ("symctl.fitting.identify", "_degrees", "Poly"): 2,  # the model's own T, M0, N
 }
 
 
