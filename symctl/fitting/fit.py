@@ -49,7 +49,7 @@ from symctl.fitting.fitargs import (
     _window,
 )
 from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
-from symctl.fitting.identify import structural
+from symctl.fitting.identify import _structural
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -563,7 +563,7 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
     r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
     J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
     recorded = [n for n, _ in problem.data]
-    verdict = structural(model, [recorded], neurons, problem.u, np.random.default_rng(0))[0]
+    verdict = _structural(model, [recorded], neurons, problem.u, np.random.default_rng(0))[0]
     params_ok, cells_ok = verdict.params, verdict.neurons
     _, s, Vt = np.linalg.svd(J, full_matrices=False)
     keep = s > _RANK_RTOL * (s[0] if s.size and s[0] > 0 else 1.0)

@@ -168,7 +168,7 @@ def _spans(B: np.ndarray, N: fmpq_mat) -> bool:
     return not len(B) or not any((fmpq_mat(B.tolist()) * N).entries())
 
 
-def structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, gen) -> list:
+def _structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, gen) -> list:
     """One :class:`Identifiability` per recorded set, decided as the module text says."""
     nz = np.flatnonzero(u)
     W = max(0, min(u.size - 1 - int(nz[0]), 2 * (model.n_sections + model.order))) if nz.size else 0
@@ -344,4 +344,4 @@ def identifiability(
                 raise ParameterError(
                     f"neuron_sets[{i}]: no neuron {n!r}; the circuit's neurons are {', '.join(neurons)}"
                 )
-    return tuple(structural(model, [list(n) for n in neuron_sets], neurons, u, rng))
+    return tuple(_structural(model, [list(n) for n in neuron_sets], neurons, u, rng))
