@@ -145,6 +145,7 @@ def _verdicts():
     yield symctl.dale(G, circuit="controllable", timeout=10)
     yield symctl.prove_controller_tf(GAINS.system)
     yield symctl.factor(controller_tf(2), 1, 1).verify()
+    yield symctl.identifiability([["G2.y"]], GAINS, **KW, C=1)[0]
 
 
 @pytest.mark.parametrize("result", list(_verdicts()), ids=lambda r: type(r).__name__)
@@ -181,6 +182,7 @@ def _results():
     yield fp
     yield fp.summary()
     yield synthetic_traces(GAINS, **KW, rng=1, steps=20)
+    yield symctl.identifiability([["G2.y"]], GAINS, **KW, C=1)[0]
     yield symctl.longest_delay(None, max_delay=1, steps=30)
     yield symctl.get_realizer("general")(symctl.factor(controller_tf(2), 1, 1).G2, rng=0)
 

@@ -13,8 +13,9 @@ points (for the general class each start's :math:`P^{-1}` rows of recorded neuro
 linearly first); Dale's-law ``signs`` add penalty residuals and are checked exactly at
 the end. The values are rounded to rationals (denominators at most ``10**6``), the exact
 realization is built and :func:`~symctl.realization.check.check_realization` proves it.
+Identifiability is structural, decided without the data (:mod:`symctl.fitting.identify`).
 Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
-= \mathrm{RSS}/(m - \mathrm{rank})` (identifiability: :mod:`symctl.fitting.identify`).
+= \mathrm{RSS}/(m - \mathrm{rank})`, the pseudo-inverse kept to the structural rank.
 """
 
 from __future__ import annotations
@@ -48,7 +49,7 @@ from symctl.fitting.fitargs import (
     _window,
 )
 from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
-from symctl.fitting.identify import _verdicts
+from symctl.fitting.identify import _structural
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -62,6 +63,7 @@ DENOMINATOR = 10**6
 """The fitted values are rationals with denominators at most this."""
 _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot flip it
 _EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
+_RANK_RTOL = 1e-8  # the numerical rank of the covariance (standard errors)
 
 
 @dataclass(frozen=True)
@@ -226,9 +228,10 @@ class FitResult(ArrayValue):
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
     identifiable : mapping of str to bool
-        Per parameter.
+        Per parameter, structurally (``identifiability``): never from the fitted point.
     neuron_identifiable : mapping of str to bool
-        Per neuron of the circuit: is its predicted trace pinned down by the data?
+        Per neuron of the circuit: is its trace pinned down by the recorded ones? The
+        same for clean and noisy data.
     residuals : mapping of str to float
         RMS of data minus fit, per recorded neuron [spikes/s].
     data : mapping of str to array
@@ -245,6 +248,9 @@ class FitResult(ArrayValue):
         ``(class, cost)`` of every class fitted, best first.
     skipped : tuple of (str, str)
         ``(class, reason)`` of the listed classes that could not take the data.
+    identifiability : Identifiability
+        The structural verdict behind ``identifiable`` and ``neuron_identifiable``, with
+        its method and evidence (:func:`~symctl.fitting.identify.identifiability`).
 
     Examples
     --------
@@ -275,6 +281,7 @@ class FitResult(ArrayValue):
     _predicted: Mapping = field(repr=False)
     _band: Mapping = field(repr=False)
     skipped: tuple = ()
+    identifiability: object = None
 
     def __post_init__(self) -> None:
         for name in ("neuron_identifiable", "residuals"):
@@ -330,6 +337,11 @@ class FitResult(ArrayValue):
             "neurons": {
                 n: {"recorded": n in self.residuals, "identifiable": ok}
                 for n, ok in self.neuron_identifiable.items()
+            },
+            "identifiability": {
+                "method": self.identifiability.method,
+                "evidence": self.identifiability.evidence,
+                "exact": self.identifiability.exact,
             },
             "residuals": dict(self.residuals),
             "cost": self.cost,
@@ -550,7 +562,13 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
     w = _weights(problem.data)
     r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
     J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
-    params_ok, cells_ok, (s, V) = _verdicts(model, jacs, J, neurons)
+    recorded = [n for n, _ in problem.data]
+    verdict = _structural(model, [recorded], neurons, problem.u, np.random.default_rng(0))[0]
+    params_ok, cells_ok = verdict.params, verdict.neurons
+    _, s, Vt = np.linalg.svd(J, full_matrices=False)
+    keep = s > _RANK_RTOL * (s[0] if s.size and s[0] > 0 else 1.0)
+    keep &= np.arange(s.size) < verdict.rank  # noise adds no direction the model lacks
+    s, V = s[keep], Vt[keep]
     dof = max(r.size - s.size, 1)
     sigma2 = float(r @ r) / dof
     cov = (V.T / s**2) @ V * sigma2 if s.size else np.zeros((model.n_params,) * 2)
@@ -585,4 +603,5 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
         {n: vals[n] for n in neurons},
         band,
         skipped,
+        verdict,
     )

@@ -103,6 +103,7 @@ class TraceModel:
     H0: np.ndarray
     _mn: object  # lambdified (M0, N) and their gradients over (eps, C)
     _T: object  # lambdified T and its gradient over (eps, C); None when transformed
+    exact: tuple  # (F0, H0, free symbols) exact; _mn.exact, _T.exact: SymPy and its gradients
 
     @classmethod
     def build(cls, G: DiscreteTF, ds: int, da: int, circuit, C: float | None = None) -> TraceModel:
@@ -126,7 +127,7 @@ class TraceModel:
             qnames = tuple(f"Pinv[{i + 1},{j + 1}]" for i in range(n) for j in range(n))
         else:
             R2 = _symbolic_realization(circuit, f0.G2, n)
-            T = _lambdified(_ctrb(R2) * _ctrb(base).inv(), free, fixed)
+            T = _lambdified((_ctrb(R2) * _ctrb(base).inv()).subs(fixed), free)
             qnames = ()
         names = tuple(map(str, free)) + qnames
         neurons = (
@@ -135,7 +136,7 @@ class TraceModel:
             "G2.y",
             *(section_name("G3", k + 1, da) for k in range(da)),
         )
-        return cls(G, ds, da, circuit, C, names, neurons, n, F0, H0, mn, T)
+        return cls(G, ds, da, circuit, C, names, neurons, n, F0, H0, mn, T, (base.F, base.H, free))
 
     @property
     def n_params(self) -> int:
@@ -240,11 +241,10 @@ def _symbolic_realization(circuit, G2, n: int) -> Realization:
         ) from None
 
 
-def _lambdified(mat: sp.Matrix, free: tuple, fixed: dict | None = None):
-    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``."""
-    if fixed:
-        mat = mat.subs(fixed)
-    mat = sp.Matrix(mat)
+def _lambdified(mat: sp.Matrix, free: tuple):
+    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``
+    (``.exact``: ``mat`` and its gradients, SymPy).
+    """
     grads = [mat.diff(s) for s in free]
     f = sp.lambdify([free], [mat, *grads], "numpy", cse=True)
     r, c = mat.shape
@@ -255,4 +255,5 @@ def _lambdified(mat: sp.Matrix, free: tuple, fixed: dict | None = None):
         grad = np.stack([np.asarray(g, dtype=float).reshape(r, c) for g in out[1:]], axis=2)
         return val, grad
 
+    evaluate.exact = (mat, grads)
     return evaluate

@@ -1,75 +1,235 @@
-r"""Identifiability: which parameters and neurons a set of recorded neurons pins down.
+r"""Structural identifiability: which parameters and neurons a set of recorded neurons pins down.
 
-With :math:`J` the (weighted) sensitivity of the recorded traces to the
-parameters, a parameter is identifiable iff its unit vector lies in the row
-space of :math:`J`, and an unrecorded neuron's trace iff its sensitivity rows
-do (to ``1e-6``, relative); the rank of :math:`J` is reported per neuron set.
+A property of the model, the recorded set and the window, never of the recorded values,
+so clean and noisy data get the same verdicts.
+
+**Reduction to Markov parameters.** Every neuron's trace is the loop's :math:`\delta_f = u`
+through the circuit's :math:`N = d_s + n + d_a` states: :math:`n(t) = \sum_{s<t} h_n(t-s)
+u(s)`, :math:`h_n(j) = M_n F^{j-1} H`, rational in :math:`\theta`. With :math:`u(t_0)` the
+first nonzero input, the traces of a window of :math:`L` steps are a triangular, invertible
+linear image of :math:`h_n(1), \dots, h_n(L-1-t_0)`, so their sensitivities :math:`J` and
+those :math:`K` of the Markov parameters have the same row space at every :math:`\theta`. A
+sequence with a recurrence of order at most :math:`N` (Cayley-Hamilton) is fixed by its first
+:math:`2N` terms, so the image of :math:`h(1..)` projects injectively onto that of
+:math:`h(1..2N)`: :math:`W = \min(L-1-t_0, 2N)` terms have the same generic ranks.
+
+**Verdicts.** Parameter :math:`\theta_i` is (locally) identifiable from the recorded set
+:math:`R` iff :math:`\operatorname{rank}[K_R; e_i] = \operatorname{rank} K_R` generically; an
+unrecorded neuron :math:`m` iff :math:`\operatorname{rank}[K_R; K_m] = \operatorname{rank} K_R`.
+The ranks are exact, over :math:`\mathbb{Q}` (python-flint ``fmpq_mat``), at ``POINTS``
+random integer points with coordinates uniform in :math:`S = \{1, \dots, 2^{62}\}`, each
+matrix taking its largest rank. A rank at a point is at most the generic rank (a nonzero minor
+is a nonzero polynomial), so **full column rank of** :math:`K_R` **at one point proves** every
+parameter and neuron identifiable (``exact``). Otherwise the verdicts are Schwartz-Zippel
+evidence: with :math:`a, b` the degrees of the numerators and of the common denominator
+:math:`D` of :math:`T, M_0, N` (:mod:`symctl.fitting.fitmodel`), every entry of :math:`K` is a
+polynomial of degree at most :math:`\delta = W + \max(a, b) + b` over :math:`D^2`, so a
+generic rank above the one found needs a nonzero polynomial of degree at most
+:math:`d = p\,\delta + b` to vanish at every point: probability at most
+:math:`(d/|S|)^{\mathrm{points}}` per matrix, times the matrices tested (``error_bound``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import reduce
 from types import MappingProxyType
 
 import numpy as np
+import sympy as sp
+from flint import fmpq, fmpq_mat
 
 from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.pickling import ArrayValue
-from symctl._util.serial import DictMixin
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
+from symctl.fitting.fitmodel import TraceModel, renamed_param, section_name, transformed
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
+from symctl.proof import Verdict
 
-__all__ = ["Identifiability", "identifiability"]
+__all__ = ["POINTS", "Identifiability", "identifiability"]
 
-_RANK_RTOL = 1e-8
-_SPAN_RTOL = 1e-6
+POINTS = 2
+"""Random integer points at which the ranks are computed."""
+_FIELD = 2**62  # coordinates uniform in 1..2**62 (Schwartz-Zippel's |S|)
 
 
-def _spans(S: np.ndarray, V: np.ndarray, scale: float = 0.0) -> bool:
-    r"""Whether the rows of ``S`` lie in the span of the orthonormal rows of ``V`` (``S`` below
-    ``1e-9 * scale`` is zero: an invariant trace such as :math:`\delta_r` is always known).
+def _q(x) -> fmpq:
+    return fmpq(int(x.p), int(x.q))
+
+
+def _objects(a, shape=None) -> np.ndarray:
+    """An object array of fmpq: ``a`` converted, or zeros of ``shape``."""
+    if shape is not None:
+        return np.full(shape, fmpq(0), dtype=object)
+    return np.vectorize(_q, otypes=[object])(np.array(a, dtype=object))
+
+
+def _degrees(model: TraceModel) -> tuple[int, int]:
+    """``(a, b)``: degrees of the numerators over, and of, the common denominator of T, M0, N."""
+    free = model.exact[2]
+    fracs = [e.as_numer_denom() for m, _ in _parts(model) for e in m]
+    dens = [sp.Poly(d, *free) for _, d in fracs]
+    b = reduce(sp.lcm, set(dens)).total_degree()
+    a = max(
+        sp.Poly(n, *free).total_degree() + b - d.total_degree()
+        for (n, _), d in zip(fracs, dens, strict=True)
+    )
+    return max(a, 1 if transformed(model.circuit) else 0), b
+
+
+def _parts(model: TraceModel) -> list:
+    """``[(M, its gradients)]`` of ``[M0^T; N]`` and of ``T`` (for a fixed class), SymPy."""
+    return [f.exact for f in (model._mn, model._T) if f is not None]
+
+
+def _at(mat: sp.Matrix, grads: list, subs: dict):
+    """``mat`` and its gradients (last axis) at ``subs``, exact; None at a pole."""
+    vals = [m.xreplace(subs) for m in (mat, *grads)]
+    if not all(e.is_Rational for m in vals for e in m):
+        return None
+    arr = _objects([m.tolist() for m in vals])
+    return arr[0], np.moveaxis(arr[1:], 0, 2)
+
+
+def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
+    """Per neuron, the exact ``(W, p)`` sensitivity of its Markov parameters ``h(1..W)`` at
+    the integer point ``theta`` (the recursion of ``TraceModel.traces``, impulse in); None at a pole.
     """
-    size = float(np.linalg.norm(S))
-    if size <= 1e-9 * scale:
-        return True
-    rest = S - (S @ V.T) @ V if V.size else S
-    return float(np.linalg.norm(rest)) <= _SPAN_RTOL * size
+    p, k, n = model.n_params, model.n_sections, model.order
+    F0, H0, free = model.exact
+    subs = {s: sp.Integer(v) for s, v in zip(free, theta, strict=False)}
+    got = [_at(m, g, subs) for m, g in parts]
+    if any(x is None for x in got):
+        return None
+    (mn, dmn), *rest = got
+    th = [fmpq(int(v)) for v in theta]
+    cs = th[k : 2 * k] if model.C is None else [_q(sp.Rational(model.C))] * k
+    jac = {}
+
+    def chain(side, offset, count, v, dv):
+        for j in range(count):
+            e, c = th[offset + j], cs[offset + j]
+            x, dx = _objects(None, W + 1), _objects(None, (W + 1, p))
+            for t in range(W):
+                x[t + 1] = e * x[t] + c * v[t]
+                dx[t + 1] = e * dx[t] + c * dv[t]
+                dx[t + 1, offset + j] += x[t]
+                if model.C is None:
+                    dx[t + 1, k + offset + j] += v[t]
+            jac[section_name(side, j + 1, count)] = dx[1:]
+            v, dv = x, dx
+        return v, dv
+
+    u = _objects(None, W + 1)
+    u[0] = fmpq(1)
+    y1, dy1 = chain("G1", 0, model.sensor_delay, u, _objects(None, (W + 1, p)))
+    F, H = _objects(F0.tolist()), _objects(H0.tolist())[:, 0]
+    xc, dxc = _objects(None, (W + 1, n)), _objects(None, (W + 1, n, p))
+    for t in range(W):
+        xc[t + 1] = F.dot(xc[t]) + H * y1[t]
+        dxc[t + 1] = F.dot(dxc[t]) + np.outer(H, dy1[t])
+    q = dmn.shape[2]
+    if rest:
+        T, dT = rest[0]
+    else:
+        T, dT = np.array(th[p - n * n :], dtype=object).reshape(n, n), None
+    dx2 = np.array([T.dot(d) for d in dxc])
+    for t in range(W + 1):
+        if dT is None:
+            for i in range(n):
+                dx2[t, i, p - n * n + i * n : p - n * n + (i + 1) * n] += xc[t]
+        else:
+            dx2[t, :, :q] += np.einsum("ijq,j->iq", dT, xc[t])
+    for i in range(n):
+        jac[f"G2.x{i + 1}"] = dx2[1:, i, :]
+    M0, N = mn[:n, 0], mn[n, 0]
+    y2 = xc.dot(M0) + N * y1
+    dy2 = np.array([M0.dot(d) for d in dxc]) + N * dy1
+    dy2[:, :q] += xc.dot(dmn[:n, 0, :]) + np.outer(y1, dmn[n, 0, :])
+    jac["G2.y"] = dy2[1:]
+    chain("G3", model.sensor_delay, model.actuator_delay, y2, dy2)
+    return jac
 
 
-def _row_space(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(singular values kept, their right singular vectors (rank, p))`` of ``J``."""
-    _, s, Vt = np.linalg.svd(J, full_matrices=False)
-    keep = s > _RANK_RTOL * (s[0] if s.size and s[0] > 0 else 1.0)
-    return s[keep], Vt[keep]
+def _kernel(rows: np.ndarray, p: int) -> tuple[int, fmpq_mat | None]:
+    """``(rank, kernel basis as columns)`` of the exact ``(m, p)`` matrix ``rows`` (None: full rank)."""
+    if not len(rows):
+        return 0, fmpq_mat([[int(i == j) for j in range(p)] for i in range(p)])
+    N, nullity = fmpq_mat(rows.tolist()).numer_denom()[0].nullspace()
+    basis = fmpq_mat([[N[i, j] for j in range(nullity)] for i in range(p)]) if nullity else None
+    return p - nullity, basis
 
 
-def _verdicts(model: TraceModel, jacs: dict, J: np.ndarray, neurons) -> tuple[dict, dict, tuple]:
-    s, V = _row_space(J)
-    eye = np.eye(model.n_params)
-    params = {n: _spans(eye[i : i + 1], V) for i, n in enumerate(model.names)}
-    scale = max(float(np.linalg.norm(jacs[n])) for n in neurons)
-    cells = {n: _spans(jacs[n], V, scale) for n in neurons}
-    return params, cells, (s, V)
+def _spans(B: np.ndarray, N: fmpq_mat) -> bool:
+    """Whether the exact rows ``B`` lie in the row space of the matrix whose kernel is ``N``."""
+    return not len(B) or not any((fmpq_mat(B.tolist()) * N).entries())
+
+
+def _structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, gen) -> list:
+    """One :class:`Identifiability` per recorded set, decided as the module text says."""
+    nz = np.flatnonzero(u)
+    W = max(0, min(u.size - 1 - int(nz[0]), 2 * (model.n_sections + model.order))) if nz.size else 0
+    parts = _parts(model)
+    p = model.n_params
+    points = []
+    for _ in range(10 * POINTS):  # a pole of T, M0 or N is a probability-(b/|S|) event
+        theta = [int(v) for v in gen.integers(1, _FIELD, size=p, endpoint=True)]
+        jac = _markov(model, parts, theta, W)
+        if jac is not None:
+            points.append(jac)
+        if len(points) == POINTS:
+            break
+    a, b = _degrees(model)
+    d = p * (W + max(a, b) + b) + b
+    out = []
+    for names in sets:
+        kernels = [_kernel(np.vstack([jac[n] for n in names]), p) for jac in points]
+        rank = max(r for r, _ in kernels)
+        full = rank == p
+        best = [(jac, N) for jac, (r, N) in zip(points, kernels, strict=True) if r == rank]
+
+        params = {
+            n: full or all(not any(N.tolist()[i]) for _, N in best)
+            for i, n in enumerate(model.names)
+        }
+        cells = {m: full or all(_spans(jac[m], N) for jac, N in best) for m in neurons}
+        bound = 0.0 if full else (1 + p + len(neurons)) * (d / _FIELD) ** len(points)
+        evidence = (
+            f"K_R has full column rank {p} at a point: every verdict is proved"
+            if full
+            else f"Schwartz-Zippel: some verdict is wrong with probability at most {bound:.1e} "
+            f"(degree bound {d}, |S| = 2^62, {W} Markov parameters)"
+        )
+        out.append(Identifiability(tuple(names), rank, p, params, cells, evidence, full, bound))
+    return out
 
 
 @dataclass(frozen=True, eq=False)
-class Identifiability(ArrayValue, DictMixin):
-    r"""Which parameters and neurons a set of recorded neurons pins down.
+class Identifiability(ArrayValue, Verdict):
+    r"""Which parameters and neurons a set of recorded neurons pins down, structurally.
+
+    Truthy when every neuron's trace is identifiable. Proved when ``exact`` (full rank);
+    otherwise evidence with the Schwartz-Zippel ``error_bound`` (:mod:`symctl.fitting.identify`).
 
     Attributes
     ----------
     recorded : tuple of str
     rank : int
-        Rank of the sensitivity :math:`J` of the recorded traces to the parameters.
+        Generic rank of the sensitivity of the recorded traces to the parameters.
     n_params : int
     params : mapping of str to bool
-        Identifiable parameters (unit vector in the row space of :math:`J`).
+        Identifiable parameters.
     neurons : mapping of str to bool
         Every neuron of the circuit: is its trace pinned down by the recorded ones?
+    evidence : str
+        What backs the verdicts: a proof, or the Schwartz-Zippel bound.
+    exact : bool
+        True when the verdicts are proved (the rank is full).
+    error_bound : float
+        Probability that some verdict is wrong (0 when ``exact``).
 
     Examples
     --------
@@ -77,15 +237,22 @@ class Identifiability(ArrayValue, DictMixin):
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> rows = identifiability([["G1.x1", "G2.x1", "G2.y"]], gains, sensor_delay=1,
     ...                        actuator_delay=1, C=1)
-    >>> rows[0].rank, rows[0].n_params, rows[0].neurons["G2.x2"]
-    (4, 6, False)
+    >>> rows[0].rank, rows[0].n_params, rows[0].neurons["G2.x2"], rows[0].exact
+    (4, 6, False, False)
+    >>> bool(rows[0]), rows[0].error_bound < 1e-30
+    (False, True)
     """
+
+    _verdict = "complete"
 
     recorded: tuple
     rank: int
     n_params: int
     params: Mapping = field(repr=False)
     neurons: Mapping = field(repr=False)
+    evidence: str = ""
+    exact: bool = False
+    error_bound: float = 0.0
 
     def __post_init__(self) -> None:
         params = RenamedKeys(
@@ -93,6 +260,15 @@ class Identifiability(ArrayValue, DictMixin):
         )  # Q[i,j]: old name
         object.__setattr__(self, "params", params)
         object.__setattr__(self, "neurons", MappingProxyType(dict(self.neurons)))
+
+    @property
+    def complete(self) -> bool:
+        """Whether every neuron's trace is identifiable from the recorded ones."""
+        return all(self.neurons.values())
+
+    @property
+    def method(self) -> str:
+        return f"exact rank over Q at {POINTS} random integer points (generic rank)"
 
 
 @rng_argument()
@@ -113,7 +289,8 @@ def identifiability(
 ) -> tuple[Identifiability, ...]:
     r"""Which parameters, and which neurons' traces, each set of recorded neurons pins down.
 
-    At a generic point (seeded random epsilons, Cs and :math:`P^{-1}`; see the module text).
+    Structurally: exact ranks at random integer points of the parameter space, before and
+    independent of any data (method and error bound: :mod:`symctl.fitting.identify`).
 
     Parameters
     ----------
@@ -122,7 +299,8 @@ def identifiability(
     G, sensor_delay, actuator_delay, circuit, disturbance, plant, C, steps, start, length
         As in :func:`fit` (one class).
     rng : int, numpy Generator or None, default 0
-        Seeds the generic point (``seed=`` is its deprecated name).
+        Seeds the random points (``seed=`` is its deprecated name); the verdicts do not
+        depend on it, except with the probability ``error_bound``.
 
     Returns
     -------
@@ -156,16 +334,6 @@ def identifiability(
     tf, u, _ = _loop(G, plant, disturbance, _window(steps, start, length))
     model = TraceModel.build(tf, ds, da, cls, C)
     neurons = _circuit_neurons(model)
-    gen = rng
-    k = model.n_sections
-    theta = [gen.uniform(-0.8, 0.8, k)]
-    if C is None:
-        theta.append(gen.uniform(0.5, 2.0, k))
-    if transformed(model.circuit):
-        theta.append((np.eye(model.order) + 0.3 * gen.normal(size=(model.order,) * 2)).ravel())
-    theta = np.concatenate(theta)
-    vals, jacs = model.traces(theta, u)
-    out = []
     for i, names in enumerate(neuron_sets):
         if isinstance(names, str) or not isinstance(names, Sequence) or not names:
             raise SymctlTypeError(
@@ -176,7 +344,4 @@ def identifiability(
                 raise ParameterError(
                     f"neuron_sets[{i}]: no neuron {n!r}; the circuit's neurons are {', '.join(neurons)}"
                 )
-        J = np.vstack([jacs[n] / max(float(np.sqrt(np.mean(vals[n] ** 2))), 1e-12) for n in names])
-        params, cells, (s, _) = _verdicts(model, jacs, J, neurons)
-        out.append(Identifiability(tuple(names), int(s.size), model.n_params, params, cells))
-    return tuple(out)
+    return tuple(_structural(model, [list(n) for n in neuron_sets], neurons, u, rng))

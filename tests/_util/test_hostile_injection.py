@@ -648,13 +648,12 @@ AUDITED = {
     ("symctl.fitting.fitargs", "_rational_tf", "subs"): 1,
     ("symctl.fitting.fitargs", "_circuit_neurons", "Matrix"): 1,
     ("symctl.fitting.fitmodel", "TraceModel.build", "factor"): 1,
-    ("symctl.fitting.fitmodel", "TraceModel.build", "subs"): 2,
+    ("symctl.fitting.fitmodel", "TraceModel.build", "subs"): 3,
     ("symctl.fitting.fitmodel", "TraceModel.build", "Matrix"): 1,
     ("symctl.fitting.fitmodel", "TraceModel.factorization", "factor"): 1,
     ("symctl.fitting.fitmodel", "TraceModel.realize", "Matrix"): 1,
-    ("symctl.fitting.fitmodel", "_lambdified", "subs"): 1,
-    ("symctl.fitting.fitmodel", "_lambdified", "Matrix"): 1,
     ("symctl.fitting.fitmodel", "_lambdified", "lambdify"): 1,
+    ("symctl.fitting.identify", "_degrees", "Poly"): 2,  # the model's own T, M0, N
 }
 
 
