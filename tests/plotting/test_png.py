@@ -56,3 +56,39 @@ def test_report_figures_are_rgb_and_the_same_bytes_twice(tmp_path):
     first = png.read_bytes()
     save(fig, tmp_path, "open_loop")
     assert png.read_bytes() == first
+
+
+def test_a_png_from_the_figures_pdf_has_the_size_and_colours_of_matplotlibs(tmp_path):
+    from symctl.plotting.png import render_pdf
+    from symctl.plotting.vector import write_vector
+
+    fig = open_loop_response(MuscleModel().plant()).plot()
+    pdf = write_vector(fig, tmp_path / "a.pdf")
+    ours = render_pdf(pdf, tmp_path / "a.png", dpi=120)
+    theirs = write_png(fig, tmp_path / "b.png", dpi=120)
+    assert colour_type(ours) == 2  # opaque: RGB
+    a, b = (np.asarray(Image.open(p), dtype=float) for p in (ours, theirs))
+    assert abs(a.shape[0] - b.shape[0]) <= 1 and abs(a.shape[1] - b.shape[1]) <= 1
+    h, w = min(a.shape[0], b.shape[0]), min(a.shape[1], b.shape[1])
+    # the same drawing rasterized by two renderers: antialiasing differs, the picture does not
+    assert np.abs(a[:h, :w] - b[:h, :w]).mean() < 8  # of 255, per channel
+    assert (a < 128).mean() == pytest.approx((b < 128).mean(), abs=0.01)  # as much ink
+
+
+def test_every_renderer_of_a_process_shares_the_typeset_math_text(tmp_path):
+    from matplotlib import mathtext
+
+    from symctl.plotting.style import new_figure
+    from symctl.plotting.vector import write_vector
+
+    def figure():
+        fig = new_figure("column", 1.0)
+        fig.add_subplot().set_xlabel(r"$\epsilon_{17} + K_{23}$ [unusual]")
+        return fig
+
+    write_vector(figure(), tmp_path / "a.pdf")
+    parse = mathtext.MathTextParser._parse_cached
+    shared = parse.__closure__[parse.__code__.co_freevars.index("shared")].cell_contents
+    misses = shared.cache_info().misses
+    write_vector(figure(), tmp_path / "b.pdf")  # a new figure, a new renderer: nothing typeset
+    assert shared.cache_info().misses == misses
