@@ -277,6 +277,15 @@ def ring_fractions(exprs: list[sp.Expr]) -> list[tuple] | None:
     return [fold(e, algebra, memo) for e in exprs]
 
 
+def cancel(expr: sp.Expr) -> sp.Expr:
+    """``expr`` in lowest terms, ``p/q``: :func:`sympy.cancel`, done in the sparse ring when it can."""
+    pairs = ring_fractions([expr])
+    if pairs is None:
+        return sp.cancel(expr)
+    p, q = pairs[0][0].cancel(pairs[0][1])
+    return p.as_expr() / q.as_expr()
+
+
 def products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
     """Exact test of ``prod(left) == prod(right)`` for rational expressions."""
     pairs = ring_fractions([*left, *right])

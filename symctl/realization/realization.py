@@ -19,6 +19,7 @@ import numpy as np
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.exact import cancel
 from symctl._util.validate import (
     MAX_STEPS,
     bounded_int,
@@ -45,7 +46,7 @@ __all__ = [
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
     """Lowest terms with common factors pulled out (no blanket simplify)."""
-    return sp.factor_terms(sp.cancel(expr))
+    return sp.factor_terms(cancel(expr))
 
 
 @dataclass(frozen=True)
