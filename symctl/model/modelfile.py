@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from symctl._util.parse import NAMES, parse_expr
+from symctl._util.parse import CONSTANTS, NAMES, parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
 from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
@@ -62,6 +62,7 @@ MAX_PARAMETERS = 200
 MAX_SIM_STEPS = 5000
 """Longest simulation horizon of a model file."""
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
+_CONSTANT_NAMES = {"E": "e (Euler's number)", "pi": "pi"}
 _RESERVED = NAMES | {"z", "T_s", "t"}  # the parser's own names, z, the sampling time, time
 
 
@@ -145,6 +146,13 @@ class _Reader(GraphSection):
     def text(self, value, where: str, *, ident: bool = False) -> str:
         if not isinstance(value, str):
             raise self.fail(where, f"expected text, got {_kind(value)}")
+        if ident and value in CONSTANTS:
+            raise self.fail(
+                where,
+                f"{value!r} is the constant {_CONSTANT_NAMES[value]} = "
+                f"{float(CONSTANTS[value]):.6g}, which every expression may use undeclared; "
+                "give this another name",
+            )
         if ident and (not _IDENT.match(value) or value in _RESERVED or keyword.iskeyword(value)):
             raise self.fail(
                 where,
@@ -177,7 +185,12 @@ class _Reader(GraphSection):
         if not isinstance(value, str):
             raise self.fail(where, f"expected a number or text, got {_kind(value)}")
         with self.named(where):
-            return parse_expr(value, names, argname=where)
+            expr = parse_expr(value, names, argname=where)
+        if re.search(r"(?<![\w.])E(?!\w)", value):
+            self.notes.append(
+                f"{where}: E is Euler's number e = 2.71828 (a constant; a parameter cannot be named E)"
+            )
+        return expr
 
     def unit(self, value, where: str) -> Unit | None:
         if value is None:
