@@ -223,6 +223,8 @@ class _Reader(GraphSection):
         Ts = self.sampling(self.table(d["sampling"], "sampling", "sampling"))
         params, units, descr = self.parameters(d.get("parameters", {}))
         ode, plant, plant_symbolic = self.plant(d, params, units, descr, Ts, name)
+        if ode is not None and not isinstance(d["sampling"]["Ts"], dict):
+            self.bare_ts(ode, Ts)
         self.names = tuple(s.name for s in ode.states) if ode is not None else plant.state_names
         self.stabilizable(plant, "states" if ode is not None else "discrete")
         outputs = self.outputs(d.get("outputs"), plant, units, descr)
@@ -308,6 +310,23 @@ class _Reader(GraphSection):
                 raise self.fail("sampling.Ts.unit", f"{unit} is not a unit of time")
             return ts * unit.scale
         return float(self.number(value, "sampling.Ts", positive=True))
+
+    def bare_ts(self, ode, Ts: float) -> None:
+        """A note when Ts without a unit (so in seconds) is longer than the plant's fastest time
+        constant or under 1e-4 of it: a unit was probably meant."""
+        a = ode.jacobian_numeric(ode.x_bar, ode.u_bar)
+        rate = np.abs(np.linalg.eigvals(a)).max() if np.isfinite(a).all() else 0.0
+        if rate == 0:  # integrators only: no time constant
+            return
+        fastest = 1 / rate
+        if 1e-4 * fastest <= Ts <= fastest:
+            return
+        where, unit = ("longer than", "ms") if Ts > fastest else ("under 1e-4 of", "s")
+        self.notes.append(
+            f"sampling.Ts: a number without a unit is in seconds, and Ts = {Ts:g} s is {where} "
+            f"the plant's fastest time constant ({fastest:.3g} s); if another unit was meant, "
+            f'say so: Ts = {{ value = {Ts:g}, unit = "{unit}" }}'
+        )
 
     def parameters(self, table) -> tuple[dict, dict, dict]:
         table = self.table(table, "parameters")

@@ -11,6 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from symctl import SymctlError, derive, load_model
+from symctl.cli import main
 from symctl.model.modelfile import read_model
 
 MUSCLE = (Path(__file__).resolve().parents[2] / "examples" / "muscle.toml").read_text()
@@ -141,3 +142,26 @@ def test_an_undeclared_E_is_eulers_number_with_a_note_saying_so():
 def test_a_bad_name_or_a_caret_is_one_line_naming_file_line_and_field(rhs, problem):
     with pytest.raises(SymctlError, match=rf"^m.toml:\d+: states\[0\].rhs: {problem}"):
         read_model(MUSCLE.replace(RHS, f'"{rhs}"'), "m.toml")
+
+
+TS = 'Ts = { value = 0.01, unit = "s" }'
+
+
+@pytest.mark.parametrize("ts, word", [("5", "longer than"), ("1e-07", "under 1e-4 of")])
+def test_a_bare_ts_far_from_the_fastest_time_constant_gets_a_note(tmp_path, capsys, ts, word):
+    path = tmp_path / "m.toml"
+    path.write_text(MUSCLE.replace(TS, f"Ts = {ts}"))
+    assert main(["derive", "--check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert f"note: sampling.Ts: a number without a unit is in seconds, and Ts = {ts} s" in out
+    assert f"{word} the plant's fastest time constant (0.02 s)" in out
+
+
+@pytest.mark.parametrize("ts", ["0.01", "1e-5", '{ value = 5, unit = "s" }'])
+def test_a_bare_ts_near_the_time_constants_or_one_with_a_unit_gets_no_note(ts):
+    assert load_model(MUSCLE.replace(TS, f"Ts = {ts}")).notes == ()
+
+
+def test_the_bare_ts_note_goes_when_the_api_replaces_the_sampling_time():
+    model = load_model(MUSCLE.replace(TS, "Ts = 5"))
+    assert model.notes and model.replace(dt=0.005).notes == ()
