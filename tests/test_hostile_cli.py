@@ -71,6 +71,22 @@ def test_hostile_options_give_one_line_and_exit_2(tmp_path, capfd, args, word):
     assert not (tmp_path / "out").exists() and list(tmp_path.iterdir()) == []
 
 
+HUGE = [
+    (["--q", "exp(exp(exp(exp(10))))"], "--q: the value of 'exp(exp(exp(exp(10))))' is too large"),
+    (["--r", "exp(exp(exp(exp(10))))"], "--r: the value of 'exp(exp(exp(exp(10))))' is too large"),
+    (["--q", "exp(1000)"], "--q: the value of 'exp(1000)' is too large"),
+    (["--r", "[[10**400]]"], "--r: the value of '10**400' is too large"),
+    (["--q", "2^3"], "--q: '^' is not a power in '2^3'; use ** for powers"),
+]
+
+
+@pytest.mark.parametrize("args, words", HUGE, ids=[" ".join(a) for a, _ in HUGE])
+def test_a_huge_or_misspelled_weight_names_its_option_and_the_problem(tmp_path, capfd, args, words):
+    code = main(["paper", "--out", str(tmp_path / "out"), "--no-figures", "--no-pdf", *args])
+    line = _one_line(capfd.readouterr().err)
+    assert code == 2 and line.startswith(f"symctl: error: {words}"), line
+
+
 CONSOLE = [
     (["--q", "0", "--r", "0"], ("--r", "R:")),
     (["--q", "1e9999"], "--q"),

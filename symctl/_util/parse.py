@@ -34,6 +34,8 @@ nesting depth of the tree          ``MAX_DEPTH`` = 100
 a numeric exponent                 ``|e| <= MAX_EXPONENT`` = 1,000 (so ``9**9**9`` is refused)
 an exact number (literal or        ``MAX_BITS`` = 20,000 bits of numerator and denominator
 intermediate result)               (about 6,000 digits; the power's size is estimated first)
+a number with functions or         within floating point (``|x| <= 1.8e308``), and so every
+constants (``exp(800)``, ``pi*x``) number computed on the way to it (``exp(exp(10))`` is refused)
 float literals                     finite (``1e9999`` is refused)
 the result                         finite: no ``zoo``, ``oo`` or ``nan`` (``1/0`` is refused)
 =================================  ==========================================
@@ -48,13 +50,15 @@ from __future__ import annotations
 
 import ast
 import math
+import sys
 from collections.abc import Iterable, Mapping
+from types import MappingProxyType
 
 import sympy as sp
 
 from symctl.errors import ParseError, SymctlTypeError
 
-__all__ = ["NAMES", "parse_expr", "parse_matrix"]
+__all__ = ["CONSTANTS", "NAMES", "parse_expr", "parse_matrix"]
 
 _FUNCTIONS = {
     "exp": sp.exp,
@@ -71,8 +75,9 @@ _FUNCTIONS = {
     "logistic": lambda x: 1 / (1 + sp.exp(-x)),
 }
 _ARITY = {name: (1, 1) for name in _FUNCTIONS} | {"log": (1, 2)}
-_CONSTANTS = {"pi": sp.pi, "E": sp.E}
-NAMES = frozenset(_FUNCTIONS) | frozenset(_CONSTANTS)
+CONSTANTS = MappingProxyType({"pi": sp.pi, "E": sp.E})
+"""The constants every expression may use undeclared: ``pi`` and ``E`` (Euler's number)."""
+NAMES = frozenset(_FUNCTIONS) | frozenset(CONSTANTS)
 """The names the parser reads as its own functions and constants, never as symbols."""
 _BINOPS = {
     ast.Add: lambda a, b: a + b,
@@ -102,10 +107,31 @@ def _bits(value: sp.Rational) -> int:
     return max(int(value.p).bit_length(), int(value.q).bit_length())
 
 
-def _check_size(value: sp.Expr, argname: str) -> sp.Expr:
-    """Refuse an exact number past :data:`MAX_BITS`."""
-    if isinstance(value, sp.Rational) and _bits(value) > MAX_BITS:
-        raise ParseError(f"{argname}: a number with more than {MAX_BITS} bits is too large")
+def _fits_float(value: sp.Expr) -> bool:
+    try:
+        return math.isfinite(abs(complex(value)))
+    except (ArithmeticError, ValueError, TypeError, RecursionError):  # mpmath's own overflow
+        return False
+
+
+def _shown(text: str) -> str:
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _too_large(text: str, argname: str) -> ParseError:
+    return ParseError(
+        f"{argname}: the value of {_shown(text)!r} is too large: it, or a number computed on the way, "
+        f"is beyond floating point (|x| <= {sys.float_info.max:.3g})"
+    )
+
+
+def _check_size(value: sp.Expr, argname: str, text: str) -> sp.Expr:
+    """Refuse an exact number past :data:`MAX_BITS`, a number of functions or constants past floats."""
+    if isinstance(value, sp.Rational):
+        if _bits(value) > MAX_BITS:
+            raise ParseError(f"{argname}: a number with more than {MAX_BITS} bits is too large")
+    elif isinstance(value, sp.Expr) and value.is_number and not _fits_float(value):
+        raise _too_large(text, argname)
     return value
 
 
@@ -162,8 +188,7 @@ def _syntax_tree(text: str, argname: str) -> ast.AST:
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
-        shown = text if len(text) <= 80 else text[:77] + "..."
-        raise ParseError(f"{argname}: cannot parse {shown!r}: {exc.msg}") from None
+        raise ParseError(f"{argname}: cannot parse {_shown(text)!r}: {exc.msg}") from None
     except (ValueError, RecursionError, MemoryError):  # null bytes; a parser out of stack
         raise ParseError(f"{argname}: cannot parse the text (too complex)") from None
     _check_shape(tree, argname)
@@ -178,7 +203,7 @@ def _number(value, argname: str) -> sp.Expr:
             raise ParseError(
                 f"{argname}: numbers must be finite, got a float literal that is {value}"
             )
-        return _check_size(sp.Rational(repr(value)), argname)
+        return _check_size(sp.Rational(repr(value)), argname, "")
     if value.bit_length() > MAX_BITS:
         raise ParseError(
             f"{argname}: an integer literal with more than {MAX_BITS} bits is too large"
@@ -216,7 +241,8 @@ def parse_expr(
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected a string, got {type(text).__name__}")
     tree = _syntax_tree(text, argname)
-    allowed = {**_CONSTANTS, **_names_of(names)}
+    allowed = {**CONSTANTS, **_names_of(names)}
+    shown = _shown(text)
 
     def walk(node: ast.AST) -> sp.Expr:
         if isinstance(node, ast.Constant) and isinstance(node.value, int | float):
@@ -225,14 +251,17 @@ def parse_expr(
             if node.id in allowed:
                 return allowed[node.id]
             choices = ", ".join(sorted(allowed)[:8])
+            euler = "; Euler's number is E" if node.id == "e" else ""
             raise ParseError(
-                f"{argname}: name {node.id!r} is not allowed; use one of: {choices}, ..."
+                f"{argname}: name {node.id!r} is not allowed; use one of: {choices}, ...{euler}"
             )
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
-            return _check_size(_power(walk(node.left), walk(node.right), argname), argname)
+            return _check_size(_power(walk(node.left), walk(node.right), argname), argname, text)
         if isinstance(node, ast.BinOp) and type(node.op) in _BINOPS:
             value = _BINOPS[type(node.op)](walk(node.left), walk(node.right))
-            return _check_size(value, argname)
+            return _check_size(value, argname, text)
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor):
+            raise ParseError(f"{argname}: '^' is not a power in {shown!r}; use ** for powers")
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
             value = walk(node.operand)
             return -value if isinstance(node.op, ast.USub) else value
@@ -250,13 +279,13 @@ def parse_expr(
                     f"{argname}: {node.func.id} takes {low if low == high else f'{low} or {high}'}"
                     f" argument(s), got {len(node.args)}"
                 )
-            return _FUNCTIONS[node.func.id](*(walk(a) for a in node.args))
+            value = _FUNCTIONS[node.func.id](*(walk(a) for a in node.args))
+            return _check_size(value, argname, text)
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
             choices = ", ".join(sorted(_FUNCTIONS)[:6])
             raise ParseError(
                 f"{argname}: function {node.func.id!r} is not allowed; use one of: {choices}, ..."
             )
-        shown = text if len(text) <= 80 else text[:77] + "..."
         raise ParseError(f"{argname}: {type(node).__name__} is not allowed in {shown!r}")
 
     try:
@@ -297,4 +326,8 @@ def parse_matrix(text: str, argname: str) -> sp.Matrix:
     if len({len(row) for row in rows}) != 1:
         raise ParseError(f"{argname}: rows of different lengths in {text!r}")
     entries = [[parse_expr(e, None, argname=argname) for e in row] for row in rows]
+    for row, texts in zip(entries, rows, strict=True):
+        for value, entry in zip(row, texts, strict=True):
+            if not _fits_float(value):
+                raise _too_large(entry.strip(), argname)
     return sp.Matrix(entries)

@@ -270,6 +270,8 @@ class Model:
             new.pop("dt", None)
         if given or "dt" in changes:  # the plant derived again: only for a new value
             changes.update(self._replot(given, changes.get("dt", self.dt)))
+            # the file's note on a bare Ts was on the file's Ts and time constants
+            changes["notes"] = tuple(n for n in self.notes if not n.startswith("sampling.Ts:"))
         ds = nonneg_int(new.get("sensor_delay", self.sensor_delay), "sensor_delay")
         da = nonneg_int(new.get("actuator_delay", self.actuator_delay), "actuator_delay")
         if not 1 <= ds + da <= PAPER_MAX_DELAY:

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
-from symctl._util.parse import NAMES, parse_expr
+from symctl._util.parse import CONSTANTS, NAMES, parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
 from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
@@ -62,6 +62,7 @@ MAX_PARAMETERS = 200
 MAX_SIM_STEPS = 5000
 """Longest simulation horizon of a model file."""
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
+_CONSTANT_NAMES = {"E": "e (Euler's number)", "pi": "pi"}
 _RESERVED = NAMES | {"z", "T_s", "t"}  # the parser's own names, z, the sampling time, time
 
 
@@ -145,6 +146,13 @@ class _Reader(GraphSection):
     def text(self, value, where: str, *, ident: bool = False) -> str:
         if not isinstance(value, str):
             raise self.fail(where, f"expected text, got {_kind(value)}")
+        if ident and value in CONSTANTS:
+            raise self.fail(
+                where,
+                f"{value!r} is the constant {_CONSTANT_NAMES[value]} = "
+                f"{float(CONSTANTS[value]):.6g}, which every expression may use undeclared; "
+                "give this another name",
+            )
         if ident and (not _IDENT.match(value) or value in _RESERVED or keyword.iskeyword(value)):
             raise self.fail(
                 where,
@@ -177,7 +185,12 @@ class _Reader(GraphSection):
         if not isinstance(value, str):
             raise self.fail(where, f"expected a number or text, got {_kind(value)}")
         with self.named(where):
-            return parse_expr(value, names, argname=where)
+            expr = parse_expr(value, names, argname=where)
+        if re.search(r"(?<![\w.])E(?!\w)", value):
+            self.notes.append(
+                f"{where}: E is Euler's number e = 2.71828 (a constant; a parameter cannot be named E)"
+            )
+        return expr
 
     def unit(self, value, where: str) -> Unit | None:
         if value is None:
@@ -210,6 +223,8 @@ class _Reader(GraphSection):
         Ts = self.sampling(self.table(d["sampling"], "sampling", "sampling"))
         params, units, descr = self.parameters(d.get("parameters", {}))
         ode, plant, plant_symbolic = self.plant(d, params, units, descr, Ts, name)
+        if ode is not None and not isinstance(d["sampling"]["Ts"], dict):
+            self.bare_ts(ode, Ts)
         self.names = tuple(s.name for s in ode.states) if ode is not None else plant.state_names
         self.stabilizable(plant, "states" if ode is not None else "discrete")
         outputs = self.outputs(d.get("outputs"), plant, units, descr)
@@ -295,6 +310,23 @@ class _Reader(GraphSection):
                 raise self.fail("sampling.Ts.unit", f"{unit} is not a unit of time")
             return ts * unit.scale
         return float(self.number(value, "sampling.Ts", positive=True))
+
+    def bare_ts(self, ode, Ts: float) -> None:
+        """A note when Ts without a unit (so in seconds) is longer than the plant's fastest time
+        constant or under 1e-4 of it: a unit was probably meant."""
+        a = ode.jacobian_numeric(ode.x_bar, ode.u_bar)
+        rate = np.abs(np.linalg.eigvals(a)).max() if np.isfinite(a).all() else 0.0
+        if rate == 0:  # integrators only: no time constant
+            return
+        fastest = 1 / rate
+        if 1e-4 * fastest <= Ts <= fastest:
+            return
+        where, unit = ("longer than", "ms") if Ts > fastest else ("under 1e-4 of", "s")
+        self.notes.append(
+            f"sampling.Ts: a number without a unit is in seconds, and Ts = {Ts:g} s is {where} "
+            f"the plant's fastest time constant ({fastest:.3g} s); if another unit was meant, "
+            f'say so: Ts = {{ value = {Ts:g}, unit = "{unit}" }}'
+        )
 
     def parameters(self, table) -> tuple[dict, dict, dict]:
         table = self.table(table, "parameters")

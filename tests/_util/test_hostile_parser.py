@@ -154,3 +154,27 @@ def test_the_limits_are_documented_in_the_module_docstring():
     doc = parse.__doc__
     for limit in (MAX_TEXT, MAX_OPERATORS, MAX_NODES, MAX_DEPTH, MAX_EXPONENT, MAX_BITS):
         assert f"{limit:,}" in doc or str(limit) in doc
+
+
+@pytest.mark.parametrize(
+    "text", ["exp(exp(exp(exp(10))))", "exp(1000)", "exp(700)*exp(700)", "pi**1000", "E**1000"]
+)
+def test_a_number_beyond_floating_point_is_too_large_naming_the_argument(text):
+    error = _counted(lambda: parse_expr(text, argname="--q"))
+    assert error is not None and str(error).startswith("--q: "), "accepted"
+    assert "too large" in str(error) and text in str(error)
+
+
+def test_an_exact_matrix_entry_beyond_floating_point_is_too_large():
+    with pytest.raises(ParseError, match=r"--r: the value of '10\*\*400' is too large"):
+        parse_matrix("[[1, 0], [0, 10**400]]", "--r")
+
+
+def test_a_caret_says_to_use_double_star_for_powers():
+    with pytest.raises(ParseError, match=r"x: '\^' is not a power in 'x\^2'; use \*\* for powers"):
+        parse_expr("x^2", {"x": sp.Symbol("x")}, argname="x")
+
+
+def test_a_lowercase_e_is_not_eulers_number_and_the_message_says_so():
+    with pytest.raises(ParseError, match="name 'e' is not allowed.*Euler's number is E"):
+        parse_expr("e**2")

@@ -11,6 +11,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from symctl import SymctlError, derive, load_model
+from symctl.cli import main
+from symctl.model.modelfile import read_model
 
 MUSCLE = (Path(__file__).resolve().parents[2] / "examples" / "muscle.toml").read_text()
 
@@ -107,3 +109,59 @@ def test_mimo_circuits_are_bounded_in_size_and_say_what_they_leave_out():
     assert "randomized" in methods and all(
         r.check_numeric.method == "exact" for r in mid.realizations.values()
     )
+
+
+RHS = '"f_max / (tau * (1 + exp(-r))) - f / tau"'
+
+
+@pytest.mark.parametrize("name", ["E", "pi"])
+def test_a_parameter_named_like_a_constant_is_refused_naming_the_constant(name):
+    text = MUSCLE.replace("[parameters]\n", f"[parameters]\n{name} = 2.0\n")
+    with pytest.raises(SymctlError, match=rf":\d+: parameters.{name}: '{name}' is the constant"):
+        load_model(text)
+
+
+def test_an_undeclared_E_is_eulers_number_with_a_note_saying_so():
+    model = load_model(MUSCLE.replace(RHS, '"f_max / (tau * (1 + E**(-r))) - f / tau"'))
+    assert model.plant == load_model(MUSCLE).plant
+    assert any(n.startswith("states[0].rhs: E is Euler's number") for n in model.notes)
+    assert not any("Euler" in n for n in load_model(MUSCLE).notes)
+
+
+@pytest.mark.parametrize(
+    "rhs, problem",
+    [
+        ("f_max / (tau * (1 + e**(-r))) - f / tau", "name 'e' is not allowed.*Euler's number is E"),
+        (
+            "f_max / (tau * (1 + exp(-r))) - f^2 / tau",
+            r"'\^' is not a power .*; use \*\* for powers",
+        ),
+        ("f_max / (tau * (1 + exp(-r))) - k * f", "name 'k' is not allowed"),
+    ],
+)
+def test_a_bad_name_or_a_caret_is_one_line_naming_file_line_and_field(rhs, problem):
+    with pytest.raises(SymctlError, match=rf"^m.toml:\d+: states\[0\].rhs: {problem}"):
+        read_model(MUSCLE.replace(RHS, f'"{rhs}"'), "m.toml")
+
+
+TS = 'Ts = { value = 0.01, unit = "s" }'
+
+
+@pytest.mark.parametrize("ts, word", [("5", "longer than"), ("1e-07", "under 1e-4 of")])
+def test_a_bare_ts_far_from_the_fastest_time_constant_gets_a_note(tmp_path, capsys, ts, word):
+    path = tmp_path / "m.toml"
+    path.write_text(MUSCLE.replace(TS, f"Ts = {ts}"))
+    assert main(["derive", "--check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert f"note: sampling.Ts: a number without a unit is in seconds, and Ts = {ts} s" in out
+    assert f"{word} the plant's fastest time constant (0.02 s)" in out
+
+
+@pytest.mark.parametrize("ts", ["0.01", "1e-5", '{ value = 5, unit = "s" }'])
+def test_a_bare_ts_near_the_time_constants_or_one_with_a_unit_gets_no_note(ts):
+    assert load_model(MUSCLE.replace(TS, f"Ts = {ts}")).notes == ()
+
+
+def test_the_bare_ts_note_goes_when_the_api_replaces_the_sampling_time():
+    model = load_model(MUSCLE.replace(TS, "Ts = 5"))
+    assert model.notes and model.replace(dt=0.005).notes == ()
