@@ -599,12 +599,19 @@ def write_figures(
     ...
     symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
     """
+    out, formats = _folder(out), figure_formats(formats)
+    with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
+        return start_figures(res, out, started, dpi=dpi, formats=formats)()
+
+
+def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FORMATS):
+    """Hand every figure of ``res`` to the started ``workers`` and return at once a function that
+    waits for them and gives the paths (as :func:`write_figures`): the caller works meanwhile."""
     names = figure_names(res)
     task = functools.partial(_draw, out=_folder(out), dpi=dpi, formats=figure_formats(formats))
     first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
-    with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
-        done = started.map(task, res, first)
-    return [p for name in names for p in done[name]]
+    done = workers.submit(task, res, first)
+    return lambda: [p for name in names for p in done()[name]]
 
 
 def _draw(res, name: str, *, out: Path, dpi: float, formats: tuple[str, ...]) -> list[Path]:

@@ -14,6 +14,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import json
 from collections.abc import Callable
 from pathlib import Path
@@ -273,24 +274,32 @@ def write_files(
 ) -> list[Path]:
     """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
     the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`)."""
+    from symctl.report.workers import FigureWorkers
+
     step = progress or (lambda _name: None)
-    written = []
-    path = out / "results.json"
-    path.write_text(json.dumps(results_json(self), indent=2, allow_nan=False) + "\n")
-    written.append(path)
-    paths: list[Path] = []
-    if figures:
-        step("figures")
-        paths = _figures.write_figures(self, out, jobs=jobs, formats=formats, workers=workers)
-        written += paths
-    step("documents")
-    # derivation.tex includes the PDFs, report.md shows the PNGs
-    shown = {ext: [p.stem for p in paths if p.suffix == f".{ext}"] for ext in ("pdf", "png")}
-    blocks = story.story(self, figures=shown["pdf"])
-    md_blocks = blocks if shown["png"] == shown["pdf"] else story.story(self, figures=shown["png"])
-    title = self.spec.title if self.spec is not None else document.TITLE
-    written.append(document.write_tex(blocks, out / "derivation.tex", title=title))
-    written.append(document.write_markdown(md_blocks, out / "report.md", title=title))
+    started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
+    with started as drawing:  # the figures are drawn while the documents are written
+        pending = _figures.start_figures(self, out, drawing, formats=formats) if figures else None
+        path = out / "results.json"
+        path.write_text(json.dumps(results_json(self), indent=2, allow_nan=False) + "\n")
+        written = [path]
+        step("documents")
+        # derivation.tex includes the PDFs, report.md shows the PNGs
+        names = _figures.figure_names(self) if figures else []
+        shown = {ext: names if ext in formats else [] for ext in ("pdf", "png")}
+        blocks = story.story(self, figures=shown["pdf"])
+        md_blocks = (
+            blocks if shown["png"] == shown["pdf"] else story.story(self, figures=shown["png"])
+        )
+        title = self.spec.title if self.spec is not None else document.TITLE
+        docs = [
+            document.write_tex(blocks, out / "derivation.tex", title=title),
+            document.write_markdown(md_blocks, out / "report.md", title=title),
+        ]
+        if figures:
+            step("figures")
+            written += pending()
+    written += docs
     if pdf:
         step("pdflatex")
         compiled = document.compile_pdf(out / "derivation.tex")

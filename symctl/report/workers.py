@@ -9,10 +9,13 @@ module knows nothing of figures: a worker runs the task it is given.
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import multiprocessing
 import os
 import signal
 import sys
+import threading
 from concurrent.futures import FIRST_EXCEPTION, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
@@ -77,20 +80,25 @@ class FigureWorkers:
         if self.jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
             return self
         self._before = set(multiprocessing.active_children())
-        # Ctrl-C or SIGTERM held back while forking: a handler's exception raised in the
-        # fork's own hooks would be ignored, and the signal lost
-        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS)
+        # the workers' garbage collections skip the objects they inherit (and copy no pages of them)
+        frozen = gc.get_freeze_count() == 0  # not when the caller froze objects of its own
+        if frozen:
+            gc.freeze()
         try:
-            self._pool = ProcessPoolExecutor(
-                self.jobs, mp_context=multiprocessing.get_context("fork"), initializer=_worker_init
-            )
-            for _ in range(self.jobs):  # forks every worker now, each getting ready
-                self._pool.submit(_warm)
-            signal.pthread_sigmask(signal.SIG_SETMASK, held)  # a held signal is raised here
+            with _signals_after():
+                self._pool = ProcessPoolExecutor(
+                    self.jobs,
+                    mp_context=multiprocessing.get_context("fork"),
+                    initializer=_worker_init,
+                )
+                for _ in range(self.jobs):  # forks every worker now, each getting ready
+                    self._pool.submit(_warm)
         except BaseException:
-            signal.pthread_sigmask(signal.SIG_SETMASK, held)
             self.__exit__(*sys.exc_info())
             raise
+        finally:
+            if frozen:
+                gc.unfreeze()
         return self
 
     def __exit__(self, exc_type, exc, tb) -> None:
@@ -118,16 +126,23 @@ class FigureWorkers:
         ``task`` is a function of the module level (the workers find it by name) and
         ``res`` a value that pickles; without workers, the tasks run here.
         """
+        return self.submit(task, res, names)()
+
+    def submit(self, task, res, names):
+        """As :meth:`map`, without waiting: returns a function that waits and gives the dict."""
         if self._pool is None:
-            return {name: task(res, name) for name in names}
+            done = {name: task(res, name) for name in names}
+            return lambda: done
         import pickle
         import tempfile
 
-        with tempfile.NamedTemporaryFile(prefix="symctl-figures-", suffix=".pickle") as saved:
-            pickle.dump(res, saved, protocol=pickle.HIGHEST_PROTOCOL)
-            saved.flush()
+        saved = tempfile.NamedTemporaryFile(prefix="symctl-figures-", suffix=".pickle")
+        pickle.dump(res, saved, protocol=pickle.HIGHEST_PROTOCOL)
+        saved.flush()
+        futures = {n: self._pool.submit(_worker, task, saved.name, n) for n in names}
+
+        def result() -> dict:
             try:
-                futures = {n: self._pool.submit(_worker, task, saved.name, n) for n in names}
                 wait(futures.values(), return_when=FIRST_EXCEPTION)
                 return {name: future.result() for name, future in futures.items()}
             except BaseException as exc:
@@ -137,17 +152,45 @@ class FigureWorkers:
                         "a figure worker died (killed by a signal or out of memory)"
                     ) from None
                 raise
+            finally:
+                saved.close()
+
+        return result
 
 
-_STOPS = {signal.SIGINT, signal.SIGTERM}
-"""SIGINT and SIGTERM: the signals that stop a run (held while the workers are forked)."""
+_STOPS = (signal.SIGINT, signal.SIGTERM)
+"""The signals that stop a run (noted while the workers are forked, acted on after)."""
+
+
+@contextlib.contextmanager
+def _signals_after():
+    """Ctrl-C and SIGTERM noted while the block runs and acted on when it ends.
+
+    The parent's handler raises an exception; raised inside a fork's own hooks (which run
+    Python code, logging's lock release among them), the exception is printed and ignored,
+    and the run goes on as if the signal never came. Only the main thread can set handlers,
+    and only there do they run: elsewhere nothing is changed.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    noted: list[int] = []
+    previous = {
+        sig: signal.signal(sig, lambda signum, _frame: noted.append(signum)) for sig in _STOPS
+    }
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        for sig in dict.fromkeys(noted):
+            signal.raise_signal(sig)  # the previous handler acts now
 
 
 def _worker_init() -> None:
     """A figure worker: Ctrl-C is the parent's to handle, SIGTERM kills, and so does its death."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the terminal sends it to the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's handler, inherited by fork
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)  # held by the parent while it forked
     try:  # Linux: die with the parent even when it is killed outright (no orphans)
         import ctypes
 
