@@ -575,7 +575,8 @@ AUDITED = {
     # algebra on sympy objects symctl built or checked (to_expr/to_matrix first; ``factor``
     # in firing and pipeline is symctl.factor, which takes a DiscreteTF)
     ("symctl._util.exact", "products_equal", "expand"): 1,
-    ("symctl._util.exact", "z_poly", "cancel"): 1,
+    ("symctl._util.exact", "z_poly", "cancel"): 1,  # PolyElement.cancel: ring elements
+    ("symctl._util.exact", "cancel", "cancel"): 2,  # sympy.cancel of a realization's coefficient
     # minimal_realization: a Matrix of flint rationals turned into sympy Rationals
     ("symctl.realization.minimal", "_sympy", "Matrix"): 1,
     # structure_firing: Circuit.subs with the gains' exact values and drawn rationals
