@@ -176,5 +176,5 @@ def test_a_caret_says_to_use_double_star_for_powers():
 
 
 def test_a_lowercase_e_is_not_eulers_number_and_the_message_says_so():
-    with pytest.raises(ParseError, match="name 'e' is not allowed.*Euler's number is E"):
+    with pytest.raises(ParseError, match=r"name 'e' is not allowed.*Euler's number is E"):
         parse_expr("e**2")
