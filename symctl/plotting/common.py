@@ -29,7 +29,7 @@ def text_outline(text: str, size: float):
     Bezier segment in Python (three quarters of the drawing time of a circuit with a
     key of long weights). Math text is typeset at ``size`` itself (matplotlib's
     ``TextPath`` typesets it at 100 points and scales it down), so that drawing the
-    same text later finds it typeset (:mod:`symctl.plotting.style` shares the cache).
+    same text later finds it typeset (:func:`_share_math_parses` shares the cache).
     """
     from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
@@ -53,6 +53,7 @@ def _to_path(size: float):
     """Matplotlib's text-to-outline converter working at ``size`` points (not its 100)."""
     from matplotlib.textpath import TextToPath
 
+    _share_math_parses()  # what it typesets, the drawing finds (also before any figure is made)
     converter = TextToPath()
     converter.FONT_SCALE = size
     return converter
@@ -112,3 +113,41 @@ def key_columns(widths, room: float, gap: float) -> list[list[int]]:
         if total <= room:
             return columns
     return [list(range(len(widths)))]
+
+
+_MATH_PARSES = 4096
+"""How many typeset math strings one process keeps (:func:`_share_math_parses`)."""
+
+
+def _share_math_parses() -> None:
+    """Let every renderer of this process share one cache of typeset math text.
+
+    Matplotlib typesets a ``$...$`` string (a pyparsing parse, about 10 ms) once per
+    string, resolution, font and *renderer*, in a cache of 50: each Agg renderer
+    (every text measure at another size) starts empty, and a figure with more than 50
+    math labels evicts its own entries between measuring and drawing them. Typesetting
+    was 40% of the time of drawing the report's figures. The result depends only on
+    the string, resolution, font, antialiasing, hinting and output kind, which this
+    cache keys on; it is installed once, and not at all if matplotlib's private
+    method has another form.
+    """
+    import functools
+
+    from matplotlib import mathtext
+
+    method = mathtext.MathTextParser.__dict__.get("_parse_cached")
+    typeset = getattr(method, "__wrapped__", None)
+    if typeset is None or getattr(method, "_symctl", False):
+        return
+    parsers: dict = {}
+
+    @functools.lru_cache(_MATH_PARSES)
+    def shared(kind, s, dpi, prop, antialiased, flags):
+        return typeset(parsers[kind], s, dpi, prop, antialiased, flags)
+
+    def parse_cached(self, s, dpi, prop, antialiased, load_glyph_flags):
+        parsers.setdefault(self._output_type, self)
+        return shared(self._output_type, s, dpi, prop, antialiased, load_glyph_flags)
+
+    parse_cached._symctl = True
+    mathtext.MathTextParser._parse_cached = parse_cached

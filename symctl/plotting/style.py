@@ -239,47 +239,11 @@ def styled():
     """
     import matplotlib as mpl
 
+    from symctl.plotting.common import _share_math_parses
+
     _share_math_parses()
     with mpl.rc_context(rc()):
         yield
-
-
-_MATH_PARSES = 4096
-"""How many typeset math strings one process keeps (:func:`_share_math_parses`)."""
-
-
-def _share_math_parses() -> None:
-    """Let every renderer of this process share one cache of typeset math text.
-
-    Matplotlib typesets a ``$...$`` string (a pyparsing parse, about 10 ms) once per
-    string, resolution, font and *renderer*, in a cache of 50: each Agg renderer
-    (every text measure at another size) starts empty, and a figure with more than 50
-    math labels evicts its own entries between measuring and drawing them. Typesetting
-    was 40% of the time of drawing the report's figures. The result depends only on
-    the string, resolution, font, antialiasing, hinting and output kind, which this
-    cache keys on; it is installed once, and not at all if matplotlib's private
-    method has another form.
-    """
-    import functools
-
-    from matplotlib import mathtext
-
-    method = mathtext.MathTextParser.__dict__.get("_parse_cached")
-    typeset = getattr(method, "__wrapped__", None)
-    if typeset is None or getattr(method, "_symctl", False):
-        return
-    parsers: dict = {}
-
-    @functools.lru_cache(_MATH_PARSES)
-    def shared(kind, s, dpi, prop, antialiased, flags):
-        return typeset(parsers[kind], s, dpi, prop, antialiased, flags)
-
-    def parse_cached(self, s, dpi, prop, antialiased, load_glyph_flags):
-        parsers.setdefault(self._output_type, self)
-        return shared(self._output_type, s, dpi, prop, antialiased, load_glyph_flags)
-
-    parse_cached._symctl = True
-    mathtext.MathTextParser._parse_cached = parse_cached
 
 
 def new_figure(size: str | float = "text", height: float | None = None, **kwargs):

@@ -30,6 +30,7 @@ from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
 from symctl.report.output import OutputFolder
 from symctl.report.spec import SCHEMA_VERSION
+from symctl.report.workers import FigureWorkers
 
 __all__ = [
     "CircuitRecord",
@@ -274,8 +275,6 @@ def write_files(
 ) -> list[Path]:
     """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
     the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`)."""
-    from symctl.report.workers import FigureWorkers
-
     step = progress or (lambda _name: None)
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
