@@ -13,10 +13,13 @@ from types import MappingProxyType
 
 from symctl.proof import Verdict
 
-__all__ = ["CONJECTURED", "Evidence"]
+__all__ = ["CONJECTURED", "ODD_DEGREE", "Evidence"]
 
 CONJECTURED = "conjectured"
 """The method of a pattern with real realizations at sampled G2 in every region: not a proof."""
+
+ODD_DEGREE = "odd degree"
+"""The method of a pattern proved universal by its generic fibre's odd degree."""
 
 
 @dataclass(frozen=True)
@@ -32,11 +35,11 @@ class Evidence(Verdict):
     universal : bool or None
         True (proved), False (refuted), or None (a conjecture, or not decided).
     method : str
-        One of the methods of :mod:`~symctl.circuitatlas.universality` (``"closed form"``, ``"lifted"``,
-        ``"conjectured"``, ``"rank"``, ``"real eigenvalues"``, ``"real zeros"``,
-        ``"counterexample"``, ``"not minimal"``, ``"not decided"``).
+        One of the methods of :mod:`~symctl.circuitatlas.universality` (``"closed form"``,
+        ``"odd degree"``, ``"lifted"``, ``"conjectured"``, ``"rank"``, ``"real eigenvalues"``,
+        ``"real zeros"``, ``"counterexample"``, ``"not minimal"``, ``"not decided"``).
     proved : bool
-        Whether the verdict is a proof (closed forms, lifts of proofs and the
+        Whether the verdict is a proof (closed forms, odd degrees, lifts of proofs and the
         refutations) or not (conjectures and undecided patterns).
     text : str
         One sentence.

@@ -23,6 +23,10 @@ The verdicts, each with its method (:class:`Evidence`):
     :math:`(a, c)`, real wherever defined, and none is identically zero. The
     realization built from them is proved to equal the symbolic :math:`G_2`
     by :func:`~symctl.check_realization` (exact).
+``"odd degree"`` (proved)
+    A pattern of :math:`3n` entries whose generic fibre, a lex Groebner basis over
+    :math:`\mathbb{Q}(a, c)` in shape position, has an odd number of points: a real point
+    always exists (:mod:`~symctl.circuitatlas.odddegree`).
 ``"lifted"`` (proved when its source is)
     The pattern contains a universal pattern :math:`S'`. For almost every
     :math:`G_2`, a realization :math:`x_0` with support :math:`S'` is a
@@ -67,13 +71,14 @@ import networkx as nx
 import sympy as sp
 
 from symctl.circuitatlas.certify import certified_real_root
-from symctl.circuitatlas.evidence import CONJECTURED, Evidence, _evidence
+from symctl.circuitatlas.evidence import CONJECTURED, ODD_DEGREE, Evidence, _evidence
 from symctl.circuitatlas.fibre import (
     _equations,
     _system,
     coefficient_symbols,
     real_solutions,
 )
+from symctl.circuitatlas.odddegree import odd_degree_proof, slice_proof
 from symctl.circuitatlas.pattern import Pattern, slot_names
 from symctl.circuitatlas.rank import generic_rank
 from symctl.circuitatlas.screen import (
@@ -403,9 +408,34 @@ def decide(
                 source_method=ev.method,
                 lifted=True,
             )
+    if pattern.size == 3 * n and exact is not False and (generic_degree(pattern) or 0) % 2:
+        proof = odd_degree_proof(pattern, seed=seed)
+        if proof and proof["proved"]:
+            return _evidence(
+                True,
+                ODD_DEGREE,
+                True,
+                f"the generic fibre is in shape position over Q(a, c) with {proof['degree']} "
+                "points, an odd number: almost every real G2 has a real realization, every "
+                "entry nonzero (discriminant and resultants nonzero at a rational target)",
+                **{k: v for k, v in proof.items() if k != "proved"},
+            )
     screened = screen(pattern, seed=seed) if exact is not False else None
     if screened is not None:
         return screened
+    if pattern.size > 3 * n and exact is not False:
+        proof = slice_proof(pattern, seed=seed)
+        if proof:
+            fixed = ", ".join(f"{k} = {v}" for k, v in proof["fixed"].items())
+            return _evidence(
+                True,
+                ODD_DEGREE,
+                True,
+                f"with {fixed} the generic fibre is in shape position over Q(a, c) with "
+                f"{proof['degree']} points, an odd number: almost every real G2 has a real "
+                "realization, every entry nonzero",
+                **{k: v for k, v in proof.items() if k != "proved"},
+            )
     rng = random.Random(seed * 7919 + pattern.mask)
     return _witness_search(pattern, rng, pattern.size - 3 * n)
 

@@ -154,9 +154,12 @@ def atlas_blocks(A, drawn=()) -> list:
         ),
         Text(
             "closed form: entries as rational functions of $G_2$'s coefficients, proved exactly "
-            "against the symbolic $G_2$; lifted: contains a proved universal pattern; "
-            "conjectured: real realizations proved to exist (Krawczyk test or exact Groebner "
-            "basis) for sampled $G_2$ in every pole region, or contains such a pattern: evidence, "
+            "against the symbolic $G_2$; odd degree: the generic fibre (a Groebner basis over "
+            "$\\mathbb{Q}(a, c)$ in shape position) has an odd number of points, so a real "
+            "one always exists; lifted: contains a proved universal pattern; "
+            "conjectured: real realizations proved to exist (an exact count or a Krawczyk test) "
+            "at every sampled $G_2$ of every region of poles and zeros, or contains such a "
+            "pattern: evidence, "
             "not proof, so not counted as universal; rank: generic rank below $2n$; real "
             "eigenvalues: $F$ block triangular with too many odd blocks; real zeros: "
             "$M \\operatorname{adj}(zI - F) H$ factors into odd-degree factors in $z$ that force "

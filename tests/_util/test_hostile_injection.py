@@ -501,6 +501,12 @@ AUDITED = {
     ("symctl.circuitatlas.fibre", "solve_at", "expand"): 1,
     ("symctl.circuitatlas.fibre", "solve_at", "Poly"): 0,
     ("symctl.circuitatlas.fibre", "real_solutions", "Poly"): 2,
+    # the odd-degree proof: a pattern's own equations, symbols and rationals (no user text)
+    ("symctl.circuitatlas.odddegree", "_shape", "expand"): 1,
+    ("symctl.circuitatlas.odddegree", "_orders", "expand"): 1,
+    ("symctl.circuitatlas.odddegree", "_prove", "expand"): 2,
+    ("symctl.circuitatlas.odddegree", "_prove", "cancel"): 2,
+    ("symctl.circuitatlas.odddegree", "_prove", "Poly"): 2,
     ("symctl.circuitatlas.universality", "_pole_system", "Poly"): 1,  # the pattern's own F
     ("symctl.circuitatlas.universality", "_pole_obstruction", "expand"): 1,
     ("symctl.circuitatlas.universality", "_poles", "expand"): 1,

@@ -1,0 +1,277 @@
+r"""The odd-degree proof: a pattern whose generic fibre has odd degree is universal.
+
+Take a pattern of :math:`3n` entries (:math:`2n` unknowns after the torus normalization,
+:math:`2n` equations; :mod:`~symctl.circuitatlas.fibre`) and its equations over the field
+:math:`K = \mathbb{Q}(a, c)` of the generic target. A lex Groebner basis over :math:`K` in
+**shape position**, :math:`x_i - r_i(u)` for every unknown but one, :math:`u`, and
+:math:`f(u)` monic of degree :math:`D` (:math:`r_i, f` with coefficients in :math:`K`), says
+that for every target outside a proper algebraic set (where a coefficient's denominator
+vanishes) the fibre is the :math:`D` points :math:`(r(u_j), u_j)` at the roots :math:`u_j`
+of :math:`f`. Then, with :math:`D` odd:
+
+1. **Simple points.** The discriminant of :math:`f` is a rational function of :math:`(a, c)`,
+   nonzero at a rational target :math:`t_0` (checked), so not identically zero: almost every
+   target has :math:`D` distinct roots.
+2. **A real point.** A real polynomial of odd degree has a real root :math:`u^*`, and the
+   point :math:`r(u^*)` is real (the coefficients are real at a real target).
+3. **Every entry nonzero.** For each unknown :math:`x_i` the resultant of :math:`f` and
+   :math:`r_i` (and :math:`f(0)` for :math:`u`) is nonzero at :math:`t_0` (checked), so it is
+   not identically zero: almost every target has no root where an entry vanishes. The
+   spanning-tree entries are 1.
+
+So almost every real :math:`G_2` has a real realization with exactly this support: the
+pattern is universal. The basis is SymPy's Buchberger algorithm over :math:`K`, the variable
+order chosen at :math:`t_0` (the first unknown whose lex basis over :math:`\mathbb{Q}` is in
+shape position with :math:`D` points); each basis element is checked to vanish on the fibre
+at random rational points of the unknowns. An even :math:`D`, a basis not in shape position,
+or a computation beyond :data:`CPU_SECONDS` of CPU time (the basis is computed in a child
+process under that limit: SymPy's algorithm cannot be stopped from inside) proves nothing,
+and the pattern goes on to the screen (:mod:`~symctl.circuitatlas.screen`).
+
+>>> from symctl._util.validate import bounded_number
+from symctl.circuitatlas.pattern import Pattern, slot_names
+>>> from symctl.circuitatlas.odddegree import odd_degree_proof
+>>> P = Pattern.from_matrices([[1, 0, 0], [1, 1, 1], [1, 1, 0]], [1, 0, 0], [1, 1, 0])
+>>> proof = odd_degree_proof(P)
+>>> proof["degree"], proof["variable"]
+(3, 'M_2')
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from symctl._util.validate import bounded_number
+from symctl.circuitatlas.fibre import _system, coefficient_symbols, solve_at
+from symctl.circuitatlas.pattern import Pattern, slot_names
+
+__all__ = ["CPU_SECONDS", "odd_degree_proof", "slice_proof"]
+
+CPU_SECONDS = 30
+"""CPU seconds the Groebner bases over Q(a, c) of one pattern may take, in all."""
+
+ATTEMPTS = 3
+"""Variable orders tried (the smallest bases at the rational target first), each given an
+equal share of :data:`CPU_SECONDS`."""
+
+
+def _rationals(rng: random.Random, k: int) -> list[sp.Rational]:
+    return [sp.Rational(rng.randint(-(10**4), 10**4), rng.randint(1, 10**4)) for _ in range(k)]
+
+
+def _fixed_values(fixed, rng: random.Random) -> dict[int, sp.Integer]:
+    """Small nonzero integers for the slots ``fixed``, drawn first from ``rng``."""
+    return {k: sp.Integer(rng.choice([-1, 1]) * rng.randint(1, 5)) for k in fixed}
+
+
+def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 3):
+    """The odd-degree proof of a pattern above :math:`3n` entries through a slice, or None.
+
+    Up to ``tries`` choices of extra entries (drawn from ``seed``) are fixed; the first slice
+    whose fibre over a random rational target has an odd number of points goes to
+    :func:`odd_degree_proof`.
+    """
+    n = pattern.n
+    tree = set(pattern.tree_slots() or ())
+    free = [k for k in pattern.indices if k not in tree]
+    rng = random.Random(seed * 104729 + pattern.mask)
+    choices = list(itertools.combinations(free, pattern.size - 3 * n))
+    rng.shuffle(choices)
+    for fixed in choices[:tries]:
+        values = _fixed_values(fixed, random.Random(seed * 7919 + pattern.mask))
+        a, c = _rationals(rng, n), _rationals(rng, n)
+        sol = solve_at(pattern, a, c, fixed=values, rng=rng)
+        if sol is not None and sol["degree"] % 2:
+            proof = odd_degree_proof(pattern, fixed=fixed, seed=seed)
+            if proof and proof["proved"]:
+                return proof
+    return None
+
+
+def _shape(basis, unknowns, u):
+    """``(f, {x: r(u)})`` when ``basis`` (lex, ``u`` last) is in shape position, else None."""
+    if len(basis) != len(unknowns):
+        return None
+    *rest, f = basis
+    if f.free_symbols & set(unknowns) - {u}:
+        return None
+    r = {}
+    for g, x in zip(rest, [v for v in unknowns if v != u], strict=True):
+        tail = sp.expand(x - g)
+        if tail.free_symbols & set(unknowns) - {u}:
+            return None
+        r[x] = tail
+    return f, r
+
+
+def _orders(unknowns, eqs, t0: dict) -> list[tuple[list, int]]:
+    """Lex orders (each unknown last, the others forward or backward) whose basis at ``t0`` is
+    in shape position, with its degree: the smallest basis first (a cheap generic one)."""
+    at = [sp.expand(e.xreplace(t0)) for e in eqs]
+    found = []
+    for u in reversed(unknowns):
+        rest = [v for v in unknowns if v != u]
+        for order in {(*rest, u), (*rest[::-1], u)}:
+            basis = sp.groebner(at, *order, order="lex").exprs
+            shape = _shape(basis, order, u)
+            if shape is not None:
+                size = sum(len(str(g)) for g in basis)
+                found.append((size, str(order), list(order), int(sp.degree(shape[0], u))))
+    return [(order, degree) for *_, order, degree in sorted(found)]
+
+
+class _OutOfCPU(Exception):
+    pass
+
+
+def _generic_basis(eqs, orders, params, seconds: float):
+    """The lex basis over Q(a, c) in the first of ``orders`` that ends within its CPU time."""
+    import signal
+
+    def stop(*_):
+        raise _OutOfCPU
+
+    signal.signal(signal.SIGVTALRM, stop)
+    for order in orders[:ATTEMPTS]:
+        signal.setitimer(signal.ITIMER_VIRTUAL, seconds / ATTEMPTS)
+        try:
+            basis = sp.groebner(eqs, *order, order="lex", domain=sp.QQ.frac_field(*params))
+        except _OutOfCPU:
+            continue
+        finally:
+            signal.setitimer(signal.ITIMER_VIRTUAL, 0)
+        return order, basis.exprs
+    return None
+
+
+def _prove(
+    n: int, mask: int, seed: int, fixed: tuple[int, ...] = (), seconds: float = CPU_SECONDS
+) -> dict:
+    """The proof of one pattern (see the module text), as plain data; the slots ``fixed`` are
+    set to small nonzero integers drawn from ``seed`` (a slice of a bigger pattern)."""
+    pattern = Pattern(n, mask)
+    unknowns, _, values, charpoly, numer = _system(pattern)
+    rng = random.Random(seed * 7919 + mask)
+    rule = {values[k]: v for k, v in _fixed_values(fixed, rng).items()}
+    unknowns = tuple(x for x in unknowns if x not in rule)
+    charpoly, numer = ([sp.expand(e.xreplace(rule)) for e in part] for part in (charpoly, numer))
+    a, c = coefficient_symbols(n)
+    params = (*a, *c)
+    eqs = [sp.expand(p - v) for p, v in zip((*charpoly, *numer), params, strict=True)]
+    t0 = dict(zip(params, _rationals(rng, 2 * n), strict=True))
+    orders = _orders(list(unknowns), eqs, t0)
+    if not orders:
+        return {"proved": False, "why": "no unknown puts the fibre in shape position"}
+    degree = orders[0][1]
+    if degree % 2 == 0:
+        return {"proved": False, "why": f"the fibre has even degree {degree}", "degree": degree}
+    computed = _generic_basis(eqs, [order for order, _ in orders], params, seconds)
+    if computed is None:
+        return {"proved": False, "why": f"no basis over Q(a, c) within {seconds:g} CPU s"}
+    order, basis = computed
+    u = order[-1]
+    found = _shape(basis, order, u)
+    if found is None or sp.degree(found[0], u) != degree:
+        return {"proved": False, "why": "the generic basis is not in shape position"}
+    f, r = found
+    # every basis element vanishes on the fibre: checked at random points of the unknowns
+    for _ in range(2):
+        x0 = dict(zip(unknowns, _rationals(rng, len(unknowns)), strict=True))
+        at = {p: e.xreplace(x0) for p, e in zip(params, (*charpoly, *numer), strict=True)}
+        for g in (f, *(x - ri for x, ri in r.items())):
+            if sp.cancel(g.xreplace(x0).xreplace(at)) != 0:
+                return {"proved": False, "why": "a basis element failed its check"}
+    f0 = sp.Poly(sp.cancel(f.xreplace(t0)), u)
+    if sp.discriminant(f0) == 0:
+        return {"proved": False, "why": "the eliminant is not squarefree at the rational target"}
+    entries = [f0.eval(0)] + [sp.resultant(f0, sp.Poly(ri.xreplace(t0), u)) for ri in r.values()]
+    if any(v == 0 for v in entries):
+        return {"proved": False, "why": "an entry vanishes at a root at the rational target"}
+    return {
+        "proved": True,
+        "degree": degree,
+        "variable": str(u),
+        "eliminant": str(f),
+        "fixed": {slot_names(n)[k]: int(rule[values[k]]) for k in fixed},
+        "target": {str(k): str(v) for k, v in t0.items()},
+    }
+
+
+def odd_degree_proof(
+    pattern: Pattern, *, fixed=(), seed: int = 0, cpu_seconds: float = CPU_SECONDS
+):
+    """The odd-degree proof of ``pattern``'s universality (see the module text), or None.
+
+    Parameters
+    ----------
+    pattern : Pattern
+        A pattern of :math:`3n` entries whose coefficient map has full generic rank.
+    fixed : sequence of int, optional
+        Slots of a pattern above :math:`3n` entries set to small nonzero integers (drawn from
+        ``seed``) so that :math:`2n` unknowns remain: a proof for that slice proves the
+        pattern (a real realization with those entries fixed, every other entry nonzero).
+    seed : int
+        Seeds the rational target :math:`t_0`, the fixed values and the checks.
+    cpu_seconds : float
+        CPU time the child process computing the basis may take.
+
+    Returns
+    -------
+    dict or None
+        ``{"proved": True, "degree", "variable", "eliminant", "target"}`` when proved;
+        ``{"proved": False, "why": ...}`` when the computation ended without a proof (an
+        even degree, no shape position); None when it ran out of time or failed.
+    """
+    root = str(Path(__file__).resolve().parents[2])
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")])),
+    }
+    cpu_seconds = bounded_number(cpu_seconds, "cpu_seconds", 1e-6, 3600)
+    limit = math.ceil(cpu_seconds) + 10  # the child's share, then a backstop
+
+    def cap():  # in the child: its CPU time is limited, then it is killed
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
+
+    try:
+        run = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "symctl.circuitatlas.odddegree",
+                str(pattern.n),
+                str(pattern.mask),
+                str(seed),
+                str(cpu_seconds),
+                *map(str, fixed),
+            ],
+            capture_output=True,
+            text=True,
+            env=env,
+            timeout=20 * limit,
+            preexec_fn=cap,
+            check=False,
+        )
+    except subprocess.TimeoutExpired:
+        return None
+    if run.returncode != 0 or not run.stdout.strip():
+        return None
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+if __name__ == "__main__":
+    sys.setrecursionlimit(10_000)
+    n, mask, seed, seconds, *fixed = sys.argv[1:]
+    fixed = tuple(map(int, fixed))
+    print(json.dumps(_prove(int(n), int(mask), int(seed), fixed, float(seconds))))
