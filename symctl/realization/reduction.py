@@ -129,16 +129,16 @@ def _nullspace(M: fmpq_mat) -> list[list[sp.Rational]]:
     return out
 
 
-def _unseen(A: fmpq_mat, Q: fmpq_mat) -> fmpq_mat:
-    """The columns of a basis of the unobservable subspace of ``(A, Q)``."""
+def _unseen(A: fmpq_mat, Q: fmpq_mat) -> list[list[sp.Rational]]:
+    """A basis of the unobservable subspace of ``(A, Q)``: the null space of ``[Q; QA; QA^2...]``."""
     n = A.nrows()
     blocks, block = [], Q
     for _ in range(n):
         blocks.append(block)
         block = block * A
-    stacked = fmpq_mat(n * n, n, [b[i, j] for b in blocks for i in range(n) for j in range(n)])
-    basis = _nullspace(stacked)
-    return _mat(sp.Matrix.hstack(*map(sp.Matrix, basis)), "N") if basis else None
+    return _nullspace(
+        fmpq_mat(n * n, n, [b[i, j] for b in blocks for i in range(n) for j in range(n)])
+    )
 
 
 def _combination(v, names) -> str:
@@ -154,12 +154,6 @@ def _combination(v, names) -> str:
         terms.append(f"{sign} {mag}{name.removeprefix('delta_')}")
     text = " ".join(terms)
     return text[2:] if text.startswith("+ ") else "-" + text[2:]
-
-
-def _columns(M: fmpq_mat | None) -> list[list[sp.Rational]]:
-    if M is None:
-        return []
-    return [[_rational(M[i, j]) for i in range(M.nrows())] for j in range(M.ncols())]
 
 
 def controller_reduction(
@@ -212,7 +206,7 @@ def controller_reduction(
     directions = _directions(B, unseen)
     K = sp.Matrix.hstack(*gain_matrix_symbols(T, m, n))
     Rm = _sympy(_numbers(system.R, "R"))
-    equations = list(K * _sympy(unseen)) if unseen is not None else []
+    equations = [e for v in unseen for e in K * sp.Matrix(v)]
     equations += [e for d in directions for e in (Rm * sp.Matrix(d)).T * K]
     relations = _solve(equations, list(K))
     values = dict(zip(K, (sp.Rational(float(v)) for v in gains.K.ravel()), strict=True))
@@ -228,7 +222,7 @@ def controller_reduction(
     inputs = system.plant.input_names
     driven = tuple(_combination(Rm * sp.Matrix(d), inputs) for d in directions)
     blind = _unseen(_numbers(system.plant.A, "A"), _numbers(system.Q_plant, "Q"))
-    blind = tuple(_combination(v, system.plant.state_names) for v in _columns(blind))
+    blind = tuple(_combination(v, system.plant.state_names) for v in blind)
     reduction = ControllerReduction(
         T * m,
         order,
@@ -241,18 +235,10 @@ def controller_reduction(
     return reduction, dataclasses.replace(gains, K=Kn, poles=poles)
 
 
-def _directions(B: fmpq_mat, unseen) -> list[list]:
-    """A basis of the input directions ``d`` with ``B d`` in the span of ``unseen``'s columns."""
-    if unseen is None:
-        return _nullspace(B)
-    m, k = B.ncols(), unseen.ncols()
-    rows = B.nrows()
-    stacked = fmpq_mat(
-        rows,
-        m + k,
-        [B[i, j] if j < m else -unseen[i, j - m] for i in range(rows) for j in range(m + k)],
-    )
-    return [v[:m] for v in _nullspace(stacked)]
+def _directions(B: fmpq_mat, unseen: list) -> list[list[sp.Rational]]:
+    """A basis of the input directions ``d`` with ``B d`` in the span of ``unseen``."""
+    stacked = sp.Matrix.hstack(_sympy(B), *(-sp.Matrix(v) for v in unseen))
+    return [v[: B.ncols()] for v in _nullspace(_mat(stacked, "B"))]
 
 
 def _solve(equations: list, symbols: list) -> dict:

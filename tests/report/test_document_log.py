@@ -15,6 +15,7 @@ import zlib
 from pathlib import Path
 
 import pytest
+from helpers import long_sums
 
 from symctl import derive
 from symctl.report.document import to_tex
@@ -144,3 +145,17 @@ def test_the_log_check_finds_an_overfull_line(tmp_path, pdflatex):
     )
     log = (tmp_path / "bad.log").read_text(errors="replace")
     assert _PROBLEMS["overfull box"].search(log) and _PROBLEMS["undefined reference"].search(log)
+
+
+def test_a_table_of_sums_wider_than_the_page_compiles_inside_it(tmp_path, pdflatex):
+    """The two-input forearm's coefficients of a(z) overflowed the page by 261 pt."""
+    (tmp_path / "derivation.tex").write_text(to_tex([long_sums()]))
+    subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "-halt-on-error", "derivation.tex"],
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=300,
+    )
+    log = (tmp_path / "derivation.log").read_text(errors="replace")
+    assert "Output written on derivation.pdf" in log
+    assert not _PROBLEMS["overfull box"].findall(log)
