@@ -134,3 +134,14 @@ def muscle_loops(count: int, nc: int = 1):
         np.zeros((1, 1, 1)),
     )
     return [np.broadcast_to(a, (count, *a.shape[1:])) for a in one]
+
+
+def long_sums():
+    """A table of sums wider than the page, as a two-input controller's coefficients of a(z)."""
+    from symctl.report.document import Table
+
+    rows = tuple(
+        (f"${k}$", "$" + " - ".join([f"K_{{{k},12}} K_{{{k + 1},21}}"] * (k + 6)) + "$", "$0.7$")
+        for k in range(6)
+    )
+    return Table(("$k$", "$a_k$", "with the optimal gains"), rows)

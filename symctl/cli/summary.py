@@ -49,7 +49,7 @@ def summary(res, console: Console) -> None:
     out(f"  A~ = {_fmt(rows(s.A))}")
     out(f"  B~ = {_fmt(rows(s.B))}")
     out(f"  Q~ = {_fmt(rows(s.Q))}")
-    names = [str(k) for k in res.G_symbolic.free_symbols_sorted()]
+    names = [str(k) for k in res.gains.substitutions()]
     out("Gains|  mu = K chi, K = [" + ", ".join(names) + "]")
     out(f"  K = {_fmt(res.gains.K)}")
     out("Controller|  G(z): measured states -> inputs")
@@ -57,6 +57,9 @@ def summary(res, console: Console) -> None:
     numerator, denominator = controller_coeffs(G)
     out(f"  numerator {_fmt(numerator)}, denominator {_fmt(denominator)}")
     out(f"  relative degree {G.relative_degree}; derivation proved: {bool(res.proved)}")
+    red = res.reduction
+    if red is not None and not red:
+        out(f"  not minimal, reduced from {red.order} to {red.minimal_order} states: {red.reason}")
     _extra(res, out)
     if res.factors is None:
         out(f"Not derived|  {res.skipped}")
@@ -119,9 +122,8 @@ def _summary_table(res, console) -> None:
     for label, M in (("A", res.plant.A), ("B", res.plant.B)):
         arr = np.array(M.evalf(), dtype=float)
         table.add_row(label, f"{arr[0, 0]:.6f}" if arr.shape[0] == 1 else _fmt(arr))
-    names = [str(k) for k in res.G_symbolic.free_symbols_sorted()]
-    for name, value in zip(names, res.gains.K.tolist()[0], strict=False):
-        table.add_row(name, f"{value:.6f}")
+    for name, value in res.gains.substitutions().items():
+        table.add_row(str(name), f"{value:.6f}")
     table.add_row("spectral radius", f"{res.gains.spectral_radius:.6f}")
     console.print(table)
 

@@ -42,6 +42,7 @@ from symctl.realization.check import RealizationCheck
 from symctl.realization.factorization import Factorization
 from symctl.realization.realization import Realization
 from symctl.realization.realizers import REALIZERS
+from symctl.realization.reduction import ControllerReduction
 
 __all__ = ["CircuitRecord", "Derivation", "PaperResults", "RealizationRecord"]
 
@@ -211,6 +212,10 @@ class Derivation:
         and the structure built along the graph's pathways.
     verified : Proof, optional
         The proof that :math:`G_3 G_2 G_1 = G` (``factors.verify()``), truthy when it holds.
+    reduction : ControllerReduction, optional
+        Whether the controller is minimal (truthy when it is); when not, ``G_symbolic``,
+        ``G``, ``gains`` and every stage after them are the minimal controller's
+        (:func:`~symctl.realization.reduction.controller_reduction`).
 
     Examples
     --------
@@ -250,6 +255,7 @@ class Derivation:
     skipped: str | None = None
     pathways: object = None
     verified: object = None
+    reduction: ControllerReduction | None = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):

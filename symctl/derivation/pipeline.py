@@ -54,6 +54,7 @@ from symctl.realization.check import check_realization
 from symctl.realization.draws import Draw, draw_realizations
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realizers import REALIZERS
+from symctl.realization.reduction import controller_reduction
 
 __all__ = ["derive", "derive_paper"]
 
@@ -210,7 +211,9 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivatio
 
     A plant with several states or inputs has a matrix controller, factored channel by
     channel and realized in block canonical forms; the IFP circuit and the circuit atlas
-    are built for one state and one input only (``Derivation.skipped`` says so).
+    are built for one state and one input only (``Derivation.skipped`` says so). A controller
+    that is not minimal is reduced right after :math:`G(z)`, and every later stage is built
+    from the minimal one (``Derivation.reduction`` says how and why).
 
     Equal models share one derivation (the :data:`DERIVATIONS_CACHED` most recent;
     ``derive.cache_clear()`` empties the cache); ``progress`` is called only when it is
@@ -326,6 +329,8 @@ def _derive(spec: Model, step) -> Derivation:
     step("G(z)")
     G_symbolic = controller_tf(system)
     proved = bool(prove_controller_tf(system, G_symbolic))
+    reduction, gains = controller_reduction(system, gains)  # the minimal controller onwards
+    G_symbolic = reduction.reduce(G_symbolic)
     G = G_symbolic.subs(gains.substitutions())
     w = spec.disturbance_signal()
     window = {"steps": spec.steps}
@@ -470,6 +475,7 @@ def _derive(spec: Model, step) -> Derivation:
         skipped,
         pathways,
         verified,
+        reduction,
     )
 
 

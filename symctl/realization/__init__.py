@@ -6,7 +6,8 @@
   returning a ``RealizerResult`` with the transform; ``ifp_realization``;
 - ``check``: ``check_realization``, an exact proof or a randomized test with its bound;
 - ``channels``: MIMO factorization channel by channel;
-- ``minimal``: ``minimal_realization``, the exact Kalman reduction (MIMO too).
+- ``minimal``: ``minimal_realization``, the exact Kalman reduction (MIMO too);
+- ``reduction``: ``controller_reduction``, whether the delayed controller is minimal and why not.
 
 The names of the former module ``symctl.realization`` stay importable from here.
 """
@@ -23,6 +24,7 @@ __getattr__, __dir__, __all__ = attach(
         "observable_canonical": "symctl.realization.realization",
         "split_proper": "symctl.realization.realization",
         "minimal_realization": "symctl.realization.minimal",
+        "controller_reduction": "symctl.realization.reduction",
         "general_realization": "symctl.realization.realizers",
         "random_realization": "symctl.realization.realizers",
     },

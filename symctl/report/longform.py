@@ -357,15 +357,19 @@ def table_width(header, rows) -> float:
 
 
 def _breakable(cell: str) -> bool:
-    """Whether a cell can wrap: a space outside its math."""
-    return any(" " in part.strip() for part in cell.split("$")[::2])
+    """Whether a cell can wrap: a space outside its math, or a top-level + or - inside it
+    (TeX breaks inline math after a binary operator)."""
+    parts = cell.split("$")
+    return any(" " in part.strip() for part in parts[::2]) or any(
+        len(_terms(part, "+-", commas=False)) > 1 for part in parts[1::2]
+    )
 
 
 def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...]:
     """The columns a table wraps to fit ``budget``: its prose columns, widest first.
 
     A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a
-    space outside math. The widest such columns wrap until the others, at
+    space outside math or a sum in its math. The widest such columns wrap until the others, at
     their natural width, and :data:`WRAP_MIN` for each wrapped one fit;
     ``()`` when the table fits as it is (or no choice of columns makes it fit).
 
@@ -377,6 +381,8 @@ def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...
     (0,)
     >>> wrapped_columns(("circuit", "n"), (("short", "$1$"),))
     ()
+    >>> wrapped_columns(("k", "a_k"), (("$1$", "$" + " - ".join(["K_{1,12} K_{2,21}"] * 12) + "$"),))
+    (1,)
     """
     widths = column_widths(header, rows)
     sep = 2.4 * len(widths)

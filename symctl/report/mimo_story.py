@@ -12,13 +12,53 @@ The factors of a :math:`p \times m` controller are per channel
 
 from __future__ import annotations
 
+import re
+
+import sympy as sp
+
+from symctl import latex as L
 from symctl._util.display import descending_latex
 from symctl.realization.realizers import REALIZERS
 from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
 from symctl.report.shorthand import _eq, _num
 
-__all__ = ["factorization", "realizations"]
+__all__ = ["factorization", "realizations", "reduction"]
+
+
+def reduction(res) -> list[DocumentBlock]:
+    """The paragraph on a controller that is not minimal: by how much, why, and the ties."""
+    r = res.reduction
+    if r is None or r:
+        return []
+    signals = sorted((*res.names[0], *res.names[1]), key=len, reverse=True)
+    name = "(?:" + "|".join(map(re.escape, signals)) + ")"
+    term = rf"(?:\d+(?:/\d+)? )?{name}"
+    combination = re.compile(rf"-?{term}(?: [+-] {term})*")
+
+    def tex(text: str) -> str:  # each signed sum of signals as inline math
+        return combination.sub(lambda m: f"${_combination_tex(m.group())}$", text)
+
+    ties = ", ".join(f"${L.to_latex(k)} = {L.to_latex(v)}$" for k, v in r.relations.items())
+    return [
+        Text(
+            f"This controller is not minimal: its {r.order} states (the past commands) "
+            f"realize a transfer function of McMillan degree {r.minimal_order} (decided by "
+            f"{r.method}). Why: {tex(r.reason)}. The controller keeps "
+            + " and ".join(tex(c) for c in r.never_driven)
+            + f" at zero, so {r.order - r.minimal_order} of its states are never reached. "
+            "The optimal gains satisfy ties with rational coefficients (proved in "
+            f"symctl.realization.reduction): {ties}. The gains above are the tied ones, "
+            "computed exactly from the free ones, and $G(z)$ is the minimal controller: "
+            "the power of $z$ common to its denominator and numerators is divided out. "
+            "Everything below is built from it."
+        )
+    ]
+
+
+def _combination_tex(text: str) -> str:
+    """A signed sum of signal names (``u_flex + u_ext``) as LaTeX."""
+    return re.sub(r"[A-Za-z]\w*", lambda m: L.to_latex(sp.Symbol(m.group())), text)
 
 
 def factorization(res) -> list[DocumentBlock]:

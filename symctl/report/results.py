@@ -112,7 +112,7 @@ def results_json(self) -> dict:
     s = self.system
     G = self.G
     numerator, denominator = controller_coeffs(G)
-    return {
+    out = {
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
         "plant": model_json.plant(self),
@@ -125,7 +125,7 @@ def results_json(self) -> dict:
         },
         "gains": {
             "K": self.gains.K.tolist(),
-            "names": [str(k) for k in self.G_symbolic.free_symbols_sorted()],
+            "names": [str(k) for k in self.gains.substitutions()],
         },
         "controller": {
             "numerator": numerator,
@@ -157,6 +157,23 @@ def results_json(self) -> dict:
         "simulation": _simulation_json(self),
         "atlas": _atlas_json(self),
         "model": model_json.model(self),
+    }
+    if self.reduction is not None and not self.reduction:  # only a reduced controller has it
+        out["reduction"] = reduction_json(self.reduction)
+    return out
+
+
+def reduction_json(r) -> dict:
+    """The ``reduction`` entry: the non-minimal controller's reduction, with its reason."""
+    return {
+        "minimal": bool(r),
+        "order": r.order,
+        "minimal_order": r.minimal_order,
+        "never_driven": list(r.never_driven),
+        "unseen": list(r.unseen),
+        "reason": r.reason,
+        "ties": {str(k): str(v) for k, v in r.relations.items()},
+        "method": r.method,
     }
 
 

@@ -25,6 +25,7 @@ import numpy as np
 import sympy as sp
 
 from symctl import latex as L
+from symctl._util.display import descending_latex
 from symctl._util.exact import IntFractions, NotRational, fold, ring_fractions
 from symctl.report import longform as LF
 from symctl.report import matrixview as MV
@@ -128,7 +129,9 @@ def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
     b_s, b_n = symbolic.num_coeffs(), numeric.num_coeffs()
     n, m = len(a_s) - 1, len(b_s) - 1
     rows = []
-    if m == 0:
+    if not symbolic.is_siso:  # a matrix: its numerator entry by entry
+        rows.append((lhs, r"\frac{N(z)}{a(z)}"))
+    elif m == 0:
         rows.append(
             (
                 lhs,
@@ -148,7 +151,22 @@ def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
         intro = f"The coefficients ${name}_k$ of ${name}(z)$ (descending powers of $z$):"
         return intro, ("$k$", f"${name}_k$", "with the optimal gains"), body
 
-    tables = [table("a", a_s, a_n)] + ([table("b", b_s, b_n)] if m else [])
+    tables = [table("a", a_s, a_n)]
+    if not symbolic.is_siso:
+        entries = zip(symbolic.num_matrix, numeric.num_matrix, strict=True)
+        cols = symbolic.shape[1]
+        body = tuple(
+            (
+                f"$N_{{{k // cols + 1}{k % cols + 1}}}$",
+                f"${descending_latex(sym)}$",
+                f"${descending_latex(num, 6)}$",
+            )
+            for k, (sym, num) in enumerate(entries)
+        )
+        intro = "The entries of $N(z)$ (descending powers of $z$):"
+        tables.append((intro, ("entry", "$N_{ij}(z)$", "with the optimal gains"), body))
+    elif m:
+        tables.append(table("b", b_s, b_n))
     return _display(rows, label, tables)
 
 

@@ -239,6 +239,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"{G_num.relative_degree}."
         )
     )
+    put(MIMO.reduction(res))
     hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
     put(

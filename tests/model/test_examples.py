@@ -126,6 +126,52 @@ def test_the_antagonist_pair_runs_end_to_end_with_two_inputs(results):
     assert eq["theta"] == 0 and math.isclose(eq["f_flex"], eq["f_ext"])
 
 
+def _exact_or_large(res) -> bool:
+    """Every coefficient of G(z) is exactly 0 or above rounding (no 1e-16 left by floats)."""
+    data = res.to_dict()["controller"]
+    values = np.ravel(np.array(data["numerator"], dtype=float)).tolist() + data["denominator"]
+    return all(v == 0 or abs(v) > 1e-12 for v in values)
+
+
+def _silent(res) -> list[str]:
+    """The neurons that never fire in any circuit's simulations (peak below 1e-9 of the largest)."""
+    out = []
+    for name, rec in res.circuits.items():
+        peaks = {k: float(np.nanmax(np.abs(v))) for k, v in rec.firing.firing.items()}
+        top = max(peaks.values())
+        out += [f"{name}: {k}" for k, p in peaks.items() if p <= 1e-9 * top]
+    return out
+
+
+def test_the_antagonist_controller_is_reduced_to_its_minimal_order(results):
+    res = results["antagonist"]
+    red = res.reduction
+    assert not red and (red.order, red.minimal_order) == (4, 2) and res.G.order == 2
+    assert red.never_driven == ("r_flex + r_ext",) and red.unseen == ("f_flex + f_ext",)
+    assert "r_flex + r_ext moves only f_flex + f_ext, which the cost never sees" in red.reason
+    data = res.to_dict()["reduction"]
+    assert (data["order"], data["minimal_order"], data["reason"]) == (4, 2, red.reason)
+    assert data["ties"]["K_{0,21}"] == "-K_{0,11}"
+    assert _exact_or_large(res)
+    assert _silent(res) == []  # before: the observable circuit's x1..x4 (the pole at 0)
+
+
+def test_a_two_input_forearm_is_reduced_because_both_inputs_use_one_column():
+    res = derive(Path(__file__).resolve().parents[1] / "data" / "forearm_two_inputs.toml")
+    red = res.reduction
+    assert (red.order, red.minimal_order) == (12, 6) and res.G.order == 6
+    assert red.never_driven == ("u_flex + u_ext",)
+    assert "the inputs act on the plant through the same column of B" in red.reason
+    assert _exact_or_large(res)
+    assert _silent(res) == []  # before: 12 of the observable circuit's 26 G2 neurons
+
+
+@pytest.mark.parametrize("name", ["oculomotor", "pendulum", "spinal_transcortical"])
+def test_a_minimal_controller_is_reported_as_it_was(results, name):
+    res = results[name]
+    assert res.reduction and "reduction" not in res.to_dict()
+
+
 def test_the_two_pathway_graph_is_checked_beyond_chains(results):
     res = results["spinal_transcortical"]
     assert res.spec.vertices == ("receptor", "spinal", "cortex", "muscle")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import shutil
 
 import pytest
+from helpers import long_sums
 
 from symctl.errors import LatexError, SymctlTypeError
 from symctl.report.document import (
@@ -32,6 +33,11 @@ def test_prose_is_escaped_for_latex_and_math_kept():
     assert r"100\% of x\_1 \& $K_0 + \epsilon_1$" in tex
     md = to_markdown(blocks)
     assert "100% of x_1 & $K_0 + \\epsilon_1$" in md and r"\tag{1}" in md
+
+
+def test_a_column_of_sums_wider_than_the_page_wraps_at_its_plus_and_minus_signs():
+    tex = to_tex([long_sums()])
+    assert r"\begin{tabularx}{\linewidth}{l>{\raggedright\arraybackslash}Xl}" in tex
 
 
 def test_a_latex_error_is_reported_with_its_first_line(tmp_path, pdflatex):

@@ -12,17 +12,31 @@ from __future__ import annotations
 import re
 import subprocess
 import zlib
+from pathlib import Path
 
 import pytest
+from helpers import long_sums
 
+from symctl import derive
 from symctl.report.document import to_tex
 from symctl.report.story import story
 
-CASES = ("derived_T2", "derived_T6", "derived_oculomotor", "derived_T6 tall figures")
-"""Each case's results fixture; "tall figures": every placeholder nearly the text's width and
+CASES = (
+    "derived_T2",
+    "derived_T6",
+    "derived_oculomotor",
+    "derived_T6 tall figures",
+    "examples/antagonist.toml",
+    "examples/pendulum.toml",
+    "examples/spinal_transcortical.toml",
+    "tests/data/forearm_two_inputs.toml",
+)
+"""Each case's results fixture or model file (every example: ``derived_T2`` is the muscle's);
+"tall figures": every placeholder nearly the text's width and
 two thirds of its height, as large as the T = 6 general circuit drawn at its printed size:
 such a figure placed "here" left too little room for a display that cannot break (15 lines
 made the page overfull; with DISPLAY_MAX_LINES = 16 this case fails)."""
+ROOT = Path(__file__).resolve().parents[2]
 TALL = (480, 480)
 """The tall placeholder [pt] (the text: 500 x 681 pt; ``\\fitgraphic`` scales a figure wider
 than it or taller than it less four lines)."""
@@ -82,7 +96,10 @@ def logs(request, tmp_path_factory):
     def log(case: str, pdflatex: str) -> str:
         if case not in done:
             fixture, _, tall = case.partition(" ")
-            res = request.getfixturevalue(fixture)
+            if fixture.endswith(".toml"):  # a model file (every example; a two-input forearm)
+                res, fixture = derive(ROOT / fixture), Path(fixture).stem
+            else:
+                res = request.getfixturevalue(fixture)
             out = tmp_path_factory.mktemp(fixture)
             for name in res.figure_names():  # what the run writes, in the formats pdflatex reads
                 (out / f"{name}.png").write_bytes(_png())
@@ -128,3 +145,17 @@ def test_the_log_check_finds_an_overfull_line(tmp_path, pdflatex):
     )
     log = (tmp_path / "bad.log").read_text(errors="replace")
     assert _PROBLEMS["overfull box"].search(log) and _PROBLEMS["undefined reference"].search(log)
+
+
+def test_a_table_of_sums_wider_than_the_page_compiles_inside_it(tmp_path, pdflatex):
+    """The two-input forearm's coefficients of a(z) overflowed the page by 261 pt."""
+    (tmp_path / "derivation.tex").write_text(to_tex([long_sums()]))
+    subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "-halt-on-error", "derivation.tex"],
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=300,
+    )
+    log = (tmp_path / "derivation.log").read_text(errors="replace")
+    assert "Output written on derivation.pdf" in log
+    assert not _PROBLEMS["overfull box"].findall(log)

@@ -146,3 +146,17 @@ def test_both_readings_of_E_tilde_are_shown_where_they_differ(paper_blocks):
     direct = res.circuits["general"].compatibility.assignment.e_tilde("direct")
     assert np.isinf(direct[0, 2]) and eq.rows[1][1] == to_latex(direct)  # the paper's Eq. (14)
     assert any("Two readings of" in t for t in _prose(blocks))
+
+
+def test_a_matrix_controller_too_wide_for_the_line_shows_every_entry_of_its_numerator(
+    derived_oculomotor,
+):
+    """G(z) of a 1 x 2 controller was written K_{0,11}/a(z): its first entry only."""
+    res = derived_oculomotor
+    tables = [b for b in story(res) if isinstance(b, Table) and b.header[0] == "entry"]
+    assert [row[:2] for row in tables[0].rows] == [
+        ("$N_{11}$", "$K_{0,11}$"),
+        ("$N_{12}$", "$K_{0,12}$"),
+    ]
+    maths = [b for b in story(res) if isinstance(b, Math) and b.label == "eq:G"]
+    assert maths[0].rows[0] == ("G(z)", r"\frac{N(z)}{a(z)}")

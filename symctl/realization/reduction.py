@@ -1,0 +1,301 @@
+r"""Whether the optimal delayed controller is minimal, decided exactly, and its reduction.
+
+The controller :math:`G(z)` keeps the :math:`T` past intended actuations
+:math:`\gamma_1, \dots, \gamma_T` of its :math:`m` inputs: :math:`T m` states,
+:math:`\gamma_1(t+1) = K_0 x(t) + \sum_k K_k \gamma_k(t)`, :math:`u = \gamma_T`. Some plants
+and costs make it provably non-minimal.
+
+**Theorem.** Let :math:`\mathcal N` be the subspace of :math:`\chi` that the cost never sees
+(the unobservable subspace of :math:`(\tilde A, \tilde Q)`, :math:`\tilde A`-invariant) and
+:math:`\mathcal D = \{d : \tilde B d \in \mathcal N\}` the input directions that move only it.
+With :math:`(\tilde A, \tilde B)` stabilizable and :math:`(\tilde A, \tilde Q)` detectable
+(:func:`~symctl.design.lqr.lqr_gains` checks both), the optimal gain satisfies
+:math:`K v = 0` for :math:`v \in \mathcal N` and :math:`(R d)^\top K = 0` for
+:math:`d \in \mathcal D`. *Proof.* From :math:`\chi_0 \in \mathcal N` the input
+:math:`\mu = 0` costs nothing and :math:`\chi \to 0` (detectability makes
+:math:`\tilde A` Schur on :math:`\mathcal N`), so :math:`\chi_0^\top X \chi_0 = 0` and
+:math:`X \chi_0 = 0` (:math:`X \succeq 0`); then :math:`K \chi_0 = -(R + \tilde B^\top X
+\tilde B)^{-1} \tilde B^\top X \tilde A \chi_0 = 0`. For :math:`d \in \mathcal D`,
+:math:`X \tilde B d = 0`, so :math:`d^\top (R + \tilde B^\top X \tilde B) = (R d)^\top` and
+:math:`(R d)^\top K = -d^\top \tilde B^\top X \tilde A = 0`. :math:`\square`
+
+So :math:`w^\top \mu = 0` for :math:`w \in R\mathcal D`: the :math:`T \dim \mathcal D`
+states :math:`w^\top \gamma_k` are never reached, and :math:`G` has the factor
+:math:`z^{T \dim \mathcal D}` in its denominator and every numerator. The ties are linear
+equations between the gains with rational coefficients; the numeric gains satisfy them
+to rounding only, so :func:`controller_reduction` computes the tied gains from the free
+ones, exactly, and decides the minimal order of the delayed controller with those gains
+by :func:`~symctl.realization.minimal.minimal_realization` (exact; with one input
+:math:`K_0 / (z^T - K_1 z^{T-1} - \dots - K_T)` is minimal unless :math:`K_0 = 0`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+import sympy as sp
+from flint import fmpq_mat
+
+from symctl.design.augment import AugmentedSystem
+from symctl.design.lqr import Gains
+from symctl.design.tf import DiscreteTF
+from symctl.errors import SymctlTypeError
+from symctl.proof import Verdict
+from symctl.realization.minimal import MAX_ORDER, _mat, _pivots, _sympy, minimal_realization
+from symctl.realization.realization import Realization
+from symctl.symbols import gain_matrix_symbols, z
+
+__all__ = ["ControllerReduction", "controller_reduction"]
+
+
+@dataclass(frozen=True)
+class ControllerReduction(Verdict):
+    r"""The verdict on the delayed controller's minimality: truthy when it is minimal.
+
+    Attributes
+    ----------
+    order, minimal_order : int
+        The controller's states (:math:`T m`) and its McMillan degree (exact).
+    relations : mapping of Symbol to expression
+        The gains the theorem ties, each in the free ones (empty when minimal).
+    never_driven : tuple of str
+        The input combinations :math:`w^\top \mu` the controller keeps at 0 (:math:`w = R d`).
+    unseen : tuple of str
+        The plant-state combinations the cost never sees.
+    reason : str
+        Why the controller is not minimal ('' when it is).
+    method : str
+        How the McMillan degree was decided.
+    """
+
+    _verdict = "minimal"
+
+    order: int
+    minimal_order: int
+    relations: Mapping[sp.Symbol, sp.Expr] = dataclasses.field(default_factory=dict)
+    never_driven: tuple[str, ...] = ()
+    unseen: tuple[str, ...] = ()
+    reason: str = ""
+    method: str = "the exact Kalman reduction of the delay chain, in rational arithmetic"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "relations", MappingProxyType(dict(self.relations)))
+
+    def __hash__(self) -> int:
+        return hash((self.order, self.minimal_order, tuple(self.relations.items())))
+
+    @property
+    def minimal(self) -> bool:
+        """Whether the McMillan degree is the number of states."""
+        return self.minimal_order == self.order
+
+    @property
+    def evidence(self) -> str:
+        return f"McMillan degree {self.minimal_order} of {self.order} states"
+
+    def reduce(self, G: DiscreteTF) -> DiscreteTF:
+        r"""``G`` (in the gains' symbols) with the ties substituted and the power of :math:`z`
+        common to its denominator and numerators divided out (``G`` as it is when minimal)."""
+        if self.minimal:
+            return G
+        G = G.subs(self.relations)
+        k = min(sp.Poly(e, z).monoms()[-1][0] for e in (G.den, *G.num_matrix) if e != 0)
+        return DiscreteTF(
+            G.num_matrix.applyfunc(lambda e: sp.expand(e / z**k)), sp.expand(G.den / z**k), G.dt
+        )
+
+
+def _numbers(M: sp.MatrixBase, name: str) -> fmpq_mat:
+    """``M`` in rationals: a number that is not rational (``exp(-1/2)``) by its float, as the LQR."""
+    return _mat(M.applyfunc(lambda e: e if e.is_Rational else sp.Float(float(e))), name)
+
+
+def _nullspace(M: fmpq_mat) -> list[list[sp.Rational]]:
+    """A basis of the right null space of ``M``."""
+    cols = M.ncols()
+    R, rank = M.rref()
+    pivots = _pivots(R) if rank else []
+    out = []
+    for f in (c for c in range(cols) if c not in pivots):
+        v = [sp.Integer(0)] * cols
+        v[f] = sp.Integer(1)
+        for i, p in enumerate(pivots):
+            v[p] = -_rational(R[i, f])
+        out.append(v)
+    return out
+
+
+def _unseen(A: fmpq_mat, Q: fmpq_mat) -> list[list[sp.Rational]]:
+    """A basis of the unobservable subspace of ``(A, Q)``: the null space of ``[Q; QA; QA^2...]``."""
+    n = A.nrows()
+    blocks, block = [], Q
+    for _ in range(n):
+        blocks.append(block)
+        block = block * A
+    return _nullspace(
+        fmpq_mat(n * n, n, [b[i, j] for b in blocks for i in range(n) for j in range(n)])
+    )
+
+
+def _combination(v, names) -> str:
+    """``v`` scaled to a leading coefficient of 1, as a signed sum of ``names`` (deviations named
+    without ``delta_``): ``u_1 + u_2``."""
+    lead = abs(next(c for c in v if c != 0))
+    terms = []
+    for c, name in zip((c / lead for c in v), names, strict=True):
+        if c == 0:
+            continue
+        sign = "-" if c < 0 else "+"
+        mag = "" if abs(c) == 1 else f"{abs(c)} "
+        terms.append(f"{sign} {mag}{name.removeprefix('delta_')}")
+    text = " ".join(terms)
+    return text[2:] if text.startswith("+ ") else "-" + text[2:]
+
+
+def controller_reduction(
+    system: AugmentedSystem, gains: Gains
+) -> tuple[ControllerReduction, Gains]:
+    r"""Decide whether the optimal delayed controller is minimal, and tie the gains that make it not.
+
+    Parameters
+    ----------
+    system : AugmentedSystem
+        With numbers (floats taken exactly).
+    gains : Gains
+        Its optimal gains (:func:`~symctl.design.lqr.lqr_gains`).
+
+    Returns
+    -------
+    (ControllerReduction, Gains)
+        The verdict (truthy when minimal), and the gains with the tied ones computed
+        exactly from the free ones (``gains`` itself when minimal).
+
+    Raises
+    ------
+    SymctlTypeError
+        ``system`` or ``gains`` of another type.
+
+    Examples
+    --------
+    >>> from symctl import augment, lqr_gains
+    >>> from symctl.realization.reduction import controller_reduction
+    >>> system = augment(([[0.9, 0], [0.1, 0.8]], [[1, -1], [0, 0]]), 1, 1)
+    >>> red, gains = controller_reduction(system, lqr_gains(system))
+    >>> bool(red), red.order, red.minimal_order, red.never_driven
+    (False, 4, 2, ('u_1 + u_2',))
+    >>> red.reason.split(": ")
+    ['u_1 + u_2 moves no state', 'the inputs act on the plant through the same column of B (up to sign)']
+    """
+    if not isinstance(system, AugmentedSystem) or not isinstance(gains, Gains):
+        raise SymctlTypeError(
+            "system, gains: expected an AugmentedSystem and its Gains, got "
+            f"{type(system).__name__} and {type(gains).__name__}"
+        )
+    n, m, T = system.n, system.m, system.T
+    if T == 0:
+        return ControllerReduction(0, 0), gains
+    size = n + T * m
+    Qeq = sp.zeros(size, size)
+    Qeq[:n, :n] = system.Q_plant
+    A, B = _numbers(system.A, "A"), _numbers(system.B, "B")
+    unseen = _unseen(A, _numbers(Qeq, "Q"))
+    directions = _directions(B, unseen)
+    K = sp.Matrix.hstack(*gain_matrix_symbols(T, m, n))
+    Rm = _sympy(_numbers(system.R, "R"))
+    equations = [e for v in unseen for e in K * sp.Matrix(v)]
+    equations += [e for d in directions for e in (Rm * sp.Matrix(d)).T * K]
+    relations = _solve(equations, list(K))
+    values = dict(zip(K, (sp.Rational(float(v)) for v in gains.K.ravel()), strict=True))
+    values.update({s: e.xreplace(values) for s, e in relations.items()})
+    exact = sp.Matrix(*K.shape, [values[s] for s in K])
+    order, method = _chain_order(exact, n, m, T, len(directions))
+    if order == T * m:
+        return ControllerReduction(T * m, order, method=method), gains
+    Kn = np.array(exact, dtype=float)
+    closed = np.array(system.A, dtype=float) + np.array(system.B, dtype=float) @ Kn
+    poles = np.linalg.eigvals(closed)
+    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    inputs = system.plant.input_names
+    driven = tuple(_combination(Rm * sp.Matrix(d), inputs) for d in directions)
+    blind = _unseen(_numbers(system.plant.A, "A"), _numbers(system.Q_plant, "Q"))
+    blind = tuple(_combination(v, system.plant.state_names) for v in blind)
+    reduction = ControllerReduction(
+        T * m,
+        order,
+        relations,
+        driven,
+        blind,
+        _reason(system, directions, blind, T * (m - len(directions)) - order),
+        method,
+    )
+    return reduction, dataclasses.replace(gains, K=Kn, poles=poles)
+
+
+def _directions(B: fmpq_mat, unseen: list) -> list[list[sp.Rational]]:
+    """A basis of the input directions ``d`` with ``B d`` in the span of ``unseen``."""
+    stacked = sp.Matrix.hstack(_sympy(B), *(-sp.Matrix(v) for v in unseen))
+    return [v[: B.ncols()] for v in _nullspace(_mat(stacked, "B"))]
+
+
+def _solve(equations: list, symbols: list) -> dict:
+    """The linear ``equations`` (each ``= 0``) solved for the latest ``symbols`` in the earliest."""
+    if not equations:
+        return {}
+    order = symbols[::-1]  # rref's pivots are the leftmost: the latest symbols are solved for
+    M, _ = sp.linear_eq_to_matrix(equations, order)
+    R, rank = _mat(M, "equations").rref()
+    pivots = _pivots(R) if rank else []
+    free = [c for c in range(len(order)) if c not in pivots]
+    solved = {
+        order[p]: -sp.Add(*(_rational(R[i, f]) * order[f] for f in free))
+        for i, p in enumerate(pivots)
+    }
+    return {k: solved[k] for k in symbols if k in solved}
+
+
+def _rational(x) -> sp.Rational:
+    return sp.Rational(int(x.p), int(x.q))
+
+
+def _chain_order(K: sp.Matrix, n: int, m: int, T: int, tied: int) -> tuple[int, str]:
+    """The McMillan degree of the delay chain's controller with gains ``K``, and how it was found."""
+    if m == 1:  # K_0 / (z^T - K_1 z^(T-1) - ... - K_T): minimal unless K_0 = 0
+        return (T if any(K[0, j] != 0 for j in range(n)) else 0), "K_0 != 0 (one input)"
+    if T * m > MAX_ORDER:
+        return T * (
+            m - tied
+        ), f"the theorem's count (the Kalman reduction takes {MAX_ORDER} states)"
+    F = sp.zeros(T * m, T * m)
+    F[:m, :] = K[:, n:]
+    F[m:, : (T - 1) * m] = sp.eye((T - 1) * m)
+    H = sp.zeros(T * m, n)
+    H[:m, :] = K[:, :n]
+    M = sp.zeros(m, T * m)
+    M[:, (T - 1) * m :] = sp.eye(m)
+    realization = Realization(F, H, M, sp.zeros(m, n))
+    return minimal_realization(realization).n, ControllerReduction.method
+
+
+def _reason(system: AugmentedSystem, directions, blind, unexplained: int) -> str:
+    """Why the controller is not minimal, in words."""
+    B = _numbers(system.plant.B, "B")
+    reasons = []
+    for d in directions:
+        name = _combination(d, system.plant.input_names)
+        if all(e == 0 for e in (B * _mat(sp.Matrix(d), "d")).entries()):
+            how = "the same column" if sum(c != 0 for c in d) == 2 else "dependent columns"
+            reasons.append(
+                f"{name} moves no state: the inputs act on the plant through {how} of B (up to sign)"
+            )
+        else:
+            reasons.append(
+                f"{name} moves only {' and '.join(blind)}, which the cost never sees "
+                "(Q weighs neither it nor any state it moves)"
+            )
+    if unexplained > 0:
+        reasons.append(f"{unexplained} more states cancel between the poles and zeros of G(z)")
+    return "; ".join(reasons)
