@@ -73,7 +73,7 @@ def _fixed_values(fixed, rng: random.Random) -> dict[int, sp.Integer]:
     return {k: sp.Integer(rng.choice([-1, 1]) * rng.randint(1, 5)) for k in fixed}
 
 
-def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 3):
+def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 8):
     """The odd-degree proof of a pattern above :math:`3n` entries through a slice, or None.
 
     Up to ``tries`` choices of extra entries (drawn from ``seed``) are fixed; the first slice

@@ -339,7 +339,8 @@ def decide(
     seed : int
         Seeds the sampled targets and linear forms.
     exact : bool, optional
-        False skips the exact screen of a pattern of :math:`3n` entries
+        False skips the odd-degree proofs (:mod:`~symctl.circuitatlas.odddegree`) and the
+        exact screen of a pattern of :math:`3n` entries
         (:func:`~symctl.circuitatlas.screen.screen`); its witness search is then
         certified numerics alone.
 
@@ -396,6 +397,19 @@ def decide(
     blocked = _pole_obstruction(n, pattern.mask & ((1 << (n * n)) - 1), seed)
     if blocked is not None:
         return blocked
+    proof = _odd_degree(pattern, seed) if exact is not False else None
+    if proof is not None and proof.get("proved"):
+        fixed = ", ".join(f"{k} = {v}" for k, v in proof["fixed"].items())
+        return _evidence(
+            True,
+            ODD_DEGREE,
+            True,
+            (f"with {fixed}, " if fixed else "")
+            + f"the generic fibre is in shape position over Q(a, c) with {proof['degree']} "
+            "points, an odd number: almost every real G2 has a real realization, every entry "
+            "nonzero (discriminant and resultants nonzero at a rational target)",
+            **{k: v for k, v in proof.items() if k != "proved"},
+        )
     for sub, ev in below:
         if ev.conjectured:  # a lift is a proof only when its source is one
             return _evidence(
@@ -408,36 +422,35 @@ def decide(
                 source_method=ev.method,
                 lifted=True,
             )
-    if pattern.size == 3 * n and exact is not False and (generic_degree(pattern) or 0) % 2:
-        proof = odd_degree_proof(pattern, seed=seed)
-        if proof and proof["proved"]:
-            return _evidence(
-                True,
-                ODD_DEGREE,
-                True,
-                f"the generic fibre is in shape position over Q(a, c) with {proof['degree']} "
-                "points, an odd number: almost every real G2 has a real realization, every "
-                "entry nonzero (discriminant and resultants nonzero at a rational target)",
-                **{k: v for k, v in proof.items() if k != "proved"},
-            )
+    if proof is not None:  # an odd degree without its proof: no target can refute it
+        return _evidence(
+            None,
+            CONJECTURED,
+            False,
+            f"conjectured universal, not proved: a random rational target has {proof['degree']} "
+            f"complex realizations, an odd number, so a real one; {proof['why']} (the exact "
+            "screen cannot refute an odd degree)",
+            degree=proof["degree"],
+        )
     screened = screen(pattern, seed=seed) if exact is not False else None
     if screened is not None:
         return screened
-    if pattern.size > 3 * n and exact is not False:
-        proof = slice_proof(pattern, seed=seed)
-        if proof:
-            fixed = ", ".join(f"{k} = {v}" for k, v in proof["fixed"].items())
-            return _evidence(
-                True,
-                ODD_DEGREE,
-                True,
-                f"with {fixed} the generic fibre is in shape position over Q(a, c) with "
-                f"{proof['degree']} points, an odd number: almost every real G2 has a real "
-                "realization, every entry nonzero",
-                **{k: v for k, v in proof.items() if k != "proved"},
-            )
     rng = random.Random(seed * 7919 + pattern.mask)
     return _witness_search(pattern, rng, pattern.size - 3 * n)
+
+
+def _odd_degree(pattern: Pattern, seed: int) -> dict | None:
+    """The odd-degree proof of a pattern of :math:`3n` entries of odd generic degree, or of a
+    slice of a bigger one: ``{"proved": True, ...}``; ``{"proved": False, "why", "degree"}``
+    for an odd degree left unproved; None when the degree is even or unknown."""
+    n = pattern.n
+    if pattern.size > 3 * n:
+        return slice_proof(pattern, seed=seed)
+    degree = generic_degree(pattern) if pattern.size == 3 * n else None
+    if not degree or degree % 2 == 0:
+        return None
+    proof = odd_degree_proof(pattern, seed=seed) or {"proved": False, "why": "the proof failed"}
+    return {"fixed": {}, **proof, "degree": degree}
 
 
 def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:

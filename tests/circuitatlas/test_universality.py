@@ -82,9 +82,11 @@ def test_a_lift_from_a_conjectured_pattern_is_a_conjecture_and_from_a_proof_a_pr
     ccf = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
     dense = Pattern(2, (1 << 8) - 1)
     conj = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
-    ev = decide(dense, [(ccf, conj)])
+    ev = decide(dense, [(ccf, conj)], exact=False)  # no exact proof of its own: a lift
     assert ev.universal is None and ev.conjectured and not ev.proved
     assert ev.details["source"] == ccf.text and ev.details["lifted"]
+    own = decide(dense, [(ccf, conj)])  # its own slice, of odd degree, proves it
+    assert own.universal is True and own.method == "odd degree" and own.details["fixed"]
     proved = decide(ccf)
     ev = decide(dense, [(ccf, conj), (ccf, proved)])
     assert ev.universal is True and ev.method == "lifted" and ev.proved
