@@ -17,7 +17,8 @@ import json
 import click
 from rich.console import Console
 
-from symctl.cli.options import options, shown, workers_options
+from symctl.cli.options import Command, options, shown, workers_options
+from symctl.cli.progress import Steps
 
 __all__ = ["dale_command"]
 
@@ -28,7 +29,7 @@ def _say(text: str) -> None:
     _console.print(text, markup=False, soft_wrap=True, highlight=False)
 
 
-@click.command("dale")
+@click.command("dale", cls=Command)
 @click.argument("model_file", metavar="[MODEL.toml]", required=False, default=None)
 @options(
     click.option(
@@ -112,8 +113,15 @@ def dale_command(
     circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
     if not circuits:
         raise click.BadParameter("name at least one circuit", param_hint="--circuit")
-    results = [dale(gains, circuit=c, timeout=timeout) for c in circuits]
-    e = ei_circuit(gains, timeout=timeout) if ei else None
+    with Steps(_console) as steps:
+        results = []
+        for k, c in enumerate(circuits, start=1):
+            steps.start(f"dale {getattr(c, 'label', c)} ({k} of {len(circuits)})")
+            results.append(dale(gains, circuit=c, timeout=timeout, progress=steps.part))
+        e = None
+        if ei:
+            steps.start("cheapest E/I circuit")
+            e = ei_circuit(gains, timeout=timeout, progress=steps.part)
     if as_json:
         out = {
             "circuits": [
