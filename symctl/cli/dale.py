@@ -88,9 +88,23 @@ def dale_command(
 
     gains = _gains(model_file, sensor_delay, actuator_delay)
     if atlas_table:
-        T = dale_atlas(
-            2, samples=samples, G=gains, timeout=timeout, workers=workers, scheduler=scheduler
-        )
+        with Steps(_console) as steps:
+            steps.start("the E/I table of the order-2 atlas")
+            decided = []
+
+            def row(label: str) -> None:
+                decided.append(label)
+                steps.part(f"{len(decided)} classes decided, the last {label}")
+
+            T = dale_atlas(
+                2,
+                samples=samples,
+                G=gains,
+                timeout=timeout,
+                workers=workers,
+                scheduler=scheduler,
+                progress=row,
+            )
         if as_json:
             rows = [
                 {

@@ -411,8 +411,12 @@ def test_dale_reports_each_stage_before_it_runs(circuit, stages):
 
 
 # ---------------------------------------------------------------- 6: dale_atlas
-def test_dale_atlas_A1_every_A10_never():
-    T = symctl.dale_atlas(2, samples=2, classes=["A1", "A10"], timeout=TIMEOUT)
+def test_dale_atlas_A1_every_A10_never_each_reported_once_decided():
+    decided = []
+    T = symctl.dale_atlas(
+        2, samples=2, classes=["A1", "A10"], timeout=TIMEOUT, progress=decided.append
+    )
+    assert sorted(decided) == ["A1", "A10"]
     rows = {r.label: r for r in T.rows}
     assert [r.label for r in T.rows] == ["A1", "A10"]
     assert rows["A1"].verdict == "every" and rows["A1"].sampled == (2, 0, 0, 0)
