@@ -231,8 +231,6 @@ def atlas_command(
     one drawing per class. Finished patterns go to OUT.progress.jsonl as the
     search runs, so an interrupted run resumes where it stopped.
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
     from symctl.circuitatlas.atlas import atlas as find_atlas
     from symctl.report.atlas import write_atlas
     from symctl.report.output import OutputFolder
@@ -247,35 +245,19 @@ def atlas_command(
         if count < 0:
             raise click.BadParameter("must be at least 0", param_hint="--drawings")
     checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
-    with OutputFolder(out, "--out") as folder:
-        with Progress(
-            "[progress.description]{task.description}",
-            BarColumn(),
-            MofNCompleteColumn(),
-            TimeElapsedColumn(),
-            console=_console,
-            transient=True,
-            disable=not _console.is_terminal,
-        ) as bar:
-            tasks: dict[int, int] = {}
-
-            def progress(size, done, total):
-                if size not in tasks:
-                    tasks[size] = bar.add_task(f"size {size:2d}", total=max(total, 1))
-                bar.update(tasks[size], completed=done)
-
-            A = find_atlas(
-                order,
-                delays=delays,
-                max_size=max_size,
-                workers=workers,
-                scheduler=scheduler,
-                checkpoint=checkpoint,
-                progress=progress,
-                max_neurons=max_neurons,
-            )
-        with Steps(_console) as steps:
-            written = write_atlas(A, folder.staging, drawings=count, pdf=pdf, progress=steps.start)
+    with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
+        steps.start("search")
+        A = find_atlas(
+            order,
+            delays=delays,
+            max_size=max_size,
+            workers=workers,
+            scheduler=scheduler,
+            checkpoint=checkpoint,
+            progress=lambda size, done, total: steps.part(f"size {size}: {done} of {total}"),
+            max_neurons=max_neurons,
+        )
+        written = write_atlas(A, folder.staging, drawings=count, pdf=pdf, progress=steps.start)
     checkpoint.unlink(missing_ok=True)
     _atlas_summary(A)
     _wrote(Path(out), folder.final(written), pdf)
