@@ -12,6 +12,7 @@ one line and exit 2, as for every command.
 
 from __future__ import annotations
 
+import itertools
 import json
 
 import click
@@ -90,12 +91,7 @@ def dale_command(
     if atlas_table:
         with Steps(_console) as steps:
             steps.start("the E/I table of the order-2 atlas")
-            decided = []
-
-            def row(label: str) -> None:
-                decided.append(label)
-                steps.part(f"{len(decided)} classes decided, the last {label}")
-
+            decided = itertools.count(1)
             T = dale_atlas(
                 2,
                 samples=samples,
@@ -103,7 +99,7 @@ def dale_command(
                 timeout=timeout,
                 workers=workers,
                 scheduler=scheduler,
-                progress=row,
+                progress=lambda label: steps.part(f"{next(decided)} classes decided, last {label}"),
             )
         if as_json:
             rows = [
