@@ -65,20 +65,20 @@ def test_paper_options_are_used(tmp_path):
 @pytest.mark.parametrize(
     "args, word",
     [
-        (["--tau", "-1"], "tau"),
-        (["--f-max", "0"], "f_max"),
+        (["--tau", "-1"], "--tau"),
+        (["--f-max", "0"], "--f-max"),
         (["--ts", "0"], "--ts"),
-        (["--sensor-delay", "-2"], "sensor_delay"),
-        (["--actuator-delay", "1.5"], "actuator-delay"),
-        (["--q", "[[1, 0], [0, 1]]"], "Q"),
-        (["--r", "-3"], "R"),
+        (["--sensor-delay", "-2"], "--sensor-delay"),
+        (["--actuator-delay", "1.5"], "--actuator-delay"),
+        (["--q", "[[1, 0], [0, 1]]"], "--q"),
+        (["--r", "-3"], "--r"),
         (["--q", "__import__('os')"], "--q"),
-        (["--tau", "abc"], "tau"),
+        (["--tau", "abc"], "--tau"),
         (["--no-such-option"], "no-such-option"),
-        (["--realizations", "0"], "realizations"),
-        (["--sensor-delay", "0", "--actuator-delay", "0"], "sensor_delay, actuator_delay"),
-        (["--jobs", "0"], "jobs"),
-        (["--seed", "-1"], "seed"),
+        (["--realizations", "0"], "--realizations"),
+        (["--sensor-delay", "0", "--actuator-delay", "0"], "--sensor-delay, --actuator-delay"),
+        (["--jobs", "0"], "--jobs"),
+        (["--seed", "-1"], "--seed"),
     ],
 )
 def test_bad_input_prints_one_line_and_exits_2(tmp_path, capsys, args, word):
@@ -145,3 +145,40 @@ def test_formats_choose_the_figure_files_and_each_document_shows_its_own(tmp_pat
     assert suffixes == {".svg", ".png"}
     assert "open_loop.png" in (tmp_path / "report.md").read_text()
     assert r"\fitgraphic{" not in (tmp_path / "derivation.tex").read_text()  # no PDF to include
+
+
+def _terminal(monkeypatch, module):
+    """The command's console as a terminal (the live progress draws only on one), into a string."""
+    import io
+
+    from rich.console import Console
+
+    text = io.StringIO()
+    monkeypatch.setattr(module, "_console", Console(file=text, force_terminal=True, width=120))
+    return text
+
+
+def test_paper_shows_each_step_and_each_figure_on_a_terminal_and_exits_0(tmp_path, monkeypatch):
+    from matplotlib.figure import Figure
+
+    from symctl import cli
+    from symctl.report import figures
+
+    monkeypatch.setattr(figures, "make_figure", lambda res, name: Figure(figsize=(1, 1)))
+    shown = _terminal(monkeypatch, cli)
+    args = ["paper", "--out", str(tmp_path), "--no-pdf", "--jobs", "1", "--formats", "png"]
+    assert main([*args, "--seed", "5", "--realizations", "1"]) == 0
+    text = shown.getvalue()
+    assert "LQR ..." in text and "figures: open_loop ..." in text and "done  figures" in text
+
+
+def test_dale_shows_its_stages_on_a_terminal_and_none_in_its_json_elsewhere(monkeypatch, capsys):
+    from symctl.cli import dale
+
+    assert main(["dale", "--circuit", "observable", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["circuits"][0]["feasible"] is False
+    shown = _terminal(monkeypatch, dale)
+    assert main(["dale", "--circuit", "observable,controllable", "--ei"]) == 0
+    text = shown.getvalue()
+    assert "dale observable (1 of 2): observable: z3 ..." in text
+    assert "cheapest E/I circuit: A1 ..." in text

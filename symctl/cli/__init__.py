@@ -19,7 +19,6 @@ import os
 import signal
 import sys
 import threading
-import time
 import warnings
 from pathlib import Path
 
@@ -30,7 +29,8 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
-from symctl.cli.options import options, options_named, shown, writing_options
+from symctl.cli.options import Command, options, shown, writing_options
+from symctl.cli.progress import Steps
 from symctl.cli.summary import summary
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
@@ -46,6 +46,7 @@ def cli() -> None:
     """Derive, check and simulate neural implementations of delayed optimal controllers."""
 
 
+cli.command_class = Command  # errors name the options as typed
 cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
 
@@ -108,27 +109,26 @@ def paper(
     except _NUMERICAL as exc:
         exc._symctl_step = "options"
         raise
-    with options_named({"dt": "--ts", "rng": "--seed"}):
-        _written(
-            out,
-            lambda progress: derive_paper(
-                tau=tau,
-                f_max=f_max,
-                r_bar=r_bar,
-                dt=ts,
-                sensor_delay=sensor_delay,
-                actuator_delay=actuator_delay,
-                Q=Q,
-                R=R,
-                rng=seed,
-                realizations=realizations,
-                progress=progress,
-            ),
-            figures=figures,
-            pdf=pdf,
-            jobs=jobs,
-            formats=formats,
-        )
+    _written(
+        out,
+        lambda progress: derive_paper(
+            tau=tau,
+            f_max=f_max,
+            r_bar=r_bar,
+            dt=ts,
+            sensor_delay=sensor_delay,
+            actuator_delay=actuator_delay,
+            Q=Q,
+            R=R,
+            rng=seed,
+            realizations=realizations,
+            progress=progress,
+        ),
+        figures=figures,
+        pdf=pdf,
+        jobs=jobs,
+        formats=formats,
+    )
 
 
 @cli.command("derive")
@@ -231,8 +231,6 @@ def atlas_command(
     one drawing per class. Finished patterns go to OUT.progress.jsonl as the
     search runs, so an interrupted run resumes where it stopped.
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
     from symctl.circuitatlas.atlas import atlas as find_atlas
     from symctl.report.atlas import write_atlas
     from symctl.report.output import OutputFolder
@@ -247,34 +245,19 @@ def atlas_command(
         if count < 0:
             raise click.BadParameter("must be at least 0", param_hint="--drawings")
     checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
-    with OutputFolder(out, "--out") as folder:
-        with Progress(
-            "[progress.description]{task.description}",
-            BarColumn(),
-            MofNCompleteColumn(),
-            TimeElapsedColumn(),
-            console=_console,
-            transient=True,
-            disable=not _console.is_terminal,
-        ) as bar:
-            tasks: dict[int, int] = {}
-
-            def progress(size, done, total):
-                if size not in tasks:
-                    tasks[size] = bar.add_task(f"size {size:2d}", total=max(total, 1))
-                bar.update(tasks[size], completed=done)
-
-            A = find_atlas(
-                order,
-                delays=delays,
-                max_size=max_size,
-                workers=workers,
-                scheduler=scheduler,
-                checkpoint=checkpoint,
-                progress=progress,
-                max_neurons=max_neurons,
-            )
-        written = write_atlas(A, folder.staging, drawings=count, pdf=pdf)
+    with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
+        steps.start("search")
+        A = find_atlas(
+            order,
+            delays=delays,
+            max_size=max_size,
+            workers=workers,
+            scheduler=scheduler,
+            checkpoint=checkpoint,
+            progress=lambda size, done, total: steps.part(f"size {size}: {done} of {total}"),
+            max_neurons=max_neurons,
+        )
+        written = write_atlas(A, folder.staging, drawings=count, pdf=pdf, progress=steps.start)
     checkpoint.unlink(missing_ok=True)
     _atlas_summary(A)
     _wrote(Path(out), folder.final(written), pdf)
@@ -305,42 +288,6 @@ def _atlas_summary(A) -> None:
     _console.print(table)
 
 
-class _Steps:
-    """The progress display: a spinner on the running step, a line with its time when done."""
-
-    def __init__(self) -> None:
-        self._status = _console.status("starting")
-        self._name: str | None = None
-        self._t0 = 0.0
-        self._start = 0.0
-
-    def __enter__(self) -> _Steps:
-        self._start = time.perf_counter()
-        self._status.__enter__()
-        return self
-
-    def start(self, name: str) -> None:
-        self._done()
-        self._name, self._t0 = name, time.perf_counter()
-        self._status.update(f"{name} ...")
-
-    def _done(self) -> None:
-        if self._name is not None:
-            took = time.perf_counter() - self._t0
-            _console.print(f"  done  {self._name:<14} {took:6.2f} s", markup=False, highlight=False)
-            self._name = None
-
-    def __exit__(self, exc_type, exc, tb) -> None:
-        if exc is not None and self._name is not None:
-            with contextlib.suppress(AttributeError):
-                exc._symctl_step = self._name  # for main's message on a foreign exception
-        if exc_type is None:
-            self._done()
-            total = time.perf_counter() - self._start
-            _console.print(f"  total {'':<14} {total:6.2f} s", markup=False, highlight=False)
-        self._status.__exit__(exc_type, exc, tb)
-
-
 def _written(out, derivation, **kw) -> None:
     """Derive (``derivation(progress)``) and write into ``out``, checked and staged first; the
     figure workers get ready while the derivation runs."""
@@ -349,9 +296,11 @@ def _written(out, derivation, **kw) -> None:
     from symctl.report.workers import FigureWorkers
 
     workers = FigureWorkers(kw["jobs"] if kw["figures"] else 1)  # ready when the derivation ends
-    with OutputFolder(out, "--out") as folder, workers, _Steps() as steps:
+    with OutputFolder(out, "--out") as folder, workers, Steps(_console, lines=True) as steps:
         res = derivation(steps.start)
-        written = write_files(res, folder.staging, progress=steps.start, workers=workers, **kw)
+        written = write_files(
+            res, folder.staging, progress=steps.start, parts=steps.part, workers=workers, **kw
+        )
     summary(res, _console)
     _wrote(Path(out), folder.final(written), kw.get("pdf", False))
 

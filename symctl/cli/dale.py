@@ -12,12 +12,14 @@ one line and exit 2, as for every command.
 
 from __future__ import annotations
 
+import itertools
 import json
 
 import click
 from rich.console import Console
 
-from symctl.cli.options import options, shown, workers_options
+from symctl.cli.options import Command, options, shown, workers_options
+from symctl.cli.progress import Steps
 
 __all__ = ["dale_command"]
 
@@ -28,7 +30,7 @@ def _say(text: str) -> None:
     _console.print(text, markup=False, soft_wrap=True, highlight=False)
 
 
-@click.command("dale")
+@click.command("dale", cls=Command)
 @click.argument("model_file", metavar="[MODEL.toml]", required=False, default=None)
 @options(
     click.option(
@@ -87,9 +89,18 @@ def dale_command(
 
     gains = _gains(model_file, sensor_delay, actuator_delay)
     if atlas_table:
-        T = dale_atlas(
-            2, samples=samples, G=gains, timeout=timeout, workers=workers, scheduler=scheduler
-        )
+        with Steps(_console) as steps:
+            steps.start("the E/I table of the order-2 atlas")
+            decided = itertools.count(1)
+            T = dale_atlas(
+                2,
+                samples=samples,
+                G=gains,
+                timeout=timeout,
+                workers=workers,
+                scheduler=scheduler,
+                progress=lambda label: steps.part(f"{next(decided)} classes decided, last {label}"),
+            )
         if as_json:
             rows = [
                 {
@@ -112,8 +123,15 @@ def dale_command(
     circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
     if not circuits:
         raise click.BadParameter("name at least one circuit", param_hint="--circuit")
-    results = [dale(gains, circuit=c, timeout=timeout) for c in circuits]
-    e = ei_circuit(gains, timeout=timeout) if ei else None
+    with Steps(_console) as steps:
+        results = []
+        for k, c in enumerate(circuits, start=1):
+            steps.start(f"dale {getattr(c, 'label', c)} ({k} of {len(circuits)})")
+            results.append(dale(gains, circuit=c, timeout=timeout, progress=steps.part))
+        e = None
+        if ei:
+            steps.start("cheapest E/I circuit")
+            e = ei_circuit(gains, timeout=timeout, progress=steps.part)
     if as_json:
         out = {
             "circuits": [

@@ -15,14 +15,15 @@ from pathlib import Path
 import click
 from rich.console import Console
 
-from symctl.cli.options import options, shown, workers_options
+from symctl.cli.options import Command, options, shown, workers_options
+from symctl.cli.progress import Steps
 
 __all__ = ["fit_command"]
 
 _console = Console()
 
 
-@click.command("fit")
+@click.command("fit", cls=Command)
 @click.argument("data", metavar="DATA", type=click.Path(dir_okay=False))
 @options(
     click.option(
@@ -91,7 +92,8 @@ def fit_command(
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     classes = (circuit or tr.meta.get("circuit") or "general").split(",")
     classes = [c.strip() for c in classes]
-    with OutputFolder(out, "--out") as folder:
+    with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
+        steps.start(f"fitting {', '.join(classes)} ({starts} starts)")
         res = fit(
             tr.traces,
             gains,
@@ -106,6 +108,7 @@ def fit_command(
             workers=workers,
             scheduler=scheduler,
         )
+        steps.start("writing")
         written = write_fit(res, folder.staging, figures=figures, source=str(data))
     worst = max(res.residuals.values())
     _console.print(

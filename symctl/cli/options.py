@@ -5,7 +5,7 @@
 >>> from symctl.cli.options import options_named
 >>> from symctl.errors import ParameterError
 >>> try:
-...     with options_named({"dt": "--ts"}):
+...     with options_named(aliases={"dt": "--ts"}):
 ...         raise ParameterError("dt: must be a finite number > 0, got 0")
 ... except ParameterError as exc:
 ...     print(exc)
@@ -18,21 +18,39 @@ import contextlib
 
 import click
 
-from symctl.errors import ParameterError, SymctlTypeError
+from symctl.errors import SymctlError
 
-__all__ = ["options", "options_named", "shown", "writing_options"]
+__all__ = ["Command", "options", "options_named", "shown", "writing_options"]
+
+
+ALIASES = {"dt": "--ts", "rng": "--seed", "Q": "--q", "R": "--r", "C": "--C"}
+"""Library arguments named otherwise on the command line (used where the command has the option)."""
 
 
 @contextlib.contextmanager
-def options_named(options: dict):
-    """Name the option, not the Python argument, in an error on an argument of ``options``."""
+def options_named(ctx: click.Context | None = None, aliases: dict = ALIASES):
+    """Name the option as typed (``--f-max``), not the Python argument (``f_max``), in a symctl
+    error whose message starts with arguments of the command of ``ctx`` (or of ``aliases``)."""
+    params = ctx.command.params if ctx else []
+    names = {p.name: p.opts[0] for p in params if isinstance(p, click.Option)}
+    typed = set(names.values())
+    names.update((k, v) for k, v in aliases.items() if ctx is None or v in typed)
     try:
         yield
-    except (ParameterError, SymctlTypeError) as exc:
-        name, sep, rest = str(exc).partition(": ")
-        if not sep or name not in options:
+    except SymctlError as exc:
+        head, sep, rest = str(exc).partition(": ")
+        args = head.split(", ")
+        if not sep or not all(a in names for a in args):
             raise
-        raise type(exc)(f"{options[name]}: {rest}") from exc
+        raise type(exc)(f"{', '.join(names[a] for a in args)}: {rest}") from exc
+
+
+class Command(click.Command):
+    """A command whose symctl errors name its options as typed (:func:`options_named`)."""
+
+    def invoke(self, ctx: click.Context):
+        with options_named(ctx):
+            return super().invoke(ctx)
 
 
 def shown(*decls, **kw):

@@ -17,14 +17,14 @@ realization with stable, nonzero sections) or **not decided** (time or size ran 
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
 import sympy as sp
 
 from symctl._util.deadline import Deadline, Unfinished, deadline_of
-from symctl._util.validate import nonneg_int
+from symctl._util.validate import callable_or_none, nonneg_int
 from symctl.circuitatlas.circuitclass import CircuitClass
 from symctl.circuitatlas.fibre import binary_rationals
 from symctl.circuitatlas.pattern import MAX_ORDER, Pattern
@@ -244,6 +244,7 @@ def dale(
     actuator_delay: int | None = None,
     circuit="general",
     timeout: float = 30.0,
+    progress: Callable[[str], None] | None = None,
 ) -> DaleResult:
     r"""Decide whether ``circuit`` can carry the controller ``G`` with every neuron E or I.
 
@@ -264,6 +265,9 @@ def dale(
     timeout : float or Deadline
         Seconds for the whole call, every pattern and stage (default 30, at most
         3600), or a running :class:`~symctl._util.deadline.Deadline`.
+    progress : callable, optional
+        Called with the name of each stage before it runs: the pattern, then the stage
+        (``"general: z3"``, ``"general: numeric search"``, ``"general: exact witness"``, ...).
 
     Returns
     -------
@@ -279,7 +283,7 @@ def dale(
     DimensionError
         A MIMO ``G``.
     SymctlTypeError
-        ``G`` or ``circuit`` of a wrong type.
+        ``G`` or ``circuit`` of a wrong type, ``progress`` not callable.
 
     Examples
     --------
@@ -289,12 +293,18 @@ def dale(
     >>> r = symctl.dale(gains, circuit="general")     # the paper's controller
     >>> r.feasible, r.signs["G1.x1"] in "+-"
     (True, True)
+    >>> stages = []
+    >>> symctl.dale(gains, circuit="observable", progress=stages.append).feasible
+    False
+    >>> stages[:2]
+    ['observable: equations', 'observable: z3']
     >>> symctl.dale(gains, circuit="diagonal")
     Traceback (most recent call last):
     ...
     symctl.errors.ParameterError: circuit: must be one of ('general', 'controllable', ...
     """
     deadline = deadline_of(timeout, "timeout", MAX_TIMEOUT)
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
     G, ds, da = controller_of(G, sensor_delay, actuator_delay)
     fs = factor(G, ds, da)
     label, templates = templates_of(fs, circuit)
@@ -302,11 +312,13 @@ def dale(
     tried: list[str] = []
     verdicts = []
     for t in templates:
-        verdict, model = solve(G, t, poles, deadline, tried)
+        verdict, model = solve(G, t, poles, deadline, tried, progress=step)
         if verdict == "sat":
+            step(f"{t.label}: witness check")
             return _witness(G, fs, t, model, label, tried, deadline)
         verdicts.append(verdict)
     if all(v == "unsat" for v in verdicts):
+        step(f"{label}: G without signs")
         realizes = _realizes(templates, poles, deadline)
         why = {
             True: "it realizes G, but never with every neuron excitatory or inhibitory",
@@ -361,14 +373,16 @@ def _realizes(templates, poles, deadline: Deadline) -> bool | None:
 
 
 def solve(
-    G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True
+    G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True, progress=None
 ) -> tuple[str, dict | None]:
     """Decide one template: z3 briefly, the general circuit's numeric search (numeric ``G``), z3 again.
 
     Returns ``(verdict, model)``, the model pinned to rationals when ``witness``; ``tried``
-    gets one line per attempt; every stage stops at ``deadline``.
+    gets one line per attempt; every stage stops at ``deadline`` (``progress`` gets its name).
     """
     general = t.label == "general" and not G.free_symbols - {z}
+    step = progress or (lambda _name: None)
+    step(f"{t.label}: equations")
     try:
         enc = encode(t, poles, deadline)
     except Unfinished as exc:  # out of time, or the equations too large: z3 is not asked
@@ -376,6 +390,7 @@ def solve(
         tried.append(f"{t.label}: z3 not asked ({exc})")
     verdict, assume = "unknown", []
     if enc is not None:
+        step(f"{t.label}: z3")
         verdict, assume = decide(
             enc, deadline=deadline.within(GENERAL_Z3_FIRST) if general else deadline
         )
@@ -383,6 +398,7 @@ def solve(
         if deadline.expired():
             tried.append("general: no time left for the numeric search")
         else:
+            step("general: numeric search")
             found = search_general(G, t, deadline=deadline.within(GENERAL_SEARCH))
             if found is not None:
                 tried.append(
@@ -392,12 +408,14 @@ def solve(
                 return "sat", {"values": found}
             tried.append("general: Nelder-Mead found no witness")
         if enc is not None:
+            step("general: z3 again")
             verdict, assume = decide(enc, deadline=deadline)
     if enc is not None:
         tried.append(f"{t.label}: z3 {verdict}")
     if verdict != "sat" or not witness:
         return verdict, None
     order = [*t.sections, *t.unknowns]
+    step(f"{t.label}: exact witness")
     try:
         return verdict, refine(enc, order, deadline=deadline, cap=WITNESS_PIN, keep=assume)
     except Unfinished as exc:  # z3 found one, but it is not exact yet: not a verdict

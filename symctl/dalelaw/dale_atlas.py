@@ -13,6 +13,7 @@ on the atlas's dask path (:mod:`symctl.circuitatlas.search`).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -21,7 +22,7 @@ import sympy as sp
 from symctl._util.deadline import Deadline
 from symctl._util.deprecate import rng_argument
 from symctl._util.serial import DictMixin
-from symctl._util.validate import bounded_int, bounded_number, nonneg_int
+from symctl._util.validate import bounded_int, bounded_number, callable_or_none, nonneg_int
 from symctl.circuitatlas.pattern import Pattern
 from symctl.circuitatlas.search import open_pool, pool_options
 from symctl.dalelaw.dale import (
@@ -231,6 +232,7 @@ def dale_atlas(
     timeout: float = 10.0,
     workers: int = 1,
     scheduler: str | None = None,
+    progress: Callable[[str], None] | None = None,
 ) -> DaleTable:
     r"""The E/I table of the order-``order`` atlas: every, some or never (see the module text).
 
@@ -256,6 +258,8 @@ def dale_atlas(
         Processes (default 1: in this process; more use dask's local cluster).
     scheduler : str, optional
         A running dask.distributed scheduler's address.
+    progress : callable, optional
+        Called with each class's label once its row is decided (in the order they finish).
 
     Returns
     -------
@@ -266,11 +270,14 @@ def dale_atlas(
     ParameterError
         An order outside 1..2, delays the order cannot carry, an unknown class label,
         bad ``samples``, ``timeout`` or ``workers``, an unreachable ``scheduler``.
+    SymctlTypeError
+        ``progress`` is not callable.
 
     Examples
     --------
     >>> import symctl
-    >>> T = symctl.dale_atlas(2, samples=2, classes=["A1"])
+    >>> T = symctl.dale_atlas(2, samples=2, classes=["A1"], progress=print)
+    A1
     >>> T.rows[0].verdict, T.rows[0].sampled
     ('every', (2, 0, 0, 0))
     """
@@ -288,6 +295,7 @@ def dale_atlas(
     samples = bounded_int(samples, "samples", 0, MAX_SAMPLES)
     timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     workers, scheduler = pool_options(workers, scheduler)
+    step = callable_or_none(progress, "progress") or (lambda _label: None)
     gen = rng
     own, label = None, ""
     if G is not None:
@@ -320,7 +328,10 @@ def dale_atlas(
     ]
     pool = open_pool(workers, scheduler)
     try:
-        rows = list(pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]))
+        rows = []
+        for row in pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]):
+            rows.append(row)
+            step(row.label)
     finally:
         pool.close()
     rank = {c.label: i for i, c in enumerate(found)}

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import itertools
 import time
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
@@ -23,6 +23,7 @@ import sympy as sp
 
 from symctl._util.deadline import Deadline, Unfinished, deadline_of
 from symctl._util.serial import DictMixin
+from symctl._util.validate import callable_or_none
 from symctl.dalelaw.dale import (
     GENERAL_SEARCH,
     MAX_TIMEOUT,
@@ -199,6 +200,7 @@ def ei_circuit(
     actuator_delay: int | None = None,
     circuits=None,
     timeout: float = 30.0,
+    progress: Callable[[str], None] | None = None,
 ) -> EICircuit:
     r"""The cheapest circuit of ``G`` that obeys Dale's law, with interneurons where it must.
 
@@ -212,6 +214,8 @@ def ei_circuit(
     timeout : float or Deadline
         Seconds for each circuit's search (default 30, at most 3600), or a
         :class:`~symctl._util.deadline.Deadline` bounding the whole call.
+    progress : callable, optional
+        Called with each circuit's label before its search.
 
     Returns
     -------
@@ -222,6 +226,8 @@ def ei_circuit(
     ParameterError
         No searched circuit realizes ``G`` (or none was decided), an empty
         ``circuits``; the errors of :func:`~symctl.dalelaw.dale.dale`.
+    SymctlTypeError
+        ``progress`` is not callable.
 
     Examples
     --------
@@ -229,13 +235,16 @@ def ei_circuit(
     >>> from symctl import z
     >>> G = -sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3))
     >>> e = symctl.ei_circuit(G, sensor_delay=1, actuator_delay=1,
-    ...                       circuits=["observable", "controllable"])
+    ...                       circuits=["observable", "controllable"], progress=print)
+    observable
+    controllable
     >>> e.circuit, e.cost, [(c.label, c.mixed) for c in e.candidates]
     ('controllable', 0, [('observable', 1), ('controllable', 0)])
     """
     t0 = time.perf_counter()
     shared = isinstance(timeout, Deadline)
     whole = deadline_of(timeout, "timeout", MAX_TIMEOUT)
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
     G, ds, da = controller_of(G, sensor_delay, actuator_delay)
     fs = factor(G, ds, da)
     poles = poles_of(G)
@@ -243,6 +252,7 @@ def ei_circuit(
     best = None
     for circuit in _candidates(circuits, fs.G2.order):
         deadline = whole if shared else Deadline(whole.seconds)  # this circuit's search
+        step(getattr(circuit, "label", None) or getattr(circuit, "text", str(circuit)))
         try:
             label, templates = templates_of(fs, circuit)
         except ParameterError as exc:  # a class of another order, or N = 0

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import sympy as sp
 
+from symctl._util.validate import callable_or_none
 from symctl.report.document import Graphic, Heading, References, Table, Text
 from symctl.report.reference import REFERENCES, cite
 
@@ -240,7 +241,8 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
     pdf : bool
         Compile atlas.tex when ``pdflatex`` is installed.
     progress : callable, optional
-        Called with the name of each step.
+        Called with the name of each step before it runs: each drawing
+        (``"drawing atlas_overview"``, ``"drawing class_A1"``, ...), ``"documents"``, ``"pdf"``.
 
     Returns
     -------
@@ -251,6 +253,7 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
     from symctl.report.figures import save
 
     out = Path(out)
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
     written = []
     path = out / "atlas.json"
     path.write_text(json.dumps(A.to_dict(), indent=1, sort_keys=False) + "\n")
@@ -258,29 +261,28 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
     chosen = A.classes if drawings is None else A.classes[:drawings]
     drawn = []
     if chosen:
-        if progress:
-            progress("drawings")
+        step("drawing atlas_overview")
         overview = A.universal_classes[:OVERVIEW_MAX] or A.classes[:OVERVIEW_MAX]
         from symctl.plotting.atlas import draw_classes
 
         written += save(draw_classes(A, overview), out, "atlas_overview")
         if A.universal_classes and A.conjectured_classes:
+            step("drawing atlas_conjectured")
             written += save(
                 draw_classes(A, A.conjectured_classes[:OVERVIEW_MAX]), out, "atlas_conjectured"
             )
         for c in chosen:
+            step(f"drawing class_{c.label}")
             written += save(c.draw(), out, f"class_{c.label}")
             drawn.append(c.label)
-    if progress:
-        progress("documents")
+    step("documents")
     blocks = atlas_blocks(A, drawn)
     title = f"The circuit atlas of order {A.order}"
     written.append(write_markdown(blocks, out / "atlas.md", title=title))
     tex = write_tex(blocks, out / "atlas.tex", title=title)
     written.append(tex)
     if pdf:
-        if progress:
-            progress("pdf")
+        step("pdf")
         made = compile_pdf(tex)
         if made is not None:
             written.append(made)

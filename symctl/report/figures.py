@@ -58,10 +58,12 @@ from __future__ import annotations
 
 import contextlib
 import functools
+from collections.abc import Callable
 from pathlib import Path
 
 from symctl._util.display import latex
 from symctl._util.texnames import signal_tex
+from symctl._util.validate import callable_or_none
 from symctl.compatibility.assignment import DelayAssignment
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
@@ -546,6 +548,7 @@ def write_figures(
     dpi: int = DPI,
     formats: tuple[str, ...] = DEFAULT_FORMATS,
     workers=None,
+    progress: Callable[[str], None] | None = None,
 ) -> list[Path]:
     """Make and save every figure of the report (:data:`DEFAULT_FORMATS`); returns the paths.
 
@@ -570,6 +573,8 @@ def write_figures(
     workers : FigureWorkers, optional
         Workers started earlier (:class:`~symctl.report.workers.FigureWorkers`, entered);
         ``jobs`` is then not used.
+    progress : callable, optional
+        Called with each figure's name once it is saved (in the order they finish).
 
     Returns
     -------
@@ -581,6 +586,8 @@ def write_figures(
     ParameterError
         ``out`` is not a folder, ``jobs`` is not an integer >= 1, or ``formats``
         names an unknown format.
+    SymctlTypeError
+        ``progress`` is not callable.
     SymctlError
         A worker died (killed by a signal or out of memory).
 
@@ -591,7 +598,9 @@ def write_figures(
     >>> from symctl.report.figures import write_figures
     >>> res = derive_paper()
     >>> with tempfile.TemporaryDirectory() as out:  # 20 figures: a few seconds on 2 cores
-    ...     len(write_figures(res, out, jobs=2))  # doctest: +SKIP
+    ...     len(write_figures(res, out, jobs=2, progress=print))  # doctest: +SKIP
+    circuit_general
+    ...
     40
     >>> with tempfile.TemporaryDirectory() as out:
     ...     write_figures(res, out, jobs=0)
@@ -600,18 +609,24 @@ def write_figures(
     symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
     """
     out, formats = _folder(out), figure_formats(formats)
+    progress = callable_or_none(progress, "progress")
     with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
-        return start_figures(res, out, started, dpi=dpi, formats=formats)()
+        return start_figures(res, out, started, dpi=dpi, formats=formats)(progress)
 
 
 def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FORMATS):
     """Hand every figure of ``res`` to the started ``workers`` and return at once a function that
-    waits for them and gives the paths (as :func:`write_figures`): the caller works meanwhile."""
+    waits for them and gives the paths (as :func:`write_figures`, and its ``progress``)."""
     names = figure_names(res)
     task = functools.partial(_draw, out=_folder(out), dpi=dpi, formats=figure_formats(formats))
     first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
-    done = workers.submit(task, res, first)
-    return lambda: [p for name in names for p in done()[name]]
+    wait = workers.submit(task, res, first)
+
+    def paths(progress=None) -> list[Path]:
+        done = wait(progress)
+        return [p for name in names for p in done[name]]
+
+    return paths
 
 
 def _draw(res, name: str, *, out: Path, dpi: float, formats: tuple[str, ...]) -> list[Path]:

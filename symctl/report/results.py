@@ -289,9 +289,11 @@ def write_files(
     progress: Callable[[str], None] | None = None,
     formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
     workers=None,
+    parts: Callable[[str], None] | None = None,
 ) -> list[Path]:
     """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
-    the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`)."""
+    the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`).
+    ``progress`` gets each step's name, ``parts`` each figure's as it is saved."""
     step = progress or (lambda _name: None)
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
@@ -314,7 +316,7 @@ def write_files(
         ]
         if figures:
             step("figures")
-            written += pending()
+            written += pending(parts)
     written += docs
     if pdf:
         step("pdflatex")

@@ -10,13 +10,14 @@ module knows nothing of figures: a worker runs the task it is given.
 from __future__ import annotations
 
 import contextlib
+import functools
 import gc
 import multiprocessing
 import os
 import signal
 import sys
 import threading
-from concurrent.futures import FIRST_EXCEPTION, ProcessPoolExecutor, wait
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
@@ -129,22 +130,25 @@ class FigureWorkers:
         return self.submit(task, res, names)()
 
     def submit(self, task, res, names):
-        """As :meth:`map`, without waiting: returns a function that waits and gives the dict."""
+        """As :meth:`map`, without waiting: returns a function that waits and gives the dict, and
+        calls its argument ``progress`` (when not None) with each name as its task ends."""
         if self._pool is None:
-            done = {name: task(res, name) for name in names}
-            return lambda: done
+            return functools.partial(_run_here, task, res, names)
         import pickle
         import tempfile
 
         saved = tempfile.NamedTemporaryFile(prefix="symctl-figures-", suffix=".pickle")
         pickle.dump(res, saved, protocol=pickle.HIGHEST_PROTOCOL)
         saved.flush()
-        futures = {n: self._pool.submit(_worker, task, saved.name, n) for n in names}
+        futures = {self._pool.submit(_worker, task, saved.name, n): n for n in names}
 
-        def result() -> dict:
+        def result(progress=None) -> dict:
             try:
-                wait(futures.values(), return_when=FIRST_EXCEPTION)
-                return {name: future.result() for name, future in futures.items()}
+                for future in as_completed(futures):
+                    future.result()  # the first exception stops every worker
+                    if progress:
+                        progress(futures[future])
+                return {name: future.result() for future, name in futures.items()}
             except BaseException as exc:
                 self._stop()
                 if isinstance(exc, BrokenProcessPool):
@@ -156,6 +160,16 @@ class FigureWorkers:
                 saved.close()
 
         return result
+
+
+def _run_here(task, res, names, progress=None) -> dict:
+    """The tasks of :meth:`FigureWorkers.submit` without workers, one by one."""
+    done = {}
+    for name in names:
+        done[name] = task(res, name)
+        if progress:
+            progress(name)
+    return done
 
 
 _STOPS = (signal.SIGINT, signal.SIGTERM)

@@ -316,7 +316,7 @@ def test_an_unreachable_scheduler_is_one_line_exit_2_and_writes_nothing(tmp_path
     out = tmp_path / "atlas"
     assert main(["atlas", "--order", "1", "--scheduler", address, "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("symctl: error: scheduler:")
+    assert len(err) == 1 and err[0].startswith("symctl: error: --scheduler:")
     assert sorted(p.name for p in tmp_path.iterdir()) == []
 
 

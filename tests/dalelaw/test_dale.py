@@ -383,9 +383,40 @@ def test_ei_circuit_refuses_empty_or_string_circuits(circuits):
         symctl.ei_circuit(G_POS, sensor_delay=1, actuator_delay=1, circuits=circuits)
 
 
+def test_ei_circuit_reports_each_circuit_it_searches():
+    searched = []
+    e = symctl.ei_circuit(
+        G_POS,
+        sensor_delay=1,
+        actuator_delay=1,
+        circuits=["observable", "controllable"],
+        progress=searched.append,
+    )
+    assert searched == [c.label for c in e.candidates] == ["observable", "controllable"]
+    with pytest.raises(SymctlTypeError, match="progress"):
+        symctl.ei_circuit(G_POS, sensor_delay=1, actuator_delay=1, progress="x")
+
+
+@pytest.mark.parametrize(
+    ("circuit", "stages"),
+    [
+        ("controllable", ["equations", "z3", "exact witness", "witness check"]),
+        ("observable", ["equations", "z3", "G without signs"]),
+    ],
+)
+def test_dale_reports_each_stage_before_it_runs(circuit, stages):
+    seen = []
+    symctl.dale(G_POS, sensor_delay=1, actuator_delay=1, circuit=circuit, progress=seen.append)
+    assert seen == [f"{circuit}: {stage}" for stage in stages]
+
+
 # ---------------------------------------------------------------- 6: dale_atlas
-def test_dale_atlas_A1_every_A10_never():
-    T = symctl.dale_atlas(2, samples=2, classes=["A1", "A10"], timeout=TIMEOUT)
+def test_dale_atlas_A1_every_A10_never_each_reported_once_decided():
+    decided = []
+    T = symctl.dale_atlas(
+        2, samples=2, classes=["A1", "A10"], timeout=TIMEOUT, progress=decided.append
+    )
+    assert sorted(decided) == ["A1", "A10"]
     rows = {r.label: r for r in T.rows}
     assert [r.label for r in T.rows] == ["A1", "A10"]
     assert rows["A1"].verdict == "every" and rows["A1"].sampled == (2, 0, 0, 0)

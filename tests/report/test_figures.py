@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 
 from symctl import derive, derive_paper
-from symctl.errors import ParameterError
+from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting.legibility import legibility, missing_units
 from symctl.plotting.style import COLUMN, TEXT_WIDTH
 from symctl.report import figures
@@ -84,6 +84,18 @@ def test_the_slowest_figures_are_drawn_first_and_the_paths_come_in_reading_order
         ranks = [figures._drawing_rank(name) for p, name in drawn if p == pid]
         assert ranks == sorted(ranks), (pid, drawn)
     assert figures._drawing_rank("circuit_general") < figures._drawing_rank("open_loop")
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_the_figures_stage_reports_each_figure_once_it_is_saved(paper, tmp_path, monkeypatch, jobs):
+    monkeypatch.setattr(figures, "make_figure", lambda res, name: Figure(figsize=(1, 1)))
+    saved = []
+    paths = figures.write_figures(
+        paper, tmp_path, jobs=jobs, formats=("png",), progress=saved.append
+    )
+    assert sorted(saved) == sorted(figure_names(paper)) == sorted(p.stem for p in paths)
+    with pytest.raises(SymctlTypeError, match="progress"):
+        figures.write_figures(paper, tmp_path, progress="x")
 
 
 def test_every_time_series_figure_of_the_paper_is_legible_with_units_and_no_heading(paper):
