@@ -60,8 +60,14 @@ _console = Console()
         default=8,
         help="Starting points of the least-squares fit.",
     ),
-    shown("--seed", type=int, default=0, help="Seed of the starts."),
-    workers_options("Local processes running the starts (the atlas's dask path)."),
+    shown("--seed", type=int, default=0, help="Seed of the starts and the bootstrap."),
+    shown(
+        "--bootstrap",
+        type=click.IntRange(min=0),
+        default=200,
+        help="Refits behind the 95% intervals and prediction bands (0: none).",
+    ),
+    workers_options("Local processes running the starts and refits (the atlas's dask path)."),
     shown("--figures/--no-figures", default=True, help="Write the figure (fit.pdf, .svg, .png)."),
     shown("--out", default="out/fit", help="Output folder."),
 )
@@ -74,6 +80,7 @@ def fit_command(
     c_value,
     starts,
     seed,
+    bootstrap,
     workers,
     scheduler,
     figures,
@@ -105,6 +112,7 @@ def fit_command(
             C=c_value,
             starts=starts,
             rng=seed,
+            bootstrap=bootstrap,
             workers=workers,
             scheduler=scheduler,
         )

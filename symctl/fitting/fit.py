@@ -16,12 +16,16 @@ realization is built and :func:`~symctl.realization.check.check_realization` pro
 Identifiability is structural, decided without the data (:mod:`symctl.fitting.identify`).
 Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
 = \mathrm{RSS}/(m - \mathrm{rank})`, the pseudo-inverse kept to the structural rank.
+Confidence intervals and prediction bands are a parametric bootstrap
+(:mod:`symctl.fitting.uncertainty`): each refit takes Gauss-Newton steps from the fitted
+values (minimum-norm, so structurally free directions stay put), or the fit's
+Levenberg-Marquardt when a step fails to descend.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from types import MappingProxyType
 
@@ -32,7 +36,7 @@ from scipy.optimize import least_squares
 from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.exact import nearest_rational
 from symctl._util.pickling import ArrayValue
-from symctl._util.validate import bounded_int, read_only
+from symctl._util.validate import bounded_int, bounded_number, read_only
 from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
@@ -50,15 +54,24 @@ from symctl.fitting.fitargs import (
 )
 from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.fitting.identify import _structural
+from symctl.fitting.uncertainty import (
+    Prediction,
+    Uncertainty,
+    _gauss_newton,
+    _replicates,
+    _summary,
+)
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
 from symctl.realization.realization import Realization, controller_realization
 
-__all__ = ["MAX_FIT_STEPS", "MAX_NEURONS", "MAX_STARTS", "FitResult", "fit"]
+__all__ = ["MAX_BOOTSTRAP", "MAX_FIT_STEPS", "MAX_NEURONS", "MAX_STARTS", "FitResult", "fit"]
 
 MAX_STARTS = 1000
 """Most starting points of one fit."""
+MAX_BOOTSTRAP = 10_000
+"""Most refits of the bootstrap of one fit."""
 DENOMINATOR = 10**6
 """The fitted values are rationals with denominators at most this."""
 _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot flip it
@@ -78,9 +91,16 @@ class _Problem:
     data: tuple  # ((name, trace), ...)
     u: np.ndarray
     signs: tuple  # ((name, +1/-1), ...)
+    cache: dict = field(default_factory=dict, compare=False, repr=False)  # shared by replace()
 
     def model(self) -> TraceModel:
-        return TraceModel.build(self.G, self.ds, self.da, self.circuit, self.C)
+        """The trace model, built once per process (a lambdified function does not pickle)."""
+        if "model" not in self.cache:
+            self.cache["model"] = TraceModel.build(self.G, self.ds, self.da, self.circuit, self.C)
+        return self.cache["model"]
+
+    def __getstate__(self) -> dict:
+        return {**self.__dict__, "cache": {}}
 
 
 def _weights(data) -> dict:
@@ -208,6 +228,22 @@ def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray
     return out
 
 
+def _refits(problem: _Problem, theta: np.ndarray, datasets: list) -> list[tuple]:
+    """The bootstrap's refits from ``theta``: ``[(theta_b, {neuron: trace}), ...]``."""
+    model = problem.model()
+    out = []
+    for data in datasets:
+        boot = replace(problem, data=data)
+        try:
+            with np.errstate(all="ignore"):
+                th = _gauss_newton(_residual_fns(boot, model), theta, model.n_sections)
+        except np.linalg.LinAlgError:
+            th = None
+        runs = [(0.0, th)] if th is not None else _run_starts(boot, [theta])
+        out += [(th, model.traces(th, problem.u)[0]) for _, th in runs]
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class FitResult(ArrayValue):
     r"""A circuit fitted to recorded firing rates; it realizes :math:`G` exactly.
@@ -251,6 +287,10 @@ class FitResult(ArrayValue):
     identifiability : Identifiability
         The structural verdict behind ``identifiable`` and ``neuron_identifiable``, with
         its method and evidence (:func:`~symctl.fitting.identify.identifiability`).
+    uncertainty : Uncertainty
+        Practical identifiability (:mod:`symctl.fitting.uncertainty`): the parameters'
+        confidence intervals (``intervals``), the neurons' prediction bands (in
+        :meth:`predict`) and which neurons these data determine (``neuron_determined``).
 
     Examples
     --------
@@ -259,8 +299,8 @@ class FitResult(ArrayValue):
     >>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=2)
     >>> res = fit(data.select(["G1.x1", "G2.x1"]).traces, gains, sensor_delay=1,
     ...           actuator_delay=1, C=1)
-    >>> res.exact, res.circuit_class, res.identifiable["Pinv[2,1]"]
-    (True, 'general', False)
+    >>> res.exact, res.circuit_class, res.identifiable["Pinv[2,1]"], res.intervals["Pinv[2,1]"]
+    (True, 'general', False, None)
     """
 
     realization: Realization
@@ -279,9 +319,9 @@ class FitResult(ArrayValue):
     starts: int
     alternatives: tuple
     _predicted: Mapping = field(repr=False)
-    _band: Mapping = field(repr=False)
     skipped: tuple = ()
     identifiability: object = None
+    uncertainty: Uncertainty | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("neuron_identifiable", "residuals"):
@@ -289,7 +329,7 @@ class FitResult(ArrayValue):
         for name in ("params", "stderr", "identifiable"):  # Q[i,j]: the old name of Pinv[i,j]
             value = RenamedKeys(getattr(self, name), renamed_param, f"FitResult.{name}")
             object.__setattr__(self, name, value)
-        for name in ("data", "_predicted", "_band"):
+        for name in ("data", "_predicted"):
             d = {k: read_only(v, float) for k, v in getattr(self, name).items()}
             object.__setattr__(self, name, MappingProxyType(d))
         object.__setattr__(self, "t", read_only(self.t, float))
@@ -299,31 +339,65 @@ class FitResult(ArrayValue):
         """True: the fitted realization is proved to realize :math:`G` (``proof``)."""
         return bool(self.proof)
 
-    def predict(self) -> dict:
-        """Every neuron's trace at the fitted values: ``{name: (steps,) array}``."""
-        return dict(self._predicted)
+    @property
+    def intervals(self) -> Mapping:
+        """Per parameter, its confidence interval ``(lower, upper)``; None where not identifiable."""
+        return self.uncertainty.intervals
+
+    @property
+    def neuron_determined(self) -> Mapping:
+        """Per neuron: identifiable, and its prediction band narrower than its signal."""
+        return self.uncertainty.determined
+
+    def predict(self) -> Prediction:
+        """Every neuron's trace at the fitted values, ``{name: (steps,) array}`` (a dict), with
+        its band: ``.lower[name]`` and ``.upper[name]`` at ``.level`` (NaN if not identifiable).
+        """
+        u = self.uncertainty
+        return Prediction(self._predicted, self._each(u.lower), self._each(u.upper), u.level)
 
     def band(self) -> dict:
         """One standard error of each neuron's predicted trace, per step (NaN if not identifiable)."""
-        return dict(self._band)
+        return self._each(self.uncertainty.sd)
+
+    def _each(self, band: Mapping) -> dict:
+        """``band`` for every neuron, NaN where it has none."""
+        return {n: band.get(n, np.full(self.t.size, np.nan)) for n in self._predicted}
+
+    def _verdict(self, name: str) -> str:
+        if not self.neuron_identifiable[name]:
+            return "not identifiable"
+        return "identifiable" if self.neuron_determined[name] else "not determined by these data"
 
     def table(self) -> str:
-        """Plain-text report: parameters with standard errors, residuals, predictions."""
+        """Plain-text report: parameters with standard errors and intervals, residuals, predictions."""
+        u = self.uncertainty
+        level = f"{u.level:.0%}"
         lines = [f"circuit class: {self.circuit_class}; realizes G exactly: {self.exact}"]
-        lines.append(" parameter  | value       | std. error")
+        lines.append(f" parameter  | value       | std. error       | {level} interval")
         for name, v in self.params.items():
-            se = self.stderr[name]
-            text = f"{se:.3g}" if se is not None else "not identifiable"
-            lines.append(f" {name:<10} | {float(v):11.6g} | {text}")
-        lines.append(" neuron     | recorded | RMS residual | prediction")
-        for name, ok in self.neuron_identifiable.items():
+            se, iv = self.stderr[name], self.intervals[name]
+            text = f"{se:<16.3g}" if se is not None else "not identifiable"
+            band = f"[{iv[0]:.6g}, {iv[1]:.6g}]" if iv is not None else ""
+            lines.append(f" {name:<10} | {float(v):11.6g} | {text} | {band}".rstrip())
+        lines.append(f" neuron     | recorded | RMS residual | {level} band / RMS | prediction")
+        for name in self.neuron_identifiable:
             rec = name in self.residuals
             res = f"{self.residuals[name]:12.3g}" if rec else " " * 12
             lines.append(
                 f" {name:<10} | {'yes' if rec else 'no':<8} | {res} | "
-                f"{'identifiable' if ok else 'not identifiable'}"
+                f"{self._width(name):>13} | {self._verdict(name)}"
             )
         return "\n".join(lines)
+
+    def _width(self, name: str) -> str:
+        """The band's RMS half-width over the trace's RMS, as text ("" without a band)."""
+        u, trace = self.uncertainty, self._predicted[name]
+        if name not in u.lower:
+            return ""
+        half = np.sqrt(np.mean(((u.upper[name] - u.lower[name]) / 2) ** 2))
+        rms = np.sqrt(np.mean(trace**2))
+        return f"+-{half / rms:.1%}" if rms > 0 else f"+-{half:.3g}"
 
     def to_dict(self) -> dict:
         """Plain data for ``fit.json``: values as exact ``"p/q"`` text and floats."""
@@ -335,7 +409,11 @@ class FitResult(ArrayValue):
             "stderr": dict(self.stderr),
             "identifiable": dict(self.identifiable),
             "neurons": {
-                n: {"recorded": n in self.residuals, "identifiable": ok}
+                n: {
+                    "recorded": n in self.residuals,
+                    "identifiable": ok,
+                    "determined": self.neuron_determined[n],
+                }
                 for n, ok in self.neuron_identifiable.items()
             },
             "identifiability": {
@@ -343,6 +421,8 @@ class FitResult(ArrayValue):
                 "evidence": self.identifiability.evidence,
                 "exact": self.identifiability.exact,
             },
+            "intervals": {k: None if v is None else list(v) for k, v in self.intervals.items()},
+            "uncertainty": self.uncertainty.to_dict(),
             "residuals": dict(self.residuals),
             "cost": self.cost,
             "starts": self.starts,
@@ -376,6 +456,8 @@ def fit(
     steps: int | None = None,
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
+    bootstrap: int = 200,
+    level: float = 0.95,
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
@@ -410,10 +492,15 @@ def fit(
     starts : int
         Seeded starting points, at most ``MAX_STARTS`` (1000).
     rng : int, numpy Generator or None, default 0
-        Seeds the starts (``seed=`` is its deprecated name).
+        Seeds the starts and the bootstrap (``seed=`` is its deprecated name).
     workers : int, scheduler : str, optional
-        Run the starts (and classes) on the atlas's dask path (local processes, or a
-        scheduler's address).
+        Run the starts (and classes) and the bootstrap's refits on the atlas's dask path
+        (local processes, or a scheduler's address).
+    bootstrap : int, default 200
+        Refits of the parametric bootstrap behind the confidence intervals and prediction
+        bands (:mod:`symctl.fitting.uncertainty`), at most ``MAX_BOOTSTRAP``; 0: none.
+    level : float, default 0.95
+        Confidence level of the intervals and bands, in (0, 1).
 
     Returns
     -------
@@ -454,6 +541,8 @@ def fit(
             f"got {ds} and {da}"
         )
     starts = bounded_int(starts, "starts", 1, MAX_STARTS)
+    bootstrap = bounded_int(bootstrap, "bootstrap", 0, MAX_BOOTSTRAP)
+    level = bounded_number(level, "level", 0.01, 0.999)
     gen = rng
     if C is not None:
         if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
@@ -478,19 +567,18 @@ def fit(
             points = _start_points(problem, model, starts, gen)
             if pool is None:
                 pool = open_pool(workers, scheduler)
-            per = max(1, -(-len(points) // max(1, int(workers))))
-            chunks = [(problem, points[i : i + per]) for i in range(0, len(points), per)]
-            runs = [r for chunk in pool.map(_run_starts, chunks) for r in chunk]
+            runs = _on_pool(pool, workers, _run_starts, (problem,), points)
             fits.append((cls, model, neurons, problem, sorted(runs, key=lambda r: r[0])))
+        if not fits:
+            raise ParameterError(
+                "circuit: no class can take these traces: "
+                + "; ".join(f"{label}: {why}" for label, why in skipped)
+            )
+        boot = (bootstrap, level, gen, pool, max(1, int(workers)))
+        return _best(fits, t, starts, tuple(skipped), boot)
     finally:
         if pool is not None:
             pool.close()
-    if not fits:
-        raise ParameterError(
-            "circuit: no class can take these traces: "
-            + "; ".join(f"{label}: {why}" for label, why in skipped)
-        )
-    return _best(fits, data, t, starts, tuple(skipped))
 
 
 def _setup(tf, ds, da, cls, C, data, u, signs):
@@ -509,7 +597,8 @@ def _setup(tf, ds, da, cls, C, data, u, signs):
             f"traces: {samples} samples for {model.n_params} parameters "
             f"({', '.join(model.names)}); record more steps or neurons"
         )
-    problem = _Problem(tf, ds, da, cls, C, tuple(data.items()), u, _signs(signs, neurons))
+    signs = _signs(signs, neurons)
+    problem = _Problem(tf, ds, da, cls, C, tuple(data.items()), u, signs, {"model": model})
     return model, neurons, problem
 
 
@@ -537,7 +626,14 @@ def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):
     return q, fs, R2, circuit
 
 
-def _best(fits, data, t, starts, skipped=()) -> FitResult:
+def _on_pool(pool, workers, fn, args: tuple, items: list) -> list:
+    """``fn(*args, chunk)`` over ``items`` cut into one chunk per worker, results joined."""
+    per = max(1, -(-len(items) // max(1, int(workers))))
+    chunks = [(*args, items[i : i + per]) for i in range(0, len(items), per)]
+    return [r for out in pool.map(fn, chunks) for r in out]
+
+
+def _best(fits, t, starts, skipped, boot) -> FitResult:
     chosen, table = None, []
     for cls, model, neurons, problem, runs in fits:
         for cost, theta in runs:
@@ -571,17 +667,14 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
     s, V = s[keep], Vt[keep]
     dof = max(r.size - s.size, 1)
     sigma2 = float(r @ r) / dof
-    cov = (V.T / s**2) @ V * sigma2 if s.size else np.zeros((model.n_params,) * 2)
+    var = (V**2 / s[:, None] ** 2).sum(axis=0) * sigma2 if s.size else np.zeros(model.n_params)
     stderr = {
-        n: (float(np.sqrt(max(cov[i, i], 0.0))) if params_ok[n] else None)
-        for i, n in enumerate(model.names)
+        n: float(np.sqrt(var[i])) if params_ok[n] else None for i, n in enumerate(model.names)
     }
-    band = {}
-    for n in neurons:  # the prediction's standard error, in the data's units
-        if cells_ok[n]:
-            band[n] = np.sqrt(np.maximum(np.einsum("tp,pq,tq->t", jacs[n], cov, jacs[n]), 0.0))
-        else:
-            band[n] = np.full(t.size, np.nan)
+    bootstrap, level, gen, pool, workers = boot
+    datasets = _replicates(problem.data, vals, verdict.rank, bootstrap, gen)
+    refits = _on_pool(pool, workers, _refits, (problem, q), datasets)
+    predicted = {n: vals[n] for n in neurons}
     values = dict(zip(model.names, (_rational(v) for v in q), strict=True))
     alternatives = tuple(sorted(table, key=lambda a: a[1]))
     return FitResult(
@@ -600,8 +693,8 @@ def _best(fits, data, t, starts, skipped=()) -> FitResult:
         0.5 * float(r @ r),
         starts,
         alternatives,
-        {n: vals[n] for n in neurons},
-        band,
+        predicted,
         skipped,
         verdict,
+        _summary(model.names, params_ok, cells_ok, predicted, refits, level),
     )

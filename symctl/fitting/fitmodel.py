@@ -68,14 +68,16 @@ def _filter1(e: float, c: float, v: np.ndarray) -> np.ndarray:
     return lfilter([0.0, c], [1.0, -e], v, axis=0)
 
 
-def _state_filter(F: np.ndarray, H: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """:math:`x(t+1) = F x(t) + H v(t)` from rest; ``v`` ``(steps, k)`` -> ``(steps, n, k)``."""
-    steps, k = v.shape
-    n = F.shape[0]
-    out = np.zeros((steps, n, k))
-    for t in range(steps - 1):
-        out[t + 1] = F @ out[t] + H[:, None] * v[t]
-    return out
+def _state_filter(F: np.ndarray, v: np.ndarray) -> np.ndarray:
+    r""":math:`x(t+1) = F x(t) + e_n v(t)` from rest, ``F`` companion (controllable canonical):
+    :math:`x_i(t) = w(t + i - 1)`, :math:`w = v / \det(zI - F)` delayed ``n`` steps.
+    ``v`` ``(steps, k)`` -> ``(steps, n, k)``.
+    """
+    steps, n = v.shape[0], F.shape[0]
+    den = np.r_[1.0, -F[-1, ::-1]]
+    padded = np.concatenate([v, np.zeros((n - 1, v.shape[1]))])
+    w = lfilter(np.r_[np.zeros(n), 1.0], den, padded, axis=0)
+    return np.stack([w[i : i + steps] for i in range(n)], axis=1)
 
 
 def _ctrb(R: Realization) -> sp.Matrix:
@@ -185,7 +187,7 @@ class TraceModel:
         u = np.asarray(u, dtype=float)
         y1, dy1 = chain("G1", 0, ds, u, np.zeros((u.size, p)))
         # x_c and its sensitivities in one pass: columns [y1, dy1/dtheta]
-        both = _state_filter(self.F0, self.H0, np.column_stack([y1, dy1]))
+        both = _state_filter(self.F0, np.column_stack([y1, dy1]))
         xc, dxc = both[:, :, 0], both[:, :, 1:]  # (steps, n), (steps, n, p)
         e_c = theta[: 2 * k] if self.C is None else theta[:k]
         if Q is None:

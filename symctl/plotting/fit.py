@@ -2,8 +2,9 @@ r"""The fit figure: data against fit for the recorded neurons, predictions for t
 
 One panel per neuron of the fitted circuit (:meth:`FitResult.plot
 <symctl.fitting.fit.FitResult.plot>` delegates here): a recorded neuron's data (dots) and
-fitted trace, an unrecorded one's prediction with one standard error as a band (or a
-heading saying the data do not pin it down); the time axis ends where every trace settled.
+fitted trace, an unrecorded one's prediction, each with its prediction band (95% by
+default), or a heading saying the data do not pin it down (not identifiable) or do not
+determine it (a band wider than the trace); the time axis ends where every trace settled.
 
 >>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
 >>> from symctl.plotting.fit import fit_plot
@@ -65,7 +66,7 @@ def _window(t: np.ndarray, traces) -> float | None:
 def fit_plot(
     result: FitResult, ncols: int = 3, *, title: str | None = None, size: str | float = "text"
 ) -> Figure:
-    """One panel per neuron: data and fit (recorded), prediction and its band (unrecorded).
+    """One panel per neuron: data and fit (recorded), prediction (unrecorded), with their bands.
 
     Parameters
     ----------
@@ -90,7 +91,7 @@ def fit_plot(
     from matplotlib.patches import Patch
 
     ncols = positive_int(ncols, "ncols")
-    pred, band = result.predict(), result.band()
+    pred = result.predict()
     names = list(pred)
     cols = min(ncols, len(names))
     rows = -(-len(names) // cols)
@@ -105,29 +106,29 @@ def fit_plot(
         axes = grid.subplots(rows, cols, sharex=True, squeeze=False)
         for k, name in enumerate(names):
             ax = axes[k // cols, k % cols]
+            ok = bool(result.neuron_identifiable[name])
+            color = fit_c if name in result.data else pred_c if ok else lost_c
+            if np.all(np.isfinite(pred.lower[name])):
+                used.add(3)
+                ax.fill_between(
+                    t,
+                    pred.lower[name],
+                    pred.upper[name],
+                    color=color,
+                    alpha=0.3,
+                    lw=0,
+                    step="post",
+                )
+            ax.plot(t, pred[name], color=color, lw=1.2, drawstyle="steps-post")
             if name in result.data:
-                ax.plot(t, pred[name], color=fit_c, lw=1.2, drawstyle="steps-post")
                 ax.plot(t, result.data[name], ".", ms=2.5, color=data_c, zorder=3)
                 head = "recorded"
                 used.update((0, 1))
             else:
-                ok = bool(result.neuron_identifiable[name])
-                ax.plot(
-                    t, pred[name], color=pred_c if ok else lost_c, lw=1.0, drawstyle="steps-post"
-                )
                 used.add(2 if ok else 4)
-                if ok and np.all(np.isfinite(band[name])):
-                    used.add(3)
-                    ax.fill_between(
-                        t,
-                        pred[name] - band[name],
-                        pred[name] + band[name],
-                        color=pred_c,
-                        alpha=0.3,
-                        lw=0,
-                        step="post",
-                    )
                 head = "predicted" if ok else "predicted; not identifiable"
+            if ok and not result.neuron_determined[name]:
+                head += "; not determined by these data"
             ax.set_title(f"{_neuron_tex(name)} ({head})", fontsize=style.SMALL, pad=2)
             ax.axhline(0, color="black", lw=0.5)
             ax.xaxis.set_tick_params(labelbottom=k + cols >= len(names))
@@ -145,7 +146,13 @@ def fit_plot(
             Patch(color=pred_c, alpha=0.3, lw=0),
             Line2D([], [], color=lost_c),
         ]
-        texts = ["data", "fit", "prediction", "1 standard error", "prediction, not identifiable"]
+        texts = [
+            "data",
+            "fit",
+            "prediction",
+            f"{pred.level:.0%} band",
+            "prediction, not identifiable",
+        ]
         keep = sorted(used)
         style.figure_legend(fig, [handles[i] for i in keep], [texts[i] for i in keep])
     if title:

@@ -41,6 +41,11 @@ def report_text(result, source: str = "") -> str:
         "```",
         result.table(),
         "```",
+        "",
+        f"Intervals and bands: {result.uncertainty.method}; a band's half-width is shown as "
+        "its RMS over the trace's RMS, the bands step by step are in fit.json (uncertainty). "
+        "A neuron whose band is wider than its trace is *not determined by these data*, even "
+        "when the recorded neurons pin it down in principle (identifiable).",
     ]
     if len(result.alternatives) > 1:
         lines += ["", "| class | cost |", "|---|---|"]

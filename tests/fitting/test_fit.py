@@ -417,20 +417,20 @@ def test_the_shipped_example_dataset_fits(tmp_path):
 
 
 @pytest.mark.slow
-def test_starts_on_a_local_dask_cluster_give_the_serial_fit(tmp_path):
+def test_starts_and_refits_on_a_local_dask_cluster_give_the_serial_fit(tmp_path):
     # a child process, as the atlas's dask test: dask's workers leave a resource tracker
     code = (
         "import symctl\n"
         "from symctl import MuscleModel, augment, lqr_gains, synthetic_traces\n"
         "g = lqr_gains(augment(MuscleModel(), 1, 1))\n"
         "d = synthetic_traces(g, sensor_delay=1, actuator_delay=1, rng=3, steps=60)\n"
-        "kw = dict(sensor_delay=1, actuator_delay=1, C=1, starts=4, steps=60)\n"
+        "kw = dict(sensor_delay=1, actuator_delay=1, C=1, starts=4, steps=60, bootstrap=40)\n"
         "tr = d.select(['G2.x1', 'G2.y']).traces\n"
         "a = symctl.fit(tr, g, workers=2, **kw)\n"
         "b = symctl.fit(tr, g, workers=1, **kw)\n"
-        "print(a.exact, dict(a.params) == dict(b.params))\n"
+        "print(a.exact, dict(a.params) == dict(b.params), dict(a.intervals) == dict(b.intervals))\n"
     )
     run = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=240, check=True
     )
-    assert run.stdout.strip().splitlines()[-1] == "True True"
+    assert run.stdout.strip().splitlines()[-1] == "True True True"  # the bootstrap too
