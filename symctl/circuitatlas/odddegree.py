@@ -39,11 +39,13 @@ from symctl.circuitatlas.pattern import Pattern, slot_names
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import json
 import math
 import os
 import random
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -60,8 +62,8 @@ CPU_SECONDS = 30
 """CPU seconds the Groebner bases over Q(a, c) of one pattern may take, in all."""
 
 ATTEMPTS = 3
-"""Variable orders tried (the smallest bases at the rational target first), each given an
-equal share of :data:`CPU_SECONDS`."""
+"""Variable orders tried (the smallest bases at the rational target first); choosing them and
+each attempt get an equal share of :data:`CPU_SECONDS`."""
 
 
 def _rationals(rng: random.Random, k: int) -> list[sp.Rational]:
@@ -113,42 +115,56 @@ def _shape(basis, unknowns, u):
     return f, r
 
 
-def _orders(unknowns, eqs, t0: dict) -> list[tuple[list, int]]:
-    """Lex orders (each unknown last, the others forward or backward) whose basis at ``t0`` is
-    in shape position, with its degree: the smallest basis first (a cheap generic one)."""
-    at = [sp.expand(e.xreplace(t0)) for e in eqs]
-    found = []
-    for u in reversed(unknowns):
-        rest = [v for v in unknowns if v != u]
-        for order in {(*rest, u), (*rest[::-1], u)}:
-            basis = sp.groebner(at, *order, order="lex").exprs
-            shape = _shape(basis, order, u)
-            if shape is not None:
-                size = sum(len(str(g)) for g in basis)
-                found.append((size, str(order), list(order), int(sp.degree(shape[0], u))))
-    return [(order, degree) for *_, order, degree in sorted(found)]
-
-
 class _OutOfCPU(Exception):
     pass
 
 
-def _generic_basis(eqs, orders, params, seconds: float):
-    """The lex basis over Q(a, c) in the first of ``orders`` that ends within its CPU time."""
-    import signal
+@contextlib.contextmanager
+def _cpu_limit(seconds: float):
+    """Raise :class:`_OutOfCPU` inside the block once it has used ``seconds`` of CPU time
+    (in the child process: its main thread)."""
 
     def stop(*_):
         raise _OutOfCPU
 
     signal.signal(signal.SIGVTALRM, stop)
+    signal.setitimer(signal.ITIMER_VIRTUAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_VIRTUAL, 0)
+
+
+def _orders(unknowns, eqs, t0: dict, seconds: float) -> list[tuple[list, int]]:
+    """Lex orders (each unknown last, the others forward or backward) whose basis at ``t0`` is
+    in shape position, with its degree: the smallest basis first (a cheap generic one); those
+    found within ``seconds`` of CPU time."""
+    at = [sp.expand(e.xreplace(t0)) for e in eqs]
+    found = []
+    try:
+        with _cpu_limit(seconds):
+            for u in reversed(unknowns):
+                rest = [v for v in unknowns if v != u]
+                for order in {(*rest, u), (*rest[::-1], u)}:
+                    basis = sp.groebner(at, *order, order="lex").exprs
+                    shape = _shape(basis, order, u)
+                    if shape is not None:
+                        size = sum(len(str(g)) for g in basis)
+                        degree = int(sp.degree(shape[0], u))
+                        found.append((size, str(order), list(order), degree))
+    except _OutOfCPU:
+        pass
+    return [(order, degree) for *_, order, degree in sorted(found)]
+
+
+def _generic_basis(eqs, orders, params, seconds: float):
+    """The lex basis over Q(a, c) in the first of ``orders`` that ends within its CPU time."""
     for order in orders[:ATTEMPTS]:
-        signal.setitimer(signal.ITIMER_VIRTUAL, seconds / ATTEMPTS)
         try:
-            basis = sp.groebner(eqs, *order, order="lex", domain=sp.QQ.frac_field(*params))
+            with _cpu_limit(seconds / ATTEMPTS):
+                basis = sp.groebner(eqs, *order, order="lex", domain=sp.QQ.frac_field(*params))
         except _OutOfCPU:
             continue
-        finally:
-            signal.setitimer(signal.ITIMER_VIRTUAL, 0)
         return order, basis.exprs
     return None
 
@@ -168,13 +184,18 @@ def _prove(
     params = (*a, *c)
     eqs = [sp.expand(p - v) for p, v in zip((*charpoly, *numer), params, strict=True)]
     t0 = dict(zip(params, _rationals(rng, 2 * n), strict=True))
-    orders = _orders(list(unknowns), eqs, t0)
+    orders = _orders(list(unknowns), eqs, t0, seconds / (ATTEMPTS + 1))
     if not orders:
-        return {"proved": False, "why": "no unknown puts the fibre in shape position"}
+        return {
+            "proved": False,
+            "why": "no unknown put the fibre in shape position within its CPU time",
+        }
     degree = orders[0][1]
     if degree % 2 == 0:
         return {"proved": False, "why": f"the fibre has even degree {degree}", "degree": degree}
-    computed = _generic_basis(eqs, [order for order, _ in orders], params, seconds)
+    computed = _generic_basis(
+        eqs, [order for order, _ in orders], params, seconds * ATTEMPTS / (ATTEMPTS + 1)
+    )
     if computed is None:
         return {"proved": False, "why": f"no basis over Q(a, c) within {seconds:g} CPU s"}
     order, basis = computed
