@@ -24,30 +24,33 @@ pattern is universal. The basis is SymPy's Buchberger algorithm over :math:`K`, 
 order chosen at :math:`t_0` (the first unknown whose lex basis over :math:`\mathbb{Q}` is in
 shape position with :math:`D` points); each basis element is checked to vanish on the fibre
 at random rational points of the unknowns. An even :math:`D`, a basis not in shape position,
-or a computation beyond :data:`CPU_SECONDS` of CPU time (the basis is computed in a child
-process under that limit: SymPy's algorithm cannot be stopped from inside) proves nothing,
-and the pattern goes on to the screen (:mod:`~symctl.circuitatlas.screen`).
+or a computation beyond :data:`CPU_SECONDS` of CPU time proves nothing (the proofs run in a
+child process that stops itself on a CPU timer, kept for the next proofs so that SymPy is
+imported once: SymPy's algorithm cannot be stopped from another thread); an odd degree left
+unproved stays a conjecture, an even one goes on to the screen
+(:mod:`~symctl.circuitatlas.screen`).
 
->>> from symctl._util.validate import bounded_number
-from symctl.circuitatlas.pattern import Pattern, slot_names
+>>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.odddegree import odd_degree_proof
 >>> P = Pattern.from_matrices([[1, 0, 0], [1, 1, 1], [1, 1, 0]], [1, 0, 0], [1, 1, 0])
 >>> proof = odd_degree_proof(P)
->>> proof["degree"], proof["variable"]
-(3, 'M_2')
+>>> proof["proved"], proof["degree"]
+(True, 3)
 """
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import itertools
 import json
-import math
 import os
 import random
+import select
 import signal
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import sympy as sp
@@ -243,7 +246,8 @@ def odd_degree_proof(
     seed : int
         Seeds the rational target :math:`t_0`, the fixed values and the checks.
     cpu_seconds : float
-        CPU time the child process computing the basis may take.
+        CPU time the proof may take (in a child process kept for the next proofs: SymPy's
+        algorithm cannot be stopped from a thread, the child stops itself).
 
     Returns
     -------
@@ -252,47 +256,70 @@ def odd_degree_proof(
         ``{"proved": False, "why": ...}`` when the computation ended without a proof (an
         even degree, no shape position); None when it ran out of time or failed.
     """
-    root = str(Path(__file__).resolve().parents[2])
-    env = {
-        **os.environ,
-        "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")])),
-    }
     cpu_seconds = bounded_number(cpu_seconds, "cpu_seconds", 1e-6, 3600)
-    limit = math.ceil(cpu_seconds) + 10  # the child's share, then a backstop
+    request = [pattern.n, pattern.mask, seed, list(fixed), cpu_seconds]
+    with _LOCK:
+        return _PROVER.ask(request, timeout=10 * cpu_seconds + 60)
 
-    def cap():  # in the child: its CPU time is limited, then it is killed
-        import resource
 
-        resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
+class _Prover:
+    """One child process per parent process that proves patterns on request (a JSON line in,
+    one out), started on the first request and again after a failure: SymPy is imported once.
+    A request that outlives its time (the child's own CPU limits failed) kills the child."""
 
-    try:
-        run = subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "symctl.circuitatlas.odddegree",
-                str(pattern.n),
-                str(pattern.mask),
-                str(seed),
-                str(cpu_seconds),
-                *map(str, fixed),
-            ],
-            capture_output=True,
+    def __init__(self):
+        self.child = None
+        atexit.register(self.stop)
+
+    def _start(self):
+        root = str(Path(__file__).resolve().parents[2])
+        path = os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))
+        self.child = subprocess.Popen(
+            [sys.executable, "-m", "symctl.circuitatlas.odddegree"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
             text=True,
-            env=env,
-            timeout=20 * limit,
-            preexec_fn=cap,
-            check=False,
+            env={**os.environ, "PYTHONPATH": path},
         )
-    except subprocess.TimeoutExpired:
-        return None
-    if run.returncode != 0 or not run.stdout.strip():
-        return None
-    return json.loads(run.stdout.strip().splitlines()[-1])
+
+    def ask(self, request: list, timeout: float):
+        if self.child is None or self.child.poll() is not None:
+            self._start()
+        try:
+            self.child.stdin.write(json.dumps(request) + "\n")
+            self.child.stdin.flush()
+            ready, _, _ = select.select([self.child.stdout], [], [], timeout)
+            line = self.child.stdout.readline() if ready else ""
+        except (BrokenPipeError, OSError):
+            line = ""
+        if not line:
+            self.stop()
+            return None
+        return json.loads(line)
+
+    def stop(self):
+        if self.child is not None:
+            self.child.kill()
+            self.child.wait()
+            self.child = None
+
+
+_PROVER = _Prover()
+_LOCK = threading.Lock()
+
+
+def _serve() -> None:
+    """The child: prove each request read from stdin, one JSON line out per line in."""
+    sys.setrecursionlimit(10_000)
+    for line in sys.stdin:
+        n, mask, seed, fixed, seconds = json.loads(line)
+        try:
+            out = _prove(n, mask, seed, tuple(fixed), seconds)
+        except Exception as exc:  # a failure of SymPy's is no proof, and the child goes on
+            out = {"proved": False, "why": f"the proof failed: {type(exc).__name__}"}
+        print(json.dumps(out), flush=True)
 
 
 if __name__ == "__main__":
-    sys.setrecursionlimit(10_000)
-    n, mask, seed, seconds, *fixed = sys.argv[1:]
-    fixed = tuple(map(int, fixed))
-    print(json.dumps(_prove(int(n), int(mask), int(seed), fixed, float(seconds))))
+    _serve()
