@@ -501,6 +501,13 @@ AUDITED = {
     ("symctl.circuitatlas.fibre", "solve_at", "expand"): 1,
     ("symctl.circuitatlas.fibre", "solve_at", "Poly"): 0,
     ("symctl.circuitatlas.fibre", "real_solutions", "Poly"): 2,
+    # the controller's reduction: the gain symbols, the LQR's numbers and exact basis vectors
+    ("symctl.realization.reduction", "ControllerReduction.reduce", "subs"): 1,
+    ("symctl.realization.reduction", "ControllerReduction.reduce", "Poly"): 1,
+    ("symctl.realization.reduction", "ControllerReduction.reduce", "expand"): 2,
+    ("symctl.realization.reduction", "controller_reduction", "Matrix"): 4,
+    ("symctl.realization.reduction", "_directions", "Matrix"): 1,
+    ("symctl.realization.reduction", "_reason", "Matrix"): 1,
     # the odd-degree proof: a pattern's own equations, symbols and rationals (no user text)
     ("symctl.circuitatlas.odddegree", "_shape", "expand"): 1,
     ("symctl.circuitatlas.odddegree", "_orders", "expand"): 1,
