@@ -12,11 +12,14 @@ The factors of a :math:`p \times m` controller are per channel
 
 from __future__ import annotations
 
+import sympy as sp
+
 from symctl._util.display import descending_latex
+from symctl.realization.channels import channel_sections
 from symctl.realization.realizers import REALIZERS
 from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
-from symctl.report.shorthand import _eq, _num
+from symctl.report.shorthand import _eq, _num, _quotient_tex, _sections_tex, _zeros_tex
 
 __all__ = ["factorization", "realizations"]
 
@@ -26,8 +29,12 @@ def factorization(res) -> list[DocumentBlock]:
     f = res.factors
     m, p = f.channels
     xs, us = res.names
-    rows = [(rf"g_{{1,{j + 1}}}(z)", s.latex()) for j, s in enumerate(f.sensor_sections)]
-    rows += [(rf"g_{{3,{i + 1}}}(z)", s.latex()) for i, s in enumerate(f.actuator_sections)]
+    sides = [(1, f.sensor_eps, f.sensor_C, m), (3, f.actuator_eps, f.actuator_C, p)]
+    rows = [
+        (rf"g_{{{side},{k + 1}}}(z)", _sections_tex(c, e))
+        for side, eps, cs, n in sides
+        for k, (e, c) in enumerate(_per_channel(eps, cs, n))
+    ]
     blocks: list[DocumentBlock] = [
         Heading("Factorization $G = G_3 G_2 G_1$"),
         Text(
@@ -44,7 +51,9 @@ def factorization(res) -> list[DocumentBlock]:
     if rows:
         blocks += _eq(*rows, label="eq:sections")
     N2 = f.G2.num_matrix
-    if MV.show_matrix("N_2(z)", N2).full:
+    if res.abbreviated:  # each entry's zeros as products (expanded: 2^d terms)
+        entries = [(rf"(N_2)_{{{i}{j}}}", _entry_tex(f, i, j)) for (i, j), _ in f.entry_poles]
+    elif MV.show_matrix("N_2(z)", N2).full:
         entries = [("N_2(z)", N2)]
     else:  # too wide for the line: each entry in descending powers of z, broken over lines
         entries = [
@@ -66,6 +75,22 @@ def factorization(res) -> list[DocumentBlock]:
         )
     )
     return blocks
+
+
+def _per_channel(eps, cs, channels: int) -> list[tuple]:
+    """``(eps, Cs)`` of each channel's sections (``eps``, ``cs`` channel-major)."""
+    count = len(eps) // channels
+    return list(zip(*(channel_sections(x, count, channels) for x in (eps, cs)), strict=True))
+
+
+def _entry_tex(f, i: int, j: int) -> str:
+    r"""Entry :math:`(i, j)` of :math:`N_2` (from 1), its sections' zeros as products."""
+    m, p = f.channels
+    e1, c1 = _per_channel(f.sensor_eps, f.sensor_C, m)[j - 1]
+    e3, c3 = _per_channel(f.actuator_eps, f.actuator_C, p)[i - 1]
+    gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*c1, *c3)
+    zeros = " ".join(_zeros_tex(e, product=True) for e in (e1, e3) if e)
+    return f"{_quotient_tex(gain)}\\, {zeros}"
 
 
 def realizations(res) -> list[DocumentBlock]:
