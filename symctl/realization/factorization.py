@@ -177,25 +177,28 @@ class Factorization(DictMixin, LatexMixin):
             )
 
     @property
+    def section_channels(self) -> tuple[tuple, tuple]:
+        """``(eps, Cs)`` of each channel's sections: the measured signals', then the inputs'.
+
+        >>> from symctl import controller_tf, factor
+        >>> factor(controller_tf(2)).section_channels
+        ((((epsilon_1,), (C_1,)),), (((epsilon_3,), (C_3,)),))
+        """
+        sides = ((self.sensor_eps, self.sensor_C), (self.actuator_eps, self.actuator_C))
+        return tuple(
+            tuple(zip(*(channel_sections(x, len(x) // k, k) for x in side), strict=True))
+            for side, k in zip(sides, self.channels, strict=True)
+        )
+
+    @property
     def sensor_sections(self) -> tuple[DiscreteTF, ...]:
         r"""The SISO sections :math:`g_{1,j}` of each measured signal (the diagonal of ``G1``)."""
-        return self._channel_tfs(self.sensor_eps, self.sensor_C, self.channels[0])
+        return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[0])
 
     @property
     def actuator_sections(self) -> tuple[DiscreteTF, ...]:
         r"""The SISO sections :math:`g_{3,i}` of each output (the diagonal of ``G3``)."""
-        return self._channel_tfs(self.actuator_eps, self.actuator_C, self.channels[1])
-
-    def _channel_tfs(self, eps, cs, channels: int) -> tuple[DiscreteTF, ...]:
-        count = len(eps) // channels
-        return tuple(
-            _sections(e, c, self.G.dt)
-            for e, c in zip(
-                channel_sections(eps, count, channels),
-                channel_sections(cs, count, channels),
-                strict=True,
-            )
-        )
+        return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[1])
 
     @property
     def N(self) -> sp.Expr:
@@ -260,10 +263,10 @@ class Factorization(DictMixin, LatexMixin):
         """
         if self.is_siso:
             return [(None, self.poles)]
-        m, p = self.channels
-        s = channel_sections(self.sensor_eps, len(self.sensor_eps) // m, m)
-        a = channel_sections(self.actuator_eps, len(self.actuator_eps) // p, p)
-        return [((i + 1, j + 1), (*s[j], *a[i])) for i in range(p) for j in range(m)]
+        s, a = self.section_channels
+        return [
+            ((i + 1, j + 1), (*s[j][0], *a[i][0])) for i in range(len(a)) for j in range(len(s))
+        ]
 
     @property
     def G2_symbolic(self) -> DiscreteTF:

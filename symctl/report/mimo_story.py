@@ -15,7 +15,6 @@ from __future__ import annotations
 import sympy as sp
 
 from symctl._util.display import descending_latex
-from symctl.realization.channels import channel_sections
 from symctl.realization.realizers import REALIZERS
 from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
@@ -29,11 +28,10 @@ def factorization(res) -> list[DocumentBlock]:
     f = res.factors
     m, p = f.channels
     xs, us = res.names
-    sides = [(1, f.sensor_eps, f.sensor_C, m), (3, f.actuator_eps, f.actuator_C, p)]
     rows = [
         (rf"g_{{{side},{k + 1}}}(z)", _sections_tex(c, e))
-        for side, eps, cs, n in sides
-        for k, (e, c) in enumerate(_per_channel(eps, cs, n))
+        for side, channels in zip((1, 3), f.section_channels, strict=True)
+        for k, (e, c) in enumerate(channels)
     ]
     blocks: list[DocumentBlock] = [
         Heading("Factorization $G = G_3 G_2 G_1$"),
@@ -77,17 +75,9 @@ def factorization(res) -> list[DocumentBlock]:
     return blocks
 
 
-def _per_channel(eps, cs, channels: int) -> list[tuple]:
-    """``(eps, Cs)`` of each channel's sections (``eps``, ``cs`` channel-major)."""
-    count = len(eps) // channels
-    return list(zip(*(channel_sections(x, count, channels) for x in (eps, cs)), strict=True))
-
-
 def _entry_tex(f, i: int, j: int) -> str:
     r"""Entry :math:`(i, j)` of :math:`N_2` (from 1), its sections' zeros as products."""
-    m, p = f.channels
-    e1, c1 = _per_channel(f.sensor_eps, f.sensor_C, m)[j - 1]
-    e3, c3 = _per_channel(f.actuator_eps, f.actuator_C, p)[i - 1]
+    (e1, c1), (e3, c3) = f.section_channels[0][j - 1], f.section_channels[1][i - 1]
     gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*c1, *c3)
     zeros = " ".join(_zeros_tex(e, product=True) for e in (e1, e3) if e)
     return f"{_quotient_tex(gain)}\\, {zeros}"

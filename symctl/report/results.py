@@ -25,7 +25,6 @@ import sympy as sp
 from symctl._util.display import descending_str
 from symctl._util.validate import positive_int
 from symctl.derivation.derivation import CircuitRecord, PaperResults, RealizationRecord
-from symctl.realization.channels import channel_sections
 from symctl.realization.factorization import remainder
 from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
@@ -218,20 +217,17 @@ def factor_texts(self) -> dict:
     """
     f = self.factors
     N = remainder(self.G2_symbolic)[0] if f.is_siso else f.N
-    G1 = _diagonal_text(f.sensor_eps, f.sensor_C, f.channels[0])
-    G3 = _diagonal_text(f.actuator_eps, f.actuator_C, f.channels[1])
+    G1, G3 = map(_diagonal_text, f.section_channels)
     if not self.abbreviated:
         G2 = str(f.G2)
     elif f.is_siso:
         gain = f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C)
         G2 = f"({sp.sstr(gain)})*{_zeros_text(f.poles)}/({descending_str(f.G.den)})"
     else:
-        m, p = f.channels
-        C1 = channel_sections(f.sensor_C, len(f.sensor_C) // m, m)
-        C3 = channel_sections(f.actuator_C, len(f.actuator_C) // p, p)
-        rows = [[""] * m for _ in range(p)]
+        sensors, actuators = f.section_channels
+        rows = [[""] * len(sensors) for _ in actuators]
         for (i, j), poles in f.entry_poles:
-            gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*C3[i - 1], *C1[j - 1])
+            gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*actuators[i - 1][1], *sensors[j - 1][1])
             rows[i - 1][j - 1] = f"({sp.sstr(gain)})*{_zeros_text(poles)}"
         G2 = "[" + ", ".join(f"[{', '.join(r)}]" for r in rows) + f"]/({descending_str(f.G.den)})"
     N = _text_matrix(N) if isinstance(N, sp.MatrixBase) else sp.sstr(N)
@@ -332,20 +328,18 @@ def _zeros_text(poles) -> str:
     )
 
 
-def _diagonal_text(eps, cs, channels: int) -> str:
+def _diagonal_text(channels) -> str:
     """``G1`` or ``G3``: ``(C...)/((z - e1)*...)`` per channel, a diagonal matrix for several."""
-    count = len(eps) // channels
     entries = []
-    for e, c in zip(
-        channel_sections(eps, count, channels), channel_sections(cs, count, channels), strict=True
-    ):
+    for e, c in channels:
         zeros = _zeros_text(e)
-        entries.append(
-            "1" if not e else f"({sp.sstr(sp.Mul(*c))})/" + (zeros if len(e) == 1 else f"({zeros})")
-        )
-    if channels == 1:
+        den = zeros if len(e) == 1 else f"({zeros})"
+        entries.append(f"({sp.sstr(sp.Mul(*c))})/{den}" if e else "1")
+    if len(entries) == 1:
         return entries[0]
-    rows = (", ".join(x if i == j else "0" for j in range(channels)) for i, x in enumerate(entries))
+    rows = (
+        ", ".join(x if i == j else "0" for j in range(len(entries))) for i, x in enumerate(entries)
+    )
     return "[" + ", ".join(f"[{r}]" for r in rows) + "]"
 
 
