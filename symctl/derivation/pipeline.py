@@ -64,8 +64,8 @@ SYMBOLIC_P_MAX_ORDER = 3
 
 MIMO_EXACT_MAX_ORDER = 12
 """Largest symbolic realization (states) whose check is an exact proof (else randomized, with
-its Schwartz-Zippel bound): beyond, the exact check of the paper's controller alone took 8 s
-at T = 20. The name is kept from when it bounded MIMO realizations only."""
+its Schwartz-Zippel bound): beyond, the exact check of the paper's controller alone takes 8 s
+at T = 20."""
 
 MIMO_MAX_ORDER = 48
 """Largest MIMO block realization (states) whose structures and circuits derive builds."""

@@ -293,7 +293,7 @@ def test_search_work_is_bounded_by_max_decisions():
 
 
 def test_the_path_construction_of_a_long_chain_realizes_the_abbreviated_G2():
-    # expanded, the zeros of T sections have 2^T monomials (T = 20 took over ten minutes)
+    # expanded, the zeros of T sections have 2^T monomials (minutes at T = 20)
     from symctl import controller_tf, factor
 
     T = 10

@@ -108,7 +108,7 @@ def test_an_overview_with_an_empty_title_has_no_heading():
 
 
 def test_the_overview_of_a_structure_without_parts_is_one_box():
-    # the IFP structure at T = 20 with its vertex bands is past the page: symctl paper failed
+    # the IFP structure at T = 20 with its vertex bands is past the page (symctl paper)
     from symctl import ifp_structure
 
     fig = draw_structure_overview(ifp_structure(20))

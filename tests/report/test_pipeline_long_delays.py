@@ -53,8 +53,8 @@ FOREARM = Path(__file__).resolve().parents[1] / "data" / "forearm_long_delays.to
 
 
 def test_a_forearm_at_T_8_writes_its_factors_as_products(tmp_path):
-    # before: G1 over a common denominator (18,000 characters here), the MIMO G2 and its
-    # realizations expanded (2^8 monomials per coefficient): a 1.35 MB results.json
+    # over a common denominator G1 has 18,000 characters here, and the MIMO G2 and its
+    # realizations expanded have 2^8 monomials per coefficient: a 1.35 MB results.json
     from symctl import derive, load_model, load_results
 
     res = derive(load_model(FOREARM))

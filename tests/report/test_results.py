@@ -69,7 +69,7 @@ def test_write_without_figures_lists_what_it_wrote(res, tmp_path):
 
 
 def test_long_mimo_factors_are_written_as_products_of_their_sections():
-    # a 1 x 2 controller at T = 4 + 4: over a common denominator G1 took 18,000 characters
+    # a 1 x 2 controller at T = 4 + 4: over a common denominator G1 has 18,000 characters
     from types import SimpleNamespace
 
     import sympy as sp
