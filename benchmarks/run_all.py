@@ -35,6 +35,7 @@ SCRIPTS = (
     ("atlas.py", ()),
     ("atlas_screen.py", ("--orders", "3")),  # order 4: hours on 2 cores; run it by hand
     ("examples.py", ()),
+    ("long_delays.py", ()),
     ("dale.py", ("--workers", "2")),
     ("fit.py", ()),
     ("figures.py", ()),

@@ -57,7 +57,10 @@ class PathPart:
     vertex_of : dict
         Each signal's vertex, on the path.
     realization : Realization or None
-        The series realization when every edge has at most one step (else None).
+        The series realization when every edge has at most one step (else None); beyond
+        :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections its
+        :math:`G_2` is :meth:`~symctl.realization.factorization.Factorization.abbreviated`
+        (substitute :meth:`~symctl.realization.factorization.Factorization.sigma_values`).
     label : str
         Which part it is, e.g. ``"G[1,2]"`` for an entry of a MIMO controller.
 
@@ -253,7 +256,8 @@ def along_path(
     ma = len(crossing) - ms
     f = factor(tf, ms, ma)
     extra = sum(crossing) - len(crossing)
-    G2 = f.G2 if not extra else DiscreteTF.from_expr(sp.cancel(f.G2.expr * z**extra))
+    G2 = f.G2_symbolic  # beyond EXPANDED_ZEROS_MAX sections its zeros are sigma_k
+    G2 = G2 if not extra else DiscreteTF.from_expr(sp.cancel(G2.expr * z**extra))
     realizer = get_realizer(base, "base", where=lambda r: r.keeps_symbols)
     n = G2.order
     options = {"P": sp.eye(n) + sp.ones(n, n)} if realizer.takes_transform else {}

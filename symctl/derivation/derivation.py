@@ -195,7 +195,7 @@ class Derivation:
         The linear controller around the nonlinear muscle.
     G2_symbolic : DiscreteTF, optional
         The :math:`G_2` the symbolic realizations realize: ``factors.G2``
-        (the default), or beyond :data:`~symctl.derivation.pipeline.EXPANDED_ZEROS_MAX`
+        (the default), or beyond :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX`
         sections ``factors.abbreviated()``, its zeros' coefficients written
         :math:`\sigma_k = e_k(\epsilon)`.
     atlas, candidates : optional

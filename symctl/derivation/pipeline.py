@@ -52,6 +52,7 @@ from symctl.neural.nonlinear import longest_delay, nonlinear_check
 from symctl.neural.simulate import closed_loop_response, open_loop_response
 from symctl.realization.check import check_realization
 from symctl.realization.draws import Draw, draw_realizations
+from symctl.realization.factorization import EXPANDED_ZEROS_MAX as EXPANDED_ZEROS_MAX
 from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realizers import REALIZERS
 from symctl.realization.reduction import controller_reduction
@@ -62,13 +63,10 @@ __all__ = ["derive", "derive_paper"]
 SYMBOLIC_P_MAX_ORDER = 3
 """Order up to which the general realization keeps a fully symbolic ``P``."""
 
-EXPANDED_ZEROS_MAX = 4
-r"""Sections up to which the symbolic :math:`G_2` is realized with its zeros multiplied out
-(:math:`2^d` monomials); beyond, :meth:`~symctl.realization.factorization.Factorization.abbreviated`
-writes their coefficients :math:`\sigma_k = e_k(\epsilon)`."""
-
 MIMO_EXACT_MAX_ORDER = 12
-"""Largest symbolic MIMO realization (states) whose check is an exact proof (else randomized)."""
+"""Largest symbolic realization (states) whose check is an exact proof (else randomized, with
+its Schwartz-Zippel bound): beyond, the exact check of the paper's controller alone takes 8 s
+at T = 20."""
 
 MIMO_MAX_ORDER = 48
 """Largest MIMO block realization (states) whose structures and circuits derive builds."""
@@ -347,8 +345,7 @@ def _derive(spec: Model, step) -> Derivation:
         factors = factor(G_symbolic, ds, da)
         verified = factors.verify()
         step("realizations")
-        long = factors.is_siso and len(factors.poles) > EXPANDED_ZEROS_MAX
-        G2_symbolic = factors.abbreviated() if long else factors.G2
+        G2_symbolic = factors.G2_symbolic
         names = [k for k in kinds if not REALIZERS[k].controller]
         # the realizations the circuits simulate, drawn from the seed (one stream per circuit)
         G_exact = factors.G.subs(gains.substitutions(exact=True))
@@ -524,9 +521,9 @@ def _realizations(
 
 def _check(result, G2, transformed: bool):
     """The check of a realizer's result (a transformed one through its base): exact, but
-    randomized beyond :data:`MIMO_EXACT_MAX_ORDER` symbolic MIMO states (minutes otherwise)."""
+    randomized beyond :data:`MIMO_EXACT_MAX_ORDER` symbolic states (seconds to minutes otherwise)."""
     R = result.realization
-    big = not G2.is_siso and R.n > MIMO_EXACT_MAX_ORDER and bool(R.free_symbols)
+    big = R.n > MIMO_EXACT_MAX_ORDER and bool(R.free_symbols)
     method = "auto" if big else "exact"
     if transformed:  # P F = F0 P, ...: multiplies, never raises a dense F to powers
         return check_realization(R, G2, method, similar_to=(result.base, result.P))

@@ -410,7 +410,7 @@ def _count_lines(k: dict[str, int]) -> tuple[str, str]:
 def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
     """The parts in rows, and whether they are parallel pathways (one row each; a series
     snakes in rows of ``per_row``)."""
-    order = [p for p, _ in parts_in_order(S) if p]
+    order = [p for p, _ in parts_in_order(S) if p] or [""]  # no parts (IFP): one box
     if series_parts(S) is None and len({p.partition(".")[0] for p in order}) > 1:
         groups: dict[str, list[str]] = {}
         for p in order:

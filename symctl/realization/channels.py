@@ -82,10 +82,13 @@ def channel_sections(values: tuple, count: int, channels: int) -> tuple[tuple, .
     return tuple(values[j * count : (j + 1) * count] for j in range(channels))
 
 
-def mimo_G2(tf: DiscreteTF, sens_eps, sens_C, act_eps, act_C, ds: int, da: int) -> DiscreteTF:
+def mimo_G2(
+    tf: DiscreteTF, sens_eps, sens_C, act_eps, act_C, ds: int, da: int, zeros=None
+) -> DiscreteTF:
     r""":math:`(G_2)_{ij} = N_{ij} Z_{3,i} Z_{1,j} / (C_{3,i} C_{1,j} d)`, over G's denominator.
 
-    ``sens_*`` and ``act_*`` are channel-major flat tuples (``m * ds`` and ``p * da``).
+    ``sens_*`` and ``act_*`` are channel-major flat tuples (``m * ds`` and ``p * da``);
+    ``zeros(i, j)``, when given, is written for :math:`Z_{3,i} Z_{1,j}` (from 0).
     """
     p, m = _check_shape(tf)
     e1, c1 = channel_sections(sens_eps, ds, m), channel_sections(sens_C, ds, m)
@@ -95,7 +98,8 @@ def mimo_G2(tf: DiscreteTF, sens_eps, sens_C, act_eps, act_C, ds: int, da: int) 
     C1 = [sp.Mul(*c1[j]) for j in range(m)]
     C3 = [sp.Mul(*c3[i]) for i in range(p)]
     num = tf.num_matrix
-    entries = sp.Matrix(p, m, lambda i, j: sp.expand(num[i, j] * Z3[i] * Z1[j]) / (C3[i] * C1[j]))
+    zeros = zeros or (lambda i, j: Z3[i] * Z1[j])
+    entries = sp.Matrix(p, m, lambda i, j: sp.expand(num[i, j] * zeros(i, j)) / (C3[i] * C1[j]))
     return DiscreteTF(entries, tf.den, tf.dt)
 
 

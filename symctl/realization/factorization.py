@@ -48,7 +48,19 @@ from symctl.realization.channels import (
 )
 from symctl.symbols import z
 
-__all__ = ["Factorization", "factor", "remainder", "section_symbols", "sigma_symbols"]
+__all__ = [
+    "EXPANDED_ZEROS_MAX",
+    "Factorization",
+    "factor",
+    "remainder",
+    "section_symbols",
+    "sigma_symbols",
+]
+
+EXPANDED_ZEROS_MAX = 4
+r"""Sections per entry of :math:`G_2` up to which its symbolic realizations take its zeros
+multiplied out (:math:`2^d` monomials); beyond, :meth:`Factorization.abbreviated` writes their
+coefficients :math:`\sigma_k = e_k(\epsilon)` (:attr:`Factorization.G2_symbolic`)."""
 
 
 @cache
@@ -71,15 +83,27 @@ def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple
 
 
 @cache
-def sigma_symbols(count: int) -> tuple[sp.Symbol, ...]:
+def sigma_symbols(count: int, entry: tuple[int, int] | None = None) -> tuple[sp.Symbol, ...]:
     r"""The abbreviations :math:`\sigma_1, \dots, \sigma_d`: :math:`\prod_{i=1}^{d} (z - \epsilon_i)
     = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`, :math:`\sigma_k = e_k(\epsilon)` (Vieta).
 
+    ``entry=(i, j)`` names those of entry :math:`(i, j)` of a MIMO :math:`G_2`
+    :math:`\sigma_{i,j,k}` (indices from 1).
+
     >>> from symctl.realization.factorization import sigma_symbols
-    >>> sigma_symbols(3)
-    (sigma_1, sigma_2, sigma_3)
+    >>> sigma_symbols(3), sigma_symbols(2, (1, 2))
+    ((sigma_1, sigma_2, sigma_3), (sigma_{1,2,1}, sigma_{1,2,2}))
     """
-    return tuple(sp.Symbol(f"sigma_{k}", real=True) for k in range(1, count + 1))
+    at = "{},{},".format(*entry) if entry else ""
+    return tuple(
+        sp.Symbol(f"sigma_{{{at}{k}}}" if at else f"sigma_{k}", real=True)
+        for k in range(1, count + 1)
+    )
+
+
+def _zeros_poly(sigma: tuple) -> sp.Expr:
+    d = len(sigma)
+    return sp.Add(z**d, *((-1) ** k * s * z ** (d - k) for k, s in enumerate(sigma, start=1)))
 
 
 def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
@@ -153,25 +177,28 @@ class Factorization(DictMixin, LatexMixin):
             )
 
     @property
+    def section_channels(self) -> tuple[tuple, tuple]:
+        """``(eps, Cs)`` of each channel's sections: the measured signals', then the inputs'.
+
+        >>> from symctl import controller_tf, factor
+        >>> factor(controller_tf(2)).section_channels
+        ((((epsilon_1,), (C_1,)),), (((epsilon_3,), (C_3,)),))
+        """
+        sides = ((self.sensor_eps, self.sensor_C), (self.actuator_eps, self.actuator_C))
+        return tuple(
+            tuple(zip(*(channel_sections(x, len(x) // k, k) for x in side), strict=True))
+            for side, k in zip(sides, self.channels, strict=True)
+        )
+
+    @property
     def sensor_sections(self) -> tuple[DiscreteTF, ...]:
         r"""The SISO sections :math:`g_{1,j}` of each measured signal (the diagonal of ``G1``)."""
-        return self._channel_tfs(self.sensor_eps, self.sensor_C, self.channels[0])
+        return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[0])
 
     @property
     def actuator_sections(self) -> tuple[DiscreteTF, ...]:
         r"""The SISO sections :math:`g_{3,i}` of each output (the diagonal of ``G3``)."""
-        return self._channel_tfs(self.actuator_eps, self.actuator_C, self.channels[1])
-
-    def _channel_tfs(self, eps, cs, channels: int) -> tuple[DiscreteTF, ...]:
-        count = len(eps) // channels
-        return tuple(
-            _sections(e, c, self.G.dt)
-            for e, c in zip(
-                channel_sections(eps, count, channels),
-                channel_sections(cs, count, channels),
-                strict=True,
-            )
-        )
+        return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[1])
 
     @property
     def N(self) -> sp.Expr:
@@ -205,15 +232,56 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def sigma(self) -> tuple[sp.Symbol, ...]:
-        r"""The abbreviations :math:`\sigma_k` of :meth:`abbreviated` (:func:`sigma_symbols`)."""
-        return sigma_symbols(len(self.poles))
+        r"""The abbreviations :math:`\sigma` of :meth:`abbreviated` (:func:`sigma_symbols`)."""
+        return tuple(self.sigma_poles)
+
+    @property
+    def sigma_poles(self) -> dict:
+        r"""Each :math:`\sigma` of :meth:`abbreviated` with ``(k, poles)``: it is :math:`e_k` of them.
+
+        SISO: :math:`\sigma_k` of every section pole; MIMO: :math:`\sigma_{i,j,k}` of entry
+        :math:`(i, j)`'s, the sections of measured signal :math:`j` then those of input :math:`i`.
+
+        >>> from symctl import controller_tf, factor
+        >>> factor(controller_tf(2)).sigma_poles
+        {sigma_1: (1, (epsilon_1, epsilon_3)), sigma_2: (2, (epsilon_1, epsilon_3))}
+        """
+        return {
+            s: (k, poles)
+            for entry, poles in self.entry_poles
+            for k, s in enumerate(sigma_symbols(len(poles), entry), start=1)
+        }
+
+    @property
+    def entry_poles(self) -> list[tuple]:
+        """``((i, j), poles)`` for each entry of :attr:`G2` (from 1; ``(None, poles)`` when SISO):
+        the poles of the sections it crosses, measured signal :math:`j`'s then input :math:`i`'s.
+
+        >>> from symctl import controller_tf, factor
+        >>> factor(controller_tf(2)).entry_poles
+        [(None, (epsilon_1, epsilon_3))]
+        """
+        if self.is_siso:
+            return [(None, self.poles)]
+        s, a = self.section_channels
+        return [
+            ((i + 1, j + 1), (*s[j][0], *a[i][0])) for i in range(len(a)) for j in range(len(s))
+        ]
+
+    @property
+    def G2_symbolic(self) -> DiscreteTF:
+        """:attr:`G2` as the symbolic realizations take it: itself up to
+        :data:`EXPANDED_ZEROS_MAX` sections per entry, beyond :meth:`abbreviated`."""
+        long = len(self.entry_poles[0][1]) > EXPANDED_ZEROS_MAX
+        return self.abbreviated() if long else self.G2
 
     def abbreviated(self) -> DiscreteTF:
         r""":math:`G_2` with the coefficients of its zeros written as :math:`\sigma_k`.
 
         The expanded :attr:`G2` has :math:`2^d` monomials in its zeros' coefficients, this form
         :math:`d`, so its realizations stay small at any delay; one realizes :attr:`G2` at
-        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`).
+        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`). Each entry of a MIMO
+        :math:`G_2` has its own :math:`\sigma_{i,j,k}` (:attr:`sigma_poles`).
 
         Examples
         --------
@@ -224,13 +292,16 @@ class Factorization(DictMixin, LatexMixin):
         >>> f.abbreviated().subs(f.sigma_values()).equals(f.G2)
         True
         """
-        self._siso_only("abbreviated")
-        d = len(self.poles)
-        zeros = sp.Add(
-            z**d, *((-1) ** k * s * z ** (d - k) for k, s in enumerate(self.sigma, start=1))
-        )
+        if not self.is_siso:
+            sigma = {e: sigma_symbols(len(poles), e) for e, poles in self.entry_poles}
+            m, p = self.channels
+            ds, da = len(self.sensor_eps) // m, len(self.actuator_eps) // p
+            sides = (self.sensor_eps, self.sensor_C, self.actuator_eps, self.actuator_C)
+            return mimo_G2(
+                self.G, *sides, ds, da, zeros=lambda i, j: _zeros_poly(sigma[i + 1, j + 1])
+            )
         scale = sp.Mul(*self.sensor_C, *self.actuator_C)
-        return DiscreteTF(self.G.num / scale * zeros, self.G.den, self.G.dt)
+        return DiscreteTF(self.G.num / scale * _zeros_poly(self.sigma), self.G.den, self.G.dt)
 
     def sigma_values(self, values=None) -> dict:
         r""":math:`\sigma_k = e_k(\epsilon)` of the section poles, keyed by :attr:`sigma`.
@@ -256,21 +327,19 @@ class Factorization(DictMixin, LatexMixin):
         >>> f.sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
         {sigma_1: 5/6, sigma_2: 1/6}
         """
-        poles = [to_expr(p, "poles") for p in self.poles]
+        poles = {p: to_expr(p, "poles") for p in self.poles}
         if values is not None:
-            rule, flags = subs_rule((values,), {}, set().union(*(p.free_symbols for p in poles)))
-            poles = [p.subs(rule, **flags) for p in poles]
-        if all(p.is_Rational for p in poles):
-            poly = fmpq_poly([1])
-            for p in poles:
-                poly *= fmpq_poly([-fmpq(int(p.p), int(p.q)), 1])
-            coeffs = [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
-        else:
-            coeffs = sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()
-        return {
-            s: (-1) ** k * sp.expand(c)
-            for k, (s, c) in enumerate(zip(self.sigma, coeffs[1:], strict=True), start=1)
-        }
+            free = set().union(*(p.free_symbols for p in poles.values()))
+            rule, flags = subs_rule((values,), {}, free)
+            poles = {k: p.subs(rule, **flags) for k, p in poles.items()}
+        out = {}
+        for entry, group in self.entry_poles:
+            coeffs = _vieta([poles[p] for p in group])
+            for k, (s, c) in enumerate(
+                zip(sigma_symbols(len(group), entry), coeffs[1:], strict=True), 1
+            ):
+                out[s] = (-1) ** k * c
+        return out
 
     def verify(self, rtol: float = 1e-9) -> Proof:
         """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication).
@@ -372,6 +441,17 @@ class Factorization(DictMixin, LatexMixin):
             else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}")
         )
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
+
+
+def _vieta(poles: list) -> list:
+    r"""The coefficients of :math:`\prod (z - p)`, descending: exact in python-flint when every
+    pole is a number, else SymPy polynomials."""
+    if all(p.is_Rational for p in poles):
+        poly = fmpq_poly([1])
+        for p in poles:
+            poly *= fmpq_poly([-fmpq(int(p.p), int(p.q)), 1])
+        return [sp.Rational(int(c.p), int(c.q)) for c in reversed(poly.coeffs())]
+    return [sp.expand(c) for c in sp.Poly(sp.Mul(*(z - p for p in poles)), z).all_coeffs()]
 
 
 def _check_C(values) -> None:

@@ -21,7 +21,7 @@ from symctl._util.display import descending_latex
 from symctl.realization.realizers import REALIZERS
 from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
-from symctl.report.shorthand import _eq, _num
+from symctl.report.shorthand import _eq, _num, _quotient_tex, _sections_tex, _zeros_tex
 
 __all__ = ["factorization", "realizations", "reduction"]
 
@@ -66,8 +66,11 @@ def factorization(res) -> list[DocumentBlock]:
     f = res.factors
     m, p = f.channels
     xs, us = res.names
-    rows = [(rf"g_{{1,{j + 1}}}(z)", s.latex()) for j, s in enumerate(f.sensor_sections)]
-    rows += [(rf"g_{{3,{i + 1}}}(z)", s.latex()) for i, s in enumerate(f.actuator_sections)]
+    rows = [
+        (rf"g_{{{side},{k + 1}}}(z)", _sections_tex(c, e))
+        for side, channels in zip((1, 3), f.section_channels, strict=True)
+        for k, (e, c) in enumerate(channels)
+    ]
     blocks: list[DocumentBlock] = [
         Heading("Factorization $G = G_3 G_2 G_1$"),
         Text(
@@ -84,7 +87,9 @@ def factorization(res) -> list[DocumentBlock]:
     if rows:
         blocks += _eq(*rows, label="eq:sections")
     N2 = f.G2.num_matrix
-    if MV.show_matrix("N_2(z)", N2).full:
+    if res.abbreviated:  # each entry's zeros as products (expanded: 2^d terms)
+        entries = [(rf"(N_2)_{{{i}{j}}}", _entry_tex(f, i, j)) for (i, j), _ in f.entry_poles]
+    elif MV.show_matrix("N_2(z)", N2).full:
         entries = [("N_2(z)", N2)]
     else:  # too wide for the line: each entry in descending powers of z, broken over lines
         entries = [
@@ -106,6 +111,14 @@ def factorization(res) -> list[DocumentBlock]:
         )
     )
     return blocks
+
+
+def _entry_tex(f, i: int, j: int) -> str:
+    r"""Entry :math:`(i, j)` of :math:`N_2` (from 1), its sections' zeros as products."""
+    (e1, c1), (e3, c3) = f.section_channels[0][j - 1], f.section_channels[1][i - 1]
+    gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*c1, *c3)
+    zeros = " ".join(_zeros_tex(e, product=True) for e in (e1, e3) if e)
+    return f"{_quotient_tex(gain)}\\, {zeros}"
 
 
 def realizations(res) -> list[DocumentBlock]:

@@ -228,19 +228,25 @@ def _simulation_json(self) -> dict:
 def factor_texts(self) -> dict:
     """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text (``results.json``'s).
 
-    Beyond :data:`~symctl.derivation.pipeline.EXPANDED_ZEROS_MAX` sections, the product
-    forms: expanded, the zeros have :math:`2^d` terms.
+    The sections of ``G1`` and ``G3`` are written as products, each diagonal entry of a MIMO one
+    over its own; beyond :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections,
+    so are the zeros of ``G2``: expanded, they have :math:`2^d` terms.
     """
     f = self.factors
     N = remainder(self.G2_symbolic)[0] if f.is_siso else f.N
-    if self.abbreviated:
-        sides = [(f.sensor_C, f.sensor_eps, 1), (f.actuator_C, f.actuator_eps, 1)]
-        G1, G3 = (_product_text(sp.Mul(*c), e, d) for c, e, d in sides)
-        G2 = _product_text(
-            f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C), f.poles, f.G.den, zeros=True
-        )
+    G1, G3 = map(_diagonal_text, f.section_channels)
+    if not self.abbreviated:
+        G2 = str(f.G2)
+    elif f.is_siso:
+        gain = f.G.num / sp.Mul(*f.sensor_C, *f.actuator_C)
+        G2 = f"({sp.sstr(gain)})*{_zeros_text(f.poles)}/({descending_str(f.G.den)})"
     else:
-        G1, G2, G3 = str(f.G1), str(f.G2), str(f.G3)
+        sensors, actuators = f.section_channels
+        rows = [[""] * len(sensors) for _ in actuators]
+        for (i, j), poles in f.entry_poles:
+            gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*actuators[i - 1][1], *sensors[j - 1][1])
+            rows[i - 1][j - 1] = f"({sp.sstr(gain)})*{_zeros_text(poles)}"
+        G2 = "[" + ", ".join(f"[{', '.join(r)}]" for r in rows) + f"]/({descending_str(f.G.den)})"
     N = _text_matrix(N) if isinstance(N, sp.MatrixBase) else sp.sstr(N)
     return {"G1": G1, "G2": G2, "G3": G3, "N": N}
 
@@ -249,12 +255,14 @@ def _factorization_json(self) -> dict:
     f = self.factors
     # a MIMO G has a matrix feed-through; the rewritten G2 is the SISO form
     coeffs = remainder(self.G2_symbolic)[1] if f.is_siso else []
-    poles = ", ".join(map(str, f.poles))
     return {
         **factor_texts(self),
         "channels": list(f.channels),
         "remainder_coeffs": [sp.sstr(c) for c in coeffs],
-        "abbreviations": {str(s): f"e_{k}({poles})" for k, s in enumerate(f.sigma, start=1)}
+        "abbreviations": {
+            str(s): f"e_{k}({', '.join(map(str, poles))})"
+            for s, (k, poles) in f.sigma_poles.items()
+        }
         if self.abbreviated
         else {},
         "verified": bool(self.verified),
@@ -331,15 +339,27 @@ def _section_C(params: dict) -> list[str]:
     return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
 
 
-def _product_text(gain, poles, den, *, zeros: bool = False) -> str:
-    """``gain*(z - p1)*.../(den)`` (zeros) or ``(gain)/((z - p1)*...)``, nothing multiplied out."""
-    factors = "*".join(
-        f"(z - {sp.sstr(p)})" if p.is_Atom else f"(z - ({sp.sstr(p)}))" for p in poles
+def _zeros_text(poles) -> str:
+    """``(z - p1)*(z - p2)*...``, nothing multiplied out ("1": no poles)."""
+    return (
+        "*".join(f"(z - {sp.sstr(p)})" if p.is_Atom else f"(z - ({sp.sstr(p)}))" for p in poles)
+        or "1"
     )
-    factors = factors or "1"
-    if zeros:
-        return f"({sp.sstr(gain)})*{factors}/({descending_str(den)})"
-    return f"({sp.sstr(gain)})/({factors})"
+
+
+def _diagonal_text(channels) -> str:
+    """``G1`` or ``G3``: ``(C...)/((z - e1)*...)`` per channel, a diagonal matrix for several."""
+    entries = []
+    for e, c in channels:
+        zeros = _zeros_text(e)
+        den = zeros if len(e) == 1 else f"({zeros})"
+        entries.append(f"({sp.sstr(sp.Mul(*c))})/{den}" if e else "1")
+    if len(entries) == 1:
+        return entries[0]
+    rows = (
+        ", ".join(x if i == j else "0" for j in range(len(entries))) for i, x in enumerate(entries)
+    )
+    return "[" + ", ".join(f"[{r}]" for r in rows) + "]"
 
 
 def _poly_text(value) -> str | list:

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 from symctl.derivation.paper import PAPER, PaperSpec
-from symctl.derivation.pipeline import EXPANDED_ZEROS_MAX, SYMBOLIC_P_MAX_ORDER
+from symctl.derivation.pipeline import SYMBOLIC_P_MAX_ORDER
+from symctl.realization.factorization import EXPANDED_ZEROS_MAX
 
 __all__ = [
     "CIRCUITS",

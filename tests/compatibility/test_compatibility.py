@@ -290,3 +290,17 @@ def test_search_work_is_bounded_by_max_decisions():
     assert bool(check_compatibility(S, E, method="search", max_decisions=10**6)) == bool(r)
     with pytest.raises(SymctlTypeError, match="max_decisions"):
         check_compatibility(S, E, max_decisions=1.5)
+
+
+def test_the_path_construction_of_a_long_chain_realizes_the_abbreviated_G2():
+    # expanded, the zeros of T sections have 2^T monomials (minutes at T = 20)
+    from symctl import controller_tf, factor
+
+    T = 10
+    r = controller_compatibility(controller_tf(T), DelayGraph.chain([1] * T))
+    assert r.ok
+    R = r.parts[0].realization
+    sigma = set(factor(controller_tf(T), T // 2, T - T // 2).sigma)
+    assert R.free_symbols & sigma
+    terms = sum(len(sp.Add.make_args(sp.expand(e))) for m in (R.F, R.H, R.M) for e in m)
+    assert terms < 5 * T * T  # the matrices of 2T states; expanded, M alone had 2^T terms

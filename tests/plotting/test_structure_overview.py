@@ -105,3 +105,12 @@ def test_an_overview_with_an_empty_title_has_no_heading():
     texts = [t.get_text() for t in fig.axes[0].texts]
     assert not any(t.startswith("Controller structure") for t in texts)
     assert legibility(fig), legibility(fig)
+
+
+def test_the_overview_of_a_structure_without_parts_is_one_box():
+    # the IFP structure at T = 20 with its vertex bands is past the page (symctl paper)
+    from symctl import ifp_structure
+
+    fig = draw_structure_overview(ifp_structure(20))
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert any("20 delays" in t for t in texts)

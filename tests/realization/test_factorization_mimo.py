@@ -13,10 +13,10 @@ from symctl.realization.factorization import factor
 from symctl.symbols import z
 
 
-def _antagonist_like():
+def _antagonist_like(ds: int = 1, da: int = 1):
     A = [[1, 0.01, 0, 0], [-0.4, 0.96, 0.005, -0.005], [0, 0, 0.6, 0], [0, 0, 0, 0.6]]
     B = [[0, 0], [0.01, -0.01], [4.6, 0], [0, 4.6]]
-    return augment((A, B), 1, 1)
+    return augment((A, B), ds, da)
 
 
 def test_a_two_input_controller_factors_channel_by_channel():
@@ -78,8 +78,6 @@ def test_the_siso_factorization_is_unchanged():
 
 def test_siso_only_forms_are_refused_for_mimo():
     f = factor(controller_tf(_antagonist_like()), 1, 1)
-    with pytest.raises(DimensionError, match="SISO"):
-        f.abbreviated()
     with pytest.raises(DimensionError, match="SISO"):
         f.remainder_coeffs  # noqa: B018
     assert f.N.shape == (2, 4)
@@ -150,3 +148,25 @@ def test_block_forms_match_python_control_numerically(p, m, n, data):
             want = np.array(sp.Matrix(G).subs(z, point).evalf(), dtype=complex)
             got = sys(point)
             np.testing.assert_allclose(np.atleast_2d(got).reshape(p, m), want, rtol=1e-8, atol=1e-9)
+
+
+def test_mimo_zeros_are_abbreviated_entry_by_entry_and_equal_G2_at_sigma():
+    f = factor(controller_tf(_antagonist_like(2, 1)), 2, 1)
+    a = f.abbreviated()
+    assert len(f.sigma) == 2 * 4 * 3  # p * m entries, 3 sections each
+    assert f.sigma_poles[sp.Symbol("sigma_{2,3,1}", real=True)] == (
+        1,
+        (*f.sensor_eps[4:6], f.actuator_eps[1]),
+    )
+    assert not a.free_symbols & set(f.poles)  # the zeros enter as sigma only
+    assert a.subs(f.sigma_values()).equals(f.G2)
+    assert f.G2_symbolic == f.G2  # 3 sections per entry: expanded
+
+
+def test_beyond_expanded_zeros_max_G2_symbolic_is_abbreviated_with_few_terms():
+    f = factor(controller_tf(augment(([[0.9, 0.1], [0, 0.8]], [[0], [0.1]]), 4, 4)), 4, 4)
+    G2 = f.G2_symbolic
+    assert G2 == f.abbreviated()
+    # expanded, each entry's zeros have 2^8 monomials; abbreviated, 9 terms
+    assert all(len(sp.Add.make_args(sp.expand(e))) == 9 for e in G2.num_matrix)
+    assert all(len(sp.Add.make_args(sp.expand(e))) == 2**8 for e in f.G2.num_matrix)

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import pytest
 import sympy as sp
 
@@ -44,3 +47,27 @@ def test_results_json_of_long_delays(res):
 def test_the_paper_case_is_not_abbreviated():
     res = derive_paper()
     assert not res.abbreviated and res.to_dict()["factorization"]["abbreviations"] == {}
+
+
+FOREARM = Path(__file__).resolve().parents[1] / "data" / "forearm_long_delays.toml"
+
+
+def test_a_forearm_at_T_8_writes_its_factors_as_products(tmp_path):
+    # over a common denominator G1 has 18,000 characters here, and the MIMO G2 and its
+    # realizations expanded have 2^8 monomials per coefficient: a 1.35 MB results.json
+    from symctl import derive, load_model, load_results
+
+    res = derive(load_model(FOREARM))
+    assert res.abbreviated and res.system.T == 8
+    res.write(tmp_path, figures=False, pdf=False)
+    text = (tmp_path / "results.json").read_text()
+    j = json.loads(text)["factorization"]
+    assert len(j["G1"]) < 300 and len(j["G3"]) < 150 and len(j["G2"]) < 800
+    assert len(j["abbreviations"]) == 2 * 8
+    for name in ("controllable", "observable"):
+        assert len(json.dumps(j["realizations"][name])) < 20_000
+    # the dense general realization (P^-1 F P with a drawn 16 x 16 P) is the rest
+    assert len(text) < 300_000
+    assert (tmp_path / "derivation.tex").stat().st_size < 60_000
+    saved = load_results(tmp_path / "results.json").factors
+    assert sp.cancel(saved["G1"][1, 1] - res.factors.G1.expr[1, 1]) == 0

@@ -66,3 +66,21 @@ def test_write_without_figures_lists_what_it_wrote(res, tmp_path):
     assert [p.name for p in written] == ["results.json", "derivation.tex", "report.md"]
     assert all(p.exists() for p in written) and steps == ["documents"]
     assert "![" not in (tmp_path / "new" / "report.md").read_text()
+
+
+def test_long_mimo_factors_are_written_as_products_of_their_sections():
+    # a 1 x 2 controller at T = 4 + 4: over a common denominator G1 has 18,000 characters
+    from types import SimpleNamespace
+
+    import sympy as sp
+
+    from symctl import augment, controller_tf, factor
+    from symctl.derivation.load import parse_saved
+    from symctl.report.results import factor_texts
+
+    f = factor(controller_tf(augment(([[0.9, 0.1], [0, 0.8]], [[0], [0.1]]), 4, 4)), 4, 4)
+    texts = factor_texts(SimpleNamespace(factors=f, G2_symbolic=f.G2_symbolic, abbreviated=True))
+    assert len(texts["G1"]) < 300 and len(texts["G3"]) < 150 and len(texts["G2"]) < 800
+    g1 = parse_saved(texts["G1"][2:].split("], [")[0].split(", 0")[0], {}, "G1")
+    assert sp.cancel(g1 - f.sensor_sections[0].expr) == 0
+    assert texts["G2"].count("(z - epsilon_") == 2 * 8
