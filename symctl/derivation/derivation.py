@@ -125,8 +125,8 @@ class CircuitRecord:
         The closed-loop simulations of the random realizations
         (:func:`~symctl.neural.firing.circuit_firing`).
     realizes : RealizationCheck, optional
-        For the circuit ``"pathways"``: the proof that its structure realizes :math:`G`
-        (:math:`G_3 G_2 G_1 = G` for every section pole); the other circuits' proofs are
+        For the circuit ``"pathways"``: the proof that its structure realizes :math:`G` with the
+        optimal gains (:math:`G_3 G_2 G_1 = G` for every section pole); the other circuits' proofs are
         their realization's check and the factorization's.
 
     Examples

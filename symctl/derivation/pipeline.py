@@ -366,7 +366,7 @@ def _derive(spec: Model, step) -> Derivation:
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
-        pathways, realizes, left = _pathways(G_symbolic if siso else G_exact, spec, verdicts)
+        pathways, realizes, left = _pathways(G_symbolic if siso else G_exact, gains, spec, verdicts)
         skipped = f"{skipped}; left out is {left}" if left else skipped
         if realizes is not None:
             structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
@@ -477,9 +477,10 @@ def _derive(spec: Model, step) -> Derivation:
     )
 
 
-def _pathways(G, spec: Model, verdicts: dict):
+def _pathways(G, gains, spec: Model, verdicts: dict):
     """The exact verdict on the delay graph (Theorems 1-3); the proof that its structure realizes
-    ``G`` when its circuit is built (else None); and why a compatible one is not built, if so."""
+    ``G`` with the optimal gains when its circuit is built (else None); and why a compatible one
+    is not built, if so."""
     if not G.is_siso and G.order > MIMO_GENERAL_MAX_ORDER:
         return None, None, None
     rows, cols = G.shape
@@ -505,7 +506,8 @@ def _pathways(G, spec: Model, verdicts: dict):
                 "unstable modes of the circuit)"
             ),
         )
-    return verdict, check_realization(verdict.realization, G, "exact", rng=0), None
+    values = gains.substitutions(exact=True)  # the symbols left are the sections': seconds
+    return verdict, check_realization(verdict.realization.subs(values), G.subs(values)), None
 
 
 def _beyond_unit_chain(graph) -> bool:

@@ -391,7 +391,7 @@ def theorem(res) -> list[DocumentBlock]:
         text = (
             f"Here it holds, and symctl built such a structure, {what}: the circuit 'pathways' "
             f"below, simulated, and {'proved' if proof.ok else 'NOT proved'} to realize $G$ "
-            f"({proof.method}, for every section pole):"
+            f"({proof.method}, with the optimal gains, for every section pole):"
         )
     else:
         text = f"Here it holds: such a structure exists, {what} (the proof's construction):"

@@ -180,3 +180,25 @@ def test_a_construction_with_hidden_unstable_copies_is_left_out_with_its_reason(
     assert "left out is the circuit 'pathways'" in res.skipped
     told = _text(MS.theorem(res))
     assert "built such" not in told and "hidden unstable mode" in told
+
+
+def test_a_mimo_controller_beyond_the_theorems_order_limit_is_a_stated_skip():
+    from types import SimpleNamespace
+
+    import sympy as sp
+
+    from symctl import z
+    from symctl.derivation.pipeline import MIMO_GENERAL_MAX_ORDER, _mimo_kinds
+    from symctl.design.tf import DiscreteTF
+
+    order = MIMO_GENERAL_MAX_ORDER + 1
+    G = DiscreteTF.from_expr(sp.Matrix([[1 / z**order, 2 / z**order]]))
+    kinds, why = _mimo_kinds(("controllable",), G, SimpleNamespace(n=2, m=1))
+    assert kinds == ("controllable",)
+    assert f"its circuit 'pathways' (G has order {order}; built up to {MIMO_GENERAL_MAX_ORDER})" in why
+
+
+def test_the_forearm_draws_its_pathways_circuit(forearm):
+    names = forearm.figure_names()
+    assert {"structure_pathways", "circuit_pathways", "firing_pathways"} <= set(names)
+    assert type(forearm.figure("structure_pathways")).__name__ == "Figure"
