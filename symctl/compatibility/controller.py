@@ -332,10 +332,11 @@ def controller_compatibility(
 
 
 def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
-    """Theorem 3: every nonzero entry along its own fastest path, outputs summed at the actuators."""
+    """Theorem 3: every nonzero entry along its own fastest path, outputs summed at the actuators;
+    with one sensor and one actuator vertex for all, G3 G2 G1 along their fastest path."""
     p, m = tf.shape
     at_in, at_out = graph.pins(m, p)
-    entries = []
+    routes = []
     for i in range(p):
         for j in range(m):
             e = DiscreteTF.from_expr(sp.cancel(tf.expr[i, j]), dt=tf.dt)
@@ -356,8 +357,13 @@ def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
                     "delays.",
                     "theorem 3 (MIMO)",
                 )
-            part = along_path(e, route[1], route[2], base=base, structure=delays)
-            entries.append((i, j, dataclasses.replace(part, label=f"G[{i + 1},{j + 1}]")))
+            routes.append((i, j, e, route))
+    if routes and len(set(at_in)) == len(set(at_out)) == 1:
+        return _shared(tf, graph, routes[0][3], base, delays)
+    entries = []
+    for i, j, e, route in routes:
+        part = along_path(e, route[1], route[2], base=base, structure=delays)
+        entries.append((i, j, dataclasses.replace(part, label=f"G[{i + 1},{j + 1}]")))
     blocks: dict = {f"u{j + 1}": ("input",) for j in range(m)}
     place = {f"u{j + 1}": at_in[j] for j in range(m)}
     sums: list[list[str]] = [[] for _ in range(p)]
@@ -388,6 +394,28 @@ def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
         "all realizations",
         "theorem 3 (MIMO) + construction per entry",
         tuple(part for *_, part in entries),
+    )
+
+
+def _shared(tf: DiscreteTF, graph: DelayGraph, route, base: str, delays: str):
+    """Theorem 3 with one pathway for every entry: Theorem 1's construction by channel, one
+    :math:`G_2` (a block form) for all entries, as the realizations' circuits share theirs."""
+    part = dataclasses.replace(
+        along_path(tf, route[1], route[2], base=base, structure=delays), label="G"
+    )
+    S = part.structure
+    check = witness_result(S, graph, part.vertex_of, "theorem 3 (MIMO)")
+    return ControllerCompatibility(
+        True,
+        part.realization or structure_realization(S),
+        S,
+        check,
+        "Compatible (theorem 3, MIMO): every input has one sensor vertex and every output one "
+        "actuator vertex, so " + _describe([part]) + ", with one section per channel and edge "
+        "and one G2 for every entry. " + check.reason,
+        "all realizations",
+        "theorem 3 (MIMO) + path construction",
+        (part,),
     )
 
 

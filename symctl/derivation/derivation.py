@@ -124,6 +124,10 @@ class CircuitRecord:
     firing : FiringPatterns
         The closed-loop simulations of the random realizations
         (:func:`~symctl.neural.firing.circuit_firing`).
+    realizes : RealizationCheck, optional
+        For the circuit ``"pathways"``: the proof that its structure realizes :math:`G` with the
+        optimal gains (:math:`G_3 G_2 G_1 = G` for every section pole); the other circuits' proofs are
+        their realization's check and the factorization's.
 
     Examples
     --------
@@ -138,6 +142,7 @@ class CircuitRecord:
     compatibility: CompatibilityResult
     circuit: Circuit
     firing: FiringPatterns
+    realizes: RealizationCheck | None = None
 
     @property
     def g2_neurons(self) -> int | None:
@@ -208,7 +213,8 @@ class Derivation:
         The stages left out, and why (e.g. the IFP circuit and the atlas of a
         controller with several states or inputs).
     pathways : ControllerCompatibility, optional
-        The exact verdict on the delay graph (SISO controllers): the theorem,
+        The exact verdict on the delay graph (a MIMO controller's up to
+        :data:`~symctl.derivation.pipeline.MIMO_GENERAL_MAX_ORDER`): the theorem,
         and the structure built along the graph's pathways.
     verified : Proof, optional
         The proof that :math:`G_3 G_2 G_1 = G` (``factors.verify()``), truthy when it holds.

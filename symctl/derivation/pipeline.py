@@ -300,7 +300,13 @@ def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
         left.append(
             f"the general realization (dense, {order} states; built up to {MIMO_GENERAL_MAX_ORDER})"
         )
-    return out, f"{head}: left out are {' and '.join(left)}"
+    if G.order > MIMO_GENERAL_MAX_ORDER:
+        left.append(
+            f"the exact verdict on the delay graph and its circuit 'pathways' (G has order "
+            f"{G.order}; built up to {MIMO_GENERAL_MAX_ORDER})"
+        )
+    *rest, last = left
+    return out, f"{head}: left out are {', '.join(rest)}{' and ' if rest else ''}{last}"
 
 
 def _count(k: int, noun: str) -> str:
@@ -357,20 +363,11 @@ def _derive(spec: Model, step) -> Derivation:
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
-        if not siso and G.order <= MIMO_GENERAL_MAX_ORDER:  # theorem 3: every entry exactly
-            exact = controller_tf(system).subs(gains.substitutions(exact=True))
-            pathways = controller_compatibility(exact, graph, max_wire_delay=spec.max_wire_delay)
-        if siso:
-            beyond = _beyond_unit_chain(graph)
-            pathways = controller_compatibility(
-                G_symbolic,
-                graph,
-                construction="parallel" if beyond else "path",
-                max_wire_delay=spec.max_wire_delay,
-            )
-            if beyond and pathways.ok:
-                structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
-                kinds = (*kinds, "pathways")
+        pathways, realizes, left = _pathways(G_symbolic if siso else G_exact, gains, spec, verdicts)
+        skipped = f"{skipped}; left out is {left}" if left else skipped
+        if realizes is not None:
+            structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
+            kinds = (*kinds, "pathways")
         step("simulation")  # each circuit closed around the plant: the realizations drawn above
         firing = {
             k: circuit_firing(
@@ -402,6 +399,7 @@ def _derive(spec: Model, step) -> Derivation:
                 verdicts[k],
                 Circuit.from_structure(structures[k], verdicts[k] if verdicts[k].ok else None),
                 firing[k],
+                realizes if k == "pathways" else None,
             )
             for k in kinds
         }
@@ -474,6 +472,39 @@ def _derive(spec: Model, step) -> Derivation:
         verified,
         reduction,
     )
+
+
+def _pathways(G, gains, spec: Model, verdicts: dict):
+    """The exact verdict on the delay graph (Theorems 1-3); the proof that its structure realizes
+    ``G`` with the optimal gains when its circuit is built (else None); and why a compatible one
+    is not built, if so."""
+    if not G.is_siso and G.order > MIMO_GENERAL_MAX_ORDER:
+        return None, None, None
+    rows, cols = G.shape
+    beyond = G.is_siso and _beyond_unit_chain(spec.graph)
+    shared = len(spec.graph.sensors) == len(spec.graph.actuators) == 1  # one G2 for all entries
+    verdict = controller_compatibility(
+        G,
+        spec.graph,
+        base="observable" if shared and rows < cols else "controllable",  # the smaller block form
+        construction="parallel" if beyond else "path",
+        max_wire_delay=spec.max_wire_delay,
+    )
+    # a SISO controller's beyond a chain of unit steps, a MIMO one's when no other circuit fits
+    if not verdict.ok or (not beyond if G.is_siso else any(v.ok for v in verdicts.values())):
+        return verdict, None, None
+    if len(verdict.parts) > 1 and not G.is_siso and max(abs(G.poles()), default=0) >= 1:
+        return (
+            verdict,
+            None,
+            (
+                "the circuit 'pathways' (the theorem's construction, one copy of G's poles per "
+                "entry: G has a pole on or outside the unit circle, so its copies would be hidden "
+                "unstable modes of the circuit)"
+            ),
+        )
+    values = gains.substitutions(exact=True)  # the symbols left are the sections': seconds
+    return verdict, check_realization(verdict.realization.subs(values), G.subs(values)), None
 
 
 def _beyond_unit_chain(graph) -> bool:

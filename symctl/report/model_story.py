@@ -362,6 +362,7 @@ def theorem(res) -> list[DocumentBlock]:
     if not verdict.ok:
         return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
     mimo = verdict.method.startswith("theorem 3")
+    parts = verdict.parts
     rows = tuple(
         (
             part.label if mimo else str(k + 1),
@@ -369,28 +370,57 @@ def theorem(res) -> list[DocumentBlock]:
             ", ".join(map(str, part.delays)),
             str(part.delay),
         )
-        for k, part in enumerate(verdict.parts)
+        for k, part in enumerate(parts)
     )
-    if mimo:
-        return [
-            Text(
-                head + " Here it holds; symctl built such a structure, each entry as "
-                "$G_3 G_2 G_1$ along its own path (it proves existence; the circuits below "
-                "share their interneurons):"
-            ),
-            Table(("entry", "path", "edge delays [steps]", "delay"), rows),
-        ]
-    what = "Here it holds, and symctl built such a structure" + (
-        ": $G$ split by its Markov parameters into one part per pathway (Theorem 2), each "
-        "part factored as $G_3 G_2 G_1$ along its own path, the parts summed at the actuator "
-        "(circuit 'pathways' below):"
-        if len(verdict.parts) > 1
-        else ", $G_3 G_2 G_1$ with one section per edge along the path:"
-    )
-    return [
-        Text(head + " " + what),
-        Table(("part", "path", "edge delays [steps]", "Markov parameters from"), rows),
+    if mimo and len(parts) > 1:
+        what = "each entry as $G_3 G_2 G_1$ along its own path"
+    elif mimo:
+        what = (
+            "$G_3 G_2 G_1$ along the one path from the sensors' vertex to the actuators', "
+            "one section per channel and edge, one $G_2$ for every entry"
+        )
+    elif len(parts) > 1:
+        what = (
+            "$G$ split by its Markov parameters into one part per pathway (Theorem 2), each "
+            "part factored as $G_3 G_2 G_1$ along its own path, the parts summed at the actuator"
+        )
+    else:
+        what = "$G_3 G_2 G_1$ with one section per edge along the path"
+    if "pathways" in res.circuits:
+        proof = res.circuits["pathways"].realizes
+        text = (
+            f"Here it holds, and symctl built such a structure, {what}: the circuit 'pathways' "
+            f"below, simulated, and {'proved' if proof.ok else 'NOT proved'} to realize $G$ "
+            f"({proof.method}, with the optimal gains, for every section pole):"
+        )
+    else:
+        text = f"Here it holds: such a structure exists, {what} (the proof's construction):"
+    blocks = [
+        Text(head + " " + text),
+        Table(
+            ("entry", "path", "edge delays [steps]", "delay")
+            if mimo
+            else ("part", "path", "edge delays [steps]", "Markov parameters from"),
+            rows,
+        ),
     ]
+    if "pathways" not in res.circuits:
+        blocks.append(Text(f"It is not among the circuits below: {_not_built(res)}."))
+    return blocks
+
+
+def _not_built(res) -> str:
+    """Why the circuit 'pathways' of a compatible controller was not built."""
+    fit = [f"'{k}'" for k, c in res.circuits.items() if c.compatibility.ok]
+    if res.plant.n == 1 and res.plant.m == 1:
+        return "on a chain of unit steps symctl builds its circuits from the factorization above"
+    if fit:
+        many = len(fit) > 1
+        return f"the circuit{'s' * many} {', '.join(fit)} fit{'s' * (not many)} the graph already"
+    return (
+        "$G$ has a pole on or outside the unit circle, and the construction would copy it into "
+        "every entry, a hidden unstable mode of the circuit"
+    )
 
 
 def skipped(res) -> list[DocumentBlock]:

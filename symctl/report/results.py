@@ -90,7 +90,11 @@ def circuit_json(self) -> dict:
             name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
             for i, name in enumerate(fp.neurons)
         },
-    }
+    } | ({} if self.realizes is None else {"realizes": _proof(self.realizes)})
+
+
+def _proof(check) -> dict:
+    return {"ok": check.ok, "method": check.method}
 
 
 def parameters(self) -> dict:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import networkx as nx
 import numpy as np
@@ -264,6 +265,23 @@ def test_theorem_3_every_entry_along_its_own_path(seed):
         placed = result.check.assignment.vertex_of
         assert (placed["u1"], placed["u2"], placed["y1"], placed["y2"]) == (1, 2, 4, 5)
         assert check_realization(structure_realization(result.structure), G).ok
+
+
+@pytest.mark.parametrize("base", ["controllable", "observable"])
+def test_theorem_3_with_one_sensor_and_one_actuator_vertex_shares_one_G2(base):
+    d = (z - sp.Rational(1, 2)) * (z + sp.Rational(1, 4)) * z**2
+    G = sp.Matrix([[(z + 1) / d, 3 / d], [0, (2 * z - 1) / d]])  # relative degree 3 or more
+    result = controller_compatibility(G, DelayGraph.chain([2, 1]), base=base)
+    assert result.ok and result.method == "theorem 3 (MIMO) + path construction"
+    (part,) = result.parts
+    assert (part.label, part.path, part.delays) == ("G", (1, 2, 3), (2, 1))
+    assert result.check.assignment.is_compatible()
+    assert check_realization(structure_realization(result.structure), G).ok
+    # one block form for all entries, not one G3 G2 G1 per entry ("G1,1.G2. ...")
+    assert any(n.startswith("G2.x") for n in result.structure.blocks)
+    assert not any(re.match(r"G\d+,\d+\.", n) for n in result.structure.blocks)
+    too_fast = controller_compatibility(G, DelayGraph.chain([2, 2]), base=base)
+    assert not too_fast.ok and "G[1,1]" in too_fast.reason
 
 
 def test_a_graph_whose_channels_do_not_fit_the_controller_is_refused():
