@@ -458,6 +458,9 @@ AUDITED = {
     # the gains' own substitutions (float, exact)
     ("symctl.derivation.pipeline", "_derive", "subs"): 3,
     ("symctl.derivation.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
+    ("symctl.derivation.pipeline", "_pathways", "subs"): 2,  # the optimal gains' substitutions
+    ("symctl.realization.factorization", "_vieta", "expand"): 1,  # the section poles' symbols
+    ("symctl.realization.factorization", "_vieta", "Poly"): 1,
     # the circuit atlas: every expression is built from a Pattern's own symbols and exact rationals;
     # the one user value, G2, arrives through split_proper (a validated DiscreteTF)
     ("symctl.circuitatlas.certify", "_Poly.__init__", "Poly"): 1,
