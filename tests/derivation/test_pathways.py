@@ -195,7 +195,9 @@ def test_a_mimo_controller_beyond_the_theorems_order_limit_is_a_stated_skip():
     G = DiscreteTF.from_expr(sp.Matrix([[1 / z**order, 2 / z**order]]))
     kinds, why = _mimo_kinds(("controllable",), G, SimpleNamespace(n=2, m=1))
     assert kinds == ("controllable",)
-    assert f"its circuit 'pathways' (G has order {order}; built up to {MIMO_GENERAL_MAX_ORDER})" in why
+    assert (
+        f"its circuit 'pathways' (G has order {order}; built up to {MIMO_GENERAL_MAX_ORDER})" in why
+    )
 
 
 def test_the_forearm_draws_its_pathways_circuit(forearm):
