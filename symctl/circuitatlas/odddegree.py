@@ -59,7 +59,7 @@ from symctl._util.validate import bounded_number
 from symctl.circuitatlas.fibre import _system, coefficient_symbols, solve_at
 from symctl.circuitatlas.pattern import Pattern, slot_names
 
-__all__ = ["CPU_SECONDS", "odd_degree_proof", "slice_proof"]
+__all__ = ["CPU_SECONDS", "odd_degree_proof", "proving", "slice_proof"]
 
 CPU_SECONDS = 30
 """CPU seconds the Groebner bases over Q(a, c) of one pattern may take, in all."""
@@ -258,8 +258,28 @@ def odd_degree_proof(
     """
     cpu_seconds = bounded_number(cpu_seconds, "cpu_seconds", 1e-6, 3600)
     request = [pattern.n, pattern.mask, seed, list(fixed), cpu_seconds]
-    with _LOCK:
+    with proving():
         return _PROVER.ask(request, timeout=10 * cpu_seconds + 60)
+
+
+@contextlib.contextmanager
+def proving():
+    """Keep the proving child process for the proofs inside the block (a search wraps its
+    patterns in it); it stops when the outermost block ends, so no process is left behind.
+
+    >>> from symctl.circuitatlas.odddegree import proving
+    >>> with proving():
+    ...     pass
+    """
+    with _LOCK:
+        _PROVER.holds += 1
+    try:
+        yield
+    finally:
+        with _LOCK:
+            _PROVER.holds -= 1
+            if _PROVER.holds == 0:
+                _PROVER.stop()
 
 
 class _Prover:
@@ -269,6 +289,7 @@ class _Prover:
 
     def __init__(self):
         self.child = None
+        self.holds = 0
         atexit.register(self.stop)
 
     def _start(self):
@@ -284,6 +305,10 @@ class _Prover:
         )
 
     def ask(self, request: list, timeout: float):
+        with _LOCK:
+            return self._ask(request, timeout)
+
+    def _ask(self, request: list, timeout: float):
         if self.child is None or self.child.poll() is not None:
             self._start()
         try:
@@ -302,11 +327,13 @@ class _Prover:
         if self.child is not None:
             self.child.kill()
             self.child.wait()
+            self.child.stdin.close()
+            self.child.stdout.close()
             self.child = None
 
 
 _PROVER = _Prover()
-_LOCK = threading.Lock()
+_LOCK = threading.RLock()
 
 
 def _serve() -> None:

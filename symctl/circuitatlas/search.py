@@ -74,24 +74,26 @@ def _evaluate(n: int, masks: list[int], delays: str, lifted: list) -> list[dict]
     import networkx as nx
 
     from symctl.circuitatlas.circuitclass import circuit_graph, circuit_of
+    from symctl.circuitatlas.odddegree import proving
     from symctl.circuitatlas.universality import Evidence, decide
 
     below = [(Pattern(n, m), Evidence.from_dict(e)) for m, e in lifted]
     out = []
-    for mask in masks:
-        p = Pattern(n, mask)
-        ev = decide(p, below)
-        rec = {"mask": mask, "evidence": ev.to_dict()}
-        if ev.method != "not minimal":
-            circuit = circuit_of(p, delays)
-            graph = circuit_graph(circuit)
-            rec.update(
-                neurons=circuit.n_neurons,
-                synapses=len(circuit.synapses),
-                branches=sum(circuit.branches().values()),
-                graph=nx.node_link_data(graph, edges="links"),
-            )
-        out.append(rec)
+    with proving():  # one proving child for the chunk, stopped at its end
+        for mask in masks:
+            p = Pattern(n, mask)
+            ev = decide(p, below)
+            rec = {"mask": mask, "evidence": ev.to_dict()}
+            if ev.method != "not minimal":
+                circuit = circuit_of(p, delays)
+                graph = circuit_graph(circuit)
+                rec.update(
+                    neurons=circuit.n_neurons,
+                    synapses=len(circuit.synapses),
+                    branches=sum(circuit.branches().values()),
+                    graph=nx.node_link_data(graph, edges="links"),
+                )
+            out.append(rec)
     return out
 
 

@@ -70,3 +70,32 @@ def test_a_basis_beyond_its_cpu_limit_proves_nothing():
     # a millisecond of CPU time for every variable order: each basis is stopped, no proof made
     proof = odd_degree_proof(_pattern(DISPUTED_ODD), cpu_seconds=0.001)
     assert proof is not None and not proof["proved"] and "CPU" in proof["why"]
+
+
+def _children() -> list[int]:
+    """The living child processes of this one (read from /proc)."""
+    import os
+    from pathlib import Path
+
+    out = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == os.getpid() and fields[0] != "Z":
+            out.append(int(stat.parent.name))
+    return out
+
+
+def test_no_proving_process_is_left_behind():
+    from symctl.circuitatlas.odddegree import proving
+
+    before = _children()
+    with proving():
+        assert odd_degree_proof(_pattern(DISPUTED_ODD))["proved"]
+        assert odd_degree_proof(_pattern(DISPUTED_ODD))["proved"]  # the same child, kept
+        assert len(_children()) == len(before) + 1
+    assert _children() == before
+    assert odd_degree_proof(_pattern(DISPUTED_ODD))["proved"]  # alone: started, then stopped
+    assert _children() == before
