@@ -377,7 +377,7 @@ def theorem(res) -> list[DocumentBlock]:
     elif mimo:
         what = (
             "$G_3 G_2 G_1$ along the one path from the sensors' vertex to the actuators', "
-            "one section per channel and edge, one $G_2$ for every entry"
+            "one section per channel and edge, one $G_2$ shared by every entry"
         )
     elif len(parts) > 1:
         what = (
