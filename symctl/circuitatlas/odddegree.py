@@ -73,6 +73,12 @@ def _rationals(rng: random.Random, k: int) -> list[sp.Rational]:
     return [sp.Rational(rng.randint(-(10**4), 10**4), rng.randint(1, 10**4)) for _ in range(k)]
 
 
+def _draws(seed: int, mask: int) -> random.Random:
+    """The random stream of one proof: the fixed values first (:func:`_fixed_values`), then
+    the rational target and the checks; the parent reads the same fixed values from it."""
+    return random.Random(seed * 7919 + mask)
+
+
 def _fixed_values(fixed, rng: random.Random) -> dict[int, sp.Integer]:
     """Small nonzero integers for the slots ``fixed``, drawn first from ``rng``."""
     return {k: sp.Integer(rng.choice([-1, 1]) * rng.randint(1, 5)) for k in fixed}
@@ -92,7 +98,7 @@ def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 8):
     choices = list(itertools.combinations(free, pattern.size - 3 * n))
     rng.shuffle(choices)
     for fixed in choices[:tries]:
-        values = _fixed_values(fixed, random.Random(seed * 7919 + pattern.mask))
+        values = _fixed_values(fixed, _draws(seed, pattern.mask))
         a, c = _rationals(rng, n), _rationals(rng, n)
         sol = solve_at(pattern, a, c, fixed=values, rng=rng)
         if sol is not None and sol["degree"] % 2:
@@ -179,7 +185,7 @@ def _prove(
     set to small nonzero integers drawn from ``seed`` (a slice of a bigger pattern)."""
     pattern = Pattern(n, mask)
     unknowns, _, values, charpoly, numer = _system(pattern)
-    rng = random.Random(seed * 7919 + mask)
+    rng = _draws(seed, mask)
     rule = {values[k]: v for k, v in _fixed_values(fixed, rng).items()}
     unknowns = tuple(x for x in unknowns if x not in rule)
     charpoly, numer = ([sp.expand(e.xreplace(rule)) for e in part] for part in (charpoly, numer))
