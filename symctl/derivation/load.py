@@ -41,7 +41,7 @@ from symctl._util.pickling import CachedState
 from symctl.derivation.derivation import Derivation
 from symctl.design.ode import exact_value
 from symctl.design.tf import DiscreteTF
-from symctl.errors import ParameterError, SymctlTypeError
+from symctl.errors import ParameterError, SymctlError, SymctlTypeError
 from symctl.model.model import Model
 from symctl.model.saved import model_from_dict
 from symctl.symbols import T_s, z
@@ -287,15 +287,42 @@ class SavedDerivation(CachedState):
         """Per realization of :math:`G_2`: ``symbolic`` (exact F, H, M, N) and ``numeric`` (arrays)."""
         f = self.data["factorization"] or {"realizations": {}}
         out = {}
-        for name, rec in f["realizations"].items():
+        for name, rec in sorted(
+            f["realizations"].items(), key=lambda kv: "transform" in kv[1]["symbolic"]
+        ):
             where = f"factorization.realizations.{name}"
+            symbolic = {
+                k: self._matrix(v, f"{where}.symbolic.{k}")
+                for k, v in rec["symbolic"].items()
+                if k in "FHMN" and v is not None
+            }
+            if "transform" in rec["symbolic"]:
+                symbolic = self._transform(out, rec["symbolic"]["transform"], symbolic, where)
             out[name] = {
-                "symbolic": {
-                    k: self._matrix(v, f"{where}.symbolic.{k}") for k, v in rec["symbolic"].items()
-                },
+                "symbolic": symbolic,
                 "numeric": {k: np.array(v, dtype=float) for k, v in rec["numeric"].items()},
             }
-        return out
+        return {name: out[name] for name in f["realizations"]}
+
+    def _transform(self, out: dict, transform, symbolic: dict, where: str) -> dict:
+        """``(P^-1 F0 P, P^-1 H0, M0 P, N)`` of a realization written as its base and ``P``."""
+        from symctl.realization.realization import Realization
+
+        where = f"{where}.symbolic.transform"
+        if not isinstance(transform, Mapping) or transform.get("of") not in out:
+            raise ParameterError(
+                f"{self.path}: {where}: expected the name of a realization written before it and P"
+            )
+        base, P = out[transform["of"]]["symbolic"], transform.get("P")
+        if not isinstance(P, list) or not all(isinstance(row, list) for row in P):
+            raise ParameterError(f"{self.path}: {where}.P: expected a matrix as nested lists")
+        P = self._matrix(P, f"{where}.P")
+        try:
+            R = Realization(base["F"], base["H"], base["M"], symbolic.get("N", base["N"]), self.dt)
+            R = R.similar(P)
+        except SymctlError as err:
+            raise ParameterError(f"{self.path}: {where}: {err}") from None
+        return {k: sp.ImmutableMatrix(getattr(R, k)) for k in "FHMN"}
 
     @property
     def simulation(self) -> dict:

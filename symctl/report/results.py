@@ -25,6 +25,7 @@ import sympy as sp
 from symctl._util.display import descending_str
 from symctl._util.validate import positive_int
 from symctl.derivation.derivation import CircuitRecord, PaperResults, RealizationRecord
+from symctl.realization.check import _similarity_holds
 from symctl.realization.factorization import remainder
 from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
@@ -46,11 +47,25 @@ __all__ = [
 ]
 
 
-def realization_json(self) -> dict:
-    """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
+SYMBOLIC_TEXT_MAX = 20_000
+"""Characters of a realization's symbolic ``F``, ``H``, ``M`` beyond which ``results.json``
+writes a transform by a drawn (numeric) ``P`` as ``transform``: its base and ``P``, exact.
+
+A dense ``P^{-1} F_0 P`` carries the long rationals of ``P^{-1}`` in every entry (161 KB of
+a 16-state forearm's file) and says nothing that its base and ``P`` do not;
+:func:`~symctl.load_results` multiplies it out again, exactly.
+"""
+
+
+def realization_json(self, base=None) -> dict:
+    """The entry of ``results.json``'s ``factorization.realizations`` for this realization.
+
+    ``base``, the record of the canonical form a drawn ``P`` transformed, lets a symbolic
+    text over :data:`SYMBOLIC_TEXT_MAX` characters be written as ``transform`` instead.
+    """
     sym, num = self.check_symbolic, self.check_numeric
     return {
-        "symbolic": {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"},
+        "symbolic": _symbolic_json(self, base),
         "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
         "values": {k: float(v) for k, v in self.values.items()},
         "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
@@ -58,6 +73,19 @@ def realization_json(self) -> dict:
             "symbolic": {"ok": sym.ok, "method": sym.method},
             "numeric": {"ok": num.ok, "method": num.method},
         },
+    }
+
+
+def _symbolic_json(self, base) -> dict:
+    out = {k: _text_matrix(getattr(self.symbolic, k)) for k in "FHMN"}
+    P = self.P
+    drawn = base is not None and P is not None and not P.free_symbols
+    if not drawn or sum(len(e) for k in "FHM" for r in out[k] for e in r) <= SYMBOLIC_TEXT_MAX:
+        return out
+    if not _similarity_holds(self.symbolic, base.symbolic, P):  # proved, never assumed
+        return out
+    return {"F": None, "H": None, "M": None, "N": out["N"]} | {
+        "transform": {"of": base.name, "P": _text_matrix(P)}
     }
 
 
@@ -270,7 +298,10 @@ def _factorization_json(self) -> dict:
         if self.abbreviated
         else {},
         "verified": bool(self.verified),
-        "realizations": {name: realization_json(rec) for name, rec in self.realizations.items()},
+        "realizations": {
+            name: realization_json(rec, self.realizations.get("controllable"))
+            for name, rec in self.realizations.items()
+        },
     }
 
 

@@ -259,3 +259,38 @@ def test_saved_text_is_parsed_never_evaluated(tmp_path, derived_T2):
     saved = load_results(path)  # the numbers load; the text is parsed when asked for
     with pytest.raises(symctl.ParseError):
         _ = saved.G_symbolic
+
+
+@pytest.mark.parametrize(
+    "transform",
+    [
+        {"of": "controllable", "P": [[1, 0], [0, 1]]},  # not text: refused by the parser
+        {"of": "nowhere", "P": [["1", "0"], ["0", "1"]]},
+        {"of": "controllable", "P": "eye(2)"},
+        {"of": "controllable", "P": [["1", "0"], ["0", "0"]]},  # singular
+        {"of": "controllable", "P": [["1"]]},  # the wrong shape
+    ],
+)
+def test_a_written_transform_is_read_back_or_refused_by_name(tmp_path, derived_T2, transform):
+    data = derived_T2.to_dict()
+    symbolic = data["factorization"]["realizations"]["general"]["symbolic"]
+    symbolic.update(F=None, H=None, M=None, transform=transform)
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(data))
+    with pytest.raises(symctl.SymctlError, match="general"):
+        _ = load_results(path).realizations
+
+
+def test_a_transform_is_multiplied_out_on_loading(tmp_path, derived_T2):
+    data = derived_T2.to_dict()
+    symbolic = data["factorization"]["realizations"]["general"]["symbolic"]
+    symbolic.update(
+        F=None, H=None, M=None, transform={"of": "controllable", "P": [["2", "1"], ["1", "1"]]}
+    )
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(data))
+    got = load_results(path).realizations["general"]["symbolic"]
+    base = derived_T2.realizations["controllable"].symbolic
+    P = sp.Matrix([[2, 1], [1, 1]])
+    for k, expected in (("F", P.inv() * base.F * P), ("H", P.inv() * base.H), ("M", base.M * P)):
+        assert (got[k] - expected).applyfunc(sp.cancel).is_zero_matrix

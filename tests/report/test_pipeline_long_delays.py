@@ -66,8 +66,20 @@ def test_a_forearm_at_T_8_writes_its_factors_as_products(tmp_path):
     assert len(j["abbreviations"]) == 2 * 8
     for name in ("controllable", "observable"):
         assert len(json.dumps(j["realizations"][name])) < 20_000
-    # the dense general realization (P^-1 F P with a drawn 16 x 16 P) is the rest
-    assert len(text) < 300_000
+    # the dense general realization P^-1 F0 P (a drawn 16 x 16 P: 161 KB of 38-digit
+    # rationals) is written as its base and P, and multiplied out again on loading
+    general = j["realizations"]["general"]["symbolic"]
+    assert general["F"] is None and general["transform"]["of"] == "controllable"
+    assert len(text) < 200_000
     assert (tmp_path / "derivation.tex").stat().st_size < 60_000
-    saved = load_results(tmp_path / "results.json").factors
-    assert sp.cancel(saved["G1"][1, 1] - res.factors.G1.expr[1, 1]) == 0
+    saved = load_results(tmp_path / "results.json")
+    assert sp.cancel(saved.factors["G1"][1, 1] - res.factors.G1.expr[1, 1]) == 0
+    loaded = saved.realizations["general"]["symbolic"]
+    for k in "FHMN":
+        assert loaded[k] == sp.ImmutableMatrix(getattr(res.realizations["general"].symbolic, k))
+
+
+def test_a_small_general_realization_is_written_out(tmp_path):
+    res = derive_paper(sensor_delay=2, actuator_delay=2)  # order 4: a drawn P, short texts
+    general = res.to_dict()["factorization"]["realizations"]["general"]["symbolic"]
+    assert "transform" not in general and all(general[k] for k in "FHM")
