@@ -115,6 +115,7 @@ def fit_command(
             bootstrap=bootstrap,
             workers=workers,
             scheduler=scheduler,
+            progress=steps.part,
         )
         steps.start("writing")
         written = write_fit(res, folder.staging, figures=figures, source=str(data))

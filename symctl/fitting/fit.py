@@ -24,7 +24,7 @@ Levenberg-Marquardt when a step fails to descend.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from types import MappingProxyType
@@ -36,7 +36,7 @@ from scipy.optimize import least_squares
 from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.exact import nearest_rational
 from symctl._util.pickling import ArrayValue
-from symctl._util.validate import bounded_int, bounded_number, read_only
+from symctl._util.validate import bounded_int, bounded_number, callable_or_none, read_only
 from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
@@ -458,6 +458,7 @@ def fit(
     length: int = DEFAULT_LENGTH,
     bootstrap: int = 200,
     level: float = 0.95,
+    progress: Callable[[str], None] | None = None,
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
@@ -501,6 +502,9 @@ def fit(
         bands (:mod:`symctl.fitting.uncertainty`), at most ``MAX_BOOTSTRAP``; 0: none.
     level : float, default 0.95
         Confidence level of the intervals and bands, in (0, 1).
+    progress : callable, optional
+        Called with the name of each stage as it starts (each class's starts, the structural
+        identifiability, the bootstrap's refits).
 
     Returns
     -------
@@ -543,6 +547,7 @@ def fit(
     starts = bounded_int(starts, "starts", 1, MAX_STARTS)
     bootstrap = bounded_int(bootstrap, "bootstrap", 0, MAX_BOOTSTRAP)
     level = bounded_number(level, "level", 0.01, 0.999)
+    step = callable_or_none(progress, "progress") or (lambda _name: None)
     gen = rng
     if C is not None:
         if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
@@ -564,6 +569,7 @@ def fit(
                     raise
                 skipped.append((_label(cls), str(exc)))  # this class cannot take the data
                 continue
+            step(f"{_label(cls)}: {starts} starts")
             points = _start_points(problem, model, starts, gen)
             if pool is None:
                 pool = open_pool(workers, scheduler)
@@ -574,7 +580,7 @@ def fit(
                 "circuit: no class can take these traces: "
                 + "; ".join(f"{label}: {why}" for label, why in skipped)
             )
-        boot = (bootstrap, level, gen, pool, max(1, int(workers)))
+        boot = (bootstrap, level, gen, pool, max(1, int(workers)), step)
         return _best(fits, t, starts, tuple(skipped), boot)
     finally:
         if pool is not None:
@@ -659,6 +665,8 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
     J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
     recorded = [n for n, _ in problem.data]
+    bootstrap, level, gen, pool, workers, step = boot
+    step("structural identifiability")
     verdict = _structural(model, [recorded], neurons, problem.u, np.random.default_rng(0))[0]
     params_ok, cells_ok = verdict.params, verdict.neurons
     _, s, Vt = np.linalg.svd(J, full_matrices=False)
@@ -671,7 +679,7 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     stderr = {
         n: float(np.sqrt(var[i])) if params_ok[n] else None for i, n in enumerate(model.names)
     }
-    bootstrap, level, gen, pool, workers = boot
+    step(f"bootstrap: {bootstrap} refits")
     datasets = _replicates(problem.data, vals, verdict.rank, bootstrap, gen)
     refits = _on_pool(pool, workers, _refits, (problem, q), datasets)
     predicted = {n: vals[n] for n in neurons}

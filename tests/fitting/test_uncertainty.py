@@ -106,6 +106,19 @@ def test_the_uncertainty_round_trips_and_fit_json_keeps_its_keys(one):
     assert back.intervals["epsilon_1"] == one.intervals["epsilon_1"]
 
 
+def test_fit_reports_each_stage_as_it_starts(truth):
+    stages = []
+    fit(
+        _noisy(truth, ["G2.x2"], 0.01, 4),
+        GAINS,
+        **KW,
+        starts=2,
+        bootstrap=3,
+        progress=stages.append,
+    )
+    assert stages == ["observable: 2 starts", "structural identifiability", "bootstrap: 3 refits"]
+
+
 def test_without_a_bootstrap_there_are_no_intervals_and_the_verdicts_are_structural(truth):
     res = fit(_noisy(truth, ["G2.x2"], 0.01, 3), GAINS, **KW, starts=1, bootstrap=0)
     assert res.uncertainty.replicates == 0 and all(v is None for v in res.intervals.values())
@@ -121,6 +134,7 @@ def test_without_a_bootstrap_there_are_no_intervals_and_the_verdicts_are_structu
         ({"bootstrap": 2.5}, SymctlTypeError, "bootstrap"),
         ({"level": 1.0}, ParameterError, "level: must be a number in"),
         ({"level": "high"}, SymctlTypeError, "level"),
+        ({"progress": "print"}, SymctlTypeError, "progress: expected a callable"),
     ],
 )
 def test_bad_bootstrap_options_are_errors_naming_them(options, error, match):
