@@ -362,6 +362,16 @@ def z_degree(expr: sp.Expr) -> int:
     return max((monom[0] for monom in num.keys()), default=-1)
 
 
+def from_fmpq(q) -> sp.Rational:
+    """A python-flint ``fmpq`` (or ``fmpz``) as a SymPy rational."""
+    return sp.Rational(int(q.p), int(q.q))
+
+
+def from_fmpq_mat(M) -> sp.ImmutableMatrix:
+    """A python-flint ``fmpq_mat`` as a SymPy matrix of rationals."""
+    return sp.ImmutableMatrix(M.nrows(), M.ncols(), [from_fmpq(x) for x in M.entries()])
+
+
 def nearest_rational(x: float, den: int) -> sp.Rational:
     """The rational nearest the float ``x`` with denominator at most ``den``.
 

@@ -27,6 +27,7 @@ from flint import fmpq, fmpq_mat, fmpq_poly
 from sympy.polys.groebnertools import groebner
 
 from symctl._util.deadline import Unfinished
+from symctl._util.exact import from_fmpq
 from symctl.circuitatlas.pattern import Pattern
 from symctl.symbols import z
 
@@ -203,10 +204,6 @@ def _form_matrix(mult, rng):
     return sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
 
 
-def _rational(q) -> sp.Rational:
-    return sp.Rational(int(q.p), int(q.q))
-
-
 def _sign_changes(values) -> int:
     signs = [v > 0 for v in values if v != 0]
     return sum(a != b for a, b in itertools.pairwise(signs))
@@ -328,7 +325,7 @@ def real_solutions(eqs, free, rng, tries: int = 3):
         ef = Mt.charpoly()
         if ef.gcd(ef.derivative()).degree() > 0:
             continue
-        e = sp.Poly([_rational(q) for q in ef.coeffs()[::-1]], t)
+        e = sp.Poly([from_fmpq(q) for q in ef.coeffs()[::-1]], t)
         # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
         krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]
         for _ in range(d - 1):
@@ -338,7 +335,7 @@ def real_solutions(eqs, free, rng, tries: int = 3):
             g = {}
             for x, M in zip(free, mult, strict=True):
                 coeffs = K.solve(M * krylov[0])
-                g[x] = sp.Add(*(_rational(coeffs[k, 0]) * t**k for k in range(d)))
+                g[x] = sp.Add(*(from_fmpq(coeffs[k, 0]) * t**k for k in range(d)))
         except ZeroDivisionError:
             continue
         e_expr = e.as_expr()

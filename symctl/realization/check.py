@@ -35,7 +35,7 @@ import sympy as sp
 from flint import fmpq, fmpq_mat
 
 from symctl._util.display import LatexMixin, latex
-from symctl._util.exact import Degrees, NotRational, fold
+from symctl._util.exact import Degrees, NotRational, fold, from_fmpq_mat
 from symctl._util.validate import as_random, relative_tolerance, to_expr, to_matrix
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.proof import Verdict
@@ -274,10 +274,8 @@ def _const(poly) -> int:
 
 
 def _sympy(value: fmpq_mat):
-    entries = [sp.Rational(int(x.p), int(x.q)) for x in value.entries()]
-    if len(entries) == 1:
-        return entries[0]
-    return sp.ImmutableMatrix(value.nrows(), value.ncols(), entries)
+    M = from_fmpq_mat(value)
+    return M[0, 0] if M.shape == (1, 1) else M
 
 
 def _counterexample(problem: _Problem, rng: random.Random) -> dict | None:

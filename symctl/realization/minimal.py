@@ -30,6 +30,7 @@ from __future__ import annotations
 import sympy as sp
 from flint import fmpq, fmpq_mat
 
+from symctl._util.exact import from_fmpq_mat
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization
 
@@ -52,14 +53,6 @@ def _mat(M: sp.MatrixBase, name: str) -> fmpq_mat:
                 )
             out[i, j] = fmpq(int(e.p), int(e.q))
     return out
-
-
-def _sympy(M: fmpq_mat) -> sp.Matrix:
-    return sp.Matrix(
-        M.nrows(),
-        M.ncols(),
-        [sp.Rational(int(x.p), int(x.q)) for row in M.tolist() for x in row],
-    )
 
 
 def _pivots(M: fmpq_mat) -> list[int]:
@@ -137,7 +130,7 @@ def minimal_realization(R: Realization) -> Realization:
     F, H, M = Ft.transpose(), Ht.transpose(), Mt.transpose()
     if not _same_markov((F0, H0, M0), (F, H, M), R.n + F.nrows()):  # pragma: no cover
         raise RuntimeError("the minimal realization does not realize the same transfer function")
-    return Realization(_sympy(F), _sympy(H), _sympy(M), _sympy(N), R.dt)
+    return Realization(*(from_fmpq_mat(X) for X in (F, H, M, N)), R.dt)
 
 
 def _same_markov(a, b, count: int) -> bool:

@@ -40,12 +40,13 @@ import numpy as np
 import sympy as sp
 from flint import fmpq_mat
 
+from symctl._util.exact import from_fmpq, from_fmpq_mat
 from symctl.design.augment import AugmentedSystem
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
 from symctl.proof import Verdict
-from symctl.realization.minimal import MAX_ORDER, _mat, _pivots, _sympy, minimal_realization
+from symctl.realization.minimal import MAX_ORDER, _mat, _pivots, minimal_realization
 from symctl.realization.realization import Realization
 from symctl.symbols import gain_matrix_symbols, z
 
@@ -124,7 +125,7 @@ def _nullspace(M: fmpq_mat) -> list[list[sp.Rational]]:
         v = [sp.Integer(0)] * cols
         v[f] = sp.Integer(1)
         for i, p in enumerate(pivots):
-            v[p] = -_rational(R[i, f])
+            v[p] = -from_fmpq(R[i, f])
         out.append(v)
     return out
 
@@ -205,7 +206,7 @@ def controller_reduction(
     unseen = _unseen(A, _numbers(Qeq, "Q"))
     directions = _directions(B, unseen)
     K = sp.Matrix.hstack(*gain_matrix_symbols(T, m, n))
-    Rm = _sympy(_numbers(system.R, "R"))
+    Rm = sp.Matrix(from_fmpq_mat(_numbers(system.R, "R")))
     equations = [e for v in unseen for e in K * sp.Matrix(v)]
     equations += [e for d in directions for e in (Rm * sp.Matrix(d)).T * K]
     relations = _solve(equations, list(K))
@@ -237,7 +238,7 @@ def controller_reduction(
 
 def _directions(B: fmpq_mat, unseen: list) -> list[list[sp.Rational]]:
     """A basis of the input directions ``d`` with ``B d`` in the span of ``unseen``."""
-    stacked = sp.Matrix.hstack(_sympy(B), *(-sp.Matrix(v) for v in unseen))
+    stacked = sp.Matrix.hstack(from_fmpq_mat(B), *(-sp.Matrix(v) for v in unseen))
     return [v[: B.ncols()] for v in _nullspace(_mat(stacked, "B"))]
 
 
@@ -251,14 +252,10 @@ def _solve(equations: list, symbols: list) -> dict:
     pivots = _pivots(R) if rank else []
     free = [c for c in range(len(order)) if c not in pivots]
     solved = {
-        order[p]: -sp.Add(*(_rational(R[i, f]) * order[f] for f in free))
+        order[p]: -sp.Add(*(from_fmpq(R[i, f]) * order[f] for f in free))
         for i, p in enumerate(pivots)
     }
     return {k: solved[k] for k in symbols if k in solved}
-
-
-def _rational(x) -> sp.Rational:
-    return sp.Rational(int(x.p), int(x.q))
 
 
 def _chain_order(K: sp.Matrix, n: int, m: int, T: int, tied: int) -> tuple[int, str]:

@@ -454,6 +454,7 @@ AUDITED = {
     ("symctl.model.saved", "_parsed", "parse_expr"): 4,  # the safe parser itself
     ("symctl.derivation.load", "_parse_long", "parse_expr"): 2,  # the safe parser, piece by piece
     ("symctl.derivation.load", "SavedDerivation._matrix", "ImmutableMatrix"): 1,  # parsed entries
+    ("symctl.derivation.load", "SavedDerivation._transform", "ImmutableMatrix"): 1,  # parsed
     ("symctl.model.saved", "_parsed", "ImmutableMatrix"): 2,  # of parse_expr's results
     # the gains' own substitutions (float, exact)
     ("symctl.derivation.pipeline", "_derive", "subs"): 3,
@@ -508,7 +509,7 @@ AUDITED = {
     ("symctl.realization.reduction", "ControllerReduction.reduce", "subs"): 1,
     ("symctl.realization.reduction", "ControllerReduction.reduce", "Poly"): 1,
     ("symctl.realization.reduction", "ControllerReduction.reduce", "expand"): 2,
-    ("symctl.realization.reduction", "controller_reduction", "Matrix"): 4,
+    ("symctl.realization.reduction", "controller_reduction", "Matrix"): 5,
     ("symctl.realization.reduction", "_directions", "Matrix"): 1,
     ("symctl.realization.reduction", "_reason", "Matrix"): 1,
     # the odd-degree proof: a pattern's own equations, symbols and rationals (no user text)
@@ -562,7 +563,7 @@ AUDITED = {
     ("symctl.realization.factorization", "_relative_difference", "Poly"): 2,  # parsed sides
     ("symctl.realization.factorization", "_relative_difference", "cancel"): 2,  # parsed sides
     ("symctl._util.validate", "common_dt", "expand"): 1,  # dt already through sampling_time
-    ("symctl.realization.check", "_sympy", "ImmutableMatrix"): 1,  # flint/exact entries
+    ("symctl._util.exact", "from_fmpq_mat", "ImmutableMatrix"): 1,  # flint rationals
     ("symctl.realization.factorization", "Factorization.subs", "subs"): 4,  # subs_rule
     ("symctl.realization.factorization", "Factorization.subs.sub", "subs"): 1,  # subs_rule
     ("symctl.realization._similarity", "_sympy_mat", "Matrix"): 1,  # flint rationals
@@ -594,7 +595,6 @@ AUDITED = {
     ("symctl._util.exact", "z_poly", "cancel"): 1,  # PolyElement.cancel: ring elements
     ("symctl._util.exact", "cancel", "cancel"): 2,  # sympy.cancel of a realization's coefficient
     # minimal_realization: a Matrix of flint rationals turned into sympy Rationals
-    ("symctl.realization.minimal", "_sympy", "Matrix"): 1,
     # structure_firing: Circuit.subs with the gains' exact values and drawn rationals
     ("symctl.neural.firing", "structure_firing", "subs"): 1,
     ("symctl.neural.firing", "structure_firing.rows", "subs"): 1,
