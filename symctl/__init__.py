@@ -29,8 +29,8 @@ _PUBLIC_BY_MODULE = (
     # errors
     (
         "symctl.errors",
-        "DimensionError LatexError ModelFileError NotRealizableError NotStabilizableError "
-        "ParameterError ParseError SymctlError SymctlTypeError",
+        "DimensionError LatexError MissingDependencyError ModelFileError NotRealizableError "
+        "NotStabilizableError ParameterError ParseError SymctlError SymctlTypeError",
     ),
     # symbols
     ("symctl.symbols", "z"),

@@ -539,6 +539,23 @@ class Circuit(LatexMixin):
             self, ax, title=title, vertex_names=vertex_names, signs_at=signs_at, width=width
         )
 
+    def to_nengo(self, n_neurons: int | None = None, *, neuron_type=None, rng=None):
+        """The circuit as a nengo network, one node per neuron (needs ``pip install symctl[spiking]``).
+
+        The arguments are those of :func:`symctl.spiking.nengo_export.to_nengo`, which builds it;
+        run it with ``dt`` the sampling time.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure, first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+        >>> sorted(c.to_nengo().neurons)
+        ['x1']
+        """
+        from symctl.spiking.nengo_export import to_nengo
+
+        return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng)
+
 
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""
