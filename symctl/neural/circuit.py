@@ -556,6 +556,23 @@ class Circuit(LatexMixin):
 
         return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng)
 
+    def to_nest(self, *, dt: float = 0.01):
+        """Build the circuit in NEST's linear rate neurons (needs ``pip install symctl[spiking]``).
+
+        The arguments are those of :func:`symctl.spiking.nest_export.to_nest`, which resets
+        NEST's kernel to the resolution ``dt`` and builds it; returns its ``NestNetwork``.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure, first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+        >>> sorted(c.to_nest().neurons)
+        ['x1']
+        """
+        from symctl.spiking.nest_export import to_nest
+
+        return to_nest(self, dt=dt)
+
 
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""
