@@ -82,3 +82,21 @@ def test_multi_step_axons_are_delays_of_as_many_steps(response):
     circuit = Circuit.from_structure(Structure.from_realization(R))
     assert max(s.delay for s in (*circuit.synapses, *circuit.outputs)) >= 2
     _same_traces(response, circuit, _input(circuit))
+
+
+def test_the_spiking_guide_runs_as_written():
+    """docs/guide/spiking.md's Python blocks, in order, in one fresh namespace."""
+    import re
+    from pathlib import Path
+
+    need_spiking("nengo")
+    need_spiking("nest")
+    page = Path(__file__).resolve().parents[2] / "docs" / "guide" / "spiking.md"
+    namespace: dict = {"__name__": "__main__"}
+    blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
+    assert len(blocks) == 2
+    for k, code in enumerate(blocks):
+        exec(compile(code, f"spiking.md python block {k + 1}", "exec"), namespace)
+    np.testing.assert_allclose(
+        namespace["traces"]["G2.x1"], _drive(namespace["circuit"], pulse(50))["G2.x1"], atol=1e-9
+    )
