@@ -1,8 +1,13 @@
-"""Every export, run in its simulator, reproduces symctl's own simulation of the circuit."""
+"""Every export, run in its simulator, reproduces symctl's own simulation of the circuit.
+
+The JSON connection list is run by a reader written here from its documented schema only.
+"""
 
 from __future__ import annotations
 
+import graphlib
 import importlib
+import json
 
 import numpy as np
 import pytest
@@ -15,6 +20,7 @@ from symctl import (
     circuits_for,
     controllable_canonical,
     controller_tf,
+    export_circuit,
     factor,
     pulse,
 )
@@ -23,6 +29,7 @@ from symctl.neural.firing import _drive
 SIMULATORS = {
     "nengo": ("nengo", "symctl.spiking.nengo_export", "nengo_response"),
     "nest": ("nest", "symctl.spiking.nest_export", "nest_response"),
+    "json": (None, __name__, "_json_response"),
 }
 
 
@@ -30,8 +37,47 @@ SIMULATORS = {
 def response(request):
     """``(circuit, u) -> traces`` of one simulator (skipped without it, as need_spiking)."""
     package, module, name = SIMULATORS[request.param]
-    need_spiking(package)
+    if package:
+        need_spiking(package)
     return getattr(importlib.import_module(module), name)
+
+
+def _json_response(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
+    """export_circuit's JSON, read back from disk and run by the schema's rule alone."""
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "circuit.json"
+        export_circuit(circuit, path, dt=0.01)
+        data = json.loads(path.read_text(encoding="utf-8"))
+    assert (data["format"], data["version"]) == ("symctl-circuit", 1)
+    u = u[:, None] if u.ndim == 1 else u
+    steps = u.shape[0]
+    signal = {name: u[:, j] for j, name in enumerate(data["inputs"])}
+    terms = {}
+    for n in data["neurons"]:
+        signal[n["name"]] = np.zeros(steps)
+        terms[n["name"]] = [(n["name"], t["weight"], t["delay_steps"]) for t in n["self_dynamics"]]
+        for t in n["self_dynamics"]:
+            assert t["delay_s"] == pytest.approx(0.01 * t["delay_steps"])
+    for s in data["synapses"]:
+        terms[s["target"]].append((s["source"], s["weight"], s["delay_steps"]))
+    now = {n: {s for s, _, d in ts if d == 0 and s in terms} for n, ts in terms.items()}
+    order = list(graphlib.TopologicalSorter(now).static_order())  # delay-free inputs first
+    for t in range(steps):
+        for n in order:
+            signal[n][t] = sum(w * signal[s][t - d] for s, w, d in terms[n] if t >= d)
+    traces = {n["name"]: signal[n["name"]] for n in data["neurons"]}
+    outs = []
+    for o in data["outputs"]:
+        out = np.zeros(steps)
+        if o["source"] is not None:
+            d = o["delay_steps"]
+            out[d:] = o["weight"] * signal[o["source"]][: steps - d]
+        outs.append(out)
+    traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
+    return traces
 
 
 def _same_traces(response, circuit: Circuit, u: np.ndarray) -> None:
@@ -84,7 +130,7 @@ def test_multi_step_axons_are_delays_of_as_many_steps(response):
     _same_traces(response, circuit, _input(circuit))
 
 
-def test_the_spiking_guide_runs_as_written():
+def test_the_spiking_guide_runs_as_written(tmp_path, monkeypatch):
     """docs/guide/spiking.md's Python blocks, in order, in one fresh namespace."""
     import re
     from pathlib import Path
@@ -94,7 +140,8 @@ def test_the_spiking_guide_runs_as_written():
     page = Path(__file__).resolve().parents[2] / "docs" / "guide" / "spiking.md"
     namespace: dict = {"__name__": "__main__"}
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
-    assert len(blocks) == 2
+    assert len(blocks) == 3
+    monkeypatch.chdir(tmp_path)  # the page writes circuit.json
     for k, code in enumerate(blocks):
         exec(compile(code, f"spiking.md python block {k + 1}", "exec"), namespace)
     np.testing.assert_allclose(
