@@ -53,7 +53,12 @@ SLOW_DOCTESTS = (
 
 # doctests that need the spiking extra (nengo, NEST): skipped without it, except where
 # SYMCTL_REQUIRE_SPIKING is set (make test-all), where they run and fail if it is missing
-SPIKING_DOCTESTS = ("symctl/spiking/",)
+SPIKING_DOCTESTS = (
+    "symctl/spiking/nengo_export.py",
+    "symctl/spiking/nest_export.py",
+    "symctl/spiking/loop.py",
+    "symctl/plotting/spiking.py",
+)
 SPIKING_METHODS = (".to_nengo", ".to_nest")
 
 

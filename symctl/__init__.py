@@ -81,6 +81,7 @@ _PUBLIC_BY_MODULE = (
     ("symctl.neural.stability", "LoopStability loop_stability"),
     # circuits in other simulators: a neutral connection list (nengo and NEST: Circuit methods)
     ("symctl.spiking.connections", "export_circuit"),
+    ("symctl.spiking.loop", "SpikingResponse spiking_response"),
     # the circuit atlas
     ("symctl.circuitatlas.atlas", "Atlas atlas"),
     ("symctl.circuitatlas.candidates", "CandidateCircuit circuits_for"),

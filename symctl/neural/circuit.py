@@ -539,11 +539,14 @@ class Circuit(LatexMixin):
             self, ax, title=title, vertex_names=vertex_names, signs_at=signs_at, width=width
         )
 
-    def to_nengo(self, n_neurons: int | None = None, *, neuron_type=None, rng=None):
-        """The circuit as a nengo network, one node per neuron (needs ``pip install symctl[spiking]``).
+    def to_nengo(
+        self, n_neurons: int | None = None, *, neuron_type=None, rng=None, dt=0.01, radius=None
+    ):
+        """The circuit as a nengo network (needs ``pip install symctl[spiking]``).
 
-        The arguments are those of :func:`symctl.spiking.nengo_export.to_nengo`, which builds it;
-        run it with ``dt`` the sampling time.
+        The arguments are those of :func:`symctl.spiking.nengo_export.to_nengo`, which builds
+        it: one exact node per neuron (``n_neurons=None``; run it with ``dt`` the sampling
+        time), or a population of ``n_neurons`` spiking neurons per neuron.
 
         Examples
         --------
@@ -554,7 +557,7 @@ class Circuit(LatexMixin):
         """
         from symctl.spiking.nengo_export import to_nengo
 
-        return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng)
+        return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng, dt=dt, radius=radius)
 
     def to_nest(self, *, dt: float = 0.01):
         """Build the circuit in NEST's linear rate neurons (needs ``pip install symctl[spiking]``).
