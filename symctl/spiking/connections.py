@@ -12,7 +12,9 @@ import json
 from pathlib import Path
 from typing import NamedTuple
 
-from symctl._util.validate import positive_number, to_expr
+import numpy as np
+
+from symctl._util.validate import float_array, positive_number, to_expr
 from symctl.errors import MissingDependencyError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 
@@ -60,6 +62,24 @@ def _edges(circuit: Circuit, argname: str = "circuit") -> list[_Edge]:
         out += [edge(s, "self") for s in n.self_terms]
         out += [edge(s, "synapse") for s in n.synapses]
     return out + [edge(s, "output") for s in circuit.outputs if s.source != "0"]
+
+
+def _samples(circuit: Circuit, u) -> np.ndarray:
+    """``u`` as ``(steps, inputs)`` floats, one column per circuit input."""
+    u = float_array(u, "u")
+    u = u[:, None] if u.ndim == 1 else u
+    if u.ndim != 2 or u.shape[1] != len(circuit.inputs):
+        raise ParameterError(
+            f"u: expected (steps, {len(circuit.inputs)}) samples of {circuit.inputs}, "
+            f"got shape {u.shape}"
+        )
+    return u
+
+
+def _with_output(traces: dict, outs: list) -> dict:
+    """``traces`` with ``"output"``: the one output's trace, or the outputs side by side."""
+    traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
+    return traces
 
 
 def _label(circuit: Circuit, name: str) -> str:

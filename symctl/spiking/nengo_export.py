@@ -37,11 +37,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from symctl._util.validate import as_generator, bounded_int, float_array, positive_number
+from symctl._util.validate import as_generator, bounded_int, positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import pulse
-from symctl.spiking.connections import _edges, _label, _require
+from symctl.spiking.connections import _edges, _label, _require, _samples, _with_output
 
 __all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
 
@@ -220,13 +220,7 @@ def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndar
     array([0.  , 1.  , 0.5 , 0.25])
     """
     dt = positive_number(dt, "dt")
-    u = float_array(u, "u")
-    u = u[:, None] if u.ndim == 1 else u
-    if u.ndim != 2 or u.shape[1] != len(circuit.inputs):
-        raise ParameterError(
-            f"u: expected (steps, {len(circuit.inputs)}) samples of {circuit.inputs}, "
-            f"got shape {u.shape}"
-        )
+    u = _samples(circuit, u)
     net = to_nengo(circuit)
     nengo = _require("nengo")
     steps = u.shape[0]
@@ -241,5 +235,4 @@ def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndar
         sim.run_steps(steps)
     traces = {n: sim.data[p][:, 0] for n, p in probes.items()}
     outs = [sim.data[p][:, 0] for p in out_probes]
-    traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
-    return traces
+    return _with_output(traces, outs)

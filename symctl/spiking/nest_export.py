@@ -29,10 +29,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from symctl._util.validate import float_array, positive_number
+from symctl._util.validate import positive_number
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
-from symctl.spiking.connections import _edges, _require
+from symctl.spiking.connections import _edges, _require, _samples, _with_output
 
 __all__ = ["NestNetwork", "nest_response", "to_nest"]
 
@@ -193,13 +193,7 @@ def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndar
     >>> nest_response(c, [1.0, 0.0, 0.0, 0.0])["x1"]
     array([0.  , 1.  , 0.5 , 0.25])
     """
-    u = float_array(u, "u")
-    u = u[:, None] if u.ndim == 1 else u
-    if u.ndim != 2 or u.shape[1] != len(circuit.inputs):
-        raise ParameterError(
-            f"u: expected (steps, {len(circuit.inputs)}) samples of {circuit.inputs}, "
-            f"got shape {u.shape}"
-        )
+    u = _samples(circuit, u)
     net = to_nest(circuit, dt=dt)
     nest = _nest()
     h, steps = nest.resolution, u.shape[0]
@@ -219,5 +213,4 @@ def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndar
 
     traces = {n: trace(n) for n in net.neurons}
     outs = [trace(n) for n in net.outputs]
-    traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
-    return traces
+    return _with_output(traces, outs)
