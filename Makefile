@@ -4,6 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 DOCS_STAMP := $(VENV)/.installed-docs
+SPIKING_STAMP := $(VENV)/.installed-spiking
 OUT ?= out/paper
 DOCS_OUT := docs/_build/html
 PY_FILES := symctl tests benchmarks conftest.py docs/conf.py docs/_ext docs/run_notebooks.py
@@ -23,6 +24,11 @@ $(DOCS_STAMP): $(STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[dev,docs]"
 	touch $(DOCS_STAMP)
 
+# the spiking extra (nengo, NEST): its tests skip without it in `make test`, run in `make test-all`
+$(SPIKING_STAMP): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[dev,spiking]"
+	touch $(SPIKING_STAMP)
+
 paper: $(STAMP)
 	$(BIN)/symctl paper --out $(OUT)
 
@@ -41,9 +47,10 @@ test: $(STAMP)
 	SYMCTL_EXAMPLES=$${SYMCTL_EXAMPLES:-10} $(BIN)/python -m pytest -n 2 -q -m "not slow and not docs"
 
 # both tiers (what CI runs): adds every example end to end, the notebooks, PDF compiles, dask
-# clusters, the console script's subprocess runs; 40 examples per property; the 25 slowest listed
-test-all: $(STAMP)
-	$(BIN)/python -m pytest -n 2 -q --durations=25
+# clusters, the console script's subprocess runs, the spiking extra's exports (nengo, NEST); 40
+# examples per property; the 25 slowest listed
+test-all: $(SPIKING_STAMP)
+	SYMCTL_REQUIRE_SPIKING=1 $(BIN)/python -m pytest -n 2 -q --durations=25
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(PY_FILES)

@@ -21,6 +21,8 @@ Emptying the namespace makes every doctest self-contained.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 from pathlib import Path
 
 import pytest
@@ -49,6 +51,20 @@ SLOW_DOCTESTS = (
     "symctl/dalelaw/interneurons.py",
 )
 
+# doctests that need the spiking extra (nengo, NEST): skipped without it, except where
+# SYMCTL_REQUIRE_SPIKING is set (make test-all), where they run and fail if it is missing
+SPIKING_DOCTESTS = (
+    "symctl/spiking/nengo_export.py",
+    "symctl/spiking/nest_export.py",
+    "symctl/spiking/loop.py",
+    "symctl/plotting/spiking.py",
+)
+SPIKING_METHODS = (".to_nengo", ".to_nest")
+
+
+def _spiking_installed() -> bool:
+    return all(importlib.util.find_spec(m) is not None for m in ("nengo", "nest"))
+
 
 def _is_slow(item) -> bool:
     path = Path(str(item.fspath)).resolve().relative_to(ROOT).as_posix()
@@ -57,10 +73,18 @@ def _is_slow(item) -> bool:
     return path in SLOW_FILES
 
 
+def _needs_spiking(item) -> bool:
+    path = Path(str(item.fspath)).resolve().relative_to(ROOT).as_posix()
+    return path.startswith(SPIKING_DOCTESTS) or item.name.endswith(SPIKING_METHODS)
+
+
 def pytest_collection_modifyitems(config, items):
     for item in items:
         if isinstance(item, DoctestItem):
             item.dtest.globs = {"__name__": "__main__"}
+            if _needs_spiking(item) and not _spiking_installed():
+                if not os.environ.get("SYMCTL_REQUIRE_SPIKING"):
+                    item.add_marker(pytest.mark.skip(reason="pip install symctl[spiking]"))
         if _is_slow(item):
             item.add_marker(pytest.mark.slow)
 

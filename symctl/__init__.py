@@ -29,8 +29,8 @@ _PUBLIC_BY_MODULE = (
     # errors
     (
         "symctl.errors",
-        "DimensionError LatexError ModelFileError NotRealizableError NotStabilizableError "
-        "ParameterError ParseError SymctlError SymctlTypeError",
+        "DimensionError LatexError MissingDependencyError ModelFileError NotRealizableError "
+        "NotStabilizableError ParameterError ParseError SymctlError SymctlTypeError",
     ),
     # symbols
     ("symctl.symbols", "z"),
@@ -79,6 +79,9 @@ _PUBLIC_BY_MODULE = (
         "Response closed_loop_response open_loop_response pulse simulate_realization",
     ),
     ("symctl.neural.stability", "LoopStability loop_stability"),
+    # circuits in other simulators: a neutral connection list (nengo and NEST: Circuit methods)
+    ("symctl.spiking.connections", "export_circuit"),
+    ("symctl.spiking.loop", "SpikingResponse spiking_response"),
     # the circuit atlas
     ("symctl.circuitatlas.atlas", "Atlas atlas"),
     ("symctl.circuitatlas.candidates", "CandidateCircuit circuits_for"),

@@ -22,6 +22,7 @@ from __future__ import annotations
 __all__ = [
     "DimensionError",
     "LatexError",
+    "MissingDependencyError",
     "NotStabilizableError",
     "ParameterError",
     "ParseError",
@@ -117,6 +118,17 @@ class SymctlTypeError(SymctlError, TypeError):
     Traceback (most recent call last):
     ...
     symctl.errors.SymctlTypeError: ...
+    """
+
+
+class MissingDependencyError(SymctlError, ImportError):
+    """An optional package a function needs is not installed; the message says how to install it.
+
+    Examples
+    --------
+    >>> from symctl import MissingDependencyError, SymctlError
+    >>> issubclass(MissingDependencyError, SymctlError), issubclass(MissingDependencyError, ImportError)
+    (True, True)
     """
 
 

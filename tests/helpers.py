@@ -145,3 +145,15 @@ def long_sums():
         for k in range(6)
     )
     return Table(("$k$", "$a_k$", "with the optimal gains"), rows)
+
+
+def need_spiking(module: str):
+    """The spiking extra's ``module`` (nengo, nest); the test module is skipped without it,
+    except under SYMCTL_REQUIRE_SPIKING (make test-all), where a missing one fails."""
+    import importlib
+
+    import pytest
+
+    if os.environ.get("SYMCTL_REQUIRE_SPIKING"):
+        return importlib.import_module(module)
+    return pytest.importorskip(module, reason="pip install symctl[spiking]")

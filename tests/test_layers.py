@@ -27,6 +27,7 @@ STAGES = (
     ("symctl.realization",),
     ("symctl.compatibility",),
     ("symctl.neural",),
+    ("symctl.spiking",),
     ("symctl.circuitatlas",),
     ("symctl.dalelaw",),
     ("symctl.fitting",),
@@ -46,6 +47,8 @@ DELEGATIONS = {
     "from_sympy",
     "to_scipy",
     "from_scipy",
+    "to_nengo",
+    "to_nest",
     # a derivation handed to the report stage, which writes it
     "to_dict",
     "parameters",
@@ -53,7 +56,7 @@ DELEGATIONS = {
     "figure_names",
     "write",
 }
-DELEGATION_TARGETS = ("symctl.plotting", "symctl.interop", "symctl.report")
+DELEGATION_TARGETS = ("symctl.plotting", "symctl.interop", "symctl.report", "symctl.spiking")
 MAX_LINES = 720  # "about 700"
 
 

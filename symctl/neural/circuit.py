@@ -539,6 +539,43 @@ class Circuit(LatexMixin):
             self, ax, title=title, vertex_names=vertex_names, signs_at=signs_at, width=width
         )
 
+    def to_nengo(
+        self, n_neurons: int | None = None, *, neuron_type=None, rng=None, dt=0.01, radius=None
+    ):
+        """The circuit as a nengo network (needs ``pip install symctl[spiking]``).
+
+        The arguments are those of :func:`symctl.spiking.nengo_export.to_nengo`, which builds
+        it: one exact node per neuron (``n_neurons=None``; run it with ``dt`` the sampling
+        time), or a population of ``n_neurons`` spiking neurons per neuron.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure, first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+        >>> sorted(c.to_nengo().neurons)
+        ['x1']
+        """
+        from symctl.spiking.nengo_export import to_nengo
+
+        return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng, dt=dt, radius=radius)
+
+    def to_nest(self, *, dt: float = 0.01):
+        """Build the circuit in NEST's linear rate neurons (needs ``pip install symctl[spiking]``).
+
+        The arguments are those of :func:`symctl.spiking.nest_export.to_nest`, which resets
+        NEST's kernel to the resolution ``dt`` and builds it; returns its ``NestNetwork``.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure, first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+        >>> sorted(c.to_nest().neurons)
+        ['x1']
+        """
+        from symctl.spiking.nest_export import to_nest
+
+        return to_nest(self, dt=dt)
+
 
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""

@@ -1,0 +1,83 @@
+r"""The figure of a loop through spiking populations: force, firing rates and a raster.
+
+:meth:`SpikingResponse.plot <symctl.spiking.loop.SpikingResponse.plot>` delegates here.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from symctl._util.texnames import signal_tex
+from symctl.plotting import style
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from symctl.spiking.loop import SpikingResponse
+
+RASTER_NEURONS = 20
+"""Neurons per population the raster shows (the first ones)."""
+
+
+def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
+    r"""Force (spiking solid, linear dashed), each neuron's rate change, and a spike raster.
+
+    Parameters
+    ----------
+    res : SpikingResponse
+        The result of :func:`~symctl.spiking.loop.spiking_response`.
+    size : {"column", "double", "text"} or float
+        The printed width.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Three panels, top to bottom; the raster shows the first ``RASTER_NEURONS`` neurons of
+        each population (none when exact).
+
+    Examples
+    --------
+    >>> import symctl
+    >>> from symctl.plotting.spiking import spiking_plot
+    >>> res = symctl.derive_paper()
+    >>> r = symctl.spiking_response(res.gains, res.circuits["ifp"].firing.circuits[0], n_neurons=20)
+    >>> [ax.get_ylabel() for ax in spiking_plot(r).axes]
+    ['$\\delta f$ [N]', 'rate change [spikes/s]', 'neuron']
+    """
+    fig = style.new_figure(size, 5.0)
+    dashed = (0, (3, 2))
+    with style.styled():
+        force, rates, raster = fig.subplots(3, 1, sharex=True)
+        force.step(res.t, res.delta_f[:, 0], where="post", color=style.PALETTE[0], label="spiking")
+        force.step(
+            res.t,
+            res.delta_f_linear[:, 0],
+            where="post",
+            color=style.NEUTRAL,
+            ls=dashed,
+            label="linear",
+        )
+        force.set_ylabel(style.axis_label(r"$\delta f$", "N"))
+        force.set_title(
+            f"force, {res.n_neurons or 'exact'} neurons per population "
+            f"(RMS deviation {res.deviation:.3g})",
+            loc="left",
+        )
+        force.legend(loc="upper right")
+        for k, (name, trace) in enumerate(res.firing.items()):
+            colour = style.cycle(k)
+            rates.step(res.t, trace, where="post", color=colour, label=f"${signal_tex(name)}$")
+            rates.step(res.t, res.firing_linear[name], where="post", color=colour, ls=dashed)
+        rates.set_ylabel(style.axis_label("rate change", "spikes/s"))
+        rates.legend(loc="upper right", ncol=3)
+        row = 0
+        for k, spikes in enumerate(res.spikes.values()):
+            for i in range(min(RASTER_NEURONS, spikes.shape[1])):
+                times = np.flatnonzero(spikes[:, i]) * res.dt
+                raster.plot(times, np.full(times.shape, row), "|", ms=3, color=style.cycle(k))
+                row += 1
+        raster.set_ylabel("neuron")
+        raster.set_xlabel(style.axis_label("time", "s"))
+    return fig

@@ -1,0 +1,11 @@
+"""Stage 5b: symctl's circuits in other simulators, and as spiking neurons.
+
+- ``connections``: a circuit as a numeric connection list, which every export reads;
+  ``export_circuit``, the simulator-neutral JSON;
+- ``nengo_export``: ``Circuit.to_nengo``, exact nodes or spiking populations (NEF);
+- ``nest_export``: ``Circuit.to_nest``, NEST's linear rate neurons, retimed to be exact;
+- ``loop``: ``spiking_response``, the loop closed through spiking populations.
+
+nengo and NEST (``pip install symctl[spiking]``) are imported only when asked for, never
+with ``import symctl``.
+"""

@@ -1,0 +1,238 @@
+r"""A circuit as a nengo network: one node per neuron, its synapses as delayed connections.
+
+A stylized neuron :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` is a
+passthrough :class:`nengo.Node` (it sums what reaches it) and each term a
+:class:`nengo.Connection` with ``transform`` the weight and ``synapse`` the pure delay
+:math:`z^{-d}` (a discrete :class:`nengo.LinearFilter`, or ``None`` for no delay): a
+delay is an axon, not a filter. Run in nengo's simulator with ``dt`` the circuit's
+sampling time :math:`T_s`, step :math:`k + 1` of the network holds the circuit's
+:math:`n(k)` when the input node holds :math:`u(k)` (nengo's first step is
+:math:`t = dt`): the network reproduces symctl's linear simulation to rounding.
+
+**Spiking populations** (``n_neurons=N``) follow the Neural Engineering Framework
+[1]_: each neuron's sum drives a population of :math:`N` spiking neurons (LIF unless
+``neuron_type`` says otherwise) that represents its rate change in
+:math:`[-r, r]` (:math:`r`: ``radius``), with encoders, gains and biases drawn by
+nengo and decoders solved by least squares; the decoded value, filtered by a
+postsynaptic lowpass of time constant :math:`T_s / 5` (``TAU_FRACTION``), is the
+neuron's axon. The network then runs ``SUBSTEPS`` simulator steps per sample
+(``dt`` :math:`= T_s/10`), and a delay of :math:`d` samples is the pure delay of
+:math:`10 d` simulator steps: delays stay exact, as in the delay networks of [2]_,
+which realize delays with the populations themselves instead. The lowpass is **not
+compensated**: it smooths the spikes, and its effect is a lag of about
+:math:`T_s/5` within each sample (a step settles to :math:`e^{-5} < 1\%` by the
+sample's end), which :func:`~symctl.spiking.loop.spiking_response` measures with
+the spike noise as the deviation from the linear loop, rather than hiding it.
+
+References
+----------
+.. [1] C. Eliasmith and C. H. Anderson, *Neural Engineering: Computation,
+   Representation, and Dynamics in Neurobiological Systems*, MIT Press, 2003.
+.. [2] A. R. Voelker and C. Eliasmith, "Improving spiking dynamical networks:
+   accurate delays, higher-order synapses, and time cells", *Neural Computation*
+   30(3), 569-609, 2018.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from symctl._util.validate import as_generator, bounded_int, positive_number
+from symctl.errors import ParameterError, SymctlTypeError
+from symctl.neural.circuit import Circuit
+from symctl.neural.simulate import pulse
+from symctl.spiking.connections import _edges, _label, _require, _samples, _with_output
+
+__all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
+
+MAX_POPULATION = 10_000
+"""Most spiking neurons per population of :func:`to_nengo` (``n_neurons``)."""
+SUBSTEPS = 10
+"""Simulator steps per sample of a spiking network (``dt = Ts / SUBSTEPS``)."""
+TAU_FRACTION = 0.2
+"""The postsynaptic lowpass of a spiking population, as a fraction of the sampling time."""
+RADIUS_MARGIN = 1.2
+"""A population's default radius: this times the peak of its neuron's linear trace."""
+
+
+def _delay(nengo, steps: int):
+    """The pure delay of ``steps`` simulator steps, :math:`z^{-steps}` (``None``: none)."""
+    return nengo.LinearFilter([1.0], [1.0] + [0.0] * steps, analog=False) if steps else None
+
+
+def _radii(circuit: Circuit, traces: dict) -> dict[str, float]:
+    """``RADIUS_MARGIN`` times each neuron's peak |trace| (1 for a neuron that never moves)."""
+    peaks = {n.name: float(np.max(np.abs(traces[n.name]))) for n in circuit.neurons}
+    return {name: RADIUS_MARGIN * p if p > 0 else 1.0 for name, p in peaks.items()}
+
+
+def to_nengo(
+    circuit: Circuit,
+    n_neurons: int | None = None,
+    *,
+    neuron_type=None,
+    rng=None,
+    dt: float = 0.01,
+    radius=None,
+):
+    r"""The circuit as a :class:`nengo.Network`: exact nodes, or spiking populations (module text).
+
+    Parameters
+    ----------
+    circuit : Circuit
+        With numbers for weights (e.g. one of :attr:`FiringPatterns.circuits`, or
+        :meth:`Circuit.subs`).
+    n_neurons : int, optional
+        ``None``: every neuron is exact, a non-spiking node; run with ``dt`` the sampling
+        time. An int in ``[1, MAX_POPULATION]``: a population of that many spiking neurons
+        per neuron; run with ``dt / SUBSTEPS``.
+    neuron_type : nengo.neurons.NeuronType, optional
+        The populations' neurons (default ``nengo.LIF()``); only with ``n_neurons``.
+    rng : int, numpy Generator or None
+        Seeds the network (``nengo.Network(seed=...)``: encoders, gains, biases).
+    dt : float
+        The sampling time :math:`T_s` in seconds (sets the lowpass of the populations).
+    radius : dict of str to float, optional
+        Each population's radius by neuron name; default ``RADIUS_MARGIN`` times the peak
+        of the neuron's linear response to :func:`~symctl.neural.simulate.pulse` on every
+        input.
+
+    Returns
+    -------
+    nengo.Network
+        With dicts by name: ``inputs`` (a passthrough node per circuit input: connect your
+        signal to it), ``neurons`` (a node per neuron, its sum, labelled
+        ``"name @ v<vertex>"``), ``axons`` (what each neuron sends: the node itself, or its
+        population's filtered decoded value), ``populations`` (the ensembles; empty when
+        exact) and ``outputs`` (a node per circuit output).
+
+    Raises
+    ------
+    MissingDependencyError
+        nengo is not installed (``pip install symctl[spiking]``).
+    ParameterError
+        Symbols or non-real numbers left in the weights; ``n_neurons`` outside
+        ``[1, MAX_POPULATION]``; a ``neuron_type`` or ``radius`` without ``n_neurons``.
+    SymctlTypeError
+        ``circuit`` is not a Circuit; ``neuron_type`` is not a nengo neuron type.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, first_order_realization
+    >>> from symctl.spiking.nengo_export import nengo_response, to_nengo
+    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+    >>> net = to_nengo(c)
+    >>> sorted(net.neurons), [c.label for c in net.connections]
+    (['x1'], ['x1 -> x1 (delay 1)', 'u -> x1 (delay 1)', 'x1 -> output x1 (delay 0)'])
+    >>> nengo_response(c, [1.0, 0.0, 0.0])["x1"]
+    array([0., 2., 1.])
+    >>> len(to_nengo(c, 50, rng=1).populations["x1"].neurons)
+    50
+    """
+    edges = _edges(circuit)
+    nengo = _require("nengo")
+    if neuron_type is not None and not isinstance(neuron_type, nengo.neurons.NeuronType):
+        raise SymctlTypeError(
+            f"neuron_type: expected a nengo neuron type (e.g. nengo.LIF()), got {neuron_type!r}"
+        )
+    dt = positive_number(dt, "dt")
+    seed = int(as_generator(rng, "rng").integers(2**31))
+    if n_neurons is None:
+        for name, value in (("neuron_type", neuron_type), ("radius", radius)):
+            if value is not None:
+                raise ParameterError(f"{name}: needs n_neurons (spiking populations), got None")
+        return _network(nengo, circuit, edges, seed)
+    n_neurons = bounded_int(n_neurons, "n_neurons", 1, MAX_POPULATION)
+    if radius is None:
+        from symctl.neural.firing import _drive
+
+        radius = _radii(circuit, _drive(circuit, pulse(size=len(circuit.inputs))))
+    else:
+        names = [n.name for n in circuit.neurons]
+        if not isinstance(radius, dict) or sorted(radius) != sorted(names):
+            raise ParameterError(f"radius: expected a dict of a radius for each of {names}")
+        radius = {k: positive_number(v, f"radius[{k!r}]") for k, v in radius.items()}
+    spiking = (n_neurons, neuron_type or nengo.LIF(), radius, TAU_FRACTION * dt)
+    return _network(nengo, circuit, edges, seed, spiking)
+
+
+def _network(nengo, circuit: Circuit, edges, seed: int, spiking=None):
+    """:func:`to_nengo`'s network; ``spiking``: ``(n_neurons, neuron_type, radii, tau)``."""
+    with nengo.Network(label=repr(circuit), seed=seed) as net:
+        net.inputs = {u: nengo.Node(size_in=1, label=u) for u in circuit.inputs}
+        net.neurons = {
+            n.name: nengo.Node(size_in=1, label=_label(circuit, n.name)) for n in circuit.neurons
+        }
+        net.outputs = {
+            o.target: nengo.Node(size_in=1, label=f"output {o.target}") for o in circuit.outputs
+        }
+        net.axons, net.populations = dict(net.neurons), {}
+        if spiking is not None:
+            size, kind, radii, tau = spiking
+            for name, node in net.neurons.items():
+                ens = nengo.Ensemble(size, 1, radius=radii[name], neuron_type=kind, label=name)
+                nengo.Connection(node, ens, synapse=None)
+                axon = nengo.Node(size_in=1, label=f"{name} axon")
+                nengo.Connection(ens, axon, synapse=nengo.Lowpass(tau))
+                net.populations[name], net.axons[name] = ens, axon
+        substeps = 1 if spiking is None else SUBSTEPS
+        for e in edges:
+            target = net.outputs[e.target] if e.kind == "output" else net.neurons[e.target]
+            name = f"output {e.target}" if e.kind == "output" else e.target
+            nengo.Connection(
+                net.axons[e.source] if e.source in net.axons else net.inputs[e.source],
+                target,
+                transform=e.weight,
+                synapse=_delay(nengo, e.delay * substeps),
+                label=f"{e.source} -> {name} (delay {e.delay})",
+            )
+    return net
+
+
+def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndarray]:
+    r"""Drive :func:`to_nengo`'s network from rest by ``u`` in nengo's reference simulator.
+
+    Parameters
+    ----------
+    circuit : Circuit
+        As for :func:`to_nengo`.
+    u : (steps,) or (steps, inputs) array
+        The circuit inputs, one row per sample, in ``circuit.inputs`` order.
+    dt : float
+        The sampling time :math:`T_s` in seconds (only nengo's clock reads it).
+
+    Returns
+    -------
+    dict of str to array
+        Every neuron's trace ``(steps,)`` by name, and ``"output"``: the circuit outputs
+        ``(steps,)`` (one output) or ``(steps, outputs)``, as symctl's own simulation gives.
+
+    Raises
+    ------
+    As :func:`to_nengo`; ParameterError for ``u`` of the wrong width.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, first_order_realization
+    >>> from symctl.spiking.nengo_export import nengo_response
+    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 1)))
+    >>> nengo_response(c, [1.0, 0.0, 0.0, 0.0])["x1"]
+    array([0.  , 1.  , 0.5 , 0.25])
+    """
+    dt = positive_number(dt, "dt")
+    u = _samples(circuit, u)
+    net = to_nengo(circuit)
+    nengo = _require("nengo")
+    steps = u.shape[0]
+    with net:
+        for j, name in enumerate(circuit.inputs):
+            column = u[:, j]
+            source = nengo.Node(lambda t, c=column: c[min(round(t / dt), steps) - 1])
+            nengo.Connection(source, net.inputs[name], synapse=None)
+        probes = {n: nengo.Probe(node) for n, node in net.neurons.items()}
+        out_probes = [nengo.Probe(net.outputs[o.target]) for o in circuit.outputs]
+    with nengo.Simulator(net, dt=dt, progress_bar=False) as sim:
+        sim.run_steps(steps)
+    traces = {n: sim.data[p][:, 0] for n, p in probes.items()}
+    outs = [sim.data[p][:, 0] for p in out_probes]
+    return _with_output(traces, outs)

@@ -1,0 +1,216 @@
+r"""A circuit in NEST: each neuron a linear rate transformer, each term a rate connection.
+
+NEST's ``rate_transformer_lin`` (gain 1, linear summation) outputs the sum of the rates
+it receives, so it is the stylized neuron exactly; what differs is time. Measured in
+NEST 3.10 with the resolution :math:`h = T_s`: a ``rate_connection_instantaneous``
+delivers the source's rate of the previous step (a lag of one step), a
+``rate_connection_delayed`` of delay :math:`D h` a lag of :math:`D + 1` steps, and a
+``step_rate_generator`` through a delayed connection of delay :math:`D h` a lag of
+:math:`D - 1` steps after its amplitude time. So no connection has a lag of 0, and a
+synapse of delay :math:`e = 0` (an output sum such as :math:`y = M x + N u`) cannot be
+copied one to one.
+
+The export **retimes** the circuit instead: neuron :math:`n` runs :math:`L_n` steps late
+(NEST's step :math:`k` holds the circuit's :math:`n(k - L_n)`), and a term
+:math:`s \to n` of delay :math:`e` becomes a connection of lag :math:`e + L_n - L_s`,
+which must be at least 1 (2 from an input's generator). These are difference
+constraints :math:`L_s - L_n \le e - 1`; the smallest lags are shortest paths
+(Bellman-Ford), and they exist exactly when every loop of the circuit has at least as
+many unit delays as neurons, which holds for every state-space realization (each state
+update is a delay of one step) and fails only for a loop of :math:`k` neurons with fewer
+than :math:`k` delays in all. The traces then equal symctl's to rounding (the tests
+check every paper circuit, the order-2 atlas classes and a MIMO circuit to 1e-9).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import NamedTuple
+
+import numpy as np
+
+from symctl._util.validate import positive_number
+from symctl.errors import ParameterError
+from symctl.neural.circuit import Circuit
+from symctl.spiking.connections import _edges, _require, _samples, _with_output
+
+__all__ = ["NestNetwork", "nest_response", "to_nest"]
+
+GENERATOR_LAG = 2
+"""A step_rate_generator's lag (read at NEST step k, it reaches a neuron as step k - 2 would)."""
+
+
+class NestNetwork(NamedTuple):
+    """The NEST nodes of a circuit, made by :func:`to_nest`.
+
+    Attributes
+    ----------
+    neurons, outputs, inputs : dict of str to NodeCollection
+        A ``rate_transformer_lin`` per neuron and per circuit output, a
+        ``step_rate_generator`` per circuit input.
+    lags : dict of str to int
+        How many steps late each node runs (module text): NEST's step ``k`` of node
+        ``n`` holds the circuit's ``n(k - lags[n])``.
+    """
+
+    neurons: dict
+    outputs: dict
+    inputs: dict
+    lags: dict
+
+
+def _nest():
+    """NEST, quiet (no banner, errors only)."""
+    os.environ.setdefault("PYNEST_QUIET", "1")
+    nest = _require("nest")
+    nest.verbosity = nest.VerbosityLevel.ERROR
+    return nest
+
+
+def _lags(circuit: Circuit, edges) -> dict[str, int]:
+    """The smallest lags with every connection's at least 1 (2 from an input), module text."""
+    nodes = [*circuit.inputs, *(n.name for n in circuit.neurons)]
+    nodes += [f"output {o.target}" for o in circuit.outputs]
+    # L_s - L_t <= e - least(s): an arc t -> s of that length; start every node at 0
+    arcs = [(_node(e), e.source, e.delay - _least(circuit, e.source)) for e in edges]
+    lag = dict.fromkeys(nodes, 0)
+    for _ in range(len(nodes) + 1):
+        changed = False
+        for t, s, length in arcs:
+            if lag[t] + length < lag[s]:
+                lag[s], changed = lag[t] + length, True
+        if not changed:
+            break
+    else:
+        raise ParameterError(
+            "circuit: a loop has fewer unit delays than neurons, and NEST's rate "
+            "connections delay every value by at least one step"
+        )
+    # every neuron at least 1 step late, every input at least 0 (its generator starts after 0)
+    low = min(lag[n] for n in nodes if n not in circuit.inputs)
+    shift = max(1 - low, -min((lag[u] for u in circuit.inputs), default=0))
+    return {n: v + shift for n, v in lag.items()}
+
+
+def _node(edge) -> str:
+    return f"output {edge.target}" if edge.kind == "output" else edge.target
+
+
+def _least(circuit: Circuit, source: str) -> int:
+    return GENERATOR_LAG if source in circuit.inputs else 1
+
+
+def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
+    r"""Build the circuit in NEST's kernel, after resetting it to the resolution ``dt``.
+
+    Parameters
+    ----------
+    circuit : Circuit
+        With numbers for weights.
+    dt : float
+        The sampling time :math:`T_s` in seconds: NEST's resolution (in ms).
+
+    Returns
+    -------
+    NestNetwork
+        The nodes by name and their lags; set each input generator's
+        ``amplitude_times``/``amplitude_values`` (or use :func:`nest_response`).
+
+    Raises
+    ------
+    MissingDependencyError
+        NEST is not installed (``pip install symctl[spiking]``).
+    ParameterError
+        Symbols left in the weights; a loop with fewer delays than neurons (module text).
+    SymctlTypeError
+        ``circuit`` is not a Circuit.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, first_order_realization
+    >>> from symctl.spiking.nest_export import to_nest
+    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+    >>> to_nest(c).lags
+    {'u': 0, 'x1': 1, 'output x1': 2}
+    """
+    edges = _edges(circuit)
+    dt = positive_number(dt, "dt")
+    lags = _lags(circuit, edges)
+    nest = _nest()
+    nest.ResetKernel()
+    nest.resolution = 1000.0 * dt
+    # the generators first: one created after the neurons reaches them two steps later (measured)
+    inputs = {u: nest.Create("step_rate_generator") for u in circuit.inputs}
+    linear = {"g": 1.0, "linear_summation": True}
+    net = NestNetwork(
+        {n.name: nest.Create("rate_transformer_lin", params=linear) for n in circuit.neurons},
+        {
+            f"output {o.target}": nest.Create("rate_transformer_lin", params=linear)
+            for o in circuit.outputs
+        },
+        inputs,
+        lags,
+    )
+    nodes = {**net.neurons, **net.outputs, **net.inputs}
+    for e in edges:
+        lag = e.delay + lags[_node(e)] - lags[e.source]
+        if lag == 1:
+            spec = {"synapse_model": "rate_connection_instantaneous", "weight": e.weight}
+        else:
+            spec = {"synapse_model": "rate_connection_delayed", "weight": e.weight}
+            spec["delay"] = (lag - 1) * nest.resolution
+        nest.Connect(nodes[e.source], nodes[_node(e)], syn_spec=spec)
+    return net
+
+
+def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndarray]:
+    r"""Drive :func:`to_nest`'s network from rest by ``u`` and read the traces back.
+
+    Parameters
+    ----------
+    circuit : Circuit
+        As for :func:`to_nest`.
+    u : (steps,) or (steps, inputs) array
+        The circuit inputs, one row per sample, in ``circuit.inputs`` order.
+    dt : float
+        The sampling time in seconds.
+
+    Returns
+    -------
+    dict of str to array
+        As :func:`~symctl.spiking.nengo_export.nengo_response`: each neuron's trace by
+        name, and ``"output"``.
+
+    Raises
+    ------
+    As :func:`to_nest`; ParameterError for ``u`` of the wrong width.
+
+    Examples
+    --------
+    >>> from symctl import Circuit, Structure, first_order_realization
+    >>> from symctl.spiking.nest_export import nest_response
+    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 1)))
+    >>> nest_response(c, [1.0, 0.0, 0.0, 0.0])["x1"]
+    array([0.  , 1.  , 0.5 , 0.25])
+    """
+    u = _samples(circuit, u)
+    net = to_nest(circuit, dt=dt)
+    nest = _nest()
+    h, steps = nest.resolution, u.shape[0]
+    for j, (name, gen) in enumerate(net.inputs.items()):
+        first = net.lags[name] + GENERATOR_LAG  # the step whose amplitude reaches as u(0)
+        times = h * np.arange(first, first + steps)
+        gen.set(amplitude_times=list(times), amplitude_values=list(u[:, j]))
+    meters = {}
+    for name, node in {**net.neurons, **net.outputs}.items():
+        meters[name] = nest.Create("multimeter", params={"record_from": ["rate"], "interval": h})
+        nest.Connect(meters[name], node)
+    nest.Simulate(h * (steps + max(net.lags.values()) + 1))
+
+    def trace(name: str) -> np.ndarray:  # the circuit's steps 0..steps-1 of a node
+        rate = meters[name].events["rate"]  # rate[i]: NEST step i + 1
+        return rate[net.lags[name] - 1 : net.lags[name] - 1 + steps]
+
+    traces = {n: trace(n) for n in net.neurons}
+    outs = [trace(n) for n in net.outputs]
+    return _with_output(traces, outs)
