@@ -186,6 +186,7 @@ def _results():
     yield noise
     yield symctl.closed_loop_response(GAINS, steps=20, noise=noise, draws=3)
     yield symctl.monte_carlo(GAINS, noise=noise, count=10, steps=20)
+    yield circuit_firing("general", GAINS, count=2, steps=20, noise=noise, noise_draws=3)
     fp = circuit_firing("general", GAINS, count=2, rng=1, steps=20)
     yield fp
     yield fp.summary()

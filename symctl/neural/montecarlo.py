@@ -274,7 +274,7 @@ def monte_carlo(
 
     xx, cost = np.zeros((n, n, count)), np.zeros(count)
 
-    def visit(t: int, x: np.ndarray, u: np.ndarray) -> None:
+    def visit(t: int, x: np.ndarray, u: np.ndarray, y: np.ndarray) -> None:
         if t >= burn:
             plant_x = x[:n]
             xx[...] += plant_x[:, None, :] * plant_x[None, :, :]

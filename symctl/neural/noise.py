@@ -210,7 +210,8 @@ class _Parts:
 
 
 def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None):
-    """Run ``count`` loops from rest (module docstring), calling ``visit(t, xi, u)`` at each step.
+    """Run ``count`` loops from rest (module docstring), calling ``visit(t, xi, u, y)`` at each step
+    (``y`` the controller's measurement, :math:`x + v`).
 
     ``Acl`` ``(size, size)`` or a stack ``(size, size, R)``, ``Cr`` likewise ``(m, size[, R])``,
     ``B`` the plant's ``(n, m)``, ``w`` ``(steps, n)`` or ``(count, steps, n)``; ``Ev``, ``Dv``
@@ -225,11 +226,12 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
         if t % _BLOCK == 0:
             z = gen.standard_normal((min(_BLOCK, steps - t), k, count))
         draw = {name: z[t % _BLOCK, part] for name, part in rows}
-        u = _apply(Cr, x)
+        u, y = _apply(Cr, x), x[:n]
         if parts.sensor is not None:
             v = parts.sensor @ draw["sensor"]
             u += _apply(Dv, v)
-        visit(t, x, u)
+            y = y + v
+        visit(t, x, u, y)
         nxt = _apply(Acl, x)
         nxt[:n] += wt[t]
         if parts.process is not None:
@@ -253,7 +255,7 @@ def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_row
     if peaks is not None:
         peaks[...] = 0.0
 
-    def visit(t, x, u):
+    def visit(t, x, u, y):
         signals = np.concatenate([x[:n], u, x[n:]])
         out[t] = signals[rows]
         if peak_rows:

@@ -48,7 +48,7 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _noisy_fill, _Parts, as_noise
+from symctl.neural.noise import Noise, _noisy_loop, _Parts, _sensor_inputs, as_noise
 from symctl.neural.timeloop import _run_chunk
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import ifp_realization
@@ -537,19 +537,47 @@ def _simulate(p, Acl, Cr, w, noise, draws, gen, names=()) -> Response:
     if noise is None:
         df, dr, xc = _run(Acl, Cr, p.n, w)
         return _response(p, df[0], dr[0], w, xc[0], "closed loop", names)
+    return _spread_response(p, w, *_noisy_traces(p, Acl, Cr, w, noise, draws, gen)[:3], names)
+
+
+def _spread_response(p, w, df, dr, xc, names=()) -> Response:
+    """The :class:`Response` of noisy runs ``(draws, steps, .)``: their mean and spread."""
+    res = _response(p, df.mean(0), dr.mean(0), w, xc.mean(0), "closed loop", names)
+    spread = {"delta_f_sd": df.std(0), "delta_r_sd": dr.std(0), "states_sd": xc.std(0)}
+    return dataclasses.replace(res, **spread, draws=df.shape[0])
+
+
+def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen) -> tuple[np.ndarray, ...]:
+    """``delta_f``, ``delta_r``, states and the controller's measurement ``y`` of ``draws`` noisy
+    runs of the loop (stacks of one), each ``(draws, steps, .)``."""
     draws = bounded_int(draws, "draws", 1, MAX_COUNT)
     _, A, B = _plant(p)
-    size, m = Acl.shape[0], Cr.shape[0]
-    out = np.empty((w.shape[0], size + m, draws))
-    parts = _Parts.of(noise, p.n, p.m)
-    bad = _noisy_fill(Acl[:, :, 0], Cr[:, :, 0], A, B, p.n, w, parts, gen, out, range(size + m))
-    if bad < w.shape[0]:
-        raise ParameterError(f"noise: the simulation blew up at step {bad} (overflow to inf/NaN)")
-    mean, sd = out.mean(axis=2), out.std(axis=2)
-    n = p.n
-    res = _response(p, mean[:, :n], mean[:, n : n + m], w, mean[:, n + m :], "closed loop", names)
-    spread = {"delta_f_sd": sd[:, :n], "delta_r_sd": sd[:, n : n + m], "states_sd": sd[:, n + m :]}
-    return dataclasses.replace(res, **spread, draws=draws)
+    Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
+    out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + n, draws))
+
+    def visit(t, x, u, y):
+        out[t] = np.concatenate([x[:n], u, x[n:], y])
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        _noisy_loop(
+            Acl,
+            Cr,
+            B,
+            n,
+            w,
+            _Parts.of(noise, n, p.m),
+            gen,
+            draws,
+            visit,
+            *_sensor_inputs(Acl, Cr, A, n),
+        )
+    finite = np.all(np.isfinite(out), axis=(1, 2))
+    if not finite.all():
+        raise ParameterError(
+            f"noise: the simulation blew up at step {int(np.argmin(finite))} (overflow to inf/NaN)"
+        )
+    loops, m = np.moveaxis(out, -1, 0), Cr.shape[0]
+    return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -n], loops[..., -n:]
 
 
 @rng_argument()

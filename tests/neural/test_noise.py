@@ -9,18 +9,23 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symctl import (
+    DelayGraph,
     DiscretePlant,
     MuscleModel,
     Noise,
     Realization,
     augment,
+    circuit_firing,
     closed_loop_response,
+    controller_compatibility,
+    controller_tf,
     ifp_realization,
     load_model,
     lqr_gains,
     monte_carlo,
     simulate_batch,
     simulate_realization,
+    structure_firing,
 )
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.noise import _factor, _Parts, _sensor_inputs
@@ -248,3 +253,24 @@ def test_simulate_realization_takes_noise_like_closed_loop_response():
     a = simulate_realization(SCALAR, R, noise=Noise(process=1.0), draws=300, rng=1)
     # far from the pulse the spread is the stationary standard deviation
     assert a.delta_f_sd[-1, 0] == pytest.approx((1 / (1 - 0.09)) ** 0.5, rel=0.15)
+
+
+def test_noisy_firing_keeps_the_realizations_and_their_equal_behaviour():
+    noise = Noise(process=1e-2, motor=1e-3, sensor=1e-4, signal_dependent=0.1)
+    fp = circuit_firing("general", GAINS, count=3, rng=1, noise=noise, noise_draws=40)
+    quiet = circuit_firing("general", GAINS, count=3, rng=1)
+    assert fp.params == quiet.params  # the noise is drawn apart from the realizations
+    assert fp.max_deviation < 1e-9 and fp.draws == 40 == fp.reference.draws
+    assert set(fp.firing_sd) == set(fp.firing) and fp.firing_sd["G2.x1"].shape == (3, 50)
+    assert np.ptp(fp.delta_r_sd, axis=0).max() < 1e-9 and fp.delta_r_sd[:, 10:].min() > 0
+    assert np.allclose(fp.delta_r[0], fp.reference.delta_r[:, 0], atol=1e-12)
+    assert fp == circuit_firing("general", GAINS, count=3, rng=1, noise=noise, noise_draws=40)
+    ifp = circuit_firing("ifp", GAINS, noise=noise, noise_draws=5)
+    assert ifp.firing_sd.keys() == ifp.firing.keys() and ifp.max_deviation < 1e-9
+
+
+def test_noisy_structure_firing_checks_every_draw_against_the_optimal_loop():
+    G = controller_tf(GAINS.system).subs(GAINS.substitutions(exact=True))
+    r = controller_compatibility(G, DelayGraph.chain([2]))
+    fp = structure_firing(r.structure, GAINS, count=2, noise=Noise(sensor=1e-3), noise_draws=8)
+    assert fp.max_deviation < 1e-9 and fp.firing_sd is not None
