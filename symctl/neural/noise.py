@@ -26,6 +26,7 @@ square root of its covariance (:func:`_factor`).
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -219,31 +220,54 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
     """
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
-    rows = parts.rows()
-    k = rows[-1][1].stop if rows else 0
+    quiet = not np.any(w)
+    rows = dict(parts.rows())
+    k = max((r.stop for r in rows.values()), default=0)
+    G, Du, Ly = _noise_inputs(Acl, B, n, parts, rows, k, Ev, Dv)
+    sd = parts.signal_dependent
     x = np.zeros((Acl.shape[0], count))
-    for t in range(steps):
-        if t % _BLOCK == 0:
-            z = gen.standard_normal((min(_BLOCK, steps - t), k, count))
-        draw = {name: z[t % _BLOCK, part] for name, part in rows}
+    for t, zt in enumerate(_normals(gen, steps, k, count)):
         u, y = _apply(Cr, x), x[:n]
-        if parts.sensor is not None:
-            v = parts.sensor @ draw["sensor"]
-            u += _apply(Dv, v)
-            y = y + v
+        if Du is not None:
+            u += _apply(Du, zt)
+            y = y + Ly @ zt
         visit(t, x, u, y)
         nxt = _apply(Acl, x)
-        nxt[:n] += wt[t]
-        if parts.process is not None:
-            nxt[:n] += parts.process @ draw["process"]
-        if parts.motor is not None or parts.signal_dependent is not None:
-            motor = 0.0 if parts.motor is None else parts.motor @ draw["motor"]
-            if parts.signal_dependent is not None:
-                motor = motor + parts.signal_dependent[:, None] * u * draw["signal_dependent"]
-            nxt[:n] += B @ motor
-        if parts.sensor is not None:
-            nxt += _apply(Ev, v)
+        if not quiet:
+            nxt[:n] += wt[t]
+        nxt += _apply(G, zt)
+        if sd is not None:
+            nxt[:n] += B @ (sd[:, None] * u * zt[rows["signal_dependent"]])
         x = nxt
+
+
+def _normals(gen, steps: int, k: int, count: int):
+    """The normals of each step, ``(k, count)``, drawn in blocks, the next on a thread meanwhile."""
+    with ThreadPoolExecutor(1) as pool:
+        block = pool.submit(gen.standard_normal, (min(_BLOCK, steps), k, count))
+        for start in range(0, steps, _BLOCK):
+            z = block.result()
+            if start + _BLOCK < steps:
+                size = (min(_BLOCK, steps - start - _BLOCK), k, count)
+                block = pool.submit(gen.standard_normal, size)
+            yield from z
+
+
+def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
+    """How the ``k`` normals of a step enter: ``G`` the state (``(size, k[, R])``), ``Du`` the
+    command and ``Ly`` the measurement (None without sensor noise)."""
+    stack = (Acl.shape[-1],) if Acl.ndim == 3 else ()
+    G = np.zeros((Acl.shape[0], k, *stack))
+    if parts.process is not None:
+        G[:n, rows["process"]] = parts.process[..., None] if stack else parts.process
+    if parts.motor is not None:
+        G[:n, rows["motor"]] = (B @ parts.motor)[..., None] if stack else B @ parts.motor
+    if parts.sensor is None:
+        return G, None, None
+    Ly = np.zeros((n, k))
+    Ly[:, rows["sensor"]] = parts.sensor
+    G += np.einsum("ij...,jk->ik...", Ev, Ly)
+    return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
 
 
 def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> int:
