@@ -35,12 +35,12 @@ from symctl._util.validate import (
 )
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _noisy_loop, _Parts, _sensor_inputs
+from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _Parts, _sensor_inputs
 from symctl.neural.simulate import _loop, _plant
 
 __all__ = ["MonteCarlo", "monte_carlo"]
 
-MAX_LOOPS = 10**7
+MAX_LOOPS = 10**6
 """Most loops of one :func:`monte_carlo`."""
 _SETTLED = 1e-8  # the burn-in: the transient's covariance decayed to this fraction
 _ITERATIONS = 10_000  # most Lyapunov solves for signal-dependent noise
@@ -144,7 +144,7 @@ def _predicted(Acl, Cr, B, n, mats, Ev) -> tuple[np.ndarray, np.ndarray]:
     sigma = additive
     for _ in range(_ITERATIONS):
         extra = np.zeros((size, size))
-        extra[:n, :n] = (B * sd2**2 * np.diag(_uu(sigma, Cr, mats, Ev, n))) @ B.T
+        extra[:n, :n] = (B * sd2**2 * np.diag(_uu(sigma, Cr, mats, n))) @ B.T
         new = solve_discrete_lyapunov(Acl, S0 + extra)
         if not np.trace(new) <= 1e12 * max(np.trace(additive), 1e-300):
             break
@@ -157,7 +157,7 @@ def _predicted(Acl, Cr, B, n, mats, Ev) -> tuple[np.ndarray, np.ndarray]:
     )
 
 
-def _uu(sigma, Cr, mats, Ev, n) -> np.ndarray:
+def _uu(sigma, Cr, mats, n) -> np.ndarray:
     r"""The command's covariance :math:`\Sigma_{uu} = C_r \Sigma C_r^T + D_v V D_v^T`."""
     out = Cr @ sigma @ Cr.T
     if "sensor" in mats:
@@ -262,7 +262,9 @@ def monte_carlo(
     burn = _burn_in(Acl, steps) if burn_in is None else nonneg_int(burn_in, "burn_in")
     if burn >= steps:
         raise ParameterError(f"burn_in: must be below steps = {steps}, got {burn}")
-    if 8 * count * (3 * Acl.shape[0] + n * n) > MAX_OUTPUT_BYTES:
+    parts = _Parts.of(noise, n, p.m)
+    normals = 2 * _BLOCK * parts.rows()[-1][1].stop  # two blocks of normals in memory
+    if 8 * count * (normals + 4 * Acl.shape[0] + n * n) > MAX_OUTPUT_BYTES:
         raise ParameterError(f"count: {count} loops take more than MAX_OUTPUT_BYTES; use fewer")
     Qw, Rw = _weights(Q, R, controller, n, p.m)
     Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
@@ -270,7 +272,7 @@ def monte_carlo(
     sigma, additive = _predicted(Acl, Cr, B, n, mats, Ev)
 
     def expected(S: np.ndarray) -> float:
-        return float(np.trace(Qw @ S[:n, :n]) + np.trace(Rw @ _uu(S, Cr, mats, Ev, n)))
+        return float(np.trace(Qw @ S[:n, :n]) + np.trace(Rw @ _uu(S, Cr, mats, n)))
 
     xx, cost = np.zeros((n, n, count)), np.zeros(count)
 
@@ -281,11 +283,8 @@ def monte_carlo(
             cost[...] += np.einsum("ir,ir->r", plant_x, Qw @ plant_x)
             cost[...] += np.einsum("ir,ir->r", u, Rw @ u)
 
-    parts = _Parts.of(noise, n, p.m)
-    with np.errstate(over="ignore", invalid="ignore"):
-        _noisy_loop(Acl, Cr, B, n, np.zeros((steps, n)), parts, rng, count, visit, Ev, Dv)
-    if not (np.all(np.isfinite(xx)) and np.all(np.isfinite(cost))):
-        raise ParameterError("noise: the simulation blew up (values overflowed to inf/NaN)")
+    zero = np.zeros((steps, n))
+    _noisy_loop(Acl, Cr, B, n, zero, parts, rng, count, visit, Ev, Dv)
     kept = steps - burn
     xx /= kept
     cost /= kept

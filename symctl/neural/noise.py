@@ -226,19 +226,25 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
     G, Du, Ly = _noise_inputs(Acl, B, n, parts, rows, k, Ev, Dv)
     sd = parts.signal_dependent
     x = np.zeros((Acl.shape[0], count))
-    for t, zt in enumerate(_normals(gen, steps, k, count)):
-        u, y = _apply(Cr, x), x[:n]
-        if Du is not None:
-            u += _apply(Du, zt)
-            y = y + Ly @ zt
-        visit(t, x, u, y)
-        nxt = _apply(Acl, x)
-        if not quiet:
-            nxt[:n] += wt[t]
-        nxt += _apply(G, zt)
-        if sd is not None:
-            nxt[:n] += B @ (sd[:, None] * u * zt[rows["signal_dependent"]])
-        x = nxt
+    with np.errstate(over="ignore", invalid="ignore"):
+        for t, zt in enumerate(_normals(gen, steps, k, count)):
+            u, y = _apply(Cr, x), x[:n]
+            if Du is not None:
+                u += _apply(Du, zt)
+                y = y + Ly @ zt
+            visit(t, x, u, y)
+            nxt = _apply(Acl, x)
+            if not quiet:
+                nxt[:n] += wt[t]
+            nxt += _apply(G, zt)
+            if sd is not None:
+                nxt[:n] += B @ (sd[:, None] * u * zt[rows["signal_dependent"]])
+            x = nxt
+    if not np.all(np.isfinite(x)):  # an overflow stays inf or NaN to the end
+        raise ParameterError(
+            "noise: the simulation blew up (values overflowed to inf/NaN); reduce the noise "
+            "or the disturbance, or check the loop's stability"
+        )
 
 
 def _normals(gen, steps: int, k: int, count: int):
@@ -270,11 +276,9 @@ def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
     return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
 
 
-def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> int:
+def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> None:
     """:func:`_noisy_loop` into ``out`` ``(steps, len(rows), R)`` (signals ``delta_f``, ``delta_r``,
-    states, as the noise-free loop numbers them) and ``peaks``; the first step not finite, or steps."""
-    count = out.shape[-1]
-    Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
+    states, as the noise-free loop numbers them) and ``peaks``."""
     rows, peak_rows = list(rows), list(peak_rows)
     if peaks is not None:
         peaks[...] = 0.0
@@ -285,9 +289,5 @@ def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_row
         if peak_rows:
             np.maximum(peaks, np.abs(signals[peak_rows]), out=peaks)
 
-    with np.errstate(over="ignore", invalid="ignore"):
-        _noisy_loop(Acl, Cr, B, n, w, parts, gen, count, visit, Ev, Dv)
-    finite = np.all(np.isfinite(out), axis=(1, 2))
-    if peaks is not None and not np.all(np.isfinite(peaks)):
-        return int(np.argmin(finite)) if not finite.all() else 0
-    return out.shape[0] if finite.all() else int(np.argmin(finite))
+    Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
+    _noisy_loop(Acl, Cr, B, n, w, parts, gen, out.shape[-1], visit, Ev, Dv)

@@ -274,3 +274,18 @@ def test_noisy_structure_firing_checks_every_draw_against_the_optimal_loop():
     r = controller_compatibility(G, DelayGraph.chain([2]))
     fp = structure_firing(r.structure, GAINS, count=2, noise=Noise(sensor=1e-3), noise_draws=8)
     assert fp.max_deviation < 1e-9 and fp.firing_sd is not None
+
+
+def test_a_noisy_run_that_overflows_is_refused():
+    one = np.ones((1, 1, 1))
+    with pytest.raises(ParameterError, match="noise: the simulation blew up"):
+        simulate_batch(
+            MuscleModel(),
+            0 * one,
+            one,
+            one,
+            one,
+            steps=500,
+            check_stability=False,
+            noise=Noise(process=1.0),
+        )
