@@ -289,3 +289,30 @@ def test_a_noisy_run_that_overflows_is_refused():
             check_stability=False,
             noise=Noise(process=1.0),
         )
+
+
+def test_the_prediction_is_the_same_for_the_augmented_loop_and_its_realization():
+    """The plant's covariance depends on the controller's transfer function only."""
+    noise = Noise(process=[1e-6, 1e-4], motor=1e-4, sensor=[1e-6, 1e-4], signal_dependent=0.3)
+    a = monte_carlo(FOREARM_GAINS, noise=noise, count=2, steps=3)
+    b = monte_carlo(FOREARM_GAINS, FOREARM.plant, noise=noise, count=2, steps=3)
+    assert np.allclose(a.predicted_covariance, b.predicted_covariance, rtol=1e-8, atol=0)
+    assert a.predicted_cost == pytest.approx(b.predicted_cost, rel=1e-8)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_the_predicted_covariance_solves_python_controls_lyapunov_equation(seed):
+    gen = np.random.default_rng(seed)
+    A = gen.normal(size=(2, 2))
+    A *= 0.9 / max(abs(np.linalg.eigvals(A)))  # stable
+    W = gen.normal(size=(2, 2))
+    W = W @ W.T
+    mc = monte_carlo(
+        Realization([[0]], [[0, 0]], [[0]], [[0, 0]], dt=1),
+        DiscretePlant(A, [[1], [0]], dt=1),
+        noise=Noise(process=W),
+        count=2,
+        steps=3,
+    )
+    assert np.allclose(mc.predicted_covariance, control.dlyap(A, W), rtol=1e-9, atol=1e-12)
