@@ -128,7 +128,7 @@ class MonteCarlo(ArrayValue, DictMixin):
         return "\n".join(lines)
 
 
-def _predicted(Acl, Cr, B, n, mats, Ev) -> tuple[np.ndarray, np.ndarray]:
+def _predicted(Acl, Cr, B, n, mats, Ev, Dv) -> tuple[np.ndarray, np.ndarray]:
     """``(Sigma, additive Sigma)``: the stationary covariances of the module docstring."""
     size = Acl.shape[0]
     S0 = np.zeros((size, size))
@@ -144,7 +144,7 @@ def _predicted(Acl, Cr, B, n, mats, Ev) -> tuple[np.ndarray, np.ndarray]:
     sigma = additive
     for _ in range(_ITERATIONS):
         extra = np.zeros((size, size))
-        extra[:n, :n] = (B * sd2**2 * np.diag(_uu(sigma, Cr, mats, n))) @ B.T
+        extra[:n, :n] = (B * sd2**2 * np.diag(_uu(sigma, Cr, Dv, mats))) @ B.T
         new = solve_discrete_lyapunov(Acl, S0 + extra)
         if not np.trace(new) <= 1e12 * max(np.trace(additive), 1e-300):
             break
@@ -157,13 +157,10 @@ def _predicted(Acl, Cr, B, n, mats, Ev) -> tuple[np.ndarray, np.ndarray]:
     )
 
 
-def _uu(sigma, Cr, mats, n) -> np.ndarray:
+def _uu(sigma, Cr, Dv, mats) -> np.ndarray:
     r"""The command's covariance :math:`\Sigma_{uu} = C_r \Sigma C_r^T + D_v V D_v^T`."""
     out = Cr @ sigma @ Cr.T
-    if "sensor" in mats:
-        Dv = Cr[:, :n]
-        out = out + Dv @ mats["sensor"] @ Dv.T
-    return out
+    return out + Dv @ mats["sensor"] @ Dv.T if "sensor" in mats else out
 
 
 def _burn_in(Acl: np.ndarray, steps: int) -> int:
@@ -269,10 +266,10 @@ def monte_carlo(
     Qw, Rw = _weights(Q, R, controller, n, p.m)
     Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
     mats = noise.matrices(n, p.m)
-    sigma, additive = _predicted(Acl, Cr, B, n, mats, Ev)
+    sigma, additive = _predicted(Acl, Cr, B, n, mats, Ev, Dv)
 
     def expected(S: np.ndarray) -> float:
-        return float(np.trace(Qw @ S[:n, :n]) + np.trace(Rw @ _uu(S, Cr, mats, n)))
+        return float(np.trace(Qw @ S[:n, :n]) + np.trace(Rw @ _uu(S, Cr, Dv, mats)))
 
     xx, cost = np.zeros((n, n, count)), np.zeros(count)
 

@@ -16,7 +16,7 @@ With noise, drawn afresh at each step,
 - sensor noise :math:`v \sim N(0, V)` on the controller's measurement :math:`y = x + v`: the
   controller reads :math:`y` where it read :math:`x`, so :math:`E_v = A_{cl}[:, :n] - [A; 0]`
   and :math:`D_v = C_r[:, :n]` (a dynamic compensator fed by a measured output brings its own
-  :math:`E_v, D_v` to :func:`_noisy_loop`).
+  :math:`E_v, D_v` and its output map :math:`C` to :func:`_noisy_loop`).
 
 :math:`u` is the command (the motor neurons' rate), before the motor noise. The draws: at
 each step, standard normals of shape ``(k, loops)``, the process (n), motor (m), sensor (n)
@@ -210,9 +210,9 @@ class _Parts:
         return out
 
 
-def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None):
+def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None):
     """Run ``count`` loops from rest (module docstring), calling ``visit(t, xi, u, y)`` at each step
-    (``y`` the controller's measurement, :math:`x + v`).
+    (``y`` the controller's measurement, :math:`C x + v`, ``C`` the identity by default).
 
     ``Acl`` ``(size, size)`` or a stack ``(size, size, R)``, ``Cr`` likewise ``(m, size[, R])``,
     ``B`` the plant's ``(n, m)``, ``w`` ``(steps, n)`` or ``(count, steps, n)``; ``Ev``, ``Dv``
@@ -228,7 +228,7 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
     x = np.zeros((Acl.shape[0], count))
     with np.errstate(over="ignore", invalid="ignore"):
         for t, zt in enumerate(_normals(gen, steps, k, count)):
-            u, y = _apply(Cr, x), x[:n]
+            u, y = _apply(Cr, x), x[:n] if C is None else C @ x[:n]
             if Du is not None:
                 u += _apply(Du, zt)
                 y = y + Ly @ zt
@@ -270,7 +270,7 @@ def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
         G[:n, rows["motor"]] = (B @ parts.motor)[..., None] if stack else B @ parts.motor
     if parts.sensor is None:
         return G, None, None
-    Ly = np.zeros((n, k))
+    Ly = np.zeros((len(parts.sensor), k))
     Ly[:, rows["sensor"]] = parts.sensor
     G += np.einsum("ij...,jk->ik...", Ev, Ly)
     return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
