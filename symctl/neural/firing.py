@@ -35,7 +35,7 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
-from symctl.neural.noise import Noise, as_noise
+from symctl.neural.noise import Noise, _as_noise
 from symctl.neural.simulate import (
     DEFAULT_DRAWS,
     DEFAULT_LENGTH,
@@ -605,7 +605,7 @@ def _simulate(
     ``noise``, every loop (and the reference) under the same ``draws`` noisy runs."""
     rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}
-    noise = as_noise(noise)
+    noise = _as_noise(noise)
     if noise is None:
         ref = closed_loop_response(gains, disturbance=disturbance, **window)
 

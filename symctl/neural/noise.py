@@ -151,7 +151,7 @@ class Noise(ArrayValue, DictMixin):
         return out
 
 
-def as_noise(noise) -> Noise | None:
+def _as_noise(noise) -> Noise | None:
     """``noise`` checked: a :class:`Noise`, or None for none (also for a Noise that is all zero)."""
     if noise is None:
         return None

@@ -48,7 +48,7 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _noisy_loop, _Parts, _sensor_inputs, as_noise
+from symctl.neural.noise import Noise, _as_noise, _noisy_loop, _Parts, _sensor_inputs
 from symctl.neural.timeloop import _run_chunk
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import ifp_realization
@@ -533,7 +533,7 @@ def _realization_loop(p, A, B, R, argname: str = "R") -> tuple[np.ndarray, np.nd
 
 def _simulate(p, Acl, Cr, w, noise, draws, gen, names=()) -> Response:
     """The loop's :class:`Response`, noise-free or the mean and spread of ``draws`` noisy runs."""
-    noise = as_noise(noise)
+    noise = _as_noise(noise)
     if noise is None:
         df, dr, xc = _run(Acl, Cr, p.n, w)
         return _response(p, df[0], dr[0], w, xc[0], "closed loop", names)
