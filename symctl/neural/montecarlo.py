@@ -199,7 +199,7 @@ def monte_carlo(
     the steps after ``burn_in`` give each loop's average of :math:`x x^T` and of the cost,
     whose mean over the loops and standard error are set beside the prediction of the
     Lyapunov equation (module docstring). Vectorized over the loops in NumPy:
-    :math:`10^4` loops of 500 steps take about a second (``benchmarks/lqg.py``).
+    :math:`10^4` loops of 500 steps take about 0.3 s (``benchmarks/lqg.py``).
 
     Parameters
     ----------

@@ -89,6 +89,11 @@ class Noise(ArrayValue, DictMixin):
     SymctlTypeError
         Entries that are not numbers.
 
+    References
+    ----------
+    C. M. Harris and D. M. Wolpert, "Signal-dependent noise determines motor planning",
+    Nature 394, 780-784 (1998).
+
     Examples
     --------
     >>> from symctl import Noise
