@@ -215,9 +215,12 @@ class _Parts:
         return out
 
 
-def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None):
+def _noisy_loop(
+    Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
+):
     """Run ``count`` loops from rest (module docstring), calling ``visit(t, xi, u, y)`` at each step
-    (``y`` the controller's measurement, :math:`C x + v`, ``C`` the identity by default).
+    (``y`` the controller's measurement, :math:`C x + v`, ``C`` the identity by default; None
+    when not ``y``).
 
     ``Acl`` ``(size, size)`` or a stack ``(size, size, R)``, ``Cr`` likewise ``(m, size[, R])``,
     ``B`` the plant's ``(n, m)``, ``w`` ``(steps, n)`` or ``(count, steps, n)``; ``Ev``, ``Dv``
@@ -233,11 +236,10 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
     x = np.zeros((Acl.shape[0], count))
     with np.errstate(over="ignore", invalid="ignore"):
         for t, zt in enumerate(_normals(gen, steps, k, count)):
-            u, y = _apply(Cr, x), x[:n] if C is None else C @ x[:n]
+            u = _apply(Cr, x)
             if Du is not None:
                 u += _apply(Du, zt)
-                y = y + Ly @ zt
-            visit(t, x, u, y)
+            visit(t, x, u, _measured(x[:n], zt, C, Ly) if y else None)
             nxt = _apply(Acl, x)
             if not quiet:
                 nxt[:n] += wt[t]
@@ -250,6 +252,12 @@ def _noisy_loop(Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None
             "noise: the simulation blew up (values overflowed to inf/NaN); reduce the noise "
             "or the disturbance, or check the loop's stability"
         )
+
+
+def _measured(x, zt, C, Ly) -> np.ndarray:
+    """The controller's measurement :math:`C x + v` (``C`` None: the identity)."""
+    y = x if C is None else C @ x
+    return y if Ly is None else y + Ly @ zt
 
 
 def _normals(gen, steps: int, k: int, count: int):
