@@ -29,6 +29,7 @@ SCRIPTS = (
     ("checker.py", ()),
     ("compatibility.py", ()),
     ("simulate.py", ()),
+    ("lqg.py", ()),
     ("paper.py", ()),
     ("scaling.py", ()),
     ("mimo.py", ()),

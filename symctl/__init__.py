@@ -74,6 +74,8 @@ _PUBLIC_BY_MODULE = (
     ("symctl.neural.firing", "FiringPatterns FiringSummary circuit_firing structure_firing"),
     ("symctl.neural.neuron", "Neuron Synapse"),
     ("symctl.neural.nonlinear", "NonlinearCheck nonlinear_check DelaySearch longest_delay"),
+    ("symctl.neural.noise", "Noise"),
+    ("symctl.neural.montecarlo", "MonteCarlo monte_carlo"),
     (
         "symctl.neural.simulate",
         "Response closed_loop_response open_loop_response pulse simulate_realization",

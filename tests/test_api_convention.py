@@ -43,10 +43,14 @@ KW = dict(sensor_delay=1, actuator_delay=1)
 RNG_FUNCTIONS = (
     "circuit_firing",
     "circuits_for",
+    "closed_loop_response",
     "dale_atlas",
     "derive_paper",
     "fit",
     "identifiability",
+    "monte_carlo",
+    "simulate_batch",
+    "simulate_realization",
     "structure_firing",
     "synthetic_traces",
 )
@@ -178,6 +182,11 @@ def _results():
     yield symctl.prove_controller_tf(GAINS.system)
     yield symctl.factor(controller_tf(2), 1, 1)
     yield symctl.closed_loop_response(GAINS, steps=20)
+    noise = symctl.Noise(process=0.1, sensor=[0.01], signal_dependent=0.1)
+    yield noise
+    yield symctl.closed_loop_response(GAINS, steps=20, noise=noise, draws=3)
+    yield symctl.monte_carlo(GAINS, noise=noise, count=10, steps=20)
+    yield circuit_firing("general", GAINS, count=2, steps=20, noise=noise, noise_draws=3)
     fp = circuit_firing("general", GAINS, count=2, rng=1, steps=20)
     yield fp
     yield fp.summary()

@@ -13,7 +13,8 @@ import pytest
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 GUIDES = [
-    README.parent / "docs" / "guide" / f"{name}.md" for name in ("api", "atlas", "dale", "fit")
+    README.parent / "docs" / "guide" / f"{name}.md"
+    for name in ("api", "atlas", "dale", "fit", "noise")
 ]
 
 

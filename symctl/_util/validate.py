@@ -108,7 +108,11 @@ def numeric_matrix(value, argname: str, shape: tuple[int, int] | None = None) ->
 
 def psd_matrix(value, argname: str, size: int, *, definite: bool = False) -> np.ndarray:
     """A symmetric positive semidefinite (or definite) ``size x size`` float array."""
-    arr = numeric_matrix(value, argname, (size, size))
+    return check_psd(numeric_matrix(value, argname, (size, size)), argname, definite=definite)
+
+
+def check_psd(arr: np.ndarray, argname: str, *, definite: bool = False) -> np.ndarray:
+    """``arr`` (square, finite) when symmetric positive semidefinite (or definite), else raise."""
     scale = max(1.0, float(np.max(np.abs(arr))))
     if not np.allclose(arr, arr.T, atol=1e-12 * scale):
         raise ParameterError(f"{argname}: must be symmetric, got {arr.tolist()}")

@@ -19,10 +19,12 @@ from types import MappingProxyType
 
 import numpy as np
 
+from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _Parts
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
@@ -216,8 +218,11 @@ def _check_memory(count, steps, widths, traces, peaks, chunk) -> None:
     )
 
 
-def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) -> BatchResponse:
-    """The loops ``part`` of the batch, their traces and peaks in fresh buffers."""
+def _simulate_part(
+    loops, n, w, widths, traces, peaks, t, checked, noisy, part: slice
+) -> BatchResponse:
+    """The loops ``part`` of the batch, their traces and peaks in fresh buffers; ``noisy``:
+    ``(A, B, parts, gen)`` of the noise (:func:`~symctl.neural.noise._noisy_fill`), or None."""
     Acl, Cr = loops(part)
     w, count = w if w.ndim == 2 else w[part], Acl.shape[-1]
     first = {}  # each signal's first row (delta_f, delta_r, states)
@@ -227,7 +232,11 @@ def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) 
     peak_rows = [r for u in peaks for r in range(first[u], first[u] + widths[u])]
     out = np.empty((len(t), len(rows), count))
     top = np.empty((len(peak_rows), count)) if peaks else None
-    _steps(Acl, Cr, n, w, out, rows, top, peak_rows, argname="disturbance", schedule=_in_chunks)
+    if noisy is None:
+        _steps(Acl, Cr, n, w, out, rows, top, peak_rows, argname="disturbance", schedule=_in_chunks)
+    else:
+        A, B, parts, gen = noisy
+        _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, top, peak_rows)
     out.setflags(write=False)  # no copy: the buffers are ours alone
     loops, arrays, k = np.moveaxis(out, -1, 0), {}, 0
     for name in traces:
@@ -239,6 +248,7 @@ def _simulate_part(loops, n, w, widths, traces, peaks, t, checked, part: slice) 
     return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
 
+@rng_argument()
 def simulate_batch(
     plant,
     F,
@@ -254,6 +264,8 @@ def simulate_batch(
     check_stability: bool = True,
     keep=None,
     chunk: int | None = None,
+    noise: Noise | None = None,
+    rng=0,
 ) -> BatchResponse | Iterator[BatchResponse]:
     r"""Simulate the plant in closed loop with ``R`` realizations at once (vectorized in NumPy).
 
@@ -280,6 +292,12 @@ def simulate_batch(
         Stream the loops in chunks of ``chunk`` consecutive realizations: an iterator of
         :class:`BatchResponse` (each with its ``first`` loop), each chunk simulated when
         reached (one chunk in memory at a time); arguments and stability are checked first.
+    noise : Noise, optional
+        Process, motor and sensor noise (:class:`~symctl.neural.noise.Noise`), drawn per
+        step for each loop (in one thread: per step, normals ``(k, loops)`` of the whole
+        batch or of each chunk in turn); an all-zero Noise is no noise.
+    rng : int, numpy Generator or None, default 0
+        Seeds the noise.
 
     Returns
     -------
@@ -352,7 +370,9 @@ def simulate_batch(
         _batch_stability(loops, R, "F, H, M, N", p.n)
     t = read_only(np.arange(w.shape[-2]) * _ts(p))
     checked = bool(check_stability)
-    run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked)
+    noise = _as_noise(noise)
+    noisy = None if noise is None else (A, B, _Parts.of(noise, p.n, p.m), rng)
+    run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked, noisy)
     if chunk is None:
         return run(slice(None))
     return (run(slice(lo, min(R, lo + chunk))) for lo in range(0, R, chunk))

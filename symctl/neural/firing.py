@@ -35,14 +35,22 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
+from symctl.neural.noise import Noise, _as_noise
 from symctl.neural.simulate import (
+    DEFAULT_DRAWS,
     DEFAULT_LENGTH,
     DEFAULT_START,
     Response,
+    _loop,
+    _noisy_traces,
+    _realization_loop,
     _run,
+    _signal,
+    _spread_response,
     closed_loop_response,
     simulate_realization,
 )
+from symctl.neural.simulate import _plant as _plant_matrices
 from symctl.realization.draws import Draw, draw_realizations
 from symctl.realization.draws import draw_eps as _draw_eps
 from symctl.realization.realization import Realization, controller_realization
@@ -159,6 +167,13 @@ class FiringPatterns(ArrayValue, DictMixin):
     max_deviation : float
         The largest relative departure of any realization's force or rate trace
         from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
+    firing_sd : mapping of str to (count, steps) array, or None
+        With noise: each neuron's standard deviation over the noisy runs (``firing``,
+        ``delta_f`` and ``delta_r`` are then their mean).
+    delta_f_sd, delta_r_sd : (count, steps) arrays or None
+        With noise: the force's and the rate's standard deviation over the runs.
+    draws : int
+        The noisy runs of every realization (0 without noise).
 
     Examples
     --------
@@ -181,12 +196,19 @@ class FiringPatterns(ArrayValue, DictMixin):
     circuits: tuple[Circuit, ...]
     reference: Response
     max_deviation: float
+    firing_sd: Mapping[str, np.ndarray] | None = None
+    delta_f_sd: np.ndarray | None = None
+    delta_r_sd: np.ndarray | None = None
+    draws: int = 0
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
-        for name in ("t", "delta_f", "delta_r"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
-        firing = {k: read_only(v, float) for k, v in self.firing.items()}
-        object.__setattr__(self, "firing", MappingProxyType(firing))
+        for name in ("t", "delta_f", "delta_r", "delta_f_sd", "delta_r_sd"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, read_only(getattr(self, name), float))
+        for name in ("firing", "firing_sd"):
+            if getattr(self, name) is not None:
+                traces = {k: read_only(v, float) for k, v in getattr(self, name).items()}
+                object.__setattr__(self, name, MappingProxyType(traces))
         params = tuple(MappingProxyType(dict(p)) for p in self.params)
         object.__setattr__(self, "params", params)
 
@@ -349,15 +371,21 @@ def _draw(kind: str, gains: Gains, count: int, gen: np.random.Generator) -> tupl
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
     """Every neuron's axon output and the circuit output (key ``"output"``), driven from rest
-    by ``u`` through :meth:`Circuit.as_linear_system` and the simulations' one time loop."""
+    by ``u`` through :meth:`Circuit.as_linear_system` and the simulations' one time loop;
+    ``u`` ``(steps[, inputs])``, or a stack ``(R, steps, inputs)`` giving traces ``(R, steps)``."""
     sys = circuit.as_linear_system(numeric=True)
     k = sys.A.shape[0]
-    u = u[:, None] if u.ndim == 1 else u  # (steps, inputs)
-    _, out, _ = _run(sys.A[:, :, None], sys.C[:, :, None], k, u @ sys.B.T, states=False)
-    out = out[0] + u @ sys.D.T
+    if u.ndim == 3:  # each loop of the stack its own input
+        A, C = (np.broadcast_to(M[:, :, None], (*M.shape, len(u))) for M in (sys.A, sys.C))
+        _, out, _ = _run(A, C, k, u @ sys.B.T, states=False)
+        out = out + u @ sys.D.T
+    else:
+        u = u[:, None] if u.ndim == 1 else u  # (steps, inputs)
+        _, out, _ = _run(sys.A[:, :, None], sys.C[:, :, None], k, u @ sys.B.T, states=False)
+        out = out[0] + u @ sys.D.T
     n = circuit.n_neurons
-    traces = dict(zip(sys.outputs[:n], out.T[:n], strict=True))
-    traces["output"] = out[:, n:] if out.shape[1] - n > 1 else out[:, -1]
+    traces = dict(zip(sys.outputs[:n], np.moveaxis(out, -1, 0)[:n], strict=True))
+    traces["output"] = out[..., n:] if out.shape[-1] - n > 1 else out[..., -1]
     return traces
 
 
@@ -381,6 +409,8 @@ def circuit_firing(
     length: int = DEFAULT_LENGTH,
     rtol: float = 1e-9,
     draws: Sequence[Draw] | None = None,
+    noise: Noise | None = None,
+    noise_draws: int = DEFAULT_DRAWS,
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
@@ -413,7 +443,14 @@ def circuit_firing(
         Tolerance of the behaviour check.
     draws : sequence of Draw, optional
         Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`);
-        ``count`` and ``rng`` are then not used.
+        ``count`` is then not used.
+    noise : Noise, optional
+        Process, motor and sensor noise (:class:`~symctl.neural.noise.Noise`): every
+        realization and the reference run under the same ``noise_draws`` noisy runs
+        (their draws seeded by ``rng`` apart from the realizations'), the circuits driven
+        by the measured force; the traces are their mean, the ``..._sd`` their spread.
+    noise_draws : int
+        The noisy runs, 1 to ``MAX_COUNT`` (default 100).
 
     Returns
     -------
@@ -461,7 +498,9 @@ def circuit_firing(
                 f"realization of G2, got {type(draws).__name__} for kind {kind!r}"
             )
     rows = _realizations(kind, gains, count, gen, draws)
-    return _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
+    return _simulate(
+        kind, rows, gains, plant, disturbance, steps, start, length, rtol, noise, noise_draws, gen
+    )
 
 
 @rng_argument()
@@ -479,6 +518,8 @@ def structure_firing(
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
     rtol: float = 1e-9,
+    noise: Noise | None = None,
+    noise_draws: int = DEFAULT_DRAWS,
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
@@ -493,7 +534,7 @@ def structure_firing(
     ----------
     structure : Structure
         A SISO controller structure of the gains' controller.
-    gains, plant, count, rng, disturbance, steps, start, length, rtol
+    gains, plant, count, rng, disturbance, steps, start, length, rtol, noise, noise_draws
         As in :func:`circuit_firing`.
     assignment : DelayAssignment or CompatibilityResult, optional
         Places the circuits' neurons on the delay graph.
@@ -552,25 +593,52 @@ def structure_firing(
             R = structure_realization(circuit.structure)
             yield drawn, R, R, circuit
 
-    return _simulate(kind, rows(), gains, plant, disturbance, steps, start, length, rtol)
+    return _simulate(
+        kind, rows(), gains, plant, disturbance, steps, start, length, rtol, noise, noise_draws, gen
+    )
 
 
-def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol) -> FiringPatterns:
-    """Close each realization of ``rows`` around ``plant``, check it, record its neurons."""
+def _simulate(
+    kind, rows, gains, plant, disturbance, steps, start, length, rtol, noise, draws, gen
+) -> FiringPatterns:
+    """Close each realization of ``rows`` around ``plant``, check it, record its neurons; with
+    ``noise``, every loop (and the reference) under the same ``draws`` noisy runs."""
     rtol = positive_number(rtol, "rtol")
     window = {"steps": steps, "start": start, "length": length}
-    ref = closed_loop_response(gains, disturbance=disturbance, **window)
+    noise = _as_noise(noise)
+    if noise is None:
+        ref = closed_loop_response(gains, disturbance=disturbance, **window)
+
+        def run(R) -> tuple[np.ndarray, ...]:
+            res = simulate_realization(plant, R, disturbance, **window)
+            return res.delta_f[None], res.delta_r[None], res.delta_f[None]
+
+        ref_df, ref_dr = ref.delta_f[None], ref.delta_r[None]
+    else:
+        seed = gen.bit_generator.seed_seq.spawn(1)[0]  # the same draws for every loop
+        p, A, B = _plant_matrices(plant)
+        w = _signal(disturbance, "disturbance", steps, p.n, start, length)
+
+        def noisy(p, Acl, Cr) -> tuple[np.ndarray, ...]:
+            return _noisy_traces(p, Acl, Cr, w, noise, draws, np.random.default_rng(seed))
+
+        def run(R) -> tuple[np.ndarray, ...]:
+            df, dr, _, y = noisy(p, *_realization_loop(p, A, B, R))
+            return df, dr, y
+
+        s_plant, Acl, Cr, names = _loop(gains, None)
+        ref_df, ref_dr, ref_xc, _ = noisy(s_plant, Acl, Cr)
+        ref = _spread_response(s_plant, w, ref_df, ref_dr, ref_xc, names)
     out: list[tuple] = []
     worst = 0.0
     for i, (params, R2, R, circuit) in enumerate(rows):
-        res = simulate_realization(plant, R, disturbance, **window)
-        traces = _drive(circuit, res.delta_f if res.delta_f.shape[1] > 1 else res.delta_f[:, 0])
+        df, dr, y = run(R)
+        traces = _drive(circuit, y if len(y) > 1 else y[0] if y.shape[2] > 1 else y[0, :, 0])
+        output = traces.pop("output")
         dev = max(
-            _deviation(res.delta_f, ref.delta_f),
-            _deviation(res.delta_r, ref.delta_r),
-            _deviation(
-                traces.pop("output"), ref.delta_r if ref.delta_r.shape[1] > 1 else ref.delta_r[:, 0]
-            ),
+            _deviation(df, ref_df),
+            _deviation(dr, ref_dr),
+            _deviation(output, ref_dr[..., 0] if ref_dr.shape[-1] == 1 else ref_dr),
         )
         if not dev <= rtol:
             raise ParameterError(
@@ -584,18 +652,30 @@ def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
             for n in circuit.neurons
             if _whole(kind) or n.part == "G2" or n.part.endswith(".G2")
         }
-        out.append((params, R2, circuit, res, {k: v for k, v in traces.items() if k in keep}))
+        traces = {k: v if v.ndim == 2 else v[None] for k, v in traces.items() if k in keep}
+        out.append((params, R2, circuit, df[..., 0], dr[..., 0], traces))
     names: list[str] = []
     for *_, traces in out:
         names += [n for n in traces if n not in names]
-    firing = {
-        n: np.array([tr.get(n, np.full(ref.t.size, np.nan)) for *_, tr in out]) for n in names
-    }
+    nan = np.full((1, ref.t.size), np.nan)
+
+    def stat(f, arrays) -> np.ndarray:
+        return np.array([f(a, axis=0) for a in arrays])
+
+    firing = {n: stat(np.mean, [tr.get(n, nan) for *_, tr in out]) for n in names}
+    spread = {}
+    if noise is not None:
+        spread = {
+            "firing_sd": {n: stat(np.std, [tr.get(n, nan) for *_, tr in out]) for n in names},
+            "delta_f_sd": stat(np.std, [r[3] for r in out]),
+            "delta_r_sd": stat(np.std, [r[4] for r in out]),
+            "draws": len(ref_df),
+        }
     return FiringPatterns(
         kind,
         ref.t,
-        np.array([r[3].delta_f[:, 0] for r in out]),
-        np.array([r[3].delta_r[:, 0] for r in out]),
+        stat(np.mean, [r[3] for r in out]),
+        stat(np.mean, [r[4] for r in out]),
         float(ref.f_bar[0]),
         firing,
         tuple(r[0] for r in out),
@@ -603,4 +683,5 @@ def _simulate(kind, rows, gains, plant, disturbance, steps, start, length, rtol)
         tuple(r[2] for r in out),
         ref,
         worst,
+        **spread,
     )

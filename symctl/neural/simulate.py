@@ -22,14 +22,17 @@ and rate add the operating point :math:`(\bar f, \bar r)` back.
 
 from __future__ import annotations
 
+import dataclasses
 import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
+from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import (
+    MAX_COUNT,
     MAX_STATES,
     MAX_STEPS,
     bounded_int,
@@ -45,11 +48,13 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.neural.noise import Noise, _as_noise, _noisy_loop, _Parts, _sensor_inputs
 from symctl.neural.timeloop import _run_chunk
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import ifp_realization
 
 __all__ = [
+    "DEFAULT_DRAWS",
     "DEFAULT_LENGTH",
     "DEFAULT_START",
     "DEFAULT_STEPS",
@@ -66,6 +71,8 @@ DEFAULT_START = 5
 """Default first step of the pulse."""
 DEFAULT_LENGTH = 10
 """Default pulse length in steps."""
+DEFAULT_DRAWS = 100
+"""Default number of noisy loops whose mean and spread a noisy simulation returns."""
 
 
 def pulse(
@@ -148,6 +155,9 @@ def _ts(p: DiscretePlant) -> float:
     return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
+_SPREADS = ("delta_f_sd", "delta_r_sd", "states_sd")
+
+
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
     r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
@@ -176,6 +186,11 @@ class Response(ArrayValue, DictMixin):
         ``"s"``, or ``"steps"`` when the plant has no sampling time.
     controller_state_names : tuple of str
         Of ``states``: the delay chain (:func:`~symctl.design.augment.chain_names`) or ``x_1, ...``.
+    delta_f_sd, delta_r_sd, states_sd : arrays or None
+        With noise: the standard deviation over the ``draws`` noisy loops of each trace
+        (the traces are then their mean; the rate is the command, before the motor noise).
+    draws : int
+        The noisy loops simulated (0 without noise).
 
     Examples
     --------
@@ -199,10 +214,15 @@ class Response(ArrayValue, DictMixin):
     input_names: tuple[str, ...] = ("delta_r",)
     time_unit: str = "s"
     controller_state_names: tuple[str, ...] = ()
+    delta_f_sd: np.ndarray | None = None
+    delta_r_sd: np.ndarray | None = None
+    states_sd: np.ndarray | None = None
+    draws: int = 0
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar", *_SPREADS):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     @property
     def f(self) -> np.ndarray:
@@ -431,6 +451,7 @@ def _as_realization(controller) -> Realization:
     return ifp_realization(controller) if isinstance(controller, Gains) else controller
 
 
+@rng_argument()
 def simulate_realization(
     plant,
     R: Realization,
@@ -439,6 +460,9 @@ def simulate_realization(
     steps: int | None = None,
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
+    noise: Noise | None = None,
+    draws: int = DEFAULT_DRAWS,
+    rng=0,
 ) -> Response:
     r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`.
 
@@ -455,6 +479,15 @@ def simulate_realization(
         A number is the amplitude of the default pulse on every state (``start``,
         ``length``, horizon ``steps``, default 50); an array of shape ``(steps, n)``
         (``(steps,)`` for one state) is used as it is.
+    noise : Noise, optional
+        Process, motor and sensor noise drawn per step (:mod:`~symctl.neural.noise`):
+        the traces are then the mean over ``draws`` noisy loops, their standard
+        deviation in ``delta_f_sd``, ``delta_r_sd`` and ``states_sd``. A Noise
+        that is all zero is no noise (the result is the noise-free one, exactly).
+    draws : int
+        Noisy loops simulated with ``noise``, 1 to ``MAX_COUNT`` (default 100).
+    rng : int, numpy Generator or None, default 0
+        Seeds the noise.
 
     Returns
     -------
@@ -468,14 +501,18 @@ def simulate_realization(
         decides without raising), non-finite values, bad horizon, an overflow, or an
         ``R.dt`` other than the plant's.
     DimensionError
-        ``R`` or ``disturbance`` of the wrong shape.
+        ``R``, ``disturbance`` or a part of ``noise`` of the wrong shape.
 
     Examples
     --------
-    >>> from symctl import MuscleModel, Realization, simulate_realization
+    >>> from symctl import MuscleModel, Noise, Realization, simulate_realization
     >>> res = simulate_realization(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0))
     >>> res.states.shape
     (50, 1)
+    >>> noisy = simulate_realization(MuscleModel(), Realization([[0]], [[-0.05]], [[1]], 0),
+    ...                              noise=Noise(process=0.01), draws=20, rng=1)
+    >>> noisy.draws, noisy.delta_f_sd.shape
+    (20, (50, 1))
     >>> simulate_realization(MuscleModel(), Realization([[0]], [[-1]], [[1]], 0))
     Traceback (most recent call last):
     ...
@@ -483,12 +520,51 @@ def simulate_realization(
     """
     p, A, B = _plant(plant)
     w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-    Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p))
-    _stability(Acl, "R", p.n)
-    df, dr, xc = _run(Acl, Cr, p.n, w)
-    return _response(p, df[0], dr[0], w, xc[0], "closed loop")
+    Acl, Cr = _realization_loop(p, A, B, R)
+    return _simulate(p, Acl, Cr, w, noise, draws, rng)
 
 
+def _realization_loop(p, A, B, R, argname: str = "R") -> tuple[np.ndarray, np.ndarray]:
+    """``(A_cl, C_r)`` (stacks of one) of the plant around the realization ``R``, checked stable."""
+    Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p, argname))
+    _stability(Acl, argname, p.n)
+    return Acl, Cr
+
+
+def _simulate(p, Acl, Cr, w, noise, draws, gen, names=()) -> Response:
+    """The loop's :class:`Response`, noise-free or the mean and spread of ``draws`` noisy runs."""
+    noise = _as_noise(noise)
+    if noise is None:
+        df, dr, xc = _run(Acl, Cr, p.n, w)
+        return _response(p, df[0], dr[0], w, xc[0], "closed loop", names)
+    return _spread_response(p, w, *_noisy_traces(p, Acl, Cr, w, noise, draws, gen)[:3], names)
+
+
+def _spread_response(p, w, df, dr, xc, names=()) -> Response:
+    """The :class:`Response` of noisy runs ``(draws, steps, .)``: their mean and spread."""
+    res = _response(p, df.mean(0), dr.mean(0), w, xc.mean(0), "closed loop", names)
+    spread = {"delta_f_sd": df.std(0), "delta_r_sd": dr.std(0), "states_sd": xc.std(0)}
+    return dataclasses.replace(res, **spread, draws=df.shape[0])
+
+
+def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen) -> tuple[np.ndarray, ...]:
+    """``delta_f``, ``delta_r``, states and the controller's measurement ``y`` of ``draws`` noisy
+    runs of the loop (stacks of one), each ``(draws, steps, .)``."""
+    draws = bounded_int(draws, "draws", 1, MAX_COUNT)
+    _, A, B = _plant(p)
+    Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
+    out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + n, draws))
+
+    def visit(t, x, u, y):
+        out[t] = np.concatenate([x[:n], u, x[n:], y])
+
+    parts = _Parts.of(noise, n, p.m)
+    _noisy_loop(Acl, Cr, B, n, w, parts, gen, draws, visit, *_sensor_inputs(Acl, Cr, A, n))
+    loops, m = np.moveaxis(out, -1, 0), Cr.shape[0]
+    return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -n], loops[..., -n:]
+
+
+@rng_argument()
 def closed_loop_response(
     controller,
     plant=None,
@@ -497,6 +573,9 @@ def closed_loop_response(
     steps: int | None = None,
     start: int = DEFAULT_START,
     length: int = DEFAULT_LENGTH,
+    noise: Noise | None = None,
+    draws: int = DEFAULT_DRAWS,
+    rng=0,
 ) -> Response:
     r"""The closed loop under a pulse disturbance on the force (the paper's Fig. 5).
 
@@ -511,6 +590,9 @@ def closed_loop_response(
     disturbance, steps, start, length
         As in :func:`simulate_realization` (default: a unit pulse, 1 N per step, on
         steps 5..14 of 50).
+    noise, draws, rng
+        As in :func:`simulate_realization`: the mean and standard deviation of ``draws``
+        loops under :class:`~symctl.neural.noise.Noise` (none by default).
 
     Returns
     -------
@@ -525,39 +607,59 @@ def closed_loop_response(
     Examples
     --------
     >>> import numpy as np
-    >>> from symctl import MuscleModel, augment, closed_loop_response, controller_tf, lqr_gains
+    >>> from symctl import MuscleModel, Noise, augment, closed_loop_response, controller_tf, lqr_gains
     >>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> a = closed_loop_response(gains)
     >>> b = closed_loop_response(controller_tf(gains), MuscleModel())
     >>> bool(np.allclose(a.delta_r, b.delta_r, rtol=0, atol=1e-12))
     True
+    >>> c = closed_loop_response(gains, noise=Noise(motor=0.1, sensor=1e-4), draws=500, rng=2)
+    >>> error = 4 * c.delta_f_sd / np.sqrt(c.draws)   # the mean is the noise-free loop's
+    >>> bool(np.all(abs(c.delta_f - a.delta_f) <= error)), bool(c.delta_f_sd[-1, 0] > 0)
+    (True, True)
     >>> closed_loop_response(gains, disturbance=[1.0, 2.0], steps=3)
     Traceback (most recent call last):
     ...
     symctl.errors.DimensionError: disturbance: has 2 samples but steps = 3
     """
-    window = {"steps": steps, "start": start, "length": length}
-    if isinstance(controller, Gains) and plant is not None:
-        plant = as_plant(plant)
-        same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
-        return simulate_realization(plant, ifp_realization(controller), disturbance, **window)
-    if isinstance(controller, Gains):
+    p, Acl, Cr, names = _loop(controller, plant)
+    w = _signal(disturbance, "disturbance", steps, p.n, start, length)
+    return _simulate(p, Acl, Cr, w, noise, draws, rng, names)
+
+
+def _loop(controller, plant) -> tuple:
+    """``(plant, A_cl, C_r, controller state names)`` of :func:`closed_loop_response`, stable."""
+    if isinstance(controller, Gains) and plant is None:
         s = controller.system
-        p, n, m = s.plant, s.n, s.m
-        Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ controller.K
-        Cr = np.zeros((m, Acl.shape[0]))
-        if s.T:
-            Cr[:, -m:] = np.eye(m)
-        else:
-            Cr[:] = controller.K
-        w = _signal(disturbance, "disturbance", steps, n, start, length)
-        _stability(Acl[:, :, None], "controller")
-        df, dr, xc = _run(Acl[:, :, None], Cr[:, :, None], n, w)
-        return _response(p, df[0], dr[0], w, xc[0], "closed loop", chain_names(s.T, m))
+        return (s.plant, *_gains_loop(controller), chain_names(s.T, s.m))
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"
         )
+    p, A, B = _plant(plant)
+    if isinstance(controller, Gains):
+        same_dt(p, controller.system.plant.dt, "plant", "the gains' plant")
+        R = ifp_realization(controller)
+    else:
+        R = _controller_realization(controller, p)
+    return (p, *_realization_loop(p, A, B, R), ())
+
+
+def _gains_loop(gains: Gains) -> tuple[np.ndarray, np.ndarray]:
+    """``(A_cl, C_r)`` (stacks of one) of the optimal controller on the augmented state, stable."""
+    s = gains.system
+    Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ gains.K
+    Cr = np.zeros((s.m, Acl.shape[0]))
+    if s.T:
+        Cr[:, -s.m :] = np.eye(s.m)
+    else:
+        Cr[:] = gains.K
+    _stability(Acl[:, :, None], "controller")
+    return Acl[:, :, None], Cr[:, :, None]
+
+
+def _controller_realization(controller, plant: DiscretePlant) -> Realization:
+    """A Realization or a DiscreteTF (controllable canonical form), its ``dt`` the plant's."""
     if isinstance(controller, Realization):
         R = controller
     elif isinstance(controller, DiscreteTF):
@@ -567,6 +669,5 @@ def closed_loop_response(
             "controller: expected Gains, a DiscreteTF or a Realization, "
             f"got {type(controller).__name__}"
         )
-    plant = as_plant(plant)
     same_dt(plant, R.dt, "controller")
-    return simulate_realization(plant, R, disturbance, **window)
+    return R

@@ -53,7 +53,10 @@ def firing_plot(
     title: str | None = None,
     size: str | float = "text",
 ) -> Figure:
-    """One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
+    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
+
+    With noise (``fp.draws`` > 0) each line is the mean of the noisy runs, in a band of
+    :math:`\pm 2` standard deviations.
 
     Parameters
     ----------
@@ -114,6 +117,8 @@ def firing_plot(
                 lw=1.2,
                 drawstyle="steps-post",
             )
+        if fp.delta_f_sd is not None:  # the same in every realization: one band
+            style.band(top, fp.t, fp.f_bar + fp.delta_f[0], fp.delta_f_sd[0], _COLOURS[0])
         optimal = top.plot(
             fp.t,
             fp.f_bar + fp.reference.delta_f[:, 0],
@@ -128,6 +133,12 @@ def firing_plot(
         head = f"{what} ${sym}$" if what else f"${sym}$"
         if fp.kind in REALIZERS and REALIZERS[fp.kind].controller:  # the IFP controller
             head += ": one realization, the optimal controller's delay chain"
+        elif fp.draws:
+            dev = max(fp.max_deviation, 1e-16)
+            head += (
+                f": the same in every realization and the optimal loop (to {dev:.0e}); "
+                f"mean $\\pm$ 2 sd of {fp.draws} noisy runs"
+            )
         else:
             dev = max(fp.max_deviation, 1e-16)
             head += (
@@ -146,6 +157,9 @@ def firing_plot(
                     lw=1.0,
                     color=_COLOURS[i % len(_COLOURS)],
                 )
+                if fp.firing_sd is not None:
+                    sd = fp.firing_sd[name][i]
+                    style.band(ax, fp.t, fp.firing[name][i], sd, _COLOURS[i % len(_COLOURS)])
             ax.axhline(0, color="black", lw=0.5)
             part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
             where = f" ({part.partition('.')[0]})" if "." in part else ""

@@ -122,7 +122,8 @@ def response_plot(
     Each panel shows a change from the operating point (:math:`\delta x`), headed by
     what it is and the operating point's value (:math:`\bar x`): the absolute value is
     their sum. A closed loop's disturbance is drawn (dashed) in the panel of the state
-    it acts on.
+    it acts on. With noise (``res.draws`` > 0) each trace is the mean of the noisy runs,
+    in a band of :math:`\pm 2` standard deviations.
 
     Parameters
     ----------
@@ -155,10 +156,12 @@ def response_plot(
     """
     states = res.states.shape[1] > 0 if states is None else states
     signals = [
-        (res.delta_f, res.f_bar, res.state_names, i, True) for i in range(res.delta_f.shape[1])
+        (res.delta_f, res.f_bar, res.state_names, i, True, res.delta_f_sd)
+        for i in range(res.delta_f.shape[1])
     ]
     signals += [
-        (res.delta_r, res.r_bar, res.input_names, i, False) for i in range(res.delta_r.shape[1])
+        (res.delta_r, res.r_bar, res.input_names, i, False, res.delta_r_sd)
+        for i in range(res.delta_r.shape[1])
     ]
     groups = [[s] for s in signals[: MAX_PANELS - 1]]
     if len(signals) >= MAX_PANELS:
@@ -184,7 +187,7 @@ def response_plot(
 def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -> None:
     """One state or input (its change; its operating point in the heading), or several."""
     units = []
-    for j, (trace, _point, names, i, is_state) in enumerate(group):
+    for j, (trace, _point, names, i, is_state, sd) in enumerate(group):
         what, sym, unit = _signal(names[i], labels)
         units.append(unit)
         if len(group) == 1:
@@ -193,6 +196,8 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             colour = _LINE_COLOURS[j % len(_LINE_COLOURS)]
             label = rf"$\delta {sym}$ [{unit or '1'}]"
         _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
+        if sd is not None:
+            style.band(ax, res.t, trace[:, i], sd[:, i], colour, _band_label(res, j))
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
             ax.step(
@@ -206,13 +211,18 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             )
     ax.axhline(0, color="black", lw=0.5)
     if len(group) == 1:
-        _trace, bar, names, i, _ = group[0]
+        _trace, bar, names, i, *_ = group[0]
         ax.set_ylabel(_axis(rf"$\delta {sym}$", unit))
         head = f"{what} ${sym}$" if what else f"${sym}$"
         _heading(ax, rf"{head} (${_bar(sym)}$ = {_amount(float(bar[i]), unit)})", room)
     else:
         ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
         _heading(ax, "further signals (change from the operating point)", room)
+
+
+def _band_label(res: Response, j: int) -> str | None:
+    """The band's legend entry, once per panel: the mean of how many noisy runs."""
+    return f"mean $\\pm$ 2 sd of {res.draws} noisy runs" if j == 0 else None
 
 
 def _locator():
@@ -243,6 +253,8 @@ def _controller_panel(ax, res: Response, labels, marked: bool, room: float) -> N
         label = _chain_tex(name, res, labels) if chain else _state_tex(name)
         colour = _LINE_COLOURS[(2 + i) % len(_LINE_COLOURS)]
         _steps(ax, res.t, res.states[:, i], marked=marked, color=colour, lw=0.9, label=label)
+        if res.states_sd is not None:
+            style.band(ax, res.t, res.states[:, i], res.states_sd[:, i], colour)
     units = {_signal(n, labels)[2] for n in res.input_names}
     if chain and len(units) == 1:  # delayed copies of the input: the input's symbol and unit
         one = len(res.input_names) == 1

@@ -172,6 +172,24 @@ def cycle(k: int) -> str:
     return PALETTE[k % len(PALETTE)]
 
 
+BAND_ALPHA = 0.22
+"""Opacity of the band of noisy runs (:func:`band`)."""
+
+
+def band(ax, t, mean, sd, color: str, label: str | None = None):
+    r"""The spread of noisy runs about their mean, :math:`\pm 2` sd, held over each step."""
+    return ax.fill_between(
+        t,
+        mean - 2 * sd,
+        mean + 2 * sd,
+        step="post",
+        color=color,
+        alpha=BAND_ALPHA,
+        lw=0,
+        label=label,
+    )
+
+
 def axis_label(quantity: str, unit: str | None) -> str:
     """``"quantity [unit]"``; a dimensionless quantity says so (``[1]``).
 

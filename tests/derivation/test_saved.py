@@ -101,6 +101,10 @@ def values(derived_T2) -> dict:
         "SavedDerivation": lambda: symctl.SavedDerivation(derived_T2.to_dict(), derived_T2.spec),
         "Realizer": lambda: symctl.get_realizer("controllable"),
         "Proof": lambda: derived_T2.verified,
+        "Noise": lambda: symctl.Noise(process=0.1, sensor=[[0.02]], signal_dependent=0.1),
+        "MonteCarlo": lambda: symctl.monte_carlo(
+            gains, noise=symctl.Noise(process=0.1), count=4, steps=10
+        ),
     }
     for name, make in made.items():
         if name not in found:

@@ -185,3 +185,26 @@ def test_an_axis_of_a_plant_without_units_says_so_not_dimensionless():
         r"$\delta u$ [arb. unit]",
     ]
     assert fig.axes[-1].get_xlabel() == "time [steps]"
+
+
+def test_a_noisy_loop_is_drawn_as_its_mean_in_a_band_of_two_standard_deviations():
+    from matplotlib.collections import PolyCollection
+
+    from symctl import Noise
+
+    gains = lqr_gains(augment(MuscleModel(), 1, 1))
+    noise = Noise(process=0.01, sensor=1e-3)
+    res = closed_loop_response(gains, noise=noise, draws=30, rng=1)
+    fig = response_plot(res)
+    bands = [c for ax in fig.axes for c in ax.collections if isinstance(c, PolyCollection)]
+    assert len(bands) == res.delta_f.shape[1] + res.delta_r.shape[1] + res.states.shape[1]
+    top = bands[0].get_paths()[0].vertices[:, 1]  # the band reaches mean +- 2 sd
+    assert top.max() == pytest.approx(float((res.delta_f + 2 * res.delta_f_sd).max()))
+    assert legibility(fig)
+    quiet = response_plot(closed_loop_response(gains))
+    assert not [c for ax in quiet.axes for c in ax.collections if isinstance(c, PolyCollection)]
+    fp = circuit_firing("general", gains, count=2, noise=noise, noise_draws=20)
+    fig = firing_plot(fp)
+    per_neuron = [ax for ax in fig.axes[1:] if ax.collections]
+    assert len(per_neuron) == len(fp.neurons) and "noisy runs" in fig.axes[0].get_title(loc="left")
+    _check(fig, "noisy firing")
