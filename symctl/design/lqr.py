@@ -22,7 +22,7 @@ Stabilizability and detectability are checked first (PBH test). Sign: the paper'
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 import scipy.linalg
@@ -40,8 +40,34 @@ __all__ = ["Gains", "lqr_gains"]
 _TOL = 1e-9
 
 
+class _ArrayValue:
+    """Read-only arrays (the fields named in ``_arrays``), equality and hash by value."""
+
+    _arrays: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        for name in self._arrays:
+            object.__setattr__(self, name, read_only(getattr(self, name)))
+
+    def _parts(self) -> tuple:
+        return tuple(getattr(self, f.name) for f in fields(self) if f.name not in self._arrays)
+
+    def __eq__(self, other) -> bool:
+        """Equal fields, the arrays element by element."""
+        if type(other) is not type(self):
+            return NotImplemented
+        pairs = [(getattr(self, a), getattr(other, a)) for a in self._arrays]
+        return self._parts() == other._parts() and all(
+            a.shape == b.shape and np.array_equal(a, b) for a, b in pairs
+        )
+
+    def __hash__(self) -> int:
+        arrays = tuple((getattr(self, a).shape, getattr(self, a).tobytes()) for a in self._arrays)
+        return hash((self._parts(), arrays))
+
+
 @dataclass(frozen=True, eq=False)
-class Gains(DictMixin, LatexMixin):
+class Gains(_ArrayValue, DictMixin, LatexMixin):
     r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
 
     Built by :func:`lqr_gains`; read-only arrays; compares and hashes by value.
@@ -71,26 +97,7 @@ class Gains(DictMixin, LatexMixin):
     X: np.ndarray
     poles: np.ndarray
 
-    def __post_init__(self):
-        for name in ("K", "X", "poles"):
-            object.__setattr__(self, name, read_only(getattr(self, name)))
-
-    def _key(self) -> tuple:
-        return (self.system, *(a.shape for a in (self.K, self.X, self.poles)))
-
-    def __eq__(self, other) -> bool:
-        """Equal system and equal arrays (numpy arrays compare element by element)."""
-        if not isinstance(other, Gains):
-            return NotImplemented
-        return self._key() == other._key() and all(
-            np.array_equal(a, b)
-            for a, b in zip(
-                (self.K, self.X, self.poles), (other.K, other.X, other.poles), strict=True
-            )
-        )
-
-    def __hash__(self) -> int:
-        return hash((self._key(), self.K.tobytes(), self.X.tobytes(), self.poles.tobytes()))
+    _arrays = ("K", "X", "poles")
 
     @property
     def blocks(self) -> list[np.ndarray]:
