@@ -73,17 +73,19 @@ import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import NotRational
+from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import (
     check_magnitude,
     numeric_matrix,
     psd_matrix,
+    read_only,
     to_matrix,
 )
 from symctl.design.augment import AugmentedSystem
 from symctl.design.controller import _chain, _ring_of
 from symctl.design.fraction import MatrixFractionTF, _adj_det
-from symctl.design.lqr import Gains, _ArrayValue, _pbh_defect
+from symctl.design.lqr import Gains, _pbh_defect
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.proof import Proof
@@ -93,7 +95,7 @@ __all__ = ["KalmanGains", "kalman_gains", "lqg_state_space", "lqg_tf", "prove_lq
 
 
 @dataclass(frozen=True, eq=False)
-class KalmanGains(_ArrayValue, DictMixin, LatexMixin):
+class KalmanGains(ArrayValue, DictMixin, LatexMixin):
     r"""The stationary delayed Kalman filter (predictor form) of :func:`kalman_gains`.
 
     Read-only arrays; compares and hashes by value.
@@ -129,7 +131,9 @@ class KalmanGains(_ArrayValue, DictMixin, LatexMixin):
     P: np.ndarray
     poles: np.ndarray
 
-    _arrays = ("W", "V", "L", "P", "poles")
+    def __post_init__(self):
+        for name in ("W", "V", "L", "P", "poles"):
+            object.__setattr__(self, name, read_only(getattr(self, name)))
 
     @property
     def p(self) -> int:

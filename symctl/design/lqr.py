@@ -22,13 +22,14 @@ Stabilizability and detectability are checked first (PBH test). Sign: the paper'
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import check_magnitude, numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
@@ -40,34 +41,8 @@ __all__ = ["Gains", "lqr_gains"]
 _TOL = 1e-9
 
 
-class _ArrayValue:
-    """Read-only arrays (the fields named in ``_arrays``), equality and hash by value."""
-
-    _arrays: tuple[str, ...] = ()
-
-    def __post_init__(self):
-        for name in self._arrays:
-            object.__setattr__(self, name, read_only(getattr(self, name)))
-
-    def _parts(self) -> tuple:
-        return tuple(getattr(self, f.name) for f in fields(self) if f.name not in self._arrays)
-
-    def __eq__(self, other) -> bool:
-        """Equal fields, the arrays element by element."""
-        if type(other) is not type(self):
-            return NotImplemented
-        pairs = [(getattr(self, a), getattr(other, a)) for a in self._arrays]
-        return self._parts() == other._parts() and all(
-            a.shape == b.shape and np.array_equal(a, b) for a, b in pairs
-        )
-
-    def __hash__(self) -> int:
-        arrays = tuple((getattr(self, a).shape, getattr(self, a).tobytes()) for a in self._arrays)
-        return hash((self._parts(), arrays))
-
-
 @dataclass(frozen=True, eq=False)
-class Gains(_ArrayValue, DictMixin, LatexMixin):
+class Gains(ArrayValue, DictMixin, LatexMixin):
     r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
 
     Built by :func:`lqr_gains`; read-only arrays; compares and hashes by value.
@@ -97,7 +72,9 @@ class Gains(_ArrayValue, DictMixin, LatexMixin):
     X: np.ndarray
     poles: np.ndarray
 
-    _arrays = ("K", "X", "poles")
+    def __post_init__(self):
+        for name in ("K", "X", "poles"):
+            object.__setattr__(self, name, read_only(getattr(self, name)))
 
     @property
     def blocks(self) -> list[np.ndarray]:

@@ -101,6 +101,7 @@ def values(derived_T2) -> dict:
         "SavedDerivation": lambda: symctl.SavedDerivation(derived_T2.to_dict(), derived_T2.spec),
         "Realizer": lambda: symctl.get_realizer("controllable"),
         "Proof": lambda: derived_T2.verified,
+        "KalmanGains": lambda: symctl.kalman_gains(gains.system, C=[[1]], W=0.1, V=0.01),
     }
     for name, make in made.items():
         if name not in found:

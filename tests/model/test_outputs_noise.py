@@ -118,3 +118,23 @@ def test_the_cli_exits_2_on_a_bad_noise_table(tmp_path, capsys):
     assert main(["derive", "--check", str(path)]) == 2
     err = capsys.readouterr().err
     assert "arm.toml:" in err and "noise.sensor: singular" in err
+
+
+def test_forearm_angle_only_gives_a_proved_compensator_that_factors_along_the_delays():
+    from pathlib import Path
+
+    from symctl import augment, factor, lqr_gains
+    from symctl.design.kalman import kalman_gains, lqg_tf, prove_lqg_tf
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "forearm.toml").read_text()
+    outputs = '[[outputs]]\nname = "angle"\nexpr = "theta"\nunit = "rad"\n\n'
+    noise = "[noise]\nprocess = [1e-6, 1e-4]\nmotor = 1e-4\nsensor = 1e-4\n\n"
+    m = load_model(text.replace("[sampling]", outputs + noise + "[sampling]"))
+    s = augment(m.plant, m.sensor_delay, m.actuator_delay, m.Q, m.R)
+    kf = kalman_gains(s, m.C, m.noise["process"], m.noise["sensor"], motor=m.noise["motor"])
+    G = lqg_tf(s, m.C)
+    assert s.T == 6 and G.shape == (1, 1) and G.order == 8 and G.relative_degree == 7
+    assert prove_lqg_tf(s, m.C, G)
+    assert factor(G, m.sensor_delay, m.actuator_delay).verify()
+    numeric = lqg_tf(s, gains=lqr_gains(s), kalman=kf)
+    assert not numeric.free_symbols and max(abs(numeric.poles())) < 1
