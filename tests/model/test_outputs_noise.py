@@ -138,3 +138,11 @@ def test_forearm_angle_only_gives_a_proved_compensator_that_factors_along_the_de
     assert factor(G, m.sensor_delay, m.actuator_delay).verify()
     numeric = lqg_tf(s, gains=lqr_gains(s), kalman=kf)
     assert not numeric.free_symbols and max(abs(numeric.poles())) < 1
+
+
+def test_derive_stops_on_a_model_that_estimates_its_state(tmp_path, capsys):
+    path = tmp_path / "arm.toml"
+    path.write_text(ARM + '[[outputs]]\nname = "a"\nexpr = "theta"\n')
+    assert main(["derive", str(path), "--out", str(tmp_path / "out"), "--no-figures"]) == 2
+    err = capsys.readouterr().err
+    assert "arm.toml" in err and "outputs: derive builds full-state feedback" in err
