@@ -49,12 +49,21 @@ identities in :math:`z`, the gains and the plant's symbols, and together they sa
 \tilde B K` (the regulator's) and those of :math:`A - LC` (the filter's on the plant; the
 augmented filter's :math:`\tilde A - \tilde L \tilde C` adds :math:`Tm` poles at 0).
 
+**Current (filter) form** (``form="current"``). The command acts on the updated estimate
+:math:`\hat\chi(t|t) = \hat\chi + \tilde M (y - \tilde C \hat\chi)`, :math:`\tilde M =
+\tilde P \tilde C^\top (\tilde C \tilde P \tilde C^\top + V)^{-1} = [M;\ 0]` and
+:math:`\tilde L = \tilde A \tilde M`: :math:`F = (\tilde A + \tilde B K)(I - \tilde M \tilde C)`,
+:math:`H = (\tilde A + \tilde B K)\tilde M`; in the fraction :math:`K_0` becomes
+:math:`K_0 (I - MC)` and :math:`Q` gains :math:`\varphi K_0 M`, the relative degree is
+:math:`T`, and the proof is the same with :math:`M W + N \varphi d_G = \varphi N_G`.
+
 **The full-state limit.** With :math:`C = I` and :math:`V \to 0` (a noise-free sensor,
-equivalently :math:`W/V \to \infty`) the gain tends to :math:`L = A` and the estimate to the
-one-step prediction :math:`\hat x(t) = A x(t-1) + B \delta_r(t-1)`, which equals
-:math:`x(t)`: the compensator tends to :math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A`, with
-:math:`G_0` today's full-state controller, and its loop to the LQR's loop (poles of
-:math:`\tilde A + \tilde B K` and :math:`n` at 0). :math:`W \to 0` is the other limit: the
+equivalently :math:`W/V \to \infty`), :math:`M \to I` and :math:`L \to A`. The current form
+then tends to today's :math:`G_0 = D^{-1} K_0` itself (:math:`\hat x(t|t) = y(t)`; the error
+is of order :math:`V`). The predictor form tends to :math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A`:
+:math:`G_0` acting on the one-step prediction :math:`A x(t-1) + B \delta_r(t-1)`, which equals
+:math:`x(t)`, so its loop tends to the LQR's (poles of :math:`\tilde A + \tilde B K` and
+:math:`n` at 0) though the transfer functions differ. :math:`W \to 0` is the other limit: the
 filter trusts the model and, for a stable plant, :math:`L \to 0` and :math:`G \to 0`.
 
 ``kalman_gains`` is a function of its own, beside :func:`~symctl.design.lqr.lqr_gains`,
@@ -109,6 +118,9 @@ class KalmanGains(ArrayValue, DictMixin, LatexMixin):
         Process covariance on the plant's states (motor noise included) and sensor covariance.
     L : numpy.ndarray
         Predictor gain :math:`\tilde L`, ``(n + T m) x p`` (its chain rows are zero).
+    M : numpy.ndarray
+        Innovation gain :math:`\tilde M = \tilde P \tilde C^\top (\tilde C \tilde P \tilde
+        C^\top + V)^{-1}` of the current (filter) form, :math:`\tilde L = \tilde A \tilde M`.
     P : numpy.ndarray
         Stabilizing solution of the dual DARE, the prior error covariance.
     poles : numpy.ndarray
@@ -128,11 +140,12 @@ class KalmanGains(ArrayValue, DictMixin, LatexMixin):
     W: np.ndarray
     V: np.ndarray
     L: np.ndarray
+    M: np.ndarray
     P: np.ndarray
     poles: np.ndarray
 
     def __post_init__(self):
-        for name in ("W", "V", "L", "P", "poles"):
+        for name in ("W", "V", "L", "M", "P", "poles"):
             object.__setattr__(self, name, read_only(getattr(self, name)))
 
     @property
@@ -140,13 +153,14 @@ class KalmanGains(ArrayValue, DictMixin, LatexMixin):
         """Measured outputs."""
         return self.C.rows
 
-    def substitutions(self, exact: bool = False) -> dict:
-        """Map from the symbols of :func:`~symctl.symbols.observer_gain_symbols` to the plant rows
-        of ``L`` (``exact=True``: the floats' exact rationals)."""
-        n = self.system.n
+    def substitutions(self, exact: bool = False, form: str = "predictor") -> dict:
+        """Map from the symbols of :func:`~symctl.symbols.observer_gain_symbols` (``L``; ``M`` in the
+        current form) to the plant rows of the gain (``exact=True``: the floats' exact rationals)."""
+        n, stem = self.system.n, _FORMS[_form(form)]
         value = (lambda v: sp.Rational(float(v))) if exact else float
-        symbols = observer_gain_symbols(n, self.p)
-        return {s: value(v) for s, v in zip(symbols, self.L[:n].ravel(), strict=True)}
+        symbols = observer_gain_symbols(n, self.p, stem)
+        gain = self.L if stem == "L" else self.M
+        return {s: value(v) for s, v in zip(symbols, gain[:n].ravel(), strict=True)}
 
     @property
     def spectral_radius(self) -> float:
@@ -155,6 +169,15 @@ class KalmanGains(ArrayValue, DictMixin, LatexMixin):
 
     def latex(self) -> str:
         return rf"L = {latex(sp.Matrix(self.L[: self.system.n]).evalf(6))}"
+
+
+_FORMS = {"predictor": "L", "current": "M"}  # the form and the stem of its gain's symbols
+
+
+def _form(form) -> str:
+    if form not in _FORMS:
+        raise ParameterError(f"form: expected 'predictor' or 'current', got {form!r}")
+    return form
 
 
 def _output_matrix(C, n: int) -> sp.ImmutableMatrix:
@@ -240,28 +263,32 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
     try:
         with np.errstate(over="raise", invalid="raise", divide="raise", under="ignore"):
             P = scipy.linalg.solve_discrete_are(A.T, Ct.T, Wt, Vn)
-            L = A @ P @ Ct.T @ np.linalg.inv(Ct @ P @ Ct.T + Vn)
+            M = P @ Ct.T @ np.linalg.inv(Ct @ P @ Ct.T + Vn)
     except (np.linalg.LinAlgError, ValueError, FloatingPointError) as exc:
         raise ParameterError(
             f"W: no stabilizing filter ({exc}); a mode on the unit circle that the process "
             "noise never excites has no stationary estimate: give it some noise"
         ) from None
-    L[n:] = 0.0  # exactly zero in theory (module notes); remove the solver's rounding
+    M[n:] = 0.0  # exactly zero in theory (module notes); remove the solver's rounding
+    L = A @ M
     poles = np.linalg.eigvals(A - L @ Ct)
     poles = poles[np.argsort(-np.abs(poles), kind="stable")]
     if not np.all(np.abs(poles) < 1):
         raise ParameterError(f"W, V: the filter does not converge (poles {poles})")
-    return KalmanGains(system, Cm, Wn, Vn, L, P, poles)
+    return KalmanGains(system, Cm, Wn, Vn, L, M, P, poles)
 
 
-def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int):
+def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predictor"):
     r"""``(F, H, M, N)`` of the LQG compensator from ``y`` (at the sensor) to :math:`\delta_r`.
 
-    State :math:`\hat\chi`; :math:`F = \tilde A + \tilde B K - \tilde L \tilde C`,
-    :math:`H = \tilde L`, :math:`M = [0 \dots 0\ I]` (:math:`T = 0`: :math:`M = K`),
-    :math:`N = 0`. ``A``, ``B`` are the augmented matrices, ``C`` the plant's (``p x n``),
-    ``K`` the gain row ``[K_0 ... K_T]`` and ``L`` the plant rows of the filter gain; SymPy
-    matrices and NumPy arrays alike.
+    State :math:`\hat\chi`. Predictor form (``L`` the plant rows of :math:`\tilde L`):
+    :math:`F = \tilde A + \tilde B K - \tilde L \tilde C`, :math:`H = \tilde L`; current form
+    (``L`` the plant rows of :math:`\tilde M`, acting on :math:`\hat\chi(t|t) = \hat\chi +
+    \tilde M (y - \tilde C \hat\chi)`): :math:`F = (\tilde A + \tilde B K)(I - \tilde M
+    \tilde C)`, :math:`H = (\tilde A + \tilde B K) \tilde M`. :math:`M = [0 \dots 0\ I]`,
+    :math:`N = 0` (:math:`T = 0`: the command :math:`K \hat\chi`, or :math:`K \hat\chi(t|t)`).
+    ``A``, ``B`` are the augmented matrices, ``C`` the plant's (``p x n``), ``K`` the gain row
+    ``[K_0 ... K_T]``; SymPy matrices and NumPy arrays alike.
 
     >>> import sympy as sp
     >>> from symctl import MuscleModel, augment
@@ -276,22 +303,39 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int):
     """
     symbolic = isinstance(A, sp.MatrixBase)
     zeros = sp.zeros if symbolic else (lambda r, c: np.zeros((r, c)))
+    eye = sp.eye if symbolic else np.eye
     size, p = n + T * m, C.shape[0]
     Ct = zeros(p, size)
     Ct[:, :n] = C
     Lt = zeros(size, p)
     Lt[:n, :] = L
-    F = A + B @ K - Lt @ Ct
+    closed = A + B @ K
+    if _form(form) == "current":
+        F, H, out, N = (
+            closed @ (eye(size) - Lt @ Ct),
+            closed @ Lt,
+            K @ (eye(size) - Lt @ Ct),
+            K @ Lt,
+        )
+    else:
+        F, H, out, N = A + B @ K - Lt @ Ct, Lt, K, zeros(m, p)
     if T == 0:
-        return F, Lt, K, zeros(m, p)
+        return F, H, out, N
     M = zeros(m, size)
-    M[:, size - m :] = sp.eye(m) if symbolic else np.eye(m)
-    return F, Lt, M, zeros(m, p)
+    M[:, size - m :] = eye(m)
+    return F, H, M, zeros(m, p)
 
 
-def _symbols(system: AugmentedSystem, p: int) -> tuple[sp.Matrix, sp.Matrix]:
+def _setup(system: AugmentedSystem, Cm, form: str):
+    """The ring, its converter, the plant map, the symbols ``K`` and the filter gain's, the
+    predictor gain :math:`L` (``A M`` in the current form), and ``adj Phi``, ``det Phi``."""
     K = sp.Matrix.hstack(*gain_matrix_symbols(system.T, system.m, system.n))
-    return K, sp.Matrix(observer_gain_symbols(system.n, p))
+    gain = sp.Matrix(observer_gain_symbols(system.n, Cm.rows, _FORMS[_form(form)]))
+    R, convert, ev = _ring(system, Cm, K, gain)
+    A = ev(system.plant.A)
+    L = gain if form == "predictor" else A * gain
+    adj, phi = _observer(R, convert, A, ev(Cm), L, system.n)
+    return R, convert, ev, K, gain, L, adj, phi
 
 
 def _ring(system: AugmentedSystem, Cm, K, L):
@@ -337,6 +381,8 @@ def lqg_tf(
     C=None,
     gains: Gains | None = None,
     kalman: KalmanGains | None = None,
+    *,
+    form: str = "predictor",
 ) -> DiscreteTF:
     r"""The LQG compensator :math:`G(z) = P(z)^{-1} Q(z)` from the outputs to :math:`\delta_r`.
 
@@ -349,12 +395,17 @@ def lqg_tf(
     gains : Gains, optional
         Substitute these LQR gains for :math:`K_0 \dots K_T`.
     kalman : KalmanGains, optional
-        Substitute this filter's gain for the symbols :math:`L`.
+        Substitute this filter's gain for its symbols.
+    form : {"predictor", "current"}
+        The predictor form (symbols :math:`L`; the command uses :math:`y` up to the previous
+        step) or the current (filter) form (symbols :math:`M`; the command uses
+        :math:`\hat\chi(t|t)`, with :math:`y(t)`).
 
     Returns
     -------
     DiscreteTF
-        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1`; for several
+        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1` (current form:
+        :math:`T`); for several
         inputs with symbols left, the :class:`~symctl.design.fraction.MatrixFractionTF`
         :math:`P^{-1} Q`.
 
@@ -390,15 +441,17 @@ def lqg_tf(
     if kalman is not None and kalman.C != Cm:
         raise ParameterError(f"C: the filter measures {kalman.C.tolist()}, not {Cm.tolist()}")
     n, m, T, p = system.n, system.m, system.T, Cm.rows
-    K, L = _symbols(system, p)
-    R, convert, ev = _ring(system, Cm, K, L)
-    adj, phi = _observer(R, convert, ev(system.plant.A), ev(Cm), L, n)
-    K0 = _mat(convert, K[:, :n])
+    R, convert, ev, K, gain, L, adj, phi = _setup(system, Cm, form)
+    K0 = K[:, :n]
+    E = K0 if form == "predictor" else K0 * (sp.eye(n) - gain * ev(Cm))  # acts on the prior
     D = _mat(convert, _chain(T, m, lambda k, i, j: K[i, n + (k - 1) * m + j]))
-    K0adj = _mul(R, K0, adj)
-    KB = _mul(R, K0adj, _mat(convert, ev(system.plant.B)))
+    Eadj = _mul(R, _mat(convert, E), adj)
+    KB = _mul(R, Eadj, _mat(convert, ev(system.plant.B)))
     Pm = [[phi * D[i][j] - KB[i][j] for j in range(m)] for i in range(m)]
-    Qm = _mul(R, K0adj, _mat(convert, L))
+    Qm = _mul(R, Eadj, _mat(convert, L))
+    if form == "current":  # plus phi K_0 M: the present measurement
+        direct = _mul(R, _mat(convert, K0), _mat(convert, gain))
+        Qm = [[Qm[i][j] + phi * direct[i][j] for j in range(p)] for i in range(m)]
     expr = sp.Matrix
     P_e = expr(m, m, lambda i, j: Pm[i][j].as_expr())
     Q_e = expr(m, p, lambda i, j: Qm[i][j].as_expr())
@@ -407,23 +460,24 @@ def lqg_tf(
         G = DiscreteTF(Q_e, P_e[0, 0], dt)
     else:  # kept as the fraction while symbolic (its expansion is large and slow)
         G = MatrixFractionTF(P_e, Q_e, dt)
-    if G.relative_degree < T + 1 and any(e != 0 for e in Q_e):
-        raise AssertionError(f"internal: relative degree {G.relative_degree} < T + 1")
-    rule = {}
-    for value in (gains, kalman):
-        if value is not None:
-            rule.update(value.substitutions())
+    if G.relative_degree < T + (form == "predictor") and any(e != 0 for e in Q_e):
+        raise AssertionError(f"internal: relative degree {G.relative_degree} too small")
+    rule = {} if gains is None else gains.substitutions()
+    rule.update({} if kalman is None else kalman.substitutions(form=form))
     if not rule:
         return G
     G = G.subs(rule)
     return G.expanded() if isinstance(G, MatrixFractionTF) and not G.free_symbols else G
 
 
-def prove_lqg_tf(system: AugmentedSystem, C=None, G: DiscreteTF | None = None) -> Proof:
+def prove_lqg_tf(
+    system: AugmentedSystem, C=None, G: DiscreteTF | None = None, *, form: str = "predictor"
+) -> Proof:
     r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
 
-    The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W = \varphi N_G` of the
-    module notes, with :math:`(F, H, M)` of :func:`lqg_state_space` and the gains symbolic,
+    The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
+    N_G` of the module notes, with :math:`(F, H, M, N)` of :func:`lqg_state_space` and the gains
+    symbolic,
     checked exactly in :math:`\mathbb{Q}[z, K, L]`; a left fraction is expanded first.
 
     Parameters
@@ -432,7 +486,9 @@ def prove_lqg_tf(system: AugmentedSystem, C=None, G: DiscreteTF | None = None) -
     C : matrix-like, optional
         Output matrix (default: the identity).
     G : DiscreteTF, optional
-        The candidate, ``m x p`` with symbols :math:`K` and :math:`L`.
+        The candidate, ``m x p`` with symbols :math:`K` and :math:`L` (or :math:`M`).
+    form : {"predictor", "current"}
+        The compensator's form (:func:`lqg_tf`).
 
     Returns
     -------
@@ -459,35 +515,34 @@ def prove_lqg_tf(system: AugmentedSystem, C=None, G: DiscreteTF | None = None) -
     if G is not None and not isinstance(G, DiscreteTF):
         raise SymctlTypeError(f"G: expected a DiscreteTF, got {G!r}")
     Cm = _output_matrix(C, system.n)
-    G = lqg_tf(system, Cm) if G is None else G
+    G = lqg_tf(system, Cm, form=form) if G is None else G
     if isinstance(G, MatrixFractionTF):
         G = G.expanded()
     n, m, T, p = system.n, system.m, system.T, Cm.rows
     claim = "G(z) is the transfer function of the delayed LQG compensator"
     method = (
-        "polynomial identities (zI - F) W = H det(Phi) d_G and M W = det(Phi) N_G in Q[z, K, L]"
+        "polynomial identities (zI - F) W = H det(Phi) d_G and M W + N det(Phi) d_G = "
+        "det(Phi) N_G in Q[z, K, L]"
     )
     if G.shape != (m, p):
         return Proof(False, claim, "shapes", f"G has shape {G.shape}, the compensator {(m, p)}")
-    K, L = _symbols(system, p)
-    R, convert, ev = _ring(system, Cm, K, L)
+    R, convert, ev, K, gain, L, adj, phi = _setup(system, Cm, form)
     try:
         N_G, d_G = _mat(convert, G.num_matrix), convert(G.den)
-    except NotRational:
-        return Proof(False, claim, method, "G is not polynomial in z, K and L")
+    except (NotRational, KeyError):  # a symbol the compensator does not have
+        return Proof(False, claim, method, f"G is not polynomial in z, K and {_FORMS[form]}")
     zz = R.gens[0]
-    adj, phi = _observer(R, convert, ev(system.plant.A), ev(Cm), L, n)
     BN = _mul(R, _mat(convert, ev(system.plant.B)), N_G)
     Lr = _mat(convert, L)
     X = _mul(R, adj, [[BN[i][j] + Lr[i][j] * d_G for j in range(p)] for i in range(n)])
     W = X + [[phi * zz ** (T - 1 - k // m) * N_G[k % m][j] for j in range(p)] for k in range(T * m)]
-    F, H, M, _ = lqg_state_space(ev(system.A), ev(system.B), ev(Cm), K, L, n, m, T)
+    F, H, M, N = lqg_state_space(ev(system.A), ev(system.B), ev(Cm), K, gain, n, m, T, form)
     FW = _mul(R, _mat(convert, F), W)
-    Hr, Mr = _mat(convert, H), _mat(convert, M)
-    MW = _mul(R, Mr, W)
+    Hr, Nr = _mat(convert, H), _mat(convert, N)
+    MW = _mul(R, _mat(convert, M), W)
     residues = (
         *(zz * W[i][j] - FW[i][j] - Hr[i][j] * phi * d_G for i in range(len(W)) for j in range(p)),
-        *(MW[i][j] - phi * N_G[i][j] for i in range(m) for j in range(p)),
+        *(MW[i][j] + Nr[i][j] * phi * d_G - phi * N_G[i][j] for i in range(m) for j in range(p)),
     )
     first = next((str(e.as_expr()) for e in residues if e), "")
     return Proof(not first, claim, method, first)

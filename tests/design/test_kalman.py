@@ -34,11 +34,13 @@ def _loop(s, g, kf):
     return np.block([[A, B @ M], [H @ C, F]]), (F, H, M)
 
 
-def _at(G, F, H, M, points):
-    """``max |G(z) - M (zI - F)^-1 H|`` over ``points``."""
+def _at(G, F, H, M, points, N=0.0):
+    """``max |G(z) - M (zI - F)^-1 H - N|`` over ``points``."""
     f = G.lambdify()
     return max(
-        float(np.max(np.abs(np.atleast_2d(f(p)) - M @ np.linalg.solve(p * np.eye(len(F)) - F, H))))
+        float(
+            np.max(np.abs(np.atleast_2d(f(p)) - M @ np.linalg.solve(p * np.eye(len(F)) - F, H) - N))
+        )
         for p in points
     )
 
@@ -139,7 +141,7 @@ def test_tiny_process_noise_on_a_stable_plant_turns_the_sensor_off():
     assert max(abs(float(c)) for c in G.num_coeffs()) < 1e-10
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=15, deadline=None)
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(1, 3),
@@ -162,7 +164,12 @@ def test_random_plants_gain_separation_and_transfer_function(seed, n, p, ds, da)
     np.testing.assert_allclose(np.poly(cl), np.poly(poles), atol=1e-7)
     G = lqg_tf(s, C, g, kf)
     assert G.relative_degree >= s.T + 1
-    assert _at(G, F, H, M, POINTS) < 1e-6 * max(1.0, float(np.max(np.abs(g.K))))
+    scale = max(1.0, float(np.max(np.abs(g.K))))
+    assert _at(G, F, H, M, POINTS) < 1e-6 * scale
+    Fc, Hc, Mc, Nc = lqg_state_space(
+        _floats(s.A), _floats(s.B), C, g.K, kf.M[:n], n, 1, s.T, "current"
+    )
+    assert _at(lqg_tf(s, C, g, kf, form="current"), Fc, Hc, Mc, POINTS, Nc) < 1e-6 * scale
 
 
 @pytest.mark.parametrize(
@@ -209,3 +216,36 @@ def test_symbolic_plant_keeps_its_symbols_in_the_compensator():
     G = lqg_tf(augment(([[a]], [[1]]), 1, 0), [[1]])
     assert a in G.free_symbols and G.order == 2
     assert prove_lqg_tf(augment(([[a]], [[1]]), 1, 0), [[1]], G)
+
+
+def test_current_form_is_proved_with_relative_degree_T_and_its_gain_is_the_innovation_gain():
+    for ds, da in ((0, 0), (1, 0), (2, 1)):
+        s = augment(DOUBLE_INTEGRATOR, ds, da)
+        G = lqg_tf(s, [[1, 0]], form="current")
+        assert G.relative_degree == s.T and G.order == 2 + s.T
+        assert prove_lqg_tf(s, [[1, 0]], G, form="current")
+        assert not prove_lqg_tf(s, [[1, 0]], G)  # the predictor's symbols are others
+    s, g, kf = _design(DOUBLE_INTEGRATOR, 1, 1, [[1, 0]], np.eye(2) * 1e-2, 0.05)
+    np.testing.assert_allclose(kf.L, _floats(s.A) @ kf.M, atol=1e-12)
+    C = np.array([[1.0, 0.0]])
+    F, H, M, _ = lqg_state_space(_floats(s.A), _floats(s.B), C, g.K, kf.M[:2], 2, 1, 2, "current")
+    assert _at(lqg_tf(s, gains=g, kalman=kf, form="current"), F, H, M, POINTS) < 1e-9
+
+
+def test_noise_free_full_sensor_current_form_is_the_full_state_controller():
+    """C = I, V -> 0 in the current form: M -> I and G -> today's G, with an error of order V."""
+    from symctl import controller_tf
+
+    s = augment(DOUBLE_INTEGRATOR, 1, 2)
+    g = lqr_gains(s)
+    G0 = controller_tf(g).lambdify()
+    for V in (1e-4, 1e-8):
+        kf = kalman_gains(s, np.eye(2), W=np.eye(2), V=np.eye(2) * V)
+        G = lqg_tf(s, gains=g, kalman=kf, form="current").lambdify()
+        gap = max(float(np.max(np.abs(np.atleast_2d(G(p)) - G0(p)))) for p in POINTS)
+        assert gap < 10 * V
+
+
+def test_an_unknown_form_names_form():
+    with pytest.raises(ParameterError, match="form: expected 'predictor' or 'current'"):
+        lqg_tf(augment(DOUBLE_INTEGRATOR, 1, 1), [[1, 0]], form="filter")
