@@ -59,7 +59,7 @@ augmented filter's :math:`\tilde A - \tilde L \tilde C` adds :math:`Tm` poles at
 
 **The full-state limit.** With :math:`C = I` and :math:`V \to 0` (a noise-free sensor,
 equivalently :math:`W/V \to \infty`), :math:`M \to I` and :math:`L \to A`. The current form
-then tends to today's :math:`G_0 = D^{-1} K_0` itself (:math:`\hat x(t|t) = y(t)`; the error
+then tends to the full-state controller :math:`G_0 = D^{-1} K_0` itself (:math:`\hat x(t|t) = y(t)`; the error
 is of order :math:`V`). The predictor form tends to :math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A`:
 :math:`G_0` acting on the one-step prediction :math:`A x(t-1) + B \delta_r(t-1)`, which equals
 :math:`x(t)`, so its loop tends to the LQR's (poles of :math:`\tilde A + \tilde B K` and

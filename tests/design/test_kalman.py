@@ -233,7 +233,7 @@ def test_current_form_is_proved_with_relative_degree_T_and_its_gain_is_the_innov
 
 
 def test_noise_free_full_sensor_current_form_is_the_full_state_controller():
-    """C = I, V -> 0 in the current form: M -> I and G -> today's G, with an error of order V."""
+    """C = I, V -> 0 in the current form: M -> I and G -> the full-state G, with an error of order V."""
     from symctl import controller_tf
 
     s = augment(DOUBLE_INTEGRATOR, 1, 2)
