@@ -40,6 +40,7 @@ _PUBLIC_BY_MODULE = (
     ("symctl.design.augment", "AugmentedSystem augment"),
     ("symctl.design.controller", "controller_tf prove_controller_tf"),
     ("symctl.design.lqr", "Gains lqr_gains"),
+    ("symctl.design.kalman", "KalmanGains kalman_gains lqg_tf prove_lqg_tf"),
     ("symctl.design.plant", "DiscretePlant Linearization MuscleModel discretize linearize"),
     ("symctl.design.ode", "ODEModel"),
     ("symctl.design.tf", "DiscreteTF"),

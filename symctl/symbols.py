@@ -83,3 +83,20 @@ def gain_matrix_symbols(T: int, m: int, n: int) -> tuple[sp.Matrix, ...]:
             sp.Matrix(m, cols, lambda i, j, k=k: sp.Symbol(f"K_{{{k},{i + 1}{j + 1}}}", real=True))
         )
     return tuple(blocks)
+
+
+@cache
+def observer_gain_symbols(n: int, p: int, stem: str = "L") -> sp.ImmutableMatrix:
+    """The Kalman gain on the plant's ``n`` states from ``p`` outputs, as real symbols.
+
+    With one output the entries are ``L_1 .. L_n`` (one per state); otherwise entry
+    ``(i, j)`` is ``L_{i,j}`` (indices from 1). ``stem`` ``"M"`` names the current form's gain.
+
+    >>> from symctl.symbols import observer_gain_symbols
+    >>> observer_gain_symbols(2, 1).T, observer_gain_symbols(1, 2)
+    (Matrix([[L_1, L_2]]), Matrix([[L_{1,1}, L_{1,2}]]))
+    """
+    name = (
+        (lambda i, j: f"{stem}_{i + 1}") if p == 1 else (lambda i, j: f"{stem}_{{{i + 1},{j + 1}}}")
+    )
+    return sp.ImmutableMatrix(n, p, lambda i, j: sp.Symbol(name(i, j), real=True))

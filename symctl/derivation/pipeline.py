@@ -321,6 +321,12 @@ def _derive(spec: Model, step) -> Derivation:
     step("plant")
     plant_symbolic, plant = spec.plant_symbolic, spec.plant
     step("delays")
+    if spec.C is not None:
+        raise spec.error(
+            "outputs",
+            "derive builds full-state feedback; this model's controller estimates the state "
+            "(some states unmeasured, or [noise]): its LQG compensator is symctl.lqg_tf",
+        )
     system = augment(plant, ds, da, Q=spec.Q, R=spec.R)
     step("LQR")
     try:

@@ -29,6 +29,7 @@ import scipy.linalg
 import sympy as sp
 
 from symctl._util.display import LatexMixin, latex
+from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import check_magnitude, numeric_matrix, psd_matrix, read_only
 from symctl.design.augment import AugmentedSystem
@@ -41,7 +42,7 @@ _TOL = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
-class Gains(DictMixin, LatexMixin):
+class Gains(ArrayValue, DictMixin, LatexMixin):
     r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
 
     Built by :func:`lqr_gains`; read-only arrays; compares and hashes by value.
@@ -74,23 +75,6 @@ class Gains(DictMixin, LatexMixin):
     def __post_init__(self):
         for name in ("K", "X", "poles"):
             object.__setattr__(self, name, read_only(getattr(self, name)))
-
-    def _key(self) -> tuple:
-        return (self.system, *(a.shape for a in (self.K, self.X, self.poles)))
-
-    def __eq__(self, other) -> bool:
-        """Equal system and equal arrays (numpy arrays compare element by element)."""
-        if not isinstance(other, Gains):
-            return NotImplemented
-        return self._key() == other._key() and all(
-            np.array_equal(a, b)
-            for a, b in zip(
-                (self.K, self.X, self.poles), (other.K, other.X, other.poles), strict=True
-            )
-        )
-
-    def __hash__(self) -> int:
-        return hash((self._key(), self.K.tobytes(), self.X.tobytes(), self.poles.tobytes()))
 
     @property
     def blocks(self) -> list[np.ndarray]:

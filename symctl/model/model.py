@@ -92,7 +92,7 @@ class Model:
     units, descriptions : mapping of str to str
         Units and descriptions of the states, inputs, outputs and parameters, by name.
     outputs : tuple of (str, str)
-        The measured outputs: (name, state).
+        The measured outputs: (name, state), or (name, expression) for an ``expr`` output.
     dt : float
         The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is
         the deprecated name of the attribute and keyword).
@@ -128,6 +128,12 @@ class Model:
         What the reader changed and says so (delays in seconds rounded up).
     path : str
         The file.
+    C : sympy.ImmutableMatrix or None
+        The outputs' matrix (``p x n``, linearized at the equilibrium) when the controller
+        estimates the state (some states unmeasured, or ``[noise]``); None for full-state
+        feedback.
+    noise : mapping of str to sympy.ImmutableMatrix
+        ``process``, ``sensor`` (and ``motor``) covariances of ``[noise]`` (empty without).
     replaced : mapping of str to value
         The values :meth:`replace` set in place of the file's, by keyword (empty for a
         model as its file gives it): the file's text and these re-create the model
@@ -182,17 +188,22 @@ class Model:
     vertex_descriptions: Mapping = field(default_factory=dict)
     max_wire_delay: int | None = None
     replaced: Mapping = field(default_factory=dict)
+    C: sp.ImmutableMatrix | None = None
+    noise: Mapping = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         units = {k: str(v) for k, v in self.units.items()}
         object.__setattr__(self, "units", MappingProxyType(units))
-        for name in ("descriptions", "lines", "vertex_descriptions", "replaced"):
+        for name in ("descriptions", "lines", "vertex_descriptions", "replaced", "noise"):
             object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
 
     def _key(self) -> tuple:
-        key = [_key_value(getattr(self, f.name)) for f in dataclasses.fields(self)]
-        key[-1] = tuple(sorted(key[-1]))  # the values replaced: in any order, the same model
-        return tuple(key)
+        return tuple(  # the values replaced: in any order, the same model
+            tuple(sorted(self.replaced.items()))
+            if f.name == "replaced"
+            else _key_value(getattr(self, f.name))
+            for f in dataclasses.fields(self)
+        )
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Model):

@@ -47,6 +47,7 @@ from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
 from symctl.model.graphsection import GraphSection, strip_argname
+from symctl.model.measurement import MeasurementSection
 from symctl.model.model import Model
 from symctl.model.schema import FIELDS
 from symctl.model.source import Source
@@ -116,7 +117,7 @@ def read_model(text: str, path: str = "<text>") -> Model:
     return _Reader(Source.from_text(text, path)).model()
 
 
-class _Reader(GraphSection):
+class _Reader(GraphSection, MeasurementSection):
     """Reads one :class:`Source` into a :class:`Model`, field by field."""
 
     def __init__(self, src: Source):
@@ -227,7 +228,12 @@ class _Reader(GraphSection):
             self.bare_ts(ode, Ts)
         self.names = tuple(s.name for s in ode.states) if ode is not None else plant.state_names
         self.stabilizable(plant, "states" if ode is not None else "discrete")
-        outputs = self.outputs(d.get("outputs"), plant, units, descr)
+        outputs, C = self.outputs(d.get("outputs"), ode, params, units, descr)
+        noise = self.noise(d.get("noise"), plant, params, len(outputs))
+        if noise and C is None:  # every state measured, through noise
+            C = sp.ImmutableMatrix([[int(s == st) for s in self.names] for _, st in outputs])
+        if C is not None:
+            self.detectable(plant, C)
         delays = self.table(d.get("delays", {}), "delays", "delays")
         ds = self.delay(delays.get("sensor", 1), "delays.sensor", Ts)
         da = self.delay(delays.get("actuator", 1), "delays.actuator", Ts)
@@ -243,8 +249,9 @@ class _Reader(GraphSection):
         Q = self.weight(cost.get("Q", "identity"), "cost.Q", plant.n)
         R = self.weight(cost.get("R", "identity"), "cost.R", plant.m, definite=True)
         graph, vertices, edges, given, about = self.graph(d.get("delay_graph"), (ds, da), Ts)
+        sensed = (plant.n, "measured state") if C is None else (C.rows, "measured output")
         for key, ends, count, what in (
-            ("sensor", graph.sensors, plant.n, "measured state"),
+            ("sensor", graph.sensors, *sensed),
             ("actuator", graph.actuators, plant.m, "input"),
         ):
             if len(ends) not in (1, count):
@@ -294,6 +301,9 @@ class _Reader(GraphSection):
             self.src.lines,
             about,
             self.wire_bound(d.get("delay_graph")),
+            {},
+            C,
+            noise,
         )
 
     def sampling(self, table: dict) -> float:
@@ -553,38 +563,6 @@ class _Reader(GraphSection):
         if not isinstance(value, list) or not 1 <= len(value) <= MAX_MODEL_STATES + 1:
             raise self.fail(where, f"expected a list of 1 to {MAX_MODEL_STATES + 1} coefficients")
         return [self.expr(e, f"{where}[{i}]", names) for i, e in enumerate(value)]
-
-    def outputs(self, data, plant, units, descr) -> tuple:
-        if data is None:
-            return tuple((s, s) for s in self.names)
-        items = self.items(data, "outputs", "outputs", limit=MAX_MODEL_STATES)
-        out = []
-        for i, item in enumerate(items):
-            where = f"outputs[{i}]"
-            if "name" not in item:
-                raise self.fail(where, "missing name")
-            name = self.text(item["name"], f"{where}.name", ident=True)
-            state = self.text(item.get("state", name), f"{where}.state")
-            if state not in self.names:
-                raise self.fail(
-                    f"{where}.state",
-                    f"{state!r} is not a state; the states are {', '.join(self.names)}",
-                )
-            u = self.unit(item.get("unit"), f"{where}.unit")
-            if u is not None and state in units and units[state] != u:
-                raise self.fail(
-                    f"{where}.unit", f"[{u}] contradicts the unit [{units[state]}] of state {state}"
-                )
-            descr.setdefault(name, self.text(item.get("description", ""), f"{where}.description"))
-            out.append((name, state))
-        missing = [s for s in self.names if s not in {st for _, st in out}]
-        if missing:
-            raise self.fail(
-                "outputs",
-                f"every state must be measured (symctl designs state "
-                f"feedback, with no observer); not measured: {', '.join(missing)}",
-            )
-        return tuple(out)
 
     def delay(self, value, where: str, Ts: float) -> int:
         if isinstance(value, dict):

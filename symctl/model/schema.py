@@ -63,7 +63,8 @@ _FIELDS = {
     "outputs": {  # array of tables
         "name": "identifier of the measured output; required",
         "state": "the state it measures (default: the state of the same name)",
-        "unit": "its unit (must be the state's where both are given)",
+        "expr": "or an expression of the states (and parameters) it measures, linearized",
+        "unit": "its unit (must be the state's or the expression's where both are known)",
         "description": "what it is",
     },
     "discrete": {
@@ -82,6 +83,11 @@ _FIELDS = {
     "cost": {
         "Q": "state weight: a number (times I), a matrix, or 'identity' (default)",
         "R": "input weight, likewise",
+    },
+    "noise": {
+        "process": "covariance of the noise on the states: a number (times I), a diagonal, a matrix",
+        "motor": "covariance of the noise on the inputs, likewise",
+        "sensor": "covariance of the measurement noise, likewise, positive definite",
     },
     "delay_graph": {
         "vertices": "array of tables {name, description}",
@@ -134,6 +140,7 @@ SECTIONS = (
     "sampling",
     "delays",
     "cost",
+    "noise",
     "delay_graph",
     "circuits",
     "simulation",

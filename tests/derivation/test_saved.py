@@ -105,6 +105,7 @@ def values(derived_T2) -> dict:
         "MonteCarlo": lambda: symctl.monte_carlo(
             gains, noise=symctl.Noise(process=0.1), count=4, steps=10
         ),
+        "KalmanGains": lambda: symctl.kalman_gains(gains.system, C=[[1]], W=0.1, V=0.01),
     }
     for name, make in made.items():
         if name not in found:

@@ -187,15 +187,14 @@ def test_a_delay_graph_whose_sensor_or_actuator_is_missing_is_refused():
     assert "no path from" in str(err) and err.field == "delay_graph.edges"
 
 
-def test_every_state_must_be_measured():
+def test_outputs_may_leave_states_unmeasured_then_the_model_has_C():
     text = _with(BASE, "[sampling]", '[[outputs]]\nname = "y"\nstate = "x"\n\n[sampling]')
     assert load_model(text).outputs == (("y", "x"),)
     two = _with(
         BASE, "[[inputs]]", '[[states]]\nname = "v"\nrhs = "-v"\nequilibrium = 0\n\n[[inputs]]'
     )
     two = _with(two, 'rhs = "-k*x + u"', 'rhs = "-k*x + u"\nequilibrium = 0.5')
-    err = _err(two + '\n[[outputs]]\nname = "x"\n')
-    assert err.field == "outputs" and "not measured: v" in str(err)
+    assert load_model(two + '\n[[outputs]]\nname = "x"\n').C == sp.ImmutableMatrix([[1, 0]])
 
 
 def test_a_discrete_plant_as_a_transfer_function_is_realized():
