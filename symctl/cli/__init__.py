@@ -31,6 +31,7 @@ from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
 from symctl.cli.options import Command, options, shown, writing_options
 from symctl.cli.progress import Steps
+from symctl.cli.spiking import spiking_command
 from symctl.cli.summary import summary
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
@@ -49,6 +50,7 @@ def cli() -> None:
 cli.command_class = Command  # errors name the options as typed
 cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
+cli.add_command(spiking_command)  # symctl spiking (symctl/cli/spiking.py)
 
 
 @cli.command()

@@ -1,0 +1,113 @@
+"""What spikes cost each circuit, written: ``symctl spiking``'s files and ``symctl paper
+--spiking``'s section.
+
+>>> import tempfile
+>>> from pathlib import Path
+>>> import symctl
+>>> from symctl.report.spiking import write_spiking
+>>> cost = symctl.spiking_cost(symctl.derive_paper(), circuits=["ifp"], neurons=(10, 30), seeds=1)
+>>> with tempfile.TemporaryDirectory() as out:
+...     sorted(p.name for p in write_spiking(cost, Path(out), figures=False))
+['spiking.json', 'spiking.md']
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from symctl.report.document import Graphic, Heading, Table, Text, to_markdown
+
+__all__ = ["paper_blocks", "write_spiking"]
+
+
+def _n(x: float, top: int = 0) -> str:
+    """``x`` rounded; ``> top`` for infinity (no size reached the tolerance)."""
+    return f"> {top:,}" if np.isinf(x) else f"{x:,.0f}"
+
+
+def _table(cost) -> Table:
+    """The cost table, cheapest first: neurons per population (median, range), in all, spikes."""
+    tols = [f"{100 * t:g}%" for t in cost.tolerances]
+    head = ["circuit", "populations", "peak [spikes/s]"]
+    for key in tols:
+        head += [f"N within {key}", "range", "neurons", "spikes/s"]
+    top = cost.neurons[-1]
+    rows = []
+    for r in cost.table():
+        row = [r["circuit"], str(r["populations"]), f"{r['peak']:.3g}"]
+        for key in tols:
+            lo, hi = r[f"N@{key} range"]
+            row += [
+                _n(r[f"N@{key}"], top),
+                f"{_n(lo, top)} - {_n(hi, top)}",
+                "-" if np.isinf(r[f"neurons@{key}"]) else _n(r[f"neurons@{key}"]),
+                "-" if np.isinf(r[f"spikes@{key}"]) else _n(r[f"spikes@{key}"]),
+            ]
+        rows.append(tuple(row))
+    return Table(tuple(head), tuple(rows))
+
+
+def _prose(cost) -> list:
+    """What the sweep was, and what it found (every number computed from ``cost``)."""
+    sizes = ", ".join(f"{n:,}" for n in cost.neurons)
+    rho = cost.peak_correlation()
+    blocks = [
+        Text(
+            f"Each circuit ran as spiking LIF populations (nengo) in the closed loop at {sizes} "
+            f"neurons per population, {cost.seeds} seeds each. N is the population size that "
+            "keeps the force's RMS deviation from the linear loop within the tolerance "
+            "(interpolated in log N between the sizes; the median over seeds and its range; "
+            f"'> {cost.neurons[-1]:,}': no size reached it), neurons = N times the populations, "
+            "spikes/s at that N; peak is the largest rate change of the circuit's neurons in "
+            "the linear loop. Cheapest first:"
+        ),
+        _table(cost),
+        Text(cost.finding()),
+    ]
+    if cost.atlas_classes:
+        blocks.append(Text("Among the atlas classes alone: " + cost.finding(cost.atlas_classes)))
+    if np.isfinite(rho):
+        blocks.append(
+            Text(
+                "Firing amplitude and cost: Spearman's rank correlation of the peak with N "
+                f"within {100 * cost.tolerances[0]:g}% is {rho:.2f} (ranked by neurons in all: "
+                f"{', '.join(cost.ranking())}; by spikes: {', '.join(cost.ranking('spikes'))})."
+            )
+        )
+    return blocks
+
+
+def write_spiking(cost, folder: Path, *, figures: bool = True, formats=("pdf", "png")) -> list:
+    """Write ``spiking.json`` (:meth:`~symctl.spiking.cost.SpikingCost.summary`), ``spiking.md``
+    and the figure ``spiking_cost`` into ``folder``; return the paths."""
+    folder = Path(folder)
+    path = folder / "spiking.json"
+    path.write_text(json.dumps(cost.summary(), indent=1, allow_nan=False) + "\n")
+    out = [path]
+    blocks = [Heading("What spikes cost each circuit"), *_prose(cost)]
+    if figures:
+        from symctl.report.figures import save
+
+        out += save(cost.plot(), folder, "spiking_cost", formats=formats)
+        blocks.append(Graphic("spiking_cost", _CAPTION))
+    md = folder / "spiking.md"
+    md.write_text(to_markdown(blocks, title="symctl spiking"))
+    return [*out, md]
+
+
+_CAPTION = (
+    "Left: median deviation of the force from the linear loop against neurons per "
+    "population, the tolerances dotted. Right: neurons in all against spikes per second "
+    "within the first tolerance; the marker's area is the circuit's firing amplitude."
+)
+
+
+def paper_blocks(res, shown) -> list:
+    """The section of ``symctl paper --spiking``: the sweep of this controller's circuits."""
+    blocks = [Heading("What spikes cost each circuit"), *_prose(res.spiking_cost)]
+    if "spiking_cost" in shown:
+        blocks.append(Graphic("spiking_cost", _CAPTION))
+    return blocks
