@@ -58,7 +58,8 @@ def _prose(cost) -> list:
         Text(
             f"Each circuit ran as spiking LIF populations (nengo) in the closed loop at {sizes} "
             f"neurons per population, {cost.seeds} seeds each. N is the population size that "
-            "keeps the force's RMS deviation from the linear loop within the tolerance "
+            "keeps the RMS deviation of the plant's state (the force, for the muscle) from the "
+            "linear loop within the tolerance "
             "(interpolated in log N between the sizes; the median over seeds and its range; "
             f"'> {cost.neurons[-1]:,}': no size reached it), neurons = N times the populations, "
             "spikes/s at that N; peak is the largest rate change of the circuit's neurons in "
@@ -69,12 +70,18 @@ def _prose(cost) -> list:
     ]
     if cost.atlas_classes:
         blocks.append(Text("Among the atlas classes alone: " + cost.finding(cost.atlas_classes)))
-    if np.isfinite(rho):
+    key = f"{100 * cost.tolerances[0]:g}%"
+    rates = [r[f"spikes@{key}"] / r[f"neurons@{key}"] for r in cost.table()]
+    rates = [x for x in rates if np.isfinite(x)]
+    if np.isfinite(rho) and rates:
         blocks.append(
             Text(
-                "Firing amplitude and cost: Spearman's rank correlation of the peak with N "
-                f"within {100 * cost.tolerances[0]:g}% is {rho:.2f} (ranked by neurons in all: "
-                f"{', '.join(cost.ranking())}; by spikes: {', '.join(cost.ranking('spikes'))})."
+                f"Firing amplitude and cost: Spearman's rank correlation of the peak with N within "
+                f"{key} is {rho:.2f}. A spiking neuron fires {min(rates):.0f} to "
+                f"{max(rates):.0f} spikes/s on average whatever its circuit (each population's "
+                "radius follows its neuron's peak), so spikes follow neurons: ranked by neurons "
+                f"in all, {', '.join(cost.ranking())}; by spikes, "
+                f"{', '.join(cost.ranking('spikes'))}."
             )
         )
     return blocks

@@ -191,12 +191,21 @@ class SpikingCost(ArrayValue, DictMixin):
                 f"{self.neurons[-1]:,} neurons per population."
             )
         verb = "is" if best in fewest else "is not"
-        return (
-            f"The fewest-neuron linear circuit ({', '.join(fewest)}: {k} "
-            f"neuron{'s' * (k > 1)}) {verb} the cheapest in spikes: within {key} of the linear "
-            f"loop, {best} fires the fewest, {spikes:,.0f} spikes per second with "
-            f"{rows[best][f'neurons@{key}']:,.0f} neurons in all."
+        which = (
+            f"The fewest-neuron linear circuit, {fewest[0]} ({k} neuron{'s' * (k > 1)}),"
+            if len(fewest) == 1
+            else f"A fewest-neuron linear circuit (of {', '.join(fewest)}: {k} neurons each)"
         )
+        text = (
+            f"{which} {verb} the cheapest in spikes: within {key} of the linear loop, {best} "
+            f"fires the fewest, {spikes:,.0f} spikes per second with "
+            f"{rows[best][f'neurons@{key}']:,.0f} neurons in all"
+        )
+        others = [n for n in fewest if n != best]
+        if others:
+            times = ", ".join(f"{n} {rows[n][f'spikes@{key}'] / spikes:.1f}" for n in others)
+            text += f"; the other fewest-neuron ones fire this many times as many: {times}"
+        return text + "."
 
     def peak_correlation(self, tolerance: float | None = None) -> float:
         """Spearman's rank correlation of the circuits' firing amplitude (``peak``) with their

@@ -56,7 +56,8 @@ def test_the_finding_is_computed_from_the_runs(small):
     assert fewest == (small.ranking("spikes")[0] == "ifp")
     assert ("is the cheapest" if fewest else "is not the cheapest") in small.finding()
     atlas = small.finding(small.atlas_classes)
-    assert "A16, A17: 4 neurons" in atlas
+    assert "of A16, A17: 4 neurons each" in atlas
+    assert small.fewest_neurons_cheapest(small.atlas_classes)  # two of two have the fewest
 
 
 def test_the_summary_is_plain_json_and_the_cost_pickles(small):
@@ -128,4 +129,7 @@ def test_the_dask_path_gives_the_same_cost_as_this_process(derived_T2, small):
     both = spiking_cost(
         derived_T2, circuits=["ifp", "A16", "A17"], neurons=(10, 100), seeds=2, workers=2
     )
-    assert both == small
+    # the same runs; the workers' single-threaded BLAS may round the decoders otherwise
+    assert both.circuits == small.circuits and both.peak == small.peak
+    np.testing.assert_allclose(both.deviation, small.deviation, rtol=1e-3)
+    np.testing.assert_allclose(both.spikes, small.spikes, rtol=1e-3)
