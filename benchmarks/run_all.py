@@ -39,6 +39,7 @@ SCRIPTS = (
     ("dale.py", ("--workers", "2")),
     ("fit.py", ()),
     ("figures.py", ()),
+    ("spiking.py", ()),
 )
 
 
