@@ -133,29 +133,29 @@ class SpikingCost(ArrayValue, DictMixin):
             ``N@t range`` (smallest, largest over seeds), ``neurons@t`` (median times
             populations) and ``spikes@t`` (median spikes per second).
         """
+        needs = {f"{100 * t:g}%": self.needed(t) for t in self.tolerances}
         rows = []
         for c, name in enumerate(self.circuits):
             row = {"circuit": name, "populations": self.populations[c], "peak": self.peak[c]}
-            for tol in self.tolerances:
-                n, s = (a[c] for a in self.needed(tol))
-                key = f"{100 * tol:g}%"
-                row[f"N@{key}"] = float(np.median(n))
-                row[f"N@{key} range"] = (float(n.min()), float(n.max()))
-                row[f"neurons@{key}"] = float(np.median(n)) * self.populations[c]
-                row[f"spikes@{key}"] = float(np.median(s))
+            for key, (n, s) in needs.items():
+                row[f"N@{key}"] = float(np.median(n[c]))
+                row[f"N@{key} range"] = (float(n[c].min()), float(n[c].max()))
+                row[f"neurons@{key}"] = row[f"N@{key}"] * self.populations[c]
+                row[f"spikes@{key}"] = float(np.median(s[c]))
             rows.append(row)
-        key = f"{100 * self.tolerances[0]:g}%"
-        return sorted(rows, key=lambda r: (r[f"neurons@{key}"], r[f"spikes@{key}"]))
+        return self._sorted(rows, "neurons", "spikes")
 
-    def ranking(self, by: str = "neurons", tolerance: float | None = None) -> tuple[str, ...]:
-        """The circuits from cheapest to dearest at ``tolerance`` (default the first), ``by``
-        ``"neurons"`` (in all) or ``"spikes"`` (per second)."""
+    def _sorted(self, rows: list[dict], first: str, then: str) -> list[dict]:
+        key = f"{100 * self.tolerances[0]:g}%"
+        return sorted(rows, key=lambda r: (r[f"{first}@{key}"], r[f"{then}@{key}"]))
+
+    def ranking(self, by: str = "neurons") -> tuple[str, ...]:
+        """The circuits from cheapest to dearest at the first tolerance, ``by`` ``"neurons"``
+        (in all) or ``"spikes"`` (per second)."""
         if by not in ("neurons", "spikes"):
             raise ParameterError(f"by: expected 'neurons' or 'spikes', got {by!r}")
-        key = f"{100 * (self.tolerances[0] if tolerance is None else tolerance):g}%"
-        rows = self.table()
-        order = (f"{by}@{key}", f"{'spikes' if by == 'neurons' else 'neurons'}@{key}")
-        return tuple(r["circuit"] for r in sorted(rows, key=lambda r: (r[order[0]], r[order[1]])))
+        then = "spikes" if by == "neurons" else "neurons"
+        return tuple(r["circuit"] for r in self._sorted(self.table(), by, then))
 
     def fewest_neurons_cheapest(self, among=None) -> bool:
         """Whether a circuit with the fewest linear neurons is also the cheapest in spikes per
@@ -207,14 +207,13 @@ class SpikingCost(ArrayValue, DictMixin):
             text += f"; the other fewest-neuron ones fire this many times as many: {times}"
         return text + "."
 
-    def peak_correlation(self, tolerance: float | None = None) -> float:
+    def peak_correlation(self) -> float:
         """Spearman's rank correlation of the circuits' firing amplitude (``peak``) with their
-        median neurons per population at ``tolerance`` (default the first); nan for fewer
-        than three circuits or when either is the same for all."""
+        median neurons per population at the first tolerance; nan for fewer than three
+        circuits or when either is the same for all."""
         from scipy.stats import spearmanr
 
-        tol = self.tolerances[0] if tolerance is None else tolerance
-        n = np.median(self.needed(tol)[0], axis=1)
+        n = np.median(self.needed(self.tolerances[0])[0], axis=1)
         n = np.where(np.isfinite(n), n, 10.0 * self.neurons[-1])  # above every finite one
         if len(n) < 3 or np.ptp(n) == 0 or np.ptp(self.peak) == 0:
             return float("nan")
@@ -230,23 +229,23 @@ class SpikingCost(ArrayValue, DictMixin):
         rows = []
         for r in self.table():
             c = self.circuits.index(r["circuit"])
-            out = {
-                "circuit": r["circuit"],
-                "populations": r["populations"],
-                "peak": r["peak"],
-                "deviation": self.deviation[c].tolist(),
-                "spikes_per_second": self.spikes[c].tolist(),
-                "cost": {},
-            }
-            for tol in self.tolerances:
-                key = f"{100 * tol:g}%"
-                out["cost"][key] = {
+            cost = {
+                key: {
                     "neurons_per_population": num(r[f"N@{key}"]),
                     "range": [num(x) for x in r[f"N@{key} range"]],
                     "neurons": num(r[f"neurons@{key}"]),
                     "spikes_per_second": num(r[f"spikes@{key}"]),
                 }
-            rows.append(out)
+                for key in (f"{100 * t:g}%" for t in self.tolerances)
+            }
+            rows.append(
+                {
+                    **{k: r[k] for k in ("circuit", "populations", "peak")},
+                    "deviation": self.deviation[c].tolist(),
+                    "spikes_per_second": self.spikes[c].tolist(),
+                    "cost": cost,
+                }
+            )
         rho = self.peak_correlation()
         out = {
             "neurons": list(self.neurons),
