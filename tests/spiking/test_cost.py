@@ -133,3 +133,20 @@ def test_the_dask_path_gives_the_same_cost_as_this_process(derived_T2, small):
     assert both.circuits == small.circuits and both.peak == small.peak
     np.testing.assert_allclose(both.deviation, small.deviation, rtol=1e-3)
     np.testing.assert_allclose(both.spikes, small.spikes, rtol=1e-3)
+
+
+def test_a_sweep_stopped_midway_resumes_where_it_stopped(derived_T2, tmp_path):
+    path = tmp_path / "sweep.jsonl"
+    kw = {"circuits": ["ifp", "A17"], "neurons": (10,), "seeds": 1, "checkpoint": path}
+
+    def stop(done, total):
+        if done:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        spiking_cost(derived_T2, progress=stop, **kw)
+    assert len(path.read_text().splitlines()) == 2  # the header and the one task finished
+    seen = []
+    whole = spiking_cost(derived_T2, progress=lambda *a: seen.append(a), **kw)
+    assert seen == [(1, 2), (2, 2)]
+    assert whole == spiking_cost(derived_T2, circuits=["ifp", "A17"], neurons=(10,), seeds=1)
