@@ -29,24 +29,27 @@ def _n(x: float, top: int = 0) -> str:
 
 
 def _table(cost) -> Table:
-    """The cost table, cheapest first: neurons per population (median, range), in all, spikes."""
-    tols = [f"{100 * t:g}%" for t in cost.tolerances]
-    head = ["circuit", "populations", "peak [spikes/s]"]
-    for key in tols:
-        head += [f"N within {key}", "range", "neurons", "spikes/s"]
+    """The cost table, cheapest first: at the first tolerance N (median, range), neurons in all
+    and spikes per second; at the others N alone (so that it fits a page)."""
+    first, *rest = (f"{100 * t:g}%" for t in cost.tolerances)
+    head = ["circuit", "populations", "peak [spikes/s]", f"N within {first}", "range"]
+    head += ["neurons", "spikes/s", *(f"N within {key}" for key in rest)]
     top = cost.neurons[-1]
     rows = []
     for r in cost.table():
-        row = [r["circuit"], str(r["populations"]), f"{r['peak']:.3g}"]
-        for key in tols:
-            lo, hi = r[f"N@{key} range"]
-            row += [
-                _n(r[f"N@{key}"], top),
+        lo, hi = r[f"N@{first} range"]
+        rows.append(
+            (
+                r["circuit"],
+                str(r["populations"]),
+                f"{r['peak']:.3g}",
+                _n(r[f"N@{first}"], top),
                 f"{_n(lo, top)} - {_n(hi, top)}",
-                "-" if np.isinf(r[f"neurons@{key}"]) else _n(r[f"neurons@{key}"]),
-                "-" if np.isinf(r[f"spikes@{key}"]) else _n(r[f"spikes@{key}"]),
-            ]
-        rows.append(tuple(row))
+                "-" if np.isinf(r[f"neurons@{first}"]) else _n(r[f"neurons@{first}"]),
+                "-" if np.isinf(r[f"spikes@{first}"]) else _n(r[f"spikes@{first}"]),
+                *(_n(r[f"N@{key}"], top) for key in rest),
+            )
+        )
     return Table(tuple(head), tuple(rows))
 
 

@@ -69,6 +69,7 @@ def test_the_summary_is_plain_json_and_the_cost_pickles(small):
     assert set(data["circuits"][0]["cost"]) == {"5%", "1%"}
     assert data["finding"] == small.finding()
     assert pickle.loads(pickle.dumps(small)) == small
+    assert SpikingCost.from_dict(json.loads(json.dumps(small.to_dict()))) == small
 
 
 def test_an_interrupted_sweep_resumes_from_its_checkpoint(derived_T2, tmp_path):
