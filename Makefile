@@ -76,7 +76,7 @@ notebooks: $(STAMP)
 	$(BIN)/python docs/run_notebooks.py
 
 # every benchmark against its baseline, in one run; writes docs/benchmarks.md
-bench: $(STAMP)
+bench: $(SPIKING_STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[bench]"
 	$(BIN)/python benchmarks/run_all.py --out docs/benchmarks.md
 

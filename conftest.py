@@ -57,7 +57,9 @@ SPIKING_DOCTESTS = (
     "symctl/spiking/nengo_export.py",
     "symctl/spiking/nest_export.py",
     "symctl/spiking/loop.py",
+    "symctl/spiking/cost.py",
     "symctl/plotting/spiking.py",
+    "symctl/report/spiking.py",
 )
 SPIKING_METHODS = (".to_nengo", ".to_nest")
 

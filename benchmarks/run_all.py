@@ -40,6 +40,7 @@ SCRIPTS = (
     ("dale.py", ("--workers", "2")),
     ("fit.py", ()),
     ("figures.py", ()),
+    ("spiking.py", ()),
 )
 
 

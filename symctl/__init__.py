@@ -85,6 +85,7 @@ _PUBLIC_BY_MODULE = (
     # circuits in other simulators: a neutral connection list (nengo and NEST: Circuit methods)
     ("symctl.spiking.connections", "export_circuit"),
     ("symctl.spiking.loop", "SpikingResponse spiking_response"),
+    ("symctl.spiking.cost", "SpikingCost spiking_cost"),
     # the circuit atlas
     ("symctl.circuitatlas.atlas", "Atlas atlas"),
     ("symctl.circuitatlas.candidates", "CandidateCircuit circuits_for"),

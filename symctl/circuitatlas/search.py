@@ -11,7 +11,8 @@ core). Between sizes the search waits, because a pattern of size
 
 Every finished chunk is appended to a checkpoint file (JSON lines) when one
 is given; a later run with the same file skips the patterns already done, so
-an interrupted search resumes.
+an interrupted search resumes. The workers and the checkpoint are
+:mod:`symctl._util.pool`'s, which every sweep shares.
 
 >>> from symctl.circuitatlas.search import canonical_masks
 >>> len(canonical_masks(2, 6)), len(canonical_masks(3, 9))
@@ -21,16 +22,13 @@ an interrupted search resumes.
 from __future__ import annotations
 
 import itertools
-import json
-import os
 from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 
-from symctl._util.validate import bounded_int
+from symctl._util.pool import MAX_WORKERS, Checkpoint, open_pool, pool_options
 from symctl.circuitatlas.pattern import Pattern, _permutation_maps, orbit_size
-from symctl.errors import ParameterError, SymctlTypeError
+from symctl.errors import ParameterError
 
 __all__ = ["CHUNK", "MAX_WORKERS", "canonical_masks", "open_pool", "pool_options", "run"]
 
@@ -39,9 +37,6 @@ CHUNK = 64
 
 FORMAT = 3
 """Version of the checkpoint format (3: the exact screen decides patterns of 3n entries)."""
-
-MAX_WORKERS = 512
-"""Most worker processes one search may ask for."""
 
 
 def canonical_masks(n: int, size: int) -> list[int]:
@@ -97,55 +92,6 @@ def _evaluate(n: int, masks: list[int], delays: str, lifted: list) -> list[dict]
     return out
 
 
-class _Checkpoint:
-    def __init__(self, path, header: dict):
-        self.path = None if path is None else Path(path)
-        self.done: dict[int, dict] = {}
-        if self.path is None:
-            return
-        try:
-            self._open(header)
-        except OSError as exc:
-            raise ParameterError(
-                f"checkpoint: cannot use {self.path}: {exc.strerror or exc}"
-            ) from None
-
-    def _open(self, header: dict) -> None:
-        if self.path.exists():
-            lines = self.path.read_text().splitlines()
-            try:
-                first = json.loads(lines[0]) if lines else None
-            except json.JSONDecodeError:
-                first = None
-            if first != header:
-                raise ParameterError(
-                    f"checkpoint: {self.path} belongs to another search ({first}); remove it "
-                    "or choose another file"
-                )
-            slots = header["order"] ** 2 + 2 * header["order"]
-            for line in lines[1:]:
-                try:
-                    records = json.loads(line)
-                except json.JSONDecodeError:
-                    break  # a line cut by the interruption: redo from there
-                if not isinstance(records, list) or not all(_valid(r, slots) for r in records):
-                    break  # not a record this search wrote: redo from there
-                for rec in records:
-                    self.done[rec["mask"]] = rec
-        else:
-            self.path.parent.mkdir(parents=True, exist_ok=True)
-            self.path.write_text(json.dumps(header) + "\n")
-
-    def add(self, records: list[dict]) -> None:
-        for rec in records:
-            self.done[rec["mask"]] = rec
-        if self.path is not None:
-            with self.path.open("a") as fh:
-                fh.write(json.dumps(records) + "\n")
-                fh.flush()
-                os.fsync(fh.fileno())
-
-
 _EVIDENCE_KEYS = {"universal": (bool, type(None)), "method": str, "proved": bool, "text": str}
 
 
@@ -169,64 +115,6 @@ def _valid(rec, slots: int) -> bool:
     return True
 
 
-class _Local:
-    def map(self, fn, chunks):
-        for chunk in chunks:
-            yield fn(*chunk)
-
-    def close(self):
-        pass
-
-
-class _Dask:
-    def __init__(self, scheduler: str | None, workers: int):
-        try:
-            from distributed import Client, LocalCluster
-        except ImportError as exc:  # pragma: no cover - a dependency
-            raise ParameterError(f"workers: dask.distributed is not installed ({exc})") from None
-        self.cluster = None
-        if scheduler is None:
-            self.cluster = LocalCluster(
-                n_workers=workers,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=":0",
-                silence_logs=40,
-            )
-            self.client = Client(self.cluster)
-        else:
-            try:
-                self.client = Client(scheduler, timeout="5s")
-            except (OSError, ValueError, TypeError) as exc:  # refused, timed out, malformed
-                raise ParameterError(f"scheduler: cannot connect to {scheduler!r}: {exc}") from None
-
-    def map(self, fn, chunks):
-        from distributed import as_completed
-
-        futures = [self.client.submit(fn, *chunk, pure=False) for chunk in chunks]
-        for future in as_completed(futures):
-            yield future.result()
-
-    def close(self):
-        self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
-
-
-def pool_options(workers, scheduler) -> tuple[int, str | None]:
-    """``workers`` and ``scheduler`` checked as the dask path takes them."""
-    workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
-    if scheduler is not None and not isinstance(scheduler, str):
-        raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")
-    return workers, scheduler
-
-
-def open_pool(workers, scheduler):
-    """This process (one worker, no scheduler) or a dask cluster, with ``map`` and ``close``."""
-    workers, scheduler = pool_options(workers, scheduler)
-    return _Local() if workers == 1 and scheduler is None else _Dask(scheduler, workers)
-
-
 def run(
     n: int,
     sizes,
@@ -248,7 +136,10 @@ def run(
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}
     pool = open_pool(workers, scheduler)
     try:
-        store = _Checkpoint(checkpoint, header)  # after the cluster: a bad address writes nothing
+        slots = n * n + 2 * n
+        store = Checkpoint(  # after the cluster: a bad address writes nothing
+            checkpoint, header, lambda rec: rec["mask"], lambda rec: _valid(rec, slots)
+        )
     except BaseException:
         pool.close()
         raise

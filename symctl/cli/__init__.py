@@ -29,8 +29,9 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
-from symctl.cli.options import Command, options, shown, writing_options
+from symctl.cli.options import Command, options, shown, workers_options, writing_options
 from symctl.cli.progress import Steps
+from symctl.cli.spiking import spiking_command
 from symctl.cli.summary import summary
 from symctl.errors import SymctlError
 from symctl.report.spec import PAPER
@@ -49,6 +50,7 @@ def cli() -> None:
 cli.command_class = Command  # errors name the options as typed
 cli.add_command(fit_command)  # symctl fit (symctl/cli/fit.py)
 cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
+cli.add_command(spiking_command)  # symctl spiking (symctl/cli/spiking.py)
 
 
 @cli.command()
@@ -78,6 +80,13 @@ cli.add_command(dale_command)  # symctl dale (symctl/cli/dale.py)
         help="Output folder: new, empty, or an earlier run's (replaced when the run is complete).",
     ),
     writing_options,
+    click.option(
+        "--spiking",
+        is_flag=True,
+        help="Add the section on what spikes cost each circuit: 3 sizes x 10 seeds of every "
+        "circuit in nengo (minutes; needs pip install symctl[spiking]).",
+    ),
+    workers_options("Local processes running the --spiking sweep (the atlas's dask path)."),
 )
 def paper(
     tau,
@@ -95,23 +104,28 @@ def paper(
     formats,
     pdf,
     jobs,
+    spiking,
+    workers,
+    scheduler,
 ) -> None:
     """Run the paper's derivation and write it into OUT.
 
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PDF and PNG; SVG with --formats pdf,png,svg).
     """
-    from symctl.derivation.pipeline import derive_paper  # imported here: `symctl --help` is fast
-
     try:
         Q = parse_matrix(q_text, "--q")
         R = parse_matrix(r_text, "--r")
     except _NUMERICAL as exc:
         exc._symctl_step = "options"
         raise
+    checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
     _written(
         out,
-        lambda progress: derive_paper(
+        lambda progress: _with_spiking(
+            spiking,
+            progress,
+            dict(workers=workers, scheduler=scheduler, checkpoint=checkpoint),
             tau=tau,
             f_max=f_max,
             r_bar=r_bar,
@@ -122,13 +136,28 @@ def paper(
             R=R,
             rng=seed,
             realizations=realizations,
-            progress=progress,
         ),
         figures=figures,
         pdf=pdf,
         jobs=jobs,
         formats=formats,
     )
+    checkpoint.unlink(missing_ok=True)
+
+
+def _with_spiking(spiking: bool, progress, sweep: dict, **kw):
+    """``derive_paper(**kw)``, with what spikes cost its circuits when ``spiking``."""
+    import dataclasses
+
+    from symctl.derivation.pipeline import derive_paper
+
+    res = derive_paper(progress=progress, **kw)
+    if not spiking:
+        return res
+    from symctl.spiking.cost import spiking_cost
+
+    progress("spiking")
+    return dataclasses.replace(res, spiking_cost=spiking_cost(res, **sweep))
 
 
 @cli.command("derive")

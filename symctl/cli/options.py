@@ -23,7 +23,14 @@ from symctl.errors import SymctlError
 __all__ = ["Command", "options", "options_named", "shown", "writing_options"]
 
 
-ALIASES = {"dt": "--ts", "rng": "--seed", "Q": "--q", "R": "--r", "C": "--C"}
+ALIASES = {
+    "dt": "--ts",
+    "rng": "--seed",
+    "Q": "--q",
+    "R": "--r",
+    "C": "--C",
+    "circuits": "--circuit",
+}
 """Library arguments named otherwise on the command line (used where the command has the option)."""
 
 

@@ -222,6 +222,9 @@ class Derivation:
         Whether the controller is minimal (truthy when it is); when not, ``G_symbolic``,
         ``G``, ``gains`` and every stage after them are the minimal controller's
         (:func:`~symctl.realization.reduction.controller_reduction`).
+    spiking_cost : SpikingCost, optional
+        What spikes cost each circuit (:func:`~symctl.spiking.cost.spiking_cost`), when
+        asked for (``symctl paper --spiking``): a section and a figure of the report.
 
     Examples
     --------
@@ -262,6 +265,7 @@ class Derivation:
     pathways: object = None
     verified: object = None
     reduction: ControllerReduction | None = None
+    spiking_cost: object = None
 
     def __post_init__(self) -> None:
         for name in ("realizations", "circuits"):

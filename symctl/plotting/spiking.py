@@ -1,6 +1,8 @@
-r"""The figure of a loop through spiking populations: force, firing rates and a raster.
+r"""The figures of spiking populations: a loop's force, rates and raster, and what spikes
+cost each circuit.
 
-:meth:`SpikingResponse.plot <symctl.spiking.loop.SpikingResponse.plot>` delegates here.
+:meth:`SpikingResponse.plot <symctl.spiking.loop.SpikingResponse.plot>` and
+:meth:`SpikingCost.plot <symctl.spiking.cost.SpikingCost.plot>` delegate here.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from symctl.plotting import style
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+    from symctl.spiking.cost import SpikingCost
     from symctl.spiking.loop import SpikingResponse
 
 RASTER_NEURONS = 20
@@ -80,4 +83,55 @@ def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
                 row += 1
         raster.set_ylabel("neuron")
         raster.set_xlabel(style.axis_label("time", "s"))
+    return fig
+
+
+def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figure:
+    """Median deviation against neurons per population (one line per circuit, the tolerances
+    dotted), and each circuit's neurons in all against its spikes per second at the first
+    tolerance (marker area: its firing amplitude).
+
+    Parameters
+    ----------
+    cost : SpikingCost
+        The result of :func:`~symctl.spiking.cost.spiking_cost`.
+    size : {"column", "double", "text"} or float
+        The printed width.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels; circuits that no size brings within the tolerance are left out of the
+        second.
+
+    Examples
+    --------
+    >>> import symctl
+    >>> from symctl.plotting.spiking import spiking_cost_plot
+    >>> cost = symctl.spiking_cost(symctl.derive_paper(), circuits=["ifp"], neurons=(10, 30), seeds=1)
+    >>> len(spiking_cost_plot(cost).axes)
+    2
+    """
+    fig = style.new_figure(size, 3.2)
+    key = f"{100 * cost.tolerances[0]:g}%"
+    with style.styled():
+        curves, price = fig.subplots(1, 2)
+        for k, name in enumerate(cost.circuits):
+            median = np.median(cost.deviation[k], axis=1)
+            curves.plot(cost.neurons, median, "o-", ms=3, color=style.cycle(k), label=name)
+        for tol in cost.tolerances:
+            curves.axhline(tol, color=style.NEUTRAL, ls=":", lw=0.8)
+        curves.set(xscale="log", yscale="log", xlabel="neurons per population")
+        curves.set_ylabel("deviation from the linear loop")
+        curves.legend(fontsize="x-small", ncol=2)
+        peak = max(cost.peak) or 1.0
+        for row in cost.table():
+            k = cost.circuits.index(row["circuit"])
+            total, spikes = row[f"neurons@{key}"], row[f"spikes@{key}"]
+            if np.isfinite(total) and np.isfinite(spikes):
+                area = 10 + 90 * row["peak"] / peak
+                price.scatter(total, spikes, s=area, color=style.cycle(k), alpha=0.8)
+                price.annotate(row["circuit"], (total, spikes), fontsize="x-small")
+        price.set(xscale="log", yscale="log", xlabel=f"neurons in all (within {key})")
+        price.set_ylabel("spikes per second")
     return fig

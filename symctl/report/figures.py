@@ -136,6 +136,8 @@ def figure_names(res) -> list[str]:
     if getattr(res, "atlas", None) is not None:
         names.append("atlas_overview")
         names += [f"simplified_{c.circuit_class.label}" for c in simplified(res.candidates)]
+    if getattr(res, "spiking_cost", None) is not None:
+        names.append("spiking_cost")
     return names
 
 
@@ -401,6 +403,8 @@ def make_figure(res, name: str):
         return _g1g3_figure(res.factors)
     if name == "atlas_overview" and res.atlas is not None:
         return res.atlas.draw()
+    if name == "spiking_cost" and getattr(res, "spiking_cost", None) is not None:
+        return res.spiking_cost.plot()
     if name.startswith("simplified_") and res.candidates:
         for c in res.candidates:
             if c.degenerate and f"simplified_{c.circuit_class.label}" == name:

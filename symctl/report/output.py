@@ -81,15 +81,17 @@ _FIGURES = "|".join(
         r"simplified_A\d+",
         r"class_A\d+",
         "fit",
+        "spiking_cost",
         r"(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}",  # any circuit (the registry's names)
     ]
 )
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
-    r"|fit\.json|predictions\.csv"
+    r"|fit\.json|predictions\.csv|spiking\.(json|md)"
     rf"|({_FIGURES})\.(pdf|png|svg))"
 )
-"""The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive`` or ``fit`` leaves."""
+"""The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive``, ``fit`` or
+``spiking`` leaves."""
 
 
 def check_output_folder(out, argname: str = "out") -> Path:

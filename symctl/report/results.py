@@ -192,6 +192,8 @@ def results_json(self) -> dict:
     }
     if self.reduction is not None and not self.reduction:  # only a reduced controller has it
         out["reduction"] = reduction_json(self.reduction)
+    if getattr(self, "spiking_cost", None) is not None:  # symctl paper --spiking
+        out["spiking"] = self.spiking_cost.summary()
     return out
 
 

@@ -526,6 +526,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         from symctl.report.atlas import paper_blocks
 
         put(paper_blocks(res, shown))
+    if getattr(res, "spiking_cost", None) is not None:
+        from symctl.report import spiking
+
+        put(spiking.paper_blocks(res, shown))
     add(References(REFERENCES))
     return blocks
 

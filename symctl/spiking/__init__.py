@@ -4,7 +4,9 @@
   ``export_circuit``, the simulator-neutral JSON;
 - ``nengo_export``: ``Circuit.to_nengo``, exact nodes or spiking populations (NEF);
 - ``nest_export``: ``Circuit.to_nest``, NEST's linear rate neurons, retimed to be exact;
-- ``loop``: ``spiking_response``, the loop closed through spiking populations.
+- ``loop``: ``spiking_response``, the loop closed through spiking populations;
+- ``cost``: ``spiking_cost``, the neurons and spikes each circuit needs to stay near the
+  linear loop, swept on the dask path.
 
 nengo and NEST (``pip install symctl[spiking]``) are imported only when asked for, never
 with ``import symctl``.

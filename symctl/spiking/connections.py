@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import warnings
 from pathlib import Path
 from typing import NamedTuple
 
@@ -32,7 +33,9 @@ class _Edge(NamedTuple):
 def _require(module: str):
     """The optional package ``module``, or a MissingDependencyError saying how to install it."""
     try:
-        return importlib.import_module(module)
+        with warnings.catch_warnings():  # nengo 4.1 reads numpy.core, deprecated by NumPy 2
+            warnings.simplefilter("ignore", DeprecationWarning)
+            return importlib.import_module(module)
     except ImportError as exc:
         raise MissingDependencyError(
             f"{module} is not installed: pip install symctl[spiking] (or pip install {module})"

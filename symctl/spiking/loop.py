@@ -230,7 +230,9 @@ def spiking_response(
         p_out = [nengo.Probe(net.outputs[o.target]) for o in circuit.outputs]
         p_axon = {name: nengo.Probe(node) for name, node in net.axons.items()}
         p_spikes = {name: nengo.Probe(e.neurons) for name, e in net.populations.items()}
-    with nengo.Simulator(net, dt=Ts / sub, progress_bar=False) as sim:
+    # no decoder cache: the seeds differ run by run, and parallel runs would fight for its lock
+    model = nengo.builder.Model(dt=Ts / sub, decoder_cache=nengo.cache.NoDecoderCache())
+    with nengo.Simulator(net, progress_bar=False, model=model) as sim:
         sim.run_steps(count * sub)
     first, last = np.arange(count) * sub, np.arange(1, count + 1) * sub - 1
     df = sim.data[p_force][first]

@@ -140,8 +140,8 @@ def test_the_spiking_guide_runs_as_written(tmp_path, monkeypatch):
     page = Path(__file__).resolve().parents[2] / "docs" / "guide" / "spiking.md"
     namespace: dict = {"__name__": "__main__"}
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
-    assert len(blocks) == 4
-    monkeypatch.chdir(tmp_path)  # the page writes circuit.json
+    assert len(blocks) == 5
+    monkeypatch.chdir(tmp_path)  # the page writes circuit.json and sweep.jsonl
     for k, code in enumerate(blocks):
         exec(compile(code, f"spiking.md python block {k + 1}", "exec"), namespace)
     np.testing.assert_allclose(
