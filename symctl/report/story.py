@@ -38,6 +38,7 @@ from symctl.report.document import (
     Text,
     Verbatim,
 )
+from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
 from symctl.report.shorthand import (
     COMPACT_LENGTH,
@@ -240,6 +241,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     put(MIMO.reduction(res))
+    put(estimation_section(res))
     hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
     put(

@@ -15,7 +15,16 @@ from symctl.model.presets import muscle_text
 from symctl.report.spec import PAPER
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-NAMES = ("muscle", "oculomotor", "pendulum", "antagonist", "spinal_transcortical", "forearm")
+NAMES = (
+    "muscle",
+    "oculomotor",
+    "pendulum",
+    "antagonist",
+    "spinal_transcortical",
+    "forearm",
+    "forearm_lqg",
+    "oculomotor_position",
+)
 
 
 def test_every_example_is_shipped_and_listed():
