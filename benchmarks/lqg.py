@@ -30,6 +30,7 @@ from pathlib import Path
 
 import control
 import numpy as np
+from sympy.core.cache import clear_cache
 
 from symctl import (
     Noise,
@@ -157,9 +158,11 @@ def estimating(repeat: int) -> None:
 
     def run_derive():
         derive.cache_clear()
+        clear_cache()  # SymPy's too: every run computes from scratch
         return derive(FOREARM_LQG)
 
     def symbolic():
+        clear_cache()
         G = lqg_tf(s, m.C)
         return G, prove_lqg_tf(s, m.C, G)
 
