@@ -347,7 +347,14 @@ def _derive(spec: Model, step) -> Derivation:
         G = G_symbolic.subs(gains.substitutions())
     else:  # the LQG compensator, K and L symbolic
         G_symbolic = lqg_tf(system, spec.C)
-        proved = bool(prove_lqg_tf(system, spec.C, G_symbolic))
+        try:
+            proved = bool(prove_lqg_tf(system, spec.C, G_symbolic))
+        except ParameterError as exc:  # a matrix fraction too large to expand
+            raise spec.error(
+                "outputs",
+                f"the LQG compensator of {_count(plant.m, 'input')} is too large to derive "
+                f"symbolically ({exc}); use symctl.lqg_tf with numbers",
+            ) from None
         reduction = None
         G = G_symbolic.subs({**gains.substitutions(), **kalman.substitutions()})
     w = spec.disturbance_signal()

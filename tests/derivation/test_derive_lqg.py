@@ -94,3 +94,36 @@ def test_the_document_says_what_the_controller_measures_and_estimates(res, tmp_p
     text = (tmp_path / "out" / "report.md").read_text()
     assert "## What the controller measures and estimates" in text
     assert "Kalman gain" in text and "measured | predicted" in text
+
+
+def test_the_new_keywords_refuse_bad_input_naming_the_argument(res):
+    from symctl import DimensionError, ParameterError, SymctlTypeError, circuit_firing
+
+    kf, R = res.kalman, lqg_realization(res.gains, res.kalman)
+    with pytest.raises(DimensionError, match="outputs"):
+        closed_loop_response(R, res.plant, outputs=[[1, 0, 0]])
+    with pytest.raises(SymctlTypeError, match="controller"):
+        closed_loop_response(res.gains, res.plant, outputs=kf.C)
+    with pytest.raises(DimensionError, match="2 outputs"):  # a compensator of one output, fed two
+        closed_loop_response(R, res.plant, outputs=[[1, 0], [0, 1]])
+    from symctl import MuscleModel, augment, kalman_gains, lqr_gains
+
+    muscle = augment(MuscleModel(), 1, 1)
+    with pytest.raises(ParameterError, match="kind"):
+        circuit_firing("ifp", lqr_gains(muscle), kalman=kalman_gains(muscle, [[1]]))
+    with pytest.raises(SymctlTypeError, match="kalman"):
+        lqg_realization(res.gains, res.gains)
+
+
+def test_a_two_input_compensator_too_large_to_prove_is_one_error_naming_outputs():
+    from symctl import ModelFileError
+
+    text = (EXAMPLE.parent / "antagonist.toml").read_text()
+    outputs = (
+        '[[outputs]]\nname = "a"\nstate = "theta"\n\n[[outputs]]\nname = "f"\nstate = "f_flex"\n\n'
+    )
+    text = text[: text.index("[delay_graph]")].replace("[sampling]", outputs + "[sampling]")
+    with pytest.raises(
+        ModelFileError, match="outputs: the LQG compensator of 2 inputs is too large"
+    ):
+        derive(text)
