@@ -127,3 +127,12 @@ def test_a_two_input_compensator_too_large_to_prove_is_one_error_naming_outputs(
         ModelFileError, match="outputs: the LQG compensator of 2 inputs is too large"
     ):
         derive(text)
+
+
+def test_the_papers_muscle_measured_through_noise_derives_every_circuit_but_the_ifp():
+    text = (EXAMPLE.parent / "muscle.toml").read_text() + "\n[noise]\nprocess = 1.0\nsensor = 0.1\n"
+    res = derive(text)
+    assert res.kalman is not None and res.proved and res.verified
+    assert set(res.circuits) == {"general", "controllable", "observable"}
+    assert all(c.firing.max_deviation <= 1e-9 for c in res.circuits.values())
+    assert res.atlas is None and res.nonlinear is None and "IFP circuit" in res.skipped
