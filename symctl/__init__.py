@@ -72,6 +72,7 @@ _PUBLIC_BY_MODULE = (
     # 5. neural: circuits, simulation, firing
     ("symctl.neural.batch", "BatchResponse simulate_batch"),
     ("symctl.neural.circuit", "Circuit CircuitSystem"),
+    ("symctl.neural.compensator", "lqg_realization"),
     ("symctl.neural.firing", "FiringPatterns FiringSummary circuit_firing structure_firing"),
     ("symctl.neural.neuron", "Neuron Synapse"),
     ("symctl.neural.nonlinear", "NonlinearCheck nonlinear_check DelaySearch longest_delay"),

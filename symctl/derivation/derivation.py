@@ -29,6 +29,7 @@ from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
 from symctl.design.augment import AugmentedSystem
+from symctl.design.kalman import KalmanGains
 from symctl.design.lqr import Gains
 from symctl.design.ode import ODEModel
 from symctl.design.plant import DiscretePlant
@@ -36,6 +37,7 @@ from symctl.design.tf import DiscreteTF
 from symctl.model.model import Model
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import FiringPatterns
+from symctl.neural.montecarlo import MonteCarlo
 from symctl.neural.nonlinear import NonlinearCheck
 from symctl.neural.simulate import Response
 from symctl.realization.check import RealizationCheck
@@ -221,7 +223,14 @@ class Derivation:
     reduction : ControllerReduction, optional
         Whether the controller is minimal (truthy when it is); when not, ``G_symbolic``,
         ``G``, ``gains`` and every stage after them are the minimal controller's
-        (:func:`~symctl.realization.reduction.controller_reduction`).
+        (:func:`~symctl.realization.reduction.controller_reduction`); None for an estimating model.
+    kalman : KalmanGains, optional
+        For a model that measures some states, or through noise: the delayed Kalman filter;
+        ``G_symbolic`` and ``G`` are then the LQG compensator (:func:`~symctl.lqg_tf`, predictor
+        form) and every circuit is driven by the measured outputs.
+    variance : MonteCarlo, optional
+        With ``kalman``: the closed loop's stationary covariance under the model's noise,
+        predicted (Lyapunov) and measured (:func:`~symctl.monte_carlo`).
     spiking_cost : SpikingCost, optional
         What spikes cost each circuit (:func:`~symctl.spiking.cost.spiking_cost`), when
         asked for (``symctl paper --spiking``): a section and a figure of the report.
@@ -265,6 +274,8 @@ class Derivation:
     pathways: object = None
     verified: object = None
     reduction: ControllerReduction | None = None
+    kalman: KalmanGains | None = None
+    variance: MonteCarlo | None = None
     spiking_cost: object = None
 
     def __post_init__(self) -> None:

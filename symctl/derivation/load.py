@@ -52,7 +52,7 @@ MAX_RESULTS_BYTES = 200_000_000
 """Largest ``results.json`` :func:`load_results` reads."""
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
-_REAL = re.compile(r"^(K|C|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
+_REAL = re.compile(r"^(K|C|L|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
 _FUNCTIONS = NAMES  # the parser's own functions and constants, never symbols
 _BINARY = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
 

@@ -41,13 +41,17 @@ from symctl.derivation.derivation import CircuitRecord, Derivation, RealizationR
 from symctl.derivation.paper import PAPER
 from symctl.design.augment import augment
 from symctl.design.controller import controller_tf, prove_controller_tf
+from symctl.design.kalman import kalman_gains, lqg_tf, prove_lqg_tf
 from symctl.design.lqr import lqr_gains
 from symctl.design.plant import MuscleModel
 from symctl.errors import NotRealizableError, NotStabilizableError, ParameterError
 from symctl.model.modelfile import Model, load_model
 from symctl.model.presets import muscle
 from symctl.neural.circuit import Circuit
+from symctl.neural.compensator import lqg_realization
 from symctl.neural.firing import circuit_firing, structure_firing
+from symctl.neural.montecarlo import monte_carlo
+from symctl.neural.noise import Noise
 from symctl.neural.nonlinear import longest_delay, nonlinear_check
 from symctl.neural.simulate import closed_loop_response, open_loop_response
 from symctl.realization.check import check_realization
@@ -321,12 +325,6 @@ def _derive(spec: Model, step) -> Derivation:
     step("plant")
     plant_symbolic, plant = spec.plant_symbolic, spec.plant
     step("delays")
-    if spec.C is not None:
-        raise spec.error(
-            "outputs",
-            "derive builds full-state feedback; this model's controller estimates the state "
-            "(some states unmeasured, or [noise]): its LQG compensator is symctl.lqg_tf",
-        )
     system = augment(plant, ds, da, Q=spec.Q, R=spec.R)
     step("LQR")
     try:
@@ -336,12 +334,29 @@ def _derive(spec: Model, step) -> Derivation:
         raise spec.error(
             where, f"the plant cannot be stabilized with these delays: {exc}"
         ) from None
+    kalman = noise = None
+    if spec.C is not None:
+        step("Kalman filter")
+        kalman, noise = _kalman(spec, system)
     step("G(z)")
-    G_symbolic = controller_tf(system)
-    proved = bool(prove_controller_tf(system, G_symbolic))
-    reduction, gains = controller_reduction(system, gains)  # the minimal controller onwards
-    G_symbolic = reduction.reduce(G_symbolic)
-    G = G_symbolic.subs(gains.substitutions())
+    if kalman is None:
+        G_symbolic = controller_tf(system)
+        proved = bool(prove_controller_tf(system, G_symbolic))
+        reduction, gains = controller_reduction(system, gains)  # the minimal controller onwards
+        G_symbolic = reduction.reduce(G_symbolic)
+        G = G_symbolic.subs(gains.substitutions())
+    else:  # the LQG compensator, K and L symbolic
+        G_symbolic = lqg_tf(system, spec.C)
+        try:
+            proved = bool(prove_lqg_tf(system, spec.C, G_symbolic))
+        except ParameterError as exc:  # a matrix fraction too large to expand
+            raise spec.error(
+                "outputs",
+                f"the LQG compensator of {_count(plant.m, 'input')} is too large to derive "
+                f"symbolically ({exc}); use symctl.lqg_tf with numbers",
+            ) from None
+        reduction = None
+        G = G_symbolic.subs({**gains.substitutions(), **kalman.substitutions()})
     w = spec.disturbance_signal()
     window = {"steps": spec.steps}
     graph = spec.graph
@@ -349,9 +364,13 @@ def _derive(spec: Model, step) -> Derivation:
     skipped = None
     factors, records, circuits, found, candidates, G2_symbolic = None, {}, {}, None, None, None
     pathways = verified = None
-    siso = plant.n == 1 and plant.m == 1
+    siso = plant.n == 1 and plant.m == 1 if kalman is None else G.is_siso
+    if kalman is not None:
+        kinds = tuple(k for k in kinds if not REALIZERS[k].controller)
+        skipped = _ESTIMATING_SKIPS
     if not siso:
-        kinds, skipped = _mimo_kinds(kinds, G, plant)
+        kinds, mimo = _mimo_kinds(kinds, G, plant)
+        skipped = mimo if skipped is None else f"{skipped}; {mimo}"
     if kinds:
         step("factorization")
         factors = factor(G_symbolic, ds, da)
@@ -360,7 +379,10 @@ def _derive(spec: Model, step) -> Derivation:
         G2_symbolic = factors.G2_symbolic
         names = [k for k in kinds if not REALIZERS[k].controller]
         # the realizations the circuits simulate, drawn from the seed (one stream per circuit)
-        G_exact = factors.G.subs(gains.substitutions(exact=True))
+        exact = gains.substitutions(exact=True)
+        if kalman is not None:
+            exact.update(kalman.substitutions(exact=True))
+        G_exact = factors.G.subs(exact)
         draws = {k: draw_realizations(G_exact, ds, da, k, count, seed) for k in names}
         records = _realizations(factors, G2_symbolic, {k: draws[k][0] for k in names})
         step("compatibility")
@@ -369,12 +391,15 @@ def _derive(spec: Model, step) -> Derivation:
             {k: Structure.from_factorization(factors, records[k].symbolic) for k in names}
         )
         verdicts = {k: check_compatibility(S, graph) for k, S in structures.items()}
-        pathways, realizes, left = _pathways(G_symbolic if siso else G_exact, gains, spec, verdicts)
+        G_path = G_symbolic if siso and kalman is None else G_exact
+        pathways, realizes, left = _pathways(G_path, gains, spec, verdicts)
         skipped = f"{skipped}; left out is {left}" if left else skipped
         if realizes is not None:
             structures["pathways"], verdicts["pathways"] = pathways.structure, pathways.check
             kinds = (*kinds, "pathways")
         step("simulation")  # each circuit closed around the plant: the realizations drawn above
+        if kalman is not None:  # the compensator's loop, with the model's noise
+            window = {**window, "kalman": kalman, "noise": noise}
         firing = {
             k: circuit_firing(
                 k,
@@ -409,7 +434,7 @@ def _derive(spec: Model, step) -> Derivation:
             )
             for k in kinds
         }
-    if kinds and siso:
+    if kinds and siso and kalman is None:
         step("atlas")
         found = atlas(2, workers=1)
         if (
@@ -426,9 +451,28 @@ def _derive(spec: Model, step) -> Derivation:
     step("closed loop")
     amplitude = spec.disturbance[1]
     unit_w = w / amplitude if amplitude else w
-    closed = closed_loop_response(gains, disturbance=w, **window)
+    window = {"steps": spec.steps}
+    variance = None
+    if kalman is None:
+        closed = closed_loop_response(gains, disturbance=w, **window)
+    else:
+        compensator = lqg_realization(gains, kalman)
+        closed = closed_loop_response(
+            compensator, plant, disturbance=w, outputs=kalman.C, noise=noise, rng=seed, **window
+        )
+        step("Monte Carlo")
+        variance = monte_carlo(
+            compensator,
+            plant,
+            noise=noise,
+            outputs=kalman.C,
+            count=MONTE_CARLO_LOOPS,
+            Q=spec.Q,
+            R=spec.R,
+            rng=seed,
+        )
     nonlinear = longest = None
-    if spec.ode is not None:
+    if spec.ode is not None and kalman is None:
         step("nonlinear")
         nonlinear = nonlinear_check(
             spec.ode,
@@ -477,7 +521,33 @@ def _derive(spec: Model, step) -> Derivation:
         pathways,
         verified,
         reduction,
+        kalman,
+        variance,
     )
+
+
+_ESTIMATING_SKIPS = (
+    "the controller estimates the state (the LQG compensator), so left out are the IFP circuit "
+    "(it feeds back the full state), the circuit atlas (its circuits realize the full-state "
+    "G2 of order T; the compensator's has order n + Tm) and the nonlinear plant's check (its "
+    "controller reads the full state)"
+)
+
+MONTE_CARLO_LOOPS = 4000
+"""Noisy closed loops whose measured covariance a derivation sets beside the predicted one."""
+
+
+def _kalman(spec: Model, system):
+    """The model's Kalman filter and the :class:`Noise` it expects, with the defaults of
+    :func:`~symctl.design.kalman.kalman_gains` (errors name ``noise``)."""
+    values = {k: np.array(v.evalf(), dtype=float) for k, v in spec.noise.items()}
+    try:
+        kalman = kalman_gains(
+            system, spec.C, values.get("process"), values.get("sensor"), motor=values.get("motor")
+        )
+    except ParameterError as exc:
+        raise spec.error("noise", str(exc)) from None
+    return kalman, Noise(process=kalman.W, sensor=kalman.V)  # the motor noise is in W
 
 
 def _pathways(G, gains, spec: Model, verdicts: dict):

@@ -24,6 +24,7 @@ from symctl._util.texnames import signal_tex
 from symctl._util.validate import (
     MAX_CIRCUITS,
     bounded_int,
+    numeric_matrix,
     positive_number,
     read_only,
 )
@@ -31,10 +32,12 @@ from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant, same_dt
 from symctl.design.controller import controller_tf
+from symctl.design.kalman import KalmanGains, lqg_tf
 from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
+from symctl.neural.compensator import lqg_realization
 from symctl.neural.noise import Noise, _as_noise
 from symctl.neural.simulate import (
     DEFAULT_DRAWS,
@@ -340,7 +343,7 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
     return p
 
 
-def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator, draws=None):
+def _realizations(kind: str, gains: Gains, count: int, gen, draws=None, kalman=None):
     """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric), from ``draws``
     or ``count`` drawn from ``gen``."""
     s = gains.system
@@ -351,7 +354,7 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator,
         R = ifp_realization(gains)
         yield {}, R, R, circuit
         return
-    for d in draws if draws is not None else _draw(kind, gains, count, gen):
+    for d in draws if draws is not None else _draw(kind, gains, count, gen, kalman):
         R2 = d.result.realization
         params = {**d.values, **R2.params}
         R2 = Realization(R2.F, R2.H, R2.M, R2.N, R2.dt, params)
@@ -359,13 +362,17 @@ def _realizations(kind: str, gains: Gains, count: int, gen: np.random.Generator,
         yield params, R2, controller_realization(d.factors, R2), circuit
 
 
-def _draw(kind: str, gains: Gains, count: int, gen: np.random.Generator) -> tuple[Draw, ...]:
+def _draw(kind: str, gains: Gains, count: int, gen, kalman=None) -> tuple[Draw, ...]:
     """``count`` realizations of the optimal controller's :math:`G_2` drawn from ``gen``."""
     s = gains.system
     get_realizer(kind, "kind")
     # the optimal controller with the gains as the exact rationals of their floats: every
     # realization is then exact rational arithmetic (python-flint), never float SymPy
-    G = controller_tf(s).subs(gains.substitutions(exact=True))
+    exact = gains.substitutions(exact=True)
+    if kalman is None:
+        G = controller_tf(s).subs(exact)
+    else:
+        G = lqg_tf(s, kalman.C).subs({**exact, **kalman.substitutions(exact=True)})
     return draw_realizations(G, s.sensor_delay, s.actuator_delay, kind, count, gen)
 
 
@@ -411,6 +418,7 @@ def circuit_firing(
     draws: Sequence[Draw] | None = None,
     noise: Noise | None = None,
     noise_draws: int = DEFAULT_DRAWS,
+    kalman: KalmanGains | None = None,
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
@@ -451,6 +459,11 @@ def circuit_firing(
         by the measured force; the traces are their mean, the ``..._sd`` their spread.
     noise_draws : int
         The noisy runs, 1 to ``MAX_COUNT`` (default 100).
+    kalman : KalmanGains, optional
+        The controller is then the LQG compensator (:func:`~symctl.lqg_tf`, predictor form):
+        the reference is :func:`~symctl.neural.compensator.lqg_realization` fed by the
+        outputs ``kalman.C x``, the realizations are of its :math:`G_2`, and the circuits
+        are driven by the measured outputs (not ``"ifp"``, which feeds back the state).
 
     Returns
     -------
@@ -497,10 +510,11 @@ def circuit_firing(
                 "draws: expected a non-empty sequence of Draw (draw_realizations) for a "
                 f"realization of G2, got {type(draws).__name__} for kind {kind!r}"
             )
-    rows = _realizations(kind, gains, count, gen, draws)
-    return _simulate(
-        kind, rows, gains, plant, disturbance, steps, start, length, rtol, noise, noise_draws, gen
-    )
+    if kalman is not None and _whole(kind):
+        raise ParameterError("kind: the IFP controller feeds back the state; with kalman, no 'ifp'")
+    rows = _realizations(kind, gains, count, gen, draws, kalman)
+    window, noisy = (steps, start, length), (noise, noise_draws, kalman)
+    return _simulate(kind, rows, gains, plant, disturbance, window, rtol, noisy, gen)
 
 
 @rng_argument()
@@ -520,6 +534,7 @@ def structure_firing(
     rtol: float = 1e-9,
     noise: Noise | None = None,
     noise_draws: int = DEFAULT_DRAWS,
+    kalman: KalmanGains | None = None,
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
@@ -534,7 +549,7 @@ def structure_firing(
     ----------
     structure : Structure
         A SISO controller structure of the gains' controller.
-    gains, plant, count, rng, disturbance, steps, start, length, rtol, noise, noise_draws
+    gains, plant, count, rng, disturbance, steps, start, length, rtol, noise, noise_draws, kalman
         As in :func:`circuit_firing`.
     assignment : DelayAssignment or CompatibilityResult, optional
         Places the circuits' neurons on the delay graph.
@@ -593,25 +608,33 @@ def structure_firing(
             R = structure_realization(circuit.structure)
             yield drawn, R, R, circuit
 
-    return _simulate(
-        kind, rows(), gains, plant, disturbance, steps, start, length, rtol, noise, noise_draws, gen
-    )
+    window, noisy = (steps, start, length), (noise, noise_draws, kalman)
+    return _simulate(kind, rows(), gains, plant, disturbance, window, rtol, noisy, gen)
 
 
 def _simulate(
-    kind, rows, gains, plant, disturbance, steps, start, length, rtol, noise, draws, gen
+    kind, rows, gains, plant, disturbance, window, rtol, noisy_args, gen
 ) -> FiringPatterns:
-    """Close each realization of ``rows`` around ``plant``, check it, record its neurons; with
-    ``noise``, every loop (and the reference) under the same ``draws`` noisy runs."""
+    """Close each realization of ``rows`` around ``plant`` (fed by ``kalman.C x`` with a filter),
+    check it, record its neurons; with ``noise``, every loop (and the reference) under the same
+    ``draws`` noisy runs."""
     rtol = positive_number(rtol, "rtol")
+    steps, start, length = window
     window = {"steps": steps, "start": start, "length": length}
+    noise, draws, kalman = noisy_args
     noise = _as_noise(noise)
+    C = None if kalman is None else numeric_matrix(kalman.C, "kalman")
+    reference, home = (gains, None) if kalman is None else (lqg_realization(gains, kalman), plant)
     if noise is None:
-        ref = closed_loop_response(gains, disturbance=disturbance, **window)
+        ref = closed_loop_response(reference, home, disturbance=disturbance, outputs=C, **window)
 
         def run(R) -> tuple[np.ndarray, ...]:
-            res = simulate_realization(plant, R, disturbance, **window)
-            return res.delta_f[None], res.delta_r[None], res.delta_f[None]
+            if C is None:
+                res = simulate_realization(plant, R, disturbance, **window)
+            else:
+                res = closed_loop_response(R, plant, disturbance=disturbance, outputs=C, **window)
+            y = res.delta_f if C is None else res.delta_f @ C.T
+            return res.delta_f[None], res.delta_r[None], y[None]
 
         ref_df, ref_dr = ref.delta_f[None], ref.delta_r[None]
     else:
@@ -619,15 +642,20 @@ def _simulate(
         p, A, B = _plant_matrices(plant)
         w = _signal(disturbance, "disturbance", steps, p.n, start, length)
 
-        def noisy(p, Acl, Cr) -> tuple[np.ndarray, ...]:
-            return _noisy_traces(p, Acl, Cr, w, noise, draws, np.random.default_rng(seed))
+        def noisy(p, Acl, Cr, sensor=None) -> tuple[np.ndarray, ...]:
+            gen = np.random.default_rng(seed)
+            return _noisy_traces(p, Acl, Cr, w, noise, draws, gen, sensor)
 
         def run(R) -> tuple[np.ndarray, ...]:
-            df, dr, _, y = noisy(p, *_realization_loop(p, A, B, R))
+            if C is None:
+                df, dr, _, y = noisy(p, *_realization_loop(p, A, B, R))
+            else:
+                _, Acl, Cr, _, sensor = _loop(R, p, C)
+                df, dr, _, y = noisy(p, Acl, Cr, sensor)
             return df, dr, y
 
-        s_plant, Acl, Cr, names = _loop(gains, None)
-        ref_df, ref_dr, ref_xc, _ = noisy(s_plant, Acl, Cr)
+        s_plant, Acl, Cr, names, sensor = _loop(reference, home, C)
+        ref_df, ref_dr, ref_xc, _ = noisy(s_plant, Acl, Cr, sensor)
         ref = _spread_response(s_plant, w, ref_df, ref_dr, ref_xc, names)
     out: list[tuple] = []
     worst = 0.0

@@ -192,6 +192,7 @@ def monte_carlo(
     Q=None,
     R=None,
     rng=0,
+    outputs=None,
 ) -> MonteCarlo:
     r"""Simulate ``count`` noisy closed loops at once and measure their stationary covariance and cost.
 
@@ -221,6 +222,9 @@ def monte_carlo(
         else the identity and zero.
     rng : int, numpy Generator or None, default 0
         Seeds the noise (drawn as :mod:`~symctl.neural.noise` says).
+    outputs : matrix-like, optional
+        ``p x n``: the controller reads :math:`y = C x + v` (the sensor noise ``p x p``), as
+        in :func:`~symctl.neural.simulate.closed_loop_response`.
 
     Returns
     -------
@@ -253,19 +257,20 @@ def monte_carlo(
         raise ParameterError("noise: all zero; a Monte Carlo needs some noise")
     count = bounded_int(count, "count", 2, MAX_LOOPS)
     steps = bounded_int(steps, "steps", 2, MAX_STEPS)
-    p, Acl, Cr, _ = _loop(controller, plant)
+    p, Acl, Cr, _, sensor = _loop(controller, plant, outputs)
     _, A, B = _plant(p)
     Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
+    q = n if sensor is None else sensor[2].shape[0]
     burn = _burn_in(Acl, steps) if burn_in is None else nonneg_int(burn_in, "burn_in")
     if burn >= steps:
         raise ParameterError(f"burn_in: must be below steps = {steps}, got {burn}")
-    parts = _Parts.of(noise, n, p.m)
+    parts = _Parts.of(noise, n, p.m, q)
     normals = 2 * _BLOCK * parts.rows()[-1][1].stop  # two blocks of normals in memory
     if 8 * count * (normals + 4 * Acl.shape[0] + n * n) > MAX_OUTPUT_BYTES:
         raise ParameterError(f"count: {count} loops take more than MAX_OUTPUT_BYTES; use fewer")
     Qw, Rw = _weights(Q, R, controller, n, p.m)
-    Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
-    mats = noise.matrices(n, p.m)
+    Ev, Dv = _sensor_inputs(Acl, Cr, A, n) if sensor is None else sensor[:2]
+    mats = noise.matrices(n, p.m, q)
     sigma, additive = _predicted(Acl, Cr, B, n, mats, Ev, Dv)
 
     def expected(S: np.ndarray) -> float:

@@ -434,16 +434,21 @@ def open_loop_response(
     return _response(p, df[0], u, np.zeros_like(df[0]), np.zeros((len(u), 0)), "open loop")
 
 
-def _numeric_realization(R, p: DiscretePlant, argname: str = "R") -> tuple[np.ndarray, ...]:
+def _numeric_realization(R, p: DiscretePlant, argname: str = "R", C=None) -> tuple[np.ndarray, ...]:
+    """``R``'s matrices (stacks of one); fed by the outputs ``y = C x`` when ``C`` is given."""
     if not isinstance(R, Realization):
         raise SymctlTypeError(f"{argname}: expected a Realization, got {type(R).__name__}")
     same_dt(p, R.dt, argname)
-    if R.shape != (p.m, p.n):
+    q, what = (p.n, "states") if C is None else (C.shape[0], "outputs")
+    if R.shape != (p.m, q):
         raise DimensionError(
-            f"{argname}: the controller maps the plant's {p.n} states to its {p.m} inputs, so it must "
-            f"have shape (outputs, inputs) = {(p.m, p.n)}, got {R.shape}"
+            f"{argname}: the controller maps the plant's {q} {what} to its {p.m} inputs, so it "
+            f"must have shape (outputs, inputs) = {(p.m, q)}, got {R.shape}"
         )
-    return tuple(a[None] for a in R.numeric())
+    F, H, M, N = R.numeric()
+    if C is not None:
+        H, N = H @ C, N @ C
+    return tuple(a[None] for a in (F, H, M, N))
 
 
 def _as_realization(controller) -> Realization:
@@ -524,20 +529,22 @@ def simulate_realization(
     return _simulate(p, Acl, Cr, w, noise, draws, rng)
 
 
-def _realization_loop(p, A, B, R, argname: str = "R") -> tuple[np.ndarray, np.ndarray]:
-    """``(A_cl, C_r)`` (stacks of one) of the plant around the realization ``R``, checked stable."""
-    Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p, argname))
+def _realization_loop(p, A, B, R, argname: str = "R", C=None) -> tuple[np.ndarray, np.ndarray]:
+    """``(A_cl, C_r)`` (stacks of one) of the plant around the realization ``R`` (fed by ``C x``
+    when ``C`` is given), checked stable."""
+    Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p, argname, C))
     _stability(Acl, argname, p.n)
     return Acl, Cr
 
 
-def _simulate(p, Acl, Cr, w, noise, draws, gen, names=()) -> Response:
+def _simulate(p, Acl, Cr, w, noise, draws, gen, names=(), sensor=None) -> Response:
     """The loop's :class:`Response`, noise-free or the mean and spread of ``draws`` noisy runs."""
     noise = _as_noise(noise)
     if noise is None:
         df, dr, xc = _run(Acl, Cr, p.n, w)
         return _response(p, df[0], dr[0], w, xc[0], "closed loop", names)
-    return _spread_response(p, w, *_noisy_traces(p, Acl, Cr, w, noise, draws, gen)[:3], names)
+    traces = _noisy_traces(p, Acl, Cr, w, noise, draws, gen, sensor)
+    return _spread_response(p, w, *traces[:3], names)
 
 
 def _spread_response(p, w, df, dr, xc, names=()) -> Response:
@@ -547,21 +554,24 @@ def _spread_response(p, w, df, dr, xc, names=()) -> Response:
     return dataclasses.replace(res, **spread, draws=df.shape[0])
 
 
-def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen) -> tuple[np.ndarray, ...]:
+def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen, sensor=None) -> tuple[np.ndarray, ...]:
     """``delta_f``, ``delta_r``, states and the controller's measurement ``y`` of ``draws`` noisy
-    runs of the loop (stacks of one), each ``(draws, steps, .)``."""
+    runs of the loop (stacks of one), each ``(draws, steps, .)``; ``sensor`` is the ``(E_v, D_v,
+    C)`` of a controller fed by outputs (:func:`_loop`)."""
     draws = bounded_int(draws, "draws", 1, MAX_COUNT)
     _, A, B = _plant(p)
     Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
-    out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + n, draws))
+    Ev, Dv, C = (*_sensor_inputs(Acl, Cr, A, n), None) if sensor is None else sensor
+    q = n if C is None else C.shape[0]
+    out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + q, draws))
 
     def visit(t, x, u, y):
         out[t] = np.concatenate([x[:n], u, x[n:], y])
 
-    parts = _Parts.of(noise, n, p.m)
-    _noisy_loop(Acl, Cr, B, n, w, parts, gen, draws, visit, *_sensor_inputs(Acl, Cr, A, n))
+    parts = _Parts.of(noise, n, p.m, q)
+    _noisy_loop(Acl, Cr, B, n, w, parts, gen, draws, visit, Ev, Dv, C)
     loops, m = np.moveaxis(out, -1, 0), Cr.shape[0]
-    return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -n], loops[..., -n:]
+    return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -q], loops[..., -q:]
 
 
 @rng_argument()
@@ -576,6 +586,7 @@ def closed_loop_response(
     noise: Noise | None = None,
     draws: int = DEFAULT_DRAWS,
     rng=0,
+    outputs=None,
 ) -> Response:
     r"""The closed loop under a pulse disturbance on the force (the paper's Fig. 5).
 
@@ -593,6 +604,10 @@ def closed_loop_response(
     noise, draws, rng
         As in :func:`simulate_realization`: the mean and standard deviation of ``draws``
         loops under :class:`~symctl.neural.noise.Noise` (none by default).
+    outputs : matrix-like, optional
+        ``p x n``: the controller (a DiscreteTF or Realization, ``m x p``) reads the outputs
+        :math:`y = C x` (plus the sensor noise, ``p x p``) instead of the state, as the LQG
+        compensator (:func:`~symctl.neural.compensator.lqg_realization`) does.
 
     Returns
     -------
@@ -622,27 +637,44 @@ def closed_loop_response(
     ...
     symctl.errors.DimensionError: disturbance: has 2 samples but steps = 3
     """
-    p, Acl, Cr, names = _loop(controller, plant)
+    p, Acl, Cr, names, sensor = _loop(controller, plant, outputs)
     w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-    return _simulate(p, Acl, Cr, w, noise, draws, rng, names)
+    return _simulate(p, Acl, Cr, w, noise, draws, rng, names, sensor)
 
 
-def _loop(controller, plant) -> tuple:
-    """``(plant, A_cl, C_r, controller state names)`` of :func:`closed_loop_response`, stable."""
-    if isinstance(controller, Gains) and plant is None:
+def _loop(controller, plant, outputs=None) -> tuple:
+    """``(plant, A_cl, C_r, controller state names, sensor)`` of :func:`closed_loop_response`,
+    stable; ``sensor`` the ``(E_v, D_v, C)`` of a controller fed by ``outputs`` (else None)."""
+    if isinstance(controller, Gains) and plant is None and outputs is None:
         s = controller.system
-        return (s.plant, *_gains_loop(controller), chain_names(s.T, s.m))
+        return (s.plant, *_gains_loop(controller), chain_names(s.T, s.m), None)
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"
         )
     p, A, B = _plant(plant)
+    if outputs is not None:
+        if isinstance(controller, Gains):
+            raise SymctlTypeError(
+                "controller: Gains read the state; with outputs, give a Realization"
+            )
+        C = numeric_matrix(outputs, "outputs")
+        if C.ndim != 2 or C.shape[1] != p.n:
+            raise DimensionError(f"outputs: expected p x {p.n}, got shape {C.shape}")
+        R = _controller_realization(controller, p)
+        _, H, _, N = R.numeric()
+        return (
+            p,
+            *_realization_loop(p, A, B, R, "controller", C),
+            (),
+            (np.vstack([B @ N, H]), N, C),
+        )
     if isinstance(controller, Gains):
         same_dt(p, controller.system.plant.dt, "plant", "the gains' plant")
         R = ifp_realization(controller)
     else:
         R = _controller_realization(controller, p)
-    return (p, *_realization_loop(p, A, B, R), ())
+    return (p, *_realization_loop(p, A, B, R), (), None)
 
 
 def _gains_loop(gains: Gains) -> tuple[np.ndarray, np.ndarray]:

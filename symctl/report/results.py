@@ -29,6 +29,7 @@ from symctl.realization.check import _similarity_holds
 from symctl.realization.factorization import remainder
 from symctl.report import document, model_json, story
 from symctl.report import figures as _figures
+from symctl.report.estimation import estimation_json
 from symctl.report.output import OutputFolder
 from symctl.report.spec import SCHEMA_VERSION
 from symctl.report.workers import FigureWorkers
@@ -192,6 +193,8 @@ def results_json(self) -> dict:
     }
     if self.reduction is not None and not self.reduction:  # only a reduced controller has it
         out["reduction"] = reduction_json(self.reduction)
+    if self.kalman is not None:  # only an estimating controller has it
+        out["estimation"] = estimation_json(self)
     if getattr(self, "spiking_cost", None) is not None:  # symctl paper --spiking
         out["spiking"] = self.spiking_cost.summary()
     return out

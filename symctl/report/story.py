@@ -38,6 +38,7 @@ from symctl.report.document import (
     Text,
     Verbatim,
 )
+from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
 from symctl.report.shorthand import (
     COMPACT_LENGTH,
@@ -240,13 +241,19 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         )
     )
     put(MIMO.reduction(res))
+    put(estimation_section(res))
     hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
     put(
         figure(
             "closed_loop",
-            "Closed loop of the optimal delayed controller: response to a "
-            f"unit pulse disturbance on {hit} (as in {like}).",
+            f"Closed loop of the {'LQG compensator' if res.kalman else 'optimal delayed controller'}"
+            f": response to a unit pulse disturbance on {hit} (as in {like})"
+            + (
+                ", the mean of the noisy runs in a band of 2 standard deviations."
+                if res.kalman
+                else "."
+            ),
         )
     )
     if f is None:
@@ -294,27 +301,44 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         if not _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
             n = len(c)
             remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
+        G2_row, b_rows = ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"), []
+        if res.kalman is not None:  # the compensator's numerator b(z) is a polynomial in z
+            sections = " ".join(L.to_latex(x) for x in (*f.sensor_C, *f.actuator_C))
+            G2_row = ("G_2(z)", rf"\frac{{b(z)}}{{{sections}}}\,\frac{{{zeros}}}{{{den}}}")
+            b = descending_latex(res.G_symbolic.num)
+            b_rows = [("b(z)", b if _fits("b(z)", b) else r"\text{the numerator of } G(z)")]
         put(
             _eq(
                 ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
                 ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-                ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"),
+                G2_row,
+                *b_rows,
                 *named_den,
                 *sigma_rows,
                 label="eq:factors",
             )
         )
-        add(
-            Text(
-                "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-                "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
-                f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
+        if f_N != 0:
+            add(
+                Text(
+                    "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
+                    "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
+                    f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
+                )
             )
-        )
+        else:
+            add(
+                Text(
+                    "$G_2$ is strictly proper, its direct term $N = 0$ (the compensator's "
+                    "relative degree exceeds the net delay by one); its numerator's coefficients "
+                    "$c_k$ (descending powers of $z$):"
+                )
+            )
+        rewritten = rf"N + N\,\frac{{{remainder}}}{{{den}}}" if f_N != 0 else None
         put(
             _eq(
                 ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
-                ("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"),
+                ("G_2(z)", rewritten or rf"\frac{{{remainder}}}{{{den}}}"),
                 *zip(map(L.to_latex, c), f_coeffs, strict=True),
                 label="eq:G2rewritten",
             )

@@ -15,7 +15,16 @@ from symctl.model.presets import muscle_text
 from symctl.report.spec import PAPER
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-NAMES = ("muscle", "oculomotor", "pendulum", "antagonist", "spinal_transcortical", "forearm")
+NAMES = (
+    "muscle",
+    "oculomotor",
+    "pendulum",
+    "antagonist",
+    "spinal_transcortical",
+    "forearm",
+    "forearm_lqg",
+    "oculomotor_position",
+)
 
 
 def test_every_example_is_shipped_and_listed():
@@ -265,3 +274,12 @@ def test_a_model_file_builds_only_the_circuits_it_asks_for(tmp_path):
         derive_paper().circuits["observable"].circuit.n_neurons
         == res.circuits["observable"].circuit.n_neurons
     )
+
+
+@pytest.mark.parametrize("name", ["forearm_lqg", "oculomotor_position"])
+def test_the_examples_that_measure_a_position_only_derive_the_lqg_compensator(results, name):
+    res = results[name]
+    assert res.spec.C.shape == (1, 2) and res.kalman is not None
+    assert res.proved and res.verified and res.G.shape == (1, 1)
+    assert res.circuits and all(c.firing.max_deviation <= 1e-9 for c in res.circuits.values())
+    assert res.variance.z_score < 4 and "estimation" in res.to_dict()

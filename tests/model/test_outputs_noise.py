@@ -140,9 +140,13 @@ def test_forearm_angle_only_gives_a_proved_compensator_that_factors_along_the_de
     assert not numeric.free_symbols and max(abs(numeric.poles())) < 1
 
 
-def test_derive_stops_on_a_model_that_estimates_its_state(tmp_path, capsys):
+def test_derive_runs_a_model_that_estimates_its_state_and_writes_its_estimation(tmp_path):
+    import json
+
     path = tmp_path / "arm.toml"
     path.write_text(ARM + '[[outputs]]\nname = "a"\nexpr = "theta"\n')
-    assert main(["derive", str(path), "--out", str(tmp_path / "out"), "--no-figures"]) == 2
-    err = capsys.readouterr().err
-    assert "arm.toml" in err and "outputs: derive builds full-state feedback" in err
+    out = tmp_path / "out"
+    assert main(["derive", str(path), "--out", str(out), "--no-figures", "--no-pdf"]) == 0
+    data = json.loads((out / "results.json").read_text())
+    assert data["controller"]["proved"] is True
+    assert data["estimation"]["form"] == "predictor" and data["estimation"]["L_names"]

@@ -138,7 +138,7 @@ def test_a_noisy_batch_equals_python_control_forced_response_on_the_same_draws()
     R = ifp_realization(FOREARM_GAINS)
     p = FOREARM.plant
     out = simulate_batch(p, *_stack(R, count), 0.0, steps=steps, noise=FOREARM_NOISE, rng=9)
-    _, Acl, Cr, _ = _loop(FOREARM_GAINS, p)
+    _, Acl, Cr, _, _ = _loop(FOREARM_GAINS, p)
     Acl, Cr = Acl[:, :, 0], Cr[:, :, 0]
     A, B = (np.asarray(M, dtype=float) for M in p.numeric())
     n, m = p.n, p.m

@@ -1,0 +1,141 @@
+r"""What an estimating controller measures and estimates: its section and its ``results.json`` entry.
+
+A model that measures some states, or through noise, is controlled by the delayed LQG
+compensator (:mod:`symctl.design.kalman`); the derivation keeps its Kalman filter
+(``Derivation.kalman``) and the predicted and measured covariance of the noisy closed loop
+(``Derivation.variance``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from symctl.report.document import DocumentBlock, Heading, Table, Text
+from symctl.report.model_story import names_tex
+from symctl.report.shorthand import _eq
+
+__all__ = ["estimation_json", "estimation_section"]
+
+FORM = "predictor"
+"""The compensator's form in a derivation (docs/guide/noise.md says why)."""
+
+
+def _poles(values) -> list[list[float]]:
+    return [[float(np.real(p)), float(np.imag(p))] for p in values]
+
+
+def _plant_poles(kf) -> np.ndarray:
+    """The filter's poles on the plant, :math:`\\operatorname{eig}(A - LC)` (the others are 0)."""
+    n = kf.system.n
+    A = np.array(kf.system.plant.A.evalf(), dtype=float)
+    C = np.array(kf.C.evalf(), dtype=float)
+    return np.linalg.eigvals(A - kf.L[:n] @ C)
+
+
+def estimation_json(res) -> dict:
+    """The ``estimation`` entry of ``results.json`` (only for a model with a Kalman filter)."""
+    kf, mc, cl = res.kalman, res.variance, res.closed_loop
+    n = kf.system.n
+    cost = {"measured": mc.cost, "standard_error": mc.cost_se, "predicted": mc.predicted_cost}
+    return {
+        "form": FORM,
+        "C": np.array(kf.C.evalf(), dtype=float).tolist(),
+        "outputs": [name for name, _ in res.spec.outputs],
+        "W": kf.W.tolist(),
+        "V": kf.V.tolist(),
+        "L": kf.L[:n].tolist(),
+        "L_names": [str(s) for s in kf.substitutions()],
+        "P": kf.P[:n, :n].tolist(),
+        "estimator_poles": _poles(_plant_poles(kf)),
+        "closed_loop_poles": _poles([*res.gains.poles, *_plant_poles(kf)]),
+        "variance": {
+            "states": list(mc.state_names),
+            "predicted": mc.predicted_covariance.tolist(),
+            "measured": mc.covariance.tolist(),
+            "standard_error": mc.covariance_se.tolist(),
+            "cost": cost,
+            "loops": mc.count,
+            "steps": mc.steps,
+            "burn_in": mc.burn_in,
+        },
+        "bands": {
+            "draws": cl.draws,
+            "delta_f_sd": cl.delta_f_sd.tolist() if cl.delta_f_sd is not None else None,
+            "delta_r_sd": cl.delta_r_sd.tolist() if cl.delta_r_sd is not None else None,
+        },
+    }
+
+
+def estimation_section(res) -> list[DocumentBlock]:
+    """The section "What the controller measures and estimates" (none without a filter)."""
+    kf, mc = res.kalman, res.variance
+    if kf is None:
+        return []
+    s, n = kf.system, kf.system.n
+    xs = res.names[0]
+    C = np.array(kf.C.evalf(), dtype=float)
+    seen = [x for j, x in enumerate(xs) if np.any(C[:, j])]
+    blocks: list[DocumentBlock] = [Heading("What the controller measures and estimates")]
+    blocks.append(
+        Text(
+            f"The controller does not read the whole state: it measures $y = C x + v$, "
+            f"{kf.p} output{'s' * (kf.p != 1)} of {names_tex(seen)}, through sensor noise $v$ "
+            "of covariance $V$, while a process noise of covariance $W$ (the motor noise "
+            "$W_u$ entering as $B W_u B^\\top$) drives the plant. A delayed Kalman filter "
+            "estimates the augmented state from the delayed measurements (the sensor delay "
+            "moved to the actuator side, as for the gains, the measurement arriving at step "
+            "$t$ is that of $x(t)$ on the controller's clock), in predictor form: "
+            "$\\hat\\chi(t+1) = \\tilde A \\hat\\chi(t) + \\tilde B \\mu(t) + \\tilde L "
+            "(y(t) - \\tilde C \\hat\\chi(t))$, $\\tilde C = [C\\ 0]$, and the optimal gains act "
+            "on the estimate, $\\mu(t) = K \\hat\\chi(t)$. The delay chain holds the controller's "
+            "own past commands, known without noise, so $\\tilde L = [L;\\ 0]$ with $L = A P "
+            "C^\\top (C P C^\\top + V)^{-1}$ the plant's Kalman gain, $P$ the solution of the "
+            "dual Riccati equation. $G(z)$ above is this compensator from $y$ to the command, "
+            "its gains $K$ and $L$ kept symbolic. In the compensator's own state space "
+            f"{n + s.T * s.m} neurons would hold $\\hat\\chi$: {n} estimate {names_tex(xs)}, "
+            f"{s.T * s.m} the delayed commands. "
+            "Every circuit below realizes the same $G(z)$ and is driven by $y$: its neurons "
+            "of $G_2$ hold these estimates in other coordinates (a change of basis of "
+            "$\\hat\\chi$, the sections' states folded in), so they fire differently and "
+            "behave the same."
+        )
+    )
+    poles = ", ".join(f"{complex(p):.4g}".strip("()") for p in _plant_poles(kf))
+    blocks += _eq(
+        ("C", C),
+        ("W", kf.W),
+        ("V", kf.V),
+        ("L", kf.L[:n]),
+        (r"\operatorname{eig}(A - L C)", rf"\{{{poles}\}}"),
+        label="eq:kalman",
+    )
+    blocks.append(
+        Text(
+            "Separation: the loop of plant and compensator has the regulator's poles "
+            "$\\operatorname{eig}(\\tilde A + \\tilde B K)$, the filter's $\\operatorname{eig}"
+            f"(A - LC)$ and ${s.T * s.m}$ at 0 (the known delay chain). Under the noise the "
+            "loop settles to a stationary covariance, predicted by the discrete Lyapunov "
+            f"equation and measured over {mc.count} noisy loops of {mc.steps} steps "
+            f"(the first {mc.burn_in} left out; mean $\\pm$ standard error):"
+        )
+    )
+    rows = [
+        (f"var {names_tex([x])}", f"{v:.4g} ± {e:.2g}", f"{p:.4g}")
+        for x, v, e, p in zip(
+            xs,
+            np.diag(mc.covariance),
+            np.diag(mc.covariance_se),
+            np.diag(mc.predicted_covariance),
+            strict=True,
+        )
+    ]
+    rows.append(("cost per step", f"{mc.cost:.4g} ± {mc.cost_se:.2g}", f"{mc.predicted_cost:.4g}"))
+    blocks.append(Table(("", "measured", "predicted"), tuple(rows)))
+    blocks.append(
+        Text(
+            f"The largest gap between measured and predicted is {mc.z_score:.2f} standard "
+            "errors. The closed-loop figure shows the mean of the noisy loops in a band of "
+            "$\\pm 2$ standard deviations."
+        )
+    )
+    return blocks
