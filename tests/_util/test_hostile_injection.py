@@ -558,7 +558,18 @@ AUDITED = {
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
     ("symctl.neural.circuit", "Circuit.subs", "subs"): 1,  # subs_rule
     ("symctl.neural.firing", "_realizations", "subs"): 2,  # floats K, drawn rationals
-    ("symctl.neural.firing", "_draw", "subs"): 1,  # the gains' exact substitutions
+    ("symctl.neural.firing", "_draw", "subs"): 3,  # the gains' and filter's exact values
+    ("symctl.design.kalman", "KalmanGains.latex", "Matrix"): 1,  # the numeric gain
+    ("symctl.design.kalman", "_output_matrix", "ImmutableMatrix"): 1,  # C through to_matrix
+    ("symctl.design.kalman", "_setup", "Matrix"): 1,  # the observer-gain symbols
+    ("symctl.design.kalman", "_ring", "Matrix"): 1,  # the plant's matrices (SymPy already)
+    ("symctl.design.kalman", "lqg_tf", "subs"): 1,  # the gains' own substitutions
+    ("symctl.model.measurement", "MeasurementSection.outputs", "subs"): 2,  # parsed, exact values
+    ("symctl.model.measurement", "MeasurementSection.outputs", "ImmutableMatrix"): 1,  # numbers
+    ("symctl.model.measurement", "MeasurementSection.noise", "subs"): 1,  # exact values
+    ("symctl.model.measurement", "MeasurementSection.noise", "ImmutableMatrix"): 2,  # parsed
+    ("symctl.model.modelfile", "_Reader.model", "ImmutableMatrix"): 1,  # 0/1 of state names
+    ("symctl.symbols", "observer_gain_symbols", "ImmutableMatrix"): 1,  # symbols
     ("symctl.realization._markov", "_problem", "sympify"): 1,  # DiscreteTF coefficients
     ("symctl.realization.factorization", "_relative_difference", "Poly"): 2,  # parsed sides
     ("symctl.realization.factorization", "_relative_difference", "cancel"): 2,  # parsed sides
