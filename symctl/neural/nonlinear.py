@@ -295,6 +295,41 @@ def _solver(model: ODEModel, k: int) -> dict:
     return {"method": "Radau", "jac": jac}
 
 
+def ode_flow(model, rtol: float = 1e-9):
+    """``(ode, step)``: the model as an :class:`ODEModel` and ``step(x, u)``, its state one
+    sampling time after ``x`` under the held input ``u`` (absolute values, not deviations).
+
+    >>> from symctl.neural.nonlinear import ode_flow
+    >>> ode, step = ode_flow(None)                # the paper's muscle
+    >>> bool(abs(step(ode.x_bar, ode.u_bar) - ode.x_bar).max() < 1e-9)   # the equilibrium stays
+    True
+    """
+    ode = _as_ode(model)
+    solver, n = _solver(ode, 1), ode.n
+    scale = max(1.0, float(np.max(np.abs(ode.x_bar))))
+
+    def step(x, u) -> np.ndarray:
+        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
+        options = dict(solver)
+        if "jac" in options:
+            options["jac"] = lambda _t, y, j=options["jac"]: j(_t, y, u[:, None])
+        with np.errstate(over="ignore", invalid="ignore"):  # checked just below
+            sol = scipy.integrate.solve_ivp(
+                lambda _t, y: ode.rhs_numeric(y[:, None], u[:, None])[:, 0],
+                (0.0, ode.dt),
+                x,
+                rtol=rtol,
+                atol=rtol * scale,
+                **options,
+            )
+        y = sol.y[:, -1] if sol.success else np.full(n, np.nan)
+        if not np.all(np.isfinite(y)):
+            raise ParameterError(f"nonlinear: the ODE failed from the state {x.tolist()}")
+        return y
+
+    return ode, step
+
+
 def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearCheck:
     k, n, m, Ts = amps.size, model.n, model.m, model.dt
     x_bar, u_bar = model.x_bar, model.u_bar

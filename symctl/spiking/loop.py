@@ -1,8 +1,10 @@
 r"""The loop closed around the plant through a circuit of spiking populations, beside the linear loop.
 
 The plant is a nengo node that steps :math:`\delta_f(k+1) = A\,\delta_f(k) + B\,\delta_r(k)
-+ w(k)` once per sample, reading the circuit's output at the sample's last simulator step;
-the circuit is :func:`~symctl.spiking.nengo_export.to_nengo`'s network, spiking or exact.
++ w(k)` (or, with ``nonlinear``, the ODE integrated over one sample from
+:math:`\bar f + \delta_f(k)` under the held input :math:`\bar r + \delta_r(k)`) once per
+sample, reading the circuit's output at the sample's last simulator step; the circuit is
+:func:`~symctl.spiking.nengo_export.to_nengo`'s network, spiking or exact.
 The linear loop is symctl's own (:func:`~symctl.neural.simulate.simulate_realization` with
 the circuit's linear system), and the populations' radii come from its traces.
 """
@@ -22,6 +24,7 @@ from symctl.design.lqr import Gains
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _drive, _plant
+from symctl.neural.nonlinear import ode_flow
 from symctl.neural.simulate import simulate_realization
 from symctl.realization.realization import Realization
 from symctl.spiking.connections import _edges, _require
@@ -130,6 +133,7 @@ def spiking_response(
     disturbance=1.0,
     plant=None,
     neuron_type=None,
+    nonlinear=None,
 ) -> SpikingResponse:
     r"""Close the loop through ``circuit`` as spiking populations, and beside it the linear loop.
 
@@ -153,6 +157,11 @@ def spiking_response(
         A discrete plant with the gains' ``dt`` (default the gains' plant).
     neuron_type : nengo.neurons.NeuronType, optional
         Default ``nengo.LIF()``.
+    nonlinear : MuscleModel or ODEModel, optional
+        Close the spiking loop around this nonlinear ODE (the plant the gains were designed
+        on, linearized; its sampling time and sizes must be the plant's) instead of the linear
+        plant; ``delta_f`` is then its deviation from the equilibrium, and the linear loop
+        stays the reference.
 
     Returns
     -------
@@ -185,6 +194,15 @@ def spiking_response(
     p = _plant(plant, gains)
     if p.dt is None:
         raise ParameterError("plant: needs a sampling time (a discrete plant with dt)")
+    flow = None
+    if nonlinear is not None:
+        ode, flow = ode_flow(nonlinear)
+        if (ode.n, ode.m) != (p.n, p.m) or abs(ode.dt - float(p.dt)) > 1e-12 * float(p.dt):
+            raise ParameterError(
+                f"nonlinear: {ode.n} states, {ode.m} inputs at Ts = {ode.dt:g}; the loop's "
+                f"plant has {p.n}, {p.m} at Ts = {float(p.dt):g}"
+            )
+        x_bar, u_bar = ode.x_bar, ode.u_bar
     if (len(circuit.inputs), len(circuit.outputs)) != (p.n, p.m):
         raise DimensionError(
             f"circuit: has {len(circuit.inputs)} inputs and {len(circuit.outputs)} outputs; "
@@ -216,7 +234,9 @@ def spiking_response(
     def step(t, dr):  # the plant: a new sample at the first simulator step of each period
         j = round(t * sub / Ts)
         if j >= 2 and (j - 1) % sub == 0 and (j - 1) // sub <= count - 1:
-            state["x"] = A @ state["x"] + B @ dr + w[(j - 1) // sub - 1]
+            x = state["x"]
+            moved = A @ x + B @ dr if flow is None else flow(x_bar + x, u_bar + dr) - x_bar
+            state["x"] = moved + w[(j - 1) // sub - 1]
         return state["x"]
 
     with net:

@@ -76,3 +76,29 @@ def test_bad_arguments_name_themselves(paper, derived_oculomotor):
     mimo = next(r.firing.circuits[0] for r in derived_oculomotor.circuits.values() if r.firing)
     with pytest.raises(DimensionError, match="circuit"):
         spiking_response(gains, mimo)
+
+
+@pytest.mark.parametrize("amplitude", [0.01, 3.0])
+def test_exact_nodes_around_the_nonlinear_muscle_close_nonlinear_checks_loop(paper, amplitude):
+    from symctl import MuscleModel, nonlinear_check
+
+    gains, circuits = paper
+    chk = nonlinear_check(MuscleModel(), gains, amplitudes=[amplitude], rtol=1e-10)
+    r = spiking_response(
+        gains, circuits["ifp"], n_neurons=None, disturbance=amplitude, nonlinear=MuscleModel()
+    )
+    expected = chk.x_nonlinear[0] - chk.x_nonlinear[0, 0]  # from the equilibrium
+    np.testing.assert_allclose(r.delta_f, expected, rtol=0, atol=1e-7 * np.abs(expected).max())
+    # the linear loop stays the reference: close for a small pulse, apart for a large one
+    gap = np.abs(r.delta_f - r.delta_f_linear).max() / np.abs(r.delta_f_linear).max()
+    assert (gap < 1e-2) if amplitude < 1 else (gap > 1e-3)
+
+
+def test_a_nonlinear_plant_of_another_size_or_sampling_time_is_refused(paper):
+    from symctl import MuscleModel
+
+    gains, circuits = paper
+    with pytest.raises(ParameterError, match="nonlinear"):
+        spiking_response(gains, circuits["ifp"], n_neurons=None, nonlinear=MuscleModel(dt=0.02))
+    with pytest.raises(SymctlTypeError, match="model"):
+        spiking_response(gains, circuits["ifp"], n_neurons=None, nonlinear="muscle")
