@@ -26,8 +26,8 @@ leak and reset 0, threshold 1: nengo's LIF in continuous time), whose spikes
 postsynaptic lowpass, :math:`\tau = T_s/5`, :math:`R = 1`) to the neuron's axon. NIR's
 ``LIF`` has no refractory period and no voltage floor, so the populations' neurons are
 ``nengo.LIF(tau_ref=0, min_voltage=-inf)``, and another neuron type is refused. The
-decoders are solved for these neurons; a NIR simulator's discretization and spike
-timing then decide how close its run comes to nengo's.
+decoders are solved for these neurons; the graph is as approximate as nengo's network,
+and a NIR simulator's discretization and spike timing decide how close its run comes.
 """
 
 from __future__ import annotations
@@ -42,11 +42,6 @@ from symctl.neural.circuit import Circuit
 from symctl.spiking.connections import _edges, _label, _require
 
 __all__ = ["to_nir"]
-
-
-def _lif(nengo):
-    """The one nengo neuron type NIR's LIF is: no refractory period, no voltage floor."""
-    return nengo.LIF(tau_ref=0, min_voltage=-np.inf)
 
 
 def to_nir(
@@ -141,8 +136,8 @@ def _populations(nir, circuit, n_neurons, dt, rng, neuron_type, radius, nodes, a
     from symctl.spiking.nengo_export import SUBSTEPS, to_nengo
 
     nengo = _require("nengo")
-    kind = neuron_type if neuron_type is not None else _lif(nengo)
-    if not isinstance(kind, nengo.LIF):
+    kind = nengo.LIF(tau_ref=0, min_voltage=-np.inf) if neuron_type is None else neuron_type
+    if type(kind) is not nengo.LIF:  # not a subclass either: AdaptiveLIF adapts
         raise SymctlTypeError(f"neuron_type: expected a nengo.LIF, got {kind!r}")
     if kind.tau_ref != 0 or kind.min_voltage != -np.inf:
         raise ParameterError(
