@@ -49,6 +49,7 @@ DELEGATIONS = {
     "from_scipy",
     "to_nengo",
     "to_nest",
+    "to_nir",
     # a derivation handed to the report stage, which writes it
     "to_dict",
     "parameters",

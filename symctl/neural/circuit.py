@@ -576,6 +576,26 @@ class Circuit(LatexMixin):
 
         return to_nest(self, dt=dt)
 
+    def to_nir(
+        self, n_neurons: int | None = None, *, dt=0.01, rng=None, neuron_type=None, radius=None
+    ):
+        """The circuit as a NIR graph (needs ``pip install symctl[spiking]``).
+
+        The arguments are those of :func:`symctl.spiking.nir_export.to_nir`, which builds
+        it: exact delay-sum neurons (``n_neurons=None``), or a population of ``n_neurons``
+        LIF neurons per neuron.
+
+        Examples
+        --------
+        >>> from symctl import Circuit, Structure, first_order_realization
+        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
+        >>> sorted(c.to_nir().inputs)
+        ['u']
+        """
+        from symctl.spiking.nir_export import to_nir
+
+        return to_nir(self, n_neurons, dt=dt, rng=rng, neuron_type=neuron_type, radius=radius)
+
 
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
     """``w`` with its numbers shown to ``digits`` significant digits (exponents stay exact)."""

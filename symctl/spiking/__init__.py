@@ -4,10 +4,11 @@
   ``export_circuit``, the simulator-neutral JSON;
 - ``nengo_export``: ``Circuit.to_nengo``, exact nodes or spiking populations (NEF);
 - ``nest_export``: ``Circuit.to_nest``, NEST's linear rate neurons, retimed to be exact;
+- ``nir_export``: ``Circuit.to_nir``, a NIR graph: exact delay-sum neurons or LIF populations;
 - ``loop``: ``spiking_response``, the loop closed through spiking populations;
 - ``cost``: ``spiking_cost``, the neurons and spikes each circuit needs to stay near the
   linear loop, swept on the dask path.
 
-nengo and NEST (``pip install symctl[spiking]``) are imported only when asked for, never
+nengo, NEST and nir (``pip install symctl[spiking]``) are imported only when asked for, never
 with ``import symctl``.
 """

@@ -29,6 +29,7 @@ from symctl.neural.firing import _drive
 SIMULATORS = {
     "nengo": ("nengo", "symctl.spiking.nengo_export", "nengo_response"),
     "nest": ("nest", "symctl.spiking.nest_export", "nest_response"),
+    "nir": ("nir", "test_nir_export", "nir_response"),
     "json": (None, __name__, "_json_response"),
 }
 
@@ -137,11 +138,12 @@ def test_the_spiking_guide_runs_as_written(tmp_path, monkeypatch):
 
     need_spiking("nengo")
     need_spiking("nest")
+    need_spiking("nir")
     page = Path(__file__).resolve().parents[2] / "docs" / "guide" / "spiking.md"
     namespace: dict = {"__name__": "__main__"}
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
-    assert len(blocks) == 5
-    monkeypatch.chdir(tmp_path)  # the page writes circuit.json and sweep.jsonl
+    assert len(blocks) == 6
+    monkeypatch.chdir(tmp_path)  # the page writes circuit.json, sweep.jsonl, circuit.nir
     for k, code in enumerate(blocks):
         exec(compile(code, f"spiking.md python block {k + 1}", "exec"), namespace)
     np.testing.assert_allclose(
