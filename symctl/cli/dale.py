@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 import json
+from pathlib import Path
 
 import click
 from rich.console import Console
@@ -80,14 +81,20 @@ def dale_command(
     """Decide whether the circuits of the controller can have every neuron E or I.
 
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
-    model, Q = R = 1). Each verdict is a witness verified exactly, a z3 proof that
+    model, Q = R = 1); for a model that measures some states, or through noise, its LQG
+    compensator of the measured outputs. Each verdict is a witness verified exactly, a z3 proof that
     none exists, or "not decided".
     """
     from symctl.dalelaw.dale import dale
     from symctl.dalelaw.dale_atlas import dale_atlas
     from symctl.dalelaw.interneurons import ei_circuit
 
-    gains = _gains(model_file, sensor_delay, actuator_delay)
+    gains, G = _gains(model_file, sensor_delay, actuator_delay)
+    delays = {
+        "sensor_delay": gains.system.sensor_delay,
+        "actuator_delay": gains.system.actuator_delay,
+    }
+    ctrl, kw = (gains, {}) if G is None else (G, delays)  # the compensator needs its delays
     if atlas_table:
         with Steps(_console) as steps:
             steps.start("the E/I table of the order-2 atlas")
@@ -95,7 +102,8 @@ def dale_command(
             T = dale_atlas(
                 2,
                 samples=samples,
-                G=gains,
+                G=ctrl,
+                **kw,
                 timeout=timeout,
                 workers=workers,
                 scheduler=scheduler,
@@ -127,11 +135,11 @@ def dale_command(
         results = []
         for k, c in enumerate(circuits, start=1):
             steps.start(f"dale {getattr(c, 'label', c)} ({k} of {len(circuits)})")
-            results.append(dale(gains, circuit=c, timeout=timeout, progress=steps.part))
+            results.append(dale(ctrl, **kw, circuit=c, timeout=timeout, progress=steps.part))
         e = None
         if ei:
             steps.start("cheapest E/I circuit")
-            e = ei_circuit(gains, timeout=timeout, progress=steps.part)
+            e = ei_circuit(ctrl, **kw, timeout=timeout, progress=steps.part)
     if as_json:
         out = {
             "circuits": [
@@ -157,7 +165,8 @@ def dale_command(
         _say(json.dumps(out, indent=1))
         return
     word = {True: "E/I", False: "none (proved)", None: "not decided"}
-    _say(f"controller: sensor delay {s.sensor_delay}, actuator delay {s.actuator_delay}")
+    what = "" if G is None else "the LQG compensator of the measured outputs; "
+    _say(f"controller: {what}sensor delay {s.sensor_delay}, actuator delay {s.actuator_delay}")
     for r in results:
         signs = ", ".join(f"{k} {v}" for k, v in r.signs.items())
         _say(f"{r.circuit:>12}: {word[r.feasible]}" + (f"  [{signs}]" if signs else ""))
@@ -171,7 +180,8 @@ def dale_command(
 
 
 def _gains(model_file, sensor_delay, actuator_delay):
-    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1)."""
+    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1), and for a model
+    that measures some states or through noise its LQG compensator G(z) (else None)."""
     from symctl.cli.fit import model_parts
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
@@ -179,7 +189,18 @@ def _gains(model_file, sensor_delay, actuator_delay):
     plant, Q, R, defaults = model_parts(model_file)
     ds = defaults[0] if sensor_delay is None else sensor_delay
     da = defaults[1] if actuator_delay is None else actuator_delay
-    return lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    if model_file is None:
+        return gains, None
+    from symctl.derivation.pipeline import _kalman
+    from symctl.design.kalman import lqg_tf
+    from symctl.model.modelfile import load_model
+
+    model = load_model(Path(model_file))
+    if model.C is None:
+        return gains, None
+    kalman, _ = _kalman(model, gains.system)
+    return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman)
 
 
 def _circuit(name: str, system):
