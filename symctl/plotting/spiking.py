@@ -134,4 +134,20 @@ def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figur
                 price.annotate(row["circuit"], (total, spikes), fontsize="x-small")
         price.set(xscale="log", yscale="log", xlabel=f"neurons in all (within {key})")
         price.set_ylabel("spikes per second")
+        price.margins(x=0.2, y=0.15)  # room for the names beside the markers
+        for ax in (curves, price):
+            _plain_log_ticks(ax)
     return fig
+
+
+def _plain_log_ticks(ax) -> None:
+    """Plain numbers on both log axes (50, 0.02, 5,000); minor ticks at 2 and 5 labelled only on
+    an axis spanning under two decades, where the decades alone would leave it bare."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    plain = FuncFormatter(lambda v, _: f"{v:,.0f}" if v >= 1 else f"{v:g}")
+    for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        axis.set_major_formatter(plain)
+        few = lo > 0 and hi / lo < 100
+        axis.set_minor_locator(LogLocator(base=10, subs=(2.0, 5.0) if few else "auto"))
+        axis.set_minor_formatter(plain if few else NullFormatter())
