@@ -97,13 +97,22 @@ def fit_command(
 
     gains, tr = _fit_inputs(data, model_file, sensor_delay, actuator_delay)
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
+    controller = {"G": gains}
+    if model_file is not None:  # a model that measures some states: its LQG compensator
+        from symctl.cli.dale import _gains
+        from symctl.model.modelfile import load_model
+
+        _, G = _gains(model_file, ds, da)
+        if G is not None:
+            C = load_model(Path(model_file)).C
+            controller = {"G": G, "plant": gains.system.plant, "outputs": C}
     classes = (circuit or tr.meta.get("circuit") or "general").split(",")
     classes = [c.strip() for c in classes]
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start(f"fitting {', '.join(classes)} ({starts} starts)")
         res = fit(
             tr.traces,
-            gains,
+            **controller,
             sensor_delay=ds,
             actuator_delay=da,
             circuit=classes if len(classes) > 1 else classes[0],

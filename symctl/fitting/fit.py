@@ -459,6 +459,7 @@ def fit(
     bootstrap: int = 200,
     level: float = 0.95,
     progress: Callable[[str], None] | None = None,
+    outputs=None,
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
@@ -502,6 +503,10 @@ def fit(
         bands (:mod:`symctl.fitting.uncertainty`), at most ``MAX_BOOTSTRAP``; 0: none.
     level : float, default 0.95
         Confidence level of the intervals and bands, in (0, 1).
+    outputs : matrix-like, optional
+        ``1 x n``: ``G`` is a compensator fed by the measured output ``y = C x`` (the LQG
+        compensator of :func:`~symctl.lqg_tf`, with numbers), which is then the circuit's
+        input trace; ``plant`` required.
     progress : callable, optional
         Called with the name of each stage as it starts (each class's starts, the structural
         identifiability, the bootstrap's refits).
@@ -556,7 +561,7 @@ def fit(
             raise ParameterError(f"C: must be a finite nonzero number, got {C!r}")
         C = float(C)
     classes = _circuit_arg(circuit)
-    tf, u, t = _loop(G, plant, disturbance, _window(steps, start, length))
+    tf, u, t = _loop(G, plant, disturbance, _window(steps, start, length), outputs)
     data = _traces(traces, u.size)
     fits, skipped = [], []
     pool = None

@@ -33,8 +33,11 @@ MAX_FIT_STEPS = 100_000
 """Most samples per trace."""
 
 
-def _loop(G, plant, disturbance, window) -> tuple[DiscreteTF, np.ndarray, np.ndarray]:
-    """``(exact G, delta_f, t)`` of the closed loop under ``disturbance``."""
+def _loop(G, plant, disturbance, window, outputs=None) -> tuple[DiscreteTF, np.ndarray, np.ndarray]:
+    """``(exact G, its input trace, t)`` of the closed loop under ``disturbance``: the first
+    state, or the first measured output ``y = C x`` of a compensator fed by ``outputs``."""
+    if outputs is not None and not isinstance(G, DiscreteTF):
+        raise SymctlTypeError("outputs: a controller fed by outputs is a DiscreteTF G (lqg_tf)")
     if isinstance(G, Gains):
         s = G.system
         if (s.n, s.m) != (1, 1):
@@ -51,7 +54,11 @@ def _loop(G, plant, disturbance, window) -> tuple[DiscreteTF, np.ndarray, np.nda
         if G.shape != (1, 1):
             raise DimensionError(f"G: fit takes a SISO controller, got shape {G.shape}")
         tf = _rational_tf(G)
-        res = closed_loop_response(tf, plant, disturbance=disturbance, **window)
+        res = closed_loop_response(tf, plant, disturbance=disturbance, outputs=outputs, **window)
+        if outputs is not None:
+            C = np.atleast_2d(np.array(outputs, dtype=float))
+            y = np.asarray(res.delta_f, dtype=float).reshape(len(res.t), -1) @ C.T
+            return tf, y[:, 0], np.asarray(res.t, dtype=float)
     else:
         raise SymctlTypeError(
             f"G: expected Gains or a numeric SISO DiscreteTF, got {type(G).__name__}"
