@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import itertools
 import json
-from pathlib import Path
 
 import click
 from rich.console import Console
@@ -85,11 +84,12 @@ def dale_command(
     compensator of the measured outputs. Each verdict is a witness verified exactly, a z3 proof that
     none exists, or "not decided".
     """
+    from symctl.cli.fit import model_controller
     from symctl.dalelaw.dale import dale
     from symctl.dalelaw.dale_atlas import dale_atlas
     from symctl.dalelaw.interneurons import ei_circuit
 
-    gains, G = _gains(model_file, sensor_delay, actuator_delay)
+    gains, G = model_controller(model_file, sensor_delay, actuator_delay)
     delays = {
         "sensor_delay": gains.system.sensor_delay,
         "actuator_delay": gains.system.actuator_delay,
@@ -177,30 +177,6 @@ def dale_command(
             f"Dale's law: {e.minimum}; Dale's law costs {e.cost})"
         )
         _say(e.table())
-
-
-def _gains(model_file, sensor_delay, actuator_delay):
-    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1), and for a model
-    that measures some states or through noise its LQG compensator G(z) (else None)."""
-    from symctl.cli.fit import model_parts
-    from symctl.design.augment import augment
-    from symctl.design.lqr import lqr_gains
-
-    plant, Q, R, defaults = model_parts(model_file)
-    ds = defaults[0] if sensor_delay is None else sensor_delay
-    da = defaults[1] if actuator_delay is None else actuator_delay
-    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
-    if model_file is None:
-        return gains, None
-    from symctl.derivation.pipeline import _kalman
-    from symctl.design.kalman import lqg_tf
-    from symctl.model.modelfile import load_model
-
-    model = load_model(Path(model_file))
-    if model.C is None:
-        return gains, None
-    kalman, _ = _kalman(model, gains.system)
-    return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman)
 
 
 def _circuit(name: str, system):

@@ -99,10 +99,9 @@ def fit_command(
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     controller = {"G": gains}
     if model_file is not None:  # a model that measures some states: its LQG compensator
-        from symctl.cli.dale import _gains
         from symctl.model.modelfile import load_model
 
-        _, G = _gains(model_file, ds, da)
+        _, G = model_controller(model_file, ds, da)
         if G is not None:
             C = load_model(Path(model_file)).C
             controller = {"G": G, "plant": gains.system.plant, "outputs": C}
@@ -164,6 +163,29 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
                 f"DATA: its time step is {dt:g}, the plant's sampling time {float(Ts):g}"
             )
     return gains, tr
+
+
+def model_controller(model_file, sensor_delay, actuator_delay):
+    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1), and for a model
+    that measures some states or through noise its LQG compensator G(z) (else None)."""
+    from symctl.design.augment import augment
+    from symctl.design.lqr import lqr_gains
+
+    plant, Q, R, defaults = model_parts(model_file)
+    ds = defaults[0] if sensor_delay is None else sensor_delay
+    da = defaults[1] if actuator_delay is None else actuator_delay
+    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    if model_file is None:
+        return gains, None
+    from symctl.derivation.pipeline import _kalman
+    from symctl.design.kalman import lqg_tf
+    from symctl.model.modelfile import load_model
+
+    model = load_model(Path(model_file))
+    if model.C is None:
+        return gains, None
+    kalman, _ = _kalman(model, gains.system)
+    return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman)
 
 
 def model_parts(model_file):
