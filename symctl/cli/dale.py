@@ -89,7 +89,7 @@ def dale_command(
     from symctl.dalelaw.dale_atlas import dale_atlas
     from symctl.dalelaw.interneurons import ei_circuit
 
-    gains, G = model_controller(model_file, sensor_delay, actuator_delay)
+    gains, G, _ = model_controller(model_file, sensor_delay, actuator_delay)
     delays = {
         "sensor_delay": gains.system.sensor_delay,
         "actuator_delay": gains.system.actuator_delay,

@@ -95,16 +95,11 @@ def fit_command(
     from symctl.report.fit import write_fit
     from symctl.report.output import OutputFolder
 
-    gains, tr = _fit_inputs(data, model_file, sensor_delay, actuator_delay)
+    gains, G, C, tr = _fit_inputs(data, model_file, sensor_delay, actuator_delay)
     ds, da = gains.system.sensor_delay, gains.system.actuator_delay
     controller = {"G": gains}
-    if model_file is not None:  # a model that measures some states: its LQG compensator
-        from symctl.model.modelfile import load_model
-
-        _, G = model_controller(model_file, ds, da)
-        if G is not None:
-            C = load_model(Path(model_file)).C
-            controller = {"G": G, "plant": gains.system.plant, "outputs": C}
+    if G is not None:  # a model that measures some states: its LQG compensator
+        controller = {"G": G, "plant": gains.system.plant, "outputs": C}
     classes = (circuit or tr.meta.get("circuit") or "general").split(",")
     classes = [c.strip() for c in classes]
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
@@ -140,21 +135,17 @@ def fit_command(
 
 
 def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
-    """The gains (of --model or the paper's muscle) and the traces of DATA."""
-    from symctl.design.augment import augment
-    from symctl.design.lqr import lqr_gains
+    """The controller of :func:`model_controller` (delays from the options, DATA's header or the
+    model) and the traces of DATA."""
     from symctl.errors import ParameterError
     from symctl.fitting.traces import read_traces
 
     tr = read_traces(Path(data))
-    plant, Q, R, defaults = model_parts(model_file)
     ds, da = (
         _meta_int(v, key, tr) if v is None else v
         for v, key in ((sensor_delay, "sensor_delay"), (actuator_delay, "actuator_delay"))
     )
-    ds = defaults[0] if ds is None else ds
-    da = defaults[1] if da is None else da
-    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    gains, G, C = model_controller(model_file, ds, da)
     Ts = gains.system.plant.dt
     if Ts is not None:
         dt = float(tr.t[1] - tr.t[0])
@@ -162,42 +153,36 @@ def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
             raise ParameterError(
                 f"DATA: its time step is {dt:g}, the plant's sampling time {float(Ts):g}"
             )
-    return gains, tr
+    return gains, G, C, tr
 
 
 def model_controller(model_file, sensor_delay, actuator_delay):
-    """The optimal gains of MODEL.toml (or the paper's muscle model, Q = R = 1), and for a model
-    that measures some states or through noise its LQG compensator G(z) (else None)."""
+    """``(gains, G, C)``: the optimal gains of MODEL.toml (or of the paper's muscle model,
+    Q = R = 1, one step each way), and for a model that measures some states or through noise
+    its LQG compensator G(z) and output matrix C (else None, None). Delays left None are the
+    model's."""
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-
-    plant, Q, R, defaults = model_parts(model_file)
-    ds = defaults[0] if sensor_delay is None else sensor_delay
-    da = defaults[1] if actuator_delay is None else actuator_delay
-    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
-    if model_file is None:
-        return gains, None
-    from symctl.derivation.pipeline import _kalman
-    from symctl.design.kalman import lqg_tf
-    from symctl.model.modelfile import load_model
-
-    model = load_model(Path(model_file))
-    if model.C is None:
-        return gains, None
-    kalman, _ = _kalman(model, gains.system)
-    return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman)
-
-
-def model_parts(model_file):
-    """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
     from symctl.design.plant import MuscleModel
 
     if model_file is None:
-        return MuscleModel(), 1, 1, (1, 1)
-    from symctl.model.modelfile import load_model
+        plant, Q, R, model, defaults = MuscleModel(), 1, 1, None, (1, 1)
+    else:
+        from symctl.model.modelfile import load_model
 
-    model = load_model(Path(model_file))
-    return model.plant, model.Q, model.R, (model.sensor_delay, model.actuator_delay)
+        model = load_model(Path(model_file))
+        plant, Q, R = model.plant, model.Q, model.R
+        defaults = (model.sensor_delay, model.actuator_delay)
+    ds = defaults[0] if sensor_delay is None else sensor_delay
+    da = defaults[1] if actuator_delay is None else actuator_delay
+    gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
+    if model is None or model.C is None:
+        return gains, None, None
+    from symctl.derivation.pipeline import _kalman
+    from symctl.design.kalman import lqg_tf
+
+    kalman, _ = _kalman(model, gains.system)
+    return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman), model.C
 
 
 def _meta_int(value, key, tr):

@@ -58,6 +58,7 @@ from symctl.realization.check import check_realization
 from symctl.realization.draws import Draw, draw_realizations
 from symctl.realization.factorization import EXPANDED_ZEROS_MAX as EXPANDED_ZEROS_MAX
 from symctl.realization.factorization import Factorization, factor
+from symctl.realization.realization import Realization
 from symctl.realization.realizers import REALIZERS
 from symctl.realization.reduction import controller_reduction
 
@@ -345,18 +346,16 @@ def _derive(spec: Model, step) -> Derivation:
         reduction, gains = controller_reduction(system, gains)  # the minimal controller onwards
         G_symbolic = reduction.reduce(G_symbolic)
         G = G_symbolic.subs(gains.substitutions())
-    else:  # the LQG compensator, K and L symbolic
-        G_symbolic = lqg_tf(system, spec.C)
-        try:
+    else:  # the LQG compensator, K and L symbolic (with several inputs, their exact values)
+        G_symbolic, reduction = lqg_tf(system, spec.C), None
+        if plant.m == 1:
             proved = bool(prove_lqg_tf(system, spec.C, G_symbolic))
-        except ParameterError as exc:  # a matrix fraction too large to expand
-            raise spec.error(
-                "outputs",
-                f"the LQG compensator of {_count(plant.m, 'input')} is too large to derive "
-                f"symbolically ({exc}); use symctl.lqg_tf with numbers",
-            ) from None
-        reduction = None
-        G = G_symbolic.subs({**gains.substitutions(), **kalman.substitutions()})
+            G = G_symbolic.subs({**gains.substitutions(), **kalman.substitutions()})
+        else:  # its symbolic fraction's expansion takes minutes
+            exact = {**gains.substitutions(exact=True), **kalman.substitutions(exact=True)}
+            G_symbolic = G = G_symbolic.subs(exact).expanded()
+            proved = bool(prove_lqg_tf(system, spec.C, G, gains=gains, kalman=kalman))
+            spec = dataclasses.replace(spec, notes=(*spec.notes, _EXACT_GAINS))
     w = spec.disturbance_signal()
     window = {"steps": spec.steps}
     graph = spec.graph
@@ -367,7 +366,7 @@ def _derive(spec: Model, step) -> Derivation:
     siso = plant.n == 1 and plant.m == 1 if kalman is None else G.is_siso
     if kalman is not None:
         kinds = tuple(k for k in kinds if not REALIZERS[k].controller)
-        skipped = _ESTIMATING_SKIPS
+        skipped = _estimating_skips(spec, G, siso)
     if not siso:
         kinds, mimo = _mimo_kinds(kinds, G, plant)
         skipped = mimo if skipped is None else f"{skipped}; {mimo}"
@@ -434,13 +433,12 @@ def _derive(spec: Model, step) -> Derivation:
             )
             for k in kinds
         }
-    if kinds and siso and kalman is None:
+    order2 = system.T if kalman is None else G.order  # G2's; the compensator's is n + T m
+    if kinds and siso and (kalman is None or order2 <= PAPER_ATLAS_MAX_ORDER):
         step("atlas")
         found = atlas(2, workers=1)
-        if (
-            system.T <= PAPER_ATLAS_MAX_ORDER
-        ):  # G2 has order T; order 3 takes a minute: symctl atlas
-            order = found if system.T == 2 else atlas(system.T, workers=1)
+        if order2 <= PAPER_ATLAS_MAX_ORDER:  # order 3 takes a minute: symctl atlas
+            order = found if order2 == 2 else atlas(order2, workers=1)
             try:
                 candidates = circuits_for(
                     G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, rng=seed
@@ -472,17 +470,17 @@ def _derive(spec: Model, step) -> Derivation:
             rng=seed,
         )
     nonlinear = longest = None
-    if spec.ode is not None and kalman is None:
+    if spec.ode is not None:
         step("nonlinear")
         nonlinear = nonlinear_check(
             spec.ode,
-            gains,
+            gains if kalman is None else _reading_states(compensator, kalman.C),
             amplitude * np.array([0.1, 0.3, 1.0, 3.0, 10.0]),
             steps=spec.steps,
             disturbance=unit_w,
             fail="mark",
         )
-        if spec.longest_delay is not None:
+        if spec.longest_delay is not None and kalman is None:
             step("longest delay")
             top, tol = spec.longest_delay
             longest = longest_delay(
@@ -526,11 +524,37 @@ def _derive(spec: Model, step) -> Derivation:
     )
 
 
-_ESTIMATING_SKIPS = (
-    "the controller estimates the state (the LQG compensator), so left out are the IFP circuit "
-    "(it feeds back the full state), the circuit atlas (its circuits realize the full-state "
-    "G2 of order T; the compensator's has order n + Tm) and the nonlinear plant's check (its "
-    "controller reads the full state)"
+def _estimating_skips(spec: Model, G, siso: bool) -> str | None:
+    """What an estimating model leaves out, and why (with several inputs or outputs, the IFP
+    circuit and the atlas are left out anyway)."""
+    out = ["the IFP circuit (it feeds back the full state)"] if siso else []
+    if siso and G.order > PAPER_ATLAS_MAX_ORDER:
+        out.append(
+            f"the circuit atlas (the compensator's G2 has order n + Tm = {G.order}, the atlas "
+            f"is searched here up to order {PAPER_ATLAS_MAX_ORDER})"
+        )
+    if spec.longest_delay is not None:
+        out.append("the longest-delay search (it redesigns the full-state controller)")
+    if not out:
+        return None
+    return "the controller estimates the state (the LQG compensator), so left out " + (
+        f"{'is' if len(out) == 1 else 'are'} {', '.join(out[:-1])}{' and ' * (len(out) > 1)}"
+        f"{out[-1]}"
+    )
+
+
+def _reading_states(compensator: Realization, C) -> Realization:
+    """The compensator composed with the measurement ``y = C x``: a controller of the state (the
+    nonlinear plant's check reads the state; its outputs are taken linearized)."""
+    C = sp.Matrix(np.array(C.evalf(), dtype=float))
+    F, H, M, N = compensator.F, compensator.H, compensator.M, compensator.N
+    return Realization(F, H * C, M, N * C, compensator.dt)
+
+
+_EXACT_GAINS = (
+    "With several inputs the compensator's matrix fraction, expanded with K and L symbolic, "
+    "takes minutes: G(z) is derived and proved with the gains' exact values (the binary "
+    "floats' rationals) in Q[z] instead"
 )
 
 MONTE_CARLO_LOOPS = 4000

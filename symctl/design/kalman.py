@@ -326,11 +326,28 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
     return F, H, M, zeros(m, p)
 
 
-def _setup(system: AugmentedSystem, Cm, form: str):
-    """The ring, its converter, the plant map, the symbols ``K`` and the filter gain's, the
-    predictor gain :math:`L` (``A M`` in the current form), and ``adj Phi``, ``det Phi``."""
+def _design_values(system, Cm, gains, kalman, form: str) -> dict:
+    """The exact values of the gain symbols in the design ``gains``, ``kalman`` (or none)."""
+    if gains is None and kalman is None:
+        return {}
+    for value, name, kind in ((gains, "gains", Gains), (kalman, "kalman", KalmanGains)):
+        if not isinstance(value, kind):
+            raise SymctlTypeError(f"{name}: expected {kind.__name__}, got {value!r}")
+        if value.system != system:
+            raise ParameterError(f"{name}: designed for another system")
+    if kalman.C != Cm:
+        raise ParameterError(f"C: the filter measures {kalman.C.tolist()}, not {Cm.tolist()}")
+    return {**gains.substitutions(exact=True), **kalman.substitutions(exact=True, form=form)}
+
+
+def _setup(system: AugmentedSystem, Cm, form: str, values: dict | None = None):
+    """The ring, its converter, the plant map, the symbols ``K`` and the filter gain's (or their
+    exact ``values``), the predictor gain :math:`L` (``A M`` in the current form), and
+    ``adj Phi``, ``det Phi``."""
     K = sp.Matrix.hstack(*gain_matrix_symbols(system.T, system.m, system.n))
     gain = sp.Matrix(observer_gain_symbols(system.n, Cm.rows, _FORMS[_form(form)]))
+    if values:
+        K, gain = K.xreplace(values), gain.xreplace(values)
     R, convert, ev = _ring(system, Cm, K, gain)
     A = ev(system.plant.A)
     L = gain if form == "predictor" else A * gain
@@ -343,7 +360,7 @@ def _ring(system: AugmentedSystem, Cm, K, L):
     convertible (floats for entries such as ``exp(-1/2)`` in a plant without symbols)."""
     parts = (system.plant.A, system.plant.B, Cm)
     plant = sorted(set().union(*(M.free_symbols for M in parts)), key=str)
-    R, convert = _ring_of([*K, *L, *plant])
+    R, convert = _ring_of([*(s for s in (*K, *L) if s.is_Symbol), *plant])
     try:
         for M in parts:
             _mat(convert, M)
@@ -471,14 +488,22 @@ def lqg_tf(
 
 
 def prove_lqg_tf(
-    system: AugmentedSystem, C=None, G: DiscreteTF | None = None, *, form: str = "predictor"
+    system: AugmentedSystem,
+    C=None,
+    G: DiscreteTF | None = None,
+    *,
+    form: str = "predictor",
+    gains: Gains | None = None,
+    kalman: KalmanGains | None = None,
 ) -> Proof:
     r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
 
     The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
     N_G` of the module notes, with :math:`(F, H, M, N)` of :func:`lqg_state_space` and the gains
-    symbolic,
-    checked exactly in :math:`\mathbb{Q}[z, K, L]`; a left fraction is expanded first.
+    symbolic, checked exactly in :math:`\mathbb{Q}[z, K, L]`; a left fraction is expanded first.
+    With ``gains`` and ``kalman`` the gains are their values (the floats' exact rationals) and
+    the identities are checked in :math:`\mathbb{Q}[z]`: a proof for this design, where the
+    symbolic one is too large (a plant with several inputs).
 
     Parameters
     ----------
@@ -489,6 +514,8 @@ def prove_lqg_tf(
         The candidate, ``m x p`` with symbols :math:`K` and :math:`L` (or :math:`M`).
     form : {"predictor", "current"}
         The compensator's form (:func:`lqg_tf`).
+    gains, kalman : Gains and KalmanGains, optional
+        The design whose exact gains replace the symbols (both or neither).
 
     Returns
     -------
@@ -515,7 +542,10 @@ def prove_lqg_tf(
     if G is not None and not isinstance(G, DiscreteTF):
         raise SymctlTypeError(f"G: expected a DiscreteTF, got {G!r}")
     Cm = _output_matrix(C, system.n)
+    values = _design_values(system, Cm, gains, kalman, form)
     G = lqg_tf(system, Cm, form=form) if G is None else G
+    if values and G.free_symbols:
+        G = G.subs(values)
     if isinstance(G, MatrixFractionTF):
         G = G.expanded()
     n, m, T, p = system.n, system.m, system.T, Cm.rows
@@ -526,7 +556,9 @@ def prove_lqg_tf(
     )
     if G.shape != (m, p):
         return Proof(False, claim, "shapes", f"G has shape {G.shape}, the compensator {(m, p)}")
-    R, convert, ev, K, gain, L, adj, phi = _setup(system, Cm, form)
+    R, convert, ev, K, gain, L, adj, phi = _setup(system, Cm, form, values)
+    if values:
+        method = method.replace("Q[z, K, L]", "Q[z] at the design's exact gains")
     try:
         N_G, d_G = _mat(convert, G.num_matrix), convert(G.den)
     except (NotRational, KeyError):  # a symbol the compensator does not have

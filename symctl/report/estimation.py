@@ -91,7 +91,12 @@ def estimation_section(res) -> list[DocumentBlock]:
             "own past commands, known without noise, so $\\tilde L = [L;\\ 0]$ with $L = A P "
             "C^\\top (C P C^\\top + V)^{-1}$ the plant's Kalman gain, $P$ the solution of the "
             "dual Riccati equation. $G(z)$ above is this compensator from $y$ to the command, "
-            "its gains $K$ and $L$ kept symbolic. In the compensator's own state space "
+            + (
+                "its gains $K$ and $L$ kept symbolic. "
+                if s.m == 1
+                else "its gains $K$ and $L$ their exact values (the symbolic form is too large). "
+            )
+            + "In the compensator's own state space "
             f"{n + s.T * s.m} neurons would hold $\\hat\\chi$: {n} estimate {names_tex(xs)}, "
             f"{s.T * s.m} the delayed commands. "
             "Every circuit below realizes the same $G(z)$ and is driven by $y$: its neurons "
@@ -138,4 +143,6 @@ def estimation_section(res) -> list[DocumentBlock]:
             "$\\pm 2$ standard deviations."
         )
     )
+    if res.skipped and res.G.is_siso and res.factors is not None:  # else said with G2
+        blocks.append(Text("Not built here: " + res.skipped + "."))
     return blocks

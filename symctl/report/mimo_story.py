@@ -74,7 +74,8 @@ def factorization(res) -> list[DocumentBlock]:
     blocks: list[DocumentBlock] = [
         Heading("Factorization $G = G_3 G_2 G_1$"),
         Text(
-            f"The controller maps the {m} measured signals ({', '.join(xs)}) to the {p} "
+            f"The controller maps the {m} measured signal{'s' * (m != 1)} "
+            f"({', '.join(xs) if res.kalman is None else '$y$'}) to the {p} "
             f"inputs ({', '.join(us)}). Each measured signal $j$ crosses the sensor delay "
             "through its own first-order sections $g_{1,j}$, each input $i$ the actuator delay "
             "through its own $g_{3,i}$: $G_1 = \\operatorname{diag}_j g_{1,j}$, "

@@ -457,7 +457,8 @@ AUDITED = {
     ("symctl.derivation.load", "SavedDerivation._transform", "ImmutableMatrix"): 1,  # parsed
     ("symctl.model.saved", "_parsed", "ImmutableMatrix"): 2,  # of parse_expr's results
     # the gains' own substitutions (float, exact)
-    ("symctl.derivation.pipeline", "_derive", "subs"): 3,
+    ("symctl.derivation.pipeline", "_derive", "subs"): 4,  # gains' substitutions (dicts of numbers)
+    ("symctl.derivation.pipeline", "_reading_states", "Matrix"): 1,  # a float array of C
     ("symctl.derivation.pipeline", "_derive", "factor"): 1,  # symctl's factor of G(z)
     ("symctl.derivation.pipeline", "_pathways", "subs"): 2,  # the optimal gains' substitutions
     ("symctl.realization.factorization", "_vieta", "expand"): 1,  # the section poles' symbols
@@ -564,6 +565,7 @@ AUDITED = {
     ("symctl.design.kalman", "_setup", "Matrix"): 1,  # the observer-gain symbols
     ("symctl.design.kalman", "_ring", "Matrix"): 1,  # the plant's matrices (SymPy already)
     ("symctl.design.kalman", "lqg_tf", "subs"): 1,  # the gains' own substitutions
+    ("symctl.design.kalman", "prove_lqg_tf", "subs"): 1,  # the design's exact gains
     ("symctl.model.measurement", "MeasurementSection.outputs", "subs"): 2,  # parsed, exact values
     ("symctl.model.measurement", "MeasurementSection.outputs", "ImmutableMatrix"): 1,  # numbers
     ("symctl.model.measurement", "MeasurementSection.noise", "subs"): 1,  # exact values

@@ -115,18 +115,24 @@ def test_the_new_keywords_refuse_bad_input_naming_the_argument(res):
         lqg_realization(res.gains, res.gains)
 
 
-def test_a_two_input_compensator_too_large_to_prove_is_one_error_naming_outputs():
-    from symctl import ModelFileError
-
+def test_a_two_input_compensator_is_derived_and_proved_with_its_gains_exact_values():
     text = (EXAMPLE.parent / "antagonist.toml").read_text()
     outputs = (
         '[[outputs]]\nname = "a"\nstate = "theta"\n\n[[outputs]]\nname = "f"\nstate = "f_flex"\n\n'
     )
     text = text[: text.index("[delay_graph]")].replace("[sampling]", outputs + "[sampling]")
-    with pytest.raises(
-        ModelFileError, match="outputs: the LQG compensator of 2 inputs is too large"
-    ):
-        derive(text)
+    res = derive(text)
+    s, kf = res.system, res.kalman
+    assert res.G.shape == (2, 2) and not res.G.free_symbols and res.proved and res.verified
+    proof = prove_lqg_tf(s, kf.C, res.G, gains=res.gains, kalman=kf)
+    assert proof and "exact gains" in proof.method
+    assert not prove_lqg_tf(s, kf.C, 2 * res.G, gains=res.gains, kalman=kf)
+    numeric = lqg_tf(s, kf.C, res.gains, kf)
+    assert np.allclose(res.G.impulse_response(30), numeric.impulse_response(30), atol=1e-9)
+    assert any("exact values" in note for note in res.spec.notes)
+    assert set(res.circuits) == {"controllable", "observable"} and res.nonlinear is not None
+    for rec in res.circuits.values():
+        assert rec.firing.max_deviation <= 1e-9
 
 
 def test_the_papers_muscle_measured_through_noise_derives_every_circuit_but_the_ifp():
@@ -135,4 +141,5 @@ def test_the_papers_muscle_measured_through_noise_derives_every_circuit_but_the_
     assert res.kalman is not None and res.proved and res.verified
     assert set(res.circuits) == {"general", "controllable", "observable"}
     assert all(c.firing.max_deviation <= 1e-9 for c in res.circuits.values())
-    assert res.atlas is None and res.nonlinear is None and "IFP circuit" in res.skipped
+    assert res.atlas is None and "IFP circuit" in res.skipped
+    assert res.nonlinear is not None and res.nonlinear.relative_deviation[0] < 1e-3

@@ -249,3 +249,21 @@ def test_noise_free_full_sensor_current_form_is_the_full_state_controller():
 def test_an_unknown_form_names_form():
     with pytest.raises(ParameterError, match="form: expected 'predictor' or 'current'"):
         lqg_tf(augment(DOUBLE_INTEGRATOR, 1, 1), [[1, 0]], form="filter")
+
+
+def test_the_compensator_is_proved_at_the_designs_exact_gains_and_refuses_half_a_design():
+    from symctl import MuscleModel, augment, kalman_gains, lqr_gains
+    from symctl.design.kalman import lqg_tf, prove_lqg_tf
+    from symctl.errors import SymctlTypeError
+
+    s = augment(MuscleModel(), 2, 1)
+    gains, kf = lqr_gains(s), kalman_gains(s, C=[[1]], W=1, V=1)
+    exact = {**gains.substitutions(exact=True), **kf.substitutions(exact=True)}
+    G = lqg_tf(s, [[1]]).subs(exact)
+    assert not G.free_symbols
+    assert prove_lqg_tf(s, [[1]], G, gains=gains, kalman=kf)
+    assert prove_lqg_tf(s, [[1]], gains=gains, kalman=kf)  # the symbolic one, evaluated
+    assert not prove_lqg_tf(s, [[1]], G * (1 + sp.Rational(1, 10**12)), gains=gains, kalman=kf)
+    assert not prove_lqg_tf(s, [[1]], G)  # numbers are not the symbolic compensator
+    with pytest.raises(SymctlTypeError, match="kalman"):
+        prove_lqg_tf(s, [[1]], G, gains=gains)
