@@ -1,15 +1,5 @@
-"""The firing-pattern figure (the paper's Figs. 9-11): one panel per neuron of :math:`G_2`.
-
-The plant's first state on top, each neuron's change of firing rate below, one line per
-realization and one legend under the figure; :meth:`FiringPatterns.plot
-<symctl.neural.firing.FiringPatterns.plot>` delegates here.
-
->>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
->>> from symctl.plotting.firing import firing_plot
->>> fp = circuit_firing("controllable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
->>> [ax.get_title() for ax in firing_plot(fp).axes][1:]
-['neuron $x_{2}$', 'neuron $y$']
-"""
+r"""The firing-pattern figure (the paper's Figs. 9-11): one panel per neuron of :math:`G_2`;
+:meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>` delegates here."""
 
 from __future__ import annotations
 
@@ -18,7 +8,8 @@ from typing import TYPE_CHECKING
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.plotting import style
-from symctl.plotting.response import UNKNOWN_UNIT
+from symctl.plotting.response import _LINE_COLOURS as _COLOURS
+from symctl.plotting.response import UNKNOWN_UNIT, _locator
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -27,9 +18,7 @@ if TYPE_CHECKING:
 
 __all__ = ["firing_plot"]
 
-PANEL_HEIGHT = 1.05
-"""Height of a row of neuron panels [in], their headings included."""
-_COLOURS = tuple(c for c in style.PALETTE if c != "#F0E442")  # yellow is faint as a line
+PANEL_HEIGHT = 1.05  # a row of neuron panels with their headings [in]
 
 
 def _tex(name: str, *, part: bool = True) -> str:
@@ -179,9 +168,3 @@ def firing_plot(
     if title:
         fig.suptitle(title, fontsize=style.TITLE)
     return fig
-
-
-def _locator():
-    from matplotlib.ticker import MaxNLocator
-
-    return MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10])

@@ -1,22 +1,11 @@
 r"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
 
-On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.structure`
-renders it. Text is measured by a function passed in, ``measure(text, points) ->
-(width, height)`` in inches.
-
-1. **Feedback.** The wires closing a cycle (back edges of a depth-first search from the
-   inputs, and, with a delay assignment, every wire back to an earlier vertex) are arcs
-   below or above the rows, carrying the gains and delays that feed them (the paper's
-   IFP drawing: :math:`K_1, K_2` on the arcs into :math:`\mu`).
-2. **Columns** by longest path; with a delay assignment (the witness of compatibility)
-   by *vertex level* first (:func:`vertex_levels`), so each vertex's signals sit in one
-   shaded band (:attr:`StructureLayout.bands`).
-3. **Rows**: :func:`~symctl.plotting.layered.rows` (integer rows, straight wires).
-4. **Wires** are orthogonal, turning in the gap between two columns at a slot
-   (:func:`~symctl.plotting.layered.assign_slots`); every wire ends on its block's
-   outline, its last piece at least :data:`ARROW` long; an adder takes its inputs on its
-   left side (spread; the circle grows for many), feedback arcs from below or above.
-5. **Frames** box the parts of a series connection (``G1``, ``G2``, ``G3``).
+On :mod:`symctl.plotting.layered`; text is measured by ``measure(text, points) -> (width,
+height)`` [in]. Wires closing a cycle are arcs below or above the rows, carrying the gains
+and delays that feed them (the paper's IFP drawing). Columns by longest path, with a delay
+assignment by vertex level first (:func:`vertex_levels`: each vertex's signals in one
+band); integer rows; orthogonal wires turning at a slot of their gap; an adder takes its
+inputs on its left side; each part of a series connection framed.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure_layout import structure_layout
@@ -187,13 +176,6 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
     return dag, layer
 
 
-def spread(count: int, half: float) -> list[float]:
-    """``count`` offsets from ``+half`` to ``-half`` (0 for one)."""
-    if count <= 1:
-        return [0.0] * count
-    return [half - 2 * half * k / (count - 1) for k in range(count)]
-
-
 def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
     """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ
     (narrow arcs first, so a nested arc runs inside)."""
@@ -300,9 +282,7 @@ def structure_layout(
     edges = list(dag.edges)
     chains, node_layer, preds, succs = layered.split(edges, layer)
     paths = dict(zip(edges, chains, strict=True))
-    columns: dict[int, list] = {}
-    for node in [*dag, *(n for chain in chains for n in chain[1:-1])]:
-        columns.setdefault(node_layer[node], []).append(node)
+    columns = layered.by_layer(node_layer, [*dag, *(n for chain in chains for n in chain[1:-1])])
     ncol = max(columns) + 1
     row = layered.rows(columns, preds, succs)
     col = {n: c for c, nodes in columns.items() for n in nodes}
@@ -338,13 +318,15 @@ def structure_layout(
             )
     offset: dict = {}
     for b, entries in enter_left.items():
-        for (_, key), off in zip(sorted(entries), spread(len(entries), geo.port(b)), strict=True):
+        for (_, key), off in zip(
+            sorted(entries), layered.spread(len(entries), geo.port(b)), strict=True
+        ):
             offset[(b, key)] = off
     rise_off: dict[int, float] = {}
     for (b, _), entries in enter_vert.items():
         # outer lanes enter on the left, so that arcs do not cross
         for (_, k), off in zip(
-            sorted(entries), spread(len(entries), geo.port(b))[::-1], strict=True
+            sorted(entries), layered.spread(len(entries), geo.port(b))[::-1], strict=True
         ):
             rise_off[k] = off
 
