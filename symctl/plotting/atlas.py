@@ -29,8 +29,7 @@ def _panel(fig, circuit, head: str, width: float, ax=None):
     return ax, x1 - x0, y1 - y0, head
 
 
-GAP = 0.08
-"""Between two panels [in]."""
+GAP = 0.08  # between two panels [in]
 _SQUEEZE = 1.1  # a drawing this much wider than its column is redrawn to fit it
 _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 

@@ -47,10 +47,10 @@ from symctl.plotting.circuit_layout import (
 from symctl.plotting.common import (
     figure_and_axes,
     fit_to_drawing,
+    heading,
     key_columns,
     text_outline,
     text_size,
-    wrap,
 )
 
 if TYPE_CHECKING:
@@ -322,15 +322,9 @@ def draw_circuit(
     y_lo = min(y, key_lo) - 0.03
     x_hi = max(x_hi, key_hi, right + 0.03)
     if title:  # wrapped to the drawing (or the page, for a narrow one)
-        lines = wrap(
-            title.split(" "), max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04, style.TITLE, scale=1.04
-        )
-        step = style.TITLE / 72 * 1.3
-        top = y_hi + 0.04 + step * len(lines)
-        for k, line in enumerate(lines):
-            ax.text(x_lo + 0.02, top - k * step, line, ha="left", va="top", fontsize=style.TITLE)
-            x_hi = max(x_hi, x_lo + 0.06 + 1.04 * text_size(line, style.TITLE)[0])
-        y_hi = top + 0.03
+        room = max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04
+        top, right = heading(ax, title, x_lo + 0.02, y_hi + 0.04, room)
+        x_hi, y_hi = max(x_hi, right + 0.04), top + 0.03
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
 
 

@@ -235,22 +235,17 @@ def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
     out = {}
     for node, (x, y) in pos.items():
         if node in radius:
-            r = radius[node]
+            r = radius[node] + NAME_GAP
             if node in m.name:
-                w, h = m.name[node]
-                out["name", node] = (x - w / 2, y + r + NAME_GAP, x + w / 2, y + r + NAME_GAP + h)
+                out["name", node] = layered.box(x, y + r, m.name[node], va="bottom")
             if node in m.tag:
-                w, h = m.tag[node]
-                out["tag", node] = (x - w / 2, y - r - NAME_GAP - h, x + w / 2, y - r - NAME_GAP)
-        elif node in m.end:
-            w, h = m.end[node]
-            x0 = x + DOT + _END_GAP if isinstance(node, tuple) else x - DOT - _END_GAP - w
-            out["end", node] = (x0, y - h / 2, x0 + w, y + h / 2)  # an output's on the right
+                out["tag", node] = layered.box(x, y - r, m.tag[node], va="top")
+        elif node in m.end:  # an output's on the right
+            d = DOT + _END_GAP if isinstance(node, tuple) else -DOT - _END_GAP
+            out["end", node] = layered.box(x + d, y, m.end[node], "left" if d > 0 else "right")
     for k, arc in enumerate(arcs):
         if arc.label is not None and arc.synapse in m.label:
-            w, h = m.label[arc.synapse]
-            (x, y) = arc.label
-            out["label", k] = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+            out["label", k] = layered.box(*arc.label, m.label[arc.synapse])
     return out
 
 
@@ -432,8 +427,7 @@ def circuit_layout(
             p = layered.bezier_points(curve)
             ink.append((*p.min(axis=0), *p.max(axis=0)))
             if where is not None:
-                w, h = m.label[s]
-                ink.append((where[0] - w / 2, where[1] - h / 2, where[0] + w / 2, where[1] + h / 2))
+                ink.append(layered.box(*where, m.label[s]))
         lo, hi = np.min(ink, axis=0), np.max(ink, axis=0)
         dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - float(hi[3])
         top = float(lo[1]) + dy
@@ -558,10 +552,7 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
         chosen.append((h, drawn, where))
         lines.append(layered.bezier_points(drawn))
         if where is not None:
-            w, hh = size
-            obstacles = obstacles.with_box(
-                (where[0] - w / 2, where[1] - hh / 2, where[0] + w / 2, where[1] + hh / 2)
-            )
+            obstacles = obstacles.with_box(layered.box(*where, size))
     return chosen, clear, labelled
 
 

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = ["figure_and_axes", "fit_to_drawing", "key_columns", "text_outline", "text_size", "wrap"]
-
 
 @lru_cache(maxsize=4096)
 def text_size(text: str, size: float) -> tuple[float, float]:
@@ -88,6 +86,18 @@ def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -
         else:
             lines.append(item)
     return lines
+
+
+def heading(ax, title: str, x: float, y: float, room: float) -> tuple[float, float]:
+    """``title`` wrapped to ``room`` inches in lines above ``y`` from ``x``; their top and right end."""
+    from symctl.plotting.style import TITLE
+
+    lines = wrap(title.split(" "), room, TITLE, scale=1.04)
+    step = TITLE / 72 * 1.3
+    top = y + step * len(lines)
+    for k, line in enumerate(lines):
+        ax.text(x, top - k * step, line, ha="left", va="top", fontsize=TITLE)
+    return top, x + max(1.04 * text_size(line, TITLE)[0] for line in lines)
 
 
 def key_columns(widths, room: float, gap: float) -> list[list[int]]:

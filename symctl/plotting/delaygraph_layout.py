@@ -316,6 +316,6 @@ def delay_graph_layout(
         routes.append(EdgeRoute(i, j, d, back, tuple(bez[::3]), tuple(bez), centre))
     boxes = [(*pos[v], *size[v]) for v in pos]
     boxes += [(*xy, *wh) for xy, wh in zip(placed, label, strict=True)]
-    corners = [(x - w / 2, y - h / 2, x + w / 2, y + h / 2) for x, y, w, h in boxes]
+    corners = [layered.box(x, y, (w, h)) for x, y, w, h in boxes]
     bounds = layered.extent([p for r in routes for p in r.bezier], corners, 0.3)
     return DelayGraphLayout(layer, pos, size, tuple(routes), bounds)

@@ -106,6 +106,19 @@ def spread(count: int, half: float) -> list[float]:
     return [half - 2 * half * k / (count - 1) for k in range(count)]
 
 
+def box(x: float, y: float, size, ha="center", va="center") -> tuple[float, float, float, float]:
+    """The box ``(x0, y0, x1, y1)`` of a text of ``size`` (w, h) at ``(x, y)``, aligned as matplotlib.
+
+    >>> from symctl.plotting.layered import box
+    >>> box(1.0, 0.0, (0.4, 0.2), ha="right", va="bottom")
+    (0.6, 0.0, 1.0, 0.2)
+    """
+    w, h = size
+    x0 = x - {"left": 0.0, "center": w / 2, "right": w}[ha]
+    y0 = y - {"bottom": 0.0, "center": h / 2, "top": h}[va]
+    return x0, y0, x0 + w, y0 + h
+
+
 def extent(points, boxes=(), margin: float = 0.0) -> tuple[float, float, float, float]:
     """``(x_lo, x_hi, y_lo, y_hi)`` around ``points`` and boxes ``(x0, y0, x1, y1)``, plus ``margin``."""
     pts = [*points, *((b[0], b[1]) for b in boxes), *((b[2], b[3]) for b in boxes)]
@@ -687,21 +700,16 @@ def place_label(curve, size, obstacles: Obstacles, lines=None) -> tuple[float, f
     """The centre of a label of ``size`` (w, h) on ``curve``, or None: tried from the middle
     outwards, on no circle and no box; of those, the one the fewest points of ``lines``
     (other curves) pass through."""
-    w, h = size
     best, best_cost = None, None
     pts = np.zeros((0, 2)) if lines is None else np.asarray(lines, float).reshape(-1, 2)
     for t in (0.5, 0.42, 0.58, 0.34, 0.66, 0.27, 0.73, 0.2, 0.8):
         x, y = (float(v) for v in bezier_points(curve, [t])[0])
-        box = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
-        if not _box_free(box, obstacles):
+        x0, y0, x1, y1 = box(x, y, size)
+        if not _box_free((x0, y0, x1, y1), obstacles):
             continue
-        inside = (
-            (pts[:, 0] > box[0])
-            & (pts[:, 0] < box[2])
-            & (pts[:, 1] > box[1])
-            & (pts[:, 1] < box[3])
+        cost = int(
+            ((pts[:, 0] > x0) & (pts[:, 0] < x1) & (pts[:, 1] > y0) & (pts[:, 1] < y1)).sum()
         )
-        cost = int(inside.sum())
         if cost == 0:
             return x, y
         if best_cost is None or cost < best_cost:

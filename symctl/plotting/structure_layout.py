@@ -673,21 +673,12 @@ def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
     label_h = measure("G1", SMALL)[1]
     out = []
     for part, members in parts.items():
-        inside, xs, ys = set(members), [], []
-        for n in members:
-            bx, by, bw, bh = boxes[n]
-            xs += [bx - bw / 2, bx + bw / 2]
-            ys += [by - bh / 2, by + bh / 2]
-            if n in names:
-                lab, (_, w, h) = names[n], name_sizes[n]
-                left = {"center": lab.x - w / 2, "right": lab.x - w, "left": lab.x}[lab.ha]
-                xs += [left, left + w]
-                ys.append(lab.y + h if lab.va == "bottom" else lab.y - h)
-        for w in wires:
-            if w.source in inside and w.target in inside:
-                xs += [p[0] for p in w.points]
-                ys += [p[1] for p in w.points]
-        pad = FRAME_PAD
-        out.append(Frame(part, min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad))
+        inside = set(members)
+        corners = [layered.box(bx, by, (bw, bh)) for bx, by, bw, bh in map(boxes.get, members)]
+        for n in inside & set(names):
+            lab = names[n]
+            corners.append(layered.box(lab.x, lab.y, name_sizes[n][1:], lab.ha, lab.va))
+        pts = [p for w in wires if w.source in inside and w.target in inside for p in w.points]
+        out.append(Frame(part, *layered.extent(pts, corners, FRAME_PAD)))
         y_hi = max(y_hi, out[-1].y1 + label_h + 0.06)
     return tuple(out), y_hi
