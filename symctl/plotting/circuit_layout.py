@@ -417,21 +417,21 @@ def circuit_layout(
         chosen, fine, written = route(mine, local, col, m.radius, m.label, obstacles, search=search)
         clear, labelled = clear and fine, labelled and written
         curves = [curve for _, curve, _ in chosen]
-        # the band's extent (x0, y0, x1, y1), then moved under the one above
+        # the band's extent, then moved under the one above
         ink = [
             (lx - e[0], ly - e[2], lx + e[1], ly + e[3])
             for n, (lx, ly) in local.items()
             for e in [ext[n]]
         ]
-        for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
-            p = layered.bezier_points(curve)
-            ink.append((*p.min(axis=0), *p.max(axis=0)))
-            if where is not None:
-                ink.append(layered.box(*where, m.label[s]))
-        lo, hi = np.min(ink, axis=0), np.max(ink, axis=0)
-        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - float(hi[3])
-        top = float(lo[1]) + dy
-        band_box.append((float(lo[0]), float(hi[2]), float(lo[1]) + dy, float(hi[3]) + dy))
+        ink += [
+            layered.box(*w, m.label[s])
+            for (_, _, s), (_, _, w) in zip(mine, chosen, strict=True)
+            if w
+        ]
+        x0, x1, y0, y1 = layered.extent([p for c in curves for p in layered.bezier_points(c)], ink)
+        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - y1
+        top = y0 + dy
+        band_box.append((x0, x1, y0 + dy, y1 + dy))
         for n, (lx, ly) in local.items():
             pos[n] = (lx, ly + dy)
         for k, (h, _, where), curve in zip(idx, chosen, curves, strict=True):
