@@ -49,7 +49,6 @@ _BULGE = 0.22  # of a two-cycle's edges, and of a lone back edge between neighbo
 _CLIP = 0.03  # arrow tips stop this far from a box
 _PORT_STEP = 0.08  # between the ends of two edges on one side of a box
 _PORT_MARGIN = 0.06  # from the box's corners
-_SWEEPS = 8
 _T = np.linspace(0, 1, 12)  # where a curve's segments are sampled
 _WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True, True): 60.0}
 
@@ -112,7 +111,7 @@ def _depths(order, up, down, height) -> dict:
         ]
         for o in order
     ]
-    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]], _SWEEPS)
+    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]])
 
 
 def _across(p, q, bulge: float) -> list[tuple[float, float]]:
@@ -285,7 +284,7 @@ def delay_graph_layout(
     order: list[list] = [[] for _ in range(layer[n] + 1)]
     for node in sorted(node_layer, key=lambda v: (isinstance(v, tuple), v)):
         order[node_layer[node]].append(node)
-    order = layered.order(order, up, down, _SWEEPS)
+    order = layered.order(order, up, down)
     height = {node: size[node][1] if isinstance(node, int) else _BEND_HEIGHT for node in up}
     depth = _depths(order, up, down, height)
     # columns: each as wide as its widest box, the gaps as wide as their widest label

@@ -234,7 +234,7 @@ def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
     return 1.06 * sum(widths) + em * (_HANDLE * ncol + _SPACING * (ncol - 1) + _PAD)
 
 
-def legend_columns(labels, room: float, *, size: float = SMALL, most: int | None = None) -> int:
+def legend_columns(labels, room: float, *, size: float = SMALL) -> int:
     """The most columns (at least 1) in which a legend of ``labels`` fits ``room`` inches.
 
     Examples
@@ -244,8 +244,7 @@ def legend_columns(labels, room: float, *, size: float = SMALL, most: int | None
     (2, 1)
     """
     labels = list(labels)
-    top = max(1, min(len(labels), most or len(labels)))
-    for ncol in range(top, 1, -1):
+    for ncol in range(len(labels), 1, -1):
         if legend_width(labels, ncol, size=size) <= room:
             return ncol
     return 1
@@ -284,7 +283,7 @@ def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | N
     )
 
 
-def figure_legend(fig, handles, labels, *, title: str | None = None, most: int | None = None):
+def figure_legend(fig, handles, labels, *, title: str | None = None):
     """One legend under the whole figure, centred, in as many columns as fit its width.
 
     Examples
@@ -297,12 +296,11 @@ def figure_legend(fig, handles, labels, *, title: str | None = None, most: int |
     2
     """
     room = float(fig.get_size_inches()[0]) - 0.1
-    ncol = legend_columns(labels, room, most=most)
     return fig.legend(
         handles,
         labels,
         loc="outside lower center",
-        ncols=ncol,
+        ncols=legend_columns(labels, room),
         title=title,
         fontsize=SMALL,
         title_fontsize=SMALL,
