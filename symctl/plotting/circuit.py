@@ -323,7 +323,7 @@ def draw_circuit(
     x_hi = max(x_hi, key_hi, right + 0.03)
     if title:  # wrapped to the drawing (or the page, for a narrow one)
         room = max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04
-        top, right = heading(ax, title, x_lo + 0.02, y_hi + 0.04, room)
+        top, right = heading(ax, title, x_lo + 0.02, y_hi + 0.04, room, style.TITLE)
         x_hi, y_hi = max(x_hi, right + 0.04), top + 0.03
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
 

@@ -81,11 +81,6 @@ class SignValues:
     def __hash__(self) -> int:
         return hash((tuple(self.numbers.items()), tuple(self.ranges.items())))
 
-    def __eq__(self, other) -> bool:
-        if not isinstance(other, SignValues):
-            return NotImplemented
-        return dict(self.numbers) == dict(other.numbers) and dict(self.ranges) == dict(other.ranges)
-
     def __bool__(self) -> bool:
         return bool(self.numbers or self.ranges)
 

@@ -88,16 +88,15 @@ def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -
     return lines
 
 
-def heading(ax, title: str, x: float, y: float, room: float) -> tuple[float, float]:
-    """``title`` wrapped to ``room`` inches in lines above ``y`` from ``x``; their top and right end."""
-    from symctl.plotting.style import TITLE
-
-    lines = wrap(title.split(" "), room, TITLE, scale=1.04)
-    step = TITLE / 72 * 1.3
+def heading(ax, title: str, x: float, y: float, room: float, size: float):
+    """``title`` wrapped to ``room`` inches in lines above ``y`` from ``x``, at ``size`` points;
+    returns their top and right end."""
+    lines = wrap(title.split(" "), room, size, scale=1.04)
+    step = size / 72 * 1.3
     top = y + step * len(lines)
     for k, line in enumerate(lines):
-        ax.text(x, top - k * step, line, ha="left", va="top", fontsize=TITLE)
-    return top, x + max(1.04 * text_size(line, TITLE)[0] for line in lines)
+        ax.text(x, top - k * step, line, ha="left", va="top", fontsize=size)
+    return top, x + max(1.04 * text_size(line, size)[0] for line in lines)
 
 
 def key_columns(widths, room: float, gap: float) -> list[list[int]]:

@@ -216,7 +216,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     right = max(1.04 * text_size(line, _SMALL)[0] for line in lines) + x_lo + 0.1
     y_lo = y - 0.04
     if title:
-        top, end = heading(ax, _plain(title), x_lo + 0.05, y_hi + 0.04, room)
+        top, end = heading(ax, _plain(title), x_lo + 0.05, y_hi + 0.04, room, style.TITLE)
         right, y_hi = max(right, end + 0.05), top + 0.04
     x_hi = max(x_hi, right)
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)

@@ -486,13 +486,11 @@ def structure_layout(
         xt, yt = pos[r.target]
         if straight[k]:
             pts += [(rise, ly), (rise, yt - sign * geo.reach(r.target, rise - xt, 1))]
-            if prev in r.chain and g.nodes[prev]["kind"] == "delay":  # up from the corner dot
-                pts[0] = (rise, ly - sign * item_width[prev] / 2)
         else:
             off = offset[(r.target, ("arc", k))]
             pts += [(rise, ly), (rise, yt + off), (xt - geo.reach(r.target, off, 0), yt + off)]
-            if prev in r.chain and g.nodes[prev]["kind"] == "delay":
-                pts[0] = (rise, ly - sign * item_width[prev] / 2)
+        if prev in r.chain and g.nodes[prev]["kind"] == "delay":  # up from the corner dot
+            pts[0] = (rise, ly - sign * item_width[prev] / 2)
         wires.append(Wire(clean(pts), g.edges[prev, r.target]["delay"], prev, r.target, True))
 
     # the arrows into the inputs and out of the outputs, and their labels
