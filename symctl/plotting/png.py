@@ -64,12 +64,8 @@ def render_pdf(
     ----------
     pdf : path
         A PDF file (the first page is rendered).
-    path : path
-        The PNG to write.
-    dpi : float
-        Dots per inch.
-    metadata : mapping of str to str, optional
-        PNG text chunks (``None`` values are left out).
+    path, dpi, metadata :
+        As for :func:`write_png`.
 
     Returns
     -------
