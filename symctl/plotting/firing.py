@@ -9,7 +9,7 @@ from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.plotting import style
 from symctl.plotting.response import _LINE_COLOURS as _COLOURS
-from symctl.plotting.response import UNKNOWN_UNIT, _locator
+from symctl.plotting.response import UNKNOWN_UNIT, _locator, _steps
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -97,25 +97,17 @@ def firing_plot(
     with style.styled():
         top_fig, grid_fig = fig.subfigures(2, 1, height_ratios=[1.1, PANEL_HEIGHT * rows + 0.3])
         top = top_fig.subplots()
-        lines = []
-        for i in range(fp.count):
-            lines += top.plot(
-                fp.t,
-                fp.f_bar + fp.delta_f[i],
-                color=_COLOURS[i % len(_COLOURS)],
-                lw=1.2,
-                drawstyle="steps-post",
-            )
+        colours = [_COLOURS[i % len(_COLOURS)] for i in range(fp.count)]
+        lines = [
+            _steps(top, fp.t, fp.f_bar + fp.delta_f[i], marked=False, color=c, lw=1.2)
+            for i, c in enumerate(colours)
+        ]
         if fp.delta_f_sd is not None:  # the same in every realization: one band
             style.band(top, fp.t, fp.f_bar + fp.delta_f[0], fp.delta_f_sd[0], _COLOURS[0])
-        optimal = top.plot(
-            fp.t,
-            fp.f_bar + fp.reference.delta_f[:, 0],
-            color="black",
-            lw=0.9,
-            ls=(0, (1, 1.5)),
-            drawstyle="steps-post",
-        )[0]
+        reference = fp.f_bar + fp.reference.delta_f[:, 0]
+        optimal = _steps(
+            top, fp.t, reference, marked=False, color="black", lw=0.9, ls=(0, (1, 1.5))
+        )
         what, sym, unit = _state(fp, labels)
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
@@ -138,17 +130,10 @@ def firing_plot(
         axes = grid_fig.subplots(rows, cols, sharex=True, squeeze=False)
         for k, name in enumerate(names):
             ax = axes[k // cols, k % cols]
-            for i in range(fp.count):
-                ax.plot(
-                    fp.t,
-                    fp.firing[name][i],
-                    drawstyle="steps-post",
-                    lw=1.0,
-                    color=_COLOURS[i % len(_COLOURS)],
-                )
+            for i, colour in enumerate(colours):
+                _steps(ax, fp.t, fp.firing[name][i], marked=False, lw=1.0, color=colour)
                 if fp.firing_sd is not None:
-                    sd = fp.firing_sd[name][i]
-                    style.band(ax, fp.t, fp.firing[name][i], sd, _COLOURS[i % len(_COLOURS)])
+                    style.band(ax, fp.t, fp.firing[name][i], fp.firing_sd[name][i], colour)
             ax.axhline(0, color="black", lw=0.5)
             part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
             where = f" ({part.partition('.')[0]})" if "." in part else ""
