@@ -91,17 +91,10 @@ def fit_plot(
             ax = axes[k // cols, k % cols]
             ok = bool(result.neuron_identifiable[name])
             color = fit_c if name in result.data else pred_c if ok else lost_c
-            if np.all(np.isfinite(pred.lower[name])):
+            lo, hi = pred.lower[name], pred.upper[name]
+            if np.all(np.isfinite(lo)):
                 used.add(3)
-                ax.fill_between(
-                    t,
-                    pred.lower[name],
-                    pred.upper[name],
-                    color=color,
-                    alpha=0.3,
-                    lw=0,
-                    step="post",
-                )
+                ax.fill_between(t, lo, hi, color=color, alpha=0.3, lw=0, step="post")
             ax.plot(t, pred[name], color=color, lw=1.2, drawstyle="steps-post")
             if name in result.data:
                 ax.plot(t, result.data[name], ".", ms=2.5, color=data_c, zorder=3)

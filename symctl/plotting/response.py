@@ -180,15 +180,8 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             style.band(ax, res.t, trace[:, i], sd[:, i], colour, _band_label(res, j))
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
-            ax.step(
-                res.t,
-                res.w[:, i],
-                where="post",
-                ls="--",
-                lw=0.8,
-                color=style.NEUTRAL,
-                label=f"disturbance $w$ [{per}]",
-            )
+            look = {"ls": "--", "lw": 0.8, "color": style.NEUTRAL}
+            ax.step(res.t, res.w[:, i], where="post", label=f"disturbance $w$ [{per}]", **look)
     ax.axhline(0, color="black", lw=0.5)
     if len(group) == 1:
         _trace, bar, names, i, *_ = group[0]

@@ -97,16 +97,8 @@ def cycle(k: int) -> str:
 
 def band(ax, t, mean, sd, color: str, label: str | None = None):
     r"""The spread of noisy runs about their mean, :math:`\pm 2` sd, held over each step."""
-    return ax.fill_between(
-        t,
-        mean - 2 * sd,
-        mean + 2 * sd,
-        step="post",
-        color=color,
-        alpha=0.22,
-        lw=0,
-        label=label,
-    )
+    lo, hi = mean - 2 * sd, mean + 2 * sd
+    return ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.22, lw=0, label=label)
 
 
 def axis_label(quantity: str, unit: str | None) -> str:
