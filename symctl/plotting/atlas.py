@@ -29,8 +29,7 @@ def _panel(fig, circuit, head: str, width: float, ax=None):
     return ax, x1 - x0, y1 - y0, head
 
 
-GAP = 0.08
-"""Between two panels [in]."""
+GAP = 0.08  # between two panels [in]
 _SQUEEZE = 1.1  # a drawing this much wider than its column is redrawn to fit it
 _VERDICT = {True: "universal", False: "not universal", None: "not decided"}
 
@@ -111,7 +110,7 @@ def draw_classes(atlas, classes, *, columns: int = 3, title: str | None = None) 
     if not union.labelled:  # say which panels have no weights, not the total of synapses
         union = replace(union, synapses=max(k.synapses for k in said if not k.labelled))
     kax = fig.add_axes((0, 0, 1, 1))
-    bottom, right = draw_key_items(kax, key_items(union), 0.0, 0.0, width, SMALL)
+    bottom, _ = draw_key_items(kax, key_items(union), 0.0, 0.0, width, SMALL)
     key_height = -bottom + 0.04
     kax.set_xlim(0, width)
     kax.set_ylim(bottom - 0.02, 0.02)
@@ -129,5 +128,4 @@ def draw_classes(atlas, classes, *, columns: int = 3, title: str | None = None) 
             ax.set_position((left / width, (top - hh) / total, w / width, hh / total))
         top -= h + GAP
     kax.set_position((0, 0, 1, (key_height + 0.02) / total))
-    del right
     return fig

@@ -1,10 +1,8 @@
 r"""Rendering of a circuit drawing at its printed size: neurons, synapses, weights, a key.
 
-Positions from :mod:`~symctl.plotting.circuit_layout` (this module measures the texts so
-that the layout makes room for each), text from :mod:`~symctl.plotting.circuit_labels`,
-colours from :mod:`~symctl.plotting.circuit_key`. A drawing whose weights cannot all be
-written legibly at its width is drawn without them and says so in its key (they are in
-:meth:`Circuit.equations <symctl.neural.circuit.Circuit.equations>`).
+Positions from :mod:`~symctl.plotting.circuit_layout` (the texts measured here first),
+text from :mod:`~symctl.plotting.circuit_labels`, colours from
+:mod:`~symctl.plotting.circuit_key`.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit import draw_circuit
@@ -49,10 +47,10 @@ from symctl.plotting.circuit_layout import (
 from symctl.plotting.common import (
     figure_and_axes,
     fit_to_drawing,
+    heading,
     key_columns,
     text_outline,
     text_size,
-    wrap,
 )
 
 if TYPE_CHECKING:
@@ -62,10 +60,8 @@ if TYPE_CHECKING:
 
 __all__ = ["COLOURS", "Drawn", "draw_circuit", "drawn"]
 
-NAME = style.FONT_SIZE
-"""A neuron's name, an input's or output's, and a neuron's self-dynamics [pt]."""
-SMALL = style.SMALL
-"""Weights, vertex tags and the key [pt]."""
+NAME = style.FONT_SIZE  # names of neurons, inputs and outputs, and self-dynamics [pt]
+SMALL = style.SMALL  # weights, vertex tags and the key [pt]
 _KEY_GAP = 0.3  # between two columns of the key of long values [in]
 _WEIGHT_STYLE = {
     "ha": "center",
@@ -80,16 +76,13 @@ _TAG_STYLE["style"] = "italic"
 _LINE = 0.8  # synapse lines [pt]
 _KEY_ROOM = 4.6  # a key under a narrow drawing may be this wide [in]
 _BODY_WIDE = 0.55  # a self-dynamics wider than this [in] is set on two lines
-MAX_LABELS = 80
-"""A circuit of more synapses is drawn without its weights (they could not all be read)."""
-MAX_KEY = 2.5
-"""The tallest key of long weights [in]; a circuit with more is drawn without its weights."""
+MAX_LABELS = 80  # a circuit of more synapses is drawn without its weights
+MAX_KEY = 2.5  # the tallest key of long weights [in]; a longer one: no weights written
 
 
 @lru_cache(maxsize=8192)
 def _extent(text: str, size: float) -> tuple[float, float]:
-    """Width and height [in] of ``text`` at ``size`` points as drawn (its window extent, the box
-    :func:`~symctl.plotting.legibility.legibility` checks)."""
+    """Width and height [in] of ``text`` at ``size`` points as drawn (the box legibility checks)."""
     global _RULER
     if _RULER is None:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -117,8 +110,7 @@ class Drawn(NamedTuple):
 
 
 def drawn(ax) -> Drawn | None:
-    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit), for a
-    grid of drawings that shares one key and for tests of the geometry.
+    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit).
 
     Examples
     --------
@@ -198,13 +190,11 @@ def draw_circuit(
 ) -> Figure:
     r"""Draw the circuit at its printed size: neurons as circles, synapses as arrows.
 
-    A circle holds the neuron's self-dynamics (empty: none), its name above and its
-    delay-graph vertex ``v<k>`` below; inputs left, outputs right, columns along the forward
-    synapses, cut into bands when wider than ``width``. A synapse carries its weight (long
-    ones as :math:`w_1, w_2, \dots`, listed under the drawing) and its sign's colour
-    (excitatory blue with an arrow head, inhibitory vermillion with a bar, purple when it
-    depends on symbols); dashed when delayed (:math:`k` steps where its label ends in
-    :math:`z^{-k}`). The key under the drawing says what the drawing shows.
+    A circle holds the neuron's self-dynamics, its name above and its vertex ``v<k>``
+    below; a synapse carries its weight (long ones as :math:`w_k`, listed under the
+    drawing) and its sign's colour (excitatory blue with a head, inhibitory vermillion
+    with a bar, purple when it depends on symbols), dashed when delayed. A drawing whose
+    weights cannot all be set legibly is drawn without them and says so in its key.
 
     Parameters
     ----------
@@ -332,15 +322,9 @@ def draw_circuit(
     y_lo = min(y, key_lo) - 0.03
     x_hi = max(x_hi, key_hi, right + 0.03)
     if title:  # wrapped to the drawing (or the page, for a narrow one)
-        lines = wrap(
-            title.split(" "), max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04, style.TITLE, scale=1.04
-        )
-        step = style.TITLE / 72 * 1.3
-        top = y_hi + 0.04 + step * len(lines)
-        for k, line in enumerate(lines):
-            ax.text(x_lo + 0.02, top - k * step, line, ha="left", va="top", fontsize=style.TITLE)
-            x_hi = max(x_hi, x_lo + 0.06 + 1.04 * text_size(line, style.TITLE)[0])
-        y_hi = top + 0.03
+        room = max(x_hi - x_lo, min(page, _KEY_ROOM)) - 0.04
+        top, right = heading(ax, title, x_lo + 0.02, y_hi + 0.04, room, style.TITLE)
+        x_hi, y_hi = max(x_hi, right + 0.04), top + 0.03
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)
 
 
@@ -366,8 +350,8 @@ def _shown(tex: str) -> int:
 
 
 def _key_fits(values: list[str], room: float) -> bool:
-    """Whether a key of these long values fits ``room`` across and :data:`MAX_KEY` tall, estimated
-    from the characters shown (half an em each) before any is set (a parse takes 0.1 s)."""
+    """Whether a key of these values fits ``room`` across and :data:`MAX_KEY` tall, estimated
+    from the characters shown before any is set."""
     em = SMALL / 72
     lines = [part for v in values for part in _broken(f"w = {v}", room)]
     widths = [0.55 * em * (_shown(v) + 2) for v in lines]
@@ -388,13 +372,9 @@ def _draw_arc(ax, arc, sign: str, delayed: bool) -> None:
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:
-    r"""The key's ``label = value`` lines from ``(x, y)`` down, in as many columns as fit
-    ``room``; returns its lowest ``y`` and rightmost ``x``.
-
-    Each line is drawn as its glyph outlines (a ``PathPatch`` with gid ``key:w1``, ...), the
-    path that measured it: matplotlib parses mathtext again for every measure and format,
-    and a key of forty long fractions took two thirds of the drawing's time.
-    """
+    r"""The key's ``label = value`` lines from ``(x, y)`` down in as many columns as fit
+    ``room``, each drawn as the glyph outlines that measured it (gid ``key:w1``, ...);
+    returns its lowest ``y`` and rightmost ``x``."""
     if not lines:
         return y, x
     names = [re.sub(r"\\mathrm|[^A-Za-z0-9]", "", line.partition(" = ")[0]) for line in lines]
@@ -445,7 +425,7 @@ def _terms(tex: str) -> list[str]:
 
 def _body(tex: str, compact: bool = False) -> str:
     """A neuron's self-dynamics as drawn: on two lines when one would make a large circle
-    (``compact``: always, a single term's weight over its :math:`z^{-k}`)."""
+    (``compact``: always)."""
     if not tex:
         return ""
     one = display_text(tex)

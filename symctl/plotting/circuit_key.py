@@ -1,23 +1,17 @@
 r"""A circuit drawing's colours and key: the sign of each weight, and what the marks mean.
 
-A weight such as :math:`K_0 (K_2 + \epsilon_1\epsilon_3)/(C_1 C_3)` has no sign until its
-symbols have values. Given ``signs_at`` (a number per symbol, or a range ``(lo, hi)`` for
-one that varies), :func:`weight_sign` is ``"+"`` / ``"-"`` when so for *every* value
-(numbers substituted exactly, ranges by SymPy's interval arithmetic,
+Given ``signs_at`` (a number per symbol, or a range ``(lo, hi)``), :func:`weight_sign` is
+``"+"`` or ``"-"`` only when so for *every* value (ranges by SymPy's interval arithmetic,
 :class:`~sympy.calculus.accumulationbounds.AccumulationBounds`, which never claims a sign
-some point lacks), ``"0"`` when zero, else ``"?"``; without, SymPy's sign from the
-assumptions. The key (:func:`key_items`) explains only the marks the drawing shows.
+some point lacks), ``"0"`` when zero, else ``"?"``. The key (:func:`key_items`) explains
+only the marks the drawing shows.
 
 >>> import sympy as sp
->>> from symctl.plotting.circuit_key import Key, SignValues, key_items, weight_sign
->>> K0, K2, e1, e3, C1 = sp.symbols("K_0 K_2 epsilon_1 epsilon_3 C_1", real=True)
->>> at = SignValues.of({K0: -0.046, K2: -0.35, C1: 1, e1: (-0.9, 0.9), e3: (-0.9, 0.9)})
->>> weight_sign(K0 / C1, at), weight_sign(K0 * (K2 + e1 * e3) / C1, at)
-('-', '?')
->>> weight_sign(K0 * (K2 - e1**2) / C1, at)   # K_2 - eps^2 < 0 on the whole range
-'+'
->>> [text for _, text in key_items(Key(signs=frozenset("+-"), delays=frozenset({0, 1})))]
-['excitatory', 'inhibitory', 'delayed one step']
+>>> from symctl.plotting.circuit_key import SignValues, weight_sign
+>>> K0, K2, e1, C1 = sp.symbols("K_0 K_2 epsilon_1 C_1", real=True)
+>>> at = SignValues.of({K0: -0.046, K2: -0.35, C1: 1, e1: (-0.9, 0.9)})
+>>> weight_sign(K0 * (K2 + e1) / C1, at), weight_sign(K0 * (K2 - e1**2) / C1, at)
+('?', '+')
 """
 
 from __future__ import annotations
@@ -35,25 +29,13 @@ from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
 from symctl.plotting.common import text_size
 
-__all__ = [
-    "COLOURS",
-    "Key",
-    "SignValues",
-    "arrow_style",
-    "draw_key_items",
-    "key_items",
-    "stems",
-    "weight_sign",
-]
-
-COLOURS = {
+COLOURS = {  # of a synapse by its sign ("": a plain wire to an output)
     "+": style.EXCITATORY,
     "-": style.INHIBITORY,
     "?": style.SYMBOLIC,
     "0": "0.7",
     "": style.NEUTRAL,
 }
-"""The colour of a synapse by its sign (``""``: a plain wire to an output)."""
 
 
 def arrow_style(sign: str, colour, linestyle) -> dict:
@@ -77,9 +59,7 @@ class SignValues:
     numbers : mapping of Symbol to Rational or Float
         A value per symbol.
     ranges : mapping of Symbol to (float, float)
-        A closed range ``(lo, hi)``, ``lo < hi``, per symbol that varies.
-
-    Build one with :meth:`of`.
+        A closed range ``(lo, hi)``, ``lo < hi``, per symbol that varies (build with :meth:`of`).
 
     Examples
     --------
@@ -100,11 +80,6 @@ class SignValues:
 
     def __hash__(self) -> int:
         return hash((tuple(self.numbers.items()), tuple(self.ranges.items())))
-
-    def __eq__(self, other) -> bool:
-        if not isinstance(other, SignValues):
-            return NotImplemented
-        return dict(self.numbers) == dict(other.numbers) and dict(self.ranges) == dict(other.ranges)
 
     def __bool__(self) -> bool:
         return bool(self.numbers or self.ranges)
@@ -356,10 +331,8 @@ def key_items(key: Key) -> list[tuple[str, str]]:
 
 
 def draw_key_items(ax, items, x: float, y: float, room: float, size: float):
-    """Draw ``items`` in rows from ``(x, y)`` down, no row wider than ``room``.
-
-    Returns the lowest ``y`` and the rightmost ``x`` it drew at.
-    """
+    """Draw ``items`` in rows from ``(x, y)`` down, no row wider than ``room``; returns the
+    lowest ``y`` and the rightmost ``x`` drawn at."""
     from matplotlib.patches import Circle, FancyArrowPatch
 
     if not items:

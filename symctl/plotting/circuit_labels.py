@@ -1,22 +1,8 @@
 r"""The text of a circuit drawing: each synapse's weight, each neuron's body, and the key.
 
-A weight is written as its LaTeX (numbers to 3 significant digits) when it shows at most
-:data:`LONG_WEIGHT` characters (:func:`visible_length`); a longer one, e.g. a MIMO
-coefficient rational in :math:`K`, :math:`\epsilon` and :math:`C`, is drawn as
-:math:`w_k`, the key under the drawing reading :math:`w_k = \dots` in full; a
-self-dynamics longer than :data:`LONG_SELF` becomes :math:`\mathrm{self}_k` likewise.
-Equal values share one label, numbered in the order of the neurons, then the outputs.
-
->>> from symctl import Circuit, controllable_canonical, controller_tf, factor
->>> from symctl.compatibility.structure import Structure
->>> from symctl.plotting.circuit_labels import circuit_text
->>> f = factor(controller_tf(2))
->>> text = circuit_text(Circuit.from_structure(Structure.from_realization(
-...     controllable_canonical(f.G2))))
->>> sorted(set(text.weights.values()))
-['1', '\\frac{K_{0}}{C_{1} C_{3}}', 'w_{1}', 'w_{2}']
->>> text.key_lines()[0]
-'w_{1} = \\frac{K_{0} \\left(K_{2} + \\epsilon_{1} \\epsilon_{3}\\right)}{C_{1} C_{3}}'
+A weight showing more than :data:`LONG_WEIGHT` characters (:func:`visible_length`) is
+drawn as :math:`w_k` and a self-dynamics longer than :data:`LONG_SELF` as
+:math:`\mathrm{self}_k`, the key reading the value in full; equal values share a label.
 """
 
 from __future__ import annotations
@@ -36,22 +22,8 @@ if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
     from symctl.neural.neuron import Neuron, Synapse
 
-__all__ = [
-    "LONG_SELF",
-    "LONG_WEIGHT",
-    "CircuitText",
-    "circuit_text",
-    "display_text",
-    "visible_length",
-    "weight_tex",
-]
-
-LONG_WEIGHT = 14
-"""A weight showing more characters than this is drawn as :math:`w_k`, its value in the key
-(14 characters at 9 points are about 1.2 inches, what fits between two columns)."""
-LONG_SELF = 2 * LONG_WEIGHT
-r"""A self-dynamics showing more characters is drawn as :math:`\mathrm{self}_k`; shorter ones are
-written in the circle, which grows to hold them."""
+LONG_WEIGHT = 14  # a longer weight is drawn as w_k (14 characters fit between two columns)
+LONG_SELF = 2 * LONG_WEIGHT  # a longer self-dynamics is drawn as self_k, else in its circle
 
 _NUMBER = re.compile(r"-?\d+(\.\d*)?(e[+-]?\d+)?")
 
@@ -146,7 +118,7 @@ class CircuitText:
 
 
 class _Labels:
-    """Short labels ``stem_k`` for long values, one per distinct value, numbered from 1."""
+    """Short labels ``stem_k`` for long values, one per distinct value."""
 
     def __init__(self, stem: str, limit: int):
         self.stem, self.limit, self.seen = stem, limit, {}

@@ -1,15 +1,12 @@
 r"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
 
-On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.circuit` renders
-it, the sizes of the texts come in :class:`Measures`. Columns: inputs first, each neuron
-right of its furthest predecessor along forward synapses (those closing a cycle in a
-depth-first search from the inputs are feedback), outputs last, as far apart as circles,
-names and weights need; rows by :func:`~symctl.plotting.layered.rows` (half rows allowed).
-A drawing wider than ``width`` is cut into bands stacked top to bottom, only where every
-synapse across the cut joins neighbouring columns (it runs as a wire out of the right of
-its band, under it and into the next from the left). Every synapse is a bridge
-(:func:`route`), straight between neighbouring columns when clear, else bulging (feedback
-below) just enough to pass no circle and no text, its weight on it.
+On :mod:`symctl.plotting.layered`: inputs first, outputs last, neurons by longest forward
+path, rows by :func:`~symctl.plotting.layered.rows` (half rows allowed), columns as far
+apart as circles, names and weights need. A drawing wider than ``width`` is cut into bands
+stacked top to bottom where every synapse across the cut joins neighbouring columns (it
+runs as a wire out of the right of its band and into the next from the left). Each
+synapse is a bridge (:func:`route`), straight when clear, else bulging (feedback below)
+just enough to pass no circle and no text, its weight on it.
 
 >>> from symctl import Circuit, ifp_structure
 >>> from symctl.plotting.circuit_layout import circuit_layout
@@ -29,33 +26,17 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-import networkx as nx
 import numpy as np
 
-from symctl.compatibility.signalgraph import back_edges
 from symctl.plotting import layered
 
 if TYPE_CHECKING:
     from symctl.neural.circuit import Circuit
     from symctl.neural.neuron import Synapse
 
-__all__ = [
-    "DOT",
-    "MIN_GAP",
-    "MIN_RADIUS",
-    "Arc",
-    "CircuitLayout",
-    "Measures",
-    "circuit_layout",
-    "route",
-]
-
-MIN_RADIUS = 0.11
-"""The smallest neuron circle [in] (the radius when none is given)."""
-DOT = 0.03
-"""The radius of an input or output dot [in]."""
-MIN_GAP = 0.26
-"""The least room between two columns' circles and names [in]."""
+MIN_RADIUS = 0.11  # the smallest neuron circle [in] (the radius when none is given)
+DOT = 0.03  # the radius of an input or output dot [in]
+MIN_GAP = 0.26  # the least room between two columns' circles and names [in]
 MAX_RADIUS = 0.3  # a circle grows to space the ends of its synapses no larger than this
 NAME_GAP = 0.06  # between a circle and its name above it or its vertex tag below it
 _END_GAP = 0.04  # between a dot and its label
@@ -165,7 +146,7 @@ class Arc:
         return 2 in self.codes
 
     def points(self) -> np.ndarray:
-        """Points along the drawn path (``n x 2``): a curve sampled, a wire's pieces subdivided."""
+        """Points along the drawn path (``n x 2``)."""
         if not self.wire:
             return layered.bezier_points(self.path)
         pts = np.array(self.path)
@@ -221,36 +202,17 @@ class CircuitLayout:
 def _grid(c: Circuit) -> tuple[dict, dict]:
     """Columns (inputs 0, neurons by longest forward path, outputs last) and rows."""
     nodes = [*c.inputs, *(n.name for n in c.neurons)]
-    edges = [s for n in c.neurons for s in n.synapses]
-    successors: dict = {node: [] for node in nodes}
-    for s in edges:
-        if s.source != s.target and s.target not in successors[s.source]:
-            successors[s.source].append(s.target)
-    feedback = set(back_edges(successors, [*c.inputs, *nodes]))  # the one DFS (signalgraph)
-    dag = nx.DiGraph()
-    dag.add_nodes_from(nodes)
-    dag.add_edges_from((a, b) for a in nodes for b in successors[a] if (a, b) not in feedback)
+    links = [(s.source, s.target) for n in c.neurons for s in n.synapses]
     outs = [("out", o.target) for o in c.outputs]
-    col = layered.longest_path(
-        [*nx.topological_sort(dag), *outs],
-        {**dag.pred, **dict.fromkeys(outs, ())},
-        first=c.inputs,
-        last=outs,
-        floor=1,
-    )
-    columns: dict[int, list] = {}
-    for node in [*nodes, *outs]:
-        columns.setdefault(col[node], []).append(node)
+    _, col = layered.layering(nodes, links, [*c.inputs, *nodes], first=c.inputs, last=outs, floor=1)
+    links += [(o.source, ("out", o.target)) for o in c.outputs if o.source in col]
     preds: dict = {n: [] for n in col}
     succs: dict = {n: [] for n in col}
-    links = [(s.source, s.target) for s in edges]
-    links += [(o.source, ("out", o.target)) for o in c.outputs if o.source in col]
     for a, b in links:
         if a != b:
             succs[a].append(b)
             preds[b].append(a)
-    row = layered.rows(columns, preds, succs, integer=False)
-    return col, row
+    return col, layered.rows(layered.by_layer(col, [*nodes, *outs]), preds, succs, integer=False)
 
 
 def _extents(node, c_inputs, m: Measures) -> tuple[float, float, float, float]:
@@ -273,22 +235,17 @@ def _text_boxes(pos, radius, m: Measures, arcs=()) -> dict:
     out = {}
     for node, (x, y) in pos.items():
         if node in radius:
-            r = radius[node]
+            r = radius[node] + NAME_GAP
             if node in m.name:
-                w, h = m.name[node]
-                out["name", node] = (x - w / 2, y + r + NAME_GAP, x + w / 2, y + r + NAME_GAP + h)
+                out["name", node] = layered.box(x, y + r, m.name[node], va="bottom")
             if node in m.tag:
-                w, h = m.tag[node]
-                out["tag", node] = (x - w / 2, y - r - NAME_GAP - h, x + w / 2, y - r - NAME_GAP)
-        elif node in m.end:
-            w, h = m.end[node]
-            x0 = x + DOT + _END_GAP if isinstance(node, tuple) else x - DOT - _END_GAP - w
-            out["end", node] = (x0, y - h / 2, x0 + w, y + h / 2)  # an output's on the right
+                out["tag", node] = layered.box(x, y - r, m.tag[node], va="top")
+        elif node in m.end:  # an output's on the right
+            d = DOT + _END_GAP if isinstance(node, tuple) else -DOT - _END_GAP
+            out["end", node] = layered.box(x + d, y, m.end[node], "left" if d > 0 else "right")
     for k, arc in enumerate(arcs):
         if arc.label is not None and arc.synapse in m.label:
-            w, h = m.label[arc.synapse]
-            (x, y) = arc.label
-            out["label", k] = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+            out["label", k] = layered.box(*arc.label, m.label[arc.synapse])
     return out
 
 
@@ -331,8 +288,7 @@ def _column_x(columns: dict, specs, col, ext, m: Measures, gap: float) -> dict[i
 
 
 def _cuts(specs, col, last: int) -> dict[int, int]:
-    """The gaps a drawing may be cut at (gap ``k``: between columns ``k`` and ``k+1``),
-    each with the number of synapses across it: all of them join ``k`` to ``k+1``."""
+    """Gaps ``k`` (between columns ``k`` and ``k+1``) that every synapse across joins: their counts."""
     cross: dict[int, list[bool]] = {k: [] for k in range(last)}
     for a, b, _ in specs:
         lo, hi = sorted((col[a], col[b]))
@@ -420,9 +376,7 @@ def circuit_layout(
     """
     m = measures if measures is not None else Measures.estimate(c, radius)
     col, row = _grid(c)
-    columns: dict[int, list] = {}
-    for node, k in col.items():
-        columns.setdefault(k, []).append(node)
+    columns = layered.by_layer(col)
     inputs = set(c.inputs)
     ext = {node: _extents(node, inputs, m) for node in col}
     specs = _specs(c, col)
@@ -463,22 +417,21 @@ def circuit_layout(
         chosen, fine, written = route(mine, local, col, m.radius, m.label, obstacles, search=search)
         clear, labelled = clear and fine, labelled and written
         curves = [curve for _, curve, _ in chosen]
-        # the band's extent (x0, y0, x1, y1), then moved under the one above
+        # the band's extent, then moved under the one above
         ink = [
             (lx - e[0], ly - e[2], lx + e[1], ly + e[3])
             for n, (lx, ly) in local.items()
             for e in [ext[n]]
         ]
-        for (_, _, s), (_, _, where), curve in zip(mine, chosen, curves, strict=True):
-            p = layered.bezier_points(curve)
-            ink.append((*p.min(axis=0), *p.max(axis=0)))
-            if where is not None:
-                w, h = m.label[s]
-                ink.append((where[0] - w / 2, where[1] - h / 2, where[0] + w / 2, where[1] + h / 2))
-        lo, hi = np.min(ink, axis=0), np.max(ink, axis=0)
-        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - float(hi[3])
-        top = float(lo[1]) + dy
-        band_box.append((float(lo[0]), float(hi[2]), float(lo[1]) + dy, float(hi[3]) + dy))
+        ink += [
+            layered.box(*w, m.label[s])
+            for (_, _, s), (_, _, w) in zip(mine, chosen, strict=True)
+            if w
+        ]
+        x0, x1, y0, y1 = layered.extent([p for c in curves for p in layered.bezier_points(c)], ink)
+        dy = top - (0.0 if b == 0 else _band_gap(specs, band_of, b, m)) - y1
+        top = y0 + dy
+        band_box.append((x0, x1, y0 + dy, y1 + dy))
         for n, (lx, ly) in local.items():
             pos[n] = (lx, ly + dy)
         for k, (h, _, where), curve in zip(idx, chosen, curves, strict=True):
@@ -489,14 +442,9 @@ def circuit_layout(
     for b in range(1, len(bands)):
         by_spec.update(_wires(specs, band_of, b, pos, m, band_box))
     arcs = [by_spec[k] for k in sorted(by_spec)]
-    texts = _text_boxes(pos, m.radius, m, arcs)
-    xs = [v for bb in band_box for v in bb[:2]] + [v for t in texts.values() for v in (t[0], t[2])]
-    ys = [v for bb in band_box for v in bb[2:]] + [v for t in texts.values() for v in (t[1], t[3])]
-    for arc in arcs:  # the curves, not their control points
-        pts = arc.points()
-        xs += [float(pts[:, 0].min()), float(pts[:, 0].max())]
-        ys += [float(pts[:, 1].min()), float(pts[:, 1].max())]
-    bounds = (min(xs) - _MARGIN, max(xs) + _MARGIN, min(ys) - _MARGIN, max(ys) + _MARGIN)
+    boxes = [(b[0], b[2], b[1], b[3]) for b in band_box]
+    boxes += _text_boxes(pos, m.radius, m, arcs).values()
+    bounds = layered.extent([p for arc in arcs for p in arc.points()], boxes, _MARGIN)
     narrow = width is None or bounds[1] - bounds[0] <= width + 1e-9
     return CircuitLayout(
         col, row, pos, dict(m.radius), tuple(arcs), bounds, band_of, narrow, clear, labelled
@@ -504,15 +452,14 @@ def circuit_layout(
 
 
 def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, search=True):
-    """Heights, curves and label places of arcs ``(source, target, synapse or None)``.
+    """Per arc ``(source, target, synapse or None)`` its ``(height, curve, label centre or
+    None)``, and whether every curve is clear and every label placed.
 
-    Each arc in turn takes the first bridge (straight first between neighbouring columns,
-    then growing bulges, feedback below) clear of the ``obstacles`` on which its label
-    (``labels``: sizes by synapse) finds a free place, apart from the other arcs between
-    the same two nodes, its end moved round the target's circle clear of the ends there;
-    each label placed joins the obstacles. Without ``search``, one arch each. Returns per
-    arc ``(height, curve, label centre or None)``, whether every curve is clear and
-    whether every label found a place.
+    Each arc takes the first bridge (straight between neighbouring columns, then growing
+    bulges, feedback below) clear of ``obstacles`` where its label (size in ``labels``)
+    fits, apart from the arcs between the same nodes, its end moved round the target's
+    circle clear of the ends there; a placed label joins the obstacles. Without
+    ``search``, one arch each.
 
     Examples
     --------
@@ -605,17 +552,12 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
         chosen.append((h, drawn, where))
         lines.append(layered.bezier_points(drawn))
         if where is not None:
-            w, hh = size
-            obstacles = obstacles.with_box(
-                (where[0] - w / 2, where[1] - hh / 2, where[0] + w / 2, where[1] + hh / 2)
-            )
+            obstacles = obstacles.with_box(layered.box(*where, size))
     return chosen, clear, labelled
 
 
 def _row_heights(nodes, row, x, col, ext) -> dict:
-    """Each node's height [in]: rows top to bottom, each as near the one above as its nodes
-    allow (a node keeps :data:`_ROW_GAP` from every node above whose texts it would meet side
-    by side, and rows keep :data:`_ROW_STEP` per row apart: their order stays)."""
+    """Each node's height [in]: each row as near the one above as its nodes' texts allow."""
     levels = sorted({row[n] for n in nodes}, reverse=True)
     at = {lv: [n for n in nodes if row[n] == lv] for lv in levels}
     y: dict[float, float] = {}
@@ -639,7 +581,7 @@ def _row_heights(nodes, row, x, col, ext) -> dict:
 
 
 def _closed_up(rows: list[float]) -> dict[float, float]:
-    """Rows with no gap wider than one row between neighbours (a band of a few nodes)."""
+    """Rows with no gap wider than one row between neighbours."""
     levels = sorted(set(rows))
     out, at = {}, 0.0
     for k, r in enumerate(levels):
@@ -664,10 +606,9 @@ def _band_gap(specs, band_of, b: int, m: Measures) -> float:
 
 
 def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]:
-    """The arcs across the cut above band ``b``: out right, back under band ``b - 1``, in left."""
+    """The arcs across the cut above band ``b``: out right, back under band ``b - 1``, in left
+    (the top source's wire outermost on the right, lowest and innermost on the left)."""
     out = {}
-    # the top source's wire runs outermost on the right, lowest under the band and
-    # innermost on the left, and so on down: no two wires cross
     crossing = sorted(_crossing(specs, band_of, b), key=lambda k: -pos[specs[k][0]][1])
     n = len(crossing)
     levels = {}
@@ -693,8 +634,7 @@ def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]
 
 
 def _rounded(corners, r: float) -> tuple[tuple, tuple]:
-    """A polyline through ``corners`` with each inner corner rounded (a quadratic Bézier
-    reaching ``r`` along both sides): its points and matplotlib ``Path`` codes."""
+    """A polyline through ``corners``, inner corners rounded by ``r``: points and ``Path`` codes."""
 
     def toward(q, p):
         d = math.hypot(p[0] - q[0], p[1] - q[1]) or 1.0

@@ -4,32 +4,22 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = ["figure_and_axes", "fit_to_drawing", "key_columns", "text_outline", "text_size", "wrap"]
-
 
 @lru_cache(maxsize=4096)
 def text_size(text: str, size: float) -> tuple[float, float]:
-    """Width and height in inches of ``text`` set at ``size`` points (mathtext allowed).
-
-    The box of its glyph outlines (:func:`text_outline`). Cached: every drawing
-    measures the same keys and headings again (an atlas overview measured its key
-    nine times, two thirds of its drawing time).
-    """
+    """Width and height in inches of ``text`` set at ``size`` points (mathtext allowed): the box
+    of its glyph outlines (:func:`text_outline`), cached (drawings measure the same keys)."""
     _, (x0, y0, x1, y1) = text_outline(text, size)
     return (x1 - x0) / 72, (y1 - y0) / 72
 
 
 def text_outline(text: str, size: float):
-    """``(path, (x0, y0, x1, y1))``: the glyph outlines of ``text`` at ``size`` points and their box.
+    """``(path, (x0, y0, x1, y1))``: the glyph outlines of ``text`` at ``size`` points (origin on
+    the baseline at the left; ``None`` without ink) and their box.
 
-    The path is in points, its origin on the baseline at the left (``None`` for text
-    without ink). The box is that of the outlines' vertices: TrueType outlines have
-    their on- and off-curve points at the curves' extrema, so it is the outlines' box
-    (to a thousandth of a point) without ``Path.get_extents``, which walks every
-    Bezier segment in Python (three quarters of the drawing time of a circuit with a
-    key of long weights). Math text is typeset at ``size`` itself (matplotlib's
-    ``TextPath`` typesets it at 100 points and scales it down), so that drawing the
-    same text later finds it typeset (:func:`_share_math_parses` shares the cache).
+    The box is that of the outlines' vertices (TrueType puts them at the curves' extrema),
+    not ``Path.get_extents``, which walks every Bézier in Python; math text is typeset at
+    ``size`` itself, so that drawing it later finds it typeset (:func:`_share_math_parses`).
     """
     from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
@@ -98,6 +88,17 @@ def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -
     return lines
 
 
+def heading(ax, title: str, x: float, y: float, room: float, size: float):
+    """``title`` wrapped to ``room`` inches in lines above ``y`` from ``x``, at ``size`` points;
+    returns their top and right end."""
+    lines = wrap(title.split(" "), room, size, scale=1.04)
+    step = size / 72 * 1.3
+    top = y + step * len(lines)
+    for k, line in enumerate(lines):
+        ax.text(x, top - k * step, line, ha="left", va="top", fontsize=size)
+    return top, x + max(1.04 * text_size(line, size)[0] for line in lines)
+
+
 def key_columns(widths, room: float, gap: float) -> list[list[int]]:
     """The key's lines (indices) in the most columns, ``gap`` apart and each as wide as its widest
     line, that fit ``room`` (the first ones hold ``ceil(len / n)`` lines; else one column).
@@ -115,21 +116,13 @@ def key_columns(widths, room: float, gap: float) -> list[list[int]]:
     return [list(range(len(widths)))]
 
 
-_MATH_PARSES = 4096
-"""How many typeset math strings one process keeps (:func:`_share_math_parses`)."""
-
-
 def _share_math_parses() -> None:
     """Let every renderer of this process share one cache of typeset math text.
 
-    Matplotlib typesets a ``$...$`` string (a pyparsing parse, about 10 ms) once per
-    string, resolution, font and *renderer*, in a cache of 50: each Agg renderer
-    (every text measure at another size) starts empty, and a figure with more than 50
-    math labels evicts its own entries between measuring and drawing them. Typesetting
-    was 40% of the time of drawing the report's figures. The result depends only on
-    the string, resolution, font, antialiasing, hinting and output kind, which this
-    cache keys on; it is installed once, and not at all if matplotlib's private
-    method has another form.
+    Matplotlib typesets ``$...$`` (about 10 ms) in a cache of 50 per *renderer*, and a
+    figure of more than 50 labels evicts its own entries between measuring and drawing
+    (40% of the report's figure time). This cache keys on what the result depends on;
+    it is not installed if matplotlib's private method has another form.
     """
     import functools
 
@@ -141,7 +134,7 @@ def _share_math_parses() -> None:
         return
     parsers: dict = {}
 
-    @functools.lru_cache(_MATH_PARSES)
+    @functools.lru_cache(4096)
     def shared(kind, s, dpi, prop, antialiased, flags):
         return typeset(parsers[kind], s, dpi, prop, antialiased, flags)
 

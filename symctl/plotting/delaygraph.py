@@ -1,14 +1,6 @@
-r"""Rendering of a delay graph (the paper's Fig. 2, right): vertices as boxes, edges as arrows
-labelled with their delays. The positions come from :mod:`~symctl.plotting.delaygraph_layout`;
-:meth:`DelayGraph.draw <symctl.compatibility.delaygraph.DelayGraph.draw>` delegates here.
-
->>> from symctl import DelayGraph
->>> from symctl.plotting.delaygraph import delay_graph_plot
->>> fig = delay_graph_plot(DelayGraph.chain([1, 1]), ["Golgi tendon organ", "nervous system",
-...                                                   "muscle"])
->>> [p.get_gid() for p in fig.axes[0].patches]
-['edge:1-2', 'edge:2-3', 'vertex:1', 'vertex:2', 'vertex:3']
-"""
+r"""Rendering of a delay graph (the paper's Fig. 2, right), laid out by
+:mod:`~symctl.plotting.delaygraph_layout`; :meth:`DelayGraph.draw
+<symctl.compatibility.delaygraph.DelayGraph.draw>` delegates here."""
 
 from __future__ import annotations
 
@@ -23,7 +15,7 @@ from matplotlib.path import Path
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import style
-from symctl.plotting.common import figure_and_axes, fit_to_drawing, text_size, wrap
+from symctl.plotting.common import figure_and_axes, fit_to_drawing, heading, text_size, wrap
 from symctl.plotting.delaygraph_layout import delay_graph_layout
 
 if TYPE_CHECKING:
@@ -43,7 +35,7 @@ _LABEL["bbox"] = {"boxstyle": "square,pad=0.08", "fc": "white", "ec": "none"}
 
 
 def _tint(colour: str, amount: float = 0.2) -> tuple[float, float, float]:
-    """``colour`` mixed with white: a fill light enough for black text."""
+    """``colour`` mixed with white: a fill for black text."""
     return tuple(amount * c + (1 - amount) for c in to_rgb(colour))
 
 
@@ -113,11 +105,8 @@ def delay_graph_plot(
     descriptions: Mapping[str, str] | None = None,
     ax=None,
 ) -> Figure:
-    """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays.
-
-    Left to right along the longest path from the sensor :math:`v_1` (green) to the actuator
-    :math:`v_N` (orange), parallel pathways in rows of their own; edges against the flow
-    (into the sensor, out of the actuator, closing a cycle) purple and curved.
+    """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays, from
+    the sensors (green) to the actuators (orange); edges against the flow purple.
 
     Parameters
     ----------
@@ -227,12 +216,7 @@ def _finish(fig, ax, own: bool, bounds, title: str | None, key: list[str]):
     right = max(1.04 * text_size(line, _SMALL)[0] for line in lines) + x_lo + 0.1
     y_lo = y - 0.04
     if title:
-        heading = wrap(_plain(title).split(" "), room, style.TITLE, scale=1.04)
-        size = style.TITLE / 72 * 1.3
-        top = y_hi + 0.04 + size * len(heading)
-        for k, line in enumerate(heading):
-            ax.text(x_lo + 0.05, top - k * size, line, ha="left", va="top", fontsize=style.TITLE)
-        right = max(right, x_lo + 0.1 + max(1.04 * text_size(h, style.TITLE)[0] for h in heading))
-        y_hi = top + 0.04
+        top, end = heading(ax, _plain(title), x_lo + 0.05, y_hi + 0.04, room, style.TITLE)
+        right, y_hi = max(right, end + 0.05), top + 0.04
     x_hi = max(x_hi, right)
     return fit_to_drawing(fig, ax, own, x_lo, x_hi, y_lo, y_hi)

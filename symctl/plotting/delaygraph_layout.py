@@ -1,20 +1,12 @@
 r"""Where a delay graph's vertices and edges go, in inches; no matplotlib.
 
-On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.delaygraph`
-renders it.
-
-* **Flow**: edges into the sensor, out of the actuator and closing a cycle in a
-  depth-first search from :math:`v_1` are *back edges*, laid out turned around.
-* **Layers**: sensors in layer 0, the actuators together in the last, the rest by longest
-  path; an edge across several layers passes one bend per layer, a row of its own there.
-* **Order and rows**: :func:`~symctl.plotting.layered.order` then
-  :func:`~symctl.plotting.layered.positions` (bends pull hardest: long edges run straight).
-* **Routes**: an edge leaves the right side of its left end and enters the left side of
-  its right end, each side's ends spread in the order of their other ends; level across
-  a column, an S-shaped cubic Bézier between columns, so no edge crosses a vertex; the two
-  edges of a two-cycle, and a lone back edge between neighbours, bulge apart.
-* **Labels** sit on their curve in its middle gap, moved along it off other labels and
-  curves; gaps are as wide as their labels.
+On :mod:`symctl.plotting.layered`: edges into a sensor, out of an actuator or closing a
+cycle (*back edges*) are laid out turned around; sensors in the first layer, actuators in
+the last; bends pull hardest in :func:`~symctl.plotting.layered.positions` (long edges
+run straight). An edge leaves the right side of its left end and enters the left of its
+right end, level across a column and an S-shaped Bézier between columns; the edges of a
+two-cycle, and a lone back edge between neighbours, bulge apart. A label sits on its
+curve in its middle gap, moved off other labels and curves; gaps are as wide as their labels.
 
 >>> from symctl import DelayGraph
 >>> from symctl.plotting.delaygraph_layout import delay_graph_layout
@@ -32,20 +24,16 @@ from collections import Counter
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-import networkx as nx
 import numpy as np
 
 from symctl.compatibility.delaygraph import DelayGraph
-from symctl.compatibility.signalgraph import back_edges
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.plotting import layered
 
 __all__ = ["MAX_BENDS", "MAX_DRAWN_VERTICES", "DelayGraphLayout", "EdgeRoute", "delay_graph_layout"]
 
-MAX_DRAWN_VERTICES = 200
-"""Most vertices a delay-graph drawing takes (beyond, a picture says nothing)."""
-MAX_BENDS = 40000
-"""Most bend points (an edge across k layers has k - 1): bounds the time a dense graph takes."""
+MAX_DRAWN_VERTICES = 200  # most vertices a drawing takes (beyond, a picture says nothing)
+MAX_BENDS = 40000  # most bend points (k - 1 for an edge across k layers): bounds the time
 BOX, LABEL = (0.6, 0.35), (0.4, 0.13)  # a vertex box's and a label's size when none is given
 
 _ROW_GAP = 0.25  # between two boxes of a layer [in]
@@ -61,7 +49,6 @@ _BULGE = 0.22  # of a two-cycle's edges, and of a lone back edge between neighbo
 _CLIP = 0.03  # arrow tips stop this far from a box
 _PORT_STEP = 0.08  # between the ends of two edges on one side of a box
 _PORT_MARGIN = 0.06  # from the box's corners
-_SWEEPS = 8
 _T = np.linspace(0, 1, 12)  # where a curve's segments are sampled
 _WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True, True): 60.0}
 
@@ -114,33 +101,8 @@ class DelayGraphLayout:
     bounds: tuple[float, float, float, float]
 
 
-def _flow(graph: DelayGraph) -> list[tuple[int, int, bool]]:
-    """Each edge as laid out ``(a, b, back)``, ``a -> b`` acyclic (the module text)."""
-    n = graph.n
-    sensors, actuators = graph.sensors, graph.actuators
-    succ: dict[int, list[int]] = {v: [] for v in range(1, n + 1)}
-    against = set()
-    for i, j, _ in graph.edges:
-        if j in sensors or i in actuators:
-            against.add((i, j))
-        else:
-            succ[i].append(j)
-    against.update(back_edges(succ, list(sensors)))
-    return [(j, i, True) if (i, j) in against else (i, j, False) for i, j, _ in graph.edges]
-
-
-def _layers(graph: DelayGraph, flow) -> dict[int, int]:
-    """Sensors in layer 0, the actuators together in the last layer, the rest by longest path."""
-    dag = nx.DiGraph()
-    dag.add_nodes_from(range(1, graph.n + 1))
-    dag.add_edges_from((a, b) for a, b, _ in flow)
-    return layered.longest_path(
-        nx.topological_sort(dag), dag.pred, first=graph.sensors, last=graph.actuators, floor=1
-    )
-
-
 def _depths(order, up, down, height) -> dict:
-    """Each node's depth (minus its height): near its neighbours, gaps kept (the module text)."""
+    """Each node's depth (minus its height), near its neighbours."""
     bend = {node: not isinstance(node, int) for o in order for node in o}
     gaps = [
         [
@@ -149,7 +111,7 @@ def _depths(order, up, down, height) -> dict:
         ]
         for o in order
     ]
-    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]], _SWEEPS)
+    return layered.positions(order, up, down, gaps, lambda a, b: _WEIGHT[bend[a], bend[b]])
 
 
 def _across(p, q, bulge: float) -> list[tuple[float, float]]:
@@ -163,7 +125,7 @@ def _across(p, q, bulge: float) -> list[tuple[float, float]]:
 
 
 def _ports(chains, flow, at, size) -> tuple[list[float], list[float]]:
-    """The height of each chain at its two ends, spread over the box's side (the module text)."""
+    """The height of each chain at its two ends, spread over the box's side."""
     starts: dict[int, list[int]] = {}
     ends: dict[int, list[int]] = {}
     for k, chain in enumerate(chains):
@@ -175,13 +137,13 @@ def _ports(chains, flow, at, size) -> tuple[list[float], list[float]]:
             # top first; of a two-cycle, the edge kept forward above the one turned around
             ks.sort(key=lambda k: (-at[chains[k][other]][1], flow[k][2]))
             step = min(_PORT_STEP, (size[v][1] - 2 * _PORT_MARGIN) / max(len(ks) - 1, 1))
-            for i, k in enumerate(ks):
-                out[side][k] = at[v][1] + ((len(ks) - 1) / 2 - i) * step
+            for k, dy in zip(ks, layered.spread(len(ks), (len(ks) - 1) / 2 * step), strict=True):
+                out[side][k] = at[v][1] + dy
     return out
 
 
 def _route(chain, ys, at, size, left, right, bulge: float) -> list[tuple[float, float]]:
-    """Cubic Bézier control points of one chain at heights ``ys`` (the module text)."""
+    """Cubic Bézier control points of one chain at heights ``ys``."""
     a, b = chain[0], chain[-1]
     x = at[a][0] + size[a][0] / 2 + _CLIP
     ctrl = [(x, ys[0])]
@@ -196,9 +158,8 @@ def _route(chain, ys, at, size, left, right, bulge: float) -> list[tuple[float, 
 
 
 def _place_labels(curves, gaps, sizes) -> tuple[list[tuple[float, float]], list[int]]:
-    """Each label on its curve in its gap ``(lo, hi)``, covering no other label and the fewest
-    curves, nearest the middle; then (three rounds) each that covers another moved again.
-    Returns the centres and the labels still covering another."""
+    """Each label's centre on its curve in its gap ``(lo, hi)``, off other labels and curves
+    (three rounds), and the labels still covering another."""
     samples = [layered.bezier_points(bez, _T) for bez in curves]
     owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(samples)])
     points = np.vstack(samples)
@@ -308,8 +269,12 @@ def delay_graph_layout(
     if n > MAX_DRAWN_VERTICES:
         raise ParameterError(f"graph: at most {MAX_DRAWN_VERTICES} vertices are drawn, got {n}")
     size = {v: tuple(map(float, (sizes or {}).get(v, BOX))) for v in range(1, n + 1)}
-    flow = _flow(graph)
-    layer = _layers(graph, flow)
+    sensors, actuators = graph.sensors, graph.actuators
+    edges = [(i, j) for i, j, _ in graph.edges]
+    against = [(i, j) for i, j in edges if j in sensors or i in actuators]
+    flow, layer = layered.layering(
+        range(1, n + 1), edges, sensors, against=against, first=sensors, last=actuators, floor=1
+    )
     if sum(abs(layer[b] - layer[a]) - 1 for a, b, _ in flow) > MAX_BENDS:
         raise ParameterError(
             f"graph: its {len(flow)} edges cross too many layers to be drawn (more than "
@@ -319,7 +284,7 @@ def delay_graph_layout(
     order: list[list] = [[] for _ in range(layer[n] + 1)]
     for node in sorted(node_layer, key=lambda v: (isinstance(v, tuple), v)):
         order[node_layer[node]].append(node)
-    order = layered.order(order, up, down, _SWEEPS)
+    order = layered.order(order, up, down)
     height = {node: size[node][1] if isinstance(node, int) else _BEND_HEIGHT for node in up}
     depth = _depths(order, up, down, height)
     # columns: each as wide as its widest box, the gaps as wide as their widest label
@@ -348,14 +313,8 @@ def delay_graph_layout(
         if back:
             bez = bez[::-1]
         routes.append(EdgeRoute(i, j, d, back, tuple(bez[::3]), tuple(bez), centre))
-    xs = [x for r in routes for x, _ in r.bezier]
-    ys = [y for r in routes for _, y in r.bezier]
     boxes = [(*pos[v], *size[v]) for v in pos]
     boxes += [(*xy, *wh) for xy, wh in zip(placed, label, strict=True)]
-    bounds = (
-        min(xs + [b[0] - b[2] / 2 for b in boxes]) - 0.3,
-        max(xs + [b[0] + b[2] / 2 for b in boxes]) + 0.3,
-        min(ys + [b[1] - b[3] / 2 for b in boxes]) - 0.3,
-        max(ys + [b[1] + b[3] / 2 for b in boxes]) + 0.3,
-    )
+    corners = [layered.box(x, y, (w, h)) for x, y, w, h in boxes]
+    bounds = layered.extent([p for r in routes for p in r.bezier], corners, 0.3)
     return DelayGraphLayout(layer, pos, size, tuple(routes), bounds)

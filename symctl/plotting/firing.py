@@ -1,15 +1,5 @@
-"""The firing-pattern figure (the paper's Figs. 9-11): one panel per neuron of :math:`G_2`.
-
-The plant's first state on top, each neuron's change of firing rate below, one line per
-realization and one legend under the figure; :meth:`FiringPatterns.plot
-<symctl.neural.firing.FiringPatterns.plot>` delegates here.
-
->>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
->>> from symctl.plotting.firing import firing_plot
->>> fp = circuit_firing("controllable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
->>> [ax.get_title() for ax in firing_plot(fp).axes][1:]
-['neuron $x_{2}$', 'neuron $y$']
-"""
+r"""The firing-pattern figure (the paper's Figs. 9-11): one panel per neuron of :math:`G_2`;
+:meth:`FiringPatterns.plot <symctl.neural.firing.FiringPatterns.plot>` delegates here."""
 
 from __future__ import annotations
 
@@ -18,7 +8,8 @@ from typing import TYPE_CHECKING
 from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.plotting import style
-from symctl.plotting.response import UNKNOWN_UNIT
+from symctl.plotting.response import _LINE_COLOURS as _COLOURS
+from symctl.plotting.response import UNKNOWN_UNIT, _locator, _steps
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -27,9 +18,7 @@ if TYPE_CHECKING:
 
 __all__ = ["firing_plot"]
 
-PANEL_HEIGHT = 1.05
-"""Height of a row of neuron panels [in], their headings included."""
-_COLOURS = tuple(c for c in style.PALETTE if c != "#F0E442")  # yellow is faint as a line
+PANEL_HEIGHT = 1.05  # a row of neuron panels with their headings [in]
 
 
 def _tex(name: str, *, part: bool = True) -> str:
@@ -108,25 +97,17 @@ def firing_plot(
     with style.styled():
         top_fig, grid_fig = fig.subfigures(2, 1, height_ratios=[1.1, PANEL_HEIGHT * rows + 0.3])
         top = top_fig.subplots()
-        lines = []
-        for i in range(fp.count):
-            lines += top.plot(
-                fp.t,
-                fp.f_bar + fp.delta_f[i],
-                color=_COLOURS[i % len(_COLOURS)],
-                lw=1.2,
-                drawstyle="steps-post",
-            )
+        colours = [_COLOURS[i % len(_COLOURS)] for i in range(fp.count)]
+        lines = [
+            _steps(top, fp.t, fp.f_bar + fp.delta_f[i], marked=False, color=c, lw=1.2)
+            for i, c in enumerate(colours)
+        ]
         if fp.delta_f_sd is not None:  # the same in every realization: one band
             style.band(top, fp.t, fp.f_bar + fp.delta_f[0], fp.delta_f_sd[0], _COLOURS[0])
-        optimal = top.plot(
-            fp.t,
-            fp.f_bar + fp.reference.delta_f[:, 0],
-            color="black",
-            lw=0.9,
-            ls=(0, (1, 1.5)),
-            drawstyle="steps-post",
-        )[0]
+        reference = fp.f_bar + fp.reference.delta_f[:, 0]
+        optimal = _steps(
+            top, fp.t, reference, marked=False, color="black", lw=0.9, ls=(0, (1, 1.5))
+        )
         what, sym, unit = _state(fp, labels)
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
@@ -149,17 +130,10 @@ def firing_plot(
         axes = grid_fig.subplots(rows, cols, sharex=True, squeeze=False)
         for k, name in enumerate(names):
             ax = axes[k // cols, k % cols]
-            for i in range(fp.count):
-                ax.plot(
-                    fp.t,
-                    fp.firing[name][i],
-                    drawstyle="steps-post",
-                    lw=1.0,
-                    color=_COLOURS[i % len(_COLOURS)],
-                )
+            for i, colour in enumerate(colours):
+                _steps(ax, fp.t, fp.firing[name][i], marked=False, lw=1.0, color=colour)
                 if fp.firing_sd is not None:
-                    sd = fp.firing_sd[name][i]
-                    style.band(ax, fp.t, fp.firing[name][i], sd, _COLOURS[i % len(_COLOURS)])
+                    style.band(ax, fp.t, fp.firing[name][i], fp.firing_sd[name][i], colour)
             ax.axhline(0, color="black", lw=0.5)
             part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
             where = f" ({part.partition('.')[0]})" if "." in part else ""
@@ -179,9 +153,3 @@ def firing_plot(
     if title:
         fig.suptitle(title, fontsize=style.TITLE)
     return fig
-
-
-def _locator():
-    from matplotlib.ticker import MaxNLocator
-
-    return MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10])

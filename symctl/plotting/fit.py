@@ -1,20 +1,5 @@
-r"""The fit figure: data against fit for the recorded neurons, predictions for the others.
-
-One panel per neuron of the fitted circuit (:meth:`FitResult.plot
-<symctl.fitting.fit.FitResult.plot>` delegates here): a recorded neuron's data (dots) and
-fitted trace, an unrecorded one's prediction, each with its prediction band (95% by
-default), or a heading saying the data do not pin it down (not identifiable) or do not
-determine it (a band wider than the trace); the time axis ends where every trace settled.
-
->>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
->>> from symctl.plotting.fit import fit_plot
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
->>> res = fit(data.select(["G2.x1", "G2.x2", "G2.y"]).traces, gains, sensor_delay=1,
-...           actuator_delay=1, C=1, starts=2)
->>> [ax.get_title() for ax in fit_plot(res).axes][:2]
-['$x_{1}^{\\mathrm{G1}}$ (predicted)', '$x_{1}^{\\mathrm{G2}}$ (recorded)']
-"""
+r"""The fit figure: data against fit for the recorded neurons, predictions for the others;
+:meth:`FitResult.plot <symctl.fitting.fit.FitResult.plot>` delegates here."""
 
 from __future__ import annotations
 
@@ -33,9 +18,7 @@ if TYPE_CHECKING:
 
 __all__ = ["SETTLED", "fit_plot"]
 
-SETTLED = 0.01
-"""A trace has settled once it stays within this fraction of its peak; the time axis ends
-a little after the last trace settles (when that is well before the end of the data)."""
+SETTLED = 0.01  # a trace has settled once within this fraction of its peak: the axis ends
 
 _PANEL_HEIGHT = 1.15  # a row of panels with its headings [in]
 
@@ -108,17 +91,10 @@ def fit_plot(
             ax = axes[k // cols, k % cols]
             ok = bool(result.neuron_identifiable[name])
             color = fit_c if name in result.data else pred_c if ok else lost_c
-            if np.all(np.isfinite(pred.lower[name])):
+            lo, hi = pred.lower[name], pred.upper[name]
+            if np.all(np.isfinite(lo)):
                 used.add(3)
-                ax.fill_between(
-                    t,
-                    pred.lower[name],
-                    pred.upper[name],
-                    color=color,
-                    alpha=0.3,
-                    lw=0,
-                    step="post",
-                )
+                ax.fill_between(t, lo, hi, color=color, alpha=0.3, lw=0, step="post")
             ax.plot(t, pred[name], color=color, lw=1.2, drawstyle="steps-post")
             if name in result.data:
                 ax.plot(t, result.data[name], ".", ms=2.5, color=data_c, zorder=3)

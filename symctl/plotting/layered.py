@@ -1,18 +1,12 @@
-r"""The layered graph layout of every drawing: layers, order, rows, routes and labels, as numbers.
+r"""The one layered layout of the structure, circuit and delay-graph drawings, as numbers.
 
-One core for the structure, circuit and delay-graph drawings, in the manner of Sugiyama,
-Tagawa and Toda (1981); no matplotlib here. Units are inches.
-
-* **Layers and order**: :func:`longest_path`, :func:`split` (one bend node per layer an
-  edge crosses), :func:`order` (barycentre sweeps; the fewest :func:`crossings` kept).
-* **Rows**: least squares under order constraints (:func:`isotonic`, SciPy's
-  pool-adjacent-violators): :func:`rows` (integer or half rows) or :func:`positions`.
-* **Orthogonal routes**: a slot for each vertical :class:`Segment` in a gap
-  (:func:`assign_slots`, as ELK Layered's router: Schulze, Spönemann and von Hanxleden,
-  J. Vis. Lang. Comput. 25, 2014), one per branching net, with :func:`junctions`.
-* **Curved routes**: cubic Béziers (:func:`bezier_points`, :func:`at_x`), bridges between
-  circles (:func:`bridge`, :func:`trimmed`) clear of :class:`Obstacles` (:func:`hits`),
-  their labels placed by :func:`place_label`.
+In the manner of Sugiyama, Tagawa and Toda (1981); inches, no matplotlib. Layers by
+:func:`layering` (feedback turned around) and :func:`longest_path`, a bend per layer an
+edge crosses (:func:`split`), order by barycentre sweeps (:func:`order`), rows by
+isotonic least squares (:func:`rows`, :func:`positions`); orthogonal routes with a slot
+per net in each gap (:func:`assign_slots`, as ELK Layered: Schulze, Spönemann and von
+Hanxleden, J. Vis. Lang. Comput. 25, 2014); curved routes as Bézier bridges clear of
+:class:`Obstacles`, and their labels (:func:`place_label`).
 
 References
 ----------
@@ -30,6 +24,7 @@ Examples
 
 from __future__ import annotations
 
+import bisect
 import itertools
 import math
 from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
@@ -39,41 +34,43 @@ from typing import NamedTuple
 import networkx as nx
 import numpy as np
 
-__all__ = [
-    "CLEAR",
-    "PORT_GAP",
-    "TIP",
-    "Obstacles",
-    "Segment",
-    "Wire",
-    "assign_slots",
-    "at_x",
-    "bezier_points",
-    "bridge",
-    "bulges",
-    "crossings",
-    "dashed_part",
-    "end_angles",
-    "hits",
-    "isotonic",
-    "junctions",
-    "longest_path",
-    "order",
-    "place_label",
-    "positions",
-    "rows",
-    "split",
-]
+from symctl.compatibility.signalgraph import back_edges
 
 _EPS = 1e-9
 
 
 # ---------------------------------------------------------------- layers, order, rows
+def layering(nodes, edges, sources, *, against=(), first=(), last=(), floor=0):
+    """``(flow, layer)``: each edge ``(a, b)`` as laid out, ``(a, b, False)``, or turned around,
+    ``(b, a, True)``, when it closes a cycle in a depth-first search from ``sources`` or is in
+    ``against``; and the layers by :func:`longest_path` (``last`` may hold nodes beyond ``nodes``).
+
+    Examples
+    --------
+    >>> from symctl.plotting.layered import layering
+    >>> layering("abc", [("a", "b"), ("b", "c"), ("c", "b")], "a", first="a")
+    ([('a', 'b', False), ('b', 'c', False), ('b', 'c', True)], {'a': 0, 'b': 1, 'c': 2})
+    """
+    against = set(against)
+    succ: dict = {v: [] for v in nodes}
+    for a, b in edges:
+        if a != b and (a, b) not in against and b not in succ[a]:
+            succ[a].append(b)
+    against.update(back_edges(succ, sources))
+    flow = [(b, a, True) if (a, b) in against else (a, b, False) for a, b in edges]
+    dag = nx.DiGraph()
+    dag.add_nodes_from(nodes)
+    dag.add_edges_from((a, b) for a, b, _ in flow if a != b)
+    ends = [v for v in last if v not in dag]
+    order = [*nx.topological_sort(dag), *ends]
+    preds = {**dag.pred, **dict.fromkeys(ends, ())}
+    return flow, longest_path(order, preds, first=first, last=last, floor=floor)
+
+
 def longest_path(nodes, preds: Mapping, *, first=(), last=(), floor=0, layer=None) -> dict:
     """Layers: ``first`` in layer 0, the others one right of their furthest laid-out
-    predecessor (at least ``floor``), ``last`` together right of all others.
-
-    ``nodes`` come in a topological order; ``layer`` (layers already given) is updated.
+    predecessor (at least ``floor``), ``last`` together right of all others; ``nodes`` in a
+    topological order, ``layer`` (layers already given) updated.
 
     Examples
     --------
@@ -92,6 +89,41 @@ def longest_path(nodes, preds: Mapping, *, first=(), last=(), floor=0, layer=Non
         at = max([*(layer[v] for v in ends), *(layer[v] + 1 for v in nodes if v not in last)])
         layer.update(dict.fromkeys(ends, at))
     return layer
+
+
+def by_layer(node_layer: Mapping, nodes=None) -> dict[int, list]:
+    """The ``nodes`` (default all) of each layer, in their order."""
+    out: dict[int, list] = {}
+    for v in node_layer if nodes is None else nodes:
+        out.setdefault(node_layer[v], []).append(v)
+    return out
+
+
+def spread(count: int, half: float) -> list[float]:
+    """``count`` offsets evenly from ``+half`` to ``-half`` (0 for one)."""
+    if count <= 1:
+        return [0.0] * count
+    return [half - 2 * half * k / (count - 1) for k in range(count)]
+
+
+def box(x: float, y: float, size, ha="center", va="center") -> tuple[float, float, float, float]:
+    """The box ``(x0, y0, x1, y1)`` of a text of ``size`` (w, h) at ``(x, y)``, aligned as matplotlib.
+
+    >>> from symctl.plotting.layered import box
+    >>> box(1.0, 0.0, (0.4, 0.2), ha="right", va="bottom")
+    (0.6, 0.0, 1.0, 0.2)
+    """
+    w, h = size
+    x0 = x - {"left": 0.0, "center": w / 2, "right": w}[ha]
+    y0 = y - {"bottom": 0.0, "center": h / 2, "top": h}[va]
+    return x0, y0, x0 + w, y0 + h
+
+
+def extent(points, boxes=(), margin: float = 0.0) -> tuple[float, float, float, float]:
+    """``(x_lo, x_hi, y_lo, y_hi)`` around ``points`` and boxes ``(x0, y0, x1, y1)``, plus ``margin``."""
+    pts = [*points, *((b[0], b[1]) for b in boxes), *((b[2], b[3]) for b in boxes)]
+    (x0, y0), (x1, y1) = np.min(pts, axis=0), np.max(pts, axis=0)
+    return float(x0) - margin, float(x1) + margin, float(y0) - margin, float(y1) + margin
 
 
 def split(edges: Sequence[tuple], layer: Mapping) -> tuple[list[list], dict, dict, dict]:
@@ -122,7 +154,7 @@ def split(edges: Sequence[tuple], layer: Mapping) -> tuple[list[list], dict, dic
 
 
 def crossings(layers: Sequence[Sequence], down: Mapping) -> int:
-    """Edge crossings between neighbouring layers (inversions, counted with a Fenwick tree).
+    """Edge crossings between neighbouring layers (inversions of the edges' lower ends).
 
     Examples
     --------
@@ -133,18 +165,10 @@ def crossings(layers: Sequence[Sequence], down: Mapping) -> int:
     total = 0
     for upper, lower in itertools.pairwise(layers):
         at = {node: k for k, node in enumerate(lower)}
-        ends = sorted((k, at[m]) for k, node in enumerate(upper) for m in down[node])
-        tree = [0] * (len(lower) + 1)
-        for seen, (_, b) in enumerate(ends):
-            i, below = b + 1, 0  # how many earlier ends are at or left of b
-            while i > 0:
-                below += tree[i]
-                i -= i & -i
-            total += seen - below
-            i = b + 1
-            while i <= len(lower):
-                tree[i] += 1
-                i += i & -i
+        seen: list[int] = []  # the lower ends of the edges so far, sorted
+        for _, b in sorted((k, at[m]) for k, node in enumerate(upper) for m in down[node]):
+            total += len(seen) - bisect.bisect_right(seen, b)
+            bisect.insort(seen, b)
     return total
 
 
@@ -449,13 +473,9 @@ def clean(points) -> tuple[tuple[float, float], ...]:
 
 
 # ---------------------------------------------------------------- curves
-CLEAR = 0.035
-"""How near a curve may pass a circle it does not end at [in]."""
-PORT_GAP = 0.085
-"""Least distance along a circle between the ends of two curves [in] (an arrow head is about
-0.05 in wide, a bar 0.07 in)."""
-TIP = 0.012
-"""An arrow's tip stops this far from its circle [in]."""
+CLEAR = 0.035  # how near a curve may pass a circle it does not end at [in]
+PORT_GAP = 0.085  # least distance along a circle between two curves' ends [in] (an arrow head)
+TIP = 0.012  # an arrow's tip stops this far from its circle [in]
 _BOX_MARGIN = 0.015  # a curve keeps this far from a text box
 _END_MARGIN = 0.04  # ... and this far from the texts of a node it ends at (its arrow head)
 _INSIDE = 10  # a point inside a circle counts this many times one near it (hits)
@@ -527,11 +547,9 @@ def line(p, q) -> list[tuple[float, float]]:
 
 
 def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
-    r"""The cubic Bézier ``(a, C1, C2, b)`` that rises by ``h`` over the chord's middle along its
-    upward normal (right for a vertical chord); 0 is straight.
-
-    The inner points lie :math:`\tfrac43 h` off the chord, 0.7 of its length along it from
-    the far ends (crossed over): the ends leave at a gentle slope, so a tall bridge still
+    r"""The cubic Bézier ``(a, C1, C2, b)`` rising by ``h`` over the chord's middle along its
+    upward normal (right for a vertical chord); 0 is straight. The inner points lie
+    :math:`\tfrac43 h` off the chord, 0.7 of it from the far ends: a tall bridge still
     meets its circles from the side, away from their names and tags.
 
     Examples
@@ -682,21 +700,16 @@ def place_label(curve, size, obstacles: Obstacles, lines=None) -> tuple[float, f
     """The centre of a label of ``size`` (w, h) on ``curve``, or None: tried from the middle
     outwards, on no circle and no box; of those, the one the fewest points of ``lines``
     (other curves) pass through."""
-    w, h = size
     best, best_cost = None, None
     pts = np.zeros((0, 2)) if lines is None else np.asarray(lines, float).reshape(-1, 2)
     for t in (0.5, 0.42, 0.58, 0.34, 0.66, 0.27, 0.73, 0.2, 0.8):
         x, y = (float(v) for v in bezier_points(curve, [t])[0])
-        box = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
-        if not _box_free(box, obstacles):
+        x0, y0, x1, y1 = box(x, y, size)
+        if not _box_free((x0, y0, x1, y1), obstacles):
             continue
-        inside = (
-            (pts[:, 0] > box[0])
-            & (pts[:, 0] < box[2])
-            & (pts[:, 1] > box[1])
-            & (pts[:, 1] < box[3])
+        cost = int(
+            ((pts[:, 0] > x0) & (pts[:, 0] < x1) & (pts[:, 1] > y0) & (pts[:, 1] < y1)).sum()
         )
-        cost = int(inside.sum())
         if cost == 0:
             return x, y
         if best_cost is None or cost < best_cost:

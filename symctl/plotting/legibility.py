@@ -1,16 +1,4 @@
-"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping, width.
-
->>> from symctl.plotting.style import new_figure
->>> from symctl.plotting.legibility import legibility
->>> fig = new_figure("column", 1.5)
->>> ax = fig.add_subplot()
->>> _ = ax.set_xlabel("time [s]")
->>> bool(legibility(fig))
-True
->>> _ = ax.text(0.5, 0.5, "tiny", fontsize=4)
->>> legibility(fig).small
-(('tiny', 4.0),)
-"""
+"""Is a figure legible in print? Its text measured as drawn: size, overlaps, clipping, width."""
 
 from __future__ import annotations
 
@@ -61,8 +49,7 @@ class Legibility:
 
 
 def _hidden_ticks(fig) -> set[int]:
-    """Tick labels outside their axis's view (kept but never drawn), compared in the axis's scale
-    and relative to the view's span, as matplotlib compares them."""
+    """Tick labels outside their axis's view (kept but never drawn), as matplotlib compares."""
     hidden = set()
     for ax in fig.get_axes():
         for axis in (ax.xaxis, ax.yaxis):
@@ -107,8 +94,7 @@ def legibility(
     page_width : float or None
         The widest a figure may be printed [in]; ``None`` skips the check.
     overlap_tolerance : float
-        Overlaps smaller than this many points in either direction are ignored (the
-        boxes of text include some space around the ink).
+        Overlaps smaller than this many points either way are ignored.
 
     Returns
     -------

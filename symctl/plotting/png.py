@@ -1,22 +1,5 @@
-"""PNG files without an alpha channel when the figure is opaque.
-
-Matplotlib writes every PNG as RGBA. ``pdflatex`` cannot copy an RGBA PNG into the
-PDF: it decodes the image and separates the alpha channel into a soft mask, which
-for the figures of a MIMO report (a dozen images of up to 4000 pixels a side) took
-4.5 of the 4.7 s of a ``derivation.pdf``. A figure with an opaque background has
-every alpha value 255, so dropping the channel loses nothing; the RGB file is also
-a quarter smaller, and ``pdflatex`` embeds it as it is (0.25 s for the same PDF).
-
->>> import tempfile
->>> from pathlib import Path
->>> from matplotlib.figure import Figure
->>> from symctl.plotting.png import write_png
->>> fig = Figure(figsize=(2, 1))
->>> with tempfile.TemporaryDirectory() as out:
-...     path = write_png(fig, Path(out) / "a.png", dpi=50)
-...     path.read_bytes()[25]   # the colour type of the IHDR chunk: 2 is RGB, 6 RGBA
-2
-"""
+"""PNG files, RGB when the figure is opaque: ``pdflatex`` copies an RGB PNG into the PDF as it
+is but splits an RGBA one into a soft mask (4.5 of the 4.7 s of a MIMO report's PDF)."""
 
 from __future__ import annotations
 
@@ -26,12 +9,8 @@ __all__ = ["render_pdf", "write_png"]
 
 
 def write_png(fig, path: Path | str, *, dpi: float, metadata: dict | None = None) -> Path:
-    """Save ``fig`` as a PNG at ``dpi``: RGB when every pixel is opaque, else RGBA.
-
-    The figure is rendered once by Agg at ``dpi``, as :meth:`Figure.savefig` renders it
-    (its own canvas is given back afterwards); the pixels are written by Pillow, as
-    matplotlib writes them, with ``metadata`` as text chunks and ``dpi`` as the physical
-    resolution. The same figure writes the same bytes.
+    """Save ``fig`` as a PNG at ``dpi`` (rendered by Agg as :meth:`Figure.savefig` does): RGB
+    when every pixel is opaque, else RGBA; the same figure writes the same bytes.
 
     Parameters
     ----------
@@ -77,23 +56,16 @@ def render_pdf(
 ) -> Path:
     """Write the PNG of the first page of the PDF file ``pdf`` at ``dpi``, rendered by PDFium.
 
-    What :func:`write_png` writes of a figure, from the figure's PDF instead of a second
-    drawing: matplotlib draws a figure anew for each format (a tenth of a second to a
-    second, most of it laying out its text again at the new resolution), PDFium
-    rasterizes the PDF in a few milliseconds, and the PNG shows exactly what the PDF
-    does. RGB when every pixel is opaque, else RGBA; ``metadata`` as text chunks; the
-    same PDF writes the same bytes.
+    As :func:`write_png`, from the figure's PDF instead of a second drawing (matplotlib
+    draws anew for each format; PDFium rasterizes in milliseconds, showing what the PDF
+    shows).
 
     Parameters
     ----------
     pdf : path
         A PDF file (the first page is rendered).
-    path : path
-        The PNG to write.
-    dpi : float
-        Dots per inch.
-    metadata : mapping of str to str, optional
-        PNG text chunks (``None`` values are left out).
+    path, dpi, metadata :
+        As for :func:`write_png`.
 
     Returns
     -------

@@ -1,16 +1,7 @@
 r"""Figures of simulations: a loop's state and input traces, the nonlinear plant's departure.
 
 :meth:`Response.plot <symctl.neural.simulate.Response.plot>` and :meth:`NonlinearCheck.plot
-<symctl.neural.nonlinear.NonlinearCheck.plot>` delegate here. Sampled signals are drawn as
-steps held over each period; every axis has its unit; legends sit beside a panel's heading.
-
->>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
->>> from symctl.plotting.response import response_plot
->>> fig = response_plot(closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))))
->>> [ax.get_ylabel() for ax in fig.axes]
-['$\\delta f$ [N]', '$\\delta r$ [spikes/s]', '$\\delta r$ [spikes/s]']
->>> [ax.get_title(loc="left") for ax in fig.axes][1]
-'motor-neuron rate $r$ ($\\bar{r}$ = 1 spike/s)'
+<symctl.neural.nonlinear.NonlinearCheck.plot>` delegate here; sampled signals are steps.
 """
 
 from __future__ import annotations
@@ -30,15 +21,11 @@ if TYPE_CHECKING:
 
 __all__ = ["MARKERS_UP_TO", "MAX_PANELS", "UNKNOWN_UNIT", "nonlinear_plot", "response_plot"]
 
-MAX_PANELS = 6
-"""Most panels of signals in :func:`response_plot` (beyond, the rest share the last)."""
-
-MARKERS_UP_TO = 60
-"""Samples are marked with dots on traces of up to this many samples (more would be a smear)."""
+MAX_PANELS = 6  # most panels of signals in response_plot (beyond, the rest share the last)
+MARKERS_UP_TO = 60  # samples are marked with dots on traces of up to this many samples
 
 _MUSCLE = {"f": ("muscle force", "N"), "r": ("motor-neuron rate", "spikes/s")}
-UNKNOWN_UNIT = "arb. unit"
-"""The unit an axis names when the model gives none (not ``[1]``: that says dimensionless)."""
+UNKNOWN_UNIT = "arb. unit"  # the unit when the model gives none ([1] says dimensionless)
 _MARGINS = 0.75  # inches of a panel's row taken by the y-axis label and ticks (for legends)
 
 
@@ -91,12 +78,7 @@ def _steps(ax, t, y, *, marked: bool, **kwargs):
 
 
 def _heading(ax, text: str, room: float) -> None:
-    """The panel's short heading, left in the row above it, with the legend of several traces.
-
-    With one trace the heading is the axes' title; with several it is the title of their
-    legend, which sits above the axes (never on the data) in as many columns as ``room``
-    inches hold.
-    """
+    """The panel's heading: the axes' title, or with several traces their legend's, above."""
     handles, labels = ax.get_legend_handles_labels()
     if len(handles) < 2:
         ax.set_title(text, loc="left", fontsize=style.SMALL, pad=3)
@@ -119,11 +101,9 @@ def response_plot(
 ) -> Figure:
     r"""Each state and input against time, and the controller's states, on one time axis.
 
-    Each panel shows a change from the operating point (:math:`\delta x`), headed by
-    what it is and the operating point's value (:math:`\bar x`): the absolute value is
-    their sum. A closed loop's disturbance is drawn (dashed) in the panel of the state
-    it acts on. With noise (``res.draws`` > 0) each trace is the mean of the noisy runs,
-    in a band of :math:`\pm 2` standard deviations.
+    Each panel shows a change from the operating point (:math:`\delta x`), its value
+    :math:`\bar x` in the heading; a closed loop's disturbance dashed; with noise, the mean
+    of the noisy runs in a band of :math:`\pm 2` standard deviations.
 
     Parameters
     ----------
@@ -200,15 +180,8 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             style.band(ax, res.t, trace[:, i], sd[:, i], colour, _band_label(res, j))
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
-            ax.step(
-                res.t,
-                res.w[:, i],
-                where="post",
-                ls="--",
-                lw=0.8,
-                color=style.NEUTRAL,
-                label=f"disturbance $w$ [{per}]",
-            )
+            look = {"ls": "--", "lw": 0.8, "color": style.NEUTRAL}
+            ax.step(res.t, res.w[:, i], where="post", label=f"disturbance $w$ [{per}]", **look)
     ax.axhline(0, color="black", lw=0.5)
     if len(group) == 1:
         _trace, bar, names, i, *_ = group[0]
@@ -232,11 +205,7 @@ def _locator():
 
 
 def _chain_tex(name: str, res: Response, labels) -> str:
-    """A state of the delay chain as mathtext: ``gamma_1`` -> γ₁, ``delta_r[2]`` -> δ of input 2.
-
-    The chain's last state is the input itself, delayed (``delta_r`` whatever the input is
-    called): it takes the input's symbol, as on the input's panel.
-    """
+    """A state of the delay chain as mathtext; ``delta_r[k]`` takes input k's symbol."""
     base, _, index = name.partition("[")
     if base != "delta_r":
         return _state_tex(name)
@@ -296,10 +265,8 @@ def nonlinear_plot(
 ) -> Figure:
     r"""The first state's traces (nonlinear solid, linear dashed) and their largest gap against amplitude.
 
-    The state is drawn as the plant's ODE carries it between samples, with the
-    disturbance pulse added at each sample (as in the linear model): a disturbance can
-    push it beyond the values the plant's own dynamics reach. ``bounds`` draws such
-    values as reference lines (the muscle's :math:`f_\max`).
+    A disturbance pulse can push the state beyond what the plant's own dynamics reach;
+    ``bounds`` draws such values as reference lines (the muscle's :math:`f_\max`).
 
     Parameters
     ----------
@@ -308,9 +275,8 @@ def nonlinear_plot(
     labels : mapping of str to (str, str), optional
         ``name -> (description, unit)``, as in :func:`response_plot`.
     bounds : sequence of (float, str)
-        Values of the first state to mark with a dotted line, with their legend text;
-        those further from the traces than a quarter of the traces' range are left
-        out (they would squash the traces).
+        Values of the first state to mark with a dotted line, with their legend text
+        (left out when further than a quarter of the traces' range from them).
     title : str, optional
         A heading over the figure (default none).
     size : {"column", "double", "text"} or float
@@ -319,9 +285,8 @@ def nonlinear_plot(
     Returns
     -------
     matplotlib.figure.Figure
-        The traces on the left; on the right the largest gap between the nonlinear and the
-        linear trace against the amplitude (log-log, with the power law fitted to it: about
-        :math:`w^2` where the linearization is exact to first order); one legend below.
+        The traces; the largest gap between them against the amplitude (log-log, with
+        its fitted power law: about :math:`w^2`); one legend below.
 
     Examples
     --------

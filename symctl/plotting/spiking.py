@@ -1,9 +1,6 @@
 r"""The figures of spiking populations: a loop's force, rates and raster, and what spikes
-cost each circuit.
-
-:meth:`SpikingResponse.plot <symctl.spiking.loop.SpikingResponse.plot>` and
-:meth:`SpikingCost.plot <symctl.spiking.cost.SpikingCost.plot>` delegate here.
-"""
+cost each circuit (:meth:`SpikingResponse.plot <symctl.spiking.loop.SpikingResponse.plot>`,
+:meth:`SpikingCost.plot <symctl.spiking.cost.SpikingCost.plot>`)."""
 
 from __future__ import annotations
 

@@ -1,13 +1,6 @@
-r"""Rendering of a structure's block diagram at its printed size (its layout:
+r"""Rendering of a structure's block diagram at its printed size (layout:
 :mod:`~symctl.plotting.structure_rows`); :meth:`Structure.draw
-<symctl.compatibility.structure.Structure.draw>` delegates here.
-
-Gains are boxes with their value (long ones by their entry's name, listed in a key under
-the drawing), adders circles with a plus, one-step delays dashed wires into the delayed
-signal (a dot), every wire ends in an arrow head, a junction dot where a signal branches,
-each part of a series connection framed, each delay-graph vertex's signals in a shaded
-band. One data unit is one printed inch; no text under
-:data:`~symctl.plotting.style.MIN_FONT`, no figure wider than ``width``.
+<symctl.compatibility.structure.Structure.draw>` delegates here. One data unit is one inch.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure import draw_structure
@@ -30,14 +23,6 @@ from symctl.plotting.structure_labels import end_labels
 from symctl.plotting.structure_layout import ARROW, END_FONT, FONT, NAME_FONT, StructureLayout
 from symctl.plotting.structure_rows import page_bound, series_parts, structure_rows
 from symctl.plotting.style import FONT_SIZE, SMALL, TEXT_WIDTH, TITLE
-
-__all__ = [
-    "draw_structure",
-    "draw_structure_overview",
-    "draw_structures",
-    "parts_in_order",
-    "vertex_map",
-]
 
 _INK = "0.1"
 _BAND = ("#e8eef4", "#f4f1e6")  # alternating tints of the vertex bands
@@ -112,6 +97,10 @@ def draw_structure(
 ):
     r"""Draw the structure ``S`` as a block diagram, at its printed size.
 
+    Gains are boxes with their value (long ones by their entry's name, listed in a key),
+    adders circles, one-step delays dashed wires into the delayed signal (a dot); each part
+    of a series connection is framed, each delay-graph vertex's signals shaded in a band.
+
     Parameters
     ----------
     S : Structure
@@ -123,9 +112,8 @@ def draw_structure(
         Refuse larger structures (their drawings are unreadable and slow).
     overview : bool or "auto", default False
         Draw the overview of the parts instead (:func:`draw_structure_overview`);
-        ``"auto"``: when the block diagram would not fit the page however folded (decided
-        before any text is measured when a part is too large even without,
-        :func:`~symctl.plotting.structure_rows.page_bound`), or has more than
+        ``"auto"``: when the diagram would not fit the page however folded
+        (:func:`~symctl.plotting.structure_rows.page_bound` first), or has more than
         ``max_signals`` signals.
     assignment : DelayAssignment or mapping of str to int, optional
         Where each signal sits in the delay graph: each vertex's signals in a shaded band.
@@ -302,8 +290,7 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
 
 
 def _draw_wire(ax, wire: Wire, dx: float, dy: float, dashed=None) -> None:
-    """A polyline ending in an arrow head, ``dashed`` (the part after the wires it shares its
-    start with) into a delay, labelled z^-k for k steps."""
+    """A polyline ending in an arrow head; ``dashed`` (its own part) into a delay, z^-k for k."""
     from matplotlib.patches import Polygon
 
     pts = [(x + dx, y + dy) for x, y in (dashed or wire.points)]
@@ -346,8 +333,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> float:
 
 
 def _finish(fig, ax, own, bounds, heading: str, legend: list[str], width: float, join=True):
-    """Heading and legend (items joined on lines, unless not ``join``) above the drawing, equal
-    axes without frame, size in inches."""
+    """Heading and legend (items joined on lines, unless not ``join``) above the drawing."""
     x_lo, x_hi, y_lo, y_hi = bounds
     room = min(width, max(x_hi - x_lo, 3.0)) - 0.1
     legend_lines = wrap(legend, room, SMALL, "   ") if join else legend
@@ -408,8 +394,7 @@ def _count_lines(k: dict[str, int]) -> tuple[str, str]:
 
 
 def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
-    """The parts in rows, and whether they are parallel pathways (one row each; a series
-    snakes in rows of ``per_row``)."""
+    """The parts in rows of ``per_row``, and whether they are parallel pathways (a row each)."""
     order = [p for p, _ in parts_in_order(S) if p] or [""]  # no parts (IFP): one box
     if series_parts(S) is None and len({p.partition(".")[0] for p in order}) > 1:
         groups: dict[str, list[str]] = {}
@@ -439,11 +424,8 @@ def draw_structure_overview(
     width: float = TEXT_WIDTH,
     labels: Mapping[str, str] | None = None,
 ):
-    """Draw ``S`` as its parts in signal-flow order, one box per part with its counts.
-
-    For a structure too large to draw block by block (a MIMO :math:`G_2` of hundreds of
-    gains): rows snake so that the figure stays page-shaped, parallel pathways one row
-    each, joined by their output adder; one arrow for all inputs, their names listed.
+    """Draw ``S`` as its parts in signal-flow order, one box per part with its counts (rows
+    snake to stay page-shaped; parallel pathways one row each, joined by their adder).
 
     Parameters
     ----------

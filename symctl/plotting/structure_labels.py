@@ -1,22 +1,9 @@
 r"""The text of a structure drawing: signal names, gain values, the key, the ends; no matplotlib.
 
-* **Signals** are named once each, by their part in a series connection (the state
-  :math:`x_1` of :math:`G_2` is :math:`x^{\mathrm{G2}}_1`); adders and delayed states are
-  named, the delayed branch terms ``z^-1 F[1,2]`` (a dot each) are not.
-* **Gains** show their value (numbers to 3 significant digits) when it shows at most
-  :data:`LONG_GAIN` characters, else the name of their matrix entry (``G2.F[1,2]`` is
-  :math:`F_{12}`), the key under the drawing listing the value; equal values share a line.
-* **Ends**: the input and output arrows carry the given names (the report passes the
-  plant's), by default the signals' own.
-
->>> from symctl import Structure, controllable_canonical, controller_tf, factor
->>> from symctl.plotting.structure_labels import structure_text
->>> f = factor(controller_tf(2))
->>> text = structure_text(Structure.from_factorization(f, controllable_canonical(f.G2)))
->>> text.names["G1.x1"], text.names["G2.x1"], text.gains["G2.M[1]"]
-('x^{\\mathrm{G1}}_{1}', 'x^{\\mathrm{G2}}_{1}', 'M_{1}')
->>> text.key_lines()[0]
-'M_{1} = \\frac{K_{0} \\left(K_{2} + \\epsilon_{1} \\epsilon_{3}\\right)}{C_{1} C_{3}}'
+Signals are named once each, by their part in a series connection (:math:`x^{\mathrm{G2}}_1`);
+a gain shows its value when it shows at most :data:`LONG_GAIN` characters, else its
+entry's name (``G2.F[1,2]`` is :math:`F_{12}`), the key listing the value; the arrows into
+the inputs and out of the outputs carry the given names.
 """
 
 from __future__ import annotations
@@ -33,9 +20,7 @@ from symctl.plotting.circuit_labels import visible_length, weight_tex
 
 __all__ = ["LONG_GAIN", "StructureText", "end_labels", "signal_label", "structure_text"]
 
-LONG_GAIN = 10
-"""A gain showing more characters than this is drawn by its entry's name, its value in the key
-(ten characters at 7 points are about 0.45 inch)."""
+LONG_GAIN = 10  # a gain showing more characters is drawn by its entry's name (0.45 in at 7 pt)
 
 _ENTRY = re.compile(r"([A-Za-z]+)\[(\d+)(?:,(\d+))?\]")
 _NAME = re.compile(r"[A-Za-z]+(\d+|_\{[^{}]*\}|_[A-Za-z0-9]+)?")
@@ -65,8 +50,7 @@ def _part_tex(part: str) -> str:
 
 
 def _gain_name(name: str) -> str | None:
-    """A gain's matrix entry (``F[1,2]``: ``F_{12}``, ``M[10,2]``: ``M_{10,2}``), a signal-like
-    name (``K0``) as a signal, else None."""
+    """A gain's matrix entry (``F[1,2]``: ``F_{12}``), a signal-like name as a signal, or None."""
     local = name.rpartition(".")[2]
     entry = _ENTRY.fullmatch(local)
     if entry:

@@ -1,22 +1,11 @@
 r"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
 
-On the layered core :mod:`symctl.plotting.layered`; :mod:`symctl.plotting.structure`
-renders it. Text is measured by a function passed in, ``measure(text, points) ->
-(width, height)`` in inches.
-
-1. **Feedback.** The wires closing a cycle (back edges of a depth-first search from the
-   inputs, and, with a delay assignment, every wire back to an earlier vertex) are arcs
-   below or above the rows, carrying the gains and delays that feed them (the paper's
-   IFP drawing: :math:`K_1, K_2` on the arcs into :math:`\mu`).
-2. **Columns** by longest path; with a delay assignment (the witness of compatibility)
-   by *vertex level* first (:func:`vertex_levels`), so each vertex's signals sit in one
-   shaded band (:attr:`StructureLayout.bands`).
-3. **Rows**: :func:`~symctl.plotting.layered.rows` (integer rows, straight wires).
-4. **Wires** are orthogonal, turning in the gap between two columns at a slot
-   (:func:`~symctl.plotting.layered.assign_slots`); every wire ends on its block's
-   outline, its last piece at least :data:`ARROW` long; an adder takes its inputs on its
-   left side (spread; the circle grows for many), feedback arcs from below or above.
-5. **Frames** box the parts of a series connection (``G1``, ``G2``, ``G3``).
+On :mod:`symctl.plotting.layered`; text is measured by ``measure(text, points) -> (width,
+height)`` [in]. Wires closing a cycle are arcs below or above the rows, carrying the gains
+and delays that feed them (the paper's IFP drawing). Columns by longest path, with a delay
+assignment by vertex level first (:func:`vertex_levels`: each vertex's signals in one
+band); integer rows; orthogonal wires turning at a slot of their gap; an adder takes its
+inputs on its left side; each part of a series connection framed.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure_layout import structure_layout
@@ -187,13 +176,6 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
     return dag, layer
 
 
-def spread(count: int, half: float) -> list[float]:
-    """``count`` offsets from ``+half`` to ``-half`` (0 for one)."""
-    if count <= 1:
-        return [0.0] * count
-    return [half - 2 * half * k / (count - 1) for k in range(count)]
-
-
 def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
     """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ
     (narrow arcs first, so a nested arc runs inside)."""
@@ -300,9 +282,7 @@ def structure_layout(
     edges = list(dag.edges)
     chains, node_layer, preds, succs = layered.split(edges, layer)
     paths = dict(zip(edges, chains, strict=True))
-    columns: dict[int, list] = {}
-    for node in [*dag, *(n for chain in chains for n in chain[1:-1])]:
-        columns.setdefault(node_layer[node], []).append(node)
+    columns = layered.by_layer(node_layer, [*dag, *(n for chain in chains for n in chain[1:-1])])
     ncol = max(columns) + 1
     row = layered.rows(columns, preds, succs)
     col = {n: c for c, nodes in columns.items() for n in nodes}
@@ -338,13 +318,15 @@ def structure_layout(
             )
     offset: dict = {}
     for b, entries in enter_left.items():
-        for (_, key), off in zip(sorted(entries), spread(len(entries), geo.port(b)), strict=True):
+        for (_, key), off in zip(
+            sorted(entries), layered.spread(len(entries), geo.port(b)), strict=True
+        ):
             offset[(b, key)] = off
     rise_off: dict[int, float] = {}
     for (b, _), entries in enter_vert.items():
         # outer lanes enter on the left, so that arcs do not cross
         for (_, k), off in zip(
-            sorted(entries), spread(len(entries), geo.port(b))[::-1], strict=True
+            sorted(entries), layered.spread(len(entries), geo.port(b))[::-1], strict=True
         ):
             rise_off[k] = off
 
@@ -504,13 +486,11 @@ def structure_layout(
         xt, yt = pos[r.target]
         if straight[k]:
             pts += [(rise, ly), (rise, yt - sign * geo.reach(r.target, rise - xt, 1))]
-            if prev in r.chain and g.nodes[prev]["kind"] == "delay":  # up from the corner dot
-                pts[0] = (rise, ly - sign * item_width[prev] / 2)
         else:
             off = offset[(r.target, ("arc", k))]
             pts += [(rise, ly), (rise, yt + off), (xt - geo.reach(r.target, off, 0), yt + off)]
-            if prev in r.chain and g.nodes[prev]["kind"] == "delay":
-                pts[0] = (rise, ly - sign * item_width[prev] / 2)
+        if prev in r.chain and g.nodes[prev]["kind"] == "delay":  # up from the corner dot
+            pts[0] = (rise, ly - sign * item_width[prev] / 2)
         wires.append(Wire(clean(pts), g.edges[prev, r.target]["delay"], prev, r.target, True))
 
     # the arrows into the inputs and out of the outputs, and their labels
@@ -691,21 +671,12 @@ def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
     label_h = measure("G1", SMALL)[1]
     out = []
     for part, members in parts.items():
-        inside, xs, ys = set(members), [], []
-        for n in members:
-            bx, by, bw, bh = boxes[n]
-            xs += [bx - bw / 2, bx + bw / 2]
-            ys += [by - bh / 2, by + bh / 2]
-            if n in names:
-                lab, (_, w, h) = names[n], name_sizes[n]
-                left = {"center": lab.x - w / 2, "right": lab.x - w, "left": lab.x}[lab.ha]
-                xs += [left, left + w]
-                ys.append(lab.y + h if lab.va == "bottom" else lab.y - h)
-        for w in wires:
-            if w.source in inside and w.target in inside:
-                xs += [p[0] for p in w.points]
-                ys += [p[1] for p in w.points]
-        pad = FRAME_PAD
-        out.append(Frame(part, min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad))
+        inside = set(members)
+        corners = [layered.box(bx, by, (bw, bh)) for bx, by, bw, bh in map(boxes.get, members)]
+        for n in inside & set(names):
+            lab = names[n]
+            corners.append(layered.box(lab.x, lab.y, name_sizes[n][1:], lab.ha, lab.va))
+        pts = [p for w in wires if w.source in inside and w.target in inside for p in w.points]
+        out.append(Frame(part, *layered.extent(pts, corners, FRAME_PAD)))
         y_hi = max(y_hi, out[-1].y1 + label_h + 0.06)
     return tuple(out), y_hi

@@ -1,16 +1,9 @@
 r"""A structure too wide for the page, folded into rows of parts; whether it can fit at all.
 
-The controller of a long delay is a long series connection (:math:`T = 6`: about 30
-columns, 13 inches at print size). :func:`structure_rows` cuts it between parts, where one
-signal per channel joins them, and lays out as many consecutive parts per row as fit the
-page; a row ends with an arrow out of the signal the next row begins with, both labelled
-with its name (as a long equation is broken). A structure that is no series connection is
-laid out in one piece however wide (:attr:`StructureRows.fits` tells).
-
-:func:`page_bound` decides before any text is measured (most of a layout's time) whether a
-drawing can fit: a layout only grows with its texts (a text enters a size only through
-sums and maxima), so a part wider than the page or taller than :data:`PAGE_HEIGHT` laid
-out with text of no size fits no page.
+:func:`structure_rows` cuts a series connection between parts, as many consecutive parts
+per row as fit; a row ends with an arrow out of the signal the next begins with, both
+labelled (as a long equation is broken). :func:`page_bound` decides before any text is
+measured: a layout only grows with its texts, so a part too large without text fits no page.
 """
 
 from __future__ import annotations
@@ -24,19 +17,8 @@ from symctl.plotting.structure_labels import StructureText, signal_label, struct
 from symctl.plotting.structure_layout import Measure, StructureLayout, structure_layout
 from symctl.plotting.style import TEXT_WIDTH
 
-__all__ = [
-    "PAGE_HEIGHT",
-    "PageBound",
-    "StructureRows",
-    "page_bound",
-    "series_parts",
-    "structure_rows",
-]
-
 ROW_GAP = 0.2  # between two rows of a folded drawing [in]
-PAGE_HEIGHT = 8.6
-"""The tallest a drawing may be to fit a page with its caption [in] (the derivation's text
-height is 9.43 in; ``\\fitgraphic`` scales a figure over 8.68 in)."""
+PAGE_HEIGHT = 8.6  # the tallest drawing that fits a page with its caption [in]
 
 
 @dataclass(frozen=True)
@@ -100,9 +82,8 @@ def page_bound(
     vertex_names: Mapping[int, str] | None = None,
     width: float = TEXT_WIDTH,
 ) -> PageBound:
-    """Whether the drawing of ``S`` can fit the page, decided before any text is measured:
-    no part (the whole, when no series) laid out alone without text is wider than ``width``
-    or taller than :data:`PAGE_HEIGHT`.
+    """Whether the drawing of ``S`` can fit the page: no part (the whole, when no series) laid
+    out alone without text is wider than ``width`` or taller than :data:`PAGE_HEIGHT`.
 
     Parameters
     ----------
@@ -147,8 +128,7 @@ def page_bound(
 
 
 def series_parts(S: Structure) -> list[str] | None:
-    """The parts of ``S`` in series order (every wire between two parts goes to the next one, as
-    :meth:`Structure.series` builds them), or None.
+    """The parts of ``S`` in series order (every wire between parts goes to the next), or None.
 
     >>> from symctl import Structure, ifp_structure
     >>> from symctl.realization.realization import first_order_realization

@@ -1,34 +1,15 @@
 r"""The house style of every figure: print sizes, fonts, a colour-blind-safe palette, units.
 
-One module decides how a symctl figure looks, so that a figure put into a paper is
-legible at the size it is printed and every figure reads alike:
-
-* **Sizes.** :data:`COLUMN` (one column of a two-column journal, 3.4 in) and
-  :data:`DOUBLE` (two columns, 7.0 in) are the widths a figure is drawn at;
-  :data:`TEXT_WIDTH` is the text width of ``derivation.pdf`` (499 pt), where a figure is
-  included at its natural size, never scaled down. :func:`width` reads a size by name.
-* **Fonts.** :data:`FONT_SIZE` for tick and axis labels, :data:`SMALL` for keys and
-  legends, :data:`TITLE` for panel titles; nothing is set below :data:`MIN_FONT` (6 pt
-  printed), which the tests check on the drawn figures.
-* **Colours.** :data:`PALETTE` is Okabe and Ito's eight colours, distinguishable with
-  every common form of colour blindness; :data:`EXCITATORY`, :data:`INHIBITORY`,
-  :data:`SYMBOLIC` mark a synapse's sign, :data:`SENSOR` and :data:`ACTUATOR` the ends
-  of a delay graph. :func:`cycle` gives line colours in order.
-* **Axes.** :func:`axis_label` writes ``quantity [unit]``: every axis carries its unit.
-  :func:`legend_below` puts a legend under its axes, :func:`legend_above` over them
-  (under the panel's heading), :func:`figure_legend` under the whole figure: where it
-  never covers data, in as many columns as :func:`legend_columns` finds room for.
-* **Files.** A figure is written in some of :data:`FORMATS` (vector PDF and SVG, and a
-  PNG at :data:`PNG_DPI` for the screen).
-
-:func:`rc` is the matplotlib ``rcParams`` of the style; :func:`new_figure` makes a
-pyplot-free figure under it.
+Widths are a journal's column (3.4 in), two columns (7.0 in) and the text width of
+``derivation.pdf`` (499 pt), where a figure is included at its natural size; no text is
+set below :data:`MIN_FONT`; the palette is Okabe and Ito's [1]_, distinguishable with
+every common form of colour blindness; every axis names its unit; legends sit where they
+never cover data. :func:`rc` is the matplotlib ``rcParams`` of the style.
 
 References
 ----------
 .. [1] M. Okabe and K. Ito, "Color Universal Design (CUD): how to make figures and
    presentations that are friendly to colorblind people", J*Fly, 2002.
-   https://jfly.uni-koeln.de/color/
 
 Examples
 --------
@@ -37,9 +18,6 @@ Examples
 (3.4, 7.0, 5.0)
 >>> style.axis_label("force change δf", "N")
 'force change δf [N]'
->>> fig = style.new_figure("column", 2.0)
->>> [round(float(v), 2) for v in fig.get_size_inches()]
-[3.4, 2.0]
 """
 
 from __future__ import annotations
@@ -48,58 +26,16 @@ from contextlib import contextmanager
 
 from symctl.errors import ParameterError
 
-__all__ = [
-    "ACTUATOR",
-    "COLUMN",
-    "DOUBLE",
-    "EXCITATORY",
-    "FONT_SIZE",
-    "FORMATS",
-    "INHIBITORY",
-    "MIN_FONT",
-    "NEUTRAL",
-    "PALETTE",
-    "PNG_DPI",
-    "SENSOR",
-    "SMALL",
-    "SYMBOLIC",
-    "TEXT_WIDTH",
-    "TITLE",
-    "axis_label",
-    "cycle",
-    "figure_legend",
-    "legend_above",
-    "legend_below",
-    "legend_columns",
-    "legend_width",
-    "new_figure",
-    "rc",
-    "styled",
-    "width",
-]
-
-COLUMN = 3.4
-"""Width of a one-column figure [in] (a column of a two-column journal page)."""
-DOUBLE = 7.0
-"""Width of a two-column figure [in] (the full width of a two-column journal page)."""
-TEXT_WIDTH = 499.0 / 72.27
-"""Text width of ``derivation.pdf`` [in]: 11pt article on letter paper, 2 cm margins (499 pt)."""
-
-FONT_SIZE = 8.0
-"""Axis and tick labels, node labels of diagrams [pt]."""
-SMALL = 7.0
-"""Legends, keys and annotations [pt]."""
-TITLE = 8.5
-"""Panel titles [pt]."""
-MIN_FONT = 6.0
-"""No text of a figure is set smaller [pt], at the size it is printed."""
-
-PNG_DPI = 200
-"""Resolution of the PNG files [dots per inch] (the PDF and SVG are vector)."""
-FORMATS = ("pdf", "svg", "png")
-"""The formats a figure can be written in, in the order they are written."""
-
-PALETTE = (
+COLUMN = 3.4  # one column of a two-column journal page [in]
+DOUBLE = 7.0  # two columns [in]
+TEXT_WIDTH = 499.0 / 72.27  # the text width of derivation.pdf: 11pt article, letter, 2 cm margins
+FONT_SIZE = 8.0  # axis and tick labels, node labels of diagrams [pt]
+SMALL = 7.0  # legends, keys and annotations [pt]
+TITLE = 8.5  # panel titles [pt]
+MIN_FONT = 6.0  # no text of a figure is set smaller [pt], at the size it is printed
+PNG_DPI = 200  # resolution of the PNG files (the PDF and SVG are vector)
+FORMATS = ("pdf", "svg", "png")  # the formats a figure can be written in, in this order
+PALETTE = (  # Okabe and Ito's, in the order lines take it (yellow, pale on white, late)
     "#0072B2",  # blue
     "#D55E00",  # vermillion
     "#009E73",  # bluish green
@@ -109,22 +45,9 @@ PALETTE = (
     "#F0E442",  # yellow
     "#000000",  # black
 )
-"""Okabe and Ito's colour-blind-safe palette, in the order lines take it (yellow, pale on
-white, comes late)."""
-
-EXCITATORY = PALETTE[0]
-"""A positive synapse (blue)."""
-INHIBITORY = PALETTE[1]
-"""A negative synapse (vermillion)."""
-SYMBOLIC = PALETTE[3]
-"""A synapse whose sign depends on symbols (reddish purple)."""
-NEUTRAL = "0.25"
-"""Wires, outlines and text that carry no sign (dark grey)."""
-SENSOR = PALETTE[2]
-"""The sensor vertices of a delay graph (bluish green)."""
-ACTUATOR = PALETTE[4]
-"""The actuator vertices of a delay graph (orange)."""
-
+EXCITATORY, INHIBITORY, SYMBOLIC = PALETTE[0], PALETTE[1], PALETTE[3]  # a synapse's sign
+NEUTRAL = "0.25"  # wires, outlines and text that carry no sign (dark grey)
+SENSOR, ACTUATOR = PALETTE[2], PALETTE[4]  # the ends of a delay graph
 _WIDTHS = {"column": COLUMN, "double": DOUBLE, "text": TEXT_WIDTH}
 
 
@@ -172,22 +95,10 @@ def cycle(k: int) -> str:
     return PALETTE[k % len(PALETTE)]
 
 
-BAND_ALPHA = 0.22
-"""Opacity of the band of noisy runs (:func:`band`)."""
-
-
 def band(ax, t, mean, sd, color: str, label: str | None = None):
     r"""The spread of noisy runs about their mean, :math:`\pm 2` sd, held over each step."""
-    return ax.fill_between(
-        t,
-        mean - 2 * sd,
-        mean + 2 * sd,
-        step="post",
-        color=color,
-        alpha=BAND_ALPHA,
-        lw=0,
-        label=label,
-    )
+    lo, hi = mean - 2 * sd, mean + 2 * sd
+    return ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.22, lw=0, label=label)
 
 
 def axis_label(quantity: str, unit: str | None) -> str:
@@ -265,11 +176,8 @@ def styled():
 
 
 def new_figure(size: str | float = "text", height: float | None = None, **kwargs):
-    """A pyplot-free figure of the style's width (see :func:`width`) and ``height`` inches.
-
-    ``height`` defaults to 0.62 of the width. The figure has a constrained layout, so
-    labels and legends are fitted inside it. Keywords go to
-    :class:`matplotlib.figure.Figure`.
+    """A pyplot-free figure of the style's width (:func:`width`) and ``height`` inches (default
+    0.62 of the width), constrained layout; keywords go to :class:`matplotlib.figure.Figure`.
 
     Examples
     --------
@@ -286,46 +194,14 @@ def new_figure(size: str | float = "text", height: float | None = None, **kwargs
         return Figure(figsize=(w, h), **kwargs)
 
 
-def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, title=None):
-    """A legend under ``ax``, outside its data, in as many columns as fit.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import legend_below, new_figure
-    >>> fig = new_figure("column", 2.0)
-    >>> ax = fig.add_subplot()
-    >>> _ = ax.plot([0, 1], [0, 1], label="a")
-    >>> legend_below(ax).get_texts()[0].get_text()
-    'a'
-    """
-    if handles is None:
-        handles, labels = ax.get_legend_handles_labels()
-    if ncol is None:
-        ncol = max(1, min(len(handles), 4))
-    return ax.legend(
-        handles,
-        labels,
-        loc="upper center",
-        bbox_to_anchor=(0.5, -0.22),
-        ncol=ncol,
-        title=title,
-        fontsize=SMALL,
-        frameon=False,
-    )
-
-
 _HANDLE = 2.0 + 0.8  # matplotlib's handlelength + handletextpad [em]
 _SPACING = 2.0  # columnspacing [em]
 _PAD = 2 * (0.5 + 0.4)  # borderaxespad + borderpad, both sides, at their defaults [em]
 
 
 def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
-    """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out.
-
-    Matplotlib fills the columns in order, the first ``len(labels) % ncol`` of them
-    with one entry more than the others. Each column is as wide as its longest label
-    (measured as drawn, mathtext included) plus the handle; the columns are separated
-    as matplotlib separates them.
+    """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out (the
+    first ``len(labels) % ncol`` columns one entry longer, each as wide as its longest label).
 
     Examples
     --------
@@ -350,7 +226,7 @@ def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
     return 1.06 * sum(widths) + em * (_HANDLE * ncol + _SPACING * (ncol - 1) + _PAD)
 
 
-def legend_columns(labels, room: float, *, size: float = SMALL, most: int | None = None) -> int:
+def legend_columns(labels, room: float, *, size: float = SMALL) -> int:
     """The most columns (at least 1) in which a legend of ``labels`` fits ``room`` inches.
 
     Examples
@@ -360,20 +236,15 @@ def legend_columns(labels, room: float, *, size: float = SMALL, most: int | None
     (2, 1)
     """
     labels = list(labels)
-    top = max(1, min(len(labels), most or len(labels)))
-    for ncol in range(top, 1, -1):
+    for ncol in range(len(labels), 1, -1):
         if legend_width(labels, ncol, size=size) <= room:
             return ncol
     return 1
 
 
 def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | None = None):
-    """A legend in the row above ``ax``, from its left end, at most ``room`` inches wide.
-
-    ``heading``, the panel's short heading, is the legend's title, set on the left above
-    the entries: a panel with several traces has its heading and key in one block over
-    the data, never on it. The legend takes as many columns as fit ``room`` (the
-    panel's width) and grows upward; the figure's constrained layout makes space.
+    """A legend above ``ax`` from its left end, in as many columns as fit ``room`` inches,
+    titled ``heading`` (the panel's heading and key in one block over the data).
 
     Examples
     --------
@@ -404,7 +275,7 @@ def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | N
     )
 
 
-def figure_legend(fig, handles, labels, *, title: str | None = None, most: int | None = None):
+def figure_legend(fig, handles, labels, *, title: str | None = None):
     """One legend under the whole figure, centred, in as many columns as fit its width.
 
     Examples
@@ -417,12 +288,11 @@ def figure_legend(fig, handles, labels, *, title: str | None = None, most: int |
     2
     """
     room = float(fig.get_size_inches()[0]) - 0.1
-    ncol = legend_columns(labels, room, most=most)
     return fig.legend(
         handles,
         labels,
         loc="outside lower center",
-        ncols=ncol,
+        ncols=legend_columns(labels, room),
         title=title,
         fontsize=SMALL,
         title_fontsize=SMALL,
