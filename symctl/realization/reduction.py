@@ -19,14 +19,10 @@ With :math:`(\tilde A, \tilde B)` stabilizable and :math:`(\tilde A, \tilde Q)` 
 :math:`X \tilde B d = 0`, so :math:`d^\top (R + \tilde B^\top X \tilde B) = (R d)^\top` and
 :math:`(R d)^\top K = -d^\top \tilde B^\top X \tilde A = 0`. :math:`\square`
 
-So :math:`w^\top \mu = 0` for :math:`w \in R\mathcal D`: the :math:`T \dim \mathcal D`
-states :math:`w^\top \gamma_k` are never reached, and :math:`G` has the factor
-:math:`z^{T \dim \mathcal D}` in its denominator and every numerator. The ties are linear
-equations between the gains with rational coefficients; the numeric gains satisfy them
-to rounding only, so :func:`controller_reduction` computes the tied gains from the free
-ones, exactly, and decides the minimal order of the delayed controller with those gains
-by :func:`~symctl.realization.minimal.minimal_realization` (exact; with one input
-:math:`K_0 / (z^T - K_1 z^{T-1} - \dots - K_T)` is minimal unless :math:`K_0 = 0`).
+So the :math:`T \dim \mathcal D` states :math:`w^\top \gamma_k`, :math:`w \in R\mathcal D`, are
+never reached. The numeric gains satisfy these linear ties to rounding only, so
+:func:`controller_reduction` computes the tied gains exactly from the free ones and decides
+the minimal order with :func:`~symctl.realization.minimal.minimal_realization`.
 """
 
 from __future__ import annotations
@@ -62,15 +58,12 @@ class ControllerReduction(Verdict):
     order, minimal_order : int
         The controller's states (:math:`T m`) and its McMillan degree (exact).
     relations : mapping of Symbol to expression
-        The gains the theorem ties, each in the free ones (empty when minimal).
-    never_driven : tuple of str
-        The input combinations :math:`w^\top \mu` the controller keeps at 0 (:math:`w = R d`).
-    unseen : tuple of str
-        The plant-state combinations the cost never sees.
-    reason : str
-        Why the controller is not minimal ('' when it is).
-    method : str
-        How the McMillan degree was decided.
+        The gains the theorem ties, each in the free ones.
+    never_driven, unseen : tuple of str
+        The input combinations :math:`w^\top \mu` kept at 0 (:math:`w = R d`), and the
+        plant-state combinations the cost never sees.
+    reason, method : str
+        Why it is not minimal ('' when it is), and how the McMillan degree was decided.
     """
 
     _verdict = "minimal"
@@ -91,7 +84,6 @@ class ControllerReduction(Verdict):
 
     @property
     def minimal(self) -> bool:
-        """Whether the McMillan degree is the number of states."""
         return self.minimal_order == self.order
 
     @property
@@ -99,8 +91,8 @@ class ControllerReduction(Verdict):
         return f"McMillan degree {self.minimal_order} of {self.order} states"
 
     def reduce(self, G: DiscreteTF) -> DiscreteTF:
-        r"""``G`` (in the gains' symbols) with the ties substituted and the power of :math:`z`
-        common to its denominator and numerators divided out (``G`` as it is when minimal)."""
+        r"""``G`` (in the gains' symbols) with the ties substituted and the common power of
+        :math:`z` divided out."""
         if self.minimal:
             return G
         G = G.subs(self.relations)
@@ -111,7 +103,7 @@ class ControllerReduction(Verdict):
 
 
 def _numbers(M: sp.MatrixBase, name: str) -> fmpq_mat:
-    """``M`` in rationals: a number that is not rational (``exp(-1/2)``) by its float, as the LQR."""
+    """``M`` in rationals, an irrational number by its float (as the LQR)."""
     return _mat(M.applyfunc(lambda e: e if e.is_Rational else sp.Float(float(e))), name)
 
 
@@ -143,8 +135,7 @@ def _unseen(A: fmpq_mat, Q: fmpq_mat) -> list[list[sp.Rational]]:
 
 
 def _combination(v, names) -> str:
-    """``v`` scaled to a leading coefficient of 1, as a signed sum of ``names`` (deviations named
-    without ``delta_``): ``u_1 + u_2``."""
+    """``v`` scaled to a leading 1, as a signed sum of ``names`` without ``delta_``: ``u_1 + u_2``."""
     lead = abs(next(c for c in v if c != 0))
     terms = []
     for c, name in zip((c / lead for c in v), names, strict=True):
@@ -172,8 +163,7 @@ def controller_reduction(
     Returns
     -------
     (ControllerReduction, Gains)
-        The verdict (truthy when minimal), and the gains with the tied ones computed
-        exactly from the free ones (``gains`` itself when minimal).
+        The verdict, and the gains with the tied ones computed exactly from the free ones.
 
     Raises
     ------
