@@ -170,23 +170,20 @@ def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str
     blocks = gain_matrix_symbols(T, m, n)
     R, convert = _ring_of(K)
     zz = R.gens[0]
+
+    def rows(mat):
+        return [[convert(e) for e in mat.row(i)] for i in range(mat.rows)]
+
     try:
         Fr = {
             (i, j): convert(F[i, j]) for i in range(F.rows) for j in range(F.cols) if F[i, j] != 0
         }
-        Hr = [[convert(e) for e in H.row(i)] for i in range(H.rows)]
-        Br = [[convert(e) for e in B_c.row(i)] for i in range(B_c.rows)]
-        D = [
-            [convert(e) for e in _chain(T, m, lambda k, i, j: blocks[k][i, j]).row(i)]
-            for i in range(m)
-        ]
-        K0 = [[convert(e) for e in blocks[0].row(i)] for i in range(m)]
+        Hr, Br = rows(H), rows(B_c)
+        D, K0 = rows(_chain(T, m, lambda k, i, j: blocks[k][i, j])), rows(blocks[0])
         if isinstance(G, MatrixFractionTF):
-            D_G = [[convert(e) for e in G.D.row(i)] for i in range(m)]
-            N_G = [[convert(e) for e in G.N.row(i)] for i in range(m)]
+            D_G, N_G = rows(G.D), rows(G.N)
         else:
-            N_G = [[convert(e) for e in G.num_matrix.row(i)] for i in range(m)]
-            d_G = convert(G.den)
+            N_G, d_G = rows(G.num_matrix), convert(G.den)
     except (NotRational, KeyError):
         return None
 

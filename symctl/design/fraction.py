@@ -206,10 +206,8 @@ class MatrixFractionTF(DiscreteTF):
         >>> import sympy as sp
         >>> from symctl import z
         >>> from symctl.design.fraction import MatrixFractionTF
-        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr
-        Matrix([
-        [1/z, -1/z**2],
-        [  0,     1/z]])
+        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr.tolist()
+        [[1/z, -1/z**2], [0, 1/z]]
         """
         max_terms = bounded_int(max_terms, "max_terms", 1, 10**9)
         got = self._cache.get("expanded")

@@ -140,8 +140,6 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> [round(float(k), 6) for k in g.K[0]]
     [-0.045972, -0.580041, -0.351813]
-    >>> [round(float(k), 6) for k in lqr_gains(augment(MuscleModel(), 1, 1), R=10).K[0]]
-    [-0.033993, -0.428904, -0.260143]
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(

@@ -321,10 +321,8 @@ class ODEModel(CachedState, LatexMixin):
     >>> th, w, u = sp.symbols("theta omega u", real=True)
     >>> g = sp.Symbol("g", positive=True)
     >>> m = ODEModel([th, w], [u], [w, g * sp.sin(th) + u], {g: 9.81}, x_eq=[0, 0], dt=0.01)
-    >>> m.linearize_symbolic().a
-    Matrix([
-    [0, 1],
-    [g, 0]])
+    >>> m.linearize_symbolic().a.tolist()
+    [[0, 1], [g, 0]]
     >>> round(float(m.plant().A[1, 0]), 6)
     0.098116
     """

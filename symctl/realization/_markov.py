@@ -191,14 +191,17 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
     a = coeffs[nb:]
     rows = [alg.common(row) for row in problem.M]  # M F^a, one per output
     cols = [alg.common(problem.H[m][j] for m in range(n)) for j in range(q)]  # F^b H
+    steps = [0, 0]  # a and b
     h: list = []
     scale = delta  # delta**(k+1)
     for k in range(n + problem.d + 1):
         h.append(_markov_next(b, a, h, delta, alg.zero))
-        if k >= 2 and _size(rows) <= _size(cols):
+        if k >= 2 and _rows_first(rows, cols, steps):
             rows = [_step(FnT, vec, den, Fd, alg.zero) for vec, den in rows]
+            steps[0] += 1
         elif k >= 2:
             cols = [_step(Fn, vec, den, Fd, alg.zero) for vec, den in cols]
+            steps[1] += 1
         for i, j in ((i, j) for i in range(p) for j in range(q)):
             if k == 0:
                 num, den = N[i][j]
@@ -208,6 +211,11 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
                 den = rden * cden
             yield k, i, j, num, den, h[k][i][j], scale
         scale = scale * delta
+
+
+def _rows_first(rows, cols, steps) -> bool:
+    """Whether the rows advance next: their numerators have fewer terms (benchmarks swap this)."""
+    return _size(rows) <= _size(cols)
 
 
 def _size(vectors) -> int:

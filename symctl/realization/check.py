@@ -104,8 +104,8 @@ class RealizationCheck(Verdict, LatexMixin):
     >>> result = check_realization(Realization([[2]], [[1]], [[1]], 0), 1 / (z - 3))
     >>> bool(result), result.counterexample["values"][z] != 3
     (False, True)
-    >>> print(result.details)
-    Markov parameter h_2: M F H != h_2 in entry (0, 0)
+    >>> result.details
+    'Markov parameter h_2: M F H != h_2 in entry (0, 0)'
     """
 
     ok: bool
@@ -483,13 +483,11 @@ def check_realization(
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` not a :class:`Realization`, ``G`` not a transfer function, ``rng`` of another type.
-    DimensionError
-        ``G`` of another shape than ``R``.
+    SymctlTypeError, DimensionError
+        ``R``, ``G`` or ``rng`` of another type; ``G`` of another shape.
     ParameterError
-        Unknown ``method``; ``rtol`` not in (0, 1); ``G`` improper; entries not rational in
-        their symbols, or ``R`` depending on ``z``.
+        Unknown ``method``; ``rtol`` not in (0, 1); ``G`` improper; entries not rational, or
+        ``R`` depending on ``z``.
 
     Examples
     --------
@@ -504,9 +502,6 @@ def check_realization(
     >>> result = check_realization(R, G2, "randomized", rng=1)
     >>> result.ok, result.error_bound < 2**-64
     (True, True)
-    >>> bad = check_realization(R, G2 + 1 / z)
-    >>> bad.ok, sorted(bad.counterexample)
-    (False, ['G', 'realization', 'values'])
 
     Floating-point inputs are judged exactly and numerically, side by side:
 
@@ -562,17 +557,11 @@ def require_stable_sections(epsilons, argname: str) -> None:
     epsilons : iterable of numbers or sympy expressions
         The section poles, or the ends of an interval they are drawn from.
     argname : str
-        The argument named in the error.
-
-    Raises
-    ------
-    ParameterError
-        A number with :math:`|\epsilon| \ge 1`, naming ``argname`` and the value.
+        The argument named in the ParameterError.
 
     Examples
     --------
     >>> from symctl.realization.check import require_stable_sections
-    >>> require_stable_sections((-0.9, 0.9), "eps_range")
     >>> require_stable_sections((0.5, 1.5), "eps_range")
     Traceback (most recent call last):
     ...

@@ -7,13 +7,6 @@ V^+ H, M V)` has the same Markov parameters, as :math:`F V = V F_c`, :math:`H = 
 2. **observable part**, the dual step. The result is checked: :math:`n + r` equal Markov
 parameters prove one transfer function (the difference has a realization of order
 :math:`n + r`).
-
->>> from symctl import Realization
->>> from symctl.realization.minimal import minimal_realization
->>> R = Realization([[0.5, 0], [0, 0.25]], [[1], [0]], [[1, 1]], 0)  # x2 is never reached
->>> Rm = minimal_realization(R)
->>> Rm.n, Rm.to_tf().expr
-(1, 1/(z - 1/2))
 """
 
 from __future__ import annotations

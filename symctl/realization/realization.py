@@ -165,13 +165,10 @@ class Realization(LatexMixin):
             raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
         got = similar_exact(self.F, self.H, self.M, Pm) if self.n else None
         if got is None:
-            F, H, M, Pinv = _similar_sympy(self.F, self.H, self.M, Pm)
-        elif got == "singular":
-            F = None
-        else:
-            F, H, M, Pinv = got
-        if F is None:
+            got = _similar_sympy(self.F, self.H, self.M, Pm)
+        if got == "singular" or got[0] is None:
             raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
+        F, H, M, Pinv = got
         params = {**self.params, "P": sp.ImmutableMatrix(Pm)}
         return Realization(F, H, M, self.N, self.dt, params), sp.ImmutableMatrix(Pinv)
 
@@ -195,11 +192,7 @@ class Realization(LatexMixin):
         )
 
     def observability_matrix(self) -> sp.Matrix:
-        return (
-            sp.Matrix.vstack(*[self.M * self.F**k for k in range(self.n)])
-            if self.n
-            else sp.zeros(0, 0)
-        )
+        return self.transpose().controllability_matrix().T
 
     def is_minimal(self) -> bool:
         r"""Controllable and observable (generic rank with symbols; floats to a relative 1e-10)."""

@@ -38,6 +38,7 @@ from flint import fmpq_mat
 
 from symctl._util.exact import from_fmpq, from_fmpq_mat
 from symctl.design.augment import AugmentedSystem
+from symctl.design.controller import ifp_state_space
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
@@ -203,7 +204,7 @@ def controller_reduction(
     values = dict(zip(K, (sp.Rational(float(v)) for v in gains.K.ravel()), strict=True))
     values.update({s: e.xreplace(values) for s, e in relations.items()})
     exact = sp.Matrix(*K.shape, [values[s] for s in K])
-    order, method = _chain_order(exact, n, m, T, len(directions))
+    order, method = _chain_order(system, exact, len(directions))
     if order == T * m:
         return ControllerReduction(T * m, order, method=method), gains
     Kn = np.array(exact, dtype=float)
@@ -248,23 +249,17 @@ def _solve(equations: list, symbols: list) -> dict:
     return {k: solved[k] for k in symbols if k in solved}
 
 
-def _chain_order(K: sp.Matrix, n: int, m: int, T: int, tied: int) -> tuple[int, str]:
+def _chain_order(system: AugmentedSystem, K: sp.Matrix, tied: int) -> tuple[int, str]:
     """The McMillan degree of the delay chain's controller with gains ``K``, and how it was found."""
+    n, m, T = system.n, system.m, system.T
     if m == 1:  # K_0 / (z^T - K_1 z^(T-1) - ... - K_T): minimal unless K_0 = 0
         return (T if any(K[0, j] != 0 for j in range(n)) else 0), "K_0 != 0 (one input)"
     if T * m > MAX_ORDER:
         return T * (
             m - tied
         ), f"the theorem's count (the Kalman reduction takes {MAX_ORDER} states)"
-    F = sp.zeros(T * m, T * m)
-    F[:m, :] = K[:, n:]
-    F[m:, : (T - 1) * m] = sp.eye((T - 1) * m)
-    H = sp.zeros(T * m, n)
-    H[:m, :] = K[:, :n]
-    M = sp.zeros(m, T * m)
-    M[:, (T - 1) * m :] = sp.eye(m)
-    realization = Realization(F, H, M, sp.zeros(m, n))
-    return minimal_realization(realization).n, ControllerReduction.method
+    chain = Realization(*ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T))
+    return minimal_realization(chain).n, ControllerReduction.method
 
 
 def _reason(system: AugmentedSystem, directions, blind, unexplained: int) -> str:

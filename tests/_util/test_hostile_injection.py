@@ -512,6 +512,7 @@ AUDITED = {
     ("symctl.realization.reduction", "controller_reduction", "Matrix"): 5,
     ("symctl.realization.reduction", "_directions", "Matrix"): 1,
     ("symctl.realization.reduction", "_reason", "Matrix"): 1,
+    ("symctl.realization.reduction", "_chain_order", "Matrix"): 2,  # the system matrices
     # the odd-degree proof: a pattern's own equations, symbols and rationals (no user text)
     ("symctl.circuitatlas.odddegree", "_shape", "expand"): 1,
     ("symctl.circuitatlas.odddegree", "_orders", "expand"): 1,
