@@ -14,6 +14,7 @@ from flint.utils.flint_exceptions import DomainError
 from symctl._util.exact import IntFractions, PolyFractions, fold
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.realization._similarity import over_lcm
 from symctl.realization.realization import Realization
 from symctl.symbols import z
 
@@ -123,12 +124,7 @@ class _Entries:
 
     def common(self, exprs) -> tuple[list, object]:
         """Numerators over one common denominator (the lcm of the entries' ones)."""
-        pairs = [self.entry(e) for e in exprs]
-        den = self.one
-        for _, d in pairs:
-            if d != den and not d.is_one():
-                den = den * (d / den.gcd(d))
-        return [n * (den / d) for n, d in pairs], den
+        return over_lcm([self.entry(e) for e in exprs], self.one)
 
 
 def _cancel(nums: list, den, factor) -> tuple[list, object]:

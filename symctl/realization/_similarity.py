@@ -61,13 +61,8 @@ class _Ring:
 
     def common(self, mat: sp.MatrixBase) -> tuple[list[list], object]:
         """The entries as numerators over one common denominator (the lcm of theirs)."""
-        pairs = [[self.pair(e) for e in mat.row(i)] for i in range(mat.rows)]
-        den = self.one
-        for row in pairs:
-            for _, d in row:
-                if d != den and not d.is_one():
-                    den = den * (d / den.gcd(d))
-        return [[n * (den / d) for n, d in row] for row in pairs], den
+        nums, den = over_lcm([self.pair(e) for e in mat.flat()], self.one)
+        return [nums[i * mat.cols : (i + 1) * mat.cols] for i in range(mat.rows)], den
 
     def _ensure(self, degrees) -> None:
         """Put ``x_i**k`` for every ``k <= degrees[i]`` in the pool of factors, ranked as SymPy sorts."""
@@ -189,6 +184,15 @@ def _number_key(c: sp.Rational) -> tuple:
 
 def _rank(entry) -> int:
     return entry[1]
+
+
+def over_lcm(pairs: list, one) -> tuple[list, object]:
+    """Reduced ``(num, den)`` pairs as numerators over the lcm of the denominators."""
+    den = one
+    for _, d in pairs:
+        if d != den and not d.is_one():
+            den = den * (d / den.gcd(d))
+    return [n * (den / d) for n, d in pairs], den
 
 
 def _reduce(num, den):
