@@ -1,21 +1,5 @@
-r"""python-control systems as symctl plants, and the one realization of a numeric transfer function.
-
-:func:`plant_from_control` reads a discrete ``control.StateSpace`` or
-``TransferFunction`` (python-control is imported only when such an object arrives).
-:func:`canonical_columns` realizes :math:`G_{ij} = n_{ij}/d_{ij}` column by column in the
-controllable canonical form of :func:`~symctl.realization.realization.controllable_canonical`:
-column :math:`j` has the product :math:`d_j = z^r + a_{r-1} z^{r-1} + \dots + a_0` of its
-entries' distinct denominators, :math:`F_j` the companion of :math:`d_j`, :math:`H_j =
-e_r`, :math:`M_j = [c_{ij,0}\ \cdots\ c_{ij,r-1}]_i`, :math:`N_{ij} = G_{ij}(\infty)` with
-:math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k / d_j`; the blocks are put on the diagonal in
-input order. Deterministic, controllable, and minimal for SISO.
-
->>> import control
->>> from symctl.design._foreign import plant_from_control
->>> p = plant_from_control(control.ss([[0.5]], [[2.0]], [[1.0]], 0, 0.1))
->>> p.A, p.B, p.dt, p.state_names
-(Matrix([[0.5]]), Matrix([[2.0]]), 0.100000000000000, ('x',))
-"""
+"""python-control systems as symctl plants (control is imported only when such an object
+arrives), and the one realization of a numeric transfer function."""
 
 from __future__ import annotations
 
@@ -31,27 +15,12 @@ __all__ = ["canonical_columns", "control_dt", "is_control_system", "plant_from_c
 
 
 def is_control_system(obj) -> bool:
-    """Whether ``obj`` is a python-control object (read from its type, without importing control).
-
-    >>> from symctl.design._foreign import is_control_system
-    >>> is_control_system(([[1]], [[1]]))
-    False
-    """
+    """Whether ``obj`` is a python-control object (read from its type, without importing control)."""
     return type(obj).__module__.partition(".")[0] == "control"
 
 
 def control_dt(sys, argname: str):
-    """The sampling time of a discrete python-control system; ``dt=True`` (or None) -> None.
-
-    >>> import control
-    >>> from symctl.design._foreign import control_dt
-    >>> control_dt(control.tf([1], [1, -0.5], True), "sys") is None
-    True
-    >>> control_dt(control.tf([1], [1, 1]), "sys")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: sys: a continuous-time system (dt = 0); discretize it first ...
-    """
+    """The sampling time of a discrete python-control system (``dt=True`` or None: None)."""
     dt = sys.dt
     if dt is True or dt is None:  # python-control's "discrete, unspecified" (None: either)
         return None
@@ -111,30 +80,15 @@ def _column(entries: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, .
 
 
 def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
-    """``(F, H, M, N)``: the column-wise controllable canonical form of ``nums[i][j]/dens[i][j]``.
+    r"""``(F, H, M, N)``: the column-wise controllable canonical form of ``nums[i][j]/dens[i][j]``
+    (descending coefficient arrays, ``[outputs][inputs]``).
 
-    Parameters
-    ----------
-    nums, dens : nested sequences ``[outputs][inputs]`` of coefficient arrays
-        Descending powers of z (python-control's ``num_array``/``den_array``).
-    argname : str
-        Named in errors.
+    Column :math:`j` has the product :math:`d_j` of its entries' distinct denominators, its
+    companion :math:`F_j`, :math:`H_j = e_r`, and :math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k
+    / d_j` in :math:`M_j`; the blocks on the diagonal in input order. Deterministic,
+    controllable, minimal for SISO. Refuses improper, complex or non-finite entries
+    (ParameterError) and more than ``MAX_STATES`` states (DimensionError).
 
-    Returns
-    -------
-    tuple of numpy arrays
-        ``F`` (n x n), ``H`` (n x inputs), ``M`` (outputs x n), ``N`` (outputs x inputs),
-        with ``n`` the sum of the columns' denominator degrees.
-
-    Raises
-    ------
-    ParameterError
-        An improper entry, a zero denominator, complex or non-finite coefficients.
-    DimensionError
-        No entries, or more than ``MAX_STATES`` (1000) states.
-
-    Examples
-    --------
     >>> from symctl.design._foreign import canonical_columns
     >>> F, H, M, N = canonical_columns([[[2.0, 1.0]]], [[[1.0, -0.5, 0.06]]], "G")
     >>> F.tolist(), H.ravel().tolist(), M.tolist(), N.tolist()
@@ -171,35 +125,14 @@ def _labels(labels) -> tuple[str, ...]:
 
 
 def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
-    """A :class:`~symctl.design.plant.DiscretePlant` from a discrete python-control system.
+    """A :class:`~symctl.design.plant.DiscretePlant` from a discrete python-control system: a
+    ``StateSpace``'s ``A``, ``B`` (``C``, ``D`` unused), a ``TransferFunction`` by
+    :func:`canonical_columns`; labels that are distinct identifiers name states and inputs.
 
-    A ``StateSpace`` gives ``A``, ``B`` (state feedback: ``C``, ``D`` unused), a
-    ``TransferFunction`` is realized by :func:`canonical_columns`; ``dt=True`` gives ``None``;
-    labels that are distinct identifiers name the states and inputs.
+    Refuses a continuous-time system, improper, complex or non-finite coefficients
+    (ParameterError), another object (SymctlTypeError), no or over ``MAX_STATES`` states
+    (DimensionError).
 
-    Parameters
-    ----------
-    sys : control.StateSpace or control.TransferFunction
-        Discrete-time, numeric.
-    argname : str
-        Named in errors (default ``"plant"``).
-
-    Returns
-    -------
-    DiscretePlant
-
-    Raises
-    ------
-    ParameterError
-        A continuous-time system (``dt = 0``), an improper transfer function,
-        non-finite or complex coefficients.
-    SymctlTypeError
-        Another python-control object.
-    DimensionError
-        No states (a static gain), or more than ``MAX_STATES`` (1000).
-
-    Examples
-    --------
     >>> import control
     >>> from symctl.design._foreign import plant_from_control
     >>> sys = control.ss([[1, 0.1], [0, 1]], [[0], [0.1]], [[1, 0]], 0, 0.1,

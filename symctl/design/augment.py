@@ -1,8 +1,7 @@
 r"""Sensor and actuator delays built into an augmented state.
 
-With net delay :math:`T = d_s + d_a`, the intended actuation :math:`\mu` reaches the plant
-:math:`T` steps later through a chain of delayed copies (the paper's eqs.
-(augmented_states)–(augmented_cost), for any :math:`T` and plant size):
+With net delay :math:`T = d_s + d_a`, :math:`\mu` reaches the plant through a chain of
+delayed copies (the paper's eqs. (augmented_states)–(augmented_cost), any :math:`T`):
 
 .. math::
     \gamma_1(t+1) = \mu(t),\quad \gamma_{k+1}(t+1) = \gamma_k(t),\quad
@@ -16,9 +15,7 @@ scalar ``T = 2``, :math:`\chi = [\delta_f, \gamma, \delta_r]` and
     \tilde B = \begin{bmatrix} 0 \\ I \\ 0 \end{bmatrix},\quad
     \tilde Q = \operatorname{diag}(Q, 0, R).
 
-Only the net delay enters (for state feedback a sensor delay can move to the actuator
-side); the split is kept for :math:`G = G_3 G_2 G_1`. With ``T = 0`` the system is the
-plant and ``R`` penalizes :math:`\mu = u`.
+Only the net delay enters; the split is kept for :math:`G = G_3 G_2 G_1`.
 """
 
 from __future__ import annotations
@@ -50,11 +47,8 @@ def as_plant(plant) -> DiscretePlant:
     Parameters
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
-        A :class:`DiscretePlant` as it is, a :class:`MuscleModel`'s :meth:`~MuscleModel.plant`,
-        ``(A, B)`` without ``dt``; a discrete ``control.StateSpace`` its ``A``, ``B``, ``dt``
-        (``dt=True`` is ``None``) and its labels when identifiers (``C``, ``D`` unused: state
-        feedback); a discrete ``control.TransferFunction`` in the column-wise controllable
-        canonical form of :func:`symctl.design._foreign.canonical_columns`.
+        A discrete ``control.StateSpace`` or ``TransferFunction`` is read by
+        :func:`symctl.design._foreign.plant_from_control`.
 
     Returns
     -------
@@ -65,8 +59,7 @@ def as_plant(plant) -> DiscretePlant:
     SymctlTypeError
         Another type.
     ParameterError
-        A continuous-time python-control system (discretize it first: ``control.c2d``
-        or :func:`~symctl.design.plant.discretize`), an improper transfer function.
+        A continuous-time python-control system, an improper transfer function.
     DimensionError
         Matrices of the wrong shape.
 
@@ -75,14 +68,8 @@ def as_plant(plant) -> DiscretePlant:
     >>> import control
     >>> from symctl.design.augment import as_plant
     >>> p = as_plant(control.ss([[0.5, 0], [0, 0.2]], [[1], [1]], [[1, 1]], 0, 0.01))
-    >>> p.A, p.dt, p.state_names, p.input_names
-    (Matrix([
-    [0.5, 0.0],
-    [0.0, 0.2]]), 0.0100000000000000, ('x_1', 'x_2'), ('u',))
-    >>> as_plant(control.ss([[-1]], [[1]], [[1]], 0))
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: plant: a continuous-time system (dt = 0); discretize it first ...
+    >>> p.dt, p.state_names, p.input_names
+    (0.0100000000000000, ('x_1', 'x_2'), ('u',))
     """
     if isinstance(plant, DiscretePlant):
         return plant
@@ -99,23 +86,8 @@ def as_plant(plant) -> DiscretePlant:
 
 
 def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") -> None:
-    """Refuse ``argname`` when the plant's ``dt`` and the ``dt`` it comes with differ.
-
-    Parameters
-    ----------
-    plant : DiscretePlant
-    dt : sympy expression or None
-        The other object's sampling time (``None`` fits any, as a plant's ``None`` does).
-    argname : str
-        The argument named in the error.
-    of : str
-        What ``dt`` belongs to, for the message.
-
-    Raises
-    ------
-    ParameterError
-        Two numeric times that differ by more than a relative 1e-12, or two different
-        symbolic ones (:func:`symctl._util.validate.common_dt`).
+    """Refuse ``argname`` (ParameterError) when the plant's ``dt`` and the ``dt`` of ``of`` differ
+    (:func:`symctl._util.validate.common_dt`; ``None`` fits any).
 
     Examples
     --------
@@ -146,13 +118,11 @@ class AugmentedSystem(LatexMixin):
     ----------
     plant : DiscretePlant
     sensor_delay, actuator_delay, T : int
-        The delays in steps and their sum, the net delay.
-    A, B : sympy.ImmutableMatrix
-        :math:`\tilde A` (``n + T m`` square) and :math:`\tilde B` (``n + T m`` by ``m``).
-    Q : sympy.ImmutableMatrix
-        :math:`\tilde Q = \operatorname{diag}(Q, 0, \dots, 0, R)` (for ``T = 0``: ``Q``).
+        The delays in steps and their sum.
+    A, B, Q : sympy.ImmutableMatrix
+        :math:`\tilde A`, :math:`\tilde B`, :math:`\tilde Q` (for ``T = 0``: ``Q``).
     Q_plant, R : sympy.ImmutableMatrix
-        The plant's state and input penalties of eq. (cost).
+        The plant's state and input penalties.
     state_names : tuple of str
         Names of the entries of :math:`\chi`.
 
@@ -162,8 +132,6 @@ class AugmentedSystem(LatexMixin):
     >>> s = augment(MuscleModel(), 1, 1)
     >>> s.T, s.n, s.m, s.chi.T
     (2, 1, 1, Matrix([[delta_f, gamma, delta_r]]))
-    >>> s == augment(MuscleModel(), 1, 1)
-    True
     """
 
     plant: DiscretePlant
@@ -178,27 +146,24 @@ class AugmentedSystem(LatexMixin):
 
     @property
     def T(self) -> int:
-        """Net sensorimotor delay in steps."""
         return self.sensor_delay + self.actuator_delay
 
     @property
     def n(self) -> int:
-        """Plant states."""
         return self.plant.n
 
     @property
     def m(self) -> int:
-        """Plant inputs (size of each delayed copy of mu)."""
         return self.plant.m
 
     @property
     def R_mu(self) -> sp.ImmutableMatrix:
-        """Penalty on the intended actuation mu: ``R`` when ``T = 0``, else zero (the paper's)."""
+        """Penalty on mu: ``R`` when ``T = 0``, else zero (the paper's)."""
         return self.R if self.T == 0 else sp.ImmutableMatrix(sp.zeros(self.m, self.m))
 
     @property
     def chi(self) -> sp.ImmutableMatrix:
-        r"""The augmented state :math:`\chi` as a column of symbols named after ``state_names``."""
+        r""":math:`\chi` as a column of symbols named after ``state_names``."""
         return sp.ImmutableMatrix([sp.Symbol(s) for s in self.state_names])
 
     def latex(self) -> str:
@@ -227,14 +192,11 @@ def augment(
     Parameters
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
-        Numeric or symbolic; a discrete ``control.StateSpace`` or ``TransferFunction``
-        is read by :func:`as_plant` (its ``dt`` becomes the plant's).
+        Numeric or symbolic (read by :func:`as_plant`).
     sensor_delay, actuator_delay : int
-        Delays in steps, >= 0, with ``T = sensor_delay + actuator_delay <= MAX_DELAY`` (500).
-    Q : matrix-like, optional
-        State penalty (``n x n``); identity by default.
-    R : matrix-like, optional
-        Input penalty (``m x m``); identity by default.
+        Delays in steps, >= 0, their sum ``T <= MAX_DELAY`` (500).
+    Q, R : matrix-like, optional
+        State (``n x n``) and input (``m x m``) penalties; identity by default.
 
     Returns
     -------
@@ -256,16 +218,8 @@ def augment(
     >>> from symctl import augment
     >>> a, b = sp.symbols("A B")
     >>> aug = augment(([[a]], [[b]]), 1, 1)
-    >>> aug.A
-    Matrix([
-    [A, 0, B],
-    [0, 0, 0],
-    [0, 1, 0]])
-    >>> aug.B.T, aug.Q
-    (Matrix([[0, 1, 0]]), Matrix([
-    [1, 0, 0],
-    [0, 0, 0],
-    [0, 0, 1]]))
+    >>> aug.A.tolist(), aug.B.T
+    ([[A, 0, B], [0, 0, 0], [0, 1, 0]], Matrix([[0, 1, 0]]))
     """
     p = as_plant(plant)
     ds = nonneg_int(sensor_delay, "sensor_delay")
@@ -283,17 +237,13 @@ def augment(
         )
     Qm = sp.eye(n) if Q is None else to_matrix(Q, "Q")
     Rm = sp.eye(m) if R is None else to_matrix(R, "R")
-    if Qm.shape != (n, n):
-        raise DimensionError(
-            f"Q: expected shape {(n, n)} for a plant with {n} states, got {Qm.shape}"
-        )
-    if Rm.shape != (m, m):
-        raise DimensionError(
-            f"R: expected shape {(m, m)} for a plant with {m} inputs, got {Rm.shape}"
-        )
-    for value, name in ((Qm, "Q"), (Rm, "R")):
+    for value, name, k, what in ((Qm, "Q", n, "states"), (Rm, "R", m, "inputs")):
+        if value.shape != (k, k):
+            raise DimensionError(
+                f"{name}: expected shape {(k, k)} for a plant with {k} {what}, got {value.shape}"
+            )
         if not value.free_symbols:
-            check_magnitude(psd_matrix(value, name, value.shape[0]), name)
+            check_magnitude(psd_matrix(value, name, k), name)
     size = n + T * m
     A = sp.zeros(size, size)
     B = sp.zeros(size, m)

@@ -1,39 +1,25 @@
 r"""The optimal delayed controller :math:`G(z)` in closed form, its proof, and its state space.
 
-:func:`controller_tf` derives the controller of the paper's section
-"Optimal delayed controller" from the augmented system: with
-:math:`\mu(t) = K_0 x(t) + \sum_{k=1}^T K_k \gamma_k(t)` and
-:math:`\gamma_k = z^{-k} \mu`, eliminating the chain gives
+With :math:`\mu(t) = K_0 x(t) + \sum_{k=1}^T K_k \gamma_k(t)` and :math:`\gamma_k = z^{-k}
+\mu`, eliminating the chain gives (the paper's section "Optimal delayed controller")
 
 .. math::
     G(z) = \frac{\Delta_r(z)}{X(z)} = D(z)^{-1} K_0,\qquad
     D(z) = z^T I - K_1 z^{T-1} - \dots - K_T,
 
-which for a scalar plant is the paper's eq. (transfer_fn),
-:math:`K_0/(z^T - K_1 z^{T-1} - \dots - K_T)`.
+for a scalar plant the paper's eq. (transfer_fn). For several inputs it is kept as the
+left fraction (:class:`~symctl.design.fraction.MatrixFractionTF`), expanded only within
+``MAX_EXPANDED_TERMS``.
 
-For several inputs the controller is the left matrix fraction :math:`D(z)^{-1} K_0`
-(:class:`~symctl.design.fraction.MatrixFractionTF`), expanded into
-:math:`\operatorname{adj} D(z) K_0 / \det D(z)` (fraction-free, exact) only when the
-expansion has at most ``MAX_EXPANDED_TERMS`` (50,000) terms, a bound computed before any
-work (a 3-state, 4-input plant at :math:`T = 2`: 4,000 terms; 6 inputs at :math:`T = 3`:
-4.9 million, so the fraction itself, see :mod:`symctl.design.fraction`).
-
-The derivation is proved, not trusted, and by multiplying, never by inverting.
-:func:`prove_controller_tf` reads :math:`D(z)` off the controller's own
-state-space matrices :math:`(F_c, H_c, M_c)` (those of the augmented system):
-with :math:`V = [z^{T-1} I; \dots; z I; I]`, the identities
+**Proof** (:func:`prove_controller_tf`, by multiplying, never inverting). With the IFP
+controller's matrices :math:`(F_c, H_c, M_c)` (:func:`ifp_state_space`) and
+:math:`V = [z^{T-1} I; \dots; z I; I]`, the identities
 :math:`(zI - F_c) V = B_c D(z)`, :math:`H_c = B_c K_0` and :math:`M_c V = I` give
 :math:`(zI - F_c) V D^{-1} K_0 = B_c K_0 = H_c`, so
 :math:`M_c (zI - F_c)^{-1} H_c = M_c V D^{-1} K_0 = D(z)^{-1} K_0`; then :math:`G = D^{-1} K_0` is
-checked as :math:`D(z) N_G = K_0 d_G` for an expanded :math:`G = N_G/d_G`, or
-as :math:`D_G = D,\ N_G = K_0` for a fraction. Each is a polynomial identity
-checked exactly (a difference that is the zero polynomial); all but the last are
-of degree :math:`T` in :math:`z` and linear in the gains, so the proof of the
-6-input controller at :math:`T = 3` takes a fraction of a second.
-
-Those matrices, the paper's IFP controller, are built in one place,
-:func:`ifp_state_space`, for symbolic and numeric gains alike.
+checked as :math:`D(z) N_G = K_0 d_G` for an expanded :math:`G = N_G/d_G`, or as
+:math:`D_G = D,\ N_G = K_0` for a fraction: polynomial identities checked exactly, of
+degree :math:`T` in :math:`z` and linear in the gains but the last.
 """
 
 from __future__ import annotations
@@ -69,32 +55,28 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
     Parameters
     ----------
     source : int, AugmentedSystem or Gains
-        ``T``: the scalar controller with symbolic gains :math:`K_0 \dots K_T`; an
-        AugmentedSystem: its (MIMO) controller with symbolic gain blocks; Gains: numeric.
+        ``T`` (scalar, symbolic gains), a system (symbolic gain blocks) or Gains (numeric).
     gains : Gains, optional
         Substitute these gain values.
 
     Returns
     -------
     DiscreteTF
-        ``m x n``, relative degree ``T``; beyond ``MAX_EXPANDED_TERMS`` a
-        :class:`~symctl.design.fraction.MatrixFractionTF` (a DiscreteTF).
+        ``m x n``, relative degree ``T``; beyond ``MAX_EXPANDED_TERMS`` (50,000) a
+        :class:`~symctl.design.fraction.MatrixFractionTF`.
 
     Raises
     ------
     SymctlTypeError
-        ``source`` is neither an integer, an AugmentedSystem nor Gains, or
-        ``gains`` is not Gains.
+        ``source`` or ``gains`` of another type.
     ParameterError
-        ``source`` is an integer outside ``[0, MAX_DELAY]`` (500).
+        ``source`` an integer outside ``[0, MAX_DELAY]``.
 
     Examples
     --------
     >>> from symctl import controller_tf, prove_controller_tf
     >>> controller_tf(3).den
     -K_1*z**2 - K_2*z - K_3 + z**3
-    >>> controller_tf(2) == controller_tf(2)
-    True
     >>> from symctl import MuscleModel, augment, lqr_gains
     >>> G = controller_tf(lqr_gains(augment(MuscleModel(), 1, 1)))
     >>> [round(float(c), 6) for c in G.den_coeffs()]
@@ -136,11 +118,8 @@ def _chain(T: int, m: int, gain) -> sp.Matrix:
 
 def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF:
     """The MIMO controller as ``D(z)^-1 K_0``: expanded up to the size limit, or kept."""
-    if gains is not None and (gains.system.T, gains.system.m, gains.system.n) == (
-        T,
-        m,
-        n,
-    ):  # numbers: exact, rounded once
+    s = None if gains is None else gains.system
+    if s is not None and (s.T, s.m, s.n) == (T, m, n):  # numbers: exact, rounded once
         vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
         D = _chain(T, m, lambda k, i, j: sp.Float(float(vals[k][i, j])))
         K0 = _filled(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
@@ -184,32 +163,27 @@ def _ring_of(K) -> tuple[object, object]:
 
 
 def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str, str] | None:
-    """The identities of :func:`prove_controller_tf` in ``QQ[z, K]`` as ``(holds, evidence, method)``;
-    None if not expressible.
-    """
+    """``(holds, evidence, method)`` of the module's identities in ``QQ[z, K]`` (None: not there)."""
     T, m, n = system.T, system.m, system.n
     F, H, M, _ = ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T)
     B_c = sp.Matrix(system.B)[n:, :]
     blocks = gain_matrix_symbols(T, m, n)
     R, convert = _ring_of(K)
     zz = R.gens[0]
+
+    def rows(mat):
+        return [[convert(e) for e in mat.row(i)] for i in range(mat.rows)]
+
     try:
         Fr = {
             (i, j): convert(F[i, j]) for i in range(F.rows) for j in range(F.cols) if F[i, j] != 0
         }
-        Hr = [[convert(e) for e in H.row(i)] for i in range(H.rows)]
-        Br = [[convert(e) for e in B_c.row(i)] for i in range(B_c.rows)]
-        D = [
-            [convert(e) for e in _chain(T, m, lambda k, i, j: blocks[k][i, j]).row(i)]
-            for i in range(m)
-        ]
-        K0 = [[convert(e) for e in blocks[0].row(i)] for i in range(m)]
+        Hr, Br = rows(H), rows(B_c)
+        D, K0 = rows(_chain(T, m, lambda k, i, j: blocks[k][i, j])), rows(blocks[0])
         if isinstance(G, MatrixFractionTF):
-            D_G = [[convert(e) for e in G.D.row(i)] for i in range(m)]
-            N_G = [[convert(e) for e in G.N.row(i)] for i in range(m)]
+            D_G, N_G = rows(G.D), rows(G.N)
         else:
-            N_G = [[convert(e) for e in G.num_matrix.row(i)] for i in range(m)]
-            d_G = convert(G.den)
+            N_G, d_G = rows(G.num_matrix), convert(G.den)
     except (NotRational, KeyError):
         return None
 
@@ -260,9 +234,8 @@ def ifp_state_space(A, B, K, n: int, m: int, T: int):
 
     State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`x`, output
     :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
-    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`). The
-    same code runs on SymPy matrices and NumPy arrays (``A``, ``B``, ``K = [K_0, ..., K_T]``
-    of one kind); ``M`` and ``N`` (for ``T > 0``) are integer arrays.
+    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`), for
+    SymPy matrices and NumPy arrays alike (``M``, ``N`` integer arrays).
 
     >>> import sympy as sp
     >>> from symctl import MuscleModel, augment
@@ -289,30 +262,26 @@ def ifp_state_space(A, B, K, n: int, m: int, T: int):
 def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) -> Proof:
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
-    From :math:`(F_c, H_c, M_c)` of :func:`ifp_state_space` with symbolic gains: for a
-    scalar plant, :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G` with :math:`W =
-    [z^{T-1}; \dots; 1] N_G`; for several inputs, the identities of the module text in
-    :math:`\mathbb{Q}[z, K]` (another left fraction is expanded first, within its size
-    limit). Each holds exactly when :math:`M_c (zI-F_c)^{-1} H_c = G`.
+    Scalar plant: :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G`, :math:`W =
+    [z^{T-1}; \dots; 1] N_G`; several inputs: the module's identities in
+    :math:`\mathbb{Q}[z, K]`.
 
     Parameters
     ----------
     system : AugmentedSystem
-        The plant with its delays.
     G : DiscreteTF, optional
-        The candidate controller; default :func:`controller_tf` of ``system``.
 
     Returns
     -------
     Proof
-        Truthy when the identities hold, with the method (else the first nonzero entry).
+        Truthy when the identities hold (else with the first nonzero entry).
 
     Raises
     ------
     SymctlTypeError
-        ``system`` is not an AugmentedSystem, or ``G`` not a DiscreteTF.
+        ``system`` or ``G`` of another type.
     ParameterError
-        ``G`` is a left fraction with another ``D`` too large to expand.
+        ``G`` a left fraction with another ``D`` too large to expand.
 
     Examples
     --------

@@ -1,17 +1,10 @@
 r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
 
-The common-denominator form :math:`\operatorname{adj} D(z)\, N(z) / \det D(z)` of a
-*symbolic* :math:`D` is far larger than :math:`D` and :math:`N`. For the delayed
-controller :math:`D(z) = z^T I - \sum_k K_k z^{T-k}` with :math:`m` inputs and symbolic
-gain blocks, every choice of a permutation and of one term per entry gives a distinct
-monomial of :math:`\det D`, so it has exactly :math:`\operatorname{perm}(C)` terms,
-:math:`C` the matrix of term counts (:math:`T + 1` on the diagonal, :math:`T` off it): 633
-for :math:`m = 4, T = 2`, 732,529 for :math:`m = 6, T = 3` (and about 4.2 million more in
-:math:`\operatorname{adj} D\, K_0`), gigabytes in any representation. Nothing needs them:
-shape, order, relative degree, Markov parameters, substitution and the proof
-(:func:`symctl.prove_controller_tf`) work on :math:`D` and :math:`N`.
-:class:`MatrixFractionTF` expands only when ``num``/``den`` are asked for, after bounding
-the size by the same permanent; numbers make the expansion small.
+The expanded :math:`\operatorname{adj} D\, N / \det D` of a symbolic :math:`D` is huge: for
+the delayed controller's :math:`D(z) = z^T I - \sum_k K_k z^{T-k}`, :math:`\det D` has
+exactly :math:`\operatorname{perm}(C)` terms (:math:`C` the term counts of :math:`D`'s
+entries: every permutation and choice of terms gives a distinct monomial), 732,529 for
+:math:`m = 6, T = 3`. Nothing needs them: everything but ``num``/``den`` works on :math:`D`, :math:`N`.
 """
 
 from __future__ import annotations
@@ -30,7 +23,7 @@ from symctl._util.validate import (
     subs_rule,
     to_expr,
 )
-from symctl.design.tf import DiscreteTF, _natural_key
+from symctl.design.tf import DiscreteTF, _natural_key, _replaced
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
@@ -74,19 +67,18 @@ def _adj_det(D: list[list], zero, signed: bool = True) -> tuple[list[list], obje
     return adj, det
 
 
-def _z_degree(expr: sp.Expr) -> int:
-    return z_degree(expr)
+def _term_counts(M: sp.MatrixBase) -> list[list[int]]:
+    return [
+        [len(sp.Add.make_args(sp.expand(e))) if e != 0 else 0 for e in row] for row in M.tolist()
+    ]
 
 
 class MatrixFractionTF(DiscreteTF):
     r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
 
-    Expands only through :meth:`expanded` (``num``, ``den``), which refuses beyond
-    ``MAX_EXPANDED_TERMS`` (50,000) before any work; shape, order, relative degree, free
-    symbols, :meth:`subs`, scalar products, :meth:`markov`, equality and display work on
-    :math:`D, N`. ``D`` is monic (its :math:`z^d` coefficient is :math:`I`), so the relative
-    degree is :math:`d - \max_{ij} \deg N_{ij}`. ``==`` and ``hash`` compare ``D``, ``N``,
-    ``dt`` structurally (never ``==`` to an expanded :class:`DiscreteTF`; see :meth:`equals`).
+    Expands only through :meth:`expanded` (``num``, ``den``), refused beyond
+    ``MAX_EXPANDED_TERMS`` before any work. ``==`` compares ``D``, ``N``, ``dt``
+    structurally (never equal to an expanded :class:`DiscreteTF`; see :meth:`equals`).
 
     Parameters
     ----------
@@ -135,7 +127,7 @@ class MatrixFractionTF(DiscreteTF):
             if not e.is_polynomial(z):
                 raise ParameterError(f"D/N: {e} is not a polynomial in z")
             finite_expr(e, "D/N")
-        d = max(_z_degree(e) for e in D_m)
+        d = max(z_degree(e) for e in D_m)
         lead = D_m.applyfunc(lambda e: z_poly(e).coeff(d))
         if d < 0 or not all(e.is_zero is True for e in lead - sp.eye(D.rows)):
             raise ParameterError(
@@ -150,12 +142,10 @@ class MatrixFractionTF(DiscreteTF):
 
     @property
     def D(self) -> sp.ImmutableMatrix:
-        """The left denominator :math:`D(z)`, ``m x m``, monic."""
         return self._D
 
     @property
     def N(self) -> sp.ImmutableMatrix:
-        """The left numerator :math:`N(z)`, ``m x p``."""
         return self._N
 
     @property
@@ -169,7 +159,7 @@ class MatrixFractionTF(DiscreteTF):
 
     @property
     def relative_degree(self) -> int:
-        degrees = [_z_degree(e) for e in self._N if e != 0]
+        degrees = [z_degree(e) for e in self._N if e != 0]
         return self._degree - max(degrees) if degrees else int(1e9)
 
     @property
@@ -178,10 +168,8 @@ class MatrixFractionTF(DiscreteTF):
         return syms - {z}
 
     def terms_bound(self) -> int:
-        r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`.
-
-        Exact for symbols that occur once each (the permanent of the term counts); with numbers
-        only, the coefficient count ``(d m + 1)(1 + m p)`` (rational rows scaled first not counted).
+        r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the
+        permanent of the term counts (numbers only: ``(d m + 1)(1 + m p)``).
 
         >>> import sympy as sp
         >>> from symctl import z
@@ -193,15 +181,8 @@ class MatrixFractionTF(DiscreteTF):
         m, p = self.shape
         if not self.free_symbols:
             return (self.order + 1) * (1 + m * p)
-        counts = [
-            [len(sp.Add.make_args(sp.expand(e))) if e != 0 else 0 for e in row]
-            for row in self._D.tolist()
-        ]
-        adj, det = _adj_det(counts, 0, signed=False)
-        n_counts = [
-            [len(sp.Add.make_args(sp.expand(e))) if e != 0 else 0 for e in row]
-            for row in self._N.tolist()
-        ]
+        adj, det = _adj_det(_term_counts(self._D), 0, signed=False)
+        n_counts = _term_counts(self._N)
         return det + sum(
             adj[i][k] * n_counts[k][j] for i in range(m) for j in range(p) for k in range(m)
         )
@@ -213,8 +194,7 @@ class MatrixFractionTF(DiscreteTF):
         Parameters
         ----------
         max_terms : int
-            Refuse (before any work) when :meth:`terms_bound` exceeds it and symbols other
-            than ``z`` remain (numbers only are never refused).
+            Refuse when :meth:`terms_bound` exceeds it and symbols remain.
 
         Raises
         ------
@@ -226,10 +206,8 @@ class MatrixFractionTF(DiscreteTF):
         >>> import sympy as sp
         >>> from symctl import z
         >>> from symctl.design.fraction import MatrixFractionTF
-        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr
-        Matrix([
-        [1/z, -1/z**2],
-        [  0,     1/z]])
+        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr.tolist()
+        [[1/z, -1/z**2], [0, 1/z]]
         """
         max_terms = bounded_int(max_terms, "max_terms", 1, 10**9)
         got = self._cache.get("expanded")
@@ -268,10 +246,10 @@ class MatrixFractionTF(DiscreteTF):
     def subs(self, *args, **kwargs) -> MatrixFractionTF:
         """Substitute symbols into ``D`` and ``N`` (as :meth:`DiscreteTF.subs`); stays a fraction."""
         rule, flags = subs_rule(args, kwargs, self.free_symbols | {z})
-        dt = None if self.dt is None else self.dt.subs(rule, **flags)
-        if _plain(rule, flags):  # the same result, without subs' search (70x faster for K)
-            return MatrixFractionTF(self._D.xreplace(rule), self._N.xreplace(rule), dt)
-        return MatrixFractionTF(self._D.subs(rule, **flags), self._N.subs(rule, **flags), dt)
+        dt = None if self.dt is None else _replaced(self.dt, rule, flags)
+        return MatrixFractionTF(
+            _replaced(self._D, rule, flags), _replaced(self._N, rule, flags), dt
+        )
 
     def equals(self, other) -> bool:
         """Equality as rational functions; with the same ``D``, exactly ``N == N'`` (no expansion)."""
@@ -290,10 +268,8 @@ class MatrixFractionTF(DiscreteTF):
     __rmul__ = __mul__
 
     def markov(self, count: int) -> list[sp.Matrix]:
-        r"""Markov parameters from :math:`D(z) G(z) = N(z)`, with no expansion.
-
-        With :math:`D = \sum_i D_i z^{d-i}` (:math:`D_0 = I`), matching powers of
-        :math:`z` gives :math:`h_j = N_{[d-j]} - \sum_{i=1}^{\min(j,d)} D_i h_{j-i}`.
+        r"""Markov parameters from :math:`D(z) G(z) = N(z)`, unexpanded: with :math:`D = \sum_i D_i
+        z^{d-i}`, :math:`h_j = N_{[d-j]} - \sum_{i=1}^{\min(j,d)} D_i h_{j-i}`.
 
         >>> import sympy as sp
         >>> from symctl import z
@@ -344,16 +320,6 @@ class MatrixFractionTF(DiscreteTF):
             )
 
         return f"([{rows(self._D)}])^-1 [{rows(self._N)}]"
-
-
-def _plain(rule, flags) -> bool:
-    """Symbols to values free of them: ``xreplace`` gives what ``subs`` gives."""
-    if flags or not isinstance(rule, dict):
-        return False
-    keys = set(rule)
-    return all(isinstance(k, sp.Symbol) for k in keys) and not any(
-        v.free_symbols & keys for v in rule.values()
-    )
 
 
 def _fraction_free(D: sp.MatrixBase, N: sp.MatrixBase) -> tuple[sp.Matrix, sp.Expr]:

@@ -14,10 +14,8 @@ solve the equivalent problem with the penalty moved onto :math:`\mu`:
 and the first sum is fixed by the initial state. So the paper's cost and
 :math:`\sum_t \chi^\top \operatorname{diag}(Q, 0, \dots, 0)\chi + \mu^\top R \mu`
 differ by a term no control can change: both have the same optimal feedback.
-The second is a standard DARE (:func:`scipy.linalg.solve_discrete_are`) with
-:math:`R \succ 0` on the input, better conditioned than the paper's zero input penalty.
-Stabilizability and detectability are checked first (PBH test). Sign: the paper's
-:math:`\mu(t) = K\chi(t)`, minus the usual LQR gain.
+The second is a standard DARE with :math:`R \succ 0`, better conditioned. Stabilizability and
+detectability are checked first (PBH). Sign: the paper's :math:`\mu = K\chi`.
 """
 
 from __future__ import annotations
@@ -43,9 +41,7 @@ _TOL = 1e-9
 
 @dataclass(frozen=True, eq=False)
 class Gains(ArrayValue, DictMixin, LatexMixin):
-    r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (paper's sign).
-
-    Built by :func:`lqr_gains`; read-only arrays; compares and hashes by value.
+    r"""Optimal gains :math:`K = [K_0\ K_1 \dots K_T]` of :math:`\mu = K\chi` (read-only, a value).
 
     Attributes
     ----------
@@ -53,9 +49,9 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
     K : numpy.ndarray
         ``m x (n + T m)``.
     X : numpy.ndarray
-        Stabilizing DARE solution of the equivalent problem (see the module notes).
+        Stabilizing DARE solution of the equivalent problem.
     poles : numpy.ndarray
-        Eigenvalues of :math:`\tilde A + \tilde B K`, sorted by decreasing modulus.
+        Eigenvalues of :math:`\tilde A + \tilde B K`, by decreasing modulus.
 
     Examples
     --------
@@ -83,9 +79,7 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
         return [self.K[:, :n]] + [self.K[:, n + k * m : n + (k + 1) * m] for k in range(T)]
 
     def substitutions(self, exact: bool = False) -> dict:
-        """Map from the gain symbols ``K_0 .. K_T`` (entries, for MIMO) to these values (``exact=True``:
-        the binary floats' exact rationals).
-        """
+        """The gain symbols (entries, for MIMO) to these values (``exact``: as exact rationals)."""
         s = self.system
         out = {}
         for sym, val in zip(gain_matrix_symbols(s.T, s.m, s.n), self.blocks, strict=True):
@@ -123,7 +117,7 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     Parameters
     ----------
     system : AugmentedSystem
-        From :func:`symctl.augment`, with numbers (no free symbols).
+        Numeric.
     Q, R : matrix-like, optional
         Override the penalties stored in ``system``.
 
@@ -136,9 +130,9 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     SymctlTypeError
         ``system`` is not an AugmentedSystem.
     ParameterError
-        Free symbols left, Q/R not symmetric PSD, an entry above 1e100, or an overflow.
+        Free symbols, Q/R not symmetric PSD, an entry above 1e100, an overflow.
     NotStabilizableError
-        Not stabilizable or not detectable, or no stabilizing DARE solution or unique gain.
+        Not stabilizable or detectable; no stabilizing DARE solution or unique gain.
 
     Examples
     --------
@@ -146,8 +140,6 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
     >>> g = lqr_gains(augment(MuscleModel(), 1, 1))
     >>> [round(float(k), 6) for k in g.K[0]]
     [-0.045972, -0.580041, -0.351813]
-    >>> [round(float(k), 6) for k in lqr_gains(augment(MuscleModel(), 1, 1), R=10).K[0]]
-    [-0.033993, -0.428904, -0.260143]
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(

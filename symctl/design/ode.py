@@ -1,22 +1,7 @@
 r"""A nonlinear plant of your own: :math:`\dot x = f(x, u; p)`, its equilibrium, linearization and ZOH.
 
-:class:`ODEModel` generalizes :class:`~symctl.design.plant.MuscleModel`: any states and
-inputs, named parameters with values, SymPy right-hand sides (model files give text, read
-by the safe parser), an operating point and a sampling time; symbolic in the parameters
-until :meth:`ODEModel.plant` substitutes them exactly (0.1 -> 1/10). A parameter with a
-positive value is a positive symbol (so :math:`e^{-T_s/\tau}` simplifies); the others,
-the states and the inputs are real. :func:`solve_equilibrium` finds the equilibrium
-exactly when :math:`f` is affine in the states, by exact real-root isolation for one
-polynomial state (degree up to 12), else numerically (refusing none and several).
-
->>> import sympy as sp
->>> from symctl.design.ode import ODEModel
->>> x, u, a = sp.symbols("x u a", real=True)
->>> m = ODEModel([x], [u], [-a * x + u], {a: 2}, u_eq=[1], dt=0.1)
->>> m.x_eq
-Matrix([[1/a]])
->>> m.plant().A[0, 0]
-exp(-1/5)
+:class:`ODEModel` generalizes :class:`~symctl.design.plant.MuscleModel` to any states, inputs
+and named parameters, symbolic until :meth:`ODEModel.plant` substitutes them exactly.
 """
 
 from __future__ import annotations
@@ -51,18 +36,8 @@ ROOT_TOL = 1e-9
 
 
 def exact_value(value, argname: str) -> sp.Expr:
-    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal (0.1 -> 1/10).
-
-    Parameters
-    ----------
-    value : int, float or sympy number
-        A finite real number, ``|value| <= MAX_MAGNITUDE`` (1e100).
-    argname : str
-        Named in errors.
-
-    Returns
-    -------
-    sympy.Rational or sympy.Integer (a SymPy number given stays as it is)
+    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal
+    (0.1 -> 1/10); a SymPy number stays. Refuses non-finite values and ``|value| > 1e100``.
 
     Examples
     --------
@@ -84,7 +59,7 @@ def exact_value(value, argname: str) -> sp.Expr:
 
 
 def parameter_symbol(name: str, value) -> sp.Symbol:
-    """The symbol of a parameter: positive when its value is (so closed forms simplify), else real.
+    """The symbol of a parameter: positive when its value is (closed forms simplify), else real.
 
     >>> from symctl.design.ode import parameter_symbol
     >>> parameter_symbol("tau", 0.02).is_positive, parameter_symbol("c", -1).is_real
@@ -129,12 +104,8 @@ def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
 
 
 SYMBOLIC_MAX_DENOMINATOR = 10_000
-"""Largest denominator of a rational in :math:`a` for which the closed-form ZOH is attempted.
-
-A numeric equilibrium (``-1.0000000000000002`` is 5000000000000001/5000000000000000)
-puts such a rational into :math:`e^{a T_s}`, and SymPy's ``factor`` then expands a
-power of :math:`e^{T_s/q}` to degree :math:`q`: such a plant is discretized in numbers.
-"""
+"""Largest denominator of a rational in :math:`a` for a closed-form ZOH (SymPy's ``factor``
+expands :math:`e^{T_s/q}` to degree :math:`q`); beyond, the plant is discretized in numbers."""
 
 
 def _small_rationals(M: sp.MatrixBase) -> bool:
@@ -152,7 +123,9 @@ def _affine(rhs: sp.MatrixBase, states) -> bool:
 def solve_equilibrium(
     rhs, states, inputs, u_eq, values: Mapping, *, guess=None, argname: str = "equilibrium"
 ) -> tuple[sp.ImmutableMatrix, str]:
-    r"""The states :math:`\bar x` with :math:`f(\bar x, \bar u) = 0`, and how they were found.
+    r"""The states :math:`\bar x` with :math:`f(\bar x, \bar u) = 0`, and how they were found:
+    exactly when :math:`f` is affine in the states, by exact real-root isolation for one
+    polynomial state (degree up to 12), else numerically (refusing none and several).
 
     Parameters
     ----------
@@ -162,17 +135,16 @@ def solve_equilibrium(
     u_eq : sympy Matrix (m x 1)
         The inputs at the equilibrium (may hold parameter symbols).
     values : mapping of sympy.Symbol to number
-        The parameter values (for the numeric search and the checks).
+        The parameter values.
     guess : sequence of float, optional
-        Start of the numeric search (the solution nearest it is taken).
+        Start of the numeric search.
     argname : str
         Named in errors.
 
     Returns
     -------
     (sympy.ImmutableMatrix, str)
-        :math:`\bar x` (symbolic in the parameters when found exactly), and the
-        method: ``"exact (affine in the states)"`` or ``"numeric (scipy.optimize.root ...)"``.
+        :math:`\bar x` (symbolic in the parameters when exact), and the method.
 
     Raises
     ------
@@ -219,9 +191,7 @@ MAX_EXACT_DEGREE = 12
 
 
 def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
-    """The unique real root of a polynomial f(x), exactly isolated (none and several proved), or None
-    if f is not one; an irrational root as the rational of its float.
-    """
+    """The unique real root of a polynomial f(x), exactly isolated, or None if f is not one."""
     num, den = sp.fraction(sp.cancel(sp.together(f)))  # no common factor: num's roots are f's
     try:
         poly = sp.Poly(num, x, domain="QQ")
@@ -309,27 +279,27 @@ def _numeric_equilibrium(f, states, values, guess, argname):
 class ODEModel(CachedState, LatexMixin):
     r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point.
 
+    A parameter with a positive value is a positive symbol (so :math:`e^{-T_s/\tau}`
+    simplifies); the others, the states and the inputs are real.
+
     Parameters
     ----------
     states, inputs : sequence of sympy.Symbol
-        The state and input variables (1 to ``MAX_MODEL_STATES``, 20, each).
+        1 to ``MAX_MODEL_STATES`` (20) each.
     rhs : sequence of sympy expressions
-        :math:`f`, one entry per state, in the states, inputs and parameters.
+        :math:`f`, one entry per state.
     params : mapping of sympy.Symbol to number
         Every parameter with its value (kept exact, :func:`exact_value`).
-    x_eq : sequence, optional
-        The states at the operating point (expressions in the parameters, or
-        numbers); solved with :func:`solve_equilibrium` when omitted.
-    u_eq : sequence, optional
-        The inputs at the operating point (default 0).
+    x_eq, u_eq : sequence, optional
+        The operating point; ``x_eq`` solved (:func:`solve_equilibrium`) when omitted,
+        ``u_eq`` 0 by default.
     dt : float
         The sampling time [s], > 0 (``Ts``: deprecated).
     guess : sequence of float, optional
         Start of the numeric equilibrium search.
     name : str
-        A name for titles.
     units : mapping of str to str, optional
-        Units of the states, inputs and parameters by name (for labels).
+        Units of the states, inputs and parameters by name.
 
     Attributes
     ----------
@@ -339,8 +309,8 @@ class ODEModel(CachedState, LatexMixin):
     Raises
     ------
     ParameterError
-        A point that is not an equilibrium (provably, or above 1e-9 of the scale), unknown
-        names, or no or several equilibria.
+        Not an equilibrium (provably, or above 1e-9 of the scale), unknown names, no or
+        several equilibria.
     DimensionError, SymctlTypeError
         Sizes or types that do not fit.
 
@@ -351,10 +321,8 @@ class ODEModel(CachedState, LatexMixin):
     >>> th, w, u = sp.symbols("theta omega u", real=True)
     >>> g = sp.Symbol("g", positive=True)
     >>> m = ODEModel([th, w], [u], [w, g * sp.sin(th) + u], {g: 9.81}, x_eq=[0, 0], dt=0.01)
-    >>> m.linearize_symbolic().a
-    Matrix([
-    [0, 1],
-    [g, 0]])
+    >>> m.linearize_symbolic().a.tolist()
+    [[0, 1], [g, 0]]
     >>> round(float(m.plant().A[1, 0]), 6)
     0.098116
     """
@@ -453,7 +421,7 @@ class ODEModel(CachedState, LatexMixin):
         return Linearization(lin.a.applyfunc(_tidy), lin.b.applyfunc(_tidy), lin.residual)
 
     def linearize_symbolic(self) -> Linearization:
-        r"""The Jacobians :math:`a = \partial f/\partial x`, :math:`b = \partial f/\partial u` there."""
+        """The Jacobians at the operating point."""
         return self._linearization
 
     @cached_property
@@ -467,9 +435,7 @@ class ODEModel(CachedState, LatexMixin):
         return self._plant(A, B, S.T_s, self.x_eq, self.u_eq)
 
     def discrete_symbolic(self) -> DiscretePlant | None:
-        """The closed-form ZOH plant in symbols for one state and one input, else None (:meth:`plant` then
-        discretizes the numbers with :func:`scipy.linalg.expm`).
-        """
+        """The closed-form ZOH plant in symbols for one state and one input, else None."""
         return self._discrete
 
     def _plant(self, A, B, Ts, x_eq, u_eq) -> DiscretePlant:
@@ -486,10 +452,8 @@ class ODEModel(CachedState, LatexMixin):
 
     @classmethod
     def from_muscle(cls, muscle) -> ODEModel:
-        """The paper's muscle (a :class:`~symctl.design.plant.MuscleModel`) as an ODEModel.
-
-        Its symbols are those a model file gives (``examples/muscle.toml``): each
-        parameter positive when its value is.
+        """The paper's muscle (a :class:`~symctl.design.plant.MuscleModel`) as an ODEModel, in the
+        symbols a model file gives.
 
         Examples
         --------
@@ -499,7 +463,6 @@ class ODEModel(CachedState, LatexMixin):
         >>> m.plant().A == MuscleModel().plant().A, round(float(m.x_bar[0]), 4)
         (True, 43.8635)
         """
-
         names = ("tau", "f_max", "r_bar")
         params = {parameter_symbol(k, getattr(muscle, k)): getattr(muscle, k) for k in names}
         rename = dict(zip((S.tau, S.f_max, S.r_bar), params, strict=True))

@@ -1,15 +1,7 @@
 """Stage 3: G = G3 G2 G1 along the delays, realizations of G2, and the exact checker.
 
-- ``factorization``: ``factor`` and ``Factorization``;
-- ``realization``: the ``Realization`` type (F, H, M, N), canonical forms, sections, series;
-- ``realizers``: one registry of realizers (controllable, observable, general, random)
-  returning a ``RealizerResult`` with the transform; ``ifp_realization``;
-- ``check``: ``check_realization``, an exact proof or a randomized test with its bound;
-- ``channels``: MIMO factorization channel by channel;
-- ``minimal``: ``minimal_realization``, the exact Kalman reduction (MIMO too);
-- ``reduction``: ``controller_reduction``, whether the delayed controller is minimal and why not.
-
-The names of the former module ``symctl.realization`` stay importable from here.
+Modules: ``factorization`` (and ``channels`` for MIMO), ``realization`` (the type, canonical
+forms, series), ``realizers`` (the one registry), ``check``, ``minimal``, ``reduction``.
 """
 
 from symctl._util.lazy import attach

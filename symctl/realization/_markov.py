@@ -1,11 +1,5 @@
-r"""The two sides of a realization check as exact entries, and their Markov parameters.
-
-The machinery of :mod:`symctl.realization.check` (see its module notes for the
-theorem and the methods): :func:`_problem` reads a realization and a transfer
-function into entries, :class:`_Entries` turns them into reduced pairs of
-``fmpz_mpoly`` (symbolic, or the exact values at a point), and
-:func:`_markov_pairs` yields both sides' Markov parameters, met in the middle.
-"""
+"""Both sides of a realization check as exact entries, and their Markov parameters
+(the machinery of :mod:`symctl.realization.check`)."""
 
 from __future__ import annotations
 
@@ -20,6 +14,7 @@ from flint.utils.flint_exceptions import DomainError
 from symctl._util.exact import IntFractions, PolyFractions, fold
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
+from symctl.realization._similarity import over_lcm
 from symctl.realization.realization import Realization
 from symctl.symbols import z
 
@@ -105,10 +100,8 @@ def _problem(R, G) -> _Problem:
 
 
 class _Entries:
-    r"""The entries as reduced pairs (numerator, denominator) of ``fmpz_mpoly``: polynomials in the
-    free symbols, or with ``values`` the constants at that point (ZeroDivisionError where a
-    denominator vanishes); the same comparison code serves both.
-    """
+    """Entries as reduced ``fmpz_mpoly`` pairs: polynomials in the symbols, or with ``values``
+    the constants at that point (ZeroDivisionError where a denominator vanishes)."""
 
     def __init__(self, symbols, values: Mapping | None = None):
         nvars = len(symbols) if values is None else 0
@@ -131,12 +124,7 @@ class _Entries:
 
     def common(self, exprs) -> tuple[list, object]:
         """Numerators over one common denominator (the lcm of the entries' ones)."""
-        pairs = [self.entry(e) for e in exprs]
-        den = self.one
-        for _, d in pairs:
-            if d != den and not d.is_one():
-                den = den * (d / den.gcd(d))
-        return [n * (den / d) for n, d in pairs], den
+        return over_lcm([self.entry(e) for e in exprs], self.one)
 
 
 def _cancel(nums: list, den, factor) -> tuple[list, object]:
@@ -182,12 +170,9 @@ def _first_difference(problem: _Problem, alg: _Entries) -> tuple[int, int, int] 
 
 
 def _markov_pairs(problem: _Problem, alg: _Entries):
-    r"""Both sides' Markov parameters, entry by entry: ``(k, i, j, num, den, h, scale)``.
-
-    :math:`(M F^{k-1} H)[i, j] = num/den` (``N`` for ``k = 0``), :math:`h_k[i, j] = h/scale`,
-    ``k`` up to :math:`n + d`; met in the middle as :math:`(M F^a)(F^b H)`, each side over a
-    common denominator, cancelled at each step, the side with fewer terms advancing.
-    """
+    r"""``(k, i, j, num, den, h, scale)`` with :math:`(M F^{k-1} H)[i, j] = num/den` (``N`` at
+    ``k = 0``), :math:`h_k[i, j] = h/scale`, ``k <= n + d``; met in the middle as :math:`(M F^a)
+    (F^b H)`, cancelled at each step, the side whose numerators have fewer terms advancing."""
     n, (p, q) = problem.n, problem.shape
     Fn, Fd = alg.common(e for row in problem.F for e in row)
     Fn = [Fn[i * n : (i + 1) * n] for i in range(n)]
@@ -200,9 +185,9 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
         for k in range(problem.d + 1)
     ]
     a = coeffs[nb:]
-    rows = [alg.common(row) for row in problem.M]  # M F^steps[0], one per output
-    cols = [alg.common(problem.H[m][j] for m in range(n)) for j in range(q)]  # F^steps[1] H
-    steps = [0, 0]
+    rows = [alg.common(row) for row in problem.M]  # M F^a, one per output
+    cols = [alg.common(problem.H[m][j] for m in range(n)) for j in range(q)]  # F^b H
+    steps = [0, 0]  # a and b
     h: list = []
     scale = delta  # delta**(k+1)
     for k in range(n + problem.d + 1):
@@ -225,9 +210,7 @@ def _markov_pairs(problem: _Problem, alg: _Entries):
 
 
 def _rows_first(rows, cols, steps) -> bool:
-    r"""Whether the next step advances the rows :math:`M F^a` (else the columns :math:`F^b H`): the
-    side whose numerators have fewer terms (for a similarity transform, mostly the rows).
-    """
+    """Whether the rows advance next: their numerators have fewer terms (benchmarks swap this)."""
     return _size(rows) <= _size(cols)
 
 

@@ -1,18 +1,11 @@
 r"""The similarity transform :math:`(P^{-1} F P,\ P^{-1} H,\ M P)`, fraction-free in python-flint.
 
-Entries become pairs (numerator, denominator) of ``fmpz_mpoly``
-(:class:`~symctl._util.exact.PolyFractions`); with :math:`P = P_n / d_P`:
-
-* a **symbolic** :math:`P`: fraction-free Gauss-Jordan elimination of :math:`[P_n \mid I]`
-  gives :math:`\delta = \pm\det P_n` and :math:`A = \delta P_n^{-1}`, so :math:`P^{-1} F P
-  = A F_n P_n / (\delta\, d_F)`, :math:`P^{-1} H = d_P A H_n / (\delta\, d_H)`, :math:`M P
-  = M_n P_n / (d_M d_P)`: one division by :math:`\det P` per entry, at the end;
-* a **numeric** :math:`P`: :math:`P^{-1}` is an ``fmpq_mat`` and each matrix, split by
-  monomials :math:`F_n = \sum_m m\, C_m`, is transformed by ``fmpq_mat`` products.
-
-Each entry is reduced by one gcd and written as SymPy terms directly, in the form
-``factor_terms(cancel(.))`` gives, with no SymPy polynomial arithmetic. Entries that are
-not rational functions with rational coefficients return ``None`` (the SymPy path).
+With :math:`P = P_n / d_P`: a **symbolic** :math:`P` by fraction-free Gauss-Jordan on
+:math:`[P_n \mid I]` (:math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}`, so
+:math:`P^{-1} F P = A F_n P_n / (\delta\, d_F)`: one division per entry, at the end); a
+**numeric** :math:`P` by ``fmpq_mat`` products on each monomial's coefficient matrix. Each
+entry is written as SymPy terms directly, in the form ``factor_terms(cancel(.))`` gives;
+entries that are not rational with rational coefficients return ``None`` (the SymPy path).
 """
 
 from __future__ import annotations
@@ -26,7 +19,7 @@ from sympy.core.basic import _args_sortkey, ordering_of_classes
 from sympy.core.mul import _keep_coeff
 from sympy.polys.polyutils import _sort_gens
 
-from symctl._util.exact import NotRational, PolyFractions, fold
+from symctl._util.exact import NotRational, PolyFractions, fold, from_fmpq_mat
 
 __all__ = ["similar_exact"]
 
@@ -68,13 +61,8 @@ class _Ring:
 
     def common(self, mat: sp.MatrixBase) -> tuple[list[list], object]:
         """The entries as numerators over one common denominator (the lcm of theirs)."""
-        pairs = [[self.pair(e) for e in mat.row(i)] for i in range(mat.rows)]
-        den = self.one
-        for row in pairs:
-            for _, d in row:
-                if d != den and not d.is_one():
-                    den = den * (d / den.gcd(d))
-        return [[n * (den / d) for n, d in row] for row in pairs], den
+        nums, den = over_lcm([self.pair(e) for e in mat.flat()], self.one)
+        return [nums[i * mat.cols : (i + 1) * mat.cols] for i in range(mat.rows)], den
 
     def _ensure(self, degrees) -> None:
         """Put ``x_i**k`` for every ``k <= degrees[i]`` in the pool of factors, ranked as SymPy sorts."""
@@ -95,9 +83,7 @@ class _Ring:
         return sp.Mul(*(self._powers[(i, k)][0] for i, k in enumerate(exps) if k))
 
     def expr(self, poly, q: int = 1) -> sp.Expr:
-        """The polynomial over ``q`` as a SymPy sum, assembled in SymPy's canonical order (as
-        ``Poly.as_expr`` would build it) without evaluating ``Mul``/``Add``.
-        """
+        """``poly / q`` as a SymPy sum in canonical order, built without evaluating ``Mul``/``Add``."""
         const, terms, powers, index = None, [], self._powers, range(len(self.symbols))
         self._ensure(poly.degrees())
         for exps, c in poly.terms():
@@ -200,6 +186,15 @@ def _rank(entry) -> int:
     return entry[1]
 
 
+def over_lcm(pairs: list, one) -> tuple[list, object]:
+    """Reduced ``(num, den)`` pairs as numerators over the lcm of the denominators."""
+    den = one
+    for _, d in pairs:
+        if d != den and not d.is_one():
+            den = den * (d / den.gcd(d))
+    return [n * (den / d) for n, d in pairs], den
+
+
 def _reduce(num, den):
     g = num.gcd(den)
     if not g.is_one():
@@ -232,11 +227,8 @@ def _matmul(A: list[list], B: list[list], zero) -> list[list]:
 
 
 def _gauss_jordan(Pn: list[list], ring: _Ring):
-    r"""``(delta, A)``: :math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}` (None if singular).
-
-    Bareiss: :math:`a_{ij} \leftarrow (p_k a_{ij} - a_{ik} a_{kj}) / p_{k-1}`, exact; a zero
-    pivot is swapped with the sparsest nonzero lower row.
-    """
+    r"""``(delta, A)``: :math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}` (None if singular),
+    by Bareiss elimination, a zero pivot swapped with the sparsest nonzero lower row."""
     n = len(Pn)
     rows = [
         [*row, *(ring.one if i == j else ring.zero for j in range(n))] for i, row in enumerate(Pn)
@@ -331,7 +323,6 @@ def _numeric(F, H, M, P, ring: _Ring):
     if Pq.det() == 0:
         return None
     Pinv = Pq.inv()
-    n = P.rows
     out = []
     for mat, left, right in ((F, Pinv, Pq), (H, Pinv, None), (M, None, Pq)):
         den, parts = _split(mat, ring)
@@ -342,14 +333,7 @@ def _numeric(F, H, M, P, ring: _Ring):
                 C = C * right
             parts[exps] = C
         out.append(_assemble(den, parts, mat.shape, ring))
-    pinv = [[sp.Rational(int(Pinv[i, j].p), int(Pinv[i, j].q)) for j in range(n)] for i in range(n)]
-    return (*out, pinv)
-
-
-def _sympy_mat(mat: fmpq_mat) -> sp.Matrix:
-    return sp.Matrix(
-        mat.nrows(), mat.ncols(), [sp.Rational(int(x.p), int(x.q)) for x in mat.entries()]
-    )
+    return (*out, from_fmpq_mat(Pinv).tolist())
 
 
 def _rational(F, H, M, P):
@@ -358,12 +342,8 @@ def _rational(F, H, M, P):
     if Pq.det() == 0:
         return "singular"
     Pinv = Pq.inv()
-    return (
-        _sympy_mat(Pinv * _fmpq_mat(F) * Pq),
-        _sympy_mat(Pinv * _fmpq_mat(H)),
-        _sympy_mat(_fmpq_mat(M) * Pq),
-        _sympy_mat(Pinv),
-    )
+    products = (Pinv * _fmpq_mat(F) * Pq, Pinv * _fmpq_mat(H), _fmpq_mat(M) * Pq, Pinv)
+    return tuple(from_fmpq_mat(X) for X in products)
 
 
 def similar_exact(F, H, M, P):

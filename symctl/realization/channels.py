@@ -1,10 +1,8 @@
 r"""The factorization of a MIMO controller: one chain of sections per channel.
 
-A :math:`p \times m` controller :math:`G(z) = N(z)/d(z)` (one common monic
-denominator, as :func:`~symctl.design.controller.controller_tf` returns it) maps
-:math:`m` measured signals to :math:`p` inputs. Each measured signal :math:`j`
-crosses the sensor delay through its own :math:`d_s` first-order sections and each
-input :math:`i` the actuator delay through its own :math:`d_a`:
+A :math:`p \times m` controller :math:`G = N(z)/d(z)` (one monic denominator) gives each
+measured signal :math:`j` its own :math:`d_s` sections and each input :math:`i` its own
+:math:`d_a`:
 
 .. math::
     G_1 = \operatorname{diag}_j\, g_{1,j},\quad
@@ -13,24 +11,11 @@ input :math:`i` the actuator delay through its own :math:`d_a`:
     (G_2)_{ij} = \frac{G_{ij}}{g_{3,i}\, g_{1,j}}
     = \frac{N_{ij}(z)\, Z_{3,i}(z)\, Z_{1,j}(z)}{C_{3,i}\, C_{1,j}\, d(z)},
 
-with :math:`Z_{1,j} = \prod_k (z - \epsilon_{1,j,k})` and :math:`C_{1,j} = \prod_k
-C_{1,j,k}` (likewise on the actuator side). Then :math:`G_3 G_2 G_1 = G` entry by
-entry: :math:`(G_3 G_2 G_1)_{ij} = g_{3,i} (G_2)_{ij}\, g_{1,j} = G_{ij}`, which
-:meth:`~symctl.realization.factorization.Factorization.verify` proves exactly,
-entry by entry (polynomial cross-multiplication). :math:`G_2` keeps the common
-denominator :math:`d`, so its block canonical realizations have :math:`n m` (or
-:math:`n p`) states for :math:`\deg d = n`. Each entry of :math:`G` needs a relative
-degree of at least :math:`d_s + d_a` (the optimal delayed controller has exactly
-that, :math:`T`). The scalar case is the paper's factorization, unchanged.
-
->>> from symctl import augment, controller_tf
->>> from symctl.realization.factorization import factor
->>> G = controller_tf(augment(([[0.9, 0.1], [0, 0.8]], [[0], [0.1]]), 1, 1))
->>> f = factor(G, 1, 1)
->>> f.G2.shape, f.channels, f.sensor_eps
-((1, 2), (2, 1), (epsilon_{1,1,1}, epsilon_{1,2,1}))
->>> bool(f.verify())
-True
+with :math:`Z_{1,j} = \prod_k (z - \epsilon_{1,j,k})`, :math:`C_{1,j} = \prod_k C_{1,j,k}`
+(likewise on the actuator side), so :math:`(G_3 G_2 G_1)_{ij} = g_{3,i} (G_2)_{ij}\, g_{1,j}
+= G_{ij}` (:meth:`~symctl.realization.factorization.Factorization.verify` proves it entry by
+entry). :math:`G_2` keeps :math:`d`: its block canonical realizations have :math:`n m` (or
+:math:`n p`) states.
 """
 
 from __future__ import annotations
@@ -51,14 +36,8 @@ MAX_CHANNELS = 50
 
 @cache
 def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` sections of one channel on side 1 or 3.
-
-    Named ``epsilon_{side,channel,k}`` and ``C_{side,channel,k}`` (indices from 1).
-
-    >>> from symctl.realization.channels import channel_symbols
-    >>> channel_symbols(3, 2, 1)
-    ((epsilon_{3,2,1},), (C_{3,2,1},))
-    """
+    """The ``(epsilons, Cs)`` of the ``count`` sections of one channel on side 1 or 3, named
+    ``epsilon_{side,channel,k}`` and ``C_{side,channel,k}`` (indices from 1)."""
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
     eps = tuple(
@@ -85,11 +64,8 @@ def channel_sections(values: tuple, count: int, channels: int) -> tuple[tuple, .
 def mimo_G2(
     tf: DiscreteTF, sens_eps, sens_C, act_eps, act_C, ds: int, da: int, zeros=None
 ) -> DiscreteTF:
-    r""":math:`(G_2)_{ij} = N_{ij} Z_{3,i} Z_{1,j} / (C_{3,i} C_{1,j} d)`, over G's denominator.
-
-    ``sens_*`` and ``act_*`` are channel-major flat tuples (``m * ds`` and ``p * da``);
-    ``zeros(i, j)``, when given, is written for :math:`Z_{3,i} Z_{1,j}` (from 0).
-    """
+    r""":math:`(G_2)_{ij} = N_{ij} Z_{3,i} Z_{1,j} / (C_{3,i} C_{1,j} d)` from channel-major
+    sections; ``zeros(i, j)``, when given, is written for :math:`Z_{3,i} Z_{1,j}` (from 0)."""
     p, m = _check_shape(tf)
     e1, c1 = channel_sections(sens_eps, ds, m), channel_sections(sens_C, ds, m)
     e3, c3 = channel_sections(act_eps, da, p), channel_sections(act_C, da, p)

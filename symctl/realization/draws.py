@@ -1,9 +1,7 @@
 r"""Realizations of :math:`G_2` at random section values: the realizations a circuit simulates.
 
-:func:`draw_realizations` draws, seeded, the sections' epsilons (uniform on the grid
-:math:`k/1000`, :math:`|k| \le 899`; :math:`C_k = 1`) and then the realizer's own choices
-(``P`` for ``"general"``) from the same generator, and realizes :math:`G_2` at each draw;
-the derivation realizes from the first draw and simulates every one.
+The epsilons are drawn on the grid :math:`k/1000`, :math:`|k| \le 899` (:math:`C_k = 1`),
+then the realizer's own choices from the same generator.
 """
 
 from __future__ import annotations
@@ -30,17 +28,8 @@ EPS_MAX = 899
 
 @dataclass(frozen=True)
 class Draw:
-    """One realization of :math:`G_2` at drawn values.
-
-    Attributes
-    ----------
-    values : mapping of Symbol to Rational
-        The epsilons drawn (the C are 1), read-only.
-    factors : Factorization
-        :math:`G = G_3 G_2 G_1` built at those values.
-    result : RealizerResult
-        The realization of ``factors.G2`` (with ``P`` for a transformed one).
-    """
+    """One realization of :math:`G_2` at drawn values: the epsilons drawn (``values``, the C are
+    1), the :class:`Factorization` built at them and the :class:`RealizerResult` of its G2."""
 
     values: Mapping
     factors: Factorization
@@ -61,12 +50,12 @@ def draw_eps(eps, gen: np.random.Generator) -> dict:
 def draw_realizations(
     G: DiscreteTF, sensor_delay: int, actuator_delay: int, name: str, count: int, rng=None
 ) -> tuple[Draw, ...]:
-    """``count`` realizations of :math:`G_2` of ``G`` at random section values, drawn in turn.
+    """``count`` realizations of :math:`G_2` of ``G`` at random section values.
 
     Parameters
     ----------
     G : DiscreteTF
-        The controller, numeric (exact rationals keep every realization exact).
+        The controller, numeric.
     sensor_delay, actuator_delay : int
         The sections of :math:`G_1` and :math:`G_3`.
     name : str

@@ -1,18 +1,16 @@
 r"""The factorization :math:`G = G_3 G_2 G_1` that fits the controller to the delays.
 
-The paper's section "Creating a compatible delayed controller": the sensor side
-:math:`G_1` and the actuator side :math:`G_3` take the delays
-(relative degrees :math:`d_s` and :math:`d_a`), and :math:`G_2` keeps the rest.
-Each delay step is one first-order section with its own symbols,
+The paper's section "Creating a compatible delayed controller": :math:`G_1` and :math:`G_3`
+take the sensor and actuator delays (relative degrees :math:`d_s`, :math:`d_a`), one
+first-order section per step, and :math:`G_2` keeps the rest,
 
 .. math::
     G_1(z) = \prod_{i=1}^{d_s} \frac{C_{1,i}}{z - \epsilon_{1,i}},\qquad
     G_3(z) = \prod_{i=1}^{d_a} \frac{C_{3,i}}{z - \epsilon_{3,i}},\qquad
     G_2 = \frac{G}{G_1 G_3},
 
-named ``epsilon_1``, ``C_1`` (``epsilon_3``, ``C_3``) when a side has one
-section, as in the paper, and ``epsilon_{1,i}``, ``C_{1,i}`` otherwise. For the
-paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
+(symbols ``epsilon_1``, ``C_1`` for one section, ``epsilon_{1,i}``, ``C_{1,i}`` for more).
+For the paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
 
 .. math::
     G_2 = \frac{K_0}{C_1 C_3}\,\frac{z^2 - (\epsilon_1+\epsilon_3) z + \epsilon_1\epsilon_3}
@@ -58,9 +56,8 @@ __all__ = [
 ]
 
 EXPANDED_ZEROS_MAX = 4
-r"""Sections per entry of :math:`G_2` up to which its symbolic realizations take its zeros
-multiplied out (:math:`2^d` monomials); beyond, :meth:`Factorization.abbreviated` writes their
-coefficients :math:`\sigma_k = e_k(\epsilon)` (:attr:`Factorization.G2_symbolic`)."""
+r"""Sections per entry of :math:`G_2` up to which symbolic realizations take its zeros multiplied
+out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G2_symbolic`)."""
 
 
 @cache
@@ -68,8 +65,6 @@ def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple
     """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
 
     >>> from symctl.realization.factorization import section_symbols
-    >>> section_symbols(1, 1)
-    ((epsilon_1,), (C_1,))
     >>> section_symbols(3, 2)
     ((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2}))
     """
@@ -84,11 +79,8 @@ def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple
 
 @cache
 def sigma_symbols(count: int, entry: tuple[int, int] | None = None) -> tuple[sp.Symbol, ...]:
-    r"""The abbreviations :math:`\sigma_1, \dots, \sigma_d`: :math:`\prod_{i=1}^{d} (z - \epsilon_i)
-    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`, :math:`\sigma_k = e_k(\epsilon)` (Vieta).
-
-    ``entry=(i, j)`` names those of entry :math:`(i, j)` of a MIMO :math:`G_2`
-    :math:`\sigma_{i,j,k}` (indices from 1).
+    r"""The abbreviations :math:`\sigma_k = e_k(\epsilon)`, :math:`\prod_{i=1}^{d} (z - \epsilon_i)
+    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`; ``entry=(i, j)``: :math:`\sigma_{i,j,k}` (from 1).
 
     >>> from symctl.realization.factorization import sigma_symbols
     >>> sigma_symbols(3), sigma_symbols(2, (1, 2))
@@ -107,8 +99,8 @@ def _zeros_poly(sigma: tuple) -> sp.Expr:
 
 
 def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
-    r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N` in
-    descending powers of z (of ``G2`` itself when :math:`N = 0`).
+    r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N` (of
+    ``G2`` when :math:`N = 0`) in descending powers of z.
 
     >>> from symctl import controller_tf, factor
     >>> from symctl.realization.factorization import remainder
@@ -136,22 +128,16 @@ class Factorization(DictMixin, LatexMixin):
     ----------
     G, G1, G2, G3 : DiscreteTF
     sensor_eps, sensor_C, actuator_eps, actuator_C : tuple of sympy expressions
-        Poles and gains of the first-order sections of ``G1`` and ``G3`` (symbols,
-        or values after :meth:`subs`); channel-major for a MIMO controller.
+        Poles and gains of the sections of ``G1`` and ``G3``; channel-major when MIMO.
     channels : (int, int)
-        The measured signals (columns of ``G``) and the outputs (rows): ``(1, 1)``
-        for the paper's SISO controller.
+        The measured signals (columns of ``G``) and the outputs (rows).
 
     Examples
     --------
     >>> from symctl import controller_tf, factor
     >>> f = factor(controller_tf(2))
-    >>> f.sensor_eps, f.actuator_C
-    ((epsilon_1,), (C_3,))
     >>> f.G2.expr
     K_0*(-epsilon_1 + z)*(-epsilon_3 + z)/(C_1*C_3*(-K_1*z - K_2 + z**2))
-    >>> f == factor(controller_tf(2))
-    True
     """
 
     G: DiscreteTF
@@ -166,15 +152,7 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def is_siso(self) -> bool:
-        """Whether the controller has one measured signal and one output (the paper's case)."""
         return self.channels == (1, 1)
-
-    def _siso_only(self, what: str) -> None:
-        if not self.is_siso:
-            raise DimensionError(
-                f"{what}: defined for a SISO factorization, this one has {self.channels[0]} "
-                f"measured signals and {self.channels[1]} outputs"
-            )
 
     @property
     def section_channels(self) -> tuple[tuple, tuple]:
@@ -192,12 +170,12 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def sensor_sections(self) -> tuple[DiscreteTF, ...]:
-        r"""The SISO sections :math:`g_{1,j}` of each measured signal (the diagonal of ``G1``)."""
+        """The diagonal of ``G1``, one per measured signal."""
         return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[0])
 
     @property
     def actuator_sections(self) -> tuple[DiscreteTF, ...]:
-        r"""The SISO sections :math:`g_{3,i}` of each output (the diagonal of ``G3``)."""
+        """The diagonal of ``G3``, one per output."""
         return tuple(_sections(e, c, self.G.dt) for e, c in self.section_channels[1])
 
     @property
@@ -219,28 +197,28 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def remainder_coeffs(self) -> list[sp.Expr]:
-        r"""Numerator of :math:`(G_2 - N)/N` in descending powers of z (the paper's
-        :math:`[K_1 - \epsilon_1 - \epsilon_3,\ K_2 + \epsilon_1\epsilon_3]`).
-        """
-        self._siso_only("remainder_coeffs")
+        """:func:`remainder`'s coefficients (SISO)."""
+        if not self.is_siso:
+            raise DimensionError(
+                f"remainder_coeffs: defined for a SISO factorization, this one has "
+                f"{self.channels[0]} measured signals and {self.channels[1]} outputs"
+            )
         return remainder(self.G2)[1]
 
     @property
     def poles(self) -> tuple:
-        """The section poles, sensor side first: the zeros :math:`G_2` takes over from G1 and G3."""
+        """The section poles, sensor side first (the zeros of :math:`G_2`)."""
         return (*self.sensor_eps, *self.actuator_eps)
 
     @property
     def sigma(self) -> tuple[sp.Symbol, ...]:
-        r"""The abbreviations :math:`\sigma` of :meth:`abbreviated` (:func:`sigma_symbols`)."""
+        r"""The :math:`\sigma` of :meth:`abbreviated`."""
         return tuple(self.sigma_poles)
 
     @property
     def sigma_poles(self) -> dict:
-        r"""Each :math:`\sigma` of :meth:`abbreviated` with ``(k, poles)``: it is :math:`e_k` of them.
-
-        SISO: :math:`\sigma_k` of every section pole; MIMO: :math:`\sigma_{i,j,k}` of entry
-        :math:`(i, j)`'s, the sections of measured signal :math:`j` then those of input :math:`i`.
+        r"""Each :math:`\sigma` of :meth:`abbreviated` with ``(k, poles)``: :math:`e_k` of the poles
+        of its entry (:attr:`entry_poles`).
 
         >>> from symctl import controller_tf, factor
         >>> factor(controller_tf(2)).sigma_poles
@@ -254,8 +232,8 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def entry_poles(self) -> list[tuple]:
-        """``((i, j), poles)`` for each entry of :attr:`G2` (from 1; ``(None, poles)`` when SISO):
-        the poles of the sections it crosses, measured signal :math:`j`'s then input :math:`i`'s.
+        """``((i, j), poles)`` per entry of :attr:`G2` (from 1; ``None`` when SISO): the poles of
+        measured signal :math:`j`'s sections, then input :math:`i`'s.
 
         >>> from symctl import controller_tf, factor
         >>> factor(controller_tf(2)).entry_poles
@@ -270,18 +248,14 @@ class Factorization(DictMixin, LatexMixin):
 
     @property
     def G2_symbolic(self) -> DiscreteTF:
-        """:attr:`G2` as the symbolic realizations take it: itself up to
-        :data:`EXPANDED_ZEROS_MAX` sections per entry, beyond :meth:`abbreviated`."""
+        """:attr:`G2` up to :data:`EXPANDED_ZEROS_MAX` sections per entry, beyond :meth:`abbreviated`."""
         long = len(self.entry_poles[0][1]) > EXPANDED_ZEROS_MAX
         return self.abbreviated() if long else self.G2
 
     def abbreviated(self) -> DiscreteTF:
-        r""":math:`G_2` with the coefficients of its zeros written as :math:`\sigma_k`.
-
-        The expanded :attr:`G2` has :math:`2^d` monomials in its zeros' coefficients, this form
-        :math:`d`, so its realizations stay small at any delay; one realizes :attr:`G2` at
-        :math:`\sigma = e(\epsilon)` (:meth:`sigma_values`). Each entry of a MIMO
-        :math:`G_2` has its own :math:`\sigma_{i,j,k}` (:attr:`sigma_poles`).
+        r""":math:`G_2` with the coefficients of its zeros written as :math:`\sigma_k`: :math:`d`
+        monomials instead of :math:`2^d`, so its realizations stay small at any delay (realized
+        at :math:`\sigma = e(\epsilon)`, :meth:`sigma_values`; per entry when MIMO).
 
         Examples
         --------
@@ -309,22 +283,17 @@ class Factorization(DictMixin, LatexMixin):
         Parameters
         ----------
         values : mapping, optional
-            Values of the pole symbols (e.g. drawn epsilons); by default the
-            poles as they are (symbols, or values after :meth:`subs`).
+            Values of the pole symbols; by default the poles as they are.
 
         Returns
         -------
         dict
-            Exact numbers when every pole is a number (python-flint); else SymPy polynomials
-            (:math:`\binom{d}{k}` terms each: for small :math:`d`).
+            Exact numbers when every pole is a number, else SymPy polynomials.
 
         Examples
         --------
         >>> from symctl import controller_tf, factor
-        >>> f = factor(controller_tf(2))
-        >>> f.sigma_values()
-        {sigma_1: epsilon_1 + epsilon_3, sigma_2: epsilon_1*epsilon_3}
-        >>> f.sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
+        >>> factor(controller_tf(2)).sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
         {sigma_1: 5/6, sigma_2: 1/6}
         """
         poles = {p: to_expr(p, "poles") for p in self.poles}
@@ -347,22 +316,18 @@ class Factorization(DictMixin, LatexMixin):
         Parameters
         ----------
         rtol : float, optional
-            Tolerance of the numeric verdict for floating-point coefficients
-            (e.g. gains substituted as floats); unused for exact ones.
+            Tolerance of the numeric verdict for floating-point coefficients.
 
         Returns
         -------
         Proof
-            Truthy when the identity holds, with its method. With floats, when the exact
-            identity fails by rounding, the verdict is numeric: :math:`n_3 n_2 n_1 d` and
-            :math:`n d_3 d_2 d_1` compared in :math:`z` (other symbols at 8 random points
-            in :math:`\\pm(0, 2]`), truthy when their relative difference is at most ``rtol``.
+            Truthy when the identity holds. With floats, when the exact identity fails by
+            rounding, :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1` are compared in :math:`z`
+            (other symbols at 8 random points), truthy within ``rtol``.
 
         Examples
         --------
         >>> from symctl import controller_tf, factor
-        >>> bool(factor(controller_tf(3), 1, 2).verify())
-        True
         >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
         >>> K_0, K_1, K_2 = gain_symbols(2)
         >>> values = {K_0: -0.046, K_1: -0.58, K_2: -0.35, epsilon_1: 0.3, epsilon_3: -0.2}
@@ -430,22 +395,17 @@ class Factorization(DictMixin, LatexMixin):
         return out
 
     def latex(self) -> str:
-        r"""The three factors, :math:`G_2` written as the paper does (gain times zeros over poles)."""
-        if not self.is_siso:
-            return rf"G_1 = {self.G1.latex()},\quad G_2 = {self.G2.latex()},\quad G_3 = {self.G3.latex()}"
-        zeros = sp.Mul(*(z - e for e in (*self.sensor_eps, *self.actuator_eps)))
-        zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
-        g2 = (
-            self.G2.latex()
-            if self.N == 0
-            else (rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}")
-        )
+        """The three factors, :math:`G_2` as gain times zeros over poles (the paper's)."""
+        g2 = self.G2.latex()
+        if self.is_siso and self.N != 0:
+            zeros = sp.Mul(*(z - e for e in self.poles))
+            zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
+            g2 = rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}"
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
 
 
 def _vieta(poles: list) -> list:
-    r"""The coefficients of :math:`\prod (z - p)`, descending: exact in python-flint when every
-    pole is a number, else SymPy polynomials."""
+    r"""The coefficients of :math:`\prod (z - p)`, descending (exact when the poles are numbers)."""
     if all(p.is_Rational for p in poles):
         poly = fmpq_poly([1])
         for p in poles:
@@ -480,23 +440,24 @@ def _section_values(value, count: int, argname: str, default) -> tuple:
 def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=None) -> Factorization:
     r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``.
 
+    A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`), ``G1`` and
+    ``G3`` diagonal.
+
     Parameters
     ----------
     G : DiscreteTF or sympy expression in ``z``
-        A proper SISO controller, e.g. :func:`symctl.controller_tf`.
+        A proper controller, e.g. :func:`symctl.controller_tf`.
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
     eps, C : sequence or value, optional
-        The section poles and gains, sensor sections first (one for all, or one per
-        section; text through the safe parser). By default the
-        symbols of :func:`section_symbols` (building at given values is cheaper than
-        :meth:`Factorization.subs` afterwards).
+        The section poles and gains, sensor sections first (channel-major when MIMO; one
+        for all, or one per section; text through the safe parser). By default the symbols
+        of :func:`section_symbols` (cheaper than :meth:`Factorization.subs` afterwards).
 
     Returns
     -------
     Factorization
-        :math:`G_2` has relative degree ``reldeg(G) - sensor_delay - actuator_delay``
-        (0 for the optimal delayed controller).
+        :math:`G_2` of relative degree ``reldeg(G) - sensor_delay - actuator_delay``.
 
     Raises
     ------
@@ -505,9 +466,6 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
         ``C`` or a value in ``z``.
     DimensionError
         ``eps``/``C`` of the wrong length, or over ``MAX_CHANNELS`` (50) inputs or outputs.
-
-    A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`):
-    ``G1``, ``G3`` diagonal; ``eps`` and ``C`` channel-major, sensor channels first.
 
     Examples
     --------
@@ -531,48 +489,37 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
             f"G: relative degree {rd} is below sensor_delay + actuator_delay = {ds + da}; "
             "no factorization puts the delays at the input and output"
         )
-    if not tf.is_siso:
-        return _factor_mimo(tf, ds, da, eps, C)
-    eps1, c1 = section_symbols(1, ds) if ds else ((), ())
-    eps3, c3 = section_symbols(3, da) if da else ((), ())
-    eps_all = _section_values(eps, ds + da, "eps", (*eps1, *eps3))
-    c_all = _section_values(C, ds + da, "C", (*c1, *c3))
-    _check_C(c_all)
-    eps1, eps3 = eps_all[:ds], eps_all[ds:]
-    c1, c3 = c_all[:ds], c_all[ds:]
-    G1 = _sections(eps1, c1, tf.dt)
-    G3 = _sections(eps3, c3, tf.dt)
-    scale = sp.Mul(*c1, *c3)
-    zeros = sp.Mul(*(z - e for e in (*eps1, *eps3)))
-    G2 = DiscreteTF(tf.num / scale * zeros, tf.den, tf.dt)
-    return Factorization(tf, G1, G2, G3, eps1, c1, eps3, c3)
-
-
-def _factor_mimo(tf: DiscreteTF, ds: int, da: int, eps, C) -> Factorization:
-    """:func:`factor` of a p x m controller: one chain of sections per channel (module channels)."""
     p, m = tf.shape
-    sym1 = [channel_symbols(1, j, ds) for j in range(1, m + 1)] if ds else []
-    sym3 = [channel_symbols(3, i, da) for i in range(1, p + 1)] if da else []
-    default_eps = (*(e for es, _ in sym1 for e in es), *(e for es, _ in sym3 for e in es))
-    default_C = (*(c for _, cs in sym1 for c in cs), *(c for _, cs in sym3 for c in cs))
+    defaults = [_default_sections(1, ds, m, tf.is_siso), _default_sections(3, da, p, tf.is_siso)]
     count = m * ds + p * da
-    eps_all = _section_values(eps, count, "eps", default_eps)
-    c_all = _section_values(C, count, "C", default_C)
+    eps_all = _section_values(eps, count, "eps", (*defaults[0][0], *defaults[1][0]))
+    c_all = _section_values(C, count, "C", (*defaults[0][1], *defaults[1][1]))
     _check_C(c_all)
     e1, e3 = eps_all[: m * ds], eps_all[m * ds :]
     c1, c3 = c_all[: m * ds], c_all[m * ds :]
-    g1 = [
-        _sections(e, c, tf.dt)
-        for e, c in zip(channel_sections(e1, ds, m), channel_sections(c1, ds, m), strict=True)
-    ]
-    g3 = [
-        _sections(e, c, tf.dt)
-        for e, c in zip(channel_sections(e3, da, p), channel_sections(c3, da, p), strict=True)
-    ]
-    G2 = mimo_G2(tf, e1, c1, e3, c3, ds, da)
-    return Factorization(
-        tf, diagonal(tuple(g1), tf.dt), G2, diagonal(tuple(g3), tf.dt), e1, c1, e3, c3, (m, p)
+    g1, g3 = (
+        tuple(
+            _sections(e, c, tf.dt)
+            for e, c in zip(channel_sections(es, k, n), channel_sections(cs, k, n), strict=True)
+        )
+        for es, cs, k, n in ((e1, c1, ds, m), (e3, c3, da, p))
     )
+    if tf.is_siso:
+        zeros = sp.Mul(*(z - e for e in (*e1, *e3)))
+        G2 = DiscreteTF(tf.num / sp.Mul(*c1, *c3) * zeros, tf.den, tf.dt)
+    else:
+        G2 = mimo_G2(tf, e1, c1, e3, c3, ds, da)
+    return Factorization(tf, diagonal(g1, tf.dt), G2, diagonal(g3, tf.dt), e1, c1, e3, c3, (m, p))
+
+
+def _default_sections(side: int, count: int, channels: int, siso: bool) -> tuple[tuple, tuple]:
+    """The section symbols of one side, channel-major: ``(epsilons, Cs)``."""
+    if not count:
+        return (), ()
+    if siso:
+        return section_symbols(side, count)
+    per = [channel_symbols(side, j, count) for j in range(1, channels + 1)]
+    return tuple(e for es, _ in per for e in es), tuple(c for _, cs in per for c in cs)
 
 
 def _factors(exprs) -> Counter:
@@ -594,9 +541,7 @@ def _factors(exprs) -> Counter:
 
 
 def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
-    """Exact ``prod(left) == prod(right)``: identical factors cancelled structurally, the rest
-    multiplied out in python-flint.
-    """
+    """Exact ``prod(left) == prod(right)``: identical factors cancelled, the rest in python-flint."""
     zero_left, zero_right = (any(e == 0 for e in side) for side in (left, right))
     if zero_left or zero_right:  # a zero factor: cancelling the others would hide it
         return zero_left and zero_right
@@ -618,8 +563,7 @@ def _products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
 
 def _relative_difference(left: sp.Expr, right: sp.Expr, points: int = 8) -> float:
     r"""The largest coefficient of ``left - right`` in :math:`z` over the largest of either side,
-    other symbols at ``points`` seeded values in :math:`\pm(0, 2]` (the worst counts).
-    """
+    the worst over ``points`` seeded values of the other symbols in :math:`\pm(0, 2]`."""
     exact = {f: sp.Rational(f) for f in (left.atoms(sp.Float) | right.atoms(sp.Float))}
     left, right = left.xreplace(exact), right.xreplace(exact)
     symbols = sorted((left.free_symbols | right.free_symbols) - {z}, key=sp.default_sort_key)

@@ -1,28 +1,12 @@
 r"""Minimal realizations, exactly: the Kalman reduction in rational arithmetic.
 
-A realization is minimal when controllable and observable (its order is then the
-McMillan degree). :func:`minimal_realization` reduces one with number entries (floats
-taken exactly) in two exact steps of python-flint's rational row reduction:
-
-1. **controllable part.** The columns :math:`V` of the Krylov matrix
-   :math:`[H, FH, \dots, F^{n-1}H]` at its pivots are a basis of the
-   reachable subspace, which is :math:`F`-invariant and holds :math:`H`'s
-   columns; with any left inverse :math:`V^+` (:math:`V^+ V = I`),
-   :math:`F_c = V^+ F V`, :math:`H_c = V^+ H`, :math:`M_c = M V` give the same
-   Markov parameters, as :math:`F V = V F_c` and :math:`H = V H_c`;
-2. **observable part**, the dual step on :math:`(F_c^T, M_c^T, H_c^T)`.
-
-The result is checked: its first :math:`n + r` Markov parameters equal the
-given realization's (orders :math:`n` and :math:`r`), which proves that both
-have the same transfer function (their difference has a realization of order
-:math:`n + r`, zero when that many Markov parameters vanish).
-
->>> from symctl import Realization
->>> from symctl.realization.minimal import minimal_realization
->>> R = Realization([[0.5, 0], [0, 0.25]], [[1], [0]], [[1, 1]], 0)  # x2 is never reached
->>> Rm = minimal_realization(R)
->>> Rm.n, Rm.to_tf().expr
-(1, 1/(z - 1/2))
+Two exact steps (python-flint's rational row reduction): 1. **controllable part**: the
+pivot columns :math:`V` of :math:`[H, FH, \dots, F^{n-1}H]` span the reachable subspace,
+:math:`F`-invariant and holding :math:`H`; with a left inverse :math:`V^+`, :math:`(V^+ F V,
+V^+ H, M V)` has the same Markov parameters, as :math:`F V = V F_c`, :math:`H = V H_c`;
+2. **observable part**, the dual step. The result is checked: :math:`n + r` equal Markov
+parameters prove one transfer function (the difference has a realization of order
+:math:`n + r`).
 """
 
 from __future__ import annotations
@@ -102,7 +86,7 @@ def minimal_realization(R: Realization) -> Realization:
     Returns
     -------
     Realization
-        Of order the McMillan degree, proved to realize ``R.to_tf()``; ``R``'s ``dt`` kept.
+        Of order the McMillan degree, proved to realize ``R.to_tf()``.
 
     Raises
     ------

@@ -1,12 +1,8 @@
 r"""State-space realizations :math:`(F, H, M, N)` in closed form.
 
-A realization of :math:`G(z)` is :math:`(F, H, M, N)` with :math:`G(z) = M (zI - F)^{-1} H
-+ N`: :math:`x(t+1) = F x(t) + H u(t)`, :math:`y(t) = M x(t) + N u(t)` (the paper's
-section "Realizations"). :class:`Realization` is immutable and exact. For the paper's
-:math:`G_2` the canonical forms are exactly its matrices, e.g. :math:`F = [[0, 1], [K_2,
-K_1]]`, :math:`H = [0, 1]^\top`, :math:`M = \frac{K_0}{C_1 C_3}[K_2 + \epsilon_1\epsilon_3,\
-K_1 - \epsilon_1 - \epsilon_3]`; the other ways to realize :math:`G_2` are in
-:mod:`symctl.realization.realizers`.
+:math:`x(t+1) = F x(t) + H u(t)`, :math:`y(t) = M x(t) + N u(t)` realizes :math:`G(z) = M
+(zI - F)^{-1} H + N` (the paper's section "Realizations"); the canonical forms of the paper's
+:math:`G_2` are exactly its matrices. Other realizers: :mod:`symctl.realization.realizers`.
 """
 
 from __future__ import annotations
@@ -53,8 +49,8 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 class Realization(LatexMixin):
     r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
 
-    Stored as :class:`sympy.ImmutableMatrix` (``n = 0``, a static gain, allowed); compares and
-    hashes by the matrices and ``dt`` (structurally: similar realizations are not equal).
+    Immutable (``n = 0``, a static gain, allowed); compares by the matrices and ``dt``
+    (structurally: similar realizations are not equal).
 
     Parameters
     ----------
@@ -64,7 +60,7 @@ class Realization(LatexMixin):
     N : (p, q) matrix-like (a scalar for SISO)
     dt : sampling time, optional
     params : mapping, optional
-        Values used to build it (e.g. the random epsilons and ``P``); read-only, not compared.
+        Values used to build it (e.g. epsilons, ``P``); read-only, not compared.
 
     Raises
     ------
@@ -100,14 +96,11 @@ class Realization(LatexMixin):
         p, q = Nm.shape
         Hm = _matrix_or_empty(self.H, "H", (n, q))
         Mm = _matrix_or_empty(self.M, "M", (p, n))
-        if Hm.shape != (n, q):
-            raise DimensionError(
-                f"H: expected shape {(n, q)} (F is {n}x{n}, N is {p}x{q}), got {Hm.shape}"
-            )
-        if Mm.shape != (p, n):
-            raise DimensionError(
-                f"M: expected shape {(p, n)} (F is {n}x{n}, N is {p}x{q}), got {Mm.shape}"
-            )
+        for name, mat, shape in (("H", Hm, (n, q)), ("M", Mm, (p, n))):
+            if mat.shape != shape:
+                raise DimensionError(
+                    f"{name}: expected shape {shape} (F is {n}x{n}, N is {p}x{q}), got {mat.shape}"
+                )
         for name, mat in (("F", Fm), ("H", Hm), ("M", Mm), ("N", Nm)):
             object.__setattr__(self, name, sp.ImmutableMatrix(mat))
         object.__setattr__(self, "dt", None if self.dt is None else to_expr(self.dt, "dt"))
@@ -128,9 +121,7 @@ class Realization(LatexMixin):
         return set().union(*(m.free_symbols for m in (self.F, self.H, self.M, self.N)))
 
     def markov(self, count: int) -> list[sp.Matrix]:
-        r"""``[N, M H, M F H, ..., M F^{count-2} H]``, the row vectors :math:`M F^k` cancelled at each
-        step (no pile-up of ``det P`` denominators); ``count`` from 0 to ``MAX_STEPS``.
-        """
+        r"""``[N, M H, M F H, ..., M F^{count-2} H]``, :math:`M F^k` cancelled at each step."""
         count = bounded_int(count, "count", 0, MAX_STEPS)
         out = [sp.Matrix(self.N)]
         row = sp.Matrix(self.M)
@@ -140,12 +131,10 @@ class Realization(LatexMixin):
         return out[:count]
 
     def to_tf(self) -> DiscreteTF:
-        r"""The transfer function :math:`M \operatorname{adj}(zI-F) H / \det(zI-F) + N`.
+        r"""The transfer function :math:`M \operatorname{adj}(zI-F) H / \det(zI-F) + N`, not reduced.
 
-        Uses the characteristic polynomial :math:`\chi(z) = \sum_i c_i z^i` and
-        :math:`\operatorname{adj}(zI - F) = \sum_{j<n} z^j \sum_{i>j} c_i F^{i-j-1}`,
-        so only the Markov parameters :math:`M F^k H` are needed. The result is
-        not reduced: a non-minimal realization keeps its order.
+        :math:`\operatorname{adj}(zI - F) = \sum_{j<n} z^j \sum_{i>j} c_i F^{i-j-1}` with
+        :math:`\chi(z) = \sum_i c_i z^i`: only the Markov parameters are needed.
         """
         n = self.n
         chi = self.F.charpoly(z)
@@ -170,30 +159,18 @@ class Realization(LatexMixin):
         return self._similar(P)[0]
 
     def _similar(self, P) -> tuple[Realization, sp.Matrix]:
-        """:meth:`similar` and the ``P^{-1}`` it computed, fraction-free in python-flint; other entries
-        (floats, ``pi``) take :func:`_similar_sympy`.
-        """
+        """:meth:`similar` and its ``P^{-1}``, in python-flint (floats, ``pi``: :func:`_similar_sympy`)."""
         Pm = to_matrix(P, "P")
         if Pm.shape != (self.n, self.n):
             raise DimensionError(f"P: expected shape {(self.n, self.n)}, got {Pm.shape}")
         got = similar_exact(self.F, self.H, self.M, Pm) if self.n else None
         if got is None:
-            F, H, M, Pinv = _similar_sympy(self.F, self.H, self.M, Pm)
-        elif got == "singular":
-            F = None
-        else:
-            F, H, M, Pinv = got
-        if F is None:
+            got = _similar_sympy(self.F, self.H, self.M, Pm)
+        if got == "singular" or got[0] is None:
             raise ParameterError(f"P: singular (det P = 0), got {Pm.tolist()}")
-        R = Realization(
-            F,
-            H,
-            M,
-            self.N,
-            self.dt,
-            {**self.params, "P": sp.ImmutableMatrix(Pm)},
-        )
-        return R, sp.ImmutableMatrix(Pinv)
+        F, H, M, Pinv = got
+        params = {**self.params, "P": sp.ImmutableMatrix(Pm)}
+        return Realization(F, H, M, self.N, self.dt, params), sp.ImmutableMatrix(Pinv)
 
     def subs(self, *args, **kwargs) -> Realization:
         """Substitute symbols in every matrix (as :meth:`sympy.Basic.subs`; text through the safe parser)."""
@@ -215,11 +192,7 @@ class Realization(LatexMixin):
         )
 
     def observability_matrix(self) -> sp.Matrix:
-        return (
-            sp.Matrix.vstack(*[self.M * self.F**k for k in range(self.n)])
-            if self.n
-            else sp.zeros(0, 0)
-        )
+        return self.transpose().controllability_matrix().T
 
     def is_minimal(self) -> bool:
         r"""Controllable and observable (generic rank with symbols; floats to a relative 1e-10)."""
@@ -280,12 +253,9 @@ class Realization(LatexMixin):
 
     @classmethod
     def series(cls, *parts: Realization) -> Realization:
-        r"""The series connection of ``parts`` in signal-flow order (the first acts first).
-
-        For two parts, :math:`F = [[F_1, 0], [H_2 M_1, F_2]]`, :math:`H = [H_1; H_2 N_1]`,
-        :math:`M = [N_2 M_1,\ M_2]`, :math:`N = N_2 N_1`: the transfer function is
-        :math:`G_k \cdots G_1`. State order: the first part's states first.
-        """
+        r"""The series connection :math:`G_k \cdots G_1` of ``parts`` (the first acts first, its
+        states first): :math:`F = [[F_1, 0], [H_2 M_1, F_2]]`, :math:`H = [H_1; H_2 N_1]`,
+        :math:`M = [N_2 M_1,\ M_2]`, :math:`N = N_2 N_1`."""
         if not parts:
             raise ParameterError("parts: give at least one realization")
         for i, part in enumerate(parts):
@@ -309,7 +279,7 @@ class Realization(LatexMixin):
         return out
 
     def lambdify(self, symbols):
-        r"""A NumPy function of the ``symbols`` returning ``(F, H, M, N)``, broadcast over value arrays."""
+        """A NumPy function of the ``symbols`` returning ``(F, H, M, N)`` (broadcasts)."""
         from symctl._util.evaluate import lambdify_matrices
 
         return lambdify_matrices((self.F, self.H, self.M, self.N), symbols)
@@ -355,21 +325,24 @@ def _rank(mat: sp.Matrix) -> int:
 
 
 def _siso(G, argname: str = "G2") -> DiscreteTF:
-    tf = DiscreteTF.from_expr(G)
+    tf = _proper(G, argname)
     if not tf.is_siso:
         raise DimensionError(
             f"{argname}: canonical forms are built for SISO transfer functions, got {tf.shape}"
         )
+    return tf
+
+
+def _proper(G, argname: str = "G2") -> DiscreteTF:
+    tf = DiscreteTF.from_expr(G)
     if tf.relative_degree < 0:
         raise ParameterError(f"{argname}: improper (numerator degree above denominator degree)")
     return tf
 
 
 def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
-    r"""Split a proper SISO ``G`` into feed-through and strictly proper part.
-
-    Returns ``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)`,
-    ``c`` and ``a`` in ascending powers (length ``n``).
+    r"""``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)` for a proper
+    SISO ``G``, ``c`` and ``a`` ascending (length ``n``).
 
     >>> from symctl import z
     >>> from symctl.realization.realization import split_proper
@@ -394,109 +367,32 @@ def controllable_canonical(G2) -> Realization:
             -a_0 & -a_1 & \cdots & -a_{n-1}\end{bmatrix},\quad
         H = e_n,\quad M = [c_0\ \cdots\ c_{n-1}],\quad N = G_2(\infty),
 
-    with :math:`G_2 = N + (c_{n-1} z^{n-1} + \dots + c_0)/(z^n + a_{n-1} z^{n-1} + \dots + a_0)`.
-    A p x m ``G2`` (one common denominator) gets the block form, :math:`n m` states.
+    with :math:`G_2 = N + \sum_k c_k z^k / d(z)`. A p x m ``G2`` gets the block form (each
+    entry of :math:`F`, :math:`H` times :math:`I_m`, :math:`M = [C_0\ \cdots\ C_{n-1}]`).
 
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper SISO transfer function, exact or symbolic.
+        A proper transfer function, exact or symbolic.
 
     Returns
     -------
     Realization
-        Of order :math:`n = \deg d`, with ``G2``'s ``dt``.
+        Of order :math:`n m`, :math:`n = \deg d`.
 
     Raises
     ------
     ParameterError
-        An improper ``G2``, or one that is not rational in ``z``.
+        An improper ``G2``, or one not rational in ``z``.
 
     Examples
     --------
     >>> from symctl import controllable_canonical, controller_tf, factor
     >>> R = controllable_canonical(factor(controller_tf(2)).G2)
-    >>> R.F, R.H.T
-    (Matrix([
-    [  0,   1],
-    [K_2, K_1]]), Matrix([[0, 1]]))
+    >>> R.F.tolist(), R.H.T
+    ([[0, 1], [K_2, K_1]], Matrix([[0, 1]]))
     """
     tf = _proper(G2)
-    if not tf.is_siso:
-        return _block_controllable(tf)
-    N, c, a = split_proper(tf)
-    n = len(a)
-    F = sp.zeros(n, n)
-    for i in range(n - 1):
-        F[i, i + 1] = 1
-    for j in range(n):
-        F[n - 1, j] = -a[j] if n else 0
-    H = sp.zeros(n, 1)
-    if n:
-        H[n - 1, 0] = 1
-    M = sp.Matrix([c]) if n else sp.zeros(1, 0)
-    return Realization(F, H, M, N, tf.dt)
-
-
-def observable_canonical(G2) -> Realization:
-    r"""The observable canonical realization, the dual of :func:`controllable_canonical`.
-
-    For the paper's :math:`G_2`: :math:`F = [[0, K_2], [1, K_1]]`, :math:`M = [0, 1]`,
-    :math:`H = \frac{K_0}{C_1C_3}[K_2+\epsilon_1\epsilon_3,\ K_1-\epsilon_1-\epsilon_3]^\top`.
-    A p x m ``G2`` gets the block observable form, :math:`n p` states.
-
-    Parameters
-    ----------
-    G2 : DiscreteTF or sympy expression in z
-        A proper SISO transfer function, exact or symbolic.
-
-    Returns
-    -------
-    Realization
-        :math:`(F^\top, M^\top, H^\top, N)` of :func:`controllable_canonical`.
-
-    Raises
-    ------
-    ParameterError
-        An improper ``G2``, or one that is not rational in ``z``.
-
-    Examples
-    --------
-    >>> from symctl import controller_tf, factor, observable_canonical
-    >>> R = observable_canonical(factor(controller_tf(2)).G2)
-    >>> R.F, R.M
-    (Matrix([
-    [0, K_2],
-    [1, K_1]]), Matrix([[0, 1]]))
-    """
-    tf = _proper(G2)
-    if not tf.is_siso:  # the dual of the block controllable form of G2^T
-        return _block_controllable(DiscreteTF(tf.num_matrix.T, tf.den, tf.dt)).transpose()
-    return controllable_canonical(tf).transpose()
-
-
-def _proper(G, argname: str = "G2") -> DiscreteTF:
-    tf = DiscreteTF.from_expr(G)
-    if tf.relative_degree < 0:
-        raise ParameterError(f"{argname}: improper (numerator degree above denominator degree)")
-    return tf
-
-
-def _block_controllable(tf: DiscreteTF) -> Realization:
-    r"""The block controllable canonical form of a proper p x m ``G = N(z)/d(z)``.
-
-    With :math:`d = z^n + a_{n-1} z^{n-1} + \dots + a_0` (monic, common to every
-    entry) and :math:`G = D + \sum_{k<n} C_k z^k / d(z)` (:math:`C_k` p x m):
-
-    .. math::
-        F = \begin{bmatrix} 0 & I_m & & \\ & \ddots & \ddots & \\ & & 0 & I_m \\
-            -a_0 I_m & -a_1 I_m & \cdots & -a_{n-1} I_m \end{bmatrix},\quad
-        H = \begin{bmatrix} 0 \\ \vdots \\ 0 \\ I_m \end{bmatrix},\quad
-        M = [C_0\ C_1\ \cdots\ C_{n-1}],\quad N = D,
-
-    :math:`n m` states: the scalar form with every entry a block, since
-    :math:`(zI - F)^{-1} H = [I;\ zI;\ \dots;\ z^{n-1} I] / d(z)`.
-    """
     p, m = tf.shape
     a = tf.den_coeffs()[::-1]  # ascending, a[n] = 1
     n = len(a) - 1
@@ -510,12 +406,11 @@ def _block_controllable(tf: DiscreteTF) -> Realization:
             for k in range(n):
                 C[k][i, j] = _tidy(b[k] - b[n] * a[k])
     F = sp.zeros(n * m, n * m)
-    for blk in range(n - 1):
-        for r in range(m):
-            F[blk * m + r, (blk + 1) * m + r] = 1
     for k in range(n):
         for r in range(m):
             F[(n - 1) * m + r, k * m + r] = -a[k]
+            if k < n - 1:
+                F[k * m + r, (k + 1) * m + r] = 1
     H = sp.zeros(n * m, m)
     if n:
         H[(n - 1) * m :, :] = sp.eye(m)
@@ -523,24 +418,50 @@ def _block_controllable(tf: DiscreteTF) -> Realization:
     return Realization(F, H, M, D, tf.dt)
 
 
-def first_order_realization(eps, C, dt=None) -> Realization:
-    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`.
-
-    One per delay step of :math:`G_1` and :math:`G_3`.
+def observable_canonical(G2) -> Realization:
+    r"""The observable canonical realization: the transpose of :func:`controllable_canonical`
+    of :math:`G_2^\top` (:math:`n p` states).
 
     Parameters
     ----------
-    eps : number, sympy expression or str
-        The pole :math:`\epsilon` (text goes through the safe parser).
-    C : number, sympy expression or str
-        The input gain :math:`C`.
-    dt : number, optional
-        Sampling time; ``None`` for a time axis in steps.
+    G2 : DiscreteTF or sympy expression in z
+        A proper transfer function, exact or symbolic.
 
     Returns
     -------
     Realization
-        ``F = [[eps]]``, ``H = [[C]]``, ``M = [[1]]``, ``N = 0``.
+
+    Raises
+    ------
+    ParameterError
+        An improper ``G2``, or one not rational in ``z``.
+
+    Examples
+    --------
+    >>> from symctl import controller_tf, factor, observable_canonical
+    >>> R = observable_canonical(factor(controller_tf(2)).G2)
+    >>> R.F.tolist(), R.M
+    ([[0, K_2], [1, K_1]], Matrix([[0, 1]]))
+    """
+    tf = _proper(G2)
+    if not tf.is_siso:  # the dual of the block controllable form of G2^T
+        tf = DiscreteTF(tf.num_matrix.T, tf.den, tf.dt)
+    return controllable_canonical(tf).transpose()
+
+
+def first_order_realization(eps, C, dt=None) -> Realization:
+    r"""The section :math:`x(t+1) = \epsilon x(t) + C u(t)`, :math:`y = x`, of :math:`C/(z-\epsilon)`
+    (one per delay step of :math:`G_1` and :math:`G_3`).
+
+    Parameters
+    ----------
+    eps, C : number, sympy expression or str
+        The pole and the input gain (text through the safe parser).
+    dt : number, optional
+
+    Returns
+    -------
+    Realization
 
     Raises
     ------
@@ -557,10 +478,8 @@ def first_order_realization(eps, C, dt=None) -> Realization:
 
 
 def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
-    r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order.
-
-    For a MIMO factorization each stage is one diagonal realization holding that
-    stage's section of every channel (:func:`_channel_stages`).
+    r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order
+    (MIMO: one diagonal realization per stage, holding that stage's section of every channel).
 
     >>> from symctl import controller_tf, factor
     >>> from symctl.realization.realization import section_realizations
@@ -584,10 +503,7 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
 
 
 def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
-    r"""The k-th sections of every channel, one diagonal realization per stage (``eps``, ``cs``
-    channel-major): :math:`F = \operatorname{diag}_j \epsilon_{j,k}`,
-    :math:`H = \operatorname{diag}_j C_{j,k}`.
-    """
+    """One diagonal realization per stage, the k-th sections of every channel (channel-major)."""
     count = len(eps) // channels if channels else 0
     stages = []
     for k in range(count):
@@ -600,21 +516,18 @@ def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
 
 
 def controller_realization(factorization, R2: Realization) -> Realization:
-    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization.
-
-    States: the sections of :math:`G_1`, those of ``R2``, then the sections of :math:`G_3`.
+    r"""The whole controller :math:`G_3 G_2 G_1` as a series realization (states: :math:`G_1`'s
+    sections, ``R2``'s, :math:`G_3`'s).
 
     Parameters
     ----------
     factorization : Factorization
-        :math:`G = G_3 G_2 G_1` (:func:`symctl.factor`).
     R2 : Realization
         A realization of ``factorization.G2``.
 
     Returns
     -------
     Realization
-        Of order ``sensor_delay + R2.n + actuator_delay``.
 
     Examples
     --------

@@ -1,21 +1,16 @@
 r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
 
-A *realizer* turns a proper SISO transfer function into a :class:`RealizerResult`: the
-realization, the canonical realization it was built from (its *base*) and the similarity
-transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). :data:`REALIZERS` holds them in the report's order:
-``"ifp"`` (the whole controller from its gains, :func:`ifp_realization`), ``"general"``
-(a canonical base transformed by a given or random :math:`P`), ``"controllable"``,
-``"observable"`` and ``"random"`` (the paper's recipe, :func:`random_realization`; no
-circuit of its own). This table is the one place these names, titles and their order
-are written; :func:`register` adds a realizer (docs/extending.md).
+A *realizer* returns a :class:`RealizerResult`: the realization, its canonical *base* and
+the transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
+nengolib's ``signal/realizers.py``). :data:`REALIZERS` is the one table of their names,
+titles and order; :func:`register` adds one (docs/extending.md).
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from types import MappingProxyType
 
 import numpy as np
@@ -59,12 +54,9 @@ class RealizerResult(DictMixin):
         The realized transfer function (after any substitution the realizer made).
     base : Realization
         The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
-    P : sympy.ImmutableMatrix
-        The transform, ``realization == base.similar(P)`` (:math:`I` for a canonical form).
-    Pinv : sympy.ImmutableMatrix or None
-        :math:`P^{-1}` for a numeric :math:`P`, ``None`` for a symbolic one (never inverted).
+    P, Pinv : sympy.ImmutableMatrix
+        ``realization == base.similar(P)``; ``Pinv`` None for a symbolic ``P`` (never inverted).
     realization : Realization
-        :math:`(F, H, M, N)`.
 
     Examples
     --------
@@ -84,31 +76,20 @@ class RealizerResult(DictMixin):
 
 @dataclass(frozen=True)
 class Realizer:
-    """A way of realizing a proper SISO :math:`G_2`; call it to get a :class:`RealizerResult`.
+    """A way of realizing a proper :math:`G_2`; call it to get a :class:`RealizerResult`.
 
-    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an
-    instance: every table of circuits reads :data:`REALIZERS`.
+    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an instance.
 
     Attributes
     ----------
-    name : str
-        Its key in :data:`REALIZERS` (the word of model files, the CLI, :func:`circuit_firing`).
-    title : str
-        A human title, for reports ("controllable canonical").
-    canonical : bool
-        A canonical form (a valid ``base`` of the others).
-    takes_transform : bool
-        Accepts a transform ``P`` (its circuits form a dense class).
-    keeps_symbols : bool
-        Realizes :math:`G_2` as given, free symbols kept.
+    name, title : str
+        Its key in :data:`REALIZERS` (the word of model files and the CLI), a human title.
+    canonical, takes_transform, keeps_symbols, circuit, paper, controller : bool
+        A canonical form (a valid ``base``); accepts a transform ``P``; keeps free symbols;
+        builds a circuit of its own; one of the paper's forms; realizes the whole controller
+        from its :class:`~symctl.Gains`.
     form : str
-        The words naming its :math:`G_2` in a circuit's title; by default the title.
-    circuit : bool
-        Builds a circuit of its own (``[circuits] build``; the report draws it).
-    paper : bool
-        One of the paper's named forms (a fixed one is written out for :math:`T = 2`).
-    controller : bool
-        Realizes the whole optimal controller from its :class:`~symctl.Gains`, not :math:`G_2`.
+        The words naming its :math:`G_2` in a circuit's title (default: the title).
 
     Examples
     --------
@@ -144,14 +125,12 @@ def _identity(R: Realization, tf: DiscreteTF) -> RealizerResult:
 @dataclass(frozen=True)
 class _Controllable(Realizer):
     def __call__(self, G2, *, rng=None) -> RealizerResult:
-        """``rng`` is accepted, and unused: the canonical form is deterministic."""
         return _identity(controllable_canonical(G2), DiscreteTF.from_expr(G2))
 
 
 @dataclass(frozen=True)
 class _Observable(Realizer):
     def __call__(self, G2, *, rng=None) -> RealizerResult:
-        """``rng`` is accepted, and unused: the canonical form is deterministic."""
         return _identity(observable_canonical(G2), DiscreteTF.from_expr(G2))
 
 
@@ -164,7 +143,7 @@ def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
 @dataclass(frozen=True)
 class _General(Realizer):
     def __call__(self, G2, P=None, *, base: str = "controllable", rng=None) -> RealizerResult:
-        """The transform of the ``base`` form by ``P`` (``None``: drawn from ``rng``); no states: the base."""
+        """The ``base`` form transformed by ``P`` (``None``: drawn from ``rng``)."""
         start = get_realizer(base, "base", where=_canonical)(G2).realization
         tf = DiscreteTF.from_expr(G2)
         if start.n == 0:
@@ -188,7 +167,7 @@ class _Random(Realizer):
         """The paper's recipe (:func:`random_realization`)."""
         gen = as_generator(rng, "rng")
         low, high = _eps_range(eps_range)
-        tf = DiscreteTF.from_expr(G2) if not isinstance(G2, DiscreteTF) else G2
+        tf = DiscreteTF.from_expr(G2)
         if values is not None and not isinstance(values, Mapping):
             raise SymctlTypeError(
                 f"values: expected a mapping of symbols (or names) to values, got {values!r}"
@@ -205,13 +184,11 @@ class _Random(Realizer):
         tf = tf.subs(chosen)
         start = get_realizer(base, "base", where=_canonical)(tf).realization
         out = _transformed(start, tf, random_full_rank(start.n, gen))
-        R = out.realization
-        R = Realization(R.F, R.H, R.M, R.N, R.dt, {**chosen, **R.params})
-        return RealizerResult(out.sys, out.base, out.P, out.Pinv, R)
+        R = replace(out.realization, params={**chosen, **out.realization.params})
+        return replace(out, realization=R)
 
 
 def _eps_range(value) -> tuple[float, float]:
-    """``eps_range`` as ``(low, high)``: two finite reals with ``low <= high``."""
     if not isinstance(value, list | tuple) or len(value) != 2:
         raise SymctlTypeError(f"eps_range: expected a pair (low, high), got {value!r}")
     low, high = (real_number(v, "eps_range") for v in value)
@@ -226,7 +203,6 @@ def _eps_range(value) -> tuple[float, float]:
 @dataclass(frozen=True)
 class _IFP(Realizer):
     def __call__(self, gains, *, rng=None) -> RealizerResult:
-        """``rng`` is accepted, and unused: the IFP controller has no free parameters."""
         R = ifp_realization(gains)
         return _identity(R, R.to_tf())
 
@@ -248,10 +224,7 @@ _REGISTRY: dict[str, Realizer] = {
     )
 }
 _BUILTIN = frozenset(_REGISTRY)
-_RESERVED = (
-    "all",
-    "pathways",
-)  # "all" the fits' classes, "pathways" the report's graph-built circuit
+_RESERVED = ("all", "pathways")  # the fits' classes, the report's graph-built circuit
 _NAME = re.compile(r"[a-z][a-z0-9_]{0,31}")
 
 REALIZERS: Mapping[str, Realizer] = MappingProxyType(_REGISTRY)
@@ -263,13 +236,13 @@ def _canonical(realizer: Realizer) -> bool:
 
 
 def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
-    """The circuits a model builds, in the report's order (read at each call: registered ones included).
+    """The circuits a model builds, in the report's order (registered ones included).
 
     Parameters
     ----------
     whole : bool
-        Include the circuits of the whole controller (the IFP controller); ``False``
-        gives the circuits of :math:`G_3 G_2 G_1`, named by their :math:`G_2`.
+        Include the circuits of the whole controller (IFP); ``False``: those of
+        :math:`G_3 G_2 G_1`, named by their :math:`G_2`.
 
     Examples
     --------
@@ -283,7 +256,7 @@ def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
 
 
 def register(realizer: Realizer) -> Realizer:
-    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others (every table reads it).
+    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
 
     Parameters
     ----------
@@ -300,8 +273,8 @@ def register(realizer: Realizer) -> Realizer:
     SymctlTypeError
         ``realizer`` is not a :class:`Realizer`.
     ParameterError
-        Its name is taken, reserved (``"all"``, ``"pathways"``, an atlas label) or not a
-        lower-case identifier of at most 32 characters.
+        Its name taken, reserved (``"all"``, ``"pathways"``) or not a lower-case identifier
+        of at most 32 characters.
 
     Examples
     --------
@@ -362,8 +335,7 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     argname : str
         The caller's argument, named in the error.
     where : callable, optional
-        Admit only the realizers for which ``where(realizer)`` is true (e.g.
-        ``lambda r: r.canonical``).
+        Admit only the realizers for which ``where(realizer)`` is true.
 
     Returns
     -------
@@ -397,9 +369,9 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper SISO transfer function.
+        A proper transfer function.
     P : (n, n) matrix-like
-        Invertible; symbolic (e.g. a matrix of fresh symbols) or numeric.
+        Invertible; symbolic or numeric.
     base : {"controllable", "observable"}
         The canonical realization transformed.
 
@@ -430,10 +402,8 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
 def random_full_rank(
     n: int, rng=None, *, grid: int = 100, max_cond: float | None = None
 ) -> sp.Matrix:
-    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), well conditioned.
-
-    Redrawn until its condition number is below ``max_cond``, default ``max(10, 5 n)``
-    (a Gaussian matrix's median is about ``3.4 n``: about two draws in three pass).
+    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), redrawn until its
+    condition number is below ``max_cond`` (default ``max(10, 5 n)``: two draws in three pass).
 
     >>> from symctl.realization.realizers import random_full_rank
     >>> random_full_rank(2, rng=0).det() != 0
@@ -460,23 +430,20 @@ def random_realization(
 ) -> Realization:
     r"""The paper's recipe for its figures: random epsilons, then a random full-rank ``P``.
 
-    Every free symbol of ``G2`` named ``epsilon...`` gets a random exact rational in
+    Every free symbol ``epsilon...`` of ``G2`` gets a random multiple of 1/1000 in
     ``eps_range``; the ``base`` realization is then transformed by a random rational ``P``
-    (entries round(100 N(0, 1))/100, condition number below 10). Other symbols stay symbolic
-    unless given in ``values``.
+    (:func:`random_full_rank`). Other symbols stay unless given in ``values``.
 
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper SISO transfer function.
+        A proper transfer function.
     rng : None, int or numpy.random.Generator, optional
         The seed.
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
-        Each epsilon is a multiple of 1/1000 uniform in [low, high]; default (-0.9, 0.9).
-        Both ends lie in (-1, 1): G3 G2 G1 hides a section with ``|epsilon| >= 1`` (G2
-        cancels it), an internally unstable circuit with the right transfer function.
+        Inside (-1, 1) (:func:`~symctl.realization.check.require_stable_sections`).
     values : dict, optional
         Values substituted first.
 
@@ -501,12 +468,8 @@ def random_realization(
 
 
 def ifp_realization(gains: Gains) -> Realization:
-    r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`.
-
-    State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`\delta_f`, output
-    :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
-    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`), from
-    :func:`symctl.design.controller.ifp_state_space`, which also proves :func:`symctl.controller_tf`.
+    r"""The optimal controller as the paper's IFP structure: the delay chain with :math:`\mu = K\chi`
+    (:func:`symctl.design.controller.ifp_state_space`).
 
     Parameters
     ----------

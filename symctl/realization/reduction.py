@@ -19,14 +19,10 @@ With :math:`(\tilde A, \tilde B)` stabilizable and :math:`(\tilde A, \tilde Q)` 
 :math:`X \tilde B d = 0`, so :math:`d^\top (R + \tilde B^\top X \tilde B) = (R d)^\top` and
 :math:`(R d)^\top K = -d^\top \tilde B^\top X \tilde A = 0`. :math:`\square`
 
-So :math:`w^\top \mu = 0` for :math:`w \in R\mathcal D`: the :math:`T \dim \mathcal D`
-states :math:`w^\top \gamma_k` are never reached, and :math:`G` has the factor
-:math:`z^{T \dim \mathcal D}` in its denominator and every numerator. The ties are linear
-equations between the gains with rational coefficients; the numeric gains satisfy them
-to rounding only, so :func:`controller_reduction` computes the tied gains from the free
-ones, exactly, and decides the minimal order of the delayed controller with those gains
-by :func:`~symctl.realization.minimal.minimal_realization` (exact; with one input
-:math:`K_0 / (z^T - K_1 z^{T-1} - \dots - K_T)` is minimal unless :math:`K_0 = 0`).
+So the :math:`T \dim \mathcal D` states :math:`w^\top \gamma_k`, :math:`w \in R\mathcal D`, are
+never reached. The numeric gains satisfy these linear ties to rounding only, so
+:func:`controller_reduction` computes the tied gains exactly from the free ones and decides
+the minimal order with :func:`~symctl.realization.minimal.minimal_realization`.
 """
 
 from __future__ import annotations
@@ -42,6 +38,7 @@ from flint import fmpq_mat
 
 from symctl._util.exact import from_fmpq, from_fmpq_mat
 from symctl.design.augment import AugmentedSystem
+from symctl.design.controller import ifp_state_space
 from symctl.design.lqr import Gains
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
@@ -62,15 +59,12 @@ class ControllerReduction(Verdict):
     order, minimal_order : int
         The controller's states (:math:`T m`) and its McMillan degree (exact).
     relations : mapping of Symbol to expression
-        The gains the theorem ties, each in the free ones (empty when minimal).
-    never_driven : tuple of str
-        The input combinations :math:`w^\top \mu` the controller keeps at 0 (:math:`w = R d`).
-    unseen : tuple of str
-        The plant-state combinations the cost never sees.
-    reason : str
-        Why the controller is not minimal ('' when it is).
-    method : str
-        How the McMillan degree was decided.
+        The gains the theorem ties, each in the free ones.
+    never_driven, unseen : tuple of str
+        The input combinations :math:`w^\top \mu` kept at 0 (:math:`w = R d`), and the
+        plant-state combinations the cost never sees.
+    reason, method : str
+        Why it is not minimal ('' when it is), and how the McMillan degree was decided.
     """
 
     _verdict = "minimal"
@@ -91,7 +85,6 @@ class ControllerReduction(Verdict):
 
     @property
     def minimal(self) -> bool:
-        """Whether the McMillan degree is the number of states."""
         return self.minimal_order == self.order
 
     @property
@@ -99,8 +92,8 @@ class ControllerReduction(Verdict):
         return f"McMillan degree {self.minimal_order} of {self.order} states"
 
     def reduce(self, G: DiscreteTF) -> DiscreteTF:
-        r"""``G`` (in the gains' symbols) with the ties substituted and the power of :math:`z`
-        common to its denominator and numerators divided out (``G`` as it is when minimal)."""
+        r"""``G`` (in the gains' symbols) with the ties substituted and the common power of
+        :math:`z` divided out."""
         if self.minimal:
             return G
         G = G.subs(self.relations)
@@ -111,7 +104,7 @@ class ControllerReduction(Verdict):
 
 
 def _numbers(M: sp.MatrixBase, name: str) -> fmpq_mat:
-    """``M`` in rationals: a number that is not rational (``exp(-1/2)``) by its float, as the LQR."""
+    """``M`` in rationals, an irrational number by its float (as the LQR)."""
     return _mat(M.applyfunc(lambda e: e if e.is_Rational else sp.Float(float(e))), name)
 
 
@@ -143,8 +136,7 @@ def _unseen(A: fmpq_mat, Q: fmpq_mat) -> list[list[sp.Rational]]:
 
 
 def _combination(v, names) -> str:
-    """``v`` scaled to a leading coefficient of 1, as a signed sum of ``names`` (deviations named
-    without ``delta_``): ``u_1 + u_2``."""
+    """``v`` scaled to a leading 1, as a signed sum of ``names`` without ``delta_``: ``u_1 + u_2``."""
     lead = abs(next(c for c in v if c != 0))
     terms = []
     for c, name in zip((c / lead for c in v), names, strict=True):
@@ -172,8 +164,7 @@ def controller_reduction(
     Returns
     -------
     (ControllerReduction, Gains)
-        The verdict (truthy when minimal), and the gains with the tied ones computed
-        exactly from the free ones (``gains`` itself when minimal).
+        The verdict, and the gains with the tied ones computed exactly from the free ones.
 
     Raises
     ------
@@ -213,7 +204,7 @@ def controller_reduction(
     values = dict(zip(K, (sp.Rational(float(v)) for v in gains.K.ravel()), strict=True))
     values.update({s: e.xreplace(values) for s, e in relations.items()})
     exact = sp.Matrix(*K.shape, [values[s] for s in K])
-    order, method = _chain_order(exact, n, m, T, len(directions))
+    order, method = _chain_order(system, exact, len(directions))
     if order == T * m:
         return ControllerReduction(T * m, order, method=method), gains
     Kn = np.array(exact, dtype=float)
@@ -258,23 +249,17 @@ def _solve(equations: list, symbols: list) -> dict:
     return {k: solved[k] for k in symbols if k in solved}
 
 
-def _chain_order(K: sp.Matrix, n: int, m: int, T: int, tied: int) -> tuple[int, str]:
+def _chain_order(system: AugmentedSystem, K: sp.Matrix, tied: int) -> tuple[int, str]:
     """The McMillan degree of the delay chain's controller with gains ``K``, and how it was found."""
+    n, m, T = system.n, system.m, system.T
     if m == 1:  # K_0 / (z^T - K_1 z^(T-1) - ... - K_T): minimal unless K_0 = 0
         return (T if any(K[0, j] != 0 for j in range(n)) else 0), "K_0 != 0 (one input)"
     if T * m > MAX_ORDER:
         return T * (
             m - tied
         ), f"the theorem's count (the Kalman reduction takes {MAX_ORDER} states)"
-    F = sp.zeros(T * m, T * m)
-    F[:m, :] = K[:, n:]
-    F[m:, : (T - 1) * m] = sp.eye((T - 1) * m)
-    H = sp.zeros(T * m, n)
-    H[:m, :] = K[:, :n]
-    M = sp.zeros(m, T * m)
-    M[:, (T - 1) * m :] = sp.eye(m)
-    realization = Realization(F, H, M, sp.zeros(m, n))
-    return minimal_realization(realization).n, ControllerReduction.method
+    chain = Realization(*ifp_state_space(sp.Matrix(system.A), sp.Matrix(system.B), K, n, m, T))
+    return minimal_realization(chain).n, ControllerReduction.method
 
 
 def _reason(system: AugmentedSystem, directions, blind, unexplained: int) -> str:
