@@ -206,25 +206,6 @@ def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
     }
 
 
-def _pairs(obj, digits: int) -> Pairs:
-    def tex(value) -> str:
-        return to_latex(value, digits=digits)
-
-    if isinstance(obj, sp.Eq):
-        return [(tex(obj.lhs), tex(obj.rhs))]
-    rules = _rules()
-    for cls in type(obj).__mro__:
-        if cls in rules:
-            return rules[cls](obj, tex)
-    if isinstance(obj, Mapping):
-        return [(tex(k), tex(v)) for k, v in obj.items()]
-    if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
-        return [(None if obj[0] is None else tex(obj[0]), tex(obj[1]))]
-    if isinstance(obj, list | tuple):
-        return [pair for item in obj for pair in _pairs(item, digits)]
-    return [(None, tex(obj))]
-
-
 def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     r"""An object as a list of ``(lhs, rhs)`` LaTeX pairs (``lhs`` None: a bare formula).
 
@@ -255,7 +236,23 @@ def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     >>> equations(MuscleModel().discrete_symbolic())
     [('A', '\\left[\\begin{matrix}e^{- \\frac{T_{s}}{\\tau}}\\end{matrix}\\right]'), ...]
     """
-    return _pairs(obj, digits)
+
+    def tex(value) -> str:
+        return to_latex(value, digits=digits)
+
+    if isinstance(obj, sp.Eq):
+        return [(tex(obj.lhs), tex(obj.rhs))]
+    rules = _rules()
+    for cls in type(obj).__mro__:
+        if cls in rules:
+            return rules[cls](obj, tex)
+    if isinstance(obj, Mapping):
+        return [(tex(k), tex(v)) for k, v in obj.items()]
+    if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
+        return [(None if obj[0] is None else tex(obj[0]), tex(obj[1]))]
+    if isinstance(obj, list | tuple):
+        return [pair for item in obj for pair in equations(item, digits=digits)]
+    return [(None, tex(obj))]
 
 
 def _label(label) -> str:

@@ -1,10 +1,5 @@
 r"""The atlas as documents: ``atlas.json``, ``atlas.md``, ``atlas.tex``/``.pdf`` and drawings.
 
-:func:`atlas_blocks` writes the text (definitions, counts, the answer to the
-paper's claim, the table of classes, the evidence); :func:`write_atlas` writes
-the files into an existing folder (the command line stages it,
-:class:`~symctl.report.output.OutputFolder`).
-
 >>> import symctl
 >>> from symctl.report.atlas import paper_realizations
 >>> sorted(paper_realizations(symctl.atlas(2, workers=1)))

@@ -1,8 +1,5 @@
 """The model's entries of ``results.json``: ``plant`` (with the equilibrium) and ``model``.
 
-Read from a :class:`~symctl.derivation.derivation.Derivation` (``res``), which this module
-does not import (it sits above).
-
 >>> from symctl import derive_paper
 >>> from symctl.report import model_json
 >>> res = derive_paper()
@@ -54,11 +51,8 @@ def plant(res) -> dict:
 
 
 def model(res) -> dict:
-    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped.
-
-    Its ``file`` (the model file's text, its name and the values replaced:
-    :meth:`~symctl.model.model.Model.to_dict`) re-creates the model.
-    """
+    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped, and
+    the ``file`` that re-creates the model."""
     spec = res.spec
     out = {
         "name": spec.name,

@@ -56,8 +56,7 @@ def check_output_folder(out, argname: str = "out") -> Path:
     Parameters
     ----------
     out : str or os.PathLike
-        The output folder: missing (it is made, with its parents), or an
-        existing folder that is empty or holds only the files of an earlier run.
+        A missing folder, or one that holds nothing but the files of an earlier run.
     argname : str
         The name in the messages (``"--out"`` for the command line).
 
@@ -71,8 +70,8 @@ def check_output_folder(out, argname: str = "out") -> Path:
     SymctlTypeError
         ``out`` is not a path.
     ParameterError
-        ``out`` is empty, the root, a file, a folder holding other files, or in
-        a place where no folder can be made (a parent is a file, or not writable).
+        ``out`` is empty, the root, a file, a folder holding other files, or where no folder
+        can be made.
 
     Examples
     --------
@@ -147,18 +146,10 @@ class OutputFolder:
     argname : str
         The name in error messages (``"--out"`` for the command line).
 
-    Attributes
-    ----------
-    out : Path
-        The absolute output folder.
-    staging : Path or None
-        The folder being written (None before the ``with`` block).
-
     Raises
     ------
     ParameterError
-        As :func:`check_output_folder`; or another run holds the lock; or the
-        parent cannot be made.
+        As :func:`check_output_folder`; or another run holds the lock.
 
     Examples
     --------

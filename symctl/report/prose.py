@@ -81,9 +81,7 @@ def tex_text(text: str) -> str:
 
 
 def markdown_text(text: str, numbers: dict[str, int]) -> str:
-    """Prose for Markdown: its marks as numbers (``[1, Fig. 5]``, ``3``, ``(2)``; ``??`` unknown).
-
-    ``numbers`` maps a reference (``"fig:name"``) or a citation key to its number.
+    """Prose for Markdown: its marks as the ``numbers`` of their keys (``??`` unknown).
 
     Examples
     --------
@@ -108,13 +106,11 @@ def markdown_text(text: str, numbers: dict[str, int]) -> str:
 
 
 VERBATIM_LINE = 96
-"""Characters of a line of preformatted text (``\\footnotesize`` typewriter: 4.2 pt each, so
-about 400 pt of the 483 pt line); a longer line wraps, its continuation indented."""
+"""Characters of a line of preformatted text (``\\footnotesize`` typewriter) before it wraps."""
 
 
 def verbatim_lines(text: str) -> list[str]:
-    """Preformatted text with its lines wrapped at :data:`VERBATIM_LINE` characters (in both
-    formats), a continuation indented four spaces past its line's own indent.
+    """Preformatted text wrapped at :data:`VERBATIM_LINE` characters, continuations indented.
 
     Examples
     --------

@@ -1,9 +1,5 @@
 r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
 
-The report stage computes nothing: it reads a derivation and writes it. The
-derivation's :meth:`~symctl.derivation.Derivation.to_dict` and
-:meth:`~symctl.derivation.Derivation.write` call :func:`results_json` and :func:`write`.
-
 Examples
 --------
 >>> from symctl import derive_paper
@@ -50,30 +46,18 @@ __all__ = [
 
 SYMBOLIC_TEXT_MAX = 20_000
 """Characters of a realization's symbolic ``F``, ``H``, ``M`` beyond which ``results.json``
-writes a transform by a drawn (numeric) ``P`` as ``transform``: its base and ``P``, exact.
-
-A dense ``P^{-1} F_0 P`` carries the long rationals of ``P^{-1}`` in every entry (161 KB of
-a 16-state forearm's file) and says nothing that its base and ``P`` do not;
-:func:`~symctl.load_results` multiplies it out again, exactly.
-"""
+writes a transform by a drawn ``P`` as its base and ``P`` (``transform``), exactly."""
 
 
 def realization_json(self, base=None) -> dict:
-    """The entry of ``results.json``'s ``factorization.realizations`` for this realization.
-
-    ``base``, the record of the canonical form a drawn ``P`` transformed, lets a symbolic
-    text over :data:`SYMBOLIC_TEXT_MAX` characters be written as ``transform`` instead.
-    """
-    sym, num = self.check_symbolic, self.check_numeric
+    """The entry of ``results.json``'s ``factorization.realizations`` for this realization
+    (``base``: the canonical form a drawn ``P`` transformed)."""
     return {
         "symbolic": _symbolic_json(self, base),
         "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
         "values": {k: float(v) for k, v in self.values.items()},
         "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
-        "check": {
-            "symbolic": {"ok": sym.ok, "method": sym.method},
-            "numeric": {"ok": num.ok, "method": num.method},
-        },
+        "check": {"symbolic": _check(self.check_symbolic), "numeric": _check(self.check_numeric)},
     }
 
 
@@ -119,11 +103,7 @@ def circuit_json(self) -> dict:
             name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
             for i, name in enumerate(fp.neurons)
         },
-    } | ({} if self.realizes is None else {"realizes": _proof(self.realizes)})
-
-
-def _proof(check) -> dict:
-    return {"ok": check.ok, "method": check.method}
+    } | ({} if self.realizes is None else {"realizes": _check(self.realizes)})
 
 
 def parameters(self) -> dict:
@@ -263,12 +243,7 @@ def _simulation_json(self) -> dict:
 
 
 def factor_texts(self) -> dict:
-    """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text (``results.json``'s).
-
-    The sections of ``G1`` and ``G3`` are written as products, each diagonal entry of a MIMO one
-    over its own; beyond :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections,
-    so are the zeros of ``G2``: expanded, they have :math:`2^d` terms.
-    """
+    """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text, the sections as products."""
     f = self.factors
     N = remainder(self.G2_symbolic)[0] if f.is_siso else f.N
     G1, G3 = map(_diagonal_text, f.section_channels)
@@ -339,9 +314,8 @@ def write_files(
     workers=None,
     parts: Callable[[str], None] | None = None,
 ) -> list[Path]:
-    """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
-    the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`).
-    ``progress`` gets each step's name, ``parts`` each figure's as it is saved."""
+    """Write every file into the existing folder ``out``; ``progress`` gets each step's name,
+    ``parts`` each figure's as it is saved."""
     step = progress or (lambda _name: None)
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
@@ -374,8 +348,12 @@ def write_files(
     return written
 
 
+def _check(check) -> dict:
+    return {"ok": check.ok, "method": check.method}
+
+
 def _section_C(params: dict) -> list[str]:
-    """The C of each section drawn (all 1 in :func:`~symctl.neural.firing.circuit_firing`)."""
+    """The C of each section drawn (all 1)."""
     return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
 
 
