@@ -78,17 +78,7 @@ SHRINK_MAX = 2
 """A display up to this many times the line is shrunk to fit it; a wider one is left overfull."""
 
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
-_SPACE = {
-    ",": 0.35,
-    ":": 0.45,
-    ">": 0.45,
-    ";": 0.55,
-    "!": -0.35,
-    " ": 0.6,
-    "quad": 2.0,
-    "qquad": 4.0,
-    "enspace": 1.0,
-}
+_SPACE = {",": 0.35, ":": 0.45, ">": 0.45, ";": 0.55, "!": -0.35, " ": 0.6}
 _ARG1 = frozenset(
     "text textrm mathrm mathbf mathit mathcal mathbb operatorname boldsymbol bar tilde "
     "hat dot ddot vec overline widetilde sqrt textit textbf underline mathsf".split()
@@ -101,29 +91,14 @@ _BINARY = frozenset(
     "times cdot ge geq le leq to in pm mp neq approx equiv mapsto rightarrow leftarrow "
     "subset cup cap setminus".split()
 )
-_WIDE = {
-    "cdots": 2.6,
-    "ldots": 2.6,
-    "dots": 2.6,
+_WIDE = dict.fromkeys("cdots ldots dots ddots sum prod".split(), 2.6) | {
     "vdots": 1.0,
-    "ddots": 2.6,
     "infty": 1.8,
-    "sum": 2.6,
-    "prod": 2.6,
     "qquad": 4.0,
     "quad": 2.0,
 }
-_MATRICES = {
-    "matrix": 1.9,
-    "bmatrix": 1.9,
-    "pmatrix": 1.9,
-    "vmatrix": 1.9,
-    "array": 1.9,
-    "smallmatrix": 0.6,
-    "cases": 2.0,
-    "aligned": 0.0,
-    "split": 0.0,
-}
+_MATRICES = {"smallmatrix": 0.6, "cases": 2.0, "aligned": 0.0, "split": 0.0}  # others 1.9
+_GLYPH = dict.fromkeys(",;", 1.0) | dict.fromkeys("()[]|/", 0.8) | dict.fromkeys(".'", 0.5)
 _BRACKETS = {"bmatrix": 1.6, "pmatrix": 1.6, "vmatrix": 1.2, "cases": 1.6}
 
 
@@ -266,18 +241,8 @@ def width(tex: str) -> float:
                 total += 1.2  # a Greek letter, \partial, ...
         elif t in "+-=<>":
             total += 2.5 if total else 1.0  # a leading sign is unary
-        elif t in ",;":
-            total += 1.0
-        elif t in "()[]|/":
-            total += 0.8
-        elif t in ".'":
-            total += 0.5
-        elif t.isupper():
-            total += 1.9
-        elif t.isdigit():
-            total += 1.0
-        else:
-            total += 1.15
+        else:  # a capital 1.9, a digit 1.0, another letter 1.15
+            total += _GLYPH.get(t, 1.9 if t.isupper() else 1.0 if t.isdigit() else 1.15)
     return total
 
 

@@ -23,7 +23,7 @@ from symctl._util.validate import positive_int
 from symctl.derivation.derivation import CircuitRecord, PaperResults, RealizationRecord
 from symctl.realization.check import _similarity_holds
 from symctl.realization.factorization import remainder
-from symctl.report import document, model_json, story
+from symctl.report import document, story
 from symctl.report import figures as _figures
 from symctl.report.estimation import estimation_json
 from symctl.report.output import OutputFolder
@@ -128,7 +128,7 @@ def results_json(self) -> dict:
     out = {
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
-        "plant": model_json.plant(self),
+        "plant": _plant_json(self),
         "augmented": {
             "T": s.T,
             "state": list(s.state_names),
@@ -169,7 +169,7 @@ def results_json(self) -> dict:
         "circuits": {name: circuit_json(rec) for name, rec in self.circuits.items()},
         "simulation": _simulation_json(self),
         "atlas": _atlas_json(self),
-        "model": model_json.model(self),
+        "model": _model_json(self),
     }
     if self.reduction is not None and not self.reduction:  # only a reduced controller has it
         out["reduction"] = reduction_json(self.reduction)
@@ -399,9 +399,6 @@ def _finite(values) -> list[float | None]:
     return [None if not np.isfinite(v) else float(v) for v in values]
 
 
-_matrix = model_json.float_rows
-
-
 def _delays(E: np.ndarray) -> list[list[int | None]]:
     """A delay matrix for JSON: integers, ``None`` for infinity (no path)."""
     return [[None if np.isinf(v) else int(v) for v in row] for row in np.asarray(E)]
@@ -433,3 +430,66 @@ def _theorem_json(verdict) -> dict | None:
             for p in verdict.parts
         ],
     }
+
+
+def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
+    return np.array(mat.evalf(), dtype=float).tolist()
+
+
+def _plant_json(res) -> dict:
+    """The ``plant`` entry: the discrete plant, its closed forms and the equilibrium."""
+    spec, ode = res.spec, res.spec.ode
+    sym = res.plant_symbolic
+    x_eq = ode.x_bar.tolist() if ode is not None else None
+    u_eq = ode.u_bar.tolist() if ode is not None else None
+    return {
+        "f_bar": x_eq[0] if x_eq else None,
+        "r_bar": u_eq[0] if u_eq else None,
+        "A": _matrix(res.plant.A),
+        "B": _matrix(res.plant.B),
+        "Ts": spec.dt,
+        "symbolic": {
+            "A": sp.sstr(sym.A[0, 0]) if sym is not None else None,
+            "B": sp.sstr(sym.B[0, 0]) if sym is not None else None,
+            "f_bar": sp.sstr(ode.x_eq[0]) if ode is not None else None,
+        },
+        "states": list(res.names[0]),
+        "inputs": list(res.names[1]),
+        "equilibrium": None
+        if ode is None
+        else {
+            "states": dict(zip(res.names[0], x_eq, strict=True)),
+            "inputs": dict(zip(res.names[1], u_eq, strict=True)),
+            "symbolic": [sp.sstr(e) for e in ode.x_eq],
+            "method": ode.equilibrium_method,
+        },
+    }
+
+
+def _model_json(res) -> dict:
+    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped, and
+    the ``file`` that re-creates the model."""
+    spec = res.spec
+    out = {
+        "name": spec.name,
+        "title": spec.title,
+        "units": dict(spec.units),
+        "vertices": list(spec.vertices),
+        "edges": [list(e) for e in spec.edges],
+        "circuits_built": list(spec.circuits),
+        "notes": list(spec.notes),
+        "skipped": res.skipped,
+        "longest_delay": None,
+        "file": spec.to_dict() if spec.source else None,  # re-creates the model (load_results)
+    }
+    if res.longest is not None:
+        L = res.longest
+        out["longest_delay"] = {
+            "longest": L.longest,
+            "limited": L.limited,
+            "tolerance": L.tolerance,
+            "delays": list(L.delays),
+            "final_deviation": [None if np.isinf(v) else float(v) for v in L.final_deviation],
+            "stabilized": list(L.stabilized),
+        }
+    return out
