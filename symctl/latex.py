@@ -1,22 +1,5 @@
 r"""LaTeX export of derived objects, sympy expressions and equations, with the paper's symbol
 names (:math:`\delta_f`, :math:`\epsilon_1`, ...), for papers, Jupyter and scripts.
-
-Examples
---------
->>> from symctl import controller_tf, factor
->>> from symctl.latex import align, export
->>> print(export(factor(controller_tf(2)).G1, name="G_1(z)", label="eq:G1"))
-\begin{equation}
-  G_1(z) = \frac{C_{1}}{z - \epsilon_{1}}
-  \label{eq:G1}
-\end{equation}
->>> import sympy as sp
->>> from symctl.symbols import delta_f, delta_r
->>> print(align([sp.Eq(delta_r, 2 * delta_f), ("y", 1.5e-7)], numbered=False))
-\begin{align*}
-  \delta_r &= 2 \delta_f \\
-  y &= 1.5 \times 10^{-7}
-\end{align*}
 """
 
 from __future__ import annotations

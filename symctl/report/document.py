@@ -3,22 +3,6 @@ r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 :func:`to_tex` and :func:`to_markdown` render the same blocks, so the two documents tell the
 same story with the same numbers; prose holds inline math between ``$`` signs, citations and
 references (:mod:`symctl.report.prose`).
-
-Examples
---------
->>> from symctl.report.document import Heading, Math, Text, to_markdown
->>> blocks = [Heading("Gains"), Text("The gain $K_0$:"), Math((("K_0", "-0.046"),), "eq:K")]
->>> print(to_markdown(blocks, title="Demo"))
-# Demo
-<BLANKLINE>
-## Gains
-<BLANKLINE>
-The gain $K_0$:
-<BLANKLINE>
-$$
-\begin{aligned}K_0 &= -0.046\end{aligned}\tag{1}
-$$
-<BLANKLINE>
 """
 
 from __future__ import annotations

@@ -4,18 +4,6 @@ it shows, under the names of :func:`figure_names` (``open_loop``, ``closed_loop`
 with each circuit's name, as the paper's Figs. 2 to 11); :func:`save` writes one as PDF, SVG
 and PNG, :func:`write_figures` all of them in worker processes. The captions are the
 document's: the figures carry no heading. This module imports no matplotlib.
-
-Examples
---------
->>> import tempfile
->>> from symctl import derive_paper
->>> from symctl.report.figures import figure_names, save
->>> res = derive_paper()
->>> figure_names(res)[:2]
-['open_loop', 'closed_loop']
->>> with tempfile.TemporaryDirectory() as out:
-...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
-['.pdf', '.svg', '.png']
 """
 
 from __future__ import annotations

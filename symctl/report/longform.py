@@ -2,16 +2,6 @@ r"""Long objects laid out so that every line fits the page, decided by SIZE, nev
 the estimated printed width of a line (:func:`width`, in glyphs of the 11 pt math font) and of a
 table. :func:`fit_rows` breaks an equation wider than :data:`LINE_WIDTH` at its top-level
 ``+``, ``-`` or ``,``; matrices: :mod:`symctl.report.matrixview`.
-
-Examples
---------
->>> from symctl.report.longform import LINE_WIDTH, fit_rows, width
->>> long = " + ".join(f"K_{{{k}}} z^{{{k}}}" for k in range(40))
->>> width(long) > LINE_WIDTH
-True
->>> rows = fit_rows([("a(z)", long)])
->>> len(rows) > 1 and all(width(r) <= LINE_WIDTH for _, r in rows)
-True
 """
 
 from __future__ import annotations

@@ -1,12 +1,4 @@
-r"""Matrices laid out the way a paper shows them, so that every display fits the page.
-
-Examples
---------
->>> import numpy as np
->>> from symctl.report.matrixview import show_matrix
->>> show_matrix("Q", np.diag([1.0, 2, 3, 4, 5, 6])).rows
-[('Q', '\\operatorname{diag}\\left(1, 2, 3, 4, 5, 6\\right)')]
-"""
+r"""Matrices laid out the way a paper shows them, so that every display fits the page."""
 
 from __future__ import annotations
 

@@ -4,14 +4,6 @@ Outside the inline math (``$...$``), :func:`tex_text` escapes LaTeX's special ch
 and :func:`markdown_text` numbers two marks: ``[@key]`` or ``[@key, locator]`` cites the
 bibliography, ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
 captioned table or a display. A space before a mark becomes a tie in LaTeX.
-
-Examples
---------
->>> from symctl.report.prose import markdown_text, tex_text
->>> tex_text("50% as in [@li2024, Fig. 5] and (Fig. [#fig:a]), $x_1$")
-'50\\% as in~\\cite[Fig. 5]{li2024} and (Fig.~\\ref{fig:a}), $x_1$'
->>> markdown_text("as in [@li2024, Fig. 5], see ([#eq:G])", {"li2024": 1, "eq:G": 6})
-'as in [1, Fig. 5], see ((6))'
 """
 
 from __future__ import annotations

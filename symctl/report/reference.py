@@ -1,11 +1,5 @@
 r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations
 (counted in its LaTeX source, arXiv:2410.02555).
-
-Examples
---------
->>> from symctl.report.reference import cite
->>> cite("Fig.", "cl_sims"), cite("Eq.", "transfer_fn"), cite()
-('[@li2024, Fig. 5]', '[@li2024, Eq. (9)]', '[@li2024]')
 """
 
 from __future__ import annotations

@@ -1,12 +1,5 @@
 r"""Short forms the story writes when a plain form is wider than the line: products over an
 index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`.
-
-Examples
---------
->>> import sympy as sp
->>> from symctl.report.shorthand import _indexed
->>> _indexed([sp.Symbol(f"epsilon_{{1,{k}}}") for k in (1, 2, 3)])
-('\\epsilon_{1,k}', 1, 3)
 """
 
 from __future__ import annotations

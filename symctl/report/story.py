@@ -1,13 +1,4 @@
-r"""The paper's derivation told as a document: :func:`story` turns results into blocks.
-
-Examples
---------
->>> from symctl import derive_paper
->>> from symctl.report.story import story
->>> blocks = story(derive_paper())
->>> [b.text for b in blocks if type(b).__name__ == "Heading" and b.level == 1][:3]
-['Plant model and linearization', 'Discretization', 'Delays and the augmented system']
-"""
+r"""The paper's derivation told as a document: :func:`story` turns results into blocks."""
 
 from __future__ import annotations
 
