@@ -39,8 +39,9 @@ except ImportError:  # pragma: no cover
 __all__ = ["OutputFolder", "check_output_folder"]
 
 _FIGURES = (
-    r"open_loop|closed_loop|delay_graph|g1g3_structures|nonlinear|atlas_overview|fit|spiking_cost"
-    r"|simplified_A\d+|class_A\d+|(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}"  # any circuit
+    r"open_loop|closed_loop|delay_graph|g1g3_structures|nonlinear|fit|spiking_cost"
+    r"|atlas_(overview|conjectured)|simplified_A\d+|class_A\d+"
+    r"|(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}"  # any circuit (the registry's names)
 )
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
