@@ -1,28 +1,5 @@
-r"""LaTeX export of derived objects and equations, for papers, Jupyter and scripts.
-
-Every derived object of symctl and any sympy expression, matrix or equation is
-written with the paper's symbol names (:math:`\delta_f`, :math:`\epsilon_1`, ...):
-:func:`to_latex` (one object's math), :func:`equations` (``(lhs, rhs)`` pairs),
-:func:`equation`, :func:`align` and :func:`export` (environments with labels) and
-:func:`document` (a standalone document for ``pdflatex``). In Jupyter every derived
-object shows itself as LaTeX (``_repr_latex_``).
-
-Examples
---------
->>> from symctl import controller_tf, factor
->>> from symctl.latex import align, export
->>> print(export(factor(controller_tf(2)).G1, name="G_1(z)", label="eq:G1"))
-\begin{equation}
-  G_1(z) = \frac{C_{1}}{z - \epsilon_{1}}
-  \label{eq:G1}
-\end{equation}
->>> import sympy as sp
->>> from symctl.symbols import delta_f, delta_r
->>> print(align([sp.Eq(delta_r, 2 * delta_f), ("y", 1.5e-7)], numbered=False))
-\begin{align*}
-  \delta_r &= 2 \delta_f \\
-  y &= 1.5 \times 10^{-7}
-\end{align*}
+r"""LaTeX export of derived objects, sympy expressions and equations, with the paper's symbol
+names (:math:`\delta_f`, :math:`\epsilon_1`, ...), for papers, Jupyter and scripts.
 """
 
 from __future__ import annotations
@@ -46,6 +23,7 @@ DIGITS = 6
 """Significant digits of numbers written by :func:`to_latex`."""
 
 _LABEL = re.compile(r"[A-Za-z0-9:._\-]+")
+Pairs = list[tuple[str | None, str]]
 PACKAGES = ("amsmath", "amssymb", "graphicx")
 """The packages :func:`document` loads (all in TeX Live's ``texlive-latex-base``)."""
 
@@ -102,16 +80,12 @@ def _round_floats(expr, digits: int):
 def to_latex(obj, *, digits: int = DIGITS) -> str:
     r"""LaTeX of one object, without an environment.
 
-    ``obj`` may be a sympy expression, matrix or :class:`~sympy.core.relational.Eq`
-    (written with the paper's symbol names, floats to ``digits`` digits), a
-    number or NumPy array (a ``bmatrix``, :math:`\infty` for ``inf``), a string
-    (taken as LaTeX already), or any object with a ``latex()`` method (every
-    derived object of symctl).
-
     Parameters
     ----------
     obj : object
-        What to write.
+        A sympy expression, matrix or ``Eq``; a number or NumPy array (a ``bmatrix``,
+        :math:`\infty` for ``inf``); a string (LaTeX already); or any object with a
+        ``latex()`` method (every derived object of symctl).
     digits : int
         Significant digits of floats (an integer >= 1).
 
@@ -165,12 +139,9 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
     )
 
 
-Pairs = list[tuple[str | None, str]]
-
-
 @functools.cache
 def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
-    """The equations of each derived type, ``rule(obj, tex)``; built on first use (fast import)."""
+    """The equations of each derived type, ``rule(obj, tex)``; built on first use."""
     from symctl.compatibility.assignment import DelayAssignment
     from symctl.compatibility.check import CompatibilityResult
     from symctl.compatibility.controller import ControllerCompatibility
@@ -218,38 +189,15 @@ def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
     }
 
 
-def _pairs(obj, digits: int) -> Pairs:
-    def tex(value) -> str:
-        return to_latex(value, digits=digits)
-
-    if isinstance(obj, sp.Eq):
-        return [(tex(obj.lhs), tex(obj.rhs))]
-    rules = _rules()
-    for cls in type(obj).__mro__:
-        if cls in rules:
-            return rules[cls](obj, tex)
-    if isinstance(obj, Mapping):
-        return [(tex(k), tex(v)) for k, v in obj.items()]
-    if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
-        return [(None if obj[0] is None else tex(obj[0]), tex(obj[1]))]
-    if isinstance(obj, list | tuple):
-        return [pair for item in obj for pair in _pairs(item, digits)]
-    return [(None, tex(obj))]
-
-
 def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     r"""An object as a list of ``(lhs, rhs)`` LaTeX pairs (``lhs`` None: a bare formula).
-
-    ``obj`` may be a derived object (a plant gives ``A`` and ``B``, a
-    realization ``F, H, M, N``, a factorization :math:`G_1, G_2, G_3, N`, a
-    circuit one equation per neuron, ...), a :class:`sympy.Eq`, a pair
-    ``(lhs, rhs)``, a mapping ``{lhs: rhs}``, or a list of any of these.
-    Anything else is one bare formula, :func:`to_latex` of it.
 
     Parameters
     ----------
     obj : object
-        What to write.
+        A derived object (a plant gives ``A`` and ``B``, a realization ``F, H, M, N``, a
+        circuit one equation per neuron, ...), a :class:`sympy.Eq`, a pair ``(lhs, rhs)``, a
+        mapping ``{lhs: rhs}``, or a list of these; anything else is one bare formula.
     digits : int
         Significant digits of floats.
 
@@ -271,7 +219,23 @@ def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
     >>> equations(MuscleModel().discrete_symbolic())
     [('A', '\\left[\\begin{matrix}e^{- \\frac{T_{s}}{\\tau}}\\end{matrix}\\right]'), ...]
     """
-    return _pairs(obj, digits)
+
+    def tex(value) -> str:
+        return to_latex(value, digits=digits)
+
+    if isinstance(obj, sp.Eq):
+        return [(tex(obj.lhs), tex(obj.rhs))]
+    rules = _rules()
+    for cls in type(obj).__mro__:
+        if cls in rules:
+            return rules[cls](obj, tex)
+    if isinstance(obj, Mapping):
+        return [(tex(k), tex(v)) for k, v in obj.items()]
+    if isinstance(obj, tuple) and len(obj) == 2 and not isinstance(obj[0], tuple):
+        return [(None if obj[0] is None else tex(obj[0]), tex(obj[1]))]
+    if isinstance(obj, list | tuple):
+        return [pair for item in obj for pair in equations(item, digits=digits)]
+    return [(None, tex(obj))]
 
 
 def _label(label) -> str:
@@ -331,10 +295,6 @@ def align(
 ) -> str:
     r"""An ``align`` environment, one row per equation, aligned at the ``=`` signs.
 
-    ``rows`` is anything :func:`equations` accepts (a list of ``sp.Eq``, of
-    ``(lhs, rhs)`` pairs, derived objects, ...). ``labels``, when given, has one
-    label (or None) per row.
-
     Parameters
     ----------
     rows : iterable
@@ -385,10 +345,7 @@ def export(
     numbered: bool = True,
     digits: int = DIGITS,
 ) -> str:
-    r"""Any derived object (or list of them) as one ``equation`` or ``align`` environment.
-
-    One equation gives an ``equation`` (``name`` replaces its left-hand side,
-    e.g. ``"G_2(z)"``), several an ``align`` (``label`` goes on the first row).
+    r"""Any derived object (or list of them) as one ``equation``, or an ``align`` for several.
 
     Parameters
     ----------
@@ -447,11 +404,7 @@ def document(
     packages: Iterable[str] = (),
     preamble: str = "",
 ) -> str:
-    r"""A standalone LaTeX document around ``body`` (a string or a list of parts).
-
-    Loads :data:`PACKAGES` (amsmath, amssymb, graphicx) and ``geometry`` with
-    narrow margins, and any extra ``packages``; ``preamble`` is LaTeX put before
-    ``\begin{document}`` (macros). Compiles with ``pdflatex``.
+    r"""A standalone LaTeX document around ``body``, loading :data:`PACKAGES` and ``geometry``.
 
     Parameters
     ----------

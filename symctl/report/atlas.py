@@ -1,10 +1,5 @@
 r"""The atlas as documents: ``atlas.json``, ``atlas.md``, ``atlas.tex``/``.pdf`` and drawings.
 
-:func:`atlas_blocks` writes the text (definitions, counts, the answer to the
-paper's claim, the table of classes, the evidence); :func:`write_atlas` writes
-the files into an existing folder (the command line stages it,
-:class:`~symctl.report.output.OutputFolder`).
-
 >>> import symctl
 >>> from symctl.report.atlas import paper_realizations
 >>> sorted(paper_realizations(symctl.atlas(2, workers=1)))
@@ -106,6 +101,19 @@ def atlas_blocks(A, drawn=()) -> list:
     """The document: definitions, counts, the paper's claim, the classes, their evidence."""
     s = A.stats
     methods = Counter((c.status, c.evidence.method) for c in A.classes)
+    sizes = f"{s['sizes'][0]}..{s['sizes'][1]}" + ("" if s["complete"] else " (not exhaustive)")
+    counts = {
+        "patterns": str(s["patterns"]),
+        "orbits": str(s["canonical"]),
+        "minimal": str(s["minimal"]),
+        "full rank": str(s["full_rank"]),
+        "classes": str(len(A.classes)),
+        "universal": str(len(A.universal_classes)),
+        "conjectured": str(len(A.conjectured_classes)),
+        "undecided": str(s["undecided"]),
+        "sizes": sizes,
+        "seconds": f"{s['seconds']:g}",
+    }
     blocks = [
         Heading(f"The circuit atlas of order {A.order}"),
         Text(
@@ -117,35 +125,7 @@ def atlas_blocks(A, drawn=()) -> list:
             "real order-$n$ $G_2$ (complex poles, real poles of either sign, any numerator). Only "
             "patterns whose generic realization is minimal are kept."
         ),
-        Table(
-            (
-                "patterns",
-                "orbits",
-                "minimal",
-                "full rank",
-                "classes",
-                "universal",
-                "conjectured",
-                "undecided",
-                "sizes",
-                "seconds",
-            ),
-            (
-                (
-                    str(s["patterns"]),
-                    str(s["canonical"]),
-                    str(s["minimal"]),
-                    str(s["full_rank"]),
-                    str(len(A.classes)),
-                    str(len(A.universal_classes)),
-                    str(len(A.conjectured_classes)),
-                    str(s["undecided"]),
-                    f"{s['sizes'][0]}..{s['sizes'][1]}"
-                    + ("" if s["complete"] else " (not exhaustive)"),
-                    f"{s['seconds']:g}",
-                ),
-            ),
-        ),
+        Table(tuple(counts), (tuple(counts.values()),)),
         *_scope(A),
         *_claim(A),
         Heading("How each verdict was reached", 2),

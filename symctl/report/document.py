@@ -1,26 +1,8 @@
 r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 
-:func:`to_tex` and :func:`to_markdown` render the same blocks, so the two documents
-tell the same story with the same numbers. Prose holds inline math between ``$``
-signs, citations and references (:mod:`symctl.report.prose`). Each section keeps its
-floats: a section heading first places the figures still waiting (``\symctlbarrier``,
-like the ``placeins`` package, which is not in TeX Live's base set).
-
-Examples
---------
->>> from symctl.report.document import Heading, Math, Text, to_markdown
->>> blocks = [Heading("Gains"), Text("The gain $K_0$:"), Math((("K_0", "-0.046"),), "eq:K")]
->>> print(to_markdown(blocks, title="Demo"))
-# Demo
-<BLANKLINE>
-## Gains
-<BLANKLINE>
-The gain $K_0$:
-<BLANKLINE>
-$$
-\begin{aligned}K_0 &= -0.046\end{aligned}\tag{1}
-$$
-<BLANKLINE>
+:func:`to_tex` and :func:`to_markdown` render the same blocks, so the two documents tell the
+same story with the same numbers; prose holds inline math between ``$`` signs, citations and
+references (:mod:`symctl.report.prose`).
 """
 
 from __future__ import annotations
@@ -84,12 +66,8 @@ class Text:
 
 @dataclass(frozen=True)
 class Math:
-    """One numbered display: rows ``(lhs, rhs)`` of LaTeX, aligned at ``=``.
-
-    A row with ``lhs`` None continues the row above (a line of a broken
-    equation); a ``breakable`` display may break across pages (LaTeX ``align``,
-    the number on its first row).
-    """
+    """One numbered display: rows ``(lhs, rhs)`` of LaTeX aligned at ``=`` (``lhs`` None: the
+    row above continues); a ``breakable`` one may break across pages."""
 
     rows: tuple
     label: str
@@ -98,11 +76,7 @@ class Math:
 
 @dataclass(frozen=True)
 class Table:
-    """A table; cells are prose (inline math between ``$`` signs).
-
-    With a ``caption`` it is numbered (a float of its section, ``label`` for
-    ``[#tab:label]``); without one it sits in the text where it is.
-    """
+    """A table of prose cells; with a ``caption`` a numbered float (``[#tab:label]``)."""
 
     header: tuple
     rows: tuple
@@ -112,10 +86,7 @@ class Table:
 
 @dataclass(frozen=True)
 class Graphic:
-    """A figure ``<name>`` (its files next to the document) with its caption.
-
-    LaTeX includes the vector ``<name>.pdf`` at its natural size, Markdown ``<name>.png``.
-    """
+    """A figure: LaTeX includes ``<name>.pdf`` at its natural size, Markdown ``<name>.png``."""
 
     name: str
     caption: str
@@ -142,41 +113,13 @@ BLOCKS = typing.get_args(DocumentBlock)
 
 
 # \fitmath shrinks a display a little wider than the line (logged "symctl: shrunk"); one wider
-# than SHRINK_MAX lines is left overfull.
-_PREAMBLE = r"""\newsavebox{\symctlbox}
-\newcommand{\fitmath}[1]{\sbox{\symctlbox}{$\displaystyle #1$}%
-  \ifdim\wd\symctlbox>\linewidth
-    \ifdim\wd\symctlbox<2\linewidth
-      \typeout{symctl: shrunk a display on page \thepage}%
-      \resizebox{\linewidth}{!}{\usebox{\symctlbox}}%
-    \else\usebox{\symctlbox}\fi
-  \else\usebox{\symctlbox}\fi}
-% \fitgraphic includes a (vector) figure at its natural size: figures are drawn at the size they
-% are printed. One wider than the text, or taller than the text less four lines (room for its
-% caption on a page of its own), is scaled down to fit, and the log says so ("symctl: scaled
-% figure"), for a test to find.
-\newif\ifsymctlfit
-\newcommand{\fitgraphic}[1]{\sbox{\symctlbox}{\includegraphics{#1}}\symctlfitfalse
-  \ifdim\wd\symctlbox>\linewidth \symctlfittrue\fi
-  \ifdim\ht\symctlbox>\dimexpr\textheight-4\baselineskip\relax \symctlfittrue\fi
-  \ifsymctlfit
-    \typeout{symctl: scaled figure #1 down to fit the page}%
-    \includegraphics[width=\linewidth,height=\dimexpr\textheight-4\baselineskip\relax,
-      keepaspectratio]{#1}%
-  \else\usebox{\symctlbox}\fi}
-\setlength{\parindent}{0pt}\setlength{\parskip}{0.5em}\setlength{\emergencystretch}{3em}
-\makeatletter
-\newif\ifsymctlwaiting
-\newcommand{\symctlcheck}{\begingroup\let\@elt\relax
-  \edef\@tempa{\@botlist\@deferlist\@dbldeferlist}\ifx\@tempa\@empty
-  \aftergroup\symctlwaitingfalse\else\aftergroup\symctlwaitingtrue\fi\endgroup}
-\newcommand{\symctlbarrier}{\par\symctlcheck
-  \ifsymctlwaiting\newpage\symctlcheck\ifsymctlwaiting\clearpage\fi\fi}
-\makeatother
-\renewcommand{\topfraction}{0.9}\renewcommand{\bottomfraction}{0.8}
-\renewcommand{\textfraction}{0.1}\renewcommand{\floatpagefraction}{0.8}
-\setcounter{topnumber}{3}\setcounter{totalnumber}{4}""".replace(
-    "<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth"
+# than SHRINK_MAX lines is left overfull. \fitgraphic and \symctlbarrier: see preamble.tex.
+_PREAMBLE = (
+    Path(__file__)
+    .with_name("preamble.tex")
+    .read_text()
+    .rstrip("\n")
+    .replace("<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth")
 )
 
 
@@ -203,8 +146,7 @@ def _tex_math(b: Math) -> str:
     )
 
 
-_WRAP = r">{\raggedright\arraybackslash}"
-"""The column type prefix of a wrapped column: ragged right, rows still end with ``\\``."""
+_WRAP = r">{\raggedright\arraybackslash}"  # a wrapped column
 
 
 def _columns(b: Table, long: bool) -> tuple[str, str, str]:
@@ -225,9 +167,7 @@ def _columns(b: Table, long: bool) -> tuple[str, str, str]:
     return cols, r"\small", "longtable"
 
 
-_SMALL_UNIT_PT = 5.0
-"""Points per unit of :func:`~symctl.report.longform.cell_width` at ``\\small`` (about 4.4,
-rounded up: the columns a longtable keeps at their natural width are given this much)."""
+_SMALL_UNIT_PT = 5.0  # points per unit of longform.cell_width at \small (4.4, rounded up)
 
 
 def _tex_table(b: Table) -> str:
@@ -339,9 +279,7 @@ def _md_cell(text: str) -> str:
 
 
 def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
-    r"""The blocks as Markdown with ``$$`` math (GitHub, Jupyter) and the figures inline.
-
-    Equations are numbered with ``\tag`` in the order of :func:`to_tex`.
+    r"""The blocks as Markdown with ``$$`` math (numbered by ``\tag``) and the figures inline.
 
     Parameters
     ----------
@@ -423,8 +361,7 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
 
 
 def _numbers(blocks: Sequence[DocumentBlock]) -> dict[str, int]:
-    """The number of every figure (``fig:name``), captioned table (``tab:label``), display
-    (``eq:label``) and reference (its key), in reading order."""
+    """The number of every figure, captioned table, display and reference, by its mark."""
     numbers: dict[str, int] = {}
     count = {"fig": 0, "tab": 0, "eq": 0}
 
@@ -446,8 +383,7 @@ def _numbers(blocks: Sequence[DocumentBlock]) -> dict[str, int]:
 
 
 def _md_math_lines(row: str) -> list[str]:
-    """A long row of display math as source lines of about :data:`MD_LINE` characters, cut after
-    the ``\\\\`` of its matrices' rows (TeX reads a line break in math as a space)."""
+    """A long row of display math as lines of about :data:`MD_LINE` characters, cut after ``\\\\``."""
     if len(row) <= MD_LINE:
         return [row]
     lines = [""]
@@ -470,25 +406,7 @@ def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:
 
 
 def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE) -> Path:
-    r"""Write :func:`to_tex` of ``blocks`` to ``path`` (UTF-8); returns the path.
-
-    Parameters
-    ----------
-    blocks : sequence of blocks
-        As for :func:`to_tex`.
-    path : path
-        The file to write (``derivation.tex`` for ``symctl paper``).
-    title : str
-        The document's title.
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    SymctlTypeError
-        An element of ``blocks`` is not a block.
+    r"""Write :func:`to_tex` of ``blocks`` (as for :func:`to_tex`) to ``path``; returns the path.
 
     Examples
     --------
@@ -508,7 +426,7 @@ def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str =
 def write_markdown(
     blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE
 ) -> Path:
-    r"""Write :func:`to_markdown` of ``blocks`` to ``path`` (UTF-8); as :func:`write_tex`.
+    r"""Write :func:`to_markdown` of ``blocks`` to ``path``; returns the path.
 
     Examples
     --------
@@ -525,10 +443,7 @@ def write_markdown(
 
 
 def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
-    """Compile ``tex`` with ``pdflatex`` next to it; None when ``pdflatex`` is not installed.
-
-    Runs twice when the document has cross-references and the log asks for it;
-    leaves only the PDF (no ``.aux``, ``.log``, ``.out``).
+    """Compile ``tex`` with ``pdflatex`` next to it (twice when the log asks), leaving only the PDF.
 
     Parameters
     ----------
@@ -545,8 +460,8 @@ def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
     Raises
     ------
     LatexError
-        ``pdflatex`` reported an error (its first error line is in the message),
-        could not be run, or took longer than ``PDFLATEX_TIMEOUT`` seconds.
+        ``pdflatex`` failed (its first error line is in the message), could not be run,
+        or took longer than ``PDFLATEX_TIMEOUT`` seconds.
 
     Examples
     --------

@@ -1,10 +1,5 @@
-r"""What an estimating controller measures and estimates: its section and its ``results.json`` entry.
-
-A model that measures some states, or through noise, is controlled by the delayed LQG
-compensator (:mod:`symctl.design.kalman`); the derivation keeps its Kalman filter
-(``Derivation.kalman``) and the predicted and measured covariance of the noisy closed loop
-(``Derivation.variance``).
-"""
+r"""What an estimating controller (the delayed LQG compensator) measures and estimates: its
+section and its ``results.json`` entry."""
 
 from __future__ import annotations
 
@@ -16,8 +11,7 @@ from symctl.report.shorthand import _eq
 
 __all__ = ["estimation_json", "estimation_section"]
 
-FORM = "predictor"
-"""The compensator's form in a derivation (docs/guide/noise.md says why)."""
+FORM = "predictor"  # the compensator's form in a derivation (docs/guide/noise.md says why)
 
 
 def _poles(values) -> list[list[float]]:
@@ -75,38 +69,35 @@ def estimation_section(res) -> list[DocumentBlock]:
     xs = res.names[0]
     C = np.array(kf.C.evalf(), dtype=float)
     seen = [x for j, x in enumerate(xs) if np.any(C[:, j])]
-    blocks: list[DocumentBlock] = [Heading("What the controller measures and estimates")]
-    blocks.append(
-        Text(
-            f"The controller does not read the whole state: it measures $y = C x + v$, "
-            f"{kf.p} output{'s' * (kf.p != 1)} of {names_tex(seen)}, through sensor noise $v$ "
-            "of covariance $V$, while a process noise of covariance $W$ (the motor noise "
-            "$W_u$ entering as $B W_u B^\\top$) drives the plant. A delayed Kalman filter "
-            "estimates the augmented state from the delayed measurements (the sensor delay "
-            "moved to the actuator side, as for the gains, the measurement arriving at step "
-            "$t$ is that of $x(t)$ on the controller's clock), in predictor form: "
-            "$\\hat\\chi(t+1) = \\tilde A \\hat\\chi(t) + \\tilde B \\mu(t) + \\tilde L "
-            "(y(t) - \\tilde C \\hat\\chi(t))$, $\\tilde C = [C\\ 0]$, and the optimal gains act "
-            "on the estimate, $\\mu(t) = K \\hat\\chi(t)$. The delay chain holds the controller's "
-            "own past commands, known without noise, so $\\tilde L = [L;\\ 0]$ with $L = A P "
-            "C^\\top (C P C^\\top + V)^{-1}$ the plant's Kalman gain, $P$ the solution of the "
-            "dual Riccati equation. $G(z)$ above is this compensator from $y$ to the command, "
-            + (
-                "its gains $K$ and $L$ kept symbolic. "
-                if s.m == 1
-                else "its gains $K$ and $L$ their exact values (the symbolic form is too large). "
-            )
-            + "In the compensator's own state space "
-            f"{n + s.T * s.m} neurons would hold $\\hat\\chi$: {n} estimate {names_tex(xs)}, "
-            f"{s.T * s.m} the delayed commands. "
-            "Every circuit below realizes the same $G(z)$ and is driven by $y$: its neurons "
-            "of $G_2$ hold these estimates in other coordinates (a change of basis of "
-            "$\\hat\\chi$, the sections' states folded in), so they fire differently and "
-            "behave the same."
+    intro = Text(
+        f"The controller does not read the whole state: it measures $y = C x + v$, "
+        f"{kf.p} output{'s' * (kf.p != 1)} of {names_tex(seen)}, through sensor noise $v$ "
+        "of covariance $V$, while a process noise of covariance $W$ (the motor noise "
+        "$W_u$ entering as $B W_u B^\\top$) drives the plant. A delayed Kalman filter "
+        "estimates the augmented state from the delayed measurements (the sensor delay "
+        "moved to the actuator side, as for the gains, the measurement arriving at step "
+        "$t$ is that of $x(t)$ on the controller's clock), in predictor form: "
+        "$\\hat\\chi(t+1) = \\tilde A \\hat\\chi(t) + \\tilde B \\mu(t) + \\tilde L "
+        "(y(t) - \\tilde C \\hat\\chi(t))$, $\\tilde C = [C\\ 0]$, and the optimal gains act "
+        "on the estimate, $\\mu(t) = K \\hat\\chi(t)$. The delay chain holds the controller's "
+        "own past commands, known without noise, so $\\tilde L = [L;\\ 0]$ with $L = A P "
+        "C^\\top (C P C^\\top + V)^{-1}$ the plant's Kalman gain, $P$ the solution of the "
+        "dual Riccati equation. $G(z)$ above is this compensator from $y$ to the command, "
+        + (
+            "its gains $K$ and $L$ kept symbolic. "
+            if s.m == 1
+            else "its gains $K$ and $L$ their exact values (the symbolic form is too large). "
         )
+        + "In the compensator's own state space "
+        f"{n + s.T * s.m} neurons would hold $\\hat\\chi$: {n} estimate {names_tex(xs)}, "
+        f"{s.T * s.m} the delayed commands. "
+        "Every circuit below realizes the same $G(z)$ and is driven by $y$: its neurons "
+        "of $G_2$ hold these estimates in other coordinates (a change of basis of "
+        "$\\hat\\chi$, the sections' states folded in), so they fire differently and "
+        "behave the same."
     )
     poles = ", ".join(f"{complex(p):.4g}".strip("()") for p in _plant_poles(kf))
-    blocks += _eq(
+    kalman = _eq(
         ("C", C),
         ("W", kf.W),
         ("V", kf.V),
@@ -114,15 +105,13 @@ def estimation_section(res) -> list[DocumentBlock]:
         (r"\operatorname{eig}(A - L C)", rf"\{{{poles}\}}"),
         label="eq:kalman",
     )
-    blocks.append(
-        Text(
-            "Separation: the loop of plant and compensator has the regulator's poles "
-            "$\\operatorname{eig}(\\tilde A + \\tilde B K)$, the filter's $\\operatorname{eig}"
-            f"(A - LC)$ and ${s.T * s.m}$ at 0 (the known delay chain). Under the noise the "
-            "loop settles to a stationary covariance, predicted by the discrete Lyapunov "
-            f"equation and measured over {mc.count} noisy loops of {mc.steps} steps "
-            f"(the first {mc.burn_in} left out; mean $\\pm$ standard error):"
-        )
+    separation = Text(
+        "Separation: the loop of plant and compensator has the regulator's poles "
+        "$\\operatorname{eig}(\\tilde A + \\tilde B K)$, the filter's $\\operatorname{eig}"
+        f"(A - LC)$ and ${s.T * s.m}$ at 0 (the known delay chain). Under the noise the "
+        "loop settles to a stationary covariance, predicted by the discrete Lyapunov "
+        f"equation and measured over {mc.count} noisy loops of {mc.steps} steps "
+        f"(the first {mc.burn_in} left out; mean $\\pm$ standard error):"
     )
     rows = [
         (f"var {names_tex([x])}", f"{v:.4g} ± {e:.2g}", f"{p:.4g}")
@@ -135,14 +124,18 @@ def estimation_section(res) -> list[DocumentBlock]:
         )
     ]
     rows.append(("cost per step", f"{mc.cost:.4g} ± {mc.cost_se:.2g}", f"{mc.predicted_cost:.4g}"))
-    blocks.append(Table(("", "measured", "predicted"), tuple(rows)))
-    blocks.append(
-        Text(
-            f"The largest gap between measured and predicted is {mc.z_score:.2f} standard "
-            "errors. The closed-loop figure shows the mean of the noisy loops in a band of "
-            "$\\pm 2$ standard deviations."
-        )
+    gap = Text(
+        f"The largest gap between measured and predicted is {mc.z_score:.2f} standard "
+        "errors. The closed-loop figure shows the mean of the noisy loops in a band of "
+        "$\\pm 2$ standard deviations."
     )
-    if res.skipped and res.G.is_siso and res.factors is not None:  # else said with G2
-        blocks.append(Text("Not built here: " + res.skipped + "."))
-    return blocks
+    skipped = res.skipped and res.G.is_siso and res.factors is not None  # else said with G2
+    return [
+        Heading("What the controller measures and estimates"),
+        intro,
+        *kalman,
+        separation,
+        Table(("", "measured", "predicted"), tuple(rows)),
+        gap,
+        *([Text("Not built here: " + res.skipped + ".")] if skipped else []),
+    ]

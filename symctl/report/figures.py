@@ -1,57 +1,9 @@
-r"""The report's figures, built from a :class:`~symctl.report.results.PaperResults`.
-
-Each figure is a :class:`matplotlib.figure.Figure` made by the plotting method of
-the object it shows (:func:`make_figure`, under the stable file names of
-:func:`figure_names`); :func:`save` writes one as vector PDF (what ``derivation.tex``
-includes, at its natural size), SVG and PNG (what ``report.md`` shows), and
-:func:`write_figures` makes and writes them all in the formats asked for (by default
-:data:`DEFAULT_FORMATS`: PDF and PNG; SVG on request), in parallel processes
-(:mod:`symctl.report.workers`). The
-report's figures carry no heading: the document's caption says what each shows. This
-module imports no matplotlib: the objects' ``plot`` and ``draw`` methods hand
-themselves to :mod:`symctl.plotting`. The figures of the paper:
-
-============================  ==================================================
-name                          content
-============================  ==================================================
-``open_loop``                 Fig. 3: the linear muscle's response to a
-                              pulse in firing rate
-``closed_loop``               Fig. 5: the optimal delayed controller's
-                              response to a pulse disturbance on the force
-``delay_graph``               Fig. 2 (right): the delay graph,
-                              sensor to actuator, each edge with its delay
-``nonlinear``                 the linear controller around the nonlinear muscle
-``firing_<circuit>``          Figs. 9, 10, 11: the
-                              neurons' firing in several realizations
-``g1g3_structures``            Fig. 7 (left): the two structures of a first-order
-                              section of :math:`G_1` or :math:`G_3` (delays on the
-                              branches, or one after the adder), each checked on one
-                              edge of the delay graph
-``structure_<circuit>``       the structure (gains, adders, unit delays), each
-                              delay-graph vertex's signals in a band when it is
-                              compatible (the witness assignment)
-``circuit_<circuit>``         the circuit of stylized neurons, each at its
-                              vertex of the delay graph (for ``general`` the
-                              first simulated realization, with numbers)
-============================  ==================================================
-
-with ``<circuit>`` one of :data:`symctl.report.spec.CIRCUITS` (``ifp``, ``general``,
-``controllable``, ``observable``). The functions read a ``PaperResults`` without
-importing it; the derivation offers them as
-:meth:`~symctl.derivation.Derivation.figure` and
-:meth:`~symctl.derivation.Derivation.figure_names`).
-
-Examples
---------
->>> import tempfile
->>> from symctl import derive_paper
->>> from symctl.report.figures import figure_names, save
->>> res = derive_paper()
->>> figure_names(res)[:2]
-['open_loop', 'closed_loop']
->>> with tempfile.TemporaryDirectory() as out:
-...     [p.suffix for p in save(res.figure("open_loop"), out, "open_loop")]
-['.pdf', '.svg', '.png']
+r"""The report's figures: :func:`make_figure` builds each by the plotting method of the object
+it shows, under the names of :func:`figure_names` (``open_loop``, ``closed_loop``,
+``delay_graph``, ``nonlinear``, ``g1g3_structures`` and ``structure_``/``circuit_``/``firing_``
+with each circuit's name, as the paper's Figs. 2 to 11); :func:`save` writes one as PDF, SVG
+and PNG, :func:`write_figures` all of them in worker processes. The captions are the
+document's: the figures carry no heading. This module imports no matplotlib.
 """
 
 from __future__ import annotations
@@ -74,7 +26,6 @@ __all__ = [
     "DEFAULT_FORMATS",
     "DPI",
     "FORMATS",
-    "MAX_DRAWN_PARTS",
     "MAX_DRAWN_SIGNALS",
     "MAX_PIXELS",
     "figure_formats",
@@ -92,19 +43,10 @@ DEFAULT_FORMATS = ("pdf", "png")
 """The formats the report writes unless asked for others: the PDF that ``derivation.tex``
 includes and the PNG that ``report.md`` shows (SVG on request)."""
 MAX_DRAWN_SIGNALS = 400
-"""Structures up to this many signals are drawn block by block when they fit the page (folded
-into rows of parts if need be); larger ones, or ones that fit no page (a MIMO controller's
-block forms), as the overview of their parts
-(:func:`symctl.plotting.structure.draw_structure_overview`)."""
-MAX_DRAWN_PARTS = 6
-"""Kept for compatibility; no longer a limit: a structure of many parts in series (sections
-of G1 and G3, and G2; T >= 6) is folded into rows of parts that fit the page
-(:mod:`symctl.plotting.structure_rows`), and only one that fits no page is drawn as the
-overview of its parts."""
+"""Structures up to this many signals are drawn block by block when they fit a page; larger
+ones as the overview of their parts."""
 MAX_PIXELS = 4000
-"""Longest side of a PNG [pixels]: a larger figure (a structure of hundreds of gains at a
-long delay) is written at a lower resolution, so that its size and time stay bounded (the
-SVG keeps every detail)."""
+"""Longest side of a PNG [pixels]: a larger figure is written at a lower resolution."""
 
 
 def figure_names(res) -> list[str]:
@@ -155,21 +97,10 @@ MAX_BOUND_OPS = 40
 
 
 def _state_bounds(res) -> list[tuple[float, str]]:
-    r"""The values a plant's own dynamics keep its state within, with their legend text.
-
-    For a plant of one state :math:`x` and one input :math:`u` whose ODE is affine in
-    :math:`x` with a negative coefficient, :math:`\dot x = a x + b(u)`, :math:`a < 0` (the
-    muscle: :math:`a = -1/\tau`, :math:`b = f_\max/(\tau(1 + e^{-r}))`), the state relaxes
-    towards :math:`x^*(u) = -b(u)/a` while the input is held: between two samples it stays
-    between its value and :math:`x^*(u)`. Started inside the range of :math:`x^*`, it
-    never leaves it, whatever the controller does; the ends of that range are the limits
-    of :math:`x^*` as :math:`u \to \pm\infty` (the muscle's :math:`f_\max` and 0). Only a
-    disturbance, added to the state at the samples, takes it beyond: the nonlinear figure
-    marks them. Other plants: none.
-    """
+    r"""The limits of :math:`x^*(u) = -b(u)/a` as :math:`u \to \pm\infty`, with their legend
+    text, for a plant :math:`\dot x = a x + b(u)`, :math:`a < 0` (the muscle's :math:`f_\max`
+    and 0): held between samples, the state stays within them unless disturbed."""
     import sympy as sp
-
-    from symctl._util.texnames import signal_tex
 
     ode = getattr(getattr(res, "spec", None), "ode", None)
     if ode is None or ode.n != 1 or ode.m != 1:
@@ -220,15 +151,8 @@ def _graph_title(res) -> str:
 
 
 def _placed(circuit, rec, graph):
-    """The simulated ``circuit`` at delay-graph vertices: the witness of ``rec``, or its own.
-
-    A numeric realization's structure has the symbolic one's signals less the zero
-    gains, so the witness assigns it too; the assignment is checked again (by
-    :meth:`Circuit.from_structure`). When the witness does not carry over (a signal it
-    does not assign, or a violation), the drawn structure's own compatibility is
-    decided, and its witness places the neurons; the circuit is returned unplaced only
-    when that structure is not compatible.
-    """
+    """The simulated ``circuit`` at delay-graph vertices: the witness of ``rec`` when it carries
+    over (checked again), else the drawn structure's own; unplaced when it is not compatible."""
     verdict = rec.compatibility
     if not verdict.ok:
         return circuit
@@ -249,17 +173,12 @@ def _placed(circuit, rec, graph):
 
 
 EPS_RANGE = (-0.9, 0.9)
-"""The range :func:`~symctl.neural.firing.circuit_firing` draws every epsilon from (with every
-C set to 1): a circuit figure's symbolic weights are coloured by their sign over it."""
+"""The range the simulations draw every epsilon from: a circuit figure colours a weight by its
+sign over it (with the gains' values and every C = 1)."""
 
 
 def _signs_at(res, circuit) -> dict:
-    """The values a circuit figure reads its signs at: the controller's gains, C = 1, epsilon's range.
-
-    The simulations' standing choices (:func:`~symctl.neural.firing.structure_firing`
-    names the sections' symbols the same way): a weight is coloured excitatory or
-    inhibitory only when its sign is the same for every epsilon they may draw.
-    """
+    """The values a circuit figure reads its signs at: the gains, C = 1, epsilon's range."""
     free = circuit.free_symbols
     values = {k: v for k, v in res.gains.substitutions().items() if k in free}
     for sym in free - set(values):
@@ -271,8 +190,7 @@ def _signs_at(res, circuit) -> dict:
 
 
 def _end_labels(res, S) -> dict[str, str] | None:
-    """The plant's names at the structure's ends: its input the measured states, its output
-    the plant's inputs (so every structure of one controller names them alike)."""
+    """The plant's names at the structure's ends (the measured states in, the plant's inputs out)."""
     spec = getattr(res, "spec", None)
     if spec is None:
         return None
@@ -291,12 +209,8 @@ def _dense(circuit: str) -> bool:
 
 
 def _structure_figure(res, rec, circuit: str, names):
-    """The structure of ``rec``, its witness assignment in bands, the plant's names at its ends.
-
-    The general realization's gains are rational in a symbolic :math:`P`; when a value is
-    too long for the key to print (:data:`KEY_LENGTH` characters), the structure of the
-    first simulated realization is drawn, with numbers (as its circuit is).
-    """
+    """The structure of ``rec`` with its witness in bands; the first simulated realization's
+    (numbers) when a symbolic gain is longer than :data:`KEY_LENGTH`."""
     from symctl.plotting.circuit_labels import visible_length
 
     title = ""  # the caption names the structure; the figure notes only what departs from it
@@ -351,8 +265,7 @@ def _g1g3_figure(factors):
 
 
 KEY_LENGTH = 120
-"""The longest gain value (visible characters) the key of a structure figure prints: about
-the width of the page at 7 points."""
+"""The longest gain value (visible characters) the key of a structure figure prints."""
 
 
 def simplified(candidates, count: int = 2) -> list:
@@ -481,14 +394,9 @@ def save(
 ) -> list[Path]:
     """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (``formats``); returns the paths.
 
-    The PDF and SVG are vector drawings of the figure at its size (the PDF is what
-    ``derivation.tex`` includes, at its natural size, fonts embedded); the PNG is for
-    the screen and Markdown. The layout is computed once, for the first format, so
-    the formats agree; with a PDF, the PNG is that PDF rasterized
-    (:func:`symctl.plotting.png.render_pdf`), not a second drawing. The files carry no
-    date and the SVG's ids a fixed salt (:func:`symctl.plotting.vector.write_vector`),
-    so the same figure writes the same bytes. The PNG of an opaque figure has no alpha
-    channel (:func:`symctl.plotting.png.write_png`).
+    PDF and SVG are vector drawings at the figure's size (fonts embedded); the PNG is the
+    PDF rasterized when there is one. The layout is computed once, so the formats agree,
+    and the files carry no date: the same figure writes the same bytes.
 
     Parameters
     ----------
@@ -554,13 +462,10 @@ def write_figures(
     workers=None,
     progress: Callable[[str], None] | None = None,
 ) -> list[Path]:
-    """Make and save every figure of the report (:data:`DEFAULT_FORMATS`); returns the paths.
+    """Make and save every figure of the report; returns the paths.
 
-    Figures are independent, so with ``jobs > 1`` they are drawn in parallel worker
-    processes (:class:`~symctl.report.workers.FigureWorkers`, started here; start them earlier, before the
-    derivation, to have them ready when it ends); ``jobs=1``, or a platform without
-    ``fork``, draws them here. When anything stops the drawing, every worker is stopped
-    and reaped before the exception goes on.
+    With ``jobs > 1`` they are drawn in worker processes
+    (:class:`~symctl.report.workers.FigureWorkers`), stopped and reaped when anything fails.
 
     Parameters
     ----------
@@ -575,8 +480,7 @@ def write_figures(
     formats : sequence of str
         The formats of each figure (:func:`figure_formats`).
     workers : FigureWorkers, optional
-        Workers started earlier (:class:`~symctl.report.workers.FigureWorkers`, entered);
-        ``jobs`` is then not used.
+        Workers started (entered) earlier; ``jobs`` is then not used.
     progress : callable, optional
         Called with each figure's name once it is saved (in the order they finish).
 
@@ -600,14 +504,8 @@ def write_figures(
     >>> import tempfile
     >>> from symctl import derive_paper
     >>> from symctl.report.figures import write_figures
-    >>> res = derive_paper()
-    >>> with tempfile.TemporaryDirectory() as out:  # 20 figures: a few seconds on 2 cores
-    ...     len(write_figures(res, out, jobs=2, progress=print))  # doctest: +SKIP
-    circuit_general
-    ...
-    40
     >>> with tempfile.TemporaryDirectory() as out:
-    ...     write_figures(res, out, jobs=0)
+    ...     write_figures(derive_paper(), out, jobs=0)
     Traceback (most recent call last):
     ...
     symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
@@ -619,8 +517,7 @@ def write_figures(
 
 
 def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FORMATS):
-    """Hand every figure of ``res`` to the started ``workers`` and return at once a function that
-    waits for them and gives the paths (as :func:`write_figures`, and its ``progress``)."""
+    """Hand every figure to the started ``workers``; returns ``paths(progress=None)``, which waits."""
     names = figure_names(res)
     task = functools.partial(_draw, out=_folder(out), dpi=dpi, formats=figure_formats(formats))
     first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
@@ -634,17 +531,13 @@ def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FO
 
 
 def _draw(res, name: str, *, out: Path, dpi: float, formats: tuple[str, ...]) -> list[Path]:
-    """Make the figure ``name`` of ``res`` and save it (a task of the figure workers)."""
     return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
 
 
-_SLOWEST = ("circuit_", "firing_", "structure_", "atlas_", "simplified_")
-"""Figure name prefixes from the slowest to draw (a MIMO circuit with a key of long weights,
-4-5 s) to the fastest; other figures (a response, the delay graph: about 1 s) come last."""
+_SLOWEST = ("circuit_", "firing_", "structure_", "atlas_", "simplified_")  # slowest to draw first
 
 
 def _drawing_rank(name: str) -> int:
-    """Where ``name`` goes in the order of drawing: the slowest kinds first (:data:`_SLOWEST`)."""
     return next((k for k, prefix in enumerate(_SLOWEST) if name.startswith(prefix)), len(_SLOWEST))
 
 

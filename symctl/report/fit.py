@@ -1,7 +1,4 @@
-"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure (PDF, SVG, PNG).
-
-Written into a staging folder (:class:`symctl.report.output.OutputFolder` renames
-it into place when every file is written, so a failed run leaves nothing).
+"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure.
 
 >>> import tempfile
 >>> from pathlib import Path

@@ -1,25 +1,7 @@
-r"""Long objects laid out the way a paper shows them, so that every line fits the page.
-
-The story (:mod:`symctl.report.story`) hands its equations to :func:`fit_rows`
-and its matrices to :func:`~symctl.report.matrixview.show_matrix`; both decide by SIZE, never by the
-delay: the estimated printed width of a line (:func:`width`, in glyphs of the
-11 pt math font), the rows and columns of a matrix, the share of its entries
-that are the same background value (0, or :math:`\infty` for a delay matrix).
-
-An equation wider than :data:`LINE_WIDTH` is broken at its top-level ``+``, ``-`` or
-``,`` into continuation lines (at most :data:`TERM_MAX_LINES`, saying how many terms
-it leaves out); a display taller than :data:`DISPLAY_MAX_LINES` lines may break across
-pages. Matrices: :mod:`symctl.report.matrixview`.
-
-Examples
---------
->>> from symctl.report.longform import LINE_WIDTH, fit_rows, width
->>> long = " + ".join(f"K_{{{k}}} z^{{{k}}}" for k in range(40))
->>> width(long) > LINE_WIDTH
-True
->>> rows = fit_rows([("a(z)", long)])
->>> len(rows) > 1 and all(width(r) <= LINE_WIDTH for _, r in rows)
-True
+r"""Long objects laid out so that every line fits the page, decided by SIZE, never by the delay:
+the estimated printed width of a line (:func:`width`, in glyphs of the 11 pt math font) and of a
+table. :func:`fit_rows` breaks an equation wider than :data:`LINE_WIDTH` at its top-level
+``+``, ``-`` or ``,``; matrices: :mod:`symctl.report.matrixview`.
 """
 
 from __future__ import annotations
@@ -52,20 +34,18 @@ __all__ = [
 ]
 
 LINE_WIDTH = 72.0
-"""Glyphs of one display line, left-hand side included (the 17 cm line holds about 88 glyphs
-of 5.5 pt; the rest is room for the equation number and the estimate's error)."""
+"""Glyphs of one display line, left-hand side included (with room for the equation number)."""
 TABLE_WIDTH = 100.0
-"""Width of a table row at ``\\small`` in the units of :func:`table_width` (about 4.4 pt each);
-a wider table is set in ``\\footnotesize`` (about 0.75 of the width)."""
+"""Width of a table row at ``\\small`` (:func:`table_width`); a wider one is ``\\footnotesize``."""
 WRAP_MIN = 12.0
 """Least width of a prose column that a table wider than :data:`TABLE_WIDTH` wraps."""
 MATRIX_MAX_ROWS = 12
-"""A matrix with more rows is never written in full (a display that tall reads badly)."""
+"""A matrix with more rows is never written in full."""
 MATRIX_MAX_COLUMNS = 12
 """A matrix with more columns is never written in full."""
 PATTERN_TABLE_ROWS = 2.0
-"""A large matrix whose entries other than its background value make a table of at most this
-many rows per row of the matrix is shown as its sparsity pattern with that table."""
+"""A large matrix whose table of entries has at most this many rows per row is shown as its
+sparsity pattern with that table."""
 CORNER = 3
 """Leading rows and columns shown of a large dense matrix (then dots, then the last one)."""
 LARGE_DIGITS = 4
@@ -85,53 +65,30 @@ TABLE_MAX_ROWS = 30
 MD_LINE = 300
 """A Markdown display whose one-line form is longer (characters) gets a line per row."""
 SHRINK_MAX = 2
-"""``\\fitmath`` (:mod:`symctl.report.document`) shrinks a display up to this many times the
-line to fit it; a wider one is left overfull."""
+"""A display up to this many times the line is shrunk to fit it; a wider one is left overfull."""
 
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
-_SPACE = {
-    ",": 0.35,
-    ":": 0.45,
-    ">": 0.45,
-    ";": 0.55,
-    "!": -0.35,
-    " ": 0.6,
-    "quad": 2.0,
-    "qquad": 4.0,
-    "enspace": 1.0,
-}
+_SPACE = {",": 0.35, ":": 0.45, ">": 0.45, ";": 0.55, "!": -0.35, " ": 0.6}
 _ARG1 = frozenset(
     "text textrm mathrm mathbf mathit mathcal mathbb operatorname boldsymbol bar tilde "
     "hat dot ddot vec overline widetilde sqrt textit textbf underline mathsf".split()
 )
 _TEXT = frozenset("text textrm operatorname textit textbf".split())
+_SILENT = frozenset(
+    "displaystyle textstyle scriptstyle limits nolimits label notag nonumber tag".split()
+)
 _BINARY = frozenset(
     "times cdot ge geq le leq to in pm mp neq approx equiv mapsto rightarrow leftarrow "
     "subset cup cap setminus".split()
 )
-_WIDE = {
-    "cdots": 2.6,
-    "ldots": 2.6,
-    "dots": 2.6,
+_WIDE = dict.fromkeys("cdots ldots dots ddots sum prod".split(), 2.6) | {
     "vdots": 1.0,
-    "ddots": 2.6,
     "infty": 1.8,
-    "sum": 2.6,
-    "prod": 2.6,
     "qquad": 4.0,
     "quad": 2.0,
 }
-_MATRICES = {
-    "matrix": 1.9,
-    "bmatrix": 1.9,
-    "pmatrix": 1.9,
-    "vmatrix": 1.9,
-    "array": 1.9,
-    "smallmatrix": 0.6,
-    "cases": 2.0,
-    "aligned": 0.0,
-    "split": 0.0,
-}
+_MATRICES = {"smallmatrix": 0.6, "cases": 2.0, "aligned": 0.0, "split": 0.0}  # others 1.9
+_GLYPH = dict.fromkeys(",;", 1.0) | dict.fromkeys("()[]|/", 0.8) | dict.fromkeys(".'", 0.5)
 _BRACKETS = {"bmatrix": 1.6, "pmatrix": 1.6, "vmatrix": 1.2, "cases": 1.6}
 
 
@@ -214,11 +171,8 @@ def _table_width(body: str, colsep: float, scale: float) -> float:
 def width(tex: str) -> float:
     r"""The estimated printed width of one line of display math, in glyphs (about 5.5 pt each).
 
-    A conservative estimate read off the LaTeX: letters and digits one glyph
-    (capitals 1.4), binary operators and relations with their spacing,
-    scripts at 0.7, a fraction as wide as its wider part, a matrix as the sum of
-    its widest entries per column and the space between them, ``\\left``/``\\right``
-    and braces nothing. With several lines (``\\\\`` at the top), the widest.
+    A conservative estimate read off the LaTeX token by token (a fraction as wide as its wider
+    part, a matrix as its widest entries per column); with several lines, the widest.
 
     Parameters
     ----------
@@ -264,17 +218,7 @@ def width(tex: str) -> float:
                 scale = 0.7 if env == "smallmatrix" else 1.0
                 total += _table_width(body, _MATRICES.get(env, 1.9), scale)
                 total += _BRACKETS.get(env, 0.0)
-            elif name in (
-                "displaystyle",
-                "textstyle",
-                "scriptstyle",
-                "limits",
-                "nolimits",
-                "label",
-                "notag",
-                "nonumber",
-                "tag",
-            ):
+            elif name in _SILENT:
                 if name in ("label", "tag"):
                     r.group()
             elif name in _WIDE:
@@ -287,24 +231,13 @@ def width(tex: str) -> float:
                 total += 1.2  # a Greek letter, \partial, ...
         elif t in "+-=<>":
             total += 2.5 if total else 1.0  # a leading sign is unary
-        elif t in ",;":
-            total += 1.0
-        elif t in "()[]|/":
-            total += 0.8
-        elif t in ".'":
-            total += 0.5
-        elif t.isupper():
-            total += 1.9
-        elif t.isdigit():
-            total += 1.0
-        else:
-            total += 1.15
+        else:  # a capital 1.9, a digit 1.0, another letter 1.15
+            total += _GLYPH.get(t, 1.9 if t.isupper() else 1.0 if t.isdigit() else 1.15)
     return total
 
 
 def height(tex: str) -> int:
-    """Lines of a display row: 1, or the rows of the tallest matrix in it (roughly); one more
-    with a fraction (as tall as two lines).
+    """Lines of a display row: its rows (roughly), one more with a fraction.
 
     Examples
     --------
@@ -357,8 +290,7 @@ def table_width(header, rows) -> float:
 
 
 def _breakable(cell: str) -> bool:
-    """Whether a cell can wrap: a space outside its math, or a top-level + or - inside it
-    (TeX breaks inline math after a binary operator)."""
+    """Whether a cell can wrap: a space outside its math, or a top-level + or - inside it."""
     parts = cell.split("$")
     return any(" " in part.strip() for part in parts[::2]) or any(
         len(_terms(part, "+-", commas=False)) > 1 for part in parts[1::2]
@@ -368,10 +300,9 @@ def _breakable(cell: str) -> bool:
 def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...]:
     """The columns a table wraps to fit ``budget``: its prose columns, widest first.
 
-    A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a
-    space outside math or a sum in its math. The widest such columns wrap until the others, at
-    their natural width, and :data:`WRAP_MIN` for each wrapped one fit;
-    ``()`` when the table fits as it is (or no choice of columns makes it fit).
+    A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a space outside
+    math or a sum in its math; the widest wrap until the table fits; ``()`` when it fits as it
+    is (or cannot be made to).
 
     Examples
     --------
@@ -447,12 +378,9 @@ def _elided(tex: str) -> str:
 def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
     r"""Rows ``(lhs, rhs)`` of an aligned display, each broken to fit ``budget`` glyphs.
 
-    A row that fits is kept. Otherwise its right-hand side is cut into terms
-    at the top-level ``+``, ``-`` and ``,`` and packed greedily; continuation
-    rows have ``lhs`` None (rendered ``& \qquad \dots``). A single term wider
-    than a line is elided with its length stated; a row broken into more than
-    :data:`TERM_MAX_LINES` lines keeps its first and last lines and says how
-    many terms it leaves out.
+    A row too wide is cut into terms at the top-level ``+``, ``-`` and ``,`` and packed
+    greedily into continuation rows (``lhs`` None); a term wider than a line is elided with its
+    length, and beyond :data:`TERM_MAX_LINES` lines the middle ones are counted, not shown.
 
     Parameters
     ----------

@@ -1,20 +1,4 @@
-r"""Matrices laid out the way a paper shows them, so that every display fits the page.
-
-:func:`show_matrix` decides by SIZE (the thresholds of :mod:`symctl.report.longform`):
-a diagonal matrix of at least :data:`~symctl.report.longform.DIAGONAL_MIN` rows is
-:math:`\operatorname{diag}(d_1, \dots, d_n)`; another matrix that fits is written in
-full; beyond that a unit vector is :math:`e_k`, a vector a list broken over lines, a
-companion matrix its dots picture with the free row or column as a list, a sparse or
-banded matrix its sparsity pattern with a table of its entries, and a dense matrix its
-corners with dots (the exact values are in ``results.json``).
-
-Examples
---------
->>> import numpy as np
->>> from symctl.report.matrixview import show_matrix
->>> show_matrix("Q", np.diag([1.0, 2, 3, 4, 5, 6])).rows
-[('Q', '\\operatorname{diag}\\left(1, 2, 3, 4, 5, 6\\right)')]
-"""
+r"""Matrices laid out the way a paper shows them, so that every display fits the page."""
 
 from __future__ import annotations
 
@@ -40,8 +24,7 @@ __all__ = ["MatrixView", "show_matrix"]
 
 
 class MatrixView:
-    r"""How :func:`show_matrix` shows a matrix: display ``rows`` (``lhs`` None: a continuation),
-    ``tables`` ``(intro, header, rows)`` to follow the display, and whether it is in ``full``."""
+    r"""Display ``rows``, ``tables`` ``(intro, header, rows)`` to follow, and whether in ``full``."""
 
     def __init__(self, rows, tables=(), full: bool = False) -> None:
         self.rows, self.tables, self.full = list(rows), list(tables), full
@@ -69,8 +52,7 @@ def _is(e, value) -> bool:
 
 
 def _runs(items: list[str]) -> str:
-    """Items joined by commas, a run of four or more equal ones as ``0, \\dots, 0`` braced with
-    its length."""
+    """Items joined by commas, a run of four or more equal ones braced with its length."""
     out, k = [], 0
     while k < len(items):
         j = k
@@ -87,8 +69,7 @@ def _runs(items: list[str]) -> str:
 
 
 def _companion(E) -> str | None:
-    """``"row"`` (ones above the diagonal, a free last row), ``"column"`` (ones below it, a free
-    last column) or None."""
+    """``"row"`` or ``"column"``: the companion form with a free last row or column; else None."""
     n = len(E)
     if n < 3 or any(len(r) != n for r in E):
         return None
@@ -161,10 +142,12 @@ def _corners(E, tex, corner: int) -> str:
 
 
 def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGITS) -> MatrixView:
-    r"""A matrix as it fits the page: in full, or as a formula, a pattern with a table, or corners.
+    r"""A matrix as it fits the page, decided by size (the thresholds of :mod:`~symctl.report.longform`).
 
-    In full when it has at most :data:`MATRIX_MAX_ROWS` rows and :data:`MATRIX_MAX_COLUMNS`
-    columns and fits ``room`` glyphs; otherwise as the module's docstring says.
+    A large diagonal matrix is :math:`\operatorname{diag}(d_1, \dots, d_n)`; one that fits is
+    written in full; beyond that a unit vector is :math:`e_k`, a vector a list, a companion
+    matrix its dots picture, a sparse one its pattern with a table of its entries, a dense one
+    its corners.
 
     Parameters
     ----------

@@ -1,7 +1,4 @@
-r"""The factorization and realizations of a MIMO controller, told as document blocks.
-
-The factors of a :math:`p \times m` controller are per channel
-(:mod:`symctl.realization.channels`) and its realizations the block canonical forms.
+r"""The factorization (per channel) and realizations (block forms) of a MIMO controller, as blocks.
 
 >>> from symctl import derive
 >>> from symctl.report.mimo_story import factorization
@@ -23,7 +20,7 @@ from symctl.report import matrixview as MV
 from symctl.report.document import DocumentBlock, Heading, Text
 from symctl.report.shorthand import _eq, _num, _quotient_tex, _sections_tex, _zeros_tex
 
-__all__ = ["factorization", "realizations", "reduction"]
+__all__ = ["check_text", "factorization", "realizations", "reduction"]
 
 
 def reduction(res) -> list[DocumentBlock]:
@@ -114,6 +111,15 @@ def factorization(res) -> list[DocumentBlock]:
     return blocks
 
 
+def check_text(rec) -> str:
+    """The sentence on a realization's two checks, symbolic and numeric."""
+    sym, num = rec.check_symbolic, rec.check_numeric
+    return (
+        f"Realizes $G_2$, symbolically: {'yes' if sym.ok else 'NO'} ({sym.method}); "
+        f"with the numbers: {'yes' if num.ok else 'NO'} ({num.method})."
+    )
+
+
 def _entry_tex(f, i: int, j: int) -> str:
     r"""Entry :math:`(i, j)` of :math:`N_2` (from 1), its sections' zeros as products."""
     (e1, c1), (e3, c3) = f.section_channels[0][j - 1], f.section_channels[1][i - 1]
@@ -136,14 +142,7 @@ def realizations(res) -> list[DocumentBlock]:
     ]
     for name, rec in res.realizations.items():
         blocks.append(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
-        sym, num = rec.check_symbolic, rec.check_numeric
-        size = rec.numeric.F.shape[0]
-        blocks.append(
-            Text(
-                f"{size} states. Realizes $G_2$, symbolically: {'yes' if sym.ok else 'NO'} "
-                f"({sym.method}); with the numbers: {'yes' if num.ok else 'NO'} ({num.method}). "
-                "With the numbers:"
-            )
-        )
+        states = rec.numeric.F.shape[0]
+        blocks.append(Text(f"{states} states. {check_text(rec)} With the numbers:"))
         blocks += _eq(*((k, _num(getattr(rec.numeric, k))) for k in "FHMN"), label=f"eq:{name}")
     return blocks

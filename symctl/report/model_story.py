@@ -1,7 +1,4 @@
-r"""The model's own sections of the derivation: parameters, plant, nonlinear check, longest delay.
-
-The parts of :func:`~symctl.report.story.story` that depend on the plant (the paper's
-muscle or a model file's), told with the model's names, units and descriptions.
+r"""The sections of the derivation that depend on the plant, told with the model's names and units.
 
 >>> from symctl import derive_paper
 >>> from symctl.report.model_story import opening
@@ -38,9 +35,7 @@ __all__ = [
 
 
 def unit_text(unit: str, value: float | None = None) -> str:
-    r"""A unit for prose and tables: ``" N"``, ``" m/s$^{2}$"`` (from ``m/s**2``), or nothing.
-
-    After the ``value`` 1 a counted word is singular (``1 spike/s``; ``ms`` stays).
+    r"""A unit for prose and tables, singular after the ``value`` 1 (``1 spike/s``).
 
     Examples
     --------
@@ -185,10 +180,7 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
 
 
 def opening(res, figure) -> list[DocumentBlock]:
-    """The parameter table and the plant's sections (model, linearization, discretization).
-
-    ``figure(name, caption)`` returns the blocks of a figure (none when it is not written).
-    """
+    """The parameter table and the plant's sections; ``figure(name, caption)`` gives a figure's blocks."""
     spec = res.spec
     ode = spec.ode
     paper = _is_paper(spec)
@@ -429,8 +421,7 @@ def skipped(res) -> list[DocumentBlock]:
 
 
 def nonlinear(res, figure) -> list[DocumentBlock]:
-    """The linear controller around the nonlinear plant: deviations against amplitude (and
-    ``figure(name, caption)``'s blocks)."""
+    """The linear controller around the nonlinear plant: deviations against amplitude."""
     nl = res.nonlinear
     if nl is None:
         return []

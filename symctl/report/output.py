@@ -1,40 +1,9 @@
 r"""An output folder written all at once: staged in a sibling folder, then renamed into place.
 
-:class:`OutputFolder` is how :meth:`~symctl.report.results.PaperResults.write`
-and ``symctl paper`` write a folder. Nothing in ``out`` is ever mixed (files of two
-runs) or partial (a run's files missing or half written):
-
-1. **Checked before any work.** :func:`check_output_folder` refuses an empty
-   name, a file, a parent that cannot hold a folder, and an existing folder
-   holding anything but the regular files of an earlier run (so that replacing
-   it never deletes a user's files).
-2. **Locked.** ``<out>.lock`` (beside ``out``) is held with ``fcntl.flock`` for
-   the whole run; a second run on the same folder is refused at once with a
-   :class:`~symctl.errors.ParameterError` naming the process that holds it. The
-   lock file is removed when the run ends.
-3. **Staged.** Everything is written into a fresh folder ``.<name>.tmp-<hex>``
-   beside ``out`` (same parent, so same file system: a rename is atomic).
-4. **Renamed into place** with :func:`os.replace`: ``out -> .<name>.old-<hex>``,
-   then the staged folder ``-> out``; then the old one is removed. Between the two
-   renames ``out`` is absent for an instant, never mixed.
-
-What happens on each failure:
-
-=====================================  ==============================================
-failure                                result
-=====================================  ==============================================
-error or signal while writing          staged folder removed; ``out`` untouched
-second run on the same ``out``         refused before any work; the first goes on
-``out -> .old`` rename fails           nothing moved; staged folder removed; error
-error or signal after it               ``.old`` renamed back to ``out`` when ``out``
-                                       is absent; staged folder removed
-removing ``.old`` fails                ``out`` is the new folder; the next run on
-                                       ``out`` removes ``.old``
-process killed (SIGKILL, power loss)   ``.tmp-``/``.old-`` folders may stay; the next
-                                       run on ``out`` (under the lock) removes them,
-                                       and renames ``.old-`` back to ``out`` when
-                                       ``out`` is missing
-=====================================  ==============================================
+:class:`OutputFolder` checks ``out`` before any work, holds ``<out>.lock``, stages the files in
+``.<name>.tmp-<hex>`` beside ``out`` and renames them into place with :func:`os.replace`, so
+``out`` is always the old complete folder or the new complete one (docs/reliability.md gives
+what each failure leaves).
 
 Examples
 --------
@@ -59,7 +28,6 @@ import secrets
 import shutil
 import stat
 from pathlib import Path
-from types import TracebackType
 
 from symctl.errors import ParameterError, SymctlTypeError
 
@@ -70,28 +38,17 @@ except ImportError:  # pragma: no cover
 
 __all__ = ["OutputFolder", "check_output_folder"]
 
-_FIGURES = "|".join(
-    [
-        "open_loop",
-        "closed_loop",
-        "delay_graph",
-        "g1g3_structures",
-        "nonlinear",
-        "atlas_overview",
-        r"simplified_A\d+",
-        r"class_A\d+",
-        "fit",
-        "spiking_cost",
-        r"(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}",  # any circuit (the registry's names)
-    ]
+_FIGURES = (
+    r"open_loop|closed_loop|delay_graph|g1g3_structures|nonlinear|fit|spiking_cost"
+    r"|atlas_(overview|conjectured)|simplified_A\d+|class_A\d+"
+    r"|(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}"  # any circuit (the registry's names)
 )
 _OURS = re.compile(
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
     r"|fit\.json|predictions\.csv|spiking\.(json|md)"
     rf"|({_FIGURES})\.(pdf|png|svg))"
 )
-"""The names of the files an earlier run of ``symctl paper``, ``atlas``, ``derive``, ``fit`` or
-``spiking`` leaves."""
+"""The files an earlier run of ``symctl paper``, ``atlas``, ``derive``, ``fit`` or ``spiking`` leaves."""
 
 
 def check_output_folder(out, argname: str = "out") -> Path:
@@ -100,8 +57,7 @@ def check_output_folder(out, argname: str = "out") -> Path:
     Parameters
     ----------
     out : str or os.PathLike
-        The output folder: missing (it is made, with its parents), or an
-        existing folder that is empty or holds only the files of an earlier run.
+        A missing folder, or one that holds nothing but the files of an earlier run.
     argname : str
         The name in the messages (``"--out"`` for the command line).
 
@@ -115,8 +71,8 @@ def check_output_folder(out, argname: str = "out") -> Path:
     SymctlTypeError
         ``out`` is not a path.
     ParameterError
-        ``out`` is empty, the root, a file, a folder holding other files, or in
-        a place where no folder can be made (a parent is a file, or not writable).
+        ``out`` is empty, the root, a file, a folder holding other files, or where no folder
+        can be made.
 
     Examples
     --------
@@ -180,11 +136,9 @@ def _foreign(path: Path) -> list[str]:
 class OutputFolder:
     """A context manager that stages a folder beside ``out`` and renames it into place on success.
 
-    Entering checks ``out`` (:func:`check_output_folder`), makes its parents,
-    takes the lock ``<out>.lock``, clears what a killed run left and makes the
-    staging folder; write into :attr:`staging`. Leaving without an exception
-    renames the staging folder to ``out`` (replacing the old one); leaving with
-    one removes it and leaves ``out`` as it was. The lock is released either way.
+    Entering checks ``out``, makes its parents, takes the lock ``<out>.lock``, clears what a
+    killed run left and makes :attr:`staging`. Leaving without an exception renames
+    :attr:`staging` to ``out``; leaving with one removes it and leaves ``out`` as it was.
 
     Parameters
     ----------
@@ -193,18 +147,10 @@ class OutputFolder:
     argname : str
         The name in error messages (``"--out"`` for the command line).
 
-    Attributes
-    ----------
-    out : Path
-        The absolute output folder.
-    staging : Path or None
-        The folder being written (None before the ``with`` block).
-
     Raises
     ------
     ParameterError
-        As :func:`check_output_folder`; or another run holds the lock; or the
-        parent cannot be made.
+        As :func:`check_output_folder`; or another run holds the lock.
 
     Examples
     --------
@@ -246,12 +192,7 @@ class OutputFolder:
             raise
         return self
 
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
+    def __exit__(self, exc_type, exc, tb) -> None:
         old = self._sibling("old") if self.out.exists() else None
         try:
             if exc_type is None:
@@ -280,7 +221,7 @@ class OutputFolder:
                 return path
 
     def _clear_stale(self) -> None:
-        """Remove the staging and old folders of runs that were killed (we hold the lock)."""
+        """Remove what killed runs left, restoring ``out`` from a backup when it is missing."""
         prefix = f".{self.out.name}."
         stale = sorted(
             (

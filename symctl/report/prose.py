@@ -4,14 +4,6 @@ Outside the inline math (``$...$``), :func:`tex_text` escapes LaTeX's special ch
 and :func:`markdown_text` numbers two marks: ``[@key]`` or ``[@key, locator]`` cites the
 bibliography, ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
 captioned table or a display. A space before a mark becomes a tie in LaTeX.
-
-Examples
---------
->>> from symctl.report.prose import markdown_text, tex_text
->>> tex_text("50% as in [@li2024, Fig. 5] and (Fig. [#fig:a]), $x_1$")
-'50\\% as in~\\cite[Fig. 5]{li2024} and (Fig.~\\ref{fig:a}), $x_1$'
->>> markdown_text("as in [@li2024, Fig. 5], see ([#eq:G])", {"li2024": 1, "eq:G": 6})
-'as in [1, Fig. 5], see ((6))'
 """
 
 from __future__ import annotations
@@ -81,9 +73,7 @@ def tex_text(text: str) -> str:
 
 
 def markdown_text(text: str, numbers: dict[str, int]) -> str:
-    """Prose for Markdown: its marks as numbers (``[1, Fig. 5]``, ``3``, ``(2)``; ``??`` unknown).
-
-    ``numbers`` maps a reference (``"fig:name"``) or a citation key to its number.
+    """Prose for Markdown: its marks as the ``numbers`` of their keys (``??`` unknown).
 
     Examples
     --------
@@ -108,13 +98,11 @@ def markdown_text(text: str, numbers: dict[str, int]) -> str:
 
 
 VERBATIM_LINE = 96
-"""Characters of a line of preformatted text (``\\footnotesize`` typewriter: 4.2 pt each, so
-about 400 pt of the 483 pt line); a longer line wraps, its continuation indented."""
+"""Characters of a line of preformatted text (``\\footnotesize`` typewriter) before it wraps."""
 
 
 def verbatim_lines(text: str) -> list[str]:
-    """Preformatted text with its lines wrapped at :data:`VERBATIM_LINE` characters (in both
-    formats), a continuation indented four spaces past its line's own indent.
+    """Preformatted text wrapped at :data:`VERBATIM_LINE` characters, continuations indented.
 
     Examples
     --------

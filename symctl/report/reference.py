@@ -1,15 +1,5 @@
-r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations.
-
-The derivation cites the paper it implements as a paper cites another (``[1, Fig. 5]``).
-The numbers were counted in the paper's LaTeX source (arXiv:2410.02555, ``ieeeconf``):
-figures, equations and definitions in the order of their environments, sections by
-the class's Roman numerals.
-
-Examples
---------
->>> from symctl.report.reference import cite
->>> cite("Fig.", "cl_sims"), cite("Eq.", "transfer_fn"), cite()
-('[@li2024, Fig. 5]', '[@li2024, Eq. (9)]', '[@li2024]')
+r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations
+(counted in its LaTeX source, arXiv:2410.02555).
 """
 
 from __future__ import annotations

@@ -1,9 +1,5 @@
 r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
 
-The report stage computes nothing: it reads a derivation and writes it. The
-derivation's :meth:`~symctl.derivation.Derivation.to_dict` and
-:meth:`~symctl.derivation.Derivation.write` call :func:`results_json` and :func:`write`.
-
 Examples
 --------
 >>> from symctl import derive_paper
@@ -27,7 +23,7 @@ from symctl._util.validate import positive_int
 from symctl.derivation.derivation import CircuitRecord, PaperResults, RealizationRecord
 from symctl.realization.check import _similarity_holds
 from symctl.realization.factorization import remainder
-from symctl.report import document, model_json, story
+from symctl.report import document, story
 from symctl.report import figures as _figures
 from symctl.report.estimation import estimation_json
 from symctl.report.output import OutputFolder
@@ -50,30 +46,18 @@ __all__ = [
 
 SYMBOLIC_TEXT_MAX = 20_000
 """Characters of a realization's symbolic ``F``, ``H``, ``M`` beyond which ``results.json``
-writes a transform by a drawn (numeric) ``P`` as ``transform``: its base and ``P``, exact.
-
-A dense ``P^{-1} F_0 P`` carries the long rationals of ``P^{-1}`` in every entry (161 KB of
-a 16-state forearm's file) and says nothing that its base and ``P`` do not;
-:func:`~symctl.load_results` multiplies it out again, exactly.
-"""
+writes a transform by a drawn ``P`` as its base and ``P`` (``transform``), exactly."""
 
 
 def realization_json(self, base=None) -> dict:
-    """The entry of ``results.json``'s ``factorization.realizations`` for this realization.
-
-    ``base``, the record of the canonical form a drawn ``P`` transformed, lets a symbolic
-    text over :data:`SYMBOLIC_TEXT_MAX` characters be written as ``transform`` instead.
-    """
-    sym, num = self.check_symbolic, self.check_numeric
+    """The entry of ``results.json``'s ``factorization.realizations`` for this realization
+    (``base``: the canonical form a drawn ``P`` transformed)."""
     return {
         "symbolic": _symbolic_json(self, base),
         "numeric": {k: _matrix(getattr(self.numeric, k)) for k in "FHMN"},
         "values": {k: float(v) for k, v in self.values.items()},
         "P": _matrix(self.P_numeric) if self.P_numeric is not None else None,
-        "check": {
-            "symbolic": {"ok": sym.ok, "method": sym.method},
-            "numeric": {"ok": num.ok, "method": num.method},
-        },
+        "check": {"symbolic": _check(self.check_symbolic), "numeric": _check(self.check_numeric)},
     }
 
 
@@ -119,11 +103,7 @@ def circuit_json(self) -> dict:
             name: [None if np.isnan(v) else float(v) for v in peak[:, i]]
             for i, name in enumerate(fp.neurons)
         },
-    } | ({} if self.realizes is None else {"realizes": _proof(self.realizes)})
-
-
-def _proof(check) -> dict:
-    return {"ok": check.ok, "method": check.method}
+    } | ({} if self.realizes is None else {"realizes": _check(self.realizes)})
 
 
 def parameters(self) -> dict:
@@ -148,7 +128,7 @@ def results_json(self) -> dict:
     out = {
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
-        "plant": model_json.plant(self),
+        "plant": _plant_json(self),
         "augmented": {
             "T": s.T,
             "state": list(s.state_names),
@@ -189,7 +169,7 @@ def results_json(self) -> dict:
         "circuits": {name: circuit_json(rec) for name, rec in self.circuits.items()},
         "simulation": _simulation_json(self),
         "atlas": _atlas_json(self),
-        "model": model_json.model(self),
+        "model": _model_json(self),
     }
     if self.reduction is not None and not self.reduction:  # only a reduced controller has it
         out["reduction"] = reduction_json(self.reduction)
@@ -263,12 +243,7 @@ def _simulation_json(self) -> dict:
 
 
 def factor_texts(self) -> dict:
-    """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text (``results.json``'s).
-
-    The sections of ``G1`` and ``G3`` are written as products, each diagonal entry of a MIMO one
-    over its own; beyond :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections,
-    so are the zeros of ``G2``: expanded, they have :math:`2^d` terms.
-    """
+    """``G1``, ``G2``, ``G3`` and ``N`` of the factorization as text, the sections as products."""
     f = self.factors
     N = remainder(self.G2_symbolic)[0] if f.is_siso else f.N
     G1, G3 = map(_diagonal_text, f.section_channels)
@@ -339,9 +314,8 @@ def write_files(
     workers=None,
     parts: Callable[[str], None] | None = None,
 ) -> list[Path]:
-    """Write every file into the existing folder ``out`` (the staging folder of :meth:`write`);
-    the figures by ``workers`` when given (:class:`~symctl.report.workers.FigureWorkers`).
-    ``progress`` gets each step's name, ``parts`` each figure's as it is saved."""
+    """Write every file into the existing folder ``out``; ``progress`` gets each step's name,
+    ``parts`` each figure's as it is saved."""
     step = progress or (lambda _name: None)
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
@@ -374,8 +348,12 @@ def write_files(
     return written
 
 
+def _check(check) -> dict:
+    return {"ok": check.ok, "method": check.method}
+
+
 def _section_C(params: dict) -> list[str]:
-    """The C of each section drawn (all 1 in :func:`~symctl.neural.firing.circuit_firing`)."""
+    """The C of each section drawn (all 1)."""
     return [str(k).replace("epsilon", "C", 1) for k in params if str(k).startswith("epsilon")]
 
 
@@ -421,9 +399,6 @@ def _finite(values) -> list[float | None]:
     return [None if not np.isfinite(v) else float(v) for v in values]
 
 
-_matrix = model_json.float_rows
-
-
 def _delays(E: np.ndarray) -> list[list[int | None]]:
     """A delay matrix for JSON: integers, ``None`` for infinity (no path)."""
     return [[None if np.isinf(v) else int(v) for v in row] for row in np.asarray(E)]
@@ -455,3 +430,66 @@ def _theorem_json(verdict) -> dict | None:
             for p in verdict.parts
         ],
     }
+
+
+def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
+    return np.array(mat.evalf(), dtype=float).tolist()
+
+
+def _plant_json(res) -> dict:
+    """The ``plant`` entry: the discrete plant, its closed forms and the equilibrium."""
+    spec, ode = res.spec, res.spec.ode
+    sym = res.plant_symbolic
+    x_eq = ode.x_bar.tolist() if ode is not None else None
+    u_eq = ode.u_bar.tolist() if ode is not None else None
+    return {
+        "f_bar": x_eq[0] if x_eq else None,
+        "r_bar": u_eq[0] if u_eq else None,
+        "A": _matrix(res.plant.A),
+        "B": _matrix(res.plant.B),
+        "Ts": spec.dt,
+        "symbolic": {
+            "A": sp.sstr(sym.A[0, 0]) if sym is not None else None,
+            "B": sp.sstr(sym.B[0, 0]) if sym is not None else None,
+            "f_bar": sp.sstr(ode.x_eq[0]) if ode is not None else None,
+        },
+        "states": list(res.names[0]),
+        "inputs": list(res.names[1]),
+        "equilibrium": None
+        if ode is None
+        else {
+            "states": dict(zip(res.names[0], x_eq, strict=True)),
+            "inputs": dict(zip(res.names[1], u_eq, strict=True)),
+            "symbolic": [sp.sstr(e) for e in ode.x_eq],
+            "method": ode.equilibrium_method,
+        },
+    }
+
+
+def _model_json(res) -> dict:
+    """The ``model`` entry: name, units, the delay graph's names, notes, what was skipped, and
+    the ``file`` that re-creates the model."""
+    spec = res.spec
+    out = {
+        "name": spec.name,
+        "title": spec.title,
+        "units": dict(spec.units),
+        "vertices": list(spec.vertices),
+        "edges": [list(e) for e in spec.edges],
+        "circuits_built": list(spec.circuits),
+        "notes": list(spec.notes),
+        "skipped": res.skipped,
+        "longest_delay": None,
+        "file": spec.to_dict() if spec.source else None,  # re-creates the model (load_results)
+    }
+    if res.longest is not None:
+        L = res.longest
+        out["longest_delay"] = {
+            "longest": L.longest,
+            "limited": L.limited,
+            "tolerance": L.tolerance,
+            "delays": list(L.delays),
+            "final_deviation": [None if np.isinf(v) else float(v) for v in L.final_deviation],
+            "stabilized": list(L.stabilized),
+        }
+    return out

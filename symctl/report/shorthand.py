@@ -1,19 +1,5 @@
-r"""Short forms of the derivation's long objects, for :mod:`symctl.report.story`.
-
-What the story writes when the plain form is wider than the line
-(:mod:`symctl.report.longform` measures and breaks lines, and shows matrices): a product
-of first-order sections over an index (:math:`\prod_k C_{1,k}/(z - \epsilon_{1,k})`), a
-quotient by a product of indexed symbols, a transfer function as :math:`b(z)/a(z)` with a
-table of its coefficients, and the entries :math:`N c_k` of the realizations (matched
-exactly), also in the circuits' equations. Each is used only when the plain form does not
-fit, so the paper's T = 2 document keeps its plain forms.
-
-Examples
---------
->>> import sympy as sp
->>> from symctl.report.shorthand import _indexed
->>> _indexed([sp.Symbol(f"epsilon_{{1,{k}}}") for k in (1, 2, 3)])
-('\\epsilon_{1,k}', 1, 3)
+r"""Short forms the story writes when a plain form is wider than the line: products over an
+index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`.
 """
 
 from __future__ import annotations
@@ -58,10 +44,7 @@ COMPACT_LENGTH = 300
 
 
 def _sections_tex(cs, eps) -> str:
-    """``C_1/(z - epsilon_1)``, or ``C_{1,1} C_{1,2} / ((z - ...)(z - ...))``; 1 without sections.
-
-    Too wide for the line, the product over an index: ``prod_k C_{1,k}/(z - epsilon_{1,k})``.
-    """
+    """``C_1/(z - epsilon_1)`` and the like; too wide, the product over an index; 1 without any."""
     if not cs:
         return "1"
     tex = rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
@@ -181,11 +164,8 @@ def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
 
 
 def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols.
-
-    Long: LaTeX longer than :data:`COMPACT_LENGTH` or wider than a line. ``values`` is
-    ``(f.N, f.remainder_coeffs)`` when the caller has them (both are computed on access).
-    """
+    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols
+    (``values``: ``(f.N, f.remainder_coeffs)`` when the caller has them)."""
     N = sp.Symbol("N")
     f_N, f_coeffs = values if values is not None else (f.N, f.remainder_coeffs)
     targets = [(f_N * coeff, N * ck) for coeff, ck in zip(f_coeffs, c, strict=True)]
@@ -201,9 +181,8 @@ def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
 
 
 def _factored(mat):
-    r"""A symbolic matrix with the factor common to its entries written in front, as the paper
-    writes :math:`M = \frac{K_0}{C_1 C_3} [K_2 + \epsilon_1 \epsilon_3,\ K_1 - \epsilon_1 - \epsilon_3]`
-    (LaTeX); the matrix itself when its entries share no factor with a symbol."""
+    r"""A symbolic matrix with the factor common to its entries in front (LaTeX), as the paper
+    writes :math:`M`; the matrix itself when they share none."""
     if not isinstance(mat, sp.MatrixBase) or len(mat) < 2 or len(mat) > LF.MATRIX_MAX_ROWS:
         return mat
     entries = [e for e in mat if e != 0]
@@ -242,12 +221,8 @@ def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
 
 
 class _Matcher:
-    """Entry -> the symbol of the target it equals (exactly), else the entry itself.
-
-    The targets are keyed by their value at a random rational point; an entry is
-    compared exactly (:func:`~symctl._util.exact.ring_fractions`, cross-multiplied)
-    only with the targets of its key, instead of a ``cancel`` per pair.
-    """
+    """Entry -> the symbol of the target it equals exactly (compared only with the targets of
+    equal value at a random rational point), else the entry itself."""
 
     def __init__(self, targets) -> None:
         self.targets = targets
@@ -292,13 +267,8 @@ def _num(value):
 
 
 def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
-    """One numbered display of ``(lhs, rhs)`` rows that fits the page, and the tables it refers to.
-
-    A matrix is shown as :func:`~symctl.report.matrixview.show_matrix` decides (in full when it
-    fits; a 1 x 1 matrix as its entry), every row is broken to the line
-    (:func:`~symctl.report.longform.fit_rows`), and a tall display may break across pages;
-    the matrices' tables, then ``tables`` (``(intro, header, rows)``), follow the display.
-    """
+    """One numbered display of ``(lhs, rhs)`` rows fitted to the page (matrices as
+    :func:`~symctl.report.matrixview.show_matrix` shows them), then their tables and ``tables``."""
     lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
     shown, more = [], []
     for lhs, rhs in rows:

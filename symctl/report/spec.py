@@ -1,8 +1,5 @@
-r"""The paper's parameters and the circuits of its report, stated once.
-
-:data:`PAPER` (:mod:`symctl.derivation.paper`) holds the inputs of ``derive_paper``;
-:data:`CIRCUITS` names the report's circuits in reading order and :data:`CIRCUIT_SPECS`
-gives each its titles, both read from the realizers' registry.
+r"""The paper's parameters (:data:`PAPER`) and the report's circuits in reading order
+(:data:`CIRCUITS`, :data:`CIRCUIT_SPECS`: read from the realizers' registry).
 
 Examples
 --------
@@ -46,8 +43,7 @@ SCHEMA_VERSION = 1
 
 @dataclass(frozen=True)
 class CircuitSpec:
-    """One circuit of the report: its ``name``, its ``title`` in headings and tables, and its
-    title on its ``diagram``.
+    """One circuit of the report: its ``name``, its ``title`` in the text, its ``diagram``'s title.
 
     >>> from symctl.report.spec import CIRCUIT_SPECS
     >>> CIRCUIT_SPECS["general"].title
@@ -70,9 +66,6 @@ _PATHWAYS = CircuitSpec(
 def circuit_specs() -> Mapping[str, CircuitSpec]:
     """The report's circuits by name, in reading order: the realizers' circuits, then pathways.
 
-    Titles come from the realizers' registry (read at each call): the whole controller's
-    own title, or ``G3 G2 G1, <form> G2``.
-
     Examples
     --------
     >>> from symctl.report.spec import circuit_specs
@@ -90,9 +83,7 @@ def circuit_specs() -> Mapping[str, CircuitSpec]:
 
 
 def __getattr__(name: str):
-    """``CIRCUIT_SPECS`` (:func:`circuit_specs`) and ``CIRCUITS``, the circuits of the report:
-    the IFP controller, G3 G2 G1 with each realization of G2, and the structure built along the
-    delay graph's pathways (when the graph is not a chain of unit steps); read at each access."""
+    """``CIRCUIT_SPECS`` and ``CIRCUITS``, read from the registry at each access."""
     if name == "CIRCUIT_SPECS":
         return circuit_specs()
     if name == "CIRCUITS":

@@ -29,8 +29,7 @@ def _n(x: float, top: int = 0) -> str:
 
 
 def _table(cost) -> Table:
-    """The cost table, cheapest first: at the first tolerance N (median, range), neurons in all
-    and spikes per second; at the others N alone (so that it fits a page)."""
+    """The cost table, cheapest first (the other tolerances: N alone, so that it fits a page)."""
     first, *rest = (f"{100 * t:g}%" for t in cost.tolerances)
     head = ["circuit", "populations", "peak [spikes/s]", f"N within {first}", "range"]
     head += ["neurons", "spikes/s", *(f"N within {key}" for key in rest)]

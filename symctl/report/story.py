@@ -1,16 +1,4 @@
-r"""The paper's derivation told as a document: :func:`story` turns results into blocks.
-
-The blocks (:mod:`symctl.report.document`) follow the paper, from the plant to the
-simulations; symbolic and numeric values stand side by side.
-
-Examples
---------
->>> from symctl import derive_paper
->>> from symctl.report.story import story
->>> blocks = story(derive_paper())
->>> [b.text for b in blocks if type(b).__name__ == "Heading" and b.level == 1][:3]
-['Plant model and linearization', 'Discretization', 'Delays and the augmented system']
-"""
+r"""The paper's derivation told as a document: :func:`story` turns results into blocks."""
 
 from __future__ import annotations
 
@@ -128,19 +116,15 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     Parameters
     ----------
     res : PaperResults
-        What :func:`~symctl.derivation.pipeline.derive_paper` returned (read, not
-        imported: :mod:`~symctl.report.results` sits above this module).
+        The derivation.
     figures : iterable of str
-        The figures written next to the document (names of
-        :meth:`PaperResults.figure_names`); each gets a
-        :class:`~symctl.report.document.Graphic` where it belongs, the others none.
+        The figures written next to the document; each gets a
+        :class:`~symctl.report.document.Graphic` where it belongs.
 
     Returns
     -------
     list of blocks
-        Headings, prose, numbered equations, tables, figures and verbatim text
-        for :func:`~symctl.report.document.to_tex` and
-        :func:`~symctl.report.document.to_markdown`.
+        For :func:`~symctl.report.document.to_tex` and :func:`~symctl.report.document.to_markdown`.
 
     Examples
     --------
@@ -159,6 +143,15 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     def figure(name: str, caption: str) -> list[DocumentBlock]:
         return [Graphic(name, caption)] if name in shown else []
 
+    def say(text: str) -> None:
+        add(Text(text))
+
+    def show(name: str, caption: str) -> None:
+        put(figure(name, caption))
+
+    def display(*rows, label: str) -> None:
+        put(_eq(*rows, label=label))
+
     def see(name: str) -> str:
         """`` (Fig. n)`` for a figure of the document, nothing for one not written."""
         return f" (Fig. [#fig:{name}])" if name in shown else ""
@@ -170,59 +163,49 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
 
     # 3. delays
     add(Heading("Delays and the augmented system"))
-    add(
-        Text(
-            f"The sensor delays the measured {MS.names_tex(xs)} by $d_s = {s.sensor_delay}$ "
-            f"step{'s' * (s.sensor_delay != 1)} and the actuator "
-            f"the command $\\mu$ by $d_a = {s.actuator_delay}$ step{'s' * (s.actuator_delay != 1)}; "
-            f"only the net delay $T = d_s + d_a = {s.T}$ enters the optimal control problem "
-            f"{cite('Sec.', 'optimal_delayed_controller')}. The delayed commands become states: "
-            "the augmented state $\\chi$ evolves as "
-            "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
-            "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself; for $T = 2$ these "
-            f"are {cite('Eqs.', 'augmented_states', 'augmented_system', 'augmented_cost')}):"
-        )
+    say(
+        f"The sensor delays the measured {MS.names_tex(xs)} by $d_s = {s.sensor_delay}$ "
+        f"step{'s' * (s.sensor_delay != 1)} and the actuator "
+        f"the command $\\mu$ by $d_a = {s.actuator_delay}$ step{'s' * (s.actuator_delay != 1)}; "
+        f"only the net delay $T = d_s + d_a = {s.T}$ enters the optimal control problem "
+        f"{cite('Sec.', 'optimal_delayed_controller')}. The delayed commands become states: "
+        "the augmented state $\\chi$ evolves as "
+        "$\\chi(t+1) = \\tilde A \\chi(t) + \\tilde B \\mu(t)$, and the cost is "
+        "$\\sum_t \\chi(t)^\\top \\tilde Q \\chi(t)$ (no penalty on $\\mu$ itself; for $T = 2$ these "
+        f"are {cite('Eqs.', 'augmented_states', 'augmented_system', 'augmented_cost')}):"
     )
-    put(
-        _eq(
-            (r"\chi", s.chi),
-            (r"\tilde A", _num(s.A)),
-            (r"\tilde B", _num(s.B)),
-            (r"\tilde Q", _num(s.Q)),
-            label="eq:augmented",
-        )
+    display(
+        (r"\chi", s.chi),
+        (r"\tilde A", _num(s.A)),
+        (r"\tilde B", _num(s.B)),
+        (r"\tilde Q", _num(s.Q)),
+        label="eq:augmented",
     )
 
     # 4. gains
     add(Heading("Optimal gains"))
-    add(
-        Text(
-            "The discrete algebraic Riccati equation gives the optimal feedback "
-            f"$\\mu(t) = K \\chi(t)$ (the paper's sign, {cite('Eq.', 'ifp_controller')}), "
-            f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
-            f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
-            "square root of the rounding error in floating point):"
-        )
+    say(
+        "The discrete algebraic Riccati equation gives the optimal feedback "
+        f"$\\mu(t) = K \\chi(t)$ (the paper's sign, {cite('Eq.', 'ifp_controller')}), "
+        f"$K = [K_0, \\dots, K_{{{s.T}}}]$, and the closed loop's poles (those below "
+        f"${L.number(POLE_ZERO_TOL)}$ in magnitude written as 0: a multiple pole at 0 splits by the "
+        "square root of the rounding error in floating point):"
     )
     poles = ", ".join(_pole(p) for p in g.poles)
-    put(
-        _eq(
-            ("K", np.asarray(g.K, dtype=float)),
-            (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
-            (r"\rho", _num(g.spectral_radius)),
-            label="eq:gains",
-        )
+    display(
+        ("K", np.asarray(g.K, dtype=float)),
+        (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
+        (r"\rho", _num(g.spectral_radius)),
+        label="eq:gains",
     )
 
     # 5. controller
     G_num = res.G
     add(Heading("The controller $G(z)$"))
-    add(
-        Text(
-            "Eliminating the delayed commands, the controller from the measured states to the "
-            "inputs is a transfer function of the gains, kept symbolic (for $T = 2$ the paper's "
-            f"{cite('Eq.', 'transfer_fn')}):"
-        )
+    say(
+        "Eliminating the delayed commands, the controller from the measured states to the "
+        "inputs is a transfer function of the gains, kept symbolic (for $T = 2$ the paper's "
+        f"{cite('Eq.', 'transfer_fn')}):"
     )
     whole = _both(res.G_symbolic, G_num.expr.evalf(6))
     long_G = not _fits("G(z)", whole)
@@ -231,34 +214,30 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         if long_G
         else _eq(("G(z)", whole), label="eq:G")
     )
-    add(
-        Text(
-            "Proved: "
-            + ("yes" if res.proved else "NO")
-            + " (the derivation of $G$ checked against the controller's state-space matrices "
-            "read off $\\tilde A$ and $\\tilde B$, as a polynomial identity). Relative degree "
-            f"{G_num.relative_degree}."
-        )
+    say(
+        "Proved: "
+        + ("yes" if res.proved else "NO")
+        + " (the derivation of $G$ checked against the controller's state-space matrices "
+        "read off $\\tilde A$ and $\\tilde B$, as a polynomial identity). Relative degree "
+        f"{G_num.relative_degree}."
     )
     put(MIMO.reduction(res))
     put(estimation_section(res))
     hit = MS.names_tex([xs[i] for i in res.spec.disturbance[0]])
     like = cite("Fig.", "cl_sims")
-    put(
-        figure(
-            "closed_loop",
-            f"Closed loop of the {'LQG compensator' if res.kalman else 'optimal delayed controller'}"
-            f": response to a unit pulse disturbance on {hit} (as in {like})"
-            + (
-                ", the mean of the noisy runs in a band of 2 standard deviations."
-                if res.kalman
-                else "."
-            ),
-        )
+    show(
+        "closed_loop",
+        f"Closed loop of the {'LQG compensator' if res.kalman else 'optimal delayed controller'}"
+        f": response to a unit pulse disturbance on {hit} (as in {like})"
+        + (
+            ", the mean of the noisy runs in a band of 2 standard deviations."
+            if res.kalman
+            else "."
+        ),
     )
     if f is None:
         put(MS.skipped(res))
-        put(figure("delay_graph", _GRAPH_CAPTION))
+        show("delay_graph", _GRAPH_CAPTION)
         put(MS.nonlinear(res, figure))
         put(MS.longest(res))
         add(References(REFERENCES))
@@ -271,13 +250,11 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     else:
         # 6. factorization
         add(Heading("Factorization $G = G_3 G_2 G_1$"))
-        add(
-            Text(
-                "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
-                "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest "
-                f"(for $T = 2$ the paper's {cite('Eq.', 'factors')}, realized as in "
-                f"{cite('Eq.', 'sections')}):"
-            )
+        say(
+            "To fit the delays, the sensor side $G_1$ and the actuator side $G_3$ take one "
+            "first-order section $C/(z - \\epsilon)$ per delay step, and $G_2$ keeps the rest "
+            f"(for $T = 2$ the paper's {cite('Eq.', 'factors')}, realized as in "
+            f"{cite('Eq.', 'sections')}):"
         )
         den = descending_latex(f.G2.den)
         zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
@@ -307,55 +284,45 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             G2_row = ("G_2(z)", rf"\frac{{b(z)}}{{{sections}}}\,\frac{{{zeros}}}{{{den}}}")
             b = descending_latex(res.G_symbolic.num)
             b_rows = [("b(z)", b if _fits("b(z)", b) else r"\text{the numerator of } G(z)")]
-        put(
-            _eq(
-                ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
-                ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
-                G2_row,
-                *b_rows,
-                *named_den,
-                *sigma_rows,
-                label="eq:factors",
-            )
+        display(
+            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
+            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
+            G2_row,
+            *b_rows,
+            *named_den,
+            *sigma_rows,
+            label="eq:factors",
         )
         if f_N != 0:
-            add(
-                Text(
-                    "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
-                    "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
-                    f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
-                )
+            say(
+                "Taking out the constant $N$ (the direct term of $G_2$) rewrites $G_2$ with the "
+                "remainder's numerator coefficients $c_k$ (descending powers of $z$), as "
+                f"{cite('Eq.', 'G2_rewritten')} does; so $N$ is the same in every realization:"
             )
         else:
-            add(
-                Text(
-                    "$G_2$ is strictly proper, its direct term $N = 0$ (the compensator's "
-                    "relative degree exceeds the net delay by one); its numerator's coefficients "
-                    "$c_k$ (descending powers of $z$):"
-                )
+            say(
+                "$G_2$ is strictly proper, its direct term $N = 0$ (the compensator's "
+                "relative degree exceeds the net delay by one); its numerator's coefficients "
+                "$c_k$ (descending powers of $z$):"
             )
         rewritten = rf"N + N\,\frac{{{remainder}}}{{{den}}}" if f_N != 0 else None
-        put(
-            _eq(
-                ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
-                ("G_2(z)", rewritten or rf"\frac{{{remainder}}}{{{den}}}"),
-                *zip(map(L.to_latex, c), f_coeffs, strict=True),
-                label="eq:G2rewritten",
-            )
+        display(
+            ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
+            ("G_2(z)", rewritten or rf"\frac{{{remainder}}}{{{den}}}"),
+            *zip(map(L.to_latex, c), f_coeffs, strict=True),
+            label="eq:G2rewritten",
         )
-        add(Text(f"$G_3 G_2 G_1 = G$ proved: {'yes' if res.verified else 'NO'}."))
-        put(figure("g1g3_structures", _G1G3_CAPTION))
+        say(f"$G_3 G_2 G_1 = G$ proved: {'yes' if res.verified else 'NO'}.")
+        show("g1g3_structures", _G1G3_CAPTION)
 
         # 7. realizations
         add(Heading("Realizations of $G_2$"))
-        add(
-            Text(
-                "A realization $(F, H, M, N)$ of $G_2$ satisfies "
-                f"$M (zI - F)^{{-1}} H + N = G_2(z)$ {cite('Eq.', 'realization')}; each one below "
-                "is checked exactly, symbolically and with the numbers used in the simulations "
-                "(the optimal gains, $C = 1$ on every section, and for the general one random "
-                f"$\\epsilon$ and a random full-rank $P$ drawn from seed {res.seed})."
-            )
+        say(
+            "A realization $(F, H, M, N)$ of $G_2$ satisfies "
+            f"$M (zI - F)^{{-1}} H + N = G_2(z)$ {cite('Eq.', 'realization')}; each one below "
+            "is checked exactly, symbolically and with the numbers used in the simulations "
+            "(the optimal gains, $C = 1$ on every section, and for the general one random "
+            f"$\\epsilon$ and a random full-rank $P$ drawn from seed {res.seed})."
         )
         for name in [k for k in res.realizations if not _is(k, "takes_transform")]:
             rec = res.realizations[name]
@@ -363,42 +330,36 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
             if short:
                 names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
-            put(_eq(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}"))
+            display(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}")
             where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
             paper = f" For $T = 2$ this is {cite('Eq.', name)}." if _is(name, "paper") else ""
-            add(Text(_check_text(rec) + where + paper))
+            say(MIMO.check_text(rec) + where + paper)
         if "general" in res.realizations:
             rec = res.realizations["general"]
             add(Heading("General realization", 2))
             P = rec.P
-            add(
-                Text(
-                    "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
-                    "into another realization of the same $G_2$ (for $T = 2$ the paper's "
-                    f"{cite('Eq.', 'general_realization')}):"
-                )
+            say(
+                "Any invertible $P$ transforms the controllable canonical form $(F_c, H_c, M_c, N)$ "
+                "into another realization of the same $G_2$ (for $T = 2$ the paper's "
+                f"{cite('Eq.', 'general_realization')}):"
             )
-            put(
-                _eq(
-                    ("F", r"P^{-1} F_c P"),
-                    ("H", r"P^{-1} H_c"),
-                    ("M", r"M_c P"),
-                    ("P", "P" if P is None else P if P.free_symbols else _num(P)),
-                    label="eq:general",
-                )
+            display(
+                ("F", r"P^{-1} F_c P"),
+                ("H", r"P^{-1} H_c"),
+                ("M", r"M_c P"),
+                ("P", "P" if P is None else P if P.free_symbols else _num(P)),
+                label="eq:general",
             )
-            add(Text(_check_text(rec)))
+            say(MIMO.check_text(rec))
             values = ", ".join(
                 f"${L.to_latex(sp.Symbol(k))} = {L.number(v)}$"
                 for k, v in sorted(rec.values.items())
             )
-            add(Text(f"With the seeded numbers ({values}):"))
-            put(
-                _eq(
-                    *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-                    ("P", _num(rec.P_numeric)),
-                    label="eq:general-numeric",
-                )
+            say(f"With the seeded numbers ({values}):")
+            display(
+                *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
+                ("P", _num(rec.P_numeric)),
+                label="eq:general-numeric",
             )
 
     # 8. delay graph and compatibility
@@ -418,57 +379,47 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             "The delay graph has one vertex per stage (sensor side, one relay per further unit "
             f"delay, the actuator), {res.graph.n} in all"
         )
-    add(
-        Text(
-            graph_text + f"{see('delay_graph')}; $E_{{ij}}$ is the smallest delay from vertex $i$ "
-            f"to vertex $j$ ($\\infty$: no path; {cite('Def.', 'delay_graph')}, and "
-            f"{cite('Eq.', 'E')} for the paper's graph). A delay assignment puts every signal "
-            "of a structure at a vertex, the controller's input at the sensor and its output at "
-            "the actuator; the structure is compatible when some assignment has $\\tilde E \\ge E$ "
-            f"entry by entry {cite('Defs.', 'delay_assignment', 'compatible_structure')}."
-        )
+    say(
+        graph_text + f"{see('delay_graph')}; $E_{{ij}}$ is the smallest delay from vertex $i$ "
+        f"to vertex $j$ ($\\infty$: no path; {cite('Def.', 'delay_graph')}, and "
+        f"{cite('Eq.', 'E')} for the paper's graph). A delay assignment puts every signal "
+        "of a structure at a vertex, the controller's input at the sensor and its output at "
+        "the actuator; the structure is compatible when some assignment has $\\tilde E \\ge E$ "
+        f"entry by entry {cite('Defs.', 'delay_assignment', 'compatible_structure')}."
     )
-    put(figure("delay_graph", _GRAPH_CAPTION))
-    put(_eq(("E", res.graph.E), label="eq:E"))
+    show("delay_graph", _GRAPH_CAPTION)
+    display(("E", res.graph.E), label="eq:E")
     put(_readings())
     put(MS.theorem(res))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
         add(Heading(_title(name), 2))
         if verdict.ok:
-            add(
-                Text(
-                    f"Compatible (decided by {verdict.method}); the delays between the vertices "
-                    "under the witness assignment, in both readings:"
-                )
+            say(
+                f"Compatible (decided by {verdict.method}); the delays between the vertices "
+                "under the witness assignment, in both readings:"
             )
             put(_e_tilde(res.graph.E, verdict.assignment, name))
             where = "; ".join(
                 f"$v_{{{v}}}$: {MS.counted(len(verdict.assignment.signals_at(v)), 'signal')}"
                 for v in range(1, res.graph.n + 1)
             )
-            add(Text(f"Signals per vertex: {where}. The checker's witness:"))
+            say(f"Signals per vertex: {where}. The checker's witness:")
             add(Verbatim(_ascii(verdict.reason)))
         else:
-            add(Text(f"Not compatible (decided by {verdict.method}). The reason:"))
+            say(f"Not compatible (decided by {verdict.method}). The reason:")
             add(Verbatim(_ascii(verdict.reason)))
-        put(
-            figure(
-                f"structure_{name}", f"Structure: {_title(name)}{_PAPER_STRUCTURE.get(name, '')}."
-            )
-        )
+        show(f"structure_{name}", f"Structure: {_title(name)}{_PAPER_STRUCTURE.get(name, '')}.")
 
     # 9. circuits
     add(Heading("Neurons and circuits"))
-    add(
-        Text(
-            f"A neuron (the stylized neuron of {cite('Fig.', 'neural_circuit')}) is an adder that "
-            "sums two or more terms (the output sum included); a "
-            "single term through delays is an axon with a synaptic weight; a loop through the "
-            "neuron's own output is its self-dynamics. The closed loop was simulated with "
-            f"{_count_text(res)} of each circuit; the largest relative departure of the "
-            f"{x0} and {u0} traces from the optimal controller's is in the last column."
-        )
+    say(
+        f"A neuron (the stylized neuron of {cite('Fig.', 'neural_circuit')}) is an adder that "
+        "sums two or more terms (the output sum included); a "
+        "single term through delays is an axon with a synaptic weight; a loop through the "
+        "neuron's own output is its self-dynamics. The closed loop was simulated with "
+        f"{_count_text(res)} of each circuit; the largest relative departure of the "
+        f"{x0} and {u0} traces from the optimal controller's is in the last column."
     )
     add(
         Table(
@@ -499,10 +450,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         add(Heading(_title(name), 2))
         if _is(name, "takes_transform") and crec.circuit.free_symbols - set(f.G.free_symbols):
             circuit, what = crec.firing.circuits[0], "its first simulated realization"
-            add(Text(f"The neurons of {what} (the symbolic weights are rational in $P$):"))
+            say(f"The neurons of {what} (the symbolic weights are rational in $P$):")
         else:
             circuit = crec.circuit
-            add(Text("The neurons, their self-dynamics and synapses:"))
+            say("The neurons, their self-dynamics and synapses:")
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
         put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
         placed = [
@@ -511,38 +462,32 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             if n.vertex
         ]
         if placed:
-            add(Text("Where the neurons sit on the delay graph: " + ", ".join(placed) + "."))
-        put(
-            figure(
-                f"circuit_{name}",
-                f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
-                "circles with their self-dynamics, synapses as arrows with "
-                f"weights{_PAPER_CIRCUIT.get(name, '')}.",
-            )
+            say("Where the neurons sit on the delay graph: " + ", ".join(placed) + ".")
+        show(
+            f"circuit_{name}",
+            f"Circuit, {_title(name)}{_WHICH.get(name, '')}: neurons as "
+            "circles with their self-dynamics, synapses as arrows with "
+            f"weights{_PAPER_CIRCUIT.get(name, '')}.",
         )
 
     # 10. simulations
     add(Heading("Simulations: the same behaviour, different firing"))
-    add(
-        Text(
-            f"Every realization gives the {x0} and {u0} traces of the optimal controller "
-            "(to rounding), while the neurons of $G_2$ fire differently, as "
-            f"{cite('Sec.', 'simulations')} shows for its circuits. Peak firing "
-            "(change from equilibrium, spikes/s) per neuron and realization; the spread is "
-            "the largest difference between two realizations' traces at any one step:"
-        )
+    say(
+        f"Every realization gives the {x0} and {u0} traces of the optimal controller "
+        "(to rounding), while the neurons of $G_2$ fire differently, as "
+        f"{cite('Sec.', 'simulations')} shows for its circuits. Peak firing "
+        "(change from equilibrium, spikes/s) per neuron and realization; the spread is "
+        "the largest difference between two realizations' traces at any one step:"
     )
     for name, crec in res.circuits.items():
         fp = crec.firing
         add(Heading(_title(name), 2))
         put(_firing_table(fp))
-        put(
-            figure(
-                f"firing_{name}",
-                f"Firing of the neurons, {_title(name)}: "
-                f"{MS.counted(fp.count, 'realization')}, the same {x0} "
-                f"traces{_PAPER_FIRING.get(name, '')}.",
-            )
+        show(
+            f"firing_{name}",
+            f"Firing of the neurons, {_title(name)}: "
+            f"{MS.counted(fp.count, 'realization')}, the same {x0} "
+            f"traces{_PAPER_FIRING.get(name, '')}.",
         )
     put(MS.nonlinear(res, figure))
     put(MS.longest(res))
@@ -646,11 +591,3 @@ def _pole(p: complex) -> str:
         return L.number(p.real)
     sign = "+" if p.imag > 0 else "-"
     return f"{L.number(p.real)} {sign} {L.number(abs(p.imag))}\\,i"
-
-
-def _check_text(rec) -> str:
-    sym, num = rec.check_symbolic, rec.check_numeric
-    return (
-        f"Realizes $G_2$, symbolically: {'yes' if sym.ok else 'NO'} ({sym.method}); "
-        f"with the numbers: {'yes' if num.ok else 'NO'} ({num.method})."
-    )

@@ -1,10 +1,6 @@
-"""The processes that draw the report's figures, started before the derivation they draw.
-
-:class:`FigureWorkers` forks its workers when it is entered, so that they import
-matplotlib, cut the house style's fonts and typeset its text while the parent
-derives; :func:`symctl.report.figures.write_figures` starts them itself when nobody
-did. ``symctl paper`` and ``symctl derive`` start them before the derivation. The
-module knows nothing of figures: a worker runs the task it is given.
+"""The processes that draw the report's figures, started before the derivation they draw
+(so that they import matplotlib and cut the house style's fonts while the parent derives).
+The module knows nothing of figures: a worker runs the task it is given.
 """
 
 from __future__ import annotations
@@ -30,20 +26,13 @@ __all__ = ["FigureWorkers"]
 class FigureWorkers:
     """Processes that draw the report's figures, started before the derivation they draw.
 
-    A context manager. Entering it forks ``jobs`` worker processes
-    (:class:`concurrent.futures.ProcessPoolExecutor`), which make themselves ready to
-    draw (matplotlib imported, the house style's fonts cut and its text typeset once)
-    while the parent goes on, typically deriving; :meth:`map` then hands them a value
-    (pickled once to a file, read once by each worker) and the names of the figures to
-    draw from it. With ``jobs=1``, or on a platform without ``fork``, nothing is
-    started and :meth:`map` draws here. :func:`symctl.report.figures.write_figures`
-    uses them (``workers=``) or starts its own.
-
-    When anything stops the work (an error in one figure, a worker that died,
-    ``KeyboardInterrupt``, a signal turned into an exception), every worker is stopped
-    (SIGTERM, then SIGKILL after a second) and reaped before the exception goes on. The
-    workers ignore SIGINT (the parent handles Ctrl-C for them) and, on Linux, die with
-    the parent.
+    A context manager: entering it forks ``jobs`` workers
+    (:class:`concurrent.futures.ProcessPoolExecutor`) that get ready to draw while the parent
+    goes on; :meth:`submit` hands them a value (pickled once to a file) and the names of the
+    figures to draw from it. With ``jobs=1``, or without ``fork``, the tasks run here. When
+    anything stops the work (an error, a worker that died, a signal), every worker is stopped
+    (SIGTERM, then SIGKILL after a second) and reaped before the exception goes on; the workers
+    ignore SIGINT and, on Linux, die with the parent.
 
     Parameters
     ----------
@@ -57,15 +46,11 @@ class FigureWorkers:
 
     Examples
     --------
-    >>> import tempfile
-    >>> from symctl import derive_paper
-    >>> from symctl.report.figures import write_figures
+    >>> import operator
     >>> from symctl.report.workers import FigureWorkers
-    >>> with FigureWorkers(jobs=2) as workers:  # they get ready while the derivation runs
-    ...     res = derive_paper()
-    ...     with tempfile.TemporaryDirectory() as out:
-    ...         len(write_figures(res, out, workers=workers))  # doctest: +SKIP
-    40
+    >>> with FigureWorkers(jobs=2) as workers:  # they get ready while the caller derives
+    ...     workers.submit(operator.add, "fig_", ["a", "b"])()
+    {'a': 'fig_a', 'b': 'fig_b'}
     >>> FigureWorkers(jobs=0)
     Traceback (most recent call last):
     ...
@@ -121,17 +106,9 @@ class FigureWorkers:
                 worker.kill()
                 worker.join()
 
-    def map(self, task, res, names) -> dict:
-        """``{name: task(res, name)}`` for every name, in the workers (in the order of ``names``).
-
-        ``task`` is a function of the module level (the workers find it by name) and
-        ``res`` a value that pickles; without workers, the tasks run here.
-        """
-        return self.submit(task, res, names)()
-
     def submit(self, task, res, names):
-        """As :meth:`map`, without waiting: returns a function that waits and gives the dict, and
-        calls its argument ``progress`` (when not None) with each name as its task ends."""
+        """Start ``task(res, name)`` for every name (``task`` of module level, ``res`` picklable);
+        returns a function ``result(progress=None)`` that waits and gives ``{name: value}``."""
         if self._pool is None:
             return functools.partial(_run_here, task, res, names)
         import pickle
@@ -163,7 +140,7 @@ class FigureWorkers:
 
 
 def _run_here(task, res, names, progress=None) -> dict:
-    """The tasks of :meth:`FigureWorkers.submit` without workers, one by one."""
+    """The tasks of :meth:`FigureWorkers.submit` run here, one by one."""
     done = {}
     for name in names:
         done[name] = task(res, name)
@@ -173,18 +150,12 @@ def _run_here(task, res, names, progress=None) -> dict:
 
 
 _STOPS = (signal.SIGINT, signal.SIGTERM)
-"""The signals that stop a run (noted while the workers are forked, acted on after)."""
 
 
 @contextlib.contextmanager
 def _signals_after():
-    """Ctrl-C and SIGTERM noted while the block runs and acted on when it ends.
-
-    The parent's handler raises an exception; raised inside a fork's own hooks (which run
-    Python code, logging's lock release among them), the exception is printed and ignored,
-    and the run goes on as if the signal never came. Only the main thread can set handlers,
-    and only there do they run: elsewhere nothing is changed.
-    """
+    """Ctrl-C and SIGTERM noted while the block runs and acted on when it ends (an exception
+    raised inside a fork's own hooks is printed and ignored: the signal would be lost)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -202,7 +173,7 @@ def _signals_after():
 
 
 def _worker_init() -> None:
-    """A figure worker: Ctrl-C is the parent's to handle, SIGTERM kills, and so does its death."""
+    """Ctrl-C is the parent's to handle, SIGTERM kills, and so does the parent's death."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the terminal sends it to the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's handler, inherited by fork
     try:  # Linux: die with the parent even when it is killed outright (no orphans)

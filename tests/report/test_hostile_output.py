@@ -499,3 +499,16 @@ def test_stale_leftovers_that_are_links_or_files_are_removed_without_following(r
     res.write(parent / "paper", figures=False, pdf=False)
     assert sorted(p.name for p in parent.iterdir()) == ["paper"]
     assert (target / "keep.txt").read_text() == "not ours"
+
+
+def test_every_file_symctl_atlas_writes_counts_as_an_earlier_runs(tmp_path):
+    names = [
+        "atlas.json",
+        "atlas.md",
+        "atlas_overview.pdf",
+        "atlas_conjectured.png",
+        "class_A3.svg",
+    ]
+    for name in names:
+        (tmp_path / name).write_text("")
+    assert output._foreign(tmp_path) == []
