@@ -1,20 +1,4 @@
-r"""A structure's equations: one per adder and per delayed state, as SymPy or as LaTeX.
-
-:func:`structure_equations` multiplies the gains in (SymPy functions named after the
-signals); :func:`structure_latex` writes for a reader: readable names, the part as a
-superscript, and delayed branch terms written into the adder they feed, so a state reads
-as its recursion, :math:`x_1^{\mathrm{G1}}(t) = \epsilon_1 x_1^{\mathrm{G1}}(t-1) + C_1
-u^{\mathrm{G1}}(t-1)`.
-
->>> from symctl import Structure
->>> from symctl.compatibility.equations import structure_latex
->>> from symctl.realization.realization import first_order_realization
->>> import sympy as sp
->>> eps, C = sp.symbols("epsilon_1 C_1")
->>> S = Structure.series(first_order_realization(eps, C), first_order_realization(eps, C))
->>> print(structure_latex(S).split(r" \\ ")[0].removeprefix(r"\begin{aligned}"))
-{x_{1}}^{\mathrm{G1}}(t) &= \epsilon_{1} {x_{1}}^{\mathrm{G1}}(t - 1) + C_{1} {u}^{\mathrm{G1}}(t - 1)
-"""
+"""A structure's equations, one per adder and per delayed state, as SymPy or as LaTeX."""
 
 from __future__ import annotations
 
@@ -64,7 +48,9 @@ def _branch_term(name: str) -> bool:
 
 
 def structure_latex(S) -> str:
-    r"""The equations of ``S`` as an ``aligned`` block, for a reader (see the module text).
+    r"""The equations of ``S`` as an ``aligned`` block for a reader: readable names, the part as a
+    superscript, delayed branch terms written into the adder they feed (a state reads as its
+    recursion).
 
     >>> from symctl import ifp_structure
     >>> from symctl.compatibility.equations import structure_latex
