@@ -14,12 +14,6 @@ Gauss-Newton and proved by the Krawczyk test
 are accepted: an unstable section cancelled by a zero of :math:`G_2` would hide an unstable
 mode. The paper's simplified circuits come out here, e.g. the controllable canonical circuit
 without :math:`M_1` at :math:`K_2 + \epsilon_1 \epsilon_3 = 0`.
-
->>> import symctl
->>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
->>> found = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))
->>> found[0].n_neurons, found[0].compatible
-(4, True)
 """
 
 from __future__ import annotations
@@ -50,8 +44,7 @@ MAX_ORDER = 3
 """Largest order of :math:`G_2` (the exhaustive atlas)."""
 
 STABLE = 0.999
-"""Section poles are searched inside this radius: G1 and G3 stay stable, so no unstable
-pole of a section is cancelled by a zero of G2 (an internally stable controller)."""
+"""Section poles lie inside this radius (an internally stable controller: module text)."""
 
 
 @dataclass(frozen=True)
@@ -83,8 +76,8 @@ class CandidateCircuit(DictMixin):
     >>> import symctl
     >>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
     >>> best = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))[0]
-    >>> best.degenerate, best.n_neurons, bool(best.check)
-    (True, 4, True)
+    >>> best.degenerate, best.n_neurons, bool(best.check), best.compatible
+    (True, 4, True, True)
     """
 
     circuit_class: CircuitClass

@@ -190,9 +190,14 @@ def _quotient(eqs, ring):
     return monos, mult
 
 
-def _form_matrix(mult, rng):
-    """The multiplication matrix of a random linear form (weights 1 to 9)."""
-    return sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
+def _eliminants(mult, rng, tries: int):
+    """Up to ``tries`` random linear forms (weights 1 to 9): each multiplication matrix whose
+    characteristic polynomial (the eliminant) is squarefree, with that polynomial."""
+    for _ in range(tries):
+        form = sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
+        e = form.charpoly()
+        if e.gcd(e.derivative()).degree() == 0:
+            yield form, e
 
 
 def _sign_changes(values) -> int:
@@ -245,15 +250,13 @@ def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
     monos, mult = found
     if not monos:
         return {"degree": 0, "real": 0, "zero_entry": False, "eliminant": "1"}
-    for _ in range(tries):
-        e = _form_matrix(mult, rng).charpoly()
-        if e.gcd(e.derivative()).degree() == 0:
-            return {
-                "degree": len(monos),
-                "real": real_root_count(e),
-                "zero_entry": any(M.det() == 0 for M in mult),
-                "eliminant": e.str(var="t"),
-            }
+    for _, e in _eliminants(mult, rng, tries):  # the first squarefree eliminant
+        return {
+            "degree": len(monos),
+            "real": real_root_count(e),
+            "zero_entry": any(M.det() == 0 for M in mult),
+            "eliminant": e.str(var="t"),
+        }
     return None
 
 
@@ -306,11 +309,7 @@ def real_solutions(eqs, free, rng, tries: int = 3):
         return {"degree": 0, "real": [], "eliminant": "1"}
     d = len(monos)
     t = sp.Symbol("t_")
-    for _ in range(tries):
-        Mt = _form_matrix(mult, rng)
-        ef = Mt.charpoly()
-        if ef.gcd(ef.derivative()).degree() > 0:
-            continue
+    for Mt, ef in _eliminants(mult, rng, tries):
         e = sp.Poly([from_fmpq(q) for q in ef.coeffs()[::-1]], t)
         # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
         krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]

@@ -4,12 +4,6 @@
 first: the closed form (symbolic ``G2`` allowed), then for numeric ``G2`` the exact solve of
 :func:`~symctl.circuitatlas.fibre.solve_at` (a real root of the eliminant as a ``CRootOf``),
 entries beyond :math:`3n` set to random nonzero rationals.
-
->>> import symctl
->>> from symctl import z
->>> A = symctl.atlas(2, workers=1)
->>> A.classes[0].realize(2 + (z + 1) / (z**2 - z / 3 + 1)).N
-Matrix([[2]])
 """
 
 from __future__ import annotations

@@ -20,8 +20,9 @@ INF = math.inf
 """No path: the delay of an unreachable vertex."""
 
 MAX_VERTICES = 1000
-PARALLEL_EDGES = 8  # entries of an edge list per ordered pair of vertices
 """Most vertices of a delay graph: its shortest-path closure is cubic (about 3 s at 1000)."""
+
+PARALLEL_EDGES = 8  # entries of an edge list per ordered pair of vertices
 
 MAX_EDGE_DELAY = 10**12
 """Largest finite delay (steps) of an entry or edge: sums along any path stay exact in a float."""
