@@ -175,18 +175,14 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
 
     def tighten(v: int, new_hi: int, new_lo: int, e: int, x: int) -> bool:
         """Narrow v's interval to [new_lo, new_hi] (wire e, from x); True when it empties."""
-        changed = False
-        if new_hi < hi[v]:
-            hi[v] = new_hi
-            events.append((e, hi_ev[x]))
-            hi_ev[v] = len(events) - 1
-            changed = True
+        moved = [(hi, hi_ev, new_hi)] if new_hi < hi[v] else []
         if new_lo > lo[v]:
-            lo[v] = new_lo
-            events.append((e, lo_ev[x]))
-            lo_ev[v] = len(events) - 1
-            changed = True
-        if not changed:
+            moved.append((lo, lo_ev, new_lo))
+        for bound, ev, new in moved:  # each move records the event that caused it
+            bound[v] = new
+            events.append((e, ev[x]))
+            ev[v] = len(events) - 1
+        if not moved:
             return False
         if lo[v] > hi[v]:
             return True

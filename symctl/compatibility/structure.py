@@ -17,12 +17,12 @@ from types import MappingProxyType
 import networkx as nx
 import sympy as sp
 
-from symctl._util.display import LatexMixin
+from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import ring_fractions
+from symctl._util.texnames import signal_tex
 from symctl._util.validate import nonneg_int, positive_int
 from symctl.compatibility.block import KINDS, MAX_WIRE_STEPS, Block, signal_name, signal_names
 from symctl.compatibility.block import block as checked_block
-from symctl.compatibility.equations import structure_equations, structure_latex
 from symctl.compatibility.signalgraph import SignalGraph, delay_free_cycle, zero_one_bfs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization.realization import Realization, section_realizations
@@ -422,11 +422,68 @@ class Structure(LatexMixin):
         >>> ifp_structure(2).equations()[-1]
         Eq(mu(t), K_0*x(t) + K_1*gamma(t) + K_2*u(t))
         """
-        return structure_equations(self)
+        t = sp.Symbol("t", integer=True)
+
+        def value(name, time):
+            block = self.blocks[name]
+            if block.kind == "gain":
+                gain = block.gain if block.gain is not None else sp.Symbol(_symbol_name(name))
+                return gain * value(block.inputs[0], time)
+            return sp.Function(_symbol_name(name))(time)
+
+        out = []
+        for name, block in self.blocks.items():
+            if block.kind == "delay":
+                rhs = value(block.inputs[0], t - block.steps)
+            elif block.kind == "sum":
+                rhs = sp.Add(*(value(s, t) for s in block.inputs))
+            else:
+                continue
+            out.append(sp.Eq(sp.Function(_symbol_name(name))(t), rhs, evaluate=False))
+        return out
 
     def latex(self) -> str:
-        """The equations, one per adder and delayed state, for a reader."""
-        return structure_latex(self)
+        r"""The equations as an ``aligned`` block for a reader: readable names, the part as a
+        superscript, delayed branch terms written into the adder they feed.
+
+        >>> from symctl import ifp_structure
+        >>> for row in ifp_structure(2).latex().split(r" \\ "):
+        ...     print(row)
+        \begin{aligned}\gamma(t) &= \mu(t - 1)
+        u(t) &= \gamma(t - 1)
+        \mu(t) &= K_{0} x(t) + K_{1} \gamma(t) + K_{2} u(t)\end{aligned}
+        """
+
+        def terms(name: str, lag: int) -> list[str]:
+            block = self.blocks[name]
+            if block.kind == "gain":
+                inner = terms(block.inputs[0], lag)
+                if block.gain is None:
+                    gain = signal_tex(name)
+                else:
+                    gain = latex(block.gain)
+                    if isinstance(block.gain, sp.Add):
+                        gain = rf"\left({gain}\right)"
+                if gain == "1":
+                    return inner
+                if gain == "-1":
+                    return ["-" + t for t in inner]
+                return [f"{gain} {t}" for t in inner]
+            if block.kind == "delay" and _branch_term(name):
+                return terms(block.inputs[0], lag + block.steps)
+            return [signal_tex(name) + ("(t)" if lag == 0 else f"(t - {lag})")]
+
+        rows = []
+        for name, block in self.blocks.items():
+            if block.kind == "sum":
+                rhs = [t for src in block.inputs for t in terms(src, 0)]
+            elif block.kind == "delay" and not _branch_term(name):
+                rhs = terms(block.inputs[0], block.steps)
+            else:
+                continue
+            body = " + ".join(rhs).replace("+ -", "- ")
+            rows.append(f"{signal_tex(name)}(t) &= {body}")
+        return r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"
 
     def _repr_latex_(self) -> str | None:
         if len(self) > 60:
@@ -451,6 +508,14 @@ class Structure(LatexMixin):
         from symctl.plotting.structure import draw_structure
 
         return draw_structure(self, ax, **options)
+
+
+def _symbol_name(name: str) -> str:
+    return name.replace(" ", "").replace("^-1", "d_")
+
+
+def _branch_term(name: str) -> bool:
+    return name.rpartition(".")[2].startswith("z^-")
 
 
 def _labels(parts, names, prefix: str) -> list[str]:
