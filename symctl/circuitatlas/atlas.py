@@ -1,25 +1,13 @@
-r"""The circuit atlas: every minimal circuit of an order-:math:`n` :math:`G_2`, found, proved and ranked.
+"""The circuit atlas: every minimal circuit class of an order-:math:`n` :math:`G_2`, proved and ranked.
 
-* A realization :math:`(F, H, M, N)` of an order-:math:`n` :math:`G_2` (:math:`N \ne 0`)
-  has a **pattern**, the support of :math:`(F, H, M)` (:mod:`~symctl.circuitatlas.pattern`);
-  it is **universal** if almost every real :math:`G_2` has a real realization with exactly
-  that support (:mod:`~symctl.circuitatlas.universality`).
-* Patterns whose circuits (:meth:`Circuit.from_structure` of the branch-delay structure)
-  are isomorphic graphs, weights ignored, form a **circuit class**
-  (:mod:`~symctl.circuitatlas.circuitclass`). Only generically minimal patterns (:math:`n`
-  states, controllable and observable) are kept; the **sparsest** classes have the fewest
-  neurons, then synapses.
-* A class is universal when *one* of its patterns is proved universal (a closed form, or a
-  lift of one); a class whose best pattern is only conjectured is counted apart
-  (:attr:`Atlas.conjectured_classes`), never among :attr:`Atlas.universal_classes`.
-
-The search (:mod:`~symctl.circuitatlas.search`) is exhaustive for orders 1 to
-:data:`EXHAUSTIVE_MAX_ORDER`: every pattern, reduced by state permutations,
-filtered by the exact generic-rank test, then decided. Order
-:data:`MAX_ATLAS_ORDER` searches the sparsest classes: patterns of :math:`3n`
-nonzero entries (up to ``max_size``; a universal pattern needs at least
-:math:`3n`, :mod:`~symctl.circuitatlas.rank`) whose circuits have at most
-:data:`ORDER4_MAX_NEURONS` neurons (``max_neurons``).
+Patterns (:mod:`~symctl.circuitatlas.pattern`) whose circuits are isomorphic graphs form a
+circuit class (:mod:`~symctl.circuitatlas.circuitclass`); only generically minimal patterns are
+kept. A class is universal when one of its patterns is proved universal
+(:mod:`~symctl.circuitatlas.universality`); one whose best pattern is only conjectured is
+counted apart (:attr:`Atlas.conjectured_classes`). Orders up to :data:`EXHAUSTIVE_MAX_ORDER` are
+searched over every pattern; order :data:`MAX_ATLAS_ORDER` over the sparsest, :math:`3n` entries
+(a universal pattern needs at least that many, :mod:`~symctl.circuitatlas.rank`) and at most
+:data:`ORDER4_MAX_NEURONS` neurons.
 
 >>> import symctl
 >>> A = symctl.atlas(2, workers=1)
@@ -69,11 +57,9 @@ class Atlas:
     delays : str
     classes : tuple of CircuitClass
     stats : mapping
-        ``patterns`` (all, before the symmetry reduction), ``canonical``,
-        ``minimal`` (generically minimal), ``full_rank``, ``universal``
-        (patterns proved universal), ``conjectured`` (patterns conjectured),
-        ``undecided``, ``sizes`` searched, ``complete`` (exhaustive or not),
-        ``seconds``, ``workers``.
+        Pattern counts (``patterns``, ``canonical``, ``minimal``, ``full_rank``, ``universal``,
+        ``conjectured``, ``undecided``), ``sizes`` searched, ``complete``, ``seconds``,
+        ``workers``.
 
     Examples
     --------
@@ -105,13 +91,7 @@ class Atlas:
         return self.universal_classes[0]
 
     def find(self, pattern: Pattern) -> CircuitClass:
-        """The class of ``pattern`` (any state permutation of it).
-
-        Raises
-        ------
-        ParameterError
-            The pattern is not in the atlas (not generically minimal, or not searched).
-        """
+        """The class of ``pattern`` (any state permutation of it); ParameterError when not in the atlas."""
         if not isinstance(pattern, Pattern):
             raise SymctlTypeError(f"pattern: expected a Pattern, got {type(pattern).__name__}")
         key = pattern.canonical()
@@ -188,34 +168,27 @@ def atlas(
     progress: Callable[[int, int, int], None] | None = None,
     max_neurons: int | None = None,
 ) -> Atlas:
-    r"""Every minimal circuit class of order-``order`` controllers :math:`G_2`, with its evidence.
+    """Every minimal circuit class of order-``order`` controllers :math:`G_2`, with its evidence.
 
     Parameters
     ----------
     order : int
-        1 to :data:`MAX_ATLAS_ORDER`; orders up to :data:`EXHAUSTIVE_MAX_ORDER`
-        are searched over every pattern.
+        1 to :data:`MAX_ATLAS_ORDER`.
     delays : {"branch", "state"}
-        The structure convention of the circuits (see
-        :meth:`Structure.from_realization`).
+        The structure convention of the circuits (:meth:`Structure.from_realization`).
     max_size : int, optional
-        Largest pattern size searched (default: every size for the exhaustive
-        orders, :math:`3n` for order 4, which gives its sparsest classes).
+        Largest pattern size searched (default: all for the exhaustive orders, :math:`3n` above).
     workers : int, optional
         Worker processes (default: every local core; 1 runs in this process).
     scheduler : str, optional
-        Address of a running dask.distributed scheduler to use instead of a
-        local cluster.
+        Address of a running dask.distributed scheduler to use instead of a local cluster.
     checkpoint : path, optional
-        A JSON-lines file where finished patterns are written as the search
-        proceeds; a rerun with the same file resumes.
+        A JSON-lines file of finished patterns; a rerun with the same file resumes.
     progress : callable, optional
         Called as ``progress(size, done, total)``.
     max_neurons : int, optional
-        Decide only the patterns whose circuit has at most this many neurons
-        (:attr:`Pattern.n_neurons`); the others are counted as skipped. By
-        default every pattern for the exhaustive orders and
-        :data:`ORDER4_MAX_NEURONS` for order 4, which gives its sparsest classes.
+        Decide only the patterns whose circuit has at most this many neurons (the others are
+        counted as skipped); default all, :data:`ORDER4_MAX_NEURONS` for order 4.
 
     Returns
     -------
@@ -224,8 +197,8 @@ def atlas(
     Raises
     ------
     ParameterError
-        ``order`` outside 1..4, ``max_size`` or ``max_neurons`` out of range, ``workers`` below 1,
-        or a scheduler that cannot be reached.
+        ``order`` outside 1..4, ``max_size`` or ``max_neurons`` out of range, ``workers`` below
+        1, or a scheduler that cannot be reached.
 
     Examples
     --------
@@ -254,7 +227,7 @@ def atlas(
 
 
 def _sizes(n: int) -> tuple[int, int]:
-    """The pattern sizes searched by default: all for the exhaustive orders, else 3n only."""
+    """The pattern sizes searched by default."""
     if n <= EXHAUSTIVE_MAX_ORDER:
         return 0, n * n + 2 * n
     return 3 * n, 3 * n
@@ -268,16 +241,8 @@ def _cached(n: int, delays: str) -> Atlas:
 def _search(n, delays, low, top, workers, scheduler, checkpoint, progress, max_neurons) -> Atlas:
     slots = n * n + 2 * n
     start = time.perf_counter()
-    records, counts = run(
-        n,
-        range(low, top + 1),
-        delays,
-        workers=workers,
-        scheduler=scheduler,
-        checkpoint=checkpoint,
-        progress=progress,
-        max_neurons=max_neurons,
-    )
+    options = dict(workers=workers, scheduler=scheduler, checkpoint=checkpoint, progress=progress)
+    records, counts = run(n, range(low, top + 1), delays, **options, max_neurons=max_neurons)
     classes = _classes(n, delays, records)
     minimal = [r for r in records if r["evidence"]["method"] != "not minimal"]
     status = Counter(Evidence.from_dict(r["evidence"]).status for r in records)
@@ -316,12 +281,7 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
             evidence = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
             reps = sorted(
                 evidence,
-                key=lambda p: (
-                    evidence[p].sort_rank,
-                    not evidence[p].proved,
-                    p.size,
-                    p.mask,
-                ),
+                key=lambda p: (evidence[p].sort_rank, not evidence[p].proved, p.size, p.mask),
             )
             first = recs[0]
             found.append(
@@ -334,14 +294,11 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
                     n_branches=first["branches"],
                 )
             )
-    found.sort(
-        key=lambda c: (
-            c["evidence"].sort_rank,
-            c["n_neurons"],
-            c["n_synapses"],
-            c["n_branches"],
-            c["representatives"][0].size,
-            c["representatives"][0].mask,
-        )
-    )
+
+    def rank(c):
+        first = c["representatives"][0]
+        counts = (c["n_neurons"], c["n_synapses"], c["n_branches"])
+        return (c["evidence"].sort_rank, *counts, first.size, first.mask)
+
+    found.sort(key=rank)
     return tuple(CircuitClass(n, delays, label=f"A{i + 1}", **c) for i, c in enumerate(found))

@@ -1,40 +1,19 @@
 r"""Every circuit class that realizes one controller :math:`G`, with its compatibility, ranked.
 
-:func:`circuits_for` factors :math:`G = G_3 G_2 G_1` along the delays and
-asks, class by class of the order-:math:`n` atlas, whether the class
-realizes :math:`G_2` for *some* section poles :math:`\epsilon` and gains
-:math:`C`:
-
-* a class that realizes the :math:`G_2` of generic (seeded random)
-  :math:`\epsilon` is listed with those values (the universal classes, and
-  others whose refuted region this :math:`G` avoids, e.g. a triangular
-  :math:`F` when :math:`G`'s poles are real);
-* a **degenerate** class (generic rank below :math:`2n`) can still realize
-  :math:`G_2` on a special set of :math:`\epsilon`. With :math:`G = \nu(z) /
-  \delta(z)` (so :math:`G_2 = \mu\, \nu Z / \delta`, :math:`Z = \prod (z -
-  \epsilon_i)`, :math:`\mu = 1/\prod C_i`), the unknowns are the pattern's
-  entries, the :math:`\epsilon_i` and :math:`\mu`, and the equations are
-  :math:`\det(zI - F) = \delta` and :math:`M \operatorname{adj}(zI - F) H =
-  \mu(\nu Z - \nu_{\mathrm{lead}} \delta)`, where :math:`\mu = 1` loses
-  nothing (scaling :math:`M` keeps the pattern, so the reachable :math:`b`
-  form a cone). A real point with every entry nonzero and no cancellation between :math:`Z` and
-  :math:`\delta` is found by Gauss-Newton and proved to exist by the Krawczyk
-  test (:func:`~symctl.circuitatlas.certify.certified_point`). Only section poles
-  inside the unit circle are accepted (:data:`STABLE`): an unstable
-  :math:`G_1` or :math:`G_3` cancelled by a zero of :math:`G_2` would hide an
-  unstable mode in the circuit. A class that needs unstable sections is left out. The paper's
-  simplified circuits come out here, e.g. the controllable canonical circuit
-  without :math:`M_1` at :math:`K_2 + \epsilon_1 \epsilon_3 = 0`.
-
-Each candidate carries the compatibility verdict of the whole
-:math:`G_3 G_2 G_1` structure on the delay graph (when one is given), and the
-list is ranked by the whole circuit's neurons, then synapses.
-
->>> import symctl
->>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
->>> found = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))
->>> found[0].n_neurons, found[0].compatible
-(4, True)
+:func:`circuits_for` factors :math:`G = G_3 G_2 G_1` along the delays and asks, class by class
+of the order-:math:`n` atlas, whether the class realizes :math:`G_2` for *some* section poles
+:math:`\epsilon` and gains :math:`C`: at generic (seeded random) :math:`\epsilon`, or, for a
+**degenerate** class (generic rank below :math:`2n`), on a special set. With :math:`G = \nu /
+\delta`, :math:`Z = \prod (z - \epsilon_i)`, the unknowns are the pattern's entries and the
+:math:`\epsilon_i`, and the equations are :math:`\det(zI - F) = \delta` and :math:`M
+\operatorname{adj}(zI - F) H = \nu Z - \nu_{\mathrm{lead}} \delta` (the gain :math:`\mu =
+1/\prod C_i` set to 1 loses nothing: scaling :math:`M` keeps the pattern). A real point with
+every entry nonzero and no cancellation between :math:`Z` and :math:`\delta` is found by
+Gauss-Newton and proved by the Krawczyk test
+(:func:`~symctl.circuitatlas.certify.certified_point`). Only section poles inside :data:`STABLE`
+are accepted: an unstable section cancelled by a zero of :math:`G_2` would hide an unstable
+mode. The paper's simplified circuits come out here, e.g. the controllable canonical circuit
+without :math:`M_1` at :math:`K_2 + \epsilon_1 \epsilon_3 = 0`.
 """
 
 from __future__ import annotations
@@ -65,8 +44,7 @@ MAX_ORDER = 3
 """Largest order of :math:`G_2` (the exhaustive atlas)."""
 
 STABLE = 0.999
-"""Section poles are searched inside this radius: G1 and G3 stay stable, so no unstable
-pole of a section is cancelled by a zero of G2 (an internally stable controller)."""
+"""Section poles lie inside this radius (an internally stable controller: module text)."""
 
 
 @dataclass(frozen=True)
@@ -77,8 +55,7 @@ class CandidateCircuit(DictMixin):
     ----------
     circuit_class : CircuitClass
     degenerate : bool
-        True when the class needs special section poles (its generic rank is
-        below :math:`2n`).
+        True when the class needs special section poles (generic rank below :math:`2n`).
     eps, C : tuple
         The section poles and gains used (sensor sections first).
     factorization : Factorization
@@ -87,10 +64,8 @@ class CandidateCircuit(DictMixin):
         The realization of :math:`G_2` with the class's pattern.
     check : RealizationCheck
         Its check against :math:`G_2` (exact, or numeric for floats).
-    structure : Structure
-        The whole controller's structure.
-    circuit : Circuit
-        The whole controller's circuit (neurons placed when compatible).
+    structure, circuit : Structure, Circuit
+        The whole controller's (neurons placed when compatible).
     compatibility : CompatibilityResult or None
         The verdict on the delay graph (None without one).
     method : str
@@ -101,8 +76,8 @@ class CandidateCircuit(DictMixin):
     >>> import symctl
     >>> G = -0.046 / (symctl.z**2 + 0.58 * symctl.z + 0.352)
     >>> best = symctl.circuits_for(G, symctl.DelayGraph.chain([1, 1]))[0]
-    >>> best.degenerate, best.n_neurons, bool(best.check)
-    (True, 4, True)
+    >>> best.degenerate, best.n_neurons, bool(best.check), best.compatible
+    (True, 4, True, True)
     """
 
     circuit_class: CircuitClass
@@ -151,13 +126,12 @@ def circuits_for(
     atlas=None,
     rng=0,
 ) -> tuple[CandidateCircuit, ...]:
-    r"""Every circuit class of the atlas that realizes the controller ``G``, ranked (module text).
+    """Every circuit class of the atlas that realizes the controller ``G``, ranked (module text).
 
     Parameters
     ----------
     G : DiscreteTF or sympy expression in ``z``
-        A SISO controller with numeric coefficients (floats are taken as the
-        exact rationals they are), e.g. ``controller_tf(2)`` with its gains.
+        A SISO controller with numeric coefficients (floats taken as the exact rationals they are).
     graph : DelayGraph, optional
         The delay graph each candidate is checked against.
     sensor_delay, actuator_delay : int
@@ -165,14 +139,12 @@ def circuits_for(
     atlas : Atlas, optional
         The atlas of :math:`G_2`'s order (built when not given).
     rng : int, numpy Generator or None, default 0
-        Seeds the generic section poles and the numeric searches (an int
-        seed >= 0 gives the same circuits every time; ``seed=`` is its
-        deprecated name).
+        Seeds the generic section poles and the numeric searches (``seed=`` is deprecated).
 
     Returns
     -------
     tuple of CandidateCircuit
-        Ranked by neurons, then synapses; the minimum-neuron circuit first.
+        Ranked by neurons, then synapses.
 
     Raises
     ------
@@ -297,7 +269,7 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
 
 
 def _floats(R: Realization) -> Realization:
-    """R with algebraic (non-rational) entries as 30-digit floats, for checks and drawings."""
+    """R with algebraic entries as 30-digit floats, for checks and drawings."""
     if all(v.is_Rational or not v.is_number for m in (R.F, R.H, R.M, R.N) for v in m):
         return R
     F, H, M, N = (m.evalf(30) for m in (R.F, R.H, R.M, R.N))

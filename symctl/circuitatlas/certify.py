@@ -1,16 +1,11 @@
-r"""Certified real roots of square polynomial systems: Newton from random starts, then Krawczyk.
+r"""Certified real roots of polynomial systems: Newton from random starts, then Krawczyk.
 
-A real root found in floating point is **proved** to exist by the Krawczyk
-test (Krawczyk 1969; Moore 1977) in ball arithmetic (python-flint ``arb``):
-for a box :math:`X` around the approximate root :math:`\tilde x`, any matrix
-:math:`Y` and the interval Jacobian :math:`J(X)`,
-
-.. math:: K(X) = \tilde x - Y f(\tilde x) + (I - Y J(X))(X - \tilde x).
-
-If :math:`K(X)` lies in the interior of :math:`X`, then :math:`f` has exactly
-one root in :math:`X`. The box is real, so the root is real, and a coordinate
-whose interval excludes 0 is nonzero at the root. Every evaluation is in
-rigorous ball arithmetic on the exact rational coefficients.
+A real root found in floating point is **proved** to exist by the Krawczyk test (Krawczyk 1969;
+Moore 1977) in ball arithmetic (python-flint ``arb``, on the exact rational coefficients): for a
+box :math:`X` around :math:`\tilde x`, any matrix :math:`Y` and the interval Jacobian
+:math:`J(X)`, if :math:`K(X) = \tilde x - Y f(\tilde x) + (I - Y J(X))(X - \tilde x)` lies in
+the interior of :math:`X`, then :math:`f` has exactly one root in :math:`X`; it is real, and a
+coordinate whose interval excludes 0 is nonzero there.
 
 >>> import sympy as sp
 >>> from symctl.circuitatlas.certify import certified_real_root
@@ -67,7 +62,7 @@ def _compile(eqs, gens):
 
 
 class _Floats:
-    """The system and its Jacobian in floats, from one vector of monomials per point."""
+    """The system and its Jacobian in floats, through one vector of monomials."""
 
     def __init__(self, f, J):
         polys = [*f, *(p for row in J for p in row)]
@@ -137,6 +132,17 @@ def _krawczyk(f, J, system, x) -> CertifiedRoot | None:
     return None
 
 
+def _converged(eqs, gens, seed, starts, scale):
+    """The compiled system and each point Newton converges to from seeded random starts."""
+    f, J = _compile(eqs, gens)
+    system = _Floats(f, J)
+    rng = np.random.default_rng(seed)
+    for _ in range(starts):
+        x = _newton(system, rng.normal(0, scale, len(gens)))
+        if x is not None:
+            yield f, J, system, x
+
+
 def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale: float = 2.0):
     """A real root of the square system ``eqs = 0`` in ``gens``, proved by Krawczyk; or None.
 
@@ -154,24 +160,15 @@ def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale
     Returns
     -------
     CertifiedRoot or None
-        A root with every coordinate nonzero when one is found (otherwise
-        the first certified root, with ``nonzero`` False); None when no run
-        converged to a certified root (no proof either way).
+        A root with every coordinate nonzero when one is found, else the first certified root
+        (``nonzero`` False); None when no run converged to a certified root.
     """
     if len(eqs) != len(gens):
         raise ValueError("certified_real_root: the system must be square")
-    f, J = _compile(eqs, gens)
-    system = _Floats(f, J)
-    rng = np.random.default_rng(seed)
     fallback = None
-    for _ in range(starts):
-        x = _newton(system, rng.normal(0, scale, len(gens)))
-        if x is None:
-            continue
+    for f, J, system, x in _converged(eqs, gens, seed, starts, scale):
         root = _krawczyk(f, J, system, x)
-        if root is None:
-            continue
-        if root.nonzero:
+        if root is not None and root.nonzero:
             return root
         fallback = fallback or root
     return fallback
@@ -180,32 +177,18 @@ def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale
 def certified_point(
     eqs, gens, *, seed: int = 0, starts: int = STARTS, scale: float = 1.0, accept=None
 ):
-    """A real point of ``eqs = 0`` (as many or more unknowns than equations), proved by Krawczyk.
+    """A real point of ``eqs = 0`` (at least as many unknowns as equations), proved by Krawczyk.
 
-    Gauss-Newton with minimum-norm steps finds a point of the solution set; the
-    unknowns beyond the equations' count are then fixed at their values there
-    (the columns a pivoted QR of the Jacobian leaves out), and the remaining
-    square system is certified by :func:`certified_real_root`'s Krawczyk test
-    around the point.
-
-    ``accept(values)`` (optional) rejects points, e.g. section poles outside
-    the unit circle; the search then goes on from the next start.
-
-    Returns
-    -------
-    dict or None
-        ``{"values": {gen: float}, "fixed": [gen, ...], "radius": float}``, or
-        None when no run converged to a certified point.
+    Gauss-Newton with minimum-norm steps finds a point; the unknowns a pivoted QR of the
+    Jacobian leaves out are fixed there, and the square rest is certified. ``accept(values)``
+    may reject a point (the search goes on). Returns ``{"values": {gen: float}, "fixed": [gen,
+    ...], "radius": float}`` or None.
     """
     from scipy.linalg import qr
 
-    f, J = _compile(eqs, gens)
-    system = _Floats(f, J)
-    rng = np.random.default_rng(seed)
     m = len(eqs)
-    for _ in range(starts):
-        x = _newton(system, rng.normal(0, scale, len(gens)))
-        if x is None or (accept is not None and not accept(dict(zip(gens, x, strict=True)))):
+    for _f, _J, system, x in _converged(eqs, gens, seed, starts, scale):
+        if accept is not None and not accept(dict(zip(gens, x, strict=True))):
             continue
         _, _, piv = qr(system(x)[1], pivoting=True)
         free = sorted(piv[:m])

@@ -1,18 +1,13 @@
-r"""Circuit classes: patterns whose circuits are the same graph of neurons.
+"""Circuit classes: patterns whose circuits are the same graph of neurons.
 
-The **circuit** of a pattern is :meth:`Circuit.from_structure` of the
-structure (:meth:`Structure.from_realization`, ``delays="branch"`` by default)
-of its realization with one symbol per nonzero entry and a symbol :math:`N`.
-Its **graph** has a node per circuit input, neuron and output; a neuron is
-labelled with the delays of its self-dynamics terms, and an edge
-``source -> target`` with the sorted delays of the synapses between them
-(two paths from :math:`x_2` to :math:`y`, as in the controllable canonical
-circuit, are one edge labelled ``(0, 1)``). Weights do not count. Patterns are
-in the same **class** when their graphs are isomorphic with the labels kept
-(networkx's VF2, after a Weisfeiler-Lehman hash to bucket them).
+A pattern's **circuit** is :meth:`Circuit.from_structure` of its symbolic realization's
+structure. Its **graph** has a node per input, neuron and output (a neuron labelled with its
+self-dynamics delays) and an edge per connected pair labelled with the sorted delays of its
+synapses; weights do not count. Patterns whose graphs are isomorphic with the labels kept (VF2,
+after a Weisfeiler-Lehman hash) are one **class**.
 
 >>> from symctl.circuitatlas.pattern import Pattern
->>> from symctl.circuitatlas.circuitclass import circuit_of, circuit_key
+>>> from symctl.circuitatlas.circuitclass import circuit_of
 >>> c = circuit_of(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
 >>> c.n_neurons, len(c.synapses)
 (2, 4)
@@ -49,7 +44,7 @@ def circuit_of(pattern: Pattern, delays: str = "branch") -> Circuit:
 
 
 def circuit_graph(circuit: Circuit) -> nx.DiGraph:
-    """The labelled graph whose isomorphism class is the circuit class (see the module text)."""
+    """The labelled graph whose isomorphism class is the circuit class (module text)."""
     graph = nx.DiGraph()
     for u in circuit.inputs:
         graph.add_node(u, label="input")
@@ -68,7 +63,7 @@ def circuit_graph(circuit: Circuit) -> nx.DiGraph:
 
 
 def circuit_key(graph: nx.DiGraph) -> str:
-    """A Weisfeiler-Lehman hash: equal for isomorphic circuit graphs (not always conversely)."""
+    """A Weisfeiler-Lehman hash: equal for isomorphic circuit graphs."""
     with warnings.catch_warnings():  # networkx 3.5 notes that directed hashes changed
         warnings.simplefilter("ignore", UserWarning)
         return nx.weisfeiler_lehman_graph_hash(graph, node_attr="label", edge_attr="label")
@@ -85,7 +80,7 @@ def same_circuit(g1: nx.DiGraph, g2: nx.DiGraph) -> bool:
 
 @dataclass(frozen=True)
 class CircuitClass:
-    r"""One circuit class of an atlas: its patterns, its circuit, its counts and its universality.
+    """One circuit class of an atlas: its patterns, its circuit, its counts and its universality.
 
     Attributes
     ----------
@@ -93,17 +88,14 @@ class CircuitClass:
     delays : str
         The structure convention (``"branch"`` or ``"state"``).
     representatives : tuple of Pattern
-        The canonical patterns of the class (one per state-permutation orbit),
-        proved universal ones first, then conjectured ones, then by size.
+        One canonical pattern per state-permutation orbit, proved universal ones first.
     evidence : Evidence
-        The class's verdict: a proved universal pattern's evidence when it
-        has one, else a conjectured one's, else the first pattern's.
+        The class's verdict (its best pattern's).
     pattern_evidence : mapping of Pattern to Evidence
     n_neurons, n_synapses, n_branches : int
-        Neurons, synapses onto neurons (self-dynamics excluded) and axon
-        branches (of neurons and inputs) of the circuit.
+        Neurons, synapses onto neurons (self-dynamics excluded) and axon branches.
     label : str
-        ``"A1"``, ``"A2"``, ... in the atlas's order (sparsest first).
+        ``"A1"``, ``"A2"``, ... in the atlas's order.
 
     Examples
     --------
@@ -125,13 +117,12 @@ class CircuitClass:
 
     @property
     def universal(self) -> bool | None:
-        """True (proved: every G2 but a measure-zero set), False, or None (conjectured or not
-        decided)."""
+        """True (proved), False (refuted), or None (conjectured or not decided)."""
         return self.evidence.universal
 
     @property
     def conjectured(self) -> bool:
-        """Whether the class is conjectured universal (witnesses at sampled G2, no proof)."""
+        """Whether the class is conjectured universal."""
         return self.evidence.conjectured
 
     @property
@@ -146,16 +137,15 @@ class CircuitClass:
 
     @cached_property
     def circuit(self) -> Circuit:
-        """The circuit of the first representative, with one symbol per weight."""
+        """The circuit of the first representative, one symbol per weight."""
         return circuit_of(self.representatives[0], self.delays)
 
     def realize(self, G2) -> Realization:
         r"""A realization of ``G2`` with one of the class's patterns (every entry nonzero).
 
-        Closed-form patterns take symbolic or numeric ``G2``; the others solve
-        the polynomial equations exactly (a Groebner basis over
-        :math:`\mathbb{Q}`; floats are taken as the exact rationals they are),
-        with entries that may be algebraic numbers (``CRootOf``).
+        A closed form (symbolic ``G2`` allowed), else an exact solve (a Groebner basis over
+        :math:`\mathbb{Q}`; floats taken as the exact rationals they are; entries may be
+        ``CRootOf``).
 
         Parameters
         ----------
@@ -240,7 +230,7 @@ class CircuitClass:
         )
 
     def draw(self, ax=None, *, title: str | None = None):
-        """Draw the class's circuit (a matplotlib Figure); the title gives its counts and verdict."""
+        """Draw the class's circuit (a Figure) titled with its counts and verdict."""
         head = title or (
             f"{self.label}: {self.n_neurons} neurons, {self.n_synapses} synapses ({self.status})"
         )

@@ -1,10 +1,4 @@
-"""The verdict on one pattern's universality, with its method and evidence (plain data for JSON).
-
->>> from symctl.circuitatlas.evidence import CONJECTURED, Evidence
->>> ev = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
->>> bool(ev), ev.verdict, ev.status, ev.sort_rank
-(False, None, 'conjectured', 1)
-"""
+"""The verdict on one pattern's universality, with its method and evidence (plain data for JSON)."""
 
 from __future__ import annotations
 
@@ -26,33 +20,27 @@ ODD_DEGREE = "odd degree"
 class Evidence(Verdict):
     """Why a pattern is (or is not) universal; truthy when it is proved universal.
 
-    The verdict protocol (:class:`~symctl.proof.Verdict`): :attr:`verdict` is
-    :attr:`universal` (True proved, False refuted, None a conjecture or undecided),
-    :attr:`evidence` the details; :attr:`status` says it in words.
-
     Attributes
     ----------
     universal : bool or None
-        True (proved), False (refuted), or None (a conjecture, or not decided).
+        The verdict: True (proved), False (refuted), or None (a conjecture, or not decided).
     method : str
-        One of the methods of :mod:`~symctl.circuitatlas.universality` (``"closed form"``,
-        ``"odd degree"``, ``"lifted"``, ``"conjectured"``, ``"rank"``, ``"real eigenvalues"``,
-        ``"real zeros"``, ``"counterexample"``, ``"not minimal"``, ``"not decided"``).
+        ``"closed form"``, ``"odd degree"``, ``"lifted"``, ``"conjectured"``, ``"rank"``,
+        ``"real eigenvalues"``, ``"real zeros"``, ``"counterexample"``, ``"not minimal"`` or
+        ``"not decided"`` (:mod:`~symctl.circuitatlas.universality`).
     proved : bool
-        Whether the verdict is a proof (closed forms, odd degrees, lifts of proofs and the
-        refutations) or not (conjectures and undecided patterns).
+        Whether the verdict is a proof (not for conjectures and undecided patterns).
     text : str
         One sentence.
     details : mapping
-        The formulas, witnesses or the counterexample (plain data, for JSON).
+        The formulas, witnesses or counterexample (plain data, also :attr:`evidence`).
 
     Examples
     --------
-    >>> from symctl.circuitatlas.pattern import Pattern
-    >>> from symctl.circuitatlas.universality import decide
-    >>> ev = decide(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
-    >>> bool(ev), ev.proved, sorted(ev.details["entries"])
-    (True, True, ['F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]'])
+    >>> from symctl.circuitatlas.evidence import CONJECTURED, Evidence
+    >>> ev = Evidence(None, CONJECTURED, False, "witnesses at sampled G2")
+    >>> bool(ev), ev.verdict, ev.status, ev.sort_rank
+    (False, None, 'conjectured', 1)
     """
 
     universal: bool | None
@@ -65,12 +53,12 @@ class Evidence(Verdict):
 
     @property
     def evidence(self):
-        """The witness or certificate: :attr:`details` (read-only)."""
+        """The witness or certificate: :attr:`details`."""
         return self.details
 
     @property
     def conjectured(self) -> bool:
-        """Whether the pattern is conjectured universal (real realizations at sampled G2 only)."""
+        """Whether the pattern is conjectured universal."""
         return self.method == CONJECTURED
 
     @property
@@ -82,7 +70,7 @@ class Evidence(Verdict):
 
     @property
     def sort_rank(self) -> int:
-        """0 proved universal, 1 conjectured, 2 not decided, 3 refuted (atlases sort by it)."""
+        """0 proved universal, 1 conjectured, 2 not decided, 3 refuted."""
         return 1 if self.conjectured else {True: 0, None: 2, False: 3}[self.universal]
 
     @classmethod

@@ -1,13 +1,9 @@
 r"""The fibre of a pattern over one :math:`G_2`: its polynomial system and its exact real points.
 
-For a pattern (:mod:`symctl.circuitatlas.pattern`) with its spanning-tree entries set
-to 1 (the torus normalization), :func:`_system` gives the unknowns and the
-coefficients of :math:`\det(zI - F)` and :math:`M \operatorname{adj}(zI - F) H` as
-polynomials in them; the fibre over :math:`G_2 = N + b/a` is where they equal
-:math:`a` and :math:`b`. :func:`solve_at` and :func:`real_solutions` find its real
-points exactly: a grevlex Groebner basis over :math:`\mathbb{Q}`, the multiplication
-matrix of a random linear form and its characteristic polynomial, and the Krylov
-basis for the other coordinates (shape position).
+With a pattern's spanning-tree entries set to 1 (the torus normalization), :func:`_system` gives
+the unknowns and the coefficients of :math:`\det(zI - F)` and :math:`M \operatorname{adj}(zI -
+F) H` as polynomials in them; the fibre over :math:`G_2 = N + b/a` is where they equal :math:`a`
+and :math:`b`.
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.fibre import solve_at
@@ -63,15 +59,12 @@ circuit of order 7 needs about 10^5, of order 8 about 10^6)."""
 
 
 def coefficient_polys(F, H, M, ring, *, deadline=None) -> tuple[list, list]:
-    r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of
-    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each, as polynomials of ``ring``.
+    r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of :math:`M
+    \operatorname{adj}(zI - F) H = -\det\begin{bmatrix} zI - F & H \\ M & 0 \end{bmatrix}`,
+    ``n`` each, as polynomials of ``ring`` (generators: :math:`z` and the entries' symbols).
 
-    ``ring`` is a SymPy :func:`~sympy.polys.rings.ring` whose generators include
-    :math:`z` and every symbol of the entries. Both are determinants, expanded by
-    minors (division-free, exact): :math:`\det(zI - F)` and the bordered
-    :math:`M \operatorname{adj}(A) H = -\det\begin{bmatrix} A & H \\ M & 0 \end{bmatrix}`.
-    ``deadline`` (a :class:`~symctl._util.deadline.Deadline`) is checked as the minors
-    grow; :class:`~symctl._util.deadline.Unfinished` when they pass :data:`MAX_TERMS`.
+    Exact, division-free expansion by minors; ``deadline`` is checked as they grow, and
+    :class:`~symctl._util.deadline.Unfinished` raised past :data:`MAX_TERMS` terms.
 
     >>> import sympy as sp
     >>> from sympy.polys.rings import ring
@@ -129,9 +122,7 @@ def _z_coefficients(poly, zi: int, n: int) -> list:
 
 
 def coefficient_polynomials(F, H, M) -> tuple[list[sp.Expr], list[sp.Expr]]:
-    r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of
-    :math:`M \operatorname{adj}(zI - F) H`, ``n`` each: a realization's :math:`a` and :math:`c`
-    (SymPy expressions; see :func:`coefficient_polys`)."""
+    """:func:`coefficient_polys` as SymPy expressions (a realization's :math:`a` and :math:`c`)."""
     symbols = set().union(*(m.free_symbols for m in (F, H, M))) - {z}
     ring, *_ = sp.ring([*sorted(symbols, key=str), z], sp.QQ)
     charpoly, numer = coefficient_polys(F, H, M, ring)
@@ -159,7 +150,7 @@ MAX_FIBRE = 400
 
 
 def _standard_monomials(leads, k: int):
-    """The monomials no leading monomial divides (a basis of the quotient); None past MAX_FIBRE."""
+    """The monomials no leading monomial divides; None past MAX_FIBRE."""
     start = (0,) * k
     seen, todo, out = {start}, [start], []
     while todo:
@@ -178,9 +169,9 @@ def _standard_monomials(leads, k: int):
 
 
 def _quotient(eqs, ring):
-    """Standard monomials and each generator's multiplication matrix (``fmpq_mat``) of the
-    ideal of ``eqs`` (a grevlex Groebner basis over Q); ``([], [])`` when it is the unit
-    ideal, None when it is not zero-dimensional or above :data:`MAX_FIBRE` points."""
+    """Standard monomials and multiplication matrices of the ideal of ``eqs`` (grevlex Groebner
+    basis over Q); ``([], [])`` for the unit ideal, None when not finite or above MAX_FIBRE.
+    """
     basis = groebner(eqs, ring)
     if basis == [ring.one]:
         return [], []
@@ -199,9 +190,14 @@ def _quotient(eqs, ring):
     return monos, mult
 
 
-def _form_matrix(mult, rng):
-    """The multiplication matrix of a random linear form (weights 1 to 9)."""
-    return sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
+def _eliminants(mult, rng, tries: int):
+    """Up to ``tries`` random linear forms (weights 1 to 9): each multiplication matrix whose
+    characteristic polynomial (the eliminant) is squarefree, with that polynomial."""
+    for _ in range(tries):
+        form = sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
+        e = form.charpoly()
+        if e.gcd(e.derivative()).degree() == 0:
+            yield form, e
 
 
 def _sign_changes(values) -> int:
@@ -232,15 +228,13 @@ def _fibre_ring(pattern: Pattern):
 
 
 def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
-    r"""The exact number of real points of the fibre over one rational target, and its degree.
+    """The exact number of real points of the fibre over one rational target, and its degree.
 
-    The quotient ring as in :func:`solve_at`; the characteristic polynomial :math:`e(t)` of a
-    random linear form's multiplication matrix, squarefree (the :math:`d` points are simple
-    and :math:`t` separates them, so the real points are the real roots of :math:`e`, counted
-    by Sturm's theorem); and whether a point has an entry 0 (the determinant of that entry's
-    multiplication matrix is the product of its values at the points). Returns
-    ``{"degree", "real", "zero_entry", "eliminant"}``, or None when the fibre is not finite
-    and reduced.
+    The eliminant :math:`e(t)` of a random linear form (the characteristic polynomial of its
+    multiplication matrix), squarefree: the points are simple and :math:`t` separates them, so
+    the real points are the real roots of :math:`e`, counted by Sturm's theorem; a point has an
+    entry 0 iff that entry's multiplication matrix is singular. Returns ``{"degree", "real",
+    "zero_entry", "eliminant"}``, or None when the fibre is not finite and reduced.
 
     >>> import random
     >>> from symctl.circuitatlas.pattern import Pattern
@@ -256,27 +250,23 @@ def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
     monos, mult = found
     if not monos:
         return {"degree": 0, "real": 0, "zero_entry": False, "eliminant": "1"}
-    for _ in range(tries):
-        e = _form_matrix(mult, rng).charpoly()
-        if e.gcd(e.derivative()).degree() == 0:
-            return {
-                "degree": len(monos),
-                "real": real_root_count(e),
-                "zero_entry": any(M.det() == 0 for M in mult),
-                "eliminant": e.str(var="t"),
-            }
+    for _, e in _eliminants(mult, rng, tries):  # the first squarefree eliminant
+        return {
+            "degree": len(monos),
+            "real": real_root_count(e),
+            "zero_entry": any(M.det() == 0 for M in mult),
+            "eliminant": e.str(var="t"),
+        }
     return None
 
 
 def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
     r"""The real realizations of one rational target, exactly.
 
-    A grevlex Groebner basis over :math:`\mathbb{Q}` gives the fibre's quotient ring; the
-    multiplication matrix of a random linear form :math:`t` has the characteristic polynomial
-    :math:`e(t)`, squarefree when :math:`t` separates the (then simple) solutions; each unknown
-    is :math:`x_i = g_i(t)` (the Krylov basis: shape position). A non-real solution has a
-    non-real :math:`t` (its conjugate is another solution), so the real solutions are the real
-    roots of :math:`e`, isolated in rational intervals.
+    A grevlex Groebner basis over :math:`\mathbb{Q}`, the squarefree eliminant :math:`e(t)` of a
+    random linear form, each unknown :math:`x_i = g_i(t)` (the Krylov basis: shape position). A
+    non-real solution has a non-real :math:`t`, so the real solutions are the real roots of
+    :math:`e`, isolated in rational intervals.
 
     Parameters
     ----------
@@ -292,9 +282,8 @@ def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
     Returns
     -------
     dict or None
-        ``{"degree": d, "real": [...], "eliminant": str}`` with one item per
-        real solution (its isolating interval, and whether every entry is
-        nonzero there); None when the fibre is not finite and reduced.
+        ``{"degree": d, "real": [...], "eliminant": str}``, one item per real solution (its
+        interval, and whether every entry is nonzero); None when not finite and reduced.
     """
     rng = rng or random.Random(0)
     unknowns, _slots, values, _, _ = _system(pattern)
@@ -320,11 +309,7 @@ def real_solutions(eqs, free, rng, tries: int = 3):
         return {"degree": 0, "real": [], "eliminant": "1"}
     d = len(monos)
     t = sp.Symbol("t_")
-    for _ in range(tries):
-        Mt = _form_matrix(mult, rng)
-        ef = Mt.charpoly()
-        if ef.gcd(ef.derivative()).degree() > 0:
-            continue
+    for Mt, ef in _eliminants(mult, rng, tries):
         e = sp.Poly([from_fmpq(q) for q in ef.coeffs()[::-1]], t)
         # the Krylov basis 1, t, .., t^(d-1) of the quotient (1 is the first standard monomial)
         krylov = [fmpq_mat(d, 1, [1] + [0] * (d - 1))]
@@ -345,12 +330,5 @@ def real_solutions(eqs, free, rng, tries: int = 3):
                 sp.Poly(sp.gcd(e_expr, gi), t).count_roots(lo, hi) == 0 for gi in g.values()
             )
             real.append({"interval": [str(lo), str(hi)], "entries_nonzero": nonzero})
-        return {
-            "degree": d,
-            "real": real,
-            "eliminant": str(e_expr),
-            "_g": g,
-            "_e": e_expr,
-            "_t": t,
-        }
+        return {"degree": d, "real": real, "eliminant": str(e_expr), "_g": g, "_e": e_expr, "_t": t}
     return None

@@ -1,34 +1,26 @@
 r"""The odd-degree proof: a pattern whose generic fibre has odd degree is universal.
 
 Take a pattern of :math:`3n` entries (:math:`2n` unknowns after the torus normalization,
-:math:`2n` equations; :mod:`~symctl.circuitatlas.fibre`) and its equations over the field
-:math:`K = \mathbb{Q}(a, c)` of the generic target. A lex Groebner basis over :math:`K` in
-**shape position**, :math:`x_i - r_i(u)` for every unknown but one, :math:`u`, and
-:math:`f(u)` monic of degree :math:`D` (:math:`r_i, f` with coefficients in :math:`K`), says
+:math:`2n` equations; :mod:`~symctl.circuitatlas.fibre`) over the field :math:`K = \mathbb{Q}(a,
+c)` of the generic target. A lex Groebner basis over :math:`K` in **shape position**, :math:`x_i
+- r_i(u)` for every unknown but one, :math:`u`, and :math:`f(u)` monic of degree :math:`D`, says
 that for every target outside a proper algebraic set (where a coefficient's denominator
-vanishes) the fibre is the :math:`D` points :math:`(r(u_j), u_j)` at the roots :math:`u_j`
-of :math:`f`. Then, with :math:`D` odd:
+vanishes) the fibre is the :math:`D` points :math:`(r(u_j), u_j)` at the roots of :math:`f`.
+Then, with :math:`D` odd:
 
-1. **Simple points.** The discriminant of :math:`f` is a rational function of :math:`(a, c)`,
-   nonzero at a rational target :math:`t_0` (checked), so not identically zero: almost every
-   target has :math:`D` distinct roots.
-2. **A real point.** A real polynomial of odd degree has a real root :math:`u^*`, and the
-   point :math:`r(u^*)` is real (the coefficients are real at a real target).
-3. **Every entry nonzero.** For each unknown :math:`x_i` the resultant of :math:`f` and
-   :math:`r_i` (and :math:`f(0)` for :math:`u`) is nonzero at :math:`t_0` (checked), so it is
-   not identically zero: almost every target has no root where an entry vanishes. The
-   spanning-tree entries are 1.
+1. **Simple points.** The discriminant of :math:`f` is nonzero at a rational target
+   :math:`t_0` (checked), so almost every target has :math:`D` distinct roots.
+2. **A real point.** A real polynomial of odd degree has a real root :math:`u^*`, and
+   :math:`r(u^*)` is real at a real target.
+3. **Every entry nonzero.** For each unknown the resultant of :math:`f` and :math:`r_i` (and
+   :math:`f(0)` for :math:`u`) is nonzero at :math:`t_0` (checked), so almost every target has
+   no root where an entry vanishes; the spanning-tree entries are 1.
 
-So almost every real :math:`G_2` has a real realization with exactly this support: the
-pattern is universal. The basis is SymPy's Buchberger algorithm over :math:`K`, the variable
-order chosen at :math:`t_0` (the first unknown whose lex basis over :math:`\mathbb{Q}` is in
-shape position with :math:`D` points); each basis element is checked to vanish on the fibre
-at random rational points of the unknowns. An even :math:`D`, a basis not in shape position,
-or a computation beyond :data:`CPU_SECONDS` of CPU time proves nothing (the proofs run in a
-child process that stops itself on a CPU timer, kept for the next proofs so that SymPy is
-imported once: SymPy's algorithm cannot be stopped from another thread); an odd degree left
-unproved stays a conjecture, an even one goes on to the screen
-(:mod:`~symctl.circuitatlas.screen`).
+So the pattern is universal. The variable order is chosen at :math:`t_0` (an unknown whose lex
+basis over :math:`\mathbb{Q}` is in shape position); each basis element is checked to vanish on
+the fibre at random rational points. An even :math:`D`, no shape position, or more than
+:data:`CPU_SECONDS` of CPU proves nothing (the proofs run in a child process that stops itself
+on a CPU timer: SymPy cannot be stopped from another thread).
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.odddegree import odd_degree_proof
@@ -74,8 +66,7 @@ def _rationals(rng: random.Random, k: int) -> list[sp.Rational]:
 
 
 def _draws(seed: int, mask: int) -> random.Random:
-    """The random stream of one proof: the fixed values first (:func:`_fixed_values`), then
-    the rational target and the checks; the parent reads the same fixed values from it."""
+    """The random stream of one proof: the fixed values first, then the target and the checks."""
     return random.Random(seed * 7919 + mask)
 
 
@@ -85,11 +76,8 @@ def _fixed_values(fixed, rng: random.Random) -> dict[int, sp.Integer]:
 
 
 def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 8):
-    """The odd-degree proof of a pattern above :math:`3n` entries through a slice, or None.
-
-    Up to ``tries`` choices of extra entries (drawn from ``seed``) are fixed; the first slice
-    whose fibre over a random rational target has an odd number of points goes to
-    :func:`odd_degree_proof`.
+    """The odd-degree proof of a pattern above :math:`3n` entries through a slice (up to
+    ``tries`` choices of entries fixed, the first whose fibre has odd degree), or None.
     """
     n = pattern.n
     tree = set(pattern.tree_slots() or ())
@@ -130,8 +118,7 @@ class _OutOfCPU(Exception):
 
 @contextlib.contextmanager
 def _cpu_limit(seconds: float):
-    """Raise :class:`_OutOfCPU` inside the block once it has used ``seconds`` of CPU time
-    (in the child process: its main thread)."""
+    """Raise :class:`_OutOfCPU` once the block has used ``seconds`` of CPU time."""
 
     def stop(*_):
         raise _OutOfCPU
@@ -145,9 +132,9 @@ def _cpu_limit(seconds: float):
 
 
 def _orders(unknowns, eqs, t0: dict, seconds: float) -> list[tuple[list, int]]:
-    """Lex orders (each unknown last, the others forward or backward) whose basis at ``t0`` is
-    in shape position, with its degree: the smallest basis first (a cheap generic one); those
-    found within ``seconds`` of CPU time."""
+    """Lex orders (each unknown last) in shape position at ``t0``, with their degree, smallest
+    basis first; those found within ``seconds`` of CPU.
+    """
     at = [sp.expand(e.xreplace(t0)) for e in eqs]
     found = []
     try:
@@ -181,8 +168,7 @@ def _generic_basis(eqs, orders, params, seconds: float):
 def _prove(
     n: int, mask: int, seed: int, fixed: tuple[int, ...] = (), seconds: float = CPU_SECONDS
 ) -> dict:
-    """The proof of one pattern (see the module text), as plain data; the slots ``fixed`` are
-    set to small nonzero integers drawn from ``seed`` (a slice of a bigger pattern)."""
+    """The proof of one pattern (module text) as plain data; slots ``fixed`` set from ``seed``."""
     pattern = Pattern(n, mask)
     unknowns, _, values, charpoly, numer = _system(pattern)
     rng = _draws(seed, mask)
@@ -246,21 +232,18 @@ def odd_degree_proof(
     pattern : Pattern
         A pattern of :math:`3n` entries whose coefficient map has full generic rank.
     fixed : sequence of int, optional
-        Slots of a pattern above :math:`3n` entries set to small nonzero integers (drawn from
-        ``seed``) so that :math:`2n` unknowns remain: a proof for that slice proves the
-        pattern (a real realization with those entries fixed, every other entry nonzero).
+        Slots of a bigger pattern set to small nonzero integers (drawn from ``seed``) so that
+        :math:`2n` unknowns remain: a proof for the slice proves the pattern.
     seed : int
         Seeds the rational target :math:`t_0`, the fixed values and the checks.
     cpu_seconds : float
-        CPU time the proof may take (in a child process kept for the next proofs: SymPy's
-        algorithm cannot be stopped from a thread, the child stops itself).
+        CPU time the proof may take (in the proving child process).
 
     Returns
     -------
     dict or None
-        ``{"proved": True, "degree", "variable", "eliminant", "target"}`` when proved;
-        ``{"proved": False, "why": ...}`` when the computation ended without a proof (an
-        even degree, no shape position); None when it ran out of time or failed.
+        ``{"proved": True, "degree", "variable", "eliminant", "target"}``; ``{"proved": False,
+        "why"}`` when it ended without a proof; None when it ran out of time or failed.
     """
     cpu_seconds = bounded_number(cpu_seconds, "cpu_seconds", 1e-6, 3600)
     request = [pattern.n, pattern.mask, seed, list(fixed), cpu_seconds]
@@ -270,8 +253,8 @@ def odd_degree_proof(
 
 @contextlib.contextmanager
 def proving():
-    """Keep the proving child process for the proofs inside the block (a search wraps its
-    patterns in it); it stops when the outermost block ends, so no process is left behind.
+    """Keep the proving child process for the proofs inside the block; it stops when the
+    outermost block ends.
 
     >>> from symctl.circuitatlas.odddegree import proving
     >>> with proving():
@@ -289,9 +272,9 @@ def proving():
 
 
 class _Prover:
-    """One child process per parent process that proves patterns on request (a JSON line in,
-    one out), started on the first request and again after a failure: SymPy is imported once.
-    A request that outlives its time (the child's own CPU limits failed) kills the child."""
+    """One child process that proves patterns on request (a JSON line in, one out), restarted
+    after a failure; one that outlives its time is killed.
+    """
 
     def __init__(self):
         self.child = None
@@ -312,22 +295,19 @@ class _Prover:
 
     def ask(self, request: list, timeout: float):
         with _LOCK:
-            return self._ask(request, timeout)
-
-    def _ask(self, request: list, timeout: float):
-        if self.child is None or self.child.poll() is not None:
-            self._start()
-        try:
-            self.child.stdin.write(json.dumps(request) + "\n")
-            self.child.stdin.flush()
-            ready, _, _ = select.select([self.child.stdout], [], [], timeout)
-            line = self.child.stdout.readline() if ready else ""
-        except (BrokenPipeError, OSError):
-            line = ""
-        if not line:
-            self.stop()
-            return None
-        return json.loads(line)
+            if self.child is None or self.child.poll() is not None:
+                self._start()
+            try:
+                self.child.stdin.write(json.dumps(request) + "\n")
+                self.child.stdin.flush()
+                ready, _, _ = select.select([self.child.stdout], [], [], timeout)
+                line = self.child.stdout.readline() if ready else ""
+            except (BrokenPipeError, OSError):
+                line = ""
+            if not line:
+                self.stop()
+                return None
+            return json.loads(line)
 
     def stop(self):
         if self.child is not None:
@@ -343,7 +323,7 @@ _LOCK = threading.RLock()
 
 
 def _serve() -> None:
-    """The child: prove each request read from stdin, one JSON line out per line in."""
+    """The child: one JSON line out per request line in."""
     sys.setrecursionlimit(10_000)
     for line in sys.stdin:
         n, mask, seed, fixed, seconds = json.loads(line)

@@ -1,33 +1,21 @@
 r"""Patterns of realizations: which entries of :math:`(F, H, M)` are nonzero.
 
-A realization :math:`(F, H, M, N)` of a SISO :math:`G_2` of order :math:`n`
-has :math:`n^2 + 2n` entries in :math:`F` (``n x n``), :math:`H` (``n x 1``) and
-:math:`M` (``1 x n``). Its **pattern** is the set of the nonzero ones, kept here
-as a bit mask over the *slots* ``F[1,1], F[1,2], .., F[n,n], H[1], .., H[n],
-M[1], .., M[n]`` in that order (bit ``k`` is slot ``k``). :math:`N \ne 0` is in
-every realization of the atlas, so it is not part of the pattern.
+A pattern is a bit mask over the :math:`n^2 + 2n` *slots* ``F[1,1], .., F[n,n], H[1], .., H[n],
+M[1], .., M[n]`` (bit ``k`` is slot ``k``); :math:`N \ne 0` always. Two symmetries act:
 
-Two symmetries act on patterns and on realizations with a given pattern:
-
-* **state permutations** :math:`x \mapsto \Pi x` move the slots
-  (:math:`F \mapsto \Pi F \Pi^\top`, :math:`H \mapsto \Pi H`,
-  :math:`M \mapsto M \Pi^\top`) and give the same circuit with its neurons
-  renamed; :meth:`Pattern.canonical` picks the smallest mask of the orbit;
-* the **torus** of diagonal similarities :math:`D = \mathrm{diag}(d_1..d_n)`,
-  :math:`d_i \ne 0`, keeps the pattern and :math:`G_2`: it scales
-  :math:`F_{ij} \mapsto F_{ij} d_j / d_i`, :math:`H_i \mapsto H_i / d_i`,
-  :math:`M_j \mapsto M_j d_j`. On the graph whose nodes are the states and one
-  node ``o`` for the input and output together, with an edge per off-diagonal
-  entry, the entries of a spanning tree can all be set to 1 by a real
-  :math:`D` (:meth:`Pattern.tree_slots`); the diagonal of :math:`F` does not
-  move.
+* **state permutations** (:math:`F \mapsto \Pi F \Pi^\top`, :math:`H \mapsto \Pi H`,
+  :math:`M \mapsto M \Pi^\top`) rename the circuit's neurons; :meth:`Pattern.canonical` picks
+  the smallest mask of the orbit;
+* the **torus** of diagonal similarities :math:`D` keeps the pattern and :math:`G_2`
+  (:math:`F_{ij} \mapsto F_{ij} d_j / d_i`, :math:`H_i \mapsto H_i / d_i`, :math:`M_j \mapsto
+  M_j d_j`): on the graph of the states and one node ``o`` for input and output, with an edge
+  per off-diagonal entry, a real :math:`D` sets a spanning tree's entries to 1
+  (:meth:`Pattern.tree_slots`).
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
->>> P.size, P.text
-(6, '01 11 | 01 | 11')
->>> P.canonical().text
-'11 10 | 10 | 11'
+>>> P.size, P.text, P.canonical().text
+(6, '01 11 | 01 | 11', '11 10 | 10 | 11')
 """
 
 from __future__ import annotations
@@ -66,32 +54,19 @@ def _permutation_maps(n: int) -> tuple[tuple[int, ...], ...]:
     """For each state permutation, the image slot of each slot."""
     maps = []
     for p in itertools.permutations(range(n)):
-        image = []
-        for kind, i, j in _slot_of(n):
-            if kind == "F":
-                image.append(p[i] * n + p[j])
-            elif kind == "H":
-                image.append(n * n + p[i])
-            else:
-                image.append(n * n + n + p[j])
-        maps.append(tuple(image))
+        F = [p[i] * n + p[j] for i in range(n) for j in range(n)]
+        maps.append((*F, *(n * n + p[i] for i in range(n)), *(n * n + n + p[j] for j in range(n))))
     return tuple(maps)
 
 
 def _permute(mask: int, image: tuple[int, ...]) -> int:
-    out = 0
-    k = 0
-    while mask:
-        if mask & 1:
-            out |= 1 << image[k]
-        mask >>= 1
-        k += 1
-    return out
+    return sum(1 << target for k, target in enumerate(image) if mask >> k & 1)
 
 
 @dataclass(frozen=True, order=True)
 class Pattern:
-    r"""The support of :math:`(F, H, M)` of an order-``n`` SISO realization.
+    """The support of :math:`(F, H, M)` of an order-``n`` SISO realization (a value: compares,
+    sorts and hashes by ``(n, mask)``).
 
     Parameters
     ----------
@@ -100,15 +75,10 @@ class Pattern:
     mask : int
         Bit ``k`` set when slot ``k`` (:func:`slot_names`) is nonzero.
 
-    Notes
-    -----
-    Patterns are values: they compare, sort and hash by ``(n, mask)``.
-
     Examples
     --------
     >>> from symctl.circuitatlas.pattern import Pattern
-    >>> P = Pattern(2, 0b11101110)
-    >>> P.slots
+    >>> Pattern(2, 0b11101110).slots
     ('F[1,2]', 'F[2,1]', 'F[2,2]', 'H[2]', 'M[1]', 'M[2]')
     """
 
@@ -127,10 +97,8 @@ class Pattern:
 
     @classmethod
     def from_matrices(cls, F, H, M) -> Pattern:
-        """The pattern of three 0/1 (or any zero/nonzero) arrays ``F`` (n x n), ``H`` (n), ``M`` (n).
+        """The pattern of zero/nonzero arrays ``F`` (n x n), ``H`` (n), ``M`` (n).
 
-        Examples
-        --------
         >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]).mask
         238
@@ -154,8 +122,6 @@ class Pattern:
     def of(cls, R) -> Pattern:
         """The pattern of a SISO realization: its entries that are not identically zero.
 
-        Examples
-        --------
         >>> from symctl import controllable_canonical, z
         >>> from symctl.circuitatlas.pattern import Pattern
         >>> Pattern.of(controllable_canonical(1 + 1 / (z**2 - z / 2 - 1))).text
@@ -191,12 +157,7 @@ class Pattern:
 
     @property
     def n_neurons(self) -> int:
-        """The neurons of its circuit: rows of ``[F H]`` with two or more entries, and the output.
-
-        (:mod:`symctl.neural.circuit`'s rule: an adder of two or more terms is a
-        neuron; :math:`y = Mx + Nu` always has :math:`N \\ne 0` and, when
-        minimal, an entry of :math:`M`.)
-        """
+        """Neurons of its circuit: rows of ``[F H]`` with two or more entries, and the output."""
         F, H, _M = self.arrays()
         return 1 + sum(sum(row) + h >= 2 for row, h in zip(F, H, strict=True))
 
@@ -205,7 +166,7 @@ class Pattern:
         return _slot_of(self.n)[k]
 
     def arrays(self) -> tuple[list[list[int]], list[int], list[int]]:
-        """``F``, ``H``, ``M`` as 0/1 lists (rows of ``F``, then ``H`` and ``M`` as flat lists)."""
+        """``F`` (rows), ``H`` and ``M`` as 0/1 lists."""
         n = self.n
         bits = [self.mask >> k & 1 for k in range(n * n + 2 * n)]
         return (
@@ -216,27 +177,23 @@ class Pattern:
 
     @property
     def F(self) -> sp.ImmutableMatrix:
-        """The support of ``F`` as a 0/1 matrix (n x n).
+        """The support of ``F`` as a 0/1 matrix (``H``, ``M``: a column and a row).
 
-        Examples
-        --------
         >>> from symctl.circuitatlas.pattern import Pattern
         >>> P = Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1])
-        >>> P.F, P.H.T, P.M
-        (Matrix([
-        [0, 1],
-        [1, 1]]), Matrix([[0, 1]]), Matrix([[1, 1]]))
+        >>> P.F.tolist(), P.H.T.tolist(), P.M.tolist()
+        ([[0, 1], [1, 1]], [[0, 1]], [[1, 1]])
         """
         return sp.ImmutableMatrix(self.arrays()[0])
 
     @property
     def H(self) -> sp.ImmutableMatrix:
-        """The support of ``H`` as a 0/1 column (n x 1)."""
+        """The support of ``H`` as a 0/1 column."""
         return sp.ImmutableMatrix(self.n, 1, self.arrays()[1])
 
     @property
     def M(self) -> sp.ImmutableMatrix:
-        """The support of ``M`` as a 0/1 row (1 x n)."""
+        """The support of ``M`` as a 0/1 row."""
         return sp.ImmutableMatrix(1, self.n, self.arrays()[2])
 
     @property
@@ -271,12 +228,8 @@ class Pattern:
         return self.n == other.n and other.mask & ~self.mask == 0
 
     def tree_slots(self) -> tuple[int, ...] | None:
-        """Slots of a spanning tree of the torus graph, whose entries a diagonal similarity sets to 1.
-
-        Nodes are the states and ``o`` (input and output); each nonzero
-        off-diagonal slot is an edge. None when the graph is not connected
-        (then some state is cut off from the input and the output, and no
-        realization with this pattern is minimal).
+        """Slots of a spanning tree of the torus graph (module text), or None when it is not
+        connected (then no realization with this pattern is minimal).
         """
         graph = nx.Graph()
         graph.add_nodes_from(["o", *range(self.n)])
@@ -291,7 +244,7 @@ class Pattern:
         return tuple(sorted(d["slot"] for _, _, d in tree.edges(data=True)))
 
     def component_sizes(self) -> tuple[int, ...]:
-        """Sizes of the strongly connected components of ``F``'s graph (edge ``j -> i`` for F[i,j])."""
+        """Sizes of the strongly connected components of ``F``'s graph."""
         graph = nx.DiGraph()
         graph.add_nodes_from(range(self.n))
         for k in self.indices:
@@ -301,7 +254,7 @@ class Pattern:
         return tuple(sorted(len(c) for c in nx.strongly_connected_components(graph)))
 
     def symbols(self) -> dict[int, sp.Symbol]:
-        """One symbol per nonzero slot, named like the slot (``F_{12}`` for ``F[1,2]``)."""
+        """One symbol per nonzero slot, named like the slot (``F_12`` for ``F[1,2]``)."""
         out = {}
         for k in self.indices:
             kind, i, j = self.where(k)

@@ -1,37 +1,25 @@
 r"""The exact generic-rank test: how many of :math:`G_2`'s coefficients a pattern can move.
 
-A pattern with :math:`k` nonzero slots defines the polynomial map
-:math:`\varphi: \mathbb{R}^k \to \mathbb{R}^{2n}` from its entries to the
-coefficients of :math:`a(z) = \det(zI - F)` (monic, :math:`n` free) and of
-:math:`b(z) = M \operatorname{adj}(zI - F) H` (degree below :math:`n`). The
-pattern can be universal only if :math:`\varphi` is dominant, i.e. its
-Jacobian has generic rank :math:`2n`; otherwise its image is a set of
-dimension below :math:`2n`, of measure zero.
+A pattern with :math:`k` nonzero slots maps its entries to the :math:`2n` coefficients of
+:math:`a(z) = \det(zI - F)` and :math:`b(z) = M \operatorname{adj}(zI - F) H`. It can be
+universal only if the Jacobian has generic rank :math:`2n`; otherwise the image has measure
+zero.
 
-**Evaluation at points.** The values :math:`a(z_l), b(z_l)` at :math:`n`
-distinct points determine the coefficients (a Vandermonde map), and
-:math:`(a, b) \mapsto (a, g = b/a)` is invertible where :math:`a(z_l) \ne 0`,
-so the Jacobian of :math:`(\log a(z_l), g(z_l))_l` has the same rank. With
-:math:`R = (z_l I - F)^{-1}` its rows are, column by column,
-:math:`\partial \log a / \partial F_{ij} = -R_{ji}` (zero for :math:`H, M`) and
-:math:`\partial g/\partial F_{ij} = (MR)_i (RH)_j`,
-:math:`\partial g/\partial H_i = (MR)_i`, :math:`\partial g/\partial M_j = (RH)_j`.
+**Evaluation at points.** The values at :math:`n` distinct points :math:`z_l` determine the
+coefficients, and :math:`(a, b) \mapsto (a, g = b/a)` is invertible where :math:`a(z_l) \ne 0`,
+so the Jacobian of :math:`(\log a(z_l), g(z_l))_l` has the same rank. With :math:`R = (z_l I -
+F)^{-1}`: :math:`\partial \log a / \partial F_{ij} = -R_{ji}`, :math:`\partial g / \partial
+F_{ij} = (MR)_i (RH)_j`, :math:`\partial g/\partial H_i = (MR)_i`, :math:`\partial g / \partial
+M_j = (RH)_j`.
 
-**Exactness.** Everything is evaluated at random points modulo the prime
-:math:`p = 2^{61} - 1` (python-flint ``nmod_mat``). A rank of :math:`r` mod
-:math:`p` at an integer point is a lower bound of the rank over
-:math:`\mathbb{Q}` there, hence of the generic rank: **full rank mod p is a
-proof**. A smaller rank is confirmed at independent points; by
-Schwartz-Zippel one point misses a nonzero :math:`2n`-minor (a polynomial
-of degree at most :math:`2n^2` in the entries and the :math:`z_l`) with
-probability at most :math:`2n^2/p`. When :math:`k < 3n` the deficiency is
-exact anyway: the torus orbits (:mod:`symctl.circuitatlas.pattern`) lie in the
-fibres and have dimension :math:`n` for a minimal realization, so the rank is
-at most :math:`k - n < 2n`.
-
-The same points decide **generic minimality**: the controllability and
-observability matrices of the pattern's generic realization have rank
-:math:`n` mod :math:`p` (a proof) or not at a few points (Schwartz-Zippel).
+**Exactness.** Everything is evaluated at random points modulo :math:`p = 2^{61} - 1`. A rank
+mod :math:`p` at an integer point is a lower bound of the rank over :math:`\mathbb{Q}`, so
+**full rank mod p is a proof**. A smaller rank is confirmed at independent points; by
+Schwartz-Zippel one point misses a nonzero :math:`2n`-minor (degree at most :math:`2n^2`) with
+probability at most :math:`2n^2/p`. When :math:`k < 3n` the deficiency is exact anyway: the
+torus orbits lie in the fibres with dimension :math:`n`, so the rank is at most :math:`k - n <
+2n`. The same points decide **generic minimality** (controllability and observability matrices
+of rank :math:`n` mod :math:`p`).
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.rank import generic_rank
@@ -58,11 +46,8 @@ POINTS = 3
 
 
 class GenericRank(NamedTuple):
-    """The generic rank of a pattern's coefficient map, and whether it is generically minimal.
-
-    ``exact`` is True when the rank is proved (full rank mod p, or the torus
-    bound ``k - n``); otherwise it holds with the Schwartz-Zippel probability
-    of the module text over ``points`` points.
+    """The generic rank of a pattern's coefficient map and its generic minimality; ``exact`` when
+    proved, else with the Schwartz-Zippel probability over ``points`` points.
     """
 
     rank: int
@@ -121,8 +106,7 @@ def generic_rank(pattern: Pattern, seed: int = 0) -> GenericRank:
     ----------
     pattern : Pattern
     seed : int
-        Seeds the random points (the verdict does not depend on it, except
-        with the Schwartz-Zippel probability).
+        Seeds the random points.
 
     Returns
     -------

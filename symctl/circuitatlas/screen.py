@@ -1,25 +1,18 @@
-r"""The exact refutation screen: real-fibre counts at many rational targets in every region.
+"""The exact refutation screen: real-fibre counts at many rational targets in every region.
 
-**Regions** cover every generic :math:`G_2 = N + b/a`: each number of complex pole pairs,
-each sign pattern of the real poles and, from order 3, a numerator :math:`b` with complex
-zeros or only real ones (12 regions at order 3, 18 at order 4).
-
-**The screen** takes a pattern of :math:`3n` entries whose fibre (:math:`2n` unknowns after
-the torus normalization, :math:`2n` equations) over a random rational target is finite, of
-degree :math:`D` (:func:`generic_degree`). It draws :data:`TARGETS_PER_REGION` rational
-targets per region, the regions in turn, and counts each fibre's real points exactly
-(:func:`~symctl.circuitatlas.fibre.count_real`: a Groebner basis over :math:`\mathbb{Q}`, the
-eliminant of a random linear form, Sturm's theorem). A target is **generic** when its fibre
-has :math:`D` points (none at infinity), a squarefree eliminant (simple points) and no point
-with an entry 0; the others are skipped. A generic target without a real point **refutes**
-the pattern: its :math:`D` simple points move continuously with the target and stay non-real
-nearby, and no other point comes in (no target has more isolated points than the generic
-number), so an open set of :math:`G_2` has no real realization. Otherwise the pattern stays
-a conjecture with the counts as evidence (for an odd :math:`D` no target can fail). That the
-:math:`D` of one random target is the generic degree holds with probability 1.
-
-**Positive-dimensional fibres** (above :math:`3n` entries) are not screened: a slice with
-entries fixed that has no real point says nothing about the fibre.
+**Regions** cover every generic :math:`G_2 = N + b/a`: each number of complex pole pairs, each
+sign pattern of the real poles and, from order 3, a numerator with complex zeros or only real
+ones. **The screen** takes a pattern of :math:`3n` entries whose fibre over a random rational
+target is finite, of degree :math:`D` (:func:`generic_degree`), draws :data:`TARGETS_PER_REGION`
+targets per region and counts each fibre's real points exactly
+(:func:`~symctl.circuitatlas.fibre.count_real`). A target is **generic** when its fibre has
+:math:`D` points, simple, none with an entry 0; the others are skipped. A generic target without
+a real point **refutes** the pattern: its :math:`D` simple points move continuously with the
+target and stay non-real nearby, and no other point comes in (no target has more isolated points
+than the generic number), so an open set of :math:`G_2` has no real realization. Otherwise the
+pattern stays a conjecture with the counts as evidence. That the :math:`D` of one random target
+is the generic degree holds with probability 1. Fibres of positive dimension (above :math:`3n`
+entries) are not screened.
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.screen import screen
@@ -56,7 +49,8 @@ def _times(p, q) -> list:
 
 def _poles(n: int, pairs: int, signs, rng) -> list:
     """Ascending coefficients of a monic a(z) with ``pairs`` complex pole pairs and real poles
-    of the given signs."""
+    of the given signs.
+    """
     a = [sp.Integer(1)]
     for _ in range(pairs):
         re = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 7), 8)
@@ -103,10 +97,8 @@ def _region_sample(n: int, pairs: int, signs, complex_zeros, rng):
 
 
 def sample_targets(n: int, rng=None, per_region: int = 2):
-    """Sampled targets ``(region, a, c)``, ``per_region`` in each region of poles and zeros.
+    """Sampled targets ``(region, a, c)``, ``per_region`` in each region.
 
-    Examples
-    --------
     >>> from symctl.circuitatlas.screen import sample_targets
     >>> sorted({r for r, _, _ in sample_targets(2)})
     ['1 complex pair', 'real poles ++', 'real poles +-', 'real poles --']
@@ -120,19 +112,15 @@ def sample_targets(n: int, rng=None, per_region: int = 2):
 
 
 def _generic_rationals(rng, k: int) -> list[sp.Rational]:
-    """``k`` random rationals with six-digit numerators and denominators (a generic point)."""
+    """``k`` random rationals with six-digit numerators and denominators."""
     return [sp.Rational(rng.randint(-(10**6), 10**6), rng.randint(1, 10**6)) for _ in range(k)]
 
 
 @cache
 def generic_degree(pattern: Pattern) -> int | None:
-    """The number of complex realizations (torus-normalized) of a random rational target.
+    """The number of complex (torus-normalized) realizations of a random rational target: with
+    probability 1 the fibre degree of almost every target; None when not finite and reduced.
 
-    With probability 1 it is the fibre degree of almost every target; a target with fewer
-    (simple) points is not generic. None when that fibre is not finite and reduced.
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.screen import generic_degree
     >>> generic_degree(Pattern.from_matrices([[0, 1], [1, 1]], [0, 1], [1, 1]))
@@ -158,10 +146,8 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
     Returns
     -------
     Evidence or None
-        A refutation (method ``"counterexample"``, its target, region, eliminant and why the
-        target is generic); a conjecture with the counts when every generic target had real
-        realizations; None when the screen does not apply (not :math:`3n` entries, a fibre
-        that is not finite, or no targets).
+        A refutation (method ``"counterexample"``, with its target and why it is generic); a
+        conjecture with the counts; None when the screen does not apply.
 
     Examples
     --------
@@ -192,32 +178,40 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
                 counted[region] += 1
             else:
                 a, c = [str(v) for v in a], [str(v) for v in c]
+                why = (
+                    f"the target a = {a}, c = {c} ({region}) has {degree} complex realizations "
+                    f"with this pattern and none real (eliminant {fibre['eliminant']}, no real "
+                    "root by Sturm's theorem); it is generic, so an open set of G2 has none"
+                )
                 return _evidence(
                     False,
                     "counterexample",
                     True,
-                    f"the target a = {a}, c = {c} ({region}) has {degree} complex realizations "
-                    f"with this pattern and none real (eliminant {fibre['eliminant']}, no real "
-                    "root by Sturm's theorem); it is generic, so an open set of G2 has none",
+                    why,
                     region=region,
                     a=a,
                     c=c,
                     degree=degree,
                     generic_degree=degree,
                     eliminant=fibre["eliminant"],
-                    generic=f"{degree} points, the generic number (none at infinity); a "
-                    "squarefree eliminant (simple points); no point with an entry 0",
+                    generic=(
+                        f"{degree} points, the generic number (none at infinity); a "
+                        "squarefree eliminant (simple points); no point with an entry 0"
+                    ),
                     screened=sum(counted.values()) + 1,
                 )
     parity = " (odd: never none)" if degree % 2 else ""
+    why = (
+        f"conjectured universal, not proved: the exact screen counted real realizations, "
+        f"every entry nonzero, at all {sum(counted.values())} generic targets ({per_region} "
+        f"drawn in each of {len(regions)} regions of poles and zeros; fibre degree "
+        f"{degree}{parity}; {skipped} targets not generic, skipped)"
+    )
     return _evidence(
         None,
         CONJECTURED,
         False,
-        f"conjectured universal, not proved: the exact screen counted real realizations, "
-        f"every entry nonzero, at all {sum(counted.values())} generic targets ({per_region} "
-        f"drawn in each of {len(regions)} regions of poles and zeros; fibre degree "
-        f"{degree}{parity}; {skipped} targets not generic, skipped)",
+        why,
         screened=sum(counted.values()),
         per_region=counted,
         skipped=skipped,

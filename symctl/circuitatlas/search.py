@@ -1,18 +1,8 @@
-r"""The pattern search behind :func:`symctl.atlas`: enumeration, workers, checkpoints.
+"""The pattern search behind :func:`symctl.atlas`: enumeration, workers, checkpoints.
 
-Patterns are enumerated size by size (:func:`canonical_masks`, one per
-state-permutation orbit, vectorized in NumPy). Within a size the patterns are
-independent, so they go out in chunks to workers: in this process for
-``workers=1``, otherwise to a dask.distributed cluster (an existing one at
-``scheduler``, or a ``LocalCluster`` with one single-threaded process per
-core). Between sizes the search waits, because a pattern of size
-:math:`k + 1` is decided by lifting from the universal patterns of size
-:math:`\le k`.
-
-Every finished chunk is appended to a checkpoint file (JSON lines) when one
-is given; a later run with the same file skips the patterns already done, so
-an interrupted search resumes. The workers and the checkpoint are
-:mod:`symctl._util.pool`'s, which every sweep shares.
+Patterns go size by size (a pattern of size :math:`k + 1` is decided by lifting from the
+universal ones below), one per state-permutation orbit, in chunks to :mod:`symctl._util.pool`'s
+workers, each finished chunk appended to the checkpoint.
 
 >>> from symctl.circuitatlas.search import canonical_masks
 >>> len(canonical_masks(2, 6)), len(canonical_masks(3, 9))
@@ -40,7 +30,7 @@ FORMAT = 3
 
 
 def canonical_masks(n: int, size: int) -> list[int]:
-    """The canonical masks (smallest in their state-permutation orbit) of ``size`` nonzero slots."""
+    """The canonical masks (smallest in their orbit) of ``size`` nonzero slots (vectorized)."""
     slots = n * n + 2 * n
     if not 0 <= size <= slots:
         raise ParameterError(f"size: must be between 0 and {slots}, got {size}")
@@ -126,10 +116,8 @@ def run(
     progress: Callable[[int, int, int], None] | None = None,
     max_neurons: int | None = None,
 ) -> tuple[list[dict], dict]:
-    """Decide every canonical pattern of the given sizes; return the records and counts.
-
-    With ``max_neurons``, patterns whose circuit has more neurons are counted
-    (``skipped``) but not decided.
+    """Decide every canonical pattern of the given sizes; the records and the counts (patterns
+    above ``max_neurons`` are counted as ``skipped``, not decided).
     """
     from symctl.circuitatlas.universality import CONJECTURED
 

@@ -1,20 +1,9 @@
-r"""Realize one :math:`G_2` with a given pattern: closed form, or an exact polynomial solve.
+"""Realize one :math:`G_2` with a given pattern: closed form, or an exact polynomial solve.
 
-:func:`realize_with` is :meth:`CircuitClass.realize`. For each representative
-pattern of the class (universal ones first) it tries, in order: the closed
-form (rational functions of :math:`G_2`'s coefficients, symbolic ``G2``
-allowed), then, for numeric ``G2``, the exact solve of
-:func:`~symctl.circuitatlas.fibre.solve_at` (a Groebner basis over
-:math:`\mathbb{Q}` in shape position; a real root of the eliminant as a
-``CRootOf``), with the entries beyond :math:`3n` set to random nonzero
-rationals. The torus-normalized entries (a spanning tree) are 1.
-
->>> import symctl
->>> from symctl import z
->>> A = symctl.atlas(2, workers=1)
->>> R = A.classes[0].realize(2 + (z + 1) / (z**2 - z / 3 + 1))
->>> R.N
-Matrix([[2]])
+:func:`realize_with` (:meth:`CircuitClass.realize`) tries each pattern of the class, proved ones
+first: the closed form (symbolic ``G2`` allowed), then for numeric ``G2`` the exact solve of
+:func:`~symctl.circuitatlas.fibre.solve_at` (a real root of the eliminant as a ``CRootOf``),
+entries beyond :math:`3n` set to random nonzero rationals.
 """
 
 from __future__ import annotations
@@ -104,11 +93,8 @@ def _solved(pattern, a, c):
 
 
 def _markov_equal(R: Realization, a, c) -> bool:
-    r"""Exactly :math:`M F^{k-1} H = h_k` for :math:`k = 1..2n` (algebraic entries allowed).
-
-    Two order-:math:`n` strictly proper transfer functions with the same
-    :math:`2n` Markov parameters are equal; each difference is an algebraic
-    number shown to be zero by its minimal polynomial.
+    r"""Exactly :math:`M F^{k-1} H = h_k` for :math:`k \le 2n` (equal transfer functions), each
+    difference an algebraic number shown zero by its minimal polynomial.
     """
     n = R.n
     h = []  # Markov parameters of c(z)/a(z): h_k = c_{n-k} - sum_{j<k} a_{n-k+j} h_j

@@ -1,54 +1,38 @@
 r"""Universality over the reals: proved, refuted, or conjectured from witnesses region by region.
 
-Write an order-:math:`n` :math:`G_2 = N + b(z)/a(z)`, :math:`a(z) = z^n +
-\sum_{i<n} a_i z^i`, :math:`b(z) = \sum_{i<n} c_i z^i`
-(:func:`~symctl.realization.realization.split_proper`). A pattern
-(:mod:`symctl.circuitatlas.pattern`) is **universal** when almost every real
-:math:`(a, c)` has a real realization with exactly that support. After the
-torus normalization (the spanning-tree entries set to 1) the unknowns are the
-other entries, and the conditions are the :math:`2n` polynomial equations
-:math:`\det(zI - F) = a(z)`, :math:`M \operatorname{adj}(zI - F) H = b(z)`.
-The verdicts, each with its method (:class:`Evidence`):
+A pattern (:mod:`~symctl.circuitatlas.pattern`) is **universal** when almost every real
+:math:`G_2 = N + b/a` (:math:`a = z^n + \sum_{i<n} a_i z^i`, :math:`b = \sum_{i<n} c_i z^i`) has
+a real realization with exactly that support: after the torus normalization, a real solution of
+:math:`\det(zI - F) = a`, :math:`M \operatorname{adj}(zI - F) H = b` with every entry nonzero.
+The methods of :func:`decide`, in order (:class:`Evidence`):
 
-``"rank"`` (refuted)
-    The generic rank is below :math:`2n` (:mod:`symctl.circuitatlas.rank`): the
-    reachable :math:`G_2` form a set of lower dimension.
+``"not minimal"``, ``"rank"`` (refuted)
+    Not generically minimal, or generic rank below :math:`2n` (:mod:`~symctl.circuitatlas.rank`).
 ``"real eigenvalues"``, ``"real zeros"`` (refuted)
-    Structural rules with one-line proofs (:mod:`~symctl.circuitatlas.structural`): every
-    real realization has more real poles, or more real zeros, than an open set of
-    :math:`G_2` has.
-``"closed form"`` (proved)
-    The equations are solved one unknown at a time, each linear in it with
-    the earlier ones substituted: the entries are rational functions of
-    :math:`(a, c)`, real wherever defined, and none is identically zero. The
-    realization built from them is proved to equal the symbolic :math:`G_2`
-    by :func:`~symctl.check_realization` (exact).
-``"odd degree"`` (proved)
-    A pattern of :math:`3n` entries whose generic fibre, a lex Groebner basis over
-    :math:`\mathbb{Q}(a, c)` in shape position, has an odd number of points: a real point
-    always exists (:mod:`~symctl.circuitatlas.odddegree`).
+    Structural rules (:mod:`~symctl.circuitatlas.structural`).
 ``"lifted"`` (proved when its source is)
-    The pattern contains a universal pattern :math:`S'`. For almost every
-    :math:`G_2`, a realization :math:`x_0` with support :math:`S'` is a
-    regular point of the bigger map (its :math:`S'`-columns already have rank
-    :math:`2n`), so near :math:`x_0` the fibre is a manifold of dimension
-    :math:`k - 2n` on which each added entry has a nonzero derivative (solve
-    the kernel equation with that entry set to 1); it leaves every
-    coordinate hyperplane, so a nearby point of the fibre has every entry of
-    the bigger pattern nonzero.
+    The pattern contains a universal pattern :math:`S'`. For almost every :math:`G_2`, a
+    realization :math:`x_0` with support :math:`S'` is a regular point of the bigger map (its
+    :math:`S'`-columns already have rank :math:`2n`), so near :math:`x_0` the fibre is a
+    manifold of dimension :math:`k - 2n` on which each added entry has a nonzero derivative
+    (solve the kernel equation with that entry set to 1); it leaves every coordinate hyperplane,
+    so a nearby point of the fibre has every entry of the bigger pattern nonzero.
+``"closed form"`` (proved)
+    The equations solved one unknown (or a Cramer pair) at a time, each linear with the earlier
+    ones substituted: rational functions of :math:`(a, c)`, real where defined, none identically
+    zero, checked exactly against the symbolic :math:`G_2`.
 ``"counterexample"`` (refuted)
-    A generic target :math:`G_2` with no real realization, found exactly by the screen of a
-    pattern of :math:`3n` entries (:mod:`~symctl.circuitatlas.screen`), or by the poles
-    alone, tried first: when ``F``'s own torus leaves :math:`n` free entries,
-    :math:`\det(zI - F) = a(z)` is square, and a sampled generic :math:`a` with no real
-    solution refutes every pattern with that ``F``. Simple points stay non-real nearby, so
-    an open set of that region has no realization.
-``"conjectured"`` (evidence, not a proof; :attr:`Evidence.universal` is None)
-    Every target of the screen had real realizations with every entry nonzero; or, for a
-    pattern above :math:`3n` entries, a real realization (a Krawczyk-certified root, some
-    entries fixed) at one sampled :math:`G_2` in every region. Samples cannot rule out an
-    open sub-region they missed. A pattern that contains a conjectured one (and no proved
-    one) is conjectured too.
+    The poles alone: when ``F``'s own torus leaves :math:`n` free entries, :math:`\det(zI - F) =
+    a` is square, and a sampled :math:`a` of the generic degree with no real solution refutes
+    every pattern with that ``F`` (simple points stay non-real nearby); or the exact screen
+    (:mod:`~symctl.circuitatlas.screen`).
+``"odd degree"`` (proved)
+    :mod:`~symctl.circuitatlas.odddegree`, for :math:`3n` entries or a slice of more.
+``"conjectured"`` (evidence, not a proof)
+    Containing a conjectured pattern; an odd degree left unproved; every target of the screen
+    with real realizations; or, above :math:`3n` entries, a Krawczyk-certified real realization
+    at one sampled :math:`G_2` in every region (samples cannot rule out an open sub-region they
+    missed).
 ``"not decided"``
     None of the above settled it; the search done is stated.
 
@@ -72,12 +56,7 @@ import sympy as sp
 
 from symctl.circuitatlas.certify import certified_real_root
 from symctl.circuitatlas.evidence import CONJECTURED, ODD_DEGREE, Evidence, _evidence
-from symctl.circuitatlas.fibre import (
-    _equations,
-    _system,
-    coefficient_symbols,
-    real_solutions,
-)
+from symctl.circuitatlas.fibre import _equations, _system, coefficient_symbols, real_solutions
 from symctl.circuitatlas.odddegree import odd_degree_proof, slice_proof
 from symctl.circuitatlas.pattern import Pattern, slot_names
 from symctl.circuitatlas.rank import generic_rank
@@ -114,7 +93,7 @@ POLE_DRAWS = 2
 
 
 def _linear_pair(eqs, left):
-    """Two equations linear in the same two unknowns (and free of the others): their solution."""
+    """Two equations linear in the same two unknowns (free of the others): their solution."""
     for i, e1 in enumerate(eqs):
         pair = e1.free_symbols & left
         if len(pair) != 2:
@@ -143,11 +122,7 @@ def _linear_pair(eqs, left):
 
 @cache  # deterministic and a few tens of ms: realize and decide ask for it again and again
 def closed_form(pattern: Pattern) -> MappingProxyType | None:
-    """The entries as rational functions of :math:`(a, c)`, by linear steps; or None.
-
-    A step solves one equation linear in one unknown, or two equations linear in the
-    same two unknowns (Cramer), with the earlier solutions substituted.
-    """
+    """The entries as rational functions of :math:`(a, c)`, by linear steps (module text); or None."""
     unknowns, _slots, values, _, _ = _system(pattern)
     a, c = coefficient_symbols(pattern.n)
     eqs = [e for e in _equations(pattern, a, c) if e != 0]
@@ -186,8 +161,7 @@ ATTEMPTS = 16
 
 
 def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
-    """Entries to fix and their values, small ones first: by the lifting argument (module text),
-    small fixed values leave a real solution near a contained universal pattern's realization."""
+    """Entries to fix and their values, small first (near a contained universal pattern's point)."""
     if extra <= 0:
         yield {}
         return
@@ -211,8 +185,9 @@ def _generic_pole_degree(n: int, fmask: int) -> int | None:
 
 @cache
 def _pole_system(n: int, fmask: int):
-    """F's free entries after its own torus normalization and det(zI - F)'s coefficients, when
-    those entries are exactly ``n`` (a square system); else None."""
+    """F's free entries after its own torus normalization and its charpoly's coefficients; None
+    unless exactly ``n`` entries are free.
+    """
     graph = nx.Graph()
     graph.add_nodes_from(range(n))
     slots = [k for k in range(n * n) if fmask >> k & 1]
@@ -236,12 +211,7 @@ def _pole_system(n: int, fmask: int):
 
 @cache  # many patterns share their F
 def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
-    r"""A refutation from the poles alone: no real ``F`` with this support has sampled poles.
-
-    ``F``'s own torus sets a spanning forest of its graph to 1; when :math:`n` entries remain,
-    :math:`\det(zI - F) = a(z)` is square, and a sampled :math:`a` of the generic degree whose
-    solutions are all non-real refutes every pattern with this ``F``, whatever ``H`` and ``M``.
-    """
+    """A refutation from the poles alone (module text), for every pattern with this ``F``."""
     system = _pole_system(n, fmask)
     if system is None:
         return None
@@ -255,13 +225,16 @@ def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
             if not sol or not sol["degree"] or sol["real"]:
                 continue
             if sol["degree"] == _generic_pole_degree(n, fmask):
+                why = (
+                    f"no real F with this support has the poles of the sampled a = "
+                    f"{[str(v) for v in a]} ({region}): det(zI - F) = a(z) has {sol['degree']} "
+                    "complex solutions and no real one, so no H, M helps"
+                )
                 return _evidence(
                     False,
                     "counterexample",
                     True,
-                    f"no real F with this support has the poles of the sampled a = "
-                    f"{[str(v) for v in a]} ({region}): det(zI - F) = a(z) has {sol['degree']} "
-                    "complex solutions and no real one, so no H, M helps",
+                    why,
                     region=region,
                     a=[str(v) for v in a],
                     degree=sol["degree"],
@@ -302,23 +275,25 @@ def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
                 break
     failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
     if not failed:
-        return _evidence(
-            None,
-            CONJECTURED,
-            False,
+        why = (
             "conjectured universal, not proved: real realizations with every entry nonzero, "
             f"proved (Krawczyk test), for {len(witnessed)} sampled G2, one in each region of "
             f"poles and zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region "
-            "they missed",
-            witnesses={r: [w] for r, w in witnessed.items()},
+            "they missed"
         )
+        return _evidence(
+            None, CONJECTURED, False, why, witnesses={r: [w] for r, w in witnessed.items()}
+        )
+    why = (
+        f"no real realization found for sampled G2 in {failed}"
+        + (f" with {FIXINGS} random values of the {extra} extra entries" if extra else "")
+        + "; neither proved nor refuted"
+    )
     return _evidence(
         None,
         "not decided",
         False,
-        f"no real realization found for sampled G2 in {failed}"
-        + (f" with {FIXINGS} random values of the {extra} extra entries" if extra else "")
-        + "; neither proved nor refuted",
+        why,
         failed_regions=failed,
         witnesses={r: [w] for r, w in witnessed.items()},
     )
@@ -333,16 +308,12 @@ def decide(
     ----------
     pattern : Pattern
     universal_below : iterable of (Pattern, Evidence)
-        Patterns already found universal (proved or conjectured); one contained
-        in ``pattern`` decides it by lifting, a proof only when the source's
-        verdict is one.
+        Patterns already found universal (proved or conjectured); one contained in ``pattern``
+        decides it by lifting (a proof only when its source is one).
     seed : int
         Seeds the sampled targets and linear forms.
     exact : bool, optional
-        False skips the odd-degree proofs (:mod:`~symctl.circuitatlas.odddegree`) and the
-        exact screen of a pattern of :math:`3n` entries
-        (:func:`~symctl.circuitatlas.screen.screen`); its witness search is then
-        certified numerics alone.
+        False skips the odd-degree proofs and the exact screen (certified numerics alone).
 
     Returns
     -------
@@ -366,29 +337,22 @@ def decide(
             rank=rank.rank,
         )
     if rank.rank < 2 * n:
-        return _evidence(
-            False,
-            "rank",
-            rank.exact,
+        why = (
             f"generic rank {rank.rank} < {2 * n}: the G2 it realizes form a set of dimension "
-            f"{rank.rank} in the {2 * n}-dimensional space of order-{n} G2",
-            rank=rank.rank,
+            f"{rank.rank} in the {2 * n}-dimensional space of order-{n} G2"
         )
+        return _evidence(False, "rank", rank.exact, why, rank=rank.rank)
     blocked = structural_refutation(pattern)
     if blocked is not None:
         return blocked
     below = [(sub, ev) for sub, ev in universal_below if pattern.contains(sub)]
     for sub, ev in below:
         if ev.universal and ev.proved:
-            return _evidence(
-                True,
-                "lifted",
-                True,
+            why = (
                 f"contains the universal pattern {sub.text} ({ev.method}); every added entry can "
-                "be made nonzero along the fibre",
-                source=sub.text,
-                source_method=ev.method,
+                "be made nonzero along the fibre"
             )
+            return _evidence(True, "lifted", True, why, source=sub.text, source_method=ev.method)
     if pattern.size == 3 * n:
         form = closed_form(pattern)
         if form is not None:
@@ -400,38 +364,31 @@ def decide(
     proof = _odd_degree(pattern, seed) if exact is not False else None
     if proof is not None and proof.get("proved"):
         fixed = ", ".join(f"{k} = {v}" for k, v in proof["fixed"].items())
-        return _evidence(
-            True,
-            ODD_DEGREE,
-            True,
+        why = (
             (f"with {fixed}, " if fixed else "")
             + f"the generic fibre is in shape position over Q(a, c) with {proof['degree']} "
             "points, an odd number: almost every real G2 has a real realization, every entry "
-            "nonzero (discriminant and resultants nonzero at a rational target)",
-            **{k: v for k, v in proof.items() if k != "proved"},
+            "nonzero (discriminant and resultants nonzero at a rational target)"
+        )
+        return _evidence(
+            True, ODD_DEGREE, True, why, **{k: v for k, v in proof.items() if k != "proved"}
         )
     for sub, ev in below:
         if ev.conjectured:  # a lift is a proof only when its source is one
-            return _evidence(
-                None,
-                CONJECTURED,
-                False,
+            why = (
                 f"contains the conjectured pattern {sub.text}: universal if that one is (a lift), "
-                "not proved",
-                source=sub.text,
-                source_method=ev.method,
-                lifted=True,
+                "not proved"
+            )
+            return _evidence(
+                None, CONJECTURED, False, why, source=sub.text, source_method=ev.method, lifted=True
             )
     if proof is not None:  # an odd degree without its proof: no target can refute it
-        return _evidence(
-            None,
-            CONJECTURED,
-            False,
+        why = (
             f"conjectured universal, not proved: a random rational target has {proof['degree']} "
             f"complex realizations, an odd number, so a real one; {proof['why']} (the exact "
-            "screen cannot refute an odd degree)",
-            degree=proof["degree"],
+            "screen cannot refute an odd degree)"
         )
+        return _evidence(None, CONJECTURED, False, why, degree=proof["degree"])
     screened = screen(pattern, seed=seed) if exact is not False else None
     if screened is not None:
         return screened
@@ -440,9 +397,7 @@ def decide(
 
 
 def _odd_degree(pattern: Pattern, seed: int) -> dict | None:
-    """The odd-degree proof of a pattern of :math:`3n` entries of odd generic degree, or of a
-    slice of a bigger one: ``{"proved": True, ...}``; ``{"proved": False, "why", "degree"}``
-    for an odd degree left unproved; None when the degree is even or unknown."""
+    """The odd-degree proof (or slice proof) as a dict; None when the degree is even or unknown."""
     n = pattern.n
     if pattern.size > 3 * n:
         return slice_proof(pattern, seed=seed)
@@ -466,11 +421,14 @@ def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
     check = check_realization(Realization(F, H, M, 1), G2, "exact")
     if not check:
         return _evidence(None, "not decided", False, "the closed form failed its exact check")
+    why = (
+        "the entries are rational functions of G2's coefficients (torus-normalized), "
+        f"proved exactly against the symbolic G2 ({check.method})"
+    )
     return _evidence(
         True,
         "closed form",
         True,
-        "the entries are rational functions of G2's coefficients (torus-normalized), "
-        f"proved exactly against the symbolic G2 ({check.method})",
+        why,
         entries={slot_names(n)[k]: str(form[k]) for k in pattern.indices},
     )

@@ -1,27 +1,25 @@
 r"""Delay assignments: every signal of a structure at one vertex of a delay graph.
 
-A **delay assignment** puts every signal of a structure at one vertex, the
-controller input at :math:`v_1` and the output at :math:`v_N`. Its matrix
-:math:`\tilde E_{ij}` is the delay of the fastest path from a signal at
-:math:`v_i` to a signal at :math:`v_j` (:math:`\infty` if none, 0 on the
-diagonal); the assignment is compatible when :math:`\tilde E \ge E`.
+A **delay assignment** puts every signal of a structure at one vertex, the controller input at
+:math:`v_1` and the output at :math:`v_N`. Its matrix :math:`\tilde E_{ij}` is the delay of the
+fastest path from a signal at :math:`v_i` to a signal at :math:`v_j` (:math:`\infty` if none, 0
+on the diagonal); the assignment is compatible when :math:`\tilde E \ge E`.
 
 Two readings of "fastest path" (``reading=``):
 
 ``"fastest"`` (default, the definition's words)
     any path of the structure, through signals at any vertices;
 ``"direct"`` (the matrix printed in the paper for :math:`G_3 G_2 G_1`)
-    only paths whose signals all sit at :math:`v_i` or :math:`v_j`; the paper
-    prints :math:`\tilde E_{13} = \infty` although a path of delay 2 runs from
-    :math:`v_1` through :math:`v_2` to :math:`v_3`.
+    only paths whose signals all sit at :math:`v_i` or :math:`v_j`; the paper prints
+    :math:`\tilde E_{13} = \infty` although a path of delay 2 runs from :math:`v_1` through
+    :math:`v_2` to :math:`v_3`.
 
-Both readings give the same verdict whenever :math:`E` is a shortest-path
-closure (always, for a :class:`DelayGraph`): the fastest reading is entrywise
-at most the direct one, so compatible-by-fastest implies compatible-by-direct;
-conversely a direct-compatible assignment satisfies
-:math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w`
-(a wire is a direct path), and then, summing along any path and using the
-triangle inequality of :math:`E`, the fastest reading is compatible too.
+Both readings give the same verdict whenever :math:`E` is a shortest-path closure (always, for a
+:class:`DelayGraph`): the fastest reading is entrywise at most the direct one, so
+compatible-by-fastest implies compatible-by-direct; conversely a direct-compatible assignment
+satisfies :math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w` (a wire
+is a direct path), and then, summing along any path and using the triangle inequality of
+:math:`E`, the fastest reading is compatible too.
 """
 
 from __future__ import annotations
@@ -51,10 +49,7 @@ INF = math.inf
 
 @dataclass(frozen=True, eq=False)
 class DelayAssignment(LatexMixin):
-    r"""Every signal of a structure at one vertex of a delay graph.
-
-    A frozen value (equal and hashing alike when structure, graph and vertices are);
-    :attr:`vertex_of` is a read-only mapping in signal order, :attr:`E_tilde` a read-only array.
+    r"""Every signal of a structure at one vertex of a delay graph (a frozen value).
 
     Parameters
     ----------
@@ -62,7 +57,7 @@ class DelayAssignment(LatexMixin):
     graph : DelayGraph
     vertex_of : mapping of signal name to vertex (1..N)
         Every signal once; inputs and outputs at their sensor and actuator vertices
-        (:meth:`DelayGraph.pins`; by default :math:`v_1` and :math:`v_N`).
+        (:meth:`DelayGraph.pins`).
 
     Raises
     ------
@@ -78,13 +73,10 @@ class DelayAssignment(LatexMixin):
     The paper's attempt for the IFP structure: :math:`\mu` at :math:`v_3`.
 
     >>> from symctl import DelayAssignment, DelayGraph, ifp_structure
-    >>> S = ifp_structure(2)
-    >>> a = DelayAssignment(S, DelayGraph.chain([1, 1]),
+    >>> a = DelayAssignment(ifp_structure(2), DelayGraph.chain([1, 1]),
     ...     {"x": 1, "K0": 1, "mu": 3, "gamma": 3, "u": 3, "K1": 3, "K2": 3})
-    >>> a.E_tilde.tolist()
-    [[0.0, inf, 0.0], [inf, 0.0, inf], [inf, inf, 0.0]]
-    >>> a.is_compatible()
-    False
+    >>> a.E_tilde.tolist(), a.is_compatible()
+    ([[0.0, inf, 0.0], [inf, 0.0, inf], [inf, inf, 0.0]], False)
     """
 
     structure: Structure
@@ -115,16 +107,13 @@ class DelayAssignment(LatexMixin):
         if missing:
             raise ParameterError(f"vertex_of: every signal needs a vertex; missing {missing[:5]}")
         at_in, at_out = graph.pins(len(structure.inputs), len(structure.outputs))
-        for name, v in zip(structure.inputs, at_in, strict=True):
-            if clean[name] != v:
-                raise ParameterError(
-                    f"vertex_of[{name!r}]: the input must be at v{v}, got v{clean[name]}"
-                )
-        for name, v in zip(structure.outputs, at_out, strict=True):
-            if clean[name] != v:
-                raise ParameterError(
-                    f"vertex_of[{name!r}]: the output must be at v{v}, got v{clean[name]}"
-                )
+        ends = [("input", structure.inputs, at_in), ("output", structure.outputs, at_out)]
+        for role, names, at in ends:
+            for name, v in zip(names, at, strict=True):
+                if clean[name] != v:
+                    raise ParameterError(
+                        f"vertex_of[{name!r}]: the {role} must be at v{v}, got v{clean[name]}"
+                    )
         ordered = {name: clean[name] for name in structure.blocks}  # the structure's order
         object.__setattr__(self, "vertex_of", MappingProxyType(ordered))
 
@@ -134,7 +123,7 @@ class DelayAssignment(LatexMixin):
 
     @cached_property
     def E_tilde(self) -> np.ndarray:
-        """The delay assignment matrix by the definition's words (``reading="fastest"``)."""
+        r""":math:`\tilde E` in the definition's reading."""
         return self.e_tilde("fastest")
 
     def e_tilde(self, reading: str = "fastest") -> np.ndarray:

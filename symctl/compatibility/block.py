@@ -1,8 +1,8 @@
 r"""The blocks of a controller structure: inputs, gains, adders and delays of k steps.
 
 A ``"delay"`` block delays its one input by ``steps`` sampling steps, :math:`a(t - k)`:
-``steps=1`` is the paper's unit delay, ``steps=k`` an axon whose conduction takes
-:math:`k` steps (one block :math:`z^{-k}`, not :math:`k` relays).
+``steps=1`` is the paper's unit delay, ``steps=k`` an axon whose conduction takes :math:`k`
+steps (one block :math:`z^{-k}`, not :math:`k` relays).
 """
 
 from __future__ import annotations
@@ -26,33 +26,27 @@ MAX_WIRE_STEPS = 100_000
 
 
 class Block(NamedTuple):
-    """One block of a structure and the signal it produces (a named tuple: a value).
-
-    :class:`~symctl.compatibility.structure.Structure` normalises it (gain to SymPy, inputs to a tuple).
+    """One block of a structure and the signal it produces (a named tuple).
 
     Parameters
     ----------
     kind : str
         One of :data:`KINDS`.
     inputs : tuple of str
-        Names of the signals it reads (none for an input, one for a gain or a
-        delay, any number for a sum).
+        The signals it reads (none for an input, one for a gain or a delay, any for a sum).
     gain : sympy expression or None
-        The gain value of a gain block (for display; structure ignores it).
+        A gain block's value (for display; the structure ignores it).
     part : str
         The part of a series connection it came from (``""`` if none).
     steps : int, default 1
-        The delay of a delay block in sampling steps (an axon of ``steps``
-        steps, :math:`z^{-k}`); 1 for every other kind.
+        A delay block's delay in steps (an axon, :math:`z^{-k}`); 1 for every other kind.
 
     Examples
     --------
     >>> from symctl import Block
     >>> Block("gain", ("u",), 2)
     Block(kind='gain', inputs=('u',), gain=2, part='', steps=1)
-    >>> Block("delay", ("mu",)) == Block("delay", ("mu",))
-    True
-    >>> Block("delay", ("mu",), steps=4).steps
+    >>> Block("delay", ("mu",), steps=4).delay
     4
     """
 
@@ -64,12 +58,12 @@ class Block(NamedTuple):
 
     @property
     def delay(self) -> int:
-        """The delay of the wires into this block: ``steps`` for a delay block, else 0."""
+        """The delay of the wires into this block."""
         return self.steps if self.kind == "delay" else 0
 
 
 def signal_name(value, argname: str) -> str:
-    """``value`` as a signal name (a non-empty string), or a SymctlTypeError naming ``argname``."""
+    """``value`` as a signal name, or a SymctlTypeError naming ``argname``."""
     if not isinstance(value, str) or not value:
         raise SymctlTypeError(f"{argname}: signal names must be non-empty strings, got {value!r}")
     return value
@@ -85,7 +79,7 @@ def signal_names(value, argname: str) -> tuple[str, ...]:
 
 
 def block(name: str, value) -> Block:
-    """``value`` (a Block or a tuple of its fields) checked and normalised as signal ``name``'s block."""
+    """``value`` (a Block or a tuple of its fields) checked as signal ``name``'s block."""
     if isinstance(value, Block):
         out = value
     elif isinstance(value, tuple | list) and 1 <= len(value) <= 5:

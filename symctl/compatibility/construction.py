@@ -1,16 +1,9 @@
-r"""Compatible structures built along the paths of a delay graph.
-
-The constructive half of the theorems in :mod:`symctl.compatibility.controller`:
-:func:`fastest_path` (among the fastest, the one through the most vertices, spreading the
-controller over the graph), :func:`along_path` (one first-order section
-:math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps, half on the sensor
-side, :math:`G_2 = G / (G_3 G_1)` between; signals placed by the exact chain solver) and
-:func:`markov_split` (the parallel decomposition of Theorem 2).
+"""Compatible structures built along the paths of a delay graph: the constructive half of the
+theorems of :mod:`symctl.compatibility.controller`.
 """
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 import numbers
@@ -58,9 +51,8 @@ class PathPart:
         Each signal's vertex, on the path.
     realization : Realization or None
         The series realization when every edge has at most one step (else None); beyond
-        :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections its
-        :math:`G_2` is :meth:`~symctl.realization.factorization.Factorization.abbreviated`
-        (substitute :meth:`~symctl.realization.factorization.Factorization.sigma_values`).
+        :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections its :math:`G_2`
+        is abbreviated (substitute ``sigma_values()``).
     label : str
         Which part it is, e.g. ``"G[1,2]"`` for an entry of a MIMO controller.
 
@@ -95,34 +87,21 @@ def _edges(graph: DelayGraph, max_wire_delay: int | None) -> list[tuple[int, int
 
 
 def _distances(n: int, edges, source: int, reverse: bool) -> list[float]:
-    adj: list[list] = [[] for _ in range(n)]
+    g = nx.DiGraph()
+    g.add_nodes_from(range(n))
     for i, j, d in edges:
-        if reverse:
-            adj[j].append((i, d))
-        else:
-            adj[i].append((j, d))
-    dist = [math.inf] * n
-    dist[source] = 0
-    heap = [(0, source)]
-    while heap:
-        d, a = heapq.heappop(heap)
-        if d != dist[a]:
-            continue
-        for b, w in adj[a]:
-            if d + w < dist[b]:
-                dist[b] = d + w
-                heapq.heappush(heap, (d + w, b))
-    return dist
+        a, b = (j, i) if reverse else (i, j)
+        if not g.has_edge(a, b) or g.edges[a, b]["delay"] > d:
+            g.add_edge(a, b, delay=d)
+    found = nx.single_source_dijkstra_path_length(g, source, weight="delay")
+    return [found.get(v, math.inf) for v in range(n)]
 
 
 def fastest_path(
     graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
 ):
-    """The fastest path from the sensor to the actuator over edges of at most ``max_wire_delay`` steps.
-
-    ``(delay, vertices, edge delays)`` (vertices from 1) or None. Among the fastest, the one
-    through the most vertices (with zero-delay cycles, the fewest edges). ``ends``: other end
-    vertices ``(source, target)``, e.g. one channel's sensor and actuator.
+    """The fastest path ``(delay, vertices, edge delays)`` from the sensor to the actuator (or
+    ``ends``) over edges of at most ``max_wire_delay`` steps, through the most vertices; or None.
     """
     n = graph.n
     if ends is None:
@@ -162,13 +141,7 @@ def fastest_path(
 def slowest_path(
     graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
 ):
-    """The slowest simple path (``(delay, vertices, edge delays)`` or None), over at most :data:`MAX_PATHS`.
-
-    Raises
-    ------
-    ParameterError
-        More than :data:`MAX_PATHS` simple paths (give the paths explicitly).
-    """
+    """The slowest simple path (as :func:`fastest_path`); ParameterError past :data:`MAX_PATHS`."""
     g = nx.DiGraph()
     for i, j, d in _edges(graph, max_wire_delay):
         if not g.has_edge(i, j) or g.edges[i, j]["delay"] > d:
@@ -229,25 +202,26 @@ def along_path(
     base: str = "controllable",
     structure: str = "branch",
 ) -> PathPart:
-    r"""``G`` factored along one path, with every signal placed on it.
+    r"""``G`` factored along one path, every signal placed on it (Theorem 1's construction).
+
+    One first-order section :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps,
+    half on the sensor side, :math:`G_2` (realized by ``base``, with ``structure``) between;
+    the signals placed by the exact chain solver.
 
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
         SISO, proper, of relative degree at least ``sum(delays)``.
-    path : sequence of int
-        The vertices :math:`q_0 = 1, \dots, q_m` (from 1).
-    delays : sequence of int
-        The steps of the path's edges, :math:`e_1, \dots, e_m`.
+    path, delays : sequence of int
+        The vertices (from 1) and the steps of the path's edges.
     base : str
         The realization of :math:`G_2` (a realizer that keeps symbols).
     structure : {"branch", "state"}
-        The structure of :math:`G_2`; the sections take the branch structure.
+        The structure of :math:`G_2`.
 
     Returns
     -------
     PathPart
-        Placed by the exact chain solver on the path (Theorem 1 guarantees a placement).
     """
     tf = DiscreteTF.from_expr(G)
     steps = [int(e) for e in delays]
@@ -287,15 +261,15 @@ def along_path(
 def markov_split(G, delays: Sequence[int]) -> list[sp.Expr]:
     r""":math:`G = G_1 + \dots + G_k` with :math:`G_i` of relative degree at least ``delays[i]``.
 
-    :math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` for :math:`i < k` and :math:`G_k = G -
-    \sum_{i<k} G_i` (Theorem 2 of :mod:`symctl.compatibility.controller`).
+    :math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` for :math:`i < k`, :math:`G_k` the rest
+    (Theorem 2 of :mod:`symctl.compatibility.controller`).
 
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
         SISO and proper.
     delays : sequence of int
-        :math:`L_1 < L_2 < \dots < L_k`, increasing.
+        :math:`L_1 < L_2 < \dots < L_k`.
 
     Returns
     -------

@@ -1,86 +1,75 @@
 r"""Compatibility of a controller (a transfer function) with a delay graph: theorems and constructions.
 
-A controller is compatible with a delay graph when one of its realizations has a
-compatible structure. :func:`controller_compatibility` decides it by the theorems below
-and builds a compatible structure when there is one (:mod:`symctl.compatibility.construction`),
-checked by the definition's words.
+A controller is compatible with a delay graph when one of its realizations has a compatible
+structure. :func:`controller_compatibility` decides it by the theorems below and builds a
+compatible structure when there is one (:mod:`symctl.compatibility.construction`), checked by
+the definition's words.
 
-Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots`
-and relative degree :math:`r` (the first :math:`j` with :math:`h_j \ne 0`);
-a structure's wires carry at most :math:`W` steps each
-(``max_wire_delay``; :math:`W = \infty` by default, :math:`W = 1` is the
-paper's unit delays); :math:`L_W` is the delay of the fastest path from the
-sensor :math:`v_1` to the actuator :math:`v_N` over edges of at most
-:math:`W` steps (:math:`\infty` if there is none; :math:`L_\infty = E_{1N}`).
+Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots` and relative
+degree :math:`r` (the first :math:`j` with :math:`h_j \ne 0`); a structure's wires carry at most
+:math:`W` steps each (``max_wire_delay``; :math:`W = \infty` by default, :math:`W = 1` is the
+paper's unit delays); :math:`L_W` is the delay of the fastest path from the sensor :math:`v_1`
+to the actuator :math:`v_N` over edges of at most :math:`W` steps (:math:`\infty` if there is
+none; :math:`L_\infty = E_{1N}`).
 
-**Theorem 1.** Some structure, with wires of at most :math:`W` steps, of some
-realization of :math:`G` is compatible with the delay graph iff
-:math:`r \ge L_W`.
+**Theorem 1.** Some structure, with wires of at most :math:`W` steps, of some realization of
+:math:`G` is compatible with the delay graph iff :math:`r \ge L_W`.
 
-*Proof.* Necessity. Unroll the structure in time: :math:`h_j` is the sum,
-over the walks of the structure from its input to its output whose wires
-carry :math:`j` steps in all, of the products of their gains. As
-:math:`h_r \ne 0`, some walk :math:`s_0 \to \dots \to s_k` has total delay
-:math:`r`. In a compatible assignment every wire :math:`a \xrightarrow{w} b`
-has :math:`E_{v(a) v(b)} \le w \le W` (the reduction to one constraint per
-wire, :mod:`symctl.compatibility.csp`). A fastest route from :math:`v(a)` to
-:math:`v(b)` has delay :math:`E_{v(a) v(b)}`, so each of its edges has at most
-that many steps, at most :math:`W`. Joining these routes gives a walk from
-:math:`v_1` (the input's vertex) to :math:`v_N` (the output's) over edges of
-at most :math:`W` steps, of delay :math:`\sum E_{v(s_{l-1}) v(s_l)} \le
-\sum w_l = r`; hence :math:`L_W \le r`.
+*Proof.* Necessity. Unroll the structure in time: :math:`h_j` is the sum, over the walks of the
+structure from its input to its output whose wires carry :math:`j` steps in all, of the products
+of their gains. As :math:`h_r \ne 0`, some walk :math:`s_0 \to \dots \to s_k` has total delay
+:math:`r`. In a compatible assignment every wire :math:`a \xrightarrow{w} b` has :math:`E_{v(a)
+v(b)} \le w \le W` (the reduction to one constraint per wire, :mod:`symctl.compatibility.csp`).
+A fastest route from :math:`v(a)` to :math:`v(b)` has delay :math:`E_{v(a) v(b)}`, so each of
+its edges has at most that many steps, at most :math:`W`. Joining these routes gives a walk from
+:math:`v_1` (the input's vertex) to :math:`v_N` (the output's) over edges of at most :math:`W`
+steps, of delay :math:`\sum E_{v(s_{l-1}) v(s_l)} \le \sum w_l = r`; hence :math:`L_W \le r`.
 
-Sufficiency. Take a fastest such path :math:`q_0 = v_1 \to \dots \to q_m = v_N`
-with edge delays :math:`e_1, \dots, e_m` (:math:`\sum e_l = L_W`). Factor
-:math:`G = G_3 G_2 G_1` with one first-order section
-:math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps: a branch
-structure whose self-loop has a unit delay and whose input branch an axon of
-:math:`e \le W` steps, the first half of the sections in :math:`G_1`, the
-rest in :math:`G_3`. :math:`G_1 G_3` has relative degree :math:`L_W \le r`, so
-:math:`G_2 = G / (G_3 G_1)` is proper and any realization of it has unit
-delays. Put each section's input gain at the vertex where its edge starts and
-the rest of it where the edge ends, and all of :math:`G_2` at the vertex after
-the last sensor-side section. Every wire then either stays at one vertex
-(:math:`E = 0`), crosses zero-delay edges with delay 0, or crosses one edge
-of :math:`e` steps with delay :math:`e`; on the path read as a chain every
-wire constraint holds, and on the whole graph too, since :math:`E` between
-two vertices of the path is at most their distance along it. :math:`G = 0` is
+Sufficiency. Take a fastest such path :math:`q_0 = v_1 \to \dots \to q_m = v_N` with edge delays
+:math:`e_1, \dots, e_m` (:math:`\sum e_l = L_W`). Factor :math:`G = G_3 G_2 G_1` with one
+first-order section :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps: a branch
+structure whose self-loop has a unit delay and whose input branch an axon of :math:`e \le W`
+steps, the first half of the sections in :math:`G_1`, the rest in :math:`G_3`. :math:`G_1 G_3`
+has relative degree :math:`L_W \le r`, so :math:`G_2 = G / (G_3 G_1)` is proper and any
+realization of it has unit delays. Put each section's input gain at the vertex where its edge
+starts and the rest of it where the edge ends, and all of :math:`G_2` at the vertex after the
+last sensor-side section. Every wire then either stays at one vertex (:math:`E = 0`), crosses
+zero-delay edges with delay 0, or crosses one edge of :math:`e` steps with delay :math:`e`; on
+the path read as a chain every wire constraint holds, and on the whole graph too, since
+:math:`E` between two vertices of the path is at most their distance along it. :math:`G = 0` is
 compatible with any graph. :math:`\square`
 
-*Corollary (chain graphs).* A chain with steps :math:`d_k`, total :math:`D`: with unit
-wires compatible iff :math:`r \ge D` and every :math:`d_k \le 1`; with axons iff
-:math:`r \ge D` (a 10 ms axon sampled at 5 ms is one wire of delay 2).
+*Corollary (chain graphs).* A chain with steps :math:`d_k`, total :math:`D`: with unit wires
+compatible iff :math:`r \ge D` and every :math:`d_k \le 1`; with axons iff :math:`r \ge D` (a 10
+ms axon sampled at 5 ms is one wire of delay 2).
 
-**Theorem 2 (parallel decomposition).** Let :math:`P_1, \dots, P_k` be paths
-from :math:`v_1` to :math:`v_N` over edges of at most :math:`W` steps, of
-delays :math:`L_1 < \dots < L_k`, and :math:`r \ge L_1`. Then
-:math:`G = G_1 + \dots + G_k` with
-:math:`G_i = \sum_{L_i \le j < L_{i+1}} h_j z^{-j}` (:math:`i < k`) and
-:math:`G_k = \sum_{j \ge L_k} h_j z^{-j}`; each :math:`G_i` has relative
-degree at least :math:`L_i`, is factored along :math:`P_i` as in Theorem 1,
-and the parallel connection (the input shared at :math:`v_1`, the parts'
-outputs summed by an adder at :math:`v_N`) is compatible: each part's wires
-satisfy their constraints as in Theorem 1 and the adder's wires stay at
-:math:`v_N`. A part with no Markov parameter is left out. :math:`\square` (So a short
-spinal loop carries the first Markov parameters, a long transcortical loop the rest.)
+**Theorem 2 (parallel decomposition).** Let :math:`P_1, \dots, P_k` be paths from :math:`v_1` to
+:math:`v_N` over edges of at most :math:`W` steps, of delays :math:`L_1 < \dots < L_k`, and
+:math:`r \ge L_1`. Then :math:`G = G_1 + \dots + G_k` with :math:`G_i = \sum_{L_i \le j <
+L_{i+1}} h_j z^{-j}` (:math:`i < k`) and :math:`G_k = \sum_{j \ge L_k} h_j z^{-j}`; each
+:math:`G_i` has relative degree at least :math:`L_i`, is factored along :math:`P_i` as in
+Theorem 1, and the parallel connection (the input shared at :math:`v_1`, the parts' outputs
+summed by an adder at :math:`v_N`) is compatible: each part's wires satisfy their constraints as
+in Theorem 1 and the adder's wires stay at :math:`v_N`. A part with no Markov parameter is left
+out. :math:`\square` (So a short spinal loop carries the first Markov parameters, a long
+transcortical loop the rest.)
 
-**Theorem 3 (MIMO).** Let input :math:`j` enter at sensor vertex :math:`s_j`
-and output :math:`i` leave at actuator vertex :math:`a_i`
-(:meth:`~symctl.compatibility.delaygraph.DelayGraph.pins`: one vertex for all,
-or one per channel). Some structure of some realization of the :math:`p \times m`
-controller :math:`G` is compatible iff every nonzero entry :math:`G_{ij}` has
-relative degree at least :math:`L_W(s_j \to a_i)`, the delay of the fastest
-path from :math:`s_j` to :math:`a_i` over edges of at most :math:`W` steps.
+**Theorem 3 (MIMO).** Let input :math:`j` enter at sensor vertex :math:`s_j` and output
+:math:`i` leave at actuator vertex :math:`a_i`
+(:meth:`~symctl.compatibility.delaygraph.DelayGraph.pins`: one vertex for all, or one per
+channel). Some structure of some realization of the :math:`p \times m` controller :math:`G` is
+compatible iff every nonzero entry :math:`G_{ij}` has relative degree at least :math:`L_W(s_j
+\to a_i)`, the delay of the fastest path from :math:`s_j` to :math:`a_i` over edges of at most
+:math:`W` steps.
 
-*Proof.* Necessity: the first nonzero Markov parameter of :math:`G_{ij}` is a
-sum over walks from input :math:`j` to output :math:`i`; the argument of
-Theorem 1 applies to one such walk, from :math:`s_j` to :math:`a_i`.
-Sufficiency: realize each nonzero entry as in Theorem 1 along its own fastest
-path, read its input from input :math:`j` (at :math:`s_j`) and sum the entries
-of output :math:`i` in one adder at :math:`a_i`; each entry's wires satisfy
-their constraints as in Theorem 1 and the adders' wires stay at :math:`a_i`.
-:math:`\square` (The construction shares no interneurons between entries; the canonical
-MIMO forms do, checked by :func:`symctl.check_compatibility`.)
+*Proof.* Necessity: the first nonzero Markov parameter of :math:`G_{ij}` is a sum over walks
+from input :math:`j` to output :math:`i`; the argument of Theorem 1 applies to one such walk,
+from :math:`s_j` to :math:`a_i`. Sufficiency: realize each nonzero entry as in Theorem 1 along
+its own fastest path, read its input from input :math:`j` (at :math:`s_j`) and sum the entries
+of output :math:`i` in one adder at :math:`a_i`; each entry's wires satisfy their constraints as
+in Theorem 1 and the adders' wires stay at :math:`a_i`. :math:`\square` (The construction shares
+no interneurons between entries; the canonical MIMO forms do, checked by
+:func:`symctl.check_compatibility`.)
 """
 
 from __future__ import annotations
@@ -118,18 +107,17 @@ CONSTRUCTIONS = ("path", "parallel")
 
 @dataclass(frozen=True)
 class ControllerCompatibility(Verdict, LatexMixin):
-    r"""Whether some realization of a controller has a structure compatible with a delay graph.
+    """Whether some realization of a controller has a structure compatible with a delay graph.
 
-    The verdict of :func:`controller_compatibility`; truthy exactly when
-    compatible (``bool(r) == r.ok``), compared and hashed by its fields.
+    The verdict of :func:`controller_compatibility`, truthy exactly when compatible.
 
     Parameters
     ----------
     ok : bool
         Whether a compatible realization exists.
     realization : Realization or None
-        A realization whose structure is ``structure`` (the parts' series realization
-        when every wire has one step, else the structure's state-space form).
+        A realization whose structure is ``structure`` (the parts' series realization when every
+        wire has one step, else the structure's state-space form).
     structure : Structure or None
         The constructed compatible structure.
     check : CompatibilityResult or None
@@ -149,9 +137,6 @@ class ControllerCompatibility(Verdict, LatexMixin):
     >>> r = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 1]))
     >>> bool(r), r.scope, bool(r.check), r.parts[0].path
     (True, 'all realizations', True, (1, 2, 3))
-    >>> no = controller_compatibility(controller_tf(2), DelayGraph.chain([1, 2]))
-    >>> bool(no), no.realization is None
-    (False, True)
     """
 
     ok: bool
@@ -167,7 +152,7 @@ class ControllerCompatibility(Verdict, LatexMixin):
 
     @property
     def evidence(self):
-        """The structure-level :attr:`check` (its witness) when compatible, else the :attr:`reason`."""
+        """The structure-level :attr:`check` when compatible, else the :attr:`reason`."""
         return self.check if self.ok else self.reason
 
     def __hash__(self) -> int:
@@ -194,31 +179,30 @@ def controller_compatibility(
     construction: str = "path",
     paths=None,
 ) -> ControllerCompatibility:
-    r"""Decide whether a controller :math:`G` has a realization compatible with a delay graph.
+    """Decide whether a controller :math:`G` has a realization compatible with a delay graph.
 
-    Exact for every delay graph (Theorems 1-3 of the module text); when compatible, a
-    structure is built along a path or several (Theorem 2), and checked.
+    Exact for every delay graph (Theorems 1-3 of the module text); when compatible, a structure
+    is built along a path or several (Theorem 2) and checked.
 
     Parameters
     ----------
     G : DiscreteTF or sympy expression in z
-        The controller, proper; SISO, or MIMO (Theorem 3: ``construction`` and
-        ``paths`` do not apply).
+        The controller, proper; SISO, or MIMO (Theorem 3: ``construction`` and ``paths`` do not
+        apply).
     graph : DelayGraph
     base : str
-        The realization of :math:`G_2` in the construction: a realizer that keeps
-        the symbols (``"controllable"``, ``"observable"``, ``"general"``, ...).
+        The realization of :math:`G_2` in the construction: a realizer that keeps the symbols
+        (``"controllable"``, ``"observable"``, ``"general"``, ...).
     delays : {"branch", "state"}
         The structure of :math:`G_2` in the construction.
     max_wire_delay : int, optional
-        The most steps one wire may carry (default: no bound); ``1`` gives the
-        paper's unit delays.
+        The most steps one wire may carry (default: no bound; ``1``: the paper's unit delays).
     construction : {"path", "parallel"}
         ``"path"``: :math:`G = G_3 G_2 G_1` along the fastest path (or ``paths[0]``);
         ``"parallel"``: Theorem 2, by default along the fastest and slowest simple paths.
     paths : sequence of sequences of int, optional
-        The paths to build along, as vertex lists from 1 (e.g. ``[1, 2, 4]``);
-        each must follow edges of the graph from :math:`v_1` to :math:`v_N`.
+        The paths to build along, as vertex lists from 1 (e.g. ``[1, 2, 4]``), following edges
+        of the graph from :math:`v_1` to :math:`v_N`.
 
     Returns
     -------
@@ -229,12 +213,11 @@ def controller_compatibility(
     SymctlTypeError
         ``graph`` is not a DelayGraph.
     DimensionError
-        The graph's sensor or actuator vertices fit neither one for all of
-        ``G``'s inputs (outputs) nor one per input (output).
+        The graph's sensor or actuator vertices fit neither one for all of ``G``'s inputs
+        (outputs) nor one per input (output).
     ParameterError
-        ``G`` improper; an unknown ``base``, ``delays`` or ``construction``; a
-        ``max_wire_delay`` that is not a positive integer; a path that is not
-        a path of the graph, or whose delay exceeds the relative degree.
+        ``G`` improper; an unknown ``base``, ``delays`` or ``construction``; a bad
+        ``max_wire_delay``; a path that is not a path of the graph.
 
     Examples
     --------
@@ -294,15 +277,7 @@ def controller_compatibility(
     if zero:
         S = Structure({"u": ("input",), "y": ("sum", ())}, "u", "y")
         check = witness_result(S, graph, {"u": src, "y": dst}, "construction (G = 0)")
-        return ControllerCompatibility(
-            True,
-            structure_realization(S),
-            S,
-            check,
-            "Compatible: G = 0 has no signal path. " + check.reason,
-            "all realizations",
-            "G = 0",
-        )
+        return _yes(S, check, "Compatible: G = 0 has no signal path. ", "G = 0")
     pieces = [tf.expr]
     if construction == "parallel" and len(routes) > 1:
         pieces = markov_split(tf, [L for L, _, _ in routes])
@@ -316,24 +291,16 @@ def controller_compatibility(
     else:
         S = Structure.parallel(*(p.structure for p in parts), names=labels)
         vertex_of = _parallel_places(S, parts, labels, src, dst)
-    R = parts[0].realization if len(parts) == 1 and parts[0].realization is not None else None
+    R = parts[0].realization if len(parts) == 1 else None
     method = f"{theorem} + {'parallel decomposition' if len(parts) > 1 else 'path construction'}"
     check = witness_result(S, graph, vertex_of, method)
-    return ControllerCompatibility(
-        True,
-        R if R is not None else structure_realization(S),
-        S,
-        check,
-        f"Compatible ({theorem}): " + _describe(parts) + ". " + check.reason,
-        "all realizations",
-        method,
-        parts,
-    )
+    return _yes(S, check, f"Compatible ({theorem}): {_describe(parts)}. ", method, parts, R)
 
 
 def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
-    """Theorem 3: every nonzero entry along its own fastest path, outputs summed at the actuators;
-    with one sensor and one actuator vertex for all, G3 G2 G1 along their fastest path."""
+    """Theorem 3: each nonzero entry along its own fastest path, summed at the actuators (or
+    :func:`_shared` with one sensor and one actuator vertex).
+    """
     p, m = tf.shape
     at_in, at_out = graph.pins(m, p)
     routes = []
@@ -383,39 +350,35 @@ def _mimo(tf: DiscreteTF, graph: DelayGraph, W, base: str, delays: str):
         place[name] = at_out[i]
     S = Structure(blocks, tuple(f"u{j + 1}" for j in range(m)), outputs)
     check = witness_result(S, graph, {n: place[n] for n in S.blocks}, "theorem 3 (MIMO)")
-    return ControllerCompatibility(
-        True,
-        structure_realization(S),
-        S,
-        check,
+    reason = (
         f"Compatible (theorem 3, MIMO): each of the {len(entries)} nonzero entries G[i,j] = "
         "G3 G2 G1 along its fastest path from input j's sensor vertex to output i's actuator "
-        "vertex, the entries of each output summed there. " + check.reason,
-        "all realizations",
-        "theorem 3 (MIMO) + construction per entry",
-        tuple(part for *_, part in entries),
+        "vertex, the entries of each output summed there. "
     )
+    parts = [part for *_, part in entries]
+    return _yes(S, check, reason, "theorem 3 (MIMO) + construction per entry", parts)
 
 
 def _shared(tf: DiscreteTF, graph: DelayGraph, route, base: str, delays: str):
-    """Theorem 3 with one pathway for every entry: Theorem 1's construction by channel, one
-    :math:`G_2` (a block form) for all entries, as the realizations' circuits share theirs."""
+    """Theorem 3 with one pathway: Theorem 1's construction by channel, one :math:`G_2` for all."""
     part = dataclasses.replace(
         along_path(tf, route[1], route[2], base=base, structure=delays), label="G"
     )
     S = part.structure
     check = witness_result(S, graph, part.vertex_of, "theorem 3 (MIMO)")
-    return ControllerCompatibility(
-        True,
-        part.realization or structure_realization(S),
-        S,
-        check,
+    reason = (
         "Compatible (theorem 3, MIMO): every input has one sensor vertex and every output one "
         "actuator vertex, so " + _describe([part]) + ", with one section per channel and edge "
-        "and one G2 for every entry. " + check.reason,
-        "all realizations",
-        "theorem 3 (MIMO) + path construction",
-        (part,),
+        "and one G2 for every entry. "
+    )
+    return _yes(S, check, reason, "theorem 3 (MIMO) + path construction", [part], part.realization)
+
+
+def _yes(S, check, reason, method, parts=(), realization=None) -> ControllerCompatibility:
+    R = structure_realization(S) if realization is None else realization
+    scope = "all realizations"
+    return ControllerCompatibility(
+        True, R, S, check, reason + check.reason, scope, method, tuple(parts)
     )
 
 

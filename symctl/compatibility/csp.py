@@ -1,61 +1,53 @@
 r"""Compatibility as a constraint satisfaction problem: the model, two exact solvers, certificates.
 
-A structure is compatible with a delay graph when some delay assignment :math:`v`
-(inputs at :math:`v_1`, outputs at :math:`v_N`) has :math:`\tilde E_{ij} \ge E_{ij}` for
-all :math:`i, j`; :func:`symctl.check_compatibility` wraps this module's answer.
+A structure is compatible with a delay graph when some delay assignment :math:`v` (inputs at
+:math:`v_1`, outputs at :math:`v_N`) has :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`;
+:func:`symctl.check_compatibility` wraps this module's answer.
 
-**Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest
-delays on a path of the structure from signal :math:`a` to signal :math:`b`.
-By definition :math:`\tilde E \ge E` says :math:`d(a, b) \ge E_{v(a) v(b)}` for
-every pair of signals joined by a path. When :math:`E` is a shortest-path
-closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`; every
-:class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
+**Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest delays on a path
+of the structure from signal :math:`a` to signal :math:`b`. By definition :math:`\tilde E \ge E`
+says :math:`d(a, b) \ge E_{v(a) v(b)}` for every pair of signals joined by a path. When
+:math:`E` is a shortest-path closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`;
+every :class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
 
 .. math:: E_{v(a) v(b)} \le w \quad \text{for every wire } a \xrightarrow{w} b.
 
-*Proof.* A wire is a path, so :math:`E_{v(a)v(b)} \le d(a, b) \le w`.
-Conversely, along a fastest path :math:`a = s_0 \to \dots \to s_k = b` the
-triangle inequality gives
-:math:`E_{v(a)v(b)} \le \sum_l E_{v(s_{l-1}) v(s_l)} \le \sum_l w_l = d(a, b)`.
-:math:`\square`
+*Proof.* A wire is a path, so :math:`E_{v(a)v(b)} \le d(a, b) \le w`. Conversely, along a
+fastest path :math:`a = s_0 \to \dots \to s_k = b` the triangle inequality gives
+:math:`E_{v(a)v(b)} \le \sum_l E_{v(s_{l-1}) v(s_l)} \le \sum_l w_l = d(a, b)`. :math:`\square`
 
-So compatibility is a binary constraint satisfaction problem: one variable per
-signal with domain :math:`\{v_1, \dots, v_N\}` and one constraint per wire.
+So compatibility is a binary constraint satisfaction problem: one variable per signal with
+domain :math:`\{v_1, \dots, v_N\}` and one constraint per wire.
 
-**Chain graphs in polynomial time.** For a chain
-:math:`v_1 \to \dots \to v_N` with step delays :math:`d_k \ge 0`, write
-:math:`D_j` for the delay from :math:`v_1` to :math:`v_j`. A wire of delay
-:math:`w` allows exactly the pairs :math:`R_w = \{(i, j) : i \le j,\
-D_j - D_i \le w\}`. :math:`R_w` is closed under the componentwise max of two
-of its pairs: for :math:`(i_1, j_1), (i_2, j_2) \in R_w` with
-:math:`j_1 \ge j_2`, either :math:`i_1 \ge i_2` (the max is :math:`(i_1, j_1)`)
-or :math:`i_2 > i_1` and :math:`D_{j_1} - D_{i_2} \le D_{j_1} - D_{i_1} \le w`
-(as :math:`D` is nondecreasing) with :math:`i_2 \le j_2 \le j_1`; likewise for
-the min. For max-closed constraints (Jeavons and Cooper 1995) arc consistency
-decides satisfiability, and the largest remaining value of every domain is a
-solution: for a wire :math:`(a, b)`, the max :math:`i^*` of :math:`a`'s domain
-has a support :math:`(i^*, j')` and the max :math:`j^*` of :math:`b`'s domain
-a support :math:`(i'', j^*)`; their max is :math:`(i^*, j^*) \in R_w`. Here the
-domains stay intervals (the supports of :math:`R_w` are intervals), so arc
-consistency is bounds propagation,
+**Chain graphs in polynomial time.** For a chain :math:`v_1 \to \dots \to v_N` with step delays
+:math:`d_k \ge 0`, write :math:`D_j` for the delay from :math:`v_1` to :math:`v_j`. A wire of
+delay :math:`w` allows exactly the pairs :math:`R_w = \{(i, j) : i \le j,\ D_j - D_i \le w\}`.
+:math:`R_w` is closed under the componentwise max of two of its pairs: for :math:`(i_1, j_1),
+(i_2, j_2) \in R_w` with :math:`j_1 \ge j_2`, either :math:`i_1 \ge i_2` (the max is
+:math:`(i_1, j_1)`) or :math:`i_2 > i_1` and :math:`D_{j_1} - D_{i_2} \le D_{j_1} - D_{i_1} \le
+w` (as :math:`D` is nondecreasing) with :math:`i_2 \le j_2 \le j_1`; likewise for the min. For
+max-closed constraints (Jeavons and Cooper 1995) arc consistency decides satisfiability, and the
+largest remaining value of every domain is a solution: for a wire :math:`(a, b)`, the max
+:math:`i^*` of :math:`a`'s domain has a support :math:`(i^*, j')` and the max :math:`j^*` of
+:math:`b`'s domain a support :math:`(i'', j^*)`; their max is :math:`(i^*, j^*) \in R_w`. Here
+the domains stay intervals (the supports of :math:`R_w` are intervals), so arc consistency is
+bounds propagation,
 
 .. math::
-    \mathrm{hi}_b \leftarrow \min(\mathrm{hi}_b, f_w(\mathrm{hi}_a)),\
-    \mathrm{lo}_b \leftarrow \max(\mathrm{lo}_b, \mathrm{lo}_a),\
-    \mathrm{hi}_a \leftarrow \min(\mathrm{hi}_a, \mathrm{hi}_b),\
-    \mathrm{lo}_a \leftarrow \max(\mathrm{lo}_a, g_w(\mathrm{lo}_b)),
+    \mathrm{hi}_b \leftarrow \min(\mathrm{hi}_b, f_w(\mathrm{hi}_a)),\ \mathrm{lo}_b \leftarrow
+    \max(\mathrm{lo}_b, \mathrm{lo}_a),\ \mathrm{hi}_a \leftarrow \min(\mathrm{hi}_a,
+    \mathrm{hi}_b),\ \mathrm{lo}_a \leftarrow \max(\mathrm{lo}_a, g_w(\mathrm{lo}_b)),
 
-with :math:`f_w(i) = \max\{j : D_j \le D_i + w\}` and
-:math:`g_w(j) = \min\{i : D_i \ge D_j - w\}`: each bound moves at most
-:math:`N` times, so the work is :math:`O(N \cdot \text{wires})`. The witness
-(every signal at the top of its interval) is checked wire by wire before it is
+with :math:`f_w(i) = \max\{j : D_j \le D_i + w\}` and :math:`g_w(j) = \min\{i : D_i \ge D_j -
+w\}`: each bound moves at most :math:`N` times, so the work is :math:`O(N \cdot \text{wires})`.
+The witness (every signal at the top of its interval) is checked wire by wire before it is
 returned.
 
-**General graphs** can encode inequalities over a poset, NP-complete for some posets:
-they are decided exactly by arc consistency and backtracking that maintains it, with the
-search effort reported. **Certificates:** on failure, a minimal set of signal paths (as
-the paper's argument for the IFP structure through :math:`K_2` and :math:`K_0`) and, for
-every placement of the signals where they meet, one path it makes too fast.
+**General graphs** can encode inequalities over a poset, NP-complete for some posets: they are
+decided exactly by arc consistency and backtracking that maintains it, with the search effort
+reported. **Certificates:** on failure, a minimal set of signal paths (as the paper's argument
+for the IFP structure through :math:`K_2` and :math:`K_0`) and, for every placement of the
+signals where they meet, one path it makes too fast.
 
 >>> from symctl import DelayGraph, ifp_structure
 >>> from symctl.compatibility.csp import build_problem, solve_chain, solve_search
@@ -95,17 +87,16 @@ class Problem:
     wires: list[tuple[int, int, int]]
     pins: dict[int, int]
     E: np.ndarray
-    succ: list = field(default_factory=list)
-    pred: list = field(default_factory=list)
     inputs: frozenset = frozenset()  # the pinned signals that are inputs (the rest: outputs)
+    succ: list = field(init=False, repr=False)
+    pred: list = field(init=False, repr=False)
 
     def __post_init__(self):
-        if not self.succ:
-            self.succ = [[] for _ in self.names]
-            self.pred = [[] for _ in self.names]
-            for e, (a, b, w) in enumerate(self.wires):
-                self.succ[a].append((b, w, e))
-                self.pred[b].append((a, w, e))
+        self.succ = [[] for _ in self.names]
+        self.pred = [[] for _ in self.names]
+        for e, (a, b, w) in enumerate(self.wires):
+            self.succ[a].append((b, w, e))
+            self.pred[b].append((a, w, e))
 
     def restrict(self, wire_ids) -> tuple[Problem, list[int]]:
         """The problem with only some wires, on the signals they touch (plus pins among them)."""
@@ -120,7 +111,7 @@ class Problem:
             ],
             {where[s]: v for s, v in self.pins.items() if s in where},
             self.E,
-            inputs=frozenset(where[s] for s in self.inputs if s in where),
+            frozenset(where[s] for s in self.inputs if s in where),
         )
         return sub, wire_ids
 
@@ -147,15 +138,7 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
                 "of its own, e.g. a unit gain, and the delay graph decides)."
             )
         pins[s] = v - 1
-    return Problem(
-        cs.names,
-        list(cs.wires),
-        pins,
-        graph.E,
-        [list(x) for x in cs.succ],
-        [list(x) for x in cs.pred],
-        frozenset(cs.inputs),
-    )
+    return Problem(cs.names, list(cs.wires), pins, graph.E, frozenset(cs.inputs))
 
 
 def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
@@ -192,18 +175,14 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
 
     def tighten(v: int, new_hi: int, new_lo: int, e: int, x: int) -> bool:
         """Narrow v's interval to [new_lo, new_hi] (wire e, from x); True when it empties."""
-        changed = False
-        if new_hi < hi[v]:
-            hi[v] = new_hi
-            events.append((e, hi_ev[x]))
-            hi_ev[v] = len(events) - 1
-            changed = True
+        moved = [(hi, hi_ev, new_hi)] if new_hi < hi[v] else []
         if new_lo > lo[v]:
-            lo[v] = new_lo
-            events.append((e, lo_ev[x]))
-            lo_ev[v] = len(events) - 1
-            changed = True
-        if not changed:
+            moved.append((lo, lo_ev, new_lo))
+        for bound, ev, new in moved:  # each move records the event that caused it
+            bound[v] = new
+            events.append((e, ev[x]))
+            ev[v] = len(events) - 1
+        if not moved:
             return False
         if lo[v] > hi[v]:
             return True
@@ -243,8 +222,8 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
 def solve_search(problem: Problem, max_decisions: int | None = None):
     """Arc consistency + backtracking (maintaining arc consistency).
 
-    Returns ``(placement | None, pruning wires, stats)``; the wires that ever
-    removed a value form an unsatisfiable core when there is no solution.
+    Returns ``(placement | None, pruning wires, stats)``; the wires that ever removed a value
+    form an unsatisfiable core when there is no solution.
     """
     E = problem.E
     N = E.shape[0]
@@ -382,8 +361,8 @@ def _minimal_core(problem: Problem, core: set[int]) -> list[int]:
 def _paths(problem: Problem, core: list[int]) -> list[tuple[list[int], int]]:
     """Merge wires through free signals with one wire in and one out, one of them delay-free.
 
-    Exact: such a signal can sit at the vertex of the neighbour across its
-    delay-free wire, so the merged path asks :math:`E \\le w_1 + w_2` and nothing else.
+    Exact: such a signal can sit at the vertex of the neighbour across its delay-free wire, so
+    the merged path asks :math:`E \\le w_1 + w_2` and nothing else.
     """
     paths = {
         k: ([problem.wires[e][0], problem.wires[e][1]], problem.wires[e][2])

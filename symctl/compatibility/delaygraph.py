@@ -1,11 +1,4 @@
-r"""Delay graphs (the paper's section "Structure, delay graphs, and compatibility").
-
-A **delay graph** has vertices :math:`v_1` (the sensor, source) to :math:`v_N` (the
-actuator, sink); :math:`E_{ij}` is the delay of the shortest path from :math:`v_i` to
-:math:`v_j` in steps, :math:`E_{ii} = 0`, :math:`\infty` where no path exists. The paper's
-neuromuscular graph is the chain :math:`v_1 \to v_2 \to v_3` with one step per edge. The
-module needs only NumPy (no SymPy, SciPy or networkx).
-"""
+"""Delay graphs (the paper's section "Structure, delay graphs, and compatibility"); NumPy only."""
 
 from __future__ import annotations
 
@@ -27,8 +20,9 @@ INF = math.inf
 """No path: the delay of an unreachable vertex."""
 
 MAX_VERTICES = 1000
-PARALLEL_EDGES = 8  # entries of an edge list per ordered pair of vertices
 """Most vertices of a delay graph: its shortest-path closure is cubic (about 3 s at 1000)."""
+
+PARALLEL_EDGES = 8  # entries of an edge list per ordered pair of vertices
 
 MAX_EDGE_DELAY = 10**12
 """Largest finite delay (steps) of an entry or edge: sums along any path stay exact in a float."""
@@ -131,35 +125,33 @@ def matrix_latex(name: str, E: np.ndarray) -> str:
 class DelayGraph:
     r"""A delay graph: vertices :math:`v_1` (sensor) .. :math:`v_N` (actuator), delays :math:`E`.
 
-    A frozen value: equal (and hashing alike) when :attr:`E` and :attr:`edges` are.
+    :math:`E_{ij}` is the delay in steps of the shortest path from :math:`v_i` to :math:`v_j`.
+    A frozen value, equal when :attr:`E`, :attr:`edges` and the ends are.
 
     Parameters
     ----------
     E : (N, N) matrix-like
-        The shortest-path delays: integers >= 0, ``inf`` (``math.inf``,
-        ``numpy.inf``, ``sympy.oo`` or ``"inf"``) where no path exists, zero
-        diagonal, and closed (:math:`E_{ik} \le E_{ij} + E_{jk}`).
+        Integers >= 0, ``inf`` (``math.inf``, ``numpy.inf``, ``sympy.oo`` or ``"inf"``) where
+        no path exists, zero diagonal, closed (:math:`E_{ik} \le E_{ij} + E_{jk}`).
     sensors, actuators : sequence of int, optional (keyword)
-        The sensor (actuator) vertices from 1, default ``(1,)`` (``(N,)``): one for all
-        the controller's inputs (outputs), or one per input (output).
+        The sensor (actuator) vertices from 1, default ``(1,)`` (``(N,)``): one for all the
+        controller's inputs (outputs), or one per input (output).
 
     Attributes
     ----------
     E : numpy.ndarray
-        Read-only float array (``inf`` where no path).
+        Read-only float array.
     n : int
         Number of vertices :math:`N`.
     edges : tuple of (i, j, delay)
-        The direct edges, vertices numbered from 1 (for :meth:`from_edges` the
-        given ones; from a matrix, the entries not explained by a shorter
-        two-step route).
+        The direct edges (from 1): :meth:`from_edges`'s, or the entries not explained by a
+        shorter two-step route.
 
     Raises
     ------
     ParameterError
-        Negative or non-integer delays, a nonzero diagonal, no shortest-path closure,
-        fewer than two vertices, a vertex no sensor reaches or that reaches no actuator,
-        sensor or actuator vertices out of range or repeated.
+        Negative or non-integer delays, a nonzero diagonal, no shortest-path closure, fewer than
+        two vertices, a vertex no sensor reaches or that reaches no actuator, bad ends.
     DimensionError
         A matrix that is not square.
     SymctlTypeError
@@ -252,8 +244,7 @@ class DelayGraph:
     ) -> DelayGraph:
         """The delay graph of ``n`` vertices and the edges ``(i, j, delay)`` (vertices 1..n).
 
-        Parallel edges keep the smallest delay; :attr:`E` is the shortest-path closure. At most
-        ``PARALLEL_EDGES * n**2`` edges are read (an endless iterable is refused).
+        Parallel edges keep the smallest delay; at most ``PARALLEL_EDGES * n**2`` edges are read.
 
         >>> from symctl import DelayGraph
         >>> DelayGraph.from_edges(3, [(1, 2, 1), (2, 3, 1), (1, 3, 4)]).E.tolist()
@@ -329,11 +320,8 @@ class DelayGraph:
 
     @cached_property
     def chain_order(self) -> tuple[tuple[int, ...], tuple[int, ...]] | None:
-        """``(order, D)`` when :math:`E` is the closure of a chain, else None.
-
-        ``order`` lists the vertices (from 1) along the chain, ``D`` the delay
-        from :math:`v_1` to each: :math:`E_{ij} = D_j - D_i` when ``i`` comes no
-        later than ``j``, :math:`\\infty` otherwise. Zero-delay steps are allowed.
+        """``(order, D)`` when :math:`E` is the closure of a chain (vertices from 1 along it, the delay
+        from :math:`v_1` to each), else None.
         """
         E = self.E
         n = self.n
@@ -353,7 +341,7 @@ class DelayGraph:
 
     @property
     def is_chain(self) -> bool:
-        """Whether :math:`E` is the closure of a chain (decided in polynomial time)."""
+        """Whether :math:`E` is the closure of a chain."""
         return self.chain_order is not None
 
     @property
@@ -365,15 +353,9 @@ class DelayGraph:
         return tuple(b - a for a, b in itertools.pairwise(D))
 
     def draw(self, names=None, **kwargs):
-        """Draw the graph: vertices as boxes, edges as arrows with their delays in steps.
+        """Draw the graph (a Figure): ``names`` of the vertices; ``kwargs`` (``title``,
+        ``descriptions``, ``ax``) go to :func:`symctl.plotting.delaygraph.delay_graph_plot`.
 
-        Left to right along the longest path, parallel pathways in rows of their own, cycles
-        curved in purple (the paper's Fig. muscle_system, right). ``names``: the vertices', from
-        :math:`v_1`; ``kwargs`` (``title``, ``descriptions``, ``ax``) go to
-        :func:`symctl.plotting.delaygraph.delay_graph_plot`, which returns the Figure.
-
-        Examples
-        --------
         >>> from symctl import DelayGraph
         >>> fig = DelayGraph.chain([1, 1]).draw(["Golgi tendon organ", "nervous system", "muscle"])
         >>> type(fig).__name__
@@ -409,14 +391,8 @@ class DelayGraph:
         return f"DelayGraph(n={self.n}, edges={list(self.edges)}{ends})"
 
     def pins(self, inputs: int, outputs: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
-        """The vertex (from 1) of each of ``inputs`` controller inputs and ``outputs`` outputs.
-
-        One sensor (actuator) vertex serves every input (output), or there is one per input (output).
-
-        Raises
-        ------
-        DimensionError
-            The numbers of sensor or actuator vertices fit neither.
+        """The vertex (from 1) of each of ``inputs`` controller inputs and ``outputs`` outputs;
+        DimensionError when the sensor or actuator vertices fit neither one for all nor one each.
 
         >>> from symctl import DelayGraph
         >>> g = DelayGraph.from_edges(4, [(1, 3, 1), (2, 3, 1), (3, 4, 1)], sensors=[1, 2])

@@ -1,23 +1,8 @@
-r"""The integer form of a structure's signal graph and the graph searches run on it (pure Python).
-
-A :class:`~symctl.compatibility.structure.Structure` compiles once into a
-:class:`SignalGraph`; :func:`zero_one_bfs` (fewest delays: 0-1 BFS, Dijkstra with axons),
-:func:`back_edges` (the feedback wires of a drawing) and :func:`delay_free_cycle` (an
-algebraic loop) serve every stage.
-
->>> from symctl.compatibility.signalgraph import SignalGraph, back_edges, zero_one_bfs
->>> g = SignalGraph.from_wires(("u", "s", "d"), ("input", "sum", "delay"),
-...                            [(0, 1, 0), (2, 1, 0), (1, 2, 1)], inputs=(0,), outputs=(1,))
->>> zero_one_bfs(g, [0])
-[0, 0, 1]
->>> back_edges(g.successors, [0])
-[(2, 1)]
-"""
+"""The integer form of a structure's signal graph and the searches run on it (pure Python)."""
 
 from __future__ import annotations
 
 import heapq
-from collections import deque
 from collections.abc import Hashable, Iterable, Iterator, Mapping, Sequence
 from types import MappingProxyType
 from typing import NamedTuple
@@ -71,67 +56,34 @@ class SignalGraph(NamedTuple):
 
 
 def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
-    """Fewest delays from any of ``sources`` to every signal (None if unreachable).
-
-    ``allowed`` (one boolean per signal) restricts the paths.
+    """Fewest delays from any of ``sources`` to every signal (None if unreachable; Dijkstra);
+    ``allowed`` (a boolean per signal) restricts the paths.
 
     >>> from symctl.compatibility.signalgraph import SignalGraph, zero_one_bfs
-    >>> g = SignalGraph.from_wires("abc", ("input", "delay", "delay"),
-    ...                            [(0, 1, 3), (0, 2, 1), (2, 1, 1)], inputs=(0,), outputs=(1,))
+    >>> g = SignalGraph.from_wires(("u", "s", "d"), ("input", "sum", "delay"),
+    ...                            [(0, 1, 0), (2, 1, 0), (1, 2, 1)], inputs=(0,), outputs=(1,))
     >>> zero_one_bfs(g, [0])
-    [0, 2, 1]
+    [0, 0, 1]
     """
-    if any(w > 1 for _, _, w in graph.wires):
-        return _dijkstra(graph, sources, allowed)
     dist: list[int | None] = [None] * len(graph.names)
-    queue = deque()
     for s in sources:
         dist[s] = 0
-        queue.append(s)
-    done = [False] * len(graph.names)
-    while queue:
-        a = queue.popleft()
-        if done[a]:
-            continue
-        done[a] = True
-        da = dist[a]
-        for b, w, _ in graph.succ[a]:
-            if allowed is not None and not allowed[b]:
-                continue
-            nd = da + w
-            if dist[b] is None or nd < dist[b]:
-                dist[b] = nd
-                if w:
-                    queue.append(b)
-                else:
-                    queue.appendleft(b)
-    return dist
-
-
-def _dijkstra(graph: SignalGraph, sources, allowed) -> list[int | None]:
-    dist: list[int | None] = [None] * len(graph.names)
-    heap = []
-    for s in sources:
-        dist[s] = 0
-        heap.append((0, s))
+    heap = [(0, s) for s in sources]
     heapq.heapify(heap)
     while heap:
         da, a = heapq.heappop(heap)
         if da != dist[a]:
             continue
         for b, w, _ in graph.succ[a]:
-            if allowed is not None and not allowed[b]:
-                continue
-            nd = da + w
-            if dist[b] is None or nd < dist[b]:
-                dist[b] = nd
-                heapq.heappush(heap, (nd, b))
+            if (allowed is None or allowed[b]) and (dist[b] is None or da + w < dist[b]):
+                dist[b] = da + w
+                heapq.heappush(heap, (da + w, b))
     return dist
 
 
 def _closing(successors, roots: Iterable[Hashable]) -> Iterator[list]:
-    """Depth-first search from ``roots``, then from every unvisited node; yields, per edge closing a
-    cycle, the stack from the root to its source followed by its target.
+    """Depth-first search from ``roots``, then the rest; per edge closing a cycle, the stack to its
+    source and its target.
     """
     nodes = successors.keys() if isinstance(successors, Mapping) else range(len(successors))
     state: dict = {}  # absent new, 1 on the stack, 2 done
@@ -157,16 +109,14 @@ def back_edges(
     successors: Sequence[Iterable[int]] | Mapping[Hashable, Iterable[Hashable]],
     roots: Iterable[Hashable],
 ) -> list[tuple]:
-    """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots`` (in order).
+    """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots``, in order.
 
-    Removing them leaves an acyclic graph. ``successors`` is a sequence (nodes ``0 .. n-1``)
-    or a mapping; nodes the roots do not reach are searched afterwards, in order.
+    ``successors``: a sequence (nodes ``0 .. n-1``) or a mapping; removing the edges leaves an
+    acyclic graph.
 
     >>> from symctl.compatibility.signalgraph import back_edges
-    >>> back_edges([[1], [2], [0, 1]], [0])
-    [(2, 0), (2, 1)]
-    >>> back_edges({"u": ["s"], "s": ["d"], "d": ["s"]}, ["u"])
-    [('d', 's')]
+    >>> back_edges([[1], [2], [0, 1]], [0]), back_edges({"u": ["s"], "s": ["d"], "d": ["s"]}, ["u"])
+    ([(2, 0), (2, 1)], [('d', 's')])
     """
     return [(path[-2], path[-1]) for path in _closing(successors, roots)]
 

@@ -1,9 +1,9 @@
 r"""The state-space form of a structure: every delay step is one state.
 
-A delay block of :math:`k` steps is a shift register of :math:`k` states ``d@1, ...,
-d@(k-1), d`` (``d@j`` holds :math:`a(t - j)`); each signal is a row of coefficients on
-:math:`[s \mid u]`, read in delay-free order, giving :math:`s(t+1) = A s(t) + B u(t)`,
-:math:`y(t) = C s(t) + D u(t)`.
+A delay block of :math:`k` steps is a shift register of :math:`k` states ``d@1, ..., d@(k-1),
+d`` (``d@j`` holds :math:`a(t - j)`); each signal is a row of coefficients on :math:`[s \mid
+u]`, read in delay-free order, giving :math:`s(t+1) = A s(t) + B u(t)`, :math:`y(t) = C s(t) + D
+u(t)`.
 """
 
 from __future__ import annotations
@@ -24,9 +24,7 @@ MAX_STATES = 20_000
 
 
 def delay_states(S) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The states (every step of every delay block) and ``feeds``: ``feeds[i]`` is what
-    ``states[i]`` holds one step later.
-    """
+    """The states (every step of every delay block) and what each holds one step later."""
     states: list[str] = []
     feeds: list[str] = []
     for name, block in S.blocks.items():
@@ -47,9 +45,7 @@ def delay_states(S) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
 
 def signal_rows(S, states: Sequence[str], unit: list, zero, gain_value) -> dict:
-    """Each signal (and state) as a row on ``[states | inputs]``, in delay-free order, from the unit
-    and ``zero`` rows (SymPy or NumPy); ``gain_value(name, gain)`` converts a gain.
-    """
+    """Each signal as a row on ``[states | inputs]`` in delay-free order (SymPy or NumPy rows)."""
     row = dict(zip((*states, *S.inputs), unit, strict=True))
     free = nx.DiGraph()
     free.add_nodes_from(S.blocks)
@@ -71,7 +67,7 @@ def block_gain(block: Block, name: str) -> sp.Expr:
 
 
 def structure_realization(S, outputs: Sequence[str] | None = None) -> Realization:
-    r"""The structure as a realization :math:`(A, B, C, D)` from its inputs to ``outputs``.
+    """The structure as a realization :math:`(A, B, C, D)` from its inputs to ``outputs``.
 
     Parameters
     ----------
@@ -82,8 +78,7 @@ def structure_realization(S, outputs: Sequence[str] | None = None) -> Realizatio
     Returns
     -------
     Realization
-        States in the order of :func:`delay_states`; its transfer function is
-        the structure's, from the inputs to ``outputs``.
+        One state per delay step (:func:`delay_states`).
 
     Raises
     ------
