@@ -39,7 +39,7 @@ import numpy as np
 from symctl._util.validate import positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
-from symctl.spiking.connections import _edges, _label, _require
+from symctl.spiking.connections import _edges, _label, _no_population, _require
 
 __all__ = ["to_nir"]
 
@@ -114,16 +114,14 @@ def to_nir(
     nodes |= {f"output {o.target}": nir.Output(np.array([1])) for o in circuit.outputs}
     links = []
     axon = {u: u for u in circuit.inputs} | {n.name: n.name for n in circuit.neurons}
-    if n_neurons is not None:
+    if n_neurons is None:
+        _no_population(neuron_type=neuron_type, radius=radius)
+    else:
         links += _populations(nir, circuit, n_neurons, dt, rng, neuron_type, radius, nodes, axon)
-    elif neuron_type is not None or radius is not None:
-        which = "neuron_type" if neuron_type is not None else "radius"
-        raise ParameterError(f"{which}: needs n_neurons (spiking populations), got None")
     for e in edges:
-        target = f"output {e.target}" if e.kind == "output" else e.target
-        name = f"{e.source} -> {target} (delay {e.delay})"
+        name = f"{e.source} -> {e.node} (delay {e.delay})"
         nodes[f"{name} weight"] = nir.Linear(np.array([[e.weight]]))
-        chain = [axon[e.source], f"{name} weight", target]
+        chain = [axon[e.source], f"{name} weight", e.node]
         if e.delay:
             nodes[f"{name} delay"] = nir.Delay(np.array([e.delay * dt]))
             chain.insert(1, f"{name} delay")
