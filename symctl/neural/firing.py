@@ -646,33 +646,30 @@ def _simulate(
         }
         traces = {k: v if v.ndim == 2 else v[None] for k, v in traces.items() if k in keep}
         out.append((params, R2, circuit, df[..., 0], dr[..., 0], traces))
-    names: list[str] = []
-    for *_, traces in out:
-        names += [n for n in traces if n not in names]
+    params, realizations, circuits, dfs, drs, traced = zip(*out, strict=True)
+    names = list(dict.fromkeys(n for tr in traced for n in tr))
     nan = np.full((1, ref.t.size), np.nan)
 
     def stat(f, arrays) -> np.ndarray:
         return np.array([f(a, axis=0) for a in arrays])
 
-    firing = {n: stat(np.mean, [tr.get(n, nan) for *_, tr in out]) for n in names}
+    def firing(f) -> dict[str, np.ndarray]:
+        return {n: stat(f, [tr.get(n, nan) for tr in traced]) for n in names}
+
     spread = {}
     if noise is not None:
-        spread = {
-            "firing_sd": {n: stat(np.std, [tr.get(n, nan) for *_, tr in out]) for n in names},
-            "delta_f_sd": stat(np.std, [r[3] for r in out]),
-            "delta_r_sd": stat(np.std, [r[4] for r in out]),
-            "draws": len(ref_df),
-        }
+        spread = {"firing_sd": firing(np.std), "delta_f_sd": stat(np.std, dfs)}
+        spread |= {"delta_r_sd": stat(np.std, drs), "draws": len(ref_df)}
     return FiringPatterns(
         kind,
         ref.t,
-        stat(np.mean, [r[3] for r in out]),
-        stat(np.mean, [r[4] for r in out]),
+        stat(np.mean, dfs),
+        stat(np.mean, drs),
         float(ref.f_bar[0]),
-        firing,
-        tuple(r[0] for r in out),
-        tuple(r[1] for r in out),
-        tuple(r[2] for r in out),
+        firing(np.mean),
+        params,
+        realizations,
+        circuits,
         ref,
         worst,
         **spread,

@@ -352,9 +352,10 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
     peak_i = np.abs(amps)[:, None] * np.max(np.abs(linear.delta_f), axis=0)[None]  # (k, n)
     with np.errstate(invalid="ignore", divide="ignore"):
         dev_i = np.nanmax(np.where(np.isnan(diff), -np.inf, diff), axis=1)  # (k, n)
-        rel_i = np.where(peak_i > 0, dev_i / np.where(peak_i > 0, peak_i, 1), 0.0)
-        end_i = np.abs(x_nl[:, -1] - x_bar)
-        fin_i = np.where(peak_i > 0, end_i / np.where(peak_i > 0, peak_i, 1), 0.0)
+        rel_i, fin_i = (
+            np.where(peak_i > 0, d / np.where(peak_i > 0, peak_i, 1), 0.0)
+            for d in (dev_i, np.abs(x_nl[:, -1] - x_bar))
+        )
     dev = np.where(alive, dev_i[:, 0], np.inf)  # the first state's, in its unit
     rel = np.where(alive, np.max(rel_i, axis=1), np.inf)  # the worst state's, relative
     final = np.where(alive, np.max(fin_i, axis=1), np.inf)

@@ -148,9 +148,6 @@ def _ts(p: DiscretePlant) -> float:
     return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
-_SPREADS = ("delta_f_sd", "delta_r_sd", "states_sd")
-
-
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
     r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
@@ -206,7 +203,8 @@ class Response(ArrayValue, DictMixin):
     draws: int = 0
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar", *_SPREADS):
+        arrays = ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar")
+        for name in (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, read_only(getattr(self, name), float))
 
