@@ -634,8 +634,9 @@ def _loop(controller, plant, outputs=None) -> tuple:
     return (p, *_realization_loop(p, A, B, R, "controller", C), (), sensor)
 
 
-def _controller_realization(controller, plant: DiscretePlant) -> Realization:
-    """Gains as their IFP realization, a DiscreteTF in controllable canonical form; the plant's ``dt``."""
+def _controller_realization(controller, plant: DiscretePlant, kinds: str = "") -> Realization:
+    """Gains as their IFP realization, a DiscreteTF in controllable canonical form; the plant's
+    ``dt``; ``kinds``: the other types the caller accepts, for the message."""
     if isinstance(controller, Gains):
         same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
         return ifp_realization(controller)
@@ -643,7 +644,7 @@ def _controller_realization(controller, plant: DiscretePlant) -> Realization:
         controller = controllable_canonical(controller)
     elif not isinstance(controller, Realization):
         raise SymctlTypeError(
-            "controller: expected Gains, a DiscreteTF or a Realization, "
+            f"controller: expected Gains, a DiscreteTF{kinds} or a Realization, "
             f"got {type(controller).__name__}"
         )
     same_dt(plant, controller.dt, "controller")

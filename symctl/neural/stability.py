@@ -118,7 +118,9 @@ def loop_stability(plant, controller) -> LoopStability:
         k = controller.n_neurons
         mats = (sys.A[None], sys.B[None], sys.C[None, k:], sys.D[None, k:])
     else:
-        mats = _numeric_realization(_controller_realization(controller, p), p, "controller")
+        mats = _numeric_realization(
+            _controller_realization(controller, p, ", a Circuit"), p, "controller"
+        )
     Acl, _ = _closed_loop_matrices(A, B, *mats)
     Acl = Acl[:, :, 0]
     eigs = np.linalg.eigvals(Acl) if Acl.shape[0] else np.zeros(0)
