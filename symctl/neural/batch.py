@@ -1,10 +1,4 @@
-r"""Many closed loops at once: the plant around a stack of realizations, vectorized in NumPy.
-
-:func:`simulate_batch` closes the plant with ``R`` realizations :math:`(F_r, H_r, M_r,
-N_r)` at once (``benchmarks/simulate.py``: :math:`10^5` loops of 500 steps) through the
-time loop of :mod:`symctl.neural.simulate`, adding chunking, the stability test of many
-loops and bounded memory.
-"""
+"""Many closed loops at once: the plant around a stack of realizations, vectorized in NumPy."""
 
 from __future__ import annotations
 
@@ -31,7 +25,6 @@ from symctl.neural.simulate import (
     UNIT_CIRCLE,
     _closed_loop_matrices,
     _plant,
-    _refuse_unstable,
     _signal,
     _stability,
     _steps,
@@ -54,23 +47,19 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 
 @dataclass(frozen=True, eq=False)
 class BatchResponse(ArrayValue, DictMixin):
-    """Traces of many closed loops at once (see :func:`simulate_batch`).
-
-    The arrays are read-only and may be non-contiguous views of one time-major buffer.
+    """Traces of many closed loops at once (see :func:`simulate_batch`); read-only arrays.
 
     Attributes
     ----------
     t : (steps,) array
         Time in seconds (in steps when the plant has no ``dt``).
-    delta_f, delta_r : (R, steps, n), (R, steps, m) arrays or None
-        Each loop's plant state and motor-neuron rate changes (None when not kept).
-    states : (R, steps, nc) array or None
-        The controller states, when asked for.
+    delta_f, delta_r, states : (R, steps, n), (R, steps, m), (R, steps, nc) arrays or None
+        Each loop's plant state, motor-neuron rate and controller states (None when not kept).
     stability_checked : bool
         Whether every loop was checked to be stable before the run.
     peaks : mapping of str to (R, channels) arrays
         The largest magnitude over the horizon of each trace asked for with
-        ``keep=("peak_delta_r", ...)``, by trace name (``"delta_r"``); empty by default.
+        ``keep=("peak_delta_r", ...)``, by trace name (``"delta_r"``).
     first : int
         The index of the first loop here among all of them (``chunk=``; 0 otherwise).
 
@@ -102,12 +91,9 @@ class BatchResponse(ArrayValue, DictMixin):
         object.__setattr__(self, "peaks", MappingProxyType(peaks))
 
 
-# Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
-# operation then runs over contiguous memory, one realization per element.
 def _chunks(count: int) -> list[slice]:
-    """Equal slices of at most ``_CHUNK`` covering ``range(count)``, a multiple of ``_WORKERS``
-    of them when each gets ``_MIN_CHUNK``.
-    """
+    """Equal slices of at most ``_CHUNK`` covering ``range(count)`` (a multiple of ``_WORKERS``
+    of them when each gets ``_MIN_CHUNK``)."""
     k = -(-count // _CHUNK)
     if count >= _WORKERS * _MIN_CHUNK:
         k = -(-k // _WORKERS) * _WORKERS
@@ -155,14 +141,11 @@ def _schur_stable(A: np.ndarray) -> np.ndarray:
 
 def _batch_stability(loops, count: int, argname: str, n: int) -> None:
     """Refuse an unstable loop: eigenvalues up to ``_EIG_LIMIT`` loops, Schur-Cohn above."""
-    if count <= _EIG_LIMIT:
-        _stability(loops(slice(None))[0], argname, n)
-        return
-    # in chunks, whose temporaries stay small
-    ok = [_schur_stable(loops(c)[0]) for c in _chunks(count)]
-    bad = np.flatnonzero(~np.concatenate(ok))
-    if bad.size:
-        _refuse_unstable(loops(slice(None))[0], bad, argname, n)
+    bad = None
+    if count > _EIG_LIMIT:  # in chunks, whose temporaries stay small
+        bad = np.flatnonzero(~np.concatenate([_schur_stable(loops(c)[0]) for c in _chunks(count)]))
+    if bad is None or bad.size:
+        _stability(loops(slice(None))[0], argname, n, bad)
 
 
 def _in_chunks(run, count: int) -> int:
@@ -222,14 +205,12 @@ def _simulate_part(
     loops, n, w, widths, traces, peaks, t, checked, noisy, part: slice
 ) -> BatchResponse:
     """The loops ``part`` of the batch, their traces and peaks in fresh buffers; ``noisy``:
-    ``(A, B, parts, gen)`` of the noise (:func:`~symctl.neural.noise._noisy_fill`), or None."""
+    ``(A, B, parts, gen)`` of the noise, or None."""
     Acl, Cr = loops(part)
     w, count = w if w.ndim == 2 else w[part], Acl.shape[-1]
-    first = {}  # each signal's first row (delta_f, delta_r, states)
-    for name in TRACES:
-        first[name] = sum(widths[u] for u in TRACES[: TRACES.index(name)])
-    rows = [r for u in traces for r in range(first[u], first[u] + widths[u])]
-    peak_rows = [r for u in peaks for r in range(first[u], first[u] + widths[u])]
+    ends = dict(zip(TRACES, np.cumsum([widths[u] for u in TRACES]).tolist(), strict=True))
+    rows = [r for u in traces for r in range(ends[u] - widths[u], ends[u])]
+    peak_rows = [r for u in peaks for r in range(ends[u] - widths[u], ends[u])]
     out = np.empty((len(t), len(rows), count))
     top = np.empty((len(peak_rows), count)) if peaks else None
     if noisy is None:
@@ -278,24 +259,22 @@ def simulate_batch(
         A pulse amplitude (as in :func:`simulate_realization`), an array ``(steps, n)``
         shared by every loop, or ``(R, steps, n)``.
     states : bool
-        Also return the controller states ``(R, steps, nc)`` (adds ``"states"`` to ``keep``).
+        Also keep the controller states ``(R, steps, nc)``.
     check_stability : bool
         Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
         Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
-        peaks ``"peak_..."`` (in ``.peaks``, the trace never stored); default
-        ``("delta_f", "delta_r")``; a trace not kept is None.
+        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``.
         Traces take :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks
-        :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` (4 GiB) in one result or chunk is
-        refused before any work, the message saying which ``chunk`` fits.
+        :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused
+        before any work, the message saying which ``chunk`` fits.
     chunk : int, optional
-        Stream the loops in chunks of ``chunk`` consecutive realizations: an iterator of
-        :class:`BatchResponse` (each with its ``first`` loop), each chunk simulated when
-        reached (one chunk in memory at a time); arguments and stability are checked first.
+        Stream the loops in chunks of ``chunk`` realizations: an iterator of
+        :class:`BatchResponse`, each chunk simulated when reached; arguments and stability
+        are checked first.
     noise : Noise, optional
-        Process, motor and sensor noise (:class:`~symctl.neural.noise.Noise`), drawn per
-        step for each loop (in one thread: per step, normals ``(k, loops)`` of the whole
-        batch or of each chunk in turn); an all-zero Noise is no noise.
+        Noise (:class:`~symctl.neural.noise.Noise`) drawn per step for each loop; an
+        all-zero Noise is no noise.
     rng : int, numpy Generator or None, default 0
         Seeds the noise.
 
@@ -306,8 +285,8 @@ def simulate_batch(
     Raises
     ------
     DimensionError, ParameterError, SymctlTypeError
-        Also a run whose kept outputs overflow to inf or NaN (a :class:`ParameterError`;
-        with ``chunk``, when its chunk is reached), and outputs over the memory limit.
+        Also outputs that overflow to inf or NaN (with ``chunk``, when its chunk is
+        reached), and outputs over the memory limit.
 
     Examples
     --------

@@ -1,9 +1,7 @@
 r"""Neural circuits of stylized linear neurons, read off controller structures.
 
-its axon a weighted sum of its synaptic inputs and of its own past outputs (its
-*self-dynamics*), with no activation function; an axon may branch.
-:meth:`Circuit.from_structure` reads such a circuit off a
-:class:`~symctl.compatibility.structure.Structure`.
+A stylized neuron's axon carries a weighted sum of its synaptic inputs and of its own
+past outputs (its *self-dynamics*), with no activation function; an axon may branch.
 
 The counting rule
 -----------------
@@ -21,27 +19,18 @@ plain wire, still a term). Then
 
 Under this rule the paper's counts hold (the tests check each): the controllable
 canonical :math:`G_2` has 2 neurons (:math:`x_2` with self-dynamics :math:`K_1 z^{-1} +
-K_2 z^{-2}`, and :math:`y`), the observable canonical one 3 (:math:`x_1`, :math:`x_2` and
-the output sum :math:`y = x_2 + N u`: counting it separates 2 from 3), a general (dense)
-realization 3; :math:`G_1` and :math:`G_3` add one neuron each, :math:`x = \epsilon
-x(t-1) + C u(t-1)`. With :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 -
-\epsilon_1 - \epsilon_3 = 0` substituted into the controllable canonical realization, the
-middle neuron has one axon branch instead of two; the observable canonical one with
-:math:`K_2 + \epsilon_1\epsilon_3 = 0` takes the controllable canonical shape. The paper
-states the simplification for "these circuits" without detail; under this rule the
-observable canonical one with :math:`K_1 - \epsilon_1 - \epsilon_3 = 0` keeps 3 neurons,
-and a general realization keeps 3 neurons and all its branches.
+K_2 z^{-2}`, and :math:`y`), the observable canonical one 3 (the output sum :math:`y = x_2
++ N u` counts), a general realization 3; :math:`G_1` and :math:`G_3` add one neuron each.
+With :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 - \epsilon_1 - \epsilon_3 = 0`
+substituted into the controllable canonical realization, the middle neuron has one axon
+branch instead of two; the observable canonical one with :math:`K_2 + \epsilon_1\epsilon_3
+= 0` takes the controllable canonical shape, with :math:`K_1 - \epsilon_1 - \epsilon_3 = 0`
+it keeps 3 neurons (the paper leaves this case open).
 
 A neuron's **axon branches** are its synapses onto other neurons plus the circuit outputs
-it drives (not its self-dynamics); two paths onto one neuron (the controllable canonical
-:math:`x_2 \to y` through :math:`M_2`, and through :math:`x_1` and :math:`M_1`) are two
-branches, as in the paper's figure.
-
-Given a compatible :class:`~symctl.compatibility.delaygraph.DelayAssignment`, a neuron
-sits at its adder's vertex (in the paper's assignment for :math:`G_3 G_2 G_1`: the
-:math:`G_1` and :math:`G_2` neurons at :math:`v_2`, the :math:`G_3` neuron at :math:`v_3`;
-the :math:`G_1` adder cannot be at :math:`v_1`, as its delay-free path through :math:`N`
-would give :math:`\tilde E_{12} = 0 < 1`).
+it drives; two paths onto one neuron are two branches, as in the paper's figure. Given a
+compatible :class:`~symctl.compatibility.delaygraph.DelayAssignment`, a neuron sits at its
+adder's vertex.
 """
 
 from __future__ import annotations
@@ -75,16 +64,14 @@ __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
 class CircuitSystem(NamedTuple):
     r"""A circuit as a state-space system :math:`s(t+1) = A s + B u`, :math:`o = C s + D u`.
 
-    Made by :meth:`Circuit.as_linear_system`; unpacks as ``A, B, C, D, states, inputs, outputs``.
+    Made by :meth:`Circuit.as_linear_system`.
 
     Attributes
     ----------
     A, B, C, D : sympy Matrix or NumPy array
-        The state-space matrices (NumPy when ``numeric=True``).
     states : tuple of str
         The structure's delay blocks, in order.
     inputs : tuple of str
-        The circuit inputs.
     outputs : tuple of str
         The neurons (their axon outputs), then the circuit outputs.
 
@@ -119,15 +106,13 @@ class Circuit(LatexMixin):
     neurons : tuple of Neuron
         In the structure's signal order.
     inputs : tuple of str
-        The circuit inputs (the structure's inputs).
     outputs : tuple of Synapse
-        For each structure output, the axon path reaching it from a neuron or an input
-        (``"0"``, weight 0, for the zero signal).
+        For each structure output, the axon path reaching it (from ``"0"``, weight 0, for
+        the zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
-    Two circuits are equal when they are read off equal structures (SymPy-structural
-    gains) and place their neurons at the same vertices; a circuit hashes by value.
+    Equal when read off equal structures with the same vertices; hashes by value.
 
     Examples
     --------
@@ -173,11 +158,10 @@ class Circuit(LatexMixin):
         Parameters
         ----------
         S : Structure
-            E.g. :meth:`Structure.from_factorization`; substitute values that zero an entry
-            into the realization *before* building it, so that the entry makes no block.
+            E.g. :meth:`Structure.from_factorization` (substitute values that zero an entry
+            into the realization first, so that the entry makes no block).
         assignment : DelayAssignment or CompatibilityResult, optional
-            A compatible assignment of ``S``'s signals to delay-graph vertices;
-            each neuron's :attr:`Neuron.vertex` is its signal's vertex.
+            A compatible assignment of ``S``'s signals to delay-graph vertices.
 
         Returns
         -------
@@ -317,13 +301,12 @@ class Circuit(LatexMixin):
     def subs(self, *args, **kwargs) -> Circuit:
         """The same circuit with values substituted into every weight (``sympy`` ``subs``).
 
-        The circuit keeps its shape: a weight that becomes zero stays a synapse
-        of weight 0 (substitute into the realization to drop it). Vertices are kept.
+        The shape and vertices are kept: a weight that becomes zero stays a synapse of weight 0.
 
         Parameters
         ----------
         *args, **kwargs
-            As for :meth:`sympy.core.basic.Basic.subs`, e.g. a dict of symbols to values.
+            As for :meth:`sympy.core.basic.Basic.subs`.
 
         Returns
         -------
@@ -373,18 +356,16 @@ class Circuit(LatexMixin):
         r"""The circuit as :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)`.
 
         The state holds the structure's delayed signals; the outputs are every neuron's
-        axon output, then the circuit outputs, so one simulation gives every firing trace.
+        axon output, then the circuit outputs.
 
         Parameters
         ----------
         numeric : bool
-            Return float NumPy arrays (every weight must be a number, e.g. after
-            :meth:`subs`) instead of sympy matrices.
+            Float NumPy arrays (every weight a number) instead of sympy matrices.
 
         Returns
         -------
         CircuitSystem
-            Unpacks as ``A, B, C, D, states, inputs, outputs``.
 
         Raises
         ------
@@ -415,7 +396,7 @@ class Circuit(LatexMixin):
         return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
 
     def _numeric_system(self, states: tuple, feeds: tuple, out_names: tuple) -> CircuitSystem:
-        """:meth:`as_linear_system` in floats: the same signal order, rows as NumPy vectors."""
+        """:meth:`as_linear_system` in floats."""
         left = sorted(map(str, self.free_symbols))
         if left:
             raise ParameterError(f"numeric: the weights still contain {left}; subs() first")
@@ -442,8 +423,7 @@ class Circuit(LatexMixin):
         Parameters
         ----------
         digits : int, optional
-            Round the weights' numbers to that many significant digits (exact
-            fractions included); exact by default.
+            Round the weights' numbers to that many significant digits; exact by default.
 
         Returns
         -------
@@ -520,12 +500,8 @@ class Circuit(LatexMixin):
     def draw(
         self, ax=None, *, title: str | None = None, vertex_names=None, signs_at=None, width="text"
     ):
-        """Draw the circuit at its printed size: neurons as circles, synapses as arrows coloured by sign.
-
-        The arguments are those of :func:`symctl.plotting.circuit.draw_circuit`, which draws it
-        (``vertex_names``: the delay graph's, :math:`v_1` first; ``signs_at``: values or ranges of
-        the symbols at which signs are read; ``width``: the widest the drawing may be, in inches
-        or ``"text"``, ``"column"``, ``"double"``); returns the Figure.
+        """Draw the circuit at its printed size: a Figure by :func:`symctl.plotting.circuit.draw_circuit`,
+        whose arguments these are.
 
         Examples
         --------
@@ -542,11 +518,8 @@ class Circuit(LatexMixin):
     def to_nengo(
         self, n_neurons: int | None = None, *, neuron_type=None, rng=None, dt=0.01, radius=None
     ):
-        """The circuit as a nengo network (needs ``pip install symctl[spiking]``).
-
-        The arguments are those of :func:`symctl.spiking.nengo_export.to_nengo`, which builds
-        it: one exact node per neuron (``n_neurons=None``; run it with ``dt`` the sampling
-        time), or a population of ``n_neurons`` spiking neurons per neuron.
+        """The circuit as a nengo network: :func:`symctl.spiking.nengo_export.to_nengo`, whose
+        arguments these are (needs ``pip install symctl[spiking]``).
 
         Examples
         --------
@@ -560,10 +533,8 @@ class Circuit(LatexMixin):
         return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng, dt=dt, radius=radius)
 
     def to_nest(self, *, dt: float = 0.01):
-        """Build the circuit in NEST's linear rate neurons (needs ``pip install symctl[spiking]``).
-
-        The arguments are those of :func:`symctl.spiking.nest_export.to_nest`, which resets
-        NEST's kernel to the resolution ``dt`` and builds it; returns its ``NestNetwork``.
+        """Build the circuit in NEST's linear rate neurons: :func:`symctl.spiking.nest_export.to_nest`
+        (needs ``pip install symctl[spiking]``).
 
         Examples
         --------
@@ -579,11 +550,8 @@ class Circuit(LatexMixin):
     def to_nir(
         self, n_neurons: int | None = None, *, dt=0.01, rng=None, neuron_type=None, radius=None
     ):
-        """The circuit as a NIR graph (needs ``pip install symctl[spiking]``).
-
-        The arguments are those of :func:`symctl.spiking.nir_export.to_nir`, which builds
-        it: exact delay-sum neurons (``n_neurons=None``), or a population of ``n_neurons``
-        LIF neurons per neuron.
+        """The circuit as a NIR graph: :func:`symctl.spiking.nir_export.to_nir`, whose arguments
+        these are (needs ``pip install symctl[spiking]``).
 
         Examples
         --------
@@ -609,8 +577,8 @@ def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
 
 
 def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
-    """The axon path ending at ``start`` (a term of the adder ``target``, or ``target`` itself
-    for an output) back to a neuron or an input; None for an adder of nothing (zero signal)."""
+    """The axon path from ``start`` (a term of ``target``, or an output) back to a neuron or an
+    input; None for the zero signal."""
     node, weight, delay, path, seen = start, sp.Integer(1), 0, [], set()
     while True:
         block = S.blocks[node]

@@ -1,11 +1,8 @@
 r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11).
 
-Every realization of :math:`G = G_3 G_2 G_1`, closed around the linear muscle and hit by
-the same pulse on the force, gives the optimal controller's force and motor-neuron traces
-(Fig. 5), while the neurons of :math:`G_2` fire differently. The neurons are linear, so a
-neuron's output *is* its change in firing rate from equilibrium. Kind ``"ifp"`` is the
-paper's IFP controller: the one neuron :math:`\mu` of
-:func:`~symctl.compatibility.structure.ifp_structure` with the gains substituted.
+Every realization of :math:`G = G_3 G_2 G_1` gives the optimal controller's force and
+motor-neuron traces (Fig. 5), while the neurons of :math:`G_2` fire differently. The
+neurons are linear, so a neuron's output *is* its change in firing rate from equilibrium.
 """
 
 from __future__ import annotations
@@ -47,11 +44,10 @@ from symctl.neural.simulate import (
     _loop,
     _noisy_traces,
     _realization_loop,
+    _response,
     _run,
     _signal,
     _spread_response,
-    closed_loop_response,
-    simulate_realization,
 )
 from symctl.neural.simulate import _plant as _plant_matrices
 from symctl.realization.draws import Draw, draw_realizations
@@ -80,22 +76,21 @@ LEGEND_MAX_EPS = 4
 class FiringSummary(ArrayValue, DictMixin):
     r"""How much the neurons' firing differs across realizations, and the behaviour does not.
 
-    Made by :meth:`FiringPatterns.summary`; the arrays are read-only copies.
+    Made by :meth:`FiringPatterns.summary`; read-only arrays.
 
     Attributes
     ----------
     neurons : tuple of str
     peak : (count, k) array
-        Each realization's signed peak firing per neuron (the value of largest
-        magnitude) [spikes/s]; NaN where the realization has no such neuron.
+        Each realization's signed peak firing per neuron [spikes/s]; NaN where the
+        realization has no such neuron.
     spread : (k,) array
         ``max - min`` of ``peak`` over realizations, per neuron [spikes/s].
     behaviour_spread : float
-        The largest difference between realizations of the force and rate traces
-        (:math:`\max |\delta_f^{(i)} - \delta_f^{(0)}|`, same for :math:`\delta_r`).
+        The largest difference between realizations of the force and rate traces.
     trace_spread : (k,) array
-        The largest difference between two realizations' traces at any one step, per
-        neuron [spikes/s] (nonzero even when the peaks are equal); default ``spread``.
+        Per neuron, the largest difference between two realizations' traces at any one
+        step [spikes/s]; default ``spread``.
 
     Examples
     --------
@@ -142,39 +137,31 @@ class FiringSummary(ArrayValue, DictMixin):
 class FiringPatterns(ArrayValue, DictMixin):
     r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
 
-    Made by :func:`circuit_firing`; arrays, ``firing`` and each of ``params`` are read-only.
+    Made by :func:`circuit_firing`; arrays and mappings are read-only.
 
     Attributes
     ----------
     kind : str
         One of :func:`~symctl.realization.realizers.circuit_names`.
     t : (steps,) array
-        Time, in ``reference.time_unit`` (seconds, or steps for a plant
-        without a sampling time).
+        Time, in ``reference.time_unit``.
     delta_f, delta_r : (count, steps) arrays
         Force [N] and motor-neuron rate [spikes/s] changes of each realization (checked equal).
     f_bar : float
-        The force at the operating point [N] (``f = f_bar + delta_f``).
+        The force at the operating point [N].
     firing : mapping of str to (count, steps) array
-        Each neuron's firing-rate change [spikes/s] by name; NaN rows where a realization
-        lacks the neuron.
+        Each neuron's firing-rate change [spikes/s]; NaN rows where a realization lacks it.
     params : tuple of dict
-        Per realization, the values drawn: :math:`\epsilon_1, \epsilon_3` (and
-        ``P`` for ``"general"``), exact.
-    realizations : tuple of Realization
-        Per realization, the :math:`G_2` used (the whole IFP controller for ``"ifp"``).
-    circuits : tuple of Circuit
-        Per realization, the numeric circuit of the whole controller.
+        Per realization, the exact values drawn (:math:`\epsilon_1, \epsilon_3`, ``P``).
+    realizations, circuits : tuple of Realization, tuple of Circuit
+        Per realization, the :math:`G_2` used (the whole controller for ``"ifp"``) and the
+        numeric circuit of the whole controller.
     reference : Response
         The optimal controller's closed loop.
     max_deviation : float
-        The largest relative departure of any realization's force or rate trace
-        from ``reference`` (below the ``rtol`` of :func:`circuit_firing`).
-    firing_sd : mapping of str to (count, steps) array, or None
-        With noise: each neuron's standard deviation over the noisy runs (``firing``,
-        ``delta_f`` and ``delta_r`` are then their mean).
-    delta_f_sd, delta_r_sd : (count, steps) arrays or None
-        With noise: the force's and the rate's standard deviation over the runs.
+        The largest relative departure of a realization's force or rate from ``reference``.
+    firing_sd, delta_f_sd, delta_r_sd : mapping or (count, steps) arrays, or None
+        With noise: the standard deviations over the noisy runs (the traces are their mean).
     draws : int
         The noisy runs of every realization (0 without noise).
 
@@ -226,11 +213,8 @@ class FiringPatterns(ArrayValue, DictMixin):
         return self.delta_f.shape[0]
 
     def legend_label(self, i: int) -> str:
-        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based).
-
-        With more than :data:`LEGEND_MAX_EPS` epsilons (a long delay), only their
-        count: the values are in :attr:`params` (and ``results.json``).
-        """
+        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based);
+        beyond :data:`LEGEND_MAX_EPS` epsilons, only their count."""
         eps = [
             f"${signal_tex(str(k))}$ = {float(v):.3g}"
             for k, v in self.params[i].items()
@@ -271,8 +255,8 @@ class FiringPatterns(ArrayValue, DictMixin):
         return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
-        """One panel per neuron of :math:`G_2` (a line per realization), the force on top: a Figure by
-        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row, an integer >= 1).
+        """One panel per neuron (a line per realization), the force on top: a Figure by
+        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row).
 
         Examples
         --------
@@ -344,8 +328,7 @@ def _plant(plant, gains: Gains) -> DiscretePlant:
 
 
 def _realizations(kind: str, gains: Gains, count: int, gen, draws=None, kalman=None):
-    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric), from ``draws``
-    or ``count`` drawn from ``gen``."""
+    """Yield ``(params, R2, whole controller, circuit)`` per realization (numeric)."""
     s = gains.system
     if _whole(kind):
         K = np.asarray(gains.K, dtype=float).ravel()
@@ -423,47 +406,40 @@ def circuit_firing(
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
     Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` drawn
-    uniformly in :math:`(-0.9, 0.9)` as exact rationals on a grid of 1/1000,
-    :math:`C_1 = C_3 = 1`, and for ``"general"`` a random full-rank ``P``) is closed around
-    ``plant`` with the pulse disturbance on the force (Fig. 5). Its force and rate traces
-    must equal the optimal controller's (:func:`~symctl.neural.simulate.closed_loop_response`)
-    to ``rtol`` relative to their peak; the neurons' traces are read off the circuit driven
-    by the loop's :math:`\delta_f`, whose output must match :math:`\delta_r` too.
+    uniformly in :math:`(-0.9, 0.9)` on a grid of 1/1000, :math:`C_1 = C_3 = 1`, for
+    ``"general"`` a random full-rank ``P``) is closed around ``plant``; its force and rate
+    must equal the optimal controller's to ``rtol`` relative to their peak, and so must the
+    output of its circuit, driven by the loop's :math:`\delta_f`.
 
     Parameters
     ----------
     kind : str
-        A circuit of :func:`~symctl.realization.realizers.circuit_names`: ``"ifp"`` or a
+        One of :func:`~symctl.realization.realizers.circuit_names`: ``"ifp"`` or a
         realization of :math:`G_2` (``"general"``, ``"controllable"``, ``"observable"``).
     gains : Gains
-        E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``; a scalar plant.
+        E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
-        Realizations, at most ``MAX_CIRCUITS`` (1000; default 4; the IFP controller: 1).
+        Realizations, at most ``MAX_CIRCUITS`` (default 4; the IFP controller: 1).
     rng : int, numpy Generator or None, default 0
-        Seeds the epsilons and ``P`` (default 0: reproducible); an int seed is
-        >= 0. ``seed=`` is its deprecated name.
+        Seeds the epsilons and ``P``.
     disturbance, steps, start, length
-        As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit
-        pulse on steps 5..14 of 50).
+        As in :func:`~symctl.neural.simulate.simulate_realization`.
     rtol : float
         Tolerance of the behaviour check.
     draws : sequence of Draw, optional
-        Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`);
-        ``count`` is then not used.
+        Realizations of :math:`G_2` drawn already
+        (:func:`~symctl.realization.draws.draw_realizations`), instead of ``count``.
     noise : Noise, optional
-        Process, motor and sensor noise (:class:`~symctl.neural.noise.Noise`): every
-        realization and the reference run under the same ``noise_draws`` noisy runs
-        (their draws seeded by ``rng`` apart from the realizations'), the circuits driven
-        by the measured force; the traces are their mean, the ``..._sd`` their spread.
+        Every realization and the reference run under the same ``noise_draws`` noisy runs
+        (1 to ``MAX_COUNT``); the traces are their mean, the ``..._sd`` their spread.
     noise_draws : int
-        The noisy runs, 1 to ``MAX_COUNT`` (default 100).
     kalman : KalmanGains, optional
-        The controller is then the LQG compensator (:func:`~symctl.lqg_tf`, predictor form):
-        the reference is :func:`~symctl.neural.compensator.lqg_realization` fed by the
-        outputs ``kalman.C x``, the realizations are of its :math:`G_2`, and the circuits
-        are driven by the measured outputs (not ``"ifp"``, which feeds back the state).
+        The controller is then the LQG compensator: the reference is
+        :func:`~symctl.neural.compensator.lqg_realization` fed by ``kalman.C x``, the
+        realizations are of its :math:`G_2` and the circuits are driven by the measured
+        outputs (not ``"ifp"``, which feeds back the state).
 
     Returns
     -------
@@ -472,14 +448,13 @@ def circuit_firing(
     Raises
     ------
     ParameterError
-        Unknown ``kind``, ``count`` outside ``[1, MAX_CIRCUITS]`` (or ``!= 1`` for
-        ``"ifp"``), a negative ``rng``, ``"ifp"`` at ``T = 0``, an unstable loop, a
-        realization departing from the optimal controller by more than ``rtol``, or a
-        ``plant`` whose ``dt`` is not the gains'.
+        Unknown ``kind``, ``count`` out of range (``!= 1`` for ``"ifp"``), a negative
+        ``rng``, ``"ifp"`` at ``T = 0``, an unstable loop, a realization departing from the
+        optimal controller by more than ``rtol``, or a ``plant`` of another ``dt``.
     SymctlTypeError
-        ``gains`` not :class:`~symctl.design.lqr.Gains`, ``plant`` of another type, a bad ``rng``.
+        ``gains``, ``plant`` or ``rng`` of the wrong type.
     DimensionError
-        ``gains`` or ``plant`` for a plant with more than one state or input.
+        A ``plant`` of other sizes than the gains'; ``"ifp"`` for a plant that is not scalar.
 
     Examples
     --------
@@ -538,12 +513,11 @@ def structure_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
-    The structure's gains may hold the gains' symbols :math:`K` (replaced by their values,
-    exact) and section symbols: every ``epsilon...`` is drawn (seeded) in :math:`(-0.9, 0.9)`
-    and every ``C...`` set to 1 (e.g. the structure of
-    :func:`~symctl.compatibility.controller.controller_compatibility`). Each realization is
-    closed through :func:`~symctl.compatibility.statespace.structure_realization`, checked
-    against the optimal controller, and the neurons of every ``G2`` part recorded.
+    The structure's gains may hold the gains' symbols :math:`K` (replaced by their exact
+    values) and section symbols: every ``epsilon...`` is drawn in :math:`(-0.9, 0.9)` and
+    every ``C...`` set to 1 (e.g. the structure of
+    :func:`~symctl.compatibility.controller.controller_compatibility`); the neurons of every
+    ``G2`` part are recorded.
 
     Parameters
     ----------
@@ -563,9 +537,8 @@ def structure_firing(
     Raises
     ------
     ParameterError
-        A gain symbol that is neither an epsilon nor a C; a realization whose
-        behaviour departs from the optimal controller's (a structure of another
-        controller); the errors of :func:`circuit_firing`.
+        A gain symbol that is neither an epsilon nor a C; a structure of another controller;
+        the errors of :func:`circuit_firing`.
     SymctlTypeError
         ``structure`` is not a Structure.
 
@@ -615,47 +588,38 @@ def structure_firing(
 def _simulate(
     kind, rows, gains, plant, disturbance, window, rtol, noisy_args, gen
 ) -> FiringPatterns:
-    """Close each realization of ``rows`` around ``plant`` (fed by ``kalman.C x`` with a filter),
-    check it, record its neurons; with ``noise``, every loop (and the reference) under the same
-    ``draws`` noisy runs."""
+    """Close each realization of ``rows`` around ``plant``, check it, record its neurons."""
     rtol = positive_number(rtol, "rtol")
     steps, start, length = window
-    window = {"steps": steps, "start": start, "length": length}
     noise, draws, kalman = noisy_args
     noise = _as_noise(noise)
     C = None if kalman is None else numeric_matrix(kalman.C, "kalman")
     reference, home = (gains, None) if kalman is None else (lqg_realization(gains, kalman), plant)
-    if noise is None:
-        ref = closed_loop_response(reference, home, disturbance=disturbance, outputs=C, **window)
+    seed = None if noise is None else gen.bit_generator.seed_seq.spawn(1)[0]  # shared draws
+    p, A, B = _plant_matrices(plant)
+    w = _signal(disturbance, "disturbance", steps, p.n, start, length)
 
-        def run(R) -> tuple[np.ndarray, ...]:
-            if C is None:
-                res = simulate_realization(plant, R, disturbance, **window)
-            else:
-                res = closed_loop_response(R, plant, disturbance=disturbance, outputs=C, **window)
-            y = res.delta_f if C is None else res.delta_f @ C.T
-            return res.delta_f[None], res.delta_r[None], y[None]
-
-        ref_df, ref_dr = ref.delta_f[None], ref.delta_r[None]
-    else:
-        seed = gen.bit_generator.seed_seq.spawn(1)[0]  # the same draws for every loop
-        p, A, B = _plant_matrices(plant)
-        w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-
-        def noisy(p, Acl, Cr, sensor=None) -> tuple[np.ndarray, ...]:
+    def simulated(p, Acl, Cr, sensor=None) -> tuple[np.ndarray, ...]:
+        """``delta_f``, ``delta_r``, states and measurement, each ``(draws or 1, steps, .)``."""
+        if noise is not None:
             gen = np.random.default_rng(seed)
             return _noisy_traces(p, Acl, Cr, w, noise, draws, gen, sensor)
+        df, dr, xc = (np.ascontiguousarray(a) for a in _run(Acl, Cr, p.n, w))
+        return df, dr, xc, df if sensor is None else (df[0] @ sensor[2].T)[None]
 
-        def run(R) -> tuple[np.ndarray, ...]:
-            if C is None:
-                df, dr, _, y = noisy(p, *_realization_loop(p, A, B, R))
-            else:
-                _, Acl, Cr, _, sensor = _loop(R, p, C)
-                df, dr, _, y = noisy(p, Acl, Cr, sensor)
-            return df, dr, y
+    def run(R) -> tuple[np.ndarray, ...]:
+        if C is None:
+            df, dr, _, y = simulated(p, *_realization_loop(p, A, B, R))
+        else:
+            _, Acl, Cr, _, sensor = _loop(R, p, C)
+            df, dr, _, y = simulated(p, Acl, Cr, sensor)
+        return df, dr, y
 
-        s_plant, Acl, Cr, names, sensor = _loop(reference, home, C)
-        ref_df, ref_dr, ref_xc, _ = noisy(s_plant, Acl, Cr, sensor)
+    s_plant, Acl, Cr, names, sensor = _loop(reference, home, C)
+    ref_df, ref_dr, ref_xc, _ = simulated(s_plant, Acl, Cr, sensor)
+    if noise is None:
+        ref = _response(s_plant, ref_df[0], ref_dr[0], w, ref_xc[0], "closed loop", names)
+    else:
         ref = _spread_response(s_plant, w, ref_df, ref_dr, ref_xc, names)
     out: list[tuple] = []
     worst = 0.0
@@ -682,33 +646,30 @@ def _simulate(
         }
         traces = {k: v if v.ndim == 2 else v[None] for k, v in traces.items() if k in keep}
         out.append((params, R2, circuit, df[..., 0], dr[..., 0], traces))
-    names: list[str] = []
-    for *_, traces in out:
-        names += [n for n in traces if n not in names]
+    params, realizations, circuits, dfs, drs, traced = zip(*out, strict=True)
+    names = list(dict.fromkeys(n for tr in traced for n in tr))
     nan = np.full((1, ref.t.size), np.nan)
 
     def stat(f, arrays) -> np.ndarray:
         return np.array([f(a, axis=0) for a in arrays])
 
-    firing = {n: stat(np.mean, [tr.get(n, nan) for *_, tr in out]) for n in names}
+    def firing(f) -> dict[str, np.ndarray]:
+        return {n: stat(f, [tr.get(n, nan) for tr in traced]) for n in names}
+
     spread = {}
     if noise is not None:
-        spread = {
-            "firing_sd": {n: stat(np.std, [tr.get(n, nan) for *_, tr in out]) for n in names},
-            "delta_f_sd": stat(np.std, [r[3] for r in out]),
-            "delta_r_sd": stat(np.std, [r[4] for r in out]),
-            "draws": len(ref_df),
-        }
+        spread = {"firing_sd": firing(np.std), "delta_f_sd": stat(np.std, dfs)}
+        spread |= {"delta_r_sd": stat(np.std, drs), "draws": len(ref_df)}
     return FiringPatterns(
         kind,
         ref.t,
-        stat(np.mean, [r[3] for r in out]),
-        stat(np.mean, [r[4] for r in out]),
+        stat(np.mean, dfs),
+        stat(np.mean, drs),
         float(ref.f_bar[0]),
-        firing,
-        tuple(r[0] for r in out),
-        tuple(r[1] for r in out),
-        tuple(r[2] for r in out),
+        firing(np.mean),
+        params,
+        realizations,
+        circuits,
         ref,
         worst,
         **spread,

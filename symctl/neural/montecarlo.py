@@ -1,16 +1,16 @@
 r"""Many noisy closed loops at once, against the stationary covariance the loop predicts.
 
-With the noise of :mod:`~symctl.neural.noise`, the loop's stationary covariance
-:math:`\Sigma` of :math:`\xi` solves the discrete Lyapunov equation
+With the noise of :mod:`~symctl.neural.noise`, the stationary covariance :math:`\Sigma` of
+:math:`\xi` solves the discrete Lyapunov equation
 
 .. math::
     \Sigma = A_{cl} \Sigma A_{cl}^T + E_p W E_p^T + E_u W_u E_u^T + E_v V E_v^T
     + E_u \operatorname{diag}\!\big(\sigma^2 \odot \operatorname{diag}(\Sigma_{uu})\big) E_u^T,
     \qquad \Sigma_{uu} = C_r \Sigma C_r^T + D_v V D_v^T,
 
-the last term the signal-dependent noise's (solved by iterating the Lyapunov equation,
-which converges when the loop is stable in mean square); the expected cost per step is
-:math:`J = \operatorname{tr}(Q \Sigma_{xx}) + \operatorname{tr}(R \Sigma_{uu})`.
+(iterated for the signal-dependent term, which converges when the loop is stable in mean
+square); the expected cost per step is :math:`J = \operatorname{tr}(Q \Sigma_{xx}) +
+\operatorname{tr}(R \Sigma_{uu})`.
 """
 
 from __future__ import annotations
@@ -55,19 +55,17 @@ class MonteCarlo(ArrayValue, DictMixin):
     Attributes
     ----------
     covariance, covariance_se : (n, n) arrays
-        The plant state's covariance measured over the loops (each loop's average of
-        :math:`x x^T` over the steps after ``burn_in``, averaged over the loops) and its
-        standard error (the loops' spread over :math:`\sqrt{\mathrm{count}}`).
+        The plant state's covariance (each loop's mean of :math:`x x^T` after ``burn_in``,
+        averaged over the loops) and its standard error.
     predicted_covariance : (n, n) array
         :math:`\Sigma_{xx}` from the Lyapunov equation (module docstring).
     cost, cost_se, predicted_cost : float
-        The cost per step :math:`x^T Q x + u^T R u`, measured (with its standard error)
-        and predicted.
+        The cost per step :math:`x^T Q x + u^T R u`, measured (with its standard error) and
+        predicted.
     additive_covariance, additive_cost
-        The prediction without the signal-dependent noise (what a design for additive
-        noise expects; equal to the prediction when there is none).
+        The prediction without the signal-dependent noise.
     count, steps, burn_in : int
-        Loops, steps of each, and the first steps left out (the transient from rest).
+        Loops, steps of each, and the first steps left out.
     state_names : tuple of str
 
     Examples
@@ -158,13 +156,13 @@ def _predicted(Acl, Cr, B, n, mats, Ev, Dv) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _uu(sigma, Cr, Dv, mats) -> np.ndarray:
-    r"""The command's covariance :math:`\Sigma_{uu} = C_r \Sigma C_r^T + D_v V D_v^T`."""
+    r"""The command's covariance :math:`\Sigma_{uu}`."""
     out = Cr @ sigma @ Cr.T
     return out + Dv @ mats["sensor"] @ Dv.T if "sensor" in mats else out
 
 
 def _burn_in(Acl: np.ndarray, steps: int) -> int:
-    """Steps until the transient's covariance from rest is below ``_SETTLED`` (at most half)."""
+    """Steps until the transient's covariance is below ``_SETTLED`` (at most half)."""
     rho = float(np.max(np.abs(np.linalg.eigvals(Acl)), initial=0.0))
     settle = Acl.shape[0] if rho == 0 else math.ceil(math.log(_SETTLED) / (2 * math.log(rho)))
     return min(steps // 2, max(settle, 1))
@@ -194,13 +192,12 @@ def monte_carlo(
     rng=0,
     outputs=None,
 ) -> MonteCarlo:
-    r"""Simulate ``count`` noisy closed loops at once and measure their stationary covariance and cost.
+    """Simulate ``count`` noisy closed loops at once and measure their stationary covariance and cost.
 
-    Each loop starts at rest and runs ``steps`` steps under ``noise`` (no disturbance);
-    the steps after ``burn_in`` give each loop's average of :math:`x x^T` and of the cost,
-    whose mean over the loops and standard error are set beside the prediction of the
-    Lyapunov equation (module docstring). Vectorized over the loops in NumPy:
-    :math:`10^4` loops of 500 steps take about 0.25 s (``benchmarks/lqg.py``).
+    Each loop starts at rest and runs ``steps`` steps under ``noise``; the steps after
+    ``burn_in`` give each loop's mean of :math:`x x^T` and of the cost, whose mean over the
+    loops and standard error are set beside the prediction (module docstring). :math:`10^4`
+    loops of 500 steps take about 0.25 s (``benchmarks/lqg.py``).
 
     Parameters
     ----------
@@ -209,22 +206,21 @@ def monte_carlo(
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
         Required unless ``controller`` is ``Gains``.
     noise : Noise
-        The noise; not all zero.
+        Not all zero.
     count : int
-        Loops, 2 to ``MAX_LOOPS`` (default 10**4).
+        Loops, 2 to ``MAX_LOOPS``.
     steps : int
-        Steps of each loop, 2 to ``MAX_STEPS`` (default 500).
+        Steps of each loop, 2 to ``MAX_STEPS``.
     burn_in : int, optional
         Steps left out at the start, below ``steps``; default: until the transient's
         covariance has decayed to 1e-8 of its start (at most half the steps).
     Q, R : matrices, optional
-        The cost's weights; default the gains' (:math:`Q`, :math:`R` of the design),
-        else the identity and zero.
+        The cost's weights; default the gains' design, else the identity and zero.
     rng : int, numpy Generator or None, default 0
-        Seeds the noise (drawn as :mod:`~symctl.neural.noise` says).
+        Seeds the noise.
     outputs : matrix-like, optional
-        ``p x n``: the controller reads :math:`y = C x + v` (the sensor noise ``p x p``), as
-        in :func:`~symctl.neural.simulate.closed_loop_response`.
+        ``p x n``: the controller reads :math:`y = C x + v`, as in
+        :func:`~symctl.neural.simulate.closed_loop_response`.
 
     Returns
     -------
@@ -233,9 +229,8 @@ def monte_carlo(
     Raises
     ------
     ParameterError
-        An unstable loop, no noise, a count, horizon or ``burn_in`` out of range, a
-        loop not stable in mean square under the signal-dependent noise, the loops'
-        states over ``MAX_OUTPUT_BYTES``.
+        An unstable loop, no noise, a count, horizon or ``burn_in`` out of range, a loop not
+        stable in mean square, the loops' states over ``MAX_OUTPUT_BYTES``.
     DimensionError, SymctlTypeError
         A part of ``noise``, ``Q`` or ``R`` of the wrong size or type.
 

@@ -27,19 +27,16 @@ def _sign(weight: sp.Expr) -> str:
 
 
 class Synapse(NamedTuple):
-    r"""One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
+    """One axon path from a neuron (or a circuit input) to a neuron (or a circuit output).
 
     Attributes
     ----------
-    source : str
-        The presynaptic neuron or circuit input (a structure signal name).
-    target : str
-        The postsynaptic neuron, or a circuit output (a structure output signal).
+    source, target : str
+        The presynaptic neuron or input, and the postsynaptic neuron or output.
     weight : sympy expression
-        The synaptic weight: the product of the gains on the path.
+        The product of the gains on the path.
     delay : int
-        The unit delays on the path, axon delays included (e.g. 2 for :math:`x_3 \to y`
-        through :math:`x_2, x_1` in a third-order controllable canonical realization).
+        The unit delays on the path, axon delays included.
     path : tuple of str
         The signals strictly between ``source`` and ``target``, in signal-flow order.
 
@@ -81,8 +78,7 @@ class Neuron:
     r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
 
     Its axon output is :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`:
-    self-dynamics terms :math:`(w_k, d_k)` and synapses from :math:`s_j` (weight :math:`v_j`,
-    delay :math:`e_j`).
+    self-dynamics terms :math:`(w_k, d_k)` and synapses from :math:`s_j`.
 
     Attributes
     ----------
@@ -93,10 +89,9 @@ class Neuron:
     synapses : tuple of Synapse
         Its synaptic inputs from other neurons and from circuit inputs.
     self_terms : tuple of Synapse
-        The terms fed back from its own output (``source == target == name``).
+        The terms fed back from its own output.
     axon : tuple of Synapse
-        Its outgoing branches: synapses onto other neurons (in :attr:`Circuit.neurons`
-        order), then the circuit outputs it drives.
+        Its outgoing branches: synapses onto other neurons, then the circuit outputs it drives.
     vertex : int or None
         The delay-graph vertex of its signal, when an assignment was given.
 

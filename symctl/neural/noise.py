@@ -1,8 +1,7 @@
 r"""Noise in the closed loop: on the plant's states, on its inputs, on what the controller measures.
 
-Every closed loop of :mod:`~symctl.neural.simulate` and :mod:`~symctl.neural.batch` is a
-stack :math:`\xi = [x; x_c]` (plant, then controller) with the command :math:`u = C_r \xi`.
-With noise, drawn afresh at each step,
+A closed loop is a stack :math:`\xi = [x; x_c]` (plant, then controller) with the command
+:math:`u = C_r \xi`. With noise drawn afresh at each step,
 
 .. math::
     \xi(t+1) = A_{cl}\,\xi(t) + E_p\,(w(t) + p(t)) + E_u\,m(t) + E_v\,v(t),\qquad
@@ -10,18 +9,15 @@ With noise, drawn afresh at each step,
 
 - process noise :math:`p \sim N(0, W)` on the plant's states, :math:`E_p = [I; 0]`;
 - motor noise :math:`m = m_a + \sigma \odot u \odot \varepsilon` on the plant's input,
-  :math:`E_u = [B; 0]`: additive :math:`m_a \sim N(0, W_u)` and signal-dependent, its
-  standard deviation :math:`\sigma_i |u_i|` proportional to the command (Harris and
-  Wolpert 1998), :math:`\varepsilon \sim N(0, I)`;
-- sensor noise :math:`v \sim N(0, V)` on the controller's measurement :math:`y = x + v`: the
-  controller reads :math:`y` where it read :math:`x`, so :math:`E_v = A_{cl}[:, :n] - [A; 0]`
-  and :math:`D_v = C_r[:, :n]` (a dynamic compensator fed by a measured output brings its own
-  :math:`E_v, D_v` and its output map :math:`C` to :func:`_noisy_loop`).
+  :math:`E_u = [B; 0]`: additive :math:`m_a \sim N(0, W_u)` and signal-dependent, of
+  standard deviation :math:`\sigma_i |u_i|` (Harris and Wolpert 1998);
+- sensor noise :math:`v \sim N(0, V)` on the measurement :math:`y = x + v`, so
+  :math:`E_v = A_{cl}[:, :n] - [A; 0]` and :math:`D_v = C_r[:, :n]` (a compensator fed by
+  an output :math:`C x` brings its own :math:`E_v, D_v, C`).
 
-:math:`u` is the command (the motor neurons' rate), before the motor noise. The draws: at
-each step, standard normals of shape ``(k, loops)``, the process (n), motor (m), sensor (n)
-and signal-dependent (m) rows in this order, each only when given, each block scaled by a
-square root of its covariance (:func:`_factor`).
+:math:`u` is the command, before the motor noise. Each step draws standard normals
+``(k, loops)``: the process (n), motor (m), sensor (n) and signal-dependent (m) rows in
+this order, each only when given, scaled by a square root of its covariance.
 """
 
 from __future__ import annotations
@@ -63,29 +59,28 @@ def _covariance(value, name: str) -> np.ndarray:
 class Noise(ArrayValue, DictMixin):
     r"""Gaussian noise in a closed loop, drawn per step: process, motor and sensor noise.
 
-    Each covariance is a number (times the identity), a list (the diagonal) or a
-    symmetric positive semidefinite matrix, sized when the loop is known.
+    Each covariance is a number (times the identity), a list (the diagonal) or a symmetric
+    positive semidefinite matrix, sized when the loop is known.
 
     Parameters
     ----------
     process : number, list or matrix, optional
-        Covariance :math:`W` of the noise added to the plant's states at each step.
+        Covariance :math:`W` of the noise added to the plant's states.
     motor : number, list or matrix, optional
         Covariance :math:`W_u` of the additive noise on the plant's inputs.
     sensor : number, list or matrix, optional
         Covariance :math:`V` of the noise on what the controller measures.
     signal_dependent : number or list, optional
-        :math:`\sigma \ge 0`: motor noise of standard deviation :math:`\sigma_i |u_i|`,
-        proportional to the command (Harris and Wolpert 1998).
+        :math:`\sigma \ge 0`: motor noise of standard deviation :math:`\sigma_i |u_i|`.
 
     Raises
     ------
     ParameterError
-        A covariance not symmetric positive semidefinite, a negative variance or
-        ``signal_dependent``, a non-finite entry (each named by its argument).
+        A covariance not positive semidefinite, a negative variance or ``signal_dependent``,
+        a non-finite entry.
     DimensionError
-        A covariance that is not square, or larger than ``MAX_STATES``; later, a
-        size other than the loop's (named ``noise.process``, ...).
+        A covariance not square or larger than ``MAX_STATES``; later, one of another size than
+        the loop's (named ``noise.process``, ...).
     SymctlTypeError
         Entries that are not numbers.
 
@@ -125,7 +120,7 @@ class Noise(ArrayValue, DictMixin):
 
     @property
     def is_zero(self) -> bool:
-        """Whether no noise is drawn (every part absent or zero): the loop is then noise-free."""
+        """Whether no noise is drawn (every part absent or zero)."""
         parts = (*(getattr(self, k) for k in _COVARIANCES), self.signal_dependent)
         return all(v is None or not np.any(v) for v in parts)
 
@@ -157,7 +152,7 @@ class Noise(ArrayValue, DictMixin):
 
 
 def _as_noise(noise) -> Noise | None:
-    """``noise`` checked: a :class:`Noise`, or None for none (also for a Noise that is all zero)."""
+    """``noise`` checked: a :class:`Noise`, or None for none (or an all-zero Noise)."""
     if noise is None:
         return None
     if not isinstance(noise, Noise):
@@ -166,7 +161,7 @@ def _as_noise(noise) -> Noise | None:
 
 
 def _factor(cov: np.ndarray) -> np.ndarray:
-    """``L`` with ``L L^T = cov``: square roots on a diagonal, else from the eigenvalues."""
+    """``L`` with ``L L^T = cov``."""
     if not np.any(cov - np.diag(np.diag(cov))):
         return np.diag(np.sqrt(np.diag(cov)))
     lam, U = np.linalg.eigh((cov + cov.T) / 2)
@@ -174,7 +169,7 @@ def _factor(cov: np.ndarray) -> np.ndarray:
 
 
 def _apply(M: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """``M x`` for a shared ``M`` (2-D) or one per loop (``(rows, cols, R)``), ``x`` ``(cols, R)``."""
+    """``M x`` for a shared ``M`` or one per loop ``(rows, cols, R)``; ``x`` ``(cols, R)``."""
     if M.ndim == 2:
         return M @ x
     if M.shape[-1] == 1:
@@ -183,7 +178,7 @@ def _apply(M: np.ndarray, x: np.ndarray) -> np.ndarray:
 
 
 def _sensor_inputs(Acl: np.ndarray, Cr: np.ndarray, A: np.ndarray, n: int) -> tuple:
-    """``(E_v, D_v)`` of a loop whose controller reads the plant's state ``x`` (module docstring)."""
+    """``(E_v, D_v)`` of a loop whose controller reads the plant's state."""
     Ev = Acl[:, :n].copy()
     Ev[:n] -= A if Acl.ndim == 2 else A[:, :, None]
     return Ev, Cr[:, :n]
@@ -218,14 +213,8 @@ class _Parts:
 def _noisy_loop(
     Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
 ):
-    """Run ``count`` loops from rest (module docstring), calling ``visit(t, xi, u, y)`` at each step
-    (``y`` the controller's measurement, :math:`C x + v`, ``C`` the identity by default; None
-    when not ``y``).
-
-    ``Acl`` ``(size, size)`` or a stack ``(size, size, R)``, ``Cr`` likewise ``(m, size[, R])``,
-    ``B`` the plant's ``(n, m)``, ``w`` ``(steps, n)`` or ``(count, steps, n)``; ``Ev``, ``Dv``
-    the sensor's inputs (given with ``parts.sensor``).
-    """
+    """Run ``count`` loops from rest, calling ``visit(t, xi, u, y)`` at each step (``y``: the
+    measurement :math:`C x + v`, or None when not ``y``); ``Acl``, ``Cr`` shared or stacks."""
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
     quiet = not np.any(w)
@@ -261,7 +250,7 @@ def _measured(x, zt, C, Ly) -> np.ndarray:
 
 
 def _normals(gen, steps: int, k: int, count: int):
-    """The normals of each step, ``(k, count)``, drawn in blocks, the next on a thread meanwhile."""
+    """The normals of each step, ``(k, count)``, drawn in blocks, the next on a thread."""
     with ThreadPoolExecutor(1) as pool:
         block = pool.submit(gen.standard_normal, (min(_BLOCK, steps), k, count))
         for start in range(0, steps, _BLOCK):
@@ -273,8 +262,7 @@ def _normals(gen, steps: int, k: int, count: int):
 
 
 def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
-    """How the ``k`` normals of a step enter: ``G`` the state (``(size, k[, R])``), ``Du`` the
-    command and ``Ly`` the measurement (None without sensor noise)."""
+    """How a step's normals enter: ``G`` the state, ``Du`` the command, ``Ly`` the measurement."""
     stack = (Acl.shape[-1],) if Acl.ndim == 3 else ()
     G = np.zeros((Acl.shape[0], k, *stack))
     if parts.process is not None:
@@ -290,8 +278,8 @@ def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
 
 
 def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> None:
-    """:func:`_noisy_loop` into ``out`` ``(steps, len(rows), R)`` (signals ``delta_f``, ``delta_r``,
-    states, as the noise-free loop numbers them) and ``peaks``."""
+    """:func:`_noisy_loop` into ``out`` ``(steps, len(rows), R)`` (signals numbered as the
+    noise-free loop numbers them) and ``peaks``."""
     rows, peak_rows = list(rows), list(peak_rows)
     if peaks is not None:
         peaks[...] = 0.0

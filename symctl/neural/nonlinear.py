@@ -1,17 +1,13 @@
 r"""The linear controller around the nonlinear plant it was designed from.
 
-:func:`nonlinear_check` closes the controller designed on the linearized plant (the
-paper's muscle, or any :class:`~symctl.design.ode.ODEModel`) around the nonlinear ODE and
-measures how far the states depart from the linear prediction: quadratically in the
-disturbance's amplitude, the linearization being exact to first order.
-:func:`longest_delay` finds the longest net delay whose optimal controller still brings
-the *nonlinear* plant back (every delay stabilizes the linear plant; the nonlinearity,
-e.g. a saturating torque, limits it).
+:func:`nonlinear_check` measures how far the nonlinear loop departs from the linear
+prediction (quadratically in the disturbance's amplitude); :func:`longest_delay` finds the
+longest net delay whose optimal controller still brings the *nonlinear* plant back.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 import scipy.integrate
@@ -34,12 +30,12 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     DEFAULT_STEPS,
-    _as_realization,
     _numeric_realization,
     simulate_realization,
 )
 from symctl.proof import Verdict
 from symctl.realization.realization import Realization
+from symctl.realization.realizers import ifp_realization
 
 __all__ = ["DelaySearch", "NonlinearCheck", "longest_delay", "nonlinear_check"]
 
@@ -61,9 +57,8 @@ class NonlinearCheck(ArrayValue, Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction.
 
     Truthy when the nonlinear loop returned at every amplitude (every
-    :attr:`final_deviation` at most :data:`RETURN_TOLERANCE`); ``evidence`` is
-    :attr:`final_deviation`. ``f_linear``, ``f_nonlinear``, ``r_nonlinear`` are the first
-    state's and input's traces ``(k, steps)``. Made by :func:`nonlinear_check`; read-only arrays.
+    :attr:`final_deviation`, the ``evidence``, at most :data:`RETURN_TOLERANCE`). Made by
+    :func:`nonlinear_check`; read-only arrays.
 
     Attributes
     ----------
@@ -76,17 +71,15 @@ class NonlinearCheck(ArrayValue, Verdict):
     u_nonlinear : (k, steps, m) array
         Absolute inputs driving the nonlinear plant.
     max_deviation : (k,) array
-        :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`: the first state's, in its unit.
+        :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`, the first state's.
     relative_deviation : (k,) array
         The worst state's :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|` over its
         linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
     final_deviation : (k,) array
         The worst state's :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|` over that
-        peak: whether the loop came back (inf: the ODE failed).
-    state_names, input_names : tuple of str
-        The plant's names (the muscle's ``f``, ``r``).
-    units : tuple of str
-        The states' units, for labels (``"N"``).
+        peak (inf: the ODE failed).
+    state_names, input_names, units : tuple of str
+        The plant's names (the muscle's ``f``, ``r``) and the states' units (``"N"``).
 
     Examples
     --------
@@ -123,17 +116,8 @@ class NonlinearCheck(ArrayValue, Verdict):
         return self.final_deviation
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in (
-            "amplitudes",
-            "t",
-            "x_linear",
-            "x_nonlinear",
-            "u_nonlinear",
-            "max_deviation",
-            "relative_deviation",
-            "final_deviation",
-        ):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        for field in fields(self)[:8]:
+            object.__setattr__(self, field.name, read_only(getattr(self, field.name), float))
 
     @property
     def f_linear(self) -> np.ndarray:
@@ -167,8 +151,8 @@ class NonlinearCheck(ArrayValue, Verdict):
         return "\n".join(lines)
 
     def plot(self):
-        """State traces (nonlinear solid, linear dashed) and the deviation against amplitude: a Figure
-        by :func:`symctl.plotting.response.nonlinear_plot`.
+        """State traces and the deviation against amplitude: a Figure by
+        :func:`symctl.plotting.response.nonlinear_plot`.
 
         Examples
         --------
@@ -209,11 +193,10 @@ def nonlinear_check(
     r"""Close the linear controller around the nonlinear plant and compare with the linear loop.
 
     At each sample the controller reads :math:`\delta x = x - \bar x`, its output
-    :math:`u = \bar u + \delta u` is held over the step, the ODE is integrated over
-    :math:`T_s` with :func:`scipy.integrate.solve_ivp` (all amplitudes as one vector ODE),
-    and the disturbance is added to the states at the sample. The solver is DOP853 while
-    :math:`T_s \max|\lambda(a)| \le` ``STIFF_RATIO`` (1; the muscle's is 0.5), else Radau
-    with the exact Jacobian, so a stiff plant takes seconds too.
+    :math:`u = \bar u + \delta u` is held while :func:`scipy.integrate.solve_ivp` integrates
+    the ODE over :math:`T_s` (all amplitudes as one vector ODE; DOP853, or Radau with the
+    exact Jacobian when :math:`T_s \max|\lambda| >` ``STIFF_RATIO``), and the disturbance
+    is added to the states at the sample.
 
     Parameters
     ----------
@@ -222,16 +205,15 @@ def nonlinear_check(
     controller : Gains or Realization, optional
         Default: the optimal controller for ``Q = R = 1``, one step each way (IFP).
     amplitudes : sequence of float
-        Disturbance pulse amplitudes (per step); default 0.1 .. 10; at most 10,000.
+        Disturbance pulse amplitudes (per step), at most 10,000.
     steps, start, length : int
-        Horizon (at most ``MAX_STEPS``, 5000) and disturbance pulse, as in
-        :func:`~symctl.simulate_realization`.
+        Horizon (at most ``MAX_STEPS``) and pulse, as in :func:`~symctl.simulate_realization`.
     rtol : float
-        Relative tolerance of the ODE solver, in ``RTOL_RANGE`` ``[1e-13, 1e-2]``.
+        Relative tolerance of the ODE solver, in ``RTOL_RANGE``.
     disturbance : array (steps, n), optional
         The unit disturbance scaled by each amplitude (default: the pulse on every state).
     fail : {"raise", "mark"}
-        On an ODE that fails: raise, or mark its traces NaN from there on (``final_deviation`` inf).
+        On an ODE that fails: raise, or mark its traces NaN from there on.
 
     Returns
     -------
@@ -266,7 +248,7 @@ def nonlinear_check(
         raise SymctlTypeError(
             f"controller: expected Gains or a Realization, got {type(controller).__name__}"
         )
-    R = _as_realization(controller)
+    R = ifp_realization(controller) if isinstance(controller, Gains) else controller
     amps = float_array(amplitudes, "amplitudes").ravel()
     if amps.size == 0:
         raise DimensionError("amplitudes: give at least one amplitude")
@@ -295,6 +277,25 @@ def _solver(model: ODEModel, k: int) -> dict:
     return {"method": "Radau", "jac": jac}
 
 
+def _flow(model: ODEModel, solver: dict, x, u, rtol: float, scale: float) -> tuple:
+    """``(y, sol)``: the states ``x`` ``(k, n)`` one sampling time later under held inputs ``u``
+    ``(k, m)``, NaN when the solver failed."""
+    k, n = x.shape
+    options = dict(solver)
+    if "jac" in options:
+        options["jac"] = lambda _t, y, j=options["jac"]: j(_t, y, u.T)
+    with np.errstate(over="ignore", invalid="ignore"):  # the caller checks
+        sol = scipy.integrate.solve_ivp(
+            lambda _t, y: model.rhs_numeric(y.reshape(k, n).T, u.T).T.ravel(),
+            (0.0, model.dt),
+            x.ravel(),
+            rtol=rtol,
+            atol=rtol * scale,
+            **options,
+        )
+    return (sol.y[:, -1].reshape(k, n) if sol.success else np.full((k, n), np.nan)), sol
+
+
 def ode_flow(model, rtol: float = 1e-9):
     """``(ode, step)``: the model as an :class:`ODEModel` and ``step(x, u)``, its state one
     sampling time after ``x`` under the held input ``u`` (absolute values, not deviations).
@@ -305,33 +306,21 @@ def ode_flow(model, rtol: float = 1e-9):
     True
     """
     ode = _as_ode(model)
-    solver, n = _solver(ode, 1), ode.n
+    solver = _solver(ode, 1)
     scale = max(1.0, float(np.max(np.abs(ode.x_bar))))
 
     def step(x, u) -> np.ndarray:
-        x, u = np.asarray(x, dtype=float), np.asarray(u, dtype=float)
-        options = dict(solver)
-        if "jac" in options:
-            options["jac"] = lambda _t, y, j=options["jac"]: j(_t, y, u[:, None])
-        with np.errstate(over="ignore", invalid="ignore"):  # checked just below
-            sol = scipy.integrate.solve_ivp(
-                lambda _t, y: ode.rhs_numeric(y[:, None], u[:, None])[:, 0],
-                (0.0, ode.dt),
-                x,
-                rtol=rtol,
-                atol=rtol * scale,
-                **options,
-            )
-        y = sol.y[:, -1] if sol.success else np.full(n, np.nan)
+        x = np.asarray(x, dtype=float)
+        y, _ = _flow(ode, solver, x[None], np.asarray(u, dtype=float)[None], rtol, scale)
         if not np.all(np.isfinite(y)):
             raise ParameterError(f"nonlinear: the ODE failed from the state {x.tolist()}")
-        return y
+        return y[0]
 
     return ode, step
 
 
 def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearCheck:
-    k, n, m, Ts = amps.size, model.n, model.m, model.dt
+    k, n, m = amps.size, model.n, model.m
     x_bar, u_bar = model.x_bar, model.u_bar
     w = linear.w  # (steps, n)
     steps = linear.t.size
@@ -346,19 +335,7 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
         dx = x - x_bar
         u = u_bar + xc @ M.T + dx @ N.T  # (k, m)
         x_nl[alive, t], u_nl[alive, t] = x[alive], u[alive]
-        options = dict(solver)
-        if "jac" in options:
-            options["jac"] = lambda _t, y, u=u, j=options["jac"]: j(_t, y, u.T)
-        with np.errstate(over="ignore", invalid="ignore"):  # checked just below
-            sol = scipy.integrate.solve_ivp(
-                lambda _t, y, u=u: model.rhs_numeric(y.reshape(k, n).T, u.T).T.ravel(),
-                (0.0, Ts),
-                x.ravel(),
-                rtol=rtol,
-                atol=rtol * scale,
-                **options,
-            )
-        y = sol.y[:, -1].reshape(k, n) if sol.success else np.full((k, n), np.nan)
+        y, sol = _flow(model, solver, x, u, rtol, scale)
         bad = ~np.all(np.isfinite(y), axis=1) & alive
         if np.any(bad):
             if fail == "raise":
@@ -375,9 +352,10 @@ def _run_nonlinear(model, F, H, M, N, amps, linear, rtol, fail) -> NonlinearChec
     peak_i = np.abs(amps)[:, None] * np.max(np.abs(linear.delta_f), axis=0)[None]  # (k, n)
     with np.errstate(invalid="ignore", divide="ignore"):
         dev_i = np.nanmax(np.where(np.isnan(diff), -np.inf, diff), axis=1)  # (k, n)
-        rel_i = np.where(peak_i > 0, dev_i / np.where(peak_i > 0, peak_i, 1), 0.0)
-        end_i = np.abs(x_nl[:, -1] - x_bar)
-        fin_i = np.where(peak_i > 0, end_i / np.where(peak_i > 0, peak_i, 1), 0.0)
+        rel_i, fin_i = (
+            np.where(peak_i > 0, d / np.where(peak_i > 0, peak_i, 1), 0.0)
+            for d in (dev_i, np.abs(x_nl[:, -1] - x_bar))
+        )
     dev = np.where(alive, dev_i[:, 0], np.inf)  # the first state's, in its unit
     rel = np.where(alive, np.max(rel_i, axis=1), np.inf)  # the worst state's, relative
     final = np.where(alive, np.max(fin_i, axis=1), np.inf)
@@ -393,17 +371,17 @@ class DelaySearch(ArrayValue, DictMixin):
     Attributes
     ----------
     delays : tuple of int
-        The net delays tried, 1 .. ``max``, in order, until the first failure.
+        The net delays tried, from 1 until the first failure.
     final_deviation : tuple of float
-        For each, the nonlinear loop's final distance from the equilibrium
-        over the linear loop's peak (inf: the ODE ran away).
+        For each, the final distance from the equilibrium over the linear peak (inf: the
+        ODE ran away).
     stabilized : tuple of bool
         ``final_deviation <= tolerance``.
     longest : int or None
         The longest delay with every shorter one stabilized too (None: not even 1 step).
     tolerance : float
     limited : bool
-        Whether a failure was found (False: every delay up to ``max`` worked).
+        Whether a failure was found.
 
     Examples
     --------
@@ -445,10 +423,10 @@ def longest_delay(
 ) -> DelaySearch:
     r"""Search the longest net delay :math:`T` whose optimal controller stabilizes the nonlinear plant.
 
-    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller of the plant with that
-    delay (all on the actuator side: only the net delay matters) is closed around the ODE
-    (:func:`nonlinear_check`); it stabilizes when the state ends within ``tolerance`` of the
-    linear loop's peak from the equilibrium. The search stops at the first failure.
+    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller for that delay (on the
+    actuator side: only the net delay matters) is closed around the ODE
+    (:func:`nonlinear_check`) until the state fails to end within ``tolerance`` of the
+    equilibrium (relative to the linear loop's peak).
 
     Parameters
     ----------

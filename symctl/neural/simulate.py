@@ -1,10 +1,7 @@
 r"""Open- and closed-loop simulation of the plant with any realization of the controller.
 
-The paper's section "Simulations": the linear plant driven by a pulse in firing rate
-(Fig. 3); the loop closed with the optimal delayed controller and hit by a pulse
-disturbance on the force (Fig. 5), or with any realization of :math:`G = G_3 G_2 G_1`
-(Figs. 9-11). Every simulation here, in :mod:`~symctl.neural.batch` and in
-:mod:`~symctl.neural.firing` runs through one time loop, ``_run``. The disturbance
+The paper's Figs. 3, 5 and 9-11. Every simulation (here, in :mod:`~symctl.neural.batch`
+and :mod:`~symctl.neural.firing`) runs through one time loop, ``_run``. The disturbance
 :math:`w` enters the state update (zero initial state),
 
 .. math::
@@ -16,8 +13,7 @@ so :math:`\xi = [\delta_f; x_c]` follows :math:`\xi(t+1) = A_{cl}\,\xi(t) + [I; 
 :math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}`; the optimal
 controller runs on the augmented state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t)
 + [I; 0]\,w(t)`. Defaults (the paper gives none): a pulse of amplitude 1 on steps 5..14
-of 50 (0.5 s at :math:`T_s` = 10 ms). Time is ``t = k dt`` in seconds; absolute force
-and rate add the operating point :math:`(\bar f, \bar r)` back.
+of 50 (0.5 s at :math:`T_s` = 10 ms).
 """
 
 from __future__ import annotations
@@ -87,12 +83,10 @@ def pulse(
     Parameters
     ----------
     steps : int
-        The horizon, from 1 to ``MAX_STEPS`` (10**6; default 50).
+        The horizon, 1 to ``MAX_STEPS`` (10**6).
     amplitude : float
-        The value during the pulse (default 1).
     start, length : int
-        First step of the pulse (default 5) and its length (default 10), >= 0;
-        a pulse running past the horizon is cut there.
+        First step of the pulse and its length, >= 0 (cut at the horizon).
     size : int
         The number of channels (columns), >= 1.
 
@@ -103,8 +97,7 @@ def pulse(
     Raises
     ------
     ParameterError
-        A non-integer or out-of-range ``steps``, ``start``, ``length`` or ``size``,
-        or a non-finite ``amplitude``.
+        An out-of-range ``steps``, ``start``, ``length`` or ``size``, a non-finite ``amplitude``.
     SymctlTypeError
         ``amplitude`` is not a real number.
 
@@ -155,9 +148,6 @@ def _ts(p: DiscretePlant) -> float:
     return 1.0 if p.dt is None else float(numeric_matrix(p.dt, "dt")[0, 0])
 
 
-_SPREADS = ("delta_f_sd", "delta_r_sd", "states_sd")
-
-
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
     r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
@@ -165,30 +155,23 @@ class Response(ArrayValue, DictMixin):
     Attributes
     ----------
     t : (steps,) array
-        Time in seconds (in steps when the plant has no ``dt``).
+        Time in ``time_unit``: ``"s"``, or ``"steps"`` when the plant has no ``dt``.
     delta_f, f : (steps, n) arrays
-        Plant state change :math:`\delta_f` and absolute :math:`f = \bar f + \delta_f` [N].
+        Plant state change and absolute :math:`f = \bar f + \delta_f` [N].
     delta_r, r : (steps, m) arrays
-        Motor-neuron rate change :math:`\delta_r` and absolute :math:`r = \bar r + \delta_r`
-        [spikes/s].
+        Motor-neuron rate change and absolute :math:`r = \bar r + \delta_r` [spikes/s].
     w : (steps, n) array
         Disturbance on the state (zeros in open loop).
     states : (steps, nc) array
-        The controller's states (the neurons' firing-rate changes; the optimal
-        controller's delay chain); ``nc = 0`` in open loop.
+        The controller's states, named by ``controller_state_names``; ``nc = 0`` in open loop.
     f_bar, r_bar : arrays
         The operating point (zeros when the plant records none).
     kind : str
         ``"open loop"`` or ``"closed loop"``.
     state_names, input_names : tuple of str
-        The plant's names of its states and inputs.
-    time_unit : str
-        ``"s"``, or ``"steps"`` when the plant has no sampling time.
-    controller_state_names : tuple of str
-        Of ``states``: the delay chain (:func:`~symctl.design.augment.chain_names`) or ``x_1, ...``.
     delta_f_sd, delta_r_sd, states_sd : arrays or None
-        With noise: the standard deviation over the ``draws`` noisy loops of each trace
-        (the traces are then their mean; the rate is the command, before the motor noise).
+        With noise: each trace's standard deviation over the ``draws`` noisy loops (the
+        traces are then their mean; the rate is the command, before the motor noise).
     draws : int
         The noisy loops simulated (0 without noise).
 
@@ -220,7 +203,8 @@ class Response(ArrayValue, DictMixin):
     draws: int = 0
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar", *_SPREADS):
+        arrays = ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar")
+        for name in (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, read_only(getattr(self, name), float))
 
@@ -235,9 +219,8 @@ class Response(ArrayValue, DictMixin):
         return self.delta_r + self.r_bar
 
     def plot(self, states: bool | None = None):
-        """Force and motor-neuron rate against time, absolute values on the right axes (``states``:
-        a panel of the controller's states, by default when there are any); a Figure by
-        :func:`symctl.plotting.response.response_plot`.
+        """Force and rate against time (``states``: a panel of the controller's states, by default
+        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`.
 
         Examples
         --------
@@ -255,17 +238,13 @@ UNIT_CIRCLE = 1 - 1e-9  # |eigenvalue| >= this is unstable (a marginal mode roun
 
 
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
-# operation below then runs over contiguous memory, one realization per element.
-def _stability(Acl: np.ndarray, argname: str, n: int | None = None) -> None:
-    """Refuse a spectral radius >= ``UNIT_CIRCLE`` (a marginal mode, e.g. epsilon = 1, rounds
-    inside); ``n``, the plant's states, lets the message name a hidden mode of the controller."""
-    count = Acl.shape[-1]
-    eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((count, 1))
-    _refuse_unstable(Acl, np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE), argname, n)
-
-
-def _refuse_unstable(Acl: np.ndarray, bad: np.ndarray, argname: str, n: int | None = None) -> None:
-    """Raise for the unstable realizations ``bad`` (indices into the stack), if any."""
+# operation then runs over contiguous memory, one realization per element.
+def _stability(Acl: np.ndarray, argname: str, n: int | None = None, bad=None) -> None:
+    """Refuse the unstable loops ``bad`` of the stack (default: by their eigenvalues); ``n``, the
+    plant's states, lets the message name a hidden mode of the controller."""
+    if bad is None:
+        eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((1, 1))
+        bad = np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE)
     if bad.size:
         count = Acl.shape[-1]
         i = int(bad[0])
@@ -286,7 +265,6 @@ def _eig_text(lam: complex) -> str:
 
 
 def _unstable_cause(Acl: np.ndarray, lam: complex, n: int | None, argname: str) -> str:
-    """Why: a hidden mode of the controller's own states, or a controller that does not stabilize."""
     if n is not None and _is_hidden(Acl, lam, n):
         return (
             f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
@@ -451,11 +429,6 @@ def _numeric_realization(R, p: DiscretePlant, argname: str = "R", C=None) -> tup
     return tuple(a[None] for a in (F, H, M, N))
 
 
-def _as_realization(controller) -> Realization:
-    """The controller to close around a plant: :func:`ifp_realization` of ``Gains``, else itself."""
-    return ifp_realization(controller) if isinstance(controller, Gains) else controller
-
-
 @rng_argument()
 def simulate_realization(
     plant,
@@ -471,9 +444,8 @@ def simulate_realization(
 ) -> Response:
     r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`.
 
-    ``R`` is the whole controller (e.g. ``controller_realization(factor(G).subs(values), R2)``
-    or :func:`ifp_realization`); force and rate depend only on its transfer function, the
-    internal states (``.states``, in ``R``'s state order) on the realization.
+    Force and rate depend only on ``R``'s transfer function, the states (``.states``) on
+    the realization.
 
     Parameters
     ----------
@@ -481,16 +453,12 @@ def simulate_realization(
     R : Realization
         Numeric, of shape (plant inputs, plant states).
     disturbance : float or array
-        A number is the amplitude of the default pulse on every state (``start``,
-        ``length``, horizon ``steps``, default 50); an array of shape ``(steps, n)``
-        (``(steps,)`` for one state) is used as it is.
+        The amplitude of the pulse (``start``, ``length``, horizon ``steps``, default 50)
+        on every state, or an array ``(steps, n)`` (``(steps,)`` for one state).
     noise : Noise, optional
-        Process, motor and sensor noise drawn per step (:mod:`~symctl.neural.noise`):
-        the traces are then the mean over ``draws`` noisy loops, their standard
-        deviation in ``delta_f_sd``, ``delta_r_sd`` and ``states_sd``. A Noise
-        that is all zero is no noise (the result is the noise-free one, exactly).
-    draws : int
-        Noisy loops simulated with ``noise``, 1 to ``MAX_COUNT`` (default 100).
+        Noise drawn per step (:mod:`~symctl.neural.noise`): the traces are then the mean
+        of ``draws`` noisy loops (1 to ``MAX_COUNT``), their standard deviation in
+        ``delta_f_sd``, ``delta_r_sd`` and ``states_sd``. An all-zero Noise is no noise.
     rng : int, numpy Generator or None, default 0
         Seeds the noise.
 
@@ -501,10 +469,9 @@ def simulate_realization(
     Raises
     ------
     ParameterError
-        Unstable closed loop over every state (the message names the eigenvalue, and a
-        hidden mode of ``R``'s own ``F``; :func:`~symctl.neural.stability.loop_stability`
-        decides without raising), non-finite values, bad horizon, an overflow, or an
-        ``R.dt`` other than the plant's.
+        An unstable loop (naming the eigenvalue, and a hidden mode of ``R``'s own ``F``;
+        :func:`~symctl.neural.stability.loop_stability` decides without raising),
+        non-finite values, a bad horizon, an overflow, or an ``R.dt`` other than the plant's.
     DimensionError
         ``R``, ``disturbance`` or a part of ``noise`` of the wrong shape.
 
@@ -530,8 +497,7 @@ def simulate_realization(
 
 
 def _realization_loop(p, A, B, R, argname: str = "R", C=None) -> tuple[np.ndarray, np.ndarray]:
-    """``(A_cl, C_r)`` (stacks of one) of the plant around the realization ``R`` (fed by ``C x``
-    when ``C`` is given), checked stable."""
+    """``(A_cl, C_r)`` (stacks of one) of the plant around ``R`` (fed by ``C x``), checked stable."""
     Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p, argname, C))
     _stability(Acl, argname, p.n)
     return Acl, Cr
@@ -555,9 +521,8 @@ def _spread_response(p, w, df, dr, xc, names=()) -> Response:
 
 
 def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen, sensor=None) -> tuple[np.ndarray, ...]:
-    """``delta_f``, ``delta_r``, states and the controller's measurement ``y`` of ``draws`` noisy
-    runs of the loop (stacks of one), each ``(draws, steps, .)``; ``sensor`` is the ``(E_v, D_v,
-    C)`` of a controller fed by outputs (:func:`_loop`)."""
+    """``delta_f``, ``delta_r``, states and measurement ``y`` of ``draws`` noisy runs, each ``(draws,
+    steps, .)``; ``sensor``: the ``(E_v, D_v, C)`` of a controller fed by outputs (:func:`_loop`)."""
     draws = bounded_int(draws, "draws", 1, MAX_COUNT)
     _, A, B = _plant(p)
     Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
@@ -593,21 +558,17 @@ def closed_loop_response(
     Parameters
     ----------
     controller : Gains, DiscreteTF or Realization
-        Gains simulate the optimal controller on the augmented state (with a ``plant``:
-        their :func:`ifp_realization` around it); a numeric SISO DiscreteTF is realized in
-        controllable canonical form; a Realization goes to :func:`simulate_realization`.
+        Gains run the optimal controller on the augmented state (with a ``plant``: their
+        :func:`ifp_realization`); a numeric SISO DiscreteTF is realized in controllable
+        canonical form.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Required unless ``controller`` is ``Gains``.
-    disturbance, steps, start, length
-        As in :func:`simulate_realization` (default: a unit pulse, 1 N per step, on
-        steps 5..14 of 50).
-    noise, draws, rng
-        As in :func:`simulate_realization`: the mean and standard deviation of ``draws``
-        loops under :class:`~symctl.neural.noise.Noise` (none by default).
+    disturbance, steps, start, length, noise, draws, rng
+        As in :func:`simulate_realization`.
     outputs : matrix-like, optional
-        ``p x n``: the controller (a DiscreteTF or Realization, ``m x p``) reads the outputs
-        :math:`y = C x` (plus the sensor noise, ``p x p``) instead of the state, as the LQG
-        compensator (:func:`~symctl.neural.compensator.lqg_realization`) does.
+        ``p x n``: the controller (not Gains, ``m x p``) reads :math:`y = C x` (plus the
+        sensor noise) instead of the state, as
+        :func:`~symctl.neural.compensator.lqg_realization` does.
 
     Returns
     -------
@@ -647,59 +608,44 @@ def _loop(controller, plant, outputs=None) -> tuple:
     stable; ``sensor`` the ``(E_v, D_v, C)`` of a controller fed by ``outputs`` (else None)."""
     if isinstance(controller, Gains) and plant is None and outputs is None:
         s = controller.system
-        return (s.plant, *_gains_loop(controller), chain_names(s.T, s.m), None)
+        Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ controller.K
+        Cr = np.zeros((s.m, Acl.shape[0]))
+        if s.T:
+            Cr[:, -s.m :] = np.eye(s.m)
+        else:
+            Cr[:] = controller.K
+        _stability(Acl[:, :, None], "controller")
+        return s.plant, Acl[:, :, None], Cr[:, :, None], chain_names(s.T, s.m), None
     if plant is None:
         raise ParameterError(
             "plant: needed unless the controller is Gains (which carry their plant)"
         )
     p, A, B = _plant(plant)
-    if outputs is not None:
-        if isinstance(controller, Gains):
-            raise SymctlTypeError(
-                "controller: Gains read the state; with outputs, give a Realization"
-            )
-        C = numeric_matrix(outputs, "outputs")
-        if C.ndim != 2 or C.shape[1] != p.n:
-            raise DimensionError(f"outputs: expected p x {p.n}, got shape {C.shape}")
-        R = _controller_realization(controller, p)
-        _, H, _, N = R.numeric()
-        return (
-            p,
-            *_realization_loop(p, A, B, R, "controller", C),
-            (),
-            (np.vstack([B @ N, H]), N, C),
-        )
+    if outputs is None:
+        return (p, *_realization_loop(p, A, B, _controller_realization(controller, p)), (), None)
     if isinstance(controller, Gains):
-        same_dt(p, controller.system.plant.dt, "plant", "the gains' plant")
-        R = ifp_realization(controller)
-    else:
-        R = _controller_realization(controller, p)
-    return (p, *_realization_loop(p, A, B, R), (), None)
+        raise SymctlTypeError("controller: Gains read the state; with outputs, give a Realization")
+    C = numeric_matrix(outputs, "outputs")
+    if C.ndim != 2 or C.shape[1] != p.n:
+        raise DimensionError(f"outputs: expected p x {p.n}, got shape {C.shape}")
+    R = _controller_realization(controller, p)
+    _, H, _, N = R.numeric()
+    sensor = (np.vstack([B @ N, H]), N, C)
+    return (p, *_realization_loop(p, A, B, R, "controller", C), (), sensor)
 
 
-def _gains_loop(gains: Gains) -> tuple[np.ndarray, np.ndarray]:
-    """``(A_cl, C_r)`` (stacks of one) of the optimal controller on the augmented state, stable."""
-    s = gains.system
-    Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ gains.K
-    Cr = np.zeros((s.m, Acl.shape[0]))
-    if s.T:
-        Cr[:, -s.m :] = np.eye(s.m)
-    else:
-        Cr[:] = gains.K
-    _stability(Acl[:, :, None], "controller")
-    return Acl[:, :, None], Cr[:, :, None]
-
-
-def _controller_realization(controller, plant: DiscretePlant) -> Realization:
-    """A Realization or a DiscreteTF (controllable canonical form), its ``dt`` the plant's."""
-    if isinstance(controller, Realization):
-        R = controller
-    elif isinstance(controller, DiscreteTF):
-        R = controllable_canonical(controller)
-    else:
+def _controller_realization(controller, plant: DiscretePlant, kinds: str = "") -> Realization:
+    """Gains as their IFP realization, a DiscreteTF in controllable canonical form; the plant's
+    ``dt``; ``kinds``: the other types the caller accepts, for the message."""
+    if isinstance(controller, Gains):
+        same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
+        return ifp_realization(controller)
+    if isinstance(controller, DiscreteTF):
+        controller = controllable_canonical(controller)
+    elif not isinstance(controller, Realization):
         raise SymctlTypeError(
-            "controller: expected Gains, a DiscreteTF or a Realization, "
+            f"controller: expected Gains, a DiscreteTF{kinds} or a Realization, "
             f"got {type(controller).__name__}"
         )
-    same_dt(plant, R.dt, "controller")
-    return R
+    same_dt(plant, controller.dt, "controller")
+    return controller

@@ -1,11 +1,9 @@
 r"""Internal stability of the whole loop: every state, not only the transfer function.
 
-A realization can have the right transfer function and an unstable circuit:
 :math:`G = G_3 G_2 G_1` cancels the poles of :math:`G_1, G_3` at :math:`\epsilon_1,
 \epsilon_3` with zeros of :math:`G_2`, so with :math:`|\epsilon| \ge 1` a state grows as
-:math:`\epsilon^t` (a hidden mode). The loop is internally stable when every eigenvalue of
-:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` lies strictly inside
-the unit circle; the simulations refuse any other loop, naming the eigenvalue.
+:math:`\epsilon^t` (a hidden mode) while the transfer function is right. The loop is
+internally stable when every eigenvalue of :math:`A_{cl}` lies strictly inside the unit circle.
 """
 
 from __future__ import annotations
@@ -14,21 +12,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from symctl.design.lqr import Gains
-from symctl.design.tf import DiscreteTF
-from symctl.errors import SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import (
     UNIT_CIRCLE,
-    _as_realization,
     _closed_loop_matrices,
+    _controller_realization,
     _eig_text,
     _is_hidden,
     _numeric_realization,
     _plant,
 )
 from symctl.proof import Verdict
-from symctl.realization.realization import Realization, controllable_canonical
 
 __all__ = ["LoopStability", "loop_stability"]
 
@@ -42,10 +36,8 @@ class LoopStability(Verdict):
     stable : bool
         Spectral radius of :math:`A_{cl}` below 1 - 1e-9 (a marginal mode is unstable).
     spectral_radius : float
-    eigenvalues : tuple of complex
-        All eigenvalues of :math:`A_{cl}` (plant states first, then the controller's).
-    unstable : tuple of complex
-        Those with :math:`|\\lambda| \\ge 1 - 10^{-9}`.
+    eigenvalues, unstable : tuple of complex
+        The eigenvalues of :math:`A_{cl}`, and those of modulus :math:`\\ge 1 - 10^{-9}`.
     hidden : tuple of complex
         The unstable ones that are eigenvalues of the controller's own :math:`F` (relative
         1e-8): modes hidden from the transfer function.
@@ -88,15 +80,6 @@ class LoopStability(Verdict):
         return text
 
 
-def _circuit_matrices(circuit: Circuit) -> tuple[np.ndarray, ...]:
-    """``(F, H, M, N)`` of a numeric circuit: its delayed signals in, its outputs out."""
-    sys = circuit.as_linear_system(numeric=True)
-    p = len(sys.outputs) - circuit.n_neurons
-    F, H = np.asarray(sys.A, float), np.asarray(sys.B, float)
-    M, N = np.asarray(sys.C, float)[-p:], np.asarray(sys.D, float)[-p:]
-    return F[None], H[None], M[None], N[None]
-
-
 def loop_stability(plant, controller) -> LoopStability:
     r"""Whether every state of the plant in closed loop with ``controller`` decays.
 
@@ -104,8 +87,8 @@ def loop_stability(plant, controller) -> LoopStability:
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     controller : Realization, DiscreteTF, Gains or Circuit
-        Numeric: a realization, a SISO transfer function (controllable canonical), gains
-        (their IFP realization) or a Circuit (its delayed signals are the states).
+        Numeric: a SISO transfer function is realized in controllable canonical form, gains
+        by their IFP realization, a Circuit by its delayed signals.
 
     Returns
     -------
@@ -113,12 +96,10 @@ def loop_stability(plant, controller) -> LoopStability:
 
     Raises
     ------
-    SymctlTypeError
-        ``controller`` of another type.
-    DimensionError
-        ``controller`` of the wrong shape for ``plant``.
+    SymctlTypeError, DimensionError
+        ``controller`` of another type, or of the wrong shape for ``plant``.
     ParameterError
-        Symbols left in the controller, or a controller ``dt`` other than the plant's ``dt``.
+        Symbols left in the controller, or a ``dt`` other than the plant's.
 
     Examples
     --------
@@ -133,18 +114,13 @@ def loop_stability(plant, controller) -> LoopStability:
     """
     p, A, B = _plant(plant)
     if isinstance(controller, Circuit):
-        mats = _circuit_matrices(controller)
+        sys = controller.as_linear_system(numeric=True)
+        k = controller.n_neurons
+        mats = (sys.A[None], sys.B[None], sys.C[None, k:], sys.D[None, k:])
     else:
-        if isinstance(controller, DiscreteTF):
-            controller = controllable_canonical(controller)
-        elif isinstance(controller, Gains):
-            controller = _as_realization(controller)
-        elif not isinstance(controller, Realization):
-            raise SymctlTypeError(
-                "controller: expected a Realization, a DiscreteTF, Gains or a Circuit, "
-                f"got {type(controller).__name__}"
-            )
-        mats = _numeric_realization(controller, p, "controller")
+        mats = _numeric_realization(
+            _controller_realization(controller, p, ", a Circuit"), p, "controller"
+        )
     Acl, _ = _closed_loop_matrices(A, B, *mats)
     Acl = Acl[:, :, 0]
     eigs = np.linalg.eigvals(Acl) if Acl.shape[0] else np.zeros(0)

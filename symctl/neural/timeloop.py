@@ -13,12 +13,8 @@ import numpy as np
 
 
 def _groups(mat: np.ndarray, nonzero=None) -> list[tuple[np.ndarray, np.ndarray, list]]:
-    """The rows of a stack ``(rows, cols, R)`` grouped by their number ``k`` of nonzero terms.
-
-    Each group is ``(rows, sources, coefficients)``: ``sources`` ``(len(rows), k)`` the ``j``
-    of each row's terms in dense order, ``coefficients`` their ``k`` stacks ``(len(rows), 1
-    or R)``. ``nonzero``: the entries not zero in every loop, when the caller has them.
-    """
+    """The rows of a stack ``(rows, cols, R)`` grouped by their number ``k`` of nonzero terms:
+    ``(rows, sources (len(rows), k) in dense order, k coefficient stacks (len(rows), 1 or R))``."""
     if not mat.shape[0]:
         return []
     if nonzero is None:
@@ -38,8 +34,7 @@ def _groups(mat: np.ndarray, nonzero=None) -> list[tuple[np.ndarray, np.ndarray,
 
 
 def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
-    """``dst[i] = sum_j a_ij x_j`` for every row of ``groups``: each row's terms summed in
-    their order, the first product written directly (the rounding of the dense sum)."""
+    """``dst[i] = sum_j a_ij x_j`` for every row of ``groups``, in the dense sum's order."""
     for rows, sources, coefficients in groups:
         if not coefficients:
             dst[rows] = 0.0
@@ -50,16 +45,33 @@ def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
         dst[rows] = acc
 
 
+def _setup(A, Cr, n, w, out, rows, peaks, peak_rows) -> tuple:
+    """What both loops share: each kept signal's slot, each state's signal number, the rates to
+    compute, the steps without input and the last step at rest (``x(t) = 0`` up to the first input)."""
+    m = Cr.shape[0]
+    slot = {signal: k for k, signal in enumerate(rows)}
+    state = [j if j < n else m + j for j in range(A.shape[0])]
+    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
+    quiet = ~np.any(w, axis=(1, 2))
+    if peaks is not None:
+        peaks[...] = 0.0
+    return slot, state, rates, quiet, out.shape[0] if quiet.all() else int(np.argmin(quiet))
+
+
+def _first_bad(out: np.ndarray, rows) -> int:
+    """The first step of ``out`` with an inf or NaN, or ``steps``."""
+    finite = np.all(np.isfinite(out), axis=(1, 2)) if len(rows) else np.ones(1, dtype=bool)
+    return out.shape[0] if finite.all() else int(np.argmin(finite))
+
+
 @np.errstate(over="ignore", invalid="ignore")
 def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=None) -> int:
     """:func:`_run_chunk` for few loops: the rows with as many terms at once (:func:`_groups`)."""
     steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
-    slot = {signal: k for k, signal in enumerate(rows)}
-    state = [j if j < n else m + j for j in range(size)]  # signal number of each state
+    slot, state, rates, quiet, rest = _setup(A, Cr, n, w, out, rows, peaks, peak_rows)
     kept = [(j, slot[s]) for j, s in enumerate(state) if s in slot]
     kept_state = np.array([j for j, _ in kept], dtype=np.intp)
     kept_slot = np.array([k for _, k in kept], dtype=np.intp)
-    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
     rate_out = [(r, slot[n + k]) for r, k in enumerate(rates) if n + k in slot]
     # each peak's signal: a state (delta_f, or a controller state after the rates) or a rate
     peak_src = [
@@ -71,11 +83,6 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=Non
     x, nxt = np.zeros((size, count)), np.empty((size, count))
     rate = np.zeros((len(rates), count))
     tmp = np.empty(count)
-    quiet = ~np.any(w, axis=(1, 2))  # the steps without input
-
-    if peaks is not None:
-        peaks[...] = 0.0
-    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
     for t in range(steps):
         out[t, kept_slot] = x[kept_state]
         if t <= rest:  # at rest: exact zeros (+0, as the dense sum 0 + a 0 gives)
@@ -92,16 +99,12 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=Non
             src = rate[i] if is_rate else x[i]
             np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
         x, nxt = nxt, x
-    if not len(rows):
-        return steps
-    finite = np.all(np.isfinite(out), axis=(1, 2))
-    return steps if finite.all() else int(np.argmin(finite))
+    return _first_bad(out, rows)
 
 
 def _terms(mat: np.ndarray) -> list[list[tuple[int, float | np.ndarray]]]:
-    """Row ``i`` of a stack as ``(j, coefficient)`` terms in dense order; a coefficient equal in
-    every loop is a float, one zero in every loop is left out.
-    """
+    """Each row of a stack as ``(j, coefficient)`` terms in dense order (a float when equal in
+    every loop, left out when zero in every loop)."""
     terms = []
     for row in mat:
         terms.append([])
@@ -130,12 +133,9 @@ def _combine(terms, x: list[np.ndarray], dst: np.ndarray, tmp: np.ndarray) -> No
 def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
     """:func:`_run_chunk` for many loops: each row of ``x(t+1)`` straight into its row of ``out``."""
     steps, size, m, count = out.shape[0], A.shape[0], Cr.shape[0], A.shape[-1]
-    slot = {signal: k for k, signal in enumerate(rows)}
-    state = [j if j < n else m + j for j in range(size)]  # signal number of each state
-    rates = [k for k in range(m) if n + k in slot or n + k in peak_rows]
+    slot, state, rates, quiet, rest = _setup(A, Cr, n, w, out, rows, peaks, peak_rows)
     a_terms, c_terms = _terms(A), _terms(Cr)
     scratch, rate_rows, tmp = np.empty((2, size, count)), np.empty((m, count)), np.empty(count)
-    quiet = ~np.any(w, axis=(1, 2))  # the steps without input
 
     def at(t: int) -> list[np.ndarray]:  # the rows that hold x(t)
         if t == steps:  # the state after the horizon, which nobody sees
@@ -146,9 +146,6 @@ def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
     x = at(0)
     for row in x:
         row[...] = 0.0
-    if peaks is not None:
-        peaks[...] = 0.0
-    rest = steps if quiet.all() else int(np.argmin(quiet))  # x(t) = 0 up to the first input
     for t in range(steps):
         rate = [out[t, slot[n + k]] if n + k in slot else rate_rows[k] for k in range(m)]
         nxt = at(t + 1)
@@ -167,18 +164,12 @@ def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
             src = x[s] if s < n else rate[s - n] if s < n + m else x[s - m]
             np.maximum(peaks[p], np.abs(src, out=tmp), out=peaks[p])
         x = nxt
-    if not len(rows):
-        return steps
-    finite = np.all(np.isfinite(out), axis=(1, 2))
-    return steps if finite.all() else int(np.argmin(finite))
+    return _first_bad(out, rows)
 
 
 GROUPED_LOOPS = 4096
-"""Up to this many loops in a chunk, a large sparse circuit's time loop computes the rows
-with as many terms at once (:func:`_run_groups`), when that takes at most a quarter of the
-NumPy calls per step of going row by row (:func:`_run_rows`, which makes no gathered
-copies and is faster for many loops or few terms). Both sum each row in the order of the
-dense sum, so they give the same bits (``benchmarks/simulate.py`` times both)."""
+"""Up to this many loops in a chunk, :func:`_run_groups` runs when it takes at most a quarter
+of the NumPy calls per step of :func:`_run_rows` (which makes no gathered copies)."""
 
 
 def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:

@@ -1,9 +1,5 @@
-"""A numeric circuit as a connection list: every self-term, synapse and output as one edge.
-
-The simulators' exports read a :class:`~symctl.neural.circuit.Circuit` through
-:func:`_edges`, so that each one sees the same numbers in the same order;
-:func:`export_circuit` writes the list as simulator-neutral JSON.
-"""
+"""A numeric circuit as a connection list (:func:`_edges`), which every simulator's export reads;
+:func:`export_circuit` writes it as simulator-neutral JSON."""
 
 from __future__ import annotations
 
@@ -28,6 +24,11 @@ class _Edge(NamedTuple):
     weight: float
     delay: int
     kind: str
+
+    @property
+    def node(self) -> str:
+        """The target's node name: the neuron, or ``"output <name>"``."""
+        return f"output {self.target}" if self.kind == "output" else self.target
 
 
 def _require(module: str):
@@ -91,6 +92,13 @@ def _label(circuit: Circuit, name: str) -> str:
     return name if vertex is None else f"{name} @ v{vertex}"
 
 
+def _no_population(**options) -> None:
+    """Refuse the options of spiking populations given without ``n_neurons``."""
+    for name, value in options.items():
+        if value is not None:
+            raise ParameterError(f"{name}: needs n_neurons (spiking populations), got None")
+
+
 FORMAT = "symctl-circuit"
 """The ``format`` field of :func:`export_circuit`'s JSON (its ``version`` is 1)."""
 
@@ -117,14 +125,13 @@ def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> d
     circuit : Circuit
         With numbers for weights.
     path : str or Path, optional
-        Where to write the JSON (UTF-8, indented); nothing is written without it.
+        Where to write the JSON (UTF-8, indented).
     dt : float, optional
         The sampling time :math:`T_s` in seconds.
 
     Returns
     -------
     dict
-        The connection list, as written.
 
     Raises
     ------
@@ -144,6 +151,7 @@ def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> d
     ('u', 2.0, 'x1')
     """
     edges = _edges(circuit)
+    outs = {e.target: e for e in edges if e.kind == "output"}
     if dt is not None:
         dt = positive_number(dt, "dt")
 
@@ -175,16 +183,13 @@ def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> d
             for e in edges
             if e.kind == "synapse"
         ],
-        "outputs": [_output(o, edges, timed) for o in circuit.outputs],
+        "outputs": [
+            {"name": o.target, "source": outs[o.target].source} | timed(outs[o.target])
+            if o.target in outs
+            else {"name": o.target, "source": None, "weight": 0.0, "delay_steps": 0, "delay_s": 0.0}
+            for o in circuit.outputs
+        ],
     }
     if path is not None:
         Path(path).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
     return data
-
-
-def _output(out, edges: list[_Edge], timed) -> dict:
-    """One output's entry: its edge, or the zero signal (source null, weight 0)."""
-    for e in edges:
-        if e.kind == "output" and e.target == out.target:
-            return {"name": out.target, "source": e.source} | timed(e)
-    return {"name": out.target, "source": None, "weight": 0.0, "delay_steps": 0, "delay_s": 0.0}

@@ -1,17 +1,13 @@
 r"""What spikes cost each circuit: the neurons per population that keep the force near the linear loop.
 
-For each circuit of a controller, :func:`spiking_cost` runs
-:func:`~symctl.spiking.loop.spiking_response` at several population sizes :math:`N` and
-seeds, and reads off, per seed, the smallest :math:`N` whose deviation (RMS of
-:math:`\delta_f - \delta_f^{lin}` over RMS of :math:`\delta_f^{lin}`) is within a tolerance:
-the deviation is interpolated linearly in :math:`\log N` against :math:`\log` deviation
-between the two sizes that bracket the tolerance; the smallest size when it already holds,
-and :math:`\infty` (reported as "above the largest size") when no size reaches it. The
-spikes per second at that :math:`N` are interpolated the same way. The circuit's cost is
-the median over seeds (with the smallest and largest), times its number of populations.
-
-The runs are independent, so they go to the dask path (:mod:`symctl._util.pool`), and each
-finished run is appended to a ``checkpoint`` file from which an interrupted sweep resumes.
+:func:`spiking_cost` runs :func:`~symctl.spiking.loop.spiking_response` for each circuit at
+several population sizes :math:`N` and seeds, and reads off per seed the smallest :math:`N`
+whose deviation is within a tolerance, interpolating linearly in :math:`\log N` against
+:math:`\log` deviation between the two sizes that bracket it (:math:`\infty` when no size
+reaches it); the spikes per second there likewise. A circuit's cost is the median over
+seeds, times its number of populations. The runs go to the dask path
+(:mod:`symctl._util.pool`), each finished run appended to a ``checkpoint`` file from which
+an interrupted sweep resumes.
 """
 
 from __future__ import annotations
@@ -47,7 +43,7 @@ FORMAT = 1
 
 @dataclass(frozen=True, eq=False)
 class SpikingCost(ArrayValue, DictMixin):
-    r"""The spiking sweep of a controller's circuits, and what each circuit costs (module text).
+    """The spiking sweep of a controller's circuits, and what each circuit costs (module text).
 
     Made by :func:`spiking_cost`; arrays are read-only.
 
@@ -58,19 +54,16 @@ class SpikingCost(ArrayValue, DictMixin):
     populations : tuple of int
         Each circuit's neurons in the linear circuit: its number of populations.
     peak : tuple of float
-        Each circuit's firing amplitude: the largest peak rate change of its neurons in the
-        linear loop [spikes/s].
+        Each circuit's largest peak rate change of a neuron in the linear loop [spikes/s].
     neurons : tuple of int
         The population sizes :math:`N`, increasing.
     seeds : int
         Seeds per size (``0 .. seeds - 1``).
     tolerances : tuple of float
-        The deviations the cost is read at.
     deviation, spikes : (circuits, neurons, seeds) arrays
-        Each run's deviation from the linear loop, and its spikes per second (all
-        populations).
+        Each run's deviation from the linear loop, and its spikes per second.
     atlas_classes : tuple of str
-        The circuits that are atlas classes ``circuits_for`` lists (empty when none).
+        The circuits that are atlas classes.
 
     Examples
     --------
@@ -96,14 +89,9 @@ class SpikingCost(ArrayValue, DictMixin):
             object.__setattr__(self, name, read_only(getattr(self, name), float))
 
     def needed(self, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
-        r"""Per circuit and seed, the neurons per population that keep the deviation within
-        ``tolerance``, and the spikes per second there (``inf`` when no size reaches it).
-
-        Returns
-        -------
-        (circuits, seeds) arrays
-            :math:`N` and the spikes per second, interpolated as the module text says.
-        """
+        """Per circuit and seed, the neurons per population that keep the deviation within
+        ``tolerance``, and the spikes per second there (``inf`` when no size reaches it): two
+        ``(circuits, seeds)`` arrays."""
         logn = np.log(np.asarray(self.neurons, dtype=float))
         n_out = np.full((len(self.circuits), self.seeds), np.inf)
         s_out = np.full_like(n_out, np.inf)
@@ -128,9 +116,8 @@ class SpikingCost(ArrayValue, DictMixin):
         Returns
         -------
         list of dict
-            ``circuit``, ``populations``, ``peak``, and per tolerance ``t`` (as ``5%``):
-            ``N@t`` (median neurons per population, ``inf`` above the largest size),
-            ``N@t range`` (smallest, largest over seeds), ``neurons@t`` (median times
+            ``circuit``, ``populations``, ``peak``, and per tolerance ``t`` (as ``5%``): ``N@t``
+            (median neurons per population), ``N@t range`` (over seeds), ``neurons@t`` (times
             populations) and ``spikes@t`` (median spikes per second).
         """
         needs = {f"{100 * t:g}%": self.needed(t) for t in self.tolerances}
@@ -158,8 +145,8 @@ class SpikingCost(ArrayValue, DictMixin):
         return tuple(r["circuit"] for r in self._sorted(self.table(), by, then))
 
     def fewest_neurons_cheapest(self, among=None) -> bool:
-        """Whether a circuit with the fewest linear neurons is also the cheapest in spikes per
-        second at the first tolerance, among the circuits named in ``among`` (default all)."""
+        """Whether a circuit with the fewest linear neurons (among ``among``, default all) is also
+        the cheapest in spikes per second at the first tolerance."""
         names = self._among(among)
         return self._cheapest(names) in self._fewest(names)
 
@@ -177,8 +164,7 @@ class SpikingCost(ArrayValue, DictMixin):
         return next(n for n in self.ranking("spikes") if n in names)
 
     def finding(self, among=None) -> str:
-        """The answer in a sentence: is the fewest-neuron linear circuit (among the circuits
-        named in ``among``, default all) the cheapest in spikes?"""
+        """The answer in a sentence: is the fewest-neuron circuit (among ``among``) the cheapest in spikes?"""
         names = self._among(among)
         rows = {r["circuit"]: r for r in self.table()}
         key = f"{100 * self.tolerances[0]:g}%"
@@ -208,9 +194,8 @@ class SpikingCost(ArrayValue, DictMixin):
         return text + "."
 
     def peak_correlation(self) -> float:
-        """Spearman's rank correlation of the circuits' firing amplitude (``peak``) with their
-        median neurons per population at the first tolerance; nan for fewer than three
-        circuits or when either is the same for all."""
+        """Spearman's rank correlation of ``peak`` with the median neurons per population at the
+        first tolerance (nan for fewer than three circuits or a constant)."""
         from scipy.stats import spearmanr
 
         n = np.median(self.needed(self.tolerances[0])[0], axis=1)
@@ -220,8 +205,7 @@ class SpikingCost(ArrayValue, DictMixin):
         return float(spearmanr(self.peak, n).statistic)
 
     def summary(self) -> dict:
-        """The sweep as plain JSON types: what ``symctl spiking`` writes as ``spiking.json``
-        (keys in the spiking guide); ``inf`` is written ``null``."""
+        """The sweep as plain JSON types (``inf`` as ``null``): ``symctl spiking``'s ``spiking.json``."""
 
         def num(x):
             return None if not np.isfinite(x) else float(x)
@@ -272,8 +256,7 @@ class SpikingCost(ArrayValue, DictMixin):
 
 
 def _circuits(source, circuits) -> tuple[Gains, dict[str, Circuit], list[str]]:
-    """The gains, the named circuits of ``source`` (gains with ``circuits``, or a derivation)
-    and which of them are atlas classes."""
+    """The gains, the named circuits of ``source`` and which of them are atlas classes."""
     if isinstance(source, Gains):
         if not isinstance(circuits, Mapping) or not circuits:
             raise ParameterError("circuits: with gains, give a dict of circuits by name")
@@ -357,31 +340,30 @@ def spiking_cost(
     checkpoint=None,
     progress: Callable[[int, int], None] | None = None,
 ) -> SpikingCost:
-    r"""What spikes cost each circuit of a controller: a sweep of population sizes and seeds.
+    """What spikes cost each circuit of a controller: a sweep of population sizes and seeds.
 
     Parameters
     ----------
     source : Derivation or Gains
-        A derivation (:func:`~symctl.derive_paper`, :func:`~symctl.derive`): its named
-        circuits (the first realization of each) and every class ``circuits_for`` lists
-        for it; or the gains, with ``circuits`` a dict of numeric circuits by name.
+        A derivation (:func:`~symctl.derive`): its named circuits (the first realization of
+        each) and every class ``circuits_for`` lists; or gains, with ``circuits`` a dict.
     circuits : list of str or dict of str to Circuit, optional
-        The names to run (default all), or with gains the circuits themselves.
+        The names to run (default all), or with gains the circuits by name.
     neurons : sequence of int
-        Population sizes, each in ``[1, MAX_POPULATION]`` (default ``NEURONS``).
+        Population sizes, each in ``[1, MAX_POPULATION]``.
     seeds : int
-        Seeds per size, ``0 .. seeds - 1`` (default 10).
+        Seeds per size, ``0 .. seeds - 1``.
     tolerances : sequence of float
-        Deviations in ``(0, 1)`` the cost is read at (default 5% and 1%).
+        Deviations in ``(0, 1)`` the cost is read at.
     steps, disturbance
         As in :func:`~symctl.spiking.loop.spiking_response`.
     workers : int
         Local worker processes (1: this process); ``scheduler``: a dask address instead.
     checkpoint : path, optional
-        A JSON-lines file: finished runs are appended, and a later sweep of the same
-        circuits with the same file skips them (a file of another sweep is refused).
+        A JSON-lines file of finished runs, which a later sweep of the same circuits skips
+        (a file of another sweep is refused).
     progress : callable, optional
-        Called with ``(done, total)`` runs as they finish.
+        Called with ``(done, total)`` runs.
 
     Returns
     -------
@@ -392,9 +374,8 @@ def spiking_cost(
     MissingDependencyError
         nengo is not installed (``pip install symctl[spiking]``).
     ParameterError
-        A size outside ``[1, MAX_POPULATION]``, repeated sizes, ``seeds < 1``, a tolerance
-        outside ``(0, 1)``, an unknown circuit name, a checkpoint of another sweep, and
-        what :func:`~symctl.spiking.loop.spiking_response` refuses.
+        A size out of range or repeated, ``seeds < 1``, a tolerance outside ``(0, 1)``, an
+        unknown circuit, a checkpoint of another sweep, and what ``spiking_response`` refuses.
     SymctlTypeError
         ``source`` is neither a derivation nor gains.
 

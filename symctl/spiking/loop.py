@@ -1,12 +1,10 @@
 r"""The loop closed around the plant through a circuit of spiking populations, beside the linear loop.
 
 The plant is a nengo node that steps :math:`\delta_f(k+1) = A\,\delta_f(k) + B\,\delta_r(k)
-+ w(k)` (or, with ``nonlinear``, the ODE integrated over one sample from
-:math:`\bar f + \delta_f(k)` under the held input :math:`\bar r + \delta_r(k)`) once per
-sample, reading the circuit's output at the sample's last simulator step; the circuit is
-:func:`~symctl.spiking.nengo_export.to_nengo`'s network, spiking or exact.
-The linear loop is symctl's own (:func:`~symctl.neural.simulate.simulate_realization` with
-the circuit's linear system), and the populations' radii come from its traces.
++ w(k)` (or, with ``nonlinear``, the ODE over one sample) once per sample, reading the
+circuit's output at the sample's last simulator step; the circuit is
+:func:`~symctl.spiking.nengo_export.to_nengo`'s network. The linear loop is symctl's own,
+and the populations' radii come from its traces.
 """
 
 from __future__ import annotations
@@ -19,7 +17,7 @@ import numpy as np
 
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
-from symctl._util.validate import as_generator, bounded_int, read_only
+from symctl._util.validate import bounded_int, read_only
 from symctl.design.lqr import Gains
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
@@ -28,7 +26,7 @@ from symctl.neural.nonlinear import ode_flow
 from symctl.neural.simulate import simulate_realization
 from symctl.realization.realization import Realization
 from symctl.spiking.connections import _edges, _require
-from symctl.spiking.nengo_export import MAX_POPULATION, SUBSTEPS, TAU_FRACTION, _network, _radii
+from symctl.spiking.nengo_export import MAX_POPULATION, SUBSTEPS, _radii, to_nengo
 
 __all__ = ["SpikingResponse", "spiking_response"]
 
@@ -46,12 +44,12 @@ class SpikingResponse(ArrayValue, DictMixin):
     delta_f, delta_f_linear : (steps, n) arrays
         Force change of the spiking loop and of the linear loop [N].
     delta_r, delta_r_linear : (steps, m) arrays
-        Motor-neuron rate change (the circuit's output) of each loop [spikes/s].
+        Motor-neuron rate change of each loop [spikes/s].
     firing, firing_linear : mapping of str to (steps,) array
-        Each neuron's rate change: its population's decoded value at the sample's last
-        simulator step, and the linear loop's.
+        Each neuron's rate change (its population's decoded value at the sample's last
+        simulator step), and the linear loop's.
     spikes : mapping of str to (steps * SUBSTEPS, N) uint8 array
-        Each population's spike trains (1 where a neuron spiked in a simulator step).
+        Each population's spike trains.
     radius : mapping of str to float
         Each population's radius (``RADIUS_MARGIN`` times its linear peak).
     n_neurons : int
@@ -142,26 +140,21 @@ def spiking_response(
     gains : Gains
         The controller's gains; their plant is the loop's unless ``plant`` is given.
     circuit : Circuit
-        A numeric circuit of the whole controller, :math:`\delta_f \to \delta_r` (e.g. one
-        of :attr:`FiringPatterns.circuits`).
+        A numeric circuit of the whole controller, :math:`\delta_f \to \delta_r`.
     n_neurons : int or None
-        Spiking neurons per population, in ``[1, MAX_POPULATION]``; ``None``: exact nodes
-        (the network then reproduces the linear loop).
+        Spiking neurons per population, in ``[1, MAX_POPULATION]``; ``None``: exact nodes.
     rng : int, numpy Generator or None, default 0
-        Seeds the populations (encoders, gains, biases).
-    steps : int, optional
-        Samples (default 50).
-    disturbance : float or array
-        As in :func:`~symctl.neural.simulate.simulate_realization` (default a unit pulse).
+        Seeds the populations.
+    steps, disturbance
+        As in :func:`~symctl.neural.simulate.simulate_realization`.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
         A discrete plant with the gains' ``dt`` (default the gains' plant).
     neuron_type : nengo.neurons.NeuronType, optional
         Default ``nengo.LIF()``.
     nonlinear : MuscleModel or ODEModel, optional
-        Close the spiking loop around this nonlinear ODE (the plant the gains were designed
-        on, linearized; its sampling time and sizes must be the plant's) instead of the linear
-        plant; ``delta_f`` is then its deviation from the equilibrium, and the linear loop
-        stays the reference.
+        Close the spiking loop around this ODE (of the plant's sampling time and sizes)
+        instead; ``delta_f`` is then its deviation from the equilibrium, and the linear
+        loop stays the reference.
 
     Returns
     -------
@@ -190,7 +183,7 @@ def spiking_response(
     """
     if not isinstance(gains, Gains):
         raise SymctlTypeError(f"gains: expected Gains (lqr_gains), got {type(gains).__name__}")
-    edges = _edges(circuit)
+    _edges(circuit)  # a symbolic circuit is refused before any work
     p = _plant(plant, gains)
     if p.dt is None:
         raise ParameterError("plant: needs a sampling time (a discrete plant with dt)")
@@ -211,9 +204,6 @@ def spiking_response(
     if n_neurons is not None:
         n_neurons = bounded_int(n_neurons, "n_neurons", 1, MAX_POPULATION)
     nengo = _require("nengo")
-    if neuron_type is not None and not isinstance(neuron_type, nengo.neurons.NeuronType):
-        raise SymctlTypeError(f"neuron_type: expected a nengo neuron type, got {neuron_type!r}")
-    seed = int(as_generator(rng, "rng").integers(2**31))
     Ts = float(p.dt)
     sys = circuit.as_linear_system(numeric=True)
     k = len(circuit.neurons)
@@ -222,10 +212,8 @@ def spiking_response(
     firing_linear = _drive(circuit, linear.delta_f)
     radii = _radii(circuit, firing_linear)
     sub = SUBSTEPS if n_neurons else 1
-    spiking = None
-    if n_neurons:
-        spiking = (n_neurons, neuron_type or nengo.LIF(), radii, TAU_FRACTION * Ts)
-    net = _network(nengo, circuit, edges, seed, spiking)
+    options = {"neuron_type": neuron_type, "radius": radii} if n_neurons else {}
+    net = to_nengo(circuit, n_neurons, rng=rng, dt=Ts, **options)
     A, B = p.numeric()
     w = np.asarray(linear.w, dtype=float)
     count = w.shape[0]

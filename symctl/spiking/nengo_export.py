@@ -1,28 +1,23 @@
 r"""A circuit as a nengo network: one node per neuron, its synapses as delayed connections.
 
 A stylized neuron :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` is a
-passthrough :class:`nengo.Node` (it sums what reaches it) and each term a
-:class:`nengo.Connection` with ``transform`` the weight and ``synapse`` the pure delay
-:math:`z^{-d}` (a discrete :class:`nengo.LinearFilter`, or ``None`` for no delay): a
-delay is an axon, not a filter. Run in nengo's simulator with ``dt`` the circuit's
-sampling time :math:`T_s`, step :math:`k + 1` of the network holds the circuit's
-:math:`n(k)` when the input node holds :math:`u(k)` (nengo's first step is
-:math:`t = dt`): the network reproduces symctl's linear simulation to rounding.
+passthrough :class:`nengo.Node` and each term a :class:`nengo.Connection` with
+``transform`` the weight and ``synapse`` the pure delay :math:`z^{-d}` (a discrete
+:class:`nengo.LinearFilter`). Run with ``dt`` the sampling time :math:`T_s`, step
+:math:`k + 1` of the network holds the circuit's :math:`n(k)` when the input holds
+:math:`u(k)`: the network reproduces symctl's linear simulation to rounding.
 
 **Spiking populations** (``n_neurons=N``) follow the Neural Engineering Framework
-[1]_: each neuron's sum drives a population of :math:`N` spiking neurons (LIF unless
-``neuron_type`` says otherwise) that represents its rate change in
-:math:`[-r, r]` (:math:`r`: ``radius``), with encoders, gains and biases drawn by
-nengo and decoders solved by least squares; the decoded value, filtered by a
-postsynaptic lowpass of time constant :math:`T_s / 5` (``TAU_FRACTION``), is the
-neuron's axon. The network then runs ``SUBSTEPS`` simulator steps per sample
-(``dt`` :math:`= T_s/10`), and a delay of :math:`d` samples is the pure delay of
-:math:`10 d` simulator steps: delays stay exact, as in the delay networks of [2]_,
-which realize delays with the populations themselves instead. The lowpass is **not
-compensated**: it smooths the spikes, and its effect is a lag of about
-:math:`T_s/5` within each sample (a step settles to :math:`e^{-5} < 1\%` by the
-sample's end), which :func:`~symctl.spiking.loop.spiking_response` measures with
-the spike noise as the deviation from the linear loop, rather than hiding it.
+[1]_: each neuron's sum drives a population of :math:`N` spiking neurons (LIF by
+default) representing :math:`[-r, r]` (:math:`r`: ``radius``), encoders, gains and
+biases drawn by nengo and decoders solved by least squares; the decoded value,
+filtered by a lowpass of time constant :math:`T_s / 5` (``TAU_FRACTION``), is the
+neuron's axon. The network runs ``SUBSTEPS`` simulator steps per sample, so a delay
+of :math:`d` samples stays the exact delay of :math:`10 d` steps (the delay networks
+of [2]_ realize delays with populations instead). The lowpass is **not compensated**:
+its lag of about :math:`T_s/5` and the spike noise are what
+:func:`~symctl.spiking.loop.spiking_response` measures as the deviation from the
+linear loop.
 
 References
 ----------
@@ -41,7 +36,14 @@ from symctl._util.validate import as_generator, bounded_int, positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import pulse
-from symctl.spiking.connections import _edges, _label, _require, _samples, _with_output
+from symctl.spiking.connections import (
+    _edges,
+    _label,
+    _no_population,
+    _require,
+    _samples,
+    _with_output,
+)
 
 __all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
 
@@ -80,31 +82,28 @@ def to_nengo(
     Parameters
     ----------
     circuit : Circuit
-        With numbers for weights (e.g. one of :attr:`FiringPatterns.circuits`, or
-        :meth:`Circuit.subs`).
+        With numbers for weights (e.g. one of :attr:`FiringPatterns.circuits`).
     n_neurons : int, optional
-        ``None``: every neuron is exact, a non-spiking node; run with ``dt`` the sampling
-        time. An int in ``[1, MAX_POPULATION]``: a population of that many spiking neurons
-        per neuron; run with ``dt / SUBSTEPS``.
+        ``None``: every neuron an exact node (run with ``dt``). An int in ``[1,
+        MAX_POPULATION]``: a population of that many spiking neurons per neuron (run with
+        ``dt / SUBSTEPS``).
     neuron_type : nengo.neurons.NeuronType, optional
         The populations' neurons (default ``nengo.LIF()``); only with ``n_neurons``.
     rng : int, numpy Generator or None
-        Seeds the network (``nengo.Network(seed=...)``: encoders, gains, biases).
+        Seeds the network (encoders, gains, biases).
     dt : float
-        The sampling time :math:`T_s` in seconds (sets the lowpass of the populations).
+        The sampling time :math:`T_s` in seconds.
     radius : dict of str to float, optional
         Each population's radius by neuron name; default ``RADIUS_MARGIN`` times the peak
-        of the neuron's linear response to :func:`~symctl.neural.simulate.pulse` on every
-        input.
+        of the neuron's linear response to :func:`~symctl.neural.simulate.pulse`.
 
     Returns
     -------
     nengo.Network
-        With dicts by name: ``inputs`` (a passthrough node per circuit input: connect your
-        signal to it), ``neurons`` (a node per neuron, its sum, labelled
-        ``"name @ v<vertex>"``), ``axons`` (what each neuron sends: the node itself, or its
-        population's filtered decoded value), ``populations`` (the ensembles; empty when
-        exact) and ``outputs`` (a node per circuit output).
+        With dicts by name: ``inputs`` (a node per circuit input), ``neurons`` (a node per
+        neuron, its sum, labelled ``"name @ v<vertex>"``), ``axons`` (the node, or its
+        population's filtered decoded value), ``populations`` (empty when exact) and
+        ``outputs`` (a node per circuit output).
 
     Raises
     ------
@@ -138,9 +137,7 @@ def to_nengo(
     dt = positive_number(dt, "dt")
     seed = int(as_generator(rng, "rng").integers(2**31))
     if n_neurons is None:
-        for name, value in (("neuron_type", neuron_type), ("radius", radius)):
-            if value is not None:
-                raise ParameterError(f"{name}: needs n_neurons (spiking populations), got None")
+        _no_population(neuron_type=neuron_type, radius=radius)
         return _network(nengo, circuit, edges, seed)
     n_neurons = bounded_int(n_neurons, "n_neurons", 1, MAX_POPULATION)
     if radius is None:
@@ -177,14 +174,12 @@ def _network(nengo, circuit: Circuit, edges, seed: int, spiking=None):
                 net.populations[name], net.axons[name] = ens, axon
         substeps = 1 if spiking is None else SUBSTEPS
         for e in edges:
-            target = net.outputs[e.target] if e.kind == "output" else net.neurons[e.target]
-            name = f"output {e.target}" if e.kind == "output" else e.target
             nengo.Connection(
                 net.axons[e.source] if e.source in net.axons else net.inputs[e.source],
-                target,
+                net.outputs[e.target] if e.kind == "output" else net.neurons[e.target],
                 transform=e.weight,
                 synapse=_delay(nengo, e.delay * substeps),
-                label=f"{e.source} -> {name} (delay {e.delay})",
+                label=f"{e.source} -> {e.node} (delay {e.delay})",
             )
     return net
 
@@ -204,8 +199,8 @@ def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndar
     Returns
     -------
     dict of str to array
-        Every neuron's trace ``(steps,)`` by name, and ``"output"``: the circuit outputs
-        ``(steps,)`` (one output) or ``(steps, outputs)``, as symctl's own simulation gives.
+        Every neuron's trace ``(steps,)`` by name, and ``"output"``: ``(steps,)`` (one
+        output) or ``(steps, outputs)``.
 
     Raises
     ------

@@ -72,7 +72,8 @@ def _lags(circuit: Circuit, edges) -> dict[str, int]:
     nodes = [*circuit.inputs, *(n.name for n in circuit.neurons)]
     nodes += [f"output {o.target}" for o in circuit.outputs]
     # L_s - L_t <= e - least(s): an arc t -> s of that length; start every node at 0
-    arcs = [(_node(e), e.source, e.delay - _least(circuit, e.source)) for e in edges]
+    least = {u: GENERATOR_LAG for u in circuit.inputs}
+    arcs = [(e.node, e.source, e.delay - least.get(e.source, 1)) for e in edges]
     lag = dict.fromkeys(nodes, 0)
     for _ in range(len(nodes) + 1):
         changed = False
@@ -90,14 +91,6 @@ def _lags(circuit: Circuit, edges) -> dict[str, int]:
     low = min(lag[n] for n in nodes if n not in circuit.inputs)
     shift = max(1 - low, -min((lag[u] for u in circuit.inputs), default=0))
     return {n: v + shift for n, v in lag.items()}
-
-
-def _node(edge) -> str:
-    return f"output {edge.target}" if edge.kind == "output" else edge.target
-
-
-def _least(circuit: Circuit, source: str) -> int:
-    return GENERATOR_LAG if source in circuit.inputs else 1
 
 
 def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
@@ -153,13 +146,13 @@ def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
     )
     nodes = {**net.neurons, **net.outputs, **net.inputs}
     for e in edges:
-        lag = e.delay + lags[_node(e)] - lags[e.source]
+        lag = e.delay + lags[e.node] - lags[e.source]
         if lag == 1:
             spec = {"synapse_model": "rate_connection_instantaneous", "weight": e.weight}
         else:
             spec = {"synapse_model": "rate_connection_delayed", "weight": e.weight}
             spec["delay"] = (lag - 1) * nest.resolution
-        nest.Connect(nodes[e.source], nodes[_node(e)], syn_spec=spec)
+        nest.Connect(nodes[e.source], nodes[e.node], syn_spec=spec)
     return net
 
 
@@ -178,8 +171,7 @@ def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndar
     Returns
     -------
     dict of str to array
-        As :func:`~symctl.spiking.nengo_export.nengo_response`: each neuron's trace by
-        name, and ``"output"``.
+        As :func:`~symctl.spiking.nengo_export.nengo_response`.
 
     Raises
     ------

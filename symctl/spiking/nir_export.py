@@ -1,33 +1,22 @@
 r"""A circuit as a NIR graph (the neuromorphic intermediate representation, ``nir`` 1.0).
 
-NIR defines every node in continuous time. The stylized neuron
+NIR defines every node in continuous time; the stylized neuron
 :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` is a delay-difference
-equation, and NIR carries it as one: each neuron is a ``Scale`` node of scale 1 (NIR
-sums the edges into a node, so it outputs the sum of its terms), and each term a
-``Delay`` node of :math:`d\,T_s` seconds (none for :math:`d = 0`) followed by a
-``Linear`` node of the term's weight. With every input held over a sample,
-:math:`u(t) = u(k)` on :math:`[kT_s, (k+1)T_s)`, every signal of the graph is held
-too, and its value at :math:`t = kT_s` is the circuit's :math:`n(k)`: the export is
-exact for every circuit, whatever its self-dynamics (:math:`a \le 0` and
-:math:`a = 1` included).
-
-NIR's ``LI`` and ``Integrator`` nodes do not carry a neuron exactly: an ``LI`` of
-:math:`\tau = -T_s/\ln a` and :math:`R = 1/(1-a)` steps :math:`x(k+1) = a\,x(k) + I`
-only when its input :math:`I` is held over the sample (and :math:`a = 1` is an
-``Integrator``, :math:`a \le 0` has no such :math:`\tau`), but another neuron's output
-is a continuous trace, not a held one, and NIR has no sample-and-hold node.
+equation, and NIR carries it as one: each neuron is a ``Scale`` node of scale 1 (NIR sums
+the edges into a node), each term a ``Delay`` node of :math:`d\,T_s` seconds (none for
+:math:`d = 0`) and a ``Linear`` node of its weight. With every input held over a sample,
+every signal is held too and equals the circuit's :math:`n(k)` at :math:`t = kT_s`: the
+export is exact for every self-dynamics. (An ``LI`` node steps :math:`x(k+1) = a\,x(k) + I`
+only for a held input :math:`I`, and NIR has no sample-and-hold node.)
 
 **Spiking populations** (``n_neurons=N``) are those of
-:func:`~symctl.spiking.nengo_export.to_nengo`, built by nengo: the neuron's sum drives
-an ``Affine`` node (nengo's encoders times gains over the radius, and its biases) into
-a ``LIF`` node of :math:`N` neurons (:math:`\tau` nengo's ``tau_rc``, :math:`R = 1`,
-leak and reset 0, threshold 1: nengo's LIF in continuous time), whose spikes
-(unit-area events) go through a ``Linear`` node (the decoders) and an ``LI`` node (the
-postsynaptic lowpass, :math:`\tau = T_s/5`, :math:`R = 1`) to the neuron's axon. NIR's
-``LIF`` has no refractory period and no voltage floor, so the populations' neurons are
-``nengo.LIF(tau_ref=0, min_voltage=-inf)``, and another neuron type is refused. The
-decoders are solved for these neurons; the graph is as approximate as nengo's network,
-and a NIR simulator's discretization and spike timing decide how close its run comes.
+:func:`~symctl.spiking.nengo_export.to_nengo`: the neuron's sum drives an ``Affine`` node
+(nengo's encoders times gains over the radius, and its biases) into a ``LIF`` node of
+:math:`N` neurons (nengo's LIF in continuous time: :math:`R = 1`, leak and reset 0,
+threshold 1), whose spikes go through a ``Linear`` node (the decoders) and an ``LI`` node
+(the lowpass) to the neuron's axon. NIR's ``LIF`` has no refractory period and no voltage
+floor, so the neurons are ``nengo.LIF(tau_ref=0, min_voltage=-inf)``. The graph is as
+approximate as nengo's network.
 """
 
 from __future__ import annotations
@@ -39,7 +28,7 @@ import numpy as np
 from symctl._util.validate import positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
-from symctl.spiking.connections import _edges, _label, _require
+from symctl.spiking.connections import _edges, _label, _no_population, _require
 
 __all__ = ["to_nir"]
 
@@ -53,43 +42,40 @@ def to_nir(
     neuron_type=None,
     radius=None,
 ):
-    r"""The circuit as a :class:`nir.NIRGraph`: exact delay-sum neurons, or LIF populations.
+    """The circuit as a :class:`nir.NIRGraph`: exact delay-sum neurons, or LIF populations.
 
     Parameters
     ----------
     circuit : Circuit
         With numbers for weights.
     n_neurons : int, optional
-        ``None``: every neuron exact (module text). An int in
-        ``[1, MAX_POPULATION]``: a population of that many LIF neurons per neuron.
+        ``None``: every neuron exact. An int in ``[1, MAX_POPULATION]``: a population of that
+        many LIF neurons per neuron.
     dt : float
-        The sampling time :math:`T_s` in seconds (the delays' unit).
+        The sampling time :math:`T_s` in seconds.
     rng : int, numpy Generator or None
-        Seeds nengo's encoders, gains and biases (only with ``n_neurons``).
+        Seeds nengo's encoders, gains and biases.
     neuron_type : nengo.LIF, optional
-        Only ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default), with
-        ``tau_rc`` free: NIR's LIF has no refractory period and no voltage floor.
+        Only ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default), ``tau_rc`` free.
     radius : dict of str to float, optional
-        Each population's radius, as for :func:`~symctl.spiking.nengo_export.to_nengo`.
+        As for :func:`~symctl.spiking.nengo_export.to_nengo`.
 
     Returns
     -------
     nir.NIRGraph
-        Nodes named after the circuit: an ``Input`` per input, a node per neuron (its
-        sum, with its ``label`` ``"name @ v<vertex>"`` in metadata), ``"<source> -> <target>
-        (delay <d>) delay"`` / ``"... weight"`` per term, an ``Output`` ``"output <name>"``
-        per output; spiking, ``"<neuron> encoders"``, ``"<neuron> LIF"``,
-        ``"<neuron> decoders"`` and ``"<neuron> synapse"`` per neuron. ``metadata["dt"]``
-        is ``dt``.
+        An ``Input`` per input, a node per neuron (labelled ``"name @ v<vertex>"`` in its
+        metadata), ``"<source> -> <target> (delay <d>) delay"`` / ``"... weight"`` per term,
+        an ``Output`` ``"output <name>"`` per output; spiking, ``"<neuron> encoders"``,
+        ``"... LIF"``, ``"... decoders"`` and ``"... synapse"``. ``metadata["dt"]`` is ``dt``.
 
     Raises
     ------
     MissingDependencyError
         nir (or, with ``n_neurons``, nengo) is not installed (``pip install symctl[spiking]``).
     ParameterError
-        Symbols or non-real numbers left in the weights; ``dt`` not > 0; ``n_neurons``
-        outside ``[1, MAX_POPULATION]``; a ``neuron_type`` with a refractory period or a
-        voltage floor, or one or a ``radius`` without ``n_neurons``.
+        Symbols or non-real numbers in the weights; ``dt`` not > 0; ``n_neurons`` out of range;
+        a ``neuron_type`` with a refractory period or a voltage floor; a ``neuron_type`` or
+        ``radius`` without ``n_neurons``.
     SymctlTypeError
         ``circuit`` is not a Circuit; ``neuron_type`` is not a nengo LIF.
 
@@ -114,16 +100,14 @@ def to_nir(
     nodes |= {f"output {o.target}": nir.Output(np.array([1])) for o in circuit.outputs}
     links = []
     axon = {u: u for u in circuit.inputs} | {n.name: n.name for n in circuit.neurons}
-    if n_neurons is not None:
+    if n_neurons is None:
+        _no_population(neuron_type=neuron_type, radius=radius)
+    else:
         links += _populations(nir, circuit, n_neurons, dt, rng, neuron_type, radius, nodes, axon)
-    elif neuron_type is not None or radius is not None:
-        which = "neuron_type" if neuron_type is not None else "radius"
-        raise ParameterError(f"{which}: needs n_neurons (spiking populations), got None")
     for e in edges:
-        target = f"output {e.target}" if e.kind == "output" else e.target
-        name = f"{e.source} -> {target} (delay {e.delay})"
+        name = f"{e.source} -> {e.node} (delay {e.delay})"
         nodes[f"{name} weight"] = nir.Linear(np.array([[e.weight]]))
-        chain = [axon[e.source], f"{name} weight", target]
+        chain = [axon[e.source], f"{name} weight", e.node]
         if e.delay:
             nodes[f"{name} delay"] = nir.Delay(np.array([e.delay * dt]))
             chain.insert(1, f"{name} delay")
