@@ -23,7 +23,7 @@ this order, each only when given, scaled by a square root of its covariance.
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -218,6 +218,9 @@ def _noisy_loop(
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
     quiet = not np.any(w)
+    if parts.process is not None and parts.motor is not None:  # one draw of W + B W_u B^T
+        P, BM = parts.process, B @ parts.motor
+        parts = replace(parts, process=_factor(P @ P.T + BM @ BM.T), motor=None)
     rows = dict(parts.rows())
     k = max((r.stop for r in rows.values()), default=0)
     G, Du, Ly = _noise_inputs(Acl, B, n, parts, rows, k, Ev, Dv)

@@ -133,7 +133,8 @@ def test_simulate_batch_with_noise_keeps_traces_peaks_and_chunks_consistent():
 
 def test_a_noisy_batch_equals_python_control_forced_response_on_the_same_draws():
     """The loops of simulate_batch and control.forced_response of the closed loop, driven by the
-    documented draws (per step, normals (k, loops): process, motor, sensor), agree to 1e-9."""
+    documented draws (per step, normals (k, loops): process and motor as one state noise, then
+    sensor), agree to 1e-9."""
     count, steps = 3, 40
     R = ifp_realization(FOREARM_GAINS)
     p = FOREARM.plant
@@ -144,21 +145,20 @@ def test_a_noisy_batch_equals_python_control_forced_response_on_the_same_draws()
     n, m = p.n, p.m
     Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
     parts = _Parts.of(FOREARM_NOISE, n, m)
-    z = np.random.default_rng(9).standard_normal((steps, n + m + n, count))
-    E = np.zeros((Acl.shape[0], n + m + n))
-    E[:n, :n], E[:n, n : n + m], E[:, n + m :] = np.eye(n), B, Ev
-    D = np.zeros((n + m, n + m + n))
-    D[n:, n + m :] = Dv
+    assert parts.process is not None and parts.motor is not None
+    # process and motor noise drawn as one state noise of covariance W + B W_u B^T
+    S = parts.process @ parts.process.T + (B @ parts.motor) @ (B @ parts.motor).T
+    lam, U = np.linalg.eigh(S)
+    root = U * np.sqrt(np.clip(lam, 0, None))
+    z = np.random.default_rng(9).standard_normal((steps, n + n, count))
+    E = np.zeros((Acl.shape[0], n + n))
+    E[:n, :n], E[:, n:] = np.eye(n), Ev
+    D = np.zeros((n + m, n + n))
+    D[n:, n:] = Dv
     C = np.vstack([np.eye(n, Acl.shape[0]), Cr])
     loop = control.ss(Acl, E, C, D, float(p.dt))
     for r in range(count):
-        noise = np.vstack(
-            [
-                parts.process @ z[:, :n, r].T,
-                parts.motor @ z[:, n : n + m, r].T,
-                parts.sensor @ z[:, n + m :, r].T,
-            ]
-        )
+        noise = np.vstack([root @ z[:, :n, r].T, parts.sensor @ z[:, n:, r].T])
         y = control.forced_response(loop, U=noise).outputs
         assert np.allclose(out.delta_f[r], y[:n].T, rtol=0, atol=1e-9 * np.abs(y[:n]).max())
         assert np.allclose(out.delta_r[r], y[n:].T, rtol=0, atol=1e-9 * np.abs(y[n:]).max())
