@@ -1,9 +1,6 @@
-r"""One deadline for a whole computation: every stage asks it how long is left.
+r"""One deadline for a whole computation, handed down: every stage asks it how long is left.
 
-A search with a ``timeout`` makes one :class:`Deadline` and hands it down: a z3 query
-gets the time left (:meth:`Deadline.left`), a loop stops when it has passed
-(:meth:`Deadline.check` raises :class:`OutOfTime`). The clock is a parameter, so
-a test can run out of time without waiting.
+The clock is a parameter, so a test can run out of time without waiting.
 
 >>> from symctl._util.deadline import Deadline, OutOfTime
 >>> ticks = iter(range(100))

@@ -1,14 +1,8 @@
-"""Old spellings of the public API, kept for one release: they still work and warn.
-
-symctl speaks one convention: ``rng`` for randomness, ``dt`` for the sampling time,
-and every verdict truthy with ``.verdict``, ``.method`` and ``.evidence``; an older
-spelling keeps working through these helpers, with a ``DeprecationWarning``.
+"""Old spellings of the public API (``seed``, ``Ts``, ...), kept for one release: they work and warn.
 
 >>> import warnings
 >>> from symctl._util.deprecate import renamed_keywords
->>> @renamed_keywords(Ts="dt")
-... def step(*, dt=1):
-...     return dt
+>>> step = renamed_keywords(Ts="dt")(lambda *, dt=1: dt)
 >>> with warnings.catch_warnings(record=True) as caught:
 ...     warnings.simplefilter("always")
 ...     step(Ts=3), caught[0].category.__name__

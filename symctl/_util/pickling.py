@@ -1,8 +1,4 @@
-"""Pickling of symctl's values: read-only mappings, and cached properties left out.
-
-:func:`register` teaches :mod:`copyreg` to pickle a read-only mapping
-(:class:`types.MappingProxyType`) as the view of a copy of its items;
-:class:`CachedState` leaves cached properties out of a frozen value's state.
+"""Pickling of symctl's values: read-only mappings, exact expressions as built, no caches.
 
 >>> import pickle
 >>> from types import MappingProxyType
@@ -46,12 +42,10 @@ def register() -> None:
 
 
 def register_sympy() -> None:
-    """Pickle SymPy sums, products and powers as they are; idempotent.
+    """Pickle SymPy sums, products and powers as built, unevaluated; idempotent.
 
-    Called where symctl first imports SymPy (:mod:`symctl._util.validate`). An exact
-    form such as :math:`(1353 K_1 + 1435 K_2 + 2145)/3628`, built unevaluated by the
-    fraction-free algebra, loads as that form (SymPy's own pickling evaluates it
-    again, distributing the rational, and the loaded matrix would not compare equal).
+    SymPy's own pickling evaluates them again (``(1353 K_1 + 2145)/3628`` would load with the
+    rational distributed, and not compare equal).
     """
     import sympy
 
@@ -79,12 +73,8 @@ class CachedState:
 
 
 class ArrayValue:
-    """A mixin for frozen dataclasses holding arrays: equal when every field is.
-
-    Arrays are equal when their shapes and entries are (NaN equal to NaN), mappings
-    when their items are, sequences item by item; so a value loaded from a pickle
-    equals the one saved. The hash reads the shapes and the hashable fields.
-    """
+    """A mixin for frozen dataclasses holding arrays: equal when every field is (arrays by shape
+    and entries, NaN equal to NaN), so a value loaded from a pickle equals the one saved."""
 
     __slots__ = ()
 

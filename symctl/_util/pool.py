@@ -1,12 +1,5 @@
-"""The dask path of every long sweep: workers in this process or on a dask cluster, and a
-JSON-lines checkpoint from which an interrupted sweep resumes.
-
-``open_pool(1, None)`` runs the tasks here, one after the other; otherwise they go to a
-dask.distributed cluster (an existing one at ``scheduler``, or a ``LocalCluster`` with one
-single-threaded process per worker). :class:`Checkpoint` appends each finished task's
-records to a file whose first line names the sweep; a later run with the same file skips
-what is done.
-"""
+"""The dask path of every long sweep: workers here or on a dask cluster, and a JSON-lines
+checkpoint from which an interrupted sweep resumes."""
 
 from __future__ import annotations
 
@@ -130,7 +123,7 @@ class _Dask:
 
 
 def pool_options(workers, scheduler) -> tuple[int, str | None]:
-    """``workers`` and ``scheduler`` checked as the dask path takes them."""
+    """``workers`` and ``scheduler``, checked."""
     workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
     if scheduler is not None and not isinstance(scheduler, str):
         raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")

@@ -1,25 +1,7 @@
 r"""A derivation's ``results.json`` read back: :func:`load_results`.
 
-``results.json`` holds the numbers, the symbolic objects as text (read back by the
-safe parser, never evaluated), the figures' data and the model, from which
-:meth:`SavedDerivation.derive` re-creates the whole :class:`~symctl.derivation.Derivation`.
-
-Examples
---------
->>> import tempfile
->>> from pathlib import Path
->>> from symctl import derive_paper, load_results
->>> res = derive_paper()
->>> with tempfile.TemporaryDirectory() as folder:
-...     res.write(Path(folder) / "paper", figures=False, pdf=False)[0].name
-...     saved = load_results(Path(folder) / "paper" / "results.json")
-'results.json'
->>> saved.G_symbolic == res.G_symbolic, saved.model == res.spec
-(True, True)
->>> saved.K.round(6).tolist()
-[[-0.045972, -0.580041, -0.351813]]
->>> saved.derive() is res                  # the same model: the same derivation
-True
+The symbolic objects are text there, read back by the safe parser (never evaluated); the
+model it holds re-creates the whole :class:`~symctl.derivation.Derivation`.
 """
 
 from __future__ import annotations
@@ -68,13 +50,8 @@ def _symbol(name: str, known: Mapping) -> sp.Symbol:
 def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
     """An expression as ``results.json`` writes it (``sp.sstr``), read by the safe parser.
 
-    Every name becomes a symbol with the derivation's assumptions (``known``; ``K_``, ``C_``,
-    ``epsilon_``, ``sigma_`` real); ``K_{0,11}`` (a MIMO gain) is one symbol.
-
-    >>> from symctl.derivation.load import parse_saved
-    >>> parse_saved("K_{0,11}/(z - epsilon_{1,1})", {}, "G").free_symbols == {
-    ...     *parse_saved("K_{0,11} + z + epsilon_{1,1}", {}, "G").free_symbols}
-    True
+    A name is a symbol of ``known``, else real for ``K_``, ``C_``, ``epsilon_``, ``sigma_``
+    (``K_{0,11}``, a MIMO gain, is one symbol).
     """
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected text, got {type(text).__name__}")
@@ -174,9 +151,8 @@ def _matrix_text(text: str) -> tuple[list[list[str]], str | None]:
 class SavedDerivation(CachedState):
     r"""A derivation as ``results.json`` holds it, read back by :func:`load_results`.
 
-    The properties give the numbers as arrays (:attr:`K`, :attr:`poles`), the
-    symbolic objects as exact SymPy objects (:attr:`G_symbolic`, :attr:`factors`,
-    :attr:`realizations`; parsed on first use) and the figures' data
+    Numbers as arrays (:attr:`K`, :attr:`poles`), symbolic objects exact (:attr:`G_symbolic`,
+    :attr:`factors`, :attr:`realizations`; parsed on first use), the figures' data
     (:attr:`simulation`, :attr:`peak_firing`).
 
     Attributes
@@ -357,8 +333,7 @@ def load_results(path) -> SavedDerivation:
     Parameters
     ----------
     path : str or pathlib.Path
-        A ``results.json`` (of ``symctl paper``, ``symctl derive`` or
-        :meth:`~symctl.derivation.Derivation.write`), or the folder holding it.
+        A ``results.json`` (``symctl paper``, ``symctl derive``, ``Derivation.write``) or its folder.
 
     Returns
     -------
@@ -375,11 +350,17 @@ def load_results(path) -> SavedDerivation:
 
     Examples
     --------
-    >>> from symctl import load_results
-    >>> load_results("no/such/results.json")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: path: cannot read no/such/results.json: ...
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from symctl import derive_paper, load_results
+    >>> res = derive_paper()
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = res.write(Path(folder) / "paper", figures=False, pdf=False)[0]
+    ...     saved = load_results(path)
+    >>> saved.G_symbolic == res.G_symbolic, saved.K.round(6).tolist()
+    (True, [[-0.045972, -0.580041, -0.351813]])
+    >>> saved.derive() is res                  # the same model: the same derivation
+    True
     """
     if not isinstance(path, str | Path):
         raise SymctlTypeError(f"path: expected a path to results.json, got {type(path).__name__}")
