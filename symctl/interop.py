@@ -106,10 +106,8 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
 
     Raises
     ------
-    SymctlTypeError
-        ``G`` not a DiscreteTF.
-    ParameterError
-        Free symbols in ``G``.
+    SymctlTypeError, ParameterError
+        ``G`` not a DiscreteTF; free symbols in ``G``.
 
     Examples
     --------
@@ -144,10 +142,8 @@ def tf_from_control(sys) -> DiscreteTF:
 
     Raises
     ------
-    SymctlTypeError
-        Not a python-control system.
-    ParameterError
-        A continuous-time system.
+    SymctlTypeError, ParameterError
+        Not a python-control system; a continuous-time system.
 
     Examples
     --------
@@ -176,10 +172,8 @@ def ss_to_control(R: Realization) -> control.StateSpace:
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` not a Realization.
-    ParameterError
-        Free symbols in ``R``.
+    SymctlTypeError, ParameterError
+        ``R`` not a Realization; free symbols in ``R``.
 
     Examples
     --------
@@ -206,10 +200,8 @@ def ss_from_control(sys) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Not a python-control system.
-    ParameterError
-        A continuous-time system, or an improper transfer function.
+    SymctlTypeError, ParameterError
+        Not a python-control system; a continuous-time system, or an improper transfer function.
 
     Examples
     --------
@@ -253,12 +245,8 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
 
     Raises
     ------
-    SymctlTypeError
-        ``G`` not a DiscreteTF.
-    DimensionError
-        ``G`` with more than one input.
-    ParameterError
-        Free symbols in ``G``.
+    SymctlTypeError, DimensionError, ParameterError
+        ``G`` not a DiscreteTF; ``G`` with more than one input; free symbols in ``G``.
 
     Examples
     --------
@@ -309,10 +297,8 @@ def tf_from_scipy(sys) -> DiscreteTF:
 
     Raises
     ------
-    SymctlTypeError
-        Not a discrete SciPy system.
-    ParameterError
-        A continuous-time system (``scipy.signal.lti``).
+    SymctlTypeError, ParameterError
+        Not a discrete SciPy system; a continuous-time system (``scipy.signal.lti``).
 
     Examples
     --------
@@ -341,10 +327,8 @@ def ss_to_scipy(R: Realization) -> signal.StateSpace:
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` not a Realization.
-    ParameterError
-        Free symbols in ``R``.
+    SymctlTypeError, ParameterError
+        ``R`` not a Realization; free symbols in ``R``.
 
     Examples
     --------
@@ -373,10 +357,8 @@ def ss_from_scipy(sys) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Not a discrete SciPy system.
-    ParameterError
-        A continuous-time system, or an improper transfer function.
+    SymctlTypeError, ParameterError
+        Not a discrete SciPy system; a continuous-time system, or an improper transfer function.
 
     Examples
     --------
@@ -507,11 +489,10 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
 
     Raises
     ------
-    SymctlTypeError
-        Another type, or a ``var`` that is not a Symbol.
-    ParameterError
-        A continuous-time system, a variable other than z (or ``var``), a ``dt`` that
-        disagrees with the system's, or entries that are not rational in the variable.
+    SymctlTypeError, ParameterError
+        Another type, or a ``var`` that is not a Symbol; a continuous-time system, a variable
+        other than z (or ``var``), a ``dt`` that disagrees with the system's, or entries that
+        are not rational in the variable.
 
     Examples
     --------
@@ -619,12 +600,9 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Another type.
-    ParameterError
-        A continuous-time system or a ``dt`` that disagrees with the system's.
-    DimensionError
-        A transfer function matrix (realize it with a symctl realizer instead).
+    SymctlTypeError, ParameterError, DimensionError
+        Another type; a continuous-time system or a ``dt`` that disagrees with the system's; a
+        transfer function matrix (realize it with a symctl realizer instead).
 
     Examples
     --------

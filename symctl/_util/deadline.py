@@ -22,8 +22,6 @@ from dataclasses import dataclass, field
 
 from symctl._util.validate import bounded_number
 
-__all__ = ["Deadline", "OutOfTime", "Unfinished", "deadline_of"]
-
 
 class Unfinished(Exception):
     """A stage stopped before its end: out of time, or past a size limit (the caller reports

@@ -19,15 +19,6 @@ from collections.abc import Mapping
 from symctl._util.validate import as_generator, as_random
 from symctl.errors import SymctlTypeError
 
-__all__ = [
-    "RenamedKeys",
-    "renamed_attribute",
-    "renamed_keywords",
-    "renamed_method",
-    "rng_argument",
-    "warn_deprecated",
-]
-
 
 def warn_deprecated(old: str, new: str, where: str, stacklevel: int = 3) -> None:
     """Warn that ``old`` is the deprecated spelling of ``new`` in ``where``."""
@@ -65,27 +56,15 @@ def renamed_keywords(**renames: str):
 
 
 def renamed_attribute(old: str, new: str) -> property:
-    """A read-only property ``old`` that warns and returns the attribute ``new``."""
+    """A read-only property ``old`` that warns and returns the attribute (or method) ``new``."""
 
     def getter(self):
         warn_deprecated(old, new, type(self).__name__)
         return getattr(self, new)
 
     getter.__name__ = old
-    getter.__doc__ = f"Deprecated name of :attr:`{new}`."
+    getter.__doc__ = f"Deprecated name of ``{new}``."
     return property(getter)
-
-
-def renamed_method(old: str, new: str):
-    """A method ``old`` that warns and calls the method ``new``."""
-
-    def method(self, *args, **kwargs):
-        warn_deprecated(old, new, type(self).__name__)
-        return getattr(self, new)(*args, **kwargs)
-
-    method.__name__ = old
-    method.__doc__ = f"Deprecated name of :meth:`{new}`."
-    return method
 
 
 def rng_argument(kind: str = "numpy"):

@@ -20,15 +20,6 @@ from symctl._util.exact import z_poly
 from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
-__all__ = [
-    "DISPLAY_DIGITS",
-    "LatexMixin",
-    "descending_latex",
-    "descending_str",
-    "latex",
-    "shortened",
-]
-
 DISPLAY_DIGITS = 6
 """Significant digits of the floats an object prints (its ``str``, ``repr`` and LaTeX)."""
 

@@ -22,8 +22,6 @@ import sympy as sp
 from symctl._util.validate import symbol_tuple
 from symctl.errors import ParameterError
 
-__all__ = ["lambdify_matrices"]
-
 
 def lambdify_matrices(
     matrices: Sequence[sp.MatrixBase], symbols: Sequence[sp.Symbol]

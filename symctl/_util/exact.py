@@ -31,20 +31,6 @@ from sympy.polys.rings import ring
 from symctl.errors import ParameterError
 from symctl.symbols import z
 
-__all__ = [
-    "Degrees",
-    "IntFractions",
-    "NotRational",
-    "PolyFractions",
-    "RingFractions",
-    "ZPoly",
-    "fold",
-    "nearest_rational",
-    "products_equal",
-    "ring_fractions",
-    "z_poly",
-]
-
 
 def _mul_pairs(parts):
     """The product of fractions given as ``(numerator, denominator)`` pairs (not reduced)."""

@@ -14,8 +14,6 @@ import importlib
 import sys
 from collections.abc import Callable, Iterable, Mapping
 
-__all__ = ["attach"]
-
 
 def attach(
     package: str, table: Mapping[str, str], submodules: Iterable[str] = ()

@@ -42,8 +42,6 @@ import sympy as sp
 
 from symctl.errors import ParseError, SymctlTypeError
 
-__all__ = ["CONSTANTS", "NAMES", "parse_expr", "parse_matrix"]
-
 _FUNCTIONS = {
     "exp": sp.exp,
     "log": sp.log,

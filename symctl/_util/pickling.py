@@ -15,8 +15,6 @@ import functools
 from collections.abc import Mapping
 from types import MappingProxyType
 
-__all__ = ["ArrayValue", "CachedState", "read_only_mapping", "register", "register_sympy"]
-
 
 def read_only_mapping(items: dict) -> MappingProxyType:
     """A read-only view of ``items`` (what a pickled read-only mapping loads as)."""

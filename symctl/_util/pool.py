@@ -11,8 +11,6 @@ from pathlib import Path
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 
-__all__ = ["MAX_WORKERS", "Checkpoint", "open_pool", "pool_options"]
-
 MAX_WORKERS = 512
 """Most worker processes one sweep may ask for."""
 

@@ -28,8 +28,6 @@ import sympy as sp
 
 from symctl.errors import ParameterError, SymctlTypeError
 
-__all__ = ["DictMixin", "decode", "encode"]
-
 
 def _encode_sympy(x) -> dict:
     if isinstance(x, sp.MatrixBase):

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["GREEK", "signal_tex"]
-
 GREEK = frozenset(
     "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "
     "tau upsilon phi chi psi omega".split()

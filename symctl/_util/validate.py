@@ -26,24 +26,6 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 register_sympy()  # exact expressions pickle as they are (every value module imports this one)
 
-__all__ = [
-    "as_generator",
-    "as_random",
-    "float_array",
-    "nonneg_int",
-    "numeric_matrix",
-    "positive_int",
-    "positive_number",
-    "psd_matrix",
-    "read_only",
-    "real_number",
-    "sampling_time",
-    "subs_rule",
-    "symbol_tuple",
-    "to_expr",
-    "to_matrix",
-]
-
 
 def to_expr(value, argname: str, names=None) -> sp.Expr:
     """A sympy expression from a number, a sympy object or (safely parsed) text."""

@@ -220,9 +220,7 @@ def _drawings(ctx, param, value: str) -> int | None:
     shown("--out", default="out/atlas", help="Output folder."),
     shown("--pdf/--no-pdf", default=True, help="Compile atlas.pdf."),
 )
-def atlas_command(
-    order, delays, max_size, workers, scheduler, max_neurons, drawings, out, pdf
-) -> None:
+def atlas_command(order, drawings, out, pdf, **search) -> None:
     """Find every minimal circuit class of order-N controllers and write the atlas into OUT.
 
     Writes atlas.json, atlas.md, atlas.tex (and atlas.pdf), an overview figure and
@@ -236,16 +234,11 @@ def atlas_command(
     checkpoint = progress_file(out)
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start("search")
-        A = find_atlas(
-            order,
-            delays=delays,
-            max_size=max_size,
-            workers=workers,
-            scheduler=scheduler,
-            checkpoint=checkpoint,
-            progress=lambda size, done, total: steps.part(f"size {size}: {done} of {total}"),
-            max_neurons=max_neurons,
-        )
+
+        def progress(size, done, total):
+            steps.part(f"size {size}: {done} of {total}")
+
+        A = find_atlas(order, checkpoint=checkpoint, progress=progress, **search)
         written = write_atlas(A, folder.staging, drawings=drawings, pdf=pdf, progress=steps.start)
     checkpoint.unlink(missing_ok=True)
     _atlas_summary(A)
@@ -265,15 +258,8 @@ def _atlas_summary(A) -> None:
     for col in cols:
         table.add_column(col)
     for row, c in zip(A.table()[:15], A.classes, strict=False):
-        table.add_row(
-            row["class"],
-            str(row["neurons"]),
-            str(row["synapses"]),
-            str(row["branches"]),
-            c.representatives[0].text,
-            row["universal"],
-            row["method"],
-        )
+        counts = (str(row[k]) for k in ("class", "neurons", "synapses", "branches"))
+        table.add_row(*counts, c.representatives[0].text, row["universal"], row["method"])
     _console.print(table)
 
 
@@ -392,7 +378,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            code = _main(argv)
+            code = _run_cli(argv)
         if code == 0:
             _warned(caught)
         return code
@@ -400,14 +386,6 @@ def main(argv: list[str] | None = None) -> int:
         name = signal.Signals(sig.signum).name
         _error(f"symctl: interrupted by {name}; nothing written, --out left as it was")
         return 128 + sig.signum
-    finally:
-        for sig, handler in handlers.items():
-            signal.signal(sig, handler)
-
-
-def _main(argv: list[str] | None) -> int:
-    try:
-        return _run_cli(argv)
     except Exception as exc:  # the last resort: one line, not a traceback
         if os.environ.get("SYMCTL_TRACEBACK"):
             raise
@@ -416,6 +394,9 @@ def _main(argv: list[str] | None) -> int:
             "please report it; SYMCTL_TRACEBACK=1 shows the traceback)"
         )
         return 1
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
 
 
 def _run_cli(argv: list[str] | None) -> int:
@@ -438,7 +419,7 @@ def _run_cli(argv: list[str] | None) -> int:
         inputs = getattr(exc, "_symctl_inputs", None)  # symctl derive: the model file
         known = step in _STEP_OPTIONS or (inputs is not None and step is not None)
         if not known or os.environ.get("SYMCTL_TRACEBACK"):
-            raise  # not in a step that user input drives: the last resort in _main
+            raise  # not in a step that user input drives: the last resort in main
         where = "reading" if step == "options" else f"the {step} step failed on"
         _error(
             f"symctl: error: {where} {inputs or _STEP_OPTIONS[step]}: {type(exc).__name__}: "

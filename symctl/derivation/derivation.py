@@ -13,7 +13,7 @@ from types import MappingProxyType
 
 import sympy as sp
 
-from symctl._util.deprecate import renamed_method
+from symctl._util.deprecate import renamed_attribute
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
@@ -85,7 +85,7 @@ class RealizationRecord:
 
     __hash__ = _hash_fields
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
@@ -135,7 +135,7 @@ class CircuitRecord:
             return None
         return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``circuits`` for this circuit."""
@@ -292,7 +292,7 @@ class Derivation:
 
         return results.parameters(self)
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The ``results.json`` document, of JSON types (its keys: docs/guide/paper.md).

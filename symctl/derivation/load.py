@@ -227,12 +227,8 @@ class SavedDerivation(CachedState):
     def G_symbolic(self) -> DiscreteTF:
         """The controller :math:`G(z)` in the gains' symbols, exact."""
         sym = self.data["controller"]["symbolic"]
-        num = sym["numerator"]
+        N = self._factor(sym["numerator"], "controller.symbolic.numerator")
         den = self._expr(sym["denominator"], "controller.symbolic.denominator")
-        if isinstance(num, list):
-            N = self._matrix(num, "controller.symbolic.numerator")
-        else:
-            N = self._expr(num, "controller.symbolic.numerator")
         return DiscreteTF(N, den, dt=self.dt)
 
     @cached_property
@@ -241,17 +237,12 @@ class SavedDerivation(CachedState):
         f = self.data["factorization"]
         if f is None:
             return None
-        out = {k: self._factor(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3")}
-        N = f["N"]
-        out["N"] = (
-            self._matrix(N, "factorization.N")
-            if isinstance(N, list)
-            else self._expr(N, "factorization.N")
-        )
-        return out
+        return {k: self._factor(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3", "N")}
 
-    def _factor(self, text: str, where: str):
-        """A factor's text: an expression in z, or ``[[...]]/(den)`` for a matrix."""
+    def _factor(self, text, where: str):
+        """An expression's text, rows of texts, or ``[[...]]/(den)`` for a matrix over ``den``."""
+        if isinstance(text, list):
+            return self._matrix(text, where)
         if not text.startswith("[["):
             return self._expr(text, where)
         entries, den = _matrix_text(text)
