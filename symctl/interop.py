@@ -424,9 +424,9 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 def tf_to_sympy(G: DiscreteTF):
     """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
 
-    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14: ``G.dt`` dropped) or a
-    ``DiscreteTransferFunction(num, den, z, dt)`` (``dt=None`` written as 1). MIMO: a
-    ``TransferFunctionMatrix`` of those over ``G``'s common denominator.
+    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteTransferFunction`` carries it
+    (``dt=None`` written as 1). A MIMO ``G`` is a ``TransferFunctionMatrix`` over its common
+    denominator.
 
     Parameters
     ----------
@@ -473,9 +473,8 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Parameters
     ----------
     sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
-        SymPy 1.14's classes are read as discrete, in ``z``; a later SymPy's discrete
-        classes give their ``sampling_time`` and variable. Series, Parallel and
-        Feedback: call ``.doit()`` first.
+        SymPy 1.14's classes are read as discrete, in ``z`` (Series, Parallel, Feedback:
+        ``.doit()`` first).
     dt : number, symbol or None
         The sampling time (SymPy 1.14), or one that must agree with the system's.
     var : sympy Symbol, optional
@@ -484,8 +483,7 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        Over the common denominator when all entries share one (exact, not cancelled),
-        else in lowest terms.
+        As written when all entries share one denominator, else in lowest terms.
 
     Raises
     ------
@@ -548,8 +546,7 @@ def _shaped(values: list, cols: int):
 def ss_to_sympy(R: Realization):
     """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
 
-    A ``StateSpace(F, H, M, N)`` (SymPy 1.14: ``R.dt`` dropped) or a
-    ``DiscreteStateSpace(F, H, M, N, dt)`` (``dt=None`` written as 1).
+    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteStateSpace`` carries it.
 
     Parameters
     ----------

@@ -264,11 +264,9 @@ def products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
     pairs = ring_fractions([*left, *right])
     if pairs is None:
         return sp.expand(sp.Mul(*left) - sp.Mul(*right)) == 0
-    num_l, den_l, num_r, den_r = (pairs[0][0].ring.one,) * 4
-    for n_, d_ in pairs[: len(left)]:
-        num_l, den_l = num_l * n_, den_l * d_
-    for n_, d_ in pairs[len(left) :]:
-        num_r, den_r = num_r * n_, den_r * d_
+    one = (pairs[0][0].ring.one,) * 2
+    num_l, den_l = _mul_pairs([one, *pairs[: len(left)]])
+    num_r, den_r = _mul_pairs([one, *pairs[len(left) :]])
     return num_l * den_r == num_r * den_l
 
 
@@ -288,12 +286,10 @@ class ZPoly:
         return max(self._coeffs) if self._coeffs else -1
 
     def LC(self) -> sp.Expr:
-        return self._coeffs[self.degree()] if self._coeffs else sp.Integer(0)
+        return self.coeff(self.degree())
 
     def all_coeffs(self) -> list[sp.Expr]:
-        if not self._coeffs:
-            return [sp.Integer(0)]
-        return [self._coeffs.get(k, sp.Integer(0)) for k in range(self.degree(), -1, -1)]
+        return [self.coeff(k) for k in range(self.degree(), -1, -1)] or [sp.Integer(0)]
 
     def coeff(self, power: int) -> sp.Expr:
         return self._coeffs.get(power, sp.Integer(0))

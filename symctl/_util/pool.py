@@ -16,12 +16,8 @@ MAX_WORKERS = 512
 
 
 class Checkpoint:
-    """The records of a sweep by ``key(record)``, kept in the JSON-lines file ``path`` (or none).
-
-    A file whose first line is not ``header`` belongs to another sweep and is refused; reading
-    stops at the first line that is cut or holds a record ``valid`` refuses, and the file is cut
-    there (the rest is redone).
-    """
+    """The records of a sweep by ``key(record)``, in the JSON-lines file ``path`` (or none) whose
+    first line is ``header``; reading stops (and cuts the file) at a line cut or not ``valid``."""
 
     def __init__(self, path, header: dict, key: Callable, valid: Callable[[object], bool]):
         self.path = None if path is None else Path(path)

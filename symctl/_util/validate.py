@@ -1,13 +1,7 @@
 """Argument checks at the public boundary, and the size limits (docs/reliability.md).
 
-A wrong type is a :class:`~symctl.errors.SymctlTypeError`, a bad value a ``ParameterError``
-(shapes: ``DimensionError``), each naming the argument; text goes through the safe parser only.
-
->>> from symctl._util.validate import to_matrix
->>> to_matrix([[1, 2]], "B", shape=(2, 1))
-Traceback (most recent call last):
-...
-symctl.errors.DimensionError: B: expected shape (2, 1), got (1, 2)
+A wrong type is a ``SymctlTypeError``, a bad value a ``ParameterError`` (shapes:
+``DimensionError``), each naming the argument; text goes through the safe parser only.
 """
 
 from __future__ import annotations

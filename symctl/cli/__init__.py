@@ -349,10 +349,9 @@ def _warned(caught: list) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
 
-    Nothing but single lines reach stderr (``symctl: error: ...``, one ``symctl: warning:
-    ...`` line for a successful run's warnings, ``symctl: interrupted ...``); SIGINT and
-    SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1`` shows the
-    traceback of an unexpected exception.
+    Only single lines reach stderr (an error, a successful run's warnings, an interruption);
+    SIGINT and SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1``
+    shows the traceback of an unexpected exception.
 
     Parameters
     ----------
@@ -362,9 +361,8 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success; 2 on bad input (a symctl error naming the option, or a NumPy, SciPy
-        or SymPy failure named with its step and the options it depends on); 1 on an
-        internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
+        0 on success; 2 on bad input (named by option, or by step and the options it reads);
+        1 on an internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
 
     Examples
     --------

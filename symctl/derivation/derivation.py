@@ -336,13 +336,8 @@ class Derivation:
         Examples
         --------
         >>> from symctl import derive_paper
-        >>> res = derive_paper()
-        >>> type(res.figure("closed_loop")).__name__
+        >>> type(derive_paper().figure("closed_loop")).__name__
         'Figure'
-        >>> res.figure("no_such_figure")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
         """
         from symctl.report import figures
 
@@ -404,10 +399,6 @@ class Derivation:
         ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
         ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
         (['results.json', 'derivation.tex', 'report.md'], ['paper'])
-        >>> derive_paper().write("")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: out: must name a folder, got ''
         """
         from symctl.report import results
 

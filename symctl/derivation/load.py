@@ -6,6 +6,7 @@ model it holds re-creates the whole :class:`~symctl.derivation.Derivation`.
 
 from __future__ import annotations
 
+import itertools
 import json
 import operator
 import re
@@ -88,18 +89,15 @@ def _parse_long(text: str, names: Mapping, argname: str) -> sp.Expr:
     if len(power) > 1:
         base = _parse_long(power[0][1], names, argname)
         return base ** _parse_long(text[len(power[0][1]) + 2 :], names, argname)
-    if text.startswith("(") and _closing(text, 0) == len(text) - 1:
+    if text.startswith("(") and _closing(text) == len(text) - 1:
         return _parse_long(text[1:-1], names, argname)
     return parse_expr(text, names, argname=argname)  # a call too long to split: refused
 
 
-def _closing(text: str, start: int) -> int:
-    depth = 0
-    for i in range(start, len(text)):
-        depth += {"(": 1, ")": -1}.get(text[i], 0)
-        if depth == 0:
-            return i
-    return -1
+def _closing(text: str) -> int:
+    """Where the parenthesis that opens ``text`` closes (-1: nowhere)."""
+    depths = itertools.accumulate({"(": 1, ")": -1}.get(c, 0) for c in text)
+    return next((i for i, depth in enumerate(depths) if depth == 0), -1)
 
 
 def _split(text: str, ops: tuple[str, ...]) -> list[tuple[str, str]]:
