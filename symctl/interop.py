@@ -164,7 +164,6 @@ def ss_to_control(R: Realization) -> control.StateSpace:
     Parameters
     ----------
     R : Realization
-        Numeric.
 
     Returns
     -------
@@ -319,7 +318,6 @@ def ss_to_scipy(R: Realization) -> signal.StateSpace:
     Parameters
     ----------
     R : Realization
-        Numeric, any shape.
 
     Returns
     -------
@@ -431,7 +429,6 @@ def tf_to_sympy(G: DiscreteTF):
     Parameters
     ----------
     G : DiscreteTF
-        Exact, symbolic or numeric.
 
     Returns
     -------
@@ -551,7 +548,6 @@ def ss_to_sympy(R: Realization):
     Parameters
     ----------
     R : Realization
-        Exact, symbolic or numeric.
 
     Returns
     -------

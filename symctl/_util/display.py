@@ -28,17 +28,13 @@ _NAMES = {
     S.f_max: r"f_\text{max}",
     S.delta_f: r"\delta_f",
     S.delta_r: r"\delta_r",
-    S.f: "f",
-    S.r: "r",
 }
 
 
 def _indexed_name(symbol: sp.Symbol) -> str | None:
     """``epsilon_{3,1}`` -> ``\\epsilon_{3,1}`` (sympy leaves braced names alone)."""
     stem, sep, rest = symbol.name.partition("_{")
-    if not sep:
-        return None
-    return ("\\" + stem if stem in GREEK else stem) + "_{" + rest
+    return _stem(stem) + "_{" + rest if sep else None
 
 
 def _stem(text: str) -> str:

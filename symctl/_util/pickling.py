@@ -84,11 +84,8 @@ class ArrayValue:
         )
 
     def __hash__(self) -> int:
-        return hash((type(self).__qualname__, *map(_hash_part, _values(self))))
-
-
-def _values(obj) -> list:
-    return [getattr(obj, f.name) for f in dataclasses.fields(obj)]
+        fields = (getattr(self, f.name) for f in dataclasses.fields(self))
+        return hash((type(self).__qualname__, *map(_hash_part, fields)))
 
 
 def _same(a, b) -> bool:
@@ -96,9 +93,7 @@ def _same(a, b) -> bool:
 
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
-        if a.shape != b.shape:
-            return False
-        try:
+        try:  # False for other shapes
             return bool(np.array_equal(a, b, equal_nan=True))
         except TypeError:  # object arrays: no NaN test
             return bool(np.array_equal(a, b))

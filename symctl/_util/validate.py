@@ -194,9 +194,6 @@ def float_array(value, argname: str) -> np.ndarray:
     return arr
 
 
-_SUBS_FLAGS = ("simultaneous",)
-
-
 def _subs_key(key, names: dict, argname: str) -> sp.Basic:
     if isinstance(key, str):
         if key in names:
@@ -219,7 +216,7 @@ def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
     """
     flags = {}
     for name, flag in kwargs.items():
-        if name not in _SUBS_FLAGS:
+        if name != "simultaneous":
             raise SymctlTypeError(f"{argname}: unexpected keyword argument {name!r}")
         if not isinstance(flag, bool):
             raise SymctlTypeError(f"{argname}: {name} must be True or False, got {flag!r}")

@@ -56,11 +56,8 @@ def summary(res, console: Console) -> None:
         out(f"  not minimal, reduced from {red.order} to {red.minimal_order} states: {red.reason}")
     L = res.longest
     if L is not None:
-        found = (
-            f"T = {L.longest} steps"
-            if L.limited
-            else f"every T up to {L.delays[-1]} (the largest tried)"
-        )
+        tried = f"every T up to {L.delays[-1]} (the largest tried)"
+        found = f"T = {L.longest} steps" if L.limited else tried
         out(f"Longest delay|  that still stabilizes the nonlinear plant: {found}")
     if res.factors is None:
         out(f"Not derived|  {res.skipped}")
@@ -69,12 +66,8 @@ def summary(res, console: Console) -> None:
     f = factor_texts(res)
     out("Factorization|  G = G3 G2 G1")
     none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
-    out(
-        "  "
-        + ",  ".join(
-            f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}" for k in ("G1", "G3")
-        )
-    )
+    g1, g3 = (f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}" for k in none)
+    out(f"  {g1},  {g3}")
     out(f"  G2 = {_long(f['G2'], 'factorization')}")
     N = f["N"] if isinstance(f["N"], str) else f"({len(f['N'])} x {len(f['N'][0])})"
     out(f"  N = {_long(N, 'factorization')};  G3 G2 G1 == G proved: {bool(res.verified)}")
@@ -99,7 +92,6 @@ def summary(res, console: Console) -> None:
 
 
 def _summary_table(res, console) -> None:
-
     table = Table(title="summary")
     table.add_column("quantity")
     table.add_column("value", justify="right")

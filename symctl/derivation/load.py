@@ -35,17 +35,14 @@ MAX_RESULTS_BYTES = 200_000_000
 """Largest ``results.json`` :func:`load_results` reads."""
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
-_REAL = re.compile(r"^(K|C|L|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
-_FUNCTIONS = NAMES  # the parser's own functions and constants, never symbols
+_REAL = re.compile(r"^(K|C|L|epsilon|sigma)_")  # the derivation's real symbols
 _BINARY = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
 
 
 def _symbol(name: str, known: Mapping) -> sp.Symbol:
     if name in known:
         return known[name]
-    if _REAL.match(name) and not name.startswith("p_"):
-        return sp.Symbol(name, real=True)
-    return sp.Symbol(name)
+    return sp.Symbol(name, real=True) if _REAL.match(name) else sp.Symbol(name)
 
 
 def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
@@ -60,7 +57,7 @@ def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
 
     def placeholder(m: re.Match) -> str:
         word = m.group(0)
-        if word in _FUNCTIONS:
+        if word in NAMES:  # the parser's own functions and constants, never symbols
             return word
         return keys.setdefault(word, f"_s{len(keys)}")
 
