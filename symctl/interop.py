@@ -1,13 +1,6 @@
 r"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md).
 
-================================  =================================  =================================
-library                           :class:`~symctl.DiscreteTF`        :class:`~symctl.Realization`
-================================  =================================  =================================
-python-control                    tf_to_control, tf_from_control     ss_to_control, ss_from_control
-``scipy.signal``                  tf_to_scipy, tf_from_scipy         ss_to_scipy, ss_from_scipy
-``sympy.physics.control``         tf_to_sympy, tf_from_sympy         ss_to_sympy, ss_from_sympy
-================================  =================================  =================================
-
+``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`;
 python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols, exactly.
 The sampling time is kept (``dt=True``, "discrete, unspecified", is ``dt=None``);
 continuous-time systems are refused. SymPy 1.14 has no discrete-time classes (``*_from_sympy``

@@ -38,6 +38,9 @@ from symctl.realization.reduction import ControllerReduction
 __all__ = ["CircuitRecord", "Derivation", "PaperResults", "RealizationRecord"]
 
 
+_MUSCLE_UNITS = {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}
+
+
 def _hash_fields(obj) -> int:
     """A hash of a frozen dataclass's fields, mappings hashed by their items."""
     values = (getattr(obj, f.name) for f in dataclasses.fields(obj))
@@ -261,17 +264,11 @@ class Derivation:
     @property
     def names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
         """The states' and inputs' names as the model gives them (the muscle's ``f``, ``r``)."""
-        if self.spec is not None:
-            return self.spec.signal_names
-        return ("f",), ("r",)
+        return self.spec.signal_names if self.spec is not None else (("f",), ("r",))
 
     def unit(self, name: str) -> str:
         """The unit of a state, input or parameter of the model ('' when not given)."""
-        if self.spec is not None:
-            return self.spec.unit(name)
-        return {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}.get(
-            name, ""
-        )
+        return self.spec.unit(name) if self.spec is not None else _MUSCLE_UNITS.get(name, "")
 
     __hash__ = _hash_fields
 
