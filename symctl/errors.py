@@ -2,13 +2,6 @@
 
 Each also subclasses the matching built-in (``ValueError``, ``TypeError``), and each message
 names the offending argument and its value; the command line prints it as one line, exit code 2.
-
->>> import symctl
->>> try:
-...     symctl.MuscleModel(tau=-1)
-... except symctl.SymctlError as err:
-...     print(type(err).__name__, err)
-ParameterError tau: must be a finite number > 0, got -1
 """
 
 from __future__ import annotations

@@ -1,12 +1,6 @@
 """The ``symctl`` command. Orchestration only: the math lives in the library.
 
 The console script calls :func:`run`; :func:`main` returns the exit code instead of exiting.
-
-Examples
---------
->>> from symctl.cli import main
->>> main(["paper", "--tau", "-1", "--no-figures", "--no-pdf"])
-2
 """
 
 from __future__ import annotations
