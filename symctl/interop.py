@@ -1,31 +1,17 @@
-r"""Conversions between symctl's objects and python-control, SciPy and SymPy.
+r"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md).
 
-The objects' ``to_*``/``from_*`` methods hand over to these functions.
+``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`;
+python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols, exactly.
+The sampling time is kept (``dt=True``, "discrete, unspecified", is ``dt=None``);
+continuous-time systems are refused. SymPy 1.14 has no discrete-time classes (``*_from_sympy``
+take ``dt=``). A transfer function is realized in the column-wise controllable canonical form
+(:func:`symctl.design._foreign.canonical_columns`).
 
-================================  =================================  =================================
-library                           :class:`~symctl.DiscreteTF`        :class:`~symctl.Realization`
-================================  =================================  =================================
-python-control                    tf_to_control, tf_from_control     ss_to_control, ss_from_control
-``scipy.signal``                  tf_to_scipy, tf_from_scipy         ss_to_scipy, ss_from_scipy
-``sympy.physics.control``         tf_to_sympy, tf_from_sympy         ss_to_sympy, ss_from_sympy
-================================  =================================  =================================
-
-python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols,
-exactly both ways. The sampling time is kept: ``dt=True`` ("discrete, unspecified")
-is ``dt=None``; continuous-time systems are refused (discretize first). SymPy 1.14
-has no discrete-time classes (``*_from_sympy`` take ``dt=``); a later SymPy's
-``DiscreteTransferFunction`` and ``DiscreteStateSpace`` carry it. Where a state space
-is needed, a transfer function is realized in the column-wise controllable canonical
-form (:func:`symctl.design._foreign.canonical_columns`).
-
->>> from symctl import z
->>> from symctl import DiscreteTF
+>>> from symctl import DiscreteTF, z
 >>> from symctl.interop import tf_from_control, tf_to_control
 >>> sys = tf_to_control(DiscreteTF.from_expr(2 / (z - 0.5), dt=0.01))
->>> sys.dt
-0.01
->>> tf_from_control(sys).expr
-2.0/(z - 0.5)
+>>> sys.dt, tf_from_control(sys).expr
+(0.01, 2.0/(z - 0.5))
 """
 
 from __future__ import annotations
@@ -58,16 +44,10 @@ __all__ = [
 ]
 
 
-def _tf(G) -> DiscreteTF:
-    if not isinstance(G, DiscreteTF):
-        raise SymctlTypeError(f"G: expected a DiscreteTF, got {type(G).__name__}")
-    return G
-
-
-def _realization(R) -> Realization:
-    if not isinstance(R, Realization):
-        raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
-    return R
+def _checked(obj, cls, argname: str):
+    if not isinstance(obj, cls):
+        raise SymctlTypeError(f"{argname}: expected a {cls.__name__}, got {type(obj).__name__}")
+    return obj
 
 
 def _floats(coeffs, what: str) -> list[float]:
@@ -79,7 +59,7 @@ def _floats(coeffs, what: str) -> list[float]:
 
 def _numeric(G) -> tuple[list[float], list[list[list[float]]]]:
     """The denominator and the numerators ``nums[i][j]`` of a numeric DiscreteTF, as floats."""
-    den = _floats(G.den_coeffs(), "the denominator")
+    den = _floats(_checked(G, DiscreteTF, "G").den_coeffs(), "the denominator")
     rows, cols = G.shape
     return den, [
         [_floats(G.num_coeffs(i, j), "the numerator") for j in range(cols)] for i in range(rows)
@@ -91,15 +71,18 @@ def _z_expr(coeffs) -> sp.Expr:
     return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
 
 
+def _z_matrix(nums, dens=None) -> sp.Matrix:
+    """The matrix of ``nums[i][j] / dens[i][j]`` (coefficient lists) as expressions in z."""
+    out = sp.zeros(len(nums), len(nums[0]))
+    for i, row in enumerate(nums):
+        for j, coeffs in enumerate(row):
+            out[i, j] = _z_expr(coeffs) / (1 if dens is None else _z_expr(dens[i][j]))
+    return out
+
+
 def _their_dt(dt):
     """symctl's dt as python-control's and SciPy's: None (unspecified) is ``True``."""
     return True if dt is None else float(dt)
-
-
-def _merge_dt(own, given, argname: str = "dt"):
-    """The system's own sampling time and the ``dt=`` argument, which must agree."""
-    given = None if given is None else sampling_time(given, argname)
-    return common_dt(own, given, argname)
 
 
 def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
@@ -116,10 +99,8 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
 
     Raises
     ------
-    SymctlTypeError
-        ``G`` not a DiscreteTF.
-    ParameterError
-        Free symbols in ``G``.
+    SymctlTypeError, ParameterError
+        ``G`` not a DiscreteTF; free symbols in ``G``.
 
     Examples
     --------
@@ -128,7 +109,7 @@ def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
     >>> tf_to_control(DiscreteTF.from_expr(1 / (z - 0.5))).dt
     True
     """
-    den, nums = _numeric(_tf(G))
+    den, nums = _numeric(G)
     if G.is_siso:
         return control.tf(nums[0][0], den, _their_dt(G.dt))
     return control.tf(nums, [[den] * len(nums[0])] * len(nums), _their_dt(G.dt))
@@ -141,7 +122,7 @@ def _discrete(sys):
 
 
 def tf_from_control(sys) -> DiscreteTF:
-    """A :class:`DiscreteTF` from a discrete python-control system (TF or state space).
+    """A :class:`DiscreteTF`, in lowest terms, from a discrete python-control system.
 
     Parameters
     ----------
@@ -151,14 +132,11 @@ def tf_from_control(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        In lowest terms.
 
     Raises
     ------
-    SymctlTypeError
-        Not a python-control system.
-    ParameterError
-        A continuous-time system.
+    SymctlTypeError, ParameterError
+        Not a python-control system; a continuous-time system.
 
     Examples
     --------
@@ -169,33 +147,25 @@ def tf_from_control(sys) -> DiscreteTF:
     """
     dt = _discrete(sys)
     tf = control.tf(sys)
-    rows, cols = tf.noutputs, tf.ninputs
-    entries = sp.zeros(rows, cols)
-    for i in range(rows):
-        for j in range(cols):
-            entries[i, j] = _z_expr(tf.num_array[i, j]) / _z_expr(tf.den_array[i, j])
-    return DiscreteTF.from_expr(entries if (rows, cols) != (1, 1) else entries[0, 0], dt=dt)
+    entries = _z_matrix(tf.num_array, tf.den_array)
+    return DiscreteTF.from_expr(entries if entries.shape != (1, 1) else entries[0, 0], dt=dt)
 
 
 def ss_to_control(R: Realization) -> control.StateSpace:
-    """A discrete ``control.StateSpace`` of a numeric :class:`~symctl.Realization` (dt kept).
+    """A discrete ``control.StateSpace``, ``(F, H, M, N)`` as ``(A, B, C, D)``, dt kept.
 
     Parameters
     ----------
     R : Realization
-        Numeric.
 
     Returns
     -------
     control.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` not a Realization.
-    ParameterError
-        Free symbols in ``R``.
+    SymctlTypeError, ParameterError
+        ``R`` not a Realization; free symbols in ``R``.
 
     Examples
     --------
@@ -204,7 +174,7 @@ def ss_to_control(R: Realization) -> control.StateSpace:
     >>> ss_to_control(Realization([[0.5]], [[1]], [[2]], 0, dt=0.1)).dt
     0.1
     """
-    F, H, M, N = _realization(R).numeric()
+    F, H, M, N = _checked(R, Realization, "R").numeric()
     return control.ss(F, H, M, N, _their_dt(R.dt))
 
 
@@ -222,10 +192,8 @@ def ss_from_control(sys) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Not a python-control system.
-    ParameterError
-        A continuous-time system, or an improper transfer function.
+    SymctlTypeError, ParameterError
+        Not a python-control system; a continuous-time system, or an improper transfer function.
 
     Examples
     --------
@@ -256,14 +224,12 @@ def _scipy_dt(sys):
 
 
 def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
-    """A discrete ``scipy.signal.TransferFunction`` of a numeric SISO or SIMO :class:`DiscreteTF`.
-
-    SciPy's transfer functions have one input (a SIMO ``G``: one ``num`` row per output).
+    """A discrete ``scipy.signal.TransferFunction`` of a numeric :class:`DiscreteTF` with one input.
 
     Parameters
     ----------
     G : DiscreteTF
-        Numeric, with one input.
+        Numeric, SISO or SIMO (one ``num`` row per output).
 
     Returns
     -------
@@ -271,12 +237,8 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
 
     Raises
     ------
-    SymctlTypeError
-        ``G`` not a DiscreteTF.
-    DimensionError
-        ``G`` with more than one input.
-    ParameterError
-        Free symbols in ``G``.
+    SymctlTypeError, DimensionError, ParameterError
+        ``G`` not a DiscreteTF; ``G`` with more than one input; free symbols in ``G``.
 
     Examples
     --------
@@ -286,19 +248,16 @@ def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
     >>> sys.num.tolist(), sys.den.tolist(), sys.dt
     ([1.0, 2.0], [1.0, -0.5], 0.1)
     """
-    G = _tf(G)
-    if G.shape[1] != 1:
+    if _checked(G, DiscreteTF, "G").shape[1] != 1:
         raise DimensionError(
             f"G: scipy.signal.TransferFunction holds one input, G has shape {G.shape}; "
             "use ss_to_scipy (a StateSpace holds any shape)"
         )
     den, columns = _numeric(G)
     nums = [row[0] for row in columns]
-    if G.is_siso:
-        return signal.TransferFunction(nums[0], den, dt=_their_dt(G.dt))
     width = max(len(n) for n in nums)
     num = np.array([[0.0] * (width - len(n)) + n for n in nums])
-    return signal.TransferFunction(num, den, dt=_their_dt(G.dt))
+    return signal.TransferFunction(num[0] if G.is_siso else num, den, dt=_their_dt(G.dt))
 
 
 def _scipy_tf_parts(sys) -> tuple[list[list[np.ndarray]], np.ndarray]:
@@ -312,12 +271,11 @@ def _scipy_tf_parts(sys) -> tuple[list[list[np.ndarray]], np.ndarray]:
         return [[np.atleast_2d(num)[i] for num, _ in columns] for i in range(rows)], den
     if isinstance(sys, signal.ZerosPolesGain):
         sys = sys.to_tf()
-    num = np.atleast_2d(sys.num)
-    return [[row] for row in num], np.atleast_1d(sys.den)
+    return [[row] for row in np.atleast_2d(sys.num)], np.atleast_1d(sys.den)
 
 
 def tf_from_scipy(sys) -> DiscreteTF:
-    """A :class:`DiscreteTF` from a discrete ``scipy.signal`` system.
+    """A :class:`DiscreteTF` from a discrete ``scipy.signal`` system, with its coefficients.
 
     Parameters
     ----------
@@ -328,14 +286,11 @@ def tf_from_scipy(sys) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        With the coefficients as SciPy has them.
 
     Raises
     ------
-    SymctlTypeError
-        Not a discrete SciPy system.
-    ParameterError
-        A continuous-time system (``scipy.signal.lti``).
+    SymctlTypeError, ParameterError
+        Not a discrete SciPy system; a continuous-time system (``scipy.signal.lti``).
 
     Examples
     --------
@@ -347,32 +302,24 @@ def tf_from_scipy(sys) -> DiscreteTF:
     """
     dt = _scipy_dt(sys)
     nums, den = _scipy_tf_parts(sys)
-    num = sp.zeros(len(nums), len(nums[0]))
-    for i, row in enumerate(nums):
-        for j, coeffs in enumerate(row):
-            num[i, j] = _z_expr(coeffs)
-    return DiscreteTF(num, _z_expr(den), dt)
+    return DiscreteTF(_z_matrix(nums), _z_expr(den), dt)
 
 
 def ss_to_scipy(R: Realization) -> signal.StateSpace:
-    """A discrete ``scipy.signal.StateSpace`` of a numeric :class:`~symctl.Realization`.
+    """A discrete ``scipy.signal.StateSpace``, ``(F, H, M, N)`` as ``(A, B, C, D)``, dt kept.
 
     Parameters
     ----------
     R : Realization
-        Numeric, any shape.
 
     Returns
     -------
     scipy.signal.StateSpace
-        ``(F, H, M, N)`` as ``(A, B, C, D)``.
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` not a Realization.
-    ParameterError
-        Free symbols in ``R``.
+    SymctlTypeError, ParameterError
+        ``R`` not a Realization; free symbols in ``R``.
 
     Examples
     --------
@@ -382,7 +329,7 @@ def ss_to_scipy(R: Realization) -> signal.StateSpace:
     >>> sys.A.tolist(), sys.C.tolist(), sys.dt
     ([[0.5]], [[2.0]], 0.1)
     """
-    F, H, M, N = _realization(R).numeric()
+    F, H, M, N = _checked(R, Realization, "R").numeric()
     return signal.StateSpace(F, H, M, N, dt=_their_dt(R.dt))
 
 
@@ -392,8 +339,8 @@ def ss_from_scipy(sys) -> Realization:
     Parameters
     ----------
     sys : scipy.signal.dlti
-        A discrete ``StateSpace``, or a ``TransferFunction`` or ``ZerosPolesGain``
-        (realized in the controllable canonical form).
+        A ``StateSpace``, or a ``TransferFunction`` or ``ZerosPolesGain`` (realized in
+        the controllable canonical form).
 
     Returns
     -------
@@ -401,20 +348,18 @@ def ss_from_scipy(sys) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Not a discrete SciPy system.
-    ParameterError
-        A continuous-time system, or an improper transfer function.
+    SymctlTypeError, ParameterError
+        Not a discrete SciPy system; a continuous-time system, or an improper transfer function.
 
     Examples
     --------
     >>> from scipy import signal
     >>> from symctl.interop import ss_from_scipy
     >>> R = ss_from_scipy(signal.dlti([1.0, 2.0], [1.0, -0.5, 0.06], dt=0.1))
-    >>> R.F, R.H.T, R.M, R.dt
+    >>> R.F, R.M, R.dt
     (Matrix([
     [  0.0, 1.0],
-    [-0.06, 0.5]]), Matrix([[0.0, 1.0]]), Matrix([[2.0, 1.0]]), 0.100000000000000)
+    [-0.06, 0.5]]), Matrix([[2.0, 1.0]]), 0.100000000000000)
     """
     dt = _scipy_dt(sys)
     if isinstance(sys, signal.StateSpace):
@@ -448,7 +393,7 @@ def _sympy_dt(sys, dt):
     own = None
     if getattr(sys, "is_continuous", None) is False:
         own = sampling_time(sys.sampling_time, "sys")
-    return _merge_dt(own, dt)
+    return common_dt(own, None if dt is None else sampling_time(dt, "dt"), "dt")
 
 
 def _variable(sys, var, discrete: bool) -> sp.Symbol:
@@ -470,14 +415,13 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 def tf_to_sympy(G: DiscreteTF):
     """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
 
-    SISO: a ``TransferFunction(num, den, z)`` (SymPy 1.14: ``G.dt`` dropped) or a
-    ``DiscreteTransferFunction(num, den, z, dt)`` (``dt=None`` written as 1). MIMO: a
-    ``TransferFunctionMatrix`` of those over ``G``'s common denominator.
+    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteTransferFunction`` carries it
+    (``dt=None`` written as 1). A MIMO ``G`` is a ``TransferFunctionMatrix`` over its common
+    denominator.
 
     Parameters
     ----------
     G : DiscreteTF
-        Exact, symbolic or numeric.
 
     Returns
     -------
@@ -498,7 +442,7 @@ def tf_to_sympy(G: DiscreteTF):
     >>> sys.num, sys.den, sys.var
     (K*z, -a + z**2, z)
     """
-    G = _tf(G)
+    G = _checked(G, DiscreteTF, "G")
     lib = _SymPy()
 
     def entry(num):
@@ -508,8 +452,9 @@ def tf_to_sympy(G: DiscreteTF):
 
     if G.is_siso:
         return entry(G.num)
-    rows = [[entry(e) for e in row] for row in G.num_matrix.tolist()]
-    return lib.ctl.TransferFunctionMatrix(rows)
+    return lib.ctl.TransferFunctionMatrix(
+        [[entry(e) for e in row] for row in G.num_matrix.tolist()]
+    )
 
 
 def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
@@ -518,9 +463,8 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Parameters
     ----------
     sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
-        SymPy 1.14's classes are read as discrete, in ``z``; a later SymPy's discrete
-        classes give their ``sampling_time`` and variable. Series, Parallel and
-        Feedback: call ``.doit()`` first.
+        SymPy 1.14's classes are read as discrete, in ``z`` (Series, Parallel, Feedback:
+        ``.doit()`` first).
     dt : number, symbol or None
         The sampling time (SymPy 1.14), or one that must agree with the system's.
     var : sympy Symbol, optional
@@ -529,16 +473,14 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Returns
     -------
     DiscreteTF
-        Over the common denominator when all entries share one (exact, not cancelled),
-        else in lowest terms.
+        As written when all entries share one denominator, else in lowest terms.
 
     Raises
     ------
-    SymctlTypeError
-        Another type, or a ``var`` that is not a Symbol.
-    ParameterError
-        A continuous-time system, a variable other than z (or ``var``), a ``dt`` that
-        disagrees with the system's, or entries that are not rational in the variable.
+    SymctlTypeError, ParameterError
+        Another type, or a ``var`` that is not a Symbol; a continuous-time system, a variable
+        other than z (or ``var``), a ``dt`` that disagrees with the system's, or entries that
+        are not rational in the variable.
 
     Examples
     --------
@@ -549,10 +491,6 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     >>> back = tf_from_sympy(tf_to_sympy(G), dt=sp.Rational(1, 10))
     >>> back == G, back.expr
     (True, K/(z - 1/2))
-    >>> tf_from_sympy(G)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.SymctlTypeError: sys: expected a sympy.physics.control TransferFunction, ...
     """
     lib = _SymPy()
     if isinstance(sys, lib.sss):
@@ -579,34 +517,30 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     for n, d in zip(nums, dens, strict=True):
         if not (n.is_rational_function(z) and d.is_rational_function(z)):
             raise ParameterError(f"sys: ({n})/({d}) is not rational in {v}")
-    shape = (len(entries), len(entries[0]))
+    cols = len(entries[0])
     if len(set(dens)) == 1 and all(e.is_polynomial(z) for e in (*nums, *dens)):
-        return DiscreteTF(_matrix(nums, shape), dens[0], dt)  # as it is: exact, not cancelled
-    return DiscreteTF.from_expr(
-        _matrix([n / d for n, d in zip(nums, dens, strict=True)], shape), dt
-    )
+        return DiscreteTF(_shaped(nums, cols), dens[0], dt)  # as it is: exact, not cancelled
+    return DiscreteTF.from_expr(_shaped([n / d for n, d in zip(nums, dens, strict=True)], cols), dt)
 
 
-def _matrix(values: list, shape: tuple[int, int]):
-    """Sympy values (not text) in a matrix of ``shape``, or the one value for 1 x 1."""
-    if shape == (1, 1):
+def _shaped(values: list, cols: int):
+    """SymPy values (not text) as a matrix of ``cols`` columns, or the one value for 1 x 1."""
+    if len(values) == 1:
         return values[0]
-    out = sp.zeros(*shape)
+    out = sp.zeros(len(values) // cols, cols)
     for k, value in enumerate(values):
-        out[k // shape[1], k % shape[1]] = value
+        out[k // cols, k % cols] = value
     return out
 
 
 def ss_to_sympy(R: Realization):
     """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
 
-    A ``StateSpace(F, H, M, N)`` (SymPy 1.14: ``R.dt`` dropped) or a
-    ``DiscreteStateSpace(F, H, M, N, dt)`` (``dt=None`` written as 1).
+    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteStateSpace`` carries it.
 
     Parameters
     ----------
     R : Realization
-        Exact, symbolic or numeric.
 
     Returns
     -------
@@ -627,7 +561,7 @@ def ss_to_sympy(R: Realization):
     >>> sys.A, sys.B
     (Matrix([[epsilon]]), Matrix([[C]]))
     """
-    R = _realization(R)
+    R = _checked(R, Realization, "R")
     lib = _SymPy()
     if lib.ss is None:
         raise ParameterError(f"R: SymPy {sp.__version__} has no StateSpace (SymPy >= 1.13 has)")
@@ -643,10 +577,8 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
     ----------
     sys : StateSpace, DiscreteStateSpace or a SISO transfer function
         A transfer function is realized in the controllable canonical form.
-    dt : number, symbol or None
-        As in :func:`tf_from_sympy`.
-    var : sympy Symbol, optional
-        As in :func:`tf_from_sympy` (transfer functions only).
+    dt, var
+        As in :func:`tf_from_sympy` (``var``: transfer functions only).
 
     Returns
     -------
@@ -654,12 +586,9 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        Another type.
-    ParameterError
-        A continuous-time system or a ``dt`` that disagrees with the system's.
-    DimensionError
-        A transfer function matrix (realize it with a symctl realizer instead).
+    SymctlTypeError, ParameterError, DimensionError
+        Another type; a continuous-time system or a ``dt`` that disagrees with the system's; a
+        transfer function matrix (realize it with a symctl realizer instead).
 
     Examples
     --------

@@ -1,23 +1,10 @@
 """Verdicts: every checker's result is truthy when its claim holds, with its method and evidence.
 
-Checkers return results, not bare booleans. Every result of a check or a
-decision in symctl follows one protocol, :class:`Verdict`: ``bool(result)`` is
-the verdict, ``result.verdict`` the same as a value (``True``, ``False``, or
-``None`` when a decision procedure gave no answer), ``result.method`` how it
-was decided and ``result.evidence`` what backs it (a witness, a certificate, a
-counterexample or a bound). Older field names (``ok``, ``holds``, ``stable``,
-``feasible``, ``universal``) stay as they are.
-
-:class:`Proof` is the result of an exact proof: ``proof.claim`` is what was
-proved, ``proof.method`` how, and ``proof.evidence`` a witness of failure (the
-first entry of the difference that is not the zero polynomial). A proof also
-equals the boolean of its verdict, so ``prove_controller_tf(system) == True``
-keeps working.
-
->>> from symctl.proof import Proof
->>> p = Proof(True, "G3 G2 G1 = G", "cross-multiplication")
->>> bool(p), p == True, p.verdict, p
-(True, True, True, Proof(True, claim='G3 G2 G1 = G', method='cross-multiplication'))
+Every check or decision in symctl returns a :class:`Verdict`: ``bool(result)`` is the verdict,
+``result.verdict`` the same as a value (None when a decision procedure gave no answer),
+``result.method`` how it was decided and ``result.evidence`` what backs it (a witness, a
+certificate, a counterexample or a bound). Older field names (``ok``, ``holds``, ``stable``,
+``feasible``, ``universal``) stay. :class:`Proof` is the result of an exact proof.
 """
 
 from __future__ import annotations
@@ -32,10 +19,8 @@ __all__ = ["Proof", "Verdict"]
 class Verdict(DictMixin):
     """The verdict protocol, mixed into every checker's and decision's result.
 
-    A subclass names the attribute that holds its verdict in ``_verdict`` (a
-    bool, or None when undecided) and provides ``method`` and ``evidence``
-    (fields or properties). ``verdict`` reads that attribute; the result is
-    truthy exactly when the verdict is True. ``to_dict()`` and ``from_dict()``
+    A subclass names the attribute holding its verdict (a bool, or None when undecided) in
+    ``_verdict`` and provides ``method`` and ``evidence``; ``to_dict()`` and ``from_dict()``
     write and read it as JSON types.
 
     Examples
@@ -61,7 +46,7 @@ class Verdict(DictMixin):
 
 @dataclass(frozen=True, eq=False)
 class Proof(Verdict):
-    """An exact verdict on a claim.
+    """An exact verdict on a claim; it equals its verdict's bool (``proof == True``).
 
     Parameters
     ----------
@@ -77,6 +62,9 @@ class Proof(Verdict):
     Examples
     --------
     >>> from symctl.proof import Proof
+    >>> p = Proof(True, "G3 G2 G1 = G", "cross-multiplication")
+    >>> bool(p), p == True, p.verdict, p
+    (True, True, True, Proof(True, claim='G3 G2 G1 = G', method='cross-multiplication'))
     >>> bool(Proof(False, "x = y", "expand", evidence="x - y"))
     False
     """
@@ -95,12 +83,7 @@ class Proof(Verdict):
         if isinstance(other, bool):
             return self.holds == other
         if isinstance(other, Proof):
-            return (self.holds, self.claim, self.method, self.evidence) == (
-                other.holds,
-                other.claim,
-                other.method,
-                other.evidence,
-            )
+            return vars(self) == vars(other)
         return NotImplemented
 
     def __hash__(self) -> int:

@@ -1,13 +1,7 @@
-r"""The paper's symbols, made once.
+r"""The paper's symbols, made once, so that expressions built anywhere share them.
 
-Every module takes its symbols from here, so that expressions built in
-different places share the same :class:`sympy.Symbol` objects and print as in
-the paper: :math:`K_0, \dots, K_T`, :math:`\epsilon_1`, :math:`C_1`,
-:math:`\tau`, :math:`f_{max}`, :math:`\bar r`, :math:`T_s` and :math:`z`.
-
-Assumptions: the plant parameters ``tau``, ``f_max`` and ``T_s`` are positive,
-``r_bar`` and all gains are real; ``z`` carries no assumption (it is the
-complex variable of the Z-transform).
+``tau``, ``f_max`` and ``T_s`` are positive, ``r_bar`` and all gains real; ``z`` carries no
+assumption (the complex variable of the Z-transform).
 
 >>> from symctl.symbols import z, gain_symbols
 >>> gain_symbols(2)
@@ -66,31 +60,24 @@ def gain_symbols(T: int) -> tuple[sp.Symbol, ...]:
 
 @cache
 def gain_matrix_symbols(T: int, m: int, n: int) -> tuple[sp.Matrix, ...]:
-    """Gain blocks ``(K_0, ..., K_T)`` for a plant with ``n`` states and ``m`` inputs.
-
-    ``K_0`` is ``m x n`` (it multiplies the plant state), ``K_1 .. K_T`` are
-    ``m x m`` (they multiply the delayed copies of the intended actuation).
-    With ``m = n = 1`` the entries are the scalar symbols of :func:`gain_symbols`;
-    otherwise entry ``(i, j)`` of ``K_k`` is the real symbol ``K_{k,ij}``
-    (indices from 1, as in a paper).
-    """
+    """Gain blocks ``K_0`` (``m x n``, on the state) and ``K_1 .. K_T`` (``m x m``, on the delayed
+    inputs): the scalars of :func:`gain_symbols` when ``m = n = 1``, else ``K_{k,ij}`` (from 1)."""
     if m == 1 and n == 1:
         return tuple(sp.Matrix([[k]]) for k in gain_symbols(T))
-    blocks = []
-    for k in range(T + 1):
-        cols = n if k == 0 else m
-        blocks.append(
-            sp.Matrix(m, cols, lambda i, j, k=k: sp.Symbol(f"K_{{{k},{i + 1}{j + 1}}}", real=True))
+    return tuple(
+        sp.Matrix(
+            m,
+            n if k == 0 else m,
+            lambda i, j, k=k: sp.Symbol(f"K_{{{k},{i + 1}{j + 1}}}", real=True),
         )
-    return tuple(blocks)
+        for k in range(T + 1)
+    )
 
 
 @cache
 def observer_gain_symbols(n: int, p: int, stem: str = "L") -> sp.ImmutableMatrix:
-    """The Kalman gain on the plant's ``n`` states from ``p`` outputs, as real symbols.
-
-    With one output the entries are ``L_1 .. L_n`` (one per state); otherwise entry
-    ``(i, j)`` is ``L_{i,j}`` (indices from 1). ``stem`` ``"M"`` names the current form's gain.
+    """The Kalman gain (``n`` states, ``p`` outputs) as real symbols: ``L_1 .. L_n`` for one
+    output, else ``L_{i,j}`` (from 1); ``stem`` ``"M"`` names the current form's gain.
 
     >>> from symctl.symbols import observer_gain_symbols
     >>> observer_gain_symbols(2, 1).T, observer_gain_symbols(1, 2)

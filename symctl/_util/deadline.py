@@ -1,20 +1,12 @@
-r"""One deadline for a whole computation: every stage asks it how long is left.
+r"""One deadline for a whole computation, handed down: every stage asks it how long is left.
 
-A search with a ``timeout`` makes one :class:`Deadline` and hands it down: a z3 query
-gets the time left (:meth:`Deadline.left`), a loop stops when it has passed
-(:meth:`Deadline.check` raises :class:`OutOfTime`). The clock is a parameter, so
-a test can run out of time without waiting.
+The clock is a parameter, so a test can run out of time without waiting.
 
->>> from symctl._util.deadline import Deadline, OutOfTime
+>>> from symctl._util.deadline import Deadline
 >>> ticks = iter(range(100))
 >>> d = Deadline(2.5, clock=lambda: next(ticks))   # started at tick 0
->>> d.left(), d.expired()                          # ticks 1 and 2
-(1.5, False)
->>> try:
-...     d.check("building the equations")          # tick 3
-... except OutOfTime as err:
-...     print(err)
-building the equations: out of time (2.5 s)
+>>> d.left(), d.expired(), d.expired()             # ticks 1, 2 and 3
+(1.5, False, True)
 """
 
 from __future__ import annotations
@@ -24,8 +16,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from symctl._util.validate import bounded_number
-
-__all__ = ["Deadline", "OutOfTime", "Unfinished", "deadline_of"]
 
 
 class Unfinished(Exception):

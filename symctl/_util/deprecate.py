@@ -1,14 +1,8 @@
-"""Old spellings of the public API, kept for one release: they still work and warn.
-
-symctl speaks one convention: ``rng`` for randomness, ``dt`` for the sampling time,
-and every verdict truthy with ``.verdict``, ``.method`` and ``.evidence``; an older
-spelling keeps working through these helpers, with a ``DeprecationWarning``.
+"""Old spellings of the public API (``seed``, ``Ts``, ...), kept for one release: they work and warn.
 
 >>> import warnings
 >>> from symctl._util.deprecate import renamed_keywords
->>> @renamed_keywords(Ts="dt")
-... def step(*, dt=1):
-...     return dt
+>>> step = renamed_keywords(Ts="dt")(lambda *, dt=1: dt)
 >>> with warnings.catch_warnings(record=True) as caught:
 ...     warnings.simplefilter("always")
 ...     step(Ts=3), caught[0].category.__name__
@@ -24,15 +18,6 @@ from collections.abc import Mapping
 
 from symctl._util.validate import as_generator, as_random
 from symctl.errors import SymctlTypeError
-
-__all__ = [
-    "RenamedKeys",
-    "renamed_attribute",
-    "renamed_keywords",
-    "renamed_method",
-    "rng_argument",
-    "warn_deprecated",
-]
 
 
 def warn_deprecated(old: str, new: str, where: str, stacklevel: int = 3) -> None:
@@ -71,27 +56,15 @@ def renamed_keywords(**renames: str):
 
 
 def renamed_attribute(old: str, new: str) -> property:
-    """A read-only property ``old`` that warns and returns the attribute ``new``."""
+    """A read-only property ``old`` that warns and returns the attribute (or method) ``new``."""
 
     def getter(self):
         warn_deprecated(old, new, type(self).__name__)
         return getattr(self, new)
 
     getter.__name__ = old
-    getter.__doc__ = f"Deprecated name of :attr:`{new}`."
+    getter.__doc__ = f"Deprecated name of ``{new}``."
     return property(getter)
-
-
-def renamed_method(old: str, new: str):
-    """A method ``old`` that warns and calls the method ``new``."""
-
-    def method(self, *args, **kwargs):
-        warn_deprecated(old, new, type(self).__name__)
-        return getattr(self, new)(*args, **kwargs)
-
-    method.__name__ = old
-    method.__doc__ = f"Deprecated name of :meth:`{new}`."
-    return method
 
 
 def rng_argument(kind: str = "numpy"):

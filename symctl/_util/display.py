@@ -1,19 +1,10 @@
-r"""LaTeX display shared by every derived object.
-
-:func:`latex` is :func:`sympy.latex` with the paper's spelling of the symbols
-(:math:`\bar r`, :math:`f_\text{max}`, :math:`\delta_f`, ...). Classes that
-define ``latex()`` get ``_repr_latex_`` for Jupyter from :class:`LatexMixin`.
-
->>> from symctl._util.display import latex
->>> from symctl.symbols import r_bar, f_max
->>> latex(f_max / (1 + r_bar))
-'\\frac{f_\\text{max}}{\\bar{r} + 1}'
-
-Polynomials in :math:`z` print in descending powers, as papers write them:
+r"""LaTeX and text display with the paper's spelling of the symbols, polynomials in descending powers.
 
 >>> from symctl import z
->>> from symctl._util.display import descending_latex, descending_str
->>> from symctl.symbols import epsilon_1, epsilon_3
+>>> from symctl._util.display import descending_latex, descending_str, latex
+>>> from symctl.symbols import epsilon_1, epsilon_3, f_max, r_bar
+>>> latex(f_max / (1 + r_bar))
+'\\frac{f_\\text{max}}{\\bar{r} + 1}'
 >>> descending_str(z**2 - (epsilon_1 + epsilon_3) * z + epsilon_1 * epsilon_3)
 'z**2 - (epsilon_1 + epsilon_3)*z + epsilon_1*epsilon_3'
 >>> descending_latex(1 - z**2 / 2)
@@ -29,15 +20,6 @@ from symctl._util.exact import z_poly
 from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
-__all__ = [
-    "DISPLAY_DIGITS",
-    "LatexMixin",
-    "descending_latex",
-    "descending_str",
-    "latex",
-    "shortened",
-]
-
 DISPLAY_DIGITS = 6
 """Significant digits of the floats an object prints (its ``str``, ``repr`` and LaTeX)."""
 
@@ -46,17 +28,13 @@ _NAMES = {
     S.f_max: r"f_\text{max}",
     S.delta_f: r"\delta_f",
     S.delta_r: r"\delta_r",
-    S.f: "f",
-    S.r: "r",
 }
 
 
 def _indexed_name(symbol: sp.Symbol) -> str | None:
     """``epsilon_{3,1}`` -> ``\\epsilon_{3,1}`` (sympy leaves braced names alone)."""
     stem, sep, rest = symbol.name.partition("_{")
-    if not sep:
-        return None
-    return ("\\" + stem if stem in GREEK else stem) + "_{" + rest
+    return _stem(stem) + "_{" + rest if sep else None
 
 
 def _stem(text: str) -> str:
@@ -121,11 +99,7 @@ class LatexMixin:
 
 
 def _descending(expr: sp.Expr, printer, times: str, digits: int | None = None) -> str:
-    """A polynomial in z printed with its terms in descending powers, as papers write them.
-
-    Each term is ``sign coefficient z^k`` with a sum coefficient in parentheses:
-    ``z^2 - (epsilon_1 + epsilon_3) z + epsilon_1 epsilon_3``.
-    """
+    """A polynomial in z as ``sign coefficient z^k`` terms in descending powers (sums in parentheses)."""
     poly = z_poly(expr)
     if poly.is_zero:
         return "0"
@@ -153,16 +127,10 @@ def _descending(expr: sp.Expr, printer, times: str, digits: int | None = None) -
 
 
 def descending_latex(expr: sp.Expr, digits: int | None = None) -> str:
-    """LaTeX of a polynomial in z in descending powers: ``'z^{2} - K_{1} z - K_{2}'``.
-
-    With ``digits``, floats are :func:`shortened` to that many significant digits.
-    """
+    """LaTeX of a polynomial in z in descending powers, floats :func:`shortened` to ``digits``."""
     return _descending(expr, latex, " ", digits)
 
 
 def descending_str(expr: sp.Expr, digits: int | None = None) -> str:
-    """Plain text of a polynomial in z in descending powers: ``'z**2 - K_1*z - K_2'``.
-
-    With ``digits``, floats are :func:`shortened` to that many significant digits.
-    """
+    """Plain text of a polynomial in z in descending powers, floats :func:`shortened` to ``digits``."""
     return _descending(expr, sp.sstr, "*", digits)

@@ -1,8 +1,5 @@
-"""Symbolic to numeric: vectorized NumPy evaluation of symbolic matrices.
-
-:func:`lambdify_matrices` turns sympy matrices into one NumPy function of
-chosen symbols. Arguments broadcast like NumPy arrays, so 10^5 parameter sets
-evaluate in one call; each output has shape ``broadcast + (rows, cols)``.
+"""Symbolic matrices as one NumPy function of chosen symbols, broadcast like arrays (an output
+has shape ``broadcast + (rows, cols)``, so 10^5 parameter sets evaluate in one call).
 
 >>> import numpy as np, sympy as sp
 >>> from symctl._util.evaluate import lambdify_matrices
@@ -21,8 +18,6 @@ import sympy as sp
 
 from symctl._util.validate import symbol_tuple
 from symctl.errors import ParameterError
-
-__all__ = ["lambdify_matrices"]
 
 
 def lambdify_matrices(

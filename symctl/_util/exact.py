@@ -1,20 +1,12 @@
 r"""The one exact expression fold: a SymPy expression tree evaluated in an algebra.
 
-:func:`fold` walks a rational SymPy expression bottom up (numbers, symbols,
-sums, products, integer powers; shared subtrees once) and hands each node to an
-*algebra*, an object with ``number(p, q)``, ``symbol(s)``, ``add(parts)``,
-``mul(parts)`` and ``pow(base, value, k)``. Every turn of an expression into a
-numerator/denominator pair in symctl goes through it:
-
-* :class:`RingFractions`: pairs of sparse SymPy polynomials over
-  :math:`\mathbb{Q}` (the coefficients of a transfer function in :math:`z`,
-  :func:`z_poly`, and :func:`products_equal`);
-* :class:`PolyFractions`: pairs of python-flint ``fmpz_mpoly`` (the exact
-  realization check);
-* :class:`IntFractions`: the value at a rational point, as a pair of ints
-  (the randomized check);
-* :class:`Degrees`: degree bounds of an unreduced representation (the
-  Schwartz–Zippel bound of the randomized check).
+:func:`fold` walks a rational SymPy expression bottom up (shared subtrees once) and hands
+each node to an *algebra* (``number(p, q)``, ``symbol(s)``, ``add(parts)``, ``mul(parts)``,
+``pow(base, value, k)``); every numerator/denominator pair in symctl is made by one:
+:class:`RingFractions` (sparse SymPy polynomials over :math:`\mathbb{Q}`: :func:`z_poly`,
+:func:`products_equal`), :class:`PolyFractions` (python-flint ``fmpz_mpoly``: the exact
+realization check), :class:`IntFractions` (the value at a rational point) and
+:class:`Degrees` (degree bounds: the Schwartz–Zippel bound of the randomized check).
 
 >>> import sympy as sp
 >>> from symctl import z
@@ -38,20 +30,6 @@ from sympy.polys.rings import ring
 
 from symctl.errors import ParameterError
 from symctl.symbols import z
-
-__all__ = [
-    "Degrees",
-    "IntFractions",
-    "NotRational",
-    "PolyFractions",
-    "RingFractions",
-    "ZPoly",
-    "fold",
-    "nearest_rational",
-    "products_equal",
-    "ring_fractions",
-    "z_poly",
-]
 
 
 def _mul_pairs(parts):
@@ -130,11 +108,6 @@ class RingFractions(_Pairs):
         for n2, d2 in parts[1:]:
             num, den = (num + n2, den) if d2 == den else (num * d2 + n2 * den, den * d2)
         return num, den
-
-    @staticmethod
-    def pow(base, value, k: int):
-        num, den = value
-        return (num**k, den**k) if k >= 0 else (den ** (-k), num ** (-k))
 
 
 class PolyFractions(_Pairs):
@@ -291,11 +264,9 @@ def products_equal(left: list[sp.Expr], right: list[sp.Expr]) -> bool:
     pairs = ring_fractions([*left, *right])
     if pairs is None:
         return sp.expand(sp.Mul(*left) - sp.Mul(*right)) == 0
-    num_l, den_l, num_r, den_r = (pairs[0][0].ring.one,) * 4
-    for n_, d_ in pairs[: len(left)]:
-        num_l, den_l = num_l * n_, den_l * d_
-    for n_, d_ in pairs[len(left) :]:
-        num_r, den_r = num_r * n_, den_r * d_
+    one = (pairs[0][0].ring.one,) * 2
+    num_l, den_l = _mul_pairs([one, *pairs[: len(left)]])
+    num_r, den_r = _mul_pairs([one, *pairs[len(left) :]])
     return num_l * den_r == num_r * den_l
 
 
@@ -315,12 +286,10 @@ class ZPoly:
         return max(self._coeffs) if self._coeffs else -1
 
     def LC(self) -> sp.Expr:
-        return self._coeffs[self.degree()] if self._coeffs else sp.Integer(0)
+        return self.coeff(self.degree())
 
     def all_coeffs(self) -> list[sp.Expr]:
-        if not self._coeffs:
-            return [sp.Integer(0)]
-        return [self._coeffs.get(k, sp.Integer(0)) for k in range(self.degree(), -1, -1)]
+        return [self.coeff(k) for k in range(self.degree(), -1, -1)] or [sp.Integer(0)]
 
     def coeff(self, power: int) -> sp.Expr:
         return self._coeffs.get(power, sp.Integer(0))
@@ -329,16 +298,22 @@ class ZPoly:
         return [((k,), self._coeffs[k]) for k in sorted(self._coeffs, reverse=True)]
 
 
+def _z_fraction(expr: sp.Expr):
+    """``(num, den)`` of a polynomial in z in the sparse ring (``den`` free of z), or None."""
+    pairs = ring_fractions([expr])
+    if pairs is not None and pairs[0][1].degree(0) > 0:
+        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
+    return None if pairs is None else pairs[0]
+
+
 @lru_cache(maxsize=4096)
 def z_poly(expr: sp.Expr) -> ZPoly:
     """Coefficients of ``expr`` in z, computed with sparse ring arithmetic (no expression expansion)."""
-    pairs = ring_fractions([expr])
-    if pairs is None:
+    pair = _z_fraction(expr)
+    if pair is None:
         poly = sp.Poly(expr, z)
         return ZPoly({k: c for (k,), c in poly.terms()})
-    num, den = pairs[0]
-    if den.degree(0) > 0:
-        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
+    num, den = pair
     by_power: dict[int, dict] = {}
     for monom, coeff in num.items():
         by_power.setdefault(monom[0], {})[(0, *monom[1:])] = coeff
@@ -353,13 +328,10 @@ def z_poly(expr: sp.Expr) -> ZPoly:
 @lru_cache(maxsize=4096)
 def z_degree(expr: sp.Expr) -> int:
     """The degree of ``expr`` in z (-1 for 0), read off the sparse ring without its coefficients."""
-    pairs = ring_fractions([expr])
-    if pairs is None:
+    pair = _z_fraction(expr)
+    if pair is None:
         return z_poly(expr).degree()
-    num, den = pairs[0]
-    if den.degree(0) > 0:
-        raise ParameterError(f"num/den: {expr} is not a polynomial in z")
-    return max((monom[0] for monom in num.keys()), default=-1)
+    return max((monom[0] for monom in pair[0].keys()), default=-1)
 
 
 def from_fmpq(q) -> sp.Rational:

@@ -1,11 +1,5 @@
-"""Public names loaded on first use (PEP 562), from one table.
+"""Public names loaded on first use (PEP 562), from one table ``{name: module}``.
 
-A package writes its public names once, as a table ``{name: module}``, and gets
-``__getattr__``, ``__dir__`` and ``__all__`` from :func:`attach`, so that ``import
-symctl`` stays quick.
-
-Examples
---------
 >>> from symctl._util.lazy import attach
 >>> getattr_, dir_, all_ = attach("symctl", {"z": "symctl.symbols"})
 >>> all_
@@ -19,8 +13,6 @@ from __future__ import annotations
 import importlib
 import sys
 from collections.abc import Callable, Iterable, Mapping
-
-__all__ = ["attach"]
 
 
 def attach(

@@ -16,34 +16,13 @@ Traceback (most recent call last):
 ...
 symctl.errors.ParseError: expression: function '__import__' is not allowed; use one of: Abs, ...
 
-Bounded work
-------------
-Text is untrusted, so the parser bounds what it does before and while it
-builds the expression; any input past a limit is a
-:class:`~symctl.errors.ParseError` naming the argument, raised in well under a
-second (never a hang, a ``MemoryError``, a ``RecursionError`` or a foreign
-exception):
-
-=================================  ==========================================
-limit                              value
-=================================  ==========================================
-text length                        ``MAX_TEXT`` = 10,000 characters
-operator characters ``+-*/(``      ``MAX_OPERATORS`` = 400 (checked before Python parses)
-syntax-tree nodes                  ``MAX_NODES`` = 1,000
-nesting depth of the tree          ``MAX_DEPTH`` = 100
-a numeric exponent                 ``|e| <= MAX_EXPONENT`` = 1,000 (so ``9**9**9`` is refused)
-an exact number (literal or        ``MAX_BITS`` = 20,000 bits of numerator and denominator
-intermediate result)               (about 6,000 digits; the power's size is estimated first)
-a number with functions or         within floating point (``|x| <= 1.8e308``), and so every
-constants (``exp(800)``, ``pi*x``) number computed on the way to it (``exp(exp(10))`` is refused)
-float literals                     finite (``1e9999`` is refused)
-the result                         finite: no ``zoo``, ``oo`` or ``nan`` (``1/0`` is refused)
-=================================  ==========================================
-
->>> parse_expr("9**9**9")
-Traceback (most recent call last):
-...
-symctl.errors.ParseError: expression: exponent 387420489 is too large (|exponent| <= 1000)
+Text is untrusted, so every input past a limit is a :class:`~symctl.errors.ParseError`
+naming the argument, raised in well under a second (docs/reliability.md): text of at most
+``MAX_TEXT`` = 10,000 characters and ``MAX_OPERATORS`` = 400 operator characters ``+-*/(``
+(checked before Python parses), ``MAX_NODES`` = 1,000 syntax-tree nodes nested at most
+``MAX_DEPTH`` = 100 deep, exponents ``|e| <= MAX_EXPONENT`` = 1,000, exact numbers (literal or
+computed) of at most ``MAX_BITS`` = 20,000 bits, numbers with functions or constants within
+floating point (``exp(exp(10))`` is refused), finite literals and a finite result (``1/0``).
 """
 
 from __future__ import annotations
@@ -57,8 +36,6 @@ from types import MappingProxyType
 import sympy as sp
 
 from symctl.errors import ParseError, SymctlTypeError
-
-__all__ = ["CONSTANTS", "NAMES", "parse_expr", "parse_matrix"]
 
 _FUNCTIONS = {
     "exp": sp.exp,
@@ -217,26 +194,12 @@ def parse_expr(
     *,
     argname: str = "expression",
 ) -> sp.Expr:
-    """Parse user text into a sympy expression without evaluating any code.
+    """Parse user text (``"f_max/(tau*(1 + exp(-r)))"``) into a sympy expression, never evaluated.
 
-    Parameters
-    ----------
-    text : str
-        Arithmetic in Python syntax, e.g. ``"f_max/(tau*(1 + exp(-r)))"``.
-    names : mapping or iterable of symbols, optional
-        The names the text may use. Decimal numbers become exact rationals.
-    argname : str
-        The argument name used in error messages.
-
-    Raises
-    ------
-    ParseError
-        For syntax errors, unknown names, calls of other functions, attribute
-        access, subscripts and any other construct; for text past the limits
-        in the module docstring (length, size, depth, exponents, number sizes)
-        and for non-finite numbers or results.
-    SymctlTypeError
-        ``text`` is not a string.
+    ``names`` (a mapping or symbols) are the names the text may use; decimals become exact
+    rationals; ``argname`` names the text in errors. Anything else (unknown names, other
+    calls, attributes, subscripts, text past the limits, non-finite values) is a
+    :class:`ParseError`; text that is not a ``str`` a :class:`SymctlTypeError`.
     """
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected a string, got {type(text).__name__}")

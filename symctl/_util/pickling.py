@@ -1,8 +1,4 @@
-"""Pickling of symctl's values: read-only mappings, and cached properties left out.
-
-:func:`register` teaches :mod:`copyreg` to pickle a read-only mapping
-(:class:`types.MappingProxyType`) as the view of a copy of its items;
-:class:`CachedState` leaves cached properties out of a frozen value's state.
+"""Pickling of symctl's values: read-only mappings, exact expressions as built, no caches.
 
 >>> import pickle
 >>> from types import MappingProxyType
@@ -18,8 +14,6 @@ import dataclasses
 import functools
 from collections.abc import Mapping
 from types import MappingProxyType
-
-__all__ = ["ArrayValue", "CachedState", "read_only_mapping", "register", "register_sympy"]
 
 
 def read_only_mapping(items: dict) -> MappingProxyType:
@@ -46,12 +40,10 @@ def register() -> None:
 
 
 def register_sympy() -> None:
-    """Pickle SymPy sums, products and powers as they are; idempotent.
+    """Pickle SymPy sums, products and powers as built, unevaluated; idempotent.
 
-    Called where symctl first imports SymPy (:mod:`symctl._util.validate`). An exact
-    form such as :math:`(1353 K_1 + 1435 K_2 + 2145)/3628`, built unevaluated by the
-    fraction-free algebra, loads as that form (SymPy's own pickling evaluates it
-    again, distributing the rational, and the loaded matrix would not compare equal).
+    SymPy's own pickling evaluates them again (``(1353 K_1 + 2145)/3628`` would load with the
+    rational distributed, and not compare equal).
     """
     import sympy
 
@@ -79,12 +71,8 @@ class CachedState:
 
 
 class ArrayValue:
-    """A mixin for frozen dataclasses holding arrays: equal when every field is.
-
-    Arrays are equal when their shapes and entries are (NaN equal to NaN), mappings
-    when their items are, sequences item by item; so a value loaded from a pickle
-    equals the one saved. The hash reads the shapes and the hashable fields.
-    """
+    """A mixin for frozen dataclasses holding arrays: equal when every field is (arrays by shape
+    and entries, NaN equal to NaN), so a value loaded from a pickle equals the one saved."""
 
     __slots__ = ()
 
@@ -96,11 +84,8 @@ class ArrayValue:
         )
 
     def __hash__(self) -> int:
-        return hash((type(self).__qualname__, *map(_hash_part, _values(self))))
-
-
-def _values(obj) -> list:
-    return [getattr(obj, f.name) for f in dataclasses.fields(obj)]
+        fields = (getattr(self, f.name) for f in dataclasses.fields(self))
+        return hash((type(self).__qualname__, *map(_hash_part, fields)))
 
 
 def _same(a, b) -> bool:
@@ -108,9 +93,7 @@ def _same(a, b) -> bool:
 
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
-        if a.shape != b.shape:
-            return False
-        try:
+        try:  # False for other shapes
             return bool(np.array_equal(a, b, equal_nan=True))
         except TypeError:  # object arrays: no NaN test
             return bool(np.array_equal(a, b))

@@ -1,12 +1,5 @@
-"""The dask path of every long sweep: workers in this process or on a dask cluster, and a
-JSON-lines checkpoint from which an interrupted sweep resumes.
-
-``open_pool(1, None)`` runs the tasks here, one after the other; otherwise they go to a
-dask.distributed cluster (an existing one at ``scheduler``, or a ``LocalCluster`` with one
-single-threaded process per worker). :class:`Checkpoint` appends each finished task's
-records to a file whose first line names the sweep; a later run with the same file skips
-what is done.
-"""
+"""The dask path of every long sweep: workers here or on a dask cluster, and a JSON-lines
+checkpoint from which an interrupted sweep resumes."""
 
 from __future__ import annotations
 
@@ -18,19 +11,13 @@ from pathlib import Path
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 
-__all__ = ["MAX_WORKERS", "Checkpoint", "open_pool", "pool_options"]
-
 MAX_WORKERS = 512
 """Most worker processes one sweep may ask for."""
 
 
 class Checkpoint:
-    """The records of a sweep by ``key(record)``, kept in the JSON-lines file ``path`` (or none).
-
-    A file whose first line is not ``header`` belongs to another sweep and is refused; reading
-    stops at the first line that is cut or holds a record ``valid`` refuses, and the file is cut
-    there (the rest is redone).
-    """
+    """The records of a sweep by ``key(record)``, in the JSON-lines file ``path`` (or none) whose
+    first line is ``header``; reading stops (and cuts the file) at a line cut or not ``valid``."""
 
     def __init__(self, path, header: dict, key: Callable, valid: Callable[[object], bool]):
         self.path = None if path is None else Path(path)
@@ -130,7 +117,7 @@ class _Dask:
 
 
 def pool_options(workers, scheduler) -> tuple[int, str | None]:
-    """``workers`` and ``scheduler`` checked as the dask path takes them."""
+    """``workers`` and ``scheduler``, checked."""
     workers = bounded_int(workers, "workers", 1, MAX_WORKERS)
     if scheduler is not None and not isinstance(scheduler, str):
         raise SymctlTypeError(f"scheduler: expected an address string, got {scheduler!r}")

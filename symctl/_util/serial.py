@@ -1,24 +1,11 @@
-"""Results as plain dicts and back: ``to_dict()`` and ``from_dict()`` for every result type.
+"""Results as dicts of JSON types and back: ``to_dict()`` and ``from_dict()`` for every result.
 
-A result's dict holds only JSON types (dicts with string keys, lists, strings,
-numbers, booleans and None), so it can be written with :mod:`json` and read
-back. Values that JSON cannot hold are tagged dicts:
-
-- a NumPy array: ``{"@array": nested lists, "dtype": "float64"}`` (complex
-  entries as ``[re, im]`` pairs);
-- a complex number ``{"@complex": [re, im]}``, a fraction ``{"@fraction": [p, q]}``,
-  a tuple ``{"@tuple": [...]}``, a read-only mapping ``{"@mapping": {...}}``,
-  a mapping with keys that are not strings ``{"@items": [[key, value], ...]}``;
-- a SymPy expression or matrix: its tree, ``{"@sympy": "Add", "args": [...]}``,
-  with exact leaves (integers, rationals, floats by their binary mantissa and
-  exponent, symbols with their assumptions); only SymPy's own classes are
-  rebuilt, by name, and no text is ever parsed;
-- a symctl value object (a frozen dataclass or a named tuple):
-  ``{"@type": "Neuron", "@module": "symctl.neural.neuron", fields...}``; only
-  classes of symctl's own modules are rebuilt.
-
-``from_dict(to_dict(x))`` rebuilds ``x`` field by field (as :mod:`pickle` does,
-without running the validation again), so the round trip is exact.
+What JSON cannot hold is a tagged dict: ``{"@array": lists, "dtype": ...}``, ``@complex``,
+``@fraction``, ``@tuple``, ``@set``, ``@mapping`` (read-only), ``@items`` (keys that are not
+strings); a SymPy object is its tree ``{"@sympy": "Add", "args": [...]}`` with exact leaves
+(floats by mantissa and exponent; no text is ever parsed, only SymPy's classes rebuilt by
+name); a symctl value ``{"@type": "Neuron", "@module": "symctl.neural.neuron", fields...}``
+(only symctl's classes rebuilt, field by field as :mod:`pickle` does: the round trip is exact).
 
 >>> import sympy as sp
 >>> from symctl._util.serial import decode, encode
@@ -40,10 +27,6 @@ import numpy as np
 import sympy as sp
 
 from symctl.errors import ParameterError, SymctlTypeError
-
-__all__ = ["DictMixin", "decode", "encode"]
-
-_SYMPY_LEAVES = (sp.Symbol, sp.Integer, sp.Rational, sp.Float)
 
 
 def _encode_sympy(x) -> dict:

@@ -1,23 +1,15 @@
 r"""The one spelling of a signal name in LaTeX, for diagrams, tables and documents.
 
 >>> from symctl._util.texnames import signal_tex
->>> signal_tex("gamma2")
-'\\gamma_{2}'
->>> signal_tex("G2.x1")
-'{x_{1}}^{\\mathrm{G2}}'
->>> signal_tex("G2.x1", part=False)
-'x_{1}'
->>> signal_tex("epsilon_{1,2}")
-'\\epsilon_{1,2}'
->>> signal_tex("u")
-'u'
+>>> signal_tex("gamma2"), signal_tex("G2.x1"), signal_tex("G2.x1", part=False)
+('\\gamma_{2}', '{x_{1}}^{\\mathrm{G2}}', 'x_{1}')
+>>> signal_tex("epsilon_{1,2}"), signal_tex("u")
+('\\epsilon_{1,2}', 'u')
 """
 
 from __future__ import annotations
 
 import re
-
-__all__ = ["GREEK", "signal_tex"]
 
 GREEK = frozenset(
     "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi pi rho sigma "

@@ -1,18 +1,7 @@
-"""Argument checks at the public boundary, each naming the argument and its value.
+"""Argument checks at the public boundary, and the size limits (docs/reliability.md).
 
-A wrong type is a :class:`~symctl.errors.SymctlTypeError`, a bad value a
-:class:`~symctl.errors.ParameterError` (shapes: ``DimensionError``); text goes
-through the safe parser (:mod:`symctl._util.parse`) only.
-
->>> from symctl._util.validate import to_matrix
->>> to_matrix([[1, 0], ["0", "1/2"]], "Q")
-Matrix([
-[1,   0],
-[0, 1/2]])
->>> to_matrix([[1, 2]], "B", shape=(2, 1))
-Traceback (most recent call last):
-...
-symctl.errors.DimensionError: B: expected shape (2, 1), got (1, 2)
+A wrong type is a ``SymctlTypeError``, a bad value a ``ParameterError`` (shapes:
+``DimensionError``), each naming the argument; text goes through the safe parser only.
 """
 
 from __future__ import annotations
@@ -30,24 +19,6 @@ from symctl._util.pickling import register_sympy
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 register_sympy()  # exact expressions pickle as they are (every value module imports this one)
-
-__all__ = [
-    "as_generator",
-    "as_random",
-    "float_array",
-    "nonneg_int",
-    "numeric_matrix",
-    "positive_int",
-    "positive_number",
-    "psd_matrix",
-    "read_only",
-    "real_number",
-    "sampling_time",
-    "subs_rule",
-    "symbol_tuple",
-    "to_expr",
-    "to_matrix",
-]
 
 
 def to_expr(value, argname: str, names=None) -> sp.Expr:
@@ -125,11 +96,21 @@ def check_psd(arr: np.ndarray, argname: str, *, definite: bool = False) -> np.nd
     return arr
 
 
-def positive_number(value, argname: str) -> float:
-    """A finite, strictly positive float."""
+def _float(value, argname: str) -> float:
+    """``float(value)`` of a real number (not a bool); too large for a float: a ParameterError."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise SymctlTypeError(f"{argname}: expected a real number, got {value!r}")
-    out = _to_float(value, argname)
+    try:
+        return float(value)
+    except OverflowError:
+        raise ParameterError(
+            f"{argname}: must be finite, got a number too large for a float"
+        ) from None
+
+
+def positive_number(value, argname: str) -> float:
+    """A finite, strictly positive float."""
+    out = _float(value, argname)
     if not math.isfinite(out) or out <= 0:
         raise ParameterError(f"{argname}: must be a finite number > 0, got {value!r}")
     return out
@@ -137,17 +118,10 @@ def positive_number(value, argname: str) -> float:
 
 def real_number(value, argname: str) -> float:
     """A finite float."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise SymctlTypeError(f"{argname}: expected a real number, got {value!r}")
-    out = _to_float(value, argname)
+    out = _float(value, argname)
     if not math.isfinite(out):
         raise ParameterError(f"{argname}: must be finite, got {value!r}")
     return out
-
-
-def _integer(value, argname: str) -> None:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise SymctlTypeError(f"{argname}: expected an integer, got {value!r}")
 
 
 def nonneg_int(value, argname: str) -> int:
@@ -220,9 +194,6 @@ def float_array(value, argname: str) -> np.ndarray:
     return arr
 
 
-_SUBS_FLAGS = ("simultaneous",)
-
-
 def _subs_key(key, names: dict, argname: str) -> sp.Basic:
     if isinstance(key, str):
         if key in names:
@@ -245,7 +216,7 @@ def subs_rule(args: tuple, kwargs: dict, symbols=(), argname: str = "subs"):
     """
     flags = {}
     for name, flag in kwargs.items():
-        if name not in _SUBS_FLAGS:
+        if name != "simultaneous":
             raise SymctlTypeError(f"{argname}: unexpected keyword argument {name!r}")
         if not isinstance(flag, bool):
             raise SymctlTypeError(f"{argname}: {name} must be True or False, got {flag!r}")
@@ -310,46 +281,24 @@ def relative_tolerance(value, argname: str) -> float:
 
 
 # Every size symctl accepts has a limit, checked before any work (docs/reliability.md).
-
-MAX_DELAY = 500
-"""Largest net delay ``T = sensor_delay + actuator_delay`` (steps) of :func:`symctl.augment`
-and :func:`symctl.controller_tf` (``controller_tf(500)`` takes about a second)."""
-
-MAX_STEPS = 10**6
-"""Longest horizon (samples) of a simulation or an impulse response."""
-
-MAX_SYMBOLIC_BLOCK = 3
-"""Largest ``n + m`` of a symbolic zero-order-hold discretization (SymPy's matrix exponential
-of a 2-state, 1-input plant takes about 30 s; numbers go through SciPy)."""
-
-MAX_COUNT = 10_000
-"""Most numeric draws at once (realizations drawn, amplitudes of the nonlinear check)."""
-
-MAX_CIRCUITS = 1000
-"""Most realizations built into circuits and simulated at once (``circuit_firing``'s
-``count``, ``derive_paper``'s ``realizations``): about 50 ms each, so under a minute."""
-
-PAPER_MAX_DELAY = 20
-"""Largest net delay of ``derive_paper`` and ``symctl paper``: the range benchmarks/scaling.py
-measures and the documents are laid out for (the design functions take ``MAX_DELAY``)."""
-
-MAX_STATES = 1000
-"""Most states of a plant (``discretize``, ``linearize``) and of a delay-augmented system."""
-
-TS_TAU_MIN = 1e-6
-r"""Smallest admissible :math:`T_s/\tau` of the muscle (the muscle barely moves in a sample)."""
-
-MAX_EXPONENT = 700.0
-r"""Largest admissible argument of an exponential in the model: :math:`T_s/\tau` and
-:math:`|\bar r|` (:math:`e^{-x}` underflows, :math:`e^{x}` overflows, beyond about 709)."""
-
-MAX_MAGNITUDE = 1e100
-"""Largest magnitude of a model parameter or cost entry: the LQR squares them (1e200 < 1.8e308)."""
+MAX_DELAY = 500  # net delay T (steps) of augment and controller_tf (controller_tf(500): ~1 s)
+MAX_STEPS = 10**6  # horizon (samples) of a simulation or an impulse response
+MAX_SYMBOLIC_BLOCK = 3  # n + m of a symbolic zero-order hold (SymPy's expm of n + m = 3: ~30 s)
+MAX_COUNT = 10_000  # numeric draws at once (realizations, amplitudes of the nonlinear check)
+MAX_CIRCUITS = 1000  # realizations built into circuits and simulated at once (~50 ms each)
+PAPER_MAX_DELAY = 20  # net delay of derive_paper: the range the documents are laid out for
+MAX_STATES = 1000  # states of a plant and of a delay-augmented system
+TS_TAU_MIN = 1e-6  # smallest Ts/tau of the muscle
+MAX_EXPONENT = (
+    700.0  # argument of an exponential of the model, Ts/tau and |r_bar| (e^709 overflows)
+)
+MAX_MAGNITUDE = 1e100  # a model parameter or cost entry: the LQR squares them (1e200 < 1.8e308)
 
 
 def bounded_int(value, argname: str, low: int, high: int) -> int:
     """An integer in ``[low, high]``: a wrong type is a type error, one outside a value error."""
-    _integer(value, argname)
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise SymctlTypeError(f"{argname}: expected an integer, got {value!r}")
     if value < low:
         raise ParameterError(f"{argname}: must be an integer >= {low}, got {value!r}")
     if value > high:
@@ -374,15 +323,10 @@ def finite_expr(expr, argname: str):
         bad = expr in _NON_FINITE or expr.has(*_NON_FINITE)
         bad = bad or any(not math.isfinite(float(f)) for f in expr.atoms(sp.Float))
     else:
-        bad = isinstance(expr, numbers.Number) and not cmath_isfinite(expr)
+        bad = isinstance(expr, numbers.Number) and not cmath.isfinite(complex(expr))
     if bad:
         raise ParameterError(f"{argname}: must be finite (no NaN or infinity), got {expr}")
     return expr
-
-
-def cmath_isfinite(value) -> bool:
-    """``math.isfinite`` for real and complex numbers."""
-    return cmath.isfinite(complex(value))
 
 
 def callable_or_none(value, argname: str):
@@ -403,16 +347,6 @@ def check_magnitude(arr, argname: str):
     return arr
 
 
-def _to_float(value, argname: str) -> float:
-    """``float(value)``, with an integer too large for a float a :class:`ParameterError`."""
-    try:
-        return float(value)
-    except OverflowError:
-        raise ParameterError(
-            f"{argname}: must be finite, got a number too large for a float"
-        ) from None
-
-
 def max_size(value, argname: str, limit: int) -> None:
     """Refuse a matrix-like ``value`` with more than ``limit`` rows or columns, before SymPy."""
     if isinstance(value, str):
@@ -427,10 +361,5 @@ def max_size(value, argname: str, limit: int) -> None:
         )
 
 
-MAX_EXPANDED_TERMS = 50_000
-r"""Most polynomial terms a MIMO :math:`D(z)^{-1} N(z)` is expanded into as ``num/den``
-unless asked for more (:meth:`symctl.design.fraction.MatrixFractionTF.expanded`; about 15 s)."""
-
-MAX_OUTPUT_BYTES = 4 * 2**30
-"""Most bytes of traces that one :func:`symctl.simulate_batch` result (or chunk) holds: 4 GiB
-(stream with ``chunk=``, or keep fewer traces with ``keep=``)."""
+MAX_EXPANDED_TERMS = 50_000  # terms of a MIMO D(z)^-1 N(z) expanded as num/den unless asked (~15 s)
+MAX_OUTPUT_BYTES = 4 * 2**30  # traces one simulate_batch result (or chunk) holds: 4 GiB

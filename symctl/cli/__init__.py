@@ -1,15 +1,6 @@
 """The ``symctl`` command. Orchestration only: the math lives in the library.
 
-Bad input prints one line (``symctl: error: ...``) and exits with code 2; the output
-folder is written all at once or not at all; SIGINT and SIGTERM end a run cleanly with
-codes 130 and 143. The console script calls :func:`run`; :func:`main` returns the exit
-code instead of exiting.
-
-Examples
---------
->>> from symctl.cli import main
->>> main(["paper", "--tau", "-1", "--no-figures", "--no-pdf"])
-2
+The console script calls :func:`run`; :func:`main` returns the exit code instead of exiting.
 """
 
 from __future__ import annotations
@@ -29,7 +20,14 @@ from rich.table import Table
 from symctl._util.parse import parse_matrix
 from symctl.cli.dale import dale_command
 from symctl.cli.fit import fit_command
-from symctl.cli.options import Command, options, shown, workers_options, writing_options
+from symctl.cli.options import (
+    Command,
+    options,
+    progress_file,
+    shown,
+    workers_options,
+    writing_options,
+)
 from symctl.cli.progress import Steps
 from symctl.cli.spiking import spiking_command
 from symctl.cli.summary import summary
@@ -58,7 +56,7 @@ cli.add_command(spiking_command)  # symctl spiking (symctl/cli/spiking.py)
     shown("--tau", type=float, default=PAPER.tau, help="Muscle time constant [s]."),
     shown("--f-max", type=float, default=PAPER.f_max, help="Maximum force [N]."),
     shown("--r-bar", type=float, default=PAPER.r_bar, help="Equilibrium firing rate [spikes/s]."),
-    shown("--ts", type=float, default=PAPER.Ts, help="Sampling time [s]."),
+    shown("--ts", "dt", type=float, default=PAPER.Ts, help="Sampling time [s]."),
     shown("--sensor-delay", type=int, default=PAPER.sensor_delay, help="Sensor delay [steps]."),
     shown(
         "--actuator-delay", type=int, default=PAPER.actuator_delay, help="Actuator delay [steps]."
@@ -67,7 +65,7 @@ cli.add_command(spiking_command)  # symctl spiking (symctl/cli/spiking.py)
         "--q", "q_text", default="1", help="State penalty Q: a number or a matrix such as '[[1]]'."
     ),
     shown("--r", "r_text", default="1", help="Input penalty R: a number or a matrix."),
-    shown("--seed", type=int, default=PAPER.seed, help="Seed for the random realizations."),
+    shown("--seed", "rng", type=int, default=PAPER.seed, help="Seed for the random realizations."),
     shown(
         "--realizations",
         type=click.IntRange(min=1),
@@ -88,76 +86,38 @@ cli.add_command(spiking_command)  # symctl spiking (symctl/cli/spiking.py)
     ),
     workers_options("Local processes running the --spiking sweep (the atlas's dask path)."),
 )
-def paper(
-    tau,
-    f_max,
-    r_bar,
-    ts,
-    sensor_delay,
-    actuator_delay,
-    q_text,
-    r_text,
-    seed,
-    realizations,
-    out,
-    figures,
-    formats,
-    pdf,
-    jobs,
-    spiking,
-    workers,
-    scheduler,
-) -> None:
+def paper(q_text, r_text, out, spiking, workers, scheduler, **params) -> None:
     """Run the paper's derivation and write it into OUT.
 
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
     figures (PDF and PNG; SVG with --formats pdf,png,svg).
     """
+    writing = {k: params.pop(k) for k in _WRITING}
     try:
-        Q = parse_matrix(q_text, "--q")
-        R = parse_matrix(r_text, "--r")
+        params.update(Q=parse_matrix(q_text, "--q"), R=parse_matrix(r_text, "--r"))
     except _NUMERICAL as exc:
         exc._symctl_step = "options"
         raise
-    checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
-    _written(
-        out,
-        lambda progress: _with_spiking(
-            spiking,
-            progress,
-            dict(workers=workers, scheduler=scheduler, checkpoint=checkpoint),
-            tau=tau,
-            f_max=f_max,
-            r_bar=r_bar,
-            dt=ts,
-            sensor_delay=sensor_delay,
-            actuator_delay=actuator_delay,
-            Q=Q,
-            R=R,
-            rng=seed,
-            realizations=realizations,
-        ),
-        figures=figures,
-        pdf=pdf,
-        jobs=jobs,
-        formats=formats,
-    )
-    checkpoint.unlink(missing_ok=True)
+    sweep = dict(workers=workers, scheduler=scheduler, checkpoint=progress_file(out))
+
+    def derivation(progress):
+        import dataclasses
+
+        from symctl.derivation.pipeline import derive_paper
+
+        res = derive_paper(progress=progress, **params)
+        if not spiking:
+            return res
+        from symctl.spiking.cost import spiking_cost
+
+        progress("spiking")
+        return dataclasses.replace(res, spiking_cost=spiking_cost(res, **sweep))
+
+    _written(out, derivation, **writing)
+    sweep["checkpoint"].unlink(missing_ok=True)
 
 
-def _with_spiking(spiking: bool, progress, sweep: dict, **kw):
-    """``derive_paper(**kw)``, with what spikes cost its circuits when ``spiking``."""
-    import dataclasses
-
-    from symctl.derivation.pipeline import derive_paper
-
-    res = derive_paper(progress=progress, **kw)
-    if not spiking:
-        return res
-    from symctl.spiking.cost import spiking_cost
-
-    progress("spiking")
-    return dataclasses.replace(res, spiking_cost=spiking_cost(res, **sweep))
+_WRITING = ("figures", "formats", "pdf", "jobs")  # the writing_options' parameters
 
 
 @cli.command("derive")
@@ -167,7 +127,7 @@ def _with_spiking(spiking: bool, progress, sweep: dict, **kw):
     "--check", is_flag=True, default=False, help="Validate the model file and exit; run nothing."
 )
 @writing_options
-def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
+def derive_command(model_file, out, check, **writing) -> None:
     """Run the whole derivation on your own system, described in MODEL.toml.
 
     The same pipeline and outputs as `symctl paper` (which is this command on
@@ -186,14 +146,8 @@ def derive_command(model_file, out, check, figures, formats, pdf, jobs) -> None:
         _say(_check_line(model))
         return
     try:
-        _written(
-            out if out is not None else f"out/{model.name}",
-            lambda progress: derive(model, progress=progress),
-            figures=figures,
-            pdf=pdf,
-            jobs=jobs,
-            formats=formats,
-        )
+        folder = out if out is not None else f"out/{model.name}"
+        _written(folder, lambda progress: derive(model, progress=progress), **writing)
     except _NUMERICAL as exc:  # named with the model file (main's one-line message)
         with contextlib.suppress(AttributeError):
             exc._symctl_inputs = f"the model file {model_file}"
@@ -213,6 +167,14 @@ def _check_line(model) -> str:
         f"{', '.join(us)}, Ts = {model.dt:g} s, delays {model.sensor_delay} + "
         f"{model.actuator_delay} steps, {graph}; circuits {', '.join(model.circuits)}"
     )
+
+
+def _drawings(ctx, param, value: str) -> int | None:
+    if value == "all":
+        return None
+    if not value.isdigit():
+        raise click.BadParameter("must be a number >= 0 or 'all'")
+    return int(value)
 
 
 @cli.command("atlas")
@@ -240,6 +202,7 @@ def _check_line(model) -> str:
     shown(
         "--drawings",
         default="24",
+        callback=_drawings,
         help="Classes drawn one by one (the sparsest first), or 'all'.",
     ),
     click.option(
@@ -251,9 +214,7 @@ def _check_line(model) -> str:
     shown("--out", default="out/atlas", help="Output folder."),
     shown("--pdf/--no-pdf", default=True, help="Compile atlas.pdf."),
 )
-def atlas_command(
-    order, delays, max_size, workers, scheduler, max_neurons, drawings, out, pdf
-) -> None:
+def atlas_command(order, drawings, out, pdf, **search) -> None:
     """Find every minimal circuit class of order-N controllers and write the atlas into OUT.
 
     Writes atlas.json, atlas.md, atlas.tex (and atlas.pdf), an overview figure and
@@ -264,29 +225,15 @@ def atlas_command(
     from symctl.report.atlas import write_atlas
     from symctl.report.output import OutputFolder
 
-    if drawings == "all":
-        count = None
-    else:
-        try:
-            count = int(drawings)
-        except ValueError:
-            raise click.BadParameter("must be a number or 'all'", param_hint="--drawings") from None
-        if count < 0:
-            raise click.BadParameter("must be at least 0", param_hint="--drawings")
-    checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
+    checkpoint = progress_file(out)
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start("search")
-        A = find_atlas(
-            order,
-            delays=delays,
-            max_size=max_size,
-            workers=workers,
-            scheduler=scheduler,
-            checkpoint=checkpoint,
-            progress=lambda size, done, total: steps.part(f"size {size}: {done} of {total}"),
-            max_neurons=max_neurons,
-        )
-        written = write_atlas(A, folder.staging, drawings=count, pdf=pdf, progress=steps.start)
+
+        def progress(size, done, total):
+            steps.part(f"size {size}: {done} of {total}")
+
+        A = find_atlas(order, checkpoint=checkpoint, progress=progress, **search)
+        written = write_atlas(A, folder.staging, drawings=drawings, pdf=pdf, progress=steps.start)
     checkpoint.unlink(missing_ok=True)
     _atlas_summary(A)
     _wrote(Path(out), folder.final(written), pdf)
@@ -305,21 +252,13 @@ def _atlas_summary(A) -> None:
     for col in cols:
         table.add_column(col)
     for row, c in zip(A.table()[:15], A.classes, strict=False):
-        table.add_row(
-            row["class"],
-            str(row["neurons"]),
-            str(row["synapses"]),
-            str(row["branches"]),
-            c.representatives[0].text,
-            row["universal"],
-            row["method"],
-        )
+        counts = (str(row[k]) for k in ("class", "neurons", "synapses", "branches"))
+        table.add_row(*counts, c.representatives[0].text, row["universal"], row["method"])
     _console.print(table)
 
 
 def _written(out, derivation, **kw) -> None:
-    """Derive (``derivation(progress)``) and write into ``out``, checked and staged first; the
-    figure workers get ready while the derivation runs."""
+    """Derive (``derivation(progress)``) and write into ``out``, checked and staged first."""
     from symctl.report.output import OutputFolder
     from symctl.report.results import write_files
     from symctl.report.workers import FigureWorkers
@@ -404,10 +343,9 @@ def _warned(caught: list) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
 
-    Nothing but single lines reach stderr (``symctl: error: ...``, one ``symctl: warning:
-    ...`` line for a successful run's warnings, ``symctl: interrupted ...``); SIGINT and
-    SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1`` shows the
-    traceback of an unexpected exception.
+    Only single lines reach stderr (an error, a successful run's warnings, an interruption);
+    SIGINT and SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1``
+    shows the traceback of an unexpected exception.
 
     Parameters
     ----------
@@ -417,9 +355,8 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success; 2 on bad input (a symctl error naming the option, or a NumPy, SciPy
-        or SymPy failure named with its step and the options it depends on); 1 on an
-        internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
+        0 on success; 2 on bad input (named by option, or by step and the options it reads);
+        1 on an internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
 
     Examples
     --------
@@ -433,7 +370,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            code = _main(argv)
+            code = _run_cli(argv)
         if code == 0:
             _warned(caught)
         return code
@@ -441,14 +378,6 @@ def main(argv: list[str] | None = None) -> int:
         name = signal.Signals(sig.signum).name
         _error(f"symctl: interrupted by {name}; nothing written, --out left as it was")
         return 128 + sig.signum
-    finally:
-        for sig, handler in handlers.items():
-            signal.signal(sig, handler)
-
-
-def _main(argv: list[str] | None) -> int:
-    try:
-        return _run_cli(argv)
     except Exception as exc:  # the last resort: one line, not a traceback
         if os.environ.get("SYMCTL_TRACEBACK"):
             raise
@@ -457,6 +386,9 @@ def _main(argv: list[str] | None) -> int:
             "please report it; SYMCTL_TRACEBACK=1 shows the traceback)"
         )
         return 1
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
 
 
 def _run_cli(argv: list[str] | None) -> int:
@@ -479,7 +411,7 @@ def _run_cli(argv: list[str] | None) -> int:
         inputs = getattr(exc, "_symctl_inputs", None)  # symctl derive: the model file
         known = step in _STEP_OPTIONS or (inputs is not None and step is not None)
         if not known or os.environ.get("SYMCTL_TRACEBACK"):
-            raise  # not in a step that user input drives: the last resort in _main
+            raise  # not in a step that user input drives: the last resort in main
         where = "reading" if step == "options" else f"the {step} step failed on"
         _error(
             f"symctl: error: {where} {inputs or _STEP_OPTIONS[step]}: {type(exc).__name__}: "

@@ -1,7 +1,5 @@
 """The commands' option plumbing: options stacked from one list, errors named by option.
 
-``symctl paper --ts 0`` calls ``derive_paper(dt=0)``; the error names ``--ts``.
-
 >>> from symctl.cli.options import options_named
 >>> from symctl.errors import ParameterError
 >>> try:
@@ -15,12 +13,13 @@
 from __future__ import annotations
 
 import contextlib
+from pathlib import Path
 
 import click
 
 from symctl.errors import SymctlError
 
-__all__ = ["Command", "options", "options_named", "shown", "writing_options"]
+__all__ = ["Command", "options", "options_named", "progress_file", "shown", "writing_options"]
 
 
 ALIASES = {
@@ -103,9 +102,7 @@ writing_options = options(
         help="Processes drawing the figures [default: CPUs, at most 4].",
     ),
 )
-"""The options of ``symctl paper`` and ``symctl derive``: --figures, --formats, --pdf, --jobs.
-
-``--formats`` is checked when the command line is read, before any work."""
+"""The options of ``symctl paper`` and ``symctl derive`` (--formats checked before any work)."""
 
 
 def workers_options(workers_help: str):
@@ -114,3 +111,8 @@ def workers_options(workers_help: str):
         shown("--workers", type=click.IntRange(min=1), default=1, help=workers_help),
         click.option("--scheduler", default=None, help="Address of a dask.distributed scheduler."),
     )
+
+
+def progress_file(out) -> Path:
+    """``OUT.progress.jsonl``: the checkpoint from which an interrupted sweep into ``out`` resumes."""
+    return Path(str(Path(out).absolute()) + ".progress.jsonl")

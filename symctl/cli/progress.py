@@ -1,8 +1,6 @@
 """The commands' live progress: a spinner with the running step, what it is doing and its time.
 
-It is drawn on the command's console only when that is a terminal, and it is transient: it
-leaves nothing behind, so ``--json`` output, pipes and logs are as without it. ``symctl
-paper`` and ``symctl derive`` also print a line with each finished step's time.
+Drawn only on a terminal, and transient: ``--json`` output, pipes and logs are as without it.
 """
 
 from __future__ import annotations

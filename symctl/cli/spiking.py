@@ -1,8 +1,5 @@
 """``symctl spiking``: what spikes cost each circuit of a model's controller (or the paper's).
 
-Orchestration only (the math is :func:`symctl.spiking_cost`); registered on the ``symctl``
-group by :mod:`symctl.cli`. Bad input is one line and exit 2, as for every command.
-
 >>> from symctl.cli import main
 >>> main(["spiking", "--neurons", "10,ten", "--out", "never-written"])
 2
@@ -15,7 +12,7 @@ from pathlib import Path
 import click
 from rich.console import Console
 
-from symctl.cli.options import Command, options, shown, workers_options
+from symctl.cli.options import Command, options, progress_file, shown, workers_options
 from symctl.cli.progress import Steps
 
 __all__ = ["spiking_command"]
@@ -69,7 +66,7 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     from symctl.spiking.cost import spiking_cost
 
     names = None if circuit is None else [c.strip() for c in circuit.split(",") if c.strip()]
-    checkpoint = Path(str(Path(out).absolute()) + ".progress.jsonl")
+    checkpoint = progress_file(out)
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start("derivation")
         res = _derivation(model_file)
@@ -94,12 +91,9 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
 def _derivation(model_file):
     """The derivation of MODEL.toml, or the paper's."""
     from symctl.derivation.pipeline import derive, derive_paper
-
-    if model_file is None:
-        return derive_paper()
     from symctl.model.modelfile import load_model
 
-    return derive(load_model(Path(model_file)))
+    return derive_paper() if model_file is None else derive(load_model(Path(model_file)))
 
 
 def _say(text: str) -> None:

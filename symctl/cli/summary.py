@@ -15,8 +15,7 @@ __all__ = ["summary"]
 
 def summary(res, console: Console) -> None:
     """Print the summary of a :class:`~symctl.derivation.Derivation`, read off its objects."""
-    import numpy as np  # imported here, as every heavy import of the CLI: `symctl --help` is fast
-    import sympy as sp
+    import sympy as sp  # imported here, as every heavy import of the CLI: `symctl --help` is fast
 
     from symctl.report.results import controller_coeffs, factor_texts
 
@@ -29,9 +28,6 @@ def summary(res, console: Console) -> None:
             text = rest
         console.print(text, markup=False, soft_wrap=True)
 
-    def rows(M) -> np.ndarray:
-        return np.array(M.evalf(), dtype=float)
-
     out(f"Plant|  {spec.name} (linearized, zero-order hold)")
     states = res.names[0]
     if ode is not None:
@@ -42,13 +38,11 @@ def summary(res, console: Console) -> None:
             out(f"  {name}_bar = {shown}{value:.6g}{unit}")
     sym = res.plant_symbolic
     sym_A, sym_B = (sp.sstr(sym.A[0, 0]), sp.sstr(sym.B[0, 0])) if sym is not None else ("", "")
-    out(f"  A = {sym_A + ' = ' if sym_A else ''}{_fmt(rows(res.plant.A))}")
-    out(f"  B = {sym_B + ' = ' if sym_B else ''}{_fmt(rows(res.plant.B))}")
+    out(f"  A = {sym_A + ' = ' if sym_A else ''}{_fmt(res.plant.A)}")
+    out(f"  B = {sym_B + ' = ' if sym_B else ''}{_fmt(res.plant.B)}")
     s = res.system
     out(f"Augmented system|  (T = {s.T}): chi = [{', '.join(s.state_names)}]")
-    out(f"  A~ = {_fmt(rows(s.A))}")
-    out(f"  B~ = {_fmt(rows(s.B))}")
-    out(f"  Q~ = {_fmt(rows(s.Q))}")
+    out(f"  A~ = {_fmt(s.A)}\n  B~ = {_fmt(s.B)}\n  Q~ = {_fmt(s.Q)}")
     names = [str(k) for k in res.gains.substitutions()]
     out("Gains|  mu = K chi, K = [" + ", ".join(names) + "]")
     out(f"  K = {_fmt(res.gains.K)}")
@@ -60,7 +54,11 @@ def summary(res, console: Console) -> None:
     red = res.reduction
     if red is not None and not red:
         out(f"  not minimal, reduced from {red.order} to {red.minimal_order} states: {red.reason}")
-    _extra(res, out)
+    L = res.longest
+    if L is not None:
+        tried = f"every T up to {L.delays[-1]} (the largest tried)"
+        found = f"T = {L.longest} steps" if L.limited else tried
+        out(f"Longest delay|  that still stabilizes the nonlinear plant: {found}")
     if res.factors is None:
         out(f"Not derived|  {res.skipped}")
         _summary_table(res, console)
@@ -68,12 +66,8 @@ def summary(res, console: Console) -> None:
     f = factor_texts(res)
     out("Factorization|  G = G3 G2 G1")
     none = {"G1": " (no sensor delay)", "G3": " (no actuator delay)"}
-    out(
-        "  "
-        + ",  ".join(
-            f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}" for k in ("G1", "G3")
-        )
-    )
+    g1, g3 = (f"{k} = {_long(f[k], 'factorization')}{none[k] * (f[k] == '1')}" for k in none)
+    out(f"  {g1},  {g3}")
     out(f"  G2 = {_long(f['G2'], 'factorization')}")
     N = f["N"] if isinstance(f["N"], str) else f"({len(f['N'])} x {len(f['N'][0])})"
     out(f"  N = {_long(N, 'factorization')};  G3 G2 G1 == G proved: {bool(res.verified)}")
@@ -87,7 +81,7 @@ def summary(res, console: Console) -> None:
         dense = name in REALIZERS and REALIZERS[name].takes_transform  # F in a symbolic P
         shown = "P^-1 F_c P" if dense else f"[{F}]"
         shown = shown if small or dense else f"({size} x {size})"
-        numeric = _fmt(rows(rec.numeric.F)) if small else f"({size} x {size}, in results.json)"
+        numeric = _fmt(rec.numeric.F) if small else f"({size} x {size}, in results.json)"
         out(
             f"  {name:>12}: F = {shown}; F(seed {res.seed}) = "
             f"{numeric}; realizes G2, symbolic ({sym.method}): {sym.ok}, "
@@ -97,20 +91,7 @@ def summary(res, console: Console) -> None:
     _circuit_table(res, console)
 
 
-def _extra(res, out) -> None:
-    L = res.longest
-    if L is not None:
-        found = (
-            f"T = {L.longest} steps"
-            if L.limited
-            else f"every T up to {L.delays[-1]} (the largest tried)"
-        )
-        out(f"Longest delay|  that still stabilizes the nonlinear plant: {found}")
-
-
 def _summary_table(res, console) -> None:
-    import numpy as np
-
     table = Table(title="summary")
     table.add_column("quantity")
     table.add_column("value", justify="right")
@@ -120,8 +101,7 @@ def _summary_table(res, console) -> None:
             unit = f" [{spec.unit(name)}]" if spec.unit(name) else ""
             table.add_row(f"{name}_bar{unit}", f"{value:.4f}")
     for label, M in (("A", res.plant.A), ("B", res.plant.B)):
-        arr = np.array(M.evalf(), dtype=float)
-        table.add_row(label, f"{arr[0, 0]:.6f}" if arr.shape[0] == 1 else _fmt(arr))
+        table.add_row(label, f"{float(M[0, 0]):.6f}" if M.shape[0] == 1 else _fmt(M))
     for name, value in res.gains.substitutions().items():
         table.add_row(str(name), f"{value:.6f}")
     table.add_row("spectral radius", f"{res.gains.spectral_radius:.6f}")
@@ -149,10 +129,11 @@ SUMMARY_TEXT, SUMMARY_MATRIX = 240, 8  # the console's longest formula, largest 
 
 
 def _fmt(values) -> str:
-    """Numbers to 6 significant digits: a 1 x 1 matrix as its entry, a large one by its size."""
+    """Numbers (or a SymPy matrix of them) to 6 significant digits: a 1 x 1 matrix as its entry,
+    a large one by its size."""
     import numpy as np
 
-    arr = np.asarray(values, dtype=float)
+    arr = np.asarray(values.evalf() if hasattr(values, "evalf") else values, dtype=float)
     if arr.size == 1:
         return f"{arr.item():.6g}"
     if max(arr.shape) > SUMMARY_MATRIX:

@@ -1,22 +1,8 @@
 """The pipeline: a model derived, plant to circuits, into one :class:`Derivation`.
 
-This stage sits above the algorithms (design, realization, compatibility, neural,
-circuitatlas, dalelaw, fitting) and the model files, and below the report, which writes a derivation
-and computes nothing.
-
-- ``pipeline``: :func:`derive` (a model) and :func:`derive_paper` (the muscle preset
-  with values replaced), each computed once per model;
-- ``derivation``: :class:`Derivation` (its inputs, every stage's result, what was
-  skipped and why) and its records;
-- ``paper``: :data:`PAPER`, the paper's inputs;
-- ``load``: :func:`load_results`, a derivation's ``results.json`` read back
-  (numbers, exact symbolic objects, the figures' data, the model).
-
-Examples
---------
->>> from symctl import derive_paper
->>> derive_paper().circuits["general"].compatibility.ok
-True
+Above the algorithms and the model files, below the report (which writes a derivation):
+``pipeline`` (:func:`derive`, :func:`derive_paper`), ``derivation`` (:class:`Derivation`
+and its records), ``paper`` (the paper's inputs) and ``load`` (:func:`load_results`).
 """
 
 from symctl._util.lazy import attach

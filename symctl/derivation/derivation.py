@@ -1,17 +1,6 @@
 r"""What a derivation produced: :class:`Derivation`, with one record per realization and circuit.
 
-The report stage writes a derivation (:mod:`symctl.report.results`);
-:meth:`Derivation.to_dict`, :meth:`Derivation.write` and :meth:`Derivation.figure`
-hand it over there. ``PaperResults`` is its former name, kept.
-
-Examples
---------
->>> from symctl import derive_paper
->>> res = derive_paper()
->>> round(res.to_dict()["plant"]["f_bar"], 4)
-43.8635
->>> res.circuits["controllable"].circuit.n_neurons
-4
+The report stage writes it (:mod:`symctl.report.results`); ``PaperResults`` is its former name.
 """
 
 from __future__ import annotations
@@ -24,7 +13,7 @@ from types import MappingProxyType
 
 import sympy as sp
 
-from symctl._util.deprecate import renamed_method
+from symctl._util.deprecate import renamed_attribute
 from symctl.compatibility.check import CompatibilityResult
 from symctl.compatibility.delaygraph import DelayGraph
 from symctl.compatibility.structure import Structure
@@ -49,6 +38,9 @@ from symctl.realization.reduction import ControllerReduction
 __all__ = ["CircuitRecord", "Derivation", "PaperResults", "RealizationRecord"]
 
 
+_MUSCLE_UNITS = {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}
+
+
 def _hash_fields(obj) -> int:
     """A hash of a frozen dataclass's fields, mappings hashed by their items."""
     values = (getattr(obj, f.name) for f in dataclasses.fields(obj))
@@ -57,23 +49,20 @@ def _hash_fields(obj) -> int:
 
 @dataclass(frozen=True)
 class RealizationRecord:
-    """One realization of :math:`G_2` for the report: symbolic, numeric, and the checks of both.
+    """One realization of :math:`G_2`: symbolic, numeric, and the exact check of each.
 
     Parameters
     ----------
     name : str
-        ``"controllable"``, ``"observable"`` or ``"general"``.
+        The realizer's name (``"controllable"``, ``"observable"``, ``"general"``, ...).
     symbolic, numeric : Realization
-        The realization in the symbols of the factorization, and with the
-        numbers of the simulations.
+        In the symbols of the factorization, and with the numbers ``values`` (read-only,
+        by symbol name) of the simulations.
     values : mapping
-        The numbers substituted (``epsilon_1``, ``C_1``, ... by name); kept read-only.
     check_symbolic, check_numeric : RealizationCheck
-        The exact checks that each realizes :math:`G_2`.
+        That each realizes :math:`G_2`.
     P, P_numeric : sympy Matrix or None
-        The similarity transforms of the two from their canonical base (the
-        realizer's :class:`~symctl.realization.realizers.RealizerResult`), or
-        None for a canonical form.
+        Their similarity transforms from the canonical base (None for a canonical form).
 
     Examples
     --------
@@ -99,7 +88,7 @@ class RealizationRecord:
 
     __hash__ = _hash_fields
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
@@ -110,26 +99,22 @@ class RealizationRecord:
 
 @dataclass(frozen=True)
 class CircuitRecord:
-    """One circuit of the report: its structure, compatibility, neurons and simulations.
+    """One circuit: its structure, compatibility, neurons and simulations.
 
     Parameters
     ----------
     name : str
         One of :data:`~symctl.report.spec.CIRCUITS`.
     structure : Structure
-        The structure (gains, adders, unit delays); symbolic, for ``"general"``
-        with the symbolic or seeded ``P`` of the :class:`RealizationRecord`.
+        Gains, adders and unit delays, symbolic.
     compatibility : CompatibilityResult
         Whether the structure fits the delay graph, with its evidence.
     circuit : Circuit
-        The neurons of the structure (placed on the delay graph when compatible).
+        The neurons (placed on the delay graph when compatible).
     firing : FiringPatterns
-        The closed-loop simulations of the random realizations
-        (:func:`~symctl.neural.firing.circuit_firing`).
+        The closed-loop simulations of the random realizations.
     realizes : RealizationCheck, optional
-        For the circuit ``"pathways"``: the proof that its structure realizes :math:`G` with the
-        optimal gains (:math:`G_3 G_2 G_1 = G` for every section pole); the other circuits' proofs are
-        their realization's check and the factorization's.
+        For ``"pathways"``: the proof that its structure realizes :math:`G` with the optimal gains.
 
     Examples
     --------
@@ -153,7 +138,7 @@ class CircuitRecord:
             return None
         return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
         """The entry of ``results.json``'s ``circuits`` for this circuit."""
@@ -164,20 +149,17 @@ class CircuitRecord:
 
 @dataclass(frozen=True)
 class Derivation:
-    r"""Everything a derivation produced, symbolic and numeric: its inputs and each stage's result.
+    r"""Everything a derivation produced: its inputs and each stage's result, in pipeline order.
 
-    Made by :func:`~symctl.derivation.derive` (and :func:`~symctl.derivation.derive_paper`);
-    the fields are in the order of the pipeline. A value: frozen, equal when its fields
-    are, picklable; :func:`~symctl.derivation.load_results` reads it back from
-    ``results.json``.
+    Made by :func:`~symctl.derivation.derive`; a frozen, picklable value, equal when its fields
+    are; :func:`~symctl.derivation.load_results` reads it back from ``results.json``.
 
     Parameters
     ----------
     model : ODEModel or None
-        The nonlinear plant of the model (None for a discrete plant given directly).
+        The nonlinear plant (None for a discrete plant given directly).
     plant_symbolic, plant : DiscretePlant
-        The discretized linear plant, in symbols (one state and one input, else None)
-        and with the numbers.
+        The discretized linear plant in symbols (one state and input, else None), and in numbers.
     system : AugmentedSystem
         The delay-augmented system and cost.
     gains : Gains
@@ -185,55 +167,45 @@ class Derivation:
     G_symbolic, G : DiscreteTF
         The controller :math:`G(z)` in the gains' symbols, and with the optimal gains.
     proved : bool
-        Whether the derivation of :math:`G` was proved against the state-space matrices.
+        Whether :math:`G` was proved against the state-space matrices.
     seed : int
         The seed of the random realizations.
     factors : Factorization
         :math:`G = G_3 G_2 G_1`.
-    realizations : mapping of str to RealizationRecord
-        The realizations of :math:`G_2` (read-only).
+    realizations, circuits : mapping of str to RealizationRecord, CircuitRecord
+        The realizations of :math:`G_2` and the circuits, by name (read-only).
     graph : DelayGraph
         The delay graph of the circuits.
-    circuits : mapping of str to CircuitRecord
-        The circuits, by name, in the order of :data:`~symctl.report.spec.CIRCUITS` (read-only).
     open_loop, closed_loop : Response
-        The open-loop pulse response of the muscle and the optimal closed loop's.
+        The plant's open-loop pulse response and the optimal closed loop's.
     nonlinear : NonlinearCheck
-        The linear controller around the nonlinear muscle.
+        The linear controller around the nonlinear plant.
     G2_symbolic : DiscreteTF, optional
-        The :math:`G_2` the symbolic realizations realize: ``factors.G2``
-        (the default), or beyond :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX`
-        sections ``factors.abbreviated()``, its zeros' coefficients written
-        :math:`\sigma_k = e_k(\epsilon)`.
+        The :math:`G_2` the symbolic realizations realize: ``factors.G2``, or beyond
+        :data:`~symctl.realization.factorization.EXPANDED_ZEROS_MAX` sections
+        ``factors.abbreviated()`` (zeros' coefficients :math:`\sigma_k = e_k(\epsilon)`).
     atlas, candidates : optional
         The circuit atlas and its candidate circuits for this controller.
     spec : Model
-        The inputs: the model the derivation ran on (a key of :func:`derive`'s cache).
+        The model the derivation ran on (a key of :func:`derive`'s cache).
     longest : DelaySearch, optional
         The longest-delay search, when the model asks for it.
     skipped : str, optional
-        The stages left out, and why (e.g. the IFP circuit and the atlas of a
-        controller with several states or inputs).
+        The stages left out, and why.
     pathways : ControllerCompatibility, optional
-        The exact verdict on the delay graph (a MIMO controller's up to
-        :data:`~symctl.derivation.pipeline.MIMO_GENERAL_MAX_ORDER`): the theorem,
-        and the structure built along the graph's pathways.
+        The exact verdict on the delay graph, with the structure built along its pathways.
     verified : Proof, optional
-        The proof that :math:`G_3 G_2 G_1 = G` (``factors.verify()``), truthy when it holds.
+        The proof that :math:`G_3 G_2 G_1 = G`.
     reduction : ControllerReduction, optional
-        Whether the controller is minimal (truthy when it is); when not, ``G_symbolic``,
-        ``G``, ``gains`` and every stage after them are the minimal controller's
-        (:func:`~symctl.realization.reduction.controller_reduction`); None for an estimating model.
+        Whether the controller is minimal; when not, ``G_symbolic``, ``G``, ``gains`` and every
+        later stage are the minimal controller's (None for an estimating model).
     kalman : KalmanGains, optional
-        For a model that measures some states, or through noise: the delayed Kalman filter;
-        ``G_symbolic`` and ``G`` are then the LQG compensator (:func:`~symctl.lqg_tf`, predictor
-        form) and every circuit is driven by the measured outputs.
+        The delayed Kalman filter of a model that measures through noise: ``G`` is then the LQG
+        compensator (:func:`~symctl.lqg_tf`) and the circuits are driven by the outputs.
     variance : MonteCarlo, optional
-        With ``kalman``: the closed loop's stationary covariance under the model's noise,
-        predicted (Lyapunov) and measured (:func:`~symctl.monte_carlo`).
+        With ``kalman``: the closed loop's stationary covariance, predicted and measured.
     spiking_cost : SpikingCost, optional
-        What spikes cost each circuit (:func:`~symctl.spiking.cost.spiking_cost`), when
-        asked for (``symctl paper --spiking``): a section and a figure of the report.
+        What spikes cost each circuit (``symctl paper --spiking``).
 
     Examples
     --------
@@ -292,28 +264,20 @@ class Derivation:
     @property
     def names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
         """The states' and inputs' names as the model gives them (the muscle's ``f``, ``r``)."""
-        if self.spec is not None:
-            return self.spec.signal_names
-        return ("f",), ("r",)
+        return self.spec.signal_names if self.spec is not None else (("f",), ("r",))
 
     def unit(self, name: str) -> str:
         """The unit of a state, input or parameter of the model ('' when not given)."""
-        if self.spec is not None:
-            return self.spec.unit(name)
-        return {"f": "N", "r": "spikes/s", "tau": "s", "f_max": "N", "r_bar": "spikes/s"}.get(
-            name, ""
-        )
+        return self.spec.unit(name) if self.spec is not None else _MUSCLE_UNITS.get(name, "")
 
     __hash__ = _hash_fields
 
     def parameters(self) -> dict:
-        """The inputs of the derivation (the ``parameters`` entry of :meth:`to_dict`).
+        """The inputs (``results.json``'s ``parameters``): the model's values, delays, Q, R, seed.
 
         Returns
         -------
         dict
-            ``tau``, ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ``R``
-            (nested lists of floats) and ``seed``.
 
         Examples
         --------
@@ -325,18 +289,14 @@ class Derivation:
 
         return results.parameters(self)
 
-    to_json = renamed_method("to_json", "to_dict")
+    to_json = renamed_attribute("to_json", "to_dict")
 
     def to_dict(self) -> dict:
-        """The ``results.json`` document: a dictionary of plain lists, floats and strings.
+        """The ``results.json`` document, of JSON types (its keys: docs/guide/paper.md).
 
         Returns
         -------
         dict
-            Keys ``schema_version``, ``parameters``, ``plant``, ``augmented``,
-            ``gains``, ``controller``, ``factorization``, ``closed_loop``,
-            ``delay_graph``, ``circuits``, ``simulation`` and ``atlas`` (README,
-            "results.json").
 
         Examples
         --------
@@ -350,15 +310,11 @@ class Derivation:
         return results.results_json(self)
 
     def figure_names(self) -> list[str]:
-        """The names of the report's figures, in reading order (the file names of :meth:`write`).
+        """The report's figures, in reading order (the file names of :meth:`write`).
 
         Returns
         -------
         list of str
-            ``open_loop``, ``closed_loop``, ``delay_graph``, ``g1g3_structures``, then ``structure_<c>``,
-            ``circuit_<c>`` and ``firing_<c>`` per circuit ``c``, ``nonlinear``, then
-            ``atlas_overview`` and ``simplified_<class>`` for the paper's simplified
-            circuits (table in :mod:`symctl.report.figures`).
 
         Examples
         --------
@@ -372,21 +328,13 @@ class Derivation:
         return figures.figure_names(self)
 
     def figure(self, name: str):
-        """One figure of the report, as a matplotlib ``Figure`` (saved by the caller).
-
-        A hand-over to :func:`symctl.report.figures.make_figure`; ``name`` is one of
-        :meth:`figure_names`, else a :class:`~symctl.errors.ParameterError`.
+        """One figure of the report, ``name`` of :meth:`figure_names`, as a matplotlib ``Figure``.
 
         Examples
         --------
         >>> from symctl import derive_paper
-        >>> res = derive_paper()
-        >>> type(res.figure("closed_loop")).__name__
+        >>> type(derive_paper().figure("closed_loop")).__name__
         'Figure'
-        >>> res.figure("no_such_figure")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: name: no figure 'no_such_figure'; the figures are [...]
         """
         from symctl.report import figures
 
@@ -404,47 +352,36 @@ class Derivation:
     ) -> list[Path]:
         """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
 
-        The files are written into a fresh folder beside ``out`` and moved into
-        place only when all are written (:class:`~symctl.report.output.OutputFolder`):
-        ``out`` is always either the old complete folder or the new complete
-        one, and on any error it is left as it was. ``out`` is checked before
-        anything is written, and a second run on the same ``out`` is refused
-        while one is under way.
+        The files go into a fresh folder beside ``out``, moved into place when all are
+        written: ``out`` is the old complete folder or the new one, never a mix; a second
+        run on the same ``out`` is refused while one is under way.
 
         Parameters
         ----------
         out : path
-            The folder: new (made, with its parents), empty, or the folder of
-            an earlier run (replaced).
-        figures : bool
-            Also write the figures (:func:`symctl.report.figures.figure_names`).
-        pdf : bool
-            Also compile ``derivation.pdf`` when ``pdflatex`` is on the PATH.
+            New (made, with its parents), empty, or an earlier run's folder (replaced).
+        figures, pdf : bool
+            Also write the figures; also compile ``derivation.pdf`` (when ``pdflatex`` is found).
         jobs : int, optional
-            Processes drawing the figures (:func:`symctl.report.figures.write_figures`).
+            Processes drawing the figures.
         progress : callable, optional
-            Called with the name of each step (``"figures"``, ``"documents"``,
-            ``"pdflatex"``) before it runs.
+            Called with each step's name (``"figures"``, ``"documents"``, ...) before it runs.
         formats : str or sequence of str
-            The figures' formats (:func:`symctl.report.figures.figure_formats`): by
-            default the PDF that ``derivation.tex`` includes and the PNG that
-            ``report.md`` shows; add ``"svg"`` for SVG files. A document shows the
-            figures written in its format.
+            The figures' formats: the PDF ``derivation.tex`` includes and the PNG ``report.md``
+            shows, and ``"svg"`` on request.
 
         Returns
         -------
         list of Path
-            The files written, inside ``out``: ``results.json``, the figures,
-            ``derivation.tex``, ``report.md`` and ``derivation.pdf``.
+            The files written: ``results.json``, the figures, the documents.
 
         Raises
         ------
         SymctlTypeError
             ``out`` is not a path.
         ParameterError
-            ``out`` is empty, a file, a folder holding other files, cannot be
-            made, or is being written by another run; or ``jobs`` is not an
-            integer >= 1; or ``formats`` names an unknown format.
+            ``out`` is empty, a file, a folder of other files, cannot be made or is being
+            written; ``jobs`` < 1; an unknown format.
         LatexError
             ``pdflatex`` failed on ``derivation.tex``.
         OSError
@@ -459,10 +396,6 @@ class Derivation:
         ...     paths = derive_paper().write(Path(parent) / "paper", figures=False, pdf=False)
         ...     [p.name for p in paths], sorted(p.name for p in Path(parent).iterdir())
         (['results.json', 'derivation.tex', 'report.md'], ['paper'])
-        >>> derive_paper().write("")
-        Traceback (most recent call last):
-        ...
-        symctl.errors.ParameterError: out: must name a folder, got ''
         """
         from symctl.report import results
 

@@ -1,29 +1,12 @@
 r"""A derivation's ``results.json`` read back: :func:`load_results`.
 
-``results.json`` holds the numbers, the symbolic objects as text (read back by the
-safe parser, never evaluated), the figures' data and the model, from which
-:meth:`SavedDerivation.derive` re-creates the whole :class:`~symctl.derivation.Derivation`.
-
-Examples
---------
->>> import tempfile
->>> from pathlib import Path
->>> from symctl import derive_paper, load_results
->>> res = derive_paper()
->>> with tempfile.TemporaryDirectory() as folder:
-...     res.write(Path(folder) / "paper", figures=False, pdf=False)[0].name
-...     saved = load_results(Path(folder) / "paper" / "results.json")
-'results.json'
->>> saved.G_symbolic == res.G_symbolic, saved.model == res.spec
-(True, True)
->>> saved.K.round(6).tolist()
-[[-0.045972, -0.580041, -0.351813]]
->>> saved.derive() is res                  # the same model: the same derivation
-True
+The symbolic objects are text there, read back by the safe parser (never evaluated); the
+model it holds re-creates the whole :class:`~symctl.derivation.Derivation`.
 """
 
 from __future__ import annotations
 
+import itertools
 import json
 import operator
 import re
@@ -52,29 +35,21 @@ MAX_RESULTS_BYTES = 200_000_000
 """Largest ``results.json`` :func:`load_results` reads."""
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
-_REAL = re.compile(r"^(K|C|L|epsilon|sigma|p)_")  # the derivation's real symbols (p: plain)
-_FUNCTIONS = NAMES  # the parser's own functions and constants, never symbols
+_REAL = re.compile(r"^(K|C|L|epsilon|sigma)_")  # the derivation's real symbols
 _BINARY = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
 
 
 def _symbol(name: str, known: Mapping) -> sp.Symbol:
     if name in known:
         return known[name]
-    if _REAL.match(name) and not name.startswith("p_"):
-        return sp.Symbol(name, real=True)
-    return sp.Symbol(name)
+    return sp.Symbol(name, real=True) if _REAL.match(name) else sp.Symbol(name)
 
 
 def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
     """An expression as ``results.json`` writes it (``sp.sstr``), read by the safe parser.
 
-    Every name becomes a symbol with the derivation's assumptions (``known``; ``K_``, ``C_``,
-    ``epsilon_``, ``sigma_`` real); ``K_{0,11}`` (a MIMO gain) is one symbol.
-
-    >>> from symctl.derivation.load import parse_saved
-    >>> parse_saved("K_{0,11}/(z - epsilon_{1,1})", {}, "G").free_symbols == {
-    ...     *parse_saved("K_{0,11} + z + epsilon_{1,1}", {}, "G").free_symbols}
-    True
+    A name is a symbol of ``known``, else real for ``K_``, ``C_``, ``epsilon_``, ``sigma_``
+    (``K_{0,11}``, a MIMO gain, is one symbol).
     """
     if not isinstance(text, str):
         raise SymctlTypeError(f"{argname}: expected text, got {type(text).__name__}")
@@ -82,7 +57,7 @@ def parse_saved(text: str, known: Mapping, argname: str) -> sp.Expr:
 
     def placeholder(m: re.Match) -> str:
         word = m.group(0)
-        if word in _FUNCTIONS:
+        if word in NAMES:  # the parser's own functions and constants, never symbols
             return word
         return keys.setdefault(word, f"_s{len(keys)}")
 
@@ -111,18 +86,15 @@ def _parse_long(text: str, names: Mapping, argname: str) -> sp.Expr:
     if len(power) > 1:
         base = _parse_long(power[0][1], names, argname)
         return base ** _parse_long(text[len(power[0][1]) + 2 :], names, argname)
-    if text.startswith("(") and _closing(text, 0) == len(text) - 1:
+    if text.startswith("(") and _closing(text) == len(text) - 1:
         return _parse_long(text[1:-1], names, argname)
     return parse_expr(text, names, argname=argname)  # a call too long to split: refused
 
 
-def _closing(text: str, start: int) -> int:
-    depth = 0
-    for i in range(start, len(text)):
-        depth += {"(": 1, ")": -1}.get(text[i], 0)
-        if depth == 0:
-            return i
-    return -1
+def _closing(text: str) -> int:
+    """Where the parenthesis that opens ``text`` closes (-1: nowhere)."""
+    depths = itertools.accumulate({"(": 1, ")": -1}.get(c, 0) for c in text)
+    return next((i for i, depth in enumerate(depths) if depth == 0), -1)
 
 
 def _split(text: str, ops: tuple[str, ...]) -> list[tuple[str, str]]:
@@ -174,9 +146,8 @@ def _matrix_text(text: str) -> tuple[list[list[str]], str | None]:
 class SavedDerivation(CachedState):
     r"""A derivation as ``results.json`` holds it, read back by :func:`load_results`.
 
-    The properties give the numbers as arrays (:attr:`K`, :attr:`poles`), the
-    symbolic objects as exact SymPy objects (:attr:`G_symbolic`, :attr:`factors`,
-    :attr:`realizations`; parsed on first use) and the figures' data
+    Numbers as arrays (:attr:`K`, :attr:`poles`), symbolic objects exact (:attr:`G_symbolic`,
+    :attr:`factors`, :attr:`realizations`; parsed on first use), the figures' data
     (:attr:`simulation`, :attr:`peak_firing`).
 
     Attributes
@@ -251,12 +222,8 @@ class SavedDerivation(CachedState):
     def G_symbolic(self) -> DiscreteTF:
         """The controller :math:`G(z)` in the gains' symbols, exact."""
         sym = self.data["controller"]["symbolic"]
-        num = sym["numerator"]
+        N = self._factor(sym["numerator"], "controller.symbolic.numerator")
         den = self._expr(sym["denominator"], "controller.symbolic.denominator")
-        if isinstance(num, list):
-            N = self._matrix(num, "controller.symbolic.numerator")
-        else:
-            N = self._expr(num, "controller.symbolic.numerator")
         return DiscreteTF(N, den, dt=self.dt)
 
     @cached_property
@@ -265,17 +232,12 @@ class SavedDerivation(CachedState):
         f = self.data["factorization"]
         if f is None:
             return None
-        out = {k: self._factor(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3")}
-        N = f["N"]
-        out["N"] = (
-            self._matrix(N, "factorization.N")
-            if isinstance(N, list)
-            else self._expr(N, "factorization.N")
-        )
-        return out
+        return {k: self._factor(f[k], f"factorization.{k}") for k in ("G1", "G2", "G3", "N")}
 
-    def _factor(self, text: str, where: str):
-        """A factor's text: an expression in z, or ``[[...]]/(den)`` for a matrix."""
+    def _factor(self, text, where: str):
+        """An expression's text, rows of texts, or ``[[...]]/(den)`` for a matrix over ``den``."""
+        if isinstance(text, list):
+            return self._matrix(text, where)
         if not text.startswith("[["):
             return self._expr(text, where)
         entries, den = _matrix_text(text)
@@ -357,8 +319,7 @@ def load_results(path) -> SavedDerivation:
     Parameters
     ----------
     path : str or pathlib.Path
-        A ``results.json`` (of ``symctl paper``, ``symctl derive`` or
-        :meth:`~symctl.derivation.Derivation.write`), or the folder holding it.
+        A ``results.json`` (``symctl paper``, ``symctl derive``, ``Derivation.write``) or its folder.
 
     Returns
     -------
@@ -375,11 +336,17 @@ def load_results(path) -> SavedDerivation:
 
     Examples
     --------
-    >>> from symctl import load_results
-    >>> load_results("no/such/results.json")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: path: cannot read no/such/results.json: ...
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from symctl import derive_paper, load_results
+    >>> res = derive_paper()
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = res.write(Path(folder) / "paper", figures=False, pdf=False)[0]
+    ...     saved = load_results(path)
+    >>> saved.G_symbolic == res.G_symbolic, saved.K.round(6).tolist()
+    (True, [[-0.045972, -0.580041, -0.351813]])
+    >>> saved.derive() is res                  # the same model: the same derivation
+    True
     """
     if not isinstance(path, str | Path):
         raise SymctlTypeError(f"path: expected a path to results.json, got {type(path).__name__}")
