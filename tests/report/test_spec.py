@@ -27,10 +27,10 @@ def test_derive_paper_and_the_cli_default_to_the_spec():
     for name in ("tau", "f_max", "r_bar", "sensor_delay", "actuator_delay"):
         assert params[name].default == getattr(PAPER, name), name
     assert params["realizations"].default == PAPER.realizations
-    options = {p.name: p.default for p in paper.params}
+    options = {opt: p.default for p in paper.params for opt in p.opts}
     for name in ("tau", "f_max", "r_bar", "sensor_delay", "actuator_delay", "seed", "realizations"):
-        assert options[name] == getattr(PAPER, name), name
-    assert options["ts"] == PAPER.Ts
+        assert options["--" + name.replace("_", "-")] == getattr(PAPER, name), name
+    assert options["--ts"] == PAPER.Ts
 
 
 def test_the_circuits_are_the_specs_in_reading_order():
