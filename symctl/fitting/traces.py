@@ -1,13 +1,11 @@
 r"""Recorded firing-rate traces: the data :func:`symctl.fit` takes, read from CSV or NPZ.
 
-The format (``docs/fitting.md``): a time column ``t`` (uniform steps of the plant's
-sampling time from 0), optionally ``disturbance`` (the force disturbance per step; else
-the default unit pulse), and one column per recorded neuron, named as
-:attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>` names them, holding its
-firing-rate change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
-``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the
-same as arrays and 0-d string arrays. Nothing read is evaluated. :func:`synthetic_traces`
-simulates a hidden random realization, with noise.
+The format (``docs/fitting.md``): a time column ``t`` (uniform steps from 0), optionally
+``disturbance`` (per step; else the default unit pulse), and one column per recorded neuron
+(named as :attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>`), its firing-rate
+change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
+``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the same
+as arrays and 0-d string arrays. Nothing read is evaluated.
 """
 
 from __future__ import annotations
@@ -30,9 +28,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Traces", "read_traces", "synthetic_traces"]
 
-MAX_FILE_BYTES = 64 * 2**20
-"""Largest data file read."""
-_KEYS = ("circuit", "sensor_delay", "actuator_delay")
+MAX_FILE_BYTES = 64 * 2**20  # largest data file read
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,10 +43,8 @@ class Traces(ArrayValue, DictMixin):
         Per neuron, its firing-rate change.
     disturbance : (steps,) array or None
         The force disturbance per step (None: the default unit pulse).
-    meta : mapping of str to str
-        The file's ``key: value`` lines.
-    hidden : mapping of str to sympy.Rational
-        The hidden parameters of :func:`synthetic_traces` (empty for data read).
+    meta, hidden : mapping
+        The file's ``key: value`` lines; :func:`synthetic_traces`'s hidden parameters.
 
     Examples
     --------
@@ -110,16 +104,13 @@ class Traces(ArrayValue, DictMixin):
         return path
 
 
-def _check(t, traces, disturbance, source: str) -> None:
+def _check(t, columns: dict, source: str) -> None:
     if t.ndim != 1 or t.size < 2:
         raise DimensionError(f"{source}: column 't' needs at least 2 samples, got {t.size}")
     dt = np.diff(t)
     if not np.all(np.isfinite(t)) or dt[0] <= 0 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
         raise ParameterError(f"{source}: column 't' must increase in equal steps")
-    for name, v in [
-        *traces.items(),
-        *([("disturbance", disturbance)] if disturbance is not None else []),
-    ]:
+    for name, v in columns.items():
         if v.shape != t.shape:
             raise DimensionError(
                 f"{source}: column {name!r} has {v.size} samples, 't' has {t.size}"
@@ -188,7 +179,8 @@ def read_traces(path) -> Traces:
             f"path: {p.name} has {len(cols)} neurons and {t.size} steps; at most {MAX_NEURONS} "
             f"and {MAX_FIT_STEPS}"
         )
-    _check(t, cols, disturbance, f"path: {p.name}")
+    both = cols if disturbance is None else {**cols, "disturbance": disturbance}
+    _check(t, both, f"path: {p.name}")
     return Traces(t, cols, disturbance, meta)
 
 
@@ -263,9 +255,9 @@ def synthetic_traces(
 ) -> Traces:
     r"""Every neuron's trace in a hidden random realization of ``G``, with noise.
 
-    The paper's recipe (:math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`,
-    every :math:`C` = ``C``, a random well-conditioned rational :math:`P` for the general
-    class), plus seeded Gaussian noise of ``noise`` times each trace's RMS.
+    :math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`, every :math:`C` =
+    ``C``, a random rational :math:`P` for the general class; seeded Gaussian noise of
+    ``noise`` times each trace's RMS.
 
     Parameters
     ----------
