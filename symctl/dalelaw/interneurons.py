@@ -26,6 +26,7 @@ from symctl.dalelaw.dale import (
     MAX_TIMEOUT,
     METHOD,
     WITNESS_PIN,
+    _witness,
     controller_of,
     poles_of,
     search_general,
@@ -286,8 +287,6 @@ def ei_circuit(
 
 def _relays(G, fs, t, model):
     """The witness's interneurons, every neuron's sign and the whole controller (exact)."""
-    from symctl.dalelaw.dale import _witness
-
     values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}
     witness = _witness(G, fs, t, {"values": values}, t.label, [], Deadline(0.0), signed=False)

@@ -629,10 +629,8 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     proof = check_realization(R, model.G)
     if not proof:  # pragma: no cover - the family realizes G by construction
         raise NotRealizableError(f"circuit: the fitted {_label(cls)} circuit does not realize G")
-    vals, jacs = model.traces(q, problem.u)
-    w = _weights(problem.data)
-    r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
-    J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
+    vals = model.traces(q, problem.u)[0]
+    r, J = _residual_fns(replace(problem, signs=()), model)(q)  # without the sign penalty
     recorded = [n for n, _ in problem.data]
     bootstrap, level, gen, pool, workers, step = boot
     step("structural identifiability")

@@ -301,22 +301,15 @@ def synthetic_traces(
     model = TraceModel.build(tf, sensor_delay, actuator_delay, cls, None)
     k = model.n_sections
     eps = [sp.Rational(int(gen.integers(-899, 900)), 1000) for _ in range(k)]
-    cs = [sp.Rational(C)] * k
-    hidden = {str(n): v for n, v in zip(model.names[:k], eps, strict=True)}
-    hidden.update({n: v for n, v in zip(model.names[k : 2 * k], cs, strict=True)})
-    theta = [float(v) for v in (*eps, *cs)]
+    values = [*eps, *[sp.Rational(C)] * k]
     if transformed(model.circuit):
-        Q = random_full_rank(model.order, gen).inv()
-        hidden.update({n: v for n, v in zip(model.names[2 * k :], Q, strict=True)})
-        theta += [float(v) for v in Q]
-    vals, _ = model.traces(np.array(theta), u)
-
-    neurons = _circuit_neurons(model)
+        values += list(random_full_rank(model.order, gen).inv())  # the entries of P^-1
+    hidden = dict(zip(model.names, values, strict=True))
+    vals, _ = model.traces(np.array([float(v) for v in values]), u)
     traces = {}
-    for n in neurons:
-        v = vals[n]
-        rms = float(np.sqrt(np.mean(v**2)))
-        traces[n] = v + noise * rms * gen.normal(size=v.size)
+    for n in _circuit_neurons(model):
+        rms = float(np.sqrt(np.mean(vals[n] ** 2)))
+        traces[n] = vals[n] + noise * rms * gen.normal(size=vals[n].size)
     w = _signal(disturbance, "disturbance", window["steps"], 1, DEFAULT_START, DEFAULT_LENGTH)[:, 0]
     meta = {
         "circuit": _label(cls),
