@@ -104,24 +104,6 @@ class Traces(ArrayValue, DictMixin):
         return path
 
 
-def _check(t, columns: dict, source: str) -> None:
-    if t.ndim != 1 or t.size < 2:
-        raise DimensionError(f"{source}: column 't' needs at least 2 samples, got {t.size}")
-    dt = np.diff(t)
-    if not np.all(np.isfinite(t)) or dt[0] <= 0 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
-        raise ParameterError(f"{source}: column 't' must increase in equal steps")
-    for name, v in columns.items():
-        if v.shape != t.shape:
-            raise DimensionError(
-                f"{source}: column {name!r} has {v.size} samples, 't' has {t.size}"
-            )
-        bad = np.flatnonzero(~np.isfinite(v))
-        if bad.size:
-            raise ParameterError(
-                f"{source}: column {name!r} is not finite (NaN or inf) at row {int(bad[0])}"
-            )
-
-
 def read_traces(path) -> Traces:
     r"""Read recorded traces from a CSV or NPZ file (format: :mod:`symctl.fitting.traces`).
 
@@ -179,8 +161,22 @@ def read_traces(path) -> Traces:
             f"path: {p.name} has {len(cols)} neurons and {t.size} steps; at most {MAX_NEURONS} "
             f"and {MAX_FIT_STEPS}"
         )
-    both = cols if disturbance is None else {**cols, "disturbance": disturbance}
-    _check(t, both, f"path: {p.name}")
+    source = f"path: {p.name}"
+    if t.ndim != 1 or t.size < 2:
+        raise DimensionError(f"{source}: column 't' needs at least 2 samples, got {t.size}")
+    dt = np.diff(t)
+    if not np.all(np.isfinite(t)) or dt[0] <= 0 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
+        raise ParameterError(f"{source}: column 't' must increase in equal steps")
+    for name, v in (cols if disturbance is None else {**cols, "disturbance": disturbance}).items():
+        if v.shape != t.shape:
+            raise DimensionError(
+                f"{source}: column {name!r} has {v.size} samples, 't' has {t.size}"
+            )
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ParameterError(
+                f"{source}: column {name!r} is not finite (NaN or inf) at row {int(bad[0])}"
+            )
     return Traces(t, cols, disturbance, meta)
 
 

@@ -48,7 +48,7 @@ from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
 from symctl.model.graphsection import GraphSection, strip_argname
 from symctl.model.measurement import MeasurementSection
 from symctl.model.model import Model
-from symctl.model.schema import FIELDS
+from symctl.model.schema import FIELDS, SECTIONS
 from symctl.model.source import Source
 from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
 from symctl.realization.realization import controllable_canonical
@@ -204,9 +204,7 @@ class _Reader(GraphSection, MeasurementSection):
 
     def model(self) -> Model:
         d = self.src.data
-        self.src.check_keys(
-            d, FIELDS.keys() - {"parameter", "vertex", "edge", "disturbance", "longest_delay"}, ""
-        )
+        self.src.check_keys(d, SECTIONS, "")
         meta = self.table(d.get("model", {}), "model", "model")
         if "name" not in meta:
             raise self.fail("model", 'missing the model\'s name; give name = "..."')

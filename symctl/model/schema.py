@@ -120,20 +120,6 @@ _FIELDS = {
 FIELDS = MappingProxyType({k: MappingProxyType(v) for k, v in _FIELDS.items()})
 """Every section (and sub-table) of a model file and its keys, with a line of documentation."""
 
-SECTIONS = (
-    "model",
-    "parameters",
-    "states",
-    "inputs",
-    "outputs",
-    "discrete",
-    "sampling",
-    "delays",
-    "cost",
-    "noise",
-    "delay_graph",
-    "circuits",
-    "simulation",
-    "analysis",
-)
+_SUBTABLES = ("parameter", "vertex", "edge", "disturbance", "longest_delay")  # inside sections
+SECTIONS = tuple(k for k in FIELDS if k not in _SUBTABLES)
 """The top-level sections, in the order the documentation gives them."""
