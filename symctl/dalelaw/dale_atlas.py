@@ -269,7 +269,6 @@ def dale_atlas(
     timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     workers, scheduler = pool_options(workers, scheduler)
     step = callable_or_none(progress, "progress") or (lambda _label: None)
-    gen = rng
     own, label = None, ""
     if G is not None:
         own, _, _ = controller_of(G, ds, da)
@@ -286,7 +285,7 @@ def dale_atlas(
                 f"{found[0].label}..{found[-1].label}"
             )
         found = [known[c] for c in classes]
-    sampled = [_sample(order, ds, da, gen, i) for i in range(samples)]
+    sampled = [_sample(order, ds, da, rng, i) for i in range(samples)]
     jobs = []
     for c in found:
         masks = tuple(p.mask for p in c.representatives)

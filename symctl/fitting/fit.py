@@ -520,7 +520,6 @@ def fit(
     bootstrap = bounded_int(bootstrap, "bootstrap", 0, MAX_BOOTSTRAP)
     level = bounded_number(level, "level", 0.01, 0.999)
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    gen = rng
     if C is not None:
         if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
             raise SymctlTypeError(f"C: expected a number, got {C!r}")
@@ -542,7 +541,7 @@ def fit(
                 skipped.append((_label(cls), str(exc)))  # this class cannot take the data
                 continue
             step(f"{_label(cls)}: {starts} starts")
-            points = _start_points(problem, model, starts, gen)
+            points = _start_points(problem, model, starts, rng)
             if pool is None:
                 pool = open_pool(workers, scheduler)
             runs = _on_pool(pool, workers, _run_starts, (problem,), points)
@@ -552,7 +551,7 @@ def fit(
                 "circuit: no class can take these traces: "
                 + "; ".join(f"{label}: {why}" for label, why in skipped)
             )
-        boot = (bootstrap, level, gen, pool, max(1, int(workers)), step)
+        boot = (bootstrap, level, rng, pool, max(1, int(workers)), step)
         return _best(fits, t, starts, tuple(skipped), boot)
     finally:
         if pool is not None:

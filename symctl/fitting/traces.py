@@ -291,21 +291,20 @@ def synthetic_traces(
         raise ParameterError(f"C: expected a finite nonzero number, got {C!r}")
     if isinstance(noise, bool) or not isinstance(noise, int | float) or not 0 <= noise <= 10:
         raise ParameterError(f"noise: expected a number in [0, 10], got {noise!r}")
-    gen = rng
     window = _window(steps, DEFAULT_START, DEFAULT_LENGTH)
     tf, u, t = _loop(G, plant, disturbance, window)
     model = TraceModel.build(tf, sensor_delay, actuator_delay, cls, None)
     k = model.n_sections
-    eps = [sp.Rational(int(gen.integers(-899, 900)), 1000) for _ in range(k)]
+    eps = [sp.Rational(int(rng.integers(-899, 900)), 1000) for _ in range(k)]
     values = [*eps, *[sp.Rational(C)] * k]
     if transformed(model.circuit):
-        values += list(random_full_rank(model.order, gen).inv())  # the entries of P^-1
+        values += list(random_full_rank(model.order, rng).inv())  # the entries of P^-1
     hidden = dict(zip(model.names, values, strict=True))
     vals, _ = model.traces(np.array([float(v) for v in values]), u)
     traces = {}
     for n in _circuit_neurons(model):
         rms = float(np.sqrt(np.mean(vals[n] ** 2)))
-        traces[n] = vals[n] + noise * rms * gen.normal(size=vals[n].size)
+        traces[n] = vals[n] + noise * rms * rng.normal(size=vals[n].size)
     w = _signal(disturbance, "disturbance", window["steps"], 1, DEFAULT_START, DEFAULT_LENGTH)[:, 0]
     meta = {
         "circuit": _label(cls),
