@@ -1,18 +1,11 @@
 r"""Dale's law: can a circuit carry the controller with every neuron excitatory or inhibitory?
 
-The paper's future-work item 2 ("neurons are generally excitatory or inhibitory ...
-sign requirements on internal variables in the controller realization and circuit
-structure"). :func:`dale` decides it for one circuit of :math:`G = G_3 G_2 G_1`, varying
-what leaves :math:`G` unchanged (the sections' :math:`\epsilon_k`, :math:`C_k` and
-:math:`G_2`'s realization within the circuit). A neuron's **sign** is that of every
-synapse it sends to another neuron (self-dynamics and the read-out exempt); the question
-is a formula of nonlinear real arithmetic (:mod:`symctl.dalelaw.signs`) decided by z3:
-**feasible** (a witness pinned to rationals and verified exactly: :math:`G_3 G_2 G_1 = G`
-by :func:`~symctl.check_realization`, or z3's exact evaluation with algebraic entries, and
-each neuron's signs read off it), **infeasible** (z3 proved unsatisfiable: no E/I
-realization with stable, nonzero sections) or **not decided** (time or size ran out;
-``reason`` says what was tried). ``timeout`` bounds the whole call: one
-:class:`~symctl._util.deadline.Deadline` checked by every stage.
+The paper's future-work item 2. :func:`dale` varies what leaves :math:`G = G_3 G_2 G_1`
+unchanged (the sections' :math:`\epsilon_k`, :math:`C_k`, :math:`G_2`'s realization within
+the circuit); a neuron's **sign** is that of every synapse it sends to another neuron
+(self-dynamics and read-out exempt). z3 decides the sign formula (:mod:`symctl.dalelaw.signs`):
+**feasible** (a witness verified exactly), **infeasible** (proved unsatisfiable) or **not
+decided** (``reason`` says what was tried); one deadline bounds every stage.
 """
 
 from __future__ import annotations
@@ -54,53 +47,36 @@ from symctl.symbols import z
 __all__ = ["METHOD", "DaleResult", "controller_of", "dale", "templates_of"]
 
 METHOD = "z3 nlsat (a complete decision procedure for nonlinear real arithmetic)"
-"""The method named in every decided result."""
-
-MAX_TIMEOUT = 3600.0
-"""Most seconds a ``timeout`` may give."""
-
-GENERAL_Z3_FIRST = 3.0
-"""Seconds z3 gets on the general circuit before the numeric search (:func:`solve`)."""
-
-GENERAL_SEARCH = 20.0
-"""Most seconds of the general circuit's numeric search."""
-
-WITNESS_PIN = 0.5
-"""Most seconds of each z3 call that pins a witness's value to a rational."""
+MAX_TIMEOUT = 3600.0  # most seconds a ``timeout`` may give
+GENERAL_Z3_FIRST = 3.0  # seconds of z3 on the general circuit before the numeric search
+GENERAL_SEARCH = 20.0  # most seconds of the general circuit's numeric search
+WITNESS_PIN = 0.5  # most seconds of each z3 call that pins a witness's value to a rational
 
 
 @dataclass(frozen=True)
 class DaleResult(Verdict):
     r"""The verdict of :func:`dale`: a witness, a proof that none exists, or "not decided".
 
-    Truthy when a witness exists (``verdict`` is :attr:`feasible`); ``evidence``
-    is the witness circuit, or the reason when there is none.
+    Truthy when a witness exists; ``evidence`` is the witness circuit, else the reason.
 
     Attributes
     ----------
     feasible : bool or None
-        ``True`` (a witness), ``False`` (proved: no E/I realization of this
-        circuit), ``None`` (not decided).
+        True (a witness), False (proved: no E/I realization of this circuit), None.
     realization : Realization or None
         The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
     signs : mapping
-        Neuron name -> ``"+"`` or ``"-"``, every neuron of the witness (one that drives
-        only the read-out is ``"+"``).
+        Neuron name -> ``"+"`` or ``"-"`` (one driving only the read-out is ``"+"``).
     method, reason : str
         How it was decided, and the evidence (or what was tried).
     circuit : str
-        The circuit asked about (``"general"``, ``"controllable"``, ``"observable"``
-        or an atlas class's label).
-    witness : Circuit or None
-        The witness circuit, exact weights.
-    R2 : Realization or None
-        :math:`G_2`'s realization in the witness.
-    sections : mapping
-        The witness's :math:`\epsilon_k` and :math:`C_k`.
+        The circuit asked about (a realizer's name or an atlas class's label).
+    witness, R2, sections
+        The witness circuit, :math:`G_2`'s realization in it, its :math:`\epsilon_k, C_k`.
     exact : bool
         The witness was verified in exact arithmetic (always, for a witness).
     realizes : bool or None
-        Whether the circuit realizes :math:`G` at all, signs aside (None: not decided).
+        Whether the circuit realizes :math:`G` at all, signs aside.
     elapsed : float
         Seconds spent.
 
@@ -140,10 +116,7 @@ class DaleResult(Verdict):
         object.__setattr__(self, "sections", MappingProxyType(dict(self.sections)))
 
     def draw(self, ax=None, *, title: str | None = None):
-        """Draw the witness circuit (a Figure; blue arrows excite, vermillion bars inhibit).
-
-        Raises ParameterError when there is no witness.
-        """
+        """Draw the witness circuit (a Figure); ParameterError when there is none."""
         if self.witness is None:
             raise ParameterError(
                 f"draw: there is no witness to draw (feasible = {self.feasible}): {self.reason}"
@@ -160,14 +133,10 @@ class DaleResult(Verdict):
 
 def controller_of(G, sensor_delay, actuator_delay) -> tuple[DiscreteTF, int, int]:
     """``(G, ds, da)``: a numeric SISO controller, its floats as exact binary rationals."""
+    ds = da = 1
     if isinstance(G, Gains):
-        s = G.system
-        ds = s.sensor_delay if sensor_delay is None else sensor_delay
-        da = s.actuator_delay if actuator_delay is None else actuator_delay
-        G = controller_tf(s).subs(G.substitutions(exact=True))
-    else:
-        ds = 1 if sensor_delay is None else sensor_delay
-        da = 1 if actuator_delay is None else actuator_delay
+        ds, da = G.system.sensor_delay, G.system.actuator_delay
+        G = controller_tf(G.system).subs(G.substitutions(exact=True))
     if isinstance(G, sp.Basic) and not isinstance(G, sp.MatrixBase):
         G = DiscreteTF.from_expr(G)
     if not isinstance(G, DiscreteTF):
@@ -182,10 +151,9 @@ def controller_of(G, sensor_delay, actuator_delay) -> tuple[DiscreteTF, int, int
             f"G: must be numeric to decide Dale's law, but has the symbols {extra}; "
             "substitute the gains first (e.g. G.subs(gains.substitutions(exact=True)))"
         )
-    ds = nonneg_int(ds, "sensor_delay")
-    da = nonneg_int(da, "actuator_delay")
-    G = DiscreteTF.from_expr(binary_rationals(G.expr), G.dt)
-    return G, ds, da
+    ds = nonneg_int(ds if sensor_delay is None else sensor_delay, "sensor_delay")
+    da = nonneg_int(da if actuator_delay is None else actuator_delay, "actuator_delay")
+    return DiscreteTF.from_expr(binary_rationals(G.expr), G.dt), ds, da
 
 
 def templates_of(factorization, circuit) -> tuple[str, list[Template]]:
@@ -248,26 +216,23 @@ def dale(
 ) -> DaleResult:
     r"""Decide whether ``circuit`` can carry the controller ``G`` with every neuron E or I.
 
-    What may vary keeps :math:`G_3 G_2 G_1 = G` exact: :math:`\epsilon_k \in (-1, 1)` (nonzero,
-    off the poles of :math:`G`), :math:`C_k \ne 0`, and :math:`G_2`'s realization within the
-    circuit (see :mod:`symctl.dalelaw.dale`).
+    What varies keeps :math:`G_3 G_2 G_1 = G` exact: :math:`\epsilon_k \in (-1, 1)` (nonzero,
+    off the poles of :math:`G`), :math:`C_k \ne 0` and :math:`G_2`'s realization.
 
     Parameters
     ----------
     G : Gains, DiscreteTF or sympy expression in ``z``
-        A numeric SISO controller (floats are taken as the exact binary rationals
-        they are); ``Gains`` give the optimal controller with their delays.
+        A numeric SISO controller (floats taken as the exact binary rationals they are);
+        ``Gains`` give the optimal controller with their delays.
     sensor_delay, actuator_delay : int, optional
         The split :math:`G_1`, :math:`G_3` (default the gains' delays, else 1 and 1).
     circuit : {"general", "controllable", "observable"}, CircuitClass or Pattern
-        The circuit of :math:`G_2`: the paper's general or canonical circuits, or a
-        class of :func:`symctl.atlas` (each representative pattern tried).
+        The circuit of :math:`G_2`, or a class of :func:`symctl.atlas` (each
+        representative pattern tried).
     timeout : float or Deadline
-        Seconds for the whole call, every pattern and stage (default 30, at most
-        3600), or a running :class:`~symctl._util.deadline.Deadline`.
+        Seconds for the whole call (default 30, at most 3600), or a running Deadline.
     progress : callable, optional
-        Called with the name of each stage before it runs: the pattern, then the stage
-        (``"general: z3"``, ``"general: numeric search"``, ``"general: exact witness"``, ...).
+        Called with the name of each stage before it runs (``"general: z3"``, ...).
 
     Returns
     -------
@@ -329,16 +294,9 @@ def dale(
             f"z3 proved the sign constraints unsatisfiable for every pattern of {label} "
             f"({'; '.join(tried)}), with stable nonzero sections: {why}"
         )
+        elapsed = deadline.elapsed()
         return DaleResult(
-            False,
-            None,
-            {},
-            METHOD,
-            reason,
-            label,
-            G=G,
-            realizes=realizes,
-            elapsed=deadline.elapsed(),
+            False, None, {}, METHOD, reason, label, G=G, realizes=realizes, elapsed=elapsed
         )
     reason = (
         f"not decided within timeout = {deadline.seconds:g} s ({'; '.join(tried)}); "
@@ -375,11 +333,8 @@ def _realizes(templates, poles, deadline: Deadline) -> bool | None:
 def solve(
     G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True, progress=None
 ) -> tuple[str, dict | None]:
-    """Decide one template: z3 briefly, the general circuit's numeric search (numeric ``G``), z3 again.
-
-    Returns ``(verdict, model)``, the model pinned to rationals when ``witness``; ``tried``
-    gets one line per attempt; every stage stops at ``deadline`` (``progress`` gets its name).
-    """
+    """``(verdict, model)`` of one template: z3 briefly, the general circuit's numeric search,
+    z3 again (the model pinned to rationals when ``witness``; ``tried`` gets each attempt)."""
     general = t.label == "general" and not G.free_symbols - {z}
     step = progress or (lambda _name: None)
     step(f"{t.label}: equations")
@@ -447,20 +402,9 @@ def _witness(
         f"a witness of {t.label}: {proof}; every neuron's outgoing synapses have one sign "
         f"(read off the witness circuit exactly); z3: {'; '.join(tried)}"
     )
+    elapsed = deadline.elapsed()
     return DaleResult(
-        True,
-        whole,
-        signs,
-        METHOD,
-        reason,
-        label,
-        witness,
-        R2,
-        sections,
-        True,
-        deadline.elapsed(),
-        G,
-        True,
+        True, whole, signs, METHOD, reason, label, witness, R2, sections, True, elapsed, G, True
     )
 
 

@@ -25,14 +25,7 @@ from symctl._util.serial import DictMixin
 from symctl._util.validate import bounded_int, bounded_number, callable_or_none, nonneg_int
 from symctl.circuitatlas.pattern import Pattern
 from symctl.circuitatlas.search import open_pool, pool_options
-from symctl.dalelaw.dale import (
-    MAX_TIMEOUT,
-    _realizes,
-    any_sat,
-    controller_of,
-    poles_of,
-    solve,
-)
+from symctl.dalelaw.dale import MAX_TIMEOUT, _realizes, any_sat, controller_of, poles_of, solve
 from symctl.dalelaw.signs import template
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError
@@ -41,8 +34,7 @@ from symctl.symbols import z
 
 __all__ = ["MAX_SAMPLES", "DaleRow", "DaleTable", "dale_atlas"]
 
-MAX_SAMPLES = 1000
-"""Most sampled controllers per class."""
+MAX_SAMPLES = 1000  # most sampled controllers per class
 
 
 @dataclass(frozen=True)
@@ -51,20 +43,14 @@ class DaleRow:
 
     Attributes
     ----------
-    label : str
-        The atlas's label (``"A1"``, ...).
-    neurons, synapses : int
-        Of the class's :math:`G_2` circuit.
-    universal : bool or None
-        The atlas's verdict (without Dale's law).
-    verdict : str or None
-        ``"every"``, ``"some"``, ``"never"`` or None (not decided); see the module text.
-    controller : bool or None
-        For the table's own controller, when given (None: not decided).
+    label, neurons, synapses, universal
+        The atlas class's label, its circuit's size and the atlas's verdict.
+    verdict, controller : str or None, bool or None
+        ``"every"``, ``"some"``, ``"never"`` or None; the verdict for the table's controller.
     sampled : tuple of int
-        Samples ``(E/I witness, realized but not E/I, not realized, not decided)``.
+        Samples (E/I witness, realized but not E/I, not realized, not decided).
     exists : str
-        Whether some controller has an E/I witness: ``"sat"``, ``"unsat"``, ``"unknown"``.
+        Whether some controller has a witness: ``"sat"``, ``"unsat"``, ``"unknown"``.
     seconds : float
     """
 
@@ -88,9 +74,8 @@ class DaleTable(DictMixin):
     order, sensor_delay, actuator_delay, samples : int
     rows : tuple of DaleRow
     seconds : float
-        Wall time of the whole table.
     controller : str
-        What the ``controller`` column is about (empty when none was given).
+        The controller of the ``controller`` column (empty when none was given).
 
     Examples
     --------
@@ -138,7 +123,7 @@ class DaleTable(DictMixin):
 
 
 def _symbolic(order: int, ds: int, da: int) -> DiscreteTF:
-    """:math:`k\\,b/a` with coefficient symbols ``p_i`` (of ``a``), ``q_i`` (of ``b``) and ``k``."""
+    """:math:`k\\,b/a` with coefficient symbols ``p_i`` (of ``a``), ``q_i`` (of ``b``)."""
     p = sp.symbols(f"p_0:{order}")
     m = order - ds - da
     q = sp.symbols(f"q_0:{m}") if m else ()
@@ -206,17 +191,9 @@ def _row(spec, ds, da, samples, timeout, own):
         if counts[0]:  # sampled witnesses but undecided samples: not "every" for sure
             verdict = "some" if counts[1] or counts[2] else None
     mine = _decide(own, patterns, delays, ds, da, timeout) if own is not None else None
-    return DaleRow(
-        label,
-        neurons,
-        synapses,
-        universal,
-        verdict,
-        mine,
-        tuple(counts),
-        exists,
-        time.perf_counter() - t0,
-    )
+    seconds = time.perf_counter() - t0
+    row = (label, neurons, synapses, universal, verdict, mine, tuple(counts), exists, seconds)
+    return DaleRow(*row)
 
 
 @rng_argument()
@@ -239,10 +216,9 @@ def dale_atlas(
     Parameters
     ----------
     order : int
-        The atlas's order, 1 or 2 (``symctl.atlas(order)``).
+        The atlas's order, 1 or 2.
     sensor_delay, actuator_delay : int
-        The split of the controllers (default 1 and 1, the paper's); their sum is at
-        most ``order``.
+        The split of the controllers (default 1 and 1); their sum is at most ``order``.
     samples : int
         Sampled controllers per class (default 24, at most 1000).
     rng : int, numpy Generator or None, default 0
@@ -252,14 +228,11 @@ def dale_atlas(
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each search (default 10; thrice for the generic controller): at most
-        about ``(2 * samples + 4) * timeout`` per class, over ``workers``.
-    workers : int
-        Processes (default 1: in this process; more use dask's local cluster).
-    scheduler : str, optional
-        A running dask.distributed scheduler's address.
+        Seconds for each search (default 10; thrice for the generic controller).
+    workers : int, scheduler : str, optional
+        Processes (1: this one; more use dask's local cluster), or a dask scheduler's address.
     progress : callable, optional
-        Called with each class's label once its row is decided (in the order they finish).
+        Called with each class's label once its row is decided.
 
     Returns
     -------
@@ -296,7 +269,6 @@ def dale_atlas(
     timeout = bounded_number(timeout, "timeout", 1e-3, MAX_TIMEOUT)
     workers, scheduler = pool_options(workers, scheduler)
     step = callable_or_none(progress, "progress") or (lambda _label: None)
-    gen = rng
     own, label = None, ""
     if G is not None:
         own, _, _ = controller_of(G, ds, da)
@@ -313,23 +285,16 @@ def dale_atlas(
                 f"{found[0].label}..{found[-1].label}"
             )
         found = [known[c] for c in classes]
-    sampled = [_sample(order, ds, da, gen, i) for i in range(samples)]
-    specs = [
-        (
-            c.label,
-            order,
-            tuple(p.mask for p in c.representatives),
-            c.delays,
-            c.n_neurons,
-            c.n_synapses,
-            c.universal,
-        )
-        for c in found
-    ]
+    sampled = [_sample(order, ds, da, rng, i) for i in range(samples)]
+    jobs = []
+    for c in found:
+        masks = tuple(p.mask for p in c.representatives)
+        spec = (c.label, order, masks, c.delays, c.n_neurons, c.n_synapses, c.universal)
+        jobs.append((spec, ds, da, sampled, timeout, own))
     pool = open_pool(workers, scheduler)
     try:
         rows = []
-        for row in pool.map(_row, [(s, ds, da, sampled, timeout, own) for s in specs]):
+        for row in pool.map(_row, jobs):
             rows.append(row)
             step(row.label)
     finally:

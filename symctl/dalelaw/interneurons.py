@@ -1,14 +1,11 @@
 r"""The cheapest E/I circuit of a controller, with sign-flipping interneurons where needed.
 
 A neuron :math:`j` with **mixed** signs keeps Dale's law with one inhibitory interneuron
-:math:`I_j`: :math:`j` (sign :math:`\sigma`) sends :math:`\sigma` to :math:`I_j` (delay 0,
-no self-dynamics), and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target :math:`t`
-whose weight :math:`w_t` has the other sign, with its delay: the product is :math:`w_t`, so
-:math:`G` is unchanged. :func:`ei_circuit` finds, over a set of circuits, the fewest mixed
-neurons each admits, exactly (z3 with a Boolean "mixed" per neuron and :math:`\sum
-\text{mixed} \le k` for :math:`k = 0, 1, \dots`, the minimum proved by the unsatisfiable
-:math:`k - 1`); the cheapest total wins, and Dale's law costs that total minus the fewest
-neurons any searched circuit needs without it.
+:math:`I_j`: :math:`j` (sign :math:`\sigma`) sends :math:`\sigma` to :math:`I_j` (delay 0),
+and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target :math:`t` whose weight
+:math:`w_t` has the other sign: the product is :math:`w_t`, so :math:`G` is unchanged.
+:func:`ei_circuit` finds each circuit's fewest mixed neurons with z3 (subsets tried by
+size, the minimum proved by refuting every smaller one); the cheapest total wins.
 """
 
 from __future__ import annotations
@@ -29,6 +26,7 @@ from symctl.dalelaw.dale import (
     MAX_TIMEOUT,
     METHOD,
     WITNESS_PIN,
+    _witness,
     controller_of,
     poles_of,
     search_general,
@@ -41,8 +39,7 @@ from symctl.realization.realizers import circuit_names
 
 __all__ = ["EICandidate", "EICircuit", "Interneuron", "ei_circuit"]
 
-ATLAS_MAX_ORDER = 2
-"""Highest order of :math:`G_2` whose atlas classes are all searched by default."""
+ATLAS_MAX_ORDER = 2  # highest order of G2 whose atlas classes are searched by default
 
 
 @dataclass(frozen=True)
@@ -51,16 +48,10 @@ class Interneuron:
 
     Attributes
     ----------
-    name : str
-        ``"I[source]"``.
-    source : str
-        The mixed neuron it serves; its sign ``sign`` is kept on every synapse it sends.
-    sign : str
-        The source's sign, ``"+"`` or ``"-"``.
-    targets : tuple of str
-        The neurons that now receive the relayed (negative) synapses.
-    weights : tuple of sympy.Expr
-        The relayed weights :math:`w_t / \\sigma` (all negative).
+    name, source, sign : str
+        ``"I[source]"``, the mixed neuron it serves, and the sign that neuron keeps.
+    targets, weights : tuple
+        The neurons that receive the relayed synapses, and their (negative) weights.
     """
 
     name: str
@@ -93,16 +84,13 @@ class EICircuit(DictMixin):
     ----------
     circuit : str
         The winning circuit's label.
-    base_neurons : int
-        Its neurons (sections included).
+    base_neurons, neurons : int
+        Its neurons (sections included), and with one interneuron per mixed neuron.
     interneurons : tuple of str
-        The mixed neurons, each given one inhibitory interneuron (see :attr:`relays`).
-    neurons : int
-        ``base_neurons + len(interneurons)``.
-    minimum : int
-        The fewest neurons of any searched circuit that realizes :math:`G`, without Dale's law.
-    cost : int
-        ``neurons - minimum``: the neurons Dale's law costs.
+        The mixed neurons, each given an inhibitory interneuron (:attr:`relays`).
+    minimum, cost : int
+        The fewest neurons of any searched circuit that realizes :math:`G` without
+        Dale's law, and ``neurons - minimum``, what Dale's law costs.
     signs : mapping
         Every neuron's sign in the E/I circuit (interneurons ``"-"``).
     relays : tuple of Interneuron
@@ -168,9 +156,7 @@ def _candidates(circuits, n: int):
 
 
 def _fewest_mixed(G, t, poles, deadline: Deadline):
-    """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness, subsets
-    tried by size (proved minimal when every smaller one was refuted).
-    """
+    """``(verdict, k, model)``: the fewest mixed neurons of template ``t`` and a witness."""
     try:
         enc = encode(t, poles, deadline, relax=True)
     except Unfinished:
@@ -212,8 +198,8 @@ def ei_circuit(
         Names, ``CircuitClass`` or ``Pattern``; default the named circuits and, for
         :math:`G_2` of order 1 or 2, every class of ``symctl.atlas(order)``.
     timeout : float or Deadline
-        Seconds for each circuit's search (default 30, at most 3600), or a
-        :class:`~symctl._util.deadline.Deadline` bounding the whole call.
+        Seconds for each circuit's search (default 30, at most 3600), or a Deadline
+        bounding the whole call.
     progress : callable, optional
         Called with each circuit's label before its search.
 
@@ -256,11 +242,8 @@ def ei_circuit(
         try:
             label, templates = templates_of(fs, circuit)
         except ParameterError as exc:  # a class of another order, or N = 0
-            found.append(
-                EICandidate(
-                    getattr(circuit, "label", str(circuit)), None, None, f"cannot realize: {exc}"
-                )
-            )
+            name = getattr(circuit, "label", str(circuit))
+            found.append(EICandidate(name, None, None, f"cannot realize: {exc}"))
             continue
         outcome = None
         for t in templates:
@@ -276,16 +259,9 @@ def ei_circuit(
         neurons = templates[0].circuit.n_neurons
         if isinstance(outcome, tuple):
             t, k, model = outcome
-            found.append(
-                EICandidate(
-                    label,
-                    neurons,
-                    k,
-                    "decided (z3)"
-                    if model.get("proved", True)
-                    else "upper bound (z3 undecided below)",
-                )
-            )
+            proved = model.get("proved", True)
+            status = "decided (z3)" if proved else "upper bound (z3 undecided below)"
+            found.append(EICandidate(label, neurons, k, status))
             if best is None or (neurons + k, k) < best[0]:  # at a tie, fewer interneurons
                 best = ((neurons + k, k), label, t, model, neurons)
         else:
@@ -304,26 +280,13 @@ def ei_circuit(
         "neurons of each is proved by z3 (that bound is satisfiable, one fewer is not); "
         f"{label} needs {len(relays)} interneuron{'' if len(relays) == 1 else 's'}"
     )
-    return EICircuit(
-        label,
-        neurons,
-        tuple(r.source for r in relays),
-        total,
-        minimum,
-        total - minimum,
-        signs,
-        tuple(relays),
-        realization,
-        tuple(found),
-        METHOD,
-        reason,
-    )
+    mixed, cost = tuple(r.source for r in relays), total - minimum
+    args = (label, neurons, mixed, total, minimum, cost, signs, tuple(relays), realization)
+    return EICircuit(*args, tuple(found), METHOD, reason)
 
 
 def _relays(G, fs, t, model):
     """The witness's interneurons, every neuron's sign and the whole controller (exact)."""
-    from symctl.dalelaw.dale import _witness
-
     values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}
     witness = _witness(G, fs, t, {"values": values}, t.label, [], Deadline(0.0), signed=False)
@@ -336,18 +299,10 @@ def _relays(G, fs, t, model):
             continue
         sigma = 1 if 2 * pos >= len(ws) else -1
         flip = [(s.target, w / sigma) for s, w in zip(out, ws, strict=True) if w * sigma < 0]
-        name = f"I[{source}]"
-        relays.append(
-            Interneuron(
-                name,
-                source,
-                "+" if sigma > 0 else "-",
-                tuple(a for a, _ in flip),
-                tuple(w for _, w in flip),
-            )
-        )
-        signs[source] = "+" if sigma > 0 else "-"
-        signs[name] = "-"
+        name, sign = f"I[{source}]", "+" if sigma > 0 else "-"
+        targets, weights = tuple(a for a, _ in flip), tuple(w for _, w in flip)
+        relays.append(Interneuron(name, source, sign, targets, weights))
+        signs[source], signs[name] = sign, "-"
     whole = witness.realization
     if any(not all(sp.sign(w) < 0 for w in r.weights) for r in relays):  # pragma: no cover
         raise ParameterError("circuits: an interneuron's relayed weights are not all negative")

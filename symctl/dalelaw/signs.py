@@ -55,8 +55,7 @@ __all__ = ["Template", "decide", "full_pattern", "outgoing_synapses", "template"
 
 
 def __getattr__(name: str):
-    """``NAMED``: the circuits named by a word (the realizers' circuits of G2: the general, full,
-    pattern and the canonical forms), read from the registry at each access."""
+    """``NAMED``: the circuits of G2 named by a word, read from the registry at each access."""
     if name == "NAMED":
         return circuit_names(whole=False)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -73,24 +72,16 @@ class Template:
 
     Attributes
     ----------
-    label : str
-        ``"general"``, ``"controllable"``, ``"observable"`` or a pattern's text.
-    factorization : Factorization
-        :math:`G = G_3 G_2 G_1` with the sections' symbols.
-    R2 : Realization
-        :math:`G_2`'s realization in the unknowns.
-    unknowns : tuple of sympy.Symbol
-        Entries of ``R2`` that are free (nonzero); ``signed`` ones are :math:`\\pm 1`.
-    signed : tuple of sympy.Symbol
+    label, factorization, R2
+        A realizer's name or a pattern's text, :math:`G = G_3 G_2 G_1` with the sections'
+        symbols, and :math:`G_2`'s realization in the unknowns.
+    unknowns, signed : tuple of sympy.Symbol
+        The free (nonzero) entries of ``R2``; those set to :math:`\\pm 1`.
     target : tuple
-        ``(a, c)``: :math:`G_2`'s coefficients (as :func:`~symctl.realization.realization.split_proper`)
-        a pattern's ``R2`` must match (empty for a canonical form).
-    circuit : Circuit
-        The whole controller's circuit in the unknowns.
-    outgoing : dict
-        Neuron name -> its weights onto other neurons (self-dynamics, read-out exempt).
-    weights : tuple of sympy.Expr
-        Every weight of the circuit (each stays nonzero).
+        ``(a, c)`` of :math:`G_2` a pattern's ``R2`` must match (empty for a canonical form).
+    circuit, outgoing, weights
+        The whole controller's circuit, each neuron's weights onto other neurons, and
+        every weight (each stays nonzero).
     delays : str
         :math:`G_2`'s structure convention.
     """
@@ -114,9 +105,7 @@ class Template:
 
 
 def template(factorization, circuit, delays: str = "branch") -> Template:
-    """The template of ``circuit`` (a name of :data:`NAMED` or a Pattern) for ``factorization``
-    (``delays``: :math:`G_2`'s structure convention; the sections take ``"branch"``).
-    """
+    """The template of ``circuit`` (a name of ``NAMED`` or a Pattern) for ``factorization``."""
     G2 = factorization.G2
     n = G2.order
     if isinstance(circuit, str) and not get_realizer(circuit, "circuit").takes_transform:
@@ -146,19 +135,9 @@ def outgoing_synapses(circuit: Circuit) -> dict[str, tuple]:
 def _finish(label, factorization, R2, unknowns, signed, target, delays) -> Template:
     circuit = Circuit.from_structure(Structure.from_factorization(factorization, R2, delays))
     outgoing = {n: tuple(s.weight for s in out) for n, out in outgoing_synapses(circuit).items()}
-    weights = [s.weight for nr in circuit.neurons for s in (*nr.synapses, *nr.self_terms)]
-    return Template(
-        label,
-        factorization,
-        R2,
-        unknowns,
-        signed,
-        target,
-        circuit,
-        outgoing,
-        tuple(weights),
-        delays,
-    )
+    weights = tuple(s.weight for nr in circuit.neurons for s in (*nr.synapses, *nr.self_terms))
+    args = (label, factorization, R2, unknowns, signed, target, circuit, outgoing, weights)
+    return Template(*args, delays)
 
 
 def _expr(w) -> sp.Expr:
@@ -167,9 +146,8 @@ def _expr(w) -> sp.Expr:
 
 
 def to_z3(expr, env: dict, ctx=None):
-    """A SymPy rational function of ``env``'s symbols as a z3 real term (exact rationals only),
-    built through z3's C API along the expression's tree (the Python API's coercions cost seconds).
-    """
+    """A SymPy rational function of ``env``'s symbols as a z3 real term, through z3's C API
+    (the Python API's coercions cost seconds)."""
     if ctx is None:
         ctx = next(iter(env.values())).ctx if env else None
     expr = _expr(expr)
@@ -190,7 +168,7 @@ def to_z3(expr, env: dict, ctx=None):
 
 
 def _apply(make, args: list):
-    """The z3 term ``make(args)``, wrapped at once (z3 counts a reference); ``args`` live until made."""
+    """The z3 term ``make(args)``, wrapped at once (z3 counts a reference)."""
     ctx = args[0].ctx
     array = [a.as_ast() for a in args]
     if make is z3.Z3_mk_div:
@@ -200,9 +178,7 @@ def _apply(make, args: list):
 
 @dataclass(frozen=True)
 class Encoding:
-    """The z3 formula of one template; ``running`` holds a z3 call that outlived its deadline
-    (:func:`check`), during which nothing may touch the context.
-    """
+    """The z3 formula of one template; ``running``: z3 calls that outlived their deadline."""
 
     env: dict
     solver: z3.Solver
@@ -211,10 +187,8 @@ class Encoding:
     running: list = field(default_factory=list, repr=False, compare=False)
 
 
-def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed=None) -> Encoding:
-    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed);
-    :class:`~symctl._util.deadline.Unfinished` past ``deadline`` or ``MAX_TERMS``.
-    """
+def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False) -> Encoding:
+    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed)."""
     R2 = t.R2
     entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))
     symbols = {*t.sections, *t.unknowns}.union(*(_expr(w).free_symbols for w in entries))
@@ -253,16 +227,12 @@ def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed
             solver.add(z3.Or(m, rule))
         else:
             solver.add(rule)
-    for sym, value in (fixed or {}).items():
-        solver.add(env[sym] == to_z3(value, env, ctx))
     deadline.check(f"the z3 formula of {t.label}")
     return Encoding(env, solver, signs, mixed)
 
 
 def _equations(t: Template, symbols, deadline: Deadline):
-    r"""``(numerator, denominator)`` of each equation of a pattern's ``R2``, coefficient by coefficient,
-    cleared of the target's denominator (none for a canonical form).
-    """
+    """``(numerator, denominator)`` of each coefficient equation of a pattern's ``R2``."""
     if not t.target:
         return
     ring, *_ = sp.ring([*symbols, z], sp.QQ)
@@ -272,12 +242,11 @@ def _equations(t: Template, symbols, deadline: Deadline):
         yield _as_expr(p * ring.from_expr(den) - ring.from_expr(num), deadline, t.label), den
 
 
-CHUNK = 500
-"""Terms of a polynomial turned into a SymPy expression between two looks at the deadline."""
+CHUNK = 500  # terms turned into a SymPy expression between two looks at the deadline
 
 
 def _as_expr(poly, deadline: Deadline, label: str) -> sp.Expr:
-    """``poly.as_expr()`` in :data:`CHUNK`-term pieces, the deadline checked between (the same sum)."""
+    """``poly.as_expr()`` in :data:`CHUNK`-term pieces, the deadline checked between."""
     terms = poly.terms()
     parts = []
     for start in range(0, len(terms), CHUNK):
@@ -292,16 +261,14 @@ def _ms(deadline: Deadline, cap: float | None = None) -> int:
     return max(1, int(left * 1000))
 
 
-GRACE = 0.25
-"""Seconds a z3 call may run past its timeout before :func:`check` stops waiting for it."""
+GRACE = 0.25  # seconds a z3 call may run past its timeout before check stops waiting
 
 
 def check(enc: Encoding, assume, deadline: Deadline, cap: float | None = None, *, grace=GRACE):
     """``enc.solver.check(*assume)`` within the time ``deadline`` leaves (at most ``cap`` s).
 
-    z3's nonlinear core can overrun its timeout by a minute, so the call runs in a worker
-    thread and the caller waits at most ``grace`` seconds longer: then the answer is
-    ``unknown`` and the context stays busy until the call ends (:func:`idle`).
+    z3's nonlinear core can overrun its timeout by a minute, so the call runs in a thread
+    and the caller waits ``grace`` s longer at most: then ``unknown``, the context busy.
     """
     if not idle(enc, deadline):
         return z3.unknown
@@ -339,9 +306,7 @@ def idle(enc: Encoding, deadline: Deadline) -> bool:
 
 def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
     """``(verdict, assumptions)``: one z3 call per sign assignment of the multi-synapse neurons
-    (nlsat is far faster on conjunctions); ``free`` neurons may be mixed. ``"sat"`` with the
-    assignment, ``"unsat"`` when all are refuted, else ``"unknown"``.
-    """
+    (nlsat is far faster on conjunctions); ``free`` neurons may be mixed."""
     if deadline.expired() or not idle(enc, deadline):
         return "unknown", []
     names = [n for n in enc.signs if n not in free]
@@ -386,18 +351,13 @@ def _candidates(v, count: int = 6):
         q = approx.limit_denominator(den)
         if q != 0 and q not in out:
             out.append(q)
-    return out[:count] if len(out) > count else out
+    return out[:count]
 
 
 def refine(enc: Encoding, order, *, deadline: Deadline, cap: float = 0.5, keep=()) -> dict:
-    """A model with as many unknowns rational as z3 allows: each one pinned in turn.
-
-    In ``order``, each symbol is pinned to its value when a simple rational (denominator at
-    most 1000), else to the first nearby simple rational that keeps the formula satisfiable
-    (each try at most ``cap`` s), or left to the equations; pinning the free directions first
-    leaves the rest linear, so rational. ``keep``: assumptions every check keeps.
-    :class:`~symctl._util.deadline.Unfinished` when the deadline passes first.
-    """
+    """A model with as many unknowns rational as z3 allows, each in ``order`` pinned in turn
+    to a nearby simple rational that keeps the formula satisfiable (each try at most ``cap`` s);
+    pinning the free directions first leaves the rest linear, so rational."""
     s = enc.solver
     pinned: list = list(keep)
     model = s.model()
@@ -418,8 +378,8 @@ def refine(enc: Encoding, order, *, deadline: Deadline, cap: float = 0.5, keep=(
                 pinned.append(pin)
                 model = s.model()
                 break
-    m = model  # satisfies every pin: each was read off it, or checked and it was re-read
-    values = {sym: value_of(m.eval(x, model_completion=True)) for sym, x in enc.env.items()}
-    signs = {name: z3.is_true(m.eval(b, model_completion=True)) for name, b in enc.signs.items()}
-    mixed = {name: z3.is_true(m.eval(b, model_completion=True)) for name, b in enc.mixed.items()}
+    # the model satisfies every pin: each was read off it, or checked and it was re-read
+    values = {sym: value_of(model.eval(x, model_completion=True)) for sym, x in enc.env.items()}
+    signs = {n: z3.is_true(model.eval(b, model_completion=True)) for n, b in enc.signs.items()}
+    mixed = {n: z3.is_true(model.eval(b, model_completion=True)) for n, b in enc.mixed.items()}
     return {"values": values, "signs": signs, "mixed": mixed}

@@ -1,11 +1,9 @@
 r"""A numeric search for an E/I witness of the general circuit, made exact.
 
-The general circuit's realizations are :math:`(Q F_0 Q^{-1},\ Q H_0,\ M_0 Q^{-1})` of the
-controllable canonical form of :math:`G_2`. :func:`search_general` maximizes the **Dale
-margin**, the least over neurons of :math:`\max(\min_k w_k,\ \min_k -w_k)/\max_k |w_k|`
-over their outgoing weights (positive exactly when E/I), by Nelder-Mead from seeded
-starts; a positive margin is rounded to rationals, rebuilt exactly and every sign checked.
-Only z3 proves that none exists (:mod:`symctl.dalelaw.signs`).
+Over :math:`(Q F_0 Q^{-1}, Q H_0, M_0 Q^{-1})` of :math:`G_2`'s controllable canonical form,
+Nelder-Mead maximizes the **Dale margin**, the least over neurons of
+:math:`\max(\min_k w_k, \min_k -w_k)/\max_k |w_k|` (positive exactly when E/I); a positive
+margin is rounded to rationals, rebuilt exactly and every sign checked.
 """
 
 from __future__ import annotations
@@ -60,23 +58,15 @@ def _canonical(a, c):
 
 
 def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
-    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None.
-
-    ``C`` are 1 but the first, tried with both signs; up to ``starts`` Nelder-Mead runs, each
-    stopped (and the search given up) when ``deadline`` passes.
-    """
+    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None (``C``
+    are 1 but the first, tried with both signs; up to ``starts`` runs, until ``deadline``)."""
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
     c_syms = (*fs.sensor_C, *fs.actuator_C)
     n = fs.G2.order
     k = len(eps_syms)
-    names = list(t.outgoing)
     order = [*t.unknowns, *eps_syms, *c_syms]
-    fns = {
-        name: sp.lambdify(order, list(ws) or [1.0], "numpy")
-        for name, ws in t.outgoing.items()
-        if ws
-    }
+    fns = [sp.lambdify(order, list(ws), "numpy") for ws in t.outgoing.values() if ws]
     rng = np.random.default_rng(seed)
 
     def values(theta, sign):
@@ -92,16 +82,15 @@ def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0)
         except np.linalg.LinAlgError:
             return None
         F, H, M = Q @ F0 @ Qi, Q @ H0, M0 @ Qi
-        return [*F.ravel(), *H, *M, *eps, *cs], eps, cs, Q
+        return [*F.ravel(), *H, *M, *eps, *cs], Q
 
     def margin(theta, sign):
         got = values(theta, sign)
         if got is None:
             return -np.inf
-        vals, *_ = got
-        groups = [np.atleast_1d(np.asarray(fns[m](*vals), dtype=float)) for m in names if m in fns]
-        cond = np.linalg.cond(got[3])
-        return dale_margin(groups) - 1e-4 * np.log10(max(cond, 1.0))
+        vals, Q = got
+        groups = [np.atleast_1d(np.asarray(f(*vals), dtype=float)) for f in fns]
+        return dale_margin(groups) - 1e-4 * np.log10(max(np.linalg.cond(Q), 1.0))
 
     def stop(_x):  # Nelder-Mead's callback, once per iteration
         if deadline.expired():

@@ -1,25 +1,20 @@
 r"""Fitting a circuit to recorded firing rates: :func:`fit`.
 
-The paper's closing remark: "if we have data from the biological neuron(s), we can tune
-the controller circuit to match this data while preserving the model's match to
-behavioral observations". Every realization in the family (:math:`\epsilon`, :math:`C`,
-the similarity :math:`P`, the class) implements the same :math:`G` *exactly*, so the fit
-moves only inside the set of circuits that are the optimal controller.
+The paper's closing remark: tune the controller circuit to neural data while keeping the
+behaviour. Every realization in the family (:math:`\epsilon`, :math:`C`, the similarity
+:math:`P`, the class) implements the same :math:`G` *exactly*.
 
-Method. Each neuron's trace is a linear filter of the loop's :math:`\delta_f`, computed
-once (:mod:`symctl.fitting.fitmodel`, exact Jacobians). Least squares minimises the sum
-over recorded neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded
-points (for the general class each start's :math:`P^{-1}` rows of recorded neurons solved
-linearly first); Dale's-law ``signs`` add penalty residuals and are checked exactly at
-the end. The values are rounded to rationals (denominators at most ``10**6``), the exact
-realization is built and :func:`~symctl.realization.check.check_realization` proves it.
-Identifiability is structural, decided without the data (:mod:`symctl.fitting.identify`).
-Standard errors are :math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2
-= \mathrm{RSS}/(m - \mathrm{rank})`, the pseudo-inverse kept to the structural rank.
-Confidence intervals and prediction bands are a parametric bootstrap
-(:mod:`symctl.fitting.uncertainty`): each refit takes Gauss-Newton steps from the fitted
-values (minimum-norm, so structurally free directions stay put), or the fit's
-Levenberg-Marquardt when a step fails to descend.
+Method. Each neuron's trace is a linear filter of the loop's :math:`\delta_f`
+(:mod:`symctl.fitting.fitmodel`, exact Jacobians). Least squares minimises the sum over
+recorded neurons of :math:`\|(\hat n - n)/\mathrm{rms}(n)\|^2` from ``starts`` seeded points
+(for the general class the recorded rows of :math:`P^{-1}` solved linearly first); Dale's-law
+``signs`` add penalty residuals and are checked exactly at the end. The values are rounded
+to rationals (denominators at most ``10**6``) and the exact realization proved by
+:func:`~symctl.realization.check.check_realization`. Standard errors are
+:math:`\sqrt{\mathrm{diag}(\hat\sigma^2 (J^T J)^+)}`, :math:`\hat\sigma^2 = \mathrm{RSS}/(m -
+\mathrm{rank})`, the pseudo-inverse kept to the structural rank (:mod:`symctl.fitting.identify`);
+intervals and bands are a parametric bootstrap (:mod:`symctl.fitting.uncertainty`) whose
+refits take minimum-norm Gauss-Newton steps, or Levenberg-Marquardt when a step fails.
 """
 
 from __future__ import annotations
@@ -54,13 +49,7 @@ from symctl.fitting.fitargs import (
 )
 from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.fitting.identify import _structural
-from symctl.fitting.uncertainty import (
-    Prediction,
-    Uncertainty,
-    _gauss_newton,
-    _replicates,
-    _summary,
-)
+from symctl.fitting.uncertainty import Prediction, Uncertainty, _gauss_newton, _replicates, _summary
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.realization.check import check_realization
@@ -68,12 +57,9 @@ from symctl.realization.realization import Realization, controller_realization
 
 __all__ = ["MAX_BOOTSTRAP", "MAX_FIT_STEPS", "MAX_NEURONS", "MAX_STARTS", "FitResult", "fit"]
 
-MAX_STARTS = 1000
-"""Most starting points of one fit."""
-MAX_BOOTSTRAP = 10_000
-"""Most refits of the bootstrap of one fit."""
-DENOMINATOR = 10**6
-"""The fitted values are rationals with denominators at most this."""
+MAX_STARTS = 1000  # most starting points of one fit
+MAX_BOOTSTRAP = 10_000  # most refits of the bootstrap of one fit
+DENOMINATOR = 10**6  # the fitted values are rationals with denominators at most this
 _MARGIN = 1e-4  # a signed weight keeps this distance from 0, so rounding cannot flip it
 _EPS_BOUND = 0.999  # sections stay stable: |epsilon| < 1
 _RANK_RTOL = 1e-8  # the numerical rank of the covariance (standard errors)
@@ -250,47 +236,38 @@ class FitResult(ArrayValue):
 
     Attributes
     ----------
-    realization : Realization
-        The whole controller :math:`G_3 G_2 G_1`, exact rationals.
-    realization_G2 : Realization
-        Its :math:`G_2` part.
+    realization, realization_G2 : Realization
+        The whole controller :math:`G_3 G_2 G_1` and its :math:`G_2` part, exact rationals.
     circuit : Circuit
         The fitted circuit (exact weights).
     circuit_class : str
-        ``"general"``, ``"controllable"``, ``"observable"`` or an atlas label.
+        A realizer's name or an atlas label.
     params : mapping of str to sympy.Rational
         The fitted values, exact (``epsilon_1``, ``C_1``, ``Pinv[i,j]``, ...; the old
         ``Q[i,j]`` warn); ``P`` is ``realization_G2.params["P"]``.
     stderr : mapping of str to float or None
         The standard error of each parameter; None where it is not identifiable.
-    identifiable : mapping of str to bool
-        Per parameter, structurally (``identifiability``): never from the fitted point.
-    neuron_identifiable : mapping of str to bool
-        Per neuron of the circuit: is its trace pinned down by the recorded ones? The
-        same for clean and noisy data.
+    identifiable, neuron_identifiable : mapping of str to bool
+        Per parameter, and per neuron of the circuit, structurally (never from the
+        fitted point: the same for clean and noisy data).
     residuals : mapping of str to float
         RMS of data minus fit, per recorded neuron [spikes/s].
-    data : mapping of str to array
-        The recorded traces.
-    t : array
-        Time of each sample.
+    data, t
+        The recorded traces and the time of each sample.
     proof : RealizationCheck
         The exact :func:`~symctl.realization.check.check_realization` against :math:`G`.
     cost : float
         Half the sum of squared weighted residuals at the exact values.
     starts : int
         Starting points tried.
-    alternatives : tuple of (str, float)
-        ``(class, cost)`` of every class fitted, best first.
-    skipped : tuple of (str, str)
-        ``(class, reason)`` of the listed classes that could not take the data.
+    alternatives, skipped : tuple of (str, float), tuple of (str, str)
+        ``(class, cost)`` of every class fitted, best first; ``(class, reason)`` of those
+        that could not take the data.
     identifiability : Identifiability
-        The structural verdict behind ``identifiable`` and ``neuron_identifiable``, with
-        its method and evidence (:func:`~symctl.fitting.identify.identifiability`).
+        The structural verdict behind ``identifiable`` and ``neuron_identifiable``.
     uncertainty : Uncertainty
-        Practical identifiability (:mod:`symctl.fitting.uncertainty`): the parameters'
-        confidence intervals (``intervals``), the neurons' prediction bands (in
-        :meth:`predict`) and which neurons these data determine (``neuron_determined``).
+        Practical identifiability: the parameters' ``intervals``, the neurons' bands
+        (:meth:`predict`) and which neurons these data determine (``neuron_determined``).
 
     Examples
     --------
@@ -350,9 +327,8 @@ class FitResult(ArrayValue):
         return self.uncertainty.determined
 
     def predict(self) -> Prediction:
-        """Every neuron's trace at the fitted values, ``{name: (steps,) array}`` (a dict), with
-        its band: ``.lower[name]`` and ``.upper[name]`` at ``.level`` (NaN if not identifiable).
-        """
+        """Every neuron's trace at the fitted values (a dict), with its band ``.lower[name]``,
+        ``.upper[name]`` at ``.level`` (NaN if not identifiable)."""
         u = self.uncertainty
         return Prediction(self._predicted, self._each(u.lower), self._each(u.upper), u.level)
 
@@ -469,47 +445,38 @@ def fit(
     Parameters
     ----------
     traces : mapping of str to (steps,) array
-        Recorded firing-rate changes, keyed by the circuit's neuron names
-        (:attr:`Circuit.neurons`: ``"G1.x1"``, ``"G2.x1"``, ``"G2.y"``, ...), one
-        sample per step of the closed loop's response to ``disturbance``.
+        Recorded firing-rate changes by neuron name (``"G1.x1"``, ``"G2.x1"``, ``"G2.y"``,
+        ...), one sample per step of the closed loop's response to ``disturbance``.
     G : Gains or DiscreteTF
-        :class:`~symctl.design.lqr.Gains` (their controller and plant), or a
-        numeric SISO controller together with ``plant``.
+        Gains (their controller and plant), or a numeric SISO controller with ``plant``.
     sensor_delay, actuator_delay : int
         Sections of :math:`G_1` and :math:`G_3`.
     circuit : str, CircuitClass or list of them, default "general"
-        ``"general"`` (free :math:`P`), ``"controllable"``, ``"observable"`` or an
-        order-2 atlas class with a closed form (``"A1"``, ... or a CircuitClass); a list
-        fits each and keeps the best (``skipped``: those that cannot take the data);
-        ``"all"``: the three and the atlas's closed-form classes.
+        A realizer's name or an order-2 atlas class with a closed form (``"A1"``, ...); a
+        list fits each and keeps the best; ``"all"``: the named and closed-form classes.
     disturbance, steps, start, length
-        As in :func:`~symctl.neural.simulate.closed_loop_response` (default the
-        unit pulse on steps 5..14 of 50).
+        As in :func:`~symctl.neural.simulate.closed_loop_response`.
     plant : optional
         The plant, required for a DiscreteTF ``G``.
     C : number, optional
-        Fix every section gain to this value (the paper's figures use 1); else fitted.
+        Fix every section gain to this value; else fitted.
     signs : mapping of str to {"+", "-"}, optional
         Dale's law: every outgoing synapse of the neuron has this sign.
     starts : int
-        Seeded starting points, at most ``MAX_STARTS`` (1000).
+        Seeded starting points, at most ``MAX_STARTS``.
     rng : int, numpy Generator or None, default 0
         Seeds the starts and the bootstrap (``seed=`` is its deprecated name).
     workers : int, scheduler : str, optional
-        Run the starts (and classes) and the bootstrap's refits on the atlas's dask path
-        (local processes, or a scheduler's address).
+        Run the starts and the bootstrap's refits on dask (local processes, or a scheduler).
     bootstrap : int, default 200
-        Refits of the parametric bootstrap behind the confidence intervals and prediction
-        bands (:mod:`symctl.fitting.uncertainty`), at most ``MAX_BOOTSTRAP``; 0: none.
+        Refits of the parametric bootstrap, at most ``MAX_BOOTSTRAP``; 0: none.
     level : float, default 0.95
         Confidence level of the intervals and bands, in (0, 1).
     outputs : matrix-like, optional
-        ``1 x n``: ``G`` is a compensator fed by the measured output ``y = C x`` (the LQG
-        compensator of :func:`~symctl.lqg_tf`, with numbers), which is then the circuit's
-        input trace; ``plant`` required.
+        ``1 x n``: ``G`` is a compensator fed by the measured output ``y = C x`` (a numeric
+        :func:`~symctl.lqg_tf`), which is then the circuit's input trace; ``plant`` required.
     progress : callable, optional
-        Called with the name of each stage as it starts (each class's starts, the structural
-        identifiability, the bootstrap's refits).
+        Called with the name of each stage as it starts.
 
     Returns
     -------
@@ -553,7 +520,6 @@ def fit(
     bootstrap = bounded_int(bootstrap, "bootstrap", 0, MAX_BOOTSTRAP)
     level = bounded_number(level, "level", 0.01, 0.999)
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    gen = rng
     if C is not None:
         if isinstance(C, bool) or not isinstance(C, int | float | Fraction | sp.Rational):
             raise SymctlTypeError(f"C: expected a number, got {C!r}")
@@ -575,7 +541,7 @@ def fit(
                 skipped.append((_label(cls), str(exc)))  # this class cannot take the data
                 continue
             step(f"{_label(cls)}: {starts} starts")
-            points = _start_points(problem, model, starts, gen)
+            points = _start_points(problem, model, starts, rng)
             if pool is None:
                 pool = open_pool(workers, scheduler)
             runs = _on_pool(pool, workers, _run_starts, (problem,), points)
@@ -585,7 +551,7 @@ def fit(
                 "circuit: no class can take these traces: "
                 + "; ".join(f"{label}: {why}" for label, why in skipped)
             )
-        boot = (bootstrap, level, gen, pool, max(1, int(workers)), step)
+        boot = (bootstrap, level, rng, pool, max(1, int(workers)), step)
         return _best(fits, t, starts, tuple(skipped), boot)
     finally:
         if pool is not None:
@@ -617,19 +583,16 @@ def _rational(x: float) -> sp.Rational:
     return nearest_rational(x, DENOMINATOR)
 
 
-def _exact(model: TraceModel, problem: _Problem, neurons, theta: np.ndarray):
+def _exact(model: TraceModel, problem: _Problem, theta: np.ndarray):
     """The exact circuit at ``theta`` rounded to rationals, or None if it breaks a constraint."""
     q = np.array([float(_rational(v)) for v in theta])
     eps, cs, Q = model.split(q)
     fs = model.factorization([_rational(e) for e in eps], [_rational(c) for c in cs])
-    Qx = (
-        None
-        if Q is None
-        else sp.Matrix(model.order, model.order, [_rational(v) for v in Q.ravel()])
-    )
-    if Qx is not None and Qx.det() == 0:
-        return None
-    R2 = model.realize(fs, Qx)
+    if Q is not None:
+        Q = sp.Matrix(model.order, model.order, [_rational(v) for v in Q.ravel()])
+        if Q.det() == 0:
+            return None
+    R2 = model.realize(fs, Q)
     circuit = Circuit.from_structure(Structure.from_factorization(fs, R2))
     for name, s in problem.signs:  # Dale's law, checked exactly on the circuit
         if any(sp.sign(syn.weight) * s < 0 for syn in circuit.neuron(name).axon):
@@ -648,7 +611,7 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     chosen, table = None, []
     for cls, model, neurons, problem, runs in fits:
         for cost, theta in runs:
-            built = _exact(model, problem, neurons, theta)
+            built = _exact(model, problem, theta)
             if built is not None:
                 table.append((_label(cls), cost))
                 if chosen is None or cost < chosen[0]:
@@ -665,10 +628,8 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     proof = check_realization(R, model.G)
     if not proof:  # pragma: no cover - the family realizes G by construction
         raise NotRealizableError(f"circuit: the fitted {_label(cls)} circuit does not realize G")
-    vals, jacs = model.traces(q, problem.u)
-    w = _weights(problem.data)
-    r = np.concatenate([w[n] * (vals[n] - v) for n, v in problem.data])
-    J = np.vstack([w[n] * jacs[n] for n, _ in problem.data])
+    vals = model.traces(q, problem.u)[0]
+    r, J = _residual_fns(replace(problem, signs=()), model)(q)  # without the sign penalty
     recorded = [n for n, _ in problem.data]
     bootstrap, level, gen, pool, workers, step = boot
     step("structural identifiability")
@@ -690,24 +651,8 @@ def _best(fits, t, starts, skipped, boot) -> FitResult:
     predicted = {n: vals[n] for n in neurons}
     values = dict(zip(model.names, (_rational(v) for v in q), strict=True))
     alternatives = tuple(sorted(table, key=lambda a: a[1]))
-    return FitResult(
-        controller_realization(fs, R2),
-        R2,
-        circuit,
-        _label(cls),
-        values,
-        stderr,
-        params_ok,
-        cells_ok,
-        {n: float(np.sqrt(np.mean((vals[n] - v) ** 2))) for n, v in problem.data},
-        dict(problem.data),
-        t,
-        proof,
-        0.5 * float(r @ r),
-        starts,
-        alternatives,
-        predicted,
-        skipped,
-        verdict,
-        _summary(model.names, params_ok, cells_ok, predicted, refits, level),
-    )
+    residuals = {n: float(np.sqrt(np.mean((vals[n] - v) ** 2))) for n, v in problem.data}
+    summary = _summary(model.names, params_ok, cells_ok, predicted, refits, level)
+    found = (R, R2, circuit, _label(cls), values, stderr, params_ok, cells_ok, residuals)
+    run = (dict(problem.data), t, proof, 0.5 * float(r @ r), starts, alternatives, predicted)
+    return FitResult(*found, *run, skipped, verdict, summary)

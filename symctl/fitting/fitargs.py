@@ -1,7 +1,4 @@
-"""The arguments of :func:`symctl.fit`: validated at the public boundary, errors naming them.
-
-Also the closed loop the traces answer (:math:`\\delta_f` under the disturbance,
-computed once) and the pool the starts run on (the atlas's dask path).
+"""The arguments of :func:`symctl.fit`, validated, and the closed loop the traces answer.
 
 >>> from symctl.fitting.fitargs import _circuit_arg
 >>> _circuit_arg("general")
@@ -27,15 +24,12 @@ from symctl.realization.realizers import circuit_names
 
 __all__: list[str] = []
 
-MAX_NEURONS = 64
-"""Most recorded neurons of one fit."""
-MAX_FIT_STEPS = 100_000
-"""Most samples per trace."""
+MAX_NEURONS = 64  # most recorded neurons of one fit
+MAX_FIT_STEPS = 100_000  # most samples per trace
 
 
 def _loop(G, plant, disturbance, window, outputs=None) -> tuple[DiscreteTF, np.ndarray, np.ndarray]:
-    """``(exact G, its input trace, t)`` of the closed loop under ``disturbance``: the first
-    state, or the first measured output ``y = C x`` of a compensator fed by ``outputs``."""
+    """``(exact G, its input trace, t)`` of the closed loop under ``disturbance``."""
     if outputs is not None and not isinstance(G, DiscreteTF):
         raise SymctlTypeError("outputs: a controller fed by outputs is a DiscreteTF G (lqg_tf)")
     if isinstance(G, Gains):
@@ -122,13 +116,13 @@ def _circuit_arg(circuit) -> list:
         from symctl.circuitatlas.atlas import atlas
 
         closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
-        return [*_named(), *closed]
+        return [*circuit_names(whole=False), *closed]
     items = list(circuit) if isinstance(circuit, list | tuple) else [circuit]
     if not items or len(items) > 100:
         raise ParameterError(f"circuit: expected 1 to 100 classes, got {len(items)}")
     out = []
     for c in items:
-        if isinstance(c, CircuitClass) or c in _named():
+        if isinstance(c, CircuitClass) or c in circuit_names(whole=False):
             out.append(c)
         elif isinstance(c, str) and c[:1] == "A" and c[1:].isdigit():
             from symctl.circuitatlas.atlas import atlas
@@ -141,17 +135,12 @@ def _circuit_arg(circuit) -> list:
             out.append(classes[c])
         elif isinstance(c, str):
             raise ParameterError(
-                f"circuit: expected {', '.join(map(repr, _named()))} or an "
+                f"circuit: expected {', '.join(map(repr, circuit_names(whole=False)))} or an "
                 f"atlas label such as 'A1', got {c!r}"
             )
         else:
             raise SymctlTypeError(f"circuit: expected a class name or CircuitClass, got {c!r}")
     return out
-
-
-def _named() -> tuple[str, ...]:
-    """The classes named by a word: the registry's circuits of G2 (a transform fitted, or fixed)."""
-    return circuit_names(whole=False)
 
 
 def _one_class(circuit, what: str):

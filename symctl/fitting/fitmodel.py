@@ -26,19 +26,9 @@ from symctl.realization.factorization import Factorization, factor
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import REALIZERS, circuit_names, get_realizer
 
-__all__ = ["FIXED_CLASSES", "TraceModel", "fixed_classes", "section_name"]
+__all__ = ["FIXED_CLASSES", "TraceModel", "section_name"]
 
 FIXED_CLASSES: tuple[str, ...]  # read from the registry at each access (__getattr__)
-
-
-def fixed_classes() -> tuple[str, ...]:
-    """The registry's fixed forms (no transform): no similarity parameters, only epsilons and Cs.
-
-    >>> from symctl.fitting.fitmodel import fixed_classes
-    >>> fixed_classes()
-    ('controllable', 'observable')
-    """
-    return tuple(k for k in circuit_names(whole=False) if not REALIZERS[k].takes_transform)
 
 
 def transformed(circuit) -> bool:
@@ -47,9 +37,14 @@ def transformed(circuit) -> bool:
 
 
 def __getattr__(name: str):
-    """``FIXED_CLASSES``: :func:`fixed_classes`, read from the registry at each access."""
+    """``FIXED_CLASSES``: the registry's forms without a transform (only epsilons and Cs fitted).
+
+    >>> from symctl.fitting.fitmodel import FIXED_CLASSES
+    >>> FIXED_CLASSES
+    ('controllable', 'observable')
+    """
     if name == "FIXED_CLASSES":
-        return fixed_classes()
+        return tuple(k for k in circuit_names(whole=False) if not transformed(k))
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -69,10 +64,8 @@ def _filter1(e: float, c: float, v: np.ndarray) -> np.ndarray:
 
 
 def _state_filter(F: np.ndarray, v: np.ndarray) -> np.ndarray:
-    r""":math:`x(t+1) = F x(t) + e_n v(t)` from rest, ``F`` companion (controllable canonical):
-    :math:`x_i(t) = w(t + i - 1)`, :math:`w = v / \det(zI - F)` delayed ``n`` steps.
-    ``v`` ``(steps, k)`` -> ``(steps, n, k)``.
-    """
+    r""":math:`x(t+1) = F x(t) + e_n v(t)` from rest, ``F`` companion: :math:`x_i(t) = w(t + i - 1)`,
+    :math:`w = v / \det(zI - F)` delayed ``n`` steps; ``(steps, k)`` -> ``(steps, n, k)``."""
     steps, n = v.shape[0], F.shape[0]
     den = np.r_[1.0, -F[-1, ::-1]]
     padded = np.concatenate([v, np.zeros((n - 1, v.shape[1]))])
@@ -244,9 +237,7 @@ def _symbolic_realization(circuit, G2, n: int) -> Realization:
 
 
 def _lambdified(mat: sp.Matrix, free: tuple):
-    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over the symbols ``free``
-    (``.exact``: ``mat`` and its gradients, SymPy).
-    """
+    """``theta -> (values (r, c), gradients (r, c, q))`` of ``mat`` over ``free`` (``.exact``: SymPy)."""
     grads = [mat.diff(s) for s in free]
     f = sp.lambdify([free], [mat, *grads], "numpy", cse=True)
     r, c = mat.shape

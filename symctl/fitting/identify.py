@@ -51,8 +51,7 @@ from symctl.proof import Verdict
 
 __all__ = ["POINTS", "Identifiability", "identifiability"]
 
-POINTS = 2
-"""Random integer points at which the ranks are computed."""
+POINTS = 2  # random integer points at which the ranks are computed
 _FIELD = 2**62  # coordinates uniform in 1..2**62 (Schwartz-Zippel's |S|)
 
 
@@ -60,11 +59,13 @@ def _q(x) -> fmpq:
     return fmpq(int(x.p), int(x.q))
 
 
-def _objects(a, shape=None) -> np.ndarray:
-    """An object array of fmpq: ``a`` converted, or zeros of ``shape``."""
-    if shape is not None:
-        return np.full(shape, fmpq(0), dtype=object)
+def _objects(a) -> np.ndarray:
+    """``a`` (SymPy rationals) as an object array of fmpq."""
     return np.vectorize(_q, otypes=[object])(np.array(a, dtype=object))
+
+
+def _zeros(shape) -> np.ndarray:
+    return np.full(shape, fmpq(0), dtype=object)
 
 
 def _degrees(model: TraceModel) -> tuple[int, int]:
@@ -95,9 +96,8 @@ def _at(mat: sp.Matrix, grads: list, subs: dict):
 
 
 def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
-    """Per neuron, the exact ``(W, p)`` sensitivity of its Markov parameters ``h(1..W)`` at
-    the integer point ``theta`` (the recursion of ``TraceModel.traces``, impulse in); None at a pole.
-    """
+    """Per neuron, the exact ``(W, p)`` sensitivity of its Markov parameters ``h(1..W)`` at the
+    integer point ``theta`` (``TraceModel.traces`` with an impulse in); None at a pole."""
     p, k, n = model.n_params, model.n_sections, model.order
     F0, H0, free = model.exact
     subs = {s: sp.Integer(v) for s, v in zip(free, theta, strict=False)}
@@ -112,7 +112,7 @@ def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
     def chain(side, offset, count, v, dv):
         for j in range(count):
             e, c = th[offset + j], cs[offset + j]
-            x, dx = _objects(None, W + 1), _objects(None, (W + 1, p))
+            x, dx = _zeros(W + 1), _zeros((W + 1, p))
             for t in range(W):
                 x[t + 1] = e * x[t] + c * v[t]
                 dx[t + 1] = e * dx[t] + c * dv[t]
@@ -123,11 +123,11 @@ def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
             v, dv = x, dx
         return v, dv
 
-    u = _objects(None, W + 1)
+    u = _zeros(W + 1)
     u[0] = fmpq(1)
-    y1, dy1 = chain("G1", 0, model.sensor_delay, u, _objects(None, (W + 1, p)))
+    y1, dy1 = chain("G1", 0, model.sensor_delay, u, _zeros((W + 1, p)))
     F, H = _objects(F0.tolist()), _objects(H0.tolist())[:, 0]
-    xc, dxc = _objects(None, (W + 1, n)), _objects(None, (W + 1, n, p))
+    xc, dxc = _zeros((W + 1, n)), _zeros((W + 1, n, p))
     for t in range(W):
         xc[t + 1] = F.dot(xc[t]) + H * y1[t]
         dxc[t + 1] = F.dot(dxc[t]) + np.outer(H, dy1[t])
@@ -211,19 +211,15 @@ def _structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, ge
 class Identifiability(ArrayValue, Verdict):
     r"""Which parameters and neurons a set of recorded neurons pins down, structurally.
 
-    Truthy when every neuron's trace is identifiable. Proved when ``exact`` (full rank);
-    otherwise evidence with the Schwartz-Zippel ``error_bound`` (:mod:`symctl.fitting.identify`).
+    Truthy when every neuron's trace is identifiable (method: :mod:`symctl.fitting.identify`).
 
     Attributes
     ----------
     recorded : tuple of str
-    rank : int
-        Generic rank of the sensitivity of the recorded traces to the parameters.
-    n_params : int
-    params : mapping of str to bool
-        Identifiable parameters.
-    neurons : mapping of str to bool
-        Every neuron of the circuit: is its trace pinned down by the recorded ones?
+    rank, n_params : int
+        Generic rank of the recorded traces' sensitivity to the parameters, and their number.
+    params, neurons : mapping of str to bool
+        Per parameter, and per neuron of the circuit: is it pinned down by the recorded ones?
     evidence : str
         What backs the verdicts: a proof, or the Schwartz-Zippel bound.
     exact : bool
@@ -255,9 +251,7 @@ class Identifiability(ArrayValue, Verdict):
     error_bound: float = 0.0
 
     def __post_init__(self) -> None:
-        params = RenamedKeys(
-            self.params, renamed_param, "Identifiability.params"
-        )  # Q[i,j]: old name
+        params = RenamedKeys(self.params, renamed_param, "Identifiability.params")  # Q[i,j]: old
         object.__setattr__(self, "params", params)
         object.__setattr__(self, "neurons", MappingProxyType(dict(self.neurons)))
 
@@ -289,8 +283,7 @@ def identifiability(
 ) -> tuple[Identifiability, ...]:
     r"""Which parameters, and which neurons' traces, each set of recorded neurons pins down.
 
-    Structurally: exact ranks at random integer points of the parameter space, before and
-    independent of any data (method and error bound: :mod:`symctl.fitting.identify`).
+    Structurally, independent of any data (method and error bound: :mod:`symctl.fitting.identify`).
 
     Parameters
     ----------
@@ -299,8 +292,7 @@ def identifiability(
     G, sensor_delay, actuator_delay, circuit, disturbance, plant, C, steps, start, length
         As in :func:`fit` (one class).
     rng : int, numpy Generator or None, default 0
-        Seeds the random points (``seed=`` is its deprecated name); the verdicts do not
-        depend on it, except with the probability ``error_bound``.
+        Seeds the random points (``seed=`` is its deprecated name).
 
     Returns
     -------

@@ -1,13 +1,11 @@
 r"""Recorded firing-rate traces: the data :func:`symctl.fit` takes, read from CSV or NPZ.
 
-The format (``docs/fitting.md``): a time column ``t`` (uniform steps of the plant's
-sampling time from 0), optionally ``disturbance`` (the force disturbance per step; else
-the default unit pulse), and one column per recorded neuron, named as
-:attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>` names them, holding its
-firing-rate change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
-``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the
-same as arrays and 0-d string arrays. Nothing read is evaluated. :func:`synthetic_traces`
-simulates a hidden random realization, with noise.
+The format (``docs/fitting.md``): a time column ``t`` (uniform steps from 0), optionally
+``disturbance`` (per step; else the default unit pulse), and one column per recorded neuron
+(named as :attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>`), its firing-rate
+change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
+``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the same
+as arrays and 0-d string arrays. Nothing read is evaluated.
 """
 
 from __future__ import annotations
@@ -30,9 +28,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Traces", "read_traces", "synthetic_traces"]
 
-MAX_FILE_BYTES = 64 * 2**20
-"""Largest data file read."""
-_KEYS = ("circuit", "sensor_delay", "actuator_delay")
+MAX_FILE_BYTES = 64 * 2**20  # largest data file read
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,10 +43,8 @@ class Traces(ArrayValue, DictMixin):
         Per neuron, its firing-rate change.
     disturbance : (steps,) array or None
         The force disturbance per step (None: the default unit pulse).
-    meta : mapping of str to str
-        The file's ``key: value`` lines.
-    hidden : mapping of str to sympy.Rational
-        The hidden parameters of :func:`synthetic_traces` (empty for data read).
+    meta, hidden : mapping
+        The file's ``key: value`` lines; :func:`synthetic_traces`'s hidden parameters.
 
     Examples
     --------
@@ -110,27 +104,6 @@ class Traces(ArrayValue, DictMixin):
         return path
 
 
-def _check(t, traces, disturbance, source: str) -> None:
-    if t.ndim != 1 or t.size < 2:
-        raise DimensionError(f"{source}: column 't' needs at least 2 samples, got {t.size}")
-    dt = np.diff(t)
-    if not np.all(np.isfinite(t)) or dt[0] <= 0 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
-        raise ParameterError(f"{source}: column 't' must increase in equal steps")
-    for name, v in [
-        *traces.items(),
-        *([("disturbance", disturbance)] if disturbance is not None else []),
-    ]:
-        if v.shape != t.shape:
-            raise DimensionError(
-                f"{source}: column {name!r} has {v.size} samples, 't' has {t.size}"
-            )
-        bad = np.flatnonzero(~np.isfinite(v))
-        if bad.size:
-            raise ParameterError(
-                f"{source}: column {name!r} is not finite (NaN or inf) at row {int(bad[0])}"
-            )
-
-
 def read_traces(path) -> Traces:
     r"""Read recorded traces from a CSV or NPZ file (format: :mod:`symctl.fitting.traces`).
 
@@ -188,7 +161,22 @@ def read_traces(path) -> Traces:
             f"path: {p.name} has {len(cols)} neurons and {t.size} steps; at most {MAX_NEURONS} "
             f"and {MAX_FIT_STEPS}"
         )
-    _check(t, cols, disturbance, f"path: {p.name}")
+    source = f"path: {p.name}"
+    if t.ndim != 1 or t.size < 2:
+        raise DimensionError(f"{source}: column 't' needs at least 2 samples, got {t.size}")
+    dt = np.diff(t)
+    if not np.all(np.isfinite(t)) or dt[0] <= 0 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
+        raise ParameterError(f"{source}: column 't' must increase in equal steps")
+    for name, v in (cols if disturbance is None else {**cols, "disturbance": disturbance}).items():
+        if v.shape != t.shape:
+            raise DimensionError(
+                f"{source}: column {name!r} has {v.size} samples, 't' has {t.size}"
+            )
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ParameterError(
+                f"{source}: column {name!r} is not finite (NaN or inf) at row {int(bad[0])}"
+            )
     return Traces(t, cols, disturbance, meta)
 
 
@@ -263,9 +251,9 @@ def synthetic_traces(
 ) -> Traces:
     r"""Every neuron's trace in a hidden random realization of ``G``, with noise.
 
-    The paper's recipe (:math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`,
-    every :math:`C` = ``C``, a random well-conditioned rational :math:`P` for the general
-    class), plus seeded Gaussian noise of ``noise`` times each trace's RMS.
+    :math:`\epsilon` on the grid :math:`k/1000` in :math:`(-0.9, 0.9)`, every :math:`C` =
+    ``C``, a random rational :math:`P` for the general class; seeded Gaussian noise of
+    ``noise`` times each trace's RMS.
 
     Parameters
     ----------
@@ -303,28 +291,20 @@ def synthetic_traces(
         raise ParameterError(f"C: expected a finite nonzero number, got {C!r}")
     if isinstance(noise, bool) or not isinstance(noise, int | float) or not 0 <= noise <= 10:
         raise ParameterError(f"noise: expected a number in [0, 10], got {noise!r}")
-    gen = rng
     window = _window(steps, DEFAULT_START, DEFAULT_LENGTH)
     tf, u, t = _loop(G, plant, disturbance, window)
     model = TraceModel.build(tf, sensor_delay, actuator_delay, cls, None)
     k = model.n_sections
-    eps = [sp.Rational(int(gen.integers(-899, 900)), 1000) for _ in range(k)]
-    cs = [sp.Rational(C)] * k
-    hidden = {str(n): v for n, v in zip(model.names[:k], eps, strict=True)}
-    hidden.update({n: v for n, v in zip(model.names[k : 2 * k], cs, strict=True)})
-    theta = [float(v) for v in (*eps, *cs)]
+    eps = [sp.Rational(int(rng.integers(-899, 900)), 1000) for _ in range(k)]
+    values = [*eps, *[sp.Rational(C)] * k]
     if transformed(model.circuit):
-        Q = random_full_rank(model.order, gen).inv()
-        hidden.update({n: v for n, v in zip(model.names[2 * k :], Q, strict=True)})
-        theta += [float(v) for v in Q]
-    vals, _ = model.traces(np.array(theta), u)
-
-    neurons = _circuit_neurons(model)
+        values += list(random_full_rank(model.order, rng).inv())  # the entries of P^-1
+    hidden = dict(zip(model.names, values, strict=True))
+    vals, _ = model.traces(np.array([float(v) for v in values]), u)
     traces = {}
-    for n in neurons:
-        v = vals[n]
-        rms = float(np.sqrt(np.mean(v**2)))
-        traces[n] = v + noise * rms * gen.normal(size=v.size)
+    for n in _circuit_neurons(model):
+        rms = float(np.sqrt(np.mean(vals[n] ** 2)))
+        traces[n] = vals[n] + noise * rms * rng.normal(size=vals[n].size)
     w = _signal(disturbance, "disturbance", window["steps"], 1, DEFAULT_START, DEFAULT_LENGTH)[:, 0]
     meta = {
         "circuit": _label(cls),

@@ -1,26 +1,15 @@
 r"""Practical identifiability: what *these* data, with their noise, pin down.
 
-Structural identifiability (:mod:`symctl.fitting.identify`) says what the recorded set
-determines with perfect data. With noise, a structurally identifiable neuron can still be
-poorly determined, so :func:`symctl.fit` gives every identifiable parameter a confidence
-interval and every identifiable neuron a pointwise prediction band, by a **parametric
-bootstrap**. At the fitted values :math:`\hat\theta`, each recorded trace :math:`\hat y_n`
-plus Gaussian noise of its residual scale :math:`\hat\sigma_n^2 = \mathrm{RSS}_n / (m_n (1 -
-r/m))` (:math:`r` the structural rank, :math:`m` the samples, :math:`m_n` those of the trace)
-is fitted again from :math:`\hat\theta`, ``bootstrap`` times; a parameter's interval, and a
-neuron's band at each step, are the :math:`(1 \mp \mathrm{level})/2` quantiles of the refits.
-
-Why a bootstrap and not profile likelihood: a profile gives a parameter's interval from a
-few constrained fits, but a band needs a profile of every neuron at every step (two
-constrained fits each); the bootstrap's refits give every interval and band at once, are
-independent (they run on the dask path of the starts), and, like a profile and unlike the
-linearized standard errors, follow the model's nonlinearity.
-
-A neuron is **determined by these data** when it is structurally identifiable and its band
-is narrower than its signal: the RMS of ``upper - lower`` over the window is at most the RMS
-of its predicted trace. Otherwise the band reaches past zero and the prediction is "not
-determined by these data" even though perfect data would pin it down. The calibration
-(coverage of the truth over 200 seeded data sets) is in ``benchmarks/fit.py``.
+With noise, a structurally identifiable neuron (:mod:`symctl.fitting.identify`) can still be
+poorly determined. :func:`symctl.fit` gives every identifiable parameter an interval and every
+identifiable neuron a pointwise band by a **parametric bootstrap**: at the fitted
+:math:`\hat\theta`, each recorded trace :math:`\hat y_n` plus Gaussian noise of its residual
+scale :math:`\hat\sigma_n^2 = \mathrm{RSS}_n / (m_n (1 - r/m))` (:math:`r` the structural rank,
+:math:`m` the samples, :math:`m_n` the trace's) is refitted from :math:`\hat\theta`
+``bootstrap`` times; intervals and bands are the :math:`(1 \mp \mathrm{level})/2` quantiles
+of the refits (one set of refits gives every band, unlike a profile likelihood per step).
+A neuron is **determined by these data** when it is identifiable and the RMS of its band's
+width is at most the RMS of its predicted trace (calibration: ``benchmarks/fit.py``).
 """
 
 from __future__ import annotations
@@ -37,15 +26,14 @@ from symctl._util.validate import read_only
 
 __all__ = ["Prediction", "Uncertainty"]
 
-_GN_STEPS = 10  # Gauss-Newton steps of a bootstrap refit before it falls back to the full fit
+_GN_STEPS = 10  # Gauss-Newton steps of a refit before it falls back to the full fit
 _GN_RTOL = 1e-12  # eigenvalues of J^T J kept by those steps (round-off is about 1e-16)
 
 
 class Prediction(dict):
     """Every neuron's predicted trace, ``{name: (steps,) array}``, with its band.
 
-    A dict as before; ``lower`` and ``upper`` map each neuron to the ``level`` band
-    (NaN where the neuron is not identifiable or no bootstrap ran).
+    ``lower`` and ``upper`` map each neuron to the ``level`` band (NaN where none).
 
     Examples
     --------
@@ -65,24 +53,22 @@ class Prediction(dict):
 
 @dataclass(frozen=True, eq=False)
 class Uncertainty(ArrayValue, DictMixin):
-    r"""Confidence intervals of the parameters and prediction bands of the neurons of a fit.
+    r"""Confidence intervals of a fit's parameters and prediction bands of its neurons.
 
     By parametric bootstrap (method: :mod:`symctl.fitting.uncertainty`).
 
     Attributes
     ----------
     level : float
-        Confidence level of the intervals and bands (0.95).
+        Confidence level of the intervals and bands.
     replicates : int
-        Bootstrap refits behind them (0: none ran, every interval None, every band NaN).
+        Bootstrap refits behind them (0: every interval None, no band).
     intervals : mapping of str to (float, float) or None
         Per parameter, ``(lower, upper)``; None where it is not identifiable.
-    lower, upper : mapping of str to (steps,) array
-        Per identifiable neuron, the pointwise band (no entry without a bootstrap).
-    sd : mapping of str to (steps,) array
-        Per identifiable neuron, the refits' standard deviation per step (one standard error).
+    lower, upper, sd : mapping of str to (steps,) array
+        Per identifiable neuron, the pointwise band and the refits' standard deviation.
     determined : mapping of str to bool
-        Per neuron: structurally identifiable, and its band narrower than its signal.
+        Per neuron: identifiable, and its band narrower than its signal.
 
     Examples
     --------
@@ -118,8 +104,7 @@ class Uncertainty(ArrayValue, DictMixin):
 
 
 def _gauss_newton(both, theta: np.ndarray, k: int) -> np.ndarray | None:
-    """Gauss-Newton from ``theta`` near the optimum (minimum-norm steps: flat directions stay
-    put); None if a step fails to lower the cost or makes a section unstable."""
+    """Minimum-norm Gauss-Newton from ``theta``; None if a step rises or destabilizes a section."""
     r, J = both(theta)
     cost = r @ r
     for _ in range(_GN_STEPS):

@@ -1,10 +1,5 @@
-"""The ``[delay_graph]`` table of a model file: vertices, sensor and actuator, edges.
-
-:class:`GraphSection` is the part of the model file's reader
-(:mod:`symctl.model.modelfile`) that reads the delay graph; it uses the reader's
-field checks (``fail``, ``table``, ``items``, ``text``, ``integer``, ``delay``).
-Without the table, the graph is the chain of the delays, one vertex per step.
-"""
+"""The ``[delay_graph]`` table of a model file (a mixin of its reader); without it, the graph
+is the chain of the delays, one vertex per step."""
 
 from __future__ import annotations
 
@@ -17,17 +12,14 @@ from symctl.model.model import chain_graph
 
 __all__ = ["MAX_VERTICES", "GraphSection", "strip_argname"]
 
-MAX_VERTICES = 50
-"""The most vertices of a model file's delay graph."""
+MAX_VERTICES = 50  # the most vertices of a model file's delay graph
 
 
 class GraphSection:
-    """Reads ``[delay_graph]``: a mixin of the model file's reader."""
+    """Reads ``[delay_graph]`` with the reader's field checks."""
 
     def graph(self, data, delays: tuple[int, int], Ts: float):
         if data is None:
-            # the chain of the delays, one vertex per step; a side without delay keeps an edge
-            # of 0 steps, so the controller's own vertex (after the sensor-side steps) exists
             return (*chain_graph(*delays), False, {})
         table = self.table(data, "delay_graph", "delay_graph")
         if "vertices" not in table:

@@ -1,10 +1,7 @@
-"""The ``[[outputs]]`` and ``[noise]`` tables of a model file: what is measured, how noisily.
+"""The ``[[outputs]]`` and ``[noise]`` tables of a model file: a mixin of its reader.
 
-:class:`MeasurementSection` is the part of the model file's reader
-(:mod:`symctl.model.modelfile`) that reads them; it uses the reader's field checks
-(``fail``, ``table``, ``items``, ``text``, ``expr``, ``unit``, ``matrix``, ``named``). An
-``expr`` output is linearized at the equilibrium like the dynamics; the outputs' matrix
-``C`` is None when every state is measured without noise (the paper's full-state design).
+An ``expr`` output is linearized at the equilibrium; the outputs' matrix ``C`` is None
+when every state is measured without noise (the paper's full-state design).
 """
 
 from __future__ import annotations
@@ -22,11 +19,10 @@ __all__ = ["MeasurementSection"]
 
 
 class MeasurementSection:
-    """Reads ``[[outputs]]`` and ``[noise]``: a mixin of the model file's reader."""
+    """Reads ``[[outputs]]`` and ``[noise]`` with the reader's field checks."""
 
     def outputs(self, data, ode, params, units, descr) -> tuple:
-        """The outputs ``(name, state or expr)`` and their matrix ``C`` (None: every state, the
-        full-state design)."""
+        """The outputs ``(name, state or expr)`` and their matrix ``C`` (None: every state)."""
         if data is None:
             return tuple((s, s) for s in self.names), None
         items = self.items(data, "outputs", "outputs", limit=MAX_MODEL_STATES)
@@ -89,8 +85,8 @@ class MeasurementSection:
         return tuple(out), None if full else sp.ImmutableMatrix(rows)
 
     def noise(self, table, plant, params, p: int) -> dict:
-        """The covariances ``process`` (default: the identity, or zero when ``motor`` is given),
-        ``sensor`` (default: the identity) and ``motor`` (when given); ``{}`` without [noise]."""
+        """The covariances ``process`` (default I, or 0 with ``motor``), ``sensor`` (default I)
+        and ``motor``; ``{}`` without [noise]."""
         if table is None:
             return {}
         table = self.table(table, "noise", "noise")

@@ -1,9 +1,4 @@
-"""A model, read and checked: what :func:`~symctl.model.modelfile.load_model` returns.
-
-:class:`Model` holds the plant (nonlinear or discrete), the delays, the cost,
-the delay graph and what to build and simulate, as values; the pipeline
-(:func:`~symctl.derivation.pipeline.derive`) reads it and nothing else.
-"""
+"""A model, read and checked: what :func:`~symctl.model.modelfile.load_model` returns."""
 
 from __future__ import annotations
 
@@ -33,23 +28,15 @@ from symctl.realization.realizers import circuit_names
 
 __all__ = ["Model", "chain_graph"]
 
-MAX_SEED = 2**32 - 1
-"""The largest ``[circuits] seed``."""
-
+MAX_SEED = 2**32 - 1  # the largest ``[circuits] seed``
+# the fields Model.replace takes, besides the plant's parameters by name
 _FIELDS_REPLACED = ("dt", "sensor_delay", "actuator_delay", "Q", "R", "seed", "realizations")
-"""The fields :meth:`Model.replace` takes (besides the parameters of the plant, by name)."""
 
 
 def chain_graph(sensor_delay: int, actuator_delay: int) -> tuple[DelayGraph, tuple, tuple]:
-    """The delay graph of a model file without one: the chain of the delays, one vertex per step.
-
-    A side without delay keeps an edge of 0 steps, so that the controller's own vertex
-    (after the sensor-side steps) exists.
-
-    Returns
-    -------
-    (DelayGraph, vertices, edges)
-        The graph, its vertices' names and its edges ``(from, to, steps)``.
+    """``(graph, vertices, edges)`` of a model file without a delay graph: the chain of the
+    delays, one vertex per step (a side without delay keeps an edge of 0 steps, so that the
+    controller's own vertex exists).
 
     Examples
     --------
@@ -72,11 +59,8 @@ def _key_value(value):
 class Model:
     r"""A model file, read and checked: the plant, its delays, cost, delay graph and what to build.
 
-    Made by :func:`load_model`; the pipeline (:func:`~symctl.derivation.pipeline.derive`)
-    reads it.
-
-    Two models are equal when every field is (the file's text and name included), so a
-    model is a key of caches: :func:`~symctl.derivation.derive` is computed once per model.
+    Made by :func:`load_model`. Two models are equal when every field is (the file's text
+    included), so a model is a key of caches: :func:`~symctl.derivation.derive` runs once per model.
 
     Attributes
     ----------
@@ -84,44 +68,35 @@ class Model:
         From ``[model]``.
     ode : ODEModel or None
         The nonlinear plant (None for a discrete plant given directly).
-    plant : DiscretePlant
-        The discrete linear plant (exact where it can be).
-    plant_symbolic : DiscretePlant or None
-        The closed-form discrete plant in the parameters' symbols (one state
-        and one input), else None.
+    plant, plant_symbolic : DiscretePlant
+        The discrete linear plant (exact where it can be), and its closed form in the
+        parameters' symbols (one state and one input; else None).
     units, descriptions : mapping of str to str
-        Units and descriptions of the states, inputs, outputs and parameters, by name.
+        Of the states, inputs, outputs and parameters, by name.
     outputs : tuple of (str, str)
-        The measured outputs: (name, state), or (name, expression) for an ``expr`` output.
+        The measured outputs: (name, state), or (name, expression).
     dt : float
-        The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is
-        the deprecated name of the attribute and keyword).
+        The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is the
+        deprecated name of the attribute and keyword).
     sensor_delay, actuator_delay : int
         The delays in steps.
     Q, R : sympy.ImmutableMatrix
         The cost weights (exact).
-    graph : DelayGraph
-        The delay graph, vertices ordered sensor first and actuator last.
-    vertices : tuple of str
-        The names of the graph's vertices in that order.
-    edges : tuple of (str, str, int)
-        Its direct edges by name, with their delays in steps.
+    graph, vertices, edges : DelayGraph, tuple of str, tuple of (str, str, int)
+        The delay graph (sensor first, actuator last), its vertices' names in that
+        order and its direct edges with their delays in steps.
     graph_given : bool
         Whether the file gave the delay graph (else the chain of the delays).
     max_wire_delay : int or None
-        The most steps one wire of a circuit may carry (``[delay_graph]
-        max_wire_delay``; None: axons of any length).
+        The most steps one wire may carry (None: any).
     vertex_descriptions : mapping of str to str
-        The descriptions of the graph's vertices the file gives, by name.
+        The vertices' descriptions the file gives.
     circuits : tuple of str
         The circuits to build, of :func:`~symctl.realization.realizers.circuit_names`.
-    realizations, seed : int
-        Random realizations per circuit and their seed.
-    steps : int
-        Simulation horizon.
+    realizations, seed, steps : int
+        Random realizations per circuit, their seed, and the simulation horizon.
     disturbance : tuple
-        ``(states, amplitude, start, length)``: the indices of the states the
-        pulse is added to, its size per step, first step and length.
+        ``(states, amplitude, start, length)`` of the pulse.
     longest_delay : tuple or None
         ``(max, tolerance)`` of the longest-delay search, when asked for.
     notes : tuple of str
@@ -129,15 +104,13 @@ class Model:
     path : str
         The file.
     C : sympy.ImmutableMatrix or None
-        The outputs' matrix (``p x n``, linearized at the equilibrium) when the controller
-        estimates the state (some states unmeasured, or ``[noise]``); None for full-state
-        feedback.
+        The outputs' matrix (``p x n``, linearized) when the controller estimates the
+        state; None for full-state feedback.
     noise : mapping of str to sympy.ImmutableMatrix
-        ``process``, ``sensor`` (and ``motor``) covariances of ``[noise]`` (empty without).
+        ``process``, ``sensor`` (and ``motor``) covariances of ``[noise]``.
     replaced : mapping of str to value
-        The values :meth:`replace` set in place of the file's, by keyword (empty for a
-        model as its file gives it): the file's text and these re-create the model
-        (:func:`~symctl.model.saved.model_from_dict`).
+        The values :meth:`replace` set in place of the file's: with the file's text they
+        re-create the model (:func:`~symctl.model.saved.model_from_dict`).
 
     Examples
     --------
@@ -215,31 +188,25 @@ class Model:
 
     @renamed_keywords(Ts="dt")
     def replace(self, **values) -> Model:
-        r"""A new model with some values replaced; the others, and this model, stay as they are.
-
-        The plant, its closed forms and the delay graph (when the file gives none) are
-        derived again from the new values, as reading the file with them would.
+        r"""A new model with some values replaced (the plant and the chain graph derived again).
 
         Parameters
         ----------
         **values
             Any of ``dt`` (the sampling time [s]; ``Ts`` is its deprecated name),
-            ``sensor_delay``, ``actuator_delay`` (steps), ``Q``, ``R`` (the cost's
-            weights, matrix-like), ``seed``, ``realizations``, and the plant's
-            parameters by name (``tau=0.05``; a model with an ODE).
+            ``sensor_delay``, ``actuator_delay`` (steps), ``Q``, ``R``, ``seed``,
+            ``realizations``, and the plant's parameters by name (``tau=0.05``).
 
         Returns
         -------
         Model
-            Its :attr:`replaced` records the values that differ from the model's, so that
-            the file's text and they re-create it (:meth:`to_dict`); with none, this model.
+            Its :attr:`replaced` records the values that differ; with none, this model.
 
         Raises
         ------
         ParameterError
-            An unknown name (the names taken are listed), a value out of range, a
-            parameter or ``dt`` of a discrete plant given as matrices (they hold numbers
-            for one sampling time), a net delay outside ``[1, PAPER_MAX_DELAY]``, or
+            An unknown name, a value out of range, a parameter or ``dt`` of a discrete
+            plant given as matrices, a net delay outside ``[1, PAPER_MAX_DELAY]``, or
             parameter values at which the file's equilibrium is none.
         SymctlTypeError
             A value of the wrong type.
@@ -313,37 +280,19 @@ class Model:
     def _replot(self, given: dict, Ts: float) -> dict:
         """The ODE, the plant and its closed form at new parameter values or sampling time."""
         ode = self.ode
-        params = {p.name: (p, v) for p, v in ode.params.items()}
         rename, values = {}, {}
-        for name, (symbol, value) in params.items():
-            value = exact_value(given.get(name, value), name)
-            new = parameter_symbol(name, value)  # positive when the value is
-            if new != symbol:
-                rename[symbol] = new
+        for symbol, value in ode.params.items():
+            value = exact_value(given.get(symbol.name, value), symbol.name)
+            new = parameter_symbol(symbol.name, value)  # positive when the value is
+            rename[symbol] = new
             values[new] = value
-        solved = ode.equilibrium_method != "given"
-        ode = ODEModel(
-            ode.states,
-            ode.inputs,
-            ode.rhs.xreplace(rename),
-            values,
-            None if solved else ode.x_eq.xreplace(rename),
-            ode.u_eq.xreplace(rename),
-            Ts,
-            ode.guess,
-            ode.name,
-            ode.units,
-        )
+        x_eq = ode.x_eq.xreplace(rename) if ode.equilibrium_method == "given" else None
+        rhs, u_eq = ode.rhs.xreplace(rename), ode.u_eq.xreplace(rename)
+        ode = dataclasses.replace(ode, rhs=rhs, params=values, x_eq=x_eq, u_eq=u_eq, dt=Ts)
         return {"ode": ode, "plant": ode.plant(), "plant_symbolic": ode.discrete_symbolic()}
 
     def to_dict(self) -> dict:
-        """The model as its file's text, the file's name and the values replaced (for JSON).
-
-        Returns
-        -------
-        dict
-            ``source`` (the TOML text), ``path`` and ``replaced`` (numbers as numbers,
-            matrices as rows of exact expressions' text).
+        """The model as JSON data: ``source`` (the file's text), ``path`` and ``replaced``.
 
         Raises
         ------
@@ -377,7 +326,7 @@ class Model:
 
     @property
     def signal_names(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
-        """The names of the states and inputs as the file gives them (the plant's are ``delta_``...)."""
+        """The states' and inputs' names as the file gives them (the plant's are ``delta_``...)."""
         if self.ode is not None:
             return tuple(s.name for s in self.ode.states), tuple(s.name for s in self.ode.inputs)
         return self.plant.state_names, self.plant.input_names
@@ -416,7 +365,7 @@ Model.__init__ = renamed_keywords(Ts="dt")(Model.__init__)
 
 
 def _text(value):
-    """A replaced value for JSON: ints and floats as numbers, exact ones as text, matrices as rows."""
+    """A replaced value for JSON: numbers as numbers, exact ones as text, matrices as rows."""
     if isinstance(value, sp.MatrixBase):
         return [[_text(e) for e in row] for row in value.tolist()]
     if isinstance(value, int | float) and not isinstance(value, bool):

@@ -1,10 +1,8 @@
 r"""Your own system in a file: :func:`load_model` reads a model file into a :class:`Model`.
 
-A model file (TOML; ``docs/model-file.md`` has the schema) describes a plant (an ODE
-as text, or a discrete plant), its sampling time, delays, cost, delay graph and what
-to build and simulate. No text of the file is ever evaluated (expressions go through
-the safe parser); every problem is one :class:`~symctl.errors.ModelFileError` naming
-the file, the line and the field, an unknown key with the nearest valid one suggested.
+A model file (TOML; schema in ``docs/model-file.md``) is never evaluated (expressions go
+through the safe parser); every problem is one :class:`~symctl.errors.ModelFileError`
+naming the file, the line and the field.
 
 >>> from symctl.model.modelfile import load_model
 >>> m = load_model('''
@@ -42,6 +40,7 @@ import sympy as sp
 
 from symctl._util.parse import CONSTANTS, NAMES, parse_expr
 from symctl._util.validate import MAX_DELAY, PAPER_MAX_DELAY, psd_matrix
+from symctl.design.lqr import _pbh_defect
 from symctl.design.ode import MAX_MODEL_STATES, ODEModel, exact_value, parameter_symbol
 from symctl.design.plant import DiscretePlant
 from symctl.design.tf import DiscreteTF
@@ -49,7 +48,7 @@ from symctl.errors import ModelFileError, SymctlError, SymctlTypeError
 from symctl.model.graphsection import GraphSection, strip_argname
 from symctl.model.measurement import MeasurementSection
 from symctl.model.model import Model
-from symctl.model.schema import FIELDS
+from symctl.model.schema import FIELDS, SECTIONS
 from symctl.model.source import Source
 from symctl.model.units import Unit, check_rhs, parse_unit, unit_of
 from symctl.realization.realization import controllable_canonical
@@ -58,10 +57,8 @@ from symctl.symbols import z
 
 __all__ = ["Model", "load_model", "read_model"]
 
-MAX_PARAMETERS = 200
-"""Most parameters of a model file."""
-MAX_SIM_STEPS = 5000
-"""Longest simulation horizon of a model file."""
+MAX_PARAMETERS = 200  # most parameters of a model file
+MAX_SIM_STEPS = 5000  # longest simulation horizon of a model file
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,39}$")
 _CONSTANT_NAMES = {"E": "e (Euler's number)", "pi": "pi"}
 _RESERVED = NAMES | {"z", "T_s", "t"}  # the parser's own names, z, the sampling time, time
@@ -73,8 +70,7 @@ def load_model(source) -> Model:
     Parameters
     ----------
     source : str or pathlib.Path
-        A path to a ``.toml`` file, or the TOML text itself (a string holding
-        a newline or a ``[`` is read as text).
+        A path to a ``.toml`` file, or the TOML text (a string with a newline or ``[``).
 
     Returns
     -------
@@ -208,9 +204,7 @@ class _Reader(GraphSection, MeasurementSection):
 
     def model(self) -> Model:
         d = self.src.data
-        self.src.check_keys(
-            d, FIELDS.keys() - {"parameter", "vertex", "edge", "disturbance", "longest_delay"}, ""
-        )
+        self.src.check_keys(d, SECTIONS, "")
         meta = self.table(d.get("model", {}), "model", "model")
         if "name" not in meta:
             raise self.fail("model", 'missing the model\'s name; give name = "..."')
@@ -270,40 +264,12 @@ class _Reader(GraphSection, MeasurementSection):
         steps = self.integer(sim.get("steps", 50), "simulation.steps", 2, MAX_SIM_STEPS)
         disturbance = self.disturbance(sim.get("disturbance", {}), plant, steps)
         longest = self.analysis(d.get("analysis", {}))
+        plant_part = (name, title, description, ode, plant, plant_symbolic, units, descr, outputs)
+        design = (Ts, ds, da, Q, R, graph, vertices, edges, given, build, realizations, seed)
+        run = (steps, disturbance, longest, tuple(self.notes))
+        src, wires = self.src, self.wire_bound(d.get("delay_graph"))
         return Model(
-            name,
-            title,
-            description,
-            ode,
-            plant,
-            plant_symbolic,
-            units,
-            descr,
-            outputs,
-            Ts,
-            ds,
-            da,
-            Q,
-            R,
-            graph,
-            vertices,
-            edges,
-            given,
-            build,
-            realizations,
-            seed,
-            steps,
-            disturbance,
-            longest,
-            tuple(self.notes),
-            self.src.path,
-            self.src.text,
-            self.src.lines,
-            about,
-            self.wire_bound(d.get("delay_graph")),
-            {},
-            C,
-            noise,
+            *plant_part, *design, *run, src.path, src.text, src.lines, about, wires, {}, C, noise
         )
 
     def sampling(self, table: dict) -> float:
@@ -391,11 +357,9 @@ class _Reader(GraphSection, MeasurementSection):
         sym_units = {psyms[k]: v for k, v in units.items()}
         for kind, items, syms in (("states", states, xs), ("inputs", inputs, us)):
             for i, (item, s) in enumerate(zip(items, syms, strict=True)):
-                u = self.unit(item.get("unit"), f"{kind}[{i}].unit")
+                u = self.signal_about(item, f"{kind}[{i}]", units, descr)
                 if u is not None:
-                    units[s.name] = u
                     sym_units[s] = u
-                descr[s.name] = self.text(item.get("description", ""), f"{kind}[{i}].description")
         rhs = []
         for i, item in enumerate(states):
             if "rhs" not in item:
@@ -404,69 +368,54 @@ class _Reader(GraphSection, MeasurementSection):
             with self.named(f"states[{i}].rhs"):
                 check_rhs(e, sym_units.get(xs[i]), sym_units, f"states[{i}].rhs")
             rhs.append(e)
-        u_eq = [
-            self.equilibrium(u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units)
-            if "equilibrium" in u
-            else sp.Integer(0)
-            for i, u in enumerate(inputs)
-        ]
+        u_eq = [sp.Integer(0)] * len(inputs)
+        for i, u in enumerate(inputs):
+            if "equilibrium" in u:
+                u_eq[i] = self.equilibrium(
+                    u, f"inputs[{i}]", psyms, sym_units.get(us[i]), sym_units
+                )
         given = [("equilibrium" in s) for s in states]
         if any(given) and not all(given):
-            k = given.index(False)
             raise self.fail(
-                f"states[{k}]",
+                f"states[{given.index(False)}]",
                 "give the equilibrium of every state, or of none (then it is solved)",
             )
-        x_eq = (
-            [
+        x_eq = guess = None
+        if all(given):
+            x_eq = [
                 self.equilibrium(s, f"states[{i}]", psyms, sym_units.get(xs[i]), sym_units)
                 for i, s in enumerate(states)
             ]
-            if all(given)
-            else None
-        )
-        guess = None
-        if "guess" in states[0] or any("guess" in s for s in states):
+        if any("guess" in s for s in states):
             guess = [
                 self.number(s.get("guess", 0.0), f"states[{i}].guess") for i, s in enumerate(states)
             ]
         where = "states" if x_eq is None else "states[0].equilibrium"
         with self.named(where):
-            ode = ODEModel(
-                xs,
-                us,
-                rhs,
-                params,
-                x_eq,
-                u_eq,
-                Ts,
-                guess,
-                name,
-                {k: str(v) for k, v in units.items()},
-            )
+            texts = {k: str(v) for k, v in units.items()}
+            ode = ODEModel(xs, us, rhs, params, x_eq, u_eq, Ts, guess, name, texts)
             plant = ode.plant()
             plant_symbolic = ode.discrete_symbolic()
         return ode, plant, plant_symbolic
 
+    def signal_about(self, item: dict, where: str, units: dict, descr: dict) -> Unit | None:
+        """A state's or input's unit (recorded in ``units``, and returned) and description."""
+        u = self.unit(item.get("unit"), f"{where}.unit")
+        if u is not None:
+            units[item["name"]] = u
+        descr[item["name"]] = self.text(item.get("description", ""), f"{where}.description")
+        return u
+
     def stabilizable(self, plant: DiscretePlant, where: str) -> None:
-        """Refuse a plant with an unstable mode the inputs cannot reach (PBH test; the delays
-        keep stabilizability as it is)."""
-        A, B = plant.numeric()
-        n = A.shape[0]
-        scale = max(1.0, float(np.max(np.abs(A))), float(np.max(np.abs(B))))
-        for lam in np.linalg.eigvals(A):
-            if abs(lam) < 1 - 1e-9:
-                continue
-            M = np.hstack([A - lam * np.eye(n), B])
-            sv = np.linalg.svd(M, compute_uv=False)
-            if sv[n - 1] <= 1e-9 * scale:
-                shown = f"{lam.real:.6g}" if abs(lam.imag) < 1e-12 else f"{lam:.6g}"
-                raise self.fail(
-                    where,
-                    f"the plant cannot be stabilized with any delays: its mode "
-                    f"{shown} (|lambda| >= 1) is not reachable from the inputs (to 1e-9 of "
-                    "the plant's scale)",
-                )
+        """Refuse a plant with an unstable mode the inputs cannot reach (delays keep that)."""
+        lam = _pbh_defect(*plant.numeric(), stack="h")
+        if lam is not None:
+            shown = f"{lam.real:.6g}" if abs(lam.imag) < 1e-12 else f"{lam:.6g}"
+            raise self.fail(
+                where,
+                f"the plant cannot be stabilized with any delays: its mode {shown} (|lambda| "
+                ">= 1) is not reachable from the inputs (to 1e-9 of the plant's scale)",
+            )
 
     def equilibrium(self, item, where, psyms, unit, sym_units) -> sp.Expr:
         e = self.expr(item["equilibrium"], f"{where}.equilibrium", psyms)
@@ -482,10 +431,8 @@ class _Reader(GraphSection, MeasurementSection):
         table = self.table(d["discrete"], "discrete", "discrete")
         psyms = {p.name: p for p in params}
         values = {p: exact_value(v, p.name) for p, v in params.items()}
-        has_ab, has_tf = (
-            ("A" in table or "B" in table),
-            ("numerator" in table or "denominator" in table),
-        )
+        has_ab = "A" in table or "B" in table
+        has_tf = "numerator" in table or "denominator" in table
         if has_ab == has_tf:
             raise self.fail("discrete", "give either A and B, or numerator and denominator")
         with self.named("discrete"):
@@ -521,18 +468,14 @@ class _Reader(GraphSection, MeasurementSection):
                     kind, f"the discrete plant has {size} {kind}, got {len(items)} names"
                 )
             for i, item in enumerate(items):
+                where = f"{kind}[{i}]"
                 if "rhs" in item or "equilibrium" in item or "guess" in item:
                     raise self.fail(
-                        f"{kind}[{i}]",
-                        "a discrete plant takes names, units and "
-                        "descriptions only (no rhs or equilibrium)",
+                        where,
+                        "a discrete plant takes names, units and descriptions only (no rhs or "
+                        "equilibrium)",
                     )
-                u = self.unit(item.get("unit"), f"{kind}[{i}].unit")
-                if u is not None:
-                    units[item["name"]] = u
-                descr[item["name"]] = self.text(
-                    item.get("description", ""), f"{kind}[{i}].description"
-                )
+                self.signal_about(item, where, units, descr)
         with self.named("discrete"):
             plant = DiscretePlant(
                 A,

@@ -1,10 +1,5 @@
-"""The paper's muscle as a model file: ``symctl paper`` is ``symctl derive`` on this preset.
-
-:func:`muscle` reads the packaged ``presets/muscle.toml`` (a copy of
-``examples/muscle.toml``; a test keeps them identical) with the muscle's
-values given replaced (:meth:`Model.replace <symctl.model.model.Model.replace>`),
-so that ``derive_paper(tau=...)`` and ``symctl derive examples/muscle.toml`` run one
-pipeline on one description.
+"""The paper's muscle as a model file: ``symctl paper`` is ``symctl derive`` on this preset
+(``presets/muscle.toml``, a copy of ``examples/muscle.toml`` that a test keeps identical).
 
 >>> from symctl.model.presets import muscle
 >>> m = muscle(tau=0.05)
@@ -21,8 +16,7 @@ from symctl.model.modelfile import Model, read_model
 
 __all__ = ["MUSCLE_FILE", "muscle", "muscle_text"]
 
-MUSCLE_FILE = "presets/muscle.toml"
-"""The preset's file inside the package ``symctl.model``."""
+MUSCLE_FILE = "presets/muscle.toml"  # inside the package symctl.model
 
 
 @cache
@@ -42,10 +36,8 @@ def muscle(**values) -> Model:
     Parameters
     ----------
     **values
-        As :meth:`Model.replace <symctl.model.model.Model.replace>` takes them: the
-        muscle's ``tau``, ``f_max``, ``r_bar``, the sampling time ``Ts``, the delays
-        ``sensor_delay``, ``actuator_delay`` in steps, ``Q``, ``R``, ``seed`` and
-        ``realizations``; a value None keeps the file's.
+        As :meth:`Model.replace <symctl.model.model.Model.replace>` takes them (``tau``,
+        ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ...); None keeps the file's.
 
     Returns
     -------

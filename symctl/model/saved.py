@@ -1,9 +1,4 @@
-"""A model saved as data and read back: its file's text, the file's name, the values replaced.
-
-:meth:`Model.to_dict <symctl.model.model.Model.to_dict>` writes a model as the
-text of its file and the values :meth:`~symctl.model.model.Model.replace` set;
-:func:`model_from_dict` reads that back into an equal model: the text through the
-model-file reader (checked, never evaluated), the values through the safe parser.
+"""A model saved as data (:meth:`Model.to_dict <symctl.model.model.Model.to_dict>`), read back.
 
 >>> from symctl.model.presets import muscle
 >>> from symctl.model.saved import model_from_dict
@@ -24,10 +19,8 @@ __all__ = ["model_from_dict"]
 
 
 def model_from_dict(data) -> Model:
-    """The model that ``Model.to_dict`` wrote: its file read again, then the values replaced.
-
-    The text is read as a model file (:func:`~symctl.model.modelfile.load_model`:
-    checked, never evaluated); the replaced values are parsed by the safe parser.
+    """The model that ``Model.to_dict`` wrote: its file read again (checked, never evaluated),
+    then the values replaced (read by the safe parser).
 
     Raises
     ------

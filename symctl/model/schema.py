@@ -1,9 +1,5 @@
-"""The fields of a model file, in one table: what each holds, its default, an example.
-
-:data:`FIELDS` maps a section to its keys; the reader refuses any other key
-(suggesting the nearest), and ``docs/model-file.md`` documents each one (a test
-checks that every field is there). A name in angle brackets is a key the user
-chooses (a parameter's name).
+"""The fields of a model file, in one table: :data:`FIELDS` maps a section to its keys (a name
+in angle brackets is the user's); the reader refuses any other, ``docs/model-file.md`` has each.
 
 >>> from symctl.model.schema import FIELDS
 >>> sorted(FIELDS)[:4]
@@ -24,9 +20,7 @@ CIRCUIT_KINDS: tuple[str, ...]  # read from the registry at each access (__getat
 
 
 def __getattr__(name: str):
-    """``CIRCUIT_KINDS``: the circuits a model file can ask for (``[circuits] build``), in the
-    report's order; read from the realizers' registry at each access
-    (:func:`~symctl.realization.realizers.circuit_names`)."""
+    """``CIRCUIT_KINDS``: the circuits ``[circuits] build`` takes, read from the registry."""
     if name == "CIRCUIT_KINDS":
         return circuit_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -38,9 +32,7 @@ _FIELDS = {
         "title": "title of the documents (default: the name)",
         "description": "a paragraph that opens the plant section of the derivation",
     },
-    "parameters": {
-        "<name>": "a number, or a table {value, unit, description}",
-    },
+    "parameters": {"<name>": "a number, or a table {value, unit, description}"},
     "parameter": {  # the keys of one parameter's table
         "value": "the number; required",
         "unit": "its unit (docs/model-file.md, Units)",
@@ -73,9 +65,7 @@ _FIELDS = {
         "numerator": "transfer function in z, descending powers (instead of A, B)",
         "denominator": "its denominator, descending powers, leading entry nonzero",
     },
-    "sampling": {
-        "Ts": "the sampling time: seconds, or {value, unit}; required",
-    },
+    "sampling": {"Ts": "the sampling time: seconds, or {value, unit}; required"},
     "delays": {
         "sensor": "steps, or {steps = k} or {seconds = t} (rounded up to steps)",
         "actuator": "the same for the actuator side",
@@ -120,7 +110,7 @@ _FIELDS = {
         "length": "steps of the pulse (default 10)",
     },
     "analysis": {
-        "longest_delay": "search the longest stabilizable delay: true, or {max, tolerance}",
+        "longest_delay": "search the longest stabilizable delay: true, or {max, tolerance}"
     },
     "longest_delay": {
         "max": "largest net delay tried, in steps (default 20)",
@@ -130,20 +120,6 @@ _FIELDS = {
 FIELDS = MappingProxyType({k: MappingProxyType(v) for k, v in _FIELDS.items()})
 """Every section (and sub-table) of a model file and its keys, with a line of documentation."""
 
-SECTIONS = (
-    "model",
-    "parameters",
-    "states",
-    "inputs",
-    "outputs",
-    "discrete",
-    "sampling",
-    "delays",
-    "cost",
-    "noise",
-    "delay_graph",
-    "circuits",
-    "simulation",
-    "analysis",
-)
+_SUBTABLES = ("parameter", "vertex", "edge", "disturbance", "longest_delay")  # inside sections
+SECTIONS = tuple(k for k in FIELDS if k not in _SUBTABLES)
 """The top-level sections, in the order the documentation gives them."""

@@ -1,10 +1,5 @@
-"""A model file's text: read with :mod:`tomllib`, with the line of every key, and checked keys.
-
-:mod:`tomllib` gives values but not where they are; :func:`key_lines` reads
-the text once more, line by line, for the line of each key (tables,
-arrays of tables, dotted keys, inline tables), so that an error can say
-``muscle.toml:12: states[0].rhs: ...``. :class:`Source` carries the parsed
-document and the lines, and builds the errors (:class:`~symctl.errors.ModelFileError`).
+"""A model file's text: parsed by :mod:`tomllib`, with the line of every key (:func:`key_lines`,
+as :mod:`tomllib` does not say where a value is), so an error says ``m.toml:12: states[0].rhs:``.
 
 >>> from symctl.model.source import Source
 >>> src = Source.from_text('[model]\\nname = "m"\\n[[states]]\\nname = "x"\\n', "m.toml")
@@ -25,8 +20,7 @@ from symctl.errors import ModelFileError, SymctlTypeError
 
 __all__ = ["MAX_FILE_BYTES", "Source", "key_lines"]
 
-MAX_FILE_BYTES = 1_000_000
-"""Largest model file read."""
+MAX_FILE_BYTES = 1_000_000  # largest model file read
 
 _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
 _KEY = re.compile(
@@ -57,11 +51,10 @@ def key_lines(text: str) -> dict[str, int]:
         if header and not _KEY.match(line):
             parts = _split(header.group(2))
             if header.group(1) == "[[":
-                base = _path(parts)
+                base = ".".join(parts)
                 index = counts.get(base, 0)
                 counts[base] = index + 1
                 parts = [*parts[:-1], f"{parts[-1]}[{index}]"]
-                # a nested array of tables under an array item
             table = _resolve(parts, counts)
             out.setdefault(".".join(table), number)
             continue
@@ -73,10 +66,6 @@ def key_lines(text: str) -> dict[str, int]:
             for inner in _INLINE_KEY.findall(rest):
                 out.setdefault(".".join([*path, inner.strip("\"'")]), number)
     return out
-
-
-def _path(parts: list[str]) -> str:
-    return ".".join(parts)
 
 
 def _resolve(parts: list[str], counts: dict[str, int]) -> list[str]:
@@ -126,16 +115,14 @@ class Source:
             raise SymctlTypeError(f"path: expected a path, got {type(path).__name__}")
         p = Path(path)
         try:
-            size = p.stat().st_size
-            if size > MAX_FILE_BYTES:
-                raise ModelFileError(f"larger than {MAX_FILE_BYTES} bytes", path=str(p))
-            text = p.read_text(encoding="utf-8")
-        except ModelFileError:
-            raise
+            too_large = p.stat().st_size > MAX_FILE_BYTES
+            text = "" if too_large else p.read_text(encoding="utf-8")
         except UnicodeDecodeError:
             raise ModelFileError("not UTF-8 text", path=str(p)) from None
         except OSError as exc:
             raise ModelFileError(f"cannot read it ({exc.strerror or exc})", path=str(p)) from None
+        if too_large:
+            raise ModelFileError(f"larger than {MAX_FILE_BYTES} bytes", path=str(p))
         return cls.from_text(text, str(p))
 
     def line(self, dotted: str) -> int | None:
@@ -163,10 +150,5 @@ class Source:
         for key in table:
             if key not in allowed:
                 near = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
-                hint = (
-                    f"; did you mean {near[0]!r}?"
-                    if near
-                    else f"; valid keys: {', '.join(allowed)}"
-                )
-                dotted = f"{where}.{key}" if where else key
-                raise self.error(dotted, f"unknown key {key!r}{hint}")
+                hint = f"did you mean {near[0]!r}?" if near else f"valid keys: {', '.join(allowed)}"
+                raise self.error(f"{where}.{key}" if where else key, f"unknown key {key!r}; {hint}")

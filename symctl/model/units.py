@@ -1,10 +1,8 @@
 r"""Units of a model file: parsed safely, and checked where they are given.
 
 A unit is text in the safe parser's syntax (``"N*m/rad"``, ``"1/s**2"``, ``"1"``); known
-names convert to SI base units with a scale, any other name (``spikes``) is a base unit
-of its own. :func:`check_rhs` requires a right-hand side in the state's unit per second
-where every unit is known ("checked where given"); elementary functions return a pure
-number and their arguments are not checked (the muscle's :math:`e^{-r}`).
+names convert to SI with a scale, any other name (``spikes``) is a base unit of its own.
+Elementary functions return a pure number, their arguments unchecked (the muscle's :math:`e^{-r}`).
 
 >>> from symctl.model.units import parse_unit
 >>> parse_unit("N", "u") == parse_unit("kg*m/s**2", "u")
@@ -26,8 +24,7 @@ from symctl.errors import ParameterError, ParseError
 
 __all__ = ["Unit", "check_rhs", "parse_unit", "unit_of"]
 
-MAX_UNIT_TEXT = 100
-"""Longest unit text."""
+MAX_UNIT_TEXT = 100  # longest unit text
 
 _BASE = ("kg", "m", "s")
 _KNOWN = {  # name: (scale, {base: exponent})
@@ -160,14 +157,8 @@ def parse_unit(text: str, argname: str) -> Unit:
 
 
 def unit_of(expr: sp.Expr, units: dict) -> Unit | None:
-    """The unit of ``expr`` given the units of its symbols (None where one is missing).
-
-    Raises
-    ------
-    ParameterError
-        The terms of a sum in different units (the message names both), or
-        a symbolic exponent of a quantity with a unit.
-    """
+    """The unit of ``expr`` given its symbols' (None where one is missing); ParameterError for
+    the terms of a sum in different units, or a symbolic power of a quantity with a unit."""
     if expr.is_Number or expr in (sp.pi, sp.E):
         return ONE
     if isinstance(expr, sp.Symbol):
