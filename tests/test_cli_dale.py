@@ -20,7 +20,7 @@ def test_dale_prints_a_verdict_per_circuit(capsys):
 def test_dale_of_a_model_that_estimates_its_state_decides_its_lqg_compensator(capsys):
     # the forearm measured by its angle alone: the controller is the LQG compensator, 1 x 1
     # (the full-state gains would be 1 x 2, which Dale's law does not take)
-    args = ["dale", "examples/forearm_lqg.toml", "--circuit", "controllable", "--timeout", "120"]
+    args = ["dale", "examples/forearm_lqg.toml", "--circuit", "controllable", "--timeout", "5"]
     assert main(args) == 0
     out = capsys.readouterr().out
     assert "the LQG compensator of the measured outputs; sensor delay 4" in out
