@@ -10,6 +10,12 @@ import numpy as np
 from symctl import Block, DelayGraph, ParameterError, Structure
 
 
+def examples(n: int) -> int:
+    """``n`` hypothesis examples in the full tier (``SYMCTL_EXAMPLES`` 40), scaled down with it in
+    the fast tier (``make test``: 10, a quarter)."""
+    return max(1, n * int(os.environ.get("SYMCTL_EXAMPLES", "40")) // 40)
+
+
 def random_plant(rng: np.random.Generator, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     """A random plant, controllable with probability one."""
     A = rng.normal(size=(n, n)) / np.sqrt(n)

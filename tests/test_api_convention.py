@@ -8,6 +8,7 @@ import json
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -238,14 +239,14 @@ _exprs = st.recursive(  # sums, products, small powers and exponentials: no huge
 )
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(_exprs)
 def test_exact_expressions_round_trip_unchanged(expr):
     back = decode(json.loads(json.dumps(encode(expr))))
     assert back == expr and sp.srepr(back) == sp.srepr(expr)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(
     st.lists(st.floats(allow_nan=False), min_size=1, max_size=6),
     st.lists(st.complex_numbers(allow_nan=False, allow_infinity=False), max_size=3),

@@ -12,6 +12,7 @@ import control
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -43,7 +44,7 @@ def _symbolic_rank(p: Pattern) -> int:
     return J.rank() if syms else 0
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(st.integers(min_value=0, max_value=2**8 - 1))
 def test_generic_rank_mod_p_equals_the_symbolic_jacobian_rank_at_order_2(mask):
     p = Pattern(2, mask)
@@ -286,7 +287,7 @@ def test_circuits_for_refuses_symbolic_gains_and_unrealizable_orders():
         symctl.circuits_for(sp.Integer(3), sensor_delay=0, actuator_delay=0)  # G2 of order 0
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(st.integers(min_value=0, max_value=2**15 - 1))
 def test_pattern_neuron_count_is_the_circuits(mask):
     from symctl.circuitatlas.circuitclass import circuit_of
@@ -324,7 +325,7 @@ _coeff = st.fractions(min_value=-3, max_value=3, max_denominator=7)
 
 
 @pytest.mark.slow
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(_coeff, _coeff, _coeff, _coeff, _coeff.filter(lambda v: v != 0))
 def test_the_sparsest_order_2_class_realizes_any_rational_G2_in_closed_form(
     atlas2, a0, a1, c0, c1, N

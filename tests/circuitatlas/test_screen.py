@@ -7,6 +7,7 @@ import random
 import pytest
 import sympy as sp
 from flint import fmpq_poly
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -87,7 +88,7 @@ def test_positive_dimensional_fibres_are_not_screened():
     assert screen(dense) is None and screen(_pattern(SAMPLE[0]), 0) is None
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=examples(30), deadline=None)
 @given(st.sampled_from(SAMPLE), st.integers(0, 2**32 - 1))
 def test_a_target_made_from_a_real_realization_always_has_a_real_point(text, seed):
     """The screen never calls a reachable target unreachable (its counts are exact)."""
@@ -103,7 +104,7 @@ def test_a_target_made_from_a_real_realization_always_has_a_real_point(text, see
         assert fibre["real"] >= 1
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(st.lists(st.integers(-20, 20), min_size=2, max_size=7))
 def test_sturm_counts_the_real_roots_that_sympy_isolates(coeffs):
     from symctl.circuitatlas.fibre import real_root_count

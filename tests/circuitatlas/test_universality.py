@@ -6,6 +6,7 @@ import random
 
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -46,7 +47,7 @@ def test_zeros_forced_real_refute_the_pattern_whose_numerator_is_m1_h1_z_minus_f
     assert ev.details["factors"] == ["(F_22 - z)", "(F_33 - z)"]
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(st.integers(min_value=0, max_value=2**15 - 1), st.integers(0, 2**32 - 1))
 def test_a_pattern_refuted_by_real_zeros_has_only_real_zeros_at_random_realizations(mask, seed):
     pattern = Pattern(3, mask | 1 << 9 | 1 << 12)  # some H and M entry: a nonzero numerator

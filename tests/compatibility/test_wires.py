@@ -9,7 +9,7 @@ import networkx as nx
 import numpy as np
 import pytest
 import sympy as sp
-from helpers import random_graph, random_structure
+from helpers import examples, random_graph, random_structure
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -67,7 +67,7 @@ def test_a_k_step_block_is_a_wire_of_delay_k_everywhere():
     assert Structure.parallel(S, S).blocks["P2.d"].steps == 4
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(60), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1))
 def test_fewest_delays_with_axons_agree_with_networkx_dijkstra(seed):
     rng = np.random.default_rng(seed)
@@ -80,7 +80,7 @@ def test_fewest_delays_with_axons_agree_with_networkx_dijkstra(seed):
     assert S.delay_distances(S.input) == expected
 
 
-@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(80), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), chain=st.booleans())
 def test_checkers_with_axons_agree_with_brute_force(seed, chain):
     rng = np.random.default_rng(seed)
@@ -106,7 +106,7 @@ def _fastest_over(graph: DelayGraph, W) -> float:
         return math.inf
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(40), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     seed=st.integers(0, 2**32 - 1),
     chain=st.booleans(),
@@ -240,7 +240,7 @@ def _channel_graph(rng) -> DelayGraph:
 
 
 @pytest.mark.slow
-@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(15), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1))
 def test_theorem_3_every_entry_along_its_own_path(seed):
     rng = np.random.default_rng(seed)

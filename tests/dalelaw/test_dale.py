@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 import scipy.signal
 import sympy as sp
+from helpers import examples
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
@@ -277,7 +278,7 @@ nonzero = st.fractions(min_value=-2, max_value=2, max_denominator=12).filter(lam
 
 @pytest.mark.slow
 @settings(
-    max_examples=8,
+    max_examples=examples(8),
     deadline=None,
     database=None,
     derandomize=True,
@@ -309,7 +310,7 @@ def test_controllable_verdict_is_verified_or_agrees_with_brute_force(k, a1, a0, 
 
 
 @settings(
-    max_examples=8,
+    max_examples=examples(8),
     deadline=None,
     database=None,
     derandomize=True,

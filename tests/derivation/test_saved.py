@@ -12,6 +12,7 @@ import textwrap
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -162,7 +163,7 @@ def test_every_error_pickles_with_its_message(name):
 coefficient = st.integers(-9, 9).map(lambda k: sp.Rational(k, 4))
 
 
-@settings(max_examples=25)
+@settings(max_examples=examples(25))
 @given(num=st.lists(coefficient, min_size=1, max_size=3), den=st.lists(coefficient, max_size=3))
 def test_a_transfer_function_pickles_equal(num, den):
     G = DiscreteTF(
@@ -171,7 +172,7 @@ def test_a_transfer_function_pickles_equal(num, den):
     assert pickle.loads(pickle.dumps(G)) == G
 
 
-@settings(max_examples=8)
+@settings(max_examples=examples(8))
 @given(
     tau=st.sampled_from([0.01, 0.02, 0.05, 0.3]),
     delays=st.tuples(st.integers(0, 3), st.integers(1, 3)),
@@ -185,7 +186,7 @@ def test_a_model_saved_as_json_or_pickle_loads_equal(tau, delays, seed, q):
     assert hash(pickle.loads(pickle.dumps(m))) == hash(m)
 
 
-@settings(max_examples=10)
+@settings(max_examples=examples(10))
 @given(st.lists(st.floats(-2, 2), min_size=3, max_size=3))
 def test_gains_pickle_equal_for_any_weights(q):
     Q = [[1 + abs(q[0])]]

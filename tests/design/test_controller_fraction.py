@@ -6,7 +6,7 @@ import control
 import numpy as np
 import pytest
 import sympy as sp
-from helpers import random_plant
+from helpers import examples, random_plant
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -173,7 +173,7 @@ def test_a_controller_of_the_wrong_shape_is_refuted_by_name():
     assert not proof and "shape" in proof.evidence
 
 
-@settings(max_examples=20)
+@settings(max_examples=examples(20))
 @given(
     n=st.integers(1, 3),
     m=st.integers(1, 3),

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import scipy.linalg
 import sympy as sp
-from helpers import random_plant
+from helpers import examples, random_plant
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -141,7 +141,7 @@ def test_tiny_process_noise_on_a_stable_plant_turns_the_sensor_off():
     assert max(abs(float(c)) for c in G.num_coeffs()) < 1e-10
 
 
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=examples(15), deadline=None)
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(1, 3),

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 import scipy.signal
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -86,7 +87,7 @@ def test_the_linearization_is_the_jacobian_and_matches_finite_differences():
 
 
 @pytest.mark.slow
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 @given(
     st.floats(0.1, 5.0),
     st.floats(0.05, 3.0),
@@ -104,7 +105,7 @@ def test_the_zero_order_hold_matches_scipy_cont2discrete(kv, cv, ue, ts):
     np.testing.assert_allclose(B, Bd, rtol=1e-10, atol=1e-12)
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 @given(st.floats(0.2, 5.0), st.floats(-3.0, 3.0))
 def test_the_one_state_closed_form_is_exact_at_the_values(kv, ue):
     m = ODEModel([x], [u], [-k * x + u], {k: kv}, u_eq=[ue], dt=0.05)
@@ -152,7 +153,7 @@ def test_a_run_away_plant_is_marked_not_raised_when_asked():
     assert chk.final_deviation[0] < 0.01 < chk.final_deviation[1]
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(
     st.lists(
         st.sampled_from(["N", "m", "s", "kg", "spikes", "rad", "ms", "Hz"]), min_size=1, max_size=4

@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 import sympy as sp
-from helpers import bounded
+from helpers import bounded, examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -138,7 +138,7 @@ def test_fitted_realization_agrees_with_scipy_dlsim(hidden):
 
 
 @pytest.mark.slow
-@settings(max_examples=6, deadline=None)
+@settings(max_examples=examples(6), deadline=None)
 @given(
     seed=st.integers(0, 10**6),
     recorded=st.sets(st.sampled_from(["G1.x1", "G2.x1", "G2.x2", "G2.y"]), min_size=1),

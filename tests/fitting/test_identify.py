@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -51,7 +52,7 @@ def test_an_identifiable_neuron_stays_identifiable_with_noise(noise):
     assert res.identifiability.exact
 
 
-@settings(max_examples=5, deadline=None)
+@settings(max_examples=examples(5), deadline=None)
 @given(seed=st.integers(0, 10**6), noise=st.sampled_from([0.001, 0.01, 0.1, 1.0]))
 def test_the_verdicts_do_not_depend_on_the_noise_seed(seed, noise):
     res = fit(_noisy(["G2.y", "G2.x2"], noise, seed), GAINS, **KW, starts=1, rng=seed)

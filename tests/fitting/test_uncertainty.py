@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -142,7 +143,7 @@ def test_bad_bootstrap_options_are_errors_naming_them(options, error, match):
         fit({"G2.x2": G2["G2.x2"]}, GAINS, **KW, **options)
 
 
-@settings(max_examples=4, deadline=None)
+@settings(max_examples=examples(4), deadline=None)
 @given(
     seed=st.integers(0, 10**6),
     noise=st.sampled_from([0.0, 0.01, 0.1, 1.0]),

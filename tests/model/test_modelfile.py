@@ -8,6 +8,7 @@ import textwrap
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -285,7 +286,7 @@ def test_model_file_errors_are_parameter_errors():
 _KEY = st.from_regex(r"[a-z][a-z0-9_]{0,8}", fullmatch=True)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(
     st.dictionaries(_KEY, st.dictionaries(_KEY, st.integers(0, 9), max_size=4), max_size=4),
     st.integers(0, 3),

@@ -5,6 +5,7 @@ from __future__ import annotations
 import control
 import numpy as np
 import pytest
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -81,7 +82,7 @@ def test_noise_of_the_wrong_size_for_the_loop_is_refused_naming_the_part():
         closed_loop_response(GAINS, noise={"process": 1.0})
 
 
-@settings(max_examples=20, deadline=None)
+@settings(max_examples=examples(20), deadline=None)
 @given(
     st.sampled_from(["process", "motor", "sensor", "signal_dependent"]),
     st.sampled_from([0.0, [0.0], [[0.0]]]),
@@ -186,7 +187,7 @@ def _gain(k: float) -> Realization:
     return Realization([[0]], [[0]], [[0]], [[-k]], dt=0.01)
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 @given(st.floats(-0.95, 0.95), st.floats(1e-3, 10.0), st.floats(0.0, 0.4), st.floats(0.0, 0.5))
 def test_the_predicted_variance_of_a_scalar_ar1_loop_is_its_closed_form(a, q, k, sigma):
     """x(t+1) = a x + u (1 + sigma eps) + p, u = -k x: P = q / (1 - (a - k)^2 - sigma^2 k^2)."""
@@ -300,7 +301,7 @@ def test_the_prediction_is_the_same_for_the_augmented_loop_and_its_realization()
     assert a.predicted_cost == pytest.approx(b.predicted_cost, rel=1e-8)
 
 
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=examples(15), deadline=None)
 @given(st.integers(0, 2**32 - 1))
 def test_the_predicted_covariance_solves_python_controls_lyapunov_equation(seed):
     gen = np.random.default_rng(seed)

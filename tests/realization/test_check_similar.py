@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -20,7 +21,7 @@ from symctl.realization.realizers import random_full_rank
 
 @pytest.mark.slow
 @given(st.integers(1, 3), st.integers(0, 3), st.integers(0, 10**6))
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 def test_similar_to_agrees_with_the_direct_proof(ds, da, seed):
     T = ds + da
     f = factor(controller_tf(T), ds, da)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -89,7 +90,7 @@ def test_eps_of_the_wrong_length_for_the_channels_is_refused():
         factor(G, 1, 1, eps=[0.1, 0.2])
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 @given(st.integers(1, 3), st.integers(1, 3), st.integers(0, 2), st.integers(0, 2), st.data())
 def test_random_mimo_controllers_factor_exactly(p, m, ds, da, data):
     order = ds + da + data.draw(st.integers(0, 2))
@@ -126,7 +127,7 @@ def test_block_canonical_forms_realize_a_mimo_g2_exactly(form):
 
 
 @pytest.mark.slow
-@settings(max_examples=20, deadline=None)
+@settings(max_examples=examples(20), deadline=None)
 @given(st.integers(1, 3), st.integers(1, 3), st.integers(1, 3), st.data())
 def test_block_forms_match_python_control_numerically(p, m, n, data):
     import control

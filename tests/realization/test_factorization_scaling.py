@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -31,7 +32,7 @@ rationals = st.fractions(min_value=-2, max_value=2, max_denominator=50).map(sp.R
 
 
 @given(st.integers(0, 3), st.integers(0, 3), st.data())
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=examples(30), deadline=None)
 def test_factor_at_values_equals_substituting_the_symbols(ds, da, data):
     T = ds + da
     G = controller_tf(max(T, 1))

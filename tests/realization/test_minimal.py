@@ -6,6 +6,7 @@ import control
 import numpy as np
 import pytest
 import sympy as sp
+from helpers import examples
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -56,7 +57,7 @@ def _padded(rng, p: int, q: int) -> Realization:
 
 
 @pytest.mark.slow
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(25), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), p=st.integers(1, 2), q=st.integers(1, 2))
 def test_the_minimal_order_is_the_hankel_rank_and_the_transfer_function_is_kept(seed, p, q):
     R = _padded(np.random.default_rng(seed), p, q)

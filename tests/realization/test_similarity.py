@@ -7,6 +7,7 @@ import random
 import pytest
 import sympy as sp
 from flint import fmpq, fmpq_mat, fmpz_mpoly_ctx
+from helpers import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -124,7 +125,7 @@ def test_random_similarity_equals_the_sympy_path_in_value_and_form(seed):
 
 
 @pytest.mark.slow
-@settings(max_examples=15)  # each example runs SymPy's cancel too
+@settings(max_examples=examples(15))  # each example runs SymPy's cancel too
 @given(st.integers(0, 2**32))
 def test_property_flint_similarity_has_the_value_of_the_sympy_one(seed):
     old, new = both(*_case(seed))
