@@ -43,3 +43,17 @@ def test_latex_module_is_reached_as_an_attribute():
     code = "import symctl; print(symctl.latex.export.__module__)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "symctl.latex"
+
+
+def test_the_names_once_in_a_modules_all_stay_importable():
+    from symctl import ifp_structure
+    from symctl.compatibility.equations import structure_equations, structure_latex
+    from symctl.fitting.fitmodel import FIXED_CLASSES, fixed_classes
+    from symctl.plotting.style import BAND_ALPHA, legend_below
+    from symctl.report.figures import MAX_DRAWN_PARTS
+    from symctl.report.workers import FigureWorkers
+
+    S = ifp_structure(2)
+    assert structure_equations(S) == S.equations() and structure_latex(S) == S.latex()
+    assert fixed_classes() == FIXED_CLASSES and 0 < BAND_ALPHA < 1 and MAX_DRAWN_PARTS > 0
+    assert callable(legend_below) and callable(FigureWorkers.map)

@@ -31,6 +31,11 @@ __all__ = ["FIXED_CLASSES", "TraceModel", "section_name"]
 FIXED_CLASSES: tuple[str, ...]  # read from the registry at each access (__getattr__)
 
 
+def fixed_classes() -> tuple[str, ...]:
+    """The registry's fixed forms (no transform): :data:`FIXED_CLASSES`."""
+    return tuple(k for k in circuit_names(whole=False) if not transformed(k))
+
+
 def transformed(circuit) -> bool:
     """Whether ``circuit`` names a realizer with a free similarity transform (``"general"``)."""
     return isinstance(circuit, str) and circuit in REALIZERS and REALIZERS[circuit].takes_transform
@@ -44,7 +49,7 @@ def __getattr__(name: str):
     ('controllable', 'observable')
     """
     if name == "FIXED_CLASSES":
-        return tuple(k for k in circuit_names(whole=False) if not transformed(k))
+        return fixed_classes()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

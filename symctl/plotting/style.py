@@ -31,6 +31,7 @@ DOUBLE = 7.0  # two columns [in]
 TEXT_WIDTH = 499.0 / 72.27  # the text width of derivation.pdf: 11pt article, letter, 2 cm margins
 FONT_SIZE = 8.0  # axis and tick labels, node labels of diagrams [pt]
 SMALL = 7.0  # legends, keys and annotations [pt]
+BAND_ALPHA = 0.22  # opacity of a band of mean +- 2 sd
 TITLE = 8.5  # panel titles [pt]
 MIN_FONT = 6.0  # no text of a figure is set smaller [pt], at the size it is printed
 PNG_DPI = 200  # resolution of the PNG files (the PDF and SVG are vector)
@@ -98,7 +99,7 @@ def cycle(k: int) -> str:
 def band(ax, t, mean, sd, color: str, label: str | None = None):
     r"""The spread of noisy runs about their mean, :math:`\pm 2` sd, held over each step."""
     lo, hi = mean - 2 * sd, mean + 2 * sd
-    return ax.fill_between(t, lo, hi, step="post", color=color, alpha=0.22, lw=0, label=label)
+    return ax.fill_between(t, lo, hi, step="post", color=color, alpha=BAND_ALPHA, lw=0, label=label)
 
 
 def axis_label(quantity: str, unit: str | None) -> str:
@@ -192,6 +193,22 @@ def new_figure(size: str | float = "text", height: float | None = None, **kwargs
     kwargs.setdefault("layout", "constrained")
     with styled():
         return Figure(figsize=(w, h), **kwargs)
+
+
+def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, title=None):
+    """A legend under ``ax``, outside its data, in up to 4 columns.
+
+    >>> from symctl.plotting.style import legend_below, new_figure
+    >>> ax = new_figure("column", 2.0).add_subplot()
+    >>> _ = ax.plot([0, 1], [0, 1], label="a")
+    >>> legend_below(ax).get_texts()[0].get_text()
+    'a'
+    """
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    ncol = max(1, min(len(handles), 4)) if ncol is None else ncol
+    kw = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.22), "fontsize": SMALL}
+    return ax.legend(handles, labels, ncol=ncol, title=title, frameon=False, **kw)
 
 
 _HANDLE = 2.0 + 0.8  # matplotlib's handlelength + handletextpad [em]

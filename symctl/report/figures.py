@@ -43,6 +43,7 @@ DEFAULT_FORMATS = ("pdf", "png")
 """The formats the report writes unless asked for others: the PDF that ``derivation.tex``
 includes and the PNG that ``report.md`` shows (SVG on request)."""
 MAX_DRAWN_SIGNALS = 400
+MAX_DRAWN_PARTS = 6  # parts beyond which a structure is drawn as its overview (kept for reference)
 """Structures up to this many signals are drawn block by block when they fit a page; larger
 ones as the overview of their parts."""
 MAX_PIXELS = 4000

@@ -106,6 +106,10 @@ class FigureWorkers:
                 worker.kill()
                 worker.join()
 
+    def map(self, task, res, names) -> dict:
+        """``{name: task(res, name)}`` for every name, in the workers (:meth:`submit`, waited)."""
+        return self.submit(task, res, names)()
+
     def submit(self, task, res, names):
         """Start ``task(res, name)`` for every name (``task`` of module level, ``res`` picklable);
         returns a function ``result(progress=None)`` that waits and gives ``{name: value}``."""
