@@ -57,3 +57,12 @@ def test_the_names_once_in_a_modules_all_stay_importable():
     assert structure_equations(S) == S.equations() and structure_latex(S) == S.latex()
     assert fixed_classes() == FIXED_CLASSES and 0 < BAND_ALPHA < 1 and MAX_DRAWN_PARTS > 0
     assert callable(legend_below) and callable(FigureWorkers.map)
+    import sympy
+
+    from symctl.cli.fit import model_parts
+    from symctl.plotting.structure_layout import spread
+    from symctl.report.model_json import float_rows, model, plant
+
+    assert model_parts(None)[1:] == (1, 1, (1, 1)) and callable(spread)
+    assert float_rows(sympy.eye(2)) == [[1.0, 0.0], [0.0, 1.0]]
+    assert callable(model) and callable(plant)

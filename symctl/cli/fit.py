@@ -185,6 +185,18 @@ def model_controller(model_file, sensor_delay, actuator_delay):
     return gains, lqg_tf(gains.system, model.C, gains=gains, kalman=kalman), model.C
 
 
+def model_parts(model_file):
+    """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
+    from symctl.design.plant import MuscleModel
+
+    if model_file is None:
+        return MuscleModel(), 1, 1, (1, 1)
+    from symctl.model.modelfile import load_model
+
+    m = load_model(Path(model_file))
+    return m.plant, m.Q, m.R, (m.sensor_delay, m.actuator_delay)
+
+
 def _meta_int(value, key, tr):
     from symctl.errors import ParameterError
 

@@ -33,6 +33,7 @@ from symctl.compatibility.signalgraph import back_edges
 from symctl.compatibility.structure import Structure
 from symctl.plotting import layered
 from symctl.plotting.layered import Segment, Wire, assign_slots, clean, junctions, merge
+from symctl.plotting.layered import spread as spread
 from symctl.plotting.structure_labels import StructureText, structure_text
 from symctl.plotting.style import FONT_SIZE, SMALL
 
