@@ -326,17 +326,27 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
     return F, H, M, zeros(m, p)
 
 
-def _design_values(system, Cm, gains, kalman, form: str) -> dict:
-    """The exact values of the gain symbols in the design ``gains``, ``kalman`` (or none)."""
-    if gains is None and kalman is None:
-        return {}
+def _check_design(system, C, gains, kalman, *, required: bool = False):
+    """``C`` as a matrix (default: the filter's), ``gains`` and ``kalman`` checked to be designs
+    on ``system`` that measure it (each may be None unless ``required``)."""
     for value, name, kind in ((gains, "gains", Gains), (kalman, "kalman", KalmanGains)):
+        if value is None and not required:
+            continue
         if not isinstance(value, kind):
             raise SymctlTypeError(f"{name}: expected {kind.__name__}, got {value!r}")
         if value.system != system:
             raise ParameterError(f"{name}: designed for another system")
-    if kalman.C != Cm:
+    Cm = _output_matrix(kalman.C if C is None and kalman is not None else C, system.n)
+    if kalman is not None and kalman.C != Cm:
         raise ParameterError(f"C: the filter measures {kalman.C.tolist()}, not {Cm.tolist()}")
+    return Cm
+
+
+def _design_values(system, Cm, gains, kalman, form: str) -> dict:
+    """The exact values of the gain symbols in the design ``gains``, ``kalman`` (or none)."""
+    if gains is None and kalman is None:
+        return {}
+    _check_design(system, Cm, gains, kalman, required=True)
     return {**gains.substitutions(exact=True), **kalman.substitutions(exact=True, form=form)}
 
 
@@ -449,14 +459,7 @@ def lqg_tf(
     """
     if not isinstance(system, AugmentedSystem):
         raise SymctlTypeError(f"system: expected an AugmentedSystem, got {type(system).__name__}")
-    for value, name, kind in ((gains, "gains", Gains), (kalman, "kalman", KalmanGains)):
-        if value is not None and not isinstance(value, kind):
-            raise SymctlTypeError(f"{name}: expected {kind.__name__}, got {value!r}")
-        if value is not None and value.system != system:
-            raise ParameterError(f"{name}: designed for another system")
-    Cm = _output_matrix(kalman.C if C is None and kalman is not None else C, system.n)
-    if kalman is not None and kalman.C != Cm:
-        raise ParameterError(f"C: the filter measures {kalman.C.tolist()}, not {Cm.tolist()}")
+    Cm = _check_design(system, C, gains, kalman)
     n, m, T, p = system.n, system.m, system.T, Cm.rows
     R, convert, ev, K, gain, L, adj, phi = _setup(system, Cm, form)
     K0 = K[:, :n]
