@@ -34,6 +34,7 @@ __all__ = [
     "coefficient_polynomials",
     "coefficient_polys",
     "coefficient_symbols",
+    "count_ideal",
     "count_real",
     "real_root_count",
     "real_solutions",
@@ -244,7 +245,12 @@ def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
     1
     """
     ring, polys = _fibre_ring(pattern)
-    found = _quotient([p - v for p, v in zip(polys, (*a, *c), strict=True)], ring)
+    return count_ideal([p - v for p, v in zip(polys, (*a, *c), strict=True)], ring, rng, tries)
+
+
+def count_ideal(eqs, ring, rng, tries: int = 3) -> dict | None:
+    """:func:`count_real` for any system ``eqs`` of ``ring`` (grevlex, over Q)."""
+    found = _quotient(eqs, ring)
     if found is None:
         return None
     monos, mult = found

@@ -11,8 +11,9 @@ a real point **refutes** the pattern: its :math:`D` simple points move continuou
 target and stay non-real nearby, and no other point comes in (no target has more isolated points
 than the generic number), so an open set of :math:`G_2` has no real realization. Otherwise the
 pattern stays a conjecture with the counts as evidence. That the :math:`D` of one random target
-is the generic degree holds with probability 1. Fibres of positive dimension (above :math:`3n`
-entries) are not screened.
+is the generic degree holds with probability 1. A fibre that is a curve (:math:`3n + 1`
+entries) has its own screen, on the critical points of a distance
+(:mod:`~symctl.circuitatlas.critical`); bigger fibres are not screened.
 
 >>> from symctl.circuitatlas.pattern import Pattern
 >>> from symctl.circuitatlas.screen import screen

@@ -25,14 +25,15 @@ The methods of :func:`decide`, in order (:class:`Evidence`):
     The poles alone: when ``F``'s own torus leaves :math:`n` free entries, :math:`\det(zI - F) =
     a` is square, and a sampled :math:`a` of the generic degree with no real solution refutes
     every pattern with that ``F`` (simple points stay non-real nearby); or the exact screen
-    (:mod:`~symctl.circuitatlas.screen`).
+    (:mod:`~symctl.circuitatlas.screen`); or, for :math:`3n + 1` entries (a curve), the exact
+    screen of its critical points (:mod:`~symctl.circuitatlas.critical`).
 ``"odd degree"`` (proved)
     :mod:`~symctl.circuitatlas.odddegree`, for :math:`3n` entries or a slice of more.
 ``"conjectured"`` (evidence, not a proof)
     Containing a conjectured pattern; an odd degree left unproved; every target of the screen
-    with real realizations; or, above :math:`3n` entries, a Krawczyk-certified real realization
-    at one sampled :math:`G_2` in every region (samples cannot rule out an open sub-region they
-    missed).
+    with real realizations; or, above :math:`3n` entries, a real realization at one sampled
+    :math:`G_2` in every region, exact (a real critical point, for a curve) or Krawczyk-certified
+    (samples cannot rule out an open sub-region they missed).
 ``"not decided"``
     None of the above settled it; the search done is stated.
 
@@ -55,6 +56,7 @@ import networkx as nx
 import sympy as sp
 
 from symctl.circuitatlas.certify import certified_real_root
+from symctl.circuitatlas.critical import curve_region
 from symctl.circuitatlas.evidence import CONJECTURED, ODD_DEGREE, Evidence, _evidence
 from symctl.circuitatlas.fibre import _equations, _system, coefficient_symbols, real_solutions
 from symctl.circuitatlas.odddegree import odd_degree_proof, slice_proof
@@ -87,6 +89,10 @@ FIXINGS = 6
 
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
+
+CURVE_TARGETS_PER_REGION = {3: 3}
+"""Targets per region of the exact screen of a fibre that is a curve (:math:`3n + 1` entries),
+by order (orders not listed are not screened this way)."""
 
 POLE_DRAWS = 2
 """Sampled pole polynomials per region (of poles and zeros) of the poles-alone refutation."""
@@ -264,22 +270,62 @@ def _witness(pattern: Pattern, rng, extra: int, a, c) -> dict | None:
     return None
 
 
-def _witness_search(pattern: Pattern, rng, extra: int) -> Evidence:
-    witnessed: dict[str, dict] = {}
+def _curve_screen(pattern: Pattern, rng, per_region: int) -> tuple[Evidence | None, dict]:
+    """The exact screen of a curve (:mod:`~symctl.circuitatlas.critical`): a refutation, or
+    the exact real realizations found per region."""
+    found: dict[str, dict] = {}
     for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
-        for _ in range(DRAWS_PER_REGION):
+
+        def sample(g, pairs=pairs, signs=signs, complex_zeros=complex_zeros):
+            return _region_sample(pattern.n, pairs, signs, complex_zeros, g)
+
+        for _ in range(per_region):
+            got = curve_region(pattern, sample, rng, 1)
+            if got is None:
+                continue
+            if got["real"]:
+                found.setdefault(region, {k: got[k] for k in ("a", "c", "point", "degree")})
+                continue
+            why = (
+                f"the target a = {got['a']}, c = {got['c']} ({region}) has no real realization: "
+                f"its fibre is a curve, and the {got['degree']} critical points of the distance "
+                f"to p = {got['point']} on it (the generic number, simple) are none real; every "
+                "closed real set has a nearest point, and these stay non-real nearby, so an open "
+                "set of G2 has none"
+            )
+            details = {k: v for k, v in got.items() if k != "real"}
+            return _evidence(False, "counterexample", True, why, region=region, **details), found
+    return None, found
+
+
+def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None) -> Evidence:
+    witnessed: dict[str, dict] = {}
+    curve_targets = CURVE_TARGETS_PER_REGION.get(pattern.n, 0) if exact is not False else 0
+    if extra == 1 and curve_targets:
+        refuted, witnessed = _curve_screen(pattern, rng, curve_targets)
+        if refuted is not None:
+            return refuted
+    for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
+        for _ in range(DRAWS_PER_REGION if region not in witnessed else 0):
             a, c = _region_sample(pattern.n, pairs, signs, complex_zeros, rng)
             found = _witness(pattern, rng, extra, a, c)
             if found is not None:
                 witnessed[region] = found
                 break
     failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
+    exact_found = sum("point" in w for w in witnessed.values())
+    how = (
+        f"exact (critical points of a distance, {curve_targets} generic targets drawn per "
+        f"region, none without) in {exact_found}, Krawczyk-certified in "
+        f"{len(witnessed) - exact_found}"
+        if curve_targets and extra == 1
+        else "proved (Krawczyk test)"
+    )
     if not failed:
         why = (
             "conjectured universal, not proved: real realizations with every entry nonzero, "
-            f"proved (Krawczyk test), for {len(witnessed)} sampled G2, one in each region of "
-            f"poles and zeros ({', '.join(witnessed)}); samples cannot rule out a sub-region "
-            "they missed"
+            f"{how}, for sampled G2 in each region of poles and zeros ({', '.join(witnessed)}); "
+            "samples cannot rule out a sub-region they missed"
         )
         return _evidence(
             None, CONJECTURED, False, why, witnesses={r: [w] for r, w in witnessed.items()}
@@ -393,7 +439,7 @@ def decide(
     if screened is not None:
         return screened
     rng = random.Random(seed * 7919 + pattern.mask)
-    return _witness_search(pattern, rng, pattern.size - 3 * n)
+    return _witness_search(pattern, rng, pattern.size - 3 * n, exact)
 
 
 def _odd_degree(pattern: Pattern, seed: int) -> dict | None:
