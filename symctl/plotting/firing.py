@@ -42,10 +42,8 @@ def firing_plot(
     title: str | None = None,
     size: str | float = "text",
 ) -> Figure:
-    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
-
-    With noise (``fp.draws`` > 0) each line is the mean of the noisy runs, in a band of
-    :math:`\pm 2` standard deviations.
+    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top;
+    with noise, each line the mean of the noisy runs in a band of :math:`\pm 2` sd.
 
     Parameters
     ----------
@@ -54,8 +52,8 @@ def firing_plot(
     ncols : int
         Neuron panels per row.
     labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)`` of the plant's state and input (their
-        names without ``delta_``); default the muscle's (force f [N], rate r).
+        ``name -> (description, unit)`` of the plant's state and input (names without
+        ``delta_``); default the muscle's (force f [N], rate r).
     title : str, optional
         A heading over the figure (default none).
     size : {"column", "double", "text"} or float
@@ -64,9 +62,6 @@ def firing_plot(
     Returns
     -------
     matplotlib.figure.Figure
-        The state panel on top (its heading says how closely the realizations'
-        rates agree), the neuron panels (time and rate axes labelled once, for
-        all of them), the legend of the realizations below.
 
     Raises
     ------

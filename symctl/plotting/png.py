@@ -9,25 +9,9 @@ __all__ = ["render_pdf", "write_png"]
 
 
 def write_png(fig, path: Path | str, *, dpi: float, metadata: dict | None = None) -> Path:
-    """Save ``fig`` as a PNG at ``dpi`` (rendered by Agg as :meth:`Figure.savefig` does): RGB
-    when every pixel is opaque, else RGBA; the same figure writes the same bytes.
+    """Save ``fig`` as a PNG at ``dpi`` (rendered by Agg as :meth:`Figure.savefig` does), RGB when
+    every pixel is opaque, with the text chunks ``metadata`` (``None`` values left out).
 
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-    path : path
-        The file to write.
-    dpi : float
-        Dots per inch.
-    metadata : mapping of str to str, optional
-        PNG text chunks (``None`` values are left out).
-
-    Returns
-    -------
-    Path
-
-    Examples
-    --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> from matplotlib.figure import Figure
@@ -54,25 +38,9 @@ def write_png(fig, path: Path | str, *, dpi: float, metadata: dict | None = None
 def render_pdf(
     pdf: Path | str, path: Path | str, *, dpi: float, metadata: dict | None = None
 ) -> Path:
-    """Write the PNG of the first page of the PDF file ``pdf`` at ``dpi``, rendered by PDFium.
+    """As :func:`write_png`, from the first page of the PDF file ``pdf`` rendered by PDFium
+    (milliseconds, where matplotlib would draw the figure anew).
 
-    As :func:`write_png`, from the figure's PDF instead of a second drawing (matplotlib
-    draws anew for each format; PDFium rasterizes in milliseconds, showing what the PDF
-    shows).
-
-    Parameters
-    ----------
-    pdf : path
-        A PDF file (the first page is rendered).
-    path, dpi, metadata :
-        As for :func:`write_png`.
-
-    Returns
-    -------
-    Path
-
-    Examples
-    --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> from matplotlib.figure import Figure

@@ -1,11 +1,10 @@
-r"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
+"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
 
-On :mod:`symctl.plotting.layered`; text is measured by ``measure(text, points) -> (width,
-height)`` [in]. Wires closing a cycle are arcs below or above the rows, carrying the gains
-and delays that feed them (the paper's IFP drawing). Columns by longest path, with a delay
-assignment by vertex level first (:func:`vertex_levels`: each vertex's signals in one
-band); integer rows; orthogonal wires turning at a slot of their gap; an adder takes its
-inputs on its left side; each part of a series connection framed.
+Text is measured by ``measure(text, points) -> (width, height)`` [in]. Wires closing a
+cycle are arcs below or above the rows, carrying the gains and delays that feed them (the
+paper's IFP drawing). Columns by longest path, level by level of a delay assignment
+(:func:`vertex_levels`); integer rows; orthogonal wires turning at a slot of their gap; an
+adder takes its inputs on its left side; each part of a series connection framed.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure_layout import structure_layout
@@ -84,19 +83,17 @@ class StructureLayout:
     Attributes
     ----------
     positions, sizes : mapping of signal name to (float, float)
-        Each block's centre (gains on feedback arcs included) and size (gain box, adder
-        circle's diameter, signal dot).
+        Each block's centre (gains on feedback arcs included) and size.
     labels : mapping of gain name to str
         The text in each gain box (mathtext).
     names : mapping of signal name to Label
-        The name written at a named signal (adders, delayed states).
+        The name written at a named signal.
     ends : tuple of Label
         The labels of the arrows into the inputs and out of the outputs.
     layers : mapping of signal name to int
         The column of each block in the rows (blocks on feedback arcs have none).
     wires, arrows_in, arrows_out : tuple of Wire
-        Every wire as drawn (orthogonal polylines); the arrows into the inputs and out of
-        the outputs.
+        Every wire as drawn; the arrows into the inputs and out of the outputs.
     junctions : tuple of (x, y)
         Where a wire branches (a dot each).
     parts, bands : tuple of Frame, tuple of Band
@@ -130,8 +127,9 @@ def feedback_edges(S: Structure, level: Mapping[str, int]) -> list[tuple[str, st
 
 
 def feedback_routes(S: Structure, g: nx.DiGraph, level, vertex) -> list[Route]:
-    """Each feedback wire with the single-input, single-output gains and delays before it (drawn
-    on the arc, as the paper does; with an assignment only those at the vertex of both ends)."""
+    """Each feedback wire with the single-input, single-output gains and delays before it, drawn
+    on its arc (with an assignment, only those at the vertex of both ends).
+    """
     ends = set(S.inputs) | set(S.outputs)
     taken: set[str] = set()
     routes = []
@@ -178,8 +176,7 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
 
 
 def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
-    """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ
-    (narrow arcs first, so a nested arc runs inside)."""
+    """Lane 1, 2, ... (out from the rows) of each arc: overlapping arcs on a side differ, narrow inside."""
     lane: dict[int, int] = {}
     for k in sorted(spans, key=lambda k: (spans[k][1] - spans[k][0], k)):
         lo, hi = spans[k]
@@ -254,22 +251,9 @@ def structure_layout(
     vertex_of: Mapping[str, int] | None = None,
     vertex_names: Mapping[int, str] | None = None,
 ) -> StructureLayout:
-    """The layout of the block diagram of ``S`` (see the module text).
-
-    Parameters
-    ----------
-    S : Structure
-    measure : callable
-        ``measure(text, points) -> (width, height)`` in inches.
-    text : StructureText, optional
-        What is written (default :func:`~symctl.plotting.structure_labels.structure_text`).
-    vertex_of, vertex_names : mapping, optional
-        A delay assignment (vertex ``1 .. N`` of every signal: each vertex's signals in one
-        band) and the bands' labels (default ``v1``, ``v2``, ...; mathtext allowed).
-
-    Returns
-    -------
-    StructureLayout
+    """The layout of the block diagram of ``S`` (see the module text): ``text`` what is written
+    (default :func:`~symctl.plotting.structure_labels.structure_text`); ``vertex_of`` a delay
+    assignment (each vertex's signals in one band) and ``vertex_names`` the bands' labels.
     """
     text = text or structure_text(S)
     g = S.graph
@@ -585,19 +569,8 @@ class Frame(NamedTuple):
 
 
 def vertex_levels(S: Structure, vertex: Mapping[str, int]) -> dict[str, int]:
-    """The level of each signal: the longest path to its vertex in the graph of the vertices
-    that the wires join (cycles broken at the wire going furthest back); 0 without ``vertex``.
-
-    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
-    >>> from symctl.compatibility.check import check_compatibility
-    >>> from symctl.compatibility.delaygraph import DelayGraph
-    >>> from symctl.plotting.structure_layout import vertex_levels
-    >>> f = factor(controller_tf(2))
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
-    >>> where = check_compatibility(S, DelayGraph.chain([1, 1])).assignment.vertex_of
-    >>> level = vertex_levels(S, where)
-    >>> level["G1.u"], level["G2.x1"], level["G3.x1"]
-    (0, 1, 2)
+    """The level of each signal: the longest path to its vertex in the graph of the vertices the
+    wires join (cycles broken at the wire going furthest back); 0 without ``vertex``.
     """
     if not vertex:
         return dict.fromkeys(S.blocks, 0)
@@ -624,8 +597,9 @@ def vertex_label(v: int, names: Mapping[int, str] | None) -> str:
 
 
 def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure):
-    """The band of each vertex (a level's from the middle of the gap before its first column to
-    that after its last; the whole height when alone at its level) and the drawing's new top."""
+    """The band of each vertex (a level's, from mid-gap before its first column to mid-gap after
+    its last; the whole height when alone at its level) and the drawing's new top.
+    """
     if not vertex:
         return (), y_range[1]
     y_lo, y_hi = y_range
@@ -657,8 +631,7 @@ def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure
 
 
 def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
-    """The frame of each part (its blocks, names and inner wires; none for one part) and the
-    drawing's new top (the labels sit above the frames)."""
+    """The frame of each part (none for one part) and the drawing's new top, the labels above the frames."""
     parts: dict[str, list[str]] = {}
     for n, block in S.blocks.items():
         parts.setdefault(block.part, []).append(n)
