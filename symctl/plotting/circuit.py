@@ -102,18 +102,13 @@ class Drawn(NamedTuple):
 
 
 def drawn(ax) -> Drawn | None:
-    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit).
-
-    >>> from symctl import Circuit, ifp_structure
-    >>> from symctl.plotting.circuit import drawn
-    >>> fig = Circuit.from_structure(ifp_structure(2)).draw()
-    >>> sorted(drawn(fig.axes[0]).key.signs), drawn(fig.axes[0]).layout.fits
-    (['+', '?'], True)
-    """
+    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit)."""
     return _DRAWN.get(ax)
 
 
-_LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
+# how much a drawing writes, from everything to numbered circles (the first that fits):
+# (weights, self-dynamics, names and tags, least gap between columns [in])
+_LEVELS = (
     (True, "full", True, MIN_GAP),
     (True, "full", True, 0.7 * MIN_GAP),
     (False, "full", True, MIN_GAP),
@@ -121,7 +116,6 @@ _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between column
     (False, "", True, MIN_GAP),
     (False, "", False, 0.12),
 )
-"""How much a drawing writes, from everything to numbered circles: the first that fits."""
 
 
 def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
@@ -276,6 +270,7 @@ def draw_circuit(
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
     room = max(x_hi - x_lo, min(page, _KEY_ROOM))
+    numbered = tuple((k, f"${signal_tex(n.name)}$", n.vertex) for k, n in enumerate(c.neurons, 1))
     said = Key(
         signs=frozenset(signs.values()),
         delays=frozenset(s.delay for s in (a.synapse for a in lay.arcs) if s is not None),
@@ -286,11 +281,7 @@ def draw_circuit(
         vertex_names=tuple(vertex_names) if vertex_names is not None else None,
         signs_at=at,
         synapses=len(c.synapses),
-        numbered=()
-        if named
-        else tuple(
-            (k, f"${signal_tex(n.name)}$", n.vertex) for k, n in enumerate(c.neurons, start=1)
-        ),
+        numbered=() if named else numbered,
     )
     _DRAWN[ax] = Drawn(said, lay, m)
     y = y_lo - 0.06

@@ -215,6 +215,14 @@ def _signs_note(at: SignValues) -> str:
     return "colours: the signs " + ", ".join(parts)
 
 
+_SIGN_TEXT = {
+    "+": "excitatory",
+    "-": "inhibitory",
+    "?": "sign depends on the symbols",
+    "0": "weight 0",
+}
+
+
 def key_items(key: Key) -> list[tuple[str, str]]:
     """The key's items ``(mark, text)``; marks ``"+"``, ``"-"``, ``"?"``, ``"0"``, ``"dashed"``,
     ``"neuron"`` or ``""`` (text alone).
@@ -222,14 +230,7 @@ def key_items(key: Key) -> list[tuple[str, str]]:
     items: list[tuple[str, str]] = []
     if key.empty:
         items.append(("neuron", "neuron (empty: no self-dynamics)"))
-    if "+" in key.signs:
-        items.append(("+", "excitatory"))
-    if "-" in key.signs:
-        items.append(("-", "inhibitory"))
-    if "?" in key.signs:
-        items.append(("?", "sign depends on the symbols"))
-    if "0" in key.signs:
-        items.append(("0", "weight 0"))
+    items += [(sign, text) for sign, text in _SIGN_TEXT.items() if sign in key.signs]
     delays = {d for d in key.delays if d > 0}
     if delays:
         if max(delays) == 1:
@@ -253,13 +254,8 @@ def key_items(key: Key) -> list[tuple[str, str]]:
         items.append(("", _signs_note(key.signs_at)))
     if not key.labelled and key.synapses:
         what = "weights" if key.bodies else "weights and self-dynamics"
-        items.append(
-            (
-                "",
-                f"{what} not written: too many or too long to set legibly at this "
-                "size (Circuit.equations() lists them)",
-            )
-        )
+        why = "too many or too long to set legibly at this size (Circuit.equations() lists them)"
+        items.append(("", f"{what} not written: {why}"))
     if key.numbered:
         items.append(("", "neurons by number:"))
         items += [

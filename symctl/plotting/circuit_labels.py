@@ -31,10 +31,6 @@ _NUMBER = re.compile(r"-?\d+(\.\d*)?(e[+-]?\d+)?")
 def visible_length(tex: str) -> int:
     r"""The number of characters ``tex`` shows: a command counts as one; ``\left``, ``\right``,
     ``\frac``, ``\dfrac``, ``\cdot``, braces, ``_``, ``^`` and spaces as none.
-
-    >>> from symctl.plotting.circuit_labels import visible_length
-    >>> visible_length(r"\frac{K_{0,11}}{C_{1,1,1} C_{3,1,1}}")
-    17
     """
     text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
     text = re.sub(r"\\[a-zA-Z]+", "m", text)
@@ -111,21 +107,7 @@ class _Labels:
 
 
 def circuit_text(c: Circuit) -> CircuitText:
-    r"""The labels of the drawing of ``c``: weights, neuron bodies, and the key of long ones.
-
-    >>> import sympy as sp
-    >>> from symctl import Circuit, Structure
-    >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.plotting.circuit_labels import circuit_text
-    >>> a, b = sp.symbols("a b")
-    >>> long = sum(sp.symbols("k1:6")) / (a + b)
-    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(a, long)))
-    >>> text = circuit_text(c)
-    >>> text.bodies["x1"], [(s.source, w) for s, w in text.weights.items()]
-    ('a\\,z^{-1}', [('u', 'w_{1}')])
-    >>> text.key_lines()
-    ['w_{1} = \\frac{k_{1} + k_{2} + k_{3} + k_{4} + k_{5}}{a + b}']
-    """
+    r"""The labels of the drawing of ``c``: weights, neuron bodies, and the key of long ones."""
     weight, body = _Labels("w", LONG_WEIGHT), _Labels(r"\mathrm{self}", LONG_SELF)
     bodies = {n.name: body(_self_tex(n)) for n in c.neurons}
     synapses: list[Synapse] = [s for n in c.neurons for s in n.synapses]

@@ -5,12 +5,6 @@ Columns by longest forward path (inputs first, outputs last), rows by
 stacked top to bottom where every synapse across the cut joins neighbouring columns (a
 wire out of the right of its band, into the next from the left). Each synapse is a bridge
 (:func:`route`), straight when clear, else bulging just enough to pass no circle and no text.
-
->>> from symctl import Circuit, ifp_structure
->>> from symctl.plotting.circuit_layout import circuit_layout
->>> lay = circuit_layout(Circuit.from_structure(ifp_structure(2)))
->>> lay.column, [(a.source, a.target, a.height) for a in lay.arcs], lay.fits
-({'x': 0, 'mu': 1, ('out', 'u'): 2}, [('x', 'mu', 0.0), ('mu', ('out', 'u'), 0.0)], True)
 """
 
 from __future__ import annotations
@@ -333,11 +327,8 @@ def circuit_layout(
     top = 0.0
     band_box: list[tuple[float, float, float, float]] = []
     for b, (i, _) in enumerate(bands):
-        left = (
-            x[i]
-            - max(ext[n][0] for n in columns[i])
-            - (_WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0)
-        )
+        wire = _WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0
+        left = x[i] - max(ext[n][0] for n in columns[i]) - wire
         mine_nodes = [n for n in col if band_of[n] == b]
         rows = _closed_up([row[n] for n in mine_nodes])
         ys = _row_heights(mine_nodes, {n: rows[row[n]] for n in mine_nodes}, x, col, ext)

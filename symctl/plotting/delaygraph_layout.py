@@ -6,14 +6,6 @@ sensors in the first layer, actuators in the last; bends pull hardest in
 across a column and as an S-shaped Bézier between columns; the edges of a two-cycle, and
 a lone back edge between neighbours, bulge apart. A label sits on its curve in its middle
 gap, off other labels and curves; gaps are as wide as their labels.
-
->>> from symctl import DelayGraph
->>> from symctl.plotting.delaygraph_layout import delay_graph_layout
->>> lay = delay_graph_layout(DelayGraph.chain([1, 1]))
->>> lay.layer, [lay.pos[v][1] for v in (1, 2, 3)]
-({1: 0, 2: 1, 3: 2}, [0.0, 0.0, 0.0])
->>> [(r.source, r.target, r.back, len(r.points)) for r in lay.routes]
-[(1, 2, False, 2), (2, 3, False, 2)]
 """
 
 from __future__ import annotations

@@ -107,16 +107,15 @@ def firing_plot(
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
         head = f"{what} ${sym}$" if what else f"${sym}$"
+        dev = max(fp.max_deviation, 1e-16)
         if fp.kind in REALIZERS and REALIZERS[fp.kind].controller:  # the IFP controller
             head += ": one realization, the optimal controller's delay chain"
         elif fp.draws:
-            dev = max(fp.max_deviation, 1e-16)
             head += (
                 f": the same in every realization and the optimal loop (to {dev:.0e}); "
                 f"mean $\\pm$ 2 sd of {fp.draws} noisy runs"
             )
         else:
-            dev = max(fp.max_deviation, 1e-16)
             head += (
                 f" in every realization and with the optimal controller: the same, "
                 f"to {dev:.0e} relative (and so is the input)"

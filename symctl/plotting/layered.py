@@ -183,12 +183,7 @@ def positions(layers, up, down, gaps, weight: Callable[[Hashable, Hashable], flo
 
 
 def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
-    """Rows, top first and one apart at least, nearest ``desired`` (integer: rounded half up).
-
-    >>> from symctl.plotting.layered import fit_rows
-    >>> fit_rows([0.0, 0.0]), fit_rows([0.0, 0.0], integer=False)
-    ([1, 0], [0.5, -0.5])
-    """
+    """Rows, top first and one apart at least, nearest ``desired`` (integer: rounded half up)."""
     n = len(desired)
     fit = [-float(y) for y in isotonic([-d for d in desired], [1.0] * n, [1.0] * (n - 1))]
     if not integer:

@@ -76,11 +76,6 @@ def legibility(
     """Check that ``fig`` is legible printed at ``scale`` times its size: no text under
     ``min_font`` [pt], no overlap of more than ``overlap_tolerance`` [pt] either way, none
     clipped, no wider than ``page_width`` [in] (None: not checked).
-
-    >>> from symctl.plotting.style import new_figure
-    >>> from symctl.plotting.legibility import legibility
-    >>> legibility(new_figure(9.0, 2.0)).too_wide
-    True
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -124,14 +119,6 @@ def missing_units(fig) -> tuple[str, ...]:
     """The axes of ``fig`` (drawn: tick labels get their text when drawn) showing numbers but
     naming no unit ``[unit]`` in their label or one their (sub)figure shares, as
     ``"axes <k> y: '<label>'"``.
-
-    >>> from symctl.plotting.style import new_figure
-    >>> from symctl.plotting.legibility import legibility, missing_units
-    >>> ax = (fig := new_figure("column", 1.5)).add_subplot()
-    >>> _ = ax.plot([0, 1], [0, 2]), ax.set_xlabel("time [s]"), ax.set_ylabel("force")
-    >>> _ = legibility(fig)
-    >>> missing_units(fig)
-    ("axes 0 y: 'force'",)
     """
 
     def shared(ax, which: str) -> str:

@@ -333,15 +333,7 @@ _LINE = 0.15  # pitch of those lines [in]
 
 
 def parts_in_order(S: Structure) -> list[tuple[str, dict[str, int]]]:
-    """``(part, counts)`` in series order; counts of ``states``, ``gain``, ``sum``, ``delay``.
-
-    >>> from symctl import controller_tf, factor, controllable_canonical, Structure
-    >>> from symctl.plotting.structure import parts_in_order
-    >>> f = factor(controller_tf(2))
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
-    >>> [(p, c["states"]) for p, c in parts_in_order(S)]
-    [('G1', 1), ('G2', 2), ('G3', 1)]
-    """
+    """``(part, counts)`` in series order; counts of ``states``, ``gain``, ``sum``, ``delay``."""
     parts: dict[str, dict[str, int]] = {}
     for name, block in S.blocks.items():
         counts = parts.setdefault(block.part, {"states": 0, "gain": 0, "sum": 0, "delay": 0})

@@ -92,13 +92,6 @@ def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[st
         ``labels`` names a signal that is no input or output.
     SymctlTypeError
         ``labels`` is not a mapping of non-empty strings.
-
-    Examples
-    --------
-    >>> from symctl import ifp_structure
-    >>> from symctl.plotting.structure_labels import end_labels
-    >>> end_labels(ifp_structure(2), {"x": "f"})
-    {'x': 'f', 'u': 'u'}
     """
     if labels is None:
         labels = {}
@@ -122,14 +115,7 @@ def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[st
 
 
 def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> StructureText:
-    r"""The text of the drawing of ``S`` (see the module text); ``labels`` as for :func:`end_labels`.
-
-    >>> from symctl import ifp_structure
-    >>> from symctl.plotting.structure_labels import structure_text
-    >>> text = structure_text(ifp_structure(2), {"x": "f", "u": "r"})
-    >>> dict(text.ends), dict(text.names)
-    ({'x': 'f', 'u': 'r'}, {'x': 'x', 'gamma': '\\gamma', 'u': 'u', 'mu': '\\mu'})
-    """
+    r"""The text of the drawing of ``S`` (see the module text); ``labels`` as for :func:`end_labels`."""
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
     ends = end_labels(S, labels)

@@ -78,28 +78,11 @@ class Label(NamedTuple):
 
 @dataclass(frozen=True)
 class StructureLayout:
-    """Where every piece of a structure drawing goes, in inches of the printed figure.
-
-    Attributes
-    ----------
-    positions, sizes : mapping of signal name to (float, float)
-        Each block's centre (gains on feedback arcs included) and size.
-    labels : mapping of gain name to str
-        The text in each gain box (mathtext).
-    names : mapping of signal name to Label
-        The name written at a named signal.
-    ends : tuple of Label
-        The labels of the arrows into the inputs and out of the outputs.
-    layers : mapping of signal name to int
-        The column of each block in the rows (blocks on feedback arcs have none).
-    wires, arrows_in, arrows_out : tuple of Wire
-        Every wire as drawn; the arrows into the inputs and out of the outputs.
-    junctions : tuple of (x, y)
-        Where a wire branches (a dot each).
-    parts, bands : tuple of Frame, tuple of Band
-        The frame of each part of a series connection; the band of each delay-graph vertex.
-    bounds : (x_lo, x_hi, y_lo, y_hi)
-        The extent of the drawing (heading and key not included).
+    """Where every piece of a structure drawing goes [in]: each block's centre and size (gains
+    on feedback arcs included), the text in each gain box, the ``names`` and ``ends`` written,
+    each block's column in the rows (``layers``; none on a feedback arc), every wire and the
+    arrows in and out, the ``junctions`` (a dot each), the frame of each part, the band of each
+    delay-graph vertex, and the ``bounds`` (heading and key not included).
     """
 
     positions: Mapping[str, tuple[float, float]]
@@ -298,9 +281,8 @@ def structure_layout(
             enter_left.setdefault(r.target, []).append((-side[k] * 1e6 - lane[k], ("arc", k)))
     for b, entries in enter_left.items():
         if geo.kind(b) == "sum":
-            geo.grow(
-                b, max([len(entries)] + [len(v) for (t, _), v in enter_vert.items() if t == b])
-            )
+            vertical = [len(v) for (t, _), v in enter_vert.items() if t == b]
+            geo.grow(b, max([len(entries), *vertical]))
     offset: dict = {}
     for b, entries in enter_left.items():
         for (_, key), off in zip(
@@ -358,12 +340,8 @@ def structure_layout(
             piece(col[q], net, [(y[p], "left"), (yq, "right")], ((a, b), h))
     for k, r in enumerate(routes):
         s_col, t_col = col[r.source], col[r.target]
-        piece(
-            s_col + 1,
-            ("src", r.source),
-            [(y[r.source], "left"), (heights[k], "left")],
-            (("arc", k), "drop"),
-        )
+        drop = [(y[r.source], "left"), (heights[k], "left")]
+        piece(s_col + 1, ("src", r.source), drop, (("arc", k), "drop"))
         if not straight[k]:
             yt = y[r.target] + offset[(r.target, ("arc", k))]
             piece(t_col, ("rise", k), [(heights[k], "right"), (yt, "right")], (("arc", k), "rise"))
@@ -514,7 +492,6 @@ def structure_layout(
     ys_all = [p[1] for w in wires for p in w.points] + [b[1] - b[3] / 2 for b in boxes.values()]
     tops = [b[1] + b[3] / 2 for b in boxes.values()]
     tops += [lab.y + geo.name[n][2] for n, lab in names.items() if lab.va == "bottom"]
-    ys_all += [lab.y - geo.name[n][2] for n, lab in names.items() if lab.va == "top"]
     x_lo = min(xs_all + [e.x - measure(e.text, END_FONT)[0] for e in ends if e.ha == "right"])
     x_hi = max(xs_all + [e.x + measure(e.text, END_FONT)[0] for e in ends if e.ha == "left"])
     y_lo, y_hi = min(ys_all) - 0.06, max(tops + ys_all) + 0.04
@@ -581,9 +558,7 @@ def vertex_levels(S: Structure, vertex: Mapping[str, int]) -> dict[str, int]:
         if va is not None and vb is not None and va != vb:
             vg.add_edge(va, vb)
     layered.break_cycles(vg, lambda e: (e[1] - e[0], -e[0]))
-    level: dict[int, int] = {}
-    for v in nx.lexicographical_topological_sort(vg):
-        level[v] = max((level[p] + 1 for p in vg.predecessors(v)), default=0)
+    level = layered.longest_path(nx.lexicographical_topological_sort(vg), vg.pred)
     return {n: level[vertex[n]] if n in vertex else 0 for n in S.blocks}
 
 
@@ -619,19 +594,15 @@ def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure
         for v in members:
             y0, y1 = y_lo, y_hi
             if len(members) > 1:
-                ys = [
-                    (b[1] - b[3] / 2, b[1] + b[3] / 2)
-                    for n, b in boxes.items()
-                    if vertex.get(n) == v
-                ]
-                y0 = max(y_lo, min(a for a, _ in ys) - 0.12)
-                y1 = min(y_hi, max(b for _, b in ys) + 0.12)
+                own = [b for n, b in boxes.items() if vertex.get(n) == v]
+                y0 = max(y_lo, min(b[1] - b[3] / 2 for b in own) - 0.12)
+                y1 = min(y_hi, max(b[1] + b[3] / 2 for b in own) + 0.12)
             bands.append(Band(v, vertex_label(v, names), x0, x1, y0, y1))
     return tuple(bands), y_hi + measure("$v_{1}$", FONT_SIZE)[1] + 0.08
 
 
 def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
-    """The frame of each part (none for one part) and the drawing's new top, the labels above the frames."""
+    """The frame of each part (none for one part) and the drawing's new top (labels above frames)."""
     parts: dict[str, list[str]] = {}
     for n, block in S.blocks.items():
         parts.setdefault(block.part, []).append(n)

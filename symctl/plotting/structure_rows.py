@@ -63,15 +63,6 @@ def page_bound(
 ) -> PageBound:
     """Whether the drawing of ``S`` can fit the page: no part (the whole, when no series) laid out
     alone without text is wider than ``width`` or taller than :data:`PAGE_HEIGHT`.
-
-    >>> import sympy as sp
-    >>> from symctl import Structure, controller_tf, factor, general_realization
-    >>> from symctl.plotting.structure_rows import page_bound
-    >>> f = factor(controller_tf(6), 3, 3)
-    >>> P = sp.Matrix(6, 6, lambda i, j: 2 if i == j else int(j == i + 1))
-    >>> bound = page_bound(Structure.from_factorization(f, general_realization(f.abbreviated(), P)))
-    >>> bool(bound), bound.part, bound.width > 6.9
-    (False, 'G2', True)
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})
@@ -156,15 +147,6 @@ def structure_rows(
     """The layout of ``S`` in one row, or folded into rows of parts no wider than ``width`` [in];
     ``labels``, ``vertex_of`` and ``vertex_names`` as for
     :func:`~symctl.plotting.structure_layout.structure_layout`.
-
-    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
-    >>> from symctl.plotting.common import text_size
-    >>> from symctl.plotting.structure_rows import structure_rows
-    >>> f = factor(controller_tf(6), 3, 3)
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.abbreviated()))
-    >>> rows = structure_rows(S, text_size)
-    >>> rows.folded, rows.fits, len(rows.placed) > 1
-    (True, True, True)
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})

@@ -38,16 +38,6 @@ def write_vector(fig, path: Path | str) -> Path:
     ------
     ParameterError
         ``path`` ends in neither ``.pdf`` nor ``.svg``.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from matplotlib.figure import Figure
-    >>> from symctl.plotting.vector import write_vector
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     b"<dc:date>" in write_vector(Figure(figsize=(2, 1)), Path(out) / "a.svg").read_bytes()
-    False
     """
     import matplotlib as mpl
 
