@@ -152,14 +152,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     )
     if named:  # (numbered circles of a hairball stay small)
         m = m.with_room_for_ends(c)
-    return m, {
-        "body": body,
-        "name": names,
-        "tag": tags,
-        "end": ends,
-        "weight": weights,
-        "inner": inner,
-    }
+    return m, dict(body=body, name=names, tag=tags, end=ends, weight=weights, inner=inner)
 
 
 def draw_circuit(

@@ -24,7 +24,6 @@ from symctl.compatibility.signalgraph import back_edges
 _EPS = 1e-9
 
 
-# ---------------------------------------------------------------- layers, order, rows
 def layering(nodes, edges, sources, *, against=(), first=(), last=(), floor=0):
     """``(flow, layer)``: each edge as ``(a, b, False)``, or ``(b, a, True)`` when it closes a
     cycle in a depth-first search from ``sources`` or is in ``against``; layers by
@@ -221,7 +220,6 @@ def break_cycles(graph: nx.DiGraph, key) -> nx.DiGraph:
         graph.remove_edge(*min(cycle, key=key)[:2])
 
 
-# ---------------------------------------------------------------- orthogonal routes
 class Segment(NamedTuple):
     """The vertical piece of one net in one gap; ``attachments`` ``(y, side)`` are horizontal
     pieces at ``y`` to the gap's ``"left"`` or ``"right"`` edge.
@@ -381,7 +379,6 @@ def clean(points) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
-# ---------------------------------------------------------------- curves
 CLEAR = 0.035  # how near a curve may pass a circle it does not end at [in]
 PORT_GAP = 0.085  # least distance along a circle between two curves' ends [in] (an arrow head)
 TIP = 0.012  # an arrow's tip stops this far from its circle [in]

@@ -174,7 +174,8 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             label = rf"$\delta {sym}$ [{unit or '1'}]"
         _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
         if sd is not None:
-            style.band(ax, res.t, trace[:, i], sd[:, i], colour, _band_label(res, j))
+            runs = f"mean $\\pm$ 2 sd of {res.draws} noisy runs" if j == 0 else None  # once a panel
+            style.band(ax, res.t, trace[:, i], sd[:, i], colour, runs)
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
             look = {"ls": "--", "lw": 0.8, "color": style.NEUTRAL}
@@ -188,11 +189,6 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
     else:
         ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
         _heading(ax, "further signals (change from the operating point)", room)
-
-
-def _band_label(res: Response, j: int) -> str | None:
-    """The band's legend entry, once per panel: the mean of how many noisy runs."""
-    return f"mean $\\pm$ 2 sd of {res.draws} noisy runs" if j == 0 else None
 
 
 def _locator():

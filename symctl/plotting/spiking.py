@@ -50,14 +50,8 @@ def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
     with style.styled():
         force, rates, raster = fig.subplots(3, 1, sharex=True)
         force.step(res.t, res.delta_f[:, 0], where="post", color=style.PALETTE[0], label="spiking")
-        force.step(
-            res.t,
-            res.delta_f_linear[:, 0],
-            where="post",
-            color=style.NEUTRAL,
-            ls=dashed,
-            label="linear",
-        )
+        linear = res.delta_f_linear[:, 0]
+        force.step(res.t, linear, where="post", color=style.NEUTRAL, ls=dashed, label="linear")
         force.set_ylabel(style.axis_label(r"$\delta f$", "N"))
         force.set_title(
             f"force, {res.n_neurons or 'exact'} neurons per population "
