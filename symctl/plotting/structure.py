@@ -388,29 +388,9 @@ def draw_structure_overview(
     labels: Mapping[str, str] | None = None,
 ):
     """Draw ``S`` as its parts in signal-flow order, one box per part with its counts (rows snake
-    to stay page-shaped; parallel pathways one row each, joined by their adder).
+    to stay page-shaped; parallel pathways one row each, joined by their adder); ``ax``,
+    ``title``, ``width`` and ``labels`` as for :func:`draw_structure`, which raises the same errors.
 
-    Parameters
-    ----------
-    S : Structure
-    ax : matplotlib Axes, optional
-        Draw into these axes; by default a new figure sized to the drawing.
-    title, width, labels :
-        As for :func:`draw_structure`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    SymctlTypeError
-        ``S`` is not a Structure, or ``labels`` not a mapping of strings.
-    ParameterError
-        ``labels`` names a signal that is no input or output.
-
-    Examples
-    --------
     >>> from symctl import controller_tf, factor, observable_canonical, Structure
     >>> from symctl.plotting.structure import draw_structure_overview
     >>> f = factor(controller_tf(6), 3, 3)
