@@ -1,14 +1,6 @@
-r"""Rendering of a circuit drawing at its printed size: neurons, synapses, weights, a key.
-
-Positions from :mod:`~symctl.plotting.circuit_layout` (the texts measured here first),
-text from :mod:`~symctl.plotting.circuit_labels`, colours from
-:mod:`~symctl.plotting.circuit_key`.
-
->>> from symctl import Circuit, ifp_structure
->>> from symctl.plotting.circuit import draw_circuit
->>> fig = draw_circuit(Circuit.from_structure(ifp_structure(2)))
->>> [p.get_gid() for p in fig.axes[0].patches if "neuron" in (p.get_gid() or "")]
-['neuron:mu']
+"""Rendering of a circuit drawing at its printed size: layout from
+:mod:`~symctl.plotting.circuit_layout` (texts measured here first), text from
+:mod:`~symctl.plotting.circuit_labels`, colours from :mod:`~symctl.plotting.circuit_key`.
 """
 
 from __future__ import annotations
@@ -110,20 +102,13 @@ class Drawn(NamedTuple):
 
 
 def drawn(ax) -> Drawn | None:
-    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit).
-
-    Examples
-    --------
-    >>> from symctl import Circuit, ifp_structure
-    >>> from symctl.plotting.circuit import drawn
-    >>> fig = Circuit.from_structure(ifp_structure(2)).draw()
-    >>> sorted(drawn(fig.axes[0]).key.signs), drawn(fig.axes[0]).layout.fits
-    (['+', '?'], True)
-    """
+    """The key, layout and measures of the circuit drawn into ``ax`` (None: no circuit)."""
     return _DRAWN.get(ax)
 
 
-_LEVELS = (  # (weights, self-dynamics, names and tags, least gap between columns [in])
+# how much a drawing writes, from everything to numbered circles (the first that fits):
+# (weights, self-dynamics, names and tags, least gap between columns [in])
+_LEVELS = (
     (True, "full", True, MIN_GAP),
     (True, "full", True, 0.7 * MIN_GAP),
     (False, "full", True, MIN_GAP),
@@ -131,7 +116,6 @@ _LEVELS = (  # (weights, self-dynamics, names and tags, least gap between column
     (False, "", True, MIN_GAP),
     (False, "", False, 0.12),
 )
-"""How much a drawing writes, from everything to numbered circles: the first that fits."""
 
 
 def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
@@ -168,14 +152,7 @@ def _measure(c: Circuit, text, level: tuple) -> tuple[Measures, dict]:
     )
     if named:  # (numbered circles of a hairball stay small)
         m = m.with_room_for_ends(c)
-    return m, {
-        "body": body,
-        "name": names,
-        "tag": tags,
-        "end": ends,
-        "weight": weights,
-        "inner": inner,
-    }
+    return m, dict(body=body, name=names, tag=tags, end=ends, weight=weights, inner=inner)
 
 
 def draw_circuit(
@@ -188,13 +165,13 @@ def draw_circuit(
     width: float | str = "text",
     key: bool = True,
 ) -> Figure:
-    r"""Draw the circuit at its printed size: neurons as circles, synapses as arrows.
+    """Draw the circuit at its printed size: neurons as circles, synapses as arrows.
 
-    A circle holds the neuron's self-dynamics, its name above and its vertex ``v<k>``
-    below; a synapse carries its weight (long ones as :math:`w_k`, listed under the
-    drawing) and its sign's colour (excitatory blue with a head, inhibitory vermillion
-    with a bar, purple when it depends on symbols), dashed when delayed. A drawing whose
-    weights cannot all be set legibly is drawn without them and says so in its key.
+    A circle holds the neuron's self-dynamics, its name above and its vertex ``v<k>`` below;
+    a synapse carries its weight (long ones as :math:`w_k`, listed under the drawing) and its
+    sign's colour (excitatory blue with a head, inhibitory vermillion with a bar, purple when
+    it depends on symbols), dashed when delayed. Weights that cannot all be set legibly are
+    left out, and the key says so.
 
     Parameters
     ----------
@@ -202,13 +179,12 @@ def draw_circuit(
     ax : matplotlib Axes, optional
         Draw into it (one data unit is one inch); by default a new figure of printed size.
     title : str, optional
-        A heading above the drawing (default: none; a report's caption names it).
+        A heading above the drawing (default none).
     vertex_names : sequence of str, optional
         The delay graph's vertex names, :math:`v_1` first: the key says which is which.
     signs_at : mapping, optional
-        A number per symbol or a range ``(lo, hi)`` for one that varies
-        (:class:`~symctl.plotting.circuit_key.SignValues`): a weight is coloured by its
-        sign only when that holds for all of them.
+        A number per symbol or a range ``(lo, hi)`` for one that varies: a weight is coloured
+        by its sign only when that holds for all of them.
     width : float or {"text", "column", "double"}
         The widest the drawing may be [in] (default the derivation's text width).
     key : bool
@@ -225,25 +201,19 @@ def draw_circuit(
 
     Examples
     --------
-    >>> from symctl import Circuit, ifp_structure
+    >>> from symctl import Circuit, DelayGraph, Structure, check_compatibility
+    >>> from symctl import controllable_canonical, controller_tf, factor
     >>> from symctl.plotting.circuit import draw_circuit
-    >>> fig = draw_circuit(Circuit.from_structure(ifp_structure(2)), title="IFP")
-    >>> fig.axes[0].texts[-1].get_text()   # drawn last, above the drawing
-    'IFP'
-
-    Placed on the paper's chain sensor -> nervous system -> muscle, with the signs at
-    the controller's gains:
-
-    >>> from symctl import DelayGraph, Structure, check_compatibility, controllable_canonical
-    >>> from symctl import controller_tf, factor
     >>> from symctl.symbols import gain_symbols
     >>> S = Structure.from_factorization(f := factor(controller_tf(2)), controllable_canonical(f.G2))
     >>> c = Circuit.from_structure(S, check_compatibility(S, DelayGraph.chain([1, 1])))
     >>> K0, K1, K2 = gain_symbols(2)
-    >>> fig = draw_circuit(c, vertex_names=["sensor", "nervous_system", "muscle"],
+    >>> fig = draw_circuit(c, title="G2", vertex_names=["sensor", "nervous_system", "muscle"],
     ...                    signs_at={K0: -0.046, K1: -0.58, K2: -0.35})
     >>> sorted(t.get_text() for t in fig.axes[0].texts if t.get_text().startswith("v"))
     ['v2', 'v2', 'v2', 'v3']
+    >>> fig.axes[0].texts[-1].get_text()   # the title, drawn last, above the drawing
+    'G2'
     """
     page = style.width(width)
     symbols = c.free_symbols
@@ -293,6 +263,7 @@ def draw_circuit(
 
     x_lo, x_hi, y_lo, y_hi = lay.bounds
     room = max(x_hi - x_lo, min(page, _KEY_ROOM))
+    numbered = tuple((k, f"${signal_tex(n.name)}$", n.vertex) for k, n in enumerate(c.neurons, 1))
     said = Key(
         signs=frozenset(signs.values()),
         delays=frozenset(s.delay for s in (a.synapse for a in lay.arcs) if s is not None),
@@ -303,11 +274,7 @@ def draw_circuit(
         vertex_names=tuple(vertex_names) if vertex_names is not None else None,
         signs_at=at,
         synapses=len(c.synapses),
-        numbered=()
-        if named
-        else tuple(
-            (k, f"${signal_tex(n.name)}$", n.vertex) for k, n in enumerate(c.neurons, start=1)
-        ),
+        numbered=() if named else numbered,
     )
     _DRAWN[ax] = Drawn(said, lay, m)
     y = y_lo - 0.06
@@ -350,8 +317,7 @@ def _shown(tex: str) -> int:
 
 
 def _key_fits(values: list[str], room: float) -> bool:
-    """Whether a key of these values fits ``room`` across and :data:`MAX_KEY` tall, estimated
-    from the characters shown before any is set."""
+    """Whether a key of these values fits ``room`` and :data:`MAX_KEY`, from the characters shown."""
     em = SMALL / 72
     lines = [part for v in values for part in _broken(f"w = {v}", room)]
     widths = [0.55 * em * (_shown(v) + 2) for v in lines]
@@ -372,9 +338,9 @@ def _draw_arc(ax, arc, sign: str, delayed: bool) -> None:
 
 
 def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[float, float]:
-    r"""The key's ``label = value`` lines from ``(x, y)`` down in as many columns as fit
-    ``room``, each drawn as the glyph outlines that measured it (gid ``key:w1``, ...);
-    returns its lowest ``y`` and rightmost ``x``."""
+    """The key's ``label = value`` lines from ``(x, y)`` down in columns fitting ``room``, drawn as
+    the glyph outlines that measured them (gid ``key:w1``, ...); its lowest ``y`` and rightmost ``x``.
+    """
     if not lines:
         return y, x
     names = [re.sub(r"\\mathrm|[^A-Za-z0-9]", "", line.partition(" = ")[0]) for line in lines]
@@ -411,8 +377,7 @@ def _draw_key(ax, lines: list[str], x: float, y: float, room: float) -> tuple[fl
 
 
 def _terms(tex: str) -> list[str]:
-    r"""``tex`` cut before each of its outermost ``+`` and ``-`` signs (``"a + b - c"``:
-    ``["a ", "+ b ", "- c"]``)."""
+    """``tex`` cut before each of its outermost ``+`` and ``-`` signs."""
     parts, depth, start = [], 0, 0
     for k, ch in enumerate(tex):
         depth += {"{": 1, "}": -1, "(": 1, ")": -1}.get(ch, 0)
@@ -424,8 +389,7 @@ def _terms(tex: str) -> list[str]:
 
 
 def _body(tex: str, compact: bool = False) -> str:
-    """A neuron's self-dynamics as drawn: on two lines when one would make a large circle
-    (``compact``: always)."""
+    """A neuron's self-dynamics as drawn: two lines when one makes a large circle (``compact``: always)."""
     if not tex:
         return ""
     one = display_text(tex)
@@ -447,8 +411,7 @@ def _body(tex: str, compact: bool = False) -> str:
 
 
 def _broken(line: str, room: float) -> list[str]:
-    r"""A key line too wide for ``room`` broken before its outermost signs, continuations
-    indented (widths as in :func:`_key_fits`)."""
+    """A key line too wide for ``room`` broken before its outermost signs, continuations indented."""
     em = SMALL / 72
 
     def wide(tex: str) -> bool:

@@ -1,17 +1,16 @@
-r"""A circuit drawing's colours and key: the sign of each weight, and what the marks mean.
+"""A circuit drawing's colours and key: the sign of each weight, and what the marks mean.
 
 Given ``signs_at`` (a number per symbol, or a range ``(lo, hi)``), :func:`weight_sign` is
-``"+"`` or ``"-"`` only when so for *every* value (ranges by SymPy's interval arithmetic,
+``"+"`` or ``"-"`` only when so for *every* value (ranges by SymPy's
 :class:`~sympy.calculus.accumulationbounds.AccumulationBounds`, which never claims a sign
-some point lacks), ``"0"`` when zero, else ``"?"``. The key (:func:`key_items`) explains
-only the marks the drawing shows.
+some point lacks), ``"0"`` when zero, else ``"?"``.
 
 >>> import sympy as sp
 >>> from symctl.plotting.circuit_key import SignValues, weight_sign
 >>> K0, K2, e1, C1 = sp.symbols("K_0 K_2 epsilon_1 C_1", real=True)
 >>> at = SignValues.of({K0: -0.046, K2: -0.35, C1: 1, e1: (-0.9, 0.9)})
->>> weight_sign(K0 * (K2 + e1) / C1, at), weight_sign(K0 * (K2 - e1**2) / C1, at)
-('?', '+')
+>>> weight_sign(K0 * (K2 + e1) / C1, at), weight_sign(K0 * (K2 - e1**2) / C1, at), weight_sign(-2)
+('?', '+', '-')
 """
 
 from __future__ import annotations
@@ -52,23 +51,8 @@ _ITEM_GAP = 0.16  # between two items of a row
 
 @dataclass(frozen=True)
 class SignValues:
-    r"""The values at which a drawing reads the signs of its symbolic weights.
-
-    Attributes
-    ----------
-    numbers : mapping of Symbol to Rational or Float
-        A value per symbol.
-    ranges : mapping of Symbol to (float, float)
-        A closed range ``(lo, hi)``, ``lo < hi``, per symbol that varies (build with :meth:`of`).
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.plotting.circuit_key import SignValues
-    >>> K0, e1 = sp.symbols("K_0 epsilon_1")
-    >>> at = SignValues.of({K0: -0.05, "epsilon_1": (-0.9, 0.9)}, symbols={K0, e1})
-    >>> sorted(map(str, at.numbers)), sorted(map(str, at.ranges))
-    (['K_0'], ['epsilon_1'])
+    """The values at which a drawing reads the signs of its symbolic weights: ``numbers`` a value
+    per symbol, ``ranges`` a closed ``(lo, hi)`` per symbol that varies (build with :meth:`of`).
     """
 
     numbers: Mapping = field(default_factory=dict)
@@ -86,14 +70,13 @@ class SignValues:
 
     @classmethod
     def of(cls, values, argname: str = "signs_at", symbols=()) -> SignValues:
-        """Check ``values``: a mapping of symbols (or their names, matched among ``symbols``,
-        never parsed) to real numbers or ranges ``(lo, hi)``, ``lo < hi``.
+        """Check ``values``: a mapping of symbols (or their names among ``symbols``, never parsed) to
+        real numbers or ranges ``(lo, hi)``, ``lo < hi``; errors name ``argname``.
 
         Raises
         ------
         SymctlTypeError
-            Not a mapping, a key neither a symbol nor a string, a value neither a number
-            nor a pair (errors name ``argname``).
+            Not a mapping, a key neither a symbol nor a string, a value neither number nor pair.
         ParameterError
             A name that is no symbol's, a value not finite, or a range with ``lo >= hi``.
 
@@ -162,25 +145,8 @@ def _sign_of_bounds(value) -> str:
 
 
 def weight_sign(weight, at: SignValues | None = None) -> str:
-    """``"+"``, ``"-"``, ``"0"`` or ``"?"``: the sign of ``weight`` for all the values ``at``.
-
-    Parameters
-    ----------
-    weight : sympy expression or number
-    at : SignValues, optional
-        Numbers and ranges of its symbols; without, SymPy's sign from the assumptions.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.plotting.circuit_key import SignValues, weight_sign
-    >>> x = sp.Symbol("x")
-    >>> weight_sign(-2), weight_sign(x), weight_sign(x, SignValues(ranges={x: (0.5, 2.0)}))
-    ('-', '?', '+')
+    """``"+"``, ``"-"``, ``"0"`` or ``"?"``: the sign of ``weight`` for all the values ``at``
+    (without, SymPy's sign from the assumptions).
     """
     w = to_expr(weight, "weight")
     if at:
@@ -197,23 +163,10 @@ def weight_sign(weight, at: SignValues | None = None) -> str:
 
 @dataclass(frozen=True)
 class Key:
-    """What a drawing shows, for its key.
-
-    Attributes
-    ----------
-    signs, delays : frozenset
-        The signs of its synapses (``"+"``, ``"-"``, ``"?"``, ``"0"``; ``""`` a wire) and
-        their delays.
-    labelled, bodies, empty : bool
-        The weights are written; the self-dynamics are written; some circle is empty.
-    vertices, vertex_names : tuple
-        The delay-graph vertices of its neurons, and the graph's vertex names (or None).
-    signs_at : SignValues
-        The values its signs were read at.
-    synapses : int
-        How many synapses it has.
-    numbered : tuple of (int, str, int or None)
-        The neurons drawn as numbered circles: number, name (mathtext) and vertex.
+    """What a drawing shows, for its key: the ``signs`` and ``delays`` of its synapses; whether
+    weights (``labelled``) and self-dynamics (``bodies``) are written and a circle is ``empty``;
+    its neurons' ``vertices`` and the graph's ``vertex_names``; the ``signs_at``; the count of
+    ``synapses``; and the ``numbered`` neurons ``(number, name, vertex)``.
     """
 
     signs: frozenset = frozenset()
@@ -229,15 +182,7 @@ class Key:
 
 
 def stems(symbols) -> list[str]:
-    r"""The LaTeX of the letters of ``symbols`` without their indices, in order, once each.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.plotting.circuit_key import stems
-    >>> stems([*sp.symbols("K_0 K_1 epsilon_1"), sp.Symbol("C_{1,1}")])
-    ['K', '\\epsilon', 'C']
-    """
+    """The LaTeX of the letters of ``symbols`` without their indices, in order, once each."""
     out: list[str] = []
     for s in symbols:
         tex = latex(sp.Symbol(str(s).split("_")[0]))
@@ -270,27 +215,22 @@ def _signs_note(at: SignValues) -> str:
     return "colours: the signs " + ", ".join(parts)
 
 
-def key_items(key: Key) -> list[tuple[str, str]]:
-    """The key's items ``(mark, text)``; marks ``"+"``, ``"-"``, ``"?"``, ``"0"``,
-    ``"dashed"``, ``"neuron"`` or ``""`` (text alone).
+_SIGN_TEXT = {
+    "+": "excitatory",
+    "-": "inhibitory",
+    "?": "sign depends on the symbols",
+    "0": "weight 0",
+}
 
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_key import Key, key_items
-    >>> key_items(Key(signs=frozenset("?"), vertices=(2, 3), vertex_names=("s", "cord", "m")))
-    [('?', 'sign depends on the symbols'), ('', 'under a neuron: its vertex, v2 cord, v3 m')]
+
+def key_items(key: Key) -> list[tuple[str, str]]:
+    """The key's items ``(mark, text)``; marks ``"+"``, ``"-"``, ``"?"``, ``"0"``, ``"dashed"``,
+    ``"neuron"`` or ``""`` (text alone).
     """
     items: list[tuple[str, str]] = []
     if key.empty:
         items.append(("neuron", "neuron (empty: no self-dynamics)"))
-    if "+" in key.signs:
-        items.append(("+", "excitatory"))
-    if "-" in key.signs:
-        items.append(("-", "inhibitory"))
-    if "?" in key.signs:
-        items.append(("?", "sign depends on the symbols"))
-    if "0" in key.signs:
-        items.append(("0", "weight 0"))
+    items += [(sign, text) for sign, text in _SIGN_TEXT.items() if sign in key.signs]
     delays = {d for d in key.delays if d > 0}
     if delays:
         if max(delays) == 1:
@@ -314,13 +254,8 @@ def key_items(key: Key) -> list[tuple[str, str]]:
         items.append(("", _signs_note(key.signs_at)))
     if not key.labelled and key.synapses:
         what = "weights" if key.bodies else "weights and self-dynamics"
-        items.append(
-            (
-                "",
-                f"{what} not written: too many or too long to set legibly at this "
-                "size (Circuit.equations() lists them)",
-            )
-        )
+        why = "too many or too long to set legibly at this size (Circuit.equations() lists them)"
+        items.append(("", f"{what} not written: {why}"))
     if key.numbered:
         items.append(("", "neurons by number:"))
         items += [

@@ -1,8 +1,8 @@
 r"""The text of a circuit drawing: each synapse's weight, each neuron's body, and the key.
 
-A weight showing more than :data:`LONG_WEIGHT` characters (:func:`visible_length`) is
-drawn as :math:`w_k` and a self-dynamics longer than :data:`LONG_SELF` as
-:math:`\mathrm{self}_k`, the key reading the value in full; equal values share a label.
+A weight showing more than :data:`LONG_WEIGHT` characters is drawn as :math:`w_k`, a
+self-dynamics longer than :data:`LONG_SELF` as :math:`\mathrm{self}_k`, the key reading
+the value in full; equal values share a label.
 """
 
 from __future__ import annotations
@@ -31,12 +31,6 @@ _NUMBER = re.compile(r"-?\d+(\.\d*)?(e[+-]?\d+)?")
 def visible_length(tex: str) -> int:
     r"""The number of characters ``tex`` shows: a command counts as one; ``\left``, ``\right``,
     ``\frac``, ``\dfrac``, ``\cdot``, braces, ``_``, ``^`` and spaces as none.
-
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_labels import visible_length
-    >>> visible_length(r"\frac{K_{0,11}}{C_{1,1,1} C_{3,1,1}}")
-    17
     """
     text = re.sub(r"\\(left|right|frac|dfrac|cdot)\b", "", tex)
     text = re.sub(r"\\[a-zA-Z]+", "m", text)
@@ -44,15 +38,7 @@ def visible_length(tex: str) -> int:
 
 
 def weight_tex(weight) -> str:
-    r"""LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl.plotting.circuit_labels import weight_tex
-    >>> weight_tex(sp.Rational(-1, 3)), weight_tex(sp.Symbol("K_1") / 2)
-    ('-0.333', '\\frac{K_{1}}{2}')
-    """
+    """LaTeX of a weight; numbers (e.g. exact rationals) to 3 significant digits."""
     w = to_expr(weight, "weight")
     if w.is_number and w.is_real:
         return f"{float(w):.3g}"
@@ -74,15 +60,8 @@ def _self_tex(n: Neuron) -> str:
 
 
 def display_text(tex: str) -> str:
-    r"""The string matplotlib draws for ``tex``: a plain number as text (no mathtext parse; the
-    minus sign U+2212), else ``$tex$`` with ``\frac`` as ``\dfrac`` (mathtext sets a
-    ``\frac``'s parts at 70 %, under 6 pt in a 7-pt label).
-
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_labels import display_text
-    >>> display_text("-0.25"), display_text("w_{1}"), display_text(r"\frac{a}{b}")
-    ('−0.25', '$w_{1}$', '$\\dfrac{a}{b}$')
+    r"""The string matplotlib draws for ``tex``: a plain number as text (minus sign U+2212), else
+    ``$tex$`` with ``\frac`` as ``\dfrac`` (mathtext sets a ``\frac``'s parts at 70 %).
     """
     if _NUMBER.fullmatch(tex):
         return tex.replace("-", "\N{MINUS SIGN}")
@@ -91,17 +70,10 @@ def display_text(tex: str) -> str:
 
 @dataclass(frozen=True, eq=False)
 class CircuitText:
-    r"""What a circuit drawing writes (LaTeX without ``$``).
-
-    Attributes
-    ----------
-    weights : mapping of Synapse to str
-        Each synapse's (and weighted or delayed output's) label: its weight or :math:`w_k`,
-        then :math:`z^{-d}` for a delay ``d > 1`` (alone for a weight 1).
-    bodies : mapping of str to str
-        Each neuron's self-dynamics (``""``: none), or :math:`\mathrm{self}_k`.
-    key : tuple of (str, str)
-        ``(label, value)`` of each long value, the self-dynamics first.
+    r"""What a circuit drawing writes (LaTeX without ``$``): ``weights`` each synapse's (and weighted
+    or delayed output's) label, its weight or :math:`w_k` then :math:`z^{-d}` for a delay
+    ``d > 1``; ``bodies`` each neuron's self-dynamics or :math:`\mathrm{self}_k`; ``key`` the
+    ``(label, value)`` of each long value, the self-dynamics first.
     """
 
     weights: Mapping = field(default_factory=dict)
@@ -135,35 +107,7 @@ class _Labels:
 
 
 def circuit_text(c: Circuit) -> CircuitText:
-    r"""The labels of the drawing of ``c``: weights, neuron bodies, and the key of long ones.
-
-    Parameters
-    ----------
-    c : Circuit
-
-    Returns
-    -------
-    CircuitText
-
-    Examples
-    --------
-    A long weight gets a short label and a key entry; a short one is written as it is:
-
-    >>> import sympy as sp
-    >>> from symctl import Circuit, Structure
-    >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.plotting.circuit_labels import circuit_text
-    >>> a, b = sp.symbols("a b")
-    >>> long = sum(sp.symbols("k1:6")) / (a + b)
-    >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(a, long)))
-    >>> text = circuit_text(c)
-    >>> text.bodies["x1"], [(s.source, w) for s, w in text.weights.items()]
-    ('a\\,z^{-1}', [('u', 'w_{1}')])
-    >>> text.key_lines()
-    ['w_{1} = \\frac{k_{1} + k_{2} + k_{3} + k_{4} + k_{5}}{a + b}']
-    >>> circuit_text(c.subs({s: 1 for s in long.free_symbols})).key   # 5/2: short
-    ()
-    """
+    r"""The labels of the drawing of ``c``: weights, neuron bodies, and the key of long ones."""
     weight, body = _Labels("w", LONG_WEIGHT), _Labels(r"\mathrm{self}", LONG_SELF)
     bodies = {n.name: body(_self_tex(n)) for n in c.neurons}
     synapses: list[Synapse] = [s for n in c.neurons for s in n.synapses]

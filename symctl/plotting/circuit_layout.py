@@ -1,20 +1,10 @@
-r"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
+"""Where a circuit's neurons, inputs, outputs and synapse curves go, in inches; no matplotlib.
 
-On :mod:`symctl.plotting.layered`: inputs first, outputs last, neurons by longest forward
-path, rows by :func:`~symctl.plotting.layered.rows` (half rows allowed), columns as far
-apart as circles, names and weights need. A drawing wider than ``width`` is cut into bands
-stacked top to bottom where every synapse across the cut joins neighbouring columns (it
-runs as a wire out of the right of its band and into the next from the left). Each
-synapse is a bridge (:func:`route`), straight when clear, else bulging (feedback below)
-just enough to pass no circle and no text, its weight on it.
-
->>> from symctl import Circuit, ifp_structure
->>> from symctl.plotting.circuit_layout import circuit_layout
->>> lay = circuit_layout(Circuit.from_structure(ifp_structure(2)))
->>> lay.column
-{'x': 0, 'mu': 1, ('out', 'u'): 2}
->>> [(a.source, a.target, a.height) for a in lay.arcs], lay.fits
-([('x', 'mu', 0.0), ('mu', ('out', 'u'), 0.0)], True)
+Columns by longest forward path (inputs first, outputs last), rows by
+:func:`~symctl.plotting.layered.rows`; a drawing wider than ``width`` is cut into bands
+stacked top to bottom where every synapse across the cut joins neighbouring columns (a
+wire out of the right of its band, into the next from the left). Each synapse is a bridge
+(:func:`route`), straight when clear, else bulging just enough to pass no circle and no text.
 """
 
 from __future__ import annotations
@@ -54,26 +44,8 @@ _SWING = 0.9  # an end moves at most this far round its circle from where it poi
 
 @dataclass(frozen=True)
 class Measures:
-    """The sizes [in] a circuit drawing's texts take, for its layout.
-
-    Attributes
-    ----------
-    radius : mapping of str to float
-        Each neuron's circle.
-    name, tag : mapping of node to (float, float)
-        The width and height of the name above each neuron and of the vertex tag below.
-    label : mapping of Synapse to (float, float)
-        The weight label of each synapse (and weighted or delayed output) that has one.
-    end : mapping of node to (float, float)
-        The label of each input (left of its dot) and output (right of its dot).
-
-    Examples
-    --------
-    >>> from symctl import Circuit, ifp_structure
-    >>> from symctl.plotting.circuit_layout import Measures
-    >>> m = Measures.estimate(Circuit.from_structure(ifp_structure(2)))
-    >>> dict(m.radius), list(m.end)
-    ({'mu': 0.11}, ['x', ('out', 'u')])
+    """The sizes [in] of a circuit drawing's texts: ``radius`` of each neuron; ``name`` and ``tag``
+    (w, h) above and below it; ``label`` of each weighted synapse; ``end`` of each input and output.
     """
 
     radius: Mapping[str, float]
@@ -103,8 +75,9 @@ class Measures:
         return cls(radius, names, tags, labels, ends).with_room_for_ends(c)
 
     def with_room_for_ends(self, c: Circuit) -> Measures:
-        """These sizes, each circle large enough (up to 0.3 in) to space one more end than its
-        synapses have on its sides, :data:`~symctl.plotting.layered.PORT_GAP` apart."""
+        """These sizes, each circle large enough (up to :data:`MAX_RADIUS`) to space one more end than
+        its synapses, :data:`~symctl.plotting.layered.PORT_GAP` apart.
+        """
         grown = dict(self.radius)
         for n in c.neurons:
             ends = (
@@ -116,20 +89,9 @@ class Measures:
 
 @dataclass(frozen=True)
 class Arc:
-    """One drawn synapse, or the wire from a neuron (or input) to a circuit output.
-
-    Attributes
-    ----------
-    source, target : str or tuple
-        Node keys of :attr:`CircuitLayout.pos` (an output is ``("out", name)``).
-    synapse : Synapse or None
-        What the arc carries; None for a plain wire to an output (weight 1, no delay).
-    height : float
-        The bulge over the chord between the centres [in] (> 0 above; 0 for a wire).
-    label : (float, float) or None
-        The centre of the weight's label.
-    path, codes : tuple
-        The drawn curve from circle to circle, and matplotlib ``Path`` codes.
+    """One drawn synapse, or the wire to an output ``("out", name)``: ``synapse`` None for a plain
+    wire; ``height`` the bulge [in] (> 0 above); ``label`` its weight's centre; ``path`` and
+    ``codes`` the matplotlib ``Path``.
     """
 
     source: str | tuple
@@ -155,22 +117,10 @@ class Arc:
 
 @dataclass(frozen=True, eq=False)
 class CircuitLayout:
-    """The positions of a circuit drawing (see the module text for the rules).
-
-    Attributes
-    ----------
-    column, row, pos, band : mapping
-        Each node's column, row, centre ``(x, y)`` [in] and band (0 the top one); nodes
-        are inputs and neurons by name, outputs as ``("out", name)``.
-    radius : mapping of str to float
-        Each neuron's circle [in].
-    arcs : tuple of Arc
-        Synapses (shortest span first, parallel ones together), then the outputs.
-    bounds : (float, float, float, float)
-        ``(x_lo, x_hi, y_lo, y_hi)``: every node, text and curve inside, with margins.
-    narrow, clear, labelled : bool
-        No wider than asked; no curve passes a circle or text it does not end at; every
-        weight label found a free place.
+    """The positions of a circuit drawing: each node's ``column``, ``row``, centre ``pos`` [in] and
+    ``band``; ``radius`` of each neuron; ``arcs`` (synapses, shortest span first, then outputs);
+    ``bounds`` ``(x_lo, x_hi, y_lo, y_hi)``; ``narrow`` (no wider than asked), ``clear`` (no curve
+    through another's circle or text) and ``labelled`` (every weight placed).
     """
 
     column: Mapping
@@ -344,34 +294,16 @@ def circuit_layout(
     width: float | None = None,
     gap: float = MIN_GAP,
 ) -> CircuitLayout:
-    """The positions, curves and extent of the drawing of ``c``.
+    """The positions, curves and extent of the drawing of ``c``, its texts sized by ``measures``
+    (default :meth:`Measures.estimate` with circles of ``radius``), cut into bands when wider
+    than ``width`` [in]; ``gap`` the least room between columns (under :data:`MIN_GAP`, the room
+    either side of a weight shrinks in proportion).
 
-    Parameters
-    ----------
-    c : Circuit
-    radius : mapping of str to float, optional
-        Each neuron's circle [in] (with estimated texts); default :data:`MIN_RADIUS`.
-    measures : Measures, optional
-        The sizes of the circles and texts (default :meth:`Measures.estimate`).
-    width : float, optional
-        The widest the drawing may be [in]: a wider one is cut into bands (default:
-        no limit, one band).
-    gap : float
-        The least room between two columns' texts [in]; under :data:`MIN_GAP`, the room
-        either side of a weight shrinks in proportion.
-
-    Returns
-    -------
-    CircuitLayout
-
-    Examples
-    --------
     >>> from symctl import Circuit, controllable_canonical, controller_tf, factor, Structure
     >>> from symctl.plotting.circuit_layout import circuit_layout
     >>> f = factor(controller_tf(2))
     >>> c = Circuit.from_structure(Structure.from_realization(controllable_canonical(f.G2)))
-    >>> lay = circuit_layout(c)
-    >>> [(a.source, a.target, round(a.height, 2)) for a in lay.arcs]   # u -> y bulges over x2
+    >>> [(a.source, a.target, round(a.height, 2)) for a in circuit_layout(c).arcs]
     [('u', 'x2', 0.0), ('x2', 'y', 0.0), ('x2', 'y', 0.16), ('u', 'y', -0.36), ('y', ('out', 'y'), 0.0)]
     """
     m = measures if measures is not None else Measures.estimate(c, radius)
@@ -395,11 +327,8 @@ def circuit_layout(
     top = 0.0
     band_box: list[tuple[float, float, float, float]] = []
     for b, (i, _) in enumerate(bands):
-        left = (
-            x[i]
-            - max(ext[n][0] for n in columns[i])
-            - (_WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0)
-        )
+        wire = _WIRE + cuts[i - 1] * _WIRE_STEP if b else 0.0
+        left = x[i] - max(ext[n][0] for n in columns[i]) - wire
         mine_nodes = [n for n in col if band_of[n] == b]
         rows = _closed_up([row[n] for n in mine_nodes])
         ys = _row_heights(mine_nodes, {n: rows[row[n]] for n in mine_nodes}, x, col, ext)
@@ -452,25 +381,13 @@ def circuit_layout(
 
 
 def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, search=True):
-    """Per arc ``(source, target, synapse or None)`` its ``(height, curve, label centre or
-    None)``, and whether every curve is clear and every label placed.
+    """Per arc ``(source, target, synapse or None)`` its ``(height, curve, label centre or None)``,
+    and whether every curve is clear and every label placed.
 
     Each arc takes the first bridge (straight between neighbouring columns, then growing
-    bulges, feedback below) clear of ``obstacles`` where its label (size in ``labels``)
-    fits, apart from the arcs between the same nodes, its end moved round the target's
-    circle clear of the ends there; a placed label joins the obstacles. Without
-    ``search``, one arch each.
-
-    Examples
-    --------
-    >>> from symctl.plotting.circuit_layout import route
-    >>> from symctl.plotting.layered import Obstacles
-    >>> pos, col = {"a": (0.0, 0.0), "m": (1.0, 0.0), "b": (2.0, 0.0)}, {"a": 0, "m": 1, "b": 2}
-    >>> free = Obstacles.of([(pos[k], 0.2) for k in pos], [], list(pos))
-    >>> (h, curve, where), = route([("a", "b", None)], pos, col, dict.fromkeys(pos, 0.2), {},
-    ...                            free)[0]
-    >>> h != 0   # over (or under) the neuron between
-    True
+    bulges, feedback below) clear of ``obstacles`` where its label fits, apart from the arcs
+    between the same nodes, its end moved round the target's circle clear of the ends there;
+    a placed label joins the obstacles. Without ``search``, one arch each.
     """
     clear, labelled, up = True, True, 1.0
     chosen: list[tuple] = []
@@ -478,11 +395,8 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
     ports: dict = {}  # the angles at which curves already end at each neuron
     lines: list[np.ndarray] = []
     for a, b, s in arcs:
-        (pa, pb), ra, rb = (
-            (np.asarray(pos[a], float), np.asarray(pos[b], float)),
-            radius.get(a, DOT),
-            radius.get(b, DOT),
-        )
+        pa, pb = np.asarray(pos[a], float), np.asarray(pos[b], float)
+        ra, rb = radius.get(a, DOT), radius.get(b, DOT)
         forward = col[b] > col[a]
         adjacent = forward and col[b] == col[a] + 1
         if adjacent:
@@ -606,8 +520,7 @@ def _band_gap(specs, band_of, b: int, m: Measures) -> float:
 
 
 def _wires(specs, band_of, b: int, pos, m: Measures, band_box) -> dict[int, Arc]:
-    """The arcs across the cut above band ``b``: out right, back under band ``b - 1``, in left
-    (the top source's wire outermost on the right, lowest and innermost on the left)."""
+    """The arcs across the cut above band ``b``: out right, back under band ``b - 1``, in left."""
     out = {}
     crossing = sorted(_crossing(specs, band_of, b), key=lambda k: -pos[specs[k][0]][1])
     n = len(crossing)

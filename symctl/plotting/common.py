@@ -15,11 +15,8 @@ def text_size(text: str, size: float) -> tuple[float, float]:
 
 def text_outline(text: str, size: float):
     """``(path, (x0, y0, x1, y1))``: the glyph outlines of ``text`` at ``size`` points (origin on
-    the baseline at the left; ``None`` without ink) and their box.
-
-    The box is that of the outlines' vertices (TrueType puts them at the curves' extrema),
-    not ``Path.get_extents``, which walks every Bézier in Python; math text is typeset at
-    ``size`` itself, so that drawing it later finds it typeset (:func:`_share_math_parses`).
+    the baseline, ``None`` without ink) and the box of their vertices (TrueType puts them at the
+    curves' extrema); math text is typeset at ``size``, so drawing it later finds it typeset.
     """
     from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
@@ -73,11 +70,7 @@ def fit_to_drawing(fig, ax, own: bool, x_lo: float, x_hi: float, y_lo: float, y_
 
 def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -> list[str]:
     """``items`` joined by ``sep`` into lines no wider than ``room`` inches at ``size`` points
-    (measured widths times ``scale``: drawn text runs a few percent wider); one may overflow.
-
-    >>> from symctl.plotting.common import wrap
-    >>> wrap("a few words to wrap".split(), 0.5, 7, scale=1.04)
-    ['a few', 'words to', 'wrap']
+    (widths times ``scale``: drawn text runs a few percent wider); one may overflow.
     """
     lines: list[str] = []
     for item in items:
@@ -101,7 +94,7 @@ def heading(ax, title: str, x: float, y: float, room: float, size: float):
 
 def key_columns(widths, room: float, gap: float) -> list[list[int]]:
     """The key's lines (indices) in the most columns, ``gap`` apart and each as wide as its widest
-    line, that fit ``room`` (the first ones hold ``ceil(len / n)`` lines; else one column).
+    line, that fit ``room``; else one column.
 
     >>> from symctl.plotting.common import key_columns
     >>> key_columns([1.0, 1.0, 1.0], room=2.5, gap=0.3), key_columns([3.0, 1.0], 2.5, 0.3)
@@ -117,12 +110,8 @@ def key_columns(widths, room: float, gap: float) -> list[list[int]]:
 
 
 def _share_math_parses() -> None:
-    """Let every renderer of this process share one cache of typeset math text.
-
-    Matplotlib typesets ``$...$`` (about 10 ms) in a cache of 50 per *renderer*, and a
-    figure of more than 50 labels evicts its own entries between measuring and drawing
-    (40% of the report's figure time). This cache keys on what the result depends on;
-    it is not installed if matplotlib's private method has another form.
+    """Let every renderer share one cache of typeset math text: matplotlib's cache of 50 per
+    renderer evicts a large figure's labels between measuring and drawing (40% of the figure time).
     """
     import functools
 

@@ -1,6 +1,6 @@
-r"""Rendering of a delay graph (the paper's Fig. 2, right), laid out by
-:mod:`~symctl.plotting.delaygraph_layout`; :meth:`DelayGraph.draw
-<symctl.compatibility.delaygraph.DelayGraph.draw>` delegates here."""
+"""Rendering of a delay graph (the paper's Fig. 2, right), laid out by
+:mod:`~symctl.plotting.delaygraph_layout`.
+"""
 
 from __future__ import annotations
 
@@ -49,14 +49,7 @@ _BACK = style.PALETTE[3]  # an edge laid out right to left (closing a cycle)
 
 
 def steps_text(delay: int) -> str:
-    """``"1 step"``, ``"2 steps"``, ``"0 steps"``: an edge's label.
-
-    Examples
-    --------
-    >>> from symctl.plotting.delaygraph import steps_text
-    >>> steps_text(1), steps_text(3)
-    ('1 step', '3 steps')
-    """
+    """``"1 step"``, ``"2 steps"``: an edge's label."""
     return f"{delay} step" + ("" if delay == 1 else "s")
 
 
@@ -136,8 +129,6 @@ def delay_graph_plot(
 
     Examples
     --------
-    The spinal and transcortical pathways of a stretch reflex:
-
     >>> from symctl import DelayGraph
     >>> from symctl.plotting.delaygraph import delay_graph_plot
     >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])

@@ -1,20 +1,11 @@
-r"""Where a delay graph's vertices and edges go, in inches; no matplotlib.
+"""Where a delay graph's vertices and edges go, in inches; no matplotlib.
 
-On :mod:`symctl.plotting.layered`: edges into a sensor, out of an actuator or closing a
-cycle (*back edges*) are laid out turned around; sensors in the first layer, actuators in
-the last; bends pull hardest in :func:`~symctl.plotting.layered.positions` (long edges
-run straight). An edge leaves the right side of its left end and enters the left of its
-right end, level across a column and an S-shaped Bézier between columns; the edges of a
-two-cycle, and a lone back edge between neighbours, bulge apart. A label sits on its
-curve in its middle gap, moved off other labels and curves; gaps are as wide as their labels.
-
->>> from symctl import DelayGraph
->>> from symctl.plotting.delaygraph_layout import delay_graph_layout
->>> lay = delay_graph_layout(DelayGraph.chain([1, 1]))
->>> lay.layer, [lay.pos[v][1] for v in (1, 2, 3)]
-({1: 0, 2: 1, 3: 2}, [0.0, 0.0, 0.0])
->>> [(r.source, r.target, r.back, len(r.points)) for r in lay.routes]
-[(1, 2, False, 2), (2, 3, False, 2)]
+Edges into a sensor, out of an actuator or closing a cycle are laid out turned around;
+sensors in the first layer, actuators in the last; bends pull hardest in
+:func:`~symctl.plotting.layered.positions` (long edges run straight). An edge runs level
+across a column and as an S-shaped Bézier between columns; the edges of a two-cycle, and
+a lone back edge between neighbours, bulge apart. A label sits on its curve in its middle
+gap, off other labels and curves; gaps are as wide as their labels.
 """
 
 from __future__ import annotations
@@ -55,20 +46,8 @@ _WEIGHT = {(False, False): 1.0, (False, True): 30.0, (True, False): 30.0, (True,
 
 @dataclass(frozen=True)
 class EdgeRoute:
-    """One drawn edge: its curve from the source's box to the target's.
-
-    Attributes
-    ----------
-    source, target, delay : int
-        The edge ``(i, j, delay)`` of :attr:`DelayGraph.edges`.
-    back : bool
-        Laid out turned around (it runs right to left).
-    points : tuple of (float, float)
-        The points the curve passes: on the source's border, the bends, on the target's.
-    bezier : tuple of (float, float)
-        The curve as cubic Bézier segments ``p0, c, c, p1, c, c, p2, ...``.
-    label : (float, float)
-        The centre of the delay's label.
+    """One drawn edge ``(source, target, delay)``: ``back`` when laid out right to left; ``points``
+    on the boxes' borders and the bends; ``bezier`` its cubic segments; ``label`` its centre.
     """
 
     source: int
@@ -82,16 +61,8 @@ class EdgeRoute:
 
 @dataclass(frozen=True, eq=False)
 class DelayGraphLayout:
-    """The positions of a delay-graph drawing.
-
-    Attributes
-    ----------
-    layer, pos, size : mapping of int
-        Each vertex's column, centre and box ``(width, height)`` [in].
-    routes : tuple of EdgeRoute
-        One per edge, in the order of :attr:`DelayGraph.edges`.
-    bounds : (float, float, float, float)
-        ``(x_lo, x_hi, y_lo, y_hi)``: every box, curve and label inside, with margins.
+    """Each vertex's ``layer``, centre ``pos`` and box ``size`` [in]; the ``routes``, one per edge of
+    :attr:`DelayGraph.edges`; ``bounds`` ``(x_lo, x_hi, y_lo, y_hi)`` with margins.
     """
 
     layer: Mapping[int, int]
@@ -231,19 +202,8 @@ def delay_graph_layout(
     sizes: Mapping[int, tuple[float, float]] | None = None,
     label_sizes: Mapping[tuple[int, int], tuple[float, float]] | None = None,
 ) -> DelayGraphLayout:
-    """The positions, routes and extent of the drawing of ``graph``.
-
-    Parameters
-    ----------
-    graph : DelayGraph
-    sizes : mapping of int to (float, float), optional
-        Each vertex box's width and height [in] (default 0.6 by 0.35).
-    label_sizes : mapping of (int, int) to (float, float), optional
-        Each edge's label width and height [in], by ``(i, j)`` (default 0.4 by 0.13).
-
-    Returns
-    -------
-    DelayGraphLayout
+    """The positions, routes and extent of the drawing of ``graph``; ``sizes`` of the vertex boxes
+    and ``label_sizes`` of the edges' labels by ``(i, j)`` [in] (default :data:`BOX`, :data:`LABEL`).
 
     Raises
     ------
@@ -258,8 +218,7 @@ def delay_graph_layout(
 
     >>> from symctl import DelayGraph
     >>> from symctl.plotting.delaygraph_layout import delay_graph_layout
-    >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 4, 1)])
-    >>> lay = delay_graph_layout(g)
+    >>> lay = delay_graph_layout(DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 4, 1)]))
     >>> lay.layer[2] == lay.layer[3], lay.pos[2][1] != lay.pos[3][1]
     (True, True)
     """

@@ -42,10 +42,8 @@ def firing_plot(
     title: str | None = None,
     size: str | float = "text",
 ) -> Figure:
-    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top.
-
-    With noise (``fp.draws`` > 0) each line is the mean of the noisy runs, in a band of
-    :math:`\pm 2` standard deviations.
+    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top;
+    with noise, each line the mean of the noisy runs in a band of :math:`\pm 2` sd.
 
     Parameters
     ----------
@@ -54,8 +52,8 @@ def firing_plot(
     ncols : int
         Neuron panels per row.
     labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)`` of the plant's state and input (their
-        names without ``delta_``); default the muscle's (force f [N], rate r).
+        ``name -> (description, unit)`` of the plant's state and input (names without
+        ``delta_``); default the muscle's (force f [N], rate r).
     title : str, optional
         A heading over the figure (default none).
     size : {"column", "double", "text"} or float
@@ -64,9 +62,6 @@ def firing_plot(
     Returns
     -------
     matplotlib.figure.Figure
-        The state panel on top (its heading says how closely the realizations'
-        rates agree), the neuron panels (time and rate axes labelled once, for
-        all of them), the legend of the realizations below.
 
     Raises
     ------
@@ -112,16 +107,15 @@ def firing_plot(
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
         head = f"{what} ${sym}$" if what else f"${sym}$"
+        dev = max(fp.max_deviation, 1e-16)
         if fp.kind in REALIZERS and REALIZERS[fp.kind].controller:  # the IFP controller
             head += ": one realization, the optimal controller's delay chain"
         elif fp.draws:
-            dev = max(fp.max_deviation, 1e-16)
             head += (
                 f": the same in every realization and the optimal loop (to {dev:.0e}); "
                 f"mean $\\pm$ 2 sd of {fp.draws} noisy runs"
             )
         else:
-            dev = max(fp.max_deviation, 1e-16)
             head += (
                 f" in every realization and with the optimal controller: the same, "
                 f"to {dev:.0e} relative (and so is the input)"

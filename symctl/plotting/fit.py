@@ -122,13 +122,8 @@ def fit_plot(
             Patch(color=pred_c, alpha=0.3, lw=0),
             Line2D([], [], color=lost_c),
         ]
-        texts = [
-            "data",
-            "fit",
-            "prediction",
-            f"{pred.level:.0%} band",
-            "prediction, not identifiable",
-        ]
+        texts = ["data", "fit", "prediction", f"{pred.level:.0%} band"]
+        texts.append("prediction, not identifiable")
         keep = sorted(used)
         style.figure_legend(fig, [handles[i] for i in keep], [texts[i] for i in keep])
     if title:

@@ -1,25 +1,10 @@
-r"""The one layered layout of the structure, circuit and delay-graph drawings, as numbers.
+"""The one layered layout of the structure, circuit and delay-graph drawings, as numbers.
 
-In the manner of Sugiyama, Tagawa and Toda (1981); inches, no matplotlib. Layers by
-:func:`layering` (feedback turned around) and :func:`longest_path`, a bend per layer an
-edge crosses (:func:`split`), order by barycentre sweeps (:func:`order`), rows by
-isotonic least squares (:func:`rows`, :func:`positions`); orthogonal routes with a slot
-per net in each gap (:func:`assign_slots`, as ELK Layered: Schulze, Spönemann and von
-Hanxleden, J. Vis. Lang. Comput. 25, 2014); curved routes as Bézier bridges clear of
-:class:`Obstacles`, and their labels (:func:`place_label`).
-
-References
-----------
-K. Sugiyama, S. Tagawa and M. Toda, "Methods for visual understanding of hierarchical
-system structures", IEEE Trans. Syst. Man Cybern. 11(2), 1981.
-
-Examples
---------
->>> from symctl.plotting.layered import longest_path, order, split
->>> layer = longest_path(["a", "b", "c"], {"a": [], "b": ["a"], "c": ["a", "b"]}, first={"a"})
->>> chains, node_layer, up, down = split([("a", "b"), ("b", "c"), ("a", "c")], layer)
->>> layer, chains[2], order([["a"], ["b", (2, 1)], ["c"]], up, down)
-({'a': 0, 'b': 1, 'c': 2}, ['a', (2, 1), 'c'], [['a'], ['b', (2, 1)], ['c']])
+After Sugiyama, Tagawa and Toda (IEEE Trans. Syst. Man Cybern. 11(2), 1981); inches, no
+matplotlib: layers, a bend per layer an edge crosses, barycentre ordering, rows by
+isotonic least squares; orthogonal routes with a slot per net in each gap (as ELK Layered:
+Schulze, Spönemann and von Hanxleden, J. Vis. Lang. Comput. 25, 2014); curved routes as
+Bézier bridges clear of :class:`Obstacles`, and their labels.
 """
 
 from __future__ import annotations
@@ -39,17 +24,10 @@ from symctl.compatibility.signalgraph import back_edges
 _EPS = 1e-9
 
 
-# ---------------------------------------------------------------- layers, order, rows
 def layering(nodes, edges, sources, *, against=(), first=(), last=(), floor=0):
-    """``(flow, layer)``: each edge ``(a, b)`` as laid out, ``(a, b, False)``, or turned around,
-    ``(b, a, True)``, when it closes a cycle in a depth-first search from ``sources`` or is in
-    ``against``; and the layers by :func:`longest_path` (``last`` may hold nodes beyond ``nodes``).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import layering
-    >>> layering("abc", [("a", "b"), ("b", "c"), ("c", "b")], "a", first="a")
-    ([('a', 'b', False), ('b', 'c', False), ('b', 'c', True)], {'a': 0, 'b': 1, 'c': 2})
+    """``(flow, layer)``: each edge as ``(a, b, False)``, or ``(b, a, True)`` when it closes a
+    cycle in a depth-first search from ``sources`` or is in ``against``; layers by
+    :func:`longest_path` (``last`` may hold nodes beyond ``nodes``).
     """
     against = set(against)
     succ: dict = {v: [] for v in nodes}
@@ -68,15 +46,8 @@ def layering(nodes, edges, sources, *, against=(), first=(), last=(), floor=0):
 
 
 def longest_path(nodes, preds: Mapping, *, first=(), last=(), floor=0, layer=None) -> dict:
-    """Layers: ``first`` in layer 0, the others one right of their furthest laid-out
-    predecessor (at least ``floor``), ``last`` together right of all others; ``nodes`` in a
-    topological order, ``layer`` (layers already given) updated.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import longest_path
-    >>> longest_path("abc", {"a": [], "b": "a", "c": "a"}, first="a", last="bc")
-    {'a': 0, 'b': 1, 'c': 1}
+    """Layers: ``first`` at 0, others one right of their furthest laid-out predecessor (at least
+    ``floor``), ``last`` together at the right; ``nodes`` topologically sorted, ``layer`` updated.
     """
     layer = {} if layer is None else layer
     first, last, nodes = set(first), set(last), list(nodes)
@@ -107,12 +78,7 @@ def spread(count: int, half: float) -> list[float]:
 
 
 def box(x: float, y: float, size, ha="center", va="center") -> tuple[float, float, float, float]:
-    """The box ``(x0, y0, x1, y1)`` of a text of ``size`` (w, h) at ``(x, y)``, aligned as matplotlib.
-
-    >>> from symctl.plotting.layered import box
-    >>> box(1.0, 0.0, (0.4, 0.2), ha="right", va="bottom")
-    (0.6, 0.0, 1.0, 0.2)
-    """
+    """The box ``(x0, y0, x1, y1)`` of a text of ``size`` (w, h) at ``(x, y)``, aligned as matplotlib."""
     w, h = size
     x0 = x - {"left": 0.0, "center": w / 2, "right": w}[ha]
     y0 = y - {"bottom": 0.0, "center": h / 2, "top": h}[va]
@@ -127,15 +93,8 @@ def extent(points, boxes=(), margin: float = 0.0) -> tuple[float, float, float, 
 
 
 def split(edges: Sequence[tuple], layer: Mapping) -> tuple[list[list], dict, dict, dict]:
-    """Each edge ``(a, b, ...)`` as a chain ``[a, (k, l)..., b]``, one bend ``(k, l)`` per layer
-    ``l`` between; returns the chains, every node's layer and its neighbours up and down.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import split
-    >>> chains, node_layer, up, down = split([("a", "b")], {"a": 0, "b": 2})
-    >>> chains, node_layer[(0, 1)], down["a"], up["b"]
-    ([['a', (0, 1), 'b']], 1, [(0, 1)], [(0, 1)])
+    """Each edge ``(a, b, ...)`` as a chain ``[a, (k, l)..., b]``, a bend ``(k, l)`` per layer
+    ``l`` between: the chains, every node's layer and its neighbours up and down.
     """
     node_layer = dict(layer)
     up: dict = {v: [] for v in layer}
@@ -154,14 +113,7 @@ def split(edges: Sequence[tuple], layer: Mapping) -> tuple[list[list], dict, dic
 
 
 def crossings(layers: Sequence[Sequence], down: Mapping) -> int:
-    """Edge crossings between neighbouring layers (inversions of the edges' lower ends).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import crossings
-    >>> crossings([["a", "b"], ["c", "d"]], {"a": ["d"], "b": ["c"]})
-    1
-    """
+    """Edge crossings between neighbouring layers (inversions of the edges' lower ends)."""
     total = 0
     for upper, lower in itertools.pairwise(layers):
         at = {node: k for k, node in enumerate(lower)}
@@ -173,14 +125,7 @@ def crossings(layers: Sequence[Sequence], down: Mapping) -> int:
 
 
 def order(layers: Sequence[Sequence], up: Mapping, down: Mapping, sweeps: int = 8) -> list[list]:
-    """Barycentre sweeps down and up (``sweeps`` each); the order with the fewest crossings.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import order
-    >>> order([["a", "b"], ["c", "d"]], {"c": ["b"], "d": ["a"]}, {"a": ["d"], "b": ["c"]})
-    [['a', 'b'], ['d', 'c']]
-    """
+    """Barycentre sweeps down and up (``sweeps`` each); the order with the fewest crossings."""
     current = [list(o) for o in layers]
     best, fewest = [list(o) for o in current], crossings(current, down)
     for sweep in range(2 * sweeps):
@@ -200,16 +145,8 @@ def order(layers: Sequence[Sequence], up: Mapping, down: Mapping, sweeps: int = 
 
 
 def isotonic(target, weight, gaps) -> np.ndarray:
-    r"""Least squares :math:`\sum_k w_k (d_k - t_k)^2` under :math:`d_{k+1} \ge d_k + g_k`.
-
-    With :math:`d = e + o`, :math:`o` the running sum of the gaps, this is an isotonic
-    regression of :math:`t - o` (:func:`scipy.optimize.isotonic_regression`).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import isotonic
-    >>> isotonic([0.0, 0.0], [1.0, 1.0], [1.0]).tolist()
-    [-0.5, 0.5]
+    r"""Least squares :math:`\sum_k w_k (d_k - t_k)^2` under :math:`d_{k+1} \ge d_k + g_k`: with
+    :math:`o` the running sum of the gaps, the isotonic regression of :math:`t - o`, plus :math:`o`.
     """
     target = np.asarray(target, float)
     offset = np.concatenate(([0.0], np.cumsum(gaps)))[: len(target)]
@@ -223,15 +160,7 @@ def isotonic(target, weight, gaps) -> np.ndarray:
 
 def positions(layers, up, down, gaps, weight: Callable[[Hashable, Hashable], float], sweeps=8):
     """Each node's place across its layer, the order kept: near the ``weight``-ed mean of its
-    neighbours (from the left, the right, both; ``sweeps`` times), ``gaps`` apart at least.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import positions
-    >>> up, down = {"a": [], "b": [], "c": ["a", "b"]}, {"a": ["c"], "b": ["c"], "c": []}
-    >>> at = positions([["a", "b"], ["c"]], up, down, [[1.0], []], lambda n, m: 1.0)
-    >>> float(at["b"] - at["a"]), float(at["c"] - (at["a"] + at["b"]) / 2)
-    (1.0, 0.0)
+    neighbours (left, right, both; ``sweeps`` times), ``gaps`` apart at least.
     """
     at: dict = {}
     for nodes, gap in zip(layers, gaps, strict=True):
@@ -253,14 +182,7 @@ def positions(layers, up, down, gaps, weight: Callable[[Hashable, Hashable], flo
 
 
 def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
-    """Rows, top first and one apart at least, nearest ``desired`` (integer: rounded half up).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import fit_rows
-    >>> fit_rows([0.0, 0.0]), fit_rows([0.0, 0.0], integer=False)
-    ([1, 0], [0.5, -0.5])
-    """
+    """Rows, top first and one apart at least, nearest ``desired`` (integer: rounded half up)."""
     n = len(desired)
     fit = [-float(y) for y in isotonic([-d for d in desired], [1.0] * n, [1.0] * (n - 1))]
     if not integer:
@@ -274,16 +196,6 @@ def fit_rows(desired: Sequence[float], integer: bool = True) -> list:
 def rows(columns: Mapping[int, list], preds: Mapping, succs: Mapping, integer: bool = True) -> dict:
     """Rows in each layer (``columns``, sorted in place top first): five barycentre sweeps,
     alternately on ``preds`` and ``succs``, each column fitted by :func:`fit_rows`.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import rows
-    >>> columns = {0: ["a"], 1: ["b", "c"], 2: ["d"]}
-    >>> preds = {"a": [], "b": ["a"], "c": ["a"], "d": ["b", "c"]}
-    >>> succs = {"a": ["b", "c"], "b": ["d"], "c": ["d"], "d": []}
-    >>> row = rows(columns, preds, succs)
-    >>> row["b"] - row["c"], columns[1]
-    (1, ['b', 'c'])
     """
     row: dict = {}
     for neighbours in (preds, succs, preds, succs, preds):
@@ -308,20 +220,15 @@ def break_cycles(graph: nx.DiGraph, key) -> nx.DiGraph:
         graph.remove_edge(*min(cycle, key=key)[:2])
 
 
-# ---------------------------------------------------------------- orthogonal routes
 class Segment(NamedTuple):
-    """The vertical piece of one net in one gap; ``attachments`` are ``(y, side)``: a horizontal
-    piece at ``y`` to the gap's ``"left"`` or ``"right"`` edge.
+    """The vertical piece of one net in one gap; ``attachments`` ``(y, side)`` are horizontal
+    pieces at ``y`` to the gap's ``"left"`` or ``"right"`` edge.
 
-    Examples
-    --------
-    >>> from symctl.plotting.layered import Segment, assign_slots, junctions
+    >>> from symctl.plotting.layered import Segment, assign_slots
     >>> a = Segment("a", ((0.0, "left"), (2.0, "right")))   # up from row 0 to row 2
     >>> b = Segment("b", ((1.0, "left"), (3.0, "right")))   # up from row 1 to row 3
     >>> assign_slots([a, b])   # a left of b would cross twice, b left of a never
     {'b': 0, 'a': 1}
-    >>> junctions(Segment("x", ((0.0, "left"), (0.0, "right"), (1.0, "right"), (-1.0, "right"))))
-    [0.0]
     """
 
     net: Hashable
@@ -362,9 +269,9 @@ def _overlap(a: Segment, b: Segment) -> bool:
 
 
 def assign_slots(segments: Sequence[Segment]) -> dict:
-    """``net -> slot`` (0, 1, ... left to right) of each segment (one per net) with a vertical
-    piece: overlapping ones apart, in the order that crosses fewer pieces (cycles of
-    preferences broken at the weakest), the others sharing slots, first fit."""
+    """``net -> slot`` (0, 1, ... left to right) of each vertical segment: overlapping ones apart,
+    in the order crossing fewer pieces (preference cycles broken at the weakest), first fit.
+    """
     vertical = [s for s in segments if s.high - s.low > _EPS]
     prefer = nx.DiGraph()
     prefer.add_nodes_from(range(len(vertical)))
@@ -395,8 +302,9 @@ def junctions(segment: Segment) -> list[float]:
 
 
 class Wire(NamedTuple):
-    """A drawn polyline from ``source`` to ``target`` (None: from or to outside), arrow at its end;
-    ``delay`` steps of the delay it feeds (dashed), ``feedback`` on a feedback arc."""
+    """A drawn polyline from ``source`` to ``target`` (None: outside), arrow at its end; ``delay``
+    steps of the delay it feeds, ``feedback`` on a feedback arc.
+    """
 
     points: tuple[tuple[float, float], ...]
     delay: int
@@ -428,8 +336,7 @@ def _shared(p, q) -> float:
 
 
 def dashed_part(wire: Wire, wires) -> tuple[tuple[float, float], ...]:
-    """The part of a delay wire after it leaves every undelayed wire of its signal (the shared
-    start is the undelayed signal, drawn solid).
+    """The part of a delay wire after it leaves every undelayed wire of its signal (drawn solid).
 
     >>> from symctl.plotting.layered import Wire, dashed_part
     >>> solid = Wire(((0, 0), (2, 0)), 0, "a", "b", False)
@@ -472,7 +379,6 @@ def clean(points) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
-# ---------------------------------------------------------------- curves
 CLEAR = 0.035  # how near a curve may pass a circle it does not end at [in]
 PORT_GAP = 0.085  # least distance along a circle between two curves' ends [in] (an arrow head)
 TIP = 0.012  # an arrow's tip stops this far from its circle [in]
@@ -484,15 +390,7 @@ _T = np.linspace(0.0, 1.0, 49)
 
 
 def bezier_points(bezier, t=_T) -> np.ndarray:
-    """The points of a piecewise cubic Bézier curve (``3k + 1`` control points, matplotlib's
-    ``Path.CURVE4``) at the parameters ``t`` of each segment, segment after segment.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import bezier_points
-    >>> bezier_points([(0, 0), (1, 0), (2, 0), (3, 0)], [0.0, 0.5, 1.0])[:, 0].tolist()
-    [0.0, 1.5, 3.0]
-    """
+    """Points of a piecewise cubic Bézier (``3k + 1`` control points) at ``t`` in each segment."""
     ctrl = np.asarray(bezier, dtype=float)
     t = np.asarray(t, dtype=float)[:, None]
     s = 1 - t
@@ -504,14 +402,7 @@ def bezier_points(bezier, t=_T) -> np.ndarray:
 
 
 def at_x(bezier, x: float) -> tuple[float, float]:
-    """The point of the curve at abscissa ``x`` (each segment x-monotone; clamped to the ends).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import at_x
-    >>> [round(v, 6) for v in at_x([(0, 0), (1, 0), (2, 2), (3, 2)], 1.5)]
-    [1.5, 1.0]
-    """
+    """The point of the curve at abscissa ``x`` (each segment x-monotone; clamped to the ends)."""
     ctrl = [(float(px), float(py)) for px, py in bezier]  # plain floats: a fast bisection
     segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
 
@@ -548,15 +439,8 @@ def line(p, q) -> list[tuple[float, float]]:
 
 def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
     r"""The cubic Bézier ``(a, C1, C2, b)`` rising by ``h`` over the chord's middle along its
-    upward normal (right for a vertical chord); 0 is straight. The inner points lie
-    :math:`\tfrac43 h` off the chord, 0.7 of it from the far ends: a tall bridge still
-    meets its circles from the side, away from their names and tags.
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import bridge
-    >>> [(round(x, 2), round(y, 2)) for x, y in bridge((0, 0), (1, 0), 0.3)]
-    [(0.0, 0.0), (0.7, 0.4), (0.3, 0.4), (1.0, 0.0)]
+    upward normal (right for a vertical chord); inner points :math:`\tfrac43 h` off the chord,
+    0.7 of it from the far ends, so a tall bridge still meets its circles from the side.
     """
     a, b = np.asarray(a, float), np.asarray(b, float)
     d = b - a
@@ -568,9 +452,9 @@ def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
 
 
 def trimmed(curve, a, ra: float, b, rb: float, a1: float | None = None):
-    """``curve`` from the border of the circle ``(a, ra)`` to that of ``(b, rb)``: each end where
-    the radius towards its inner control point (or at the end angle ``a1`` [rad]) meets the
-    circle, its control point moved onto that radius (an arrow points at the centre)."""
+    """``curve`` from the border of circle ``(a, ra)`` to that of ``(b, rb)``, each end on the
+    radius towards its inner control point (or at angle ``a1`` [rad]), pointing at the centre.
+    """
     _, c1, c2, _ = (np.asarray(p, float) for p in curve)
 
     def port(centre, towards, r, angle):
@@ -596,8 +480,9 @@ def bulges(straight: bool, prefer: float, start: float, step: float, count: int)
 
 
 def end_angles(natural: float, used: list[float], radius: float, swing: float, count: int):
-    """Up to ``count`` angles where a curve may end on a circle, nearest ``natural`` within
-    ``swing``, each :data:`PORT_GAP` clear of those ``used``."""
+    """Up to ``count`` angles for a curve's end on a circle, nearest ``natural`` within ``swing``,
+    :data:`PORT_GAP` clear of those ``used``.
+    """
     need = PORT_GAP / max(radius, 1e-9)
     steps = int(swing / (need / 3))
     tries = np.array([natural + sign * k * need / 3 for k in range(steps + 1) for sign in (1, -1)])
@@ -609,17 +494,8 @@ def end_angles(natural: float, used: list[float], radius: float, swing: float, c
 
 @dataclass(frozen=True, eq=False)
 class Obstacles:
-    """What a curve must not run through: circles (``centres``, ``radii``, the node ``keys``
-    they belong to) and text boxes ``(x0, y0, x1, y1)`` (``box_keys``: their node, or None).
-
-    Examples
-    --------
-    >>> from symctl.plotting.layered import Obstacles, bridge, bezier_points, hits
-    >>> free = Obstacles.of([((1.0, 0.0), 0.2)], [])
-    >>> hits(bezier_points(bridge((0, 0), (2, 0), 0.0)), free) > 0   # straight through it
-    True
-    >>> hits(bezier_points(bridge((0, 0), (2, 0), 0.4)), free)
-    0
+    """What a curve must not cross: circles (``centres``, ``radii``, their node ``keys``) and text
+    boxes ``(x0, y0, x1, y1)`` (``box_keys``: their node, or None).
     """
 
     centres: np.ndarray
@@ -649,7 +525,8 @@ class Obstacles:
 
 def hits(points: np.ndarray, obstacles: Obstacles, ends=()) -> int:
     """How bad ``points`` are: those (outside the circles of ``ends``) near a circle or in a box,
-    and ten times as many again for those inside a circle; 0 is clear."""
+    plus ten times those inside a circle; 0 is clear.
+    """
     own = np.array([k in ends for k in obstacles.keys], bool)
     keep = np.ones(len(points), bool)
     for k in np.flatnonzero(own):
@@ -697,9 +574,9 @@ def _box_free(box, obstacles: Obstacles) -> bool:
 
 
 def place_label(curve, size, obstacles: Obstacles, lines=None) -> tuple[float, float] | None:
-    """The centre of a label of ``size`` (w, h) on ``curve``, or None: tried from the middle
-    outwards, on no circle and no box; of those, the one the fewest points of ``lines``
-    (other curves) pass through."""
+    """The centre of a label of ``size`` on ``curve`` (tried from the middle out) on no circle and
+    no box, crossed by the fewest points of ``lines``; or None.
+    """
     best, best_cost = None, None
     pts = np.zeros((0, 2)) if lines is None else np.asarray(lines, float).reshape(-1, 2)
     for t in (0.5, 0.42, 0.58, 0.34, 0.66, 0.27, 0.73, 0.2, 0.8):

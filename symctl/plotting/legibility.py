@@ -11,17 +11,9 @@ __all__ = ["Legibility", "legibility", "missing_units"]
 
 @dataclass(frozen=True)
 class Legibility:
-    """What :func:`legibility` found; truthy when the figure is legible.
-
-    Attributes
-    ----------
-    small, overlaps, clipped : tuple
-        Texts set below the minimum ``(text, printed size [pt])``; pairs of texts whose
-        drawn boxes overlap; texts that run off the figure.
-    width : float
-        The figure's printed width [in].
-    too_wide : bool
-        Wider than the page width it was checked against.
+    """What :func:`legibility` found, truthy when legible: texts ``small`` ``(text, size [pt])``,
+    pairs that ``overlaps``, texts ``clipped`` off the figure; the printed ``width`` [in] and
+    whether it is ``too_wide``.
     """
 
     small: tuple = ()
@@ -81,32 +73,9 @@ def legibility(
     page_width: float | None = TEXT_WIDTH,
     overlap_tolerance: float = 0.5,
 ) -> Legibility:
-    """Check that ``fig`` is legible when printed at ``scale`` times its size.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure, as it will be saved.
-    scale : float
-        Print size over the figure's size (1: included at natural size).
-    min_font : float
-        The smallest legible text [pt].
-    page_width : float or None
-        The widest a figure may be printed [in]; ``None`` skips the check.
-    overlap_tolerance : float
-        Overlaps smaller than this many points either way are ignored.
-
-    Returns
-    -------
-    Legibility
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import new_figure
-    >>> from symctl.plotting.legibility import legibility
-    >>> fig = new_figure(9.0, 2.0)
-    >>> legibility(fig).too_wide
-    True
+    """Check that ``fig`` is legible printed at ``scale`` times its size: no text under
+    ``min_font`` [pt], no overlap of more than ``overlap_tolerance`` [pt] either way, none
+    clipped, no wider than ``page_width`` [in] (None: not checked).
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -147,26 +116,9 @@ def legibility(
 
 
 def missing_units(fig) -> tuple[str, ...]:
-    """The axes of ``fig`` that show numbers but name no unit (``quantity [unit]``) in their own
-    label or one their (sub)figure shares; call it on a drawn figure (tick labels get their
-    text when drawn).
-
-    Returns
-    -------
-    tuple of str
-        ``"axes <k> x: '<label>'"`` (or ``y``) for each unit missing.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import new_figure
-    >>> from symctl.plotting.legibility import legibility, missing_units
-    >>> fig = new_figure("column", 1.5)
-    >>> ax = fig.add_subplot()
-    >>> _ = ax.plot([0, 1], [0, 2])
-    >>> _ = ax.set_xlabel("time [s]"), ax.set_ylabel("force")
-    >>> _ = legibility(fig)
-    >>> missing_units(fig)
-    ("axes 0 y: 'force'",)
+    """The axes of ``fig`` (drawn: tick labels get their text when drawn) showing numbers but
+    naming no unit ``[unit]`` in their label or one their (sub)figure shares, as
+    ``"axes <k> y: '<label>'"``.
     """
 
     def shared(ax, which: str) -> str:

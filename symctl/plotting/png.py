@@ -9,34 +9,8 @@ __all__ = ["render_pdf", "write_png"]
 
 
 def write_png(fig, path: Path | str, *, dpi: float, metadata: dict | None = None) -> Path:
-    """Save ``fig`` as a PNG at ``dpi`` (rendered by Agg as :meth:`Figure.savefig` does): RGB
-    when every pixel is opaque, else RGBA; the same figure writes the same bytes.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-    path : path
-        The file to write.
-    dpi : float
-        Dots per inch.
-    metadata : mapping of str to str, optional
-        PNG text chunks (``None`` values are left out).
-
-    Returns
-    -------
-    Path
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from matplotlib.figure import Figure
-    >>> from symctl.plotting.png import write_png
-    >>> fig = Figure(figsize=(2, 1))
-    >>> fig.patch.set_alpha(0.5)   # a translucent background keeps its alpha channel
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     write_png(fig, Path(out) / "a.png", dpi=50).read_bytes()[25]
-    6
+    """Save ``fig`` as a PNG at ``dpi`` (rendered by Agg as :meth:`Figure.savefig` does), RGB when
+    every pixel is opaque, with the text chunks ``metadata`` (``None`` values left out).
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
@@ -54,36 +28,8 @@ def write_png(fig, path: Path | str, *, dpi: float, metadata: dict | None = None
 def render_pdf(
     pdf: Path | str, path: Path | str, *, dpi: float, metadata: dict | None = None
 ) -> Path:
-    """Write the PNG of the first page of the PDF file ``pdf`` at ``dpi``, rendered by PDFium.
-
-    As :func:`write_png`, from the figure's PDF instead of a second drawing (matplotlib
-    draws anew for each format; PDFium rasterizes in milliseconds, showing what the PDF
-    shows).
-
-    Parameters
-    ----------
-    pdf : path
-        A PDF file (the first page is rendered).
-    path, dpi, metadata :
-        As for :func:`write_png`.
-
-    Returns
-    -------
-    Path
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from matplotlib.figure import Figure
-    >>> from PIL import Image
-    >>> from symctl.plotting.png import render_pdf
-    >>> from symctl.plotting.vector import write_vector
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     pdf = write_vector(Figure(figsize=(2, 1)), Path(out) / "a.pdf")
-    ...     png = render_pdf(pdf, Path(out) / "a.png", dpi=50)
-    ...     Image.open(png).size, png.read_bytes()[25]
-    ((100, 50), 2)
+    """As :func:`write_png`, from the first page of the PDF file ``pdf`` rendered by PDFium
+    (milliseconds, where matplotlib would draw the figure anew).
     """
     import pypdfium2
 

@@ -1,7 +1,5 @@
-r"""Figures of simulations: a loop's state and input traces, the nonlinear plant's departure.
-
-:meth:`Response.plot <symctl.neural.simulate.Response.plot>` and :meth:`NonlinearCheck.plot
-<symctl.neural.nonlinear.NonlinearCheck.plot>` delegate here; sampled signals are steps.
+"""Figures of simulations, sampled signals as steps: a loop's state and input traces, and
+the nonlinear plant's departure from the linear model.
 """
 
 from __future__ import annotations
@@ -110,21 +108,20 @@ def response_plot(
     res : Response
         An open- or closed-loop simulation.
     states : bool, optional
-        Add a panel with the controller's internal states (default: when there
-        are any).
+        Add a panel of the controller's internal states (default: when there are any).
     labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)`` of the states and inputs (their names
-        without ``delta_``); default the muscle's (force f [N], rate r [spikes/s]).
+        ``name -> (description, unit)`` of the states and inputs (names without ``delta_``);
+        default the muscle's (force f [N], rate r [spikes/s]).
     title : str, optional
-        A heading over the figure (default none: a paper's caption says it).
+        A heading over the figure (default none).
     size : {"column", "double", "text"} or float
         The printed width (:func:`symctl.plotting.style.width`).
 
     Returns
     -------
     matplotlib.figure.Figure
-        One panel per state and per input (at most ``MAX_PANELS``; beyond, the
-        rest share the last one), then the controller's states.
+        One panel per state and input (at most :data:`MAX_PANELS`, the rest sharing the
+        last), then the controller's states.
 
     Examples
     --------
@@ -177,7 +174,8 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
             label = rf"$\delta {sym}$ [{unit or '1'}]"
         _steps(ax, res.t, trace[:, i], marked=marked, color=colour, label=label)
         if sd is not None:
-            style.band(ax, res.t, trace[:, i], sd[:, i], colour, _band_label(res, j))
+            runs = f"mean $\\pm$ 2 sd of {res.draws} noisy runs" if j == 0 else None  # once a panel
+            style.band(ax, res.t, trace[:, i], sd[:, i], colour, runs)
         if is_state and res.kind == "closed loop" and res.w.shape[1] > i and res.w[:, i].any():
             per = f"{unit or UNKNOWN_UNIT}/step"
             look = {"ls": "--", "lw": 0.8, "color": style.NEUTRAL}
@@ -191,11 +189,6 @@ def _signal_panel(ax, group, res: Response, labels, marked: bool, room: float) -
     else:
         ax.set_ylabel(_axis("change", units[0] if len(set(units)) == 1 else "mixed units"))
         _heading(ax, "further signals (change from the operating point)", room)
-
-
-def _band_label(res: Response, j: int) -> str | None:
-    """The band's legend entry, once per panel: the mean of how many noisy runs."""
-    return f"mean $\\pm$ 2 sd of {res.draws} noisy runs" if j == 0 else None
 
 
 def _locator():
@@ -263,10 +256,8 @@ def nonlinear_plot(
     title: str | None = None,
     size: str | float = "text",
 ) -> Figure:
-    r"""The first state's traces (nonlinear solid, linear dashed) and their largest gap against amplitude.
-
-    A disturbance pulse can push the state beyond what the plant's own dynamics reach;
-    ``bounds`` draws such values as reference lines (the muscle's :math:`f_\max`).
+    r"""The first state's traces (nonlinear solid, linear dashed) and their largest gap against
+    the pulse amplitude (log-log, with its fitted power law: about :math:`w^2`).
 
     Parameters
     ----------
@@ -275,8 +266,8 @@ def nonlinear_plot(
     labels : mapping of str to (str, str), optional
         ``name -> (description, unit)``, as in :func:`response_plot`.
     bounds : sequence of (float, str)
-        Values of the first state to mark with a dotted line, with their legend text
-        (left out when further than a quarter of the traces' range from them).
+        Values of the first state to mark with a dotted line (the muscle's :math:`f_\max`),
+        with their legend text; left out when further than a quarter of the traces' range.
     title : str, optional
         A heading over the figure (default none).
     size : {"column", "double", "text"} or float
@@ -285,8 +276,6 @@ def nonlinear_plot(
     Returns
     -------
     matplotlib.figure.Figure
-        The traces; the largest gap between them against the amplitude (log-log, with
-        its fitted power law: about :math:`w^2`); one legend below.
 
     Examples
     --------

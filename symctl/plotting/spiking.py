@@ -22,7 +22,8 @@ RASTER_NEURONS = 20
 
 
 def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
-    r"""Force (spiking solid, linear dashed), each neuron's rate change, and a spike raster.
+    r"""Force (spiking solid, linear dashed), each neuron's rate change, and a spike raster of the
+    first :data:`RASTER_NEURONS` neurons of each population (none when exact).
 
     Parameters
     ----------
@@ -34,8 +35,6 @@ def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        Three panels, top to bottom; the raster shows the first ``RASTER_NEURONS`` neurons of
-        each population (none when exact).
 
     Examples
     --------
@@ -51,14 +50,8 @@ def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
     with style.styled():
         force, rates, raster = fig.subplots(3, 1, sharex=True)
         force.step(res.t, res.delta_f[:, 0], where="post", color=style.PALETTE[0], label="spiking")
-        force.step(
-            res.t,
-            res.delta_f_linear[:, 0],
-            where="post",
-            color=style.NEUTRAL,
-            ls=dashed,
-            label="linear",
-        )
+        linear = res.delta_f_linear[:, 0]
+        force.step(res.t, linear, where="post", color=style.NEUTRAL, ls=dashed, label="linear")
         force.set_ylabel(style.axis_label(r"$\delta f$", "N"))
         force.set_title(
             f"force, {res.n_neurons or 'exact'} neurons per population "
@@ -84,9 +77,9 @@ def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
 
 
 def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figure:
-    """Median deviation against neurons per population (one line per circuit, the tolerances
-    dotted), and each circuit's neurons in all against its spikes per second at the first
-    tolerance (marker area: its firing amplitude).
+    """Median deviation against neurons per population (a line per circuit, tolerances dotted),
+    and each circuit's neurons in all against its spikes per second at the first tolerance
+    (marker area: its firing amplitude; circuits no size brings within it left out).
 
     Parameters
     ----------
@@ -98,8 +91,6 @@ def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figur
     Returns
     -------
     matplotlib.figure.Figure
-        Two panels; circuits that no size brings within the tolerance are left out of the
-        second.
 
     Examples
     --------
@@ -138,8 +129,7 @@ def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figur
 
 
 def _plain_log_ticks(ax) -> None:
-    """Plain numbers on both log axes (50, 0.02, 5,000); minor ticks at 2 and 5 labelled only on
-    an axis spanning under two decades, where the decades alone would leave it bare."""
+    """Plain numbers on both log axes; minor ticks at 2 and 5 labelled on an axis under two decades."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     plain = FuncFormatter(lambda v, _: f"{v:,.0f}" if v >= 1 else f"{v:g}")

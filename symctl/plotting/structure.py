@@ -1,12 +1,5 @@
-r"""Rendering of a structure's block diagram at its printed size (layout:
-:mod:`~symctl.plotting.structure_rows`); :meth:`Structure.draw
-<symctl.compatibility.structure.Structure.draw>` delegates here. One data unit is one inch.
-
->>> from symctl import ifp_structure
->>> from symctl.plotting.structure import draw_structure
->>> fig = draw_structure(ifp_structure(2))
->>> float(fig.get_size_inches()[0]) <= 6.91
-True
+"""Rendering of a structure's block diagram at its printed size (layout:
+:mod:`~symctl.plotting.structure_rows`), one data unit one inch; and its overview by parts.
 """
 
 from __future__ import annotations
@@ -43,13 +36,6 @@ def vertex_map(S: Structure, assignment) -> dict[str, int] | None:
         A signal of ``S`` has no vertex, or a vertex is not an integer >= 1.
     SymctlTypeError
         ``assignment`` is neither a DelayAssignment nor a mapping.
-
-    Examples
-    --------
-    >>> from symctl import ifp_structure
-    >>> from symctl.plotting.structure import vertex_map
-    >>> vertex_map(ifp_structure(1), {"x": 1, "K0": 1, "K1": 2, "mu": 2, "u": 2})["mu"]
-    2
     """
     if assignment is None:
         return None
@@ -111,9 +97,8 @@ def draw_structure(
     max_signals : int, default 400
         Refuse larger structures (their drawings are unreadable and slow).
     overview : bool or "auto", default False
-        Draw the overview of the parts instead (:func:`draw_structure_overview`);
-        ``"auto"``: when the diagram would not fit the page however folded
-        (:func:`~symctl.plotting.structure_rows.page_bound` first), or has more than
+        Draw the overview of the parts instead (:func:`draw_structure_overview`); ``"auto"``:
+        when the diagram would not fit the page however folded, or has more than
         ``max_signals`` signals.
     assignment : DelayAssignment or mapping of str to int, optional
         Where each signal sits in the delay graph: each vertex's signals in a shaded band.
@@ -141,8 +126,8 @@ def draw_structure(
     >>> from symctl.plotting.structure import draw_structure
     >>> fig = draw_structure(ifp_structure(2), title="IFP", labels={"x": "f", "u": "r"})
     >>> texts = [t.get_text() for t in fig.axes[0].texts]
-    >>> texts[-1], {"$f$", "$r$"} <= set(texts)
-    ('IFP', True)
+    >>> texts[-1], {"$f$", "$r$"} <= set(texts), float(fig.get_size_inches()[0]) <= 6.91
+    ('IFP', True, True)
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
@@ -181,29 +166,15 @@ def draw_structure(
 
 
 def draw_structures(panels, *, title: str = "", width: float = TEXT_WIDTH):
-    r"""Several structures in one figure, one above the other, each with its caption line.
+    """Several structures in one figure, one above the other: ``panels`` of ``(Structure, caption,
+    assignment or None)``, each caption written above its structure; ``title`` (default none)
+    and ``width`` as for :func:`draw_structure`.
 
-    Parameters
-    ----------
-    panels : sequence of (Structure, str, assignment or None)
-        Each structure, the line written above it, and a delay assignment (or None).
-    title : str, default ""
-        The heading (none by default: a figure's caption names it).
-    width : float, default TEXT_WIDTH
-        The widest the figure may be [in].
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Examples
-    --------
     >>> from symctl import Structure
     >>> from symctl.plotting.structure import draw_structures
     >>> from symctl.realization.realization import first_order_realization
     >>> R = first_order_realization(0.5, 2)
-    >>> fig = draw_structures([(Structure.from_realization(R, d), d, None)
-    ...                        for d in ("branch", "state")], title="two structures")
+    >>> fig = draw_structures([(Structure.from_realization(R, d), d, None) for d in ("branch", "state")])
     >>> [t.get_text() for t in fig.axes[0].texts if t.get_text() in ("branch", "state")]
     ['branch', 'state']
     """
@@ -362,15 +333,7 @@ _LINE = 0.15  # pitch of those lines [in]
 
 
 def parts_in_order(S: Structure) -> list[tuple[str, dict[str, int]]]:
-    """``(part, counts)`` in series order; counts of ``states``, ``gain``, ``sum``, ``delay``.
-
-    >>> from symctl import controller_tf, factor, controllable_canonical, Structure
-    >>> from symctl.plotting.structure import parts_in_order
-    >>> f = factor(controller_tf(2))
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
-    >>> [(p, c["states"]) for p, c in parts_in_order(S)]
-    [('G1', 1), ('G2', 2), ('G3', 1)]
-    """
+    """``(part, counts)`` in series order; counts of ``states``, ``gain``, ``sum``, ``delay``."""
     parts: dict[str, dict[str, int]] = {}
     for name, block in S.blocks.items():
         counts = parts.setdefault(block.part, {"states": 0, "gain": 0, "sum": 0, "delay": 0})
@@ -406,7 +369,7 @@ def _rows(S: Structure, per_row: int) -> tuple[list[list[str]], bool]:
 
 
 def _end_lines(names: list[str]) -> list[str]:
-    """The names at one end as mathtext lines, comma-separated, each at most 1.1 in wide."""
+    """The names at one end as mathtext lines, comma-separated, each at most :data:`_LABEL_ROOM` wide."""
     lines: list[list[str]] = []
     for name in names:
         if lines and text_size(f"${', '.join([*lines[-1], name])}$", FONT_SIZE)[0] <= _LABEL_ROOM:
@@ -424,38 +387,17 @@ def draw_structure_overview(
     width: float = TEXT_WIDTH,
     labels: Mapping[str, str] | None = None,
 ):
-    """Draw ``S`` as its parts in signal-flow order, one box per part with its counts (rows
-    snake to stay page-shaped; parallel pathways one row each, joined by their adder).
+    """Draw ``S`` as its parts in signal-flow order, one box per part with its counts (rows snake
+    to stay page-shaped; parallel pathways one row each, joined by their adder); ``ax``,
+    ``title``, ``width`` and ``labels`` as for :func:`draw_structure`, which raises the same errors.
 
-    Parameters
-    ----------
-    S : Structure
-    ax : matplotlib Axes, optional
-        Draw into these axes; by default a new figure sized to the drawing.
-    title, width, labels :
-        As for :func:`draw_structure`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    SymctlTypeError
-        ``S`` is not a Structure, or ``labels`` not a mapping of strings.
-    ParameterError
-        ``labels`` names a signal that is no input or output.
-
-    Examples
-    --------
     >>> from symctl import controller_tf, factor, observable_canonical, Structure
     >>> from symctl.plotting.structure import draw_structure_overview
     >>> f = factor(controller_tf(6), 3, 3)
     >>> S = Structure.from_factorization(f, observable_canonical(f.abbreviated()))
-    >>> fig = draw_structure_overview(S, labels={"G1.1.u": "f", "G3.3.x1": "r"})
-    >>> texts = [t.get_text() for t in fig.axes[0].texts]
-    >>> "G1.1" in texts, "$f$" in texts, "$r$" in texts
-    (True, True, True)
+    >>> texts = [t.get_text() for t in draw_structure_overview(S, labels={"G1.1.u": "f"}).axes[0].texts]
+    >>> "G1.1" in texts, "$f$" in texts
+    (True, True)
     """
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")

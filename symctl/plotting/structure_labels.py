@@ -1,9 +1,8 @@
 r"""The text of a structure drawing: signal names, gain values, the key, the ends; no matplotlib.
 
-Signals are named once each, by their part in a series connection (:math:`x^{\mathrm{G2}}_1`);
-a gain shows its value when it shows at most :data:`LONG_GAIN` characters, else its
-entry's name (``G2.F[1,2]`` is :math:`F_{12}`), the key listing the value; the arrows into
-the inputs and out of the outputs carry the given names.
+Signals are named once each, by their part (:math:`x^{\mathrm{G2}}_1`); a gain shows its
+value when at most :data:`LONG_GAIN` characters, else its entry's name (``G2.F[1,2]`` is
+:math:`F_{12}`), the key listing the value.
 """
 
 from __future__ import annotations
@@ -65,16 +64,9 @@ def _gain_name(name: str) -> str | None:
 
 @dataclass(frozen=True, eq=False)
 class StructureText:
-    r"""What a structure drawing writes (LaTeX without ``$``).
-
-    Attributes
-    ----------
-    gains, names, ends : mapping of str to str
-        Each gain block's text (its value, or the short name listed in the key); the name
-        written at each named signal (not again where its arrow carries it); the label at
-        the arrow into each input and out of each output.
-    key : tuple of (str, str)
-        ``(names, value)`` of each long gain value (names joined by ``=``).
+    """What a structure drawing writes (LaTeX without ``$``): ``gains`` each gain's text, ``names``
+    the name at each named signal, ``ends`` the labels of the inputs' and outputs' arrows, and
+    ``key`` the ``(names, value)`` of each long gain value.
     """
 
     gains: Mapping[str, str] = field(default_factory=dict)
@@ -92,18 +84,7 @@ class StructureText:
 
 
 def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[str, str]:
-    r"""The arrow labels (LaTeX) of the inputs, then outputs: ``labels`` where given, else the
-    signal's.
-
-    Parameters
-    ----------
-    S : Structure
-    labels : mapping of str to str, optional
-        LaTeX labels by input or output signal name.
-
-    Returns
-    -------
-    dict of str to str
+    """The arrow labels (LaTeX) of the inputs, then outputs: ``labels`` where given, else the signal's.
 
     Raises
     ------
@@ -111,13 +92,6 @@ def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[st
         ``labels`` names a signal that is no input or output.
     SymctlTypeError
         ``labels`` is not a mapping of non-empty strings.
-
-    Examples
-    --------
-    >>> from symctl import ifp_structure
-    >>> from symctl.plotting.structure_labels import end_labels
-    >>> end_labels(ifp_structure(2)), end_labels(ifp_structure(2), {"x": "f"})
-    ({'x': 'x', 'u': 'u'}, {'x': 'f', 'u': 'u'})
     """
     if labels is None:
         labels = {}
@@ -141,33 +115,7 @@ def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[st
 
 
 def structure_text(S: Structure, labels: Mapping[str, str] | None = None) -> StructureText:
-    r"""The text of the drawing of ``S`` (see the module text for the rules).
-
-    Parameters
-    ----------
-    S : Structure
-    labels : mapping of str to str, optional
-        As for :func:`end_labels`.
-
-    Returns
-    -------
-    StructureText
-
-    Raises
-    ------
-    ParameterError, SymctlTypeError
-        As :func:`end_labels`; ``S`` not a Structure.
-
-    Examples
-    --------
-    >>> from symctl import ifp_structure
-    >>> from symctl.plotting.structure_labels import structure_text
-    >>> text = structure_text(ifp_structure(2), {"x": "f", "u": "r"})
-    >>> dict(text.ends), dict(text.names)
-    ({'x': 'f', 'u': 'r'}, {'x': 'x', 'gamma': '\\gamma', 'u': 'u', 'mu': '\\mu'})
-    >>> dict(structure_text(ifp_structure(2)).names)  # u is named at its arrow
-    {'gamma': '\\gamma', 'mu': '\\mu'}
-    """
+    r"""The text of the drawing of ``S`` (see the module text); ``labels`` as for :func:`end_labels`."""
     if not isinstance(S, Structure):
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
     ends = end_labels(S, labels)

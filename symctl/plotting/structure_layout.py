@@ -1,11 +1,10 @@
-r"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
+"""Layout of a structure's block diagram at its printed size, in inches; no matplotlib.
 
-On :mod:`symctl.plotting.layered`; text is measured by ``measure(text, points) -> (width,
-height)`` [in]. Wires closing a cycle are arcs below or above the rows, carrying the gains
-and delays that feed them (the paper's IFP drawing). Columns by longest path, with a delay
-assignment by vertex level first (:func:`vertex_levels`: each vertex's signals in one
-band); integer rows; orthogonal wires turning at a slot of their gap; an adder takes its
-inputs on its left side; each part of a series connection framed.
+Text is measured by ``measure(text, points) -> (width, height)`` [in]. Wires closing a
+cycle are arcs below or above the rows, carrying the gains and delays that feed them (the
+paper's IFP drawing). Columns by longest path, level by level of a delay assignment
+(:func:`vertex_levels`); integer rows; orthogonal wires turning at a slot of their gap; an
+adder takes its inputs on its left side; each part of a series connection framed.
 
 >>> from symctl import ifp_structure
 >>> from symctl.plotting.structure_layout import structure_layout
@@ -79,30 +78,11 @@ class Label(NamedTuple):
 
 @dataclass(frozen=True)
 class StructureLayout:
-    """Where every piece of a structure drawing goes, in inches of the printed figure.
-
-    Attributes
-    ----------
-    positions, sizes : mapping of signal name to (float, float)
-        Each block's centre (gains on feedback arcs included) and size (gain box, adder
-        circle's diameter, signal dot).
-    labels : mapping of gain name to str
-        The text in each gain box (mathtext).
-    names : mapping of signal name to Label
-        The name written at a named signal (adders, delayed states).
-    ends : tuple of Label
-        The labels of the arrows into the inputs and out of the outputs.
-    layers : mapping of signal name to int
-        The column of each block in the rows (blocks on feedback arcs have none).
-    wires, arrows_in, arrows_out : tuple of Wire
-        Every wire as drawn (orthogonal polylines); the arrows into the inputs and out of
-        the outputs.
-    junctions : tuple of (x, y)
-        Where a wire branches (a dot each).
-    parts, bands : tuple of Frame, tuple of Band
-        The frame of each part of a series connection; the band of each delay-graph vertex.
-    bounds : (x_lo, x_hi, y_lo, y_hi)
-        The extent of the drawing (heading and key not included).
+    """Where every piece of a structure drawing goes [in]: each block's centre and size (gains
+    on feedback arcs included), the text in each gain box, the ``names`` and ``ends`` written,
+    each block's column in the rows (``layers``; none on a feedback arc), every wire and the
+    arrows in and out, the ``junctions`` (a dot each), the frame of each part, the band of each
+    delay-graph vertex, and the ``bounds`` (heading and key not included).
     """
 
     positions: Mapping[str, tuple[float, float]]
@@ -130,8 +110,9 @@ def feedback_edges(S: Structure, level: Mapping[str, int]) -> list[tuple[str, st
 
 
 def feedback_routes(S: Structure, g: nx.DiGraph, level, vertex) -> list[Route]:
-    """Each feedback wire with the single-input, single-output gains and delays before it (drawn
-    on the arc, as the paper does; with an assignment only those at the vertex of both ends)."""
+    """Each feedback wire with the single-input, single-output gains and delays before it, drawn
+    on its arc (with an assignment, only those at the vertex of both ends).
+    """
     ends = set(S.inputs) | set(S.outputs)
     taken: set[str] = set()
     routes = []
@@ -178,8 +159,7 @@ def layering(S: Structure, g: nx.DiGraph, routes: list[Route], level) -> tuple[n
 
 
 def arc_lanes(spans: dict[int, tuple[float, float]], side: dict[int, int]) -> dict[int, int]:
-    """Lane 1, 2, ... (away from the rows) of each arc: overlapping arcs on one side differ
-    (narrow arcs first, so a nested arc runs inside)."""
+    """Lane 1, 2, ... (out from the rows) of each arc: overlapping arcs on a side differ, narrow inside."""
     lane: dict[int, int] = {}
     for k in sorted(spans, key=lambda k: (spans[k][1] - spans[k][0], k)):
         lo, hi = spans[k]
@@ -254,22 +234,9 @@ def structure_layout(
     vertex_of: Mapping[str, int] | None = None,
     vertex_names: Mapping[int, str] | None = None,
 ) -> StructureLayout:
-    """The layout of the block diagram of ``S`` (see the module text).
-
-    Parameters
-    ----------
-    S : Structure
-    measure : callable
-        ``measure(text, points) -> (width, height)`` in inches.
-    text : StructureText, optional
-        What is written (default :func:`~symctl.plotting.structure_labels.structure_text`).
-    vertex_of, vertex_names : mapping, optional
-        A delay assignment (vertex ``1 .. N`` of every signal: each vertex's signals in one
-        band) and the bands' labels (default ``v1``, ``v2``, ...; mathtext allowed).
-
-    Returns
-    -------
-    StructureLayout
+    """The layout of the block diagram of ``S`` (see the module text): ``text`` what is written
+    (default :func:`~symctl.plotting.structure_labels.structure_text`); ``vertex_of`` a delay
+    assignment (each vertex's signals in one band) and ``vertex_names`` the bands' labels.
     """
     text = text or structure_text(S)
     g = S.graph
@@ -314,9 +281,8 @@ def structure_layout(
             enter_left.setdefault(r.target, []).append((-side[k] * 1e6 - lane[k], ("arc", k)))
     for b, entries in enter_left.items():
         if geo.kind(b) == "sum":
-            geo.grow(
-                b, max([len(entries)] + [len(v) for (t, _), v in enter_vert.items() if t == b])
-            )
+            vertical = [len(v) for (t, _), v in enter_vert.items() if t == b]
+            geo.grow(b, max([len(entries), *vertical]))
     offset: dict = {}
     for b, entries in enter_left.items():
         for (_, key), off in zip(
@@ -374,12 +340,8 @@ def structure_layout(
             piece(col[q], net, [(y[p], "left"), (yq, "right")], ((a, b), h))
     for k, r in enumerate(routes):
         s_col, t_col = col[r.source], col[r.target]
-        piece(
-            s_col + 1,
-            ("src", r.source),
-            [(y[r.source], "left"), (heights[k], "left")],
-            (("arc", k), "drop"),
-        )
+        drop = [(y[r.source], "left"), (heights[k], "left")]
+        piece(s_col + 1, ("src", r.source), drop, (("arc", k), "drop"))
         if not straight[k]:
             yt = y[r.target] + offset[(r.target, ("arc", k))]
             piece(t_col, ("rise", k), [(heights[k], "right"), (yt, "right")], (("arc", k), "rise"))
@@ -530,7 +492,6 @@ def structure_layout(
     ys_all = [p[1] for w in wires for p in w.points] + [b[1] - b[3] / 2 for b in boxes.values()]
     tops = [b[1] + b[3] / 2 for b in boxes.values()]
     tops += [lab.y + geo.name[n][2] for n, lab in names.items() if lab.va == "bottom"]
-    ys_all += [lab.y - geo.name[n][2] for n, lab in names.items() if lab.va == "top"]
     x_lo = min(xs_all + [e.x - measure(e.text, END_FONT)[0] for e in ends if e.ha == "right"])
     x_hi = max(xs_all + [e.x + measure(e.text, END_FONT)[0] for e in ends if e.ha == "left"])
     y_lo, y_hi = min(ys_all) - 0.06, max(tops + ys_all) + 0.04
@@ -585,19 +546,8 @@ class Frame(NamedTuple):
 
 
 def vertex_levels(S: Structure, vertex: Mapping[str, int]) -> dict[str, int]:
-    """The level of each signal: the longest path to its vertex in the graph of the vertices
-    that the wires join (cycles broken at the wire going furthest back); 0 without ``vertex``.
-
-    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
-    >>> from symctl.compatibility.check import check_compatibility
-    >>> from symctl.compatibility.delaygraph import DelayGraph
-    >>> from symctl.plotting.structure_layout import vertex_levels
-    >>> f = factor(controller_tf(2))
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.G2))
-    >>> where = check_compatibility(S, DelayGraph.chain([1, 1])).assignment.vertex_of
-    >>> level = vertex_levels(S, where)
-    >>> level["G1.u"], level["G2.x1"], level["G3.x1"]
-    (0, 1, 2)
+    """The level of each signal: the longest path to its vertex in the graph of the vertices the
+    wires join (cycles broken at the wire going furthest back); 0 without ``vertex``.
     """
     if not vertex:
         return dict.fromkeys(S.blocks, 0)
@@ -608,9 +558,7 @@ def vertex_levels(S: Structure, vertex: Mapping[str, int]) -> dict[str, int]:
         if va is not None and vb is not None and va != vb:
             vg.add_edge(va, vb)
     layered.break_cycles(vg, lambda e: (e[1] - e[0], -e[0]))
-    level: dict[int, int] = {}
-    for v in nx.lexicographical_topological_sort(vg):
-        level[v] = max((level[p] + 1 for p in vg.predecessors(v)), default=0)
+    level = layered.longest_path(nx.lexicographical_topological_sort(vg), vg.pred)
     return {n: level[vertex[n]] if n in vertex else 0 for n in S.blocks}
 
 
@@ -624,8 +572,9 @@ def vertex_label(v: int, names: Mapping[int, str] | None) -> str:
 
 
 def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure):
-    """The band of each vertex (a level's from the middle of the gap before its first column to
-    that after its last; the whole height when alone at its level) and the drawing's new top."""
+    """The band of each vertex (a level's, from mid-gap before its first column to mid-gap after
+    its last; the whole height when alone at its level) and the drawing's new top.
+    """
     if not vertex:
         return (), y_range[1]
     y_lo, y_hi = y_range
@@ -645,20 +594,15 @@ def vertex_bands(vertex, level, boxes, x, hw, gaps, col, y_range, names, measure
         for v in members:
             y0, y1 = y_lo, y_hi
             if len(members) > 1:
-                ys = [
-                    (b[1] - b[3] / 2, b[1] + b[3] / 2)
-                    for n, b in boxes.items()
-                    if vertex.get(n) == v
-                ]
-                y0 = max(y_lo, min(a for a, _ in ys) - 0.12)
-                y1 = min(y_hi, max(b for _, b in ys) + 0.12)
+                own = [b for n, b in boxes.items() if vertex.get(n) == v]
+                y0 = max(y_lo, min(b[1] - b[3] / 2 for b in own) - 0.12)
+                y1 = min(y_hi, max(b[1] + b[3] / 2 for b in own) + 0.12)
             bands.append(Band(v, vertex_label(v, names), x0, x1, y0, y1))
     return tuple(bands), y_hi + measure("$v_{1}$", FONT_SIZE)[1] + 0.08
 
 
 def frames(S: Structure, boxes, names, name_sizes, wires, y_hi, measure):
-    """The frame of each part (its blocks, names and inner wires; none for one part) and the
-    drawing's new top (the labels sit above the frames)."""
+    """The frame of each part (none for one part) and the drawing's new top (labels above frames)."""
     parts: dict[str, list[str]] = {}
     for n, block in S.blocks.items():
         parts.setdefault(block.part, []).append(n)

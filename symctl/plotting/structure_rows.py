@@ -1,9 +1,8 @@
-r"""A structure too wide for the page, folded into rows of parts; whether it can fit at all.
+"""A structure too wide for the page, folded into rows of parts; whether it can fit at all.
 
-:func:`structure_rows` cuts a series connection between parts, as many consecutive parts
-per row as fit; a row ends with an arrow out of the signal the next begins with, both
-labelled (as a long equation is broken). :func:`page_bound` decides before any text is
-measured: a layout only grows with its texts, so a part too large without text fits no page.
+A series connection is cut between parts, as many consecutive parts per row as fit; a row
+ends with an arrow out of the signal the next begins with, both labelled. A layout only
+grows with its texts, so a part too large without text fits no page (:func:`page_bound`).
 """
 
 from __future__ import annotations
@@ -23,19 +22,9 @@ PAGE_HEIGHT = 8.6  # the tallest drawing that fits a page with its caption [in]
 
 @dataclass(frozen=True)
 class StructureRows:
-    """Where the rows of a (possibly folded) structure drawing go.
-
-    Attributes
-    ----------
-    placed : tuple of (StructureLayout, (dx, dy))
-        Each row's layout and the shift that places it (rows top to bottom).
-    key : tuple of str
-        The key's lines (LaTeX), for the whole structure.
-    bounds : (x_lo, x_hi, y_lo, y_hi)
-        The extent of all rows.
-    folded, fits : bool
-        Whether it was cut into rows; whether it is no wider than asked and no taller than
-        :data:`PAGE_HEIGHT`.
+    """The rows of a (possibly folded) structure drawing: ``placed`` each row's layout and its
+    shift ``(dx, dy)``, top to bottom; ``key`` the key's LaTeX lines; ``bounds`` of all rows;
+    ``folded`` when cut into rows, ``fits`` when within ``width`` and :data:`PAGE_HEIGHT`.
     """
 
     placed: tuple[tuple[StructureLayout, tuple[float, float]], ...]
@@ -47,18 +36,8 @@ class StructureRows:
 
 @dataclass(frozen=True)
 class PageBound:
-    """Lower bounds on the size of a structure drawing, without measuring any text; truthy
-    when it may fit the page.
-
-    Attributes
-    ----------
-    width, height : float
-        The largest width and height [in] of a part of a series connection (else of the
-        whole structure) laid out alone with every text taking no room.
-    part : str
-        The part that sets the larger excess over the page ("" for the whole structure).
-    fits : bool
-        Whether ``width`` and ``height`` are within the page.
+    """Lower bounds [in] on a structure drawing's ``width`` and ``height`` (its largest part laid
+    out alone without text); ``part`` sets the larger excess ("" the whole); truthy when it ``fits``.
     """
 
     width: float
@@ -82,32 +61,8 @@ def page_bound(
     vertex_names: Mapping[int, str] | None = None,
     width: float = TEXT_WIDTH,
 ) -> PageBound:
-    """Whether the drawing of ``S`` can fit the page: no part (the whole, when no series) laid
-    out alone without text is wider than ``width`` or taller than :data:`PAGE_HEIGHT`.
-
-    Parameters
-    ----------
-    S : Structure
-    labels, vertex_of, vertex_names : mapping, optional
-        As for :func:`structure_rows`.
-    width : float
-        The widest the drawing may be [in].
-
-    Returns
-    -------
-    PageBound
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import Structure, controller_tf, factor, general_realization
-    >>> from symctl.plotting.structure_rows import page_bound
-    >>> f = factor(controller_tf(6), 3, 3)
-    >>> P = sp.Matrix(6, 6, lambda i, j: 2 if i == j else int(j == i + 1))
-    >>> S = Structure.from_factorization(f, general_realization(f.abbreviated(), P))
-    >>> bound = page_bound(S)
-    >>> bool(bound), bound.part, bound.width > 6.9
-    (False, 'G2', True)
+    """Whether the drawing of ``S`` can fit the page: no part (the whole, when no series) laid out
+    alone without text is wider than ``width`` or taller than :data:`PAGE_HEIGHT`.
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})
@@ -128,15 +83,7 @@ def page_bound(
 
 
 def series_parts(S: Structure) -> list[str] | None:
-    """The parts of ``S`` in series order (every wire between parts goes to the next), or None.
-
-    >>> from symctl import Structure, ifp_structure
-    >>> from symctl.realization.realization import first_order_realization
-    >>> from symctl.plotting.structure_rows import series_parts
-    >>> R = first_order_realization(1, 2)
-    >>> series_parts(Structure.series(R, R, R)), series_parts(ifp_structure(2))
-    (['G1', 'G2', 'G3'], None)
-    """
+    """The parts of ``S`` in series order (every wire between parts goes to the next), or None."""
     order = list(dict.fromkeys(b.part for b in S.blocks.values()))
     if len(order) < 2 or "" in order:
         return None
@@ -197,35 +144,9 @@ def structure_rows(
     vertex_names: Mapping[int, str] | None = None,
     width: float = TEXT_WIDTH,
 ) -> StructureRows:
-    """The layout of ``S`` in one row, or folded into rows of parts no wider than ``width``.
-
-    Parameters
-    ----------
-    S : Structure
-    measure : callable
-        ``measure(text, points) -> (width, height)`` in inches.
-    labels : mapping of str to str, optional
-        The labels of the inputs' and outputs' arrows
-        (:func:`~symctl.plotting.structure_labels.structure_text`).
-    vertex_of, vertex_names : mapping, optional
-        As for :func:`~symctl.plotting.structure_layout.structure_layout`.
-    width : float
-        The widest a row may be [in].
-
-    Returns
-    -------
-    StructureRows
-
-    Examples
-    --------
-    >>> from symctl import Structure, controllable_canonical, controller_tf, factor
-    >>> from symctl.plotting.common import text_size
-    >>> from symctl.plotting.structure_rows import structure_rows
-    >>> f = factor(controller_tf(6), 3, 3)
-    >>> S = Structure.from_factorization(f, controllable_canonical(f.abbreviated()))
-    >>> rows = structure_rows(S, text_size)
-    >>> rows.folded, rows.fits, len(rows.placed) > 1
-    (True, True, True)
+    """The layout of ``S`` in one row, or folded into rows of parts no wider than ``width`` [in];
+    ``labels``, ``vertex_of`` and ``vertex_names`` as for
+    :func:`~symctl.plotting.structure_layout.structure_layout`.
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})

@@ -1,23 +1,16 @@
-r"""The house style of every figure: print sizes, fonts, a colour-blind-safe palette, units.
+"""The house style of every figure: print sizes, fonts, a colour-blind-safe palette, units.
 
 Widths are a journal's column (3.4 in), two columns (7.0 in) and the text width of
 ``derivation.pdf`` (499 pt), where a figure is included at its natural size; no text is
-set below :data:`MIN_FONT`; the palette is Okabe and Ito's [1]_, distinguishable with
-every common form of colour blindness; every axis names its unit; legends sit where they
-never cover data. :func:`rc` is the matplotlib ``rcParams`` of the style.
+set below :data:`MIN_FONT`; the palette is Okabe and Ito's ("Color Universal Design",
+J*Fly, 2002), distinguishable with every common form of colour blindness; every axis
+names its unit; legends never cover data.
 
-References
-----------
-.. [1] M. Okabe and K. Ito, "Color Universal Design (CUD): how to make figures and
-   presentations that are friendly to colorblind people", J*Fly, 2002.
-
-Examples
---------
 >>> from symctl.plotting import style
 >>> style.width("column"), style.width("double"), style.width(5)
 (3.4, 7.0, 5.0)
->>> style.axis_label("force change δf", "N")
-'force change δf [N]'
+>>> style.axis_label("force change δf", "N"), style.axis_label("deviation", None)
+('force change δf [N]', 'deviation [1]')
 """
 
 from __future__ import annotations
@@ -55,25 +48,10 @@ _WIDTHS = {"column": COLUMN, "double": DOUBLE, "text": TEXT_WIDTH}
 def width(size: str | float) -> float:
     """A figure width in inches: ``"column"``, ``"double"``, ``"text"`` or a number.
 
-    Parameters
-    ----------
-    size : {"column", "double", "text"} or float
-        A named print width, or inches.
-
-    Returns
-    -------
-    float
-
     Raises
     ------
     ParameterError
         ``size`` is an unknown name or not a positive finite number.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import width
-    >>> width("text") > width("column")
-    True
     """
     if isinstance(size, str):
         if size not in _WIDTHS:
@@ -85,14 +63,7 @@ def width(size: str | float) -> float:
 
 
 def cycle(k: int) -> str:
-    """The ``k``-th line colour (the palette, repeating).
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import PALETTE, cycle
-    >>> cycle(0) == PALETTE[0], cycle(len(PALETTE)) == PALETTE[0]
-    (True, True)
-    """
+    """The ``k``-th line colour (the palette, repeating)."""
     return PALETTE[k % len(PALETTE)]
 
 
@@ -103,26 +74,12 @@ def band(ax, t, mean, sd, color: str, label: str | None = None):
 
 
 def axis_label(quantity: str, unit: str | None) -> str:
-    """``"quantity [unit]"``; a dimensionless quantity says so (``[1]``).
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import axis_label
-    >>> axis_label("time", "s"), axis_label("deviation", None)
-    ('time [s]', 'deviation [1]')
-    """
+    """``"quantity [unit]"``; a dimensionless quantity says so (``[1]``)."""
     return f"{quantity} [{unit or '1'}]"
 
 
 def rc() -> dict:
-    """The matplotlib ``rcParams`` of the style.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import FONT_SIZE, rc
-    >>> rc()["font.size"] == FONT_SIZE
-    True
-    """
+    """The matplotlib ``rcParams`` of the style."""
     from cycler import cycler
 
     return {
@@ -157,16 +114,7 @@ def rc() -> dict:
 
 @contextmanager
 def styled():
-    """A context in which figures are made and drawn in the house style.
-
-    Examples
-    --------
-    >>> from matplotlib import rcParams
-    >>> from symctl.plotting.style import FONT_SIZE, styled
-    >>> with styled():
-    ...     rcParams["font.size"] == FONT_SIZE
-    True
-    """
+    """A context in which figures are made and drawn in the house style."""
     import matplotlib as mpl
 
     from symctl.plotting.common import _share_math_parses
@@ -179,12 +127,6 @@ def styled():
 def new_figure(size: str | float = "text", height: float | None = None, **kwargs):
     """A pyplot-free figure of the style's width (:func:`width`) and ``height`` inches (default
     0.62 of the width), constrained layout; keywords go to :class:`matplotlib.figure.Figure`.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import new_figure
-    >>> float(new_figure("double").get_size_inches()[0])
-    7.0
     """
     from matplotlib.figure import Figure
 
@@ -196,14 +138,7 @@ def new_figure(size: str | float = "text", height: float | None = None, **kwargs
 
 
 def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, title=None):
-    """A legend under ``ax``, outside its data, in up to 4 columns.
-
-    >>> from symctl.plotting.style import legend_below, new_figure
-    >>> ax = new_figure("column", 2.0).add_subplot()
-    >>> _ = ax.plot([0, 1], [0, 1], label="a")
-    >>> legend_below(ax).get_texts()[0].get_text()
-    'a'
-    """
+    """A legend under ``ax``, outside its data, in up to 4 columns."""
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
     ncol = max(1, min(len(handles), 4)) if ncol is None else ncol
@@ -219,12 +154,6 @@ _PAD = 2 * (0.5 + 0.4)  # borderaxespad + borderpad, both sides, at their defaul
 def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
     """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out (the
     first ``len(labels) % ncol`` columns one entry longer, each as wide as its longest label).
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import legend_width
-    >>> legend_width(["a", "b"], 2) > legend_width(["a", "b"], 1)
-    True
     """
     from symctl.plotting.common import text_size
 
@@ -244,14 +173,7 @@ def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
 
 
 def legend_columns(labels, room: float, *, size: float = SMALL) -> int:
-    """The most columns (at least 1) in which a legend of ``labels`` fits ``room`` inches.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import legend_columns
-    >>> legend_columns(["short", "labels"], 3.0), legend_columns(["x" * 60, "y" * 60], 3.0)
-    (2, 1)
-    """
+    """The most columns (at least 1) in which a legend of ``labels`` fits ``room`` inches."""
     labels = list(labels)
     for ncol in range(len(labels), 1, -1):
         if legend_width(labels, ncol, size=size) <= room:
@@ -260,19 +182,8 @@ def legend_columns(labels, room: float, *, size: float = SMALL) -> int:
 
 
 def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | None = None):
-    """A legend above ``ax`` from its left end, in as many columns as fit ``room`` inches,
-    titled ``heading`` (the panel's heading and key in one block over the data).
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import legend_above, new_figure
-    >>> fig = new_figure("column", 2.0)
-    >>> ax = fig.add_subplot()
-    >>> _ = ax.plot([0, 1], [0, 1], label="a")
-    >>> _ = ax.plot([0, 1], [1, 0], label="b")
-    >>> legend = legend_above(ax, room=2.0, heading="two lines")
-    >>> legend._ncols, legend.get_title().get_text()
-    (2, 'two lines')
+    """A legend above ``ax`` from its left end, in as many columns as fit ``room`` inches, titled
+    ``heading`` (the panel's heading and key in one block over the data).
     """
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
@@ -293,17 +204,7 @@ def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | N
 
 
 def figure_legend(fig, handles, labels, *, title: str | None = None):
-    """One legend under the whole figure, centred, in as many columns as fit its width.
-
-    Examples
-    --------
-    >>> from symctl.plotting.style import figure_legend, new_figure
-    >>> fig = new_figure("column", 2.0)
-    >>> ax = fig.add_subplot()
-    >>> lines = ax.plot([0, 1], [0, 1], [0, 1], [1, 0])
-    >>> figure_legend(fig, lines, ["up", "down"])._ncols
-    2
-    """
+    """One legend under the whole figure, centred, in as many columns as fit its width."""
     room = float(fig.get_size_inches()[0]) - 0.1
     return fig.legend(
         handles,

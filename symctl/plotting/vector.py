@@ -1,9 +1,7 @@
-"""Vector files of a figure, PDF and SVG: no date, a fixed salt, so the same figure writes the
-same bytes; the PDF embeds TrueType (text stays text), the SVG draws glyphs as paths.
-
-Each font is cut once per process to the glyphs of Latin, Greek, punctuation, arrows and
-operators, without the tables a PDF viewer never reads, and each figure's subset is cut
-from that (8 ms, instead of matplotlib reading the whole font for each figure: 0.1 s).
+"""Vector files of a figure, PDF and SVG: no date and a fixed salt, so the same figure writes
+the same bytes. Each font is cut once per process to the glyphs of Latin, Greek,
+punctuation, arrows and operators, and each figure's subset cut from that (8 ms, instead
+of matplotlib reading the whole font for each figure: 0.1 s).
 """
 
 from __future__ import annotations
@@ -33,32 +31,13 @@ _METADATA = {
 
 
 def write_vector(fig, path: Path | str) -> Path:
-    """Save ``fig`` as a vector PDF or SVG (by the suffix of ``path``), without a date.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-    path : path
-        The file to write, ending in ``.pdf`` or ``.svg``.
-
-    Returns
-    -------
-    Path
+    """Save ``fig`` as a vector PDF (TrueType: text stays text) or SVG (glyphs as paths) by the
+    suffix of ``path``, without a date.
 
     Raises
     ------
     ParameterError
-        ``path`` has another suffix.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from matplotlib.figure import Figure
-    >>> from symctl.plotting.vector import write_vector
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     b"<dc:date>" in write_vector(Figure(figsize=(2, 1)), Path(out) / "a.svg").read_bytes()
-    False
+        ``path`` ends in neither ``.pdf`` nor ``.svg``.
     """
     import matplotlib as mpl
 
