@@ -1,12 +1,4 @@
-r"""Dale's law: can a circuit carry the controller with every neuron excitatory or inhibitory?
-
-The paper's future-work item 2. :func:`dale` varies what leaves :math:`G = G_3 G_2 G_1`
-unchanged (the sections' :math:`\epsilon_k`, :math:`C_k`, :math:`G_2`'s realization within
-the circuit); a neuron's **sign** is that of every synapse it sends to another neuron
-(self-dynamics and read-out exempt). z3 decides the sign formula (:mod:`symctl.dalelaw.signs`):
-**feasible** (a witness verified exactly), **infeasible** (proved unsatisfiable) or **not
-decided** (``reason`` says what was tried); one deadline bounds every stage.
-"""
+"""Dale's law for one circuit of the controller: :func:`dale` and its verdict (docs/guide/dale.md)."""
 
 from __future__ import annotations
 
@@ -64,7 +56,7 @@ class DaleResult(Verdict):
     feasible : bool or None
         True (a witness), False (proved: no E/I realization of this circuit), None.
     realization : Realization or None
-        The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
+        The exact witness of the whole controller :math:`G_3 G_2 G_1`.
     signs : mapping
         Neuron name -> ``"+"`` or ``"-"`` (one driving only the read-out is ``"+"``).
     method, reason : str

@@ -44,15 +44,8 @@ ATLAS_MAX_ORDER = 2  # highest order of G2 whose atlas classes are searched by d
 
 @dataclass(frozen=True)
 class Interneuron:
-    """One inhibitory interneuron: it relays ``source``'s synapses of the minority sign.
-
-    Attributes
-    ----------
-    name, source, sign : str
-        ``"I[source]"``, the mixed neuron it serves, and the sign that neuron keeps.
-    targets, weights : tuple
-        The neurons that receive the relayed synapses, and their (negative) weights.
-    """
+    """An inhibitory interneuron ``I[source]`` relaying the minority-sign synapses of the mixed
+    neuron ``source`` (which keeps ``sign``) to ``targets`` with negative ``weights``."""
 
     name: str
     source: str
