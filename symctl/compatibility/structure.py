@@ -337,13 +337,9 @@ class Structure(LatexMixin):
             for name, block in part.blocks.items():
                 if k and block.kind == "input":
                     continue
-                blocks[rename[name]] = Block(
-                    block.kind,
-                    tuple(rename[s] for s in block.inputs),
-                    block.gain,
-                    f"{label}.{block.part}" if block.part else label,
-                    block.steps,
-                )
+                inner = tuple(rename[s] for s in block.inputs)
+                where = f"{label}.{block.part}" if block.part else label
+                blocks[rename[name]] = block._replace(inputs=inner, part=where)
             if not k:
                 inputs = tuple(rename[s] for s in part.inputs)
             previous = tuple(rename[s] for s in part.outputs)
@@ -383,9 +379,7 @@ class Structure(LatexMixin):
             return first
         p = len(first.outputs)
         outputs = ["y"] if p == 1 else [f"y{k + 1}" for k in range(p)]
-        for k, out in enumerate(outputs):
-            if out in blocks:  # pragma: no cover - every part's names carry a prefix
-                raise ParameterError(f"names: {out!r} is taken")
+        for k, out in enumerate(outputs):  # free names: every part's carry a prefix
             blocks[out] = Block("sum", tuple(end[k] for end in ends))
         return cls(blocks, first.inputs, outputs)
 
@@ -487,10 +481,8 @@ class Structure(LatexMixin):
             rows.append(f"{signal_tex(name)}(t) &= {body}")
         return r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"
 
-    def _repr_latex_(self) -> str | None:
-        if len(self) > 60:
-            return None  # too long to be useful; Jupyter falls back to repr
-        return super()._repr_latex_()
+    def _repr_latex_(self) -> str | None:  # None: too long, Jupyter falls back to repr
+        return None if len(self) > 60 else super()._repr_latex_()
 
     def __repr__(self) -> str:
         counts = ", ".join(f"{self.count(k)} {k}" for k in ("gain", "sum", "delay"))
