@@ -130,12 +130,11 @@ def fastest_path(
     return int(total), tuple(v + 1 for v in vertices), delays
 
 
-def slowest_path(
-    graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
-):
-    """The slowest simple path (as :func:`fastest_path`); ParameterError past :data:`MAX_PATHS`."""
+def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+    """The slowest simple path from the sensor to the actuator (as :func:`fastest_path`);
+    ParameterError past :data:`MAX_PATHS`."""
     g = _digraph(graph, max_wire_delay)
-    (src,), (dst,) = graph.pins(1, 1) if ends is None else ((ends[0],), (ends[1],))
+    (src,), (dst,) = graph.pins(1, 1)
     best = None
     for count, path in enumerate(nx.all_simple_paths(g, src - 1, dst - 1)):
         if count >= MAX_PATHS:
