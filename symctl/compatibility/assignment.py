@@ -138,20 +138,15 @@ class DelayAssignment(LatexMixin):
         for i in range(n):
             if not groups[i]:
                 continue
-            if reading == "fastest":
-                dist = zero_one_bfs(cs, groups[i])
-                for s, d in enumerate(dist):
-                    if d is not None:
-                        out[i, where[s]] = min(out[i, where[s]], d)
-            else:
-                for j in range(n):
-                    if j == i or not groups[j]:
-                        continue
-                    allowed = [v in (i, j) for v in where]
-                    dist = zero_one_bfs(cs, groups[i], allowed)
-                    found = [dist[s] for s in groups[j] if dist[s] is not None]
-                    if found:
-                        out[i, j] = min(found)
+            dist = zero_one_bfs(cs, groups[i])
+            for j in range(n):
+                if j == i or not groups[j]:
+                    continue
+                if reading == "direct":  # through signals at v_i and v_j only
+                    dist = zero_one_bfs(cs, groups[i], [v in (i, j) for v in where])
+                found = [dist[s] for s in groups[j] if dist[s] is not None]
+                if found:
+                    out[i, j] = min(found)
         np.fill_diagonal(out, 0)
         out.setflags(write=False)
         return out
