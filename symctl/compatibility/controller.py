@@ -273,17 +273,17 @@ def controller_compatibility(
     pieces = [tf.expr]
     if construction == "parallel" and len(routes) > 1:
         pieces = markov_split(tf, [L for L, _, _ in routes])
-    kept = [(piece, route) for piece, route in zip(pieces, routes, strict=True) if piece != 0]
-    labels = [f"P{k + 1}" for k in range(len(kept))] if len(kept) > 1 else [None]
     parts = tuple(
-        along_path(piece, route[1], route[2], base=base, structure=delays) for piece, route in kept
+        along_path(piece, route[1], route[2], base=base, structure=delays)
+        for piece, route in zip(pieces, routes, strict=True)
+        if piece != 0
     )
     if len(parts) == 1:
-        S, vertex_of = parts[0].structure, dict(parts[0].vertex_of)
+        S, vertex_of, R = parts[0].structure, parts[0].vertex_of, parts[0].realization
     else:
+        labels = [f"P{k + 1}" for k in range(len(parts))]
         S = Structure.parallel(*(p.structure for p in parts), names=labels)
-        vertex_of = _parallel_places(S, parts, labels, src, dst)
-    R = parts[0].realization if len(parts) == 1 else None
+        vertex_of, R = _parallel_places(S, parts, labels, src, dst), None
     method = f"{theorem} + {'parallel decomposition' if len(parts) > 1 else 'path construction'}"
     check = witness_result(S, graph, vertex_of, method)
     return _yes(S, check, f"Compatible ({theorem}): {_describe(parts)}. ", method, parts, R)
