@@ -132,11 +132,7 @@ def _exact(G, t, theta, sign, k, n, deadline):
             continue
         values = dict(zip(eps_syms, eps, strict=True)) | dict(zip(c_syms, cs, strict=True))
         values |= dict(zip(t.unknowns, entries, strict=True))
-        if all(_one_sign([_expr(w).xreplace(values) for w in ws]) for ws in t.outgoing.values()):
+        groups = ([_expr(w).xreplace(values) for w in ws] for ws in t.outgoing.values())
+        if all(all(w > 0 for w in ws) or all(w < 0 for w in ws) for ws in groups):  # E or I
             return values
     return None
-
-
-def _one_sign(ws) -> bool:
-    """Every weight nonzero and of one sign (exact rationals)."""
-    return all(w > 0 for w in ws) or all(w < 0 for w in ws)
