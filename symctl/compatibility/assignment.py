@@ -1,25 +1,17 @@
 r"""Delay assignments: every signal of a structure at one vertex of a delay graph.
 
-A **delay assignment** puts every signal of a structure at one vertex, the controller input at
-:math:`v_1` and the output at :math:`v_N`. Its matrix :math:`\tilde E_{ij}` is the delay of the
-fastest path from a signal at :math:`v_i` to a signal at :math:`v_j` (:math:`\infty` if none, 0
-on the diagonal); the assignment is compatible when :math:`\tilde E \ge E`.
+A **delay assignment** puts every signal at one vertex, the inputs at the sensor and the
+outputs at the actuator. :math:`\tilde E_{ij}` is the delay of the fastest path from a signal
+at :math:`v_i` to a signal at :math:`v_j` (:math:`\infty` if none, 0 on the diagonal); the
+assignment is compatible when :math:`\tilde E \ge E`. Two readings of "fastest path"
+(``reading=``): ``"fastest"`` (default, the definition's words), any path of the structure;
+``"direct"`` (the matrix printed in the paper for :math:`G_3 G_2 G_1`), only paths whose
+signals all sit at :math:`v_i` or :math:`v_j`.
 
-Two readings of "fastest path" (``reading=``):
-
-``"fastest"`` (default, the definition's words)
-    any path of the structure, through signals at any vertices;
-``"direct"`` (the matrix printed in the paper for :math:`G_3 G_2 G_1`)
-    only paths whose signals all sit at :math:`v_i` or :math:`v_j`; the paper prints
-    :math:`\tilde E_{13} = \infty` although a path of delay 2 runs from :math:`v_1` through
-    :math:`v_2` to :math:`v_3`.
-
-Both readings give the same verdict whenever :math:`E` is a shortest-path closure (always, for a
-:class:`DelayGraph`): the fastest reading is entrywise at most the direct one, so
-compatible-by-fastest implies compatible-by-direct; conversely a direct-compatible assignment
-satisfies :math:`E_{v(a) v(b)} \le w` on every wire :math:`a \to b` of delay :math:`w` (a wire
-is a direct path), and then, summing along any path and using the triangle inequality of
-:math:`E`, the fastest reading is compatible too.
+Both give the same verdict when :math:`E` is a shortest-path closure (every
+:class:`DelayGraph`): fastest is entrywise at most direct, and a direct-compatible assignment
+meets :math:`E_{v(a) v(b)} \le w` on every wire (a wire is a direct path), which makes it
+compatible in the fastest reading (the reduction of :mod:`~symctl.compatibility.csp`).
 """
 
 from __future__ import annotations
@@ -146,20 +138,15 @@ class DelayAssignment(LatexMixin):
         for i in range(n):
             if not groups[i]:
                 continue
-            if reading == "fastest":
-                dist = zero_one_bfs(cs, groups[i])
-                for s, d in enumerate(dist):
-                    if d is not None:
-                        out[i, where[s]] = min(out[i, where[s]], d)
-            else:
-                for j in range(n):
-                    if j == i or not groups[j]:
-                        continue
-                    allowed = [v in (i, j) for v in where]
-                    dist = zero_one_bfs(cs, groups[i], allowed)
-                    found = [dist[s] for s in groups[j] if dist[s] is not None]
-                    if found:
-                        out[i, j] = min(found)
+            dist = zero_one_bfs(cs, groups[i])
+            for j in range(n):
+                if j == i or not groups[j]:
+                    continue
+                if reading == "direct":  # through signals at v_i and v_j only
+                    dist = zero_one_bfs(cs, groups[i], [v in (i, j) for v in where])
+                found = [dist[s] for s in groups[j] if dist[s] is not None]
+                if found:
+                    out[i, j] = min(found)
         np.fill_diagonal(out, 0)
         out.setflags(write=False)
         return out

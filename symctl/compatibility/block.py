@@ -93,34 +93,27 @@ def block(name: str, value) -> Block:
     inputs = (out.inputs,) if isinstance(out.inputs, str) else tuple(out.inputs)
     for src in inputs:
         signal_name(src, f"blocks[{name!r}].inputs")
-    low, high = {"input": (0, 0), "gain": (1, 1), "delay": (1, 1), "sum": (0, None)}[out.kind]
-    if len(inputs) < low or (high is not None and len(inputs) > high):
+    count = {"input": 0, "gain": 1, "delay": 1}.get(out.kind)  # a sum reads any number
+    if count is not None and len(inputs) != count:
         raise ParameterError(
-            f"blocks[{name!r}]: a {out.kind} block takes "
-            f"{'exactly ' + str(high) if high is not None else 'any number of'} "
-            f"input(s), got {list(inputs)}"
+            f"blocks[{name!r}]: a {out.kind} block takes exactly {count} input(s), "
+            f"got {list(inputs)}"
         )
     gain = None
     if out.kind == "gain" and out.gain is not None:
         gain = to_expr(out.gain, f"blocks[{name!r}].gain")
     if not isinstance(out.part, str):
         raise SymctlTypeError(f"blocks[{name!r}].part: expected a string, got {out.part!r}")
-    return Block(out.kind, inputs, gain, out.part, _steps(name, out))
-
-
-def _steps(name: str, out: Block) -> int:
     steps = out.steps
-    ok = isinstance(steps, numbers.Integral) and not isinstance(steps, bool)
-    if out.kind != "delay":
-        if not ok or steps != 1:
-            raise ParameterError(
-                f"blocks[{name!r}].steps: only a delay block has steps; a {out.kind} block "
-                f"keeps 1, got {steps!r}"
-            )
-        return 1
-    if not ok or not 1 <= steps <= MAX_WIRE_STEPS:
+    integer = isinstance(steps, numbers.Integral) and not isinstance(steps, bool)
+    if out.kind != "delay" and (not integer or steps != 1):
+        raise ParameterError(
+            f"blocks[{name!r}].steps: only a delay block has steps; a {out.kind} block "
+            f"keeps 1, got {steps!r}"
+        )
+    if not integer or not 1 <= steps <= MAX_WIRE_STEPS:
         raise ParameterError(
             f"blocks[{name!r}].steps: a delay block delays by an integer number of steps "
             f"1..{MAX_WIRE_STEPS}, got {steps!r}"
         )
-    return int(steps)
+    return Block(out.kind, inputs, gain, out.part, int(steps))

@@ -30,8 +30,7 @@ __all__ = ["METHODS", "CompatibilityResult", "brute_force_compatibility", "check
 METHODS = ("auto", "chain", "search", "brute-force")
 """Methods of :func:`check_compatibility`."""
 
-_ALIASES = {"brute force": "brute-force"}
-"""Other spellings accepted for :data:`METHODS` (the first spelling symctl documented)."""
+_ALIASES = {"brute force": "brute-force"}  # the first spelling symctl documented
 
 
 @dataclass(frozen=True)
@@ -110,15 +109,6 @@ class CompatibilityResult(Verdict, LatexMixin):
         return f"CompatibilityResult(ok={self.ok}, method={self.method!r})"
 
 
-def _witness_text(assignment: DelayAssignment) -> str:
-    parts = []
-    for v in range(1, assignment.graph.n + 1):
-        names = assignment.signals_at(v)
-        shown = ", ".join(names[:8]) + (f", ... ({len(names)} signals)" if len(names) > 8 else "")
-        parts.append(f"v{v}: {shown or '-'}")
-    return "Compatible; a witness assignment: " + "; ".join(parts) + "."
-
-
 def _result(structure, graph, place, method, stats, problem=None, core=None) -> CompatibilityResult:
     if place is None:
         reason, paths = explain(problem, core, method)
@@ -129,7 +119,13 @@ def _result(structure, graph, place, method, stats, problem=None, core=None) -> 
 
 
 def _compatible(assignment: DelayAssignment, method: str, stats=()) -> CompatibilityResult:
-    S, graph, text = assignment.structure, assignment.graph, _witness_text(assignment)
+    parts = []
+    for v in range(1, assignment.graph.n + 1):
+        names = assignment.signals_at(v)
+        shown = ", ".join(names[:8]) + (f", ... ({len(names)} signals)" if len(names) > 8 else "")
+        parts.append(f"v{v}: {shown or '-'}")
+    text = "Compatible; a witness assignment: " + "; ".join(parts) + "."
+    S, graph = assignment.structure, assignment.graph
     return CompatibilityResult(True, assignment, text, method, S, graph, (), dict(stats))
 
 
@@ -143,11 +139,16 @@ def witness_result(structure, graph, vertex_of, method: str) -> CompatibilityRes
     return _compatible(assignment, method)
 
 
-def _check_args(structure, graph):
+def _problem(structure, graph):
+    """The checked arguments' constraint problem, or the verdict when the pins contradict."""
     if not isinstance(structure, Structure):
         raise SymctlTypeError(f"structure: expected a Structure, got {type(structure).__name__}")
     if not isinstance(graph, DelayGraph):
         raise SymctlTypeError(f"graph: expected a DelayGraph, got {type(graph).__name__}")
+    problem = build_problem(structure, graph)
+    if isinstance(problem, str):
+        return CompatibilityResult(False, None, problem, "input/output check", structure, graph)
+    return problem
 
 
 MAX_DECISIONS = 1_000_000
@@ -195,17 +196,15 @@ def check_compatibility(
     >>> bool(r), r.E_tilde.tolist()
     (True, [[0.0, 1.0, 2.0], [inf, 0.0, 1.0], [inf, inf, 0.0]])
     """
-    _check_args(structure, graph)
     max_decisions = positive_int(max_decisions, "max_decisions")
-    if isinstance(method, str):
-        method = _ALIASES.get(method, method)
+    method = _ALIASES.get(method, method) if isinstance(method, str) else method
     if method not in METHODS:
         raise ParameterError(f"method: must be one of {METHODS}, got {method!r}")
     if method == "brute-force":
         return brute_force_compatibility(structure, graph)
-    problem = build_problem(structure, graph)
-    if isinstance(problem, str):
-        return CompatibilityResult(False, None, problem, "input/output check", structure, graph)
+    problem = _problem(structure, graph)
+    if isinstance(problem, CompatibilityResult):
+        return problem
     chain = graph.chain_order
     if method == "chain" and chain is None:
         raise ParameterError("method: 'chain' needs a chain delay graph; use 'search' or 'auto'")
@@ -252,10 +251,9 @@ def brute_force_compatibility(
     >>> bool(r), r.stats["assignments"], r.stats["compatible_assignments"]
     (False, 243, 0)
     """
-    _check_args(structure, graph)
-    problem = build_problem(structure, graph)
-    if isinstance(problem, str):
-        return CompatibilityResult(False, None, problem, "input/output check", structure, graph)
+    problem = _problem(structure, graph)
+    if isinstance(problem, CompatibilityResult):
+        return problem
     cs = structure.signal_graph
     S = len(cs.names)
     N = graph.n
@@ -265,12 +263,12 @@ def brute_force_compatibility(
             f"limit: brute force needs {N}^{len(free)} assignments, more than {limit}"
         )
     total = N ** len(free)
-    Ebig = np.where(np.isinf(graph.E), 10**9, graph.E)
-    pairs = []
-    for a in range(S):
-        for b, d in enumerate(zero_one_bfs(cs, [a])):
-            if d is not None and a != b:
-                pairs.append((a, b, d))
+    pairs = [  # every pair joined by a path, with its fewest delays
+        (a, b, d)
+        for a in range(S)
+        for b, d in enumerate(zero_one_bfs(cs, [a]))
+        if d is not None and a != b
+    ]
     found = None
     count = 0
     chunk = 1 << 15
@@ -284,7 +282,7 @@ def brute_force_compatibility(
             place[:, free] = (idx[:, None] // powers[None, :]) % N
         ok = np.ones(len(idx), dtype=bool)
         for a, b, d in pairs:
-            ok &= Ebig[place[:, a], place[:, b]] <= d
+            ok &= graph.E[place[:, a], place[:, b]] <= d
         count += int(ok.sum())
         if found is None and ok.any():
             found = place[int(np.argmax(ok))].tolist()

@@ -1,6 +1,5 @@
-"""Compatible structures built along the paths of a delay graph: the constructive half of the
-theorems of :mod:`symctl.compatibility.controller`.
-"""
+"""Compatible structures built along the paths of a delay graph (the theorems'
+constructions, :mod:`symctl.compatibility.controller`)."""
 
 from __future__ import annotations
 
@@ -19,11 +18,7 @@ from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import ParameterError
 from symctl.realization.factorization import factor
-from symctl.realization.realization import (
-    controllable_canonical,
-    controller_realization,
-    section_realizations,
-)
+from symctl.realization.realization import controllable_canonical, controller_realization
 from symctl.realization.realizers import get_realizer
 from symctl.symbols import z
 
@@ -78,23 +73,21 @@ class PathPart:
         return sum(self.delays)
 
 
-def _edges(graph: DelayGraph, max_wire_delay: int | None) -> list[tuple[int, int, int]]:
-    return [
-        (i - 1, j - 1, d)
-        for i, j, d in graph.edges
-        if i != j and (max_wire_delay is None or d <= max_wire_delay)
-    ]
-
-
-def _distances(n: int, edges, source: int, reverse: bool) -> list[float]:
+def _digraph(graph: DelayGraph, max_wire_delay: int | None) -> nx.DiGraph:
+    """The graph's edges of at most ``max_wire_delay`` steps (vertices from 0), the least delay
+    of parallel edges."""
     g = nx.DiGraph()
-    g.add_nodes_from(range(n))
-    for i, j, d in edges:
-        a, b = (j, i) if reverse else (i, j)
-        if not g.has_edge(a, b) or g.edges[a, b]["delay"] > d:
-            g.add_edge(a, b, delay=d)
+    g.add_nodes_from(range(graph.n))
+    for i, j, d in graph.edges:
+        if i != j and (max_wire_delay is None or d <= max_wire_delay):
+            if not g.has_edge(i - 1, j - 1) or g.edges[i - 1, j - 1]["delay"] > d:
+                g.add_edge(i - 1, j - 1, delay=d)
+    return g
+
+
+def _distances(g: nx.DiGraph, source: int) -> list[float]:
     found = nx.single_source_dijkstra_path_length(g, source, weight="delay")
-    return [found.get(v, math.inf) for v in range(n)]
+    return [found.get(v, math.inf) for v in range(len(g))]
 
 
 def fastest_path(
@@ -108,18 +101,17 @@ def fastest_path(
         (src,), (dst,) = ((v - 1 for v in end) for end in graph.pins(1, 1))
     else:
         src, dst = ends[0] - 1, ends[1] - 1
-    edges = _edges(graph, max_wire_delay)
-    ahead = _distances(n, edges, src, False)
-    behind = _distances(n, edges, dst, True)
+    g = _digraph(graph, max_wire_delay)
+    ahead = _distances(g, src)
+    behind = _distances(g.reverse(copy=False), dst)
     total = ahead[dst]
     if math.isinf(total):
         return None
     tight = nx.DiGraph()
     tight.add_nodes_from(range(n))
-    for i, j, d in edges:
+    for i, j, d in g.edges(data="delay"):
         if ahead[i] + d + behind[j] == total and ahead[i] + d == ahead[j]:
-            if not tight.has_edge(i, j) or tight.edges[i, j]["delay"] > d:
-                tight.add_edge(i, j, delay=d)
+            tight.add_edge(i, j, delay=d)
     if nx.is_directed_acyclic_graph(tight):
         best = {src: (0, None)}
         for v in nx.topological_sort(tight):
@@ -138,17 +130,11 @@ def fastest_path(
     return int(total), tuple(v + 1 for v in vertices), delays
 
 
-def slowest_path(
-    graph: DelayGraph, max_wire_delay: int | None = None, ends: tuple[int, int] | None = None
-):
-    """The slowest simple path (as :func:`fastest_path`); ParameterError past :data:`MAX_PATHS`."""
-    g = nx.DiGraph()
-    for i, j, d in _edges(graph, max_wire_delay):
-        if not g.has_edge(i, j) or g.edges[i, j]["delay"] > d:
-            g.add_edge(i, j, delay=d)
-    (src,), (dst,) = graph.pins(1, 1) if ends is None else ((ends[0],), (ends[1],))
-    if src - 1 not in g or dst - 1 not in g:
-        return None
+def slowest_path(graph: DelayGraph, max_wire_delay: int | None = None):
+    """The slowest simple path from the sensor to the actuator (as :func:`fastest_path`);
+    ParameterError past :data:`MAX_PATHS`."""
+    g = _digraph(graph, max_wire_delay)
+    (src,), (dst,) = graph.pins(1, 1)
     best = None
     for count, path in enumerate(nx.all_simple_paths(g, src - 1, dst - 1)):
         if count >= MAX_PATHS:
@@ -202,27 +188,11 @@ def along_path(
     base: str = "controllable",
     structure: str = "branch",
 ) -> PathPart:
-    r"""``G`` factored along one path, every signal placed on it (Theorem 1's construction).
-
-    One first-order section :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1` steps,
-    half on the sensor side, :math:`G_2` (realized by ``base``, with ``structure``) between;
-    the signals placed by the exact chain solver.
-
-    Parameters
-    ----------
-    G : DiscreteTF or sympy expression in z
-        SISO, proper, of relative degree at least ``sum(delays)``.
-    path, delays : sequence of int
-        The vertices (from 1) and the steps of the path's edges.
-    base : str
-        The realization of :math:`G_2` (a realizer that keeps symbols).
-    structure : {"branch", "state"}
-        The structure of :math:`G_2`.
-
-    Returns
-    -------
-    PathPart
-    """
+    r"""``G`` (SISO, of relative degree at least ``sum(delays)``) factored along the path
+    ``path`` whose edges have ``delays`` steps, every signal placed on it (Theorem 1's
+    construction): one section :math:`C z^{1-e}/(z - \epsilon)` per edge of :math:`e \ge 1`
+    steps, half on the sensor side, and :math:`G_2` between, realized by ``base`` with the
+    ``structure`` convention; the signals placed by the exact chain solver."""
     tf = DiscreteTF.from_expr(G)
     steps = [int(e) for e in delays]
     crossing = [e for e in steps if e > 0]
@@ -236,19 +206,7 @@ def along_path(
     n = G2.order
     options = {"P": sp.eye(n) + sp.ones(n, n)} if realizer.takes_transform else {}
     R2 = realizer(G2, **options).realization
-    first, last = section_realizations(f)
-    parts = [
-        Structure.from_realization(R, "branch", input_delay=e)
-        for R, e in zip(first, crossing[:ms], strict=True)
-    ]
-    parts.append(Structure.from_realization(R2, structure))
-    parts += [
-        Structure.from_realization(R, "branch", input_delay=e)
-        for R, e in zip(last, crossing[ms:], strict=True)
-    ]
-    names = [f"G1.{k + 1}" if ms > 1 else "G1" for k in range(ms)]
-    names += ["G2"] + [f"G3.{k + 1}" if ma > 1 else "G3" for k in range(ma)]
-    S = Structure.series(*parts, names=names)
+    S = Structure.from_factorization(f, R2, structure, axons=crossing)
     chain = DelayGraph.chain(steps)
     place, _ = solve_chain(build_problem(S, chain), *chain.chain_order)
     if place is None:  # pragma: no cover - the construction's theorem

@@ -1,16 +1,11 @@
-r"""Compatibility of a controller (a transfer function) with a delay graph: theorems and constructions.
+r"""Compatibility of a controller (a transfer function) with a delay graph: the theorems.
 
 A controller is compatible with a delay graph when one of its realizations has a compatible
-structure. :func:`controller_compatibility` decides it by the theorems below and builds a
-compatible structure when there is one (:mod:`symctl.compatibility.construction`), checked by
-the definition's words.
-
-Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots` and relative
-degree :math:`r` (the first :math:`j` with :math:`h_j \ne 0`); a structure's wires carry at most
-:math:`W` steps each (``max_wire_delay``; :math:`W = \infty` by default, :math:`W = 1` is the
-paper's unit delays); :math:`L_W` is the delay of the fastest path from the sensor :math:`v_1`
-to the actuator :math:`v_N` over edges of at most :math:`W` steps (:math:`\infty` if there is
-none; :math:`L_\infty = E_{1N}`).
+structure. Notation: :math:`G \ne 0` proper with Markov parameters :math:`h_0, h_1, \dots` and
+relative degree :math:`r` (the first :math:`j` with :math:`h_j \ne 0`); wires carry at most
+:math:`W` steps each (``max_wire_delay``, :math:`\infty` by default); :math:`L_W` is the delay of
+the fastest path from the sensor :math:`v_1` to the actuator :math:`v_N` over edges of at most
+:math:`W` steps (:math:`\infty` if there is none; :math:`L_\infty = E_{1N}`).
 
 **Theorem 1.** Some structure, with wires of at most :math:`W` steps, of some realization of
 :math:`G` is compatible with the delay graph iff :math:`r \ge L_W`.
@@ -51,8 +46,7 @@ L_{i+1}} h_j z^{-j}` (:math:`i < k`) and :math:`G_k = \sum_{j \ge L_k} h_j z^{-j
 Theorem 1, and the parallel connection (the input shared at :math:`v_1`, the parts' outputs
 summed by an adder at :math:`v_N`) is compatible: each part's wires satisfy their constraints as
 in Theorem 1 and the adder's wires stay at :math:`v_N`. A part with no Markov parameter is left
-out. :math:`\square` (So a short spinal loop carries the first Markov parameters, a long
-transcortical loop the rest.)
+out. :math:`\square`
 
 **Theorem 3 (MIMO).** Let input :math:`j` enter at sensor vertex :math:`s_j` and output
 :math:`i` leave at actuator vertex :math:`a_i`
@@ -67,9 +61,7 @@ from input :math:`j` to output :math:`i`; the argument of Theorem 1 applies to o
 from :math:`s_j` to :math:`a_i`. Sufficiency: realize each nonzero entry as in Theorem 1 along
 its own fastest path, read its input from input :math:`j` (at :math:`s_j`) and sum the entries
 of output :math:`i` in one adder at :math:`a_i`; each entry's wires satisfy their constraints as
-in Theorem 1 and the adders' wires stay at :math:`a_i`. :math:`\square` (The construction shares
-no interneurons between entries; the canonical MIMO forms do, checked by
-:func:`symctl.check_compatibility`.)
+in Theorem 1 and the adders' wires stay at :math:`a_i`. :math:`\square`
 """
 
 from __future__ import annotations
@@ -104,6 +96,8 @@ __all__ = ["CONSTRUCTIONS", "ControllerCompatibility", "controller_compatibility
 CONSTRUCTIONS = ("path", "parallel")
 """The constructions of :func:`controller_compatibility` (Theorems 1 and 2)."""
 
+_SCOPE = "all realizations"
+
 
 @dataclass(frozen=True)
 class ControllerCompatibility(Verdict, LatexMixin):
@@ -116,14 +110,13 @@ class ControllerCompatibility(Verdict, LatexMixin):
     ok : bool
         Whether a compatible realization exists.
     realization : Realization or None
-        A realization whose structure is ``structure`` (the parts' series realization when every
-        wire has one step, else the structure's state-space form).
+        A realization whose structure is ``structure``.
     structure : Structure or None
         The constructed compatible structure.
     check : CompatibilityResult or None
         The structure-level result with the witness assignment.
     reason : str
-        The argument: the theorem's condition that fails, or the construction.
+        The theorem's condition that fails, or the construction.
     scope : str
         ``"all realizations"``: the verdict is a theorem about every realization.
     method : str
@@ -159,9 +152,8 @@ class ControllerCompatibility(Verdict, LatexMixin):
         return hash((self.ok, self.structure, self.reason, self.scope, self.method))
 
     def latex(self) -> str:
-        return (
-            r"\text{" + ("compatible" if self.ok else "not compatible") + f" ({self.scope})" + "}"
-        )
+        verdict = "compatible" if self.ok else "not compatible"
+        return rf"\text{{{verdict} ({self.scope})}}"
 
     def __repr__(self) -> str:
         return (
@@ -281,17 +273,17 @@ def controller_compatibility(
     pieces = [tf.expr]
     if construction == "parallel" and len(routes) > 1:
         pieces = markov_split(tf, [L for L, _, _ in routes])
-    kept = [(piece, route) for piece, route in zip(pieces, routes, strict=True) if piece != 0]
-    labels = [f"P{k + 1}" for k in range(len(kept))] if len(kept) > 1 else [None]
     parts = tuple(
-        along_path(piece, route[1], route[2], base=base, structure=delays) for piece, route in kept
+        along_path(piece, route[1], route[2], base=base, structure=delays)
+        for piece, route in zip(pieces, routes, strict=True)
+        if piece != 0
     )
     if len(parts) == 1:
-        S, vertex_of = parts[0].structure, dict(parts[0].vertex_of)
+        S, vertex_of, R = parts[0].structure, parts[0].vertex_of, parts[0].realization
     else:
+        labels = [f"P{k + 1}" for k in range(len(parts))]
         S = Structure.parallel(*(p.structure for p in parts), names=labels)
-        vertex_of = _parallel_places(S, parts, labels, src, dst)
-    R = parts[0].realization if len(parts) == 1 else None
+        vertex_of, R = _parallel_places(S, parts, labels, src, dst), None
     method = f"{theorem} + {'parallel decomposition' if len(parts) > 1 else 'path construction'}"
     check = witness_result(S, graph, vertex_of, method)
     return _yes(S, check, f"Compatible ({theorem}): {_describe(parts)}. ", method, parts, R)
@@ -376,14 +368,12 @@ def _shared(tf: DiscreteTF, graph: DelayGraph, route, base: str, delays: str):
 
 def _yes(S, check, reason, method, parts=(), realization=None) -> ControllerCompatibility:
     R = structure_realization(S) if realization is None else realization
-    scope = "all realizations"
-    return ControllerCompatibility(
-        True, R, S, check, reason + check.reason, scope, method, tuple(parts)
-    )
+    reason += check.reason
+    return ControllerCompatibility(True, R, S, check, reason, _SCOPE, method, tuple(parts))
 
 
 def _no(reason: str, theorem: str) -> ControllerCompatibility:
-    return ControllerCompatibility(False, None, None, None, reason, "all realizations", theorem)
+    return ControllerCompatibility(False, None, None, None, reason, _SCOPE, theorem)
 
 
 def _routes(graph: DelayGraph, W, construction: str, paths):
@@ -416,17 +406,12 @@ def _routes(graph: DelayGraph, W, construction: str, paths):
 
 
 def _parallel_places(S: Structure, parts, labels, src: int, dst: int) -> dict[str, int]:
-    place = {}
-    for part, label in zip(parts, labels, strict=True):
-        inner = part.structure
-        for name, v in part.vertex_of.items():
-            if name in inner.inputs:
-                continue
-            place[f"{label}.{name}"] = v
-    for name in S.inputs:
-        place[name] = src
-    for name in S.outputs:
-        place[name] = dst
+    place = {
+        f"{label}.{name}": v
+        for part, label in zip(parts, labels, strict=True)
+        for name, v in part.vertex_of.items()
+    }
+    place |= dict.fromkeys(S.inputs, src) | dict.fromkeys(S.outputs, dst)
     return {name: place[name] for name in S.blocks}
 
 

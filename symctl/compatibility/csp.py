@@ -1,14 +1,11 @@
 r"""Compatibility as a constraint satisfaction problem: the model, two exact solvers, certificates.
 
-A structure is compatible with a delay graph when some delay assignment :math:`v` (inputs at
-:math:`v_1`, outputs at :math:`v_N`) has :math:`\tilde E_{ij} \ge E_{ij}` for all :math:`i, j`;
-:func:`symctl.check_compatibility` wraps this module's answer.
-
 **Reduction to one constraint per wire.** Write :math:`d(a, b)` for the fewest delays on a path
-of the structure from signal :math:`a` to signal :math:`b`. By definition :math:`\tilde E \ge E`
-says :math:`d(a, b) \ge E_{v(a) v(b)}` for every pair of signals joined by a path. When
-:math:`E` is a shortest-path closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`;
-every :class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
+of the structure from signal :math:`a` to signal :math:`b`. A delay assignment :math:`v` is
+compatible (:math:`\tilde E \ge E`, :mod:`~symctl.compatibility.assignment`) when :math:`d(a, b)
+\ge E_{v(a) v(b)}` for every pair of signals joined by a path. When :math:`E` is a shortest-path
+closure (:math:`E_{ik} \le E_{ij} + E_{jk}`, :math:`E_{ii} = 0`; every
+:class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds iff
 
 .. math:: E_{v(a) v(b)} \le w \quad \text{for every wire } a \xrightarrow{w} b.
 
@@ -16,8 +13,8 @@ every :class:`~symctl.compatibility.delaygraph.DelayGraph` is one) this holds if
 fastest path :math:`a = s_0 \to \dots \to s_k = b` the triangle inequality gives
 :math:`E_{v(a)v(b)} \le \sum_l E_{v(s_{l-1}) v(s_l)} \le \sum_l w_l = d(a, b)`. :math:`\square`
 
-So compatibility is a binary constraint satisfaction problem: one variable per signal with
-domain :math:`\{v_1, \dots, v_N\}` and one constraint per wire.
+So compatibility is a binary CSP: one variable per signal with domain :math:`\{v_1, \dots,
+v_N\}`, one constraint per wire.
 
 **Chain graphs in polynomial time.** For a chain :math:`v_1 \to \dots \to v_N` with step delays
 :math:`d_k \ge 0`, write :math:`D_j` for the delay from :math:`v_1` to :math:`v_j`. A wire of
@@ -43,32 +40,21 @@ w\}`: each bound moves at most :math:`N` times, so the work is :math:`O(N \cdot 
 The witness (every signal at the top of its interval) is checked wire by wire before it is
 returned.
 
-**General graphs** can encode inequalities over a poset, NP-complete for some posets: they are
-decided exactly by arc consistency and backtracking that maintains it, with the search effort
-reported. **Certificates:** on failure, a minimal set of signal paths (as the paper's argument
-for the IFP structure through :math:`K_2` and :math:`K_0`) and, for every placement of the
-signals where they meet, one path it makes too fast.
-
->>> from symctl import DelayGraph, ifp_structure
->>> from symctl.compatibility.csp import build_problem, solve_chain, solve_search
->>> problem = build_problem(ifp_structure(2), DelayGraph.chain([1, 1]))
->>> solve_chain(problem, *DelayGraph.chain([1, 1]).chain_order)[0] is None
-True
->>> place, _, stats = solve_search(build_problem(ifp_structure(2), DelayGraph.chain([0])))
->>> place
-[0, 1, 1, 1, 1, 1, 1]
+**General graphs** (NP-complete for some) are decided by arc consistency and backtracking that
+maintains it. On failure the certificate is a minimal set of signal paths and, for every
+placement of the signals where they meet, one path it makes too fast.
 """
 
 from __future__ import annotations
 
 import bisect
-import math
 from collections import Counter, deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from symctl.compatibility.delaygraph import DelayGraph
+from symctl.compatibility.delaygraph import DelayGraph, _fmt
+from symctl.compatibility.signalgraph import SignalGraph
 from symctl.compatibility.structure import Structure
 from symctl.errors import ParameterError
 
@@ -79,46 +65,33 @@ _CASES_LIMIT = 243  # case analyses up to this many leaves are printed in full
 _SHOWN_PATHS = 40  # a certificate's text lists this many paths; .paths keeps them all
 
 
-@dataclass
+@dataclass(frozen=True)
 class Problem:
-    """Signals ``0..S-1``, wires ``(a, b, w)``, pinned signals, the matrix E (0-based)."""
+    """A signal graph's wires as constraints: pinned signals and E, with vertices from 0."""
 
-    names: tuple[str, ...]
-    wires: list[tuple[int, int, int]]
+    graph: SignalGraph
     pins: dict[int, int]
     E: np.ndarray
-    inputs: frozenset = frozenset()  # the pinned signals that are inputs (the rest: outputs)
-    succ: list = field(init=False, repr=False)
-    pred: list = field(init=False, repr=False)
 
-    def __post_init__(self):
-        self.succ = [[] for _ in self.names]
-        self.pred = [[] for _ in self.names]
-        for e, (a, b, w) in enumerate(self.wires):
-            self.succ[a].append((b, w, e))
-            self.pred[b].append((a, w, e))
-
-    def restrict(self, wire_ids) -> tuple[Problem, list[int]]:
-        """The problem with only some wires, on the signals they touch (plus pins among them)."""
-        wire_ids = sorted(wire_ids)
-        used = sorted({s for e in wire_ids for s in self.wires[e][:2]})
+    def restrict(self, wire_ids) -> Problem:
+        """The problem with only some wires, on the signals they touch."""
+        g = self.graph
+        wires = [g.wires[e] for e in sorted(wire_ids)]
+        used = sorted({s for a, b, _ in wires for s in (a, b)})
         where = {s: k for k, s in enumerate(used)}
-        sub = Problem(
-            tuple(self.names[s] for s in used),
-            [
-                (where[self.wires[e][0]], where[self.wires[e][1]], self.wires[e][2])
-                for e in wire_ids
-            ],
-            {where[s]: v for s, v in self.pins.items() if s in where},
-            self.E,
-            frozenset(where[s] for s in self.inputs if s in where),
+        sub = SignalGraph.from_wires(
+            [g.names[s] for s in used],
+            [g.kinds[s] for s in used],
+            [(where[a], where[b], w) for a, b, w in wires],
+            [where[s] for s in g.inputs if s in where],
+            [where[s] for s in g.outputs if s in where],
         )
-        return sub, wire_ids
+        return Problem(sub, {where[s]: v for s, v in self.pins.items() if s in where}, self.E)
 
     def satisfied(self, place: list[int]) -> bool:
         E = self.E
         return all(place[s] == v for s, v in self.pins.items()) and all(
-            E[place[a], place[b]] <= w for a, b, w in self.wires
+            E[place[a], place[b]] <= w for a, b, w in self.graph.wires
         )
 
 
@@ -138,40 +111,34 @@ def build_problem(structure: Structure, graph: DelayGraph) -> Problem | str:
                 "of its own, e.g. a unit gain, and the delay graph decides)."
             )
         pins[s] = v - 1
-    return Problem(cs.names, list(cs.wires), pins, graph.E, frozenset(cs.inputs))
+    return Problem(cs, pins, graph.E)
 
 
 def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
     """Bounds arc consistency on chain positions; returns (placement | None, core wires)."""
     N = len(D)
     position = {v - 1: p for p, v in enumerate(order)}
-    S = len(problem.names)
-    f_table: dict[int, list[int]] = {}
-    g_table: dict[int, list[int]] = {}
+    S = len(problem.graph.names)
+    tables: dict[int, tuple[list[int], list[int]]] = {}
 
-    def tables(w):
-        if w not in f_table:
-            f_table[w] = [bisect.bisect_right(D, D[p] + w) - 1 for p in range(N)]
-            g_table[w] = [bisect.bisect_left(D, D[q] - w) for q in range(N)]
-        return f_table[w], g_table[w]
+    def table(w):  # f_w and g_w of the module text, on chain positions
+        if w not in tables:
+            f = [bisect.bisect_right(D, D[p] + w) - 1 for p in range(N)]
+            tables[w] = f, [bisect.bisect_left(D, D[q] - w) for q in range(N)]
+        return tables[w]
 
     lo = [0] * S
     hi = [N - 1] * S
     events: list[tuple[int, int]] = []  # (wire, parent event); pins have wire -1
     lo_ev = [-1] * S
     hi_ev = [-1] * S
-    for s, v in problem.pins.items():
-        p = position[v]
-        if p < lo[s] or p > hi[s]:  # pragma: no cover - pins are consistent by construction
-            return None, set()
-        lo[s] = hi[s] = p
+    for s, v in problem.pins.items():  # consistent: build_problem refuses contradictions
+        lo[s] = hi[s] = position[v]
         events.append((-1, -1))
         lo_ev[s] = hi_ev[s] = len(events) - 1
     queue = deque(problem.pins)
-    queued = [False] * S
-    for s in problem.pins:
-        queued[s] = True
-    succ, pred = problem.succ, problem.pred
+    queued = [s in problem.pins for s in range(S)]
+    succ, pred = problem.graph.succ, problem.graph.pred
 
     def tighten(v: int, new_hi: int, new_lo: int, e: int, x: int) -> bool:
         """Narrow v's interval to [new_lo, new_hi] (wire e, from x); True when it empties."""
@@ -197,12 +164,12 @@ def solve_chain(problem: Problem, order: tuple[int, ...], D: tuple[int, ...]):
         queued[x] = False
         hx, lx = hi[x], lo[x]
         for b, w, e in succ[x]:  # b after x: at most f_w(hi_x), at least lo_x
-            if tighten(b, tables(w)[0][hx], lx, e, x):
+            if tighten(b, table(w)[0][hx], lx, e, x):
                 failed = b
                 break
         else:
             for a, w, e in pred[x]:  # a before x: at most hi_x, at least g_w(lo_x)
-                if tighten(a, hx, tables(w)[1][lx], e, x):
+                if tighten(a, hx, table(w)[1][lx], e, x):
                     failed = a
                     break
     if failed >= 0:
@@ -227,7 +194,7 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
     """
     E = problem.E
     N = E.shape[0]
-    S = len(problem.names)
+    S = len(problem.graph.names)
     full = (1 << N) - 1
     allowed: dict[tuple[int, int], list[int]] = {}
     cache: dict[tuple[int, int, int], int] = {}
@@ -248,7 +215,7 @@ def solve_search(problem: Problem, max_decisions: int | None = None):
     doms = [full] * S
     trail: list[tuple[int, int]] = []
     pruning: set[int] = set()
-    succ, pred = problem.succ, problem.pred
+    succ, pred = problem.graph.succ, problem.graph.pred
     stats = {"decisions": 0, "backtracks": 0}
 
     def propagate(start) -> bool:
@@ -341,12 +308,11 @@ def _minimal_core(problem: Problem, core: set[int]) -> list[int]:
     """An unsatisfiable set of wires, minimized wire by wire when small."""
 
     def unsat(ids):
-        sub, _ = problem.restrict(ids)
-        return solve_search(sub)[0] is None
+        return solve_search(problem.restrict(ids))[0] is None
 
     core_list = sorted(core)
     if not core_list or not unsat(core_list):
-        core_list = list(range(len(problem.wires)))
+        core_list = list(range(len(problem.graph.wires)))
     if len(core_list) <= _MINIMIZE_LIMIT:
         k = 0
         while k < len(core_list):
@@ -364,10 +330,8 @@ def _paths(problem: Problem, core: list[int]) -> list[tuple[list[int], int]]:
     Exact: such a signal can sit at the vertex of the neighbour across its delay-free wire, so
     the merged path asks :math:`E \\le w_1 + w_2` and nothing else.
     """
-    paths = {
-        k: ([problem.wires[e][0], problem.wires[e][1]], problem.wires[e][2])
-        for k, e in enumerate(core)
-    }
+    wires = problem.graph.wires
+    paths = {k: ([wires[e][0], wires[e][1]], wires[e][2]) for k, e in enumerate(core)}
     ins: dict[int, list[int]] = {}
     outs: dict[int, list[int]] = {}
     for k, (sig, _) in paths.items():
@@ -394,16 +358,13 @@ def _paths(problem: Problem, core: list[int]) -> list[tuple[list[int], int]]:
 
 def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
     E = problem.E
-    names = problem.names
+    names = problem.graph.names
     N = E.shape[0]
     core_list = _minimal_core(problem, core)
     paths = _paths(problem, core_list)
     letters = [
         "abcdefghijklmnopqrstuvwxyz"[k] if k < 26 else f"p{k + 1}" for k in range(len(paths))
     ]
-
-    def fmt(v):
-        return "inf" if math.isinf(v) else str(int(v))
 
     lines = [
         "No delay assignment of this structure is compatible with the delay graph "
@@ -417,7 +378,7 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
     pinned = sorted({p for sig, _ in paths for p in (sig[0], sig[-1]) if p in problem.pins})
     if pinned:
         where = ", ".join(
-            f"{names[s]} at v{problem.pins[s] + 1} ({'input' if s in problem.inputs else 'output'})"
+            f"{names[s]} at v{problem.pins[s] + 1} ({'input' if s in problem.graph.inputs else 'output'})"
             for s in pinned
         )
         lines.append(
@@ -428,19 +389,18 @@ def explain(problem: Problem, core: set[int], method: str) -> tuple[str, tuple]:
 
     def violated(place):
         """The path this placement makes too fast by the widest margin (None if none)."""
-        worst = None
-        for letter, (sig, w) in zip(letters, paths, strict=True):
-            a, b = sig[0], sig[-1]
-            if a in place and b in place and E[place[a], place[b]] > w:
-                if worst is None or E[place[a], place[b]] - w > worst[0]:
-                    worst = (E[place[a], place[b]] - w, letter, a, b, w)
-        if worst is None:
+        found = [
+            (E[place[sig[0]], place[sig[-1]]] - w, letter, sig[0], sig[-1], w)
+            for letter, (sig, w) in zip(letters, paths, strict=True)
+            if sig[0] in place and sig[-1] in place and E[place[sig[0]], place[sig[-1]]] > w
+        ]
+        if not found:
             return None
-        _, letter, a, b, w = worst
+        _, letter, a, b, w = max(found, key=lambda f: f[0])  # the first of the widest
         i, j = place[a] + 1, place[b] + 1
         return (
             f"path ({letter}) runs from {names[a]} at v{i} to {names[b]} at v{j} with "
-            f"delay {w}, so Ẽ[{i},{j}] <= {w} < E[{i},{j}] = {fmt(E[i - 1, j - 1])}"
+            f"delay {w}, so Ẽ[{i},{j}] <= {w} < E[{i},{j}] = {_fmt(E[i - 1, j - 1])}"
         )
 
     base = dict(problem.pins)

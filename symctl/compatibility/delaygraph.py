@@ -37,28 +37,22 @@ def _vertex_count(n: int, argname: str) -> None:
 
 def _delay(value, argname: str, *, allow_inf: bool) -> float:
     """A delay: an integer >= 0 (integral floats accepted), or infinity when allowed."""
-    if isinstance(value, bool):
-        raise ParameterError(f"{argname}: delays must be integers >= 0, got {value!r}")
+    x = value
     sp = sys.modules.get("sympy")  # a SymPy number exists only once SymPy is loaded
-    if sp is not None and isinstance(value, sp.Basic):
-        if value == sp.oo and allow_inf:
-            return INF
-        if value.is_Integer:
-            value = int(value)
-        else:
-            raise ParameterError(f"{argname}: delays must be integers >= 0, got {value!r}")
-    if isinstance(value, str) and allow_inf and value.strip().lower() in ("inf", "oo", "infinity"):
-        return INF
-    if not isinstance(value, numbers.Real):
+    if sp is not None and isinstance(x, sp.Basic):
+        x = INF if x == sp.oo else int(x) if x.is_Integer else None
+    elif isinstance(x, str) and x.strip().lower() in ("inf", "oo", "infinity"):
+        x = INF
+    if isinstance(x, bool) or not isinstance(x, numbers.Real):
         raise ParameterError(f"{argname}: delays must be integers >= 0, got {value!r}")
-    what = "integers >= 0" + (" or inf" if allow_inf else "")
     try:
-        out = float(value)
+        out = float(x)
     except OverflowError:  # an integer beyond the float range
         out = math.nan
-    if math.isinf(out) and out > 0 and allow_inf:
+    if out == INF and allow_inf:
         return INF
-    if math.isnan(out) or math.isinf(out) or out != int(out) or out < 0 or out > MAX_EDGE_DELAY:
+    if not 0 <= out <= MAX_EDGE_DELAY or out != int(out):  # NaN fails both
+        what = "integers >= 0" + (" or inf" if allow_inf else "")
         raise ParameterError(
             f"{argname}: delays must be {what} up to {MAX_EDGE_DELAY}, got {value!r}"
         )
@@ -216,20 +210,20 @@ class DelayGraph:
             )
         sensors = _ends(self.sensors, (1,), n, "sensors")
         actuators = _ends(self.actuators, (n,), n, "actuators")
-        unreached = np.flatnonzero(np.isinf(arr[[v - 1 for v in sensors]]).all(axis=0))
-        if len(unreached) and sensors == (1,):
-            raise ParameterError(
-                f"E: v1 is not a source: there is no path from v1 to v{unreached[0] + 1}"
-            )
+        unreached = np.flatnonzero(np.isinf(arr[[v - 1 for v in sensors]]).all(axis=0)) + 1
         if len(unreached):
-            raise ParameterError(f"E: no sensor vertex reaches v{unreached[0] + 1}")
-        stranded = np.flatnonzero(np.isinf(arr[:, [v - 1 for v in actuators]]).all(axis=1))
-        if len(stranded) and actuators == (n,):
             raise ParameterError(
-                f"E: v{n} is not a sink: there is no path from v{stranded[0] + 1} to v{n}"
+                f"E: v1 is not a source: there is no path from v1 to v{unreached[0]}"
+                if sensors == (1,)
+                else f"E: no sensor vertex reaches v{unreached[0]}"
             )
+        stranded = np.flatnonzero(np.isinf(arr[:, [v - 1 for v in actuators]]).all(axis=1)) + 1
         if len(stranded):
-            raise ParameterError(f"E: v{stranded[0] + 1} reaches no actuator vertex")
+            raise ParameterError(
+                f"E: v{n} is not a sink: there is no path from v{stranded[0]} to v{n}"
+                if actuators == (n,)
+                else f"E: v{stranded[0]} reaches no actuator vertex"
+            )
         object.__setattr__(self, "sensors", sensors)
         object.__setattr__(self, "actuators", actuators)
         arr.setflags(write=False)
@@ -301,13 +295,8 @@ class DelayGraph:
         if not steps:
             raise ParameterError("delays: a chain needs at least one step (two vertices)")
         _vertex_count(len(steps) + 1, "delays")  # MAX_VERTICES - 1 steps at most
-        D = np.concatenate(
-            (
-                [0.0],
-                np.cumsum(
-                    [_delay(d, f"delays[{k}]", allow_inf=False) for k, d in enumerate(steps)]
-                ),
-            )
+        D = np.cumsum(
+            [0.0] + [_delay(d, f"delays[{k}]", allow_inf=False) for k, d in enumerate(steps)]
         )
         E = np.where(np.triu(np.ones((len(D), len(D)), dtype=bool)), D[None, :] - D[:, None], INF)
         edges = tuple((k + 1, k + 2, int(D[k + 1] - D[k])) for k in range(len(steps)))

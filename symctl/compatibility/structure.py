@@ -20,7 +20,7 @@ import sympy as sp
 from symctl._util.display import LatexMixin, latex
 from symctl._util.exact import ring_fractions
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import nonneg_int, positive_int
+from symctl._util.validate import bounded_int
 from symctl.compatibility.block import KINDS, MAX_WIRE_STEPS, Block, signal_name, signal_names
 from symctl.compatibility.block import block as checked_block
 from symctl.compatibility.signalgraph import SignalGraph, delay_free_cycle, zero_one_bfs
@@ -230,9 +230,7 @@ class Structure(LatexMixin):
             raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
         if delays not in ("branch", "state"):
             raise ParameterError(f"delays: must be 'branch' or 'state', got {delays!r}")
-        k_in = positive_int(input_delay, "input_delay")
-        if k_in > MAX_WIRE_STEPS:
-            raise ParameterError(f"input_delay: at most {MAX_WIRE_STEPS} steps, got {k_in}")
+        k_in = bounded_int(input_delay, "input_delay", 1, MAX_WIRE_STEPS)
         if k_in != 1 and delays != "branch":
             raise ParameterError(
                 "input_delay: only the branch structure carries the input on its own wires; "
@@ -273,12 +271,10 @@ class Structure(LatexMixin):
                 if len(carried) == 1:
                     src, _, steps = carried[0]
                     blocks[x[i]] = Block("delay", (src,), steps=steps)
-                else:
-                    names = []
-                    for src, label, steps in carried:
-                        blocks[f"z^-{steps} {label}"] = Block("delay", (src,), steps=steps)
-                        names.append(f"z^-{steps} {label}")
-                    blocks[x[i]] = Block("sum", tuple(names))
+                    continue
+                for src, label, steps in carried:
+                    blocks[f"z^-{steps} {label}"] = Block("delay", (src,), steps=steps)
+                blocks[x[i]] = Block("sum", tuple(f"z^-{st} {label}" for _, label, st in carried))
             else:
                 carried = [signal(*t) for t in row]
                 if len(carried) == 1:
@@ -341,13 +337,9 @@ class Structure(LatexMixin):
             for name, block in part.blocks.items():
                 if k and block.kind == "input":
                     continue
-                blocks[rename[name]] = Block(
-                    block.kind,
-                    tuple(rename[s] for s in block.inputs),
-                    block.gain,
-                    f"{label}.{block.part}" if block.part else label,
-                    block.steps,
-                )
+                inner = tuple(rename[s] for s in block.inputs)
+                where = f"{label}.{block.part}" if block.part else label
+                blocks[rename[name]] = block._replace(inputs=inner, part=where)
             if not k:
                 inputs = tuple(rename[s] for s in part.inputs)
             previous = tuple(rename[s] for s in part.outputs)
@@ -387,18 +379,17 @@ class Structure(LatexMixin):
             return first
         p = len(first.outputs)
         outputs = ["y"] if p == 1 else [f"y{k + 1}" for k in range(p)]
-        for k, out in enumerate(outputs):
-            if out in blocks:  # pragma: no cover - every part's names carry a prefix
-                raise ParameterError(f"names: {out!r} is taken")
+        for k, out in enumerate(outputs):  # free names: every part's carry a prefix
             blocks[out] = Block("sum", tuple(end[k] for end in ends))
         return cls(blocks, first.inputs, outputs)
 
     @classmethod
     def from_factorization(
-        cls, factorization, R2: Realization, delays: str = "branch"
+        cls, factorization, R2: Realization, delays: str = "branch", *, axons=None
     ) -> Structure:
         r"""The structure of :math:`G_3 G_2 G_1`: branch sections, ``R2`` (of
         ``factorization.G2``) with ``delays``; parts ``G1``, ``G2``, ``G3`` (``G1.1``, ...).
+        ``axons``: the steps of each section's input branch, sensor side first (default 1).
 
         >>> from symctl import Structure, controllable_canonical, controller_tf, factor
         >>> f = factor(controller_tf(2))
@@ -408,11 +399,16 @@ class Structure(LatexMixin):
         """
         first, last = section_realizations(factorization)
         ds, da = len(first), len(last)
+        steps = [1] * (ds + da) if axons is None else list(axons)
+        if len(steps) != ds + da:
+            raise ParameterError(f"axons: expected {ds + da} steps, one per section, got {steps}")
         names = [f"G1.{k + 1}" if ds > 1 else "G1" for k in range(ds)]
         names += ["G2"] + [f"G3.{k + 1}" if da > 1 else "G3" for k in range(da)]
-        parts = [cls.from_realization(p, "branch") for p in first]
-        parts += [cls.from_realization(R2, delays)]
-        parts += [cls.from_realization(p, "branch") for p in last]
+        parts = [
+            cls.from_realization(p, "branch", input_delay=e)
+            for p, e in zip([*first, *last], steps, strict=True)
+        ]
+        parts.insert(ds, cls.from_realization(R2, delays))
         return cls.series(*parts, names=names)
 
     def equations(self) -> list[sp.Eq]:
@@ -485,10 +481,8 @@ class Structure(LatexMixin):
             rows.append(f"{signal_tex(name)}(t) &= {body}")
         return r"\begin{aligned}" + r" \\ ".join(rows) + r"\end{aligned}"
 
-    def _repr_latex_(self) -> str | None:
-        if len(self) > 60:
-            return None  # too long to be useful; Jupyter falls back to repr
-        return super()._repr_latex_()
+    def _repr_latex_(self) -> str | None:  # None: too long, Jupyter falls back to repr
+        return None if len(self) > 60 else super()._repr_latex_()
 
     def __repr__(self) -> str:
         counts = ", ".join(f"{self.count(k)} {k}" for k in ("gain", "sum", "delay"))
@@ -569,10 +563,7 @@ def ifp_structure(T: int = 2) -> Structure:
     >>> S.count("delay"), S.inputs, S.outputs
     (2, ('x',), ('u',))
     """
-    if isinstance(T, bool) or not isinstance(T, int):
-        raise ParameterError(f"T: must be an integer >= 1, got {T!r}")
-    T = nonneg_int(T, "T")
-    if T < 1:
+    if isinstance(T, bool) or not isinstance(T, int) or T < 1:
         raise ParameterError(f"T: must be an integer >= 1, got {T!r}")
     K = gain_symbols(T)
     gammas = ["gamma"] if T == 2 else [f"gamma{k}" for k in range(1, T)]

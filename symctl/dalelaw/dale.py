@@ -1,12 +1,4 @@
-r"""Dale's law: can a circuit carry the controller with every neuron excitatory or inhibitory?
-
-The paper's future-work item 2. :func:`dale` varies what leaves :math:`G = G_3 G_2 G_1`
-unchanged (the sections' :math:`\epsilon_k`, :math:`C_k`, :math:`G_2`'s realization within
-the circuit); a neuron's **sign** is that of every synapse it sends to another neuron
-(self-dynamics and read-out exempt). z3 decides the sign formula (:mod:`symctl.dalelaw.signs`):
-**feasible** (a witness verified exactly), **infeasible** (proved unsatisfiable) or **not
-decided** (``reason`` says what was tried); one deadline bounds every stage.
-"""
+"""Dale's law for one circuit of the controller: :func:`dale` and its verdict (docs/guide/dale.md)."""
 
 from __future__ import annotations
 
@@ -64,7 +56,7 @@ class DaleResult(Verdict):
     feasible : bool or None
         True (a witness), False (proved: no E/I realization of this circuit), None.
     realization : Realization or None
-        The witness of the whole controller :math:`G_3 G_2 G_1` (exact).
+        The exact witness of the whole controller :math:`G_3 G_2 G_1`.
     signs : mapping
         Neuron name -> ``"+"`` or ``"-"`` (one driving only the read-out is ``"+"``).
     method, reason : str
@@ -378,10 +370,8 @@ def solve(
         return "unknown", None
 
 
-def _witness(
-    G, fs, t: Template, model: dict, label: str, tried, deadline, signed=True
-) -> DaleResult:
-    """The exact witness circuit of a model, verified (``signed=False``: mixed neurons allowed)."""
+def _witness(G, fs, t: Template, model: dict, label: str, tried, deadline, mixed=()) -> DaleResult:
+    """The exact witness circuit of a model, verified (the ``mixed`` neurons may be mixed)."""
     values = model["values"]
     sections = {str(s): values[s] for s in t.sections}
     fixed = {s: values[s] for s in (*t.sections, *t.unknowns)}
@@ -397,7 +387,7 @@ def _witness(
             raise ParameterError(f"circuit: the witness does not realize G ({check.details})")
         proof = "G3 G2 G1 = G proved by check_realization (exact rational arithmetic)"
     witness = Circuit.from_structure(Structure.from_factorization(sub, R2, t.delays))
-    signs = _signs(witness) if signed else {}
+    signs = _signs(witness, mixed)
     reason = (
         f"a witness of {t.label}: {proof}; every neuron's outgoing synapses have one sign "
         f"(read off the witness circuit exactly); z3: {'; '.join(tried)}"
@@ -408,12 +398,13 @@ def _witness(
     )
 
 
-def _signs(circuit: Circuit) -> dict[str, str]:
-    """Each neuron's sign, checked exactly on its outgoing weights (read-out and self exempt)."""
+def _signs(circuit: Circuit, mixed=()) -> dict[str, str]:
+    """Each neuron's sign, read exactly off its outgoing weights (read-out and self exempt); a
+    ``mixed`` neuron gets its majority sign."""
     out = {}
     for name, synapses in outgoing_synapses(circuit).items():
-        signs = {bool(_expr(s.weight) > 0) for s in synapses} if synapses else {True}
-        if len(signs) != 1:  # pragma: no cover - the witness satisfies the sign constraints
+        pos = sum(1 for s in synapses if _expr(s.weight) > 0)
+        if 0 < pos < len(synapses) and name not in mixed:  # pragma: no cover - the constraints
             raise ParameterError(f"circuit: the witness's neuron {name} has mixed signs")
-        out[name] = "+" if signs.pop() else "-"
+        out[name] = "+" if 2 * pos >= len(synapses) else "-"
     return out

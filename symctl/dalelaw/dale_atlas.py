@@ -39,20 +39,9 @@ MAX_SAMPLES = 1000  # most sampled controllers per class
 
 @dataclass(frozen=True)
 class DaleRow:
-    """One class of the E/I table.
-
-    Attributes
-    ----------
-    label, neurons, synapses, universal
-        The atlas class's label, its circuit's size and the atlas's verdict.
-    verdict, controller : str or None, bool or None
-        ``"every"``, ``"some"``, ``"never"`` or None; the verdict for the table's controller.
-    sampled : tuple of int
-        Samples (E/I witness, realized but not E/I, not realized, not decided).
-    exists : str
-        Whether some controller has a witness: ``"sat"``, ``"unsat"``, ``"unknown"``.
-    seconds : float
-    """
+    """One class of the E/I table: the atlas's label, size and verdict (``universal``); the E/I
+    ``verdict`` and that for the table's ``controller``; ``sampled`` counts (E/I, not E/I, not
+    realized, not decided); ``exists``: z3's answer for some controller."""
 
     label: str
     neurons: int

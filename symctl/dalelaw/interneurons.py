@@ -44,15 +44,8 @@ ATLAS_MAX_ORDER = 2  # highest order of G2 whose atlas classes are searched by d
 
 @dataclass(frozen=True)
 class Interneuron:
-    """One inhibitory interneuron: it relays ``source``'s synapses of the minority sign.
-
-    Attributes
-    ----------
-    name, source, sign : str
-        ``"I[source]"``, the mixed neuron it serves, and the sign that neuron keeps.
-    targets, weights : tuple
-        The neurons that receive the relayed synapses, and their (negative) weights.
-    """
+    """An inhibitory interneuron ``I[source]`` relaying the minority-sign synapses of the mixed
+    neuron ``source`` (which keeps ``sign``) to ``targets`` with negative ``weights``."""
 
     name: str
     source: str
@@ -287,23 +280,18 @@ def ei_circuit(
 
 def _relays(G, fs, t, model):
     """The witness's interneurons, every neuron's sign and the whole controller (exact)."""
-    values = model["values"]
     mixed = {name for name, m in model.get("mixed", {}).items() if m}
-    witness = _witness(G, fs, t, {"values": values}, t.label, [], Deadline(0.0), signed=False)
+    witness = _witness(G, fs, t, {"values": model["values"]}, t.label, [], Deadline(0.0), mixed)
     relays, signs = [], {}
     for source, out in outgoing_synapses(witness.witness).items():
-        ws = [_expr(s.weight) for s in out]
-        pos = sum(1 for w in ws if w > 0)
-        if source not in mixed or not ws or pos in (0, len(ws)):
-            signs[source] = "-" if ws and pos == 0 else "+"
-            continue
-        sigma = 1 if 2 * pos >= len(ws) else -1
-        flip = [(s.target, w / sigma) for s, w in zip(out, ws, strict=True) if w * sigma < 0]
-        name, sign = f"I[{source}]", "+" if sigma > 0 else "-"
-        targets, weights = tuple(a for a, _ in flip), tuple(w for _, w in flip)
-        relays.append(Interneuron(name, source, sign, targets, weights))
-        signs[source], signs[name] = sign, "-"
-    whole = witness.realization
+        sign = signs[source] = witness.signs[source]
+        sigma = 1 if sign == "+" else -1
+        flip = [(s.target, _expr(s.weight) / sigma) for s in out if _expr(s.weight) * sigma < 0]
+        if flip:  # a mixed neuron: its minority-sign synapses through an interneuron
+            name = f"I[{source}]"
+            targets, weights = tuple(a for a, _ in flip), tuple(w for _, w in flip)
+            relays.append(Interneuron(name, source, sign, targets, weights))
+            signs[name] = "-"
     if any(not all(sp.sign(w) < 0 for w in r.weights) for r in relays):  # pragma: no cover
         raise ParameterError("circuits: an interneuron's relayed weights are not all negative")
-    return relays, signs, whole
+    return relays, signs, witness.realization

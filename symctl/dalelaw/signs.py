@@ -1,34 +1,19 @@
 r"""Dale's law as a polynomial sign problem, decided exactly by z3's nonlinear real arithmetic.
 
-A **template** is a family of realizations of :math:`G = G_3 G_2 G_1` sharing one
-circuit: the sections' :math:`\epsilon_k, C_k` are unknowns, and :math:`G_2`'s realization
-is a canonical form or a pattern (:mod:`symctl.circuitatlas.pattern`) whose nonzero
-entries are unknowns tied to :math:`G_2` by
+A **template** is one circuit's family of realizations of :math:`G = G_3 G_2 G_1`: the sections'
+:math:`\epsilon_k, C_k` are unknowns, and :math:`G_2`'s realization is a canonical form or a
+pattern (:mod:`symctl.circuitatlas.pattern`) whose nonzero entries are unknowns tied to
+:math:`G_2 = N + c/a` by :math:`\det(zI - F) = a(z)`, :math:`M\,\operatorname{adj}(zI - F)\,H =
+c(z)`. Positive diagonal similarities keep every sign, so a spanning tree's entries
+(:meth:`Pattern.tree_slots`) are set to :math:`\pm 1`: no sign is lost. A Boolean :math:`s_j`
+per neuron asks :math:`s_j \Rightarrow w > 0`, :math:`\lnot s_j \Rightarrow w < 0` of each of its
+outgoing weights; :math:`|\epsilon_k| < 1`, :math:`\epsilon_k \ne 0` off the poles of :math:`G`,
+every weight nonzero.
 
-.. math::
-    \det(zI - F) = a(z),\qquad M\,\operatorname{adj}(zI - F)\,H = c(z),
-
-:math:`G_2 = N + c/a`. Positive diagonal similarities keep every sign, so a spanning
-tree's entries (:meth:`Pattern.tree_slots`) are set to :math:`\pm 1`: no sign is lost.
-With a Boolean :math:`s_j` per neuron, :math:`s_j \Rightarrow w > 0`, :math:`\lnot s_j
-\Rightarrow w < 0` for every outgoing weight :math:`w` of neuron :math:`j` (self-dynamics
-and read-out exempt), with :math:`|\epsilon_k| < 1`, :math:`\epsilon_k \ne 0`, no
-:math:`\epsilon_k` at a pole of :math:`G`, and every weight nonzero.
-
-**The sections' C.** Each :math:`C_k` weighs one synapse, from the input (exempt) or the
-only one a section neuron sends on (either sign); and the :math:`C_k` scale :math:`G_2`
-by :math:`1/\prod_k C_k`, a positive scale moving into :math:`H` and :math:`N` without
-changing a sign. So nothing is lost by setting every :math:`C_k = 1` but the first,
-:math:`C = \pm 1`. z3's ``nlsat`` decides the quantifier-free formula: ``sat`` gives an
-exact algebraic witness, ``unsat`` a proof that none exists.
-
->>> import sympy as sp
->>> from symctl import factor, z
->>> from symctl.dalelaw.signs import template
->>> fs = factor(-sp.Rational(1, 20) / (z**2 + z / 2 + sp.Rational(1, 3)), 1, 1)
->>> t = template(fs, "controllable")
->>> sorted(t.outgoing)
-['G1.x1', 'G2.x2', 'G2.y', 'G3.x1']
+**The sections' C.** Each :math:`C_k` weighs one synapse, from the input (exempt) or the only
+one a section neuron sends on (either sign); and the :math:`C_k` scale :math:`G_2` by
+:math:`1/\prod_k C_k`, a positive scale moving into :math:`H` and :math:`N` without changing a
+sign. So nothing is lost by setting every :math:`C_k = 1` but the first, :math:`C = \pm 1`.
 """
 
 from __future__ import annotations
@@ -70,20 +55,10 @@ def full_pattern(n: int) -> Pattern:
 class Template:
     """One circuit's family of realizations of :math:`G`, as unknowns and polynomial equations.
 
-    Attributes
-    ----------
-    label, factorization, R2
-        A realizer's name or a pattern's text, :math:`G = G_3 G_2 G_1` with the sections'
-        symbols, and :math:`G_2`'s realization in the unknowns.
-    unknowns, signed : tuple of sympy.Symbol
-        The free (nonzero) entries of ``R2``; those set to :math:`\\pm 1`.
-    target : tuple
-        ``(a, c)`` of :math:`G_2` a pattern's ``R2`` must match (empty for a canonical form).
-    circuit, outgoing, weights
-        The whole controller's circuit, each neuron's weights onto other neurons, and
-        every weight (each stays nonzero).
-    delays : str
-        :math:`G_2`'s structure convention.
+    ``R2`` is :math:`G_2`'s realization in the ``unknowns`` (its free entries; ``signed``: those
+    set to :math:`\\pm 1`); ``target`` the ``(a, c)`` a pattern's ``R2`` must match (empty for a
+    canonical form); ``outgoing`` each neuron's weights onto other neurons; ``weights`` every
+    weight of the whole ``circuit`` (each stays nonzero).
     """
 
     label: str
@@ -145,11 +120,9 @@ def _expr(w) -> sp.Expr:
     return sp.Integer(w) if isinstance(w, int) else w
 
 
-def to_z3(expr, env: dict, ctx=None):
+def to_z3(expr, env: dict, ctx):
     """A SymPy rational function of ``env``'s symbols as a z3 real term, through z3's C API
     (the Python API's coercions cost seconds)."""
-    if ctx is None:
-        ctx = next(iter(env.values())).ctx if env else None
     expr = _expr(expr)
     if expr.is_Symbol:
         return env[expr]

@@ -34,7 +34,7 @@ def dale_margin(groups) -> float:
 
 
 def _coefficients(G, eps: np.ndarray, gain: float):
-    """``(a, c, N)`` of :math:`G_2` (ascending, monic ``a``) for sections ``eps`` (floats)."""
+    """``(a, c)`` of :math:`G_2 = N + c/a` (ascending, monic ``a``) for sections ``eps`` (floats)."""
     num = np.array([float(x) for x in G.num_coeffs()])  # descending
     den = np.array([float(x) for x in G.den_coeffs()])
     for e in eps:
@@ -42,19 +42,8 @@ def _coefficients(G, eps: np.ndarray, gain: float):
     num = num / gain
     n = den.size - 1
     num = np.concatenate([np.zeros(n + 1 - num.size), num])
-    N = num[0]
-    rest = num[1:] - N * den[1:]
-    return den[1:][::-1], rest[::-1], N
-
-
-def _canonical(a, c):
-    n = a.size
-    F0 = np.zeros((n, n))
-    F0[:-1, 1:] = np.eye(n - 1)
-    F0[-1, :] = -a
-    H0 = np.zeros(n)
-    H0[-1] = 1.0
-    return F0, H0, c.copy()
+    rest = num[1:] - num[0] * den[1:]
+    return den[1:][::-1], rest[::-1]
 
 
 def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
@@ -74,14 +63,15 @@ def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0)
         cs = np.ones(len(c_syms))
         if cs.size:
             cs[0] = sign
-        a, c, _ = _coefficients(G, eps, float(np.prod(cs)) if cs.size else 1.0)
-        F0, H0, M0 = _canonical(a, c)
+        a, c = _coefficients(G, eps, float(np.prod(cs)))
+        F0 = np.eye(n, k=1)  # the controllable canonical form of c/a
+        F0[-1, :] = -a
         Q = theta[k:].reshape(n, n)
         try:
             Qi = np.linalg.inv(Q)
         except np.linalg.LinAlgError:
             return None
-        F, H, M = Q @ F0 @ Qi, Q @ H0, M0 @ Qi
+        F, H, M = Q @ F0 @ Qi, Q[:, -1], c @ Qi
         return [*F.ravel(), *H, *M, *eps, *cs], Q
 
     def margin(theta, sign):
@@ -142,11 +132,7 @@ def _exact(G, t, theta, sign, k, n, deadline):
             continue
         values = dict(zip(eps_syms, eps, strict=True)) | dict(zip(c_syms, cs, strict=True))
         values |= dict(zip(t.unknowns, entries, strict=True))
-        if all(_one_sign([_expr(w).xreplace(values) for w in ws]) for ws in t.outgoing.values()):
+        groups = ([_expr(w).xreplace(values) for w in ws] for ws in t.outgoing.values())
+        if all(all(w > 0 for w in ws) or all(w < 0 for w in ws) for ws in groups):  # E or I
             return values
     return None
-
-
-def _one_sign(ws) -> bool:
-    """Every weight nonzero and of one sign (exact rationals)."""
-    return all(w > 0 for w in ws) or all(w < 0 for w in ws)
