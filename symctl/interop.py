@@ -1,18 +1,6 @@
-r"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md).
-
-``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`;
-python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols, exactly.
-The sampling time is kept (``dt=True``, "discrete, unspecified", is ``dt=None``);
-continuous-time systems are refused. SymPy 1.14 has no discrete-time classes (``*_from_sympy``
-take ``dt=``). A transfer function is realized in the column-wise controllable canonical form
-(:func:`symctl.design._foreign.canonical_columns`).
-
->>> from symctl import DiscreteTF, z
->>> from symctl.interop import tf_from_control, tf_to_control
->>> sys = tf_to_control(DiscreteTF.from_expr(2 / (z - 0.5), dt=0.01))
->>> sys.dt, tf_from_control(sys).expr
-(0.01, 2.0/(z - 0.5))
-"""
+"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md):
+``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`, the
+sampling time kept (``dt=True`` is ``dt=None``), continuous time refused."""
 
 from __future__ import annotations
 
