@@ -357,8 +357,7 @@ def ss_from_scipy(sys) -> Realization:
 
 
 class _SymPy:
-    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``
-    arrived in 1.13, ``DiscreteTransferFunction`` and ``DiscreteStateSpace`` after 1.14)."""
+    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``: 1.13)."""
 
     def __init__(self):
         import sympy.physics.control as ctl
@@ -401,11 +400,9 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 
 
 def tf_to_sympy(G: DiscreteTF):
-    """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
-
-    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteTransferFunction`` carries it
-    (``dt=None`` written as 1). A MIMO ``G`` is a ``TransferFunctionMatrix`` over its common
-    denominator.
+    """``G`` as a ``sympy.physics.control`` transfer function (a ``TransferFunctionMatrix`` over its
+    common denominator when MIMO), exactly; SymPy 1.14 drops ``dt``, a later SymPy's
+    ``DiscreteTransferFunction`` carries it (``dt=None`` as 1).
 
     Parameters
     ----------
@@ -466,9 +463,8 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Raises
     ------
     SymctlTypeError, ParameterError
-        Another type, or a ``var`` that is not a Symbol; a continuous-time system, a variable
-        other than z (or ``var``), a ``dt`` that disagrees with the system's, or entries that
-        are not rational in the variable.
+        Another type, or a ``var`` that is not a Symbol; a continuous-time system, another
+        variable than z (or ``var``), a ``dt`` that disagrees, entries not rational in it.
 
     Examples
     --------
@@ -522,9 +518,8 @@ def _shaped(values: list, cols: int):
 
 
 def ss_to_sympy(R: Realization):
-    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
-
-    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteStateSpace`` carries it.
+    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept); SymPy 1.14 drops
+    ``dt``, a later SymPy's ``DiscreteStateSpace`` carries it.
 
     Parameters
     ----------
@@ -575,8 +570,7 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
     Raises
     ------
     SymctlTypeError, ParameterError, DimensionError
-        Another type; a continuous-time system or a ``dt`` that disagrees with the system's; a
-        transfer function matrix (realize it with a symctl realizer instead).
+        Another type; continuous time or a ``dt`` that disagrees; a transfer function matrix.
 
     Examples
     --------
