@@ -27,8 +27,8 @@ from scipy.optimize import least_squares
 from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.exact import nearest_rational
 from symctl._util.pickling import ArrayValue
+from symctl._util.pool import open_pool
 from symctl._util.validate import bounded_int, bounded_number, callable_or_none, read_only
-from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
