@@ -1,12 +1,8 @@
 """symctl: neural implementations of delayed optimal controllers, derived in closed form.
 
-A name is public if and only if it is in the table below (``symctl.__all__``), in the order
-of the paper's pipeline; every other name is internal. Names are loaded on first use
-(:func:`symctl._util.lazy.attach`), so ``import symctl`` stays quick; ``symctl.latex`` is
-reached as an attribute too.
+The public names are those of the table below (``symctl.__all__``), in the order of the
+paper's pipeline, loaded on first use so that ``import symctl`` stays quick.
 
-Examples
---------
 >>> import symctl
 >>> symctl.controller_tf(2)
 DiscreteTF((K_0)/(z**2 - K_1*z - K_2), dt=None)
@@ -21,6 +17,7 @@ _register_pickling()  # read-only mappings pickle, so every value object does
 
 __version__ = "0.1.0"
 
+# the public names by module (below ``symctl.``); an indented line continues the one above
 _TABLE = """
 errors: DimensionError LatexError MissingDependencyError ModelFileError NotRealizableError
     NotStabilizableError ParameterError ParseError SymctlError SymctlTypeError
@@ -77,7 +74,6 @@ derivation.derivation: Derivation PaperResults
 derivation.pipeline: derive_paper derive
 derivation.load: SavedDerivation load_results
 """
-"""The public names by module (below ``symctl.``); an indented line continues the one above."""
 
 _PUBLIC = {
     name: f"symctl.{module}"
@@ -85,7 +81,6 @@ _PUBLIC = {
         line.partition(":") for line in _TABLE.replace("\n    ", " ").strip().splitlines()
     )
     for name in names.split()
-}
-"""The public names: one table, ``{name: module}``, from which ``__all__`` is built."""
+}  # {name: module}, from which __all__ is built
 
 __getattr__, __dir__, __all__ = attach(__name__, _PUBLIC, submodules=("latex",))

@@ -10,6 +10,8 @@ __all__ = [
     "DimensionError",
     "LatexError",
     "MissingDependencyError",
+    "ModelFileError",
+    "NotRealizableError",
     "NotStabilizableError",
     "ParameterError",
     "ParseError",

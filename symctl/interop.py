@@ -1,18 +1,6 @@
-r"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md).
-
-``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`;
-python-control and SciPy hold numbers (symbols are refused); SymPy holds symbols, exactly.
-The sampling time is kept (``dt=True``, "discrete, unspecified", is ``dt=None``);
-continuous-time systems are refused. SymPy 1.14 has no discrete-time classes (``*_from_sympy``
-take ``dt=``). A transfer function is realized in the column-wise controllable canonical form
-(:func:`symctl.design._foreign.canonical_columns`).
-
->>> from symctl import DiscreteTF, z
->>> from symctl.interop import tf_from_control, tf_to_control
->>> sys = tf_to_control(DiscreteTF.from_expr(2 / (z - 0.5), dt=0.01))
->>> sys.dt, tf_from_control(sys).expr
-(0.01, 2.0/(z - 0.5))
-"""
+"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md):
+``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`, the
+sampling time kept (``dt=True`` is ``dt=None``), continuous time refused."""
 
 from __future__ import annotations
 
@@ -369,8 +357,7 @@ def ss_from_scipy(sys) -> Realization:
 
 
 class _SymPy:
-    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``
-    arrived in 1.13, ``DiscreteTransferFunction`` and ``DiscreteStateSpace`` after 1.14)."""
+    """``sympy.physics.control``'s classes, None where this SymPy lacks one (``StateSpace``: 1.13)."""
 
     def __init__(self):
         import sympy.physics.control as ctl
@@ -413,11 +400,9 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 
 
 def tf_to_sympy(G: DiscreteTF):
-    """``G`` as a ``sympy.physics.control`` transfer function, exactly (symbols kept).
-
-    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteTransferFunction`` carries it
-    (``dt=None`` written as 1). A MIMO ``G`` is a ``TransferFunctionMatrix`` over its common
-    denominator.
+    """``G`` as a ``sympy.physics.control`` transfer function (a ``TransferFunctionMatrix`` over its
+    common denominator when MIMO), exactly; SymPy 1.14 drops ``dt``, a later SymPy's
+    ``DiscreteTransferFunction`` carries it (``dt=None`` as 1).
 
     Parameters
     ----------
@@ -478,9 +463,8 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     Raises
     ------
     SymctlTypeError, ParameterError
-        Another type, or a ``var`` that is not a Symbol; a continuous-time system, a variable
-        other than z (or ``var``), a ``dt`` that disagrees with the system's, or entries that
-        are not rational in the variable.
+        Another type, or a ``var`` that is not a Symbol; a continuous-time system, another
+        variable than z (or ``var``), a ``dt`` that disagrees, entries not rational in it.
 
     Examples
     --------
@@ -534,9 +518,8 @@ def _shaped(values: list, cols: int):
 
 
 def ss_to_sympy(R: Realization):
-    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept).
-
-    SymPy 1.14 drops ``dt``; a later SymPy's ``DiscreteStateSpace`` carries it.
+    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept); SymPy 1.14 drops
+    ``dt``, a later SymPy's ``DiscreteStateSpace`` carries it.
 
     Parameters
     ----------
@@ -587,8 +570,7 @@ def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
     Raises
     ------
     SymctlTypeError, ParameterError, DimensionError
-        Another type; a continuous-time system or a ``dt`` that disagrees with the system's; a
-        transfer function matrix (realize it with a symctl realizer instead).
+        Another type; continuous time or a ``dt`` that disagrees; a transfer function matrix.
 
     Examples
     --------

@@ -41,7 +41,6 @@ def number(value: float, digits: int = DIGITS) -> str:
     Returns
     -------
     str
-        E.g. ``'1.5 \times 10^{-7}'``, ``'\infty'``, ``'\mathrm{NaN}'``.
 
     Examples
     --------
@@ -96,10 +95,8 @@ def to_latex(obj, *, digits: int = DIGITS) -> str:
 
     Raises
     ------
-    ParameterError
-        ``digits`` is not an integer >= 1, or an array has more than 2 dimensions.
-    SymctlTypeError
-        ``obj`` cannot be written as LaTeX.
+    ParameterError, SymctlTypeError
+        ``digits`` not an integer >= 1, an array of more than 2 dimensions; ``obj`` not writable.
 
     Examples
     --------
@@ -207,10 +204,8 @@ def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
 
     Raises
     ------
-    ParameterError
-        ``digits`` is not an integer >= 1.
-    SymctlTypeError
-        A part of ``obj`` cannot be written as LaTeX.
+    ParameterError, SymctlTypeError
+        ``digits`` is not an integer >= 1; a part of ``obj`` cannot be written as LaTeX.
 
     Examples
     --------
@@ -266,10 +261,8 @@ def equation(lhs, rhs=None, *, label: str | None = None, numbered: bool = True) 
 
     Raises
     ------
-    ParameterError
-        ``label`` is not a LaTeX label.
-    SymctlTypeError
-        ``lhs`` or ``rhs`` cannot be written as LaTeX.
+    ParameterError, SymctlTypeError
+        ``label`` is not a LaTeX label; ``lhs`` or ``rhs`` cannot be written as LaTeX.
 
     Examples
     --------
@@ -350,15 +343,13 @@ def export(
     Parameters
     ----------
     obj : object
-        A derived object, or anything :func:`equations` accepts.
+        Anything :func:`equations` accepts.
     name : str, optional
         The left-hand side of a single equation.
     label : str, optional
         A LaTeX label (on the first row of an ``align``).
-    numbered : bool
-        Numbered environments, or starred ones when False.
-    digits : int
-        Significant digits of floats.
+    numbered, digits : bool, int
+        Numbered environments (else starred); significant digits of floats.
 
     Returns
     -------
@@ -412,10 +403,8 @@ def document(
         The parts, separated by blank lines.
     title, author : str
         With a title, ``\maketitle`` (no date).
-    packages : iterable of str
-        Extra packages to load.
-    preamble : str
-        LaTeX before ``\begin{document}``.
+    packages, preamble : iterable of str, str
+        Extra packages to load; LaTeX before ``\begin{document}``.
 
     Returns
     -------

@@ -1,11 +1,5 @@
-"""Verdicts: every checker's result is truthy when its claim holds, with its method and evidence.
-
-Every check or decision in symctl returns a :class:`Verdict`: ``bool(result)`` is the verdict,
-``result.verdict`` the same as a value (None when a decision procedure gave no answer),
-``result.method`` how it was decided and ``result.evidence`` what backs it (a witness, a
-certificate, a counterexample or a bound). Older field names (``ok``, ``holds``, ``stable``,
-``feasible``, ``universal``) stay. :class:`Proof` is the result of an exact proof.
-"""
+"""Verdicts: every checker's result is truthy when its claim holds, with its ``method`` and
+``evidence`` (docs/conventions.md); :class:`Proof` is the result of an exact proof."""
 
 from __future__ import annotations
 
@@ -17,11 +11,9 @@ __all__ = ["Proof", "Verdict"]
 
 
 class Verdict(DictMixin):
-    """The verdict protocol, mixed into every checker's and decision's result.
-
-    A subclass names the attribute holding its verdict (a bool, or None when undecided) in
-    ``_verdict`` and provides ``method`` and ``evidence``; ``to_dict()`` and ``from_dict()``
-    write and read it as JSON types.
+    """The verdict protocol, mixed into every checker's and decision's result: ``bool(result)``,
+    ``.verdict`` (None when undecided), ``.method``, ``.evidence``, ``to_dict()``/``from_dict()``.
+    A subclass names the attribute holding its verdict in ``_verdict``.
 
     Examples
     --------

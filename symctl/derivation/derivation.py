@@ -47,22 +47,25 @@ def _hash_fields(obj) -> int:
     return hash(tuple(tuple(v.items()) if isinstance(v, Mapping) else v for v in values))
 
 
-@dataclass(frozen=True)
-class RealizationRecord:
-    """One realization of :math:`G_2`: symbolic, numeric, and the exact check of each.
+class _Record:
+    """The JSON entry of a record (``to_dict``; ``to_json`` is its old name), by ``_json``."""
 
-    Parameters
-    ----------
-    name : str
-        The realizer's name (``"controllable"``, ``"observable"``, ``"general"``, ...).
-    symbolic, numeric : Realization
-        In the symbols of the factorization, and with the numbers ``values`` (read-only,
-        by symbol name) of the simulations.
-    values : mapping
-    check_symbolic, check_numeric : RealizationCheck
-        That each realizes :math:`G_2`.
-    P, P_numeric : sympy Matrix or None
-        Their similarity transforms from the canonical base (None for a canonical form).
+    _json = ""
+    to_json = renamed_attribute("to_json", "to_dict")
+
+    def to_dict(self) -> dict:
+        """This record's entry of ``results.json``."""
+        from symctl.report import results
+
+        return getattr(results, self._json)(self)
+
+
+@dataclass(frozen=True)
+class RealizationRecord(_Record):
+    """One realization of :math:`G_2`, by realizer ``name``: ``symbolic`` (in the factorization's
+    symbols) and ``numeric`` (with the simulations' ``values``, by symbol name), the exact check
+    of each (``check_symbolic``, ``check_numeric``), and for a transformed realizer the
+    similarity transforms ``P``, ``P_numeric`` from its canonical base.
 
     Examples
     --------
@@ -87,34 +90,15 @@ class RealizationRecord:
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
 
     __hash__ = _hash_fields
-
-    to_json = renamed_attribute("to_json", "to_dict")
-
-    def to_dict(self) -> dict:
-        """The entry of ``results.json``'s ``factorization.realizations`` for this realization."""
-        from symctl.report import results
-
-        return results.realization_json(self)
+    _json = "realization_json"
 
 
 @dataclass(frozen=True)
-class CircuitRecord:
-    """One circuit: its structure, compatibility, neurons and simulations.
-
-    Parameters
-    ----------
-    name : str
-        One of :data:`~symctl.report.spec.CIRCUITS`.
-    structure : Structure
-        Gains, adders and unit delays, symbolic.
-    compatibility : CompatibilityResult
-        Whether the structure fits the delay graph, with its evidence.
-    circuit : Circuit
-        The neurons (placed on the delay graph when compatible).
-    firing : FiringPatterns
-        The closed-loop simulations of the random realizations.
-    realizes : RealizationCheck, optional
-        For ``"pathways"``: the proof that its structure realizes :math:`G` with the optimal gains.
+class CircuitRecord(_Record):
+    """One circuit of :data:`~symctl.report.spec.CIRCUITS`: its symbolic ``structure``, its
+    ``compatibility`` with the delay graph, the ``circuit`` of neurons (placed on the graph when
+    compatible), the ``firing`` of its random realizations and, for ``"pathways"``, the proof
+    ``realizes`` that its structure realizes :math:`G` with the optimal gains.
 
     Examples
     --------
@@ -138,21 +122,15 @@ class CircuitRecord:
             return None
         return sum(1 for n in self.circuit.neurons if n.part == "G2" or n.part.endswith(".G2"))
 
-    to_json = renamed_attribute("to_json", "to_dict")
-
-    def to_dict(self) -> dict:
-        """The entry of ``results.json``'s ``circuits`` for this circuit."""
-        from symctl.report import results
-
-        return results.circuit_json(self)
+    _json = "circuit_json"
 
 
 @dataclass(frozen=True)
 class Derivation:
     r"""Everything a derivation produced: its inputs and each stage's result, in pipeline order.
 
-    Made by :func:`~symctl.derivation.derive`; a frozen, picklable value, equal when its fields
-    are; :func:`~symctl.derivation.load_results` reads it back from ``results.json``.
+    Made by :func:`~symctl.derivation.derive`; a frozen, picklable value, equal by its fields;
+    :func:`~symctl.derivation.load_results` reads it back from ``results.json``.
 
     Parameters
     ----------
@@ -160,10 +138,8 @@ class Derivation:
         The nonlinear plant (None for a discrete plant given directly).
     plant_symbolic, plant : DiscretePlant
         The discretized linear plant in symbols (one state and input, else None), and in numbers.
-    system : AugmentedSystem
-        The delay-augmented system and cost.
-    gains : Gains
-        The optimal gains :math:`K_0, \dots, K_T` and the closed-loop poles.
+    system, gains : AugmentedSystem, Gains
+        The delay-augmented system and cost; the optimal gains and closed-loop poles.
     G_symbolic, G : DiscreteTF
         The controller :math:`G(z)` in the gains' symbols, and with the optimal gains.
     proved : bool
@@ -188,10 +164,8 @@ class Derivation:
         The circuit atlas and its candidate circuits for this controller.
     spec : Model
         The model the derivation ran on (a key of :func:`derive`'s cache).
-    longest : DelaySearch, optional
-        The longest-delay search, when the model asks for it.
-    skipped : str, optional
-        The stages left out, and why.
+    longest, skipped : DelaySearch, str, optional
+        The longest-delay search, when the model asks for it; the stages left out, and why.
     pathways : ControllerCompatibility, optional
         The exact verdict on the delay graph, with the structure built along its pathways.
     verified : Proof, optional
@@ -350,11 +324,8 @@ class Derivation:
         progress: Callable[[str], None] | None = None,
         formats: str | tuple[str, ...] = ("pdf", "png"),
     ) -> list[Path]:
-        """Write the outputs of ``symctl paper`` into folder ``out``, all at once.
-
-        The files go into a fresh folder beside ``out``, moved into place when all are
-        written: ``out`` is the old complete folder or the new one, never a mix; a second
-        run on the same ``out`` is refused while one is under way.
+        """Write the outputs of ``symctl paper`` into folder ``out``, all at once (never a mix of
+        two runs, never partial: docs/reliability.md).
 
         Parameters
         ----------
@@ -367,8 +338,7 @@ class Derivation:
         progress : callable, optional
             Called with each step's name (``"figures"``, ``"documents"``, ...) before it runs.
         formats : str or sequence of str
-            The figures' formats: the PDF ``derivation.tex`` includes and the PNG ``report.md``
-            shows, and ``"svg"`` on request.
+            The figures' formats: ``"pdf"`` (for ``derivation.tex``), ``"png"`` (``report.md``), ``"svg"``.
 
         Returns
         -------

@@ -1,9 +1,6 @@
-r"""The paper's inputs, stated once: :data:`PAPER`, the defaults of ``derive_paper`` and ``symctl paper``.
-
-The muscle's values are the defaults of :class:`~symctl.design.plant.MuscleModel` (the paper's
-section "Simulations") and the delays those of :func:`~symctl.design.augment.augment`, so each
-number lives in one place (a test checks that ``examples/muscle.toml`` agrees).
-"""
+"""The paper's inputs, stated once: :data:`PAPER`, the defaults of ``derive_paper`` and
+``symctl paper``, read from :class:`~symctl.design.plant.MuscleModel` and
+:func:`~symctl.design.augment.augment` (a test checks that ``examples/muscle.toml`` agrees)."""
 
 from __future__ import annotations
 
@@ -22,22 +19,9 @@ _DELAYS = inspect.signature(augment).parameters
 
 @dataclass(frozen=True)
 class PaperSpec:
-    r"""The inputs of the paper's derivation, defaulting to the paper's values.
+    r"""The inputs of the paper's derivation (as :func:`~symctl.derive_paper` takes them),
+    defaulting to the paper's values.
 
-    Parameters
-    ----------
-    tau, f_max, r_bar, Ts : float
-        The muscle's time constant [s], maximum force [N], equilibrium firing rate
-        [spikes/s] and the sampling time [s].
-    sensor_delay, actuator_delay : int
-        Delays in steps.
-    seed : int
-        Seed of the random realizations.
-    realizations : int
-        Random realizations simulated per circuit (the IFP controller has one).
-
-    Examples
-    --------
     >>> from symctl.derivation.paper import PAPER, PaperSpec
     >>> PAPER.tau, PAPER.sensor_delay, PAPER.seed, PaperSpec(tau=0.05).tau
     (0.02, 1, 0, 0.05)

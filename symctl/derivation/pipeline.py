@@ -65,22 +65,11 @@ from symctl.realization.reduction import controller_reduction
 __all__ = ["derive", "derive_paper"]
 
 
-SYMBOLIC_P_MAX_ORDER = 3
-"""Order up to which the general realization keeps a fully symbolic ``P``."""
-
-MIMO_EXACT_MAX_ORDER = 12
-"""Largest symbolic realization (states) whose check is an exact proof (else randomized, with
-its Schwartz-Zippel bound): beyond, the exact check of the paper's controller alone takes 8 s
-at T = 20."""
-
-MIMO_MAX_ORDER = 48
-"""Largest MIMO block realization (states) whose structures and circuits derive builds."""
-
-MIMO_GENERAL_MAX_ORDER = 16
-"""Largest MIMO block realization for which derive also builds the dense general one."""
-
-PAPER_ATLAS_MAX_ORDER = 2
-"""Largest G2 order whose circuits for the paper's controller ``derive_paper`` lists."""
+SYMBOLIC_P_MAX_ORDER = 3  # order up to which the general realization keeps a symbolic P
+MIMO_EXACT_MAX_ORDER = 12  # symbolic states checked exactly (beyond: randomized; 8 s at T = 20)
+MIMO_MAX_ORDER = 48  # states of the largest MIMO block realization whose circuits are built
+MIMO_GENERAL_MAX_ORDER = 16  # likewise, for the dense general realization
+PAPER_ATLAS_MAX_ORDER = 2  # largest G2 order whose atlas circuits are listed
 
 
 @renamed_keywords(Ts="dt", seed="rng")
@@ -97,33 +86,26 @@ def derive_paper(
     realizations: int = PAPER.realizations,
     progress: Callable[[str], None] | None = None,
 ) -> Derivation:
-    r"""Run the paper's whole derivation on its muscle: :func:`derive` of the preset with these values.
-
-    ``derive_paper(**values)`` is ``derive(muscle().replace(**values))``
-    (``examples/muscle.toml``); every value defaults to the paper's.
+    r"""Run the paper's whole derivation on its muscle: ``derive(muscle().replace(**values))``
+    (``examples/muscle.toml``), every value defaulting to the paper's.
 
     Parameters
     ----------
     tau, f_max, r_bar, dt : float
-        The muscle's time constant [s], maximum force [N] and equilibrium
-        firing rate [spikes/s], and the sampling time [s] (``Ts=`` is the
-        deprecated name of ``dt``).
+        The muscle's time constant [s], maximum force [N], equilibrium firing rate
+        [spikes/s] and the sampling time [s] (``Ts=``: deprecated).
     sensor_delay, actuator_delay : int
-        Delays in steps (integers >= 0, not both 0), with a net delay of at most
-        :data:`~symctl._util.validate.PAPER_MAX_DELAY` (20; the README's scaling
-        table gives the time of each T).
+        Delays in steps (>= 0), a net delay from 1 to
+        :data:`~symctl._util.validate.PAPER_MAX_DELAY` (20).
     Q, R : matrix-like, optional
         State and input penalties of the cost (identity by default).
     rng : int
-        Seed of the random realizations (epsilons, and ``P`` of the general
-        one): an int >= 0, recorded as ``seed`` in the results (``seed=`` is
-        the deprecated name of ``rng``).
+        Seed (>= 0) of the random realizations, recorded as ``seed`` (``seed=``: deprecated).
     realizations : int
-        Random realizations simulated per circuit (the IFP controller has one),
-        from 1 to :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
+        Random realizations simulated per circuit, from 1 to
+        :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
     progress : callable, optional
-        Called with the name of each step (``"plant"``, ``"delays"``,
-        ``"LQR"``, ...) before it runs.
+        Called with the name of each step (``"plant"``, ``"delays"``, ...) before it runs.
 
     Returns
     -------
@@ -132,10 +114,8 @@ def derive_paper(
     Raises
     ------
     ParameterError
-        A parameter out of range (e.g. ``tau <= 0``, negative delays, both
-        delays 0, a net delay above ``PAPER_MAX_DELAY``, ``Q`` not positive
-        semidefinite, a negative ``rng``, ``realizations`` outside ``[1, MAX_CIRCUITS]``,
-        ``dt/tau`` outside the muscle's admissible range).
+        A value out of range (``tau <= 0``, the delays, ``Q`` not positive semidefinite,
+        ``dt/tau`` outside the muscle's admissible range, ...).
     SymctlTypeError
         ``rng``, a delay or ``realizations`` not an integer, ``progress`` not callable.
     DimensionError
@@ -178,7 +158,7 @@ def derive_paper(
 
 
 def _check_paper_values(given: dict) -> None:
-    """The checks of the paper's values, with the messages :func:`derive_paper` has always given."""
+    """The paper's values checked, with :func:`derive_paper`'s own messages."""
     if "seed" in given:
         nonneg_int(given["seed"], "rng")
     if "realizations" in given:
@@ -212,15 +192,11 @@ def _check_paper_values(given: dict) -> None:
 def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivation:
     r"""Run the whole derivation on your own system: a model file, plant to circuits.
 
-    A plant with several states or inputs has a matrix controller, factored channel by
-    channel and realized in block canonical forms; the IFP circuit and the circuit atlas
-    are built for one state and one input only (``Derivation.skipped`` says so). A controller
-    that is not minimal is reduced right after :math:`G(z)`, and every later stage is built
-    from the minimal one (``Derivation.reduction`` says how and why).
-
-    Equal models share one derivation (the :data:`DERIVATIONS_CACHED` most recent;
-    ``derive.cache_clear()`` empties the cache); ``progress`` is called only when it is
-    computed.
+    A MIMO plant's controller is factored channel by channel and realized in block canonical
+    forms (the IFP circuit and the atlas are SISO only: ``Derivation.skipped``); a controller
+    that is not minimal is reduced right after :math:`G(z)` (``Derivation.reduction``). Equal
+    models share one derivation (the ``DERIVATIONS_CACHED`` most recent;
+    ``derive.cache_clear()`` empties the cache); ``progress`` is called only when computing.
 
     Parameters
     ----------
@@ -267,8 +243,7 @@ class _Progress:
         return 0
 
 
-DERIVATIONS_CACHED = 8
-"""Most derivations :func:`derive` keeps (the most recently used)."""
+DERIVATIONS_CACHED = 8  # most derivations derive keeps (the most recently used)
 
 
 @functools.lru_cache(maxsize=DERIVATIONS_CACHED)
@@ -285,8 +260,7 @@ derive.cache_clear = _clear
 
 
 def _mimo_kinds(kinds: tuple, G, plant) -> tuple[tuple, str]:
-    """The circuits a MIMO controller gets (within :data:`MIMO_MAX_ORDER` and
-    :data:`MIMO_GENERAL_MAX_ORDER`), and the sentence saying what is left out and why."""
+    """The circuits a MIMO controller gets, and the sentence saying what is left out and why."""
     rows, cols = G.shape
     order = G.order * max(rows, cols)
     head = (
@@ -525,8 +499,7 @@ def _derive(spec: Model, step) -> Derivation:
 
 
 def _estimating_skips(spec: Model, G, siso: bool) -> str | None:
-    """What an estimating model leaves out, and why (with several inputs or outputs, the IFP
-    circuit and the atlas are left out anyway)."""
+    """What an estimating model leaves out, and why."""
     out = ["the IFP circuit (it feeds back the full state)"] if siso else []
     if siso and G.order > PAPER_ATLAS_MAX_ORDER:
         out.append(
@@ -544,8 +517,7 @@ def _estimating_skips(spec: Model, G, siso: bool) -> str | None:
 
 
 def _reading_states(compensator: Realization, C) -> Realization:
-    """The compensator composed with the measurement ``y = C x``: a controller of the state (the
-    nonlinear plant's check reads the state; its outputs are taken linearized)."""
+    """The compensator composed with ``y = C x``: a controller of the state (the nonlinear check)."""
     C = sp.Matrix(np.array(C.evalf(), dtype=float))
     F, H, M, N = compensator.F, compensator.H, compensator.M, compensator.N
     return Realization(F, H * C, M, N * C, compensator.dt)
@@ -557,13 +529,11 @@ _EXACT_GAINS = (
     "floats' rationals) in Q[z] instead"
 )
 
-MONTE_CARLO_LOOPS = 4000
-"""Noisy closed loops whose measured covariance a derivation sets beside the predicted one."""
+MONTE_CARLO_LOOPS = 4000  # noisy closed loops whose covariance is set beside the predicted one
 
 
 def _kalman(spec: Model, system):
-    """The model's Kalman filter and the :class:`Noise` it expects, with the defaults of
-    :func:`~symctl.design.kalman.kalman_gains` (errors name ``noise``)."""
+    """The model's Kalman filter and the :class:`Noise` it expects (errors name ``noise``)."""
     values = {k: np.array(v.evalf(), dtype=float) for k, v in spec.noise.items()}
     try:
         kalman = kalman_gains(
@@ -575,9 +545,8 @@ def _kalman(spec: Model, system):
 
 
 def _pathways(G, gains, spec: Model, verdicts: dict):
-    """The exact verdict on the delay graph (Theorems 1-3); the proof that its structure realizes
-    ``G`` with the optimal gains when its circuit is built (else None); and why a compatible one
-    is not built, if so."""
+    """The exact verdict on the delay graph (Theorems 1-3), the proof that its structure realizes
+    ``G`` when its circuit is built (else None), and why a compatible one is not built."""
     if not G.is_siso and G.order > MIMO_GENERAL_MAX_ORDER:
         return None, None, None
     rows, cols = G.shape
@@ -616,8 +585,7 @@ def _beyond_unit_chain(graph) -> bool:
 def _realizations(
     factors: Factorization, G2_symbolic, first: dict[str, Draw]
 ) -> dict[str, RealizationRecord]:
-    """The realizations of G2: symbolic ones of ``G2_symbolic`` (a symbolic ``P`` up to order
-    :data:`SYMBOLIC_P_MAX_ORDER`), numeric ones the first drawn per circuit (``first``)."""
+    """The realizations of G2: symbolic ones of ``G2_symbolic``, numeric ones the first drawn."""
     sections = (*factors.sensor_C, *factors.actuator_C)
     unit_C = {c: 1 for c in sections}
     out = {}
@@ -651,8 +619,7 @@ def _realizations(
 
 
 def _check(result, G2, transformed: bool):
-    """The check of a realizer's result (a transformed one through its base): exact, but
-    randomized beyond :data:`MIMO_EXACT_MAX_ORDER` symbolic states (seconds to minutes otherwise)."""
+    """The check of a realizer's result (a transformed one through its base)."""
     R = result.realization
     big = R.n > MIMO_EXACT_MAX_ORDER and bool(R.free_symbols)
     method = "auto" if big else "exact"

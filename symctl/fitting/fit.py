@@ -1,8 +1,4 @@
-r"""Fitting a circuit to recorded firing rates: :func:`fit`.
-
-The paper's closing remark: tune the controller circuit to neural data while keeping the
-behaviour. Every realization in the family (:math:`\epsilon`, :math:`C`, the similarity
-:math:`P`, the class) implements the same :math:`G` *exactly*.
+r"""Fitting a circuit to recorded firing rates, keeping the behaviour: :func:`fit`.
 
 Method. Each neuron's trace is a linear filter of the loop's :math:`\delta_f`
 (:mod:`symctl.fitting.fitmodel`, exact Jacobians). Least squares minimises the sum over
@@ -31,8 +27,8 @@ from scipy.optimize import least_squares
 from symctl._util.deprecate import RenamedKeys, rng_argument
 from symctl._util.exact import nearest_rational
 from symctl._util.pickling import ArrayValue
+from symctl._util.pool import open_pool
 from symctl._util.validate import bounded_int, bounded_number, callable_or_none, read_only
-from symctl.circuitatlas.search import open_pool
 from symctl.compatibility.structure import Structure
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, NotRealizableError, ParameterError, SymctlTypeError
@@ -80,7 +76,7 @@ class _Problem:
     cache: dict = field(default_factory=dict, compare=False, repr=False)  # shared by replace()
 
     def model(self) -> TraceModel:
-        """The trace model, built once per process (a lambdified function does not pickle)."""
+        """The trace model, built once per process (lambdified functions do not pickle)."""
         if "model" not in self.cache:
             self.cache["model"] = TraceModel.build(self.G, self.ds, self.da, self.circuit, self.C)
         return self.cache["model"]
@@ -134,7 +130,7 @@ def _outgoing(model: TraceModel, theta: np.ndarray) -> dict:
 
 
 def _penalty(model: TraceModel, theta: np.ndarray, signs) -> tuple[np.ndarray, np.ndarray]:
-    """Residuals ``10 max(0, 1e-4 - s w)`` per outgoing weight of each signed neuron, and their Jacobian."""
+    """Residuals ``10 max(0, 1e-4 - s w)`` per signed outgoing weight, and their Jacobian."""
 
     def pen(th):
         out = _outgoing(model, th)
@@ -175,9 +171,8 @@ def _start_points(problem: _Problem, model: TraceModel, starts: int, gen) -> lis
 
 
 def _run_starts(problem: _Problem, points: list) -> list[tuple[float, np.ndarray]]:
-    r"""Least squares from each start: ``[(cost, theta), ...]``. Epsilons as :math:`0.999 \tanh\phi`
-    (stable without bounds), so MINPACK's Levenberg-Marquardt runs (5-20x the trust region's speed).
-    """
+    r"""Least squares from each start: ``[(cost, theta), ...]``; epsilons as :math:`0.999 \tanh\phi`
+    (stable without bounds, so MINPACK's Levenberg-Marquardt runs: 5-20x the trust region's speed)."""
     model = problem.model()
     both = _residual_fns(problem, model)
     k = model.n_sections
@@ -327,8 +322,7 @@ class FitResult(ArrayValue):
         return self.uncertainty.determined
 
     def predict(self) -> Prediction:
-        """Every neuron's trace at the fitted values (a dict), with its band ``.lower[name]``,
-        ``.upper[name]`` at ``.level`` (NaN if not identifiable)."""
+        """Every neuron's trace at the fitted values, with its band (``.lower``, ``.upper``)."""
         u = self.uncertainty
         return Prediction(self._predicted, self._each(u.lower), self._each(u.upper), u.level)
 
@@ -367,7 +361,7 @@ class FitResult(ArrayValue):
         return "\n".join(lines)
 
     def _width(self, name: str) -> str:
-        """The band's RMS half-width over the trace's RMS, as text ("" without a band)."""
+        """The band's RMS half-width over the trace's RMS ("" without a band)."""
         u, trace = self.uncertainty, self._predicted[name]
         if name not in u.lower:
             return ""
@@ -439,14 +433,13 @@ def fit(
 ) -> FitResult:
     r"""Fit a circuit's free parameters (epsilon, C, P, the class) to recorded firing rates.
 
-    Every candidate implements :math:`G` exactly: the fit changes the neurons, never the
-    behaviour (method: :mod:`symctl.fitting.fit`).
+    Every candidate implements :math:`G` exactly (method: :mod:`symctl.fitting.fit`).
 
     Parameters
     ----------
     traces : mapping of str to (steps,) array
-        Recorded firing-rate changes by neuron name (``"G1.x1"``, ``"G2.x1"``, ``"G2.y"``,
-        ...), one sample per step of the closed loop's response to ``disturbance``.
+        Recorded firing-rate changes by neuron name (``"G2.x1"``, ...), one sample per step
+        of the closed loop's response to ``disturbance``.
     G : Gains or DiscreteTF
         Gains (their controller and plant), or a numeric SISO controller with ``plant``.
     sensor_delay, actuator_delay : int
@@ -485,11 +478,10 @@ def fit(
     Raises
     ------
     DimensionError
-        A trace of the wrong length or shape; a MIMO ``G``; an atlas class of
-        another order.
+        A trace of the wrong length or shape; a MIMO ``G``; an atlas class of another order.
     ParameterError
-        NaN or inf in a trace; a neuron name the circuit does not have; more
-        parameters than samples; unknown class; no start met the ``signs``.
+        NaN or inf in a trace; an unknown neuron or class; more parameters than samples;
+        no start met the ``signs``.
     NotRealizableError
         A class that cannot realize the controller.
     SymctlTypeError

@@ -15,9 +15,11 @@ filter's derivative in its pole is the filter applied to its own output).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 import sympy as sp
+from flint import fmpq
 from scipy.signal import lfilter
 
 from symctl.design.tf import DiscreteTF
@@ -76,6 +78,46 @@ def _state_filter(F: np.ndarray, v: np.ndarray) -> np.ndarray:
     padded = np.concatenate([v, np.zeros((n - 1, v.shape[1]))])
     w = lfilter(np.r_[np.zeros(n), 1.0], den, padded, axis=0)
     return np.stack([w[i : i + steps] for i in range(n)], axis=1)
+
+
+def _exact_filter1(e, c, v: np.ndarray) -> np.ndarray:
+    """:func:`_filter1` in exact arithmetic (object arrays)."""
+    x = np.zeros_like(v)
+    for t in range(len(v) - 1):
+        x[t + 1] = e * x[t] + c * v[t]
+    return x
+
+
+def _exact_state_filter(F: sp.Matrix, v: np.ndarray) -> np.ndarray:
+    """:func:`_state_filter` in exact arithmetic, ``F`` the companion matrix (SymPy rationals)."""
+    F = _fmpq(F.tolist())
+    x = np.zeros((v.shape[0], F.shape[0], v.shape[1]), dtype=object)
+    for t in range(v.shape[0] - 1):
+        x[t + 1] = F.dot(x[t])
+        x[t + 1, -1] += v[t]
+    return x
+
+
+def _fmpq(a) -> np.ndarray:
+    """SymPy rationals as an object array of fmpq."""
+    return np.vectorize(lambda x: fmpq(int(x.p), int(x.q)), otypes=[object])(
+        np.array(a, dtype=object)
+    )
+
+
+def _float_value(fn, theta: np.ndarray):
+    return fn(theta)
+
+
+def _exact_value(fn, theta: np.ndarray):
+    """``fn(theta)`` of :func:`_lambdified` in fmpq, from its SymPy form; ZeroDivisionError at a pole."""
+    mat, grads = fn.exact
+    subs = {s: sp.Rational(int(v.p), int(v.q)) for s, v in zip(fn.free, theta, strict=True)}
+    values = [m.xreplace(subs) for m in (mat, *grads)]
+    if not all(e.is_Rational for m in values for e in m):
+        raise ZeroDivisionError("a pole of T, M0 or N")
+    arr = _fmpq([m.tolist() for m in values])
+    return arr[0], np.moveaxis(arr[1:], 0, 2)
 
 
 def _ctrb(R: Realization) -> sp.Matrix:
@@ -154,14 +196,17 @@ class TraceModel:
             cs = theta[k : 2 * k]
             rest = theta[2 * k :]
         else:
-            cs = np.full(k, float(self.C))
+            exact = theta.dtype == object  # the binary float's exact rational
+            cs = np.full(k, fmpq(*Fraction(self.C).as_integer_ratio()) if exact else float(self.C))
             rest = theta[k:]
         Q = rest.reshape(self.order, self.order) if transformed(self.circuit) else None
         return eps, cs, Q
 
-    def traces(self, theta: np.ndarray, u: np.ndarray) -> tuple[dict, dict]:
-        """``({neuron: (steps,)}, {neuron: (steps, p)})``: traces and Jacobians, driven by ``u``."""
-        theta = np.asarray(theta, dtype=float)
+    def traces(self, theta, u, exact: bool = False) -> tuple[dict, dict]:
+        """``({neuron: (steps,)}, {neuron: (steps, p)})``: traces and Jacobians, driven by ``u``;
+        ``exact``: ``theta`` and ``u`` hold fmpq, and a pole of T, M0 or N raises ZeroDivisionError."""
+        theta, u = (np.asarray(a, dtype=object if exact else float) for a in (theta, u))
+        filter1, value = (_exact_filter1, _exact_value) if exact else (_filter1, _float_value)
         p, k, ds = self.n_params, self.n_sections, self.sensor_delay
         eps, cs, Q = self.split(theta)
         ci = (lambda j: k + j) if self.C is None else (lambda j: None)
@@ -171,25 +216,29 @@ class TraceModel:
         def chain(side: str, offset: int, count: int, v: np.ndarray, dv: np.ndarray):
             for j in range(count):
                 e, c = eps[offset + j], cs[offset + j]
-                x = _filter1(e, c, v)
-                dx = _filter1(e, c, dv)
-                dx[:, offset + j] += _filter1(e, 1.0, x)
+                x = filter1(e, c, v)
+                dx = filter1(e, c, dv)
+                dx[:, offset + j] += filter1(e, 1, x)
                 idx = ci(offset + j)
                 if idx is not None:
-                    dx[:, idx] += _filter1(e, 1.0, v)
+                    dx[:, idx] += filter1(e, 1, v)
                 name = section_name(side, j + 1, count)
                 vals[name], jacs[name] = x, dx
                 v, dv = x, dx
             return v, dv
 
-        u = np.asarray(u, dtype=float)
-        y1, dy1 = chain("G1", 0, ds, u, np.zeros((u.size, p)))
+        y1, dy1 = chain("G1", 0, ds, u, np.zeros((u.size, p), dtype=u.dtype))
         # x_c and its sensitivities in one pass: columns [y1, dy1/dtheta]
-        both = _state_filter(self.F0, np.column_stack([y1, dy1]))
+        columns = np.column_stack([y1, dy1])
+        both = (
+            _exact_state_filter(self.exact[0], columns)
+            if exact
+            else _state_filter(self.F0, columns)
+        )
         xc, dxc = both[:, :, 0], both[:, :, 1:]  # (steps, n), (steps, n, p)
         e_c = theta[: 2 * k] if self.C is None else theta[:k]
         if Q is None:
-            T, dT = self._T(e_c)  # (n, n), (n, n, q)
+            T, dT = value(self._T, e_c)  # (n, n), (n, n, q)
         else:
             T = Q
         x2 = xc @ T.T
@@ -202,7 +251,7 @@ class TraceModel:
                 dx2[:, i, off + i * self.order : off + (i + 1) * self.order] += xc
         for i in range(self.order):
             vals[f"G2.x{i + 1}"], jacs[f"G2.x{i + 1}"] = x2[:, i], dx2[:, i, :]
-        mn, dmn = self._mn(e_c)  # (n+1, 1), (n+1, 1, q)
+        mn, dmn = value(self._mn, e_c)  # (n+1, 1), (n+1, 1, q)
         M0, N = mn[: self.order, 0], mn[self.order, 0]
         y2 = xc @ M0 + N * y1
         dy2 = np.einsum("j,tjp->tp", M0, dxc) + N * dy1
@@ -253,5 +302,5 @@ def _lambdified(mat: sp.Matrix, free: tuple):
         grad = np.stack([np.asarray(g, dtype=float).reshape(r, c) for g in out[1:]], axis=2)
         return val, grad
 
-    evaluate.exact = (mat, grads)
+    evaluate.exact, evaluate.free = (mat, grads), free
     return evaluate

@@ -45,7 +45,7 @@ from symctl._util.pickling import ArrayValue
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.fitting.fitargs import _circuit_neurons, _loop, _one_class, _window
-from symctl.fitting.fitmodel import TraceModel, renamed_param, section_name, transformed
+from symctl.fitting.fitmodel import TraceModel, renamed_param, transformed
 from symctl.neural.simulate import DEFAULT_LENGTH, DEFAULT_START
 from symctl.proof import Verdict
 
@@ -53,19 +53,6 @@ __all__ = ["POINTS", "Identifiability", "identifiability"]
 
 POINTS = 2  # random integer points at which the ranks are computed
 _FIELD = 2**62  # coordinates uniform in 1..2**62 (Schwartz-Zippel's |S|)
-
-
-def _q(x) -> fmpq:
-    return fmpq(int(x.p), int(x.q))
-
-
-def _objects(a) -> np.ndarray:
-    """``a`` (SymPy rationals) as an object array of fmpq."""
-    return np.vectorize(_q, otypes=[object])(np.array(a, dtype=object))
-
-
-def _zeros(shape) -> np.ndarray:
-    return np.full(shape, fmpq(0), dtype=object)
 
 
 def _degrees(model: TraceModel) -> tuple[int, int]:
@@ -86,72 +73,16 @@ def _parts(model: TraceModel) -> list:
     return [f.exact for f in (model._mn, model._T) if f is not None]
 
 
-def _at(mat: sp.Matrix, grads: list, subs: dict):
-    """``mat`` and its gradients (last axis) at ``subs``, exact; None at a pole."""
-    vals = [m.xreplace(subs) for m in (mat, *grads)]
-    if not all(e.is_Rational for m in vals for e in m):
-        return None
-    arr = _objects([m.tolist() for m in vals])
-    return arr[0], np.moveaxis(arr[1:], 0, 2)
-
-
-def _markov(model: TraceModel, parts: list, theta: list, W: int) -> dict | None:
+def _markov(model: TraceModel, theta: list, W: int) -> dict | None:
     """Per neuron, the exact ``(W, p)`` sensitivity of its Markov parameters ``h(1..W)`` at the
-    integer point ``theta`` (``TraceModel.traces`` with an impulse in); None at a pole."""
-    p, k, n = model.n_params, model.n_sections, model.order
-    F0, H0, free = model.exact
-    subs = {s: sp.Integer(v) for s, v in zip(free, theta, strict=False)}
-    got = [_at(m, g, subs) for m, g in parts]
-    if any(x is None for x in got):
-        return None
-    (mn, dmn), *rest = got
-    th = [fmpq(int(v)) for v in theta]
-    cs = th[k : 2 * k] if model.C is None else [_q(sp.Rational(model.C))] * k
-    jac = {}
-
-    def chain(side, offset, count, v, dv):
-        for j in range(count):
-            e, c = th[offset + j], cs[offset + j]
-            x, dx = _zeros(W + 1), _zeros((W + 1, p))
-            for t in range(W):
-                x[t + 1] = e * x[t] + c * v[t]
-                dx[t + 1] = e * dx[t] + c * dv[t]
-                dx[t + 1, offset + j] += x[t]
-                if model.C is None:
-                    dx[t + 1, k + offset + j] += v[t]
-            jac[section_name(side, j + 1, count)] = dx[1:]
-            v, dv = x, dx
-        return v, dv
-
-    u = _zeros(W + 1)
+    integer point ``theta`` (the traces of an impulse, in exact arithmetic); None at a pole."""
+    u = np.zeros(W + 1, dtype=object)
     u[0] = fmpq(1)
-    y1, dy1 = chain("G1", 0, model.sensor_delay, u, _zeros((W + 1, p)))
-    F, H = _objects(F0.tolist()), _objects(H0.tolist())[:, 0]
-    xc, dxc = _zeros((W + 1, n)), _zeros((W + 1, n, p))
-    for t in range(W):
-        xc[t + 1] = F.dot(xc[t]) + H * y1[t]
-        dxc[t + 1] = F.dot(dxc[t]) + np.outer(H, dy1[t])
-    q = dmn.shape[2]
-    if rest:
-        T, dT = rest[0]
-    else:
-        T, dT = np.array(th[p - n * n :], dtype=object).reshape(n, n), None
-    dx2 = np.array([T.dot(d) for d in dxc])
-    for t in range(W + 1):
-        if dT is None:
-            for i in range(n):
-                dx2[t, i, p - n * n + i * n : p - n * n + (i + 1) * n] += xc[t]
-        else:
-            dx2[t, :, :q] += np.einsum("ijq,j->iq", dT, xc[t])
-    for i in range(n):
-        jac[f"G2.x{i + 1}"] = dx2[1:, i, :]
-    M0, N = mn[:n, 0], mn[n, 0]
-    y2 = xc.dot(M0) + N * y1
-    dy2 = np.array([M0.dot(d) for d in dxc]) + N * dy1
-    dy2[:, :q] += xc.dot(dmn[:n, 0, :]) + np.outer(y1, dmn[n, 0, :])
-    jac["G2.y"] = dy2[1:]
-    chain("G3", model.sensor_delay, model.actuator_delay, y2, dy2)
-    return jac
+    try:
+        _, jacs = model.traces([fmpq(v) for v in theta], u, exact=True)
+    except ZeroDivisionError:
+        return None
+    return {name: jac[1:] for name, jac in jacs.items()}
 
 
 def _kernel(rows: np.ndarray, p: int) -> tuple[int, fmpq_mat | None]:
@@ -172,12 +103,11 @@ def _structural(model: TraceModel, sets: list, neurons: tuple, u: np.ndarray, ge
     """One :class:`Identifiability` per recorded set, decided as the module text says."""
     nz = np.flatnonzero(u)
     W = max(0, min(u.size - 1 - int(nz[0]), 2 * (model.n_sections + model.order))) if nz.size else 0
-    parts = _parts(model)
     p = model.n_params
     points = []
     for _ in range(10 * POINTS):  # a pole of T, M0 or N is a probability-(b/|S|) event
         theta = [int(v) for v in gen.integers(1, _FIELD, size=p, endpoint=True)]
-        jac = _markov(model, parts, theta, W)
+        jac = _markov(model, theta, W)
         if jac is not None:
             points.append(jac)
         if len(points) == POINTS:

@@ -1,12 +1,6 @@
-r"""Recorded firing-rate traces: the data :func:`symctl.fit` takes, read from CSV or NPZ.
-
-The format (``docs/fitting.md``): a time column ``t`` (uniform steps from 0), optionally
-``disturbance`` (per step; else the default unit pulse), and one column per recorded neuron
-(named as :attr:`Circuit.neurons <symctl.neural.circuit.Circuit.neurons>`), its firing-rate
-change [spikes/s]. A CSV may start with ``# key: value`` lines (``circuit``,
-``sensor_delay``, ``actuator_delay`` are ``symctl fit``'s defaults); an NPZ holds the same
-as arrays and 0-d string arrays. Nothing read is evaluated.
-"""
+"""Recorded firing-rate traces: the data :func:`symctl.fit` takes, read from CSV or NPZ (the
+format: ``docs/fitting.md``; a time column ``t``, optionally ``disturbance``, one column per
+recorded neuron, ``# key: value`` lines; nothing read is evaluated)."""
 
 from __future__ import annotations
 
@@ -105,7 +99,7 @@ class Traces(ArrayValue, DictMixin):
 
 
 def read_traces(path) -> Traces:
-    r"""Read recorded traces from a CSV or NPZ file (format: :mod:`symctl.fitting.traces`).
+    r"""Read recorded traces from a CSV or NPZ file (format: ``docs/fitting.md``).
 
     Parameters
     ----------

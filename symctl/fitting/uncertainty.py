@@ -31,12 +31,9 @@ _GN_RTOL = 1e-12  # eigenvalues of J^T J kept by those steps (round-off is about
 
 
 class Prediction(dict):
-    """Every neuron's predicted trace, ``{name: (steps,) array}``, with its band.
+    """Every neuron's predicted trace, ``{name: (steps,) array}``, with its ``level`` band
+    ``lower`` and ``upper`` per neuron (NaN where none).
 
-    ``lower`` and ``upper`` map each neuron to the ``level`` band (NaN where none).
-
-    Examples
-    --------
     >>> import numpy as np
     >>> from symctl.fitting.uncertainty import Prediction
     >>> p = Prediction({"G2.y": np.ones(2)}, {"G2.y": np.zeros(2)}, {"G2.y": 2 * np.ones(2)})
@@ -53,9 +50,8 @@ class Prediction(dict):
 
 @dataclass(frozen=True, eq=False)
 class Uncertainty(ArrayValue, DictMixin):
-    r"""Confidence intervals of a fit's parameters and prediction bands of its neurons.
-
-    By parametric bootstrap (method: :mod:`symctl.fitting.uncertainty`).
+    r"""Confidence intervals of a fit's parameters and prediction bands of its neurons, by
+    parametric bootstrap (method: :mod:`symctl.fitting.uncertainty`).
 
     Attributes
     ----------

@@ -35,11 +35,8 @@ _FIELDS_REPLACED = ("dt", "sensor_delay", "actuator_delay", "Q", "R", "seed", "r
 
 def chain_graph(sensor_delay: int, actuator_delay: int) -> tuple[DelayGraph, tuple, tuple]:
     """``(graph, vertices, edges)`` of a model file without a delay graph: the chain of the
-    delays, one vertex per step (a side without delay keeps an edge of 0 steps, so that the
-    controller's own vertex exists).
+    delays, one vertex per step (a side without delay keeps an edge of 0 steps).
 
-    Examples
-    --------
     >>> from symctl.model.model import chain_graph
     >>> graph, vertices, edges = chain_graph(1, 1)
     >>> vertices, edges
@@ -59,8 +56,8 @@ def _key_value(value):
 class Model:
     r"""A model file, read and checked: the plant, its delays, cost, delay graph and what to build.
 
-    Made by :func:`load_model`. Two models are equal when every field is (the file's text
-    included), so a model is a key of caches: :func:`~symctl.derivation.derive` runs once per model.
+    Made by :func:`load_model`; equal when every field is (the file's text included), so
+    :func:`~symctl.derivation.derive` runs once per model.
 
     Attributes
     ----------
@@ -69,15 +66,13 @@ class Model:
     ode : ODEModel or None
         The nonlinear plant (None for a discrete plant given directly).
     plant, plant_symbolic : DiscretePlant
-        The discrete linear plant (exact where it can be), and its closed form in the
-        parameters' symbols (one state and one input; else None).
+        The discrete linear plant, and its closed form in the parameters' symbols (SISO; else None).
     units, descriptions : mapping of str to str
         Of the states, inputs, outputs and parameters, by name.
     outputs : tuple of (str, str)
         The measured outputs: (name, state), or (name, expression).
     dt : float
-        The sampling time in seconds (the file's ``[sampling] Ts``; ``Ts`` is the
-        deprecated name of the attribute and keyword).
+        The sampling time [s] (the file's ``[sampling] Ts``; ``Ts``: deprecated).
     sensor_delay, actuator_delay : int
         The delays in steps.
     Q, R : sympy.ImmutableMatrix
@@ -85,32 +80,25 @@ class Model:
     graph, vertices, edges : DelayGraph, tuple of str, tuple of (str, str, int)
         The delay graph (sensor first, actuator last), its vertices' names in that
         order and its direct edges with their delays in steps.
-    graph_given : bool
-        Whether the file gave the delay graph (else the chain of the delays).
-    max_wire_delay : int or None
-        The most steps one wire may carry (None: any).
-    vertex_descriptions : mapping of str to str
-        The vertices' descriptions the file gives.
+    graph_given, max_wire_delay, vertex_descriptions : bool, int or None, mapping
+        Whether the file gave the graph (else the chain of the delays); the most steps of
+        one wire (None: any); the vertices' descriptions.
     circuits : tuple of str
         The circuits to build, of :func:`~symctl.realization.realizers.circuit_names`.
     realizations, seed, steps : int
         Random realizations per circuit, their seed, and the simulation horizon.
-    disturbance : tuple
-        ``(states, amplitude, start, length)`` of the pulse.
-    longest_delay : tuple or None
-        ``(max, tolerance)`` of the longest-delay search, when asked for.
-    notes : tuple of str
-        What the reader changed and says so (delays in seconds rounded up).
-    path : str
-        The file.
+    disturbance, longest_delay : tuple, tuple or None
+        ``(states, amplitude, start, length)`` of the pulse; ``(max, tolerance)`` of the
+        longest-delay search, when asked for.
+    notes, path : tuple of str, str
+        What the reader changed and says so (delays in seconds rounded up); the file.
     C : sympy.ImmutableMatrix or None
         The outputs' matrix (``p x n``, linearized) when the controller estimates the
         state; None for full-state feedback.
     noise : mapping of str to sympy.ImmutableMatrix
         ``process``, ``sensor`` (and ``motor``) covariances of ``[noise]``.
     replaced : mapping of str to value
-        The values :meth:`replace` set in place of the file's: with the file's text they
-        re-create the model (:func:`~symctl.model.saved.model_from_dict`).
+        The values :meth:`replace` set: with the file's text they re-create the model.
 
     Examples
     --------
@@ -193,9 +181,8 @@ class Model:
         Parameters
         ----------
         **values
-            Any of ``dt`` (the sampling time [s]; ``Ts`` is its deprecated name),
-            ``sensor_delay``, ``actuator_delay`` (steps), ``Q``, ``R``, ``seed``,
-            ``realizations``, and the plant's parameters by name (``tau=0.05``).
+            Any of ``dt`` [s] (``Ts``: deprecated), ``sensor_delay``, ``actuator_delay``,
+            ``Q``, ``R``, ``seed``, ``realizations``, and the plant's parameters by name.
 
         Returns
         -------
@@ -205,9 +192,8 @@ class Model:
         Raises
         ------
         ParameterError
-            An unknown name, a value out of range, a parameter or ``dt`` of a discrete
-            plant given as matrices, a net delay outside ``[1, PAPER_MAX_DELAY]``, or
-            parameter values at which the file's equilibrium is none.
+            An unknown name, a value out of range, ``dt`` of a discrete plant, a net delay
+            outside ``[1, PAPER_MAX_DELAY]``, or parameters at which there is no equilibrium.
         SymctlTypeError
             A value of the wrong type.
         DimensionError
@@ -278,7 +264,7 @@ class Model:
         return dataclasses.replace(self, **changes, replaced={**self.replaced, **recorded})
 
     def _replot(self, given: dict, Ts: float) -> dict:
-        """The ODE, the plant and its closed form at new parameter values or sampling time."""
+        """The ODE and plants at new parameter values or sampling time."""
         ode = self.ode
         rename, values = {}, {}
         for symbol, value in ode.params.items():

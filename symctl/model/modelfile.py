@@ -1,31 +1,6 @@
-r"""Your own system in a file: :func:`load_model` reads a model file into a :class:`Model`.
-
-A model file (TOML; schema in ``docs/model-file.md``) is never evaluated (expressions go
-through the safe parser); every problem is one :class:`~symctl.errors.ModelFileError`
-naming the file, the line and the field.
-
->>> from symctl.model.modelfile import load_model
->>> m = load_model('''
-... [model]
-... name = "leaky"
-... [parameters]
-... k = { value = 2.0, unit = "1/s" }
-... [[states]]
-... name = "x"
-... rhs = "-k*x + u"
-... [[inputs]]
-... name = "u"
-... equilibrium = 1.0
-... [sampling]
-... Ts = 0.1
-... ''')
->>> m.ode.x_eq, m.sensor_delay, m.actuator_delay
-(Matrix([[1/k]]), 1, 1)
->>> load_model('[model]\nname = "x"\n[sampling]\nTz = 1\n')
-Traceback (most recent call last):
-...
-symctl.errors.ModelFileError: <text>:4: sampling.Tz: unknown key 'Tz'; did you mean 'Ts'?
-"""
+"""Your own system in a file: :func:`load_model` reads a model file (TOML, ``docs/model-file.md``)
+into a :class:`Model`, never evaluating it; every problem is one
+:class:`~symctl.errors.ModelFileError` naming the file, the line and the field."""
 
 from __future__ import annotations
 
@@ -86,10 +61,26 @@ def load_model(source) -> Model:
     Examples
     --------
     >>> from symctl.model.modelfile import load_model
-    >>> load_model('[model]\\nname = "m"\\n').name
+    >>> m = load_model('''
+    ... [model]
+    ... name = "leaky"
+    ... [parameters]
+    ... k = { value = 2.0, unit = "1/s" }
+    ... [[states]]
+    ... name = "x"
+    ... rhs = "-k*x + u"
+    ... [[inputs]]
+    ... name = "u"
+    ... equilibrium = 1.0
+    ... [sampling]
+    ... Ts = 0.1
+    ... ''')
+    >>> m.ode.x_eq, m.sensor_delay, m.actuator_delay
+    (Matrix([[1/k]]), 1, 1)
+    >>> load_model('[model]\\nname = "x"\\n[sampling]\\nTz = 1\\n')
     Traceback (most recent call last):
     ...
-    symctl.errors.ModelFileError: <text>: sampling: missing; give [sampling] Ts
+    symctl.errors.ModelFileError: <text>:4: sampling.Tz: unknown key 'Tz'; did you mean 'Ts'?
     """
     if isinstance(source, Path) or (
         isinstance(source, str) and "\n" not in source and "[" not in source
@@ -103,13 +94,7 @@ def load_model(source) -> Model:
 
 
 def read_model(text: str, path: str = "<text>") -> Model:
-    """Read a model file's text, named ``path`` in messages (as :func:`load_model` reads a file).
-
-    >>> from symctl.model.modelfile import read_model
-    >>> from symctl.model.presets import muscle_text
-    >>> read_model(muscle_text(), "muscle.toml").path
-    'muscle.toml'
-    """
+    """Read a model file's text, named ``path`` in messages (as :func:`load_model` reads a file)."""
     return _Reader(Source.from_text(text, path)).model()
 
 
@@ -288,8 +273,7 @@ class _Reader(GraphSection, MeasurementSection):
         return float(self.number(value, "sampling.Ts", positive=True))
 
     def bare_ts(self, ode, Ts: float) -> None:
-        """A note when Ts without a unit (so in seconds) is longer than the plant's fastest time
-        constant or under 1e-4 of it: a unit was probably meant."""
+        """A note when a bare Ts (seconds) is off the plant's fastest time constant: a unit was meant."""
         a = ode.jacobian_numeric(ode.x_bar, ode.u_bar)
         rate = np.abs(np.linalg.eigvals(a)).max() if np.isfinite(a).all() else 0.0
         if rate == 0:  # integrators only: no time constant

@@ -31,17 +31,7 @@ def _preset() -> Model:
 
 
 def muscle(**values) -> Model:
-    """The muscle preset, with the values given replacing the file's.
-
-    Parameters
-    ----------
-    **values
-        As :meth:`Model.replace <symctl.model.model.Model.replace>` takes them (``tau``,
-        ``f_max``, ``r_bar``, ``Ts``, the delays, ``Q``, ...); None keeps the file's.
-
-    Returns
-    -------
-    Model
-    """
+    """The muscle preset with ``values`` (as :meth:`Model.replace
+    <symctl.model.model.Model.replace>` takes them; None keeps the file's) replacing the file's."""
     given = {k: v for k, v in values.items() if v is not None}
     return _preset().replace(**given) if given else _preset()

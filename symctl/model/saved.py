@@ -20,15 +20,8 @@ __all__ = ["model_from_dict"]
 
 def model_from_dict(data) -> Model:
     """The model that ``Model.to_dict`` wrote: its file read again (checked, never evaluated),
-    then the values replaced (read by the safe parser).
-
-    Raises
-    ------
-    ModelFileError
-        The text is not a valid model file.
-    ParameterError, ParseError
-        ``data`` lacks a key, or a replaced value is not a number or matrix.
-    """
+    then the values replaced (read by the safe parser); ModelFileError, ParameterError or
+    ParseError for bad data."""
     if not isinstance(data, dict) or not {"source", "path"} <= set(data):
         raise ParameterError("data: expected a mapping with source, path and replaced")
     replaced = data.get("replaced") or {}

@@ -102,26 +102,9 @@ SECOND = _unit(1.0, {"s": 1})
 
 
 def parse_unit(text: str, argname: str) -> Unit:
-    """Read a unit from text (safe parser; no code is evaluated).
+    """A unit read from text (``"N"``, ``"spikes/s"``, ``"rad/s**2"``, ``"1"``) by the safe parser;
+    a ParameterError naming ``argname`` for text that is not a product of powers of units.
 
-    Parameters
-    ----------
-    text : str
-        E.g. ``"N"``, ``"spikes/s"``, ``"rad/s**2"``, ``"1"``.
-    argname : str
-        Named in errors.
-
-    Returns
-    -------
-    Unit
-
-    Raises
-    ------
-    ParameterError
-        Text that is not a product of powers of unit names.
-
-    Examples
-    --------
     >>> from symctl.model.units import parse_unit
     >>> str(parse_unit("spikes/s", "u")), parse_unit("deg", "u").dimensionless
     ('spikes/s', True)
@@ -209,8 +192,6 @@ def unit_of(expr: sp.Expr, units: dict) -> Unit | None:
 def check_rhs(rhs: sp.Expr, state_unit: Unit | None, units: dict, argname: str) -> None:
     """Refuse a right-hand side whose unit is not ``state_unit`` per second, where both are known.
 
-    Examples
-    --------
     >>> import sympy as sp
     >>> from symctl.model.units import check_rhs, parse_unit
     >>> x, tau = sp.symbols("x tau", positive=True)
