@@ -65,11 +65,6 @@ is of order :math:`V`). The predictor form tends to :math:`(I - z^{-1} G_0 B)^{-
 :math:`x(t)`, so its loop tends to the LQR's (poles of :math:`\tilde A + \tilde B K` and
 :math:`n` at 0) though the transfer functions differ. :math:`W \to 0` is the other limit: the
 filter trusts the model and, for a stable plant, :math:`L \to 0` and :math:`G \to 0`.
-
-``kalman_gains`` is a function of its own, beside :func:`~symctl.design.lqr.lqr_gains`,
-rather than arguments of :func:`~symctl.design.augment.augment`: the augmented system is
-the plant and its delays, the cost and the noise are two designs on it, and the full-state
-path (every existing caller) stays as it is.
 """
 
 from __future__ import annotations
@@ -92,7 +87,7 @@ from symctl._util.validate import (
     to_matrix,
 )
 from symctl.design.augment import AugmentedSystem
-from symctl.design.controller import _chain, _ring_of
+from symctl.design.controller import _chain, _mat, _mul, _ring_of
 from symctl.design.fraction import MatrixFractionTF, _adj_det
 from symctl.design.lqr import Gains, _pbh_defect
 from symctl.design.tf import DiscreteTF
@@ -279,28 +274,10 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
 
 
 def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predictor"):
-    r"""``(F, H, M, N)`` of the LQG compensator from ``y`` (at the sensor) to :math:`\delta_r`.
-
-    State :math:`\hat\chi`. Predictor form (``L`` the plant rows of :math:`\tilde L`):
-    :math:`F = \tilde A + \tilde B K - \tilde L \tilde C`, :math:`H = \tilde L`; current form
-    (``L`` the plant rows of :math:`\tilde M`, acting on :math:`\hat\chi(t|t) = \hat\chi +
-    \tilde M (y - \tilde C \hat\chi)`): :math:`F = (\tilde A + \tilde B K)(I - \tilde M
-    \tilde C)`, :math:`H = (\tilde A + \tilde B K) \tilde M`. :math:`M = [0 \dots 0\ I]`,
-    :math:`N = 0` (:math:`T = 0`: the command :math:`K \hat\chi`, or :math:`K \hat\chi(t|t)`).
-    ``A``, ``B`` are the augmented matrices, ``C`` the plant's (``p x n``), ``K`` the gain row
-    ``[K_0 ... K_T]``; SymPy matrices and NumPy arrays alike.
-
-    >>> import sympy as sp
-    >>> from symctl import MuscleModel, augment
-    >>> from symctl.design.kalman import lqg_state_space
-    >>> from symctl.symbols import gain_matrix_symbols, observer_gain_symbols
-    >>> s = augment(MuscleModel(), 1, 1)
-    >>> K = sp.Matrix.hstack(*gain_matrix_symbols(s.T, s.m, s.n))
-    >>> F, H, M, N = lqg_state_space(s.A, s.B, sp.Matrix([[1]]), K, observer_gain_symbols(1, 1),
-    ...                              1, 1, 2)
-    >>> F[:, 0].T, H.T, M
-    (Matrix([[-L_1 + exp(-1/2), K_0, 0]]), Matrix([[L_1, 0, 0]]), Matrix([[0, 0, 1]]))
-    """
+    r"""``(F, H, M, N)`` of the LQG compensator from ``y`` (at the sensor) to :math:`\delta_r`
+    (module notes), state :math:`\hat\chi`; ``L`` the plant rows of :math:`\tilde L` (predictor)
+    or :math:`\tilde M` (current). ``A``, ``B`` augmented, ``C`` the plant's, ``K`` the gain row;
+    SymPy matrices and NumPy arrays alike."""
     symbolic = isinstance(A, sp.MatrixBase)
     zeros = sp.zeros if symbolic else (lambda r, c: np.zeros((r, c)))
     eye = sp.eye if symbolic else np.eye
@@ -327,8 +304,8 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
 
 
 def _check_design(system, C, gains, kalman, *, required: bool = False):
-    """``C`` as a matrix (default: the filter's), ``gains`` and ``kalman`` checked to be designs
-    on ``system`` that measure it (each may be None unless ``required``)."""
+    """``C`` as a matrix (default: the filter's), ``gains`` and ``kalman`` (None unless
+    ``required``) checked to be designs on ``system`` that measure it."""
     for value, name, kind in ((gains, "gains", Gains), (kalman, "kalman", KalmanGains)):
         if value is None and not required:
             continue
@@ -351,9 +328,8 @@ def _design_values(system, Cm, gains, kalman, form: str) -> dict:
 
 
 def _setup(system: AugmentedSystem, Cm, form: str, values: dict | None = None):
-    """The ring, its converter, the plant map, the symbols ``K`` and the filter gain's (or their
-    exact ``values``), the predictor gain :math:`L` (``A M`` in the current form), and
-    ``adj Phi``, ``det Phi``."""
+    """The ring, converter and plant map, the gains ``K`` and the filter's (symbols or ``values``),
+    the predictor gain (``A M`` in the current form), ``adj Phi`` and ``det Phi``."""
     K = sp.Matrix.hstack(*gain_matrix_symbols(system.T, system.m, system.n))
     gain = sp.Matrix(observer_gain_symbols(system.n, Cm.rows, _FORMS[_form(form)]))
     if values:
@@ -366,8 +342,8 @@ def _setup(system: AugmentedSystem, Cm, form: str, values: dict | None = None):
 
 
 def _ring(system: AugmentedSystem, Cm, K, L):
-    """``QQ[z, K, L, plant symbols]``, its converter, and a map that makes the plant's matrices
-    convertible (floats for entries such as ``exp(-1/2)`` in a plant without symbols)."""
+    """``QQ[z, K, L, plant symbols]``, its converter, and a map making the plant convertible
+    (floats for entries such as ``exp(-1/2)`` in a plant without symbols)."""
     parts = (system.plant.A, system.plant.B, Cm)
     plant = sorted(set().union(*(M.free_symbols for M in parts)), key=str)
     R, convert = _ring_of([*(s for s in (*K, *L) if s.is_Symbol), *plant])
@@ -382,17 +358,6 @@ def _ring(system: AugmentedSystem, Cm, K, L):
             ) from None
         return R, convert, lambda M: sp.Matrix(M).evalf()
     return R, convert, sp.Matrix
-
-
-def _mat(convert, M) -> list[list]:
-    return [[convert(e) for e in M.row(i)] for i in range(M.rows)]
-
-
-def _mul(R, X, Y) -> list[list]:
-    return [
-        [sum((a * Y[k][j] for k, a in enumerate(row) if a), R.zero) for j in range(len(Y[0]))]
-        for row in X
-    ]
 
 
 def _observer(R, convert, A, C, L, n: int):

@@ -6,6 +6,7 @@ hold, gives eq. (system), :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)`.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -328,17 +329,12 @@ class DiscretePlant(LatexMixin):
         """A new plant with symbols substituted (as :meth:`sympy.Basic.subs`)."""
         parts = [m for m in (self.A, self.B, self.dt, self.x_eq, self.u_eq) if m is not None]
         rule, flags = subs_rule(args, kwargs, set().union(*(m.free_symbols for m in parts)))
-        ts = self.dt.subs(rule, **flags) if self.dt is not None else None
-        return DiscretePlant(
-            self.A.subs(rule, **flags),
-            self.B.subs(rule, **flags),
-            ts,
-            self.state_names,
-            self.input_names,
-            None if self.x_eq is None else self.x_eq.subs(rule, **flags),
-            None if self.u_eq is None else self.u_eq.subs(rule, **flags),
-            self.params,
-        )
+        changed = {
+            k: getattr(self, k).subs(rule, **flags)
+            for k in ("A", "B", "dt", "x_eq", "u_eq")
+            if getattr(self, k) is not None
+        }
+        return dataclasses.replace(self, **changed)
 
     def numeric(self) -> tuple[np.ndarray, np.ndarray]:
         """``(A, B)`` as float arrays; refuses free symbols."""
@@ -469,9 +465,8 @@ class MuscleModel(LatexMixin):
 
     def plant(self) -> DiscretePlant:
         """The discrete plant at this model's numbers (exact)."""
-        p = self.discrete_symbolic().subs(self.values)
-        return DiscretePlant(
-            p.A, p.B, p.dt, p.state_names, p.input_names, p.x_eq, p.u_eq, self.as_dict()
+        return dataclasses.replace(
+            self.discrete_symbolic().subs(self.values), params=self.as_dict()
         )
 
     def as_dict(self) -> dict[str, float]:

@@ -31,7 +31,7 @@ from symctl._util.validate import (
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
-__all__ = ["DiscreteTF"]
+__all__ = ["Convertible", "DiscreteTF"]
 
 _TEXT_NAMES = {"z": z}  # the names text for num/den may use (read by the safe parser)
 _LAMBDIFY_MODULES = ("numpy", "math", "mpmath", "scipy", "sympy")
@@ -62,8 +62,55 @@ def _replaced(expr, rule, flags: dict):
     return expr.subs(rule, **flags)
 
 
+class Convertible:
+    """``to_*``/``from_*`` for python-control, ``sympy.physics.control`` and ``scipy.signal``,
+    each handed to :mod:`symctl.interop` (``tf_*`` for a transfer function, ``ss_*`` for a
+    realization)."""
+
+    _interop = "tf"
+
+    def to_control(self):
+        """As a discrete python-control system, ``dt`` kept (``True`` when unknown; numbers only)."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_control")(self)
+
+    @classmethod
+    def from_control(cls, sys):
+        """From a discrete python-control system."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_control")(sys)
+
+    def to_sympy(self):
+        """As a ``sympy.physics.control`` system, exactly."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_sympy")(self)
+
+    @classmethod
+    def from_sympy(cls, sys, dt=None, *, var=None):
+        """From a ``sympy.physics.control`` system, exactly."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_sympy")(sys, dt, var=var)
+
+    def to_scipy(self):
+        """As a discrete ``scipy.signal`` system."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_scipy")(self)
+
+    @classmethod
+    def from_scipy(cls, sys):
+        """From a discrete ``scipy.signal`` system."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_scipy")(sys)
+
+
 @dataclass(frozen=True, eq=False)
-class DiscreteTF(LatexMixin):
+class DiscreteTF(Convertible, LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` over one monic denominator in :data:`symctl.z`.
 
     :meth:`from_expr` takes any rational expression. ``==`` compares numerator, denominator
@@ -336,45 +383,6 @@ class DiscreteTF(LatexMixin):
             raise ParameterError("G: poles need numeric coefficients")
         coeffs = self._floats(self.den_coeffs(), complex, "poles need coefficients")
         return np.roots(coeffs)
-
-    def to_control(self):
-        """As a ``control.TransferFunction`` with ``dt`` kept (numbers only)."""
-        from symctl.interop import tf_to_control
-
-        return tf_to_control(self)
-
-    @classmethod
-    def from_control(cls, sys) -> DiscreteTF:
-        """From a ``control.TransferFunction`` (or anything python-control converts)."""
-        from symctl.interop import tf_from_control
-
-        return tf_from_control(sys)
-
-    def to_sympy(self):
-        """As a ``sympy.physics.control`` transfer function, exactly (:func:`symctl.interop.tf_to_sympy`)."""
-        from symctl.interop import tf_to_sympy
-
-        return tf_to_sympy(self)
-
-    @classmethod
-    def from_sympy(cls, sys, dt=None, *, var=None) -> DiscreteTF:
-        """From a ``sympy.physics.control`` system, exactly (:func:`symctl.interop.tf_from_sympy`)."""
-        from symctl.interop import tf_from_sympy
-
-        return tf_from_sympy(sys, dt, var=var)
-
-    def to_scipy(self):
-        """As a discrete ``scipy.signal.TransferFunction`` (:func:`symctl.interop.tf_to_scipy`)."""
-        from symctl.interop import tf_to_scipy
-
-        return tf_to_scipy(self)
-
-    @classmethod
-    def from_scipy(cls, sys) -> DiscreteTF:
-        """From a discrete ``scipy.signal`` system (:func:`symctl.interop.tf_from_scipy`)."""
-        from symctl.interop import tf_from_scipy
-
-        return tf_from_scipy(sys)
 
     def latex(self) -> str:
         r"""LaTeX in the paper's style: a constant factor pulled out, descending powers of z,

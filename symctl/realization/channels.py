@@ -20,31 +20,16 @@ entry). :math:`G_2` keeps :math:`d`: its block canonical realizations have :math
 
 from __future__ import annotations
 
-from functools import cache
-
 import sympy as sp
 
 from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError, ParameterError
+from symctl.errors import DimensionError
 from symctl.symbols import z
 
-__all__ = ["MAX_CHANNELS", "channel_sections", "channel_symbols", "mimo_G2"]
+__all__ = ["MAX_CHANNELS", "channel_sections", "mimo_G2"]
 
 MAX_CHANNELS = 50
 """Most measured signals (and most inputs) of a MIMO factorization."""
-
-
-@cache
-def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` sections of one channel on side 1 or 3, named
-    ``epsilon_{side,channel,k}`` and ``C_{side,channel,k}`` (indices from 1)."""
-    if side not in (1, 3):
-        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    eps = tuple(
-        sp.Symbol(f"epsilon_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1)
-    )
-    cs = tuple(sp.Symbol(f"C_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1))
-    return eps, cs
 
 
 def _check_shape(tf: DiscreteTF) -> tuple[int, int]:

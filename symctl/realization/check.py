@@ -548,25 +548,9 @@ def _similar_to(value) -> tuple[Realization, sp.Matrix]:
 
 
 def require_stable_sections(epsilons, argname: str) -> None:
-    r"""Refuse section poles :math:`|\epsilon| \ge 1`: hidden, unstable modes of the loop
-    (:math:`G_2` cancels them, so the transfer function stays right while the state grows).
-    Symbols pass.
-
-    Parameters
-    ----------
-    epsilons : iterable of numbers or sympy expressions
-        The section poles, or the ends of an interval they are drawn from.
-    argname : str
-        The argument named in the ParameterError.
-
-    Examples
-    --------
-    >>> from symctl.realization.check import require_stable_sections
-    >>> require_stable_sections((0.5, 1.5), "eps_range")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: eps_range: 1.5 has |epsilon| >= 1: ...
-    """
+    r"""Refuse (ParameterError naming ``argname``) section poles :math:`|\epsilon| \ge 1`, or
+    such ends of the interval they are drawn from: hidden unstable modes, which :math:`G_2`
+    cancels. Symbols pass."""
     for value in epsilons:
         e = to_expr(value, argname)
         if e.is_number and abs(complex(e)) >= 1:

@@ -39,7 +39,6 @@ from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
 from symctl.realization.channels import (
     channel_sections,
-    channel_symbols,
     diagonal,
     mimo_G2,
     verify_entries,
@@ -61,19 +60,21 @@ out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G
 
 
 @cache
-def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
-    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
+def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3 (of one
+    ``channel`` of a MIMO factorization: ``epsilon_{side,channel,k}``, indices from 1).
 
     >>> from symctl.realization.factorization import section_symbols
-    >>> section_symbols(3, 2)
-    ((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2}))
+    >>> section_symbols(3, 2), section_symbols(1, 1, 2)
+    (((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2})), ((epsilon_{1,2,1},), (C_{1,2,1},)))
     """
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if count == 1:
+    if count == 1 and channel is None:
         return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
+    at = f"{side}," if channel is None else f"{side},{channel},"
+    eps = tuple(sp.Symbol(f"epsilon_{{{at}{i}}}", real=True) for i in range(1, count + 1))
+    cs = tuple(sp.Symbol(f"C_{{{at}{i}}}", real=True) for i in range(1, count + 1))
     return eps, cs
 
 
@@ -518,7 +519,7 @@ def _default_sections(side: int, count: int, channels: int, siso: bool) -> tuple
         return (), ()
     if siso:
         return section_symbols(side, count)
-    per = [channel_symbols(side, j, count) for j in range(1, channels + 1)]
+    per = [section_symbols(side, count, j) for j in range(1, channels + 1)]
     return tuple(e for es, _ in per for e in es), tuple(c for _, cs in per for c in cs)
 
 

@@ -123,15 +123,10 @@ def _identity(R: Realization, tf: DiscreteTF) -> RealizerResult:
 
 
 @dataclass(frozen=True)
-class _Controllable(Realizer):
+class _Canonical(Realizer):
     def __call__(self, G2, *, rng=None) -> RealizerResult:
-        return _identity(controllable_canonical(G2), DiscreteTF.from_expr(G2))
-
-
-@dataclass(frozen=True)
-class _Observable(Realizer):
-    def __call__(self, G2, *, rng=None) -> RealizerResult:
-        return _identity(observable_canonical(G2), DiscreteTF.from_expr(G2))
+        form = controllable_canonical if self.name == "controllable" else observable_canonical
+        return _identity(form(G2), DiscreteTF.from_expr(G2))
 
 
 def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
@@ -218,8 +213,8 @@ _REGISTRY: dict[str, Realizer] = {
             form="general",
             paper=True,
         ),
-        _Controllable("controllable", "controllable canonical", canonical=True, paper=True),
-        _Observable("observable", "observable canonical", canonical=True, paper=True),
+        _Canonical("controllable", "controllable canonical", canonical=True, paper=True),
+        _Canonical("observable", "observable canonical", canonical=True, paper=True),
         _Random("random", "random (the paper's recipe)", keeps_symbols=False, circuit=False),
     )
 }
@@ -236,16 +231,9 @@ def _canonical(realizer: Realizer) -> bool:
 
 
 def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
-    """The circuits a model builds, in the report's order (registered ones included).
+    """The circuits a model builds, in the report's order (registered ones included); ``whole``:
+    with those of the whole controller (IFP), else only :math:`G_3 G_2 G_1`'s.
 
-    Parameters
-    ----------
-    whole : bool
-        Include the circuits of the whole controller (IFP); ``False``: those of
-        :math:`G_3 G_2 G_1`, named by their :math:`G_2`.
-
-    Examples
-    --------
     >>> from symctl.realization.realizers import circuit_names
     >>> circuit_names()
     ('ifp', 'general', 'controllable', 'observable')
@@ -256,41 +244,10 @@ def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
 
 
 def register(realizer: Realizer) -> Realizer:
-    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
-
-    Parameters
-    ----------
-    realizer : Realizer
-        An instance of a subclass that defines ``__call__(G2, *, rng=None)``.
-
-    Returns
-    -------
-    Realizer
-        ``realizer``, so that it can decorate an assignment.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``realizer`` is not a :class:`Realizer`.
-    ParameterError
-        Its name taken, reserved (``"all"``, ``"pathways"``) or not a lower-case identifier
-        of at most 32 characters.
-
-    Examples
-    --------
-    >>> from dataclasses import dataclass
-    >>> from symctl.realization.realizers import Realizer, get_realizer, register, unregister
-    >>> @dataclass(frozen=True)
-    ... class Doubled(Realizer):
-    ...     def __call__(self, G2, *, rng=None):
-    ...         return get_realizer("general")(G2, P=[[2]])
-    >>> _ = register(Doubled("doubled", "doubled controllable"))
-    >>> from symctl import z
-    >>> get_realizer("doubled")(1 / (z - 1)).realization.M
-    Matrix([[2]])
-    >>> unregister("doubled").name
-    'doubled'
-    """
+    """Add ``realizer`` (an instance of a subclass defining ``__call__(G2, *, rng=None)``) to
+    :data:`REALIZERS` after the others, and return it (docs/extending.md). Raises
+    SymctlTypeError for another type, ParameterError for a name taken, reserved (``"all"``,
+    ``"pathways"``) or not a lower-case identifier of at most 32 characters."""
     if not isinstance(realizer, Realizer):
         raise SymctlTypeError(f"realizer: expected a Realizer, got {type(realizer).__name__}")
     name = realizer.name
@@ -310,13 +267,8 @@ def register(realizer: Realizer) -> Realizer:
 
 
 def unregister(name: str) -> Realizer:
-    """Remove the realizer :func:`register` ed as ``name`` and return it (the built-in ones stay).
-
-    Raises
-    ------
-    ParameterError
-        ``name`` is built in or not registered.
-    """
+    """Remove the realizer :func:`register` ed as ``name`` and return it (ParameterError for a
+    built-in or unknown one)."""
     if name in _BUILTIN:
         raise ParameterError(f"name: {name!r} is built in and cannot be removed")
     added = [k for k in _REGISTRY if k not in _BUILTIN]
