@@ -80,10 +80,8 @@ class AugmentedSystem(LatexMixin):
     plant : DiscretePlant
     sensor_delay, actuator_delay, T : int
         The delays in steps and their sum.
-    A, B, Q : sympy.ImmutableMatrix
-        :math:`\tilde A`, :math:`\tilde B`, :math:`\tilde Q` (for ``T = 0``: ``Q``).
-    Q_plant, R : sympy.ImmutableMatrix
-        The plant's state and input penalties.
+    A, B, Q, Q_plant, R : sympy.ImmutableMatrix
+        :math:`\tilde A`, :math:`\tilde B`, :math:`\tilde Q`, and the plant's penalties.
     state_names : tuple of str
         Names of the entries of :math:`\chi`.
 
@@ -167,11 +165,9 @@ def augment(
     ------
     ParameterError
         Negative delays or ``T > MAX_DELAY``; numeric ``Q`` or ``R`` not symmetric PSD or
-        with an entry above 1e100; more than ``MAX_STATES`` (1000) augmented states.
-    SymctlTypeError
-        Non-integer delays.
-    DimensionError
-        ``Q`` or ``R`` of the wrong shape.
+        above 1e100; more than ``MAX_STATES`` (1000) augmented states.
+    SymctlTypeError, DimensionError
+        Non-integer delays; ``Q`` or ``R`` of the wrong shape.
 
     Examples
     --------

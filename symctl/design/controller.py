@@ -67,10 +67,8 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
 
     Raises
     ------
-    SymctlTypeError
-        ``source`` or ``gains`` of another type.
-    ParameterError
-        ``source`` an integer outside ``[0, MAX_DELAY]``.
+    SymctlTypeError, ParameterError
+        ``source`` or ``gains`` of another type; an integer ``source`` outside ``[0, MAX_DELAY]``.
 
     Examples
     --------
@@ -247,8 +245,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
     Scalar plant: :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G`, :math:`W =
-    [z^{T-1}; \dots; 1] N_G`; several inputs: the module's identities in
-    :math:`\mathbb{Q}[z, K]`.
+    [z^{T-1}; \dots; 1] N_G`; several inputs: the module's identities in :math:`\mathbb{Q}[z, K]`.
 
     Parameters
     ----------
@@ -262,10 +259,8 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
 
     Raises
     ------
-    SymctlTypeError
-        ``system`` or ``G`` of another type.
-    ParameterError
-        ``G`` a left fraction with another ``D`` too large to expand.
+    SymctlTypeError, ParameterError
+        ``system`` or ``G`` of another type; a left fraction with another ``D`` too large to expand.
 
     Examples
     --------

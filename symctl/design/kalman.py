@@ -57,14 +57,11 @@ augmented filter's :math:`\tilde A - \tilde L \tilde C` adds :math:`Tm` poles at
 :math:`K_0 (I - MC)` and :math:`Q` gains :math:`\varphi K_0 M`, the relative degree is
 :math:`T`, and the proof is the same with :math:`M W + N \varphi d_G = \varphi N_G`.
 
-**The full-state limit.** With :math:`C = I` and :math:`V \to 0` (a noise-free sensor,
-equivalently :math:`W/V \to \infty`), :math:`M \to I` and :math:`L \to A`. The current form
-then tends to the full-state controller :math:`G_0 = D^{-1} K_0` itself (:math:`\hat x(t|t) = y(t)`; the error
-is of order :math:`V`). The predictor form tends to :math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A`:
-:math:`G_0` acting on the one-step prediction :math:`A x(t-1) + B \delta_r(t-1)`, which equals
-:math:`x(t)`, so its loop tends to the LQR's (poles of :math:`\tilde A + \tilde B K` and
-:math:`n` at 0) though the transfer functions differ. :math:`W \to 0` is the other limit: the
-filter trusts the model and, for a stable plant, :math:`L \to 0` and :math:`G \to 0`.
+**Limits.** With :math:`C = I` and :math:`V \to 0`, :math:`M \to I` and :math:`L \to A`: the
+current form tends to the full-state :math:`G_0 = D^{-1} K_0`, the predictor form to
+:math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A` (:math:`G_0` on the one-step prediction of
+:math:`x(t)`; the LQR's loop poles and :math:`n` at 0). With :math:`W \to 0` and a stable
+plant, :math:`L \to 0` and :math:`G \to 0`.
 """
 
 from __future__ import annotations
@@ -100,9 +97,7 @@ __all__ = ["KalmanGains", "kalman_gains", "lqg_state_space", "lqg_tf", "prove_lq
 
 @dataclass(frozen=True, eq=False)
 class KalmanGains(ArrayValue, DictMixin, LatexMixin):
-    r"""The stationary delayed Kalman filter (predictor form) of :func:`kalman_gains`.
-
-    Read-only arrays; compares and hashes by value.
+    r"""The stationary delayed Kalman filter (predictor form) of :func:`kalman_gains` (a value).
 
     Attributes
     ----------
@@ -188,13 +183,12 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
     Parameters
     ----------
     system : AugmentedSystem
-        From :func:`symctl.augment`, with numbers.
+        Numeric.
     C : matrix-like, optional
-        Output matrix ``p x n`` of :math:`y = C x + v`; identity (every state) by default.
-    W : matrix-like, optional
-        Process noise covariance on the states, ``n x n`` symmetric PSD; identity by default.
-    V : matrix-like, optional
-        Sensor noise covariance, ``p x p`` symmetric positive definite; identity by default.
+        Output matrix ``p x n`` of :math:`y = C x + v` (default: the identity).
+    W, V : matrix-like, optional
+        Process (``n x n``, PSD) and sensor (``p x p``, positive definite) noise covariances
+        (default: identities).
     motor : matrix-like, optional
         Motor noise covariance on the inputs, ``m x m`` PSD; adds :math:`B W_u B^\top` to ``W``.
 
@@ -210,8 +204,7 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
         ``C``, ``W``, ``V`` or ``motor`` of the wrong shape.
     ParameterError
         Free symbols; ``W``, ``V`` or ``motor`` not symmetric PSD; ``V`` singular; a mode
-        with :math:`|\lambda| \ge 1` no output sees (PBH test, naming ``C``); no stabilizing
-        DARE solution (a marginal mode the noise never excites, naming ``W``).
+        with :math:`|\lambda| \ge 1` no output sees (``C``); no stabilizing DARE solution (``W``).
 
     Examples
     --------
@@ -384,22 +377,18 @@ def lqg_tf(
         The plant (numbers, or symbols it is rational in) with its delays.
     C : matrix-like, optional
         Output matrix ``p x n``; default ``kalman.C``, else the identity.
-    gains : Gains, optional
-        Substitute these LQR gains for :math:`K_0 \dots K_T`.
-    kalman : KalmanGains, optional
-        Substitute this filter's gain for its symbols.
+    gains, kalman : Gains and KalmanGains, optional
+        Substitute these gains for :math:`K_0 \dots K_T` and the filter's symbols.
     form : {"predictor", "current"}
-        The predictor form (symbols :math:`L`; the command uses :math:`y` up to the previous
-        step) or the current (filter) form (symbols :math:`M`; the command uses
-        :math:`\hat\chi(t|t)`, with :math:`y(t)`).
+        The command uses :math:`y` up to the previous step (symbols :math:`L`), or
+        :math:`\hat\chi(t|t)` with :math:`y(t)` (symbols :math:`M`).
 
     Returns
     -------
     DiscreteTF
-        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1` (current form:
-        :math:`T`); for several
-        inputs with symbols left, the :class:`~symctl.design.fraction.MatrixFractionTF`
-        :math:`P^{-1} Q`.
+        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1` (current:
+        :math:`T`); a :class:`~symctl.design.fraction.MatrixFractionTF` for several inputs
+        with symbols left.
 
     Raises
     ------
@@ -467,11 +456,9 @@ def prove_lqg_tf(
     r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
 
     The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
-    N_G` of the module notes, with :math:`(F, H, M, N)` of :func:`lqg_state_space` and the gains
-    symbolic, checked exactly in :math:`\mathbb{Q}[z, K, L]`; a left fraction is expanded first.
-    With ``gains`` and ``kalman`` the gains are their values (the floats' exact rationals) and
-    the identities are checked in :math:`\mathbb{Q}[z]`: a proof for this design, where the
-    symbolic one is too large (a plant with several inputs).
+    N_G` of the module notes, checked exactly in :math:`\mathbb{Q}[z, K, L]`; with ``gains`` and
+    ``kalman``, in :math:`\mathbb{Q}[z]` at their exact values (where the symbolic proof is too
+    large). A left fraction is expanded first.
 
     Parameters
     ----------
@@ -479,9 +466,9 @@ def prove_lqg_tf(
     C : matrix-like, optional
         Output matrix (default: the identity).
     G : DiscreteTF, optional
-        The candidate, ``m x p`` with symbols :math:`K` and :math:`L` (or :math:`M`).
+        The candidate, ``m x p`` in :math:`K` and :math:`L` (or :math:`M`).
     form : {"predictor", "current"}
-        The compensator's form (:func:`lqg_tf`).
+        As in :func:`lqg_tf`.
     gains, kalman : Gains and KalmanGains, optional
         The design whose exact gains replace the symbols (both or neither).
 

@@ -46,10 +46,8 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
     Attributes
     ----------
     system : AugmentedSystem
-    K : numpy.ndarray
-        ``m x (n + T m)``.
-    X : numpy.ndarray
-        Stabilizing DARE solution of the equivalent problem.
+    K, X : numpy.ndarray
+        The ``m x (n + T m)`` gain; the stabilizing DARE solution of the equivalent problem.
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, by decreasing modulus.
 
@@ -127,10 +125,9 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
 
     Raises
     ------
-    SymctlTypeError
-        ``system`` is not an AugmentedSystem.
-    ParameterError
-        Free symbols, Q/R not symmetric PSD, an entry above 1e100, an overflow.
+    SymctlTypeError, ParameterError
+        ``system`` not an AugmentedSystem; free symbols, Q/R not symmetric PSD or above 1e100,
+        an overflow.
     NotStabilizableError
         Not stabilizable or detectable; no stabilizing DARE solution or unique gain.
 

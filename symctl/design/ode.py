@@ -27,12 +27,8 @@ __all__ = ["MAX_MODEL_STATES", "ODEModel", "exact_value", "parameter_symbol", "s
 
 MAX_MODEL_STATES = 20
 """Most states (and most inputs) of an :class:`ODEModel`: the Jacobians are symbolic."""
-
-ROOT_STARTS = 12
-"""Starts of the numeric equilibrium search when no ``guess`` is given."""
-
-ROOT_TOL = 1e-9
-"""Residual below which a numeric equilibrium counts as one (relative to the scale of f)."""
+ROOT_STARTS = 12  # of the numeric equilibrium search without a guess
+ROOT_TOL = 1e-9  # residual, relative to the scale of f, of a numeric equilibrium
 
 
 def exact_value(value, argname: str) -> sp.Expr:
@@ -68,6 +64,7 @@ def _symbols(values, argname: str) -> tuple[sp.Symbol, ...]:
 
 
 def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
+    """``n`` SymPy values or numbers naming only ``names`` (text is refused)."""
     if isinstance(values, str) or not isinstance(values, Sequence | sp.MatrixBase):
         raise SymctlTypeError(f"{argname}: expected a sequence of {n} expressions, got {values!r}")
     items = list(values)
@@ -91,9 +88,7 @@ def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
     return sp.ImmutableMatrix(out)
 
 
-SYMBOLIC_MAX_DENOMINATOR = 10_000
-"""Largest denominator of a rational in :math:`a` for a closed-form ZOH (SymPy's ``factor``
-expands :math:`e^{T_s/q}` to degree :math:`q`); beyond, the plant is discretized in numbers."""
+SYMBOLIC_MAX_DENOMINATOR = 10_000  # of a rational in a for a closed-form ZOH (factor hangs)
 
 
 def _small_rationals(M: sp.MatrixBase) -> bool:
@@ -148,8 +143,7 @@ def solve_equilibrium(
     return _numeric_equilibrium(f, states, values, guess, argname)
 
 
-MAX_EXACT_DEGREE = 12
-"""Largest degree of a one-state polynomial equilibrium found exactly (real roots, SymPy)."""
+MAX_EXACT_DEGREE = 12  # of a one-state polynomial equilibrium found exactly
 
 
 def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
@@ -239,10 +233,8 @@ def _numeric_equilibrium(f, states, values, guess, argname):
 
 @dataclass(frozen=True, eq=False)
 class ODEModel(CachedState, LatexMixin):
-    r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point.
-
-    A parameter with a positive value is a positive symbol (so :math:`e^{-T_s/\tau}`
-    simplifies); the others, the states and the inputs are real.
+    r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point,
+    symbolic until :meth:`plant` substitutes the parameters exactly.
 
     Parameters
     ----------
@@ -271,8 +263,7 @@ class ODEModel(CachedState, LatexMixin):
     Raises
     ------
     ParameterError
-        Not an equilibrium (provably, or above 1e-9 of the scale), unknown names, no or
-        several equilibria.
+        Not an equilibrium (to 1e-9 of the scale), unknown names, no or several equilibria.
     DimensionError, SymctlTypeError
         Sizes or types that do not fit.
 
@@ -417,8 +408,6 @@ class ODEModel(CachedState, LatexMixin):
         """The paper's muscle (a :class:`~symctl.design.plant.MuscleModel`) as an ODEModel, in the
         symbols a model file gives.
 
-        Examples
-        --------
         >>> from symctl import MuscleModel
         >>> from symctl.design.ode import ODEModel
         >>> m = ODEModel.from_muscle(MuscleModel())

@@ -45,10 +45,8 @@ class Linearization(LatexMixin):
 
     Attributes
     ----------
-    a, b : sympy.ImmutableMatrix
-        :math:`\partial f/\partial x` and :math:`\partial f/\partial u` at the point.
-    residual : sympy.ImmutableMatrix
-        :math:`f(x_{eq}, u_{eq})`, zero at an equilibrium.
+    a, b, residual : sympy.ImmutableMatrix
+        :math:`\partial f/\partial x`, :math:`\partial f/\partial u` and :math:`f` at the point.
 
     Examples
     --------
@@ -110,9 +108,9 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
         Right-hand side; text is read by the safe parser.
     x, u : sequence of symbols (or names)
     x_eq, u_eq : sequence of values
-        The operating point; may be symbolic.
+        The operating point, maybe symbolic; refused where provably :math:`f \ne 0` when
+        ``check_equilibrium``.
     check_equilibrium : bool
-        Refuse a point where provably :math:`f \ne 0`.
 
     Returns
     -------
@@ -171,14 +169,9 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 
 @renamed_keywords(Ts="dt")
 def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
-    r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`.
-
-    .. math::
-        \exp\left(\begin{bmatrix} a & b \\ 0 & 0 \end{bmatrix} T_s\right)
-        = \begin{bmatrix} A & B \\ 0 & I \end{bmatrix},
-        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b,
-
-    in closed form for symbolic matrices, by :func:`scipy.linalg.expm` for numeric ones.
+    r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`: :math:`A = e^{a T_s}`,
+    :math:`B = \int_0^{T_s} e^{a s}\,ds\; b`, read off the exponential of
+    :math:`[[a, b], [0, 0]] T_s`, in closed form for symbols, by :func:`scipy.linalg.expm` for numbers.
 
     Parameters
     ----------
@@ -194,8 +187,7 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        Shapes that do not fit, over 1000 states, or a symbolic system of more than
-        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
+        Shapes that do not fit, over 1000 states, or symbols with over 3 states plus inputs.
     ParameterError
         A numeric ``dt <= 0``, non-finite entries, an overflowing :math:`e^{a\,dt}`.
 
@@ -387,8 +379,7 @@ def _muscle_discrete() -> DiscretePlant:
 @dataclass(frozen=True)
 class MuscleModel(LatexMixin):
     r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`, linearized
-    about :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, symbolic until :meth:`plant`
-    substitutes the numbers exactly. ``Ts``: deprecated name of ``dt``.
+    about :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, exact until :meth:`plant` (``Ts``: ``dt``).
 
     Parameters
     ----------
@@ -403,11 +394,9 @@ class MuscleModel(LatexMixin):
 
     Raises
     ------
-    ParameterError
-        ``tau``, ``f_max``, ``dt`` not in ``[1e-100, 1e100]``, :math:`|\bar r| > 700`, or
-        :math:`T_s/\tau` outside :math:`[10^{-6}, 700]`.
-    SymctlTypeError
-        A parameter that is not a real number.
+    ParameterError, SymctlTypeError
+        ``tau``, ``f_max``, ``dt`` outside ``[1e-100, 1e100]``, :math:`|\bar r| > 700`,
+        :math:`T_s/\tau` outside :math:`[10^{-6}, 700]`; a parameter not a real number.
 
     Examples
     --------

@@ -49,6 +49,11 @@ def _lcm(a: sp.Expr, b: sp.Expr) -> sp.Expr:
     return b if a == 1 else sp.lcm(a, b)
 
 
+def _z_coeffs(M: sp.MatrixBase, power: int) -> sp.Matrix:
+    """The coefficients of ``z**power`` in the entries of ``M`` (zero below ``power = 0``)."""
+    return sp.Matrix(M.applyfunc(lambda e: z_poly(e).coeff(power) if power >= 0 else 0))
+
+
 def _replaced(expr, rule, flags: dict):
     """``expr.subs(rule, **flags)``; symbols to numbers by the same, far faster, ``xreplace``."""
     items = list(rule.items()) if isinstance(rule, dict) else list(rule)
@@ -302,21 +307,21 @@ class DiscreteTF(Convertible, LatexMixin):
         [0, 1, 2, 4]
         """
         count = bounded_int(count, "count", 0, MAX_STEPS)
-        d = self.order
         if self.relative_degree < 0:
             raise ParameterError("G: improper transfer function has no Markov expansion")
-        a = self.den_coeffs()
-        rows, cols = self.shape
-        b = [
-            sp.Matrix(rows, cols, lambda i, j, k=k: self._coeff(i, j, d - k)) for k in range(d + 1)
-        ]
+        a, num, d = self._fraction()
+        b = [_z_coeffs(num, d - k) for k in range(min(count, d + 1))]
         h: list[sp.Matrix] = []
-        for k in range(count):
-            acc = b[k] if k <= d else sp.zeros(rows, cols)
+        for k in range(count):  # d(z) G = N(z): h_k = b_k - sum_i a_i h_{k-i}
+            acc = b[k] if k <= d else sp.zeros(*self.shape)
             for i in range(1, min(k, d) + 1):
                 acc = acc - a[i] * h[k - i]
             h.append(acc.applyfunc(sp.expand))
         return h
+
+    def _fraction(self) -> tuple[list, sp.MatrixBase, int]:
+        r"""``(a, N, d)``: :math:`d(z) G = N(z)` with :math:`d = \sum_i a_i z^{d-i}`, ``a[0] = 1``."""
+        return self.den_coeffs(), self._num, self.order
 
     def _coeff(self, i: int, j: int, power: int) -> sp.Expr:
         return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)

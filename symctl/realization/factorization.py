@@ -279,20 +279,9 @@ class Factorization(DictMixin, LatexMixin):
         return DiscreteTF(self.G.num / scale * _zeros_poly(self.sigma), self.G.den, self.G.dt)
 
     def sigma_values(self, values=None) -> dict:
-        r""":math:`\sigma_k = e_k(\epsilon)` of the section poles, keyed by :attr:`sigma`.
+        r""":math:`\sigma_k = e_k(\epsilon)` of the section poles (at ``values`` of their symbols),
+        keyed by :attr:`sigma`: exact numbers when every pole is a number, else polynomials.
 
-        Parameters
-        ----------
-        values : mapping, optional
-            Values of the pole symbols; by default the poles as they are.
-
-        Returns
-        -------
-        dict
-            Exact numbers when every pole is a number, else SymPy polynomials.
-
-        Examples
-        --------
         >>> from symctl import controller_tf, factor
         >>> factor(controller_tf(2)).sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
         {sigma_1: 5/6, sigma_2: 1/6}
@@ -312,22 +301,10 @@ class Factorization(DictMixin, LatexMixin):
         return out
 
     def verify(self, rtol: float = 1e-9) -> Proof:
-        """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication).
+        """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication); with floats
+        failing it by rounding, :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1` compared in
+        :math:`z` (other symbols at 8 random points), truthy within ``rtol``.
 
-        Parameters
-        ----------
-        rtol : float, optional
-            Tolerance of the numeric verdict for floating-point coefficients.
-
-        Returns
-        -------
-        Proof
-            Truthy when the identity holds. With floats, when the exact identity fails by
-            rounding, :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1` are compared in :math:`z`
-            (other symbols at 8 random points), truthy within ``rtol``.
-
-        Examples
-        --------
         >>> from symctl import controller_tf, factor
         >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
         >>> K_0, K_1, K_2 = gain_symbols(2)
@@ -439,10 +416,8 @@ def _section_values(value, count: int, argname: str, default) -> tuple:
 
 
 def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=None) -> Factorization:
-    r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``.
-
-    A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`), ``G1`` and
-    ``G3`` diagonal.
+    r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``
+    (a p x m ``G`` channel by channel, :mod:`symctl.realization.channels`).
 
     Parameters
     ----------
@@ -451,9 +426,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
     eps, C : sequence or value, optional
-        The section poles and gains, sensor sections first (channel-major when MIMO; one
-        for all, or one per section; text through the safe parser). By default the symbols
-        of :func:`section_symbols` (cheaper than :meth:`Factorization.subs` afterwards).
+        The section poles and gains, sensor sections first (channel-major), one for all or one
+        per section (text through the safe parser); default: :func:`section_symbols`.
 
     Returns
     -------
@@ -462,11 +436,9 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
 
     Raises
     ------
-    ParameterError
-        Improper ``G``, its relative degree below the delays, negative delays, a zero
-        ``C`` or a value in ``z``.
-    DimensionError
-        ``eps``/``C`` of the wrong length, or over ``MAX_CHANNELS`` (50) inputs or outputs.
+    ParameterError, DimensionError
+        Improper ``G``, its relative degree below the delays, negative delays, a zero ``C`` or
+        a value in ``z``; ``eps``/``C`` of the wrong length, over 50 inputs or outputs.
 
     Examples
     --------

@@ -47,10 +47,8 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 
 @dataclass(frozen=True)
 class Realization(Convertible, LatexMixin):
-    r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
-
-    Immutable (``n = 0``, a static gain, allowed); compares by the matrices and ``dt``
-    (structurally: similar realizations are not equal).
+    r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N` (a value; ``n = 0``,
+    a static gain, allowed; similar realizations are not equal).
 
     Parameters
     ----------
@@ -64,10 +62,8 @@ class Realization(Convertible, LatexMixin):
 
     Raises
     ------
-    DimensionError
-        ``F`` not square, or ``H``, ``M`` whose shapes do not fit ``F`` and ``N``.
-    ParameterError, SymctlTypeError
-        Entries that are not numbers or sympy expressions.
+    DimensionError, ParameterError, SymctlTypeError
+        Shapes that do not fit; entries that are not numbers or sympy expressions.
 
     Examples
     --------
@@ -347,17 +343,12 @@ def controllable_canonical(G2) -> Realization:
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper transfer function, exact or symbolic.
+        Proper, exact or symbolic (else ParameterError).
 
     Returns
     -------
     Realization
         Of order :math:`n m`, :math:`n = \deg d`.
-
-    Raises
-    ------
-    ParameterError
-        An improper ``G2``, or one not rational in ``z``.
 
     Examples
     --------
@@ -390,16 +381,11 @@ def observable_canonical(G2) -> Realization:
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper transfer function, exact or symbolic.
+        Proper, exact or symbolic (else ParameterError).
 
     Returns
     -------
     Realization
-
-    Raises
-    ------
-    ParameterError
-        An improper ``G2``, or one not rational in ``z``.
 
     Examples
     --------
@@ -421,17 +407,13 @@ def first_order_realization(eps, C, dt=None) -> Realization:
     Parameters
     ----------
     eps, C : number, sympy expression or str
-        The pole and the input gain (text through the safe parser).
+        The pole and the input gain (text through the safe parser; ParseError,
+        SymctlTypeError for others).
     dt : number, optional
 
     Returns
     -------
     Realization
-
-    Raises
-    ------
-    ParseError, SymctlTypeError
-        ``eps`` or ``C`` not an admissible value.
 
     Examples
     --------

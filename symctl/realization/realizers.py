@@ -51,12 +51,11 @@ class RealizerResult(DictMixin):
     Attributes
     ----------
     sys : DiscreteTF
-        The realized transfer function (after any substitution the realizer made).
-    base : Realization
-        The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
+        The realized transfer function (after the realizer's substitutions).
+    base, realization : Realization
+        The canonical realization :math:`(F_0, H_0, M_0, N)` and ``base.similar(P)``.
     P, Pinv : sympy.ImmutableMatrix
-        ``realization == base.similar(P)``; ``Pinv`` None for a symbolic ``P`` (never inverted).
-    realization : Realization
+        The transform; ``Pinv`` None for a symbolic ``P`` (never inverted).
 
     Examples
     --------
@@ -76,9 +75,8 @@ class RealizerResult(DictMixin):
 
 @dataclass(frozen=True)
 class Realizer:
-    """A way of realizing a proper :math:`G_2`; call it to get a :class:`RealizerResult`.
-
-    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an instance.
+    """A way of realizing a proper :math:`G_2`, called for a :class:`RealizerResult`: subclass it,
+    define ``__call__(self, G2, *, rng=None)`` and :func:`register` an instance.
 
     Attributes
     ----------
@@ -296,7 +294,7 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     Raises
     ------
     ParameterError
-        ``name`` is not an admitted realizer, naming ``argname``, the value and the choices.
+        Not an admitted realizer (naming ``argname``, the value and the choices).
 
     Examples
     --------
@@ -334,10 +332,8 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
 
     Raises
     ------
-    ParameterError
-        Unknown ``base``; ``P`` singular; ``G2`` improper.
-    DimensionError
-        ``P`` not ``n x n``; ``G2`` not SISO.
+    ParameterError, DimensionError
+        Unknown ``base``; ``P`` singular; ``G2`` improper; ``P`` not ``n x n``.
 
     Examples
     --------
@@ -391,7 +387,6 @@ def random_realization(
     G2 : DiscreteTF or sympy expression in z
         A proper transfer function.
     rng : None, int or numpy.random.Generator, optional
-        The seed.
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
@@ -407,7 +402,7 @@ def random_realization(
     Raises
     ------
     ParameterError
-        Unknown ``base``; ``G2`` improper; a bad ``rng``.
+        Unknown ``base``; ``G2`` improper; a bad ``rng`` or ``eps_range``.
 
     Examples
     --------
@@ -431,12 +426,7 @@ def ifp_realization(gains: Gains) -> Realization:
     Returns
     -------
     Realization
-        Numeric, with the plant's sampling time.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``gains`` is not a :class:`~symctl.Gains`.
+        Numeric, with the plant's sampling time (SymctlTypeError for other ``gains``).
 
     Examples
     --------

@@ -152,27 +152,10 @@ def _combination(v, names) -> str:
 def controller_reduction(
     system: AugmentedSystem, gains: Gains
 ) -> tuple[ControllerReduction, Gains]:
-    r"""Decide whether the optimal delayed controller is minimal, and tie the gains that make it not.
+    r"""``(verdict, gains)``: whether the optimal delayed controller of the numeric ``system`` is
+    minimal, and its ``gains`` with those the theorem ties computed exactly from the free ones
+    (SymctlTypeError for other types).
 
-    Parameters
-    ----------
-    system : AugmentedSystem
-        With numbers (floats taken exactly).
-    gains : Gains
-        Its optimal gains (:func:`~symctl.design.lqr.lqr_gains`).
-
-    Returns
-    -------
-    (ControllerReduction, Gains)
-        The verdict, and the gains with the tied ones computed exactly from the free ones.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``system`` or ``gains`` of another type.
-
-    Examples
-    --------
     >>> from symctl import augment, lqr_gains
     >>> from symctl.realization.reduction import controller_reduction
     >>> system = augment(([[0.9, 0], [0.1, 0.8]], [[1, -1], [0, 0]]), 1, 1)

@@ -554,7 +554,7 @@ AUDITED = {
     ("symctl.design.tf", "DiscreteTF.__init__", "ImmutableMatrix"): 3,  # to_expr entries
     ("symctl.design.tf", "DiscreteTF.from_expr", "Matrix"): 3,  # sympy objects only
     ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
-    ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
+    ("symctl.design.tf", "_z_coeffs", "Matrix"): 1,  # coefficients of own entries
     ("symctl.design.tf", "_replaced", "subs"): 1,  # the subs_rule of DiscreteTF.subs
     ("symctl.interop", "_z_expr", "Poly"): 1,  # float coefficients of control/SciPy arrays
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
