@@ -86,7 +86,7 @@ from symctl._util.validate import (
 from symctl.design.augment import AugmentedSystem
 from symctl.design.controller import _chain, _mat, _mul, _ring_of
 from symctl.design.fraction import MatrixFractionTF, _adj_det
-from symctl.design.lqr import Gains, _pbh_defect
+from symctl.design.lqr import Gains, _pbh_defect, sorted_poles
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.proof import Proof
@@ -259,8 +259,7 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
         ) from None
     M[n:] = 0.0  # exactly zero in theory (module notes); remove the solver's rounding
     L = A @ M
-    poles = np.linalg.eigvals(A - L @ Ct)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(A - L @ Ct)
     if not np.all(np.abs(poles) < 1):
         raise ParameterError(f"W, V: the filter does not converge (poles {poles})")
     return KalmanGains(system, Cm, Wn, Vn, L, M, P, poles)

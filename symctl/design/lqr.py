@@ -94,6 +94,12 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
         return rf"K = {latex(sp.Matrix(self.K).evalf(6))}"
 
 
+def sorted_poles(M: np.ndarray) -> np.ndarray:
+    """The eigenvalues of ``M`` by decreasing modulus."""
+    poles = np.linalg.eigvals(M)
+    return poles[np.argsort(-np.abs(poles), kind="stable")]
+
+
 def _pbh_defect(A: np.ndarray, other: np.ndarray, *, stack: str) -> complex | None:
     """An eigenvalue with ``|lambda| >= 1`` that fails the PBH rank test, or None."""
     n = A.shape[0]
@@ -196,8 +202,7 @@ def _solve(system: AugmentedSystem, A, B, Qp, Rm) -> Gains:
             "Q, R: the DARE solution is not finite; the problem is badly scaled "
             f"(Q up to {np.max(np.abs(Qp)):g}, R up to {np.max(np.abs(Rm)):g})"
         )
-    poles = np.linalg.eigvals(A + B @ K)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(A + B @ K)
     if not np.all(np.abs(poles) < 1):
         raise NotStabilizableError(
             f"plant: the DARE solution does not stabilize the loop (poles {poles}); check Q and R"

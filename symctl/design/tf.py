@@ -31,7 +31,7 @@ from symctl._util.validate import (
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
-__all__ = ["Convertible", "DiscreteTF"]
+__all__ = ["DiscreteTF", "convertible"]
 
 _TEXT_NAMES = {"z": z}  # the names text for num/den may use (read by the safe parser)
 _LAMBDIFY_MODULES = ("numpy", "math", "mpmath", "scipy", "sympy")
@@ -67,12 +67,10 @@ def _replaced(expr, rule, flags: dict):
     return expr.subs(rule, **flags)
 
 
-class Convertible:
+class _Conversions:
     """``to_*``/``from_*`` for python-control, ``sympy.physics.control`` and ``scipy.signal``,
     each handed to :mod:`symctl.interop` (``tf_*`` for a transfer function, ``ss_*`` for a
     realization)."""
-
-    _interop = "tf"
 
     def to_control(self):
         """As a discrete python-control system, ``dt`` kept (``True`` when unknown; numbers only)."""
@@ -114,8 +112,23 @@ class Convertible:
         return getattr(interop, f"{cls._interop}_from_scipy")(sys)
 
 
+def convertible(kind: str):
+    """A class decorator: the ``to_*``/``from_*`` methods of :mod:`symctl.interop`'s ``{kind}_*``
+    conversions, in the class itself (so that its API page lists them)."""
+
+    def decorate(cls):
+        for name, member in vars(_Conversions).items():
+            if name.startswith(("to_", "from_")):
+                setattr(cls, name, member)
+        cls._interop = kind
+        return cls
+
+    return decorate
+
+
+@convertible("tf")
 @dataclass(frozen=True, eq=False)
-class DiscreteTF(Convertible, LatexMixin):
+class DiscreteTF(LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` over one monic denominator in :data:`symctl.z`.
 
     :meth:`from_expr` takes any rational expression. ``==`` compares numerator, denominator

@@ -283,10 +283,10 @@ def _counterexample(problem: _Problem, rng: random.Random) -> dict | None:
     return None
 
 
-def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
+def _exact(problem: _Problem, rng: random.Random, values=None) -> RealizationCheck:
     count = problem.n + problem.d + 1
     try:
-        diff = _first_difference(problem, _Entries(problem.symbols))
+        diff = _first_difference(problem, _Entries(problem.symbols, values))
     except ZeroDivisionError as exc:
         raise ParameterError(
             f"R, G: division by an expression that is identically zero: {exc}"
@@ -302,14 +302,7 @@ def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
 def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random):
     count = problem.n + problem.d + 1
     if not problem.symbols:  # nothing to sample: one exact evaluation decides
-        diff = _first_difference(problem, _Entries((), {}))
-        cex = None if diff is None else _counterexample(problem, rng)
-        details = (
-            f"no free symbols: {_markov_names(count)} of both sides agree"
-            if diff is None
-            else _describe(*diff)
-        )
-        return RealizationCheck(diff is None, "randomized", Fraction(0), cex, details, count, 1)
+        return dataclasses.replace(_exact(problem, rng, {}), method="randomized", rounds=1)
     degree, bad = degrees
     bits = max(_MIN_BITS, (degree + bad).bit_length() + 32)
     half = 2 ** (bits - 1)

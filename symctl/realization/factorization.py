@@ -21,6 +21,7 @@ For the paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
 
 from __future__ import annotations
 
+import dataclasses
 import random
 from collections import Counter
 from dataclasses import dataclass
@@ -347,27 +348,17 @@ class Factorization(DictMixin, LatexMixin):
 
     def subs(self, *args, **kwargs) -> Factorization:
         """Substitute values (e.g. epsilons and Cs; text through the safe parser); a zero C is refused."""
-        sections = (*self.sensor_eps, *self.sensor_C, *self.actuator_eps, *self.actuator_C)
-        sections = [to_expr(v, "sections") for v in sections]
+        tfs = ("G", "G1", "G2", "G3")
+        sides = {k: [to_expr(v, "sections") for v in getattr(self, k)] for k in _SECTIONS}
         symbols = set().union(
-            *(g.free_symbols for g in (self.G, self.G1, self.G2, self.G3)),
-            *(v.free_symbols for v in sections),
+            *(getattr(self, k).free_symbols for k in tfs),
+            *(v.free_symbols for values in sides.values() for v in values),
         )
         rule, flags = subs_rule(args, kwargs, symbols)
-
-        def sub(values):
-            return tuple(to_expr(v, "sections").subs(rule, **flags) for v in values)
-
-        out = Factorization(
-            self.G.subs(rule, **flags),
-            self.G1.subs(rule, **flags),
-            self.G2.subs(rule, **flags),
-            self.G3.subs(rule, **flags),
-            sub(self.sensor_eps),
-            sub(self.sensor_C),
-            sub(self.actuator_eps),
-            sub(self.actuator_C),
-            self.channels,
+        out = dataclasses.replace(
+            self,
+            **{k: getattr(self, k).subs(rule, **flags) for k in tfs},
+            **{k: tuple(v.subs(rule, **flags) for v in values) for k, values in sides.items()},
         )
         _check_C(out.sensor_C + out.actuator_C)
         return out
@@ -380,6 +371,9 @@ class Factorization(DictMixin, LatexMixin):
             zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
             g2 = rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}"
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
+
+
+_SECTIONS = ("sensor_eps", "sensor_C", "actuator_eps", "actuator_C")
 
 
 def _vieta(poles: list) -> list:

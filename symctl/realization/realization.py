@@ -24,7 +24,7 @@ from symctl._util.validate import (
     to_expr,
     to_matrix,
 )
-from symctl.design.tf import Convertible, DiscreteTF
+from symctl.design.tf import DiscreteTF, convertible
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization._similarity import similar_exact
 from symctl.symbols import z
@@ -45,8 +45,9 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor_terms(cancel(expr))
 
 
+@convertible("ss")
 @dataclass(frozen=True)
-class Realization(Convertible, LatexMixin):
+class Realization(LatexMixin):
     r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N` (a value; ``n = 0``,
     a static gain, allowed; similar realizations are not equal).
 
@@ -82,7 +83,6 @@ class Realization(Convertible, LatexMixin):
     N: sp.ImmutableMatrix
     dt: sp.Expr | None = None
     params: Mapping = field(default=None, compare=False)
-    _interop = "ss"
 
     def __post_init__(self):
         Fm = _matrix_or_empty(self.F, "F")

@@ -39,7 +39,7 @@ from flint import fmpq_mat
 from symctl._util.exact import from_fmpq, from_fmpq_mat
 from symctl.design.augment import AugmentedSystem
 from symctl.design.controller import ifp_state_space
-from symctl.design.lqr import Gains
+from symctl.design.lqr import Gains, sorted_poles
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
 from symctl.proof import Verdict
@@ -191,9 +191,7 @@ def controller_reduction(
     if order == T * m:
         return ControllerReduction(T * m, order, method=method), gains
     Kn = np.array(exact, dtype=float)
-    closed = np.array(system.A, dtype=float) + np.array(system.B, dtype=float) @ Kn
-    poles = np.linalg.eigvals(closed)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(np.array(system.A, dtype=float) + np.array(system.B, dtype=float) @ Kn)
     inputs = system.plant.input_names
     driven = tuple(_combination(Rm * sp.Matrix(d), inputs) for d in directions)
     blind = _unseen(_numbers(system.plant.A, "A"), _numbers(system.Q_plant, "Q"))
