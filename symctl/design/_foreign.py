@@ -6,6 +6,7 @@ from __future__ import annotations
 from functools import reduce
 
 import numpy as np
+import scipy.linalg
 
 from symctl._util.validate import MAX_STATES, sampling_time
 from symctl.design.plant import DiscretePlant
@@ -101,15 +102,8 @@ def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
     n = sum(b[0].shape[0] for b in blocks)
     if n > MAX_STATES:
         raise DimensionError(f"{argname}: realizes with {n} states, more than {MAX_STATES}")
-    F, H, M = np.zeros((n, n)), np.zeros((n, cols)), np.zeros((rows, n))
-    N = np.hstack([b[3] for b in blocks])
-    at = 0
-    for j, (Fj, Hj, Mj, _) in enumerate(blocks):
-        r = Fj.shape[0]
-        F[at : at + r, at : at + r] = Fj
-        H[at : at + r, j : j + 1] = Hj
-        M[:, at : at + r] = Mj
-        at += r
+    F, H = (scipy.linalg.block_diag(*(b[k] for b in blocks)) for k in (0, 1))
+    M, N = (np.hstack([b[k] for b in blocks]) for k in (2, 3))
     return F, H, M, N
 
 
