@@ -6,6 +6,7 @@ from __future__ import annotations
 from functools import reduce
 
 import numpy as np
+import scipy.linalg
 
 from symctl._util.validate import MAX_STATES, sampling_time
 from symctl.design.plant import DiscretePlant
@@ -81,13 +82,9 @@ def _column(entries: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, .
 
 def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
     r"""``(F, H, M, N)``: the column-wise controllable canonical form of ``nums[i][j]/dens[i][j]``
-    (descending coefficient arrays, ``[outputs][inputs]``).
-
-    Column :math:`j` has the product :math:`d_j` of its entries' distinct denominators, its
-    companion :math:`F_j`, :math:`H_j = e_r`, and :math:`G_{ij} = N_{ij} + \sum_k c_{ij,k} z^k
-    / d_j` in :math:`M_j`; the blocks on the diagonal in input order. Deterministic,
-    controllable, minimal for SISO. Refuses improper, complex or non-finite entries
-    (ParameterError) and more than ``MAX_STATES`` states (DimensionError).
+    (descending coefficients, ``[outputs][inputs]``): column :math:`j` over the product of its
+    entries' distinct denominators, blocks on the diagonal in input order. Refuses improper,
+    complex or non-finite entries (ParameterError), over ``MAX_STATES`` states (DimensionError).
 
     >>> from symctl.design._foreign import canonical_columns
     >>> F, H, M, N = canonical_columns([[[2.0, 1.0]]], [[[1.0, -0.5, 0.06]]], "G")
@@ -105,15 +102,8 @@ def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
     n = sum(b[0].shape[0] for b in blocks)
     if n > MAX_STATES:
         raise DimensionError(f"{argname}: realizes with {n} states, more than {MAX_STATES}")
-    F, H, M = np.zeros((n, n)), np.zeros((n, cols)), np.zeros((rows, n))
-    N = np.hstack([b[3] for b in blocks])
-    at = 0
-    for j, (Fj, Hj, Mj, _) in enumerate(blocks):
-        r = Fj.shape[0]
-        F[at : at + r, at : at + r] = Fj
-        H[at : at + r, j : j + 1] = Hj
-        M[:, at : at + r] = Mj
-        at += r
+    F, H = (scipy.linalg.block_diag(*(b[k] for b in blocks)) for k in (0, 1))
+    M, N = (np.hstack([b[k] for b in blocks]) for k in (2, 3))
     return F, H, M, N
 
 
@@ -125,13 +115,10 @@ def _labels(labels) -> tuple[str, ...]:
 
 
 def plant_from_control(sys, argname: str = "plant") -> DiscretePlant:
-    """A :class:`~symctl.design.plant.DiscretePlant` from a discrete python-control system: a
-    ``StateSpace``'s ``A``, ``B`` (``C``, ``D`` unused), a ``TransferFunction`` by
-    :func:`canonical_columns`; labels that are distinct identifiers name states and inputs.
-
-    Refuses a continuous-time system, improper, complex or non-finite coefficients
-    (ParameterError), another object (SymctlTypeError), no or over ``MAX_STATES`` states
-    (DimensionError).
+    """A DiscretePlant from a discrete python-control system: a ``StateSpace``'s ``A``, ``B``, a
+    ``TransferFunction`` by :func:`canonical_columns`; distinct identifier labels name states and
+    inputs. Refuses continuous time or bad coefficients (ParameterError), another object
+    (SymctlTypeError), no or too many states (DimensionError).
 
     >>> import control
     >>> from symctl.design._foreign import plant_from_control

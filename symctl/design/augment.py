@@ -42,35 +42,9 @@ __all__ = ["AugmentedSystem", "as_plant", "augment", "chain_names", "same_dt"]
 
 
 def as_plant(plant) -> DiscretePlant:
-    """The plant that every function taking a ``plant`` works with.
-
-    Parameters
-    ----------
-    plant : DiscretePlant, MuscleModel, (A, B) or a python-control system
-        A discrete ``control.StateSpace`` or ``TransferFunction`` is read by
-        :func:`symctl.design._foreign.plant_from_control`.
-
-    Returns
-    -------
-    DiscretePlant
-
-    Raises
-    ------
-    SymctlTypeError
-        Another type.
-    ParameterError
-        A continuous-time python-control system, an improper transfer function.
-    DimensionError
-        Matrices of the wrong shape.
-
-    Examples
-    --------
-    >>> import control
-    >>> from symctl.design.augment import as_plant
-    >>> p = as_plant(control.ss([[0.5, 0], [0, 0.2]], [[1], [1]], [[1, 1]], 0, 0.01))
-    >>> p.dt, p.state_names, p.input_names
-    (0.0100000000000000, ('x_1', 'x_2'), ('u',))
-    """
+    """The plant that every function taking a ``plant`` works with: a DiscretePlant, a
+    MuscleModel's, ``(A, B)``, or a discrete python-control system (:func:`plant_from_control`);
+    another type raises SymctlTypeError."""
     if isinstance(plant, DiscretePlant):
         return plant
     if isinstance(plant, MuscleModel):
@@ -86,21 +60,8 @@ def as_plant(plant) -> DiscretePlant:
 
 
 def same_dt(plant: DiscretePlant, dt, argname: str, of: str = "the controller") -> None:
-    """Refuse ``argname`` (ParameterError) when the plant's ``dt`` and the ``dt`` of ``of`` differ
-    (:func:`symctl._util.validate.common_dt`; ``None`` fits any).
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import DiscretePlant
-    >>> from symctl.design.augment import same_dt
-    >>> plant = DiscretePlant([[0.5]], [[1]], dt=sp.Rational(1, 100))
-    >>> same_dt(plant, sp.Float(0.01), "R")
-    >>> same_dt(plant, sp.Float(0.1), "R")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: R: the plant is sampled with Ts = 1/100, the controller with dt = 0.1...
-    """
+    """Refuse ``argname`` (ParameterError) when the plant's ``dt`` and that of ``of`` differ
+    (``None`` fits any)."""
     try:
         common_dt(plant.dt, dt, argname)
     except ParameterError:
@@ -119,10 +80,8 @@ class AugmentedSystem(LatexMixin):
     plant : DiscretePlant
     sensor_delay, actuator_delay, T : int
         The delays in steps and their sum.
-    A, B, Q : sympy.ImmutableMatrix
-        :math:`\tilde A`, :math:`\tilde B`, :math:`\tilde Q` (for ``T = 0``: ``Q``).
-    Q_plant, R : sympy.ImmutableMatrix
-        The plant's state and input penalties.
+    A, B, Q, Q_plant, R : sympy.ImmutableMatrix
+        :math:`\tilde A`, :math:`\tilde B`, :math:`\tilde Q`, and the plant's penalties.
     state_names : tuple of str
         Names of the entries of :math:`\chi`.
 
@@ -206,11 +165,9 @@ def augment(
     ------
     ParameterError
         Negative delays or ``T > MAX_DELAY``; numeric ``Q`` or ``R`` not symmetric PSD or
-        with an entry above 1e100; more than ``MAX_STATES`` (1000) augmented states.
-    SymctlTypeError
-        Non-integer delays.
-    DimensionError
-        ``Q`` or ``R`` of the wrong shape.
+        above 1e100; more than ``MAX_STATES`` (1000) augmented states.
+    SymctlTypeError, DimensionError
+        Non-integer delays; ``Q`` or ``R`` of the wrong shape.
 
     Examples
     --------
@@ -273,12 +230,7 @@ def augment(
 
 
 def chain_names(T: int, m: int) -> tuple[str, ...]:
-    """The delay chain's names, ``gamma_1 .. gamma_{T-1}, delta_r`` (``[i]`` per input; none at T = 0).
-
-    >>> from symctl.design.augment import chain_names
-    >>> chain_names(2, 1), chain_names(1, 2), chain_names(0, 1)
-    (('gamma_1', 'delta_r'), ('delta_r[1]', 'delta_r[2]'), ())
-    """
+    """The delay chain's names, ``gamma_1 .. gamma_{T-1}, delta_r`` (``[i]`` per input; none at T = 0)."""
     if T < 1:
         return ()
     base = [f"gamma_{k}" for k in range(1, T)] + ["delta_r"]

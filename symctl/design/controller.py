@@ -67,10 +67,8 @@ def controller_tf(source, gains: Gains | None = None) -> DiscreteTF:
 
     Raises
     ------
-    SymctlTypeError
-        ``source`` or ``gains`` of another type.
-    ParameterError
-        ``source`` an integer outside ``[0, MAX_DELAY]``.
+    SymctlTypeError, ParameterError
+        ``source`` or ``gains`` of another type; an integer ``source`` outside ``[0, MAX_DELAY]``.
 
     Examples
     --------
@@ -122,7 +120,7 @@ def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF
     if s is not None and (s.T, s.m, s.n) == (T, m, n):  # numbers: exact, rounded once
         vals = [np.asarray(b, dtype=float).reshape(m, -1) for b in gains.blocks]
         D = _chain(T, m, lambda k, i, j: sp.Float(float(vals[k][i, j])))
-        K0 = _filled(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
+        K0 = sp.Matrix(m, n, lambda i, j: sp.Float(float(vals[0][i, j])))
         return MatrixFractionTF(D, K0, dt).expanded()
     G = MatrixFractionTF(_chain(T, m, lambda k, i, j: blocks[k][i, j]), blocks[0], dt)
     if G.relative_degree != T:
@@ -130,15 +128,6 @@ def _mimo(blocks, gains: Gains | None, T: int, m: int, n: int, dt) -> DiscreteTF
     if G.terms_bound() <= MAX_EXPANDED_TERMS:
         G = G.expanded()
     return G if gains is None else G.subs(gains.substitutions())
-
-
-def _filled(rows: int, cols: int, entry) -> sp.Matrix:
-    """A matrix of SymPy numbers or ring results (never text: no sympify on the way)."""
-    out = sp.zeros(rows, cols)
-    for i in range(rows):
-        for j in range(cols):
-            out[i, j] = entry(i, j)
-    return out
 
 
 _RING_METHOD = (
@@ -162,6 +151,17 @@ def _ring_of(K) -> tuple[object, object]:
     return R, convert
 
 
+def _mat(convert, M) -> list[list]:
+    return [[convert(e) for e in M.row(i)] for i in range(M.rows)]
+
+
+def _mul(R, X, Y) -> list[list]:
+    return [
+        [sum((a * Y[k][j] for k, a in enumerate(row) if a), R.zero) for j in range(len(Y[0]))]
+        for row in X
+    ]
+
+
 def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str, str] | None:
     """``(holds, evidence, method)`` of the module's identities in ``QQ[z, K]`` (None: not there)."""
     T, m, n = system.T, system.m, system.n
@@ -170,20 +170,17 @@ def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str
     blocks = gain_matrix_symbols(T, m, n)
     R, convert = _ring_of(K)
     zz = R.gens[0]
-
-    def rows(mat):
-        return [[convert(e) for e in mat.row(i)] for i in range(mat.rows)]
-
     try:
         Fr = {
             (i, j): convert(F[i, j]) for i in range(F.rows) for j in range(F.cols) if F[i, j] != 0
         }
-        Hr, Br = rows(H), rows(B_c)
-        D, K0 = rows(_chain(T, m, lambda k, i, j: blocks[k][i, j])), rows(blocks[0])
+        Hr, Br = _mat(convert, H), _mat(convert, B_c)
+        D = _mat(convert, _chain(T, m, lambda k, i, j: blocks[k][i, j]))
+        K0 = _mat(convert, blocks[0])
         if isinstance(G, MatrixFractionTF):
-            D_G, N_G = rows(G.D), rows(G.N)
+            D_G, N_G = _mat(convert, G.D), _mat(convert, G.N)
         else:
-            N_G, d_G = rows(G.num_matrix), convert(G.den)
+            N_G, d_G = _mat(convert, G.num_matrix), convert(G.den)
     except (NotRational, KeyError):
         return None
 
@@ -230,25 +227,10 @@ def _prove_in_ring(system: AugmentedSystem, G: DiscreteTF, K) -> tuple[bool, str
 
 
 def ifp_state_space(A, B, K, n: int, m: int, T: int):
-    r"""``(F, H, M, N)`` of the IFP controller, read off the augmented matrices.
-
-    State :math:`[\gamma_1; \dots; \gamma_{T-1}; \delta_r]`, input :math:`x`, output
-    :math:`\delta_r`: :math:`F = \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde
-    B_c K_0`, :math:`M = [0 \dots 0\ I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`), for
-    SymPy matrices and NumPy arrays alike (``M``, ``N`` integer arrays).
-
-    >>> import sympy as sp
-    >>> from symctl import MuscleModel, augment
-    >>> from symctl.design.controller import ifp_state_space
-    >>> from symctl.symbols import gain_matrix_symbols
-    >>> s = augment(MuscleModel(), 1, 1)
-    >>> K = sp.Matrix.hstack(*gain_matrix_symbols(s.T, s.m, s.n))
-    >>> F, H, M, N = ifp_state_space(s.A, s.B, K, s.n, s.m, s.T)
-    >>> F, H.T, M
-    (Matrix([
-    [K_1, K_2],
-    [  1,   0]]), Matrix([[K_0, 0]]), array([[0, 1]]))
-    """
+    r"""``(F, H, M, N)`` of the IFP controller read off the augmented matrices: state
+    :math:`[\gamma_1; \dots; \delta_r]`, input :math:`x`, output :math:`\delta_r`; :math:`F =
+    \tilde A_c + \tilde B_c [K_1 \dots K_T]`, :math:`H = \tilde B_c K_0`, :math:`M = [0 \dots 0\
+    I]`, :math:`N = 0` (:math:`T = 0`: :math:`N = K_0`). SymPy or NumPy (``M``, ``N`` integer)."""
     if T == 0:
         return np.zeros((0, 0)), np.zeros((0, n)), np.zeros((m, 0)), K
     A_c, B_c = A[n:, n:], B[n:, :]
@@ -263,8 +245,7 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
     r"""Prove that ``G`` (default: :func:`controller_tf`) is the controller of ``system``.
 
     Scalar plant: :math:`(zI - F_c) W = H_c d_G` and :math:`M_c W = N_G`, :math:`W =
-    [z^{T-1}; \dots; 1] N_G`; several inputs: the module's identities in
-    :math:`\mathbb{Q}[z, K]`.
+    [z^{T-1}; \dots; 1] N_G`; several inputs: the module's identities in :math:`\mathbb{Q}[z, K]`.
 
     Parameters
     ----------
@@ -278,10 +259,8 @@ def prove_controller_tf(system: AugmentedSystem, G: DiscreteTF | None = None) ->
 
     Raises
     ------
-    SymctlTypeError
-        ``system`` or ``G`` of another type.
-    ParameterError
-        ``G`` a left fraction with another ``D`` too large to expand.
+    SymctlTypeError, ParameterError
+        ``system`` or ``G`` of another type; a left fraction with another ``D`` too large to expand.
 
     Examples
     --------

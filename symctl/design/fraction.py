@@ -16,14 +16,13 @@ from symctl._util.display import descending_latex, descending_str
 from symctl._util.exact import RingFractions, fold, z_degree, z_poly
 from symctl._util.validate import (
     MAX_EXPANDED_TERMS,
-    MAX_STEPS,
     bounded_int,
     finite_expr,
     sampling_time,
     subs_rule,
     to_expr,
 )
-from symctl.design.tf import DiscreteTF, _natural_key, _replaced
+from symctl.design.tf import DiscreteTF, _natural_key, _replaced, _z_coeffs
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
@@ -31,9 +30,8 @@ __all__ = ["MatrixFractionTF"]
 
 
 def _adj_det(D: list[list], zero, signed: bool = True) -> tuple[list[list], object]:
-    """Adjugate and determinant over a polynomial ring by memoized Laplace minors, no division;
-    ``signed=False`` gives permanents (term-count bounds).
-    """
+    """Adjugate and determinant by memoized Laplace minors, no division (``signed=False``:
+    permanents, for term-count bounds)."""
     m = len(D)
     memo: dict[tuple[tuple, tuple], object] = {}
 
@@ -82,21 +80,16 @@ class MatrixFractionTF(DiscreteTF):
 
     Parameters
     ----------
-    D : sympy Matrix
-        Square ``m x m``, polynomial in ``z``, monic.
-    N : sympy Matrix
-        ``m x p``, polynomial in ``z``.
+    D, N : sympy Matrix
+        ``m x m`` monic and ``m x p``, polynomial in ``z``.
     dt : number, symbol or None
         Sampling time.
 
     Raises
     ------
-    SymctlTypeError
-        ``D`` or ``N`` not a sympy Matrix.
-    DimensionError
-        ``D`` not square, or ``N`` without ``D``'s number of rows.
-    ParameterError
-        An entry not polynomial in ``z``, or ``D`` not monic.
+    SymctlTypeError, DimensionError, ParameterError
+        ``D`` or ``N`` not a sympy Matrix; ``D`` not square or ``N`` without its rows; an entry
+        not polynomial in ``z``, or ``D`` not monic.
 
     Examples
     --------
@@ -189,20 +182,9 @@ class MatrixFractionTF(DiscreteTF):
 
     def expanded(self, max_terms: int = MAX_EXPANDED_TERMS) -> DiscreteTF:
         r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF`, fraction-free over
-        :math:`\mathbb{Q}` (floats taken exactly, rounded once at the end).
+        :math:`\mathbb{Q}` (floats taken exactly, rounded once at the end); a ParameterError when
+        symbols remain and :meth:`terms_bound` exceeds ``max_terms``.
 
-        Parameters
-        ----------
-        max_terms : int
-            Refuse when :meth:`terms_bound` exceeds it and symbols remain.
-
-        Raises
-        ------
-        ParameterError
-            The bound of a symbolic fraction exceeds ``max_terms``.
-
-        Examples
-        --------
         >>> import sympy as sp
         >>> from symctl import z
         >>> from symctl.design.fraction import MatrixFractionTF
@@ -267,32 +249,9 @@ class MatrixFractionTF(DiscreteTF):
 
     __rmul__ = __mul__
 
-    def markov(self, count: int) -> list[sp.Matrix]:
-        r"""Markov parameters from :math:`D(z) G(z) = N(z)`, unexpanded: with :math:`D = \sum_i D_i
-        z^{d-i}`, :math:`h_j = N_{[d-j]} - \sum_{i=1}^{\min(j,d)} D_i h_{j-i}`.
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> [h[0, 0] for h in MatrixFractionTF(sp.Matrix([[z - 2]]), sp.eye(1)).markov(4)]
-        [0, 1, 2, 4]
-        """
-        count = bounded_int(count, "count", 0, MAX_STEPS)
-        if self.relative_degree < 0:
-            raise ParameterError("G: improper transfer function has no Markov expansion")
-        d = self._degree
-
-        def coeffs(M, power):
-            return M.applyfunc(lambda e: z_poly(e).coeff(power) if power >= 0 else 0)
-
-        Di = [coeffs(self._D, d - i) for i in range(d + 1)]
-        h: list[sp.Matrix] = []
-        for j in range(count):
-            acc = coeffs(self._N, d - j).as_mutable()
-            for i in range(1, min(j, d) + 1):
-                acc = acc - Di[i] * h[j - i]
-            h.append(acc.applyfunc(sp.expand))
-        return h
+    def _fraction(self) -> tuple[list, sp.MatrixBase, int]:
+        d = self._degree  # D(z) G = N(z), D = sum_i D_i z^(d-i): Markov parameters unexpanded
+        return [_z_coeffs(self._D, d - i) for i in range(d + 1)], self._N, d
 
     def latex(self) -> str:
         r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.

@@ -57,19 +57,11 @@ augmented filter's :math:`\tilde A - \tilde L \tilde C` adds :math:`Tm` poles at
 :math:`K_0 (I - MC)` and :math:`Q` gains :math:`\varphi K_0 M`, the relative degree is
 :math:`T`, and the proof is the same with :math:`M W + N \varphi d_G = \varphi N_G`.
 
-**The full-state limit.** With :math:`C = I` and :math:`V \to 0` (a noise-free sensor,
-equivalently :math:`W/V \to \infty`), :math:`M \to I` and :math:`L \to A`. The current form
-then tends to the full-state controller :math:`G_0 = D^{-1} K_0` itself (:math:`\hat x(t|t) = y(t)`; the error
-is of order :math:`V`). The predictor form tends to :math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A`:
-:math:`G_0` acting on the one-step prediction :math:`A x(t-1) + B \delta_r(t-1)`, which equals
-:math:`x(t)`, so its loop tends to the LQR's (poles of :math:`\tilde A + \tilde B K` and
-:math:`n` at 0) though the transfer functions differ. :math:`W \to 0` is the other limit: the
-filter trusts the model and, for a stable plant, :math:`L \to 0` and :math:`G \to 0`.
-
-``kalman_gains`` is a function of its own, beside :func:`~symctl.design.lqr.lqr_gains`,
-rather than arguments of :func:`~symctl.design.augment.augment`: the augmented system is
-the plant and its delays, the cost and the noise are two designs on it, and the full-state
-path (every existing caller) stays as it is.
+**Limits.** With :math:`C = I` and :math:`V \to 0`, :math:`M \to I` and :math:`L \to A`: the
+current form tends to the full-state :math:`G_0 = D^{-1} K_0`, the predictor form to
+:math:`(I - z^{-1} G_0 B)^{-1} z^{-1} G_0 A` (:math:`G_0` on the one-step prediction of
+:math:`x(t)`; the LQR's loop poles and :math:`n` at 0). With :math:`W \to 0` and a stable
+plant, :math:`L \to 0` and :math:`G \to 0`.
 """
 
 from __future__ import annotations
@@ -92,9 +84,9 @@ from symctl._util.validate import (
     to_matrix,
 )
 from symctl.design.augment import AugmentedSystem
-from symctl.design.controller import _chain, _ring_of
+from symctl.design.controller import _chain, _mat, _mul, _ring_of
 from symctl.design.fraction import MatrixFractionTF, _adj_det
-from symctl.design.lqr import Gains, _pbh_defect
+from symctl.design.lqr import Gains, _pbh_defect, sorted_poles
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.proof import Proof
@@ -105,9 +97,7 @@ __all__ = ["KalmanGains", "kalman_gains", "lqg_state_space", "lqg_tf", "prove_lq
 
 @dataclass(frozen=True, eq=False)
 class KalmanGains(ArrayValue, DictMixin, LatexMixin):
-    r"""The stationary delayed Kalman filter (predictor form) of :func:`kalman_gains`.
-
-    Read-only arrays; compares and hashes by value.
+    r"""The stationary delayed Kalman filter (predictor form) of :func:`kalman_gains` (a value).
 
     Attributes
     ----------
@@ -193,13 +183,12 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
     Parameters
     ----------
     system : AugmentedSystem
-        From :func:`symctl.augment`, with numbers.
+        Numeric.
     C : matrix-like, optional
-        Output matrix ``p x n`` of :math:`y = C x + v`; identity (every state) by default.
-    W : matrix-like, optional
-        Process noise covariance on the states, ``n x n`` symmetric PSD; identity by default.
-    V : matrix-like, optional
-        Sensor noise covariance, ``p x p`` symmetric positive definite; identity by default.
+        Output matrix ``p x n`` of :math:`y = C x + v` (default: the identity).
+    W, V : matrix-like, optional
+        Process (``n x n``, PSD) and sensor (``p x p``, positive definite) noise covariances
+        (default: identities).
     motor : matrix-like, optional
         Motor noise covariance on the inputs, ``m x m`` PSD; adds :math:`B W_u B^\top` to ``W``.
 
@@ -215,8 +204,7 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
         ``C``, ``W``, ``V`` or ``motor`` of the wrong shape.
     ParameterError
         Free symbols; ``W``, ``V`` or ``motor`` not symmetric PSD; ``V`` singular; a mode
-        with :math:`|\lambda| \ge 1` no output sees (PBH test, naming ``C``); no stabilizing
-        DARE solution (a marginal mode the noise never excites, naming ``W``).
+        with :math:`|\lambda| \ge 1` no output sees (``C``); no stabilizing DARE solution (``W``).
 
     Examples
     --------
@@ -271,36 +259,17 @@ def kalman_gains(system: AugmentedSystem, C=None, W=None, V=None, *, motor=None)
         ) from None
     M[n:] = 0.0  # exactly zero in theory (module notes); remove the solver's rounding
     L = A @ M
-    poles = np.linalg.eigvals(A - L @ Ct)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(A - L @ Ct)
     if not np.all(np.abs(poles) < 1):
         raise ParameterError(f"W, V: the filter does not converge (poles {poles})")
     return KalmanGains(system, Cm, Wn, Vn, L, M, P, poles)
 
 
 def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predictor"):
-    r"""``(F, H, M, N)`` of the LQG compensator from ``y`` (at the sensor) to :math:`\delta_r`.
-
-    State :math:`\hat\chi`. Predictor form (``L`` the plant rows of :math:`\tilde L`):
-    :math:`F = \tilde A + \tilde B K - \tilde L \tilde C`, :math:`H = \tilde L`; current form
-    (``L`` the plant rows of :math:`\tilde M`, acting on :math:`\hat\chi(t|t) = \hat\chi +
-    \tilde M (y - \tilde C \hat\chi)`): :math:`F = (\tilde A + \tilde B K)(I - \tilde M
-    \tilde C)`, :math:`H = (\tilde A + \tilde B K) \tilde M`. :math:`M = [0 \dots 0\ I]`,
-    :math:`N = 0` (:math:`T = 0`: the command :math:`K \hat\chi`, or :math:`K \hat\chi(t|t)`).
-    ``A``, ``B`` are the augmented matrices, ``C`` the plant's (``p x n``), ``K`` the gain row
-    ``[K_0 ... K_T]``; SymPy matrices and NumPy arrays alike.
-
-    >>> import sympy as sp
-    >>> from symctl import MuscleModel, augment
-    >>> from symctl.design.kalman import lqg_state_space
-    >>> from symctl.symbols import gain_matrix_symbols, observer_gain_symbols
-    >>> s = augment(MuscleModel(), 1, 1)
-    >>> K = sp.Matrix.hstack(*gain_matrix_symbols(s.T, s.m, s.n))
-    >>> F, H, M, N = lqg_state_space(s.A, s.B, sp.Matrix([[1]]), K, observer_gain_symbols(1, 1),
-    ...                              1, 1, 2)
-    >>> F[:, 0].T, H.T, M
-    (Matrix([[-L_1 + exp(-1/2), K_0, 0]]), Matrix([[L_1, 0, 0]]), Matrix([[0, 0, 1]]))
-    """
+    r"""``(F, H, M, N)`` of the LQG compensator from ``y`` (at the sensor) to :math:`\delta_r`
+    (module notes), state :math:`\hat\chi`; ``L`` the plant rows of :math:`\tilde L` (predictor)
+    or :math:`\tilde M` (current). ``A``, ``B`` augmented, ``C`` the plant's, ``K`` the gain row;
+    SymPy matrices and NumPy arrays alike."""
     symbolic = isinstance(A, sp.MatrixBase)
     zeros = sp.zeros if symbolic else (lambda r, c: np.zeros((r, c)))
     eye = sp.eye if symbolic else np.eye
@@ -327,8 +296,8 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
 
 
 def _check_design(system, C, gains, kalman, *, required: bool = False):
-    """``C`` as a matrix (default: the filter's), ``gains`` and ``kalman`` checked to be designs
-    on ``system`` that measure it (each may be None unless ``required``)."""
+    """``C`` as a matrix (default: the filter's), ``gains`` and ``kalman`` (None unless
+    ``required``) checked to be designs on ``system`` that measure it."""
     for value, name, kind in ((gains, "gains", Gains), (kalman, "kalman", KalmanGains)):
         if value is None and not required:
             continue
@@ -351,9 +320,8 @@ def _design_values(system, Cm, gains, kalman, form: str) -> dict:
 
 
 def _setup(system: AugmentedSystem, Cm, form: str, values: dict | None = None):
-    """The ring, its converter, the plant map, the symbols ``K`` and the filter gain's (or their
-    exact ``values``), the predictor gain :math:`L` (``A M`` in the current form), and
-    ``adj Phi``, ``det Phi``."""
+    """The ring, converter and plant map, the gains ``K`` and the filter's (symbols or ``values``),
+    the predictor gain (``A M`` in the current form), ``adj Phi`` and ``det Phi``."""
     K = sp.Matrix.hstack(*gain_matrix_symbols(system.T, system.m, system.n))
     gain = sp.Matrix(observer_gain_symbols(system.n, Cm.rows, _FORMS[_form(form)]))
     if values:
@@ -366,8 +334,8 @@ def _setup(system: AugmentedSystem, Cm, form: str, values: dict | None = None):
 
 
 def _ring(system: AugmentedSystem, Cm, K, L):
-    """``QQ[z, K, L, plant symbols]``, its converter, and a map that makes the plant's matrices
-    convertible (floats for entries such as ``exp(-1/2)`` in a plant without symbols)."""
+    """``QQ[z, K, L, plant symbols]``, its converter, and a map making the plant convertible
+    (floats for entries such as ``exp(-1/2)`` in a plant without symbols)."""
     parts = (system.plant.A, system.plant.B, Cm)
     plant = sorted(set().union(*(M.free_symbols for M in parts)), key=str)
     R, convert = _ring_of([*(s for s in (*K, *L) if s.is_Symbol), *plant])
@@ -382,17 +350,6 @@ def _ring(system: AugmentedSystem, Cm, K, L):
             ) from None
         return R, convert, lambda M: sp.Matrix(M).evalf()
     return R, convert, sp.Matrix
-
-
-def _mat(convert, M) -> list[list]:
-    return [[convert(e) for e in M.row(i)] for i in range(M.rows)]
-
-
-def _mul(R, X, Y) -> list[list]:
-    return [
-        [sum((a * Y[k][j] for k, a in enumerate(row) if a), R.zero) for j in range(len(Y[0]))]
-        for row in X
-    ]
 
 
 def _observer(R, convert, A, C, L, n: int):
@@ -419,22 +376,18 @@ def lqg_tf(
         The plant (numbers, or symbols it is rational in) with its delays.
     C : matrix-like, optional
         Output matrix ``p x n``; default ``kalman.C``, else the identity.
-    gains : Gains, optional
-        Substitute these LQR gains for :math:`K_0 \dots K_T`.
-    kalman : KalmanGains, optional
-        Substitute this filter's gain for its symbols.
+    gains, kalman : Gains and KalmanGains, optional
+        Substitute these gains for :math:`K_0 \dots K_T` and the filter's symbols.
     form : {"predictor", "current"}
-        The predictor form (symbols :math:`L`; the command uses :math:`y` up to the previous
-        step) or the current (filter) form (symbols :math:`M`; the command uses
-        :math:`\hat\chi(t|t)`, with :math:`y(t)`).
+        The command uses :math:`y` up to the previous step (symbols :math:`L`), or
+        :math:`\hat\chi(t|t)` with :math:`y(t)` (symbols :math:`M`).
 
     Returns
     -------
     DiscreteTF
-        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1` (current form:
-        :math:`T`); for several
-        inputs with symbols left, the :class:`~symctl.design.fraction.MatrixFractionTF`
-        :math:`P^{-1} Q`.
+        ``m x p``, order :math:`n + Tm`, relative degree at least :math:`T + 1` (current:
+        :math:`T`); a :class:`~symctl.design.fraction.MatrixFractionTF` for several inputs
+        with symbols left.
 
     Raises
     ------
@@ -502,11 +455,9 @@ def prove_lqg_tf(
     r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
 
     The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
-    N_G` of the module notes, with :math:`(F, H, M, N)` of :func:`lqg_state_space` and the gains
-    symbolic, checked exactly in :math:`\mathbb{Q}[z, K, L]`; a left fraction is expanded first.
-    With ``gains`` and ``kalman`` the gains are their values (the floats' exact rationals) and
-    the identities are checked in :math:`\mathbb{Q}[z]`: a proof for this design, where the
-    symbolic one is too large (a plant with several inputs).
+    N_G` of the module notes, checked exactly in :math:`\mathbb{Q}[z, K, L]`; with ``gains`` and
+    ``kalman``, in :math:`\mathbb{Q}[z]` at their exact values (where the symbolic proof is too
+    large). A left fraction is expanded first.
 
     Parameters
     ----------
@@ -514,9 +465,9 @@ def prove_lqg_tf(
     C : matrix-like, optional
         Output matrix (default: the identity).
     G : DiscreteTF, optional
-        The candidate, ``m x p`` with symbols :math:`K` and :math:`L` (or :math:`M`).
+        The candidate, ``m x p`` in :math:`K` and :math:`L` (or :math:`M`).
     form : {"predictor", "current"}
-        The compensator's form (:func:`lqg_tf`).
+        As in :func:`lqg_tf`.
     gains, kalman : Gains and KalmanGains, optional
         The design whose exact gains replace the symbols (both or neither).
 

@@ -46,10 +46,8 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
     Attributes
     ----------
     system : AugmentedSystem
-    K : numpy.ndarray
-        ``m x (n + T m)``.
-    X : numpy.ndarray
-        Stabilizing DARE solution of the equivalent problem.
+    K, X : numpy.ndarray
+        The ``m x (n + T m)`` gain; the stabilizing DARE solution of the equivalent problem.
     poles : numpy.ndarray
         Eigenvalues of :math:`\tilde A + \tilde B K`, by decreasing modulus.
 
@@ -96,6 +94,12 @@ class Gains(ArrayValue, DictMixin, LatexMixin):
         return rf"K = {latex(sp.Matrix(self.K).evalf(6))}"
 
 
+def sorted_poles(M: np.ndarray) -> np.ndarray:
+    """The eigenvalues of ``M`` by decreasing modulus."""
+    poles = np.linalg.eigvals(M)
+    return poles[np.argsort(-np.abs(poles), kind="stable")]
+
+
 def _pbh_defect(A: np.ndarray, other: np.ndarray, *, stack: str) -> complex | None:
     """An eigenvalue with ``|lambda| >= 1`` that fails the PBH rank test, or None."""
     n = A.shape[0]
@@ -127,10 +131,9 @@ def lqr_gains(system: AugmentedSystem, Q=None, R=None) -> Gains:
 
     Raises
     ------
-    SymctlTypeError
-        ``system`` is not an AugmentedSystem.
-    ParameterError
-        Free symbols, Q/R not symmetric PSD, an entry above 1e100, an overflow.
+    SymctlTypeError, ParameterError
+        ``system`` not an AugmentedSystem; free symbols, Q/R not symmetric PSD or above 1e100,
+        an overflow.
     NotStabilizableError
         Not stabilizable or detectable; no stabilizing DARE solution or unique gain.
 
@@ -199,8 +202,7 @@ def _solve(system: AugmentedSystem, A, B, Qp, Rm) -> Gains:
             "Q, R: the DARE solution is not finite; the problem is badly scaled "
             f"(Q up to {np.max(np.abs(Qp)):g}, R up to {np.max(np.abs(Rm)):g})"
         )
-    poles = np.linalg.eigvals(A + B @ K)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(A + B @ K)
     if not np.all(np.abs(poles) < 1):
         raise NotStabilizableError(
             f"plant: the DARE solution does not stabilize the loop (poles {poles}); check Q and R"

@@ -27,24 +27,13 @@ __all__ = ["MAX_MODEL_STATES", "ODEModel", "exact_value", "parameter_symbol", "s
 
 MAX_MODEL_STATES = 20
 """Most states (and most inputs) of an :class:`ODEModel`: the Jacobians are symbolic."""
-
-ROOT_STARTS = 12
-"""Starts of the numeric equilibrium search when no ``guess`` is given."""
-
-ROOT_TOL = 1e-9
-"""Residual below which a numeric equilibrium counts as one (relative to the scale of f)."""
+ROOT_STARTS = 12  # of the numeric equilibrium search without a guess
+ROOT_TOL = 1e-9  # residual, relative to the scale of f, of a numeric equilibrium
 
 
 def exact_value(value, argname: str) -> sp.Expr:
-    """A parameter value as an exact SymPy number: the rational of a float's shortest decimal
-    (0.1 -> 1/10); a SymPy number stays. Refuses non-finite values and ``|value| > 1e100``.
-
-    Examples
-    --------
-    >>> from symctl.design.ode import exact_value
-    >>> exact_value(0.5, "tau"), exact_value(3, "n")
-    (1/2, 3)
-    """
+    """A parameter value as an exact SymPy number: a float as its shortest decimal's rational
+    (0.1 -> 1/10); refuses non-finite values and ``|value| > 1e100``."""
     if isinstance(value, sp.Basic):
         if not (value.is_number and value.is_real and value.is_finite):
             raise ParameterError(f"{argname}: expected a finite real number, got {value}")
@@ -59,12 +48,7 @@ def exact_value(value, argname: str) -> sp.Expr:
 
 
 def parameter_symbol(name: str, value) -> sp.Symbol:
-    """The symbol of a parameter: positive when its value is (closed forms simplify), else real.
-
-    >>> from symctl.design.ode import parameter_symbol
-    >>> parameter_symbol("tau", 0.02).is_positive, parameter_symbol("c", -1).is_real
-    (True, True)
-    """
+    """The symbol of a parameter: positive when its value is (closed forms simplify), else real."""
     return sp.Symbol(name, positive=True) if value > 0 else sp.Symbol(name, real=True)
 
 
@@ -80,6 +64,7 @@ def _symbols(values, argname: str) -> tuple[sp.Symbol, ...]:
 
 
 def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
+    """``n`` SymPy values or numbers naming only ``names`` (text is refused)."""
     if isinstance(values, str) or not isinstance(values, Sequence | sp.MatrixBase):
         raise SymctlTypeError(f"{argname}: expected a sequence of {n} expressions, got {values!r}")
     items = list(values)
@@ -103,9 +88,7 @@ def _vector(values, n: int, argname: str, names: dict) -> sp.ImmutableMatrix:
     return sp.ImmutableMatrix(out)
 
 
-SYMBOLIC_MAX_DENOMINATOR = 10_000
-"""Largest denominator of a rational in :math:`a` for a closed-form ZOH (SymPy's ``factor``
-expands :math:`e^{T_s/q}` to degree :math:`q`); beyond, the plant is discretized in numbers."""
+SYMBOLIC_MAX_DENOMINATOR = 10_000  # of a rational in a for a closed-form ZOH (factor hangs)
 
 
 def _small_rationals(M: sp.MatrixBase) -> bool:
@@ -123,41 +106,15 @@ def _affine(rhs: sp.MatrixBase, states) -> bool:
 def solve_equilibrium(
     rhs, states, inputs, u_eq, values: Mapping, *, guess=None, argname: str = "equilibrium"
 ) -> tuple[sp.ImmutableMatrix, str]:
-    r"""The states :math:`\bar x` with :math:`f(\bar x, \bar u) = 0`, and how they were found:
-    exactly when :math:`f` is affine in the states, by exact real-root isolation for one
-    polynomial state (degree up to 12), else numerically (refusing none and several).
+    r"""``(x_eq, method)``: the states with :math:`f(\bar x, \bar u) = 0` (``values`` the
+    parameters'), exactly when :math:`f` is affine in the states, by exact real-root isolation
+    for one polynomial state (degree up to 12), else numerically from ``guess`` or seeded
+    starts; a ParameterError naming ``argname`` when there is none, or several.
 
-    Parameters
-    ----------
-    rhs : sympy Matrix (n x 1)
-        :math:`f(x, u)` in the state, input and parameter symbols.
-    states, inputs : sequence of sympy.Symbol
-    u_eq : sympy Matrix (m x 1)
-        The inputs at the equilibrium (may hold parameter symbols).
-    values : mapping of sympy.Symbol to number
-        The parameter values.
-    guess : sequence of float, optional
-        Start of the numeric search.
-    argname : str
-        Named in errors.
-
-    Returns
-    -------
-    (sympy.ImmutableMatrix, str)
-        :math:`\bar x` (symbolic in the parameters when exact), and the method.
-
-    Raises
-    ------
-    ParameterError
-        No equilibrium, or several (listed; give ``equilibrium`` values or a ``guess``).
-
-    Examples
-    --------
     >>> import sympy as sp
     >>> from symctl.design.ode import solve_equilibrium
     >>> x, u, k = sp.symbols("x u k", real=True)
-    >>> xe, how = solve_equilibrium(sp.Matrix([-k * x + u]), [x], [u], sp.Matrix([2]), {k: 4})
-    >>> xe, how
+    >>> solve_equilibrium(sp.Matrix([-k * x + u]), [x], [u], sp.Matrix([2]), {k: 4})
     (Matrix([[2/k]]), 'exact (affine in the states)')
     """
     states, inputs = list(_symbols(states, "states")), list(_symbols(inputs, "inputs"))
@@ -186,12 +143,11 @@ def solve_equilibrium(
     return _numeric_equilibrium(f, states, values, guess, argname)
 
 
-MAX_EXACT_DEGREE = 12
-"""Largest degree of a one-state polynomial equilibrium found exactly (real roots, SymPy)."""
+MAX_EXACT_DEGREE = 12  # of a one-state polynomial equilibrium found exactly
 
 
 def _polynomial_equilibrium(f: sp.Expr, x: sp.Symbol, argname: str):
-    """The unique real root of a polynomial f(x), exactly isolated, or None if f is not one."""
+    """The unique real root of a polynomial f(x), exactly isolated; None if f is not one."""
     num, den = sp.fraction(sp.cancel(sp.together(f)))  # no common factor: num's roots are f's
     try:
         poly = sp.Poly(num, x, domain="QQ")
@@ -277,10 +233,8 @@ def _numeric_equilibrium(f, states, values, guess, argname):
 
 @dataclass(frozen=True, eq=False)
 class ODEModel(CachedState, LatexMixin):
-    r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point.
-
-    A parameter with a positive value is a positive symbol (so :math:`e^{-T_s/\tau}`
-    simplifies); the others, the states and the inputs are real.
+    r"""A continuous-time nonlinear plant :math:`\dot x = f(x, u; p)` with an operating point,
+    symbolic until :meth:`plant` substitutes the parameters exactly.
 
     Parameters
     ----------
@@ -309,8 +263,7 @@ class ODEModel(CachedState, LatexMixin):
     Raises
     ------
     ParameterError
-        Not an equilibrium (provably, or above 1e-9 of the scale), unknown names, no or
-        several equilibria.
+        Not an equilibrium (to 1e-9 of the scale), unknown names, no or several equilibria.
     DimensionError, SymctlTypeError
         Sizes or types that do not fit.
 
@@ -455,8 +408,6 @@ class ODEModel(CachedState, LatexMixin):
         """The paper's muscle (a :class:`~symctl.design.plant.MuscleModel`) as an ODEModel, in the
         symbols a model file gives.
 
-        Examples
-        --------
         >>> from symctl import MuscleModel
         >>> from symctl.design.ode import ODEModel
         >>> m = ODEModel.from_muscle(MuscleModel())

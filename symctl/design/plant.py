@@ -6,6 +6,7 @@ hold, gives eq. (system), :math:`\delta_f(t+1) = A \delta_f(t) + B \delta_r(t)`.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -44,10 +45,8 @@ class Linearization(LatexMixin):
 
     Attributes
     ----------
-    a, b : sympy.ImmutableMatrix
-        :math:`\partial f/\partial x` and :math:`\partial f/\partial u` at the point.
-    residual : sympy.ImmutableMatrix
-        :math:`f(x_{eq}, u_{eq})`, zero at an equilibrium.
+    a, b, residual : sympy.ImmutableMatrix
+        :math:`\partial f/\partial x`, :math:`\partial f/\partial u` and :math:`f` at the point.
 
     Examples
     --------
@@ -109,9 +108,9 @@ def linearize(f, x, u, x_eq, u_eq, *, check_equilibrium: bool = True) -> Lineari
         Right-hand side; text is read by the safe parser.
     x, u : sequence of symbols (or names)
     x_eq, u_eq : sequence of values
-        The operating point; may be symbolic.
+        The operating point, maybe symbolic; refused where provably :math:`f \ne 0` when
+        ``check_equilibrium``.
     check_equilibrium : bool
-        Refuse a point where provably :math:`f \ne 0`.
 
     Returns
     -------
@@ -170,14 +169,9 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
 
 @renamed_keywords(Ts="dt")
 def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
-    r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`.
-
-    .. math::
-        \exp\left(\begin{bmatrix} a & b \\ 0 & 0 \end{bmatrix} T_s\right)
-        = \begin{bmatrix} A & B \\ 0 & I \end{bmatrix},
-        \qquad A = e^{a T_s},\quad B = \int_0^{T_s} e^{a s}\,ds\; b,
-
-    in closed form for symbolic matrices, by :func:`scipy.linalg.expm` for numeric ones.
+    r"""Exact zero-order-hold discretization of :math:`\dot x = a x + b u`: :math:`A = e^{a T_s}`,
+    :math:`B = \int_0^{T_s} e^{a s}\,ds\; b`, read off the exponential of
+    :math:`[[a, b], [0, 0]] T_s`, in closed form for symbols, by :func:`scipy.linalg.expm` for numbers.
 
     Parameters
     ----------
@@ -193,8 +187,7 @@ def discretize(a, b, dt) -> tuple[sp.Matrix, sp.Matrix]:
     Raises
     ------
     DimensionError
-        Shapes that do not fit, over 1000 states, or a symbolic system of more than
-        ``MAX_SYMBOLIC_BLOCK`` (3) states plus inputs.
+        Shapes that do not fit, over 1000 states, or symbols with over 3 states plus inputs.
     ParameterError
         A numeric ``dt <= 0``, non-finite entries, an overflowing :math:`e^{a\,dt}`.
 
@@ -328,17 +321,12 @@ class DiscretePlant(LatexMixin):
         """A new plant with symbols substituted (as :meth:`sympy.Basic.subs`)."""
         parts = [m for m in (self.A, self.B, self.dt, self.x_eq, self.u_eq) if m is not None]
         rule, flags = subs_rule(args, kwargs, set().union(*(m.free_symbols for m in parts)))
-        ts = self.dt.subs(rule, **flags) if self.dt is not None else None
-        return DiscretePlant(
-            self.A.subs(rule, **flags),
-            self.B.subs(rule, **flags),
-            ts,
-            self.state_names,
-            self.input_names,
-            None if self.x_eq is None else self.x_eq.subs(rule, **flags),
-            None if self.u_eq is None else self.u_eq.subs(rule, **flags),
-            self.params,
-        )
+        changed = {
+            k: getattr(self, k).subs(rule, **flags)
+            for k in ("A", "B", "dt", "x_eq", "u_eq")
+            if getattr(self, k) is not None
+        }
+        return dataclasses.replace(self, **changed)
 
     def numeric(self) -> tuple[np.ndarray, np.ndarray]:
         """``(A, B)`` as float arrays; refuses free symbols."""
@@ -391,8 +379,7 @@ def _muscle_discrete() -> DiscretePlant:
 @dataclass(frozen=True)
 class MuscleModel(LatexMixin):
     r"""The paper's muscle, :math:`\dot f = f_\text{max}/(\tau(1+e^{-r})) - f/\tau`, linearized
-    about :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, symbolic until :meth:`plant`
-    substitutes the numbers exactly. ``Ts``: deprecated name of ``dt``.
+    about :math:`\bar f = f_\text{max}/(1+e^{-\bar r})`, exact until :meth:`plant` (``Ts``: ``dt``).
 
     Parameters
     ----------
@@ -407,11 +394,9 @@ class MuscleModel(LatexMixin):
 
     Raises
     ------
-    ParameterError
-        ``tau``, ``f_max``, ``dt`` not in ``[1e-100, 1e100]``, :math:`|\bar r| > 700`, or
-        :math:`T_s/\tau` outside :math:`[10^{-6}, 700]`.
-    SymctlTypeError
-        A parameter that is not a real number.
+    ParameterError, SymctlTypeError
+        ``tau``, ``f_max``, ``dt`` outside ``[1e-100, 1e100]``, :math:`|\bar r| > 700`,
+        :math:`T_s/\tau` outside :math:`[10^{-6}, 700]`; a parameter not a real number.
 
     Examples
     --------
@@ -469,9 +454,8 @@ class MuscleModel(LatexMixin):
 
     def plant(self) -> DiscretePlant:
         """The discrete plant at this model's numbers (exact)."""
-        p = self.discrete_symbolic().subs(self.values)
-        return DiscretePlant(
-            p.A, p.B, p.dt, p.state_names, p.input_names, p.x_eq, p.u_eq, self.as_dict()
+        return dataclasses.replace(
+            self.discrete_symbolic().subs(self.values), params=self.as_dict()
         )
 
     def as_dict(self) -> dict[str, float]:

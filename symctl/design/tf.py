@@ -31,7 +31,7 @@ from symctl._util.validate import (
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.symbols import z
 
-__all__ = ["DiscreteTF"]
+__all__ = ["DiscreteTF", "convertible"]
 
 _TEXT_NAMES = {"z": z}  # the names text for num/den may use (read by the safe parser)
 _LAMBDIFY_MODULES = ("numpy", "math", "mpmath", "scipy", "sympy")
@@ -49,6 +49,11 @@ def _lcm(a: sp.Expr, b: sp.Expr) -> sp.Expr:
     return b if a == 1 else sp.lcm(a, b)
 
 
+def _z_coeffs(M: sp.MatrixBase, power: int) -> sp.Matrix:
+    """The coefficients of ``z**power`` in the entries of ``M`` (zero below ``power = 0``)."""
+    return sp.Matrix(M.applyfunc(lambda e: z_poly(e).coeff(power) if power >= 0 else 0))
+
+
 def _replaced(expr, rule, flags: dict):
     """``expr.subs(rule, **flags)``; symbols to numbers by the same, far faster, ``xreplace``."""
     items = list(rule.items()) if isinstance(rule, dict) else list(rule)
@@ -62,6 +67,66 @@ def _replaced(expr, rule, flags: dict):
     return expr.subs(rule, **flags)
 
 
+class _Conversions:
+    """``to_*``/``from_*`` for python-control, ``sympy.physics.control`` and ``scipy.signal``,
+    each handed to :mod:`symctl.interop` (``tf_*`` for a transfer function, ``ss_*`` for a
+    realization)."""
+
+    def to_control(self):
+        """As a discrete python-control system, ``dt`` kept (``True`` when unknown; numbers only)."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_control")(self)
+
+    @classmethod
+    def from_control(cls, sys):
+        """From a discrete python-control system."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_control")(sys)
+
+    def to_sympy(self):
+        """As a ``sympy.physics.control`` system, exactly."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_sympy")(self)
+
+    @classmethod
+    def from_sympy(cls, sys, dt=None, *, var=None):
+        """From a ``sympy.physics.control`` system, exactly."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_sympy")(sys, dt, var=var)
+
+    def to_scipy(self):
+        """As a discrete ``scipy.signal`` system."""
+        from symctl import interop
+
+        return getattr(interop, f"{self._interop}_to_scipy")(self)
+
+    @classmethod
+    def from_scipy(cls, sys):
+        """From a discrete ``scipy.signal`` system."""
+        from symctl import interop
+
+        return getattr(interop, f"{cls._interop}_from_scipy")(sys)
+
+
+def convertible(kind: str):
+    """A class decorator: the ``to_*``/``from_*`` methods of :mod:`symctl.interop`'s ``{kind}_*``
+    conversions, in the class itself (so that its API page lists them)."""
+
+    def decorate(cls):
+        for name, member in vars(_Conversions).items():
+            if name.startswith(("to_", "from_")):
+                setattr(cls, name, member)
+        cls._interop = kind
+        return cls
+
+    return decorate
+
+
+@convertible("tf")
 @dataclass(frozen=True, eq=False)
 class DiscreteTF(LatexMixin):
     r"""A transfer function (or matrix) :math:`N(z)/d(z)` over one monic denominator in :data:`symctl.z`.
@@ -255,21 +320,21 @@ class DiscreteTF(LatexMixin):
         [0, 1, 2, 4]
         """
         count = bounded_int(count, "count", 0, MAX_STEPS)
-        d = self.order
         if self.relative_degree < 0:
             raise ParameterError("G: improper transfer function has no Markov expansion")
-        a = self.den_coeffs()
-        rows, cols = self.shape
-        b = [
-            sp.Matrix(rows, cols, lambda i, j, k=k: self._coeff(i, j, d - k)) for k in range(d + 1)
-        ]
+        a, num, d = self._fraction()
+        b = [_z_coeffs(num, d - k) for k in range(min(count, d + 1))]
         h: list[sp.Matrix] = []
-        for k in range(count):
-            acc = b[k] if k <= d else sp.zeros(rows, cols)
+        for k in range(count):  # d(z) G = N(z): h_k = b_k - sum_i a_i h_{k-i}
+            acc = b[k] if k <= d else sp.zeros(*self.shape)
             for i in range(1, min(k, d) + 1):
                 acc = acc - a[i] * h[k - i]
             h.append(acc.applyfunc(sp.expand))
         return h
+
+    def _fraction(self) -> tuple[list, sp.MatrixBase, int]:
+        r"""``(a, N, d)``: :math:`d(z) G = N(z)` with :math:`d = \sum_i a_i z^{d-i}`, ``a[0] = 1``."""
+        return self.den_coeffs(), self._num, self.order
 
     def _coeff(self, i: int, j: int, power: int) -> sp.Expr:
         return z_poly(self._num[i, j]).coeff(power) if power >= 0 else sp.Integer(0)
@@ -336,45 +401,6 @@ class DiscreteTF(LatexMixin):
             raise ParameterError("G: poles need numeric coefficients")
         coeffs = self._floats(self.den_coeffs(), complex, "poles need coefficients")
         return np.roots(coeffs)
-
-    def to_control(self):
-        """As a ``control.TransferFunction`` with ``dt`` kept (numbers only)."""
-        from symctl.interop import tf_to_control
-
-        return tf_to_control(self)
-
-    @classmethod
-    def from_control(cls, sys) -> DiscreteTF:
-        """From a ``control.TransferFunction`` (or anything python-control converts)."""
-        from symctl.interop import tf_from_control
-
-        return tf_from_control(sys)
-
-    def to_sympy(self):
-        """As a ``sympy.physics.control`` transfer function, exactly (:func:`symctl.interop.tf_to_sympy`)."""
-        from symctl.interop import tf_to_sympy
-
-        return tf_to_sympy(self)
-
-    @classmethod
-    def from_sympy(cls, sys, dt=None, *, var=None) -> DiscreteTF:
-        """From a ``sympy.physics.control`` system, exactly (:func:`symctl.interop.tf_from_sympy`)."""
-        from symctl.interop import tf_from_sympy
-
-        return tf_from_sympy(sys, dt, var=var)
-
-    def to_scipy(self):
-        """As a discrete ``scipy.signal.TransferFunction`` (:func:`symctl.interop.tf_to_scipy`)."""
-        from symctl.interop import tf_to_scipy
-
-        return tf_to_scipy(self)
-
-    @classmethod
-    def from_scipy(cls, sys) -> DiscreteTF:
-        """From a discrete ``scipy.signal`` system (:func:`symctl.interop.tf_from_scipy`)."""
-        from symctl.interop import tf_from_scipy
-
-        return tf_from_scipy(sys)
 
     def latex(self) -> str:
         r"""LaTeX in the paper's style: a constant factor pulled out, descending powers of z,

@@ -1,16 +1,15 @@
 r"""The similarity transform :math:`(P^{-1} F P,\ P^{-1} H,\ M P)`, fraction-free in python-flint.
 
-With :math:`P = P_n / d_P`: a **symbolic** :math:`P` by fraction-free Gauss-Jordan on
-:math:`[P_n \mid I]` (:math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}`, so
-:math:`P^{-1} F P = A F_n P_n / (\delta\, d_F)`: one division per entry, at the end); a
-**numeric** :math:`P` by ``fmpq_mat`` products on each monomial's coefficient matrix. Each
-entry is written as SymPy terms directly, in the form ``factor_terms(cancel(.))`` gives;
-entries that are not rational with rational coefficients return ``None`` (the SymPy path).
+With :math:`P = P_n / d_P`, by fraction-free Gauss-Jordan on :math:`[P_n \mid I]`
+(:math:`\delta = \pm\det P_n`, :math:`A = \delta P_n^{-1}`, so :math:`P^{-1} F P = A F_n P_n /
+(\delta\, d_F)`: one division per entry, at the end); rational entries only by ``fmpq_mat``
+products. Each entry is written as SymPy terms directly, in the form
+``factor_terms(cancel(.))`` gives; entries that are not rational with rational coefficients
+return ``None`` (the SymPy path).
 """
 
 from __future__ import annotations
 
-import math
 from itertools import compress
 
 import sympy as sp
@@ -282,60 +281,6 @@ def _fmpq_mat(mat: sp.MatrixBase) -> fmpq_mat:
     return fmpq_mat(mat.rows, mat.cols, [fmpq(int(e.p), int(e.q)) for e in mat.flat()])
 
 
-def _split(mat: sp.MatrixBase, ring: _Ring):
-    """``(den, {exps: fmpq_mat})``: the matrix as :math:`\\sum_m m\\, C_m / den`."""
-    nums, den = ring.common(mat)
-    parts: dict = {}
-    for i, row in enumerate(nums):
-        for j, x in enumerate(row):
-            for exps, c in x.terms():
-                part = parts.get(exps)
-                if part is None:
-                    part = parts[exps] = fmpq_mat(mat.rows, mat.cols)
-                part[i, j] = c
-    return den, parts
-
-
-def _assemble(den, parts: dict, shape, ring: _Ring) -> list[list]:
-    """The entries :math:`\\sum_m C_m[i, j]\\, m / den`, tidied."""
-    rows, cols = shape
-    out = []
-    for i in range(rows):
-        row = []
-        for j in range(cols):
-            coeffs = {exps: part[i, j] for exps, part in parts.items() if part[i, j] != 0}
-            if not coeffs:
-                row.append(sp.Integer(0))
-                continue
-            scale = math.lcm(*(int(c.q) for c in coeffs.values()))
-            if den.is_constant() and list(coeffs) == [(0,) * len(ring.symbols)]:
-                c = next(iter(coeffs.values())) / int(den.leading_coefficient())
-                row.append(sp.Rational(int(c.p), int(c.q)))
-                continue
-            num = ring.ctx.from_dict({e: int((c * scale).p) for e, c in coeffs.items()})
-            row.append(ring.tidy(*_reduce(num, den * scale)))
-        out.append(row)
-    return out
-
-
-def _numeric(F, H, M, P, ring: _Ring):
-    Pq = _fmpq_mat(P)
-    if Pq.det() == 0:
-        return None
-    Pinv = Pq.inv()
-    out = []
-    for mat, left, right in ((F, Pinv, Pq), (H, Pinv, None), (M, None, Pq)):
-        den, parts = _split(mat, ring)
-        for exps, C in parts.items():
-            if left is not None:
-                C = left * C
-            if right is not None:
-                C = C * right
-            parts[exps] = C
-        out.append(_assemble(den, parts, mat.shape, ring))
-    return (*out, from_fmpq_mat(Pinv).tolist())
-
-
 def _rational(F, H, M, P):
     """Rational entries only: ``fmpq_mat`` products, nothing else."""
     Pq = _fmpq_mat(P)
@@ -354,12 +299,8 @@ def similar_exact(F, H, M, P):
     syms = _symbols(entries)
     if syms is None:
         return None
-    ring = _Ring(syms)
     try:
-        if P.free_symbols:
-            got = _symbolic(F, H, M, P, ring)
-        else:
-            got = _numeric(F, H, M, P, ring)
+        got = _symbolic(F, H, M, P, _Ring(syms))
     except (NotRational, ZeroDivisionError):
         return None
     if got is None:

@@ -1,50 +1,24 @@
-r"""The factorization of a MIMO controller: one chain of sections per channel.
+r"""The factorization of a MIMO controller :math:`G = N(z)/d(z)`: one chain of sections per channel.
 
-A :math:`p \times m` controller :math:`G = N(z)/d(z)` (one monic denominator) gives each
-measured signal :math:`j` its own :math:`d_s` sections and each input :math:`i` its own
-:math:`d_a`:
-
-.. math::
-    G_1 = \operatorname{diag}_j\, g_{1,j},\quad
-    g_{1,j}(z) = \prod_{k=1}^{d_s} \frac{C_{1,j,k}}{z - \epsilon_{1,j,k}},\qquad
-    G_3 = \operatorname{diag}_i\, g_{3,i},\qquad
-    (G_2)_{ij} = \frac{G_{ij}}{g_{3,i}\, g_{1,j}}
-    = \frac{N_{ij}(z)\, Z_{3,i}(z)\, Z_{1,j}(z)}{C_{3,i}\, C_{1,j}\, d(z)},
-
-with :math:`Z_{1,j} = \prod_k (z - \epsilon_{1,j,k})`, :math:`C_{1,j} = \prod_k C_{1,j,k}`
-(likewise on the actuator side), so :math:`(G_3 G_2 G_1)_{ij} = g_{3,i} (G_2)_{ij}\, g_{1,j}
-= G_{ij}` (:meth:`~symctl.realization.factorization.Factorization.verify` proves it entry by
-entry). :math:`G_2` keeps :math:`d`: its block canonical realizations have :math:`n m` (or
-:math:`n p`) states.
+Measured signal :math:`j` gets :math:`g_{1,j} = \prod_{k \le d_s} C_{1,j,k}/(z - \epsilon_{1,j,k})`,
+input :math:`i` likewise :math:`g_{3,i}`; :math:`G_1 = \operatorname{diag}_j g_{1,j}`, :math:`G_3 =
+\operatorname{diag}_i g_{3,i}` and :math:`(G_2)_{ij} = G_{ij}/(g_{3,i} g_{1,j}) = N_{ij} Z_{3,i}
+Z_{1,j}/(C_{3,i} C_{1,j} d)` (:math:`Z` the sections' zeros, :math:`C` their gains' product), so
+:math:`G_3 G_2 G_1 = G` entry by entry; :math:`G_2` keeps :math:`d`.
 """
 
 from __future__ import annotations
 
-from functools import cache
-
 import sympy as sp
 
 from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError, ParameterError
+from symctl.errors import DimensionError
 from symctl.symbols import z
 
-__all__ = ["MAX_CHANNELS", "channel_sections", "channel_symbols", "mimo_G2"]
+__all__ = ["MAX_CHANNELS", "channel_sections", "mimo_G2"]
 
 MAX_CHANNELS = 50
 """Most measured signals (and most inputs) of a MIMO factorization."""
-
-
-@cache
-def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` sections of one channel on side 1 or 3, named
-    ``epsilon_{side,channel,k}`` and ``C_{side,channel,k}`` (indices from 1)."""
-    if side not in (1, 3):
-        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    eps = tuple(
-        sp.Symbol(f"epsilon_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1)
-    )
-    cs = tuple(sp.Symbol(f"C_{{{side},{channel},{k}}}", real=True) for k in range(1, count + 1))
-    return eps, cs
 
 
 def _check_shape(tf: DiscreteTF) -> tuple[int, int]:

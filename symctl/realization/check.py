@@ -75,26 +75,22 @@ class RealizationCheck(Verdict, LatexMixin):
     method : str
         ``"exact"`` or ``"randomized"``.
     error_bound : fractions.Fraction
-        Probability of a wrong ``True``: 0 when exact, else the Schwartz–Zippel bound
-        (below :math:`2^{-64}`).
+        Probability of a wrong ``True``: 0 when exact, else the Schwartz–Zippel bound.
     counterexample : dict or None
         ``{"values": {symbol: value, ..., z: value}, "realization": ..., "G": ...}``, exact
-        values where the two sides differ (None when ``ok``).
+        values where the sides differ.
     details : str
         What was compared, and which Markov parameter differs.
     markov_count, rounds, resampled : int
-        Markov parameters compared (:math:`n + d + 1`), random points used (0 for
-        ``"exact"``), and points discarded on a vanishing denominator.
+        Markov parameters compared (:math:`n + d + 1`), random points used, and points
+        discarded on a vanishing denominator.
     degree_bound, sample_bits : int or None
         :math:`D_E` and :math:`b` (:math:`|S| = 2^b`) of the randomized bound.
     floating : bool
-        Whether ``R`` or ``G`` holds a float: :attr:`ok` then judges the floats' binary
-        rationals, :attr:`numeric_ok` what a float computation can promise.
-    max_relative_difference : float or None
-        For floats, the largest :math:`|e_k[i, j]|` over the largest Markov parameter of
-        either side (free symbols: the worst of 8 random points in :math:`\pm(0, 2]`).
-    rtol : float or None
-        The tolerance of :attr:`numeric_ok`.
+        Whether ``R`` or ``G`` holds a float (:attr:`ok` then judges its binary rational).
+    max_relative_difference, rtol : float or None
+        For floats, the largest :math:`|e_k[i, j]|` over the largest Markov parameter (with
+        symbols: the worst of 8 random points in :math:`\pm(0, 2]`), and its tolerance.
     numeric_ok : bool or None
         ``max_relative_difference <= rtol`` (None for exact inputs).
 
@@ -287,10 +283,10 @@ def _counterexample(problem: _Problem, rng: random.Random) -> dict | None:
     return None
 
 
-def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
+def _exact(problem: _Problem, rng: random.Random, values=None) -> RealizationCheck:
     count = problem.n + problem.d + 1
     try:
-        diff = _first_difference(problem, _Entries(problem.symbols))
+        diff = _first_difference(problem, _Entries(problem.symbols, values))
     except ZeroDivisionError as exc:
         raise ParameterError(
             f"R, G: division by an expression that is identically zero: {exc}"
@@ -306,14 +302,7 @@ def _exact(problem: _Problem, rng: random.Random) -> RealizationCheck:
 def _randomized(problem: _Problem, degrees: tuple[int, int], rng: random.Random):
     count = problem.n + problem.d + 1
     if not problem.symbols:  # nothing to sample: one exact evaluation decides
-        diff = _first_difference(problem, _Entries((), {}))
-        cex = None if diff is None else _counterexample(problem, rng)
-        details = (
-            f"no free symbols: {_markov_names(count)} of both sides agree"
-            if diff is None
-            else _describe(*diff)
-        )
-        return RealizationCheck(diff is None, "randomized", Fraction(0), cex, details, count, 1)
+        return dataclasses.replace(_exact(problem, rng, {}), method="randomized", rounds=1)
     degree, bad = degrees
     bits = max(_MIN_BITS, (degree + bad).bit_length() + 32)
     half = 2 ** (bits - 1)
@@ -460,22 +449,19 @@ def check_realization(
     Parameters
     ----------
     R : Realization
-        Entries numbers or rational functions of any symbols (floats taken as the exact
-        binary rationals they are).
+        Entries rational functions of any symbols (floats as their exact binary rationals).
     G : DiscreteTF or sympy expression in :data:`symctl.z`
-        Proper, of the same shape as ``R``.
+        Proper, of ``R``'s shape.
     method : {"exact", "randomized", "auto"}
-        ``"exact"``: a proof (the difference is the zero rational function).
-        ``"randomized"``: exact evaluation at random points, error probability below
-        :math:`2^{-64}`. ``"auto"``: randomized, then exact when :math:`n + d \le 10`.
+        A proof; exact evaluation at random points (error probability below :math:`2^{-64}`);
+        or randomized, then exact when :math:`n + d \le 10`.
     rng : None, int, random.Random or numpy.random.Generator, optional
         Source of the random points and counterexamples.
     rtol : float, optional
         Tolerance of the numeric verdict for floating-point inputs.
     similar_to : (Realization, matrix), optional
-        ``(base, P)``, ``R`` claimed to be ``base.similar(P)``: the similarity identities are
-        checked exactly and ``base`` decided against ``G`` (seconds, not minutes, for a dense
-        ``R`` at T = 20); when they fail, ``R`` is decided directly.
+        ``(base, P)`` with ``R`` claimed ``base.similar(P)``: the similarity is checked exactly
+        and ``base`` decided (much faster for a dense ``R``); else ``R`` is decided directly.
 
     Returns
     -------
@@ -486,8 +472,8 @@ def check_realization(
     SymctlTypeError, DimensionError
         ``R``, ``G`` or ``rng`` of another type; ``G`` of another shape.
     ParameterError
-        Unknown ``method``; ``rtol`` not in (0, 1); ``G`` improper; entries not rational, or
-        ``R`` depending on ``z``.
+        Unknown ``method``; ``rtol`` not in (0, 1); ``G`` improper; entries not rational or
+        depending on ``z``.
 
     Examples
     --------
@@ -548,25 +534,9 @@ def _similar_to(value) -> tuple[Realization, sp.Matrix]:
 
 
 def require_stable_sections(epsilons, argname: str) -> None:
-    r"""Refuse section poles :math:`|\epsilon| \ge 1`: hidden, unstable modes of the loop
-    (:math:`G_2` cancels them, so the transfer function stays right while the state grows).
-    Symbols pass.
-
-    Parameters
-    ----------
-    epsilons : iterable of numbers or sympy expressions
-        The section poles, or the ends of an interval they are drawn from.
-    argname : str
-        The argument named in the ParameterError.
-
-    Examples
-    --------
-    >>> from symctl.realization.check import require_stable_sections
-    >>> require_stable_sections((0.5, 1.5), "eps_range")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: eps_range: 1.5 has |epsilon| >= 1: ...
-    """
+    r"""Refuse (ParameterError naming ``argname``) section poles :math:`|\epsilon| \ge 1`, or
+    such ends of the interval they are drawn from: hidden unstable modes, which :math:`G_2`
+    cancels. Symbols pass."""
     for value in epsilons:
         e = to_expr(value, argname)
         if e.is_number and abs(complex(e)) >= 1:

@@ -50,30 +50,9 @@ def draw_eps(eps, gen: np.random.Generator) -> dict:
 def draw_realizations(
     G: DiscreteTF, sensor_delay: int, actuator_delay: int, name: str, count: int, rng=None
 ) -> tuple[Draw, ...]:
-    """``count`` realizations of :math:`G_2` of ``G`` at random section values.
-
-    Parameters
-    ----------
-    G : DiscreteTF
-        The controller, numeric.
-    sensor_delay, actuator_delay : int
-        The sections of :math:`G_1` and :math:`G_3`.
-    name : str
-        A realizer of :data:`~symctl.realization.realizers.REALIZERS`.
-    count : int
-        From 1 to ``MAX_CIRCUITS``.
-    rng : None, int or numpy.random.Generator
-        Seeds the epsilons and the realizer's choices.
-
-    Returns
-    -------
-    tuple of Draw
-
-    Raises
-    ------
-    ParameterError
-        An unknown realizer, ``count`` out of range, a bad ``rng``.
-    """
+    """``count`` (1 to ``MAX_CIRCUITS``) realizations by the realizer ``name`` of the :math:`G_2`
+    of the numeric ``G`` at section values drawn from ``rng`` (which then seeds the realizer);
+    ParameterError for an unknown realizer, a bad ``count`` or ``rng``."""
     realizer = get_realizer(name, "name")
     count = bounded_int(count, "count", 1, MAX_CIRCUITS)
     gen = as_generator(rng, "rng")

@@ -21,6 +21,7 @@ For the paper's :math:`d_s = d_a = 1` and :math:`G = K_0/(z^2 - K_1 z - K_2)`:
 
 from __future__ import annotations
 
+import dataclasses
 import random
 from collections import Counter
 from dataclasses import dataclass
@@ -39,7 +40,6 @@ from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
 from symctl.realization.channels import (
     channel_sections,
-    channel_symbols,
     diagonal,
     mimo_G2,
     verify_entries,
@@ -61,19 +61,21 @@ out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G
 
 
 @cache
-def section_symbols(side: int, count: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
-    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3.
+def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3 (of one
+    ``channel`` of a MIMO factorization: ``epsilon_{side,channel,k}``, indices from 1).
 
     >>> from symctl.realization.factorization import section_symbols
-    >>> section_symbols(3, 2)
-    ((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2}))
+    >>> section_symbols(3, 2), section_symbols(1, 1, 2)
+    (((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2})), ((epsilon_{1,2,1},), (C_{1,2,1},)))
     """
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if count == 1:
+    if count == 1 and channel is None:
         return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
+    at = f"{side}," if channel is None else f"{side},{channel},"
+    eps = tuple(sp.Symbol(f"epsilon_{{{at}{i}}}", real=True) for i in range(1, count + 1))
+    cs = tuple(sp.Symbol(f"C_{{{at}{i}}}", real=True) for i in range(1, count + 1))
     return eps, cs
 
 
@@ -278,20 +280,9 @@ class Factorization(DictMixin, LatexMixin):
         return DiscreteTF(self.G.num / scale * _zeros_poly(self.sigma), self.G.den, self.G.dt)
 
     def sigma_values(self, values=None) -> dict:
-        r""":math:`\sigma_k = e_k(\epsilon)` of the section poles, keyed by :attr:`sigma`.
+        r""":math:`\sigma_k = e_k(\epsilon)` of the section poles (at ``values`` of their symbols),
+        keyed by :attr:`sigma`: exact numbers when every pole is a number, else polynomials.
 
-        Parameters
-        ----------
-        values : mapping, optional
-            Values of the pole symbols; by default the poles as they are.
-
-        Returns
-        -------
-        dict
-            Exact numbers when every pole is a number, else SymPy polynomials.
-
-        Examples
-        --------
         >>> from symctl import controller_tf, factor
         >>> factor(controller_tf(2)).sigma_values({"epsilon_1": "1/2", "epsilon_3": "1/3"})
         {sigma_1: 5/6, sigma_2: 1/6}
@@ -311,22 +302,10 @@ class Factorization(DictMixin, LatexMixin):
         return out
 
     def verify(self, rtol: float = 1e-9) -> Proof:
-        """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication).
+        """Exact proof that ``G3 * G2 * G1 == G`` (polynomial cross-multiplication); with floats
+        failing it by rounding, :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1` compared in
+        :math:`z` (other symbols at 8 random points), truthy within ``rtol``.
 
-        Parameters
-        ----------
-        rtol : float, optional
-            Tolerance of the numeric verdict for floating-point coefficients.
-
-        Returns
-        -------
-        Proof
-            Truthy when the identity holds. With floats, when the exact identity fails by
-            rounding, :math:`n_3 n_2 n_1 d` and :math:`n d_3 d_2 d_1` are compared in :math:`z`
-            (other symbols at 8 random points), truthy within ``rtol``.
-
-        Examples
-        --------
         >>> from symctl import controller_tf, factor
         >>> from symctl.symbols import C_1, C_3, epsilon_1, epsilon_3, gain_symbols
         >>> K_0, K_1, K_2 = gain_symbols(2)
@@ -369,27 +348,17 @@ class Factorization(DictMixin, LatexMixin):
 
     def subs(self, *args, **kwargs) -> Factorization:
         """Substitute values (e.g. epsilons and Cs; text through the safe parser); a zero C is refused."""
-        sections = (*self.sensor_eps, *self.sensor_C, *self.actuator_eps, *self.actuator_C)
-        sections = [to_expr(v, "sections") for v in sections]
+        tfs = ("G", "G1", "G2", "G3")
+        sides = {k: [to_expr(v, "sections") for v in getattr(self, k)] for k in _SECTIONS}
         symbols = set().union(
-            *(g.free_symbols for g in (self.G, self.G1, self.G2, self.G3)),
-            *(v.free_symbols for v in sections),
+            *(getattr(self, k).free_symbols for k in tfs),
+            *(v.free_symbols for values in sides.values() for v in values),
         )
         rule, flags = subs_rule(args, kwargs, symbols)
-
-        def sub(values):
-            return tuple(to_expr(v, "sections").subs(rule, **flags) for v in values)
-
-        out = Factorization(
-            self.G.subs(rule, **flags),
-            self.G1.subs(rule, **flags),
-            self.G2.subs(rule, **flags),
-            self.G3.subs(rule, **flags),
-            sub(self.sensor_eps),
-            sub(self.sensor_C),
-            sub(self.actuator_eps),
-            sub(self.actuator_C),
-            self.channels,
+        out = dataclasses.replace(
+            self,
+            **{k: getattr(self, k).subs(rule, **flags) for k in tfs},
+            **{k: tuple(v.subs(rule, **flags) for v in values) for k, values in sides.items()},
         )
         _check_C(out.sensor_C + out.actuator_C)
         return out
@@ -402,6 +371,9 @@ class Factorization(DictMixin, LatexMixin):
             zeros_tex = descending_latex(sp.collect(sp.expand(zeros), z, evaluate=True))
             g2 = rf"{latex(self.N)} \frac{{{zeros_tex}}}{{{descending_latex(self.G2.den)}}}"
         return rf"G_1 = {self.G1.latex()},\quad G_2 = {g2},\quad G_3 = {self.G3.latex()}"
+
+
+_SECTIONS = ("sensor_eps", "sensor_C", "actuator_eps", "actuator_C")
 
 
 def _vieta(poles: list) -> list:
@@ -438,10 +410,8 @@ def _section_values(value, count: int, argname: str, default) -> tuple:
 
 
 def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=None) -> Factorization:
-    r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``.
-
-    A p x m ``G`` is factored channel by channel (:mod:`symctl.realization.channels`), ``G1`` and
-    ``G3`` diagonal.
+    r"""Split ``G`` into :math:`G_3 G_2 G_1` with relative degrees ``actuator_delay``, rest, ``sensor_delay``
+    (a p x m ``G`` channel by channel, :mod:`symctl.realization.channels`).
 
     Parameters
     ----------
@@ -450,9 +420,8 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
     sensor_delay, actuator_delay : int
         Number of first-order sections in :math:`G_1` and :math:`G_3`.
     eps, C : sequence or value, optional
-        The section poles and gains, sensor sections first (channel-major when MIMO; one
-        for all, or one per section; text through the safe parser). By default the symbols
-        of :func:`section_symbols` (cheaper than :meth:`Factorization.subs` afterwards).
+        The section poles and gains, sensor sections first (channel-major), one for all or one
+        per section (text through the safe parser); default: :func:`section_symbols`.
 
     Returns
     -------
@@ -461,11 +430,9 @@ def factor(G, sensor_delay: int = 1, actuator_delay: int = 1, *, eps=None, C=Non
 
     Raises
     ------
-    ParameterError
-        Improper ``G``, its relative degree below the delays, negative delays, a zero
-        ``C`` or a value in ``z``.
-    DimensionError
-        ``eps``/``C`` of the wrong length, or over ``MAX_CHANNELS`` (50) inputs or outputs.
+    ParameterError, DimensionError
+        Improper ``G``, its relative degree below the delays, negative delays, a zero ``C`` or
+        a value in ``z``; ``eps``/``C`` of the wrong length, over 50 inputs or outputs.
 
     Examples
     --------
@@ -518,7 +485,7 @@ def _default_sections(side: int, count: int, channels: int, siso: bool) -> tuple
         return (), ()
     if siso:
         return section_symbols(side, count)
-    per = [channel_symbols(side, j, count) for j in range(1, channels + 1)]
+    per = [section_symbols(side, count, j) for j in range(1, channels + 1)]
     return tuple(e for es, _ in per for e in es), tuple(c for _, cs in per for c in cs)
 
 

@@ -90,10 +90,8 @@ def minimal_realization(R: Realization) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        ``R`` is not a Realization.
-    ParameterError
-        Symbolic entries; more than :data:`MAX_ORDER` states.
+    SymctlTypeError, ParameterError
+        ``R`` not a Realization; symbolic entries or more than :data:`MAX_ORDER` states.
 
     Examples
     --------

@@ -24,7 +24,7 @@ from symctl._util.validate import (
     to_expr,
     to_matrix,
 )
-from symctl.design.tf import DiscreteTF
+from symctl.design.tf import DiscreteTF, convertible
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.realization._similarity import similar_exact
 from symctl.symbols import z
@@ -45,12 +45,11 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor_terms(cancel(expr))
 
 
+@convertible("ss")
 @dataclass(frozen=True)
 class Realization(LatexMixin):
-    r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N`.
-
-    Immutable (``n = 0``, a static gain, allowed); compares by the matrices and ``dt``
-    (structurally: similar realizations are not equal).
+    r"""A realization :math:`(F, H, M, N)`: :math:`G(z) = M(zI-F)^{-1}H + N` (a value; ``n = 0``,
+    a static gain, allowed; similar realizations are not equal).
 
     Parameters
     ----------
@@ -64,10 +63,8 @@ class Realization(LatexMixin):
 
     Raises
     ------
-    DimensionError
-        ``F`` not square, or ``H``, ``M`` whose shapes do not fit ``F`` and ``N``.
-    ParameterError, SymctlTypeError
-        Entries that are not numbers or sympy expressions.
+    DimensionError, ParameterError, SymctlTypeError
+        Shapes that do not fit; entries that are not numbers or sympy expressions.
 
     Examples
     --------
@@ -212,45 +209,6 @@ class Realization(LatexMixin):
             for name, m in zip("FHMN", (self.F, self.H, self.M, self.N), strict=True)
         )
 
-    def to_control(self):
-        """As a discrete ``control.StateSpace`` (dt kept; ``True`` when unknown)."""
-        from symctl.interop import ss_to_control
-
-        return ss_to_control(self)
-
-    @classmethod
-    def from_control(cls, sys) -> Realization:
-        """From a discrete python-control system (converted to state space)."""
-        from symctl.interop import ss_from_control
-
-        return ss_from_control(sys)
-
-    def to_sympy(self):
-        """As a ``sympy.physics.control`` state space, exactly (:func:`symctl.interop.ss_to_sympy`)."""
-        from symctl.interop import ss_to_sympy
-
-        return ss_to_sympy(self)
-
-    @classmethod
-    def from_sympy(cls, sys, dt=None, *, var=None) -> Realization:
-        """From a ``sympy.physics.control`` system, exactly (:func:`symctl.interop.ss_from_sympy`)."""
-        from symctl.interop import ss_from_sympy
-
-        return ss_from_sympy(sys, dt, var=var)
-
-    def to_scipy(self):
-        """As a discrete ``scipy.signal.StateSpace`` (:func:`symctl.interop.ss_to_scipy`)."""
-        from symctl.interop import ss_to_scipy
-
-        return ss_to_scipy(self)
-
-    @classmethod
-    def from_scipy(cls, sys) -> Realization:
-        """From a discrete ``scipy.signal`` system (:func:`symctl.interop.ss_from_scipy`)."""
-        from symctl.interop import ss_from_scipy
-
-        return ss_from_scipy(sys)
-
     @classmethod
     def series(cls, *parts: Realization) -> Realization:
         r"""The series connection :math:`G_k \cdots G_1` of ``parts`` (the first acts first, its
@@ -340,6 +298,24 @@ def _proper(G, argname: str = "G2") -> DiscreteTF:
     return tf
 
 
+def _split(tf: DiscreteTF) -> tuple[list, sp.Matrix, list[sp.Matrix]]:
+    """``(a, N, C)``: the denominator ascending (``a[n] = 1``), ``G(oo)`` and the ascending
+    coefficient matrices of the numerator of :math:`G - N`."""
+    p, m = tf.shape
+    a = tf.den_coeffs()[::-1]
+    n = len(a) - 1
+    N = sp.zeros(p, m)
+    C = [sp.zeros(p, m) for _ in range(n)]
+    for i in range(p):
+        for j in range(m):
+            b = tf.num_coeffs(i, j)[::-1]
+            b = b + [sp.Integer(0)] * (n + 1 - len(b))
+            N[i, j] = _tidy(b[n])
+            for k in range(n):
+                C[k][i, j] = _tidy(b[k] - b[n] * a[k])
+    return a, N, C
+
+
 def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     r"""``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)` for a proper
     SISO ``G``, ``c`` and ``a`` ascending (length ``n``).
@@ -349,14 +325,8 @@ def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     >>> split_proper((2*z + 1) / (z - 3))
     (2, [7], [-3])
     """
-    tf = _siso(G, "G")
-    n = tf.order
-    a = tf.den_coeffs()[::-1]  # ascending; a[n] = 1
-    b = tf.num_coeffs()[::-1]
-    b = b + [sp.Integer(0)] * (n + 1 - len(b))
-    N = b[n]
-    c = [_tidy(b[i] - N * a[i]) for i in range(n)]
-    return _tidy(N), c, a[:n]
+    a, N, C = _split(_siso(G, "G"))
+    return N[0, 0], [c[0, 0] for c in C], a[:-1]
 
 
 def controllable_canonical(G2) -> Realization:
@@ -373,17 +343,12 @@ def controllable_canonical(G2) -> Realization:
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper transfer function, exact or symbolic.
+        Proper, exact or symbolic (else ParameterError).
 
     Returns
     -------
     Realization
         Of order :math:`n m`, :math:`n = \deg d`.
-
-    Raises
-    ------
-    ParameterError
-        An improper ``G2``, or one not rational in ``z``.
 
     Examples
     --------
@@ -394,17 +359,8 @@ def controllable_canonical(G2) -> Realization:
     """
     tf = _proper(G2)
     p, m = tf.shape
-    a = tf.den_coeffs()[::-1]  # ascending, a[n] = 1
+    a, D, C = _split(tf)
     n = len(a) - 1
-    D = sp.zeros(p, m)
-    C = [sp.zeros(p, m) for _ in range(n)]
-    for i in range(p):
-        for j in range(m):
-            b = tf.num_coeffs(i, j)[::-1]
-            b = b + [sp.Integer(0)] * (n + 1 - len(b))
-            D[i, j] = _tidy(b[n])
-            for k in range(n):
-                C[k][i, j] = _tidy(b[k] - b[n] * a[k])
     F = sp.zeros(n * m, n * m)
     for k in range(n):
         for r in range(m):
@@ -425,16 +381,11 @@ def observable_canonical(G2) -> Realization:
     Parameters
     ----------
     G2 : DiscreteTF or sympy expression in z
-        A proper transfer function, exact or symbolic.
+        Proper, exact or symbolic (else ParameterError).
 
     Returns
     -------
     Realization
-
-    Raises
-    ------
-    ParameterError
-        An improper ``G2``, or one not rational in ``z``.
 
     Examples
     --------
@@ -456,17 +407,13 @@ def first_order_realization(eps, C, dt=None) -> Realization:
     Parameters
     ----------
     eps, C : number, sympy expression or str
-        The pole and the input gain (text through the safe parser).
+        The pole and the input gain (text through the safe parser; ParseError,
+        SymctlTypeError for others).
     dt : number, optional
 
     Returns
     -------
     Realization
-
-    Raises
-    ------
-    ParseError, SymctlTypeError
-        ``eps`` or ``C`` not an admissible value.
 
     Examples
     --------
@@ -488,17 +435,10 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
     (Matrix([[epsilon_1]]), Matrix([[C_3]]))
     """
     f = factorization
-    dt = f.G.dt
-    if not getattr(f, "is_siso", True):
-        return _channel_stages(f.sensor_eps, f.sensor_C, f.channels[0], dt), _channel_stages(
-            f.actuator_eps, f.actuator_C, f.channels[1], dt
-        )
-    first = [
-        first_order_realization(e, c, dt) for e, c in zip(f.sensor_eps, f.sensor_C, strict=True)
-    ]
-    last = [
-        first_order_realization(e, c, dt) for e, c in zip(f.actuator_eps, f.actuator_C, strict=True)
-    ]
+    sides = ((f.sensor_eps, f.sensor_C), (f.actuator_eps, f.actuator_C))
+    first, last = (
+        _channel_stages(eps, cs, k, f.G.dt) for (eps, cs), k in zip(sides, f.channels, strict=True)
+    )
     return first, last
 
 

@@ -51,12 +51,11 @@ class RealizerResult(DictMixin):
     Attributes
     ----------
     sys : DiscreteTF
-        The realized transfer function (after any substitution the realizer made).
-    base : Realization
-        The canonical realization :math:`(F_0, H_0, M_0, N)` it was built from.
+        The realized transfer function (after the realizer's substitutions).
+    base, realization : Realization
+        The canonical realization :math:`(F_0, H_0, M_0, N)` and ``base.similar(P)``.
     P, Pinv : sympy.ImmutableMatrix
-        ``realization == base.similar(P)``; ``Pinv`` None for a symbolic ``P`` (never inverted).
-    realization : Realization
+        The transform; ``Pinv`` None for a symbolic ``P`` (never inverted).
 
     Examples
     --------
@@ -76,9 +75,8 @@ class RealizerResult(DictMixin):
 
 @dataclass(frozen=True)
 class Realizer:
-    """A way of realizing a proper :math:`G_2`; call it to get a :class:`RealizerResult`.
-
-    Subclass it, define ``__call__(self, G2, *, rng=None)`` and :func:`register` an instance.
+    """A way of realizing a proper :math:`G_2`, called for a :class:`RealizerResult`: subclass it,
+    define ``__call__(self, G2, *, rng=None)`` and :func:`register` an instance.
 
     Attributes
     ----------
@@ -123,15 +121,10 @@ def _identity(R: Realization, tf: DiscreteTF) -> RealizerResult:
 
 
 @dataclass(frozen=True)
-class _Controllable(Realizer):
+class _Canonical(Realizer):
     def __call__(self, G2, *, rng=None) -> RealizerResult:
-        return _identity(controllable_canonical(G2), DiscreteTF.from_expr(G2))
-
-
-@dataclass(frozen=True)
-class _Observable(Realizer):
-    def __call__(self, G2, *, rng=None) -> RealizerResult:
-        return _identity(observable_canonical(G2), DiscreteTF.from_expr(G2))
+        form = controllable_canonical if self.name == "controllable" else observable_canonical
+        return _identity(form(G2), DiscreteTF.from_expr(G2))
 
 
 def _transformed(base: Realization, tf: DiscreteTF, P) -> RealizerResult:
@@ -218,8 +211,8 @@ _REGISTRY: dict[str, Realizer] = {
             form="general",
             paper=True,
         ),
-        _Controllable("controllable", "controllable canonical", canonical=True, paper=True),
-        _Observable("observable", "observable canonical", canonical=True, paper=True),
+        _Canonical("controllable", "controllable canonical", canonical=True, paper=True),
+        _Canonical("observable", "observable canonical", canonical=True, paper=True),
         _Random("random", "random (the paper's recipe)", keeps_symbols=False, circuit=False),
     )
 }
@@ -236,16 +229,9 @@ def _canonical(realizer: Realizer) -> bool:
 
 
 def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
-    """The circuits a model builds, in the report's order (registered ones included).
+    """The circuits a model builds, in the report's order (registered ones included); ``whole``:
+    with those of the whole controller (IFP), else only :math:`G_3 G_2 G_1`'s.
 
-    Parameters
-    ----------
-    whole : bool
-        Include the circuits of the whole controller (IFP); ``False``: those of
-        :math:`G_3 G_2 G_1`, named by their :math:`G_2`.
-
-    Examples
-    --------
     >>> from symctl.realization.realizers import circuit_names
     >>> circuit_names()
     ('ifp', 'general', 'controllable', 'observable')
@@ -256,41 +242,10 @@ def circuit_names(*, whole: bool = True) -> tuple[str, ...]:
 
 
 def register(realizer: Realizer) -> Realizer:
-    """Add ``realizer`` to :data:`REALIZERS` under its name, after the others.
-
-    Parameters
-    ----------
-    realizer : Realizer
-        An instance of a subclass that defines ``__call__(G2, *, rng=None)``.
-
-    Returns
-    -------
-    Realizer
-        ``realizer``, so that it can decorate an assignment.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``realizer`` is not a :class:`Realizer`.
-    ParameterError
-        Its name taken, reserved (``"all"``, ``"pathways"``) or not a lower-case identifier
-        of at most 32 characters.
-
-    Examples
-    --------
-    >>> from dataclasses import dataclass
-    >>> from symctl.realization.realizers import Realizer, get_realizer, register, unregister
-    >>> @dataclass(frozen=True)
-    ... class Doubled(Realizer):
-    ...     def __call__(self, G2, *, rng=None):
-    ...         return get_realizer("general")(G2, P=[[2]])
-    >>> _ = register(Doubled("doubled", "doubled controllable"))
-    >>> from symctl import z
-    >>> get_realizer("doubled")(1 / (z - 1)).realization.M
-    Matrix([[2]])
-    >>> unregister("doubled").name
-    'doubled'
-    """
+    """Add ``realizer`` (an instance of a subclass defining ``__call__(G2, *, rng=None)``) to
+    :data:`REALIZERS` after the others, and return it (docs/extending.md). Raises
+    SymctlTypeError for another type, ParameterError for a name taken, reserved (``"all"``,
+    ``"pathways"``) or not a lower-case identifier of at most 32 characters."""
     if not isinstance(realizer, Realizer):
         raise SymctlTypeError(f"realizer: expected a Realizer, got {type(realizer).__name__}")
     name = realizer.name
@@ -310,13 +265,8 @@ def register(realizer: Realizer) -> Realizer:
 
 
 def unregister(name: str) -> Realizer:
-    """Remove the realizer :func:`register` ed as ``name`` and return it (the built-in ones stay).
-
-    Raises
-    ------
-    ParameterError
-        ``name`` is built in or not registered.
-    """
+    """Remove the realizer :func:`register` ed as ``name`` and return it (ParameterError for a
+    built-in or unknown one)."""
     if name in _BUILTIN:
         raise ParameterError(f"name: {name!r} is built in and cannot be removed")
     added = [k for k in _REGISTRY if k not in _BUILTIN]
@@ -344,7 +294,7 @@ def get_realizer(name: str, argname: str = "name", *, where=None) -> Realizer:
     Raises
     ------
     ParameterError
-        ``name`` is not an admitted realizer, naming ``argname``, the value and the choices.
+        Not an admitted realizer (naming ``argname``, the value and the choices).
 
     Examples
     --------
@@ -382,10 +332,8 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
 
     Raises
     ------
-    ParameterError
-        Unknown ``base``; ``P`` singular; ``G2`` improper.
-    DimensionError
-        ``P`` not ``n x n``; ``G2`` not SISO.
+    ParameterError, DimensionError
+        Unknown ``base``; ``P`` singular; ``G2`` improper; ``P`` not ``n x n``.
 
     Examples
     --------
@@ -439,7 +387,6 @@ def random_realization(
     G2 : DiscreteTF or sympy expression in z
         A proper transfer function.
     rng : None, int or numpy.random.Generator, optional
-        The seed.
     base : {"controllable", "observable"}
         The canonical realization transformed.
     eps_range : (float, float)
@@ -455,7 +402,7 @@ def random_realization(
     Raises
     ------
     ParameterError
-        Unknown ``base``; ``G2`` improper; a bad ``rng``.
+        Unknown ``base``; ``G2`` improper; a bad ``rng`` or ``eps_range``.
 
     Examples
     --------
@@ -479,12 +426,7 @@ def ifp_realization(gains: Gains) -> Realization:
     Returns
     -------
     Realization
-        Numeric, with the plant's sampling time.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``gains`` is not a :class:`~symctl.Gains`.
+        Numeric, with the plant's sampling time (SymctlTypeError for other ``gains``).
 
     Examples
     --------

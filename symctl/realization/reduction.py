@@ -39,7 +39,7 @@ from flint import fmpq_mat
 from symctl._util.exact import from_fmpq, from_fmpq_mat
 from symctl.design.augment import AugmentedSystem
 from symctl.design.controller import ifp_state_space
-from symctl.design.lqr import Gains
+from symctl.design.lqr import Gains, sorted_poles
 from symctl.design.tf import DiscreteTF
 from symctl.errors import SymctlTypeError
 from symctl.proof import Verdict
@@ -152,27 +152,10 @@ def _combination(v, names) -> str:
 def controller_reduction(
     system: AugmentedSystem, gains: Gains
 ) -> tuple[ControllerReduction, Gains]:
-    r"""Decide whether the optimal delayed controller is minimal, and tie the gains that make it not.
+    r"""``(verdict, gains)``: whether the optimal delayed controller of the numeric ``system`` is
+    minimal, and its ``gains`` with those the theorem ties computed exactly from the free ones
+    (SymctlTypeError for other types).
 
-    Parameters
-    ----------
-    system : AugmentedSystem
-        With numbers (floats taken exactly).
-    gains : Gains
-        Its optimal gains (:func:`~symctl.design.lqr.lqr_gains`).
-
-    Returns
-    -------
-    (ControllerReduction, Gains)
-        The verdict, and the gains with the tied ones computed exactly from the free ones.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``system`` or ``gains`` of another type.
-
-    Examples
-    --------
     >>> from symctl import augment, lqr_gains
     >>> from symctl.realization.reduction import controller_reduction
     >>> system = augment(([[0.9, 0], [0.1, 0.8]], [[1, -1], [0, 0]]), 1, 1)
@@ -208,9 +191,7 @@ def controller_reduction(
     if order == T * m:
         return ControllerReduction(T * m, order, method=method), gains
     Kn = np.array(exact, dtype=float)
-    closed = np.array(system.A, dtype=float) + np.array(system.B, dtype=float) @ Kn
-    poles = np.linalg.eigvals(closed)
-    poles = poles[np.argsort(-np.abs(poles), kind="stable")]
+    poles = sorted_poles(np.array(system.A, dtype=float) + np.array(system.B, dtype=float) @ Kn)
     inputs = system.plant.input_names
     driven = tuple(_combination(Rm * sp.Matrix(d), inputs) for d in directions)
     blind = _unseen(_numbers(system.plant.A, "A"), _numbers(system.Q_plant, "Q"))

@@ -539,11 +539,12 @@ AUDITED = {
     ("symctl.design.controller", "controller_tf", "subs"): 1,  # Gains.substitutions (floats)
     ("symctl.design.controller", "prove_controller_tf", "Matrix"): 3,  # system matrices
     ("symctl.design.controller", "_mimo", "subs"): 1,  # Gains.substitutions (floats)
+    ("symctl.design.controller", "_mimo", "Matrix"): 1,  # Floats of the gains
     ("symctl.design.controller", "_prove_in_ring", "Matrix"): 3,  # system matrices
     ("symctl.design.fraction", "MatrixFractionTF.__init__", "ImmutableMatrix"): 2,  # to_expr
     ("symctl.design.lqr", "Gains.latex", "Matrix"): 1,  # float array K
     ("symctl.design.plant", "DiscretePlant.__post_init__", "ImmutableMatrix"): 3,  # to_matrix
-    ("symctl.design.plant", "DiscretePlant.subs", "subs"): 5,  # subs_rule
+    ("symctl.design.plant", "DiscretePlant.subs", "subs"): 1,  # subs_rule
     ("symctl.design.plant", "Linearization.__post_init__", "ImmutableMatrix"): 1,  # internal
     ("symctl.design.plant", "MuscleModel.f_bar", "subs"): 1,  # checked floats
     ("symctl.design.plant", "MuscleModel.plant", "subs"): 1,  # checked floats
@@ -553,7 +554,7 @@ AUDITED = {
     ("symctl.design.tf", "DiscreteTF.__init__", "ImmutableMatrix"): 3,  # to_expr entries
     ("symctl.design.tf", "DiscreteTF.from_expr", "Matrix"): 3,  # sympy objects only
     ("symctl.design.tf", "DiscreteTF.lambdify", "lambdify"): 1,  # symbol_tuple
-    ("symctl.design.tf", "DiscreteTF.markov", "Matrix"): 1,  # coefficients
+    ("symctl.design.tf", "_z_coeffs", "Matrix"): 1,  # coefficients of own entries
     ("symctl.design.tf", "_replaced", "subs"): 1,  # the subs_rule of DiscreteTF.subs
     ("symctl.interop", "_z_expr", "Poly"): 1,  # float coefficients of control/SciPy arrays
     ("symctl.latex", "to_latex", "Matrix"): 1,  # only a list of sympy objects
