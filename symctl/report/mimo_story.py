@@ -1,11 +1,4 @@
-r"""The factorization (per channel) and realizations (block forms) of a MIMO controller, as blocks.
-
->>> from symctl import derive
->>> from symctl.report.mimo_story import factorization
->>> res = derive("examples/oculomotor.toml")
->>> [type(b).__name__ for b in factorization(res)][:2]
-['Heading', 'Text']
-"""
+r"""The factorization (per channel) and realizations (block forms) of a MIMO controller, as blocks."""
 
 from __future__ import annotations
 

@@ -1,10 +1,4 @@
-r"""The sections of the derivation that depend on the plant, told with the model's names and units.
-
->>> from symctl import derive_paper
->>> from symctl.report.model_story import opening
->>> [b.text for b in opening(derive_paper(), lambda *a: []) if type(b).__name__ == "Heading"]
-['Plant model and linearization', 'Discretization']
-"""
+r"""The sections of the derivation that depend on the plant, told with the model's names and units."""
 
 from __future__ import annotations
 
@@ -22,29 +16,11 @@ from symctl.report.reference import cite
 from symctl.report.shorthand import _both, _eq, _fmt, _num
 from symctl.report.spec import PAPER
 
-__all__ = [
-    "counted",
-    "longest",
-    "names_tex",
-    "nonlinear",
-    "opening",
-    "skipped",
-    "theorem",
-    "unit_text",
-]
+__all__ = ["counted", "longest", "names_tex", "nonlinear", "opening", "skipped", "theorem"]
 
 
 def unit_text(unit: str, value: float | None = None) -> str:
-    r"""A unit for prose and tables, singular after the ``value`` 1 (``1 spike/s``).
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import unit_text
-    >>> unit_text("N*m*s"), unit_text("m/s**2"), unit_text("1")
-    (' N m s', ' m/s$^{2}$', '')
-    >>> unit_text("spikes/s", 1.0), unit_text("spikes/s", 2.0)
-    (' spike/s', ' spikes/s')
-    """
+    r"""A unit for prose and tables (``m/s**2`` as ``m/s$^{2}$``), singular after the ``value`` 1."""
     if not unit or unit == "1":
         return ""
     if value == 1:
@@ -54,14 +30,7 @@ def unit_text(unit: str, value: float | None = None) -> str:
 
 
 def counted(n: int, word: str) -> str:
-    """``1 step``, ``2 steps``, ``0 steps``.
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import counted
-    >>> counted(1, "step"), counted(3, "realization")
-    ('1 step', '3 realizations')
-    """
+    """``1 step``, ``2 steps``, ``0 steps``."""
     return f"{n} {word}{'' if n == 1 else 's'}"
 
 
@@ -70,14 +39,7 @@ def _sym(name: str) -> str:
 
 
 def names_tex(names) -> str:
-    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $\omega$``.
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import names_tex
-    >>> names_tex(["theta", "f_flex"])
-    '$\\theta$, $f_\\text{flex}$'
-    """
+    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $f_\text{flex}$``."""
     return ", ".join(f"${_sym(n)}$" for n in names)
 
 

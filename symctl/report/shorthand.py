@@ -1,6 +1,5 @@
 r"""Short forms the story writes when a plain form is wider than the line: products over an
-index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`.
-"""
+index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`."""
 
 from __future__ import annotations
 
@@ -164,7 +163,7 @@ def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
 
 
 def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols
+    """The rows ``F, H, M, N`` of ``R``, a long matrix with its entries :math:`N c_k` as symbols
     (``values``: ``(f.N, f.remainder_coeffs)`` when the caller has them)."""
     N = sp.Symbol("N")
     f_N, f_coeffs = values if values is not None else (f.N, f.remainder_coeffs)
@@ -181,8 +180,8 @@ def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
 
 
 def _factored(mat):
-    r"""A symbolic matrix with the factor common to its entries in front (LaTeX), as the paper
-    writes :math:`M`; the matrix itself when they share none."""
+    r"""A symbolic matrix with the factor common to its entries in front (LaTeX), as the paper writes
+    :math:`M`; the matrix itself when they share none."""
     if not isinstance(mat, sp.MatrixBase) or len(mat) < 2 or len(mat) > LF.MATRIX_MAX_ROWS:
         return mat
     entries = [e for e in mat if e != 0]
@@ -221,8 +220,8 @@ def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
 
 
 class _Matcher:
-    """Entry -> the symbol of the target it equals exactly (compared only with the targets of
-    equal value at a random rational point), else the entry itself."""
+    """Entry -> the symbol of the target it equals exactly (compared only with the targets of equal
+    value at a random rational point), else the entry itself."""
 
     def __init__(self, targets) -> None:
         self.targets = targets

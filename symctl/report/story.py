@@ -29,7 +29,6 @@ from symctl.report.document import (
 from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
 from symctl.report.shorthand import (
-    COMPACT_LENGTH,
     _both,
     _compact,
     _display,
@@ -50,7 +49,7 @@ from symctl.report.shorthand import (
 )
 from symctl.report.spec import circuit_specs
 
-__all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
+__all__ = ["POLE_ZERO_TOL", "story"]
 
 
 _GRAPH_CAPTION = (
@@ -68,6 +67,8 @@ _G1G3_CAPTION = (
 )
 
 
+_CIRCUIT_COLUMNS = ("circuit", "neurons", "of them in $G_2$", "synapses", "compatible")
+_CIRCUIT_COLUMNS += ("realizations", "max. deviation")
 _DIAGRAMS = {"general": "full_diagram", "controllable": "ccr_diagram", "observable": "ocr_diagram"}
 _PAPER_STRUCTURE = {"ifp": f" (as in {cite('Fig.', 'ifp_diagram')})"} | {
     k: f" (as in {cite('Fig.', d)}, left, with $G_1$ and $G_3$)" for k, d in _DIAGRAMS.items()
@@ -111,30 +112,8 @@ def _ascii(text: str) -> str:
 
 
 def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
-    r"""The derivation as document blocks, in the paper's order.
-
-    Parameters
-    ----------
-    res : PaperResults
-        The derivation.
-    figures : iterable of str
-        The figures written next to the document; each gets a
-        :class:`~symctl.report.document.Graphic` where it belongs.
-
-    Returns
-    -------
-    list of blocks
-        For :func:`~symctl.report.document.to_tex` and :func:`~symctl.report.document.to_markdown`.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> from symctl.report.story import story
-    >>> blocks = story(derive_paper(), figures=["closed_loop"])
-    >>> [b.label for b in blocks if type(b).__name__ == "Math"][:3]
-    ['eq:muscle', 'eq:linear', 'eq:discrete']
-    >>> [b.name for b in blocks if type(b).__name__ == "Graphic"]
-    ['closed_loop']
+    r"""The derivation ``res`` as document blocks, in the paper's order, with a
+    :class:`~symctl.report.document.Graphic` for each of the ``figures`` written beside it.
     """
     shown = set(figures)
     blocks: list[DocumentBlock] = []
@@ -421,31 +400,19 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         f"{_count_text(res)} of each circuit; the largest relative departure of the "
         f"{x0} and {u0} traces from the optimal controller's is in the last column."
     )
-    add(
-        Table(
-            (
-                "circuit",
-                "neurons",
-                "of them in $G_2$",
-                "synapses",
-                "compatible",
-                "realizations",
-                "max. deviation",
-            ),
-            tuple(
-                (
-                    _title(k),
-                    str(c.circuit.n_neurons),
-                    "-" if c.g2_neurons is None else str(c.g2_neurons),
-                    str(len(c.circuit.synapses)),
-                    "yes" if c.compatibility.ok else "no",
-                    str(c.firing.count),
-                    _fmt(c.firing.max_deviation, 2),
-                )
-                for k, c in res.circuits.items()
-            ),
+    rows = tuple(
+        (
+            _title(k),
+            str(c.circuit.n_neurons),
+            "-" if c.g2_neurons is None else str(c.g2_neurons),
+            str(len(c.circuit.synapses)),
+            "yes" if c.compatibility.ok else "no",
+            str(c.firing.count),
+            _fmt(c.firing.max_deviation, 2),
         )
+        for k, c in res.circuits.items()
     )
+    add(Table(_CIRCUIT_COLUMNS, rows))
     for name, crec in res.circuits.items():
         add(Heading(_title(name), 2))
         if _is(name, "takes_transform") and crec.circuit.free_symbols - set(f.G.free_symbols):
@@ -504,8 +471,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
 
 
 def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
-    r"""``N``, the :math:`c_k` of the :math:`G_2` the realizations realize, and the rows
-    defining the :math:`\sigma_k` of an abbreviated :math:`G_2`."""
+    r"""``N``, the :math:`c_k` of the :math:`G_2` the realizations realize, and the rows defining
+    the :math:`\sigma_k` of an abbreviated :math:`G_2`."""
     f = res.factors
     if not getattr(res, "abbreviated", False):
         return f.N, f.remainder_coeffs, []
@@ -580,8 +547,7 @@ def _count_text(res) -> str:
     return f"{n} random realizations (the IFP controller has one)"
 
 
-POLE_ZERO_TOL = 1e-6
-"""Poles smaller than this are written as 0 (a multiple pole at 0 splits by rounding)."""
+POLE_ZERO_TOL = 1e-6  # smaller poles are written as 0 (a multiple pole at 0 splits by rounding)
 
 
 def _pole(p: complex) -> str:
