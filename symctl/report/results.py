@@ -383,21 +383,11 @@ def _theorem_json(verdict) -> dict | None:
     """The exact verdict of :func:`symctl.controller_compatibility` on the model's delay graph."""
     if verdict is None:
         return None
-    return {
-        "compatible": verdict.ok,
-        "scope": verdict.scope,
-        "method": verdict.method,
-        "reason": verdict.reason,
-        "parts": [
-            {
-                "label": p.label,
-                "path": list(p.path),
-                "edge_delays": list(p.delays),
-                "delay": p.delay,
-            }
-            for p in verdict.parts
-        ],
-    }
+    parts = [
+        {"label": p.label, "path": list(p.path), "edge_delays": list(p.delays), "delay": p.delay}
+        for p in verdict.parts
+    ]
+    return {"compatible": verdict.ok} | _attrs(verdict, "scope method reason") | {"parts": parts}
 
 
 def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
