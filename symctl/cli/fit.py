@@ -131,18 +131,11 @@ def model_controller(model_file, sensor_delay, actuator_delay):
     model's."""
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-    from symctl.design.plant import MuscleModel
 
-    if model_file is None:
-        plant, Q, R, model, defaults = MuscleModel(), 1, 1, None, (1, 1)
-    else:
-        from symctl.model.modelfile import load_model
-
-        model = load_model(Path(model_file))
-        plant, Q, R = model.plant, model.Q, model.R
-        defaults = (model.sensor_delay, model.actuator_delay)
-    ds = defaults[0] if sensor_delay is None else sensor_delay
-    da = defaults[1] if actuator_delay is None else actuator_delay
+    model = _load(model_file)
+    plant, Q, R, (ds, da) = _parts(model)
+    ds = ds if sensor_delay is None else sensor_delay
+    da = da if actuator_delay is None else actuator_delay
     gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
     if model is None or model.C is None:
         return gains, None, None
@@ -155,14 +148,21 @@ def model_controller(model_file, sensor_delay, actuator_delay):
 
 def model_parts(model_file):
     """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
-    from symctl.design.plant import MuscleModel
+    return _parts(_load(model_file))
 
-    if model_file is None:
-        return MuscleModel(), 1, 1, (1, 1)
+
+def _load(model_file):
     from symctl.model.modelfile import load_model
 
-    m = load_model(Path(model_file))
-    return m.plant, m.Q, m.R, (m.sensor_delay, m.actuator_delay)
+    return None if model_file is None else load_model(Path(model_file))
+
+
+def _parts(model):
+    from symctl.design.plant import MuscleModel
+
+    if model is None:
+        return MuscleModel(), 1, 1, (1, 1)
+    return model.plant, model.Q, model.R, (model.sensor_delay, model.actuator_delay)
 
 
 def _meta_int(value, key, tr):
