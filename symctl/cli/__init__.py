@@ -1,7 +1,4 @@
-"""The ``symctl`` command. Orchestration only: the math lives in the library.
-
-The console script calls :func:`run`; :func:`main` returns the exit code instead of exiting.
-"""
+"""The ``symctl`` command (orchestration only: the math lives in the library)."""
 
 from __future__ import annotations
 
@@ -28,7 +25,7 @@ from symctl.cli.options import (
     workers_options,
     writing_options,
 )
-from symctl.cli.progress import Steps
+from symctl.cli.progress import Steps, say
 from symctl.cli.spiking import spiking_command
 from symctl.cli.summary import summary
 from symctl.errors import SymctlError
@@ -90,8 +87,7 @@ def paper(q_text, r_text, out, spiking, workers, scheduler, **params) -> None:
     """Run the paper's derivation and write it into OUT.
 
     Writes results.json, derivation.tex (and derivation.pdf), report.md and the
-    figures (PDF and PNG; SVG with --formats pdf,png,svg).
-    """
+    figures (PDF and PNG; SVG with --formats pdf,png,svg)."""
     writing = {k: params.pop(k) for k in _WRITING}
     try:
         params.update(Q=parse_matrix(q_text, "--q"), R=parse_matrix(r_text, "--r"))
@@ -134,16 +130,15 @@ def derive_command(model_file, out, check, **writing) -> None:
     examples/muscle.toml): results.json, derivation.tex (and .pdf), report.md and
     the figures, titled with the model's names and units. The model file's
     format is in docs/model-file.md. With --check the file is only read and
-    checked.
-    """
+    checked."""
     from symctl.derivation.pipeline import derive
     from symctl.model.modelfile import load_model
 
     model = load_model(Path(model_file))
     for note in model.notes:
-        _say(f"note: {note}")
+        say(_console, f"note: {note}")
     if check:
-        _say(_check_line(model))
+        say(_console, _check_line(model))
         return
     try:
         folder = out if out is not None else f"out/{model.name}"
@@ -219,8 +214,7 @@ def atlas_command(order, drawings, out, pdf, **search) -> None:
 
     Writes atlas.json, atlas.md, atlas.tex (and atlas.pdf), an overview figure and
     one drawing per class. Finished patterns go to OUT.progress.jsonl as the
-    search runs, so an interrupted run resumes where it stopped.
-    """
+    search runs, so an interrupted run resumes where it stopped."""
     from symctl.circuitatlas.atlas import atlas as find_atlas
     from symctl.report.atlas import write_atlas
     from symctl.report.output import OutputFolder
@@ -281,16 +275,13 @@ def _wrote(out: Path, written: list[Path], pdf: bool) -> None:
     if figures:
         kinds = ", ".join(dict.fromkeys(p.suffix[1:].upper() for p in drawn))  # as written
         line += f", {len(figures)} figures ({kinds}): " + ", ".join(figures)
-    _say(line)
+    say(_console, line)
     if pdf and not any(n.endswith(".pdf") for n in docs):
-        _say(
+        say(
+            _console,
             "note: pdflatex not found, the PDF was not compiled (install TeX Live's "
-            "texlive-latex-base)"
+            "texlive-latex-base)",
         )
-
-
-def _say(text: str) -> None:
-    _console.print(text, markup=False, soft_wrap=True, highlight=False)
 
 
 # the options each step of derive_paper depends on: named when NumPy or SciPy fails in it
@@ -341,25 +332,13 @@ def _warned(caught: list) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the ``symctl`` command on ``argv`` and return its exit code (no ``sys.exit``).
+    """Run the ``symctl`` command on ``argv`` (default ``sys.argv[1:]``); returns its exit code.
 
-    Only single lines reach stderr (an error, a successful run's warnings, an interruption);
-    SIGINT and SIGTERM stop the run cleanly, ``--out`` as it was. ``SYMCTL_TRACEBACK=1``
-    shows the traceback of an unexpected exception.
+    Exit codes: 0 on success; 2 on bad input (named by option, or by step and the options it
+    reads); 1 on an internal error or when aborted; 130 on SIGINT and 143 on SIGTERM, which stop
+    the run cleanly, ``--out`` as it was. Only single lines reach stderr (an error, a successful
+    run's warnings, an interruption); ``SYMCTL_TRACEBACK=1`` shows an unexpected exception's traceback.
 
-    Parameters
-    ----------
-    argv : list of str, optional
-        The arguments after ``symctl``; by default ``sys.argv[1:]``.
-
-    Returns
-    -------
-    int
-        0 on success; 2 on bad input (named by option, or by step and the options it reads);
-        1 on an internal error or when aborted; 130 on SIGINT and 143 on SIGTERM.
-
-    Examples
-    --------
     >>> from symctl.cli import main
     >>> main(["paper", "--realizations", "0"])
     2
@@ -427,11 +406,5 @@ def _first_line(exc: BaseException) -> str:
 
 
 def run() -> None:  # pragma: no cover - console-script wrapper
-    """The console script ``symctl``: run :func:`main` on ``sys.argv`` and exit with its code.
-
-    Raises
-    ------
-    SystemExit
-        Always, with :func:`main`'s exit code.
-    """
+    """The console script ``symctl``: exits with :func:`main`'s code."""
     sys.exit(main())

@@ -1,33 +1,21 @@
-"""``symctl dale``: Dale's law for the controller of a model (or the paper's), on the terminal.
-
-Orchestration only (the math is :func:`symctl.dale`, :func:`symctl.ei_circuit` and
-:func:`symctl.dale_atlas`); registered on the ``symctl`` group by :mod:`symctl.cli`.
-It writes nothing: ``--json`` prints the verdicts as JSON for scripts. Bad input is
-one line and exit 2, as for every command.
-
->>> from symctl.cli import main
->>> main(["dale", "--circuit", "diagonal"])
-2
-"""
+"""``symctl dale``: Dale's law for the controller of a model (or the paper's), on the terminal. It
+writes nothing: ``--json`` prints the verdicts for scripts."""
 
 from __future__ import annotations
 
 import itertools
 import json
+from collections.abc import Mapping
 
 import click
 from rich.console import Console
 
 from symctl.cli.options import Command, options, shown, workers_options
-from symctl.cli.progress import Steps
+from symctl.cli.progress import Steps, say
 
 __all__ = ["dale_command"]
 
 _console = Console()
-
-
-def _say(text: str) -> None:
-    _console.print(text, markup=False, soft_wrap=True, highlight=False)
 
 
 @click.command("dale", cls=Command)
@@ -65,25 +53,14 @@ def _say(text: str) -> None:
     click.option("--json", "as_json", is_flag=True, help="Print JSON instead of text."),
 )
 def dale_command(
-    model_file,
-    circuit,
-    sensor_delay,
-    actuator_delay,
-    timeout,
-    ei,
-    atlas_table,
-    samples,
-    workers,
-    scheduler,
-    as_json,
+    model_file, circuit, sensor_delay, actuator_delay, ei, atlas_table, samples, as_json, **run
 ) -> None:
     """Decide whether the circuits of the controller can have every neuron E or I.
 
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
     model, Q = R = 1); for a model that measures some states, or through noise, its LQG
     compensator of the measured outputs. Each verdict is a witness verified exactly, a z3 proof that
-    none exists, or "not decided".
-    """
+    none exists, or "not decided"."""
     from symctl.cli.fit import model_controller
     from symctl.dalelaw.dale import dale
     from symctl.dalelaw.dale_atlas import dale_atlas
@@ -104,25 +81,15 @@ def dale_command(
                 samples=samples,
                 G=ctrl,
                 **kw,
-                timeout=timeout,
-                workers=workers,
-                scheduler=scheduler,
+                **run,
                 progress=lambda label: steps.part(f"{next(decided)} classes decided, last {label}"),
             )
         if as_json:
-            rows = [
-                {
-                    "class": r.label,
-                    "verdict": r.verdict,
-                    "controller": r.controller,
-                    "sampled": list(r.sampled),
-                    "exists": r.exists,
-                }
-                for r in T.rows
-            ]
-            _say(json.dumps({"order": 2, "samples": samples, "rows": rows}, indent=1))
+            fields = ("verdict", "controller", "sampled", "exists")
+            rows = [{"class": r.label} | _fields(r, fields) for r in T.rows]
+            say(_console, json.dumps({"order": 2, "samples": samples, "rows": rows}, indent=1))
         else:
-            _say(T.table())
+            say(_console, T.table())
         return
     from symctl.realization.realizers import circuit_names
 
@@ -131,6 +98,7 @@ def dale_command(
     circuits = [_circuit(c.strip(), s) for c in circuit.split(",") if c.strip()]
     if not circuits:
         raise click.BadParameter("name at least one circuit", param_hint="--circuit")
+    timeout = run["timeout"]
     with Steps(_console) as steps:
         results = []
         for k, c in enumerate(circuits, start=1):
@@ -141,42 +109,36 @@ def dale_command(
             steps.start("cheapest E/I circuit")
             e = ei_circuit(ctrl, **kw, timeout=timeout, progress=steps.part)
     if as_json:
-        out = {
-            "circuits": [
-                {
-                    "circuit": r.circuit,
-                    "feasible": r.feasible,
-                    "realizes": r.realizes,
-                    "signs": dict(r.signs),
-                    "method": r.method,
-                    "reason": r.reason,
-                }
-                for r in results
-            ],
-        }
+        fields = ("circuit", "feasible", "realizes", "signs", "method", "reason")
+        out = {"circuits": [_fields(r, fields) for r in results]}
         if e is not None:
-            out["ei_circuit"] = {
-                "circuit": e.circuit,
-                "neurons": e.neurons,
-                "minimum": e.minimum,
-                "cost": e.cost,
-                "interneurons": list(e.interneurons),
-            }
-        _say(json.dumps(out, indent=1))
+            fields = ("circuit", "neurons", "minimum", "cost", "interneurons")
+            out["ei_circuit"] = _fields(e, fields)
+        say(_console, json.dumps(out, indent=1))
         return
     word = {True: "E/I", False: "none (proved)", None: "not decided"}
     what = "" if G is None else "the LQG compensator of the measured outputs; "
-    _say(f"controller: {what}sensor delay {s.sensor_delay}, actuator delay {s.actuator_delay}")
+    say(
+        _console,
+        f"controller: {what}sensor delay {s.sensor_delay}, actuator delay {s.actuator_delay}",
+    )
     for r in results:
         signs = ", ".join(f"{k} {v}" for k, v in r.signs.items())
-        _say(f"{r.circuit:>12}: {word[r.feasible]}" + (f"  [{signs}]" if signs else ""))
-        _say(f"{'':>14}{r.reason}")
+        say(_console, f"{r.circuit:>12}: {word[r.feasible]}" + (f"  [{signs}]" if signs else ""))
+        say(_console, f"{'':>14}{r.reason}")
     if e is not None:
-        _say(
+        say(
+            _console,
             f"cheapest E/I circuit: {e.circuit}, {e.neurons} neurons (the fewest without "
-            f"Dale's law: {e.minimum}; Dale's law costs {e.cost})"
+            f"Dale's law: {e.minimum}; Dale's law costs {e.cost})",
         )
-        _say(e.table())
+        say(_console, e.table())
+
+
+def _fields(result, names) -> dict:
+    """The attributes ``names`` of a result, as JSON values."""
+    values = (getattr(result, k) for k in names)
+    return {k: dict(v) if isinstance(v, Mapping) else v for k, v in zip(names, values, strict=True)}
 
 
 def _circuit(name: str, system):

@@ -1,12 +1,4 @@
-"""``symctl fit``: a circuit of the controller fitted to recorded firing rates.
-
-Orchestration only (the math is :func:`symctl.fit`); registered on the ``symctl``
-group by :mod:`symctl.cli`. Bad input is one line and exit 2, as for every command.
-
->>> from symctl.cli import main
->>> main(["fit", "no-such-file.csv", "--out", "never-written"])
-2
-"""
+"""``symctl fit``: a circuit of the controller fitted to recorded firing rates."""
 
 from __future__ import annotations
 
@@ -16,7 +8,7 @@ import click
 from rich.console import Console
 
 from symctl.cli.options import Command, options, shown, workers_options
-from symctl.cli.progress import Steps
+from symctl.cli.progress import Steps, say
 
 __all__ = ["fit_command"]
 
@@ -49,10 +41,7 @@ _console = Console()
         help="Actuator sections [default: the data's, else the model's, else 1].",
     ),
     click.option(
-        "--C",
-        "c_value",
-        type=float,
-        help="Fix every section gain C to this value [default: fitted].",
+        "--C", "C", type=float, help="Fix every section gain C to this value [default: fitted]."
     ),
     shown(
         "--starts",
@@ -60,7 +49,7 @@ _console = Console()
         default=8,
         help="Starting points of the least-squares fit.",
     ),
-    shown("--seed", type=int, default=0, help="Seed of the starts and the bootstrap."),
+    shown("--seed", "rng", type=int, default=0, help="Seed of the starts and the bootstrap."),
     shown(
         "--bootstrap",
         type=click.IntRange(min=0),
@@ -72,25 +61,12 @@ _console = Console()
     shown("--out", default="out/fit", help="Output folder."),
 )
 def fit_command(
-    data,
-    model_file,
-    circuit,
-    sensor_delay,
-    actuator_delay,
-    c_value,
-    starts,
-    seed,
-    bootstrap,
-    workers,
-    scheduler,
-    figures,
-    out,
+    data, model_file, circuit, sensor_delay, actuator_delay, figures, out, **fitting
 ) -> None:
     """Fit a circuit of the controller to the firing rates recorded in DATA (CSV or NPZ).
 
     Writes fit.json, predictions.csv (every neuron's trace), report.md and the figure
-    (fit.pdf, fit.svg, fit.png) into OUT. The data format is in docs/fitting.md.
-    """
+    (fit.pdf, fit.svg, fit.png) into OUT. The data format is in docs/fitting.md."""
     from symctl.fitting.fit import fit
     from symctl.report.fit import write_fit
     from symctl.report.output import OutputFolder
@@ -103,7 +79,7 @@ def fit_command(
     classes = (circuit or tr.meta.get("circuit") or "general").split(",")
     classes = [c.strip() for c in classes]
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
-        steps.start(f"fitting {', '.join(classes)} ({starts} starts)")
+        steps.start(f"fitting {', '.join(classes)} ({fitting['starts']} starts)")
         res = fit(
             tr.traces,
             **controller,
@@ -112,26 +88,18 @@ def fit_command(
             circuit=classes if len(classes) > 1 else classes[0],
             disturbance=1.0 if tr.disturbance is None else tr.disturbance,
             steps=tr.steps,
-            C=c_value,
-            starts=starts,
-            rng=seed,
-            bootstrap=bootstrap,
-            workers=workers,
-            scheduler=scheduler,
+            **fitting,
             progress=steps.part,
         )
         steps.start("writing")
         written = write_fit(res, folder.staging, figures=figures, source=str(data))
     worst = max(res.residuals.values())
-    _console.print(
+    say(
+        _console,
         f"fitted {len(res.data)} neurons with the {res.circuit_class} circuit "
         f"(exact realization of G: {res.exact}); largest RMS residual {worst:.3g}",
-        markup=False,
-        soft_wrap=True,
-        highlight=False,
     )
-    names = ", ".join(p.name for p in folder.final(written))
-    _console.print(f"wrote {out}/: {names}", markup=False, soft_wrap=True, highlight=False)
+    say(_console, f"wrote {out}/: " + ", ".join(p.name for p in folder.final(written)))
 
 
 def _fit_inputs(data, model_file, sensor_delay, actuator_delay):
@@ -163,18 +131,11 @@ def model_controller(model_file, sensor_delay, actuator_delay):
     model's."""
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
-    from symctl.design.plant import MuscleModel
 
-    if model_file is None:
-        plant, Q, R, model, defaults = MuscleModel(), 1, 1, None, (1, 1)
-    else:
-        from symctl.model.modelfile import load_model
-
-        model = load_model(Path(model_file))
-        plant, Q, R = model.plant, model.Q, model.R
-        defaults = (model.sensor_delay, model.actuator_delay)
-    ds = defaults[0] if sensor_delay is None else sensor_delay
-    da = defaults[1] if actuator_delay is None else actuator_delay
+    model = _load(model_file)
+    plant, Q, R, (ds, da) = _parts(model)
+    ds = ds if sensor_delay is None else sensor_delay
+    da = da if actuator_delay is None else actuator_delay
     gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
     if model is None or model.C is None:
         return gains, None, None
@@ -187,14 +148,21 @@ def model_controller(model_file, sensor_delay, actuator_delay):
 
 def model_parts(model_file):
     """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
-    from symctl.design.plant import MuscleModel
+    return _parts(_load(model_file))
 
-    if model_file is None:
-        return MuscleModel(), 1, 1, (1, 1)
+
+def _load(model_file):
     from symctl.model.modelfile import load_model
 
-    m = load_model(Path(model_file))
-    return m.plant, m.Q, m.R, (m.sensor_delay, m.actuator_delay)
+    return None if model_file is None else load_model(Path(model_file))
+
+
+def _parts(model):
+    from symctl.design.plant import MuscleModel
+
+    if model is None:
+        return MuscleModel(), 1, 1, (1, 1)
+    return model.plant, model.Q, model.R, (model.sensor_delay, model.actuator_delay)
 
 
 def _meta_int(value, key, tr):

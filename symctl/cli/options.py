@@ -1,14 +1,4 @@
-"""The commands' option plumbing: options stacked from one list, errors named by option.
-
->>> from symctl.cli.options import options_named
->>> from symctl.errors import ParameterError
->>> try:
-...     with options_named(aliases={"dt": "--ts"}):
-...         raise ParameterError("dt: must be a finite number > 0, got 0")
-... except ParameterError as exc:
-...     print(exc)
---ts: must be a finite number > 0, got 0
-"""
+"""The commands' option plumbing: options stacked from one list, errors named by option."""
 
 from __future__ import annotations
 
@@ -22,15 +12,8 @@ from symctl.errors import SymctlError
 __all__ = ["Command", "options", "options_named", "progress_file", "shown", "writing_options"]
 
 
-ALIASES = {
-    "dt": "--ts",
-    "rng": "--seed",
-    "Q": "--q",
-    "R": "--r",
-    "C": "--C",
-    "circuits": "--circuit",
-}
-"""Library arguments named otherwise on the command line (used where the command has the option)."""
+# library arguments named otherwise on the command line (used where the command has the option)
+ALIASES = dict(dt="--ts", rng="--seed", Q="--q", R="--r", C="--C", circuits="--circuit")
 
 
 @contextlib.contextmanager
@@ -81,7 +64,7 @@ def _formats(ctx, param, value) -> tuple[str, ...]:
     return figure_formats(value, "--formats")
 
 
-writing_options = options(
+writing_options = options(  # of symctl paper and derive (--formats checked before any work)
     shown("--figures/--no-figures", default=True, help="Write the figures."),
     shown(
         "--formats",
@@ -91,9 +74,7 @@ writing_options = options(
         "(derivation.tex includes the PDFs, report.md shows the PNGs).",
     ),
     shown(
-        "--pdf/--no-pdf",
-        default=True,
-        help="Compile derivation.pdf (when pdflatex is installed).",
+        "--pdf/--no-pdf", default=True, help="Compile derivation.pdf (when pdflatex is installed)."
     ),
     click.option(
         "--jobs",
@@ -102,7 +83,6 @@ writing_options = options(
         help="Processes drawing the figures [default: CPUs, at most 4].",
     ),
 )
-"""The options of ``symctl paper`` and ``symctl derive`` (--formats checked before any work)."""
 
 
 def workers_options(workers_help: str):

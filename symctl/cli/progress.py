@@ -1,7 +1,5 @@
-"""The commands' live progress: a spinner with the running step, what it is doing and its time.
-
-Drawn only on a terminal, and transient: ``--json`` output, pipes and logs are as without it.
-"""
+"""The commands' live progress (a spinner with the running step, what it does, its time), drawn
+only on a terminal and transient: ``--json`` output, pipes and logs are as without it."""
 
 from __future__ import annotations
 
@@ -11,14 +9,13 @@ import time
 from rich.console import Console
 from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-__all__ = ["Steps"]
+__all__ = ["Steps", "say"]
 
 
 class Steps:
     """A run's steps on ``console``: :meth:`start` a step, :meth:`part` says what it is doing.
 
-    With ``lines``, each finished step prints ``done <step> <seconds> s`` and the run a total.
-    """
+    With ``lines``, each finished step prints ``done <step> <seconds> s`` and the run a total."""
 
     def __init__(self, console: Console, *, lines: bool = False) -> None:
         self._console, self._lines = console, lines
@@ -68,3 +65,8 @@ class Steps:
             if self._lines:
                 self._say(f"  total {'':<14} {time.perf_counter() - self._start:6.2f} s")
         self._bar.__exit__(exc_type, exc, tb)
+
+
+def say(console: Console, text: str) -> None:
+    """Print ``text`` as it is: no markup, no highlighting, long lines unbroken."""
+    console.print(text, markup=False, soft_wrap=True, highlight=False)

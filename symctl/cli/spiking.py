@@ -1,9 +1,4 @@
-"""``symctl spiking``: what spikes cost each circuit of a model's controller (or the paper's).
-
->>> from symctl.cli import main
->>> main(["spiking", "--neurons", "10,ten", "--out", "never-written"])
-2
-"""
+"""``symctl spiking``: what spikes cost each circuit of a model's controller (or the paper's)."""
 
 from __future__ import annotations
 
@@ -13,7 +8,7 @@ import click
 from rich.console import Console
 
 from symctl.cli.options import Command, options, progress_file, shown, workers_options
-from symctl.cli.progress import Steps
+from symctl.cli.progress import Steps, say
 
 __all__ = ["spiking_command"]
 
@@ -59,8 +54,7 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
     model). Writes spiking.json, spiking.md (the table, cheapest first) and the
     figure spiking_cost into OUT. Finished runs go to OUT.progress.jsonl, so an
-    interrupted sweep resumes where it stopped.
-    """
+    interrupted sweep resumes where it stopped."""
     from symctl.report.output import OutputFolder
     from symctl.report.spiking import write_spiking
     from symctl.spiking.cost import spiking_cost
@@ -84,8 +78,8 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
         steps.start("writing")
         written = write_spiking(cost, folder.staging, figures=figures)
     checkpoint.unlink(missing_ok=True)
-    _say(cost.finding())
-    _say(f"wrote {out}/: " + ", ".join(p.name for p in folder.final(written)))
+    say(_console, cost.finding())
+    say(_console, f"wrote {out}/: " + ", ".join(p.name for p in folder.final(written)))
 
 
 def _derivation(model_file):
@@ -94,7 +88,3 @@ def _derivation(model_file):
     from symctl.model.modelfile import load_model
 
     return derive_paper() if model_file is None else derive(load_model(Path(model_file)))
-
-
-def _say(text: str) -> None:
-    _console.print(text, markup=False, soft_wrap=True, highlight=False)

@@ -1,7 +1,4 @@
-"""The console's summary of a derivation: ``symctl paper`` and ``symctl derive`` print it.
-
-Read off the derivation's objects, never off its ``results.json``.
-"""
+"""The console's summary of a derivation (``symctl paper``, ``derive``), read off its objects."""
 
 from __future__ import annotations
 

@@ -1,14 +1,7 @@
-r"""The atlas as documents: ``atlas.json``, ``atlas.md``, ``atlas.tex``/``.pdf`` and drawings.
-
->>> import symctl
->>> from symctl.report.atlas import paper_realizations
->>> sorted(paper_realizations(symctl.atlas(2, workers=1)))
-['controllable canonical', 'general', 'observable canonical']
-"""
+r"""The atlas as documents: ``atlas.json``, ``atlas.md``, ``atlas.tex``/``.pdf`` and drawings."""
 
 from __future__ import annotations
 
-import json
 from collections import Counter
 from pathlib import Path
 
@@ -16,18 +9,17 @@ import sympy as sp
 
 from symctl._util.validate import callable_or_none
 from symctl.report.document import Graphic, Heading, References, Table, Text
+from symctl.report.output import write_json
 from symctl.report.reference import REFERENCES, cite
 
 __all__ = ["DRAWINGS", "atlas_blocks", "paper_blocks", "paper_realizations", "write_atlas"]
 
-DRAWINGS = 24
-"""Classes drawn one by one by default (the sparsest first); the overview has the universal ones."""
+DRAWINGS = 24  # classes drawn one by one by default (the sparsest first)
 
-OVERVIEW_MAX = 24
-"""Universal classes on the overview figure (the sparsest first)."""
+OVERVIEW_MAX = 24  # universal classes on the overview figure (the sparsest first)
 
-TABLE_ROWS = 60
-"""Classes listed in the documents' table (atlas.json lists every class)."""
+TABLE_ROWS = 60  # classes in the documents' table (atlas.json lists every class)
+_COLUMNS = ("class", "neurons", "synapses", "branches", "pattern (F / H / M)", "verdict", "method")
 
 
 def paper_realizations(A) -> dict:
@@ -150,15 +142,7 @@ def atlas_blocks(A, drawn=()) -> list:
         ),
         Heading("The classes", 2),
         Table(
-            (
-                "class",
-                "neurons",
-                "synapses",
-                "branches",
-                "pattern (F / H / M)",
-                "verdict",
-                "method",
-            ),
+            _COLUMNS,
             tuple(
                 (
                     c.label,
@@ -209,35 +193,16 @@ def atlas_blocks(A, drawn=()) -> list:
 
 
 def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, progress=None):
-    """Write atlas.json, atlas.md, atlas.tex (and .pdf) and the drawings into the folder ``out``.
-
-    Parameters
-    ----------
-    A : Atlas
-    out : path
-        An existing folder.
-    drawings : int or None
-        Classes drawn one by one (the first ones of the atlas); None draws every class.
-    pdf : bool
-        Compile atlas.tex when ``pdflatex`` is installed.
-    progress : callable, optional
-        Called with the name of each step before it runs: each drawing
-        (``"drawing atlas_overview"``, ``"drawing class_A1"``, ...), ``"documents"``, ``"pdf"``.
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
+    """Write atlas.json, atlas.md, atlas.tex (and .pdf when ``pdf`` and ``pdflatex``) and the
+    drawings of the first ``drawings`` classes (None: all) into the folder ``out``; returns the
+    paths. ``progress`` gets each step's name before it runs (``"drawing class_A1"``,
+    ``"documents"``, ``"pdf"``)."""
     from symctl.report.document import compile_pdf, write_markdown, write_tex
     from symctl.report.figures import save
 
     out = Path(out)
     step = callable_or_none(progress, "progress") or (lambda _name: None)
-    written = []
-    path = out / "atlas.json"
-    path.write_text(json.dumps(A.to_dict(), indent=1, sort_keys=False) + "\n")
-    written.append(path)
+    written = [write_json(out / "atlas.json", A.to_dict(), indent=1)]
     chosen = A.classes if drawings is None else A.classes[:drawings]
     drawn = []
     if chosen:
@@ -269,7 +234,6 @@ def write_atlas(A, out, *, drawings: int | None = DRAWINGS, pdf: bool = True, pr
     return written
 
 
-# ---------------------------------------------------------------- the paper's section
 def claim_json(A) -> dict:
     """The order-n count and where the paper's three realizations sit (results.json ``atlas``)."""
     return {
@@ -302,9 +266,9 @@ def candidates_json(candidates) -> list | None:
 
 
 def paper_blocks(res, shown) -> list:
+    """The atlas section of ``symctl paper``: the order-2 count, the drawings, this controller's classes."""
     from symctl.report.figures import simplified
 
-    """The atlas section of ``symctl paper``: the order-2 count, the drawings, this controller's classes."""
     A = res.atlas
     blocks = [Heading("The circuit atlas"), *_claim(A)[1:]]
 

@@ -2,8 +2,7 @@ r"""A document as a list of blocks, written as LaTeX, Markdown and PDF.
 
 :func:`to_tex` and :func:`to_markdown` render the same blocks, so the two documents tell the
 same story with the same numbers; prose holds inline math between ``$`` signs, citations and
-references (:mod:`symctl.report.prose`).
-"""
+references (:mod:`symctl.report.prose`)."""
 
 from __future__ import annotations
 
@@ -41,7 +40,6 @@ __all__ = [
 ]
 
 TITLE = "Toward neuronal implementations of delayed optimal control: the derivation"
-"""The title of the paper's derivation (``derivation.tex`` and ``report.md``)."""
 AUTHOR = (
     r"Derived by symctl \\ \small with the method of Jing Shuang (Lisa) Li, \\ "
     r"\small\emph{Toward Neuronal Implementations of Delayed Optimal Control}"
@@ -106,21 +104,15 @@ class References:
     entries: tuple
 
 
+# any block of a document (not a structure's Block), and their types
 DocumentBlock = Heading | Text | Math | Table | Graphic | Verbatim | References
-"""Any block of a document (not a structure's :class:`~symctl.compatibility.structure.Block`)."""
 BLOCKS = typing.get_args(DocumentBlock)
-"""The block types of a document."""
 
 
 # \fitmath shrinks a display a little wider than the line (logged "symctl: shrunk"); one wider
 # than SHRINK_MAX lines is left overfull. \fitgraphic and \symctlbarrier: see preamble.tex.
-_PREAMBLE = (
-    Path(__file__)
-    .with_name("preamble.tex")
-    .read_text()
-    .rstrip("\n")
-    .replace("<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth")
-)
+_PREAMBLE = Path(__file__).with_name("preamble.tex").read_text().rstrip("\n")
+_PREAMBLE = _PREAMBLE.replace("<2\\linewidth", f"<{LF.SHRINK_MAX}\\linewidth")
 
 
 def _row(lhs, rhs) -> str:
@@ -136,14 +128,8 @@ def _tex_math(b: Math) -> str:
         ]
         return "\n".join([r"\begin{align}", "  " + " \\\\\n  ".join(rows), r"\end{align}"])
     rows = r" \\ ".join(_row(lhs, rhs) for lhs, rhs in b.rows)
-    return "\n".join(
-        [
-            r"\begin{equation}",
-            rf"  \fitmath{{\begin{{aligned}}{rows}\end{{aligned}}}}",
-            rf"  \label{{{b.label}}}",
-            r"\end{equation}",
-        ]
-    )
+    body = rf"  \fitmath{{\begin{{aligned}}{rows}\end{{aligned}}}}"
+    return "\n".join([r"\begin{equation}", body, rf"  \label{{{b.label}}}", r"\end{equation}"])
 
 
 _WRAP = r">{\raggedright\arraybackslash}"  # a wrapped column
@@ -181,20 +167,9 @@ def _tex_table(b: Table) -> str:
     label += r"\vspace{0.5ex}" if b.caption and not long else ""
     if long:
         top = [rf"{caption}{label}\\"] if caption else []
-        return "\n".join(
-            [
-                rf"{{{size}",
-                rf"\begin{{longtable}}{{{cols}}}",
-                *top,
-                r"\hline",
-                body[0],
-                r"\endhead",
-                r"\hline",
-                r"\endfoot",
-                *body[1:],
-                r"\end{longtable}}",
-            ]
-        )
+        head = [rf"{{{size}", rf"\begin{{longtable}}{{{cols}}}", *top, r"\hline", body[0]]
+        foot = [r"\endhead", r"\hline", r"\endfoot", *body[1:], r"\end{longtable}}"]
+        return "\n".join(head + foot)
     table = [rf"\begin{{{env}}}{width}{{{cols}}}", r"\hline", *body, r"\hline", rf"\end{{{env}}}"]
     if caption:
         return "\n".join(
@@ -237,32 +212,8 @@ def _tex_block(b) -> str:
 
 
 def to_tex(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
-    r"""The blocks as a standalone LaTeX document (compiles with ``pdflatex``).
-
-    Parameters
-    ----------
-    blocks : sequence of blocks
-        Instances of the types in :data:`BLOCKS`, in reading order.
-    title : str
-        The document's title (prose: escaped for LaTeX outside ``$...$``).
-
-    Returns
-    -------
-    str
-        The document, from ``\documentclass`` to ``\end{document}``.
-
-    Raises
-    ------
-    SymctlTypeError
-        An element of ``blocks`` is not a block.
-
-    Examples
-    --------
-    >>> from symctl.report.document import Math, Text, to_tex
-    >>> tex = to_tex([Text("100% sure: $a = 1$"), Math((("a", "1"),), "eq:a")], title="Demo")
-    >>> r"100\% sure: $a = 1$" in tex, r"\label{eq:a}" in tex
-    (True, True)
-    """
+    r"""The blocks (instances of :data:`BLOCKS`) as a standalone LaTeX document for ``pdflatex``;
+    ``title`` is prose. SymctlTypeError names an element that is not a block."""
     parts = [_tex_block(b) for b in _checked(blocks)]
     packages = [
         p
@@ -279,35 +230,7 @@ def _md_cell(text: str) -> str:
 
 
 def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
-    r"""The blocks as Markdown with ``$$`` math (numbered by ``\tag``) and the figures inline.
-
-    Parameters
-    ----------
-    blocks : sequence of blocks
-        Instances of the types in :data:`BLOCKS`, in reading order.
-    title : str
-        The document's title (the first heading).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    SymctlTypeError
-        An element of ``blocks`` is not a block.
-
-    Examples
-    --------
-    >>> from symctl.report.document import Graphic, to_markdown
-    >>> print(to_markdown([Graphic("open_loop", "The open loop.")], title="Demo"))
-    # Demo
-    <BLANKLINE>
-    ![The open loop.](open_loop.png)
-    <BLANKLINE>
-    *Figure 1: The open loop.*
-    <BLANKLINE>
-    """
+    r"""The blocks as Markdown with ``$$`` math (numbered by ``\tag``) and the figures inline."""
     numbers = _numbers(_checked(blocks))
 
     def text(t: str) -> str:
@@ -330,14 +253,8 @@ def to_markdown(blocks: Sequence[DocumentBlock], *, title: str = TITLE) -> str:
             else:
                 body = [r + r" \\" for r in rows[:-1]] + rows[-1:]
                 body = [line for r in body for line in _md_math_lines(r)]
-                out += [
-                    "$$",
-                    r"\begin{aligned}",
-                    *body,
-                    rf"\end{{aligned}}\tag{{{number}}}",
-                    "$$",
-                    "",
-                ]
+                end = rf"\end{{aligned}}\tag{{{number}}}"
+                out += ["$$", r"\begin{aligned}", *body, end, "$$", ""]
         elif isinstance(b, Table):
             if b.caption:
                 table += 1
@@ -406,18 +323,7 @@ def _checked(blocks: Sequence) -> Sequence[DocumentBlock]:
 
 
 def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE) -> Path:
-    r"""Write :func:`to_tex` of ``blocks`` (as for :func:`to_tex`) to ``path``; returns the path.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from symctl.report.document import Text, write_tex
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     path = write_tex([Text("Hello.")], Path(out) / "a.tex")
-    ...     path.read_text().startswith(r"\documentclass")
-    True
-    """
+    r"""Write :func:`to_tex` of ``blocks`` to ``path``; returns the path."""
     path = Path(path)
     path.write_text(to_tex(blocks, title=title), encoding="utf-8")
     return path
@@ -426,53 +332,18 @@ def write_tex(blocks: Sequence[DocumentBlock], path: Path | str, *, title: str =
 def write_markdown(
     blocks: Sequence[DocumentBlock], path: Path | str, *, title: str = TITLE
 ) -> Path:
-    r"""Write :func:`to_markdown` of ``blocks`` to ``path``; returns the path.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from symctl.report.document import Text, write_markdown
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     write_markdown([Text("Hello.")], Path(out) / "a.md", title="Demo").read_text()
-    '# Demo\n\nHello.\n'
-    """
+    r"""Write :func:`to_markdown` of ``blocks`` to ``path``; returns the path."""
     path = Path(path)
     path.write_text(to_markdown(blocks, title=title), encoding="utf-8")
     return path
 
 
 def compile_pdf(tex: Path | str, *, pdflatex: str | None = None) -> Path | None:
-    """Compile ``tex`` with ``pdflatex`` next to it (twice when the log asks), leaving only the PDF.
+    """Compile ``tex`` with ``pdflatex`` (by default the one on the PATH) next to it, twice when the
+    log asks, leaving only the PDF; returns it, or None without ``pdflatex``.
 
-    Parameters
-    ----------
-    tex : path
-        The LaTeX file.
-    pdflatex : str, optional
-        The ``pdflatex`` program; by default the one on the PATH.
-
-    Returns
-    -------
-    Path or None
-        The PDF, or None without ``pdflatex``.
-
-    Raises
-    ------
-    LatexError
-        ``pdflatex`` failed (its first error line is in the message), could not be run,
-        or took longer than ``PDFLATEX_TIMEOUT`` seconds.
-
-    Examples
-    --------
-    >>> import shutil, tempfile
-    >>> from pathlib import Path
-    >>> from symctl.report.document import Text, compile_pdf, write_tex
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     pdf = compile_pdf(write_tex([Text("Hello.")], Path(out) / "a.tex"))
-    ...     pdf is None if shutil.which("pdflatex") is None else pdf.name == "a.pdf"
-    True
-    """
+    LatexError: ``pdflatex`` failed (its first error line is in the message), could not be run, or
+    took longer than ``PDFLATEX_TIMEOUT`` seconds."""
     tex = Path(tex)
     exe = pdflatex or shutil.which("pdflatex")
     if exe is None:

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from symctl.report import shorthand as SH
 from symctl.report.document import DocumentBlock, Heading, Table, Text
 from symctl.report.model_story import names_tex
-from symctl.report.shorthand import _eq
 
 __all__ = ["estimation_json", "estimation_section"]
 
@@ -97,7 +97,7 @@ def estimation_section(res) -> list[DocumentBlock]:
         "behave the same."
     )
     poles = ", ".join(f"{complex(p):.4g}".strip("()") for p in _plant_poles(kf))
-    kalman = _eq(
+    kalman = SH.eq(
         ("C", C),
         ("W", kf.W),
         ("V", kf.V),

@@ -1,10 +1,6 @@
-r"""The report's figures: :func:`make_figure` builds each by the plotting method of the object
-it shows, under the names of :func:`figure_names` (``open_loop``, ``closed_loop``,
-``delay_graph``, ``nonlinear``, ``g1g3_structures`` and ``structure_``/``circuit_``/``firing_``
-with each circuit's name, as the paper's Figs. 2 to 11); :func:`save` writes one as PDF, SVG
-and PNG, :func:`write_figures` all of them in worker processes. The captions are the
-document's: the figures carry no heading. This module imports no matplotlib.
-"""
+r"""The report's figures (the paper's Figs. 2 to 11): their names, each built by the plotting
+method of the object it shows, saved as PDF, SVG and PNG in worker processes. The captions are
+the document's: the figures carry no heading. This module imports no matplotlib."""
 
 from __future__ import annotations
 
@@ -22,53 +18,18 @@ from symctl.neural.circuit import Circuit
 from symctl.plotting import style
 from symctl.report.workers import FigureWorkers
 
-__all__ = [
-    "DEFAULT_FORMATS",
-    "DPI",
-    "FORMATS",
-    "MAX_DRAWN_SIGNALS",
-    "MAX_PIXELS",
-    "figure_formats",
-    "figure_names",
-    "make_figure",
-    "save",
-    "write_figures",
-]
+__all__ = ["DEFAULT_FORMATS", "figure_formats", "figure_names", "make_figure", "write_figures"]
 
-DPI = style.PNG_DPI
-"""Resolution of the PNG files [dots per inch] (the house style's)."""
-FORMATS = style.FORMATS
-"""The formats a figure can be saved in: vector PDF and SVG, and PNG (the house style's)."""
-DEFAULT_FORMATS = ("pdf", "png")
-"""The formats the report writes unless asked for others: the PDF that ``derivation.tex``
-includes and the PNG that ``report.md`` shows (SVG on request)."""
-MAX_DRAWN_SIGNALS = 400
+DPI = style.PNG_DPI  # of the PNG files (the house style's)
+FORMATS = style.FORMATS  # pdf, svg, png (the house style's)
+DEFAULT_FORMATS = ("pdf", "png")  # derivation.tex includes the PDFs, report.md shows the PNGs
+MAX_DRAWN_SIGNALS = 400  # a larger structure is drawn as the overview of its parts
 MAX_DRAWN_PARTS = 6  # parts beyond which a structure is drawn as its overview (kept for reference)
-"""Structures up to this many signals are drawn block by block when they fit a page; larger
-ones as the overview of their parts."""
-MAX_PIXELS = 4000
-"""Longest side of a PNG [pixels]: a larger figure is written at a lower resolution."""
+MAX_PIXELS = 4000  # longest side of a PNG: a larger figure is written at a lower resolution
 
 
 def figure_names(res) -> list[str]:
-    """The names of the report's figures, in reading order.
-
-    Parameters
-    ----------
-    res : PaperResults
-        The derivation (its ``circuits`` name the circuit figures).
-
-    Returns
-    -------
-    list of str
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> from symctl.report.figures import figure_names
-    >>> figure_names(derive_paper())[1:5]
-    ['closed_loop', 'delay_graph', 'g1g3_structures', 'structure_ifp']
-    """
+    """The names of the report's figures, in reading order."""
     names = ["open_loop", "closed_loop", "delay_graph"]
     if getattr(res, "factors", None) is not None:
         names.append("g1g3_structures")
@@ -85,7 +46,7 @@ def figure_names(res) -> list[str]:
 
 
 def _labels(res) -> dict[str, tuple[str, str]] | None:
-    """``name -> (description, unit)`` of the model's states and inputs, for the plots."""
+    """``name -> (description, unit)`` of the model's states and inputs."""
     spec = getattr(res, "spec", None)
     if spec is None:
         return None
@@ -93,14 +54,13 @@ def _labels(res) -> dict[str, tuple[str, str]] | None:
     return {n: (spec.descriptions.get(n, ""), spec.unit(n)) for n in (*xs, *us)}
 
 
-MAX_BOUND_OPS = 40
-"""The longest right-hand side (SymPy operations) whose limits the nonlinear figure seeks."""
+MAX_BOUND_OPS = 40  # the longest right-hand side (SymPy operations) whose limits are sought
 
 
 def _state_bounds(res) -> list[tuple[float, str]]:
-    r"""The limits of :math:`x^*(u) = -b(u)/a` as :math:`u \to \pm\infty`, with their legend
-    text, for a plant :math:`\dot x = a x + b(u)`, :math:`a < 0` (the muscle's :math:`f_\max`
-    and 0): held between samples, the state stays within them unless disturbed."""
+    r"""The limits of :math:`x^*(u) = -b(u)/a` as :math:`u \to \pm\infty` for a plant
+    :math:`\dot x = a x + b(u)`, :math:`a < 0`, with their legend text (the muscle's :math:`f_\max`, 0).
+    """
     import sympy as sp
 
     ode = getattr(getattr(res, "spec", None), "ode", None)
@@ -131,7 +91,7 @@ def _state_bounds(res) -> list[tuple[float, str]]:
 
 
 def _vertex_names(res) -> tuple[tuple[str, ...] | None, dict]:
-    """The model's names of the delay graph's vertices (None: ``v1 .. vN``) and their descriptions."""
+    """The model's names of the delay graph's vertices (None: ``v1 .. vN``), their descriptions."""
     spec = getattr(res, "spec", None)
     names = tuple(getattr(spec, "vertices", ()))
     if len(names) != res.graph.n:
@@ -152,8 +112,8 @@ def _graph_title(res) -> str:
 
 
 def _placed(circuit, rec, graph):
-    """The simulated ``circuit`` at delay-graph vertices: the witness of ``rec`` when it carries
-    over (checked again), else the drawn structure's own; unplaced when it is not compatible."""
+    """The simulated ``circuit`` at the vertices of ``rec``'s witness when it carries over, else
+    at the structure's own; unplaced when not compatible."""
     verdict = rec.compatibility
     if not verdict.ok:
         return circuit
@@ -173,9 +133,7 @@ def _placed(circuit, rec, graph):
     return Circuit.from_structure(S, own) if own.ok and own.assignment is not None else circuit
 
 
-EPS_RANGE = (-0.9, 0.9)
-"""The range the simulations draw every epsilon from: a circuit figure colours a weight by its
-sign over it (with the gains' values and every C = 1)."""
+EPS_RANGE = (-0.9, 0.9)  # the simulations' epsilon: a weight is coloured by its sign over it
 
 
 def _signs_at(res, circuit) -> dict:
@@ -191,7 +149,7 @@ def _signs_at(res, circuit) -> dict:
 
 
 def _end_labels(res, S) -> dict[str, str] | None:
-    """The plant's names at the structure's ends (the measured states in, the plant's inputs out)."""
+    """The plant's names at the structure's ends (measured states in, inputs out)."""
     spec = getattr(res, "spec", None)
     if spec is None:
         return None
@@ -210,8 +168,8 @@ def _dense(circuit: str) -> bool:
 
 
 def _structure_figure(res, rec, circuit: str, names):
-    """The structure of ``rec`` with its witness in bands; the first simulated realization's
-    (numbers) when a symbolic gain is longer than :data:`KEY_LENGTH`."""
+    """The structure of ``rec``, witness in bands; the first simulated realization's when
+    a symbolic gain is longer than :data:`KEY_LENGTH`."""
     from symctl.plotting.circuit_labels import visible_length
 
     title = ""  # the caption names the structure; the figure notes only what departs from it
@@ -241,7 +199,7 @@ def _structure_figure(res, rec, circuit: str, names):
 
 
 def _g1g3_figure(factors):
-    """The paper's Fig. 7 (left): two structures of a first-order section, checked on one edge."""
+    """The paper's Fig. 7 (left): two structures of a first-order section on one edge."""
     from symctl.compatibility.check import check_compatibility
     from symctl.compatibility.delaygraph import DelayGraph
     from symctl.compatibility.structure import Structure
@@ -265,8 +223,7 @@ def _g1g3_figure(factors):
     return draw_structures(panels)  # the caption names the section
 
 
-KEY_LENGTH = 120
-"""The longest gain value (visible characters) the key of a structure figure prints."""
+KEY_LENGTH = 120  # the longest gain (visible characters) a structure figure's key prints
 
 
 def simplified(candidates, count: int = 2) -> list:
@@ -277,31 +234,8 @@ def simplified(candidates, count: int = 2) -> list:
 
 
 def make_figure(res, name: str):
-    """The figure ``name`` of the report, as a matplotlib ``Figure``.
-
-    Parameters
-    ----------
-    res : PaperResults
-        The derivation.
-    name : str
-        One of :func:`figure_names`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    ParameterError
-        ``name`` is not one of :func:`figure_names`.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> from symctl.report.figures import make_figure
-    >>> type(make_figure(derive_paper(), "structure_observable")).__name__
-    'Figure'
-    """
+    """The figure ``name`` (of :func:`figure_names`) as a matplotlib ``Figure``; ParameterError
+    for another name."""
     if name in ("open_loop", "closed_loop", "nonlinear"):
         from symctl.plotting.response import nonlinear_plot, response_plot
 
@@ -344,36 +278,8 @@ def make_figure(res, name: str):
 
 
 def figure_formats(formats, argname: str = "formats") -> tuple[str, ...]:
-    """``formats`` (a comma-separated text or a sequence of names) as names of :data:`FORMATS`.
-
-    Parameters
-    ----------
-    formats : str or sequence of str
-        Some of ``pdf``, ``svg`` and ``png``, e.g. ``"pdf,png,svg"``.
-    argname : str
-        The name in the messages (``"--formats"`` for the command line).
-
-    Returns
-    -------
-    tuple of str
-        The formats, each once, in the order of :data:`FORMATS` (the first is the one
-        whose renderer lays the figure out).
-
-    Raises
-    ------
-    ParameterError
-        ``formats`` is empty or names an unknown format.
-
-    Examples
-    --------
-    >>> from symctl.report.figures import figure_formats
-    >>> figure_formats("png, svg,png")
-    ('svg', 'png')
-    >>> figure_formats("pdf,jpg")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: formats: unknown format 'jpg'; choose among pdf, svg, png
-    """
+    """``formats`` (comma-separated text or names) as names of :data:`FORMATS`, each once, in
+    its order (the first lays the figure out); ParameterError names ``argname``."""
     items = formats.split(",") if isinstance(formats, str) else formats
     if not isinstance(items, list | tuple) or not all(isinstance(f, str) for f in items):
         raise ParameterError(f"{argname}: expected format names such as 'pdf,png', got {formats!r}")
@@ -393,45 +299,11 @@ def figure_formats(formats, argname: str = "formats") -> tuple[str, ...]:
 def save(
     fig, out: Path | str, name: str, *, dpi: int = DPI, formats: tuple[str, ...] = FORMATS
 ) -> list[Path]:
-    """Save ``fig`` as ``out/<name>.pdf``, ``.svg`` and ``.png`` (``formats``); returns the paths.
+    """Save ``fig`` as ``out/<name>.<ext>`` for each of ``formats``; returns the paths.
 
-    PDF and SVG are vector drawings at the figure's size (fonts embedded); the PNG is the
-    PDF rasterized when there is one. The layout is computed once, so the formats agree,
-    and the files carry no date: the same figure writes the same bytes.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure.
-    out : path
-        An existing folder.
-    name : str
-        The file name without extension.
-    dpi : int
-        Resolution of the PNG, lowered for a figure whose longest side would
-        exceed :data:`MAX_PIXELS`.
-    formats : sequence of str
-        Some of :data:`FORMATS` (:func:`figure_formats`); default all three.
-
-    Returns
-    -------
-    list of Path
-        In the order of :data:`FORMATS`.
-
-    Raises
-    ------
-    ParameterError
-        ``out`` is not a folder, or ``formats`` names an unknown format.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from symctl import MuscleModel, open_loop_response
-    >>> from symctl.report.figures import save
-    >>> fig = open_loop_response(MuscleModel().plant()).plot()
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     [p.name for p in save(fig, out, "open_loop")]
-    ['open_loop.pdf', 'open_loop.svg', 'open_loop.png']
+    PDF and SVG are vector drawings (fonts embedded), the PNG the PDF rasterized when there is one,
+    at ``dpi`` lowered to keep its longest side within :data:`MAX_PIXELS`. The layout is computed
+    once, so the formats agree, and the files carry no date: the same figure writes the same bytes.
     """
     from symctl.plotting.png import render_pdf, write_png
     from symctl.plotting.vector import write_vector
@@ -458,69 +330,25 @@ def write_figures(
     out: Path | str,
     *,
     jobs: int | None = None,
-    dpi: int = DPI,
     formats: tuple[str, ...] = DEFAULT_FORMATS,
     workers=None,
     progress: Callable[[str], None] | None = None,
 ) -> list[Path]:
-    """Make and save every figure of the report; returns the paths.
+    """Make and save every figure of ``res`` into the folder ``out``; returns the paths in the
+    order of :func:`figure_names`, each format in turn.
 
-    With ``jobs > 1`` they are drawn in worker processes
-    (:class:`~symctl.report.workers.FigureWorkers`), stopped and reaped when anything fails.
-
-    Parameters
-    ----------
-    res : PaperResults
-        The derivation.
-    out : path
-        An existing folder.
-    jobs : int, optional
-        Processes drawing figures; default the number of CPUs, at most 4.
-    dpi : int
-        Resolution of the PNGs.
-    formats : sequence of str
-        The formats of each figure (:func:`figure_formats`).
-    workers : FigureWorkers, optional
-        Workers started (entered) earlier; ``jobs`` is then not used.
-    progress : callable, optional
-        Called with each figure's name once it is saved (in the order they finish).
-
-    Returns
-    -------
-    list of Path
-        One per figure and format, in the order of :func:`figure_names`.
-
-    Raises
-    ------
-    ParameterError
-        ``out`` is not a folder, ``jobs`` is not an integer >= 1, or ``formats``
-        names an unknown format.
-    SymctlTypeError
-        ``progress`` is not callable.
-    SymctlError
-        A worker died (killed by a signal or out of memory).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from symctl import derive_paper
-    >>> from symctl.report.figures import write_figures
-    >>> with tempfile.TemporaryDirectory() as out:
-    ...     write_figures(derive_paper(), out, jobs=0)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
-    """
+    ``jobs`` processes draw them (:class:`~symctl.report.workers.FigureWorkers`; default the CPUs, at
+    most 4), or the started ``workers``; ``progress`` gets each figure's name once saved."""
     out, formats = _folder(out), figure_formats(formats)
     progress = callable_or_none(progress, "progress")
     with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
-        return start_figures(res, out, started, dpi=dpi, formats=formats)(progress)
+        return start_figures(res, out, started, formats=formats)(progress)
 
 
-def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FORMATS):
+def start_figures(res, out: Path, workers, *, formats=DEFAULT_FORMATS):
     """Hand every figure to the started ``workers``; returns ``paths(progress=None)``, which waits."""
     names = figure_names(res)
-    task = functools.partial(_draw, out=_folder(out), dpi=dpi, formats=figure_formats(formats))
+    task = functools.partial(_draw, out=out, formats=formats)
     first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
     wait = workers.submit(task, res, first)
 
@@ -531,8 +359,8 @@ def start_figures(res, out: Path, workers, *, dpi: int = DPI, formats=DEFAULT_FO
     return paths
 
 
-def _draw(res, name: str, *, out: Path, dpi: float, formats: tuple[str, ...]) -> list[Path]:
-    return save(make_figure(res, name), out, name, dpi=dpi, formats=formats)
+def _draw(res, name: str, *, out: Path, formats: tuple[str, ...]) -> list[Path]:
+    return save(make_figure(res, name), out, name, formats=formats)
 
 
 _SLOWEST = ("circuit_", "firing_", "structure_", "atlas_", "simplified_")  # slowest to draw first

@@ -1,24 +1,11 @@
-"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure.
-
->>> import tempfile
->>> from pathlib import Path
->>> from symctl import MuscleModel, augment, fit, lqr_gains, synthetic_traces
->>> from symctl.report.fit import write_fit
->>> gains = lqr_gains(augment(MuscleModel(), 1, 1))
->>> data = synthetic_traces(gains, sensor_delay=1, actuator_delay=1, rng=3)
->>> res = fit(data.select(["G2.x1", "G2.y"]).traces, gains, sensor_delay=1, actuator_delay=1,
-...           C=1, starts=2)
->>> with tempfile.TemporaryDirectory() as out:
-...     sorted(p.name for p in write_fit(res, Path(out), figures=False))
-['fit.json', 'predictions.csv', 'report.md']
-"""
+"""The files of ``symctl fit``: fit.json, predictions.csv, report.md and the figure."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from symctl.fitting.traces import Traces
+from symctl.report.output import write_json
 
 __all__ = ["write_fit"]
 
@@ -54,10 +41,7 @@ def report_text(result, source: str = "") -> str:
 def write_fit(result, folder: Path, *, figures: bool = True, source: str = "") -> list[Path]:
     """Write the fit's files into ``folder``; return their paths."""
     folder = Path(folder)
-    out = []
-    path = folder / "fit.json"
-    path.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
-    out.append(path)
+    out = [write_json(folder / "fit.json", result.to_dict())]
     meta = {"circuit": result.circuit_class, "content": "predicted traces of every neuron"}
     pred = Traces(result.t, result.predict(), meta=meta)
     out.append(pred.to_csv(folder / "predictions.csv"))

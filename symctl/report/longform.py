@@ -1,71 +1,29 @@
-r"""Long objects laid out so that every line fits the page, decided by SIZE, never by the delay:
-the estimated printed width of a line (:func:`width`, in glyphs of the 11 pt math font) and of a
-table. :func:`fit_rows` breaks an equation wider than :data:`LINE_WIDTH` at its top-level
-``+``, ``-`` or ``,``; matrices: :mod:`symctl.report.matrixview`.
-"""
+r"""Long objects laid out so that every line fits the page, decided by size: the estimated printed
+width of a line (:func:`width`, in glyphs of the 11 pt math font) and of a table; :func:`fit_rows`
+breaks a display too wide. Matrices: :mod:`symctl.report.matrixview`."""
 
 from __future__ import annotations
 
 import re
 
-__all__ = [
-    "CORNER",
-    "DIAGONAL_MIN",
-    "DISPLAY_MAX_LINES",
-    "LARGE_DIGITS",
-    "LINE_WIDTH",
-    "MATRIX_MAX_COLUMNS",
-    "MATRIX_MAX_ROWS",
-    "MD_LINE",
-    "PATTERN_TABLE_ROWS",
-    "SHRINK_MAX",
-    "TABLE_MAX_ROWS",
-    "TABLE_WIDTH",
-    "TERM_MAX_LINES",
-    "VECTOR_MAX_ENTRIES",
-    "WRAP_MIN",
-    "cell_width",
-    "column_widths",
-    "fit_rows",
-    "height",
-    "table_width",
-    "width",
-    "wrapped_columns",
-]
+__all__ = ["column_widths", "fit_rows", "height", "table_width", "width", "wrapped_columns"]
 
-LINE_WIDTH = 72.0
-"""Glyphs of one display line, left-hand side included (with room for the equation number)."""
-TABLE_WIDTH = 100.0
-"""Width of a table row at ``\\small`` (:func:`table_width`); a wider one is ``\\footnotesize``."""
-WRAP_MIN = 12.0
-"""Least width of a prose column that a table wider than :data:`TABLE_WIDTH` wraps."""
-MATRIX_MAX_ROWS = 12
-"""A matrix with more rows is never written in full."""
+LINE_WIDTH = 72.0  # glyphs of one display line, left-hand side and equation number included
+TABLE_WIDTH = 100.0  # of a table row at \small (table_width); a wider one is \footnotesize
+WRAP_MIN = 12.0  # least width of a prose column that a table wider than TABLE_WIDTH wraps
+MATRIX_MAX_ROWS = 12  # a matrix with more rows (or columns) is never written in full
 MATRIX_MAX_COLUMNS = 12
-"""A matrix with more columns is never written in full."""
-PATTERN_TABLE_ROWS = 2.0
-"""A large matrix whose table of entries has at most this many rows per row is shown as its
-sparsity pattern with that table."""
-CORNER = 3
-"""Leading rows and columns shown of a large dense matrix (then dots, then the last one)."""
-LARGE_DIGITS = 4
-"""Significant digits of the numbers in a large matrix (the full values are in results.json)."""
-TERM_MAX_LINES = 12
-"""An equation broken into more lines keeps its first ``TERM_MAX_LINES - 1`` and its last."""
-DIAGONAL_MIN = 4
-r"""A diagonal matrix of this size or more is written :math:`\operatorname{diag}(d_1, \dots, d_n)`."""
-VECTOR_MAX_ENTRIES = 6
-"""A longer vector is written as a list :math:`(v_1, \\dots, v_n)` (or :math:`e_k`)."""
-DISPLAY_MAX_LINES = 8
-"""A display taller than this (in lines, :func:`height`) may break across pages."""
-INDENT = r"\qquad "
-"""The indent of a continuation line."""
-TABLE_MAX_ROWS = 30
-"""A table with more rows is a ``longtable``, which breaks across pages."""
-MD_LINE = 300
-"""A Markdown display whose one-line form is longer (characters) gets a line per row."""
-SHRINK_MAX = 2
-"""A display up to this many times the line is shrunk to fit it; a wider one is left overfull."""
+PATTERN_TABLE_ROWS = 2.0  # a large matrix with at most this many table rows per row: its pattern
+CORNER = 3  # leading rows and columns shown of a large dense matrix (then dots, then the last)
+LARGE_DIGITS = 4  # significant digits in a large matrix (the full values are in results.json)
+TERM_MAX_LINES = 12  # an equation broken into more lines keeps its first TERM_MAX_LINES - 1, last
+DIAGONAL_MIN = 4  # a diagonal matrix of this size or more is written diag(d_1, ..., d_n)
+VECTOR_MAX_ENTRIES = 6  # a longer vector is written as a list (v_1, ..., v_n) (or e_k)
+DISPLAY_MAX_LINES = 8  # a display taller than this (lines, height) may break across pages
+INDENT = r"\qquad "  # of a continuation line
+TABLE_MAX_ROWS = 30  # a table with more rows is a longtable, which breaks across pages
+MD_LINE = 300  # a Markdown display whose one-line form is longer gets a line per row
+SHRINK_MAX = 2  # a display up to this many times the line is shrunk to fit; wider: overfull
 
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_&]|\s+|.", re.S)
 _SPACE = {",": 0.35, ":": 0.45, ">": 0.45, ";": 0.55, "!": -0.35, " ": 0.6}
@@ -169,26 +127,9 @@ def _table_width(body: str, colsep: float, scale: float) -> float:
 
 
 def width(tex: str) -> float:
-    r"""The estimated printed width of one line of display math, in glyphs (about 5.5 pt each).
-
-    A conservative estimate read off the LaTeX token by token (a fraction as wide as its wider
-    part, a matrix as its widest entries per column); with several lines, the widest.
-
-    Parameters
-    ----------
-    tex : str
-        LaTeX math (no ``$``).
-
-    Returns
-    -------
-    float
-
-    Examples
-    --------
-    >>> from symctl.report.longform import width
-    >>> width("2"), width(r"\frac{a + b}{c}") == width("a + b") + 0.4
-    (1.0, True)
-    """
+    r"""The estimated printed width of display math (no ``$``) in glyphs of about 5.5 pt: a conservative
+    estimate token by token (a fraction as its wider part, a matrix as its widest entries per
+    column); with several lines, the widest."""
     lines = _split_top(tex, "\\\\")
     if len(lines) > 1:
         return max(width(line) for line in lines)
@@ -237,54 +178,26 @@ def width(tex: str) -> float:
 
 
 def height(tex: str) -> int:
-    """Lines of a display row: its rows (roughly), one more with a fraction.
-
-    Examples
-    --------
-    >>> from symctl.report.longform import height
-    >>> height("x"), height(r"\\begin{bmatrix}1 \\\\ 2 \\\\ 3\\end{bmatrix}"), height(r"\\frac{a}{b}")
-    (1, 3, 2)
-    """
+    """Lines of a display row: its rows (roughly), one more with a fraction."""
     rows = max(1, tex.count("\\\\") + 1 - tex.count(r"\begin{smallmatrix}"))
     return rows + (r"\frac" in tex)
 
 
 def cell_width(text: str) -> float:
-    """The width of a table cell (prose with inline math), in the units of :data:`TABLE_WIDTH`.
-
-    Examples
-    --------
-    >>> from symctl.report.longform import cell_width
-    >>> cell_width("abc"), cell_width("$x$")
-    (3, 1.15)
-    """
+    """The width of a table cell (prose with inline math), in the units of :data:`TABLE_WIDTH`."""
     parts = text.split("$")
     return sum(len(p) if k % 2 == 0 else width(p) for k, p in enumerate(parts))
 
 
 def column_widths(header, rows) -> list[float]:
-    """The widest cell of each column of a table, in the units of :data:`TABLE_WIDTH`.
-
-    Examples
-    --------
-    >>> from symctl.report.longform import column_widths
-    >>> column_widths(("a", "bb"), (("ccc", "d"),))
-    [3, 2]
-    """
+    """The widest cell of each column of a table."""
     table = [header, *rows]
     columns = max(len(r) for r in table)
     return [max(cell_width(r[j]) for r in table if j < len(r)) for j in range(columns)]
 
 
 def table_width(header, rows) -> float:
-    """The width of a table: its widest cell per column plus the space between columns.
-
-    Examples
-    --------
-    >>> from symctl.report.longform import table_width
-    >>> table_width(("a", "bb"), (("ccc", "d"),))
-    9.8
-    """
+    """The width of a table: its widest cell per column plus the space between columns."""
     widest = column_widths(header, rows)
     return sum(widest) + 2.4 * len(widest)
 
@@ -298,23 +211,9 @@ def _breakable(cell: str) -> bool:
 
 
 def wrapped_columns(header, rows, budget: float = TABLE_WIDTH) -> tuple[int, ...]:
-    """The columns a table wraps to fit ``budget``: its prose columns, widest first.
-
-    A column can wrap when each of its cells wider than :data:`WRAP_MIN` has a space outside
-    math or a sum in its math; the widest wrap until the table fits; ``()`` when it fits as it
-    is (or cannot be made to).
-
-    Examples
-    --------
-    >>> from symctl.report.longform import wrapped_columns
-    >>> wide = ("a circuit with a long name, " * 4, "$1$", "yes")
-    >>> wrapped_columns(("circuit", "n", "ok"), (wide,))
-    (0,)
-    >>> wrapped_columns(("circuit", "n"), (("short", "$1$"),))
-    ()
-    >>> wrapped_columns(("k", "a_k"), (("$1$", "$" + " - ".join(["K_{1,12} K_{2,21}"] * 12) + "$"),))
-    (1,)
-    """
+    """The columns a table wraps to fit ``budget``, widest first, until it fits; ``()`` when it fits
+    as it is or cannot be made to. A column can wrap when each of its cells wider than
+    :data:`WRAP_MIN` has a space outside math or a sum in its math."""
     widths = column_widths(header, rows)
     sep = 2.4 * len(widths)
     if sum(widths) + sep <= budget:
@@ -378,30 +277,9 @@ def _elided(tex: str) -> str:
 def fit_rows(rows, budget: float = LINE_WIDTH) -> list[tuple[str | None, str]]:
     r"""Rows ``(lhs, rhs)`` of an aligned display, each broken to fit ``budget`` glyphs.
 
-    A row too wide is cut into terms at the top-level ``+``, ``-`` and ``,`` and packed
-    greedily into continuation rows (``lhs`` None); a term wider than a line is elided with its
-    length, and beyond :data:`TERM_MAX_LINES` lines the middle ones are counted, not shown.
-
-    Parameters
-    ----------
-    rows : iterable of (str or None, str)
-        LaTeX; ``lhs`` None marks a continuation already.
-    budget : float
-        Glyphs per line (:func:`width`).
-
-    Returns
-    -------
-    list of (str or None, str)
-
-    Examples
-    --------
-    >>> from symctl.report.longform import fit_rows
-    >>> fit_rows([("a", "1")])
-    [('a', '1')]
-    >>> rows = fit_rows([("s", " + ".join(["x"] * 60))], budget=20)
-    >>> rows[0], rows[1]
-    (('s', 'x + x + x + x + x'), (None, '\\qquad + x + x + x'))
-    """
+    A row too wide is cut at its top-level ``+``, ``-`` and ``,`` and packed greedily into
+    continuation rows (``lhs`` None); a term wider than a line is elided with its length, and beyond
+    :data:`TERM_MAX_LINES` lines the middle ones are counted, not shown."""
     rows = list(rows)
     lead = max((width(lhs) + 3.0 for lhs, _ in rows if lhs is not None), default=0.0)
     out: list[tuple[str | None, str]] = []

@@ -8,17 +8,7 @@ import numpy as np
 import sympy as sp
 
 from symctl import latex as L
-from symctl.report.longform import (
-    CORNER,
-    DIAGONAL_MIN,
-    LARGE_DIGITS,
-    LINE_WIDTH,
-    MATRIX_MAX_COLUMNS,
-    MATRIX_MAX_ROWS,
-    PATTERN_TABLE_ROWS,
-    VECTOR_MAX_ENTRIES,
-    width,
-)
+from symctl.report import longform as LF
 
 __all__ = ["MatrixView", "show_matrix"]
 
@@ -142,53 +132,26 @@ def _corners(E, tex, corner: int) -> str:
 
 
 def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGITS) -> MatrixView:
-    r"""A matrix as it fits the page, decided by size (the thresholds of :mod:`~symctl.report.longform`).
+    r"""Matrix ``M`` (SymPy, or an array of floats with ``inf``) named ``lhs`` as it fits ``room``
+    glyphs after ``lhs =`` (default the line less 12), decided by size (:mod:`~symctl.report.longform`).
 
-    A large diagonal matrix is :math:`\operatorname{diag}(d_1, \dots, d_n)`; one that fits is
-    written in full; beyond that a unit vector is :math:`e_k`, a vector a list, a companion
-    matrix its dots picture, a sparse one its pattern with a table of its entries, a dense one
-    its corners.
-
-    Parameters
-    ----------
-    lhs : str
-        The matrix's name in LaTeX (``"F"``, ``r"\tilde A"``).
-    M : sympy Matrix or array
-        The matrix (floats, ``inf`` allowed, when an array).
-    room : float, optional
-        Glyphs left on the line after ``lhs =`` (default: the line less 12).
-    digits : int
-        Significant digits of numbers written in full or in a table.
-
-    Returns
-    -------
-    MatrixView
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from symctl.report.matrixview import show_matrix
-    >>> view = show_matrix("D", 2 * np.eye(15) + np.eye(15, k=1))
-    >>> view.rows[0][1].startswith(r"\left[\begin{smallmatrix}")
-    True
-    >>> view.tables[0][2]
-    (('${D}_{i,i}$', '$i = 1, \\dots, 15$', '$2$'), ('${D}_{i,i+1}$', '$i = 1, \\dots, 14$', '$1$'))
-    >>> show_matrix("Q", np.diag([1.0, 0, 0, 0, 0, 1])).rows
-    [('Q', '\\operatorname{diag}\\left(1, \\underbrace{0, \\dots, 0}_{4}, 1\\right)')]
-    """
-    room = LINE_WIDTH - 12.0 if room is None else room
+    A large diagonal matrix is :math:`\operatorname{diag}(d_1, \dots, d_n)`; one that fits is written
+    in full (numbers to ``digits``); beyond that a unit vector is :math:`e_k`, a vector a list, a
+    companion matrix its dots picture, a sparse one its pattern with a table of its entries, a
+    dense one its corners."""
+    room = LF.LINE_WIDTH - 12.0 if room is None else room
     E, numeric = _entries(M)
     n, m = len(E), len(E[0]) if E else 0
-    if n == m >= DIAGONAL_MIN and all(
+    if n == m >= LF.DIAGONAL_MIN and all(
         _is(E[i][j], 0) for i in range(n) for j in range(n) if i != j
     ):
         diag = [_entry_tex(E[i][i], numeric, digits) for i in range(n)]
         return MatrixView([(lhs, rf"\operatorname{{diag}}\left({_runs(diag)}\right)")])
     full = L.to_latex(M if not numeric else np.asarray(M, dtype=float), digits=digits)
-    small = n <= MATRIX_MAX_ROWS and m <= MATRIX_MAX_COLUMNS
+    small = n <= LF.MATRIX_MAX_ROWS and m <= LF.MATRIX_MAX_COLUMNS
     if min(n, m) == 1:
-        small = max(n, m) <= VECTOR_MAX_ENTRIES
-    if small and width(full) <= room:
+        small = max(n, m) <= LF.VECTOR_MAX_ENTRIES
+    if small and LF.width(full) <= room:
         return MatrixView([(lhs, full)], full=True)
 
     def tex(e) -> str:
@@ -232,19 +195,19 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
     counts = Counter(flat)
     background, repeats = counts.most_common(1)[0]
     table = _sparse_table(lhs, E, background, tex)
-    if 4 * repeats >= len(flat) > repeats and len(table) <= PATTERN_TABLE_ROWS * max(n, m):
+    if 4 * repeats >= len(flat) > repeats and len(table) <= LF.PATTERN_TABLE_ROWS * max(n, m):
         cells = [r" & ".join(r"\cdot" if _is(e, background) else r"\ast" for e in row) for row in E]
         pattern = r"\left[\begin{smallmatrix}" + r" \\ ".join(cells) + r"\end{smallmatrix}\right]"
-        fits = width(pattern + size) <= room
+        fits = LF.width(pattern + size) <= room
         rows = [(lhs, pattern + size if fits else rf"\text{{(its entries below)}}{size}")]
         intro = f"The entries $\\ast$ of ${lhs}$ (those marked $\\cdot$ are ${tex(background)}$):"
         return MatrixView(rows, [(intro, ("entry", "for", "value"), tuple(table))])
 
     def short(e) -> str:
-        return _entry_tex(e, numeric, LARGE_DIGITS)
+        return _entry_tex(e, numeric, LF.LARGE_DIGITS)
 
-    for corner in (CORNER, 1):
+    for corner in (LF.CORNER, 1):
         picture = _corners(E, short, corner)
-        if width(picture + size) <= room:
+        if LF.width(picture + size) <= room:
             return MatrixView([(lhs, picture + size)])
     return MatrixView([(lhs, rf"\text{{a dense matrix}}{size}")])

@@ -1,11 +1,4 @@
-r"""The factorization (per channel) and realizations (block forms) of a MIMO controller, as blocks.
-
->>> from symctl import derive
->>> from symctl.report.mimo_story import factorization
->>> res = derive("examples/oculomotor.toml")
->>> [type(b).__name__ for b in factorization(res)][:2]
-['Heading', 'Text']
-"""
+r"""The factorization (per channel) and realizations (block forms) of a MIMO controller, as blocks."""
 
 from __future__ import annotations
 
@@ -17,8 +10,8 @@ from symctl import latex as L
 from symctl._util.display import descending_latex
 from symctl.realization.realizers import REALIZERS
 from symctl.report import matrixview as MV
+from symctl.report import shorthand as SH
 from symctl.report.document import DocumentBlock, Heading, Text
-from symctl.report.shorthand import _eq, _num, _quotient_tex, _sections_tex, _zeros_tex
 
 __all__ = ["check_text", "factorization", "realizations", "reduction"]
 
@@ -64,7 +57,7 @@ def factorization(res) -> list[DocumentBlock]:
     m, p = f.channels
     xs, us = res.names
     rows = [
-        (rf"g_{{{side},{k + 1}}}(z)", _sections_tex(c, e))
+        (rf"g_{{{side},{k + 1}}}(z)", SH.sections_tex(c, e))
         for side, channels in zip((1, 3), f.section_channels, strict=True)
         for k, (e, c) in enumerate(channels)
     ]
@@ -83,7 +76,7 @@ def factorization(res) -> list[DocumentBlock]:
     if res.skipped:
         blocks.append(Text("Not built here: " + res.skipped.replace("_", r"\_") + "."))
     if rows:
-        blocks += _eq(*rows, label="eq:sections")
+        blocks += SH.eq(*rows, label="eq:sections")
     N2 = f.G2.num_matrix
     if res.abbreviated:  # each entry's zeros as products (expanded: 2^d terms)
         entries = [(rf"(N_2)_{{{i}{j}}}", _entry_tex(f, i, j)) for (i, j), _ in f.entry_poles]
@@ -96,7 +89,7 @@ def factorization(res) -> list[DocumentBlock]:
             for j in range(N2.cols)
             if N2[i, j] != 0
         ]
-    blocks += _eq(
+    blocks += SH.eq(
         ("G_2(z)", r"\frac{1}{d(z)}\, N_2(z)"),
         ("d(z)", descending_latex(f.G2.den)),
         *entries,
@@ -124,8 +117,8 @@ def _entry_tex(f, i: int, j: int) -> str:
     r"""Entry :math:`(i, j)` of :math:`N_2` (from 1), its sections' zeros as products."""
     (e1, c1), (e3, c3) = f.section_channels[0][j - 1], f.section_channels[1][i - 1]
     gain = f.G.num_matrix[i - 1, j - 1] / sp.Mul(*c1, *c3)
-    zeros = " ".join(_zeros_tex(e, product=True) for e in (e1, e3) if e)
-    return f"{_quotient_tex(gain)}\\, {zeros}"
+    zeros = " ".join(SH.zeros_tex(e, product=True) for e in (e1, e3) if e)
+    return f"{SH.quotient_tex(gain)}\\, {zeros}"
 
 
 def realizations(res) -> list[DocumentBlock]:
@@ -144,5 +137,5 @@ def realizations(res) -> list[DocumentBlock]:
         blocks.append(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
         states = rec.numeric.F.shape[0]
         blocks.append(Text(f"{states} states. {check_text(rec)} With the numbers:"))
-        blocks += _eq(*((k, _num(getattr(rec.numeric, k))) for k in "FHMN"), label=f"eq:{name}")
+        blocks += SH.eq(*((k, SH.num(getattr(rec.numeric, k))) for k in "FHMN"), label=f"eq:{name}")
     return blocks

@@ -1,10 +1,4 @@
-r"""The sections of the derivation that depend on the plant, told with the model's names and units.
-
->>> from symctl import derive_paper
->>> from symctl.report.model_story import opening
->>> [b.text for b in opening(derive_paper(), lambda *a: []) if type(b).__name__ == "Heading"]
-['Plant model and linearization', 'Discretization']
-"""
+r"""The sections of the derivation that depend on the plant, told with the model's names and units."""
 
 from __future__ import annotations
 
@@ -17,34 +11,16 @@ from symctl import latex as L
 from symctl.model.presets import muscle
 from symctl.realization.draws import EPS_GRID as _EPS_GRID  # the grid of the random section poles
 from symctl.realization.draws import EPS_MAX as _EPS_MAX
+from symctl.report import shorthand as SH
 from symctl.report.document import DocumentBlock, Heading, Table, Text
 from symctl.report.reference import cite
-from symctl.report.shorthand import _both, _eq, _fmt, _num
 from symctl.report.spec import PAPER
 
-__all__ = [
-    "counted",
-    "longest",
-    "names_tex",
-    "nonlinear",
-    "opening",
-    "skipped",
-    "theorem",
-    "unit_text",
-]
+__all__ = ["counted", "longest", "names_tex", "nonlinear", "opening", "skipped", "theorem"]
 
 
 def unit_text(unit: str, value: float | None = None) -> str:
-    r"""A unit for prose and tables, singular after the ``value`` 1 (``1 spike/s``).
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import unit_text
-    >>> unit_text("N*m*s"), unit_text("m/s**2"), unit_text("1")
-    (' N m s', ' m/s$^{2}$', '')
-    >>> unit_text("spikes/s", 1.0), unit_text("spikes/s", 2.0)
-    (' spike/s', ' spikes/s')
-    """
+    r"""A unit for prose and tables (``m/s**2`` as ``m/s$^{2}$``), singular after the ``value`` 1."""
     if not unit or unit == "1":
         return ""
     if value == 1:
@@ -54,14 +30,7 @@ def unit_text(unit: str, value: float | None = None) -> str:
 
 
 def counted(n: int, word: str) -> str:
-    """``1 step``, ``2 steps``, ``0 steps``.
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import counted
-    >>> counted(1, "step"), counted(3, "realization")
-    ('1 step', '3 realizations')
-    """
+    """``1 step``, ``2 steps``, ``0 steps``."""
     return f"{n} {word}{'' if n == 1 else 's'}"
 
 
@@ -70,14 +39,7 @@ def _sym(name: str) -> str:
 
 
 def names_tex(names) -> str:
-    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $\omega$``.
-
-    Examples
-    --------
-    >>> from symctl.report.model_story import names_tex
-    >>> names_tex(["theta", "f_flex"])
-    '$\\theta$, $f_\\text{flex}$'
-    """
+    r"""Signal names as inline math, joined by commas: ``$f$``, ``$\theta$, $f_\text{flex}$``."""
     return ", ".join(f"${_sym(n)}$" for n in names)
 
 
@@ -244,9 +206,9 @@ def opening(res, figure) -> list[DocumentBlock]:
         ]
         values = ode.values
         for x, e, v in zip(ode.states, ode.x_eq, ode.x_bar, strict=True):
-            shown = _both(e, float(v)) if e.free_symbols else L.number(float(v))
+            shown = SH.both(e, float(v)) if e.free_symbols else L.number(float(v))
             rows.append((rf"\bar {_sym(x.name)}", shown + _unit_tex(spec.unit(x.name))))
-        blocks += _eq(*rows, label=f"eq:{spec.name}")
+        blocks += SH.eq(*rows, label=f"eq:{spec.name}")
         how = ode.equilibrium_method
         blocks.append(
             Text(
@@ -258,17 +220,17 @@ def opening(res, figure) -> list[DocumentBlock]:
         lin = ode.linearize_symbolic()
         if lin.a.shape == (1, 1) and lin.b.shape == (1, 1):
             rows = [
-                ("a", _both(lin.a[0, 0], _num(lin.a[0, 0].subs(values)))),
-                ("b", _both(lin.b[0, 0], _num(lin.b[0, 0].subs(values)))),
+                ("a", SH.both(lin.a[0, 0], SH.num(lin.a[0, 0].subs(values)))),
+                ("b", SH.both(lin.b[0, 0], SH.num(lin.b[0, 0].subs(values)))),
             ]
         else:
             rows = [
                 ("a", lin.a),
                 ("b", lin.b),
-                ("a", _num(lin.a.subs(values))),
-                ("b", _num(lin.b.subs(values))),
+                ("a", SH.num(lin.a.subs(values))),
+                ("b", SH.num(lin.b.subs(values))),
             ]
-        blocks += _eq(*rows, label="eq:linear")
+        blocks += SH.eq(*rows, label="eq:linear")
     else:
         blocks.append(Text("The model file gives the discrete plant directly."))
     sym, num = res.plant_symbolic, res.plant
@@ -289,12 +251,12 @@ def opening(res, figure) -> list[DocumentBlock]:
         )
     if sym is not None:
         rows = [
-            ("A", _both(sym.A[0, 0], _num(num.A[0, 0]))),
-            ("B", _both(sym.B[0, 0], _num(num.B[0, 0]))),
+            ("A", SH.both(sym.A[0, 0], SH.num(num.A[0, 0]))),
+            ("B", SH.both(sym.B[0, 0], SH.num(num.B[0, 0]))),
         ]
     else:
-        rows = [("A", _num(num.A)), ("B", _num(num.B))]
-    blocks += _eq(*rows, label="eq:discrete")
+        rows = [("A", SH.num(num.A)), ("B", SH.num(num.B))]
+    blocks += SH.eq(*rows, label="eq:discrete")
     blocks.append(
         Text(
             f"States ${', '.join(_sym('delta_' + x) for x in xs)}$, inputs "
@@ -311,7 +273,7 @@ def opening(res, figure) -> list[DocumentBlock]:
 
 def _weight(M) -> str:
     """A cost weight: a number when 1 x 1, ``I`` or ``diag(...)`` when diagonal, else the matrix."""
-    W = _num(M)
+    W = SH.num(M)
     if W.shape == (1, 1):
         return L.number(float(W[0, 0]))
     if np.array_equal(W, np.diag(np.diag(W))):
@@ -446,7 +408,7 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
                 "final / peak",
             ),
             tuple(
-                (_fmt(a), _fmt(d), _fmt(r), _fmt(e))
+                (SH.fmt(a), SH.fmt(d), SH.fmt(r), SH.fmt(e))
                 for a, d, r, e in zip(
                     nl.amplitudes,
                     nl.max_deviation,
@@ -474,7 +436,7 @@ def longest(res) -> list[DocumentBlock]:
     if not L_.limited:
         found = f"every net delay up to {L_.delays[-1]} steps (the largest tried) is stabilized"
     rows = tuple(
-        (str(T), _fmt(d) if np.isfinite(d) else "inf", "yes" if ok else "no")
+        (str(T), SH.fmt(d) if np.isfinite(d) else "inf", "yes" if ok else "no")
         for T, d, ok in zip(L_.delays, L_.final_deviation, L_.stabilized, strict=True)
     )
     return [

@@ -1,27 +1,11 @@
-r"""An output folder written all at once: staged in a sibling folder, then renamed into place.
-
-:class:`OutputFolder` checks ``out`` before any work, holds ``<out>.lock``, stages the files in
-``.<name>.tmp-<hex>`` beside ``out`` and renames them into place with :func:`os.replace`, so
-``out`` is always the old complete folder or the new complete one (docs/reliability.md gives
-what each failure leaves).
-
-Examples
---------
->>> import tempfile
->>> from pathlib import Path
->>> from symctl.report.output import OutputFolder
->>> with tempfile.TemporaryDirectory() as parent:
-...     with OutputFolder(Path(parent) / "run") as folder:
-...         _ = (folder.staging / "results.json").write_text("{}")
-...         (Path(parent) / "run").exists()
-...     sorted(p.name for p in Path(parent).iterdir()), (Path(parent) / "run").is_dir()
-False
-(['run'], True)
-"""
+r"""An output folder written all at once: staged in ``.<name>.tmp-<hex>`` beside ``out`` under the
+lock ``<out>.lock``, then renamed into place with :func:`os.replace`, so ``out`` is always the old
+complete folder or the new complete one (docs/reliability.md gives what each failure leaves)."""
 
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import re
 import secrets
@@ -36,57 +20,26 @@ try:  # POSIX only; elsewhere the folder is staged and renamed but not locked
 except ImportError:  # pragma: no cover
     fcntl = None
 
-__all__ = ["OutputFolder", "check_output_folder"]
+__all__ = ["OutputFolder", "check_output_folder", "write_json"]
 
 _FIGURES = (
     r"open_loop|closed_loop|delay_graph|g1g3_structures|nonlinear|fit|spiking_cost"
     r"|atlas_(overview|conjectured)|simplified_A\d+|class_A\d+"
     r"|(structure|circuit|firing)_[a-z][a-z0-9_]{0,31}"  # any circuit (the registry's names)
 )
-_OURS = re.compile(
+_OURS = re.compile(  # the files of an earlier run of symctl paper, atlas, derive, fit, spiking
     r"(results\.json|report\.md|derivation\.(tex|pdf|aux|log|out)|atlas\.(json|md|tex|pdf|aux|log|out)"
     r"|fit\.json|predictions\.csv|spiking\.(json|md)"
     rf"|({_FIGURES})\.(pdf|png|svg))"
 )
-"""The files an earlier run of ``symctl paper``, ``atlas``, ``derive``, ``fit`` or ``spiking`` leaves."""
 
 
 def check_output_folder(out, argname: str = "out") -> Path:
-    """``out`` as an absolute path, if a run can write its folder there; else the error.
+    """``out`` as an absolute path (links resolved) if a run can write its folder there: a missing
+    folder, or one holding nothing but the files of an earlier run.
 
-    Parameters
-    ----------
-    out : str or os.PathLike
-        A missing folder, or one that holds nothing but the files of an earlier run.
-    argname : str
-        The name in the messages (``"--out"`` for the command line).
-
-    Returns
-    -------
-    Path
-        The absolute path, symbolic links resolved.
-
-    Raises
-    ------
-    SymctlTypeError
-        ``out`` is not a path.
-    ParameterError
-        ``out`` is empty, the root, a file, a folder holding other files, or where no folder
-        can be made.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from symctl.report.output import check_output_folder
-    >>> with tempfile.TemporaryDirectory() as parent:
-    ...     check_output_folder(Path(parent) / "new").name
-    'new'
-    >>> check_output_folder("")
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: out: must name a folder, got ''
-    """
+    SymctlTypeError when ``out`` is not a path; ParameterError (naming ``argname``) when it is
+    empty, the root, a file, a folder holding other files, or where no folder can be made."""
     if isinstance(out, bytes) or not isinstance(out, str | os.PathLike):
         raise SymctlTypeError(f"{argname}: expected a folder path (str or Path), got {out!r}")
     text = os.fspath(out)
@@ -134,38 +87,12 @@ def _foreign(path: Path) -> list[str]:
 
 
 class OutputFolder:
-    """A context manager that stages a folder beside ``out`` and renames it into place on success.
+    """Stage a folder beside ``out`` and rename it into place on success.
 
-    Entering checks ``out``, makes its parents, takes the lock ``<out>.lock``, clears what a
-    killed run left and makes :attr:`staging`. Leaving without an exception renames
-    :attr:`staging` to ``out``; leaving with one removes it and leaves ``out`` as it was.
-
-    Parameters
-    ----------
-    out : str or os.PathLike
-        The output folder.
-    argname : str
-        The name in error messages (``"--out"`` for the command line).
-
-    Raises
-    ------
-    ParameterError
-        As :func:`check_output_folder`; or another run holds the lock.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from symctl.report.output import OutputFolder
-    >>> with tempfile.TemporaryDirectory() as parent:
-    ...     try:
-    ...         with OutputFolder(Path(parent) / "run") as folder:
-    ...             raise RuntimeError("disk full")
-    ...     except RuntimeError:
-    ...         pass
-    ...     list(Path(parent).iterdir())
-    []
-    """
+    Entering checks ``out`` (:func:`check_output_folder`), makes its parents, takes the lock (a
+    ParameterError when another run holds it), clears what a killed run left and makes
+    :attr:`staging`. Leaving without an exception renames :attr:`staging` to ``out``; with one,
+    removes it and leaves ``out`` as it was."""
 
     def __init__(self, out, argname: str = "out") -> None:
         self.argname = argname
@@ -280,3 +207,9 @@ class OutputFolder:
         with contextlib.suppress(OSError):
             os.unlink(self.lock_path)  # while still holding it (see _lock)
         os.close(fd)
+
+
+def write_json(path: Path, value, *, indent: int = 2, allow_nan: bool = True) -> Path:
+    """Write ``value`` to ``path`` as JSON ending in a newline; returns the path."""
+    path.write_text(json.dumps(value, indent=indent, allow_nan=allow_nan) + "\n", encoding="utf-8")
+    return path

@@ -3,8 +3,7 @@ r"""Prose of a document: escaped for LaTeX, its citations and references, wrappe
 Outside the inline math (``$...$``), :func:`tex_text` escapes LaTeX's special characters
 and :func:`markdown_text` numbers two marks: ``[@key]`` or ``[@key, locator]`` cites the
 bibliography, ``[#fig:name]``, ``[#tab:label]`` or ``[#eq:label]`` refers to a figure, a
-captioned table or a display. A space before a mark becomes a tie in LaTeX.
-"""
+captioned table or a display. A space before a mark becomes a tie in LaTeX."""
 
 from __future__ import annotations
 
@@ -30,8 +29,7 @@ _SPECIAL = {
 MARK = re.compile(
     r"\[@(?P<key>[A-Za-z][\w:.\-]*)(?:,\s*(?P<loc>[^\]$]+))?\]"
     r"|\[#(?P<ref>(?:fig|tab|eq):[A-Za-z0-9:._\-]+)\]"
-)
-"""A citation ``[@key, locator]`` or a reference ``[#fig:name]`` in prose (outside math)."""
+)  # a citation [@key, locator] or a reference [#fig:name] in prose (outside math)
 
 
 def _escape(text: str) -> str:
@@ -58,14 +56,7 @@ def _tex_prose(text: str) -> str:
 
 
 def tex_text(text: str) -> str:
-    r"""Prose for LaTeX: escaped outside ``$...$``, its marks as ``\cite``/``\ref``, the math kept.
-
-    Examples
-    --------
-    >>> from symctl.report.prose import tex_text
-    >>> tex_text("a_b & $a_b$ [#eq:x]")
-    'a\\_b \\& $a_b$~\\eqref{eq:x}'
-    """
+    r"""Prose for LaTeX: escaped outside ``$...$``, its marks as ``\cite``/``\ref``, the math kept."""
     parts = text.split("$")
     for i in range(0, len(parts), 2):
         parts[i] = _tex_prose(parts[i])
@@ -73,14 +64,7 @@ def tex_text(text: str) -> str:
 
 
 def markdown_text(text: str, numbers: dict[str, int]) -> str:
-    """Prose for Markdown: its marks as the ``numbers`` of their keys (``??`` unknown).
-
-    Examples
-    --------
-    >>> from symctl.report.prose import markdown_text
-    >>> markdown_text("Fig. [#fig:a], [@x]", {})
-    'Fig. ??, [??]'
-    """
+    """Prose for Markdown: its marks as the ``numbers`` of their keys (``??`` unknown)."""
 
     def mark(m: re.Match) -> str:
         if m["ref"] is not None:
@@ -97,20 +81,11 @@ def markdown_text(text: str, numbers: dict[str, int]) -> str:
     return "$".join(parts)
 
 
-VERBATIM_LINE = 96
-"""Characters of a line of preformatted text (``\\footnotesize`` typewriter) before it wraps."""
+VERBATIM_LINE = 96  # characters of a line of preformatted (footnotesize typewriter) text
 
 
 def verbatim_lines(text: str) -> list[str]:
-    """Preformatted text wrapped at :data:`VERBATIM_LINE` characters, continuations indented.
-
-    Examples
-    --------
-    >>> from symctl.report.prose import verbatim_lines
-    >>> lines = verbatim_lines("  " + "word " * 30)
-    >>> len(lines), lines[1][:8]
-    (2, '      wo')
-    """
+    """Preformatted text wrapped at :data:`VERBATIM_LINE` characters, continuations indented."""
     out = []
     for line in text.splitlines():
         indent = " " * (len(line) - len(line.lstrip()))
@@ -119,15 +94,7 @@ def verbatim_lines(text: str) -> list[str]:
 
 
 def markdown_lines(text: str) -> list[str]:
-    """Prose as lines of at most about 100 characters, never breaking inside ``$...$``.
-
-    Examples
-    --------
-    >>> from symctl.report.prose import markdown_lines
-    >>> lines = markdown_lines("word " * 40 + "$a + b + c$")
-    >>> max(map(len, lines)) <= 100, lines[-1][-11:]
-    (True, '$a + b + c$')
-    """
+    """Prose as lines of at most about 100 characters, never breaking inside ``$...$``."""
     if len(text) <= 100:
         return [text]
     words, cur, in_math = [], "", False

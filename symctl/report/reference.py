@@ -1,6 +1,5 @@
 r"""The paper as a reference: its bibliography entry, and the numbers of its figures and equations
-(counted in its LaTeX source, arXiv:2410.02555).
-"""
+(counted in its LaTeX source, arXiv:2410.02555)."""
 
 from __future__ import annotations
 
@@ -10,19 +9,17 @@ from symctl.errors import ParameterError
 
 __all__ = ["DEFINITIONS", "EQUATIONS", "FIGURES", "KEY", "REFERENCES", "SECTIONS", "cite"]
 
-KEY = "li2024"
-"""The citation key of the paper."""
+KEY = "li2024"  # the citation key of the paper
 
-REFERENCES = (
+REFERENCES = (  # the bibliography: (key, entry) pairs, numbered in this order
     (
         KEY,
         "J. S. Li, \u201cToward neuronal implementations of delayed optimal control,\u201d "
         "arXiv:2410.02555 [eess.SY], 2024.",
     ),
 )
-"""The bibliography of the derivation: ``(key, entry)`` pairs, in the order they are numbered."""
 
-FIGURES = MappingProxyType(
+FIGURES = MappingProxyType(  # the paper's figures: LaTeX label (without fig:) to number
     {
         "behavior_implementation": 1,
         "muscle_system": 2,  # left: the neuromuscular system; right: its delay graph
@@ -37,90 +34,38 @@ FIGURES = MappingProxyType(
         "ocr_diagram": 11,  # observable canonical realization of G2
     }
 )
-"""The paper's figures: LaTeX label (without ``fig:``) to number."""
 
-EQUATIONS = MappingProxyType(
-    {
-        name: k
-        for k, name in enumerate(
-            (
-                "muscle system total_controller cost augmented_states augmented_system "
-                "augmented_cost ifp_controller transfer_fn realization E factors sections E_tilde "
-                "general_realization G2_rewritten controllable observable"
-            ).split(),
-            start=1,
-        )
-    }
+
+def _numbered(labels: str, numbers=None) -> MappingProxyType:
+    """The labels (separated by spaces) to their numbers, by default 1, 2, ..."""
+    names = labels.split()
+    return MappingProxyType(dict(zip(names, numbers or range(1, len(names) + 1), strict=True)))
+
+
+EQUATIONS = _numbered(  # the numbered equations: label (or a name) to number
+    "muscle system total_controller cost augmented_states augmented_system augmented_cost "
+    "ifp_controller transfer_fn realization E factors sections E_tilde general_realization "
+    "G2_rewritten controllable observable"
 )
-"""The paper's numbered equations: LaTeX label (or a name for an unlabelled one) to number."""
-
-DEFINITIONS = MappingProxyType(
-    {
-        name: k
-        for k, name in enumerate(
-            (
-                "structure delay_graph delay_assignment delay_assignment_matrix "
-                "compatible_structure compatible_controller"
-            ).split(),
-            start=1,
-        )
-    }
+DEFINITIONS = _numbered(  # the definitions of Sec. IV-B, in order
+    "structure delay_graph delay_assignment delay_assignment_matrix compatible_structure "
+    "compatible_controller"
 )
-"""The paper's definitions (Sec. IV-B), in order."""
-
-SECTIONS = MappingProxyType(
-    dict(
-        zip(
-            (
-                "introduction problem_setup optimal_delayed_controller compatibility "
-                "microcircuits simulations future_work"
-            ).split(),
-            ("I", "II", "III", "IV", "V", "VI", "VII"),
-            strict=True,
-        )
-    )
+SECTIONS = _numbered(  # LaTeX label (without sec:) to Roman numeral
+    "introduction problem_setup optimal_delayed_controller compatibility microcircuits "
+    "simulations future_work",
+    ("I", "II", "III", "IV", "V", "VI", "VII"),
 )
-"""The paper's sections: LaTeX label (without ``sec:``) to Roman numeral."""
 
-_KINDS = {
-    f"{word}{s}.": table
-    for word, table in (
-        ("Fig", FIGURES),
-        ("Eq", EQUATIONS),
-        ("Def", DEFINITIONS),
-        ("Sec", SECTIONS),
-    )
-    for s in ("", "s")
-}
+_TABLES = {"Fig": FIGURES, "Eq": EQUATIONS, "Def": DEFINITIONS, "Sec": SECTIONS}
+_KINDS = {f"{word}{s}.": table for word, table in _TABLES.items() for s in ("", "s")}
 
 
 def cite(kind: str | None = None, *labels: str) -> str:
-    """A citation of the paper in the document's prose markup, with a locator by label.
-
-    Parameters
-    ----------
-    kind : {"Fig.", "Figs.", "Eq.", "Eqs.", "Def.", "Defs.", "Sec.", "Secs."}, optional
-        What is cited; without it, the paper as a whole.
-    *labels : str
-        The paper's labels of what is cited (keys of :data:`FIGURES`,
-        :data:`EQUATIONS`, :data:`DEFINITIONS` or :data:`SECTIONS`).
-
-    Returns
-    -------
-    str
-        ``[@li2024]`` or ``[@li2024, Fig. 5]`` (several labels joined by commas).
-
-    Raises
-    ------
-    ParameterError
-        An unknown ``kind`` or label.
-
-    Examples
-    --------
-    >>> from symctl.report.reference import cite
-    >>> cite("Figs.", "full_diagram", "ocr_diagram"), cite("Sec.", "simulations")
-    ('[@li2024, Figs. 9, 11]', '[@li2024, Sec. VI]')
-    """
+    """A citation of the paper in the prose markup: ``[@li2024]`` without ``kind``, else
+    ``[@li2024, Fig. 5]`` for ``kind`` one of "Fig.", "Eq.", "Def.", "Sec." (or plural) and the
+    paper's ``labels`` (keys of :data:`FIGURES`, :data:`EQUATIONS`, :data:`DEFINITIONS`,
+    :data:`SECTIONS`); ParameterError for an unknown kind or label."""
     if kind is None:
         return f"[@{KEY}]"
     table = _KINDS.get(kind)

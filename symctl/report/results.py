@@ -1,17 +1,8 @@
-r"""``results.json`` and the files of ``symctl paper``, written from a :class:`~symctl.derivation.Derivation`.
-
-Examples
---------
->>> from symctl import derive_paper
->>> from symctl.report.results import results_json
->>> round(results_json(derive_paper())["plant"]["f_bar"], 4)
-43.8635
-"""
+r"""``results.json`` and the files of ``symctl paper``, written from a derivation."""
 
 from __future__ import annotations
 
 import contextlib
-import json
 from collections.abc import Callable
 from pathlib import Path
 
@@ -26,27 +17,16 @@ from symctl.realization.factorization import remainder
 from symctl.report import document, story
 from symctl.report import figures as _figures
 from symctl.report.estimation import estimation_json
-from symctl.report.output import OutputFolder
+from symctl.report.output import OutputFolder, write_json
 from symctl.report.spec import SCHEMA_VERSION
 from symctl.report.workers import FigureWorkers
 
-__all__ = [
-    "CircuitRecord",
-    "PaperResults",
-    "RealizationRecord",
-    "circuit_json",
-    "factor_texts",
-    "parameters",
-    "realization_json",
-    "results_json",
-    "write",
-    "write_files",
-]
+__all__ = ["CircuitRecord", "PaperResults", "RealizationRecord", "results_json", "write_files"]
 
 
+# characters of a realization's symbolic F, H, M beyond which results.json writes a transform by
+# a drawn P as its base and P (transform), exactly
 SYMBOLIC_TEXT_MAX = 20_000
-"""Characters of a realization's symbolic ``F``, ``H``, ``M`` beyond which ``results.json``
-writes a transform by a drawn ``P`` as its base and ``P`` (``transform``), exactly."""
 
 
 def realization_json(self, base=None) -> dict:
@@ -129,13 +109,8 @@ def results_json(self) -> dict:
         "schema_version": SCHEMA_VERSION,
         "parameters": parameters(self),
         "plant": _plant_json(self),
-        "augmented": {
-            "T": s.T,
-            "state": list(s.state_names),
-            "A": _matrix(s.A),
-            "B": _matrix(s.B),
-            "Q": _matrix(s.Q),
-        },
+        "augmented": {"T": s.T, "state": list(s.state_names)}
+        | {k: _matrix(getattr(s, k)) for k in "ABQ"},
         "gains": {
             "K": self.gains.K.tolist(),
             "names": [str(k) for k in self.gains.substitutions()],
@@ -182,16 +157,11 @@ def results_json(self) -> dict:
 
 def reduction_json(r) -> dict:
     """The ``reduction`` entry: the non-minimal controller's reduction, with its reason."""
-    return {
-        "minimal": bool(r),
-        "order": r.order,
-        "minimal_order": r.minimal_order,
-        "never_driven": list(r.never_driven),
-        "unseen": list(r.unseen),
-        "reason": r.reason,
-        "ties": {str(k): str(v) for k, v in r.relations.items()},
-        "method": r.method,
-    }
+    return (
+        {"minimal": bool(r)}
+        | _attrs(r, "order minimal_order never_driven unseen reason")
+        | {"ties": {str(k): str(v) for k, v in r.relations.items()}, "method": r.method}
+    )
 
 
 def controller_coeffs(G) -> tuple[list, list[float]]:
@@ -213,10 +183,7 @@ def _simulation_json(self) -> dict:
     ol, cl, nl = self.open_loop, self.closed_loop, self.nonlinear
     out = {
         "t": _floats(cl.t),
-        "open_loop": {
-            "pulse": _floats(ol.delta_r[:, 0]),
-            "delta_f": _floats(ol.delta_f[:, 0]),
-        },
+        "open_loop": {"pulse": _floats(ol.delta_r[:, 0]), "delta_f": _floats(ol.delta_f[:, 0])},
         "closed_loop": {
             "disturbance": _floats(cl.w[:, 0]),
             "delta_f": _floats(cl.delta_f[:, 0]),
@@ -232,10 +199,7 @@ def _simulation_json(self) -> dict:
     }
     if self.plant.n > 1 or self.plant.m > 1:  # every state and input, by name
         out["states"] = {
-            n: {
-                "open_loop": _floats(ol.delta_f[:, i]),
-                "closed_loop": _floats(cl.delta_f[:, i]),
-            }
+            n: {"open_loop": _floats(ol.delta_f[:, i]), "closed_loop": _floats(cl.delta_f[:, i])}
             for i, n in enumerate(self.names[0])
         }
         out["inputs"] = {n: _floats(cl.delta_r[:, i]) for i, n in enumerate(self.names[1])}
@@ -320,9 +284,7 @@ def write_files(
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
         pending = _figures.start_figures(self, out, drawing, formats=formats) if figures else None
-        path = out / "results.json"
-        path.write_text(json.dumps(results_json(self), indent=2, allow_nan=False) + "\n")
-        written = [path]
+        written = [write_json(out / "results.json", results_json(self), allow_nan=False)]
         step("documents")
         # derivation.tex includes the PDFs, report.md shows the PNGs
         names = _figures.figure_names(self) if figures else []
@@ -346,6 +308,12 @@ def write_files(
         if compiled is not None:
             written.append(compiled)
     return written
+
+
+def _attrs(obj, names: str) -> dict:
+    """The attributes ``names`` (separated by spaces) of ``obj``, tuples as lists."""
+    values = {k: getattr(obj, k) for k in names.split()}
+    return {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
 
 
 def _check(check) -> dict:
@@ -415,21 +383,11 @@ def _theorem_json(verdict) -> dict | None:
     """The exact verdict of :func:`symctl.controller_compatibility` on the model's delay graph."""
     if verdict is None:
         return None
-    return {
-        "compatible": verdict.ok,
-        "scope": verdict.scope,
-        "method": verdict.method,
-        "reason": verdict.reason,
-        "parts": [
-            {
-                "label": p.label,
-                "path": list(p.path),
-                "edge_delays": list(p.delays),
-                "delay": p.delay,
-            }
-            for p in verdict.parts
-        ],
-    }
+    parts = [
+        {"label": p.label, "path": list(p.path), "edge_delays": list(p.delays), "delay": p.delay}
+        for p in verdict.parts
+    ]
+    return {"compatible": verdict.ok} | _attrs(verdict, "scope method reason") | {"parts": parts}
 
 
 def _matrix(mat: sp.MatrixBase) -> list[list[float]]:
@@ -484,12 +442,9 @@ def _model_json(res) -> dict:
     }
     if res.longest is not None:
         L = res.longest
-        out["longest_delay"] = {
-            "longest": L.longest,
-            "limited": L.limited,
-            "tolerance": L.tolerance,
-            "delays": list(L.delays),
-            "final_deviation": [None if np.isinf(v) else float(v) for v in L.final_deviation],
+        final = [None if np.isinf(v) else float(v) for v in L.final_deviation]
+        out["longest_delay"] = _attrs(L, "longest limited tolerance delays") | {
+            "final_deviation": final,
             "stabilized": list(L.stabilized),
         }
     return out

@@ -1,6 +1,5 @@
 r"""Short forms the story writes when a plain form is wider than the line: products over an
-index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`.
-"""
+index, :math:`b(z)/a(z)` with a table of coefficients, the entries :math:`N c_k`."""
 
 from __future__ import annotations
 
@@ -21,12 +20,12 @@ from symctl.symbols import z
 __all__ = ["COMPACT_LENGTH"]
 
 
-def _fmt(value: float, digits: int = 6) -> str:
+def fmt(value: float, digits: int = 6) -> str:
     """A number as inline math (for prose and table cells), to ``digits`` significant digits."""
     return f"${L.number(value, digits)}$"
 
 
-def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
+def display(rows, label: str, tables=()) -> list[DocumentBlock]:
     fitted = LF.fit_rows(rows)
     tall = sum(LF.height(rhs) for _, rhs in fitted) > LF.DISPLAY_MAX_LINES
     out: list[DocumentBlock] = [Math(tuple(fitted), label, breakable=tall)]
@@ -35,7 +34,7 @@ def _display(rows, label: str, tables=()) -> list[DocumentBlock]:
     return out
 
 
-def _fits(lhs: str, rhs: str) -> bool:
+def fits(lhs: str, rhs: str) -> bool:
     return LF.width(lhs) + 3.0 + LF.width(rhs) <= LF.LINE_WIDTH
 
 
@@ -43,20 +42,20 @@ COMPACT_LENGTH = 300
 """A realization matrix whose LaTeX is longer is written with the symbols :math:`N c_k`."""
 
 
-def _sections_tex(cs, eps) -> str:
+def sections_tex(cs, eps) -> str:
     """``C_1/(z - epsilon_1)`` and the like; too wide, the product over an index; 1 without any."""
     if not cs:
         return "1"
-    tex = rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{_zeros_tex(eps)}}}"
-    C, e = _indexed(cs), _indexed(eps)
-    if _fits("G_1(z)", tex) or C is None or e is None or C[1:] != e[1:]:
+    tex = rf"\frac{{{L.to_latex(sp.Mul(*cs))}}}{{{zeros_tex(eps)}}}"
+    C, e = indexed(cs), indexed(eps)
+    if fits("G_1(z)", tex) or C is None or e is None or C[1:] != e[1:]:
         return tex
     return rf"\prod_{{k={C[1]}}}^{{{C[2]}}} \frac{{{C[0]}}}{{z - {e[0]}}}"
 
 
-def _zeros_tex(eps, product: bool = False) -> str:
+def zeros_tex(eps, product: bool = False) -> str:
     """``(z - epsilon_1)(z - epsilon_3)``; with ``product``, ``prod_k (z - epsilon_{1,k})``."""
-    e = _indexed(eps) if product else None
+    e = indexed(eps) if product else None
     if e is not None:
         return rf"\prod_{{k={e[1]}}}^{{{e[2]}}} \left(z - {e[0]}\right)"
     if len(eps) == 1:
@@ -67,7 +66,7 @@ def _zeros_tex(eps, product: bool = False) -> str:
 _INDEXED = re.compile(r"(?P<stem>[A-Za-z]+)_(?:\{(?P<pre>(?:\d+,)*)(?P<k>\d+)\}|(?P<k1>\d+))")
 
 
-def _indexed(symbols) -> tuple[str, int, int] | None:
+def indexed(symbols) -> tuple[str, int, int] | None:
     """Symbols ``x_{a,lo}, ..., x_{a,hi}`` (or ``x_lo..x_hi``) as ``(LaTeX of x_{a,k}, lo, hi)``."""
     found = [_INDEXED.fullmatch(getattr(x, "name", "")) for x in symbols]
     if len(found) < 2 or not all(found):
@@ -85,7 +84,7 @@ def _index_of(symbol) -> int:
     return int(m["k"] or m["k1"])
 
 
-def _quotient_tex(expr) -> str:
+def quotient_tex(expr) -> str:
     """A quotient by a product of indexed symbols, the product written over its indices."""
     num, den = expr.as_numer_denom()
     groups: dict[tuple, list] = {}
@@ -98,7 +97,7 @@ def _quotient_tex(expr) -> str:
             groups.setdefault((m["stem"], m["pre"] or ""), []).append(factor)
     parts = [L.to_latex(sp.Mul(*rest))] if rest else []
     for group in groups.values():
-        ix = _indexed(sorted(group, key=_index_of))
+        ix = indexed(sorted(group, key=_index_of))
         if ix is None:
             parts.append(L.to_latex(sp.Mul(*group)))
         else:
@@ -106,7 +105,7 @@ def _quotient_tex(expr) -> str:
     return rf"\frac{{{L.to_latex(num)}}}{{{' '.join(parts)}}}"
 
 
-def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
+def tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
     """A transfer function too wide for the line: ``b(z)/a(z)`` with a table of coefficients."""
     a_s, a_n = symbolic.den_coeffs(), numeric.den_coeffs()
     b_s, b_n = symbolic.num_coeffs(), numeric.num_coeffs()
@@ -128,7 +127,7 @@ def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
 
     def table(name, sym, num):
         body = tuple(
-            (f"${k}$", f"${L.to_latex(cs)}$", _fmt(float(cn)))
+            (f"${k}$", f"${L.to_latex(cs)}$", fmt(float(cn)))
             for k, (cs, cn) in enumerate(zip(sym, num, strict=True))
         )
         intro = f"The coefficients ${name}_k$ of ${name}(z)$ (descending powers of $z$):"
@@ -150,21 +149,21 @@ def _tf_long(lhs: str, symbolic, numeric, *, label: str) -> list[DocumentBlock]:
         tables.append((intro, ("entry", "$N_{ij}(z)$", "with the optimal gains"), body))
     elif m:
         tables.append(table("b", b_s, b_n))
-    return _display(rows, label, tables)
+    return display(rows, label, tables)
 
 
-def _remainder_symbols(f) -> list[sp.Symbol]:
+def remainder_symbols(f) -> list[sp.Symbol]:
     """``c_1, ..., c_n``, one per remainder coefficient (of a factorization, or the list)."""
     coeffs = f if isinstance(f, list | tuple) else f.remainder_coeffs
     return [sp.Symbol(f"c_{{{k}}}") for k in range(1, len(coeffs) + 1)]
 
 
-def _remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
+def remainder_poly(c: list[sp.Symbol]) -> sp.Expr:
     return sp.Add(*(ck * z ** (len(c) - 1 - k) for k, ck in enumerate(c)))
 
 
-def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
-    """The rows ``F, H, M, N`` of ``R``; a long matrix gets its entries :math:`N c_k` as symbols
+def compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
+    """The rows ``F, H, M, N`` of ``R``, a long matrix with its entries :math:`N c_k` as symbols
     (``values``: ``(f.N, f.remainder_coeffs)`` when the caller has them)."""
     N = sp.Symbol("N")
     f_N, f_coeffs = values if values is not None else (f.N, f.remainder_coeffs)
@@ -180,9 +179,9 @@ def _compact(R, f, c, values=None) -> tuple[list[tuple[str, object]], bool]:
     return rows, short
 
 
-def _factored(mat):
-    r"""A symbolic matrix with the factor common to its entries in front (LaTeX), as the paper
-    writes :math:`M`; the matrix itself when they share none."""
+def factored(mat):
+    r"""A symbolic matrix with the factor common to its entries in front (LaTeX), as the paper writes
+    :math:`M`; the matrix itself when they share none."""
     if not isinstance(mat, sp.MatrixBase) or len(mat) < 2 or len(mat) > LF.MATRIX_MAX_ROWS:
         return mat
     entries = [e for e in mat if e != 0]
@@ -197,17 +196,17 @@ def _factored(mat):
     return rf"{L.to_latex(common)} {L.to_latex(inner)}"
 
 
-def _renamed(R, compact: dict) -> dict[str, str]:
-    """The LaTeX of each entry of ``R`` that :func:`_compact` renamed, to its new LaTeX."""
+def renamed(R, shortened: dict) -> dict[str, str]:
+    """The LaTeX of each entry of ``R`` that :func:`compact` renamed, to its new LaTeX."""
     out = {}
-    for k, mat in compact.items():
+    for k, mat in shortened.items():
         for old, new in zip(getattr(R, k), mat, strict=True):
             if old != new:
                 out[L.to_latex(old)] = L.to_latex(new)
     return out
 
 
-def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
+def named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
     """Circuit equations with the long weights of ``names`` written as their short names."""
     if not names:
         return list(rows)
@@ -221,8 +220,8 @@ def _named_weights(rows, names: dict[str, str]) -> list[tuple[str, str]]:
 
 
 class _Matcher:
-    """Entry -> the symbol of the target it equals exactly (compared only with the targets of
-    equal value at a random rational point), else the entry itself."""
+    """Entry -> the symbol of the target it equals exactly (compared only with the targets of equal
+    value at a random rational point), else the entry itself."""
 
     def __init__(self, targets) -> None:
         self.targets = targets
@@ -257,7 +256,7 @@ class _Matcher:
         return entry
 
 
-def _num(value):
+def num(value):
     """Exact or symbolic-free numbers as floats (arrays stay arrays) for :func:`latex.to_latex`."""
     if isinstance(value, sp.MatrixBase):
         return np.array(value.evalf(), dtype=float)
@@ -266,7 +265,7 @@ def _num(value):
     return float(value)
 
 
-def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
+def eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
     """One numbered display of ``(lhs, rhs)`` rows fitted to the page (matrices as
     :func:`~symctl.report.matrixview.show_matrix` shows them), then their tables and ``tables``."""
     lead = max((LF.width(lhs) for lhs, _ in rows if lhs is not None), default=0.0) + 3.0
@@ -280,9 +279,9 @@ def _eq(*rows, label: str, tables=()) -> list[DocumentBlock]:
             more += view.tables
         else:
             shown.append((lhs, L.to_latex(rhs)))
-    return _display(shown, label, [*more, *tables])
+    return display(shown, label, [*more, *tables])
 
 
-def _both(symbolic, numeric) -> str:
+def both(symbolic, numeric) -> str:
     """``symbolic = numeric`` as one right-hand side."""
     return f"{L.to_latex(symbolic)} = {L.to_latex(numeric)}"

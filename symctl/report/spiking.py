@@ -1,24 +1,13 @@
-"""What spikes cost each circuit, written: ``symctl spiking``'s files and ``symctl paper
---spiking``'s section.
-
->>> import tempfile
->>> from pathlib import Path
->>> import symctl
->>> from symctl.report.spiking import write_spiking
->>> cost = symctl.spiking_cost(symctl.derive_paper(), circuits=["ifp"], neurons=(10, 30), seeds=1)
->>> with tempfile.TemporaryDirectory() as out:
-...     sorted(p.name for p in write_spiking(cost, Path(out), figures=False))
-['spiking.json', 'spiking.md']
-"""
+"""What spikes cost each circuit: ``symctl spiking``'s files, ``symctl paper --spiking``'s section."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
-from symctl.report.document import Graphic, Heading, Table, Text, to_markdown
+from symctl.report.document import Graphic, Heading, Table, Text, write_markdown
+from symctl.report.output import write_json
 
 __all__ = ["paper_blocks", "write_spiking"]
 
@@ -93,18 +82,14 @@ def write_spiking(cost, folder: Path, *, figures: bool = True, formats=("pdf", "
     """Write ``spiking.json`` (:meth:`~symctl.spiking.cost.SpikingCost.summary`), ``spiking.md``
     and the figure ``spiking_cost`` into ``folder``; return the paths."""
     folder = Path(folder)
-    path = folder / "spiking.json"
-    path.write_text(json.dumps(cost.summary(), indent=1, allow_nan=False) + "\n")
-    out = [path]
+    out = [write_json(folder / "spiking.json", cost.summary(), indent=1, allow_nan=False)]
     blocks = [Heading("What spikes cost each circuit"), *_prose(cost)]
     if figures:
         from symctl.report.figures import save
 
         out += save(cost.plot(), folder, "spiking_cost", formats=formats)
         blocks.append(Graphic("spiking_cost", _CAPTION))
-    md = folder / "spiking.md"
-    md.write_text(to_markdown(blocks, title="symctl spiking"))
-    return [*out, md]
+    return [*out, write_markdown(blocks, folder / "spiking.md", title="symctl spiking")]
 
 
 _CAPTION = (

@@ -17,6 +17,7 @@ from symctl.report import longform as LF
 from symctl.report import matrixview as MV
 from symctl.report import mimo_story as MIMO
 from symctl.report import model_story as MS
+from symctl.report import shorthand as SH
 from symctl.report.document import (
     DocumentBlock,
     Graphic,
@@ -28,29 +29,9 @@ from symctl.report.document import (
 )
 from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
-from symctl.report.shorthand import (
-    COMPACT_LENGTH,
-    _both,
-    _compact,
-    _display,
-    _eq,
-    _factored,
-    _fits,
-    _fmt,
-    _indexed,
-    _named_weights,
-    _num,
-    _quotient_tex,
-    _remainder_poly,
-    _remainder_symbols,
-    _renamed,
-    _sections_tex,
-    _tf_long,
-    _zeros_tex,
-)
 from symctl.report.spec import circuit_specs
 
-__all__ = ["COMPACT_LENGTH", "POLE_ZERO_TOL", "story"]
+__all__ = ["POLE_ZERO_TOL", "story"]
 
 
 _GRAPH_CAPTION = (
@@ -68,6 +49,8 @@ _G1G3_CAPTION = (
 )
 
 
+_CIRCUIT_COLUMNS = ("circuit", "neurons", "of them in $G_2$", "synapses", "compatible")
+_CIRCUIT_COLUMNS += ("realizations", "max. deviation")
 _DIAGRAMS = {"general": "full_diagram", "controllable": "ccr_diagram", "observable": "ocr_diagram"}
 _PAPER_STRUCTURE = {"ifp": f" (as in {cite('Fig.', 'ifp_diagram')})"} | {
     k: f" (as in {cite('Fig.', d)}, left, with $G_1$ and $G_3$)" for k, d in _DIAGRAMS.items()
@@ -103,7 +86,7 @@ def _e_tilde(E, assignment, name: str) -> list[DocumentBlock]:
     rows = [(r"\tilde E", "E" if big and np.array_equal(fast, E) else fast)]
     if not np.array_equal(direct, fast):
         rows.append((r"\tilde E^{\mathrm{d}}", direct))
-    return _eq(*rows, label=f"eq:Etilde-{name}")
+    return SH.eq(*rows, label=f"eq:Etilde-{name}")
 
 
 def _ascii(text: str) -> str:
@@ -111,30 +94,8 @@ def _ascii(text: str) -> str:
 
 
 def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
-    r"""The derivation as document blocks, in the paper's order.
-
-    Parameters
-    ----------
-    res : PaperResults
-        The derivation.
-    figures : iterable of str
-        The figures written next to the document; each gets a
-        :class:`~symctl.report.document.Graphic` where it belongs.
-
-    Returns
-    -------
-    list of blocks
-        For :func:`~symctl.report.document.to_tex` and :func:`~symctl.report.document.to_markdown`.
-
-    Examples
-    --------
-    >>> from symctl import derive_paper
-    >>> from symctl.report.story import story
-    >>> blocks = story(derive_paper(), figures=["closed_loop"])
-    >>> [b.label for b in blocks if type(b).__name__ == "Math"][:3]
-    ['eq:muscle', 'eq:linear', 'eq:discrete']
-    >>> [b.name for b in blocks if type(b).__name__ == "Graphic"]
-    ['closed_loop']
+    r"""The derivation ``res`` as document blocks, in the paper's order, with a
+    :class:`~symctl.report.document.Graphic` for each of the ``figures`` written beside it.
     """
     shown = set(figures)
     blocks: list[DocumentBlock] = []
@@ -150,7 +111,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         put(figure(name, caption))
 
     def display(*rows, label: str) -> None:
-        put(_eq(*rows, label=label))
+        put(SH.eq(*rows, label=label))
 
     def see(name: str) -> str:
         """`` (Fig. n)`` for a figure of the document, nothing for one not written."""
@@ -176,9 +137,9 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     display(
         (r"\chi", s.chi),
-        (r"\tilde A", _num(s.A)),
-        (r"\tilde B", _num(s.B)),
-        (r"\tilde Q", _num(s.Q)),
+        (r"\tilde A", SH.num(s.A)),
+        (r"\tilde B", SH.num(s.B)),
+        (r"\tilde Q", SH.num(s.Q)),
         label="eq:augmented",
     )
 
@@ -195,7 +156,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     display(
         ("K", np.asarray(g.K, dtype=float)),
         (r"\operatorname{eig}(\tilde A + \tilde B K)", rf"\{{{poles}\}}"),
-        (r"\rho", _num(g.spectral_radius)),
+        (r"\rho", SH.num(g.spectral_radius)),
         label="eq:gains",
     )
 
@@ -207,12 +168,12 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         "inputs is a transfer function of the gains, kept symbolic (for $T = 2$ the paper's "
         f"{cite('Eq.', 'transfer_fn')}):"
     )
-    whole = _both(res.G_symbolic, G_num.expr.evalf(6))
-    long_G = not _fits("G(z)", whole)
+    whole = SH.both(res.G_symbolic, G_num.expr.evalf(6))
+    long_G = not SH.fits("G(z)", whole)
     put(
-        _tf_long("G(z)", res.G_symbolic, G_num, label="eq:G")
+        SH.tf_long("G(z)", res.G_symbolic, G_num, label="eq:G")
         if long_G
-        else _eq(("G(z)", whole), label="eq:G")
+        else SH.eq(("G(z)", whole), label="eq:G")
     )
     say(
         "Proved: "
@@ -257,25 +218,25 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             f"{cite('Eq.', 'sections')}):"
         )
         den = descending_latex(f.G2.den)
-        zeros = _zeros_tex((*f.sensor_eps, *f.actuator_eps))
-        if not _fits("G_2(z)", zeros):
+        zeros = SH.zeros_tex((*f.sensor_eps, *f.actuator_eps))
+        if not SH.fits("G_2(z)", zeros):
             zeros = (
-                _zeros_tex(f.sensor_eps, product=True)
+                SH.zeros_tex(f.sensor_eps, product=True)
                 + " "
-                + _zeros_tex(f.actuator_eps, product=True)
+                + SH.zeros_tex(f.actuator_eps, product=True)
             )
         f_N, f_coeffs, sigma_rows = _remainder(res)
-        c = _remainder_symbols(f_coeffs)
-        remainder = descending_latex(_remainder_poly(c))
+        c = SH.remainder_symbols(f_coeffs)
+        remainder = descending_latex(SH.remainder_poly(c))
         named_den = []  # the row defining the denominator's name, where it is first used
         if not (
-            _fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
-            and _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")
+            SH.fits("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}")
+            and SH.fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}")
         ):
             same = f.G2.den_coeffs() == res.G_symbolic.den_coeffs()
             named_den = [] if long_G and same else [("a(z)" if same else "d(z)", den)]
             den = "a(z)" if same else "d(z)"
-        if not _fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
+        if not SH.fits("G_2(z)", rf"N + N\,\frac{{{remainder}}}{{{den}}}"):
             n = len(c)
             remainder = rf"\sum_{{k=1}}^{{{n}}} c_k\, z^{{{n}-k}}"
         G2_row, b_rows = ("G_2(z)", rf"N\,\frac{{{zeros}}}{{{den}}}"), []
@@ -283,10 +244,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             sections = " ".join(L.to_latex(x) for x in (*f.sensor_C, *f.actuator_C))
             G2_row = ("G_2(z)", rf"\frac{{b(z)}}{{{sections}}}\,\frac{{{zeros}}}{{{den}}}")
             b = descending_latex(res.G_symbolic.num)
-            b_rows = [("b(z)", b if _fits("b(z)", b) else r"\text{the numerator of } G(z)")]
+            b_rows = [("b(z)", b if SH.fits("b(z)", b) else r"\text{the numerator of } G(z)")]
         display(
-            ("G_1(z)", _sections_tex(f.sensor_C, f.sensor_eps)),
-            ("G_3(z)", _sections_tex(f.actuator_C, f.actuator_eps)),
+            ("G_1(z)", SH.sections_tex(f.sensor_C, f.sensor_eps)),
+            ("G_3(z)", SH.sections_tex(f.actuator_C, f.actuator_eps)),
             G2_row,
             *b_rows,
             *named_den,
@@ -307,7 +268,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             )
         rewritten = rf"N + N\,\frac{{{remainder}}}{{{den}}}" if f_N != 0 else None
         display(
-            ("N", f_N if _fits("G_2(z)", L.to_latex(f_N)) else _quotient_tex(f_N)),
+            ("N", f_N if SH.fits("G_2(z)", L.to_latex(f_N)) else SH.quotient_tex(f_N)),
             ("G_2(z)", rewritten or rf"\frac{{{remainder}}}{{{den}}}"),
             *zip(map(L.to_latex, c), f_coeffs, strict=True),
             label="eq:G2rewritten",
@@ -327,10 +288,10 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         for name in [k for k in res.realizations if not _is(k, "takes_transform")]:
             rec = res.realizations[name]
             add(Heading(f"{REALIZERS[name].title.capitalize()} form", 2))
-            mats, short = _compact(rec.symbolic, f, c, (f_N, f_coeffs))
+            mats, short = SH.compact(rec.symbolic, f, c, (f_N, f_coeffs))
             if short:
-                names[name] = {**_renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
-            display(*((k, _factored(m)) for k, m in mats), label=f"eq:{name}")
+                names[name] = {**SH.renamed(rec.symbolic, dict(mats)), L.to_latex(f_N): "N"}
+            display(*((k, SH.factored(m)) for k, m in mats), label=f"eq:{name}")
             where = " Entries $N c_k$ use the $c_k$ of the rewritten $G_2$." if short else ""
             paper = f" For $T = 2$ this is {cite('Eq.', name)}." if _is(name, "paper") else ""
             say(MIMO.check_text(rec) + where + paper)
@@ -347,7 +308,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
                 ("F", r"P^{-1} F_c P"),
                 ("H", r"P^{-1} H_c"),
                 ("M", r"M_c P"),
-                ("P", "P" if P is None else P if P.free_symbols else _num(P)),
+                ("P", "P" if P is None else P if P.free_symbols else SH.num(P)),
                 label="eq:general",
             )
             say(MIMO.check_text(rec))
@@ -357,8 +318,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             )
             say(f"With the seeded numbers ({values}):")
             display(
-                *((k, _num(getattr(rec.numeric, k))) for k in "FHMN"),
-                ("P", _num(rec.P_numeric)),
+                *((k, SH.num(getattr(rec.numeric, k))) for k in "FHMN"),
+                ("P", SH.num(rec.P_numeric)),
                 label="eq:general-numeric",
             )
 
@@ -421,31 +382,19 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         f"{_count_text(res)} of each circuit; the largest relative departure of the "
         f"{x0} and {u0} traces from the optimal controller's is in the last column."
     )
-    add(
-        Table(
-            (
-                "circuit",
-                "neurons",
-                "of them in $G_2$",
-                "synapses",
-                "compatible",
-                "realizations",
-                "max. deviation",
-            ),
-            tuple(
-                (
-                    _title(k),
-                    str(c.circuit.n_neurons),
-                    "-" if c.g2_neurons is None else str(c.g2_neurons),
-                    str(len(c.circuit.synapses)),
-                    "yes" if c.compatibility.ok else "no",
-                    str(c.firing.count),
-                    _fmt(c.firing.max_deviation, 2),
-                )
-                for k, c in res.circuits.items()
-            ),
+    rows = tuple(
+        (
+            _title(k),
+            str(c.circuit.n_neurons),
+            "-" if c.g2_neurons is None else str(c.g2_neurons),
+            str(len(c.circuit.synapses)),
+            "yes" if c.compatibility.ok else "no",
+            str(c.firing.count),
+            SH.fmt(c.firing.max_deviation, 2),
         )
+        for k, c in res.circuits.items()
     )
+    add(Table(_CIRCUIT_COLUMNS, rows))
     for name, crec in res.circuits.items():
         add(Heading(_title(name), 2))
         if _is(name, "takes_transform") and crec.circuit.free_symbols - set(f.G.free_symbols):
@@ -455,7 +404,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
             circuit = crec.circuit
             say("The neurons, their self-dynamics and synapses:")
         rows = [tuple(eq.split(" = ", 1)) for eq in circuit.equations(digits=6)]
-        put(_display(_named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
+        put(SH.display(SH.named_weights(rows, names.get(name, {})), f"eq:circuit-{name}"))
         placed = [
             f"${signal_tex(n.name)}$ at $v_{{{n.vertex}}}$"
             for n in crec.circuit.neurons
@@ -504,8 +453,8 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
 
 
 def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
-    r"""``N``, the :math:`c_k` of the :math:`G_2` the realizations realize, and the rows
-    defining the :math:`\sigma_k` of an abbreviated :math:`G_2`."""
+    r"""``N``, the :math:`c_k` of the :math:`G_2` the realizations realize, and the rows defining
+    the :math:`\sigma_k` of an abbreviated :math:`G_2`."""
     f = res.factors
     if not getattr(res, "abbreviated", False):
         return f.N, f.remainder_coeffs, []
@@ -526,7 +475,7 @@ def _remainder(res) -> tuple[sp.Expr, list[sp.Expr], list[tuple[str, str]]]:
 
 def _range_tex(symbols) -> str:
     """``epsilon_{1,1}, ..., epsilon_{1,5}`` (all of them when few or not consecutive)."""
-    ix = _indexed(symbols)
+    ix = SH.indexed(symbols)
     if ix is None or len(symbols) <= 3:
         return ", ".join(L.to_latex(x) for x in symbols)
     return rf"{L.to_latex(symbols[0])}, \dots, {L.to_latex(symbols[-1])}"
@@ -539,8 +488,8 @@ def _firing_table(fp) -> list[DocumentBlock]:
         rows = tuple(
             (
                 f"${signal_tex(n)}$",
-                *(_fmt(v) for v in summ.peak[:shown, i]),
-                _fmt(summ.trace_spread[i]),
+                *(SH.fmt(v) for v in summ.peak[:shown, i]),
+                SH.fmt(summ.trace_spread[i]),
             )
             for i, n in enumerate(summ.neurons)
         )
@@ -580,8 +529,7 @@ def _count_text(res) -> str:
     return f"{n} random realizations (the IFP controller has one)"
 
 
-POLE_ZERO_TOL = 1e-6
-"""Poles smaller than this are written as 0 (a multiple pole at 0 splits by rounding)."""
+POLE_ZERO_TOL = 1e-6  # smaller poles are written as 0 (a multiple pole at 0 splits by rounding)
 
 
 def _pole(p: complex) -> str:

@@ -1,7 +1,6 @@
-"""The processes that draw the report's figures, started before the derivation they draw
-(so that they import matplotlib and cut the house style's fonts while the parent derives).
-The module knows nothing of figures: a worker runs the task it is given.
-"""
+"""The processes that draw the report's figures, started before the derivation they draw (so that
+they import matplotlib and cut the house style's fonts while the parent derives). A worker runs
+the task it is given: the module knows nothing of figures."""
 
 from __future__ import annotations
 
@@ -24,38 +23,14 @@ __all__ = ["FigureWorkers"]
 
 
 class FigureWorkers:
-    """Processes that draw the report's figures, started before the derivation they draw.
+    """``jobs`` processes (default the CPUs, at most 4) that draw the report's figures.
 
-    A context manager: entering it forks ``jobs`` workers
-    (:class:`concurrent.futures.ProcessPoolExecutor`) that get ready to draw while the parent
-    goes on; :meth:`submit` hands them a value (pickled once to a file) and the names of the
-    figures to draw from it. With ``jobs=1``, or without ``fork``, the tasks run here. When
-    anything stops the work (an error, a worker that died, a signal), every worker is stopped
-    (SIGTERM, then SIGKILL after a second) and reaped before the exception goes on; the workers
-    ignore SIGINT and, on Linux, die with the parent.
-
-    Parameters
-    ----------
-    jobs : int, optional
-        Processes drawing figures; default the number of CPUs, at most 4.
-
-    Raises
-    ------
-    ParameterError
-        ``jobs`` is not an integer >= 1.
-
-    Examples
-    --------
-    >>> import operator
-    >>> from symctl.report.workers import FigureWorkers
-    >>> with FigureWorkers(jobs=2) as workers:  # they get ready while the caller derives
-    ...     workers.submit(operator.add, "fig_", ["a", "b"])()
-    {'a': 'fig_a', 'b': 'fig_b'}
-    >>> FigureWorkers(jobs=0)
-    Traceback (most recent call last):
-    ...
-    symctl.errors.ParameterError: jobs: must be an integer >= 1, got 0
-    """
+    Entering forks them (a :class:`~concurrent.futures.ProcessPoolExecutor`), and they get ready while
+    the caller goes on; :meth:`submit` hands them a value (pickled once to a file) and the names to
+    draw from it. With ``jobs=1``, or without ``fork``, the tasks run here. When anything stops the
+    work (an error, a worker that died, a signal) every worker is stopped (SIGTERM, then SIGKILL
+    after a second) and reaped before the exception goes on; the workers ignore SIGINT and, on
+    Linux, die with the parent."""
 
     def __init__(self, jobs: int | None = None) -> None:
         self.jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
@@ -96,7 +71,7 @@ class FigureWorkers:
         self._pool = None
 
     def _stop(self) -> None:
-        """Stop and reap the workers: SIGTERM, then SIGKILL to any still running after a second."""
+        """SIGTERM, then SIGKILL to any worker still running after a second; reaped."""
         workers = [p for p in multiprocessing.active_children() if p not in self._before]
         for worker in workers:
             worker.terminate()
@@ -158,8 +133,8 @@ _STOPS = (signal.SIGINT, signal.SIGTERM)
 
 @contextlib.contextmanager
 def _signals_after():
-    """Ctrl-C and SIGTERM noted while the block runs and acted on when it ends (an exception
-    raised inside a fork's own hooks is printed and ignored: the signal would be lost)."""
+    """Ctrl-C and SIGTERM noted while the block runs and acted on when it ends (an exception raised
+    in a fork's own hooks is printed and ignored: the signal would be lost)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -190,7 +165,7 @@ def _worker_init() -> None:
 
 
 def _warm() -> None:
-    """Get a worker ready: draw a small figure with typeset text as PDF and PNG, then forget it."""
+    """Get a worker ready: a small figure with typeset text drawn as PDF and PNG."""
     import tempfile
 
     from symctl.plotting.png import render_pdf

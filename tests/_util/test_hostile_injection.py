@@ -411,7 +411,7 @@ AUDITED = {
     ("symctl.report.figures", "_state_bounds", "subs"): 2,
     ("symctl.report.figures", "_state_bounds", "expand"): 1,
     # the document's common factor of a realization matrix: entries of a derived SymPy matrix
-    ("symctl.report.shorthand", "_factored", "cancel"): 1,
+    ("symctl.report.shorthand", "factored", "cancel"): 1,
     # MIMO factorization: entries of a validated DiscreteTF times section factors of symbols
     ("symctl.realization.channels", "mimo_G2", "Matrix"): 1,
     ("symctl.realization.channels", "mimo_G2", "expand"): 1,

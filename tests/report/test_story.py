@@ -13,8 +13,9 @@ from symctl.latex import to_latex
 from symctl.report.document import Graphic, Heading, Math, References, Table, Text
 from symctl.report.prose import MARK
 from symctl.report.reference import FIGURES, KEY
+from symctl.report.shorthand import compact, remainder_poly, remainder_symbols
 from symctl.report.spec import CIRCUIT_SPECS
-from symctl.report.story import _compact, _remainder_poly, _remainder_symbols, story
+from symctl.report.story import story
 
 
 def test_only_the_figures_written_get_a_graphic_block():
@@ -41,12 +42,12 @@ def test_circuit_headings_use_the_specs_titles_with_their_math():
 
 def test_long_realization_entries_are_written_as_N_c_k_and_mean_the_same():
     f = factor(controller_tf(4), 2, 2)
-    c = _remainder_symbols(f)
+    c = remainder_symbols(f)
     values = {sp.Symbol("N"): f.N, **dict(zip(c, f.remainder_coeffs, strict=True))}
-    rewritten = f.N + f.N * _remainder_poly(c) / f.G2.den
+    rewritten = f.N + f.N * remainder_poly(c) / f.G2.den
     assert sp.cancel(rewritten.subs(values) - f.G2.expr) == 0
     for R in (controllable_canonical(f.G2), observable_canonical(f.G2)):
-        rows, short = _compact(R, f, c)
+        rows, short = compact(R, f, c)
         assert short
         for name, mat in rows:
             assert (mat.subs(values) - getattr(R, name)).applyfunc(sp.cancel).is_zero_matrix

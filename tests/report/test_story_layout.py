@@ -21,7 +21,8 @@ from symctl import controller_tf, derive_paper
 from symctl.report import longform as LF
 from symctl.report import matrixview as MV
 from symctl.report.document import Math, Table, Text, to_markdown, write_tex
-from symctl.report.story import _display, _eq, _tf_long, story
+from symctl.report.shorthand import display, eq, tf_long
+from symctl.report.story import story
 from symctl.symbols import gain_symbols
 
 SIZES = (2, 3, 5, 8, 11, 13, 16, 21)  # matrices of T = 1..20 (T + 1 rows for the augmented ones)
@@ -84,7 +85,7 @@ def _rows_fit(blocks) -> None:
 @pytest.mark.parametrize("n", SIZES)
 def test_every_kind_of_large_matrix_fits_the_line(n):
     for lhs, obj in _objects(n):
-        blocks = _eq((lhs, obj), label="eq:x")
+        blocks = eq((lhs, obj), label="eq:x")
         _rows_fit(blocks)
         view = MV.show_matrix(lhs, obj)
         if view.full:
@@ -136,7 +137,7 @@ def test_a_term_wider_than_the_line_is_elided_with_its_length():
 def test_a_long_transfer_function_is_a_coefficient_table():
     G = controller_tf(20)
     num = G.subs({k: sp.Rational(-1, k_ + 2) for k_, k in enumerate(gain_symbols(20))})
-    blocks = _tf_long("G(z)", G, num, label="eq:G")
+    blocks = tf_long("G(z)", G, num, label="eq:G")
     _rows_fit(blocks)
     (table,) = [b for b in blocks if isinstance(b, Table)]
     assert len(table.rows) == 21 and table.rows[1][1] == "$- K_{1}$"
@@ -147,10 +148,10 @@ def test_large_objects_compile_without_an_overfull_box(tmp_path, pdflatex):
     blocks = []
     for n in (13, 21):
         for k, (lhs, obj) in enumerate(_objects(n)):
-            blocks += _eq((lhs, obj), label=f"eq:{n}-{k}")
+            blocks += eq((lhs, obj), label=f"eq:{n}-{k}")
     G = controller_tf(20)
-    blocks += _tf_long("G(z)", G, G.subs({k: 0.123456789 for k in gain_symbols(20)}), label="eq:G")
-    blocks += _display(
+    blocks += tf_long("G(z)", G, G.subs({k: 0.123456789 for k in gain_symbols(20)}), label="eq:G")
+    blocks += display(
         [("y(t)", " + ".join(rf"0.{k}123456\, x_{{{k}}}(t-{k})" for k in range(300)))], "eq:long"
     )
     blocks.append(Table(("k", "value"), tuple((str(k), f"${k}.5$") for k in range(80))))
