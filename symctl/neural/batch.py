@@ -47,7 +47,7 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 
 @dataclass(frozen=True, eq=False)
 class BatchResponse(ArrayValue, DictMixin):
-    """Traces of many closed loops at once (see :func:`simulate_batch`); read-only arrays.
+    """Traces of many closed loops at once (:func:`simulate_batch`); read-only.
 
     Attributes
     ----------
@@ -264,19 +264,14 @@ def simulate_batch(
         Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
         Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
-        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``.
-        Traces take :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks
-        :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused
-        before any work, the message saying which ``chunk`` fits.
+        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``. Traces take
+        :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks :math:`8 R c`; more
+        than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused before any work.
     chunk : int, optional
-        Stream the loops in chunks of ``chunk`` realizations: an iterator of
-        :class:`BatchResponse`, each chunk simulated when reached; arguments and stability
-        are checked first.
-    noise : Noise, optional
-        Noise (:class:`~symctl.neural.noise.Noise`) drawn per step for each loop; an
-        all-zero Noise is no noise.
-    rng : int, numpy Generator or None, default 0
-        Seeds the noise.
+        Stream the loops in chunks of ``chunk`` realizations: an iterator of results, each
+        simulated when reached (arguments and stability checked first).
+    noise, rng : Noise, int, Generator or None, optional
+        Noise drawn per step for each loop, and its seed.
 
     Returns
     -------
@@ -285,8 +280,7 @@ def simulate_batch(
     Raises
     ------
     DimensionError, ParameterError, SymctlTypeError
-        Also outputs that overflow to inf or NaN (with ``chunk``, when its chunk is
-        reached), and outputs over the memory limit.
+        Also outputs that overflow to inf or NaN, and outputs over the memory limit.
 
     Examples
     --------

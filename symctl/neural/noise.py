@@ -1,7 +1,7 @@
 r"""Noise in the closed loop: on the plant's states, on its inputs, on what the controller measures.
 
-A closed loop is a stack :math:`\xi = [x; x_c]` (plant, then controller) with the command
-:math:`u = C_r \xi`. With noise drawn afresh at each step,
+With the loop's state :math:`\xi = [x; x_c]` (plant, then controller), the command
+:math:`u = C_r \xi` and noise drawn afresh at each step,
 
 .. math::
     \xi(t+1) = A_{cl}\,\xi(t) + E_p\,(w(t) + p(t)) + E_u\,m(t) + E_v\,v(t),\qquad
@@ -57,32 +57,25 @@ def _covariance(value, name: str) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Noise(ArrayValue, DictMixin):
-    r"""Gaussian noise in a closed loop, drawn per step: process, motor and sensor noise.
+    r"""Gaussian noise in a closed loop, drawn per step (module text).
 
     Each covariance is a number (times the identity), a list (the diagonal) or a symmetric
     positive semidefinite matrix, sized when the loop is known.
 
     Parameters
     ----------
-    process : number, list or matrix, optional
-        Covariance :math:`W` of the noise added to the plant's states.
-    motor : number, list or matrix, optional
-        Covariance :math:`W_u` of the additive noise on the plant's inputs.
-    sensor : number, list or matrix, optional
-        Covariance :math:`V` of the noise on what the controller measures.
+    process, motor, sensor : number, list or matrix, optional
+        Covariances :math:`W` of the noise on the plant's states, :math:`W_u` of the additive
+        noise on its inputs, :math:`V` of the noise on what the controller measures.
     signal_dependent : number or list, optional
         :math:`\sigma \ge 0`: motor noise of standard deviation :math:`\sigma_i |u_i|`.
 
     Raises
     ------
-    ParameterError
-        A covariance not positive semidefinite, a negative variance or ``signal_dependent``,
-        a non-finite entry.
-    DimensionError
-        A covariance not square or larger than ``MAX_STATES``; later, one of another size than
-        the loop's (named ``noise.process``, ...).
-    SymctlTypeError
-        Entries that are not numbers.
+    ParameterError, DimensionError, SymctlTypeError
+        A covariance not positive semidefinite or not square, a negative variance, an entry
+        not a finite number; a size above ``MAX_STATES``, later one other than the loop's
+        (named ``noise.process``, ...).
 
     References
     ----------
@@ -126,13 +119,8 @@ class Noise(ArrayValue, DictMixin):
 
     def matrices(self, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
         """Each part given, sized for ``n`` states, ``m`` inputs and ``outputs`` measurements
-        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``.
-
-        Raises
-        ------
-        DimensionError
-            A part of another size, named ``noise.<part>``.
-        """
+        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``; a DimensionError
+        names a part of another size (``noise.<part>``)."""
         sizes = {"process": n, "motor": m, "sensor": n if outputs is None else outputs}
         out = {}
         for name, size in (*sizes.items(), ("signal_dependent", m)):
@@ -280,18 +268,21 @@ def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
     return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
 
 
-def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> None:
-    """:func:`_noisy_loop` into ``out`` ``(steps, len(rows), R)`` (signals numbered as the
-    noise-free loop numbers them) and ``peaks``."""
-    rows, peak_rows = list(rows), list(peak_rows)
+def _noisy_fill(
+    Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=(), *, sensor=None, y=False
+) -> None:
+    """:func:`_noisy_loop` into ``out`` ``(steps, rows, loops)`` (signals numbered ``delta_f``,
+    ``delta_r``, states, with ``y`` the measurement) and ``peaks``; ``sensor``: ``(E_v, D_v, C)``
+    of a controller fed by outputs, by default those of the state."""
+    peak_rows = list(peak_rows)
     if peaks is not None:
         peaks[...] = 0.0
 
-    def visit(t, x, u, y):
-        signals = np.concatenate([x[:n], u, x[n:]])
+    def visit(t, x, u, meas):
+        signals = np.concatenate([x[:n], u, x[n:], *([meas] if y else [])])
         out[t] = signals[rows]
         if peak_rows:
             np.maximum(peaks, np.abs(signals[peak_rows]), out=peaks)
 
-    Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
-    _noisy_loop(Acl, Cr, B, n, w, parts, gen, out.shape[-1], visit, Ev, Dv)
+    Ev, Dv, C = (*_sensor_inputs(Acl, Cr, A, n), None) if sensor is None else sensor
+    _noisy_loop(Acl, Cr, B, n, w, parts, gen, out.shape[-1], visit, Ev, Dv, C, y)
