@@ -18,7 +18,7 @@ from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _Parts
+from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _parts
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
@@ -344,7 +344,7 @@ def simulate_batch(
     t = read_only(np.arange(w.shape[-2]) * _ts(p))
     checked = bool(check_stability)
     noise = _as_noise(noise)
-    noisy = None if noise is None else (A, B, _Parts.of(noise, p.n, p.m), rng)
+    noisy = None if noise is None else (A, B, _parts(noise, p.n, p.m), rng)
     run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked, noisy)
     if chunk is None:
         return run(slice(None))

@@ -344,17 +344,12 @@ class Circuit(LatexMixin):
         S = self.structure
         states, feeds = delay_states(S)
         out_names = tuple(n.name for n in self.neurons) + S.outputs
-        if numeric:
-            return self._numeric_system(states, feeds, out_names)
-        R = structure_realization(S, out_names)
-        return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
-
-    def _numeric_system(self, states: tuple, feeds: tuple, out_names: tuple) -> CircuitSystem:
-        """:meth:`as_linear_system` in floats."""
+        if not numeric:
+            R = structure_realization(S, out_names)
+            return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
         left = sorted(map(str, self.free_symbols))
         if left:
             raise ParameterError(f"numeric: the weights still contain {left}; subs() first")
-        S = self.structure
         k, m = len(states), len(S.inputs)
 
         def real(name, gain):

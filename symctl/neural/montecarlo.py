@@ -35,7 +35,7 @@ from symctl._util.validate import (
 )
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _Parts, _sensor_inputs
+from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _parts, _sensor_inputs
 from symctl.neural.simulate import _loop, _plant
 
 __all__ = ["MonteCarlo", "monte_carlo"]
@@ -251,8 +251,8 @@ def monte_carlo(
     burn = _burn_in(Acl, steps) if burn_in is None else nonneg_int(burn_in, "burn_in")
     if burn >= steps:
         raise ParameterError(f"burn_in: must be below steps = {steps}, got {burn}")
-    parts = _Parts.of(noise, n, p.m, q)
-    normals = 2 * _BLOCK * parts.rows()[-1][1].stop  # two blocks of normals in memory
+    parts = _parts(noise, n, p.m, q)
+    normals = 2 * _BLOCK * sum(map(len, parts.values()))  # two blocks of normals in memory
     if 8 * count * (normals + 4 * Acl.shape[0] + n * n) > MAX_OUTPUT_BYTES:
         raise ParameterError(f"count: {count} loops take more than MAX_OUTPUT_BYTES; use fewer")
     Qw, Rw = _weights(Q, R, controller, n, p.m)

@@ -23,7 +23,7 @@ this order, each only when given, scaled by a square root of its covariance.
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -172,47 +172,29 @@ def _sensor_inputs(Acl: np.ndarray, Cr: np.ndarray, A: np.ndarray, n: int) -> tu
     return Ev, Cr[:, :n]
 
 
-@dataclass(frozen=True)
-class _Parts:
-    """The noise of one loop, as square roots of its covariances (None where not given)."""
-
-    process: np.ndarray | None
-    motor: np.ndarray | None
-    sensor: np.ndarray | None
-    signal_dependent: np.ndarray | None
-
-    @classmethod
-    def of(cls, noise: Noise, n: int, m: int, outputs: int | None = None) -> _Parts:
-        mats = noise.matrices(n, m, outputs)
-        roots = {k: _factor(v) for k, v in mats.items() if k in _COVARIANCES}
-        return cls(*(roots.get(k) for k in _COVARIANCES), mats.get("signal_dependent"))
-
-    def rows(self) -> list[tuple[str, slice]]:
-        """Each part's rows among the normals drawn per step."""
-        out, k = [], 0
-        for name in (*_COVARIANCES, "signal_dependent"):
-            value = getattr(self, name)
-            if value is not None:
-                out.append((name, slice(k, k + len(value))))
-                k += len(value)
-        return out
+def _parts(noise: Noise, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
+    """The parts given, in the order drawn: square roots of the covariances, ``signal_dependent``."""
+    mats = noise.matrices(n, m, outputs)
+    return {k: v if k == "signal_dependent" else _factor(v) for k, v in mats.items()}
 
 
 def _noisy_loop(
-    Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
+    Acl, Cr, B, n, w, parts: dict, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
 ):
     """Run ``count`` loops from rest, calling ``visit(t, xi, u, y)`` at each step (``y``: the
     measurement :math:`C x + v`, or None when not ``y``); ``Acl``, ``Cr`` shared or stacks."""
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
     quiet = not np.any(w)
-    if parts.process is not None and parts.motor is not None:  # one draw of W + B W_u B^T
-        P, BM = parts.process, B @ parts.motor
-        parts = replace(parts, process=_factor(P @ P.T + BM @ BM.T), motor=None)
-    rows = dict(parts.rows())
-    k = max((r.stop for r in rows.values()), default=0)
+    parts = dict(parts)
+    if "process" in parts and "motor" in parts:  # one draw of W + B W_u B^T
+        P, BM = parts.pop("process"), B @ parts.pop("motor")
+        parts = {"process": _factor(P @ P.T + BM @ BM.T), **parts}
+    rows, k = {}, 0  # each part's rows among the normals drawn per step
+    for name, value in parts.items():
+        rows[name], k = slice(k, k + len(value)), k + len(value)
     G, Du, Ly = _noise_inputs(Acl, B, n, parts, rows, k, Ev, Dv)
-    sd = parts.signal_dependent
+    sd = parts.get("signal_dependent")
     x = np.zeros((Acl.shape[0], count))
     with np.errstate(over="ignore", invalid="ignore"):
         for t, zt in enumerate(_normals(gen, steps, k, count)):
@@ -252,18 +234,19 @@ def _normals(gen, steps: int, k: int, count: int):
             yield from z
 
 
-def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
+def _noise_inputs(Acl, B, n, parts: dict, rows, k, Ev, Dv) -> tuple:
     """How a step's normals enter: ``G`` the state, ``Du`` the command, ``Ly`` the measurement."""
     stack = (Acl.shape[-1],) if Acl.ndim == 3 else ()
     G = np.zeros((Acl.shape[0], k, *stack))
-    if parts.process is not None:
-        G[:n, rows["process"]] = parts.process[..., None] if stack else parts.process
-    if parts.motor is not None:
-        G[:n, rows["motor"]] = (B @ parts.motor)[..., None] if stack else B @ parts.motor
-    if parts.sensor is None:
+    if "process" in parts:
+        G[:n, rows["process"]] = parts["process"][..., None] if stack else parts["process"]
+    if "motor" in parts:
+        BM = B @ parts["motor"]
+        G[:n, rows["motor"]] = BM[..., None] if stack else BM
+    if "sensor" not in parts:
         return G, None, None
-    Ly = np.zeros((len(parts.sensor), k))
-    Ly[:, rows["sensor"]] = parts.sensor
+    Ly = np.zeros((len(parts["sensor"]), k))
+    Ly[:, rows["sensor"]] = parts["sensor"]
     G += np.einsum("ij...,jk->ik...", Ev, Ly)
     return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
 

@@ -41,7 +41,7 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _Parts
+from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _parts
 from symctl.neural.timeloop import _run_chunk
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import ifp_realization
@@ -237,15 +237,22 @@ def _stability(Acl: np.ndarray, argname: str, n: int | None = None, bad=None) ->
         eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((1, 1))
         bad = np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE)
     if bad.size:
-        count = Acl.shape[-1]
-        i = int(bad[0])
+        count, i = Acl.shape[-1], int(bad[0])
         eigs = np.linalg.eigvals(Acl[:, :, i])
         lam = complex(eigs[np.argmax(np.abs(eigs))])
         rho = abs(lam)
         where = f" (realization {i} of {count}; {bad.size} unstable)" if count > 1 else ""
+        cause = "the controller does not stabilize this plant"
+        if n is not None and _is_hidden(Acl[:, :, i], lam, n):
+            cause = (
+                f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
+                "hidden from the transfer function (a pole cancelled by a zero, e.g. "
+                "|epsilon| >= 1 in G3 G2 G1); realize the controller with every mode "
+                "inside the unit circle"
+            )
         raise ParameterError(
             f"{argname}: the closed loop is unstable, spectral radius {rho:.6g} >= 1{where}; "
-            f"unstable eigenvalue {_eig_text(lam)}; {_unstable_cause(Acl[:, :, i], lam, n, argname)}"
+            f"unstable eigenvalue {_eig_text(lam)}; {cause}"
         )
 
 
@@ -253,17 +260,6 @@ def _eig_text(lam: complex) -> str:
     if abs(lam.imag) <= 1e-12 * max(1.0, abs(lam)):
         return f"{lam.real:.6g}"
     return f"{lam.real:.6g}{lam.imag:+.6g}j"
-
-
-def _unstable_cause(Acl: np.ndarray, lam: complex, n: int | None, argname: str) -> str:
-    if n is not None and _is_hidden(Acl, lam, n):
-        return (
-            f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
-            "hidden from the transfer function (a pole cancelled by a zero, e.g. "
-            "|epsilon| >= 1 in G3 G2 G1); realize the controller with every mode "
-            "inside the unit circle"
-        )
-    return "the controller does not stabilize this plant"
 
 
 def _is_hidden(Acl: np.ndarray, lam: complex, n: int) -> bool:
@@ -285,33 +281,22 @@ def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
     return Acl, np.moveaxis(np.concatenate([N, M], axis=2), 0, -1)
 
 
-def _run(
-    Acl: np.ndarray,
-    Cr: np.ndarray,
-    n: int,
-    w: np.ndarray,
-    *,
-    states: bool = True,
-    argname: str = "disturbance",
-    schedule=None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """Simulate ``xi(t+1) = A_cl xi + [I; 0] w`` from zero for a stack of ``R`` loops.
-
-    ``Acl`` ``(size, size, R)``, ``Cr`` ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``;
-    returns ``(delta_f, delta_r, states)`` as ``(R, steps, .)`` views of one time-major buffer.
-    ``schedule(run, R)`` runs slices of the loops (the batch's chunks) and returns the smallest result.
-    """
+def _run(Acl, Cr, n: int, w, *, states: bool = True, argname: str = "disturbance") -> tuple:
+    """``xi(t+1) = A_cl xi + [I; 0] w`` from zero for the loops ``Acl`` ``(size, size, R)``, ``Cr``
+    ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``: ``(delta_f, delta_r, states)``,
+    ``(R, steps, .)`` views of one time-major buffer."""
     size, m = Acl.shape[0], Cr.shape[0]
     rows = range(n + m + (size - n if states else 0))  # delta_f, delta_r, states
     out = np.empty((w.shape[-2], len(rows), Acl.shape[-1]))
-    _steps(Acl, Cr, n, w, out, rows, argname=argname, schedule=schedule)
+    _steps(Acl, Cr, n, w, out, rows, argname=argname)
     loops = np.moveaxis(out, -1, 0)
     return loops[..., :n], loops[..., n : n + m], loops[..., n + m :] if states else None
 
 
 def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, schedule=None):
     """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` (``delta_f``, ``delta_r``,
-    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises."""
+    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises.
+    ``schedule(run, R)`` runs slices of the loops (a batch's chunks), the smallest result."""
     steps, R = out.shape[0], Acl.shape[-1]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
 
@@ -516,8 +501,9 @@ def _traces(p, Acl, Cr, w, noise, draws, gen, sensor=None) -> tuple[np.ndarray, 
     Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
     q = n if sensor is None else sensor[2].shape[0]
     out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + q, draws))
-    parts = _Parts.of(noise, n, p.m, q)
-    _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, slice(None), sensor=sensor, y=True)
+    _noisy_fill(
+        Acl, Cr, A, B, n, w, _parts(noise, n, p.m, q), gen, out, slice(None), sensor=sensor, y=True
+    )
     loops, m = np.moveaxis(out, -1, 0), Cr.shape[0]
     return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -q], loops[..., -q:]
 
