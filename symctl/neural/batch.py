@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import numbers
 import os
 from collections.abc import Iterable, Iterator, Mapping
 from concurrent.futures import ThreadPoolExecutor
@@ -219,12 +218,12 @@ def _simulate_part(
         A, B, parts, gen = noisy
         _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, top, peak_rows)
     out.setflags(write=False)  # no copy: the buffers are ours alone
-    loops, arrays, k = np.moveaxis(out, -1, 0), {}, 0
-    for name in traces:
-        arrays[name], k = loops[..., k : k + widths[name]], k + widths[name]
-    peak_map, k = {}, 0
-    for name in peaks:
-        peak_map[name], k = top[k : k + widths[name]].T, k + widths[name]
+
+    def split(a: np.ndarray, names) -> dict:  # a's last axis by names (none: the whole, unnamed)
+        cuts = np.cumsum([widths[u] for u in names])[:-1]
+        return dict(zip(names, np.split(a, cuts, -1), strict=False))
+
+    arrays, peak_map = split(np.moveaxis(out, -1, 0), traces), split(top.T, peaks) if peaks else {}
     traced = [arrays.get(name) for name in TRACES]
     return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
@@ -315,18 +314,7 @@ def simulate_batch(
             raise DimensionError(f"{k}: expected shape {shape}, got {mats[k].shape}")
     if R == 0:
         raise DimensionError("F: no realizations (R = 0)")
-    if not isinstance(disturbance, numbers.Real):
-        disturbance = float_array(disturbance, "disturbance")
-    if np.ndim(disturbance) < 3:
-        w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-    else:
-        w = disturbance
-        if w.ndim != 3 or w.shape[0] != R or w.shape[2] != p.n or w.shape[1] == 0:
-            raise DimensionError(
-                f"disturbance: expected shape (steps, {p.n}) or ({R}, steps, {p.n}), got {w.shape}"
-            )
-        if steps is not None and positive_int(steps, "steps") != w.shape[1]:
-            raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
+    w = _signal(disturbance, "disturbance", steps, p.n, start, length, R)
     widths = {"delta_f": p.n, "delta_r": p.m, "states": nc}
     _check_memory(R, w.shape[-2], widths, traces, peaks, chunk)
     if chunk is None:  # the closed loops at once, else each chunk's when it runs

@@ -227,12 +227,10 @@ class FiringPatterns(ArrayValue, DictMixin):
         """
         names = self.neurons
         peak = np.full((self.count, len(names)), np.nan)
-        for k, name in enumerate(names):
+        for k, name in enumerate(names):  # NaN rows: realizations without the neuron
             tr = self.firing[name]
-            ok = ~np.isnan(tr).any(axis=1)
-            idx = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
-            vals = tr[np.arange(self.count), idx]
-            peak[ok, k] = vals[ok]
+            at = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
+            peak[:, k] = np.where(np.isnan(tr).any(axis=1), np.nan, tr[np.arange(self.count), at])
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
         trace = np.array(
             [

@@ -107,19 +107,22 @@ def pulse(
     return out
 
 
-def _signal(value, argname: str, steps: int | None, size: int, start: int, length: int):
-    """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array."""
+def _signal(value, argname: str, steps, size: int, start: int, length: int, loops=None):
+    """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array; with ``loops``,
+    an array may also give one per loop, ``(loops, steps, size)``."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return pulse(DEFAULT_STEPS if steps is None else steps, value, start, length, size)
     arr = float_array(value, argname)
     if arr.ndim == 1 and size == 1:
         arr = arr[:, None]
-    if arr.ndim != 2 or arr.shape[1] != size or arr.shape[0] == 0:
+    lead = () if arr.ndim == 2 or loops is None else (loops,)
+    if arr.ndim < 2 or arr.shape[:-2] != lead or arr.shape[-1] != size or arr.shape[-2] == 0:
+        each = f" or ({loops}, steps, {size})" if loops else ""
         raise DimensionError(
-            f"{argname}: expected shape (steps, {size}) with steps >= 1, got {arr.shape}"
+            f"{argname}: expected shape (steps, {size}){each} with steps >= 1, got {arr.shape}"
         )
-    if steps is not None and positive_int(steps, "steps") != arr.shape[0]:
-        raise DimensionError(f"{argname}: has {arr.shape[0]} samples but steps = {steps}")
+    if steps is not None and positive_int(steps, "steps") != arr.shape[-2]:
+        raise DimensionError(f"{argname}: has {arr.shape[-2]} samples but steps = {steps}")
     return arr
 
 
