@@ -395,9 +395,7 @@ def spiking_cost(
     if not tols or not all(0 < t < 1 for t in tols):
         raise ParameterError(f"tolerances: expected numbers in (0, 1), got {list(tolerances)}")
     workers, scheduler = pool_options(workers, scheduler)
-    for c in found.values():
-        _edges(c)  # symbolic weights refused before any work
-    header = _header(gains, found, steps, disturbance)
+    header = _header(gains, found, steps, disturbance)  # refuses symbolic weights (_edges)
     pool = open_pool(workers, scheduler)
     try:
         store = Checkpoint(checkpoint, header, _key, _valid)
