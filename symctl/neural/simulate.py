@@ -87,6 +87,10 @@ def pulse(
     size : int
         The number of channels (columns), >= 1.
 
+    Returns
+    -------
+    (steps, size) array
+
     Raises
     ------
     ParameterError, SymctlTypeError
