@@ -416,21 +416,18 @@ class Circuit(LatexMixin):
         lines = [
             f"Circuit: {self.n_neurons} neuron{'s' if self.n_neurons != 1 else ''}; "
             f"inputs {', '.join(self.inputs)}; "
-            f"outputs {', '.join(f'{o.target} <- {_syn_text(o, o.source)}' for o in self.outputs)}"
+            f"outputs {', '.join(f'{o.target} <- {_syn_text(o)}' for o in self.outputs)}"
         ]
         for n in self.neurons:
             where = f" [v{n.vertex}]" if n.vertex is not None else ""
-            lines.append(f"  neuron {n.name}{where}")
-            lines.append(f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}")
-            for s in n.synapses:
-                lines.append(f"    synapse from {_syn_text(s, s.source)}")
-            targets = ", ".join(
-                f"output {s.target}" if s in self.outputs else s.target for s in n.axon
-            )
-            targets = targets or "none"
-            lines.append(
-                f"    axon: {n.branches} branch{'es' if n.branches != 1 else ''} -> {targets}"
-            )
+            lines += [
+                f"  neuron {n.name}{where}",
+                f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}",
+                *(f"    synapse from {_syn_text(s)}" for s in n.synapses),
+            ]
+            targets = [f"output {s.target}" if s in self.outputs else s.target for s in n.axon]
+            word = "branch" if n.branches == 1 else "branches"
+            lines.append(f"    axon: {n.branches} {word} -> {', '.join(targets) or 'none'}")
         for u, axon in self.input_axons.items():
             word = "branch" if len(axon) == 1 else "branches"
             targets = ", ".join(s.target for s in axon) or "none"
@@ -548,6 +545,6 @@ def _vertices(S: Structure, assignment) -> dict[str, int] | None:
     return dict(assignment.vertex_of)
 
 
-def _syn_text(s: Synapse, source: str) -> str:
+def _syn_text(s: Synapse) -> str:
     delay = f", delay {s.delay}" if s.delay else ""
-    return f"{source} (weight {s.weight}, sign {s.sign}{delay})"
+    return f"{s.source} (weight {s.weight}, sign {s.sign}{delay})"
