@@ -217,14 +217,7 @@ class FiringPatterns(ArrayValue, DictMixin):
         return f"#{i + 1}" + (": " + ", ".join(eps) if eps else " (IFP)")
 
     def summary(self) -> FiringSummary:
-        """Per neuron, the spread of peak firing across realizations (see :class:`FiringSummary`).
-
-        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
-        >>> fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=3)
-        >>> s = fp.summary()
-        >>> bool(s.spread[:2].min() > 1e-3 > 1e-12 > s.behaviour_spread)   # x1, x2 differ
-        True
-        """
+        """Per neuron, the spread of peak firing across realizations (a :class:`FiringSummary`)."""
         names = self.neurons
         peak = np.full((self.count, len(names)), np.nan)
         for k, name in enumerate(names):  # NaN rows: realizations without the neuron
@@ -246,15 +239,7 @@ class FiringPatterns(ArrayValue, DictMixin):
 
     def plot(self, ncols: int = 3):
         """One panel per neuron (a line per realization), the force on top: a Figure by
-        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row).
-
-        Examples
-        --------
-        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
-        >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
-        >>> [ax.get_title() for ax in fp.plot().axes][1:]
-        ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
-        """
+        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row)."""
         from symctl.plotting.firing import firing_plot
 
         return firing_plot(self, ncols)

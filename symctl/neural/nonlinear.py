@@ -143,15 +143,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     def plot(self):
         """State traces and the deviation against amplitude: a Figure by
-        :func:`symctl.plotting.response.nonlinear_plot`.
-
-        Examples
-        --------
-        >>> from symctl import nonlinear_check
-        >>> fig = nonlinear_check(amplitudes=[0.1, 1.0], steps=20).plot()
-        >>> fig.axes[0].get_ylabel()
-        'muscle force $f$ [N]'
-        """
+        :func:`symctl.plotting.response.nonlinear_plot`."""
         from symctl.plotting.response import nonlinear_plot
 
         return nonlinear_plot(self)

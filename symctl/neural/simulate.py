@@ -218,15 +218,7 @@ class Response(ArrayValue, DictMixin):
 
     def plot(self, states: bool | None = None):
         """Force and rate against time (``states``: a panel of the controller's states, by default
-        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`.
-
-        Examples
-        --------
-        >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
-        >>> fig = closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))).plot()
-        >>> fig.axes[-1].get_xlabel()
-        'time [s]'
-        """
+        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`."""
         from symctl.plotting.response import response_plot
 
         return response_plot(self, states)
