@@ -8,7 +8,6 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import partial
 from itertools import pairwise
-from types import MappingProxyType
 
 import numpy as np
 
@@ -23,6 +22,7 @@ from symctl.neural.simulate import (
     DEFAULT_START,
     UNIT_CIRCLE,
     _closed_loop_matrices,
+    _freeze,
     _plant,
     _signal,
     _stability,
@@ -83,11 +83,7 @@ class BatchResponse(ArrayValue, DictMixin):
     first: int = 0
 
     def __post_init__(self) -> None:  # read-only (views of simulate_batch's own buffer)
-        for name in (*TRACES, "t"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
-        peaks = {k: read_only(v, float) for k, v in self.peaks.items()}
-        object.__setattr__(self, "peaks", MappingProxyType(peaks))
+        _freeze(self, (*TRACES, "t"), ("peaks",))
 
 
 def _chunks(count: int) -> list[slice]:

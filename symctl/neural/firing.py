@@ -20,7 +20,6 @@ from symctl._util.validate import (
     bounded_int,
     numeric_matrix,
     positive_number,
-    read_only,
 )
 from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
@@ -39,6 +38,7 @@ from symctl.neural.simulate import (
     DEFAULT_START,
     Response,
     _closed_response,
+    _freeze,
     _loop,
     _run,
     _signal,
@@ -104,11 +104,10 @@ class FiringSummary(ArrayValue, DictMixin):
     behaviour_spread: float
     trace_spread: np.ndarray | None = None
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
+    def __post_init__(self) -> None:
         if self.trace_spread is None:
             object.__setattr__(self, "trace_spread", self.spread)
-        for name in ("peak", "spread", "trace_spread"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, ("peak", "spread", "trace_spread"))
 
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
@@ -184,13 +183,8 @@ class FiringPatterns(ArrayValue, DictMixin):
     draws: int = 0
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
-        for name in ("t", "delta_f", "delta_r", "delta_f_sd", "delta_r_sd"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
-        for name in ("firing", "firing_sd"):
-            if getattr(self, name) is not None:
-                traces = {k: read_only(v, float) for k, v in getattr(self, name).items()}
-                object.__setattr__(self, name, MappingProxyType(traces))
+        arrays = ("t", "delta_f", "delta_r", "delta_f_sd", "delta_r_sd")
+        _freeze(self, arrays, ("firing", "firing_sd"))
         params = tuple(MappingProxyType(dict(p)) for p in self.params)
         object.__setattr__(self, "params", params)
 

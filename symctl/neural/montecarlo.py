@@ -31,12 +31,11 @@ from symctl._util.validate import (
     nonneg_int,
     numeric_matrix,
     psd_matrix,
-    read_only,
 )
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _parts, _sensor_inputs
-from symctl.neural.simulate import _loop, _plant
+from symctl.neural.simulate import _freeze, _loop, _plant
 
 __all__ = ["MonteCarlo", "monte_carlo"]
 
@@ -89,9 +88,10 @@ class MonteCarlo(ArrayValue, DictMixin):
     burn_in: int
     state_names: tuple[str, ...]
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("covariance", "covariance_se", "predicted_covariance", "additive_covariance"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+    def __post_init__(self) -> None:
+        _freeze(
+            self, ("covariance", "covariance_se", "predicted_covariance", "additive_covariance")
+        )
 
     @property
     def z_score(self) -> float:

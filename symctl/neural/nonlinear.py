@@ -16,7 +16,6 @@ from symctl._util.validate import (
     bounded_int,
     bounded_number,
     float_array,
-    read_only,
 )
 from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
@@ -27,6 +26,7 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     DEFAULT_STEPS,
+    _freeze,
     _numeric_realization,
     simulate_realization,
 )
@@ -107,8 +107,7 @@ class NonlinearCheck(ArrayValue, Verdict):
         return self.final_deviation
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for field in fields(self)[:8]:
-            object.__setattr__(self, field.name, read_only(getattr(self, field.name), float))
+        _freeze(self, [field.name for field in fields(self)[:8]])
 
     @property
     def f_linear(self) -> np.ndarray:

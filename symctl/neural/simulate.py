@@ -18,6 +18,7 @@ from __future__ import annotations
 import dataclasses
 import numbers
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 
@@ -130,6 +131,18 @@ def _signal(value, argname: str, steps, size: int, start: int, length: int, loop
     return arr
 
 
+def _freeze(value, arrays=(), mappings=()) -> None:
+    """Set ``value``'s fields ``arrays`` to read-only float copies, ``mappings`` to read-only
+    mappings of them (None stays None)."""
+    for name in arrays:
+        if getattr(value, name) is not None:
+            object.__setattr__(value, name, read_only(getattr(value, name), float))
+    for name in mappings:
+        if getattr(value, name) is not None:
+            items = {k: read_only(v, float) for k, v in getattr(value, name).items()}
+            object.__setattr__(value, name, MappingProxyType(items))
+
+
 def _plant(plant) -> tuple[DiscretePlant, np.ndarray, np.ndarray]:
     p = as_plant(plant)
     A, B = p.numeric()
@@ -200,11 +213,9 @@ class Response(ArrayValue, DictMixin):
     states_sd: np.ndarray | None = None
     draws: int = 0
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
+    def __post_init__(self) -> None:
         arrays = ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar")
-        for name in (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"))
 
     @property
     def f(self) -> np.ndarray:

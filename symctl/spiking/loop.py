@@ -23,7 +23,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _drive, _plant
 from symctl.neural.nonlinear import ode_flow
-from symctl.neural.simulate import simulate_realization
+from symctl.neural.simulate import _freeze, simulate_realization
 from symctl.realization.realization import Realization
 from symctl.spiking.connections import _edges, _require
 from symctl.spiking.nengo_export import MAX_POPULATION, SUBSTEPS, _radii, to_nengo
@@ -82,11 +82,8 @@ class SpikingResponse(ArrayValue, DictMixin):
     deviation: float
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
-        for name in ("t", "delta_f", "delta_f_linear", "delta_r", "delta_r_linear"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
-        for name in ("firing", "firing_linear"):
-            traces = {k: read_only(v, float) for k, v in getattr(self, name).items()}
-            object.__setattr__(self, name, MappingProxyType(traces))
+        arrays = ("t", "delta_f", "delta_f_linear", "delta_r", "delta_r_linear")
+        _freeze(self, arrays, ("firing", "firing_linear"))
         spikes = {k: read_only(v, np.uint8) for k, v in self.spikes.items()}
         object.__setattr__(self, "spikes", MappingProxyType(spikes))
         object.__setattr__(self, "radius", MappingProxyType(dict(self.radius)))
