@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import numbers
 import os
 from collections.abc import Iterable, Iterator, Mapping
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import partial
 from itertools import pairwise
-from types import MappingProxyType
 
 import numpy as np
 
@@ -18,12 +16,13 @@ from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.validate import MAX_OUTPUT_BYTES, float_array, positive_int, read_only
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _Parts
+from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _parts
 from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     UNIT_CIRCLE,
     _closed_loop_matrices,
+    _freeze,
     _plant,
     _signal,
     _stability,
@@ -47,7 +46,7 @@ KEEP = TRACES + tuple("peak_" + name for name in TRACES)
 
 @dataclass(frozen=True, eq=False)
 class BatchResponse(ArrayValue, DictMixin):
-    """Traces of many closed loops at once (see :func:`simulate_batch`); read-only arrays.
+    """Traces of many closed loops at once (:func:`simulate_batch`); read-only.
 
     Attributes
     ----------
@@ -84,11 +83,7 @@ class BatchResponse(ArrayValue, DictMixin):
     first: int = 0
 
     def __post_init__(self) -> None:  # read-only (views of simulate_batch's own buffer)
-        for name in (*TRACES, "t"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
-        peaks = {k: read_only(v, float) for k, v in self.peaks.items()}
-        object.__setattr__(self, "peaks", MappingProxyType(peaks))
+        _freeze(self, (*TRACES, "t"), ("peaks",))
 
 
 def _chunks(count: int) -> list[slice]:
@@ -219,12 +214,12 @@ def _simulate_part(
         A, B, parts, gen = noisy
         _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, top, peak_rows)
     out.setflags(write=False)  # no copy: the buffers are ours alone
-    loops, arrays, k = np.moveaxis(out, -1, 0), {}, 0
-    for name in traces:
-        arrays[name], k = loops[..., k : k + widths[name]], k + widths[name]
-    peak_map, k = {}, 0
-    for name in peaks:
-        peak_map[name], k = top[k : k + widths[name]].T, k + widths[name]
+
+    def split(a: np.ndarray, names) -> dict:  # a's last axis by names (none: the whole, unnamed)
+        cuts = np.cumsum([widths[u] for u in names])[:-1]
+        return dict(zip(names, np.split(a, cuts, -1), strict=False))
+
+    arrays, peak_map = split(np.moveaxis(out, -1, 0), traces), split(top.T, peaks) if peaks else {}
     traced = [arrays.get(name) for name in TRACES]
     return BatchResponse(t, *traced, checked, peak_map, part.start or 0)
 
@@ -264,19 +259,14 @@ def simulate_batch(
         Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
         Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
-        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``.
-        Traces take :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks
-        :math:`8 R c`; more than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused
-        before any work, the message saying which ``chunk`` fits.
+        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``. Traces take
+        :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks :math:`8 R c`; more
+        than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused before any work.
     chunk : int, optional
-        Stream the loops in chunks of ``chunk`` realizations: an iterator of
-        :class:`BatchResponse`, each chunk simulated when reached; arguments and stability
-        are checked first.
-    noise : Noise, optional
-        Noise (:class:`~symctl.neural.noise.Noise`) drawn per step for each loop; an
-        all-zero Noise is no noise.
-    rng : int, numpy Generator or None, default 0
-        Seeds the noise.
+        Stream the loops in chunks of ``chunk`` realizations: an iterator of results, each
+        simulated when reached (arguments and stability checked first).
+    noise, rng : Noise, int, Generator or None, optional
+        Noise drawn per step for each loop, and its seed.
 
     Returns
     -------
@@ -285,8 +275,7 @@ def simulate_batch(
     Raises
     ------
     DimensionError, ParameterError, SymctlTypeError
-        Also outputs that overflow to inf or NaN (with ``chunk``, when its chunk is
-        reached), and outputs over the memory limit.
+        Also outputs that overflow to inf or NaN, and outputs over the memory limit.
 
     Examples
     --------
@@ -321,18 +310,7 @@ def simulate_batch(
             raise DimensionError(f"{k}: expected shape {shape}, got {mats[k].shape}")
     if R == 0:
         raise DimensionError("F: no realizations (R = 0)")
-    if not isinstance(disturbance, numbers.Real):
-        disturbance = float_array(disturbance, "disturbance")
-    if np.ndim(disturbance) < 3:
-        w = _signal(disturbance, "disturbance", steps, p.n, start, length)
-    else:
-        w = disturbance
-        if w.ndim != 3 or w.shape[0] != R or w.shape[2] != p.n or w.shape[1] == 0:
-            raise DimensionError(
-                f"disturbance: expected shape (steps, {p.n}) or ({R}, steps, {p.n}), got {w.shape}"
-            )
-        if steps is not None and positive_int(steps, "steps") != w.shape[1]:
-            raise DimensionError(f"disturbance: has {w.shape[1]} samples but steps = {steps}")
+    w = _signal(disturbance, "disturbance", steps, p.n, start, length, R)
     widths = {"delta_f": p.n, "delta_r": p.m, "states": nc}
     _check_memory(R, w.shape[-2], widths, traces, peaks, chunk)
     if chunk is None:  # the closed loops at once, else each chunk's when it runs
@@ -350,7 +328,7 @@ def simulate_batch(
     t = read_only(np.arange(w.shape[-2]) * _ts(p))
     checked = bool(check_stability)
     noise = _as_noise(noise)
-    noisy = None if noise is None else (A, B, _Parts.of(noise, p.n, p.m), rng)
+    noisy = None if noise is None else (A, B, _parts(noise, p.n, p.m), rng)
     run = partial(_simulate_part, loops, p.n, w, widths, traces, peaks, t, checked, noisy)
     if chunk is None:
         return run(slice(None))

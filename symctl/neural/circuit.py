@@ -1,36 +1,26 @@
 r"""Neural circuits of stylized linear neurons, read off controller structures.
 
-A stylized neuron's axon carries a weighted sum of its synaptic inputs and of its own
-past outputs (its *self-dynamics*), with no activation function; an axon may branch.
+A stylized neuron's axon carries a weighted sum of its synaptic inputs and of its own past
+outputs (its *self-dynamics*), with no activation function; an axon may branch.
 
-The counting rule
------------------
-A **term** is one input of an adder of the structure: one nonzero entry of a row of
-:math:`[F\ H]` or :math:`[M\ N]`, a weighted signal :math:`w\,s(t-d)` (weight 1 is a
-plain wire, still a term). Then
+The counting rule: a **term** is one input of an adder of the structure (a nonzero entry of a
+row of :math:`[F\ H]` or :math:`[M\ N]`, a weighted signal :math:`w\,s(t-d)`; weight 1 is a
+wire, still a term). Every adder of **two or more terms** is a neuron, the output sum
+:math:`y = M x + N u` included; a single term passing through gains and unit delays (e.g.
+:math:`x_1(t) = x_2(t-1)`) is an **axon**, the product of its gains a synaptic weight, its
+delays the synapse's delay; a term whose axon starts at the neuron's own output is
+**self-dynamics**, :math:`\sum_k w_k z^{-d_k}`, the others are **synapses**. A neuron's **axon
+branches** are its synapses onto other neurons plus the circuit outputs it drives (two paths
+onto one neuron are two branches, as in the paper's figure).
 
-* every adder that sums **two or more terms** is a neuron, the output sum
-  :math:`y = M x + N u` included;
-* a single term passing through gains and unit delays (e.g. the controllable
-  canonical :math:`x_1(t) = x_2(t-1)`) is an **axon**: the product of its gains is a
-  synaptic weight, its delays the synapse's delay;
-* a term whose axon starts at the neuron's own output is **self-dynamics**,
-  :math:`\sum_k w_k z^{-d_k}`; the others are **synapses**.
-
-Under this rule the paper's counts hold (the tests check each): the controllable
-canonical :math:`G_2` has 2 neurons (:math:`x_2` with self-dynamics :math:`K_1 z^{-1} +
-K_2 z^{-2}`, and :math:`y`), the observable canonical one 3 (the output sum :math:`y = x_2
-+ N u` counts), a general realization 3; :math:`G_1` and :math:`G_3` add one neuron each.
-With :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 - \epsilon_1 - \epsilon_3 = 0`
-substituted into the controllable canonical realization, the middle neuron has one axon
-branch instead of two; the observable canonical one with :math:`K_2 + \epsilon_1\epsilon_3
-= 0` takes the controllable canonical shape, with :math:`K_1 - \epsilon_1 - \epsilon_3 = 0`
-it keeps 3 neurons (the paper leaves this case open).
-
-A neuron's **axon branches** are its synapses onto other neurons plus the circuit outputs
-it drives; two paths onto one neuron are two branches, as in the paper's figure. Given a
-compatible :class:`~symctl.compatibility.delaygraph.DelayAssignment`, a neuron sits at its
-adder's vertex.
+Under this rule the paper's counts hold (the tests check each): the controllable canonical
+:math:`G_2` has 2 neurons (:math:`x_2` with self-dynamics :math:`K_1 z^{-1} + K_2 z^{-2}`, and
+:math:`y`), the observable canonical one 3, a general realization 3; :math:`G_1` and
+:math:`G_3` add one neuron each. With :math:`K_2 + \epsilon_1\epsilon_3 = 0` or :math:`K_1 -
+\epsilon_1 - \epsilon_3 = 0` the controllable canonical middle neuron has one axon branch
+instead of two; the observable canonical one with :math:`K_2 + \epsilon_1\epsilon_3 = 0` takes
+the controllable canonical shape, with :math:`K_1 - \epsilon_1 - \epsilon_3 = 0` it keeps 3
+neurons (the paper leaves this case open).
 """
 
 from __future__ import annotations
@@ -62,18 +52,14 @@ __all__ = ["Circuit", "CircuitSystem", "Neuron", "Synapse"]
 
 
 class CircuitSystem(NamedTuple):
-    r"""A circuit as a state-space system :math:`s(t+1) = A s + B u`, :math:`o = C s + D u`.
-
-    Made by :meth:`Circuit.as_linear_system`.
+    r"""A circuit as :math:`s(t+1) = A s + B u`, :math:`o = C s + D u` (:meth:`Circuit.as_linear_system`).
 
     Attributes
     ----------
     A, B, C, D : sympy Matrix or NumPy array
-    states : tuple of str
-        The structure's delay blocks, in order.
-    inputs : tuple of str
-    outputs : tuple of str
-        The neurons (their axon outputs), then the circuit outputs.
+    states, inputs, outputs : tuple of str
+        The structure's delay blocks; its inputs; the neurons (their axon outputs), then the
+        circuit outputs.
 
     Examples
     --------
@@ -99,6 +85,9 @@ class CircuitSystem(NamedTuple):
 class Circuit(LatexMixin):
     """A circuit of stylized neurons, built by :meth:`from_structure`.
 
+    Equal when read off equal structures (SymPy-structural gains) with the same vertices;
+    hashes by value.
+
     Attributes
     ----------
     structure : Structure
@@ -111,8 +100,6 @@ class Circuit(LatexMixin):
         the zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
-
-    Equal when read off equal structures with the same vertices; hashes by value.
 
     Examples
     --------
@@ -139,7 +126,6 @@ class Circuit(LatexMixin):
         return (tuple(S.blocks.items()), S.inputs, S.outputs, self.neurons)
 
     def __eq__(self, other) -> bool:
-        """Equal when read off equal structures (SymPy-structural gains) with equal vertices."""
         if not isinstance(other, Circuit):
             return NotImplemented
         return self is other or self._key() == other._key()
@@ -153,7 +139,7 @@ class Circuit(LatexMixin):
         S: Structure,
         assignment: DelayAssignment | CompatibilityResult | None = None,
     ) -> Circuit:
-        r"""The circuit of a structure (see the module text for the rule).
+        r"""The circuit of a structure (the module text states the rule).
 
         Parameters
         ----------
@@ -161,7 +147,8 @@ class Circuit(LatexMixin):
             E.g. :meth:`Structure.from_factorization` (substitute values that zero an entry
             into the realization first, so that the entry makes no block).
         assignment : DelayAssignment or CompatibilityResult, optional
-            A compatible assignment of ``S``'s signals to delay-graph vertices.
+            A compatible assignment of ``S``'s signals to delay-graph vertices: each neuron
+            sits at its adder's vertex.
 
         Returns
         -------
@@ -242,15 +229,7 @@ class Circuit(LatexMixin):
         return len(self.neurons)
 
     def neuron(self, name: str) -> Neuron:
-        """The neuron named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
-
-        Parameters
-        ----------
-        name : str
-
-        Returns
-        -------
-        Neuron
+        """The :class:`Neuron` named ``name`` (its adder's signal, e.g. ``"G2.x2"``).
 
         Raises
         ------
@@ -276,12 +255,7 @@ class Circuit(LatexMixin):
         return tuple(s for n in self.neurons for s in n.synapses)
 
     def branches(self) -> dict[str, int]:
-        """The number of axon branches of each neuron and input.
-
-        Returns
-        -------
-        dict of str to int
-            Neurons in order, then the inputs.
+        """The number of axon branches of each neuron (in order), then of each input.
 
         Examples
         --------
@@ -299,18 +273,8 @@ class Circuit(LatexMixin):
         return {n.name: n.vertex for n in self.neurons}
 
     def subs(self, *args, **kwargs) -> Circuit:
-        """The same circuit with values substituted into every weight (``sympy`` ``subs``).
-
-        The shape and vertices are kept: a weight that becomes zero stays a synapse of weight 0.
-
-        Parameters
-        ----------
-        *args, **kwargs
-            As for :meth:`sympy.core.basic.Basic.subs`.
-
-        Returns
-        -------
-        Circuit
+        """The same circuit with values substituted into every weight (arguments as for SymPy's
+        ``subs``); shape and vertices kept: a weight that becomes zero stays a synapse of weight 0.
 
         Raises
         ------
@@ -345,27 +309,17 @@ class Circuit(LatexMixin):
     @property
     def free_symbols(self) -> set[sp.Symbol]:
         """The symbols left in the weights."""
-        out: set[sp.Symbol] = set()
-        for s in (*self.synapses, *(t for n in self.neurons for t in n.self_terms)):
-            out |= to_expr(s.weight, "weight").free_symbols
-        for s in self.outputs:
-            out |= to_expr(s.weight, "weight").free_symbols
-        return out
+        terms = (*self.synapses, *(t for n in self.neurons for t in n.self_terms), *self.outputs)
+        return set().union(*(to_expr(s.weight, "weight").free_symbols for s in terms))
 
     def as_linear_system(self, numeric: bool = False) -> CircuitSystem:
-        r"""The circuit as :math:`s(t+1) = A s(t) + B u(t)`, :math:`o(t) = C s(t) + D u(t)`.
-
-        The state holds the structure's delayed signals; the outputs are every neuron's
-        axon output, then the circuit outputs.
+        r"""The circuit as a :class:`CircuitSystem`: the state holds the structure's delayed
+        signals, the outputs are every neuron's axon output, then the circuit outputs.
 
         Parameters
         ----------
         numeric : bool
             Float NumPy arrays (every weight a number) instead of sympy matrices.
-
-        Returns
-        -------
-        CircuitSystem
 
         Raises
         ------
@@ -380,27 +334,18 @@ class Circuit(LatexMixin):
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
         >>> sys = c.as_linear_system()
-        >>> sys.states, sys.outputs, sys.A, sys.B
-        (('z^-1 F[1,1]', 'z^-1 H'), ('x1', 'x1'), Matrix([
-        [1/2, 1/2],
-        [  0,   0]]), Matrix([
-        [0],
-        [3]]))
+        >>> sys.states, sys.outputs, sys.A.tolist(), sys.B.T
+        (('z^-1 F[1,1]', 'z^-1 H'), ('x1', 'x1'), [[1/2, 1/2], [0, 0]], Matrix([[0, 3]]))
         """
         S = self.structure
         states, feeds = delay_states(S)
         out_names = tuple(n.name for n in self.neurons) + S.outputs
-        if numeric:
-            return self._numeric_system(states, feeds, out_names)
-        R = structure_realization(S, out_names)
-        return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
-
-    def _numeric_system(self, states: tuple, feeds: tuple, out_names: tuple) -> CircuitSystem:
-        """:meth:`as_linear_system` in floats."""
+        if not numeric:
+            R = structure_realization(S, out_names)
+            return CircuitSystem(R.F, R.H, R.M, R.N, states, S.inputs, out_names)
         left = sorted(map(str, self.free_symbols))
         if left:
             raise ParameterError(f"numeric: the weights still contain {left}; subs() first")
-        S = self.structure
         k, m = len(states), len(S.inputs)
 
         def real(name, gain):
@@ -418,17 +363,12 @@ class Circuit(LatexMixin):
         )
 
     def equations(self, digits: int | None = None) -> list[str]:
-        r"""One LaTeX equation per neuron: its axon output from its past and its synapses.
+        r"""One LaTeX equation per neuron, ``"<neuron>(t) = <weighted past outputs and synapses>"``.
 
         Parameters
         ----------
         digits : int, optional
             Round the weights' numbers to that many significant digits; exact by default.
-
-        Returns
-        -------
-        list of str
-            ``"<neuron>(t) = <weighted past outputs and synapses>"``, in neuron order.
 
         Raises
         ------
@@ -472,21 +412,18 @@ class Circuit(LatexMixin):
         lines = [
             f"Circuit: {self.n_neurons} neuron{'s' if self.n_neurons != 1 else ''}; "
             f"inputs {', '.join(self.inputs)}; "
-            f"outputs {', '.join(f'{o.target} <- {_syn_text(o, o.source)}' for o in self.outputs)}"
+            f"outputs {', '.join(f'{o.target} <- {_syn_text(o)}' for o in self.outputs)}"
         ]
         for n in self.neurons:
             where = f" [v{n.vertex}]" if n.vertex is not None else ""
-            lines.append(f"  neuron {n.name}{where}")
-            lines.append(f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}")
-            for s in n.synapses:
-                lines.append(f"    synapse from {_syn_text(s, s.source)}")
-            targets = ", ".join(
-                f"output {s.target}" if s in self.outputs else s.target for s in n.axon
-            )
-            targets = targets or "none"
-            lines.append(
-                f"    axon: {n.branches} branch{'es' if n.branches != 1 else ''} -> {targets}"
-            )
+            lines += [
+                f"  neuron {n.name}{where}",
+                f"    self-dynamics: {n.self_dynamics if n.self_terms else 'none'}",
+                *(f"    synapse from {_syn_text(s)}" for s in n.synapses),
+            ]
+            targets = [f"output {s.target}" if s in self.outputs else s.target for s in n.axon]
+            word = "branch" if n.branches == 1 else "branches"
+            lines.append(f"    axon: {n.branches} {word} -> {', '.join(targets) or 'none'}")
         for u, axon in self.input_axons.items():
             word = "branch" if len(axon) == 1 else "branches"
             targets = ", ".join(s.target for s in axon) or "none"
@@ -497,72 +434,39 @@ class Circuit(LatexMixin):
         names = ", ".join(n.name for n in self.neurons)
         return f"Circuit({self.n_neurons} neurons: {names}; inputs={self.inputs})"
 
-    def draw(
-        self, ax=None, *, title: str | None = None, vertex_names=None, signs_at=None, width="text"
-    ):
-        """Draw the circuit at its printed size: a Figure by :func:`symctl.plotting.circuit.draw_circuit`,
-        whose arguments these are.
-
-        Examples
-        --------
-        >>> from symctl import Circuit, ifp_structure
-        >>> type(Circuit.from_structure(ifp_structure(2)).draw()).__name__
-        'Figure'
-        """
+    def draw(self, ax=None, **options):
+        """Draw the circuit at its printed size: a Figure by
+        :func:`symctl.plotting.circuit.draw_circuit`, with its options."""
         from symctl.plotting.circuit import draw_circuit
 
-        return draw_circuit(
-            self, ax, title=title, vertex_names=vertex_names, signs_at=signs_at, width=width
-        )
+        return draw_circuit(self, ax, **options)
 
-    def to_nengo(
-        self, n_neurons: int | None = None, *, neuron_type=None, rng=None, dt=0.01, radius=None
-    ):
-        """The circuit as a nengo network: :func:`symctl.spiking.nengo_export.to_nengo`, whose
-        arguments these are (needs ``pip install symctl[spiking]``).
+    def to_nengo(self, n_neurons: int | None = None, **options):
+        """A nengo network: :func:`symctl.spiking.nengo_export.to_nengo`, with its options
+        (needs ``pip install symctl[spiking]``); :meth:`to_nest` and :meth:`to_nir` likewise.
 
         Examples
         --------
         >>> from symctl import Circuit, Structure, first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
-        >>> sorted(c.to_nengo().neurons)
-        ['x1']
+        >>> sorted(c.to_nengo().neurons), sorted(c.to_nest().neurons), sorted(c.to_nir().inputs)
+        (['x1'], ['x1'], ['u'])
         """
         from symctl.spiking.nengo_export import to_nengo
 
-        return to_nengo(self, n_neurons, neuron_type=neuron_type, rng=rng, dt=dt, radius=radius)
+        return to_nengo(self, n_neurons, **options)
 
-    def to_nest(self, *, dt: float = 0.01):
-        """Build the circuit in NEST's linear rate neurons: :func:`symctl.spiking.nest_export.to_nest`
-        (needs ``pip install symctl[spiking]``).
-
-        Examples
-        --------
-        >>> from symctl import Circuit, Structure, first_order_realization
-        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
-        >>> sorted(c.to_nest().neurons)
-        ['x1']
-        """
+    def to_nest(self, **options):
+        """The circuit in NEST's linear rate neurons: :func:`symctl.spiking.nest_export.to_nest`."""
         from symctl.spiking.nest_export import to_nest
 
-        return to_nest(self, dt=dt)
+        return to_nest(self, **options)
 
-    def to_nir(
-        self, n_neurons: int | None = None, *, dt=0.01, rng=None, neuron_type=None, radius=None
-    ):
-        """The circuit as a NIR graph: :func:`symctl.spiking.nir_export.to_nir`, whose arguments
-        these are (needs ``pip install symctl[spiking]``).
-
-        Examples
-        --------
-        >>> from symctl import Circuit, Structure, first_order_realization
-        >>> c = Circuit.from_structure(Structure.from_realization(first_order_realization(0.5, 2)))
-        >>> sorted(c.to_nir().inputs)
-        ['u']
-        """
+    def to_nir(self, n_neurons: int | None = None, **options):
+        """A NIR graph: :func:`symctl.spiking.nir_export.to_nir`, with its options."""
         from symctl.spiking.nir_export import to_nir
 
-        return to_nir(self, n_neurons, dt=dt, rng=rng, neuron_type=neuron_type, radius=radius)
+        return to_nir(self, n_neurons, **options)
 
 
 def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
@@ -630,6 +534,6 @@ def _vertices(S: Structure, assignment) -> dict[str, int] | None:
     return dict(assignment.vertex_of)
 
 
-def _syn_text(s: Synapse, source: str) -> str:
+def _syn_text(s: Synapse) -> str:
     delay = f", delay {s.delay}" if s.delay else ""
-    return f"{source} (weight {s.weight}, sign {s.sign}{delay})"
+    return f"{s.source} (weight {s.weight}, sign {s.sign}{delay})"

@@ -1,9 +1,6 @@
-r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11).
-
-Every realization of :math:`G = G_3 G_2 G_1` gives the optimal controller's force and
-motor-neuron traces (Fig. 5), while the neurons of :math:`G_2` fire differently. The
-neurons are linear, so a neuron's output *is* its change in firing rate from equilibrium.
-"""
+r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11):
+every realization gives the optimal controller's force and rate, while its neurons fire
+differently (a linear neuron's output *is* its firing-rate change from equilibrium)."""
 
 from __future__ import annotations
 
@@ -23,7 +20,6 @@ from symctl._util.validate import (
     bounded_int,
     numeric_matrix,
     positive_number,
-    read_only,
 )
 from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
@@ -41,15 +37,13 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     Response,
+    _closed_response,
+    _freeze,
     _loop,
-    _noisy_traces,
-    _realization_loop,
-    _response,
     _run,
     _signal,
-    _spread_response,
+    _traces,
 )
-from symctl.neural.simulate import _plant as _plant_matrices
 from symctl.realization.draws import Draw, draw_realizations
 from symctl.realization.draws import draw_eps as _draw_eps
 from symctl.realization.realization import Realization, controller_realization
@@ -74,9 +68,8 @@ LEGEND_MAX_EPS = 4
 
 @dataclass(frozen=True, eq=False)
 class FiringSummary(ArrayValue, DictMixin):
-    r"""How much the neurons' firing differs across realizations, and the behaviour does not.
-
-    Made by :meth:`FiringPatterns.summary`; read-only arrays.
+    r"""How much the neurons' firing differs across realizations, and the behaviour does not
+    (:meth:`FiringPatterns.summary`); read-only.
 
     Attributes
     ----------
@@ -111,11 +104,10 @@ class FiringSummary(ArrayValue, DictMixin):
     behaviour_spread: float
     trace_spread: np.ndarray | None = None
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
+    def __post_init__(self) -> None:
         if self.trace_spread is None:
             object.__setattr__(self, "trace_spread", self.spread)
-        for name in ("peak", "spread", "trace_spread"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, ("peak", "spread", "trace_spread"))
 
     def table(self) -> str:
         """A plain-text table: neuron, peak firing of each realization, spread."""
@@ -135,9 +127,8 @@ class FiringSummary(ArrayValue, DictMixin):
 
 @dataclass(frozen=True, eq=False)
 class FiringPatterns(ArrayValue, DictMixin):
-    r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop.
-
-    Made by :func:`circuit_firing`; arrays and mappings are read-only.
+    r"""The firing of :math:`G_2`'s neurons in ``count`` realizations of one closed loop
+    (:func:`circuit_firing`); read-only.
 
     Attributes
     ----------
@@ -192,13 +183,8 @@ class FiringPatterns(ArrayValue, DictMixin):
     draws: int = 0
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
-        for name in ("t", "delta_f", "delta_r", "delta_f_sd", "delta_r_sd"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
-        for name in ("firing", "firing_sd"):
-            if getattr(self, name) is not None:
-                traces = {k: read_only(v, float) for k, v in getattr(self, name).items()}
-                object.__setattr__(self, name, MappingProxyType(traces))
+        arrays = ("t", "delta_f", "delta_r", "delta_f_sd", "delta_r_sd")
+        _freeze(self, arrays, ("firing", "firing_sd"))
         params = tuple(MappingProxyType(dict(p)) for p in self.params)
         object.__setattr__(self, "params", params)
 
@@ -225,22 +211,13 @@ class FiringPatterns(ArrayValue, DictMixin):
         return f"#{i + 1}" + (": " + ", ".join(eps) if eps else " (IFP)")
 
     def summary(self) -> FiringSummary:
-        """Per neuron, the spread of peak firing across realizations (see :class:`FiringSummary`).
-
-        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
-        >>> fp = circuit_firing("general", lqr_gains(augment(MuscleModel(), 1, 1)), count=3)
-        >>> s = fp.summary()
-        >>> bool(s.spread[:2].min() > 1e-3 > 1e-12 > s.behaviour_spread)   # x1, x2 differ
-        True
-        """
+        """Per neuron, the spread of peak firing across realizations (a :class:`FiringSummary`)."""
         names = self.neurons
         peak = np.full((self.count, len(names)), np.nan)
-        for k, name in enumerate(names):
+        for k, name in enumerate(names):  # NaN rows: realizations without the neuron
             tr = self.firing[name]
-            ok = ~np.isnan(tr).any(axis=1)
-            idx = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
-            vals = tr[np.arange(self.count), idx]
-            peak[ok, k] = vals[ok]
+            at = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
+            peak[:, k] = np.where(np.isnan(tr).any(axis=1), np.nan, tr[np.arange(self.count), at])
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
         trace = np.array(
             [
@@ -256,15 +233,7 @@ class FiringPatterns(ArrayValue, DictMixin):
 
     def plot(self, ncols: int = 3):
         """One panel per neuron (a line per realization), the force on top: a Figure by
-        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row).
-
-        Examples
-        --------
-        >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
-        >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
-        >>> [ax.get_title() for ax in fp.plot().axes][1:]
-        ['neuron $x_{1}$', 'neuron $x_{2}$', 'neuron $y$']
-        """
+        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row)."""
         from symctl.plotting.firing import firing_plot
 
         return firing_plot(self, ncols)
@@ -405,20 +374,18 @@ def circuit_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of the controller and record the firing of :math:`G_2`'s neurons.
 
-    Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` drawn
-    uniformly in :math:`(-0.9, 0.9)` on a grid of 1/1000, :math:`C_1 = C_3 = 1`, for
-    ``"general"`` a random full-rank ``P``) is closed around ``plant``; its force and rate
-    must equal the optimal controller's to ``rtol`` relative to their peak, and so must the
-    output of its circuit, driven by the loop's :math:`\delta_f`.
+    Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` uniform in
+    :math:`(-0.9, 0.9)` on a grid of 1/1000, :math:`C_1 = C_3 = 1`, for ``"general"`` a random
+    full-rank ``P``) is closed around ``plant``; its force and rate, and its circuit's output
+    driven by the loop's :math:`\delta_f`, must equal the optimal controller's to ``rtol``
+    relative to their peak.
 
     Parameters
     ----------
     kind : str
-        One of :func:`~symctl.realization.realizers.circuit_names`: ``"ifp"`` or a
-        realization of :math:`G_2` (``"general"``, ``"controllable"``, ``"observable"``).
+        One of :func:`~symctl.realization.realizers.circuit_names` (``"ifp"``, ``"general"``...).
     gains : Gains
-        E.g. ``lqr_gains(augment(MuscleModel(), 1, 1))``.
-    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
         The linear plant; default the one ``gains`` were computed for.
     count : int, optional
         Realizations, at most ``MAX_CIRCUITS`` (default 4; the IFP controller: 1).
@@ -429,17 +396,14 @@ def circuit_firing(
     rtol : float
         Tolerance of the behaviour check.
     draws : sequence of Draw, optional
-        Realizations of :math:`G_2` drawn already
-        (:func:`~symctl.realization.draws.draw_realizations`), instead of ``count``.
-    noise : Noise, optional
-        Every realization and the reference run under the same ``noise_draws`` noisy runs
-        (1 to ``MAX_COUNT``); the traces are their mean, the ``..._sd`` their spread.
-    noise_draws : int
+        Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`).
+    noise, noise_draws : Noise, int, optional
+        Every loop runs under the same ``noise_draws`` noisy runs: the traces are their mean,
+        the ``..._sd`` their spread.
     kalman : KalmanGains, optional
-        The controller is then the LQG compensator: the reference is
-        :func:`~symctl.neural.compensator.lqg_realization` fed by ``kalman.C x``, the
-        realizations are of its :math:`G_2` and the circuits are driven by the measured
-        outputs (not ``"ifp"``, which feeds back the state).
+        The controller is then the LQG compensator (:func:`~symctl.lqg_realization` fed by
+        ``kalman.C x``), the realizations of its :math:`G_2` and the circuits driven by the
+        measured outputs (not ``"ifp"``, which feeds back the state).
 
     Returns
     -------
@@ -448,13 +412,12 @@ def circuit_firing(
     Raises
     ------
     ParameterError
-        Unknown ``kind``, ``count`` out of range (``!= 1`` for ``"ifp"``), a negative
-        ``rng``, ``"ifp"`` at ``T = 0``, an unstable loop, a realization departing from the
-        optimal controller by more than ``rtol``, or a ``plant`` of another ``dt``.
-    SymctlTypeError
-        ``gains``, ``plant`` or ``rng`` of the wrong type.
-    DimensionError
-        A ``plant`` of other sizes than the gains'; ``"ifp"`` for a plant that is not scalar.
+        Unknown ``kind``, ``count`` out of range (``!= 1`` for ``"ifp"``), ``"ifp"`` at
+        ``T = 0``, an unstable loop, a realization departing by more than ``rtol``, a ``plant``
+        of another ``dt``.
+    SymctlTypeError, DimensionError
+        Arguments of the wrong type; a ``plant`` of other sizes than the gains', ``"ifp"`` for
+        a plant that is not scalar.
 
     Examples
     --------
@@ -477,7 +440,6 @@ def circuit_firing(
     gains = _gains(gains, kind)
     plant = _plant(plant, gains)
     count = _count(count, kind)
-    gen = rng
     if draws is not None:
         draws = tuple(draws)
         if kind == "ifp" or not draws or not all(isinstance(d, Draw) for d in draws):
@@ -487,9 +449,9 @@ def circuit_firing(
             )
     if kalman is not None and _whole(kind):
         raise ParameterError("kind: the IFP controller feeds back the state; with kalman, no 'ifp'")
-    rows = _realizations(kind, gains, count, gen, draws, kalman)
+    rows = _realizations(kind, gains, count, rng, draws, kalman)
     window, noisy = (steps, start, length), (noise, noise_draws, kalman)
-    return _simulate(kind, rows, gains, plant, disturbance, window, rtol, noisy, gen)
+    return _simulate(kind, rows, gains, plant, disturbance, window, rtol, noisy, rng)
 
 
 @rng_argument()
@@ -513,11 +475,9 @@ def structure_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
-    The structure's gains may hold the gains' symbols :math:`K` (replaced by their exact
-    values) and section symbols: every ``epsilon...`` is drawn in :math:`(-0.9, 0.9)` and
-    every ``C...`` set to 1 (e.g. the structure of
-    :func:`~symctl.compatibility.controller.controller_compatibility`); the neurons of every
-    ``G2`` part are recorded.
+    The structure's gains may hold the gains' symbols :math:`K` (given their exact values),
+    ``epsilon...`` (drawn in :math:`(-0.9, 0.9)`) and ``C...`` (set to 1), as
+    :func:`~symctl.controller_compatibility`'s do; the neurons of every ``G2`` part are recorded.
 
     Parameters
     ----------
@@ -536,11 +496,9 @@ def structure_firing(
 
     Raises
     ------
-    ParameterError
+    ParameterError, SymctlTypeError
         A gain symbol that is neither an epsilon nor a C; a structure of another controller;
-        the errors of :func:`circuit_firing`.
-    SymctlTypeError
-        ``structure`` is not a Structure.
+        ``structure`` not a Structure; the errors of :func:`circuit_firing`.
 
     Examples
     --------
@@ -560,7 +518,6 @@ def structure_firing(
     gains = _gains(gains, "")  # never the whole controller: a structure of G3 G2 G1
     plant = _plant(plant, gains)
     count = _count(count, "")
-    gen = rng
     base = Circuit.from_structure(structure, assignment)
     values = gains.substitutions(exact=True)
     if base.free_symbols & set(values):
@@ -576,13 +533,13 @@ def structure_firing(
 
     def rows():
         for _ in range(count):
-            drawn = _draw_eps(eps, gen)
+            drawn = _draw_eps(eps, rng)
             circuit = base.subs({**drawn, **{c: 1 for c in cs}})
             R = structure_realization(circuit.structure)
             yield drawn, R, R, circuit
 
     window, noisy = (steps, start, length), (noise, noise_draws, kalman)
-    return _simulate(kind, rows(), gains, plant, disturbance, window, rtol, noisy, gen)
+    return _simulate(kind, rows(), gains, plant, disturbance, window, rtol, noisy, rng)
 
 
 def _simulate(
@@ -596,36 +553,20 @@ def _simulate(
     C = None if kalman is None else numeric_matrix(kalman.C, "kalman")
     reference, home = (gains, None) if kalman is None else (lqg_realization(gains, kalman), plant)
     seed = None if noise is None else gen.bit_generator.seed_seq.spawn(1)[0]  # shared draws
-    p, A, B = _plant_matrices(plant)
-    w = _signal(disturbance, "disturbance", steps, p.n, start, length)
+    w = _signal(disturbance, "disturbance", steps, plant.n, start, length)
 
-    def simulated(p, Acl, Cr, sensor=None) -> tuple[np.ndarray, ...]:
-        """``delta_f``, ``delta_r``, states and measurement, each ``(draws or 1, steps, .)``."""
-        if noise is not None:
-            gen = np.random.default_rng(seed)
-            return _noisy_traces(p, Acl, Cr, w, noise, draws, gen, sensor)
-        df, dr, xc = (np.ascontiguousarray(a) for a in _run(Acl, Cr, p.n, w))
-        return df, dr, xc, df if sensor is None else (df[0] @ sensor[2].T)[None]
+    def simulated(p, Acl, Cr, _names, sensor) -> tuple[np.ndarray, ...]:
+        gen = None if noise is None else np.random.default_rng(seed)
+        return _traces(p, Acl, Cr, w, noise, draws, gen, sensor)
 
-    def run(R) -> tuple[np.ndarray, ...]:
-        if C is None:
-            df, dr, _, y = simulated(p, *_realization_loop(p, A, B, R))
-        else:
-            _, Acl, Cr, _, sensor = _loop(R, p, C)
-            df, dr, _, y = simulated(p, Acl, Cr, sensor)
-        return df, dr, y
-
-    s_plant, Acl, Cr, names, sensor = _loop(reference, home, C)
-    ref_df, ref_dr, ref_xc, _ = simulated(s_plant, Acl, Cr, sensor)
-    if noise is None:
-        ref = _response(s_plant, ref_df[0], ref_dr[0], w, ref_xc[0], "closed loop", names)
-    else:
-        ref = _spread_response(s_plant, w, ref_df, ref_dr, ref_xc, names)
+    loop = _loop(reference, home, C)
+    ref_df, ref_dr, ref_xc, _ = simulated(*loop)
+    ref = _closed_response(loop[0], w, ref_df, ref_dr, ref_xc, loop[3], noise is not None)
     out: list[tuple] = []
     worst = 0.0
     for i, (params, R2, R, circuit) in enumerate(rows):
-        df, dr, y = run(R)
-        traces = _drive(circuit, y if len(y) > 1 else y[0] if y.shape[2] > 1 else y[0, :, 0])
+        df, dr, _, y = simulated(*_loop(R, plant, C))
+        traces = _drive(circuit, y if len(y) > 1 else y[0])
         output = traces.pop("output")
         dev = max(
             _deviation(df, ref_df),

@@ -31,12 +31,11 @@ from symctl._util.validate import (
     nonneg_int,
     numeric_matrix,
     psd_matrix,
-    read_only,
 )
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
-from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _Parts, _sensor_inputs
-from symctl.neural.simulate import _loop, _plant
+from symctl.neural.noise import _BLOCK, Noise, _noisy_loop, _parts, _sensor_inputs
+from symctl.neural.simulate import _freeze, _loop, _plant
 
 __all__ = ["MonteCarlo", "monte_carlo"]
 
@@ -48,9 +47,8 @@ _ITERATIONS = 10_000  # most Lyapunov solves for signal-dependent noise
 
 @dataclass(frozen=True, eq=False)
 class MonteCarlo(ArrayValue, DictMixin):
-    r"""The measured and predicted stationary covariance and cost of a noisy closed loop.
-
-    Made by :func:`monte_carlo`; arrays read-only.
+    r"""The measured and predicted stationary covariance and cost of a noisy closed loop
+    (:func:`monte_carlo`); read-only.
 
     Attributes
     ----------
@@ -90,9 +88,10 @@ class MonteCarlo(ArrayValue, DictMixin):
     burn_in: int
     state_names: tuple[str, ...]
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
-        for name in ("covariance", "covariance_se", "predicted_covariance", "additive_covariance"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+    def __post_init__(self) -> None:
+        _freeze(
+            self, ("covariance", "covariance_se", "predicted_covariance", "additive_covariance")
+        )
 
     @property
     def z_score(self) -> float:
@@ -194,17 +193,15 @@ def monte_carlo(
 ) -> MonteCarlo:
     """Simulate ``count`` noisy closed loops at once and measure their stationary covariance and cost.
 
-    Each loop starts at rest and runs ``steps`` steps under ``noise``; the steps after
-    ``burn_in`` give each loop's mean of :math:`x x^T` and of the cost, whose mean over the
-    loops and standard error are set beside the prediction (module docstring). :math:`10^4`
-    loops of 500 steps take about 0.25 s (``benchmarks/lqg.py``).
+    Each loop runs from rest under ``noise``; the steps after ``burn_in`` give its mean of
+    :math:`x x^T` and of the cost, whose mean over the loops and standard error are set beside
+    the prediction (module docstring). :math:`10^4` loops of 500 steps take about 0.25 s.
 
     Parameters
     ----------
-    controller : Gains, DiscreteTF or Realization
-        As in :func:`~symctl.neural.simulate.closed_loop_response`.
-    plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
-        Required unless ``controller`` is ``Gains``.
+    controller, plant, outputs
+        As in :func:`~symctl.closed_loop_response` (``plant`` required unless ``controller``
+        is ``Gains``; ``outputs``: the controller reads :math:`y = C x + v`).
     noise : Noise
         Not all zero.
     count : int
@@ -218,9 +215,6 @@ def monte_carlo(
         The cost's weights; default the gains' design, else the identity and zero.
     rng : int, numpy Generator or None, default 0
         Seeds the noise.
-    outputs : matrix-like, optional
-        ``p x n``: the controller reads :math:`y = C x + v`, as in
-        :func:`~symctl.neural.simulate.closed_loop_response`.
 
     Returns
     -------
@@ -228,11 +222,9 @@ def monte_carlo(
 
     Raises
     ------
-    ParameterError
-        An unstable loop, no noise, a count, horizon or ``burn_in`` out of range, a loop not
-        stable in mean square, the loops' states over ``MAX_OUTPUT_BYTES``.
-    DimensionError, SymctlTypeError
-        A part of ``noise``, ``Q`` or ``R`` of the wrong size or type.
+    ParameterError, DimensionError, SymctlTypeError
+        An unstable loop, no noise, an argument out of range or of the wrong size or type, a
+        loop not stable in mean square, the loops' states over ``MAX_OUTPUT_BYTES``.
 
     Examples
     --------
@@ -259,8 +251,8 @@ def monte_carlo(
     burn = _burn_in(Acl, steps) if burn_in is None else nonneg_int(burn_in, "burn_in")
     if burn >= steps:
         raise ParameterError(f"burn_in: must be below steps = {steps}, got {burn}")
-    parts = _Parts.of(noise, n, p.m, q)
-    normals = 2 * _BLOCK * parts.rows()[-1][1].stop  # two blocks of normals in memory
+    parts = _parts(noise, n, p.m, q)
+    normals = 2 * _BLOCK * sum(map(len, parts.values()))  # two blocks of normals in memory
     if 8 * count * (normals + 4 * Acl.shape[0] + n * n) > MAX_OUTPUT_BYTES:
         raise ParameterError(f"count: {count} loops take more than MAX_OUTPUT_BYTES; use fewer")
     Qw, Rw = _weights(Q, R, controller, n, p.m)

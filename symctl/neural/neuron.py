@@ -1,7 +1,5 @@
-r"""Stylized linear neurons and their synapses, the parts of a :class:`~symctl.neural.circuit.Circuit`.
-
-Both are values: equal fields, equal objects, equal hashes.
-"""
+"""Stylized linear neurons and their synapses, the parts of a circuit; values (equal fields,
+equal objects, equal hashes)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 r"""Noise in the closed loop: on the plant's states, on its inputs, on what the controller measures.
 
-A closed loop is a stack :math:`\xi = [x; x_c]` (plant, then controller) with the command
-:math:`u = C_r \xi`. With noise drawn afresh at each step,
+With the loop's state :math:`\xi = [x; x_c]` (plant, then controller), the command
+:math:`u = C_r \xi` and noise drawn afresh at each step,
 
 .. math::
     \xi(t+1) = A_{cl}\,\xi(t) + E_p\,(w(t) + p(t)) + E_u\,m(t) + E_v\,v(t),\qquad
@@ -23,7 +23,7 @@ this order, each only when given, scaled by a square root of its covariance.
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -57,32 +57,25 @@ def _covariance(value, name: str) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Noise(ArrayValue, DictMixin):
-    r"""Gaussian noise in a closed loop, drawn per step: process, motor and sensor noise.
+    r"""Gaussian noise in a closed loop, drawn per step (module text).
 
     Each covariance is a number (times the identity), a list (the diagonal) or a symmetric
     positive semidefinite matrix, sized when the loop is known.
 
     Parameters
     ----------
-    process : number, list or matrix, optional
-        Covariance :math:`W` of the noise added to the plant's states.
-    motor : number, list or matrix, optional
-        Covariance :math:`W_u` of the additive noise on the plant's inputs.
-    sensor : number, list or matrix, optional
-        Covariance :math:`V` of the noise on what the controller measures.
+    process, motor, sensor : number, list or matrix, optional
+        Covariances :math:`W` of the noise on the plant's states, :math:`W_u` of the additive
+        noise on its inputs, :math:`V` of the noise on what the controller measures.
     signal_dependent : number or list, optional
         :math:`\sigma \ge 0`: motor noise of standard deviation :math:`\sigma_i |u_i|`.
 
     Raises
     ------
-    ParameterError
-        A covariance not positive semidefinite, a negative variance or ``signal_dependent``,
-        a non-finite entry.
-    DimensionError
-        A covariance not square or larger than ``MAX_STATES``; later, one of another size than
-        the loop's (named ``noise.process``, ...).
-    SymctlTypeError
-        Entries that are not numbers.
+    ParameterError, DimensionError, SymctlTypeError
+        A covariance not positive semidefinite or not square, a negative variance, an entry
+        not a finite number; a size above ``MAX_STATES``, later one other than the loop's
+        (named ``noise.process``, ...).
 
     References
     ----------
@@ -126,13 +119,8 @@ class Noise(ArrayValue, DictMixin):
 
     def matrices(self, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
         """Each part given, sized for ``n`` states, ``m`` inputs and ``outputs`` measurements
-        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``.
-
-        Raises
-        ------
-        DimensionError
-            A part of another size, named ``noise.<part>``.
-        """
+        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``; a DimensionError
+        names a part of another size (``noise.<part>``)."""
         sizes = {"process": n, "motor": m, "sensor": n if outputs is None else outputs}
         out = {}
         for name, size in (*sizes.items(), ("signal_dependent", m)):
@@ -184,47 +172,29 @@ def _sensor_inputs(Acl: np.ndarray, Cr: np.ndarray, A: np.ndarray, n: int) -> tu
     return Ev, Cr[:, :n]
 
 
-@dataclass(frozen=True)
-class _Parts:
-    """The noise of one loop, as square roots of its covariances (None where not given)."""
-
-    process: np.ndarray | None
-    motor: np.ndarray | None
-    sensor: np.ndarray | None
-    signal_dependent: np.ndarray | None
-
-    @classmethod
-    def of(cls, noise: Noise, n: int, m: int, outputs: int | None = None) -> _Parts:
-        mats = noise.matrices(n, m, outputs)
-        roots = {k: _factor(v) for k, v in mats.items() if k in _COVARIANCES}
-        return cls(*(roots.get(k) for k in _COVARIANCES), mats.get("signal_dependent"))
-
-    def rows(self) -> list[tuple[str, slice]]:
-        """Each part's rows among the normals drawn per step."""
-        out, k = [], 0
-        for name in (*_COVARIANCES, "signal_dependent"):
-            value = getattr(self, name)
-            if value is not None:
-                out.append((name, slice(k, k + len(value))))
-                k += len(value)
-        return out
+def _parts(noise: Noise, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
+    """The parts given, in the order drawn: square roots of the covariances, ``signal_dependent``."""
+    mats = noise.matrices(n, m, outputs)
+    return {k: v if k == "signal_dependent" else _factor(v) for k, v in mats.items()}
 
 
 def _noisy_loop(
-    Acl, Cr, B, n, w, parts: _Parts, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
+    Acl, Cr, B, n, w, parts: dict, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
 ):
     """Run ``count`` loops from rest, calling ``visit(t, xi, u, y)`` at each step (``y``: the
     measurement :math:`C x + v`, or None when not ``y``); ``Acl``, ``Cr`` shared or stacks."""
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
     quiet = not np.any(w)
-    if parts.process is not None and parts.motor is not None:  # one draw of W + B W_u B^T
-        P, BM = parts.process, B @ parts.motor
-        parts = replace(parts, process=_factor(P @ P.T + BM @ BM.T), motor=None)
-    rows = dict(parts.rows())
-    k = max((r.stop for r in rows.values()), default=0)
+    parts = dict(parts)
+    if "process" in parts and "motor" in parts:  # one draw of W + B W_u B^T
+        P, BM = parts.pop("process"), B @ parts.pop("motor")
+        parts = {"process": _factor(P @ P.T + BM @ BM.T), **parts}
+    rows, k = {}, 0  # each part's rows among the normals drawn per step
+    for name, value in parts.items():
+        rows[name], k = slice(k, k + len(value)), k + len(value)
     G, Du, Ly = _noise_inputs(Acl, B, n, parts, rows, k, Ev, Dv)
-    sd = parts.signal_dependent
+    sd = parts.get("signal_dependent")
     x = np.zeros((Acl.shape[0], count))
     with np.errstate(over="ignore", invalid="ignore"):
         for t, zt in enumerate(_normals(gen, steps, k, count)):
@@ -264,34 +234,38 @@ def _normals(gen, steps: int, k: int, count: int):
             yield from z
 
 
-def _noise_inputs(Acl, B, n, parts: _Parts, rows, k, Ev, Dv) -> tuple:
+def _noise_inputs(Acl, B, n, parts: dict, rows, k, Ev, Dv) -> tuple:
     """How a step's normals enter: ``G`` the state, ``Du`` the command, ``Ly`` the measurement."""
     stack = (Acl.shape[-1],) if Acl.ndim == 3 else ()
     G = np.zeros((Acl.shape[0], k, *stack))
-    if parts.process is not None:
-        G[:n, rows["process"]] = parts.process[..., None] if stack else parts.process
-    if parts.motor is not None:
-        G[:n, rows["motor"]] = (B @ parts.motor)[..., None] if stack else B @ parts.motor
-    if parts.sensor is None:
+    if "process" in parts:
+        G[:n, rows["process"]] = parts["process"][..., None] if stack else parts["process"]
+    if "motor" in parts:
+        BM = B @ parts["motor"]
+        G[:n, rows["motor"]] = BM[..., None] if stack else BM
+    if "sensor" not in parts:
         return G, None, None
-    Ly = np.zeros((len(parts.sensor), k))
-    Ly[:, rows["sensor"]] = parts.sensor
+    Ly = np.zeros((len(parts["sensor"]), k))
+    Ly[:, rows["sensor"]] = parts["sensor"]
     G += np.einsum("ij...,jk->ik...", Ev, Ly)
     return G, np.einsum("ij...,jk->ik...", Dv, Ly), Ly
 
 
-def _noisy_fill(Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=()) -> None:
-    """:func:`_noisy_loop` into ``out`` ``(steps, len(rows), R)`` (signals numbered as the
-    noise-free loop numbers them) and ``peaks``."""
-    rows, peak_rows = list(rows), list(peak_rows)
+def _noisy_fill(
+    Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=(), *, sensor=None, y=False
+) -> None:
+    """:func:`_noisy_loop` into ``out`` ``(steps, rows, loops)`` (signals numbered ``delta_f``,
+    ``delta_r``, states, with ``y`` the measurement) and ``peaks``; ``sensor``: ``(E_v, D_v, C)``
+    of a controller fed by outputs, by default those of the state."""
+    peak_rows = list(peak_rows)
     if peaks is not None:
         peaks[...] = 0.0
 
-    def visit(t, x, u, y):
-        signals = np.concatenate([x[:n], u, x[n:]])
+    def visit(t, x, u, meas):
+        signals = np.concatenate([x[:n], u, x[n:], *([meas] if y else [])])
         out[t] = signals[rows]
         if peak_rows:
             np.maximum(peaks, np.abs(signals[peak_rows]), out=peaks)
 
-    Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
-    _noisy_loop(Acl, Cr, B, n, w, parts, gen, out.shape[-1], visit, Ev, Dv)
+    Ev, Dv, C = (*_sensor_inputs(Acl, Cr, A, n), None) if sensor is None else sensor
+    _noisy_loop(Acl, Cr, B, n, w, parts, gen, out.shape[-1], visit, Ev, Dv, C, y)

@@ -1,9 +1,5 @@
-r"""The linear controller around the nonlinear plant it was designed from.
-
-:func:`nonlinear_check` measures how far the nonlinear loop departs from the linear
-prediction (quadratically in the disturbance's amplitude); :func:`longest_delay` finds the
-longest net delay whose optimal controller still brings the *nonlinear* plant back.
-"""
+"""The linear controller around the nonlinear plant it was designed from: how far the loop
+departs from the linear prediction, and the longest net delay it still brings back."""
 
 from __future__ import annotations
 
@@ -11,6 +7,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 import scipy.integrate
+import scipy.linalg
 
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
@@ -19,7 +16,6 @@ from symctl._util.validate import (
     bounded_int,
     bounded_number,
     float_array,
-    read_only,
 )
 from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
@@ -30,6 +26,7 @@ from symctl.neural.simulate import (
     DEFAULT_LENGTH,
     DEFAULT_START,
     DEFAULT_STEPS,
+    _freeze,
     _numeric_realization,
     simulate_realization,
 )
@@ -41,24 +38,19 @@ __all__ = ["DelaySearch", "NonlinearCheck", "longest_delay", "nonlinear_check"]
 
 MAX_STEPS = 5000
 """Longest horizon of :func:`nonlinear_check` (one ODE solve per sample: about 10 s at 5000)."""
-
 RTOL_RANGE = (1e-13, 1e-2)
 """Admissible ``rtol`` of the ODE solver (SciPy refuses below about 2.2e-14)."""
-
 RETURN_TOLERANCE = 0.01
 """A loop counts as returned when every state ends within this fraction of its linear peak."""
-
 STIFF_RATIO = 1.0
 r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Radau (implicit)."""
 
 
 @dataclass(frozen=True, eq=False)
 class NonlinearCheck(ArrayValue, Verdict):
-    r"""The linear controller around the nonlinear plant, against the linear prediction.
-
-    Truthy when the nonlinear loop returned at every amplitude (every
-    :attr:`final_deviation`, the ``evidence``, at most :data:`RETURN_TOLERANCE`). Made by
-    :func:`nonlinear_check`; read-only arrays.
+    r"""The linear controller around the nonlinear plant, against the linear prediction
+    (:func:`nonlinear_check`); read-only. Truthy when the loop returned at every amplitude
+    (every :attr:`final_deviation`, the ``evidence``, at most :data:`RETURN_TOLERANCE`).
 
     Attributes
     ----------
@@ -112,12 +104,10 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def evidence(self) -> np.ndarray:
-        """The :attr:`final_deviation` per amplitude."""
         return self.final_deviation
 
     def __post_init__(self) -> None:  # the arrays are read-only copies
-        for field in fields(self)[:8]:
-            object.__setattr__(self, field.name, read_only(getattr(self, field.name), float))
+        _freeze(self, [field.name for field in fields(self)[:8]])
 
     @property
     def f_linear(self) -> np.ndarray:
@@ -152,15 +142,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     def plot(self):
         """State traces and the deviation against amplitude: a Figure by
-        :func:`symctl.plotting.response.nonlinear_plot`.
-
-        Examples
-        --------
-        >>> from symctl import nonlinear_check
-        >>> fig = nonlinear_check(amplitudes=[0.1, 1.0], steps=20).plot()
-        >>> fig.axes[0].get_ylabel()
-        'muscle force $f$ [N]'
-        """
+        :func:`symctl.plotting.response.nonlinear_plot`."""
         from symctl.plotting.response import nonlinear_plot
 
         return nonlinear_plot(self)
@@ -192,11 +174,10 @@ def nonlinear_check(
 ) -> NonlinearCheck:
     r"""Close the linear controller around the nonlinear plant and compare with the linear loop.
 
-    At each sample the controller reads :math:`\delta x = x - \bar x`, its output
-    :math:`u = \bar u + \delta u` is held while :func:`scipy.integrate.solve_ivp` integrates
-    the ODE over :math:`T_s` (all amplitudes as one vector ODE; DOP853, or Radau with the
-    exact Jacobian when :math:`T_s \max|\lambda| >` ``STIFF_RATIO``), and the disturbance
-    is added to the states at the sample.
+    At each sample the controller reads :math:`\delta x = x - \bar x`; its output :math:`u =
+    \bar u + \delta u` is held while :func:`scipy.integrate.solve_ivp` integrates the ODE over
+    :math:`T_s` (all amplitudes as one ODE; DOP853, or Radau with the exact Jacobian when
+    :math:`T_s \max|\lambda| >` ``STIFF_RATIO``); the disturbance is added at the sample.
 
     Parameters
     ----------
@@ -221,13 +202,9 @@ def nonlinear_check(
 
     Raises
     ------
-    ParameterError
-        ``steps`` above ``MAX_STEPS``, ``rtol`` outside ``RTOL_RANGE``, non-finite
-        amplitudes, or an ODE that fails (naming the amplitudes).
-    SymctlTypeError
-        ``model`` not a MuscleModel or ODEModel, or arguments of the wrong type.
-    DimensionError
-        No amplitude.
+    ParameterError, SymctlTypeError, DimensionError
+        An argument out of range or of the wrong type, no amplitude, or an ODE that fails
+        (naming the amplitudes).
 
     Examples
     --------
@@ -266,13 +243,9 @@ def _solver(model: ODEModel, k: int) -> dict:
         return {"method": "DOP853"}
     n = model.n
 
-    def jac(_t, y, u):  # block diagonal: one block per amplitude
-        out = np.zeros((n * k, n * k))
-        for i in range(k):
-            out[i * n : (i + 1) * n, i * n : (i + 1) * n] = model.jacobian_numeric(
-                y[i * n : (i + 1) * n], u[:, i]
-            )
-        return out
+    def jac(_t, y, u):  # one block per amplitude
+        blocks = (model.jacobian_numeric(y[i * n : (i + 1) * n], u[:, i]) for i in range(k))
+        return scipy.linalg.block_diag(*blocks)
 
     return {"method": "Radau", "jac": jac}
 
@@ -298,7 +271,7 @@ def _flow(model: ODEModel, solver: dict, x, u, rtol: float, scale: float) -> tup
 
 def ode_flow(model, rtol: float = 1e-9):
     """``(ode, step)``: the model as an :class:`ODEModel` and ``step(x, u)``, its state one
-    sampling time after ``x`` under the held input ``u`` (absolute values, not deviations).
+    sampling time after ``x`` under the held input ``u`` (absolute values).
 
     >>> from symctl.neural.nonlinear import ode_flow
     >>> ode, step = ode_flow(None)                # the paper's muscle
@@ -370,13 +343,10 @@ class DelaySearch(ArrayValue, DictMixin):
 
     Attributes
     ----------
-    delays : tuple of int
-        The net delays tried, from 1 until the first failure.
-    final_deviation : tuple of float
-        For each, the final distance from the equilibrium over the linear peak (inf: the
-        ODE ran away).
-    stabilized : tuple of bool
-        ``final_deviation <= tolerance``.
+    delays, final_deviation, stabilized : tuples
+        The net delays tried, from 1 until the first failure; for each, the final distance
+        from the equilibrium over the linear peak (inf: the ODE ran away), and whether it is
+        at most ``tolerance``.
     longest : int or None
         The longest delay with every shorter one stabilized too (None: not even 1 step).
     tolerance : float
@@ -434,10 +404,8 @@ def longest_delay(
         The plant (None: the paper's muscle).
     Q, R : matrix-like, optional
         The cost (identity by default).
-    disturbance : array (steps, n), optional
-        The disturbance of unit amplitude (default: the pulse on every state).
-    amplitude : float
-        Its size.
+    disturbance, amplitude : array (steps, n), float
+        The disturbance of unit amplitude (default: the pulse on every state), and its size.
     max_delay : int
         Largest delay tried, 1 to 200.
     tolerance : float
@@ -460,32 +428,14 @@ def longest_delay(
     tolerance = bounded_number(tolerance, "tolerance", 1e-12, 1e12)
     amplitude = bounded_number(amplitude, "amplitude", -1e100, 1e100)
     plant = ode.plant()
-    delays, finals, oks = [], [], []
+    window = {"steps": steps, "start": start, "length": length, "disturbance": disturbance}
+    finals = []
     for T in range(1, max_delay + 1):
         gains = lqr_gains(augment(plant, 0, T, Q=Q, R=R))
-        chk = nonlinear_check(
-            ode,
-            gains,
-            [amplitude],
-            steps=steps,
-            start=start,
-            length=length,
-            disturbance=disturbance,
-            fail="mark",
-            rtol=1e-8,
-        )
-        final = float(chk.final_deviation[0])
-        delays.append(T)
-        finals.append(final)
-        oks.append(bool(final <= tolerance))
-        if not oks[-1]:
+        chk = nonlinear_check(ode, gains, [amplitude], **window, fail="mark", rtol=1e-8)
+        finals.append(float(chk.final_deviation[0]))
+        if not finals[-1] <= tolerance:
             break
-    good = [T for T, ok in zip(delays, oks, strict=True) if ok]
-    return DelaySearch(
-        tuple(delays),
-        tuple(finals),
-        tuple(oks),
-        max(good) if good else None,
-        tolerance,
-        not all(oks),
-    )
+    oks = tuple(bool(f <= tolerance) for f in finals)  # all but the last hold
+    delays = tuple(range(1, len(finals) + 1))
+    return DelaySearch(delays, tuple(finals), oks, sum(oks) or None, tolerance, not all(oks))

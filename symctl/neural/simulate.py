@@ -1,8 +1,6 @@
 r"""Open- and closed-loop simulation of the plant with any realization of the controller.
 
-The paper's Figs. 3, 5 and 9-11. Every simulation (here, in :mod:`~symctl.neural.batch`
-and :mod:`~symctl.neural.firing`) runs through one time loop, ``_run``. The disturbance
-:math:`w` enters the state update (zero initial state),
+The paper's Figs. 3, 5 and 9-11. From rest, the disturbance :math:`w` entering the state,
 
 .. math::
     \delta_f(t+1) = A\,\delta_f(t) + B\,\delta_r(t) + w(t),\qquad
@@ -10,10 +8,9 @@ and :mod:`~symctl.neural.firing`) runs through one time loop, ``_run``. The dist
     \delta_r(t) = M x_c(t) + N \delta_f(t),
 
 so :math:`\xi = [\delta_f; x_c]` follows :math:`\xi(t+1) = A_{cl}\,\xi(t) + [I; 0]\,w(t)`,
-:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}`; the optimal
-controller runs on the augmented state, :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t)
-+ [I; 0]\,w(t)`. Defaults (the paper gives none): a pulse of amplitude 1 on steps 5..14
-of 50 (0.5 s at :math:`T_s` = 10 ms).
+:math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` (the optimal
+controller: :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t) + [I; 0]\,w(t)`). Every
+simulation, batches and firing patterns included, runs through one time loop, ``_run``.
 """
 
 from __future__ import annotations
@@ -21,6 +18,7 @@ from __future__ import annotations
 import dataclasses
 import numbers
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 
@@ -44,7 +42,7 @@ from symctl.design.lqr import Gains
 from symctl.design.plant import DiscretePlant, MuscleModel
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import Noise, _as_noise, _noisy_loop, _Parts, _sensor_inputs
+from symctl.neural.noise import Noise, _as_noise, _noisy_fill, _parts
 from symctl.neural.timeloop import _run_chunk
 from symctl.realization.realization import Realization, controllable_canonical
 from symctl.realization.realizers import ifp_realization
@@ -96,10 +94,8 @@ def pulse(
 
     Raises
     ------
-    ParameterError
-        An out-of-range ``steps``, ``start``, ``length`` or ``size``, a non-finite ``amplitude``.
-    SymctlTypeError
-        ``amplitude`` is not a real number.
+    ParameterError, SymctlTypeError
+        An argument out of range; an ``amplitude`` that is not a finite real number.
 
     Examples
     --------
@@ -116,20 +112,35 @@ def pulse(
     return out
 
 
-def _signal(value, argname: str, steps: int | None, size: int, start: int, length: int):
-    """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array."""
+def _signal(value, argname: str, steps, size: int, start: int, length: int, loops=None):
+    """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array; with ``loops``,
+    an array may also give one per loop, ``(loops, steps, size)``."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return pulse(DEFAULT_STEPS if steps is None else steps, value, start, length, size)
     arr = float_array(value, argname)
     if arr.ndim == 1 and size == 1:
         arr = arr[:, None]
-    if arr.ndim != 2 or arr.shape[1] != size or arr.shape[0] == 0:
+    lead = () if arr.ndim == 2 or loops is None else (loops,)
+    if arr.ndim < 2 or arr.shape[:-2] != lead or arr.shape[-1] != size or arr.shape[-2] == 0:
+        each = f" or ({loops}, steps, {size})" if loops else ""
         raise DimensionError(
-            f"{argname}: expected shape (steps, {size}) with steps >= 1, got {arr.shape}"
+            f"{argname}: expected shape (steps, {size}){each} with steps >= 1, got {arr.shape}"
         )
-    if steps is not None and positive_int(steps, "steps") != arr.shape[0]:
-        raise DimensionError(f"{argname}: has {arr.shape[0]} samples but steps = {steps}")
+    if steps is not None and positive_int(steps, "steps") != arr.shape[-2]:
+        raise DimensionError(f"{argname}: has {arr.shape[-2]} samples but steps = {steps}")
     return arr
+
+
+def _freeze(value, arrays=(), mappings=()) -> None:
+    """Set ``value``'s fields ``arrays`` to read-only float copies, ``mappings`` to read-only
+    mappings of them (None stays None)."""
+    for name in arrays:
+        if getattr(value, name) is not None:
+            object.__setattr__(value, name, read_only(getattr(value, name), float))
+    for name in mappings:
+        if getattr(value, name) is not None:
+            items = {k: read_only(v, float) for k, v in getattr(value, name).items()}
+            object.__setattr__(value, name, MappingProxyType(items))
 
 
 def _plant(plant) -> tuple[DiscretePlant, np.ndarray, np.ndarray]:
@@ -150,7 +161,7 @@ def _ts(p: DiscretePlant) -> float:
 
 @dataclass(frozen=True, eq=False)
 class Response(ArrayValue, DictMixin):
-    r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``, read-only.
+    r"""Traces of one simulation (open or closed loop), sampled at ``t = k dt``; read-only.
 
     Attributes
     ----------
@@ -202,11 +213,9 @@ class Response(ArrayValue, DictMixin):
     states_sd: np.ndarray | None = None
     draws: int = 0
 
-    def __post_init__(self) -> None:  # the arrays are read-only copies
+    def __post_init__(self) -> None:
         arrays = ("t", "delta_f", "delta_r", "w", "states", "f_bar", "r_bar")
-        for name in (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"):
-            if getattr(self, name) is not None:
-                object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, (*arrays, "delta_f_sd", "delta_r_sd", "states_sd"))
 
     @property
     def f(self) -> np.ndarray:
@@ -220,15 +229,7 @@ class Response(ArrayValue, DictMixin):
 
     def plot(self, states: bool | None = None):
         """Force and rate against time (``states``: a panel of the controller's states, by default
-        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`.
-
-        Examples
-        --------
-        >>> from symctl import MuscleModel, augment, closed_loop_response, lqr_gains
-        >>> fig = closed_loop_response(lqr_gains(augment(MuscleModel(), 1, 1))).plot()
-        >>> fig.axes[-1].get_xlabel()
-        'time [s]'
-        """
+        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`."""
         from symctl.plotting.response import response_plot
 
         return response_plot(self, states)
@@ -246,15 +247,22 @@ def _stability(Acl: np.ndarray, argname: str, n: int | None = None, bad=None) ->
         eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((1, 1))
         bad = np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE)
     if bad.size:
-        count = Acl.shape[-1]
-        i = int(bad[0])
+        count, i = Acl.shape[-1], int(bad[0])
         eigs = np.linalg.eigvals(Acl[:, :, i])
         lam = complex(eigs[np.argmax(np.abs(eigs))])
         rho = abs(lam)
         where = f" (realization {i} of {count}; {bad.size} unstable)" if count > 1 else ""
+        cause = "the controller does not stabilize this plant"
+        if n is not None and _is_hidden(Acl[:, :, i], lam, n):
+            cause = (
+                f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
+                "hidden from the transfer function (a pole cancelled by a zero, e.g. "
+                "|epsilon| >= 1 in G3 G2 G1); realize the controller with every mode "
+                "inside the unit circle"
+            )
         raise ParameterError(
             f"{argname}: the closed loop is unstable, spectral radius {rho:.6g} >= 1{where}; "
-            f"unstable eigenvalue {_eig_text(lam)}; {_unstable_cause(Acl[:, :, i], lam, n, argname)}"
+            f"unstable eigenvalue {_eig_text(lam)}; {cause}"
         )
 
 
@@ -262,17 +270,6 @@ def _eig_text(lam: complex) -> str:
     if abs(lam.imag) <= 1e-12 * max(1.0, abs(lam)):
         return f"{lam.real:.6g}"
     return f"{lam.real:.6g}{lam.imag:+.6g}j"
-
-
-def _unstable_cause(Acl: np.ndarray, lam: complex, n: int | None, argname: str) -> str:
-    if n is not None and _is_hidden(Acl, lam, n):
-        return (
-            f"it is a mode of {argname}'s own states (its F) that the loop cannot move, "
-            "hidden from the transfer function (a pole cancelled by a zero, e.g. "
-            "|epsilon| >= 1 in G3 G2 G1); realize the controller with every mode "
-            "inside the unit circle"
-        )
-    return "the controller does not stabilize this plant"
 
 
 def _is_hidden(Acl: np.ndarray, lam: complex, n: int) -> bool:
@@ -294,33 +291,22 @@ def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
     return Acl, np.moveaxis(np.concatenate([N, M], axis=2), 0, -1)
 
 
-def _run(
-    Acl: np.ndarray,
-    Cr: np.ndarray,
-    n: int,
-    w: np.ndarray,
-    *,
-    states: bool = True,
-    argname: str = "disturbance",
-    schedule=None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """Simulate ``xi(t+1) = A_cl xi + [I; 0] w`` from zero for a stack of ``R`` loops.
-
-    ``Acl`` ``(size, size, R)``, ``Cr`` ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``;
-    returns ``(delta_f, delta_r, states)`` as ``(R, steps, .)`` views of one time-major buffer.
-    ``schedule(run, R)`` runs slices of the loops (the batch's chunks) and returns the smallest result.
-    """
+def _run(Acl, Cr, n: int, w, *, states: bool = True, argname: str = "disturbance") -> tuple:
+    """``xi(t+1) = A_cl xi + [I; 0] w`` from zero for the loops ``Acl`` ``(size, size, R)``, ``Cr``
+    ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``: ``(delta_f, delta_r, states)``,
+    ``(R, steps, .)`` views of one time-major buffer."""
     size, m = Acl.shape[0], Cr.shape[0]
     rows = range(n + m + (size - n if states else 0))  # delta_f, delta_r, states
     out = np.empty((w.shape[-2], len(rows), Acl.shape[-1]))
-    _steps(Acl, Cr, n, w, out, rows, argname=argname, schedule=schedule)
+    _steps(Acl, Cr, n, w, out, rows, argname=argname)
     loops = np.moveaxis(out, -1, 0)
     return loops[..., :n], loops[..., n : n + m], loops[..., n + m :] if states else None
 
 
 def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, schedule=None):
     """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` (``delta_f``, ``delta_r``,
-    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises."""
+    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises.
+    ``schedule(run, R)`` runs slices of the loops (a batch's chunks), the smallest result."""
     steps, R = out.shape[0], Acl.shape[-1]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
 
@@ -367,20 +353,18 @@ def open_loop_response(
     length: int = DEFAULT_LENGTH,
     steps: int = DEFAULT_STEPS,
 ) -> Response:
-    r"""The linear plant's response to a pulse in firing rate (the paper's Fig. 3).
-
-    :math:`\delta_f(t+1) = A\delta_f(t) + B\delta_r(t)` with
-    :math:`\delta_r(t) =` ``pulse`` for ``start <= t < start + length`` (every input
-    channel), from rest.
+    r"""The linear plant's response to a pulse in firing rate (the paper's Fig. 3):
+    :math:`\delta_f(t+1) = A\delta_f(t) + B\delta_r(t)` from rest, :math:`\delta_r(t) =`
+    ``pulse`` on every input for ``start <= t < start + length``.
 
     Parameters
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Numeric; the paper's muscle by default.
     pulse : float
-        Pulse amplitude [spikes/s]; default 1 (a unit pulse).
+        Pulse amplitude [spikes/s].
     start, length, steps : int
-        First step of the pulse (default 5), its length (10) and the horizon (50).
+        First step of the pulse, its length and the horizon.
 
     Returns
     -------
@@ -442,10 +426,8 @@ def simulate_realization(
     draws: int = DEFAULT_DRAWS,
     rng=0,
 ) -> Response:
-    r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`.
-
-    Force and rate depend only on ``R``'s transfer function, the states (``.states``) on
-    the realization.
+    r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`
+    (force and rate depend only on ``R``'s transfer function, the states on the realization).
 
     Parameters
     ----------
@@ -456,9 +438,8 @@ def simulate_realization(
         The amplitude of the pulse (``start``, ``length``, horizon ``steps``, default 50)
         on every state, or an array ``(steps, n)`` (``(steps,)`` for one state).
     noise : Noise, optional
-        Noise drawn per step (:mod:`~symctl.neural.noise`): the traces are then the mean
-        of ``draws`` noisy loops (1 to ``MAX_COUNT``), their standard deviation in
-        ``delta_f_sd``, ``delta_r_sd`` and ``states_sd``. An all-zero Noise is no noise.
+        Noise drawn per step: the traces are then the mean of ``draws`` noisy loops (1 to
+        ``MAX_COUNT``), their standard deviation in ``delta_f_sd``, ``delta_r_sd``, ``states_sd``.
     rng : int, numpy Generator or None, default 0
         Seeds the noise.
 
@@ -470,8 +451,8 @@ def simulate_realization(
     ------
     ParameterError
         An unstable loop (naming the eigenvalue, and a hidden mode of ``R``'s own ``F``;
-        :func:`~symctl.neural.stability.loop_stability` decides without raising),
-        non-finite values, a bad horizon, an overflow, or an ``R.dt`` other than the plant's.
+        :func:`~symctl.loop_stability` decides without raising), non-finite values, a bad
+        horizon, an overflow, or an ``R.dt`` other than the plant's.
     DimensionError
         ``R``, ``disturbance`` or a part of ``noise`` of the wrong shape.
 
@@ -506,35 +487,33 @@ def _realization_loop(p, A, B, R, argname: str = "R", C=None) -> tuple[np.ndarra
 def _simulate(p, Acl, Cr, w, noise, draws, gen, names=(), sensor=None) -> Response:
     """The loop's :class:`Response`, noise-free or the mean and spread of ``draws`` noisy runs."""
     noise = _as_noise(noise)
-    if noise is None:
-        df, dr, xc = _run(Acl, Cr, p.n, w)
-        return _response(p, df[0], dr[0], w, xc[0], "closed loop", names)
-    traces = _noisy_traces(p, Acl, Cr, w, noise, draws, gen, sensor)
-    return _spread_response(p, w, *traces[:3], names)
+    df, dr, xc, _ = _traces(p, Acl, Cr, w, noise, draws, gen, sensor)
+    return _closed_response(p, w, df, dr, xc, names, noise is not None)
 
 
-def _spread_response(p, w, df, dr, xc, names=()) -> Response:
-    """The :class:`Response` of noisy runs ``(draws, steps, .)``: their mean and spread."""
+def _closed_response(p, w, df, dr, xc, names=(), noisy=False) -> Response:
+    """The :class:`Response` of runs ``(draws, steps, .)``: their mean, and with ``noisy`` spread."""
     res = _response(p, df.mean(0), dr.mean(0), w, xc.mean(0), "closed loop", names)
+    if not noisy:
+        return res
     spread = {"delta_f_sd": df.std(0), "delta_r_sd": dr.std(0), "states_sd": xc.std(0)}
     return dataclasses.replace(res, **spread, draws=df.shape[0])
 
 
-def _noisy_traces(p, Acl, Cr, w, noise: Noise, draws, gen, sensor=None) -> tuple[np.ndarray, ...]:
-    """``delta_f``, ``delta_r``, states and measurement ``y`` of ``draws`` noisy runs, each ``(draws,
-    steps, .)``; ``sensor``: the ``(E_v, D_v, C)`` of a controller fed by outputs (:func:`_loop`)."""
+def _traces(p, Acl, Cr, w, noise, draws, gen, sensor=None) -> tuple[np.ndarray, ...]:
+    """``delta_f``, ``delta_r``, states and measurement ``y``, each ``(draws or 1, steps, .)``,
+    without noise or of ``draws`` noisy runs; ``sensor``: :func:`_loop`'s ``(E_v, D_v, C)``."""
+    if noise is None:
+        df, dr, xc = (np.ascontiguousarray(a) for a in _run(Acl, Cr, p.n, w))
+        return df, dr, xc, df if sensor is None else (df[0] @ sensor[2].T)[None]
     draws = bounded_int(draws, "draws", 1, MAX_COUNT)
     _, A, B = _plant(p)
     Acl, Cr, n = Acl[:, :, 0], Cr[:, :, 0], p.n
-    Ev, Dv, C = (*_sensor_inputs(Acl, Cr, A, n), None) if sensor is None else sensor
-    q = n if C is None else C.shape[0]
+    q = n if sensor is None else sensor[2].shape[0]
     out = np.empty((w.shape[0], Acl.shape[0] + Cr.shape[0] + q, draws))
-
-    def visit(t, x, u, y):
-        out[t] = np.concatenate([x[:n], u, x[n:], y])
-
-    parts = _Parts.of(noise, n, p.m, q)
-    _noisy_loop(Acl, Cr, B, n, w, parts, gen, draws, visit, Ev, Dv, C)
+    _noisy_fill(
+        Acl, Cr, A, B, n, w, _parts(noise, n, p.m, q), gen, out, slice(None), sensor=sensor, y=True
+    )
     loops, m = np.moveaxis(out, -1, 0), Cr.shape[0]
     return loops[..., :n], loops[..., n : n + m], loops[..., n + m : -q], loops[..., -q:]
 
@@ -561,14 +540,13 @@ def closed_loop_response(
         Gains run the optimal controller on the augmented state (with a ``plant``: their
         :func:`ifp_realization`); a numeric SISO DiscreteTF is realized in controllable
         canonical form.
-    plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
+    plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
         Required unless ``controller`` is ``Gains``.
     disturbance, steps, start, length, noise, draws, rng
         As in :func:`simulate_realization`.
     outputs : matrix-like, optional
         ``p x n``: the controller (not Gains, ``m x p``) reads :math:`y = C x` (plus the
-        sensor noise) instead of the state, as
-        :func:`~symctl.neural.compensator.lqg_realization` does.
+        sensor noise) instead of the state, as :func:`~symctl.lqg_realization` does.
 
     Returns
     -------
@@ -577,8 +555,7 @@ def closed_loop_response(
     Raises
     ------
     ParameterError
-        No ``plant`` for a controller other than ``Gains``, or a plant whose ``dt`` is
-        not the controller's ``dt`` (named ``plant`` for ``Gains``, else ``controller``).
+        No ``plant`` for a controller other than ``Gains``, or a plant of another ``dt``.
 
     Examples
     --------

@@ -1,10 +1,6 @@
-r"""Internal stability of the whole loop: every state, not only the transfer function.
-
-:math:`G = G_3 G_2 G_1` cancels the poles of :math:`G_1, G_3` at :math:`\epsilon_1,
-\epsilon_3` with zeros of :math:`G_2`, so with :math:`|\epsilon| \ge 1` a state grows as
-:math:`\epsilon^t` (a hidden mode) while the transfer function is right. The loop is
-internally stable when every eigenvalue of :math:`A_{cl}` lies strictly inside the unit circle.
-"""
+r"""Internal stability of the whole loop: every state, not only the transfer function
+(:math:`G_3 G_2 G_1` cancels poles at :math:`\epsilon_1, \epsilon_3` with zeros of :math:`G_2`,
+so with :math:`|\epsilon| \ge 1` a hidden mode grows while the transfer function is right)."""
 
 from __future__ import annotations
 
@@ -96,10 +92,8 @@ def loop_stability(plant, controller) -> LoopStability:
 
     Raises
     ------
-    SymctlTypeError, DimensionError
-        ``controller`` of another type, or of the wrong shape for ``plant``.
-    ParameterError
-        Symbols left in the controller, or a ``dt`` other than the plant's.
+    SymctlTypeError, DimensionError, ParameterError
+        ``controller`` of another type or shape, with symbols left, or of another ``dt``.
 
     Examples
     --------

@@ -1,5 +1,4 @@
-"""A numeric circuit as a connection list (:func:`_edges`), which every simulator's export reads;
-:func:`export_circuit` writes it as simulator-neutral JSON."""
+"""A numeric circuit as a connection list, which every export reads (JSON, nengo, NEST, NIR)."""
 
 from __future__ import annotations
 
@@ -135,10 +134,8 @@ def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> d
 
     Raises
     ------
-    ParameterError
-        Symbols or non-real numbers left in the weights; ``dt`` not > 0.
-    SymctlTypeError
-        ``circuit`` is not a Circuit.
+    ParameterError, SymctlTypeError
+        Symbols or non-real numbers left in the weights; ``dt`` not > 0; not a Circuit.
 
     Examples
     --------

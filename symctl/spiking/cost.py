@@ -1,13 +1,9 @@
 r"""What spikes cost each circuit: the neurons per population that keep the force near the linear loop.
 
-:func:`spiking_cost` runs :func:`~symctl.spiking.loop.spiking_response` for each circuit at
-several population sizes :math:`N` and seeds, and reads off per seed the smallest :math:`N`
-whose deviation is within a tolerance, interpolating linearly in :math:`\log N` against
-:math:`\log` deviation between the two sizes that bracket it (:math:`\infty` when no size
-reaches it); the spikes per second there likewise. A circuit's cost is the median over
-seeds, times its number of populations. The runs go to the dask path
-(:mod:`symctl._util.pool`), each finished run appended to a ``checkpoint`` file from which
-an interrupted sweep resumes.
+Per seed, the smallest population size :math:`N` whose deviation is within a tolerance,
+interpolated linearly in :math:`\log N` against :math:`\log` deviation between the two sizes
+that bracket it (:math:`\infty` when none reaches it), and the spikes per second there
+likewise; a circuit's cost is the median over seeds, times its number of populations.
 """
 
 from __future__ import annotations
@@ -43,9 +39,8 @@ FORMAT = 1
 
 @dataclass(frozen=True, eq=False)
 class SpikingCost(ArrayValue, DictMixin):
-    """The spiking sweep of a controller's circuits, and what each circuit costs (module text).
-
-    Made by :func:`spiking_cost`; arrays are read-only.
+    """The spiking sweep of a controller's circuits, and what each circuit costs (module text;
+    :func:`spiking_cost`); read-only.
 
     Attributes
     ----------
@@ -342,6 +337,9 @@ def spiking_cost(
 ) -> SpikingCost:
     """What spikes cost each circuit of a controller: a sweep of population sizes and seeds.
 
+    Each circuit runs through :func:`~symctl.spiking_response` at every size and seed, on the
+    dask path (``workers`` local processes, or a ``scheduler`` address).
+
     Parameters
     ----------
     source : Derivation or Gains
@@ -356,12 +354,12 @@ def spiking_cost(
     tolerances : sequence of float
         Deviations in ``(0, 1)`` the cost is read at.
     steps, disturbance
-        As in :func:`~symctl.spiking.loop.spiking_response`.
-    workers : int
-        Local worker processes (1: this process); ``scheduler``: a dask address instead.
+        As in :func:`~symctl.spiking_response`.
+    workers, scheduler : int, str
+        Local worker processes (1: this process), or a dask scheduler's address.
     checkpoint : path, optional
-        A JSON-lines file of finished runs, which a later sweep of the same circuits skips
-        (a file of another sweep is refused).
+        A JSON-lines file of finished runs, which a later sweep of the same circuits resumes
+        from (a file of another sweep is refused).
     progress : callable, optional
         Called with ``(done, total)`` runs.
 
@@ -373,11 +371,10 @@ def spiking_cost(
     ------
     MissingDependencyError
         nengo is not installed (``pip install symctl[spiking]``).
-    ParameterError
+    ParameterError, SymctlTypeError
         A size out of range or repeated, ``seeds < 1``, a tolerance outside ``(0, 1)``, an
-        unknown circuit, a checkpoint of another sweep, and what ``spiking_response`` refuses.
-    SymctlTypeError
-        ``source`` is neither a derivation nor gains.
+        unknown circuit, a checkpoint of another sweep, a ``source`` neither a derivation nor
+        gains, and what ``spiking_response`` refuses.
 
     Examples
     --------
@@ -398,9 +395,7 @@ def spiking_cost(
     if not tols or not all(0 < t < 1 for t in tols):
         raise ParameterError(f"tolerances: expected numbers in (0, 1), got {list(tolerances)}")
     workers, scheduler = pool_options(workers, scheduler)
-    for c in found.values():
-        _edges(c)  # symbolic weights refused before any work
-    header = _header(gains, found, steps, disturbance)
+    header = _header(gains, found, steps, disturbance)  # refuses symbolic weights (_edges)
     pool = open_pool(workers, scheduler)
     try:
         store = Checkpoint(checkpoint, header, _key, _valid)

@@ -23,7 +23,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _drive, _plant
 from symctl.neural.nonlinear import ode_flow
-from symctl.neural.simulate import simulate_realization
+from symctl.neural.simulate import _freeze, simulate_realization
 from symctl.realization.realization import Realization
 from symctl.spiking.connections import _edges, _require
 from symctl.spiking.nengo_export import MAX_POPULATION, SUBSTEPS, _radii, to_nengo
@@ -33,9 +33,8 @@ __all__ = ["SpikingResponse", "spiking_response"]
 
 @dataclass(frozen=True, eq=False)
 class SpikingResponse(ArrayValue, DictMixin):
-    r"""The loop through spiking populations and the linear loop, sample by sample.
-
-    Made by :func:`spiking_response`; arrays are read-only.
+    r"""The loop through spiking populations and the linear loop, sample by sample
+    (:func:`spiking_response`); read-only.
 
     Attributes
     ----------
@@ -83,11 +82,8 @@ class SpikingResponse(ArrayValue, DictMixin):
     deviation: float
 
     def __post_init__(self) -> None:  # read-only arrays, mappings as proxies
-        for name in ("t", "delta_f", "delta_f_linear", "delta_r", "delta_r_linear"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
-        for name in ("firing", "firing_linear"):
-            traces = {k: read_only(v, float) for k, v in getattr(self, name).items()}
-            object.__setattr__(self, name, MappingProxyType(traces))
+        arrays = ("t", "delta_f", "delta_f_linear", "delta_r", "delta_r_linear")
+        _freeze(self, arrays, ("firing", "firing_linear"))
         spikes = {k: read_only(v, np.uint8) for k, v in self.spikes.items()}
         object.__setattr__(self, "spikes", MappingProxyType(spikes))
         object.__setattr__(self, "radius", MappingProxyType(dict(self.radius)))
@@ -146,15 +142,15 @@ def spiking_response(
     rng : int, numpy Generator or None, default 0
         Seeds the populations.
     steps, disturbance
-        As in :func:`~symctl.neural.simulate.simulate_realization`.
+        As in :func:`~symctl.simulate_realization`.
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system, optional
         A discrete plant with the gains' ``dt`` (default the gains' plant).
     neuron_type : nengo.neurons.NeuronType, optional
         Default ``nengo.LIF()``.
     nonlinear : MuscleModel or ODEModel, optional
-        Close the spiking loop around this ODE (of the plant's sampling time and sizes)
-        instead; ``delta_f`` is then its deviation from the equilibrium, and the linear
-        loop stays the reference.
+        Close the spiking loop around this ODE (of the plant's sampling time and sizes):
+        ``delta_f`` is then its deviation from the equilibrium; the linear loop stays the
+        reference.
 
     Returns
     -------
@@ -164,13 +160,10 @@ def spiking_response(
     ------
     MissingDependencyError
         nengo is not installed (``pip install symctl[spiking]``).
-    ParameterError
-        Symbols left in the circuit's weights; ``n_neurons`` outside ``[1, MAX_POPULATION]``;
-        a plant without a sampling time; an unstable linear loop.
-    DimensionError
-        A circuit whose inputs and outputs are not the plant's states and inputs.
-    SymctlTypeError
-        ``gains``, ``circuit`` or ``neuron_type`` of the wrong type.
+    ParameterError, DimensionError, SymctlTypeError
+        Symbols left in the weights; ``n_neurons`` out of range; a plant without a sampling
+        time; an unstable linear loop; a circuit whose inputs and outputs are not the plant's
+        states and inputs; arguments of the wrong type.
 
     Examples
     --------

@@ -1,31 +1,22 @@
-r"""A circuit as a nengo network: one node per neuron, its synapses as delayed connections.
+r"""A circuit as a nengo network: one node per neuron, its terms as delayed connections.
 
-A stylized neuron :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` is a
-passthrough :class:`nengo.Node` and each term a :class:`nengo.Connection` with
-``transform`` the weight and ``synapse`` the pure delay :math:`z^{-d}` (a discrete
-:class:`nengo.LinearFilter`). Run with ``dt`` the sampling time :math:`T_s`, step
-:math:`k + 1` of the network holds the circuit's :math:`n(k)` when the input holds
-:math:`u(k)`: the network reproduces symctl's linear simulation to rounding.
-
-**Spiking populations** (``n_neurons=N``) follow the Neural Engineering Framework
-[1]_: each neuron's sum drives a population of :math:`N` spiking neurons (LIF by
-default) representing :math:`[-r, r]` (:math:`r`: ``radius``), encoders, gains and
-biases drawn by nengo and decoders solved by least squares; the decoded value,
-filtered by a lowpass of time constant :math:`T_s / 5` (``TAU_FRACTION``), is the
-neuron's axon. The network runs ``SUBSTEPS`` simulator steps per sample, so a delay
-of :math:`d` samples stays the exact delay of :math:`10 d` steps (the delay networks
-of [2]_ realize delays with populations instead). The lowpass is **not compensated**:
-its lag of about :math:`T_s/5` and the spike noise are what
-:func:`~symctl.spiking.loop.spiking_response` measures as the deviation from the
-linear loop.
+Each stylized neuron is a passthrough :class:`nengo.Node`, each term a
+:class:`nengo.Connection` of ``transform`` its weight and ``synapse`` the pure delay
+:math:`z^{-d}`; run with ``dt`` :math:`= T_s`, step :math:`k + 1` holds the circuit's
+:math:`n(k)`, to rounding. **Spiking populations** (``n_neurons=N``) follow the Neural
+Engineering Framework [1]_: each neuron's sum drives :math:`N` spiking neurons (LIF by default)
+representing :math:`[-r, r]`, decoded by least squares and filtered by a lowpass of
+:math:`T_s/5` (``TAU_FRACTION``), not compensated: that lag and the spike noise are what
+:func:`~symctl.spiking.loop.spiking_response` measures. The network runs ``SUBSTEPS``
+simulator steps per sample, so a delay of :math:`d` samples is exactly :math:`10 d` steps
+(the delay networks of [2]_ would use populations instead).
 
 References
 ----------
-.. [1] C. Eliasmith and C. H. Anderson, *Neural Engineering: Computation,
-   Representation, and Dynamics in Neurobiological Systems*, MIT Press, 2003.
-.. [2] A. R. Voelker and C. Eliasmith, "Improving spiking dynamical networks:
-   accurate delays, higher-order synapses, and time cells", *Neural Computation*
-   30(3), 569-609, 2018.
+.. [1] C. Eliasmith and C. H. Anderson, *Neural Engineering: Computation, Representation, and
+   Dynamics in Neurobiological Systems*, MIT Press, 2003.
+.. [2] A. R. Voelker and C. Eliasmith, "Improving spiking dynamical networks: accurate delays,
+   higher-order synapses, and time cells", *Neural Computation* 30(3), 569-609, 2018.
 """
 
 from __future__ import annotations
@@ -84,11 +75,10 @@ def to_nengo(
     circuit : Circuit
         With numbers for weights (e.g. one of :attr:`FiringPatterns.circuits`).
     n_neurons : int, optional
-        ``None``: every neuron an exact node (run with ``dt``). An int in ``[1,
-        MAX_POPULATION]``: a population of that many spiking neurons per neuron (run with
-        ``dt / SUBSTEPS``).
+        ``None``: every neuron an exact node (run with ``dt``); else a population of that many
+        spiking neurons per neuron, at most ``MAX_POPULATION`` (run with ``dt / SUBSTEPS``).
     neuron_type : nengo.neurons.NeuronType, optional
-        The populations' neurons (default ``nengo.LIF()``); only with ``n_neurons``.
+        The populations' neurons (default ``nengo.LIF()``).
     rng : int, numpy Generator or None
         Seeds the network (encoders, gains, biases).
     dt : float
@@ -100,18 +90,17 @@ def to_nengo(
     Returns
     -------
     nengo.Network
-        With dicts by name: ``inputs`` (a node per circuit input), ``neurons`` (a node per
-        neuron, its sum, labelled ``"name @ v<vertex>"``), ``axons`` (the node, or its
-        population's filtered decoded value), ``populations`` (empty when exact) and
-        ``outputs`` (a node per circuit output).
+        With dicts by name: ``inputs``, ``neurons`` (their sums, labelled
+        ``"name @ v<vertex>"``), ``axons`` (the node, or its population's filtered decoded
+        value), ``populations`` (empty when exact) and ``outputs``.
 
     Raises
     ------
     MissingDependencyError
         nengo is not installed (``pip install symctl[spiking]``).
     ParameterError
-        Symbols or non-real numbers left in the weights; ``n_neurons`` outside
-        ``[1, MAX_POPULATION]``; a ``neuron_type`` or ``radius`` without ``n_neurons``.
+        Symbols or non-real numbers left in the weights; ``n_neurons`` out of range; a
+        ``neuron_type`` or ``radius`` without ``n_neurons``.
     SymctlTypeError
         ``circuit`` is not a Circuit; ``neuron_type`` is not a nengo neuron type.
 
@@ -185,26 +174,10 @@ def _network(nengo, circuit: Circuit, edges, seed: int, spiking=None):
 
 
 def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndarray]:
-    r"""Drive :func:`to_nengo`'s network from rest by ``u`` in nengo's reference simulator.
-
-    Parameters
-    ----------
-    circuit : Circuit
-        As for :func:`to_nengo`.
-    u : (steps,) or (steps, inputs) array
-        The circuit inputs, one row per sample, in ``circuit.inputs`` order.
-    dt : float
-        The sampling time :math:`T_s` in seconds (only nengo's clock reads it).
-
-    Returns
-    -------
-    dict of str to array
-        Every neuron's trace ``(steps,)`` by name, and ``"output"``: ``(steps,)`` (one
-        output) or ``(steps, outputs)``.
-
-    Raises
-    ------
-    As :func:`to_nengo`; ParameterError for ``u`` of the wrong width.
+    r"""Drive :func:`to_nengo`'s network from rest by ``u`` ``(steps[, inputs])`` in nengo's
+    reference simulator, ``dt`` its clock: each neuron's trace ``(steps,)`` by name, and
+    ``"output"`` ``(steps[, outputs])``. Raises as :func:`to_nengo`, and ParameterError for ``u``
+    of the wrong width.
 
     Examples
     --------

@@ -1,25 +1,18 @@
 r"""A circuit in NEST: each neuron a linear rate transformer, each term a rate connection.
 
-NEST's ``rate_transformer_lin`` (gain 1, linear summation) outputs the sum of the rates
-it receives, so it is the stylized neuron exactly; what differs is time. Measured in
-NEST 3.10 with the resolution :math:`h = T_s`: a ``rate_connection_instantaneous``
-delivers the source's rate of the previous step (a lag of one step), a
-``rate_connection_delayed`` of delay :math:`D h` a lag of :math:`D + 1` steps, and a
-``step_rate_generator`` through a delayed connection of delay :math:`D h` a lag of
-:math:`D - 1` steps after its amplitude time. So no connection has a lag of 0, and a
-synapse of delay :math:`e = 0` (an output sum such as :math:`y = M x + N u`) cannot be
-copied one to one.
+NEST's ``rate_transformer_lin`` (gain 1, linear summation) sums the rates it receives: the
+stylized neuron exactly; what differs is time. Measured in NEST 3.10 at resolution
+:math:`h = T_s`, a ``rate_connection_instantaneous`` lags one step, a
+``rate_connection_delayed`` of delay :math:`D h` lags :math:`D + 1`, and a
+``step_rate_generator`` through one lags :math:`D - 1` after its amplitude time: no lag is 0,
+so a term of delay 0 (an output sum :math:`y = M x + N u`) cannot be copied one to one.
 
-The export **retimes** the circuit instead: neuron :math:`n` runs :math:`L_n` steps late
-(NEST's step :math:`k` holds the circuit's :math:`n(k - L_n)`), and a term
-:math:`s \to n` of delay :math:`e` becomes a connection of lag :math:`e + L_n - L_s`,
-which must be at least 1 (2 from an input's generator). These are difference
-constraints :math:`L_s - L_n \le e - 1`; the smallest lags are shortest paths
-(Bellman-Ford), and they exist exactly when every loop of the circuit has at least as
-many unit delays as neurons, which holds for every state-space realization (each state
-update is a delay of one step) and fails only for a loop of :math:`k` neurons with fewer
-than :math:`k` delays in all. The traces then equal symctl's to rounding (the tests
-check every paper circuit, the order-2 atlas classes and a MIMO circuit to 1e-9).
+The export **retimes** the circuit: neuron :math:`n` runs :math:`L_n` steps late (NEST's step
+:math:`k` holds :math:`n(k - L_n)`), and a term :math:`s \to n` of delay :math:`e` becomes a
+connection of lag :math:`e + L_n - L_s \ge 1` (2 from an input's generator). The smallest lags
+of these difference constraints are shortest paths (Bellman-Ford); they exist exactly when
+every loop has at least as many unit delays as neurons, which every state-space realization
+satisfies (each state update delays one step). The traces then equal symctl's to rounding.
 """
 
 from __future__ import annotations
@@ -41,17 +34,9 @@ GENERATOR_LAG = 2
 
 
 class NestNetwork(NamedTuple):
-    """The NEST nodes of a circuit, made by :func:`to_nest`.
-
-    Attributes
-    ----------
-    neurons, outputs, inputs : dict of str to NodeCollection
-        A ``rate_transformer_lin`` per neuron and per circuit output, a
-        ``step_rate_generator`` per circuit input.
-    lags : dict of str to int
-        How many steps late each node runs (module text): NEST's step ``k`` of node
-        ``n`` holds the circuit's ``n(k - lags[n])``.
-    """
+    """The NEST nodes of a circuit by name (:func:`to_nest`): a ``rate_transformer_lin`` per
+    neuron and output, a ``step_rate_generator`` per input, and how many steps late each runs
+    (``lags``: NEST's step ``k`` of node ``n`` holds the circuit's ``n(k - lags[n])``)."""
 
     neurons: dict
     outputs: dict
@@ -94,20 +79,9 @@ def _lags(circuit: Circuit, edges) -> dict[str, int]:
 
 
 def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
-    r"""Build the circuit in NEST's kernel, after resetting it to the resolution ``dt``.
-
-    Parameters
-    ----------
-    circuit : Circuit
-        With numbers for weights.
-    dt : float
-        The sampling time :math:`T_s` in seconds: NEST's resolution (in ms).
-
-    Returns
-    -------
-    NestNetwork
-        The nodes by name and their lags; set each input generator's
-        ``amplitude_times``/``amplitude_values`` (or use :func:`nest_response`).
+    r"""Build the circuit (numbers for weights) in NEST's kernel, reset to the resolution ``dt``
+    (the sampling time in seconds): a :class:`NestNetwork`, whose input generators take
+    ``amplitude_times``/``amplitude_values`` (or use :func:`nest_response`).
 
     Raises
     ------
@@ -157,25 +131,8 @@ def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
 
 
 def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndarray]:
-    r"""Drive :func:`to_nest`'s network from rest by ``u`` and read the traces back.
-
-    Parameters
-    ----------
-    circuit : Circuit
-        As for :func:`to_nest`.
-    u : (steps,) or (steps, inputs) array
-        The circuit inputs, one row per sample, in ``circuit.inputs`` order.
-    dt : float
-        The sampling time in seconds.
-
-    Returns
-    -------
-    dict of str to array
-        As :func:`~symctl.spiking.nengo_export.nengo_response`.
-
-    Raises
-    ------
-    As :func:`to_nest`; ParameterError for ``u`` of the wrong width.
+    r"""Drive :func:`to_nest`'s network from rest by ``u`` ``(steps[, inputs])`` and read the
+    traces back, as :func:`~symctl.spiking.nengo_export.nengo_response` returns them.
 
     Examples
     --------

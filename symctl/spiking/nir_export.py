@@ -1,22 +1,18 @@
 r"""A circuit as a NIR graph (the neuromorphic intermediate representation, ``nir`` 1.0).
 
-NIR defines every node in continuous time; the stylized neuron
-:math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` is a delay-difference
-equation, and NIR carries it as one: each neuron is a ``Scale`` node of scale 1 (NIR sums
-the edges into a node), each term a ``Delay`` node of :math:`d\,T_s` seconds (none for
-:math:`d = 0`) and a ``Linear`` node of its weight. With every input held over a sample,
-every signal is held too and equals the circuit's :math:`n(k)` at :math:`t = kT_s`: the
-export is exact for every self-dynamics. (An ``LI`` node steps :math:`x(k+1) = a\,x(k) + I`
-only for a held input :math:`I`, and NIR has no sample-and-hold node.)
+NIR defines every node in continuous time; the stylized neuron is a delay-difference equation
+and NIR carries it as one: a ``Scale`` node of scale 1 per neuron (NIR sums the edges into a
+node), per term a ``Delay`` node of :math:`d\,T_s` seconds (none for :math:`d = 0`) and a
+``Linear`` node of its weight. With every input held over a sample, every signal equals the
+circuit's :math:`n(k)` at :math:`t = kT_s`, for every self-dynamics (NIR has no sample-and-hold
+node, and an ``LI`` node steps :math:`x(k+1) = a\,x(k) + I` only for a held input).
 
-**Spiking populations** (``n_neurons=N``) are those of
-:func:`~symctl.spiking.nengo_export.to_nengo`: the neuron's sum drives an ``Affine`` node
-(nengo's encoders times gains over the radius, and its biases) into a ``LIF`` node of
-:math:`N` neurons (nengo's LIF in continuous time: :math:`R = 1`, leak and reset 0,
-threshold 1), whose spikes go through a ``Linear`` node (the decoders) and an ``LI`` node
-(the lowpass) to the neuron's axon. NIR's ``LIF`` has no refractory period and no voltage
-floor, so the neurons are ``nengo.LIF(tau_ref=0, min_voltage=-inf)``. The graph is as
-approximate as nengo's network.
+**Spiking populations** (``n_neurons=N``) are :func:`~symctl.spiking.nengo_export.to_nengo`'s:
+the sum drives an ``Affine`` node (nengo's encoders times gains over the radius, and biases)
+into a ``LIF`` node of :math:`N` neurons (:math:`R = 1`, leak and reset 0, threshold 1), then a
+``Linear`` node (the decoders) and an ``LI`` node (the lowpass) to the axon. NIR's ``LIF`` has no
+refractory period and no voltage floor, so the neurons are
+``nengo.LIF(tau_ref=0, min_voltage=-inf)``; the graph is as approximate as nengo's network.
 """
 
 from __future__ import annotations
@@ -44,21 +40,8 @@ def to_nir(
 ):
     """The circuit as a :class:`nir.NIRGraph`: exact delay-sum neurons, or LIF populations.
 
-    Parameters
-    ----------
-    circuit : Circuit
-        With numbers for weights.
-    n_neurons : int, optional
-        ``None``: every neuron exact. An int in ``[1, MAX_POPULATION]``: a population of that
-        many LIF neurons per neuron.
-    dt : float
-        The sampling time :math:`T_s` in seconds.
-    rng : int, numpy Generator or None
-        Seeds nengo's encoders, gains and biases.
-    neuron_type : nengo.LIF, optional
-        Only ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default), ``tau_rc`` free.
-    radius : dict of str to float, optional
-        As for :func:`~symctl.spiking.nengo_export.to_nengo`.
+    Options as for :func:`~symctl.spiking.nengo_export.to_nengo`, but ``neuron_type`` only
+    ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default; ``tau_rc`` free).
 
     Returns
     -------
@@ -72,12 +55,9 @@ def to_nir(
     ------
     MissingDependencyError
         nir (or, with ``n_neurons``, nengo) is not installed (``pip install symctl[spiking]``).
-    ParameterError
-        Symbols or non-real numbers in the weights; ``dt`` not > 0; ``n_neurons`` out of range;
-        a ``neuron_type`` with a refractory period or a voltage floor; a ``neuron_type`` or
-        ``radius`` without ``n_neurons``.
-    SymctlTypeError
-        ``circuit`` is not a Circuit; ``neuron_type`` is not a nengo LIF.
+    ParameterError, SymctlTypeError
+        As :func:`~symctl.spiking.nengo_export.to_nengo`; a ``neuron_type`` that is not a
+        nengo LIF, or has a refractory period or a voltage floor.
 
     Examples
     --------

@@ -29,7 +29,7 @@ from symctl import (
     structure_firing,
 )
 from symctl.errors import DimensionError, ParameterError, SymctlTypeError
-from symctl.neural.noise import _factor, _Parts, _sensor_inputs
+from symctl.neural.noise import _factor, _parts, _sensor_inputs
 from symctl.neural.simulate import _loop
 
 GAINS = lqr_gains(augment(MuscleModel(), 1, 1))
@@ -145,10 +145,10 @@ def test_a_noisy_batch_equals_python_control_forced_response_on_the_same_draws()
     A, B = (np.asarray(M, dtype=float) for M in p.numeric())
     n, m = p.n, p.m
     Ev, Dv = _sensor_inputs(Acl, Cr, A, n)
-    parts = _Parts.of(FOREARM_NOISE, n, m)
-    assert parts.process is not None and parts.motor is not None
+    parts = _parts(FOREARM_NOISE, n, m)
+    P, BM = parts["process"], B @ parts["motor"]
     # process and motor noise drawn as one state noise of covariance W + B W_u B^T
-    S = parts.process @ parts.process.T + (B @ parts.motor) @ (B @ parts.motor).T
+    S = P @ P.T + BM @ BM.T
     lam, U = np.linalg.eigh(S)
     root = U * np.sqrt(np.clip(lam, 0, None))
     z = np.random.default_rng(9).standard_normal((steps, n + n, count))
@@ -159,7 +159,7 @@ def test_a_noisy_batch_equals_python_control_forced_response_on_the_same_draws()
     C = np.vstack([np.eye(n, Acl.shape[0]), Cr])
     loop = control.ss(Acl, E, C, D, float(p.dt))
     for r in range(count):
-        noise = np.vstack([root @ z[:, :n, r].T, parts.sensor @ z[:, n:, r].T])
+        noise = np.vstack([root @ z[:, :n, r].T, parts["sensor"] @ z[:, n:, r].T])
         y = control.forced_response(loop, U=noise).outputs
         assert np.allclose(out.delta_f[r], y[:n].T, rtol=0, atol=1e-9 * np.abs(y[:n]).max())
         assert np.allclose(out.delta_r[r], y[n:].T, rtol=0, atol=1e-9 * np.abs(y[n:]).max())
