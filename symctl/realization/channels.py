@@ -76,3 +76,10 @@ def verify_entries(G: DiscreteTF, G2: DiscreteTF, g1, g3, products_equal) -> boo
             if not products_equal(left, right):
                 return False
     return True
+
+
+def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
+    """The ``(epsilons, Cs)`` of one channel's sections (``section_symbols`` with ``channel``)."""
+    from symctl.realization.factorization import section_symbols
+
+    return section_symbols(side, count, channel)
