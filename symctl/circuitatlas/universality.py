@@ -90,7 +90,7 @@ FIXINGS = 6
 DRAWS_PER_REGION = 4
 """Sampled controllers drawn per region before the region counts as failed."""
 
-CURVE_TARGETS_PER_REGION = {3: 3}
+CURVE_TARGETS_PER_REGION = {3: 1}
 """Targets per region of the exact screen of a fibre that is a curve (:math:`3n + 1` entries),
 by order (orders not listed are not screened this way)."""
 
