@@ -94,6 +94,10 @@ CURVE_TARGETS_PER_REGION = {3: 1}
 """Targets per region of the exact screen of a fibre that is a curve (:math:`3n + 1` entries),
 by order (orders not listed are not screened this way)."""
 
+EFFORTS = ((DRAWS_PER_REGION, FIXINGS), (3 * DRAWS_PER_REGION, 4 * FIXINGS))
+"""(targets, fixings) of the witness search's passes; a region gets the second pass only when
+the first found no witness there."""
+
 POLE_DRAWS = 2
 """Sampled pole polynomials per region (of poles and zeros) of the poles-alone refutation."""
 
@@ -250,10 +254,10 @@ def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
     return None
 
 
-def _witness(pattern: Pattern, rng, extra: int, a, c) -> dict | None:
+def _witness(pattern: Pattern, rng, extra: int, a, c, tries: int = FIXINGS) -> dict | None:
     """A real realization of one target, Krawczyk-certified with every entry nonzero; or None."""
     unknowns, slots, values, _, _ = _system(pattern)
-    for attempt, fixed in enumerate(fixings(slots, extra, rng, FIXINGS)):
+    for attempt, fixed in enumerate(fixings(slots, extra, rng, tries)):
         rule = {values[k]: v for k, v in fixed.items()}
         eqs = [sp.expand(e.xreplace(rule)) for e in _equations(pattern, a, c)]
         free = [x for x in unknowns if x not in rule]
@@ -305,13 +309,14 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
         refuted, witnessed = _curve_screen(pattern, rng, curve_targets)
         if refuted is not None:
             return refuted
-    for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
-        for _ in range(DRAWS_PER_REGION if region not in witnessed else 0):
-            a, c = _region_sample(pattern.n, pairs, signs, complex_zeros, rng)
-            found = _witness(pattern, rng, extra, a, c)
-            if found is not None:
-                witnessed[region] = found
-                break
+    for draws, tries in EFFORTS:  # the second only where the first found nothing
+        for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
+            for _ in range(draws if region not in witnessed else 0):
+                a, c = _region_sample(pattern.n, pairs, signs, complex_zeros, rng)
+                found = _witness(pattern, rng, extra, a, c, tries)
+                if found is not None:
+                    witnessed[region] = found
+                    break
     failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
     exact_found = sum("point" in w for w in witnessed.values())
     how = (
@@ -332,7 +337,7 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
         )
     why = (
         f"no real realization found for sampled G2 in {failed}"
-        + (f" with {FIXINGS} random values of the {extra} extra entries" if extra else "")
+        + (f" with {EFFORTS[-1][1]} random values of the {extra} extra entries" if extra else "")
         + "; neither proved nor refuted"
     )
     return _evidence(
