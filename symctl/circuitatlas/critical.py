@@ -32,7 +32,7 @@ from sympy.polys.groebnertools import groebner
 from symctl.circuitatlas.fibre import _det, _fibre_ring, _standard_monomials, count_ideal
 from symctl.circuitatlas.pattern import Pattern
 
-__all__ = ["count_critical", "critical_degree", "curve_region"]
+__all__ = ["count_critical", "critical_degree", "curve_target"]
 
 
 @cache
@@ -105,29 +105,22 @@ def critical_degree(pattern: Pattern) -> int | None:
     return None if monos is None else len(monos)
 
 
-def curve_region(pattern: Pattern, sample, rng, targets: int) -> dict | None:
-    """Up to ``targets`` targets drawn by ``sample(rng)``: the first with an exact real
-    realization (``{"real": True, ...}``) or the first generic one without a real point
-    (``{"real": False, ...}``, a refutation); None when neither is found."""
+def curve_target(pattern: Pattern, a, c, rng) -> dict | None:
+    """One target ``(a, c)``, with a random distance point: ``{"real": True, ...}`` for an
+    exact real realization, ``{"real": False, ...}`` when it is generic without a real point
+    (a refutation); None when it is not generic or its real points have an entry 0."""
     degree = critical_degree(pattern)
     if not degree:
         return None
-    k = _critical_parts(pattern)[0].ngens
-    for _ in range(targets):
-        a, c = sample(rng)
-        point = _point(rng, k)
-        got = count_critical(pattern, a, c, point, rng)
-        if got is None or got["degree"] != degree:
-            continue
-        found = {
-            "a": [str(v) for v in a],
-            "c": [str(v) for v in c],
-            "point": [str(v) for v in point],
-            "degree": degree,
-            "eliminant": got["eliminant"],
-        }
-        if got["real"] and not got["zero_entry"]:
-            return {"real": True, **found}
-        if not got["real"]:
-            return {"real": False, **found}
-    return None
+    point = _point(rng, _critical_parts(pattern)[0].ngens)
+    got = count_critical(pattern, a, c, point, rng)
+    if got is None or got["degree"] != degree or (got["real"] and got["zero_entry"]):
+        return None
+    return {
+        "real": bool(got["real"]),
+        "a": [str(v) for v in a],
+        "c": [str(v) for v in c],
+        "point": [str(v) for v in point],
+        "degree": degree,
+        "eliminant": got["eliminant"],
+    }

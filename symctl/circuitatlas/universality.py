@@ -56,7 +56,7 @@ import networkx as nx
 import sympy as sp
 
 from symctl.circuitatlas.certify import certified_real_root
-from symctl.circuitatlas.critical import curve_region
+from symctl.circuitatlas.critical import critical_degree, curve_target
 from symctl.circuitatlas.evidence import CONJECTURED, ODD_DEGREE, Evidence, _evidence
 from symctl.circuitatlas.fibre import _equations, _system, coefficient_symbols, real_solutions
 from symctl.circuitatlas.odddegree import odd_degree_proof, slice_proof
@@ -278,13 +278,12 @@ def _curve_screen(pattern: Pattern, rng, per_region: int) -> tuple[Evidence | No
     """The exact screen of a curve (:mod:`~symctl.circuitatlas.critical`): a refutation, or
     the exact real realizations found per region."""
     found: dict[str, dict] = {}
+    if not critical_degree(pattern):  # not a curve, or no finite critical system
+        return None, found
     for region, pairs, signs, complex_zeros in _search_regions(pattern.n):
-
-        def sample(g, pairs=pairs, signs=signs, complex_zeros=complex_zeros):
-            return _region_sample(pattern.n, pairs, signs, complex_zeros, g)
-
         for _ in range(per_region):
-            got = curve_region(pattern, sample, rng, 1)
+            a, c = _region_sample(pattern.n, pairs, signs, complex_zeros, rng)
+            got = curve_target(pattern, a, c, rng)
             if got is None:
                 continue
             if got["real"]:
