@@ -40,6 +40,7 @@ from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
 from symctl.realization.channels import (
     channel_sections,
+    channel_symbols,
     diagonal,
     mimo_G2,
     verify_entries,
@@ -71,11 +72,12 @@ def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[
     """
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if count == 1 and channel is None:
+    if channel is not None:
+        return channel_symbols(side, channel, count)
+    if count == 1:
         return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    at = f"{side}," if channel is None else f"{side},{channel},"
-    eps = tuple(sp.Symbol(f"epsilon_{{{at}{i}}}", real=True) for i in range(1, count + 1))
-    cs = tuple(sp.Symbol(f"C_{{{at}{i}}}", real=True) for i in range(1, count + 1))
+    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
+    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
     return eps, cs
 
 
