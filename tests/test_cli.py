@@ -113,6 +113,11 @@ def test_the_console_script_run_is_public_and_exits_with_mains_code(monkeypatch)
 
     assert set(cli.__all__) == {"main", "run"}
     monkeypatch.setattr(sys, "argv", ["symctl", "paper", "--tau", "0"])
+
+    def _exit(code):  # run leaves by os._exit (no interpreter teardown): not in this process
+        raise SystemExit(code)
+
+    monkeypatch.setattr(cli.os, "_exit", _exit)
     with pytest.raises(SystemExit) as exit_info:
         cli.run()
     assert exit_info.value.code == 2

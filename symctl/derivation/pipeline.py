@@ -85,6 +85,7 @@ def derive_paper(
     rng: int = PAPER.seed,
     realizations: int = PAPER.realizations,
     progress: Callable[[str], None] | None = None,
+    early: Callable[[Derivation], None] | None = None,
 ) -> Derivation:
     r"""Run the paper's whole derivation on its muscle: ``derive(muscle().replace(**values))``
     (``examples/muscle.toml``), every value defaulting to the paper's.
@@ -106,6 +107,8 @@ def derive_paper(
         :data:`~symctl._util.validate.MAX_CIRCUITS` (1000).
     progress : callable, optional
         Called with the name of each step (``"plant"``, ``"delays"``, ...) before it runs.
+    early : callable, optional
+        As :func:`derive`'s: the derivation as far as the circuits' simulations.
 
     Returns
     -------
@@ -154,7 +157,7 @@ def derive_paper(
     given = {k: v for k, v in given.items() if v is not None}
     _check_paper_values(given)
     model = muscle(**given)
-    return derive(model, progress=lambda name: None if name == "plant" else step(name))
+    return derive(model, progress=lambda name: None if name == "plant" else step(name), early=early)
 
 
 def _check_paper_values(given: dict) -> None:
@@ -189,7 +192,12 @@ def _check_paper_values(given: dict) -> None:
             psd_matrix(to_matrix(given[name], name), name, 1, definite=definite)
 
 
-def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivation:
+def derive(
+    model,
+    *,
+    progress: Callable[[str], None] | None = None,
+    early: Callable[[Derivation], None] | None = None,
+) -> Derivation:
     r"""Run the whole derivation on your own system: a model file, plant to circuits.
 
     A MIMO plant's controller is factored channel by channel and realized in block canonical
@@ -204,6 +212,11 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivatio
         A model, or a model file (path or TOML text) for :func:`~symctl.model.modelfile.load_model`.
     progress : callable, optional
         Called with the name of each step before it runs.
+    early : callable, optional
+        Called once with the derivation as far as the circuits' simulations, before the steps
+        after them run (its ``closed_loop``, ``nonlinear``, ``longest``, ``variance``, ``atlas``
+        and ``candidates`` still None), so that a caller can draw the circuits meanwhile; not
+        called when the derivation comes from the cache.
 
     Returns
     -------
@@ -226,15 +239,16 @@ def derive(model, *, progress: Callable[[str], None] | None = None) -> Derivatio
     True
     """
     step = callable_or_none(progress, "progress") or (lambda _name: None)
+    early = callable_or_none(early, "early")
     spec = model if isinstance(model, Model) else load_model(model)
-    return _cached(spec, _Progress(step))
+    return _cached(spec, _Progress(step, early))
 
 
 class _Progress:
-    """The progress callback, kept out of the cache's key (every callback is the same key)."""
+    """The callbacks, kept out of the cache's key (every callback is the same key)."""
 
-    def __init__(self, step: Callable[[str], None]) -> None:
-        self.step = step
+    def __init__(self, step: Callable[[str], None], early=None) -> None:
+        self.step, self.early = step, early
 
     def __eq__(self, other) -> bool:
         return isinstance(other, _Progress)
@@ -248,7 +262,7 @@ DERIVATIONS_CACHED = 8  # most derivations derive keeps (the most recently used)
 
 @functools.lru_cache(maxsize=DERIVATIONS_CACHED)
 def _cached(spec: Model, progress: _Progress) -> Derivation:
-    return _derive(spec, progress.step)
+    return _derive(spec, progress.step, progress.early)
 
 
 def _clear() -> None:
@@ -292,8 +306,9 @@ def _count(k: int, noun: str) -> str:
     return f"{k} {noun}" + ("" if k == 1 else "s")
 
 
-def _derive(spec: Model, step) -> Derivation:
-    """The pipeline on ``spec``, stage by stage."""
+def _derive(spec: Model, step, early=None) -> Derivation:
+    """The pipeline on ``spec``, stage by stage; ``early`` gets the derivation as far as the
+    circuits' simulations."""
     ds, da = spec.sensor_delay, spec.actuator_delay
     seed, count = spec.seed, spec.realizations
     model = spec.ode
@@ -407,19 +422,33 @@ def _derive(spec: Model, step) -> Derivation:
             )
             for k in kinds
         }
-    order2 = system.T if kalman is None else G.order  # G2's; the compensator's is n + T m
-    if kinds and siso and (kalman is None or order2 <= PAPER_ATLAS_MAX_ORDER):
-        step("atlas")
-        found = atlas(2, workers=1)
-        if order2 <= PAPER_ATLAS_MAX_ORDER:  # order 3 takes a minute: symctl atlas
-            order = found if order2 == 2 else atlas(order2, workers=1)
-            try:
-                candidates = circuits_for(
-                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, rng=seed
-                )
-            except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
-                note = f"no atlas circuits for this controller: {exc}"
-                spec = dataclasses.replace(spec, notes=(*spec.notes, note))
+    res = Derivation(
+        model,
+        plant_symbolic,
+        plant,
+        system,
+        gains,
+        G_symbolic,
+        G,
+        proved,
+        seed,
+        factors,
+        records,
+        graph,
+        circuits,
+        open_loop_response(plant, steps=spec.steps),
+        None,
+        None,
+        G2_symbolic,
+        spec=spec,
+        skipped=skipped,
+        pathways=pathways,
+        verified=verified,
+        reduction=reduction,
+        kalman=kalman,
+    )
+    if early is not None:  # the circuits' figures can be drawn while the rest runs
+        early(res)
     step("closed loop")
     amplitude = spec.disturbance[1]
     unit_w = w / amplitude if amplitude else w
@@ -467,34 +496,28 @@ def _derive(spec: Model, step) -> Derivation:
                 tolerance=tol,
                 steps=spec.steps,
             )
-    return Derivation(
-        model,
-        plant_symbolic,
-        plant,
-        system,
-        gains,
-        G_symbolic,
-        G,
-        proved,
-        seed,
-        factors,
-        records,
-        graph,
-        circuits,
-        open_loop_response(plant, steps=spec.steps),
-        closed,
-        nonlinear,
-        G2_symbolic,
-        found,
-        candidates,
-        spec,
-        longest,
-        skipped,
-        pathways,
-        verified,
-        reduction,
-        kalman,
-        variance,
+    order2 = system.T if kalman is None else G.order  # G2's; the compensator's is n + T m
+    if kinds and siso and (kalman is None or order2 <= PAPER_ATLAS_MAX_ORDER):
+        step("atlas")
+        found = atlas(2, workers=1)
+        if order2 <= PAPER_ATLAS_MAX_ORDER:  # order 3 takes a minute: symctl atlas
+            order = found if order2 == 2 else atlas(order2, workers=1)
+            try:
+                candidates = circuits_for(
+                    G, graph, sensor_delay=ds, actuator_delay=da, atlas=order, rng=seed
+                )
+            except (NotRealizableError, ParameterError) as exc:  # e.g. a zero controller
+                note = f"no atlas circuits for this controller: {exc}"
+                spec = dataclasses.replace(spec, notes=(*spec.notes, note))
+    return dataclasses.replace(
+        res,
+        closed_loop=closed,
+        nonlinear=nonlinear,
+        atlas=found,
+        candidates=candidates,
+        spec=spec,
+        longest=longest,
+        variance=variance,
     )
 
 

@@ -419,34 +419,11 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
             ]
         used = ports.setdefault(b, []) if b in radius else []
         others = np.concatenate(lines) if lines else None
-        pick, fallback = None, None
         u = (pb - pa) / max(float(np.hypot(*(pb - pa))), 1e-12)
         qa, qb = tuple(pa + ra * u), tuple(pb - rb * u)  # where the chord leaves the circles
-        for cands, swing, count in tiers:
-            cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
-                (max(map(abs, taken)) + apart) * prefer
-            ]
-            for h in cands:
-                curve = layered.bridge(qa, qb, h)
-                natural = math.atan2(curve[2][1] - pb[1], curve[2][0] - pb[0])
-                angles = layered.end_angles(natural, used, rb, swing, count)
-                for angle in angles or [natural]:
-                    drawn = layered.trimmed(curve, pa, ra, pb, rb + layered.TIP, angle)
-                    nh = layered.hits(layered.bezier_points(drawn), obstacles, {a, b}) + (
-                        not angles
-                    )
-                    if fallback is None or nh < fallback[0]:
-                        fallback = (nh, h, drawn, angle)
-                    if nh:
-                        continue
-                    where = layered.place_label(drawn, size, obstacles, others) if size else None
-                    if size is None or where is not None:
-                        pick = (h, drawn, where, angle)
-                        break
-                if pick is not None or not search:
-                    break
-            if pick is not None:
-                break
+
+        tries = _tries(tiers, taken, (apart, prefer), (qa, qb), (pa, ra, pb, rb), used, search)
+        pick, fallback = _first_clear(tries, obstacles, {a, b}, size, others)
         if pick is None:  # the least bad, its label where it overlaps the least
             nh, h, drawn, angle = fallback
             clear = clear and nh == 0
@@ -468,6 +445,47 @@ def route(arcs, pos, col, radius, labels, obstacles: layered.Obstacles, *, searc
         if where is not None:
             obstacles = obstacles.with_box(layered.box(*where, size))
     return chosen, clear, labelled
+
+
+def _tries(tiers, taken, spacing, chord, circles, used, search: bool):
+    """Each curve ``route`` tries, in order, as ``(height, end angle, curve, 1 when no end is
+    clear of those ``used``)``; ``spacing`` is ``(least gap to the heights taken, side)``."""
+    (apart, prefer), (qa, qb), (pa, ra, pb, rb) = spacing, chord, circles
+    for cands, swing, count in tiers:
+        cands = [h for h in cands if all(abs(h - t) >= apart for t in taken)] or [
+            (max(map(abs, taken)) + apart) * prefer
+        ]
+        for h in cands:
+            curve = layered.bridge(qa, qb, h)
+            natural = math.atan2(curve[2][1] - pb[1], curve[2][0] - pb[0])
+            angles = layered.end_angles(natural, used, rb, swing, count)
+            ends = angles or [natural]
+            drawn = layered.trimmed_ends(curve, pa, ra, pb, rb + layered.TIP, ends)
+            for angle, curve_drawn in zip(ends, drawn, strict=True):
+                yield h, angle, curve_drawn, int(not angles)
+            if not search:
+                return
+
+
+def _first_clear(tries, obstacles, ends, size, others, first: int = 4):
+    """The first of ``tries`` clear of ``obstacles`` with room for its label of ``size`` (None:
+    no label) as ``(height, curve, label centre, angle)``, or None; and the least bad one tried,
+    ``(hits, height, curve, angle)``. Curves are judged in batches growing fourfold from ``first``.
+    """
+    fallback, batch = None, first
+    while chunk := list(itertools.islice(tries, batch)):
+        bad = layered.hits_many(layered.bezier_many([c for _, _, c, _ in chunk]), obstacles, ends)
+        for (h, angle, drawn, penalty), nh in zip(chunk, bad.tolist(), strict=True):
+            nh += penalty
+            if fallback is None or nh < fallback[0]:
+                fallback = (nh, h, drawn, angle)
+            if nh:
+                continue
+            where = layered.place_label(drawn, size, obstacles, others) if size else None
+            if size is None or where is not None:
+                return (h, drawn, where, angle), fallback
+        batch *= 4
+    return None, fallback
 
 
 def _row_heights(nodes, row, x, col, ext) -> dict:

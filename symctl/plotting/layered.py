@@ -401,6 +401,15 @@ def bezier_points(bezier, t=_T) -> np.ndarray:
     return out[0] if len(out) == 1 else np.vstack(out)
 
 
+def bezier_many(curves, t=_T) -> np.ndarray:
+    """:func:`bezier_points` of cubic Béziers of 4 control points each, as curves x points x 2."""
+    ctrl = np.asarray(curves, dtype=float)[:, None]
+    t = np.asarray(t, dtype=float)[:, None]
+    s = 1 - t
+    p0, c1, c2, p1 = (ctrl[:, :, k] for k in range(4))
+    return s**3 * p0 + 3 * s * s * t * c1 + 3 * s * t * t * c2 + t**3 * p1
+
+
 def at_x(bezier, x: float) -> tuple[float, float]:
     """The point of the curve at abscissa ``x`` (each segment x-monotone; clamped to the ends)."""
     ctrl = [(float(px), float(py)) for px, py in bezier]  # plain floats: a fast bisection
@@ -442,32 +451,47 @@ def bridge(a, b, h: float) -> tuple[tuple[float, float], ...]:
     upward normal (right for a vertical chord); inner points :math:`\tfrac43 h` off the chord,
     0.7 of it from the far ends, so a tall bridge still meets its circles from the side.
     """
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    d = b - a
-    n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-12)
-    if n[1] < -1e-12 or (abs(n[1]) <= 1e-12 and n[0] < 0):
-        n = -n
-    up = 4.0 / 3.0 * h * n
-    return tuple(tuple(float(v) for v in p) for p in (a, a + 0.7 * d + up, b - 0.7 * d + up, b))
+    (ax, ay), (bx, by) = (float(v) for v in a), (float(v) for v in b)  # floats: fast, exact
+    dx, dy = bx - ax, by - ay
+    length = max(float(np.hypot(dx, dy)), 1e-12)
+    nx_, ny = -dy / length, dx / length
+    if ny < -1e-12 or (abs(ny) <= 1e-12 and nx_ < 0):
+        nx_, ny = -nx_, -ny
+    rise = 4.0 / 3.0 * h
+    ux, uy = rise * nx_, rise * ny
+    return (
+        (ax, ay),
+        (ax + 0.7 * dx + ux, ay + 0.7 * dy + uy),
+        (bx - 0.7 * dx + ux, by - 0.7 * dy + uy),
+        (bx, by),
+    )
 
 
 def trimmed(curve, a, ra: float, b, rb: float, a1: float | None = None):
     """``curve`` from the border of circle ``(a, ra)`` to that of ``(b, rb)``, each end on the
     radius towards its inner control point (or at angle ``a1`` [rad]), pointing at the centre.
     """
-    _, c1, c2, _ = (np.asarray(p, float) for p in curve)
+    return trimmed_ends(curve, a, ra, b, rb, [a1])[0]
 
-    def port(centre, towards, r, angle):
-        centre = np.asarray(centre, float)
-        if angle is None:
-            d = towards - centre
-            angle = math.atan2(d[1], d[0]) if np.hypot(*d) > 1e-12 else 0.0
-        out = np.array([math.cos(angle), math.sin(angle)])
-        q = centre + r * out
-        return q, q + out * 0.5 * float(np.hypot(*(towards - q)))
 
-    (q0, k1), (q3, k2) = port(a, c1, ra, None), port(b, c2, rb, a1)
-    return tuple(tuple(float(v) for v in p) for p in (q0, k1, k2, q3))
+def trimmed_ends(curve, a, ra: float, b, rb: float, angles) -> list:
+    """:func:`trimmed` at each of the end ``angles`` (the start is the same for all)."""
+    _, c1, c2, _ = curve
+    q0, k1 = _port(a, c1, ra, None)
+    return [(q0, k1, k2, q3) for q3, k2 in (_port(b, c2, rb, a1) for a1 in angles)]
+
+
+def _port(centre, towards, r: float, angle: float | None):
+    """The end on circle ``(centre, r)`` at ``angle`` (None: towards ``towards``), and the
+    control point beside it, half-way out to ``towards``."""
+    (cx, cy), (tx, ty) = (float(v) for v in centre), (float(v) for v in towards)
+    if angle is None:
+        dx, dy = tx - cx, ty - cy
+        angle = math.atan2(dy, dx) if np.hypot(dx, dy) > 1e-12 else 0.0
+    ox, oy = math.cos(angle), math.sin(angle)
+    qx, qy = cx + r * ox, cy + r * oy
+    reach = float(np.hypot(tx - qx, ty - qy))
+    return (qx, qy), (qx + ox * 0.5 * reach, qy + oy * 0.5 * reach)
 
 
 def bulges(straight: bool, prefer: float, start: float, step: float, count: int) -> list:
@@ -527,38 +551,58 @@ def hits(points: np.ndarray, obstacles: Obstacles, ends=()) -> int:
     """How bad ``points`` are: those (outside the circles of ``ends``) near a circle or in a box,
     plus ten times those inside a circle; 0 is clear.
     """
+    return int(hits_many(np.asarray(points, float)[None], obstacles, ends)[0])
+
+
+def hits_many(points: np.ndarray, obstacles: Obstacles, ends=()) -> np.ndarray:
+    """:func:`hits` of each curve of ``points`` (curves x points x 2) at once: a circle or a box
+    counts for a curve when it is near that curve's bounding box, as in :func:`hits`."""
     own = np.array([k in ends for k in obstacles.keys], bool)
-    keep = np.ones(len(points), bool)
+    px, py = points[..., 0], points[..., 1]
+    keep = np.ones(px.shape, bool)
     for k in np.flatnonzero(own):
-        keep &= np.hypot(*(points - obstacles.centres[k]).T) > obstacles.radii[k] + 1e-9
-    pts = points[keep]
-    if not len(pts):
-        return 0
-    (x0, y0), (x1, y1) = pts.min(axis=0), pts.max(axis=0)
-    bad = np.zeros(len(pts), bool)
-    inside = 0
-    if len(obstacles.radii):
-        c, r = obstacles.centres, obstacles.radii + CLEAR
+        cx, cy = obstacles.centres[k]
+        keep &= np.hypot(px - cx, py - cy) > obstacles.radii[k] + 1e-9
+    inf = np.inf
+    x0, x1 = np.where(keep, px, inf).min(axis=1), np.where(keep, px, -inf).max(axis=1)
+    y0, y1 = np.where(keep, py, inf).min(axis=1), np.where(keep, py, -inf).max(axis=1)
+    bad = np.zeros(px.shape, bool)
+    inside = np.zeros(px.shape, bool)
+    if len(obstacles.radii) and (~own).any():
+        c, r = obstacles.centres[~own], (obstacles.radii + CLEAR)[~own]
         near = (
-            ~own & (c[:, 0] > x0 - r) & (c[:, 0] < x1 + r) & (c[:, 1] > y0 - r) & (c[:, 1] < y1 + r)
+            (c[None, :, 0] > x0[:, None] - r)
+            & (c[None, :, 0] < x1[:, None] + r)
+            & (c[None, :, 1] > y0[:, None] - r)
+            & (c[None, :, 1] < y1[:, None] + r)
         )
         if near.any():
-            d = np.hypot(pts[:, None, 0] - c[None, near, 0], pts[:, None, 1] - c[None, near, 1])
-            bad |= (d < r[None, near]).any(axis=1)
-            inside = int((d < r[None, near] - CLEAR).any(axis=1).sum())
+            at = near.any(axis=0)  # the circles near any curve
+            c, r, near = c[at], r[at], near[:, None, at]
+            d = np.hypot(px[..., None] - c[:, 0], py[..., None] - c[:, 1])
+            bad |= ((d < r) & near).any(axis=2)
+            inside |= ((d < r - CLEAR) & near).any(axis=2)
     if len(obstacles.boxes):
         b = obstacles.boxes
         m = np.array([_END_MARGIN if k in ends else _BOX_MARGIN for k in obstacles.box_keys])
-        near = (b[:, 0] - m < x1) & (b[:, 2] + m > x0) & (b[:, 1] - m < y1) & (b[:, 3] + m > y0)
+        lo_x, hi_x, lo_y, hi_y = b[:, 0] - m, b[:, 2] + m, b[:, 1] - m, b[:, 3] + m
+        near = (
+            (lo_x < x1[:, None])
+            & (hi_x > x0[:, None])
+            & (lo_y < y1[:, None])
+            & (hi_y > y0[:, None])
+        )
         if near.any():
-            b, m = b[near], m[near][None, :]
+            at = near.any(axis=0)
+            near, lo_x, hi_x, lo_y, hi_y = near[:, at], lo_x[at], hi_x[at], lo_y[at], hi_y[at]
             bad |= (
-                (pts[:, None, 0] > b[None, :, 0] - m)
-                & (pts[:, None, 0] < b[None, :, 2] + m)
-                & (pts[:, None, 1] > b[None, :, 1] - m)
-                & (pts[:, None, 1] < b[None, :, 3] + m)
-            ).any(axis=1)
-    return int(bad.sum()) + _INSIDE * inside
+                (px[..., None] > lo_x)
+                & (px[..., None] < hi_x)
+                & (py[..., None] > lo_y)
+                & (py[..., None] < hi_y)
+                & near[:, None, :]
+            ).any(axis=2)
+    return (bad & keep).sum(axis=1) + _INSIDE * (inside & keep).sum(axis=1)
 
 
 def _box_free(box, obstacles: Obstacles) -> bool:

@@ -8,6 +8,7 @@ import contextlib
 import functools
 from collections.abc import Callable
 from pathlib import Path
+from typing import NamedTuple
 
 from symctl._util.display import latex
 from symctl._util.texnames import signal_tex
@@ -31,6 +32,8 @@ MAX_PIXELS = 4000  # longest side of a PNG: a larger figure is written at a lowe
 def figure_names(res) -> list[str]:
     """The names of the report's figures, in reading order."""
     names = ["open_loop", "closed_loop", "delay_graph"]
+    if getattr(res, "closed_loop", True) is None:  # a derivation drawn before its closed loop
+        names.remove("closed_loop")
     if getattr(res, "factors", None) is not None:
         names.append("g1g3_structures")
     for circuit in res.circuits:
@@ -342,21 +345,31 @@ def write_figures(
     out, formats = _folder(out), figure_formats(formats)
     progress = callable_or_none(progress, "progress")
     with contextlib.nullcontext(workers) if workers else FigureWorkers(jobs) as started:
-        return start_figures(res, out, started, formats=formats)(progress)
+        return start_figures(res, out, started, formats=formats).paths(progress)
 
 
-def start_figures(res, out: Path, workers, *, formats=DEFAULT_FORMATS):
-    """Hand every figure to the started ``workers``; returns ``paths(progress=None)``, which waits."""
-    names = figure_names(res)
+class Drawing(NamedTuple):
+    """Figures handed to the workers: the names of a derivation's figures, in reading order, and
+    the functions ``wait(progress=None) -> {name: paths}`` of the workers drawing them."""
+
+    names: tuple[str, ...]
+    waits: tuple[Callable, ...]
+
+    def paths(self, progress: Callable[[str], None] | None = None) -> list[Path]:
+        """Wait for every figure; their paths in the order of :attr:`names`."""
+        done = {name: p for wait in self.waits for name, p in wait(progress).items()}
+        return [p for name in self.names for p in done[name]]
+
+
+def start_figures(res, out: Path, workers, *, formats=DEFAULT_FORMATS, drawn=None) -> Drawing:
+    """Hand the figures of ``res`` to the started ``workers``, but those of the :class:`Drawing`
+    ``drawn`` (started on a part of the same derivation, as :func:`~symctl.derive`'s ``early``)."""
+    names = tuple(figure_names(res))
+    before = drawn.names if drawn is not None else ()
     task = functools.partial(_draw, out=out, formats=formats)
-    first = sorted(names, key=_drawing_rank)  # the longest first: no straggler at the end
+    first = sorted((n for n in names if n not in before), key=_drawing_rank)  # longest first
     wait = workers.submit(task, res, first)
-
-    def paths(progress=None) -> list[Path]:
-        done = wait(progress)
-        return [p for name in names for p in done[name]]
-
-    return paths
+    return Drawing(names, (*(drawn.waits if drawn is not None else ()), wait))
 
 
 def _draw(res, name: str, *, out: Path, formats: tuple[str, ...]) -> list[Path]:

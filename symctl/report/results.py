@@ -277,13 +277,18 @@ def write_files(
     formats: tuple[str, ...] = _figures.DEFAULT_FORMATS,
     workers=None,
     parts: Callable[[str], None] | None = None,
+    drawn: _figures.Drawing | None = None,
 ) -> list[Path]:
     """Write every file into the existing folder ``out``; ``progress`` gets each step's name,
-    ``parts`` each figure's as it is saved."""
+    ``parts`` each figure's as it is saved; the figures ``drawn`` are in the ``workers`` already."""
     step = progress or (lambda _name: None)
     started = contextlib.nullcontext(workers) if workers or not figures else FigureWorkers(jobs)
     with started as drawing:  # the figures are drawn while the documents are written
-        pending = _figures.start_figures(self, out, drawing, formats=formats) if figures else None
+        pending = (
+            _figures.start_figures(self, out, drawing, formats=formats, drawn=drawn)
+            if figures
+            else None
+        )
         written = [write_json(out / "results.json", results_json(self), allow_nan=False)]
         step("documents")
         # derivation.tex includes the PDFs, report.md shows the PNGs
@@ -300,7 +305,7 @@ def write_files(
         ]
         if figures:
             step("figures")
-            written += pending(parts)
+            written += pending.paths(parts)
     written += docs
     if pdf:
         step("pdflatex")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from symctl import ParameterError, derive, derive_paper
@@ -15,11 +17,20 @@ def _fresh() -> object:
 
 
 def test_derive_runs_the_steps_once_per_model_value():
-    model, steps = _fresh(), []
-    first = derive(model, progress=steps.append)
+    model, steps, early = _fresh(), [], []
+    first = derive(model, progress=steps.append, early=early.append)
     ran = len(steps)
-    again = derive(muscle().replace(realizations=1).replace(seed=11), progress=steps.append)
+    again = derive(muscle().replace(realizations=1).replace(seed=11), early=early.append)
     assert again is first and ran >= 10 and len(steps) == ran  # no step ran a second time
+    # early: once, when computing, with the derivation as far as the circuits' simulations
+    assert len(early) == 1 and steps.index("simulation") < steps.index("closed loop")
+    assert steps.index("nonlinear") < steps.index("atlas")  # the atlas last: no circuit needs it
+    part = early[0]
+    later = ("closed_loop", "nonlinear", "atlas", "candidates", "longest", "variance")
+    assert all(getattr(part, name) is None for name in later)
+    assert first.atlas is not None and first.closed_loop is not None
+    assert dataclasses.replace(part, **{k: getattr(first, k) for k in (*later, "spec")}) == first
+    assert "closed_loop" not in part.figure_names() and "atlas_overview" not in part.figure_names()
 
 
 def test_derive_paper_is_derive_of_the_preset_with_the_values_replaced(derived_T2):

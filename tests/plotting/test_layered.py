@@ -97,3 +97,72 @@ def test_at_x_finds_the_curve_at_that_abscissa_and_clamps_beyond_its_ends():
     assert np.allclose(layered.at_x(curve, 9.0), (3.0, 1.0))
     points = layered.bezier_points(curve, np.linspace(0, 1, 5))
     assert points.shape == (10, 2) and np.allclose(points[[0, -1]], [(0, 0), (3, 1)])
+
+
+def _hits_one_by_one(points, obstacles, ends=()):
+    """:func:`layered.hits` as it was written for one curve: the reference of the batched one."""
+    own = np.array([k in ends for k in obstacles.keys], bool)
+    keep = np.ones(len(points), bool)
+    for k in np.flatnonzero(own):
+        keep &= np.hypot(*(points - obstacles.centres[k]).T) > obstacles.radii[k] + 1e-9
+    pts = points[keep]
+    if not len(pts):
+        return 0
+    (x0, y0), (x1, y1) = pts.min(axis=0), pts.max(axis=0)
+    bad, inside = np.zeros(len(pts), bool), 0
+    if len(obstacles.radii):
+        c, r = obstacles.centres, obstacles.radii + layered.CLEAR
+        near = ~own & (c[:, 0] > x0 - r) & (c[:, 0] < x1 + r) & (c[:, 1] > y0 - r)
+        near &= c[:, 1] < y1 + r
+        if near.any():
+            d = np.hypot(pts[:, None, 0] - c[None, near, 0], pts[:, None, 1] - c[None, near, 1])
+            bad |= (d < r[None, near]).any(axis=1)
+            inside = int((d < r[None, near] - layered.CLEAR).any(axis=1).sum())
+    if len(obstacles.boxes):
+        b = obstacles.boxes
+        m = np.array([0.04 if k in ends else 0.015 for k in obstacles.box_keys])
+        near = (b[:, 0] - m < x1) & (b[:, 2] + m > x0) & (b[:, 1] - m < y1) & (b[:, 3] + m > y0)
+        if near.any():
+            b, m = b[near], m[near][None, :]
+            bad |= (
+                (pts[:, None, 0] > b[None, :, 0] - m)
+                & (pts[:, None, 0] < b[None, :, 2] + m)
+                & (pts[:, None, 1] > b[None, :, 1] - m)
+                & (pts[:, None, 1] < b[None, :, 3] + m)
+            ).any(axis=1)
+    return int(bad.sum()) + 10 * inside
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_hits_of_many_curves_at_once_are_each_curves_own(seed):
+    rng = np.random.default_rng(seed)
+    n_circles, n_boxes = int(rng.integers(0, 12)), int(rng.integers(0, 6))
+    circles = [
+        ((float(x), float(y)), float(r))
+        for (x, y), r in zip(
+            rng.uniform(-1, 1, (n_circles, 2)), rng.uniform(0.02, 0.3, n_circles), strict=True
+        )
+    ]
+    corners = np.sort(rng.uniform(-1, 1, (n_boxes, 2, 2)), axis=1)
+    boxes = [(a[0], a[1], b[0], b[1]) for a, b in corners]
+    keys = list(range(n_circles))
+    box_keys = [int(k) if k < n_circles else None for k in rng.integers(0, n_circles + 3, n_boxes)]
+    obstacles = layered.Obstacles.of(circles, boxes, keys, box_keys)
+    ends = {k for k in keys if rng.random() < 0.2}
+    curves = rng.uniform(-1.2, 1.2, (int(rng.integers(1, 30)), 4, 2))
+    points = layered.bezier_many(curves)
+    assert np.array_equal(points, np.stack([layered.bezier_points(c) for c in curves]))
+    got = layered.hits_many(points, obstacles, ends)
+    want = [_hits_one_by_one(p, obstacles, ends) for p in points]
+    assert got.tolist() == want
+    assert [layered.hits(p, obstacles, ends) for p in points] == want
+
+
+def test_hits_count_points_near_and_inside_a_circle_and_in_a_box():
+    line = layered.bezier_many([[(-1, 0), (-0.3, 0), (0.3, 0), (1, 0)]])  # along y = 0
+    circle = layered.Obstacles.of([((0.0, 0.0), 0.1)], [])
+    box = layered.Obstacles.of([], [(-0.1, -0.1, 0.1, 0.1)])
+    inside = int((np.abs(line[0, :, 0]) < 0.1).sum())
+    assert layered.hits_many(line, circle)[0] > 10 * inside
+    assert layered.hits_many(line, circle, ends={0})[0] == 0  # a curve may end at its own circle
+    assert layered.hits_many(line, box)[0] == int((np.abs(line[0, :, 0]) < 0.1 + 0.015).sum()) > 0
