@@ -36,6 +36,7 @@ class FigureWorkers:
         self.jobs = min(4, os.cpu_count() or 1) if jobs is None else positive_int(jobs, "jobs")
         self._pool: ProcessPoolExecutor | None = None
         self._before: set = set()
+        self._saved: list = []  # the values handed to the workers (temporary files)
 
     def __enter__(self) -> FigureWorkers:
         if self.jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
@@ -69,6 +70,9 @@ class FigureWorkers:
             self._stop()
         self._pool.shutdown(wait=exc_type is None, cancel_futures=True)
         self._pool = None
+        for saved in self._saved:  # also those of work never waited for (the caller failed)
+            saved.close()
+        self._saved.clear()
 
     def _stop(self) -> None:
         """SIGTERM, then SIGKILL to any worker still running after a second; reaped."""
@@ -94,6 +98,7 @@ class FigureWorkers:
         import tempfile
 
         saved = tempfile.NamedTemporaryFile(prefix="symctl-figures-", suffix=".pickle")
+        self._saved.append(saved)
         pickle.dump(res, saved, protocol=pickle.HIGHEST_PROTOCOL)
         saved.flush()
         futures = {self._pool.submit(_worker, task, saved.name, n): n for n in names}

@@ -150,6 +150,22 @@ def test_figure_workers_run_a_task_per_name_and_refuse_zero_jobs():
         FigureWorkers(jobs=0)
 
 
+def test_figure_workers_remove_the_values_handed_to_them_even_when_nobody_waits(
+    tmp_path, monkeypatch
+):
+    import operator
+    import tempfile
+
+    from symctl.report.workers import FigureWorkers
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    with pytest.raises(RuntimeError, match="the caller failed"), FigureWorkers(jobs=2) as workers:
+        pending = workers.submit(operator.add, "fig_", ["a"])  # never waited for
+        assert len(list(tmp_path.iterdir())) == 1
+        raise RuntimeError("the caller failed")
+    assert callable(pending) and not list(tmp_path.iterdir())  # removed though still referenced
+
+
 def test_blocks_become_latex_and_markdown():
     from symctl.report.document import Graphic, Math, Text, to_markdown, to_tex
 
