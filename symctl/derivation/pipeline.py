@@ -2,7 +2,8 @@ r"""The pipeline: a model derived, plant to circuits, into one :class:`~symctl.d
 
 :func:`derive` runs the stages in order (plant -> delays -> LQR -> :math:`G(z)`
 -> factors -> realizations -> delay graph and compatibility -> circuits ->
-simulations -> atlas -> closed loop -> nonlinear plant) on a model, once per model.
+simulations -> closed loop -> nonlinear plant -> atlas) on a model, once per model: what
+the circuits' figures need first, so that they can be drawn while the rest runs.
 
 Examples
 --------
