@@ -74,13 +74,24 @@ def _z_expr(coeffs) -> sp.Expr:
     return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
 
 
-def _z_matrix(nums, dens=None) -> sp.Matrix:
-    """The matrix of ``nums[i][j] / dens[i][j]`` (coefficient lists) as expressions in z."""
-    out = sp.zeros(len(nums), len(nums[0]))
-    for i, row in enumerate(nums):
-        for j, coeffs in enumerate(row):
-            out[i, j] = _z_expr(coeffs) / (1 if dens is None else _z_expr(dens[i][j]))
+def _shaped(values: list, cols: int):
+    """SymPy values (not text) as a matrix of ``cols`` columns, or the one value for 1 x 1."""
+    if len(values) == 1:
+        return values[0]
+    out = sp.zeros(len(values) // cols, cols)
+    for k, value in enumerate(values):
+        out[k // cols, k % cols] = value
     return out
+
+
+def _z_matrix(nums, dens=None):
+    """``nums[i][j] / dens[i][j]`` (coefficient lists) in z, shaped by :func:`_shaped`."""
+    ratios = [
+        _z_expr(coeffs) / (1 if dens is None else _z_expr(dens[i][j]))
+        for i, row in enumerate(nums)
+        for j, coeffs in enumerate(row)
+    ]
+    return _shaped(ratios, len(nums[0]))
 
 
 def _their_dt(dt):
@@ -106,8 +117,7 @@ def tf_from_control(sys) -> DiscreteTF:
     """A :class:`DiscreteTF`, in lowest terms, of a discrete python-control system."""
     dt = _discrete(sys)
     tf = control.tf(sys)
-    entries = _z_matrix(tf.num_array, tf.den_array)
-    return DiscreteTF.from_expr(entries if entries.shape != (1, 1) else entries[0, 0], dt=dt)
+    return DiscreteTF.from_expr(_z_matrix(tf.num_array, tf.den_array), dt=dt)
 
 
 def ss_to_control(R: Realization) -> control.StateSpace:
@@ -290,16 +300,6 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     if len(set(dens)) == 1 and all(e.is_polynomial(z) for e in (*nums, *dens)):
         return DiscreteTF(_shaped(nums, cols), dens[0], dt)  # as it is: exact, not cancelled
     return DiscreteTF.from_expr(_shaped([n / d for n, d in zip(nums, dens, strict=True)], cols), dt)
-
-
-def _shaped(values: list, cols: int):
-    """SymPy values (not text) as a matrix of ``cols`` columns, or the one value for 1 x 1."""
-    if len(values) == 1:
-        return values[0]
-    out = sp.zeros(len(values) // cols, cols)
-    for k, value in enumerate(values):
-        out[k // cols, k % cols] = value
-    return out
 
 
 def ss_to_sympy(R: Realization):
