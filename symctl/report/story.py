@@ -217,11 +217,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         den = descending_latex(f.G2.den)
         zeros = SH.zeros_tex((*f.sensor_eps, *f.actuator_eps))
         if not SH.fits("G_2(z)", zeros):
-            zeros = (
-                SH.zeros_tex(f.sensor_eps, product=True)
-                + " "
-                + SH.zeros_tex(f.actuator_eps, product=True)
-            )
+            zeros = " ".join(SH.zeros_tex(e, product=True) for e in (f.sensor_eps, f.actuator_eps))
         f_N, f_coeffs, sigma_rows = _remainder(res)
         c = SH.remainder_symbols(f_coeffs)
         remainder = descending_latex(SH.remainder_poly(c))
