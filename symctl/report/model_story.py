@@ -406,13 +406,9 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
                 "final / peak",
             ),
             tuple(
-                (SH.fmt(a), SH.fmt(d), SH.fmt(r), SH.fmt(e))
-                for a, d, r, e in zip(
-                    nl.amplitudes,
-                    nl.max_deviation,
-                    nl.relative_deviation,
-                    nl.final_deviation,
-                    strict=True,
+                tuple(map(SH.fmt, row))
+                for row in np.column_stack(
+                    [nl.amplitudes, nl.max_deviation, nl.relative_deviation, nl.final_deviation]
                 )
             ),
         ),
