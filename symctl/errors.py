@@ -6,6 +6,8 @@ names the offending argument and its value; the command line prints it as one li
 
 from __future__ import annotations
 
+import functools
+
 __all__ = [
     "DimensionError",
     "LatexError",
@@ -132,14 +134,8 @@ class NotRealizableError(SymctlError, ValueError):
 class ModelFileError(ParameterError):
     """A model file that cannot be read: one line, ``FILE:LINE: FIELD: problem``.
 
-    Attributes
-    ----------
-    path : str
-        The file (``"<text>"`` for a string).
-    line : int or None
-        The line of the field (1-based), when it can be found.
-    field : str
-        The field, as a dotted path such as ``states[0].rhs``.
+    Its attributes ``path`` (``"<text>"`` for a string), ``line`` (1-based, None when not found)
+    and ``field`` (a dotted path such as ``states[0].rhs``) say where.
 
     Examples
     --------
@@ -155,8 +151,5 @@ class ModelFileError(ParameterError):
 
     def __reduce__(self):
         """Pickled with its parts (the default would read the whole message as the problem)."""
-        return _model_file_error, (self.problem, self.path, self.line, self.field)
-
-
-def _model_file_error(problem: str, path: str, line, field: str) -> ModelFileError:
-    return ModelFileError(problem, path=path, line=line, field=field)
+        parts = {"path": self.path, "line": self.line, "field": self.field}
+        return functools.partial(ModelFileError, **parts), (self.problem,)

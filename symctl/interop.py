@@ -1,6 +1,21 @@
-"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md):
-``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`, the
-sampling time kept (``dt=True`` is ``dt=None``), continuous time refused."""
+"""Conversions between symctl's objects and python-control, SciPy and SymPy (docs/interop.md).
+
+``tf_*`` convert a :class:`~symctl.DiscreteTF`, ``ss_*`` a :class:`~symctl.Realization`
+(``(F, H, M, N)`` as ``(A, B, C, D)``); the objects' ``to_*``/``from_*`` methods call them.
+python-control and SciPy hold numbers (free symbols are a ParameterError), SymPy holds the
+symbols exactly. ``dt`` is kept both ways, their ``dt=True`` being symctl's ``dt=None``;
+continuous time is a ParameterError, another type a SymctlTypeError naming the argument.
+SymPy 1.14 has no sampling time: give it back with ``dt=``.
+
+>>> import sympy as sp
+>>> from symctl import DiscreteTF, z
+>>> from symctl.interop import tf_from_sympy, tf_to_control, tf_to_sympy
+>>> G = DiscreteTF.from_expr(sp.Symbol("K") / (z - sp.Rational(1, 2)), dt=sp.Rational(1, 10))
+>>> tf_from_sympy(tf_to_sympy(G), dt=sp.Rational(1, 10)) == G
+True
+>>> tf_to_control(G.subs({sp.Symbol("K"): 2})).dt
+0.1
+"""
 
 from __future__ import annotations
 
@@ -59,13 +74,24 @@ def _z_expr(coeffs) -> sp.Expr:
     return sp.Poly([float(c) for c in np.atleast_1d(coeffs)], z).as_expr()
 
 
-def _z_matrix(nums, dens=None) -> sp.Matrix:
-    """The matrix of ``nums[i][j] / dens[i][j]`` (coefficient lists) as expressions in z."""
-    out = sp.zeros(len(nums), len(nums[0]))
-    for i, row in enumerate(nums):
-        for j, coeffs in enumerate(row):
-            out[i, j] = _z_expr(coeffs) / (1 if dens is None else _z_expr(dens[i][j]))
+def _shaped(values: list, cols: int):
+    """SymPy values (not text) as a matrix of ``cols`` columns, or the one value for 1 x 1."""
+    if len(values) == 1:
+        return values[0]
+    out = sp.zeros(len(values) // cols, cols)
+    for k, value in enumerate(values):
+        out[k // cols, k % cols] = value
     return out
+
+
+def _z_matrix(nums, dens=None):
+    """``nums[i][j] / dens[i][j]`` (coefficient lists) in z, shaped by :func:`_shaped`."""
+    ratios = [
+        _z_expr(coeffs) / (1 if dens is None else _z_expr(dens[i][j]))
+        for i, row in enumerate(nums)
+        for j, coeffs in enumerate(row)
+    ]
+    return _shaped(ratios, len(nums[0]))
 
 
 def _their_dt(dt):
@@ -74,29 +100,7 @@ def _their_dt(dt):
 
 
 def tf_to_control(G: DiscreteTF) -> control.TransferFunction:
-    """``control.TransferFunction`` (dt kept) of a numeric :class:`DiscreteTF`.
-
-    Parameters
-    ----------
-    G : DiscreteTF
-        Numeric, SISO or MIMO.
-
-    Returns
-    -------
-    control.TransferFunction
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        ``G`` not a DiscreteTF; free symbols in ``G``.
-
-    Examples
-    --------
-    >>> from symctl import DiscreteTF, z
-    >>> from symctl.interop import tf_to_control
-    >>> tf_to_control(DiscreteTF.from_expr(1 / (z - 0.5))).dt
-    True
-    """
+    """``control.TransferFunction`` of a numeric :class:`DiscreteTF` (SISO or MIMO)."""
     den, nums = _numeric(G)
     if G.is_siso:
         return control.tf(nums[0][0], den, _their_dt(G.dt))
@@ -110,86 +114,21 @@ def _discrete(sys):
 
 
 def tf_from_control(sys) -> DiscreteTF:
-    """A :class:`DiscreteTF`, in lowest terms, from a discrete python-control system.
-
-    Parameters
-    ----------
-    sys : control.TransferFunction or control.StateSpace
-        Discrete-time (``dt > 0`` or ``True``).
-
-    Returns
-    -------
-    DiscreteTF
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        Not a python-control system; a continuous-time system.
-
-    Examples
-    --------
-    >>> import control
-    >>> from symctl.interop import tf_from_control
-    >>> tf_from_control(control.tf([1], [1, -0.5], True)).dt is None
-    True
-    """
+    """A :class:`DiscreteTF`, in lowest terms, of a discrete python-control system."""
     dt = _discrete(sys)
     tf = control.tf(sys)
-    entries = _z_matrix(tf.num_array, tf.den_array)
-    return DiscreteTF.from_expr(entries if entries.shape != (1, 1) else entries[0, 0], dt=dt)
+    return DiscreteTF.from_expr(_z_matrix(tf.num_array, tf.den_array), dt=dt)
 
 
 def ss_to_control(R: Realization) -> control.StateSpace:
-    """A discrete ``control.StateSpace``, ``(F, H, M, N)`` as ``(A, B, C, D)``, dt kept.
-
-    Parameters
-    ----------
-    R : Realization
-
-    Returns
-    -------
-    control.StateSpace
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        ``R`` not a Realization; free symbols in ``R``.
-
-    Examples
-    --------
-    >>> from symctl import Realization
-    >>> from symctl.interop import ss_to_control
-    >>> ss_to_control(Realization([[0.5]], [[1]], [[2]], 0, dt=0.1)).dt
-    0.1
-    """
+    """A ``control.StateSpace`` of a numeric :class:`Realization`."""
     F, H, M, N = _checked(R, Realization, "R").numeric()
     return control.ss(F, H, M, N, _their_dt(R.dt))
 
 
 def ss_from_control(sys) -> Realization:
-    """A :class:`~symctl.Realization` of a discrete python-control system.
-
-    Parameters
-    ----------
-    sys : control.StateSpace or control.TransferFunction
-        Discrete-time; a transfer function is realized in the controllable canonical form.
-
-    Returns
-    -------
-    Realization
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        Not a python-control system; a continuous-time system, or an improper transfer function.
-
-    Examples
-    --------
-    >>> import control
-    >>> from symctl.interop import ss_from_control
-    >>> ss_from_control(control.tf([1], [1, -0.5], 0.1)).to_tf().expr
-    1.0/(z - 0.5)
-    """
+    """A :class:`Realization` of a discrete python-control system (a transfer function in the
+    column-wise controllable canonical form; improper ones refused)."""
     dt = _discrete(sys)
     if isinstance(sys, control.TransferFunction):
         return Realization(*canonical_columns(sys.num_array, sys.den_array, "sys"), dt)
@@ -212,30 +151,8 @@ def _scipy_dt(sys):
 
 
 def tf_to_scipy(G: DiscreteTF) -> signal.TransferFunction:
-    """A discrete ``scipy.signal.TransferFunction`` of a numeric :class:`DiscreteTF` with one input.
-
-    Parameters
-    ----------
-    G : DiscreteTF
-        Numeric, SISO or SIMO (one ``num`` row per output).
-
-    Returns
-    -------
-    scipy.signal.TransferFunction
-
-    Raises
-    ------
-    SymctlTypeError, DimensionError, ParameterError
-        ``G`` not a DiscreteTF; ``G`` with more than one input; free symbols in ``G``.
-
-    Examples
-    --------
-    >>> from symctl import DiscreteTF, z
-    >>> from symctl.interop import tf_to_scipy
-    >>> sys = tf_to_scipy(DiscreteTF.from_expr((z + 2) / (z - 0.5), dt=0.1))
-    >>> sys.num.tolist(), sys.den.tolist(), sys.dt
-    ([1.0, 2.0], [1.0, -0.5], 0.1)
-    """
+    """A ``scipy.signal.TransferFunction`` of a numeric :class:`DiscreteTF` with one input (SISO
+    or SIMO: one ``num`` row per output); more inputs are a DimensionError (use ``ss_to_scipy``)."""
     if _checked(G, DiscreteTF, "G").shape[1] != 1:
         raise DimensionError(
             f"G: scipy.signal.TransferFunction holds one input, G has shape {G.shape}; "
@@ -263,92 +180,22 @@ def _scipy_tf_parts(sys) -> tuple[list[list[np.ndarray]], np.ndarray]:
 
 
 def tf_from_scipy(sys) -> DiscreteTF:
-    """A :class:`DiscreteTF` from a discrete ``scipy.signal`` system, with its coefficients.
-
-    Parameters
-    ----------
-    sys : scipy.signal.dlti
-        A discrete ``TransferFunction`` (SISO or SIMO), ``ZerosPolesGain`` or
-        ``StateSpace`` (any shape: ``scipy.signal.ss2tf`` input by input).
-
-    Returns
-    -------
-    DiscreteTF
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        Not a discrete SciPy system; a continuous-time system (``scipy.signal.lti``).
-
-    Examples
-    --------
-    >>> from scipy import signal
-    >>> from symctl.interop import tf_from_scipy
-    >>> G = tf_from_scipy(signal.dlti([2.0], [1.0, -0.5], dt=0.1))
-    >>> G.expr, G.dt
-    (2.0/(z - 0.5), 0.100000000000000)
-    """
+    """A :class:`DiscreteTF` of a discrete SciPy ``TransferFunction`` (SISO or SIMO),
+    ``ZerosPolesGain`` or ``StateSpace`` (any shape, ``scipy.signal.ss2tf`` input by input)."""
     dt = _scipy_dt(sys)
     nums, den = _scipy_tf_parts(sys)
     return DiscreteTF(_z_matrix(nums), _z_expr(den), dt)
 
 
 def ss_to_scipy(R: Realization) -> signal.StateSpace:
-    """A discrete ``scipy.signal.StateSpace``, ``(F, H, M, N)`` as ``(A, B, C, D)``, dt kept.
-
-    Parameters
-    ----------
-    R : Realization
-
-    Returns
-    -------
-    scipy.signal.StateSpace
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        ``R`` not a Realization; free symbols in ``R``.
-
-    Examples
-    --------
-    >>> from symctl import Realization
-    >>> from symctl.interop import ss_to_scipy
-    >>> sys = ss_to_scipy(Realization([[0.5]], [[1]], [[2]], 0, dt=0.1))
-    >>> sys.A.tolist(), sys.C.tolist(), sys.dt
-    ([[0.5]], [[2.0]], 0.1)
-    """
+    """A ``scipy.signal.StateSpace`` of a numeric :class:`Realization`."""
     F, H, M, N = _checked(R, Realization, "R").numeric()
     return signal.StateSpace(F, H, M, N, dt=_their_dt(R.dt))
 
 
 def ss_from_scipy(sys) -> Realization:
-    """A :class:`~symctl.Realization` of a discrete ``scipy.signal`` system.
-
-    Parameters
-    ----------
-    sys : scipy.signal.dlti
-        A ``StateSpace``, or a ``TransferFunction`` or ``ZerosPolesGain`` (realized in
-        the controllable canonical form).
-
-    Returns
-    -------
-    Realization
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        Not a discrete SciPy system; a continuous-time system, or an improper transfer function.
-
-    Examples
-    --------
-    >>> from scipy import signal
-    >>> from symctl.interop import ss_from_scipy
-    >>> R = ss_from_scipy(signal.dlti([1.0, 2.0], [1.0, -0.5, 0.06], dt=0.1))
-    >>> R.F, R.M, R.dt
-    (Matrix([
-    [  0.0, 1.0],
-    [-0.06, 0.5]]), Matrix([[2.0, 1.0]]), 0.100000000000000)
-    """
+    """A :class:`Realization` of a discrete SciPy system (a transfer function or
+    zeros-poles-gain in the controllable canonical form)."""
     dt = _scipy_dt(sys)
     if isinstance(sys, signal.StateSpace):
         return Realization(sys.A, sys.B, sys.C, sys.D, dt)
@@ -400,33 +247,8 @@ def _variable(sys, var, discrete: bool) -> sp.Symbol:
 
 
 def tf_to_sympy(G: DiscreteTF):
-    """``G`` as a ``sympy.physics.control`` transfer function (a ``TransferFunctionMatrix`` over its
-    common denominator when MIMO), exactly; SymPy 1.14 drops ``dt``, a later SymPy's
-    ``DiscreteTransferFunction`` carries it (``dt=None`` as 1).
-
-    Parameters
-    ----------
-    G : DiscreteTF
-
-    Returns
-    -------
-    sympy.physics.control.TransferFunction, DiscreteTransferFunction or TransferFunctionMatrix
-
-    Raises
-    ------
-    SymctlTypeError
-        ``G`` not a DiscreteTF.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import DiscreteTF, z
-    >>> from symctl.interop import tf_to_sympy
-    >>> K, a = sp.symbols("K a")
-    >>> sys = tf_to_sympy(DiscreteTF.from_expr(K * z / (z**2 - a), dt=sp.Rational(1, 100)))
-    >>> sys.num, sys.den, sys.var
-    (K*z, -a + z**2, z)
-    """
+    """``G`` as a SymPy ``TransferFunction`` (MIMO: a ``TransferFunctionMatrix`` over its common
+    denominator), or a later SymPy's ``DiscreteTransferFunction`` carrying ``dt``."""
     G = _checked(G, DiscreteTF, "G")
     lib = _SymPy()
 
@@ -443,38 +265,11 @@ def tf_to_sympy(G: DiscreteTF):
 
 
 def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
-    """A :class:`DiscreteTF` from a ``sympy.physics.control`` system, exactly (symbols kept).
+    """A :class:`DiscreteTF` of a SymPy transfer function, matrix or state space, exactly.
 
-    Parameters
-    ----------
-    sys : TransferFunction, DiscreteTransferFunction, TransferFunctionMatrix or StateSpace
-        SymPy 1.14's classes are read as discrete, in ``z`` (Series, Parallel, Feedback:
-        ``.doit()`` first).
-    dt : number, symbol or None
-        The sampling time (SymPy 1.14), or one that must agree with the system's.
-    var : sympy Symbol, optional
-        The variable of ``sys`` that is the z-transform variable, when not ``z``.
-
-    Returns
-    -------
-    DiscreteTF
-        As written when all entries share one denominator, else in lowest terms.
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError
-        Another type, or a ``var`` that is not a Symbol; a continuous-time system, another
-        variable than z (or ``var``), a ``dt`` that disagrees, entries not rational in it.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import DiscreteTF, z
-    >>> from symctl.interop import tf_from_sympy, tf_to_sympy
-    >>> G = DiscreteTF.from_expr(sp.Symbol("K") / (z - sp.Rational(1, 2)), dt=sp.Rational(1, 10))
-    >>> back = tf_from_sympy(tf_to_sympy(G), dt=sp.Rational(1, 10))
-    >>> back == G, back.expr
-    (True, K/(z - 1/2))
+    SymPy 1.14's classes are read as discrete in ``z``, or in ``var`` when given; ``dt`` is the
+    sampling time (or must agree with the system's). Entries over one common denominator come
+    back as written, others in lowest terms; Series, Parallel, Feedback need ``.doit()`` first.
     """
     lib = _SymPy()
     if isinstance(sys, lib.sss):
@@ -507,43 +302,9 @@ def tf_from_sympy(sys, dt=None, *, var=None) -> DiscreteTF:
     return DiscreteTF.from_expr(_shaped([n / d for n, d in zip(nums, dens, strict=True)], cols), dt)
 
 
-def _shaped(values: list, cols: int):
-    """SymPy values (not text) as a matrix of ``cols`` columns, or the one value for 1 x 1."""
-    if len(values) == 1:
-        return values[0]
-    out = sp.zeros(len(values) // cols, cols)
-    for k, value in enumerate(values):
-        out[k // cols, k % cols] = value
-    return out
-
-
 def ss_to_sympy(R: Realization):
-    """``R`` as a ``sympy.physics.control`` state space, exactly (symbols kept); SymPy 1.14 drops
-    ``dt``, a later SymPy's ``DiscreteStateSpace`` carries it.
-
-    Parameters
-    ----------
-    R : Realization
-
-    Returns
-    -------
-    sympy.physics.control.StateSpace or DiscreteStateSpace
-
-    Raises
-    ------
-    SymctlTypeError
-        ``R`` not a Realization.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import Realization
-    >>> from symctl.interop import ss_to_sympy
-    >>> e, C = sp.symbols("epsilon C")
-    >>> sys = ss_to_sympy(Realization([[e]], [[C]], [[1]], 0))
-    >>> sys.A, sys.B
-    (Matrix([[epsilon]]), Matrix([[C]]))
-    """
+    """``R`` as a SymPy ``StateSpace`` (SymPy >= 1.13), or a later SymPy's ``DiscreteStateSpace``
+    carrying ``dt``."""
     R = _checked(R, Realization, "R")
     lib = _SymPy()
     if lib.ss is None:
@@ -554,34 +315,8 @@ def ss_to_sympy(R: Realization):
 
 
 def ss_from_sympy(sys, dt=None, *, var=None) -> Realization:
-    """A :class:`~symctl.Realization` of a ``sympy.physics.control`` system, exactly.
-
-    Parameters
-    ----------
-    sys : StateSpace, DiscreteStateSpace or a SISO transfer function
-        A transfer function is realized in the controllable canonical form.
-    dt, var
-        As in :func:`tf_from_sympy` (``var``: transfer functions only).
-
-    Returns
-    -------
-    Realization
-
-    Raises
-    ------
-    SymctlTypeError, ParameterError, DimensionError
-        Another type; continuous time or a ``dt`` that disagrees; a transfer function matrix.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> from symctl import Realization
-    >>> from symctl.interop import ss_from_sympy, ss_to_sympy
-    >>> e, C = sp.symbols("epsilon C")
-    >>> R = Realization([[e]], [[C]], [[1]], 0, dt=sp.Rational(1, 100))
-    >>> ss_from_sympy(ss_to_sympy(R), dt=sp.Rational(1, 100)) == R
-    True
-    """
+    """A :class:`Realization` of a SymPy state space, or of a SISO transfer function (controllable
+    canonical form); ``dt`` and ``var`` as in :func:`tf_from_sympy`; a matrix is refused."""
     lib = _SymPy()
     if isinstance(sys, lib.tfs):
         return controllable_canonical(tf_from_sympy(sys, dt, var=var))

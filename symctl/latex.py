@@ -1,5 +1,29 @@
 r"""LaTeX export of derived objects, sympy expressions and equations, with the paper's symbol
 names (:math:`\delta_f`, :math:`\epsilon_1`, ...), for papers, Jupyter and scripts.
+
+:func:`to_latex` writes one object as bare math, :func:`equations` splits a derived object into
+``(lhs, rhs)`` pairs, :func:`equation`, :func:`align` and :func:`export` wrap them in an
+environment and :func:`document` in a standalone document. Floats get ``digits`` significant
+digits (an integer >= 1). A bad ``digits``, ``label`` (a LaTeX label: letters, digits and
+``:._-``), ``labels`` count, ``name`` for several equations or package name is a
+ParameterError naming it; an object that cannot be written is a SymctlTypeError.
+
+>>> from symctl import controllable_canonical, controller_tf, factor
+>>> from symctl.latex import align, document, export, number
+>>> number(0.000123456789), number(float("inf")), number(1e20)
+('0.000123457', '\\infty', '1 \\times 10^{20}')
+>>> print(align([("a", 1), ("b", 2)], labels=["eq:a", None]))
+\begin{align}
+  a &= 1 \label{eq:a} \\
+  b &= 2
+\end{align}
+>>> print(export(controllable_canonical(factor(controller_tf(2)).G2), numbered=False))
+\begin{align*}
+  F &= \left[\begin{matrix}0 & 1\\K_{2} & K_{1}\end{matrix}\right] \\
+  H &= \left[\begin{matrix}0\\1\end{matrix}\right] \\
+  M &= \left[...
+>>> document(export(1.5, name="a"), title="Demo").splitlines()[0]
+'\\documentclass[11pt]{article}'
 """
 
 from __future__ import annotations
@@ -29,25 +53,7 @@ PACKAGES = ("amsmath", "amssymb", "graphicx")
 
 
 def number(value: float, digits: int = DIGITS) -> str:
-    r"""A real number in LaTeX: ``digits`` significant digits, powers of ten, :math:`\infty`.
-
-    Parameters
-    ----------
-    value : float
-        Any real number (also ``inf`` and ``nan``).
-    digits : int
-        Significant digits.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> from symctl.latex import number
-    >>> number(0.000123456789), number(float("inf")), number(-2.0), number(1e20)
-    ('0.000123457', '\\infty', '-2', '1 \\times 10^{20}')
-    """
+    r"""A real number in LaTeX: ``digits`` significant digits, ``\times 10^{n}``, ``\infty``, NaN."""
     x = float(value)
     if math.isnan(x):
         return r"\mathrm{NaN}"
@@ -79,35 +85,9 @@ def _round_floats(expr, digits: int):
 def to_latex(obj, *, digits: int = DIGITS) -> str:
     r"""LaTeX of one object, without an environment.
 
-    Parameters
-    ----------
-    obj : object
-        A sympy expression, matrix or ``Eq``; a number or NumPy array (a ``bmatrix``,
-        :math:`\infty` for ``inf``); a string (LaTeX already); or any object with a
-        ``latex()`` method (every derived object of symctl).
-    digits : int
-        Significant digits of floats (an integer >= 1).
-
-    Returns
-    -------
-    str
-        The math, without an environment.
-
-    Raises
-    ------
-    ParameterError, SymctlTypeError
-        ``digits`` not an integer >= 1, an array of more than 2 dimensions; ``obj`` not writable.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from symctl.latex import to_latex
-    >>> to_latex(np.array([[0.0, 1.0], [np.inf, 0.0]]))
-    '\\begin{bmatrix}0 & 1 \\\\ \\infty & 0\\end{bmatrix}'
-    >>> from symctl.symbols import epsilon_1, gain_symbols
-    >>> K0, K1, K2 = gain_symbols(2)
-    >>> to_latex(K1 - epsilon_1 + 0.123456789)
-    'K_{1} - \\epsilon_{1} + 0.123457'
+    ``obj`` is a sympy expression, matrix or ``Eq``; a number or array of at most 2 dimensions
+    (a ``bmatrix``); a string (LaTeX already); or anything with a ``latex()`` method (every
+    derived object of symctl); anything else is a SymctlTypeError.
     """
     positive_int(digits, "digits")
     if isinstance(obj, str):
@@ -187,32 +167,11 @@ def _rules() -> dict[type, Callable[[object, Callable[[object], str]], Pairs]]:
 
 
 def equations(obj, *, digits: int = DIGITS) -> list[tuple[str | None, str]]:
-    r"""An object as a list of ``(lhs, rhs)`` LaTeX pairs (``lhs`` None: a bare formula).
+    r"""``obj`` as a list of ``(lhs, rhs)`` LaTeX pairs (``lhs`` None: a bare formula).
 
-    Parameters
-    ----------
-    obj : object
-        A derived object (a plant gives ``A`` and ``B``, a realization ``F, H, M, N``, a
-        circuit one equation per neuron, ...), a :class:`sympy.Eq`, a pair ``(lhs, rhs)``, a
-        mapping ``{lhs: rhs}``, or a list of these; anything else is one bare formula.
-    digits : int
-        Significant digits of floats.
-
-    Returns
-    -------
-    list of (str or None, str)
-
-    Raises
-    ------
-    ParameterError, SymctlTypeError
-        ``digits`` is not an integer >= 1; a part of ``obj`` cannot be written as LaTeX.
-
-    Examples
-    --------
-    >>> from symctl import MuscleModel
-    >>> from symctl.latex import equations
-    >>> equations(MuscleModel().discrete_symbolic())
-    [('A', '\\left[\\begin{matrix}e^{- \\frac{T_{s}}{\\tau}}\\end{matrix}\\right]'), ...]
+    ``obj`` is a derived object (a plant gives ``A`` and ``B``, a realization ``F, H, M, N``, a
+    circuit one equation per neuron, ...), a ``sympy.Eq``, a pair, a mapping ``{lhs: rhs}``, or
+    a list of these; anything else is one bare formula.
     """
 
     def tex(value) -> str:
@@ -244,35 +203,8 @@ def _label(label) -> str:
 
 
 def equation(lhs, rhs=None, *, label: str | None = None, numbered: bool = True) -> str:
-    r"""An ``equation`` environment: ``lhs = rhs`` (or ``lhs`` alone when ``rhs`` is None).
-
-    Parameters
-    ----------
-    lhs, rhs : object
-        Anything :func:`to_latex` writes (a string is LaTeX already).
-    label : str, optional
-        A LaTeX label (letters, digits and ``:._-``); only when numbered.
-    numbered : bool
-        ``equation``, or ``equation*`` when False.
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ParameterError, SymctlTypeError
-        ``label`` is not a LaTeX label; ``lhs`` or ``rhs`` cannot be written as LaTeX.
-
-    Examples
-    --------
-    >>> from symctl.latex import equation
-    >>> print(equation("A", 0.6065306597, label="eq:A"))
-    \begin{equation}
-      A = 0.606531
-      \label{eq:A}
-    \end{equation}
-    """
+    r"""An ``equation`` environment ``lhs = rhs`` (``lhs`` alone when ``rhs`` is None); ``label``
+    (letters, digits and ``:._-``) only when ``numbered``, else ``equation*``."""
     body = to_latex(lhs) if rhs is None else f"{to_latex(lhs)} = {to_latex(rhs)}"
     env = "equation" if numbered else "equation*"
     tag = _label(label) if numbered else ""
@@ -286,35 +218,9 @@ def align(
     labels: Iterable[str | None] | None = None,
     numbered: bool = True,
 ) -> str:
-    r"""An ``align`` environment, one row per equation, aligned at the ``=`` signs.
-
-    Parameters
-    ----------
-    rows : iterable
-        The equations, as for :func:`equations`.
-    labels : iterable of str or None, optional
-        One label (or None) per row.
-    numbered : bool
-        ``align``, or ``align*`` (no labels) when False.
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ParameterError
-        No rows; as many labels as rows are needed; a label is not a LaTeX label.
-
-    Examples
-    --------
-    >>> from symctl.latex import align
-    >>> print(align([("a", 1), ("b", 2)], labels=["eq:a", None]))
-    \begin{align}
-      a &= 1 \label{eq:a} \\
-      b &= 2
-    \end{align}
-    """
+    r"""An ``align`` environment, one row per equation of ``rows`` (as for :func:`equations`),
+    aligned at ``=``, with one label or None per row; ``align*`` without labels when not
+    ``numbered``."""
     pairs = equations(list(rows) if not isinstance(rows, Mapping) else rows)
     if not pairs:
         raise ParameterError("rows: no equations to write")
@@ -338,38 +244,8 @@ def export(
     numbered: bool = True,
     digits: int = DIGITS,
 ) -> str:
-    r"""Any derived object (or list of them) as one ``equation``, or an ``align`` for several.
-
-    Parameters
-    ----------
-    obj : object
-        Anything :func:`equations` accepts.
-    name : str, optional
-        The left-hand side of a single equation.
-    label : str, optional
-        A LaTeX label (on the first row of an ``align``).
-    numbered, digits : bool, int
-        Numbered environments (else starred); significant digits of floats.
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ParameterError
-        No equations; ``name`` given for several equations; a bad ``label`` or ``digits``.
-
-    Examples
-    --------
-    >>> from symctl import controllable_canonical, controller_tf, factor
-    >>> from symctl.latex import export
-    >>> print(export(controllable_canonical(factor(controller_tf(2)).G2), numbered=False))
-    \begin{align*}
-      F &= \left[\begin{matrix}0 & 1\\K_{2} & K_{1}\end{matrix}\right] \\
-      H &= \left[\begin{matrix}0\\1\end{matrix}\right] \\
-      M &= \left[...
-    """
+    r"""Anything :func:`equations` accepts as one ``equation`` (its left side ``name`` when given)
+    or, for several, an ``align`` with ``label`` on its first row."""
     pairs = equations(obj, digits=digits)
     if not pairs:
         raise ParameterError("obj: no equations to write")
@@ -395,33 +271,8 @@ def document(
     packages: Iterable[str] = (),
     preamble: str = "",
 ) -> str:
-    r"""A standalone LaTeX document around ``body``, loading :data:`PACKAGES` and ``geometry``.
-
-    Parameters
-    ----------
-    body : str or iterable of str
-        The parts, separated by blank lines.
-    title, author : str
-        With a title, ``\maketitle`` (no date).
-    packages, preamble : iterable of str, str
-        Extra packages to load; LaTeX before ``\begin{document}``.
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ParameterError
-        A package name that is not a package name.
-
-    Examples
-    --------
-    >>> from symctl.latex import document, equation
-    >>> text = document(equation("a", 1), title="Demo")
-    >>> text.splitlines()[0], text.rstrip().splitlines()[-1]
-    ('\\documentclass[11pt]{article}', '\\end{document}')
-    """
+    r"""A standalone ``article`` around ``body`` (parts separated by blank lines), loading
+    ``geometry``, :data:`PACKAGES` and ``packages``; ``\maketitle`` (no date) when titled."""
     extra = list(packages)
     for p in extra:
         if not isinstance(p, str) or not re.fullmatch(r"[A-Za-z0-9\-]+", p):

@@ -20,6 +20,8 @@ OVERVIEW_MAX = 24  # universal classes on the overview figure (the sparsest firs
 
 TABLE_ROWS = 60  # classes in the documents' table (atlas.json lists every class)
 _COLUMNS = ("class", "neurons", "synapses", "branches", "pattern (F / H / M)", "verdict", "method")
+_CANDIDATE_COLUMNS = ("class", "pattern (F / H / M)", r"$\epsilon$", "kind", "neurons", "synapses")
+_CANDIDATE_COLUMNS += ("compatible",)
 
 
 def paper_realizations(A) -> dict:
@@ -95,14 +97,14 @@ def atlas_blocks(A, drawn=()) -> list:
     methods = Counter((c.status, c.evidence.method) for c in A.classes)
     sizes = f"{s['sizes'][0]}..{s['sizes'][1]}" + ("" if s["complete"] else " (not exhaustive)")
     counts = {
-        "patterns": str(s["patterns"]),
-        "orbits": str(s["canonical"]),
-        "minimal": str(s["minimal"]),
-        "full rank": str(s["full_rank"]),
-        "classes": str(len(A.classes)),
-        "universal": str(len(A.universal_classes)),
-        "conjectured": str(len(A.conjectured_classes)),
-        "undecided": str(s["undecided"]),
+        "patterns": s["patterns"],
+        "orbits": s["canonical"],
+        "minimal": s["minimal"],
+        "full rank": s["full_rank"],
+        "classes": len(A.classes),
+        "universal": len(A.universal_classes),
+        "conjectured": len(A.conjectured_classes),
+        "undecided": s["undecided"],
         "sizes": sizes,
         "seconds": f"{s['seconds']:g}",
     }
@@ -117,7 +119,7 @@ def atlas_blocks(A, drawn=()) -> list:
             "real order-$n$ $G_2$ (complex poles, real poles of either sign, any numerator). Only "
             "patterns whose generic realization is minimal are kept."
         ),
-        Table(tuple(counts), (tuple(counts.values()),)),
+        Table(tuple(counts), (tuple(map(str, counts.values())),)),
         *_scope(A),
         *_claim(A),
         Heading("How each verdict was reached", 2),
@@ -308,15 +310,7 @@ def paper_blocks(res, shown) -> list:
     )
     blocks.append(
         Table(
-            (
-                "class",
-                "pattern (F / H / M)",
-                "$\\epsilon$",
-                "kind",
-                "neurons",
-                "synapses",
-                "compatible",
-            ),
+            _CANDIDATE_COLUMNS,
             tuple(
                 (
                     c.circuit_class.label,

@@ -20,10 +20,7 @@ def _poles(values) -> list[list[float]]:
 
 def _plant_poles(kf) -> np.ndarray:
     """The filter's poles on the plant, :math:`\\operatorname{eig}(A - LC)` (the others are 0)."""
-    n = kf.system.n
-    A = np.array(kf.system.plant.A.evalf(), dtype=float)
-    C = np.array(kf.C.evalf(), dtype=float)
-    return np.linalg.eigvals(A - kf.L[:n] @ C)
+    return np.linalg.eigvals(SH.num(kf.system.plant.A) - kf.L[: kf.system.n] @ SH.num(kf.C))
 
 
 def estimation_json(res) -> dict:
@@ -33,7 +30,7 @@ def estimation_json(res) -> dict:
     cost = {"measured": mc.cost, "standard_error": mc.cost_se, "predicted": mc.predicted_cost}
     return {
         "form": FORM,
-        "C": np.array(kf.C.evalf(), dtype=float).tolist(),
+        "C": SH.num(kf.C).tolist(),
         "outputs": [name for name, _ in res.spec.outputs],
         "W": kf.W.tolist(),
         "V": kf.V.tolist(),
@@ -67,7 +64,7 @@ def estimation_section(res) -> list[DocumentBlock]:
         return []
     s, n = kf.system, kf.system.n
     xs = res.names[0]
-    C = np.array(kf.C.evalf(), dtype=float)
+    C = SH.num(kf.C)
     seen = [x for j, x in enumerate(xs) if np.any(C[:, j])]
     intro = Text(
         f"The controller does not read the whole state: it measures $y = C x + v$, "

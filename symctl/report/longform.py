@@ -54,7 +54,7 @@ class _Reader:
     """A cursor over the tokens of a LaTeX string."""
 
     def __init__(self, tex: str) -> None:
-        self.tokens = [t for t in _TOKEN.findall(tex)]
+        self.tokens = _TOKEN.findall(tex)
         self.i = 0
 
     def next(self) -> str | None:

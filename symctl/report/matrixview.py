@@ -3,6 +3,7 @@ r"""Matrices laid out the way a paper shows them, so that every display fits the
 from __future__ import annotations
 
 from collections import Counter
+from itertools import groupby
 
 import numpy as np
 import sympy as sp
@@ -43,18 +44,14 @@ def _is(e, value) -> bool:
 
 def _runs(items: list[str]) -> str:
     """Items joined by commas, a run of four or more equal ones braced with its length."""
-    out, k = [], 0
-    while k < len(items):
-        j = k
-        while j < len(items) and items[j] == items[k]:
-            j += 1
-        run = j - k
+    out = []
+    for item, group in groupby(items):
+        run = len(list(group))
         out.append(
-            rf"\underbrace{{{items[k]}, \dots, {items[k]}}}_{{{run}}}"
+            rf"\underbrace{{{item}, \dots, {item}}}_{{{run}}}"
             if run >= 4
-            else ", ".join(items[k:j])
+            else ", ".join([item] * run)
         )
-        k = j
     return ", ".join(out)
 
 
@@ -84,30 +81,17 @@ def _sparse_table(lhs: str, E, background, tex) -> list[tuple[str, str, str]]:
     found: dict[tuple[int, int], tuple[str, str, str]] = {}
     for k in range(-(n - 1), m):
         cells = [(i, i + k) for i in range(n) if 0 <= i + k < m]
-        run: list[tuple[int, int]] = []
-        for cell in [*cells, None]:
-            same = (
-                cell is not None
-                and run
-                and _is(E[cell[0]][cell[1]], E[run[0][0]][run[0][1]])
-                and cell[0] == run[-1][0] + 1
-            )
-            if same:
-                run.append(cell)
+        for value, group in groupby(cells, key=lambda cell: E[cell[0]][cell[1]]):
+            run = list(group)
+            if _is(value, background):
                 continue
-            if run and not _is(E[run[0][0]][run[0][1]], background):
-                value = f"${tex(E[run[0][0]][run[0][1]])}$"
-                if len(run) >= 3:
-                    lo, hi = run[0][0] + 1, run[-1][0] + 1
-                    found[run[0]] = (
-                        f"${_index(lhs, 'i', _offset(k))}$",
-                        f"$i = {lo}, \\dots, {hi}$",
-                        value,
-                    )
-                else:
-                    for i, j in run:
-                        found[(i, j)] = (f"${_index(lhs, i + 1, j + 1)}$", "", value)
-            run = [cell] if cell is not None else []
+            shown = f"${tex(value)}$"
+            if len(run) >= 3:
+                rows = f"$i = {run[0][0] + 1}, \\dots, {run[-1][0] + 1}$"
+                found[run[0]] = (f"${_index(lhs, 'i', _offset(k))}$", rows, shown)
+            else:
+                for i, j in run:
+                    found[(i, j)] = (f"${_index(lhs, i + 1, j + 1)}$", "", shown)
     return [found[key] for key in sorted(found)]
 
 
@@ -167,31 +151,20 @@ def show_matrix(lhs: str, M, *, room: float | None = None, digits: int = L.DIGIT
         items = ", ".join(tex(e) for e in flat)
         return MatrixView([(lhs, f"({items})" + ("" if n == 1 else r"^{\top}"))])
     kind = _companion(E)
-    if kind is not None:
-        last = f"{n}"
+    if kind is not None:  # the pattern of ones drawn, the free row or column listed
+        corner = _index(lhs, n, n)
         if kind == "row":
-            free = [E[n - 1][j] for j in range(n)]
-            picture = (
-                r"\begin{bmatrix}0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\ "
-                + " & ".join(
-                    [_index(lhs, last, 1), _index(lhs, last, 2), r"\cdots", _index(lhs, last, last)]
-                )
-                + r"\end{bmatrix}"
-            )
-            names = (_index(lhs, last, 1), _index(lhs, last, last))
+            free, first = E[n - 1], _index(lhs, n, 1)
+            row = " & ".join([first, _index(lhs, n, 2), r"\cdots", ""])
+            picture = r"0 & 1 & & \\ & \ddots & \ddots & \\ & & 0 & 1 \\ " + row
         else:
-            free = [E[i][n - 1] for i in range(n)]
+            free, first = [E[i][n - 1] for i in range(n)], _index(lhs, 1, n)
             picture = (
-                r"\begin{bmatrix}0 & & & " + _index(lhs, 1, last) + r" \\ 1 & \ddots & & "
-                r"\vdots \\ & \ddots & 0 & \vdots \\ & & 1 & "
-                + _index(lhs, last, last)
-                + r"\end{bmatrix}"
+                rf"0 & & & {first} \\ 1 & \ddots & & \vdots \\ & \ddots & 0 & \vdots \\ & & 1 & "
             )
-            names = (_index(lhs, 1, last), _index(lhs, last, last))
         items = ", ".join(tex(e) for e in free)
-        return MatrixView(
-            [(lhs, picture + size), (rf"({names[0]}, \dots, {names[1]})", f"({items})")]
-        )
+        matrix = rf"\begin{{bmatrix}}{picture}{corner}\end{{bmatrix}}"
+        return MatrixView([(lhs, matrix + size), (rf"({first}, \dots, {corner})", f"({items})")])
     counts = Counter(flat)
     background, repeats = counts.most_common(1)[0]
     table = _sparse_table(lhs, E, background, tex)

@@ -95,8 +95,10 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
         delay_source = cite("Secs.", "optimal_delayed_controller", "simulations")
     else:
         delay_source = f"this run ({cite()}: {PAPER.sensor_delay} and {PAPER.actuator_delay})"
-    ours = "ours" if paper else "symctl"
-    none = f"ours ({cite()} states none)" if paper else "model file"
+
+    def ours(paper_says: str, otherwise: str = "symctl") -> str:
+        return f"ours ({cite()}{paper_says})" if paper else otherwise
+
     states, amplitude, start, length = spec.disturbance
     hit = names_tex([res.names[0][i] for i in states])
     unit = unit_text(spec.unit(res.names[0][states[0]]), amplitude)
@@ -106,12 +108,12 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
         (
             "cost weights $Q$, $R$",
             f"${_weight(res.system.Q_plant)}$, ${_weight(res.system.R)}$",
-            none,
+            ours(" states none", "model file"),
         ),
         (
             "pulse disturbance on " + hit,
             f"{amplitude:g}{unit} per step, steps {start} to {start + length - 1} of {spec.steps}",
-            f"{ours} ({cite()}: a unit pulse)" if paper else "model file",
+            ours(": a unit pulse", "model file"),
         ),
     ]
     if getattr(res, "factors", None) is not None:
@@ -120,22 +122,22 @@ def _parameter_rows(res, paper: bool) -> list[tuple[str, str, str]]:
             (
                 "section gains $C$ of $G_1$, $G_3$ in the simulations",
                 "1",
-                f"{ours} ({cite()}: any $C \\ne 0$)" if paper else "symctl",
+                ours(": any $C \\ne 0$"),
             ),
             (
                 "section poles $\\epsilon$ of the random realizations",
                 f"uniform on $[{lo:g}, {hi:g}]$, step ${1 / _EPS_GRID:g}$",
-                f"{ours} ({cite()}: random)" if paper else "symctl",
+                ours(": random"),
             ),
             (
                 "$P$ of the random general realization",
                 "entries $N(0, 1)$ to 0.01, well conditioned",
-                f"{ours} ({cite()}: random, full rank)" if paper else "symctl",
+                ours(": random, full rank"),
             ),
             (
                 "random realizations per circuit, their seed",
                 f"{spec.realizations}, seed {params['seed']}",
-                f"{ours} ({cite()} shows 4, 3, 2)" if paper else "model file",
+                ours(" shows 4, 3, 2", "model file"),
             ),
         ]
     return rows
@@ -298,24 +300,20 @@ def theorem(res) -> list[DocumentBlock]:
             return names[v - 1].replace("_", r"\_")
         return f"$v_{{{v}}}$"
 
-    head = (
-        "For every realization at once (a theorem, not a search): some structure of the "
-        "controller is compatible with this delay graph if and only if the relative degree of "
-        "$G$ reaches the delay of the fastest path from the sensor to the actuator (Theorem 1 "
-        "of symctl.compatibility.controller, proved there; a wire may carry an axon of several "
-        "steps)."
+    mimo = verdict.method.startswith("theorem 3")
+    head = "For every realization at once (a theorem, not a search): some structure of the " + (
+        "MIMO controller is compatible with this delay graph if and only if every nonzero "
+        "entry $G_{ij}$ has relative degree at least the delay of the fastest path from "
+        "input $j$'s sensor vertex to output $i$'s actuator vertex (Theorem 3 of "
+        "symctl.compatibility.controller, proved there)."
+        if mimo
+        else "controller is compatible with this delay graph if and only if the relative degree "
+        "of $G$ reaches the delay of the fastest path from the sensor to the actuator (Theorem "
+        "1 of symctl.compatibility.controller, proved there; a wire may carry an axon of "
+        "several steps)."
     )
-    if verdict.method.startswith("theorem 3"):
-        head = (
-            "For every realization at once (a theorem, not a search): some structure of the "
-            "MIMO controller is compatible with this delay graph if and only if every nonzero "
-            "entry $G_{ij}$ has relative degree at least the delay of the fastest path from "
-            "input $j$'s sensor vertex to output $i$'s actuator vertex (Theorem 3 of "
-            "symctl.compatibility.controller, proved there)."
-        )
     if not verdict.ok:
         return [Text(head + " Here: " + verdict.reason.split(";")[0] + ".")]
-    mimo = verdict.method.startswith("theorem 3")
     parts = verdict.parts
     rows = tuple(
         (
@@ -408,13 +406,9 @@ def nonlinear(res, figure) -> list[DocumentBlock]:
                 "final / peak",
             ),
             tuple(
-                (SH.fmt(a), SH.fmt(d), SH.fmt(r), SH.fmt(e))
-                for a, d, r, e in zip(
-                    nl.amplitudes,
-                    nl.max_deviation,
-                    nl.relative_deviation,
-                    nl.final_deviation,
-                    strict=True,
+                tuple(map(SH.fmt, row))
+                for row in np.column_stack(
+                    [nl.amplitudes, nl.max_deviation, nl.relative_deviation, nl.final_deviation]
                 )
             ),
         ),

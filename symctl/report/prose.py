@@ -55,12 +55,15 @@ def _tex_prose(text: str) -> str:
     return "".join(out)
 
 
+def _outside_math(text: str, change) -> str:
+    """``text`` with ``change`` applied to its prose, the parts outside ``$...$``."""
+    parts = text.split("$")
+    return "$".join(change(part) if k % 2 == 0 else part for k, part in enumerate(parts))
+
+
 def tex_text(text: str) -> str:
     r"""Prose for LaTeX: escaped outside ``$...$``, its marks as ``\cite``/``\ref``, the math kept."""
-    parts = text.split("$")
-    for i in range(0, len(parts), 2):
-        parts[i] = _tex_prose(parts[i])
-    return "$".join(parts)
+    return _outside_math(text, _tex_prose)
 
 
 def markdown_text(text: str, numbers: dict[str, int]) -> str:
@@ -75,10 +78,7 @@ def markdown_text(text: str, numbers: dict[str, int]) -> str:
         loc = f", {m['loc'].strip()}" if m["loc"] else ""
         return f"[{'??' if n is None else n}{loc}]"
 
-    parts = text.split("$")
-    for i in range(0, len(parts), 2):
-        parts[i] = MARK.sub(mark, parts[i])
-    return "$".join(parts)
+    return _outside_math(text, lambda prose: MARK.sub(mark, prose))
 
 
 VERBATIM_LINE = 96  # characters of a line of preformatted (footnotesize typewriter) text
@@ -97,16 +97,7 @@ def markdown_lines(text: str) -> list[str]:
     """Prose as lines of at most about 100 characters, never breaking inside ``$...$``."""
     if len(text) <= 100:
         return [text]
-    words, cur, in_math = [], "", False
-    for ch in text:  # a word ends at a space outside math
-        if ch == "$":
-            in_math = not in_math
-        if ch == " " and not in_math:
-            words.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    words.append(cur)
+    words = _outside_math(text, lambda prose: prose.replace(" ", "\0")).split("\0")
     lines = [""]
     for w in words:
         if lines[-1] and len(lines[-1]) + 1 + len(w) > 100:

@@ -7,8 +7,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from symctl.derivation.paper import PAPER, PaperSpec  # noqa: F401 (still importable here)
-from symctl.derivation.pipeline import SYMBOLIC_P_MAX_ORDER  # noqa: F401
+from symctl.derivation.paper import PAPER
 from symctl.realization.factorization import EXPANDED_ZEROS_MAX
 
 __all__ = ["CIRCUITS", "CIRCUIT_SPECS", "EXPANDED_ZEROS_MAX", "PAPER", "SCHEMA_VERSION"]

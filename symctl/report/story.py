@@ -29,7 +29,6 @@ from symctl.report.document import (
 )
 from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
-from symctl.report.shorthand import COMPACT_LENGTH  # noqa: F401 (still importable here)
 from symctl.report.spec import circuit_specs
 
 __all__ = ["POLE_ZERO_TOL", "story"]
@@ -60,24 +59,21 @@ _PAPER_CIRCUIT = {k: f" (as in {cite('Fig.', d)}, right)" for k, d in _DIAGRAMS.
 _PAPER_FIRING = {k: f" (as in {cite('Fig.', d)})" for k, d in _DIAGRAMS.items()}
 
 
-def _readings() -> list[DocumentBlock]:
-    """The two readings of the delay assignment matrix, and why the verdicts agree."""
-    return [
-        Text(
-            f"Two readings of $\\tilde E$. The paper defines $\\tilde E_{{ij}}$ as the delay along "
-            f"the fastest path from a signal at vertex $i$ to a signal at vertex $j$ "
-            f"{cite('Def.', 'delay_assignment_matrix')}. Read by its words, a path may pass "
-            "through signals at any vertex: this is the matrix $\\tilde E$ shown below. The "
-            f"matrix the paper prints for its $G_3 G_2 G_1$ {cite('Eq.', 'E_tilde')} counts only "
-            "the paths whose signals all sit at $v_i$ or $v_j$; it has $\\tilde E_{13} = \\infty$ "
-            "although a path of delay 2 runs from $v_1$ through $v_2$ to $v_3$. This direct "
-            "reading is shown as $\\tilde E^{\\mathrm{d}}$ where it differs. The fastest reading is "
-            "entrywise at most the direct one, and $E$ holds the shortest delays of the graph "
-            "(it obeys the triangle inequality), so an assignment meets $\\tilde E \\ge E$ in one "
-            "reading exactly when it meets it in the other (proved in "
-            "symctl.compatibility.assignment): the verdicts below hold in both."
-        )
-    ]
+# the two readings of the delay assignment matrix, and why the verdicts agree
+_READINGS = Text(
+    f"Two readings of $\\tilde E$. The paper defines $\\tilde E_{{ij}}$ as the delay along "
+    f"the fastest path from a signal at vertex $i$ to a signal at vertex $j$ "
+    f"{cite('Def.', 'delay_assignment_matrix')}. Read by its words, a path may pass "
+    "through signals at any vertex: this is the matrix $\\tilde E$ shown below. The "
+    f"matrix the paper prints for its $G_3 G_2 G_1$ {cite('Eq.', 'E_tilde')} counts only "
+    "the paths whose signals all sit at $v_i$ or $v_j$; it has $\\tilde E_{13} = \\infty$ "
+    "although a path of delay 2 runs from $v_1$ through $v_2$ to $v_3$. This direct "
+    "reading is shown as $\\tilde E^{\\mathrm{d}}$ where it differs. The fastest reading is "
+    "entrywise at most the direct one, and $E$ holds the shortest delays of the graph "
+    "(it obeys the triangle inequality), so an assignment meets $\\tilde E \\ge E$ in one "
+    "reading exactly when it meets it in the other (proved in "
+    "symctl.compatibility.assignment): the verdicts below hold in both."
+)
 
 
 def _e_tilde(E, assignment, name: str) -> list[DocumentBlock]:
@@ -221,11 +217,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
         den = descending_latex(f.G2.den)
         zeros = SH.zeros_tex((*f.sensor_eps, *f.actuator_eps))
         if not SH.fits("G_2(z)", zeros):
-            zeros = (
-                SH.zeros_tex(f.sensor_eps, product=True)
-                + " "
-                + SH.zeros_tex(f.actuator_eps, product=True)
-            )
+            zeros = " ".join(SH.zeros_tex(e, product=True) for e in (f.sensor_eps, f.actuator_eps))
         f_N, f_coeffs, sigma_rows = _remainder(res)
         c = SH.remainder_symbols(f_coeffs)
         remainder = descending_latex(SH.remainder_poly(c))
@@ -351,7 +343,7 @@ def story(res, figures: Iterable[str] = ()) -> list[DocumentBlock]:
     )
     show("delay_graph", _GRAPH_CAPTION)
     display(("E", res.graph.E), label="eq:E")
-    put(_readings())
+    add(_READINGS)
     put(MS.theorem(res))
     for name, crec in res.circuits.items():
         verdict = crec.compatibility
