@@ -72,27 +72,10 @@ def _term_counts(M: sp.MatrixBase) -> list[list[int]]:
 
 
 class MatrixFractionTF(DiscreteTF):
-    r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
+    r"""``D(z)^{-1} N(z)``, ``D`` monic ``m x m`` and ``N`` ``m x p`` polynomial in ``z`` (SymPy
+    matrices; else SymctlTypeError, DimensionError, ParameterError). Expands only through
+    :meth:`expanded` (``num``, ``den``); ``==`` compares ``D``, ``N``, ``dt`` structurally.
 
-    Expands only through :meth:`expanded` (``num``, ``den``), refused beyond
-    ``MAX_EXPANDED_TERMS`` before any work. ``==`` compares ``D``, ``N``, ``dt``
-    structurally (never equal to an expanded :class:`DiscreteTF`; see :meth:`equals`).
-
-    Parameters
-    ----------
-    D, N : sympy Matrix
-        ``m x m`` monic and ``m x p``, polynomial in ``z``.
-    dt : number, symbol or None
-        Sampling time.
-
-    Raises
-    ------
-    SymctlTypeError, DimensionError, ParameterError
-        ``D`` or ``N`` not a sympy Matrix; ``D`` not square or ``N`` without its rows; an entry
-        not polynomial in ``z``, or ``D`` not monic.
-
-    Examples
-    --------
     >>> import sympy as sp
     >>> from symctl import z
     >>> from symctl.design.fraction import MatrixFractionTF
@@ -161,8 +144,8 @@ class MatrixFractionTF(DiscreteTF):
         return syms - {z}
 
     def terms_bound(self) -> int:
-        r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the
-        permanent of the term counts (numbers only: ``(d m + 1)(1 + m p)``).
+        r"""A bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the permanent of
+        the term counts (numbers only: ``(d m + 1)(1 + m p)``).
 
         >>> import sympy as sp
         >>> from symctl import z

@@ -38,13 +38,7 @@ from symctl._util.validate import nonneg_int, relative_tolerance, subs_rule, to_
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
-from symctl.realization.channels import (
-    channel_sections,
-    channel_symbols,
-    diagonal,
-    mimo_G2,
-    verify_entries,
-)
+from symctl.realization.channels import channel_sections, diagonal, mimo_G2, verify_entries
 from symctl.symbols import z
 
 __all__ = [
@@ -72,13 +66,13 @@ def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[
     """
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if channel is not None:
-        return channel_symbols(side, channel, count)
-    if count == 1:
+    if count == 1 and channel is None:
         return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    return eps, cs
+    at = f"{side}," if channel is None else f"{side},{channel},"
+    return tuple(
+        tuple(sp.Symbol(f"{stem}_{{{at}{k}}}", real=True) for k in range(1, count + 1))
+        for stem in ("epsilon", "C")
+    )
 
 
 @cache
