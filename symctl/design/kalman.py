@@ -280,14 +280,10 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
     Lt[:n, :] = L
     closed = A + B @ K
     if _form(form) == "current":
-        F, H, out, N = (
-            closed @ (eye(size) - Lt @ Ct),
-            closed @ Lt,
-            K @ (eye(size) - Lt @ Ct),
-            K @ Lt,
-        )
+        keep = eye(size) - Lt @ Ct
+        F, H, out, N = closed @ keep, closed @ Lt, K @ keep, K @ Lt
     else:
-        F, H, out, N = A + B @ K - Lt @ Ct, Lt, K, zeros(m, p)
+        F, H, out, N = closed - Lt @ Ct, Lt, K, zeros(m, p)
     if T == 0:
         return F, H, out, N
     M = zeros(m, size)

@@ -434,25 +434,16 @@ def section_realizations(factorization) -> tuple[list[Realization], list[Realiza
     >>> first[0].F, last[0].H
     (Matrix([[epsilon_1]]), Matrix([[C_3]]))
     """
-    f = factorization
-    sides = ((f.sensor_eps, f.sensor_C), (f.actuator_eps, f.actuator_C))
-    first, last = (
-        _channel_stages(eps, cs, k, f.G.dt) for (eps, cs), k in zip(sides, f.channels, strict=True)
-    )
-    return first, last
-
-
-def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
-    """One diagonal realization per stage, the k-th sections of every channel (channel-major)."""
-    count = len(eps) // channels if channels else 0
-    stages = []
-    for k in range(count):
-        e = [eps[j * count + k] for j in range(channels)]
-        c = [cs[j * count + k] for j in range(channels)]
-        stages.append(
-            Realization(sp.diag(*e), sp.diag(*c), sp.eye(channels), sp.zeros(channels), dt)
+    dt, out = factorization.G.dt, []
+    for side in factorization.section_channels:  # stage k: the k-th section of every channel
+        eps, cs = (zip(*part, strict=True) for part in zip(*side, strict=True))
+        out.append(
+            [
+                Realization(sp.diag(*e), sp.diag(*c), sp.eye(len(e)), sp.zeros(len(e)), dt)
+                for e, c in zip(eps, cs, strict=True)
+            ]
         )
-    return stages
+    return out[0], out[1]
 
 
 def controller_realization(factorization, R2: Realization) -> Realization:
