@@ -145,15 +145,7 @@ class MatrixFractionTF(DiscreteTF):
 
     def terms_bound(self) -> int:
         r"""A bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the permanent of
-        the term counts (numbers only: ``(d m + 1)(1 + m p)``).
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> a, b = sp.symbols("a b")
-        >>> MatrixFractionTF(sp.Matrix([[z - a, 0], [b, z]]), sp.eye(2)).terms_bound()
-        6
-        """
+        the term counts (numbers only: ``(d m + 1)(1 + m p)``)."""
         m, p = self.shape
         if not self.free_symbols:
             return (self.order + 1) * (1 + m * p)

@@ -57,13 +57,9 @@ out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G
 
 @cache
 def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3 (of one
-    ``channel`` of a MIMO factorization: ``epsilon_{side,channel,k}``, indices from 1).
-
-    >>> from symctl.realization.factorization import section_symbols
-    >>> section_symbols(3, 2), section_symbols(1, 1, 2)
-    (((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2})), ((epsilon_{1,2,1},), (C_{1,2,1},)))
-    """
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3, of one ``channel``
+    of a MIMO factorization (``epsilon_{side,channel,k}``) or not (``epsilon_{side,k}``; one
+    section: ``epsilon_1``, ``epsilon_3``)."""
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
     if count == 1 and channel is None:
@@ -78,12 +74,7 @@ def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[
 @cache
 def sigma_symbols(count: int, entry: tuple[int, int] | None = None) -> tuple[sp.Symbol, ...]:
     r"""The abbreviations :math:`\sigma_k = e_k(\epsilon)`, :math:`\prod_{i=1}^{d} (z - \epsilon_i)
-    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`; ``entry=(i, j)``: :math:`\sigma_{i,j,k}` (from 1).
-
-    >>> from symctl.realization.factorization import sigma_symbols
-    >>> sigma_symbols(3), sigma_symbols(2, (1, 2))
-    ((sigma_1, sigma_2, sigma_3), (sigma_{1,2,1}, sigma_{1,2,2}))
-    """
+    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}` (``sigma_k``; ``entry=(i, j)``: ``sigma_{i,j,k}``)."""
     at = "{},{},".format(*entry) if entry else ""
     return tuple(
         sp.Symbol(f"sigma_{{{at}{k}}}" if at else f"sigma_{k}", real=True)

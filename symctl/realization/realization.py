@@ -318,13 +318,7 @@ def _split(tf: DiscreteTF) -> tuple[list, sp.Matrix, list[sp.Matrix]]:
 
 def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     r"""``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)` for a proper
-    SISO ``G``, ``c`` and ``a`` ascending (length ``n``).
-
-    >>> from symctl import z
-    >>> from symctl.realization.realization import split_proper
-    >>> split_proper((2*z + 1) / (z - 3))
-    (2, [7], [-3])
-    """
+    SISO ``G``, ``c`` and ``a`` ascending (length ``n``)."""
     a, N, C = _split(_siso(G, "G"))
     return N[0, 0], [c[0, 0] for c in C], a[:-1]
 
@@ -426,14 +420,7 @@ def first_order_realization(eps, C, dt=None) -> Realization:
 
 def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
     r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order
-    (MIMO: one diagonal realization per stage, holding that stage's section of every channel).
-
-    >>> from symctl import controller_tf, factor
-    >>> from symctl.realization.realization import section_realizations
-    >>> first, last = section_realizations(factor(controller_tf(2)))
-    >>> first[0].F, last[0].H
-    (Matrix([[epsilon_1]]), Matrix([[C_3]]))
-    """
+    (MIMO: one diagonal realization per stage, holding that stage's section of every channel)."""
     dt, out = factorization.G.dt, []
     for side in factorization.section_channels:  # stage k: the k-th section of every channel
         eps, cs = (zip(*part, strict=True) for part in zip(*side, strict=True))
