@@ -158,14 +158,7 @@ class MatrixFractionTF(DiscreteTF):
     def expanded(self, max_terms: int = MAX_EXPANDED_TERMS) -> DiscreteTF:
         r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF`, fraction-free over
         :math:`\mathbb{Q}` (floats taken exactly, rounded once at the end); a ParameterError when
-        symbols remain and :meth:`terms_bound` exceeds ``max_terms``.
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr.tolist()
-        [[1/z, -1/z**2], [0, 1/z]]
-        """
+        symbols remain and :meth:`terms_bound` exceeds ``max_terms``."""
         max_terms = bounded_int(max_terms, "max_terms", 1, 10**9)
         got = self._cache.get("expanded")
         if got is not None:
@@ -229,14 +222,7 @@ class MatrixFractionTF(DiscreteTF):
         return [_z_coeffs(self._D, d - i) for i in range(d + 1)], self._N, d
 
     def latex(self) -> str:
-        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> print(MatrixFractionTF(sp.Matrix([[1 + z]]), sp.Matrix([[2]])).latex())
-        \left[\begin{matrix}z + 1\end{matrix}\right]^{-1} \left[\begin{matrix}2\end{matrix}\right]
-        """
+        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``."""
 
         def matrix(M) -> str:  # entries in descending powers of z, as DiscreteTF prints them
             rows = r" \\ ".join(" & ".join(descending_latex(e) for e in row) for row in M.tolist())

@@ -448,12 +448,9 @@ def prove_lqg_tf(
     gains: Gains | None = None,
     kalman: KalmanGains | None = None,
 ) -> Proof:
-    r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
-
-    The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
-    N_G` of the module notes, checked exactly in :math:`\mathbb{Q}[z, K, L]`; with ``gains`` and
-    ``kalman``, in :math:`\mathbb{Q}[z]` at their exact values (where the symbolic proof is too
-    large). A left fraction is expanded first.
+    r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``: the module
+    notes' identities, exactly in :math:`\mathbb{Q}[z, K, L]` (with ``gains`` and ``kalman``, in
+    :math:`\mathbb{Q}[z]` at their exact values); a left fraction is expanded first.
 
     Parameters
     ----------

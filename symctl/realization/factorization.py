@@ -89,13 +89,7 @@ def _zeros_poly(sigma: tuple) -> sp.Expr:
 
 def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
     r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N` (of
-    ``G2`` when :math:`N = 0`) in descending powers of z.
-
-    >>> from symctl import controller_tf, factor
-    >>> from symctl.realization.factorization import remainder
-    >>> remainder(factor(controller_tf(2)).abbreviated())
-    (K_0/(C_1*C_3), [K_1 - sigma_1, K_2 + sigma_2])
-    """
+    ``G2`` when :math:`N = 0`) in descending powers of z (:attr:`Factorization.remainder_coeffs`)."""
     from symctl.realization.realization import split_proper
 
     N, c, _ = split_proper(G2)

@@ -1,10 +1,6 @@
-r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
-
-A *realizer* returns a :class:`RealizerResult`: the realization, its canonical *base* and
-the transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). :data:`REALIZERS` is the one table of their names,
-titles and order; :func:`register` adds one (docs/extending.md).
-"""
+r"""Realizers, the ways of realizing :math:`G_2` (after nengolib's ``signal/realizers.py``):
+:data:`REALIZERS` is the one table of their names, titles and order; :func:`register` adds one
+(docs/extending.md)."""
 
 from __future__ import annotations
 
