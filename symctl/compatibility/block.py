@@ -1,9 +1,5 @@
-r"""The blocks of a controller structure: inputs, gains, adders and delays of k steps.
-
-A ``"delay"`` block delays its one input by ``steps`` sampling steps, :math:`a(t - k)`:
-``steps=1`` is the paper's unit delay, ``steps=k`` an axon whose conduction takes :math:`k`
-steps (one block :math:`z^{-k}`, not :math:`k` relays).
-"""
+r"""The blocks of a controller structure: inputs, gains, adders and delays of k steps (an axon
+whose conduction takes :math:`k` steps is one block :math:`z^{-k}`, not :math:`k` relays)."""
 
 from __future__ import annotations
 

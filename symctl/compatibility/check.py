@@ -1,9 +1,5 @@
-"""Compatibility of a controller structure with a delay graph: the verdict and its evidence.
-
-:func:`check_compatibility` decides it (polynomial on chain graphs, exact search elsewhere;
-:mod:`~symctl.compatibility.csp`); :func:`brute_force_compatibility` enumerates every assignment
-by the definition's words (the tests' reference).
-"""
+"""Compatibility of a controller structure with a delay graph: the verdict and its evidence
+(:func:`check_compatibility`; :func:`brute_force_compatibility`, the tests' reference)."""
 
 from __future__ import annotations
 

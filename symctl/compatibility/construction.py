@@ -164,19 +164,16 @@ def path_delays(graph: DelayGraph, path, max_wire_delay: int | None, argname: st
         raise ParameterError(f"{argname}: a path runs from v{src} to v{dst}, got {list(vertices)}")
     if len(set(vertices)) != len(vertices):
         raise ParameterError(f"{argname}: a path visits each vertex once, got {list(vertices)}")
-    direct = {}
-    for i, j, d in graph.edges:
-        direct[i, j] = min(d, direct.get((i, j), d))
-    delays = []
+    g, delays = _digraph(graph, None), []
     for a, b in itertools.pairwise(vertices):
-        if (a, b) not in direct:
+        if not g.has_edge(a - 1, b - 1):
             raise ParameterError(f"{argname}: v{a} -> v{b} is not an edge of the graph")
-        if max_wire_delay is not None and direct[a, b] > max_wire_delay:
+        delays.append(g.edges[a - 1, b - 1]["delay"])
+        if max_wire_delay is not None and delays[-1] > max_wire_delay:
             raise ParameterError(
-                f"{argname}: the edge v{a} -> v{b} has {direct[a, b]} steps, more than "
+                f"{argname}: the edge v{a} -> v{b} has {delays[-1]} steps, more than "
                 f"max_wire_delay = {max_wire_delay}"
             )
-        delays.append(direct[a, b])
     return vertices, tuple(delays)
 
 

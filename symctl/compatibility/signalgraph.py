@@ -57,14 +57,7 @@ class SignalGraph(NamedTuple):
 
 def zero_one_bfs(graph: SignalGraph, sources, allowed=None) -> list[int | None]:
     """Fewest delays from any of ``sources`` to every signal (None if unreachable; Dijkstra);
-    ``allowed`` (a boolean per signal) restricts the paths.
-
-    >>> from symctl.compatibility.signalgraph import SignalGraph, zero_one_bfs
-    >>> g = SignalGraph.from_wires(("u", "s", "d"), ("input", "sum", "delay"),
-    ...                            [(0, 1, 0), (2, 1, 0), (1, 2, 1)], inputs=(0,), outputs=(1,))
-    >>> zero_one_bfs(g, [0])
-    [0, 0, 1]
-    """
+    ``allowed`` (a boolean per signal) restricts the paths."""
     dist: list[int | None] = [None] * len(graph.names)
     for s in sources:
         dist[s] = 0
@@ -109,15 +102,8 @@ def back_edges(
     successors: Sequence[Iterable[int]] | Mapping[Hashable, Iterable[Hashable]],
     roots: Iterable[Hashable],
 ) -> list[tuple]:
-    """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots``, in order.
-
-    ``successors``: a sequence (nodes ``0 .. n-1``) or a mapping; removing the edges leaves an
-    acyclic graph.
-
-    >>> from symctl.compatibility.signalgraph import back_edges
-    >>> back_edges([[1], [2], [0, 1]], [0]), back_edges({"u": ["s"], "s": ["d"], "d": ["s"]}, ["u"])
-    ([(2, 0), (2, 1)], [('d', 's')])
-    """
+    """The edges ``(a, b)`` closing a cycle in a depth-first search from ``roots``, in order (nodes
+    ``0 .. n-1`` of a sequence, or a mapping's keys); without them the graph is acyclic."""
     return [(path[-2], path[-1]) for path in _closing(successors, roots)]
 
 

@@ -84,13 +84,7 @@ def canonical_columns(nums, dens, argname: str) -> tuple[np.ndarray, ...]:
     r"""``(F, H, M, N)``: the column-wise controllable canonical form of ``nums[i][j]/dens[i][j]``
     (descending coefficients, ``[outputs][inputs]``): column :math:`j` over the product of its
     entries' distinct denominators, blocks on the diagonal in input order. Refuses improper,
-    complex or non-finite entries (ParameterError), over ``MAX_STATES`` states (DimensionError).
-
-    >>> from symctl.design._foreign import canonical_columns
-    >>> F, H, M, N = canonical_columns([[[2.0, 1.0]]], [[[1.0, -0.5, 0.06]]], "G")
-    >>> F.tolist(), H.ravel().tolist(), M.tolist(), N.tolist()
-    ([[0.0, 1.0], [-0.06, 0.5]], [0.0, 1.0], [[1.0, 2.0]], [[0.0]])
-    """
+    complex or non-finite entries (ParameterError), over ``MAX_STATES`` states (DimensionError)."""
     rows = len(nums)
     cols = len(nums[0]) if rows else 0
     if not rows or not cols:

@@ -72,27 +72,10 @@ def _term_counts(M: sp.MatrixBase) -> list[list[int]]:
 
 
 class MatrixFractionTF(DiscreteTF):
-    r"""A MIMO transfer function kept as a left matrix fraction :math:`D(z)^{-1} N(z)`.
+    r"""``D(z)^{-1} N(z)``, ``D`` monic ``m x m`` and ``N`` ``m x p`` polynomial in ``z`` (SymPy
+    matrices; else SymctlTypeError, DimensionError, ParameterError). Expands only through
+    :meth:`expanded` (``num``, ``den``); ``==`` compares ``D``, ``N``, ``dt`` structurally.
 
-    Expands only through :meth:`expanded` (``num``, ``den``), refused beyond
-    ``MAX_EXPANDED_TERMS`` before any work. ``==`` compares ``D``, ``N``, ``dt``
-    structurally (never equal to an expanded :class:`DiscreteTF`; see :meth:`equals`).
-
-    Parameters
-    ----------
-    D, N : sympy Matrix
-        ``m x m`` monic and ``m x p``, polynomial in ``z``.
-    dt : number, symbol or None
-        Sampling time.
-
-    Raises
-    ------
-    SymctlTypeError, DimensionError, ParameterError
-        ``D`` or ``N`` not a sympy Matrix; ``D`` not square or ``N`` without its rows; an entry
-        not polynomial in ``z``, or ``D`` not monic.
-
-    Examples
-    --------
     >>> import sympy as sp
     >>> from symctl import z
     >>> from symctl.design.fraction import MatrixFractionTF
@@ -161,16 +144,8 @@ class MatrixFractionTF(DiscreteTF):
         return syms - {z}
 
     def terms_bound(self) -> int:
-        r"""An upper bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the
-        permanent of the term counts (numbers only: ``(d m + 1)(1 + m p)``).
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> a, b = sp.symbols("a b")
-        >>> MatrixFractionTF(sp.Matrix([[z - a, 0], [b, z]]), sp.eye(2)).terms_bound()
-        6
-        """
+        r"""A bound on the terms of :math:`\operatorname{adj} D\, N` and :math:`\det D`: the permanent of
+        the term counts (numbers only: ``(d m + 1)(1 + m p)``)."""
         m, p = self.shape
         if not self.free_symbols:
             return (self.order + 1) * (1 + m * p)
@@ -183,14 +158,7 @@ class MatrixFractionTF(DiscreteTF):
     def expanded(self, max_terms: int = MAX_EXPANDED_TERMS) -> DiscreteTF:
         r""":math:`\operatorname{adj} D\, N / \det D` as a :class:`DiscreteTF`, fraction-free over
         :math:`\mathbb{Q}` (floats taken exactly, rounded once at the end); a ParameterError when
-        symbols remain and :meth:`terms_bound` exceeds ``max_terms``.
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> MatrixFractionTF(sp.Matrix([[z, 1], [0, z]]), sp.eye(2)).expanded().expr.tolist()
-        [[1/z, -1/z**2], [0, 1/z]]
-        """
+        symbols remain and :meth:`terms_bound` exceeds ``max_terms``."""
         max_terms = bounded_int(max_terms, "max_terms", 1, 10**9)
         got = self._cache.get("expanded")
         if got is not None:
@@ -254,14 +222,7 @@ class MatrixFractionTF(DiscreteTF):
         return [_z_coeffs(self._D, d - i) for i in range(d + 1)], self._N, d
 
     def latex(self) -> str:
-        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``.
-
-        >>> import sympy as sp
-        >>> from symctl import z
-        >>> from symctl.design.fraction import MatrixFractionTF
-        >>> print(MatrixFractionTF(sp.Matrix([[1 + z]]), sp.Matrix([[2]])).latex())
-        \left[\begin{matrix}z + 1\end{matrix}\right]^{-1} \left[\begin{matrix}2\end{matrix}\right]
-        """
+        r"""``D(z)^{-1} N(z)``, unexpanded, each entry in descending powers of ``z``."""
 
         def matrix(M) -> str:  # entries in descending powers of z, as DiscreteTF prints them
             rows = r" \\ ".join(" & ".join(descending_latex(e) for e in row) for row in M.tolist())

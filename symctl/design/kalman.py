@@ -280,14 +280,10 @@ def lqg_state_space(A, B, C, K, L, n: int, m: int, T: int, form: str = "predicto
     Lt[:n, :] = L
     closed = A + B @ K
     if _form(form) == "current":
-        F, H, out, N = (
-            closed @ (eye(size) - Lt @ Ct),
-            closed @ Lt,
-            K @ (eye(size) - Lt @ Ct),
-            K @ Lt,
-        )
+        keep = eye(size) - Lt @ Ct
+        F, H, out, N = closed @ keep, closed @ Lt, K @ keep, K @ Lt
     else:
-        F, H, out, N = A + B @ K - Lt @ Ct, Lt, K, zeros(m, p)
+        F, H, out, N = closed - Lt @ Ct, Lt, K, zeros(m, p)
     if T == 0:
         return F, H, out, N
     M = zeros(m, size)
@@ -452,12 +448,9 @@ def prove_lqg_tf(
     gains: Gains | None = None,
     kalman: KalmanGains | None = None,
 ) -> Proof:
-    r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``.
-
-    The identities :math:`(zI - F) W = H \varphi d_G` and :math:`M W + N \varphi d_G = \varphi
-    N_G` of the module notes, checked exactly in :math:`\mathbb{Q}[z, K, L]`; with ``gains`` and
-    ``kalman``, in :math:`\mathbb{Q}[z]` at their exact values (where the symbolic proof is too
-    large). A left fraction is expanded first.
+    r"""Prove that ``G`` (default :func:`lqg_tf`) is the LQG compensator of ``system``: the module
+    notes' identities, exactly in :math:`\mathbb{Q}[z, K, L]` (with ``gains`` and ``kalman``, in
+    :math:`\mathbb{Q}[z]` at their exact values); a left fraction is expanded first.
 
     Parameters
     ----------

@@ -109,14 +109,7 @@ def solve_equilibrium(
     r"""``(x_eq, method)``: the states with :math:`f(\bar x, \bar u) = 0` (``values`` the
     parameters'), exactly when :math:`f` is affine in the states, by exact real-root isolation
     for one polynomial state (degree up to 12), else numerically from ``guess`` or seeded
-    starts; a ParameterError naming ``argname`` when there is none, or several.
-
-    >>> import sympy as sp
-    >>> from symctl.design.ode import solve_equilibrium
-    >>> x, u, k = sp.symbols("x u k", real=True)
-    >>> solve_equilibrium(sp.Matrix([-k * x + u]), [x], [u], sp.Matrix([2]), {k: 4})
-    (Matrix([[2/k]]), 'exact (affine in the states)')
-    """
+    starts; a ParameterError naming ``argname`` when there is none, or several."""
     states, inputs = list(_symbols(states, "states")), list(_symbols(inputs, "inputs"))
     if not isinstance(values, Mapping) or not all(isinstance(k, sp.Symbol) for k in values):
         raise SymctlTypeError("values: expected a mapping of symbols to numbers")

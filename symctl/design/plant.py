@@ -319,14 +319,12 @@ class DiscretePlant(LatexMixin):
 
     def subs(self, *args, **kwargs) -> DiscretePlant:
         """A new plant with symbols substituted (as :meth:`sympy.Basic.subs`)."""
-        parts = [m for m in (self.A, self.B, self.dt, self.x_eq, self.u_eq) if m is not None]
-        rule, flags = subs_rule(args, kwargs, set().union(*(m.free_symbols for m in parts)))
-        changed = {
-            k: getattr(self, k).subs(rule, **flags)
-            for k in ("A", "B", "dt", "x_eq", "u_eq")
-            if getattr(self, k) is not None
-        }
-        return dataclasses.replace(self, **changed)
+        parts = {k: getattr(self, k) for k in ("A", "B", "dt", "x_eq", "u_eq")}
+        parts = {k: m for k, m in parts.items() if m is not None}
+        rule, flags = subs_rule(
+            args, kwargs, set().union(*(m.free_symbols for m in parts.values()))
+        )
+        return dataclasses.replace(self, **{k: m.subs(rule, **flags) for k, m in parts.items()})
 
     def numeric(self) -> tuple[np.ndarray, np.ndarray]:
         """``(A, B)`` as float arrays; refuses free symbols."""
@@ -433,12 +431,9 @@ class MuscleModel(LatexMixin):
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:
         """The parameter values as exact numbers, keyed by the paper's symbols."""
-        return {
-            S.tau: sp.nsimplify(self.tau, rational=True),
-            S.f_max: sp.nsimplify(self.f_max, rational=True),
-            S.r_bar: sp.nsimplify(self.r_bar, rational=True),
-            S.T_s: sp.nsimplify(self.dt, rational=True),
-        }
+        values = (self.tau, self.f_max, self.r_bar, self.dt)
+        symbols = (S.tau, S.f_max, S.r_bar, S.T_s)
+        return {s: sp.nsimplify(v, rational=True) for s, v in zip(symbols, values, strict=True)}
 
     @property
     def f_bar(self) -> float:

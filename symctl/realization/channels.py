@@ -12,7 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError, ParameterError
+from symctl.errors import DimensionError
 from symctl.symbols import z
 
 __all__ = ["MAX_CHANNELS", "channel_sections", "mimo_G2"]
@@ -76,13 +76,3 @@ def verify_entries(G: DiscreteTF, G2: DiscreteTF, g1, g3, products_equal) -> boo
             if not products_equal(left, right):
                 return False
     return True
-
-
-def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of one channel's sections, as ``factorization.section_symbols``
-    with ``channel`` gives them (``epsilon_{side,channel,k}``, ``C_{side,channel,k}``)."""
-    if side not in (1, 3):
-        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    at = range(1, count + 1)
-    eps = tuple(sp.Symbol(f"epsilon_{{{side},{channel},{k}}}", real=True) for k in at)
-    return eps, tuple(sp.Symbol(f"C_{{{side},{channel},{k}}}", real=True) for k in at)

@@ -1,11 +1,7 @@
 r"""Check that a realization realizes a transfer function: a proof, or a randomized test.
 
-:func:`check_realization` decides whether :math:`M(zI - F)^{-1}H + N = G(z)` identically
-in :math:`z` and every free symbol, and returns a :class:`RealizationCheck` with the
-verdict, the method and the evidence (a counterexample, or the randomized test's error
-bound). Both methods compare Markov parameters, never :math:`(zI - F)^{-1}`: write
-:math:`G = \sum_{k \ge 0} h_k z^{-k}` and :math:`M(zI-F)^{-1}H + N = N + \sum_{k \ge 1} M
-F^{k-1} H z^{-k}`.
+Both methods compare Markov parameters, never :math:`(zI - F)^{-1}`: write :math:`G =
+\sum_{k \ge 0} h_k z^{-k}` and :math:`M(zI-F)^{-1}H + N = N + \sum_{k \ge 1} M F^{k-1} H z^{-k}`.
 
 **Theorem.** Let :math:`F` be :math:`n \times n` and :math:`G = B(z)/d(z)` be
 proper with a monic denominator of degree :math:`d`. Then

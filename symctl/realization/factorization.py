@@ -38,13 +38,7 @@ from symctl._util.validate import nonneg_int, relative_tolerance, subs_rule, to_
 from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
-from symctl.realization.channels import (
-    channel_sections,
-    channel_symbols,
-    diagonal,
-    mimo_G2,
-    verify_entries,
-)
+from symctl.realization.channels import channel_sections, diagonal, mimo_G2, verify_entries
 from symctl.symbols import z
 
 __all__ = [
@@ -63,33 +57,24 @@ out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G
 
 @cache
 def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3 (of one
-    ``channel`` of a MIMO factorization: ``epsilon_{side,channel,k}``, indices from 1).
-
-    >>> from symctl.realization.factorization import section_symbols
-    >>> section_symbols(3, 2), section_symbols(1, 1, 2)
-    (((epsilon_{3,1}, epsilon_{3,2}), (C_{3,1}, C_{3,2})), ((epsilon_{1,2,1},), (C_{1,2,1},)))
-    """
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3, of one ``channel``
+    of a MIMO factorization (``epsilon_{side,channel,k}``) or not (``epsilon_{side,k}``; one
+    section: ``epsilon_1``, ``epsilon_3``)."""
     if side not in (1, 3):
         raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if channel is not None:
-        return channel_symbols(side, channel, count)
-    if count == 1:
+    if count == 1 and channel is None:
         return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    eps = tuple(sp.Symbol(f"epsilon_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    cs = tuple(sp.Symbol(f"C_{{{side},{i}}}", real=True) for i in range(1, count + 1))
-    return eps, cs
+    at = f"{side}," if channel is None else f"{side},{channel},"
+    return tuple(
+        tuple(sp.Symbol(f"{stem}_{{{at}{k}}}", real=True) for k in range(1, count + 1))
+        for stem in ("epsilon", "C")
+    )
 
 
 @cache
 def sigma_symbols(count: int, entry: tuple[int, int] | None = None) -> tuple[sp.Symbol, ...]:
     r"""The abbreviations :math:`\sigma_k = e_k(\epsilon)`, :math:`\prod_{i=1}^{d} (z - \epsilon_i)
-    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}`; ``entry=(i, j)``: :math:`\sigma_{i,j,k}` (from 1).
-
-    >>> from symctl.realization.factorization import sigma_symbols
-    >>> sigma_symbols(3), sigma_symbols(2, (1, 2))
-    ((sigma_1, sigma_2, sigma_3), (sigma_{1,2,1}, sigma_{1,2,2}))
-    """
+    = \sum_{k=0}^{d} (-1)^k \sigma_k z^{d-k}` (``sigma_k``; ``entry=(i, j)``: ``sigma_{i,j,k}``)."""
     at = "{},{},".format(*entry) if entry else ""
     return tuple(
         sp.Symbol(f"sigma_{{{at}{k}}}" if at else f"sigma_{k}", real=True)
@@ -104,13 +89,7 @@ def _zeros_poly(sigma: tuple) -> sp.Expr:
 
 def remainder(G2) -> tuple[sp.Expr, list[sp.Expr]]:
     r"""``(N, c)``: the feed-through of ``G2`` and the numerator of :math:`(G_2 - N)/N` (of
-    ``G2`` when :math:`N = 0`) in descending powers of z.
-
-    >>> from symctl import controller_tf, factor
-    >>> from symctl.realization.factorization import remainder
-    >>> remainder(factor(controller_tf(2)).abbreviated())
-    (K_0/(C_1*C_3), [K_1 - sigma_1, K_2 + sigma_2])
-    """
+    ``G2`` when :math:`N = 0`) in descending powers of z (:attr:`Factorization.remainder_coeffs`)."""
     from symctl.realization.realization import split_proper
 
     N, c, _ = split_proper(G2)

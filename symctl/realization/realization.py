@@ -318,13 +318,7 @@ def _split(tf: DiscreteTF) -> tuple[list, sp.Matrix, list[sp.Matrix]]:
 
 def split_proper(G) -> tuple[sp.Expr, list[sp.Expr], list[sp.Expr]]:
     r"""``(N, c, a)`` with :math:`G = N + \sum_i c_i z^i / (z^n + \sum_{i<n} a_i z^i)` for a proper
-    SISO ``G``, ``c`` and ``a`` ascending (length ``n``).
-
-    >>> from symctl import z
-    >>> from symctl.realization.realization import split_proper
-    >>> split_proper((2*z + 1) / (z - 3))
-    (2, [7], [-3])
-    """
+    SISO ``G``, ``c`` and ``a`` ascending (length ``n``)."""
     a, N, C = _split(_siso(G, "G"))
     return N[0, 0], [c[0, 0] for c in C], a[:-1]
 
@@ -426,33 +420,17 @@ def first_order_realization(eps, C, dt=None) -> Realization:
 
 def section_realizations(factorization) -> tuple[list[Realization], list[Realization]]:
     r"""The first-order sections of :math:`G_1` and of :math:`G_3`, each in signal-flow order
-    (MIMO: one diagonal realization per stage, holding that stage's section of every channel).
-
-    >>> from symctl import controller_tf, factor
-    >>> from symctl.realization.realization import section_realizations
-    >>> first, last = section_realizations(factor(controller_tf(2)))
-    >>> first[0].F, last[0].H
-    (Matrix([[epsilon_1]]), Matrix([[C_3]]))
-    """
-    f = factorization
-    sides = ((f.sensor_eps, f.sensor_C), (f.actuator_eps, f.actuator_C))
-    first, last = (
-        _channel_stages(eps, cs, k, f.G.dt) for (eps, cs), k in zip(sides, f.channels, strict=True)
-    )
-    return first, last
-
-
-def _channel_stages(eps, cs, channels: int, dt) -> list[Realization]:
-    """One diagonal realization per stage, the k-th sections of every channel (channel-major)."""
-    count = len(eps) // channels if channels else 0
-    stages = []
-    for k in range(count):
-        e = [eps[j * count + k] for j in range(channels)]
-        c = [cs[j * count + k] for j in range(channels)]
-        stages.append(
-            Realization(sp.diag(*e), sp.diag(*c), sp.eye(channels), sp.zeros(channels), dt)
+    (MIMO: one diagonal realization per stage, holding that stage's section of every channel)."""
+    dt, out = factorization.G.dt, []
+    for side in factorization.section_channels:  # stage k: the k-th section of every channel
+        eps, cs = (zip(*part, strict=True) for part in zip(*side, strict=True))
+        out.append(
+            [
+                Realization(sp.diag(*e), sp.diag(*c), sp.eye(len(e)), sp.zeros(len(e)), dt)
+                for e, c in zip(eps, cs, strict=True)
+            ]
         )
-    return stages
+    return out[0], out[1]
 
 
 def controller_realization(factorization, R2: Realization) -> Realization:

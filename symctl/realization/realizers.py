@@ -1,10 +1,6 @@
-r"""Realizers: the ways of realizing :math:`G_2`, as objects in one registry.
-
-A *realizer* returns a :class:`RealizerResult`: the realization, its canonical *base* and
-the transform :math:`P`, :math:`(F, H, M) = (P^{-1} F_0 P,\ P^{-1} H_0,\ M_0 P)` (after
-nengolib's ``signal/realizers.py``). :data:`REALIZERS` is the one table of their names,
-titles and order; :func:`register` adds one (docs/extending.md).
-"""
+r"""Realizers, the ways of realizing :math:`G_2` (after nengolib's ``signal/realizers.py``):
+:data:`REALIZERS` is the one table of their names, titles and order; :func:`register` adds one
+(docs/extending.md)."""
 
 from __future__ import annotations
 
@@ -347,20 +343,13 @@ def general_realization(G2, P, base: str = "controllable") -> Realization:
     return start.similar(P)
 
 
-def random_full_rank(
-    n: int, rng=None, *, grid: int = 100, max_cond: float | None = None
-) -> sp.Matrix:
-    """A random ``n x n`` matrix of exact rationals, entries about N(0, 1), redrawn until its
-    condition number is below ``max_cond`` (default ``max(10, 5 n)``: two draws in three pass).
-
-    >>> from symctl.realization.realizers import random_full_rank
-    >>> random_full_rank(2, rng=0).det() != 0
-    True
-    """
+def random_full_rank(n: int, rng=None, *, max_cond: float | None = None) -> sp.Matrix:
+    """A random ``n x n`` matrix of hundredths, entries about N(0, 1), redrawn until its
+    condition number is below ``max_cond`` (default ``max(10, 5 n)``: two draws in three pass)."""
     gen = as_generator(rng, "rng")
     max_cond = max(10.0, 5.0 * n) if max_cond is None else max_cond
     for _ in range(10_000):
-        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * grid), grid))
+        P = sp.Matrix(n, n, lambda i, j: sp.Rational(round(gen.normal() * 100), 100))
         if n == 0 or np.linalg.cond(np.array(P, dtype=float)) < max_cond:
             return P
     raise ParameterError(

@@ -154,17 +154,7 @@ def controller_reduction(
 ) -> tuple[ControllerReduction, Gains]:
     r"""``(verdict, gains)``: whether the optimal delayed controller of the numeric ``system`` is
     minimal, and its ``gains`` with those the theorem ties computed exactly from the free ones
-    (SymctlTypeError for other types).
-
-    >>> from symctl import augment, lqr_gains
-    >>> from symctl.realization.reduction import controller_reduction
-    >>> system = augment(([[0.9, 0], [0.1, 0.8]], [[1, -1], [0, 0]]), 1, 1)
-    >>> red, gains = controller_reduction(system, lqr_gains(system))
-    >>> bool(red), red.order, red.minimal_order, red.never_driven
-    (False, 4, 2, ('u_1 + u_2',))
-    >>> red.reason.split(": ")
-    ['u_1 + u_2 moves no state', 'the inputs act on the plant through the same column of B (up to sign)']
-    """
+    (SymctlTypeError for other types)."""
     if not isinstance(system, AugmentedSystem) or not isinstance(gains, Gains):
         raise SymctlTypeError(
             "system, gains: expected an AugmentedSystem and its Gains, got "
