@@ -66,3 +66,10 @@ def test_the_names_once_in_a_modules_all_stay_importable():
     assert model_parts(None)[1:] == (1, 1, (1, 1)) and callable(spread)
     assert float_rows(sympy.eye(2)) == [[1.0, 0.0], [0.0, 1.0]]
     assert callable(model) and callable(plant)
+    from symctl.realization.channels import channel_symbols
+    from symctl.realization.factorization import section_symbols
+    from symctl.report.spec import SYMBOLIC_P_MAX_ORDER, PaperSpec
+    from symctl.report.story import COMPACT_LENGTH
+
+    assert channel_symbols(3, 2, 1) == section_symbols(3, 1, 2)
+    assert SYMBOLIC_P_MAX_ORDER >= 2 and COMPACT_LENGTH > 0 and callable(PaperSpec)

@@ -9,16 +9,40 @@ Z_{1,j}/(C_{3,i} C_{1,j} d)` (:math:`Z` the sections' zeros, :math:`C` their gai
 
 from __future__ import annotations
 
+from functools import cache
+
 import sympy as sp
 
+from symctl import symbols as S
 from symctl.design.tf import DiscreteTF
-from symctl.errors import DimensionError
+from symctl.errors import DimensionError, ParameterError
 from symctl.symbols import z
 
-__all__ = ["MAX_CHANNELS", "channel_sections", "mimo_G2"]
+__all__ = ["MAX_CHANNELS", "channel_sections", "channel_symbols", "mimo_G2", "section_symbols"]
 
 MAX_CHANNELS = 50
 """Most measured signals (and most inputs) of a MIMO factorization."""
+
+
+@cache
+def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
+    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3, of one ``channel``
+    of a MIMO factorization (``epsilon_{side,channel,k}``) or not (``epsilon_{side,k}``; one
+    section: ``epsilon_1``, ``epsilon_3``)."""
+    if side not in (1, 3):
+        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
+    if count == 1 and channel is None:
+        return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
+    at = f"{side}," if channel is None else f"{side},{channel},"
+    return tuple(
+        tuple(sp.Symbol(f"{stem}_{{{at}{k}}}", real=True) for k in range(1, count + 1))
+        for stem in ("epsilon", "C")
+    )
+
+
+def channel_symbols(side: int, channel: int, count: int) -> tuple[tuple, tuple]:
+    """:func:`section_symbols` of one ``channel``: ``epsilon_{side,channel,k}``, ``C_{side,channel,k}``."""
+    return section_symbols(side, count, channel)
 
 
 def _check_shape(tf: DiscreteTF) -> tuple[int, int]:

@@ -30,7 +30,6 @@ from functools import cache
 import sympy as sp
 from flint import fmpq, fmpq_poly, fmpz_mpoly_ctx
 
-from symctl import symbols as S
 from symctl._util.display import LatexMixin, descending_latex, latex
 from symctl._util.exact import NotRational, PolyFractions, fold, products_equal
 from symctl._util.serial import DictMixin
@@ -39,6 +38,7 @@ from symctl.design.tf import DiscreteTF
 from symctl.errors import DimensionError, ParameterError
 from symctl.proof import Proof
 from symctl.realization.channels import channel_sections, diagonal, mimo_G2, verify_entries
+from symctl.realization.channels import section_symbols as section_symbols
 from symctl.symbols import z
 
 __all__ = [
@@ -56,21 +56,6 @@ out (:math:`2^d` monomials); beyond, as :math:`\sigma_k` (:attr:`Factorization.G
 
 
 @cache
-def section_symbols(side: int, count: int, channel: int | None = None) -> tuple[tuple, tuple]:
-    """The ``(epsilons, Cs)`` of the ``count`` first-order sections on side 1 or 3, of one ``channel``
-    of a MIMO factorization (``epsilon_{side,channel,k}``) or not (``epsilon_{side,k}``; one
-    section: ``epsilon_1``, ``epsilon_3``)."""
-    if side not in (1, 3):
-        raise ParameterError(f"side: must be 1 (sensor) or 3 (actuator), got {side!r}")
-    if count == 1 and channel is None:
-        return ((S.epsilon_1,), (S.C_1,)) if side == 1 else ((S.epsilon_3,), (S.C_3,))
-    at = f"{side}," if channel is None else f"{side},{channel},"
-    return tuple(
-        tuple(sp.Symbol(f"{stem}_{{{at}{k}}}", real=True) for k in range(1, count + 1))
-        for stem in ("epsilon", "C")
-    )
-
-
 @cache
 def sigma_symbols(count: int, entry: tuple[int, int] | None = None) -> tuple[sp.Symbol, ...]:
     r"""The abbreviations :math:`\sigma_k = e_k(\epsilon)`, :math:`\prod_{i=1}^{d} (z - \epsilon_i)

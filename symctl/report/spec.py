@@ -8,6 +8,8 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 from symctl.derivation.paper import PAPER
+from symctl.derivation.paper import PaperSpec as PaperSpec  # still importable here
+from symctl.derivation.pipeline import SYMBOLIC_P_MAX_ORDER as SYMBOLIC_P_MAX_ORDER
 from symctl.realization.factorization import EXPANDED_ZEROS_MAX
 
 __all__ = ["CIRCUITS", "CIRCUIT_SPECS", "EXPANDED_ZEROS_MAX", "PAPER", "SCHEMA_VERSION"]

@@ -29,6 +29,7 @@ from symctl.report.document import (
 )
 from symctl.report.estimation import estimation_section
 from symctl.report.reference import REFERENCES, cite
+from symctl.report.shorthand import COMPACT_LENGTH as COMPACT_LENGTH  # still importable here
 from symctl.report.spec import circuit_specs
 
 __all__ = ["POLE_ZERO_TOL", "story"]
