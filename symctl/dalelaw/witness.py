@@ -47,8 +47,7 @@ def _coefficients(G, eps: np.ndarray, gain: float):
 
 
 def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
-    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None (``C``
-    are 1 but the first, tried with both signs; up to ``starts`` runs, until ``deadline``)."""
+    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None."""
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
     c_syms = (*fs.sensor_C, *fs.actuator_C)

@@ -16,10 +16,8 @@ __all__ = ["lqg_realization"]
 def lqg_realization(gains: Gains, kalman: KalmanGains) -> Realization:
     r"""The delayed LQG compensator (predictor form) from the outputs to :math:`\delta_r`, in numbers.
 
-    The state space :math:`(F, H, M, N)` of :func:`~symctl.design.kalman.lqg_state_space`
-    with the optimal gains :math:`K` and the filter's :math:`L`; its transfer function is
-    :func:`~symctl.lqg_tf` with both substituted. Close it around the plant with
-    ``closed_loop_response(R, plant, outputs=kalman.C)``.
+    Its transfer function is :func:`~symctl.lqg_tf` with :math:`K` and :math:`L` substituted;
+    close it with ``closed_loop_response(R, plant, outputs=kalman.C)``.
 
     Parameters
     ----------
@@ -35,10 +33,8 @@ def lqg_realization(gains: Gains, kalman: KalmanGains) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        ``gains`` or ``kalman`` of another type.
-    ParameterError
-        ``kalman`` designed on another system.
+    SymctlTypeError, ParameterError
+        ``gains`` or ``kalman`` of another type; ``kalman`` of another system.
 
     Examples
     --------
