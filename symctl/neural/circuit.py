@@ -268,8 +268,7 @@ class Circuit(LatexMixin):
         Examples
         --------
         >>> import sympy as sp
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))
@@ -312,8 +311,7 @@ class Circuit(LatexMixin):
         Examples
         --------
         >>> import sympy as sp
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
         >>> sys = c.as_linear_system()
@@ -360,8 +358,7 @@ class Circuit(LatexMixin):
 
         Examples
         --------
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))

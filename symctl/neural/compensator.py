@@ -39,8 +39,7 @@ def lqg_realization(gains: Gains, kalman: KalmanGains) -> Realization:
     Examples
     --------
     >>> import numpy as np
-    >>> from symctl import MuscleModel, augment, kalman_gains, lqg_tf, lqr_gains
-    >>> from symctl.neural.compensator import lqg_realization
+    >>> from symctl import MuscleModel, augment, kalman_gains, lqg_realization, lqg_tf, lqr_gains
     >>> s = augment(MuscleModel(), 1, 1)
     >>> gains, kf = lqr_gains(s), kalman_gains(s, C=[[1]], W=1, V=1)
     >>> R = lqg_realization(gains, kf)

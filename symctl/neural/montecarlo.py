@@ -225,7 +225,6 @@ def monte_carlo(
 
     Examples
     --------
-    >>> import numpy as np
     >>> from symctl import DiscretePlant, Noise, Realization, monte_carlo
     >>> plant = DiscretePlant([[0.5]], [[1]], dt=0.01)            # x(t+1) = 0.5 x + u + p
     >>> mc = monte_carlo(Realization([[0]], [[0]], [[0]], [[0]], dt=0.01), plant,

@@ -90,8 +90,7 @@ class Neuron:
 
     Examples
     --------
-    >>> from symctl import Circuit, Structure
-    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl import Circuit, Structure, first_order_realization
     >>> from symctl.symbols import epsilon_1, C_1
     >>> c = Circuit.from_structure(Structure.from_realization(
     ...     first_order_realization(epsilon_1, C_1)))

@@ -38,8 +38,7 @@ class LoopStability(Verdict):
 
     Examples
     --------
-    >>> from symctl import MuscleModel, Realization
-    >>> from symctl.neural.stability import loop_stability
+    >>> from symctl import MuscleModel, Realization, loop_stability
     >>> result = loop_stability(MuscleModel(), Realization([[0]], [[-1]], [[1]], 0))
     >>> bool(result), result.hidden
     (False, ())
@@ -94,10 +93,7 @@ def loop_stability(plant, controller) -> LoopStability:
 
     Examples
     --------
-    >>> import sympy as sp
-    >>> from symctl import MuscleModel, Realization
-    >>> from symctl.neural.stability import loop_stability
-    >>> stable = Realization([[0]], [[-0.05]], [[1]], 0)
+    >>> from symctl import MuscleModel, Realization, loop_stability
     >>> hidden = Realization([[0, 0], [0, 1.5]], [[-0.05], [1]], [[1, 0]], 0)
     >>> result = loop_stability(MuscleModel(), hidden)
     >>> bool(result), result.hidden

@@ -79,8 +79,10 @@ def _samples(circuit: Circuit, u) -> np.ndarray:
     return u
 
 
-def _with_output(traces: dict, outs: list) -> dict:
-    """``traces`` with ``"output"``: the one output's trace, or the outputs side by side."""
+def _traces(circuit: Circuit, read) -> dict:
+    """Each neuron's trace ``read(name)`` and ``"output"``: the outputs' (side by side if many)."""
+    traces = {n.name: read(n.name) for n in circuit.neurons}
+    outs = [read(f"output {o.target}") for o in circuit.outputs]
     traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
     return traces
 

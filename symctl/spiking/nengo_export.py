@@ -31,7 +31,7 @@ from symctl.spiking.connections import (
     _no_population,
     _require,
     _samples,
-    _with_output,
+    _traces,
 )
 
 __all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
@@ -168,9 +168,7 @@ def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndar
             source = nengo.Node(lambda t, c=column: c[min(round(t / dt), steps) - 1])
             nengo.Connection(source, net.inputs[name], synapse=None)
         probes = {n: nengo.Probe(node) for n, node in net.neurons.items()}
-        out_probes = [nengo.Probe(net.outputs[o.target]) for o in circuit.outputs]
+        probes |= {f"output {t}": nengo.Probe(node) for t, node in net.outputs.items()}
     with nengo.Simulator(net, dt=dt, progress_bar=False) as sim:
         sim.run_steps(steps)
-    traces = {n: sim.data[p][:, 0] for n, p in probes.items()}
-    outs = [sim.data[p][:, 0] for p in out_probes]
-    return _with_output(traces, outs)
+    return _traces(circuit, lambda name: sim.data[probes[name]][:, 0])

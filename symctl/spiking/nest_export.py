@@ -26,7 +26,7 @@ import numpy as np
 from symctl._util.validate import positive_number
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
-from symctl.spiking.connections import _edges, _require, _samples, _with_output
+from symctl.spiking.connections import _edges, _require, _samples, _traces
 
 __all__ = ["NestNetwork", "nest_response", "to_nest"]
 
@@ -147,6 +147,4 @@ def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndar
         rate = meters[name].events["rate"]  # rate[i]: NEST step i + 1
         return rate[net.lags[name] - 1 : net.lags[name] - 1 + steps]
 
-    traces = {n: trace(n) for n in net.neurons}
-    outs = [trace(n) for n in net.outputs]
-    return _with_output(traces, outs)
+    return _traces(circuit, trace)
