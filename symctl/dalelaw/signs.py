@@ -154,9 +154,8 @@ class Encoding:
     running: list = field(default_factory=list, repr=False, compare=False)
 
 
-def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed=None) -> Encoding:
-    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed;
-    ``fixed``: symbols pinned to values)."""
+def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False) -> Encoding:
+    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed)."""
     R2 = t.R2
     entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))
     symbols = {*t.sections, *t.unknowns}.union(*(_expr(w).free_symbols for w in entries))
@@ -195,8 +194,6 @@ def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed
             solver.add(z3.Or(m, rule))
         else:
             solver.add(rule)
-    for sym, value in (fixed or {}).items():  # symbols pinned to values
-        solver.add(env[sym] == to_z3(value, env, ctx))
     deadline.check(f"the z3 formula of {t.label}")
     return Encoding(env, solver, signs, mixed)
 
