@@ -180,10 +180,8 @@ class Circuit(LatexMixin):
         is_neuron = set(names)
         traced = {n: [_trace(S, term, n, is_neuron) for term in S.blocks[n].inputs] for n in names}
         incoming = {n: [s for s in syns if s is not None] for n, syns in traced.items()}
-        outputs = []
-        for out in S.outputs:
-            syn = _trace(S, out, out, is_neuron)
-            outputs.append(syn if syn is not None else Synapse("0", out, sp.Integer(0), 0))
+        zero = sp.Integer(0)  # an output of the zero signal comes from "0"
+        outputs = tuple(_trace(S, o, o, is_neuron) or Synapse("0", o, zero, 0) for o in S.outputs)
         # a source's branches: its synapses onto neurons in neuron order, then the outputs
         outgoing: dict[str, list[Synapse]] = {}
         for s in (*(s for v in incoming.values() for s in v if s.source != s.target), *outputs):
@@ -199,13 +197,8 @@ class Circuit(LatexMixin):
             )
             for name in names
         )
-        return cls(
-            S,
-            neurons,
-            S.inputs,
-            tuple(outputs),
-            {u: tuple(outgoing.get(u, ())) for u in S.inputs},
-        )
+        axons = {u: tuple(outgoing.get(u, ())) for u in S.inputs}
+        return cls(S, neurons, S.inputs, outputs, axons)
 
     @property
     def n_neurons(self) -> int:
@@ -284,10 +277,8 @@ class Circuit(LatexMixin):
             for name, b in self.structure.blocks.items()
         }
         S = Structure(blocks, self.structure.inputs, self.structure.outputs)
-        vertex_of = None
-        if self.neurons and self.neurons[0].vertex is not None:
-            vertex_of = {n.name: n.vertex for n in self.neurons}
-        return self._build(S, vertex_of, "subs")
+        placed = self.neurons and self.neurons[0].vertex is not None
+        return self._build(S, self.vertices if placed else None, "subs")
 
     @property
     def free_symbols(self) -> set[sp.Symbol]:

@@ -211,16 +211,9 @@ class FiringPatterns(ArrayValue, DictMixin):
             at = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
             peak[:, k] = np.where(np.isnan(tr).any(axis=1), np.nan, tr[np.arange(self.count), at])
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
-        trace = np.array(
-            [
-                float(np.nanmax(np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0)))
-                for n in names
-            ]
-        )
-        behaviour = max(
-            float(np.max(np.abs(self.delta_f - self.delta_f[0]))),
-            float(np.max(np.abs(self.delta_r - self.delta_r[0]))),
-        )
+        ranges = [np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0) for n in names]
+        trace = np.array([float(np.nanmax(r)) for r in ranges])
+        behaviour = max(float(np.max(np.abs(a - a[0]))) for a in (self.delta_f, self.delta_r))
         return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
@@ -564,11 +557,7 @@ def _simulate(
                 "gains were computed for?"
             )
         worst = max(worst, dev)
-        keep = {
-            n.name
-            for n in circuit.neurons
-            if _whole(kind) or n.part == "G2" or n.part.endswith(".G2")
-        }
+        keep = {n.name for n in circuit.neurons if _whole(kind) or n.part.split(".")[-1] == "G2"}
         traces = {k: v if v.ndim == 2 else v[None] for k, v in traces.items() if k in keep}
         out.append((params, R2, circuit, df[..., 0], dr[..., 0], traces))
     params, realizations, circuits, dfs, drs, traced = zip(*out, strict=True)

@@ -34,7 +34,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Noise"]
 
-_COVARIANCES = ("process", "motor", "sensor")
+_PARTS = ("process", "motor", "sensor", "signal_dependent")
 _BLOCK = 64  # steps of normals drawn at once
 
 
@@ -97,22 +97,19 @@ class Noise(ArrayValue, DictMixin):
     signal_dependent: np.ndarray | None = None
 
     def __post_init__(self) -> None:  # validated, read-only
-        for name in _COVARIANCES:
+        for name in _PARTS:
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, read_only(_covariance(getattr(self, name), name)))
-        if self.signal_dependent is not None:
-            sd = _covariance(self.signal_dependent, "signal_dependent")
-            if sd.ndim == 2:
-                raise DimensionError(
-                    f"signal_dependent: expected a number or a list, got shape {sd.shape}"
-                )
-            object.__setattr__(self, "signal_dependent", read_only(sd))
+        sd = self.signal_dependent
+        if sd is not None and sd.ndim == 2:
+            raise DimensionError(
+                f"signal_dependent: expected a number or a list, got shape {sd.shape}"
+            )
 
     @property
     def is_zero(self) -> bool:
         """Whether no noise is drawn (every part absent or zero)."""
-        parts = (*(getattr(self, k) for k in _COVARIANCES), self.signal_dependent)
-        return all(v is None or not np.any(v) for v in parts)
+        return all(getattr(self, k) is None or not np.any(getattr(self, k)) for k in _PARTS)
 
     def matrices(self, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
         """Each part given, sized for ``n`` states, ``m`` inputs and ``outputs`` measurements
