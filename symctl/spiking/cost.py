@@ -17,11 +17,12 @@ import numpy as np
 from symctl._util.pickling import ArrayValue
 from symctl._util.pool import Checkpoint, open_pool, pool_options
 from symctl._util.serial import DictMixin
-from symctl._util.validate import bounded_int, read_only
+from symctl._util.validate import bounded_int
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _plant
+from symctl.neural.simulate import _freeze
 from symctl.spiking.connections import _edges
 from symctl.spiking.loop import spiking_response
 from symctl.spiking.nengo_export import MAX_POPULATION, RADIUS_MARGIN
@@ -71,8 +72,7 @@ class SpikingCost(ArrayValue, DictMixin):
     atlas_classes: tuple = ()
 
     def __post_init__(self) -> None:
-        for name in ("deviation", "spikes"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, ("deviation", "spikes"))
 
     def needed(self, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
         """Per circuit and seed, the neurons per population within ``tolerance`` and the spikes
