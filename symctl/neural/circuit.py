@@ -130,9 +130,7 @@ class Circuit(LatexMixin):
 
     @classmethod
     def from_structure(
-        cls,
-        S: Structure,
-        assignment: DelayAssignment | CompatibilityResult | None = None,
+        cls, S: Structure, assignment: DelayAssignment | CompatibilityResult | None = None
     ) -> Circuit:
         r"""The circuit of a structure (the module text states the rule).
 

@@ -14,12 +14,7 @@ from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import (
-    MAX_CIRCUITS,
-    bounded_int,
-    numeric_matrix,
-    positive_number,
-)
+from symctl._util.validate import MAX_CIRCUITS, bounded_int, numeric_matrix, positive_number
 from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant, same_dt

@@ -11,12 +11,7 @@ import scipy.linalg
 
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
-from symctl._util.validate import (
-    MAX_COUNT,
-    bounded_int,
-    bounded_number,
-    float_array,
-)
+from symctl._util.validate import MAX_COUNT, bounded_int, bounded_number, float_array
 from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.ode import ODEModel

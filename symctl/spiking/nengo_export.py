@@ -25,14 +25,7 @@ from symctl._util.validate import as_generator, bounded_int, positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import pulse
-from symctl.spiking.connections import (
-    _edges,
-    _label,
-    _no_population,
-    _require,
-    _samples,
-    _traces,
-)
+from symctl.spiking.connections import _edges, _label, _no_population, _require, _samples, _traces
 
 __all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
 
