@@ -47,9 +47,8 @@ WITNESS_PIN = 0.5  # most seconds of each z3 call that pins a witness's value to
 
 @dataclass(frozen=True)
 class DaleResult(Verdict):
-    r"""The verdict of :func:`dale`: a witness, a proof that none exists, or "not decided".
-
-    Truthy when a witness exists; ``evidence`` is the witness circuit, else the reason.
+    r"""The verdict of :func:`dale`: a witness (truthy; ``evidence`` the witness circuit), a
+    proof that none exists, or "not decided" (``evidence`` the reason).
 
     Attributes
     ----------
@@ -59,10 +58,8 @@ class DaleResult(Verdict):
         The exact witness of the whole controller :math:`G_3 G_2 G_1`.
     signs : mapping
         Neuron name -> ``"+"`` or ``"-"`` (one driving only the read-out is ``"+"``).
-    method, reason : str
-        How it was decided, and the evidence (or what was tried).
-    circuit : str
-        The circuit asked about (a realizer's name or an atlas class's label).
+    method, reason, circuit : str
+        How it was decided, the evidence (or what was tried), and the circuit asked about.
     witness, R2, sections
         The witness circuit, :math:`G_2`'s realization in it, its :math:`\epsilon_k, C_k`.
     exact : bool
@@ -70,7 +67,6 @@ class DaleResult(Verdict):
     realizes : bool or None
         Whether the circuit realizes :math:`G` at all, signs aside.
     elapsed : float
-        Seconds spent.
 
     Examples
     --------
@@ -214,13 +210,12 @@ def dale(
     Parameters
     ----------
     G : Gains, DiscreteTF or sympy expression in ``z``
-        A numeric SISO controller (floats taken as the exact binary rationals they are);
-        ``Gains`` give the optimal controller with their delays.
+        A numeric SISO controller (floats as the exact binary rationals they are); ``Gains``
+        give the optimal controller with their delays.
     sensor_delay, actuator_delay : int, optional
         The split :math:`G_1`, :math:`G_3` (default the gains' delays, else 1 and 1).
     circuit : {"general", "controllable", "observable"}, CircuitClass or Pattern
-        The circuit of :math:`G_2`, or a class of :func:`symctl.atlas` (each
-        representative pattern tried).
+        The circuit of :math:`G_2`, or a class of :func:`symctl.atlas` (each representative).
     timeout : float or Deadline
         Seconds for the whole call (default 30, at most 3600), or a running Deadline.
     progress : callable, optional
@@ -232,13 +227,11 @@ def dale(
 
     Raises
     ------
-    ParameterError
-        Unknown ``circuit`` name, ``G`` with symbols, a bad ``timeout``, delays
-        that ``G``'s relative degree cannot carry (from :func:`~symctl.factor`).
+    ParameterError, DimensionError
+        Unknown ``circuit`` name, ``G`` with symbols or MIMO, a bad ``timeout``, delays that
+        ``G``'s relative degree cannot carry.
     NotRealizableError
         A class of another order than :math:`G_2`, or :math:`N = 0` for a class.
-    DimensionError
-        A MIMO ``G``.
     SymctlTypeError
         ``G`` or ``circuit`` of a wrong type, ``progress`` not callable.
 
@@ -326,7 +319,7 @@ def solve(
     G, t: Template, poles, deadline: Deadline, tried: list, witness: bool = True, progress=None
 ) -> tuple[str, dict | None]:
     """``(verdict, model)`` of one template: z3 briefly, the general circuit's numeric search,
-    z3 again (the model pinned to rationals when ``witness``; ``tried`` gets each attempt)."""
+    z3 again (``witness``: the model pinned to rationals; ``tried`` gets each attempt)."""
     general = t.label == "general" and not G.free_symbols - {z}
     step = progress or (lambda _name: None)
     step(f"{t.label}: equations")
@@ -399,8 +392,7 @@ def _witness(G, fs, t: Template, model: dict, label: str, tried, deadline, mixed
 
 
 def _signs(circuit: Circuit, mixed=()) -> dict[str, str]:
-    """Each neuron's sign, read exactly off its outgoing weights (read-out and self exempt); a
-    ``mixed`` neuron gets its majority sign."""
+    """Each neuron's sign, read exactly off its outgoing weights (``mixed``: the majority)."""
     out = {}
     for name, synapses in outgoing_synapses(circuit).items():
         pos = sum(1 for s in synapses if _expr(s.weight) > 0)

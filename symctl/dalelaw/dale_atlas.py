@@ -1,13 +1,10 @@
 r"""Dale's law across the atlas: which circuit classes admit an E/I assignment for every controller.
 
-For the order-:math:`n` atlas and one split of the delays, a controller is :math:`G =
-k\,b(z)/a(z)`, :math:`a` monic of degree :math:`n`, :math:`b` monic of degree :math:`n -
-d_s - d_a`. Per class, :func:`dale_atlas` answers **never** (z3 proves no controller, its
-coefficients existential unknowns, has an E/I realization in the class), **some** (a
-witness for one controller, a refutation for another), **every** (every sampled
-controller has a witness: seeded exact rationals, half with complex poles, modulus up to
-1.5; evidence, not a proof) or ``None`` (z3 ran out of time where it matters). Classes run
-on the atlas's dask path (:mod:`symctl.circuitatlas.search`).
+A controller is :math:`G = k\,b(z)/a(z)`, :math:`a` monic of degree :math:`n`, :math:`b` monic
+of degree :math:`n - d_s - d_a`. Per class: **never** (z3 proves no controller, its
+coefficients unknowns, has an E/I realization in the class), **some** (a witness for one, a
+refutation for another), **every** (every sampled controller has a witness: seeded exact
+rationals, half with complex poles, modulus up to 1.5; evidence, not a proof) or ``None``.
 """
 
 from __future__ import annotations
@@ -39,9 +36,7 @@ MAX_SAMPLES = 1000  # most sampled controllers per class
 
 @dataclass(frozen=True)
 class DaleRow:
-    """One class of the E/I table: the atlas's label, size and verdict (``universal``); the E/I
-    ``verdict`` and that for the table's ``controller``; ``sampled`` counts (E/I, not E/I, not
-    realized, not decided); ``exists``: z3's answer for some controller."""
+    """One class of the E/I table; ``sampled`` counts E/I, not E/I, not realized, not decided."""
 
     label: str
     neurons: int
@@ -207,19 +202,19 @@ def dale_atlas(
     order : int
         The atlas's order, 1 or 2.
     sensor_delay, actuator_delay : int
-        The split of the controllers (default 1 and 1); their sum is at most ``order``.
+        The split of the controllers; their sum is at most ``order``.
     samples : int
-        Sampled controllers per class (default 24, at most 1000).
+        Sampled controllers per class (at most 1000).
     rng : int, numpy Generator or None, default 0
-        Seeds the samples (``seed=`` is its deprecated name).
+        Seeds the samples.
     G : Gains, DiscreteTF or expression, optional
         A controller of its own column (e.g. the paper's gains).
     classes : list of str, optional
         Only these labels (default every class).
     timeout : float
-        Seconds for each search (default 10; thrice for the generic controller).
+        Seconds for each search (thrice for the generic controller).
     workers : int, scheduler : str, optional
-        Processes (1: this one; more use dask's local cluster), or a dask scheduler's address.
+        Processes (more than 1: dask's local cluster), or a dask scheduler's address.
     progress : callable, optional
         Called with each class's label once its row is decided.
 
@@ -229,11 +224,10 @@ def dale_atlas(
 
     Raises
     ------
-    ParameterError
-        An order outside 1..2, delays the order cannot carry, an unknown class label,
-        bad ``samples``, ``timeout`` or ``workers``, an unreachable ``scheduler``.
-    SymctlTypeError
-        ``progress`` is not callable.
+    ParameterError, SymctlTypeError
+        An order outside 1..2, delays the order cannot carry, an unknown class label, bad
+        ``samples``, ``timeout`` or ``workers``, an unreachable ``scheduler``; ``progress``
+        not callable.
 
     Examples
     --------

@@ -3,9 +3,8 @@ r"""The cheapest E/I circuit of a controller, with sign-flipping interneurons wh
 A neuron :math:`j` with **mixed** signs keeps Dale's law with one inhibitory interneuron
 :math:`I_j`: :math:`j` (sign :math:`\sigma`) sends :math:`\sigma` to :math:`I_j` (delay 0),
 and :math:`I_j` sends :math:`w_t / \sigma < 0` to each target :math:`t` whose weight
-:math:`w_t` has the other sign: the product is :math:`w_t`, so :math:`G` is unchanged.
-:func:`ei_circuit` finds each circuit's fewest mixed neurons with z3 (subsets tried by
-size, the minimum proved by refuting every smaller one); the cheapest total wins.
+:math:`w_t` has the other sign: the product is :math:`w_t`, so :math:`G` is unchanged. z3
+finds each circuit's fewest mixed neurons (every smaller subset refuted).
 """
 
 from __future__ import annotations
@@ -80,15 +79,15 @@ class EICircuit(DictMixin):
     base_neurons, neurons : int
         Its neurons (sections included), and with one interneuron per mixed neuron.
     interneurons : tuple of str
-        The mixed neurons, each given an inhibitory interneuron (:attr:`relays`).
+        The mixed neurons, each relayed by an inhibitory interneuron (:attr:`relays`).
     minimum, cost : int
-        The fewest neurons of any searched circuit that realizes :math:`G` without
-        Dale's law, and ``neurons - minimum``, what Dale's law costs.
+        The fewest neurons of any searched circuit realizing :math:`G` without Dale's law,
+        and ``neurons - minimum``, what Dale's law costs.
     signs : mapping
         Every neuron's sign in the E/I circuit (interneurons ``"-"``).
     relays : tuple of Interneuron
     realization : Realization
-        The witness of :math:`G_3 G_2 G_1` (exact); the relays leave it unchanged.
+        The exact witness of :math:`G_3 G_2 G_1`; the relays leave it unchanged.
     candidates : tuple of EICandidate
         Every circuit searched, with its verdict.
     method, reason : str
@@ -191,8 +190,7 @@ def ei_circuit(
         Names, ``CircuitClass`` or ``Pattern``; default the named circuits and, for
         :math:`G_2` of order 1 or 2, every class of ``symctl.atlas(order)``.
     timeout : float or Deadline
-        Seconds for each circuit's search (default 30, at most 3600), or a Deadline
-        bounding the whole call.
+        Seconds for each circuit's search (at most 3600), or a Deadline for the whole call.
     progress : callable, optional
         Called with each circuit's label before its search.
 
@@ -202,11 +200,9 @@ def ei_circuit(
 
     Raises
     ------
-    ParameterError
-        No searched circuit realizes ``G`` (or none was decided), an empty
-        ``circuits``; the errors of :func:`~symctl.dalelaw.dale.dale`.
-    SymctlTypeError
-        ``progress`` is not callable.
+    ParameterError, SymctlTypeError
+        No searched circuit realizes ``G`` (or none was decided), an empty ``circuits``,
+        ``progress`` not callable; the errors of :func:`~symctl.dalelaw.dale.dale`.
 
     Examples
     --------

@@ -53,13 +53,8 @@ def full_pattern(n: int) -> Pattern:
 
 @dataclass(frozen=True)
 class Template:
-    """One circuit's family of realizations of :math:`G`, as unknowns and polynomial equations.
-
-    ``R2`` is :math:`G_2`'s realization in the ``unknowns`` (its free entries; ``signed``: those
-    set to :math:`\\pm 1`); ``target`` the ``(a, c)`` a pattern's ``R2`` must match (empty for a
-    canonical form); ``outgoing`` each neuron's weights onto other neurons; ``weights`` every
-    weight of the whole ``circuit`` (each stays nonzero).
-    """
+    """One circuit's family of realizations of :math:`G`: ``R2`` in the ``unknowns`` (``signed``:
+    those set to :math:`\\pm 1`), the ``target`` ``(a, c)`` a pattern's ``R2`` must match."""
 
     label: str
     factorization: object
@@ -121,8 +116,7 @@ def _expr(w) -> sp.Expr:
 
 
 def to_z3(expr, env: dict, ctx):
-    """A SymPy rational function of ``env``'s symbols as a z3 real term, through z3's C API
-    (the Python API's coercions cost seconds)."""
+    """A SymPy rational function as a z3 real term, through z3's C API (the Python API is slow)."""
     expr = _expr(expr)
     if expr.is_Symbol:
         return env[expr]
@@ -160,9 +154,8 @@ class Encoding:
     running: list = field(default_factory=list, repr=False, compare=False)
 
 
-def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed=None) -> Encoding:
-    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed;
-    ``fixed``: symbols pinned to values)."""
+def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False) -> Encoding:
+    """The template's constraints in a fresh ``QF_NRA`` solver (``relax``: a neuron may be mixed)."""
     R2 = t.R2
     entries = (*R2.F, *R2.H, *R2.M, *t.weights, *(x for part in t.target for x in part))
     symbols = {*t.sections, *t.unknowns}.union(*(_expr(w).free_symbols for w in entries))
@@ -201,8 +194,6 @@ def encode(t: Template, poles, deadline: Deadline, *, relax: bool = False, fixed
             solver.add(z3.Or(m, rule))
         else:
             solver.add(rule)
-    for sym, value in (fixed or {}).items():  # symbols pinned to values
-        solver.add(env[sym] == to_z3(value, env, ctx))
     deadline.check(f"the z3 formula of {t.label}")
     return Encoding(env, solver, signs, mixed)
 
@@ -241,11 +232,8 @@ GRACE = 0.25  # seconds a z3 call may run past its timeout before check stops wa
 
 
 def check(enc: Encoding, assume, deadline: Deadline, cap: float | None = None, *, grace=GRACE):
-    """``enc.solver.check(*assume)`` within the time ``deadline`` leaves (at most ``cap`` s).
-
-    z3's nonlinear core can overrun its timeout by a minute, so the call runs in a thread
-    and the caller waits ``grace`` s longer at most: then ``unknown``, the context busy.
-    """
+    """``enc.solver.check(*assume)`` within ``deadline`` (and ``cap`` s); z3 can overrun its
+    timeout by a minute, so it runs in a thread given ``grace`` s more, then ``unknown``."""
     if not idle(enc, deadline):
         return z3.unknown
     left = deadline.left() if cap is None else min(cap, deadline.left())
@@ -281,8 +269,8 @@ def idle(enc: Encoding, deadline: Deadline) -> bool:
 
 
 def decide(enc: Encoding, free=(), *, deadline: Deadline) -> tuple[str, list]:
-    """``(verdict, assumptions)``: one z3 call per sign assignment of the multi-synapse neurons
-    (nlsat is far faster on conjunctions); ``free`` neurons may be mixed."""
+    """``(verdict, assumptions)``: one z3 call per sign assignment (nlsat is faster on
+    conjunctions); ``free`` neurons may be mixed."""
     if deadline.expired() or not idle(enc, deadline):
         return "unknown", []
     names = [n for n in enc.signs if n not in free]
@@ -331,9 +319,8 @@ def _candidates(v, count: int = 6):
 
 
 def refine(enc: Encoding, order, *, deadline: Deadline, cap: float = 0.5, keep=()) -> dict:
-    """A model with as many unknowns rational as z3 allows, each in ``order`` pinned in turn
-    to a nearby simple rational that keeps the formula satisfiable (each try at most ``cap`` s);
-    pinning the free directions first leaves the rest linear, so rational."""
+    """A model with each unknown in ``order`` pinned in turn to a nearby simple rational that
+    keeps the formula satisfiable (each try ``cap`` s); the rest then solve rationally."""
     s = enc.solver
     pinned: list = list(keep)
     model = s.model()

@@ -47,8 +47,7 @@ def _coefficients(G, eps: np.ndarray, gain: float):
 
 
 def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0):
-    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None (``C``
-    are 1 but the first, tried with both signs; up to ``starts`` runs, until ``deadline``)."""
+    """An exact witness ``{symbol: Rational}`` for the general template ``t``, or None."""
     fs = t.factorization
     eps_syms = (*fs.sensor_eps, *fs.actuator_eps)
     c_syms = (*fs.sensor_C, *fs.actuator_C)
@@ -58,7 +57,7 @@ def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0)
     fns = [sp.lambdify(order, list(ws), "numpy") for ws in t.outgoing.values() if ws]
     rng = np.random.default_rng(seed)
 
-    def values(theta, sign):
+    def margin(theta, sign):
         eps = 0.95 * np.tanh(theta[:k])
         cs = np.ones(len(c_syms))
         if cs.size:
@@ -70,15 +69,8 @@ def search_general(G, t, *, deadline: Deadline, starts: int = 48, seed: int = 0)
         try:
             Qi = np.linalg.inv(Q)
         except np.linalg.LinAlgError:
-            return None
-        F, H, M = Q @ F0 @ Qi, Q[:, -1], c @ Qi
-        return [*F.ravel(), *H, *M, *eps, *cs], Q
-
-    def margin(theta, sign):
-        got = values(theta, sign)
-        if got is None:
             return -np.inf
-        vals, Q = got
+        vals = [*(Q @ F0 @ Qi).ravel(), *Q[:, -1], *(c @ Qi), *eps, *cs]
         groups = [np.atleast_1d(np.asarray(f(*vals), dtype=float)) for f in fns]
         return dale_margin(groups) - 1e-4 * np.log10(max(np.linalg.cond(Q), 1.0))
 

@@ -38,10 +38,8 @@ _MIN_CHUNK = 4096  # fewest realizations per task worth a thread of its own
 _WORKERS = os.cpu_count() or 1  # threads that run the tasks
 _MAX_KEEP = 64  # most names in ``keep`` (there are six; an endless iterator is refused)
 
-TRACES = ("delta_f", "delta_r", "states")
-"""The traces of a batch simulation, in the order of :class:`BatchResponse`."""
-KEEP = TRACES + tuple("peak_" + name for name in TRACES)
-"""What ``simulate_batch(keep=...)`` can keep: traces, and their peaks over the horizon."""
+TRACES = ("delta_f", "delta_r", "states")  # in the order of BatchResponse
+KEEP = TRACES + tuple("peak_" + name for name in TRACES)  # what simulate_batch can keep
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,10 +55,10 @@ class BatchResponse(ArrayValue, DictMixin):
     stability_checked : bool
         Whether every loop was checked to be stable before the run.
     peaks : mapping of str to (R, channels) arrays
-        The largest magnitude over the horizon of each trace asked for with
-        ``keep=("peak_delta_r", ...)``, by trace name (``"delta_r"``).
+        Each trace's largest magnitude over the horizon, by trace name, when asked for
+        (``keep=("peak_delta_r", ...)``).
     first : int
-        The index of the first loop here among all of them (``chunk=``; 0 otherwise).
+        The index of the first loop here among all (with ``chunk=``; else 0).
 
     Examples
     --------
@@ -87,8 +85,7 @@ class BatchResponse(ArrayValue, DictMixin):
 
 
 def _chunks(count: int) -> list[slice]:
-    """Equal slices of at most ``_CHUNK`` covering ``range(count)`` (a multiple of ``_WORKERS``
-    of them when each gets ``_MIN_CHUNK``)."""
+    """Equal slices of at most ``_CHUNK`` (a multiple of ``_WORKERS`` of them when large)."""
     k = -(-count // _CHUNK)
     if count >= _WORKERS * _MIN_CHUNK:
         k = -(-k // _WORKERS) * _WORKERS
@@ -97,11 +94,8 @@ def _chunks(count: int) -> list[slice]:
 
 
 def _charpoly(A: np.ndarray) -> np.ndarray:
-    r"""Characteristic polynomials of a stack ``(N, N, R)``, ascending ``(N + 1, R)``.
-
-    Power sums :math:`p_k = \operatorname{tr}(A^a A^b)`, :math:`a + b = k` (powers up to
-    :math:`\lceil N/2 \rceil`), then Newton's :math:`k\,c_{N-k} = -\sum_{i=1}^{k} c_{N-k+i}\,p_i`.
-    """
+    r"""Characteristic polynomials of a stack ``(N, N, R)``, ascending, by Newton's identities
+    on the power sums :math:`\operatorname{tr}(A^a A^b)`, :math:`a + b = k`."""
     N, R = A.shape[0], A.shape[-1]
     powers = [np.broadcast_to(np.eye(N)[:, :, None], A.shape), A]
     while len(powers) <= (N + 1) // 2:
@@ -117,11 +111,8 @@ def _charpoly(A: np.ndarray) -> np.ndarray:
 
 
 def _schur_stable(A: np.ndarray) -> np.ndarray:
-    r"""Whether every eigenvalue of each ``A[:, :, r]`` has modulus below ``UNIT_CIRCLE``.
-
-    The Schur-Cohn test on :math:`p(\rho z)`, :math:`\rho` = ``UNIT_CIRCLE``: reduce
-    :math:`p(z) = \sum a_i z^i` to :math:`(a_d p(z) - a_0 p^*(z))/z` while :math:`|a_0| < |a_d|`.
-    """
+    r"""Whether each ``A[:, :, r]`` has spectral radius below ``UNIT_CIRCLE``: the Schur-Cohn
+    test, :math:`p \to (a_d p - a_0 p^*)/z` while :math:`|a_0| < |a_d|`, on :math:`p(\rho z)`."""
     a = _charpoly(A)
     a = a * (UNIT_CIRCLE ** np.arange(a.shape[0]))[:, None]
     ok = np.ones(a.shape[1], dtype=bool)
@@ -155,24 +146,20 @@ def _in_chunks(run, count: int) -> int:
 
 def _selection(keep, states: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The traces and the peaks to keep, each in the order of ``TRACES``."""
-    if keep is None:
-        names = {"delta_f", "delta_r"}
-    else:
-        if isinstance(keep, str):
-            keep = (keep,)
-        elif not isinstance(keep, Iterable) or isinstance(keep, bytes):
-            raise SymctlTypeError(f"keep: expected names among {KEEP}, got {keep!r}")
-        names = set()
-        for k, name in enumerate(keep):
-            if k >= _MAX_KEEP:
-                raise ParameterError(f"keep: at most {_MAX_KEEP} names, got more")
-            if not isinstance(name, str):
-                raise SymctlTypeError(f"keep: expected names among {KEEP}, got {name!r}")
-            if name not in KEEP:
-                raise ParameterError(f"keep: expected names among {KEEP}, got {name!r}")
-            names.add(name)
-        if not names:
-            raise ParameterError(f"keep: nothing to keep, got {keep!r}; name one of {KEEP}")
+    names = {"delta_f", "delta_r"} if keep is None else set()
+    keep = (keep,) if isinstance(keep, str) else () if keep is None else keep
+    if not isinstance(keep, Iterable) or isinstance(keep, bytes):
+        raise SymctlTypeError(f"keep: expected names among {KEEP}, got {keep!r}")
+    for k, name in enumerate(keep):
+        if k >= _MAX_KEEP:
+            raise ParameterError(f"keep: at most {_MAX_KEEP} names, got more")
+        if not isinstance(name, str):
+            raise SymctlTypeError(f"keep: expected names among {KEEP}, got {name!r}")
+        if name not in KEEP:
+            raise ParameterError(f"keep: expected names among {KEEP}, got {name!r}")
+        names.add(name)
+    if not names:
+        raise ParameterError(f"keep: nothing to keep, got {keep!r}; name one of {KEEP}")
     if states:
         names.add("states")
     return tuple(t for t in TRACES if t in names), tuple(t for t in TRACES if "peak_" + t in names)
@@ -199,8 +186,7 @@ def _check_memory(count, steps, widths, traces, peaks, chunk) -> None:
 def _simulate_part(
     loops, n, w, widths, traces, peaks, t, checked, noisy, part: slice
 ) -> BatchResponse:
-    """The loops ``part`` of the batch, their traces and peaks in fresh buffers; ``noisy``:
-    ``(A, B, parts, gen)`` of the noise, or None."""
+    """The loops ``part`` in fresh buffers; ``noisy``: ``(A, B, parts, gen)`` or None."""
     Acl, Cr = loops(part)
     w, count = w if w.ndim == 2 else w[part], Acl.shape[-1]
     ends = dict(zip(TRACES, np.cumsum([widths[u] for u in TRACES]).tolist(), strict=True))
@@ -251,17 +237,16 @@ def simulate_batch(
     F, H, M, N : arrays of shapes (R, nc, nc), (R, nc, n), (R, m, nc), (R, m, n)
         E.g. ``Realization.lambdify(symbols)(*values)`` with arrays of values.
     disturbance : float or array
-        A pulse amplitude (as in :func:`simulate_realization`), an array ``(steps, n)``
-        shared by every loop, or ``(R, steps, n)``.
+        A pulse amplitude (as in :func:`simulate_realization`), or ``(steps, n)`` shared by
+        every loop, or ``(R, steps, n)``.
     states : bool
         Also keep the controller states ``(R, steps, nc)``.
     check_stability : bool
         Refuse any unstable loop first (eigenvalues up to 2000 loops, Schur-Cohn above).
     keep : str or iterable of str, optional
-        Among :data:`KEEP`: traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their
-        peaks ``"peak_..."`` (in ``.peaks``); default ``("delta_f", "delta_r")``. Traces take
-        :math:`8 R\,\mathrm{steps}\,c` bytes (:math:`c` channels), peaks :math:`8 R c`; more
-        than ``MAX_OUTPUT_BYTES`` in one result or chunk is refused before any work.
+        Traces ``"delta_f"``, ``"delta_r"``, ``"states"`` and their peaks ``"peak_..."`` (in
+        ``.peaks``); default ``("delta_f", "delta_r")``. Over ``MAX_OUTPUT_BYTES`` (8 bytes a
+        value) in one result or chunk is refused before any work.
     chunk : int, optional
         Stream the loops in chunks of ``chunk`` realizations: an iterator of results, each
         simulated when reached (arguments and stability checked first).

@@ -58,8 +58,7 @@ class CircuitSystem(NamedTuple):
     ----------
     A, B, C, D : sympy Matrix or NumPy array
     states, inputs, outputs : tuple of str
-        The structure's delay blocks; its inputs; the neurons (their axon outputs), then the
-        circuit outputs.
+        The structure's delay blocks; its inputs; the neurons' axon outputs, then the circuit's.
 
     Examples
     --------
@@ -83,10 +82,7 @@ class CircuitSystem(NamedTuple):
 
 @dataclass(frozen=True, eq=False)
 class Circuit(LatexMixin):
-    """A circuit of stylized neurons, built by :meth:`from_structure`.
-
-    Equal when read off equal structures (SymPy-structural gains) with the same vertices;
-    hashes by value.
+    """A circuit of stylized neurons, built by :meth:`from_structure`; compares and hashes by value.
 
     Attributes
     ----------
@@ -96,8 +92,7 @@ class Circuit(LatexMixin):
         In the structure's signal order.
     inputs : tuple of str
     outputs : tuple of Synapse
-        For each structure output, the axon path reaching it (from ``"0"``, weight 0, for
-        the zero signal).
+        Per structure output, the axon path reaching it (from ``"0"``, weight 0: zero signal).
     input_axons : mapping of str to tuple of Synapse
         The branches of each input's axon.
 
@@ -135,20 +130,17 @@ class Circuit(LatexMixin):
 
     @classmethod
     def from_structure(
-        cls,
-        S: Structure,
-        assignment: DelayAssignment | CompatibilityResult | None = None,
+        cls, S: Structure, assignment: DelayAssignment | CompatibilityResult | None = None
     ) -> Circuit:
         r"""The circuit of a structure (the module text states the rule).
 
         Parameters
         ----------
         S : Structure
-            E.g. :meth:`Structure.from_factorization` (substitute values that zero an entry
-            into the realization first, so that the entry makes no block).
+            E.g. :meth:`Structure.from_factorization` (zero entries substituted first make no
+            block).
         assignment : DelayAssignment or CompatibilityResult, optional
-            A compatible assignment of ``S``'s signals to delay-graph vertices: each neuron
-            sits at its adder's vertex.
+            A compatible assignment of ``S``'s signals: each neuron sits at its adder's vertex.
 
         Returns
         -------
@@ -159,8 +151,8 @@ class Circuit(LatexMixin):
         SymctlTypeError
             ``S`` is not a Structure, or ``assignment`` is of another type.
         ParameterError
-            ``assignment`` for another structure or not compatible; a gain that is not
-            finite; a loop of gains and delays with no adder.
+            ``assignment`` for another structure or not compatible; a gain not finite; a loop
+            of gains and delays with no adder.
 
         Examples
         --------
@@ -178,28 +170,16 @@ class Circuit(LatexMixin):
     def _build(
         cls, S: Structure, vertex_of: Mapping[str, int] | None, argname: str = "S"
     ) -> Circuit:
-        for name, block in S.blocks.items():
-            if block.kind == "gain" and block.gain is not None:
-                if block.gain.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-                    raise ParameterError(
-                        f"{argname}: the gain {name!r} is not finite: {block.gain}"
-                    )
-        names = [
-            n for n, b in S.blocks.items() if b.kind == "sum" and len(b.inputs) >= 2
-        ]  # the structure's order
+        infinite = (sp.nan, sp.zoo, sp.oo, -sp.oo)
+        for name, b in S.blocks.items():
+            if b.kind == "gain" and b.gain is not None and b.gain.has(*infinite):
+                raise ParameterError(f"{argname}: the gain {name!r} is not finite: {b.gain}")
+        names = [n for n, b in S.blocks.items() if b.kind == "sum" and len(b.inputs) >= 2]
         is_neuron = set(names)
-        incoming = {
-            name: [
-                syn
-                for syn in (_trace(S, term, name, is_neuron) for term in S.blocks[name].inputs)
-                if syn is not None
-            ]
-            for name in names
-        }
-        outputs = []
-        for out in S.outputs:
-            syn = _trace(S, out, out, is_neuron)
-            outputs.append(syn if syn is not None else Synapse("0", out, sp.Integer(0), 0))
+        traced = {n: [_trace(S, term, n, is_neuron) for term in S.blocks[n].inputs] for n in names}
+        incoming = {n: [s for s in syns if s is not None] for n, syns in traced.items()}
+        zero = sp.Integer(0)  # an output of the zero signal comes from "0"
+        outputs = tuple(_trace(S, o, o, is_neuron) or Synapse("0", o, zero, 0) for o in S.outputs)
         # a source's branches: its synapses onto neurons in neuron order, then the outputs
         outgoing: dict[str, list[Synapse]] = {}
         for s in (*(s for v in incoming.values() for s in v if s.source != s.target), *outputs):
@@ -215,13 +195,8 @@ class Circuit(LatexMixin):
             )
             for name in names
         )
-        return cls(
-            S,
-            neurons,
-            S.inputs,
-            tuple(outputs),
-            {u: tuple(outgoing.get(u, ())) for u in S.inputs},
-        )
+        axons = {u: tuple(outgoing.get(u, ())) for u in S.inputs}
+        return cls(S, neurons, S.inputs, outputs, axons)
 
     @property
     def n_neurons(self) -> int:
@@ -234,7 +209,7 @@ class Circuit(LatexMixin):
         Raises
         ------
         ParameterError
-            No neuron has that name (the message lists the neurons).
+            No neuron has that name.
 
         Examples
         --------
@@ -273,8 +248,8 @@ class Circuit(LatexMixin):
         return {n.name: n.vertex for n in self.neurons}
 
     def subs(self, *args, **kwargs) -> Circuit:
-        """The same circuit with values substituted into every weight (arguments as for SymPy's
-        ``subs``); shape and vertices kept: a weight that becomes zero stays a synapse of weight 0.
+        """The circuit with values substituted into every weight (arguments as SymPy's ``subs``);
+        shape and vertices kept (a weight that becomes zero stays a synapse).
 
         Raises
         ------
@@ -284,8 +259,7 @@ class Circuit(LatexMixin):
         Examples
         --------
         >>> import sympy as sp
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))
@@ -301,10 +275,8 @@ class Circuit(LatexMixin):
             for name, b in self.structure.blocks.items()
         }
         S = Structure(blocks, self.structure.inputs, self.structure.outputs)
-        vertex_of = None
-        if self.neurons and self.neurons[0].vertex is not None:
-            vertex_of = {n.name: n.vertex for n in self.neurons}
-        return self._build(S, vertex_of, "subs")
+        placed = self.neurons and self.neurons[0].vertex is not None
+        return self._build(S, self.vertices if placed else None, "subs")
 
     @property
     def free_symbols(self) -> set[sp.Symbol]:
@@ -313,8 +285,7 @@ class Circuit(LatexMixin):
         return set().union(*(to_expr(s.weight, "weight").free_symbols for s in terms))
 
     def as_linear_system(self, numeric: bool = False) -> CircuitSystem:
-        r"""The circuit as a :class:`CircuitSystem`: the state holds the structure's delayed
-        signals, the outputs are every neuron's axon output, then the circuit outputs.
+        r"""The circuit as a :class:`CircuitSystem` (states: the structure's delayed signals).
 
         Parameters
         ----------
@@ -329,8 +300,7 @@ class Circuit(LatexMixin):
         Examples
         --------
         >>> import sympy as sp
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(sp.Rational(1, 2), 3)))
         >>> sys = c.as_linear_system()
@@ -368,7 +338,7 @@ class Circuit(LatexMixin):
         Parameters
         ----------
         digits : int, optional
-            Round the weights' numbers to that many significant digits; exact by default.
+            Significant digits of the weights' numbers; exact by default.
 
         Raises
         ------
@@ -377,8 +347,7 @@ class Circuit(LatexMixin):
 
         Examples
         --------
-        >>> from symctl import Circuit, Structure
-        >>> from symctl.realization.realization import first_order_realization
+        >>> from symctl import Circuit, Structure, first_order_realization
         >>> from symctl.symbols import epsilon_1, C_1
         >>> c = Circuit.from_structure(Structure.from_realization(
         ...     first_order_realization(epsilon_1, C_1)))
@@ -435,15 +404,14 @@ class Circuit(LatexMixin):
         return f"Circuit({self.n_neurons} neurons: {names}; inputs={self.inputs})"
 
     def draw(self, ax=None, **options):
-        """Draw the circuit at its printed size: a Figure by
-        :func:`symctl.plotting.circuit.draw_circuit`, with its options."""
+        """Draw the circuit: a Figure by :func:`symctl.plotting.circuit.draw_circuit`."""
         from symctl.plotting.circuit import draw_circuit
 
         return draw_circuit(self, ax, **options)
 
     def to_nengo(self, n_neurons: int | None = None, **options):
-        """A nengo network: :func:`symctl.spiking.nengo_export.to_nengo`, with its options
-        (needs ``pip install symctl[spiking]``); :meth:`to_nest` and :meth:`to_nir` likewise.
+        """A nengo network by :func:`symctl.spiking.nengo_export.to_nengo` (needs the ``spiking``
+        extra); :meth:`to_nest` and :meth:`to_nir` likewise.
 
         Examples
         --------
@@ -457,13 +425,13 @@ class Circuit(LatexMixin):
         return to_nengo(self, n_neurons, **options)
 
     def to_nest(self, **options):
-        """The circuit in NEST's linear rate neurons: :func:`symctl.spiking.nest_export.to_nest`."""
+        """NEST's linear rate neurons: :func:`symctl.spiking.nest_export.to_nest`."""
         from symctl.spiking.nest_export import to_nest
 
         return to_nest(self, **options)
 
     def to_nir(self, n_neurons: int | None = None, **options):
-        """A NIR graph: :func:`symctl.spiking.nir_export.to_nir`, with its options."""
+        """A NIR graph: :func:`symctl.spiking.nir_export.to_nir`."""
         from symctl.spiking.nir_export import to_nir
 
         return to_nir(self, n_neurons, **options)
@@ -481,8 +449,7 @@ def _rounded(w: sp.Expr, digits: int) -> sp.Expr:
 
 
 def _trace(S: Structure, start: str, target: str, neurons: set[str]) -> Synapse | None:
-    """The axon path from ``start`` (a term of ``target``, or an output) back to a neuron or an
-    input; None for the zero signal."""
+    """The axon path from ``start`` back to a neuron or an input; None for the zero signal."""
     node, weight, delay, path, seen = start, sp.Integer(1), 0, [], set()
     while True:
         block = S.blocks[node]

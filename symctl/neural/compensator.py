@@ -16,10 +16,8 @@ __all__ = ["lqg_realization"]
 def lqg_realization(gains: Gains, kalman: KalmanGains) -> Realization:
     r"""The delayed LQG compensator (predictor form) from the outputs to :math:`\delta_r`, in numbers.
 
-    The state space :math:`(F, H, M, N)` of :func:`~symctl.design.kalman.lqg_state_space`
-    with the optimal gains :math:`K` and the filter's :math:`L`; its transfer function is
-    :func:`~symctl.lqg_tf` with both substituted. Close it around the plant with
-    ``closed_loop_response(R, plant, outputs=kalman.C)``.
+    Its transfer function is :func:`~symctl.lqg_tf` with :math:`K` and :math:`L` substituted;
+    close it with ``closed_loop_response(R, plant, outputs=kalman.C)``.
 
     Parameters
     ----------
@@ -35,16 +33,13 @@ def lqg_realization(gains: Gains, kalman: KalmanGains) -> Realization:
 
     Raises
     ------
-    SymctlTypeError
-        ``gains`` or ``kalman`` of another type.
-    ParameterError
-        ``kalman`` designed on another system.
+    SymctlTypeError, ParameterError
+        ``gains`` or ``kalman`` of another type; ``kalman`` of another system.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from symctl import MuscleModel, augment, kalman_gains, lqg_tf, lqr_gains
-    >>> from symctl.neural.compensator import lqg_realization
+    >>> from symctl import MuscleModel, augment, kalman_gains, lqg_realization, lqg_tf, lqr_gains
     >>> s = augment(MuscleModel(), 1, 1)
     >>> gains, kf = lqr_gains(s), kalman_gains(s, C=[[1]], W=1, V=1)
     >>> R = lqg_realization(gains, kf)

@@ -1,6 +1,5 @@
 r"""Firing patterns of :math:`G_2`'s neurons under a pulse disturbance (the paper's Figs. 9-11):
-every realization gives the optimal controller's force and rate, while its neurons fire
-differently (a linear neuron's output *is* its firing-rate change from equilibrium)."""
+every realization gives the same force and rate, while its neurons fire differently."""
 
 from __future__ import annotations
 
@@ -15,12 +14,7 @@ from symctl._util.deprecate import rng_argument
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
 from symctl._util.texnames import signal_tex
-from symctl._util.validate import (
-    MAX_CIRCUITS,
-    bounded_int,
-    numeric_matrix,
-    positive_number,
-)
+from symctl._util.validate import MAX_CIRCUITS, bounded_int, numeric_matrix, positive_number
 from symctl.compatibility.statespace import structure_realization
 from symctl.compatibility.structure import Structure, ifp_structure
 from symctl.design.augment import as_plant, same_dt
@@ -56,14 +50,13 @@ KINDS: tuple[str, ...]  # read from the registry at each access (__getattr__)
 
 
 def __getattr__(name: str):
-    """``KINDS``: the circuits :func:`circuit_firing` simulates, read from the realizers' registry."""
+    """``KINDS``: the circuits :func:`circuit_firing` simulates, from the realizers' registry."""
     if name == "KINDS":
         return circuit_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-LEGEND_MAX_EPS = 4
-"""Most epsilons a realization's legend entry lists (beyond, their count)."""
+LEGEND_MAX_EPS = 4  # most epsilons a legend entry lists (beyond, their count)
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,15 +68,12 @@ class FiringSummary(ArrayValue, DictMixin):
     ----------
     neurons : tuple of str
     peak : (count, k) array
-        Each realization's signed peak firing per neuron [spikes/s]; NaN where the
-        realization has no such neuron.
-    spread : (k,) array
-        ``max - min`` of ``peak`` over realizations, per neuron [spikes/s].
+        Each realization's signed peak firing per neuron [spikes/s] (NaN: no such neuron).
+    spread, trace_spread : (k,) arrays
+        Per neuron, ``max - min`` of ``peak`` over realizations, and the largest difference
+        of two realizations' traces at one step (default ``spread``) [spikes/s].
     behaviour_spread : float
         The largest difference between realizations of the force and rate traces.
-    trace_spread : (k,) array
-        Per neuron, the largest difference between two realizations' traces at any one
-        step [spikes/s]; default ``spread``.
 
     Examples
     --------
@@ -151,10 +141,8 @@ class FiringPatterns(ArrayValue, DictMixin):
         The optimal controller's closed loop.
     max_deviation : float
         The largest relative departure of a realization's force or rate from ``reference``.
-    firing_sd, delta_f_sd, delta_r_sd : mapping or (count, steps) arrays, or None
-        With noise: the standard deviations over the noisy runs (the traces are their mean).
-    draws : int
-        The noisy runs of every realization (0 without noise).
+    firing_sd, delta_f_sd, delta_r_sd, draws
+        With noise: the standard deviations over the ``draws`` noisy runs (else None and 0).
 
     Examples
     --------
@@ -199,8 +187,7 @@ class FiringPatterns(ArrayValue, DictMixin):
         return self.delta_f.shape[0]
 
     def legend_label(self, i: int) -> str:
-        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based);
-        beyond :data:`LEGEND_MAX_EPS` epsilons, only their count."""
+        r"""``"#1: $\epsilon_{1}$ = 0.312, $\epsilon_{3}$ = -0.54"`` for realization ``i`` (0-based)."""
         eps = [
             f"${signal_tex(str(k))}$ = {float(v):.3g}"
             for k, v in self.params[i].items()
@@ -219,21 +206,13 @@ class FiringPatterns(ArrayValue, DictMixin):
             at = np.argmax(np.abs(np.where(np.isnan(tr), 0.0, tr)), axis=1)
             peak[:, k] = np.where(np.isnan(tr).any(axis=1), np.nan, tr[np.arange(self.count), at])
         spread = np.nanmax(peak, axis=0) - np.nanmin(peak, axis=0) if names else np.zeros(0)
-        trace = np.array(
-            [
-                float(np.nanmax(np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0)))
-                for n in names
-            ]
-        )
-        behaviour = max(
-            float(np.max(np.abs(self.delta_f - self.delta_f[0]))),
-            float(np.max(np.abs(self.delta_r - self.delta_r[0]))),
-        )
+        ranges = [np.nanmax(self.firing[n], 0) - np.nanmin(self.firing[n], 0) for n in names]
+        trace = np.array([float(np.nanmax(r)) for r in ranges])
+        behaviour = max(float(np.max(np.abs(a - a[0]))) for a in (self.delta_f, self.delta_r))
         return FiringSummary(names, peak, spread, behaviour, trace)
 
     def plot(self, ncols: int = 3):
-        """One panel per neuron (a line per realization), the force on top: a Figure by
-        :func:`symctl.plotting.firing.firing_plot` (``ncols``: panels per row)."""
+        """One panel per neuron (``ncols`` per row), the force on top: a Figure."""
         from symctl.plotting.firing import firing_plot
 
         return firing_plot(self, ncols)
@@ -329,9 +308,8 @@ def _draw(kind: str, gains: Gains, count: int, gen, kalman=None) -> tuple[Draw, 
 
 
 def _drive(circuit: Circuit, u: np.ndarray) -> dict[str, np.ndarray]:
-    """Every neuron's axon output and the circuit output (key ``"output"``), driven from rest
-    by ``u`` through :meth:`Circuit.as_linear_system` and the simulations' one time loop;
-    ``u`` ``(steps[, inputs])``, or a stack ``(R, steps, inputs)`` giving traces ``(R, steps)``."""
+    """Every neuron's axon output and the circuit output (``"output"``), driven from rest by ``u``
+    ``(steps[, inputs])`` or ``(R, steps, inputs)``."""
     sys = circuit.as_linear_system(numeric=True)
     k = sys.A.shape[0]
     if u.ndim == 3:  # each loop of the stack its own input
@@ -376,9 +354,8 @@ def circuit_firing(
 
     Each realization of :math:`G = G_3 G_2 G_1` (:math:`\epsilon_1, \epsilon_3` uniform in
     :math:`(-0.9, 0.9)` on a grid of 1/1000, :math:`C_1 = C_3 = 1`, for ``"general"`` a random
-    full-rank ``P``) is closed around ``plant``; its force and rate, and its circuit's output
-    driven by the loop's :math:`\delta_f`, must equal the optimal controller's to ``rtol``
-    relative to their peak.
+    ``P``) is closed around ``plant``; its force, rate and circuit output must equal the
+    optimal controller's to ``rtol`` relative to their peak.
 
     Parameters
     ----------
@@ -398,12 +375,10 @@ def circuit_firing(
     draws : sequence of Draw, optional
         Realizations of :math:`G_2` drawn already (:func:`~symctl.realization.draws.draw_realizations`).
     noise, noise_draws : Noise, int, optional
-        Every loop runs under the same ``noise_draws`` noisy runs: the traces are their mean,
-        the ``..._sd`` their spread.
+        Every loop runs under the same ``noise_draws`` noisy runs (traces: their mean).
     kalman : KalmanGains, optional
-        The controller is then the LQG compensator (:func:`~symctl.lqg_realization` fed by
-        ``kalman.C x``), the realizations of its :math:`G_2` and the circuits driven by the
-        measured outputs (not ``"ifp"``, which feeds back the state).
+        The LQG compensator (:func:`~symctl.lqg_realization`) instead, its circuits driven by
+        the measured outputs ``kalman.C x`` (not ``"ifp"``).
 
     Returns
     -------
@@ -412,12 +387,10 @@ def circuit_firing(
     Raises
     ------
     ParameterError
-        Unknown ``kind``, ``count`` out of range (``!= 1`` for ``"ifp"``), ``"ifp"`` at
-        ``T = 0``, an unstable loop, a realization departing by more than ``rtol``, a ``plant``
-        of another ``dt``.
+        Unknown ``kind``, ``count`` out of range (``!= 1`` for ``"ifp"``), ``"ifp"`` at ``T = 0``,
+        an unstable loop, a realization off by more than ``rtol``, a ``plant`` of another ``dt``.
     SymctlTypeError, DimensionError
-        Arguments of the wrong type; a ``plant`` of other sizes than the gains', ``"ifp"`` for
-        a plant that is not scalar.
+        Arguments of the wrong type or size (``"ifp"`` needs a scalar plant).
 
     Examples
     --------
@@ -475,9 +448,8 @@ def structure_firing(
 ) -> FiringPatterns:
     r"""Simulate ``count`` realizations of any controller structure, as :func:`circuit_firing` does.
 
-    The structure's gains may hold the gains' symbols :math:`K` (given their exact values),
-    ``epsilon...`` (drawn in :math:`(-0.9, 0.9)`) and ``C...`` (set to 1), as
-    :func:`~symctl.controller_compatibility`'s do; the neurons of every ``G2`` part are recorded.
+    The structure's gains may hold :math:`K` (given their values), ``epsilon...`` (drawn in
+    :math:`(-0.9, 0.9)`) and ``C...`` (set to 1); the neurons of every ``G2`` part are recorded.
 
     Parameters
     ----------
@@ -497,8 +469,8 @@ def structure_firing(
     Raises
     ------
     ParameterError, SymctlTypeError
-        A gain symbol that is neither an epsilon nor a C; a structure of another controller;
-        ``structure`` not a Structure; the errors of :func:`circuit_firing`.
+        Another gain symbol; a structure of another controller or not a Structure; the errors
+        of :func:`circuit_firing`.
 
     Examples
     --------
@@ -580,11 +552,7 @@ def _simulate(
                 "gains were computed for?"
             )
         worst = max(worst, dev)
-        keep = {
-            n.name
-            for n in circuit.neurons
-            if _whole(kind) or n.part == "G2" or n.part.endswith(".G2")
-        }
+        keep = {n.name for n in circuit.neurons if _whole(kind) or n.part.split(".")[-1] == "G2"}
         traces = {k: v if v.ndim == 2 else v[None] for k, v in traces.items() if k in keep}
         out.append((params, R2, circuit, df[..., 0], dr[..., 0], traces))
     params, realizations, circuits, dfs, drs, traced = zip(*out, strict=True)

@@ -73,10 +73,7 @@ class Synapse(NamedTuple):
 
 @dataclass(frozen=True)
 class Neuron:
-    r"""A stylized linear neuron: an adder of the structure that sums two or more terms.
-
-    Its axon output is :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`:
-    self-dynamics terms :math:`(w_k, d_k)` and synapses from :math:`s_j`.
+    r"""A stylized linear neuron, :math:`n(t) = \sum_k w_k\, n(t - d_k) + \sum_j v_j\, s_j(t - e_j)`.
 
     Attributes
     ----------
@@ -84,10 +81,8 @@ class Neuron:
         The adder's signal in the structure (e.g. ``"G2.x2"``).
     part : str
         The part of a series connection it belongs to (``"G1"``, ...; ``""`` if none).
-    synapses : tuple of Synapse
-        Its synaptic inputs from other neurons and from circuit inputs.
-    self_terms : tuple of Synapse
-        The terms fed back from its own output.
+    synapses, self_terms : tuple of Synapse
+        Its inputs from other neurons and circuit inputs, and from its own output.
     axon : tuple of Synapse
         Its outgoing branches: synapses onto other neurons, then the circuit outputs it drives.
     vertex : int or None
@@ -95,8 +90,7 @@ class Neuron:
 
     Examples
     --------
-    >>> from symctl import Circuit, Structure
-    >>> from symctl.realization.realization import first_order_realization
+    >>> from symctl import Circuit, Structure, first_order_realization
     >>> from symctl.symbols import epsilon_1, C_1
     >>> c = Circuit.from_structure(Structure.from_realization(
     ...     first_order_realization(epsilon_1, C_1)))
@@ -114,7 +108,7 @@ class Neuron:
 
     @property
     def self_weight(self) -> sp.Expr:
-        r"""The total weight of its own past outputs, :math:`\sum_k w_k` (0 without self-dynamics)."""
+        r"""The total weight of its own past outputs, :math:`\sum_k w_k`."""
         return sp.Add(*(to_expr(s.weight, "weight") for s in self.self_terms))
 
     @property
@@ -124,5 +118,5 @@ class Neuron:
 
     @property
     def branches(self) -> int:
-        """The number of axon branches (outgoing synapses and circuit outputs, not self-loops)."""
+        """The number of axon branches (outgoing synapses and circuit outputs)."""
         return len(self.axon)

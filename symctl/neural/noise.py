@@ -34,7 +34,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["Noise"]
 
-_COVARIANCES = ("process", "motor", "sensor")
+_PARTS = ("process", "motor", "sensor", "signal_dependent")
 _BLOCK = 64  # steps of normals drawn at once
 
 
@@ -59,23 +59,20 @@ def _covariance(value, name: str) -> np.ndarray:
 class Noise(ArrayValue, DictMixin):
     r"""Gaussian noise in a closed loop, drawn per step (module text).
 
-    Each covariance is a number (times the identity), a list (the diagonal) or a symmetric
-    positive semidefinite matrix, sized when the loop is known.
-
     Parameters
     ----------
     process, motor, sensor : number, list or matrix, optional
         Covariances :math:`W` of the noise on the plant's states, :math:`W_u` of the additive
-        noise on its inputs, :math:`V` of the noise on what the controller measures.
+        noise on its inputs, :math:`V` of the noise on what the controller measures: a number
+        (times the identity), a list (the diagonal) or a symmetric PSD matrix.
     signal_dependent : number or list, optional
         :math:`\sigma \ge 0`: motor noise of standard deviation :math:`\sigma_i |u_i|`.
 
     Raises
     ------
     ParameterError, DimensionError, SymctlTypeError
-        A covariance not positive semidefinite or not square, a negative variance, an entry
-        not a finite number; a size above ``MAX_STATES``, later one other than the loop's
-        (named ``noise.process``, ...).
+        A covariance not PSD or not square, a negative variance, an entry not a finite
+        number; a size above ``MAX_STATES``, later one other than the loop's.
 
     References
     ----------
@@ -100,27 +97,23 @@ class Noise(ArrayValue, DictMixin):
     signal_dependent: np.ndarray | None = None
 
     def __post_init__(self) -> None:  # validated, read-only
-        for name in _COVARIANCES:
+        for name in _PARTS:
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, read_only(_covariance(getattr(self, name), name)))
-        if self.signal_dependent is not None:
-            sd = _covariance(self.signal_dependent, "signal_dependent")
-            if sd.ndim == 2:
-                raise DimensionError(
-                    f"signal_dependent: expected a number or a list, got shape {sd.shape}"
-                )
-            object.__setattr__(self, "signal_dependent", read_only(sd))
+        sd = self.signal_dependent
+        if sd is not None and sd.ndim == 2:
+            raise DimensionError(
+                f"signal_dependent: expected a number or a list, got shape {sd.shape}"
+            )
 
     @property
     def is_zero(self) -> bool:
         """Whether no noise is drawn (every part absent or zero)."""
-        parts = (*(getattr(self, k) for k in _COVARIANCES), self.signal_dependent)
-        return all(v is None or not np.any(v) for v in parts)
+        return all(getattr(self, k) is None or not np.any(getattr(self, k)) for k in _PARTS)
 
     def matrices(self, n: int, m: int, outputs: int | None = None) -> dict[str, np.ndarray]:
         """Each part given, sized for ``n`` states, ``m`` inputs and ``outputs`` measurements
-        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``; a DimensionError
-        names a part of another size (``noise.<part>``)."""
+        (default ``n``): covariances ``(k, k)``, ``signal_dependent`` ``(m,)``."""
         sizes = {"process": n, "motor": m, "sensor": n if outputs is None else outputs}
         out = {}
         for name, size in (*sizes.items(), ("signal_dependent", m)):
@@ -181,8 +174,7 @@ def _parts(noise: Noise, n: int, m: int, outputs: int | None = None) -> dict[str
 def _noisy_loop(
     Acl, Cr, B, n, w, parts: dict, gen, count: int, visit, Ev=None, Dv=None, C=None, y=True
 ):
-    """Run ``count`` loops from rest, calling ``visit(t, xi, u, y)`` at each step (``y``: the
-    measurement :math:`C x + v`, or None when not ``y``); ``Acl``, ``Cr`` shared or stacks."""
+    """Run ``count`` loops from rest, calling ``visit(t, xi, u, y or None)`` at each step."""
     steps = w.shape[-2]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, count or 1)
     quiet = not np.any(w)
@@ -254,9 +246,8 @@ def _noise_inputs(Acl, B, n, parts: dict, rows, k, Ev, Dv) -> tuple:
 def _noisy_fill(
     Acl, Cr, A, B, n, w, parts, gen, out, rows, peaks=None, peak_rows=(), *, sensor=None, y=False
 ) -> None:
-    """:func:`_noisy_loop` into ``out`` ``(steps, rows, loops)`` (signals numbered ``delta_f``,
-    ``delta_r``, states, with ``y`` the measurement) and ``peaks``; ``sensor``: ``(E_v, D_v, C)``
-    of a controller fed by outputs, by default those of the state."""
+    """:func:`_noisy_loop` into ``out`` ``(steps, rows, loops)`` and ``peaks``; ``sensor``:
+    ``(E_v, D_v, C)`` of a controller fed by outputs (default: the state)."""
     peak_rows = list(peak_rows)
     if peaks is not None:
         peaks[...] = 0.0

@@ -11,12 +11,7 @@ import scipy.linalg
 
 from symctl._util.pickling import ArrayValue
 from symctl._util.serial import DictMixin
-from symctl._util.validate import (
-    MAX_COUNT,
-    bounded_int,
-    bounded_number,
-    float_array,
-)
+from symctl._util.validate import MAX_COUNT, bounded_int, bounded_number, float_array
 from symctl.design.augment import augment
 from symctl.design.lqr import Gains, lqr_gains
 from symctl.design.ode import ODEModel
@@ -36,21 +31,17 @@ from symctl.realization.realizers import ifp_realization
 
 __all__ = ["DelaySearch", "NonlinearCheck", "longest_delay", "nonlinear_check"]
 
-MAX_STEPS = 5000
-"""Longest horizon of :func:`nonlinear_check` (one ODE solve per sample: about 10 s at 5000)."""
-RTOL_RANGE = (1e-13, 1e-2)
-"""Admissible ``rtol`` of the ODE solver (SciPy refuses below about 2.2e-14)."""
-RETURN_TOLERANCE = 0.01
-"""A loop counts as returned when every state ends within this fraction of its linear peak."""
-STIFF_RATIO = 1.0
-r""":math:`T_s/\tau` above which the ODE counts as stiff and is solved with Radau (implicit)."""
+MAX_STEPS = 5000  # longest horizon (one ODE solve per sample: about 10 s at 5000)
+RTOL_RANGE = (1e-13, 1e-2)  # admissible rtol of the ODE solver (SciPy refuses below 2.2e-14)
+RETURN_TOLERANCE = 0.01  # returned: every state ends within this fraction of its linear peak
+STIFF_RATIO = 1.0  # Ts max|eigenvalue| above which the ODE is solved with Radau (implicit)
 
 
 @dataclass(frozen=True, eq=False)
 class NonlinearCheck(ArrayValue, Verdict):
     r"""The linear controller around the nonlinear plant, against the linear prediction
     (:func:`nonlinear_check`); read-only. Truthy when the loop returned at every amplitude
-    (every :attr:`final_deviation`, the ``evidence``, at most :data:`RETURN_TOLERANCE`).
+    (every :attr:`final_deviation`, the ``evidence``, at most 1 %).
 
     Attributes
     ----------
@@ -64,12 +55,10 @@ class NonlinearCheck(ArrayValue, Verdict):
         Absolute inputs driving the nonlinear plant.
     max_deviation : (k,) array
         :math:`\max_t |x_1^\text{nonlinear} - x_1^\text{linear}|`, the first state's.
-    relative_deviation : (k,) array
-        The worst state's :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|` over its
-        linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
-    final_deviation : (k,) array
-        The worst state's :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|` over that
-        peak (inf: the ODE failed).
+    relative_deviation, final_deviation : (k,) arrays
+        The worst state's :math:`\max_t |x_i^\text{nonlinear} - x_i^\text{linear}|`, and its
+        :math:`|x_i^\text{nonlinear}(t_\text{end}) - \bar x_i|` (inf: the ODE failed), over
+        its linear peak :math:`\max_t |\delta x_i^\text{linear}|`.
     state_names, input_names, units : tuple of str
         The plant's names (the muscle's ``f``, ``r``) and the states' units (``"N"``).
 
@@ -99,7 +88,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def verdict(self) -> bool:
-        """Whether every :attr:`final_deviation` is at most :data:`RETURN_TOLERANCE` (1 %)."""
+        """Whether every :attr:`final_deviation` is at most ``RETURN_TOLERANCE`` (1 %)."""
         return bool(np.all(self.final_deviation <= RETURN_TOLERANCE))
 
     @property
@@ -111,7 +100,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def f_linear(self) -> np.ndarray:
-        """The first state of the linear model, ``(k, steps)`` (the muscle's force)."""
+        """The first state of the linear model, ``(k, steps)``."""
         return self.x_linear[:, :, 0]
 
     @property
@@ -121,7 +110,7 @@ class NonlinearCheck(ArrayValue, Verdict):
 
     @property
     def r_nonlinear(self) -> np.ndarray:
-        """The first input driving the nonlinear plant, ``(k, steps)`` (the muscle's rate)."""
+        """The first input driving the nonlinear plant, ``(k, steps)``."""
         return self.u_nonlinear[:, :, 0]
 
     def table(self) -> str:
@@ -141,8 +130,7 @@ class NonlinearCheck(ArrayValue, Verdict):
         return "\n".join(lines)
 
     def plot(self):
-        """State traces and the deviation against amplitude: a Figure by
-        :func:`symctl.plotting.response.nonlinear_plot`."""
+        """State traces and the deviation against amplitude: a Figure."""
         from symctl.plotting.response import nonlinear_plot
 
         return nonlinear_plot(self)
@@ -176,8 +164,7 @@ def nonlinear_check(
 
     At each sample the controller reads :math:`\delta x = x - \bar x`; its output :math:`u =
     \bar u + \delta u` is held while :func:`scipy.integrate.solve_ivp` integrates the ODE over
-    :math:`T_s` (all amplitudes as one ODE; DOP853, or Radau with the exact Jacobian when
-    :math:`T_s \max|\lambda| >` ``STIFF_RATIO``); the disturbance is added at the sample.
+    :math:`T_s` (DOP853, or Radau with the exact Jacobian when :math:`T_s \max|\lambda| > 1`).
 
     Parameters
     ----------
@@ -188,9 +175,9 @@ def nonlinear_check(
     amplitudes : sequence of float
         Disturbance pulse amplitudes (per step), at most 10,000.
     steps, start, length : int
-        Horizon (at most ``MAX_STEPS``) and pulse, as in :func:`~symctl.simulate_realization`.
+        Horizon (at most 5000) and pulse, as in :func:`~symctl.simulate_realization`.
     rtol : float
-        Relative tolerance of the ODE solver, in ``RTOL_RANGE``.
+        Relative tolerance of the ODE solver, in ``RTOL_RANGE`` (1e-13 to 1e-2).
     disturbance : array (steps, n), optional
         The unit disturbance scaled by each amplitude (default: the pulse on every state).
     fail : {"raise", "mark"}
@@ -203,8 +190,7 @@ def nonlinear_check(
     Raises
     ------
     ParameterError, SymctlTypeError, DimensionError
-        An argument out of range or of the wrong type, no amplitude, or an ODE that fails
-        (naming the amplitudes).
+        An argument out of range or of the wrong type, no amplitude, or an ODE that fails.
 
     Examples
     --------
@@ -251,8 +237,7 @@ def _solver(model: ODEModel, k: int) -> dict:
 
 
 def _flow(model: ODEModel, solver: dict, x, u, rtol: float, scale: float) -> tuple:
-    """``(y, sol)``: the states ``x`` ``(k, n)`` one sampling time later under held inputs ``u``
-    ``(k, m)``, NaN when the solver failed."""
+    """``(y, sol)``: the states ``x`` ``(k, n)`` one sample later under held ``u`` (NaN: failed)."""
     k, n = x.shape
     options = dict(solver)
     if "jac" in options:
@@ -270,8 +255,7 @@ def _flow(model: ODEModel, solver: dict, x, u, rtol: float, scale: float) -> tup
 
 
 def ode_flow(model, rtol: float = 1e-9):
-    """``(ode, step)``: the model as an :class:`ODEModel` and ``step(x, u)``, its state one
-    sampling time after ``x`` under the held input ``u`` (absolute values).
+    """``(ode, step)``: the model as an ODEModel and ``step(x, u)``, its state one sample later.
 
     >>> from symctl.neural.nonlinear import ode_flow
     >>> ode, step = ode_flow(None)                # the paper's muscle
@@ -345,10 +329,10 @@ class DelaySearch(ArrayValue, DictMixin):
     ----------
     delays, final_deviation, stabilized : tuples
         The net delays tried, from 1 until the first failure; for each, the final distance
-        from the equilibrium over the linear peak (inf: the ODE ran away), and whether it is
-        at most ``tolerance``.
+        from the equilibrium over the linear peak (inf: ran away), and whether within
+        ``tolerance``.
     longest : int or None
-        The longest delay with every shorter one stabilized too (None: not even 1 step).
+        The longest delay with every shorter one stabilized (None: not even 1 step).
     tolerance : float
     limited : bool
         Whether a failure was found.
@@ -393,10 +377,9 @@ def longest_delay(
 ) -> DelaySearch:
     r"""Search the longest net delay :math:`T` whose optimal controller stabilizes the nonlinear plant.
 
-    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller for that delay (on the
-    actuator side: only the net delay matters) is closed around the ODE
-    (:func:`nonlinear_check`) until the state fails to end within ``tolerance`` of the
-    equilibrium (relative to the linear loop's peak).
+    For :math:`T = 1, \dots,` ``max_delay``, the optimal controller for that (actuator) delay
+    is closed around the ODE (:func:`nonlinear_check`) until the state fails to end within
+    ``tolerance`` of the equilibrium, relative to the linear loop's peak.
 
     Parameters
     ----------

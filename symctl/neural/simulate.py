@@ -9,8 +9,7 @@ The paper's Figs. 3, 5 and 9-11. From rest, the disturbance :math:`w` entering t
 
 so :math:`\xi = [\delta_f; x_c]` follows :math:`\xi(t+1) = A_{cl}\,\xi(t) + [I; 0]\,w(t)`,
 :math:`A_{cl} = \begin{bmatrix} A + BN & BM \\ H & F \end{bmatrix}` (the optimal
-controller: :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t) + [I; 0]\,w(t)`). Every
-simulation, batches and firing patterns included, runs through one time loop, ``_run``.
+controller: :math:`\chi(t+1) = (\tilde A + \tilde B K)\chi(t) + [I; 0]\,w(t)`).
 """
 
 from __future__ import annotations
@@ -59,14 +58,10 @@ __all__ = [
     "simulate_realization",
 ]
 
-DEFAULT_STEPS = 50
-"""Default horizon in samples (0.5 s at the paper's Ts = 10 ms)."""
-DEFAULT_START = 5
-"""Default first step of the pulse."""
-DEFAULT_LENGTH = 10
-"""Default pulse length in steps."""
-DEFAULT_DRAWS = 100
-"""Default number of noisy loops whose mean and spread a noisy simulation returns."""
+DEFAULT_STEPS = 50  # horizon in samples (0.5 s at the paper's Ts = 10 ms)
+DEFAULT_START = 5  # first step of the pulse
+DEFAULT_LENGTH = 10  # pulse length in steps
+DEFAULT_DRAWS = 100  # noisy loops whose mean and spread a noisy simulation returns
 
 
 def pulse(
@@ -80,13 +75,11 @@ def pulse(
 
     Parameters
     ----------
-    steps : int
-        The horizon, 1 to ``MAX_STEPS`` (10**6).
+    steps, size : int
+        The horizon, 1 to ``MAX_STEPS`` (10**6), and the number of channels, >= 1.
     amplitude : float
     start, length : int
         First step of the pulse and its length, >= 0 (cut at the horizon).
-    size : int
-        The number of channels (columns), >= 1.
 
     Returns
     -------
@@ -113,8 +106,7 @@ def pulse(
 
 
 def _signal(value, argname: str, steps, size: int, start: int, length: int, loops=None):
-    """A ``(steps, size)`` signal from a pulse amplitude (a number) or an array; with ``loops``,
-    an array may also give one per loop, ``(loops, steps, size)``."""
+    """A ``(steps, size)`` signal from a pulse amplitude or an array (or ``(loops, steps, size)``)."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return pulse(DEFAULT_STEPS if steps is None else steps, value, start, length, size)
     arr = float_array(value, argname)
@@ -132,8 +124,7 @@ def _signal(value, argname: str, steps, size: int, start: int, length: int, loop
 
 
 def _freeze(value, arrays=(), mappings=()) -> None:
-    """Set ``value``'s fields ``arrays`` to read-only float copies, ``mappings`` to read-only
-    mappings of them (None stays None)."""
+    """Make ``value``'s fields ``arrays`` and ``mappings`` (of arrays) read-only floats."""
     for name in arrays:
         if getattr(value, name) is not None:
             object.__setattr__(value, name, read_only(getattr(value, name), float))
@@ -147,12 +138,6 @@ def _plant(plant) -> tuple[DiscretePlant, np.ndarray, np.ndarray]:
     p = as_plant(plant)
     A, B = p.numeric()
     return p, A, B
-
-
-def _equilibrium(value, size: int, argname: str) -> np.ndarray:
-    if value is None:
-        return np.zeros(size)
-    return numeric_matrix(value, argname).ravel()
 
 
 def _ts(p: DiscretePlant) -> float:
@@ -181,10 +166,9 @@ class Response(ArrayValue, DictMixin):
         ``"open loop"`` or ``"closed loop"``.
     state_names, input_names : tuple of str
     delta_f_sd, delta_r_sd, states_sd : arrays or None
-        With noise: each trace's standard deviation over the ``draws`` noisy loops (the
-        traces are then their mean; the rate is the command, before the motor noise).
+        With noise: each trace's standard deviation over the ``draws`` noisy loops (0 without
+        noise); the traces are then their mean, the rate the command before the motor noise.
     draws : int
-        The noisy loops simulated (0 without noise).
 
     Examples
     --------
@@ -228,8 +212,7 @@ class Response(ArrayValue, DictMixin):
         return self.delta_r + self.r_bar
 
     def plot(self, states: bool | None = None):
-        """Force and rate against time (``states``: a panel of the controller's states, by default
-        when there are any); a Figure by :func:`symctl.plotting.response.response_plot`."""
+        """Force and rate (and the controller's ``states``, by default when any): a Figure."""
         from symctl.plotting.response import response_plot
 
         return response_plot(self, states)
@@ -241,8 +224,7 @@ UNIT_CIRCLE = 1 - 1e-9  # |eigenvalue| >= this is unstable (a marginal mode roun
 # Stacks of loops are stored realization-last, ``(rows, cols, R)``: every vectorized
 # operation then runs over contiguous memory, one realization per element.
 def _stability(Acl: np.ndarray, argname: str, n: int | None = None, bad=None) -> None:
-    """Refuse the unstable loops ``bad`` of the stack (default: by their eigenvalues); ``n``, the
-    plant's states, lets the message name a hidden mode of the controller."""
+    """Refuse the unstable loops ``bad`` (default: by eigenvalues); ``n`` names hidden modes."""
     if bad is None:
         eigs = np.linalg.eigvals(np.moveaxis(Acl, -1, 0)) if Acl.shape[0] else np.zeros((1, 1))
         bad = np.flatnonzero(np.max(np.abs(eigs), axis=-1) >= UNIT_CIRCLE)
@@ -292,9 +274,7 @@ def _closed_loop_matrices(A, B, F, H, M, N) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _run(Acl, Cr, n: int, w, *, states: bool = True, argname: str = "disturbance") -> tuple:
-    """``xi(t+1) = A_cl xi + [I; 0] w`` from zero for the loops ``Acl`` ``(size, size, R)``, ``Cr``
-    ``(m, size, R)``, ``w`` ``(steps, n)`` or ``(R, steps, n)``: ``(delta_f, delta_r, states)``,
-    ``(R, steps, .)`` views of one time-major buffer."""
+    """``(delta_f, delta_r, states)``, each ``(R, steps, .)``, of ``xi(t+1) = A_cl xi + [I; 0] w``."""
     size, m = Acl.shape[0], Cr.shape[0]
     rows = range(n + m + (size - n if states else 0))  # delta_f, delta_r, states
     out = np.empty((w.shape[-2], len(rows), Acl.shape[-1]))
@@ -304,9 +284,8 @@ def _run(Acl, Cr, n: int, w, *, states: bool = True, argname: str = "disturbance
 
 
 def _steps(Acl, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, argname, schedule=None):
-    """Fill ``out`` ``(steps, len(rows), R)`` with the signals ``rows`` (``delta_f``, ``delta_r``,
-    states) and ``peaks`` with the largest ``|signal|`` of ``peak_rows``; overflow raises.
-    ``schedule(run, R)`` runs slices of the loops (a batch's chunks), the smallest result."""
+    """Fill ``out`` with the signals ``rows`` and ``peaks`` with the largest ``|signal|`` of
+    ``peak_rows``; overflow raises. ``schedule(run, R)`` runs slices of the loops."""
     steps, R = out.shape[0], Acl.shape[-1]
     wt = w[:, :, None] if w.ndim == 2 else np.moveaxis(w, 0, -1)  # (steps, n, R or 1)
 
@@ -336,8 +315,8 @@ def _response(p, df, dr, w, xc, kind, names=()) -> Response:
         dr,
         w,
         xc,
-        _equilibrium(p.x_eq, p.n, "x_eq"),
-        _equilibrium(p.u_eq, p.m, "u_eq"),
+        np.zeros(p.n) if p.x_eq is None else numeric_matrix(p.x_eq, "x_eq").ravel(),
+        np.zeros(p.m) if p.u_eq is None else numeric_matrix(p.u_eq, "u_eq").ravel(),
         kind,
         p.state_names,
         p.input_names,
@@ -353,18 +332,15 @@ def open_loop_response(
     length: int = DEFAULT_LENGTH,
     steps: int = DEFAULT_STEPS,
 ) -> Response:
-    r"""The linear plant's response to a pulse in firing rate (the paper's Fig. 3):
-    :math:`\delta_f(t+1) = A\delta_f(t) + B\delta_r(t)` from rest, :math:`\delta_r(t) =`
-    ``pulse`` on every input for ``start <= t < start + length``.
+    r"""The linear plant's response to a pulse ``pulse`` on every input (the paper's Fig. 3).
 
     Parameters
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant), optional
         Numeric; the paper's muscle by default.
     pulse : float
-        Pulse amplitude [spikes/s].
+        Pulse amplitude [spikes/s], from ``start`` for ``length`` steps.
     start, length, steps : int
-        First step of the pulse, its length and the horizon.
 
     Returns
     -------
@@ -397,7 +373,7 @@ def open_loop_response(
 
 
 def _numeric_realization(R, p: DiscretePlant, argname: str = "R", C=None) -> tuple[np.ndarray, ...]:
-    """``R``'s matrices (stacks of one); fed by the outputs ``y = C x`` when ``C`` is given."""
+    """``R``'s matrices (stacks of one), fed by ``y = C x`` when ``C`` is given."""
     if not isinstance(R, Realization):
         raise SymctlTypeError(f"{argname}: expected a Realization, got {type(R).__name__}")
     same_dt(p, R.dt, argname)
@@ -426,8 +402,7 @@ def simulate_realization(
     draws: int = DEFAULT_DRAWS,
     rng=0,
 ) -> Response:
-    r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`
-    (force and rate depend only on ``R``'s transfer function, the states on the realization).
+    r"""The plant in closed loop with any realization ``R`` of the controller :math:`\delta_f \to \delta_r`.
 
     Parameters
     ----------
@@ -435,11 +410,11 @@ def simulate_realization(
     R : Realization
         Numeric, of shape (plant inputs, plant states).
     disturbance : float or array
-        The amplitude of the pulse (``start``, ``length``, horizon ``steps``, default 50)
-        on every state, or an array ``(steps, n)`` (``(steps,)`` for one state).
+        The pulse's amplitude (``start``, ``length``, horizon ``steps``, default 50) on every
+        state, or an array ``(steps, n)`` (``(steps,)`` for one state).
     noise : Noise, optional
         Noise drawn per step: the traces are then the mean of ``draws`` noisy loops (1 to
-        ``MAX_COUNT``), their standard deviation in ``delta_f_sd``, ``delta_r_sd``, ``states_sd``.
+        ``MAX_COUNT``), their standard deviations in ``..._sd``.
     rng : int, numpy Generator or None, default 0
         Seeds the noise.
 
@@ -450,9 +425,9 @@ def simulate_realization(
     Raises
     ------
     ParameterError
-        An unstable loop (naming the eigenvalue, and a hidden mode of ``R``'s own ``F``;
-        :func:`~symctl.loop_stability` decides without raising), non-finite values, a bad
-        horizon, an overflow, or an ``R.dt`` other than the plant's.
+        An unstable loop (naming the eigenvalue and a hidden mode of ``R``'s ``F``;
+        :func:`~symctl.loop_stability` does not raise), non-finite values, a bad horizon, an
+        overflow, or an ``R.dt`` other than the plant's.
     DimensionError
         ``R``, ``disturbance`` or a part of ``noise`` of the wrong shape.
 
@@ -478,7 +453,7 @@ def simulate_realization(
 
 
 def _realization_loop(p, A, B, R, argname: str = "R", C=None) -> tuple[np.ndarray, np.ndarray]:
-    """``(A_cl, C_r)`` (stacks of one) of the plant around ``R`` (fed by ``C x``), checked stable."""
+    """``(A_cl, C_r)`` of the plant around ``R`` (fed by ``C x``), checked stable."""
     Acl, Cr = _closed_loop_matrices(A, B, *_numeric_realization(R, p, argname, C))
     _stability(Acl, argname, p.n)
     return Acl, Cr
@@ -501,8 +476,7 @@ def _closed_response(p, w, df, dr, xc, names=(), noisy=False) -> Response:
 
 
 def _traces(p, Acl, Cr, w, noise, draws, gen, sensor=None) -> tuple[np.ndarray, ...]:
-    """``delta_f``, ``delta_r``, states and measurement ``y``, each ``(draws or 1, steps, .)``,
-    without noise or of ``draws`` noisy runs; ``sensor``: :func:`_loop`'s ``(E_v, D_v, C)``."""
+    """``delta_f``, ``delta_r``, states and measurement ``y``, each ``(draws or 1, steps, .)``."""
     if noise is None:
         df, dr, xc = (np.ascontiguousarray(a) for a in _run(Acl, Cr, p.n, w))
         return df, dr, xc, df if sensor is None else (df[0] @ sensor[2].T)[None]
@@ -581,8 +555,7 @@ def closed_loop_response(
 
 
 def _loop(controller, plant, outputs=None) -> tuple:
-    """``(plant, A_cl, C_r, controller state names, sensor)`` of :func:`closed_loop_response`,
-    stable; ``sensor`` the ``(E_v, D_v, C)`` of a controller fed by ``outputs`` (else None)."""
+    """``(plant, A_cl, C_r, state names, sensor)``, stable; ``sensor``: ``(E_v, D_v, C)`` or None."""
     if isinstance(controller, Gains) and plant is None and outputs is None:
         s = controller.system
         Acl = numeric_matrix(s.A, "controller") + numeric_matrix(s.B, "controller") @ controller.K
@@ -612,8 +585,8 @@ def _loop(controller, plant, outputs=None) -> tuple:
 
 
 def _controller_realization(controller, plant: DiscretePlant, kinds: str = "") -> Realization:
-    """Gains as their IFP realization, a DiscreteTF in controllable canonical form; the plant's
-    ``dt``; ``kinds``: the other types the caller accepts, for the message."""
+    """Gains as their IFP realization, a DiscreteTF in controllable canonical form; ``kinds``:
+    other types the caller accepts, for the message."""
     if isinstance(controller, Gains):
         same_dt(plant, controller.system.plant.dt, "plant", "the gains' plant")
         return ifp_realization(controller)

@@ -32,16 +32,13 @@ class LoopStability(Verdict):
     stable : bool
         Spectral radius of :math:`A_{cl}` below 1 - 1e-9 (a marginal mode is unstable).
     spectral_radius : float
-    eigenvalues, unstable : tuple of complex
-        The eigenvalues of :math:`A_{cl}`, and those of modulus :math:`\\ge 1 - 10^{-9}`.
-    hidden : tuple of complex
-        The unstable ones that are eigenvalues of the controller's own :math:`F` (relative
-        1e-8): modes hidden from the transfer function.
+    eigenvalues, unstable, hidden : tuple of complex
+        The eigenvalues of :math:`A_{cl}`, those of modulus :math:`\\ge 1 - 10^{-9}`, and of
+        these the controller's own (its :math:`F`'s, relative 1e-8): hidden from its transfer function.
 
     Examples
     --------
-    >>> from symctl import MuscleModel, Realization
-    >>> from symctl.neural.stability import loop_stability
+    >>> from symctl import MuscleModel, Realization, loop_stability
     >>> result = loop_stability(MuscleModel(), Realization([[0]], [[-1]], [[1]], 0))
     >>> bool(result), result.hidden
     (False, ())
@@ -83,8 +80,7 @@ def loop_stability(plant, controller) -> LoopStability:
     ----------
     plant : DiscretePlant, MuscleModel, (A, B) or python-control system (as_plant)
     controller : Realization, DiscreteTF, Gains or Circuit
-        Numeric: a SISO transfer function is realized in controllable canonical form, gains
-        by their IFP realization, a Circuit by its delayed signals.
+        Numeric (a transfer function in controllable canonical form, gains by IFP).
 
     Returns
     -------
@@ -97,10 +93,7 @@ def loop_stability(plant, controller) -> LoopStability:
 
     Examples
     --------
-    >>> import sympy as sp
-    >>> from symctl import MuscleModel, Realization
-    >>> from symctl.neural.stability import loop_stability
-    >>> stable = Realization([[0]], [[-0.05]], [[1]], 0)
+    >>> from symctl import MuscleModel, Realization, loop_stability
     >>> hidden = Realization([[0, 0], [0, 1.5]], [[-0.05], [1]], [[1, 0]], 0)
     >>> result = loop_stability(MuscleModel(), hidden)
     >>> bool(result), result.hidden

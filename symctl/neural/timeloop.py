@@ -1,10 +1,8 @@
-"""The time loop of a stack of linear closed loops: ``xi(t+1) = A xi(t) + [I; 0] w(t)``.
+"""The time loop of a stack of linear closed loops, ``xi(t+1) = A xi(t) + [I; 0] w(t)``.
 
-:func:`_run_chunk` fills an output buffer, step by step, for loops given as stacks ``A``
-``(size, size, R)`` and ``Cr`` ``(m, size, R)``. Two loops give the same bits (each row's
-sum in the order of the dense sum over ``j``, a coefficient zero in every loop left out):
-:func:`_run_rows`, row by row in place (many loops), and :func:`_run_groups`, rows with as
-many terms at once (a large sparse circuit of few loops); ``benchmarks/simulate.py`` times both.
+Two loops give the same bits (each row summed in the dense order, coefficients zero in every
+loop left out): :func:`_run_rows` for many loops, :func:`_run_groups` for a large sparse circuit
+of few loops; ``benchmarks/simulate.py`` times both.
 """
 
 from __future__ import annotations
@@ -13,8 +11,8 @@ import numpy as np
 
 
 def _groups(mat: np.ndarray, nonzero=None) -> list[tuple[np.ndarray, np.ndarray, list]]:
-    """The rows of a stack ``(rows, cols, R)`` grouped by their number ``k`` of nonzero terms:
-    ``(rows, sources (len(rows), k) in dense order, k coefficient stacks (len(rows), 1 or R))``."""
+    """The rows of a stack grouped by their number ``k`` of nonzero terms: ``(rows, sources,
+    k coefficient stacks)``."""
     if not mat.shape[0]:
         return []
     if nonzero is None:
@@ -46,8 +44,8 @@ def _combine_groups(groups, x: np.ndarray, dst: np.ndarray) -> None:
 
 
 def _setup(A, Cr, n, w, out, rows, peaks, peak_rows) -> tuple:
-    """What both loops share: each kept signal's slot, each state's signal number, the rates to
-    compute, the steps without input and the last step at rest (``x(t) = 0`` up to the first input)."""
+    """Each kept signal's slot, each state's signal, the rates to compute, the quiet steps and
+    the last step at rest."""
     m = Cr.shape[0]
     slot = {signal: k for k, signal in enumerate(rows)}
     state = [j if j < n else m + j for j in range(A.shape[0])]
@@ -103,8 +101,7 @@ def _run_groups(A, Cr, n, w, out, rows, peaks=None, peak_rows=(), *, nonzero=Non
 
 
 def _terms(mat: np.ndarray) -> list[list[tuple[int, float | np.ndarray]]]:
-    """Each row of a stack as ``(j, coefficient)`` terms in dense order (a float when equal in
-    every loop, left out when zero in every loop)."""
+    """Each row of a stack as ``(j, coefficient)`` terms (a float when equal in every loop)."""
     terms = []
     for row in mat:
         terms.append([])
@@ -167,9 +164,7 @@ def _run_rows(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:
     return _first_bad(out, rows)
 
 
-GROUPED_LOOPS = 4096
-"""Up to this many loops in a chunk, :func:`_run_groups` runs when it takes at most a quarter
-of the NumPy calls per step of :func:`_run_rows` (which makes no gathered copies)."""
+GROUPED_LOOPS = 4096  # most loops for _run_groups, when it makes a quarter of the NumPy calls
 
 
 def _run_chunk(A, Cr, n, w, out, rows, peaks=None, peak_rows=()) -> int:

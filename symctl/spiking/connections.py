@@ -31,7 +31,7 @@ class _Edge(NamedTuple):
 
 
 def _require(module: str):
-    """The optional package ``module``, or a MissingDependencyError saying how to install it."""
+    """The optional package ``module``, or a MissingDependencyError."""
     try:
         with warnings.catch_warnings():  # nengo 4.1 reads numpy.core, deprecated by NumPy 2
             warnings.simplefilter("ignore", DeprecationWarning)
@@ -79,8 +79,10 @@ def _samples(circuit: Circuit, u) -> np.ndarray:
     return u
 
 
-def _with_output(traces: dict, outs: list) -> dict:
-    """``traces`` with ``"output"``: the one output's trace, or the outputs side by side."""
+def _traces(circuit: Circuit, read) -> dict:
+    """Each neuron's trace ``read(name)`` and ``"output"``: the outputs' (side by side if many)."""
+    traces = {n.name: read(n.name) for n in circuit.neurons}
+    outs = [read(f"output {o.target}") for o in circuit.outputs]
     traces["output"] = outs[0] if len(outs) == 1 else np.stack(outs, axis=1)
     return traces
 
@@ -98,26 +100,21 @@ def _no_population(**options) -> None:
             raise ParameterError(f"{name}: needs n_neurons (spiking populations), got None")
 
 
-FORMAT = "symctl-circuit"
-"""The ``format`` field of :func:`export_circuit`'s JSON (its ``version`` is 1)."""
+FORMAT = "symctl-circuit"  # the "format" field of export_circuit's JSON (version 1)
 
 
 def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> dict:
     r"""The circuit as a simulator-neutral connection list (JSON types only), written to ``path``.
 
-    The neurons follow :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)` and each
-    output :math:`o(t) = v\, s(t - e)`, from rest, :math:`s` a neuron or an input::
+    Neurons follow :math:`n(t) = \sum_k w_k\, n(t-d_k) + \sum_j v_j\, s_j(t-e_j)`, outputs
+    :math:`o(t) = v\, s(t - e)`, from rest::
 
-        {"format": "symctl-circuit", "version": 1, "dt": 0.01 or null,
-         "equation": "...",                   # the rule above, in words
+        {"format": "symctl-circuit", "version": 1, "dt": 0.01 or null, "equation": "...",
          "inputs": ["u", ...],
          "neurons": [{"name", "part", "vertex" (int or null),
                       "self_dynamics": [{"weight", "delay_steps", "delay_s"}, ...]}, ...],
          "synapses": [{"source", "target", "weight", "delay_steps", "delay_s"}, ...],
-         "outputs": [{"name", "source", "weight", "delay_steps", "delay_s"}, ...]}
-
-    ``delay_s`` is ``delay_steps * dt`` (null without ``dt``); an output ``source`` of
-    ``null`` is the zero signal.
+         "outputs": [{"name", "source" (null: zero), "weight", "delay_steps", "delay_s"}, ...]}
 
     Parameters
     ----------
@@ -126,7 +123,7 @@ def export_circuit(circuit: Circuit, path=None, *, dt: float | None = None) -> d
     path : str or Path, optional
         Where to write the JSON (UTF-8, indented).
     dt : float, optional
-        The sampling time :math:`T_s` in seconds.
+        The sampling time :math:`T_s` in seconds (``delay_s = delay_steps * dt``, else null).
 
     Returns
     -------

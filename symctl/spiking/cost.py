@@ -1,9 +1,8 @@
 r"""What spikes cost each circuit: the neurons per population that keep the force near the linear loop.
 
-Per seed, the smallest population size :math:`N` whose deviation is within a tolerance,
-interpolated linearly in :math:`\log N` against :math:`\log` deviation between the two sizes
-that bracket it (:math:`\infty` when none reaches it), and the spikes per second there
-likewise; a circuit's cost is the median over seeds, times its number of populations.
+Per seed, the smallest :math:`N` within a tolerance, interpolated in :math:`\log N` against
+:math:`\log` deviation between the bracketing sizes (:math:`\infty`: none), and its spikes per
+second likewise; a circuit's cost is the median over seeds, times its populations.
 """
 
 from __future__ import annotations
@@ -18,38 +17,33 @@ import numpy as np
 from symctl._util.pickling import ArrayValue
 from symctl._util.pool import Checkpoint, open_pool, pool_options
 from symctl._util.serial import DictMixin
-from symctl._util.validate import bounded_int, read_only
+from symctl._util.validate import bounded_int
 from symctl.design.lqr import Gains
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.firing import _plant
+from symctl.neural.simulate import _freeze
 from symctl.spiking.connections import _edges
 from symctl.spiking.loop import spiking_response
 from symctl.spiking.nengo_export import MAX_POPULATION, RADIUS_MARGIN
 
 __all__ = ["NEURONS", "TOLERANCES", "SpikingCost", "spiking_cost"]
 
-NEURONS = (10, 100, 1000)
-"""The population sizes of a sweep by default."""
-TOLERANCES = (0.05, 0.01)
-"""The deviations from the linear loop a circuit is held to by default (5% and 1%)."""
-FORMAT = 1
-"""Version of the checkpoint format."""
+NEURONS = (10, 100, 1000)  # the population sizes of a sweep by default
+TOLERANCES = (0.05, 0.01)  # the deviations from the linear loop a circuit is held to
+FORMAT = 1  # version of the checkpoint format
 
 
 @dataclass(frozen=True, eq=False)
 class SpikingCost(ArrayValue, DictMixin):
-    """The spiking sweep of a controller's circuits, and what each circuit costs (module text;
-    :func:`spiking_cost`); read-only.
+    """The spiking sweep of a controller's circuits (:func:`spiking_cost`; module text); read-only.
 
     Attributes
     ----------
-    circuits : tuple of str
-        The circuits' names (the named ones, then the atlas classes).
-    populations : tuple of int
-        Each circuit's neurons in the linear circuit: its number of populations.
-    peak : tuple of float
-        Each circuit's largest peak rate change of a neuron in the linear loop [spikes/s].
+    circuits, atlas_classes : tuple of str
+        The circuits' names (the named ones, then the atlas classes), and the atlas classes.
+    populations, peak : tuple
+        Each circuit's neurons (its populations), and its largest linear peak rate change.
     neurons : tuple of int
         The population sizes :math:`N`, increasing.
     seeds : int
@@ -57,8 +51,6 @@ class SpikingCost(ArrayValue, DictMixin):
     tolerances : tuple of float
     deviation, spikes : (circuits, neurons, seeds) arrays
         Each run's deviation from the linear loop, and its spikes per second.
-    atlas_classes : tuple of str
-        The circuits that are atlas classes.
 
     Examples
     --------
@@ -80,13 +72,11 @@ class SpikingCost(ArrayValue, DictMixin):
     atlas_classes: tuple = ()
 
     def __post_init__(self) -> None:
-        for name in ("deviation", "spikes"):
-            object.__setattr__(self, name, read_only(getattr(self, name), float))
+        _freeze(self, ("deviation", "spikes"))
 
     def needed(self, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
-        """Per circuit and seed, the neurons per population that keep the deviation within
-        ``tolerance``, and the spikes per second there (``inf`` when no size reaches it): two
-        ``(circuits, seeds)`` arrays."""
+        """Per circuit and seed, the neurons per population within ``tolerance`` and the spikes
+        per second there (``inf``: none): two ``(circuits, seeds)`` arrays."""
         logn = np.log(np.asarray(self.neurons, dtype=float))
         n_out = np.full((len(self.circuits), self.seeds), np.inf)
         s_out = np.full_like(n_out, np.inf)
@@ -106,15 +96,9 @@ class SpikingCost(ArrayValue, DictMixin):
         return n_out, s_out
 
     def table(self) -> list[dict]:
-        """One row per circuit, cheapest first (total neurons at the first tolerance, then spikes).
-
-        Returns
-        -------
-        list of dict
-            ``circuit``, ``populations``, ``peak``, and per tolerance ``t`` (as ``5%``): ``N@t``
-            (median neurons per population), ``N@t range`` (over seeds), ``neurons@t`` (times
-            populations) and ``spikes@t`` (median spikes per second).
-        """
+        """One dict per circuit, cheapest first: ``circuit``, ``populations``, ``peak``, and per
+        tolerance ``t`` (as ``5%``) ``N@t`` (median neurons per population), ``N@t range``,
+        ``neurons@t`` (times populations) and ``spikes@t`` (median spikes per second)."""
         needs = {f"{100 * t:g}%": self.needed(t) for t in self.tolerances}
         rows = []
         for c, name in enumerate(self.circuits):
@@ -132,16 +116,14 @@ class SpikingCost(ArrayValue, DictMixin):
         return sorted(rows, key=lambda r: (r[f"{first}@{key}"], r[f"{then}@{key}"]))
 
     def ranking(self, by: str = "neurons") -> tuple[str, ...]:
-        """The circuits from cheapest to dearest at the first tolerance, ``by`` ``"neurons"``
-        (in all) or ``"spikes"`` (per second)."""
+        """The circuits, cheapest first at the first tolerance, ``by`` ``"neurons"`` or ``"spikes"``."""
         if by not in ("neurons", "spikes"):
             raise ParameterError(f"by: expected 'neurons' or 'spikes', got {by!r}")
         then = "spikes" if by == "neurons" else "neurons"
         return tuple(r["circuit"] for r in self._sorted(self.table(), by, then))
 
     def fewest_neurons_cheapest(self, among=None) -> bool:
-        """Whether a circuit with the fewest linear neurons (among ``among``, default all) is also
-        the cheapest in spikes per second at the first tolerance."""
+        """Whether a fewest-neuron circuit (among ``among``) is also the cheapest in spikes."""
         names = self._among(among)
         return self._cheapest(names) in self._fewest(names)
 
@@ -189,8 +171,7 @@ class SpikingCost(ArrayValue, DictMixin):
         return text + "."
 
     def peak_correlation(self) -> float:
-        """Spearman's rank correlation of ``peak`` with the median neurons per population at the
-        first tolerance (nan for fewer than three circuits or a constant)."""
+        """Spearman's correlation of ``peak`` with the median neurons per population (or nan)."""
         from scipy.stats import spearmanr
 
         n = np.median(self.needed(self.tolerances[0])[0], axis=1)
@@ -243,8 +224,7 @@ class SpikingCost(ArrayValue, DictMixin):
         return out
 
     def plot(self):
-        """Deviation against population size, and spikes against neurons: a Figure by
-        :func:`symctl.plotting.spiking.spiking_cost_plot`."""
+        """Deviation against population size, and spikes against neurons: a Figure."""
         from symctl.plotting.spiking import spiking_cost_plot
 
         return spiking_cost_plot(self)
@@ -337,14 +317,13 @@ def spiking_cost(
 ) -> SpikingCost:
     """What spikes cost each circuit of a controller: a sweep of population sizes and seeds.
 
-    Each circuit runs through :func:`~symctl.spiking_response` at every size and seed, on the
-    dask path (``workers`` local processes, or a ``scheduler`` address).
+    Each circuit runs through :func:`~symctl.spiking_response` at every size and seed.
 
     Parameters
     ----------
     source : Derivation or Gains
-        A derivation (:func:`~symctl.derive`): its named circuits (the first realization of
-        each) and every class ``circuits_for`` lists; or gains, with ``circuits`` a dict.
+        A derivation: its named circuits (the first realization of each) and every class
+        ``circuits_for`` lists; or gains, with ``circuits`` a dict.
     circuits : list of str or dict of str to Circuit, optional
         The names to run (default all), or with gains the circuits by name.
     neurons : sequence of int
@@ -358,8 +337,7 @@ def spiking_cost(
     workers, scheduler : int, str
         Local worker processes (1: this process), or a dask scheduler's address.
     checkpoint : path, optional
-        A JSON-lines file of finished runs, which a later sweep of the same circuits resumes
-        from (a file of another sweep is refused).
+        A JSON-lines file of finished runs to resume from (one of another sweep is refused).
     progress : callable, optional
         Called with ``(done, total)`` runs.
 
@@ -373,8 +351,7 @@ def spiking_cost(
         nengo is not installed (``pip install symctl[spiking]``).
     ParameterError, SymctlTypeError
         A size out of range or repeated, ``seeds < 1``, a tolerance outside ``(0, 1)``, an
-        unknown circuit, a checkpoint of another sweep, a ``source`` neither a derivation nor
-        gains, and what ``spiking_response`` refuses.
+        unknown circuit, another sweep's checkpoint, another ``source``; as ``spiking_response``.
 
     Examples
     --------

@@ -1,10 +1,8 @@
-r"""The loop closed around the plant through a circuit of spiking populations, beside the linear loop.
+r"""The loop closed through a circuit of spiking populations, beside the linear loop.
 
-The plant is a nengo node that steps :math:`\delta_f(k+1) = A\,\delta_f(k) + B\,\delta_r(k)
-+ w(k)` (or, with ``nonlinear``, the ODE over one sample) once per sample, reading the
-circuit's output at the sample's last simulator step; the circuit is
-:func:`~symctl.spiking.nengo_export.to_nengo`'s network. The linear loop is symctl's own,
-and the populations' radii come from its traces.
+The plant is a nengo node stepping once per sample (linear, or the ODE with ``nonlinear``),
+reading the circuit's output at the sample's last simulator step; the populations' radii come
+from the linear loop's traces.
 """
 
 from __future__ import annotations
@@ -45,12 +43,11 @@ class SpikingResponse(ArrayValue, DictMixin):
     delta_r, delta_r_linear : (steps, m) arrays
         Motor-neuron rate change of each loop [spikes/s].
     firing, firing_linear : mapping of str to (steps,) array
-        Each neuron's rate change (its population's decoded value at the sample's last
-        simulator step), and the linear loop's.
+        Each neuron's rate change (decoded at the sample's last simulator step), and linear.
     spikes : mapping of str to (steps * SUBSTEPS, N) uint8 array
         Each population's spike trains.
     radius : mapping of str to float
-        Each population's radius (``RADIUS_MARGIN`` times its linear peak).
+        Each population's radius (1.2 times its linear peak).
     n_neurons : int
         Neurons per population (0: exact nodes).
     dt : float
@@ -95,8 +92,7 @@ class SpikingResponse(ArrayValue, DictMixin):
         return float(sum(int(s.sum()) for s in self.spikes.values())) / seconds
 
     def plot(self):
-        """Force, rate changes and a spike raster: a Figure by
-        :func:`symctl.plotting.spiking.spiking_plot`.
+        """Force, rate changes and a spike raster: a Figure.
 
         Examples
         --------
@@ -134,7 +130,7 @@ def spiking_response(
     Parameters
     ----------
     gains : Gains
-        The controller's gains; their plant is the loop's unless ``plant`` is given.
+        The controller's gains (their plant the loop's unless ``plant`` is given).
     circuit : Circuit
         A numeric circuit of the whole controller, :math:`\delta_f \to \delta_r`.
     n_neurons : int or None
@@ -148,9 +144,8 @@ def spiking_response(
     neuron_type : nengo.neurons.NeuronType, optional
         Default ``nengo.LIF()``.
     nonlinear : MuscleModel or ODEModel, optional
-        Close the spiking loop around this ODE (of the plant's sampling time and sizes):
-        ``delta_f`` is then its deviation from the equilibrium; the linear loop stays the
-        reference.
+        Close the spiking loop around this ODE (the plant's ``dt`` and sizes): ``delta_f`` is
+        then its deviation from the equilibrium.
 
     Returns
     -------
@@ -161,9 +156,8 @@ def spiking_response(
     MissingDependencyError
         nengo is not installed (``pip install symctl[spiking]``).
     ParameterError, DimensionError, SymctlTypeError
-        Symbols left in the weights; ``n_neurons`` out of range; a plant without a sampling
-        time; an unstable linear loop; a circuit whose inputs and outputs are not the plant's
-        states and inputs; arguments of the wrong type.
+        Symbols left in the weights; ``n_neurons`` out of range; a plant without ``dt``; an
+        unstable linear loop; a circuit not of the plant's sizes; arguments of the wrong type.
 
     Examples
     --------

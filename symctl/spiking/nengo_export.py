@@ -1,15 +1,13 @@
 r"""A circuit as a nengo network: one node per neuron, its terms as delayed connections.
 
-Each stylized neuron is a passthrough :class:`nengo.Node`, each term a
-:class:`nengo.Connection` of ``transform`` its weight and ``synapse`` the pure delay
-:math:`z^{-d}`; run with ``dt`` :math:`= T_s`, step :math:`k + 1` holds the circuit's
-:math:`n(k)`, to rounding. **Spiking populations** (``n_neurons=N``) follow the Neural
-Engineering Framework [1]_: each neuron's sum drives :math:`N` spiking neurons (LIF by default)
-representing :math:`[-r, r]`, decoded by least squares and filtered by a lowpass of
-:math:`T_s/5` (``TAU_FRACTION``), not compensated: that lag and the spike noise are what
-:func:`~symctl.spiking.loop.spiking_response` measures. The network runs ``SUBSTEPS``
-simulator steps per sample, so a delay of :math:`d` samples is exactly :math:`10 d` steps
-(the delay networks of [2]_ would use populations instead).
+Each neuron is a passthrough :class:`nengo.Node`, each term a :class:`nengo.Connection` of
+``transform`` its weight and ``synapse`` the pure delay :math:`z^{-d}`; run with ``dt``
+:math:`= T_s`, step :math:`k + 1` holds the circuit's :math:`n(k)`. **Spiking populations**
+(``n_neurons=N``) follow the Neural Engineering Framework [1]_: each neuron's sum drives
+:math:`N` spiking neurons representing :math:`[-r, r]`, decoded by least squares through an
+uncompensated lowpass of :math:`T_s/5` (that lag and the spike noise are what
+:func:`~symctl.spiking.loop.spiking_response` measures), at ``SUBSTEPS`` simulator steps per
+sample (the delay networks of [2]_ would use populations for the delays).
 
 References
 ----------
@@ -27,29 +25,18 @@ from symctl._util.validate import as_generator, bounded_int, positive_number
 from symctl.errors import ParameterError, SymctlTypeError
 from symctl.neural.circuit import Circuit
 from symctl.neural.simulate import pulse
-from symctl.spiking.connections import (
-    _edges,
-    _label,
-    _no_population,
-    _require,
-    _samples,
-    _with_output,
-)
+from symctl.spiking.connections import _edges, _label, _no_population, _require, _samples, _traces
 
 __all__ = ["MAX_POPULATION", "SUBSTEPS", "TAU_FRACTION", "nengo_response", "to_nengo"]
 
-MAX_POPULATION = 10_000
-"""Most spiking neurons per population of :func:`to_nengo` (``n_neurons``)."""
-SUBSTEPS = 10
-"""Simulator steps per sample of a spiking network (``dt = Ts / SUBSTEPS``)."""
-TAU_FRACTION = 0.2
-"""The postsynaptic lowpass of a spiking population, as a fraction of the sampling time."""
-RADIUS_MARGIN = 1.2
-"""A population's default radius: this times the peak of its neuron's linear trace."""
+MAX_POPULATION = 10_000  # most spiking neurons per population
+SUBSTEPS = 10  # simulator steps per sample of a spiking network (dt = Ts / SUBSTEPS)
+TAU_FRACTION = 0.2  # a population's postsynaptic lowpass, as a fraction of Ts
+RADIUS_MARGIN = 1.2  # a population's default radius: this times its neuron's linear peak
 
 
 def _delay(nengo, steps: int):
-    """The pure delay of ``steps`` simulator steps, :math:`z^{-steps}` (``None``: none)."""
+    """The pure delay :math:`z^{-steps}` (``None`` for 0)."""
     return nengo.LinearFilter([1.0], [1.0] + [0.0] * steps, analog=False) if steps else None
 
 
@@ -68,41 +55,19 @@ def to_nengo(
     dt: float = 0.01,
     radius=None,
 ):
-    r"""The circuit as a :class:`nengo.Network`: exact nodes, or spiking populations (module text).
+    r"""The circuit (numbers for weights) as a :class:`nengo.Network` (module text).
 
-    Parameters
-    ----------
-    circuit : Circuit
-        With numbers for weights (e.g. one of :attr:`FiringPatterns.circuits`).
-    n_neurons : int, optional
-        ``None``: every neuron an exact node (run with ``dt``); else a population of that many
-        spiking neurons per neuron, at most ``MAX_POPULATION`` (run with ``dt / SUBSTEPS``).
-    neuron_type : nengo.neurons.NeuronType, optional
-        The populations' neurons (default ``nengo.LIF()``).
-    rng : int, numpy Generator or None
-        Seeds the network (encoders, gains, biases).
-    dt : float
-        The sampling time :math:`T_s` in seconds.
-    radius : dict of str to float, optional
-        Each population's radius by neuron name; default ``RADIUS_MARGIN`` times the peak
-        of the neuron's linear response to :func:`~symctl.neural.simulate.pulse`.
+    ``n_neurons``: ``None`` for exact nodes (run with ``dt``, the sampling time in seconds),
+    else that many spiking neurons per neuron, at most ``MAX_POPULATION`` (run with
+    ``dt / SUBSTEPS``), of ``neuron_type`` (default ``nengo.LIF()``) and ``radius`` by neuron
+    name (default ``RADIUS_MARGIN`` times the peak of its linear response to a pulse); ``rng``
+    seeds encoders, gains and biases. The network has dicts by name: ``inputs``, ``neurons``
+    (their sums, labelled ``"name @ v<vertex>"``), ``axons`` (the node, or its population's
+    filtered decoded value), ``populations`` (empty when exact) and ``outputs``.
 
-    Returns
-    -------
-    nengo.Network
-        With dicts by name: ``inputs``, ``neurons`` (their sums, labelled
-        ``"name @ v<vertex>"``), ``axons`` (the node, or its population's filtered decoded
-        value), ``populations`` (empty when exact) and ``outputs``.
-
-    Raises
-    ------
-    MissingDependencyError
-        nengo is not installed (``pip install symctl[spiking]``).
-    ParameterError
-        Symbols or non-real numbers left in the weights; ``n_neurons`` out of range; a
-        ``neuron_type`` or ``radius`` without ``n_neurons``.
-    SymctlTypeError
-        ``circuit`` is not a Circuit; ``neuron_type`` is not a nengo neuron type.
+    Raises MissingDependencyError without nengo; ParameterError for symbols left in the
+    weights, ``n_neurons`` out of range, ``neuron_type`` or ``radius`` without ``n_neurons``;
+    SymctlTypeError for a ``circuit`` or ``neuron_type`` of another type.
 
     Examples
     --------
@@ -174,10 +139,8 @@ def _network(nengo, circuit: Circuit, edges, seed: int, spiking=None):
 
 
 def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndarray]:
-    r"""Drive :func:`to_nengo`'s network from rest by ``u`` ``(steps[, inputs])`` in nengo's
-    reference simulator, ``dt`` its clock: each neuron's trace ``(steps,)`` by name, and
-    ``"output"`` ``(steps[, outputs])``. Raises as :func:`to_nengo`, and ParameterError for ``u``
-    of the wrong width.
+    r"""Each neuron's trace ``(steps,)`` and ``"output"`` ``(steps[, outputs])`` of :func:`to_nengo`'s
+    network driven from rest by ``u`` ``(steps[, inputs])`` in nengo's simulator (clock ``dt``).
 
     Examples
     --------
@@ -198,9 +161,7 @@ def nengo_response(circuit: Circuit, u, *, dt: float = 1.0) -> dict[str, np.ndar
             source = nengo.Node(lambda t, c=column: c[min(round(t / dt), steps) - 1])
             nengo.Connection(source, net.inputs[name], synapse=None)
         probes = {n: nengo.Probe(node) for n, node in net.neurons.items()}
-        out_probes = [nengo.Probe(net.outputs[o.target]) for o in circuit.outputs]
+        probes |= {f"output {t}": nengo.Probe(node) for t, node in net.outputs.items()}
     with nengo.Simulator(net, dt=dt, progress_bar=False) as sim:
         sim.run_steps(steps)
-    traces = {n: sim.data[p][:, 0] for n, p in probes.items()}
-    outs = [sim.data[p][:, 0] for p in out_probes]
-    return _with_output(traces, outs)
+    return _traces(circuit, lambda name: sim.data[probes[name]][:, 0])

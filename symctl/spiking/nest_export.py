@@ -20,23 +20,21 @@ from __future__ import annotations
 import os
 from typing import NamedTuple
 
+import networkx as nx
 import numpy as np
 
 from symctl._util.validate import positive_number
 from symctl.errors import ParameterError
 from symctl.neural.circuit import Circuit
-from symctl.spiking.connections import _edges, _require, _samples, _with_output
+from symctl.spiking.connections import _edges, _require, _samples, _traces
 
 __all__ = ["NestNetwork", "nest_response", "to_nest"]
 
-GENERATOR_LAG = 2
-"""A step_rate_generator's lag (read at NEST step k, it reaches a neuron as step k - 2 would)."""
+GENERATOR_LAG = 2  # a step_rate_generator's lag: read at step k, it arrives as step k - 2
 
 
 class NestNetwork(NamedTuple):
-    """The NEST nodes of a circuit by name (:func:`to_nest`): a ``rate_transformer_lin`` per
-    neuron and output, a ``step_rate_generator`` per input, and how many steps late each runs
-    (``lags``: NEST's step ``k`` of node ``n`` holds the circuit's ``n(k - lags[n])``)."""
+    """:func:`to_nest`'s nodes by name, and ``lags``: step ``k`` of node ``n`` holds ``n(k - lags[n])``."""
 
     neurons: dict
     outputs: dict
@@ -56,41 +54,31 @@ def _lags(circuit: Circuit, edges) -> dict[str, int]:
     """The smallest lags with every connection's at least 1 (2 from an input), module text."""
     nodes = [*circuit.inputs, *(n.name for n in circuit.neurons)]
     nodes += [f"output {o.target}" for o in circuit.outputs]
-    # L_s - L_t <= e - least(s): an arc t -> s of that length; start every node at 0
+    # L_s - L_t <= e - least(s): an arc t -> s of that length; every node starts at 0
     least = {u: GENERATOR_LAG for u in circuit.inputs}
-    arcs = [(e.node, e.source, e.delay - least.get(e.source, 1)) for e in edges]
-    lag = dict.fromkeys(nodes, 0)
-    for _ in range(len(nodes) + 1):
-        changed = False
-        for t, s, length in arcs:
-            if lag[t] + length < lag[s]:
-                lag[s], changed = lag[t] + length, True
-        if not changed:
-            break
-    else:
+    graph, start = nx.MultiDiGraph(), object()
+    graph.add_weighted_edges_from((start, n, 0) for n in nodes)
+    graph.add_weighted_edges_from(
+        (e.node, e.source, e.delay - least.get(e.source, 1)) for e in edges
+    )
+    try:
+        lag = nx.single_source_bellman_ford_path_length(graph, start)
+    except nx.NetworkXUnbounded:
         raise ParameterError(
             "circuit: a loop has fewer unit delays than neurons, and NEST's rate "
             "connections delay every value by at least one step"
-        )
+        ) from None
     # every neuron at least 1 step late, every input at least 0 (its generator starts after 0)
     low = min(lag[n] for n in nodes if n not in circuit.inputs)
     shift = max(1 - low, -min((lag[u] for u in circuit.inputs), default=0))
-    return {n: v + shift for n, v in lag.items()}
+    return {n: lag[n] + shift for n in nodes}
 
 
 def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
     r"""Build the circuit (numbers for weights) in NEST's kernel, reset to the resolution ``dt``
-    (the sampling time in seconds): a :class:`NestNetwork`, whose input generators take
-    ``amplitude_times``/``amplitude_values`` (or use :func:`nest_response`).
-
-    Raises
-    ------
-    MissingDependencyError
-        NEST is not installed (``pip install symctl[spiking]``).
-    ParameterError
-        Symbols left in the weights; a loop with fewer delays than neurons (module text).
-    SymctlTypeError
-        ``circuit`` is not a Circuit.
+    (the sampling time in seconds); :func:`nest_response` drives it. Raises
+    MissingDependencyError without NEST, ParameterError for symbols left in the weights or a
+    loop with fewer delays than neurons, SymctlTypeError for a ``circuit`` of another type.
 
     Examples
     --------
@@ -131,8 +119,7 @@ def to_nest(circuit: Circuit, *, dt: float = 0.01) -> NestNetwork:
 
 
 def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndarray]:
-    r"""Drive :func:`to_nest`'s network from rest by ``u`` ``(steps[, inputs])`` and read the
-    traces back, as :func:`~symctl.spiking.nengo_export.nengo_response` returns them.
+    r"""The traces of :func:`to_nest`'s network driven by ``u``, as ``nengo_response`` gives them.
 
     Examples
     --------
@@ -160,6 +147,4 @@ def nest_response(circuit: Circuit, u, *, dt: float = 0.01) -> dict[str, np.ndar
         rate = meters[name].events["rate"]  # rate[i]: NEST step i + 1
         return rate[net.lags[name] - 1 : net.lags[name] - 1 + steps]
 
-    traces = {n: trace(n) for n in net.neurons}
-    outs = [trace(n) for n in net.outputs]
-    return _with_output(traces, outs)
+    return _traces(circuit, trace)

@@ -1,18 +1,15 @@
 r"""A circuit as a NIR graph (the neuromorphic intermediate representation, ``nir`` 1.0).
 
-NIR defines every node in continuous time; the stylized neuron is a delay-difference equation
-and NIR carries it as one: a ``Scale`` node of scale 1 per neuron (NIR sums the edges into a
-node), per term a ``Delay`` node of :math:`d\,T_s` seconds (none for :math:`d = 0`) and a
-``Linear`` node of its weight. With every input held over a sample, every signal equals the
-circuit's :math:`n(k)` at :math:`t = kT_s`, for every self-dynamics (NIR has no sample-and-hold
-node, and an ``LI`` node steps :math:`x(k+1) = a\,x(k) + I` only for a held input).
+A ``Scale`` node of scale 1 per neuron (NIR sums the edges into a node), per term a ``Delay``
+node of :math:`d\,T_s` seconds (none for :math:`d = 0`) and a ``Linear`` node of its weight:
+with every input held over a sample, every signal equals the circuit's :math:`n(k)` at
+:math:`t = kT_s` (NIR has no sample-and-hold node, and an ``LI`` node would need a held input).
 
 **Spiking populations** (``n_neurons=N``) are :func:`~symctl.spiking.nengo_export.to_nengo`'s:
-the sum drives an ``Affine`` node (nengo's encoders times gains over the radius, and biases)
-into a ``LIF`` node of :math:`N` neurons (:math:`R = 1`, leak and reset 0, threshold 1), then a
-``Linear`` node (the decoders) and an ``LI`` node (the lowpass) to the axon. NIR's ``LIF`` has no
-refractory period and no voltage floor, so the neurons are
-``nengo.LIF(tau_ref=0, min_voltage=-inf)``; the graph is as approximate as nengo's network.
+an ``Affine`` node (encoders times gains over the radius, and biases), a ``LIF`` node of
+:math:`N` neurons (:math:`R = 1`, leak and reset 0, threshold 1), a ``Linear`` node (the
+decoders) and an ``LI`` node (the lowpass). NIR's ``LIF`` has no refractory period and no
+voltage floor, so the neurons are ``nengo.LIF(tau_ref=0, min_voltage=-inf)``.
 """
 
 from __future__ import annotations
@@ -40,24 +37,12 @@ def to_nir(
 ):
     """The circuit as a :class:`nir.NIRGraph`: exact delay-sum neurons, or LIF populations.
 
-    Options as for :func:`~symctl.spiking.nengo_export.to_nengo`, but ``neuron_type`` only
-    ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default; ``tau_rc`` free).
-
-    Returns
-    -------
-    nir.NIRGraph
-        An ``Input`` per input, a node per neuron (labelled ``"name @ v<vertex>"`` in its
-        metadata), ``"<source> -> <target> (delay <d>) delay"`` / ``"... weight"`` per term,
-        an ``Output`` ``"output <name>"`` per output; spiking, ``"<neuron> encoders"``,
-        ``"... LIF"``, ``"... decoders"`` and ``"... synapse"``. ``metadata["dt"]`` is ``dt``.
-
-    Raises
-    ------
-    MissingDependencyError
-        nir (or, with ``n_neurons``, nengo) is not installed (``pip install symctl[spiking]``).
-    ParameterError, SymctlTypeError
-        As :func:`~symctl.spiking.nengo_export.to_nengo`; a ``neuron_type`` that is not a
-        nengo LIF, or has a refractory period or a voltage floor.
+    Options and errors as for :func:`~symctl.spiking.nengo_export.to_nengo`, but
+    ``neuron_type`` only ``nengo.LIF(tau_ref=0, min_voltage=-np.inf)`` (the default). Nodes:
+    an ``Input`` per input, one per neuron (``"name @ v<vertex>"`` in its metadata),
+    ``"<source> -> <target> (delay <d>) delay"`` / ``"... weight"`` per term, an ``Output``
+    ``"output <name>"`` per output; spiking, ``"<neuron> encoders"``, ``"... LIF"``,
+    ``"... decoders"`` and ``"... synapse"``. ``metadata["dt"]`` is ``dt``.
 
     Examples
     --------
