@@ -55,6 +55,8 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     model). Writes spiking.json, spiking.md (the table, cheapest first) and the
     figure spiking_cost into OUT. Finished runs go to OUT.progress.jsonl, so an
     interrupted sweep resumes where it stopped."""
+    from symctl.derivation.pipeline import derive, derive_paper
+    from symctl.model.modelfile import load_model
     from symctl.report.output import OutputFolder
     from symctl.report.spiking import write_spiking
     from symctl.spiking.cost import spiking_cost
@@ -63,7 +65,7 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     checkpoint = progress_file(out)
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start("derivation")
-        res = _derivation(model_file)
+        res = derive_paper() if model_file is None else derive(load_model(Path(model_file)))
         steps.start("spiking sweep")
         cost = spiking_cost(
             res,
@@ -80,11 +82,3 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     checkpoint.unlink(missing_ok=True)
     say(_console, cost.finding())
     say(_console, f"wrote {out}/: " + ", ".join(p.name for p in folder.final(written)))
-
-
-def _derivation(model_file):
-    """The derivation of MODEL.toml, or the paper's."""
-    from symctl.derivation.pipeline import derive, derive_paper
-    from symctl.model.modelfile import load_model
-
-    return derive_paper() if model_file is None else derive(load_model(Path(model_file)))

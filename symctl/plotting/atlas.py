@@ -42,22 +42,8 @@ def _verdict(c) -> str:
 def draw_atlas(
     atlas, *, universal_only: bool = True, columns: int = 3, title: str | None = None
 ) -> Figure:
-    """The circuits of an atlas's classes on a grid, each titled with its label and counts.
-
-    Parameters
-    ----------
-    atlas : Atlas
-    universal_only : bool
-        Only the proved universal classes (default), or every class.
-    columns : int
-        Panels per row, at most: fewer when a circuit is too wide for its column.
-    title : str, optional
-        A heading above the grid (default none).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-    """
+    """The circuits of an atlas's classes (``universal_only``: the proved universal ones) on a
+    grid of at most ``columns``, each titled with its label and counts, ``title`` above."""
     classes = atlas.universal_classes if universal_only else atlas.classes
     return draw_classes(atlas, classes or atlas.classes, columns=columns, title=title)
 

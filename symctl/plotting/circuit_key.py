@@ -73,15 +73,6 @@ class SignValues:
         """Check ``values``: a mapping of symbols (or their names among ``symbols``, never parsed) to
         real numbers or ranges ``(lo, hi)``, ``lo < hi``; errors name ``argname``.
 
-        Raises
-        ------
-        SymctlTypeError
-            Not a mapping, a key neither a symbol nor a string, a value neither number nor pair.
-        ParameterError
-            A name that is no symbol's, a value not finite, or a range with ``lo >= hi``.
-
-        Examples
-        --------
         >>> from symctl.plotting.circuit_key import SignValues
         >>> SignValues.of({"x": (1, 0)}, symbols=__import__("sympy").symbols("x,"))
         Traceback (most recent call last):

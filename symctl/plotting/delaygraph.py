@@ -101,34 +101,15 @@ def delay_graph_plot(
     """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays, from
     the sensors (green) to the actuators (orange); edges against the flow purple.
 
-    Parameters
-    ----------
-    graph : DelayGraph
-    names : sequence of str, optional
-        The vertices' names, :math:`v_1` first (default ``v1 .. vN``; else each box also
-        shows its ``v<k>``).
-    title : str, optional
-        A heading above the drawing, wrapped to its width (default none).
-    descriptions : mapping of str to str, optional
-        A line or two under a vertex's name, by name.
-    ax : matplotlib Axes, optional
-        Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
+    ``names`` of the vertices, :math:`v_1` first (default ``v1 .. vN``; else each box also
+    shows its ``v<k>``); ``title`` a heading wrapped to the drawing's width; ``descriptions`` a
+    line or two under a vertex's name, by name; ``ax`` to draw into (default: a new figure sized
+    to the drawing, one unit one inch).
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    Raises SymctlTypeError (``graph`` not a DelayGraph, ``names`` not strings, ``descriptions``
+    not a mapping) or ParameterError (``names`` not one per vertex, or more than
+    :data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES` vertices).
 
-    Raises
-    ------
-    SymctlTypeError
-        ``graph`` is not a DelayGraph, ``names`` not a sequence of strings, or
-        ``descriptions`` not a mapping.
-    ParameterError
-        ``names`` of another length than the graph's vertices, or a graph too large to
-        draw (:data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES`).
-
-    Examples
-    --------
     >>> from symctl import DelayGraph
     >>> from symctl.plotting.delaygraph import delay_graph_plot
     >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])

@@ -137,6 +137,27 @@ def new_figure(size: str | float = "text", height: float | None = None, **kwargs
         return Figure(figsize=(w, h), **kwargs)
 
 
+def neuron_grid(fig, n: int, cols: int, time_label: str) -> list:
+    """``n`` panels of firing rates in rows of ``cols`` sharing the time axis (its ticks only
+    under the lowest panel of each column), the spare cells removed."""
+    rows = -(-n // cols)
+    axes = fig.subplots(rows, cols, sharex=True, squeeze=False).ravel()
+    for k, ax in enumerate(axes):
+        if k < n:
+            ax.xaxis.set_tick_params(labelbottom=k + cols >= n)
+        else:
+            ax.remove()
+    fig.supxlabel(time_label, fontsize=FONT_SIZE)
+    fig.supylabel(axis_label("firing-rate change", "spikes/s"), fontsize=FONT_SIZE)
+    return list(axes[:n])
+
+
+def suptitle(fig, title: str | None) -> None:
+    """A heading over ``fig`` when ``title`` is given."""
+    if title:
+        fig.suptitle(title, fontsize=TITLE)
+
+
 def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, title=None):
     """A legend under ``ax``, outside its data, in up to 4 columns."""
     if handles is None:
@@ -155,18 +176,16 @@ def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
     """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out (the
     first ``len(labels) % ncol`` columns one entry longer, each as wide as its longest label).
     """
+    import numpy as np
+
     from symctl.plotting.common import text_size
 
     labels = list(labels)
     if not labels:
         return 0.0
     ncol = max(1, min(int(ncol), len(labels)))
-    rows, large = divmod(len(labels), ncol)
-    sizes = [rows + 1] * large + [rows] * (ncol - large)
-    widths, start = [], 0
-    for count in sizes:
-        widths.append(max(text_size(t, size)[0] for t in labels[start : start + count]))
-        start += count
+    columns = np.array_split(np.arange(len(labels)), ncol)
+    widths = [max(text_size(labels[k], size)[0] for k in col) for col in columns]
     em = size / 72.0
     # TextPath measures the outlines; drawn text runs a few percent wider
     return 1.06 * sum(widths) + em * (_HANDLE * ncol + _SPACING * (ncol - 1) + _PAD)
