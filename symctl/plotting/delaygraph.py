@@ -45,6 +45,7 @@ _FILL = {
     "": ("#f4f4f4", style.NEUTRAL),
 }
 _INK = style.NEUTRAL
+_ROUNDED = "round,pad=0,rounding_size=0.05"  # a vertex's box
 _BACK = style.PALETTE[3]  # an edge laid out right to left (closing a cycle)
 
 
@@ -146,15 +147,8 @@ def delay_graph_plot(
         w, h = lay.size[k]
         role = _role(graph, k)
         fill, edge = _FILL[role]
-        look = {
-            "fc": fill,
-            "ec": edge,
-            "lw": 1.1 if role else 0.8,
-            "zorder": 2,
-            "gid": f"vertex:{k}",
-        }
-        rounded = "round,pad=0,rounding_size=0.05"
-        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, boxstyle=rounded, **look))
+        look = {"fc": fill, "ec": edge, "lw": 1.1 if role else 0.8, "gid": f"vertex:{k}"}
+        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, _ROUNDED, zorder=2, **look))
         top = y + sum(_LINE[s] for _, s, _ in lines[k]) / 2
         for text, size, kind in lines[k]:
             bold = kind == "bold"

@@ -207,17 +207,14 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
             value = layout.labels[name]
             ax.text(xc, yc, value, **_CENTRED, fontsize=FONT, zorder=3, gid=gid)
         elif w > 0.05:  # an adder: a circle with a plus
-            r = w / 2
-            arm = min(0.6 * r, 0.045)
-            ax.add_patch(
-                Circle((xc, yc), r, fc="white", ec=_INK, lw=0.8, zorder=2, gid=f"sum:{name}")
-            )
+            arm = min(0.3 * w, 0.045)
+            look = {"fc": "white", "ec": _INK, "lw": 0.8, "gid": f"sum:{name}"}
+            ax.add_patch(Circle((xc, yc), w / 2, zorder=2, **look))
             ax.plot([xc - arm, xc + arm], [yc, yc], color=_INK, lw=0.8, zorder=3)
             ax.plot([xc, xc], [yc - arm, yc + arm], color=_INK, lw=0.8, zorder=3)
         else:
-            ax.add_patch(
-                Circle((xc, yc), w / 2, fc=_INK, ec="none", zorder=2, gid=f"signal:{name}")
-            )
+            look = {"fc": _INK, "ec": "none", "gid": f"signal:{name}"}
+            ax.add_patch(Circle((xc, yc), w / 2, zorder=2, **look))
     for lab in layout.names.values():
         ax.text(lab.x + dx, lab.y + dy, lab.text, ha=lab.ha, va=lab.va, **_NAME_STYLE)
     for lab in layout.ends:
