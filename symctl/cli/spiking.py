@@ -48,7 +48,7 @@ def _sizes(ctx, param, value: str) -> tuple[int, ...]:
     shown("--figures/--no-figures", default=True, help="Write the figure (PDF, PNG)."),
     shown("--out", default="out/spiking", help="Output folder."),
 )
-def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, figures, out) -> None:
+def spiking_command(model_file, circuit, figures, out, **sweep) -> None:
     """Run every circuit of the controller as spiking populations and price it in neurons.
 
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
@@ -67,16 +67,11 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
         steps.start("derivation")
         res = derive_paper() if model_file is None else derive(load_model(Path(model_file)))
         steps.start("spiking sweep")
-        cost = spiking_cost(
-            res,
-            circuits=names,
-            neurons=neurons,
-            seeds=seeds,
-            workers=workers,
-            scheduler=scheduler,
-            checkpoint=checkpoint,
-            progress=lambda done, total: steps.part(f"{done} of {total} runs"),
-        )
+
+        def progress(done, total):
+            steps.part(f"{done} of {total} runs")
+
+        cost = spiking_cost(res, circuits=names, **sweep, checkpoint=checkpoint, progress=progress)
         steps.start("writing")
         written = write_spiking(cost, folder.staging, figures=figures)
     checkpoint.unlink(missing_ok=True)
