@@ -31,8 +31,7 @@ from symctl.symbols import T_s, z
 
 __all__ = ["SavedDerivation", "load_results"]
 
-MAX_RESULTS_BYTES = 200_000_000
-"""Largest ``results.json`` :func:`load_results` reads."""
+MAX_RESULTS_BYTES = 200_000_000  # the largest results.json load_results reads
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
 _REAL = re.compile(r"^(K|C|L|epsilon|sigma)_")  # the derivation's real symbols

@@ -231,12 +231,8 @@ def key_items(key: Key) -> list[tuple[str, str]]:
         else:
             items.append(("dashed", "delayed (one step or more)"))
     if key.vertices and not key.numbered:
-        names = key.vertex_names
-        if (
-            names
-            and len(names) >= max(key.vertices)
-            and any(names[v - 1] != f"v{v}" for v in key.vertices)
-        ):
+        names = key.vertex_names or ()
+        if len(names) >= max(key.vertices) and any(names[v - 1] != f"v{v}" for v in key.vertices):
             said = ", ".join(f"v{v} {names[v - 1].replace('_', ' ')}" for v in key.vertices)
             items.append(("", f"under a neuron: its vertex, {said}".replace("$", r"\$")))
         else:
