@@ -32,14 +32,10 @@ def _neuron_tex(name: str) -> str:
 def _window(t: np.ndarray, traces) -> float | None:
     """Where the time axis ends: a quarter after the last trace settles; None: the whole data."""
     last = 0.0
-    for y in traces:
-        y = np.asarray(y, dtype=float)
-        ok = np.isfinite(y)
-        if not ok.any():
-            continue
-        peak = np.max(np.abs(y[ok]))
-        busy = np.flatnonzero(ok & (np.abs(y) > SETTLED * peak)) if peak > 0 else []
-        if len(busy):
+    for y in traces:  # |y|, NaN and infinities as 0 (neither peak nor busy)
+        y = np.nan_to_num(np.abs(np.asarray(y, dtype=float)), nan=0.0, posinf=0.0)
+        busy = np.flatnonzero(y > SETTLED * y.max())
+        if busy.size:
             last = max(last, float(t[busy[-1]]))
     span = float(t[-1] - t[0])
     end = t[0] + 1.25 * (last - t[0]) + 0.05 * span
