@@ -174,12 +174,7 @@ class Key:
 
 def stems(symbols) -> list[str]:
     """The LaTeX of the letters of ``symbols`` without their indices, in order, once each."""
-    out: list[str] = []
-    for s in symbols:
-        tex = latex(sp.Symbol(str(s).split("_")[0]))
-        if tex not in out:
-            out.append(tex)
-    return out
+    return list(dict.fromkeys(latex(sp.Symbol(str(s).split("_")[0])) for s in symbols))
 
 
 def _number(v: float) -> str:
