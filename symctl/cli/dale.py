@@ -76,14 +76,11 @@ def dale_command(
         with Steps(_console) as steps:
             steps.start("the E/I table of the order-2 atlas")
             decided = itertools.count(1)
-            T = dale_atlas(
-                2,
-                samples=samples,
-                G=ctrl,
-                **kw,
-                **run,
-                progress=lambda label: steps.part(f"{next(decided)} classes decided, last {label}"),
-            )
+
+            def progress(label):
+                steps.part(f"{next(decided)} classes decided, last {label}")
+
+            T = dale_atlas(2, samples=samples, G=ctrl, **kw, **run, progress=progress)
         if as_json:
             fields = ("verdict", "controller", "sampled", "exists")
             rows = [{"class": r.label} | _fields(r, fields) for r in T.rows]

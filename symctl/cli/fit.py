@@ -132,8 +132,7 @@ def model_controller(model_file, sensor_delay, actuator_delay):
     from symctl.design.augment import augment
     from symctl.design.lqr import lqr_gains
 
-    model = _load(model_file)
-    plant, Q, R, (ds, da) = _parts(model)
+    model, plant, Q, R, (ds, da) = _model(model_file)
     ds = ds if sensor_delay is None else sensor_delay
     da = da if actuator_delay is None else actuator_delay
     gains = lqr_gains(augment(plant, ds, da, Q=Q, R=R))
@@ -148,21 +147,18 @@ def model_controller(model_file, sensor_delay, actuator_delay):
 
 def model_parts(model_file):
     """``(plant, Q, R, (sensor_delay, actuator_delay))`` of MODEL.toml, or the paper's muscle."""
-    return _parts(_load(model_file))
+    return _model(model_file)[1:]
 
 
-def _load(model_file):
+def _model(model_file):
+    """``(model or None, plant, Q, R, (sensor_delay, actuator_delay))`` as :func:`model_parts`."""
+    from symctl.design.plant import MuscleModel
     from symctl.model.modelfile import load_model
 
-    return None if model_file is None else load_model(Path(model_file))
-
-
-def _parts(model):
-    from symctl.design.plant import MuscleModel
-
-    if model is None:
-        return MuscleModel(), 1, 1, (1, 1)
-    return model.plant, model.Q, model.R, (model.sensor_delay, model.actuator_delay)
+    if model_file is None:
+        return None, MuscleModel(), 1, 1, (1, 1)
+    m = load_model(Path(model_file))
+    return m, m.plant, m.Q, m.R, (m.sensor_delay, m.actuator_delay)
 
 
 def _meta_int(value, key, tr):

@@ -48,13 +48,15 @@ def _sizes(ctx, param, value: str) -> tuple[int, ...]:
     shown("--figures/--no-figures", default=True, help="Write the figure (PDF, PNG)."),
     shown("--out", default="out/spiking", help="Output folder."),
 )
-def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, figures, out) -> None:
+def spiking_command(model_file, circuit, figures, out, **sweep) -> None:
     """Run every circuit of the controller as spiking populations and price it in neurons.
 
     The controller is the optimal one of MODEL.toml (default: the paper's muscle
     model). Writes spiking.json, spiking.md (the table, cheapest first) and the
     figure spiking_cost into OUT. Finished runs go to OUT.progress.jsonl, so an
     interrupted sweep resumes where it stopped."""
+    from symctl.derivation.pipeline import derive, derive_paper
+    from symctl.model.modelfile import load_model
     from symctl.report.output import OutputFolder
     from symctl.report.spiking import write_spiking
     from symctl.spiking.cost import spiking_cost
@@ -63,28 +65,15 @@ def spiking_command(model_file, neurons, seeds, circuit, workers, scheduler, fig
     checkpoint = progress_file(out)
     with OutputFolder(out, "--out") as folder, Steps(_console) as steps:
         steps.start("derivation")
-        res = _derivation(model_file)
+        res = derive_paper() if model_file is None else derive(load_model(Path(model_file)))
         steps.start("spiking sweep")
-        cost = spiking_cost(
-            res,
-            circuits=names,
-            neurons=neurons,
-            seeds=seeds,
-            workers=workers,
-            scheduler=scheduler,
-            checkpoint=checkpoint,
-            progress=lambda done, total: steps.part(f"{done} of {total} runs"),
-        )
+
+        def progress(done, total):
+            steps.part(f"{done} of {total} runs")
+
+        cost = spiking_cost(res, circuits=names, **sweep, checkpoint=checkpoint, progress=progress)
         steps.start("writing")
         written = write_spiking(cost, folder.staging, figures=figures)
     checkpoint.unlink(missing_ok=True)
     say(_console, cost.finding())
     say(_console, f"wrote {out}/: " + ", ".join(p.name for p in folder.final(written)))
-
-
-def _derivation(model_file):
-    """The derivation of MODEL.toml, or the paper's."""
-    from symctl.derivation.pipeline import derive, derive_paper
-    from symctl.model.modelfile import load_model
-
-    return derive_paper() if model_file is None else derive(load_model(Path(model_file)))

@@ -1,9 +1,5 @@
-"""The pipeline: a model derived, plant to circuits, into one :class:`Derivation`.
-
-Above the algorithms and the model files, below the report (which writes a derivation):
-``pipeline`` (:func:`derive`, :func:`derive_paper`), ``derivation`` (:class:`Derivation`
-and its records), ``paper`` (the paper's inputs) and ``load`` (:func:`load_results`).
-"""
+"""The pipeline: a model derived, plant to circuits, into one :class:`Derivation` (above the
+algorithms and model files, below the report, which writes it)."""
 
 from symctl._util.lazy import attach
 

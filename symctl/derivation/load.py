@@ -31,11 +31,11 @@ from symctl.symbols import T_s, z
 
 __all__ = ["SavedDerivation", "load_results"]
 
-MAX_RESULTS_BYTES = 200_000_000
-"""Largest ``results.json`` :func:`load_results` reads."""
+MAX_RESULTS_BYTES = 200_000_000  # the largest results.json load_results reads
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\{[0-9,]+\})?")
 _REAL = re.compile(r"^(K|C|L|epsilon|sigma)_")  # the derivation's real symbols
+_TOKEN = re.compile(r"\*\*|[-+*/,()\[\]{}]")  # what _split reads: operators and brackets
 _BINARY = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
 
 
@@ -98,28 +98,22 @@ def _closing(text: str) -> int:
 
 
 def _split(text: str, ops: tuple[str, ...]) -> list[tuple[str, str]]:
-    """``text`` cut at the binary operators ``ops`` outside parentheses: ``[(op, piece)]``."""
-    parts, depth, start, op, i = [], 0, 0, "", 0
-    while i < len(text):
-        c = text[i]
-        if c in "([{":
+    """``text`` cut at the binary operators ``ops`` outside brackets: ``[(op, piece)]``."""
+    parts, depth, start, op = [], 0, 0, ""
+    for m in _TOKEN.finditer(text):
+        token, i = m.group(), m.start()
+        if token in "([{":
             depth += 1
-        elif c in ")]}":
+        elif token in ")]}":
             depth -= 1
-        elif depth == 0:
-            for o in ops:
-                if not text.startswith(o, i):
-                    continue
-                if o == "*" and (text.startswith("**", i) or text[i - 1] == "*"):
-                    continue
-                prev = text[:i].rstrip()
-                if o in "+-" and (not prev or prev[-1] in "+-*/(" or re.search(r"\de$", prev)):
-                    continue  # a sign, or the exponent of a decimal such as 1e-5
-                parts.append((op, text[start:i]))
-                op, start = o, i + len(o)
-                i += len(o) - 1
-                break
-        i += 1
+        elif depth == 0 and token in ops:
+            if token == "*" and text[i - 1] == "*":
+                continue  # the last of three stars or more: no product
+            prev = text[:i].rstrip()
+            if token in "+-" and (not prev or prev[-1] in "+-*/(" or re.search(r"\de$", prev)):
+                continue  # a sign, or the exponent of a decimal such as 1e-5
+            parts.append((op, text[start:i]))
+            op, start = token, m.end()
     parts.append((op, text[start:]))
     return [(o, p) for o, p in parts if p.strip()] if len(parts) > 1 else parts
 

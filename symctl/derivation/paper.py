@@ -37,5 +37,4 @@ class PaperSpec:
     realizations: int = 4
 
 
-PAPER = PaperSpec()
-"""The paper's parameters (the defaults of ``derive_paper`` and ``symctl paper``)."""
+PAPER = PaperSpec()  # the paper's parameters (the defaults of derive_paper and symctl paper)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 from matplotlib.figure import Figure
 
 from symctl.plotting import style
@@ -42,22 +40,8 @@ def _verdict(c) -> str:
 def draw_atlas(
     atlas, *, universal_only: bool = True, columns: int = 3, title: str | None = None
 ) -> Figure:
-    """The circuits of an atlas's classes on a grid, each titled with its label and counts.
-
-    Parameters
-    ----------
-    atlas : Atlas
-    universal_only : bool
-        Only the proved universal classes (default), or every class.
-    columns : int
-        Panels per row, at most: fewer when a circuit is too wide for its column.
-    title : str, optional
-        A heading above the grid (default none).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-    """
+    """The circuits of an atlas's classes (``universal_only``: the proved universal ones) on a
+    grid of at most ``columns``, each titled with its label and counts, ``title`` above."""
     classes = atlas.universal_classes if universal_only else atlas.classes
     return draw_classes(atlas, classes or atlas.classes, columns=columns, title=title)
 
@@ -105,10 +89,9 @@ def draw_classes(atlas, classes, *, columns: int = 3, title: str | None = None) 
         labelled=all(k.labelled for k in said),
         bodies=any(k.bodies for k in said),
         empty=any(k.empty for k in said),
-        synapses=sum(k.synapses for k in said),
+        # said only of panels without weights: the largest of their counts
+        synapses=max((k.synapses for k in said if not k.labelled), default=0),
     )
-    if not union.labelled:  # say which panels have no weights, not the total of synapses
-        union = replace(union, synapses=max(k.synapses for k in said if not k.labelled))
     kax = fig.add_axes((0, 0, 1, 1))
     bottom, _ = draw_key_items(kax, key_items(union), 0.0, 0.0, width, SMALL)
     key_height = -bottom + 0.04

@@ -73,15 +73,6 @@ class SignValues:
         """Check ``values``: a mapping of symbols (or their names among ``symbols``, never parsed) to
         real numbers or ranges ``(lo, hi)``, ``lo < hi``; errors name ``argname``.
 
-        Raises
-        ------
-        SymctlTypeError
-            Not a mapping, a key neither a symbol nor a string, a value neither number nor pair.
-        ParameterError
-            A name that is no symbol's, a value not finite, or a range with ``lo >= hi``.
-
-        Examples
-        --------
         >>> from symctl.plotting.circuit_key import SignValues
         >>> SignValues.of({"x": (1, 0)}, symbols=__import__("sympy").symbols("x,"))
         Traceback (most recent call last):
@@ -183,12 +174,7 @@ class Key:
 
 def stems(symbols) -> list[str]:
     """The LaTeX of the letters of ``symbols`` without their indices, in order, once each."""
-    out: list[str] = []
-    for s in symbols:
-        tex = latex(sp.Symbol(str(s).split("_")[0]))
-        if tex not in out:
-            out.append(tex)
-    return out
+    return list(dict.fromkeys(latex(sp.Symbol(str(s).split("_")[0])) for s in symbols))
 
 
 def _number(v: float) -> str:
@@ -240,12 +226,8 @@ def key_items(key: Key) -> list[tuple[str, str]]:
         else:
             items.append(("dashed", "delayed (one step or more)"))
     if key.vertices and not key.numbered:
-        names = key.vertex_names
-        if (
-            names
-            and len(names) >= max(key.vertices)
-            and any(names[v - 1] != f"v{v}" for v in key.vertices)
-        ):
+        names = key.vertex_names or ()
+        if len(names) >= max(key.vertices) and any(names[v - 1] != f"v{v}" for v in key.vertices):
             said = ", ".join(f"v{v} {names[v - 1].replace('_', ' ')}" for v in key.vertices)
             items.append(("", f"under a neuron: its vertex, {said}".replace("$", r"\$")))
         else:

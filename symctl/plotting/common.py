@@ -7,17 +7,14 @@ from functools import lru_cache
 
 @lru_cache(maxsize=4096)
 def text_size(text: str, size: float) -> tuple[float, float]:
-    """Width and height in inches of ``text`` set at ``size`` points (mathtext allowed): the box
-    of its glyph outlines (:func:`text_outline`), cached (drawings measure the same keys)."""
+    """Width and height in inches of ``text`` at ``size`` points: its outlines' box, cached."""
     _, (x0, y0, x1, y1) = text_outline(text, size)
     return (x1 - x0) / 72, (y1 - y0) / 72
 
 
 def text_outline(text: str, size: float):
     """``(path, (x0, y0, x1, y1))``: the glyph outlines of ``text`` at ``size`` points (origin on
-    the baseline, ``None`` without ink) and the box of their vertices (TrueType puts them at the
-    curves' extrema); math text is typeset at ``size``, so drawing it later finds it typeset.
-    """
+    the baseline, ``None`` without ink) and their box (TrueType puts vertices at the extrema)."""
     from matplotlib import cbook
     from matplotlib.font_manager import FontProperties
     from matplotlib.path import Path
@@ -70,8 +67,7 @@ def fit_to_drawing(fig, ax, own: bool, x_lo: float, x_hi: float, y_lo: float, y_
 
 def wrap(items, room: float, size: float, sep: str = " ", scale: float = 1.06) -> list[str]:
     """``items`` joined by ``sep`` into lines no wider than ``room`` inches at ``size`` points
-    (widths times ``scale``: drawn text runs a few percent wider); one may overflow.
-    """
+    (widths times ``scale``: drawn text runs a few percent wider); one may overflow."""
     lines: list[str] = []
     for item in items:
         if lines and scale * text_size(lines[-1] + sep + item, size)[0] <= room:

@@ -45,6 +45,7 @@ _FILL = {
     "": ("#f4f4f4", style.NEUTRAL),
 }
 _INK = style.NEUTRAL
+_ROUNDED = "round,pad=0,rounding_size=0.05"  # a vertex's box
 _BACK = style.PALETTE[3]  # an edge laid out right to left (closing a cycle)
 
 
@@ -101,34 +102,15 @@ def delay_graph_plot(
     """Draw the delay graph: vertices as boxes, direct edges as arrows with their delays, from
     the sensors (green) to the actuators (orange); edges against the flow purple.
 
-    Parameters
-    ----------
-    graph : DelayGraph
-    names : sequence of str, optional
-        The vertices' names, :math:`v_1` first (default ``v1 .. vN``; else each box also
-        shows its ``v<k>``).
-    title : str, optional
-        A heading above the drawing, wrapped to its width (default none).
-    descriptions : mapping of str to str, optional
-        A line or two under a vertex's name, by name.
-    ax : matplotlib Axes, optional
-        Draw into it; by default a new figure sized to the drawing (1 unit = 1 inch).
+    ``names`` of the vertices, :math:`v_1` first (default ``v1 .. vN``; else each box also
+    shows its ``v<k>``); ``title`` a heading wrapped to the drawing's width; ``descriptions`` a
+    line or two under a vertex's name, by name; ``ax`` to draw into (default: a new figure sized
+    to the drawing, one unit one inch).
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    Raises SymctlTypeError (``graph`` not a DelayGraph, ``names`` not strings, ``descriptions``
+    not a mapping) or ParameterError (``names`` not one per vertex, or more than
+    :data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES` vertices).
 
-    Raises
-    ------
-    SymctlTypeError
-        ``graph`` is not a DelayGraph, ``names`` not a sequence of strings, or
-        ``descriptions`` not a mapping.
-    ParameterError
-        ``names`` of another length than the graph's vertices, or a graph too large to
-        draw (:data:`~symctl.plotting.delaygraph_layout.MAX_DRAWN_VERTICES`).
-
-    Examples
-    --------
     >>> from symctl import DelayGraph
     >>> from symctl.plotting.delaygraph import delay_graph_plot
     >>> g = DelayGraph.from_edges(4, [(1, 2, 1), (2, 4, 1), (1, 3, 1), (3, 2, 1)])
@@ -165,15 +147,8 @@ def delay_graph_plot(
         w, h = lay.size[k]
         role = _role(graph, k)
         fill, edge = _FILL[role]
-        look = {
-            "fc": fill,
-            "ec": edge,
-            "lw": 1.1 if role else 0.8,
-            "zorder": 2,
-            "gid": f"vertex:{k}",
-        }
-        rounded = "round,pad=0,rounding_size=0.05"
-        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, boxstyle=rounded, **look))
+        look = {"fc": fill, "ec": edge, "lw": 1.1 if role else 0.8, "gid": f"vertex:{k}"}
+        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, _ROUNDED, zorder=2, **look))
         top = y + sum(_LINE[s] for _, s, _ in lines[k]) / 2
         for text, size, kind in lines[k]:
             bold = kind == "bold"

@@ -205,15 +205,9 @@ def delay_graph_layout(
     """The positions, routes and extent of the drawing of ``graph``; ``sizes`` of the vertex boxes
     and ``label_sizes`` of the edges' labels by ``(i, j)`` [in] (default :data:`BOX`, :data:`LABEL`).
 
-    Raises
-    ------
-    SymctlTypeError
-        ``graph`` is not a DelayGraph.
-    ParameterError
-        More than :data:`MAX_DRAWN_VERTICES` vertices, or more than :data:`MAX_BENDS` bends.
+    Raises SymctlTypeError (not a DelayGraph) or ParameterError (more than
+    :data:`MAX_DRAWN_VERTICES` vertices, or more than :data:`MAX_BENDS` bends).
 
-    Examples
-    --------
     Two pathways from the sensor to the actuator, through v2 and v3, lie in two rows:
 
     >>> from symctl import DelayGraph

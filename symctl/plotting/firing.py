@@ -9,7 +9,7 @@ from symctl._util.texnames import signal_tex
 from symctl._util.validate import positive_int
 from symctl.plotting import style
 from symctl.plotting.response import _LINE_COLOURS as _COLOURS
-from symctl.plotting.response import UNKNOWN_UNIT, _locator, _steps
+from symctl.plotting.response import UNKNOWN_UNIT, _locator, _signal, _steps
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -21,19 +21,6 @@ __all__ = ["firing_plot"]
 PANEL_HEIGHT = 1.05  # a row of neuron panels with their headings [in]
 
 
-def _tex(name: str, *, part: bool = True) -> str:
-    return f"${signal_tex(name, part=part)}$"
-
-
-def _state(fp, labels) -> tuple[str, str, str | None]:
-    """(description, mathtext symbol without ``$``, unit) of the plant's first state."""
-    if labels is None:
-        return "muscle force", "f", "N"
-    raw = fp.reference.state_names[0].removeprefix("delta_")
-    what, unit = labels.get(raw, ("", ""))
-    return what, signal_tex(raw), unit or None
-
-
 def firing_plot(
     fp: FiringPatterns,
     ncols: int = 3,
@@ -42,34 +29,10 @@ def firing_plot(
     title: str | None = None,
     size: str | float = "text",
 ) -> Figure:
-    r"""One panel per neuron of :math:`G_2` (one line per realization), the plant's state on top;
-    with noise, each line the mean of the noisy runs in a band of :math:`\pm 2` sd.
+    r"""One panel per neuron of :math:`G_2` (a line per realization, ``ncols`` panels a row), the
+    plant's state on top; with noise, each line the mean in a band of :math:`\pm 2` sd.
+    ``labels``, ``title`` and ``size`` as :func:`~symctl.plotting.response.response_plot`.
 
-    Parameters
-    ----------
-    fp : FiringPatterns
-        The result of :func:`~symctl.neural.firing.circuit_firing`.
-    ncols : int
-        Neuron panels per row.
-    labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)`` of the plant's state and input (names without
-        ``delta_``); default the muscle's (force f [N], rate r).
-    title : str, optional
-        A heading over the figure (default none).
-    size : {"column", "double", "text"} or float
-        The printed width (:func:`symctl.plotting.style.width`).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    ParameterError
-        ``ncols`` is not an integer >= 1.
-
-    Examples
-    --------
     >>> from symctl import MuscleModel, augment, circuit_firing, lqr_gains
     >>> from symctl.plotting.firing import firing_plot
     >>> fp = circuit_firing("observable", lqr_gains(augment(MuscleModel(), 1, 1)), count=2)
@@ -103,7 +66,7 @@ def firing_plot(
         optimal = _steps(
             top, fp.t, reference, marked=False, color="black", lw=0.9, ls=(0, (1, 1.5))
         )
-        what, sym, unit = _state(fp, labels)
+        what, sym, unit = _signal(fp.reference.state_names[0], labels)
         top.set_ylabel(style.axis_label(f"${sym}$", unit or UNKNOWN_UNIT))
         top.set_xlabel(style.axis_label("time", unit_t))
         head = f"{what} ${sym}$" if what else f"${sym}$"
@@ -121,9 +84,8 @@ def firing_plot(
                 f"to {dev:.0e} relative (and so is the input)"
             )
         top.set_title(head, loc="left", fontsize=style.SMALL, pad=3)
-        axes = grid_fig.subplots(rows, cols, sharex=True, squeeze=False)
-        for k, name in enumerate(names):
-            ax = axes[k // cols, k % cols]
+        axes = style.neuron_grid(grid_fig, len(names), cols, style.axis_label("time", unit_t))
+        for ax, name in zip(axes, names, strict=True):
             for i, colour in enumerate(colours):
                 _steps(ax, fp.t, fp.firing[name][i], marked=False, lw=1.0, color=colour)
                 if fp.firing_sd is not None:
@@ -131,19 +93,11 @@ def firing_plot(
             ax.axhline(0, color="black", lw=0.5)
             part = name.rpartition(".")[0]  # "P1.G2" for a part of a parallel decomposition
             where = f" ({part.partition('.')[0]})" if "." in part else ""
-            ax.set_title(f"neuron {_tex(name, part=False)}{where}", fontsize=style.SMALL, pad=2)
+            tex = signal_tex(name, part=False)
+            ax.set_title(f"neuron ${tex}${where}", fontsize=style.SMALL, pad=2)
             ax.yaxis.set_major_locator(_locator())
-            # a panel with none below it shows the time ticks (the last row may be short)
-            ax.xaxis.set_tick_params(labelbottom=k + cols >= len(names))
-        for k in range(len(names), rows * cols):
-            axes[k // cols, k % cols].remove()
-        grid_fig.supxlabel(style.axis_label("time", unit_t), fontsize=style.FONT_SIZE)
-        grid_fig.supylabel(
-            style.axis_label("firing-rate change", "spikes/s"), fontsize=style.FONT_SIZE
-        )
         style.figure_legend(
             fig, [*lines, optimal], [*labels_, "optimal controller"], title="realization"
         )
-    if title:
-        fig.suptitle(title, fontsize=style.TITLE)
+    style.suptitle(fig, title)
     return fig

@@ -32,14 +32,10 @@ def _neuron_tex(name: str) -> str:
 def _window(t: np.ndarray, traces) -> float | None:
     """Where the time axis ends: a quarter after the last trace settles; None: the whole data."""
     last = 0.0
-    for y in traces:
-        y = np.asarray(y, dtype=float)
-        ok = np.isfinite(y)
-        if not ok.any():
-            continue
-        peak = np.max(np.abs(y[ok]))
-        busy = np.flatnonzero(ok & (np.abs(y) > SETTLED * peak)) if peak > 0 else []
-        if len(busy):
+    for y in traces:  # |y|, NaN and infinities as 0 (neither peak nor busy)
+        y = np.nan_to_num(np.abs(np.asarray(y, dtype=float)), nan=0.0, posinf=0.0)
+        busy = np.flatnonzero(y > SETTLED * y.max())
+        if busy.size:
             last = max(last, float(t[busy[-1]]))
     span = float(t[-1] - t[0])
     end = t[0] + 1.25 * (last - t[0]) + 0.05 * span
@@ -49,27 +45,8 @@ def _window(t: np.ndarray, traces) -> float | None:
 def fit_plot(
     result: FitResult, ncols: int = 3, *, title: str | None = None, size: str | float = "text"
 ) -> Figure:
-    """One panel per neuron: data and fit (recorded), prediction (unrecorded), with their bands.
-
-    Parameters
-    ----------
-    result : FitResult
-    ncols : int
-        Panels per row.
-    title : str, optional
-        A heading over the figure (default none).
-    size : {"column", "double", "text"} or float
-        The printed width (:func:`symctl.plotting.style.width`).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    ParameterError
-        ``ncols`` is not an integer >= 1.
-    """
+    """One panel per neuron (``ncols`` a row): data and fit (recorded), prediction (unrecorded),
+    with their bands; ``title`` and ``size`` as :func:`~symctl.plotting.response.response_plot`."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -86,9 +63,9 @@ def fit_plot(
     used = set()
     with style.styled():
         grid = fig.subfigures(1, 1)  # its axis labels, then the figure's legend below it
-        axes = grid.subplots(rows, cols, sharex=True, squeeze=False)
-        for k, name in enumerate(names):
-            ax = axes[k // cols, k % cols]
+        shown = "" if end is None else f" (to {end:.2g} s; later, every trace stays settled)"
+        axes = style.neuron_grid(grid, len(names), cols, style.axis_label("time", "s") + shown)
+        for ax, name in zip(axes, names, strict=True):
             ok = bool(result.neuron_identifiable[name])
             color = fit_c if name in result.data else pred_c if ok else lost_c
             lo, hi = pred.lower[name], pred.upper[name]
@@ -107,14 +84,8 @@ def fit_plot(
                 head += "; not determined by these data"
             ax.set_title(f"{_neuron_tex(name)} ({head})", fontsize=style.SMALL, pad=2)
             ax.axhline(0, color="black", lw=0.5)
-            ax.xaxis.set_tick_params(labelbottom=k + cols >= len(names))
-        for k in range(len(names), rows * cols):
-            axes[k // cols, k % cols].remove()
         if end is not None:
-            axes[0, 0].set_xlim(t[0] - 0.02 * (end - t[0]), end)
-        shown = "" if end is None else f" (to {end:.2g} s; later, every trace stays settled)"
-        grid.supxlabel(style.axis_label("time", "s") + shown, fontsize=style.FONT_SIZE)
-        grid.supylabel(style.axis_label("firing-rate change", "spikes/s"), fontsize=style.FONT_SIZE)
+            axes[0].set_xlim(t[0] - 0.02 * (end - t[0]), end)
         handles = [
             Line2D([], [], ls="", marker=".", ms=4, color=data_c),
             Line2D([], [], color=fit_c),
@@ -126,6 +97,5 @@ def fit_plot(
         texts.append("prediction, not identifiable")
         keep = sorted(used)
         style.figure_legend(fig, [handles[i] for i in keep], [texts[i] for i in keep])
-    if title:
-        fig.suptitle(title, fontsize=style.TITLE)
+    style.suptitle(fig, title)
     return fig

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 from symctl.plotting.style import MIN_FONT, TEXT_WIDTH
@@ -81,12 +82,10 @@ def legibility(
 
     canvas = fig.canvas
     try:
-        agg = FigureCanvasAgg(fig)
-        renderer = agg.get_renderer()
+        renderer = FigureCanvasAgg(fig).get_renderer()
         fig.draw(renderer)
         W, H = fig.bbox.width, fig.bbox.height
-        px_per_pt = fig.dpi / 72.0
-        tol = overlap_tolerance * px_per_pt
+        tol = overlap_tolerance * (fig.dpi / 72.0)  # [px]
         small, boxes, clipped = [], [], []
         for t in _texts(fig):
             size = t.get_fontsize() * scale
@@ -97,22 +96,16 @@ def legibility(
                 clipped.append(t.get_text())
             boxes.append((t.get_text(), box))
         overlaps = []
-        for i, (a, ba) in enumerate(boxes):
-            for b, bb in boxes[i + 1 :]:
-                dx = min(ba.x1, bb.x1) - max(ba.x0, bb.x0)
-                dy = min(ba.y1, bb.y1) - max(ba.y0, bb.y0)
-                if dx > tol and dy > tol:
-                    overlaps.append((a, b))
+        for (a, ba), (b, bb) in itertools.combinations(boxes, 2):
+            dx = min(ba.x1, bb.x1) - max(ba.x0, bb.x0)
+            dy = min(ba.y1, bb.y1) - max(ba.y0, bb.y0)
+            if dx > tol and dy > tol:
+                overlaps.append((a, b))
     finally:
         fig.set_canvas(canvas)
     printed = float(fig.get_size_inches()[0]) * scale
-    return Legibility(
-        small=tuple(small),
-        overlaps=tuple(overlaps),
-        clipped=tuple(clipped),
-        width=printed,
-        too_wide=page_width is not None and printed > page_width + 1e-6,
-    )
+    too_wide = page_width is not None and printed > page_width + 1e-6
+    return Legibility(tuple(small), tuple(overlaps), tuple(clipped), printed, too_wide)
 
 
 def missing_units(fig) -> tuple[str, ...]:

@@ -84,11 +84,6 @@ def _heading(ax, text: str, room: float) -> None:
     style.legend_above(ax, handles, labels, room=room, heading=text)
 
 
-def _title(fig, title: str | None) -> None:
-    if title:
-        fig.suptitle(title, fontsize=style.TITLE)
-
-
 def response_plot(
     res: Response,
     states: bool | None = None,
@@ -97,34 +92,14 @@ def response_plot(
     title: str | None = None,
     size: str | float = "column",
 ) -> Figure:
-    r"""Each state and input against time, and the controller's states, on one time axis.
+    r"""Each state and input against time (at most :data:`MAX_PANELS` panels, the rest sharing
+    the last), then the controller's states (``states``; default: when there are any).
 
-    Each panel shows a change from the operating point (:math:`\delta x`), its value
-    :math:`\bar x` in the heading; a closed loop's disturbance dashed; with noise, the mean
-    of the noisy runs in a band of :math:`\pm 2` standard deviations.
+    Each panel shows a change from the operating point :math:`\bar x` (in the heading); a closed
+    loop's disturbance dashed; with noise, the mean in a band of :math:`\pm 2` sd. ``labels``:
+    ``name -> (description, unit)`` without ``delta_`` (default the muscle's); ``size`` as
+    :func:`symctl.plotting.style.width`.
 
-    Parameters
-    ----------
-    res : Response
-        An open- or closed-loop simulation.
-    states : bool, optional
-        Add a panel of the controller's internal states (default: when there are any).
-    labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)`` of the states and inputs (names without ``delta_``);
-        default the muscle's (force f [N], rate r [spikes/s]).
-    title : str, optional
-        A heading over the figure (default none).
-    size : {"column", "double", "text"} or float
-        The printed width (:func:`symctl.plotting.style.width`).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        One panel per state and input (at most :data:`MAX_PANELS`, the rest sharing the
-        last), then the controller's states.
-
-    Examples
-    --------
     >>> from symctl import open_loop_response
     >>> from symctl.plotting.response import response_plot
     >>> fig = response_plot(open_loop_response())   # open loop: no controller states
@@ -157,7 +132,7 @@ def response_plot(
         axes[-1].set_xlabel(style.axis_label("time", res.time_unit))
         for ax in axes:
             ax.yaxis.set_major_locator(_locator())
-    _title(fig, title)
+    style.suptitle(fig, title)
     return fig
 
 
@@ -257,28 +232,10 @@ def nonlinear_plot(
     size: str | float = "text",
 ) -> Figure:
     r"""The first state's traces (nonlinear solid, linear dashed) and their largest gap against
-    the pulse amplitude (log-log, with its fitted power law: about :math:`w^2`).
+    the pulse amplitude (log-log, with its fitted power law: about :math:`w^2`). ``bounds``:
+    ``(value, legend text)`` of the first state to mark dotted (the muscle's :math:`f_\max`),
+    left out when further than a quarter of the traces' range; the rest as :func:`response_plot`.
 
-    Parameters
-    ----------
-    chk : NonlinearCheck
-        The result of :func:`~symctl.neural.nonlinear.nonlinear_check`.
-    labels : mapping of str to (str, str), optional
-        ``name -> (description, unit)``, as in :func:`response_plot`.
-    bounds : sequence of (float, str)
-        Values of the first state to mark with a dotted line (the muscle's :math:`f_\max`),
-        with their legend text; left out when further than a quarter of the traces' range.
-    title : str, optional
-        A heading over the figure (default none).
-    size : {"column", "double", "text"} or float
-        The printed width.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Examples
-    --------
     >>> from symctl import nonlinear_check
     >>> from symctl.plotting.response import nonlinear_plot
     >>> fig = nonlinear_plot(nonlinear_check(amplitudes=[0.1, 1.0], steps=20))
@@ -329,5 +286,5 @@ def nonlinear_plot(
         ax2.set_ylabel(_axis(rf"largest $|{sym}_\mathrm{{nl}} - {sym}_\mathrm{{lin}}|$", unit))
         ax2.grid(True, which="both", alpha=0.3)
         style.figure_legend(fig, handles, texts)
-    _title(fig, title)
+    style.suptitle(fig, title)
     return fig

@@ -17,27 +17,13 @@ if TYPE_CHECKING:
     from symctl.spiking.cost import SpikingCost
     from symctl.spiking.loop import SpikingResponse
 
-RASTER_NEURONS = 20
-"""Neurons per population the raster shows (the first ones)."""
+RASTER_NEURONS = 20  # neurons per population the raster shows (the first ones)
 
 
 def spiking_plot(res: SpikingResponse, *, size: str | float = "text") -> Figure:
     r"""Force (spiking solid, linear dashed), each neuron's rate change, and a spike raster of the
     first :data:`RASTER_NEURONS` neurons of each population (none when exact).
 
-    Parameters
-    ----------
-    res : SpikingResponse
-        The result of :func:`~symctl.spiking.loop.spiking_response`.
-    size : {"column", "double", "text"} or float
-        The printed width.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Examples
-    --------
     >>> import symctl
     >>> from symctl.plotting.spiking import spiking_plot
     >>> res = symctl.derive_paper()
@@ -81,19 +67,6 @@ def spiking_cost_plot(cost: SpikingCost, *, size: str | float = "text") -> Figur
     and each circuit's neurons in all against its spikes per second at the first tolerance
     (marker area: its firing amplitude; circuits no size brings within it left out).
 
-    Parameters
-    ----------
-    cost : SpikingCost
-        The result of :func:`~symctl.spiking.cost.spiking_cost`.
-    size : {"column", "double", "text"} or float
-        The printed width.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Examples
-    --------
     >>> import symctl
     >>> from symctl.plotting.spiking import spiking_cost_plot
     >>> cost = symctl.spiking_cost(symctl.derive_paper(), circuits=["ifp"], neurons=(10, 30), seeds=1)

@@ -28,15 +28,7 @@ _NAME_STYLE = {"fontsize": NAME_FONT, "color": "0.15", "zorder": 4}
 
 
 def vertex_map(S: Structure, assignment) -> dict[str, int] | None:
-    """The vertex of every signal of ``S`` from a delay assignment (or a mapping), or None.
-
-    Raises
-    ------
-    ParameterError
-        A signal of ``S`` has no vertex, or a vertex is not an integer >= 1.
-    SymctlTypeError
-        ``assignment`` is neither a DelayAssignment nor a mapping.
-    """
+    """The vertex of every signal of ``S`` from a delay assignment (or a mapping), or None."""
     if assignment is None:
         return None
     where = getattr(assignment, "vertex_of", assignment)
@@ -87,41 +79,16 @@ def draw_structure(
     adders circles, one-step delays dashed wires into the delayed signal (a dot); each part
     of a series connection is framed, each delay-graph vertex's signals shaded in a band.
 
-    Parameters
-    ----------
-    S : Structure
-    ax : matplotlib Axes, optional
-        Draw into these axes; by default a new figure sized to the drawing.
-    title : str, optional
-        The heading (default: the counts of gains, adders and delays; ``""``: none).
-    max_signals : int, default 400
-        Refuse larger structures (their drawings are unreadable and slow).
-    overview : bool or "auto", default False
-        Draw the overview of the parts instead (:func:`draw_structure_overview`); ``"auto"``:
-        when the diagram would not fit the page however folded, or has more than
-        ``max_signals`` signals.
-    assignment : DelayAssignment or mapping of str to int, optional
-        Where each signal sits in the delay graph: each vertex's signals in a shaded band.
-    vertex_names : sequence or mapping of str, optional
-        The model's names of the vertices (:math:`v_1, v_2, \dots` by default).
-    labels : mapping of str to str, optional
-        LaTeX labels of the arrows into the inputs and out of the outputs, by signal name.
-    width : float, default TEXT_WIDTH
-        The widest the figure may be [in]: a wider drawing is folded into rows of parts.
+    ``ax``: draw into it (default: a new figure sized to the drawing); ``title``: the heading
+    (default the counts of gains, adders and delays; ``""`` none); ``overview``: draw the
+    parts' overview instead (:func:`draw_structure_overview`), ``"auto"`` when the diagram
+    fits no page however folded or has more than ``max_signals`` signals (else those raise
+    ParameterError); ``assignment``: a DelayAssignment or ``{signal: vertex}``, each vertex's
+    signals shaded in a band, named by ``vertex_names`` (a sequence or mapping; default
+    :math:`v_1, v_2, \dots`); ``labels``: LaTeX of the arrows into the inputs and out of the
+    outputs, by signal name; ``width``: the widest the figure may be [in] (wider: folded into
+    rows of parts). Raises SymctlTypeError when ``S`` is not a Structure.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Raises
-    ------
-    SymctlTypeError
-        ``S`` is not a Structure.
-    ParameterError
-        ``S`` has more than ``max_signals`` signals, or ``assignment`` misses a signal.
-
-    Examples
-    --------
     >>> from symctl import ifp_structure
     >>> from symctl.plotting.structure import draw_structure
     >>> fig = draw_structure(ifp_structure(2), title="IFP", labels={"x": "f", "u": "r"})
@@ -133,23 +100,20 @@ def draw_structure(
         raise SymctlTypeError(f"S: expected a Structure, got {type(S).__name__}")
     if overview not in (True, False, "auto"):
         raise ParameterError(f"overview: must be True, False or 'auto', got {overview!r}")
-    if overview is True or (overview == "auto" and len(S) > max_signals):
-        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
-    if len(S) > max_signals:
+    auto = overview == "auto"
+    if len(S) > max_signals and not overview:
         raise ParameterError(
             f"max_signals: the structure has {len(S)} signals, more than {max_signals}; "
             "raise max_signals to draw it anyway"
         )
-    where = vertex_map(S, assignment)
-    names = _names(vertex_names)
-    if overview == "auto" and not page_bound(
-        S, labels=labels, vertex_of=where, vertex_names=names, width=width
-    ):  # too large even without text: no text measured, no layout made
-        return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
-    rows = structure_rows(
-        S, text_size, labels=labels, vertex_of=where, vertex_names=names, width=width
-    )
-    if overview == "auto" and not rows.fits:
+    rows = None
+    if overview is not True and not (auto and len(S) > max_signals):
+        where = vertex_map(S, assignment)
+        kw = {"labels": labels, "vertex_of": where, "vertex_names": _names(vertex_names)}
+        # too large even without text: no text measured, no layout made
+        if not auto or page_bound(S, **kw, width=width):
+            rows = structure_rows(S, text_size, **kw, width=width)
+    if rows is None or (auto and not rows.fits):
         return draw_structure_overview(S, ax, title=title, width=width, labels=labels)
     fig, ax, own = figure_and_axes(ax)
     for layout, (dx, dy) in rows.placed:
@@ -243,17 +207,14 @@ def _draw_layout(ax, layout: StructureLayout, dx: float, dy: float) -> None:
             value = layout.labels[name]
             ax.text(xc, yc, value, **_CENTRED, fontsize=FONT, zorder=3, gid=gid)
         elif w > 0.05:  # an adder: a circle with a plus
-            r = w / 2
-            arm = min(0.6 * r, 0.045)
-            ax.add_patch(
-                Circle((xc, yc), r, fc="white", ec=_INK, lw=0.8, zorder=2, gid=f"sum:{name}")
-            )
+            arm = min(0.3 * w, 0.045)
+            look = {"fc": "white", "ec": _INK, "lw": 0.8, "gid": f"sum:{name}"}
+            ax.add_patch(Circle((xc, yc), w / 2, zorder=2, **look))
             ax.plot([xc - arm, xc + arm], [yc, yc], color=_INK, lw=0.8, zorder=3)
             ax.plot([xc, xc], [yc - arm, yc + arm], color=_INK, lw=0.8, zorder=3)
         else:
-            ax.add_patch(
-                Circle((xc, yc), w / 2, fc=_INK, ec="none", zorder=2, gid=f"signal:{name}")
-            )
+            look = {"fc": _INK, "ec": "none", "gid": f"signal:{name}"}
+            ax.add_patch(Circle((xc, yc), w / 2, zorder=2, **look))
     for lab in layout.names.values():
         ax.text(lab.x + dx, lab.y + dy, lab.text, ha=lab.ha, va=lab.va, **_NAME_STYLE)
     for lab in layout.ends:

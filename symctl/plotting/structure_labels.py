@@ -84,24 +84,13 @@ class StructureText:
 
 
 def end_labels(S: Structure, labels: Mapping[str, str] | None = None) -> dict[str, str]:
-    """The arrow labels (LaTeX) of the inputs, then outputs: ``labels`` where given, else the signal's.
-
-    Raises
-    ------
-    ParameterError
-        ``labels`` names a signal that is no input or output.
-    SymctlTypeError
-        ``labels`` is not a mapping of non-empty strings.
-    """
-    if labels is None:
-        labels = {}
+    """The arrow labels (LaTeX) of the inputs, then outputs: ``labels`` where given, else the signal's."""
+    labels = {} if labels is None else labels
     if not isinstance(labels, Mapping):
         raise SymctlTypeError(
             f"labels: expected a mapping of input/output signal names to labels, got {labels!r}"
         )
-    ends = {}
-    for name in (*S.inputs, *S.outputs):
-        ends[name] = signal_label(name)
+    ends = {name: signal_label(name) for name in (*S.inputs, *S.outputs)}
     for name, text in labels.items():
         if name not in ends:
             raise ParameterError(

@@ -66,14 +66,13 @@ def page_bound(
     """
     text = structure_text(S, labels)
     where = dict(vertex_of or {})
-    units = [("", S, text)]
     order = series_parts(S)
-    if order is not None:
-        rows = [(p, _row_structure(S, [p])[0]) for p in order]
-        units = [(p, sub, _row_text(text, sub)) for p, sub in rows]
+    if order is None:
+        layouts = {"": _lay(S, _no_text, text, where, vertex_names)}
+    else:
+        layouts = {p: _row(S, [p], _no_text, text, where, vertex_names) for p in order}
     widest, tallest, part, excess = 0.0, 0.0, "", -math.inf
-    for name, sub, sub_text in units:
-        layout = _lay(sub, _no_text, sub_text, where, vertex_names)
+    for name, layout in layouts.items():
         w, h = _width(layout), layout.bounds[3] - layout.bounds[2]
         widest, tallest = max(widest, w), max(tallest, h)
         if max(w - width, h - PAGE_HEIGHT) > excess:
@@ -95,8 +94,9 @@ def series_parts(S: Structure) -> list[str] | None:
     return order
 
 
-def _row_structure(S: Structure, parts: list[str]) -> tuple[Structure, tuple[str, ...]]:
-    """The parts ``parts`` of ``S`` alone; the signals they read from earlier parts become inputs."""
+def _row(S: Structure, parts: list[str], measure, text: StructureText, where, names):
+    """The layout of the parts ``parts`` of ``S`` alone: the signals they read from earlier parts
+    become inputs, and its own ends are named as signals."""
     inside = {n for n, b in S.blocks.items() if b.part in parts}
     blocks: dict[str, Block] = {}
     entering: list[str] = []
@@ -114,15 +114,11 @@ def _row_structure(S: Structure, parts: list[str]) -> tuple[Structure, tuple[str
         for n in inside
         if n in S.outputs or any(n in b.inputs for m, b in S.blocks.items() if m not in inside)
     ]
-    return Structure(blocks, inputs, leaving), tuple(entering)
-
-
-def _row_text(text: StructureText, sub: Structure) -> StructureText:
-    """The whole structure's text in one row (its own ends named as signals)."""
+    sub = Structure(blocks, inputs, leaving)
     ends = {n: text.ends.get(n, signal_label(n)) for n in (*sub.inputs, *sub.outputs)}
-    names = {n: t for n, t in text.names.items() if n in sub.blocks and ends.get(n) != t}
+    named = {n: t for n, t in text.names.items() if n in sub.blocks and ends.get(n) != t}
     gains = {n: t for n, t in text.gains.items() if n in sub.blocks}
-    return StructureText(gains, names, ends, ())
+    return _lay(sub, measure, StructureText(gains, named, ends, ()), where, names)
 
 
 def _lay(sub: Structure, measure, text, where, names) -> StructureLayout:
@@ -160,8 +156,7 @@ def structure_rows(
         while start < len(order):
             best = None
             for stop in range(start + 1, len(order) + 1):
-                sub, _ = _row_structure(S, order[start:stop])
-                layout = _lay(sub, measure, _row_text(text, sub), where, vertex_names)
+                layout = _row(S, order[start:stop], measure, text, where, vertex_names)
                 if best is not None and _width(layout) > width:
                     break
                 best = (stop, layout)

@@ -125,9 +125,8 @@ def styled():
 
 
 def new_figure(size: str | float = "text", height: float | None = None, **kwargs):
-    """A pyplot-free figure of the style's width (:func:`width`) and ``height`` inches (default
-    0.62 of the width), constrained layout; keywords go to :class:`matplotlib.figure.Figure`.
-    """
+    """A pyplot-free, constrained figure of the style's width and ``height`` inches (default 0.62
+    of the width)."""
     from matplotlib.figure import Figure
 
     w = width(size)
@@ -135,6 +134,27 @@ def new_figure(size: str | float = "text", height: float | None = None, **kwargs
     kwargs.setdefault("layout", "constrained")
     with styled():
         return Figure(figsize=(w, h), **kwargs)
+
+
+def neuron_grid(fig, n: int, cols: int, time_label: str) -> list:
+    """``n`` panels of firing rates in rows of ``cols`` sharing the time axis (its ticks only
+    under the lowest panel of each column), the spare cells removed."""
+    rows = -(-n // cols)
+    axes = fig.subplots(rows, cols, sharex=True, squeeze=False).ravel()
+    for k, ax in enumerate(axes):
+        if k < n:
+            ax.xaxis.set_tick_params(labelbottom=k + cols >= n)
+        else:
+            ax.remove()
+    fig.supxlabel(time_label, fontsize=FONT_SIZE)
+    fig.supylabel(axis_label("firing-rate change", "spikes/s"), fontsize=FONT_SIZE)
+    return list(axes[:n])
+
+
+def suptitle(fig, title: str | None) -> None:
+    """A heading over ``fig`` when ``title`` is given."""
+    if title:
+        fig.suptitle(title, fontsize=TITLE)
 
 
 def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, title=None):
@@ -149,24 +169,22 @@ def legend_below(ax, handles=None, labels=None, *, ncol: int | None = None, titl
 _HANDLE = 2.0 + 0.8  # matplotlib's handlelength + handletextpad [em]
 _SPACING = 2.0  # columnspacing [em]
 _PAD = 2 * (0.5 + 0.4)  # borderaxespad + borderpad, both sides, at their defaults [em]
+_KEY = {"fontsize": SMALL, "title_fontsize": SMALL, "frameon": False}  # every legend's text
 
 
 def legend_width(labels, ncol: int, *, size: float = SMALL) -> float:
     """Width [in] of a legend of ``labels`` in ``ncol`` columns, as matplotlib lays it out (the
-    first ``len(labels) % ncol`` columns one entry longer, each as wide as its longest label).
-    """
+    first ``len(labels) % ncol`` columns one entry longer, each as wide as its longest label)."""
+    import numpy as np
+
     from symctl.plotting.common import text_size
 
     labels = list(labels)
     if not labels:
         return 0.0
     ncol = max(1, min(int(ncol), len(labels)))
-    rows, large = divmod(len(labels), ncol)
-    sizes = [rows + 1] * large + [rows] * (ncol - large)
-    widths, start = [], 0
-    for count in sizes:
-        widths.append(max(text_size(t, size)[0] for t in labels[start : start + count]))
-        start += count
+    columns = np.array_split(np.arange(len(labels)), ncol)
+    widths = [max(text_size(labels[k], size)[0] for k in col) for col in columns]
     em = size / 72.0
     # TextPath measures the outlines; drawn text runs a few percent wider
     return 1.06 * sum(widths) + em * (_HANDLE * ncol + _SPACING * (ncol - 1) + _PAD)
@@ -183,36 +201,16 @@ def legend_columns(labels, room: float, *, size: float = SMALL) -> int:
 
 def legend_above(ax, handles=None, labels=None, *, room: float, heading: str | None = None):
     """A legend above ``ax`` from its left end, in as many columns as fit ``room`` inches, titled
-    ``heading`` (the panel's heading and key in one block over the data).
-    """
+    ``heading`` (the panel's heading and key in one block over the data)."""
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
-    return ax.legend(
-        handles,
-        labels,
-        loc="lower left",
-        bbox_to_anchor=(0.0, 1.0),
-        ncols=legend_columns(labels, room),
-        title=heading,
-        alignment="left",
-        fontsize=SMALL,
-        title_fontsize=SMALL,
-        frameon=False,
-        borderaxespad=0.1,
-        borderpad=0.1,
-    )
+    place = {"loc": "lower left", "bbox_to_anchor": (0.0, 1.0), "alignment": "left"}
+    pads = {"borderaxespad": 0.1, "borderpad": 0.1}
+    ncols = legend_columns(labels, room)
+    return ax.legend(handles, labels, ncols=ncols, title=heading, **place, **pads, **_KEY)
 
 
 def figure_legend(fig, handles, labels, *, title: str | None = None):
     """One legend under the whole figure, centred, in as many columns as fit its width."""
-    room = float(fig.get_size_inches()[0]) - 0.1
-    return fig.legend(
-        handles,
-        labels,
-        loc="outside lower center",
-        ncols=legend_columns(labels, room),
-        title=title,
-        fontsize=SMALL,
-        title_fontsize=SMALL,
-        frameon=False,
-    )
+    ncols = legend_columns(labels, float(fig.get_size_inches()[0]) - 0.1)
+    return fig.legend(handles, labels, loc="outside lower center", ncols=ncols, title=title, **_KEY)

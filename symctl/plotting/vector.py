@@ -62,30 +62,32 @@ _BASE_CODES = (
 _UNREAD = ["GSUB", "GPOS", "GDEF", "kern", "MATH", "FFTM"]  # a PDF places text glyph by glyph
 
 
-def _subset_options():
+def _cut(source, gids, face: int = 0):
+    """``(font, glyph index map)``: the font ``source`` (path or file) cut to ``gids(font)``."""
     from fontTools import subset
 
     options = subset.Options(glyph_names=True, recommended_glyphs=True)  # as matplotlib
     options.drop_tables += _UNREAD
-    return options
+    options.font_number = face
+    font = subset.load_font(source, options)
+    subsetter = subset.Subsetter(options=options)
+    subsetter.populate(gids=gids(font))
+    subsetter.subset(font)
+    return font, subsetter.glyph_index_map
 
 
 @functools.lru_cache(maxsize=16)
 def _base_font(path: str, face: int) -> tuple[bytes, dict[int, int]]:
     """The font ``path`` cut down to :data:`_BASE_CODES`, and its glyph index map."""
-    from fontTools import subset
 
-    options = _subset_options()
-    options.font_number = face
-    font = subset.load_font(path, options)
-    cmap = font.getBestCmap()
-    gids = {font.getGlyphID(cmap[c]) for c in _BASE_CODES if c in cmap}
-    subsetter = subset.Subsetter(options=options)
-    subsetter.populate(gids=gids)
-    subsetter.subset(font)
+    def base(font):
+        cmap = font.getBestCmap()
+        return {font.getGlyphID(cmap[c]) for c in _BASE_CODES if c in cmap}
+
+    font, index = _cut(path, base, face)
     data = io.BytesIO()
     font.save(data, reorderTables=False)
-    return data.getvalue(), dict(subsetter.glyph_index_map)
+    return data.getvalue(), dict(index)
 
 
 @contextlib.contextmanager
@@ -101,8 +103,6 @@ def _fast_subsets():
         return
 
     def get_glyphs_subset(fontfile, glyphs):
-        from fontTools import subset
-
         glyphs = set(glyphs)
         try:
             data, first = _base_font(os.fspath(fontfile), getattr(fontfile, "face_index", 0))
@@ -110,12 +110,8 @@ def _fast_subsets():
             return own(fontfile, glyphs)
         if not glyphs <= first.keys():  # a glyph beyond the base set
             return own(fontfile, glyphs)
-        options = _subset_options()
-        font = subset.load_font(io.BytesIO(data), options)  # no new timestamp: the same bytes
-        subsetter = subset.Subsetter(options=options)
-        subsetter.populate(gids={first[g] for g in glyphs})
-        subsetter.subset(font)
-        second = subsetter.glyph_index_map
+        # no new timestamp: the same bytes
+        font, second = _cut(io.BytesIO(data), lambda _: {first[g] for g in glyphs})
         return results(font, {g: second[first[g]] for g in glyphs})._as_cm()
 
     pdf_ps.get_glyphs_subset = get_glyphs_subset
