@@ -109,10 +109,11 @@ def _row(S: Structure, parts: list[str], measure, text: StructureText, where, na
                 blocks[src] = Block("input", part=b.part)
         blocks[n] = b
     inputs = [n for n in S.inputs if n in inside] + entering
-    leaving = [
+    leaving = [  # in the structure's order of blocks: the same row every run
         n
-        for n in inside
-        if n in S.outputs or any(n in b.inputs for m, b in S.blocks.items() if m not in inside)
+        for n in S.blocks
+        if n in inside
+        and (n in S.outputs or any(n in b.inputs for m, b in S.blocks.items() if m not in inside))
     ]
     sub = Structure(blocks, inputs, leaving)
     ends = {n: text.ends.get(n, signal_label(n)) for n in (*sub.inputs, *sub.outputs)}
