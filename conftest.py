@@ -42,6 +42,8 @@ SLOW_FILES = (
     "tests/report/test_story_layout.py",
     "tests/report/test_story.py",
     "tests/report/test_pipeline_long_delays.py",
+    "tests/derivation/test_derive_lqg.py",  # the LQG examples derived whole
+    "tests/derivation/test_pathways.py",  # the forearm examples' pathways circuits
 )
 # modules whose doctests derive and write the whole paper, or decide hard cases
 SLOW_DOCTESTS = (

@@ -65,5 +65,7 @@ def uncached_derive(monkeypatch):
     from symctl.derivation import pipeline
 
     monkeypatch.setattr(
-        pipeline, "_cached", lambda spec, progress: pipeline._derive(spec, progress.step)
+        pipeline,
+        "_cached",
+        lambda spec, progress: pipeline._derive(spec, progress.step, progress.early),
     )
