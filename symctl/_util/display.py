@@ -20,8 +20,7 @@ from symctl._util.exact import z_poly
 from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
-DISPLAY_DIGITS = 6
-"""Significant digits of the floats an object prints (its ``str``, ``repr`` and LaTeX)."""
+DISPLAY_DIGITS = 6  # significant digits of the floats an object prints (its str, repr and LaTeX)
 
 _NAMES = {
     S.r_bar: r"\bar{r}",

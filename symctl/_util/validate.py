@@ -289,9 +289,7 @@ MAX_CIRCUITS = 1000  # realizations built into circuits and simulated at once (~
 PAPER_MAX_DELAY = 20  # net delay of derive_paper: the range the documents are laid out for
 MAX_STATES = 1000  # states of a plant and of a delay-augmented system
 TS_TAU_MIN = 1e-6  # smallest Ts/tau of the muscle
-MAX_EXPONENT = (
-    700.0  # argument of an exponential of the model, Ts/tau and |r_bar| (e^709 overflows)
-)
+MAX_EXPONENT = 700.0  # argument of the model's exponentials: Ts/tau, |r_bar| (e^709 overflows)
 MAX_MAGNITUDE = 1e100  # a model parameter or cost entry: the LQR squares them (1e200 < 1.8e308)
 
 

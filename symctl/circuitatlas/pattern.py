@@ -31,8 +31,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["MAX_ORDER", "Pattern", "slot_names"]
 
-MAX_ORDER = 6
-"""Largest order a pattern may have (the exhaustive atlas stops far lower)."""
+MAX_ORDER = 6  # largest order a pattern may have (the exhaustive atlas stops far lower)
 
 
 @cache
@@ -65,8 +64,8 @@ def _permute(mask: int, image: tuple[int, ...]) -> int:
 
 @dataclass(frozen=True, order=True)
 class Pattern:
-    """The support of :math:`(F, H, M)` of an order-``n`` SISO realization (a value: compares,
-    sorts and hashes by ``(n, mask)``).
+    """The support of :math:`(F, H, M)` of an order-``n`` SISO realization (a value ordered and
+    hashed by ``(n, mask)``).
 
     Parameters
     ----------
@@ -228,9 +227,8 @@ class Pattern:
         return self.n == other.n and other.mask & ~self.mask == 0
 
     def tree_slots(self) -> tuple[int, ...] | None:
-        """Slots of a spanning tree of the torus graph (module text), or None when it is not
-        connected (then no realization with this pattern is minimal).
-        """
+        """Slots of a spanning tree of the torus graph (module text); None when it is not
+        connected (no realization with this pattern is then minimal)."""
         graph = nx.Graph()
         graph.add_nodes_from(["o", *range(self.n)])
         for k in self.indices:

@@ -49,9 +49,7 @@ def _times(p, q) -> list:
 
 
 def _poles(n: int, pairs: int, signs, rng) -> list:
-    """Ascending coefficients of a monic a(z) with ``pairs`` complex pole pairs and real poles
-    of the given signs.
-    """
+    """Ascending coefficients of a monic a(z): ``pairs`` complex pole pairs, real poles of ``signs``."""
     a = [sp.Integer(1)]
     for _ in range(pairs):
         re = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 7), 8)
@@ -119,8 +117,7 @@ def _generic_rationals(rng, k: int) -> list[sp.Rational]:
 
 @cache
 def generic_degree(pattern: Pattern) -> int | None:
-    """The number of complex (torus-normalized) realizations of a random rational target: with
-    probability 1 the fibre degree of almost every target; None when not finite and reduced.
+    """The fibre degree at a random rational target (generic with probability 1), or None.
 
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.screen import generic_degree
@@ -134,24 +131,11 @@ def generic_degree(pattern: Pattern) -> int | None:
 
 
 def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) -> Evidence | None:
-    """The exact refutation screen of ``pattern`` (see the module text).
+    """The exact refutation screen of ``pattern`` (module text): a refutation (method
+    ``"counterexample"``), a conjecture with the counts, or None when it does not apply.
 
-    Parameters
-    ----------
-    pattern : Pattern
-    per_region : int, optional
-        Targets per region (default :data:`TARGETS_PER_REGION` of the order, else 0).
-    seed : int
-        Seeds the targets and the linear forms.
+    ``per_region`` defaults to :data:`TARGETS_PER_REGION` of the order (else 0).
 
-    Returns
-    -------
-    Evidence or None
-        A refutation (method ``"counterexample"``, with its target and why it is generic); a
-        conjecture with the counts; None when the screen does not apply.
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.screen import screen
     >>> P = Pattern.from_matrices([[0, 1, 0], [0, 0, 1], [1, 1, 1]], [0, 0, 1], [1, 1, 1])

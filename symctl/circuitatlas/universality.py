@@ -84,22 +84,12 @@ __all__ = [
     "sample_targets",
 ]
 
-FIXINGS = 6
-"""Random values tried for the entries beyond a square system (patterns above 3n entries)."""
-
-DRAWS_PER_REGION = 4
-"""Sampled controllers drawn per region before the region counts as failed."""
-
-CURVE_TARGETS_PER_REGION = {3: 1}
-"""Targets per region of the exact screen of a fibre that is a curve (:math:`3n + 1` entries),
-by order (orders not listed are not screened this way)."""
-
+FIXINGS = 6  # random values tried for the entries beyond a square system (above 3n entries)
+DRAWS_PER_REGION = 4  # sampled controllers per region before the region counts as failed
+CURVE_TARGETS_PER_REGION = {3: 1}  # by order: targets per region of a curve's exact screen
+# (targets, fixings) of the witness search's passes; the second only where the first found none
 EFFORTS = ((DRAWS_PER_REGION, FIXINGS), (3 * DRAWS_PER_REGION, 4 * FIXINGS))
-"""(targets, fixings) of the witness search's passes; a region gets the second pass only when
-the first found no witness there."""
-
-POLE_DRAWS = 2
-"""Sampled pole polynomials per region (of poles and zeros) of the poles-alone refutation."""
+POLE_DRAWS = 2  # sampled pole polynomials per region of the poles-alone refutation
 
 
 def _linear_pair(eqs, left):
@@ -166,8 +156,7 @@ def closed_form(pattern: Pattern) -> MappingProxyType | None:
     return MappingProxyType({k: solved.get(values[k], values[k]) for k in pattern.indices})
 
 
-ATTEMPTS = 16
-"""Choices of fixed entries tried for a pattern above 3n entries."""
+ATTEMPTS = 16  # choices of fixed entries tried for a pattern above 3n entries
 
 
 def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
@@ -195,9 +184,8 @@ def _generic_pole_degree(n: int, fmask: int) -> int | None:
 
 @cache
 def _pole_system(n: int, fmask: int):
-    """F's free entries after its own torus normalization and its charpoly's coefficients; None
-    unless exactly ``n`` entries are free.
-    """
+    """F's free entries after its own torus normalization and its charpoly's coefficients (None
+    unless exactly ``n`` are free)."""
     graph = nx.Graph()
     graph.add_nodes_from(range(n))
     slots = [k for k in range(n * n) if fmask >> k & 1]
@@ -352,25 +340,12 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
 def decide(
     pattern: Pattern, universal_below=(), *, seed: int = 0, exact: bool | None = None
 ) -> Evidence:
-    """Decide whether ``pattern`` is universal (see the module text for the methods).
+    """Decide whether ``pattern`` is universal (the methods: module text).
 
-    Parameters
-    ----------
-    pattern : Pattern
-    universal_below : iterable of (Pattern, Evidence)
-        Patterns already found universal (proved or conjectured); one contained in ``pattern``
-        decides it by lifting (a proof only when its source is one).
-    seed : int
-        Seeds the sampled targets and linear forms.
-    exact : bool, optional
-        False skips the odd-degree proofs and the exact screen (certified numerics alone).
+    ``universal_below``: ``(Pattern, Evidence)`` pairs already found universal (proved or
+    conjectured); one contained in ``pattern`` decides it by lifting (a proof only when its
+    source is one). ``exact=False`` skips the odd-degree proofs and the exact screen.
 
-    Returns
-    -------
-    Evidence
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.universality import decide
     >>> decide(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 1])).universal

@@ -40,9 +40,7 @@ class MeasurementSection:
         out, rows = [], []
         for i, item in enumerate(items):
             where = f"outputs[{i}]"
-            if "name" not in item:
-                raise self.fail(where, "missing name")
-            name = self.text(item["name"], f"{where}.name", ident=True)
+            name = self.text(self.need(item, "name", where), f"{where}.name", ident=True)
             u = self.unit(item.get("unit"), f"{where}.unit")
             if "expr" in item:
                 if "state" in item:
