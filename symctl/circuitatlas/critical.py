@@ -86,15 +86,9 @@ def critical_degree(pattern: Pattern) -> int | None:
 
     rng = random.Random(pattern.mask)
     eqs = [mod(p) - rng.randrange(PRIME) for p in polys]
-    eqs.append(
-        sum(
-            (
-                (x - rng.randrange(PRIME)) * mod(C)
-                for x, C in zip(field.gens, cofactors, strict=True)
-            ),
-            field.zero,
-        )
-    )
+    point = [rng.randrange(PRIME) for _ in field.gens]  # the distance point
+    terms = [(x - q) * mod(C) for x, q, C in zip(field.gens, point, cofactors, strict=True)]
+    eqs.append(sum(terms, field.zero))
     basis = groebner(eqs, field)
     if basis == [field.one]:
         return 0

@@ -564,14 +564,11 @@ class _Reader(GraphSection, MeasurementSection):
             return None
         if value is True:
             value = {}
-        value = self.table(value, "analysis.longest_delay", "longest_delay")
-        top = self.integer(value.get("max", PAPER_MAX_DELAY), "analysis.longest_delay.max", 1, 200)
-        tol = float(
-            self.number(
-                value.get("tolerance", 0.01), "analysis.longest_delay.tolerance", positive=True
-            )
-        )
-        return top, tol
+        where = "analysis.longest_delay"
+        value = self.table(value, where, "longest_delay")
+        top = self.integer(value.get("max", PAPER_MAX_DELAY), f"{where}.max", 1, 200)
+        tol = self.number(value.get("tolerance", 0.01), f"{where}.tolerance", positive=True)
+        return top, float(tol)
 
 
 def _kind(value) -> str:
