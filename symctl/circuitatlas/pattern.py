@@ -35,17 +35,18 @@ MAX_ORDER = 6  # largest order a pattern may have (the exhaustive atlas stops fa
 
 
 @cache
-def slot_names(n: int) -> tuple[str, ...]:
-    """The names of the ``n**2 + 2n`` slots, in bit order (``"F[1,2]"``, ``"H[1]"``, ``"M[2]"``)."""
-    F = [f"F[{i + 1},{j + 1}]" for i in range(n) for j in range(n)]
-    return (*F, *(f"H[{i + 1}]" for i in range(n)), *(f"M[{j + 1}]" for j in range(n)))
-
-
-@cache
 def _slot_of(n: int) -> tuple[tuple, ...]:
     """Each slot as (matrix, row, column)."""
     F = [("F", i, j) for i in range(n) for j in range(n)]
     return (*F, *(("H", i, 0) for i in range(n)), *(("M", 0, j) for j in range(n)))
+
+
+@cache
+def slot_names(n: int) -> tuple[str, ...]:
+    """The names of the ``n**2 + 2n`` slots, in bit order (``"F[1,2]"``, ``"H[1]"``, ``"M[2]"``)."""
+    return tuple(
+        f"F[{i + 1},{j + 1}]" if m == "F" else f"{m}[{i + j + 1}]" for m, i, j in _slot_of(n)
+    )
 
 
 @cache
@@ -256,7 +257,7 @@ class Pattern:
         out = {}
         for k in self.indices:
             kind, i, j = self.where(k)
-            sub = f"{i + 1}{j + 1}" if kind == "F" else str((i if kind == "H" else j) + 1)
+            sub = f"{i + 1}{j + 1}" if kind == "F" else str(i + j + 1)
             out[k] = sp.Symbol(f"{kind}_{sub}")
         return out
 
