@@ -40,6 +40,12 @@ TARGETS_PER_REGION = {3: 30, 4: 5}
 """Targets screened per region, by order (orders not listed are not screened)."""
 
 
+_GENERIC = (
+    "{} points, the generic number (none at infinity); a squarefree eliminant (simple points); "
+    "no point with an entry 0"
+)
+
+
 def _times(p, q) -> list:
     out = [sp.Integer(0)] * (len(p) + len(q) - 1)
     for i, u in enumerate(p):
@@ -168,23 +174,10 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
                     f"with this pattern and none real (eliminant {fibre['eliminant']}, no real "
                     "root by Sturm's theorem); it is generic, so an open set of G2 has none"
                 )
-                return _evidence(
-                    False,
-                    "counterexample",
-                    True,
-                    why,
-                    region=region,
-                    a=a,
-                    c=c,
-                    degree=degree,
-                    generic_degree=degree,
-                    eliminant=fibre["eliminant"],
-                    generic=(
-                        f"{degree} points, the generic number (none at infinity); a "
-                        "squarefree eliminant (simple points); no point with an entry 0"
-                    ),
-                    screened=sum(counted.values()) + 1,
-                )
+                details = dict(region=region, a=a, c=c, degree=degree, generic_degree=degree)
+                details.update(eliminant=fibre["eliminant"], generic=_GENERIC.format(degree))
+                screened = sum(counted.values()) + 1
+                return _evidence(False, "counterexample", True, why, **details, screened=screened)
     parity = " (odd: never none)" if degree % 2 else ""
     why = (
         f"conjectured universal, not proved: the exact screen counted real realizations, "
@@ -192,13 +185,5 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
         f"drawn in each of {len(regions)} regions of poles and zeros; fibre degree "
         f"{degree}{parity}; {skipped} targets not generic, skipped)"
     )
-    return _evidence(
-        None,
-        CONJECTURED,
-        False,
-        why,
-        screened=sum(counted.values()),
-        per_region=counted,
-        skipped=skipped,
-        degree=degree,
-    )
+    details = dict(screened=sum(counted.values()), per_region=counted, skipped=skipped)
+    return _evidence(None, CONJECTURED, False, why, **details, degree=degree)

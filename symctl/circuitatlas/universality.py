@@ -223,22 +223,14 @@ def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
             if not sol or not sol["degree"] or sol["real"]:
                 continue
             if sol["degree"] == _generic_pole_degree(n, fmask):
+                shown, degree = [str(v) for v in a], sol["degree"]
                 why = (
-                    f"no real F with this support has the poles of the sampled a = "
-                    f"{[str(v) for v in a]} ({region}): det(zI - F) = a(z) has {sol['degree']} "
-                    "complex solutions and no real one, so no H, M helps"
+                    f"no real F with this support has the poles of the sampled a = {shown} "
+                    f"({region}): det(zI - F) = a(z) has {degree} complex solutions and no "
+                    "real one, so no H, M helps"
                 )
-                return _evidence(
-                    False,
-                    "counterexample",
-                    True,
-                    why,
-                    region=region,
-                    a=[str(v) for v in a],
-                    degree=sol["degree"],
-                    eliminant=sol["eliminant"],
-                    poles_only=True,
-                )
+                details = dict(region=region, a=shown, degree=degree, eliminant=sol["eliminant"])
+                return _evidence(False, "counterexample", True, why, **details, poles_only=True)
     return None
 
 
@@ -305,6 +297,7 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
                     witnessed[region] = found
                     break
     failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
+    witnesses = {r: [w] for r, w in witnessed.items()}
     exact_found = sum("point" in w for w in witnessed.values())
     how = (
         f"exact (critical points of a distance, {curve_targets} generic targets drawn per "
@@ -319,22 +312,13 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
             f"{how}, for sampled G2 in each region of poles and zeros ({', '.join(witnessed)}); "
             "samples cannot rule out a sub-region they missed"
         )
-        return _evidence(
-            None, CONJECTURED, False, why, witnesses={r: [w] for r, w in witnessed.items()}
-        )
+        return _evidence(None, CONJECTURED, False, why, witnesses=witnesses)
     why = (
         f"no real realization found for sampled G2 in {failed}"
         + (f" with {EFFORTS[-1][1]} random values of the {extra} extra entries" if extra else "")
         + "; neither proved nor refuted"
     )
-    return _evidence(
-        None,
-        "not decided",
-        False,
-        why,
-        failed_regions=failed,
-        witnesses={r: [w] for r, w in witnessed.items()},
-    )
+    return _evidence(None, "not decided", False, why, failed_regions=failed, witnesses=witnesses)
 
 
 def decide(
@@ -354,13 +338,8 @@ def decide(
     n = pattern.n
     rank = generic_rank(pattern, seed)
     if not rank.minimal:
-        return _evidence(
-            False,
-            "not minimal",
-            rank.exact,
-            "no realization with this pattern is minimal",
-            rank=rank.rank,
-        )
+        why = "no realization with this pattern is minimal"
+        return _evidence(False, "not minimal", rank.exact, why, rank=rank.rank)
     if rank.rank < 2 * n:
         why = (
             f"generic rank {rank.rank} < {2 * n}: the G2 it realizes form a set of dimension "
@@ -450,10 +429,5 @@ def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
         "the entries are rational functions of G2's coefficients (torus-normalized), "
         f"proved exactly against the symbolic G2 ({check.method})"
     )
-    return _evidence(
-        True,
-        "closed form",
-        True,
-        why,
-        entries={slot_names(n)[k]: str(form[k]) for k in pattern.indices},
-    )
+    entries = {slot_names(n)[k]: str(form[k]) for k in pattern.indices}
+    return _evidence(True, "closed form", True, why, entries=entries)
