@@ -273,26 +273,17 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
     for groups in buckets.values():
         for _graph, *recs in groups:
             evidence = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
-            reps = sorted(
-                evidence,
-                key=lambda p: (evidence[p].sort_rank, not evidence[p].proved, p.size, p.mask),
-            )
-            first = recs[0]
-            found.append(
-                dict(
-                    representatives=tuple(reps),
-                    evidence=evidence[reps[0]],
-                    pattern_evidence=MappingProxyType(evidence),
-                    n_neurons=first["neurons"],
-                    n_synapses=first["synapses"],
-                    n_branches=first["branches"],
+            reps = tuple(
+                sorted(
+                    evidence,
+                    key=lambda p: (evidence[p].sort_rank, not evidence[p].proved, p.size, p.mask),
                 )
             )
-
-    def rank(c):
-        first = c["representatives"][0]
-        counts = (c["n_neurons"], c["n_synapses"], c["n_branches"])
-        return (c["evidence"].sort_rank, *counts, first.size, first.mask)
-
-    found.sort(key=rank)
-    return tuple(CircuitClass(n, delays, label=f"A{i + 1}", **c) for i, c in enumerate(found))
+            counts = tuple(recs[0][k] for k in ("neurons", "synapses", "branches"))
+            rank = (evidence[reps[0]].sort_rank, *counts, reps[0].size, reps[0].mask)
+            found.append((rank, reps, evidence, counts))
+    found.sort(key=lambda f: f[0])
+    return tuple(
+        CircuitClass(n, delays, reps, ev[reps[0]], MappingProxyType(ev), *counts, f"A{i + 1}")
+        for i, (_, reps, ev, counts) in enumerate(found)
+    )

@@ -462,14 +462,9 @@ class _Reader(GraphSection, MeasurementSection):
                     )
                 self.signal_about(item, where, units, descr)
         with self.named("discrete"):
-            plant = DiscretePlant(
-                A,
-                B,
-                exact_value(Ts, "Ts"),
-                tuple(s["name"] for s in states),
-                tuple(u["name"] for u in inputs),
-                params={str(k): v for k, v in params.items()},
-            )
+            names = (tuple(s["name"] for s in states), tuple(u["name"] for u in inputs))
+            by_name = {str(k): v for k, v in params.items()}
+            plant = DiscretePlant(A, B, exact_value(Ts, "Ts"), *names, params=by_name)
             plant.numeric()
         return None, plant, None
 
