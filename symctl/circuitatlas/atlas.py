@@ -272,16 +272,13 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
     found = []
     for groups in buckets.values():
         for _graph, *recs in groups:
-            evidence = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
+            ev = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
             reps = tuple(
-                sorted(
-                    evidence,
-                    key=lambda p: (evidence[p].sort_rank, not evidence[p].proved, p.size, p.mask),
-                )
+                sorted(ev, key=lambda p: (ev[p].sort_rank, not ev[p].proved, p.size, p.mask))
             )
             counts = tuple(recs[0][k] for k in ("neurons", "synapses", "branches"))
-            rank = (evidence[reps[0]].sort_rank, *counts, reps[0].size, reps[0].mask)
-            found.append((rank, reps, evidence, counts))
+            rank = (ev[reps[0]].sort_rank, *counts, reps[0].size, reps[0].mask)
+            found.append((rank, reps, ev, counts))
     found.sort(key=lambda f: f[0])
     return tuple(
         CircuitClass(n, delays, reps, ev[reps[0]], MappingProxyType(ev), *counts, f"A{i + 1}")

@@ -133,11 +133,10 @@ class Pattern:
             raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
         if R.shape != (1, 1):
             raise DimensionError(f"R: expected a SISO realization, got shape {R.shape}")
-        return cls.from_matrices(
-            [[sp.cancel(v) != 0 for v in R.F.row(i)] for i in range(R.n)],
-            [sp.cancel(v) != 0 for v in R.H],
-            [sp.cancel(v) != 0 for v in R.M],
+        nonzero = (
+            [[sp.cancel(v) != 0 for v in row] for row in m.tolist()] for m in (R.F, R.H, R.M)
         )
+        return cls.from_matrices(*nonzero)
 
     @property
     def size(self) -> int:

@@ -78,11 +78,9 @@ def _search_regions(n: int) -> list[tuple[str, int, tuple[int, ...], bool | None
         real = n - 2 * pairs
         for plus in range(real, -1, -1):
             signs = (1,) * plus + (-1,) * (real - plus)
-            poles = (f"{pairs} complex pair{'s' * (pairs > 1)}" if pairs else "") + (
-                (", " if pairs else "") + "real poles " + "".join("+-"[x < 0] for x in signs)
-                if real
-                else ""
-            )
+            parts = [f"{pairs} complex pair{'s' * (pairs > 1)}"] if pairs else []
+            parts += ["real poles " + "".join("+-"[x < 0] for x in signs)] if real else []
+            poles = ", ".join(parts)
             for complex_zeros in (True, False) if n >= 3 else (None,):
                 zeros = {True: ", complex zeros", False: ", real zeros", None: ""}[complex_zeros]
                 out.append((poles + zeros, pairs, signs, complex_zeros))

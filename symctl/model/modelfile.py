@@ -431,11 +431,7 @@ class _Reader(GraphSection, MeasurementSection):
                     raise self.fail("discrete", "give both numerator and denominator")
                 num = self.row(table["numerator"], "discrete.numerator", psyms)
                 den = self.row(table["denominator"], "discrete.denominator", psyms)
-                G = DiscreteTF(
-                    sp.Poly(num, z).as_expr().subs(values),
-                    sp.Poly(den, z).as_expr().subs(values),
-                    dt=Ts,
-                )
+                G = DiscreteTF(*(sp.Poly(p, z).as_expr().subs(values) for p in (num, den)), dt=Ts)
                 if G.relative_degree is None or G.relative_degree < 1:
                     raise self.fail(
                         "discrete.numerator",
