@@ -118,10 +118,8 @@ def _descending(expr: sp.Expr, printer, times: str, digits: int | None = None) -
                 if isinstance(mag, sp.Add):
                     ctext = rf"\left({ctext}\right)" if printer is latex else f"({ctext})"
                 body = f"{ctext}{times}{zpart}"
-        if terms:
-            terms.append(("- " if negative else "+ ") + body)
-        else:
-            terms.append(("-" if negative else "") + body)
+        sign = ("- " if negative else "+ ") if terms else ("-" if negative else "")
+        terms.append(sign + body)
     return " ".join(terms)
 
 

@@ -258,12 +258,8 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
 
 def common_dt(dt1, dt2, argname: str):
     """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``."""
-    if dt1 is None:
-        return dt2
-    if dt2 is None:
-        return dt1
-    if dt1 == dt2:
-        return dt1
+    if dt1 is None or dt2 is None or dt1 == dt2:
+        return dt2 if dt1 is None else dt1
     if dt1.is_number and dt2.is_number:
         if math.isclose(float(dt1), float(dt2), rel_tol=1e-12, abs_tol=0.0):
             return dt1
