@@ -20,8 +20,7 @@ from symctl._util.exact import z_poly
 from symctl._util.texnames import GREEK
 from symctl.symbols import z
 
-DISPLAY_DIGITS = 6
-"""Significant digits of the floats an object prints (its ``str``, ``repr`` and LaTeX)."""
+DISPLAY_DIGITS = 6  # significant digits of the floats an object prints (its str, repr and LaTeX)
 
 _NAMES = {
     S.r_bar: r"\bar{r}",
@@ -119,10 +118,8 @@ def _descending(expr: sp.Expr, printer, times: str, digits: int | None = None) -
                 if isinstance(mag, sp.Add):
                     ctext = rf"\left({ctext}\right)" if printer is latex else f"({ctext})"
                 body = f"{ctext}{times}{zpart}"
-        if terms:
-            terms.append(("- " if negative else "+ ") + body)
-        else:
-            terms.append(("-" if negative else "") + body)
+        sign = ("- " if negative else "+ ") if terms else ("-" if negative else "")
+        terms.append(sign + body)
     return " ".join(terms)
 
 

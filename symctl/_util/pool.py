@@ -11,8 +11,7 @@ from pathlib import Path
 from symctl._util.validate import bounded_int
 from symctl.errors import ParameterError, SymctlTypeError
 
-MAX_WORKERS = 512
-"""Most worker processes one sweep may ask for."""
+MAX_WORKERS = 512  # most worker processes one sweep may ask for
 
 
 class Checkpoint:

@@ -171,18 +171,9 @@ def decode(d):
             arr = (arr[..., 0] + 1j * arr[..., 1]).astype(dtype)
         arr.flags.writeable = False
         return arr
-    if "@complex" in d:
-        return complex(*d["@complex"])
-    if "@fraction" in d:
-        return Fraction(*d["@fraction"])
-    if "@tuple" in d:
-        return tuple(decode(v) for v in d["@tuple"])
-    if "@set" in d:
-        return frozenset(decode(v) for v in d["@set"])
-    if "@mapping" in d:
-        return MappingProxyType(decode(d["@mapping"]))
-    if "@items" in d:
-        return {_hashable(decode(k)): decode(v) for k, v in d["@items"]}
+    for tag, read in _TAGGED.items():
+        if tag in d:
+            return read(d[tag])
     if "@type" in d:
         cls = _symctl_class(d["@module"], d["@type"])
         return _rebuild(cls, {k: decode(v) for k, v in d.items() if not k.startswith("@")})
@@ -191,6 +182,16 @@ def decode(d):
 
 def _hashable(key):
     return tuple(key) if isinstance(key, list) else key
+
+
+_TAGGED = {  # the tags decode reads, in the order it tries them
+    "@complex": lambda v: complex(*v),
+    "@fraction": lambda v: Fraction(*v),
+    "@tuple": lambda v: tuple(decode(x) for x in v),
+    "@set": lambda v: frozenset(decode(x) for x in v),
+    "@mapping": lambda v: MappingProxyType(decode(v)),
+    "@items": lambda v: {_hashable(decode(k)): decode(x) for k, x in v},
+}
 
 
 class DictMixin:

@@ -258,12 +258,8 @@ def symbol_tuple(value, argname: str) -> tuple[sp.Symbol, ...]:
 
 def common_dt(dt1, dt2, argname: str):
     """The sampling time of a combination of two systems with sampling times ``dt1``, ``dt2``."""
-    if dt1 is None:
-        return dt2
-    if dt2 is None:
-        return dt1
-    if dt1 == dt2:
-        return dt1
+    if dt1 is None or dt2 is None or dt1 == dt2:
+        return dt2 if dt1 is None else dt1
     if dt1.is_number and dt2.is_number:
         if math.isclose(float(dt1), float(dt2), rel_tol=1e-12, abs_tol=0.0):
             return dt1
@@ -289,9 +285,7 @@ MAX_CIRCUITS = 1000  # realizations built into circuits and simulated at once (~
 PAPER_MAX_DELAY = 20  # net delay of derive_paper: the range the documents are laid out for
 MAX_STATES = 1000  # states of a plant and of a delay-augmented system
 TS_TAU_MIN = 1e-6  # smallest Ts/tau of the muscle
-MAX_EXPONENT = (
-    700.0  # argument of an exponential of the model, Ts/tau and |r_bar| (e^709 overflows)
-)
+MAX_EXPONENT = 700.0  # argument of the model's exponentials: Ts/tau, |r_bar| (e^709 overflows)
 MAX_MAGNITUDE = 1e100  # a model parameter or cost entry: the LQR squares them (1e200 < 1.8e308)
 
 

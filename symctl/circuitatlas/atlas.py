@@ -1,13 +1,9 @@
 """The circuit atlas: every minimal circuit class of an order-:math:`n` :math:`G_2`, proved and ranked.
 
-Patterns (:mod:`~symctl.circuitatlas.pattern`) whose circuits are isomorphic graphs form a
-circuit class (:mod:`~symctl.circuitatlas.circuitclass`); only generically minimal patterns are
-kept. A class is universal when one of its patterns is proved universal
-(:mod:`~symctl.circuitatlas.universality`); one whose best pattern is only conjectured is
-counted apart (:attr:`Atlas.conjectured_classes`). Orders up to :data:`EXHAUSTIVE_MAX_ORDER` are
-searched over every pattern; order :data:`MAX_ATLAS_ORDER` over the sparsest, :math:`3n` entries
-(a universal pattern needs at least that many, :mod:`~symctl.circuitatlas.rank`) and at most
-:data:`ORDER4_MAX_NEURONS` neurons.
+Generically minimal patterns whose circuits are isomorphic form a class
+(:mod:`~symctl.circuitatlas.circuitclass`), universal when one of its patterns is proved so
+(:mod:`~symctl.circuitatlas.universality`). Order 4 is searched over the sparsest patterns only
+(:math:`3n` entries, the fewest a universal one can have: :mod:`~symctl.circuitatlas.rank`).
 
 >>> import symctl
 >>> A = symctl.atlas(2, workers=1)
@@ -36,11 +32,9 @@ from symctl.errors import ParameterError, SymctlTypeError
 
 __all__ = ["EXHAUSTIVE_MAX_ORDER", "MAX_ATLAS_ORDER", "Atlas", "atlas"]
 
-EXHAUSTIVE_MAX_ORDER = 3
-"""Highest order searched over every pattern."""
+EXHAUSTIVE_MAX_ORDER = 3  # highest order searched over every pattern
 
-MAX_ATLAS_ORDER = 4
-"""Highest order accepted (searched from the sparsest sizes up to ``max_size``)."""
+MAX_ATLAS_ORDER = 4  # highest order accepted (searched from the sparsest sizes up to max_size)
 
 ORDER4_MAX_NEURONS = 3
 """Order 4 decides the patterns whose circuits have at most this many neurons (the sparsest)."""
@@ -278,27 +272,15 @@ def _classes(n: int, delays: str, records: list[dict]) -> tuple[CircuitClass, ..
     found = []
     for groups in buckets.values():
         for _graph, *recs in groups:
-            evidence = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
-            reps = sorted(
-                evidence,
-                key=lambda p: (evidence[p].sort_rank, not evidence[p].proved, p.size, p.mask),
+            ev = {Pattern(n, r["mask"]): Evidence.from_dict(r["evidence"]) for r in recs}
+            reps = tuple(
+                sorted(ev, key=lambda p: (ev[p].sort_rank, not ev[p].proved, p.size, p.mask))
             )
-            first = recs[0]
-            found.append(
-                dict(
-                    representatives=tuple(reps),
-                    evidence=evidence[reps[0]],
-                    pattern_evidence=MappingProxyType(evidence),
-                    n_neurons=first["neurons"],
-                    n_synapses=first["synapses"],
-                    n_branches=first["branches"],
-                )
-            )
-
-    def rank(c):
-        first = c["representatives"][0]
-        counts = (c["n_neurons"], c["n_synapses"], c["n_branches"])
-        return (c["evidence"].sort_rank, *counts, first.size, first.mask)
-
-    found.sort(key=rank)
-    return tuple(CircuitClass(n, delays, label=f"A{i + 1}", **c) for i, c in enumerate(found))
+            counts = tuple(recs[0][k] for k in ("neurons", "synapses", "branches"))
+            rank = (ev[reps[0]].sort_rank, *counts, reps[0].size, reps[0].mask)
+            found.append((rank, reps, ev, counts))
+    found.sort(key=lambda f: f[0])
+    return tuple(
+        CircuitClass(n, delays, reps, ev[reps[0]], MappingProxyType(ev), *counts, f"A{i + 1}")
+        for i, (_, reps, ev, counts) in enumerate(found)
+    )

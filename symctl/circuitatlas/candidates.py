@@ -40,8 +40,7 @@ from symctl.symbols import z
 
 __all__ = ["CandidateCircuit", "circuits_for"]
 
-MAX_ORDER = 3
-"""Largest order of :math:`G_2` (the exhaustive atlas)."""
+MAX_ORDER = 3  # largest order of G2 (the exhaustive atlas)
 
 STABLE = 0.999
 """Section poles lie inside this radius (an internally stable controller: module text)."""

@@ -25,8 +25,7 @@ from flint import arb, arb_mat, fmpq
 
 __all__ = ["CertifiedRoot", "certified_point", "certified_real_root"]
 
-STARTS = 24
-"""Random starting points of the Newton search."""
+STARTS = 24  # random starting points of the Newton search
 
 
 class CertifiedRoot(NamedTuple):
@@ -146,22 +145,8 @@ def _converged(eqs, gens, seed, starts, scale):
 def certified_real_root(eqs, gens, *, seed: int = 0, starts: int = STARTS, scale: float = 2.0):
     """A real root of the square system ``eqs = 0`` in ``gens``, proved by Krawczyk; or None.
 
-    Parameters
-    ----------
-    eqs : list of sympy expressions with rational coefficients
-    gens : list of symbols (as many as ``eqs``)
-    seed : int
-        Seeds the random starts.
-    starts : int
-        Newton runs tried.
-    scale : float
-        Spread of the random starts (standard normal times ``scale``).
-
-    Returns
-    -------
-    CertifiedRoot or None
-        A root with every coordinate nonzero when one is found, else the first certified root
-        (``nonzero`` False); None when no run converged to a certified root.
+    Newton from ``starts`` seeded normal starts of spread ``scale``; the first root with every
+    coordinate nonzero, else the first certified one (``nonzero`` False).
     """
     if len(eqs) != len(gens):
         raise ValueError("certified_real_root: the system must be square")

@@ -208,20 +208,10 @@ class CircuitClass:
         True
         """
         reps = tuple(Pattern.from_matrices(p["F"], p["H"], p["M"]) for p in data["patterns"])
-        return cls(
-            order=reps[0].n,
-            delays=delays,
-            representatives=reps,
-            evidence=Evidence.from_dict(data["evidence"]),
-            pattern_evidence={
-                r: Evidence.from_dict(p["evidence"])
-                for r, p in zip(reps, data["patterns"], strict=True)
-            },
-            n_neurons=data["neurons"],
-            n_synapses=data["synapses"],
-            n_branches=data["branches"],
-            label=data["label"],
-        )
+        each = [Evidence.from_dict(p["evidence"]) for p in data["patterns"]]
+        counts = (data[k] for k in ("neurons", "synapses", "branches", "label"))
+        evidence = Evidence.from_dict(data["evidence"])
+        return cls(reps[0].n, delays, reps, evidence, dict(zip(reps, each, strict=True)), *counts)
 
     def __repr__(self) -> str:
         return (

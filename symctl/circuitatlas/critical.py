@@ -51,9 +51,8 @@ def _critical_parts(pattern: Pattern):
 
 
 def count_critical(pattern: Pattern, a, c, point, rng, tries: int = 3) -> dict | None:
-    """The critical system's exact count at the target ``(a, c)`` with distance point ``point``
-    (:func:`~symctl.circuitatlas.fibre.count_real`'s dict); None when not finite and reduced
-    or when the fibre is not a curve."""
+    """:func:`~symctl.circuitatlas.fibre.count_real` of the critical system at ``(a, c)`` and
+    ``point``; None when not finite and reduced, or not a curve."""
     parts = _critical_parts(pattern)
     if parts is None:
         return None
@@ -68,14 +67,12 @@ def _point(rng, k: int) -> list[sp.Rational]:
 
 
 PRIME = 2**31 - 1
-"""The prime of :func:`critical_degree`'s count."""
 
 
 @cache
 def critical_degree(pattern: Pattern) -> int | None:
-    """The critical system's number of solutions at a random target and point over GF(PRIME)
-    (with high probability the generic number over Q); None when the fibre is not a curve or
-    the system is not finite."""
+    """The critical system's solution count at a random target and point over GF(PRIME) (the
+    generic count over Q with high probability); None if not a curve or not finite."""
     parts = _critical_parts(pattern)
     if parts is None:
         return None
@@ -89,15 +86,9 @@ def critical_degree(pattern: Pattern) -> int | None:
 
     rng = random.Random(pattern.mask)
     eqs = [mod(p) - rng.randrange(PRIME) for p in polys]
-    eqs.append(
-        sum(
-            (
-                (x - rng.randrange(PRIME)) * mod(C)
-                for x, C in zip(field.gens, cofactors, strict=True)
-            ),
-            field.zero,
-        )
-    )
+    point = [rng.randrange(PRIME) for _ in field.gens]  # the distance point
+    terms = [(x - q) * mod(C) for x, q, C in zip(field.gens, point, cofactors, strict=True)]
+    eqs.append(sum(terms, field.zero))
     basis = groebner(eqs, field)
     if basis == [field.one]:
         return 0
@@ -106,9 +97,8 @@ def critical_degree(pattern: Pattern) -> int | None:
 
 
 def curve_target(pattern: Pattern, a, c, rng) -> dict | None:
-    """One target ``(a, c)``, with a random distance point: ``{"real": True, ...}`` for an
-    exact real realization, ``{"real": False, ...}`` when it is generic without a real point
-    (a refutation); None when it is not generic or its real points have an entry 0."""
+    """One target at a random distance point: ``{"real": True, ...}`` (an exact real
+    realization), ``{"real": False, ...}`` (generic, none real: a refutation), or None."""
     degree = critical_degree(pattern)
     if not degree:
         return None

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from types import MappingProxyType
 
 from symctl.proof import Verdict
@@ -76,22 +76,13 @@ class Evidence(Verdict):
     @classmethod
     def from_dict(cls, data: dict) -> Evidence:
         """The evidence that :meth:`to_dict` wrote."""
-        return cls(
-            data["universal"],
-            data["method"],
-            data["proved"],
-            data["text"],
-            MappingProxyType(dict(data.get("details", {}))),
-        )
+        head = (data[k] for k in ("universal", "method", "proved", "text"))
+        return cls(*head, MappingProxyType(dict(data.get("details", {}))))
 
     def to_dict(self) -> dict:
         """Plain data for JSON."""
-        return {
-            "universal": self.universal,
-            "method": self.method,
-            "proved": self.proved,
-            "text": self.text,
-            "details": dict(self.details),
+        return {f.name: getattr(self, f.name) for f in fields(self)} | {
+            "details": dict(self.details)
         }
 
 

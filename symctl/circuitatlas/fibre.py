@@ -54,18 +54,14 @@ def coefficient_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol,
     return sp.symbols(f"a_0:{n}"), sp.symbols(f"c_0:{n}")
 
 
-MAX_TERMS = 250_000
-"""Most terms the minors of :func:`coefficient_polys` may hold at once (the general
-circuit of order 7 needs about 10^5, of order 8 about 10^6)."""
+MAX_TERMS = 250_000  # most terms of coefficient_polys' minors at once (order 7: ~10^5, 8: ~10^6)
 
 
 def coefficient_polys(F, H, M, ring, *, deadline=None) -> tuple[list, list]:
     r"""Ascending coefficients of :math:`\det(zI - F)` (monic term dropped) and of :math:`M
     \operatorname{adj}(zI - F) H = -\det\begin{bmatrix} zI - F & H \\ M & 0 \end{bmatrix}`,
-    ``n`` each, as polynomials of ``ring`` (generators: :math:`z` and the entries' symbols).
-
-    Exact, division-free expansion by minors; ``deadline`` is checked as they grow, and
-    :class:`~symctl._util.deadline.Unfinished` raised past :data:`MAX_TERMS` terms.
+    ``n`` each, in ``ring`` (generators :math:`z` and the entries), by division-free minors;
+    ``deadline`` checked as they grow, :class:`Unfinished` past :data:`MAX_TERMS` terms.
 
     >>> import sympy as sp
     >>> from sympy.polys.rings import ring
@@ -146,8 +142,7 @@ def _equations(pattern: Pattern, a, c) -> list[sp.Expr]:
     return [sp.expand(p - v) for p, v in zip((*charpoly, *numer), (*a, *c), strict=True)]
 
 
-MAX_FIBRE = 400
-"""Largest quotient-ring dimension (number of complex solutions) solve_at handles."""
+MAX_FIBRE = 400  # largest quotient-ring dimension (number of complex solutions) solve_at handles
 
 
 def _standard_monomials(leads, k: int):
@@ -170,9 +165,8 @@ def _standard_monomials(leads, k: int):
 
 
 def _quotient(eqs, ring):
-    """Standard monomials and multiplication matrices of the ideal of ``eqs`` (grevlex Groebner
-    basis over Q); ``([], [])`` for the unit ideal, None when not finite or above MAX_FIBRE.
-    """
+    """Standard monomials and multiplication matrices of ``eqs``'s ideal (grevlex, over Q);
+    ``([], [])`` for the unit ideal, None when not finite or above MAX_FIBRE."""
     basis = groebner(eqs, ring)
     if basis == [ring.one]:
         return [], []
@@ -192,8 +186,7 @@ def _quotient(eqs, ring):
 
 
 def _eliminants(mult, rng, tries: int):
-    """Up to ``tries`` random linear forms (weights 1 to 9): each multiplication matrix whose
-    characteristic polynomial (the eliminant) is squarefree, with that polynomial."""
+    """Up to ``tries`` random linear forms' multiplication matrices with squarefree charpoly."""
     for _ in range(tries):
         form = sum((M * rng.randint(1, 9) for M in mult[1:]), mult[0] * rng.randint(1, 9))
         e = form.charpoly()
@@ -229,13 +222,10 @@ def _fibre_ring(pattern: Pattern):
 
 
 def count_real(pattern: Pattern, a, c, rng, tries: int = 3) -> dict | None:
-    """The exact number of real points of the fibre over one rational target, and its degree.
-
-    The eliminant :math:`e(t)` of a random linear form (the characteristic polynomial of its
-    multiplication matrix), squarefree: the points are simple and :math:`t` separates them, so
-    the real points are the real roots of :math:`e`, counted by Sturm's theorem; a point has an
-    entry 0 iff that entry's multiplication matrix is singular. Returns ``{"degree", "real",
-    "zero_entry", "eliminant"}``, or None when the fibre is not finite and reduced.
+    """``{"degree", "real", "zero_entry", "eliminant"}`` of the fibre over a rational target, or
+    None when not finite and reduced. A squarefree eliminant :math:`e(t)` of a random linear form
+    (its multiplication matrix's charpoly) separates the simple points: the real ones are its
+    real roots (Sturm); a point has an entry 0 iff that entry's multiplication matrix is singular.
 
     >>> import random
     >>> from symctl.circuitatlas.pattern import Pattern
@@ -267,29 +257,13 @@ def count_ideal(eqs, ring, rng, tries: int = 3) -> dict | None:
 
 
 def solve_at(pattern: Pattern, a, c, *, fixed=None, rng=None, tries: int = 3):
-    r"""The real realizations of one rational target, exactly.
+    r"""The real realizations of one rational target ``(a, c)``, exactly, some entries ``fixed``.
 
     A grevlex Groebner basis over :math:`\mathbb{Q}`, the squarefree eliminant :math:`e(t)` of a
     random linear form, each unknown :math:`x_i = g_i(t)` (the Krylov basis: shape position). A
     non-real solution has a non-real :math:`t`, so the real solutions are the real roots of
-    :math:`e`, isolated in rational intervals.
-
-    Parameters
-    ----------
-    pattern : Pattern
-    a, c : sequences of rationals
-        The target's :math:`a_0..a_{n-1}` and :math:`c_0..c_{n-1}`.
-    fixed : mapping of slot to rational, optional
-        Entries set to given values (to make a bigger pattern's system square).
-    rng : random.Random, optional
-    tries : int
-        Random linear forms tried until :math:`e` is squarefree.
-
-    Returns
-    -------
-    dict or None
-        ``{"degree": d, "real": [...], "eliminant": str}``, one item per real solution (its
-        interval, and whether every entry is nonzero); None when not finite and reduced.
+    :math:`e`, isolated in rational intervals. Returns ``{"degree", "real": [{"interval",
+    "entries_nonzero"}, ...], "eliminant"}``, or None when not finite and reduced.
     """
     rng = rng or random.Random(0)
     unknowns, _slots, values, _, _ = _system(pattern)

@@ -54,16 +54,12 @@ from symctl.circuitatlas.pattern import Pattern, slot_names
 
 __all__ = ["CPU_SECONDS", "CPU_SECONDS_ABOVE_3", "odd_degree_proof", "proving", "slice_proof"]
 
-CPU_SECONDS = 30
-"""CPU seconds the Groebner bases over Q(a, c) of one pattern may take, in all (order <= 3)."""
-
+CPU_SECONDS = 30  # CPU seconds of one pattern's Groebner bases over Q(a, c), up to order 3
+# above order 3 about 50 odd patterns run out any budget: halving it keeps order 4 under 30
+# minutes on 2 cores for 5 proofs fewer
 CPU_SECONDS_ABOVE_3 = 15
-"""The same above order 3, where about 50 odd patterns of the sparsest order-4 classes run out
-any budget: halving it keeps order 4 under 30 minutes on 2 cores for 5 proofs fewer."""
 
-ATTEMPTS = 3
-"""Variable orders tried (the smallest bases at the rational target first); choosing them and
-each attempt get an equal share of :data:`CPU_SECONDS`."""
+ATTEMPTS = 3  # variable orders tried; choosing them and each try get an equal share of the CPU
 
 
 def _rationals(rng: random.Random, k: int) -> list[sp.Rational]:
@@ -81,9 +77,8 @@ def _fixed_values(fixed, rng: random.Random) -> dict[int, sp.Integer]:
 
 
 def slice_proof(pattern: Pattern, *, seed: int = 0, tries: int = 8):
-    """The odd-degree proof of a pattern above :math:`3n` entries through a slice (up to
-    ``tries`` choices of entries fixed, the first whose fibre has odd degree), or None.
-    """
+    """The odd-degree proof of a pattern above :math:`3n` entries through a slice (the first of
+    ``tries`` choices of fixed entries with an odd-degree fibre that proves), or None."""
     n = pattern.n
     tree = set(pattern.tree_slots() or ())
     free = [k for k in pattern.indices if k not in tree]
@@ -137,9 +132,8 @@ def _cpu_limit(seconds: float):
 
 
 def _orders(unknowns, eqs, t0: dict, seconds: float) -> list[tuple[list, int]]:
-    """Lex orders (each unknown last) in shape position at ``t0``, with their degree, smallest
-    basis first; those found within ``seconds`` of CPU.
-    """
+    """Lex orders (each unknown last) in shape position at ``t0`` with their degree, smallest
+    basis first, found within ``seconds`` of CPU."""
     at = [sp.expand(e.xreplace(t0)) for e in eqs]
     found = []
     try:
@@ -230,26 +224,13 @@ def _prove(
 def odd_degree_proof(
     pattern: Pattern, *, fixed=(), seed: int = 0, cpu_seconds: float | None = None
 ):
-    """The odd-degree proof of ``pattern``'s universality (see the module text), or None.
+    """The odd-degree proof of ``pattern``'s universality (module text), or None.
 
-    Parameters
-    ----------
-    pattern : Pattern
-        A pattern of :math:`3n` entries whose coefficient map has full generic rank.
-    fixed : sequence of int, optional
-        Slots of a bigger pattern set to small nonzero integers (drawn from ``seed``) so that
-        :math:`2n` unknowns remain: a proof for the slice proves the pattern.
-    seed : int
-        Seeds the rational target :math:`t_0`, the fixed values and the checks.
-    cpu_seconds : float, optional
-        CPU time the proof may take (in the proving child process); default
-        :data:`CPU_SECONDS` up to order 3, :data:`CPU_SECONDS_ABOVE_3` above.
-
-    Returns
-    -------
-    dict or None
-        ``{"proved": True, "degree", "variable", "eliminant", "target"}``; ``{"proved": False,
-        "why"}`` when it ended without a proof; None when it ran out of time or failed.
+    ``fixed``: slots of a bigger pattern set to small nonzero integers (drawn from ``seed``,
+    which also draws the rational target and the checks) so that :math:`2n` unknowns remain.
+    ``cpu_seconds`` defaults to :data:`CPU_SECONDS` up to order 3, :data:`CPU_SECONDS_ABOVE_3`
+    above. Returns ``{"proved": True, "degree", "variable", "eliminant", "target"}``,
+    ``{"proved": False, "why"}``, or None when it ran out of time or failed.
     """
     if cpu_seconds is None:
         cpu_seconds = CPU_SECONDS if pattern.n <= 3 else CPU_SECONDS_ABOVE_3
@@ -261,8 +242,7 @@ def odd_degree_proof(
 
 @contextlib.contextmanager
 def proving():
-    """Keep the proving child process for the proofs inside the block; it stops when the
-    outermost block ends.
+    """Keep the proving child process for the block's proofs (stopped at the outermost end).
 
     >>> from symctl.circuitatlas.odddegree import proving
     >>> with proving():
@@ -280,9 +260,7 @@ def proving():
 
 
 class _Prover:
-    """One child process that proves patterns on request (a JSON line in, one out), restarted
-    after a failure; one that outlives its time is killed.
-    """
+    """A child process proving patterns (a JSON line in, one out); killed past its time."""
 
     def __init__(self):
         self.child = None

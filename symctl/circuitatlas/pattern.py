@@ -31,15 +31,7 @@ from symctl.errors import DimensionError, ParameterError, SymctlTypeError
 
 __all__ = ["MAX_ORDER", "Pattern", "slot_names"]
 
-MAX_ORDER = 6
-"""Largest order a pattern may have (the exhaustive atlas stops far lower)."""
-
-
-@cache
-def slot_names(n: int) -> tuple[str, ...]:
-    """The names of the ``n**2 + 2n`` slots, in bit order (``"F[1,2]"``, ``"H[1]"``, ``"M[2]"``)."""
-    F = [f"F[{i + 1},{j + 1}]" for i in range(n) for j in range(n)]
-    return (*F, *(f"H[{i + 1}]" for i in range(n)), *(f"M[{j + 1}]" for j in range(n)))
+MAX_ORDER = 6  # largest order a pattern may have (the exhaustive atlas stops far lower)
 
 
 @cache
@@ -47,6 +39,14 @@ def _slot_of(n: int) -> tuple[tuple, ...]:
     """Each slot as (matrix, row, column)."""
     F = [("F", i, j) for i in range(n) for j in range(n)]
     return (*F, *(("H", i, 0) for i in range(n)), *(("M", 0, j) for j in range(n)))
+
+
+@cache
+def slot_names(n: int) -> tuple[str, ...]:
+    """The names of the ``n**2 + 2n`` slots, in bit order (``"F[1,2]"``, ``"H[1]"``, ``"M[2]"``)."""
+    return tuple(
+        f"F[{i + 1},{j + 1}]" if m == "F" else f"{m}[{i + j + 1}]" for m, i, j in _slot_of(n)
+    )
 
 
 @cache
@@ -65,8 +65,8 @@ def _permute(mask: int, image: tuple[int, ...]) -> int:
 
 @dataclass(frozen=True, order=True)
 class Pattern:
-    """The support of :math:`(F, H, M)` of an order-``n`` SISO realization (a value: compares,
-    sorts and hashes by ``(n, mask)``).
+    """The support of :math:`(F, H, M)` of an order-``n`` SISO realization (a value ordered and
+    hashed by ``(n, mask)``).
 
     Parameters
     ----------
@@ -133,11 +133,10 @@ class Pattern:
             raise SymctlTypeError(f"R: expected a Realization, got {type(R).__name__}")
         if R.shape != (1, 1):
             raise DimensionError(f"R: expected a SISO realization, got shape {R.shape}")
-        return cls.from_matrices(
-            [[sp.cancel(v) != 0 for v in R.F.row(i)] for i in range(R.n)],
-            [sp.cancel(v) != 0 for v in R.H],
-            [sp.cancel(v) != 0 for v in R.M],
+        nonzero = (
+            [[sp.cancel(v) != 0 for v in row] for row in m.tolist()] for m in (R.F, R.H, R.M)
         )
+        return cls.from_matrices(*nonzero)
 
     @property
     def size(self) -> int:
@@ -228,9 +227,8 @@ class Pattern:
         return self.n == other.n and other.mask & ~self.mask == 0
 
     def tree_slots(self) -> tuple[int, ...] | None:
-        """Slots of a spanning tree of the torus graph (module text), or None when it is not
-        connected (then no realization with this pattern is minimal).
-        """
+        """Slots of a spanning tree of the torus graph (module text); None when it is not
+        connected (no realization with this pattern is then minimal)."""
         graph = nx.Graph()
         graph.add_nodes_from(["o", *range(self.n)])
         for k in self.indices:
@@ -258,7 +256,7 @@ class Pattern:
         out = {}
         for k in self.indices:
             kind, i, j = self.where(k)
-            sub = f"{i + 1}{j + 1}" if kind == "F" else str((i if kind == "H" else j) + 1)
+            sub = f"{i + 1}{j + 1}" if kind == "F" else str(i + j + 1)
             out[k] = sp.Symbol(f"{kind}_{sub}")
         return out
 

@@ -38,17 +38,14 @@ from symctl.circuitatlas.pattern import Pattern
 
 __all__ = ["PRIME", "GenericRank", "generic_rank"]
 
-PRIME = 2**61 - 1
-"""The prime modulus of the rank test."""
+PRIME = 2**61 - 1  # the prime modulus of the rank test
 
-POINTS = 3
-"""Random points tried before a deficient rank is reported."""
+POINTS = 3  # random points tried before a deficient rank is reported
 
 
 class GenericRank(NamedTuple):
-    """The generic rank of a pattern's coefficient map and its generic minimality; ``exact`` when
-    proved, else with the Schwartz-Zippel probability over ``points`` points.
-    """
+    """A pattern's generic rank and minimality; ``exact`` when proved, else Schwartz-Zippel
+    evidence over ``points`` points."""
 
     rank: int
     minimal: bool
@@ -100,20 +97,8 @@ def _rank_at(pattern: Pattern, F, H, M, rng: random.Random) -> int:
 
 
 def generic_rank(pattern: Pattern, seed: int = 0) -> GenericRank:
-    """The generic rank of ``pattern``'s map to :math:`G_2`'s coefficients (see the module text).
+    """The generic rank of ``pattern``'s map to :math:`G_2`'s coefficients (module text).
 
-    Parameters
-    ----------
-    pattern : Pattern
-    seed : int
-        Seeds the random points.
-
-    Returns
-    -------
-    GenericRank
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.rank import generic_rank
     >>> generic_rank(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 0])).minimal

@@ -40,6 +40,12 @@ TARGETS_PER_REGION = {3: 30, 4: 5}
 """Targets screened per region, by order (orders not listed are not screened)."""
 
 
+_GENERIC = (
+    "{} points, the generic number (none at infinity); a squarefree eliminant (simple points); "
+    "no point with an entry 0"
+)
+
+
 def _times(p, q) -> list:
     out = [sp.Integer(0)] * (len(p) + len(q) - 1)
     for i, u in enumerate(p):
@@ -49,9 +55,7 @@ def _times(p, q) -> list:
 
 
 def _poles(n: int, pairs: int, signs, rng) -> list:
-    """Ascending coefficients of a monic a(z) with ``pairs`` complex pole pairs and real poles
-    of the given signs.
-    """
+    """Ascending coefficients of a monic a(z): ``pairs`` complex pole pairs, real poles of ``signs``."""
     a = [sp.Integer(1)]
     for _ in range(pairs):
         re = sp.Rational(rng.choice([-1, 1]) * rng.randint(1, 7), 8)
@@ -74,11 +78,9 @@ def _search_regions(n: int) -> list[tuple[str, int, tuple[int, ...], bool | None
         real = n - 2 * pairs
         for plus in range(real, -1, -1):
             signs = (1,) * plus + (-1,) * (real - plus)
-            poles = (f"{pairs} complex pair{'s' * (pairs > 1)}" if pairs else "") + (
-                (", " if pairs else "") + "real poles " + "".join("+-"[x < 0] for x in signs)
-                if real
-                else ""
-            )
+            parts = [f"{pairs} complex pair{'s' * (pairs > 1)}"] if pairs else []
+            parts += ["real poles " + "".join("+-"[x < 0] for x in signs)] if real else []
+            poles = ", ".join(parts)
             for complex_zeros in (True, False) if n >= 3 else (None,):
                 zeros = {True: ", complex zeros", False: ", real zeros", None: ""}[complex_zeros]
                 out.append((poles + zeros, pairs, signs, complex_zeros))
@@ -119,8 +121,7 @@ def _generic_rationals(rng, k: int) -> list[sp.Rational]:
 
 @cache
 def generic_degree(pattern: Pattern) -> int | None:
-    """The number of complex (torus-normalized) realizations of a random rational target: with
-    probability 1 the fibre degree of almost every target; None when not finite and reduced.
+    """The fibre degree at a random rational target (generic with probability 1), or None.
 
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.screen import generic_degree
@@ -134,24 +135,11 @@ def generic_degree(pattern: Pattern) -> int | None:
 
 
 def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) -> Evidence | None:
-    """The exact refutation screen of ``pattern`` (see the module text).
+    """The exact refutation screen of ``pattern`` (module text): a refutation (method
+    ``"counterexample"``), a conjecture with the counts, or None when it does not apply.
 
-    Parameters
-    ----------
-    pattern : Pattern
-    per_region : int, optional
-        Targets per region (default :data:`TARGETS_PER_REGION` of the order, else 0).
-    seed : int
-        Seeds the targets and the linear forms.
+    ``per_region`` defaults to :data:`TARGETS_PER_REGION` of the order (else 0).
 
-    Returns
-    -------
-    Evidence or None
-        A refutation (method ``"counterexample"``, with its target and why it is generic); a
-        conjecture with the counts; None when the screen does not apply.
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.screen import screen
     >>> P = Pattern.from_matrices([[0, 1, 0], [0, 0, 1], [1, 1, 1]], [0, 0, 1], [1, 1, 1])
@@ -184,23 +172,10 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
                     f"with this pattern and none real (eliminant {fibre['eliminant']}, no real "
                     "root by Sturm's theorem); it is generic, so an open set of G2 has none"
                 )
-                return _evidence(
-                    False,
-                    "counterexample",
-                    True,
-                    why,
-                    region=region,
-                    a=a,
-                    c=c,
-                    degree=degree,
-                    generic_degree=degree,
-                    eliminant=fibre["eliminant"],
-                    generic=(
-                        f"{degree} points, the generic number (none at infinity); a "
-                        "squarefree eliminant (simple points); no point with an entry 0"
-                    ),
-                    screened=sum(counted.values()) + 1,
-                )
+                details = dict(region=region, a=a, c=c, degree=degree, generic_degree=degree)
+                details.update(eliminant=fibre["eliminant"], generic=_GENERIC.format(degree))
+                screened = sum(counted.values()) + 1
+                return _evidence(False, "counterexample", True, why, **details, screened=screened)
     parity = " (odd: never none)" if degree % 2 else ""
     why = (
         f"conjectured universal, not proved: the exact screen counted real realizations, "
@@ -208,13 +183,5 @@ def screen(pattern: Pattern, per_region: int | None = None, *, seed: int = 0) ->
         f"drawn in each of {len(regions)} regions of poles and zeros; fibre degree "
         f"{degree}{parity}; {skipped} targets not generic, skipped)"
     )
-    return _evidence(
-        None,
-        CONJECTURED,
-        False,
-        why,
-        screened=sum(counted.values()),
-        per_region=counted,
-        skipped=skipped,
-        degree=degree,
-    )
+    details = dict(screened=sum(counted.values()), per_region=counted, skipped=skipped)
+    return _evidence(None, CONJECTURED, False, why, **details, degree=degree)

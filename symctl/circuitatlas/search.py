@@ -22,11 +22,9 @@ from symctl.errors import ParameterError
 
 __all__ = ["CHUNK", "MAX_WORKERS", "canonical_masks", "open_pool", "pool_options", "run"]
 
-CHUNK = 64
-"""Patterns per task sent to a worker."""
+CHUNK = 64  # patterns per task sent to a worker
 
-FORMAT = 3
-"""Version of the checkpoint format (3: the exact screen decides patterns of 3n entries)."""
+FORMAT = 3  # version of the checkpoint format (3: the exact screen decides patterns of 3n entries)
 
 
 def canonical_masks(n: int, size: int) -> list[int]:
@@ -116,9 +114,8 @@ def run(
     progress: Callable[[int, int, int], None] | None = None,
     max_neurons: int | None = None,
 ) -> tuple[list[dict], dict]:
-    """Decide every canonical pattern of the given sizes; the records and the counts (patterns
-    above ``max_neurons`` are counted as ``skipped``, not decided).
-    """
+    """The records and counts of every canonical pattern of ``sizes`` (those above
+    ``max_neurons`` counted as ``skipped``)."""
     from symctl.circuitatlas.universality import CONJECTURED
 
     header = {"format": FORMAT, "order": n, "delays": delays, "max_neurons": max_neurons}

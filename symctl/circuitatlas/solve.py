@@ -93,9 +93,8 @@ def _solved(pattern, a, c):
 
 
 def _markov_equal(R: Realization, a, c) -> bool:
-    r"""Exactly :math:`M F^{k-1} H = h_k` for :math:`k \le 2n` (equal transfer functions), each
-    difference an algebraic number shown zero by its minimal polynomial.
-    """
+    r"""Exactly :math:`M F^{k-1} H = h_k` for :math:`k \le 2n` (minimal polynomials of the
+    algebraic differences)."""
     n = R.n
     h = []  # Markov parameters of c(z)/a(z): h_k = c_{n-k} - sum_{j<k} a_{n-k+j} h_j
     for k in range(1, 2 * n + 1):

@@ -84,22 +84,12 @@ __all__ = [
     "sample_targets",
 ]
 
-FIXINGS = 6
-"""Random values tried for the entries beyond a square system (patterns above 3n entries)."""
-
-DRAWS_PER_REGION = 4
-"""Sampled controllers drawn per region before the region counts as failed."""
-
-CURVE_TARGETS_PER_REGION = {3: 1}
-"""Targets per region of the exact screen of a fibre that is a curve (:math:`3n + 1` entries),
-by order (orders not listed are not screened this way)."""
-
+FIXINGS = 6  # random values tried for the entries beyond a square system (above 3n entries)
+DRAWS_PER_REGION = 4  # sampled controllers per region before the region counts as failed
+CURVE_TARGETS_PER_REGION = {3: 1}  # by order: targets per region of a curve's exact screen
+# (targets, fixings) of the witness search's passes; the second only where the first found none
 EFFORTS = ((DRAWS_PER_REGION, FIXINGS), (3 * DRAWS_PER_REGION, 4 * FIXINGS))
-"""(targets, fixings) of the witness search's passes; a region gets the second pass only when
-the first found no witness there."""
-
-POLE_DRAWS = 2
-"""Sampled pole polynomials per region (of poles and zeros) of the poles-alone refutation."""
+POLE_DRAWS = 2  # sampled pole polynomials per region of the poles-alone refutation
 
 
 def _linear_pair(eqs, left):
@@ -166,8 +156,7 @@ def closed_form(pattern: Pattern) -> MappingProxyType | None:
     return MappingProxyType({k: solved.get(values[k], values[k]) for k in pattern.indices})
 
 
-ATTEMPTS = 16
-"""Choices of fixed entries tried for a pattern above 3n entries."""
+ATTEMPTS = 16  # choices of fixed entries tried for a pattern above 3n entries
 
 
 def fixings(slots, extra: int, rng, attempts: int = ATTEMPTS):
@@ -195,9 +184,8 @@ def _generic_pole_degree(n: int, fmask: int) -> int | None:
 
 @cache
 def _pole_system(n: int, fmask: int):
-    """F's free entries after its own torus normalization and its charpoly's coefficients; None
-    unless exactly ``n`` entries are free.
-    """
+    """F's free entries after its own torus normalization and its charpoly's coefficients (None
+    unless exactly ``n`` are free)."""
     graph = nx.Graph()
     graph.add_nodes_from(range(n))
     slots = [k for k in range(n * n) if fmask >> k & 1]
@@ -235,22 +223,14 @@ def _pole_obstruction(n: int, fmask: int, seed: int) -> Evidence | None:
             if not sol or not sol["degree"] or sol["real"]:
                 continue
             if sol["degree"] == _generic_pole_degree(n, fmask):
+                shown, degree = [str(v) for v in a], sol["degree"]
                 why = (
-                    f"no real F with this support has the poles of the sampled a = "
-                    f"{[str(v) for v in a]} ({region}): det(zI - F) = a(z) has {sol['degree']} "
-                    "complex solutions and no real one, so no H, M helps"
+                    f"no real F with this support has the poles of the sampled a = {shown} "
+                    f"({region}): det(zI - F) = a(z) has {degree} complex solutions and no "
+                    "real one, so no H, M helps"
                 )
-                return _evidence(
-                    False,
-                    "counterexample",
-                    True,
-                    why,
-                    region=region,
-                    a=[str(v) for v in a],
-                    degree=sol["degree"],
-                    eliminant=sol["eliminant"],
-                    poles_only=True,
-                )
+                details = dict(region=region, a=shown, degree=degree, eliminant=sol["eliminant"])
+                return _evidence(False, "counterexample", True, why, **details, poles_only=True)
     return None
 
 
@@ -317,6 +297,7 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
                     witnessed[region] = found
                     break
     failed = [r for r, *_ in _search_regions(pattern.n) if r not in witnessed]
+    witnesses = {r: [w] for r, w in witnessed.items()}
     exact_found = sum("point" in w for w in witnessed.values())
     how = (
         f"exact (critical points of a distance, {curve_targets} generic targets drawn per "
@@ -331,46 +312,24 @@ def _witness_search(pattern: Pattern, rng, extra: int, exact: bool | None = None
             f"{how}, for sampled G2 in each region of poles and zeros ({', '.join(witnessed)}); "
             "samples cannot rule out a sub-region they missed"
         )
-        return _evidence(
-            None, CONJECTURED, False, why, witnesses={r: [w] for r, w in witnessed.items()}
-        )
+        return _evidence(None, CONJECTURED, False, why, witnesses=witnesses)
     why = (
         f"no real realization found for sampled G2 in {failed}"
         + (f" with {EFFORTS[-1][1]} random values of the {extra} extra entries" if extra else "")
         + "; neither proved nor refuted"
     )
-    return _evidence(
-        None,
-        "not decided",
-        False,
-        why,
-        failed_regions=failed,
-        witnesses={r: [w] for r, w in witnessed.items()},
-    )
+    return _evidence(None, "not decided", False, why, failed_regions=failed, witnesses=witnesses)
 
 
 def decide(
     pattern: Pattern, universal_below=(), *, seed: int = 0, exact: bool | None = None
 ) -> Evidence:
-    """Decide whether ``pattern`` is universal (see the module text for the methods).
+    """Decide whether ``pattern`` is universal (the methods: module text).
 
-    Parameters
-    ----------
-    pattern : Pattern
-    universal_below : iterable of (Pattern, Evidence)
-        Patterns already found universal (proved or conjectured); one contained in ``pattern``
-        decides it by lifting (a proof only when its source is one).
-    seed : int
-        Seeds the sampled targets and linear forms.
-    exact : bool, optional
-        False skips the odd-degree proofs and the exact screen (certified numerics alone).
+    ``universal_below``: ``(Pattern, Evidence)`` pairs already found universal (proved or
+    conjectured); one contained in ``pattern`` decides it by lifting (a proof only when its
+    source is one). ``exact=False`` skips the odd-degree proofs and the exact screen.
 
-    Returns
-    -------
-    Evidence
-
-    Examples
-    --------
     >>> from symctl.circuitatlas.pattern import Pattern
     >>> from symctl.circuitatlas.universality import decide
     >>> decide(Pattern.from_matrices([[1, 0], [0, 1]], [1, 1], [1, 1])).universal
@@ -379,13 +338,8 @@ def decide(
     n = pattern.n
     rank = generic_rank(pattern, seed)
     if not rank.minimal:
-        return _evidence(
-            False,
-            "not minimal",
-            rank.exact,
-            "no realization with this pattern is minimal",
-            rank=rank.rank,
-        )
+        why = "no realization with this pattern is minimal"
+        return _evidence(False, "not minimal", rank.exact, why, rank=rank.rank)
     if rank.rank < 2 * n:
         why = (
             f"generic rank {rank.rank} < {2 * n}: the G2 it realizes form a set of dimension "
@@ -475,10 +429,5 @@ def _closed_form_evidence(pattern: Pattern, form: dict) -> Evidence:
         "the entries are rational functions of G2's coefficients (torus-normalized), "
         f"proved exactly against the symbolic G2 ({check.method})"
     )
-    return _evidence(
-        True,
-        "closed form",
-        True,
-        why,
-        entries={slot_names(n)[k]: str(form[k]) for k in pattern.indices},
-    )
+    entries = {slot_names(n)[k]: str(form[k]) for k in pattern.indices}
+    return _evidence(True, "closed form", True, why, entries=entries)

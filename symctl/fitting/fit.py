@@ -387,9 +387,7 @@ class FitResult(ArrayValue):
                 for n, ok in self.neuron_identifiable.items()
             },
             "identifiability": {
-                "method": self.identifiability.method,
-                "evidence": self.identifiability.evidence,
-                "exact": self.identifiability.exact,
+                k: getattr(self.identifiability, k) for k in ("method", "evidence", "exact")
             },
             "intervals": {k: None if v is None else list(v) for k, v in self.intervals.items()},
             "uncertainty": self.uncertainty.to_dict(),

@@ -110,11 +110,10 @@ def _traces(traces, steps: int) -> dict:
 
 def _circuit_arg(circuit) -> list:
     """The classes to fit: names and atlas classes (labels resolved)."""
+    from symctl.circuitatlas.atlas import atlas
     from symctl.circuitatlas.circuitclass import CircuitClass
 
     if circuit == "all":  # the registry's classes and the atlas's closed-form classes
-        from symctl.circuitatlas.atlas import atlas
-
         closed = [k for k in atlas(2, workers=1).classes if k.evidence.method == "closed form"]
         return [*circuit_names(whole=False), *closed]
     items = list(circuit) if isinstance(circuit, list | tuple) else [circuit]
@@ -125,8 +124,6 @@ def _circuit_arg(circuit) -> list:
         if isinstance(c, CircuitClass) or c in circuit_names(whole=False):
             out.append(c)
         elif isinstance(c, str) and c[:1] == "A" and c[1:].isdigit():
-            from symctl.circuitatlas.atlas import atlas
-
             classes = {k.label: k for k in atlas(2, workers=1).classes}
             if c not in classes:
                 raise ParameterError(

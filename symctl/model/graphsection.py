@@ -22,14 +22,12 @@ class GraphSection:
         if data is None:
             return (*chain_graph(*delays), False, {})
         table = self.table(data, "delay_graph", "delay_graph")
-        if "vertices" not in table:
-            raise self.fail("delay_graph", "missing vertices ([[delay_graph.vertices]])")
-        vs = self.items(table["vertices"], "delay_graph.vertices", "vertex", limit=MAX_VERTICES)
+        vertices = self.need(table, "vertices", "delay_graph", " ([[delay_graph.vertices]])")
+        vs = self.items(vertices, "delay_graph.vertices", "vertex", limit=MAX_VERTICES)
         names, about = [], {}
         for i, v in enumerate(vs):
-            if "name" not in v:
-                raise self.fail(f"delay_graph.vertices[{i}]", "missing name")
-            n = self.text(v["name"], f"delay_graph.vertices[{i}].name", ident=True)
+            n = self.need(v, "name", f"delay_graph.vertices[{i}]")
+            n = self.text(n, f"delay_graph.vertices[{i}].name", ident=True)
             if n in names:
                 raise self.fail(f"delay_graph.vertices[{i}].name", f"{n!r} appears twice")
             names.append(n)
@@ -52,9 +50,7 @@ class GraphSection:
         for i, e in enumerate(es):
             where = f"delay_graph.edges[{i}]"
             for key in ("from", "to"):
-                if key not in e:
-                    raise self.fail(where, f"missing {key}")
-                if self.text(e[key], f"{where}.{key}") not in names:
+                if self.text(self.need(e, key, where), f"{where}.{key}") not in names:
                     raise self.fail(f"{where}.{key}", f"{e[key]!r} is not a vertex")
             if ("steps" in e) == ("seconds" in e):
                 raise self.fail(where, "give one of steps or seconds")

@@ -26,23 +26,18 @@ class MeasurementSection:
         if data is None:
             return tuple((s, s) for s in self.names), None
         items = self.items(data, "outputs", "outputs", limit=MAX_MODEL_STATES)
-        xs = list(ode.states) if ode is not None else [sp.Symbol(s, real=True) for s in self.names]
-        us = list(ode.inputs) if ode is not None else []
+        if ode is not None:
+            xs, us, values = list(ode.states), list(ode.inputs), ode.values
+            point = dict(zip((*xs, *us), (*ode.x_eq, *ode.u_eq), strict=True))
+        else:
+            xs, us, point = [sp.Symbol(s, real=True) for s in self.names], [], {}
+            values = {p: exact_value(v, p.name) for p, v in params.items()}
         names = {**{p.name: p for p in params}, **{x.name: x for x in (*xs, *us)}}
         sym_units = {v: units[k] for k, v in names.items() if k in units}
-        point = dict(zip(xs, ode.x_eq, strict=True)) if ode is not None else {}
-        point.update(zip(us, ode.u_eq, strict=True) if ode is not None else {})
-        values = (
-            ode.values
-            if ode is not None
-            else {p: exact_value(v, p.name) for p, v in params.items()}
-        )
         out, rows = [], []
         for i, item in enumerate(items):
             where = f"outputs[{i}]"
-            if "name" not in item:
-                raise self.fail(where, "missing name")
-            name = self.text(item["name"], f"{where}.name", ident=True)
+            name = self.text(self.need(item, "name", where), f"{where}.name", ident=True)
             u = self.unit(item.get("unit"), f"{where}.unit")
             if "expr" in item:
                 if "state" in item:

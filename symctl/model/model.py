@@ -251,12 +251,9 @@ class Model:
                 M = to_matrix(new[name], name)
                 psd_matrix(M, name, size, definite=definite)
                 changes[name] = sp.ImmutableMatrix(M)
-        if "seed" in new:
-            changes["seed"] = bounded_int(new["seed"], "seed", 0, MAX_SEED)
-        if "realizations" in new:
-            changes["realizations"] = bounded_int(
-                new["realizations"], "realizations", 1, MAX_CIRCUITS
-            )
+        for name, low, high in (("seed", 0, MAX_SEED), ("realizations", 1, MAX_CIRCUITS)):
+            if name in new:
+                changes[name] = bounded_int(new[name], name, low, high)
         recorded = {k: changes[k] for k in new if changes[k] != getattr(self, k)}
         recorded.update({k: exact_value(v, k) for k, v in given.items()})
         if not recorded:  # every value is the one the model has: it stays as it is

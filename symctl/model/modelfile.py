@@ -118,6 +118,12 @@ class _Reader(GraphSection, MeasurementSection):
         except SymctlError as exc:
             raise self.fail(where, strip_argname(str(exc), argname or where)) from None
 
+    def need(self, table: dict, key: str, where: str, hint: str = ""):
+        """``table[key]``, or the error that ``where`` misses it."""
+        if key not in table:
+            raise self.fail(where, f"missing {key}{hint}")
+        return table[key]
+
     def table(self, data, where: str, allowed: str | None = None) -> dict:
         if not isinstance(data, dict):
             raise self.fail(where, f"expected a table, got {_kind(data)}")
@@ -258,14 +264,12 @@ class _Reader(GraphSection, MeasurementSection):
         )
 
     def sampling(self, table: dict) -> float:
-        if "Ts" not in table:
-            raise self.fail("sampling", "missing Ts, the sampling time")
-        value = table["Ts"]
+        value = self.need(table, "Ts", "sampling", ", the sampling time")
         if isinstance(value, dict):
             self.table(value, "sampling.Ts", "parameter")
-            if "value" not in value:
-                raise self.fail("sampling.Ts", "missing value")
-            ts = self.number(value["value"], "sampling.Ts.value", positive=True)
+            ts = self.number(
+                self.need(value, "value", "sampling.Ts"), "sampling.Ts.value", positive=True
+            )
             unit = self.unit(value.get("unit", "s"), "sampling.Ts.unit")
             if not unit.is_time():
                 raise self.fail("sampling.Ts.unit", f"{unit} is not a unit of time")
@@ -298,9 +302,7 @@ class _Reader(GraphSection, MeasurementSection):
             self.text(key, where, ident=True)
             if isinstance(value, dict):
                 self.table(value, where, "parameter")
-                if "value" not in value:
-                    raise self.fail(where, "missing value")
-                number = self.number(value["value"], f"{where}.value")
+                number = self.number(self.need(value, "value", where), f"{where}.value")
                 if "unit" in value:
                     units[key] = self.unit(value["unit"], f"{where}.unit")
                 descr[key] = self.text(value.get("description", ""), f"{where}.description")
@@ -316,9 +318,9 @@ class _Reader(GraphSection, MeasurementSection):
             return []
         items = self.items(d[section], section, allowed, limit=MAX_MODEL_STATES)
         for i, item in enumerate(items):
-            if "name" not in item:
-                raise self.fail(f"{section}[{i}]", "missing name")
-            self.text(item["name"], f"{section}[{i}].name", ident=True)
+            self.text(
+                self.need(item, "name", f"{section}[{i}]"), f"{section}[{i}].name", ident=True
+            )
         return items
 
     def plant(self, d, params, units, descr, Ts, name):
@@ -346,9 +348,8 @@ class _Reader(GraphSection, MeasurementSection):
                     sym_units[s] = u
         rhs = []
         for i, item in enumerate(states):
-            if "rhs" not in item:
-                raise self.fail(f"states[{i}]", "missing rhs, d(state)/dt as text")
-            e = self.expr(item["rhs"], f"states[{i}].rhs", allnames)
+            rhs_text = self.need(item, "rhs", f"states[{i}]", ", d(state)/dt as text")
+            e = self.expr(rhs_text, f"states[{i}].rhs", allnames)
             with self.named(f"states[{i}].rhs"):
                 check_rhs(e, sym_units.get(xs[i]), sym_units, f"states[{i}].rhs")
             rhs.append(e)
@@ -430,11 +431,7 @@ class _Reader(GraphSection, MeasurementSection):
                     raise self.fail("discrete", "give both numerator and denominator")
                 num = self.row(table["numerator"], "discrete.numerator", psyms)
                 den = self.row(table["denominator"], "discrete.denominator", psyms)
-                G = DiscreteTF(
-                    sp.Poly(num, z).as_expr().subs(values),
-                    sp.Poly(den, z).as_expr().subs(values),
-                    dt=Ts,
-                )
+                G = DiscreteTF(*(sp.Poly(p, z).as_expr().subs(values) for p in (num, den)), dt=Ts)
                 if G.relative_degree is None or G.relative_degree < 1:
                     raise self.fail(
                         "discrete.numerator",
@@ -461,14 +458,9 @@ class _Reader(GraphSection, MeasurementSection):
                     )
                 self.signal_about(item, where, units, descr)
         with self.named("discrete"):
-            plant = DiscretePlant(
-                A,
-                B,
-                exact_value(Ts, "Ts"),
-                tuple(s["name"] for s in states),
-                tuple(u["name"] for u in inputs),
-                params={str(k): v for k, v in params.items()},
-            )
+            names = (tuple(s["name"] for s in states), tuple(u["name"] for u in inputs))
+            by_name = {str(k): v for k, v in params.items()}
+            plant = DiscretePlant(A, B, exact_value(Ts, "Ts"), *names, params=by_name)
             plant.numeric()
         return None, plant, None
 
@@ -563,14 +555,11 @@ class _Reader(GraphSection, MeasurementSection):
             return None
         if value is True:
             value = {}
-        value = self.table(value, "analysis.longest_delay", "longest_delay")
-        top = self.integer(value.get("max", PAPER_MAX_DELAY), "analysis.longest_delay.max", 1, 200)
-        tol = float(
-            self.number(
-                value.get("tolerance", 0.01), "analysis.longest_delay.tolerance", positive=True
-            )
-        )
-        return top, tol
+        where = "analysis.longest_delay"
+        value = self.table(value, where, "longest_delay")
+        top = self.integer(value.get("max", PAPER_MAX_DELAY), f"{where}.max", 1, 200)
+        tol = self.number(value.get("tolerance", 0.01), f"{where}.tolerance", positive=True)
+        return top, float(tol)
 
 
 def _kind(value) -> str:

@@ -36,8 +36,6 @@ def _split(dotted: str) -> list[str]:
 def key_lines(text: str) -> dict[str, int]:
     """The line (1-based) of every table and key, by dotted path (``states[0].rhs``).
 
-    Examples
-    --------
     >>> from symctl.model.source import key_lines
     >>> lines = key_lines('[parameters]\\ntau = { value = 1, unit = "s" }\\n')
     >>> lines["parameters.tau"], lines["parameters.tau.unit"]

@@ -147,21 +147,14 @@ def unit_of(expr: sp.Expr, units: dict) -> Unit | None:
     if isinstance(expr, sp.Symbol):
         return units.get(expr)
     if isinstance(expr, sp.Add):
-        seen: list[tuple[sp.Expr, Unit]] = []
-        unknown = False
-        for term in expr.args:
-            u = unit_of(term, units)
-            if u is None:
-                unknown = True
-                continue
-            if seen and u != seen[0][1]:
-                a, ua = seen[0]
+        known = [(t, u) for t in expr.args if (u := unit_of(t, units)) is not None]
+        for term, u in known[1:]:
+            if u != known[0][1]:
                 raise ParameterError(
-                    f"the terms {sp.sstr(a)!r} [{ua}] and {sp.sstr(term)!r} [{u}] of a sum "
-                    "have different units"
+                    f"the terms {sp.sstr(known[0][0])!r} [{known[0][1]}] and {sp.sstr(term)!r} "
+                    f"[{u}] of a sum have different units"
                 )
-            seen.append((term, u))
-        return None if unknown or not seen else seen[0][1]
+        return known[0][1] if len(known) == len(expr.args) else None
     if isinstance(expr, sp.Mul):
         out = ONE
         for factor in expr.args:

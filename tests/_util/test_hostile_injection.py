@@ -443,8 +443,8 @@ AUDITED = {
     # model files: every text goes through parse_expr (the safe parser) or parse_unit (which
     # calls it); matrices and polynomials are built from those parsed values
     ("symctl.model.modelfile", "_Reader.expr", "parse_expr"): 1,
-    ("symctl.model.modelfile", "_Reader.discrete", "subs"): 4,
-    ("symctl.model.modelfile", "_Reader.discrete", "Poly"): 2,
+    ("symctl.model.modelfile", "_Reader.discrete", "subs"): 3,
+    ("symctl.model.modelfile", "_Reader.discrete", "Poly"): 1,
     ("symctl.model.modelfile", "_Reader.matrix", "Matrix"): 1,
     ("symctl.model.modelfile", "_Reader.weight", "ImmutableMatrix"): 2,
     ("symctl.model.units", "parse_unit", "parse_expr"): 1,
@@ -480,7 +480,7 @@ AUDITED = {
     ("symctl.circuitatlas.candidates", "_degenerate", "expand"): 3,
     ("symctl.circuitatlas.candidates", "_degenerate", "factor"): 1,
     ("symctl.circuitatlas.fibre", "binary_rationals", "expand"): 1,  # sympy values only
-    ("symctl.circuitatlas.pattern", "Pattern.of", "cancel"): 3,  # a validated Realization
+    ("symctl.circuitatlas.pattern", "Pattern.of", "cancel"): 1,  # a validated Realization
     ("symctl.circuitatlas.pattern", "Pattern.F", "ImmutableMatrix"): 1,  # 0/1 ints of the mask
     ("symctl.circuitatlas.pattern", "Pattern.H", "ImmutableMatrix"): 1,
     ("symctl.circuitatlas.pattern", "Pattern.M", "ImmutableMatrix"): 1,
