@@ -18,6 +18,7 @@ without :math:`M_1` at :math:`K_2 + \epsilon_1 \epsilon_3 = 0`.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import sympy as sp
@@ -219,11 +220,11 @@ def _generic(cls: CircuitClass, f: Factorization, eps):
     return False, tuple(eps), (1,) * len(eps), f, R, R.params.get("method", "")
 
 
-def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
-    pattern = cls.representatives[0]
-    n = pattern.n
-    T = ds + da
-    unknowns, _slots, values, charpoly, numer = _system(pattern)
+@functools.lru_cache(maxsize=8)
+def _targets(tf: DiscreteTF, T: int):
+    """What every degenerate class of one controller solves for: the sections' poles ``e``,
+    the coefficients (lowest first) of G's monic denominator and of ``nu Z - lead delta``, and
+    G's poles."""
     e = sp.symbols(f"e_0:{T}")
     Z = sp.Mul(*(z - ei for ei in e))
     num = sp.Poly(tf.num, z)
@@ -232,8 +233,18 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     nu = num.as_expr() / lead_den
     delta = den.as_expr() / lead_den
     lead = sp.Poly(nu, z).LC()
-    target_a = sp.Poly(delta, z).all_coeffs()[::-1][:n]
+    target_a = sp.Poly(delta, z).all_coeffs()[::-1]
     target_b = sp.Poly(sp.expand(nu * Z - lead * delta), z).all_coeffs()[::-1]
+    return e, target_a, target_b, sp.Poly(delta, z).nroots()
+
+
+def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
+    pattern = cls.representatives[0]
+    n = pattern.n
+    T = ds + da
+    unknowns, _slots, values, charpoly, numer = _system(pattern)
+    e, target_a, target_b, poles = _targets(tf, T)
+    target_a = target_a[:n]
     target_b = target_b + [sp.Integer(0)] * (n - len(target_b))
     eqs = [sp.expand(p - binary_rationals(t)) for p, t in zip(charpoly, target_a, strict=True)]
     eqs += [sp.expand(p - binary_rationals(t)) for p, t in zip(numer, target_b[:n], strict=True)]
@@ -253,7 +264,6 @@ def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):
     if any(abs(vals[x]) < 1e-9 for x in unknowns) or any(abs(vals[ei]) >= 1 for ei in e):
         return None
     eps_vals = tuple(sp.Float(vals[ei], 15) for ei in e)
-    poles = sp.Poly(delta, z).nroots()
     if any(abs(complex(p) - float(ev)) < 1e-7 for p in poles for ev in eps_vals):
         return None  # a pole-zero cancellation: G2 would lose order
     C = (sp.Integer(1),) * T

@@ -476,8 +476,9 @@ AUDITED = {
     # circuits_for: G is a validated DiscreteTF (DiscreteTF.from_expr); factor is symctl's
     ("symctl.circuitatlas.candidates", "circuits_for", "factor"): 2,
     ("symctl.circuitatlas.candidates", "_generic_eps", "Poly"): 1,
-    ("symctl.circuitatlas.candidates", "_degenerate", "Poly"): 6,
-    ("symctl.circuitatlas.candidates", "_degenerate", "expand"): 3,
+    ("symctl.circuitatlas.candidates", "_targets", "Poly"): 6,
+    ("symctl.circuitatlas.candidates", "_targets", "expand"): 1,
+    ("symctl.circuitatlas.candidates", "_degenerate", "expand"): 2,
     ("symctl.circuitatlas.candidates", "_degenerate", "factor"): 1,
     ("symctl.circuitatlas.fibre", "binary_rationals", "expand"): 1,  # sympy values only
     ("symctl.circuitatlas.pattern", "Pattern.of", "cancel"): 1,  # a validated Realization
