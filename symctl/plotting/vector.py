@@ -86,7 +86,10 @@ def _base_font(path: str, face: int) -> tuple[bytes, dict[int, int]]:
 
     font, index = _cut(path, base, face)
     data = io.BytesIO()
-    font.save(data, reorderTables=False)
+    try:
+        font.save(data, reorderTables=False)
+    finally:
+        font.close()  # the font file read from the path
     return data.getvalue(), dict(index)
 
 

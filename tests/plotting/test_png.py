@@ -92,3 +92,19 @@ def test_every_renderer_of_a_process_shares_the_typeset_math_text(tmp_path):
     misses = shared.cache_info().misses
     write_vector(figure(), tmp_path / "b.pdf")  # a new figure, a new renderer: nothing typeset
     assert shared.cache_info().misses == misses
+
+
+def test_the_fonts_cut_for_the_pdf_subsets_are_closed_after_reading(tmp_path):
+    import gc
+    import warnings
+
+    from symctl.plotting import vector
+
+    fig = open_loop_response(MuscleModel().plant()).plot()
+    vector._base_font.cache_clear()  # cut afresh here: each font file opened and read once
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        vector.write_vector(fig, tmp_path / "a.pdf")
+        gc.collect()
+    assert vector._base_font.cache_info().currsize > 0  # the fonts were cut in this test
+    assert not [w for w in caught if issubclass(w.category, ResourceWarning)]
