@@ -233,9 +233,9 @@ def _targets(tf: DiscreteTF, T: int):
     nu = num.as_expr() / lead_den
     delta = den.as_expr() / lead_den
     lead = sp.Poly(nu, z).LC()
-    target_a = sp.Poly(delta, z).all_coeffs()[::-1]
+    monic = sp.Poly(delta, z)
     target_b = sp.Poly(sp.expand(nu * Z - lead * delta), z).all_coeffs()[::-1]
-    return e, target_a, target_b, sp.Poly(delta, z).nroots()
+    return e, monic.all_coeffs()[::-1], target_b, monic.nroots()
 
 
 def _degenerate(cls: CircuitClass, tf: DiscreteTF, ds: int, da: int, rng):

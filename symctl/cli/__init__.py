@@ -267,11 +267,10 @@ def _written(out, derivation, **kw) -> None:
     drawn = []
 
     def early(part) -> None:
-        if kw["figures"]:
-            drawn.append(start_figures(part, folder.staging, workers, formats=kw["formats"]))
+        drawn.append(start_figures(part, folder.staging, workers, formats=kw["formats"]))
 
     with OutputFolder(out, "--out") as folder, workers, Steps(_console, lines=True) as steps:
-        res = derivation(steps.start, early)
+        res = derivation(steps.start, early if kw["figures"] else None)
         written = write_files(
             res,
             folder.staging,

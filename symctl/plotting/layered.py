@@ -392,17 +392,12 @@ _T = np.linspace(0.0, 1.0, 49)
 def bezier_points(bezier, t=_T) -> np.ndarray:
     """Points of a piecewise cubic Bézier (``3k + 1`` control points) at ``t`` in each segment."""
     ctrl = np.asarray(bezier, dtype=float)
-    t = np.asarray(t, dtype=float)[:, None]
-    s = 1 - t
-    out = []
-    for k in range(0, len(ctrl) - 1, 3):
-        p0, c1, c2, p1 = ctrl[k : k + 4]
-        out.append(s**3 * p0 + 3 * s * s * t * c1 + 3 * s * t * t * c2 + t**3 * p1)
-    return out[0] if len(out) == 1 else np.vstack(out)
+    segments = [ctrl[k : k + 4] for k in range(0, len(ctrl) - 1, 3)]
+    return bezier_many(segments, t).reshape(-1, 2)
 
 
 def bezier_many(curves, t=_T) -> np.ndarray:
-    """:func:`bezier_points` of cubic Béziers of 4 control points each, as curves x points x 2."""
+    """The points at ``t`` of cubic Béziers of 4 control points each, as curves x points x 2."""
     ctrl = np.asarray(curves, dtype=float)[:, None]
     t = np.asarray(t, dtype=float)[:, None]
     s = 1 - t

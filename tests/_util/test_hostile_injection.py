@@ -476,7 +476,7 @@ AUDITED = {
     # circuits_for: G is a validated DiscreteTF (DiscreteTF.from_expr); factor is symctl's
     ("symctl.circuitatlas.candidates", "circuits_for", "factor"): 2,
     ("symctl.circuitatlas.candidates", "_generic_eps", "Poly"): 1,
-    ("symctl.circuitatlas.candidates", "_targets", "Poly"): 6,
+    ("symctl.circuitatlas.candidates", "_targets", "Poly"): 5,
     ("symctl.circuitatlas.candidates", "_targets", "expand"): 1,
     ("symctl.circuitatlas.candidates", "_degenerate", "expand"): 2,
     ("symctl.circuitatlas.candidates", "_degenerate", "factor"): 1,
